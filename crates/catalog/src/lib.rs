@@ -1,0 +1,1 @@
+//! The command catalog of code_aster 17.

@@ -1,0 +1,8 @@
+//! One module per subcommand; each `run` returns the process exit code.
+
+pub mod check;
+pub mod explain;
+pub mod fmt;
+pub mod mesh;
+pub mod parse;
+pub mod run;

@@ -1,0 +1,79 @@
+//! `aster`: read, check, explain and run code_aster command files.
+//!
+//! Exit codes follow the contract in DEVELOPERS.md: 0 success, 1 a failed
+//! check (parse/check errors, a NOOK test), 2 an error that stopped the run.
+
+mod cmd;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "aster", version, about = "Read, check and run code_aster command files")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Parse command files; print the AST with --json.
+    Parse {
+        files: Vec<PathBuf>,
+        /// Print the AST of each file as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Print a command file in canonical form.
+    Fmt { file: PathBuf },
+    /// Validate command files against the catalog (commands are not run).
+    Check {
+        files: Vec<PathBuf>,
+        /// Emit the evaluated program (`commands`) as JSON.
+        #[arg(long, value_name = "WHAT")]
+        emit: Option<String>,
+    },
+    /// Explain a command or a keyword: `aster explain CMD[/KEYWORD/...]`.
+    Explain { path: String },
+    /// Describe a mesh file.
+    Mesh {
+        file: PathBuf,
+        /// Print a JSON summary (nodes, cells per type, groups).
+        #[arg(long)]
+        json: bool,
+        /// Convert to another format (`mail`, `med`, `vtu`), written to --out.
+        #[arg(long, value_name = "FORMAT")]
+        to: Option<String>,
+        #[arg(long, value_name = "PATH")]
+        out: Option<PathBuf>,
+    },
+    /// Run a case (.comm or .export) and its TEST_RESU checks.
+    Run {
+        case: PathBuf,
+        /// Mesh file for unit 20 when no .export names one.
+        #[arg(long)]
+        mesh: Option<PathBuf>,
+        /// Directory for files the case writes (IMPR_RESU, IMPR_TABLE).
+        #[arg(long, default_value = ".")]
+        out: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let code = match cli.command {
+        Command::Parse { files, json } => cmd::parse::run(&files, json),
+        Command::Fmt { file } => cmd::fmt::run(&file),
+        Command::Check { files, emit } => cmd::check::run(&files, emit.as_deref()),
+        Command::Explain { path } => cmd::explain::run(&path),
+        Command::Mesh {
+            file,
+            json,
+            to,
+            out,
+        } => cmd::mesh::run(&file, json, to.as_deref(), out.as_deref()),
+        Command::Run { case, mesh, out } => cmd::run::run(&case, mesh.as_deref(), &out),
+    };
+    ExitCode::from(code)
+}

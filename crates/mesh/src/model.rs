@@ -1,0 +1,184 @@
+//! The in-memory mesh.
+
+use serde::Serialize;
+
+/// Index of a node in [`Mesh::coords`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub struct NodeId(pub u32);
+
+/// Index of a cell in [`Mesh::cells`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub struct CellId(pub u32);
+
+/// Cell types with code_aster's names; node ordering is code_aster's.
+#[allow(clippy::upper_case_acronyms)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum CellType {
+    POI1,
+    SEG2,
+    SEG3,
+    SEG4,
+    TRIA3,
+    TRIA6,
+    TRIA7,
+    QUAD4,
+    QUAD8,
+    QUAD9,
+    TETRA4,
+    TETRA10,
+    PENTA6,
+    PENTA15,
+    PENTA18,
+    HEXA8,
+    HEXA20,
+    HEXA27,
+    PYRAM5,
+    PYRAM13,
+}
+
+impl CellType {
+    pub const ALL: [CellType; 20] = [
+        CellType::POI1,
+        CellType::SEG2,
+        CellType::SEG3,
+        CellType::SEG4,
+        CellType::TRIA3,
+        CellType::TRIA6,
+        CellType::TRIA7,
+        CellType::QUAD4,
+        CellType::QUAD8,
+        CellType::QUAD9,
+        CellType::TETRA4,
+        CellType::TETRA10,
+        CellType::PENTA6,
+        CellType::PENTA15,
+        CellType::PENTA18,
+        CellType::HEXA8,
+        CellType::HEXA20,
+        CellType::HEXA27,
+        CellType::PYRAM5,
+        CellType::PYRAM13,
+    ];
+
+    /// code_aster's name, e.g. `"QUAD4"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CellType::POI1 => "POI1",
+            CellType::SEG2 => "SEG2",
+            CellType::SEG3 => "SEG3",
+            CellType::SEG4 => "SEG4",
+            CellType::TRIA3 => "TRIA3",
+            CellType::TRIA6 => "TRIA6",
+            CellType::TRIA7 => "TRIA7",
+            CellType::QUAD4 => "QUAD4",
+            CellType::QUAD8 => "QUAD8",
+            CellType::QUAD9 => "QUAD9",
+            CellType::TETRA4 => "TETRA4",
+            CellType::TETRA10 => "TETRA10",
+            CellType::PENTA6 => "PENTA6",
+            CellType::PENTA15 => "PENTA15",
+            CellType::PENTA18 => "PENTA18",
+            CellType::HEXA8 => "HEXA8",
+            CellType::HEXA20 => "HEXA20",
+            CellType::HEXA27 => "HEXA27",
+            CellType::PYRAM5 => "PYRAM5",
+            CellType::PYRAM13 => "PYRAM13",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<CellType> {
+        CellType::ALL.into_iter().find(|t| t.name() == name)
+    }
+
+    pub fn node_count(self) -> usize {
+        match self {
+            CellType::POI1 => 1,
+            CellType::SEG2 => 2,
+            CellType::SEG3 => 3,
+            CellType::SEG4 => 4,
+            CellType::TRIA3 => 3,
+            CellType::TRIA6 => 6,
+            CellType::TRIA7 => 7,
+            CellType::QUAD4 => 4,
+            CellType::QUAD8 => 8,
+            CellType::QUAD9 => 9,
+            CellType::TETRA4 => 4,
+            CellType::TETRA10 => 10,
+            CellType::PENTA6 => 6,
+            CellType::PENTA15 => 15,
+            CellType::PENTA18 => 18,
+            CellType::HEXA8 => 8,
+            CellType::HEXA20 => 20,
+            CellType::HEXA27 => 27,
+            CellType::PYRAM5 => 5,
+            CellType::PYRAM13 => 13,
+        }
+    }
+
+    /// Topological dimension: 0 for points, 1 for segments, 2 for faces, 3 for volumes.
+    pub fn dim(self) -> u8 {
+        match self {
+            CellType::POI1 => 0,
+            CellType::SEG2 | CellType::SEG3 | CellType::SEG4 => 1,
+            CellType::TRIA3
+            | CellType::TRIA6
+            | CellType::TRIA7
+            | CellType::QUAD4
+            | CellType::QUAD8
+            | CellType::QUAD9 => 2,
+            _ => 3,
+        }
+    }
+}
+
+/// One cell: its type and its nodes in code_aster order.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Cell {
+    pub ty: CellType,
+    pub nodes: Vec<NodeId>,
+}
+
+/// A named group (of cells or of nodes), in file order.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Group<T> {
+    pub name: String,
+    pub members: Vec<T>,
+}
+
+/// A mesh: nodes, cells and groups.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Mesh {
+    /// Space dimension of the coordinates (2 or 3; 1 is possible).
+    pub dim: u8,
+    /// Node coordinates; unused components are 0.
+    pub coords: Vec<[f64; 3]>,
+    /// Node names (`N1`…), same length as `coords`.
+    pub node_names: Vec<String>,
+    pub cells: Vec<Cell>,
+    /// Cell names (`M1`…), same length as `cells`.
+    pub cell_names: Vec<String>,
+    pub groups_ma: Vec<Group<CellId>>,
+    pub groups_no: Vec<Group<NodeId>>,
+}
+
+impl Mesh {
+    pub fn node_count(&self) -> usize {
+        self.coords.len()
+    }
+
+    pub fn group_ma(&self, name: &str) -> Option<&Group<CellId>> {
+        self.groups_ma.iter().find(|g| g.name == name)
+    }
+
+    pub fn group_no(&self, name: &str) -> Option<&Group<NodeId>> {
+        self.groups_no.iter().find(|g| g.name == name)
+    }
+
+    pub fn cell(&self, id: CellId) -> &Cell {
+        &self.cells[id.0 as usize]
+    }
+
+    pub fn coord(&self, id: NodeId) -> [f64; 3] {
+        self.coords[id.0 as usize]
+    }
+}

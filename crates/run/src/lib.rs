@@ -1,0 +1,1 @@
+//! The semantic layer: turns validated commands into a model and results.

@@ -1,0 +1,354 @@
+//! The abstract syntax tree of a command file.
+//!
+//! `.comm` files are Python programs, so the tree is general Python (enough of
+//! Python 3 and of the Python 2 still found in code_aster 11 files). Every
+//! node carries a [`Span`]. Commands are not special here: `MA =
+//! LIRE_MAILLAGE(...)` is an assignment of a call; the evaluator decides that
+//! `LIRE_MAILLAGE` is a command.
+
+use crate::codemap::Span;
+use serde::Serialize;
+
+/// A whole file.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Module {
+    pub body: Vec<Stmt>,
+    pub span: Span,
+}
+
+/// A name as written in the source (variable, keyword argument, attribute).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Ident {
+    pub name: String,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Stmt {
+    pub kind: StmtKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "stmt")]
+pub enum StmtKind {
+    /// An expression evaluated for its effect, e.g. `DEBUT()`.
+    Expr { value: Expr },
+    /// `a = b = value`; targets may be names, tuples/lists, attributes, subscripts.
+    Assign { targets: Vec<Expr>, value: Expr },
+    /// `target op= value`.
+    AugAssign {
+        target: Expr,
+        op: BinOp,
+        value: Expr,
+    },
+    /// `target: annotation [= value]`.
+    AnnAssign {
+        target: Expr,
+        annotation: Expr,
+        value: Option<Expr>,
+    },
+    If {
+        test: Expr,
+        body: Vec<Stmt>,
+        orelse: Vec<Stmt>,
+    },
+    For {
+        target: Expr,
+        iter: Expr,
+        body: Vec<Stmt>,
+        orelse: Vec<Stmt>,
+    },
+    While {
+        test: Expr,
+        body: Vec<Stmt>,
+        orelse: Vec<Stmt>,
+    },
+    FunctionDef {
+        name: Ident,
+        params: Vec<Param>,
+        body: Vec<Stmt>,
+        decorators: Vec<Expr>,
+    },
+    ClassDef {
+        name: Ident,
+        bases: Vec<Arg>,
+        body: Vec<Stmt>,
+        decorators: Vec<Expr>,
+    },
+    Return { value: Option<Expr> },
+    /// `import a.b as c, d`.
+    Import { names: Vec<Alias> },
+    /// `from ..a.b import c as d` (`level` counts the leading dots);
+    /// `names` is empty for `import *`.
+    ImportFrom {
+        module: Option<String>,
+        level: u32,
+        names: Vec<Alias>,
+        star: bool,
+    },
+    Try {
+        body: Vec<Stmt>,
+        handlers: Vec<ExceptHandler>,
+        orelse: Vec<Stmt>,
+        finalbody: Vec<Stmt>,
+    },
+    With { items: Vec<WithItem>, body: Vec<Stmt> },
+    Raise {
+        exc: Option<Expr>,
+        cause: Option<Expr>,
+    },
+    Assert { test: Expr, msg: Option<Expr> },
+    Del { targets: Vec<Expr> },
+    Global { names: Vec<Ident> },
+    Nonlocal { names: Vec<Ident> },
+    Pass,
+    Break,
+    Continue,
+    /// Python 2 `print x, y` / `print >>f, x` (legacy files).
+    Print {
+        dest: Option<Expr>,
+        values: Vec<Expr>,
+        /// False when the statement ends with a comma (no newline printed).
+        newline: bool,
+    },
+    /// Python 2 `exec code [in globals[, locals]]`.
+    Exec {
+        code: Expr,
+        globals: Option<Expr>,
+        locals: Option<Expr>,
+    },
+}
+
+/// `name` or `module.path` imported, with an optional `as` name.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Alias {
+    pub name: String,
+    pub asname: Option<Ident>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ExceptHandler {
+    /// The exception type(s); `None` for a bare `except:`.
+    pub typ: Option<Expr>,
+    /// `except E as e:` (or Python 2 `except E, e:`).
+    pub name: Option<Ident>,
+    pub body: Vec<Stmt>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WithItem {
+    pub context: Expr,
+    pub target: Option<Expr>,
+}
+
+/// A formal parameter of `def` or `lambda`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Param {
+    pub name: Ident,
+    pub kind: ParamKind,
+    pub default: Option<Expr>,
+    pub annotation: Option<Expr>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum ParamKind {
+    /// An ordinary (positional-or-keyword, or keyword-only after `*`) parameter.
+    Normal,
+    /// `*args`
+    VarArgs,
+    /// `**kwargs`
+    KwArgs,
+    /// A bare `*` separating keyword-only parameters (its `name` is `*`).
+    KwOnlyMarker,
+    /// A bare `/` ending positional-only parameters (its `name` is `/`).
+    PosOnlyMarker,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "expr")]
+pub enum ExprKind {
+    Name { id: String },
+    /// Integer literal (decimal, hex, octal, binary; Python 2 `L` suffix accepted).
+    /// Integers that do not fit an `i64` become [`ExprKind::Float`].
+    Int { value: i64 },
+    Float { value: f64 },
+    /// Imaginary literal `2j`.
+    Imag { value: f64 },
+    /// A string literal, after escape processing and implicit concatenation.
+    Str { value: String },
+    Bytes { value: Vec<u8> },
+    /// An f-string (or a concatenation containing one).
+    FString { parts: Vec<FStringPart> },
+    Bool { value: bool },
+    None,
+    Ellipsis,
+    List { elts: Vec<Expr> },
+    Tuple { elts: Vec<Expr> },
+    Set { elts: Vec<Expr> },
+    /// `{k: v, **m}`: a `None` key is a `**` unpacking.
+    Dict { items: Vec<DictItem> },
+    Attribute { value: Box<Expr>, attr: Ident },
+    Subscript { value: Box<Expr>, index: Box<Expr> },
+    /// `lower:upper:step` inside a subscript.
+    Slice {
+        lower: Option<Box<Expr>>,
+        upper: Option<Box<Expr>>,
+        step: Option<Box<Expr>>,
+    },
+    Call { func: Box<Expr>, args: Vec<Arg> },
+    BinOp {
+        left: Box<Expr>,
+        op: BinOp,
+        right: Box<Expr>,
+    },
+    UnaryOp { op: UnaryOp, operand: Box<Expr> },
+    /// `a and b and c` / `a or b`.
+    BoolOp { op: BoolOp, values: Vec<Expr> },
+    /// `a < b <= c`.
+    Compare {
+        left: Box<Expr>,
+        ops: Vec<(CmpOp, Expr)>,
+    },
+    /// `body if test else orelse`.
+    IfExp {
+        test: Box<Expr>,
+        body: Box<Expr>,
+        orelse: Box<Expr>,
+    },
+    Lambda { params: Vec<Param>, body: Box<Expr> },
+    ListComp {
+        elt: Box<Expr>,
+        generators: Vec<Comprehension>,
+    },
+    SetComp {
+        elt: Box<Expr>,
+        generators: Vec<Comprehension>,
+    },
+    GeneratorExp {
+        elt: Box<Expr>,
+        generators: Vec<Comprehension>,
+    },
+    DictComp {
+        key: Box<Expr>,
+        value: Box<Expr>,
+        generators: Vec<Comprehension>,
+    },
+    /// `*x` in a call, list, tuple or assignment target.
+    Starred { value: Box<Expr> },
+    Yield { value: Option<Box<Expr>> },
+    YieldFrom { value: Box<Expr> },
+    Await { value: Box<Expr> },
+    /// `name := value`.
+    NamedExpr { target: Ident, value: Box<Expr> },
+    /// Python 2 backquotes `` `x` `` (= `repr(x)`).
+    Repr { value: Box<Expr> },
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DictItem {
+    pub key: Option<Expr>,
+    pub value: Expr,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "part")]
+pub enum FStringPart {
+    Literal {
+        value: String,
+    },
+    Field {
+        value: Expr,
+        /// `!r`, `!s`, `!a`
+        conversion: Option<char>,
+        /// The format spec after `:`, itself possibly containing fields.
+        format_spec: Vec<FStringPart>,
+        /// `f"{x=}"`
+        debug: bool,
+    },
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Comprehension {
+    pub target: Expr,
+    pub iter: Expr,
+    pub ifs: Vec<Expr>,
+    pub is_async: bool,
+}
+
+/// An argument in a call.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Arg {
+    pub kind: ArgKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "arg")]
+pub enum ArgKind {
+    Positional { value: Expr },
+    /// `NAME=value`: for commands, a keyword (`MAILLAGE=MA`).
+    Keyword { name: Ident, value: Expr },
+    /// `*args`
+    Star { value: Expr },
+    /// `**kwargs`
+    DoubleStar { value: Expr },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    MatMul,
+    Div,
+    FloorDiv,
+    Mod,
+    Pow,
+    LShift,
+    RShift,
+    BitOr,
+    BitXor,
+    BitAnd,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum UnaryOp {
+    /// `-x`
+    Neg,
+    /// `+x`
+    Pos,
+    /// `not x`
+    Not,
+    /// `~x`
+    Invert,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum BoolOp {
+    And,
+    Or,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum CmpOp {
+    Eq,
+    /// `!=` (and Python 2 `<>`)
+    NotEq,
+    Lt,
+    LtE,
+    Gt,
+    GtE,
+    Is,
+    IsNot,
+    In,
+    NotIn,
+}
