@@ -1,0 +1,1 @@
+//! Contact: pairing of slave points with master cells, gaps and contact conditions.
