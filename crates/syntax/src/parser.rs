@@ -270,6 +270,12 @@ impl Builder {
                 }
             }
             Rule::expr_stmt => self.expr_stmt(inner)?,
+            Rule::yield_stmt => match inner.next() {
+                Some(y) => StmtKind::Expr {
+                    value: self.yield_expr(y)?,
+                },
+                None => return Err(err(span, "expected `yield`")),
+            },
             other => return Err(err(span, format!("internal: unexpected statement {other:?}"))),
         };
         Ok(Stmt { kind, span })
