@@ -7,6 +7,7 @@
 //! hierarchy live in [`types`].
 
 pub mod cond;
+pub mod explain;
 pub mod model;
 pub mod types;
 
