@@ -1027,10 +1027,7 @@ impl<'a> Interp<'a> {
         match f {
             Value::Command(name) => crate::commands::call_command(self, &name, args, span, target),
             Value::Builtin(Builtin::Factor) => {
-                let mut d = Dict {
-                    entries: Vec::new(),
-                    factor: true,
-                };
+                let mut d = Dict::default();
                 for a in args {
                     match a.name {
                         Some((n, _)) => d.insert(Value::str(&n), a.value, a.span),

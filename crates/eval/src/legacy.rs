@@ -6,19 +6,29 @@
 use crate::command::Scalar;
 use crate::diag::{DiagKind, Diagnostic};
 use crate::validate::Given;
-use crate::value::{Dict, Value};
+use crate::value::Value;
 use aster_catalog::{find_in, Entry, Lit};
-use std::cell::RefCell;
-use std::rc::Rc;
 
 /// Plain keyword renames: (command or `*`, old name, new name, note).
 /// `*` applies at any level of any command.
-pub const RENAMES: &[(&str, &str, &str)] = &[
-    ("*", "COMP_INCR", "COMPORTEMENT"),
-    ("*", "COMP_ELAS", "COMPORTEMENT"),
-    ("DEFI_CONTACT", "TOLE_APPA", "DIST_APPA"),
-    ("*", "NB_MAX_ITER", "ITER_MAXI"),
-    ("AFFE_CHAR_MECA", "LIAISON_UNIL_NO", "LIAISON_UNILATER"),
+pub const RENAMES: &[(&str, &str, &str, &str)] = &[
+    ("*", "COMP_INCR", "COMPORTEMENT", ""),
+    ("*", "COMP_ELAS", "COMPORTEMENT", ""),
+    ("DEFI_CONTACT", "TOLE_APPA", "DIST_APPA", ""),
+    (
+        "*",
+        "NOEUD",
+        "GROUP_NO",
+        "node names are no longer accepted; the name is looked up as a node group, then as a node",
+    ),
+    (
+        "*",
+        "MAILLE",
+        "GROUP_MA",
+        "cell names are no longer accepted; the name is looked up as a cell group, then as a cell",
+    ),
+    ("*", "NOEUD_ORIG", "GROUP_NO_ORIG", ""),
+    ("*", "NOEUD_EXTR", "GROUP_NO_EXTR", ""),
 ];
 
 /// Keywords that no longer exist and had no effect on the result: dropped
@@ -88,17 +98,6 @@ fn warn(diags: &mut Vec<Diagnostic>, g: &Given, msg: String) {
     diags.push(Diagnostic::warning(DiagKind::Legacy, g.span, msg));
 }
 
-fn dict_value(entries: Vec<(&str, Value)>) -> Value {
-    let mut d = Dict {
-        entries: Vec::new(),
-        factor: true,
-    };
-    for (k, v) in entries {
-        d.insert(Value::str(k), v, aster_syntax::Span::default());
-    }
-    Value::Dict(Rc::new(RefCell::new(d)))
-}
-
 /// Rewrites the keywords given at one level (`path` is `CMD` or
 /// `CMD/FACTOR[i]`) into their current form.
 pub(crate) fn transform_level(
@@ -125,8 +124,25 @@ pub(crate) fn transform_level(
             continue;
         };
         match (cmd, factor, name.as_str()) {
-            // DEBUT(CODE=_F(NOM=...)) → DEBUT(CODE='OUI')
-            (_, _, _) if false => {}
+            // DETRUIRE(CONCEPT=_F(NOM=X)) → DETRUIRE(NOM=X)
+            ("DETRUIRE", "", "CONCEPT") => {
+                let g = &mut given[i];
+                warn(
+                    diags,
+                    g,
+                    format!("`{path}/CONCEPT=_F(NOM=...)` is code_aster 11 syntax: now NOM=..."),
+                );
+                let mut names = Vec::new();
+                for occ in crate::validate::flatten(&g.value) {
+                    if let Value::Dict(d) = occ {
+                        if let Some(v) = d.borrow().get(&Value::str("NOM")) {
+                            names.extend(crate::validate::flatten(v));
+                        }
+                    }
+                }
+                g.name = "NOM".into();
+                g.value = Value::tuple(names);
+            }
             ("MODI_MAILLAGE", "", "ORIE_PEAU_2D" | "ORIE_PEAU_3D") => {
                 let g = &mut given[i];
                 warn(diags, g, format!("`{path}/{name}` is code_aster 11 syntax: now ORIE_PEAU=_F(GROUP_MA_PEAU=...)"));
@@ -161,16 +177,21 @@ pub(crate) fn transform_level(
             i += 1;
             continue;
         }
-        if let Some((_, _, new)) = RENAMES
+        if let Some((_, _, new, note)) = RENAMES
             .iter()
-            .find(|(c, old, _)| applies(c, cmd) && *old == name)
+            .find(|(c, old, _, _)| applies(c, cmd) && *old == name)
         {
-            if known(new) {
+            if known(new) && !given.iter().any(|g| g.name == *new) {
                 warn(
                     diags,
                     &given[i],
                     format!("`{path}/{name}` is legacy syntax: now {new}"),
                 );
+                if !note.is_empty() {
+                    if let Some(d) = diags.last_mut() {
+                        d.notes.push(format!("note: {note}"));
+                    }
+                }
                 given[i].name = new.to_string();
                 i += 1;
                 continue;
@@ -258,7 +279,6 @@ fn test_resu_vale(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic
             }
         }
     }
-    let _ = dict_value;
 }
 
 /// A renamed value of a keyword with allowed values.

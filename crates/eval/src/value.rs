@@ -37,8 +37,6 @@ pub struct DictEntry {
 #[derive(Clone, Debug, Default)]
 pub struct Dict {
     pub entries: Vec<DictEntry>,
-    /// Built by `_F(...)`: a factor keyword occurrence.
-    pub factor: bool,
 }
 
 impl Dict {
