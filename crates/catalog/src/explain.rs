@@ -73,6 +73,16 @@ fn simple_line(name: &str, s: &SimpleKw) -> String {
     line
 }
 
+/// A bound as the keyword's type reads it (`0` for an integer, `0.0` for a real).
+fn bound(s: &SimpleKw, x: f64) -> String {
+    if s.types.contains(&ValueType::Int) && !s.types.contains(&ValueType::Real) && x.fract() == 0.0
+    {
+        format!("{}", x as i64)
+    } else {
+        fmt_real(x)
+    }
+}
+
 fn status_word(s: Status) -> &'static str {
     match s {
         Status::Mandatory => "mandatory",
@@ -259,7 +269,28 @@ pub fn explain_in(cat: &Catalog, path: &str) -> Result<String, String> {
     let mut found = Vec::new();
     lookup(&cmd.keywords, &kref, Vec::new(), &mut found);
     if found.is_empty() {
-        let names = names_in(&cmd.keywords);
+        // Suggest among the keywords of the deepest level that exists.
+        let mut names: Vec<&str> = Vec::new();
+        if kref.len() == 1 {
+            names = names_in(&cmd.keywords);
+        } else {
+            let mut parents = Vec::new();
+            lookup(
+                &cmd.keywords,
+                &kref[..kref.len() - 1],
+                Vec::new(),
+                &mut parents,
+            );
+            for (_, p) in parents {
+                if let Node::Factor(f) = &p.node {
+                    for n in names_in(&f.keywords) {
+                        if !names.contains(&n) {
+                            names.push(n);
+                        }
+                    }
+                }
+            }
+        }
         return Err(format!(
             "{} has no keyword `{}`{}",
             cmd.name,
@@ -301,10 +332,10 @@ pub fn explain_in(cat: &Catalog, path: &str) -> Result<String, String> {
                     let _ = writeln!(out, "  allowed: {}", short_list(into, 40));
                 }
                 if let Some(a) = s.val_min {
-                    let _ = writeln!(out, "  minimum: {}", fmt_real(a));
+                    let _ = writeln!(out, "  minimum: {}", bound(s, a));
                 }
                 if let Some(b) = s.val_max {
-                    let _ = writeln!(out, "  maximum: {}", fmt_real(b));
+                    let _ = writeln!(out, "  maximum: {}", bound(s, b));
                 }
             }
             Node::Factor(f) => {
