@@ -586,6 +586,11 @@ pub fn eval(c: &Cond, env: &dyn CondEnv) -> Result<CVal, String> {
                 let items = v.items();
                 let hit = |x: &CVal| -> Result<bool, String> {
                     Ok(match f.as_str() {
+                        // `equal_to('MODELISATION', ('3D_HHO', 'D_PLAN_HHO'))`
+                        // is used in the catalog to mean "one of".
+                        "equal_to" if matches!(expected, CVal::Tuple(_)) => {
+                            compare(CmpOp::In, x, &expected)?
+                        }
                         "equal_to" => x.py_eq(&expected),
                         "is_in" => compare(CmpOp::In, x, &expected)?,
                         "greater_than" => compare(CmpOp::Gt, x, &expected)?,

@@ -60,13 +60,13 @@ fn simple_line(name: &str, s: &SimpleKw) -> String {
     }
     match (s.val_min, s.val_max) {
         (Some(a), Some(b)) => {
-            let _ = write!(line, ", in [{}, {}]", fmt_real(a), fmt_real(b));
+            let _ = write!(line, ", in [{}, {}]", bound(s, a), bound(s, b));
         }
         (Some(a), None) => {
-            let _ = write!(line, ", >= {}", fmt_real(a));
+            let _ = write!(line, ", >= {}", bound(s, a));
         }
         (None, Some(b)) => {
-            let _ = write!(line, ", <= {}", fmt_real(b));
+            let _ = write!(line, ", <= {}", bound(s, b));
         }
         _ => {}
     }
