@@ -13,3 +13,13 @@ pub mod list;
 pub mod pyfmt;
 pub mod table;
 pub mod test_resu;
+pub mod commands;
+pub mod concept;
+pub mod executor;
+pub mod field;
+mod meshio;
+pub mod output;
+pub mod select;
+pub mod solve;
+
+pub use executor::{Executor, RunOptions};
