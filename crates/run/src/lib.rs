@@ -16,6 +16,8 @@ pub mod test_resu;
 pub mod commands;
 pub mod concept;
 pub mod executor;
+mod evaluate;
+pub mod program;
 pub mod field;
 mod meshio;
 pub mod output;
