@@ -10,12 +10,14 @@ pub mod hdf5;
 pub mod mail;
 pub mod med;
 mod model;
+mod ops;
 mod summary;
 
 pub use error::{suggest, GroupKind, MeshError};
 pub use mail::{parse_mail, read_mail};
 pub use med::{read_med, read_med_named, MedInfo};
 pub use model::*;
+pub use ops::OrientReport;
 pub use summary::{CellCounts, MeshSummary};
 
 use std::path::Path;
