@@ -30,7 +30,8 @@ pub use loads::{Load, LoadItem, Loads, Multiplier};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
 pub use nonlinear::{
-    Convergence, InitialState, NewtonOptions, NonLinearResult, Prediction, StaticNonLinear, Step,
+    meca_statique, Convergence, InitialState, NewtonOptions, NonLinearResult, Prediction,
+    StaticNonLinear, Step,
 };
 pub use post::{CellValues, NodalValues};
 pub use unilateral::{

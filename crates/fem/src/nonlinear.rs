@@ -138,6 +138,22 @@ impl NonLinearResult {
     }
 }
 
+/// `MECA_STATIQUE`: a linear static solve at each instant (default the
+/// single instant 0), stored with NUME_ORDRE 1, 2, … Unilateral sources are
+/// not allowed (code_aster's MECA_STATIQUE has none).
+pub fn meca_statique(
+    model: &Model,
+    loads: &Loads,
+    instants: &[f64],
+) -> Result<NonLinearResult, FemError> {
+    let mut s = StaticNonLinear {
+        instants: instants.to_vec(),
+        first_order: 1,
+        ..Default::default()
+    };
+    s.run(model, loads, true)
+}
+
 /// `STAT_NON_LINE`.
 pub struct StaticNonLinear<'s> {
     /// The time list (`INCREMENT/LIST_INST`).
@@ -187,9 +203,28 @@ struct SourceRows {
 impl StaticNonLinear<'_> {
     /// Runs the analysis.
     pub fn solve(&mut self, model: &Model, loads: &Loads) -> Result<NonLinearResult, FemError> {
+        self.run(model, loads, false)
+    }
+
+    /// `linear`: every instant is an independent linear solve from a zero
+    /// state and no initial state is stored (`MECA_STATIQUE`).
+    fn run(
+        &mut self,
+        model: &Model,
+        loads: &Loads,
+        linear: bool,
+    ) -> Result<NonLinearResult, FemError> {
         loads.validate(model)?;
         let nd = model.dofs().len();
-        let (t0, times) = self.schedule()?;
+        let (t0, times) = if linear {
+            if self.instants.is_empty() {
+                (0.0, vec![0.0])
+            } else {
+                (f64::NAN, self.instants.clone())
+            }
+        } else {
+            self.schedule()?
+        };
         let mut u = match &self.initial {
             Some(init) => {
                 if init.displacement.len() != nd {
@@ -219,22 +254,30 @@ impl StaticNonLinear<'_> {
         let kff = restrict(&k, &map, nfree);
 
         let mut steps = Vec::with_capacity(times.len() + 1);
-        steps.push(Step {
-            nume_ordre: self.first_order,
-            time: t0,
-            stress: post::sief_elga(model, &u)?,
-            internal_variables: Vec::new(),
-            multipliers: vec![0.0; loads.equality_rows(model, t0).map(|r| r.len()).unwrap_or(0)],
-            unilateral: vec![Vec::new(); self.sources.len()],
-            displacement: u.clone(),
-            iterations: 0,
-            resi_glob_rela: 0.0,
-            resi_glob_maxi: 0.0,
-        });
+        if !linear {
+            steps.push(Step {
+                nume_ordre: self.first_order,
+                time: t0,
+                stress: post::sief_elga(model, &u)?,
+                internal_variables: Vec::new(),
+                multipliers: vec![
+                    0.0;
+                    loads.equality_rows(model, t0).map(|r| r.len()).unwrap_or(0)
+                ],
+                unilateral: vec![Vec::new(); self.sources.len()],
+                displacement: u.clone(),
+                iterations: 0,
+                resi_glob_rela: 0.0,
+                resi_glob_maxi: 0.0,
+            });
+        }
 
         let mut srcs: Vec<Option<SourceRows>> = (0..self.sources.len()).map(|_| None).collect();
         let mut checked_held = false;
         for (step_no, &t) in times.iter().enumerate() {
+            if linear {
+                u.iter_mut().for_each(|v| *v = 0.0);
+            }
             let elim = loads.eliminated(model, t)?;
             for (&i, &v) in &elim {
                 u[i] = v;
@@ -342,7 +385,7 @@ impl StaticNonLinear<'_> {
                 unil.push(outcomes);
             }
             steps.push(Step {
-                nume_ordre: self.first_order + step_no + 1,
+                nume_ordre: self.first_order + step_no + usize::from(!linear),
                 time: t,
                 displacement: u.clone(),
                 stress: post::sief_elga(model, &u)?,
@@ -364,7 +407,11 @@ impl StaticNonLinear<'_> {
                 "STAT_NON_LINE needs a list of instants (INCREMENT/LIST_INST)".into(),
             ));
         }
-        if let Some(w) = self.instants.windows(2).find(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)) {
+        if let Some(w) = self
+            .instants
+            .windows(2)
+            .find(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+        {
             return Err(FemError::Model(format!(
                 "the list of instants must increase strictly ({} is followed by {})",
                 w[0], w[1]
@@ -509,6 +556,26 @@ fn newton_step(
                     }
                 }
             }
+            // A state where the active conditions leave a rigid-body mode
+            // free is reported (instead of factorising a singular matrix).
+            {
+                let mut ground: Vec<Vec<(usize, f64)>> =
+                    elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
+                for sr in srcs.iter().flatten() {
+                    if let UnilateralMethod::Penalty { .. } = sr.method {
+                        for (r, on) in sr.active.iter().enumerate() {
+                            if *on {
+                                ground.push(sr.idx[r].clone());
+                            }
+                        }
+                    }
+                }
+                let free = held::free_dofs(model, &ground);
+                if !free.is_empty() {
+                    return Err(FemError::Singular { free_dofs: free });
+                }
+            }
             let a = kff.with_extra(nfree + nk, extra);
             // Right-hand side.
             let fint = k.mul(u);
@@ -603,7 +670,10 @@ fn newton_step(
             let mut changed = false;
             let force_scale = reference.max(1e-300);
             let mut si = 0;
-            for sr in srcs.iter_mut() {
+            // Rows leaving the active set: (source, row, score); the most
+            // negative score leaves first.
+            let mut releases: Vec<(usize, usize, f64)> = Vec::new();
+            for (s_no, sr) in srcs.iter_mut().enumerate() {
                 let Some(sr) = sr else {
                     src_lam.push(Vec::new());
                     continue;
@@ -629,10 +699,47 @@ fn newton_step(
                     };
                     if now != sr.active[r] {
                         changed = true;
+                        if !now {
+                            let score = match sr.method {
+                                UnilateralMethod::ActiveSet => lam[r] / force_scale,
+                                UnilateralMethod::Penalty { .. } => g / length,
+                            };
+                            releases.push((s_no, r, score));
+                        }
                         sr.active[r] = now;
                     }
                 }
                 src_lam.push(lam);
+            }
+            // Releasing every row in tension at once may leave the model
+            // unheld (a body resting on its supports): then release only the
+            // most negative one.
+            if releases.len() > 1 {
+                let mut ground: Vec<Vec<(usize, f64)>> =
+                    elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                ground.extend(eq.iter().map(|r| r.terms.clone()));
+                for sr in srcs.iter().flatten() {
+                    for (r, on) in sr.active.iter().enumerate() {
+                        if *on {
+                            ground.push(sr.idx[r].clone());
+                        }
+                    }
+                }
+                if !held::free_dofs(model, &ground).is_empty() {
+                    let keep = releases
+                        .iter()
+                        .enumerate()
+                        .min_by(|a, b| a.1 .2.total_cmp(&b.1 .2))
+                        .map(|(k, _)| k)
+                        .unwrap_or(0);
+                    for (k, &(s_no, r, _)) in releases.iter().enumerate() {
+                        if k != keep {
+                            if let Some(sr) = srcs[s_no].as_mut() {
+                                sr.active[r] = true;
+                            }
+                        }
+                    }
+                }
             }
             // Geometry update at each iteration: re-ask the rows at the
             // current iterate; new rows mean another pass.
@@ -761,7 +868,10 @@ fn make_rows(
         _ => rows
             .iter()
             .zip(&idx)
-            .map(|(row, r)| gap(r, row.rhs, u) > 0.)
+            // Touching rows start active (gap ≥ −tol): a body resting on
+            // its unilateral supports is then held from the first solve;
+            // the multiplier test releases the ones in tension.
+            .map(|(row, r)| gap(r, row.rhs, u) >= -1e-10 * length_scale(model, u))
             .collect(),
     };
     Ok(SourceRows {
