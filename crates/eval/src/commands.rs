@@ -198,6 +198,9 @@ pub(crate) fn call_command(
     if name == "FIN" {
         me.finished = true;
     }
+    if name == "POURSUITE" {
+        me.continued = true;
+    }
 
     Ok(match (output, result, formula) {
         (_, Some(c), Some(f)) => {
