@@ -1,10 +1,30 @@
-//! `aster run`.
+//! `aster run CASE [--mesh PATH] [--out DIR]`: runs a `.comm` or `.export`,
+//! prints each TEST_RESU check as code_aster does and a last line
+//! `TEST_RESU: <n> OK, <m> NOOK`. Exit 0 iff every check is OK, 1 if any is
+//! NOOK, 2 when the run stops on an error.
 
-pub fn run_placeholder() -> u8 {
-    eprintln!("aster run: not implemented yet");
-    2
-}
+use std::path::Path;
 
-pub fn run(_case: &std::path::Path, _mesh: Option<&std::path::Path>, _out: &std::path::Path) -> u8 {
-    run_placeholder()
+pub fn run(case: &Path, mesh: Option<&Path>, out: &Path) -> u8 {
+    let prepared = match aster_run::program::prepare(case, mesh, out) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    match aster_run::program::run(&prepared, Box::new(std::io::stdout())) {
+        Ok(tally) => {
+            println!("{}", tally.summary());
+            if tally.nook > 0 {
+                1
+            } else {
+                0
+            }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            2
+        }
+    }
 }
