@@ -198,6 +198,9 @@ pub(crate) fn call_command(
     if name == "FIN" {
         me.finished = true;
     }
+    if name == "POURSUITE" {
+        me.continued = true;
+    }
 
     Ok(match (output, result, formula) {
         (_, Some(c), Some(f)) => {
@@ -238,4 +241,164 @@ fn err_unknown<T>(name: &str, span: Span) -> R<T> {
         format!("`{name}` is not a code_aster 17 command"),
     )
     .into())
+}
+
+#[cfg(test)]
+mod tests {
+    //! Command calls built from values (no parser needed).
+    use super::*;
+    use crate::value::Dict;
+    use crate::CheckSink;
+    use aster_syntax::CodeMap;
+    use std::cell::RefCell;
+
+    fn kw(name: &str, value: Value) -> CallArg {
+        CallArg {
+            name: Some((name.to_string(), Span::default())),
+            value,
+            span: Span::default(),
+        }
+    }
+
+    fn f(entries: Vec<(&str, Value)>) -> Value {
+        let mut d = Dict::default();
+        for (k, v) in entries {
+            d.insert(Value::str(k), v, Span::default());
+        }
+        Value::Dict(Rc::new(RefCell::new(d)))
+    }
+
+    fn s(x: &str) -> Value {
+        Value::str(x)
+    }
+
+    fn call(me: &mut Interp, cmd: &str, args: Vec<CallArg>, target: &str) -> R<Value> {
+        call_command(me, cmd, args, Span::default(), Some(target))
+    }
+
+    #[test]
+    fn typed_results_and_concept_checks() {
+        let map = CodeMap::new("t", "");
+        let mut sink = CheckSink {
+            calls: Vec::new(),
+            record: true,
+        };
+        let mut me = Interp::new(&map, &mut sink, true);
+        let ma = call(&mut me, "LIRE_MAILLAGE", vec![kw("FORMAT", s("MED"))], "MA")
+            .ok()
+            .unwrap();
+        let Value::Concept(c) = &ma else { panic!() };
+        assert_eq!(c.typ, "maillage_sdaster");
+        let mo = call(
+            &mut me,
+            "AFFE_MODELE",
+            vec![
+                kw("MAILLAGE", ma.clone()),
+                kw(
+                    "AFFE",
+                    f(vec![
+                        ("TOUT", s("OUI")),
+                        ("PHENOMENE", s("MECANIQUE")),
+                        ("MODELISATION", s("D_PLAN")),
+                    ]),
+                ),
+            ],
+            "MO",
+        )
+        .ok()
+        .unwrap();
+        assert!(me.diags.is_empty(), "{:?}", me.diags);
+        let cine = call(
+            &mut me,
+            "AFFE_CHAR_CINE",
+            vec![
+                kw("MODELE", mo.clone()),
+                kw(
+                    "MECA_IMPO",
+                    f(vec![("GROUP_NO", s("A")), ("DX", Value::Int(0))]),
+                ),
+            ],
+            "BLOC",
+        )
+        .ok()
+        .unwrap();
+        let Value::Concept(cc) = &cine else { panic!() };
+        assert_eq!(cc.typ, "char_cine_meca");
+        // DX=0 (an int) became a real, as the keyword is typed R.
+        let _ = call(
+            &mut me,
+            "CALC_VECT_ELEM",
+            vec![kw("OPTION", s("CHAR_MECA")), kw("CHARGE", cine)],
+            "VE",
+        );
+        let wrong: Vec<_> = me
+            .diags
+            .iter()
+            .filter(|d| d.kind == DiagKind::WrongType)
+            .collect();
+        assert_eq!(wrong.len(), 1, "{:?}", me.diags);
+        assert!(
+            wrong[0].message.contains("char_cine_meca"),
+            "{}",
+            wrong[0].message
+        );
+        drop(me);
+        let dx = sink.calls[2].keywords.factor("MECA_IMPO")[0]
+            .first("DX")
+            .cloned();
+        assert_eq!(dx, Some(Scalar::Real(0.0)));
+    }
+
+    #[test]
+    fn crea_champ_type_follows_type_cham() {
+        let map = CodeMap::new("t", "");
+        let mut sink = CheckSink::default();
+        let mut me = Interp::new(&map, &mut sink, true);
+        let ma = call(&mut me, "LIRE_MAILLAGE", vec![], "MA").ok().unwrap();
+        let ch = call(
+            &mut me,
+            "CREA_CHAMP",
+            vec![
+                kw("TYPE_CHAM", s("NOEU_DEPL_R")),
+                kw("OPERATION", s("AFFE")),
+                kw("MAILLAGE", ma),
+                kw(
+                    "AFFE",
+                    f(vec![
+                        ("TOUT", s("OUI")),
+                        ("NOM_CMP", s("DX")),
+                        ("VALE", Value::Float(0.0)),
+                    ]),
+                ),
+            ],
+            "CH",
+        )
+        .ok()
+        .unwrap();
+        let Value::Concept(c) = ch else { panic!() };
+        assert_eq!(c.typ, "cham_no_sdaster", "{:?}", me.diags);
+    }
+
+    #[test]
+    fn unknown_keyword_suggests_and_names_the_path() {
+        let map = CodeMap::new("t", "");
+        let mut sink = CheckSink::default();
+        let mut me = Interp::new(&map, &mut sink, true);
+        let _ = call(
+            &mut me,
+            "DEFI_MATERIAU",
+            vec![kw(
+                "ELAS",
+                Value::tuple(vec![f(vec![
+                    ("E", Value::Float(1.0)),
+                    ("NUE", Value::Float(0.3)),
+                ])]),
+            )],
+            "M",
+        );
+        let d = &me.diags[0];
+        assert_eq!(d.kind, DiagKind::UnknownKeyword);
+        assert!(d.message.contains("DEFI_MATERIAU/ELAS[1]"), "{}", d.message);
+        assert!(d.notes.iter().any(|n| n.contains("`NU`")), "{:?}", d.notes);
+    }
 }

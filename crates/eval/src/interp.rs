@@ -75,6 +75,9 @@ pub(crate) struct Interp<'a> {
     pub next_id: u32,
     pub keep_going: bool,
     pub finished: bool,
+    /// After `POURSUITE`, names not defined here are concepts of the
+    /// previous run (of a type the checker cannot know).
+    pub continued: bool,
     pub commands: usize,
     depth: usize,
 }
@@ -92,6 +95,7 @@ impl<'a> Interp<'a> {
             next_id: 1,
             keep_going,
             finished: false,
+            continued: false,
             commands: 0,
             depth: 0,
         }
@@ -531,6 +535,13 @@ impl<'a> Interp<'a> {
         }
         if name == "__name__" {
             return Ok(Value::str("__main__"));
+        }
+        if self.continued {
+            return Ok(Value::Concept(ConceptRef {
+                name: name.to_string(),
+                id: 0,
+                typ: aster_catalog::types::UNKNOWN.to_string(),
+            }));
         }
         let looks_like_command = name.len() > 2
             && name

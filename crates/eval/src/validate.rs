@@ -28,15 +28,33 @@ struct Ctx<'p> {
     parent: Option<&'p Ctx<'p>>,
 }
 
+/// The condition value of a keyword whose value is only known at run time.
+const RUN_TIME: &str = "\u{0}run-time value";
+
+thread_local! {
+    /// Set when a condition read something unknown to the checker (a
+    /// run-time value, a concept of a type not computed): its answer is a
+    /// guess, and the checker must not report errors that depend on it.
+    static UNCERTAIN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 impl CondEnv for Ctx<'_> {
     fn value(&self, k: &str) -> Option<CVal> {
         match self.vals.get(k) {
+            Some((CVal::Str(s), _)) if s == RUN_TIME => {
+                UNCERTAIN.with(|u| u.set(true));
+                Some(CVal::None)
+            }
             Some((v, _)) => Some(v.clone()),
             None => self.parent.and_then(|p| p.value(k)),
         }
     }
     fn type_of(&self, k: &str) -> Option<String> {
         match self.vals.get(k) {
+            Some((_, Some(t))) if t == types::UNKNOWN => {
+                UNCERTAIN.with(|u| u.set(true));
+                None
+            }
             Some((_, t)) => t.clone(),
             None => self.parent.and_then(|p| p.type_of(k)),
         }
@@ -88,6 +106,7 @@ fn value_cval(v: &Value) -> (CVal, Option<String>) {
             }
         }
         Value::Dict(_) => (CVal::Bool(true), None),
+        Value::Unknown => (CVal::Str(RUN_TIME.into()), None),
         _ => (CVal::Str(v.to_string()), None),
     }
 }
@@ -119,12 +138,15 @@ impl Validator<'_> {
         &mut self.diags[n - 1]
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn activate<'e>(
         &self,
         entries: &'e [Entry],
         ctx: &mut Ctx,
         active: &mut Vec<&'e Entry>,
         rules: &mut Vec<&'e Rule>,
+        maybe: bool,
+        guessed: &mut Vec<String>,
     ) {
         for e in entries {
             match &e.node {
@@ -134,6 +156,10 @@ impl Validator<'_> {
                         continue;
                     }
                     active.push(e);
+                    if maybe {
+                        guessed.push(e.name.clone());
+                        continue;
+                    }
                     if !ctx.vals.contains_key(&e.name) {
                         if let Some(d) = &s.default {
                             ctx.vals.insert(e.name.clone(), (scalars_cval(d), None));
@@ -145,6 +171,10 @@ impl Validator<'_> {
                         continue;
                     }
                     active.push(e);
+                    if maybe {
+                        guessed.push(e.name.clone());
+                        continue;
+                    }
                     if f.status == Status::Defaulted && !ctx.vals.contains_key(&e.name) {
                         ctx.vals.insert(e.name.clone(), (CVal::Bool(true), None));
                     }
@@ -155,14 +185,20 @@ impl Validator<'_> {
             if let Node::Block(b) = &e.node {
                 // A condition that cannot be evaluated (e.g. comparing an
                 // absent keyword) does not hold: no false errors from it.
+                UNCERTAIN.with(|u| u.set(false));
                 let holds = catalog()
                     .condition(&b.condition)
                     .ok()
                     .and_then(|c| aster_catalog::cond::holds(c, ctx).ok())
                     .unwrap_or(false);
-                if holds {
+                let unsure = UNCERTAIN.with(|u| u.replace(false));
+                if holds && !maybe && !unsure {
                     rules.extend(b.rules.iter());
-                    self.activate(&b.keywords, ctx, active, rules);
+                    self.activate(&b.keywords, ctx, active, rules, false, guessed);
+                } else if holds || unsure {
+                    // Accept the block's keywords without requiring or
+                    // defaulting any: the checker cannot know.
+                    self.activate(&b.keywords, ctx, active, rules, true, guessed);
                 }
             }
         }
@@ -190,7 +226,15 @@ impl Validator<'_> {
         };
         let mut active: Vec<&Entry> = Vec::new();
         let mut rules: Vec<&Rule> = level_rules.iter().collect();
-        self.activate(entries, &mut ctx, &mut active, &mut rules);
+        let mut guessed = Vec::new();
+        self.activate(
+            entries,
+            &mut ctx,
+            &mut active,
+            &mut rules,
+            false,
+            &mut guessed,
+        );
 
         let mut values: HashMap<String, Keyword> = HashMap::new();
         for g in &given {
@@ -297,8 +341,8 @@ impl Validator<'_> {
                 out.entries.push(k);
                 continue;
             }
-            if given.iter().any(|g| g.name == e.name) {
-                continue; // given but invalid: already reported
+            if given.iter().any(|g| g.name == e.name) || guessed.contains(&e.name) {
+                continue; // given but invalid (already reported), or unsure
             }
             match &e.node {
                 Node::Simple(s) => match (&s.default, s.status) {

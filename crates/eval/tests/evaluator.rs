@@ -58,7 +58,10 @@ print(name, len(vals), round(2.675, 2), str(1e-5), 10 / 4)
     assert_eq!(elas.f64("E"), Some(1.0e11 + 1.0));
     assert_eq!(elas.f64("RHO"), Some(4.0));
     let l = &rec.calls[1];
-    assert_eq!(reals(&l.keywords, "VALE"), vec![0.0, 0.5, 1.5, 8.0, 2.0, 9.0, 3.0, 2.0]);
+    assert_eq!(
+        reals(&l.keywords, "VALE"),
+        vec![0.0, 0.5, 1.5, 8.0, 2.0, 9.0, 3.0, 2.0]
+    );
     assert_eq!(rec.printed, vec!["N3_03 3 2.67 1e-05 2.5"]);
 }
 
@@ -78,11 +81,23 @@ MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELIS
     .unwrap();
     // FIN stops the program: the last AFFE_MODELE is not run.
     let names: Vec<&str> = rec.calls.iter().map(|c| c.command.as_str()).collect();
-    assert_eq!(names, ["LIRE_MAILLAGE", "AFFE_MODELE", "AFFE_MODELE", "MODI_MAILLAGE", "FIN"]);
+    assert_eq!(
+        names,
+        [
+            "LIRE_MAILLAGE",
+            "AFFE_MODELE",
+            "AFFE_MODELE",
+            "MODI_MAILLAGE",
+            "FIN"
+        ]
+    );
     let ma = rec.calls[0].result.clone().unwrap();
     assert_eq!(ma.typ, "maillage_sdaster");
     assert_eq!(rec.calls[1].keywords.concept("MAILLAGE"), Some(&ma));
-    assert_ne!(rec.calls[1].result.as_ref().unwrap().id, rec.calls[2].result.as_ref().unwrap().id);
+    assert_ne!(
+        rec.calls[1].result.as_ref().unwrap().id,
+        rec.calls[2].result.as_ref().unwrap().id
+    );
     let modi = &rec.calls[3];
     assert_eq!(modi.reuse.as_ref().map(|c| c.id), Some(ma.id));
     assert_eq!(modi.result.as_ref().map(|c| c.id), Some(ma.id));

@@ -2,7 +2,7 @@
 //! legacy ones with renaming warnings, and their calls carry v17 names.
 //! Skips when ../shared is absent (fresh clone).
 
-use aster_eval::{check_source, DiagKind, KwValue, Keywords};
+use aster_eval::{check_source, DiagKind, Keywords, KwValue};
 use aster_syntax::CodeMap;
 use std::path::PathBuf;
 
@@ -35,7 +35,11 @@ fn all_six_check_clean() {
             let report = check_source(&map, true);
             assert!(report.ok(), "{}", report.diagnostics.render(&map));
             let warnings = report.diagnostics.0.len();
-            assert!(report.diagnostics.0.iter().all(|d| d.kind == DiagKind::Legacy));
+            assert!(report
+                .diagnostics
+                .0
+                .iter()
+                .all(|d| d.kind == DiagKind::Legacy));
             if version == "v17" {
                 assert_eq!(warnings, 0, "{}", report.diagnostics.render(&map));
             }
@@ -46,10 +50,25 @@ fn all_six_check_clean() {
             for c in &report.calls {
                 names(&c.keywords, &mut all);
             }
-            for old in ["COMP_INCR", "COMP_ELAS", "TOLE_APPA", "ORIE_PEAU_2D", "SYME", "VALE_CONT"] {
-                assert!(!all.iter().any(|n| n == old), "{}: {old} left", path.display());
+            for old in [
+                "COMP_INCR",
+                "COMP_ELAS",
+                "TOLE_APPA",
+                "ORIE_PEAU_2D",
+                "SYME",
+                "VALE_CONT",
+            ] {
+                assert!(
+                    !all.iter().any(|n| n == old),
+                    "{}: {old} left",
+                    path.display()
+                );
             }
-            let snl = report.calls.iter().filter(|c| c.command == "STAT_NON_LINE").count();
+            let snl = report
+                .calls
+                .iter()
+                .filter(|c| c.command == "STAT_NON_LINE")
+                .count();
             assert!(snl >= 2, "{}", path.display());
         }
     }
