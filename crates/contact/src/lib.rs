@@ -36,3 +36,4 @@ pub use post::{ContNoeu, CONT_NOEU_COMPONENTS};
 pub use source::{current_positions, ZoneContact, ZoneLaw};
 pub use step::{index_row, positions, solve_step, StepReport};
 pub mod hertz;
+pub mod scenes;

@@ -8,6 +8,7 @@
 //! friction), `RX RY RZ` (total contact force = normal force here) and `R`
 //! (its norm).
 
+use aster_fem::RowOutcome;
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
@@ -39,6 +40,22 @@ impl ContNoeu {
     pub fn value(&self, node: NodeId, component: &str) -> Option<f64> {
         let k = self.nodes.iter().position(|n| *n == node)?;
         Some(self.values[k][Self::component(component)?])
+    }
+
+    /// The field of a stored step of fem's solver: the zones are re-paired
+    /// on that step's geometry `x` and given its row outcomes
+    /// (`outcomes[k]` for `zones[k]`, as in `Step::unilateral`).
+    pub fn at_step(
+        zones: &mut [ZoneContact],
+        mesh: &Mesh,
+        x: &[[f64; 3]],
+        outcomes: &[Vec<RowOutcome>],
+    ) -> Result<ContNoeu, ContactError> {
+        for (z, o) in zones.iter_mut().zip(outcomes) {
+            z.pair(mesh, x)?;
+            z.set_outcomes(o);
+        }
+        Self::from_zones(zones, x, mesh)
     }
 
     /// Builds the field from the zones' last converged state, on the

@@ -40,6 +40,12 @@ pub struct ZoneContact {
     forces: Vec<f64>,
     /// Whether pairing was done once (REAC_GEOM='SANS' keeps it).
     paired_once: bool,
+    /// The rows last handed to fem, kept while new ones differ only by
+    /// round-off (fem compares rows exactly to decide that the geometric
+    /// loop has settled).
+    last_rows: Vec<InequalityRow>,
+    /// Length scale of the zone (bounding box diagonal), for tolerances.
+    length: f64,
 }
 
 impl ZoneContact {
@@ -75,6 +81,8 @@ impl ZoneContact {
 
     pub fn new(zone: ResolvedZone, law: ZoneLaw, geom_loop: GeomLoop) -> Self {
         ZoneContact {
+            last_rows: Vec::new(),
+            length: 0.0,
             zone,
             law,
             geom_loop,
@@ -187,6 +195,17 @@ impl ZoneContact {
         }
     }
 
+    /// Records fem's outcomes of this zone's rows (matched by row id, which
+    /// is the pair index).
+    pub fn set_outcomes(&mut self, outcomes: &[RowOutcome]) {
+        self.forces = vec![0.0; self.pairs.len()];
+        for o in outcomes {
+            if let Some(Some(l)) = self.links.get(o.id) {
+                self.forces[o.id] = o.multiplier.max(0.0) * l.scale;
+            }
+        }
+    }
+
     /// The pairs of the last pairing.
     pub fn pairs(&self) -> &[ContactPair] {
         &self.pairs
@@ -220,6 +239,40 @@ impl ZoneContact {
             self.zone.geometry.master_group
         )
     }
+}
+
+fn zone_length(zone: &ResolvedZone, coords: &[[f64; 3]]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for n in zone.master_nodes.iter().chain(&zone.slave_nodes) {
+        let p = coords[n.0 as usize];
+        for c in 0..3 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    let d: f64 = (0..3)
+        .map(|c| (hi[c] - lo[c]).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    if d.is_finite() && d > 0.0 {
+        d
+    } else {
+        1.0
+    }
+}
+
+fn same_rows(a: &[InequalityRow], b: &[InequalityRow], tol_coef: f64, tol_rhs: f64) -> bool {
+    a.len() == b.len()
+        && a.iter().zip(b).all(|(r, s)| {
+            r.id == s.id
+                && (r.rhs - s.rhs).abs() <= tol_rhs
+                && r.terms.len() == s.terms.len()
+                && r.terms
+                    .iter()
+                    .zip(&s.terms)
+                    .all(|(x, y)| x.0 == y.0 && (x.1 - y.1).abs() <= tol_coef * x.1.abs().max(1.0))
+        })
 }
 
 /// Current node positions of a fem state.
@@ -261,26 +314,43 @@ impl UnilateralSource for ZoneContact {
 
     fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
         let x = current_positions(state);
-        self.pair(state.mesh, &x)
-            .map_err(|e| FemError::Source(format!("{}: {e}", self.describe())))
+        if self.length == 0.0 {
+            self.length = zone_length(&self.zone, &state.mesh.coords);
+        }
+        let rows = self
+            .pair(state.mesh, &x)
+            .map_err(|e| FemError::Source(format!("{}: {e}", self.describe())))?;
+        // Geometric convergence: rows that moved by round-off only are the
+        // same rows (coefficients to 1e-9, right-hand sides to 1e-9 × the
+        // zone size).
+        if same_rows(&rows, &self.last_rows, 1e-9, 1e-9 * self.length) {
+            return Ok(self.last_rows.clone());
+        }
+        self.last_rows = rows.clone();
+        Ok(rows)
     }
 
     fn converged(&mut self, _state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
-        let mut m = vec![0.0; outcomes.len()];
-        for (k, o) in outcomes.iter().enumerate() {
-            // Outcomes come in row order; map through the row id to be safe.
-            let row = self
-                .links
-                .get(o.id)
-                .copied()
-                .flatten()
-                .map(|l| l.row)
-                .unwrap_or(k);
-            if let Some(slot) = m.get_mut(row) {
-                *slot = o.multiplier;
-            }
-        }
-        self.set_multipliers(&m);
+        self.set_outcomes(outcomes);
         Ok(())
+    }
+}
+
+/// Lets a caller keep the zone (for CONT_NOEU) while fem's solver borrows it.
+impl UnilateralSource for &mut ZoneContact {
+    fn name(&self) -> String {
+        (**self).name()
+    }
+    fn method(&self) -> UnilateralMethod {
+        (**self).method()
+    }
+    fn geometry_update(&self) -> GeometryUpdate {
+        (**self).geometry_update()
+    }
+    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        (**self).rows(state)
+    }
+    fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        (**self).converged(state, outcomes)
     }
 }
