@@ -36,4 +36,7 @@ pub use post::{ContNoeu, CONT_NOEU_COMPONENTS};
 pub use source::{current_positions, ZoneContact, ZoneLaw};
 pub use step::{index_row, positions, solve_step, StepReport};
 pub mod hertz;
+mod linear;
 pub mod scenes;
+
+pub use linear::{run_linear, FactorizedStiffness, Instant};
