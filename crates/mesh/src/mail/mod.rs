@@ -1,0 +1,5 @@
+//! ASTER text meshes (`.mail`): reading and writing.
+
+mod read;
+
+pub use read::{parse_mail, read_mail};

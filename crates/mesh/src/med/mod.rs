@@ -1,0 +1,6 @@
+//! MED files (HDF5): reading meshes, writing meshes and result fields.
+
+pub mod celltypes;
+mod read;
+
+pub use read::{read_med, read_med_bytes, read_med_named, MedInfo};
