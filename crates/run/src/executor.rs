@@ -15,6 +15,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
+use std::sync::Arc;
 
 /// Where the run reads and writes files.
 #[derive(Clone, Debug, Default)]
@@ -167,7 +168,7 @@ impl Executor {
         ExecError::new(format!("`{}` is {}, expected {want}", c.name, got.kind()))
     }
 
-    pub(crate) fn mesh_by_id(&self, id: u32) -> Result<Rc<Mesh>, ExecError> {
+    pub(crate) fn mesh_by_id(&self, id: u32) -> Result<Arc<Mesh>, ExecError> {
         match self.store.get(&id) {
             Some(Concept::Mesh(m)) => Ok(m.clone()),
             _ => Err(ExecError::new(
@@ -201,7 +202,6 @@ macro_rules! getter {
     };
 }
 
-getter!(mesh, Mesh, Mesh, "a mesh");
 getter!(model, Model, ModelDef, "a model (AFFE_MODELE)");
 getter!(material, Material, Material, "a material (DEFI_MATERIAU)");
 getter!(
@@ -228,6 +228,13 @@ getter!(
 );
 
 impl Executor {
+    pub(crate) fn mesh(&self, c: &ConceptRef) -> Result<Arc<Mesh>, ExecError> {
+        match self.concept(c)? {
+            Concept::Mesh(x) => Ok(x.clone()),
+            other => Err(self.wrong(c, other, "a mesh")),
+        }
+    }
+
     pub(crate) fn real_list(&self, c: &ConceptRef) -> Result<Rc<Vec<f64>>, ExecError> {
         match self.concept(c)? {
             Concept::RealList(l) | Concept::TimeList(l) => Ok(l.clone()),
@@ -241,8 +248,8 @@ impl Executor {
 
     /// The program's mesh when there is exactly one (fields do not record
     /// their mesh).
-    pub(crate) fn single_mesh(&self) -> Result<Rc<Mesh>, ExecError> {
-        let meshes: Vec<&Rc<Mesh>> = self
+    pub(crate) fn single_mesh(&self) -> Result<Arc<Mesh>, ExecError> {
+        let meshes: Vec<&Arc<Mesh>> = self
             .store
             .values()
             .filter_map(|c| match c {

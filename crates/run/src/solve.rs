@@ -289,12 +289,12 @@ pub fn stat_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     }
     let setup = parse_setup(ex, call, false)?;
     let mesh_id = setup.model.mesh;
-    let result = crate::fembridge::solve(ex, &setup, false)?;
+    let (steps, fem) = crate::fembridge::solve(ex, &setup, false)?;
     let evol = EvolResult {
         typ: "evol_noli".into(),
         mesh: mesh_id,
-        steps: result,
-        solve: Some(Rc::new(setup)),
+        steps,
+        fem: Some(fem),
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }
@@ -321,12 +321,12 @@ pub fn meca_statique(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     )?;
     let setup = parse_setup(ex, call, true)?;
     let mesh_id = setup.model.mesh;
-    let result = crate::fembridge::solve(ex, &setup, true)?;
+    let (steps, fem) = crate::fembridge::solve(ex, &setup, true)?;
     let evol = EvolResult {
         typ: "evol_elas".into(),
         mesh: mesh_id,
-        steps: result,
-        solve: Some(Rc::new(setup)),
+        steps,
+        fem: Some(fem),
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }

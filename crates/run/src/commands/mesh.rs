@@ -7,7 +7,7 @@ use aster_eval::{CommandCall, CommandOutput, ExecError};
 use aster_mesh::{Group, Mesh, NodeId};
 use std::collections::BTreeSet;
 use std::path::Path;
-use std::rc::Rc;
+use std::sync::Arc;
 
 /// Reads a mesh file in the format the command asks for.
 pub fn read_mesh_file(path: &Path, format: &str) -> Result<Mesh, String> {
@@ -39,7 +39,7 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     })?;
     let mesh = read_mesh_file(&path, format)
         .map_err(|e| ExecError::new(format!("LIRE_MAILLAGE: {}: {e}", path.display())))?;
-    store_result(ex, call, Concept::Mesh(Rc::new(mesh)))
+    store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
 }
 
 /// The mesh updated in place (`reuse=`) or copied into a new concept.
@@ -144,7 +144,7 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?;
         put_group(&mut mesh.groups_no, name, nodes);
     }
-    store_result(ex, call, Concept::Mesh(Rc::new(mesh)))
+    store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
 }
 
 /// Nodes of cells, in order of first appearance.
@@ -206,5 +206,5 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     }
     crate::meshio::orient_skin(&mut mesh, &groups)
         .map_err(|e| ExecError::new(format!("MODI_MAILLAGE/ORIE_PEAU: {e}")))?;
-    store_result(ex, call, Concept::Mesh(Rc::new(mesh)))
+    store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
 }

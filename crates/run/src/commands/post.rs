@@ -7,6 +7,7 @@ use crate::select;
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ConceptRef, ExecError, Keywords};
 use std::rc::Rc;
+use std::sync::Arc;
 
 /// Relative precision for matching instants (code_aster's default).
 pub const INST_PRECISION: f64 = 1e-6;
@@ -422,7 +423,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
-fn occ_mesh(ex: &Executor, _field: &ConceptRef) -> Result<Rc<aster_mesh::Mesh>, ExecError> {
+fn occ_mesh(ex: &Executor, _field: &ConceptRef) -> Result<Arc<aster_mesh::Mesh>, ExecError> {
     // A field does not record its mesh; a program has one mesh in practice.
     ex.single_mesh()
 }
