@@ -6,19 +6,23 @@
 //! [`read_mail`].
 
 mod error;
+mod field;
 pub mod hdf5;
 pub mod mail;
 pub mod med;
 mod model;
 mod ops;
 mod summary;
+pub mod vtu;
 
 pub use error::{suggest, GroupKind, MeshError};
-pub use mail::{parse_mail, read_mail};
-pub use med::{read_med, read_med_named, MedInfo};
+pub use field::{Field, FieldLocation, ResultStep};
+pub use mail::{mail_string, parse_mail, read_mail, write_mail};
+pub use med::{med_bytes, read_med, read_med_named, write_med, MedInfo};
 pub use model::*;
 pub use ops::OrientReport;
 pub use summary::{CellCounts, MeshSummary};
+pub use vtu::write_vtu;
 
 use std::path::Path;
 

@@ -34,6 +34,23 @@ pub fn run(file: &Path, json: bool, to: Option<&str>, out: Option<&Path>) -> u8 
     0
 }
 
-fn convert(_mesh: &aster_mesh::Mesh, format: &str, _out: &Path) -> Result<(), String> {
-    Err(format!("unknown output format `{format}`"))
+fn convert(mesh: &aster_mesh::Mesh, format: &str, out: &Path) -> Result<(), String> {
+    let written = match format.to_ascii_lowercase().as_str() {
+        "mail" | "aster" => aster_mesh::write_mail(out, mesh),
+        "med" => {
+            let name = out
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .filter(|s| !s.is_empty() && s.len() <= 64)
+                .unwrap_or("MAIL");
+            aster_mesh::write_med(out, mesh, name, &[])
+        }
+        "vtu" | "vtk" => aster_mesh::write_vtu(out, mesh, None),
+        other => {
+            return Err(format!(
+                "unknown output format `{other}`: expected `mail`, `med` or `vtu`"
+            ))
+        }
+    };
+    written.map_err(|e| e.to_string())
 }

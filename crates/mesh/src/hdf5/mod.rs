@@ -20,6 +20,7 @@ mod dense;
 mod group;
 mod object;
 mod types;
+pub mod write;
 
 pub use dataset::Data;
 pub use types::{Attribute, Datatype};

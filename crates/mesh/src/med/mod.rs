@@ -2,5 +2,7 @@
 
 pub mod celltypes;
 mod read;
+mod write;
 
 pub use read::{read_med, read_med_bytes, read_med_named, MedInfo};
+pub use write::{med_bytes, write_med};
