@@ -9,6 +9,7 @@ use crate::table::Table;
 use aster_mesh::{CellId, Mesh, NodeId};
 use std::collections::BTreeMap;
 use std::rc::Rc;
+use std::sync::Arc;
 
 /// A degree of freedom component name as the command language spells it.
 pub type CompName = &'static str;
@@ -195,7 +196,7 @@ pub struct EvolResult {
     pub mesh: u32,
     pub steps: Vec<Step>,
     /// What produced it, to compute more fields on demand (`CALC_CHAMP`).
-    pub solve: Option<Rc<crate::solve::SolveSetup>>,
+    pub fem: Option<Rc<crate::fembridge::FemRun>>,
 }
 
 impl EvolResult {
@@ -220,7 +221,7 @@ impl EvolResult {
 /// Any concept.
 #[derive(Clone, Debug)]
 pub enum Concept {
-    Mesh(Rc<Mesh>),
+    Mesh(Arc<Mesh>),
     Model(Rc<ModelDef>),
     Material(Rc<Material>),
     MaterialField(Rc<MaterialField>),

@@ -6,13 +6,16 @@ use crate::field::Field;
 use crate::function::Function;
 use crate::table::Table;
 use crate::test_resu::Tally;
-use aster_eval::{CommandCall, CommandOutput, CommandSink, ConceptRef, ExecError, Keywords, KwValue};
+use aster_eval::{
+    CommandCall, CommandOutput, CommandSink, ConceptRef, ExecError, Keywords, KwValue,
+};
 use aster_mesh::Mesh;
 use aster_syntax::{CodeMap, Span};
 use std::collections::{BTreeMap, HashMap};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
+use std::sync::Arc;
 
 /// Where the run reads and writes files.
 #[derive(Clone, Debug, Default)]
@@ -75,7 +78,13 @@ impl Executor {
     }
 
     /// An error about one keyword, located at it.
-    pub(crate) fn kw_error(&self, cmd: &str, kw: &Keywords, name: &str, msg: impl AsRef<str>) -> ExecError {
+    pub(crate) fn kw_error(
+        &self,
+        cmd: &str,
+        kw: &Keywords,
+        name: &str,
+        msg: impl AsRef<str>,
+    ) -> ExecError {
         let span = kw.keyword(name).map(|k| k.span).unwrap_or_default();
         let loc = self
             .location(span)
@@ -88,11 +97,21 @@ impl Executor {
     /// Refuses any keyword written by the user that the implementation
     /// does not handle. `allowed` lists paths (`"DDL_IMPO"`, `"DDL_IMPO/DX"`);
     /// `"X/*"` accepts every keyword under factor `X`.
-    pub(crate) fn check_keywords(&self, call: &CommandCall, allowed: &[&str]) -> Result<(), ExecError> {
+    pub(crate) fn check_keywords(
+        &self,
+        call: &CommandCall,
+        allowed: &[&str],
+    ) -> Result<(), ExecError> {
         self.check_level(&call.command, &call.keywords, "", allowed)
     }
 
-    fn check_level(&self, cmd: &str, kws: &Keywords, prefix: &str, allowed: &[&str]) -> Result<(), ExecError> {
+    fn check_level(
+        &self,
+        cmd: &str,
+        kws: &Keywords,
+        prefix: &str,
+        allowed: &[&str],
+    ) -> Result<(), ExecError> {
         for k in &kws.entries {
             if k.defaulted {
                 continue;
@@ -149,15 +168,22 @@ impl Executor {
         ExecError::new(format!("`{}` is {}, expected {want}", c.name, got.kind()))
     }
 
-    pub(crate) fn mesh_by_id(&self, id: u32) -> Result<Rc<Mesh>, ExecError> {
+    pub(crate) fn mesh_by_id(&self, id: u32) -> Result<Arc<Mesh>, ExecError> {
         match self.store.get(&id) {
             Some(Concept::Mesh(m)) => Ok(m.clone()),
-            _ => Err(ExecError::new("the mesh of this concept is no longer available")),
+            _ => Err(ExecError::new(
+                "the mesh of this concept is no longer available",
+            )),
         }
     }
 
     /// The concept behind a keyword, typed.
-    pub(crate) fn required<'k>(&self, cmd: &str, kw: &'k Keywords, name: &str) -> Result<&'k ConceptRef, ExecError> {
+    pub(crate) fn required<'k>(
+        &self,
+        cmd: &str,
+        kw: &'k Keywords,
+        name: &str,
+    ) -> Result<&'k ConceptRef, ExecError> {
         kw.concept(name)
             .ok_or_else(|| self.kw_error(cmd, kw, name, "a concept is required here"))
     }
@@ -176,29 +202,54 @@ macro_rules! getter {
     };
 }
 
-getter!(mesh, Mesh, Mesh, "a mesh");
 getter!(model, Model, ModelDef, "a model (AFFE_MODELE)");
 getter!(material, Material, Material, "a material (DEFI_MATERIAU)");
-getter!(material_field, MaterialField, MaterialField, "a material field (AFFE_MATERIAU)");
-getter!(cara_elem, CaraElem, CaraElem, "element characteristics (AFFE_CARA_ELEM)");
+getter!(
+    material_field,
+    MaterialField,
+    MaterialField,
+    "a material field (AFFE_MATERIAU)"
+);
+getter!(
+    cara_elem,
+    CaraElem,
+    CaraElem,
+    "element characteristics (AFFE_CARA_ELEM)"
+);
 getter!(function, Function, Function, "a function");
 getter!(result, Result, EvolResult, "a result");
 getter!(table, Table, Table, "a table");
 getter!(field, Field, Field, "a field");
-getter!(contact, Contact, ContactDef, "a contact definition (DEFI_CONTACT)");
+getter!(
+    contact,
+    Contact,
+    ContactDef,
+    "a contact definition (DEFI_CONTACT)"
+);
 
 impl Executor {
+    pub(crate) fn mesh(&self, c: &ConceptRef) -> Result<Arc<Mesh>, ExecError> {
+        match self.concept(c)? {
+            Concept::Mesh(x) => Ok(x.clone()),
+            other => Err(self.wrong(c, other, "a mesh")),
+        }
+    }
+
     pub(crate) fn real_list(&self, c: &ConceptRef) -> Result<Rc<Vec<f64>>, ExecError> {
         match self.concept(c)? {
             Concept::RealList(l) | Concept::TimeList(l) => Ok(l.clone()),
-            other => Err(self.wrong(c, other, "a list of instants (DEFI_LIST_REEL/DEFI_LIST_INST)")),
+            other => Err(self.wrong(
+                c,
+                other,
+                "a list of instants (DEFI_LIST_REEL/DEFI_LIST_INST)",
+            )),
         }
     }
 
     /// The program's mesh when there is exactly one (fields do not record
     /// their mesh).
-    pub(crate) fn single_mesh(&self) -> Result<Rc<Mesh>, ExecError> {
-        let meshes: Vec<&Rc<Mesh>> = self
+    pub(crate) fn single_mesh(&self) -> Result<Arc<Mesh>, ExecError> {
+        let meshes: Vec<&Arc<Mesh>> = self
             .store
             .values()
             .filter_map(|c| match c {
@@ -209,7 +260,9 @@ impl Executor {
         match meshes.as_slice() {
             [m] => Ok((*m).clone()),
             [] => Err(ExecError::new("no mesh has been read")),
-            _ => Err(ExecError::new("several meshes exist: this command cannot tell which one a field lives on")),
+            _ => Err(ExecError::new(
+                "several meshes exist: this command cannot tell which one a field lives on",
+            )),
         }
     }
 
@@ -241,15 +294,20 @@ impl CommandSink for Executor {
 
 /// Helpers on a command's result.
 pub(crate) fn result_of(call: &CommandCall) -> Result<&ConceptRef, ExecError> {
-    call.result
-        .as_ref()
-        .or(call.reuse.as_ref())
-        .ok_or_else(|| ExecError::new(format!("{} produces a concept: assign it (`X = {}(...)`)", call.command, call.command)))
+    call.result.as_ref().or(call.reuse.as_ref()).ok_or_else(|| {
+        ExecError::new(format!(
+            "{} produces a concept: assign it (`X = {}(...)`)",
+            call.command, call.command
+        ))
+    })
 }
 
-pub(crate) fn store_result(ex: &mut Executor, call: &CommandCall, concept: Concept) -> Result<CommandOutput, ExecError> {
+pub(crate) fn store_result(
+    ex: &mut Executor,
+    call: &CommandCall,
+    concept: Concept,
+) -> Result<CommandOutput, ExecError> {
     let r = result_of(call)?.clone();
     ex.insert(&r, concept);
     Ok(CommandOutput::Concept)
 }
-

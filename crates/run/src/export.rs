@@ -58,12 +58,10 @@ impl Export {
                         unit,
                     });
                 }
-                "P" | "A" => {
-                    if parts.len() >= 2 {
-                        export
-                            .params
-                            .insert(parts[1].to_string(), parts[2..].join(" "));
-                    }
+                "P" | "A" if parts.len() >= 2 => {
+                    export
+                        .params
+                        .insert(parts[1].to_string(), parts[2..].join(" "));
                 }
                 _ => {}
             }
@@ -116,7 +114,10 @@ mod tests {
         assert_eq!(e.comm_files(), vec![Path::new("/cases/x/case.comm")]);
         assert_eq!(e.data_unit(20), Some(Path::new("/cases/x/mesh.mmed")));
         assert_eq!(e.data_unit(8), None);
-        assert_eq!(e.params.get("testlist").map(String::as_str), Some("verification"));
+        assert_eq!(
+            e.params.get("testlist").map(String::as_str),
+            Some("verification")
+        );
     }
 
     #[test]

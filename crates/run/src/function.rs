@@ -82,8 +82,15 @@ pub struct Tabulated {
 pub enum FunctionError {
     Empty,
     OddValueCount(usize),
-    NotIncreasing { index: usize, previous: f64, next: f64 },
-    LogOfNonPositive { axis: &'static str, value: f64 },
+    NotIncreasing {
+        index: usize,
+        previous: f64,
+        next: f64,
+    },
+    LogOfNonPositive {
+        axis: &'static str,
+        value: f64,
+    },
     OutOfRange {
         parameter: String,
         at: f64,
@@ -129,7 +136,7 @@ impl Tabulated {
         if vale.is_empty() {
             return Err(FunctionError::Empty);
         }
-        if vale.len() % 2 != 0 {
+        if !vale.len().is_multiple_of(2) {
             return Err(FunctionError::OddValueCount(vale.len()));
         }
         let xs: Vec<f64> = vale.iter().step_by(2).copied().collect();
@@ -233,7 +240,10 @@ pub type FormulaFn = dyn Fn(&[(String, f64)]) -> Result<f64, String>;
 #[derive(Clone)]
 pub enum Function {
     /// `DEFI_CONSTANTE(VALE=c)`.
-    Constant { parameter: String, value: f64 },
+    Constant {
+        parameter: String,
+        value: f64,
+    },
     Tabulated(Tabulated),
     /// `FORMULE(NOM_PARA=…, VALE='…')`.
     Formula {
@@ -262,8 +272,7 @@ impl Function {
             Function::Constant { value, .. } => Ok(*value),
             Function::Tabulated(t) => t.eval(x),
             Function::Formula { parameters, eval } => {
-                let args: Vec<(String, f64)> =
-                    parameters.iter().map(|p| (p.clone(), x)).collect();
+                let args: Vec<(String, f64)> = parameters.iter().map(|p| (p.clone(), x)).collect();
                 eval(&args).map_err(FunctionError::Formula)
             }
         }

@@ -7,21 +7,24 @@
 //! crates. TEST_RESU/TEST_TABLE verdicts are printed as code_aster prints
 //! them and tallied.
 
-pub mod export;
-pub mod function;
-pub mod list;
-pub mod pyfmt;
-pub mod table;
-pub mod test_resu;
 pub mod commands;
 pub mod concept;
-pub mod executor;
 mod evaluate;
-pub mod program;
+pub mod executor;
+pub mod export;
+mod contactbridge;
+pub mod fembridge;
 pub mod field;
+pub mod function;
+pub mod list;
 mod meshio;
 pub mod output;
+pub mod program;
+pub mod pyfmt;
 pub mod select;
 pub mod solve;
+pub mod table;
+pub mod test_resu;
+pub mod unil;
 
 pub use executor::{Executor, RunOptions};

@@ -13,9 +13,20 @@ pub enum Interval {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ListError {
     Empty,
-    ZeroCount { index: usize },
-    BadStep { index: usize, start: f64, end: f64, step: f64 },
-    NotIncreasing { index: usize, previous: f64, next: f64 },
+    ZeroCount {
+        index: usize,
+    },
+    BadStep {
+        index: usize,
+        start: f64,
+        end: f64,
+        step: f64,
+    },
+    NotIncreasing {
+        index: usize,
+        previous: f64,
+        next: f64,
+    },
 }
 
 impl fmt::Display for ListError {
@@ -25,13 +36,22 @@ impl fmt::Display for ListError {
             ListError::ZeroCount { index } => {
                 write!(f, "INTERVALLE[{}]: NOMBRE must be at least 1", index + 1)
             }
-            ListError::BadStep { index, start, end, step } => write!(
+            ListError::BadStep {
+                index,
+                start,
+                end,
+                step,
+            } => write!(
                 f,
                 "INTERVALLE[{}]: PAS={step} cannot go from {start} to JUSQU_A={end} \
                  (the step must be positive and the end after the start)",
                 index + 1
             ),
-            ListError::NotIncreasing { index, previous, next } => write!(
+            ListError::NotIncreasing {
+                index,
+                previous,
+                next,
+            } => write!(
                 f,
                 "values must be strictly increasing: value {} is {next} after {previous}",
                 index + 1
@@ -56,7 +76,12 @@ pub fn from_intervals(start: f64, intervals: &[Interval]) -> Result<Vec<f64>, Li
             }
             Interval::Step { end, step } => {
                 if step <= 0.0 || end <= from {
-                    return Err(ListError::BadStep { index, start: from, end, step });
+                    return Err(ListError::BadStep {
+                        index,
+                        start: from,
+                        end,
+                        step,
+                    });
                 }
                 // Tolerate rounding: 1.0/0.1 is 9.999…
                 let n = ((end - from) / step * (1.0 + 1e-12)).round().max(1.0) as usize;
@@ -135,7 +160,9 @@ pub fn select_instants(
         ));
     }
     if out.len() < 2 {
-        return Err(format!("no time step between INST_INIT={lo} and INST_FIN={hi}"));
+        return Err(format!(
+            "no time step between INST_INIT={lo} and INST_FIN={hi}"
+        ));
     }
     Ok(out)
 }
@@ -146,7 +173,14 @@ mod tests {
 
     #[test]
     fn twenty_steps_to_twenty() {
-        let l = from_intervals(0.0, &[Interval::Count { end: 20.0, count: 20 }]).unwrap();
+        let l = from_intervals(
+            0.0,
+            &[Interval::Count {
+                end: 20.0,
+                count: 20,
+            }],
+        )
+        .unwrap();
         assert_eq!(l.len(), 21);
         assert_eq!(l[0], 0.0);
         assert_eq!(l[20], 20.0);
@@ -158,7 +192,10 @@ mod tests {
         let l = from_intervals(
             0.0,
             &[
-                Interval::Step { end: 1.0, step: 0.1 },
+                Interval::Step {
+                    end: 1.0,
+                    step: 0.1,
+                },
                 Interval::Count { end: 3.0, count: 2 },
             ],
         )
@@ -171,7 +208,14 @@ mod tests {
 
     #[test]
     fn errors_teach() {
-        let e = from_intervals(1.0, &[Interval::Step { end: 0.0, step: 0.5 }]).unwrap_err();
+        let e = from_intervals(
+            1.0,
+            &[Interval::Step {
+                end: 0.0,
+                step: 0.5,
+            }],
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("JUSQU_A=0"), "{e}");
         let e = from_values(&[0.0, 2.0, 1.0]).unwrap_err();
         assert!(e.to_string().contains("value 3 is 1 after 2"), "{e}");

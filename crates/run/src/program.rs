@@ -48,8 +48,18 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
         let comms = export.comm_files();
         let comm = match comms.as_slice() {
             [c] => c.to_path_buf(),
-            [] => return Err(fail(format!("{}: no command file (`F comm FILE D 1`)", case.display()))),
-            _ => return Err(fail(format!("{}: several command files are not supported yet", case.display()))),
+            [] => {
+                return Err(fail(format!(
+                    "{}: no command file (`F comm FILE D 1`)",
+                    case.display()
+                )))
+            }
+            _ => {
+                return Err(fail(format!(
+                    "{}: several command files are not supported yet",
+                    case.display()
+                )))
+            }
         };
         options.units = export.data_units();
         options.result_units = export
@@ -62,7 +72,7 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
     } else {
         case.to_path_buf()
     };
-    if !options.units.contains_key(&20) {
+    if let std::collections::btree_map::Entry::Vacant(slot) = options.units.entry(20) {
         let found = match mesh {
             Some(m) => Some(m.to_path_buf()),
             None => ["mmed", "med", "mail"]
@@ -71,23 +81,46 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
                 .find(|p| p.exists()),
         };
         if let Some(m) = found {
-            options.units.insert(20, m);
+            slot.insert(m);
         }
     }
     for (unit, path) in &options.units {
         if !path.exists() {
-            return Err(fail(format!("unit {unit}: {}: no such file", path.display())));
+            return Err(fail(format!(
+                "unit {unit}: {}: no such file",
+                path.display()
+            )));
         }
     }
     Ok(Case { comm, options })
 }
 
+/// What a run did: the verdicts so far, and the error that stopped it.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    pub tally: Tally,
+    pub error: Option<RunFailure>,
+}
+
 /// Runs a case, writing its report (TEST_RESU lines, tables) to `report`.
-pub fn run(case: &Case, report: Box<dyn Write>) -> Result<Tally, RunFailure> {
-    let source = std::fs::read_to_string(&case.comm)
-        .or_else(|_| std::fs::read(&case.comm).map(|b| b.iter().map(|&c| c as char).collect()))
-        .map_err(|e| fail(format!("{}: cannot read: {e}", case.comm.display())))?;
+pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
+    // Old files may be Latin-1: decode byte per byte when not UTF-8.
+    let source = match std::fs::read(&case.comm) {
+        Ok(bytes) => match String::from_utf8(bytes) {
+            Ok(s) => s,
+            Err(e) => e.into_bytes().iter().map(|&c| c as char).collect(),
+        },
+        Err(e) => {
+            return Outcome {
+                tally: Tally::default(),
+                error: Some(fail(format!("{}: cannot read: {e}", case.comm.display()))),
+            }
+        }
+    };
     let mut executor = Executor::new(case.options.clone(), report);
-    crate::evaluate::run_source(&case.comm, &source, &mut executor)?;
-    Ok(executor.tally)
+    let error = crate::evaluate::run_source(&case.comm, &source, &mut executor).err();
+    Outcome {
+        tally: executor.tally,
+        error,
+    }
 }

@@ -28,11 +28,7 @@ pub fn py_repr(x: f64) -> String {
         let text = if point <= 0 {
             format!("0.{}{}", "0".repeat((-point) as usize), digits)
         } else if point as usize >= digits.len() {
-            format!(
-                "{}{}.0",
-                digits,
-                "0".repeat(point as usize - digits.len())
-            )
+            format!("{}{}.0", digits, "0".repeat(point as usize - digits.len()))
         } else {
             let (a, b) = digits.split_at(point as usize);
             format!("{a}.{b}")

@@ -189,11 +189,26 @@ mod tests {
     #[test]
     fn renders_like_impr_table() {
         let mut t = Table::new(vec![
-            Column { name: "INTITULE".into(), ty: ColumnType::Text(16) },
-            Column { name: "NOEUD".into(), ty: ColumnType::Text(8) },
-            Column { name: "NUME_ORDRE".into(), ty: ColumnType::Int },
-            Column { name: "INST".into(), ty: ColumnType::Real },
-            Column { name: "DX".into(), ty: ColumnType::Real },
+            Column {
+                name: "INTITULE".into(),
+                ty: ColumnType::Text(16),
+            },
+            Column {
+                name: "NOEUD".into(),
+                ty: ColumnType::Text(8),
+            },
+            Column {
+                name: "NUME_ORDRE".into(),
+                ty: ColumnType::Int,
+            },
+            Column {
+                name: "INST".into(),
+                ty: ColumnType::Real,
+            },
+            Column {
+                name: "DX".into(),
+                ty: ColumnType::Real,
+            },
         ]);
         t.title.push("ASTER CONCEPT T DE TYPE TABLE_SDASTER".into());
         t.push_row(vec![
@@ -203,7 +218,10 @@ mod tests {
             ("INST", Value::Real(20.0)),
             ("DX", Value::Real(-4.285714318)),
         ]);
-        t.push_row(vec![("NOEUD", Value::Text("N2".into())), ("DX", Value::Real(1.0))]);
+        t.push_row(vec![
+            ("NOEUD", Value::Text("N2".into())),
+            ("DX", Value::Real(1.0)),
+        ]);
         insta::assert_snapshot!(t.render());
     }
 }

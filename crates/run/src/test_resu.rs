@@ -59,7 +59,11 @@ pub struct Judged {
 
 impl Comparison {
     pub fn judge(&self, computed: f64) -> Judged {
-        let computed = if self.absolute_value { computed.abs() } else { computed };
+        let computed = if self.absolute_value {
+            computed.abs()
+        } else {
+            computed
+        };
         let expected = self
             .expected
             .iter()
@@ -112,7 +116,11 @@ fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
 /// The comparisons one TEST_RESU/TEST_TABLE occurrence asks for, in print
 /// order (non-regression first, then the reference).
 pub fn comparisons(kw: &Keywords) -> Result<Vec<Comparison>, String> {
-    let criteria: Vec<&str> = kw.simple("CRITERE").iter().filter_map(|s| s.as_str()).collect();
+    let criteria: Vec<&str> = kw
+        .simple("CRITERE")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
     let relative = criteria.first().map(|c| *c != "ABSOLU").unwrap_or(true);
     let legend = kw.str("LEGENDE").unwrap_or("XXXX").to_string();
     let reference = kw.str("REFERENCE").map(str::to_string);
@@ -257,17 +265,34 @@ pub fn render(c: &Comparison, j: &Judged, labels: bool) -> String {
     if c.order != 1.0 && !c.relative {
         out.push_str(&format!(
             "{}\n",
-            format!("{:<4}  {:<16} {}", " ", "ORDRE DE GRANDEUR :", py_repr(c.order)).trim_end()
+            format!(
+                "{:<4}  {:<16} {}",
+                " ",
+                "ORDRE DE GRANDEUR :",
+                py_repr(c.order)
+            )
+            .trim_end()
         ));
     }
     if labels {
         out.push_str(&row(
             width,
-            [" ", "REFERENCE", "LEGENDE", "VALE_REFE", "VALE_CALC", "ERREUR", "TOLE"],
+            [
+                " ",
+                "REFERENCE",
+                "LEGENDE",
+                "VALE_REFE",
+                "VALE_CALC",
+                "ERREUR",
+                "TOLE",
+            ],
         ));
         out.push('\n');
     }
-    out.push_str(&row(width, [diag, &c.kind, legend, &sref, &scalc, &serr, &stol]));
+    out.push_str(&row(
+        width,
+        [diag, &c.kind, legend, &sref, &scalc, &serr, &stol],
+    ));
     out.push('\n');
     out
 }
@@ -376,7 +401,10 @@ mod tests {
 
     #[test]
     fn nook_when_out_of_tolerance() {
-        let k = kw(vec![("VALE_CALC", Scalar::Real(2.1978e10)), ("TOLE_MACHINE", Scalar::Real(1e-3))]);
+        let k = kw(vec![
+            ("VALE_CALC", Scalar::Real(2.1978e10)),
+            ("TOLE_MACHINE", Scalar::Real(1e-3)),
+        ]);
         let cs = comparisons(&k).unwrap();
         assert_eq!(cs[0].judge(2.1978021987206e10).verdict, Verdict::Ok);
         assert_eq!(cs[0].judge(2.2e10).verdict, Verdict::Nook);
@@ -389,7 +417,10 @@ mod tests {
     fn zero_relative_needs_order_of_magnitude() {
         let k = kw(vec![("VALE_CALC", Scalar::Real(0.0))]);
         assert!(comparisons(&k).unwrap()[0].skip);
-        let k = kw(vec![("VALE_CALC", Scalar::Real(0.0)), ("ORDRE_GRANDEUR", Scalar::Real(1e3))]);
+        let k = kw(vec![
+            ("VALE_CALC", Scalar::Real(0.0)),
+            ("ORDRE_GRANDEUR", Scalar::Real(1e3)),
+        ]);
         let c = &comparisons(&k).unwrap()[0];
         assert!(!c.relative);
         assert_eq!(c.judge(5e-4).verdict, Verdict::Ok);

@@ -13,18 +13,18 @@ pub fn run(case: &Path, mesh: Option<&Path>, out: &Path) -> u8 {
             return 2;
         }
     };
-    match aster_run::program::run(&prepared, Box::new(std::io::stdout())) {
-        Ok(tally) => {
-            println!("{}", tally.summary());
-            if tally.nook > 0 {
-                1
-            } else {
-                0
-            }
-        }
-        Err(e) => {
-            eprintln!("error: {e}");
-            2
-        }
+    let outcome = aster_run::program::run(&prepared, Box::new(std::io::stdout()));
+    if let Some(e) = &outcome.error {
+        eprintln!("error: {e}");
+    }
+    // The summary line always ends the output, so a stopped run still
+    // reports the checks it made.
+    println!("{}", outcome.tally.summary());
+    if outcome.error.is_some() {
+        2
+    } else if outcome.tally.nook > 0 {
+        1
+    } else {
+        0
     }
 }

@@ -14,22 +14,51 @@ fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
 }
 
 pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, &["ELAS", "ELAS/E", "ELAS/NU", "ELAS/RHO", "ELAS/ALPHA", "ELAS/AMOR_ALPHA", "ELAS/AMOR_BETA", "INFO"])?;
+    ex.check_keywords(
+        call,
+        &[
+            "ELAS",
+            "ELAS/E",
+            "ELAS/NU",
+            "ELAS/RHO",
+            "ELAS/ALPHA",
+            "ELAS/AMOR_ALPHA",
+            "ELAS/AMOR_BETA",
+            "INFO",
+        ],
+    )?;
     let kw = &call.keywords;
     let Some(elas) = kw.factor("ELAS").first() else {
-        return Err(ExecError::new("DEFI_MATERIAU: ELAS is required (the only behaviour supported yet)"));
+        return Err(ExecError::new(
+            "DEFI_MATERIAU: ELAS is required (the only behaviour supported yet)",
+        ));
     };
     let young = elas
         .f64("E")
         .ok_or_else(|| ex.kw_error("DEFI_MATERIAU", elas, "E", "Young's modulus E is required"))?;
-    let poisson = elas
-        .f64("NU")
-        .ok_or_else(|| ex.kw_error("DEFI_MATERIAU", elas, "NU", "Poisson's ratio NU is required"))?;
+    let poisson = elas.f64("NU").ok_or_else(|| {
+        ex.kw_error(
+            "DEFI_MATERIAU",
+            elas,
+            "NU",
+            "Poisson's ratio NU is required",
+        )
+    })?;
     if young <= 0.0 {
-        return Err(ex.kw_error("DEFI_MATERIAU", elas, "E", format!("E must be positive, got {young}")));
+        return Err(ex.kw_error(
+            "DEFI_MATERIAU",
+            elas,
+            "E",
+            format!("E must be positive, got {young}"),
+        ));
     }
     if !(-1.0 < poisson && poisson < 0.5) {
-        return Err(ex.kw_error("DEFI_MATERIAU", elas, "NU", format!("NU must be in (-1, 0.5), got {poisson}")));
+        return Err(ex.kw_error(
+            "DEFI_MATERIAU",
+            elas,
+            "NU",
+            format!("NU must be in (-1, 0.5), got {poisson}"),
+        ));
     }
     let m = Material {
         young,
@@ -41,7 +70,19 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
 }
 
 pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, &["MAILLAGE", "MODELE", "AFFE", "AFFE/TOUT", "AFFE/GROUP_MA", "AFFE/MAILLE", "AFFE/MATER", "INFO"])?;
+    ex.check_keywords(
+        call,
+        &[
+            "MAILLAGE",
+            "MODELE",
+            "AFFE",
+            "AFFE/TOUT",
+            "AFFE/GROUP_MA",
+            "AFFE/MAILLE",
+            "AFFE/MATER",
+            "INFO",
+        ],
+    )?;
     let kw = &call.keywords;
     let mesh_id = if let Some(m) = kw.concept("MAILLAGE") {
         m.id
@@ -55,12 +96,20 @@ pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     for occ in kw.factor("AFFE") {
         let mat = ex.required("AFFE_MATERIAU", occ, "MATER")?;
         let mat = ex.material(mat)?;
-        let sel = select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("AFFE_MATERIAU/AFFE: {e}")))?;
+        let sel = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_MATERIAU/AFFE: {e}")))?;
         for c in sel {
             cells.insert(c, mat.clone());
         }
     }
-    store_result(ex, call, Concept::MaterialField(Rc::new(MaterialField { mesh: mesh_id, cells })))
+    store_result(
+        ex,
+        call,
+        Concept::MaterialField(Rc::new(MaterialField {
+            mesh: mesh_id,
+            cells,
+        })),
+    )
 }
 
 pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -88,18 +137,34 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     let mut cells = BTreeMap::new();
     for occ in kw.factor("AFFE") {
         ex.only_values("AFFE_MODELE/AFFE", occ, "PHENOMENE", &["MECANIQUE"])?;
-        let names: Vec<&str> = occ.simple("MODELISATION").iter().filter_map(|s| s.as_str()).collect();
+        let names: Vec<&str> = occ
+            .simple("MODELISATION")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
         let [name] = names.as_slice() else {
-            return Err(ex.kw_error("AFFE_MODELE", occ, "MODELISATION", "exactly one modelisation per occurrence is supported"));
+            return Err(ex.kw_error(
+                "AFFE_MODELE",
+                occ,
+                "MODELISATION",
+                "exactly one modelisation per occurrence is supported",
+            ));
         };
         let Some(modelisation) = Modelisation::from_keyword(name) else {
-            let span = occ.keyword("MODELISATION").map(|k| k.span).unwrap_or_default();
+            let span = occ
+                .keyword("MODELISATION")
+                .map(|k| k.span)
+                .unwrap_or_default();
             return Err(ex.unsupported(
-                &format!("AFFE_MODELE/AFFE/MODELISATION='{name}' (supported: {})", Modelisation::KEYWORDS.join(", ")),
+                &format!(
+                    "AFFE_MODELE/AFFE/MODELISATION='{name}' (supported: {})",
+                    Modelisation::KEYWORDS.join(", ")
+                ),
                 span,
             ));
         };
-        let sel = select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("AFFE_MODELE/AFFE: {e}")))?;
+        let sel = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_MODELE/AFFE: {e}")))?;
         for c in sel {
             let ty = mesh.cell(c).ty;
             // As code_aster: a modelisation goes only to the cells it has
@@ -115,9 +180,14 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
         }
     }
     if cells.is_empty() {
-        return Err(ExecError::new("AFFE_MODELE: no cell of the mesh received an element"));
+        return Err(ExecError::new(
+            "AFFE_MODELE: no cell of the mesh received an element",
+        ));
     }
-    let model = ModelDef { mesh: mesh_ref.id, cells };
+    let model = ModelDef {
+        mesh: mesh_ref.id,
+        cells,
+    };
     store_result(ex, call, Concept::Model(Rc::new(model)))
 }
 
@@ -152,7 +222,10 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             let dim = if f == "DISCRET_2D" { 2 } else { 3 };
             if cara != "K_T_D_L" && cara != "K_T_D_N" {
                 let span = occ.keyword("CARA").map(|k| k.span).unwrap_or_default();
-                return Err(ex.unsupported(&format!("AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N)"), span));
+                return Err(ex.unsupported(
+                    &format!("AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N)"),
+                    span,
+                ));
             }
             let values = reals(occ, "VALE");
             if values.len() != dim {
@@ -160,10 +233,14 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
                     "AFFE_CARA_ELEM",
                     occ,
                     "VALE",
-                    format!("{cara} in {f} needs {dim} stiffnesses, got {}", values.len()),
+                    format!(
+                        "{cara} in {f} needs {dim} stiffnesses, got {}",
+                        values.len()
+                    ),
                 ));
             }
-            let cells = select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/{f}: {e}")))?;
+            let cells = select::cells(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/{f}: {e}")))?;
             let want_dim = if cara == "K_T_D_L" { 1 } else { 0 };
             if let Some(&bad) = cells.iter().find(|&&c| mesh.cell(c).ty.dim() != want_dim) {
                 return Err(ExecError::new(format!(
@@ -181,7 +258,14 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             });
         }
     }
-    store_result(ex, call, Concept::CaraElem(Rc::new(CaraElem { model: model_ref.id, discrete })))
+    store_result(
+        ex,
+        call,
+        Concept::CaraElem(Rc::new(CaraElem {
+            model: model_ref.id,
+            discrete,
+        })),
+    )
 }
 
 pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -221,7 +305,11 @@ pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         return Err(ExecError::new("DEFI_FONCTION: give VALE (or ABSCISSE and ORDONNEE); VALE_C/NOEUD_PARA are not supported yet"));
     }
     .map_err(|e| ex.kw_error("DEFI_FONCTION", kw, "VALE", e.to_string()))?;
-    let interp: Vec<&str> = kw.simple("INTERPOL").iter().filter_map(|s| s.as_str()).collect();
+    let interp: Vec<&str> = kw
+        .simple("INTERPOL")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
     let scale = |name: &str| -> Result<Scale, ExecError> {
         Scale::from_keyword(name).ok_or_else(|| {
             let span = kw.keyword("INTERPOL").map(|k| k.span).unwrap_or_default();
@@ -241,8 +329,14 @@ pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     }
     for (key, slot) in [("PROL_GAUCHE", &mut f.left), ("PROL_DROITE", &mut f.right)] {
         if let Some(v) = kw.str(key) {
-            *slot = Extension::from_keyword(v)
-                .ok_or_else(|| ex.kw_error("DEFI_FONCTION", kw, key, format!("unknown extension `{v}` (EXCLU, CONSTANT, LINEAIRE)")))?;
+            *slot = Extension::from_keyword(v).ok_or_else(|| {
+                ex.kw_error(
+                    "DEFI_FONCTION",
+                    kw,
+                    key,
+                    format!("unknown extension `{v}` (EXCLU, CONSTANT, LINEAIRE)"),
+                )
+            })?;
         }
     }
     store_result(ex, call, Concept::Function(Rc::new(Function::Tabulated(f))))
@@ -262,21 +356,41 @@ pub fn defi_constante(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
 }
 
 pub fn defi_list_reel(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, &["DEBUT", "INTERVALLE", "INTERVALLE/JUSQU_A", "INTERVALLE/NOMBRE", "INTERVALLE/PAS", "VALE", "INFO", "TITRE"])?;
+    ex.check_keywords(
+        call,
+        &[
+            "DEBUT",
+            "INTERVALLE",
+            "INTERVALLE/JUSQU_A",
+            "INTERVALLE/NOMBRE",
+            "INTERVALLE/PAS",
+            "VALE",
+            "INFO",
+            "TITRE",
+        ],
+    )?;
     let kw = &call.keywords;
     let values = if kw.contains("VALE") {
         list::from_values(&reals(kw, "VALE"))
     } else {
-        let start = kw
-            .f64("DEBUT")
-            .ok_or_else(|| ex.kw_error("DEFI_LIST_REEL", kw, "DEBUT", "DEBUT is required with INTERVALLE"))?;
+        let start = kw.f64("DEBUT").ok_or_else(|| {
+            ex.kw_error(
+                "DEFI_LIST_REEL",
+                kw,
+                "DEBUT",
+                "DEBUT is required with INTERVALLE",
+            )
+        })?;
         let mut intervals = Vec::new();
         for occ in kw.factor("INTERVALLE") {
-            let end = occ
-                .f64("JUSQU_A")
-                .ok_or_else(|| ex.kw_error("DEFI_LIST_REEL", occ, "JUSQU_A", "JUSQU_A is required"))?;
+            let end = occ.f64("JUSQU_A").ok_or_else(|| {
+                ex.kw_error("DEFI_LIST_REEL", occ, "JUSQU_A", "JUSQU_A is required")
+            })?;
             if let Some(n) = occ.first("NOMBRE").and_then(|s| s.as_i64()) {
-                intervals.push(Interval::Count { end, count: n.max(0) as usize });
+                intervals.push(Interval::Count {
+                    end,
+                    count: n.max(0) as usize,
+                });
             } else if let Some(step) = occ.f64("PAS") {
                 intervals.push(Interval::Step { end, step });
             } else {
@@ -316,9 +430,12 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let values = if let Some(l) = def.concept("LIST_INST") {
         (*ex.real_list(l)?).clone()
     } else if def.contains("VALE") {
-        list::from_values(&reals(def, "VALE")).map_err(|e| ExecError::new(format!("DEFI_LIST_INST: {e}")))?
+        list::from_values(&reals(def, "VALE"))
+            .map_err(|e| ExecError::new(format!("DEFI_LIST_INST: {e}")))?
     } else {
-        return Err(ExecError::new("DEFI_LIST_INST/DEFI_LIST: give LIST_INST or VALE"));
+        return Err(ExecError::new(
+            "DEFI_LIST_INST/DEFI_LIST: give LIST_INST or VALE",
+        ));
     };
     store_result(ex, call, Concept::TimeList(Rc::new(values)))
 }

@@ -36,7 +36,9 @@ fn allowed(factor: &str, own: &[&str]) -> Vec<String> {
 /// Reduces every value of a field/column (`TYPE_TEST`).
 fn reduce(kind: &str, values: &[f64]) -> Result<f64, ExecError> {
     if values.is_empty() {
-        return Err(ExecError::new(format!("TYPE_TEST='{kind}': no value to reduce")));
+        return Err(ExecError::new(format!(
+            "TYPE_TEST='{kind}': no value to reduce"
+        )));
     }
     Ok(match kind {
         "SOMM_ABS" => values.iter().map(|v| v.abs()).sum(),
@@ -88,7 +90,12 @@ fn field_value(
                 header.push(("GROUP_MA", g.to_string()));
                 match select::group_ma(mesh, g)? {
                     [c] => *c,
-                    cells => return Err(format!("cell group `{g}` has {} cells; a test needs exactly one", cells.len())),
+                    cells => {
+                        return Err(format!(
+                            "cell group `{g}` has {} cells; a test needs exactly one",
+                            cells.len()
+                        ))
+                    }
                 }
             } else {
                 return Err("give MAILLE or GROUP_MA for an element field".into());
@@ -107,7 +114,12 @@ fn field_value(
                     .nodes
                     .iter()
                     .position(|&n| n == node)
-                    .ok_or_else(|| format!("node {} is not a node of the cell", select::node_name(mesh, node)))?
+                    .ok_or_else(|| {
+                        format!(
+                            "node {} is not a node of the cell",
+                            select::node_name(mesh, node)
+                        )
+                    })?
             } else {
                 1
             };
@@ -116,14 +128,23 @@ fn field_value(
                     return Err(format!("SOUS_POINT={sp}: this field has no sub-points"));
                 }
             }
-            f.get(cell, point, cmp)
-                .ok_or_else(|| missing(format!("at point {point} of cell {}", select::cell_name(mesh, cell))))
+            f.get(cell, point, cmp).ok_or_else(|| {
+                missing(format!(
+                    "at point {point} of cell {}",
+                    select::cell_name(mesh, cell)
+                ))
+            })
         }
     }
 }
 
-fn run_checks(ex: &mut Executor, header: &[(&str, String)], occ: &Keywords, computed: f64) -> Result<(), ExecError> {
-    let cs = comparisons(occ).map_err(|e| ExecError::new(e))?;
+fn run_checks(
+    ex: &mut Executor,
+    header: &[(&str, String)],
+    occ: &Keywords,
+    computed: f64,
+) -> Result<(), ExecError> {
+    let cs = comparisons(occ).map_err(ExecError::new)?;
     let (text, verdicts) = check_block(header, &cs, computed);
     for v in verdicts {
         ex.tally.add(v);
@@ -135,12 +156,39 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let mut allow: Vec<String> = vec!["INFO".into()];
     allow.extend(allowed(
         "RESU",
-        &["RESULTAT", "NUME_ORDRE", "INST", "NOM_CHAM", "PARA", "NOM_CMP", "GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE", "POINT", "SOUS_POINT", "TYPE_TEST"],
+        &[
+            "RESULTAT",
+            "NUME_ORDRE",
+            "INST",
+            "NOM_CHAM",
+            "PARA",
+            "NOM_CMP",
+            "GROUP_NO",
+            "NOEUD",
+            "GROUP_MA",
+            "MAILLE",
+            "POINT",
+            "SOUS_POINT",
+            "TYPE_TEST",
+        ],
     ));
-    allow.extend(allowed("CHAM_NO", &["CHAM_GD", "NOM_CMP", "GROUP_NO", "NOEUD", "TYPE_TEST"]));
+    allow.extend(allowed(
+        "CHAM_NO",
+        &["CHAM_GD", "NOM_CMP", "GROUP_NO", "NOEUD", "TYPE_TEST"],
+    ));
     allow.extend(allowed(
         "CHAM_ELEM",
-        &["CHAM_GD", "NOM_CMP", "GROUP_MA", "MAILLE", "POINT", "SOUS_POINT", "GROUP_NO", "NOEUD", "TYPE_TEST"],
+        &[
+            "CHAM_GD",
+            "NOM_CMP",
+            "GROUP_MA",
+            "MAILLE",
+            "POINT",
+            "SOUS_POINT",
+            "GROUP_NO",
+            "NOEUD",
+            "TYPE_TEST",
+        ],
     ));
     let allow: Vec<&str> = allow.iter().map(String::as_str).collect();
     ex.check_keywords(call, &allow)?;
@@ -152,20 +200,35 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         let steps = select_steps(ex, "TEST_RESU/RESU", occ, &result)?;
         let step = match steps.as_slice() {
             [s] => *s,
-            _ => return Err(ExecError::new("TEST_RESU/RESU: give exactly one NUME_ORDRE or INST")),
+            _ => {
+                return Err(ExecError::new(
+                    "TEST_RESU/RESU: give exactly one NUME_ORDRE or INST",
+                ))
+            }
         };
-        let mut header: Vec<(&str, String)> = vec![("RESULTAT", r.name.clone()), ("NUME_ORDRE", step.nume_ordre.to_string())];
+        let mut header: Vec<(&str, String)> = vec![
+            ("RESULTAT", r.name.clone()),
+            ("NUME_ORDRE", step.nume_ordre.to_string()),
+        ];
         let value = if let Some(para) = occ.str("PARA") {
             header.push(("PARA", para.to_string()));
             match para {
                 "INST" => step.inst,
-                other => return Err(ex.unsupported(&format!("TEST_RESU/RESU/PARA='{other}'"), occ.keyword("PARA").map(|k| k.span).unwrap_or(call.span))),
+                other => {
+                    return Err(ex.unsupported(
+                        &format!("TEST_RESU/RESU/PARA='{other}'"),
+                        occ.keyword("PARA").map(|k| k.span).unwrap_or(call.span),
+                    ))
+                }
             }
         } else {
-            let name = occ.str("NOM_CHAM").ok_or_else(|| ExecError::new("TEST_RESU/RESU: give NOM_CHAM or PARA"))?;
+            let name = occ
+                .str("NOM_CHAM")
+                .ok_or_else(|| ExecError::new("TEST_RESU/RESU: give NOM_CHAM or PARA"))?;
             header.push(("NOM_CHAM", name.to_string()));
             let field = step_field(step, name, &r.name)?;
-            field_value(occ, field, &mesh, &mut header).map_err(|e| ExecError::new(format!("TEST_RESU/RESU: {e}")))?
+            field_value(occ, field, &mesh, &mut header)
+                .map_err(|e| ExecError::new(format!("TEST_RESU/RESU: {e}")))?
         };
         run_checks(ex, &header, occ, value)?;
     }
@@ -175,7 +238,8 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             let field = ex.field(c)?;
             let mesh = ex.single_mesh()?;
             let mut header: Vec<(&str, String)> = vec![(label, c.name.clone())];
-            let value = field_value(occ, &field, &mesh, &mut header).map_err(|e| ExecError::new(format!("TEST_RESU/{factor}: {e}")))?;
+            let value = field_value(occ, &field, &mesh, &mut header)
+                .map_err(|e| ExecError::new(format!("TEST_RESU/{factor}: {e}")))?;
             run_checks(ex, &header, occ, value)?;
         }
     }
@@ -203,7 +267,15 @@ fn filter_rows(table: &Table, filters: &[Keywords]) -> Result<Vec<usize>, String
                 let best = rows
                     .iter()
                     .filter_map(|&r| cell(r).and_then(Value::as_f64).map(|v| (r, key(v))))
-                    .reduce(|a, b| if (crit.starts_with("MAXI") && b.1 > a.1) || (crit.starts_with("MINI") && b.1 < a.1) { b } else { a });
+                    .reduce(|a, b| {
+                        if (crit.starts_with("MAXI") && b.1 > a.1)
+                            || (crit.starts_with("MINI") && b.1 < a.1)
+                        {
+                            b
+                        } else {
+                            a
+                        }
+                    });
                 rows = best.map(|(r, _)| vec![r]).unwrap_or_default();
                 continue;
             }
@@ -233,7 +305,9 @@ fn filter_rows(table: &Table, filters: &[Keywords]) -> Result<Vec<usize>, String
             .or_else(|| f.f64("VALE_I"))
             .ok_or("FILTRE needs VALE, VALE_I or VALE_K")?;
         rows.retain(|&r| {
-            let Some(v) = cell(r).and_then(Value::as_f64) else { return false };
+            let Some(v) = cell(r).and_then(Value::as_f64) else {
+                return false;
+            };
             let tol = if absolute { prec } else { prec * target.abs() };
             let eq = (v - target).abs() <= tol;
             match crit {
@@ -270,7 +344,9 @@ pub fn test_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     let kw = &call.keywords;
     let t = ex.required("TEST_TABLE", kw, "TABLE")?;
     let table = ex.table(t)?;
-    let para = kw.str("NOM_PARA").ok_or_else(|| ExecError::new("TEST_TABLE: NOM_PARA is required"))?;
+    let para = kw
+        .str("NOM_PARA")
+        .ok_or_else(|| ExecError::new("TEST_TABLE: NOM_PARA is required"))?;
     let col = table.column_index(para).ok_or_else(|| {
         ExecError::new(format!(
             "TEST_TABLE/NOM_PARA: table `{}` has no column {para}{}",
@@ -278,29 +354,42 @@ pub fn test_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             select::did_you_mean(para, table.columns.iter().map(|c| c.name.as_str()))
         ))
     })?;
-    let rows = filter_rows(&table, kw.factor("FILTRE")).map_err(|e| ExecError::new(format!("TEST_TABLE: {e}")))?;
+    let rows = filter_rows(&table, kw.factor("FILTRE"))
+        .map_err(|e| ExecError::new(format!("TEST_TABLE: {e}")))?;
     let values: Vec<f64> = rows
         .iter()
-        .filter_map(|&r| table.rows[r].get(col).and_then(|c| c.as_ref()).and_then(Value::as_f64))
+        .filter_map(|&r| {
+            table.rows[r]
+                .get(col)
+                .and_then(|c| c.as_ref())
+                .and_then(Value::as_f64)
+        })
         .collect();
-    let mut header: Vec<(&str, String)> = vec![("TABLE", t.name.clone()), ("NOM_PARA", para.to_string())];
-    let value = if let Some(kind) = kw.str("TYPE_TEST") {
-        header.push(("TYPE_TEST", kind.to_string()));
-        reduce(kind, &values)?
-    } else {
-        match values.as_slice() {
-            [v] => *v,
-            [] => return Err(ExecError::new(format!("TEST_TABLE: no row of `{}` has a value of {para} after FILTRE", t.name))),
-            many => {
-                return Err(ExecError::new(format!(
+    let mut header: Vec<(&str, String)> =
+        vec![("TABLE", t.name.clone()), ("NOM_PARA", para.to_string())];
+    let value =
+        if let Some(kind) = kw.str("TYPE_TEST") {
+            header.push(("TYPE_TEST", kind.to_string()));
+            reduce(kind, &values)?
+        } else {
+            match values.as_slice() {
+                [v] => *v,
+                [] => {
+                    return Err(ExecError::new(format!(
+                        "TEST_TABLE: no row of `{}` has a value of {para} after FILTRE",
+                        t.name
+                    )))
+                }
+                many => {
+                    return Err(ExecError::new(format!(
                     "TEST_TABLE: {} rows of `{}` match (values {}); refine FILTRE or use TYPE_TEST",
                     many.len(),
                     t.name,
                     many.iter().take(5).map(|v| py_repr(*v)).collect::<Vec<_>>().join(", ")
                 )))
+                }
             }
-        }
-    };
+        };
     run_checks(ex, &header, kw, value)?;
     Ok(CommandOutput::Nothing)
 }

@@ -16,7 +16,14 @@ fn comp_name(name: &str) -> Option<CompName> {
 
 /// Checks that a node carries a component in the model (2D models have
 /// no DZ; nodes outside the model have nothing).
-fn check_dof(model: &ModelDef, mesh: &Mesh, carried: &[bool], node: NodeId, comp: CompName, what: &str) -> Result<(), ExecError> {
+fn check_dof(
+    model: &ModelDef,
+    mesh: &Mesh,
+    carried: &[bool],
+    node: NodeId,
+    comp: CompName,
+    what: &str,
+) -> Result<(), ExecError> {
     if !carried.get(node.0 as usize).copied().unwrap_or(false) {
         return Err(ExecError::new(format!(
             "{what}: node {} is not carried by any element of the model, so it has no {comp}",
@@ -56,13 +63,19 @@ fn imposed_values(
     comps: &[&str],
     what: &str,
 ) -> Result<Vec<(NodeId, &'static str, f64)>, ExecError> {
-    let nodes = select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    let nodes =
+        select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
     let mut out = Vec::new();
     for &c in comps {
         if let Some(s) = occ.first(c) {
-            let v = s
-                .as_f64()
-                .ok_or_else(|| ex.kw_error(what, occ, c, "a real value is required (functions need AFFE_CHAR_MECA_F)"))?;
+            let v = s.as_f64().ok_or_else(|| {
+                ex.kw_error(
+                    what,
+                    occ,
+                    c,
+                    "a real value is required (functions need AFFE_CHAR_MECA_F)",
+                )
+            })?;
             let name: &'static str = match c {
                 "DX" => "DX",
                 "DY" => "DY",
@@ -70,7 +83,12 @@ fn imposed_values(
                 "FX" => "DX",
                 "FY" => "DY",
                 "FZ" => "DZ",
-                _ => return Err(ex.unsupported(&format!("{what}/{c}"), occ.keyword(c).map(|k| k.span).unwrap_or_default())),
+                _ => {
+                    return Err(ex.unsupported(
+                        &format!("{what}/{c}"),
+                        occ.keyword(c).map(|k| k.span).unwrap_or_default(),
+                    ))
+                }
             };
             for &n in &nodes {
                 out.push((n, name, v));
@@ -105,15 +123,37 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let carried = carried_nodes(&model, &mesh);
     let mut imposed = Vec::new();
     for occ in kw.factor("MECA_IMPO") {
-        for (node, comp, value) in imposed_values(ex, occ, &mesh, &["DX", "DY", "DZ"], "AFFE_CHAR_CINE/MECA_IMPO")? {
-            check_dof(&model, &mesh, &carried, node, comp, "AFFE_CHAR_CINE/MECA_IMPO")?;
+        for (node, comp, value) in imposed_values(
+            ex,
+            occ,
+            &mesh,
+            &["DX", "DY", "DZ"],
+            "AFFE_CHAR_CINE/MECA_IMPO",
+        )? {
+            check_dof(
+                &model,
+                &mesh,
+                &carried,
+                node,
+                comp,
+                "AFFE_CHAR_CINE/MECA_IMPO",
+            )?;
             imposed.push(Imposed { node, comp, value });
         }
     }
     if kw.factor("MECA_IMPO").is_empty() {
-        return Err(ExecError::new("AFFE_CHAR_CINE: MECA_IMPO is required (the only condition supported yet)"));
+        return Err(ExecError::new(
+            "AFFE_CHAR_CINE: MECA_IMPO is required (the only condition supported yet)",
+        ));
     }
-    store_result(ex, call, Concept::KinematicLoad(Rc::new(KinematicLoad { model: model_ref.id, imposed })))
+    store_result(
+        ex,
+        call,
+        Concept::KinematicLoad(Rc::new(KinematicLoad {
+            model: model_ref.id,
+            imposed,
+        })),
+    )
 }
 
 pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -168,42 +208,92 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         ..MechanicalLoad::default()
     };
     for occ in kw.factor("DDL_IMPO") {
-        for (node, comp, value) in imposed_values(ex, occ, &mesh, &["DX", "DY", "DZ"], "AFFE_CHAR_MECA/DDL_IMPO")? {
-            check_dof(&model, &mesh, &carried, node, comp, "AFFE_CHAR_MECA/DDL_IMPO")?;
+        for (node, comp, value) in imposed_values(
+            ex,
+            occ,
+            &mesh,
+            &["DX", "DY", "DZ"],
+            "AFFE_CHAR_MECA/DDL_IMPO",
+        )? {
+            check_dof(
+                &model,
+                &mesh,
+                &carried,
+                node,
+                comp,
+                "AFFE_CHAR_MECA/DDL_IMPO",
+            )?;
             load.imposed.push(Imposed { node, comp, value });
         }
     }
     for occ in kw.factor("FORCE_NODALE") {
-        for (node, comp, value) in imposed_values(ex, occ, &mesh, &["FX", "FY", "FZ"], "AFFE_CHAR_MECA/FORCE_NODALE")? {
-            check_dof(&model, &mesh, &carried, node, comp, "AFFE_CHAR_MECA/FORCE_NODALE")?;
+        for (node, comp, value) in imposed_values(
+            ex,
+            occ,
+            &mesh,
+            &["FX", "FY", "FZ"],
+            "AFFE_CHAR_MECA/FORCE_NODALE",
+        )? {
+            check_dof(
+                &model,
+                &mesh,
+                &carried,
+                node,
+                comp,
+                "AFFE_CHAR_MECA/FORCE_NODALE",
+            )?;
             load.nodal_forces.push(Imposed { node, comp, value });
         }
     }
     for occ in kw.factor("FORCE_CONTOUR") {
-        let cells = select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_CONTOUR: {e}")))?;
-        let force = [occ.f64("FX").unwrap_or(0.0), occ.f64("FY").unwrap_or(0.0), 0.0];
+        let cells = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_CONTOUR: {e}")))?;
+        let force = [
+            occ.f64("FX").unwrap_or(0.0),
+            occ.f64("FY").unwrap_or(0.0),
+            0.0,
+        ];
         load.boundary.push(BoundaryLoad::Force { cells, force });
     }
     for occ in kw.factor("PRES_REP") {
-        let cells = select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/PRES_REP: {e}")))?;
-        let pressure = occ
-            .f64("PRES")
-            .ok_or_else(|| ex.kw_error("AFFE_CHAR_MECA/PRES_REP", occ, "PRES", "a real pressure is required"))?;
-        load.boundary.push(BoundaryLoad::Pressure { cells, pressure });
+        let cells = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/PRES_REP: {e}")))?;
+        let pressure = occ.f64("PRES").ok_or_else(|| {
+            ex.kw_error(
+                "AFFE_CHAR_MECA/PRES_REP",
+                occ,
+                "PRES",
+                "a real pressure is required",
+            )
+        })?;
+        load.boundary
+            .push(BoundaryLoad::Pressure { cells, pressure });
     }
     for occ in kw.factor("LIAISON_DDL") {
         // Nodes are listed one per term, in order (GROUP_NO groups of one
         // node each, or NOEUD names).
         let mut nodes = Vec::new();
         for g in occ.simple("GROUP_NO").iter().filter_map(|s| s.as_str()) {
-            let members = select::group_no(&mesh, g).map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/LIAISON_DDL: {e}")))?;
+            let members = select::group_no(&mesh, g)
+                .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/LIAISON_DDL: {e}")))?;
             nodes.extend_from_slice(members);
         }
         for n in occ.simple("NOEUD").iter().filter_map(|s| s.as_str()) {
-            nodes.push(select::node_named(&mesh, n).map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/LIAISON_DDL: {e}")))?);
+            nodes.push(
+                select::node_named(&mesh, n)
+                    .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/LIAISON_DDL: {e}")))?,
+            );
         }
-        let ddl: Vec<&str> = occ.simple("DDL").iter().filter_map(|s| s.as_str()).collect();
-        let coefs: Vec<f64> = occ.simple("COEF_MULT").iter().filter_map(|s| s.as_f64()).collect();
+        let ddl: Vec<&str> = occ
+            .simple("DDL")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let coefs: Vec<f64> = occ
+            .simple("COEF_MULT")
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
         if nodes.len() != ddl.len() || ddl.len() != coefs.len() {
             return Err(ExecError::new(format!(
                 "AFFE_CHAR_MECA/LIAISON_DDL: {} nodes, {} DDL and {} COEF_MULT: they must match one to one",
@@ -214,8 +304,19 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         }
         let mut terms = Vec::new();
         for ((node, d), c) in nodes.into_iter().zip(ddl).zip(coefs) {
-            let comp = comp_name(d).ok_or_else(|| ExecError::new(format!("AFFE_CHAR_MECA/LIAISON_DDL: unknown component `{d}`")))?;
-            check_dof(&model, &mesh, &carried, node, comp, "AFFE_CHAR_MECA/LIAISON_DDL")?;
+            let comp = comp_name(d).ok_or_else(|| {
+                ExecError::new(format!(
+                    "AFFE_CHAR_MECA/LIAISON_DDL: unknown component `{d}`"
+                ))
+            })?;
+            check_dof(
+                &model,
+                &mesh,
+                &carried,
+                node,
+                comp,
+                "AFFE_CHAR_MECA/LIAISON_DDL",
+            )?;
             terms.push((node, comp, c));
         }
         let rhs = occ.f64("COEF_IMPO").unwrap_or(0.0);
@@ -230,7 +331,10 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     let model = ex.model(model_ref)?;
     if kw.str("FROTTEMENT") == Some("COULOMB") {
         let span = kw.keyword("FROTTEMENT").map(|k| k.span).unwrap_or_default();
-        return Err(ex.unsupported("DEFI_CONTACT/FROTTEMENT='COULOMB' (frictionless contact only)", span));
+        return Err(ex.unsupported(
+            "DEFI_CONTACT/FROTTEMENT='COULOMB' (frictionless contact only)",
+            span,
+        ));
     }
     let formulation = kw.str("FORMULATION").unwrap_or("DISCRETE");
     if formulation != "LIAISON_UNIL" {
@@ -263,18 +367,33 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     let mut zones = Vec::new();
     let mut algo = UnilateralAlgo::Constraint;
     for occ in kw.factor("ZONE") {
-        let nodes = select::nodes_without(occ, &mesh).map_err(|e| ExecError::new(format!("DEFI_CONTACT/ZONE: {e}")))?;
+        let nodes = select::nodes_without(occ, &mesh)
+            .map_err(|e| ExecError::new(format!("DEFI_CONTACT/ZONE: {e}")))?;
         let comps: Vec<CompName> = occ
             .simple("NOM_CMP")
             .iter()
             .filter_map(|s| s.as_str())
-            .map(|c| comp_name(c).ok_or_else(|| ex.kw_error("DEFI_CONTACT/ZONE", occ, "NOM_CMP", format!("unknown component `{c}`"))))
+            .map(|c| {
+                comp_name(c).ok_or_else(|| {
+                    ex.kw_error(
+                        "DEFI_CONTACT/ZONE",
+                        occ,
+                        "NOM_CMP",
+                        format!("unknown component `{c}`"),
+                    )
+                })
+            })
             .collect::<Result<_, _>>()?;
         let mut coef_mult = Vec::new();
         for s in occ.simple("COEF_MULT") {
-            let c = s
-                .as_concept()
-                .ok_or_else(|| ex.kw_error("DEFI_CONTACT/ZONE", occ, "COEF_MULT", "a function (DEFI_CONSTANTE, DEFI_FONCTION, FORMULE) is required"))?;
+            let c = s.as_concept().ok_or_else(|| {
+                ex.kw_error(
+                    "DEFI_CONTACT/ZONE",
+                    occ,
+                    "COEF_MULT",
+                    "a function (DEFI_CONSTANTE, DEFI_FONCTION, FORMULE) is required",
+                )
+            })?;
             coef_mult.push(ex.function(c)?);
         }
         if coef_mult.len() != comps.len() {
@@ -282,7 +401,11 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
                 "DEFI_CONTACT/ZONE",
                 occ,
                 "COEF_MULT",
-                format!("{} coefficients for {} components in NOM_CMP: give one per component", coef_mult.len(), comps.len()),
+                format!(
+                    "{} coefficients for {} components in NOM_CMP: give one per component",
+                    coef_mult.len(),
+                    comps.len()
+                ),
             ));
         }
         let impo = ex.required("DEFI_CONTACT/ZONE", occ, "COEF_IMPO")?;
@@ -293,13 +416,22 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
             }
         }
         algo = match occ.str("ALGO_CONT").unwrap_or("CONTRAINTE") {
-            "PENALISATION" => UnilateralAlgo::Penalty(
-                occ.f64("COEF_PENA")
-                    .ok_or_else(|| ex.kw_error("DEFI_CONTACT/ZONE", occ, "COEF_PENA", "COEF_PENA is required with ALGO_CONT='PENALISATION'"))?,
-            ),
+            "PENALISATION" => UnilateralAlgo::Penalty(occ.f64("COEF_PENA").ok_or_else(|| {
+                ex.kw_error(
+                    "DEFI_CONTACT/ZONE",
+                    occ,
+                    "COEF_PENA",
+                    "COEF_PENA is required with ALGO_CONT='PENALISATION'",
+                )
+            })?),
             _ => UnilateralAlgo::Constraint,
         };
-        zones.push(UnilateralZone { nodes, comps, coef_mult, coef_impo });
+        zones.push(UnilateralZone {
+            nodes,
+            comps,
+            coef_mult,
+            coef_impo,
+        });
     }
     let def = ContactDef::Unilateral {
         model: model_ref.id,

@@ -7,7 +7,7 @@ use aster_eval::{CommandCall, CommandOutput, ExecError};
 use aster_mesh::{Group, Mesh, NodeId};
 use std::collections::BTreeSet;
 use std::path::Path;
-use std::rc::Rc;
+use std::sync::Arc;
 
 /// Reads a mesh file in the format the command asks for.
 pub fn read_mesh_file(path: &Path, format: &str) -> Result<Mesh, String> {
@@ -15,7 +15,18 @@ pub fn read_mesh_file(path: &Path, format: &str) -> Result<Mesh, String> {
 }
 
 pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, &["FORMAT", "UNITE", "NOM_MED", "INFO", "INFO_MED", "VERI_MAIL", "VERI_MAIL/*"])?;
+    ex.check_keywords(
+        call,
+        &[
+            "FORMAT",
+            "UNITE",
+            "NOM_MED",
+            "INFO",
+            "INFO_MED",
+            "VERI_MAIL",
+            "VERI_MAIL/*",
+        ],
+    )?;
     let kw = &call.keywords;
     let format = kw.str("FORMAT").unwrap_or("MED");
     ex.only_values("LIRE_MAILLAGE", kw, "FORMAT", &["MED", "ASTER"])?;
@@ -28,7 +39,7 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     })?;
     let mesh = read_mesh_file(&path, format)
         .map_err(|e| ExecError::new(format!("LIRE_MAILLAGE: {}: {e}", path.display())))?;
-    store_result(ex, call, Concept::Mesh(Rc::new(mesh)))
+    store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
 }
 
 /// The mesh updated in place (`reuse=`) or copied into a new concept.
@@ -64,7 +75,10 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
     let names = |k: &aster_eval::Keywords, n: &str| -> Vec<String> {
-        k.simple(n).iter().filter_map(|s| s.as_str().map(str::to_string)).collect()
+        k.simple(n)
+            .iter()
+            .filter_map(|s| s.as_str().map(str::to_string))
+            .collect()
     };
     for occ in kw.factor("DETR_GROUP_NO") {
         let drop: BTreeSet<String> = names(occ, "NOM").into_iter().collect();
@@ -78,14 +92,21 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         let Some(name) = occ.str("NOM") else {
             return Err(ex.kw_error("DEFI_GROUP", occ, "NOM", "CREA_GROUP_MA needs NOM"));
         };
-        let cells = select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_MA: {e}")))?;
+        let cells = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_MA: {e}")))?;
         put_group(&mut mesh.groups_ma, name, cells);
     }
     for occ in kw.factor("CREA_GROUP_NO") {
         if let Some(crit) = occ.str("CRIT_NOEUD") {
             if crit != "TOUS" {
-                let span = occ.keyword("CRIT_NOEUD").map(|k| k.span).unwrap_or_default();
-                return Err(ex.unsupported(&format!("DEFI_GROUP/CREA_GROUP_NO/CRIT_NOEUD='{crit}'"), span));
+                let span = occ
+                    .keyword("CRIT_NOEUD")
+                    .map(|k| k.span)
+                    .unwrap_or_default();
+                return Err(ex.unsupported(
+                    &format!("DEFI_GROUP/CREA_GROUP_NO/CRIT_NOEUD='{crit}'"),
+                    span,
+                ));
             }
         }
         if occ.str("TOUT_GROUP_MA") == Some("OUI") {
@@ -112,12 +133,18 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             continue;
         }
         let Some(name) = occ.str("NOM") else {
-            return Err(ex.kw_error("DEFI_GROUP", occ, "NOM", "CREA_GROUP_NO needs NOM (or TOUT_GROUP_MA/GROUP_MA)"));
+            return Err(ex.kw_error(
+                "DEFI_GROUP",
+                occ,
+                "NOM",
+                "CREA_GROUP_NO needs NOM (or TOUT_GROUP_MA/GROUP_MA)",
+            ));
         };
-        let nodes = select::nodes(occ, &mesh, "").map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?;
+        let nodes = select::nodes(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?;
         put_group(&mut mesh.groups_no, name, nodes);
     }
-    store_result(ex, call, Concept::Mesh(Rc::new(mesh)))
+    store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
 }
 
 /// Nodes of cells, in order of first appearance.
@@ -147,19 +174,37 @@ fn put_group<T>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) {
 pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     ex.check_keywords(
         call,
-        &["MAILLAGE", "INFO", "ORIE_PEAU", "ORIE_PEAU/GROUP_MA_PEAU", "ORIE_PEAU/GROUP_MA_INTERNE", "ORIE_PEAU_2D", "ORIE_PEAU_2D/GROUP_MA"],
+        &[
+            "MAILLAGE",
+            "INFO",
+            "ORIE_PEAU",
+            "ORIE_PEAU/GROUP_MA_PEAU",
+            "ORIE_PEAU/GROUP_MA_INTERNE",
+            "ORIE_PEAU_2D",
+            "ORIE_PEAU_2D/GROUP_MA",
+        ],
     )?;
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
     let mut groups: Vec<String> = Vec::new();
-    for occ in kw.factor("ORIE_PEAU").iter().chain(kw.factor("ORIE_PEAU_2D")) {
+    for occ in kw
+        .factor("ORIE_PEAU")
+        .iter()
+        .chain(kw.factor("ORIE_PEAU_2D"))
+    {
         for key in ["GROUP_MA_PEAU", "GROUP_MA"] {
-            groups.extend(occ.simple(key).iter().filter_map(|s| s.as_str().map(str::to_string)));
+            groups.extend(
+                occ.simple(key)
+                    .iter()
+                    .filter_map(|s| s.as_str().map(str::to_string)),
+            );
         }
     }
     for g in &groups {
-        select::group_ma(&mesh, g).map_err(|e| ExecError::new(format!("MODI_MAILLAGE/ORIE_PEAU: {e}")))?;
+        select::group_ma(&mesh, g)
+            .map_err(|e| ExecError::new(format!("MODI_MAILLAGE/ORIE_PEAU: {e}")))?;
     }
-    crate::meshio::orient_skin(&mut mesh, &groups).map_err(|e| ExecError::new(format!("MODI_MAILLAGE/ORIE_PEAU: {e}")))?;
-    store_result(ex, call, Concept::Mesh(Rc::new(mesh)))
+    crate::meshio::orient_skin(&mut mesh, &groups)
+        .map_err(|e| ExecError::new(format!("MODI_MAILLAGE/ORIE_PEAU: {e}")))?;
+    store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
 }

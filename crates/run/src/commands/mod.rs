@@ -45,3 +45,16 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         other => Err(ex.unsupported(other, call.span)),
     }
 }
+
+/// NUME_ORDRE of the steps an occurrence designates.
+pub fn select_steps_pub(
+    ex: &Executor,
+    cmd: &str,
+    occ: &aster_eval::Keywords,
+    result: &crate::concept::EvolResult,
+) -> Result<Vec<u32>, ExecError> {
+    Ok(post::select_steps(ex, cmd, occ, result)?
+        .iter()
+        .map(|s| s.nume_ordre)
+        .collect())
+}
