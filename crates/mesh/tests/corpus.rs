@@ -177,3 +177,48 @@ fn med_versions_and_layouts_are_all_covered() {
         );
     }
 }
+
+#[test]
+fn corrupted_real_files_give_errors_not_panics() {
+    let Some(shared) = shared() else { return };
+    // The HDF5 1.6 seed (layout v2, old headers) and MED 3 / 4 files (dense attributes).
+    for name in [
+        "cases/zzzz237/zzzz237a.mmed",
+        "meshes/zzzz504z.mmed",
+        "meshes/ssnv263c.mmed",
+        "meshes/tpna01b.mmed",
+    ] {
+        let Ok(original) = std::fs::read(shared.join(name)) else {
+            continue;
+        };
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let iterations: usize = std::env::var("ASTER_FUZZ_ITERS")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(300);
+        for _ in 0..iterations {
+            let mut bytes = original.clone();
+            // Corrupt the metadata-heavy start more often than the raw data.
+            for _ in 0..1 + next() % 6 {
+                let span = if next() % 2 == 0 {
+                    4096.min(bytes.len())
+                } else {
+                    bytes.len()
+                };
+                let i = (next() as usize) % span;
+                bytes[i] = next() as u8;
+            }
+            if next() % 4 == 0 {
+                let keep = (next() as usize) % bytes.len();
+                bytes.truncate(keep);
+            }
+            let _ = aster_mesh::med::read_med_bytes(bytes, Path::new(name), None);
+        }
+    }
+}
