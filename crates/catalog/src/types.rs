@@ -80,11 +80,8 @@ pub fn computed(
                 "formule"
             }
         }
-        // A parallel (partitioned) mesh is a maillage_p, a subclass.
-        "lire_maillage_sdprod" => match text("PARTITIONNEUR") {
-            Some(_) => "maillage_p",
-            None => "maillage_sdaster",
-        },
+        // A partitioned mesh (maillage_p) is only built by parallel runs.
+        "lire_maillage_sdprod" => "maillage_sdaster",
         "affe_char_cine_prod" => {
             if has("MECA_IMPO")
                 || has("EVOL_IMPO") && type_of("EVOL_IMPO").as_deref() == Some("evol_noli")
