@@ -24,9 +24,22 @@ impl std::fmt::Display for Lit {
     }
 }
 
-/// A real as Python prints it (`1.0`, `1e-06`).
+/// A real as Python prints it (`1.0`, `1e-06`, `2e+16`).
 pub fn fmt_real(r: f64) -> String {
-    if r.is_finite() && r == r.trunc() && r.abs() < 1e16 {
+    if !r.is_finite() {
+        return format!("{r}");
+    }
+    if r != 0.0 && (r.abs() < 1e-4 || r.abs() >= 1e16) {
+        let e = format!("{r:e}");
+        return match e.split_once('e') {
+            Some((m, x)) => {
+                let x: i32 = x.parse().unwrap_or(0);
+                format!("{m}e{}{:02}", if x < 0 { '-' } else { '+' }, x.abs())
+            }
+            None => e,
+        };
+    }
+    if r == r.trunc() {
         format!("{r:.1}")
     } else {
         format!("{r}")
