@@ -1,28 +1,82 @@
 //! Syntax of code_aster command files: a pest grammar (`grammar/comm.pest`)
 //! read into a spanned Python AST.
 //!
-//! Public API: [`parse_module`] / [`parse_file`], the [`ast`] types, the
-//! [`codemap`] for positions, and [`ParseError`].
+//! Public API: [`parse_module`] / [`parse_file`], [`read_source`], the
+//! [`ast`] types, the [`codemap`] for positions, [`ParseError`] and its
+//! [`ParseError::render`]ing, and the canonical printer [`fmt::format_module`].
 
 pub mod ast;
 pub mod codemap;
+pub mod dialect;
+pub mod error;
+pub mod fmt;
+pub mod literals;
+pub mod parser;
+pub mod validate;
 
 pub use codemap::{CodeMap, LineCol, Span};
+
+use std::path::Path;
 
 /// A syntax error at one place in a file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParseError {
-    /// Where the error is (a zero-width span at the offending position).
+    /// Where the error is (the offending character, or a zero-width span at the end).
     pub span: Span,
-    /// What was expected / what is wrong, e.g. "expected `)`".
+    /// What was expected / what is wrong, e.g. "expected `)`, found end of file".
     pub message: String,
 }
 
-/// Parse a whole command file.
+impl ParseError {
+    /// `file:line:col: message`, the source line and a caret under the position.
+    pub fn render(&self, map: &CodeMap) -> String {
+        error::render(map, self)
+    }
+}
+
+impl std::fmt::Display for ParseError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for ParseError {}
+
+/// Parse a whole command file and run the post-parse checks of [`validate`].
 pub fn parse_module(source: &str) -> Result<ast::Module, ParseError> {
-    let _ = source;
-    Err(ParseError {
-        span: Span::default(),
-        message: "parser not implemented yet".into(),
-    })
+    let module = match parser::parse_module_unchecked(source) {
+        Ok(m) => m,
+        Err(e) => return Err(error::refine(source, e)),
+    };
+    validate::check(&module)?;
+    Ok(module)
+}
+
+/// Read a command file: UTF-8 (an initial BOM is dropped), else Latin-1
+/// (code_aster 11 files are often Latin-1).
+pub fn read_source(path: &Path) -> std::io::Result<String> {
+    let bytes = std::fs::read(path)?;
+    Ok(decode(&bytes))
+}
+
+/// Decode file bytes as UTF-8, falling back to Latin-1 (Windows-1252).
+pub fn decode(bytes: &[u8]) -> String {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    match std::str::from_utf8(bytes) {
+        Ok(s) => s.to_string(),
+        Err(_) => {
+            let (text, _, _) = encoding_rs::WINDOWS_1252.decode(bytes);
+            text.into_owned()
+        }
+    }
+}
+
+/// Read and parse a file; the error is already rendered (`file:line:col: …`).
+pub fn parse_file(path: &Path) -> Result<(CodeMap, ast::Module), String> {
+    let source = read_source(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let map = CodeMap::new(path.display().to_string(), source);
+    match parse_module(map.source()) {
+        Ok(m) => Ok((map, m)),
+        Err(e) => Err(e.render(&map)),
+    }
 }
