@@ -1,0 +1,1 @@
+//! Parameter sweeps measuring error against time per method.
