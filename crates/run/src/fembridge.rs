@@ -227,10 +227,12 @@ pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec
     let mesh = ex.mesh_by_id(setup.model.mesh)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
     let loads = build_loads(setup)?;
+    let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
         let mut sources: Vec<Box<dyn UnilateralSource>> = Vec::new();
+        let mut contact_zones: Option<Vec<aster_contact::ZoneContact>> = None;
         if let Some(c) = &setup.contact {
             match &**c {
                 ContactDef::Unilateral { zones, algo, .. } => sources.push(Box::new(LiaisonUnil {
@@ -238,7 +240,11 @@ pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec
                     algo: *algo,
                 })),
                 ContactDef::Zones { keywords, .. } => {
-                    sources.extend(crate::contactbridge::sources(ex, &mesh, keywords)?);
+                    let zones = crate::contactbridge::zones(ex, &mesh, keywords)?;
+                    contact_zones = Some(zones.clone());
+                    for z in zones {
+                        sources.push(Box::new(z));
+                    }
                 }
             }
         }
@@ -268,19 +274,36 @@ pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec
             sources,
             ..StaticNonLinear::default()
         };
-        snl.solve(&model, &loads).map_err(|e| fem_err(cmd, e))?
+        let raw = snl.solve(&model, &loads).map_err(|e| fem_err(cmd, e))?;
+        if let Some(z) = contact_zones {
+            post_zones = Some(z);
+        }
+        raw
     };
     let steps = raw
         .steps
         .iter()
-        .map(|s| {
+        .map(|s| -> Result<Step, ExecError> {
             let mut fields = BTreeMap::new();
             fields.insert("DEPL".to_string(), Field::Nodal(nodal_from_dofs(&model, &s.displacement)));
             fields.insert("SIEF_ELGA".to_string(), Field::Elem(elem_field(ElemLocation::Gauss, &s.stress)));
             fields.insert("VARI_ELGA".to_string(), Field::Elem(elem_field(ElemLocation::Gauss, &s.internal_variables)));
-            Step { nume_ordre: s.nume_ordre as u32, inst: s.time, fields }
+            if let Some(zones) = &mut post_zones {
+                // CONT_NOEU: the zones re-paired on the step's geometry.
+                let x = aster_contact::positions(&mesh, model.dofs(), &s.displacement);
+                let cn = aster_contact::ContNoeu::at_step(zones, &mesh, &x, &s.unilateral)
+                    .map_err(|e| ExecError::new(format!("{cmd}: CONT_NOEU: {e}")))?;
+                let mut f = NodalField::new(aster_contact::CONT_NOEU_COMPONENTS.iter().map(|c| c.to_string()).collect());
+                for (n, vals) in cn.nodes.iter().zip(&cn.values) {
+                    for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
+                        f.set(*n, c, *v);
+                    }
+                }
+                fields.insert("CONT_NOEU".to_string(), Field::Nodal(f));
+            }
+            Ok(Step { nume_ordre: s.nume_ordre as u32, inst: s.time, fields })
         })
-        .collect();
+        .collect::<Result<Vec<_>, ExecError>>()?;
     Ok((steps, Rc::new(FemRun { model, loads, raw })))
 }
 

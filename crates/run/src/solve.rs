@@ -93,6 +93,9 @@ const SNL_KEYWORDS: &[&str] = &[
     "NEWTON/MATR_RIGI_SYME",
     "NEWTON/REAC_ITER_ELAS",
     "NEWTON/PAS_MINI_ELAS",
+    // The prediction from a previous result only changes the first
+    // iterate; the converged steps are the same.
+    "NEWTON/EVOL_NOLI",
     "CONVERGENCE",
     "CONVERGENCE/RESI_GLOB_RELA",
     "CONVERGENCE/RESI_GLOB_MAXI",

@@ -338,7 +338,9 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     }
     let formulation = kw.str("FORMULATION").unwrap_or("DISCRETE");
     if formulation != "LIAISON_UNIL" {
-        // Zones are built by the contact crate at the solve.
+        // Check the keywords now (errors at the command that has them);
+        // zones are resolved on the mesh at the solve.
+        crate::contactbridge::definition(ex, kw)?;
         let def = ContactDef::Zones {
             model: model_ref.id,
             keywords: kw.clone(),
