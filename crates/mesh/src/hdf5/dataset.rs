@@ -70,6 +70,27 @@ impl Data<'_> {
         }
     }
 
+    /// All values as `i32`, values outside the `i32` range clamped (they
+    /// are invalid as node numbers anyway): the fast path for connectivity.
+    pub fn to_i32_clamped(&self) -> Result<Vec<i32>, H5Error> {
+        match self.datatype {
+            Datatype::Int {
+                size: 4,
+                signed: true,
+                big_endian: false,
+            } => Ok(self
+                .raw
+                .chunks_exact(4)
+                .map(|b| i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                .collect()),
+            _ => Ok(self
+                .to_i64()?
+                .into_iter()
+                .map(|v| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
+                .collect()),
+        }
+    }
+
     /// Fixed-width names: the bytes cut into `width`-byte pieces, each
     /// trimmed. Works for strings, `i8[width]` arrays and `char` vectors.
     pub fn names(&self, width: usize) -> Vec<String> {
