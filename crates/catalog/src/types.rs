@@ -18,6 +18,10 @@ pub fn parent(typ: &str) -> Option<&'static str> {
         "table_container" | "table_fonction" => "table_sdaster",
         "maillage_p" | "squelette" | "grille_sdaster" | "super_mesh" => "maillage_sdaster",
         "char_contact" => "char_meca",
+        "vect_elem_depl_r" | "vect_elem_temp_r" | "vect_elem_pres_c" => "vect_elem",
+        "matr_elem_depl_r" | "matr_elem_depl_c" | "matr_elem_temp_r" | "matr_elem_pres_c" => {
+            "matr_elem"
+        }
         _ => return None,
     })
 }

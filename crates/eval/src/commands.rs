@@ -74,6 +74,14 @@ pub(crate) fn call_command(
         created: Vec::new(),
         next_id: &mut me.next_id,
     };
+    let cmd = match crate::legacy::legacy_command(name, &given) {
+        Some((legacy, why)) => {
+            v.diags
+                .push(Diagnostic::warning(DiagKind::Legacy, span, why));
+            legacy
+        }
+        None => cmd,
+    };
     let keywords = v.validate(cmd, given, span);
     let (mut diags, created) = (v.diags, v.created);
 

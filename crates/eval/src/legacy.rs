@@ -294,3 +294,41 @@ pub(crate) fn value(_cmd: &str, path: &str, s: &Scalar, into: &[Lit]) -> Option<
         .filter(|new| into.iter().any(|l| matches!(l, Lit::Str(x) if x == *new)))
         .map(|new| Scalar::Str(new.to_string()))
 }
+
+/// Commands whose legacy form no longer exists in the v17 catalog but whose
+/// meaning is still clear: validated against a small legacy definition.
+/// `CALC_VECT_ELEM(OPTION='FORC_NODA', SIEF_ELGA=...)` (code_aster ≤ 14)
+/// became `CALCUL(OPTION='FORC_NODA_ELEM')` + `EXTR_TABLE`; the call keeps
+/// its old form and means "the nodal forces of the stress field SIEF_ELGA".
+pub(crate) fn legacy_command(
+    name: &str,
+    given: &[Given],
+) -> Option<(&'static aster_catalog::Command, String)> {
+    static FORC_NODA: std::sync::OnceLock<Option<aster_catalog::Command>> =
+        std::sync::OnceLock::new();
+    let option = given
+        .iter()
+        .find(|g| g.name == "OPTION")
+        .map(|g| g.value.to_string());
+    if name != "CALC_VECT_ELEM" || option.as_deref() != Some("FORC_NODA") {
+        return None;
+    }
+    let cmd = FORC_NODA
+        .get_or_init(|| {
+            serde_json::from_str(
+                r#"{"name":"CALC_VECT_ELEM","kind":"Operator","produces":{"Type":"vect_elem_depl_r"},"reentrant":"No","k":[
+                {"n":"OPTION","kind":"S","s":"o","t":["TXM"],"into":["FORC_NODA"]},
+                {"n":"MODELE","kind":"S","s":"o","t":["modele_sdaster"]},
+                {"n":"SIEF_ELGA","kind":"S","s":"o","t":["cham_elem"]},
+                {"n":"CARA_ELEM","kind":"S","s":"f","t":["cara_elem"]},
+                {"n":"CHAM_MATER","kind":"S","s":"f","t":["cham_mater"]},
+                {"n":"INST","kind":"S","s":"f","t":["R"],"d":[0.0]}]}"#,
+            )
+            .ok()
+        })
+        .as_ref()?;
+    Some((
+        cmd,
+        "CALC_VECT_ELEM(OPTION='FORC_NODA') was removed in code_aster 15 (now CALCUL(OPTION='FORC_NODA_ELEM') then EXTR_TABLE); checked against its code_aster 11 definition".to_string(),
+    ))
+}
