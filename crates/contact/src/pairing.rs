@@ -130,7 +130,7 @@ pub fn pair_point(
             (None, vec![(nearest, 1.0)], x[nearest.0 as usize], n)
         }
         Appariement::MaitEscl => {
-            let mut chosen: Option<(usize, [f64; 2], Vec<f64>, [f64; 3], f64, f64)> = None;
+            let mut chosen: Option<Candidate> = None;
             let mut least_outside = f64::INFINITY;
             // Cells around the nearest master node first (a good first
             // candidate), then the others unless their bounding box is
@@ -221,6 +221,10 @@ pub fn pair_point(
         }),
     })
 }
+
+/// A projection candidate: cell index, reference coordinates, shape
+/// values, master point, distance, distance outside the cell.
+type Candidate = (usize, [f64; 2], Vec<f64>, [f64; 3], f64, f64);
 
 /// Distance from `p` to the bounding box of `points`.
 fn box_distance(p: [f64; 3], points: impl Iterator<Item = [f64; 3]>) -> f64 {
