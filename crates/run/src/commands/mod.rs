@@ -42,6 +42,8 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "TEST_RESU" => inspect::test_resu(ex, call),
         "TEST_TABLE" => inspect::test_table(ex, call),
         "DETRUIRE" => Ok(CommandOutput::Nothing),
+        // The formula itself arrives through `CommandSink::formula`.
+        "FORMULE" => Ok(CommandOutput::Concept),
         other => Err(ex.unsupported(other, call.span)),
     }
 }
