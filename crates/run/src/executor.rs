@@ -31,6 +31,8 @@ pub struct RunOptions {
 /// Executes validated commands.
 pub struct Executor {
     store: HashMap<u32, Concept>,
+    /// Objects tables refer to by name (`NOM_SD` of CALCUL's table).
+    pub(crate) objects: HashMap<String, Concept>,
     pub(crate) options: RunOptions,
     out: Box<dyn Write>,
     pub tally: Tally,
@@ -44,6 +46,7 @@ impl Executor {
     pub fn new(options: RunOptions, out: Box<dyn Write>) -> Executor {
         Executor {
             store: HashMap::new(),
+            objects: HashMap::new(),
             options,
             out,
             tally: Tally::default(),
