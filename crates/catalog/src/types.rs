@@ -80,13 +80,8 @@ pub fn computed(
                 "formule"
             }
         }
-        "lire_maillage_sdprod" => {
-            if text("PARTITIONNEUR").is_some() && text("FORMAT").as_deref() == Some("MED") {
-                "maillage_sdaster"
-            } else {
-                "maillage_sdaster"
-            }
-        }
+        // A partitioned mesh (maillage_p) is only built by parallel runs.
+        "lire_maillage_sdprod" => "maillage_sdaster",
         "affe_char_cine_prod" => {
             if has("MECA_IMPO")
                 || has("EVOL_IMPO") && type_of("EVOL_IMPO").as_deref() == Some("evol_noli")

@@ -94,13 +94,13 @@ fn main() {
     println!("clean: {clean} (of which {warned} with warnings)");
     println!("not supported: {}", unsupported.values().sum::<usize>());
     let mut u: Vec<_> = unsupported.into_iter().collect();
-    u.sort_by(|a, b| b.1.cmp(&a.1));
+    u.sort_by_key(|x| std::cmp::Reverse(x.1));
     for (r, c) in u.iter().take(40) {
         println!("  {c:5}  {r}");
     }
     println!("errors: {}", errors.values().sum::<usize>());
     let mut e: Vec<_> = errors.into_iter().collect();
-    e.sort_by(|a, b| b.1.cmp(&a.1));
+    e.sort_by_key(|x| std::cmp::Reverse(x.1));
     for (r, c) in e {
         println!("  {c:5}  {r}");
     }

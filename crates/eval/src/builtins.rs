@@ -546,9 +546,7 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
                 other => vec![other.clone()],
             };
             Value::Bool(names.iter().any(|n| match n {
-                Value::Builtin(Builtin::Fn(b)) => {
-                    *b == tn || (*b == "float" && tn == "int" && false)
-                }
+                Value::Builtin(Builtin::Fn(b)) => *b == tn,
                 _ => false,
             }))
         }

@@ -343,7 +343,7 @@ mod tests {
 
     #[test]
     fn spec_forms() {
-        assert_eq!(format_spec(&Value::Float(3.14159), ".2f").unwrap(), "3.14");
+        assert_eq!(format_spec(&Value::Float(1.23456), ".2f").unwrap(), "1.23");
         assert_eq!(format_spec(&Value::Int(5), "03d").unwrap(), "005");
         assert_eq!(format_spec(&Value::str("a"), ">3").unwrap(), "  a");
         assert_eq!(

@@ -237,9 +237,11 @@ impl Validator<'_> {
         );
 
         let mut values: HashMap<String, Keyword> = HashMap::new();
+        let errors_before = self.diags.iter().filter(|d| d.is_error()).count();
+        let mut inactive = Vec::new();
         for g in &given {
             let Some(entry) = active.iter().find(|a| a.name == g.name) else {
-                self.not_active(entries, &active, g, path);
+                inactive.push(g);
                 continue;
             };
             let kpath = format!("{path}/{}", g.name);
@@ -334,6 +336,13 @@ impl Validator<'_> {
             }
         }
 
+        // A wrong value at this level may have closed the block a keyword
+        // belongs to: then only truly unknown keywords are reported.
+        let level_failed = self.diags.iter().filter(|d| d.is_error()).count() > errors_before;
+        for g in inactive {
+            self.not_active(entries, &active, g, path, level_failed);
+        }
+
         // Missing keywords and defaults, in catalog order.
         let mut out = Keywords::default();
         for e in &active {
@@ -407,15 +416,40 @@ impl Validator<'_> {
             }
         }
 
-        let present: Vec<&str> = given.iter().map(|g| g.name.as_str()).collect();
-        for r in rules {
-            self.rule(r, &present, path, span);
+        let written: Vec<&str> = given.iter().map(|g| g.name.as_str()).collect();
+        let defaulted: Vec<String> = out
+            .entries
+            .iter()
+            .filter(|k| k.defaulted)
+            .map(|k| k.name.clone())
+            .collect();
+        let defaulted: Vec<&str> = defaulted.iter().map(|s| s.as_str()).collect();
+        let mut drop: Vec<String> = Vec::new();
+        // An occurrence nobody wrote (a factor keyword present by default)
+        // is not held to the "at least one" rules: code_aster fills those
+        // values when the command runs.
+        if !given.is_empty() || parent.is_none() {
+            for r in rules {
+                self.rule(r, &written, &defaulted, &mut drop, path, span);
+            }
         }
+        out.entries
+            .retain(|k| !(k.defaulted && drop.contains(&k.name)));
         out
     }
 
-    fn not_active(&mut self, entries: &[Entry], active: &[&Entry], g: &Given, path: &str) {
+    fn not_active(
+        &mut self,
+        entries: &[Entry],
+        active: &[&Entry],
+        g: &Given,
+        path: &str,
+        quiet: bool,
+    ) {
         if let Some(b) = block_of(entries, &g.name) {
+            if quiet {
+                return;
+            }
             let mut d = Diagnostic::error(
                 DiagKind::KeywordNotApplicable,
                 g.span,
@@ -645,45 +679,92 @@ impl Validator<'_> {
         }
     }
 
-    fn rule(&mut self, r: &Rule, present: &[&str], path: &str, span: Span) {
-        let has = |k: &str| present.contains(&k);
-        let n = r.args.iter().filter(|a| has(a)).count();
+    /// Checks a rule the way code_aster reads its catalog: a default counts
+    /// as present when nothing written competes with it (`TOUT='OUI'` by
+    /// default, unless a `GROUP_MA` is given — then the default is dropped,
+    /// listed in `drop`).
+    fn rule(
+        &mut self,
+        r: &Rule,
+        written: &[&str],
+        defaulted: &[&str],
+        drop: &mut Vec<String>,
+        path: &str,
+        span: Span,
+    ) {
+        let w = |k: &str| written.contains(&k);
+        // `TOUT` competing with groups means "everywhere" when no group is
+        // given (code_aster's implicit `TOUT='OUI'`).
+        let d = |k: &str| defaulted.contains(&k) || (k == "TOUT" && nw_of(r, written) == 0);
+        let nw = r.args.iter().filter(|a| w(a)).count();
+        let nd = r.args.iter().filter(|a| d(a)).count();
         let list = r.args.join(", ");
+        let first = r.args.first().map(|s| s.as_str()).unwrap_or("");
+        let others = r.args.get(1..).unwrap_or(&[]).join(", ");
+        let mut drop_defaults = |drop: &mut Vec<String>| {
+            drop.extend(r.args.iter().filter(|a| d(a)).cloned());
+        };
         let msg = match r.kind {
-            RuleKind::ExactlyOne if n != 1 => {
-                Some(format!("exactly one of {list} is required ({n} given)"))
+            RuleKind::ExactlyOne => {
+                if nw == 1 {
+                    drop_defaults(drop);
+                    None
+                } else if nw > 1 {
+                    Some(format!("exactly one of {list} is required ({nw} given)"))
+                } else if nd == 1 {
+                    None
+                } else {
+                    Some(format!("exactly one of {list} is required (none given)"))
+                }
             }
-            RuleKind::AtMostOne if n > 1 => {
-                Some(format!("at most one of {list} is allowed ({n} given)"))
+            RuleKind::AtMostOne => {
+                if nw > 1 {
+                    Some(format!("at most one of {list} is allowed ({nw} given)"))
+                } else {
+                    if nw == 1 {
+                        drop_defaults(drop);
+                    }
+                    None
+                }
             }
-            RuleKind::AtLeastOne | RuleKind::NotEmpty if n == 0 => {
-                Some(format!("at least one of {list} is required"))
+            RuleKind::AtLeastOne | RuleKind::NotEmpty => {
+                (nw + nd == 0).then(|| format!("at least one of {list} is required"))
             }
-            RuleKind::AllTogether if n != 0 && n != r.args.len() => {
-                Some(format!("{list} go together: give all of them or none"))
+            RuleKind::AllTogether => {
+                let n = r.args.iter().filter(|a| w(a) || d(a)).count();
+                (nw > 0 && n != r.args.len())
+                    .then(|| format!("{list} go together: give all of them or none"))
             }
-            RuleKind::OnlyFirstPresent if r.args.first().is_some_and(|f| has(f)) && n > 1 => {
-                Some(format!(
-                    "when {} is given, {} must not be",
-                    r.args[0],
-                    r.args[1..].join(", ")
-                ))
+            RuleKind::OnlyFirstPresent => {
+                let others_written = r.args[1.min(r.args.len())..].iter().any(|a| w(a));
+                if w(first) && others_written {
+                    Some(format!("when {first} is given, {others} must not be"))
+                } else {
+                    if w(first) {
+                        drop.extend(r.args[1..].iter().filter(|a| d(a)).cloned());
+                    } else if others_written && d(first) {
+                        drop.push(first.to_string());
+                    }
+                    None
+                }
             }
-            RuleKind::IfFirstAllPresent
-                if r.args.first().is_some_and(|f| has(f)) && n != r.args.len() =>
-            {
-                Some(format!(
-                    "when {} is given, {} must be given too",
-                    r.args[0],
-                    r.args[1..].join(", ")
-                ))
+            RuleKind::IfFirstAllPresent => {
+                let all = r.args[1.min(r.args.len())..].iter().all(|a| w(a) || d(a));
+                (w(first) && !all)
+                    .then(|| format!("when {first} is given, {others} must be given too"))
             }
-            _ => None,
         };
         if let Some(m) = msg {
             self.error(DiagKind::Rule, span, format!("`{path}`: {m}"));
         }
     }
+}
+
+fn nw_of(r: &Rule, written: &[&str]) -> usize {
+    r.args
+        .iter()
+        .filter(|a| written.contains(&a.as_str()))
+        .count()
 }
 
 /// `('RI', re, im)` / `('MP', mod, phase)` given to a complex keyword.
