@@ -235,6 +235,11 @@ pub enum Concept {
     Result(Rc<EvolResult>),
     Table(Rc<Table>),
     Field(Rc<Field>),
+    /// Elementary vectors (`vect_elem`), kept assembled per node: every
+    /// use in a program goes through ASSE_VECTEUR, which sums them.
+    VectElem(Rc<crate::field::NodalField>),
+    /// `NUME_DDL`: the numbering of a model's DOFs (the model's id).
+    Numbering(u32),
 }
 
 impl Concept {
@@ -255,6 +260,8 @@ impl Concept {
             Concept::Result(_) => "a result",
             Concept::Table(_) => "a table",
             Concept::Field(_) => "a field",
+            Concept::VectElem(_) => "elementary vectors",
+            Concept::Numbering(_) => "a DOF numbering",
         }
     }
 }

@@ -31,6 +31,8 @@ pub struct RunOptions {
 /// Executes validated commands.
 pub struct Executor {
     store: HashMap<u32, Concept>,
+    /// Objects tables refer to by name (`NOM_SD` of CALCUL's table).
+    pub(crate) objects: HashMap<String, Concept>,
     pub(crate) options: RunOptions,
     out: Box<dyn Write>,
     pub tally: Tally,
@@ -44,6 +46,7 @@ impl Executor {
     pub fn new(options: RunOptions, out: Box<dyn Write>) -> Executor {
         Executor {
             store: HashMap::new(),
+            objects: HashMap::new(),
             options,
             out,
             tally: Tally::default(),
@@ -289,6 +292,49 @@ impl CommandSink for Executor {
             return Ok(CommandOutput::Nothing);
         }
         crate::commands::dispatch(self, call)
+    }
+
+    fn formula(&mut self, concept: &ConceptRef, formula: &Rc<aster_eval::Formula>) {
+        let f = formula.clone();
+        let function = Function::Formula {
+            parameters: formula.params.clone(),
+            eval: Rc::new(move |args: &[(String, f64)]| {
+                let named: Vec<(&str, f64)> = args.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+                f.eval_named(&named)
+            }),
+        };
+        self.insert(concept, Concept::Function(Rc::new(function)));
+    }
+
+    fn index(&mut self, concept: &ConceptRef, key: &[aster_eval::HostValue]) -> Result<aster_eval::HostValue, ExecError> {
+        use aster_eval::{HostValue, Scalar};
+        let table = self.table(concept)?;
+        // TAB['PARA', row] with a 1-based row, as code_aster's tables.
+        let (para, row) = match key {
+            [HostValue::Scalar(Scalar::Str(p)), HostValue::Scalar(Scalar::Int(r))] => (p.as_str(), *r),
+            _ => return Err(ExecError::new(format!("table `{}`: subscript must be ['PARAMETER', row]", concept.name))),
+        };
+        let Some(col) = table.column_index(para) else {
+            return Err(ExecError::new(format!(
+                "table `{}` has no column {para}{}",
+                concept.name,
+                crate::select::did_you_mean(para, table.columns.iter().map(|c| c.name.as_str()))
+            )));
+        };
+        let cell = usize::try_from(row - 1)
+            .ok()
+            .and_then(|r| table.rows.get(r))
+            .ok_or_else(|| ExecError::new(format!("table `{}` has {} rows, row {row} asked", concept.name, table.rows.len())))?;
+        Ok(match &cell[col] {
+            None => HostValue::None,
+            Some(crate::table::Value::Int(i)) => HostValue::Scalar(Scalar::Int(*i)),
+            Some(crate::table::Value::Real(r)) => HostValue::Scalar(Scalar::Real(*r)),
+            Some(crate::table::Value::Text(t)) => HostValue::Scalar(Scalar::Str(t.clone())),
+        })
+    }
+
+    fn print(&mut self, line: &str) {
+        let _ = self.write_report(&format!("{line}\n"));
     }
 }
 

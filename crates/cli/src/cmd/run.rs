@@ -15,7 +15,12 @@ pub fn run(case: &Path, mesh: Option<&Path>, out: &Path) -> u8 {
     };
     let outcome = aster_run::program::run(&prepared, Box::new(std::io::stdout()));
     if let Some(e) = &outcome.error {
-        eprintln!("error: {e}");
+        // Errors of the program carry `file:line:col: error:` already.
+        if e.message.contains(": error: ") {
+            eprintln!("{e}");
+        } else {
+            eprintln!("error: {e}");
+        }
     }
     // The summary line always ends the output, so a stopped run still
     // reports the checks it made.

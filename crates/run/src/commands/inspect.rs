@@ -247,7 +247,7 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
 }
 
 /// Rows of a table kept by `FILTRE` occurrences.
-fn filter_rows(table: &Table, filters: &[Keywords]) -> Result<Vec<usize>, String> {
+pub(crate) fn filter_rows(table: &Table, filters: &[Keywords]) -> Result<Vec<usize>, String> {
     let mut rows: Vec<usize> = (0..table.rows.len()).collect();
     for f in filters {
         let para = f.str("NOM_PARA").ok_or("FILTRE needs NOM_PARA")?;

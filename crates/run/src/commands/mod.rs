@@ -2,6 +2,7 @@
 //! its implementation.
 
 mod define;
+mod elementary;
 mod inspect;
 mod loads;
 mod mesh;
@@ -41,7 +42,13 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "IMPR_RESU" => post::impr_resu(ex, call),
         "TEST_RESU" => inspect::test_resu(ex, call),
         "TEST_TABLE" => inspect::test_table(ex, call),
+        "CALCUL" => elementary::calcul(ex, call),
+        "EXTR_TABLE" => elementary::extr_table(ex, call),
+        "NUME_DDL" => elementary::nume_ddl(ex, call),
+        "ASSE_VECTEUR" => elementary::asse_vecteur(ex, call),
         "DETRUIRE" => Ok(CommandOutput::Nothing),
+        // The formula itself arrives through `CommandSink::formula`.
+        "FORMULE" => Ok(CommandOutput::Concept),
         other => Err(ex.unsupported(other, call.span)),
     }
 }
