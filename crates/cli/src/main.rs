@@ -10,7 +10,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "aster", version, about = "Read, check and run code_aster command files")]
+#[command(
+    name = "aster",
+    version,
+    about = "Read, check and run code_aster command files"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -58,6 +62,13 @@ enum Command {
         #[arg(long, default_value = ".")]
         out: PathBuf,
     },
+    /// Sweep contact methods and parameters on a scene (TOML spec); write a
+    /// CSV, error/time, convergence and stability charts, and a summary.
+    Study {
+        spec: PathBuf,
+        #[arg(long, default_value = "study-out")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
@@ -74,6 +85,7 @@ fn main() -> ExitCode {
             out,
         } => cmd::mesh::run(&file, json, to.as_deref(), out.as_deref()),
         Command::Run { case, mesh, out } => cmd::run::run(&case, mesh.as_deref(), &out),
+        Command::Study { spec, out } => cmd::study::run(&spec, &out),
     };
     ExitCode::from(code)
 }

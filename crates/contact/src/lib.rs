@@ -1,1 +1,46 @@
-//! Contact: pairing of slave points with master cells, gaps and contact conditions.
+//! Contact: pairing of slave points with master cells, gaps and contact
+//! conditions (code_aster's `DEFI_CONTACT`, formulations DISCRETE and
+//! CONTINUE, frictionless).
+//!
+//! Data flow: a [`ContactDefinition`] (what `DEFI_CONTACT` says) is resolved
+//! against a mesh into [`ResolvedZone`]s; [`pair_point`] pairs slave points
+//! on the current geometry; [`contact_row`] linearises non-penetration into
+//! fem's [`aster_fem::InequalityRow`]; [`ZoneContact`] is a
+//! [`aster_fem::UnilateralSource`] that fem's Newton solver queries; the
+//! [`dual`] module holds the multiplier-space algorithms (active set, GCP,
+//! augmented Lagrangian, semi-smooth Newton) for any factorised stiffness.
+
+// Index loops mirror the formulas (λᵢ, Sᵢⱼ, Nᵢ) and read better than
+// iterator chains in numerical code.
+#![allow(clippy::needless_range_loop)]
+
+pub mod dual;
+mod error;
+mod integration;
+mod pairing;
+mod rows;
+mod shape;
+mod surface;
+mod zone;
+
+pub use error::ContactError;
+pub use integration::integration_points;
+pub use pairing::{
+    nodal_points, pair_point, ContactPair, Exclusion, PairStatus, Pairing, SlavePoint,
+};
+pub use rows::contact_row;
+pub use shape::{interpolate, project, CellPoint, SurfaceKind};
+pub use surface::{ResolvedZone, SurfaceCell};
+pub use zone::*;
+mod post;
+mod source;
+mod step;
+
+pub use post::{ContNoeu, CONT_NOEU_COMPONENTS};
+pub use source::{current_positions, ZoneContact, ZoneLaw};
+pub use step::{index_row, positions, solve_step, StepReport};
+pub mod hertz;
+mod linear;
+pub mod scenes;
+
+pub use linear::{run_linear, FactorizedStiffness, Instant};

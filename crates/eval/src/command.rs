@@ -183,7 +183,57 @@ impl ExecError {
     }
 }
 
+/// A plain Python value exchanged with a sink for methods and subscripts on
+/// concepts (`TAB['DX', 1]`, `TAB.EXTR_TABLE()`, `RESU.LIST_PARA()`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum HostValue {
+    None,
+    Scalar(Scalar),
+    List(Vec<HostValue>),
+    /// String-keyed mapping (`LIST_PARA()` gives `{'INST': [...], ...}`).
+    Dict(Vec<(String, HostValue)>),
+    /// Only known when the commands run (the checker's answer).
+    Unknown,
+}
+
 /// Receives the validated commands of a program, in order.
+///
+/// Only `execute` is required; the other methods have defaults that say
+/// "not supported" (or do nothing), so a sink implements what it can.
 pub trait CommandSink {
     fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError>;
+
+    /// A method called on a concept: `TAB.EXTR_TABLE()`, `RESU.LIST_PARA()`.
+    fn method(
+        &mut self,
+        concept: &ConceptRef,
+        name: &str,
+        args: &[HostValue],
+    ) -> Result<HostValue, ExecError> {
+        let _ = args;
+        Err(ExecError::new(format!(
+            "not supported: method {name}() of concept {} ({})",
+            concept.name, concept.typ
+        )))
+    }
+
+    /// A subscript on a concept: `TAB['DX', 1]` gives `key = ['DX', 1]`.
+    fn index(&mut self, concept: &ConceptRef, key: &[HostValue]) -> Result<HostValue, ExecError> {
+        let _ = key;
+        Err(ExecError::new(format!(
+            "not supported: subscript of concept {} ({})",
+            concept.name, concept.typ
+        )))
+    }
+
+    /// A `FORMULE` was defined (after `execute` accepted its call): the
+    /// runner keeps it to evaluate it later with [`crate::Formula::eval`].
+    fn formula(&mut self, concept: &ConceptRef, formula: &std::rc::Rc<crate::Formula>) {
+        let _ = (concept, formula);
+    }
+
+    /// Python `print` output (a whole line, without the newline).
+    fn print(&mut self, line: &str) {
+        println!("{line}");
+    }
 }

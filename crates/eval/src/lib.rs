@@ -1,9 +1,144 @@
 //! Runs a command file as a program. Python-level statements are evaluated;
 //! every command call is validated against the catalog (defaults filled,
 //! legacy keywords mapped) and handed, as a [`CommandCall`], to a
-//! [`CommandSink`]: the checker's sink only types the result, the runner's
-//! sink executes it.
+//! [`CommandSink`]: the checker's sink ([`CheckSink`]) only types the
+//! result, the runner's sink executes it.
+//!
+//! Entry points: [`run_program`] (a parsed module), [`check_source`] (parse +
+//! run with the [`CheckSink`]), and [`Formula::eval`] for `FORMULE`s.
 
+mod builtins;
 pub mod command;
+mod commands;
+pub mod diag;
+mod format;
+pub mod formula;
+mod interp;
+pub mod legacy;
+mod validate;
+mod value;
 
 pub use command::*;
+pub use diag::{DiagKind, Diagnostic, Diagnostics, Severity};
+pub use formula::Formula;
+
+use aster_syntax::{ast, CodeMap};
+
+/// How to run a program.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RunOptions {
+    /// Keep evaluating after a command with validation errors (the checker
+    /// wants every error; the runner stops at the first invalid command).
+    pub keep_going: bool,
+}
+
+/// What a successful run did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RunSummary {
+    /// Commands handed to the sink.
+    pub commands: usize,
+    /// True when the program reached `FIN()`.
+    pub reached_fin: bool,
+    /// Warnings (legacy syntax mapped...).
+    pub warnings: Diagnostics,
+}
+
+/// Runs a parsed program, handing each validated command to `sink`.
+///
+/// `Ok` when no error occurred (warnings are in the summary); `Err` with
+/// every diagnostic (errors and warnings) otherwise.
+pub fn run_program(
+    map: &CodeMap,
+    module: &ast::Module,
+    sink: &mut dyn CommandSink,
+    options: RunOptions,
+) -> Result<RunSummary, Diagnostics> {
+    let mut interp = interp::Interp::new(map, sink, options.keep_going);
+    let r = interp.run_module(module);
+    let mut diags = std::mem::take(&mut interp.diags);
+    if let Err(interp::Halt::Diag(d)) = r {
+        diags.push(*d);
+    }
+    let diags = Diagnostics(diags);
+    if diags.has_errors() {
+        return Err(diags);
+    }
+    Ok(RunSummary {
+        commands: interp.commands,
+        reached_fin: interp.finished,
+        warnings: diags,
+    })
+}
+
+/// A sink that executes nothing: each command just yields its typed result
+/// concept; values read from concepts are "known at run time".
+#[derive(Debug, Default)]
+pub struct CheckSink {
+    /// Every call, in order (for `aster check --emit commands`).
+    pub calls: Vec<CommandCall>,
+    /// Keep the calls (off when only diagnostics matter).
+    pub record: bool,
+}
+
+impl CommandSink for CheckSink {
+    fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+        if self.record {
+            self.calls.push(call.clone());
+        }
+        Ok(if call.result.is_some() {
+            CommandOutput::Concept
+        } else {
+            CommandOutput::Nothing
+        })
+    }
+    fn method(&mut self, _: &ConceptRef, _: &str, _: &[HostValue]) -> Result<HostValue, ExecError> {
+        Ok(HostValue::Unknown)
+    }
+    fn index(&mut self, _: &ConceptRef, _: &[HostValue]) -> Result<HostValue, ExecError> {
+        Ok(HostValue::Unknown)
+    }
+    fn print(&mut self, _: &str) {}
+}
+
+/// The outcome of checking one source text.
+#[derive(Debug)]
+pub struct CheckReport {
+    pub diagnostics: Diagnostics,
+    /// The evaluated command calls (when recorded).
+    pub calls: Vec<CommandCall>,
+}
+
+impl CheckReport {
+    pub fn ok(&self) -> bool {
+        !self.diagnostics.has_errors()
+    }
+}
+
+/// Parses and checks a command file: every command validated, none executed.
+pub fn check_source(map: &CodeMap, record: bool) -> CheckReport {
+    let module = match aster_syntax::parse_module(map.source()) {
+        Ok(m) => m,
+        Err(e) => {
+            return CheckReport {
+                diagnostics: Diagnostics(vec![Diagnostic::error(
+                    DiagKind::Syntax,
+                    e.span,
+                    e.message,
+                )]),
+                calls: Vec::new(),
+            }
+        }
+    };
+    let mut sink = CheckSink {
+        calls: Vec::new(),
+        record,
+    };
+    let diagnostics = match run_program(map, &module, &mut sink, RunOptions { keep_going: true }) {
+        Ok(s) => s.warnings,
+        Err(d) => d,
+    };
+    CheckReport {
+        diagnostics,
+        calls: sink.calls,
+    }
+}

@@ -1,2 +1,39 @@
-//! Numerics: elements, assembly, linear solves, the incremental Newton
-//! solver, kinematic conditions and contact.
+//! Numerics for aster: elements, assembly, sparse solves (faer), the
+//! incremental Newton solver (`STAT_NON_LINE`), kinematic conditions
+//! (eliminated and dualised), unilateral conditions shared with contact, and
+//! post-processing (FORC_NODA, REAC_NODA, ELNO/NOEU stresses, SIEQ).
+//!
+//! The API uses plain Rust types and no command keywords: the runner maps
+//! code_aster commands onto [`Model`], [`Loads`] and [`StaticNonLinear`].
+
+// Index loops mirror the formulas (Bᵢⱼ, Kᵢⱼ…) and read better than iterator
+// chains in element and matrix code.
+#![allow(clippy::needless_range_loop)]
+
+pub mod assembly;
+pub mod dof;
+pub mod element;
+pub mod error;
+mod held;
+pub mod linalg;
+pub mod loads;
+pub mod material;
+pub mod model;
+pub mod nonlinear;
+pub mod post;
+pub mod shape;
+pub mod unilateral;
+
+pub use dof::{Comp, Dof, DofNumbering};
+pub use error::FemError;
+pub use loads::{Load, LoadItem, Loads, Multiplier};
+pub use material::{Elastic, Hypothesis};
+pub use model::{Element, ElementKind, Frame, Model};
+pub use nonlinear::{
+    meca_statique, Convergence, InitialState, NewtonOptions, NonLinearResult, Prediction,
+    StaticNonLinear, Step,
+};
+pub use post::{CellValues, NodalValues};
+pub use unilateral::{
+    FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+};

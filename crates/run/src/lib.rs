@@ -1,1 +1,30 @@
 //! The semantic layer: turns validated commands into a model and results.
+//!
+//! The evaluator (aster-eval) hands each validated [`aster_eval::CommandCall`]
+//! to the [`Executor`], a [`aster_eval::CommandSink`] that keeps the concepts
+//! a program creates (meshes, models, loads, functions, results, tables…) in
+//! a typed store and runs each command through the mesh, fem and contact
+//! crates. TEST_RESU/TEST_TABLE verdicts are printed as code_aster prints
+//! them and tallied.
+
+pub mod commands;
+pub mod concept;
+mod evaluate;
+pub mod executor;
+pub mod export;
+mod contactbridge;
+pub mod fembridge;
+pub mod field;
+pub mod function;
+pub mod list;
+mod meshio;
+pub mod output;
+pub mod program;
+pub mod pyfmt;
+pub mod select;
+pub mod solve;
+pub mod table;
+pub mod test_resu;
+pub mod unil;
+
+pub use executor::{Executor, RunOptions};

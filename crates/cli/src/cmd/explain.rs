@@ -1,10 +1,15 @@
-//! `aster explain`.
+//! `aster explain CMD[/KEYWORD/...]`: the keyword tree of a command, or the
+//! facts of one keyword (status, type, default, allowed values, conditions).
 
-pub fn run_placeholder() -> u8 {
-    eprintln!("aster explain: not implemented yet");
-    2
-}
-
-pub fn run(_path: &str) -> u8 {
-    run_placeholder()
+pub fn run(path: &str) -> u8 {
+    match aster_catalog::explain::explain(path) {
+        Ok(text) => {
+            print!("{text}");
+            0
+        }
+        Err(e) => {
+            eprintln!("aster explain: {e}");
+            1
+        }
+    }
 }

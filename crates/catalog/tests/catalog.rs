@@ -1,0 +1,65 @@
+use aster_catalog::{catalog, find_in, Node, Produces, Reentrant, Status, ValueType};
+
+#[test]
+fn has_all_267_commands() {
+    assert_eq!(catalog().commands().len(), 267);
+    assert!(catalog().command("STAT_NON_LINE").is_some());
+    assert!(catalog().command("NO_SUCH").is_none());
+}
+
+#[test]
+fn every_condition_parses() {
+    fn walk(entries: &[aster_catalog::Entry], bad: &mut Vec<String>) {
+        for e in entries {
+            match &e.node {
+                Node::Block(b) => {
+                    if let Err(err) = catalog().condition(&b.condition) {
+                        bad.push(format!("{}: {err}", b.condition));
+                    }
+                    walk(&b.keywords, bad);
+                }
+                Node::Factor(f) => walk(&f.keywords, bad),
+                Node::Simple(_) => {}
+            }
+        }
+    }
+    let mut bad = Vec::new();
+    for c in catalog().commands() {
+        walk(&c.keywords, &mut bad);
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+#[test]
+fn keyword_facts_survive_generation() {
+    let dc = catalog().command("DEFI_CONTACT").unwrap();
+    let Some(Node::Simple(f)) = dc.find("FORMULATION").map(|e| &e.node) else {
+        panic!("FORMULATION missing");
+    };
+    assert_eq!(f.status, Status::Optional);
+    assert_eq!(f.types, vec![ValueType::Text]);
+    assert_eq!(
+        f.default.as_ref().map(|d| d[0].to_string()),
+        Some("'DISCRETE'".to_string())
+    );
+    let Some(Node::Factor(zone)) = dc.find("ZONE").map(|e| &e.node) else {
+        panic!("ZONE missing");
+    };
+    assert!(
+        find_in(&zone.keywords, "NOM_CMP").is_some(),
+        "first ZONE is the LIAISON_UNIL one"
+    );
+
+    let lm = catalog().command("LIRE_MAILLAGE").unwrap();
+    assert_eq!(
+        lm.produces,
+        Produces::Computed("lire_maillage_sdprod".into())
+    );
+    let snl = catalog().command("STAT_NON_LINE").unwrap();
+    assert_eq!(snl.produces, Produces::Type("evol_noli".into()));
+    assert!(matches!(snl.reentrant, Reentrant::Yes { .. }));
+    let Some(Node::Factor(newton)) = snl.find("NEWTON").map(|e| &e.node) else {
+        panic!("NEWTON missing");
+    };
+    assert_eq!(newton.status, Status::Defaulted);
+}

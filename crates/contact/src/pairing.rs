@@ -1,0 +1,281 @@
+//! Pairing (APPARIEMENT): each slave point gets a master point, a normal and
+//! a gap on the current geometry — or the reason it is not paired.
+
+use aster_mesh::{CellId, NodeId};
+
+use crate::error::ContactError;
+use crate::shape::{dot, norm, project, scale, sub, SurfaceKind};
+use crate::surface::ResolvedZone;
+use crate::zone::{Appariement, NormalChoice};
+
+/// A point of the slave surface where contact is enforced: a slave node
+/// (discrete contact, continuous with nodal integration) or an integration
+/// point of a slave cell.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SlavePoint {
+    pub zone: usize,
+    /// Slave nodes and their interpolation weights (one node with weight 1
+    /// for a nodal point).
+    pub nodes: Vec<(NodeId, f64)>,
+    /// Integration weight (length or area); 1 for discrete nodal points.
+    pub weight: f64,
+    /// The slave cell and reference coordinates of an integration point.
+    pub cell: Option<(usize, [f64; 2])>,
+}
+
+impl SlavePoint {
+    /// The slave node of a nodal point.
+    pub fn node(&self) -> Option<NodeId> {
+        match (self.cell, self.nodes.as_slice()) {
+            (None, [(n, _)]) => Some(*n),
+            _ => None,
+        }
+    }
+}
+
+/// Why a slave point takes no part in contact (CONT = -1 in CONT_NOEU).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Exclusion {
+    /// Its nearest master node is farther than DIST_APPA.
+    DistAppa { distance: f64, limit: f64 },
+    /// Its projection falls outside every master cell by more than TOLE_PROJ_EXT.
+    OutsideMaster { outside: f64 },
+}
+
+/// A successful pairing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pairing {
+    /// The master cell and the reference coordinates of the projection
+    /// (`None` for NODAL pairing).
+    pub master_cell: Option<(CellId, [f64; 2])>,
+    /// Master nodes and their weights at the master point.
+    pub master: Vec<(NodeId, f64)>,
+    /// Unit contact normal, pointing from the master body towards the slave.
+    pub normal: [f64; 3],
+    /// Signed gap g = (x_s − x_m)·n − DIST_MAIT − DIST_ESCL; negative means
+    /// interpenetration.
+    pub gap: f64,
+    pub slave_x: [f64; 3],
+    pub master_x: [f64; 3],
+    pub nearest_master_node: NodeId,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum PairStatus {
+    Paired(Pairing),
+    Excluded(Exclusion),
+}
+
+/// A slave point and what pairing made of it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactPair {
+    pub point: SlavePoint,
+    pub status: PairStatus,
+}
+
+impl ContactPair {
+    pub fn pairing(&self) -> Option<&Pairing> {
+        match &self.status {
+            PairStatus::Paired(p) => Some(p),
+            PairStatus::Excluded(_) => None,
+        }
+    }
+}
+
+/// Pairs one slave point of `zone` on the geometry `x` (current positions
+/// of all mesh nodes).
+pub fn pair_point(
+    zone: &ResolvedZone,
+    point: &SlavePoint,
+    x: &[[f64; 3]],
+) -> Result<ContactPair, ContactError> {
+    let g = &zone.geometry;
+    let mut xs = [0.0; 3];
+    for (n, w) in &point.nodes {
+        let p = x[n.0 as usize];
+        xs = [xs[0] + w * p[0], xs[1] + w * p[1], xs[2] + w * p[2]];
+    }
+
+    // Nearest master node: DIST_APPA is measured to it, NODAL pairs on it.
+    let mut nearest = None;
+    let mut best = f64::INFINITY;
+    for &m in &zone.master_nodes {
+        let d = norm(sub(xs, x[m.0 as usize]));
+        if d < best {
+            best = d;
+            nearest = Some(m);
+        }
+    }
+    let Some(nearest) = nearest else {
+        return Err(ContactError::Invalid {
+            keyword: "GROUP_MA_MAIT",
+            message: format!("group '{}' has no node", g.master_group),
+        });
+    };
+    if let Some(limit) = g.dist_appa {
+        if best > limit {
+            return Ok(ContactPair {
+                point: point.clone(),
+                status: PairStatus::Excluded(Exclusion::DistAppa {
+                    distance: best,
+                    limit,
+                }),
+            });
+        }
+    }
+
+    let (master_cell, master, xm, master_normal) = match g.appariement {
+        Appariement::Nodal => {
+            let n = zone.nodal_normal(nearest, true, x)?;
+            (None, vec![(nearest, 1.0)], x[nearest.0 as usize], n)
+        }
+        Appariement::MaitEscl => {
+            let mut chosen: Option<Candidate> = None;
+            let mut least_outside = f64::INFINITY;
+            // Cells around the nearest master node first (a good first
+            // candidate), then the others unless their bounding box is
+            // farther than the best projection found.
+            let near: &[usize] = zone
+                .master_cells_of_node
+                .get(&nearest)
+                .map(|v| v.as_slice())
+                .unwrap_or(&[]);
+            let order = near
+                .iter()
+                .copied()
+                .chain((0..zone.master.len()).filter(|c| !near.contains(c)));
+            for ci in order {
+                let cell = &zone.master[ci];
+                if let Some((_, _, _, _, best_d, _)) = &chosen {
+                    if box_distance(xs, cell.nodes.iter().map(|n| x[n.0 as usize])) > *best_d {
+                        continue;
+                    }
+                }
+                let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
+                let Some(p) = project(cell.kind, &nodes, xs) else {
+                    continue;
+                };
+                let outside = cell.kind.outside_distance(p.xi);
+                least_outside = least_outside.min(outside);
+                if g.tole_proj_ext >= 0.0 && outside > g.tole_proj_ext {
+                    continue;
+                }
+                // Outside but tolerated: the projection is brought back onto the cell.
+                let xi = cell.kind.clamp(p.xi);
+                let p = crate::shape::interpolate(cell.kind, &nodes, xi);
+                let d = norm(sub(xs, p.x));
+                let better = match &chosen {
+                    None => true,
+                    Some((_, _, _, _, bd, bo)) => {
+                        d < bd - 1e-12 * d.max(1.0)
+                            || (d <= bd + 1e-12 * d.max(1.0) && outside < *bo)
+                    }
+                };
+                if better {
+                    chosen = Some((ci, xi, p.shape, p.x, d, outside));
+                }
+            }
+            let Some((ci, xi, shape, xm, _, _)) = chosen else {
+                return Ok(ContactPair {
+                    point: point.clone(),
+                    status: PairStatus::Excluded(Exclusion::OutsideMaster {
+                        outside: least_outside,
+                    }),
+                });
+            };
+            let cell = &zone.master[ci];
+            let n = zone.cell_normal(cell, xi, x, g.vect_mait)?;
+            let master = cell.nodes.iter().copied().zip(shape).collect();
+            (Some((cell.id, xi)), master, xm, n)
+        }
+    };
+
+    let normal = match g.normale {
+        NormalChoice::Mait => master_normal,
+        NormalChoice::Escl | NormalChoice::MaitEscl => {
+            let ns = slave_normal(zone, point, x)?;
+            let v = if g.normale == NormalChoice::Escl {
+                scale(ns, -1.0)
+            } else {
+                sub(master_normal, ns)
+            };
+            let l = norm(v);
+            if l > 0.0 {
+                scale(v, 1.0 / l)
+            } else {
+                master_normal
+            }
+        }
+    };
+    let gap = dot(sub(xs, xm), normal) - g.dist_mait.at(xm) - g.dist_escl.at(xs);
+    Ok(ContactPair {
+        point: point.clone(),
+        status: PairStatus::Paired(Pairing {
+            master_cell,
+            master,
+            normal,
+            gap,
+            slave_x: xs,
+            master_x: xm,
+            nearest_master_node: nearest,
+        }),
+    })
+}
+
+/// A projection candidate: cell index, reference coordinates, shape
+/// values, master point, distance, distance outside the cell.
+type Candidate = (usize, [f64; 2], Vec<f64>, [f64; 3], f64, f64);
+
+/// Distance from `p` to the bounding box of `points`.
+fn box_distance(p: [f64; 3], points: impl Iterator<Item = [f64; 3]>) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for q in points {
+        for c in 0..3 {
+            lo[c] = lo[c].min(q[c]);
+            hi[c] = hi[c].max(q[c]);
+        }
+    }
+    let d: f64 = (0..3)
+        .map(|c| (lo[c] - p[c]).max(p[c] - hi[c]).max(0.0).powi(2))
+        .sum();
+    d.sqrt()
+}
+
+fn slave_normal(
+    zone: &ResolvedZone,
+    point: &SlavePoint,
+    x: &[[f64; 3]],
+) -> Result<[f64; 3], ContactError> {
+    match (point.cell, point.node()) {
+        (Some((ci, xi)), _) => zone.cell_normal(&zone.slave[ci], xi, x, zone.geometry.vect_escl),
+        (None, Some(n)) => zone.nodal_normal(n, false, x),
+        (None, None) => Err(ContactError::Invalid {
+            keyword: "GROUP_MA_ESCL",
+            message: "a slave point has neither a cell nor a node".into(),
+        }),
+    }
+}
+
+/// The nodal slave points of a zone (discrete contact).
+pub fn nodal_points(zone: &ResolvedZone) -> Vec<SlavePoint> {
+    zone.slave_nodes
+        .iter()
+        .map(|n| SlavePoint {
+            zone: zone.index,
+            nodes: vec![(*n, 1.0)],
+            weight: 1.0,
+            cell: None,
+        })
+        .collect()
+}
+
+/// Surface measure element |∂x/∂ξ| (or |t₁×t₂|) of a cell at `xi`.
+pub(crate) fn jacobian(kind: SurfaceKind, nodes: &[[f64; 3]], xi: [f64; 2]) -> f64 {
+    let p = crate::shape::interpolate(kind, nodes, xi);
+    if kind.dim() == 1 {
+        norm(p.tangents[0])
+    } else {
+        norm(crate::shape::cross(p.tangents[0], p.tangents[1]))
+    }
+}

@@ -1,0 +1,116 @@
+//! CONT_NOEU (legacy VALE_CONT): the contact state per slave node.
+//!
+//! Components, as code_aster names them for frictionless contact:
+//! `CONT` (-1 not paired, 0 no contact, 1 contact), `JEU` (gap on the
+//! current geometry), `RN` (normal nodal force ≥ 0), `RNX RNY RNZ` (that
+//! force on the slave node, along the contact normal), the friction
+//! components `GLIX GLIY GLI RTAX RTAY RTAZ RTGX RTGY RTGZ` (all 0 without
+//! friction), `RX RY RZ` (total contact force = normal force here) and `R`
+//! (its norm).
+
+use aster_fem::RowOutcome;
+use aster_mesh::{Mesh, NodeId};
+
+use crate::error::ContactError;
+use crate::pairing::{nodal_points, pair_point, PairStatus};
+use crate::source::ZoneContact;
+
+/// The component names, in field order.
+pub const CONT_NOEU_COMPONENTS: [&str; 19] = [
+    "CONT", "JEU", "RN", "RNX", "RNY", "RNZ", "GLIX", "GLIY", "GLI", "RTAX", "RTAY", "RTAZ",
+    "RTGX", "RTGY", "RTGZ", "RX", "RY", "RZ", "R",
+];
+
+/// A nodal field on the slave nodes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContNoeu {
+    pub nodes: Vec<NodeId>,
+    /// `values[k][c]`: node `nodes[k]`, component `CONT_NOEU_COMPONENTS[c]`.
+    pub values: Vec<[f64; 19]>,
+}
+
+impl ContNoeu {
+    /// Index of a component name.
+    pub fn component(name: &str) -> Option<usize> {
+        CONT_NOEU_COMPONENTS.iter().position(|c| *c == name)
+    }
+
+    /// The value of a component at a node (`None` if the node is not a
+    /// slave node or the component unknown).
+    pub fn value(&self, node: NodeId, component: &str) -> Option<f64> {
+        let k = self.nodes.iter().position(|n| *n == node)?;
+        Some(self.values[k][Self::component(component)?])
+    }
+
+    /// The field of a stored step of fem's solver: the zones are re-paired
+    /// on that step's geometry `x` and given its row outcomes
+    /// (`outcomes[k]` for `zones[k]`, as in `Step::unilateral`).
+    pub fn at_step(
+        zones: &mut [ZoneContact],
+        mesh: &Mesh,
+        x: &[[f64; 3]],
+        outcomes: &[Vec<RowOutcome>],
+    ) -> Result<ContNoeu, ContactError> {
+        for (z, o) in zones.iter_mut().zip(outcomes) {
+            z.pair(mesh, x)?;
+            z.set_outcomes(o);
+        }
+        Self::from_zones(zones, x, mesh)
+    }
+
+    /// Builds the field from the zones' last converged state, on the
+    /// converged geometry `x` (current positions of all nodes). A node is
+    /// in contact when it carries a positive force.
+    pub fn from_zones(
+        zones: &[ZoneContact],
+        x: &[[f64; 3]],
+        mesh: &Mesh,
+    ) -> Result<ContNoeu, ContactError> {
+        let mut out = ContNoeu {
+            nodes: Vec::new(),
+            values: Vec::new(),
+        };
+        if x.len() != mesh.coords.len() {
+            return Err(ContactError::Invalid {
+                keyword: "CONT_NOEU",
+                message: format!(
+                    "geometry of {} nodes for a mesh of {}",
+                    x.len(),
+                    mesh.coords.len()
+                ),
+            });
+        }
+        for z in zones {
+            let forces = z.nodal_forces();
+            for point in nodal_points(&z.zone) {
+                let Some(node) = point.node() else { continue };
+                if out.nodes.contains(&node) {
+                    continue;
+                }
+                let mut v = [0.0; 19];
+                let pair = pair_point(&z.zone, &point, x)?;
+                match &pair.status {
+                    PairStatus::Excluded(_) => v[0] = -1.0,
+                    PairStatus::Paired(p) => {
+                        let rn = forces
+                            .iter()
+                            .find(|(n, _)| *n == node)
+                            .map(|e| e.1)
+                            .unwrap_or(0.0);
+                        v[0] = if rn > 0.0 { 1.0 } else { 0.0 };
+                        v[1] = p.gap;
+                        v[2] = rn;
+                        for c in 0..3 {
+                            v[3 + c] = rn * p.normal[c];
+                            v[15 + c] = rn * p.normal[c];
+                        }
+                        v[18] = rn;
+                    }
+                }
+                out.nodes.push(node);
+                out.values.push(v);
+            }
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,206 @@
+//! Built-in contact scenes, generated in code (no mesh file): the ZZZZ237
+//! two-block scene (soft square pressed onto a near-rigid block) with
+//! `n × n` cells per block, and its fem model and loads.
+
+use aster_fem::{
+    Comp, Dof, Elastic, Element, ElementKind, FemError, Frame, Hypothesis, Load, Loads, Model,
+    Multiplier,
+};
+use aster_mesh::{Cell, CellId, CellType, Group, Mesh, NodeId};
+
+/// The ZZZZ237 geometry with `n × n` QUAD4 in the square ABCD (100 × 100)
+/// and `2n × n` in the block EFGH (200 × 100); `n = 1` is code_aster's mesh.
+///
+/// Nodes A=(0,0) B=(100,0) C=(100,100) D=(0,100) R1=(0,200) R2=(100,200)
+/// E=(−50,0) F=(−50,−100) G=(150,−100) H=(150,0). Cell groups: `ABCD`,
+/// `EFGH`, `AB` (slave, A→B), `HE` (master, H→E), `CD`, `FG`, `K1` (R1–D),
+/// `K2` (R2–C). Node groups: the named points and every cell group.
+pub fn two_blocks_mesh(n: usize) -> Result<Mesh, FemError> {
+    if n == 0 {
+        return Err(FemError::Model(
+            "two_blocks_mesh: n must be at least 1".into(),
+        ));
+    }
+    let mut m = Mesh {
+        dim: 2,
+        ..Mesh::default()
+    };
+    let mut named: Vec<(&str, NodeId)> = Vec::new();
+    // Square: (n+1)² nodes, row-major from A.
+    let sqn = |i: usize, j: usize| NodeId((j * (n + 1) + i) as u32);
+    for j in 0..=n {
+        for i in 0..=n {
+            m.coords.push([
+                100.0 * i as f64 / n as f64,
+                100.0 * j as f64 / n as f64,
+                0.0,
+            ]);
+        }
+    }
+    // Block: (2n+1)×(n+1) nodes from F.
+    let base = m.coords.len();
+    let bl = |i: usize, j: usize| NodeId((base + j * (2 * n + 1) + i) as u32);
+    for j in 0..=n {
+        for i in 0..=2 * n {
+            m.coords.push([
+                -50.0 + 200.0 * i as f64 / (2 * n) as f64,
+                -100.0 + 100.0 * j as f64 / n as f64,
+                0.0,
+            ]);
+        }
+    }
+    let r1 = NodeId(m.coords.len() as u32);
+    m.coords.push([0.0, 200.0, 0.0]);
+    let r2 = NodeId(m.coords.len() as u32);
+    m.coords.push([100.0, 200.0, 0.0]);
+    let (a, b, c, d) = (sqn(0, 0), sqn(n, 0), sqn(n, n), sqn(0, n));
+    named.extend([("A", a), ("B", b), ("C", c), ("D", d)]);
+    named.extend([
+        ("E", bl(0, n)),
+        ("F", bl(0, 0)),
+        ("G", bl(2 * n, 0)),
+        ("H", bl(2 * n, n)),
+    ]);
+    named.extend([("R1", r1), ("R2", r2)]);
+
+    let push = |m: &mut Mesh, ty: CellType, nodes: Vec<NodeId>| {
+        m.cells.push(Cell { ty, nodes });
+        CellId((m.cells.len() - 1) as u32)
+    };
+    let mut abcd = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let nodes = vec![sqn(i, j), sqn(i + 1, j), sqn(i + 1, j + 1), sqn(i, j + 1)];
+            abcd.push(push(&mut m, CellType::QUAD4, nodes));
+        }
+    }
+    let mut efgh = Vec::new();
+    for j in 0..n {
+        for i in 0..2 * n {
+            efgh.push(push(
+                &mut m,
+                CellType::QUAD4,
+                vec![bl(i, j), bl(i + 1, j), bl(i + 1, j + 1), bl(i, j + 1)],
+            ));
+        }
+    }
+    let ab: Vec<CellId> = (0..n)
+        .map(|i| push(&mut m, CellType::SEG2, vec![sqn(i, 0), sqn(i + 1, 0)]))
+        .collect();
+    let cd: Vec<CellId> = (0..n)
+        .rev()
+        .map(|i| push(&mut m, CellType::SEG2, vec![sqn(i + 1, n), sqn(i, n)]))
+        .collect();
+    let he: Vec<CellId> = (0..2 * n)
+        .rev()
+        .map(|i| push(&mut m, CellType::SEG2, vec![bl(i + 1, n), bl(i, n)]))
+        .collect();
+    let fg: Vec<CellId> = (0..2 * n)
+        .map(|i| push(&mut m, CellType::SEG2, vec![bl(i, 0), bl(i + 1, 0)]))
+        .collect();
+    let k1 = vec![push(&mut m, CellType::SEG2, vec![r1, d])];
+    let k2 = vec![push(&mut m, CellType::SEG2, vec![r2, c])];
+
+    m.node_names = (1..=m.coords.len()).map(|i| format!("N{i}")).collect();
+    for (name, id) in &named {
+        m.node_names[id.0 as usize] = name.to_string();
+    }
+    m.cell_names = (1..=m.cells.len()).map(|i| format!("M{i}")).collect();
+    for (name, cells) in [
+        ("ABCD", abcd),
+        ("EFGH", efgh),
+        ("AB", ab),
+        ("CD", cd),
+        ("HE", he),
+        ("FG", fg),
+        ("K1", k1),
+        ("K2", k2),
+    ] {
+        let mut nodes: Vec<NodeId> = cells
+            .iter()
+            .flat_map(|c| m.cells[c.0 as usize].nodes.clone())
+            .collect();
+        nodes.sort();
+        nodes.dedup();
+        m.groups_ma.push(Group {
+            name: name.into(),
+            members: cells,
+        });
+        m.groups_no.push(Group {
+            name: name.into(),
+            members: nodes,
+        });
+    }
+    for (name, id) in named {
+        m.groups_no.push(Group {
+            name: name.into(),
+            members: vec![id],
+        });
+    }
+    Ok(m)
+}
+
+/// The ZZZZ237 A model on a [`two_blocks_mesh`]: D_PLAN blocks (E = 2e9 for
+/// ABCD, `2e9 × stiffness_ratio` for EFGH, ν = 0.3), springs K1 K2
+/// (K_T_D_L 10, 10), FG and R1 R2 clamped, CD moved by DY = −t
+/// (all eliminated, as AFFE_CHAR_CINE does).
+pub fn two_blocks_problem(mesh: Mesh, stiffness_ratio: f64) -> Result<(Model, Loads), FemError> {
+    let group = |name: &str| -> Result<Vec<CellId>, FemError> {
+        mesh.group_ma(name)
+            .map(|g| g.members.clone())
+            .ok_or_else(|| FemError::Model(format!("mesh has no group {name}")))
+    };
+    let nodes = |name: &str| -> Result<Vec<NodeId>, FemError> {
+        mesh.group_no(name)
+            .map(|g| g.members.clone())
+            .ok_or_else(|| FemError::Model(format!("mesh has no node group {name}")))
+    };
+    let soft = Elastic::new(2e9, 0.3)?;
+    let hard = Elastic::new(2e9 * stiffness_ratio, 0.3)?;
+    let mut elements = Vec::new();
+    for (g, material) in [("ABCD", soft), ("EFGH", hard)] {
+        for cell in group(g)? {
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Continuum {
+                    hypothesis: Hypothesis::PlaneStrain,
+                    material,
+                },
+            });
+        }
+    }
+    for g in ["K1", "K2"] {
+        for cell in group(g)? {
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Spring {
+                    stiffness: vec![10.0, 10.0],
+                    frame: Frame::Local,
+                },
+            });
+        }
+    }
+    let mut loads = Loads::new();
+    let mut fixed = nodes("FG")?;
+    fixed.extend(nodes("R1")?);
+    fixed.extend(nodes("R2")?);
+    for n in fixed {
+        for comp in [Comp::DX, Comp::DY] {
+            loads.push(Load::Eliminated {
+                dof: Dof::new(n, comp),
+                value: 0.0,
+            });
+        }
+    }
+    for n in nodes("CD")? {
+        loads.add(
+            Load::Eliminated {
+                dof: Dof::new(n, Comp::DY),
+                value: -1.0,
+            },
+            Multiplier::from_fn(Ok),
+        );
+    }
+    let model = Model::new(mesh, elements)?;
+    Ok((model, loads))
+}

@@ -1,0 +1,424 @@
+//! Shape functions of the contact surface cells (code_aster node order),
+//! their reference domains, and orthogonal projection onto a cell.
+
+use aster_mesh::CellType;
+
+/// A surface cell type contact can pair on: edges in 2D, faces in 3D.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SurfaceKind {
+    Seg2,
+    Seg3,
+    Tria3,
+    Tria6,
+    Quad4,
+    Quad8,
+}
+
+impl SurfaceKind {
+    pub fn of(ty: CellType) -> Option<SurfaceKind> {
+        Some(match ty {
+            CellType::SEG2 => SurfaceKind::Seg2,
+            CellType::SEG3 => SurfaceKind::Seg3,
+            CellType::TRIA3 => SurfaceKind::Tria3,
+            CellType::TRIA6 => SurfaceKind::Tria6,
+            CellType::QUAD4 => SurfaceKind::Quad4,
+            CellType::QUAD8 => SurfaceKind::Quad8,
+            _ => return None,
+        })
+    }
+
+    /// Parametric dimension (1 for edges, 2 for faces).
+    pub fn dim(self) -> usize {
+        match self {
+            SurfaceKind::Seg2 | SurfaceKind::Seg3 => 1,
+            _ => 2,
+        }
+    }
+
+    pub fn node_count(self) -> usize {
+        match self {
+            SurfaceKind::Seg2 => 2,
+            SurfaceKind::Seg3 => 3,
+            SurfaceKind::Tria3 => 3,
+            SurfaceKind::Tria6 => 6,
+            SurfaceKind::Quad4 => 4,
+            SurfaceKind::Quad8 => 8,
+        }
+    }
+
+    /// Shape function values and derivatives (∂/∂ξ, ∂/∂η) at `xi`.
+    /// Segments use ξ ∈ [-1, 1]; triangles the unit triangle; quadrangles [-1, 1]².
+    pub fn eval(self, xi: [f64; 2]) -> (Vec<f64>, Vec<[f64; 2]>) {
+        let (x, y) = (xi[0], xi[1]);
+        match self {
+            SurfaceKind::Seg2 => (
+                vec![(1.0 - x) / 2.0, (1.0 + x) / 2.0],
+                vec![[-0.5, 0.0], [0.5, 0.0]],
+            ),
+            SurfaceKind::Seg3 => (
+                vec![-x * (1.0 - x) / 2.0, x * (1.0 + x) / 2.0, 1.0 - x * x],
+                vec![[x - 0.5, 0.0], [x + 0.5, 0.0], [-2.0 * x, 0.0]],
+            ),
+            SurfaceKind::Tria3 => (
+                vec![1.0 - x - y, x, y],
+                vec![[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]],
+            ),
+            SurfaceKind::Tria6 => {
+                let l = [1.0 - x - y, x, y];
+                let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+                let mut n = Vec::with_capacity(6);
+                let mut d = Vec::with_capacity(6);
+                for i in 0..3 {
+                    n.push(l[i] * (2.0 * l[i] - 1.0));
+                    let f = 4.0 * l[i] - 1.0;
+                    d.push([f * dl[i][0], f * dl[i][1]]);
+                }
+                for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+                    n.push(4.0 * l[i] * l[j]);
+                    d.push([
+                        4.0 * (dl[i][0] * l[j] + l[i] * dl[j][0]),
+                        4.0 * (dl[i][1] * l[j] + l[i] * dl[j][1]),
+                    ]);
+                }
+                (n, d)
+            }
+            SurfaceKind::Quad4 => {
+                let c = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+                let n = c
+                    .iter()
+                    .map(|p| (1.0 + p[0] * x) * (1.0 + p[1] * y) / 4.0)
+                    .collect();
+                let d = c
+                    .iter()
+                    .map(|p| [p[0] * (1.0 + p[1] * y) / 4.0, p[1] * (1.0 + p[0] * x) / 4.0])
+                    .collect();
+                (n, d)
+            }
+            SurfaceKind::Quad8 => {
+                let c = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+                let mut n = Vec::with_capacity(8);
+                let mut d = Vec::with_capacity(8);
+                for p in c {
+                    let (a, b) = (1.0 + p[0] * x, 1.0 + p[1] * y);
+                    let s = p[0] * x + p[1] * y - 1.0;
+                    n.push(a * b * s / 4.0);
+                    d.push([p[0] * b * (s + a) / 4.0, p[1] * a * (s + b) / 4.0]);
+                }
+                // Mid-side nodes 5..8 on edges 1-2, 2-3, 3-4, 4-1.
+                for p in [[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]] {
+                    if p[0] == 0.0 {
+                        n.push((1.0 - x * x) * (1.0 + p[1] * y) / 2.0);
+                        d.push([-x * (1.0 + p[1] * y), p[1] * (1.0 - x * x) / 2.0]);
+                    } else {
+                        n.push((1.0 + p[0] * x) * (1.0 - y * y) / 2.0);
+                        d.push([p[0] * (1.0 - y * y) / 2.0, -y * (1.0 + p[0] * x)]);
+                    }
+                }
+                (n, d)
+            }
+        }
+    }
+
+    /// How far `xi` lies outside the reference domain, in reference
+    /// coordinates (0 inside).
+    pub fn outside_distance(self, xi: [f64; 2]) -> f64 {
+        match self {
+            SurfaceKind::Seg2 | SurfaceKind::Seg3 => (xi[0].abs() - 1.0).max(0.0),
+            SurfaceKind::Quad4 | SurfaceKind::Quad8 => {
+                let dx = (xi[0].abs() - 1.0).max(0.0);
+                let dy = (xi[1].abs() - 1.0).max(0.0);
+                (dx * dx + dy * dy).sqrt()
+            }
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 => {
+                let c = self.clamp(xi);
+                ((xi[0] - c[0]).powi(2) + (xi[1] - c[1]).powi(2)).sqrt()
+            }
+        }
+    }
+
+    /// The closest point of the reference domain to `xi`.
+    pub fn clamp(self, xi: [f64; 2]) -> [f64; 2] {
+        match self {
+            SurfaceKind::Seg2 | SurfaceKind::Seg3 => [xi[0].clamp(-1.0, 1.0), 0.0],
+            SurfaceKind::Quad4 | SurfaceKind::Quad8 => {
+                [xi[0].clamp(-1.0, 1.0), xi[1].clamp(-1.0, 1.0)]
+            }
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 => {
+                let (x, y) = (xi[0], xi[1]);
+                if x >= 0.0 && y >= 0.0 && x + y <= 1.0 {
+                    return [x, y];
+                }
+                // Closest point on each of the three edges; keep the best.
+                let edges = [
+                    ([0.0, 0.0], [1.0, 0.0]),
+                    ([1.0, 0.0], [0.0, 1.0]),
+                    ([0.0, 1.0], [0.0, 0.0]),
+                ];
+                let mut best = [0.0, 0.0];
+                let mut best_d = f64::INFINITY;
+                for (a, b) in edges {
+                    let e = [b[0] - a[0], b[1] - a[1]];
+                    let t = (((x - a[0]) * e[0] + (y - a[1]) * e[1]) / (e[0] * e[0] + e[1] * e[1]))
+                        .clamp(0.0, 1.0);
+                    let p = [a[0] + t * e[0], a[1] + t * e[1]];
+                    let d = (x - p[0]).powi(2) + (y - p[1]).powi(2);
+                    if d < best_d {
+                        best_d = d;
+                        best = p;
+                    }
+                }
+                best
+            }
+        }
+    }
+
+    /// The centre of the reference domain (start of the projection).
+    pub fn centre(self) -> [f64; 2] {
+        match self {
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 => [1.0 / 3.0, 1.0 / 3.0],
+            _ => [0.0, 0.0],
+        }
+    }
+
+    /// Reference coordinates of the nodes, in code_aster order.
+    pub fn node_coords(self) -> Vec<[f64; 2]> {
+        match self {
+            SurfaceKind::Seg2 => vec![[-1.0, 0.0], [1.0, 0.0]],
+            SurfaceKind::Seg3 => vec![[-1.0, 0.0], [1.0, 0.0], [0.0, 0.0]],
+            SurfaceKind::Tria3 => vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+            SurfaceKind::Tria6 => vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [0.0, 1.0],
+                [0.5, 0.0],
+                [0.5, 0.5],
+                [0.0, 0.5],
+            ],
+            SurfaceKind::Quad4 => vec![[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]],
+            SurfaceKind::Quad8 => vec![
+                [-1.0, -1.0],
+                [1.0, -1.0],
+                [1.0, 1.0],
+                [-1.0, 1.0],
+                [0.0, -1.0],
+                [1.0, 0.0],
+                [0.0, 1.0],
+                [-1.0, 0.0],
+            ],
+        }
+    }
+}
+
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+pub(crate) fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+pub(crate) fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// A point interpolated on a cell: position, tangents and shape values.
+#[derive(Clone, Debug)]
+pub struct CellPoint {
+    pub xi: [f64; 2],
+    pub x: [f64; 3],
+    pub tangents: [[f64; 3]; 2],
+    pub shape: Vec<f64>,
+}
+
+/// Position and tangents at `xi` of a cell with node positions `nodes`.
+pub fn interpolate(kind: SurfaceKind, nodes: &[[f64; 3]], xi: [f64; 2]) -> CellPoint {
+    let (n, d) = kind.eval(xi);
+    let mut x = [0.0; 3];
+    let mut t = [[0.0; 3]; 2];
+    for (i, p) in nodes.iter().enumerate().take(n.len()) {
+        for c in 0..3 {
+            x[c] += n[i] * p[c];
+            t[0][c] += d[i][0] * p[c];
+            t[1][c] += d[i][1] * p[c];
+        }
+    }
+    CellPoint {
+        xi,
+        x,
+        tangents: t,
+        shape: n,
+    }
+}
+
+/// Orthogonal projection of `p` onto the (curved) cell: Newton's method on
+/// the stationarity of the distance, with the curvature term (second
+/// derivatives by central differences of the tangents — exact zero on
+/// affine cells) and a Gauss–Newton step whenever the full Hessian is not
+/// positive definite. Unconstrained: the result may lie outside the
+/// reference domain; callers apply `TOLE_PROJ_EXT`. `None` when the cell is
+/// degenerate.
+pub fn project(kind: SurfaceKind, nodes: &[[f64; 3]], p: [f64; 3]) -> Option<CellPoint> {
+    let mut xi = kind.centre();
+    let dim = kind.dim();
+    let h = 1e-5;
+    for _ in 0..50 {
+        let cp = interpolate(kind, nodes, xi);
+        let r = sub(cp.x, p);
+        let t = cp.tangents;
+        let grad = [dot(t[0], r), dot(t[1], r)];
+        let mut hess = [
+            [dot(t[0], t[0]), dot(t[0], t[1])],
+            [dot(t[1], t[0]), dot(t[1], t[1])],
+        ];
+        let gn = hess;
+        for l in 0..dim {
+            let mut a = xi;
+            let mut b = xi;
+            a[l] += h;
+            b[l] -= h;
+            let (ta, tb) = (
+                interpolate(kind, nodes, a).tangents,
+                interpolate(kind, nodes, b).tangents,
+            );
+            for k in 0..dim {
+                let d2 = scale(sub(ta[k], tb[k]), 1.0 / (2.0 * h));
+                hess[k][l] += dot(d2, r);
+            }
+        }
+        let solve = |m: [[f64; 2]; 2]| -> Option<[f64; 2]> {
+            if dim == 1 {
+                (m[0][0] > 0.0).then(|| [-grad[0] / m[0][0], 0.0])
+            } else {
+                let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+                (m[0][0] > 0.0 && det > 1e-14 * m[0][0] * m[1][1]).then(|| {
+                    [
+                        -(m[1][1] * grad[0] - m[0][1] * grad[1]) / det,
+                        -(m[0][0] * grad[1] - m[1][0] * grad[0]) / det,
+                    ]
+                })
+            }
+        };
+        let mut step = solve(hess).or_else(|| solve(gn))?;
+        // Keep steps moderate on curved cells (the quadratic model is only
+        // local); affine cells converge in one step whatever its length.
+        let len = (step[0] * step[0] + step[1] * step[1]).sqrt();
+        if len > 4.0 {
+            step = [4.0 * step[0] / len, 4.0 * step[1] / len];
+        }
+        xi = [xi[0] + step[0], xi[1] + step[1]];
+        if !(xi[0].is_finite() && xi[1].is_finite()) {
+            return None;
+        }
+        if len < 1e-14 {
+            break;
+        }
+        // Far outside the cell: no tolerance accepts it; stop walking.
+        if kind.outside_distance(xi) > 8.0 {
+            break;
+        }
+    }
+    Some(interpolate(kind, nodes, xi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const KINDS: [SurfaceKind; 6] = [
+        SurfaceKind::Seg2,
+        SurfaceKind::Seg3,
+        SurfaceKind::Tria3,
+        SurfaceKind::Tria6,
+        SurfaceKind::Quad4,
+        SurfaceKind::Quad8,
+    ];
+
+    #[test]
+    fn shape_functions_are_nodal_and_partition_unity() {
+        for k in KINDS {
+            let nodes = k.node_coords();
+            for (i, xi) in nodes.iter().enumerate() {
+                let (n, _) = k.eval(*xi);
+                for (j, v) in n.iter().enumerate() {
+                    let expected = if i == j { 1.0 } else { 0.0 };
+                    assert!((v - expected).abs() < 1e-14, "{k:?} N{j} at node {i} = {v}");
+                }
+            }
+            let (n, d) = k.eval([0.21, 0.13]);
+            assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+            let s: [f64; 2] = d.iter().fold([0.0, 0.0], |a, v| [a[0] + v[0], a[1] + v[1]]);
+            assert!(s[0].abs() < 1e-14 && s[1].abs() < 1e-14, "{k:?} {s:?}");
+        }
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        let h = 1e-6;
+        for k in KINDS {
+            let xi = [0.23, 0.17];
+            let (_, d) = k.eval(xi);
+            for dir in 0..k.dim() {
+                let mut p = xi;
+                let mut m = xi;
+                p[dir] += h;
+                m[dir] -= h;
+                let (np, _) = k.eval(p);
+                let (nm, _) = k.eval(m);
+                for j in 0..np.len() {
+                    let fd = (np[j] - nm[j]) / (2.0 * h);
+                    assert!(
+                        (fd - d[j][dir]).abs() < 1e-8,
+                        "{k:?} dN{j}/d{dir}: {fd} vs {}",
+                        d[j][dir]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn projection_onto_curved_seg3_is_orthogonal() {
+        // Arc-like SEG3: ends (-1,0), (1,0), middle (0,0.5).
+        let nodes = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.5, 0.0]];
+        let p = [0.4, 2.0, 0.0];
+        let cp = project(SurfaceKind::Seg3, &nodes, p).unwrap();
+        let r = sub(p, cp.x);
+        assert!(dot(r, cp.tangents[0]).abs() < 1e-10);
+    }
+
+    #[test]
+    fn projection_onto_warped_quad4() {
+        let nodes = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.1],
+            [2.0, 1.0, -0.1],
+            [0.0, 1.0, 0.2],
+        ];
+        let p = [1.3, 0.4, 3.0];
+        let cp = project(SurfaceKind::Quad4, &nodes, p).unwrap();
+        let r = sub(p, cp.x);
+        assert!(dot(r, cp.tangents[0]).abs() < 1e-10);
+        assert!(dot(r, cp.tangents[1]).abs() < 1e-10);
+        assert_eq!(SurfaceKind::Quad4.outside_distance(cp.xi), 0.0);
+    }
+
+    #[test]
+    fn clamp_triangle_outside() {
+        let k = SurfaceKind::Tria3;
+        assert_eq!(k.clamp([2.0, 0.0]), [1.0, 0.0]);
+        assert!((k.outside_distance([1.0, 1.0]) - (0.5f64).sqrt()).abs() < 1e-14);
+        assert_eq!(k.outside_distance([0.2, 0.2]), 0.0);
+    }
+}

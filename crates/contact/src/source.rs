@@ -1,0 +1,356 @@
+//! A contact zone as a producer of inequality rows for fem's solver
+//! ([`UnilateralSource`]), with the state CONT_NOEU is built from.
+
+use aster_fem::{
+    FemError, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+};
+use aster_mesh::{Mesh, NodeId};
+
+use crate::error::ContactError;
+use crate::integration::integration_points;
+use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
+use crate::rows::contact_row;
+use crate::surface::ResolvedZone;
+use crate::zone::{ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, GeomLoop};
+
+/// The law a zone enforces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ZoneLaw {
+    Discrete(DiscreteAlgo),
+    Continue(ContinueLaw),
+}
+
+/// Per paired point: the row it produced and the row scale (the nodal
+/// normal force is `multiplier × scale`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct RowLink {
+    row: usize,
+    scale: f64,
+}
+
+/// One contact zone at work: pairing, rows, and the last converged outcome.
+#[derive(Clone, Debug)]
+pub struct ZoneContact {
+    pub zone: ResolvedZone,
+    pub law: ZoneLaw,
+    pub geom_loop: GeomLoop,
+    pairs: Vec<ContactPair>,
+    links: Vec<Option<RowLink>>,
+    /// Normal force carried by each pair at the last converged step (≥ 0).
+    forces: Vec<f64>,
+    /// Whether pairing was done once (REAC_GEOM='SANS' keeps it).
+    paired_once: bool,
+    /// The rows last handed to fem, kept while new ones differ only by
+    /// round-off (fem compares rows exactly to decide that the geometric
+    /// loop has settled).
+    last_rows: Vec<InequalityRow>,
+    /// Length scale of the zone (bounding box diagonal), for tolerances.
+    length: f64,
+}
+
+impl ZoneContact {
+    /// Resolves every zone of a definition against the mesh.
+    pub fn build_all(
+        def: &ContactDefinition,
+        mesh: &Mesh,
+    ) -> Result<Vec<ZoneContact>, ContactError> {
+        let geom_loop = def.geom_loop();
+        let mut out = Vec::new();
+        match def {
+            ContactDefinition::Discrete(d) => {
+                for (i, z) in d.zones.iter().enumerate() {
+                    out.push(ZoneContact::new(
+                        ResolvedZone::new(i, &z.geometry, mesh)?,
+                        ZoneLaw::Discrete(z.law),
+                        geom_loop,
+                    ));
+                }
+            }
+            ContactDefinition::Continue(c) => {
+                for (i, z) in c.zones.iter().enumerate() {
+                    out.push(ZoneContact::new(
+                        ResolvedZone::new(i, &z.geometry, mesh)?,
+                        ZoneLaw::Continue(z.law),
+                        geom_loop,
+                    ));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    pub fn new(zone: ResolvedZone, law: ZoneLaw, geom_loop: GeomLoop) -> Self {
+        ZoneContact {
+            last_rows: Vec::new(),
+            length: 0.0,
+            zone,
+            law,
+            geom_loop,
+            pairs: Vec::new(),
+            links: Vec::new(),
+            forces: Vec::new(),
+            paired_once: false,
+        }
+    }
+
+    /// The slave points of this zone on geometry `x`.
+    fn points(&self, x: &[[f64; 3]]) -> Vec<SlavePoint> {
+        match self.law {
+            ZoneLaw::Discrete(_) => nodal_points(&self.zone),
+            ZoneLaw::Continue(l) => integration_points(&self.zone, l.integration, x),
+        }
+    }
+
+    /// Row scale of a point: 1 for discrete points; for continuous points,
+    /// w (λ is then the contact pressure) or √w under penalty (fem's
+    /// penalty λ = coef·(a·u − b) then yields the force c·w·penetration).
+    fn scale(&self, p: &SlavePoint) -> f64 {
+        match self.law {
+            ZoneLaw::Discrete(_) => 1.0,
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Penalisation { .. },
+                ..
+            }) => p.weight.sqrt(),
+            ZoneLaw::Continue(_) => p.weight,
+        }
+    }
+
+    /// Pairs the zone on the current positions `x` of all mesh nodes and
+    /// returns its rows (none with RESOLUTION='NON'). With REAC_GEOM='SANS'
+    /// the first pairing is kept (rows are still re-linearised at `x`).
+    pub fn pair(
+        &mut self,
+        mesh: &Mesh,
+        x: &[[f64; 3]],
+    ) -> Result<Vec<InequalityRow>, ContactError> {
+        if x.len() != mesh.coords.len() {
+            return Err(ContactError::Invalid {
+                keyword: "GROUP_MA_ESCL",
+                message: format!(
+                    "geometry of {} nodes for a mesh of {}",
+                    x.len(),
+                    mesh.coords.len()
+                ),
+            });
+        }
+        if !(self.geom_loop == GeomLoop::Sans && self.paired_once) {
+            let points = self.points(x);
+            self.pairs = points
+                .iter()
+                .map(|p| pair_point(&self.zone, p, x))
+                .collect::<Result<_, _>>()?;
+            self.paired_once = true;
+            self.forces = vec![0.0; self.pairs.len()];
+        }
+        let mut rows = Vec::new();
+        self.links = vec![None; self.pairs.len()];
+        if !self.zone.geometry.resolve {
+            return Ok(rows);
+        }
+        for (i, pair) in self.pairs.iter().enumerate() {
+            if let Some(p) = pair.pairing() {
+                let scale = self.scale(&pair.point);
+                let row = contact_row(mesh, x, &pair.point.nodes, p, self.zone.space_dim, scale, i);
+                if row.terms.is_empty() {
+                    continue;
+                }
+                self.links[i] = Some(RowLink {
+                    row: rows.len(),
+                    scale,
+                });
+                rows.push(row);
+            }
+        }
+        Ok(rows)
+    }
+
+    /// Penalty of each row for the dual algorithms (ε = 1/penalty, 0 = exact).
+    pub fn row_penalties(&self) -> Vec<f64> {
+        let mut eps = Vec::new();
+        for (pair, link) in self.pairs.iter().zip(&self.links) {
+            if link.is_some() {
+                eps.push(match self.law {
+                    ZoneLaw::Discrete(DiscreteAlgo::Penalisation { e_n }) => 1.0 / e_n,
+                    ZoneLaw::Continue(ContinueLaw {
+                        algo: ContinueAlgo::Penalisation { coef_pena_cont },
+                        ..
+                    }) => 1.0 / coef_pena_cont,
+                    _ => 0.0,
+                });
+                let _ = pair;
+            }
+        }
+        eps
+    }
+
+    /// Records the multipliers of this zone's rows (in row order).
+    pub fn set_multipliers(&mut self, multipliers: &[f64]) {
+        self.forces = vec![0.0; self.pairs.len()];
+        for (i, link) in self.links.iter().enumerate() {
+            if let Some(l) = link {
+                if let Some(m) = multipliers.get(l.row) {
+                    self.forces[i] = m.max(0.0) * l.scale;
+                }
+            }
+        }
+    }
+
+    /// Records fem's outcomes of this zone's rows (matched by row id, which
+    /// is the pair index).
+    pub fn set_outcomes(&mut self, outcomes: &[RowOutcome]) {
+        self.forces = vec![0.0; self.pairs.len()];
+        for o in outcomes {
+            if let Some(Some(l)) = self.links.get(o.id) {
+                self.forces[o.id] = o.multiplier.max(0.0) * l.scale;
+            }
+        }
+    }
+
+    /// The pairs of the last pairing.
+    pub fn pairs(&self) -> &[ContactPair] {
+        &self.pairs
+    }
+
+    /// Normal force (≥ 0) of each pair at the last converged step.
+    pub fn forces(&self) -> &[f64] {
+        &self.forces
+    }
+
+    /// Nodal normal forces on the slave nodes: pair forces spread with the
+    /// points' node weights.
+    pub fn nodal_forces(&self) -> Vec<(NodeId, f64)> {
+        let mut out: Vec<(NodeId, f64)> = Vec::new();
+        for (pair, f) in self.pairs.iter().zip(&self.forces) {
+            for (n, w) in &pair.point.nodes {
+                match out.iter_mut().find(|(m, _)| m == n) {
+                    Some(e) => e.1 += w * f,
+                    None => out.push((*n, w * f)),
+                }
+            }
+        }
+        out
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "contact zone {} ({} on {})",
+            self.zone.index + 1,
+            self.zone.geometry.slave_group,
+            self.zone.geometry.master_group
+        )
+    }
+}
+
+fn zone_length(zone: &ResolvedZone, coords: &[[f64; 3]]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for n in zone.master_nodes.iter().chain(&zone.slave_nodes) {
+        let p = coords[n.0 as usize];
+        for c in 0..3 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    let d: f64 = (0..3)
+        .map(|c| (hi[c] - lo[c]).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    if d.is_finite() && d > 0.0 {
+        d
+    } else {
+        1.0
+    }
+}
+
+fn same_rows(a: &[InequalityRow], b: &[InequalityRow], tol_coef: f64, tol_rhs: f64) -> bool {
+    a.len() == b.len()
+        && a.iter().zip(b).all(|(r, s)| {
+            r.id == s.id
+                && (r.rhs - s.rhs).abs() <= tol_rhs
+                && r.terms.len() == s.terms.len()
+                && r.terms
+                    .iter()
+                    .zip(&s.terms)
+                    .all(|(x, y)| x.0 == y.0 && (x.1 - y.1).abs() <= tol_coef * x.1.abs().max(1.0))
+        })
+}
+
+/// Current node positions of a fem state.
+pub fn current_positions(state: &State) -> Vec<[f64; 3]> {
+    (0..state.mesh.coords.len())
+        .map(|i| state.current_coord(NodeId(i as u32)))
+        .collect()
+}
+
+impl UnilateralSource for ZoneContact {
+    fn name(&self) -> String {
+        self.describe()
+    }
+
+    fn method(&self) -> UnilateralMethod {
+        match self.law {
+            ZoneLaw::Discrete(DiscreteAlgo::Penalisation { e_n }) => {
+                UnilateralMethod::Penalty { coef: e_n }
+            }
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Penalisation { coef_pena_cont },
+                ..
+            }) => UnilateralMethod::Penalty {
+                coef: coef_pena_cont,
+            },
+            // CONTRAINTE, GCP and STANDARD converge to the exact solution:
+            // fem's active set computes that solution directly.
+            _ => UnilateralMethod::ActiveSet,
+        }
+    }
+
+    fn geometry_update(&self) -> GeometryUpdate {
+        match self.geom_loop {
+            GeomLoop::Sans => GeometryUpdate::Once,
+            GeomLoop::Controle { .. } => GeometryUpdate::EachStep,
+            GeomLoop::Automatique { .. } => GeometryUpdate::EachIteration,
+        }
+    }
+
+    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        let x = current_positions(state);
+        if self.length == 0.0 {
+            self.length = zone_length(&self.zone, &state.mesh.coords);
+        }
+        let rows = self
+            .pair(state.mesh, &x)
+            .map_err(|e| FemError::Source(format!("{}: {e}", self.describe())))?;
+        // Geometric convergence: rows that moved by round-off only are the
+        // same rows (coefficients to 1e-9, right-hand sides to 1e-9 × the
+        // zone size).
+        if same_rows(&rows, &self.last_rows, 1e-9, 1e-9 * self.length) {
+            return Ok(self.last_rows.clone());
+        }
+        self.last_rows = rows.clone();
+        Ok(rows)
+    }
+
+    fn converged(&mut self, _state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        self.set_outcomes(outcomes);
+        Ok(())
+    }
+}
+
+/// Lets a caller keep the zone (for CONT_NOEU) while fem's solver borrows it.
+impl UnilateralSource for &mut ZoneContact {
+    fn name(&self) -> String {
+        (**self).name()
+    }
+    fn method(&self) -> UnilateralMethod {
+        (**self).method()
+    }
+    fn geometry_update(&self) -> GeometryUpdate {
+        (**self).geometry_update()
+    }
+    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        (**self).rows(state)
+    }
+    fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        (**self).converged(state, outcomes)
+    }
+}

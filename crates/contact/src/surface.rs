@@ -1,0 +1,333 @@
+//! A zone resolved against a mesh: its master and slave surface cells with
+//! their outward orientation, its slave nodes, and the node→cell adjacency
+//! that pairing and normals need.
+
+use std::collections::{BTreeSet, HashMap};
+
+use aster_mesh::{CellId, Mesh, NodeId};
+
+use crate::error::{did_you_mean, ContactError};
+use crate::shape::{cross, dot, interpolate, norm, scale, sub, SurfaceKind};
+use crate::zone::{NormalSource, ZoneGeometry};
+
+/// One cell of a contact surface.
+#[derive(Clone, Debug)]
+pub struct SurfaceCell {
+    pub id: CellId,
+    pub kind: SurfaceKind,
+    pub nodes: Vec<NodeId>,
+    /// +1 when the geometric normal (2D: (t_y, -t_x); 3D: t₁ × t₂) points out
+    /// of the body the cell bounds, -1 otherwise. Found from the volume
+    /// cell that holds the surface cell (+1 if there is none: then the mesh
+    /// orientation, as `MODI_MAILLAGE(ORIE_PEAU=…)` leaves it, is trusted).
+    pub sign: f64,
+}
+
+/// A zone whose groups are resolved to cells and nodes.
+#[derive(Clone, Debug)]
+pub struct ResolvedZone {
+    pub index: usize,
+    pub geometry: ZoneGeometry,
+    pub master: Vec<SurfaceCell>,
+    pub slave: Vec<SurfaceCell>,
+    /// Slave nodes taking part in contact (SANS_GROUP_NO/SANS_GROUP_MA
+    /// removed), sorted.
+    pub slave_nodes: Vec<NodeId>,
+    /// Master nodes, sorted.
+    pub master_nodes: Vec<NodeId>,
+    pub master_cells_of_node: HashMap<NodeId, Vec<usize>>,
+    pub slave_cells_of_node: HashMap<NodeId, Vec<usize>>,
+    /// Space dimension of the problem (2 or 3).
+    pub space_dim: usize,
+}
+
+impl ResolvedZone {
+    pub fn new(index: usize, geometry: &ZoneGeometry, mesh: &Mesh) -> Result<Self, ContactError> {
+        let space_dim = if mesh.dim >= 3 { 3 } else { 2 };
+        let parents = ParentIndex::new(mesh, space_dim);
+        let master = surface_cells(
+            mesh,
+            &geometry.master_group,
+            "GROUP_MA_MAIT",
+            space_dim,
+            &parents,
+        )?;
+        let slave = surface_cells(
+            mesh,
+            &geometry.slave_group,
+            "GROUP_MA_ESCL",
+            space_dim,
+            &parents,
+        )?;
+
+        let mut excluded = BTreeSet::new();
+        for g in &geometry.excluded_node_groups {
+            let group = mesh.group_no(g).ok_or_else(|| ContactError::UnknownGroup {
+                keyword: "SANS_GROUP_NO",
+                name: g.clone(),
+                suggestion: did_you_mean(g, mesh.groups_no.iter().map(|g| g.name.as_str())),
+            })?;
+            excluded.extend(group.members.iter().copied());
+        }
+        for g in &geometry.excluded_cell_groups {
+            let group = mesh.group_ma(g).ok_or_else(|| ContactError::UnknownGroup {
+                keyword: "SANS_GROUP_MA",
+                name: g.clone(),
+                suggestion: did_you_mean(g, mesh.groups_ma.iter().map(|g| g.name.as_str())),
+            })?;
+            for c in &group.members {
+                excluded.extend(mesh.cell(*c).nodes.iter().copied());
+            }
+        }
+
+        let adjacency = |cells: &[SurfaceCell]| {
+            let mut map: HashMap<NodeId, Vec<usize>> = HashMap::new();
+            for (i, c) in cells.iter().enumerate() {
+                for n in &c.nodes {
+                    map.entry(*n).or_default().push(i);
+                }
+            }
+            map
+        };
+        let master_cells_of_node = adjacency(&master);
+        let slave_cells_of_node = adjacency(&slave);
+        let mut master_nodes: Vec<NodeId> = master_cells_of_node.keys().copied().collect();
+        master_nodes.sort();
+        let mut slave_nodes: Vec<NodeId> = slave_cells_of_node
+            .keys()
+            .copied()
+            .filter(|n| !excluded.contains(n))
+            .collect();
+        slave_nodes.sort();
+
+        Ok(ResolvedZone {
+            index,
+            geometry: geometry.clone(),
+            master,
+            slave,
+            slave_nodes,
+            master_nodes,
+            master_cells_of_node,
+            slave_cells_of_node,
+            space_dim,
+        })
+    }
+
+    /// Outward unit normal of a master (`master = true`) or slave cell at
+    /// `xi`, on the geometry `x` (current node positions).
+    pub fn cell_normal(
+        &self,
+        cell: &SurfaceCell,
+        xi: [f64; 2],
+        x: &[[f64; 3]],
+        source: NormalSource,
+    ) -> Result<[f64; 3], ContactError> {
+        match source {
+            NormalSource::Fixed(v) => Ok(v),
+            NormalSource::Auto | NormalSource::VectY(_) => {
+                let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
+                let p = interpolate(cell.kind, &nodes, xi);
+                let t = p.tangents[0];
+                let raw = match (source, cell.kind.dim(), self.space_dim) {
+                    (NormalSource::VectY(v), 1, _) => cross(t, v),
+                    (NormalSource::VectY(v), _, _) => cross(t, v),
+                    (_, 1, 2) => [t[1], -t[0], 0.0],
+                    (_, 1, _) => {
+                        return Err(ContactError::Invalid {
+                            keyword: "VECT_MAIT",
+                            message: "a segment in a 3D problem has no normal of its own; \
+                                      give VECT_MAIT='VECT_Y' with MAIT_VECT_Y"
+                                .into(),
+                        })
+                    }
+                    (_, _, _) => cross(p.tangents[0], p.tangents[1]),
+                };
+                let n = norm(raw);
+                if n > 0.0 && n.is_finite() {
+                    let s = if matches!(source, NormalSource::Auto) {
+                        cell.sign
+                    } else {
+                        1.0
+                    };
+                    Ok(scale(raw, s / n))
+                } else {
+                    Err(ContactError::Invalid {
+                        keyword: "GROUP_MA_MAIT",
+                        message: "a contact cell is degenerate (zero length or area)".into(),
+                    })
+                }
+            }
+        }
+    }
+
+    /// Averaged outward normal of a side at one of its nodes.
+    pub fn nodal_normal(
+        &self,
+        node: NodeId,
+        master: bool,
+        x: &[[f64; 3]],
+    ) -> Result<[f64; 3], ContactError> {
+        let (cells, map, source) = if master {
+            (
+                &self.master,
+                &self.master_cells_of_node,
+                self.geometry.vect_mait,
+            )
+        } else {
+            (
+                &self.slave,
+                &self.slave_cells_of_node,
+                self.geometry.vect_escl,
+            )
+        };
+        let mut sum = [0.0; 3];
+        for &ci in map.get(&node).map(|v| v.as_slice()).unwrap_or(&[]) {
+            let cell = &cells[ci];
+            let local = cell.nodes.iter().position(|n| *n == node).unwrap_or(0);
+            let xi = cell.kind.node_coords()[local];
+            let n = self.cell_normal(cell, xi, x, source)?;
+            sum = [sum[0] + n[0], sum[1] + n[1], sum[2] + n[2]];
+        }
+        let l = norm(sum);
+        if l > 0.0 {
+            Ok(scale(sum, 1.0 / l))
+        } else {
+            Err(ContactError::Invalid {
+                keyword: if master {
+                    "GROUP_MA_MAIT"
+                } else {
+                    "GROUP_MA_ESCL"
+                },
+                message: "the normals of the cells around a contact node cancel out".into(),
+            })
+        }
+    }
+}
+
+/// Volume (3D) or face (2D) cells by node, to orient surface cells.
+struct ParentIndex {
+    cells_of_node: HashMap<NodeId, Vec<CellId>>,
+}
+
+impl ParentIndex {
+    fn new(mesh: &Mesh, space_dim: usize) -> Self {
+        let mut cells_of_node: HashMap<NodeId, Vec<CellId>> = HashMap::new();
+        for (i, c) in mesh.cells.iter().enumerate() {
+            if c.ty.dim() as usize == space_dim {
+                for n in &c.nodes {
+                    cells_of_node.entry(*n).or_default().push(CellId(i as u32));
+                }
+            }
+        }
+        ParentIndex { cells_of_node }
+    }
+
+    /// A cell holding all `nodes`.
+    fn parent(&self, nodes: &[NodeId]) -> Option<CellId> {
+        let first = self.cells_of_node.get(nodes.first()?)?;
+        first.iter().copied().find(|c| {
+            nodes[1..]
+                .iter()
+                .all(|n| self.cells_of_node.get(n).is_some_and(|v| v.contains(c)))
+        })
+    }
+}
+
+fn surface_cells(
+    mesh: &Mesh,
+    group: &str,
+    keyword: &'static str,
+    space_dim: usize,
+    parents: &ParentIndex,
+) -> Result<Vec<SurfaceCell>, ContactError> {
+    let g = mesh
+        .group_ma(group)
+        .ok_or_else(|| ContactError::UnknownGroup {
+            keyword,
+            name: group.to_string(),
+            suggestion: did_you_mean(group, mesh.groups_ma.iter().map(|g| g.name.as_str())),
+        })?;
+    let expected = if space_dim == 2 {
+        "SEG2 or SEG3 in a 2D problem"
+    } else {
+        "TRIA3, TRIA6, QUAD4 or QUAD8 in a 3D problem"
+    };
+    let mut out = Vec::with_capacity(g.members.len());
+    for &id in &g.members {
+        let Some(cell) = mesh.cells.get(id.0 as usize) else {
+            return Err(ContactError::Invalid {
+                keyword,
+                message: format!(
+                    "group '{group}' refers to cell #{} which does not exist",
+                    id.0
+                ),
+            });
+        };
+        let name = mesh
+            .cell_names
+            .get(id.0 as usize)
+            .cloned()
+            .unwrap_or_else(|| format!("#{}", id.0));
+        let kind = SurfaceKind::of(cell.ty)
+            .filter(|k| k.dim() + 1 == space_dim || (space_dim == 3 && k.dim() == 1))
+            .ok_or(ContactError::BadCell {
+                keyword,
+                group: group.to_string(),
+                cell: name.clone(),
+                found: cell.ty.name(),
+                expected,
+            })?;
+        if cell.nodes.len() < kind.node_count()
+            || cell.nodes.iter().any(|n| n.0 as usize >= mesh.coords.len())
+        {
+            return Err(ContactError::Invalid {
+                keyword,
+                message: format!("cell {name} of group '{group}' has missing nodes"),
+            });
+        }
+        let nodes = cell.nodes[..kind.node_count()].to_vec();
+        let sign = orientation(mesh, kind, &nodes, space_dim, parents);
+        out.push(SurfaceCell {
+            id,
+            kind,
+            nodes,
+            sign,
+        });
+    }
+    Ok(out)
+}
+
+fn orientation(
+    mesh: &Mesh,
+    kind: SurfaceKind,
+    nodes: &[NodeId],
+    space_dim: usize,
+    parents: &ParentIndex,
+) -> f64 {
+    if kind.dim() + 1 != space_dim {
+        return 1.0;
+    }
+    let Some(parent) = parents.parent(nodes) else {
+        return 1.0;
+    };
+    let pts: Vec<[f64; 3]> = nodes.iter().map(|n| mesh.coord(*n)).collect();
+    let p = interpolate(kind, &pts, kind.centre());
+    let t = p.tangents[0];
+    let raw = if space_dim == 2 {
+        [t[1], -t[0], 0.0]
+    } else {
+        cross(p.tangents[0], p.tangents[1])
+    };
+    let pc = &mesh.cell(parent).nodes;
+    let mut c = [0.0; 3];
+    for n in pc {
+        let x = mesh.coord(*n);
+        c = [c[0] + x[0], c[1] + x[1], c[2] + x[2]];
+    }
+    let c = scale(c, 1.0 / pc.len() as f64);
+    if dot(raw, sub(p.x, c)) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    }
+}

@@ -1,0 +1,197 @@
+//! Diagnostics: errors and warnings with a source position, rendered as
+//! `file:line:col: error: message` followed by the source line and a caret.
+
+use aster_syntax::{CodeMap, Span};
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    Error,
+    Warning,
+}
+
+/// What kind of problem (used to count corpus results by reason and to let
+/// tools filter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DiagKind {
+    /// The file does not parse.
+    Syntax,
+    /// A Python construct, module or builtin outside the supported subset.
+    NotSupported,
+    /// A Python-level error (unknown name, wrong operand types...).
+    Python,
+    UnknownCommand,
+    UnknownKeyword,
+    /// A keyword of a block whose condition does not hold.
+    KeywordNotApplicable,
+    MissingKeyword,
+    WrongType,
+    NotInto,
+    /// Too many / too few values or occurrences.
+    Count,
+    OutOfRange,
+    Rule,
+    /// `reuse=` misuse.
+    Reuse,
+    /// A legacy keyword mapped to its current form.
+    Legacy,
+    /// An error reported by the command sink while executing.
+    Exec,
+}
+
+impl DiagKind {
+    pub fn label(self) -> &'static str {
+        match self {
+            DiagKind::Syntax => "syntax error",
+            DiagKind::NotSupported => "not supported",
+            DiagKind::Python => "Python error",
+            DiagKind::UnknownCommand => "unknown command",
+            DiagKind::UnknownKeyword => "unknown keyword",
+            DiagKind::KeywordNotApplicable => "keyword not applicable",
+            DiagKind::MissingKeyword => "missing mandatory keyword",
+            DiagKind::WrongType => "wrong type",
+            DiagKind::NotInto => "value not allowed",
+            DiagKind::Count => "wrong number of values",
+            DiagKind::OutOfRange => "value out of range",
+            DiagKind::Rule => "rule violated",
+            DiagKind::Reuse => "reuse",
+            DiagKind::Legacy => "legacy syntax",
+            DiagKind::Exec => "execution error",
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Diagnostic {
+    pub severity: Severity,
+    pub kind: DiagKind,
+    #[serde(skip)]
+    pub span: Span,
+    pub message: String,
+    /// Extra lines: `help: did you mean ...`, `note: ...`.
+    pub notes: Vec<String>,
+}
+
+impl Diagnostic {
+    pub fn error(kind: DiagKind, span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Error,
+            kind,
+            span,
+            message: message.into(),
+            notes: Vec::new(),
+        }
+    }
+    pub fn warning(kind: DiagKind, span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::error(kind, span, message)
+        }
+    }
+    pub fn note(mut self, note: impl Into<String>) -> Diagnostic {
+        self.notes.push(note.into());
+        self
+    }
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+
+    /// The one-line form: `file:line:col: error: message`.
+    pub fn headline(&self, map: &CodeMap) -> String {
+        let sev = match self.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        format!("{}: {sev}: {}", map.location(self.span), self.message)
+    }
+
+    /// The full form, with the source line, a caret under the span and notes.
+    pub fn render(&self, map: &CodeMap) -> String {
+        let mut out = self.headline(map);
+        out.push('\n');
+        let lc = map.line_col(self.span.start as usize);
+        let end = map.line_col((self.span.end.max(self.span.start)) as usize);
+        let text = map.line_text(lc.line);
+        let num = lc.line.to_string();
+        let pad = " ".repeat(num.len());
+        let width = if end.line == lc.line && end.column > lc.column {
+            end.column - lc.column
+        } else {
+            1
+        };
+        out.push_str(&format!("{pad} |\n{num} | {text}\n{pad} | "));
+        out.push_str(&" ".repeat(lc.column - 1));
+        out.push_str(
+            &"^".repeat(
+                width
+                    .min(text.chars().count().saturating_sub(lc.column - 1))
+                    .max(1),
+            ),
+        );
+        out.push('\n');
+        for n in &self.notes {
+            out.push_str(&format!("{pad} = {n}\n"));
+        }
+        out
+    }
+}
+
+/// The diagnostics of one run, in source order of discovery.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Diagnostics(pub Vec<Diagnostic>);
+
+impl Diagnostics {
+    pub fn has_errors(&self) -> bool {
+        self.0.iter().any(Diagnostic::is_error)
+    }
+    pub fn errors(&self) -> impl Iterator<Item = &Diagnostic> {
+        self.0.iter().filter(|d| d.is_error())
+    }
+    pub fn render(&self, map: &CodeMap) -> String {
+        self.0.iter().map(|d| d.render(map)).collect()
+    }
+}
+
+/// The closest candidates to `word` by edit distance (did-you-mean).
+pub fn suggest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut scored: Vec<(f64, &str)> = candidates
+        .into_iter()
+        .map(|c| (strsim::jaro_winkler(word, c), c))
+        .filter(|(s, c)| *s >= 0.85 || strsim::levenshtein(word, c) <= (word.len() / 4).max(1))
+        .collect();
+    scored.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(b.1)));
+    scored.dedup_by(|a, b| a.1 == b.1);
+    scored.into_iter().take(3).map(|(_, c)| c).collect()
+}
+
+/// `did you mean `A`?` / `did you mean one of `A`, `B`?`, if any.
+pub fn did_you_mean<'a>(
+    word: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<String> {
+    let s = suggest(word, candidates);
+    match s.as_slice() {
+        [] => None,
+        [one] => Some(format!("help: did you mean `{one}`?")),
+        many => Some(format!(
+            "help: did you mean one of {}?",
+            many.iter()
+                .map(|m| format!("`{m}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
+/// A list of allowed names for a note, shortened when long.
+pub fn allowed_list<T: std::fmt::Display>(items: &[T]) -> String {
+    const MAX: usize = 12;
+    let shown: Vec<String> = items.iter().take(MAX).map(|i| i.to_string()).collect();
+    if items.len() > MAX {
+        format!("{}, … ({} in all)", shown.join(", "), items.len())
+    } else {
+        shown.join(", ")
+    }
+}

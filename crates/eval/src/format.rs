@@ -1,0 +1,354 @@
+//! String formatting: `%`-formatting, `str.format` and f-string format specs.
+
+use crate::value::{float_str, Value};
+
+/// Formats one value with a format-spec of the mini-language
+/// (`[[fill]align][sign][0][width][,][.precision][type]`).
+pub fn format_spec(v: &Value, spec: &str) -> Result<String, String> {
+    if spec.is_empty() {
+        return Ok(v.to_string());
+    }
+    let chars: Vec<char> = spec.chars().collect();
+    let mut i = 0;
+    let (mut fill, mut align) = (' ', None);
+    if chars.len() >= 2 && matches!(chars[1], '<' | '>' | '^' | '=') {
+        fill = chars[0];
+        align = Some(chars[1]);
+        i = 2;
+    } else if matches!(chars[0], '<' | '>' | '^' | '=') {
+        align = Some(chars[0]);
+        i = 1;
+    }
+    let mut sign = '-';
+    if i < chars.len() && matches!(chars[i], '+' | '-' | ' ') {
+        sign = chars[i];
+        i += 1;
+    }
+    if i < chars.len() && chars[i] == '#' {
+        i += 1;
+    }
+    if i < chars.len() && chars[i] == '0' {
+        fill = '0';
+        align = align.or(Some('='));
+        i += 1;
+    }
+    let mut width = 0usize;
+    while i < chars.len() && chars[i].is_ascii_digit() {
+        width = width * 10 + chars[i].to_digit(10).unwrap_or(0) as usize;
+        i += 1;
+    }
+    if i < chars.len() && (chars[i] == ',' || chars[i] == '_') {
+        i += 1;
+    }
+    let mut prec = None;
+    if i < chars.len() && chars[i] == '.' {
+        i += 1;
+        let mut p = 0usize;
+        while i < chars.len() && chars[i].is_ascii_digit() {
+            p = p * 10 + chars[i].to_digit(10).unwrap_or(0) as usize;
+            i += 1;
+        }
+        prec = Some(p);
+    }
+    let ty = chars.get(i).copied();
+    if i + 1 < chars.len() {
+        return Err(format!("invalid format specifier `{spec}`"));
+    }
+    let body = format_one(v, ty, prec, sign)?;
+    let numeric = v.as_f64().is_some();
+    Ok(pad(
+        &body,
+        width,
+        fill,
+        align.unwrap_or(if numeric { '>' } else { '<' }),
+    ))
+}
+
+fn pad(body: &str, width: usize, fill: char, align: char) -> String {
+    let n = body.chars().count();
+    if n >= width {
+        return body.to_string();
+    }
+    let k = width - n;
+    let f = |m: usize| fill.to_string().repeat(m);
+    match align {
+        '<' => format!("{body}{}", f(k)),
+        '^' => format!("{}{body}{}", f(k / 2), f(k - k / 2)),
+        '=' => {
+            if let Some(rest) = body.strip_prefix('-') {
+                format!("-{}{rest}", f(k))
+            } else if let Some(rest) = body.strip_prefix('+') {
+                format!("+{}{rest}", f(k))
+            } else {
+                format!("{}{body}", f(k))
+            }
+        }
+        _ => format!("{}{body}", f(k)),
+    }
+}
+
+fn exp_form(x: f64, prec: usize, upper: bool) -> String {
+    let s = format!("{x:.prec$e}");
+    let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+    let e: i32 = e.parse().unwrap_or(0);
+    let out = format!("{m}e{}{:02}", if e < 0 { '-' } else { '+' }, e.abs());
+    if upper {
+        out.to_uppercase()
+    } else {
+        out
+    }
+}
+
+fn general(x: f64, prec: usize, upper: bool, strip: bool) -> String {
+    let p = prec.max(1);
+    if x == 0.0 {
+        return "0".into();
+    }
+    let exp = x.abs().log10().floor() as i32;
+    let s = if exp < -4 || exp >= p as i32 {
+        let s = exp_form(x, p - 1, upper);
+        if strip {
+            let (m, e) = s
+                .split_once(if upper { 'E' } else { 'e' })
+                .unwrap_or((&s, ""));
+            let m = if m.contains('.') {
+                m.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                m
+            };
+            format!("{m}{}{e}", if upper { 'E' } else { 'e' })
+        } else {
+            s
+        }
+    } else {
+        let decimals = (p as i32 - 1 - exp).max(0) as usize;
+        let s = format!("{x:.decimals$}");
+        if strip && s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    };
+    s
+}
+
+fn format_one(
+    v: &Value,
+    ty: Option<char>,
+    prec: Option<usize>,
+    sign: char,
+) -> Result<String, String> {
+    let signed = |s: String, neg: bool| -> String {
+        if neg || s.starts_with('-') {
+            s
+        } else if sign == '+' {
+            format!("+{s}")
+        } else if sign == ' ' {
+            format!(" {s}")
+        } else {
+            s
+        }
+    };
+    match ty {
+        Some('s') | None if !matches!(v, Value::Float(_) | Value::Int(_)) || ty == Some('s') => {
+            let s = v.to_string();
+            Ok(match prec {
+                Some(p) => s.chars().take(p).collect(),
+                None => s,
+            })
+        }
+        Some('d') | Some('i') => match v {
+            Value::Int(i) => Ok(signed(i.to_string(), *i < 0)),
+            Value::Bool(b) => Ok((*b as i64).to_string()),
+            Value::Float(f) if ty == Some('i') || f.fract() == 0.0 => {
+                Ok(signed(format!("{}", f.trunc() as i64), *f < 0.0))
+            }
+            other => Err(format!("format code 'd' for {}", other.type_name())),
+        },
+        Some(c @ ('f' | 'F' | 'e' | 'E' | 'g' | 'G' | '%')) | Some(c @ 'n') => {
+            let x = v
+                .as_f64()
+                .ok_or_else(|| format!("format code '{c}' for {}", v.type_name()))?;
+            let p = prec.unwrap_or(6);
+            let s = match c {
+                'f' | 'F' => format!("{x:.p$}"),
+                'e' | 'E' => exp_form(x, p, c == 'E'),
+                '%' => format!("{:.p$}%", x * 100.0),
+                _ => general(x, p, c == 'G', true),
+            };
+            Ok(signed(s, x < 0.0))
+        }
+        None => match v {
+            Value::Float(f) => match prec {
+                Some(p) => Ok(signed(general(*f, p, false, true), *f < 0.0)),
+                None => Ok(signed(float_str(*f), *f < 0.0)),
+            },
+            other => Ok(signed(other.to_string(), false)),
+        },
+        Some('r') => Ok(v.repr()),
+        Some(c) => Err(format!("unknown format code '{c}'")),
+    }
+}
+
+/// Python's `fmt % args`.
+pub fn percent(fmt: &str, args: &Value) -> Result<String, String> {
+    let items: Vec<Value> = match args {
+        Value::Tuple(t) => t.to_vec(),
+        other => vec![other.clone()],
+    };
+    let dict = match args {
+        Value::Dict(d) => Some(d.clone()),
+        _ => None,
+    };
+    let mut next = 0usize;
+    let mut out = String::new();
+    let chars: Vec<char> = fmt.chars().collect();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if c != '%' {
+            out.push(c);
+            i += 1;
+            continue;
+        }
+        i += 1;
+        if i < chars.len() && chars[i] == '%' {
+            out.push('%');
+            i += 1;
+            continue;
+        }
+        let mut key = None;
+        if i < chars.len() && chars[i] == '(' {
+            let s = i + 1;
+            while i < chars.len() && chars[i] != ')' {
+                i += 1;
+            }
+            key = Some(chars[s..i.min(chars.len())].iter().collect::<String>());
+            i += 1;
+        }
+        let mut flags = String::new();
+        while i < chars.len() && matches!(chars[i], '-' | '+' | ' ' | '0' | '#') {
+            flags.push(chars[i]);
+            i += 1;
+        }
+        let mut width = String::new();
+        let take_arg = |out_next: &mut usize| -> Result<Value, String> {
+            let v = items
+                .get(*out_next)
+                .cloned()
+                .ok_or("not enough arguments for format string")?;
+            *out_next += 1;
+            Ok(v)
+        };
+        if i < chars.len() && chars[i] == '*' {
+            width = take_arg(&mut next)?.to_string();
+            i += 1;
+        }
+        while i < chars.len() && chars[i].is_ascii_digit() {
+            width.push(chars[i]);
+            i += 1;
+        }
+        let mut prec = None;
+        if i < chars.len() && chars[i] == '.' {
+            i += 1;
+            let mut p = String::new();
+            while i < chars.len() && chars[i].is_ascii_digit() {
+                p.push(chars[i]);
+                i += 1;
+            }
+            prec = Some(p.parse::<usize>().unwrap_or(0));
+        }
+        let Some(&ty) = chars.get(i) else {
+            return Err("incomplete format".into());
+        };
+        i += 1;
+        let v = match &key {
+            Some(k) => dict
+                .as_ref()
+                .and_then(|d| d.borrow().get(&Value::str(k)).cloned())
+                .ok_or_else(|| format!("format key '{k}' not found"))?,
+            None => take_arg(&mut next)?,
+        };
+        let ty = match ty {
+            'u' => 'd',
+            c => c,
+        };
+        let sign = if flags.contains('+') {
+            '+'
+        } else if flags.contains(' ') {
+            ' '
+        } else {
+            '-'
+        };
+        let body = match ty {
+            's' => v.to_string(),
+            'r' | 'a' => v.repr(),
+            'c' => v.to_string(),
+            'd' | 'i' => match &v {
+                Value::Float(f) => {
+                    format_one(&Value::Int(f.trunc() as i64), Some('d'), None, sign)?
+                }
+                other => format_one(other, Some('d'), None, sign)?,
+            },
+            t => format_one(&v, Some(t), prec.or(Some(6)), sign)?,
+        };
+        let body = if ty == 's' {
+            match prec {
+                Some(p) => body.chars().take(p).collect(),
+                None => body,
+            }
+        } else {
+            body
+        };
+        let w: usize = width.parse().unwrap_or(0);
+        let (fill, align) = if flags.contains('-') {
+            (' ', '<')
+        } else if flags.contains('0') && ty != 's' {
+            ('0', '=')
+        } else {
+            (' ', '>')
+        };
+        out.push_str(&pad(&body, w, fill, align));
+    }
+    if key_free(&dict) && next < items.len() && !matches!(args, Value::Dict(_)) {
+        return Err("not all arguments converted during string formatting".into());
+    }
+    Ok(out)
+}
+
+fn key_free(d: &Option<std::rc::Rc<std::cell::RefCell<crate::value::Dict>>>) -> bool {
+    d.is_none()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percent_forms() {
+        let t = Value::tuple(vec![Value::Int(3), Value::Float(1.5), Value::str("ab")]);
+        assert_eq!(percent("N%d x=%.3f %s", &t).unwrap(), "N3 x=1.500 ab");
+        assert_eq!(
+            percent(
+                "%5.2e|%-4d|%04d",
+                &Value::tuple(vec![Value::Float(12345.0), Value::Int(7), Value::Int(-7)])
+            )
+            .unwrap(),
+            "1.23e+04|7   |-007"
+        );
+        assert_eq!(percent("%g", &Value::Float(0.0001)).unwrap(), "0.0001");
+        assert_eq!(percent("%g", &Value::Float(1e-5)).unwrap(), "1e-05");
+        assert!(percent("%d %d", &Value::Int(1)).is_err());
+    }
+
+    #[test]
+    fn spec_forms() {
+        assert_eq!(format_spec(&Value::Float(1.23456), ".2f").unwrap(), "1.23");
+        assert_eq!(format_spec(&Value::Int(5), "03d").unwrap(), "005");
+        assert_eq!(format_spec(&Value::str("a"), ">3").unwrap(), "  a");
+        assert_eq!(
+            format_spec(&Value::Float(1234.5), ".3e").unwrap(),
+            "1.234e+03"
+        );
+    }
+}

@@ -1,0 +1,88 @@
+//! `FORMULE`: a Python expression of named parameters, kept with the values
+//! it refers to and evaluated later (by the runner) with the same evaluator.
+
+use crate::interp::Interp;
+use crate::value::Value;
+use crate::{CommandCall, CommandOutput, CommandSink, ExecError};
+use aster_syntax::{ast, CodeMap};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// A compiled formula.
+#[derive(Debug)]
+pub struct Formula {
+    /// The parameter names (`NOM_PARA`), in order.
+    pub params: Vec<String>,
+    /// The expression as written in `VALE`.
+    pub source: String,
+    pub(crate) expr: ast::Expr,
+    /// The names the expression can see: the program's globals when the
+    /// formula was defined, plus the extra keyword arguments of `FORMULE`.
+    pub(crate) context: HashMap<String, Value>,
+    pub(crate) map: Rc<CodeMap>,
+}
+
+/// A formula evaluation never executes commands.
+struct NoCommands;
+
+impl CommandSink for NoCommands {
+    fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+        Err(ExecError::new(format!(
+            "a formula cannot run the command {}",
+            call.command
+        )))
+    }
+}
+
+impl Formula {
+    /// Evaluates the formula for real parameter values given in the order of
+    /// [`Formula::params`].
+    pub fn eval(&self, args: &[f64]) -> Result<f64, String> {
+        let vals: Vec<Value> = args.iter().map(|a| Value::Float(*a)).collect();
+        match self.call(&vals)? {
+            Value::Int(i) => Ok(i as f64),
+            Value::Float(f) => Ok(f),
+            Value::Bool(b) => Ok(b as i64 as f64),
+            other => Err(format!(
+                "formula `{}` gave {} instead of a real",
+                self.source,
+                other.type_name()
+            )),
+        }
+    }
+
+    /// Evaluates the formula with named parameters (any order).
+    pub fn eval_named(&self, args: &[(&str, f64)]) -> Result<f64, String> {
+        let mut ordered = Vec::with_capacity(self.params.len());
+        for p in &self.params {
+            let v = args
+                .iter()
+                .find(|(n, _)| n == p)
+                .map(|(_, v)| *v)
+                .ok_or_else(|| format!("formula `{}`: parameter {p} not given", self.source))?;
+            ordered.push(v);
+        }
+        self.eval(&ordered)
+    }
+
+    pub(crate) fn call(&self, args: &[Value]) -> Result<Value, String> {
+        if args.len() != self.params.len() {
+            return Err(format!(
+                "formula `{}` takes {} parameter(s) ({}), {} given",
+                self.source,
+                self.params.len(),
+                self.params.join(", "),
+                args.len()
+            ));
+        }
+        let mut sink = NoCommands;
+        let mut interp = Interp::for_formula(&self.map, &mut sink, self.context.clone());
+        let mut locals = HashMap::new();
+        for (p, a) in self.params.iter().zip(args) {
+            locals.insert(p.clone(), a.clone());
+        }
+        interp
+            .eval_with_locals(&self.expr, locals)
+            .map_err(|d| format!("formula `{}`: {}", self.source, d.message))
+    }
+}

@@ -1,0 +1,1336 @@
+//! The evaluator of the Python subset: statements, expressions, user
+//! functions, and command calls (validated, then handed to the sink).
+
+use crate::builtins;
+use crate::command::*;
+use crate::diag::{did_you_mean, DiagKind, Diagnostic};
+use crate::format;
+use crate::formula::Formula;
+use crate::value::*;
+use aster_catalog::catalog;
+use aster_syntax::ast::{self, ArgKind, BinOp, CmpOp, ExprKind, StmtKind, UnaryOp};
+use aster_syntax::{CodeMap, Span};
+use std::collections::{HashMap, HashSet};
+use std::rc::Rc;
+
+/// Why evaluation stopped early.
+#[derive(Debug)]
+pub(crate) enum Halt {
+    /// An error not yet recorded.
+    Diag(Box<Diagnostic>),
+    /// Errors already recorded in the diagnostics.
+    Reported,
+}
+
+impl From<Diagnostic> for Halt {
+    fn from(d: Diagnostic) -> Halt {
+        Halt::Diag(Box::new(d))
+    }
+}
+
+pub(crate) type R<T> = Result<T, Halt>;
+
+pub(crate) fn err<T>(kind: DiagKind, span: Span, msg: impl Into<String>) -> R<T> {
+    Err(Diagnostic::error(kind, span, msg).into())
+}
+
+pub(crate) fn unsupported<T>(span: Span, what: impl std::fmt::Display) -> R<T> {
+    err(
+        DiagKind::NotSupported,
+        span,
+        format!("not supported: {what}"),
+    )
+}
+
+pub(crate) fn py_err<T>(span: Span, msg: impl Into<String>) -> R<T> {
+    err(DiagKind::Python, span, msg)
+}
+
+enum Flow {
+    Normal,
+    Break,
+    Continue,
+    Return(Value),
+}
+
+#[derive(Default)]
+struct Frame {
+    vars: HashMap<String, Value>,
+    globals: HashSet<String>,
+}
+
+/// An evaluated call argument.
+pub(crate) struct CallArg {
+    pub name: Option<(String, Span)>,
+    pub value: Value,
+    pub span: Span,
+}
+
+pub(crate) struct Interp<'a> {
+    pub map: &'a CodeMap,
+    pub sink: &'a mut dyn CommandSink,
+    pub globals: HashMap<String, Value>,
+    frames: Vec<Frame>,
+    pub diags: Vec<Diagnostic>,
+    pub next_id: u32,
+    pub keep_going: bool,
+    pub finished: bool,
+    /// After `POURSUITE`, names not defined here are concepts of the
+    /// previous run (of a type the checker cannot know).
+    pub continued: bool,
+    pub commands: usize,
+    depth: usize,
+}
+
+const MAX_DEPTH: usize = 150;
+
+impl<'a> Interp<'a> {
+    pub fn new(map: &'a CodeMap, sink: &'a mut dyn CommandSink, keep_going: bool) -> Interp<'a> {
+        Interp {
+            map,
+            sink,
+            globals: HashMap::new(),
+            frames: Vec::new(),
+            diags: Vec::new(),
+            next_id: 1,
+            keep_going,
+            finished: false,
+            continued: false,
+            commands: 0,
+            depth: 0,
+        }
+    }
+
+    pub fn for_formula(
+        map: &'a CodeMap,
+        sink: &'a mut dyn CommandSink,
+        globals: HashMap<String, Value>,
+    ) -> Interp<'a> {
+        let mut i = Interp::new(map, sink, false);
+        i.globals = globals;
+        i
+    }
+
+    pub fn eval_with_locals(
+        &mut self,
+        e: &ast::Expr,
+        locals: HashMap<String, Value>,
+    ) -> Result<Value, Diagnostic> {
+        self.frames.push(Frame {
+            vars: locals,
+            globals: HashSet::new(),
+        });
+        let r = self.eval(e);
+        self.frames.pop();
+        r.map_err(|h| match h {
+            Halt::Diag(d) => *d,
+            Halt::Reported => self.diags.last().cloned().unwrap_or_else(|| {
+                Diagnostic::error(DiagKind::Python, e.span, "evaluation failed")
+            }),
+        })
+    }
+
+    // ---------- statements ----------
+
+    pub fn run_module(&mut self, m: &ast::Module) -> R<()> {
+        match self.exec_block(&m.body)? {
+            Flow::Normal => Ok(()),
+            Flow::Return(_) | Flow::Break | Flow::Continue => Ok(()),
+        }
+    }
+
+    fn exec_block(&mut self, body: &[ast::Stmt]) -> R<Flow> {
+        for s in body {
+            if self.finished {
+                return Ok(Flow::Normal);
+            }
+            match self.exec(s)? {
+                Flow::Normal => {}
+                other => return Ok(other),
+            }
+        }
+        Ok(Flow::Normal)
+    }
+
+    fn exec(&mut self, s: &ast::Stmt) -> R<Flow> {
+        match &s.kind {
+            StmtKind::Expr { value } => {
+                self.eval(value)?;
+            }
+            StmtKind::Assign { targets, value } => {
+                let v = match (&value.kind, targets.as_slice()) {
+                    (ExprKind::Call { func, args }, [t]) => {
+                        let name = match &t.kind {
+                            ExprKind::Name { id } => Some(id.clone()),
+                            _ => Some(self.map.snippet(t.span).to_string()),
+                        };
+                        self.eval_call(func, args, value.span, name.as_deref())?
+                    }
+                    _ => self.eval(value)?,
+                };
+                for t in targets {
+                    self.assign(t, v.clone())?;
+                }
+            }
+            StmtKind::AugAssign { target, op, value } => {
+                let cur = self.eval(target)?;
+                let rhs = self.eval(value)?;
+                let v = self.binop(*op, cur, rhs, s.span)?;
+                self.assign(target, v)?;
+            }
+            StmtKind::AnnAssign { target, value, .. } => {
+                if let Some(v) = value {
+                    let v = self.eval(v)?;
+                    self.assign(target, v)?;
+                }
+            }
+            StmtKind::If { test, body, orelse } => {
+                let t = self.eval(test)?;
+                let b = self.truth(&t, test.span)?;
+                return self.exec_block(if b { body } else { orelse });
+            }
+            StmtKind::For {
+                target,
+                iter,
+                body,
+                orelse,
+            } => {
+                let it = self.eval(iter)?;
+                let items = self.iterate(&it, iter.span)?;
+                for item in items {
+                    self.assign(target, item)?;
+                    match self.exec_block(body)? {
+                        Flow::Break => return Ok(Flow::Normal),
+                        Flow::Return(v) => return Ok(Flow::Return(v)),
+                        Flow::Normal | Flow::Continue => {}
+                    }
+                    if self.finished {
+                        return Ok(Flow::Normal);
+                    }
+                }
+                return self.exec_block(orelse);
+            }
+            StmtKind::While { test, body, orelse } => {
+                let mut n = 0u64;
+                loop {
+                    let t = self.eval(test)?;
+                    if !self.truth(&t, test.span)? {
+                        break;
+                    }
+                    n += 1;
+                    if n > 10_000_000 {
+                        return py_err(s.span, "while loop runs more than 10^7 times");
+                    }
+                    match self.exec_block(body)? {
+                        Flow::Break => return Ok(Flow::Normal),
+                        Flow::Return(v) => return Ok(Flow::Return(v)),
+                        Flow::Normal | Flow::Continue => {}
+                    }
+                    if self.finished {
+                        return Ok(Flow::Normal);
+                    }
+                }
+                return self.exec_block(orelse);
+            }
+            StmtKind::FunctionDef {
+                name,
+                params,
+                body,
+                decorators,
+            } => {
+                if let Some(d) = decorators.first() {
+                    return unsupported(d.span, "decorators");
+                }
+                let f = self.make_func(&name.name, params, FuncBody::Block(body.clone()))?;
+                self.set_var(&name.name, f);
+            }
+            StmtKind::Return { value } => {
+                let v = match value {
+                    Some(v) => self.eval(v)?,
+                    None => Value::None,
+                };
+                return Ok(Flow::Return(v));
+            }
+            StmtKind::Import { names } => {
+                for a in names {
+                    let bind = |n: &str| n.split('.').next().unwrap_or(n).to_string();
+                    let module = module_kind(&a.name).ok_or(()).or_else(|_| {
+                        unsupported(a.span, format!("import of module `{}`", a.name))
+                    })?;
+                    let _ = module;
+                    match &a.asname {
+                        Some(as_) => {
+                            self.set_var(&as_.name, Value::Module(Rc::from(a.name.as_str())))
+                        }
+                        None => {
+                            let top = bind(&a.name);
+                            self.set_var(&top, Value::Module(Rc::from(top.as_str())))
+                        }
+                    }
+                }
+            }
+            StmtKind::ImportFrom {
+                module,
+                level,
+                names,
+                star,
+            } => {
+                let m = module.clone().unwrap_or_default();
+                if *level > 0 {
+                    return unsupported(s.span, "relative imports");
+                }
+                match module_kind(&m) {
+                    None => return unsupported(s.span, format!("import from module `{m}`")),
+                    Some(ModuleKind::Math) => {
+                        if *star {
+                            for n in builtins::MATH_NAMES {
+                                self.set_var(n, builtins::math_attr(n).unwrap_or(Value::None));
+                            }
+                        }
+                        for a in names {
+                            let v = builtins::math_attr(&a.name).ok_or(()).or_else(|_| {
+                                py_err(a.span, format!("cannot import name `{}` from math", a.name))
+                            })?;
+                            let bind = a
+                                .asname
+                                .as_ref()
+                                .map(|i| i.name.clone())
+                                .unwrap_or(a.name.clone());
+                            self.set_var(&bind, v);
+                        }
+                    }
+                    Some(ModuleKind::NoOp) => {
+                        // code_aster.Commands / Accas: the commands and `_F`
+                        // are already known; other names become opaque
+                        // modules that say "not supported" when used.
+                        for a in names {
+                            let bind = a
+                                .asname
+                                .as_ref()
+                                .map(|i| i.name.clone())
+                                .unwrap_or(a.name.clone());
+                            let v = self.lookup_builtin(&a.name).unwrap_or_else(|| {
+                                Value::Module(Rc::from(format!("{m}.{}", a.name).as_str()))
+                            });
+                            self.set_var(&bind, v);
+                        }
+                    }
+                }
+            }
+            StmtKind::Pass => {}
+            StmtKind::Break => return Ok(Flow::Break),
+            StmtKind::Continue => return Ok(Flow::Continue),
+            StmtKind::Global { names } => {
+                if let Some(f) = self.frames.last_mut() {
+                    for n in names {
+                        f.globals.insert(n.name.clone());
+                    }
+                }
+            }
+            StmtKind::Print {
+                dest,
+                values,
+                newline: _,
+            } => {
+                if dest.is_some() {
+                    return unsupported(s.span, "print >> file");
+                }
+                let mut parts = Vec::new();
+                for v in values {
+                    parts.push(self.eval(v)?.to_string());
+                }
+                self.sink.print(&parts.join(" "));
+            }
+            StmtKind::Del { targets } => {
+                for t in targets {
+                    match &t.kind {
+                        ExprKind::Name { id } => {
+                            let removed = match self.frames.last_mut() {
+                                Some(f) if !f.globals.contains(id) => f.vars.remove(id).is_some(),
+                                _ => self.globals.remove(id).is_some(),
+                            };
+                            if !removed {
+                                return py_err(t.span, format!("name '{id}' is not defined"));
+                            }
+                        }
+                        ExprKind::Subscript { value, index } => {
+                            let c = self.eval(value)?;
+                            let k = self.eval(index)?;
+                            match c {
+                                Value::Dict(d) => {
+                                    d.borrow_mut().remove(&k);
+                                }
+                                Value::List(l) => {
+                                    let n = l.borrow().len();
+                                    let i = self.index_of(&k, n, t.span)?;
+                                    l.borrow_mut().remove(i);
+                                }
+                                _ => return unsupported(t.span, "del on this value"),
+                            }
+                        }
+                        _ => return unsupported(t.span, "del of this target"),
+                    }
+                }
+            }
+            StmtKind::Assert { test, msg } => {
+                let t = self.eval(test)?;
+                if !self.truth(&t, test.span)? {
+                    let m = match msg {
+                        Some(m) => self.eval(m)?.to_string(),
+                        None => String::new(),
+                    };
+                    return py_err(s.span, format!("AssertionError {m}").trim_end().to_string());
+                }
+            }
+            StmtKind::Raise { .. } => {
+                return py_err(s.span, "the program raises an exception");
+            }
+            StmtKind::Try { .. } => return unsupported(s.span, "try/except"),
+            StmtKind::With { .. } => return unsupported(s.span, "with statements (file access)"),
+            StmtKind::ClassDef { .. } => return unsupported(s.span, "class definitions"),
+            StmtKind::Nonlocal { .. } => return unsupported(s.span, "nonlocal"),
+            StmtKind::Exec { .. } => return unsupported(s.span, "exec"),
+        }
+        Ok(Flow::Normal)
+    }
+
+    fn make_func(&mut self, name: &str, params: &[ast::Param], body: FuncBody) -> R<Value> {
+        let mut defaults = Vec::new();
+        for p in params {
+            defaults.push(match &p.default {
+                Some(d) => Some(self.eval(d)?),
+                None => None,
+            });
+        }
+        let closure = self
+            .frames
+            .last()
+            .map(|f| f.vars.clone())
+            .unwrap_or_default();
+        Ok(Value::Func(Rc::new(UserFunc {
+            name: name.to_string(),
+            params: params.to_vec(),
+            defaults,
+            body,
+            closure,
+        })))
+    }
+
+    pub fn set_var(&mut self, name: &str, v: Value) {
+        match self.frames.last_mut() {
+            Some(f) if !f.globals.contains(name) => {
+                f.vars.insert(name.to_string(), v);
+            }
+            _ => {
+                self.globals.insert(name.to_string(), v);
+            }
+        }
+    }
+
+    fn assign(&mut self, t: &ast::Expr, v: Value) -> R<()> {
+        match &t.kind {
+            ExprKind::Name { id } => {
+                self.set_var(id, v);
+                Ok(())
+            }
+            ExprKind::Tuple { elts } | ExprKind::List { elts } => {
+                let items = self.iterate(&v, t.span)?;
+                let star = elts
+                    .iter()
+                    .position(|e| matches!(e.kind, ExprKind::Starred { .. }));
+                match star {
+                    None => {
+                        if items.len() != elts.len() {
+                            return py_err(
+                                t.span,
+                                format!(
+                                    "cannot unpack {} values into {} targets",
+                                    items.len(),
+                                    elts.len()
+                                ),
+                            );
+                        }
+                        for (e, i) in elts.iter().zip(items) {
+                            self.assign(e, i)?;
+                        }
+                    }
+                    Some(k) => {
+                        let after = elts.len() - k - 1;
+                        if items.len() < elts.len() - 1 {
+                            return py_err(t.span, "not enough values to unpack");
+                        }
+                        for (e, i) in elts[..k].iter().zip(items.iter()) {
+                            self.assign(e, i.clone())?;
+                        }
+                        let mid = items[k..items.len() - after].to_vec();
+                        if let ExprKind::Starred { value } = &elts[k].kind {
+                            self.assign(value, Value::list(mid))?;
+                        }
+                        for (e, i) in elts[k + 1..]
+                            .iter()
+                            .zip(items[items.len() - after..].iter())
+                        {
+                            self.assign(e, i.clone())?;
+                        }
+                    }
+                }
+                Ok(())
+            }
+            ExprKind::Subscript { value, index } => {
+                let c = self.eval(value)?;
+                let k = self.eval(index)?;
+                match c {
+                    Value::List(l) => {
+                        let n = l.borrow().len();
+                        let i = self.index_of(&k, n, index.span)?;
+                        l.borrow_mut()[i] = v;
+                        Ok(())
+                    }
+                    Value::Dict(d) => {
+                        if matches!(k, Value::List(_) | Value::Dict(_)) {
+                            return py_err(index.span, "unhashable key");
+                        }
+                        d.borrow_mut().insert(k, v, t.span);
+                        Ok(())
+                    }
+                    other => py_err(
+                        t.span,
+                        format!("'{}' does not support item assignment", other.type_name()),
+                    ),
+                }
+            }
+            ExprKind::Attribute { .. } => unsupported(t.span, "assignment to an attribute"),
+            _ => py_err(t.span, "cannot assign to this expression"),
+        }
+    }
+
+    // ---------- expressions ----------
+
+    fn lookup_builtin(&self, name: &str) -> Option<Value> {
+        match name {
+            "_F" => Some(Value::Builtin(Builtin::Factor)),
+            "CO" => Some(Value::Builtin(Builtin::Co)),
+            _ => {
+                if let Some(b) = builtins::builtin(name) {
+                    return Some(b);
+                }
+                catalog()
+                    .command(name)
+                    .map(|c| Value::Command(Rc::from(c.name.as_str())))
+            }
+        }
+    }
+
+    fn lookup(&self, name: &str, span: Span) -> R<Value> {
+        if let Some(f) = self.frames.last() {
+            if let Some(v) = f.vars.get(name) {
+                return Ok(v.clone());
+            }
+        }
+        if let Some(v) = self.globals.get(name) {
+            return Ok(v.clone());
+        }
+        if let Some(v) = self.lookup_builtin(name) {
+            return Ok(v);
+        }
+        if name == "__name__" {
+            return Ok(Value::str("__main__"));
+        }
+        if self.continued {
+            return Ok(Value::Concept(ConceptRef {
+                name: name.to_string(),
+                id: 0,
+                typ: aster_catalog::types::UNKNOWN.to_string(),
+            }));
+        }
+        let looks_like_command = name.len() > 2
+            && name
+                .chars()
+                .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_');
+        let mut names: Vec<&str> = self.globals.keys().map(|s| s.as_str()).collect();
+        if let Some(f) = self.frames.last() {
+            names.extend(f.vars.keys().map(|s| s.as_str()));
+        }
+        if looks_like_command {
+            names.extend(catalog().names());
+        }
+        let mut d = Diagnostic::error(
+            DiagKind::Python,
+            span,
+            format!("name `{name}` is not defined"),
+        );
+        if let Some(h) = did_you_mean(name, names) {
+            d = d.note(h);
+        }
+        Err(d.into())
+    }
+
+    pub fn truth(&self, v: &Value, span: Span) -> R<bool> {
+        match v.truthy() {
+            Some(b) => Ok(b),
+            None => unsupported(
+                span,
+                "a condition on a value known only when the commands run (checking does not execute them)",
+            ),
+        }
+    }
+
+    pub fn eval(&mut self, e: &ast::Expr) -> R<Value> {
+        Ok(match &e.kind {
+            ExprKind::Name { id } => self.lookup(id, e.span)?,
+            ExprKind::Int { value } => Value::Int(*value),
+            ExprKind::Float { value } => Value::Float(*value),
+            ExprKind::Imag { value } => Value::Complex(0.0, *value),
+            ExprKind::Str { value } => Value::str(value),
+            ExprKind::Bool { value } => Value::Bool(*value),
+            ExprKind::None => Value::None,
+            ExprKind::FString { parts } => Value::str(&self.fstring(parts)?),
+            ExprKind::List { elts } => Value::list(self.eval_elts(elts)?),
+            ExprKind::Tuple { elts } => Value::tuple(self.eval_elts(elts)?),
+            ExprKind::Set { elts } => {
+                let mut out: Vec<Value> = Vec::new();
+                for v in self.eval_elts(elts)? {
+                    if !out.iter().any(|x| x.py_eq(&v)) {
+                        out.push(v);
+                    }
+                }
+                Value::list(out)
+            }
+            ExprKind::Dict { items } => {
+                let mut d = Dict::default();
+                for it in items {
+                    let v = self.eval(&it.value)?;
+                    match &it.key {
+                        Some(k) => {
+                            let kv = self.eval(k)?;
+                            d.insert(kv, v, k.span);
+                        }
+                        None => match v {
+                            Value::Dict(src) => {
+                                for en in src.borrow().entries.iter() {
+                                    d.insert(en.key.clone(), en.value.clone(), en.span);
+                                }
+                            }
+                            other => {
+                                return py_err(
+                                    it.value.span,
+                                    format!("cannot unpack {} with **", other.type_name()),
+                                )
+                            }
+                        },
+                    }
+                }
+                Value::Dict(Rc::new(std::cell::RefCell::new(d)))
+            }
+            ExprKind::Attribute { value, attr } => {
+                let v = self.eval(value)?;
+                self.attribute(v, &attr.name, attr.span)?
+            }
+            ExprKind::Subscript { value, index } => {
+                let v = self.eval(value)?;
+                if let ExprKind::Slice { lower, upper, step } = &index.kind {
+                    let lo = lower.as_ref().map(|x| self.eval(x)).transpose()?;
+                    let hi = upper.as_ref().map(|x| self.eval(x)).transpose()?;
+                    let st = step.as_ref().map(|x| self.eval(x)).transpose()?;
+                    return builtins::slice(&v, lo, hi, st, e.span);
+                }
+                let k = self.eval(index)?;
+                self.subscript(v, k, e.span)?
+            }
+            ExprKind::Slice { .. } => return py_err(e.span, "slice outside a subscript"),
+            ExprKind::Call { func, args } => self.eval_call(func, args, e.span, None)?,
+            ExprKind::BinOp { left, op, right } => {
+                let l = self.eval(left)?;
+                let r = self.eval(right)?;
+                self.binop(*op, l, r, e.span)?
+            }
+            ExprKind::UnaryOp { op, operand } => {
+                let v = self.eval(operand)?;
+                match (op, v) {
+                    (UnaryOp::Not, v) => match v.truthy() {
+                        Some(b) => Value::Bool(!b),
+                        None => Value::Unknown,
+                    },
+                    (_, Value::Unknown) => Value::Unknown,
+                    (UnaryOp::Neg, Value::Int(i)) => Value::Int(-i),
+                    (UnaryOp::Neg, Value::Bool(b)) => Value::Int(-(b as i64)),
+                    (UnaryOp::Neg, Value::Float(f)) => Value::Float(-f),
+                    (UnaryOp::Neg, Value::Complex(a, b)) => Value::Complex(-a, -b),
+                    (UnaryOp::Pos, v @ (Value::Int(_) | Value::Float(_) | Value::Complex(..))) => v,
+                    (UnaryOp::Invert, Value::Int(i)) => Value::Int(!i),
+                    (_, v) => {
+                        return py_err(
+                            e.span,
+                            format!("bad operand type for unary operator: '{}'", v.type_name()),
+                        )
+                    }
+                }
+            }
+            ExprKind::BoolOp { op, values } => {
+                let mut last = Value::None;
+                for (i, x) in values.iter().enumerate() {
+                    last = self.eval(x)?;
+                    if i + 1 == values.len() {
+                        break;
+                    }
+                    let Some(t) = last.truthy() else {
+                        return Ok(Value::Unknown);
+                    };
+                    match op {
+                        ast::BoolOp::And if !t => return Ok(last),
+                        ast::BoolOp::Or if t => return Ok(last),
+                        _ => {}
+                    }
+                }
+                last
+            }
+            ExprKind::Compare { left, ops } => {
+                let mut l = self.eval(left)?;
+                for (op, r) in ops {
+                    let rv = self.eval(r)?;
+                    match self.compare(*op, &l, &rv, e.span)? {
+                        Some(true) => {}
+                        Some(false) => return Ok(Value::Bool(false)),
+                        None => return Ok(Value::Unknown),
+                    }
+                    l = rv;
+                }
+                Value::Bool(true)
+            }
+            ExprKind::IfExp { test, body, orelse } => {
+                let t = self.eval(test)?;
+                if self.truth(&t, test.span)? {
+                    self.eval(body)?
+                } else {
+                    self.eval(orelse)?
+                }
+            }
+            ExprKind::Lambda { params, body } => {
+                self.make_func("<lambda>", params, FuncBody::Lambda((**body).clone()))?
+            }
+            ExprKind::ListComp { elt, generators }
+            | ExprKind::SetComp { elt, generators }
+            | ExprKind::GeneratorExp { elt, generators } => {
+                let mut out = Vec::new();
+                self.comprehension(generators, &mut |me| {
+                    out.push(me.eval(elt)?);
+                    Ok(())
+                })?;
+                if matches!(e.kind, ExprKind::SetComp { .. }) {
+                    let mut uniq: Vec<Value> = Vec::new();
+                    for v in out {
+                        if !uniq.iter().any(|x| x.py_eq(&v)) {
+                            uniq.push(v);
+                        }
+                    }
+                    out = uniq;
+                }
+                Value::list(out)
+            }
+            ExprKind::DictComp {
+                key,
+                value,
+                generators,
+            } => {
+                let mut d = Dict::default();
+                self.comprehension(generators, &mut |me| {
+                    let k = me.eval(key)?;
+                    let v = me.eval(value)?;
+                    d.insert(k, v, key.span);
+                    Ok(())
+                })?;
+                Value::Dict(Rc::new(std::cell::RefCell::new(d)))
+            }
+            ExprKind::Starred { .. } => return py_err(e.span, "starred expression here"),
+            ExprKind::NamedExpr { target, value } => {
+                let v = self.eval(value)?;
+                self.set_var(&target.name, v.clone());
+                v
+            }
+            ExprKind::Repr { value } => Value::str(&self.eval(value)?.repr()),
+            ExprKind::Bytes { .. } => return unsupported(e.span, "bytes literals"),
+            ExprKind::Ellipsis => return unsupported(e.span, "`...`"),
+            ExprKind::Yield { .. } | ExprKind::YieldFrom { .. } => {
+                return unsupported(e.span, "generators (yield)")
+            }
+            ExprKind::Await { .. } => return unsupported(e.span, "await"),
+        })
+    }
+
+    fn eval_elts(&mut self, elts: &[ast::Expr]) -> R<Vec<Value>> {
+        let mut out = Vec::with_capacity(elts.len());
+        for x in elts {
+            if let ExprKind::Starred { value } = &x.kind {
+                let v = self.eval(value)?;
+                out.extend(self.iterate(&v, value.span)?);
+            } else {
+                out.push(self.eval(x)?);
+            }
+        }
+        Ok(out)
+    }
+
+    fn comprehension(
+        &mut self,
+        gens: &[ast::Comprehension],
+        body: &mut dyn FnMut(&mut Interp<'a>) -> R<()>,
+    ) -> R<()> {
+        // A comprehension has its own scope that sees the enclosing one.
+        let vars = self
+            .frames
+            .last()
+            .map(|f| f.vars.clone())
+            .unwrap_or_default();
+        let globals = self
+            .frames
+            .last()
+            .map(|f| f.globals.clone())
+            .unwrap_or_default();
+        self.frames.push(Frame { vars, globals });
+        let r = self.comp_level(gens, body);
+        self.frames.pop();
+        r
+    }
+
+    fn comp_level(
+        &mut self,
+        gens: &[ast::Comprehension],
+        body: &mut dyn FnMut(&mut Interp<'a>) -> R<()>,
+    ) -> R<()> {
+        let Some((g, rest)) = gens.split_first() else {
+            return body(self);
+        };
+        let it = self.eval(&g.iter)?;
+        for item in self.iterate(&it, g.iter.span)? {
+            self.assign(&g.target, item)?;
+            let mut keep = true;
+            for cond in &g.ifs {
+                let c = self.eval(cond)?;
+                if !self.truth(&c, cond.span)? {
+                    keep = false;
+                    break;
+                }
+            }
+            if keep {
+                self.comp_level(rest, body)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn fstring(&mut self, parts: &[ast::FStringPart]) -> R<String> {
+        let mut out = String::new();
+        for p in parts {
+            match p {
+                ast::FStringPart::Literal { value } => out.push_str(value),
+                ast::FStringPart::Field {
+                    value,
+                    conversion,
+                    format_spec,
+                    debug,
+                } => {
+                    let v = self.eval(value)?;
+                    if *debug {
+                        out.push_str(self.map.snippet(value.span));
+                        out.push('=');
+                    }
+                    let v = match conversion {
+                        Some('r') | Some('a') => Value::str(&v.repr()),
+                        Some('s') => Value::str(&v.to_string()),
+                        _ => v,
+                    };
+                    let spec = self.fstring(format_spec)?;
+                    out.push_str(
+                        &format::format_spec(&v, &spec).or_else(|m| py_err(value.span, m))?,
+                    );
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    pub fn iterate(&self, v: &Value, span: Span) -> R<Vec<Value>> {
+        Ok(match v {
+            Value::List(l) => l.borrow().clone(),
+            Value::Tuple(t) => t.to_vec(),
+            Value::Str(s) => s.chars().map(|c| Value::str(&c.to_string())).collect(),
+            Value::Dict(d) => d.borrow().entries.iter().map(|e| e.key.clone()).collect(),
+            Value::Unknown => {
+                return unsupported(
+                    span,
+                    "iterating over a value known only when the commands run",
+                )
+            }
+            other => {
+                return py_err(
+                    span,
+                    format!("'{}' object is not iterable", other.type_name()),
+                )
+            }
+        })
+    }
+
+    pub fn index_of(&self, k: &Value, n: usize, span: Span) -> R<usize> {
+        let i = match k {
+            Value::Int(i) => *i,
+            Value::Bool(b) => *b as i64,
+            other => {
+                return py_err(
+                    span,
+                    format!("indices must be integers, not {}", other.type_name()),
+                )
+            }
+        };
+        let j = if i < 0 { n as i64 + i } else { i };
+        if j < 0 || j >= n as i64 {
+            return py_err(span, format!("index {i} out of range (length {n})"));
+        }
+        Ok(j as usize)
+    }
+
+    fn subscript(&mut self, v: Value, k: Value, span: Span) -> R<Value> {
+        Ok(match (&v, &k) {
+            (Value::Unknown, _) | (_, Value::Unknown) => Value::Unknown,
+            (Value::List(l), _) => {
+                let l = l.borrow();
+                l[self.index_of(&k, l.len(), span)?].clone()
+            }
+            (Value::Tuple(t), _) => t[self.index_of(&k, t.len(), span)?].clone(),
+            (Value::Str(s), _) => {
+                let chars: Vec<char> = s.chars().collect();
+                Value::str(&chars[self.index_of(&k, chars.len(), span)?].to_string())
+            }
+            (Value::Dict(d), _) => match d.borrow().get(&k) {
+                Some(v) => v.clone(),
+                None => return py_err(span, format!("KeyError: {}", k.repr())),
+            },
+            (Value::Concept(c), _) => {
+                let key = match &k {
+                    Value::Tuple(t) => t.iter().map(to_host).collect(),
+                    other => vec![to_host(other)],
+                };
+                match self.sink.index(c, &key) {
+                    Ok(h) => from_host(h),
+                    Err(e) => return Err(exec_diag(span, e).into()),
+                }
+            }
+            _ => {
+                return py_err(
+                    span,
+                    format!("'{}' object is not subscriptable", v.type_name()),
+                )
+            }
+        })
+    }
+
+    fn attribute(&mut self, v: Value, name: &str, span: Span) -> R<Value> {
+        match &v {
+            Value::Module(m) if &**m == "math" => builtins::math_attr(name)
+                .ok_or(())
+                .or_else(|_| py_err(span, format!("module 'math' has no attribute '{name}'"))),
+            Value::Module(m) if m.starts_with("code_aster") || m.starts_with("Accas") => {
+                match self.lookup_builtin(name) {
+                    Some(b) => Ok(b),
+                    None => unsupported(span, format!("`{m}.{name}`")),
+                }
+            }
+            Value::Module(m) => unsupported(span, format!("`{m}.{name}`")),
+            Value::Complex(a, b) => match name {
+                "real" => Ok(Value::Float(*a)),
+                "imag" => Ok(Value::Float(*b)),
+                _ => Ok(Value::Method(Box::new(v.clone()), Rc::from(name))),
+            },
+            Value::Unknown => Ok(Value::Unknown),
+            _ => Ok(Value::Method(Box::new(v), Rc::from(name))),
+        }
+    }
+
+    pub fn eval_call(
+        &mut self,
+        func: &ast::Expr,
+        args: &[ast::Arg],
+        span: Span,
+        target: Option<&str>,
+    ) -> R<Value> {
+        let f = match &func.kind {
+            ExprKind::Name { id } => match self.lookup(id, func.span) {
+                Ok(v) => v,
+                Err(Halt::Diag(d))
+                    if id.len() > 2
+                        && id
+                            .chars()
+                            .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') =>
+                {
+                    let mut nd = Diagnostic::error(
+                        DiagKind::UnknownCommand,
+                        func.span,
+                        format!("`{id}` is not a code_aster 17 command"),
+                    );
+                    nd.notes = d.notes;
+                    if let Some(n) = crate::legacy::removed_command(id) {
+                        nd = nd.note(n);
+                    }
+                    return Err(nd.into());
+                }
+                Err(e) => return Err(e),
+            },
+            _ => self.eval(func)?,
+        };
+        let mut cargs = Vec::with_capacity(args.len());
+        for a in args {
+            match &a.kind {
+                ArgKind::Positional { value } => cargs.push(CallArg {
+                    name: None,
+                    value: self.eval(value)?,
+                    span: a.span,
+                }),
+                ArgKind::Keyword { name, value } => cargs.push(CallArg {
+                    name: Some((name.name.clone(), name.span)),
+                    value: self.eval(value)?,
+                    span: a.span,
+                }),
+                ArgKind::Star { value } => {
+                    let v = self.eval(value)?;
+                    for item in self.iterate(&v, value.span)? {
+                        cargs.push(CallArg {
+                            name: None,
+                            value: item,
+                            span: a.span,
+                        });
+                    }
+                }
+                ArgKind::DoubleStar { value } => match self.eval(value)? {
+                    Value::Dict(d) => {
+                        for en in d.borrow().entries.iter() {
+                            let Value::Str(k) = &en.key else {
+                                return py_err(a.span, "keywords must be strings");
+                            };
+                            cargs.push(CallArg {
+                                name: Some((k.to_string(), a.span)),
+                                value: en.value.clone(),
+                                span: a.span,
+                            });
+                        }
+                    }
+                    Value::Unknown => return unsupported(a.span, "`**` of a run-time value"),
+                    other => {
+                        return py_err(
+                            a.span,
+                            format!(
+                                "argument after ** must be a mapping, not {}",
+                                other.type_name()
+                            ),
+                        )
+                    }
+                },
+            }
+        }
+        self.call_value(f, cargs, span, target)
+    }
+
+    pub fn call_value(
+        &mut self,
+        f: Value,
+        args: Vec<CallArg>,
+        span: Span,
+        target: Option<&str>,
+    ) -> R<Value> {
+        match f {
+            Value::Command(name) => crate::commands::call_command(self, &name, args, span, target),
+            Value::Builtin(Builtin::Factor) => {
+                let mut d = Dict::default();
+                for a in args {
+                    match a.name {
+                        Some((n, _)) => d.insert(Value::str(&n), a.value, a.span),
+                        None => match a.value {
+                            Value::Dict(src) => {
+                                for en in src.borrow().entries.iter() {
+                                    d.insert(en.key.clone(), en.value.clone(), en.span);
+                                }
+                            }
+                            _ => return py_err(a.span, "_F() takes keyword arguments"),
+                        },
+                    }
+                }
+                Ok(Value::Dict(Rc::new(std::cell::RefCell::new(d))))
+            }
+            Value::Builtin(Builtin::Co) => match args.as_slice() {
+                [CallArg {
+                    name: None,
+                    value: Value::Str(s),
+                    ..
+                }] => Ok(Value::Co(s.clone())),
+                _ => py_err(span, "CO() takes one name, e.g. CO('RESU')"),
+            },
+            Value::Builtin(Builtin::Fn(name)) => builtins::call(self, name, args, span),
+            Value::Func(uf) => self.call_user(&uf, args, span),
+            Value::Method(recv, m) => builtins::method(self, *recv, &m, args, span),
+            Value::Formula(c, formula) => {
+                let mut vals = Vec::new();
+                for a in args {
+                    if a.value.as_f64().is_none() && !matches!(a.value, Value::Complex(..)) {
+                        if matches!(a.value, Value::Unknown) {
+                            return Ok(Value::Unknown);
+                        }
+                        return py_err(a.span, format!("formula {} takes numbers", c.name));
+                    }
+                    vals.push(a.value);
+                }
+                formula.call(&vals).or_else(|m| py_err(span, m))
+            }
+            Value::Unknown => Ok(Value::Unknown),
+            Value::Module(m) => unsupported(span, format!("calling `{m}`")),
+            other => py_err(
+                span,
+                format!("'{}' object is not callable", other.type_name()),
+            ),
+        }
+    }
+
+    fn call_user(&mut self, f: &Rc<UserFunc>, args: Vec<CallArg>, span: Span) -> R<Value> {
+        if self.depth >= MAX_DEPTH {
+            return py_err(span, "maximum recursion depth exceeded");
+        }
+        let mut frame = Frame {
+            vars: f.closure.clone(),
+            globals: HashSet::new(),
+        };
+        let mut positional: Vec<Value> = Vec::new();
+        let mut keywords: Vec<(String, Value, Span)> = Vec::new();
+        for a in args {
+            match a.name {
+                Some((n, _)) => keywords.push((n, a.value, a.span)),
+                None => positional.push(a.value),
+            }
+        }
+        let mut pos = positional.into_iter();
+        let mut varargs_name = None;
+        let mut kwargs_name = None;
+        let mut after_star = false;
+        for (p, dflt) in f.params.iter().zip(&f.defaults) {
+            match p.kind {
+                ast::ParamKind::VarArgs => {
+                    varargs_name = Some(p.name.name.clone());
+                    after_star = true;
+                }
+                ast::ParamKind::KwArgs => kwargs_name = Some(p.name.name.clone()),
+                ast::ParamKind::KwOnlyMarker => after_star = true,
+                ast::ParamKind::PosOnlyMarker => {}
+                ast::ParamKind::Normal => {
+                    let name = &p.name.name;
+                    let v = if let Some(i) = keywords.iter().position(|(k, _, _)| k == name) {
+                        keywords.remove(i).1
+                    } else if let (false, Some(v)) = (after_star, pos.next()) {
+                        v
+                    } else if let Some(d) = dflt {
+                        d.clone()
+                    } else {
+                        return py_err(span, format!("{}() missing argument '{name}'", f.name));
+                    };
+                    frame.vars.insert(name.clone(), v);
+                }
+            }
+        }
+        let rest: Vec<Value> = pos.collect();
+        match varargs_name {
+            Some(n) => {
+                frame.vars.insert(n, Value::tuple(rest));
+            }
+            None if !rest.is_empty() => {
+                return py_err(
+                    span,
+                    format!("{}() takes fewer positional arguments", f.name),
+                )
+            }
+            None => {}
+        }
+        match kwargs_name {
+            Some(n) => {
+                let mut d = Dict::default();
+                for (k, v, s) in keywords {
+                    d.insert(Value::str(&k), v, s);
+                }
+                frame
+                    .vars
+                    .insert(n, Value::Dict(Rc::new(std::cell::RefCell::new(d))));
+            }
+            None => {
+                if let Some((k, _, s)) = keywords.first() {
+                    return py_err(
+                        *s,
+                        format!("{}() got an unexpected keyword argument '{k}'", f.name),
+                    );
+                }
+            }
+        }
+        self.frames.push(frame);
+        self.depth += 1;
+        let r = match &f.body {
+            FuncBody::Block(body) => self.exec_block(body).map(|fl| match fl {
+                Flow::Return(v) => v,
+                _ => Value::None,
+            }),
+            FuncBody::Lambda(e) => self.eval(e),
+        };
+        self.depth -= 1;
+        self.frames.pop();
+        r
+    }
+
+    pub fn binop(&mut self, op: BinOp, l: Value, r: Value, span: Span) -> R<Value> {
+        builtins::binop(op, l, r).or_else(|m| py_err(span, m))
+    }
+
+    /// `None` when the answer depends on a run-time value.
+    fn compare(&mut self, op: CmpOp, l: &Value, r: &Value, span: Span) -> R<Option<bool>> {
+        if matches!(l, Value::Unknown) || matches!(r, Value::Unknown) {
+            return Ok(None);
+        }
+        Ok(Some(match op {
+            CmpOp::Eq => l.py_eq(r),
+            CmpOp::NotEq => !l.py_eq(r),
+            CmpOp::Is => l.py_eq(r) && l.type_name() == r.type_name(),
+            CmpOp::IsNot => !(l.py_eq(r) && l.type_name() == r.type_name()),
+            CmpOp::In | CmpOp::NotIn => {
+                let found = match r {
+                    Value::Str(s) => match l {
+                        Value::Str(x) => s.contains(&**x),
+                        _ => return py_err(span, "'in <string>' requires a string"),
+                    },
+                    Value::Dict(d) => d.borrow().get(l).is_some(),
+                    other => self.iterate(other, span)?.iter().any(|x| x.py_eq(l)),
+                };
+                found == (op == CmpOp::In)
+            }
+            _ => {
+                let o = builtins::order(l, r).or_else(|m| py_err(span, m))?;
+                match op {
+                    CmpOp::Lt => o.is_lt(),
+                    CmpOp::LtE => o.is_le(),
+                    CmpOp::Gt => o.is_gt(),
+                    _ => o.is_ge(),
+                }
+            }
+        }))
+    }
+}
+
+#[derive(Clone, Copy)]
+enum ModuleKind {
+    Math,
+    NoOp,
+}
+
+fn module_kind(m: &str) -> Option<ModuleKind> {
+    if m == "math" {
+        return Some(ModuleKind::Math);
+    }
+    let top = m.split('.').next().unwrap_or(m);
+    match top {
+        "code_aster" | "Accas" | "Cata" => Some(ModuleKind::NoOp),
+        _ => None,
+    }
+}
+
+pub(crate) fn to_host(v: &Value) -> HostValue {
+    match v {
+        Value::None => HostValue::None,
+        Value::Bool(b) => HostValue::Scalar(Scalar::Int(*b as i64)),
+        Value::Int(i) => HostValue::Scalar(Scalar::Int(*i)),
+        Value::Float(f) => HostValue::Scalar(Scalar::Real(*f)),
+        Value::Complex(a, b) => HostValue::Scalar(Scalar::Complex(*a, *b)),
+        Value::Str(s) => HostValue::Scalar(Scalar::Str(s.to_string())),
+        Value::Concept(c) | Value::Formula(c, _) => HostValue::Scalar(Scalar::Concept(c.clone())),
+        Value::List(l) => HostValue::List(l.borrow().iter().map(to_host).collect()),
+        Value::Tuple(t) => HostValue::List(t.iter().map(to_host).collect()),
+        Value::Dict(d) => HostValue::Dict(
+            d.borrow()
+                .entries
+                .iter()
+                .map(|e| (e.key.to_string(), to_host(&e.value)))
+                .collect(),
+        ),
+        Value::Unknown => HostValue::Unknown,
+        other => HostValue::Scalar(Scalar::Opaque(other.to_string())),
+    }
+}
+
+pub(crate) fn from_scalar(s: Scalar) -> Value {
+    match s {
+        Scalar::Int(i) => Value::Int(i),
+        Scalar::Real(r) => Value::Float(r),
+        Scalar::Complex(a, b) => Value::Complex(a, b),
+        Scalar::Str(s) => Value::str(&s),
+        Scalar::Concept(c) => Value::Concept(c),
+        Scalar::Opaque(_) => Value::Unknown,
+    }
+}
+
+pub(crate) fn from_host(h: HostValue) -> Value {
+    match h {
+        HostValue::None => Value::None,
+        HostValue::Scalar(s) => from_scalar(s),
+        HostValue::List(l) => Value::list(l.into_iter().map(from_host).collect()),
+        HostValue::Dict(d) => {
+            let mut out = Dict::default();
+            for (k, v) in d {
+                out.insert(Value::str(&k), from_host(v), Span::default());
+            }
+            Value::Dict(Rc::new(std::cell::RefCell::new(out)))
+        }
+        HostValue::Unknown => Value::Unknown,
+    }
+}
+
+pub(crate) fn exec_diag(span: Span, e: ExecError) -> Diagnostic {
+    let kind = if e.message.starts_with("not supported") {
+        DiagKind::NotSupported
+    } else {
+        DiagKind::Exec
+    };
+    Diagnostic::error(kind, span, e.message)
+}
+
+pub(crate) fn new_formula(
+    interp: &Interp,
+    params: Vec<String>,
+    source: &str,
+    extra: Vec<(String, Value)>,
+    span: Span,
+) -> R<Formula> {
+    let map = Rc::new(CodeMap::new("FORMULE", source.trim().to_string()));
+    let module = aster_syntax::parse_module(map.source()).map_err(|e| {
+        Diagnostic::error(
+            DiagKind::Python,
+            span,
+            format!(
+                "FORMULE: VALE `{}` does not parse: {}",
+                source.trim(),
+                e.message
+            ),
+        )
+    })?;
+    let expr = match module.body.as_slice() {
+        [ast::Stmt {
+            kind: StmtKind::Expr { value },
+            ..
+        }] => value.clone(),
+        _ => {
+            return py_err(
+                span,
+                format!("FORMULE: VALE `{}` is not one expression", source.trim()),
+            )
+        }
+    };
+    let mut context = interp.globals.clone();
+    for (k, v) in extra {
+        context.insert(k, v);
+    }
+    Ok(Formula {
+        params,
+        source: source.trim().to_string(),
+        expr,
+        context,
+        map,
+    })
+}

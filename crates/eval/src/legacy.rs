@@ -1,0 +1,334 @@
+//! Legacy syntax (code_aster 11–15) mapped to its code_aster 17 form, with a
+//! warning that names the new spelling. The table is documented in
+//! docs/legacy.md. A mapping applies only where the old keyword is unknown
+//! to the v17 catalog at that place, so current files are never touched.
+
+use crate::command::Scalar;
+use crate::diag::{DiagKind, Diagnostic};
+use crate::validate::Given;
+use crate::value::Value;
+use aster_catalog::{find_in, Entry, Lit};
+
+/// Plain keyword renames: (command or `*`, old name, new name, note).
+/// `*` applies at any level of any command.
+pub const RENAMES: &[(&str, &str, &str, &str)] = &[
+    ("*", "COMP_INCR", "COMPORTEMENT", ""),
+    ("*", "COMP_ELAS", "COMPORTEMENT", ""),
+    ("DEFI_CONTACT", "TOLE_APPA", "DIST_APPA", ""),
+    (
+        "*",
+        "NOEUD",
+        "GROUP_NO",
+        "node names are no longer accepted; the name is looked up as a node group, then as a node",
+    ),
+    (
+        "*",
+        "MAILLE",
+        "GROUP_MA",
+        "cell names are no longer accepted; the name is looked up as a cell group, then as a cell",
+    ),
+    ("*", "NOEUD_ORIG", "GROUP_NO_ORIG", ""),
+    ("*", "NOEUD_EXTR", "GROUP_NO_EXTR", ""),
+];
+
+/// Keywords that no longer exist and had no effect on the result: dropped
+/// with a warning. (command or `*`, factor keyword or `*`, name, why)
+pub const DROPPED: &[(&str, &str, &str, &str)] = &[
+    ("*", "SOLVEUR", "SYME", "the solver detects symmetry itself"),
+    ("DEBUT", "CODE", "NOM", "the test name is no longer given"),
+    (
+        "DEBUT",
+        "CODE",
+        "NIV_PUB_WEB",
+        "publication level no longer exists",
+    ),
+    ("DEBUT", "*", "PAR_LOT", "commands always run one by one"),
+    (
+        "POURSUITE",
+        "*",
+        "PAR_LOT",
+        "commands always run one by one",
+    ),
+    ("*", "*", "TITRE", "titles are no longer stored"),
+    (
+        "*",
+        "COMPORTEMENT",
+        "ITER_INTE_PAS",
+        "not used by code_aster 17",
+    ),
+];
+
+/// Renamed values: (keyword, old value, new value).
+pub const VALUES: &[(&str, &str, &str)] = &[
+    ("NOM_CHAM", "VALE_CONT", "CONT_NOEU"),
+    ("NOM_CHAM", "SIEF_ELNO_ELGA", "SIEF_ELNO"),
+    ("NOM_CHAM", "SIGM_ELNO_DEPL", "SIGM_ELNO"),
+    ("NOM_CHAM", "EPSI_ELNO_DEPL", "EPSI_ELNO"),
+    ("NOM_CHAM", "EQUI_ELNO_SIGM", "SIEQ_ELNO"),
+    ("OPTION", "SIEF_ELNO_ELGA", "SIEF_ELNO"),
+    ("OPTION", "SIGM_ELNO_DEPL", "SIGM_ELNO"),
+    ("OPTION", "EPSI_ELNO_DEPL", "EPSI_ELNO"),
+    ("OPTION", "EQUI_ELNO_SIGM", "SIEQ_ELNO"),
+];
+
+/// Commands removed since code_aster 11, with what replaced them.
+pub fn removed_command(name: &str) -> Option<String> {
+    let new = match name {
+        "CALC_ELEM" | "CALC_NO" => "CALC_CHAMP",
+        "DEFI_SQUELETTE" => "CREA_MAILLAGE",
+        "IMPR_OAR" => "no replacement",
+        "CALC_G_THETA_T" | "CALC_THETA" => "CALC_G",
+        "POST_K1_K2_K3" => "POST_K1_K2_K3 (still exists) or CALC_G",
+        "DETRUIRE_CONCEPT" => "DETRUIRE",
+        _ => return None,
+    };
+    Some(format!("note: {name} was replaced by {new}"))
+}
+
+fn last_segment(path: &str) -> &str {
+    let seg = path.rsplit('/').next().unwrap_or(path);
+    seg.split('[').next().unwrap_or(seg)
+}
+
+fn applies(rule_cmd: &str, cmd: &str) -> bool {
+    rule_cmd == "*" || rule_cmd == cmd
+}
+
+fn warn(diags: &mut Vec<Diagnostic>, g: &Given, msg: String) {
+    diags.push(Diagnostic::warning(DiagKind::Legacy, g.span, msg));
+}
+
+/// Rewrites the keywords given at one level (`path` is `CMD` or
+/// `CMD/FACTOR[i]`) into their current form.
+pub(crate) fn transform_level(
+    cmd: &str,
+    path: &str,
+    entries: &[Entry],
+    given: &mut Vec<Given>,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let factor = if path.contains('/') {
+        last_segment(path)
+    } else {
+        ""
+    };
+    let known = |n: &str| find_in(entries, n).is_some();
+
+    // Structural rewrites first.
+    let names: Vec<String> = given.iter().map(|g| g.name.clone()).collect();
+    for name in names {
+        if known(&name) {
+            continue;
+        }
+        let Some(i) = given.iter().position(|g| g.name == name) else {
+            continue;
+        };
+        match (cmd, factor, name.as_str()) {
+            // DETRUIRE(CONCEPT=_F(NOM=X)) → DETRUIRE(NOM=X)
+            ("DETRUIRE", "", "CONCEPT") => {
+                let g = &mut given[i];
+                warn(
+                    diags,
+                    g,
+                    format!("`{path}/CONCEPT=_F(NOM=...)` is code_aster 11 syntax: now NOM=..."),
+                );
+                let mut names = Vec::new();
+                for occ in crate::validate::flatten(&g.value) {
+                    if let Value::Dict(d) = occ {
+                        if let Some(v) = d.borrow().get(&Value::str("NOM")) {
+                            names.extend(crate::validate::flatten(v));
+                        }
+                    }
+                }
+                g.name = "NOM".into();
+                g.value = Value::tuple(names);
+            }
+            ("MODI_MAILLAGE", "", "ORIE_PEAU_2D" | "ORIE_PEAU_3D") => {
+                let g = &mut given[i];
+                warn(diags, g, format!("`{path}/{name}` is code_aster 11 syntax: now ORIE_PEAU=_F(GROUP_MA_PEAU=...)"));
+                g.name = "ORIE_PEAU".into();
+                rename_inside(&g.value, "GROUP_MA", "GROUP_MA_PEAU");
+            }
+            _ => {}
+        }
+    }
+    // DEBUT/POURSUITE CODE=_F(...) → CODE='OUI'
+    if matches!(cmd, "DEBUT" | "POURSUITE") && factor.is_empty() {
+        if let Some(g) = given.iter_mut().find(|g| {
+            g.name == "CODE" && matches!(g.value, Value::Dict(_) | Value::Tuple(_) | Value::List(_))
+        }) {
+            warn(
+                diags,
+                g,
+                format!("`{path}/CODE=_F(NOM=...)` is code_aster 11 syntax: now CODE='OUI'"),
+            );
+            g.value = Value::str("OUI");
+        }
+    }
+    // TEST_RESU-like occurrences: VALE= → VALE_CALC / VALE_REFE.
+    if !known("VALE") && known("VALE_CALC") {
+        test_resu_vale(path, given, diags);
+    }
+
+    let mut i = 0;
+    while i < given.len() {
+        let name = given[i].name.clone();
+        if known(&name) {
+            i += 1;
+            continue;
+        }
+        if let Some((_, _, new, note)) = RENAMES
+            .iter()
+            .find(|(c, old, _, _)| applies(c, cmd) && *old == name)
+        {
+            if known(new) && !given.iter().any(|g| g.name == *new) {
+                warn(
+                    diags,
+                    &given[i],
+                    format!("`{path}/{name}` is legacy syntax: now {new}"),
+                );
+                if !note.is_empty() {
+                    if let Some(d) = diags.last_mut() {
+                        d.notes.push(format!("note: {note}"));
+                    }
+                }
+                given[i].name = new.to_string();
+                i += 1;
+                continue;
+            }
+        }
+        if let Some((_, _, _, why)) = DROPPED
+            .iter()
+            .find(|(c, f, n, _)| applies(c, cmd) && (*f == "*" || *f == factor) && *n == name)
+        {
+            warn(
+                diags,
+                &given[i],
+                format!("`{path}/{name}` no longer exists and is ignored: {why}"),
+            );
+            given.remove(i);
+            continue;
+        }
+        i += 1;
+    }
+}
+
+fn rename_inside(v: &Value, old: &str, new: &str) {
+    let dicts: Vec<Value> = match v {
+        Value::Dict(_) => vec![v.clone()],
+        other => crate::validate::flatten(other),
+    };
+    for d in dicts {
+        if let Value::Dict(d) = d {
+            for e in d.borrow_mut().entries.iter_mut() {
+                if matches!(&e.key, Value::Str(k) if &**k == old) {
+                    e.key = Value::str(new);
+                }
+            }
+        }
+    }
+}
+
+/// `VALE=x` of code_aster 11 test keywords: with `REFERENCE='NON_REGRESSION'`
+/// (or no reference) it is the value computed by code_aster → `VALE_CALC`,
+/// checked with the old `PRECISION` (default 1e-3) as `TOLE_MACHINE`; with
+/// another reference it is the reference value → `VALE_REFE` (checked with
+/// `PRECISION`) and also `VALE_CALC` with the same tolerance.
+fn test_resu_vale(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+    let Some(i) = given.iter().position(|g| g.name == "VALE") else {
+        return;
+    };
+    let reference = given
+        .iter()
+        .find(|g| g.name == "REFERENCE")
+        .map(|g| g.value.to_string());
+    let precision = given
+        .iter()
+        .find(|g| g.name == "PRECISION")
+        .map(|g| g.value.clone())
+        .unwrap_or(Value::Float(1e-3));
+    let g = given[i].clone();
+    let has_tole = given.iter().any(|g| g.name == "TOLE_MACHINE");
+    match reference.as_deref() {
+        None | Some("NON_REGRESSION") => {
+            warn(diags, &g, format!("`{path}/VALE` is code_aster 11 syntax: now VALE_CALC (checked with TOLE_MACHINE = the old PRECISION)"));
+            given[i].name = "VALE_CALC".into();
+            given.retain(|x| x.name != "REFERENCE" && x.name != "PRECISION");
+            if !has_tole {
+                given.push(Given {
+                    name: "TOLE_MACHINE".into(),
+                    span: g.span,
+                    value: precision,
+                });
+            }
+        }
+        Some(r) => {
+            warn(diags, &g, format!("`{path}/VALE` with REFERENCE='{r}' is code_aster 11 syntax: now VALE_REFE (and VALE_CALC with TOLE_MACHINE = PRECISION)"));
+            given[i].name = "VALE_REFE".into();
+            given.push(Given {
+                name: "VALE_CALC".into(),
+                span: g.span,
+                value: g.value.clone(),
+            });
+            if !has_tole {
+                given.push(Given {
+                    name: "TOLE_MACHINE".into(),
+                    span: g.span,
+                    value: precision,
+                });
+            }
+        }
+    }
+}
+
+/// A renamed value of a keyword with allowed values.
+pub(crate) fn value(_cmd: &str, path: &str, s: &Scalar, into: &[Lit]) -> Option<Scalar> {
+    let Scalar::Str(v) = s else {
+        return None;
+    };
+    let kw = last_segment(path);
+    VALUES
+        .iter()
+        .find(|(k, old, _)| *k == kw && old == v)
+        .map(|(_, _, new)| new)
+        .filter(|new| into.iter().any(|l| matches!(l, Lit::Str(x) if x == *new)))
+        .map(|new| Scalar::Str(new.to_string()))
+}
+
+/// Commands whose legacy form no longer exists in the v17 catalog but whose
+/// meaning is still clear: validated against a small legacy definition.
+/// `CALC_VECT_ELEM(OPTION='FORC_NODA', SIEF_ELGA=...)` (code_aster ≤ 14)
+/// became `CALCUL(OPTION='FORC_NODA_ELEM')` + `EXTR_TABLE`; the call keeps
+/// its old form and means "the nodal forces of the stress field SIEF_ELGA".
+pub(crate) fn legacy_command(
+    name: &str,
+    given: &[Given],
+) -> Option<(&'static aster_catalog::Command, String)> {
+    static FORC_NODA: std::sync::OnceLock<Option<aster_catalog::Command>> =
+        std::sync::OnceLock::new();
+    let option = given
+        .iter()
+        .find(|g| g.name == "OPTION")
+        .map(|g| g.value.to_string());
+    if name != "CALC_VECT_ELEM" || option.as_deref() != Some("FORC_NODA") {
+        return None;
+    }
+    let cmd = FORC_NODA
+        .get_or_init(|| {
+            serde_json::from_str(
+                r#"{"name":"CALC_VECT_ELEM","kind":"Operator","produces":{"Type":"vect_elem_depl_r"},"reentrant":"No","k":[
+                {"n":"OPTION","kind":"S","s":"o","t":["TXM"],"into":["FORC_NODA"]},
+                {"n":"MODELE","kind":"S","s":"o","t":["modele_sdaster"]},
+                {"n":"SIEF_ELGA","kind":"S","s":"o","t":["cham_elem"]},
+                {"n":"CARA_ELEM","kind":"S","s":"f","t":["cara_elem"]},
+                {"n":"CHAM_MATER","kind":"S","s":"f","t":["cham_mater"]},
+                {"n":"INST","kind":"S","s":"f","t":["R"],"d":[0.0]}]}"#,
+            )
+            .ok()
+        })
+        .as_ref()?;
+    Some((
+        cmd,
+        "CALC_VECT_ELEM(OPTION='FORC_NODA') was removed in code_aster 15 (now CALCUL(OPTION='FORC_NODA_ELEM') then EXTR_TABLE); checked against its code_aster 11 definition".to_string(),
+    ))
+}

@@ -1,0 +1,851 @@
+//! Validation of a command call against the catalog, as code_aster does it:
+//! blocks activated by their conditions (with defaults visible), unknown
+//! and missing keywords, types, allowed values, counts, ranges, rules.
+//! The result is a [`Keywords`] tree with every default filled in.
+
+use crate::command::{ConceptRef, Keyword, Keywords, KwValue, Scalar};
+use crate::diag::{allowed_list, did_you_mean, DiagKind, Diagnostic};
+use crate::legacy;
+use crate::value::Value;
+use aster_catalog::cond::{CVal, CondEnv};
+use aster_catalog::{
+    catalog, types, Block, Command, Entry, Lit, Node, Rule, RuleKind, SimpleKw, Status, ValueType,
+};
+use aster_syntax::Span;
+use std::collections::HashMap;
+
+/// A keyword as written by the user.
+#[derive(Clone, Debug)]
+pub(crate) struct Given {
+    pub name: String,
+    pub span: Span,
+    pub value: Value,
+}
+
+/// Keyword values seen by block conditions: this level, then the enclosing ones.
+struct Ctx<'p> {
+    vals: HashMap<String, (CVal, Option<String>)>,
+    parent: Option<&'p Ctx<'p>>,
+}
+
+/// The condition value of a keyword whose value is only known at run time.
+const RUN_TIME: &str = "\u{0}run-time value";
+
+thread_local! {
+    /// Set when a condition read something unknown to the checker (a
+    /// run-time value, a concept of a type not computed): its answer is a
+    /// guess, and the checker must not report errors that depend on it.
+    static UNCERTAIN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+impl CondEnv for Ctx<'_> {
+    fn value(&self, k: &str) -> Option<CVal> {
+        match self.vals.get(k) {
+            Some((CVal::Str(s), _)) if s == RUN_TIME => {
+                UNCERTAIN.with(|u| u.set(true));
+                Some(CVal::None)
+            }
+            Some((v, _)) => Some(v.clone()),
+            None => self.parent.and_then(|p| p.value(k)),
+        }
+    }
+    fn type_of(&self, k: &str) -> Option<String> {
+        match self.vals.get(k) {
+            Some((_, Some(t))) if t == types::UNKNOWN => {
+                UNCERTAIN.with(|u| u.set(true));
+                None
+            }
+            Some((_, t)) => t.clone(),
+            None => self.parent.and_then(|p| p.type_of(k)),
+        }
+    }
+}
+
+fn lit_cval(l: &Lit) -> CVal {
+    match l {
+        Lit::Int(i) => CVal::Int(*i),
+        Lit::Real(r) => CVal::Real(*r),
+        Lit::Str(s) => CVal::Str(s.clone()),
+    }
+}
+
+fn lit_scalar(l: &Lit) -> Scalar {
+    match l {
+        Lit::Int(i) => Scalar::Int(*i),
+        Lit::Real(r) => Scalar::Real(*r),
+        Lit::Str(s) => Scalar::Str(s.clone()),
+    }
+}
+
+fn scalars_cval(v: &[Lit]) -> CVal {
+    match v {
+        [one] => lit_cval(one),
+        many => CVal::Tuple(many.iter().map(lit_cval).collect()),
+    }
+}
+
+/// A user value as a condition sees it (and its concept type).
+fn value_cval(v: &Value) -> (CVal, Option<String>) {
+    match v {
+        Value::Int(i) => (CVal::Int(*i), None),
+        Value::Bool(b) => (CVal::Int(*b as i64), None),
+        Value::Float(f) => (CVal::Real(*f), None),
+        Value::Str(s) => (CVal::Str(s.to_string()), None),
+        Value::Concept(c) | Value::Formula(c, _) => {
+            (CVal::Str(c.name.clone()), Some(c.typ.clone()))
+        }
+        Value::List(_) | Value::Tuple(_) => {
+            let items = flatten(v);
+            let ty = items.first().and_then(|x| value_cval(x).1);
+            match items.as_slice() {
+                [one] => (value_cval(one).0, ty),
+                many => (
+                    CVal::Tuple(many.iter().map(|x| value_cval(x).0).collect()),
+                    ty,
+                ),
+            }
+        }
+        Value::Dict(_) => (CVal::Bool(true), None),
+        Value::Unknown => (CVal::Str(RUN_TIME.into()), None),
+        _ => (CVal::Str(v.to_string()), None),
+    }
+}
+
+pub(crate) fn flatten(v: &Value) -> Vec<Value> {
+    match v {
+        Value::List(l) => l.borrow().iter().flat_map(flatten).collect(),
+        Value::Tuple(t) => t.iter().flat_map(flatten).collect(),
+        other => vec![other.clone()],
+    }
+}
+
+pub(crate) struct Validator<'n> {
+    pub command: String,
+    pub diags: Vec<Diagnostic>,
+    /// Concepts announced with `CO('name')`.
+    pub created: Vec<ConceptRef>,
+    pub next_id: &'n mut u32,
+}
+
+impl Validator<'_> {
+    pub fn validate(&mut self, cmd: &Command, given: Vec<Given>, span: Span) -> Keywords {
+        self.level(&cmd.keywords, &cmd.rules, given, &cmd.name, None, span)
+    }
+
+    fn error(&mut self, kind: DiagKind, span: Span, msg: String) -> &mut Diagnostic {
+        self.diags.push(Diagnostic::error(kind, span, msg));
+        let n = self.diags.len();
+        &mut self.diags[n - 1]
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn activate<'e>(
+        &self,
+        entries: &'e [Entry],
+        ctx: &mut Ctx,
+        active: &mut Vec<&'e Entry>,
+        rules: &mut Vec<&'e Rule>,
+        maybe: bool,
+        guessed: &mut Vec<String>,
+    ) {
+        for e in entries {
+            match &e.node {
+                Node::Block(_) => {}
+                Node::Simple(s) => {
+                    if active.iter().any(|a| a.name == e.name) {
+                        continue;
+                    }
+                    active.push(e);
+                    if maybe {
+                        guessed.push(e.name.clone());
+                        continue;
+                    }
+                    if !ctx.vals.contains_key(&e.name) {
+                        if let Some(d) = &s.default {
+                            ctx.vals.insert(e.name.clone(), (scalars_cval(d), None));
+                        }
+                    }
+                }
+                Node::Factor(f) => {
+                    if active.iter().any(|a| a.name == e.name) {
+                        continue;
+                    }
+                    active.push(e);
+                    if maybe {
+                        guessed.push(e.name.clone());
+                        continue;
+                    }
+                    if f.status == Status::Defaulted && !ctx.vals.contains_key(&e.name) {
+                        ctx.vals.insert(e.name.clone(), (CVal::Bool(true), None));
+                    }
+                }
+            }
+        }
+        for e in entries {
+            if let Node::Block(b) = &e.node {
+                // A condition that cannot be evaluated (e.g. comparing an
+                // absent keyword) does not hold: no false errors from it.
+                UNCERTAIN.with(|u| u.set(false));
+                let holds = catalog()
+                    .condition(&b.condition)
+                    .ok()
+                    .and_then(|c| aster_catalog::cond::holds(c, ctx).ok())
+                    .unwrap_or(false);
+                let unsure = UNCERTAIN.with(|u| u.replace(false));
+                if holds && !maybe && !unsure {
+                    rules.extend(b.rules.iter());
+                    self.activate(&b.keywords, ctx, active, rules, false, guessed);
+                } else if holds || unsure {
+                    // Accept the block's keywords without requiring or
+                    // defaulting any: the checker cannot know.
+                    self.activate(&b.keywords, ctx, active, rules, true, guessed);
+                }
+            }
+        }
+    }
+
+    fn level(
+        &mut self,
+        entries: &[Entry],
+        level_rules: &[Rule],
+        mut given: Vec<Given>,
+        path: &str,
+        parent: Option<&Ctx>,
+        span: Span,
+    ) -> Keywords {
+        // `KW=None` means "not given" in code_aster.
+        given.retain(|g| !matches!(g.value, Value::None));
+        legacy::transform_level(&self.command, path, entries, &mut given, &mut self.diags);
+
+        let mut ctx = Ctx {
+            vals: given
+                .iter()
+                .map(|g| (g.name.clone(), value_cval(&g.value)))
+                .collect(),
+            parent,
+        };
+        let mut active: Vec<&Entry> = Vec::new();
+        let mut rules: Vec<&Rule> = level_rules.iter().collect();
+        let mut guessed = Vec::new();
+        self.activate(
+            entries,
+            &mut ctx,
+            &mut active,
+            &mut rules,
+            false,
+            &mut guessed,
+        );
+
+        let mut values: HashMap<String, Keyword> = HashMap::new();
+        let errors_before = self.diags.iter().filter(|d| d.is_error()).count();
+        let mut inactive = Vec::new();
+        for g in &given {
+            let Some(entry) = active.iter().find(|a| a.name == g.name) else {
+                inactive.push(g);
+                continue;
+            };
+            let kpath = format!("{path}/{}", g.name);
+            let value = match &entry.node {
+                Node::Simple(s) => self.simple(s, g, &kpath).map(KwValue::Simple),
+                Node::Factor(f) => {
+                    let occs: Vec<Value> = match &g.value {
+                        Value::Dict(_) => vec![g.value.clone()],
+                        Value::List(_) | Value::Tuple(_) => flatten(&g.value),
+                        _ => vec![g.value.clone()],
+                    };
+                    let mut out = Vec::new();
+                    let mut ok = true;
+                    for (i, occ) in occs.iter().enumerate() {
+                        let Value::Dict(d) = occ else {
+                            self.error(
+                                DiagKind::WrongType,
+                                g.span,
+                                format!(
+                                    "`{kpath}` is a factor keyword: expected _F(...), found {}",
+                                    occ.repr()
+                                ),
+                            );
+                            ok = false;
+                            continue;
+                        };
+                        let mut inner = Vec::new();
+                        for en in d.borrow().entries.iter() {
+                            match &en.key {
+                                Value::Str(k) => inner.push(Given {
+                                    name: k.to_string(),
+                                    span: if en.span == Span::default() {
+                                        g.span
+                                    } else {
+                                        en.span
+                                    },
+                                    value: en.value.clone(),
+                                }),
+                                other => {
+                                    self.error(
+                                        DiagKind::WrongType,
+                                        g.span,
+                                        format!(
+                                            "`{kpath}`: keyword names must be strings, found {}",
+                                            other.repr()
+                                        ),
+                                    );
+                                }
+                            }
+                        }
+                        let occ_span = d.borrow().entries.first().map(|e| e.span).unwrap_or(g.span);
+                        let occ_path = format!("{kpath}[{}]", i + 1);
+                        out.push(self.level(
+                            &f.keywords,
+                            &f.rules,
+                            inner,
+                            &occ_path,
+                            Some(&ctx),
+                            if occ_span == Span::default() {
+                                g.span
+                            } else {
+                                occ_span
+                            },
+                        ));
+                    }
+                    if ok && (occs.len() < f.min as usize || !f.max.allows(occs.len())) {
+                        self.error(
+                            DiagKind::Count,
+                            g.span,
+                            format!(
+                                "`{kpath}` accepts between {} and {} occurrence(s), {} given",
+                                f.min,
+                                f.max.describe(),
+                                occs.len()
+                            ),
+                        );
+                    }
+                    Some(KwValue::Factor(out))
+                }
+                Node::Block(_) => None,
+            };
+            if let Some(v) = value {
+                values.insert(
+                    g.name.clone(),
+                    Keyword {
+                        name: g.name.clone(),
+                        value: v,
+                        span: g.span,
+                        defaulted: false,
+                    },
+                );
+            }
+        }
+
+        // A wrong value at this level may have closed the block a keyword
+        // belongs to: then only truly unknown keywords are reported.
+        let level_failed = self.diags.iter().filter(|d| d.is_error()).count() > errors_before;
+        for g in inactive {
+            self.not_active(entries, &active, g, path, level_failed);
+        }
+
+        // Missing keywords and defaults, in catalog order.
+        let mut out = Keywords::default();
+        for e in &active {
+            if let Some(k) = values.remove(&e.name) {
+                out.entries.push(k);
+                continue;
+            }
+            if given.iter().any(|g| g.name == e.name) || guessed.contains(&e.name) {
+                continue; // given but invalid (already reported), or unsure
+            }
+            match &e.node {
+                Node::Simple(s) => match (&s.default, s.status) {
+                    (Some(d), _) => out.entries.push(Keyword {
+                        name: e.name.clone(),
+                        value: KwValue::Simple(d.iter().map(|l| default_scalar(l, s)).collect()),
+                        span,
+                        defaulted: true,
+                    }),
+                    (None, Status::Mandatory) => {
+                        let expected = s
+                            .types
+                            .iter()
+                            .map(|t| t.describe())
+                            .collect::<Vec<_>>()
+                            .join(" or ");
+                        let mut d = Diagnostic::error(
+                            DiagKind::MissingKeyword,
+                            span,
+                            format!(
+                                "`{path}`: missing mandatory keyword {} ({expected})",
+                                e.name
+                            ),
+                        );
+                        if let Some(into) = &s.into {
+                            d = d.note(format!("note: allowed values: {}", allowed_list(into)));
+                        }
+                        self.diags.push(d);
+                    }
+                    _ => {}
+                },
+                Node::Factor(f) => match f.status {
+                    Status::Mandatory => {
+                        self.error(
+                            DiagKind::MissingKeyword,
+                            span,
+                            format!(
+                                "`{path}`: missing mandatory factor keyword {}=_F(...)",
+                                e.name
+                            ),
+                        );
+                    }
+                    Status::Defaulted => {
+                        let occ = self.level(
+                            &f.keywords,
+                            &f.rules,
+                            Vec::new(),
+                            &format!("{path}/{}[1]", e.name),
+                            Some(&ctx),
+                            span,
+                        );
+                        out.entries.push(Keyword {
+                            name: e.name.clone(),
+                            value: KwValue::Factor(vec![occ]),
+                            span,
+                            defaulted: true,
+                        });
+                    }
+                    _ => {}
+                },
+                Node::Block(_) => {}
+            }
+        }
+
+        let written: Vec<&str> = given.iter().map(|g| g.name.as_str()).collect();
+        let defaulted: Vec<String> = out
+            .entries
+            .iter()
+            .filter(|k| k.defaulted)
+            .map(|k| k.name.clone())
+            .collect();
+        let defaulted: Vec<&str> = defaulted.iter().map(|s| s.as_str()).collect();
+        let mut drop: Vec<String> = Vec::new();
+        // An occurrence nobody wrote (a factor keyword present by default)
+        // is not held to the "at least one" rules: code_aster fills those
+        // values when the command runs.
+        if !given.is_empty() || parent.is_none() {
+            for r in rules {
+                self.rule(r, &written, &defaulted, &mut drop, path, span);
+            }
+        }
+        out.entries
+            .retain(|k| !(k.defaulted && drop.contains(&k.name)));
+        out
+    }
+
+    fn not_active(
+        &mut self,
+        entries: &[Entry],
+        active: &[&Entry],
+        g: &Given,
+        path: &str,
+        quiet: bool,
+    ) {
+        if let Some(b) = block_of(entries, &g.name) {
+            if quiet {
+                return;
+            }
+            let mut d = Diagnostic::error(
+                DiagKind::KeywordNotApplicable,
+                g.span,
+                format!(
+                    "`{path}/{}` is not allowed here: it applies only when {}",
+                    g.name, b.condition
+                ),
+            );
+            if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name.as_str())) {
+                d = d.note(h);
+            }
+            self.diags.push(d);
+            return;
+        }
+        let names: Vec<&str> = active
+            .iter()
+            .map(|a| a.name.as_str())
+            .filter(|n| *n != "reuse")
+            .collect();
+        let mut d = Diagnostic::error(
+            DiagKind::UnknownKeyword,
+            g.span,
+            format!("`{path}`: unknown keyword {}", g.name),
+        );
+        match did_you_mean(&g.name, names.iter().copied()) {
+            Some(h) => d = d.note(h),
+            None => {
+                d = d.note(format!(
+                    "note: keywords accepted here: {}",
+                    allowed_list(&names)
+                ))
+            }
+        }
+        self.diags.push(d);
+    }
+
+    fn simple(&mut self, kw: &SimpleKw, g: &Given, path: &str) -> Option<Vec<Scalar>> {
+        let items = flatten(&g.value);
+        let items = group_complex(kw, items);
+        let mut out = Vec::with_capacity(items.len());
+        let mut failed = false;
+        for item in &items {
+            match self.scalar(kw, item) {
+                Some(s) => out.push(s),
+                None => {
+                    let expected = kw
+                        .types
+                        .iter()
+                        .map(|t| t.describe())
+                        .collect::<Vec<_>>()
+                        .join(" or ");
+                    let found = match item {
+                        Value::Concept(c) | Value::Formula(c, _) => {
+                            format!("concept {} of type {}", c.name, c.typ)
+                        }
+                        other => format!("{} ({})", other.repr(), other.type_name()),
+                    };
+                    self.error(
+                        DiagKind::WrongType,
+                        g.span,
+                        format!("`{path}`: expected {expected}, found {found}"),
+                    );
+                    failed = true;
+                }
+            }
+        }
+        if failed {
+            return None;
+        }
+        if let Some(into) = &kw.into {
+            for s in out.iter_mut() {
+                if matches!(s, Scalar::Opaque(_)) || into_contains(into, s) {
+                    continue;
+                }
+                if let Some(new) = legacy::value(&self.command, path, s, into) {
+                    self.diags.push(Diagnostic::warning(
+                        DiagKind::Legacy,
+                        g.span,
+                        format!(
+                            "`{path}`: legacy value {} is now {}",
+                            scalar_repr(s),
+                            scalar_repr(&new)
+                        ),
+                    ));
+                    *s = new;
+                    continue;
+                }
+                let shown = scalar_repr(s);
+                let strs: Vec<String> = into
+                    .iter()
+                    .map(|l| match l {
+                        Lit::Str(x) => x.clone(),
+                        other => other.to_string(),
+                    })
+                    .collect();
+                let mut d = Diagnostic::error(
+                    DiagKind::NotInto,
+                    g.span,
+                    format!("`{path}`: value {shown} is not allowed"),
+                );
+                if let Scalar::Str(x) = s {
+                    if let Some(h) = did_you_mean(x, strs.iter().map(|s| s.as_str())) {
+                        d = d.note(h);
+                    }
+                }
+                d = d.note(format!("note: allowed values: {}", allowed_list(into)));
+                self.diags.push(d);
+                failed = true;
+            }
+        }
+        for s in &out {
+            if let Some(x) = s.as_f64() {
+                let lo = kw.val_min.is_some_and(|m| x < m);
+                let hi = kw.val_max.is_some_and(|m| x > m);
+                if lo || hi {
+                    let range = match (kw.val_min, kw.val_max) {
+                        (Some(a), Some(b)) => format!("between {a} and {b}"),
+                        (Some(a), None) => format!("at least {a}"),
+                        (None, Some(b)) => format!("at most {b}"),
+                        _ => String::new(),
+                    };
+                    self.error(
+                        DiagKind::OutOfRange,
+                        g.span,
+                        format!(
+                            "`{path}`: value {} out of range: must be {range}",
+                            scalar_repr(s)
+                        ),
+                    );
+                    failed = true;
+                }
+            }
+        }
+        let n = out.len();
+        if n < kw.min as usize || !kw.max.allows(n) {
+            let expect = if kw.min as usize == 1 && kw.max == aster_catalog::Max::Count(1) {
+                "exactly one value".to_string()
+            } else {
+                format!("between {} and {} values", kw.min, kw.max.describe())
+            };
+            self.error(
+                DiagKind::Count,
+                g.span,
+                format!("`{path}` expects {expect}, {n} given"),
+            );
+            failed = true;
+        }
+        (!failed).then_some(out)
+    }
+
+    fn scalar(&mut self, kw: &SimpleKw, v: &Value) -> Option<Scalar> {
+        let types = &kw.types;
+        let has = |t: &ValueType| types.contains(t);
+        if types.is_empty() || has(&ValueType::Any) {
+            return Some(match v {
+                Value::Int(i) => Scalar::Int(*i),
+                Value::Float(f) => Scalar::Real(*f),
+                Value::Str(s) => Scalar::Str(s.to_string()),
+                Value::Concept(c) | Value::Formula(c, _) => Scalar::Concept(c.clone()),
+                other => Scalar::Opaque(other.to_string()),
+            });
+        }
+        match v {
+            Value::Unknown => Some(Scalar::Opaque("<run-time value>".into())),
+            Value::Int(_) | Value::Bool(_) => {
+                let i = match v {
+                    Value::Bool(b) => *b as i64,
+                    Value::Int(i) => *i,
+                    _ => 0,
+                };
+                if has(&ValueType::Int) || has(&ValueType::Unit) {
+                    Some(Scalar::Int(i))
+                } else if has(&ValueType::Real) {
+                    Some(Scalar::Real(i as f64))
+                } else if has(&ValueType::Complex) {
+                    Some(Scalar::Complex(i as f64, 0.0))
+                } else {
+                    None
+                }
+            }
+            Value::Float(f) => {
+                if has(&ValueType::Real) {
+                    Some(Scalar::Real(*f))
+                } else if has(&ValueType::Complex) {
+                    Some(Scalar::Complex(*f, 0.0))
+                } else {
+                    None
+                }
+            }
+            Value::Complex(a, b) => has(&ValueType::Complex).then_some(Scalar::Complex(*a, *b)),
+            Value::Str(s) => types
+                .iter()
+                .any(|t| {
+                    matches!(
+                        t,
+                        ValueType::Text
+                            | ValueType::GroupMa
+                            | ValueType::GroupNo
+                            | ValueType::Cell
+                            | ValueType::Node
+                    )
+                })
+                .then(|| Scalar::Str(s.to_string())),
+            Value::Concept(c) | Value::Formula(c, _) => {
+                let ok = c.typ == types::UNKNOWN
+                    || types.iter().any(|t| match t {
+                        ValueType::Concept(e) => types::is_a(&c.typ, e),
+                        ValueType::Co => true,
+                        _ => false,
+                    });
+                ok.then(|| Scalar::Concept(c.clone()))
+            }
+            Value::Co(name) => {
+                if !has(&ValueType::Co) {
+                    return None;
+                }
+                let c = ConceptRef {
+                    name: name.to_string(),
+                    id: *self.next_id,
+                    typ: types::UNKNOWN.to_string(),
+                };
+                *self.next_id += 1;
+                self.created.push(c.clone());
+                Some(Scalar::Concept(c))
+            }
+            _ => None,
+        }
+    }
+
+    /// Checks a rule the way code_aster reads its catalog: a default counts
+    /// as present when nothing written competes with it (`TOUT='OUI'` by
+    /// default, unless a `GROUP_MA` is given — then the default is dropped,
+    /// listed in `drop`).
+    fn rule(
+        &mut self,
+        r: &Rule,
+        written: &[&str],
+        defaulted: &[&str],
+        drop: &mut Vec<String>,
+        path: &str,
+        span: Span,
+    ) {
+        let w = |k: &str| written.contains(&k);
+        // `TOUT` competing with groups means "everywhere" when no group is
+        // given (code_aster's implicit `TOUT='OUI'`).
+        let d = |k: &str| defaulted.contains(&k) || (k == "TOUT" && nw_of(r, written) == 0);
+        let nw = r.args.iter().filter(|a| w(a)).count();
+        let nd = r.args.iter().filter(|a| d(a)).count();
+        let list = r.args.join(", ");
+        let first = r.args.first().map(|s| s.as_str()).unwrap_or("");
+        let others = r.args.get(1..).unwrap_or(&[]).join(", ");
+        let mut drop_defaults = |drop: &mut Vec<String>| {
+            drop.extend(r.args.iter().filter(|a| d(a)).cloned());
+        };
+        let msg = match r.kind {
+            RuleKind::ExactlyOne => {
+                if nw == 1 {
+                    drop_defaults(drop);
+                    None
+                } else if nw > 1 {
+                    Some(format!("exactly one of {list} is required ({nw} given)"))
+                } else if nd == 1 {
+                    None
+                } else {
+                    Some(format!("exactly one of {list} is required (none given)"))
+                }
+            }
+            RuleKind::AtMostOne => {
+                if nw > 1 {
+                    Some(format!("at most one of {list} is allowed ({nw} given)"))
+                } else {
+                    if nw == 1 {
+                        drop_defaults(drop);
+                    }
+                    None
+                }
+            }
+            RuleKind::AtLeastOne | RuleKind::NotEmpty => {
+                (nw + nd == 0).then(|| format!("at least one of {list} is required"))
+            }
+            RuleKind::AllTogether => {
+                let n = r.args.iter().filter(|a| w(a) || d(a)).count();
+                (nw > 0 && n != r.args.len())
+                    .then(|| format!("{list} go together: give all of them or none"))
+            }
+            RuleKind::OnlyFirstPresent => {
+                let others_written = r.args[1.min(r.args.len())..].iter().any(|a| w(a));
+                if w(first) && others_written {
+                    Some(format!("when {first} is given, {others} must not be"))
+                } else {
+                    if w(first) {
+                        drop.extend(r.args[1..].iter().filter(|a| d(a)).cloned());
+                    } else if others_written && d(first) {
+                        drop.push(first.to_string());
+                    }
+                    None
+                }
+            }
+            RuleKind::IfFirstAllPresent => {
+                let all = r.args[1.min(r.args.len())..].iter().all(|a| w(a) || d(a));
+                (w(first) && !all)
+                    .then(|| format!("when {first} is given, {others} must be given too"))
+            }
+        };
+        if let Some(m) = msg {
+            self.error(DiagKind::Rule, span, format!("`{path}`: {m}"));
+        }
+    }
+}
+
+fn nw_of(r: &Rule, written: &[&str]) -> usize {
+    r.args
+        .iter()
+        .filter(|a| written.contains(&a.as_str()))
+        .count()
+}
+
+/// `('RI', re, im)` / `('MP', mod, phase)` given to a complex keyword.
+fn group_complex(kw: &SimpleKw, items: Vec<Value>) -> Vec<Value> {
+    if !kw.types.contains(&ValueType::Complex) {
+        return items;
+    }
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < items.len() {
+        match (
+            &items[i],
+            items.get(i + 1).and_then(Value::as_f64),
+            items.get(i + 2).and_then(Value::as_f64),
+        ) {
+            (Value::Str(s), Some(a), Some(b)) if &**s == "RI" => {
+                out.push(Value::Complex(a, b));
+                i += 3;
+            }
+            (Value::Str(s), Some(m), Some(p)) if &**s == "MP" => {
+                let p = p.to_radians();
+                out.push(Value::Complex(m * p.cos(), m * p.sin()));
+                i += 3;
+            }
+            (v, _, _) => {
+                out.push(v.clone());
+                i += 1;
+            }
+        }
+    }
+    out
+}
+
+fn default_scalar(l: &Lit, kw: &SimpleKw) -> Scalar {
+    match l {
+        Lit::Int(i)
+            if kw.types.contains(&ValueType::Real) && !kw.types.contains(&ValueType::Int) =>
+        {
+            Scalar::Real(*i as f64)
+        }
+        other => lit_scalar(other),
+    }
+}
+
+fn into_contains(into: &[Lit], s: &Scalar) -> bool {
+    into.iter().any(|l| match (l, s) {
+        (Lit::Str(a), Scalar::Str(b)) => a == b,
+        (Lit::Int(a), Scalar::Int(b)) => a == b,
+        (l, s) => match (l, s.as_f64()) {
+            (Lit::Int(a), Some(b)) => *a as f64 == b,
+            (Lit::Real(a), Some(b)) => *a == b,
+            _ => false,
+        },
+    })
+}
+
+pub(crate) fn scalar_repr(s: &Scalar) -> String {
+    match s {
+        Scalar::Int(i) => i.to_string(),
+        Scalar::Real(r) => crate::value::float_str(*r),
+        Scalar::Complex(a, b) => format!("({a}{b:+}j)"),
+        Scalar::Str(s) => format!("'{s}'"),
+        Scalar::Concept(c) => c.name.clone(),
+        Scalar::Opaque(o) => o.clone(),
+    }
+}
+
+/// The innermost block of a level that declares `name`.
+fn block_of<'e>(entries: &'e [Entry], name: &str) -> Option<&'e Block> {
+    for e in entries {
+        if let Node::Block(b) = &e.node {
+            if let Some(inner) = block_of(&b.keywords, name) {
+                return Some(inner);
+            }
+            if b.keywords
+                .iter()
+                .any(|k| k.name == name && !matches!(k.node, Node::Block(_)))
+            {
+                return Some(b);
+            }
+        }
+    }
+    None
+}

@@ -1,0 +1,83 @@
+//! One erroneous file per kind of diagnostic (tests/errors/*.comm): the
+//! rendered diagnostics are snapshotted, and each file must produce the
+//! kind of error it is named after.
+
+use aster_eval::{check_source, DiagKind};
+use aster_syntax::CodeMap;
+use std::path::Path;
+
+fn check(name: &str) -> (String, Vec<DiagKind>, bool) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/errors")
+        .join(name);
+    let source =
+        std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let map = CodeMap::new(format!("tests/errors/{name}"), source);
+    let report = check_source(&map, false);
+    let kinds = report.diagnostics.0.iter().map(|d| d.kind).collect();
+    (report.diagnostics.render(&map), kinds, report.ok())
+}
+
+macro_rules! case {
+    ($test:ident, $file:literal, $kind:expr) => {
+        #[test]
+        fn $test() {
+            let (text, kinds, ok) = check($file);
+            assert!(!ok, "{} should not check clean:\n{text}", $file);
+            assert!(
+                kinds.contains(&$kind),
+                "{}: expected {:?}, got {kinds:?}\n{text}",
+                $file,
+                $kind
+            );
+            insta::assert_snapshot!(stringify!($test), text);
+        }
+    };
+}
+
+case!(
+    unknown_keyword,
+    "unknown_keyword.comm",
+    DiagKind::UnknownKeyword
+);
+case!(
+    missing_keyword,
+    "missing_keyword.comm",
+    DiagKind::MissingKeyword
+);
+case!(
+    wrong_concept_type,
+    "wrong_concept_type.comm",
+    DiagKind::WrongType
+);
+case!(wrong_type, "wrong_type.comm", DiagKind::WrongType);
+case!(not_into, "not_into.comm", DiagKind::NotInto);
+case!(too_many_values, "too_many_values.comm", DiagKind::Count);
+case!(out_of_range, "out_of_range.comm", DiagKind::OutOfRange);
+case!(rule_violated, "rule_violated.comm", DiagKind::Rule);
+case!(
+    not_applicable,
+    "not_applicable.comm",
+    DiagKind::KeywordNotApplicable
+);
+case!(
+    unknown_command,
+    "unknown_command.comm",
+    DiagKind::UnknownCommand
+);
+case!(not_supported, "not_supported.comm", DiagKind::NotSupported);
+case!(undefined_name, "undefined_name.comm", DiagKind::Python);
+case!(bad_reuse, "bad_reuse.comm", DiagKind::Reuse);
+case!(syntax_error, "syntax_error.comm", DiagKind::Syntax);
+
+#[test]
+fn legacy_file_checks_with_warnings() {
+    let (text, kinds, ok) = check("legacy_v11.comm");
+    assert!(ok, "legacy file must check clean:\n{text}");
+    assert!(
+        kinds.iter().all(|k| *k == DiagKind::Legacy),
+        "{kinds:?}\n{text}"
+    );
+    assert!(kinds.len() >= 6, "{text}");
+    insta::assert_snapshot!("legacy_v11", text);
+}

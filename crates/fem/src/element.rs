@@ -1,0 +1,252 @@
+//! Element computations: strain-displacement matrices at Gauss points,
+//! stiffness matrices, stresses and spring forces.
+
+use crate::error::FemError;
+use crate::material::{Elastic, Hypothesis};
+use crate::model::{ElementKind, Frame, Model};
+use crate::shape::{self, GaussPoint};
+use aster_mesh::{CellId, CellType, Mesh};
+use nalgebra::{DMatrix, DVector, Matrix2, Matrix3};
+
+/// One Gauss point of a continuum element.
+pub struct GaussData {
+    /// Strain-displacement matrix (ncomp × element DOFs), engineering shear.
+    pub b: DMatrix<f64>,
+    /// Integration weight × |det J| (× r in AXIS).
+    pub w: f64,
+    /// Physical coordinates of the point.
+    pub x: [f64; 3],
+}
+
+/// DOF indices of an element's nodes (node-major, model components).
+pub fn element_dofs(model: &Model, cell: CellId) -> Vec<usize> {
+    let nodes = &model.mesh().cell(cell).nodes;
+    let ncomp = model.dofs().comps_per_node();
+    let mut v = Vec::with_capacity(nodes.len() * ncomp);
+    for &n in nodes {
+        // Every node of a model element is numbered (Model::new).
+        let first = model.dofs().node_first(n).unwrap_or(0);
+        v.extend(first..first + ncomp);
+    }
+    v
+}
+
+/// Shape values, physical derivatives, det J and physical coordinates.
+type PointData = (Vec<f64>, Vec<[f64; 3]>, f64, [f64; 3]);
+
+/// Jacobian, physical derivatives and |det J| at one reference point.
+/// Clockwise cells have det J < 0: derivatives stay exact (J⁻¹ handles the
+/// sign) and the measure uses |det J|, as code_aster does.
+fn physical_derivatives(
+    mesh: &Mesh,
+    cell: CellId,
+    dim: usize,
+    gp: &GaussPoint,
+) -> Result<PointData, String> {
+    let c = mesh.cell(cell);
+    let s = shape::shape(c.ty, gp.xi);
+    let mut x = [0.0; 3];
+    for (i, &n) in c.nodes.iter().enumerate() {
+        let p = mesh.coord(n);
+        for k in 0..3 {
+            x[k] += s.n[i] * p[k];
+        }
+    }
+    let mut dn = vec![[0.0; 3]; c.nodes.len()];
+    let det: f64;
+    if dim == 2 {
+        let mut j = Matrix2::zeros();
+        for (i, &n) in c.nodes.iter().enumerate() {
+            let p = mesh.coord(n);
+            for a in 0..2 {
+                for b in 0..2 {
+                    j[(a, b)] += s.dn[i][a] * p[b];
+                }
+            }
+        }
+        det = j.determinant();
+        let inv = j.try_inverse().ok_or("degenerate (zero Jacobian)")?;
+        for i in 0..c.nodes.len() {
+            for b in 0..2 {
+                dn[i][b] = inv[(b, 0)] * s.dn[i][0] + inv[(b, 1)] * s.dn[i][1];
+            }
+        }
+    } else {
+        let mut j = Matrix3::zeros();
+        for (i, &n) in c.nodes.iter().enumerate() {
+            let p = mesh.coord(n);
+            for a in 0..3 {
+                for b in 0..3 {
+                    j[(a, b)] += s.dn[i][a] * p[b];
+                }
+            }
+        }
+        det = j.determinant();
+        let inv = j.try_inverse().ok_or("degenerate (zero Jacobian)")?;
+        for i in 0..c.nodes.len() {
+            for b in 0..3 {
+                dn[i][b] = (0..3).map(|a| inv[(b, a)] * s.dn[i][a]).sum();
+            }
+        }
+    }
+    if !det.is_finite() || det == 0. {
+        return Err("degenerate (zero Jacobian)".into());
+    }
+    Ok((s.n, dn, det, x))
+}
+
+/// Gauss data of a continuum element.
+pub fn continuum_gauss(
+    mesh: &Mesh,
+    cell: CellId,
+    hyp: Hypothesis,
+) -> Result<Vec<GaussData>, String> {
+    let c = mesh.cell(cell);
+    let dim = hyp.dim();
+    let nn = c.nodes.len();
+    let ncomp = hyp.ncomp();
+    let scheme = shape::rigi_scheme(c.ty);
+    let mut out = Vec::with_capacity(scheme.len());
+    let mut sign = 0.0f64;
+    for gp in &scheme {
+        let (n, dn, det, x) = physical_derivatives(mesh, cell, dim, gp)?;
+        if sign != 0. && sign * det < 0. {
+            return Err("distorted: its Jacobian changes sign inside the cell".into());
+        }
+        sign = det.signum();
+        let mut b = DMatrix::zeros(ncomp, nn * dim);
+        let mut w = gp.weight * det.abs();
+        if dim == 2 {
+            for i in 0..nn {
+                let (cx, cy) = (2 * i, 2 * i + 1);
+                b[(0, cx)] = dn[i][0];
+                b[(1, cy)] = dn[i][1];
+                b[(3, cx)] = dn[i][1];
+                b[(3, cy)] = dn[i][0];
+            }
+            if hyp == Hypothesis::Axisymmetric {
+                let r = x[0];
+                if r <= 0. {
+                    return Err(format!(
+                        "has a Gauss point at radius {r}: AXIS needs the mesh in x ≥ 0"
+                    ));
+                }
+                for i in 0..nn {
+                    b[(2, 2 * i)] = n[i] / r;
+                }
+                w *= r;
+            }
+        } else {
+            for i in 0..nn {
+                let (cx, cy, cz) = (3 * i, 3 * i + 1, 3 * i + 2);
+                b[(0, cx)] = dn[i][0];
+                b[(1, cy)] = dn[i][1];
+                b[(2, cz)] = dn[i][2];
+                b[(3, cx)] = dn[i][1];
+                b[(3, cy)] = dn[i][0];
+                b[(4, cx)] = dn[i][2];
+                b[(4, cz)] = dn[i][0];
+                b[(5, cy)] = dn[i][2];
+                b[(5, cz)] = dn[i][1];
+            }
+        }
+        out.push(GaussData { b, w, x });
+    }
+    Ok(out)
+}
+
+/// Continuum stiffness Σ Bᵀ D B w.
+pub fn continuum_stiffness(
+    gauss: &[GaussData],
+    material: &Elastic,
+    hyp: Hypothesis,
+) -> DMatrix<f64> {
+    let d = material.hooke(hyp);
+    let ndof = gauss.first().map(|g| g.b.ncols()).unwrap_or(0);
+    let mut k = DMatrix::zeros(ndof, ndof);
+    for g in gauss {
+        let db = &d * &g.b;
+        k.gemm_tr(g.w, &g.b, &db, 1.0);
+    }
+    k
+}
+
+/// Rotation from global to local axes of a SEG2 spring (rows = local axes).
+fn spring_rotation(mesh: &Mesh, cell: CellId, dim: usize, frame: Frame) -> DMatrix<f64> {
+    if frame == Frame::Global {
+        return DMatrix::identity(dim, dim);
+    }
+    let c = mesh.cell(cell);
+    if c.ty != CellType::SEG2 {
+        return DMatrix::identity(dim, dim);
+    }
+    let (a, b) = (mesh.coord(c.nodes[0]), mesh.coord(c.nodes[1]));
+    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    if len == 0. {
+        return DMatrix::identity(dim, dim);
+    }
+    if dim == 2 {
+        let (cx, cy) = (d[0] / len, d[1] / len);
+        DMatrix::from_row_slice(2, 2, &[cx, cy, -cy, cx])
+    } else {
+        // Nautical angles α (about Z), β (about the rotated Y), γ = 0.
+        let alpha = d[1].atan2(d[0]);
+        let beta = -(d[2] / len).clamp(-1., 1.).asin();
+        let (sa, ca, sb, cb) = (alpha.sin(), alpha.cos(), beta.sin(), beta.cos());
+        DMatrix::from_row_slice(
+            3,
+            3,
+            &[cb * ca, cb * sa, -sb, -sa, ca, 0., sb * ca, sb * sa, cb],
+        )
+    }
+}
+
+/// Global stiffness of a spring element (SEG2: 2·dim, POI1: dim DOFs) and
+/// the global→local rotation used for its forces.
+pub fn spring_stiffness(
+    mesh: &Mesh,
+    cell: CellId,
+    stiffness: &[f64],
+    frame: Frame,
+) -> (DMatrix<f64>, DMatrix<f64>) {
+    let dim = stiffness.len();
+    let r = spring_rotation(mesh, cell, dim, frame);
+    let kl = DMatrix::from_diagonal(&DVector::from_column_slice(stiffness));
+    let kg = r.transpose() * kl * &r;
+    let nn = mesh.cell(cell).nodes.len();
+    if nn == 1 {
+        return (kg, r);
+    }
+    let mut k = DMatrix::zeros(2 * dim, 2 * dim);
+    for i in 0..dim {
+        for j in 0..dim {
+            let v = kg[(i, j)];
+            k[(i, j)] = v;
+            k[(dim + i, dim + j)] = v;
+            k[(i, dim + j)] = -v;
+            k[(dim + i, j)] = -v;
+        }
+    }
+    (k, r)
+}
+
+/// Stiffness matrix of any element of the model (None for boundary cells).
+pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f64>>, FemError> {
+    let el = &model.elements()[index];
+    match &el.kind {
+        ElementKind::Continuum {
+            hypothesis,
+            material,
+        } => {
+            let g = continuum_gauss(model.mesh(), el.cell, *hypothesis).map_err(|m| {
+                FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
+            })?;
+            Ok(Some(continuum_stiffness(&g, material, *hypothesis)))
+        }
+        ElementKind::Spring { stiffness, frame } => Ok(Some(
+            spring_stiffness(model.mesh(), el.cell, stiffness, *frame).0,
+        )),
+        ElementKind::Boundary => Ok(None),
+    }
+}

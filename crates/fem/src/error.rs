@@ -1,0 +1,73 @@
+//! Errors of the numerical core. Every failure a user can provoke (a missing
+//! support, a bad cell, a non-converging Newton…) is a value of [`FemError`]
+//! whose message says what failed and, where possible, where.
+
+use std::fmt;
+
+/// An error of model building, assembly, solving or post-processing.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FemError {
+    /// The model or its data are inconsistent (bad cell type for an element,
+    /// degenerate cell, missing material, unknown DOF…).
+    Model(String),
+    /// The assembled system is singular: the listed DOFs (e.g. `N3 DX`) are
+    /// not held by anything.
+    Singular { free_dofs: Vec<String> },
+    /// The linear solve finished but its residual is poor (ill-conditioning).
+    PoorSolve { relative_residual: f64 },
+    /// Newton did not converge within the allowed iterations.
+    NoConvergence {
+        time: f64,
+        iterations: usize,
+        resi_rela: f64,
+        resi_maxi: f64,
+    },
+    /// The active-set iterations on unilateral conditions cycle or exceed
+    /// their bound.
+    ActiveSet { time: f64, message: String },
+    /// An error raised by a unilateral source (e.g. contact pairing).
+    Source(String),
+}
+
+impl fmt::Display for FemError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FemError::Model(m) => write!(f, "{m}"),
+            FemError::Singular { free_dofs } => {
+                const SHOWN: usize = 12;
+                write!(
+                    f,
+                    "singular system: the model is not held; free degrees of freedom: "
+                )?;
+                let shown: Vec<&str> = free_dofs.iter().take(SHOWN).map(|s| s.as_str()).collect();
+                write!(f, "{}", shown.join(", "))?;
+                if free_dofs.len() > SHOWN {
+                    write!(f, " and {} more", free_dofs.len() - SHOWN)?;
+                }
+                write!(
+                    f,
+                    " (add a DDL_IMPO / MECA_IMPO or a spring on these degrees of freedom)"
+                )
+            }
+            FemError::PoorSolve { relative_residual } => write!(
+                f,
+                "linear solve inaccurate: relative residual {relative_residual:.3e} after refinement (system badly conditioned)"
+            ),
+            FemError::NoConvergence {
+                time,
+                iterations,
+                resi_rela,
+                resi_maxi,
+            } => write!(
+                f,
+                "Newton did not converge at time {time}: after {iterations} iterations RESI_GLOB_RELA = {resi_rela:.3e}, RESI_GLOB_MAXI = {resi_maxi:.3e} (raise ITER_GLOB_MAXI or check the loading)"
+            ),
+            FemError::ActiveSet { time, message } => {
+                write!(f, "unilateral conditions at time {time}: {message}")
+            }
+            FemError::Source(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl std::error::Error for FemError {}

@@ -1,0 +1,400 @@
+//! Loads and kinematic conditions, each scaled by its own time multiplier
+//! (code_aster's `EXCIT=_F(CHARGE=…, FONC_MULT=…)`).
+
+use crate::dof::Dof;
+use crate::error::FemError;
+use crate::material::Hypothesis;
+use crate::model::{ElementKind, Model};
+use crate::shape;
+use aster_mesh::{CellId, CellType, NodeId};
+use std::collections::HashMap;
+use std::fmt;
+use std::sync::Arc;
+
+type TimeFn = dyn Fn(f64) -> Result<f64, String> + Send + Sync;
+
+/// A time multiplier f(t) (`FONC_MULT`); the default is f ≡ 1.
+#[derive(Clone, Default)]
+pub struct Multiplier(Option<Arc<TimeFn>>);
+
+impl Multiplier {
+    /// f ≡ 1.
+    pub fn one() -> Multiplier {
+        Multiplier(None)
+    }
+
+    /// f(t) = c.
+    pub fn constant(c: f64) -> Multiplier {
+        Multiplier(Some(Arc::new(move |_| Ok(c))))
+    }
+
+    /// Any function; an `Err` (e.g. evaluation outside an `EXCLU` range) is
+    /// reported with the time and the load.
+    pub fn from_fn(f: impl Fn(f64) -> Result<f64, String> + Send + Sync + 'static) -> Multiplier {
+        Multiplier(Some(Arc::new(f)))
+    }
+
+    pub fn eval(&self, t: f64) -> Result<f64, FemError> {
+        match &self.0 {
+            None => Ok(1.0),
+            Some(f) => {
+                f(t).map_err(|m| FemError::Model(format!("load multiplier at time {t}: {m}")))
+            }
+        }
+    }
+}
+
+impl fmt::Debug for Multiplier {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            None => write!(f, "Multiplier(1)"),
+            Some(_) => write!(f, "Multiplier(fn)"),
+        }
+    }
+}
+
+/// One load or condition (its value is multiplied by f(t)).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Load {
+    /// Imposed value by elimination (`AFFE_CHAR_CINE/MECA_IMPO`).
+    Eliminated { dof: Dof, value: f64 },
+    /// Imposed value dualised with a Lagrange multiplier (`DDL_IMPO`); the
+    /// multiplier is the reaction.
+    Imposed { dof: Dof, value: f64 },
+    /// Dualised linear relation Σ cᵢ uᵢ = rhs (`LIAISON_DDL`).
+    Relation { terms: Vec<(Dof, f64)>, rhs: f64 },
+    /// Nodal force (`FORCE_NODALE`).
+    NodalForce { dof: Dof, value: f64 },
+    /// Distributed force per unit length (2D edge) or area (3D face)
+    /// (`FORCE_CONTOUR`, `FORCE_FACE`), global components.
+    SurfaceForce { cell: CellId, force: [f64; 3] },
+    /// Pressure (`PRES_REP`): traction −p·n with n the outward normal.
+    Pressure { cell: CellId, pressure: f64 },
+}
+
+/// A load with its multiplier.
+#[derive(Clone, Debug)]
+pub struct LoadItem {
+    pub load: Load,
+    pub mult: Multiplier,
+}
+
+/// All loads and conditions of an analysis.
+#[derive(Clone, Debug, Default)]
+pub struct Loads {
+    pub items: Vec<LoadItem>,
+}
+
+/// A dualised equality row Σ cᵢ u[i] = rhs over DOF indices.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EqualityRow {
+    pub terms: Vec<(usize, f64)>,
+    pub rhs: f64,
+    /// Index of the load item that produced it.
+    pub item: usize,
+}
+
+impl Loads {
+    pub fn new() -> Loads {
+        Loads::default()
+    }
+
+    /// Adds a load with a multiplier.
+    pub fn add(&mut self, load: Load, mult: Multiplier) -> &mut Loads {
+        self.items.push(LoadItem { load, mult });
+        self
+    }
+
+    /// Adds a load with f ≡ 1.
+    pub fn push(&mut self, load: Load) -> &mut Loads {
+        self.add(load, Multiplier::one())
+    }
+
+    /// Checks that every DOF and cell a load refers to exists in the model.
+    pub fn validate(&self, model: &Model) -> Result<(), FemError> {
+        let check = |dof: Dof, what: &str| -> Result<(), FemError> {
+            if model.dofs().index(dof).is_some() {
+                return Ok(());
+            }
+            let mesh = model.mesh();
+            if dof.node.0 as usize >= mesh.node_count() {
+                return Err(FemError::Model(format!(
+                    "{what} on node #{} which the mesh does not have",
+                    dof.node.0 + 1
+                )));
+            }
+            if !model.dofs().has_node(dof.node) {
+                return Err(FemError::Model(format!(
+                    "{what} on {}: node {} carries no element of the model, so it has no degrees of freedom",
+                    dof.describe(mesh),
+                    mesh.node_names.get(dof.node.0 as usize).map(String::as_str).unwrap_or("?")
+                )));
+            }
+            let comps: Vec<&str> = model.dofs().comps().iter().map(|c| c.name()).collect();
+            Err(FemError::Model(format!(
+                "{what} on {}: the model's nodes carry only {}",
+                dof.describe(mesh),
+                comps.join(", ")
+            )))
+        };
+        for item in &self.items {
+            match &item.load {
+                Load::Eliminated { dof, .. } => check(*dof, "imposed value (MECA_IMPO)")?,
+                Load::Imposed { dof, .. } => check(*dof, "imposed value (DDL_IMPO)")?,
+                Load::NodalForce { dof, .. } => check(*dof, "nodal force")?,
+                Load::Relation { terms, .. } => {
+                    for (d, _) in terms {
+                        check(*d, "linear relation (LIAISON_DDL)")?;
+                    }
+                }
+                Load::SurfaceForce { cell, .. } | Load::Pressure { cell, .. } => {
+                    let mesh = model.mesh();
+                    let Some(c) = mesh.cells.get(cell.0 as usize) else {
+                        return Err(FemError::Model(format!(
+                            "distributed load on cell #{} which the mesh does not have",
+                            cell.0 + 1
+                        )));
+                    };
+                    let expected_dim = model.dim() - 1;
+                    if c.ty.dim() as usize != expected_dim || !shape::supported(c.ty) {
+                        return Err(FemError::Model(format!(
+                            "distributed load on cell {} ({}): expected a boundary {} of the {}D model",
+                            model.cell_name(*cell),
+                            c.ty.name(),
+                            if expected_dim == 1 { "segment (SEG2, SEG3)" } else { "face (TRIA3, QUAD4, TRIA6, QUAD8)" },
+                            model.dim()
+                        )));
+                    }
+                    for &n in &c.nodes {
+                        if !model.dofs().has_node(n) {
+                            return Err(FemError::Model(format!(
+                                "distributed load on cell {}: its node {} carries no element of the model",
+                                model.cell_name(*cell),
+                                mesh.node_names.get(n.0 as usize).map(String::as_str).unwrap_or("?")
+                            )));
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Eliminated DOFs and their values at time t (index → value). Two
+    /// conditions imposing different values on one DOF are an error.
+    pub fn eliminated(&self, model: &Model, t: f64) -> Result<HashMap<usize, f64>, FemError> {
+        let mut out: HashMap<usize, f64> = HashMap::new();
+        for item in &self.items {
+            if let Load::Eliminated { dof, value } = item.load {
+                let i = index(model, dof)?;
+                let v = value * item.mult.eval(t)?;
+                if let Some(prev) = out.insert(i, v) {
+                    if (prev - v).abs() > 1e-12 * prev.abs().max(v.abs()) {
+                        return Err(FemError::Model(format!(
+                            "{} is imposed twice by elimination with different values ({prev} and {v})",
+                            dof.describe(model.mesh())
+                        )));
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Dualised equality rows at time t.
+    pub fn equality_rows(&self, model: &Model, t: f64) -> Result<Vec<EqualityRow>, FemError> {
+        let mut rows = Vec::new();
+        for (k, item) in self.items.iter().enumerate() {
+            match &item.load {
+                Load::Imposed { dof, value } => rows.push(EqualityRow {
+                    terms: vec![(index(model, *dof)?, 1.0)],
+                    rhs: value * item.mult.eval(t)?,
+                    item: k,
+                }),
+                Load::Relation { terms, rhs } => {
+                    let mut ts = Vec::with_capacity(terms.len());
+                    for (d, c) in terms {
+                        ts.push((index(model, *d)?, *c));
+                    }
+                    rows.push(EqualityRow {
+                        terms: ts,
+                        rhs: rhs * item.mult.eval(t)?,
+                        item: k,
+                    })
+                }
+                _ => {}
+            }
+        }
+        Ok(rows)
+    }
+
+    /// The applied external force vector at time t (nodal forces, surface
+    /// forces and pressures; not reactions).
+    pub fn external_forces(&self, model: &Model, t: f64) -> Result<Vec<f64>, FemError> {
+        let mut f = vec![0.0; model.dofs().len()];
+        let mut faces: Option<HashMap<Vec<NodeId>, [f64; 3]>> = None;
+        for item in &self.items {
+            match &item.load {
+                Load::NodalForce { dof, value } => {
+                    f[index(model, *dof)?] += value * item.mult.eval(t)?;
+                }
+                Load::SurfaceForce { cell, force } => {
+                    let m = item.mult.eval(t)?;
+                    let tr = [force[0] * m, force[1] * m, force[2] * m];
+                    surface_load(model, *cell, |_, _| tr, &mut f)?;
+                }
+                Load::Pressure { cell, pressure } => {
+                    let p = pressure * item.mult.eval(t)?;
+                    let adj = faces.get_or_insert_with(|| adjacent_centroids(model));
+                    let c = model.mesh().cell(*cell);
+                    let mut key: Vec<NodeId> =
+                        c.nodes.iter().take(corner_count(c.ty)).copied().collect();
+                    key.sort();
+                    let inside = adj.get(&key).copied();
+                    surface_load(
+                        model,
+                        *cell,
+                        |x, n| {
+                            let mut n = *n;
+                            if let Some(ctr) = inside {
+                                let d: f64 = (0..3).map(|k| (x[k] - ctr[k]) * n[k]).sum();
+                                if d < 0. {
+                                    n = [-n[0], -n[1], -n[2]];
+                                }
+                            }
+                            [-p * n[0], -p * n[1], -p * n[2]]
+                        },
+                        &mut f,
+                    )?;
+                }
+                _ => {}
+            }
+        }
+        Ok(f)
+    }
+}
+
+fn index(model: &Model, dof: Dof) -> Result<usize, FemError> {
+    model.dofs().index(dof).ok_or_else(|| {
+        FemError::Model(format!(
+            "{} is not a degree of freedom of the model",
+            dof.describe(model.mesh())
+        ))
+    })
+}
+
+fn corner_count(ty: CellType) -> usize {
+    match ty {
+        CellType::SEG2 | CellType::SEG3 => 2,
+        CellType::TRIA3 | CellType::TRIA6 => 3,
+        CellType::QUAD4 | CellType::QUAD8 => 4,
+        other => other.node_count(),
+    }
+}
+
+/// Boundary facets of continuum elements (sorted corner nodes) → centroid of
+/// the element they bound, to orient pressure normals outward.
+fn adjacent_centroids(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
+    let mesh = model.mesh();
+    let mut map = HashMap::new();
+    for el in model.elements() {
+        if !matches!(el.kind, ElementKind::Continuum { .. }) {
+            continue;
+        }
+        let c = mesh.cell(el.cell);
+        let nc = corner_count(c.ty);
+        let mut ctr = [0.0; 3];
+        for &n in &c.nodes[..nc] {
+            let p = mesh.coord(n);
+            for k in 0..3 {
+                ctr[k] += p[k] / nc as f64;
+            }
+        }
+        let facets: Vec<Vec<usize>> = match c.ty {
+            CellType::TRIA3 | CellType::TRIA6 => vec![vec![0, 1], vec![1, 2], vec![2, 0]],
+            CellType::QUAD4 | CellType::QUAD8 => {
+                vec![vec![0, 1], vec![1, 2], vec![2, 3], vec![3, 0]]
+            }
+            CellType::TETRA4 => vec![vec![0, 1, 2], vec![0, 1, 3], vec![1, 2, 3], vec![0, 2, 3]],
+            CellType::HEXA8 => vec![
+                vec![0, 1, 2, 3],
+                vec![4, 5, 6, 7],
+                vec![0, 1, 5, 4],
+                vec![1, 2, 6, 5],
+                vec![2, 3, 7, 6],
+                vec![3, 0, 4, 7],
+            ],
+            _ => vec![],
+        };
+        for f in facets {
+            let mut key: Vec<NodeId> = f.iter().map(|&i| c.nodes[i]).collect();
+            key.sort();
+            map.insert(key, ctr);
+        }
+    }
+    map
+}
+
+/// Integrates a traction t(x, n) over a boundary cell into `f`. In 2D the
+/// normal is (t_y, −t_x) of the tangent (node 1 → node 2); in 3D it is
+/// ∂x/∂ξ × ∂x/∂η. Callers re-orient it when they need the outward one.
+fn surface_load(
+    model: &Model,
+    cell: CellId,
+    traction: impl Fn(&[f64; 3], &[f64; 3]) -> [f64; 3],
+    f: &mut [f64],
+) -> Result<(), FemError> {
+    let mesh = model.mesh();
+    let c = mesh.cell(cell);
+    let dim = model.dim();
+    let axis = model.hypothesis() == Some(Hypothesis::Axisymmetric);
+    for gp in shape::load_scheme(c.ty) {
+        let s = shape::shape(c.ty, gp.xi);
+        let mut x = [0.0; 3];
+        let mut t1 = [0.0; 3];
+        let mut t2 = [0.0; 3];
+        for (i, &n) in c.nodes.iter().enumerate() {
+            let p = mesh.coord(n);
+            for k in 0..3 {
+                x[k] += s.n[i] * p[k];
+                t1[k] += s.dn[i][0] * p[k];
+                t2[k] += s.dn[i][1] * p[k];
+            }
+        }
+        let (normal, jac) = if dim == 2 {
+            let l = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
+            ([t1[1] / l, -t1[0] / l, 0.], l)
+        } else {
+            let n = [
+                t1[1] * t2[2] - t1[2] * t2[1],
+                t1[2] * t2[0] - t1[0] * t2[2],
+                t1[0] * t2[1] - t1[1] * t2[0],
+            ];
+            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            ([n[0] / l, n[1] / l, n[2] / l], l)
+        };
+        if jac.is_nan() || jac <= 0. {
+            return Err(FemError::Model(format!(
+                "distributed load on degenerate cell {}",
+                model.cell_name(cell)
+            )));
+        }
+        let mut w = gp.weight * jac;
+        if axis {
+            w *= x[0];
+        }
+        let tr = traction(&x, &normal);
+        for (i, &n) in c.nodes.iter().enumerate() {
+            let first = model.dofs().node_first(n).ok_or_else(|| {
+                FemError::Model(format!(
+                    "distributed load on cell {}: a node carries no element of the model",
+                    model.cell_name(cell)
+                ))
+            })?;
+            for k in 0..dim {
+                f[first + k] += w * s.n[i] * tr[k];
+            }
+        }
+    }
+    Ok(())
+}

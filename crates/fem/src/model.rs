@@ -1,0 +1,255 @@
+//! The finite-element model: which cells carry which element, and the DOF
+//! numbering that follows from it.
+
+use crate::dof::{Comp, DofNumbering};
+use crate::error::FemError;
+use crate::material::{Elastic, Hypothesis};
+use crate::shape;
+use aster_mesh::{CellId, CellType, Mesh};
+use std::sync::Arc;
+
+/// Frame in which spring stiffnesses are given (`REPERE`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Frame {
+    /// Global axes.
+    Global,
+    /// Element axes: x along the segment (node 1 → node 2), y its normal
+    /// (2D), or code_aster's default nautical angles with γ = 0 (3D).
+    Local,
+}
+
+/// What a cell carries.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ElementKind {
+    /// Continuum element (TRIA3, QUAD4, TRIA6, QUAD8 in 2D; TETRA4, HEXA8 in 3D).
+    Continuum {
+        hypothesis: Hypothesis,
+        material: Elastic,
+    },
+    /// Translational spring: on SEG2 between its nodes (`K_T_D_L`), on POI1
+    /// between the node and the ground (`K_T_D_N`). `stiffness` has 2 values
+    /// (`2D_DIS_T`: kx, ky) or 3 (`DIS_T`: kx, ky, kz).
+    Spring { stiffness: Vec<f64>, frame: Frame },
+    /// A cell of the model that carries no stiffness (e.g. a boundary SEG2
+    /// of a D_PLAN model, used by edge loads); its nodes get DOFs.
+    Boundary,
+}
+
+/// One element: a mesh cell and what it carries.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Element {
+    pub cell: CellId,
+    pub kind: ElementKind,
+}
+
+/// The model: mesh, elements and DOF numbering.
+#[derive(Clone, Debug)]
+pub struct Model {
+    mesh: Arc<Mesh>,
+    elements: Vec<Element>,
+    dofs: DofNumbering,
+    dim: usize,
+    hypothesis: Option<Hypothesis>,
+}
+
+impl Model {
+    /// Builds a model and numbers its DOFs. Errors name the offending cell.
+    pub fn new(mesh: impl Into<Arc<Mesh>>, elements: Vec<Element>) -> Result<Model, FemError> {
+        let mesh: Arc<Mesh> = mesh.into();
+        let mut hypothesis: Option<Hypothesis> = None;
+        let mut spring_dim: Option<usize> = None;
+        let cell_name = |id: CellId| {
+            mesh.cell_names
+                .get(id.0 as usize)
+                .cloned()
+                .unwrap_or_else(|| format!("#{}", id.0 + 1))
+        };
+        for el in &elements {
+            let Some(cell) = mesh.cells.get(el.cell.0 as usize) else {
+                return Err(FemError::Model(format!(
+                    "element on cell #{} which the mesh does not have ({} cells)",
+                    el.cell.0 + 1,
+                    mesh.cells.len()
+                )));
+            };
+            if let Some(&n) = cell
+                .nodes
+                .iter()
+                .find(|n| n.0 as usize >= mesh.coords.len())
+            {
+                return Err(FemError::Model(format!(
+                    "cell {} refers to node #{} which the mesh does not have",
+                    cell_name(el.cell),
+                    n.0 + 1
+                )));
+            }
+            match &el.kind {
+                ElementKind::Continuum {
+                    hypothesis: h,
+                    material: _,
+                } => {
+                    let ok = match h {
+                        Hypothesis::Solid3D => {
+                            matches!(cell.ty, CellType::TETRA4 | CellType::HEXA8)
+                        }
+                        _ => matches!(
+                            cell.ty,
+                            CellType::TRIA3 | CellType::QUAD4 | CellType::TRIA6 | CellType::QUAD8
+                        ),
+                    };
+                    if !ok {
+                        return Err(FemError::Model(format!(
+                            "cell {} is a {}: modelisation {} has no element for it (supported: {})",
+                            cell_name(el.cell),
+                            cell.ty.name(),
+                            h.aster_name(),
+                            if *h == Hypothesis::Solid3D {
+                                "TETRA4, HEXA8"
+                            } else {
+                                "TRIA3, QUAD4, TRIA6, QUAD8"
+                            }
+                        )));
+                    }
+                    match hypothesis {
+                        Some(prev) if prev != *h => {
+                            return Err(FemError::Model(format!(
+                            "cell {} is {} but the model is already {}: one hypothesis per model",
+                            cell_name(el.cell),
+                            h.aster_name(),
+                            prev.aster_name()
+                        )))
+                        }
+                        _ => hypothesis = Some(*h),
+                    }
+                }
+                ElementKind::Spring { stiffness, .. } => {
+                    if !matches!(cell.ty, CellType::SEG2 | CellType::POI1) {
+                        return Err(FemError::Model(format!(
+                            "cell {} is a {}: discrete springs need SEG2 (K_T_D_L) or POI1 (K_T_D_N)",
+                            cell_name(el.cell),
+                            cell.ty.name()
+                        )));
+                    }
+                    if !(stiffness.len() == 2 || stiffness.len() == 3) {
+                        return Err(FemError::Model(format!(
+                            "spring on cell {} has {} stiffness values; expected 2 (2D_DIS_T) or 3 (DIS_T)",
+                            cell_name(el.cell),
+                            stiffness.len()
+                        )));
+                    }
+                    if let Some(k) = stiffness.iter().find(|k| !k.is_finite()) {
+                        return Err(FemError::Model(format!(
+                            "spring on cell {} has a non-finite stiffness {k}",
+                            cell_name(el.cell)
+                        )));
+                    }
+                    match spring_dim {
+                        Some(d) if d != stiffness.len() => {
+                            return Err(FemError::Model(format!(
+                                "spring on cell {} has {} components, others have {d}",
+                                cell_name(el.cell),
+                                stiffness.len()
+                            )))
+                        }
+                        _ => spring_dim = Some(stiffness.len()),
+                    }
+                    if cell.ty == CellType::SEG2 {
+                        let (a, b) = (mesh.coord(cell.nodes[0]), mesh.coord(cell.nodes[1]));
+                        let len =
+                            ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2))
+                                .sqrt();
+                        if len == 0. && stiffness.iter().any(|&k| k != 0.) {
+                            if let ElementKind::Spring {
+                                frame: Frame::Local,
+                                ..
+                            } = el.kind
+                            {
+                                return Err(FemError::Model(format!(
+                                    "spring on cell {} has zero length: its local frame (REPERE='LOCAL') is undefined",
+                                    cell_name(el.cell)
+                                )));
+                            }
+                        }
+                    }
+                }
+                ElementKind::Boundary => {}
+            }
+            if let ElementKind::Continuum { .. } = el.kind {
+                if !shape::supported(cell.ty) {
+                    return Err(FemError::Model(format!(
+                        "cell {}: no element for {}",
+                        cell_name(el.cell),
+                        cell.ty.name()
+                    )));
+                }
+            }
+        }
+        let dim = match (hypothesis, spring_dim) {
+            (Some(h), Some(d)) if h.dim() != d => {
+                return Err(FemError::Model(format!(
+                    "springs with {d} components in a {} model (use {})",
+                    h.aster_name(),
+                    if h.dim() == 2 { "2D_DIS_T" } else { "DIS_T" }
+                )))
+            }
+            (Some(h), _) => h.dim(),
+            (None, Some(d)) => d,
+            (None, None) => {
+                if mesh.dim >= 3 {
+                    3
+                } else {
+                    2
+                }
+            }
+        };
+        let mut carried = vec![false; mesh.coords.len()];
+        for el in &elements {
+            for n in &mesh.cells[el.cell.0 as usize].nodes {
+                carried[n.0 as usize] = true;
+            }
+        }
+        let dofs = DofNumbering::new(Comp::translations(dim), &carried);
+        Ok(Model {
+            mesh,
+            elements,
+            dofs,
+            dim,
+            hypothesis,
+        })
+    }
+
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    pub fn mesh_arc(&self) -> &Arc<Mesh> {
+        &self.mesh
+    }
+
+    pub fn elements(&self) -> &[Element] {
+        &self.elements
+    }
+
+    pub fn dofs(&self) -> &DofNumbering {
+        &self.dofs
+    }
+
+    /// Space dimension of the unknowns (2 or 3).
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// The continuum hypothesis, if the model has continuum elements.
+    pub fn hypothesis(&self) -> Option<Hypothesis> {
+        self.hypothesis
+    }
+
+    /// Name of a cell for messages.
+    pub fn cell_name(&self, id: CellId) -> String {
+        self.mesh
+            .cell_names
+            .get(id.0 as usize)
+            .cloned()
+            .unwrap_or_else(|| format!("#{}", id.0 + 1))
+    }
+}

@@ -1,0 +1,884 @@
+//! The incremental static solver (`STAT_NON_LINE`, and `MECA_STATIQUE` as a
+//! single linear step).
+//!
+//! Per time step: the eliminated values and loads at t are applied, then
+//! Newton iterations solve
+//!
+//! ```text
+//! [ K_ff  Aᵀ ] [Δu] = [ f_ext − f_int(u) − penalty(u) ]
+//! [ A     0  ] [λ ]   [ d − A u                        ]
+//! ```
+//!
+//! where the rows of A are the dualised conditions (DDL_IMPO, LIAISON_DDL)
+//! and the active inequality rows; λ are total multipliers (reactions).
+//! The active set is updated after each solve (primal-dual active set:
+//! a row enters when violated, leaves when its multiplier is negative); the
+//! step has converged when the active set is stable and the residual
+//! criteria hold.
+//!
+//! Residual criteria (as code_aster's):
+//! - `RESI_GLOB_MAXI` = ‖r‖∞ over the non-eliminated DOFs, with
+//!   r = f_ext − f_int − Aᵀλ − penalty forces;
+//! - `RESI_GLOB_RELA` = ‖r‖∞ / ‖f_ext + reactions‖∞ where the reactions are
+//!   −Aᵀλ − penalty forces on free DOFs and f_int − f_ext on eliminated DOFs
+//!   (so the reference is the load actually carried, supports included).
+//!   When that reference vanishes (no load at all) the step is converged
+//!   when ‖r‖∞ ≤ 1e-6 × (largest |Kᵢᵢ| × largest |u|) or is 0.
+
+use crate::assembly::{assemble_stiffness, restrict};
+use crate::error::FemError;
+use crate::held;
+use crate::linalg::{self, Csc, SolveFailure};
+use crate::loads::Loads;
+use crate::model::Model;
+use crate::post::{self, CellValues};
+use crate::unilateral::{
+    GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+};
+
+/// `NEWTON(PREDICTION=…)`: all give the same steps for linear elasticity;
+/// kept so the runner can pass what the file says.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Prediction {
+    #[default]
+    Tangente,
+    Elastique,
+    DeplCalcule,
+    Extrapole,
+}
+
+/// `NEWTON` keywords.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonOptions {
+    pub prediction: Prediction,
+    /// `REAC_ITER`: reassemble the tangent every n iterations (the elastic
+    /// tangent is constant, so this only matters for reporting).
+    pub reac_iter: usize,
+}
+
+impl Default for NewtonOptions {
+    fn default() -> Self {
+        NewtonOptions {
+            prediction: Prediction::Tangente,
+            reac_iter: 1,
+        }
+    }
+}
+
+/// `CONVERGENCE` keywords.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Convergence {
+    /// `RESI_GLOB_RELA` (default 1e-6 when neither criterion is given).
+    pub resi_glob_rela: Option<f64>,
+    /// `RESI_GLOB_MAXI`.
+    pub resi_glob_maxi: Option<f64>,
+    /// `ITER_GLOB_MAXI` (default 10).
+    pub iter_glob_maxi: usize,
+}
+
+impl Default for Convergence {
+    fn default() -> Self {
+        Convergence {
+            resi_glob_rela: Some(1e-6),
+            resi_glob_maxi: None,
+            iter_glob_maxi: 10,
+        }
+    }
+}
+
+/// An initial state (`ETAT_INIT`): total displacement per DOF index.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InitialState {
+    pub time: Option<f64>,
+    pub displacement: Vec<f64>,
+}
+
+/// One stored step of a result.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    pub nume_ordre: usize,
+    pub time: f64,
+    /// DEPL, per DOF index of the model's numbering.
+    pub displacement: Vec<f64>,
+    /// SIEF_ELGA.
+    pub stress: Vec<CellValues>,
+    /// VARI_ELGA: internal variables (none for ELAS: empty per cell).
+    pub internal_variables: Vec<CellValues>,
+    /// Multipliers of the dualised rows, in the order of
+    /// [`Loads::equality_rows`]; the reaction on the structure is −λ·row.
+    pub multipliers: Vec<f64>,
+    /// Outcome of each unilateral source's rows (same order as the sources).
+    pub unilateral: Vec<Vec<RowOutcome>>,
+    /// Newton iterations (0 for the initial state).
+    pub iterations: usize,
+    pub resi_glob_rela: f64,
+    pub resi_glob_maxi: f64,
+}
+
+/// A result: the stored steps (the first is the initial state).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NonLinearResult {
+    pub steps: Vec<Step>,
+}
+
+impl NonLinearResult {
+    /// The step stored at a time (within a relative precision).
+    pub fn at_time(&self, t: f64, precision: f64) -> Option<&Step> {
+        self.steps
+            .iter()
+            .find(|s| (s.time - t).abs() <= precision * t.abs().max(1e-300) || s.time == t)
+    }
+
+    pub fn by_order(&self, nume_ordre: usize) -> Option<&Step> {
+        self.steps.iter().find(|s| s.nume_ordre == nume_ordre)
+    }
+
+    pub fn last(&self) -> Option<&Step> {
+        self.steps.last()
+    }
+}
+
+/// `MECA_STATIQUE`: a linear static solve at each instant (default the
+/// single instant 0), stored with NUME_ORDRE 1, 2, … Unilateral sources are
+/// not allowed (code_aster's MECA_STATIQUE has none).
+pub fn meca_statique(
+    model: &Model,
+    loads: &Loads,
+    instants: &[f64],
+) -> Result<NonLinearResult, FemError> {
+    let mut s = StaticNonLinear {
+        instants: instants.to_vec(),
+        first_order: 1,
+        ..Default::default()
+    };
+    s.run(model, loads, true)
+}
+
+/// `STAT_NON_LINE`.
+pub struct StaticNonLinear<'s> {
+    /// The time list (`INCREMENT/LIST_INST`).
+    pub instants: Vec<f64>,
+    /// `INST_INIT` (default: initial state's time, else the first instant).
+    pub init_time: Option<f64>,
+    /// `INST_FIN` (default: the last instant).
+    pub final_time: Option<f64>,
+    pub initial: Option<InitialState>,
+    pub newton: NewtonOptions,
+    pub convergence: Convergence,
+    pub sources: Vec<Box<dyn UnilateralSource + 's>>,
+    /// Bound on active-set updates per step.
+    pub active_set_max_iter: usize,
+    /// NUME_ORDRE of the first stored step (the initial state).
+    pub first_order: usize,
+}
+
+impl Default for StaticNonLinear<'_> {
+    fn default() -> Self {
+        StaticNonLinear {
+            instants: Vec::new(),
+            init_time: None,
+            final_time: None,
+            initial: None,
+            newton: NewtonOptions::default(),
+            convergence: Convergence::default(),
+            sources: Vec::new(),
+            active_set_max_iter: 100,
+            first_order: 0,
+        }
+    }
+}
+
+/// Time precision when comparing instants.
+const TIME_EPS: f64 = 1e-9;
+
+struct SourceRows {
+    rows: Vec<InequalityRow>,
+    /// Rows as (dof index, coef).
+    idx: Vec<Vec<(usize, f64)>>,
+    active: Vec<bool>,
+    method: UnilateralMethod,
+    update: GeometryUpdate,
+}
+
+impl StaticNonLinear<'_> {
+    /// Runs the analysis.
+    pub fn solve(&mut self, model: &Model, loads: &Loads) -> Result<NonLinearResult, FemError> {
+        self.run(model, loads, false)
+    }
+
+    /// `linear`: every instant is an independent linear solve from a zero
+    /// state and no initial state is stored (`MECA_STATIQUE`).
+    fn run(
+        &mut self,
+        model: &Model,
+        loads: &Loads,
+        linear: bool,
+    ) -> Result<NonLinearResult, FemError> {
+        loads.validate(model)?;
+        let nd = model.dofs().len();
+        let (t0, times) = if linear {
+            if self.instants.is_empty() {
+                (0.0, vec![0.0])
+            } else {
+                (f64::NAN, self.instants.clone())
+            }
+        } else {
+            self.schedule()?
+        };
+        let mut u = match &self.initial {
+            Some(init) => {
+                if init.displacement.len() != nd {
+                    return Err(FemError::Model(format!(
+                        "initial state has {} displacement values, the model has {nd} degrees of freedom",
+                        init.displacement.len()
+                    )));
+                }
+                init.displacement.clone()
+            }
+            None => vec![0.0; nd],
+        };
+        let k = assemble_stiffness(model)?;
+        let kdiag_max = k.diagonal().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        // Eliminated DOFs (the set is fixed; values depend on t).
+        let elim0 = loads.eliminated(model, times.first().copied().unwrap_or(t0))?;
+        let mut map = vec![0usize; nd];
+        let mut nfree = 0;
+        for (i, m) in map.iter_mut().enumerate() {
+            if elim0.contains_key(&i) {
+                *m = usize::MAX;
+            } else {
+                *m = nfree;
+                nfree += 1;
+            }
+        }
+        let kff = restrict(&k, &map, nfree);
+
+        let mut steps = Vec::with_capacity(times.len() + 1);
+        if !linear {
+            steps.push(Step {
+                nume_ordre: self.first_order,
+                time: t0,
+                stress: post::sief_elga(model, &u)?,
+                internal_variables: Vec::new(),
+                multipliers: vec![
+                    0.0;
+                    loads.equality_rows(model, t0).map(|r| r.len()).unwrap_or(0)
+                ],
+                unilateral: vec![Vec::new(); self.sources.len()],
+                displacement: u.clone(),
+                iterations: 0,
+                resi_glob_rela: 0.0,
+                resi_glob_maxi: 0.0,
+            });
+        }
+
+        let mut srcs: Vec<Option<SourceRows>> = (0..self.sources.len()).map(|_| None).collect();
+        let mut checked_held = false;
+        for (step_no, &t) in times.iter().enumerate() {
+            if linear {
+                u.iter_mut().for_each(|v| *v = 0.0);
+            }
+            let elim = loads.eliminated(model, t)?;
+            for (&i, &v) in &elim {
+                u[i] = v;
+            }
+            let fext = loads.external_forces(model, t)?;
+            let eq = loads.equality_rows(model, t)?;
+            // Rows of the sources, from the last converged state.
+            for (s, src) in self.sources.iter_mut().enumerate() {
+                let need = match (&srcs[s], src.geometry_update()) {
+                    (None, _) => true,
+                    (Some(_), GeometryUpdate::Once) => false,
+                    _ => true,
+                };
+                if need {
+                    let state = State {
+                        mesh: model.mesh(),
+                        dofs: model.dofs(),
+                        displacement: &u,
+                        time: t,
+                    };
+                    let rows = src.rows(&state)?;
+                    let prev_active = srcs[s].as_ref().map(|r| r.active.clone());
+                    srcs[s] = Some(make_rows(
+                        model,
+                        rows,
+                        src.method(),
+                        src.geometry_update(),
+                        prev_active,
+                        &u,
+                    )?);
+                }
+            }
+            if !checked_held {
+                checked_held = true;
+                let mut ground: Vec<Vec<(usize, f64)>> =
+                    elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                ground.extend(eq.iter().map(|r| r.terms.clone()));
+                for s in srcs.iter().flatten() {
+                    ground.extend(s.idx.iter().cloned());
+                }
+                let free = held::free_dofs(model, &ground);
+                if !free.is_empty() {
+                    return Err(FemError::Singular { free_dofs: free });
+                }
+            }
+            let ctx = StepContext {
+                model,
+                k: &k,
+                kff: &kff,
+                map: &map,
+                nfree,
+                kdiag_max,
+                convergence: self.convergence,
+                active_set_max_iter: self.active_set_max_iter,
+            };
+            let step = newton_step(
+                &ctx,
+                &elim,
+                &fext,
+                &eq,
+                &mut srcs,
+                &mut self.sources,
+                &mut u,
+                t,
+            )?;
+            let (iterations, lambdas, resi_rela, resi_maxi) = step;
+            // Outcomes to the sources.
+            let mut unil = Vec::with_capacity(self.sources.len());
+            for (s, src) in self.sources.iter_mut().enumerate() {
+                let Some(sr) = &srcs[s] else {
+                    unil.push(Vec::new());
+                    continue;
+                };
+                let state = State {
+                    mesh: model.mesh(),
+                    dofs: model.dofs(),
+                    displacement: &u,
+                    time: t,
+                };
+                let outcomes: Vec<RowOutcome> = sr
+                    .rows
+                    .iter()
+                    .enumerate()
+                    .map(|(r, row)| {
+                        let g = gap(&sr.idx[r], row.rhs, &u);
+                        let multiplier = match sr.method {
+                            UnilateralMethod::ActiveSet => {
+                                if sr.active[r] {
+                                    lambdas.1[s][r]
+                                } else {
+                                    0.0
+                                }
+                            }
+                            UnilateralMethod::Penalty { coef } => coef * g.max(0.0),
+                        };
+                        RowOutcome {
+                            id: row.id,
+                            multiplier,
+                            active: sr.active[r],
+                            violation: g,
+                        }
+                    })
+                    .collect();
+                src.converged(&state, &outcomes)?;
+                unil.push(outcomes);
+            }
+            steps.push(Step {
+                nume_ordre: self.first_order + step_no + usize::from(!linear),
+                time: t,
+                displacement: u.clone(),
+                stress: post::sief_elga(model, &u)?,
+                internal_variables: Vec::new(),
+                multipliers: lambdas.0,
+                unilateral: unil,
+                iterations,
+                resi_glob_rela: resi_rela,
+                resi_glob_maxi: resi_maxi,
+            });
+        }
+        Ok(NonLinearResult { steps })
+    }
+
+    /// Initial time and the instants to compute.
+    fn schedule(&self) -> Result<(f64, Vec<f64>), FemError> {
+        if self.instants.is_empty() {
+            return Err(FemError::Model(
+                "STAT_NON_LINE needs a list of instants (INCREMENT/LIST_INST)".into(),
+            ));
+        }
+        if let Some(w) = self
+            .instants
+            .windows(2)
+            .find(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+        {
+            return Err(FemError::Model(format!(
+                "the list of instants must increase strictly ({} is followed by {})",
+                w[0], w[1]
+            )));
+        }
+        let t0 = self
+            .init_time
+            .or(self.initial.as_ref().and_then(|i| i.time))
+            .unwrap_or(self.instants[0]);
+        let tf = self.final_time.unwrap_or(f64::INFINITY);
+        let eps = TIME_EPS * self.instants.iter().fold(1.0f64, |m, t| m.max(t.abs()));
+        let times: Vec<f64> = self
+            .instants
+            .iter()
+            .copied()
+            .filter(|&t| t > t0 + eps && t <= tf + eps)
+            .collect();
+        if times.is_empty() {
+            return Err(FemError::Model(format!(
+                "no instant to compute after INST_INIT = {t0}{}",
+                if tf.is_finite() {
+                    format!(" up to INST_FIN = {tf}")
+                } else {
+                    String::new()
+                }
+            )));
+        }
+        Ok((t0, times))
+    }
+}
+
+struct StepContext<'a> {
+    model: &'a Model,
+    k: &'a Csc,
+    kff: &'a Csc,
+    map: &'a [usize],
+    nfree: usize,
+    kdiag_max: f64,
+    convergence: Convergence,
+    active_set_max_iter: usize,
+}
+
+type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64);
+
+/// Newton + active-set iterations of one step. Returns (iterations,
+/// (equality multipliers, per-source row multipliers), resi_rela, resi_maxi).
+#[allow(clippy::too_many_arguments)]
+fn newton_step(
+    ctx: &StepContext,
+    elim: &std::collections::HashMap<usize, f64>,
+    fext: &[f64],
+    eq: &[crate::loads::EqualityRow],
+    srcs: &mut [Option<SourceRows>],
+    sources: &mut [Box<dyn UnilateralSource + '_>],
+    u: &mut [f64],
+    t: f64,
+) -> Result<StepOutcome, FemError> {
+    let StepContext {
+        model,
+        k,
+        kff,
+        map,
+        nfree,
+        kdiag_max,
+        convergence,
+        active_set_max_iter,
+    } = *ctx;
+    {
+        let nd = u.len();
+        let mut history: Vec<Vec<Vec<bool>>> = Vec::new();
+        let mut newton_iter = 0usize;
+        let mut set_changes = 0usize;
+        let name = |i: usize| -> String {
+            if i < nfree {
+                let dof = map.iter().position(|&m| m == i).unwrap_or(0);
+                model.dofs().dof(dof).describe(model.mesh())
+            } else {
+                format!("Lagrange multiplier #{}", i - nfree + 1)
+            }
+        };
+        loop {
+            // Rows in the system: equalities, then active rows of exact sources.
+            let mut rows: Vec<(Vec<(usize, f64)>, f64)> = Vec::new();
+            for r in eq {
+                rows.push((r.terms.clone(), r.rhs));
+            }
+            let mut row_of: Vec<Vec<Option<usize>>> = Vec::new();
+            let mut extra: Vec<(usize, usize, f64)> = Vec::new();
+            let mut pen_force = vec![0.0; nd];
+            for sr in srcs.iter().flatten() {
+                let mut ro = vec![None; sr.rows.len()];
+                for (r, row) in sr.rows.iter().enumerate() {
+                    if !sr.active[r] {
+                        continue;
+                    }
+                    match sr.method {
+                        UnilateralMethod::ActiveSet => {
+                            ro[r] = Some(rows.len());
+                            rows.push((sr.idx[r].clone(), row.rhs));
+                        }
+                        UnilateralMethod::Penalty { coef } => {
+                            let g = gap(&sr.idx[r], row.rhs, u);
+                            for &(i, ci) in &sr.idx[r] {
+                                pen_force[i] += coef * ci * g;
+                                if map[i] == usize::MAX {
+                                    continue;
+                                }
+                                for &(j, cj) in &sr.idx[r] {
+                                    if map[j] != usize::MAX {
+                                        extra.push((map[i], map[j], coef * ci * cj));
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                row_of.push(ro);
+            }
+            // Drop rows entirely on eliminated DOFs (they cannot be enforced
+            // by a multiplier); an inconsistent one is an error.
+            let m_rows = rows.len();
+            let mut kept = Vec::with_capacity(m_rows);
+            for (r, (terms, rhs)) in rows.iter().enumerate() {
+                if terms.iter().all(|&(i, _)| map[i] == usize::MAX) {
+                    let v: f64 = terms.iter().map(|&(i, c)| c * u[i]).sum();
+                    if (v - rhs).abs() > 1e-9 * rhs.abs().max(v.abs()).max(1e-300) && r < eq.len() {
+                        return Err(FemError::Model(format!(
+                            "a dualised condition on {} contradicts the value imposed by elimination",
+                            terms.iter().map(|&(i, _)| model.dofs().dof(i).describe(model.mesh())).collect::<Vec<_>>().join(", ")
+                        )));
+                    }
+                    continue;
+                }
+                kept.push(r);
+            }
+            let nk = kept.len();
+            for (k, &r) in kept.iter().enumerate() {
+                for &(i, c) in &rows[r].0 {
+                    if map[i] != usize::MAX {
+                        extra.push((nfree + k, map[i], c));
+                        extra.push((map[i], nfree + k, c));
+                    }
+                }
+            }
+            // A state where the active conditions leave a rigid-body mode
+            // free is reported (instead of factorising a singular matrix).
+            {
+                let mut ground: Vec<Vec<(usize, f64)>> =
+                    elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
+                for sr in srcs.iter().flatten() {
+                    if let UnilateralMethod::Penalty { .. } = sr.method {
+                        for (r, on) in sr.active.iter().enumerate() {
+                            if *on {
+                                ground.push(sr.idx[r].clone());
+                            }
+                        }
+                    }
+                }
+                let free = held::free_dofs(model, &ground);
+                if !free.is_empty() {
+                    return Err(FemError::Singular { free_dofs: free });
+                }
+            }
+            let a = kff.with_extra(nfree + nk, extra);
+            // Right-hand side.
+            let fint = k.mul(u);
+            let mut b = vec![0.0; nfree + nk];
+            for i in 0..nd {
+                if map[i] != usize::MAX {
+                    b[map[i]] = fext[i] - fint[i] - pen_force[i];
+                }
+            }
+            for (k, &r) in kept.iter().enumerate() {
+                let (terms, rhs) = &rows[r];
+                b[nfree + k] = rhs - terms.iter().map(|&(i, c)| c * u[i]).sum::<f64>();
+            }
+            let spd = nk == 0;
+            let sol = linalg::solve(&a, &b, nfree, spd).map_err(|f| match f {
+                SolveFailure::Singular { index } => {
+                    let mut ground: Vec<Vec<(usize, f64)>> =
+                        elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                    ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
+                    let free = held::free_dofs(model, &ground);
+                    if !free.is_empty() {
+                        FemError::Singular { free_dofs: free }
+                    } else {
+                        FemError::Singular {
+                            free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
+                        }
+                    }
+                }
+                other => linalg::failure_to_error(other, name),
+            })?;
+            for i in 0..nd {
+                if map[i] != usize::MAX {
+                    u[i] += sol.x[map[i]];
+                }
+            }
+            let mut lam_rows = vec![0.0; m_rows];
+            for (k, &r) in kept.iter().enumerate() {
+                lam_rows[r] = sol.x[nfree + k];
+            }
+            newton_iter += 1;
+            // Residual at the new iterate.
+            let fint = k.mul(u);
+            let mut reac = vec![0.0; nd];
+            for (r, (terms, _)) in rows.iter().enumerate() {
+                for &(i, c) in terms {
+                    reac[i] -= c * lam_rows[r];
+                }
+            }
+            let mut pen_new = vec![0.0; nd];
+            for sr in srcs.iter().flatten() {
+                if let UnilateralMethod::Penalty { coef } = sr.method {
+                    for (r, row) in sr.rows.iter().enumerate() {
+                        if sr.active[r] {
+                            let g = gap(&sr.idx[r], row.rhs, u);
+                            for &(i, ci) in &sr.idx[r] {
+                                pen_new[i] += coef * ci * g;
+                            }
+                        }
+                    }
+                }
+            }
+            let mut resi_maxi = 0.0f64;
+            let mut reference = 0.0f64;
+            for i in 0..nd {
+                if map[i] == usize::MAX {
+                    reference = reference.max(fint[i].abs());
+                } else {
+                    let r = fext[i] - fint[i] + reac[i] - pen_new[i];
+                    resi_maxi = resi_maxi.max(r.abs());
+                    reference = reference.max((fext[i] + reac[i] - pen_new[i]).abs());
+                }
+            }
+            let resi_rela = if reference > 0. {
+                resi_maxi / reference
+            } else {
+                0.0
+            };
+            let converged_resi = if reference > 0. {
+                let rela_ok = convergence
+                    .resi_glob_rela
+                    .is_none_or(|tol| resi_rela <= tol);
+                let maxi_ok = convergence
+                    .resi_glob_maxi
+                    .is_none_or(|tol| resi_maxi <= tol);
+                rela_ok && maxi_ok
+            } else {
+                let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                resi_maxi <= 1e-6 * kdiag_max * umax || resi_maxi == 0.
+            };
+            // Multipliers per source row (exact sources).
+            let mut src_lam: Vec<Vec<f64>> = Vec::new();
+            let mut changed = false;
+            let force_scale = reference.max(1e-300);
+            let mut si = 0;
+            // Rows leaving the active set: (source, row, score); the most
+            // negative score leaves first.
+            let mut releases: Vec<(usize, usize, f64)> = Vec::new();
+            for (s_no, sr) in srcs.iter_mut().enumerate() {
+                let Some(sr) = sr else {
+                    src_lam.push(Vec::new());
+                    continue;
+                };
+                let ro = &row_of[si];
+                si += 1;
+                let mut lam = vec![0.0; sr.rows.len()];
+                let length = length_scale(model, u);
+                for r in 0..sr.rows.len() {
+                    let g = gap(&sr.idx[r], sr.rows[r].rhs, u);
+                    let now = match sr.method {
+                        UnilateralMethod::ActiveSet => {
+                            if let Some(k) = ro[r] {
+                                lam[r] = lam_rows[k];
+                            }
+                            if sr.active[r] {
+                                lam[r] >= -1e-10 * force_scale
+                            } else {
+                                g > 1e-10 * length
+                            }
+                        }
+                        UnilateralMethod::Penalty { .. } => g > 0.,
+                    };
+                    if now != sr.active[r] {
+                        changed = true;
+                        if !now {
+                            let score = match sr.method {
+                                UnilateralMethod::ActiveSet => lam[r] / force_scale,
+                                UnilateralMethod::Penalty { .. } => g / length,
+                            };
+                            releases.push((s_no, r, score));
+                        }
+                        sr.active[r] = now;
+                    }
+                }
+                src_lam.push(lam);
+            }
+            // Releasing every row in tension at once may leave the model
+            // unheld (a body resting on its supports): then release only the
+            // most negative one.
+            if releases.len() > 1 {
+                let mut ground: Vec<Vec<(usize, f64)>> =
+                    elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                ground.extend(eq.iter().map(|r| r.terms.clone()));
+                for sr in srcs.iter().flatten() {
+                    for (r, on) in sr.active.iter().enumerate() {
+                        if *on {
+                            ground.push(sr.idx[r].clone());
+                        }
+                    }
+                }
+                if !held::free_dofs(model, &ground).is_empty() {
+                    let keep = releases
+                        .iter()
+                        .enumerate()
+                        .min_by(|a, b| a.1 .2.total_cmp(&b.1 .2))
+                        .map(|(k, _)| k)
+                        .unwrap_or(0);
+                    for (k, &(s_no, r, _)) in releases.iter().enumerate() {
+                        if k != keep {
+                            if let Some(sr) = srcs[s_no].as_mut() {
+                                sr.active[r] = true;
+                            }
+                        }
+                    }
+                }
+            }
+            // Geometry update at each iteration: re-ask the rows at the
+            // current iterate; new rows mean another pass.
+            if !changed {
+                for (s, src) in sources.iter_mut().enumerate() {
+                    let Some(sr) = &srcs[s] else { continue };
+                    if sr.update != GeometryUpdate::EachIteration {
+                        continue;
+                    }
+                    let state = State {
+                        mesh: model.mesh(),
+                        dofs: model.dofs(),
+                        displacement: u,
+                        time: t,
+                    };
+                    let rows = src.rows(&state)?;
+                    if rows != sr.rows {
+                        let prev = Some(sr.active.clone());
+                        srcs[s] = Some(make_rows(
+                            model,
+                            rows,
+                            src.method(),
+                            src.geometry_update(),
+                            prev,
+                            u,
+                        )?);
+                        changed = true;
+                    }
+                }
+                if changed {
+                    set_changes += 1;
+                    if set_changes > active_set_max_iter {
+                        return Err(FemError::ActiveSet {
+                            time: t,
+                            message: format!(
+                                "the geometry update (REAC_GEOM) does not settle after {active_set_max_iter} passes"
+                            ),
+                        });
+                    }
+                    continue;
+                }
+                if converged_resi {
+                    let eq_lam = lam_rows[..eq.len()].to_vec();
+                    return Ok((newton_iter, (eq_lam, src_lam), resi_rela, resi_maxi));
+                }
+                if newton_iter >= convergence.iter_glob_maxi {
+                    return Err(FemError::NoConvergence {
+                        time: t,
+                        iterations: newton_iter,
+                        resi_rela,
+                        resi_maxi,
+                    });
+                }
+            } else {
+                set_changes += 1;
+                let state: Vec<Vec<bool>> =
+                    srcs.iter().flatten().map(|s| s.active.clone()).collect();
+                if history.contains(&state) {
+                    return Err(FemError::ActiveSet {
+                        time: t,
+                        message: format!(
+                            "the active set cycles after {set_changes} updates ({} rows active): the conditions are probably redundant or conflicting",
+                            state.iter().flatten().filter(|&&a| a).count()
+                        ),
+                    });
+                }
+                history.push(state);
+                if set_changes > active_set_max_iter {
+                    return Err(FemError::ActiveSet {
+                        time: t,
+                        message: format!(
+                            "no stable active set after {} updates",
+                            active_set_max_iter
+                        ),
+                    });
+                }
+            }
+        }
+    }
+}
+
+fn gap(idx: &[(usize, f64)], rhs: f64, u: &[f64]) -> f64 {
+    idx.iter().map(|&(i, c)| c * u[i]).sum::<f64>() - rhs
+}
+
+/// Characteristic length for gap tolerances: the mesh size plus |u|.
+fn length_scale(model: &Model, u: &[f64]) -> f64 {
+    let mesh = model.mesh();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.coords {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let size = (0..3).map(|k| (hi[k] - lo[k]).max(0.)).fold(0.0, f64::max);
+    let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    size.max(umax).max(1e-300)
+}
+
+fn make_rows(
+    model: &Model,
+    rows: Vec<InequalityRow>,
+    method: UnilateralMethod,
+    update: GeometryUpdate,
+    prev_active: Option<Vec<bool>>,
+    u: &[f64],
+) -> Result<SourceRows, FemError> {
+    let mut idx = Vec::with_capacity(rows.len());
+    for row in &rows {
+        let mut r = Vec::with_capacity(row.terms.len());
+        for &(dof, c) in &row.terms {
+            let i = model.dofs().index(dof).ok_or_else(|| {
+                FemError::Model(format!(
+                    "unilateral condition on {}, which is not a degree of freedom of the model",
+                    dof.describe(model.mesh())
+                ))
+            })?;
+            r.push((i, c));
+        }
+        idx.push(r);
+    }
+    let active = match prev_active {
+        Some(a) if a.len() == rows.len() => a,
+        _ => rows
+            .iter()
+            .zip(&idx)
+            // Touching rows start active (gap ≥ −tol): a body resting on
+            // its unilateral supports is then held from the first solve;
+            // the multiplier test releases the ones in tension.
+            .map(|(row, r)| gap(r, row.rhs, u) >= -1e-10 * length_scale(model, u))
+            .collect(),
+    };
+    Ok(SourceRows {
+        rows,
+        idx,
+        active,
+        method,
+        update,
+    })
+}

@@ -1,0 +1,305 @@
+//! Post-processing on a displacement field: stresses at Gauss points
+//! (SIEF_ELGA), nodal forces (FORC_NODA, REAC_NODA), extrapolation to nodes
+//! (SIGM_ELNO/SIEF_ELNO), nodal averages (SIGM_NOEU) and equivalent stresses
+//! (SIEQ).
+
+use crate::element::{continuum_gauss, element_dofs, spring_stiffness};
+use crate::error::FemError;
+use crate::loads::Loads;
+use crate::model::{ElementKind, Model};
+use crate::shape;
+use aster_mesh::{CellId, CellType, NodeId};
+use nalgebra::{DMatrix, DVector};
+
+/// Values of one cell at its points (Gauss points for ELGA, the cell's
+/// nodes in order for ELNO).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellValues {
+    pub cell: CellId,
+    /// Component names (SIXX SIYY SIZZ SIXY [SIXZ SIYZ]; N VY [VZ] for
+    /// springs).
+    pub names: Vec<&'static str>,
+    /// `points[p][c]`: value of component c at point p.
+    pub points: Vec<Vec<f64>>,
+}
+
+impl CellValues {
+    pub fn get(&self, point: usize, name: &str) -> Option<f64> {
+        let c = self.names.iter().position(|&n| n == name)?;
+        self.points.get(point)?.get(c).copied()
+    }
+}
+
+/// A field with values per node (SIGM_NOEU…): `values[node]` is `None` for
+/// nodes no cell of the field touches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NodalValues {
+    pub names: Vec<&'static str>,
+    pub values: Vec<Option<Vec<f64>>>,
+}
+
+impl NodalValues {
+    pub fn get(&self, node: NodeId, name: &str) -> Option<f64> {
+        let c = self.names.iter().position(|&n| n == name)?;
+        self.values.get(node.0 as usize)?.as_ref()?.get(c).copied()
+    }
+}
+
+fn cell_error(model: &Model, cell: CellId, m: String) -> FemError {
+    FemError::Model(format!("cell {} is {m}", model.cell_name(cell)))
+}
+
+/// Stresses at Gauss points (SIEF_ELGA) for continuum elements, and the
+/// local forces N, VY(, VZ) of springs, for a total displacement `u`.
+pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
+    let mut out = Vec::with_capacity(model.elements().len());
+    for el in model.elements() {
+        let dofs = element_dofs(model, el.cell);
+        let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
+        match &el.kind {
+            ElementKind::Continuum {
+                hypothesis,
+                material,
+            } => {
+                let g = continuum_gauss(model.mesh(), el.cell, *hypothesis)
+                    .map_err(|m| cell_error(model, el.cell, m))?;
+                let d = material.hooke(*hypothesis);
+                let points = g
+                    .iter()
+                    .map(|gp| {
+                        let s = &d * (&gp.b * &ue);
+                        s.iter().copied().collect()
+                    })
+                    .collect();
+                out.push(CellValues {
+                    cell: el.cell,
+                    names: hypothesis.stress_names().to_vec(),
+                    points,
+                });
+            }
+            ElementKind::Spring { stiffness, frame } => {
+                let dim = stiffness.len();
+                let (_, r) = spring_stiffness(model.mesh(), el.cell, stiffness, *frame);
+                let du: DVector<f64> = if ue.len() == 2 * dim {
+                    DVector::from_iterator(dim, (0..dim).map(|k| ue[dim + k] - ue[k]))
+                } else {
+                    ue.clone()
+                };
+                let local = &r * du;
+                let f: Vec<f64> = (0..dim).map(|k| stiffness[k] * local[k]).collect();
+                out.push(CellValues {
+                    cell: el.cell,
+                    names: ["N", "VY", "VZ"][..dim].to_vec(),
+                    points: vec![f],
+                });
+            }
+            ElementKind::Boundary => {}
+        }
+    }
+    Ok(out)
+}
+
+/// Nodal internal forces (FORC_NODA): Σ ∫ Bᵀσ over continuum elements plus
+/// spring forces, per DOF index of the model. In AXIS they are per radian.
+pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
+    let mut f = vec![0.0; model.dofs().len()];
+    for el in model.elements() {
+        let dofs = element_dofs(model, el.cell);
+        let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
+        let fe: DVector<f64> = match &el.kind {
+            ElementKind::Continuum {
+                hypothesis,
+                material,
+            } => {
+                let g = continuum_gauss(model.mesh(), el.cell, *hypothesis)
+                    .map_err(|m| cell_error(model, el.cell, m))?;
+                let d = material.hooke(*hypothesis);
+                let mut fe = DVector::zeros(dofs.len());
+                for gp in &g {
+                    let s = &d * (&gp.b * &ue);
+                    fe += gp.b.transpose() * s * gp.w;
+                }
+                fe
+            }
+            ElementKind::Spring { stiffness, frame } => {
+                let (k, _) = spring_stiffness(model.mesh(), el.cell, stiffness, *frame);
+                k * ue
+            }
+            ElementKind::Boundary => continue,
+        };
+        for (a, &i) in dofs.iter().enumerate() {
+            f[i] += fe[a];
+        }
+    }
+    Ok(f)
+}
+
+/// Reactions (REAC_NODA), code_aster's definition: FORC_NODA minus the
+/// applied external loads at time t. Non-zero only where supports act.
+pub fn reac_noda(model: &Model, loads: &Loads, t: f64, u: &[f64]) -> Result<Vec<f64>, FemError> {
+    let mut f = forc_noda(model, u)?;
+    let fext = loads.external_forces(model, t)?;
+    for (a, b) in f.iter_mut().zip(fext) {
+        *a -= b;
+    }
+    Ok(f)
+}
+
+/// Extrapolation matrix from Gauss points to the nodes of a cell type
+/// (nodes × points). TRIA3/TETRA4 (one point): constant. QUAD4, HEXA8,
+/// TRIA6: the field interpolated through the Gauss points with the linear
+/// (corner) shape functions of the cell, evaluated at every node (mid-side
+/// nodes get the mean of their corners). QUAD8 (9 points): least-squares
+/// fit with bilinear functions, i.e. code_aster's corner extrapolation of
+/// the 2×2 sub-family, then mid-sides as means.
+fn extrapolation(ty: CellType) -> DMatrix<f64> {
+    let scheme = shape::rigi_scheme(ty);
+    let np = scheme.len();
+    let nodes = shape::reference_nodes(ty);
+    let nn = nodes.len();
+    if np == 1 {
+        return DMatrix::from_element(nn, 1, 1.0);
+    }
+    let (lin, ncorner) = match ty {
+        CellType::TRIA6 => (CellType::TRIA3, 3),
+        CellType::QUAD4 | CellType::QUAD8 => (CellType::QUAD4, 4),
+        CellType::HEXA8 => (CellType::HEXA8, 8),
+        other => (other, nn),
+    };
+    // A: points × corner functions; fit coefficients c = (AᵀA)⁻¹Aᵀ v.
+    let mut a = DMatrix::zeros(np, ncorner);
+    for (p, gp) in scheme.iter().enumerate() {
+        let s = shape::shape(lin, gp.xi);
+        for c in 0..ncorner {
+            a[(p, c)] = s.n[c];
+        }
+    }
+    let ata = a.transpose() * &a;
+    let fit = match ata.try_inverse() {
+        Some(inv) => inv * a.transpose(),
+        None => DMatrix::from_element(ncorner, np, 1. / np as f64),
+    };
+    let mut e = DMatrix::zeros(nn, np);
+    for n in 0..nn {
+        let s = shape::shape(lin, nodes[n]);
+        for c in 0..ncorner {
+            for p in 0..np {
+                e[(n, p)] += s.n[c] * fit[(c, p)];
+            }
+        }
+    }
+    e
+}
+
+/// Gauss-point values extrapolated to the nodes of each cell (ELNO).
+pub fn elno(model: &Model, elga: &[CellValues]) -> Vec<CellValues> {
+    let mesh = model.mesh();
+    elga.iter()
+        .map(|cv| {
+            let ty = mesh.cell(cv.cell).ty;
+            let nn = ty.node_count();
+            let e = if cv.points.len() == 1 {
+                DMatrix::from_element(nn, 1, 1.0)
+            } else {
+                extrapolation(ty)
+            };
+            let points = (0..nn)
+                .map(|n| {
+                    (0..cv.names.len())
+                        .map(|c| {
+                            (0..cv.points.len())
+                                .map(|p| e[(n, p)] * cv.points[p][c])
+                                .sum()
+                        })
+                        .collect()
+                })
+                .collect();
+            CellValues {
+                cell: cv.cell,
+                names: cv.names.clone(),
+                points,
+            }
+        })
+        .collect()
+}
+
+/// Nodal average of ELNO values over the cells sharing each node (NOEU).
+/// Cells whose components differ from the first cell's (springs) are skipped.
+pub fn noeu(model: &Model, elno: &[CellValues]) -> NodalValues {
+    let mesh = model.mesh();
+    let names = elno
+        .iter()
+        .find(|c| c.names.first() == Some(&"SIXX"))
+        .or(elno.first())
+        .map(|c| c.names.clone())
+        .unwrap_or_default();
+    let mut sum: Vec<Option<(Vec<f64>, usize)>> = vec![None; mesh.node_count()];
+    for cv in elno {
+        if cv.names != names {
+            continue;
+        }
+        for (k, &n) in mesh.cell(cv.cell).nodes.iter().enumerate() {
+            let slot = sum[n.0 as usize].get_or_insert_with(|| (vec![0.0; names.len()], 0));
+            for (c, v) in cv.points[k].iter().enumerate() {
+                slot.0[c] += v;
+            }
+            slot.1 += 1;
+        }
+    }
+    NodalValues {
+        names,
+        values: sum
+            .into_iter()
+            .map(|s| s.map(|(v, n)| v.into_iter().map(|x| x / n as f64).collect()))
+            .collect(),
+    }
+}
+
+/// Names of the equivalent-stress components (SIEQ_*), code_aster's first ones.
+pub const SIEQ_NAMES: [&str; 7] = [
+    "VMIS", "TRESCA", "PRIN_1", "PRIN_2", "PRIN_3", "VMIS_SG", "TRSIG",
+];
+
+/// Equivalent stresses of one stress tensor given as SIXX SIYY SIZZ SIXY
+/// [SIXZ SIYZ]: von Mises, Tresca, principal stresses (ascending), signed
+/// von Mises (sign of the trace) and the trace.
+pub fn sieq(s: &[f64]) -> [f64; 7] {
+    let (xx, yy, zz, xy) = (s[0], s[1], s[2], s[3]);
+    let (xz, yz) = if s.len() >= 6 { (s[4], s[5]) } else { (0., 0.) };
+    let m = nalgebra::Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+    let mut ev: Vec<f64> = m.symmetric_eigenvalues().iter().copied().collect();
+    ev.sort_by(f64::total_cmp);
+    let tr = xx + yy + zz;
+    let p = tr / 3.;
+    let dev2 =
+        (xx - p).powi(2) + (yy - p).powi(2) + (zz - p).powi(2) + 2. * (xy * xy + xz * xz + yz * yz);
+    let vmis = (1.5 * dev2).sqrt();
+    let tresca = ev[2] - ev[0];
+    let sg = if tr < 0. { -vmis } else { vmis };
+    [vmis, tresca, ev[0], ev[1], ev[2], sg, tr]
+}
+
+/// SIEQ at every point of a stress field (ELGA, ELNO); springs are skipped.
+pub fn sieq_field(field: &[CellValues]) -> Vec<CellValues> {
+    field
+        .iter()
+        .filter(|cv| cv.names.first() == Some(&"SIXX"))
+        .map(|cv| CellValues {
+            cell: cv.cell,
+            names: SIEQ_NAMES.to_vec(),
+            points: cv.points.iter().map(|p| sieq(p).to_vec()).collect(),
+        })
+        .collect()
+}
+
+/// SIEQ of a nodal field.
+pub fn sieq_nodal(field: &NodalValues) -> NodalValues {
+    NodalValues {
+        names: SIEQ_NAMES.to_vec(),
+        values: field
+            .values
+            .iter()
+            .map(|v| v.as_ref().map(|s| sieq(s).to_vec()))
+            .collect(),
+    }
+}

@@ -1,0 +1,170 @@
+//! Unilateral (inequality) conditions shared by `LIAISON_UNIL` and contact.
+//!
+//! A condition is a set of linear inequality rows `Σ aᵢ uᵢ ≤ b` over DOFs,
+//! where `u` is the *total* displacement (not the increment). Sources
+//! (a `LIAISON_UNIL` zone, a contact zone) produce the rows from the current
+//! state; the solver enforces them, exactly with an active set on Lagrange
+//! multipliers (`ALGO_CONT='CONTRAINTE'`) or approximately by penalty
+//! (`'PENALISATION'`), then hands each row's outcome back to its source.
+//!
+//! Sign convention: a row's multiplier `λ ≥ 0` is the magnitude of the
+//! reaction; the force applied by the condition on the structure is
+//! `-λ a` (for `-DY ≤ 0`, a support pushing up with `+λ` in DY).
+
+use crate::dof::{Dof, DofNumbering};
+use crate::error::FemError;
+use aster_mesh::{Mesh, NodeId};
+
+/// One linear inequality `Σ coef·u(dof) ≤ rhs` on the total displacement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InequalityRow {
+    /// `(dof, coefficient)` terms; a DOF may appear once.
+    pub terms: Vec<(Dof, f64)>,
+    /// Right-hand side `b`.
+    pub rhs: f64,
+    /// Identifier chosen by the source (e.g. the slave node), handed back in
+    /// [`RowOutcome::id`].
+    pub id: usize,
+}
+
+impl InequalityRow {
+    pub fn new(terms: Vec<(Dof, f64)>, rhs: f64, id: usize) -> InequalityRow {
+        InequalityRow { terms, rhs, id }
+    }
+
+    /// `Σ aᵢ uᵢ - b` for a state: positive means violated (penetration).
+    pub fn violation(&self, state: &State) -> f64 {
+        self.terms
+            .iter()
+            .map(|&(d, c)| c * state.value(d).unwrap_or(0.0))
+            .sum::<f64>()
+            - self.rhs
+    }
+}
+
+/// How the solver enforces a source's rows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum UnilateralMethod {
+    /// Exact enforcement, active set on Lagrange multipliers (`CONTRAINTE`).
+    ActiveSet,
+    /// Penalty `λ = coef·max(0, Σ a u - b)` (`PENALISATION`, `COEF_PENA`).
+    Penalty { coef: f64 },
+}
+
+/// When the solver asks the source for new rows (`REAC_GEOM`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GeometryUpdate {
+    /// Rows are asked once, at the first step (`REAC_GEOM='SANS'`, and
+    /// LIAISON_UNIL whose rows never change).
+    Once,
+    /// Rows are asked at the beginning of each time step (from the last
+    /// converged state).
+    EachStep,
+    /// Rows are asked again at each active-set/Newton iteration
+    /// (`REAC_GEOM='AUTOMATIQUE'`-like fixed point on the geometry).
+    EachIteration,
+}
+
+/// The current mechanical state given to sources.
+#[derive(Clone, Copy, Debug)]
+pub struct State<'a> {
+    pub mesh: &'a Mesh,
+    pub dofs: &'a DofNumbering,
+    /// Total displacement, indexed like [`DofNumbering::dofs`].
+    pub displacement: &'a [f64],
+    /// Time of the step being computed.
+    pub time: f64,
+}
+
+impl State<'_> {
+    /// Total displacement of a DOF (`None` if the DOF is not in the model).
+    pub fn value(&self, dof: Dof) -> Option<f64> {
+        self.dofs.index(dof).map(|i| self.displacement[i])
+    }
+
+    /// Displacement of a node as a 3-vector (missing components are 0).
+    pub fn node_displacement(&self, node: NodeId) -> [f64; 3] {
+        let mut u = [0.0; 3];
+        if let Some(first) = self.dofs.node_first(node) {
+            for (k, c) in self.dofs.comps().iter().enumerate() {
+                let slot = match c {
+                    crate::dof::Comp::DX => 0,
+                    crate::dof::Comp::DY => 1,
+                    crate::dof::Comp::DZ => 2,
+                    _ => continue,
+                };
+                u[slot] = self.displacement[first + k];
+            }
+        }
+        u
+    }
+
+    /// Current (deformed) coordinates of a node: initial + displacement.
+    pub fn current_coord(&self, node: NodeId) -> [f64; 3] {
+        let x = self.mesh.coord(node);
+        let u = self.node_displacement(node);
+        [x[0] + u[0], x[1] + u[1], x[2] + u[2]]
+    }
+}
+
+/// What the solver reports for one row at convergence of a step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RowOutcome {
+    /// The row's [`InequalityRow::id`].
+    pub id: usize,
+    /// Multiplier λ ≥ 0 (reaction magnitude along the row); 0 when inactive.
+    pub multiplier: f64,
+    /// Whether the row is enforced as an equality (in the active set, or
+    /// penetrating under penalty).
+    pub active: bool,
+    /// `Σ aᵢ uᵢ - b` at convergence (≤ 0 up to round-off when exact).
+    pub violation: f64,
+}
+
+/// A producer of inequality rows (a LIAISON_UNIL zone, a contact zone).
+pub trait UnilateralSource {
+    /// Short name used in messages (e.g. `"LIAISON_UNIL"`, `"contact zone 1"`).
+    fn name(&self) -> String {
+        "unilateral condition".to_string()
+    }
+
+    /// How the rows are enforced.
+    fn method(&self) -> UnilateralMethod {
+        UnilateralMethod::ActiveSet
+    }
+
+    /// When the rows must be recomputed.
+    fn geometry_update(&self) -> GeometryUpdate {
+        GeometryUpdate::Once
+    }
+
+    /// The current rows for a state (the last converged one, or the current
+    /// iterate with [`GeometryUpdate::EachIteration`]).
+    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError>;
+
+    /// Called once per converged step with the outcome of each row of the
+    /// last call to [`UnilateralSource::rows`] (same order).
+    fn converged(&mut self, _state: &State, _outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        Ok(())
+    }
+}
+
+/// A fixed list of rows, e.g. LIAISON_UNIL built by the runner.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FixedRows {
+    pub name: String,
+    pub rows: Vec<InequalityRow>,
+    pub method: UnilateralMethod,
+}
+
+impl UnilateralSource for FixedRows {
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+    fn method(&self) -> UnilateralMethod {
+        self.method
+    }
+    fn rows(&mut self, _state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        Ok(self.rows.clone())
+    }
+}

@@ -1,0 +1,441 @@
+//! Materials, model, element characteristics, functions and lists.
+
+use crate::concept::*;
+use crate::executor::{store_result, Executor};
+use crate::function::{Extension, Function, Scale, Tabulated};
+use crate::list::{self, Interval};
+use crate::select;
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use std::collections::BTreeMap;
+use std::rc::Rc;
+
+fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
+    kw.simple(name).iter().filter_map(|s| s.as_f64()).collect()
+}
+
+pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "ELAS",
+            "ELAS/E",
+            "ELAS/NU",
+            "ELAS/RHO",
+            "ELAS/ALPHA",
+            "ELAS/AMOR_ALPHA",
+            "ELAS/AMOR_BETA",
+            "INFO",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let Some(elas) = kw.factor("ELAS").first() else {
+        return Err(ExecError::new(
+            "DEFI_MATERIAU: ELAS is required (the only behaviour supported yet)",
+        ));
+    };
+    let young = elas
+        .f64("E")
+        .ok_or_else(|| ex.kw_error("DEFI_MATERIAU", elas, "E", "Young's modulus E is required"))?;
+    let poisson = elas.f64("NU").ok_or_else(|| {
+        ex.kw_error(
+            "DEFI_MATERIAU",
+            elas,
+            "NU",
+            "Poisson's ratio NU is required",
+        )
+    })?;
+    if young <= 0.0 {
+        return Err(ex.kw_error(
+            "DEFI_MATERIAU",
+            elas,
+            "E",
+            format!("E must be positive, got {young}"),
+        ));
+    }
+    if !(-1.0 < poisson && poisson < 0.5) {
+        return Err(ex.kw_error(
+            "DEFI_MATERIAU",
+            elas,
+            "NU",
+            format!("NU must be in (-1, 0.5), got {poisson}"),
+        ));
+    }
+    let m = Material {
+        young,
+        poisson,
+        density: elas.f64("RHO"),
+        alpha: elas.f64("ALPHA"),
+    };
+    store_result(ex, call, Concept::Material(Rc::new(m)))
+}
+
+pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "MAILLAGE",
+            "MODELE",
+            "AFFE",
+            "AFFE/TOUT",
+            "AFFE/GROUP_MA",
+            "AFFE/MAILLE",
+            "AFFE/MATER",
+            "INFO",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let mesh_id = if let Some(m) = kw.concept("MAILLAGE") {
+        m.id
+    } else if let Some(m) = kw.concept("MODELE") {
+        ex.model(m)?.mesh
+    } else {
+        return Err(ExecError::new("AFFE_MATERIAU: give MAILLAGE or MODELE"));
+    };
+    let mesh = ex.mesh_by_id(mesh_id)?;
+    let mut cells = BTreeMap::new();
+    for occ in kw.factor("AFFE") {
+        let mat = ex.required("AFFE_MATERIAU", occ, "MATER")?;
+        let mat = ex.material(mat)?;
+        let sel = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_MATERIAU/AFFE: {e}")))?;
+        for c in sel {
+            cells.insert(c, mat.clone());
+        }
+    }
+    store_result(
+        ex,
+        call,
+        Concept::MaterialField(Rc::new(MaterialField {
+            mesh: mesh_id,
+            cells,
+        })),
+    )
+}
+
+pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "MAILLAGE",
+            "AFFE",
+            "AFFE/TOUT",
+            "AFFE/GROUP_MA",
+            "AFFE/MAILLE",
+            "AFFE/PHENOMENE",
+            "AFFE/MODELISATION",
+            "INFO",
+            "VERI_JACOBIEN",
+            "VERI_NORM_IFS",
+            "VERI_PLAN",
+            "DISTRIBUTION",
+            "DISTRIBUTION/*",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let mesh_ref = ex.required("AFFE_MODELE", kw, "MAILLAGE")?;
+    let mesh = ex.mesh(mesh_ref)?;
+    let mut cells = BTreeMap::new();
+    for occ in kw.factor("AFFE") {
+        ex.only_values("AFFE_MODELE/AFFE", occ, "PHENOMENE", &["MECANIQUE"])?;
+        let names: Vec<&str> = occ
+            .simple("MODELISATION")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let [name] = names.as_slice() else {
+            return Err(ex.kw_error(
+                "AFFE_MODELE",
+                occ,
+                "MODELISATION",
+                "exactly one modelisation per occurrence is supported",
+            ));
+        };
+        let Some(modelisation) = Modelisation::from_keyword(name) else {
+            let span = occ
+                .keyword("MODELISATION")
+                .map(|k| k.span)
+                .unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!(
+                    "AFFE_MODELE/AFFE/MODELISATION='{name}' (supported: {})",
+                    Modelisation::KEYWORDS.join(", ")
+                ),
+                span,
+            ));
+        };
+        let sel = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_MODELE/AFFE: {e}")))?;
+        for c in sel {
+            let ty = mesh.cell(c).ty;
+            // As code_aster: a modelisation goes only to the cells it has
+            // elements for (a 2D modelisation on TOUT skips volumes…).
+            let fits = match modelisation {
+                Modelisation::Discrete2D | Modelisation::Discrete3D => ty.dim() <= 1,
+                Modelisation::Solid3D => ty.dim() >= 2,
+                _ => (1..=2).contains(&ty.dim()),
+            };
+            if fits {
+                cells.insert(c, modelisation);
+            }
+        }
+    }
+    if cells.is_empty() {
+        return Err(ExecError::new(
+            "AFFE_MODELE: no cell of the mesh received an element",
+        ));
+    }
+    let model = ModelDef {
+        mesh: mesh_ref.id,
+        cells,
+    };
+    store_result(ex, call, Concept::Model(Rc::new(model)))
+}
+
+pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    const ALLOWED: &[&str] = &[
+        "MODELE",
+        "INFO",
+        "DISCRET",
+        "DISCRET/GROUP_MA",
+        "DISCRET/MAILLE",
+        "DISCRET/CARA",
+        "DISCRET/VALE",
+        "DISCRET/REPERE",
+        "DISCRET/SYME",
+        "DISCRET_2D",
+        "DISCRET_2D/GROUP_MA",
+        "DISCRET_2D/MAILLE",
+        "DISCRET_2D/CARA",
+        "DISCRET_2D/VALE",
+        "DISCRET_2D/REPERE",
+        "DISCRET_2D/SYME",
+    ];
+    ex.check_keywords(call, ALLOWED)?;
+    let kw = &call.keywords;
+    let model_ref = ex.required("AFFE_CARA_ELEM", kw, "MODELE")?;
+    let model = ex.model(model_ref)?;
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let mut discrete = Vec::new();
+    for f in ["DISCRET", "DISCRET_2D"] {
+        for occ in kw.factor(f) {
+            let cara = occ.str("CARA").unwrap_or_default().to_string();
+            let dim = if f == "DISCRET_2D" { 2 } else { 3 };
+            if cara != "K_T_D_L" && cara != "K_T_D_N" {
+                let span = occ.keyword("CARA").map(|k| k.span).unwrap_or_default();
+                return Err(ex.unsupported(
+                    &format!("AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N)"),
+                    span,
+                ));
+            }
+            let values = reals(occ, "VALE");
+            if values.len() != dim {
+                return Err(ex.kw_error(
+                    "AFFE_CARA_ELEM",
+                    occ,
+                    "VALE",
+                    format!(
+                        "{cara} in {f} needs {dim} stiffnesses, got {}",
+                        values.len()
+                    ),
+                ));
+            }
+            let cells = select::cells(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/{f}: {e}")))?;
+            let want_dim = if cara == "K_T_D_L" { 1 } else { 0 };
+            if let Some(&bad) = cells.iter().find(|&&c| mesh.cell(c).ty.dim() != want_dim) {
+                return Err(ExecError::new(format!(
+                    "AFFE_CARA_ELEM/{f}: {cara} applies to {} cells, but cell {} is a {}",
+                    if want_dim == 1 { "SEG2" } else { "POI1" },
+                    select::cell_name(&mesh, bad),
+                    mesh.cell(bad).ty.name()
+                )));
+            }
+            discrete.push(DiscreteStiffness {
+                cells,
+                cara,
+                values,
+                local: occ.str("REPERE") == Some("LOCAL"),
+            });
+        }
+    }
+    store_result(
+        ex,
+        call,
+        Concept::CaraElem(Rc::new(CaraElem {
+            model: model_ref.id,
+            discrete,
+        })),
+    )
+}
+
+pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "NOM_PARA",
+            "NOM_RESU",
+            "VALE",
+            "ABSCISSE",
+            "ORDONNEE",
+            "INTERPOL",
+            "PROL_GAUCHE",
+            "PROL_DROITE",
+            "VERIF",
+            "INFO",
+            "TITRE",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let para = kw.str("NOM_PARA").unwrap_or("INST");
+    let mut f = if kw.contains("VALE") {
+        Tabulated::from_pairs(para, &reals(kw, "VALE"))
+    } else if kw.contains("ABSCISSE") {
+        let xs = reals(kw, "ABSCISSE");
+        let ys = reals(kw, "ORDONNEE");
+        if xs.len() != ys.len() {
+            return Err(ex.kw_error(
+                "DEFI_FONCTION",
+                kw,
+                "ORDONNEE",
+                format!("{} ordinates for {} abscissae", ys.len(), xs.len()),
+            ));
+        }
+        Tabulated::new(para, xs, ys)
+    } else {
+        return Err(ExecError::new("DEFI_FONCTION: give VALE (or ABSCISSE and ORDONNEE); VALE_C/NOEUD_PARA are not supported yet"));
+    }
+    .map_err(|e| ex.kw_error("DEFI_FONCTION", kw, "VALE", e.to_string()))?;
+    let interp: Vec<&str> = kw
+        .simple("INTERPOL")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    let scale = |name: &str| -> Result<Scale, ExecError> {
+        Scale::from_keyword(name).ok_or_else(|| {
+            let span = kw.keyword("INTERPOL").map(|k| k.span).unwrap_or_default();
+            ex.unsupported(&format!("DEFI_FONCTION/INTERPOL='{name}'"), span)
+        })
+    };
+    match interp.as_slice() {
+        [] => {}
+        [one] => {
+            f.scale_x = scale(one)?;
+            f.scale_y = f.scale_x;
+        }
+        [x, y, ..] => {
+            f.scale_x = scale(x)?;
+            f.scale_y = scale(y)?;
+        }
+    }
+    for (key, slot) in [("PROL_GAUCHE", &mut f.left), ("PROL_DROITE", &mut f.right)] {
+        if let Some(v) = kw.str(key) {
+            *slot = Extension::from_keyword(v).ok_or_else(|| {
+                ex.kw_error(
+                    "DEFI_FONCTION",
+                    kw,
+                    key,
+                    format!("unknown extension `{v}` (EXCLU, CONSTANT, LINEAIRE)"),
+                )
+            })?;
+        }
+    }
+    store_result(ex, call, Concept::Function(Rc::new(Function::Tabulated(f))))
+}
+
+pub fn defi_constante(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(call, &["VALE", "NOM_RESU", "TITRE"])?;
+    let kw = &call.keywords;
+    let value = kw
+        .f64("VALE")
+        .ok_or_else(|| ex.kw_error("DEFI_CONSTANTE", kw, "VALE", "a real value is required"))?;
+    let f = Function::Constant {
+        parameter: "TOUTPARA".into(),
+        value,
+    };
+    store_result(ex, call, Concept::Function(Rc::new(f)))
+}
+
+pub fn defi_list_reel(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "DEBUT",
+            "INTERVALLE",
+            "INTERVALLE/JUSQU_A",
+            "INTERVALLE/NOMBRE",
+            "INTERVALLE/PAS",
+            "VALE",
+            "INFO",
+            "TITRE",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let values = if kw.contains("VALE") {
+        list::from_values(&reals(kw, "VALE"))
+    } else {
+        let start = kw.f64("DEBUT").ok_or_else(|| {
+            ex.kw_error(
+                "DEFI_LIST_REEL",
+                kw,
+                "DEBUT",
+                "DEBUT is required with INTERVALLE",
+            )
+        })?;
+        let mut intervals = Vec::new();
+        for occ in kw.factor("INTERVALLE") {
+            let end = occ.f64("JUSQU_A").ok_or_else(|| {
+                ex.kw_error("DEFI_LIST_REEL", occ, "JUSQU_A", "JUSQU_A is required")
+            })?;
+            if let Some(n) = occ.first("NOMBRE").and_then(|s| s.as_i64()) {
+                intervals.push(Interval::Count {
+                    end,
+                    count: n.max(0) as usize,
+                });
+            } else if let Some(step) = occ.f64("PAS") {
+                intervals.push(Interval::Step { end, step });
+            } else {
+                return Err(ex.kw_error("DEFI_LIST_REEL", occ, "JUSQU_A", "give NOMBRE or PAS"));
+            }
+        }
+        list::from_intervals(start, &intervals)
+    }
+    .map_err(|e| ExecError::new(format!("DEFI_LIST_REEL: {e}")))?;
+    store_result(ex, call, Concept::RealList(Rc::new(values)))
+}
+
+pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "DEFI_LIST",
+            "DEFI_LIST/METHODE",
+            "DEFI_LIST/LIST_INST",
+            "DEFI_LIST/VALE",
+            "INFO",
+            // Failure handling only matters when a step fails to converge;
+            // the default (stop with an error) is what the runner does.
+            "ECHEC",
+            "ECHEC/EVENEMENT",
+            "ECHEC/ACTION",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let Some(def) = kw.factor("DEFI_LIST").first() else {
+        return Err(ExecError::new("DEFI_LIST_INST: DEFI_LIST is required"));
+    };
+    ex.only_values("DEFI_LIST_INST/DEFI_LIST", def, "METHODE", &["MANUEL"])?;
+    for occ in kw.factor("ECHEC") {
+        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "ACTION", &["ARRET"])?;
+    }
+    let values = if let Some(l) = def.concept("LIST_INST") {
+        (*ex.real_list(l)?).clone()
+    } else if def.contains("VALE") {
+        list::from_values(&reals(def, "VALE"))
+            .map_err(|e| ExecError::new(format!("DEFI_LIST_INST: {e}")))?
+    } else {
+        return Err(ExecError::new(
+            "DEFI_LIST_INST/DEFI_LIST: give LIST_INST or VALE",
+        ));
+    };
+    store_result(ex, call, Concept::TimeList(Rc::new(values)))
+}

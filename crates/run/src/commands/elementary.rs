@@ -1,0 +1,168 @@
+//! The elementary-vector chain of code_aster 15:
+//! CALCUL(OPTION='FORC_NODA_ELEM') → EXTR_TABLE(TYPE_RESU='VECT_ELEM_DEPL_R')
+//! → NUME_DDL → ASSE_VECTEUR, and EXTR_TABLE of plain values.
+
+use super::inspect::filter_rows;
+use crate::concept::Concept;
+use crate::executor::{result_of, store_result, Executor};
+use crate::field::Field;
+use crate::fembridge;
+use crate::table::{Column, ColumnType, Table, Value};
+use aster_eval::{CommandCall, CommandOutput, ExecError, Scalar};
+use std::rc::Rc;
+
+pub fn calcul(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "OPTION",
+            "PHENOMENE",
+            "MODELE",
+            "CARA_ELEM",
+            "CHAM_MATER",
+            "SIGM",
+            "VARI",
+            "DEPL",
+            "INCR_DEPL",
+            "EXCIT",
+            "EXCIT/CHARGE",
+            "EXCIT/FONC_MULT",
+            "EXCIT/TYPE_CHARGE",
+            "COMPORTEMENT",
+            "COMPORTEMENT/RELATION",
+            "COMPORTEMENT/DEFORMATION",
+            "COMPORTEMENT/TOUT",
+            "INCREMENT",
+            "INCREMENT/LIST_INST",
+            "INCREMENT/NUME_ORDRE",
+            "INFO",
+        ],
+    )?;
+    let kw = &call.keywords;
+    ex.only_values("CALCUL", kw, "OPTION", &["FORC_NODA_ELEM"])?;
+    for occ in kw.factor("COMPORTEMENT") {
+        ex.only_values("CALCUL/COMPORTEMENT", occ, "RELATION", &["ELAS"])?;
+    }
+    let model = ex.model(ex.required("CALCUL", kw, "MODELE")?)?;
+    let materials = ex.material_field(ex.required("CALCUL", kw, "CHAM_MATER")?)?;
+    let cara = match kw.concept("CARA_ELEM") {
+        Some(c) => Some(ex.cara_elem(c)?),
+        None => None,
+    };
+    let depl = ex.required("CALCUL", kw, "DEPL")?;
+    let Field::Nodal(depl) = &*ex.field(depl)? else {
+        return Err(ExecError::new("CALCUL/DEPL: a nodal displacement field is required"));
+    };
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let fem_model = fembridge::build_model(&mesh, &model, &materials, cara.as_deref())?;
+    // Linear elasticity: the stresses SIGM are those of DEPL, and the
+    // internal forces are Bᵀσ(DEPL) (+ the springs' forces).
+    let u: Vec<f64> = fem_model
+        .dofs()
+        .dofs()
+        .iter()
+        .map(|d| depl.get(d.node, d.comp.name()).unwrap_or(0.0))
+        .collect();
+    let f = aster_fem::post::forc_noda(&fem_model, &u).map_err(|e| ExecError::new(format!("CALCUL: {e}")))?;
+    let vect = fembridge::nodal_from_dofs(&fem_model, &f);
+    let name = result_of(call)?.name.clone();
+    let sd = format!("{name}.FORC_NODA_ELEM");
+    ex.objects.insert(sd.clone(), Concept::VectElem(Rc::new(vect)));
+    let mut table = Table::new(vec![
+        Column { name: "NOM_OBJET".into(), ty: ColumnType::Text(16) },
+        Column { name: "TYPE_OBJET".into(), ty: ColumnType::Text(16) },
+        Column { name: "NOM_SD".into(), ty: ColumnType::Text(24) },
+    ]);
+    table.push_row(vec![
+        ("NOM_OBJET", Value::Text("FORC_NODA_ELEM".into())),
+        ("TYPE_OBJET", Value::Text("VECT_ELEM_DEPL_R".into())),
+        ("NOM_SD", Value::Text(sd)),
+    ]);
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+pub fn extr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &["TYPE_RESU", "TABLE", "NOM_PARA", "FILTRE", "FILTRE/NOM_PARA", "FILTRE/CRIT_COMP", "FILTRE/VALE", "FILTRE/VALE_I", "FILTRE/VALE_K", "FILTRE/CRITERE", "FILTRE/PRECISION", "TITRE"],
+    )?;
+    let kw = &call.keywords;
+    let t = ex.required("EXTR_TABLE", kw, "TABLE")?;
+    let table = ex.table(t)?;
+    let para = kw.str("NOM_PARA").ok_or_else(|| ExecError::new("EXTR_TABLE: NOM_PARA is required"))?;
+    let col = table
+        .column_index(para)
+        .ok_or_else(|| ExecError::new(format!("EXTR_TABLE: table `{}` has no column {para}", t.name)))?;
+    let rows = filter_rows(&table, kw.factor("FILTRE")).map_err(|e| ExecError::new(format!("EXTR_TABLE: {e}")))?;
+    let values: Vec<&Value> = rows.iter().filter_map(|&r| table.rows[r][col].as_ref()).collect();
+    let [value] = values.as_slice() else {
+        return Err(ExecError::new(format!(
+            "EXTR_TABLE: {} values of {para} match in `{}` (exactly one is needed; refine FILTRE)",
+            values.len(),
+            t.name
+        )));
+    };
+    let typ = kw.str("TYPE_RESU").unwrap_or("");
+    match typ {
+        "REEL" | "ENTIER" | "CHAINE" => Ok(CommandOutput::Value(match value {
+            Value::Int(i) => Scalar::Int(*i),
+            Value::Real(r) => Scalar::Real(*r),
+            Value::Text(s) => Scalar::Str(s.clone()),
+        })),
+        "VECT_ELEM_DEPL_R" => {
+            let Value::Text(sd) = value else {
+                return Err(ExecError::new(format!("EXTR_TABLE: {para} does not name an object")));
+            };
+            let obj = ex
+                .objects
+                .get(sd.trim())
+                .cloned()
+                .ok_or_else(|| ExecError::new(format!("EXTR_TABLE: no object `{sd}` (made by CALCUL in this run)")))?;
+            store_result(ex, call, obj)
+        }
+        other => {
+            let span = kw.keyword("TYPE_RESU").map(|k| k.span).unwrap_or(call.span);
+            Err(ex.unsupported(&format!("EXTR_TABLE/TYPE_RESU='{other}'"), span))
+        }
+    }
+}
+
+pub fn nume_ddl(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(call, &["MODELE", "CHARGE", "INFO"])?;
+    let m = ex.required("NUME_DDL", &call.keywords, "MODELE")?;
+    ex.model(m)?;
+    let id = m.id;
+    store_result(ex, call, Concept::Numbering(id))
+}
+
+pub fn asse_vecteur(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(call, &["VECT_ELEM", "NUME_DDL", "INFO"])?;
+    let kw = &call.keywords;
+    let n = ex.required("ASSE_VECTEUR", kw, "NUME_DDL")?;
+    if !matches!(ex.concept(n)?, Concept::Numbering(_)) {
+        return Err(ExecError::new(format!("ASSE_VECTEUR/NUME_DDL: `{}` is not a NUME_DDL", n.name)));
+    }
+    let mut sum: Option<crate::field::NodalField> = None;
+    for s in kw.simple("VECT_ELEM") {
+        let Some(c) = s.as_concept() else { continue };
+        let Concept::VectElem(v) = ex.concept(c)? else {
+            return Err(ExecError::new(format!("ASSE_VECTEUR/VECT_ELEM: `{}` is not a vect_elem", c.name)));
+        };
+        match &mut sum {
+            None => sum = Some((**v).clone()),
+            Some(acc) => {
+                for (node, vals) in &v.values {
+                    for (i, x) in vals.iter().enumerate() {
+                        if let Some(x) = x {
+                            let name = &v.components[i];
+                            let cur = acc.get(*node, name).unwrap_or(0.0);
+                            acc.set(*node, name, cur + x);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let sum = sum.ok_or_else(|| ExecError::new("ASSE_VECTEUR: no VECT_ELEM"))?;
+    store_result(ex, call, Concept::Field(Rc::new(Field::Nodal(sum))))
+}

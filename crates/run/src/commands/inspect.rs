@@ -1,0 +1,395 @@
+//! TEST_RESU and TEST_TABLE.
+
+use super::post::{select_steps, step_field};
+use crate::executor::Executor;
+use crate::field::{ElemLocation, Field};
+use crate::pyfmt::py_repr;
+use crate::select;
+use crate::table::{Table, Value};
+use crate::test_resu::{check_block, comparisons};
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use aster_mesh::Mesh;
+
+const TEST_KEYS: &[&str] = &[
+    "VALE_CALC",
+    "VALE_CALC_I",
+    "VALE_REFE",
+    "VALE_REFE_I",
+    "VALE",
+    "VALE_I",
+    "REFERENCE",
+    "PRECISION",
+    "CRITERE",
+    "TOLE_MACHINE",
+    "ORDRE_GRANDEUR",
+    "LEGENDE",
+    "VALE_ABS",
+    "VERSION",
+];
+
+fn allowed(factor: &str, own: &[&str]) -> Vec<String> {
+    let mut v = vec![factor.to_string()];
+    v.extend(own.iter().chain(TEST_KEYS).map(|k| format!("{factor}/{k}")));
+    v
+}
+
+/// Reduces every value of a field/column (`TYPE_TEST`).
+fn reduce(kind: &str, values: &[f64]) -> Result<f64, ExecError> {
+    if values.is_empty() {
+        return Err(ExecError::new(format!(
+            "TYPE_TEST='{kind}': no value to reduce"
+        )));
+    }
+    Ok(match kind {
+        "SOMM_ABS" => values.iter().map(|v| v.abs()).sum(),
+        "SOMM" => values.iter().sum(),
+        "MAX" => values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        "MIN" => values.iter().copied().fold(f64::INFINITY, f64::min),
+        other => return Err(ExecError::new(format!("unknown TYPE_TEST '{other}'"))),
+    })
+}
+
+/// The value a test designates in a field, and the header fields naming it.
+fn field_value(
+    occ: &Keywords,
+    field: &Field,
+    mesh: &Mesh,
+    header: &mut Vec<(&'static str, String)>,
+) -> Result<f64, String> {
+    if let Some(kind) = occ.str("TYPE_TEST") {
+        header.push(("TYPE_TEST", kind.to_string()));
+        let cmp = occ.str("NOM_CMP");
+        if let Some(c) = cmp {
+            header.push(("NOM_CMP", c.to_string()));
+        }
+        return reduce(kind, &field.all_values(cmp)).map_err(|e| e.message);
+    }
+    let cmp = occ.str("NOM_CMP").ok_or("NOM_CMP is required")?;
+    header.push(("NOM_CMP", cmp.to_string()));
+    let missing = |what: String| {
+        format!(
+            "the field has no component {cmp} {what} (components: {})",
+            field.components().join(", ")
+        )
+    };
+    match field {
+        Field::Nodal(f) => {
+            let (node, group) = select::single_node(occ, mesh)?;
+            match group {
+                Some(g) => header.push(("GROUP_NO", g)),
+                None => header.push(("NOEUD", select::node_name(mesh, node))),
+            }
+            f.get(node, cmp)
+                .ok_or_else(|| missing(format!("at node {}", select::node_name(mesh, node))))
+        }
+        Field::Elem(f) => {
+            let cell = if let Some(m) = occ.str("MAILLE") {
+                header.push(("MAILLE", m.to_string()));
+                select::cell_named(mesh, m)?
+            } else if let Some(g) = occ.str("GROUP_MA") {
+                header.push(("GROUP_MA", g.to_string()));
+                match select::group_ma(mesh, g)? {
+                    [c] => *c,
+                    cells => {
+                        return Err(format!(
+                            "cell group `{g}` has {} cells; a test needs exactly one",
+                            cells.len()
+                        ))
+                    }
+                }
+            } else {
+                return Err("give MAILLE or GROUP_MA for an element field".into());
+            };
+            let point = if let Some(p) = occ.first("POINT").and_then(|s| s.as_i64()) {
+                header.push(("POINT", p.to_string()));
+                p as usize
+            } else if f.location == ElemLocation::Nodes {
+                let (node, group) = select::single_node(occ, mesh)?;
+                match group {
+                    Some(g) => header.push(("GROUP_NO", g)),
+                    None => header.push(("NOEUD", select::node_name(mesh, node))),
+                }
+                1 + mesh
+                    .cell(cell)
+                    .nodes
+                    .iter()
+                    .position(|&n| n == node)
+                    .ok_or_else(|| {
+                        format!(
+                            "node {} is not a node of the cell",
+                            select::node_name(mesh, node)
+                        )
+                    })?
+            } else {
+                1
+            };
+            if let Some(sp) = occ.first("SOUS_POINT").and_then(|s| s.as_i64()) {
+                if sp != 1 {
+                    return Err(format!("SOUS_POINT={sp}: this field has no sub-points"));
+                }
+            }
+            f.get(cell, point, cmp).ok_or_else(|| {
+                missing(format!(
+                    "at point {point} of cell {}",
+                    select::cell_name(mesh, cell)
+                ))
+            })
+        }
+    }
+}
+
+fn run_checks(
+    ex: &mut Executor,
+    header: &[(&str, String)],
+    occ: &Keywords,
+    computed: f64,
+) -> Result<(), ExecError> {
+    let cs = comparisons(occ).map_err(ExecError::new)?;
+    let (text, verdicts) = check_block(header, &cs, computed);
+    for v in verdicts {
+        ex.tally.add(v);
+    }
+    ex.write_report(&text)
+}
+
+pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let mut allow: Vec<String> = vec!["INFO".into()];
+    allow.extend(allowed(
+        "RESU",
+        &[
+            "RESULTAT",
+            "NUME_ORDRE",
+            "INST",
+            "NOM_CHAM",
+            "PARA",
+            "NOM_CMP",
+            "GROUP_NO",
+            "NOEUD",
+            "GROUP_MA",
+            "MAILLE",
+            "POINT",
+            "SOUS_POINT",
+            "TYPE_TEST",
+        ],
+    ));
+    allow.extend(allowed(
+        "CHAM_NO",
+        &["CHAM_GD", "NOM_CMP", "GROUP_NO", "NOEUD", "TYPE_TEST"],
+    ));
+    allow.extend(allowed(
+        "CHAM_ELEM",
+        &[
+            "CHAM_GD",
+            "NOM_CMP",
+            "GROUP_MA",
+            "MAILLE",
+            "POINT",
+            "SOUS_POINT",
+            "GROUP_NO",
+            "NOEUD",
+            "TYPE_TEST",
+        ],
+    ));
+    let allow: Vec<&str> = allow.iter().map(String::as_str).collect();
+    ex.check_keywords(call, &allow)?;
+    let kw = &call.keywords;
+    for occ in kw.factor("RESU") {
+        let r = ex.required("TEST_RESU/RESU", occ, "RESULTAT")?;
+        let result = ex.result(r)?;
+        let mesh = ex.mesh_by_id(result.mesh)?;
+        let steps = select_steps(ex, "TEST_RESU/RESU", occ, &result)?;
+        let step = match steps.as_slice() {
+            [s] => *s,
+            _ => {
+                return Err(ExecError::new(
+                    "TEST_RESU/RESU: give exactly one NUME_ORDRE or INST",
+                ))
+            }
+        };
+        let mut header: Vec<(&str, String)> = vec![
+            ("RESULTAT", r.name.clone()),
+            ("NUME_ORDRE", step.nume_ordre.to_string()),
+        ];
+        let value = if let Some(para) = occ.str("PARA") {
+            header.push(("PARA", para.to_string()));
+            match para {
+                "INST" => step.inst,
+                other => {
+                    return Err(ex.unsupported(
+                        &format!("TEST_RESU/RESU/PARA='{other}'"),
+                        occ.keyword("PARA").map(|k| k.span).unwrap_or(call.span),
+                    ))
+                }
+            }
+        } else {
+            let name = occ
+                .str("NOM_CHAM")
+                .ok_or_else(|| ExecError::new("TEST_RESU/RESU: give NOM_CHAM or PARA"))?;
+            header.push(("NOM_CHAM", name.to_string()));
+            let field = step_field(step, name, &r.name)?;
+            field_value(occ, field, &mesh, &mut header)
+                .map_err(|e| ExecError::new(format!("TEST_RESU/RESU: {e}")))?
+        };
+        run_checks(ex, &header, occ, value)?;
+    }
+    for (factor, label) in [("CHAM_NO", "CHAM_NO"), ("CHAM_ELEM", "CHAM_ELEM")] {
+        for occ in kw.factor(factor) {
+            let c = ex.required(&format!("TEST_RESU/{factor}"), occ, "CHAM_GD")?;
+            let field = ex.field(c)?;
+            let mesh = ex.single_mesh()?;
+            let mut header: Vec<(&str, String)> = vec![(label, c.name.clone())];
+            let value = field_value(occ, &field, &mesh, &mut header)
+                .map_err(|e| ExecError::new(format!("TEST_RESU/{factor}: {e}")))?;
+            run_checks(ex, &header, occ, value)?;
+        }
+    }
+    Ok(CommandOutput::Nothing)
+}
+
+/// Rows of a table kept by `FILTRE` occurrences.
+pub(crate) fn filter_rows(table: &Table, filters: &[Keywords]) -> Result<Vec<usize>, String> {
+    let mut rows: Vec<usize> = (0..table.rows.len()).collect();
+    for f in filters {
+        let para = f.str("NOM_PARA").ok_or("FILTRE needs NOM_PARA")?;
+        let col = table.column_index(para).ok_or_else(|| {
+            format!(
+                "FILTRE: the table has no column {para}{}",
+                select::did_you_mean(para, table.columns.iter().map(|c| c.name.as_str()))
+            )
+        })?;
+        let crit = f.str("CRIT_COMP").unwrap_or("EQ");
+        let prec = f.f64("PRECISION").unwrap_or(1e-3);
+        let absolute = f.str("CRITERE") == Some("ABSOLU");
+        let cell = |r: usize| table.rows[r].get(col).and_then(|c| c.as_ref());
+        match crit {
+            "MAXI" | "MINI" | "MAXI_ABS" | "MINI_ABS" => {
+                let key = |v: f64| if crit.ends_with("ABS") { v.abs() } else { v };
+                let best = rows
+                    .iter()
+                    .filter_map(|&r| cell(r).and_then(Value::as_f64).map(|v| (r, key(v))))
+                    .reduce(|a, b| {
+                        if (crit.starts_with("MAXI") && b.1 > a.1)
+                            || (crit.starts_with("MINI") && b.1 < a.1)
+                        {
+                            b
+                        } else {
+                            a
+                        }
+                    });
+                rows = best.map(|(r, _)| vec![r]).unwrap_or_default();
+                continue;
+            }
+            "VIDE" => {
+                rows.retain(|&r| cell(r).is_none());
+                continue;
+            }
+            "NON_VIDE" => {
+                rows.retain(|&r| cell(r).is_some());
+                continue;
+            }
+            _ => {}
+        }
+        if let Some(k) = f.str("VALE_K") {
+            rows.retain(|&r| {
+                let eq = matches!(cell(r), Some(Value::Text(s)) if s.trim() == k.trim());
+                if crit == "NE" {
+                    !eq
+                } else {
+                    eq
+                }
+            });
+            continue;
+        }
+        let target = f
+            .f64("VALE")
+            .or_else(|| f.f64("VALE_I"))
+            .ok_or("FILTRE needs VALE, VALE_I or VALE_K")?;
+        rows.retain(|&r| {
+            let Some(v) = cell(r).and_then(Value::as_f64) else {
+                return false;
+            };
+            let tol = if absolute { prec } else { prec * target.abs() };
+            let eq = (v - target).abs() <= tol;
+            match crit {
+                "EQ" => eq,
+                "NE" => !eq,
+                "LT" => v < target,
+                "GT" => v > target,
+                "LE" => v <= target,
+                "GE" => v >= target,
+                _ => false,
+            }
+        });
+    }
+    Ok(rows)
+}
+
+pub fn test_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let mut allow: Vec<&str> = vec![
+        "TABLE",
+        "NOM_PARA",
+        "TYPE_TEST",
+        "INFO",
+        "FILTRE",
+        "FILTRE/NOM_PARA",
+        "FILTRE/CRIT_COMP",
+        "FILTRE/VALE",
+        "FILTRE/VALE_I",
+        "FILTRE/VALE_K",
+        "FILTRE/CRITERE",
+        "FILTRE/PRECISION",
+    ];
+    allow.extend_from_slice(TEST_KEYS);
+    ex.check_keywords(call, &allow)?;
+    let kw = &call.keywords;
+    let t = ex.required("TEST_TABLE", kw, "TABLE")?;
+    let table = ex.table(t)?;
+    let para = kw
+        .str("NOM_PARA")
+        .ok_or_else(|| ExecError::new("TEST_TABLE: NOM_PARA is required"))?;
+    let col = table.column_index(para).ok_or_else(|| {
+        ExecError::new(format!(
+            "TEST_TABLE/NOM_PARA: table `{}` has no column {para}{}",
+            t.name,
+            select::did_you_mean(para, table.columns.iter().map(|c| c.name.as_str()))
+        ))
+    })?;
+    let rows = filter_rows(&table, kw.factor("FILTRE"))
+        .map_err(|e| ExecError::new(format!("TEST_TABLE: {e}")))?;
+    let values: Vec<f64> = rows
+        .iter()
+        .filter_map(|&r| {
+            table.rows[r]
+                .get(col)
+                .and_then(|c| c.as_ref())
+                .and_then(Value::as_f64)
+        })
+        .collect();
+    let mut header: Vec<(&str, String)> =
+        vec![("TABLE", t.name.clone()), ("NOM_PARA", para.to_string())];
+    let value =
+        if let Some(kind) = kw.str("TYPE_TEST") {
+            header.push(("TYPE_TEST", kind.to_string()));
+            reduce(kind, &values)?
+        } else {
+            match values.as_slice() {
+                [v] => *v,
+                [] => {
+                    return Err(ExecError::new(format!(
+                        "TEST_TABLE: no row of `{}` has a value of {para} after FILTRE",
+                        t.name
+                    )))
+                }
+                many => {
+                    return Err(ExecError::new(format!(
+                    "TEST_TABLE: {} rows of `{}` match (values {}); refine FILTRE or use TYPE_TEST",
+                    many.len(),
+                    t.name,
+                    many.iter().take(5).map(|v| py_repr(*v)).collect::<Vec<_>>().join(", ")
+                )))
+                }
+            }
+        };
+    run_checks(ex, &header, kw, value)?;
+    Ok(CommandOutput::Nothing)
+}

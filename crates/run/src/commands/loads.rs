@@ -1,0 +1,444 @@
+//! AFFE_CHAR_CINE, AFFE_CHAR_MECA, DEFI_CONTACT.
+
+use crate::concept::*;
+use crate::executor::{store_result, Executor};
+use crate::select;
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use aster_mesh::{Mesh, NodeId};
+use std::rc::Rc;
+
+/// Displacement components a mechanical condition may name.
+const COMPS: [CompName; 6] = ["DX", "DY", "DZ", "DRX", "DRY", "DRZ"];
+
+fn comp_name(name: &str) -> Option<CompName> {
+    COMPS.iter().copied().find(|c| *c == name)
+}
+
+/// Checks that a node carries a component in the model (2D models have
+/// no DZ; nodes outside the model have nothing).
+fn check_dof(
+    model: &ModelDef,
+    mesh: &Mesh,
+    carried: &[bool],
+    node: NodeId,
+    comp: CompName,
+    what: &str,
+) -> Result<(), ExecError> {
+    if !carried.get(node.0 as usize).copied().unwrap_or(false) {
+        return Err(ExecError::new(format!(
+            "{what}: node {} is not carried by any element of the model, so it has no {comp}",
+            select::node_name(mesh, node)
+        )));
+    }
+    let dim = model.dim();
+    let ok = match comp {
+        "DX" | "DY" => true,
+        "DZ" => dim == 3,
+        _ => false,
+    };
+    if !ok {
+        return Err(ExecError::new(format!(
+            "{what}: the model has no component {comp} (a {dim}D model of translations)",
+        )));
+    }
+    Ok(())
+}
+
+/// Which nodes carry DOFs: those of the model's cells.
+pub fn carried_nodes(model: &ModelDef, mesh: &Mesh) -> Vec<bool> {
+    let mut carried = vec![false; mesh.node_count()];
+    for c in model.cells.keys() {
+        for n in &mesh.cell(*c).nodes {
+            carried[n.0 as usize] = true;
+        }
+    }
+    carried
+}
+
+/// The (node, component, value) triples of a DDL_IMPO/MECA_IMPO/FORCE_NODALE occurrence.
+fn imposed_values(
+    ex: &Executor,
+    occ: &Keywords,
+    mesh: &Mesh,
+    comps: &[&str],
+    what: &str,
+) -> Result<Vec<(NodeId, &'static str, f64)>, ExecError> {
+    let nodes =
+        select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    let mut out = Vec::new();
+    for &c in comps {
+        if let Some(s) = occ.first(c) {
+            let v = s.as_f64().ok_or_else(|| {
+                ex.kw_error(
+                    what,
+                    occ,
+                    c,
+                    "a real value is required (functions need AFFE_CHAR_MECA_F)",
+                )
+            })?;
+            let name: &'static str = match c {
+                "DX" => "DX",
+                "DY" => "DY",
+                "DZ" => "DZ",
+                "FX" => "DX",
+                "FY" => "DY",
+                "FZ" => "DZ",
+                _ => {
+                    return Err(ex.unsupported(
+                        &format!("{what}/{c}"),
+                        occ.keyword(c).map(|k| k.span).unwrap_or_default(),
+                    ))
+                }
+            };
+            for &n in &nodes {
+                out.push((n, name, v));
+            }
+        }
+    }
+    Ok(out)
+}
+
+pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "MODELE",
+            "INFO",
+            "MECA_IMPO",
+            "MECA_IMPO/TOUT",
+            "MECA_IMPO/GROUP_NO",
+            "MECA_IMPO/NOEUD",
+            "MECA_IMPO/GROUP_MA",
+            "MECA_IMPO/MAILLE",
+            "MECA_IMPO/SANS_GROUP_NO",
+            "MECA_IMPO/DX",
+            "MECA_IMPO/DY",
+            "MECA_IMPO/DZ",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let model_ref = ex.required("AFFE_CHAR_CINE", kw, "MODELE")?;
+    let model = ex.model(model_ref)?;
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let carried = carried_nodes(&model, &mesh);
+    let mut imposed = Vec::new();
+    for occ in kw.factor("MECA_IMPO") {
+        for (node, comp, value) in imposed_values(
+            ex,
+            occ,
+            &mesh,
+            &["DX", "DY", "DZ"],
+            "AFFE_CHAR_CINE/MECA_IMPO",
+        )? {
+            check_dof(
+                &model,
+                &mesh,
+                &carried,
+                node,
+                comp,
+                "AFFE_CHAR_CINE/MECA_IMPO",
+            )?;
+            imposed.push(Imposed { node, comp, value });
+        }
+    }
+    if kw.factor("MECA_IMPO").is_empty() {
+        return Err(ExecError::new(
+            "AFFE_CHAR_CINE: MECA_IMPO is required (the only condition supported yet)",
+        ));
+    }
+    store_result(
+        ex,
+        call,
+        Concept::KinematicLoad(Rc::new(KinematicLoad {
+            model: model_ref.id,
+            imposed,
+        })),
+    )
+}
+
+pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "MODELE",
+            "INFO",
+            "VERI_NORM",
+            "DOUBLE_LAGRANGE",
+            "DDL_IMPO",
+            "DDL_IMPO/TOUT",
+            "DDL_IMPO/GROUP_NO",
+            "DDL_IMPO/NOEUD",
+            "DDL_IMPO/GROUP_MA",
+            "DDL_IMPO/MAILLE",
+            "DDL_IMPO/SANS_GROUP_NO",
+            "DDL_IMPO/DX",
+            "DDL_IMPO/DY",
+            "DDL_IMPO/DZ",
+            "FORCE_NODALE",
+            "FORCE_NODALE/GROUP_NO",
+            "FORCE_NODALE/NOEUD",
+            "FORCE_NODALE/FX",
+            "FORCE_NODALE/FY",
+            "FORCE_NODALE/FZ",
+            "FORCE_CONTOUR",
+            "FORCE_CONTOUR/GROUP_MA",
+            "FORCE_CONTOUR/MAILLE",
+            "FORCE_CONTOUR/FX",
+            "FORCE_CONTOUR/FY",
+            "PRES_REP",
+            "PRES_REP/GROUP_MA",
+            "PRES_REP/MAILLE",
+            "PRES_REP/TOUT",
+            "PRES_REP/PRES",
+            "LIAISON_DDL",
+            "LIAISON_DDL/GROUP_NO",
+            "LIAISON_DDL/NOEUD",
+            "LIAISON_DDL/DDL",
+            "LIAISON_DDL/COEF_MULT",
+            "LIAISON_DDL/COEF_IMPO",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let model_ref = ex.required("AFFE_CHAR_MECA", kw, "MODELE")?;
+    let model = ex.model(model_ref)?;
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let carried = carried_nodes(&model, &mesh);
+    let mut load = MechanicalLoad {
+        model: model_ref.id,
+        ..MechanicalLoad::default()
+    };
+    for occ in kw.factor("DDL_IMPO") {
+        for (node, comp, value) in imposed_values(
+            ex,
+            occ,
+            &mesh,
+            &["DX", "DY", "DZ"],
+            "AFFE_CHAR_MECA/DDL_IMPO",
+        )? {
+            check_dof(
+                &model,
+                &mesh,
+                &carried,
+                node,
+                comp,
+                "AFFE_CHAR_MECA/DDL_IMPO",
+            )?;
+            load.imposed.push(Imposed { node, comp, value });
+        }
+    }
+    for occ in kw.factor("FORCE_NODALE") {
+        for (node, comp, value) in imposed_values(
+            ex,
+            occ,
+            &mesh,
+            &["FX", "FY", "FZ"],
+            "AFFE_CHAR_MECA/FORCE_NODALE",
+        )? {
+            check_dof(
+                &model,
+                &mesh,
+                &carried,
+                node,
+                comp,
+                "AFFE_CHAR_MECA/FORCE_NODALE",
+            )?;
+            load.nodal_forces.push(Imposed { node, comp, value });
+        }
+    }
+    for occ in kw.factor("FORCE_CONTOUR") {
+        let cells = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_CONTOUR: {e}")))?;
+        let force = [
+            occ.f64("FX").unwrap_or(0.0),
+            occ.f64("FY").unwrap_or(0.0),
+            0.0,
+        ];
+        load.boundary.push(BoundaryLoad::Force { cells, force });
+    }
+    for occ in kw.factor("PRES_REP") {
+        let cells = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/PRES_REP: {e}")))?;
+        let pressure = occ.f64("PRES").ok_or_else(|| {
+            ex.kw_error(
+                "AFFE_CHAR_MECA/PRES_REP",
+                occ,
+                "PRES",
+                "a real pressure is required",
+            )
+        })?;
+        load.boundary
+            .push(BoundaryLoad::Pressure { cells, pressure });
+    }
+    for occ in kw.factor("LIAISON_DDL") {
+        // Nodes are listed one per term, in order (GROUP_NO groups of one
+        // node each, or NOEUD names).
+        let mut nodes = Vec::new();
+        for g in occ.simple("GROUP_NO").iter().filter_map(|s| s.as_str()) {
+            let members = select::group_no(&mesh, g)
+                .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/LIAISON_DDL: {e}")))?;
+            nodes.extend_from_slice(members);
+        }
+        for n in occ.simple("NOEUD").iter().filter_map(|s| s.as_str()) {
+            nodes.push(
+                select::node_named(&mesh, n)
+                    .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/LIAISON_DDL: {e}")))?,
+            );
+        }
+        let ddl: Vec<&str> = occ
+            .simple("DDL")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let coefs: Vec<f64> = occ
+            .simple("COEF_MULT")
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
+        if nodes.len() != ddl.len() || ddl.len() != coefs.len() {
+            return Err(ExecError::new(format!(
+                "AFFE_CHAR_MECA/LIAISON_DDL: {} nodes, {} DDL and {} COEF_MULT: they must match one to one",
+                nodes.len(),
+                ddl.len(),
+                coefs.len()
+            )));
+        }
+        let mut terms = Vec::new();
+        for ((node, d), c) in nodes.into_iter().zip(ddl).zip(coefs) {
+            let comp = comp_name(d).ok_or_else(|| {
+                ExecError::new(format!(
+                    "AFFE_CHAR_MECA/LIAISON_DDL: unknown component `{d}`"
+                ))
+            })?;
+            check_dof(
+                &model,
+                &mesh,
+                &carried,
+                node,
+                comp,
+                "AFFE_CHAR_MECA/LIAISON_DDL",
+            )?;
+            terms.push((node, comp, c));
+        }
+        let rhs = occ.f64("COEF_IMPO").unwrap_or(0.0);
+        load.relations.push(LinearRelation { terms, rhs });
+    }
+    store_result(ex, call, Concept::MechanicalLoad(Rc::new(load)))
+}
+
+pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let model_ref = ex.required("DEFI_CONTACT", kw, "MODELE")?;
+    let model = ex.model(model_ref)?;
+    if kw.str("FROTTEMENT") == Some("COULOMB") {
+        let span = kw.keyword("FROTTEMENT").map(|k| k.span).unwrap_or_default();
+        return Err(ex.unsupported(
+            "DEFI_CONTACT/FROTTEMENT='COULOMB' (frictionless contact only)",
+            span,
+        ));
+    }
+    let formulation = kw.str("FORMULATION").unwrap_or("DISCRETE");
+    if formulation != "LIAISON_UNIL" {
+        // Check the keywords now (errors at the command that has them);
+        // zones are resolved on the mesh at the solve.
+        crate::contactbridge::definition(ex, kw)?;
+        let def = ContactDef::Zones {
+            model: model_ref.id,
+            keywords: kw.clone(),
+        };
+        return store_result(ex, call, Concept::Contact(Rc::new(def)));
+    }
+    ex.check_keywords(
+        call,
+        &[
+            "MODELE",
+            "INFO",
+            "FORMULATION",
+            "ZONE",
+            "ZONE/GROUP_NO",
+            "ZONE/GROUP_MA",
+            "ZONE/SANS_GROUP_NO",
+            "ZONE/NOM_CMP",
+            "ZONE/COEF_IMPO",
+            "ZONE/COEF_MULT",
+            "ZONE/ALGO_CONT",
+            "ZONE/COEF_PENA",
+        ],
+    )?;
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let carried = carried_nodes(&model, &mesh);
+    let mut zones = Vec::new();
+    let mut algo = UnilateralAlgo::Constraint;
+    for occ in kw.factor("ZONE") {
+        let nodes = select::nodes_without(occ, &mesh)
+            .map_err(|e| ExecError::new(format!("DEFI_CONTACT/ZONE: {e}")))?;
+        let comps: Vec<CompName> = occ
+            .simple("NOM_CMP")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .map(|c| {
+                comp_name(c).ok_or_else(|| {
+                    ex.kw_error(
+                        "DEFI_CONTACT/ZONE",
+                        occ,
+                        "NOM_CMP",
+                        format!("unknown component `{c}`"),
+                    )
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        let mut coef_mult = Vec::new();
+        for s in occ.simple("COEF_MULT") {
+            let c = s.as_concept().ok_or_else(|| {
+                ex.kw_error(
+                    "DEFI_CONTACT/ZONE",
+                    occ,
+                    "COEF_MULT",
+                    "a function (DEFI_CONSTANTE, DEFI_FONCTION, FORMULE) is required",
+                )
+            })?;
+            coef_mult.push(ex.function(c)?);
+        }
+        if coef_mult.len() != comps.len() {
+            return Err(ex.kw_error(
+                "DEFI_CONTACT/ZONE",
+                occ,
+                "COEF_MULT",
+                format!(
+                    "{} coefficients for {} components in NOM_CMP: give one per component",
+                    coef_mult.len(),
+                    comps.len()
+                ),
+            ));
+        }
+        let impo = ex.required("DEFI_CONTACT/ZONE", occ, "COEF_IMPO")?;
+        let coef_impo = ex.function(impo)?;
+        for &n in &nodes {
+            for &c in &comps {
+                check_dof(&model, &mesh, &carried, n, c, "DEFI_CONTACT/ZONE")?;
+            }
+        }
+        algo = match occ.str("ALGO_CONT").unwrap_or("CONTRAINTE") {
+            "PENALISATION" => UnilateralAlgo::Penalty(occ.f64("COEF_PENA").ok_or_else(|| {
+                ex.kw_error(
+                    "DEFI_CONTACT/ZONE",
+                    occ,
+                    "COEF_PENA",
+                    "COEF_PENA is required with ALGO_CONT='PENALISATION'",
+                )
+            })?),
+            _ => UnilateralAlgo::Constraint,
+        };
+        zones.push(UnilateralZone {
+            nodes,
+            comps,
+            coef_mult,
+            coef_impo,
+        });
+    }
+    let def = ContactDef::Unilateral {
+        model: model_ref.id,
+        zones,
+        algo,
+    };
+    store_result(ex, call, Concept::Contact(Rc::new(def)))
+}

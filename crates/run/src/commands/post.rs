@@ -1,0 +1,564 @@
+//! CREA_CHAMP, POST_RELEVE_T, IMPR_TABLE, IMPR_RESU.
+
+use crate::concept::*;
+use crate::executor::{store_result, Executor};
+use crate::field::{Field, NodalField};
+use crate::select;
+use crate::table::{Column, ColumnType, Table, Value};
+use aster_eval::{CommandCall, CommandOutput, ConceptRef, ExecError, Keywords};
+use std::rc::Rc;
+use std::sync::Arc;
+
+/// Relative precision for matching instants (code_aster's default).
+pub const INST_PRECISION: f64 = 1e-6;
+
+/// The steps an occurrence designates (`NUME_ORDRE`, `INST`, `TOUT_ORDRE`,
+/// default: every step).
+pub fn select_steps<'r>(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    result: &'r EvolResult,
+) -> Result<Vec<&'r Step>, ExecError> {
+    let absolute = occ.str("CRITERE") == Some("ABSOLU");
+    let precision = occ
+        .f64("PRECISION")
+        .filter(|_| occ.contains("INST"))
+        .unwrap_or(INST_PRECISION);
+    let mut out = Vec::new();
+    if occ.contains("NUME_ORDRE") {
+        for n in occ.simple("NUME_ORDRE").iter().filter_map(|s| s.as_i64()) {
+            out.push(result.step_numbered(n as u32).ok_or_else(|| {
+                ex.kw_error(
+                    cmd,
+                    occ,
+                    "NUME_ORDRE",
+                    format!(
+                        "the result has no NUME_ORDRE {n} (it has 0 to {})",
+                        result.steps.len().saturating_sub(1)
+                    ),
+                )
+            })?);
+        }
+    } else if occ.contains("INST") {
+        for t in occ.simple("INST").iter().filter_map(|s| s.as_f64()) {
+            out.push(result.step_at(t, precision, absolute).ok_or_else(|| {
+                let insts: Vec<String> = result
+                    .steps
+                    .iter()
+                    .map(|s| crate::pyfmt::py_repr(s.inst))
+                    .collect();
+                ex.kw_error(
+                    cmd,
+                    occ,
+                    "INST",
+                    format!(
+                        "the result has no instant {t} (instants: {})",
+                        insts.join(", ")
+                    ),
+                )
+            })?);
+        }
+    } else {
+        out.extend(result.steps.iter());
+    }
+    Ok(out)
+}
+
+/// A field of a result step, by name.
+pub fn step_field<'s>(
+    step: &'s Step,
+    name: &str,
+    result_name: &str,
+) -> Result<&'s Field, ExecError> {
+    step.fields.get(name).ok_or_else(|| {
+        let have: Vec<&str> = step.fields.keys().map(String::as_str).collect();
+        ExecError::new(format!(
+            "result `{result_name}` has no field {name} at NUME_ORDRE {} (it has: {}){}",
+            step.nume_ordre,
+            have.join(", "),
+            if name.ends_with("_NOEU")
+                || name == "FORC_NODA"
+                || name == "REAC_NODA"
+                || name.ends_with("_ELNO")
+            {
+                "; compute it first with CALC_CHAMP"
+            } else {
+                ""
+            }
+        ))
+    })
+}
+
+pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "TYPE_CHAM",
+            "OPERATION",
+            "RESULTAT",
+            "NOM_CHAM",
+            "INST",
+            "NUME_ORDRE",
+            "PRECISION",
+            "CRITERE",
+            "INFO",
+            "TITRE",
+            "MAILLAGE",
+            "MODELE",
+            "COMB",
+            "COMB/CHAM_GD",
+            "COMB/COEF_R",
+            "ASSE",
+            "ASSE/TOUT",
+            "ASSE/GROUP_NO",
+            "ASSE/GROUP_MA",
+            "ASSE/CHAM_GD",
+            "ASSE/NOM_CMP",
+            "ASSE/COEF_R",
+            "ASSE/CUMUL",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let op = kw.str("OPERATION").unwrap_or("");
+    let field = match op {
+        "EXTR" => {
+            let r = ex.required("CREA_CHAMP", kw, "RESULTAT")?;
+            let result = ex.result(r)?;
+            let name = kw
+                .str("NOM_CHAM")
+                .ok_or_else(|| ExecError::new("CREA_CHAMP/EXTR: NOM_CHAM is required"))?;
+            let steps = select_steps(ex, "CREA_CHAMP", kw, &result)?;
+            let step = match steps.as_slice() {
+                [s] => *s,
+                _ => {
+                    return Err(ExecError::new(
+                        "CREA_CHAMP/EXTR: give exactly one INST or NUME_ORDRE",
+                    ))
+                }
+            };
+            step_field(step, name, &r.name)?.clone()
+        }
+        "COMB" => {
+            let mut acc: Option<NodalField> = None;
+            for occ in kw.factor("COMB") {
+                let c = ex.required("CREA_CHAMP/COMB", occ, "CHAM_GD")?;
+                let coef = occ.f64("COEF_R").unwrap_or(1.0);
+                let Field::Nodal(f) = &*ex.field(c)? else {
+                    return Err(ex.unsupported("CREA_CHAMP/COMB of element fields", call.span));
+                };
+                let acc = acc.get_or_insert_with(|| NodalField::new(f.components.clone()));
+                for (node, vals) in &f.values {
+                    for (i, v) in vals.iter().enumerate() {
+                        if let Some(v) = v {
+                            let cur = acc.get(*node, &f.components[i]).unwrap_or(0.0);
+                            acc.set(*node, &f.components[i], cur + coef * v);
+                        }
+                    }
+                }
+            }
+            Field::Nodal(acc.ok_or_else(|| ExecError::new("CREA_CHAMP/COMB: no field to combine"))?)
+        }
+        "ASSE" => {
+            let mut acc: Option<NodalField> = None;
+            for occ in kw.factor("ASSE") {
+                let c = ex.required("CREA_CHAMP/ASSE", occ, "CHAM_GD")?;
+                let src = ex.field(c)?;
+                let Field::Nodal(f) = &*src else {
+                    return Err(ex.unsupported("CREA_CHAMP/ASSE of element fields", call.span));
+                };
+                let mesh_nodes = if occ.str("TOUT") == Some("OUI") {
+                    None
+                } else {
+                    // Fields do not carry their mesh: take it from MAILLAGE/MODELE.
+                    let mesh = if let Some(m) = kw.concept("MAILLAGE") {
+                        ex.mesh(m)?
+                    } else if let Some(m) = kw.concept("MODELE") {
+                        ex.mesh_by_id(ex.model(m)?.mesh)?
+                    } else {
+                        return Err(ExecError::new(
+                            "CREA_CHAMP/ASSE: give MAILLAGE or MODELE to select nodes",
+                        ));
+                    };
+                    Some(
+                        select::nodes(occ, &mesh, "")
+                            .map_err(|e| ExecError::new(format!("CREA_CHAMP/ASSE: {e}")))?,
+                    )
+                };
+                let cmps: Vec<String> = occ
+                    .simple("NOM_CMP")
+                    .iter()
+                    .filter_map(|s| s.as_str().map(str::to_string))
+                    .collect();
+                let coef = occ.f64("COEF_R").unwrap_or(1.0);
+                let cumul = occ.str("CUMUL") == Some("OUI");
+                let acc = acc.get_or_insert_with(|| NodalField::new(Vec::new()));
+                for (node, vals) in &f.values {
+                    if let Some(sel) = &mesh_nodes {
+                        if !sel.contains(node) {
+                            continue;
+                        }
+                    }
+                    for (i, v) in vals.iter().enumerate() {
+                        let name = &f.components[i];
+                        if !cmps.is_empty() && !cmps.contains(name) {
+                            continue;
+                        }
+                        if let Some(v) = v {
+                            let base = if cumul {
+                                acc.get(*node, name).unwrap_or(0.0)
+                            } else {
+                                0.0
+                            };
+                            acc.set(*node, name, base + coef * v);
+                        }
+                    }
+                }
+            }
+            Field::Nodal(
+                acc.ok_or_else(|| ExecError::new("CREA_CHAMP/ASSE: no field to assemble"))?,
+            )
+        }
+        other => {
+            let span = kw.keyword("OPERATION").map(|k| k.span).unwrap_or(call.span);
+            return Err(ex.unsupported(&format!("CREA_CHAMP/OPERATION='{other}'"), span));
+        }
+    };
+    store_result(ex, call, Concept::Field(Rc::new(field)))
+}
+
+fn table_title(name: &str) -> Vec<String> {
+    vec![
+        format!(
+            "ASTER {} CONCEPT {name} CALCULE PAR aster DE TYPE",
+            env!("CARGO_PKG_VERSION")
+        ),
+        "TABLE_SDASTER".to_string(),
+    ]
+}
+
+/// A field to extract from: (result name, field name, (NUME_ORDRE, INST), field).
+type Source = (Option<String>, Option<String>, Option<(u32, f64)>, Field);
+
+pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "ACTION",
+            "ACTION/OPERATION",
+            "ACTION/INTITULE",
+            "ACTION/RESULTAT",
+            "ACTION/CHAM_GD",
+            "ACTION/NOM_CHAM",
+            "ACTION/INST",
+            "ACTION/NUME_ORDRE",
+            "ACTION/TOUT_ORDRE",
+            "ACTION/CRITERE",
+            "ACTION/PRECISION",
+            "ACTION/GROUP_NO",
+            "ACTION/NOEUD",
+            "ACTION/GROUP_MA",
+            "ACTION/MAILLE",
+            "ACTION/TOUT",
+            "ACTION/TOUT_CMP",
+            "ACTION/NOM_CMP",
+            "INFO",
+            "TITRE",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let name = crate::executor::result_of(call)?.name.clone();
+    let mut table = Table::new(vec![
+        Column {
+            name: "INTITULE".into(),
+            ty: ColumnType::Text(16),
+        },
+        Column {
+            name: "RESU".into(),
+            ty: ColumnType::Text(8),
+        },
+        Column {
+            name: "NOM_CHAM".into(),
+            ty: ColumnType::Text(16),
+        },
+        Column {
+            name: "NUME_ORDRE".into(),
+            ty: ColumnType::Int,
+        },
+        Column {
+            name: "INST".into(),
+            ty: ColumnType::Real,
+        },
+        Column {
+            name: "NOEUD".into(),
+            ty: ColumnType::Text(8),
+        },
+        Column {
+            name: "COOR_X".into(),
+            ty: ColumnType::Real,
+        },
+        Column {
+            name: "COOR_Y".into(),
+            ty: ColumnType::Real,
+        },
+    ]);
+    table.title = table_title(&name);
+    for occ in kw.factor("ACTION") {
+        let ops: Vec<&str> = occ
+            .simple("OPERATION")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        if ops != ["EXTRACTION"] {
+            let span = occ
+                .keyword("OPERATION")
+                .map(|k| k.span)
+                .unwrap_or(call.span);
+            return Err(ex.unsupported(
+                &format!("POST_RELEVE_T/ACTION/OPERATION={ops:?} (only 'EXTRACTION')"),
+                span,
+            ));
+        }
+        let title = occ.str("INTITULE").unwrap_or("").to_string();
+        let mut sources: Vec<Source> = Vec::new();
+        let mesh;
+        if let Some(r) = occ.concept("RESULTAT") {
+            let result = ex.result(r)?;
+            mesh = ex.mesh_by_id(result.mesh)?;
+            let field_name = occ.str("NOM_CHAM").ok_or_else(|| {
+                ExecError::new("POST_RELEVE_T/ACTION: NOM_CHAM is required with RESULTAT")
+            })?;
+            for step in select_steps(ex, "POST_RELEVE_T/ACTION", occ, &result)? {
+                let f = step_field(step, field_name, &r.name)?.clone();
+                sources.push((
+                    Some(r.name.clone()),
+                    Some(field_name.to_string()),
+                    Some((step.nume_ordre, step.inst)),
+                    f,
+                ));
+            }
+        } else if let Some(c) = occ.concept("CHAM_GD") {
+            let f = ex.field(c)?;
+            let m = occ_mesh(ex, c)?;
+            mesh = m;
+            sources.push((None, None, None, (*f).clone()));
+        } else {
+            return Err(ExecError::new(
+                "POST_RELEVE_T/ACTION: give RESULTAT or CHAM_GD",
+            ));
+        }
+        if mesh.dim == 3 {
+            table.ensure_column("COOR_Z", ColumnType::Real);
+        }
+        let nodes = select::nodes(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("POST_RELEVE_T/ACTION: {e}")))?;
+        for (resu, cham, order, field) in sources {
+            let Field::Nodal(f) = field else {
+                return Err(ex.unsupported(
+                    "POST_RELEVE_T/ACTION on element fields",
+                    occ.keyword("NOM_CHAM").map(|k| k.span).unwrap_or(call.span),
+                ));
+            };
+            let cmps: Vec<String> = if occ.str("TOUT_CMP") == Some("OUI") {
+                f.components.clone()
+            } else {
+                let wanted: Vec<String> = occ
+                    .simple("NOM_CMP")
+                    .iter()
+                    .filter_map(|s| s.as_str().map(str::to_string))
+                    .collect();
+                for c in &wanted {
+                    if f.component_index(c).is_none() {
+                        return Err(ExecError::new(format!(
+                            "POST_RELEVE_T/ACTION/NOM_CMP: the field has no component {c} (it has {})",
+                            f.components.join(", ")
+                        )));
+                    }
+                }
+                wanted
+            };
+            for &n in &nodes {
+                // Nodes without the field (outside the model) give no row.
+                let Some(vals) = f.values.get(&n) else {
+                    continue;
+                };
+                let x = mesh.coord(n);
+                let mut row: Vec<(&str, Value)> = vec![("INTITULE", Value::Text(title.clone()))];
+                if let Some(r) = &resu {
+                    row.push(("RESU", Value::Text(r.clone())));
+                }
+                if let Some(c) = &cham {
+                    row.push(("NOM_CHAM", Value::Text(c.clone())));
+                }
+                if let Some((no, t)) = order {
+                    row.push(("NUME_ORDRE", Value::Int(no as i64)));
+                    row.push(("INST", Value::Real(t)));
+                }
+                row.push(("NOEUD", Value::Text(select::node_name(&mesh, n))));
+                row.push(("COOR_X", Value::Real(x[0])));
+                row.push(("COOR_Y", Value::Real(x[1])));
+                if mesh.dim == 3 {
+                    row.push(("COOR_Z", Value::Real(x[2])));
+                }
+                let mut cells: Vec<(String, f64)> = Vec::new();
+                for c in &cmps {
+                    if let Some(i) = f.component_index(c) {
+                        if let Some(v) = vals[i] {
+                            cells.push((c.clone(), v));
+                        }
+                    }
+                }
+                for (c, _) in &cells {
+                    table.ensure_column(c, ColumnType::Real);
+                }
+                let mut owned: Vec<(String, Value)> =
+                    row.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+                owned.extend(cells.into_iter().map(|(c, v)| (c, Value::Real(v))));
+                table.push_row(owned.iter().map(|(k, v)| (k.as_str(), v.clone())).collect());
+            }
+        }
+    }
+    // Columns nobody filled (RESU for a CHAM_GD…) are dropped, as code_aster does.
+    drop_empty_columns(&mut table);
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+fn occ_mesh(ex: &Executor, _field: &ConceptRef) -> Result<Arc<aster_mesh::Mesh>, ExecError> {
+    // A field does not record its mesh; a program has one mesh in practice.
+    ex.single_mesh()
+}
+
+fn drop_empty_columns(t: &mut Table) {
+    let keep: Vec<bool> = (0..t.columns.len())
+        .map(|i| t.rows.iter().any(|r| r.get(i).is_some_and(Option::is_some)))
+        .collect();
+    let mut i = 0;
+    t.columns.retain(|_| {
+        i += 1;
+        keep[i - 1]
+    });
+    for row in &mut t.rows {
+        let mut j = 0;
+        row.retain(|_| {
+            j += 1;
+            keep.get(j - 1).copied().unwrap_or(false)
+        });
+    }
+}
+
+pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "TABLE",
+            "FORMAT",
+            "UNITE",
+            "NOM_PARA",
+            "TITRE",
+            "INFO",
+            "TRI",
+            "TRI/NOM_PARA",
+            "TRI/ORDRE",
+            "FORMAT_R",
+        ],
+    )?;
+    let kw = &call.keywords;
+    ex.only_values("IMPR_TABLE", kw, "FORMAT", &["TABLEAU"])?;
+    ex.only_values("IMPR_TABLE", kw, "FORMAT_R", &["E12.5"])?;
+    let t = ex.required("IMPR_TABLE", kw, "TABLE")?;
+    let mut table = (*ex.table(t)?).clone();
+    let wanted: Vec<&str> = kw
+        .simple("NOM_PARA")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    if !wanted.is_empty() {
+        let mut cols = Vec::new();
+        for w in &wanted {
+            let i = table.column_index(w).ok_or_else(|| {
+                ExecError::new(format!(
+                    "IMPR_TABLE/NOM_PARA: the table has no column {w}{}",
+                    select::did_you_mean(w, table.columns.iter().map(|c| c.name.as_str()))
+                ))
+            })?;
+            cols.push(i);
+        }
+        table.columns = cols.iter().map(|&i| table.columns[i].clone()).collect();
+        table.rows = table
+            .rows
+            .iter()
+            .map(|r| cols.iter().map(|&i| r[i].clone()).collect())
+            .collect();
+    }
+    if let Some(tri) = kw.factor("TRI").first() {
+        let keys: Vec<usize> = tri
+            .simple("NOM_PARA")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .map(|k| {
+                table
+                    .column_index(k)
+                    .ok_or_else(|| ExecError::new(format!("IMPR_TABLE/TRI: no column {k}")))
+            })
+            .collect::<Result<_, _>>()?;
+        let descending = tri.str("ORDRE") == Some("DECROISSANT");
+        table.rows.sort_by(|a, b| {
+            let ord = keys
+                .iter()
+                .map(|&k| compare_cells(&a[k], &b[k]))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal);
+            if descending {
+                ord.reverse()
+            } else {
+                ord
+            }
+        });
+    }
+    if let Some(title) = kw.str("TITRE") {
+        table.title = title.lines().map(str::to_string).collect();
+    }
+    let text = table.render();
+    let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(8);
+    if unit == 8 || unit == 6 {
+        ex.write_report(&text)?;
+        ex.write_report("\n")?;
+    } else {
+        let path = ex.output_path(unit);
+        append(&path, &(text + "\n"))?;
+    }
+    Ok(CommandOutput::Nothing)
+}
+
+fn compare_cells(a: &Option<Value>, b: &Option<Value>) -> std::cmp::Ordering {
+    use std::cmp::Ordering;
+    match (a, b) {
+        (Some(Value::Text(x)), Some(Value::Text(y))) => x.cmp(y),
+        (Some(x), Some(y)) => x
+            .as_f64()
+            .unwrap_or(f64::NAN)
+            .total_cmp(&y.as_f64().unwrap_or(f64::NAN)),
+        (None, Some(_)) => Ordering::Greater,
+        (Some(_), None) => Ordering::Less,
+        (None, None) => Ordering::Equal,
+    }
+}
+
+pub(crate) fn append(path: &std::path::Path, text: &str) -> Result<(), ExecError> {
+    use std::io::Write;
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| ExecError::new(format!("cannot create {}: {e}", dir.display())))?;
+    }
+    let mut f = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(path)
+        .map_err(|e| ExecError::new(format!("cannot write {}: {e}", path.display())))?;
+    f.write_all(text.as_bytes())
+        .map_err(|e| ExecError::new(format!("cannot write {}: {e}", path.display())))
+}
+
+pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    crate::output::impr_resu(ex, call)
+}

@@ -1,0 +1,267 @@
+//! The concepts a program creates, as the runner keeps them. Concepts that
+//! belong to a mesh refer to it by concept id, so groups added later by
+//! `DEFI_GROUP(reuse=…)` are seen by every concept built on that mesh (node
+//! and cell numbering never change after reading).
+
+use crate::field::Field;
+use crate::function::Function;
+use crate::table::Table;
+use aster_mesh::{CellId, Mesh, NodeId};
+use std::collections::BTreeMap;
+use std::rc::Rc;
+use std::sync::Arc;
+
+/// A degree of freedom component name as the command language spells it.
+pub type CompName = &'static str;
+
+/// `AFFE_MODELE/AFFE/MODELISATION` values the runner knows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Modelisation {
+    /// `D_PLAN`: plane strain.
+    PlaneStrain,
+    /// `C_PLAN`: plane stress.
+    PlaneStress,
+    /// `AXIS`: axisymmetric.
+    Axisymmetric,
+    /// `3D`.
+    Solid3D,
+    /// `2D_DIS_T`: discrete translational elements in 2D.
+    Discrete2D,
+    /// `DIS_T`: discrete translational elements in 3D.
+    Discrete3D,
+}
+
+impl Modelisation {
+    pub fn from_keyword(value: &str) -> Option<Modelisation> {
+        Some(match value {
+            "D_PLAN" => Modelisation::PlaneStrain,
+            "C_PLAN" => Modelisation::PlaneStress,
+            "AXIS" => Modelisation::Axisymmetric,
+            "3D" => Modelisation::Solid3D,
+            "2D_DIS_T" => Modelisation::Discrete2D,
+            "DIS_T" => Modelisation::Discrete3D,
+            _ => return None,
+        })
+    }
+
+    pub const KEYWORDS: [&'static str; 6] = ["D_PLAN", "C_PLAN", "AXIS", "3D", "2D_DIS_T", "DIS_T"];
+
+    /// Space dimension of the displacement.
+    pub fn dim(self) -> usize {
+        match self {
+            Modelisation::Solid3D | Modelisation::Discrete3D => 3,
+            _ => 2,
+        }
+    }
+
+    pub fn is_discrete(self) -> bool {
+        matches!(self, Modelisation::Discrete2D | Modelisation::Discrete3D)
+    }
+}
+
+/// `AFFE_MODELE`: which cells carry which modelisation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelDef {
+    pub mesh: u32,
+    /// Per cell, its modelisation (the last `AFFE` occurrence wins, as in
+    /// code_aster); cells of no occurrence are not in the model.
+    pub cells: BTreeMap<CellId, Modelisation>,
+}
+
+impl ModelDef {
+    pub fn dim(&self) -> usize {
+        self.cells.values().map(|m| m.dim()).max().unwrap_or(2)
+    }
+}
+
+/// `DEFI_MATERIAU(ELAS=…)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub young: f64,
+    pub poisson: f64,
+    pub density: Option<f64>,
+    pub alpha: Option<f64>,
+}
+
+/// `AFFE_MATERIAU`: the material of each cell.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialField {
+    pub mesh: u32,
+    pub cells: BTreeMap<CellId, Rc<Material>>,
+}
+
+/// `AFFE_CARA_ELEM/DISCRET(_2D)`: a stiffness on discrete cells.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiscreteStiffness {
+    pub cells: Vec<CellId>,
+    /// `K_T_D_L` (segments) or `K_T_D_N` (points).
+    pub cara: String,
+    /// Translational stiffness per direction (kx, ky[, kz]).
+    pub values: Vec<f64>,
+    /// `REPERE='LOCAL'`: along the segment (x) and across; else global.
+    pub local: bool,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct CaraElem {
+    pub model: u32,
+    pub discrete: Vec<DiscreteStiffness>,
+}
+
+/// An imposed component value on a node.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Imposed {
+    pub node: NodeId,
+    pub comp: CompName,
+    pub value: f64,
+}
+
+/// `LIAISON_DDL`: Σ coef·u = rhs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinearRelation {
+    pub terms: Vec<(NodeId, CompName, f64)>,
+    pub rhs: f64,
+}
+
+/// A distributed load on boundary cells.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BoundaryLoad {
+    /// `FORCE_CONTOUR`: force per unit length (FX, FY[, FZ]).
+    Force { cells: Vec<CellId>, force: [f64; 3] },
+    /// `PRES_REP`: pressure (positive pushes into the body).
+    Pressure { cells: Vec<CellId>, pressure: f64 },
+}
+
+/// `AFFE_CHAR_CINE(MECA_IMPO=…)`: eliminated imposed values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct KinematicLoad {
+    pub model: u32,
+    pub imposed: Vec<Imposed>,
+}
+
+/// `AFFE_CHAR_MECA`: dualised conditions and forces.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MechanicalLoad {
+    pub model: u32,
+    pub imposed: Vec<Imposed>,
+    pub relations: Vec<LinearRelation>,
+    pub nodal_forces: Vec<Imposed>,
+    pub boundary: Vec<BoundaryLoad>,
+}
+
+/// One `LIAISON_UNIL` zone: Σ COEF_MULT·u ≤ COEF_IMPO on each node.
+#[derive(Clone, Debug)]
+pub struct UnilateralZone {
+    pub nodes: Vec<NodeId>,
+    pub comps: Vec<CompName>,
+    pub coef_mult: Vec<Rc<Function>>,
+    pub coef_impo: Rc<Function>,
+}
+
+/// How LIAISON_UNIL rows are enforced.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum UnilateralAlgo {
+    Constraint,
+    Penalty(f64),
+}
+
+/// `DEFI_CONTACT`.
+#[derive(Clone, Debug)]
+pub enum ContactDef {
+    Unilateral {
+        model: u32,
+        zones: Vec<UnilateralZone>,
+        algo: UnilateralAlgo,
+    },
+    /// DISCRETE/CONTINUE zones, kept as keywords until the solve (the
+    /// contact crate builds its zones from them).
+    Zones {
+        model: u32,
+        keywords: aster_eval::Keywords,
+    },
+}
+
+/// One stored instant of a result.
+#[derive(Clone, Debug)]
+pub struct Step {
+    pub nume_ordre: u32,
+    pub inst: f64,
+    pub fields: BTreeMap<String, Field>,
+}
+
+/// `evol_noli` / `evol_elas`.
+#[derive(Clone, Debug)]
+pub struct EvolResult {
+    pub typ: String,
+    pub mesh: u32,
+    pub steps: Vec<Step>,
+    /// What produced it, to compute more fields on demand (`CALC_CHAMP`).
+    pub fem: Option<Rc<crate::fembridge::FemRun>>,
+}
+
+impl EvolResult {
+    /// The step at an instant, matched with a precision (relative unless
+    /// `absolute`).
+    pub fn step_at(&self, inst: f64, precision: f64, absolute: bool) -> Option<&Step> {
+        self.steps.iter().find(|s| {
+            let d = (s.inst - inst).abs();
+            if absolute {
+                d <= precision
+            } else {
+                d <= precision * inst.abs().max(1e-300) || d == 0.0
+            }
+        })
+    }
+
+    pub fn step_numbered(&self, nume_ordre: u32) -> Option<&Step> {
+        self.steps.iter().find(|s| s.nume_ordre == nume_ordre)
+    }
+}
+
+/// Any concept.
+#[derive(Clone, Debug)]
+pub enum Concept {
+    Mesh(Arc<Mesh>),
+    Model(Rc<ModelDef>),
+    Material(Rc<Material>),
+    MaterialField(Rc<MaterialField>),
+    CaraElem(Rc<CaraElem>),
+    KinematicLoad(Rc<KinematicLoad>),
+    MechanicalLoad(Rc<MechanicalLoad>),
+    Function(Rc<Function>),
+    RealList(Rc<Vec<f64>>),
+    TimeList(Rc<Vec<f64>>),
+    Contact(Rc<ContactDef>),
+    Result(Rc<EvolResult>),
+    Table(Rc<Table>),
+    Field(Rc<Field>),
+    /// Elementary vectors (`vect_elem`), kept assembled per node: every
+    /// use in a program goes through ASSE_VECTEUR, which sums them.
+    VectElem(Rc<crate::field::NodalField>),
+    /// `NUME_DDL`: the numbering of a model's DOFs (the model's id).
+    Numbering(u32),
+}
+
+impl Concept {
+    /// What it is, for messages.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Concept::Mesh(_) => "a mesh",
+            Concept::Model(_) => "a model",
+            Concept::Material(_) => "a material",
+            Concept::MaterialField(_) => "a material field",
+            Concept::CaraElem(_) => "element characteristics",
+            Concept::KinematicLoad(_) => "a kinematic load",
+            Concept::MechanicalLoad(_) => "a mechanical load",
+            Concept::Function(_) => "a function",
+            Concept::RealList(_) => "a list of reals",
+            Concept::TimeList(_) => "a time list",
+            Concept::Contact(_) => "a contact definition",
+            Concept::Result(_) => "a result",
+            Concept::Table(_) => "a table",
+            Concept::Field(_) => "a field",
+            Concept::VectElem(_) => "elementary vectors",
+            Concept::Numbering(_) => "a DOF numbering",
+        }
+    }
+}

@@ -1,0 +1,250 @@
+//! The bridge to aster-contact: DEFI_CONTACT zones (DISCRETE/CONTINUE)
+//! from keywords, as row sources for fem's solver, and CONT_NOEU.
+
+use crate::executor::Executor;
+use crate::function::Function;
+use aster_contact::{
+    Appariement, ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, Frottement, GeomLoop, Integration,
+    NormalChoice, NormalSource, Offset, Resolution, Zone, ZoneContact, ZoneGeometry,
+};
+use aster_eval::{ExecError, Keywords};
+use aster_mesh::Mesh;
+
+const ALLOWED: &[&str] = &[
+    "MODELE",
+    "INFO",
+    "FORMULATION",
+    "FROTTEMENT",
+    "REAC_GEOM",
+    "ITER_GEOM_MAXI",
+    "RESI_GEOM",
+    "NB_ITER_GEOM",
+    "ALGO_RESO_GEOM",
+    "ALGO_RESO_CONT",
+    "ITER_CONT_MULT",
+    "ITER_CONT_MAXI",
+    "ITER_CONT_TYPE",
+    "RESI_CONT",
+    "STOP_SINGULIER",
+    "NB_RESOL",
+    "RESI_ABSO",
+    "ITER_GCP_MAXI",
+    "RECH_LINEAIRE",
+    "PRE_COND",
+    "LISSAGE",
+    "VERI_NORM",
+    "STOP_INTERP",
+    "CONT_STAT_ELAS",
+    "ZONE",
+    "ZONE/GROUP_MA_MAIT",
+    "ZONE/GROUP_MA_ESCL",
+    "ZONE/SANS_GROUP_NO",
+    "ZONE/SANS_GROUP_MA",
+    "ZONE/SANS_NOEUD",
+    "ZONE/APPARIEMENT",
+    "ZONE/NORMALE",
+    "ZONE/VECT_MAIT",
+    "ZONE/MAIT_FIXE",
+    "ZONE/MAIT_VECT_Y",
+    "ZONE/VECT_ESCL",
+    "ZONE/ESCL_FIXE",
+    "ZONE/ESCL_VECT_Y",
+    "ZONE/TYPE_PROJECTION",
+    "ZONE/DIST_POUTRE",
+    "ZONE/DIST_COQUE",
+    "ZONE/DIST_MAIT",
+    "ZONE/DIST_ESCL",
+    "ZONE/DIST_APPA",
+    "ZONE/TOLE_PROJ_EXT",
+    "ZONE/RESOLUTION",
+    "ZONE/TOLE_INTERP",
+    "ZONE/ALGO_CONT",
+    "ZONE/GLISSIERE",
+    "ZONE/E_N",
+    "ZONE/COEF_CONT",
+    "ZONE/COEF_PENA_CONT",
+    "ZONE/INTEGRATION",
+    "ZONE/ORDRE_INT",
+    "ZONE/CONTACT_INIT",
+    "ZONE/ADAPTATION",
+    "ZONE/SEUIL_INIT",
+];
+
+fn vec3(kw: &Keywords, name: &str) -> [f64; 3] {
+    let v: Vec<f64> = kw.simple(name).iter().filter_map(|s| s.as_f64()).collect();
+    [v.first().copied().unwrap_or(0.0), v.get(1).copied().unwrap_or(0.0), v.get(2).copied().unwrap_or(0.0)]
+}
+
+fn normalise(v: [f64; 3], what: &str) -> Result<[f64; 3], ExecError> {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if n > 0.0 && n.is_finite() {
+        Ok([v[0] / n, v[1] / n, v[2] / n])
+    } else {
+        Err(ExecError::new(format!("DEFI_CONTACT/ZONE/{what}: the vector {v:?} has no direction")))
+    }
+}
+
+fn normal_source(occ: &Keywords, side: &str, fixed: &str, vecty: &str) -> Result<NormalSource, ExecError> {
+    Ok(match occ.str(side).unwrap_or("AUTO") {
+        "FIXE" => NormalSource::Fixed(normalise(vec3(occ, fixed), fixed)?),
+        "VECT_Y" => NormalSource::VectY(normalise(vec3(occ, vecty), vecty)?),
+        _ => NormalSource::Auto,
+    })
+}
+
+fn offset(ex: &Executor, occ: &Keywords, name: &str) -> Result<Offset, ExecError> {
+    let Some(c) = occ.concept(name) else { return Ok(Offset::Zero) };
+    let f = ex.function(c)?;
+    match &*f {
+        Function::Constant { value, .. } => Ok(Offset::Constant(*value)),
+        Function::Tabulated(t) => {
+            let t = t.clone();
+            let axis = match t.parameter.as_str() {
+                "X" => 0,
+                "Y" => 1,
+                "Z" => 2,
+                _ => return Ok(Offset::Constant(t.eval(0.0).map_err(|e| ExecError::new(format!("DEFI_CONTACT/ZONE/{name}: {e}")))?)),
+            };
+            Ok(Offset::Function(std::sync::Arc::new(move |x: [f64; 3]| t.eval(x[axis]).unwrap_or(f64::NAN))))
+        }
+        Function::Formula { .. } => Err(ExecError::new(format!("not supported yet: DEFI_CONTACT/ZONE/{name} given by a FORMULE"))),
+    }
+}
+
+fn geometry(ex: &Executor, occ: &Keywords) -> Result<ZoneGeometry, ExecError> {
+    let master = occ.str("GROUP_MA_MAIT").ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: GROUP_MA_MAIT is required"))?;
+    let slave = occ.str("GROUP_MA_ESCL").ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: GROUP_MA_ESCL is required"))?;
+    let names = |k: &str| -> Vec<String> { occ.simple(k).iter().filter_map(|s| s.as_str().map(str::to_string)).collect() };
+    let mut g = ZoneGeometry::new(master, slave);
+    g.excluded_node_groups = names("SANS_GROUP_NO");
+    g.excluded_cell_groups = names("SANS_GROUP_MA");
+    if occ.contains("SANS_NOEUD") {
+        return Err(ex.unsupported("DEFI_CONTACT/ZONE/SANS_NOEUD (use SANS_GROUP_NO)", occ.keyword("SANS_NOEUD").map(|k| k.span).unwrap_or_default()));
+    }
+    g.appariement = match occ.str("APPARIEMENT").unwrap_or("MAIT_ESCL") {
+        "NODAL" => Appariement::Nodal,
+        _ => Appariement::MaitEscl,
+    };
+    g.vect_mait = normal_source(occ, "VECT_MAIT", "MAIT_FIXE", "MAIT_VECT_Y")?;
+    g.vect_escl = normal_source(occ, "VECT_ESCL", "ESCL_FIXE", "ESCL_VECT_Y")?;
+    g.normale = match occ.str("NORMALE").unwrap_or("MAIT") {
+        "ESCL" => NormalChoice::Escl,
+        "MAIT_ESCL" => NormalChoice::MaitEscl,
+        _ => NormalChoice::Mait,
+    };
+    g = g.with_dist_appa(occ.f64("DIST_APPA").unwrap_or(-1.0));
+    if let Some(t) = occ.f64("TOLE_PROJ_EXT") {
+        g.tole_proj_ext = t;
+    }
+    g.dist_mait = offset(ex, occ, "DIST_MAIT")?;
+    g.dist_escl = offset(ex, occ, "DIST_ESCL")?;
+    g.resolve = occ.str("RESOLUTION") != Some("NON");
+    g.tole_interp = occ.f64("TOLE_INTERP").unwrap_or(0.0);
+    for (k, ok) in [("TYPE_PROJECTION", "ORTHOGONALE"), ("DIST_POUTRE", "NON"), ("DIST_COQUE", "NON"), ("GLISSIERE", "NON")] {
+        ex.only_values("DEFI_CONTACT/ZONE", occ, k, &[ok])?;
+    }
+    Ok(g)
+}
+
+fn geom_loop(kw: &Keywords) -> GeomLoop {
+    match kw.str("REAC_GEOM").unwrap_or("AUTOMATIQUE") {
+        "SANS" => GeomLoop::Sans,
+        "CONTROLE" => GeomLoop::Controle {
+            nb_iter: kw.first("NB_ITER_GEOM").and_then(|s| s.as_i64()).unwrap_or(2).max(1) as usize,
+        },
+        _ => GeomLoop::Automatique {
+            iter_maxi: kw.first("ITER_GEOM_MAXI").and_then(|s| s.as_i64()).unwrap_or(10).max(1) as usize,
+            resi_geom: kw.f64("RESI_GEOM").unwrap_or(0.01),
+        },
+    }
+}
+
+/// The contact definition of DEFI_CONTACT keywords.
+pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, ExecError> {
+    let mut check_call = aster_eval::CommandCall {
+        command: "DEFI_CONTACT".into(),
+        result: None,
+        reuse: None,
+        keywords: kw.clone(),
+        span: Default::default(),
+    };
+    ex.check_keywords(&check_call, ALLOWED)?;
+    check_call.keywords.entries.clear();
+    let frottement = if kw.str("FROTTEMENT") == Some("COULOMB") { Frottement::Coulomb } else { Frottement::Sans };
+    let cerr = |e: aster_contact::ContactError| ExecError::new(format!("DEFI_CONTACT: {e}"));
+    let mut def = match kw.str("FORMULATION").unwrap_or("DISCRETE") {
+        "DISCRETE" => {
+            let mut zones = Vec::new();
+            for occ in kw.factor("ZONE") {
+                let law = match occ.str("ALGO_CONT").unwrap_or("CONTRAINTE") {
+                    "PENALISATION" => DiscreteAlgo::Penalisation {
+                        e_n: occ.f64("E_N").ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: E_N is required with ALGO_CONT='PENALISATION'"))?,
+                    },
+                    "GCP" => DiscreteAlgo::Gcp {
+                        resi_abso: kw.f64("RESI_ABSO"),
+                        iter_maxi: kw.first("ITER_GCP_MAXI").and_then(|s| s.as_i64()).unwrap_or(0).max(0) as usize,
+                    },
+                    _ => DiscreteAlgo::Contrainte,
+                };
+                zones.push(Zone { geometry: geometry(ex, occ)?, law });
+            }
+            let mut d = ContactDefinition::discrete(zones, frottement).map_err(cerr)?;
+            if let ContactDefinition::Discrete(dd) = &mut d {
+                if let Some(n) = kw.first("ITER_CONT_MULT").and_then(|s| s.as_i64()) {
+                    dd.iter_cont_mult = n.max(1) as usize;
+                }
+                dd.stop_singulier = kw.str("STOP_SINGULIER") != Some("NON");
+            }
+            d
+        }
+        "CONTINUE" => {
+            let mut zones = Vec::new();
+            for occ in kw.factor("ZONE") {
+                let algo = match occ.str("ALGO_CONT").unwrap_or("STANDARD") {
+                    "PENALISATION" => ContinueAlgo::Penalisation {
+                        coef_pena_cont: occ
+                            .f64("COEF_PENA_CONT")
+                            .ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: COEF_PENA_CONT is required with ALGO_CONT='PENALISATION'"))?,
+                    },
+                    "STANDARD" => ContinueAlgo::Standard { coef_cont: occ.f64("COEF_CONT").unwrap_or(100.0) },
+                    other => {
+                        let span = occ.keyword("ALGO_CONT").map(|k| k.span).unwrap_or_default();
+                        return Err(ex.unsupported(&format!("DEFI_CONTACT/ZONE/ALGO_CONT='{other}'"), span));
+                    }
+                };
+                let order = occ.first("ORDRE_INT").and_then(|s| s.as_i64()).unwrap_or(3).clamp(1, 20) as u8;
+                let integration = match occ.str("INTEGRATION").unwrap_or("AUTO") {
+                    "GAUSS" => Integration::Gauss(order),
+                    "SIMPSON" => Integration::Simpson(order),
+                    "NCOTES" => Integration::NCotes(order),
+                    _ => Integration::Auto,
+                };
+                zones.push(Zone { geometry: geometry(ex, occ)?, law: ContinueLaw { algo, integration } });
+            }
+            let mut d = ContactDefinition::continuous(zones, frottement).map_err(cerr)?;
+            if let ContactDefinition::Continue(c) = &mut d {
+                let reso = |k: &str, dflt: Resolution| match kw.str(k) {
+                    Some("NEWTON") => Resolution::Newton,
+                    Some("POINT_FIXE") => Resolution::PointFixe,
+                    _ => dflt,
+                };
+                c.algo_reso_cont = reso("ALGO_RESO_CONT", Resolution::Newton);
+                c.algo_reso_geom = reso("ALGO_RESO_GEOM", Resolution::PointFixe);
+                if let Some(n) = kw.first("ITER_CONT_MAXI").and_then(|s| s.as_i64()) {
+                    c.iter_cont_maxi = n.max(1) as usize;
+                }
+                c.resi_cont = kw.f64("RESI_CONT").filter(|r| *r > 0.0);
+            }
+            d
+        }
+        other => return Err(ExecError::new(format!("DEFI_CONTACT: unknown FORMULATION '{other}'"))),
+    };
+    def.set_geom_loop(geom_loop(kw));
+    Ok(def)
+}
+
+/// The zones of a definition resolved on the mesh (row sources).
+pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContact>, ExecError> {
+    let def = definition(ex, kw)?;
+    ZoneContact::build_all(&def, mesh).map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
+}

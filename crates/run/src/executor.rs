@@ -1,0 +1,359 @@
+//! The executing [`CommandSink`]: keeps the concept store and dispatches
+//! each command to its implementation.
+
+use crate::concept::*;
+use crate::field::Field;
+use crate::function::Function;
+use crate::table::Table;
+use crate::test_resu::Tally;
+use aster_eval::{
+    CommandCall, CommandOutput, CommandSink, ConceptRef, ExecError, Keywords, KwValue,
+};
+use aster_mesh::Mesh;
+use aster_syntax::{CodeMap, Span};
+use std::collections::{BTreeMap, HashMap};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::sync::Arc;
+
+/// Where the run reads and writes files.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Logical units read by the program (20 → the mesh…).
+    pub units: BTreeMap<u32, PathBuf>,
+    /// Files named for result units by the `.export` (`R` lines).
+    pub result_units: BTreeMap<u32, PathBuf>,
+    /// Directory for the files the program writes.
+    pub out_dir: PathBuf,
+}
+
+/// Executes validated commands.
+pub struct Executor {
+    store: HashMap<u32, Concept>,
+    /// Objects tables refer to by name (`NOM_SD` of CALCUL's table).
+    pub(crate) objects: HashMap<String, Concept>,
+    pub(crate) options: RunOptions,
+    out: Box<dyn Write>,
+    pub tally: Tally,
+    codemap: Option<Rc<CodeMap>>,
+    /// Set by `FIN`.
+    pub finished: bool,
+}
+
+impl Executor {
+    /// An executor writing its report (TEST_RESU lines, tables) to `out`.
+    pub fn new(options: RunOptions, out: Box<dyn Write>) -> Executor {
+        Executor {
+            store: HashMap::new(),
+            objects: HashMap::new(),
+            options,
+            out,
+            tally: Tally::default(),
+            codemap: None,
+            finished: false,
+        }
+    }
+
+    /// Lets messages give `file:line:col` of keywords.
+    pub fn set_codemap(&mut self, codemap: Rc<CodeMap>) {
+        self.codemap = Some(codemap);
+    }
+
+    pub(crate) fn write_report(&mut self, text: &str) -> Result<(), ExecError> {
+        self.out
+            .write_all(text.as_bytes())
+            .and_then(|_| self.out.flush())
+            .map_err(|e| ExecError::new(format!("cannot write the report: {e}")))
+    }
+
+    /// `file:line:col` of a span, when the source is known.
+    pub(crate) fn location(&self, span: Span) -> Option<String> {
+        self.codemap.as_ref().map(|cm| cm.location(span))
+    }
+
+    /// "not supported yet: CMD/KEYWORD (file:line:col)".
+    pub(crate) fn unsupported(&self, what: &str, span: Span) -> ExecError {
+        match self.location(span) {
+            Some(loc) => ExecError::new(format!("not supported yet: {what} ({loc})")),
+            None => ExecError::new(format!("not supported yet: {what}")),
+        }
+    }
+
+    /// An error about one keyword, located at it.
+    pub(crate) fn kw_error(
+        &self,
+        cmd: &str,
+        kw: &Keywords,
+        name: &str,
+        msg: impl AsRef<str>,
+    ) -> ExecError {
+        let span = kw.keyword(name).map(|k| k.span).unwrap_or_default();
+        let loc = self
+            .location(span)
+            .filter(|_| kw.keyword(name).is_some())
+            .map(|l| format!(" ({l})"))
+            .unwrap_or_default();
+        ExecError::new(format!("{cmd}/{name}: {}{loc}", msg.as_ref()))
+    }
+
+    /// Refuses any keyword written by the user that the implementation
+    /// does not handle. `allowed` lists paths (`"DDL_IMPO"`, `"DDL_IMPO/DX"`);
+    /// `"X/*"` accepts every keyword under factor `X`.
+    pub(crate) fn check_keywords(
+        &self,
+        call: &CommandCall,
+        allowed: &[&str],
+    ) -> Result<(), ExecError> {
+        self.check_level(&call.command, &call.keywords, "", allowed)
+    }
+
+    fn check_level(
+        &self,
+        cmd: &str,
+        kws: &Keywords,
+        prefix: &str,
+        allowed: &[&str],
+    ) -> Result<(), ExecError> {
+        for k in &kws.entries {
+            if k.defaulted {
+                continue;
+            }
+            let path = format!("{prefix}{}", k.name);
+            if !allowed.contains(&path.as_str()) {
+                return Err(self.unsupported(&format!("{cmd}/{path}"), k.span));
+            }
+            if let KwValue::Factor(occurrences) = &k.value {
+                if allowed.contains(&format!("{path}/*").as_str()) {
+                    continue;
+                }
+                for occ in occurrences {
+                    self.check_level(cmd, occ, &format!("{path}/"), allowed)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses a keyword value the implementation does not handle.
+    pub(crate) fn only_values(
+        &self,
+        cmd: &str,
+        kw: &Keywords,
+        name: &str,
+        supported: &[&str],
+    ) -> Result<(), ExecError> {
+        for s in kw.simple(name) {
+            if let Some(v) = s.as_str() {
+                if !supported.contains(&v) {
+                    let span = kw.keyword(name).map(|k| k.span).unwrap_or_default();
+                    return Err(self.unsupported(&format!("{cmd}/{name}='{v}'"), span));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub(crate) fn insert(&mut self, c: &ConceptRef, concept: Concept) {
+        self.store.insert(c.id, concept);
+    }
+
+    pub fn concept(&self, c: &ConceptRef) -> Result<&Concept, ExecError> {
+        self.store.get(&c.id).ok_or_else(|| {
+            ExecError::new(format!(
+                "concept `{}` ({}) was not produced by an executed command",
+                c.name, c.typ
+            ))
+        })
+    }
+
+    fn wrong(&self, c: &ConceptRef, got: &Concept, want: &str) -> ExecError {
+        ExecError::new(format!("`{}` is {}, expected {want}", c.name, got.kind()))
+    }
+
+    pub(crate) fn mesh_by_id(&self, id: u32) -> Result<Arc<Mesh>, ExecError> {
+        match self.store.get(&id) {
+            Some(Concept::Mesh(m)) => Ok(m.clone()),
+            _ => Err(ExecError::new(
+                "the mesh of this concept is no longer available",
+            )),
+        }
+    }
+
+    /// The concept behind a keyword, typed.
+    pub(crate) fn required<'k>(
+        &self,
+        cmd: &str,
+        kw: &'k Keywords,
+        name: &str,
+    ) -> Result<&'k ConceptRef, ExecError> {
+        kw.concept(name)
+            .ok_or_else(|| self.kw_error(cmd, kw, name, "a concept is required here"))
+    }
+}
+
+macro_rules! getter {
+    ($fn:ident, $variant:ident, $ty:ty, $want:expr) => {
+        impl Executor {
+            pub(crate) fn $fn(&self, c: &ConceptRef) -> Result<Rc<$ty>, ExecError> {
+                match self.concept(c)? {
+                    Concept::$variant(x) => Ok(x.clone()),
+                    other => Err(self.wrong(c, other, $want)),
+                }
+            }
+        }
+    };
+}
+
+getter!(model, Model, ModelDef, "a model (AFFE_MODELE)");
+getter!(material, Material, Material, "a material (DEFI_MATERIAU)");
+getter!(
+    material_field,
+    MaterialField,
+    MaterialField,
+    "a material field (AFFE_MATERIAU)"
+);
+getter!(
+    cara_elem,
+    CaraElem,
+    CaraElem,
+    "element characteristics (AFFE_CARA_ELEM)"
+);
+getter!(function, Function, Function, "a function");
+getter!(result, Result, EvolResult, "a result");
+getter!(table, Table, Table, "a table");
+getter!(field, Field, Field, "a field");
+getter!(
+    contact,
+    Contact,
+    ContactDef,
+    "a contact definition (DEFI_CONTACT)"
+);
+
+impl Executor {
+    pub(crate) fn mesh(&self, c: &ConceptRef) -> Result<Arc<Mesh>, ExecError> {
+        match self.concept(c)? {
+            Concept::Mesh(x) => Ok(x.clone()),
+            other => Err(self.wrong(c, other, "a mesh")),
+        }
+    }
+
+    pub(crate) fn real_list(&self, c: &ConceptRef) -> Result<Rc<Vec<f64>>, ExecError> {
+        match self.concept(c)? {
+            Concept::RealList(l) | Concept::TimeList(l) => Ok(l.clone()),
+            other => Err(self.wrong(
+                c,
+                other,
+                "a list of instants (DEFI_LIST_REEL/DEFI_LIST_INST)",
+            )),
+        }
+    }
+
+    /// The program's mesh when there is exactly one (fields do not record
+    /// their mesh).
+    pub(crate) fn single_mesh(&self) -> Result<Arc<Mesh>, ExecError> {
+        let meshes: Vec<&Arc<Mesh>> = self
+            .store
+            .values()
+            .filter_map(|c| match c {
+                Concept::Mesh(m) => Some(m),
+                _ => None,
+            })
+            .collect();
+        match meshes.as_slice() {
+            [m] => Ok((*m).clone()),
+            [] => Err(ExecError::new("no mesh has been read")),
+            _ => Err(ExecError::new(
+                "several meshes exist: this command cannot tell which one a field lives on",
+            )),
+        }
+    }
+
+    /// Path of a file the program writes on a logical unit.
+    pub(crate) fn output_path(&self, unit: i64) -> PathBuf {
+        let name = self
+            .options
+            .result_units
+            .get(&(unit as u32))
+            .and_then(|p| p.file_name())
+            .map(PathBuf::from)
+            .unwrap_or_else(|| PathBuf::from(format!("fort.{unit}")));
+        self.options.out_dir.join(name)
+    }
+
+    pub(crate) fn input_path(&self, unit: u32) -> Option<&Path> {
+        self.options.units.get(&unit).map(PathBuf::as_path)
+    }
+}
+
+impl CommandSink for Executor {
+    fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+        if self.finished {
+            return Ok(CommandOutput::Nothing);
+        }
+        crate::commands::dispatch(self, call)
+    }
+
+    fn formula(&mut self, concept: &ConceptRef, formula: &Rc<aster_eval::Formula>) {
+        let f = formula.clone();
+        let function = Function::Formula {
+            parameters: formula.params.clone(),
+            eval: Rc::new(move |args: &[(String, f64)]| {
+                let named: Vec<(&str, f64)> = args.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+                f.eval_named(&named)
+            }),
+        };
+        self.insert(concept, Concept::Function(Rc::new(function)));
+    }
+
+    fn index(&mut self, concept: &ConceptRef, key: &[aster_eval::HostValue]) -> Result<aster_eval::HostValue, ExecError> {
+        use aster_eval::{HostValue, Scalar};
+        let table = self.table(concept)?;
+        // TAB['PARA', row] with a 1-based row, as code_aster's tables.
+        let (para, row) = match key {
+            [HostValue::Scalar(Scalar::Str(p)), HostValue::Scalar(Scalar::Int(r))] => (p.as_str(), *r),
+            _ => return Err(ExecError::new(format!("table `{}`: subscript must be ['PARAMETER', row]", concept.name))),
+        };
+        let Some(col) = table.column_index(para) else {
+            return Err(ExecError::new(format!(
+                "table `{}` has no column {para}{}",
+                concept.name,
+                crate::select::did_you_mean(para, table.columns.iter().map(|c| c.name.as_str()))
+            )));
+        };
+        let cell = usize::try_from(row - 1)
+            .ok()
+            .and_then(|r| table.rows.get(r))
+            .ok_or_else(|| ExecError::new(format!("table `{}` has {} rows, row {row} asked", concept.name, table.rows.len())))?;
+        Ok(match &cell[col] {
+            None => HostValue::None,
+            Some(crate::table::Value::Int(i)) => HostValue::Scalar(Scalar::Int(*i)),
+            Some(crate::table::Value::Real(r)) => HostValue::Scalar(Scalar::Real(*r)),
+            Some(crate::table::Value::Text(t)) => HostValue::Scalar(Scalar::Str(t.clone())),
+        })
+    }
+
+    fn print(&mut self, line: &str) {
+        let _ = self.write_report(&format!("{line}\n"));
+    }
+}
+
+/// Helpers on a command's result.
+pub(crate) fn result_of(call: &CommandCall) -> Result<&ConceptRef, ExecError> {
+    call.result.as_ref().or(call.reuse.as_ref()).ok_or_else(|| {
+        ExecError::new(format!(
+            "{} produces a concept: assign it (`X = {}(...)`)",
+            call.command, call.command
+        ))
+    })
+}
+
+pub(crate) fn store_result(
+    ex: &mut Executor,
+    call: &CommandCall,
+    concept: Concept,
+) -> Result<CommandOutput, ExecError> {
+    let r = result_of(call)?.clone();
+    ex.insert(&r, concept);
+    Ok(CommandOutput::Concept)
+}

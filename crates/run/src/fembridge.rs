@@ -1,0 +1,363 @@
+//! The bridge to aster-fem: builds its model, loads and solver from a
+//! [`SolveSetup`], runs it, and turns its results into stored fields.
+
+use crate::concept::*;
+use crate::executor::Executor;
+use crate::field::{ElemField, ElemLocation, Field, NodalField};
+use crate::function::Function;
+use crate::solve::{LoadRef, SolveSetup};
+use crate::unil::LiaisonUnil;
+use aster_eval::{CommandCall, ExecError};
+use aster_fem::{
+    post, CellValues, Comp, Convergence, Dof, Elastic, Element, ElementKind, Frame, Hypothesis, InitialState, Load,
+    Loads, Model, Multiplier, NewtonOptions, NodalValues, NonLinearResult, StaticNonLinear, UnilateralSource,
+};
+use aster_mesh::{Mesh, NodeId};
+use std::collections::BTreeMap;
+use std::rc::Rc;
+use std::sync::Arc;
+
+/// What a result was computed with, kept for CALC_CHAMP.
+#[derive(Debug)]
+pub struct FemRun {
+    pub model: Model,
+    pub loads: Loads,
+    pub raw: NonLinearResult,
+}
+
+fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
+    ExecError::new(format!("{cmd}: {e}"))
+}
+
+fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
+    match m {
+        Modelisation::PlaneStrain => Some(Hypothesis::PlaneStrain),
+        Modelisation::PlaneStress => Some(Hypothesis::PlaneStress),
+        Modelisation::Axisymmetric => Some(Hypothesis::Axisymmetric),
+        Modelisation::Solid3D => Some(Hypothesis::Solid3D),
+        Modelisation::Discrete2D | Modelisation::Discrete3D => None,
+    }
+}
+
+/// The fem model of an AFFE_MODELE + AFFE_MATERIAU + AFFE_CARA_ELEM.
+pub fn build_model(
+    mesh: &Arc<Mesh>,
+    model: &ModelDef,
+    materials: &MaterialField,
+    cara: Option<&CaraElem>,
+) -> Result<Model, ExecError> {
+    let mut springs: BTreeMap<aster_mesh::CellId, &DiscreteStiffness> = BTreeMap::new();
+    if let Some(c) = cara {
+        for d in &c.discrete {
+            for &cell in &d.cells {
+                springs.insert(cell, d);
+            }
+        }
+    }
+    let mut elements = Vec::with_capacity(model.cells.len());
+    for (&cell, &m) in &model.cells {
+        let ty = mesh.cell(cell).ty;
+        let kind = match hypothesis(m) {
+            Some(h) if ty.dim() as usize == h.dim() => {
+                let mat = materials.cells.get(&cell).ok_or_else(|| {
+                    ExecError::new(format!(
+                        "cell {} of the model has no material: assign one with AFFE_MATERIAU",
+                        crate::select::cell_name(mesh, cell)
+                    ))
+                })?;
+                let material = Elastic::new(mat.young, mat.poisson).map_err(|e| fem_err("DEFI_MATERIAU", e))?;
+                ElementKind::Continuum { hypothesis: h, material }
+            }
+            Some(_) => ElementKind::Boundary,
+            None => {
+                let d = springs.get(&cell).ok_or_else(|| {
+                    ExecError::new(format!(
+                        "cell {} carries a discrete element but AFFE_CARA_ELEM gives it no stiffness (DISCRET/DISCRET_2D K_T_D_L or K_T_D_N)",
+                        crate::select::cell_name(mesh, cell)
+                    ))
+                })?;
+                ElementKind::Spring {
+                    stiffness: d.values.clone(),
+                    frame: if d.local { Frame::Local } else { Frame::Global },
+                }
+            }
+        };
+        elements.push(Element { cell, kind });
+    }
+    Model::new(mesh.clone(), elements).map_err(|e| fem_err("AFFE_MODELE", e))
+}
+
+fn comp(name: &str) -> Result<Comp, ExecError> {
+    Comp::from_name(name).ok_or_else(|| ExecError::new(format!("unknown component {name}")))
+}
+
+/// A multiplier for fem. Tabulated functions and constants are plain data
+/// and are moved into the closure; formulas are sampled at the instants.
+fn multiplier(f: &Option<Rc<Function>>, instants: &[f64]) -> Result<Multiplier, ExecError> {
+    let Some(f) = f else { return Ok(Multiplier::one()) };
+    match &**f {
+        Function::Constant { value, .. } => Ok(Multiplier::constant(*value)),
+        Function::Tabulated(t) => {
+            let t = t.clone();
+            Ok(Multiplier::from_fn(move |x| t.eval(x).map_err(|e| e.to_string())))
+        }
+        Function::Formula { .. } => {
+            let samples: Vec<(f64, f64)> = instants
+                .iter()
+                .map(|&t| f.eval(t).map(|v| (t, v)).map_err(|e| ExecError::new(format!("FONC_MULT: {e}"))))
+                .collect::<Result<_, _>>()?;
+            Ok(Multiplier::from_fn(move |x| {
+                samples
+                    .iter()
+                    .find(|(t, _)| (t - x).abs() <= 1e-9 * t.abs().max(1.0))
+                    .map(|&(_, v)| v)
+                    .ok_or_else(|| format!("formula multiplier asked at {x}, which is not an instant of the list"))
+            }))
+        }
+    }
+}
+
+fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
+    let mut loads = Loads::new();
+    for exc in &setup.excitations {
+        let m = multiplier(&exc.multiplier, &setup.instants)?;
+        match &exc.load {
+            LoadRef::Kinematic(k) => {
+                for i in &k.imposed {
+                    loads.add(Load::Eliminated { dof: Dof::new(i.node, comp(i.comp)?), value: i.value }, m.clone());
+                }
+            }
+            LoadRef::Mechanical(l) => {
+                for i in &l.imposed {
+                    loads.add(Load::Imposed { dof: Dof::new(i.node, comp(i.comp)?), value: i.value }, m.clone());
+                }
+                for r in &l.relations {
+                    let terms = r
+                        .terms
+                        .iter()
+                        .map(|(n, c, a)| Ok((Dof::new(*n, comp(c)?), *a)))
+                        .collect::<Result<Vec<_>, ExecError>>()?;
+                    loads.add(Load::Relation { terms, rhs: r.rhs }, m.clone());
+                }
+                for f in &l.nodal_forces {
+                    loads.add(Load::NodalForce { dof: Dof::new(f.node, comp(f.comp)?), value: f.value }, m.clone());
+                }
+                for b in &l.boundary {
+                    match b {
+                        BoundaryLoad::Force { cells, force } => {
+                            for &cell in cells {
+                                loads.add(Load::SurfaceForce { cell, force: *force }, m.clone());
+                            }
+                        }
+                        BoundaryLoad::Pressure { cells, pressure } => {
+                            for &cell in cells {
+                                loads.add(Load::Pressure { cell, pressure: *pressure }, m.clone());
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(loads)
+}
+
+/// A displacement vector of `model` from a stored DEPL field.
+fn displacement_from(model: &Model, depl: &NodalField) -> Vec<f64> {
+    model
+        .dofs()
+        .dofs()
+        .iter()
+        .map(|d| depl.get(d.node, d.comp.name()).unwrap_or(0.0))
+        .collect()
+}
+
+/// A nodal field from a vector per DOF index.
+pub fn nodal_from_dofs(model: &Model, values: &[f64]) -> NodalField {
+    let comps: Vec<String> = model.dofs().comps().iter().map(|c| c.name().to_string()).collect();
+    let mut f = NodalField::new(comps);
+    for (i, d) in model.dofs().dofs().iter().enumerate() {
+        f.set(d.node, d.comp.name(), values[i]);
+    }
+    f
+}
+
+fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
+    // Components: the union in order of appearance (continuum cells and
+    // springs have different ones).
+    let mut components: Vec<String> = Vec::new();
+    for cv in cells {
+        for n in &cv.names {
+            if !components.iter().any(|c| c == n) {
+                components.push(n.to_string());
+            }
+        }
+    }
+    let mut values = BTreeMap::new();
+    for cv in cells {
+        let pts: Vec<Vec<f64>> = cv
+            .points
+            .iter()
+            .map(|p| {
+                components
+                    .iter()
+                    .map(|c| cv.names.iter().position(|n| n == c).map(|i| p[i]).unwrap_or(f64::NAN))
+                    .collect()
+            })
+            .collect();
+        values.insert(cv.cell, pts);
+    }
+    ElemField { location, components, values }
+}
+
+fn nodal_from_values(v: &NodalValues) -> NodalField {
+    let mut f = NodalField::new(v.names.iter().map(|s| s.to_string()).collect());
+    for (n, vals) in v.values.iter().enumerate() {
+        if let Some(vals) = vals {
+            for (c, x) in v.names.iter().zip(vals) {
+                f.set(NodeId(n as u32), c, *x);
+            }
+        }
+    }
+    f
+}
+
+pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec<Step>, Rc<FemRun>), ExecError> {
+    let cmd = if linear { "MECA_STATIQUE" } else { "STAT_NON_LINE" };
+    let mesh = ex.mesh_by_id(setup.model.mesh)?;
+    let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
+    let loads = build_loads(setup)?;
+    let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
+    let raw = if linear {
+        aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
+    } else {
+        let mut sources: Vec<Box<dyn UnilateralSource>> = Vec::new();
+        let mut contact_zones: Option<Vec<aster_contact::ZoneContact>> = None;
+        if let Some(c) = &setup.contact {
+            match &**c {
+                ContactDef::Unilateral { zones, algo, .. } => sources.push(Box::new(LiaisonUnil {
+                    zones: zones.clone(),
+                    algo: *algo,
+                })),
+                ContactDef::Zones { keywords, .. } => {
+                    let zones = crate::contactbridge::zones(ex, &mesh, keywords)?;
+                    contact_zones = Some(zones.clone());
+                    for z in zones {
+                        sources.push(Box::new(z));
+                    }
+                }
+            }
+        }
+        let initial = match &setup.initial {
+            Some((prev, t0)) => {
+                let step = prev
+                    .step_at(*t0, 1e-6, false)
+                    .ok_or_else(|| ExecError::new(format!("{cmd}/ETAT_INIT: no state at {t0}")))?;
+                let Some(Field::Nodal(depl)) = step.fields.get("DEPL") else {
+                    return Err(ExecError::new(format!("{cmd}/ETAT_INIT: the initial result has no DEPL at {t0}")));
+                };
+                Some(InitialState { time: Some(*t0), displacement: displacement_from(&model, depl) })
+            }
+            None => None,
+        };
+        let mut snl = StaticNonLinear {
+            instants: setup.instants.clone(),
+            init_time: setup.instants.first().copied(),
+            final_time: setup.instants.last().copied(),
+            initial,
+            newton: NewtonOptions { reac_iter: setup.newton.reac_iter, ..NewtonOptions::default() },
+            convergence: Convergence {
+                resi_glob_rela: setup.newton.resi_glob_rela,
+                resi_glob_maxi: setup.newton.resi_glob_maxi,
+                iter_glob_maxi: setup.newton.iter_glob_maxi,
+            },
+            sources,
+            ..StaticNonLinear::default()
+        };
+        let raw = snl.solve(&model, &loads).map_err(|e| fem_err(cmd, e))?;
+        if let Some(z) = contact_zones {
+            post_zones = Some(z);
+        }
+        raw
+    };
+    let steps = raw
+        .steps
+        .iter()
+        .map(|s| -> Result<Step, ExecError> {
+            let mut fields = BTreeMap::new();
+            fields.insert("DEPL".to_string(), Field::Nodal(nodal_from_dofs(&model, &s.displacement)));
+            fields.insert("SIEF_ELGA".to_string(), Field::Elem(elem_field(ElemLocation::Gauss, &s.stress)));
+            fields.insert("VARI_ELGA".to_string(), Field::Elem(elem_field(ElemLocation::Gauss, &s.internal_variables)));
+            if let Some(zones) = &mut post_zones {
+                // CONT_NOEU: the zones re-paired on the step's geometry.
+                let x = aster_contact::positions(&mesh, model.dofs(), &s.displacement);
+                let cn = aster_contact::ContNoeu::at_step(zones, &mesh, &x, &s.unilateral)
+                    .map_err(|e| ExecError::new(format!("{cmd}: CONT_NOEU: {e}")))?;
+                let mut f = NodalField::new(aster_contact::CONT_NOEU_COMPONENTS.iter().map(|c| c.to_string()).collect());
+                for (n, vals) in cn.nodes.iter().zip(&cn.values) {
+                    for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
+                        f.set(*n, c, *v);
+                    }
+                }
+                fields.insert("CONT_NOEU".to_string(), Field::Nodal(f));
+            }
+            Ok(Step { nume_ordre: s.nume_ordre as u32, inst: s.time, fields })
+        })
+        .collect::<Result<Vec<_>, ExecError>>()?;
+    Ok((steps, Rc::new(FemRun { model, loads, raw })))
+}
+
+/// CALC_CHAMP options on stored steps.
+pub fn calc_champ(
+    ex: &mut Executor,
+    call: &CommandCall,
+    result: &EvolResult,
+    options: &[String],
+    steps: &[u32],
+) -> Result<EvolResult, ExecError> {
+    let Some(run) = result.fem.clone() else {
+        return Err(ExecError::new("CALC_CHAMP: this result was not computed by STAT_NON_LINE/MECA_STATIQUE in this run"));
+    };
+    let mut out = result.clone();
+    for step in out.steps.iter_mut().filter(|s| steps.contains(&s.nume_ordre)) {
+        let raw = run
+            .raw
+            .by_order(step.nume_ordre as usize)
+            .ok_or_else(|| ExecError::new(format!("CALC_CHAMP: no computed state at NUME_ORDRE {}", step.nume_ordre)))?;
+        let u = &raw.displacement;
+        let model = &run.model;
+        let elno = || post::elno(model, &raw.stress);
+        for opt in options {
+            let field = match opt.as_str() {
+                "FORC_NODA" => Field::Nodal(nodal_from_dofs(model, &post::forc_noda(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?)),
+                "REAC_NODA" => Field::Nodal(nodal_from_dofs(
+                    model,
+                    &post::reac_noda(model, &run.loads, raw.time, u).map_err(|e| fem_err("CALC_CHAMP", e))?,
+                )),
+                "SIEF_ELNO" | "SIGM_ELNO" => Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno()))),
+                "SIEF_NOEU" | "SIGM_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(model, &continuum_only(elno())))),
+                "SIEQ_ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &post::sieq_field(&raw.stress))),
+                "SIEQ_ELNO" => Field::Elem(elem_field(ElemLocation::Nodes, &post::sieq_field(&elno()))),
+                "SIEQ_NOEU" => {
+                    let noeu = post::noeu(model, &continuum_only(elno()));
+                    Field::Nodal(nodal_from_values(&post::sieq_nodal(&noeu)))
+                }
+                other => {
+                    let span = ["FORCE", "CONTRAINTE", "CRITERES", "DEFORMATION"]
+                        .iter()
+                        .find_map(|k| call.keywords.keyword(k).filter(|kw| kw.value != aster_eval::KwValue::Simple(vec![])))
+                        .map(|k| k.span)
+                        .unwrap_or(call.span);
+                    return Err(ex.unsupported(&format!("CALC_CHAMP option {other}"), span));
+                }
+            };
+            step.fields.insert(opt.clone(), field);
+        }
+    }
+    Ok(out)
+}
+
+/// Stress fields without the springs' N/VY values (SIGM_* are continuum fields).
+fn continuum_only(cells: Vec<CellValues>) -> Vec<CellValues> {
+    cells.into_iter().filter(|c| c.names.first() == Some(&"SIXX")).collect()
+}

@@ -1,0 +1,148 @@
+//! Fields as the runner stores them: nodal fields (`cham_no`: DEPL,
+//! FORC_NODA…) and element fields (`cham_elem`: SIEF_ELGA at Gauss points,
+//! SIGM_ELNO at cell nodes…).
+
+use aster_mesh::{CellId, NodeId};
+use std::collections::BTreeMap;
+
+/// A field on nodes: for each node that carries it, one value per
+/// component (`None` when that node lacks the component).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NodalField {
+    pub components: Vec<String>,
+    pub values: BTreeMap<NodeId, Vec<Option<f64>>>,
+}
+
+impl NodalField {
+    pub fn new(components: Vec<String>) -> NodalField {
+        NodalField {
+            components,
+            values: BTreeMap::new(),
+        }
+    }
+
+    pub fn component_index(&self, name: &str) -> Option<usize> {
+        self.components.iter().position(|c| c == name)
+    }
+
+    pub fn get(&self, node: NodeId, comp: &str) -> Option<f64> {
+        let c = self.component_index(comp)?;
+        self.values.get(&node)?.get(c).copied().flatten()
+    }
+
+    pub fn set(&mut self, node: NodeId, comp: &str, value: f64) {
+        let c = match self.component_index(comp) {
+            Some(c) => c,
+            None => {
+                self.components.push(comp.to_string());
+                for v in self.values.values_mut() {
+                    v.push(None);
+                }
+                self.components.len() - 1
+            }
+        };
+        let n = self.components.len();
+        let slot = self.values.entry(node).or_insert_with(|| vec![None; n]);
+        slot[c] = Some(value);
+    }
+}
+
+/// Where the values of an element field live.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ElemLocation {
+    /// `_ELGA`: Gauss points.
+    Gauss,
+    /// `_ELNO`: the cell's nodes, in the cell's node order.
+    Nodes,
+    /// `_ELEM`: one value per cell.
+    Cell,
+}
+
+/// A field on cells: per cell, per point, one value per component.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ElemField {
+    pub location: ElemLocation,
+    pub components: Vec<String>,
+    pub values: BTreeMap<CellId, Vec<Vec<f64>>>,
+}
+
+impl ElemField {
+    pub fn component_index(&self, name: &str) -> Option<usize> {
+        self.components.iter().position(|c| c == name)
+    }
+
+    /// The value at a point (1-based, as `POINT=` counts) of a cell.
+    pub fn get(&self, cell: CellId, point: usize, comp: &str) -> Option<f64> {
+        let c = self.component_index(comp)?;
+        self.values
+            .get(&cell)?
+            .get(point.checked_sub(1)?)?
+            .get(c)
+            .copied()
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Field {
+    Nodal(NodalField),
+    Elem(ElemField),
+}
+
+impl Field {
+    pub fn components(&self) -> &[String] {
+        match self {
+            Field::Nodal(f) => &f.components,
+            Field::Elem(f) => &f.components,
+        }
+    }
+
+    /// Every value of a component (all of them if `comp` is `None`), for
+    /// `TYPE_TEST` reductions.
+    pub fn all_values(&self, comp: Option<&str>) -> Vec<f64> {
+        match self {
+            Field::Nodal(f) => {
+                let idx = comp.and_then(|c| f.component_index(c));
+                f.values
+                    .values()
+                    .flat_map(|v| {
+                        v.iter()
+                            .enumerate()
+                            .filter(move |(i, _)| comp.is_none() || Some(*i) == idx)
+                            .filter_map(|(_, x)| *x)
+                    })
+                    .collect()
+            }
+            Field::Elem(f) => {
+                let idx = comp.and_then(|c| f.component_index(c));
+                f.values
+                    .values()
+                    .flat_map(|pts| pts.iter())
+                    .flat_map(|v| {
+                        v.iter()
+                            .enumerate()
+                            .filter(move |(i, _)| comp.is_none() || Some(*i) == idx)
+                            .map(|(_, x)| *x)
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nodal_set_get() {
+        let mut f = NodalField::new(vec!["DX".into()]);
+        f.set(NodeId(3), "DX", 1.5);
+        f.set(NodeId(3), "DY", -2.0);
+        f.set(NodeId(1), "DY", 4.0);
+        assert_eq!(f.get(NodeId(3), "DX"), Some(1.5));
+        assert_eq!(f.get(NodeId(1), "DX"), None);
+        assert_eq!(f.get(NodeId(1), "DY"), Some(4.0));
+        let all = Field::Nodal(f).all_values(Some("DY"));
+        assert_eq!(all, vec![4.0, -2.0]);
+    }
+}

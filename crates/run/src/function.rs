@@ -1,0 +1,338 @@
+//! Real functions of one parameter: `DEFI_FONCTION` (tabulated, with
+//! interpolation and extension rules), `DEFI_CONSTANTE`, and `FORMULE`.
+
+use std::fmt;
+
+/// How a tabulated function is extended outside its abscissae
+/// (`PROL_GAUCHE` / `PROL_DROITE`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Extension {
+    /// Outside the table is an error (code_aster's default).
+    Excluded,
+    /// The end value is kept.
+    Constant,
+    /// The end segment is prolonged.
+    Linear,
+}
+
+impl Extension {
+    pub fn from_keyword(value: &str) -> Option<Extension> {
+        match value {
+            "EXCLU" => Some(Extension::Excluded),
+            "CONSTANT" => Some(Extension::Constant),
+            "LINEAIRE" => Some(Extension::Linear),
+            _ => None,
+        }
+    }
+
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Extension::Excluded => "EXCLU",
+            Extension::Constant => "CONSTANT",
+            Extension::Linear => "LINEAIRE",
+        }
+    }
+}
+
+/// Interpolation scale of one axis (`INTERPOL`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    Linear,
+    Log,
+}
+
+impl Scale {
+    pub fn from_keyword(value: &str) -> Option<Scale> {
+        match value {
+            "LIN" => Some(Scale::Linear),
+            "LOG" => Some(Scale::Log),
+            _ => None,
+        }
+    }
+
+    fn forward(self, v: f64) -> f64 {
+        match self {
+            Scale::Linear => v,
+            Scale::Log => v.ln(),
+        }
+    }
+
+    fn backward(self, v: f64) -> f64 {
+        match self {
+            Scale::Linear => v,
+            Scale::Log => v.exp(),
+        }
+    }
+}
+
+/// A tabulated function: strictly increasing abscissae and their values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tabulated {
+    pub parameter: String,
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    pub scale_x: Scale,
+    pub scale_y: Scale,
+    pub left: Extension,
+    pub right: Extension,
+}
+
+/// Why a function could not be built or evaluated.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FunctionError {
+    Empty,
+    OddValueCount(usize),
+    NotIncreasing {
+        index: usize,
+        previous: f64,
+        next: f64,
+    },
+    LogOfNonPositive {
+        axis: &'static str,
+        value: f64,
+    },
+    OutOfRange {
+        parameter: String,
+        at: f64,
+        min: f64,
+        max: f64,
+        side: &'static str,
+    },
+    Formula(String),
+}
+
+impl fmt::Display for FunctionError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FunctionError::Empty => write!(f, "a function needs at least one point (VALE is empty)"),
+            FunctionError::OddValueCount(n) => write!(
+                f,
+                "VALE must hold (abscissa, value) pairs, but it has {n} numbers (an odd count)"
+            ),
+            FunctionError::NotIncreasing { index, previous, next } => write!(
+                f,
+                "abscissae must be strictly increasing: point {} has {} after {}",
+                index + 1,
+                next,
+                previous
+            ),
+            FunctionError::LogOfNonPositive { axis, value } => write!(
+                f,
+                "INTERPOL='LOG' on the {axis} axis needs positive values, found {value}"
+            ),
+            FunctionError::OutOfRange { parameter, at, min, max, side } => write!(
+                f,
+                "function evaluated at {parameter}={at}, outside its definition range [{min}, {max}] \
+                 (PROL_{side}='EXCLU'; set PROL_{side}='CONSTANT' or 'LINEAIRE' to extend it)"
+            ),
+            FunctionError::Formula(message) => write!(f, "{message}"),
+        }
+    }
+}
+
+impl Tabulated {
+    /// Builds a function from `VALE=(x1, y1, x2, y2, …)`.
+    pub fn from_pairs(parameter: &str, vale: &[f64]) -> Result<Tabulated, FunctionError> {
+        if vale.is_empty() {
+            return Err(FunctionError::Empty);
+        }
+        if !vale.len().is_multiple_of(2) {
+            return Err(FunctionError::OddValueCount(vale.len()));
+        }
+        let xs: Vec<f64> = vale.iter().step_by(2).copied().collect();
+        let ys: Vec<f64> = vale.iter().skip(1).step_by(2).copied().collect();
+        Tabulated::new(parameter, xs, ys)
+    }
+
+    pub fn new(parameter: &str, xs: Vec<f64>, ys: Vec<f64>) -> Result<Tabulated, FunctionError> {
+        if xs.is_empty() {
+            return Err(FunctionError::Empty);
+        }
+        for (i, w) in xs.windows(2).enumerate() {
+            if w[1] <= w[0] {
+                return Err(FunctionError::NotIncreasing {
+                    index: i + 1,
+                    previous: w[0],
+                    next: w[1],
+                });
+            }
+        }
+        Ok(Tabulated {
+            parameter: parameter.to_string(),
+            xs,
+            ys,
+            scale_x: Scale::Linear,
+            scale_y: Scale::Linear,
+            left: Extension::Excluded,
+            right: Extension::Excluded,
+        })
+    }
+
+    pub fn abscissae(&self) -> &[f64] {
+        &self.xs
+    }
+
+    pub fn values(&self) -> &[f64] {
+        &self.ys
+    }
+
+    /// Interpolates between points `i` and `i + 1` (also used to prolong).
+    fn on_segment(&self, i: usize, x: f64) -> Result<f64, FunctionError> {
+        let check = |axis: &'static str, scale: Scale, v: f64| {
+            if scale == Scale::Log && v <= 0.0 {
+                Err(FunctionError::LogOfNonPositive { axis, value: v })
+            } else {
+                Ok(scale.forward(v))
+            }
+        };
+        let x0 = check("abscissa", self.scale_x, self.xs[i])?;
+        let x1 = check("abscissa", self.scale_x, self.xs[i + 1])?;
+        let y0 = check("ordinate", self.scale_y, self.ys[i])?;
+        let y1 = check("ordinate", self.scale_y, self.ys[i + 1])?;
+        let xx = check("abscissa", self.scale_x, x)?;
+        let y = y0 + (y1 - y0) * (xx - x0) / (x1 - x0);
+        Ok(self.scale_y.backward(y))
+    }
+
+    pub fn eval(&self, x: f64) -> Result<f64, FunctionError> {
+        let n = self.xs.len();
+        let (first, last) = (self.xs[0], self.xs[n - 1]);
+        let out_of_range = |side: &'static str| FunctionError::OutOfRange {
+            parameter: self.parameter.clone(),
+            at: x,
+            min: first,
+            max: last,
+            side,
+        };
+        if x < first {
+            return match self.left {
+                Extension::Excluded => Err(out_of_range("GAUCHE")),
+                Extension::Constant => Ok(self.ys[0]),
+                Extension::Linear if n == 1 => Ok(self.ys[0]),
+                Extension::Linear => self.on_segment(0, x),
+            };
+        }
+        if x > last {
+            return match self.right {
+                Extension::Excluded => Err(out_of_range("DROITE")),
+                Extension::Constant => Ok(self.ys[n - 1]),
+                Extension::Linear if n == 1 => Ok(self.ys[0]),
+                Extension::Linear => self.on_segment(n - 2, x),
+            };
+        }
+        if n == 1 {
+            return Ok(self.ys[0]);
+        }
+        // Exact abscissae return the tabulated value (no rounding).
+        let i = match self.xs.binary_search_by(|v| v.total_cmp(&x)) {
+            Ok(i) => return Ok(self.ys[i]),
+            Err(i) => i - 1,
+        };
+        self.on_segment(i, x)
+    }
+}
+
+/// Evaluates a `FORMULE` for given parameter values (provided by the
+/// evaluator, which owns the Python expression).
+pub type FormulaFn = dyn Fn(&[(String, f64)]) -> Result<f64, String>;
+
+/// Any real function of the command language.
+#[derive(Clone)]
+pub enum Function {
+    /// `DEFI_CONSTANTE(VALE=c)`.
+    Constant {
+        parameter: String,
+        value: f64,
+    },
+    Tabulated(Tabulated),
+    /// `FORMULE(NOM_PARA=…, VALE='…')`.
+    Formula {
+        parameters: Vec<String>,
+        eval: std::rc::Rc<FormulaFn>,
+    },
+}
+
+impl fmt::Debug for Function {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Function::Constant { parameter, value } => {
+                write!(f, "Constant({parameter}: {value})")
+            }
+            Function::Tabulated(t) => write!(f, "{t:?}"),
+            Function::Formula { parameters, .. } => write!(f, "Formula({parameters:?})"),
+        }
+    }
+}
+
+impl Function {
+    /// The value for a one-parameter call (`f(t)`); a formula with several
+    /// parameters gets the value for its first one.
+    pub fn eval(&self, x: f64) -> Result<f64, FunctionError> {
+        match self {
+            Function::Constant { value, .. } => Ok(*value),
+            Function::Tabulated(t) => t.eval(x),
+            Function::Formula { parameters, eval } => {
+                let args: Vec<(String, f64)> = parameters.iter().map(|p| (p.clone(), x)).collect();
+                eval(&args).map_err(FunctionError::Formula)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ramp() -> Tabulated {
+        let mut f = Tabulated::from_pairs("INST", &[0.0, 0.0, 1.0, 1.0]).unwrap();
+        f.right = Extension::Linear;
+        f
+    }
+
+    #[test]
+    fn interpolates_and_prolongs_linearly() {
+        let f = ramp();
+        assert_eq!(f.eval(0.5).unwrap(), 0.5);
+        assert_eq!(f.eval(1.0).unwrap(), 1.0);
+        assert!((f.eval(20.0).unwrap() - 20.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn excluded_side_is_an_error_that_names_the_fix() {
+        let f = ramp();
+        let err = f.eval(-1.0).unwrap_err().to_string();
+        assert!(err.contains("INST=-1"), "{err}");
+        assert!(err.contains("PROL_GAUCHE='EXCLU'"), "{err}");
+    }
+
+    #[test]
+    fn constant_extension_keeps_end_values() {
+        let mut f = Tabulated::from_pairs("X", &[1.0, 2.0, 3.0, 6.0]).unwrap();
+        f.left = Extension::Constant;
+        f.right = Extension::Constant;
+        assert_eq!(f.eval(0.0).unwrap(), 2.0);
+        assert_eq!(f.eval(9.0).unwrap(), 6.0);
+        assert_eq!(f.eval(2.0).unwrap(), 4.0);
+    }
+
+    #[test]
+    fn log_interpolation() {
+        let mut f = Tabulated::from_pairs("X", &[1.0, 1.0, 100.0, 10000.0]).unwrap();
+        f.scale_x = Scale::Log;
+        f.scale_y = Scale::Log;
+        // log-log: y = x^2
+        assert!((f.eval(10.0).unwrap() - 100.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn rejects_bad_tables() {
+        assert_eq!(
+            Tabulated::from_pairs("X", &[0.0, 1.0, 2.0]).unwrap_err(),
+            FunctionError::OddValueCount(3)
+        );
+        assert!(matches!(
+            Tabulated::from_pairs("X", &[0.0, 1.0, 0.0, 2.0]),
+            Err(FunctionError::NotIncreasing { .. })
+        ));
+    }
+}

@@ -1,0 +1,185 @@
+//! IMPR_RESU: writing meshes and results through the mesh crate's writers
+//! (MED 4.1, ASTER `.mail`), into `--out` (`fort.<UNITE>` unless the
+//! `.export` names the unit's file).
+
+use crate::concept::EvolResult;
+use crate::executor::Executor;
+use crate::field::{ElemLocation, Field};
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use aster_mesh::{FieldLocation, Mesh, ResultStep};
+use std::sync::Arc;
+
+/// A stored field in the writer's form (every node / cell of the mesh;
+/// entities the field does not cover get 0).
+fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mesh::Field {
+    match field {
+        Field::Nodal(f) => {
+            let nc = f.components.len();
+            let mut values = vec![0.0; mesh.node_count() * nc];
+            for (n, vals) in &f.values {
+                for (c, v) in vals.iter().enumerate() {
+                    values[n.0 as usize * nc + c] = v.unwrap_or(0.0);
+                }
+            }
+            aster_mesh::Field {
+                name: name.to_string(),
+                components: f.components.clone(),
+                location: FieldLocation::Nodes,
+                values,
+            }
+        }
+        Field::Elem(f) => {
+            let nc = f.components.len();
+            let clean = |v: f64| if v.is_finite() { v } else { 0.0 };
+            match f.location {
+                ElemLocation::Cell => {
+                    let mut values = vec![0.0; mesh.cells.len() * nc];
+                    for (c, pts) in &f.values {
+                        if let Some(p) = pts.first() {
+                            for (k, v) in p.iter().enumerate() {
+                                values[c.0 as usize * nc + k] = clean(*v);
+                            }
+                        }
+                    }
+                    aster_mesh::Field {
+                        name: name.to_string(),
+                        components: f.components.clone(),
+                        location: FieldLocation::Cells,
+                        values,
+                    }
+                }
+                ElemLocation::Gauss | ElemLocation::Nodes => {
+                    let mut points = vec![0u32; mesh.cells.len()];
+                    let mut values = Vec::new();
+                    for (i, slot) in points.iter_mut().enumerate() {
+                        if let Some(pts) = f.values.get(&aster_mesh::CellId(i as u32)) {
+                            *slot = pts.len() as u32;
+                            for p in pts {
+                                values.extend(p.iter().map(|v| clean(*v)));
+                            }
+                        }
+                    }
+                    aster_mesh::Field {
+                        name: name.to_string(),
+                        components: f.components.clone(),
+                        location: FieldLocation::GaussPoints { points_per_cell: points },
+                        values,
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn result_steps(ex: &Executor, occ: &Keywords, result: &EvolResult) -> Result<Vec<ResultStep>, ExecError> {
+    let names: Vec<String> = occ.simple("NOM_CHAM").iter().filter_map(|s| s.as_str().map(str::to_string)).collect();
+    let mesh = ex.mesh_by_id(result.mesh)?;
+    let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, result)?;
+    let mut out = Vec::new();
+    for s in result.steps.iter().filter(|s| steps.contains(&s.nume_ordre)) {
+        let mut fields = Vec::new();
+        for (name, f) in &s.fields {
+            if !names.is_empty() && !names.contains(name) {
+                continue;
+            }
+            // Fields without components (VARI_ELGA of ELAS) have nothing to write.
+            if f.components().is_empty() {
+                continue;
+            }
+            fields.push(to_mesh_field(name, f, &mesh));
+        }
+        out.push(ResultStep {
+            nume_ordre: s.nume_ordre as i32,
+            inst: s.inst,
+            fields,
+        });
+    }
+    Ok(out)
+}
+
+pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "FORMAT",
+            "UNITE",
+            "INFO",
+            "PROC0",
+            "VERSION_MED",
+            "RESU",
+            "RESU/MAILLAGE",
+            "RESU/RESULTAT",
+            "RESU/CHAM_GD",
+            "RESU/NOM_CHAM",
+            "RESU/TOUT",
+            "RESU/TOUT_ORDRE",
+            "RESU/NUME_ORDRE",
+            "RESU/INST",
+            "RESU/PRECISION",
+            "RESU/CRITERE",
+            "RESU/INFO_MAILLAGE",
+            "RESU/IMPR_NOM_VARI",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let format = kw.str("FORMAT").unwrap_or("RESULTAT");
+    ex.only_values("IMPR_RESU", kw, "FORMAT", &["MED", "ASTER"])?;
+    let default_unit = if format == "MED" { 80 } else { 8 };
+    let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(default_unit);
+    let path = ex.output_path(unit);
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).map_err(|e| ExecError::new(format!("IMPR_RESU: cannot create {}: {e}", dir.display())))?;
+    }
+    let mut mesh: Option<(Arc<Mesh>, String)> = None;
+    let mut steps: Vec<ResultStep> = Vec::new();
+    for occ in kw.factor("RESU") {
+        if let Some(m) = occ.concept("MAILLAGE") {
+            mesh = Some((ex.mesh(m)?, m.name.clone()));
+        }
+        if let Some(r) = occ.concept("RESULTAT") {
+            let result = ex.result(r)?;
+            if mesh.is_none() {
+                mesh = Some((ex.mesh_by_id(result.mesh)?, r.name.clone()));
+            }
+            let mut s = result_steps(ex, occ, &result)?;
+            // Several results in one file: prefix field names with the result's.
+            for st in &mut s {
+                for f in &mut st.fields {
+                    f.name = format!("{}{}", r.name, f.name);
+                }
+            }
+            steps.extend(s);
+        }
+        if let Some(c) = occ.concept("CHAM_GD") {
+            let m = ex.single_mesh()?;
+            let f = ex.field(c)?;
+            steps.push(ResultStep { nume_ordre: 0, inst: 0.0, fields: vec![to_mesh_field(&c.name, &f, &m)] });
+            if mesh.is_none() {
+                mesh = Some((m, c.name.clone()));
+            }
+        }
+    }
+    let Some((mesh, name)) = mesh else {
+        return Err(ExecError::new("IMPR_RESU: nothing to print (give MAILLAGE, RESULTAT or CHAM_GD in RESU)"));
+    };
+    match format {
+        "MED" => {
+            // One MED step per NUME_ORDRE, fields of all occurrences merged.
+            let mut merged: Vec<ResultStep> = Vec::new();
+            for s in steps {
+                match merged.iter_mut().find(|m| m.nume_ordre == s.nume_ordre) {
+                    Some(m) => m.fields.extend(s.fields),
+                    None => merged.push(s),
+                }
+            }
+            aster_mesh::write_med(&path, &mesh, &name, &merged).map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
+        }
+        _ => {
+            if !steps.is_empty() {
+                return Err(ex.unsupported("IMPR_RESU/FORMAT='ASTER' of result fields (only the mesh)", call.span));
+            }
+            aster_mesh::write_mail(&path, &mesh).map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
+        }
+    }
+    Ok(CommandOutput::Nothing)
+}

@@ -1,0 +1,377 @@
+//! STAT_NON_LINE, MECA_STATIQUE and CALC_CHAMP: keywords → a plain
+//! [`SolveSetup`], handed to aster-fem (see `fembridge`).
+
+use crate::concept::*;
+use crate::executor::{store_result, Executor};
+use crate::function::Function;
+use crate::list;
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use std::rc::Rc;
+
+/// A load of `EXCIT`.
+#[derive(Clone, Debug)]
+pub enum LoadRef {
+    Kinematic(Rc<KinematicLoad>),
+    Mechanical(Rc<MechanicalLoad>),
+}
+
+/// One `EXCIT` occurrence: a load and its time multiplier (`FONC_MULT`,
+/// 1 when absent).
+#[derive(Clone, Debug)]
+pub struct Excitation {
+    pub load: LoadRef,
+    pub multiplier: Option<Rc<Function>>,
+}
+
+/// Newton and convergence settings (`NEWTON`, `CONVERGENCE`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NewtonSettings {
+    /// `RESI_GLOB_RELA`; code_aster's default 1e-6 applies when neither
+    /// criterion is given.
+    pub resi_glob_rela: Option<f64>,
+    pub resi_glob_maxi: Option<f64>,
+    pub iter_glob_maxi: usize,
+    /// `REAC_ITER`: re-assemble the tangent every n iterations (0: never).
+    pub reac_iter: usize,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings {
+            resi_glob_rela: Some(1e-6),
+            resi_glob_maxi: None,
+            iter_glob_maxi: 10,
+            reac_iter: 1,
+        }
+    }
+}
+
+/// Everything a static computation needs, with no keyword left.
+#[derive(Clone, Debug)]
+pub struct SolveSetup {
+    pub model: Rc<ModelDef>,
+    pub materials: Rc<MaterialField>,
+    pub cara: Option<Rc<CaraElem>>,
+    pub excitations: Vec<Excitation>,
+    pub contact: Option<Rc<ContactDef>>,
+    /// The instants: the first is the initial state, each next one a step.
+    pub instants: Vec<f64>,
+    pub newton: NewtonSettings,
+    /// `ETAT_INIT/EVOL_NOLI` and the instant taken from it.
+    pub initial: Option<(Rc<EvolResult>, f64)>,
+    /// `INFO=2`: print the iterations.
+    pub verbose: bool,
+}
+
+const SNL_KEYWORDS: &[&str] = &[
+    "MODELE",
+    "CHAM_MATER",
+    "CARA_ELEM",
+    "EXCIT",
+    "EXCIT/CHARGE",
+    "EXCIT/FONC_MULT",
+    "EXCIT/TYPE_CHARGE",
+    "CONTACT",
+    "COMPORTEMENT",
+    "COMPORTEMENT/RELATION",
+    "COMPORTEMENT/DEFORMATION",
+    "COMPORTEMENT/TOUT",
+    "COMPORTEMENT/GROUP_MA",
+    "INCREMENT",
+    "INCREMENT/LIST_INST",
+    "INCREMENT/INST_INIT",
+    "INCREMENT/INST_FIN",
+    "INCREMENT/NUME_INST_INIT",
+    "INCREMENT/NUME_INST_FIN",
+    "INCREMENT/PRECISION",
+    "METHODE",
+    "NEWTON",
+    "NEWTON/PREDICTION",
+    "NEWTON/MATRICE",
+    "NEWTON/REAC_ITER",
+    "NEWTON/REAC_INCR",
+    "NEWTON/MATR_RIGI_SYME",
+    "NEWTON/REAC_ITER_ELAS",
+    "NEWTON/PAS_MINI_ELAS",
+    // The prediction from a previous result only changes the first
+    // iterate; the converged steps are the same.
+    "NEWTON/EVOL_NOLI",
+    "CONVERGENCE",
+    "CONVERGENCE/RESI_GLOB_RELA",
+    "CONVERGENCE/RESI_GLOB_MAXI",
+    "CONVERGENCE/ITER_GLOB_MAXI",
+    "CONVERGENCE/ITER_GLOB_ELAS",
+    "CONVERGENCE/ARRET",
+    "SOLVEUR",
+    "SOLVEUR/*",
+    "ETAT_INIT",
+    "ETAT_INIT/EVOL_NOLI",
+    "ETAT_INIT/INST",
+    "ETAT_INIT/NUME_ORDRE",
+    "ETAT_INIT/PRECISION",
+    "ETAT_INIT/CRITERE",
+    "INFO",
+    "TITRE",
+    "AFFICHAGE",
+    "AFFICHAGE/*",
+    "ARCHIVAGE",
+    "ARCHIVAGE/*",
+    "MESURE",
+    "MESURE/*",
+];
+
+fn parse_excitations(
+    ex: &Executor,
+    cmd: &str,
+    kw: &Keywords,
+) -> Result<Vec<Excitation>, ExecError> {
+    let mut out = Vec::new();
+    for occ in kw.factor("EXCIT") {
+        ex.only_values(&format!("{cmd}/EXCIT"), occ, "TYPE_CHARGE", &["FIXE_CSTE"])?;
+        let c = ex.required(&format!("{cmd}/EXCIT"), occ, "CHARGE")?;
+        let load = match ex.concept(c)? {
+            Concept::KinematicLoad(l) => LoadRef::Kinematic(l.clone()),
+            Concept::MechanicalLoad(l) => LoadRef::Mechanical(l.clone()),
+            other => {
+                return Err(ExecError::new(format!(
+                    "{cmd}/EXCIT/CHARGE: `{}` is {}, expected a load",
+                    c.name,
+                    other.kind()
+                )))
+            }
+        };
+        let multiplier = match occ.concept("FONC_MULT") {
+            Some(f) => Some(ex.function(f)?),
+            None => None,
+        };
+        out.push(Excitation { load, multiplier });
+    }
+    Ok(out)
+}
+
+fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveSetup, ExecError> {
+    let cmd = call.command.as_str();
+    let kw = &call.keywords;
+    let model = ex.model(ex.required(cmd, kw, "MODELE")?)?;
+    let materials = ex.material_field(ex.required(cmd, kw, "CHAM_MATER")?)?;
+    let cara = match kw.concept("CARA_ELEM") {
+        Some(c) => Some(ex.cara_elem(c)?),
+        None => None,
+    };
+    let excitations = parse_excitations(ex, cmd, kw)?;
+    let contact = match kw.concept("CONTACT") {
+        Some(c) => Some(ex.contact(c)?),
+        None => None,
+    };
+    for occ in kw.factor("COMPORTEMENT") {
+        ex.only_values(&format!("{cmd}/COMPORTEMENT"), occ, "RELATION", &["ELAS"])?;
+        ex.only_values(
+            &format!("{cmd}/COMPORTEMENT"),
+            occ,
+            "DEFORMATION",
+            &["PETIT"],
+        )?;
+    }
+    ex.only_values(cmd, kw, "METHODE", &["NEWTON"])?;
+    let mut newton = NewtonSettings::default();
+    if let Some(conv) = kw.factor("CONVERGENCE").first() {
+        let rela = conv.f64("RESI_GLOB_RELA");
+        let maxi = conv.f64("RESI_GLOB_MAXI");
+        // code_aster: RESI_GLOB_RELA=1e-6 unless only RESI_GLOB_MAXI is given.
+        newton.resi_glob_rela = if rela.is_none() && maxi.is_some() {
+            None
+        } else {
+            Some(rela.unwrap_or(1e-6))
+        };
+        newton.resi_glob_maxi = maxi;
+        if let Some(n) = conv.first("ITER_GLOB_MAXI").and_then(|s| s.as_i64()) {
+            newton.iter_glob_maxi = n.max(1) as usize;
+        }
+        ex.only_values(&format!("{cmd}/CONVERGENCE"), conv, "ARRET", &["OUI"])?;
+    }
+    if let Some(nw) = kw.factor("NEWTON").first() {
+        ex.only_values(
+            &format!("{cmd}/NEWTON"),
+            nw,
+            "PREDICTION",
+            &["ELASTIQUE", "TANGENTE", "DEPL_CALCULE", "EXTRAPOLE"],
+        )?;
+        if let Some(n) = nw.first("REAC_ITER").and_then(|s| s.as_i64()) {
+            newton.reac_iter = n.max(0) as usize;
+        }
+    }
+    let (instants, initial) = if linear {
+        instants_linear(ex, kw)?
+    } else {
+        let Some(inc) = kw.factor("INCREMENT").first() else {
+            return Err(ExecError::new(format!("{cmd}: INCREMENT is required")));
+        };
+        let l = ex.required(&format!("{cmd}/INCREMENT"), inc, "LIST_INST")?;
+        let list = ex.real_list(l)?;
+        let mut init = inc.f64("INST_INIT");
+        let mut fin = inc.f64("INST_FIN");
+        if let Some(n) = inc.first("NUME_INST_INIT").and_then(|s| s.as_i64()) {
+            init = Some(*list.get(n as usize).ok_or_else(|| {
+                ExecError::new(format!(
+                    "{cmd}/INCREMENT/NUME_INST_INIT={n}: the list has {} instants",
+                    list.len()
+                ))
+            })?);
+        }
+        if let Some(n) = inc.first("NUME_INST_FIN").and_then(|s| s.as_i64()) {
+            fin = Some(*list.get(n as usize).ok_or_else(|| {
+                ExecError::new(format!(
+                    "{cmd}/INCREMENT/NUME_INST_FIN={n}: the list has {} instants",
+                    list.len()
+                ))
+            })?);
+        }
+        let mut initial = None;
+        if let Some(ei) = kw.factor("ETAT_INIT").first() {
+            let Some(r) = ei.concept("EVOL_NOLI") else {
+                let span = ei.entries.first().map(|k| k.span).unwrap_or(call.span);
+                return Err(ex.unsupported(
+                    &format!("{cmd}/ETAT_INIT without EVOL_NOLI (DEPL/SIGM fields)"),
+                    span,
+                ));
+            };
+            let prev = ex.result(r)?;
+            let step = if let Some(t) = ei.f64("INST") {
+                prev.step_at(t, 1e-6, false)
+            } else if let Some(n) = ei.first("NUME_ORDRE").and_then(|s| s.as_i64()) {
+                prev.step_numbered(n as u32)
+            } else {
+                prev.steps.last()
+            }
+            .ok_or_else(|| {
+                ExecError::new(format!(
+                    "{cmd}/ETAT_INIT: the instant asked is not in `{}`",
+                    r.name
+                ))
+            })?;
+            let t0 = step.inst;
+            if init.is_none() {
+                init = Some(t0);
+            }
+            initial = Some((prev.clone(), t0));
+        }
+        let instants = list::select_instants(&list, init, fin)
+            .map_err(|e| ExecError::new(format!("{cmd}/INCREMENT: {e}")))?;
+        (instants, initial)
+    };
+    Ok(SolveSetup {
+        model,
+        materials,
+        cara,
+        excitations,
+        contact,
+        instants,
+        newton,
+        initial,
+        verbose: kw.first("INFO").and_then(|s| s.as_i64()) == Some(2),
+    })
+}
+
+/// MECA_STATIQUE: one step at INST (default 0), or the instants of LIST_INST.
+/// Instants and the initial state they start from.
+type Instants = (Vec<f64>, Option<(Rc<EvolResult>, f64)>);
+
+fn instants_linear(ex: &Executor, kw: &Keywords) -> Result<Instants, ExecError> {
+    if let Some(l) = kw.concept("LIST_INST") {
+        let list = ex.real_list(l)?;
+        return Ok(((*list).clone(), None));
+    }
+    let t = kw.f64("INST").unwrap_or(0.0);
+    Ok((vec![t], None))
+}
+
+pub fn stat_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(call, SNL_KEYWORDS)?;
+    if call.reuse.is_some() {
+        return Err(ex.unsupported("STAT_NON_LINE with reuse= (continuing a result)", call.span));
+    }
+    let setup = parse_setup(ex, call, false)?;
+    let mesh_id = setup.model.mesh;
+    let (steps, fem) = crate::fembridge::solve(ex, &setup, false)?;
+    let evol = EvolResult {
+        typ: "evol_noli".into(),
+        mesh: mesh_id,
+        steps,
+        fem: Some(fem),
+    };
+    store_result(ex, call, Concept::Result(Rc::new(evol)))
+}
+
+pub fn meca_statique(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "MODELE",
+            "CHAM_MATER",
+            "CARA_ELEM",
+            "EXCIT",
+            "EXCIT/CHARGE",
+            "EXCIT/FONC_MULT",
+            "EXCIT/TYPE_CHARGE",
+            "INST",
+            "LIST_INST",
+            "SOLVEUR",
+            "SOLVEUR/*",
+            "INFO",
+            "TITRE",
+            "OPTION",
+        ],
+    )?;
+    let setup = parse_setup(ex, call, true)?;
+    let mesh_id = setup.model.mesh;
+    let (steps, fem) = crate::fembridge::solve(ex, &setup, true)?;
+    let evol = EvolResult {
+        typ: "evol_elas".into(),
+        mesh: mesh_id,
+        steps,
+        fem: Some(fem),
+    };
+    store_result(ex, call, Concept::Result(Rc::new(evol)))
+}
+
+pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "RESULTAT",
+            "MODELE",
+            "CHAM_MATER",
+            "CARA_ELEM",
+            "EXCIT",
+            "EXCIT/CHARGE",
+            "EXCIT/FONC_MULT",
+            "FORCE",
+            "CONTRAINTE",
+            "CRITERES",
+            "DEFORMATION",
+            "TOUT_ORDRE",
+            "NUME_ORDRE",
+            "INST",
+            "PRECISION",
+            "CRITERE",
+            "TOUT",
+            "GROUP_MA",
+            "INFO",
+            "TITRE",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let r = ex.required("CALC_CHAMP", kw, "RESULTAT")?;
+    let result = ex.result(r)?;
+    let mut options: Vec<String> = Vec::new();
+    for key in ["FORCE", "CONTRAINTE", "CRITERES", "DEFORMATION"] {
+        options.extend(
+            kw.simple(key)
+                .iter()
+                .filter_map(|s| s.as_str().map(str::to_string)),
+        );
+    }
+    let steps: Vec<u32> = crate::commands::select_steps_pub(ex, "CALC_CHAMP", kw, &result)?;
+    let updated = crate::fembridge::calc_champ(ex, call, &result, &options, &steps)?;
+    store_result(ex, call, Concept::Result(Rc::new(updated)))
+}

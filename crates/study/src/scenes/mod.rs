@@ -1,0 +1,5 @@
+//! Built-in scenes.
+
+pub mod fake;
+pub mod hertz;
+pub mod zzzz237;
