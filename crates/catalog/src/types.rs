@@ -156,7 +156,12 @@ pub fn computed(
             Some(t) => return t,
             None => "corresp_2_mailla",
         },
-        "calc_modes_prod" => "mode_meca",
+        "calc_modes_prod" => match type_of("MATR_RIGI").as_deref() {
+            Some(t) if t.starts_with("matr_asse_gene") => "mode_gene",
+            Some(t) if t.starts_with("matr_asse_pres") => "mode_acou",
+            Some(t) if t.starts_with("matr_asse_depl") => "mode_meca",
+            _ => UNKNOWN,
+        },
         "defi_group_prod" => {
             return type_of("MAILLAGE")
                 .or_else(|| type_of("GRILLE"))

@@ -69,6 +69,7 @@ pub(crate) fn call_command(
     }
 
     let mut v = Validator {
+        reuse_given: reuse.is_some(),
         command: name.to_string(),
         diags: Vec::new(),
         created: Vec::new(),
@@ -198,7 +199,8 @@ pub(crate) fn call_command(
 
     // Concepts created by the macro through CO('name').
     for c in created {
-        me.set_var(&c.name.clone(), Value::Concept(c));
+        me.set_var(&c.name.clone(), Value::Concept(c.clone()));
+        me.resolve_co(&c);
     }
     if name == "DETRUIRE" {
         destroy(me, &call.keywords);

@@ -28,6 +28,9 @@ pub const RENAMES: &[(&str, &str, &str, &str)] = &[
         "cell names are no longer accepted; the name is looked up as a cell group, then as a cell",
     ),
     ("*", "NOEUD_ORIG", "GROUP_NO_ORIG", ""),
+    ("*", "RESI_INTE_MAXI", "RESI_INTE", ""),
+    ("*", "RESI_INTE_RELA", "RESI_INTE", ""),
+    ("THER_NON_LINE", "STATIONNAIRE", "STAT", ""),
     ("*", "NOEUD_EXTR", "GROUP_NO_EXTR", ""),
 ];
 
@@ -163,6 +166,40 @@ pub(crate) fn transform_level(
                 format!("`{path}/CODE=_F(NOM=...)` is code_aster 11 syntax: now CODE='OUI'"),
             );
             g.value = Value::str("OUI");
+        }
+    }
+    // Thermal commands (code_aster's own compatibility rules):
+    // PARM_THETA=x → SCHEMA_TEMPS=_F(SCHEMA='THETA', THETA=x); a linear
+    // computation without initial state is stationary.
+    if matches!(cmd, "THER_LINEAIRE" | "THER_NON_LINE") && factor.is_empty() {
+        if let Some(g) = given.iter_mut().find(|g| g.name == "PARM_THETA") {
+            warn(diags, g, format!("`{path}/PARM_THETA` is legacy syntax: now SCHEMA_TEMPS=_F(SCHEMA='THETA', THETA=...)"));
+            let mut d = crate::value::Dict::default();
+            d.insert(Value::str("SCHEMA"), Value::str("THETA"), g.span);
+            d.insert(Value::str("THETA"), g.value.clone(), g.span);
+            g.name = "SCHEMA_TEMPS".into();
+            g.value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d)));
+        }
+        if cmd == "THER_LINEAIRE"
+            && !given
+                .iter()
+                .any(|g| g.name == "ETAT_INIT" || g.name == "TYPE_CALCUL")
+        {
+            given.push(Given {
+                name: "TYPE_CALCUL".into(),
+                span: given.first().map(|g| g.span).unwrap_or_default(),
+                value: Value::str("STAT"),
+            });
+        }
+    }
+    // DDL_IMPO/LIAISON='ENCASTRE' → BLOCAGE=('DEPLACEMENT', 'ROTATION')
+    if !known("LIAISON") && known("BLOCAGE") {
+        if let Some(g) = given.iter_mut().find(|g| g.name == "LIAISON") {
+            if g.value.to_string() == "ENCASTRE" {
+                warn(diags, g, format!("`{path}/LIAISON='ENCASTRE'` is legacy syntax: now BLOCAGE=('DEPLACEMENT', 'ROTATION')"));
+                g.name = "BLOCAGE".into();
+                g.value = Value::tuple(vec![Value::str("DEPLACEMENT"), Value::str("ROTATION")]);
+            }
         }
     }
     // TEST_RESU-like occurrences: VALE= → VALE_CALC / VALE_REFE.
