@@ -10,7 +10,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "aster", version, about = "Read, check and run code_aster command files")]
+#[command(
+    name = "aster",
+    version,
+    about = "Read, check and run code_aster command files"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

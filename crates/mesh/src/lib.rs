@@ -1,7 +1,83 @@
 //! Meshes as code_aster sees them: nodes, cells with code_aster type names
 //! and node ordering, and named groups of cells (GROUP_MA) and nodes
 //! (GROUP_NO).
+//!
+//! Reading: [`read_mesh`] (by extension, then by content), [`read_med`],
+//! [`read_mail`].
 
+mod error;
+mod field;
+pub mod hdf5;
+pub mod mail;
+pub mod med;
 mod model;
+mod ops;
+mod summary;
+pub mod vtu;
 
+pub use error::{suggest, GroupKind, MeshError};
+pub use field::{Field, FieldLocation, ResultStep};
+pub use mail::{mail_string, parse_mail, read_mail, write_mail};
+pub use med::{med_bytes, read_med, read_med_named, write_med, MedInfo};
 pub use model::*;
+pub use ops::OrientReport;
+pub use summary::{CellCounts, MeshSummary};
+pub use vtu::write_vtu;
+
+use std::path::Path;
+
+/// The formats a mesh file may have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// MED (HDF5 container).
+    Med,
+    /// ASTER text mesh.
+    Mail,
+}
+
+/// Tell a mesh file's format: by the HDF5 signature first, then by extension.
+pub fn detect_format(path: &Path) -> Result<MeshFormat, MeshError> {
+    let io = |e: std::io::Error| MeshError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let mut head = [0u8; 8];
+    let n = {
+        use std::io::Read;
+        let mut f = std::fs::File::open(path).map_err(io)?;
+        f.read(&mut head).map_err(io)?
+    };
+    if n == 8 && head == [0x89, b'H', b'D', b'F', b'\r', b'\n', 0x1a, b'\n'] {
+        return Ok(MeshFormat::Med);
+    }
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("med" | "mmed" | "rmed") => Ok(MeshFormat::Med),
+        Some("mail" | "mgib" | "msh" | "txt") => Ok(MeshFormat::Mail),
+        _ => {
+            let text = std::fs::read(path).map_err(io)?;
+            let looks_like_mail = text.is_ascii()
+                && String::from_utf8_lossy(&text)
+                    .split_whitespace()
+                    .any(|w| w == "FINSF");
+            if looks_like_mail {
+                Ok(MeshFormat::Mail)
+            } else {
+                Err(MeshError::UnknownFormat {
+                    path: path.to_path_buf(),
+                })
+            }
+        }
+    }
+}
+
+/// Read a mesh file, MED or ASTER, telling the format from the content or extension.
+pub fn read_mesh(path: &Path) -> Result<Mesh, MeshError> {
+    match detect_format(path)? {
+        MeshFormat::Med => read_med(path),
+        MeshFormat::Mail => read_mail(path),
+    }
+}

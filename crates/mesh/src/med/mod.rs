@@ -1,0 +1,8 @@
+//! MED files (HDF5): reading meshes, writing meshes and result fields.
+
+pub mod celltypes;
+mod read;
+mod write;
+
+pub use read::{read_med, read_med_bytes, read_med_named, MedInfo};
+pub use write::{med_bytes, write_med};

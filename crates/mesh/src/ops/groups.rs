@@ -1,0 +1,339 @@
+//! Group look-ups and `DEFI_GROUP` operations (`CREA_GROUP_NO`,
+//! `CREA_GROUP_MA`, `DETR_GROUP_*`), as plain functions on [`Mesh`]: the
+//! runner maps command keywords onto them.
+//!
+//! Creating a group whose name exists replaces it (code_aster warns and
+//! overwrites); the functions return the names they replaced so the caller
+//! can warn too.
+
+use crate::error::{suggest, GroupKind, MeshError};
+use crate::{CellId, Group, Mesh, NodeId};
+
+impl Mesh {
+    /// The cell group `name`, or an error with a did-you-mean suggestion.
+    pub fn group_ma_checked(&self, name: &str) -> Result<&Group<CellId>, MeshError> {
+        self.group_ma(name).ok_or_else(|| MeshError::UnknownGroup {
+            kind: GroupKind::Cells,
+            name: name.to_string(),
+            suggestion: suggest(name, self.groups_ma.iter().map(|g| g.name.as_str())),
+        })
+    }
+
+    /// The node group `name`, or an error with a did-you-mean suggestion.
+    pub fn group_no_checked(&self, name: &str) -> Result<&Group<NodeId>, MeshError> {
+        self.group_no(name).ok_or_else(|| MeshError::UnknownGroup {
+            kind: GroupKind::Nodes,
+            name: name.to_string(),
+            suggestion: suggest(name, self.groups_no.iter().map(|g| g.name.as_str())),
+        })
+    }
+
+    /// A node by name (`NOEUD=`).
+    pub fn node_by_name(&self, name: &str) -> Result<NodeId, MeshError> {
+        self.node_names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| NodeId(i as u32))
+            .ok_or_else(|| MeshError::UnknownName {
+                kind: "node",
+                name: name.to_string(),
+                suggestion: suggest(name, self.node_names.iter().map(String::as_str)),
+            })
+    }
+
+    /// A cell by name (`MAILLE=`).
+    pub fn cell_by_name(&self, name: &str) -> Result<CellId, MeshError> {
+        self.cell_names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| CellId(i as u32))
+            .ok_or_else(|| MeshError::UnknownName {
+                kind: "cell",
+                name: name.to_string(),
+                suggestion: suggest(name, self.cell_names.iter().map(String::as_str)),
+            })
+    }
+
+    /// The nodes of some cells, each once, in increasing node number.
+    pub fn nodes_of_cells(&self, cells: &[CellId]) -> Vec<NodeId> {
+        let mut seen = vec![false; self.coords.len()];
+        for c in cells {
+            if let Some(cell) = self.cells.get(c.0 as usize) {
+                for n in &cell.nodes {
+                    if let Some(s) = seen.get_mut(n.0 as usize) {
+                        *s = true;
+                    }
+                }
+            }
+        }
+        seen.iter()
+            .enumerate()
+            .filter(|(_, &s)| s)
+            .map(|(i, _)| NodeId(i as u32))
+            .collect()
+    }
+
+    /// The cells of the named groups, in group order, each once.
+    pub fn cells_of_groups(&self, groups: &[&str]) -> Result<Vec<CellId>, MeshError> {
+        let mut out = Vec::new();
+        let mut seen = vec![false; self.cells.len()];
+        for g in groups {
+            for &c in &self.group_ma_checked(g)?.members {
+                if !std::mem::replace(&mut seen[c.0 as usize], true) {
+                    out.push(c);
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The nodes of the named node groups, in group order, each once.
+    pub fn nodes_of_groups(&self, groups: &[&str]) -> Result<Vec<NodeId>, MeshError> {
+        let mut out = Vec::new();
+        let mut seen = vec![false; self.coords.len()];
+        for g in groups {
+            for &n in &self.group_no_checked(g)?.members {
+                if !std::mem::replace(&mut seen[n.0 as usize], true) {
+                    out.push(n);
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Add or replace a node group; `true` when it replaced one.
+    pub fn set_group_no(&mut self, name: &str, members: Vec<NodeId>) -> bool {
+        set_group(&mut self.groups_no, name, members)
+    }
+
+    /// Add or replace a cell group; `true` when it replaced one.
+    pub fn set_group_ma(&mut self, name: &str, members: Vec<CellId>) -> bool {
+        set_group(&mut self.groups_ma, name, members)
+    }
+
+    /// `CREA_GROUP_NO=_F(TOUT_GROUP_MA='OUI')`: a node group for every cell
+    /// group, same name, holding the nodes of its cells. Returns the names
+    /// of node groups that existed and were replaced.
+    pub fn crea_group_no_tout_group_ma(&mut self) -> Vec<String> {
+        let made: Vec<(String, Vec<NodeId>)> = self
+            .groups_ma
+            .iter()
+            .map(|g| (g.name.clone(), self.nodes_of_cells(&g.members)))
+            .collect();
+        made.into_iter()
+            .filter_map(|(name, nodes)| self.set_group_no(&name, nodes).then_some(name))
+            .collect()
+    }
+
+    /// `CREA_GROUP_NO=_F(GROUP_MA=(…))`: one node group per cell group, same name.
+    pub fn crea_group_no_each_group_ma(
+        &mut self,
+        groups: &[&str],
+    ) -> Result<Vec<String>, MeshError> {
+        let mut made = Vec::new();
+        for g in groups {
+            let nodes = self.nodes_of_cells(&self.group_ma_checked(g)?.members);
+            made.push((g.to_string(), nodes));
+        }
+        Ok(made
+            .into_iter()
+            .filter_map(|(name, nodes)| self.set_group_no(&name, nodes).then_some(name))
+            .collect())
+    }
+
+    /// `CREA_GROUP_NO=_F(NOM=name, GROUP_MA=(…))`: the nodes of the cells of those groups.
+    pub fn crea_group_no_from_group_ma(
+        &mut self,
+        name: &str,
+        groups: &[&str],
+    ) -> Result<bool, MeshError> {
+        let cells = self.cells_of_groups(groups)?;
+        let nodes = self.nodes_of_cells(&cells);
+        Ok(self.set_group_no(name, nodes))
+    }
+
+    /// `CREA_GROUP_NO=_F(NOM=name, NOEUD=(…))`.
+    pub fn crea_group_no_from_nodes(
+        &mut self,
+        name: &str,
+        nodes: &[&str],
+    ) -> Result<bool, MeshError> {
+        let mut ids = Vec::with_capacity(nodes.len());
+        for n in nodes {
+            let id = self.node_by_name(n)?;
+            if !ids.contains(&id) {
+                ids.push(id);
+            }
+        }
+        Ok(self.set_group_no(name, ids))
+    }
+
+    /// `CREA_GROUP_NO=_F(NOM=name, GROUP_NO=(…))` or `UNION=(…)`: the union, in order.
+    pub fn crea_group_no_union(&mut self, name: &str, groups: &[&str]) -> Result<bool, MeshError> {
+        let nodes = self.nodes_of_groups(groups)?;
+        Ok(self.set_group_no(name, nodes))
+    }
+
+    /// `CREA_GROUP_NO=_F(NOM=name, INTERSEC=(…))`: nodes in every group, in the first group's order.
+    pub fn crea_group_no_intersec(
+        &mut self,
+        name: &str,
+        groups: &[&str],
+    ) -> Result<bool, MeshError> {
+        let nodes = combine(
+            groups,
+            self.coords.len(),
+            |g| {
+                self.group_no_checked(g)
+                    .map(|g| g.members.iter().map(|n| n.0).collect())
+            },
+            Combine::Intersection,
+        )?;
+        Ok(self.set_group_no(name, nodes.into_iter().map(NodeId).collect()))
+    }
+
+    /// `CREA_GROUP_NO=_F(NOM=name, DIFFE=(…))`: nodes of the first group in none of the others.
+    pub fn crea_group_no_diffe(&mut self, name: &str, groups: &[&str]) -> Result<bool, MeshError> {
+        let nodes = combine(
+            groups,
+            self.coords.len(),
+            |g| {
+                self.group_no_checked(g)
+                    .map(|g| g.members.iter().map(|n| n.0).collect())
+            },
+            Combine::Difference,
+        )?;
+        Ok(self.set_group_no(name, nodes.into_iter().map(NodeId).collect()))
+    }
+
+    /// `CREA_GROUP_MA=_F(NOM=name, MAILLE=(…))`.
+    pub fn crea_group_ma_from_cells(
+        &mut self,
+        name: &str,
+        cells: &[&str],
+    ) -> Result<bool, MeshError> {
+        let mut ids = Vec::with_capacity(cells.len());
+        for c in cells {
+            let id = self.cell_by_name(c)?;
+            if !ids.contains(&id) {
+                ids.push(id);
+            }
+        }
+        Ok(self.set_group_ma(name, ids))
+    }
+
+    /// `CREA_GROUP_MA=_F(NOM=name, TOUT='OUI')`.
+    pub fn crea_group_ma_tout(&mut self, name: &str) -> bool {
+        let all = (0..self.cells.len() as u32).map(CellId).collect();
+        self.set_group_ma(name, all)
+    }
+
+    /// `CREA_GROUP_MA=_F(NOM=name, GROUP_MA=(…))` or `UNION=(…)`.
+    pub fn crea_group_ma_union(&mut self, name: &str, groups: &[&str]) -> Result<bool, MeshError> {
+        let cells = self.cells_of_groups(groups)?;
+        Ok(self.set_group_ma(name, cells))
+    }
+
+    /// `CREA_GROUP_MA=_F(NOM=name, INTERSEC=(…))`.
+    pub fn crea_group_ma_intersec(
+        &mut self,
+        name: &str,
+        groups: &[&str],
+    ) -> Result<bool, MeshError> {
+        let cells = combine(
+            groups,
+            self.cells.len(),
+            |g| {
+                self.group_ma_checked(g)
+                    .map(|g| g.members.iter().map(|c| c.0).collect())
+            },
+            Combine::Intersection,
+        )?;
+        Ok(self.set_group_ma(name, cells.into_iter().map(CellId).collect()))
+    }
+
+    /// `CREA_GROUP_MA=_F(NOM=name, DIFFE=(…))`.
+    pub fn crea_group_ma_diffe(&mut self, name: &str, groups: &[&str]) -> Result<bool, MeshError> {
+        let cells = combine(
+            groups,
+            self.cells.len(),
+            |g| {
+                self.group_ma_checked(g)
+                    .map(|g| g.members.iter().map(|c| c.0).collect())
+            },
+            Combine::Difference,
+        )?;
+        Ok(self.set_group_ma(name, cells.into_iter().map(CellId).collect()))
+    }
+
+    /// `DETR_GROUP_MA=_F(NOM=(…))`: unknown names are errors.
+    pub fn detr_group_ma(&mut self, names: &[&str]) -> Result<(), MeshError> {
+        for n in names {
+            self.group_ma_checked(n)?;
+        }
+        self.groups_ma.retain(|g| !names.contains(&g.name.as_str()));
+        Ok(())
+    }
+
+    /// `DETR_GROUP_NO=_F(NOM=(…))`: unknown names are errors.
+    pub fn detr_group_no(&mut self, names: &[&str]) -> Result<(), MeshError> {
+        for n in names {
+            self.group_no_checked(n)?;
+        }
+        self.groups_no.retain(|g| !names.contains(&g.name.as_str()));
+        Ok(())
+    }
+}
+
+fn set_group<T>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) -> bool {
+    match groups.iter_mut().find(|g| g.name == name) {
+        Some(g) => {
+            g.members = members;
+            true
+        }
+        None => {
+            groups.push(Group {
+                name: name.to_string(),
+                members,
+            });
+            false
+        }
+    }
+}
+
+enum Combine {
+    Intersection,
+    Difference,
+}
+
+/// Intersection or difference of groups, in the first group's order.
+fn combine(
+    groups: &[&str],
+    universe: usize,
+    members: impl Fn(&str) -> Result<Vec<u32>, MeshError>,
+    how: Combine,
+) -> Result<Vec<u32>, MeshError> {
+    let Some((first, rest)) = groups.split_first() else {
+        return Err(MeshError::Operation(
+            "INTERSEC/DIFFE need at least one group".into(),
+        ));
+    };
+    let base = members(first)?;
+    let mut count = vec![0usize; universe];
+    for g in rest {
+        let mut here = vec![false; universe];
+        for m in members(g)? {
+            here[m as usize] = true;
+        }
+        for (c, h) in count.iter_mut().zip(here) {
+            *c += h as usize;
+        }
+    }
+    Ok(base
+        .into_iter()
+        .filter(|&m| match how {
+            Combine::Intersection => count[m as usize] == rest.len(),
+            Combine::Difference => count[m as usize] == 0,
+        })
+        .collect())
+}
