@@ -46,6 +46,8 @@ pub struct ZoneContact {
     last_rows: Vec<InequalityRow>,
     /// Length scale of the zone (bounding box diagonal), for tolerances.
     length: f64,
+    /// With REAC_GEOM='SANS': the rows of the first pairing.
+    frozen_rows: Vec<InequalityRow>,
 }
 
 impl ZoneContact {
@@ -83,6 +85,7 @@ impl ZoneContact {
         ZoneContact {
             last_rows: Vec::new(),
             length: 0.0,
+            frozen_rows: Vec::new(),
             zone,
             law,
             geom_loop,
@@ -133,7 +136,12 @@ impl ZoneContact {
                 ),
             });
         }
-        if !(self.geom_loop == GeomLoop::Sans && self.paired_once) {
+        let frozen = self.geom_loop == GeomLoop::Sans && self.paired_once;
+        if frozen {
+            // REAC_GEOM='SANS': the rows of the initial pairing, as they were.
+            return Ok(self.frozen_rows.clone());
+        }
+        {
             let points = self.points(x);
             self.pairs = points
                 .iter()
@@ -160,6 +168,9 @@ impl ZoneContact {
                 });
                 rows.push(row);
             }
+        }
+        if self.geom_loop == GeomLoop::Sans {
+            self.frozen_rows = rows.clone();
         }
         Ok(rows)
     }
