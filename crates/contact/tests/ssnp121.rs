@@ -107,10 +107,11 @@ fn ssnp121_b_and_c_displacements() {
             let got = dy(&model, u, g);
             eprintln!("{algo:?} {geom:?}: DY({g}) = {got:.9} (code_aster {calc})");
             // Penalty E_N = 1e7 (ssnp121c) interpenetrates by ~1e-3.
-            let tol = if matches!(algo, DiscreteAlgo::Penalisation { .. }) {
-                2.5e-2
-            } else {
-                3e-3
+            // REAC_GEOM='SANS' (not the file's setting) pairs on the initial geometry only.
+            let tol = match (algo, geom) {
+                (DiscreteAlgo::Penalisation { .. }, _) => 2.5e-2,
+                (_, GeomLoop::Sans) => 6e-3,
+                _ => 3e-3,
             };
             assert!((got - calc).abs() < tol * calc.abs(), "DY({g}) = {got}");
         }
