@@ -13,19 +13,17 @@ use aster_fem::{
 };
 use aster_mesh::{Cell, CellId, CellType, Group, Mesh, NodeId};
 
-/// A block [0,1]² × [z0, z0+1] with n×n×1 HEXA8; returns (cells, bottom
-/// face cells, top face cells, bottom nodes, top nodes).
-fn block(
-    m: &mut Mesh,
-    n: usize,
-    z0: f64,
-) -> (
+/// Cells (volumes, bottom faces, top faces) and nodes (bottom, top) of a block.
+type Block = (
     Vec<CellId>,
     Vec<CellId>,
     Vec<CellId>,
     Vec<NodeId>,
     Vec<NodeId>,
-) {
+);
+
+/// A block [0,1]² × [z0, z0+1] with n×n×1 HEXA8.
+fn block(m: &mut Mesh, n: usize, z0: f64) -> Block {
     let base = m.coords.len();
     let id = |i: usize, j: usize, k: usize| {
         NodeId((base + k * (n + 1) * (n + 1) + j * (n + 1) + i) as u32)
