@@ -102,13 +102,39 @@ impl FactorizedStiffness {
         })
     }
 
-    fn solve_free(&self, b: &[f64]) -> Vec<f64> {
+    fn solve_once(&self, b: &[f64]) -> Vec<f64> {
         let mut c = Col::<f64>::from_fn(b.len(), |i| b[i] * self.scale[i]);
         match &self.factor {
             Factor::Llt(f) => f.solve_in_place(c.as_mat_mut()),
             Factor::Lu(f) => f.solve_in_place(c.as_mat_mut()),
         }
         (0..b.len()).map(|i| c[i] * self.scale[i]).collect()
+    }
+
+    /// K_ff x for a free-DOF vector.
+    fn mul_free(&self, x: &[f64]) -> Vec<f64> {
+        let mut full = vec![0.0; self.map.len()];
+        for (k, &i) in self.free.iter().enumerate() {
+            full[i] = x[k];
+        }
+        let y = self.k.mul(&full);
+        self.free.iter().map(|&i| y[i]).collect()
+    }
+
+    /// Solve with two steps of iterative refinement: soft modes (a body
+    /// held by springs 1e8 times softer than its elements) are otherwise
+    /// determined only to round-off.
+    fn solve_free(&self, b: &[f64]) -> Vec<f64> {
+        let mut x = self.solve_once(b);
+        for _ in 0..2 {
+            let kx = self.mul_free(&x);
+            let r: Vec<f64> = b.iter().zip(&kx).map(|(bi, ki)| bi - ki).collect();
+            let dx = self.solve_once(&r);
+            for (xi, di) in x.iter_mut().zip(&dx) {
+                *xi += di;
+            }
+        }
+        x
     }
 
     /// The displacement without contact at time `t`: eliminated values

@@ -223,3 +223,39 @@ fn pairing_only_zone_reports_without_enforcing() {
         assert!((pairing.gap - -20.0).abs() < 1e-6, "gap {}", pairing.gap);
     }
 }
+
+#[test]
+fn continuous_gauss_integration_points() {
+    // Pressure rows are per slave node (weighted gaps over the integration
+    // points), so several points on one straight edge are not redundant.
+    // The square is held sideways only by 10 N/m springs under 2e10 N of
+    // contact force: a 1e-8 relative asymmetry of the two reactions turns
+    // it visibly. Two Gauss points keep it symmetric; with a point at the
+    // middle of AB (Gauss 3 points, Simpson, Newton–Cotes) the two
+    // reactions differ by ~1e-8 and the square turns (DX(A) = +1.85):
+    // those rules are checked on the Hertz scene (tests/hertz.rs).
+    for reso in [Resolution::Newton, Resolution::PointFixe] {
+        let mut d = ContactDefinition::continuous(
+            vec![Zone {
+                geometry: geometry(None),
+                law: ContinueLaw {
+                    algo: ContinueAlgo::default(),
+                    integration: Integration::Gauss(3),
+                },
+            }],
+            Frottement::Sans,
+        )
+        .unwrap();
+        if let ContactDefinition::Continue(c) = &mut d {
+            c.algo_reso_cont = reso;
+            c.resi_cont = Some(1e-12);
+        }
+        let o = run(&d);
+        // The block now carries a distributed load instead of two nodal
+        // ones: its ~1e-6 deflection under A and B changes by ~1e-7 (the
+        // file's own check is absolute, 1e-6).
+        check_exact(&o, 1e-6, 1e-5);
+        let nodal: f64 = o.zones[0].nodal_forces().iter().map(|f| f.1).sum();
+        assert!((nodal - 2.0 * 2.1978e10).abs() < 1e-5 * 4.4e10, "{nodal:e}");
+    }
+}

@@ -21,6 +21,18 @@ struct Hertz {
 }
 
 fn solve(n_contact: usize, algo: DiscreteAlgo, depth: f64) -> Hertz {
+    let def = ContactDefinition::discrete(
+        vec![Zone {
+            geometry: ZoneGeometry::new("MAIT", "ESCL"),
+            law: algo,
+        }],
+        Frottement::Sans,
+    )
+    .unwrap();
+    solve_with(n_contact, &def, depth)
+}
+
+fn solve_with(n_contact: usize, def: &ContactDefinition, depth: f64) -> Hertz {
     let params = HertzMesh::new(R, 0.15, n_contact);
     let mesh = hertz_mesh(&params).unwrap();
     let material = Elastic::new(E, NU).unwrap();
@@ -60,16 +72,8 @@ fn solve(n_contact: usize, algo: DiscreteAlgo, depth: f64) -> Hertz {
         fix(&mut loads, n, Comp::DY, -depth, true);
     }
     let model = Model::new(mesh, elements).unwrap();
-    let def = ContactDefinition::discrete(
-        vec![Zone {
-            geometry: ZoneGeometry::new("MAIT", "ESCL"),
-            law: algo,
-        }],
-        Frottement::Sans,
-    )
-    .unwrap();
-    let mut zones = ZoneContact::build_all(&def, model.mesh()).unwrap();
-    run_linear(&def, &mut zones, &model, &loads, &[0.0, 1.0]).unwrap();
+    let mut zones = ZoneContact::build_all(def, model.mesh()).unwrap();
+    run_linear(def, &mut zones, &model, &loads, &[0.0, 1.0]).unwrap();
     let mesh = model.mesh();
     let mut forces: Vec<(f64, f64)> = zones[0]
         .nodal_forces()
@@ -154,5 +158,46 @@ fn hertz_gcp_and_penalty_agree_with_the_exact_method() {
             c.1,
             a.1
         );
+    }
+}
+
+#[test]
+fn hertz_continuous_formulation_with_every_integration_rule() {
+    let exact = solve(12, DiscreteAlgo::Contrainte, 0.25);
+    for integration in [
+        Integration::Auto,
+        Integration::Gauss(3),
+        Integration::Simpson(1),
+        Integration::NCotes(3),
+    ] {
+        for algo in [
+            ContinueAlgo::Standard { coef_cont: 100.0 },
+            ContinueAlgo::Penalisation {
+                coef_pena_cont: 1e8,
+            },
+        ] {
+            let def = ContactDefinition::continuous(
+                vec![Zone {
+                    geometry: ZoneGeometry::new("MAIT", "ESCL"),
+                    law: ContinueLaw { algo, integration },
+                }],
+                Frottement::Sans,
+            )
+            .unwrap();
+            let s = solve_with(12, &def, 0.25);
+            // Same transmitted load within 1 %, same peak pressure within 5 %.
+            assert!(
+                (s.load - exact.load).abs() < 0.01 * exact.load,
+                "{integration:?} {algo:?}: P = {} vs {}",
+                s.load,
+                exact.load
+            );
+            let p0 = s.forces[0].1 / (s.h / 2.0);
+            let p0_exact = exact.forces[0].1 / (exact.h / 2.0);
+            assert!(
+                (p0 - p0_exact).abs() < 0.05 * p0_exact,
+                "{integration:?} {algo:?}: p0 = {p0} vs {p0_exact}"
+            );
+        }
     }
 }
