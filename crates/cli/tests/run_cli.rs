@@ -71,6 +71,22 @@ fn project_scene_b_passes_every_check() {
 }
 
 #[test]
+fn project_scene_a_contact_passes_every_check() {
+    let r = aster_run(
+        &[&root().join("comm/zzzz237a.comm")],
+        Some(&root().join("comm/zzzz237.mail")),
+        "a",
+    );
+    assert_eq!(r.code, 0, "{}\n{}", r.stdout, r.stderr);
+    assert_eq!(
+        last_line(&r.stdout),
+        "TEST_RESU: 28 OK, 0 NOOK",
+        "{}",
+        r.stdout
+    );
+}
+
+#[test]
 fn export_file_gives_the_command_file_and_the_mesh() {
     let dir = out_dir("export");
     let export = dir.join("case.export");
@@ -127,6 +143,19 @@ fn shared_case(name: &str) -> Option<PathBuf> {
         eprintln!("skipped: {} is absent", p.display());
         None
     }
+}
+
+#[test]
+fn real_zzzz237a_v17_contact() {
+    let (Some(comm), Some(mesh)) = (
+        shared_case("zzzz237a.v17.comm"),
+        shared_case("zzzz237a.mmed"),
+    ) else {
+        return;
+    };
+    let r = aster_run(&[&comm], Some(&mesh), "real-a-v17");
+    assert_eq!(r.code, 0, "{}\n{}", r.stdout, r.stderr);
+    assert_eq!(last_line(&r.stdout), "TEST_RESU: 21 OK, 0 NOOK");
 }
 
 #[test]
