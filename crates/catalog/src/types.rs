@@ -18,6 +18,10 @@ pub fn parent(typ: &str) -> Option<&'static str> {
         "table_container" | "table_fonction" => "table_sdaster",
         "maillage_p" | "squelette" | "grille_sdaster" | "super_mesh" => "maillage_sdaster",
         "char_contact" => "char_meca",
+        "vect_elem_depl_r" | "vect_elem_temp_r" | "vect_elem_pres_c" => "vect_elem",
+        "matr_elem_depl_r" | "matr_elem_depl_c" | "matr_elem_temp_r" | "matr_elem_pres_c" => {
+            "matr_elem"
+        }
         _ => return None,
     })
 }
@@ -152,7 +156,12 @@ pub fn computed(
             Some(t) => return t,
             None => "corresp_2_mailla",
         },
-        "calc_modes_prod" => "mode_meca",
+        "calc_modes_prod" => match type_of("MATR_RIGI").as_deref() {
+            Some(t) if t.starts_with("matr_asse_gene") => "mode_gene",
+            Some(t) if t.starts_with("matr_asse_pres") => "mode_acou",
+            Some(t) if t.starts_with("matr_asse_depl") => "mode_meca",
+            _ => UNKNOWN,
+        },
         "defi_group_prod" => {
             return type_of("MAILLAGE")
                 .or_else(|| type_of("GRILLE"))

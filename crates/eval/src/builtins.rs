@@ -390,9 +390,16 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
             match nd {
                 None | Some(Value::None) => to_int(round_half_even(x), span)?,
                 Some(n) => {
+                    // Python rounds the exact binary value (round(2.675, 2)
+                    // is 2.67): so does Rust's decimal formatting.
                     let n = num(n, span)? as i32;
-                    let p = 10f64.powi(n);
-                    Value::Float(round_half_even(x * p) / p)
+                    if n >= 0 {
+                        let digits = n as usize;
+                        Value::Float(format!("{x:.digits$}").parse().unwrap_or(x))
+                    } else {
+                        let p = 10f64.powi(-n);
+                        Value::Float(round_half_even(x / p) * p)
+                    }
                 }
             }
         }

@@ -69,10 +69,19 @@ pub(crate) fn call_command(
     }
 
     let mut v = Validator {
+        reuse_given: reuse.is_some(),
         command: name.to_string(),
         diags: Vec::new(),
         created: Vec::new(),
         next_id: &mut me.next_id,
+    };
+    let cmd = match crate::legacy::legacy_command(name, &given) {
+        Some((legacy, why)) => {
+            v.diags
+                .push(Diagnostic::warning(DiagKind::Legacy, span, why));
+            legacy
+        }
+        None => cmd,
     };
     let keywords = v.validate(cmd, given, span);
     let (mut diags, created) = (v.diags, v.created);
@@ -190,7 +199,8 @@ pub(crate) fn call_command(
 
     // Concepts created by the macro through CO('name').
     for c in created {
-        me.set_var(&c.name.clone(), Value::Concept(c));
+        me.set_var(&c.name.clone(), Value::Concept(c.clone()));
+        me.resolve_co(&c);
     }
     if name == "DETRUIRE" {
         destroy(me, &call.keywords);

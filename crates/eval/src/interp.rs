@@ -394,6 +394,29 @@ impl<'a> Interp<'a> {
         Ok(Flow::Normal)
     }
 
+    /// After a macro created `CO('name')`, variables still holding that
+    /// `CO` object now refer to the concept.
+    pub fn resolve_co(&mut self, c: &ConceptRef) {
+        let fix = |v: &mut Value| {
+            if matches!(v, Value::Co(n) if **n == *c.name) {
+                *v = Value::Concept(c.clone());
+            }
+        };
+        let fix_deep = |v: &mut Value| match v {
+            Value::List(l) => l.borrow_mut().iter_mut().for_each(fix),
+            Value::Dict(d) => d
+                .borrow_mut()
+                .entries
+                .iter_mut()
+                .for_each(|e| fix(&mut e.value)),
+            other => fix(other),
+        };
+        self.globals.values_mut().for_each(fix_deep);
+        for f in self.frames.iter_mut() {
+            f.vars.values_mut().for_each(fix_deep);
+        }
+    }
+
     fn make_func(&mut self, name: &str, params: &[ast::Param], body: FuncBody) -> R<Value> {
         let mut defaults = Vec::new();
         for p in params {
@@ -1079,6 +1102,14 @@ impl<'a> Interp<'a> {
                 formula.call(&vals).or_else(|m| py_err(span, m))
             }
             Value::Unknown => Ok(Value::Unknown),
+            // A function concept is callable: `F(0.5)` evaluates it.
+            Value::Concept(c) => {
+                let hv: Vec<HostValue> = args.iter().map(|a| to_host(&a.value)).collect();
+                match self.sink.method(&c, "__call__", &hv) {
+                    Ok(h) => Ok(from_host(h)),
+                    Err(e) => Err(exec_diag(span, e).into()),
+                }
+            }
             Value::Module(m) => unsupported(span, format!("calling `{m}`")),
             other => py_err(
                 span,
@@ -1178,6 +1209,22 @@ impl<'a> Interp<'a> {
     }
 
     pub fn binop(&mut self, op: BinOp, l: Value, r: Value, span: Span) -> R<Value> {
+        // Fields and functions support arithmetic in code_aster: the sink
+        // decides (the checker answers "known at run time").
+        if let Value::Concept(c) = &l {
+            let m = format!("__{}__", format!("{op:?}").to_lowercase());
+            return match self.sink.method(c, &m, &[to_host(&r)]) {
+                Ok(h) => Ok(from_host(h)),
+                Err(e) => Err(exec_diag(span, e).into()),
+            };
+        }
+        if let Value::Concept(c) = &r {
+            let m = format!("__r{}__", format!("{op:?}").to_lowercase());
+            return match self.sink.method(c, &m, &[to_host(&l)]) {
+                Ok(h) => Ok(from_host(h)),
+                Err(e) => Err(exec_diag(span, e).into()),
+            };
+        }
         builtins::binop(op, l, r).or_else(|m| py_err(span, m))
     }
 
@@ -1298,6 +1345,14 @@ pub(crate) fn new_formula(
     extra: Vec<(String, Value)>,
     span: Span,
 ) -> R<Formula> {
+    // code_aster evaluates VALE as one expression: line breaks inside it
+    // are continuation, not statements.
+    let flat = source
+        .split(['\n', '\r'])
+        .map(str::trim)
+        .collect::<Vec<_>>()
+        .join(" ");
+    let source = flat.as_str();
     let map = Rc::new(CodeMap::new("FORMULE", source.trim().to_string()));
     let module = aster_syntax::parse_module(map.source()).map_err(|e| {
         Diagnostic::error(

@@ -28,6 +28,9 @@ pub const RENAMES: &[(&str, &str, &str, &str)] = &[
         "cell names are no longer accepted; the name is looked up as a cell group, then as a cell",
     ),
     ("*", "NOEUD_ORIG", "GROUP_NO_ORIG", ""),
+    ("*", "RESI_INTE_MAXI", "RESI_INTE", ""),
+    ("*", "RESI_INTE_RELA", "RESI_INTE", ""),
+    ("THER_NON_LINE", "STATIONNAIRE", "STAT", ""),
     ("*", "NOEUD_EXTR", "GROUP_NO_EXTR", ""),
 ];
 
@@ -165,6 +168,40 @@ pub(crate) fn transform_level(
             g.value = Value::str("OUI");
         }
     }
+    // Thermal commands (code_aster's own compatibility rules):
+    // PARM_THETA=x → SCHEMA_TEMPS=_F(SCHEMA='THETA', THETA=x); a linear
+    // computation without initial state is stationary.
+    if matches!(cmd, "THER_LINEAIRE" | "THER_NON_LINE") && factor.is_empty() {
+        if let Some(g) = given.iter_mut().find(|g| g.name == "PARM_THETA") {
+            warn(diags, g, format!("`{path}/PARM_THETA` is legacy syntax: now SCHEMA_TEMPS=_F(SCHEMA='THETA', THETA=...)"));
+            let mut d = crate::value::Dict::default();
+            d.insert(Value::str("SCHEMA"), Value::str("THETA"), g.span);
+            d.insert(Value::str("THETA"), g.value.clone(), g.span);
+            g.name = "SCHEMA_TEMPS".into();
+            g.value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d)));
+        }
+        if cmd == "THER_LINEAIRE"
+            && !given
+                .iter()
+                .any(|g| g.name == "ETAT_INIT" || g.name == "TYPE_CALCUL")
+        {
+            given.push(Given {
+                name: "TYPE_CALCUL".into(),
+                span: given.first().map(|g| g.span).unwrap_or_default(),
+                value: Value::str("STAT"),
+            });
+        }
+    }
+    // DDL_IMPO/LIAISON='ENCASTRE' → BLOCAGE=('DEPLACEMENT', 'ROTATION')
+    if !known("LIAISON") && known("BLOCAGE") {
+        if let Some(g) = given.iter_mut().find(|g| g.name == "LIAISON") {
+            if g.value.to_string() == "ENCASTRE" {
+                warn(diags, g, format!("`{path}/LIAISON='ENCASTRE'` is legacy syntax: now BLOCAGE=('DEPLACEMENT', 'ROTATION')"));
+                g.name = "BLOCAGE".into();
+                g.value = Value::tuple(vec![Value::str("DEPLACEMENT"), Value::str("ROTATION")]);
+            }
+        }
+    }
     // TEST_RESU-like occurrences: VALE= → VALE_CALC / VALE_REFE.
     if !known("VALE") && known("VALE_CALC") {
         test_resu_vale(path, given, diags);
@@ -293,4 +330,42 @@ pub(crate) fn value(_cmd: &str, path: &str, s: &Scalar, into: &[Lit]) -> Option<
         .map(|(_, _, new)| new)
         .filter(|new| into.iter().any(|l| matches!(l, Lit::Str(x) if x == *new)))
         .map(|new| Scalar::Str(new.to_string()))
+}
+
+/// Commands whose legacy form no longer exists in the v17 catalog but whose
+/// meaning is still clear: validated against a small legacy definition.
+/// `CALC_VECT_ELEM(OPTION='FORC_NODA', SIEF_ELGA=...)` (code_aster ≤ 14)
+/// became `CALCUL(OPTION='FORC_NODA_ELEM')` + `EXTR_TABLE`; the call keeps
+/// its old form and means "the nodal forces of the stress field SIEF_ELGA".
+pub(crate) fn legacy_command(
+    name: &str,
+    given: &[Given],
+) -> Option<(&'static aster_catalog::Command, String)> {
+    static FORC_NODA: std::sync::OnceLock<Option<aster_catalog::Command>> =
+        std::sync::OnceLock::new();
+    let option = given
+        .iter()
+        .find(|g| g.name == "OPTION")
+        .map(|g| g.value.to_string());
+    if name != "CALC_VECT_ELEM" || option.as_deref() != Some("FORC_NODA") {
+        return None;
+    }
+    let cmd = FORC_NODA
+        .get_or_init(|| {
+            serde_json::from_str(
+                r#"{"name":"CALC_VECT_ELEM","kind":"Operator","produces":{"Type":"vect_elem_depl_r"},"reentrant":"No","k":[
+                {"n":"OPTION","kind":"S","s":"o","t":["TXM"],"into":["FORC_NODA"]},
+                {"n":"MODELE","kind":"S","s":"o","t":["modele_sdaster"]},
+                {"n":"SIEF_ELGA","kind":"S","s":"o","t":["cham_elem"]},
+                {"n":"CARA_ELEM","kind":"S","s":"f","t":["cara_elem"]},
+                {"n":"CHAM_MATER","kind":"S","s":"f","t":["cham_mater"]},
+                {"n":"INST","kind":"S","s":"f","t":["R"],"d":[0.0]}]}"#,
+            )
+            .ok()
+        })
+        .as_ref()?;
+    Some((
+        cmd,
+        "CALC_VECT_ELEM(OPTION='FORC_NODA') was removed in code_aster 15 (now CALCUL(OPTION='FORC_NODA_ELEM') then EXTR_TABLE); checked against its code_aster 11 definition".to_string(),
+    ))
 }

@@ -9,7 +9,8 @@ use crate::legacy;
 use crate::value::Value;
 use aster_catalog::cond::{CVal, CondEnv};
 use aster_catalog::{
-    catalog, types, Block, Command, Entry, Lit, Node, Rule, RuleKind, SimpleKw, Status, ValueType,
+    catalog, find_in, types, Block, Command, Entry, Lit, Node, Rule, RuleKind, SimpleKw, Status,
+    ValueType,
 };
 use aster_syntax::Span;
 use std::collections::HashMap;
@@ -120,6 +121,8 @@ pub(crate) fn flatten(v: &Value) -> Vec<Value> {
 }
 
 pub(crate) struct Validator<'n> {
+    /// `reuse=` was written (some rules name it).
+    pub reuse_given: bool,
     pub command: String,
     pub diags: Vec<Diagnostic>,
     /// Concepts announced with `CO('name')`.
@@ -214,13 +217,31 @@ impl Validator<'_> {
         span: Span,
     ) -> Keywords {
         // `KW=None` means "not given" in code_aster.
-        given.retain(|g| !matches!(g.value, Value::None));
+        // An empty list or tuple is "nothing" too (lists built by loops).
+        given.retain(|g| match &g.value {
+            Value::None => false,
+            Value::List(l) => !l.borrow().is_empty(),
+            Value::Tuple(t) => !t.is_empty(),
+            _ => true,
+        });
         legacy::transform_level(&self.command, path, entries, &mut given, &mut self.diags);
 
         let mut ctx = Ctx {
             vals: given
                 .iter()
-                .map(|g| (g.name.clone(), value_cval(&g.value)))
+                .map(|g| {
+                    let (mut v, t) = value_cval(&g.value);
+                    // A keyword that takes several values is a tuple for
+                    // the conditions (`len(CARA) == 1`), as in code_aster.
+                    let multi = matches!(
+                        find_in(entries, &g.name).map(|e| &e.node),
+                        Some(Node::Simple(s)) if s.max != aster_catalog::Max::Count(1)
+                    );
+                    if multi && !matches!(v, CVal::Tuple(_)) {
+                        v = CVal::Tuple(vec![v]);
+                    }
+                    (g.name.clone(), (v, t))
+                })
                 .collect(),
             parent,
         };
@@ -416,7 +437,10 @@ impl Validator<'_> {
             }
         }
 
-        let written: Vec<&str> = given.iter().map(|g| g.name.as_str()).collect();
+        let mut written: Vec<&str> = given.iter().map(|g| g.name.as_str()).collect();
+        if parent.is_none() && self.reuse_given {
+            written.push("reuse");
+        }
         let defaulted: Vec<String> = out
             .entries
             .iter()
@@ -428,13 +452,27 @@ impl Validator<'_> {
         // An occurrence nobody wrote (a factor keyword present by default)
         // is not held to the "at least one" rules: code_aster fills those
         // values when the command runs.
-        if !given.is_empty() || parent.is_none() {
-            for r in rules {
+        let mut implied: Vec<Keyword> = Vec::new();
+        let check_rules = !given.is_empty() || parent.is_none();
+        for r in rules {
+            if let Some(k) = implicit_default(path, r, &written, span) {
+                implied.extend(k);
+                continue;
+            }
+            if check_rules {
+                if r.args.is_empty() {
+                    // `NotEmpty` without names: the occurrence says something.
+                    if given.is_empty() && out.entries.is_empty() {
+                        self.error(DiagKind::Rule, span, format!("`{path}` must not be empty"));
+                    }
+                    continue;
+                }
                 self.rule(r, &written, &defaulted, &mut drop, path, span);
             }
         }
         out.entries
             .retain(|k| !(k.defaulted && drop.contains(&k.name)));
+        out.entries.extend(implied);
         out
     }
 
@@ -633,6 +671,12 @@ impl Validator<'_> {
             Value::Float(f) => {
                 if has(&ValueType::Real) {
                     Some(Scalar::Real(*f))
+                } else if (has(&ValueType::Int) || has(&ValueType::Unit))
+                    && f.fract() == 0.0
+                    && f.abs() < 9.0e15
+                {
+                    // code_aster accepts an integral real for an integer.
+                    Some(Scalar::Int(*f as i64))
                 } else if has(&ValueType::Complex) {
                     Some(Scalar::Complex(*f, 0.0))
                 } else {
@@ -757,6 +801,34 @@ impl Validator<'_> {
         if let Some(m) = msg {
             self.error(DiagKind::Rule, span, format!("`{path}`: {m}"));
         }
+    }
+}
+
+/// Rules that code_aster satisfies when the command runs, with the value
+/// it then uses: "exactly one of INST, LIST_INST" in MECA_STATIQUE means
+/// INST=0.0 when neither is given; CONVERGENCE gets RESI_GLOB_RELA=1e-6;
+/// ARCHIVAGE archives every step. `Some(keywords to add)` when the rule
+/// is one of these and nothing was written.
+fn implicit_default(path: &str, r: &Rule, written: &[&str], span: Span) -> Option<Option<Keyword>> {
+    if nw_of(r, written) > 0 || !matches!(r.kind, RuleKind::ExactlyOne | RuleKind::AtLeastOne) {
+        return None;
+    }
+    let last = path.rsplit('/').next().unwrap_or(path);
+    let last = last.split('[').next().unwrap_or(last);
+    let has = |k: &str| r.args.iter().any(|a| a == k);
+    let add = |name: &str, v: Scalar| {
+        Some(Some(Keyword {
+            name: name.to_string(),
+            value: KwValue::Simple(vec![v]),
+            span,
+            defaulted: true,
+        }))
+    };
+    match last {
+        "CONVERGENCE" if has("RESI_GLOB_RELA") => add("RESI_GLOB_RELA", Scalar::Real(1e-6)),
+        "MECA_STATIQUE" if has("INST") && has("LIST_INST") => add("INST", Scalar::Real(0.0)),
+        "ARCHIVAGE" => Some(None),
+        _ => None,
     }
 }
 

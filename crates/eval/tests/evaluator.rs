@@ -184,7 +184,7 @@ M = DEFI_LIST_REEL(VALE=L)
 #[test]
 fn run_time_values_stop_control_flow_precisely() {
     let src = r#"
-T = CREA_TABLE(LISTE=_F(PARA="X", LISTR=(1.0, 2.0)))
+T = CREA_TABLE(LISTE=_F(PARA="X", LISTE_R=(1.0, 2.0)))
 v = T["X", 1] * 2.0
 L = DEFI_LIST_REEL(VALE=v)
 if v > 1.0:
