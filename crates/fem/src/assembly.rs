@@ -1,71 +1,143 @@
 //! Global assembly of the stiffness matrix over the model's DOFs.
 
-use crate::element::{element_dofs, element_stiffness};
+use crate::element::{
+    continuum_stiffness_fast, element_dofs_into, element_stiffness, hooke_array, RefData,
+    MAX_EL_DOFS,
+};
 use crate::error::FemError;
 use crate::linalg::Csc;
+use crate::material::{Elastic, Hypothesis};
 use crate::model::{ElementKind, Model};
+use aster_mesh::NodeId;
 
 /// The sparsity pattern of the model's stiffness: DOFs of nodes sharing an
 /// element are coupled. Built from node adjacency (node-major numbering, so
 /// every component of a node shares its column structure).
 pub fn stiffness_pattern(model: &Model) -> Csc {
     let mesh = model.mesh();
-    let nd = model.dofs().len();
-    let ncomp = model.dofs().comps_per_node();
+    let dofs = model.dofs();
+    let nd = dofs.len();
+    let ncomp = dofs.comps_per_node();
     let nnodes = mesh.node_count();
-    // Node adjacency lists.
-    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nnodes];
-    for el in model.elements() {
-        if matches!(el.kind, ElementKind::Boundary) {
-            continue;
-        }
-        let nodes = &mesh.cell(el.cell).nodes;
-        for &a in nodes {
-            let list = &mut adj[a.0 as usize];
-            for &b in nodes {
-                list.push(b.0);
-            }
+    // Node → cells incidence (CSR), then each node's sorted neighbours.
+    let mut count = vec![0usize; nnodes + 1];
+    let stiff = |el: &crate::model::Element| !matches!(el.kind, ElementKind::Boundary);
+    for el in model.elements().iter().filter(|e| stiff(e)) {
+        for n in &mesh.cell(el.cell).nodes {
+            count[n.0 as usize + 1] += 1;
         }
     }
-    let mut cols: Vec<Vec<u32>> = vec![Vec::new(); nd];
-    for (node, list) in adj.iter_mut().enumerate() {
-        list.sort_unstable();
-        list.dedup();
-        let Some(first) = model.dofs().node_first(aster_mesh::NodeId(node as u32)) else {
+    for i in 0..nnodes {
+        count[i + 1] += count[i];
+    }
+    let mut fill = count.clone();
+    let mut inc = vec![0u32; count[nnodes]];
+    for (e, el) in model.elements().iter().enumerate() {
+        if !stiff(el) {
+            continue;
+        }
+        for n in &mesh.cell(el.cell).nodes {
+            inc[fill[n.0 as usize]] = e as u32;
+            fill[n.0 as usize] += 1;
+        }
+    }
+    let mut col_ptr = Vec::with_capacity(nd + 1);
+    col_ptr.push(0usize);
+    let mut row_idx: Vec<usize> = Vec::with_capacity(nd * 9 * ncomp);
+    let mut neigh: Vec<u32> = Vec::with_capacity(64);
+    for node in 0..nnodes {
+        let Some(first) = dofs.node_first(NodeId(node as u32)) else {
             continue;
         };
-        let mut rows = Vec::with_capacity(list.len() * ncomp);
-        for &m in list.iter() {
-            if let Some(f) = model.dofs().node_first(aster_mesh::NodeId(m)) {
-                rows.extend((f..f + ncomp).map(|r| r as u32));
+        debug_assert_eq!(first, col_ptr.len() - 1);
+        neigh.clear();
+        for &e in &inc[count[node]..count[node + 1]] {
+            let el = &model.elements()[e as usize];
+            neigh.extend(mesh.cell(el.cell).nodes.iter().map(|n| n.0));
+        }
+        if neigh.is_empty() {
+            // Nodes of boundary-only cells keep a diagonal entry.
+            neigh.push(node as u32);
+        }
+        neigh.sort_unstable();
+        neigh.dedup();
+        let start = row_idx.len();
+        for &m in &neigh {
+            if let Some(f) = dofs.node_first(NodeId(m)) {
+                row_idx.extend(f..f + ncomp);
             }
         }
-        for k in 0..ncomp {
-            cols[first + k] = rows.clone();
+        let end = row_idx.len();
+        col_ptr.push(end);
+        for _ in 1..ncomp {
+            row_idx.extend_from_within(start..end);
+            col_ptr.push(row_idx.len());
         }
     }
-    for (j, c) in cols.iter_mut().enumerate() {
-        // Keep a diagonal entry for every DOF (nodes of boundary-only cells).
-        if c.is_empty() {
-            c.push(j as u32);
-        }
+    let values = vec![0.0; row_idx.len()];
+    Csc {
+        n: nd,
+        col_ptr,
+        row_idx,
+        values,
     }
-    Csc::from_columns(nd, cols)
 }
 
 /// Assembles the stiffness of all elements over all displacement DOFs.
 pub fn assemble_stiffness(model: &Model) -> Result<Csc, FemError> {
     let mut k = stiffness_pattern(model);
+    let mesh = model.mesh();
+    let mut refs: Vec<RefData> = Vec::new();
+    let mut hooke: Option<(Elastic, Hypothesis, [[f64; 6]; 6])> = None;
+    let mut buf = vec![0.0; MAX_EL_DOFS * MAX_EL_DOFS];
+    let mut dofs = Vec::with_capacity(MAX_EL_DOFS);
     for (idx, el) in model.elements().iter().enumerate() {
-        let Some(ke) = element_stiffness(model, idx)? else {
-            continue;
+        let ndof = match &el.kind {
+            ElementKind::Continuum {
+                hypothesis,
+                material,
+            } => {
+                let cell = mesh.cell(el.cell);
+                let rd = match refs.iter().position(|r| r.ty == cell.ty) {
+                    Some(p) => &refs[p],
+                    None => {
+                        refs.push(RefData::new(cell.ty));
+                        &refs[refs.len() - 1]
+                    }
+                };
+                let d = match &hooke {
+                    Some((m, h, d)) if m == material && h == hypothesis => d,
+                    _ => {
+                        let d = hooke_array(material, *hypothesis);
+                        &hooke.insert((*material, *hypothesis, d)).2
+                    }
+                };
+                continuum_stiffness_fast(mesh, &cell.nodes, rd, *hypothesis, d, &mut buf).map_err(
+                    |m| FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell))),
+                )?
+            }
+            ElementKind::Spring { .. } => {
+                let Some(ke) = element_stiffness(model, idx)? else {
+                    continue;
+                };
+                let n = ke.nrows();
+                for a in 0..n {
+                    for b in 0..n {
+                        buf[a * n + b] = ke[(a, b)];
+                    }
+                }
+                n
+            }
+            ElementKind::Boundary => continue,
         };
-        let dofs = element_dofs(model, el.cell);
+        dofs.clear();
+        element_dofs_into(model, el.cell, &mut dofs);
         for (b, &j) in dofs.iter().enumerate() {
             let (start, end) = (k.col_ptr[j], k.col_ptr[j + 1]);
             let rows = &k.row_idx[start..end];
             for (a, &i) in dofs.iter().enumerate() {
-                let v = ke[(a, b)];
+                // Symmetric element matrices: (a, b) = (b, a).
+                let v = buf[a * ndof + b];
                 if v != 0. {
                     if let Ok(p) = rows.binary_search(&i) {
                         k.values[start + p] += v;

@@ -147,6 +147,12 @@ impl DofNumbering {
         Some(first as usize + k)
     }
 
+    /// The value of a DOF in a vector indexed by this numbering (DEPL,
+    /// FORC_NODA, REAC_NODA…); `None` when the DOF is not numbered.
+    pub fn value(&self, field: &[f64], dof: Dof) -> Option<f64> {
+        self.index(dof).and_then(|i| field.get(i).copied())
+    }
+
     /// First DOF index of a node (its components follow contiguously).
     pub fn node_first(&self, node: NodeId) -> Option<usize> {
         match self.node_first.get(node.0 as usize) {

@@ -20,15 +20,20 @@ pub struct GaussData {
 
 /// DOF indices of an element's nodes (node-major, model components).
 pub fn element_dofs(model: &Model, cell: CellId) -> Vec<usize> {
+    let mut v = Vec::new();
+    element_dofs_into(model, cell, &mut v);
+    v
+}
+
+/// [`element_dofs`] into a reused buffer.
+pub fn element_dofs_into(model: &Model, cell: CellId, v: &mut Vec<usize>) {
     let nodes = &model.mesh().cell(cell).nodes;
     let ncomp = model.dofs().comps_per_node();
-    let mut v = Vec::with_capacity(nodes.len() * ncomp);
     for &n in nodes {
         // Every node of a model element is numbered (Model::new).
         let first = model.dofs().node_first(n).unwrap_or(0);
         v.extend(first..first + ncomp);
     }
-    v
 }
 
 /// Shape values, physical derivatives, det J and physical coordinates.
@@ -249,4 +254,175 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
         )),
         ElementKind::Boundary => Ok(None),
     }
+}
+
+/// Shape data of a cell type at its stiffness Gauss points, computed once
+/// per assembly instead of once per element.
+pub struct RefData {
+    pub ty: CellType,
+    pub weights: Vec<f64>,
+    pub n: Vec<Vec<f64>>,
+    pub dn: Vec<Vec<[f64; 3]>>,
+}
+
+impl RefData {
+    pub fn new(ty: CellType) -> RefData {
+        let scheme = shape::rigi_scheme(ty);
+        let mut n = Vec::with_capacity(scheme.len());
+        let mut dn = Vec::with_capacity(scheme.len());
+        for gp in &scheme {
+            let s = shape::shape(ty, gp.xi);
+            n.push(s.n);
+            dn.push(s.dn);
+        }
+        RefData {
+            ty,
+            weights: scheme.iter().map(|g| g.weight).collect(),
+            n,
+            dn,
+        }
+    }
+}
+
+/// Largest element: HEXA8 with 24 DOFs.
+pub const MAX_EL_DOFS: usize = 24;
+
+/// Allocation-free continuum stiffness into `out` (row-major, ndof×ndof),
+/// for the hot assembly loop. Same formulation as [`continuum_stiffness`].
+pub fn continuum_stiffness_fast(
+    mesh: &Mesh,
+    nodes: &[aster_mesh::NodeId],
+    rd: &RefData,
+    hyp: Hypothesis,
+    d: &[[f64; 6]; 6],
+    out: &mut [f64],
+) -> Result<usize, String> {
+    let dim = hyp.dim();
+    let nn = nodes.len();
+    let ndof = nn * dim;
+    let ncomp = hyp.ncomp();
+    out[..ndof * ndof].iter_mut().for_each(|v| *v = 0.);
+    let mut xs = [[0.0f64; 3]; 8];
+    for (i, &n) in nodes.iter().enumerate() {
+        xs[i] = mesh.coord(n);
+    }
+    let mut sign = 0.0f64;
+    let mut b = [[0.0f64; MAX_EL_DOFS]; 6];
+    let mut db = [[0.0f64; MAX_EL_DOFS]; 6];
+    for (g, &wref) in rd.weights.iter().enumerate() {
+        let dnr = &rd.dn[g];
+        let mut j = [[0.0f64; 3]; 3];
+        for i in 0..nn {
+            for a in 0..dim {
+                for c in 0..dim {
+                    j[a][c] += dnr[i][a] * xs[i][c];
+                }
+            }
+        }
+        let (det, inv) = if dim == 2 {
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            (
+                det,
+                [
+                    [j[1][1] / det, -j[0][1] / det, 0.],
+                    [-j[1][0] / det, j[0][0] / det, 0.],
+                    [0., 0., 0.],
+                ],
+            )
+        } else {
+            let m = Matrix3::from_fn(|r, c| j[r][c]);
+            let det = m.determinant();
+            let inv = m.try_inverse().unwrap_or_else(Matrix3::zeros);
+            (
+                det,
+                [
+                    [inv[(0, 0)], inv[(0, 1)], inv[(0, 2)]],
+                    [inv[(1, 0)], inv[(1, 1)], inv[(1, 2)]],
+                    [inv[(2, 0)], inv[(2, 1)], inv[(2, 2)]],
+                ],
+            )
+        };
+        if !det.is_finite() || det == 0. {
+            return Err("degenerate (zero Jacobian)".into());
+        }
+        if sign != 0. && sign * det < 0. {
+            return Err("distorted: its Jacobian changes sign inside the cell".into());
+        }
+        sign = det.signum();
+        let mut w = wref * det.abs();
+        for row in b.iter_mut().take(ncomp) {
+            row[..ndof].iter_mut().for_each(|v| *v = 0.);
+        }
+        if dim == 2 {
+            for i in 0..nn {
+                let dx = inv[0][0] * dnr[i][0] + inv[0][1] * dnr[i][1];
+                let dy = inv[1][0] * dnr[i][0] + inv[1][1] * dnr[i][1];
+                b[0][2 * i] = dx;
+                b[1][2 * i + 1] = dy;
+                b[3][2 * i] = dy;
+                b[3][2 * i + 1] = dx;
+            }
+            if hyp == Hypothesis::Axisymmetric {
+                let r: f64 = (0..nn).map(|i| rd.n[g][i] * xs[i][0]).sum();
+                if r <= 0. {
+                    return Err(format!(
+                        "has a Gauss point at radius {r}: AXIS needs the mesh in x ≥ 0"
+                    ));
+                }
+                for i in 0..nn {
+                    b[2][2 * i] = rd.n[g][i] / r;
+                }
+                w *= r;
+            }
+        } else {
+            for i in 0..nn {
+                let dv: [f64; 3] =
+                    std::array::from_fn(|a| (0..3).map(|c| inv[a][c] * dnr[i][c]).sum());
+                let (cx, cy, cz) = (3 * i, 3 * i + 1, 3 * i + 2);
+                b[0][cx] = dv[0];
+                b[1][cy] = dv[1];
+                b[2][cz] = dv[2];
+                b[3][cx] = dv[1];
+                b[3][cy] = dv[0];
+                b[4][cx] = dv[2];
+                b[4][cz] = dv[0];
+                b[5][cy] = dv[2];
+                b[5][cz] = dv[1];
+            }
+        }
+        for k in 0..ncomp {
+            for c in 0..ndof {
+                let mut s = 0.;
+                for l in 0..ncomp {
+                    s += d[k][l] * b[l][c];
+                }
+                db[k][c] = s * w;
+            }
+        }
+        for r in 0..ndof {
+            for k in 0..ncomp {
+                let bkr = b[k][r];
+                if bkr == 0. {
+                    continue;
+                }
+                let row = &mut out[r * ndof..(r + 1) * ndof];
+                for (o, v) in row.iter_mut().zip(&db[k][..ndof]) {
+                    *o += bkr * v;
+                }
+            }
+        }
+    }
+    Ok(ndof)
+}
+
+/// Hooke's matrix as a fixed array (upper-left ncomp×ncomp used).
+pub fn hooke_array(material: &Elastic, hyp: Hypothesis) -> [[f64; 6]; 6] {
+    let h = material.hooke(hyp);
+    let mut d = [[0.0; 6]; 6];
+    for i in 0..h.nrows() {
+        for j in 0..h.ncols() {
+            d[i][j] = h[(i, j)];
+        }
+    }
+    d
 }

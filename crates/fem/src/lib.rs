@@ -20,6 +20,7 @@ pub mod loads;
 pub mod material;
 pub mod model;
 pub mod nonlinear;
+pub mod ordering;
 pub mod post;
 pub mod shape;
 pub mod unilateral;

@@ -182,6 +182,11 @@ pub enum SolveFailure {
 }
 
 enum Factor {
+    /// Cholesky with a caller-given (nested dissection) ordering.
+    LltOrdered {
+        symbolic: Box<faer::sparse::linalg::cholesky::SymbolicCholesky<usize>>,
+        values: Vec<f64>,
+    },
     Llt(faer::sparse::linalg::solvers::Llt<usize, f64>),
     Lu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
 }
@@ -190,6 +195,18 @@ impl Factor {
     fn solve(&self, b: &[f64]) -> Vec<f64> {
         let mut c = Col::<f64>::from_fn(b.len(), |i| b[i]);
         match self {
+            Factor::LltOrdered { symbolic, values } => {
+                let par = faer::get_global_parallelism();
+                let mut mem =
+                    faer::dyn_stack::MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
+                faer::sparse::linalg::cholesky::LltRef::new(symbolic, values)
+                    .solve_in_place_with_conj(
+                        faer::Conj::No,
+                        c.as_mat_mut(),
+                        par,
+                        faer::dyn_stack::MemStack::new(&mut mem),
+                    );
+            }
             Factor::Llt(f) => f.solve_in_place(c.as_mat_mut()),
             Factor::Lu(f) => f.solve_in_place(c.as_mat_mut()),
         }
@@ -206,7 +223,70 @@ pub fn solve(
     n_primal: usize,
     spd_hint: bool,
 ) -> Result<SolveReport, SolveFailure> {
+    solve_with(a, b, n_primal, spd_hint, None)
+}
+
+/// Below this many unknowns the default (AMD) ordering is used even when
+/// coordinates are given.
+const ND_THRESHOLD: usize = 20_000;
+
+/// Cholesky with a custom fill-reducing ordering (`order[k]` = original
+/// index of the k-th pivot).
+fn cholesky_ordered(mat: SparseColMatRef<'_, usize, f64>, order: &[usize]) -> Option<Factor> {
+    use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, SymmetricOrdering};
+    let n = order.len();
+    let mut inv = vec![0usize; n];
+    for (k, &i) in order.iter().enumerate() {
+        inv[i] = k;
+    }
+    let perm = faer::perm::PermRef::new_checked(order, &inv, n);
+    let symbolic = factorize_symbolic_cholesky(
+        mat.symbolic(),
+        Side::Lower,
+        SymmetricOrdering::Custom(perm),
+        Default::default(),
+    )
+    .ok()?;
+    let mut values = vec![0.0; symbolic.len_val()];
+    let par = faer::get_global_parallelism();
+    let mut mem = faer::dyn_stack::MemBuffer::try_new(
+        symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+    )
+    .ok()?;
+    symbolic
+        .factorize_numeric_llt(
+            &mut values,
+            mat,
+            Side::Lower,
+            Default::default(),
+            par,
+            faer::dyn_stack::MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .ok()?;
+    Some(Factor::LltOrdered {
+        symbolic: Box::new(symbolic),
+        values,
+    })
+}
+
+/// [`solve`] with the coordinates of the unknowns, used for a nested
+/// dissection ordering on large positive definite systems.
+pub fn solve_with(
+    a: &Csc,
+    b: &[f64],
+    n_primal: usize,
+    spd_hint: bool,
+    coords: Option<&[[f64; 3]]>,
+) -> Result<SolveReport, SolveFailure> {
     let n = a.n;
+    let timing = std::env::var_os("ASTER_FEM_TIMING").is_some();
+    let clock = std::time::Instant::now();
+    let lap = |what: &str| {
+        if timing {
+            eprintln!("[fem] {what}: {:.3} s", clock.elapsed().as_secs_f64());
+        }
+    };
     // Equilibration.
     let diag = a.diagonal();
     let mut s = vec![1.0; n];
@@ -245,8 +325,17 @@ pub fn solve(
     let mat = SparseColMatRef::new(symbolic, &scaled.values);
     let mut factor = None;
     if spd_hint {
-        if let Ok(f) = mat.sp_cholesky(Side::Lower) {
-            factor = Some(Factor::Llt(f));
+        if let Some(c) = coords.filter(|c| n >= ND_THRESHOLD && c.len() == n) {
+            lap("scaling");
+            let order = crate::ordering::nested_dissection(&scaled, c);
+            lap("nested dissection");
+            factor = cholesky_ordered(mat, &order);
+            lap("Cholesky (ordered)");
+        }
+        if factor.is_none() {
+            if let Ok(f) = mat.sp_cholesky(Side::Lower) {
+                factor = Some(Factor::Llt(f));
+            }
         }
     }
     let factor = match factor {
@@ -259,7 +348,7 @@ pub fn solve(
             Err(e) => return Err(SolveFailure::Other(format!("{e:?}"))),
         },
     };
-    let cholesky = matches!(factor, Factor::Llt(_));
+    let cholesky = matches!(factor, Factor::Llt(_) | Factor::LltOrdered { .. });
     // Solve the scaled system and refine in the original one.
     let solve_orig = |r: &[f64]| -> Vec<f64> {
         let rs: Vec<f64> = r.iter().zip(&s).map(|(v, si)| v * si).collect();
@@ -267,6 +356,7 @@ pub fn solve(
         y.iter().zip(&s).map(|(v, si)| v * si).collect()
     };
     let mut x = solve_orig(b);
+    lap("first solve");
     if x.iter().any(|v| !v.is_finite()) {
         return Err(SolveFailure::Singular { index: None });
     }
@@ -296,6 +386,7 @@ pub fn solve(
             break;
         }
     }
+    lap("refinement");
     if x.iter().any(|v| !v.is_finite()) {
         return Err(SolveFailure::Singular { index: None });
     }

@@ -252,6 +252,10 @@ impl StaticNonLinear<'_> {
             }
         }
         let kff = restrict(&k, &map, nfree);
+        let free_coords: Vec<[f64; 3]> = (0..nd)
+            .filter(|&i| map[i] != usize::MAX)
+            .map(|i| model.mesh().coord(model.dofs().dof(i).node))
+            .collect();
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
@@ -332,6 +336,7 @@ impl StaticNonLinear<'_> {
                 kdiag_max,
                 convergence: self.convergence,
                 active_set_max_iter: self.active_set_max_iter,
+                coords: &free_coords,
             };
             let step = newton_step(
                 &ctx,
@@ -452,6 +457,8 @@ struct StepContext<'a> {
     kdiag_max: f64,
     convergence: Convergence,
     active_set_max_iter: usize,
+    /// Coordinates of the free unknowns (for the fill-reducing ordering).
+    coords: &'a [[f64; 3]],
 }
 
 type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64);
@@ -478,6 +485,7 @@ fn newton_step(
         kdiag_max,
         convergence,
         active_set_max_iter,
+        coords,
     } = *ctx;
     {
         let nd = u.len();
@@ -590,22 +598,23 @@ fn newton_step(
                 b[nfree + k] = rhs - terms.iter().map(|&(i, c)| c * u[i]).sum::<f64>();
             }
             let spd = nk == 0;
-            let sol = linalg::solve(&a, &b, nfree, spd).map_err(|f| match f {
-                SolveFailure::Singular { index } => {
-                    let mut ground: Vec<Vec<(usize, f64)>> =
-                        elim.keys().map(|&i| vec![(i, 1.0)]).collect();
-                    ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
-                    let free = held::free_dofs(model, &ground);
-                    if !free.is_empty() {
-                        FemError::Singular { free_dofs: free }
-                    } else {
-                        FemError::Singular {
-                            free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
+            let sol =
+                linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
+                    SolveFailure::Singular { index } => {
+                        let mut ground: Vec<Vec<(usize, f64)>> =
+                            elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                        ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
+                        let free = held::free_dofs(model, &ground);
+                        if !free.is_empty() {
+                            FemError::Singular { free_dofs: free }
+                        } else {
+                            FemError::Singular {
+                                free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
+                            }
                         }
                     }
-                }
-                other => linalg::failure_to_error(other, name),
-            })?;
+                    other => linalg::failure_to_error(other, name),
+                })?;
             for i in 0..nd {
                 if map[i] != usize::MAX {
                     u[i] += sol.x[map[i]];
