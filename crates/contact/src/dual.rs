@@ -36,6 +36,9 @@ use crate::error::ContactError;
 pub trait StiffnessSolve {
     /// Number of unknowns.
     fn len(&self) -> usize;
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
     /// `K⁻¹ rhs` with every kinematic condition homogeneous (imposed
     /// displacements at zero).
     fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String>;
@@ -383,7 +386,7 @@ impl<'a> Context<'a> {
             norm_m = n;
             v = w.iter().map(|x| x / n).collect();
         }
-        if !(norm_m > 0.0) {
+        if norm_m.is_nan() || norm_m <= 0.0 {
             return Err(ContactError::Solver(
                 "the contact compliance matrix is zero".into(),
             ));
@@ -434,7 +437,7 @@ impl<'a> Context<'a> {
                 }
                 let ap = self.apply(&p)?;
                 let pap = dotv(&p, &ap);
-                if !(pap > 0.0) {
+                if pap.is_nan() || pap <= 0.0 {
                     return Err(ContactError::Solver(
                         "the contact compliance matrix is not positive definite".into(),
                     ));
@@ -476,7 +479,7 @@ impl<'a> Context<'a> {
                 // Proportioning: leave the face along the chopped gradient.
                 let ad = self.apply(&beta)?;
                 let dad = dotv(&beta, &ad);
-                if !(dad > 0.0) {
+                if dad.is_nan() || dad <= 0.0 {
                     return Err(ContactError::Solver(
                         "the contact compliance matrix is not positive definite".into(),
                     ));

@@ -155,7 +155,8 @@ pub fn hertz_mesh(p: &HertzMesh) -> Result<Mesh, ContactError> {
         || p.n_outer == 0
         || p.n_radial == 0
         || p.n_plane == 0
-        || !(p.plane_thickness > 0.0)
+        || p.plane_thickness.is_nan()
+        || p.plane_thickness <= 0.0
     {
         return Err(bad(
             "every cell count and the plane thickness must be positive".into(),

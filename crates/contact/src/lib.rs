@@ -10,6 +10,10 @@
 //! [`dual`] module holds the multiplier-space algorithms (active set, GCP,
 //! augmented Lagrangian, semi-smooth Newton) for any factorised stiffness.
 
+// Index loops mirror the formulas (λᵢ, Sᵢⱼ, Nᵢ) and read better than
+// iterator chains in numerical code.
+#![allow(clippy::needless_range_loop)]
+
 pub mod dual;
 mod error;
 mod integration;
@@ -36,4 +40,7 @@ pub use post::{ContNoeu, CONT_NOEU_COMPONENTS};
 pub use source::{current_positions, ZoneContact, ZoneLaw};
 pub use step::{index_row, positions, solve_step, StepReport};
 pub mod hertz;
+mod linear;
 pub mod scenes;
+
+pub use linear::{run_linear, FactorizedStiffness, Instant};

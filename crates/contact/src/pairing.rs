@@ -130,9 +130,27 @@ pub fn pair_point(
             (None, vec![(nearest, 1.0)], x[nearest.0 as usize], n)
         }
         Appariement::MaitEscl => {
-            let mut chosen: Option<(usize, [f64; 2], Vec<f64>, [f64; 3], f64, f64)> = None;
+            let mut chosen: Option<Candidate> = None;
             let mut least_outside = f64::INFINITY;
-            for (ci, cell) in zone.master.iter().enumerate() {
+            // Cells around the nearest master node first (a good first
+            // candidate), then the others unless their bounding box is
+            // farther than the best projection found.
+            let near: &[usize] = zone
+                .master_cells_of_node
+                .get(&nearest)
+                .map(|v| v.as_slice())
+                .unwrap_or(&[]);
+            let order = near
+                .iter()
+                .copied()
+                .chain((0..zone.master.len()).filter(|c| !near.contains(c)));
+            for ci in order {
+                let cell = &zone.master[ci];
+                if let Some((_, _, _, _, best_d, _)) = &chosen {
+                    if box_distance(xs, cell.nodes.iter().map(|n| x[n.0 as usize])) > *best_d {
+                        continue;
+                    }
+                }
                 let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
                 let Some(p) = project(cell.kind, &nodes, xs) else {
                     continue;
@@ -202,6 +220,26 @@ pub fn pair_point(
             nearest_master_node: nearest,
         }),
     })
+}
+
+/// A projection candidate: cell index, reference coordinates, shape
+/// values, master point, distance, distance outside the cell.
+type Candidate = (usize, [f64; 2], Vec<f64>, [f64; 3], f64, f64);
+
+/// Distance from `p` to the bounding box of `points`.
+fn box_distance(p: [f64; 3], points: impl Iterator<Item = [f64; 3]>) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for q in points {
+        for c in 0..3 {
+            lo[c] = lo[c].min(q[c]);
+            hi[c] = hi[c].max(q[c]);
+        }
+    }
+    let d: f64 = (0..3)
+        .map(|c| (lo[c] - p[c]).max(p[c] - hi[c]).max(0.0).powi(2))
+        .sum();
+    d.sqrt()
 }
 
 fn slave_normal(

@@ -311,16 +311,21 @@ pub fn project(kind: SurfaceKind, nodes: &[[f64; 3]], p: [f64; 3]) -> Option<Cel
             }
         };
         let mut step = solve(hess).or_else(|| solve(gn))?;
-        // Keep steps moderate: the iterate may leave the cell, not fly off.
+        // Keep steps moderate on curved cells (the quadratic model is only
+        // local); affine cells converge in one step whatever its length.
         let len = (step[0] * step[0] + step[1] * step[1]).sqrt();
-        if len > 1.0 {
-            step = [step[0] / len, step[1] / len];
+        if len > 4.0 {
+            step = [4.0 * step[0] / len, 4.0 * step[1] / len];
         }
         xi = [xi[0] + step[0], xi[1] + step[1]];
         if !(xi[0].is_finite() && xi[1].is_finite()) {
             return None;
         }
         if len < 1e-14 {
+            break;
+        }
+        // Far outside the cell: no tolerance accepts it; stop walking.
+        if kind.outside_distance(xi) > 8.0 {
             break;
         }
     }

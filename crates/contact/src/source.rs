@@ -1,8 +1,11 @@
 //! A contact zone as a producer of inequality rows for fem's solver
 //! ([`UnilateralSource`]), with the state CONT_NOEU is built from.
 
+use std::collections::BTreeMap;
+
 use aster_fem::{
-    FemError, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+    Dof, FemError, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
+    UnilateralSource,
 };
 use aster_mesh::{Mesh, NodeId};
 
@@ -46,6 +49,11 @@ pub struct ZoneContact {
     last_rows: Vec<InequalityRow>,
     /// Length scale of the zone (bounding box diagonal), for tolerances.
     length: f64,
+    /// With REAC_GEOM='SANS': the rows of the first pairing.
+    frozen_rows: Vec<InequalityRow>,
+    /// What each force acts on: slave nodes and weights (one entry per
+    /// pair in discrete, per slave node row in continuous).
+    carriers: Vec<Vec<(NodeId, f64)>>,
 }
 
 impl ZoneContact {
@@ -83,6 +91,8 @@ impl ZoneContact {
         ZoneContact {
             last_rows: Vec::new(),
             length: 0.0,
+            frozen_rows: Vec::new(),
+            carriers: Vec::new(),
             zone,
             law,
             geom_loop,
@@ -101,23 +111,9 @@ impl ZoneContact {
         }
     }
 
-    /// Row scale of a point: 1 for discrete points; for continuous points,
-    /// w (λ is then the contact pressure) or √w under penalty (fem's
-    /// penalty λ = coef·(a·u − b) then yields the force c·w·penetration).
-    fn scale(&self, p: &SlavePoint) -> f64 {
-        match self.law {
-            ZoneLaw::Discrete(_) => 1.0,
-            ZoneLaw::Continue(ContinueLaw {
-                algo: ContinueAlgo::Penalisation { .. },
-                ..
-            }) => p.weight.sqrt(),
-            ZoneLaw::Continue(_) => p.weight,
-        }
-    }
-
     /// Pairs the zone on the current positions `x` of all mesh nodes and
     /// returns its rows (none with RESOLUTION='NON'). With REAC_GEOM='SANS'
-    /// the first pairing is kept (rows are still re-linearised at `x`).
+    /// the rows of the first pairing are returned unchanged.
     pub fn pair(
         &mut self,
         mesh: &Mesh,
@@ -133,59 +129,122 @@ impl ZoneContact {
                 ),
             });
         }
-        if !(self.geom_loop == GeomLoop::Sans && self.paired_once) {
-            let points = self.points(x);
-            self.pairs = points
-                .iter()
-                .map(|p| pair_point(&self.zone, p, x))
-                .collect::<Result<_, _>>()?;
-            self.paired_once = true;
-            self.forces = vec![0.0; self.pairs.len()];
+        let frozen = self.geom_loop == GeomLoop::Sans && self.paired_once;
+        if frozen {
+            // REAC_GEOM='SANS': the rows of the initial pairing, as they were.
+            return Ok(self.frozen_rows.clone());
         }
+        let points = self.points(x);
+        self.pairs = points
+            .iter()
+            .map(|p| pair_point(&self.zone, p, x))
+            .collect::<Result<_, _>>()?;
+        self.paired_once = true;
         let mut rows = Vec::new();
-        self.links = vec![None; self.pairs.len()];
-        if !self.zone.geometry.resolve {
-            return Ok(rows);
-        }
-        for (i, pair) in self.pairs.iter().enumerate() {
-            if let Some(p) = pair.pairing() {
-                let scale = self.scale(&pair.point);
-                let row = contact_row(mesh, x, &pair.point.nodes, p, self.zone.space_dim, scale, i);
-                if row.terms.is_empty() {
-                    continue;
+        self.carriers.clear();
+        self.links.clear();
+        if self.zone.geometry.resolve {
+            match self.law {
+                ZoneLaw::Discrete(_) => {
+                    for (i, pair) in self.pairs.iter().enumerate() {
+                        self.carriers.push(pair.point.nodes.clone());
+                        self.links.push(None);
+                        let Some(p) = pair.pairing() else { continue };
+                        let row =
+                            contact_row(mesh, x, &pair.point.nodes, p, self.zone.space_dim, 1.0, i);
+                        if !row.terms.is_empty() {
+                            self.links[i] = Some(RowLink {
+                                row: rows.len(),
+                                scale: 1.0,
+                            });
+                            rows.push(row);
+                        }
+                    }
                 }
-                self.links[i] = Some(RowLink {
-                    row: rows.len(),
-                    scale,
-                });
-                rows.push(row);
+                ZoneLaw::Continue(_) => rows = self.weighted_node_rows(mesh, x),
             }
+        }
+        self.forces = vec![0.0; self.carriers.len()];
+        if self.geom_loop == GeomLoop::Sans {
+            self.frozen_rows = rows.clone();
         }
         Ok(rows)
     }
 
-    /// Penalty of each row for the dual algorithms (ε = 1/penalty, 0 = exact).
-    pub fn row_penalties(&self) -> Vec<f64> {
-        let mut eps = Vec::new();
-        for (pair, link) in self.pairs.iter().zip(&self.links) {
-            if link.is_some() {
-                eps.push(match self.law {
-                    ZoneLaw::Discrete(DiscreteAlgo::Penalisation { e_n }) => 1.0 / e_n,
-                    ZoneLaw::Continue(ContinueLaw {
-                        algo: ContinueAlgo::Penalisation { coef_pena_cont },
-                        ..
-                    }) => 1.0 / coef_pena_cont,
-                    _ => 0.0,
-                });
-                let _ = pair;
+    /// Continuous formulation: one row per slave node j, the weighted gap
+    /// Σₚ wₚ Nⱼ(p) gₚ / Wⱼ (Wⱼ = Σₚ wₚ Nⱼ(p)) over the paired integration
+    /// points — the contact pressure is a nodal field, as code_aster's
+    /// LAGS_C, and several points on one cell never make redundant rows.
+    /// The row is scaled by Wⱼ (λ is then the pressure) or √Wⱼ under
+    /// penalty (fem's λ = coef·(a·u − b) then gives the force c·Wⱼ·penetration).
+    fn weighted_node_rows(&mut self, mesh: &Mesh, x: &[[f64; 3]]) -> Vec<InequalityRow> {
+        type Acc = (f64, BTreeMap<Dof, f64>, f64);
+        let mut acc: BTreeMap<NodeId, Acc> = BTreeMap::new();
+        for pair in &self.pairs {
+            let Some(p) = pair.pairing() else { continue };
+            let r = contact_row(mesh, x, &pair.point.nodes, p, self.zone.space_dim, 1.0, 0);
+            for &(j, nj) in &pair.point.nodes {
+                let w = pair.point.weight * nj;
+                if w == 0.0 || self.zone.slave_nodes.binary_search(&j).is_err() {
+                    continue;
+                }
+                let e = acc.entry(j).or_insert_with(|| (0.0, BTreeMap::new(), 0.0));
+                e.0 += w;
+                for &(d, c) in &r.terms {
+                    *e.1.entry(d).or_default() += w * c;
+                }
+                e.2 += w * r.rhs;
             }
         }
-        eps
+        let penalised = matches!(
+            self.law,
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Penalisation { .. },
+                ..
+            })
+        );
+        let mut rows = Vec::new();
+        for (j, (weight, terms, rhs)) in acc {
+            if weight <= 0.0 {
+                continue;
+            }
+            let scale = if penalised { weight.sqrt() } else { weight };
+            let f = scale / weight;
+            let terms: Vec<(Dof, f64)> = terms
+                .into_iter()
+                .map(|(d, c)| (d, c * f))
+                .filter(|t| t.1 != 0.0)
+                .collect();
+            if terms.is_empty() {
+                continue;
+            }
+            let id = self.carriers.len();
+            self.carriers.push(vec![(j, 1.0)]);
+            self.links.push(Some(RowLink {
+                row: rows.len(),
+                scale,
+            }));
+            rows.push(InequalityRow::new(terms, rhs * f, id));
+        }
+        rows
+    }
+
+    /// Penalty of each row for the dual algorithms (ε = 1/penalty, 0 = exact).
+    pub fn row_penalties(&self) -> Vec<f64> {
+        let eps = match self.law {
+            ZoneLaw::Discrete(DiscreteAlgo::Penalisation { e_n }) => 1.0 / e_n,
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Penalisation { coef_pena_cont },
+                ..
+            }) => 1.0 / coef_pena_cont,
+            _ => 0.0,
+        };
+        vec![eps; self.links.iter().flatten().count()]
     }
 
     /// Records the multipliers of this zone's rows (in row order).
     pub fn set_multipliers(&mut self, multipliers: &[f64]) {
-        self.forces = vec![0.0; self.pairs.len()];
+        self.forces = vec![0.0; self.carriers.len()];
         for (i, link) in self.links.iter().enumerate() {
             if let Some(l) = link {
                 if let Some(m) = multipliers.get(l.row) {
@@ -196,9 +255,10 @@ impl ZoneContact {
     }
 
     /// Records fem's outcomes of this zone's rows (matched by row id, which
-    /// is the pair index).
+    /// is the carrier index: the pair in discrete, the slave node row in
+    /// continuous).
     pub fn set_outcomes(&mut self, outcomes: &[RowOutcome]) {
-        self.forces = vec![0.0; self.pairs.len()];
+        self.forces = vec![0.0; self.carriers.len()];
         for o in outcomes {
             if let Some(Some(l)) = self.links.get(o.id) {
                 self.forces[o.id] = o.multiplier.max(0.0) * l.scale;
@@ -211,17 +271,17 @@ impl ZoneContact {
         &self.pairs
     }
 
-    /// Normal force (≥ 0) of each pair at the last converged step.
+    /// Normal force (≥ 0) of each row carrier at the last converged step
+    /// (pairs in discrete, slave nodes in continuous).
     pub fn forces(&self) -> &[f64] {
         &self.forces
     }
 
-    /// Nodal normal forces on the slave nodes: pair forces spread with the
-    /// points' node weights.
+    /// Nodal normal forces on the slave nodes.
     pub fn nodal_forces(&self) -> Vec<(NodeId, f64)> {
         let mut out: Vec<(NodeId, f64)> = Vec::new();
-        for (pair, f) in self.pairs.iter().zip(&self.forces) {
-            for (n, w) in &pair.point.nodes {
+        for (nodes, f) in self.carriers.iter().zip(&self.forces) {
+            for (n, w) in nodes {
                 match out.iter_mut().find(|(m, _)| m == n) {
                     Some(e) => e.1 += w * f,
                     None => out.push((*n, w * f)),

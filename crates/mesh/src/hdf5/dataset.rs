@@ -16,7 +16,7 @@ pub struct Data<'a> {
 
 impl Data<'_> {
     pub fn len(&self) -> usize {
-        self.dims.iter().product::<u64>() as usize
+        checked_product(&self.dims).unwrap_or(0) as usize
     }
 
     pub fn is_empty(&self) -> bool {
@@ -67,6 +67,27 @@ impl Data<'_> {
                 .collect(),
             Datatype::Float { .. } => Ok(self.to_f64()?.into_iter().map(|v| v as i64).collect()),
             _ => Err(bad_type(&self.datatype)),
+        }
+    }
+
+    /// All values as `i32`, values outside the `i32` range clamped (they
+    /// are invalid as node numbers anyway): the fast path for connectivity.
+    pub fn to_i32_clamped(&self) -> Result<Vec<i32>, H5Error> {
+        match self.datatype {
+            Datatype::Int {
+                size: 4,
+                signed: true,
+                big_endian: false,
+            } => Ok(self
+                .raw
+                .chunks_exact(4)
+                .map(|b| i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                .collect()),
+            _ => Ok(self
+                .to_i64()?
+                .into_iter()
+                .map(|v| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
+                .collect()),
         }
     }
 
@@ -125,10 +146,12 @@ pub fn read<'a>(file: &'a H5File, oh: &ObjectHeader) -> Result<Data<'a>, H5Error
         None => Vec::new(),
     };
     let esize = datatype.size();
-    let count: u64 = dims.iter().product();
-    let total = (count as usize)
-        .checked_mul(esize)
-        .ok_or_else(|| H5Error::Corrupt("dataset size overflows".into()))?;
+    let total = checked_product(&dims)
+        .and_then(|c| c.checked_mul(esize as u64))
+        .filter(|&t| t <= MAX_DATASET_BYTES)
+        .ok_or_else(|| {
+            H5Error::Corrupt(format!("dataset shape {dims:?} is too large to be real"))
+        })? as usize;
     let raw: Cow<'a, [u8]> = match layout {
         Layout::Compact(start, len) => {
             if len < total {
@@ -170,8 +193,11 @@ pub fn read<'a>(file: &'a H5File, oh: &ObjectHeader) -> Result<Data<'a>, H5Error
                     .zip(&chunk)
                     .map(|(&d, &c)| d.div_ceil(c.max(1)))
                     .collect();
-                let n: u64 = per.iter().product();
+                let n = checked_product(&per).unwrap_or(0);
                 let bytes = chunk_bytes(&chunk, esize) as u64;
+                if n > total as u64 {
+                    return Err(H5Error::Corrupt("more chunks than elements".into()));
+                }
                 for k in 0..n {
                     let mut origin = vec![0u64; dims.len()];
                     let mut rest = k;
@@ -179,7 +205,11 @@ pub fn read<'a>(file: &'a H5File, oh: &ObjectHeader) -> Result<Data<'a>, H5Error
                         origin[d] = (rest % per[d]) * chunk[d];
                         rest /= per[d];
                     }
-                    let data = file.slice(addr + k * bytes, bytes)?;
+                    let at = k
+                        .checked_mul(bytes)
+                        .and_then(|o| o.checked_add(addr))
+                        .ok_or_else(|| H5Error::Corrupt("chunk address overflows".into()))?;
+                    let data = file.slice(at, bytes)?;
                     place_chunk(data, &origin, &chunk, &dims, esize, &mut out);
                 }
             }
@@ -194,7 +224,15 @@ pub fn read<'a>(file: &'a H5File, oh: &ObjectHeader) -> Result<Data<'a>, H5Error
 }
 
 fn chunk_bytes(chunk: &[u64], esize: usize) -> usize {
-    chunk.iter().product::<u64>() as usize * esize
+    (checked_product(chunk).unwrap_or(0) as usize).saturating_mul(esize)
+}
+
+/// Larger datasets than this (4 GiB) are taken as corruption, not allocated.
+const MAX_DATASET_BYTES: u64 = 1 << 32;
+
+/// The product of dimensions, `None` on overflow.
+fn checked_product(dims: &[u64]) -> Option<u64> {
+    dims.iter().try_fold(1u64, |acc, &d| acc.checked_mul(d))
 }
 
 fn parse_layout(c: &mut Cursor<'_>, rank: usize) -> Result<Layout, H5Error> {
@@ -384,7 +422,12 @@ fn place_chunk(
         out[..n].copy_from_slice(&data[..n]);
         return;
     }
-    let rows: u64 = chunk[..rank - 1].iter().product();
+    if chunk.len() < rank || chunk.contains(&0) {
+        return;
+    }
+    let Some(rows) = checked_product(&chunk[..rank - 1]) else {
+        return;
+    };
     let last = chunk[rank - 1];
     for r in 0..rows {
         // Global coordinates of the row's first element.
@@ -392,7 +435,7 @@ fn place_chunk(
         let mut global = vec![0u64; rank];
         let mut inside = true;
         for d in (0..rank - 1).rev() {
-            global[d] = origin[d] + rest % chunk[d];
+            global[d] = origin[d].saturating_add(rest % chunk[d]);
             rest /= chunk[d];
             inside &= global[d] < dims[d];
         }
@@ -405,7 +448,12 @@ fn place_chunk(
         for d in 0..rank {
             flat = flat * dims[d] + global[d];
         }
-        let src = (r * last) as usize * esize;
+        let Some(src) = r
+            .checked_mul(last)
+            .and_then(|e| (e as usize).checked_mul(esize))
+        else {
+            return;
+        };
         let dst = flat as usize * esize;
         let n = len * esize;
         if src + n <= data.len() && dst + n <= out.len() {

@@ -38,9 +38,10 @@ impl Datatype {
             | Datatype::Float { size, .. }
             | Datatype::String { size }
             | Datatype::Other { size, .. } => *size,
-            Datatype::Array { dims, base } => {
-                dims.iter().map(|&d| d as usize).product::<usize>() * base.size()
-            }
+            Datatype::Array { dims, base } => dims
+                .iter()
+                .try_fold(base.size(), |acc, &d| acc.checked_mul(d as usize))
+                .unwrap_or(usize::MAX),
         }
     }
 
@@ -82,7 +83,11 @@ impl Datatype {
                 if version < 3 {
                     c.skip(4 * rank)?; // permutation indices
                 }
-                let base = Box::new(Datatype::parse(c)?);
+                let base = Datatype::parse(c)?;
+                if matches!(base, Datatype::Array { .. }) {
+                    return Err(H5Error::Unsupported("array of arrays".into()));
+                }
+                let base = Box::new(base);
                 Datatype::Array { dims, base }
             }
             other => Datatype::Other { class: other, size },
@@ -267,8 +272,11 @@ fn attribute_message(c: &mut Cursor<'_>) -> Result<Attribute, H5Error> {
     let dims = parse_dataspace(&mut c.clone())?;
     c.pos = ds_start;
     c.skip(pad(ds_len))?;
-    let count: u64 = dims.iter().product();
-    let size = (count as usize).saturating_mul(datatype.size());
+    let count = dims
+        .iter()
+        .try_fold(1u64, |acc, &d| acc.checked_mul(d))
+        .unwrap_or(u64::MAX);
+    let size = (count.min(usize::MAX as u64) as usize).saturating_mul(datatype.size());
     let raw = c.bytes(size)?.to_vec();
     Ok(Attribute {
         name,

@@ -233,7 +233,7 @@ impl Reader<'_> {
                 let Some(nod) = self.child(&tobj, "NOD")? else {
                     continue; // descending connectivity only: not a cell block code_aster reads
                 };
-                let conn = self.file.read(&nod)?.to_i64()?;
+                let conn = self.file.read(&nod)?.to_i32_clamped()?;
                 let nn = ty.node_count();
                 let count = conn.len() / nn;
                 if conn.len() % nn != 0 {
@@ -242,22 +242,27 @@ impl Reader<'_> {
                         conn.len()
                     )));
                 }
-                let perm = aster_from_med(ty);
+                if let Some(at) = conn.iter().position(|&n| n < 1 || n as usize > n_nodes) {
+                    return Err(med_err(format!(
+                        "{med_name} cell {} refers to node {}, outside 1..{n_nodes}",
+                        at % count + 1,
+                        conn[at]
+                    )));
+                }
+                // No interlace: node k of every cell, then node k+1…, each
+                // a column; code_aster's node j is MED's column perm[j].
+                let identity: Vec<usize> = (0..nn).collect();
+                let perm = aster_from_med(ty).unwrap_or(&identity);
+                let columns: Vec<&[i32]> = perm
+                    .iter()
+                    .map(|&k| &conn[k * count..(k + 1) * count])
+                    .collect();
                 cells.reserve(count);
                 for i in 0..count {
-                    let mut nodes = Vec::with_capacity(nn);
-                    for j in 0..nn {
-                        let k = perm.map_or(j, |p| p[j]);
-                        // No interlace: node k of every cell, then node k+1…
-                        let n = conn[k * count + i];
-                        if n < 1 || n as usize > n_nodes {
-                            return Err(med_err(format!(
-                                "{med_name} cell {} refers to node {n}, outside 1..{n_nodes}",
-                                i + 1
-                            )));
-                        }
-                        nodes.push(NodeId(n as u32 - 1));
-                    }
+                    let nodes = columns
+                        .iter()
+                        .map(|col| NodeId(col[i] as u32 - 1))
+                        .collect();
                     cells.push(Cell { ty, nodes });
                 }
                 cell_fam.extend(self.int_dataset(&tobj, "FAM", count)?);
@@ -273,14 +278,14 @@ impl Reader<'_> {
 
         let node_names = match node_names {
             Some(n) => n,
-            None => (1..=n_nodes).map(|i| format!("N{i}")).collect(),
+            None => (1..=n_nodes).map(|i| numbered_name('N', i)).collect(),
         };
         let cell_names = cell_names
             .into_iter()
             .enumerate()
             .map(|(i, n)| {
                 n.filter(|s| !s.is_empty())
-                    .unwrap_or_else(|| format!("M{}", i + 1))
+                    .unwrap_or_else(|| numbered_name('M', i + 1))
             })
             .collect();
         Ok(Mesh {
@@ -380,6 +385,27 @@ impl Reader<'_> {
     }
 }
 
+/// `N12`, `M7`…: code_aster's default names, built without the
+/// formatting machinery (a million of them are made for a big mesh).
+pub(crate) fn numbered_name(prefix: char, mut i: usize) -> String {
+    let mut digits = [0u8; 20];
+    let mut k = digits.len();
+    loop {
+        k -= 1;
+        digits[k] = b'0' + (i % 10) as u8;
+        i /= 10;
+        if i == 0 {
+            break;
+        }
+    }
+    let mut s = String::with_capacity(1 + digits.len() - k);
+    s.push(prefix);
+    for &d in &digits[k..] {
+        s.push(d as char);
+    }
+    s
+}
+
 fn build_groups(
     families: &[Family],
     node_fam: &[i64],
@@ -416,11 +442,10 @@ fn build_groups(
             members: Vec::new(),
         })
         .collect();
+    let nfam = dense(nfam);
     for (i, f) in node_fam.iter().enumerate() {
-        if let Some(ids) = nfam.get(f) {
-            for &g in ids {
-                groups_no[g].members.push(NodeId(i as u32));
-            }
+        for &g in nfam.get(f) {
+            groups_no[g].members.push(NodeId(i as u32));
         }
     }
     let (cnames, cfam) = index(&cell_families);
@@ -431,15 +456,48 @@ fn build_groups(
             members: Vec::new(),
         })
         .collect();
+    let cfam = dense(cfam);
     for (i, f) in cell_fam.iter().enumerate() {
-        if let Some(ids) = cfam.get(f) {
-            for &g in ids {
-                groups_ma[g].members.push(CellId(i as u32));
-            }
+        for &g in cfam.get(f) {
+            groups_ma[g].members.push(CellId(i as u32));
         }
     }
     // code_aster creates no empty group.
     groups_no.retain(|g| !g.members.is_empty());
     groups_ma.retain(|g| !g.members.is_empty());
     (groups_no, groups_ma)
+}
+
+/// Family number → group indices, as a table over the numbers' range.
+struct DenseFamilies {
+    min: i64,
+    groups: Vec<Vec<usize>>,
+}
+
+impl DenseFamilies {
+    fn get(&self, num: &i64) -> &[usize] {
+        num.checked_sub(self.min)
+            .and_then(|i| usize::try_from(i).ok())
+            .and_then(|i| self.groups.get(i))
+            .map_or(&[], |v| v.as_slice())
+    }
+}
+
+fn dense(map: HashMap<i64, Vec<usize>>) -> DenseFamilies {
+    let min = map.keys().copied().min().unwrap_or(0);
+    let max = map.keys().copied().max().unwrap_or(0);
+    // Family numbers are small and dense in practice; fall back to an
+    // empty table rather than allocate for absurd ranges.
+    let span = max.saturating_sub(min).saturating_add(1);
+    if span > 10_000_000 {
+        return DenseFamilies {
+            min,
+            groups: Vec::new(),
+        };
+    }
+    let mut groups = vec![Vec::new(); span as usize];
+    for (num, ids) in map {
+        groups[(num - min) as usize] = ids;
+    }
+    DenseFamilies { min, groups }
 }

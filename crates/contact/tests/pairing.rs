@@ -1,0 +1,320 @@
+//! Pairing on hand-built meshes: 2D projection and normals (orientation
+//! from the parent cell), NODAL pairing, NORMALE, TOLE_PROJ_EXT, SANS_GROUP_NO,
+//! 3D faces (TRIA3, QUAD4, QUAD8), and the errors a user can provoke.
+
+use aster_contact::*;
+use aster_mesh::{Cell, CellId, CellType, Group, Mesh, NodeId};
+
+struct Builder {
+    mesh: Mesh,
+}
+
+impl Builder {
+    fn new(dim: u8) -> Self {
+        Builder {
+            mesh: Mesh {
+                dim,
+                ..Mesh::default()
+            },
+        }
+    }
+    fn node(&mut self, p: [f64; 3]) -> NodeId {
+        self.mesh.coords.push(p);
+        self.mesh
+            .node_names
+            .push(format!("N{}", self.mesh.coords.len()));
+        NodeId(self.mesh.coords.len() as u32 - 1)
+    }
+    fn cell(&mut self, ty: CellType, nodes: &[NodeId]) -> CellId {
+        self.mesh.cells.push(Cell {
+            ty,
+            nodes: nodes.to_vec(),
+        });
+        self.mesh
+            .cell_names
+            .push(format!("M{}", self.mesh.cells.len()));
+        CellId(self.mesh.cells.len() as u32 - 1)
+    }
+    fn group_ma(&mut self, name: &str, members: Vec<CellId>) {
+        self.mesh.groups_ma.push(Group {
+            name: name.into(),
+            members,
+        });
+    }
+    fn group_no(&mut self, name: &str, members: Vec<NodeId>) {
+        self.mesh.groups_no.push(Group {
+            name: name.into(),
+            members,
+        });
+    }
+}
+
+/// A block [0,4]×[-1,0] whose top edge (two SEG2, deliberately oriented
+/// left to right, i.e. with the geometric normal pointing into the block)
+/// is the master; slave nodes above it.
+fn plane_2d(slaves: &[[f64; 3]]) -> Mesh {
+    let mut b = Builder::new(2);
+    let p = [
+        b.node([0.0, -1.0, 0.0]),
+        b.node([4.0, -1.0, 0.0]),
+        b.node([4.0, 0.0, 0.0]),
+        b.node([2.0, 0.0, 0.0]),
+        b.node([0.0, 0.0, 0.0]),
+    ];
+    let m1 = b.cell(CellType::SEG2, &[p[4], p[3]]);
+    let m2 = b.cell(CellType::SEG2, &[p[3], p[2]]);
+    // The block: two quads under the master edges (their parents).
+    let bottom_mid = b.node([2.0, -1.0, 0.0]);
+    let qa = b.cell(CellType::QUAD4, &[p[0], bottom_mid, p[3], p[4]]);
+    let qb = b.cell(CellType::QUAD4, &[bottom_mid, p[1], p[2], p[3]]);
+    b.group_ma("MAIT", vec![m1, m2]);
+    b.group_ma("BLOC", vec![qa, qb]);
+    let mut slave_cells = Vec::new();
+    let nodes: Vec<NodeId> = slaves.iter().map(|s| b.node(*s)).collect();
+    for w in nodes.windows(2) {
+        slave_cells.push(b.cell(CellType::SEG2, &[w[0], w[1]]));
+    }
+    // A parent for the slave side too, above it.
+    if nodes.len() >= 2 {
+        let top_r = b.node([slaves[slaves.len() - 1][0], 5.0, 0.0]);
+        let top_l = b.node([slaves[0][0], 5.0, 0.0]);
+        b.cell(
+            CellType::QUAD4,
+            &[nodes[0], nodes[nodes.len() - 1], top_r, top_l],
+        );
+    }
+    b.group_ma("ESCL", slave_cells);
+    b.group_no("S1", vec![nodes[0]]);
+    b.mesh
+}
+
+fn pairs(mesh: &Mesh, geometry: ZoneGeometry) -> Vec<ContactPair> {
+    let zone = ResolvedZone::new(0, &geometry, mesh).unwrap();
+    nodal_points(&zone)
+        .iter()
+        .map(|p| pair_point(&zone, p, &mesh.coords).unwrap())
+        .collect()
+}
+
+#[test]
+fn projection_gap_and_outward_normal_in_2d() {
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [3.0, -0.25, 0.0]]);
+    let ps = pairs(&mesh, ZoneGeometry::new("MAIT", "ESCL"));
+    let gaps: Vec<f64> = ps.iter().map(|p| p.pairing().unwrap().gap).collect();
+    assert!(
+        (gaps[0] - 0.5).abs() < 1e-14 && (gaps[1] + 0.25).abs() < 1e-14,
+        "{gaps:?}"
+    );
+    for p in &ps {
+        let pr = p.pairing().unwrap();
+        // Outward from the block although the cells point inwards.
+        assert!((pr.normal[1] - 1.0).abs() < 1e-14, "{:?}", pr.normal);
+        let w: f64 = pr.master.iter().map(|m| m.1).sum();
+        assert!((w - 1.0).abs() < 1e-14);
+    }
+    // Slave at x = 1 projects at the middle of the first master cell.
+    let first = ps[0].pairing().unwrap();
+    assert!(first.master.iter().all(|m| (m.1 - 0.5).abs() < 1e-14));
+}
+
+#[test]
+fn nodal_pairing_and_slave_normal() {
+    let mesh = plane_2d(&[[1.9, 0.5, 0.0], [3.0, 0.3, 0.0]]);
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    g.appariement = Appariement::Nodal;
+    let ps = pairs(&mesh, g.clone());
+    let pr = ps[0].pairing().unwrap();
+    assert_eq!(pr.master.len(), 1);
+    assert_eq!(pr.master_x, [2.0, 0.0, 0.0]);
+    assert!((pr.gap - 0.5).abs() < 1e-14);
+    // NORMALE='ESCL': minus the slave outward normal (the slave edge is
+    // inclined, so the normal differs from the master's).
+    g.appariement = Appariement::MaitEscl;
+    g.normale = NormalChoice::Escl;
+    let ps = pairs(&mesh, g);
+    let n = ps[0].pairing().unwrap().normal;
+    let (dx, dy): (f64, f64) = (3.0 - 1.9, 0.3 - 0.5);
+    let l = (dx * dx + dy * dy).sqrt();
+    // Slave outward normal points down-left of the edge: (dy, -dx)/l; the contact normal is its opposite.
+    assert!(
+        (n[0] - -dy / l).abs() < 1e-12 && (n[1] - dx / l).abs() < 1e-12,
+        "{n:?}"
+    );
+}
+
+#[test]
+fn tole_proj_ext_and_dist_appa() {
+    // Master spans x ∈ [0, 4]: a slave at x = 4.5 projects 0.5 outside the
+    // second cell (length 2), i.e. 0.5 in reference coordinates.
+    let mesh = plane_2d(&[[4.5, 0.1, 0.0], [6.0, 0.1, 0.0]]);
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    let ps = pairs(&mesh, g.clone());
+    assert!(
+        ps[0].pairing().is_some(),
+        "within the default TOLE_PROJ_EXT = 0.5"
+    );
+    assert_eq!(
+        ps[0].pairing().unwrap().master_x,
+        [4.0, 0.0, 0.0],
+        "clamped on the cell"
+    );
+    assert!(matches!(
+        ps[1].status,
+        PairStatus::Excluded(Exclusion::OutsideMaster { .. })
+    ));
+    g.tole_proj_ext = 0.1;
+    assert!(pairs(&mesh, g.clone())[0].pairing().is_none());
+    g.tole_proj_ext = -1.0;
+    assert!(
+        pairs(&mesh, g.clone())[1].pairing().is_some(),
+        "negative = unlimited"
+    );
+    let g = ZoneGeometry::new("MAIT", "ESCL").with_dist_appa(0.4);
+    assert!(matches!(
+        pairs(&mesh, g)[0].status,
+        PairStatus::Excluded(Exclusion::DistAppa { .. })
+    ));
+}
+
+#[test]
+fn sans_group_no_removes_slave_nodes() {
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [3.0, 0.5, 0.0]]);
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    g.excluded_node_groups = vec!["S1".into()];
+    let zone = ResolvedZone::new(0, &g, &mesh).unwrap();
+    assert_eq!(zone.slave_nodes.len(), 1);
+    assert_eq!(mesh.coord(zone.slave_nodes[0])[0], 3.0);
+}
+
+#[test]
+fn user_errors_are_explained() {
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [3.0, 0.5, 0.0]]);
+    let err = ResolvedZone::new(0, &ZoneGeometry::new("MAITT", "ESCL"), &mesh).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "GROUP_MA_MAIT: the mesh has no group 'MAITT' (did you mean 'MAIT'?)"
+    );
+    let err = ResolvedZone::new(0, &ZoneGeometry::new("BLOC", "ESCL"), &mesh).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("is a QUAD4; expected SEG2 or SEG3"),
+        "{err}"
+    );
+    let err = ContactDefinition::discrete(
+        vec![Zone {
+            geometry: ZoneGeometry::new("MAIT", "ESCL"),
+            law: DiscreteAlgo::Contrainte,
+        }],
+        Frottement::Coulomb,
+    )
+    .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "FROTTEMENT='COULOMB' is not supported yet: only frictionless contact (FROTTEMENT='SANS') is implemented"
+    );
+    let err = ContactDefinition::discrete(
+        vec![Zone {
+            geometry: ZoneGeometry::new("MAIT", "ESCL"),
+            law: DiscreteAlgo::Penalisation { e_n: -1.0 },
+        }],
+        Frottement::Sans,
+    )
+    .unwrap_err();
+    assert_eq!(err.to_string(), "E_N: must be a positive number, got -1");
+}
+
+/// A HEXA8 [0,2]×[0,2]×[-1,0] whose top face is split into master faces of
+/// the given type; slave POI-like nodes carried by a slave QUAD4 above.
+fn block_3d(top: CellType) -> Mesh {
+    let mut b = Builder::new(3);
+    let mut id = |x: f64, y: f64, z: f64| b.node([x, y, z]);
+    let c: Vec<NodeId> = vec![
+        id(0.0, 0.0, -1.0),
+        id(2.0, 0.0, -1.0),
+        id(2.0, 2.0, -1.0),
+        id(0.0, 2.0, -1.0),
+        id(0.0, 0.0, 0.0),
+        id(2.0, 0.0, 0.0),
+        id(2.0, 2.0, 0.0),
+        id(0.0, 2.0, 0.0),
+    ];
+    let hexa = b.cell(CellType::HEXA8, &c);
+    let faces = match top {
+        CellType::TRIA3 => vec![
+            b.cell(CellType::TRIA3, &[c[4], c[5], c[6]]),
+            b.cell(CellType::TRIA3, &[c[4], c[6], c[7]]),
+        ],
+        CellType::QUAD4 => vec![b.cell(CellType::QUAD4, &[c[4], c[5], c[6], c[7]])],
+        _ => {
+            let m: Vec<NodeId> = [[1.0, 0.0], [2.0, 1.0], [1.0, 2.0], [0.0, 1.0]]
+                .iter()
+                .map(|p| b.node([p[0], p[1], 0.0]))
+                .collect();
+            vec![b.cell(
+                CellType::QUAD8,
+                &[c[4], c[5], c[6], c[7], m[0], m[1], m[2], m[3]],
+            )]
+        }
+    };
+    b.group_ma("BLOC", vec![hexa]);
+    b.group_ma("MAIT", faces);
+    let s: Vec<NodeId> = [[0.5, 0.5], [1.5, 0.4], [1.6, 1.7], [0.3, 1.5]]
+        .iter()
+        .map(|p| b.node([p[0], p[1], 0.2 + 0.1 * p[0]]))
+        .collect();
+    let sf = b.cell(CellType::QUAD4, &s);
+    b.group_ma("ESCL", vec![sf]);
+    b.mesh
+}
+
+#[test]
+fn pairing_on_3d_faces() {
+    for ty in [CellType::TRIA3, CellType::QUAD4, CellType::QUAD8] {
+        let mesh = block_3d(ty);
+        let ps = pairs(&mesh, ZoneGeometry::new("MAIT", "ESCL"));
+        assert_eq!(ps.len(), 4);
+        for p in &ps {
+            let pr = p
+                .pairing()
+                .unwrap_or_else(|| panic!("{ty:?}: {:?}", p.status));
+            let s = pr.slave_x;
+            assert!(
+                (pr.gap - s[2]).abs() < 1e-12,
+                "{ty:?} gap {} vs {}",
+                pr.gap,
+                s[2]
+            );
+            assert!(
+                (pr.normal[2] - 1.0).abs() < 1e-12,
+                "{ty:?} normal {:?}",
+                pr.normal
+            );
+            assert!((pr.master_x[0] - s[0]).abs() < 1e-12 && (pr.master_x[1] - s[1]).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn rows_linearise_the_gap() {
+    // A slave node 0.5 above the middle of a master cell: row
+    // −u_s,y + ½ u_m1,y + ½ u_m2,y ≤ 0.5.
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [3.0, 0.5, 0.0]]);
+    let zone = ResolvedZone::new(0, &ZoneGeometry::new("MAIT", "ESCL"), &mesh).unwrap();
+    let pts = nodal_points(&zone);
+    let pair = pair_point(&zone, &pts[0], &mesh.coords).unwrap();
+    let row = contact_row(
+        &mesh,
+        &mesh.coords,
+        &pts[0].nodes,
+        pair.pairing().unwrap(),
+        2,
+        1.0,
+        7,
+    );
+    assert_eq!(row.id, 7);
+    assert!((row.rhs - 0.5).abs() < 1e-14);
+    let mut coefs: Vec<f64> = row.terms.iter().map(|t| t.1).collect();
+    coefs.sort_by(f64::total_cmp);
+    assert_eq!(coefs, vec![-1.0, 0.5, 0.5]);
+    assert!(row.terms.iter().all(|t| t.0.comp == aster_fem::Comp::DY));
+}

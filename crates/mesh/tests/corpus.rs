@@ -1,0 +1,224 @@
+//! The real meshes of `../shared` (code_aster's test meshes, not part of
+//! the repository): every one reads, with facts checked against the files.
+//! Each test returns early, saying why, when `../shared` is absent.
+
+use aster_mesh::{read_mesh, CellType, Mesh};
+use std::path::{Path, PathBuf};
+
+fn shared() -> Option<PathBuf> {
+    let p = std::env::var_os("ASTER_SHARED")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared"));
+    if p.join("meshes").is_dir() {
+        Some(p)
+    } else {
+        eprintln!("skipped: no shared data at {}", p.display());
+        None
+    }
+}
+
+fn mesh_files(shared: &Path) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    let mut dirs = vec![shared.join("meshes")];
+    if let Ok(cases) = std::fs::read_dir(shared.join("cases")) {
+        dirs.extend(cases.flatten().map(|e| e.path()));
+    }
+    for d in dirs {
+        if let Ok(entries) = std::fs::read_dir(&d) {
+            for e in entries.flatten() {
+                let p = e.path();
+                if matches!(
+                    p.extension().and_then(|x| x.to_str()),
+                    Some("mmed" | "med" | "mail")
+                ) {
+                    files.push(p);
+                }
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+/// Signed volume measure of a cell's first corner tetrahedron, code_aster order.
+fn corner_volume(
+    m: &Mesh,
+    nodes: &[aster_mesh::NodeId],
+    a: usize,
+    b: usize,
+    c: usize,
+    d: usize,
+) -> f64 {
+    let p = |i: usize| m.coord(nodes[i]);
+    let (o, u, v, w) = (p(a), p(b), p(c), p(d));
+    let s = |x: [f64; 3]| [x[0] - o[0], x[1] - o[1], x[2] - o[2]];
+    let (u, v, w) = (s(u), s(v), s(w));
+    u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0])
+}
+
+#[test]
+fn every_shared_mesh_reads_consistently() {
+    let Some(shared) = shared() else { return };
+    let files = mesh_files(&shared);
+    assert!(
+        files.len() >= 120,
+        "expected the 116 sample meshes and the case meshes, found {}",
+        files.len()
+    );
+    let mut failures = Vec::new();
+    // Files with volume cells, and those whose volumes are mostly inverted.
+    let (mut with_volumes, mut mostly_inverted) = (0usize, Vec::new());
+    for f in &files {
+        let (mut volumes, mut negative) = (0usize, 0usize);
+        match read_mesh(f) {
+            Ok(m) => {
+                assert!(m.node_count() > 0, "{}: no nodes", f.display());
+                assert_eq!(m.node_names.len(), m.node_count());
+                assert_eq!(m.cell_names.len(), m.cells.len());
+                for c in &m.cells {
+                    assert_eq!(c.nodes.len(), c.ty.node_count());
+                    assert!(c.nodes.iter().all(|n| (n.0 as usize) < m.node_count()));
+                    // code_aster orders volumes so that the corner trihedron is direct.
+                    let v = match c.ty {
+                        CellType::TETRA4 | CellType::TETRA10 => {
+                            Some(corner_volume(&m, &c.nodes, 0, 1, 2, 3))
+                        }
+                        CellType::HEXA8 | CellType::HEXA20 | CellType::HEXA27 => {
+                            Some(corner_volume(&m, &c.nodes, 0, 1, 3, 4))
+                        }
+                        CellType::PENTA6 | CellType::PENTA15 | CellType::PENTA18 => {
+                            Some(corner_volume(&m, &c.nodes, 0, 1, 2, 3))
+                        }
+                        _ => None,
+                    };
+                    if let Some(v) = v {
+                        volumes += 1;
+                        negative += (v < 0.0) as usize;
+                    }
+                }
+                for g in &m.groups_ma {
+                    assert!(
+                        !g.members.is_empty(),
+                        "{}: empty group {}",
+                        f.display(),
+                        g.name
+                    );
+                }
+                if volumes > 0 {
+                    with_volumes += 1;
+                    if 2 * negative > volumes {
+                        mostly_inverted.push(f.display().to_string());
+                    }
+                }
+            }
+            Err(e) => failures.push(e.to_string()),
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} meshes failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    eprintln!(
+        "{} meshes read; {with_volumes} with volumes, {} of them mostly inverted: {mostly_inverted:?}",
+        files.len(),
+        mostly_inverted.len()
+    );
+    // A few test meshes are inverted on purpose (reorientation tests); a
+    // wrong MED permutation would invert nearly all of them.
+    assert!(with_volumes >= 30);
+    assert!(
+        mostly_inverted.len() * 8 < with_volumes,
+        "{} of {with_volumes} meshes have mostly inverted volumes: wrong MED node permutation?",
+        mostly_inverted.len()
+    );
+}
+
+#[test]
+fn seed_mesh_matches_its_description() {
+    let Some(shared) = shared() else { return };
+    let m = read_mesh(&shared.join("cases/zzzz237/zzzz237a.mmed")).unwrap();
+    let s = serde_json::to_string(&m.summary()).unwrap();
+    assert_eq!(
+        s,
+        r#"{"nodes":10,"cells":{"SEG2":10,"QUAD4":2},"groups_ma":["AB","BC","CD","DA","ABCD","K1","K2","EF","FG","GH","HE","EFGH"],"groups_no":["A","B","C","D","R1","R2","E","F","G","H"]}"#
+    );
+    assert_eq!(m.dim, 2);
+    // Node 2 is B (100, 0); node 5 is E (0, 100).
+    assert_eq!(m.coords[1], [100.0, 0.0, 0.0]);
+    assert_eq!(m.coords[4], [0.0, 200.0, 0.0]);
+    // The square ABCD: nodes stored "no interlace" in the file.
+    let abcd = m.group_ma("ABCD").unwrap().members[0];
+    let nodes: Vec<u32> = m.cell(abcd).nodes.iter().map(|n| n.0 + 1).collect();
+    assert_eq!(nodes, [2, 1, 4, 3]);
+    assert_eq!(m.group_no("R1").unwrap().members.len(), 1);
+    assert_eq!(m.cell_names[0], "M1");
+}
+
+#[test]
+fn med_versions_and_layouts_are_all_covered() {
+    let Some(shared) = shared() else { return };
+    let mut versions = std::collections::BTreeSet::new();
+    for f in mesh_files(&shared) {
+        if f.extension().and_then(|x| x.to_str()) == Some("mail") {
+            continue;
+        }
+        let (_, info) = aster_mesh::read_med_named(&f, None).unwrap();
+        if let Some((a, b, _)) = info.version {
+            versions.insert((a, b));
+        }
+    }
+    for v in [(2, 2), (2, 3), (3, 0), (3, 2), (3, 3), (4, 0), (4, 1)] {
+        assert!(
+            versions.contains(&v),
+            "no MED {v:?} file read: {versions:?}"
+        );
+    }
+}
+
+#[test]
+fn corrupted_real_files_give_errors_not_panics() {
+    let Some(shared) = shared() else { return };
+    // The HDF5 1.6 seed (layout v2, old headers) and MED 3 / 4 files (dense attributes).
+    for name in [
+        "cases/zzzz237/zzzz237a.mmed",
+        "meshes/zzzz504z.mmed",
+        "meshes/ssnv263c.mmed",
+        "meshes/tpna01b.mmed",
+    ] {
+        let Ok(original) = std::fs::read(shared.join(name)) else {
+            continue;
+        };
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let iterations: usize = std::env::var("ASTER_FUZZ_ITERS")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(300);
+        for _ in 0..iterations {
+            let mut bytes = original.clone();
+            // Corrupt the metadata-heavy start more often than the raw data.
+            for _ in 0..1 + next() % 6 {
+                let span = if next() % 2 == 0 {
+                    4096.min(bytes.len())
+                } else {
+                    bytes.len()
+                };
+                let i = (next() as usize) % span;
+                bytes[i] = next() as u8;
+            }
+            if next() % 4 == 0 {
+                let keep = (next() as usize) % bytes.len();
+                bytes.truncate(keep);
+            }
+            let _ = aster_mesh::med::read_med_bytes(bytes, Path::new(name), None);
+        }
+    }
+}

@@ -1,0 +1,89 @@
+//! Random and mutated input never panics the readers: they return a mesh
+//! or an error.
+
+use aster_mesh::med::read_med_bytes;
+use aster_mesh::{med_bytes, parse_mail};
+use proptest::prelude::*;
+use std::path::Path;
+
+const VALID: &str = "TITRE\nt\nFINSF\nCOOR_2D\nN1 0 0\nN2 1 0\nN3 1 1\nN4 0 1\nFINSF\n\
+    QUAD4\nM1 N1 N2 N3 N4\nFINSF\nSEG2\nS1 N1 N2\nS2 N2 N3\nFINSF\n\
+    GROUP_MA\nG S1 S2\nFINSF\nGROUP_NO NOM=P\nN1 N3\nFINSF\nFIN\n";
+
+/// Words the format uses, to build plausible-looking garbage.
+fn word() -> impl Strategy<Value = String> {
+    prop_oneof![
+        Just("COOR_2D".to_string()),
+        Just("COOR_3D".to_string()),
+        Just("SEG2".to_string()),
+        Just("QUAD4".to_string()),
+        Just("HEXA8".to_string()),
+        Just("GROUP_MA".to_string()),
+        Just("GROUP_NO".to_string()),
+        Just("NOM=".to_string()),
+        Just("FINSF".to_string()),
+        Just("FIN".to_string()),
+        Just("TITRE".to_string()),
+        Just("%".to_string()),
+        Just("\n".to_string()),
+        "N[0-9]{1,2}",
+        "M[0-9]",
+        "-?[0-9]{1,3}(\\.[0-9]*)?([ED][+-]?[0-9]{1,3})?",
+        "[ -~]{0,6}",
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn mail_reader_never_panics_on_word_soup(words in prop::collection::vec(word(), 0..60)) {
+        let text = words.join(" ");
+        let _ = parse_mail(&text, Path::new("fuzz.mail"));
+    }
+
+    #[test]
+    fn mail_reader_never_panics_on_mutations(pos in 0usize..VALID.len(), len in 0usize..20, insert in "[ -~\n]{0,10}") {
+        let mut text = VALID.to_string();
+        let start = pos.min(text.len());
+        let end = (start + len).min(text.len());
+        text.replace_range(start..end, &insert);
+        let _ = parse_mail(&text, Path::new("fuzz.mail"));
+    }
+
+    #[test]
+    fn mail_reader_never_panics_on_arbitrary_text(text in "\\PC{0,300}") {
+        let _ = parse_mail(&text, Path::new("fuzz.mail"));
+    }
+
+    #[test]
+    fn med_reader_never_panics_on_corrupted_bytes(flips in prop::collection::vec((0usize..100_000, any::<u8>()), 1..8), cut in 0usize..100_000) {
+        let mesh = parse_mail(VALID, Path::new("v.mail")).unwrap();
+        let mut bytes = med_bytes(&mesh, "V", &[]).unwrap();
+        for (at, b) in flips {
+            let i = at % bytes.len();
+            bytes[i] = b;
+        }
+        let keep = bytes.len() - cut % bytes.len();
+        bytes.truncate(keep);
+        let _ = read_med_bytes(bytes, Path::new("fuzz.med"), None);
+    }
+}
+
+#[test]
+fn valid_input_of_the_fuzzers_reads() {
+    let m = parse_mail(VALID, Path::new("v.mail")).unwrap();
+    assert_eq!(
+        (
+            m.node_count(),
+            m.cells.len(),
+            m.groups_ma.len(),
+            m.groups_no.len()
+        ),
+        (4, 3, 1, 1)
+    );
+    let back = read_med_bytes(med_bytes(&m, "V", &[]).unwrap(), Path::new("v.med"), None)
+        .unwrap()
+        .0;
+    assert_eq!(back.node_count(), 4);
+}
