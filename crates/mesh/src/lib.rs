@@ -6,6 +6,7 @@
 //! [`read_mail`].
 
 mod error;
+mod export;
 mod field;
 pub mod hdf5;
 pub mod mail;
@@ -16,6 +17,7 @@ mod summary;
 pub mod vtu;
 
 pub use error::{suggest, GroupKind, MeshError};
+pub use export::{read_export, read_mesh_as, unit_path, ExportFile};
 pub use field::{Field, FieldLocation, ResultStep};
 pub use mail::{mail_string, parse_mail, read_mail, write_mail};
 pub use med::{med_bytes, read_med, read_med_named, write_med, MedInfo};

@@ -222,3 +222,36 @@ fn corrupted_real_files_give_errors_not_panics() {
         }
     }
 }
+
+#[test]
+fn seed_scene_operations() {
+    let Some(shared) = shared() else { return };
+    let mut m = read_mesh(&shared.join("cases/zzzz237/zzzz237a.mmed")).unwrap();
+    // MODI_MAILLAGE(ORIE_PEAU=_F(GROUP_MA_PEAU=(AB, BC, CD, DA, EF, FG, GH, HE)))
+    let skin = ["AB", "BC", "CD", "DA", "EF", "FG", "GH", "HE"];
+    let r = m.orient_skin(&skin).unwrap();
+    assert_eq!(r.cells, 8);
+    for name in skin {
+        let cell = m.cell(m.group_ma(name).unwrap().members[0]);
+        let n = m.skin_normal(cell);
+        let mid = {
+            let (a, b) = (m.coord(cell.nodes[0]), m.coord(cell.nodes[1]));
+            [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]
+        };
+        // Squares ABCD = [0,100]², EFGH = [-50,150]×[-100,0]: the normal points away from the centre.
+        let centre = if ["AB", "BC", "CD", "DA"].contains(&name) {
+            [50.0, 50.0]
+        } else {
+            [50.0, -50.0]
+        };
+        assert!(
+            n[0] * (mid[0] - centre[0]) + n[1] * (mid[1] - centre[1]) > 0.0,
+            "{name}: {n:?}"
+        );
+    }
+    // DEFI_GROUP(CREA_GROUP_NO=_F(TOUT_GROUP_MA='OUI'))
+    assert!(m.crea_group_no_tout_group_ma().is_empty());
+    assert_eq!(m.group_no("ABCD").unwrap().members.len(), 4);
+    assert_eq!(m.group_no("CD").unwrap().members.len(), 2);
+    assert_eq!(m.groups_no.len(), 22);
+}

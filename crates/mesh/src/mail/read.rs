@@ -170,7 +170,7 @@ pub fn parse_mail(text: &str, path: &Path) -> Result<Mesh, MeshError> {
                 coor_dim = Some(dim);
                 p.mesh.dim = dim;
                 let width = 1 + dim as usize;
-                if body.len() % width != 0 {
+                if !body.len().is_multiple_of(width) {
                     let last = body[body.len() - body.len() % width];
                     return Err(p.err(
                         &last,
@@ -264,7 +264,7 @@ pub fn parse_mail(text: &str, path: &Path) -> Result<Mesh, MeshError> {
                     ));
                 };
                 let width = 1 + ty.node_count();
-                if body.len() % width != 0 {
+                if !body.len().is_multiple_of(width) {
                     let last = body[body.len() - body.len() % width];
                     return Err(p.err(
                         &last,

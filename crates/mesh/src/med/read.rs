@@ -415,7 +415,7 @@ fn build_groups(
     node_families.sort_by_key(|f| f.num);
     let mut cell_families: Vec<&Family> = families.iter().filter(|f| f.num < 0).collect();
     cell_families.sort_by_key(|f| -f.num);
-    fn index<'f>(fams: &[&'f Family]) -> (Vec<String>, HashMap<i64, Vec<usize>>) {
+    fn index(fams: &[&Family]) -> (Vec<String>, HashMap<i64, Vec<usize>>) {
         let mut names: Vec<String> = Vec::new();
         let mut pos: HashMap<&str, usize> = HashMap::new();
         let mut of_family = HashMap::new();

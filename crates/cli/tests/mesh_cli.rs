@@ -1,0 +1,109 @@
+//! `aster mesh FILE --json` and `--to FORMAT --out PATH`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const SQUARE: &str = "COOR_2D\nA 0 0\nB 1 0\nC 1 1\nD 0 1\nFINSF\nSEG2\nAB A B\nCD C D\nFINSF\nQUAD4\nQ A B C D\nFINSF\n\
+    GROUP_MA\nSURF Q\nFINSF\nGROUP_MA\nBOTTOM AB\nFINSF\nGROUP_NO\nORIGIN A\nFINSF\nFIN\n";
+
+fn dir() -> PathBuf {
+    let d = std::env::temp_dir().join(format!("aster-mesh-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn aster(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+const EXPECTED: &str = r#"{"nodes":4,"cells":{"SEG2":2,"QUAD4":1},"groups_ma":["SURF","BOTTOM"],"groups_no":["ORIGIN"]}"#;
+
+#[test]
+fn json_summary_of_a_mail_file() {
+    let p = dir().join("square.mail");
+    std::fs::write(&p, SQUARE).unwrap();
+    let (code, out, err) = aster(&["mesh", p.to_str().unwrap(), "--json"]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    assert_eq!(out.trim_end(), EXPECTED);
+}
+
+#[test]
+fn conversions_keep_the_summary() {
+    let d = dir();
+    let src = d.join("conv.mail");
+    std::fs::write(&src, SQUARE).unwrap();
+    for (format, name) in [("med", "conv.med"), ("mail", "conv2.mail")] {
+        let out = d.join(name);
+        let (code, _, err) = aster(&[
+            "mesh",
+            src.to_str().unwrap(),
+            "--to",
+            format,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let (code, json, err) = aster(&["mesh", out.to_str().unwrap(), "--json"]);
+        assert_eq!(code, 0, "{err}");
+        assert_eq!(json.trim_end(), EXPECTED, "through {format}");
+    }
+    let vtu = d.join("conv.vtu");
+    let (code, _, err) = aster(&[
+        "mesh",
+        src.to_str().unwrap(),
+        "--to",
+        "vtu",
+        "--out",
+        vtu.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&vtu).unwrap();
+    assert!(
+        text.contains("<Piece NumberOfPoints=\"4\" NumberOfCells=\"3\">"),
+        "{text}"
+    );
+}
+
+#[test]
+fn errors_exit_2_with_a_message() {
+    let (code, out, err) = aster(&["mesh", "/no/such/mesh.med", "--json"]);
+    assert_eq!((code, out.as_str()), (2, ""));
+    assert!(
+        err.starts_with("error: /no/such/mesh.med: cannot read the mesh file"),
+        "{err}"
+    );
+
+    let p = dir().join("bad.mail");
+    std::fs::write(&p, "COOR_2D\nN1 0 0\nFINSF\nQUAD5\nM1 N1 N1 N1 N1\nFINSF\n").unwrap();
+    let (code, _, err) = aster(&["mesh", p.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("bad.mail:4:1: unknown block `QUAD5`"), "{err}");
+
+    let (code, _, err) = aster(&["mesh", p.to_str().unwrap(), "--to", "stl", "--out", "x"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("error:"), "{err}");
+}
+
+#[test]
+fn seed_mesh_summary() {
+    let seed =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cases/zzzz237/zzzz237a.mmed");
+    if !seed.exists() {
+        eprintln!("skipped: {} absent", seed.display());
+        return;
+    }
+    let (code, out, _) = aster(&["mesh", seed.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0);
+    assert_eq!(
+        out.trim_end(),
+        r#"{"nodes":10,"cells":{"SEG2":10,"QUAD4":2},"groups_ma":["AB","BC","CD","DA","ABCD","K1","K2","EF","FG","GH","HE","EFGH"],"groups_no":["A","B","C","D","R1","R2","E","F","G","H"]}"#
+    );
+}
