@@ -33,6 +33,9 @@ pub struct Executor {
     store: HashMap<u32, Concept>,
     /// Objects tables refer to by name (`NOM_SD` of CALCUL's table).
     pub(crate) objects: HashMap<String, Concept>,
+    /// Fields extracted from a result step (`CREA_CHAMP(OPERATION='EXTR')`),
+    /// by concept id: the result and the NUME_ORDRE they come from.
+    pub(crate) field_origin: HashMap<u32, (Rc<EvolResult>, u32)>,
     pub(crate) options: RunOptions,
     out: Box<dyn Write>,
     pub tally: Tally,
@@ -47,6 +50,7 @@ impl Executor {
         Executor {
             store: HashMap::new(),
             objects: HashMap::new(),
+            field_origin: HashMap::new(),
             options,
             out,
             tally: Tally::default(),

@@ -94,6 +94,50 @@ pub fn calcul(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
+/// Legacy `CALC_VECT_ELEM(OPTION='FORC_NODA', SIEF_ELGA=…)` (code_aster
+/// ≤ 14): the nodal forces of a stress field. The field must have been
+/// extracted from a computed result (CREA_CHAMP/EXTR): its step's
+/// displacement gives the same Bᵀσ in linear elasticity, springs included.
+pub fn calc_vect_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "OPTION",
+            "MODELE",
+            "SIEF_ELGA",
+            "CARA_ELEM",
+            "CHAM_MATER",
+            "INST",
+        ],
+    )?;
+    let kw = &call.keywords;
+    ex.only_values("CALC_VECT_ELEM", kw, "OPTION", &["FORC_NODA"])?;
+    let model = ex.required("CALC_VECT_ELEM", kw, "MODELE")?;
+    ex.model(model)?;
+    let sigma = ex.required("CALC_VECT_ELEM", kw, "SIEF_ELGA")?;
+    let Some((result, order)) = ex.field_origin.get(&sigma.id).cloned() else {
+        let span = kw.keyword("SIEF_ELGA").map(|k| k.span).unwrap_or(call.span);
+        return Err(ex.unsupported(
+            "CALC_VECT_ELEM/SIEF_ELGA not extracted from a computed result (CREA_CHAMP/EXTR)",
+            span,
+        ));
+    };
+    let Some(run) = result.fem.clone() else {
+        return Err(ExecError::new(
+            "CALC_VECT_ELEM: the stresses' result was not computed in this run",
+        ));
+    };
+    let step = run.raw.by_order(order as usize).ok_or_else(|| {
+        ExecError::new(format!(
+            "CALC_VECT_ELEM: no computed state at NUME_ORDRE {order}"
+        ))
+    })?;
+    let f = aster_fem::post::forc_noda(&run.model, &step.displacement)
+        .map_err(|e| ExecError::new(format!("CALC_VECT_ELEM: {e}")))?;
+    let vect = fembridge::nodal_from_dofs(&run.model, &f);
+    store_result(ex, call, Concept::VectElem(Rc::new(vect)))
+}
+
 pub fn extr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     ex.check_keywords(
         call,
