@@ -4,8 +4,8 @@
 use crate::executor::Executor;
 use crate::function::Function;
 use aster_contact::{
-    Appariement, ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, Frottement, GeomLoop, Integration,
-    NormalChoice, NormalSource, Offset, Resolution, Zone, ZoneContact, ZoneGeometry,
+    Appariement, ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, Frottement, GeomLoop,
+    Integration, NormalChoice, NormalSource, Offset, Resolution, Zone, ZoneContact, ZoneGeometry,
 };
 use aster_eval::{ExecError, Keywords};
 use aster_mesh::Mesh;
@@ -72,7 +72,11 @@ const ALLOWED: &[&str] = &[
 
 fn vec3(kw: &Keywords, name: &str) -> [f64; 3] {
     let v: Vec<f64> = kw.simple(name).iter().filter_map(|s| s.as_f64()).collect();
-    [v.first().copied().unwrap_or(0.0), v.get(1).copied().unwrap_or(0.0), v.get(2).copied().unwrap_or(0.0)]
+    [
+        v.first().copied().unwrap_or(0.0),
+        v.get(1).copied().unwrap_or(0.0),
+        v.get(2).copied().unwrap_or(0.0),
+    ]
 }
 
 fn normalise(v: [f64; 3], what: &str) -> Result<[f64; 3], ExecError> {
@@ -80,11 +84,18 @@ fn normalise(v: [f64; 3], what: &str) -> Result<[f64; 3], ExecError> {
     if n > 0.0 && n.is_finite() {
         Ok([v[0] / n, v[1] / n, v[2] / n])
     } else {
-        Err(ExecError::new(format!("DEFI_CONTACT/ZONE/{what}: the vector {v:?} has no direction")))
+        Err(ExecError::new(format!(
+            "DEFI_CONTACT/ZONE/{what}: the vector {v:?} has no direction"
+        )))
     }
 }
 
-fn normal_source(occ: &Keywords, side: &str, fixed: &str, vecty: &str) -> Result<NormalSource, ExecError> {
+fn normal_source(
+    occ: &Keywords,
+    side: &str,
+    fixed: &str,
+    vecty: &str,
+) -> Result<NormalSource, ExecError> {
     Ok(match occ.str(side).unwrap_or("AUTO") {
         "FIXE" => NormalSource::Fixed(normalise(vec3(occ, fixed), fixed)?),
         "VECT_Y" => NormalSource::VectY(normalise(vec3(occ, vecty), vecty)?),
@@ -93,7 +104,9 @@ fn normal_source(occ: &Keywords, side: &str, fixed: &str, vecty: &str) -> Result
 }
 
 fn offset(ex: &Executor, occ: &Keywords, name: &str) -> Result<Offset, ExecError> {
-    let Some(c) = occ.concept(name) else { return Ok(Offset::Zero) };
+    let Some(c) = occ.concept(name) else {
+        return Ok(Offset::Zero);
+    };
     let f = ex.function(c)?;
     match &*f {
         Function::Constant { value, .. } => Ok(Offset::Constant(*value)),
@@ -103,23 +116,45 @@ fn offset(ex: &Executor, occ: &Keywords, name: &str) -> Result<Offset, ExecError
                 "X" => 0,
                 "Y" => 1,
                 "Z" => 2,
-                _ => return Ok(Offset::Constant(t.eval(0.0).map_err(|e| ExecError::new(format!("DEFI_CONTACT/ZONE/{name}: {e}")))?)),
+                _ => {
+                    return Ok(Offset::Constant(t.eval(0.0).map_err(|e| {
+                        ExecError::new(format!("DEFI_CONTACT/ZONE/{name}: {e}"))
+                    })?))
+                }
             };
-            Ok(Offset::Function(std::sync::Arc::new(move |x: [f64; 3]| t.eval(x[axis]).unwrap_or(f64::NAN))))
+            Ok(Offset::Function(std::sync::Arc::new(move |x: [f64; 3]| {
+                t.eval(x[axis]).unwrap_or(f64::NAN)
+            })))
         }
-        Function::Formula { .. } => Err(ExecError::new(format!("not supported yet: DEFI_CONTACT/ZONE/{name} given by a FORMULE"))),
+        Function::Formula { .. } => Err(ExecError::new(format!(
+            "not supported yet: DEFI_CONTACT/ZONE/{name} given by a FORMULE"
+        ))),
     }
 }
 
 fn geometry(ex: &Executor, occ: &Keywords) -> Result<ZoneGeometry, ExecError> {
-    let master = occ.str("GROUP_MA_MAIT").ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: GROUP_MA_MAIT is required"))?;
-    let slave = occ.str("GROUP_MA_ESCL").ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: GROUP_MA_ESCL is required"))?;
-    let names = |k: &str| -> Vec<String> { occ.simple(k).iter().filter_map(|s| s.as_str().map(str::to_string)).collect() };
+    let master = occ
+        .str("GROUP_MA_MAIT")
+        .ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: GROUP_MA_MAIT is required"))?;
+    let slave = occ
+        .str("GROUP_MA_ESCL")
+        .ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: GROUP_MA_ESCL is required"))?;
+    let names = |k: &str| -> Vec<String> {
+        occ.simple(k)
+            .iter()
+            .filter_map(|s| s.as_str().map(str::to_string))
+            .collect()
+    };
     let mut g = ZoneGeometry::new(master, slave);
     g.excluded_node_groups = names("SANS_GROUP_NO");
     g.excluded_cell_groups = names("SANS_GROUP_MA");
     if occ.contains("SANS_NOEUD") {
-        return Err(ex.unsupported("DEFI_CONTACT/ZONE/SANS_NOEUD (use SANS_GROUP_NO)", occ.keyword("SANS_NOEUD").map(|k| k.span).unwrap_or_default()));
+        return Err(ex.unsupported(
+            "DEFI_CONTACT/ZONE/SANS_NOEUD (use SANS_GROUP_NO)",
+            occ.keyword("SANS_NOEUD")
+                .map(|k| k.span)
+                .unwrap_or_default(),
+        ));
     }
     g.appariement = match occ.str("APPARIEMENT").unwrap_or("MAIT_ESCL") {
         "NODAL" => Appariement::Nodal,
@@ -140,7 +175,12 @@ fn geometry(ex: &Executor, occ: &Keywords) -> Result<ZoneGeometry, ExecError> {
     g.dist_escl = offset(ex, occ, "DIST_ESCL")?;
     g.resolve = occ.str("RESOLUTION") != Some("NON");
     g.tole_interp = occ.f64("TOLE_INTERP").unwrap_or(0.0);
-    for (k, ok) in [("TYPE_PROJECTION", "ORTHOGONALE"), ("DIST_POUTRE", "NON"), ("DIST_COQUE", "NON"), ("GLISSIERE", "NON")] {
+    for (k, ok) in [
+        ("TYPE_PROJECTION", "ORTHOGONALE"),
+        ("DIST_POUTRE", "NON"),
+        ("DIST_COQUE", "NON"),
+        ("GLISSIERE", "NON"),
+    ] {
         ex.only_values("DEFI_CONTACT/ZONE", occ, k, &[ok])?;
     }
     Ok(g)
@@ -150,10 +190,18 @@ fn geom_loop(kw: &Keywords) -> GeomLoop {
     match kw.str("REAC_GEOM").unwrap_or("AUTOMATIQUE") {
         "SANS" => GeomLoop::Sans,
         "CONTROLE" => GeomLoop::Controle {
-            nb_iter: kw.first("NB_ITER_GEOM").and_then(|s| s.as_i64()).unwrap_or(2).max(1) as usize,
+            nb_iter: kw
+                .first("NB_ITER_GEOM")
+                .and_then(|s| s.as_i64())
+                .unwrap_or(2)
+                .max(1) as usize,
         },
         _ => GeomLoop::Automatique {
-            iter_maxi: kw.first("ITER_GEOM_MAXI").and_then(|s| s.as_i64()).unwrap_or(10).max(1) as usize,
+            iter_maxi: kw
+                .first("ITER_GEOM_MAXI")
+                .and_then(|s| s.as_i64())
+                .unwrap_or(10)
+                .max(1) as usize,
             resi_geom: kw.f64("RESI_GEOM").unwrap_or(0.01),
         },
     }
@@ -170,7 +218,11 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
     };
     ex.check_keywords(&check_call, ALLOWED)?;
     check_call.keywords.entries.clear();
-    let frottement = if kw.str("FROTTEMENT") == Some("COULOMB") { Frottement::Coulomb } else { Frottement::Sans };
+    let frottement = if kw.str("FROTTEMENT") == Some("COULOMB") {
+        Frottement::Coulomb
+    } else {
+        Frottement::Sans
+    };
     let cerr = |e: aster_contact::ContactError| ExecError::new(format!("DEFI_CONTACT: {e}"));
     let mut def = match kw.str("FORMULATION").unwrap_or("DISCRETE") {
         "DISCRETE" => {
@@ -178,15 +230,26 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
             for occ in kw.factor("ZONE") {
                 let law = match occ.str("ALGO_CONT").unwrap_or("CONTRAINTE") {
                     "PENALISATION" => DiscreteAlgo::Penalisation {
-                        e_n: occ.f64("E_N").ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: E_N is required with ALGO_CONT='PENALISATION'"))?,
+                        e_n: occ.f64("E_N").ok_or_else(|| {
+                            ExecError::new(
+                                "DEFI_CONTACT/ZONE: E_N is required with ALGO_CONT='PENALISATION'",
+                            )
+                        })?,
                     },
                     "GCP" => DiscreteAlgo::Gcp {
                         resi_abso: kw.f64("RESI_ABSO"),
-                        iter_maxi: kw.first("ITER_GCP_MAXI").and_then(|s| s.as_i64()).unwrap_or(0).max(0) as usize,
+                        iter_maxi: kw
+                            .first("ITER_GCP_MAXI")
+                            .and_then(|s| s.as_i64())
+                            .unwrap_or(0)
+                            .max(0) as usize,
                     },
                     _ => DiscreteAlgo::Contrainte,
                 };
-                zones.push(Zone { geometry: geometry(ex, occ)?, law });
+                zones.push(Zone {
+                    geometry: geometry(ex, occ)?,
+                    law,
+                });
             }
             let mut d = ContactDefinition::discrete(zones, frottement).map_err(cerr)?;
             if let ContactDefinition::Discrete(dd) = &mut d {
@@ -212,14 +275,21 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                         return Err(ex.unsupported(&format!("DEFI_CONTACT/ZONE/ALGO_CONT='{other}'"), span));
                     }
                 };
-                let order = occ.first("ORDRE_INT").and_then(|s| s.as_i64()).unwrap_or(3).clamp(1, 20) as u8;
+                let order = occ
+                    .first("ORDRE_INT")
+                    .and_then(|s| s.as_i64())
+                    .unwrap_or(3)
+                    .clamp(1, 20) as u8;
                 let integration = match occ.str("INTEGRATION").unwrap_or("AUTO") {
                     "GAUSS" => Integration::Gauss(order),
                     "SIMPSON" => Integration::Simpson(order),
                     "NCOTES" => Integration::NCotes(order),
                     _ => Integration::Auto,
                 };
-                zones.push(Zone { geometry: geometry(ex, occ)?, law: ContinueLaw { algo, integration } });
+                zones.push(Zone {
+                    geometry: geometry(ex, occ)?,
+                    law: ContinueLaw { algo, integration },
+                });
             }
             let mut d = ContactDefinition::continuous(zones, frottement).map_err(cerr)?;
             if let ContactDefinition::Continue(c) = &mut d {
@@ -237,7 +307,11 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
             }
             d
         }
-        other => return Err(ExecError::new(format!("DEFI_CONTACT: unknown FORMULATION '{other}'"))),
+        other => {
+            return Err(ExecError::new(format!(
+                "DEFI_CONTACT: unknown FORMULATION '{other}'"
+            )))
+        }
     };
     def.set_geom_loop(geom_loop(kw));
     Ok(def)

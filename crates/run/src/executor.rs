@@ -33,6 +33,9 @@ pub struct Executor {
     store: HashMap<u32, Concept>,
     /// Objects tables refer to by name (`NOM_SD` of CALCUL's table).
     pub(crate) objects: HashMap<String, Concept>,
+    /// Fields extracted from a result step (`CREA_CHAMP(OPERATION='EXTR')`),
+    /// by concept id: the result and the NUME_ORDRE they come from.
+    pub(crate) field_origin: HashMap<u32, (Rc<EvolResult>, u32)>,
     pub(crate) options: RunOptions,
     out: Box<dyn Write>,
     pub tally: Tally,
@@ -47,6 +50,7 @@ impl Executor {
         Executor {
             store: HashMap::new(),
             objects: HashMap::new(),
+            field_origin: HashMap::new(),
             options,
             out,
             tally: Tally::default(),
@@ -306,13 +310,24 @@ impl CommandSink for Executor {
         self.insert(concept, Concept::Function(Rc::new(function)));
     }
 
-    fn index(&mut self, concept: &ConceptRef, key: &[aster_eval::HostValue]) -> Result<aster_eval::HostValue, ExecError> {
+    fn index(
+        &mut self,
+        concept: &ConceptRef,
+        key: &[aster_eval::HostValue],
+    ) -> Result<aster_eval::HostValue, ExecError> {
         use aster_eval::{HostValue, Scalar};
         let table = self.table(concept)?;
         // TAB['PARA', row] with a 1-based row, as code_aster's tables.
         let (para, row) = match key {
-            [HostValue::Scalar(Scalar::Str(p)), HostValue::Scalar(Scalar::Int(r))] => (p.as_str(), *r),
-            _ => return Err(ExecError::new(format!("table `{}`: subscript must be ['PARAMETER', row]", concept.name))),
+            [HostValue::Scalar(Scalar::Str(p)), HostValue::Scalar(Scalar::Int(r))] => {
+                (p.as_str(), *r)
+            }
+            _ => {
+                return Err(ExecError::new(format!(
+                    "table `{}`: subscript must be ['PARAMETER', row]",
+                    concept.name
+                )))
+            }
         };
         let Some(col) = table.column_index(para) else {
             return Err(ExecError::new(format!(
@@ -324,7 +339,13 @@ impl CommandSink for Executor {
         let cell = usize::try_from(row - 1)
             .ok()
             .and_then(|r| table.rows.get(r))
-            .ok_or_else(|| ExecError::new(format!("table `{}` has {} rows, row {row} asked", concept.name, table.rows.len())))?;
+            .ok_or_else(|| {
+                ExecError::new(format!(
+                    "table `{}` has {} rows, row {row} asked",
+                    concept.name,
+                    table.rows.len()
+                ))
+            })?;
         Ok(match &cell[col] {
             None => HostValue::None,
             Some(crate::table::Value::Int(i)) => HostValue::Scalar(Scalar::Int(*i)),

@@ -9,8 +9,9 @@ use crate::solve::{LoadRef, SolveSetup};
 use crate::unil::LiaisonUnil;
 use aster_eval::{CommandCall, ExecError};
 use aster_fem::{
-    post, CellValues, Comp, Convergence, Dof, Elastic, Element, ElementKind, Frame, Hypothesis, InitialState, Load,
-    Loads, Model, Multiplier, NewtonOptions, NodalValues, NonLinearResult, StaticNonLinear, UnilateralSource,
+    post, CellValues, Comp, Convergence, Dof, Elastic, Element, ElementKind, Frame, Hypothesis,
+    InitialState, Load, Loads, Model, Multiplier, NewtonOptions, NodalValues, NonLinearResult,
+    StaticNonLinear, UnilateralSource,
 };
 use aster_mesh::{Mesh, NodeId};
 use std::collections::BTreeMap;
@@ -65,8 +66,12 @@ pub fn build_model(
                         crate::select::cell_name(mesh, cell)
                     ))
                 })?;
-                let material = Elastic::new(mat.young, mat.poisson).map_err(|e| fem_err("DEFI_MATERIAU", e))?;
-                ElementKind::Continuum { hypothesis: h, material }
+                let material = Elastic::new(mat.young, mat.poisson)
+                    .map_err(|e| fem_err("DEFI_MATERIAU", e))?;
+                ElementKind::Continuum {
+                    hypothesis: h,
+                    material,
+                }
             }
             Some(_) => ElementKind::Boundary,
             None => {
@@ -94,24 +99,36 @@ fn comp(name: &str) -> Result<Comp, ExecError> {
 /// A multiplier for fem. Tabulated functions and constants are plain data
 /// and are moved into the closure; formulas are sampled at the instants.
 fn multiplier(f: &Option<Rc<Function>>, instants: &[f64]) -> Result<Multiplier, ExecError> {
-    let Some(f) = f else { return Ok(Multiplier::one()) };
+    let Some(f) = f else {
+        return Ok(Multiplier::one());
+    };
     match &**f {
         Function::Constant { value, .. } => Ok(Multiplier::constant(*value)),
         Function::Tabulated(t) => {
             let t = t.clone();
-            Ok(Multiplier::from_fn(move |x| t.eval(x).map_err(|e| e.to_string())))
+            Ok(Multiplier::from_fn(move |x| {
+                t.eval(x).map_err(|e| e.to_string())
+            }))
         }
         Function::Formula { .. } => {
             let samples: Vec<(f64, f64)> = instants
                 .iter()
-                .map(|&t| f.eval(t).map(|v| (t, v)).map_err(|e| ExecError::new(format!("FONC_MULT: {e}"))))
+                .map(|&t| {
+                    f.eval(t)
+                        .map(|v| (t, v))
+                        .map_err(|e| ExecError::new(format!("FONC_MULT: {e}")))
+                })
                 .collect::<Result<_, _>>()?;
             Ok(Multiplier::from_fn(move |x| {
                 samples
                     .iter()
                     .find(|(t, _)| (t - x).abs() <= 1e-9 * t.abs().max(1.0))
                     .map(|&(_, v)| v)
-                    .ok_or_else(|| format!("formula multiplier asked at {x}, which is not an instant of the list"))
+                    .ok_or_else(|| {
+                        format!(
+                            "formula multiplier asked at {x}, which is not an instant of the list"
+                        )
+                    })
             }))
         }
     }
@@ -124,12 +141,24 @@ fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
         match &exc.load {
             LoadRef::Kinematic(k) => {
                 for i in &k.imposed {
-                    loads.add(Load::Eliminated { dof: Dof::new(i.node, comp(i.comp)?), value: i.value }, m.clone());
+                    loads.add(
+                        Load::Eliminated {
+                            dof: Dof::new(i.node, comp(i.comp)?),
+                            value: i.value,
+                        },
+                        m.clone(),
+                    );
                 }
             }
             LoadRef::Mechanical(l) => {
                 for i in &l.imposed {
-                    loads.add(Load::Imposed { dof: Dof::new(i.node, comp(i.comp)?), value: i.value }, m.clone());
+                    loads.add(
+                        Load::Imposed {
+                            dof: Dof::new(i.node, comp(i.comp)?),
+                            value: i.value,
+                        },
+                        m.clone(),
+                    );
                 }
                 for r in &l.relations {
                     let terms = r
@@ -140,18 +169,36 @@ fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
                     loads.add(Load::Relation { terms, rhs: r.rhs }, m.clone());
                 }
                 for f in &l.nodal_forces {
-                    loads.add(Load::NodalForce { dof: Dof::new(f.node, comp(f.comp)?), value: f.value }, m.clone());
+                    loads.add(
+                        Load::NodalForce {
+                            dof: Dof::new(f.node, comp(f.comp)?),
+                            value: f.value,
+                        },
+                        m.clone(),
+                    );
                 }
                 for b in &l.boundary {
                     match b {
                         BoundaryLoad::Force { cells, force } => {
                             for &cell in cells {
-                                loads.add(Load::SurfaceForce { cell, force: *force }, m.clone());
+                                loads.add(
+                                    Load::SurfaceForce {
+                                        cell,
+                                        force: *force,
+                                    },
+                                    m.clone(),
+                                );
                             }
                         }
                         BoundaryLoad::Pressure { cells, pressure } => {
                             for &cell in cells {
-                                loads.add(Load::Pressure { cell, pressure: *pressure }, m.clone());
+                                loads.add(
+                                    Load::Pressure {
+                                        cell,
+                                        pressure: *pressure,
+                                    },
+                                    m.clone(),
+                                );
                             }
                         }
                     }
@@ -174,7 +221,12 @@ fn displacement_from(model: &Model, depl: &NodalField) -> Vec<f64> {
 
 /// A nodal field from a vector per DOF index.
 pub fn nodal_from_dofs(model: &Model, values: &[f64]) -> NodalField {
-    let comps: Vec<String> = model.dofs().comps().iter().map(|c| c.name().to_string()).collect();
+    let comps: Vec<String> = model
+        .dofs()
+        .comps()
+        .iter()
+        .map(|c| c.name().to_string())
+        .collect();
     let mut f = NodalField::new(comps);
     for (i, d) in model.dofs().dofs().iter().enumerate() {
         f.set(d.node, d.comp.name(), values[i]);
@@ -201,13 +253,23 @@ fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
             .map(|p| {
                 components
                     .iter()
-                    .map(|c| cv.names.iter().position(|n| n == c).map(|i| p[i]).unwrap_or(f64::NAN))
+                    .map(|c| {
+                        cv.names
+                            .iter()
+                            .position(|n| n == c)
+                            .map(|i| p[i])
+                            .unwrap_or(f64::NAN)
+                    })
                     .collect()
             })
             .collect();
         values.insert(cv.cell, pts);
     }
-    ElemField { location, components, values }
+    ElemField {
+        location,
+        components,
+        values,
+    }
 }
 
 fn nodal_from_values(v: &NodalValues) -> NodalField {
@@ -222,8 +284,16 @@ fn nodal_from_values(v: &NodalValues) -> NodalField {
     f
 }
 
-pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec<Step>, Rc<FemRun>), ExecError> {
-    let cmd = if linear { "MECA_STATIQUE" } else { "STAT_NON_LINE" };
+pub fn solve(
+    ex: &mut Executor,
+    setup: &SolveSetup,
+    linear: bool,
+) -> Result<(Vec<Step>, Rc<FemRun>), ExecError> {
+    let cmd = if linear {
+        "MECA_STATIQUE"
+    } else {
+        "STAT_NON_LINE"
+    };
     let mesh = ex.mesh_by_id(setup.model.mesh)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
     let loads = build_loads(setup)?;
@@ -254,9 +324,14 @@ pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec
                     .step_at(*t0, 1e-6, false)
                     .ok_or_else(|| ExecError::new(format!("{cmd}/ETAT_INIT: no state at {t0}")))?;
                 let Some(Field::Nodal(depl)) = step.fields.get("DEPL") else {
-                    return Err(ExecError::new(format!("{cmd}/ETAT_INIT: the initial result has no DEPL at {t0}")));
+                    return Err(ExecError::new(format!(
+                        "{cmd}/ETAT_INIT: the initial result has no DEPL at {t0}"
+                    )));
                 };
-                Some(InitialState { time: Some(*t0), displacement: displacement_from(&model, depl) })
+                Some(InitialState {
+                    time: Some(*t0),
+                    displacement: displacement_from(&model, depl),
+                })
             }
             None => None,
         };
@@ -265,7 +340,10 @@ pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec
             init_time: setup.instants.first().copied(),
             final_time: setup.instants.last().copied(),
             initial,
-            newton: NewtonOptions { reac_iter: setup.newton.reac_iter, ..NewtonOptions::default() },
+            newton: NewtonOptions {
+                reac_iter: setup.newton.reac_iter,
+                ..NewtonOptions::default()
+            },
             convergence: Convergence {
                 resi_glob_rela: setup.newton.resi_glob_rela,
                 resi_glob_maxi: setup.newton.resi_glob_maxi,
@@ -285,15 +363,29 @@ pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec
         .iter()
         .map(|s| -> Result<Step, ExecError> {
             let mut fields = BTreeMap::new();
-            fields.insert("DEPL".to_string(), Field::Nodal(nodal_from_dofs(&model, &s.displacement)));
-            fields.insert("SIEF_ELGA".to_string(), Field::Elem(elem_field(ElemLocation::Gauss, &s.stress)));
-            fields.insert("VARI_ELGA".to_string(), Field::Elem(elem_field(ElemLocation::Gauss, &s.internal_variables)));
+            fields.insert(
+                "DEPL".to_string(),
+                Field::Nodal(nodal_from_dofs(&model, &s.displacement)),
+            );
+            fields.insert(
+                "SIEF_ELGA".to_string(),
+                Field::Elem(elem_field(ElemLocation::Gauss, &s.stress)),
+            );
+            fields.insert(
+                "VARI_ELGA".to_string(),
+                Field::Elem(elem_field(ElemLocation::Gauss, &s.internal_variables)),
+            );
             if let Some(zones) = &mut post_zones {
                 // CONT_NOEU: the zones re-paired on the step's geometry.
                 let x = aster_contact::positions(&mesh, model.dofs(), &s.displacement);
                 let cn = aster_contact::ContNoeu::at_step(zones, &mesh, &x, &s.unilateral)
                     .map_err(|e| ExecError::new(format!("{cmd}: CONT_NOEU: {e}")))?;
-                let mut f = NodalField::new(aster_contact::CONT_NOEU_COMPONENTS.iter().map(|c| c.to_string()).collect());
+                let mut f = NodalField::new(
+                    aster_contact::CONT_NOEU_COMPONENTS
+                        .iter()
+                        .map(|c| c.to_string())
+                        .collect(),
+                );
                 for (n, vals) in cn.nodes.iter().zip(&cn.values) {
                     for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
                         f.set(*n, c, *v);
@@ -301,7 +393,11 @@ pub fn solve(ex: &mut Executor, setup: &SolveSetup, linear: bool) -> Result<(Vec
                 }
                 fields.insert("CONT_NOEU".to_string(), Field::Nodal(f));
             }
-            Ok(Step { nume_ordre: s.nume_ordre as u32, inst: s.time, fields })
+            Ok(Step {
+                nume_ordre: s.nume_ordre as u32,
+                inst: s.time,
+                fields,
+            })
         })
         .collect::<Result<Vec<_>, ExecError>>()?;
     Ok((steps, Rc::new(FemRun { model, loads, raw })))
@@ -316,28 +412,50 @@ pub fn calc_champ(
     steps: &[u32],
 ) -> Result<EvolResult, ExecError> {
     let Some(run) = result.fem.clone() else {
-        return Err(ExecError::new("CALC_CHAMP: this result was not computed by STAT_NON_LINE/MECA_STATIQUE in this run"));
+        return Err(ExecError::new(
+            "CALC_CHAMP: this result was not computed by STAT_NON_LINE/MECA_STATIQUE in this run",
+        ));
     };
     let mut out = result.clone();
-    for step in out.steps.iter_mut().filter(|s| steps.contains(&s.nume_ordre)) {
-        let raw = run
-            .raw
-            .by_order(step.nume_ordre as usize)
-            .ok_or_else(|| ExecError::new(format!("CALC_CHAMP: no computed state at NUME_ORDRE {}", step.nume_ordre)))?;
+    for step in out
+        .steps
+        .iter_mut()
+        .filter(|s| steps.contains(&s.nume_ordre))
+    {
+        let raw = run.raw.by_order(step.nume_ordre as usize).ok_or_else(|| {
+            ExecError::new(format!(
+                "CALC_CHAMP: no computed state at NUME_ORDRE {}",
+                step.nume_ordre
+            ))
+        })?;
         let u = &raw.displacement;
         let model = &run.model;
         let elno = || post::elno(model, &raw.stress);
         for opt in options {
             let field = match opt.as_str() {
-                "FORC_NODA" => Field::Nodal(nodal_from_dofs(model, &post::forc_noda(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?)),
+                "FORC_NODA" => Field::Nodal(nodal_from_dofs(
+                    model,
+                    &post::forc_noda(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?,
+                )),
                 "REAC_NODA" => Field::Nodal(nodal_from_dofs(
                     model,
-                    &post::reac_noda(model, &run.loads, raw.time, u).map_err(|e| fem_err("CALC_CHAMP", e))?,
+                    &post::reac_noda(model, &run.loads, raw.time, u)
+                        .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 )),
-                "SIEF_ELNO" | "SIGM_ELNO" => Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno()))),
-                "SIEF_NOEU" | "SIGM_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(model, &continuum_only(elno())))),
-                "SIEQ_ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &post::sieq_field(&raw.stress))),
-                "SIEQ_ELNO" => Field::Elem(elem_field(ElemLocation::Nodes, &post::sieq_field(&elno()))),
+                "SIEF_ELNO" | "SIGM_ELNO" => {
+                    Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))
+                }
+                "SIEF_NOEU" | "SIGM_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(
+                    model,
+                    &continuum_only(elno()),
+                ))),
+                "SIEQ_ELGA" => Field::Elem(elem_field(
+                    ElemLocation::Gauss,
+                    &post::sieq_field(&raw.stress),
+                )),
+                "SIEQ_ELNO" => {
+                    Field::Elem(elem_field(ElemLocation::Nodes, &post::sieq_field(&elno())))
+                }
                 "SIEQ_NOEU" => {
                     let noeu = post::noeu(model, &continuum_only(elno()));
                     Field::Nodal(nodal_from_values(&post::sieq_nodal(&noeu)))
@@ -345,7 +463,11 @@ pub fn calc_champ(
                 other => {
                     let span = ["FORCE", "CONTRAINTE", "CRITERES", "DEFORMATION"]
                         .iter()
-                        .find_map(|k| call.keywords.keyword(k).filter(|kw| kw.value != aster_eval::KwValue::Simple(vec![])))
+                        .find_map(|k| {
+                            call.keywords
+                                .keyword(k)
+                                .filter(|kw| kw.value != aster_eval::KwValue::Simple(vec![]))
+                        })
                         .map(|k| k.span)
                         .unwrap_or(call.span);
                     return Err(ex.unsupported(&format!("CALC_CHAMP option {other}"), span));
@@ -359,5 +481,8 @@ pub fn calc_champ(
 
 /// Stress fields without the springs' N/VY values (SIGM_* are continuum fields).
 fn continuum_only(cells: Vec<CellValues>) -> Vec<CellValues> {
-    cells.into_iter().filter(|c| c.names.first() == Some(&"SIXX")).collect()
+    cells
+        .into_iter()
+        .filter(|c| c.names.first() == Some(&"SIXX"))
+        .collect()
 }

@@ -9,10 +9,10 @@
 
 pub mod commands;
 pub mod concept;
+mod contactbridge;
 mod evaluate;
 pub mod executor;
 pub mod export;
-mod contactbridge;
 pub mod fembridge;
 pub mod field;
 pub mod function;

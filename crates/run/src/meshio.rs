@@ -26,5 +26,7 @@ pub fn read(path: &Path, format: &str) -> Result<Mesh, String> {
 /// `ORIE_PEAU`: outward normals on the skin cells of the groups.
 pub fn orient_skin(mesh: &mut Mesh, groups: &[String]) -> Result<(), String> {
     let names: Vec<&str> = groups.iter().map(String::as_str).collect();
-    mesh.orient_skin(&names).map(|_| ()).map_err(|e| e.to_string())
+    mesh.orient_skin(&names)
+        .map(|_| ())
+        .map_err(|e| e.to_string())
 }

@@ -62,7 +62,9 @@ fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mesh::Field {
                     aster_mesh::Field {
                         name: name.to_string(),
                         components: f.components.clone(),
-                        location: FieldLocation::GaussPoints { points_per_cell: points },
+                        location: FieldLocation::GaussPoints {
+                            points_per_cell: points,
+                        },
                         values,
                     }
                 }
@@ -71,12 +73,24 @@ fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mesh::Field {
     }
 }
 
-fn result_steps(ex: &Executor, occ: &Keywords, result: &EvolResult) -> Result<Vec<ResultStep>, ExecError> {
-    let names: Vec<String> = occ.simple("NOM_CHAM").iter().filter_map(|s| s.as_str().map(str::to_string)).collect();
+fn result_steps(
+    ex: &Executor,
+    occ: &Keywords,
+    result: &EvolResult,
+) -> Result<Vec<ResultStep>, ExecError> {
+    let names: Vec<String> = occ
+        .simple("NOM_CHAM")
+        .iter()
+        .filter_map(|s| s.as_str().map(str::to_string))
+        .collect();
     let mesh = ex.mesh_by_id(result.mesh)?;
     let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, result)?;
     let mut out = Vec::new();
-    for s in result.steps.iter().filter(|s| steps.contains(&s.nume_ordre)) {
+    for s in result
+        .steps
+        .iter()
+        .filter(|s| steps.contains(&s.nume_ordre))
+    {
         let mut fields = Vec::new();
         for (name, f) in &s.fields {
             if !names.is_empty() && !names.contains(name) {
@@ -125,10 +139,15 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let format = kw.str("FORMAT").unwrap_or("RESULTAT");
     ex.only_values("IMPR_RESU", kw, "FORMAT", &["MED", "ASTER"])?;
     let default_unit = if format == "MED" { 80 } else { 8 };
-    let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(default_unit);
+    let unit = kw
+        .first("UNITE")
+        .and_then(|s| s.as_i64())
+        .unwrap_or(default_unit);
     let path = ex.output_path(unit);
     if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir).map_err(|e| ExecError::new(format!("IMPR_RESU: cannot create {}: {e}", dir.display())))?;
+        std::fs::create_dir_all(dir).map_err(|e| {
+            ExecError::new(format!("IMPR_RESU: cannot create {}: {e}", dir.display()))
+        })?;
     }
     let mut mesh: Option<(Arc<Mesh>, String)> = None;
     let mut steps: Vec<ResultStep> = Vec::new();
@@ -153,14 +172,20 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         if let Some(c) = occ.concept("CHAM_GD") {
             let m = ex.single_mesh()?;
             let f = ex.field(c)?;
-            steps.push(ResultStep { nume_ordre: 0, inst: 0.0, fields: vec![to_mesh_field(&c.name, &f, &m)] });
+            steps.push(ResultStep {
+                nume_ordre: 0,
+                inst: 0.0,
+                fields: vec![to_mesh_field(&c.name, &f, &m)],
+            });
             if mesh.is_none() {
                 mesh = Some((m, c.name.clone()));
             }
         }
     }
     let Some((mesh, name)) = mesh else {
-        return Err(ExecError::new("IMPR_RESU: nothing to print (give MAILLAGE, RESULTAT or CHAM_GD in RESU)"));
+        return Err(ExecError::new(
+            "IMPR_RESU: nothing to print (give MAILLAGE, RESULTAT or CHAM_GD in RESU)",
+        ));
     };
     match format {
         "MED" => {
@@ -172,13 +197,18 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                     None => merged.push(s),
                 }
             }
-            aster_mesh::write_med(&path, &mesh, &name, &merged).map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
+            aster_mesh::write_med(&path, &mesh, &name, &merged)
+                .map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
         }
         _ => {
             if !steps.is_empty() {
-                return Err(ex.unsupported("IMPR_RESU/FORMAT='ASTER' of result fields (only the mesh)", call.span));
+                return Err(ex.unsupported(
+                    "IMPR_RESU/FORMAT='ASTER' of result fields (only the mesh)",
+                    call.span,
+                ));
             }
-            aster_mesh::write_mail(&path, &mesh).map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
+            aster_mesh::write_mail(&path, &mesh)
+                .map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
         }
     }
     Ok(CommandOutput::Nothing)

@@ -27,10 +27,31 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
     let mut ex = Executor::new(options, Box::new(out.clone()));
     let mut p = Program::default();
     let ma = p.concept("MA", "maillage_sdaster");
-    ex.execute(&call("LIRE_MAILLAGE", Some(&ma), vec![("FORMAT", V::S("ASTER"))]))?;
-    ex.execute(&reuse("DEFI_GROUP", &ma, vec![("MAILLAGE", V::C(ma.clone())), ("CREA_GROUP_NO", V::F(vec![vec![("TOUT_GROUP_MA", V::S("OUI"))]]))]))?;
+    ex.execute(&call(
+        "LIRE_MAILLAGE",
+        Some(&ma),
+        vec![("FORMAT", V::S("ASTER"))],
+    ))?;
+    ex.execute(&reuse(
+        "DEFI_GROUP",
+        &ma,
+        vec![
+            ("MAILLAGE", V::C(ma.clone())),
+            (
+                "CREA_GROUP_NO",
+                V::F(vec![vec![("TOUT_GROUP_MA", V::S("OUI"))]]),
+            ),
+        ],
+    ))?;
     let mou = p.concept("MAT_MOU", "mater_sdaster");
-    ex.execute(&call("DEFI_MATERIAU", Some(&mou), vec![("ELAS", V::F(vec![vec![("E", V::R(2e9)), ("NU", V::R(0.3))]]))]))?;
+    ex.execute(&call(
+        "DEFI_MATERIAU",
+        Some(&mou),
+        vec![(
+            "ELAS",
+            V::F(vec![vec![("E", V::R(2e9)), ("NU", V::R(0.3))]]),
+        )],
+    ))?;
     let mo = p.concept("MO", "modele_sdaster");
     ex.execute(&call(
         "AFFE_MODELE",
@@ -40,8 +61,16 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
             (
                 "AFFE",
                 V::F(vec![
-                    vec![("GROUP_MA", V::S("ABCD")), ("PHENOMENE", V::S("MECANIQUE")), ("MODELISATION", V::S("D_PLAN"))],
-                    vec![("GROUP_MA", V::L(vec![V::S("K1"), V::S("K2")])), ("PHENOMENE", V::S("MECANIQUE")), ("MODELISATION", V::S("2D_DIS_T"))],
+                    vec![
+                        ("GROUP_MA", V::S("ABCD")),
+                        ("PHENOMENE", V::S("MECANIQUE")),
+                        ("MODELISATION", V::S("D_PLAN")),
+                    ],
+                    vec![
+                        ("GROUP_MA", V::L(vec![V::S("K1"), V::S("K2")])),
+                        ("PHENOMENE", V::S("MECANIQUE")),
+                        ("MODELISATION", V::S("2D_DIS_T")),
+                    ],
                 ]),
             ),
         ],
@@ -50,7 +79,16 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
     ex.execute(&call(
         "AFFE_MATERIAU",
         Some(&chmat),
-        vec![("MAILLAGE", V::C(ma.clone())), ("AFFE", V::F(vec![vec![("GROUP_MA", V::S("ABCD")), ("MATER", V::C(mou.clone()))]]))],
+        vec![
+            ("MAILLAGE", V::C(ma.clone())),
+            (
+                "AFFE",
+                V::F(vec![vec![
+                    ("GROUP_MA", V::S("ABCD")),
+                    ("MATER", V::C(mou.clone())),
+                ]]),
+            ),
+        ],
     ))?;
     let car = p.concept("CAR", "cara_elem");
     ex.execute(&call(
@@ -75,19 +113,40 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
         Some(&bloc),
         vec![
             ("MODELE", V::C(mo.clone())),
-            ("MECA_IMPO", V::F(vec![vec![("GROUP_NO", V::L(vec![V::S("R1"), V::S("R2")])), ("DX", V::I(0)), ("DY", V::I(0))]])),
+            (
+                "MECA_IMPO",
+                V::F(vec![vec![
+                    ("GROUP_NO", V::L(vec![V::S("R1"), V::S("R2")])),
+                    ("DX", V::I(0)),
+                    ("DY", V::I(0)),
+                ]]),
+            ),
         ],
     ))?;
     let depl = p.concept("DEPL", "char_meca");
     ex.execute(&call(
         "AFFE_CHAR_MECA",
         Some(&depl),
-        vec![("MODELE", V::C(mo.clone())), ("DDL_IMPO", V::F(vec![vec![("GROUP_NO", V::S("CD")), ("DY", V::R(-1.0))]]))],
+        vec![
+            ("MODELE", V::C(mo.clone())),
+            (
+                "DDL_IMPO",
+                V::F(vec![vec![("GROUP_NO", V::S("CD")), ("DY", V::R(-1.0))]]),
+            ),
+        ],
     ))?;
     let fimpo = p.concept("F_IMPO", "fonction_sdaster");
-    ex.execute(&call("DEFI_CONSTANTE", Some(&fimpo), vec![("VALE", V::R(0.0))]))?;
+    ex.execute(&call(
+        "DEFI_CONSTANTE",
+        Some(&fimpo),
+        vec![("VALE", V::R(0.0))],
+    ))?;
     let fmult = p.concept("F_MULT", "fonction_sdaster");
-    ex.execute(&call("DEFI_CONSTANTE", Some(&fmult), vec![("VALE", V::R(-1.0))]))?;
+    ex.execute(&call(
+        "DEFI_CONSTANTE",
+        Some(&fmult),
+        vec![("VALE", V::R(-1.0))],
+    ))?;
     let cont = p.concept("CONT", "char_contact");
     let mut zone = vec![
         ("GROUP_NO", V::S("AB")),
@@ -102,19 +161,36 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
     ex.execute(&call(
         "DEFI_CONTACT",
         Some(&cont),
-        vec![("MODELE", V::C(mo.clone())), ("FORMULATION", V::S("LIAISON_UNIL")), ("ZONE", V::F(vec![zone]))],
+        vec![
+            ("MODELE", V::C(mo.clone())),
+            ("FORMULATION", V::S("LIAISON_UNIL")),
+            ("ZONE", V::F(vec![zone])),
+        ],
     ))?;
     let ff = p.concept("F_FORC", "fonction_sdaster");
     ex.execute(&call(
         "DEFI_FONCTION",
         Some(&ff),
-        vec![("NOM_PARA", V::S("INST")), ("VALE", V::L(vec![V::R(0.0), V::R(0.0), V::R(1.0), V::R(1.0)])), ("PROL_DROITE", V::S("LINEAIRE"))],
+        vec![
+            ("NOM_PARA", V::S("INST")),
+            (
+                "VALE",
+                V::L(vec![V::R(0.0), V::R(0.0), V::R(1.0), V::R(1.0)]),
+            ),
+            ("PROL_DROITE", V::S("LINEAIRE")),
+        ],
     ))?;
     let ltps = p.concept("L_TPS", "listr8_sdaster");
     ex.execute(&call(
         "DEFI_LIST_REEL",
         Some(&ltps),
-        vec![("DEBUT", V::R(0.0)), ("INTERVALLE", V::F(vec![vec![("JUSQU_A", V::R(20.0)), ("NOMBRE", V::I(20))]]))],
+        vec![
+            ("DEBUT", V::R(0.0)),
+            (
+                "INTERVALLE",
+                V::F(vec![vec![("JUSQU_A", V::R(20.0)), ("NOMBRE", V::I(20))]]),
+            ),
+        ],
     ))?;
     let resu = p.concept("RESU", "evol_noli");
     ex.execute(&call(
@@ -124,17 +200,44 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
             ("MODELE", V::C(mo.clone())),
             ("CHAM_MATER", V::C(chmat.clone())),
             ("CARA_ELEM", V::C(car.clone())),
-            ("EXCIT", V::F(vec![vec![("CHARGE", V::C(depl.clone())), ("FONC_MULT", V::C(ff.clone()))], vec![("CHARGE", V::C(bloc.clone()))]])),
+            (
+                "EXCIT",
+                V::F(vec![
+                    vec![
+                        ("CHARGE", V::C(depl.clone())),
+                        ("FONC_MULT", V::C(ff.clone())),
+                    ],
+                    vec![("CHARGE", V::C(bloc.clone()))],
+                ]),
+            ),
             ("CONTACT", V::C(cont.clone())),
             ("COMPORTEMENT", V::F(vec![vec![("RELATION", V::S("ELAS"))]])),
-            ("INCREMENT", V::F(vec![vec![("LIST_INST", V::C(ltps.clone()))]])),
+            (
+                "INCREMENT",
+                V::F(vec![vec![("LIST_INST", V::C(ltps.clone()))]]),
+            ),
         ],
     ))?;
-    ex.execute(&reuse("CALC_CHAMP", &resu, vec![("RESULTAT", V::C(resu.clone())), ("FORCE", V::L(vec![V::S("FORC_NODA"), V::S("REAC_NODA")]))]))?;
+    ex.execute(&reuse(
+        "CALC_CHAMP",
+        &resu,
+        vec![
+            ("RESULTAT", V::C(resu.clone())),
+            ("FORCE", V::L(vec![V::S("FORC_NODA"), V::S("REAC_NODA")])),
+        ],
+    ))?;
     Ok(Scene { ex, out, p, resu })
 }
 
-fn test(s: &mut Scene, node: &'static str, cham: &'static str, cmp: &'static str, calc: f64, refe: f64, critere: &'static str) -> Result<(), ExecError> {
+fn test(
+    s: &mut Scene,
+    node: &'static str,
+    cham: &'static str,
+    cmp: &'static str,
+    calc: f64,
+    refe: f64,
+    critere: &'static str,
+) -> Result<(), ExecError> {
     let c = call(
         "TEST_RESU",
         None,
@@ -163,8 +266,24 @@ fn zzzz237b_through_the_executor_matches_code_aster() -> Result<(), ExecError> {
     test(&mut s, "B", "DEPL", "DY", -3.33066907e-15, 0.0, "ABSOLU")?;
     test(&mut s, "A", "DEPL", "DX", -4.285714318, -4.28571, "RELATIF")?;
     test(&mut s, "B", "DEPL", "DX", 4.285714274, 4.28571, "RELATIF")?;
-    test(&mut s, "A", "FORC_NODA", "DY", 2.19780220e10, 2.1978e10, "RELATIF")?;
-    test(&mut s, "B", "FORC_NODA", "DY", 2.19780220e10, 2.1978e10, "RELATIF")?;
+    test(
+        &mut s,
+        "A",
+        "FORC_NODA",
+        "DY",
+        2.19780220e10,
+        2.1978e10,
+        "RELATIF",
+    )?;
+    test(
+        &mut s,
+        "B",
+        "FORC_NODA",
+        "DY",
+        2.19780220e10,
+        2.1978e10,
+        "RELATIF",
+    )?;
     let report = s.out.text();
     assert_eq!(s.ex.tally.nook, 0, "{report}");
     assert_eq!(s.ex.tally.ok, 12, "{report}");
@@ -199,7 +318,13 @@ fn post_releve_t_extracts_and_impr_table_prints() -> Result<(), ExecError> {
         vec![
             ("TABLE", V::C(t.clone())),
             ("NOM_PARA", V::S("DX")),
-            ("FILTRE", V::F(vec![vec![("NOM_PARA", V::S("NOEUD")), ("VALE_K", V::S("NB"))]])),
+            (
+                "FILTRE",
+                V::F(vec![vec![
+                    ("NOM_PARA", V::S("NOEUD")),
+                    ("VALE_K", V::S("NB")),
+                ]]),
+            ),
             ("VALE_CALC", V::R(4.285714274)),
         ],
     ))?;
@@ -225,7 +350,12 @@ fn unknown_group_suggests_a_name() {
     let mut ex = Executor::new(options, Box::new(std::io::sink()));
     let mut p = Program::default();
     let ma = p.concept("MA", "maillage_sdaster");
-    ex.execute(&call("LIRE_MAILLAGE", Some(&ma), vec![("FORMAT", V::S("ASTER"))])).unwrap();
+    ex.execute(&call(
+        "LIRE_MAILLAGE",
+        Some(&ma),
+        vec![("FORMAT", V::S("ASTER"))],
+    ))
+    .unwrap();
     let mo = p.concept("MO", "modele_sdaster");
     let err = ex
         .execute(&call(
@@ -233,11 +363,23 @@ fn unknown_group_suggests_a_name() {
             Some(&mo),
             vec![
                 ("MAILLAGE", V::C(ma)),
-                ("AFFE", V::F(vec![vec![("GROUP_MA", V::S("ABDC")), ("PHENOMENE", V::S("MECANIQUE")), ("MODELISATION", V::S("D_PLAN"))]])),
+                (
+                    "AFFE",
+                    V::F(vec![vec![
+                        ("GROUP_MA", V::S("ABDC")),
+                        ("PHENOMENE", V::S("MECANIQUE")),
+                        ("MODELISATION", V::S("D_PLAN")),
+                    ]]),
+                ),
             ],
         ))
         .unwrap_err();
-    assert!(err.message.contains("no cell group `ABDC` (did you mean `ABCD`?)"), "{}", err.message);
+    assert!(
+        err.message
+            .contains("no cell group `ABDC` (did you mean `ABCD`?)"),
+        "{}",
+        err.message
+    );
 }
 
 #[test]
@@ -246,7 +388,11 @@ fn unsupported_keyword_is_refused_not_skipped() {
     let mut p = Program::default();
     let m = p.concept("M", "mater_sdaster");
     let err = ex
-        .execute(&call("DEFI_MATERIAU", Some(&m), vec![("ECRO_LINE", V::F(vec![vec![("SY", V::R(1.0))]]))]))
+        .execute(&call(
+            "DEFI_MATERIAU",
+            Some(&m),
+            vec![("ECRO_LINE", V::F(vec![vec![("SY", V::R(1.0))]]))],
+        ))
         .unwrap_err();
     assert_eq!(err.message, "not supported yet: DEFI_MATERIAU/ECRO_LINE");
 }

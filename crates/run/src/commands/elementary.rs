@@ -5,8 +5,8 @@
 use super::inspect::filter_rows;
 use crate::concept::Concept;
 use crate::executor::{result_of, store_result, Executor};
-use crate::field::Field;
 use crate::fembridge;
+use crate::field::Field;
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Scalar};
 use std::rc::Rc;
@@ -51,7 +51,9 @@ pub fn calcul(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     };
     let depl = ex.required("CALCUL", kw, "DEPL")?;
     let Field::Nodal(depl) = &*ex.field(depl)? else {
-        return Err(ExecError::new("CALCUL/DEPL: a nodal displacement field is required"));
+        return Err(ExecError::new(
+            "CALCUL/DEPL: a nodal displacement field is required",
+        ));
     };
     let mesh = ex.mesh_by_id(model.mesh)?;
     let fem_model = fembridge::build_model(&mesh, &model, &materials, cara.as_deref())?;
@@ -63,15 +65,26 @@ pub fn calcul(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
         .iter()
         .map(|d| depl.get(d.node, d.comp.name()).unwrap_or(0.0))
         .collect();
-    let f = aster_fem::post::forc_noda(&fem_model, &u).map_err(|e| ExecError::new(format!("CALCUL: {e}")))?;
+    let f = aster_fem::post::forc_noda(&fem_model, &u)
+        .map_err(|e| ExecError::new(format!("CALCUL: {e}")))?;
     let vect = fembridge::nodal_from_dofs(&fem_model, &f);
     let name = result_of(call)?.name.clone();
     let sd = format!("{name}.FORC_NODA_ELEM");
-    ex.objects.insert(sd.clone(), Concept::VectElem(Rc::new(vect)));
+    ex.objects
+        .insert(sd.clone(), Concept::VectElem(Rc::new(vect)));
     let mut table = Table::new(vec![
-        Column { name: "NOM_OBJET".into(), ty: ColumnType::Text(16) },
-        Column { name: "TYPE_OBJET".into(), ty: ColumnType::Text(16) },
-        Column { name: "NOM_SD".into(), ty: ColumnType::Text(24) },
+        Column {
+            name: "NOM_OBJET".into(),
+            ty: ColumnType::Text(16),
+        },
+        Column {
+            name: "TYPE_OBJET".into(),
+            ty: ColumnType::Text(16),
+        },
+        Column {
+            name: "NOM_SD".into(),
+            ty: ColumnType::Text(24),
+        },
     ]);
     table.push_row(vec![
         ("NOM_OBJET", Value::Text("FORC_NODA_ELEM".into())),
@@ -81,20 +94,86 @@ pub fn calcul(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
+/// Legacy `CALC_VECT_ELEM(OPTION='FORC_NODA', SIEF_ELGA=…)` (code_aster
+/// ≤ 14): the nodal forces of a stress field. The field must have been
+/// extracted from a computed result (CREA_CHAMP/EXTR): its step's
+/// displacement gives the same Bᵀσ in linear elasticity, springs included.
+pub fn calc_vect_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "OPTION",
+            "MODELE",
+            "SIEF_ELGA",
+            "CARA_ELEM",
+            "CHAM_MATER",
+            "INST",
+        ],
+    )?;
+    let kw = &call.keywords;
+    ex.only_values("CALC_VECT_ELEM", kw, "OPTION", &["FORC_NODA"])?;
+    let model = ex.required("CALC_VECT_ELEM", kw, "MODELE")?;
+    ex.model(model)?;
+    let sigma = ex.required("CALC_VECT_ELEM", kw, "SIEF_ELGA")?;
+    let Some((result, order)) = ex.field_origin.get(&sigma.id).cloned() else {
+        let span = kw.keyword("SIEF_ELGA").map(|k| k.span).unwrap_or(call.span);
+        return Err(ex.unsupported(
+            "CALC_VECT_ELEM/SIEF_ELGA not extracted from a computed result (CREA_CHAMP/EXTR)",
+            span,
+        ));
+    };
+    let Some(run) = result.fem.clone() else {
+        return Err(ExecError::new(
+            "CALC_VECT_ELEM: the stresses' result was not computed in this run",
+        ));
+    };
+    let step = run.raw.by_order(order as usize).ok_or_else(|| {
+        ExecError::new(format!(
+            "CALC_VECT_ELEM: no computed state at NUME_ORDRE {order}"
+        ))
+    })?;
+    let f = aster_fem::post::forc_noda(&run.model, &step.displacement)
+        .map_err(|e| ExecError::new(format!("CALC_VECT_ELEM: {e}")))?;
+    let vect = fembridge::nodal_from_dofs(&run.model, &f);
+    store_result(ex, call, Concept::VectElem(Rc::new(vect)))
+}
+
 pub fn extr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     ex.check_keywords(
         call,
-        &["TYPE_RESU", "TABLE", "NOM_PARA", "FILTRE", "FILTRE/NOM_PARA", "FILTRE/CRIT_COMP", "FILTRE/VALE", "FILTRE/VALE_I", "FILTRE/VALE_K", "FILTRE/CRITERE", "FILTRE/PRECISION", "TITRE"],
+        &[
+            "TYPE_RESU",
+            "TABLE",
+            "NOM_PARA",
+            "FILTRE",
+            "FILTRE/NOM_PARA",
+            "FILTRE/CRIT_COMP",
+            "FILTRE/VALE",
+            "FILTRE/VALE_I",
+            "FILTRE/VALE_K",
+            "FILTRE/CRITERE",
+            "FILTRE/PRECISION",
+            "TITRE",
+        ],
     )?;
     let kw = &call.keywords;
     let t = ex.required("EXTR_TABLE", kw, "TABLE")?;
     let table = ex.table(t)?;
-    let para = kw.str("NOM_PARA").ok_or_else(|| ExecError::new("EXTR_TABLE: NOM_PARA is required"))?;
-    let col = table
-        .column_index(para)
-        .ok_or_else(|| ExecError::new(format!("EXTR_TABLE: table `{}` has no column {para}", t.name)))?;
-    let rows = filter_rows(&table, kw.factor("FILTRE")).map_err(|e| ExecError::new(format!("EXTR_TABLE: {e}")))?;
-    let values: Vec<&Value> = rows.iter().filter_map(|&r| table.rows[r][col].as_ref()).collect();
+    let para = kw
+        .str("NOM_PARA")
+        .ok_or_else(|| ExecError::new("EXTR_TABLE: NOM_PARA is required"))?;
+    let col = table.column_index(para).ok_or_else(|| {
+        ExecError::new(format!(
+            "EXTR_TABLE: table `{}` has no column {para}",
+            t.name
+        ))
+    })?;
+    let rows = filter_rows(&table, kw.factor("FILTRE"))
+        .map_err(|e| ExecError::new(format!("EXTR_TABLE: {e}")))?;
+    let values: Vec<&Value> = rows
+        .iter()
+        .filter_map(|&r| table.rows[r][col].as_ref())
+        .collect();
     let [value] = values.as_slice() else {
         return Err(ExecError::new(format!(
             "EXTR_TABLE: {} values of {para} match in `{}` (exactly one is needed; refine FILTRE)",
@@ -111,13 +190,15 @@ pub fn extr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         })),
         "VECT_ELEM_DEPL_R" => {
             let Value::Text(sd) = value else {
-                return Err(ExecError::new(format!("EXTR_TABLE: {para} does not name an object")));
+                return Err(ExecError::new(format!(
+                    "EXTR_TABLE: {para} does not name an object"
+                )));
             };
-            let obj = ex
-                .objects
-                .get(sd.trim())
-                .cloned()
-                .ok_or_else(|| ExecError::new(format!("EXTR_TABLE: no object `{sd}` (made by CALCUL in this run)")))?;
+            let obj = ex.objects.get(sd.trim()).cloned().ok_or_else(|| {
+                ExecError::new(format!(
+                    "EXTR_TABLE: no object `{sd}` (made by CALCUL in this run)"
+                ))
+            })?;
             store_result(ex, call, obj)
         }
         other => {
@@ -140,13 +221,19 @@ pub fn asse_vecteur(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     let kw = &call.keywords;
     let n = ex.required("ASSE_VECTEUR", kw, "NUME_DDL")?;
     if !matches!(ex.concept(n)?, Concept::Numbering(_)) {
-        return Err(ExecError::new(format!("ASSE_VECTEUR/NUME_DDL: `{}` is not a NUME_DDL", n.name)));
+        return Err(ExecError::new(format!(
+            "ASSE_VECTEUR/NUME_DDL: `{}` is not a NUME_DDL",
+            n.name
+        )));
     }
     let mut sum: Option<crate::field::NodalField> = None;
     for s in kw.simple("VECT_ELEM") {
         let Some(c) = s.as_concept() else { continue };
         let Concept::VectElem(v) = ex.concept(c)? else {
-            return Err(ExecError::new(format!("ASSE_VECTEUR/VECT_ELEM: `{}` is not a vect_elem", c.name)));
+            return Err(ExecError::new(format!(
+                "ASSE_VECTEUR/VECT_ELEM: `{}` is not a vect_elem",
+                c.name
+            )));
         };
         match &mut sum {
             None => sum = Some((**v).clone()),

@@ -61,6 +61,12 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             "CREA_GROUP_NO/NOEUD",
             "CREA_GROUP_NO/GROUP_NO",
             "CREA_GROUP_NO/CRIT_NOEUD",
+            "CREA_GROUP_NO/UNION",
+            "CREA_GROUP_NO/INTERSEC",
+            "CREA_GROUP_NO/DIFFE",
+            "CREA_GROUP_MA/UNION",
+            "CREA_GROUP_MA/INTERSEC",
+            "CREA_GROUP_MA/DIFFE",
             "CREA_GROUP_MA",
             "CREA_GROUP_MA/NOM",
             "CREA_GROUP_MA/GROUP_MA",
@@ -92,6 +98,9 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         let Some(name) = occ.str("NOM") else {
             return Err(ex.kw_error("DEFI_GROUP", occ, "NOM", "CREA_GROUP_MA needs NOM"));
         };
+        if set_operation(&mut mesh, occ, name, false)? {
+            continue;
+        }
         let cells = select::cells(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_MA: {e}")))?;
         put_group(&mut mesh.groups_ma, name, cells);
@@ -145,6 +154,38 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         put_group(&mut mesh.groups_no, name, nodes);
     }
     store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
+}
+
+/// `UNION`/`INTERSEC`/`DIFFE` of groups (aster-mesh); false when the
+/// occurrence has none of them.
+fn set_operation(
+    mesh: &mut Mesh,
+    occ: &aster_eval::Keywords,
+    name: &str,
+    nodes: bool,
+) -> Result<bool, ExecError> {
+    for op in ["UNION", "INTERSEC", "DIFFE"] {
+        let groups: Vec<&str> = occ.simple(op).iter().filter_map(|s| s.as_str()).collect();
+        if groups.is_empty() {
+            continue;
+        }
+        let r = match (op, nodes) {
+            ("UNION", true) => mesh.crea_group_no_union(name, &groups),
+            ("INTERSEC", true) => mesh.crea_group_no_intersec(name, &groups),
+            ("DIFFE", true) => mesh.crea_group_no_diffe(name, &groups),
+            ("UNION", false) => mesh.crea_group_ma_union(name, &groups),
+            ("INTERSEC", false) => mesh.crea_group_ma_intersec(name, &groups),
+            _ => mesh.crea_group_ma_diffe(name, &groups),
+        };
+        let kind = if nodes {
+            "CREA_GROUP_NO"
+        } else {
+            "CREA_GROUP_MA"
+        };
+        r.map_err(|e| ExecError::new(format!("DEFI_GROUP/{kind}/{op}: {e}")))?;
+        return Ok(true);
+    }
+    Ok(false)
 }
 
 /// Nodes of cells, in order of first appearance.

@@ -121,6 +121,7 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     )?;
     let kw = &call.keywords;
     let op = kw.str("OPERATION").unwrap_or("");
+    let mut origin = None;
     let field = match op {
         "EXTR" => {
             let r = ex.required("CREA_CHAMP", kw, "RESULTAT")?;
@@ -137,6 +138,7 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                     ))
                 }
             };
+            origin = Some((result.clone(), step.nume_ordre));
             step_field(step, name, &r.name)?.clone()
         }
         "COMB" => {
@@ -223,6 +225,11 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             let span = kw.keyword("OPERATION").map(|k| k.span).unwrap_or(call.span);
             return Err(ex.unsupported(&format!("CREA_CHAMP/OPERATION='{other}'"), span));
         }
+    };
+    let id = crate::executor::result_of(call)?.id;
+    match origin {
+        Some(o) => ex.field_origin.insert(id, o),
+        None => ex.field_origin.remove(&id),
     };
     store_result(ex, call, Concept::Field(Rc::new(field)))
 }

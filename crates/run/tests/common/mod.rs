@@ -59,7 +59,11 @@ impl Program {
     }
 }
 
-pub fn call(command: &str, result: Option<&ConceptRef>, entries: Vec<(&'static str, V)>) -> CommandCall {
+pub fn call(
+    command: &str,
+    result: Option<&ConceptRef>,
+    entries: Vec<(&'static str, V)>,
+) -> CommandCall {
     CommandCall {
         command: command.to_string(),
         result: result.cloned(),
