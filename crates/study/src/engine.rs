@@ -107,7 +107,11 @@ fn run_point(scene: &dyn Scene, point: &Point, repeat: u32) -> RunRecord {
                 format!("panicked: {message}"),
             ))
         });
-        let wall = start.elapsed().as_secs_f64();
+        let excluded = match &outcome {
+            Ok(m) => m.excluded_seconds,
+            Err(f) => f.measures.as_ref().map_or(0.0, |m| m.excluded_seconds),
+        };
+        let wall = (start.elapsed().as_secs_f64() - excluded).max(0.0);
         let peak = if reset { memory::peak_kib() } else { None };
         let failed = outcome.is_err();
         if best.as_ref().is_none_or(|(t, _, _)| wall < *t) {

@@ -21,6 +21,10 @@ pub struct Measures {
     /// Seconds spent in the linear solver (factorisation + solves), when
     /// the solver reports it.
     pub solver_seconds: Option<f64>,
+    /// Seconds the scene spent only to measure (e.g. a second assembly to
+    /// separate it from the factorisation); the engine removes them from the
+    /// run's wall time.
+    pub excluded_seconds: f64,
     /// Largest penetration at convergence (≥ 0), in length units.
     pub penetration: Option<f64>,
     /// Other named values worth a CSV column (e.g. the contact half-width).
