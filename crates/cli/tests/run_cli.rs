@@ -9,7 +9,9 @@ fn root() -> PathBuf {
 }
 
 fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/run_data").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/run_data")
+        .join(name)
 }
 
 fn out_dir(tag: &str) -> PathBuf {
@@ -49,10 +51,23 @@ fn last_line(s: &str) -> &str {
 
 #[test]
 fn project_scene_b_passes_every_check() {
-    let r = aster_run(&[&root().join("comm/zzzz237b.comm")], Some(&root().join("comm/zzzz237.mail")), "b");
+    let r = aster_run(
+        &[&root().join("comm/zzzz237b.comm")],
+        Some(&root().join("comm/zzzz237.mail")),
+        "b",
+    );
     assert_eq!(r.code, 0, "{}\n{}", r.stdout, r.stderr);
-    assert_eq!(last_line(&r.stdout), "TEST_RESU: 14 OK, 0 NOOK", "{}", r.stdout);
-    assert!(r.stdout.contains("#ASTER"), "the table is printed:\n{}", r.stdout);
+    assert_eq!(
+        last_line(&r.stdout),
+        "TEST_RESU: 14 OK, 0 NOOK",
+        "{}",
+        r.stdout
+    );
+    assert!(
+        r.stdout.contains("#ASTER"),
+        "the table is printed:\n{}",
+        r.stdout
+    );
 }
 
 #[test]
@@ -87,7 +102,9 @@ fn unsupported_keyword_stops_with_its_location() {
     let r = aster_run(&[&data("unsupported.comm")], None, "unsupported");
     assert_eq!(r.code, 2, "{}\n{}", r.stdout, r.stderr);
     assert!(
-        r.stderr.contains("not supported yet: DEFI_MATERIAU/ECRO_LINE (") && r.stderr.contains("unsupported.comm:4:"),
+        r.stderr
+            .contains("not supported yet: DEFI_MATERIAU/ECRO_LINE (")
+            && r.stderr.contains("unsupported.comm:4:"),
         "{}",
         r.stderr
     );
@@ -116,11 +133,18 @@ fn shared_case(name: &str) -> Option<PathBuf> {
 fn real_zzzz237b_all_versions() {
     // v11 has four VALE_CALC-only checks where v15/v17 also give VALE_REFE.
     for (v, checks) in [("v11", 16), ("v15", 20), ("v17", 20)] {
-        let (Some(comm), Some(mesh)) = (shared_case(&format!("zzzz237b.{v}.comm")), shared_case("zzzz237a.mmed")) else {
+        let (Some(comm), Some(mesh)) = (
+            shared_case(&format!("zzzz237b.{v}.comm")),
+            shared_case("zzzz237a.mmed"),
+        ) else {
             return;
         };
         let r = aster_run(&[&comm], Some(&mesh), &format!("real-b-{v}"));
         assert_eq!(r.code, 0, "{v}:\n{}\n{}", r.stdout, r.stderr);
-        assert_eq!(last_line(&r.stdout), format!("TEST_RESU: {checks} OK, 0 NOOK"), "{v}");
+        assert_eq!(
+            last_line(&r.stdout),
+            format!("TEST_RESU: {checks} OK, 0 NOOK"),
+            "{v}"
+        );
     }
 }
