@@ -399,25 +399,6 @@ fn inside_brackets(source: &str, pos: usize) -> bool {
     depth > 0
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn tab_width_follows_python2() {
-        assert_eq!(width("\t"), 8);
-        assert_eq!(width("  \t"), 8);
-        assert_eq!(width("        "), 8);
-        assert_eq!(width("\t "), 9);
-    }
-
-    #[test]
-    fn valid_code_has_no_lexical_error() {
-        let s = scan("if x:\n    y = (1,\n  2)  # c\n\n    z = '''a\nb'''\nelse:\n\tpass\n");
-        assert!(s.error.is_none(), "{:?}", s.error);
-    }
-}
-
 /// Nesting limits, checked before parsing so that pathological input gets a
 /// clear error instead of exhausting the native stack (Python has the same
 /// kind of limits: 200 nested brackets, 100 indentation levels).
@@ -503,4 +484,23 @@ pub fn check_limits(source: &str) -> Result<(), ParseError> {
         i += 1;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tab_width_follows_python2() {
+        assert_eq!(width("\t"), 8);
+        assert_eq!(width("  \t"), 8);
+        assert_eq!(width("        "), 8);
+        assert_eq!(width("\t "), 9);
+    }
+
+    #[test]
+    fn valid_code_has_no_lexical_error() {
+        let s = scan("if x:\n    y = (1,\n  2)  # c\n\n    z = '''a\nb'''\nelse:\n\tpass\n");
+        assert!(s.error.is_none(), "{:?}", s.error);
+    }
 }

@@ -1567,7 +1567,7 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
             } else {
                 BoolOp::Or
             };
-            return match lhs.kind {
+            match lhs.kind {
                 ExprKind::BoolOp {
                     op: lop,
                     mut values,
@@ -1591,7 +1591,7 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
                     },
                     span,
                 },
-            };
+            }
         }
         _ => {
             let cmp = match op {
@@ -1606,7 +1606,7 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
                 Rule::is_not => CmpOp::IsNot,
                 _ => CmpOp::NotEq,
             };
-            return match lhs.kind {
+            match lhs.kind {
                 ExprKind::Compare { left, mut ops }
                     if ops.last().is_some_and(|(_, e)| e.span.end == lhs.span.end) =>
                 {
@@ -1626,7 +1626,7 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
                     },
                     span,
                 },
-            };
+            }
         }
     }
 }
