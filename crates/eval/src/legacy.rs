@@ -59,6 +59,32 @@ pub const DROPPED: &[(&str, &str, &str, &str)] = &[
         "ITER_INTE_PAS",
         "not used by code_aster 17",
     ),
+    (
+        "THER_NON_LINE",
+        "NEWTON",
+        "ITER_LINE_MAXI",
+        "the line search is gone from thermal Newton",
+    ),
+    ("DEBUT", "DEBUG", "HIST_ETAPE", "no longer exists"),
+    (
+        "PROJ_CHAMP",
+        "*",
+        "PROL_ZERO",
+        "values outside the source mesh are now always zero",
+    ),
+    ("AFFE_MODELE", "*", "VERIF", "the model is always verified"),
+    (
+        "NUME_DDL",
+        "*",
+        "METHODE",
+        "the numbering method is chosen by the solver",
+    ),
+    (
+        "NUME_DDL",
+        "*",
+        "RENUM",
+        "the renumbering is chosen by the solver",
+    ),
 ];
 
 /// Renamed values: (keyword, old value, new value).
