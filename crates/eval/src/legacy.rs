@@ -206,15 +206,19 @@ pub(crate) fn transform_level(
             g.name = "SCHEMA_TEMPS".into();
             g.value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d)));
         }
-        if cmd == "THER_LINEAIRE"
-            && !given
-                .iter()
-                .any(|g| g.name == "ETAT_INIT" || g.name == "TYPE_CALCUL")
-        {
+        let stat = given
+            .iter()
+            .any(|g| g.name == "TYPE_CALCUL" && g.value.to_string() == "STAT");
+        if cmd == "THER_LINEAIRE" && !stat && !given.iter().any(|g| g.name == "ETAT_INIT") {
+            // No initial state: the transient starts from the stationary
+            // solution (code_aster's compatibility rule).
+            let span = given.first().map(|g| g.span).unwrap_or_default();
+            let mut d = crate::value::Dict::default();
+            d.insert(Value::str("STAT"), Value::str("OUI"), span);
             given.push(Given {
-                name: "TYPE_CALCUL".into(),
-                span: given.first().map(|g| g.span).unwrap_or_default(),
-                value: Value::str("STAT"),
+                name: "ETAT_INIT".into(),
+                span,
+                value: Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d))),
             });
         }
     }
