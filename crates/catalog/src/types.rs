@@ -151,9 +151,14 @@ pub fn computed(
             _ => "matr_asse_depl_r",
         },
         "defi_list_freq_prod" => "listr8_sdaster",
-        "proj_champ_prod" => match type_of("RESULTAT").or_else(|| type_of("CHAM_GD")) {
-            Some(t) => return t,
-            None => "corresp_2_mailla",
+        "proj_champ_prod" => match (text("METHODE").as_deref(), type_of("RESULTAT")) {
+            (_, Some(t)) => return t,
+            // Projection onto sub-points gives an element field.
+            (Some("SOUS_POINT"), None) => "cham_elem",
+            (_, None) if has("CHAM_GD") => {
+                return type_of("CHAM_GD").unwrap_or_else(|| UNKNOWN.into())
+            }
+            _ => "corresp_2_mailla",
         },
         "calc_modes_prod" => match type_of("MATR_RIGI").as_deref() {
             Some(t) if t.starts_with("matr_asse_gene") => "mode_gene",
