@@ -88,7 +88,11 @@ mod tests {
             "",
             vec![],
             vec![
-                Node::group("A", vec![WAttr::int("N", 3)], vec![Node::f64s("X", vec![], &[1.0, 2.0])]),
+                Node::group(
+                    "A",
+                    vec![WAttr::int("N", 3)],
+                    vec![Node::f64s("X", vec![], &[1.0, 2.0])],
+                ),
                 Node::group("B", vec![], vec![]),
             ],
         ));
