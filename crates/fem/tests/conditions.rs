@@ -295,21 +295,32 @@ fn bad_inputs_are_errors_not_panics() {
     assert!(err.contains("T0 DZ") && err.contains("DX, DY"), "{err}");
     assert!(Elastic::new(-1., 0.3).is_err());
     assert!(Elastic::new(1., 0.5).is_err());
-    // A QUAD4 under a 3D modelisation.
-    let mesh = m.mesh().clone();
+    // A volume under a plane modelisation.
+    let mut mesh = m.mesh().clone();
+    mesh.cells[0].ty = CellType::TETRA4;
     let err = Model::new(
         mesh,
         vec![Element {
             cell: CellId(0),
             kind: ElementKind::Continuum {
-                hypothesis: Hypothesis::Solid3D,
+                hypothesis: Hypothesis::PlaneStrain,
                 material: Elastic::new(1., 0.).unwrap(),
             },
         }],
     )
     .unwrap_err()
     .to_string();
-    assert!(err.contains("QUAD4") && err.contains("3D"), "{err}");
+    assert!(
+        err.contains("M0 is a TETRA4") && err.contains("D_PLAN"),
+        "{err}"
+    );
+    // A cell whose node count does not match its type.
+    let mut mesh = m.mesh().clone();
+    mesh.cells[0].nodes.pop();
+    let err = Model::new(mesh, m.elements().to_vec())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("M0") && err.contains("3 nodes"), "{err}");
 }
 
 /// A strip resting on unilateral supports along its bottom, loaded so
@@ -438,4 +449,56 @@ fn instants_honour_inst_init_and_inst_fin() {
     );
     let err = snl.solve(&m, &loads).unwrap_err().to_string();
     assert!(err.contains("time 3") && err.contains("EXCLU"), "{err}");
+}
+
+#[test]
+fn continuum_on_boundary_cells_gives_boundary_elements_and_last_assignment_wins() {
+    let mut mb = MeshBuilder::new(2);
+    let a = mb.node("A", [0., 0., 0.]);
+    let b = mb.node("B", [1., 0., 0.]);
+    let c = mb.node("C", [1., 1., 0.]);
+    let d = mb.node("D", [0., 1., 0.]);
+    let p = mb.node("P", [5., 5., 0.]);
+    let q = mb.cell("Q", CellType::QUAD4, &[a, b, c, d]);
+    let e = mb.cell("E", CellType::SEG2, &[c, d]);
+    let pt = mb.cell("PT", CellType::POI1, &[p]);
+    let mat = Elastic::new(1., 0.2).unwrap();
+    let cont = ElementKind::Continuum {
+        hypothesis: Hypothesis::PlaneStrain,
+        material: mat,
+    };
+    let m = Model::new(
+        mb.mesh,
+        vec![
+            Element {
+                cell: q,
+                kind: ElementKind::Spring {
+                    stiffness: vec![1., 1.],
+                    frame: Frame::Global,
+                },
+            },
+            Element {
+                cell: q,
+                kind: cont.clone(),
+            },
+            Element {
+                cell: e,
+                kind: cont.clone(),
+            },
+            Element {
+                cell: pt,
+                kind: cont,
+            },
+        ],
+    )
+    .unwrap();
+    assert_eq!(m.elements().len(), 2);
+    assert!(matches!(
+        m.elements()[0].kind,
+        ElementKind::Continuum { .. }
+    ));
+    assert_eq!(m.elements()[1].kind, ElementKind::Boundary);
+    // The POI1 got no element, so its node has no DOF.
+    assert!(!m.dofs().has_node(p));
+    assert_eq!(m.dofs().len(), 8);
 }
