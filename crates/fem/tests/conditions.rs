@@ -502,3 +502,81 @@ fn continuum_on_boundary_cells_gives_boundary_elements_and_last_assignment_wins(
     assert!(!m.dofs().has_node(p));
     assert_eq!(m.dofs().len(), 8);
 }
+
+/// A source that re-computes its rows from the current geometry, as a
+/// contact zone does, and records what the solver hands back.
+struct GeometricSource {
+    nodes: Vec<NodeId>,
+    rows_calls: usize,
+    converged: Vec<(f64, Vec<RowOutcome>)>,
+}
+
+impl UnilateralSource for GeometricSource {
+    fn name(&self) -> String {
+        "geometric".into()
+    }
+    fn geometry_update(&self) -> GeometryUpdate {
+        GeometryUpdate::EachIteration
+    }
+    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        self.rows_calls += 1;
+        // Gap to the plane y = 0 measured on the current geometry:
+        // −(y + Δ) ≤ 0 written on the total displacement as −u ≤ y₀.
+        Ok(self
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| {
+                let y0 = state.mesh.coord(n)[1];
+                InequalityRow::new(vec![(Dof::new(n, Comp::DY), -1.)], y0, k)
+            })
+            .collect())
+    }
+    fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        self.converged.push((state.time, outcomes.to_vec()));
+        Ok(())
+    }
+}
+
+#[test]
+fn sources_with_geometry_updates_get_their_outcomes_each_step() {
+    let (m, bottom, top, _) = strip(2, Hypothesis::PlaneStrain);
+    let mut loads = Loads::new();
+    loads.push(Load::Eliminated {
+        dof: Dof::new(bottom[0], Comp::DX),
+        value: 0.,
+    });
+    for &n in &top {
+        loads.add(
+            Load::NodalForce {
+                dof: Dof::new(n, Comp::DY),
+                value: -1.,
+            },
+            Multiplier::from_fn(Ok),
+        );
+    }
+    let mut src = GeometricSource {
+        nodes: bottom.clone(),
+        rows_calls: 0,
+        converged: Vec::new(),
+    };
+    {
+        let mut snl = StaticNonLinear {
+            instants: vec![0., 1., 2.],
+            sources: vec![Box::new(&mut src)],
+            ..Default::default()
+        };
+        let res = snl.solve(&m, &loads).unwrap();
+        let last = res.last().unwrap();
+        let total: f64 = last.unilateral[0].iter().map(|o| o.multiplier).sum();
+        assert!((total - 6.).abs() < 1e-9, "{total}");
+    }
+    assert_eq!(src.converged.len(), 2);
+    assert_eq!(src.converged[1].0, 2.);
+    assert!(src.converged[1]
+        .1
+        .iter()
+        .all(|o| o.active && o.violation.abs() < 1e-12));
+    // Asked at each step and again at each converged iterate.
+    assert!(src.rows_calls >= 4, "{}", src.rows_calls);
+}
