@@ -580,3 +580,50 @@ fn sources_with_geometry_updates_get_their_outcomes_each_step() {
     // Asked at each step and again at each converged iterate.
     assert!(src.rows_calls >= 4, "{}", src.rows_calls);
 }
+
+#[test]
+fn unreachable_convergence_criterion_is_a_clear_error() {
+    let (m, bottom, top, _) = strip(2, Hypothesis::PlaneStrain);
+    let mut loads = Loads::new();
+    for &n in &bottom {
+        loads.push(Load::Eliminated {
+            dof: Dof::new(n, Comp::DX),
+            value: 0.,
+        });
+        loads.push(Load::Eliminated {
+            dof: Dof::new(n, Comp::DY),
+            value: 0.,
+        });
+    }
+    loads.push(Load::NodalForce {
+        dof: Dof::new(top[1], Comp::DX),
+        value: 1.234567,
+    });
+    let mut snl = StaticNonLinear {
+        instants: vec![0., 1.],
+        convergence: Convergence {
+            resi_glob_rela: Some(1e-300),
+            resi_glob_maxi: None,
+            iter_glob_maxi: 3,
+        },
+        ..Default::default()
+    };
+    match snl.solve(&m, &loads) {
+        // Round-off may vanish exactly: then the step converges legitimately.
+        Ok(res) => assert_eq!(res.last().unwrap().resi_glob_rela, 0.0),
+        Err(e) => {
+            let FemError::NoConvergence {
+                time, iterations, ..
+            } = e
+            else {
+                panic!("{e}")
+            };
+            assert_eq!((time, iterations), (1.0, 3));
+            assert!(e.to_string().contains("ITER_GLOB_MAXI"));
+        }
+    }
+    // The default criterion converges in one iteration (linear elasticity).
+    snl.convergence = Convergence::default();
+    let res = snl.solve(&m, &loads).unwrap();
+    assert_eq!(res.last().unwrap().iterations, 1);
+}
