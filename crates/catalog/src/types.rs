@@ -119,16 +119,15 @@ pub fn computed(
             Some(t) => return t.to_lowercase(),
             None => UNKNOWN,
         },
-        "calc_fonction_prod"
-        | "calc_fonc_interp_prod"
-        | "recu_fonction_prod"
-        | "lire_fonction_prod" => {
-            if has("NAPPE") || text("TYPE").as_deref() == Some("NAPPE") {
-                "nappe_sdaster"
-            } else {
-                "fonction_sdaster"
-            }
-        }
+        // Real or complex, function or surface: depends on the inputs in
+        // ways the checker does not follow; left open.
+        "calc_fonction_prod" | "calc_fonc_interp_prod" | "recu_fonction_prod" => UNKNOWN,
+        "lire_fonction_prod" => match text("TYPE").as_deref() {
+            Some("NAPPE") => "nappe_sdaster",
+            Some("FONCTION_C") => "fonction_c",
+            Some("FONCTION") => "fonction_sdaster",
+            _ => UNKNOWN,
+        },
         "calc_table_prod" | "crea_table_prod" | "extr_table_prod" | "post_elem_prod" => {
             if function == "extr_table_prod" {
                 return text("TYPE_RESU")
@@ -179,7 +178,7 @@ pub fn computed(
             (Some("GENE"), Some("HARM")) => "harm_gene",
             _ => UNKNOWN,
         },
-        "combinaison_charge_prod" | "post_combinaison_prod" => "table_sdaster",
+
         _ => UNKNOWN,
     };
     t.to_string()

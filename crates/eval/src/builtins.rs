@@ -52,6 +52,7 @@ const BUILTINS: &[&str] = &[
     "next",
     "ord",
     "chr",
+    "format",
 ];
 
 pub fn builtin(name: &str) -> Option<Value> {
@@ -563,6 +564,14 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
                 Some(b) => b,
                 None => Value::str(v[0].type_name()),
             }
+        }
+        "format" => {
+            let spec = match v.get(1) {
+                Some(Value::Str(s)) => s.to_string(),
+                _ => String::new(),
+            };
+            let x = v.first().cloned().unwrap_or(Value::None);
+            Value::str(&format::format_spec(&x, &spec).or_else(|m| py_err(span, m))?)
         }
         "ord" => match v.first() {
             Some(Value::Str(s)) if s.chars().count() == 1 => {

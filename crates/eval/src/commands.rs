@@ -108,11 +108,12 @@ pub(crate) fn call_command(
         keywords: kws,
     } = &cmd.reentrant
     {
-        diags.push(Diagnostic::error(
+        // code_aster 17 modifies the concept in place anyway.
+        diags.push(Diagnostic::warning(
             DiagKind::Reuse,
             span,
             format!(
-                "{name} requires reuse= (the concept given under {})",
+                "{name} modifies the concept given under {} in place: write reuse=",
                 kws.join(" or ")
             ),
         ));

@@ -533,13 +533,16 @@ impl<'a> Interp<'a> {
         match name {
             "_F" => Some(Value::Builtin(Builtin::Factor)),
             "CO" => Some(Value::Builtin(Builtin::Co)),
+            // code_aster runs command files with `math` names and `CA` in scope.
+            "CA" => Some(Value::Module(Rc::from("code_aster.CA"))),
             _ => {
                 if let Some(b) = builtins::builtin(name) {
                     return Some(b);
                 }
-                catalog()
-                    .command(name)
-                    .map(|c| Value::Command(Rc::from(c.name.as_str())))
+                if let Some(c) = catalog().command(name) {
+                    return Some(Value::Command(Rc::from(c.name.as_str())));
+                }
+                builtins::math_attr(name)
             }
         }
     }

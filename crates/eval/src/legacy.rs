@@ -59,6 +59,32 @@ pub const DROPPED: &[(&str, &str, &str, &str)] = &[
         "ITER_INTE_PAS",
         "not used by code_aster 17",
     ),
+    (
+        "THER_NON_LINE",
+        "NEWTON",
+        "ITER_LINE_MAXI",
+        "the line search is gone from thermal Newton",
+    ),
+    ("DEBUT", "DEBUG", "HIST_ETAPE", "no longer exists"),
+    (
+        "PROJ_CHAMP",
+        "*",
+        "PROL_ZERO",
+        "values outside the source mesh are now always zero",
+    ),
+    ("AFFE_MODELE", "*", "VERIF", "the model is always verified"),
+    (
+        "NUME_DDL",
+        "*",
+        "METHODE",
+        "the numbering method is chosen by the solver",
+    ),
+    (
+        "NUME_DDL",
+        "*",
+        "RENUM",
+        "the renumbering is chosen by the solver",
+    ),
 ];
 
 /// Renamed values: (keyword, old value, new value).
@@ -180,15 +206,19 @@ pub(crate) fn transform_level(
             g.name = "SCHEMA_TEMPS".into();
             g.value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d)));
         }
-        if cmd == "THER_LINEAIRE"
-            && !given
-                .iter()
-                .any(|g| g.name == "ETAT_INIT" || g.name == "TYPE_CALCUL")
-        {
+        let stat = given
+            .iter()
+            .any(|g| g.name == "TYPE_CALCUL" && g.value.to_string() == "STAT");
+        if cmd == "THER_LINEAIRE" && !stat && !given.iter().any(|g| g.name == "ETAT_INIT") {
+            // No initial state: the transient starts from the stationary
+            // solution (code_aster's compatibility rule).
+            let span = given.first().map(|g| g.span).unwrap_or_default();
+            let mut d = crate::value::Dict::default();
+            d.insert(Value::str("STAT"), Value::str("OUI"), span);
             given.push(Given {
-                name: "TYPE_CALCUL".into(),
-                span: given.first().map(|g| g.span).unwrap_or_default(),
-                value: Value::str("STAT"),
+                name: "ETAT_INIT".into(),
+                span,
+                value: Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d))),
             });
         }
     }

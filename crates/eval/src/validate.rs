@@ -267,6 +267,14 @@ impl Validator<'_> {
             };
             let kpath = format!("{path}/{}", g.name);
             let value = match &entry.node {
+                Node::Simple(s) if guessed.contains(&g.name) => {
+                    // Its block may or may not apply (the checker cannot
+                    // know): take the value without judging it.
+                    let n = self.diags.len();
+                    let v = self.simple(s, g, &kpath);
+                    self.diags.truncate(n);
+                    Some(KwValue::Simple(v.unwrap_or_else(|| lenient(&g.value))))
+                }
                 Node::Simple(s) => self.simple(s, g, &kpath).map(KwValue::Simple),
                 Node::Factor(f) => {
                     let occs: Vec<Value> = match &g.value {
@@ -441,6 +449,12 @@ impl Validator<'_> {
         if parent.is_none() && self.reuse_given {
             written.push("reuse");
         }
+        // code_aster does not hold `reuse` to the catalog rules that name it
+        // (THER_NON_LINE(reuse=R) without RESULTAT is valid).
+        let rules: Vec<&Rule> = rules
+            .into_iter()
+            .filter(|r| !r.args.iter().any(|a| a == "reuse"))
+            .collect();
         let defaulted: Vec<String> = out
             .entries
             .iter()
@@ -830,6 +844,21 @@ fn implicit_default(path: &str, r: &Rule, written: &[&str], span: Span) -> Optio
         "ARCHIVAGE" => Some(None),
         _ => None,
     }
+}
+
+/// A value taken as written, without a catalog type to convert it to.
+fn lenient(v: &Value) -> Vec<Scalar> {
+    flatten(v)
+        .into_iter()
+        .map(|x| match x {
+            Value::Int(i) => Scalar::Int(i),
+            Value::Float(f) => Scalar::Real(f),
+            Value::Complex(a, b) => Scalar::Complex(a, b),
+            Value::Str(s) => Scalar::Str(s.to_string()),
+            Value::Concept(c) | Value::Formula(c, _) => Scalar::Concept(c),
+            other => Scalar::Opaque(other.to_string()),
+        })
+        .collect()
 }
 
 fn nw_of(r: &Rule, written: &[&str]) -> usize {
