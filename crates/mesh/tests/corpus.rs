@@ -255,3 +255,93 @@ fn seed_scene_operations() {
     assert_eq!(m.group_no("CD").unwrap().members.len(), 2);
     assert_eq!(m.groups_no.len(), 22);
 }
+
+/// code_aster's mid-edge nodes (0-based) and the corners they lie between.
+fn mid_edges(ty: CellType) -> &'static [(usize, usize, usize)] {
+    match ty {
+        CellType::SEG3 => &[(2, 0, 1)],
+        CellType::TRIA6 | CellType::TRIA7 => &[(3, 0, 1), (4, 1, 2), (5, 2, 0)],
+        CellType::QUAD8 | CellType::QUAD9 => &[(4, 0, 1), (5, 1, 2), (6, 2, 3), (7, 3, 0)],
+        CellType::TETRA10 => &[
+            (4, 0, 1),
+            (5, 1, 2),
+            (6, 2, 0),
+            (7, 0, 3),
+            (8, 1, 3),
+            (9, 2, 3),
+        ],
+        CellType::PENTA15 | CellType::PENTA18 => &[
+            (6, 0, 1),
+            (7, 1, 2),
+            (8, 2, 0),
+            (9, 0, 3),
+            (10, 1, 4),
+            (11, 2, 5),
+            (12, 3, 4),
+            (13, 4, 5),
+            (14, 5, 3),
+        ],
+        CellType::PYRAM13 => &[
+            (5, 0, 1),
+            (6, 1, 2),
+            (7, 2, 3),
+            (8, 3, 0),
+            (9, 0, 4),
+            (10, 1, 4),
+            (11, 2, 4),
+            (12, 3, 4),
+        ],
+        CellType::HEXA20 | CellType::HEXA27 => &[
+            (8, 0, 1),
+            (9, 1, 2),
+            (10, 2, 3),
+            (11, 3, 0),
+            (12, 0, 4),
+            (13, 1, 5),
+            (14, 2, 6),
+            (15, 3, 7),
+            (16, 4, 5),
+            (17, 5, 6),
+            (18, 6, 7),
+            (19, 7, 4),
+        ],
+        _ => &[],
+    }
+}
+
+#[test]
+fn quadratic_nodes_sit_on_their_edges() {
+    let Some(shared) = shared() else { return };
+    // With a wrong permutation a mid node lands on another edge (error ≳ 0.5).
+    let mut checked = std::collections::BTreeMap::new();
+    for f in mesh_files(&shared) {
+        let Ok(m) = read_mesh(&f) else { continue };
+        for c in &m.cells {
+            for &(mid, a, b) in mid_edges(c.ty) {
+                let (p, q, r) = (
+                    m.coord(c.nodes[a]),
+                    m.coord(c.nodes[b]),
+                    m.coord(c.nodes[mid]),
+                );
+                let len =
+                    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
+                let off = ((r[0] - (p[0] + q[0]) / 2.0).powi(2)
+                    + (r[1] - (p[1] + q[1]) / 2.0).powi(2)
+                    + (r[2] - (p[2] + q[2]) / 2.0).powi(2))
+                .sqrt();
+                let e = checked.entry(c.ty.name()).or_insert((0usize, 0usize));
+                e.0 += 1;
+                e.1 += (off > 0.25 * len) as usize;
+            }
+        }
+    }
+    eprintln!("mid-edge nodes checked (total, off their edge): {checked:?}");
+    for ty in ["TETRA10", "HEXA20", "PENTA15", "PYRAM13", "QUAD8", "TRIA6"] {
+        let (n, bad) = checked.get(ty).copied().unwrap_or((0, 0));
+        assert!(n > 0, "no {ty} in the corpus");
+        assert!(
+            bad * 100 <= n,
+            "{ty}: {bad} of {n} mid-edge nodes are off their edge"
+        );
+    }
+}

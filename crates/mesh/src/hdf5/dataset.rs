@@ -126,6 +126,11 @@ enum Layout {
         addr: u64,
         chunk: Vec<u64>,
     },
+    /// Chunked, indexed by a fixed array (layout v4, HDF5 ≥ 1.10 `libver=latest`).
+    FixedArray {
+        header: u64,
+        chunk: Vec<u64>,
+    },
 }
 
 pub fn read<'a>(file: &'a H5File, oh: &ObjectHeader) -> Result<Data<'a>, H5Error> {
@@ -188,30 +193,27 @@ pub fn read<'a>(file: &'a H5File, oh: &ObjectHeader) -> Result<Data<'a>, H5Error
         Layout::Implicit { addr, chunk } => {
             let mut out = vec![0u8; total];
             if addr != UNDEF {
-                let per: Vec<u64> = dims
-                    .iter()
-                    .zip(&chunk)
-                    .map(|(&d, &c)| d.div_ceil(c.max(1)))
-                    .collect();
-                let n = checked_product(&per).unwrap_or(0);
                 let bytes = chunk_bytes(&chunk, esize) as u64;
-                if n > total as u64 {
-                    return Err(H5Error::Corrupt("more chunks than elements".into()));
-                }
+                let n = chunk_count(&dims, &chunk, total)?;
+                let mut entries = Vec::new();
                 for k in 0..n {
-                    let mut origin = vec![0u64; dims.len()];
-                    let mut rest = k;
-                    for d in (0..dims.len()).rev() {
-                        origin[d] = (rest % per[d]) * chunk[d];
-                        rest /= per[d];
-                    }
                     let at = k
                         .checked_mul(bytes)
                         .and_then(|o| o.checked_add(addr))
                         .ok_or_else(|| H5Error::Corrupt("chunk address overflows".into()))?;
-                    let data = file.slice(at, bytes)?;
-                    place_chunk(data, &origin, &chunk, &dims, esize, &mut out);
+                    entries.push((at, bytes, 0u32));
                 }
+                place_chunks(file, &entries, &dims, &chunk, esize, &[], &mut out)?;
+            }
+            Cow::Owned(out)
+        }
+        Layout::FixedArray { header, chunk } => {
+            let mut out = vec![0u8; total];
+            if header != UNDEF {
+                let n = chunk_count(&dims, &chunk, total)?;
+                let bytes = chunk_bytes(&chunk, esize) as u64;
+                let entries = fixed_array(file, header, n, bytes, !filters.is_empty())?;
+                place_chunks(file, &entries, &dims, &chunk, esize, &filters, &mut out)?;
             }
             Cow::Owned(out)
         }
@@ -221,6 +223,111 @@ pub fn read<'a>(file: &'a H5File, oh: &ObjectHeader) -> Result<Data<'a>, H5Error
         dims,
         raw,
     })
+}
+
+/// Number of chunks covering the dataset, in row-major chunk order.
+fn chunk_count(dims: &[u64], chunk: &[u64], total: usize) -> Result<u64, H5Error> {
+    if chunk.len() < dims.len() {
+        return Err(H5Error::Corrupt("chunk rank below dataset rank".into()));
+    }
+    let per: Vec<u64> = dims
+        .iter()
+        .zip(chunk)
+        .map(|(&d, &c)| d.div_ceil(c.max(1)))
+        .collect();
+    let n = checked_product(&per).unwrap_or(u64::MAX);
+    if n > total as u64 {
+        return Err(H5Error::Corrupt("more chunks than elements".into()));
+    }
+    Ok(n)
+}
+
+/// Place chunks given as (address, stored size, filter mask) in row-major chunk order.
+fn place_chunks(
+    file: &H5File,
+    entries: &[(u64, u64, u32)],
+    dims: &[u64],
+    chunk: &[u64],
+    esize: usize,
+    filters: &[Filter],
+    out: &mut [u8],
+) -> Result<(), H5Error> {
+    let per: Vec<u64> = dims
+        .iter()
+        .zip(chunk)
+        .map(|(&d, &c)| d.div_ceil(c.max(1)))
+        .collect();
+    for (k, &(addr, size, mask)) in entries.iter().enumerate() {
+        if addr == UNDEF {
+            continue;
+        }
+        let mut origin = vec![0u64; dims.len()];
+        let mut rest = k as u64;
+        for d in (0..dims.len()).rev() {
+            origin[d] = (rest % per[d].max(1)) * chunk[d];
+            rest /= per[d].max(1);
+        }
+        let active: Vec<Filter> = filters
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| mask & (1 << i) == 0)
+            .map(|(_, f)| Filter { id: f.id })
+            .collect();
+        let plain = unfilter(file.slice(addr, size)?, &active, esize)?;
+        place_chunk(&plain, &origin, chunk, dims, esize, out);
+    }
+    Ok(())
+}
+
+/// The chunk entries of a fixed-array index (`FAHD` header, `FADB` data
+/// block, pages when there are more than 2^page_bits entries).
+fn fixed_array(
+    file: &H5File,
+    header: u64,
+    n: u64,
+    bytes: u64,
+    filtered: bool,
+) -> Result<Vec<(u64, u64, u32)>, H5Error> {
+    let mut c = file.cursor(header)?;
+    c.signature(b"FAHD", "fixed array header")?;
+    c.skip(2)?; // version, client
+    let entry_size = c.u8()? as usize;
+    let page_bits = c.u8()? as u32;
+    let count = c.length()?;
+    let block = c.offset()?;
+    if count < n {
+        return Err(H5Error::Corrupt(format!(
+            "fixed array of {count} chunks for {n}"
+        )));
+    }
+    let os = file.offset_size as usize;
+    let size_bytes = entry_size.saturating_sub(os + 4);
+    let mut d = file.cursor(block)?;
+    d.signature(b"FADB", "fixed array data block")?;
+    d.skip(2)?;
+    d.offset()?;
+    let page = 1u64.checked_shl(page_bits.min(63)).unwrap_or(u64::MAX);
+    let paged = count > page;
+    let pages = if paged { count.div_ceil(page) } else { 0 };
+    if paged {
+        d.skip(pages.div_ceil(8) as usize)?; // page initialised bitmap
+        d.skip(4)?; // checksum of the block prefix
+    }
+    let mut entries = Vec::with_capacity(n.min(1 << 20) as usize);
+    for k in 0..n {
+        if paged && k > 0 && k % page == 0 {
+            d.skip(4)?; // checksum ending the previous page
+        }
+        let addr = d.offset()?;
+        if filtered {
+            let size = d.uint(size_bytes)?;
+            let mask = d.u32()?;
+            entries.push((addr, size, mask));
+        } else {
+            entries.push((addr, bytes, 0));
+        }
+    }
+    Ok(entries)
 }
 
 fn chunk_bytes(chunk: &[u64], esize: usize) -> usize {
@@ -266,7 +373,8 @@ fn parse_layout(c: &mut Cursor<'_>, rank: usize) -> Result<Layout, H5Error> {
                 k => Err(H5Error::Unsupported(format!("layout class {k}"))),
             }
         }
-        3 | 4 => {
+        // Version 5 (HDF5 2.0) encodes the classes read here as version 4 does.
+        3..=5 => {
             let class = c.u8()?;
             match class {
                 0 => {
@@ -316,8 +424,15 @@ fn parse_layout(c: &mut Cursor<'_>, rank: usize) -> Result<Layout, H5Error> {
                             addr: c.offset()?,
                             chunk,
                         }),
+                        3 => {
+                            c.u8()?; // page bits, repeated in the array header
+                            Ok(Layout::FixedArray {
+                                header: c.offset()?,
+                                chunk,
+                            })
+                        }
                         k => Err(H5Error::Unsupported(format!(
-                            "chunk index type {k} (fixed/extensible array or v2 B-tree)"
+                            "chunk index type {k} (extensible array or v2 B-tree)"
                         ))),
                     }
                 }

@@ -14,6 +14,7 @@
 //! The whole file is read into memory once; contiguous datasets are then
 //! borrowed without copying, which keeps reading a million-node mesh fast.
 
+mod checksum;
 mod cursor;
 mod dataset;
 mod dense;

@@ -1,7 +1,8 @@
-//! A small HDF5 writer: the oldest, most widely readable flavour of the
-//! format (superblock v0, object headers v1, symbol-table groups,
-//! contiguous datasets), which every HDF5 library since 1.6 reads — and so
-//! MED, Salome and ParaView.
+//! A small HDF5 writer: superblock v0, datasets with version-1 object
+//! headers and contiguous storage, groups as HDF 1.8 "new style" groups
+//! (version-2 header, link messages, creation order tracked) — the flavour
+//! the MED library writes and expects, read by every HDF5 since 1.8, and so
+//! by MED, Salome and ParaView.
 //!
 //! A file is built as a tree of [`Node`]s and serialised in one pass,
 //! children before parents, so every address is known when it is written.
@@ -185,15 +186,15 @@ impl Node {
 }
 
 const UNDEF: u64 = u64::MAX;
-/// Symbols per symbol-table node (2 × group leaf K, K = 4).
+/// B-tree parameters announced by the superblock (HDF5's defaults; no
+/// symbol-table group is written).
 const LEAF_K: usize = 4;
-/// Children per group B-tree node (2 × group internal K, K = 16).
 const NODE_K: usize = 16;
 
 /// Serialise a root group (its own name is ignored) to an HDF5 file image.
 pub fn to_bytes(root: &Node) -> Vec<u8> {
     let mut w = Writer { buf: vec![0; 96] };
-    let (addr, stab) = w.object(root);
+    let (addr, _) = w.object(root);
     let eof = w.buf.len() as u64;
     let mut sb = Vec::with_capacity(96);
     sb.extend([0x89, b'H', b'D', b'F', b'\r', b'\n', 0x1a, b'\n']);
@@ -204,14 +205,10 @@ pub fn to_bytes(root: &Node) -> Vec<u8> {
     for v in [0, UNDEF, eof, UNDEF] {
         sb.extend(v.to_le_bytes());
     }
-    // Root symbol table entry, caching the root's B-tree and heap.
+    // Root symbol table entry: no cached symbol table (the root is a new-style group).
     sb.extend(0u64.to_le_bytes());
     sb.extend(addr.to_le_bytes());
-    let (btree, heap) = stab.unwrap_or((UNDEF, UNDEF));
-    sb.extend(1u32.to_le_bytes());
-    sb.extend(0u32.to_le_bytes());
-    sb.extend(btree.to_le_bytes());
-    sb.extend(heap.to_le_bytes());
+    sb.extend([0u8; 24]);
     w.buf[..96].copy_from_slice(&sb);
     w.buf
 }
@@ -234,9 +231,8 @@ impl Writer {
         self.buf.len() as u64
     }
 
-    /// Write an object and what it needs; returns its header address and,
-    /// for groups, (B-tree, heap) addresses.
-    fn object(&mut self, node: &Node) -> (u64, Option<(u64, u64)>) {
+    /// Write an object and what it needs; returns its header address.
+    fn object(&mut self, node: &Node) -> (u64, ()) {
         match node {
             Node::Dataset {
                 attrs,
@@ -259,109 +255,64 @@ impl Writer {
                     }),
                 ];
                 msgs.extend(attrs.iter().map(|a| (0x0C, attribute(a))));
-                (self.header(&msgs), None)
+                (self.header(&msgs), ())
             }
             Node::Group {
                 attrs, children, ..
             } => {
-                let mut entries: Vec<(&str, u64)> = children
+                // "New style" group: links as messages of a version-2
+                // header, creation order tracked. The MED library (≥ 3)
+                // lists a group's members by creation order and fails on
+                // symbol-table groups of files that claim MED ≥ 3.
+                let entries: Vec<(&str, u64)> = children
                     .iter()
                     .map(|c| (c.name(), self.object(c).0))
                     .collect();
-                entries.sort_by(|a, b| a.0.as_bytes().cmp(b.0.as_bytes()));
-                // Local heap: offset 0 is the empty string.
-                let mut heap = vec![0u8; 8];
-                let mut offsets = Vec::with_capacity(entries.len());
-                for (name, _) in &entries {
-                    offsets.push(heap.len() as u64);
-                    heap.extend_from_slice(name.as_bytes());
-                    heap.push(0);
-                    heap.resize(pad8(heap.len()), 0);
-                }
-                self.align();
-                let heap_data = self.here();
-                self.buf.extend_from_slice(&heap);
-                let heap_addr = self.here();
-                self.buf.extend_from_slice(b"HEAP");
-                self.buf.extend([0, 0, 0, 0]);
-                self.buf.extend((heap.len() as u64).to_le_bytes());
-                // No free block: HDF5 marks this with offset 1 (H5HL_FREE_NULL).
-                self.buf.extend(1u64.to_le_bytes());
-                self.buf.extend(heap_data.to_le_bytes());
-                // Symbol nodes of up to 2K entries, each with the offset of its last name.
-                let mut level: Vec<(u64, u64)> = Vec::new();
-                let chunks: Vec<usize> = (0..entries.len()).step_by(2 * LEAF_K).collect();
-                for &start in &chunks {
-                    let end = (start + 2 * LEAF_K).min(entries.len());
-                    self.align();
-                    let at = self.here();
-                    let base = self.buf.len();
-                    self.buf.extend_from_slice(b"SNOD");
-                    self.buf.extend([1, 0]);
-                    self.buf.extend(((end - start) as u16).to_le_bytes());
-                    for i in start..end {
-                        self.buf.extend(offsets[i].to_le_bytes());
-                        self.buf.extend(entries[i].1.to_le_bytes());
-                        self.buf.extend([0u8; 24]);
+                let mut msgs = Vec::with_capacity(entries.len() + attrs.len() + 2);
+                let mut linfo = vec![0u8, 0x01];
+                linfo.extend((entries.len() as u64).to_le_bytes());
+                linfo.extend(UNDEF.to_le_bytes());
+                linfo.extend(UNDEF.to_le_bytes());
+                msgs.push((0x02u16, linfo));
+                msgs.push((0x0A, vec![0u8, 0]));
+                for (order, (name, addr)) in entries.iter().enumerate() {
+                    let name = name.as_bytes();
+                    let wide = name.len() > 255;
+                    let mut l = vec![1u8, 0x04 | wide as u8];
+                    l.extend((order as u64).to_le_bytes());
+                    if wide {
+                        l.extend((name.len() as u16).to_le_bytes());
+                    } else {
+                        l.push(name.len() as u8);
                     }
-                    self.buf.resize(base + 8 + 2 * LEAF_K * 40, 0);
-                    level.push((at, offsets[end - 1]));
+                    l.extend_from_slice(name);
+                    l.extend(addr.to_le_bytes());
+                    msgs.push((0x06, l));
                 }
-                let btree = self.btree(level);
-                let msgs = {
-                    let mut s = btree.to_le_bytes().to_vec();
-                    s.extend(heap_addr.to_le_bytes());
-                    let mut m = vec![(0x11u16, s)];
-                    m.extend(attrs.iter().map(|a| (0x0C, attribute(a))));
-                    m
-                };
-                (self.header(&msgs), Some((btree, heap_addr)))
+                msgs.extend(attrs.iter().map(|a| (0x0C, attribute(a))));
+                (self.header_v2(&msgs), ())
             }
         }
     }
 
-    /// Build the group B-tree over (child address, last-name offset) pairs; returns the root.
-    fn btree(&mut self, mut children: Vec<(u64, u64)>) -> u64 {
-        let mut depth = 0u8;
-        loop {
-            let mut parents = Vec::new();
-            let groups: Vec<&[(u64, u64)]> = if children.is_empty() {
-                vec![&[][..]]
-            } else {
-                children.chunks(2 * NODE_K).collect()
-            };
-            let mut addrs = Vec::with_capacity(groups.len());
-            let node_size = 24 + (2 * NODE_K + 1) * 8 + 2 * NODE_K * 8;
-            for _ in &groups {
-                self.align();
-                addrs.push(self.here());
-                let n = self.buf.len();
-                self.buf.resize(n + node_size, 0);
-            }
-            for (i, g) in groups.iter().enumerate() {
-                let mut b = Vec::with_capacity(node_size);
-                b.extend_from_slice(b"TREE");
-                b.extend([0, depth]);
-                b.extend((g.len() as u16).to_le_bytes());
-                let left = if i > 0 { addrs[i - 1] } else { UNDEF };
-                let right = addrs.get(i + 1).copied().unwrap_or(UNDEF);
-                b.extend(left.to_le_bytes());
-                b.extend(right.to_le_bytes());
-                b.extend(0u64.to_le_bytes());
-                for (child, last) in g.iter() {
-                    b.extend(child.to_le_bytes());
-                    b.extend(last.to_le_bytes());
-                }
-                let at = addrs[i] as usize;
-                self.buf[at..at + b.len()].copy_from_slice(&b);
-                parents.push((addrs[i], g.last().map_or(0, |c| c.1)));
-            }
-            if parents.len() == 1 {
-                return parents[0].0;
-            }
-            children = parents;
-            depth += 1;
+    /// A version-2 object header (`OHDR`, lookup3 checksum) holding these messages.
+    fn header_v2(&mut self, msgs: &[(u16, Vec<u8>)]) -> u64 {
+        self.align();
+        let at = self.here();
+        let start = self.buf.len();
+        let size: usize = msgs.iter().map(|(_, b)| 4 + b.len()).sum();
+        self.buf.extend_from_slice(b"OHDR");
+        self.buf.extend([2, 0x02]);
+        self.buf.extend((size as u32).to_le_bytes());
+        for (ty, body) in msgs {
+            self.buf.push(*ty as u8);
+            self.buf.extend((body.len() as u16).to_le_bytes());
+            self.buf.push(0);
+            self.buf.extend_from_slice(body);
         }
+        let sum = super::checksum::lookup3(&self.buf[start..]);
+        self.buf.extend(sum.to_le_bytes());
+        at
     }
 
     /// A version-1 object header holding these messages.
