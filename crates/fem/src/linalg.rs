@@ -248,6 +248,9 @@ fn cholesky_ordered(mat: SparseColMatRef<'_, usize, f64>, order: &[usize]) -> Op
     )
     .ok()?;
     let mut values = vec![0.0; symbolic.len_val()];
+    if std::env::var_os("ASTER_FEM_TIMING").is_some() {
+        eprintln!("[fem] Cholesky factor: {} non-zeros", symbolic.len_val());
+    }
     let par = faer::get_global_parallelism();
     let mut mem = faer::dyn_stack::MemBuffer::try_new(
         symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),

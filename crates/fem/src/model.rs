@@ -54,8 +54,15 @@ pub struct Model {
 
 impl Model {
     /// Builds a model and numbers its DOFs. Errors name the offending cell.
+    ///
+    /// As code_aster's AFFE_MODELE: a later element on the same cell
+    /// replaces an earlier one; a continuum modelisation on a boundary cell
+    /// (SEG2/SEG3 in 2D, TRIA3/QUAD4/TRIA6/QUAD8 in 3D) gives a boundary
+    /// element (for edge and face loads); on a cell of lower dimension
+    /// still (POI1, SEG2 in 3D) it gives no element.
     pub fn new(mesh: impl Into<Arc<Mesh>>, elements: Vec<Element>) -> Result<Model, FemError> {
         let mesh: Arc<Mesh> = mesh.into();
+        let elements = normalise(&mesh, elements);
         let mut hypothesis: Option<Hypothesis> = None;
         let mut spring_dim: Option<usize> = None;
         let cell_name = |id: CellId| {
@@ -72,6 +79,16 @@ impl Model {
                     mesh.cells.len()
                 )));
             };
+            if cell.nodes.len() != cell.ty.node_count() {
+                return Err(FemError::Model(format!(
+                    "cell {} is a {} with {} nodes; a {} has {}",
+                    cell_name(el.cell),
+                    cell.ty.name(),
+                    cell.nodes.len(),
+                    cell.ty.name(),
+                    cell.ty.node_count()
+                )));
+            }
             if let Some(&n) = cell
                 .nodes
                 .iter()
@@ -252,4 +269,39 @@ impl Model {
             .cloned()
             .unwrap_or_else(|| format!("#{}", id.0 + 1))
     }
+}
+
+/// Last assignment wins per cell; continuum modelisations on lower-
+/// dimensional cells become boundary elements or nothing.
+fn normalise(mesh: &Mesh, elements: Vec<Element>) -> Vec<Element> {
+    let mut last: std::collections::HashMap<CellId, usize> = Default::default();
+    for (k, el) in elements.iter().enumerate() {
+        last.insert(el.cell, k);
+    }
+    let mut out = Vec::with_capacity(elements.len());
+    for (k, el) in elements.into_iter().enumerate() {
+        if last.get(&el.cell) != Some(&k) {
+            continue;
+        }
+        let Some(cell) = mesh.cells.get(el.cell.0 as usize) else {
+            out.push(el); // reported by Model::new
+            continue;
+        };
+        if let ElementKind::Continuum { hypothesis, .. } = &el.kind {
+            let cdim = cell.ty.dim() as usize;
+            let hdim = hypothesis.dim();
+            if cdim + 1 == hdim && shape::supported(cell.ty) {
+                out.push(Element {
+                    cell: el.cell,
+                    kind: ElementKind::Boundary,
+                });
+                continue;
+            }
+            if cdim + 1 < hdim {
+                continue;
+            }
+        }
+        out.push(el);
+    }
+    out
 }

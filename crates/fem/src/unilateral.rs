@@ -168,3 +168,23 @@ impl UnilateralSource for FixedRows {
         Ok(self.rows.clone())
     }
 }
+
+/// A borrowed source: lets the caller keep the source (and read what it
+/// recorded in [`UnilateralSource::converged`]) after the solve.
+impl<T: UnilateralSource + ?Sized> UnilateralSource for &mut T {
+    fn name(&self) -> String {
+        (**self).name()
+    }
+    fn method(&self) -> UnilateralMethod {
+        (**self).method()
+    }
+    fn geometry_update(&self) -> GeometryUpdate {
+        (**self).geometry_update()
+    }
+    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        (**self).rows(state)
+    }
+    fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        (**self).converged(state, outcomes)
+    }
+}

@@ -295,21 +295,32 @@ fn bad_inputs_are_errors_not_panics() {
     assert!(err.contains("T0 DZ") && err.contains("DX, DY"), "{err}");
     assert!(Elastic::new(-1., 0.3).is_err());
     assert!(Elastic::new(1., 0.5).is_err());
-    // A QUAD4 under a 3D modelisation.
-    let mesh = m.mesh().clone();
+    // A volume under a plane modelisation.
+    let mut mesh = m.mesh().clone();
+    mesh.cells[0].ty = CellType::TETRA4;
     let err = Model::new(
         mesh,
         vec![Element {
             cell: CellId(0),
             kind: ElementKind::Continuum {
-                hypothesis: Hypothesis::Solid3D,
+                hypothesis: Hypothesis::PlaneStrain,
                 material: Elastic::new(1., 0.).unwrap(),
             },
         }],
     )
     .unwrap_err()
     .to_string();
-    assert!(err.contains("QUAD4") && err.contains("3D"), "{err}");
+    assert!(
+        err.contains("M0 is a TETRA4") && err.contains("D_PLAN"),
+        "{err}"
+    );
+    // A cell whose node count does not match its type.
+    let mut mesh = m.mesh().clone();
+    mesh.cells[0].nodes.pop();
+    let err = Model::new(mesh, m.elements().to_vec())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("M0") && err.contains("3 nodes"), "{err}");
 }
 
 /// A strip resting on unilateral supports along its bottom, loaded so
@@ -438,4 +449,181 @@ fn instants_honour_inst_init_and_inst_fin() {
     );
     let err = snl.solve(&m, &loads).unwrap_err().to_string();
     assert!(err.contains("time 3") && err.contains("EXCLU"), "{err}");
+}
+
+#[test]
+fn continuum_on_boundary_cells_gives_boundary_elements_and_last_assignment_wins() {
+    let mut mb = MeshBuilder::new(2);
+    let a = mb.node("A", [0., 0., 0.]);
+    let b = mb.node("B", [1., 0., 0.]);
+    let c = mb.node("C", [1., 1., 0.]);
+    let d = mb.node("D", [0., 1., 0.]);
+    let p = mb.node("P", [5., 5., 0.]);
+    let q = mb.cell("Q", CellType::QUAD4, &[a, b, c, d]);
+    let e = mb.cell("E", CellType::SEG2, &[c, d]);
+    let pt = mb.cell("PT", CellType::POI1, &[p]);
+    let mat = Elastic::new(1., 0.2).unwrap();
+    let cont = ElementKind::Continuum {
+        hypothesis: Hypothesis::PlaneStrain,
+        material: mat,
+    };
+    let m = Model::new(
+        mb.mesh,
+        vec![
+            Element {
+                cell: q,
+                kind: ElementKind::Spring {
+                    stiffness: vec![1., 1.],
+                    frame: Frame::Global,
+                },
+            },
+            Element {
+                cell: q,
+                kind: cont.clone(),
+            },
+            Element {
+                cell: e,
+                kind: cont.clone(),
+            },
+            Element {
+                cell: pt,
+                kind: cont,
+            },
+        ],
+    )
+    .unwrap();
+    assert_eq!(m.elements().len(), 2);
+    assert!(matches!(
+        m.elements()[0].kind,
+        ElementKind::Continuum { .. }
+    ));
+    assert_eq!(m.elements()[1].kind, ElementKind::Boundary);
+    // The POI1 got no element, so its node has no DOF.
+    assert!(!m.dofs().has_node(p));
+    assert_eq!(m.dofs().len(), 8);
+}
+
+/// A source that re-computes its rows from the current geometry, as a
+/// contact zone does, and records what the solver hands back.
+struct GeometricSource {
+    nodes: Vec<NodeId>,
+    rows_calls: usize,
+    converged: Vec<(f64, Vec<RowOutcome>)>,
+}
+
+impl UnilateralSource for GeometricSource {
+    fn name(&self) -> String {
+        "geometric".into()
+    }
+    fn geometry_update(&self) -> GeometryUpdate {
+        GeometryUpdate::EachIteration
+    }
+    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        self.rows_calls += 1;
+        // Gap to the plane y = 0 measured on the current geometry:
+        // −(y + Δ) ≤ 0 written on the total displacement as −u ≤ y₀.
+        Ok(self
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| {
+                let y0 = state.mesh.coord(n)[1];
+                InequalityRow::new(vec![(Dof::new(n, Comp::DY), -1.)], y0, k)
+            })
+            .collect())
+    }
+    fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        self.converged.push((state.time, outcomes.to_vec()));
+        Ok(())
+    }
+}
+
+#[test]
+fn sources_with_geometry_updates_get_their_outcomes_each_step() {
+    let (m, bottom, top, _) = strip(2, Hypothesis::PlaneStrain);
+    let mut loads = Loads::new();
+    loads.push(Load::Eliminated {
+        dof: Dof::new(bottom[0], Comp::DX),
+        value: 0.,
+    });
+    for &n in &top {
+        loads.add(
+            Load::NodalForce {
+                dof: Dof::new(n, Comp::DY),
+                value: -1.,
+            },
+            Multiplier::from_fn(Ok),
+        );
+    }
+    let mut src = GeometricSource {
+        nodes: bottom.clone(),
+        rows_calls: 0,
+        converged: Vec::new(),
+    };
+    {
+        let mut snl = StaticNonLinear {
+            instants: vec![0., 1., 2.],
+            sources: vec![Box::new(&mut src)],
+            ..Default::default()
+        };
+        let res = snl.solve(&m, &loads).unwrap();
+        let last = res.last().unwrap();
+        let total: f64 = last.unilateral[0].iter().map(|o| o.multiplier).sum();
+        assert!((total - 6.).abs() < 1e-9, "{total}");
+    }
+    assert_eq!(src.converged.len(), 2);
+    assert_eq!(src.converged[1].0, 2.);
+    assert!(src.converged[1]
+        .1
+        .iter()
+        .all(|o| o.active && o.violation.abs() < 1e-12));
+    // Asked at each step and again at each converged iterate.
+    assert!(src.rows_calls >= 4, "{}", src.rows_calls);
+}
+
+#[test]
+fn unreachable_convergence_criterion_is_a_clear_error() {
+    let (m, bottom, top, _) = strip(2, Hypothesis::PlaneStrain);
+    let mut loads = Loads::new();
+    for &n in &bottom {
+        loads.push(Load::Eliminated {
+            dof: Dof::new(n, Comp::DX),
+            value: 0.,
+        });
+        loads.push(Load::Eliminated {
+            dof: Dof::new(n, Comp::DY),
+            value: 0.,
+        });
+    }
+    loads.push(Load::NodalForce {
+        dof: Dof::new(top[1], Comp::DX),
+        value: 1.234567,
+    });
+    let mut snl = StaticNonLinear {
+        instants: vec![0., 1.],
+        convergence: Convergence {
+            resi_glob_rela: Some(1e-300),
+            resi_glob_maxi: None,
+            iter_glob_maxi: 3,
+        },
+        ..Default::default()
+    };
+    match snl.solve(&m, &loads) {
+        // Round-off may vanish exactly: then the step converges legitimately.
+        Ok(res) => assert_eq!(res.last().unwrap().resi_glob_rela, 0.0),
+        Err(e) => {
+            let FemError::NoConvergence {
+                time, iterations, ..
+            } = e
+            else {
+                panic!("{e}")
+            };
+            assert_eq!((time, iterations), (1.0, 3));
+            assert!(e.to_string().contains("ITER_GLOB_MAXI"));
+        }
+    }
+    // The default criterion converges in one iteration (linear elasticity).
+    snl.convergence = Convergence::default();
+    let res = snl.solve(&m, &loads).unwrap();
+    assert_eq!(res.last().unwrap().iterations, 1);
 }

@@ -94,6 +94,10 @@ fn error(nr: usize) -> f64 {
 #[test]
 fn quad8_converges_on_the_thick_cylinder() {
     let errs: Vec<f64> = [1, 2, 4, 8].iter().map(|&n| error(n)).collect();
+    eprintln!(
+        "QUAD8 thick cylinder, max relative u_r error for 1, 2, 4, 8 cells: {:?}",
+        errs.iter().map(|e| format!("{e:.3e}")).collect::<Vec<_>>()
+    );
     // The pressure pushes outward: right sign and magnitude already on one cell.
     assert!(errs[0] < 2e-2, "{errs:?}");
     assert!(errs[3] < 1e-5, "{errs:?}");

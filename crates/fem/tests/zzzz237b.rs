@@ -118,6 +118,7 @@ fn zzzz237b_active_set_matches_code_aster() {
         value(&s, last, s.a, Comp::DX),
         value(&s, last, s.b, Comp::DX),
     );
+    eprintln!("t=20: DY(A)={dya:e} DY(B)={dyb:e} DX(A)={dxa:.10} DX(B)={dxb:.10}");
     // code_aster: DX(A) = -4.285714318, DX(B) = 4.285714274 (TOLE_MACHINE 1e-6).
     assert!(
         (dxa - -4.285714318).abs() / 4.285714318 < 1e-6,
@@ -130,6 +131,7 @@ fn zzzz237b_active_set_matches_code_aster() {
     let f = post::forc_noda(&s.model, &last.displacement).unwrap();
     for n in [s.a, s.b] {
         let fy = f[s.model.dofs().index(Dof::new(n, Comp::DY)).unwrap()];
+        eprintln!("FORC_NODA DY = {fy:.9e}");
         assert!(
             (fy - 2.19780220e10).abs() / 2.19780220e10 < 1e-6,
             "FORC_NODA DY = {fy}"
