@@ -121,14 +121,18 @@ impl FactorizedStiffness {
         self.free.iter().map(|&i| y[i]).collect()
     }
 
-    /// Solve with two steps of iterative refinement: soft modes (a body
-    /// held by springs 1e8 times softer than its elements) are otherwise
-    /// determined only to round-off.
+    /// Solve, refined (at most twice) while the residual exceeds 1e-12 of
+    /// the right-hand side: soft modes (a body held by springs 1e8 times
+    /// softer than its elements) are otherwise determined only to round-off.
     fn solve_free(&self, b: &[f64]) -> Vec<f64> {
         let mut x = self.solve_once(b);
+        let bmax = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for _ in 0..2 {
             let kx = self.mul_free(&x);
             let r: Vec<f64> = b.iter().zip(&kx).map(|(bi, ki)| bi - ki).collect();
+            if r.iter().fold(0.0f64, |m, v| m.max(v.abs())) <= 1e-12 * bmax {
+                break;
+            }
             let dx = self.solve_once(&r);
             for (xi, di) in x.iter_mut().zip(&dx) {
                 *xi += di;
