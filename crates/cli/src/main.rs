@@ -62,6 +62,13 @@ enum Command {
         #[arg(long, default_value = ".")]
         out: PathBuf,
     },
+    /// Sweep contact methods and parameters on a scene (TOML spec); write a
+    /// CSV, error/time, convergence and stability charts, and a summary.
+    Study {
+        spec: PathBuf,
+        #[arg(long, default_value = "study-out")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
@@ -78,6 +85,7 @@ fn main() -> ExitCode {
             out,
         } => cmd::mesh::run(&file, json, to.as_deref(), out.as_deref()),
         Command::Run { case, mesh, out } => cmd::run::run(&case, mesh.as_deref(), &out),
+        Command::Study { spec, out } => cmd::study::run(&spec, &out),
     };
     ExitCode::from(code)
 }

@@ -25,6 +25,7 @@ pub struct Ident {
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Stmt {
+    #[serde(flatten)]
     pub kind: StmtKind,
     pub span: Span,
 }
@@ -169,6 +170,7 @@ pub enum ParamKind {
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Expr {
+    #[serde(flatten)]
     pub kind: ExprKind,
     pub span: Span,
 }
@@ -287,6 +289,7 @@ pub struct Comprehension {
 /// An argument in a call.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Arg {
+    #[serde(flatten)]
     pub kind: ArgKind,
     pub span: Span,
 }

@@ -153,5 +153,3 @@ pub fn render(map: &CodeMap, error: &ParseError) -> String {
         error.message
     )
 }
-/// Improve a raw parse error with a lexical diagnosis (placeholder: identity).
-pub fn refine(_source: &str, e: ParseError) -> ParseError { e }

@@ -7,6 +7,7 @@
 
 pub mod ast;
 pub mod codemap;
+pub mod diagnose;
 pub mod dialect;
 pub mod error;
 pub mod fmt;
@@ -46,7 +47,7 @@ impl std::error::Error for ParseError {}
 pub fn parse_module(source: &str) -> Result<ast::Module, ParseError> {
     let module = match parser::parse_module_unchecked(source) {
         Ok(m) => m,
-        Err(e) => return Err(error::refine(source, e)),
+        Err(e) => return Err(diagnose::refine(source, e)),
     };
     validate::check(&module)?;
     Ok(module)

@@ -21,6 +21,10 @@ pub fn number(text: &str) -> Result<ExprKind, String> {
     let radix_int = |digits: &str, radix: u32| -> Result<ExprKind, String> {
         match i64::from_str_radix(digits, radix) {
             Ok(value) => Ok(ExprKind::Int { value }),
+            Err(_) if radix == 10 => digits
+                .parse()
+                .map(|value| ExprKind::Float { value })
+                .map_err(|_| format!("invalid integer `{text}`")),
             Err(_) => {
                 // Too large for an i64: keep the magnitude as a float.
                 let mut value = 0f64;

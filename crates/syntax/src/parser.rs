@@ -56,7 +56,7 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
     let mut pairs = CommParser::parse(Rule::module, source)
         .map_err(|e| crate::error::from_pest(&e, source))?;
-    let builder = Builder { base: 0 };
+    let builder = Builder { base: 0, source };
     let body = match pairs.next() {
         Some(module) => builder.stmts(module.into_inner())?,
         None => Vec::new(),
@@ -75,14 +75,41 @@ fn err(span: Span, message: impl Into<String>) -> ParseError {
 }
 
 /// Builds AST nodes; `base` shifts spans of sub-parses (f-string fields).
-struct Builder {
+struct Builder<'s> {
     base: usize,
+    /// The text the pairs come from (the file, or an f-string field).
+    source: &'s str,
 }
 
-impl Builder {
+impl Builder<'_> {
+    /// A pair's span, without the trailing whitespace pest's implicit
+    /// whitespace may have consumed after an optional last element.
     fn span(&self, pair: &P) -> Span {
         let s = pair.as_span();
-        Span::new(self.base + s.start(), self.base + s.end())
+        let text = &self.source[s.start()..s.end()];
+        let end = s.start() + text.trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\']).len();
+        Span::new(self.base + s.start(), self.base + end.max(s.start()))
+    }
+
+    /// A statement-level span: also without a trailing comment.
+    fn stmt_span(&self, pair: &P) -> Span {
+        let mut span = self.span(pair);
+        loop {
+            let local_start = span.start as usize - self.base;
+            let local_end = span.end as usize - self.base;
+            let text = &self.source[local_start..local_end];
+            let line_start = text.rfind('\n').map_or(0, |i| i + 1);
+            let Some(hash) = comment_start(&text[line_start..]) else {
+                return span;
+            };
+            let cut = text[..line_start + hash]
+                .trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\'])
+                .len();
+            if cut == 0 || cut == text.len() {
+                return span;
+            }
+            span.end = (self.base + local_start + cut) as u32;
+        }
     }
 
     fn ident(&self, pair: P) -> Ident {
@@ -119,7 +146,7 @@ impl Builder {
     }
 
     fn small_stmt(&self, pair: P) -> R<Stmt> {
-        let span = self.span(&pair);
+        let span = self.stmt_span(&pair);
         let rule = pair.as_rule();
         let mut inner = pair.into_inner();
         let kind = match rule {
@@ -270,6 +297,12 @@ impl Builder {
                 }
             }
             Rule::expr_stmt => self.expr_stmt(inner)?,
+            Rule::yield_stmt => match inner.next() {
+                Some(y) => StmtKind::Expr {
+                    value: self.yield_expr(y)?,
+                },
+                None => return Err(err(span, "expected `yield`")),
+            },
             other => return Err(err(span, format!("internal: unexpected statement {other:?}"))),
         };
         Ok(Stmt { kind, span })
@@ -358,7 +391,7 @@ impl Builder {
     }
 
     fn compound_stmt(&self, pair: P) -> R<Stmt> {
-        let span = self.span(&pair);
+        let span = self.stmt_span(&pair);
         let rule = pair.as_rule();
         let mut inner = pair.into_inner();
         let kind = match rule {
@@ -637,7 +670,7 @@ impl Builder {
             Rule::testlist_star | Rule::exprlist | Rule::target_list => {}
             _ => return self.element(pair),
         }
-        let span = self.span(&pair);
+        let span = self.stmt_span(&pair);
         let mut elts = Vec::new();
         let mut comma = false;
         for p in pair.into_inner() {
@@ -713,7 +746,7 @@ impl Builder {
             Rule::lambdef | Rule::lambdef_nocond => return self.lambda(pair),
             _ => return self.element(pair),
         }
-        let span = self.span(&pair);
+        let span = self.stmt_span(&pair);
         let mut inner = pair.into_inner();
         let first = match inner.next() {
             Some(p) => p,
@@ -1321,7 +1354,10 @@ impl Builder {
             pe.message = format!("f-string: {}", pe.message);
             pe
         })?;
-        let sub = Builder { base: expr_start };
+        let sub = Builder {
+            base: expr_start,
+            source: expr_text,
+        };
         let value = match pairs
             .next()
             .and_then(|p| p.into_inner().next())
@@ -1384,6 +1420,28 @@ impl Builder {
             i + 1,
         ))
     }
+}
+
+/// Where a comment starts on a line (a `#` outside quotes), if any.
+fn comment_start(line: &str) -> Option<usize> {
+    let mut quote: Option<char> = None;
+    let mut escaped = false;
+    for (i, c) in line.char_indices() {
+        if let Some(q) = quote {
+            if escaped {
+                escaped = false;
+            } else if c == '\\' {
+                escaped = true;
+            } else if c == q {
+                quote = None;
+            }
+        } else if c == '\'' || c == '"' {
+            quote = Some(c);
+        } else if c == '#' {
+            return Some(i);
+        }
+    }
+    None
 }
 
 /// Adjacent literal parts are merged so `f"a" "b"` and `f"ab"` read the same.

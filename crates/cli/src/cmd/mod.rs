@@ -6,3 +6,4 @@ pub mod fmt;
 pub mod mesh;
 pub mod parse;
 pub mod run;
+pub mod study;

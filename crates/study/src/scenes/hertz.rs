@@ -1,0 +1,193 @@
+//! The Hertz cylinder-on-plane scene (plane strain): the right half of a
+//! cylinder pressed by its hub onto a rigid plane, on the contact crate's
+//! mesh generator (refined near the contact). `refine` is the number of
+//! cells across the refined contact sector.
+//!
+//! Compared quantity: the peak pressure p₀, from the contact force of the
+//! node on the symmetry line over its tributary length h/2. Reference: the
+//! analytic p₀ = 2P/(πa), a = √(4PR/(πE*)), with P the load per unit length
+//! the run actually transmitted (twice the half model's contact force), so
+//! the error measures the contact pressure, not the load.
+
+use super::driver;
+use crate::error::StudyError;
+use crate::outcome::{Failure, FailureKind, Measures};
+use crate::scene::{Params, Scene};
+use crate::spec::Point;
+use aster_contact::hertz::{hertz_mesh, plane_strain_modulus, HertzMesh, HertzSolution};
+use aster_fem::{
+    Comp, Dof, Elastic, Element, ElementKind, Hypothesis, Load, Loads, Model, Multiplier,
+};
+use std::collections::BTreeMap;
+
+pub struct Hertz {
+    radius: f64,
+    young: f64,
+    poisson: f64,
+    /// Imposed downward displacement of the hub at the last instant.
+    depth: f64,
+    /// Angle of the refined sector (rad); must hold the contact.
+    contact_angle: f64,
+    /// Penetration beyond which a converged run is a wrong answer.
+    max_penetration: f64,
+}
+
+const KNOWN: &[&str] = &[
+    "radius",
+    "young",
+    "poisson",
+    "depth",
+    "contact_angle",
+    "max_penetration",
+];
+
+impl Hertz {
+    pub fn from_params(table: &BTreeMap<String, f64>) -> Result<Hertz, StudyError> {
+        let p = Params::new("hertz", table, KNOWN)?;
+        Ok(Hertz {
+            radius: p.positive("radius", 50.0)?,
+            young: p.positive("young", 2e5)?,
+            poisson: p.within("poisson", 0.3, 0.0, 0.5)?,
+            depth: p.positive("depth", 0.25)?,
+            contact_angle: p.within("contact_angle", 0.15, 1e-3, 1.5)?,
+            max_penetration: p.positive("max_penetration", 1e-3)?,
+        })
+    }
+
+    fn problem(&self, n: usize) -> Result<(Model, Loads), Failure> {
+        let other = |m: String| Failure::new(FailureKind::Other, m);
+        let mesh = hertz_mesh(&HertzMesh::new(self.radius, self.contact_angle, n))
+            .map_err(|e| other(e.to_string()))?;
+        let material = Elastic::new(self.young, self.poisson).map_err(|e| other(e.to_string()))?;
+        let group = |g: &str| {
+            mesh.group_ma(g)
+                .map(|g| g.members.clone())
+                .ok_or_else(|| other(format!("generated mesh lacks group {g}")))
+        };
+        let nodes = |g: &str| {
+            mesh.group_no(g)
+                .map(|g| g.members.clone())
+                .ok_or_else(|| other(format!("generated mesh lacks node group {g}")))
+        };
+        let mut elements = Vec::new();
+        for g in ["CYL", "PLAN"] {
+            for cell in group(g)? {
+                elements.push(Element {
+                    cell,
+                    kind: ElementKind::Continuum {
+                        hypothesis: Hypothesis::PlaneStrain,
+                        material,
+                    },
+                });
+            }
+        }
+        let mut loads = Loads::new();
+        let fixed = |n, comp| Load::Eliminated {
+            dof: Dof::new(n, comp),
+            value: 0.0,
+        };
+        for n in nodes("PLAN")? {
+            loads.push(fixed(n, Comp::DX));
+            loads.push(fixed(n, Comp::DY));
+        }
+        for n in nodes("SYME")? {
+            loads.push(fixed(n, Comp::DX));
+        }
+        for n in nodes("HUB")? {
+            loads.push(fixed(n, Comp::DX));
+            loads.add(
+                Load::Eliminated {
+                    dof: Dof::new(n, Comp::DY),
+                    value: -self.depth,
+                },
+                Multiplier::from_fn(Ok),
+            );
+        }
+        let model = Model::new(mesh, elements).map_err(|e| other(e.to_string()))?;
+        Ok((model, loads))
+    }
+}
+
+impl Scene for Hertz {
+    fn quantity(&self) -> String {
+        "peak pressure p0 (MPa)".into()
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "Hertz half cylinder R = {} mm on a rigid plane, plane strain, E = {}, ν = {}, hub pushed {} mm",
+            self.radius, self.young, self.poisson, self.depth
+        )
+    }
+
+    fn run(&self, p: &Point) -> Result<Measures, Failure> {
+        let n = p.refine as usize;
+        let (model, loads) = self.problem(n)?;
+        let def = driver::definition(&p.method, "MAIT", "ESCL")?;
+        let instants: Vec<f64> = (0..=p.steps).map(|i| i as f64 / p.steps as f64).collect();
+        let solved = driver::solve(&def, &model, &loads, &instants)?;
+        let mesh = model.mesh();
+        let mut forces: Vec<(f64, f64)> = solved
+            .zones
+            .iter()
+            .flat_map(|z| z.nodal_forces())
+            .map(|(node, f)| (mesh.coord(node)[0], f))
+            .collect();
+        forces.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let h = self.radius * self.contact_angle / n as f64;
+        let load = 2.0 * forces.iter().map(|f| f.1).sum::<f64>();
+        let penetration = driver::penetration(&solved, &model);
+        let e_star = plane_strain_modulus(self.young, self.poisson, f64::INFINITY, 0.0);
+        let exact = HertzSolution::new(load.max(f64::MIN_POSITIVE), self.radius, e_star);
+        let p0 = forces
+            .first()
+            .filter(|f| f.0.abs() < 1e-9 * self.radius)
+            .map_or(0.0, |f| f.1)
+            / (h / 2.0);
+        let last = forces.iter().rposition(|f| f.1 > 0.0);
+        let measured_a = last.map_or(0.0, |i| forces[i].0);
+        let m = Measures {
+            value: p0,
+            reference: Some(exact.peak_pressure),
+            h,
+            dofs: model.dofs().len(),
+            newton_iterations: solved.geom_iterations,
+            contact_iterations: solved.contact_iterations,
+            solver_seconds: Some(solved.solver_seconds),
+            excluded_seconds: solved.excluded_seconds,
+            penetration: Some(penetration),
+            extras: vec![
+                ("load_P".into(), load),
+                ("a_analytic".into(), exact.half_width),
+                ("a_last_loaded_node".into(), measured_a),
+            ],
+        };
+        if !(load > 0.0) || p0 <= 0.0 {
+            return Err(Failure::wrong(
+                FailureKind::LostContact,
+                format!("no contact force at the symmetry node (load P = {load:.3e})"),
+                m,
+            ));
+        }
+        if exact.half_width > 0.5 * self.radius * self.contact_angle {
+            return Err(Failure::new(
+                FailureKind::Other,
+                format!(
+                    "contact half-width {:.3} exceeds half the refined sector: raise contact_angle",
+                    exact.half_width
+                ),
+            ));
+        }
+        if penetration > self.max_penetration {
+            return Err(Failure::wrong(
+                FailureKind::Penetration,
+                format!(
+                    "penetration {penetration:.3e} mm > {:.1e} mm",
+                    self.max_penetration
+                ),
+                m,
+            ));
+        }
+        Ok(m)
+    }
+}

@@ -1,0 +1,379 @@
+//! Better messages for syntax errors.
+//!
+//! pest reports the furthest position it reached and the rules it tried
+//! there. For the errors people actually make that position is often far
+//! from the cause (an unclosed `(` is only noticed at the end of the file)
+//! or the expected set is unhelpful. So when parsing fails, this module runs
+//! a small line/bracket/string scanner (the lexical layer of Python's own
+//! tokenizer) and explains the failure in its terms when it can:
+//! unterminated strings, unclosed/unmatched/mismatched brackets, invalid
+//! characters, indentation errors, a block header without `:`, a missing
+//! comma between arguments.
+
+use crate::codemap::Span;
+use crate::ParseError;
+
+fn err(pos: usize, len: usize, message: String) -> ParseError {
+    ParseError {
+        span: Span::new(pos, pos + len),
+        message,
+    }
+}
+
+/// One logical line (physical lines joined inside brackets and after `\`).
+#[derive(Debug)]
+struct LogicalLine {
+    /// Byte offset of the first token.
+    start: usize,
+    /// Byte offset just after the last token (before comment/newline).
+    end: usize,
+    /// The last significant character.
+    last: char,
+    /// The first word, e.g. `if`.
+    first_word: String,
+}
+
+struct Scan {
+    error: Option<ParseError>,
+    lines: Vec<LogicalLine>,
+}
+
+const BLOCK_KEYWORDS: [&str; 11] = [
+    "with",
+    "if", "elif", "else", "for", "while", "def", "class", "try", "except", "finally",
+];
+
+fn closing(open: char) -> char {
+    match open {
+        '(' => ')',
+        '[' => ']',
+        _ => '}',
+    }
+}
+
+/// Indentation width with tabs to the next multiple of 8 (Python 2 rule).
+fn width(indent: &str) -> usize {
+    indent
+        .chars()
+        .fold(0, |w, c| if c == '\t' { (w / 8 + 1) * 8 } else { w + 1 })
+}
+
+fn line_col(source: &str, pos: usize) -> (usize, usize) {
+    let before = &source[..pos.min(source.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before
+        .rfind('\n')
+        .map_or(before.chars().count(), |i| before[i + 1..].chars().count())
+        + 1;
+    (line, col)
+}
+
+fn scan(source: &str) -> Scan {
+    let bytes = source.as_bytes();
+    let mut lines: Vec<LogicalLine> = Vec::new();
+    let mut brackets: Vec<(char, usize)> = Vec::new();
+    let mut indents: Vec<usize> = vec![0];
+    let mut expect_indent: Option<usize> = None; // header line start, when the last line ended with `:`
+    let mut i = 0;
+    let mut at_line_start = true;
+    let mut current: Option<LogicalLine> = None;
+    let fail = |e: ParseError, lines: Vec<LogicalLine>| Scan {
+        error: Some(e),
+        lines,
+    };
+    while i < bytes.len() {
+        if at_line_start && brackets.is_empty() {
+            // Measure the indentation of a new logical line.
+            let start = i;
+            while i < bytes.len() && matches!(bytes[i], b' ' | b'\t' | b'\x0C') {
+                i += 1;
+            }
+            match bytes.get(i) {
+                None => break,
+                Some(b'\n' | b'\r' | b'#') => {
+                    // Blank or comment-only line: no indentation meaning.
+                    while i < bytes.len() && bytes[i] != b'\n' {
+                        i += 1;
+                    }
+                    i += 1;
+                    continue;
+                }
+                _ => {}
+            }
+            let w = width(&source[start..i]);
+            let top = indents.last().copied().unwrap_or(0);
+            if let Some(header) = expect_indent.take() {
+                if w <= top {
+                    let (l, _) = line_col(source, header);
+                    return fail(
+                        err(i, 1, format!("expected an indented block after the `:` of line {l}")),
+                        lines,
+                    );
+                }
+                indents.push(w);
+            } else if w > top {
+                return fail(
+                    err(i, 1, "unexpected indent: this line is indented more than the block it is in".into()),
+                    lines,
+                );
+            } else if w < top {
+                while indents.last().is_some_and(|&t| t > w) {
+                    indents.pop();
+                }
+                if indents.last().copied() != Some(w) {
+                    return fail(
+                        err(
+                            i,
+                            1,
+                            "unindent does not match any outer indentation level".into(),
+                        ),
+                        lines,
+                    );
+                }
+            }
+            at_line_start = false;
+        }
+        let c = bytes[i];
+        // Start of a token on this logical line.
+        if !matches!(c, b' ' | b'\t' | b'\x0C' | b'\n' | b'\r' | b'#' | b'\\') && current.is_none() {
+            let word: String = source[i..]
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            current = Some(LogicalLine {
+                start: i,
+                end: i,
+                last: ' ',
+                first_word: word,
+            });
+        }
+        match c {
+            b'#' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+                continue;
+            }
+            b'\\' => {
+                match bytes.get(i + 1) {
+                    Some(b'\n') => i += 2,
+                    Some(b'\r') if bytes.get(i + 2) == Some(&b'\n') => i += 3,
+                    None => i += 1,
+                    _ => {
+                        return fail(
+                            err(i, 1, "unexpected character after line continuation character `\\`".into()),
+                            lines,
+                        )
+                    }
+                }
+                continue;
+            }
+            b'\n' => {
+                i += 1;
+                if brackets.is_empty() {
+                    if let Some(line) = current.take() {
+                        if line.last == ':' && BLOCK_KEYWORDS.contains(&line.first_word.as_str()) {
+                            expect_indent = Some(line.start);
+                        }
+                        lines.push(line);
+                    }
+                    at_line_start = true;
+                }
+                continue;
+            }
+            b' ' | b'\t' | b'\x0C' | b'\r' => {
+                i += 1;
+                continue;
+            }
+            _ => {}
+        }
+        let token_start = i;
+        if c == b'\'' || c == b'"' {
+            match string_end(bytes, i) {
+                Ok(end) => i = end,
+                Err(triple) => {
+                    let msg = if triple {
+                        "unterminated triple-quoted string literal: no closing quotes before the end of the file"
+                    } else {
+                        "unterminated string literal: the closing quote is missing on this line"
+                    };
+                    return fail(err(string_start(bytes, i), 1, msg.into()), lines);
+                }
+            }
+        } else if let Some(ch) = source[i..].chars().next() {
+            match ch {
+                '(' | '[' | '{' => brackets.push((ch, i)),
+                ')' | ']' | '}' => match brackets.pop() {
+                    None => return fail(err(i, 1, format!("unmatched `{ch}`: there is no opening bracket for it")), lines),
+                    Some((open, at)) if closing(open) != ch => {
+                        let (l, col) = line_col(source, at);
+                        return fail(
+                            err(
+                                i,
+                                1,
+                                format!(
+                                    "closing `{ch}` does not match the opening `{open}` of line {l}, column {col} (expected `{}`)",
+                                    closing(open)
+                                ),
+                            ),
+                            lines,
+                        );
+                    }
+                    Some(_) => {}
+                },
+                c if c.is_alphanumeric() || c == '_' => {}
+                c if "+-*/%<>=!&|^~@.,:;`".contains(c) => {}
+                c => {
+                    return fail(
+                        err(i, c.len_utf8(), format!("invalid character `{c}` (U+{:04X}) outside a string or comment", c as u32)),
+                        lines,
+                    )
+                }
+            }
+            i += ch.len_utf8();
+        } else {
+            i += 1;
+        }
+        if let Some(line) = current.as_mut() {
+            line.end = i;
+            line.last = source[token_start..i].chars().last().unwrap_or(' ');
+        }
+    }
+    if let Some(line) = current.take() {
+        lines.push(line);
+    }
+    if let Some(&(open, at)) = brackets.last() {
+        return Scan {
+            error: Some(err(at, 1, format!("`{open}` was never closed: expected `{}` before the end of the file", closing(open)))),
+            lines,
+        };
+    }
+    Scan { error: None, lines }
+}
+
+/// The index of a quote that starts a string, backed up over its prefix.
+fn string_start(bytes: &[u8], quote: usize) -> usize {
+    let mut s = quote;
+    while s > 0 && quote - s < 2 && matches!(bytes[s - 1], b'r' | b'R' | b'b' | b'B' | b'u' | b'U' | b'f' | b'F') {
+        s -= 1;
+    }
+    s
+}
+
+/// End of the string whose quote is at `i`; `Err(is_triple)` if unterminated.
+fn string_end(bytes: &[u8], i: usize) -> Result<usize, bool> {
+    let q = bytes[i];
+    let triple = bytes.get(i + 1) == Some(&q) && bytes.get(i + 2) == Some(&q);
+    let mut j = if triple { i + 3 } else { i + 1 };
+    while j < bytes.len() {
+        let c = bytes[j];
+        if c == b'\\' {
+            j += 2;
+            continue;
+        }
+        if triple {
+            if c == q && bytes.get(j + 1) == Some(&q) && bytes.get(j + 2) == Some(&q) {
+                return Ok(j + 3);
+            }
+        } else if c == q {
+            return Ok(j + 1);
+        } else if c == b'\n' {
+            return Err(false);
+        }
+        j += 1;
+    }
+    Err(triple)
+}
+
+/// Replace a raw parse error by a clearer one when the scanner can explain it.
+pub fn refine(source: &str, e: ParseError) -> ParseError {
+    let scan = scan(source);
+    if let Some(lexical) = scan.error {
+        // A lexical problem before the failure point (or an unclosed bracket,
+        // which is only noticed later) is the cause.
+        if lexical.span.start <= e.span.start
+            || lexical.message.contains("never closed")
+            || lexical.message.starts_with("expected an indented block")
+        {
+            return lexical;
+        }
+    }
+    let pos = e.span.start as usize;
+    // The logical line of the error.
+    let Some(line) = scan
+        .lines
+        .iter()
+        .rev()
+        .find(|l| l.start <= pos)
+    else {
+        return e;
+    };
+    // A block header that does not end with `:`.
+    if BLOCK_KEYWORDS.contains(&line.first_word.as_str()) && line.last != ':' && pos >= line.end {
+        return err(
+            line.end,
+            0,
+            format!("expected `:` at the end of the `{}` line", line.first_word),
+        );
+    }
+    // Two operands side by side inside brackets: a missing comma.
+    let before = source[..pos.min(source.len())].trim_end();
+    let prev = before.chars().last();
+    let next = source.get(pos..).and_then(|s| s.chars().next());
+    if inside_brackets(source, pos)
+        && prev.is_some_and(|c| c.is_alphanumeric() || "_)]}'\".".contains(c))
+        && next.is_some_and(|c| c.is_alphanumeric() || "_([{'\"".contains(c))
+    {
+        let found = crate::error::found_at(source, pos);
+        return err(
+            pos,
+            (e.span.end - e.span.start) as usize,
+            format!("expected `,` or a closing bracket, found {found}: is a comma missing before it?"),
+        );
+    }
+    e
+}
+
+/// Is `pos` inside an open bracket (strings and comments skipped)?
+fn inside_brackets(source: &str, pos: usize) -> bool {
+    let bytes = source.as_bytes();
+    let mut depth = 0i32;
+    let mut i = 0;
+    while i < pos.min(bytes.len()) {
+        match bytes[i] {
+            b'#' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            b'\'' | b'"' => {
+                i = string_end(bytes, i).unwrap_or(bytes.len());
+                continue;
+            }
+            b'(' | b'[' | b'{' => depth += 1,
+            b')' | b']' | b'}' => depth -= 1,
+            _ => {}
+        }
+        i += 1;
+    }
+    depth > 0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tab_width_follows_python2() {
+        assert_eq!(width("\t"), 8);
+        assert_eq!(width("  \t"), 8);
+        assert_eq!(width("        "), 8);
+        assert_eq!(width("\t "), 9);
+    }
+
+    #[test]
+    fn valid_code_has_no_lexical_error() {
+        let s = scan("if x:\n    y = (1,\n  2)  # c\n\n    z = '''a\nb'''\nelse:\n\tpass\n");
+        assert!(s.error.is_none(), "{:?}", s.error);
+    }
+}
