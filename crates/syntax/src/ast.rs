@@ -34,9 +34,14 @@ pub struct Stmt {
 #[serde(tag = "stmt")]
 pub enum StmtKind {
     /// An expression evaluated for its effect, e.g. `DEBUT()`.
-    Expr { value: Expr },
+    Expr {
+        value: Expr,
+    },
     /// `a = b = value`; targets may be names, tuples/lists, attributes, subscripts.
-    Assign { targets: Vec<Expr>, value: Expr },
+    Assign {
+        targets: Vec<Expr>,
+        value: Expr,
+    },
     /// `target op= value`.
     AugAssign {
         target: Expr,
@@ -77,9 +82,13 @@ pub enum StmtKind {
         body: Vec<Stmt>,
         decorators: Vec<Expr>,
     },
-    Return { value: Option<Expr> },
+    Return {
+        value: Option<Expr>,
+    },
     /// `import a.b as c, d`.
-    Import { names: Vec<Alias> },
+    Import {
+        names: Vec<Alias>,
+    },
     /// `from ..a.b import c as d` (`level` counts the leading dots);
     /// `names` is empty for `import *`.
     ImportFrom {
@@ -94,15 +103,27 @@ pub enum StmtKind {
         orelse: Vec<Stmt>,
         finalbody: Vec<Stmt>,
     },
-    With { items: Vec<WithItem>, body: Vec<Stmt> },
+    With {
+        items: Vec<WithItem>,
+        body: Vec<Stmt>,
+    },
     Raise {
         exc: Option<Expr>,
         cause: Option<Expr>,
     },
-    Assert { test: Expr, msg: Option<Expr> },
-    Del { targets: Vec<Expr> },
-    Global { names: Vec<Ident> },
-    Nonlocal { names: Vec<Ident> },
+    Assert {
+        test: Expr,
+        msg: Option<Expr>,
+    },
+    Del {
+        targets: Vec<Expr>,
+    },
+    Global {
+        names: Vec<Ident>,
+    },
+    Nonlocal {
+        names: Vec<Ident>,
+    },
     Pass,
     Break,
     Continue,
@@ -178,43 +199,82 @@ pub struct Expr {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "expr")]
 pub enum ExprKind {
-    Name { id: String },
+    Name {
+        id: String,
+    },
     /// Integer literal (decimal, hex, octal, binary; Python 2 `L` suffix accepted).
     /// Integers that do not fit an `i64` become [`ExprKind::Float`].
-    Int { value: i64 },
-    Float { value: f64 },
+    Int {
+        value: i64,
+    },
+    Float {
+        value: f64,
+    },
     /// Imaginary literal `2j`.
-    Imag { value: f64 },
+    Imag {
+        value: f64,
+    },
     /// A string literal, after escape processing and implicit concatenation.
-    Str { value: String },
-    Bytes { value: Vec<u8> },
+    Str {
+        value: String,
+    },
+    Bytes {
+        value: Vec<u8>,
+    },
     /// An f-string (or a concatenation containing one).
-    FString { parts: Vec<FStringPart> },
-    Bool { value: bool },
+    FString {
+        parts: Vec<FStringPart>,
+    },
+    Bool {
+        value: bool,
+    },
     None,
     Ellipsis,
-    List { elts: Vec<Expr> },
-    Tuple { elts: Vec<Expr> },
-    Set { elts: Vec<Expr> },
+    List {
+        elts: Vec<Expr>,
+    },
+    Tuple {
+        elts: Vec<Expr>,
+    },
+    Set {
+        elts: Vec<Expr>,
+    },
     /// `{k: v, **m}`: a `None` key is a `**` unpacking.
-    Dict { items: Vec<DictItem> },
-    Attribute { value: Box<Expr>, attr: Ident },
-    Subscript { value: Box<Expr>, index: Box<Expr> },
+    Dict {
+        items: Vec<DictItem>,
+    },
+    Attribute {
+        value: Box<Expr>,
+        attr: Ident,
+    },
+    Subscript {
+        value: Box<Expr>,
+        index: Box<Expr>,
+    },
     /// `lower:upper:step` inside a subscript.
     Slice {
         lower: Option<Box<Expr>>,
         upper: Option<Box<Expr>>,
         step: Option<Box<Expr>>,
     },
-    Call { func: Box<Expr>, args: Vec<Arg> },
+    Call {
+        func: Box<Expr>,
+        args: Vec<Arg>,
+    },
     BinOp {
         left: Box<Expr>,
         op: BinOp,
         right: Box<Expr>,
     },
-    UnaryOp { op: UnaryOp, operand: Box<Expr> },
+    UnaryOp {
+        op: UnaryOp,
+        operand: Box<Expr>,
+    },
     /// `a and b and c` / `a or b`.
-    BoolOp { op: BoolOp, values: Vec<Expr> },
+    BoolOp {
+        op: BoolOp,
+        values: Vec<Expr>,
+    },
     /// `a < b <= c`.
     Compare {
         left: Box<Expr>,
@@ -226,7 +286,10 @@ pub enum ExprKind {
         body: Box<Expr>,
         orelse: Box<Expr>,
     },
-    Lambda { params: Vec<Param>, body: Box<Expr> },
+    Lambda {
+        params: Vec<Param>,
+        body: Box<Expr>,
+    },
     ListComp {
         elt: Box<Expr>,
         generators: Vec<Comprehension>,
@@ -245,14 +308,27 @@ pub enum ExprKind {
         generators: Vec<Comprehension>,
     },
     /// `*x` in a call, list, tuple or assignment target.
-    Starred { value: Box<Expr> },
-    Yield { value: Option<Box<Expr>> },
-    YieldFrom { value: Box<Expr> },
-    Await { value: Box<Expr> },
+    Starred {
+        value: Box<Expr>,
+    },
+    Yield {
+        value: Option<Box<Expr>>,
+    },
+    YieldFrom {
+        value: Box<Expr>,
+    },
+    Await {
+        value: Box<Expr>,
+    },
     /// `name := value`.
-    NamedExpr { target: Ident, value: Box<Expr> },
+    NamedExpr {
+        target: Ident,
+        value: Box<Expr>,
+    },
     /// Python 2 backquotes `` `x` `` (= `repr(x)`).
-    Repr { value: Box<Expr> },
+    Repr {
+        value: Box<Expr>,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -297,13 +373,22 @@ pub struct Arg {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "arg")]
 pub enum ArgKind {
-    Positional { value: Expr },
+    Positional {
+        value: Expr,
+    },
     /// `NAME=value`: for commands, a keyword (`MAILLAGE=MA`).
-    Keyword { name: Ident, value: Expr },
+    Keyword {
+        name: Ident,
+        value: Expr,
+    },
     /// `*args`
-    Star { value: Expr },
+    Star {
+        value: Expr,
+    },
     /// `**kwargs`
-    DoubleStar { value: Expr },
+    DoubleStar {
+        value: Expr,
+    },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

@@ -39,8 +39,7 @@ struct Scan {
 }
 
 const BLOCK_KEYWORDS: [&str; 11] = [
-    "with",
-    "if", "elif", "else", "for", "while", "def", "class", "try", "except", "finally",
+    "with", "if", "elif", "else", "for", "while", "def", "class", "try", "except", "finally",
 ];
 
 fn closing(open: char) -> char {
@@ -106,14 +105,23 @@ fn scan(source: &str) -> Scan {
                 if w <= top {
                     let (l, _) = line_col(source, header);
                     return fail(
-                        err(i, 1, format!("expected an indented block after the `:` of line {l}")),
+                        err(
+                            i,
+                            1,
+                            format!("expected an indented block after the `:` of line {l}"),
+                        ),
                         lines,
                     );
                 }
                 indents.push(w);
             } else if w > top {
                 return fail(
-                    err(i, 1, "unexpected indent: this line is indented more than the block it is in".into()),
+                    err(
+                        i,
+                        1,
+                        "unexpected indent: this line is indented more than the block it is in"
+                            .into(),
+                    ),
                     lines,
                 );
             } else if w < top {
@@ -135,7 +143,8 @@ fn scan(source: &str) -> Scan {
         }
         let c = bytes[i];
         // Start of a token on this logical line.
-        if !matches!(c, b' ' | b'\t' | b'\x0C' | b'\n' | b'\r' | b'#' | b'\\') && current.is_none() {
+        if !matches!(c, b' ' | b'\t' | b'\x0C' | b'\n' | b'\r' | b'#' | b'\\') && current.is_none()
+        {
             let word: String = source[i..]
                 .chars()
                 .take_while(|c| c.is_alphanumeric() || *c == '_')
@@ -161,7 +170,12 @@ fn scan(source: &str) -> Scan {
                     None => i += 1,
                     _ => {
                         return fail(
-                            err(i, 1, "unexpected character after line continuation character `\\`".into()),
+                            err(
+                                i,
+                                1,
+                                "unexpected character after line continuation character `\\`"
+                                    .into(),
+                            ),
                             lines,
                         )
                     }
@@ -204,7 +218,16 @@ fn scan(source: &str) -> Scan {
             match ch {
                 '(' | '[' | '{' => brackets.push((ch, i)),
                 ')' | ']' | '}' => match brackets.pop() {
-                    None => return fail(err(i, 1, format!("unmatched `{ch}`: there is no opening bracket for it")), lines),
+                    None => {
+                        return fail(
+                            err(
+                                i,
+                                1,
+                                format!("unmatched `{ch}`: there is no opening bracket for it"),
+                            ),
+                            lines,
+                        )
+                    }
                     Some((open, at)) if closing(open) != ch => {
                         let (l, col) = line_col(source, at);
                         return fail(
@@ -225,7 +248,14 @@ fn scan(source: &str) -> Scan {
                 c if "+-*/%<>=!&|^~@.,:;`".contains(c) => {}
                 c => {
                     return fail(
-                        err(i, c.len_utf8(), format!("invalid character `{c}` (U+{:04X}) outside a string or comment", c as u32)),
+                        err(
+                            i,
+                            c.len_utf8(),
+                            format!(
+                                "invalid character `{c}` (U+{:04X}) outside a string or comment",
+                                c as u32
+                            ),
+                        ),
                         lines,
                     )
                 }
@@ -244,7 +274,14 @@ fn scan(source: &str) -> Scan {
     }
     if let Some(&(open, at)) = brackets.last() {
         return Scan {
-            error: Some(err(at, 1, format!("`{open}` was never closed: expected `{}` before the end of the file", closing(open)))),
+            error: Some(err(
+                at,
+                1,
+                format!(
+                    "`{open}` was never closed: expected `{}` before the end of the file",
+                    closing(open)
+                ),
+            )),
             lines,
         };
     }
@@ -254,7 +291,13 @@ fn scan(source: &str) -> Scan {
 /// The index of a quote that starts a string, backed up over its prefix.
 fn string_start(bytes: &[u8], quote: usize) -> usize {
     let mut s = quote;
-    while s > 0 && quote - s < 2 && matches!(bytes[s - 1], b'r' | b'R' | b'b' | b'B' | b'u' | b'U' | b'f' | b'F') {
+    while s > 0
+        && quote - s < 2
+        && matches!(
+            bytes[s - 1],
+            b'r' | b'R' | b'b' | b'B' | b'u' | b'U' | b'f' | b'F'
+        )
+    {
         s -= 1;
     }
     s
@@ -300,12 +343,7 @@ pub fn refine(source: &str, e: ParseError) -> ParseError {
     }
     let pos = e.span.start as usize;
     // The logical line of the error.
-    let Some(line) = scan
-        .lines
-        .iter()
-        .rev()
-        .find(|l| l.start <= pos)
-    else {
+    let Some(line) = scan.lines.iter().rev().find(|l| l.start <= pos) else {
         return e;
     };
     // A block header that does not end with `:`.
@@ -328,7 +366,9 @@ pub fn refine(source: &str, e: ParseError) -> ParseError {
         return err(
             pos,
             (e.span.end - e.span.start) as usize,
-            format!("expected `,` or a closing bracket, found {found}: is a comma missing before it?"),
+            format!(
+                "expected `,` or a closing bracket, found {found}: is a comma missing before it?"
+            ),
         );
     }
     e
@@ -376,4 +416,91 @@ mod tests {
         let s = scan("if x:\n    y = (1,\n  2)  # c\n\n    z = '''a\nb'''\nelse:\n\tpass\n");
         assert!(s.error.is_none(), "{:?}", s.error);
     }
+}
+
+/// Nesting limits, checked before parsing so that pathological input gets a
+/// clear error instead of exhausting the native stack (Python has the same
+/// kind of limits: 200 nested brackets, 100 indentation levels).
+pub const MAX_BRACKET_DEPTH: usize = 200;
+pub const MAX_INDENT_LEVELS: usize = 100;
+pub const MAX_PREFIX_RUN: usize = 100;
+
+pub fn check_limits(source: &str) -> Result<(), ParseError> {
+    let bytes = source.as_bytes();
+    let mut depth = 0usize;
+    let mut prefix_run = 0usize;
+    let mut i = 0;
+    let mut line_start = true;
+    let mut indent_widths: Vec<usize> = Vec::new();
+    while i < bytes.len() {
+        let c = bytes[i];
+        if line_start && depth == 0 {
+            let s = i;
+            while i < bytes.len() && matches!(bytes[i], b' ' | b'\t') {
+                i += 1;
+            }
+            if i < bytes.len() && !matches!(bytes[i], b'\n' | b'\r' | b'#') {
+                let w = width(&source[s..i]);
+                while indent_widths.last().is_some_and(|&t| t >= w) {
+                    indent_widths.pop();
+                }
+                if w > 0 {
+                    indent_widths.push(w);
+                }
+                if indent_widths.len() > MAX_INDENT_LEVELS {
+                    return Err(err(
+                        i,
+                        1,
+                        format!("too many levels of indentation (more than {MAX_INDENT_LEVELS})"),
+                    ));
+                }
+            }
+            line_start = false;
+            continue;
+        }
+        match c {
+            b'#' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+                continue;
+            }
+            b'\'' | b'"' => {
+                i = string_end(bytes, i).unwrap_or(bytes.len());
+                prefix_run = 0;
+                continue;
+            }
+            b'(' | b'[' | b'{' => {
+                depth += 1;
+                if depth > MAX_BRACKET_DEPTH {
+                    return Err(err(
+                        i,
+                        1,
+                        format!("too many nested brackets (more than {MAX_BRACKET_DEPTH})"),
+                    ));
+                }
+            }
+            b')' | b']' | b'}' => depth = depth.saturating_sub(1),
+            b'\n' => line_start = true,
+            _ => {}
+        }
+        match c {
+            b'-' | b'+' | b'~' => {
+                prefix_run += 1;
+                if prefix_run > MAX_PREFIX_RUN {
+                    return Err(err(
+                        i,
+                        1,
+                        format!(
+                            "too many consecutive unary operators (more than {MAX_PREFIX_RUN})"
+                        ),
+                    ));
+                }
+            }
+            b' ' | b'\t' => {}
+            _ => prefix_run = 0,
+        }
+        i += 1;
+    }
+    Ok(())
 }

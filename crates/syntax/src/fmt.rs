@@ -53,7 +53,9 @@ fn comments(source: &str) -> Vec<(usize, String)> {
     while i < bytes.len() {
         match bytes[i] {
             b'#' => {
-                let end = source[i..].find(['\n', '\r']).map_or(source.len(), |e| i + e);
+                let end = source[i..]
+                    .find(['\n', '\r'])
+                    .map_or(source.len(), |e| i + e);
                 out.push((i, source[i..end].trim_end().to_string()));
                 i = end;
             }
@@ -67,7 +69,8 @@ fn comments(source: &str) -> Vec<(usize, String)> {
                         continue;
                     }
                     if bytes[j] == q
-                        && (!triple || (bytes.get(j + 1) == Some(&q) && bytes.get(j + 2) == Some(&q)))
+                        && (!triple
+                            || (bytes.get(j + 1) == Some(&q) && bytes.get(j + 2) == Some(&q)))
                     {
                         j += if triple { 3 } else { 1 };
                         break;
@@ -149,8 +152,12 @@ fn prec(e: &Expr) -> u8 {
         ExprKind::Lambda { .. } => P_LAMBDA,
         ExprKind::IfExp { .. } => P_IFEXP,
         ExprKind::BoolOp { op: BoolOp::Or, .. } => P_OR,
-        ExprKind::BoolOp { op: BoolOp::And, .. } => P_AND,
-        ExprKind::UnaryOp { op: UnaryOp::Not, .. } => P_NOT,
+        ExprKind::BoolOp {
+            op: BoolOp::And, ..
+        } => P_AND,
+        ExprKind::UnaryOp {
+            op: UnaryOp::Not, ..
+        } => P_NOT,
         ExprKind::Compare { .. } => P_CMP,
         ExprKind::BinOp { op, .. } => binop_prec(*op),
         ExprKind::UnaryOp { .. } => P_UNARY,
@@ -173,7 +180,9 @@ fn quote_str(s: &str, quote: char) -> String {
                 out.push('\\');
                 out.push(c);
             }
-            c if (c as u32) < 0x20 || c as u32 == 0x7f => out.push_str(&format!("\\x{:02x}", c as u32)),
+            c if (c as u32) < 0x20 || c as u32 == 0x7f => {
+                out.push_str(&format!("\\x{:02x}", c as u32))
+            }
             c => out.push(c),
         }
     }
@@ -244,7 +253,8 @@ impl Printer<'_> {
                 | StmtKind::Try { .. }
                 | StmtKind::With { .. }
         );
-        let (Some(src), Some((pos, text))) = (self.source, self.comments.get(self.next_comment)) else {
+        let (Some(src), Some((pos, text))) = (self.source, self.comments.get(self.next_comment))
+        else {
             return;
         };
         let end = s.span.end as usize;
@@ -337,7 +347,9 @@ impl Printer<'_> {
                 }
                 self.line(ind, &t);
             }
-            StmtKind::If { test, body, orelse } => self.if_chain("if", test, body, orelse, ind, start),
+            StmtKind::If { test, body, orelse } => {
+                self.if_chain("if", test, body, orelse, ind, start)
+            }
             StmtKind::For {
                 target,
                 iter,
@@ -405,8 +417,16 @@ impl Printer<'_> {
                 names,
                 star,
             } => {
-                let m = format!("{}{}", ".".repeat(*level as usize), module.as_deref().unwrap_or(""));
-                let what = if *star { "*".to_string() } else { aliases(names) };
+                let m = format!(
+                    "{}{}",
+                    ".".repeat(*level as usize),
+                    module.as_deref().unwrap_or("")
+                );
+                let what = if *star {
+                    "*".to_string()
+                } else {
+                    aliases(names)
+                };
                 self.line(ind, &format!("from {m} import {what}"));
             }
             StmtKind::Try {
@@ -522,7 +542,15 @@ impl Printer<'_> {
         }
     }
 
-    fn if_chain(&mut self, kw: &str, test: &Expr, body: &[Stmt], orelse: &[Stmt], ind: usize, start: usize) {
+    fn if_chain(
+        &mut self,
+        kw: &str,
+        test: &Expr,
+        body: &[Stmt],
+        orelse: &[Stmt],
+        ind: usize,
+        start: usize,
+    ) {
         let h = format!("{kw} {}:", self.expr(test, ind * 4, P_LAMBDA));
         self.suite(h, body, ind, start);
         match orelse {
@@ -591,7 +619,9 @@ impl Printer<'_> {
         match &e.kind {
             ExprKind::Yield { value: Some(v) } => format!("yield {}", self.top(v, col + 6)),
             ExprKind::Yield { value: None } => "yield".into(),
-            ExprKind::YieldFrom { value } => format!("yield from {}", self.expr(value, col + 11, P_LAMBDA)),
+            ExprKind::YieldFrom { value } => {
+                format!("yield from {}", self.expr(value, col + 11, P_LAMBDA))
+            }
             _ => self.expr(e, col, P_LAMBDA),
         }
     }
@@ -643,7 +673,12 @@ impl Printer<'_> {
     }
 
     #[allow(clippy::type_complexity)]
-    fn broken_items(&mut self, e: &Expr, col: usize, ind: usize) -> Option<(String, Vec<String>, &'static str)> {
+    fn broken_items(
+        &mut self,
+        e: &Expr,
+        col: usize,
+        ind: usize,
+    ) -> Option<(String, Vec<String>, &'static str)> {
         let (open, items, close) = match &e.kind {
             ExprKind::Call { func, args } => {
                 let f = self.expr(func, col, P_ATOM);
@@ -651,7 +686,9 @@ impl Printer<'_> {
                 (format!("{f}("), items, ")")
             }
             ExprKind::List { elts } => ("[".to_string(), self.items(elts, ind), "]"),
-            ExprKind::Tuple { elts } if !elts.is_empty() => ("(".to_string(), self.items(elts, ind), ")"),
+            ExprKind::Tuple { elts } if !elts.is_empty() => {
+                ("(".to_string(), self.items(elts, ind), ")")
+            }
             ExprKind::Set { elts } => ("{".to_string(), self.items(elts, ind), "}"),
             ExprKind::Dict { items } => {
                 let items = items
@@ -829,7 +866,11 @@ impl Printer<'_> {
                 }] = args.as_slice()
                 {
                     if let ExprKind::GeneratorExp { elt, generators } = &value.kind {
-                        let g = format!("{}{}", self.render_min(elt, P_LAMBDA), self.comps(generators));
+                        let g = format!(
+                            "{}{}",
+                            self.render_min(elt, P_LAMBDA),
+                            self.comps(generators)
+                        );
                         return format!("{}({g})", self.render_min(func, P_ATOM));
                     }
                 }
@@ -838,7 +879,11 @@ impl Printer<'_> {
             }
             ExprKind::BinOp { left, op, right } => {
                 let p = binop_prec(*op);
-                let (lp, rp) = if *op == BinOp::Pow { (P_POW + 1, P_UNARY) } else { (p, p + 1) };
+                let (lp, rp) = if *op == BinOp::Pow {
+                    (P_POW + 1, P_UNARY)
+                } else {
+                    (p, p + 1)
+                };
                 format!(
                     "{} {} {}",
                     self.render_min(left, lp),
@@ -889,13 +934,25 @@ impl Printer<'_> {
                 }
             }
             ExprKind::ListComp { elt, generators } => {
-                format!("[{}{}]", self.render_min(elt, P_LAMBDA), self.comps(generators))
+                format!(
+                    "[{}{}]",
+                    self.render_min(elt, P_LAMBDA),
+                    self.comps(generators)
+                )
             }
             ExprKind::SetComp { elt, generators } => {
-                format!("{{{}{}}}", self.render_min(elt, P_LAMBDA), self.comps(generators))
+                format!(
+                    "{{{}{}}}",
+                    self.render_min(elt, P_LAMBDA),
+                    self.comps(generators)
+                )
             }
             ExprKind::GeneratorExp { elt, generators } => {
-                format!("({}{})", self.render_min(elt, P_LAMBDA), self.comps(generators))
+                format!(
+                    "({}{})",
+                    self.render_min(elt, P_LAMBDA),
+                    self.comps(generators)
+                )
             }
             ExprKind::DictComp {
                 key,

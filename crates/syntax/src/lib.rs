@@ -45,6 +45,7 @@ impl std::error::Error for ParseError {}
 
 /// Parse a whole command file and run the post-parse checks of [`validate`].
 pub fn parse_module(source: &str) -> Result<ast::Module, ParseError> {
+    diagnose::check_limits(source)?;
     let module = match parser::parse_module_unchecked(source) {
         Ok(m) => m,
         Err(e) => return Err(diagnose::refine(source, e)),

@@ -171,7 +171,11 @@ fn hex_escape(
                 value = value.wrapping_mul(16).wrapping_add(d);
                 chars.next();
             }
-            None => return Err(format!("truncated `{what}` escape: expected {n} hex digits")),
+            None => {
+                return Err(format!(
+                    "truncated `{what}` escape: expected {n} hex digits"
+                ))
+            }
         }
     }
     Ok(value)
@@ -216,10 +220,7 @@ mod tests {
         assert_eq!(num("1.E-3"), ExprKind::Float { value: 1e-3 });
         assert_eq!(num("1e+16"), ExprKind::Float { value: 1e16 });
         assert_eq!(num("2j"), ExprKind::Imag { value: 2.0 });
-        assert_eq!(
-            num("99999999999999999999"),
-            ExprKind::Float { value: 1e20 }
-        );
+        assert_eq!(num("99999999999999999999"), ExprKind::Float { value: 1e20 });
         assert!(number("09").is_err());
     }
 

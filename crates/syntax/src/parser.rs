@@ -54,8 +54,8 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
 
 /// Parse a whole file into its AST (no post-parse validation).
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
-    let mut pairs = CommParser::parse(Rule::module, source)
-        .map_err(|e| crate::error::from_pest(&e, source))?;
+    let mut pairs =
+        CommParser::parse(Rule::module, source).map_err(|e| crate::error::from_pest(&e, source))?;
     let builder = Builder { base: 0, source };
     let body = match pairs.next() {
         Some(module) => builder.stmts(module.into_inner())?,
@@ -87,7 +87,10 @@ impl Builder<'_> {
     fn span(&self, pair: &P) -> Span {
         let s = pair.as_span();
         let text = &self.source[s.start()..s.end()];
-        let end = s.start() + text.trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\']).len();
+        let end = s.start()
+            + text
+                .trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\'])
+                .len();
         Span::new(self.base + s.start(), self.base + end.max(s.start()))
     }
 
@@ -244,7 +247,9 @@ impl Builder<'_> {
                 // `exec code in g` was read as the comparison `code in g`.
                 let (code, globals) = match code.kind {
                     ExprKind::Compare { left, mut ops }
-                        if ops.len() == 1 && ops[0].0 == CmpOp::In && code.span.end == ops[0].1.span.end =>
+                        if ops.len() == 1
+                            && ops[0].0 == CmpOp::In
+                            && code.span.end == ops[0].1.span.end =>
                     {
                         let (_, g) = ops.remove(0);
                         (*left, Some(g))
@@ -303,7 +308,12 @@ impl Builder<'_> {
                 },
                 None => return Err(err(span, "expected `yield`")),
             },
-            other => return Err(err(span, format!("internal: unexpected statement {other:?}"))),
+            other => {
+                return Err(err(
+                    span,
+                    format!("internal: unexpected statement {other:?}"),
+                ))
+            }
         };
         Ok(Stmt { kind, span })
     }
@@ -323,7 +333,9 @@ impl Builder<'_> {
             Some(p) => p.as_str().to_string(),
             None => String::new(),
         };
-        let asname = inner.find(|p| p.as_rule() == Rule::name).map(|p| self.ident(p));
+        let asname = inner
+            .find(|p| p.as_rule() == Rule::name)
+            .map(|p| self.ident(p));
         Ok(Alias { name, asname, span })
     }
 
@@ -535,7 +547,12 @@ impl Builder<'_> {
                 }
                 return Err(err(span, "expected `def` or `class` after decorators"));
             }
-            other => return Err(err(span, format!("internal: unexpected statement {other:?}"))),
+            other => {
+                return Err(err(
+                    span,
+                    format!("internal: unexpected statement {other:?}"),
+                ))
+            }
         };
         Ok(Stmt { kind, span })
     }
@@ -758,9 +775,9 @@ impl Builder<'_> {
         };
         match inner.next() {
             Some(ternary) => {
-                let mut parts = ternary.into_inner().filter(|p| {
-                    !matches!(p.as_rule(), Rule::kw_if | Rule::kw_else)
-                });
+                let mut parts = ternary
+                    .into_inner()
+                    .filter(|p| !matches!(p.as_rule(), Rule::kw_if | Rule::kw_else));
                 let test = self.required_test(parts.next(), span)?;
                 let orelse = self.required_test(parts.next(), span)?;
                 Ok(Expr {
@@ -1094,7 +1111,10 @@ impl Builder<'_> {
                         value: Box::new(value),
                         generators,
                     }),
-                    _ => Err(err(span, "dict unpacking cannot be used in dict comprehension")),
+                    _ => Err(err(
+                        span,
+                        "dict unpacking cannot be used in dict comprehension",
+                    )),
                 }
             }
             None => Ok(ExprKind::Dict { items }),
@@ -1244,18 +1264,19 @@ impl Builder<'_> {
         let mut literal = String::new();
         let mut lit_start = 0;
         let mut i = 0;
-        let flush = |literal: &mut String, from: usize, to: usize, out: &mut Vec<FStringPart>| -> R<()> {
-            let piece = &body[from..to];
-            if raw || !piece.contains('\\') {
-                literal.push_str(piece);
-            } else {
-                let codes = literals::unescape(piece, false)
-                    .map_err(|m| err(Span::new(start + from, start + to), m))?;
-                literal.push_str(&literals::to_string(&codes));
-            }
-            let _ = out;
-            Ok(())
-        };
+        let flush =
+            |literal: &mut String, from: usize, to: usize, out: &mut Vec<FStringPart>| -> R<()> {
+                let piece = &body[from..to];
+                if raw || !piece.contains('\\') {
+                    literal.push_str(piece);
+                } else {
+                    let codes = literals::unescape(piece, false)
+                        .map_err(|m| err(Span::new(start + from, start + to), m))?;
+                    literal.push_str(&literals::to_string(&codes));
+                }
+                let _ = out;
+                Ok(())
+            };
         while i < bytes.len() {
             match bytes[i] {
                 b'{' if bytes.get(i + 1) == Some(&b'{') => {
@@ -1299,7 +1320,13 @@ impl Builder<'_> {
 
     /// One replacement field starting after its `{` at `from`; returns the
     /// field and the index just after its closing `}`.
-    fn fstring_field(&self, body: &str, from: usize, start: usize, raw: bool) -> R<(FStringPart, usize)> {
+    fn fstring_field(
+        &self,
+        body: &str,
+        from: usize,
+        start: usize,
+        raw: bool,
+    ) -> R<(FStringPart, usize)> {
         let bytes = body.as_bytes();
         let open = Span::new(start + from - 1, start + from);
         // Find where the expression ends: `}`, `!`, `:` or a final `=` at depth 0.
@@ -1327,7 +1354,10 @@ impl Builder<'_> {
                 b':' if depth == 0 => break i,
                 b'=' if depth == 0
                     && bytes.get(i + 1) != Some(&b'=')
-                    && !matches!(bytes.get(i.wrapping_sub(1)), Some(b'=' | b'!' | b'<' | b'>')) =>
+                    && !matches!(
+                        bytes.get(i.wrapping_sub(1)),
+                        Some(b'=' | b'!' | b'<' | b'>')
+                    ) =>
                 {
                     let rest = body[i + 1..].trim_start();
                     if rest.starts_with(['}', '!', ':']) {
@@ -1404,7 +1434,12 @@ impl Builder<'_> {
                 }
                 j += 1;
             }
-            self.fstring_parts(&body[spec_start..j], start + spec_start, raw, &mut format_spec)?;
+            self.fstring_parts(
+                &body[spec_start..j],
+                start + spec_start,
+                raw,
+                &mut format_spec,
+            )?;
             i = j;
         }
         if bytes.get(i) != Some(&b'}') {
@@ -1527,11 +1562,16 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
     }
     match op {
         Rule::and | Rule::or => {
-            let bop = if op == Rule::and { BoolOp::And } else { BoolOp::Or };
+            let bop = if op == Rule::and {
+                BoolOp::And
+            } else {
+                BoolOp::Or
+            };
             return match lhs.kind {
-                ExprKind::BoolOp { op: lop, mut values }
-                    if lop == bop && values.last().is_some_and(|v| v.span.end == lhs.span.end) =>
-                {
+                ExprKind::BoolOp {
+                    op: lop,
+                    mut values,
+                } if lop == bop && values.last().is_some_and(|v| v.span.end == lhs.span.end) => {
                     values.push(rhs);
                     Expr {
                         kind: ExprKind::BoolOp { op: bop, values },

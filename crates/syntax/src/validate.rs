@@ -68,12 +68,24 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
         } => {
             expr(target)?;
             expr(iter)?;
-            stmts(body, Ctx { in_loop: true, ..ctx })?;
+            stmts(
+                body,
+                Ctx {
+                    in_loop: true,
+                    ..ctx
+                },
+            )?;
             stmts(orelse, ctx)
         }
         StmtKind::While { test, body, orelse } => {
             expr(test)?;
-            stmts(body, Ctx { in_loop: true, ..ctx })?;
+            stmts(
+                body,
+                Ctx {
+                    in_loop: true,
+                    ..ctx
+                },
+            )?;
             stmts(orelse, ctx)
         }
         StmtKind::FunctionDef {
@@ -352,7 +364,10 @@ fn check_params(params: &[Param]) -> R {
         if names.contains(&p.name.name.as_str()) {
             return Err(error(
                 p.name.span,
-                format!("duplicate parameter `{}` in function definition", p.name.name),
+                format!(
+                    "duplicate parameter `{}` in function definition",
+                    p.name.name
+                ),
             ));
         }
         names.push(&p.name.name);

@@ -90,7 +90,10 @@ fn operator_precedence_follows_python() {
         ("(a < b) < c", "(Cmp (Cmp a Lt b) Lt c)"),
         ("a or b and c or d", "(Or a (And b c) d)"),
         ("(a or b) or c", "(Or (Or a b) c)"),
-        ("a | b ^ c & d << 1", "(BitOr a (BitXor b (BitAnd c (LShift d 1))))"),
+        (
+            "a | b ^ c & d << 1",
+            "(BitOr a (BitXor b (BitAnd c (LShift d 1))))",
+        ),
         ("x if a else y if b else z", "(If a x (If b y z))"),
         ("a not in b is not c", "(Cmp a NotIn b IsNot c)"),
         ("a <> b", "(Cmp a NotEq b)"),
@@ -124,9 +127,7 @@ fn numbers_and_strings() {
         ),
         (
             "(\n 'a'\n 'b'  # comment\n)",
-            ExprKind::Str {
-                value: "ab".into(),
-            },
+            ExprKind::Str { value: "ab".into() },
         ),
     ];
     for (src, want) in cases {
@@ -142,10 +143,16 @@ fn fstring_fields_have_file_spans() {
         panic!("not an f-string: {e:?}")
     };
     assert_eq!(parts.len(), 4);
-    let FStringPart::Field { value, format_spec, .. } = &parts[1] else {
+    let FStringPart::Field {
+        value, format_spec, ..
+    } = &parts[1]
+    else {
         panic!("{parts:?}")
     };
-    assert_eq!(&src[value.span.start as usize..value.span.end as usize], "x + 1");
+    assert_eq!(
+        &src[value.span.start as usize..value.span.end as usize],
+        "x + 1"
+    );
     assert_eq!(format_spec.len(), 2);
     let FStringPart::Field { conversion, .. } = &parts[3] else {
         panic!("{parts:?}")
@@ -174,16 +181,46 @@ fn spans_cover_their_source() {
 fn python2_statements() {
     let m = parse_ok("print 'a', b,\nprint >>f, x\nexec code in g, l\n");
     match &m.body[0].kind {
-        StmtKind::Print { dest: None, values, newline: false } => assert_eq!(values.len(), 2),
+        StmtKind::Print {
+            dest: None,
+            values,
+            newline: false,
+        } => assert_eq!(values.len(), 2),
         other => panic!("{other:?}"),
     }
-    assert!(matches!(&m.body[1].kind, StmtKind::Print { dest: Some(_), .. }));
+    assert!(matches!(
+        &m.body[1].kind,
+        StmtKind::Print { dest: Some(_), .. }
+    ));
     match &m.body[2].kind {
-        StmtKind::Exec { code, globals: Some(_), locals: Some(_) } => {
+        StmtKind::Exec {
+            code,
+            globals: Some(_),
+            locals: Some(_),
+        } => {
             assert!(matches!(code.kind, ExprKind::Name { .. }))
         }
         other => panic!("{other:?}"),
     }
     // `print(x)` stays a call (Python 3).
     assert!(matches!(expr("print(x)").kind, ExprKind::Call { .. }));
+}
+
+/// The lead's ZZZZ237 scenes (`comm/`), both modelisations.
+fn scene(name: &str) -> serde_json::Value {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../comm")
+        .join(name);
+    let source = decode(&std::fs::read(&path).unwrap_or_default());
+    serde_json::to_value(parse_ok(&source)).unwrap_or_default()
+}
+
+#[test]
+fn zzzz237a_scene_ast() {
+    insta::assert_json_snapshot!("zzzz237a", scene("zzzz237a.comm"));
+}
+
+#[test]
+fn zzzz237b_scene_ast() {
+    insta::assert_json_snapshot!("zzzz237b", scene("zzzz237b.comm"));
 }

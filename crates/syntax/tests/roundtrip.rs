@@ -28,13 +28,17 @@ fn strip(v: &mut Value) {
 fn check(name: &str, source: &str) -> Result<(), String> {
     let before = shape(source).map_err(|e| format!("{name}: original does not parse: {e}"))?;
     let once = format_source(source).map_err(|e| format!("{name}: fmt failed: {}", e.message))?;
-    let after = shape(&once).map_err(|e| format!("{name}: formatted text does not parse: {e}\n{once}"))?;
+    let after =
+        shape(&once).map_err(|e| format!("{name}: formatted text does not parse: {e}\n{once}"))?;
     if before != after {
         return Err(format!("{name}: AST changed by fmt:\n{once}"));
     }
-    let twice = format_source(&once).map_err(|e| format!("{name}: second fmt failed: {}", e.message))?;
+    let twice =
+        format_source(&once).map_err(|e| format!("{name}: second fmt failed: {}", e.message))?;
     if once != twice {
-        return Err(format!("{name}: fmt is not idempotent:\n--- once\n{once}\n--- twice\n{twice}"));
+        return Err(format!(
+            "{name}: fmt is not idempotent:\n--- once\n{once}\n--- twice\n{twice}"
+        ));
     }
     Ok(())
 }
@@ -95,5 +99,10 @@ fn corpus_sample_round_trips() {
             }
         }
     }
-    assert!(failures.is_empty(), "{} of {checked} failed:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {checked} failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
