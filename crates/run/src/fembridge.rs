@@ -449,6 +449,11 @@ pub fn calc_champ(
                     model,
                     &continuum_only(elno()),
                 ))),
+                // Internal variables (none for ELAS: fields without components).
+                "VARI_ELNO" => Field::Elem(elem_field(
+                    ElemLocation::Nodes,
+                    &post::elno(model, &raw.internal_variables),
+                )),
                 "SIEQ_ELGA" => Field::Elem(elem_field(
                     ElemLocation::Gauss,
                     &post::sieq_field(&raw.stress),

@@ -349,6 +349,7 @@ pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             "CONTRAINTE",
             "CRITERES",
             "DEFORMATION",
+            "VARI_INTERNE",
             "TOUT_ORDRE",
             "NUME_ORDRE",
             "INST",
@@ -364,7 +365,13 @@ pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     let r = ex.required("CALC_CHAMP", kw, "RESULTAT")?;
     let result = ex.result(r)?;
     let mut options: Vec<String> = Vec::new();
-    for key in ["FORCE", "CONTRAINTE", "CRITERES", "DEFORMATION"] {
+    for key in [
+        "FORCE",
+        "CONTRAINTE",
+        "CRITERES",
+        "DEFORMATION",
+        "VARI_INTERNE",
+    ] {
         options.extend(
             kw.simple(key)
                 .iter()

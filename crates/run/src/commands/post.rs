@@ -269,6 +269,8 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "ACTION/TOUT",
             "ACTION/TOUT_CMP",
             "ACTION/NOM_CMP",
+            "ACTION/RESULTANTE",
+            "ACTION/REPERE",
             "INFO",
             "TITRE",
         ],
@@ -359,6 +361,48 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         let nodes = select::nodes(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("POST_RELEVE_T/ACTION: {e}")))?;
+        ex.only_values("POST_RELEVE_T/ACTION", occ, "REPERE", &["GLOBAL"])?;
+        let resultant: Vec<String> = occ
+            .simple("RESULTANTE")
+            .iter()
+            .filter_map(|s| s.as_str().map(str::to_string))
+            .collect();
+        if !resultant.is_empty() {
+            // One row per instant: the sums of the components over the nodes.
+            for (resu, cham, order, field) in &sources {
+                let Field::Nodal(f) = field else {
+                    return Err(ex.unsupported(
+                        "POST_RELEVE_T/ACTION/RESULTANTE of element fields",
+                        call.span,
+                    ));
+                };
+                let mut row: Vec<(String, Value)> =
+                    vec![("INTITULE".into(), Value::Text(title.clone()))];
+                if let Some(r) = resu {
+                    row.push(("RESU".into(), Value::Text(r.clone())));
+                }
+                if let Some(c) = cham {
+                    row.push(("NOM_CHAM".into(), Value::Text(c.clone())));
+                }
+                if let Some((no, t)) = order {
+                    row.push(("NUME_ORDRE".into(), Value::Int(*no as i64)));
+                    row.push(("INST".into(), Value::Real(*t)));
+                }
+                for c in &resultant {
+                    if f.component_index(c).is_none() {
+                        return Err(ExecError::new(format!(
+                            "POST_RELEVE_T/ACTION/RESULTANTE: the field has no component {c} (it has {})",
+                            f.components.join(", ")
+                        )));
+                    }
+                    let sum: f64 = nodes.iter().filter_map(|&n| f.get(n, c)).sum();
+                    table.ensure_column(c, ColumnType::Real);
+                    row.push((c.clone(), Value::Real(sum)));
+                }
+                table.push_row(row.iter().map(|(k, v)| (k.as_str(), v.clone())).collect());
+            }
+            continue;
+        }
         for (resu, cham, order, field) in sources {
             let Field::Nodal(f) = field else {
                 return Err(ex.unsupported(
