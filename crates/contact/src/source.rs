@@ -396,21 +396,5 @@ impl UnilateralSource for ZoneContact {
     }
 }
 
-/// Lets a caller keep the zone (for CONT_NOEU) while fem's solver borrows it.
-impl UnilateralSource for &mut ZoneContact {
-    fn name(&self) -> String {
-        (**self).name()
-    }
-    fn method(&self) -> UnilateralMethod {
-        (**self).method()
-    }
-    fn geometry_update(&self) -> GeometryUpdate {
-        (**self).geometry_update()
-    }
-    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
-        (**self).rows(state)
-    }
-    fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
-        (**self).converged(state, outcomes)
-    }
-}
+// `&mut ZoneContact` is a source through fem's blanket impl for `&mut T`
+// (the caller keeps the zone for CONT_NOEU while the solver borrows it).
