@@ -395,3 +395,6 @@ impl UnilateralSource for ZoneContact {
         Ok(())
     }
 }
+
+// `&mut ZoneContact` is a source through fem's blanket impl for `&mut T`
+// (the caller keeps the zone for CONT_NOEU while the solver borrows it).
