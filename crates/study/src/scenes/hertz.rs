@@ -163,7 +163,8 @@ impl Scene for Hertz {
                 ("a_last_loaded_node".into(), measured_a),
             ],
         };
-        if !(load > 0.0) || p0 <= 0.0 {
+        // `load > 0` is false for NaN too: a NaN load is no contact.
+        if load.is_nan() || load <= 0.0 || p0 <= 0.0 {
             return Err(Failure::wrong(
                 FailureKind::LostContact,
                 format!("no contact force at the symmetry node (load P = {load:.3e})"),

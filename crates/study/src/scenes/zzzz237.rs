@@ -72,7 +72,7 @@ impl Scene for TwoBlocks {
             penetration: Some(penetration),
             extras: vec![("rigid_limit".into(), rigid)],
         };
-        if !(force > 0.0) {
+        if force.is_nan() || force <= 0.0 {
             return Err(Failure::wrong(
                 FailureKind::LostContact,
                 format!("no contact force (total {force:.3e}) while the square is pushed"),
