@@ -149,7 +149,8 @@ fn writes_csv_charts_and_summary() {
         "DISCRETE/GCP",
         "singular-matrix",
         "no-convergence",
-        "E_N=1e9",
+        "(columns: E_N)",
+        "1e9",
         "ratio 1e5",
     ] {
         assert!(svg.contains(label), "stability map lacks {label}");

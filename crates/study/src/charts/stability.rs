@@ -105,10 +105,7 @@ impl Chart for StabilityMap<'_> {
                 .collect();
             let x_labels: Vec<String> = xs
                 .iter()
-                .map(|c| match (family.coefficient_name(), c) {
-                    (Some(name), Some(c)) => format!("{name}={}", short_number(*c)),
-                    _ => "—".into(),
-                })
+                .map(|c| c.map(short_number).unwrap_or_else(|| "—".into()))
                 .collect();
             // Drawn in pixels: a categorical grid needs no axis machinery.
             let (w, h) = panel.dim_in_pixel();
@@ -122,8 +119,12 @@ impl Chart for StabilityMap<'_> {
                     .color(&BLACK)
                     .pos(Pos::new(HPos::Center, VPos::Center))
             };
+            let caption = match family.coefficient_name() {
+                Some(name) => format!("{} (columns: {name})", family.name()),
+                None => family.name().to_string(),
+            };
             panel
-                .draw_text(family.name(), &centered(18), (w / 2, top / 2))
+                .draw_text(&caption, &centered(18), (w / 2, top / 2))
                 .map_err(|e| e.to_string())?;
             for (i, label) in x_labels.iter().enumerate() {
                 let x = left + cw * i as i32 + cw / 2;
@@ -164,7 +165,7 @@ impl Chart for StabilityMap<'_> {
                         .draw(&Rectangle::new(corners, status_color(fine.status).filled()))
                         .map_err(|e| e.to_string())?;
                     let kind = fine.kind.map(|k| k.name()).unwrap_or("ok");
-                    let count = format!("{ok}/{} meshes converged", cell.len());
+                    let count = format!("{ok}/{}", cell.len());
                     let (cx, cy) = (x0 + cw / 2, y1 - ch / 2);
                     panel
                         .draw_text(kind, &centered(12), (cx, cy - 8))
@@ -202,7 +203,7 @@ fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>) -> Result<(), 
         x += 30 + 8 * text.len() as i32;
     }
     area.draw_text(
-        "cell text: failure on the finest mesh; meshes converged",
+        "cell text: failure on the finest mesh; meshes converged / meshes",
         &("sans-serif", 14).into_font().color(&BLACK),
         (x + 20, 46),
     )

@@ -32,13 +32,20 @@ pub struct Solved {
     pub excluded_seconds: f64,
 }
 
-/// The `DEFI_CONTACT` a method stands for, on one zone.
+/// The `DEFI_CONTACT` a method stands for, on one zone; `fixed_normal` is
+/// `VECT_MAIT='FIXE', MAIT_FIXE=…`.
 pub fn definition(
     method: &Method,
     master: &str,
     slave: &str,
+    fixed_normal: Option<[f64; 3]>,
 ) -> Result<ContactDefinition, Failure> {
-    let geometry = ZoneGeometry::new(master, slave);
+    let mut geometry = ZoneGeometry::new(master, slave);
+    if let Some(v) = fixed_normal {
+        geometry = geometry
+            .with_fixed_master_normal(v)
+            .map_err(contact_failure)?;
+    }
     let coef = method.coefficient().unwrap_or(100.0);
     let discrete = |law| {
         ContactDefinition::discrete(

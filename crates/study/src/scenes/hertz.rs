@@ -54,7 +54,8 @@ impl Hertz {
         })
     }
 
-    fn problem(&self, n: usize) -> Result<(Model, Loads), Failure> {
+    /// The model and loads with `n` cells across the refined sector.
+    pub fn problem(&self, n: usize) -> Result<(Model, Loads), Failure> {
         let other = |m: String| Failure::new(FailureKind::Other, m);
         let mesh = hertz_mesh(&HertzMesh::new(self.radius, self.contact_angle, n))
             .map_err(|e| other(e.to_string()))?;
@@ -123,7 +124,7 @@ impl Scene for Hertz {
     fn run(&self, p: &Point) -> Result<Measures, Failure> {
         let n = p.refine as usize;
         let (model, loads) = self.problem(n)?;
-        let def = driver::definition(&p.method, "MAIT", "ESCL")?;
+        let def = driver::definition(&p.method, "MAIT", "ESCL", None)?;
         let instants: Vec<f64> = (0..=p.steps).map(|i| i as f64 / p.steps as f64).collect();
         let solved = driver::solve(&def, &model, &loads, &instants)?;
         let mesh = model.mesh();
@@ -162,7 +163,8 @@ impl Scene for Hertz {
                 ("a_last_loaded_node".into(), measured_a),
             ],
         };
-        if !(load > 0.0) || p0 <= 0.0 {
+        // `load > 0` is false for NaN too: a NaN load is no contact.
+        if load.is_nan() || load <= 0.0 || p0 <= 0.0 {
             return Err(Failure::wrong(
                 FailureKind::LostContact,
                 format!("no contact force at the symmetry node (load P = {load:.3e})"),

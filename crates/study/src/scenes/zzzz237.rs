@@ -51,7 +51,8 @@ impl Scene for TwoBlocks {
         let mesh = two_blocks_mesh(n).map_err(|e| other(e.to_string()))?;
         let (model, loads) =
             two_blocks_problem(mesh, p.stiffness_ratio).map_err(|e| other(e.to_string()))?;
-        let def = driver::definition(&p.method, "HE", "AB")?;
+        // As the code_aster case: VECT_MAIT='FIXE', MAIT_FIXE=(0, 1, 0).
+        let def = driver::definition(&p.method, "HE", "AB", Some([0.0, 1.0, 0.0]))?;
         let instants: Vec<f64> = (0..=p.steps)
             .map(|i| self.push * i as f64 / p.steps as f64)
             .collect();
@@ -71,7 +72,7 @@ impl Scene for TwoBlocks {
             penetration: Some(penetration),
             extras: vec![("rigid_limit".into(), rigid)],
         };
-        if !(force > 0.0) {
+        if force.is_nan() || force <= 0.0 {
             return Err(Failure::wrong(
                 FailureKind::LostContact,
                 format!("no contact force (total {force:.3e}) while the square is pushed"),
