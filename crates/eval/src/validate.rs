@@ -759,7 +759,7 @@ impl Validator<'_> {
         let list = r.args.join(", ");
         let first = r.args.first().map(|s| s.as_str()).unwrap_or("");
         let others = r.args.get(1..).unwrap_or(&[]).join(", ");
-        let mut drop_defaults = |drop: &mut Vec<String>| {
+        let drop_defaults = |drop: &mut Vec<String>| {
             drop.extend(r.args.iter().filter(|a| d(a)).cloned());
         };
         let msg = match r.kind {
