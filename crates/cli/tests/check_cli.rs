@@ -35,7 +35,10 @@ fn scenes_check_clean() {
 
 #[test]
 fn emitted_commands_of_the_scenes() {
-    for (scene, name) in [("comm/zzzz237a.comm", "emit_zzzz237a"), ("comm/zzzz237b.comm", "emit_zzzz237b")] {
+    for (scene, name) in [
+        ("comm/zzzz237a.comm", "emit_zzzz237a"),
+        ("comm/zzzz237b.comm", "emit_zzzz237b"),
+    ] {
         if !root().join(scene).exists() {
             eprintln!("skipped: {scene} not found");
             continue;
@@ -52,7 +55,10 @@ fn emitted_commands_of_the_scenes() {
 fn errors_exit_1_with_positions() {
     let (code, _, err) = aster(&["check", "crates/eval/tests/errors/unknown_keyword.comm"]);
     assert_eq!(code, 1);
-    assert!(err.contains("crates/eval/tests/errors/unknown_keyword.comm:8:33: error:"), "{err}");
+    assert!(
+        err.contains("crates/eval/tests/errors/unknown_keyword.comm:8:33: error:"),
+        "{err}"
+    );
     assert!(err.contains("`GROUP_MA_ESCL`"), "{err}");
     let (code, _, _) = aster(&["check", "no/such/file.comm"]);
     assert_eq!(code, 1);

@@ -33,7 +33,9 @@ pub fn contact_row(
     // axis-aligned; they add or drop terms from one pass to the next, so the
     // geometric loop would see "new rows" forever. A unit normal's component
     // below 1e-12 (an angle of 1e-12 rad) is zero.
-    let normal = pairing.normal.map(|v| if v.abs() < 1e-12 { 0.0 } else { v });
+    let normal = pairing
+        .normal
+        .map(|v| if v.abs() < 1e-12 { 0.0 } else { v });
     let mut terms: BTreeMap<Dof, f64> = BTreeMap::new();
     let mut add = |node: NodeId, w: f64| {
         for (c, comp) in comps.iter().enumerate() {
