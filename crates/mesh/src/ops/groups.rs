@@ -174,36 +174,48 @@ impl Mesh {
         Ok(self.set_group_no(name, nodes))
     }
 
+    /// Intersection or difference of node groups (checked names).
+    fn combine_groups_no(&self, groups: &[&str], how: Combine) -> Result<Vec<NodeId>, MeshError> {
+        let ids = combine(
+            groups,
+            self.coords.len(),
+            |g| {
+                self.group_no_checked(g)
+                    .map(|g| g.members.iter().map(|n| n.0).collect())
+            },
+            how,
+        )?;
+        Ok(ids.into_iter().map(NodeId).collect())
+    }
+
+    /// Intersection or difference of cell groups (checked names).
+    fn combine_groups_ma(&self, groups: &[&str], how: Combine) -> Result<Vec<CellId>, MeshError> {
+        let ids = combine(
+            groups,
+            self.cells.len(),
+            |g| {
+                self.group_ma_checked(g)
+                    .map(|g| g.members.iter().map(|c| c.0).collect())
+            },
+            how,
+        )?;
+        Ok(ids.into_iter().map(CellId).collect())
+    }
+
     /// `CREA_GROUP_NO=_F(NOM=name, INTERSEC=(…))`: nodes in every group, in the first group's order.
     pub fn crea_group_no_intersec(
         &mut self,
         name: &str,
         groups: &[&str],
     ) -> Result<bool, MeshError> {
-        let nodes = combine(
-            groups,
-            self.coords.len(),
-            |g| {
-                self.group_no_checked(g)
-                    .map(|g| g.members.iter().map(|n| n.0).collect())
-            },
-            Combine::Intersection,
-        )?;
-        Ok(self.set_group_no(name, nodes.into_iter().map(NodeId).collect()))
+        let nodes = self.combine_groups_no(groups, Combine::Intersection)?;
+        Ok(self.set_group_no(name, nodes))
     }
 
     /// `CREA_GROUP_NO=_F(NOM=name, DIFFE=(…))`: nodes of the first group in none of the others.
     pub fn crea_group_no_diffe(&mut self, name: &str, groups: &[&str]) -> Result<bool, MeshError> {
-        let nodes = combine(
-            groups,
-            self.coords.len(),
-            |g| {
-                self.group_no_checked(g)
-                    .map(|g| g.members.iter().map(|n| n.0).collect())
-            },
-            Combine::Difference,
-        )?;
-        Ok(self.set_group_no(name, nodes.into_iter().map(NodeId).collect()))
+        let nodes = self.combine_groups_no(groups, Combine::Difference)?;
+        Ok(self.set_group_no(name, nodes))
     }
 
     /// `CREA_GROUP_MA=_F(NOM=name, MAILLE=(…))`.
@@ -240,30 +252,14 @@ impl Mesh {
         name: &str,
         groups: &[&str],
     ) -> Result<bool, MeshError> {
-        let cells = combine(
-            groups,
-            self.cells.len(),
-            |g| {
-                self.group_ma_checked(g)
-                    .map(|g| g.members.iter().map(|c| c.0).collect())
-            },
-            Combine::Intersection,
-        )?;
-        Ok(self.set_group_ma(name, cells.into_iter().map(CellId).collect()))
+        let cells = self.combine_groups_ma(groups, Combine::Intersection)?;
+        Ok(self.set_group_ma(name, cells))
     }
 
     /// `CREA_GROUP_MA=_F(NOM=name, DIFFE=(…))`.
     pub fn crea_group_ma_diffe(&mut self, name: &str, groups: &[&str]) -> Result<bool, MeshError> {
-        let cells = combine(
-            groups,
-            self.cells.len(),
-            |g| {
-                self.group_ma_checked(g)
-                    .map(|g| g.members.iter().map(|c| c.0).collect())
-            },
-            Combine::Difference,
-        )?;
-        Ok(self.set_group_ma(name, cells.into_iter().map(CellId).collect()))
+        let cells = self.combine_groups_ma(groups, Combine::Difference)?;
+        Ok(self.set_group_ma(name, cells))
     }
 
     /// `DETR_GROUP_MA=_F(NOM=(…))`: unknown names are errors.
