@@ -55,17 +55,38 @@ pub fn carried_nodes(model: &ModelDef, mesh: &Mesh) -> Vec<bool> {
     carried
 }
 
-/// The (node, component, value) triples of a DDL_IMPO/MECA_IMPO/FORCE_NODALE occurrence.
+/// The imposed (node, component, value) of every occurrence of a
+/// DDL_IMPO/MECA_IMPO/FORCE_NODALE keyword, each checked to be a DOF of the
+/// model.
 fn imposed_values(
+    ex: &Executor,
+    occurrences: &[Keywords],
+    (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+    comps: &[&str],
+    what: &str,
+) -> Result<Vec<Imposed>, ExecError> {
+    let mut out = Vec::new();
+    for occ in occurrences {
+        let start = out.len();
+        imposed_in(ex, occ, mesh, comps, what, &mut out)?;
+        for i in &out[start..] {
+            check_dof(model, mesh, carried, i.node, i.comp, what)?;
+        }
+    }
+    Ok(out)
+}
+
+/// The imposed values of one occurrence, appended to `out`.
+fn imposed_in(
     ex: &Executor,
     occ: &Keywords,
     mesh: &Mesh,
     comps: &[&str],
     what: &str,
-) -> Result<Vec<(NodeId, &'static str, f64)>, ExecError> {
+    out: &mut Vec<Imposed>,
+) -> Result<(), ExecError> {
     let nodes =
         select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
-    let mut out = Vec::new();
     for &c in comps {
         if let Some(s) = occ.first(c) {
             let v = s.as_f64().ok_or_else(|| {
@@ -91,11 +112,15 @@ fn imposed_values(
                 }
             };
             for &n in &nodes {
-                out.push((n, name, v));
+                out.push(Imposed {
+                    node: n,
+                    comp: name,
+                    value: v,
+                });
             }
         }
     }
-    Ok(out)
+    Ok(())
 }
 
 pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -121,26 +146,13 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let model = ex.model(model_ref)?;
     let mesh = ex.mesh_by_id(model.mesh)?;
     let carried = carried_nodes(&model, &mesh);
-    let mut imposed = Vec::new();
-    for occ in kw.factor("MECA_IMPO") {
-        for (node, comp, value) in imposed_values(
-            ex,
-            occ,
-            &mesh,
-            &["DX", "DY", "DZ"],
-            "AFFE_CHAR_CINE/MECA_IMPO",
-        )? {
-            check_dof(
-                &model,
-                &mesh,
-                &carried,
-                node,
-                comp,
-                "AFFE_CHAR_CINE/MECA_IMPO",
-            )?;
-            imposed.push(Imposed { node, comp, value });
-        }
-    }
+    let imposed = imposed_values(
+        ex,
+        kw.factor("MECA_IMPO"),
+        (&model, &mesh, &carried),
+        &["DX", "DY", "DZ"],
+        "AFFE_CHAR_CINE/MECA_IMPO",
+    )?;
     if kw.factor("MECA_IMPO").is_empty() {
         return Err(ExecError::new(
             "AFFE_CHAR_CINE: MECA_IMPO is required (the only condition supported yet)",
@@ -207,44 +219,20 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         model: model_ref.id,
         ..MechanicalLoad::default()
     };
-    for occ in kw.factor("DDL_IMPO") {
-        for (node, comp, value) in imposed_values(
-            ex,
-            occ,
-            &mesh,
-            &["DX", "DY", "DZ"],
-            "AFFE_CHAR_MECA/DDL_IMPO",
-        )? {
-            check_dof(
-                &model,
-                &mesh,
-                &carried,
-                node,
-                comp,
-                "AFFE_CHAR_MECA/DDL_IMPO",
-            )?;
-            load.imposed.push(Imposed { node, comp, value });
-        }
-    }
-    for occ in kw.factor("FORCE_NODALE") {
-        for (node, comp, value) in imposed_values(
-            ex,
-            occ,
-            &mesh,
-            &["FX", "FY", "FZ"],
-            "AFFE_CHAR_MECA/FORCE_NODALE",
-        )? {
-            check_dof(
-                &model,
-                &mesh,
-                &carried,
-                node,
-                comp,
-                "AFFE_CHAR_MECA/FORCE_NODALE",
-            )?;
-            load.nodal_forces.push(Imposed { node, comp, value });
-        }
-    }
+    load.imposed = imposed_values(
+        ex,
+        kw.factor("DDL_IMPO"),
+        (&model, &mesh, &carried),
+        &["DX", "DY", "DZ"],
+        "AFFE_CHAR_MECA/DDL_IMPO",
+    )?;
+    load.nodal_forces = imposed_values(
+        ex,
+        kw.factor("FORCE_NODALE"),
+        (&model, &mesh, &carried),
+        &["FX", "FY", "FZ"],
+        "AFFE_CHAR_MECA/FORCE_NODALE",
+    )?;
     for occ in kw.factor("FORCE_CONTOUR") {
         let cells = select::cells(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_CONTOUR: {e}")))?;
