@@ -11,6 +11,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod assembly;
+mod diag;
 pub mod dof;
 pub mod element;
 pub mod error;
@@ -23,6 +24,7 @@ pub mod nonlinear;
 pub mod ordering;
 pub mod post;
 pub mod shape;
+mod split_llt;
 pub mod unilateral;
 
 pub use dof::{Comp, Dof, DofNumbering};

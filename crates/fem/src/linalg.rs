@@ -188,6 +188,8 @@ enum Factor {
         values: Vec<f64>,
     },
     Llt(faer::sparse::linalg::solvers::Llt<usize, f64>),
+    /// Cholesky split at the top separator, halves on two threads.
+    Split(crate::split_llt::SplitLlt),
     Lu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
 }
 
@@ -208,6 +210,7 @@ impl Factor {
                     );
             }
             Factor::Llt(f) => f.solve_in_place(c.as_mat_mut()),
+            Factor::Split(f) => return f.solve(b),
             Factor::Lu(f) => f.solve_in_place(c.as_mat_mut()),
         }
         (0..b.len()).map(|i| c[i]).collect()
@@ -273,6 +276,49 @@ fn cholesky_ordered(mat: SparseColMatRef<'_, usize, f64>, order: &[usize]) -> Op
     })
 }
 
+/// Threads available to the factorisation (faer's global setting: rayon's
+/// pool unless set otherwise).
+fn parallel_threads() -> usize {
+    faer::get_global_parallelism().degree()
+}
+
+/// The symmetrically scaled matrix (entry (i, j) times s[i]·s[j]) as a faer
+/// matrix.
+struct Scaled {
+    n: usize,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    values: Vec<f64>,
+}
+
+impl Scaled {
+    fn as_ref(&self) -> SparseColMatRef<'_, usize, f64> {
+        let symbolic = SymbolicSparseColMatRef::new_checked(
+            self.n,
+            self.n,
+            &self.col_ptr,
+            None,
+            &self.row_idx,
+        );
+        SparseColMatRef::new(symbolic, &self.values)
+    }
+}
+
+fn scaled_copy(a: &Csc, s: &[f64]) -> Scaled {
+    let mut values = Vec::with_capacity(a.values.len());
+    for j in 0..a.n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            values.push(a.values[p] * s[a.row_idx[p]] * s[j]);
+        }
+    }
+    Scaled {
+        n: a.n,
+        col_ptr: a.col_ptr.clone(),
+        row_idx: a.row_idx.clone(),
+        values,
+    }
+}
+
 /// [`solve`] with the coordinates of the unknowns, used for a nested
 /// dissection ordering on large positive definite systems.
 pub fn solve_with(
@@ -287,7 +333,11 @@ pub fn solve_with(
     let clock = std::time::Instant::now();
     let lap = |what: &str| {
         if timing {
-            eprintln!("[fem] {what}: {:.3} s", clock.elapsed().as_secs_f64());
+            eprintln!(
+                "[fem] {what}: {:.3} s{}",
+                clock.elapsed().as_secs_f64(),
+                crate::diag::process_usage()
+            );
         }
     };
     // Equilibration.
@@ -317,41 +367,56 @@ pub fn solve_with(
             }
         }
     }
-    let mut scaled = a.clone();
-    for j in 0..n {
-        for p in scaled.col_ptr[j]..scaled.col_ptr[j + 1] {
-            scaled.values[p] *= s[scaled.row_idx[p]] * s[j];
-        }
-    }
-    let symbolic =
-        SymbolicSparseColMatRef::new_checked(n, n, &scaled.col_ptr, None, &scaled.row_idx);
-    let mat = SparseColMatRef::new(symbolic, &scaled.values);
     let mut factor = None;
+    // Large positive definite systems with coordinates: nested dissection,
+    // split in two halves factorised in parallel when there are two cores.
     if spd_hint {
         if let Some(c) = coords.filter(|c| n >= ND_THRESHOLD && c.len() == n) {
             lap("scaling");
-            let order = crate::ordering::nested_dissection(&scaled, c);
+            let dissection = crate::ordering::nested_dissection_split(a, c);
             lap("nested dissection");
-            factor = cholesky_ordered(mat, &order);
-            lap("Cholesky (ordered)");
-        }
-        if factor.is_none() {
-            if let Ok(f) = mat.sp_cholesky(Side::Lower) {
-                factor = Some(Factor::Llt(f));
+            if parallel_threads() >= 2 {
+                if let Some(f) = crate::split_llt::SplitLlt::factorise(a, &s, dissection.clone()) {
+                    if timing {
+                        eprintln!("[fem] split Cholesky factor: {} non-zeros", f.len_val());
+                    }
+                    factor = Some(Factor::Split(f));
+                }
+                lap("Cholesky (split)");
+            }
+            if factor.is_none() {
+                let scaled = scaled_copy(a, &s);
+                factor = cholesky_ordered(scaled.as_ref(), &dissection.order);
+                lap("Cholesky (ordered)");
             }
         }
     }
     let factor = match factor {
         Some(f) => f,
-        None => match mat.sp_lu() {
-            Ok(f) => Factor::Lu(Box::new(f)),
-            Err(faer::sparse::linalg::LuError::SymbolicSingular { index }) => {
-                return Err(SolveFailure::Singular { index: Some(index) })
+        None => {
+            let scaled = scaled_copy(a, &s);
+            let mat = scaled.as_ref();
+            let llt = if spd_hint {
+                mat.sp_cholesky(Side::Lower).ok()
+            } else {
+                None
+            };
+            match llt {
+                Some(f) => Factor::Llt(f),
+                None => match mat.sp_lu() {
+                    Ok(f) => Factor::Lu(Box::new(f)),
+                    Err(faer::sparse::linalg::LuError::SymbolicSingular { index }) => {
+                        return Err(SolveFailure::Singular { index: Some(index) })
+                    }
+                    Err(e) => return Err(SolveFailure::Other(format!("{e:?}"))),
+                },
             }
-            Err(e) => return Err(SolveFailure::Other(format!("{e:?}"))),
-        },
+        }
     };
-    let cholesky = matches!(factor, Factor::Llt(_) | Factor::LltOrdered { .. });
+    let cholesky = matches!(
+        factor,
+        Factor::Llt(_) | Factor::LltOrdered { .. } | Factor::Split(_)
+    );
     // Solve the scaled system and refine in the original one.
     let solve_orig = |r: &[f64]| -> Vec<f64> {
         let rs: Vec<f64> = r.iter().zip(&s).map(|(v, si)| v * si).collect();

@@ -13,7 +13,32 @@ const LEAF: usize = 128;
 /// Returns `order` with `order[k]` = original index of the k-th unknown.
 /// `coords[i]` is the position of unknown i (its node's coordinates).
 pub fn nested_dissection(a: &Csc, coords: &[[f64; 3]]) -> Vec<usize> {
+    nested_dissection_split(a, coords).order
+}
+
+/// A nested dissection ordering with the sizes of its first split.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dissection {
+    /// `order[k]` = original index of the k-th unknown.
+    pub order: Vec<usize>,
+    /// The first split, when there is one: `order` is the first half's
+    /// `halves[0]` unknowns, then the second half's `halves[1]`, then the
+    /// separator's (the rest). The two halves are not coupled to each
+    /// other, so they can be factorised independently.
+    pub halves: Option<[usize; 2]>,
+}
+
+impl Dissection {
+    /// Number of separator unknowns of the first split (0 without one).
+    pub fn separator_len(&self) -> usize {
+        self.halves.map_or(0, |[a, b]| self.order.len() - a - b)
+    }
+}
+
+/// [`nested_dissection`], also telling where the first split lies.
+pub fn nested_dissection_split(a: &Csc, coords: &[[f64; 3]]) -> Dissection {
     let n = a.n;
+    let mut halves = None;
     let mut order = Vec::with_capacity(n);
     // side[i]: the current set id an unknown belongs to (for separators).
     let mut set_id = vec![0u32; n];
@@ -74,6 +99,9 @@ pub fn nested_dissection(a: &Csc, coords: &[[f64; 3]]) -> Vec<usize> {
                         rest.push(j);
                     }
                 }
+                if halves.is_none() && order.is_empty() {
+                    halves = Some([left.len(), rest.len()]);
+                }
                 let sid = next_id;
                 next_id += 1;
                 for &i in &sep {
@@ -86,7 +114,7 @@ pub fn nested_dissection(a: &Csc, coords: &[[f64; 3]]) -> Vec<usize> {
             }
         }
     }
-    order
+    Dissection { order, halves }
 }
 
 #[cfg(test)]
