@@ -189,7 +189,7 @@ enum Factor {
     },
     Llt(faer::sparse::linalg::solvers::Llt<usize, f64>),
     /// Cholesky split at the top separator, halves on two threads.
-    Split(crate::split_llt::SplitLlt),
+    Split(Box<crate::split_llt::SplitLlt>),
     Lu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
 }
 
@@ -380,7 +380,7 @@ pub fn solve_with(
                     if timing {
                         eprintln!("[fem] split Cholesky factor: {} non-zeros", f.len_val());
                     }
-                    factor = Some(Factor::Split(f));
+                    factor = Some(Factor::Split(Box::new(f)));
                 }
                 lap("Cholesky (split)");
             }
