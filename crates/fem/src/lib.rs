@@ -23,6 +23,7 @@ pub mod model;
 pub mod nonlinear;
 pub mod ordering;
 pub mod post;
+pub mod scenes;
 pub mod shape;
 mod split_llt;
 pub mod unilateral;

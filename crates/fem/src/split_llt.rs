@@ -144,6 +144,8 @@ fn half_matrix(
 fn factorise_half(b: &HalfMatrix, first: usize, len: usize) -> Option<Half> {
     let n = b.col_ptr.len() - 1;
     let pattern = SymbolicSparseColMatRef::new_checked(n, n, &b.col_ptr, None, &b.row_idx);
+    // Default supernode relaxation: tighter or looser settings measured no
+    // faster on the 1M-DOF grid and only changed the stored zeros.
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
         ..Default::default()
@@ -477,7 +479,7 @@ mod tests {
 
     #[test]
     fn dissection_without_split_is_refused() {
-        let (a, coords) = grid(5, 0.5);
+        let (a, coords) = grid(3, 0.5);
         let dissection = nested_dissection_split(&a, &coords);
         assert_eq!(dissection.halves, None);
         assert!(SplitLlt::factorise(&a, &vec![1.0; a.n], dissection).is_none());
