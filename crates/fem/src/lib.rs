@@ -22,6 +22,7 @@ pub mod material;
 pub mod model;
 pub mod nonlinear;
 pub mod ordering;
+mod parallel;
 pub mod post;
 pub mod scenes;
 pub mod shape;

@@ -71,26 +71,16 @@ fn dissect(a: &Csc, coords: &[[f64; 3]], parallel: bool) -> Dissection {
             set_id: ids.set_id.clone(),
             next_id: ids.next_id,
         };
-        std::thread::scope(|scope| {
-            let second = scope.spawn(|| order_subtree(a, coords, rest, &mut ids2));
-            let first = order_subtree(a, coords, left, &mut ids);
-            let second = second.join().ok();
-            (first, second)
-        })
+        crate::parallel::join(
+            || order_subtree(a, coords, left, &mut ids),
+            || order_subtree(a, coords, rest, &mut ids2),
+        )
     } else {
         let first = order_subtree(a, coords, left, &mut ids);
         let second = order_subtree(a, coords, rest, &mut ids);
-        (first, Some(second))
+        (first, second)
     };
-    match second {
-        Some(second) => order.extend(second),
-        None if parallel => {
-            // The second thread panicked (it cannot on valid input): order
-            // everything on this one.
-            return dissect(a, coords, false);
-        }
-        None => {}
-    }
+    order.extend(second);
     order.extend(sep);
     Dissection { order, halves }
 }

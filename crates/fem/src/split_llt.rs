@@ -52,6 +52,27 @@ struct Half {
 }
 
 impl Half {
+    fn supernode_count(&self) -> usize {
+        self.supernodal()
+            .map_or(0, |llt| llt.symbolic().n_supernodes())
+    }
+
+    /// Multiply–adds of the factorisation (Σ over columns of the squared
+    /// column count), for timing diagnostics.
+    fn flops(&self) -> f64 {
+        let Some(llt) = self.supernodal() else {
+            return 0.0;
+        };
+        let sn = llt.symbolic();
+        (0..sn.n_supernodes())
+            .map(|s| {
+                let node = llt.supernode(s);
+                let (w, m) = (node.val().ncols(), node.val().nrows());
+                (0..w).map(|k| ((m - k) as f64).powi(2)).sum::<f64>()
+            })
+            .sum()
+    }
+
     fn supernodal(&self) -> Option<SupernodalLltRef<'_, usize, f64>> {
         match self.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(s) => Some(SupernodalLltRef::new(s, &self.values)),
@@ -248,18 +269,21 @@ impl SplitLlt {
             let g = gram_lower(&half.m, Par::Seq);
             if std::env::var_os("ASTER_FEM_TIMING").is_some() {
                 eprintln!(
-                    "[fem] half of {len} + {ns} unknowns factorised{}",
+                    "[fem] half of {len} + {ns} unknowns factorised: {} supernodes, {:.2} GFlop{}",
+                    half.supernode_count(),
+                    half.flops() * 1e-9,
                     crate::diag::thread_usage()
                 );
             }
             Some((half, g))
         };
-        let (r1, r2) = std::thread::scope(|scope| {
-            let second = scope.spawn(|| build_and_factorise(n1, n2));
-            let r1 = build_and_factorise(0, n1);
-            (r1, second.join().ok().flatten())
-        });
+        let (r1, r2) = crate::parallel::join(
+            || build_and_factorise(0, n1),
+            || build_and_factorise(n1, n2),
+        );
         let ((h1, g1), (h2, g2)) = (r1?, r2?);
+        let timing = std::env::var_os("ASTER_FEM_TIMING").is_some();
+        let clock = std::time::Instant::now();
         // Lₛₛ Lₛₛᵀ = M₁M₁ᵀ + M₂M₂ᵀ − Aₛₛ (lower triangle).
         let mut s = g1;
         for c in 0..ns {
@@ -278,7 +302,9 @@ impl SplitLlt {
                 }
             }
         }
-        let par = Par::rayon(0);
+        // One thread: ~1 GFlop for a 1414-unknown separator, and rayon workers
+        // stall each other when the machine is shared.
+        let par = Par::Seq;
         let mut mem = MemBuffer::try_new(
             faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<f64>(
                 ns,
@@ -295,6 +321,13 @@ impl SplitLlt {
             Default::default(),
         )
         .ok()?;
+        if timing {
+            eprintln!(
+                "[fem] separator Schur complement ({ns} unknowns) assembled and factorised in {:.3} s{}",
+                clock.elapsed().as_secs_f64(),
+                crate::diag::thread_usage()
+            );
+        }
         Some(SplitLlt {
             order,
             halves: [h1, h2],
@@ -326,14 +359,8 @@ impl SplitLlt {
             }
             y
         };
-        let (y1, y2) = std::thread::scope(|scope| {
-            let second = scope.spawn(|| forward(&self.halves[1]));
-            let y1 = forward(&self.halves[0]);
-            (y1, second.join())
-        });
-        let Ok(y2) = y2 else {
-            return vec![f64::NAN; b.len()];
-        };
+        let (y1, y2) =
+            crate::parallel::join(|| forward(&self.halves[0]), || forward(&self.halves[1]));
         // tₛ = bₛ − Lₛ₁y₁ − Lₛ₂y₂ = bₛ + M₁z₁ + M₂z₂, then xₛ = Lₛₛ⁻ᵀLₛₛ⁻¹tₛ.
         let mut t = Mat::<f64>::from_fn(ns, 1, |k, _| bp[sep_first + k]);
         for (h, y) in self.halves.iter().zip([&y1, &y2]) {
@@ -386,14 +413,10 @@ impl SplitLlt {
             }
             y
         };
-        let (x1, x2) = std::thread::scope(|scope| {
-            let second = scope.spawn(|| backward(&self.halves[1], y2));
-            let x1 = backward(&self.halves[0], y1);
-            (x1, second.join())
-        });
-        let Ok(x2) = x2 else {
-            return vec![f64::NAN; b.len()];
-        };
+        let (x1, x2) = crate::parallel::join(
+            || backward(&self.halves[0], y1),
+            || backward(&self.halves[1], y2),
+        );
         let mut x = vec![0.0; b.len()];
         for (h, xh) in self.halves.iter().zip([&x1, &x2]) {
             for k in 0..h.len {
