@@ -368,6 +368,9 @@ pub fn solve_with(
         }
     }
     let mut factor = None;
+    // Whether a Cholesky factorisation is still worth trying: not after one
+    // found the matrix not positive definite.
+    let mut try_cholesky = spd_hint;
     // Large positive definite systems with coordinates: nested dissection,
     // split in two halves factorised in parallel when there are two cores.
     if spd_hint {
@@ -376,17 +379,23 @@ pub fn solve_with(
             let dissection = crate::ordering::nested_dissection_split(a, c);
             lap("nested dissection");
             if parallel_threads() >= 2 {
-                if let Some(f) = crate::split_llt::SplitLlt::factorise(a, &s, dissection.clone()) {
-                    if timing {
-                        eprintln!("[fem] split Cholesky factor: {} non-zeros", f.len_val());
+                use crate::split_llt::{SplitFailure, SplitLlt};
+                match SplitLlt::factorise(a, &s, &dissection) {
+                    Ok(f) => {
+                        if timing {
+                            eprintln!("[fem] split Cholesky factor: {} non-zeros", f.len_val());
+                        }
+                        factor = Some(Factor::Split(Box::new(f)));
                     }
-                    factor = Some(Factor::Split(Box::new(f)));
+                    Err(SplitFailure::NoSplit) => {}
+                    Err(SplitFailure::Failed) => try_cholesky = false,
                 }
                 lap("Cholesky (split)");
             }
-            if factor.is_none() {
+            if factor.is_none() && try_cholesky {
                 let scaled = scaled_copy(a, &s);
                 factor = cholesky_ordered(scaled.as_ref(), &dissection.order);
+                try_cholesky = factor.is_some();
                 lap("Cholesky (ordered)");
             }
         }
@@ -396,7 +405,7 @@ pub fn solve_with(
         None => {
             let scaled = scaled_copy(a, &s);
             let mat = scaled.as_ref();
-            let llt = if spd_hint {
+            let llt = if try_cholesky {
                 mat.sp_cholesky(Side::Lower).ok()
             } else {
                 None

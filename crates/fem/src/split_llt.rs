@@ -241,22 +241,43 @@ fn gram_lower(m: &Mat<f64>, par: Par) -> Mat<f64> {
     g
 }
 
+/// Why [`SplitLlt::factorise`] gave no factor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SplitFailure {
+    /// The dissection has no first split (or an empty part): another
+    /// Cholesky factorisation may be tried.
+    NoSplit,
+    /// The matrix is not numerically positive definite (or the factor
+    /// could not be allocated): another Cholesky would fail too.
+    Failed,
+}
+
 impl SplitLlt {
     /// Factorises `a` scaled symmetrically by `scale` (entry (i, j) times
     /// scale[i]·scale[j]) in the order of `dissection`, whose first split
-    /// gives the halves. None when the dissection has no split or the
-    /// matrix is not numerically positive definite.
+    /// gives the halves.
     pub(crate) fn factorise(
         a: &Csc,
         scale: &[f64],
-        dissection: crate::ordering::Dissection,
-    ) -> Option<SplitLlt> {
-        let [n1, n2] = dissection.halves?;
+        dissection: &crate::ordering::Dissection,
+    ) -> Result<SplitLlt, SplitFailure> {
+        let [n1, n2] = dissection.halves.ok_or(SplitFailure::NoSplit)?;
         let ns = dissection.separator_len();
         if n1 == 0 || n2 == 0 || ns == 0 {
-            return None;
+            return Err(SplitFailure::NoSplit);
         }
-        let order = dissection.order;
+        Self::factorise_split(a, scale, dissection.order.clone(), n1, n2, ns)
+            .ok_or(SplitFailure::Failed)
+    }
+
+    fn factorise_split(
+        a: &Csc,
+        scale: &[f64],
+        order: Vec<usize>,
+        n1: usize,
+        n2: usize,
+        ns: usize,
+    ) -> Option<SplitLlt> {
         let mut inverse = vec![0usize; order.len()];
         for (k, &i) in order.iter().enumerate() {
             inverse[i] = k;
@@ -477,7 +498,7 @@ mod tests {
         assert!(dissection.separator_len() >= 60);
         // Scaling by 1/√aᵢᵢ, as the solver does.
         let scale: Vec<f64> = a.diagonal().iter().map(|d| 1. / d.sqrt()).collect();
-        let f = SplitLlt::factorise(&a, &scale, dissection).expect("SPD");
+        let f = SplitLlt::factorise(&a, &scale, &dissection).expect("SPD");
         let b: Vec<f64> = (0..a.n).map(|i| ((i * 37) % 101) as f64 - 50.).collect();
         // f solves the scaled system S A S y = S b; x = S y.
         let sb: Vec<f64> = b.iter().zip(&scale).map(|(v, s)| v * s).collect();
@@ -497,7 +518,21 @@ mod tests {
         // Shift −8.5 makes the diagonal negative: not positive definite.
         let (a, coords) = grid(40, -8.5);
         let dissection = nested_dissection_split(&a, &coords);
-        assert!(SplitLlt::factorise(&a, &vec![1.0; a.n], dissection).is_none());
+        assert_eq!(
+            SplitLlt::factorise(&a, &vec![1.0; a.n], &dissection).err(),
+            Some(SplitFailure::Failed)
+        );
+    }
+
+    #[test]
+    fn an_indefinite_system_hinted_positive_falls_back_to_lu() {
+        // 142×142 = 20,164 unknowns (nested dissection range); the shift
+        // puts some eigenvalues below zero.
+        let (a, coords) = grid(142, -0.3);
+        let b: Vec<f64> = (0..a.n).map(|i| ((i * 13) % 7) as f64 - 3.).collect();
+        let r = crate::linalg::solve_with(&a, &b, a.n, true, Some(&coords)).expect("solves");
+        assert!(!r.cholesky);
+        assert!(r.backward_error <= 1e-12, "{}", r.backward_error);
     }
 
     #[test]
@@ -505,6 +540,9 @@ mod tests {
         let (a, coords) = grid(3, 0.5);
         let dissection = nested_dissection_split(&a, &coords);
         assert_eq!(dissection.halves, None);
-        assert!(SplitLlt::factorise(&a, &vec![1.0; a.n], dissection).is_none());
+        assert_eq!(
+            SplitLlt::factorise(&a, &vec![1.0; a.n], &dissection).err(),
+            Some(SplitFailure::NoSplit)
+        );
     }
 }

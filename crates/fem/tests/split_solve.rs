@@ -26,10 +26,12 @@ fn nested_dissection_solve_matches_the_default_ordering() {
     assert!(nd.backward_error <= 1e-14, "{}", nd.backward_error);
     let scale = amd.x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     assert!(scale > 0.0);
-    let diff = nd
-        .x
-        .iter()
-        .zip(&amd.x)
-        .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
-    assert!(diff <= 1e-9 * scale, "max difference {diff} against {scale}");
+    let diff =
+        nd.x.iter()
+            .zip(&amd.x)
+            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
+    assert!(
+        diff <= 1e-9 * scale,
+        "max difference {diff} against {scale}"
+    );
 }
