@@ -58,6 +58,24 @@ impl ContNoeu {
         Self::from_zones(zones, x, mesh)
     }
 
+    /// As [`ContNoeu::at_step`], for the step at `time` of a solve the zones
+    /// took part in: a RESOLUTION='NON' zone reports the pairing that step
+    /// ended with (its gaps on the geometry of the last pairing, as
+    /// code_aster's `cfveri`), when recorded.
+    pub fn at_step_time(
+        zones: &mut [ZoneContact],
+        mesh: &Mesh,
+        x: &[[f64; 3]],
+        outcomes: &[Vec<RowOutcome>],
+        time: f64,
+    ) -> Result<ContNoeu, ContactError> {
+        for (z, o) in zones.iter_mut().zip(outcomes) {
+            z.pair(mesh, x)?;
+            z.set_outcomes(o);
+        }
+        Self::build(zones, x, mesh, Some(time))
+    }
+
     /// Builds the field from the zones' last converged state, on the
     /// converged geometry `x` (current positions of all nodes). A node is
     /// in contact when it carries a positive force.
@@ -65,6 +83,15 @@ impl ContNoeu {
         zones: &[ZoneContact],
         x: &[[f64; 3]],
         mesh: &Mesh,
+    ) -> Result<ContNoeu, ContactError> {
+        Self::build(zones, x, mesh, None)
+    }
+
+    fn build(
+        zones: &[ZoneContact],
+        x: &[[f64; 3]],
+        mesh: &Mesh,
+        time: Option<f64>,
     ) -> Result<ContNoeu, ContactError> {
         let mut out = ContNoeu {
             nodes: Vec::new(),
@@ -82,13 +109,21 @@ impl ContNoeu {
         }
         for z in zones {
             let forces = z.nodal_forces();
+            let recorded = match time {
+                Some(t) if !z.zone.geometry.resolve => z.verification_pairing(t),
+                _ => None,
+            };
             for point in nodal_points(&z.zone) {
                 let Some(node) = point.node() else { continue };
                 if out.nodes.contains(&node) {
                     continue;
                 }
                 let mut v = [0.0; 19];
-                let pair = pair_point(&z.zone, &point, x)?;
+                let pair =
+                    match recorded.and_then(|r| r.iter().find(|p| p.point.node() == Some(node))) {
+                        Some(p) => p.clone(),
+                        None => pair_point(&z.zone, &point, x)?,
+                    };
                 match &pair.status {
                     PairStatus::Excluded(_) => v[0] = -1.0,
                     PairStatus::Paired(p) => {
