@@ -568,6 +568,7 @@ fn newton_step(
             // by a multiplier); an inconsistent one is an error.
             let m_rows = rows.len();
             let mut kept = Vec::with_capacity(m_rows);
+            let mut imposed: std::collections::HashMap<usize, f64> = Default::default();
             for (r, (terms, rhs)) in rows.iter().enumerate() {
                 if terms.iter().all(|&(i, _)| map[i] == usize::MAX) {
                     let v: f64 = terms.iter().map(|&(i, c)| c * u[i]).sum();
@@ -578,6 +579,28 @@ fn newton_step(
                         )));
                     }
                     continue;
+                }
+                // The same DOF imposed twice (e.g. a node shared by two
+                // DDL_IMPO groups) would make two identical multiplier rows,
+                // a singular system: as code_aster, which imposes a value
+                // once per node and component, keep the first; two
+                // different values are an error.
+                if let ([(i, c)], true) = (terms.as_slice(), r < eq.len()) {
+                    let value = rhs / c;
+                    match imposed.get(i) {
+                        Some(&v) if (v - value).abs() <= 1e-12 * v.abs().max(value.abs()) => {
+                            continue
+                        }
+                        Some(&v) => {
+                            return Err(FemError::Model(format!(
+                                "{} is imposed twice with different values ({v} and {value})",
+                                model.dofs().dof(*i).describe(model.mesh())
+                            )))
+                        }
+                        None => {
+                            imposed.insert(*i, value);
+                        }
+                    }
                 }
                 kept.push(r);
             }
