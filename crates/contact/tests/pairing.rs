@@ -318,3 +318,69 @@ fn rows_linearise_the_gap() {
     assert_eq!(coefs, vec![-1.0, 0.5, 0.5]);
     assert!(row.terms.iter().all(|t| t.0.comp == aster_fem::Comp::DY));
 }
+
+/// MAIT_ESCL projects only on the master cells around the nearest master
+/// node (code_aster's approj): a slave point whose nearest master node ends
+/// a cell it projects far outside of is not paired, even though another
+/// master cell lies right under it.
+#[test]
+fn projection_only_on_the_cells_of_the_nearest_master_node() {
+    let mut b = Builder::new(2);
+    let a = b.node([0.0, 0.0, 0.0]);
+    let bb = b.node([10.0, 0.0, 0.0]);
+    let c = b.node([5.0, 2.0, 0.0]);
+    let d = b.node([5.0, 4.0, 0.0]);
+    let m1 = b.cell(CellType::SEG2, &[a, bb]);
+    let m2 = b.cell(CellType::SEG2, &[c, d]);
+    b.group_ma("MAIT", vec![m1, m2]);
+    let s1 = b.node([5.0, 1.2, 0.0]);
+    let s2 = b.node([20.0, 1.2, 0.0]);
+    let e = b.cell(CellType::SEG2, &[s1, s2]);
+    b.group_ma("ESCL", vec![e]);
+    let mesh = b.mesh;
+    // Nearest master node of (5, 1.2): C at 0.8 (A and B are 5.1 away);
+    // C's only cell is CD, projected 0.8 beyond C (half-length 1) > 0.5.
+    let ps = pairs(&mesh, ZoneGeometry::new("MAIT", "ESCL"));
+    match &ps[0].status {
+        PairStatus::Excluded(Exclusion::OutsideMaster { outside }) => {
+            assert!((outside - 0.8).abs() < 1e-12, "{outside}")
+        }
+        other => panic!("{other:?}"),
+    }
+    // Tolerated (TOLE_PROJ_EXT = 1): brought back onto C, the gap is
+    // measured along CD's normal, not on AB right below.
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    g.tole_proj_ext = 1.0;
+    let pr = pairs(&mesh, g)[0].pairing().cloned().unwrap();
+    assert_eq!(pr.master_x, [5.0, 2.0, 0.0]);
+    assert_eq!(pr.nearest_master_node, c);
+    assert!(pr.gap.abs() < 1e-14, "{}", pr.gap);
+}
+
+/// CONT_NOEU of a RESOLUTION='NON' zone: code_aster's verification status
+/// (0 apart or within TOLE_INTERP, 3 beyond) and the gap.
+#[test]
+fn verification_zone_status_in_cont_noeu() {
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [2.5, -0.2, 0.0], [3.5, -0.4, 0.0]]);
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    g.resolve = false;
+    g.tole_interp = 0.3;
+    let zone = ResolvedZone::new(0, &g, &mesh).unwrap();
+    let mut zc = ZoneContact::new(
+        zone,
+        ZoneLaw::Discrete(DiscreteAlgo::Contrainte),
+        GeomLoop::default(),
+    );
+    assert!(zc.pair(&mesh, &mesh.coords).unwrap().is_empty(), "no rows");
+    let cn = ContNoeu::from_zones(&[zc], &mesh.coords, &mesh).unwrap();
+    let got: Vec<(f64, f64)> = cn
+        .nodes
+        .iter()
+        .map(|&n| (cn.value(n, "CONT").unwrap(), cn.value(n, "JEU").unwrap()))
+        .collect();
+    let want = [(0.0, 0.5), (0.0, -0.2), (3.0, -0.4)];
+    for ((c, j), (wc, wj)) in got.iter().zip(want) {
+        assert_eq!(*c, wc, "{got:?}");
+        assert!((j - wj).abs() < 1e-14, "{got:?}");
+    }
+}
