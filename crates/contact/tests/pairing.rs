@@ -384,3 +384,65 @@ fn verification_zone_status_in_cont_noeu() {
         assert!((j - wj).abs() < 1e-14, "{got:?}");
     }
 }
+
+/// CONT_NOEU of a RESOLUTION='NON' zone at a stored step reports the gaps
+/// of the pairing that step ended with (code_aster's `cfveri`), not a new
+/// pairing on the step's final geometry.
+#[test]
+fn verification_zone_reports_the_last_pairing_of_the_step() {
+    use aster_fem::{
+        Comp, Dof, Elastic, Element, ElementKind, Hypothesis, Model, State, UnilateralSource,
+    };
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [3.0, 0.5, 0.0]]);
+    let material = Elastic::new(1000.0, 0.3).unwrap();
+    let elements = (0..mesh.cells.len())
+        .map(|i| Element {
+            cell: CellId(i as u32),
+            kind: if mesh.cells[i].ty == CellType::QUAD4 {
+                ElementKind::Continuum {
+                    hypothesis: Hypothesis::PlaneStrain,
+                    material,
+                }
+            } else {
+                ElementKind::Boundary
+            },
+        })
+        .collect();
+    let model = Model::new(mesh.clone(), elements).unwrap();
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    g.resolve = false;
+    let zone = ResolvedZone::new(0, &g, &mesh).unwrap();
+    let slaves = zone.slave_nodes.clone();
+    let mut zc = ZoneContact::new(
+        zone,
+        ZoneLaw::Discrete(DiscreteAlgo::Contrainte),
+        GeomLoop::default(),
+    );
+    // The slave side lowered by 0.1 when last paired, by 0.3 at the end.
+    let lowered = |dy: f64| {
+        let mut u = vec![0.0; model.dofs().len()];
+        for &n in &slaves {
+            u[model.dofs().index(Dof::new(n, Comp::DY)).unwrap()] = -dy;
+        }
+        u
+    };
+    let (u1, u_end) = (lowered(0.1), lowered(0.3));
+    let state = |u| State {
+        mesh: model.mesh(),
+        dofs: model.dofs(),
+        displacement: u,
+        time: 2.0,
+    };
+    assert!(zc.rows(&state(&u1)).unwrap().is_empty());
+    zc.converged(&state(&u_end), &[]).unwrap();
+    let x_end = positions(model.mesh(), model.dofs(), &u_end);
+    let mut zones = [zc];
+    let reported = ContNoeu::at_step_time(&mut zones, &mesh, &x_end, &[vec![]], 2.0).unwrap();
+    let repaired = ContNoeu::at_step(&mut zones, &mesh, &x_end, &[vec![]]).unwrap();
+    for &n in &slaves {
+        let jeu = reported.value(n, "JEU").unwrap();
+        assert!((jeu - 0.4).abs() < 1e-14, "{jeu}");
+        let jeu_end = repaired.value(n, "JEU").unwrap();
+        assert!((jeu_end - 0.2).abs() < 1e-14, "{jeu_end}");
+    }
+}
