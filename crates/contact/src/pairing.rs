@@ -130,63 +130,79 @@ pub fn pair_point(
             (None, vec![(nearest, 1.0)], x[nearest.0 as usize], n)
         }
         Appariement::MaitEscl => {
+            // As code_aster (approj/apchoi): project on the master cells
+            // around the nearest master node only, each projection brought
+            // back onto its cell; a projection inside a cell beats any
+            // outside one, then the nearest wins (ties keep the first cell).
+            // The chosen projection outside by more than TOLE_PROJ_EXT
+            // excludes the point.
             let mut chosen: Option<Candidate> = None;
-            let mut least_outside = f64::INFINITY;
-            // Cells around the nearest master node first (a good first
-            // candidate), then the others unless their bounding box is
-            // farther than the best projection found.
             let near: &[usize] = zone
                 .master_cells_of_node
                 .get(&nearest)
                 .map(|v| v.as_slice())
                 .unwrap_or(&[]);
-            let order = near
-                .iter()
-                .copied()
-                .chain((0..zone.master.len()).filter(|c| !near.contains(c)));
-            for ci in order {
+            for &ci in near {
                 let cell = &zone.master[ci];
-                if let Some((_, _, _, _, best_d, _)) = &chosen {
-                    if box_distance(xs, cell.nodes.iter().map(|n| x[n.0 as usize])) > *best_d {
-                        continue;
-                    }
-                }
                 let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
                 let Some(p) = project(cell.kind, &nodes, xs) else {
                     continue;
                 };
                 let outside = cell.kind.outside_distance(p.xi);
-                least_outside = least_outside.min(outside);
-                if g.tole_proj_ext >= 0.0 && outside > g.tole_proj_ext {
-                    continue;
-                }
-                // Outside but tolerated: the projection is brought back onto the cell.
+                let status = if outside <= 0.0 {
+                    ProjStatus::Inside
+                } else if g.tole_proj_ext < 0.0 || outside <= g.tole_proj_ext {
+                    ProjStatus::Tolerated
+                } else {
+                    ProjStatus::Outside
+                };
                 let xi = cell.kind.clamp(p.xi);
                 let p = crate::shape::interpolate(cell.kind, &nodes, xi);
                 let d = norm(sub(xs, p.x));
                 let better = match &chosen {
                     None => true,
-                    Some((_, _, _, _, bd, bo)) => {
-                        d < bd - 1e-12 * d.max(1.0)
-                            || (d <= bd + 1e-12 * d.max(1.0) && outside < *bo)
+                    Some(c) if c.status != ProjStatus::Inside => {
+                        status == ProjStatus::Inside || d < c.distance
+                    }
+                    Some(c) => {
+                        let relative = if c.distance == 0.0 || d == c.distance {
+                            0.0
+                        } else {
+                            ((d - c.distance) / c.distance).abs()
+                        };
+                        status == ProjStatus::Inside && d < c.distance && relative > f64::EPSILON
                     }
                 };
                 if better {
-                    chosen = Some((ci, xi, p.shape, p.x, d, outside));
+                    chosen = Some(Candidate {
+                        cell: ci,
+                        xi,
+                        shape: p.shape,
+                        point: p.x,
+                        distance: d,
+                        outside,
+                        status,
+                    });
                 }
             }
-            let Some((ci, xi, shape, xm, _, _)) = chosen else {
+            let Some(c) = chosen else {
                 return Ok(ContactPair {
                     point: point.clone(),
                     status: PairStatus::Excluded(Exclusion::OutsideMaster {
-                        outside: least_outside,
+                        outside: f64::INFINITY,
                     }),
                 });
             };
-            let cell = &zone.master[ci];
-            let n = zone.cell_normal(cell, xi, x, g.vect_mait)?;
-            let master = cell.nodes.iter().copied().zip(shape).collect();
-            (Some((cell.id, xi)), master, xm, n)
+            if c.status == ProjStatus::Outside {
+                return Ok(ContactPair {
+                    point: point.clone(),
+                    status: PairStatus::Excluded(Exclusion::OutsideMaster { outside: c.outside }),
+                });
+            }
+            let cell = &zone.master[c.cell];
+            let n = zone.cell_normal(cell, c.xi, x, g.vect_mait)?;
+            let master = cell.nodes.iter().copied().zip(c.shape).collect();
+            (Some((cell.id, c.xi)), master, c.point, n)
         }
     };
 
@@ -222,24 +238,27 @@ pub fn pair_point(
     })
 }
 
-/// A projection candidate: cell index, reference coordinates, shape
-/// values, master point, distance, distance outside the cell.
-type Candidate = (usize, [f64; 2], Vec<f64>, [f64; 3], f64, f64);
+/// Where a projection falls with respect to its master cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ProjStatus {
+    Inside,
+    /// Outside, within TOLE_PROJ_EXT (brought back onto the cell).
+    Tolerated,
+    /// Outside by more than TOLE_PROJ_EXT.
+    Outside,
+}
 
-/// Distance from `p` to the bounding box of `points`.
-fn box_distance(p: [f64; 3], points: impl Iterator<Item = [f64; 3]>) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for q in points {
-        for c in 0..3 {
-            lo[c] = lo[c].min(q[c]);
-            hi[c] = hi[c].max(q[c]);
-        }
-    }
-    let d: f64 = (0..3)
-        .map(|c| (lo[c] - p[c]).max(p[c] - hi[c]).max(0.0).powi(2))
-        .sum();
-    d.sqrt()
+/// A projection candidate on one master cell.
+struct Candidate {
+    cell: usize,
+    /// Reference coordinates, brought back onto the cell.
+    xi: [f64; 2],
+    shape: Vec<f64>,
+    point: [f64; 3],
+    distance: f64,
+    /// Distance outside the cell before being brought back (reference coordinates).
+    outside: f64,
+    status: ProjStatus,
 }
 
 fn slave_normal(

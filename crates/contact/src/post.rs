@@ -1,8 +1,9 @@
 //! CONT_NOEU (legacy VALE_CONT): the contact state per slave node.
 //!
 //! Components, as code_aster names them for frictionless contact:
-//! `CONT` (-1 not paired, 0 no contact, 1 contact), `JEU` (gap on the
-//! current geometry), `RN` (normal nodal force ≥ 0), `RNX RNY RNZ` (that
+//! `CONT` (-1 not paired, 0 no contact, 1 contact; in a RESOLUTION='NON'
+//! zone 3 for an interpenetration beyond TOLE_INTERP), `JEU` (gap on the
+//! current geometry; in a RESOLUTION='NON' zone on the last pairing's), `RN` (normal nodal force ≥ 0), `RNX RNY RNZ` (that
 //! force on the slave node, along the contact normal), the friction
 //! components `GLIX GLIY GLI RTAX RTAY RTAZ RTGX RTGY RTGZ` (all 0 without
 //! friction), `RX RY RZ` (total contact force = normal force here) and `R`
@@ -58,6 +59,24 @@ impl ContNoeu {
         Self::from_zones(zones, x, mesh)
     }
 
+    /// As [`ContNoeu::at_step`], for the step at `time` of a solve the zones
+    /// took part in: a RESOLUTION='NON' zone reports the pairing that step
+    /// ended with (its gaps on the geometry of the last pairing, as
+    /// code_aster's `cfveri`), when recorded.
+    pub fn at_step_time(
+        zones: &mut [ZoneContact],
+        mesh: &Mesh,
+        x: &[[f64; 3]],
+        outcomes: &[Vec<RowOutcome>],
+        time: f64,
+    ) -> Result<ContNoeu, ContactError> {
+        for (z, o) in zones.iter_mut().zip(outcomes) {
+            z.pair(mesh, x)?;
+            z.set_outcomes(o);
+        }
+        Self::build(zones, x, mesh, Some(time))
+    }
+
     /// Builds the field from the zones' last converged state, on the
     /// converged geometry `x` (current positions of all nodes). A node is
     /// in contact when it carries a positive force.
@@ -65,6 +84,15 @@ impl ContNoeu {
         zones: &[ZoneContact],
         x: &[[f64; 3]],
         mesh: &Mesh,
+    ) -> Result<ContNoeu, ContactError> {
+        Self::build(zones, x, mesh, None)
+    }
+
+    fn build(
+        zones: &[ZoneContact],
+        x: &[[f64; 3]],
+        mesh: &Mesh,
+        time: Option<f64>,
     ) -> Result<ContNoeu, ContactError> {
         let mut out = ContNoeu {
             nodes: Vec::new(),
@@ -82,13 +110,18 @@ impl ContNoeu {
         }
         for z in zones {
             let forces = z.nodal_forces();
+            let recorded = match time {
+                Some(t) if !z.zone.geometry.resolve => z.verification_pairing(t),
+                _ => None,
+            };
             for point in nodal_points(&z.zone) {
                 let Some(node) = point.node() else { continue };
-                if out.nodes.contains(&node) {
-                    continue;
-                }
                 let mut v = [0.0; 19];
-                let pair = pair_point(&z.zone, &point, x)?;
+                let pair =
+                    match recorded.and_then(|r| r.iter().find(|p| p.point.node() == Some(node))) {
+                        Some(p) => p.clone(),
+                        None => pair_point(&z.zone, &point, x)?,
+                    };
                 match &pair.status {
                     PairStatus::Excluded(_) => v[0] = -1.0,
                     PairStatus::Paired(p) => {
@@ -97,7 +130,13 @@ impl ContNoeu {
                             .find(|(n, _)| *n == node)
                             .map(|e| e.1)
                             .unwrap_or(0.0);
-                        v[0] = if rn > 0.0 { 1.0 } else { 0.0 };
+                        v[0] = if !z.zone.geometry.resolve {
+                            verification_status(p.gap, z.zone.geometry.tole_interp)
+                        } else if rn > 0.0 {
+                            1.0
+                        } else {
+                            0.0
+                        };
                         v[1] = p.gap;
                         v[2] = rn;
                         for c in 0..3 {
@@ -107,10 +146,28 @@ impl ContNoeu {
                         v[18] = rn;
                     }
                 }
-                out.nodes.push(node);
-                out.values.push(v);
+                // A node slave in several zones reports the last one, as
+                // code_aster fills the field zone after zone.
+                match out.nodes.iter().position(|n| *n == node) {
+                    Some(k) => out.values[k] = v,
+                    None => {
+                        out.nodes.push(node);
+                        out.values.push(v);
+                    }
+                }
             }
         }
         Ok(out)
+    }
+}
+
+/// CONT of a RESOLUTION='NON' zone (code_aster's verification status):
+/// 0 apart or interpenetrating by at most `TOLE_INTERP`, 3 interpenetrating
+/// by more.
+fn verification_status(gap: f64, tole_interp: f64) -> f64 {
+    if gap > f64::EPSILON || gap.abs() <= tole_interp {
+        0.0
+    } else {
+        3.0
     }
 }

@@ -4,8 +4,8 @@
 use std::collections::BTreeMap;
 
 use aster_fem::{
-    Dof, FemError, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
-    UnilateralSource,
+    Dof, FemError, GeometryCriterion, GeometryUpdate, InequalityRow, RowOutcome, State,
+    UnilateralMethod, UnilateralSource,
 };
 use aster_mesh::{Mesh, NodeId};
 
@@ -54,6 +54,10 @@ pub struct ZoneContact {
     /// What each force acts on: slave nodes and weights (one entry per
     /// pair in discrete, per slave node row in continuous).
     carriers: Vec<Vec<(NodeId, f64)>>,
+    /// RESOLUTION='NON': the pairing each converged step ended with, by
+    /// step time (code_aster reports these zones' gaps as paired last, not
+    /// on the final geometry).
+    step_pairings: Vec<(f64, Vec<ContactPair>)>,
 }
 
 impl ZoneContact {
@@ -93,6 +97,7 @@ impl ZoneContact {
             length: 0.0,
             frozen_rows: Vec::new(),
             carriers: Vec::new(),
+            step_pairings: Vec::new(),
             zone,
             law,
             geom_loop,
@@ -266,6 +271,16 @@ impl ZoneContact {
         }
     }
 
+    /// RESOLUTION='NON' zone: the pairing the converged step at `time`
+    /// ended with (as recorded during fem's solve).
+    pub fn verification_pairing(&self, time: f64) -> Option<&[ContactPair]> {
+        self.step_pairings
+            .iter()
+            .rev()
+            .find(|(t, _)| (t - time).abs() <= 1e-9 * time.abs().max(1.0))
+            .map(|(_, p)| p.as_slice())
+    }
+
     /// The pairs of the last pairing.
     pub fn pairs(&self) -> &[ContactPair] {
         &self.pairs
@@ -372,6 +387,24 @@ impl UnilateralSource for ZoneContact {
         }
     }
 
+    /// Discrete contact ends its geometric loop as code_aster does
+    /// (`RESI_GEOM`); the continuous formulation iterates to the fixed point.
+    fn geometry_criterion(&self) -> Option<GeometryCriterion> {
+        match (self.law, self.geom_loop) {
+            (
+                ZoneLaw::Discrete(_),
+                GeomLoop::Automatique {
+                    iter_maxi,
+                    resi_geom,
+                },
+            ) => Some(GeometryCriterion {
+                resi_geom,
+                iter_maxi,
+            }),
+            _ => None,
+        }
+    }
+
     fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
         let x = current_positions(state);
         if self.length == 0.0 {
@@ -390,7 +423,10 @@ impl UnilateralSource for ZoneContact {
         Ok(rows)
     }
 
-    fn converged(&mut self, _state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+    fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        if !self.zone.geometry.resolve {
+            self.step_pairings.push((state.time, self.pairs.clone()));
+        }
         self.set_outcomes(outcomes);
         Ok(())
     }

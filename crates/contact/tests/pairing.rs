@@ -318,3 +318,131 @@ fn rows_linearise_the_gap() {
     assert_eq!(coefs, vec![-1.0, 0.5, 0.5]);
     assert!(row.terms.iter().all(|t| t.0.comp == aster_fem::Comp::DY));
 }
+
+/// MAIT_ESCL projects only on the master cells around the nearest master
+/// node (code_aster's approj): a slave point whose nearest master node ends
+/// a cell it projects far outside of is not paired, even though another
+/// master cell lies right under it.
+#[test]
+fn projection_only_on_the_cells_of_the_nearest_master_node() {
+    let mut b = Builder::new(2);
+    let a = b.node([0.0, 0.0, 0.0]);
+    let bb = b.node([10.0, 0.0, 0.0]);
+    let c = b.node([5.0, 2.0, 0.0]);
+    let d = b.node([5.0, 4.0, 0.0]);
+    let m1 = b.cell(CellType::SEG2, &[a, bb]);
+    let m2 = b.cell(CellType::SEG2, &[c, d]);
+    b.group_ma("MAIT", vec![m1, m2]);
+    let s1 = b.node([5.0, 1.2, 0.0]);
+    let s2 = b.node([20.0, 1.2, 0.0]);
+    let e = b.cell(CellType::SEG2, &[s1, s2]);
+    b.group_ma("ESCL", vec![e]);
+    let mesh = b.mesh;
+    // Nearest master node of (5, 1.2): C at 0.8 (A and B are 5.1 away);
+    // C's only cell is CD, projected 0.8 beyond C (half-length 1) > 0.5.
+    let ps = pairs(&mesh, ZoneGeometry::new("MAIT", "ESCL"));
+    match &ps[0].status {
+        PairStatus::Excluded(Exclusion::OutsideMaster { outside }) => {
+            assert!((outside - 0.8).abs() < 1e-12, "{outside}")
+        }
+        other => panic!("{other:?}"),
+    }
+    // Tolerated (TOLE_PROJ_EXT = 1): brought back onto C, the gap is
+    // measured along CD's normal, not on AB right below.
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    g.tole_proj_ext = 1.0;
+    let pr = pairs(&mesh, g)[0].pairing().cloned().unwrap();
+    assert_eq!(pr.master_x, [5.0, 2.0, 0.0]);
+    assert_eq!(pr.nearest_master_node, c);
+    assert!(pr.gap.abs() < 1e-14, "{}", pr.gap);
+}
+
+/// CONT_NOEU of a RESOLUTION='NON' zone: code_aster's verification status
+/// (0 apart or within TOLE_INTERP, 3 beyond) and the gap.
+#[test]
+fn verification_zone_status_in_cont_noeu() {
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [2.5, -0.2, 0.0], [3.5, -0.4, 0.0]]);
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    g.resolve = false;
+    g.tole_interp = 0.3;
+    let zone = ResolvedZone::new(0, &g, &mesh).unwrap();
+    let mut zc = ZoneContact::new(
+        zone,
+        ZoneLaw::Discrete(DiscreteAlgo::Contrainte),
+        GeomLoop::default(),
+    );
+    assert!(zc.pair(&mesh, &mesh.coords).unwrap().is_empty(), "no rows");
+    let cn = ContNoeu::from_zones(&[zc], &mesh.coords, &mesh).unwrap();
+    let got: Vec<(f64, f64)> = cn
+        .nodes
+        .iter()
+        .map(|&n| (cn.value(n, "CONT").unwrap(), cn.value(n, "JEU").unwrap()))
+        .collect();
+    let want = [(0.0, 0.5), (0.0, -0.2), (3.0, -0.4)];
+    for ((c, j), (wc, wj)) in got.iter().zip(want) {
+        assert_eq!(*c, wc, "{got:?}");
+        assert!((j - wj).abs() < 1e-14, "{got:?}");
+    }
+}
+
+/// CONT_NOEU of a RESOLUTION='NON' zone at a stored step reports the gaps
+/// of the pairing that step ended with (code_aster's `cfveri`), not a new
+/// pairing on the step's final geometry.
+#[test]
+fn verification_zone_reports_the_last_pairing_of_the_step() {
+    use aster_fem::{
+        Comp, Dof, Elastic, Element, ElementKind, Hypothesis, Model, State, UnilateralSource,
+    };
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [3.0, 0.5, 0.0]]);
+    let material = Elastic::new(1000.0, 0.3).unwrap();
+    let elements = (0..mesh.cells.len())
+        .map(|i| Element {
+            cell: CellId(i as u32),
+            kind: if mesh.cells[i].ty == CellType::QUAD4 {
+                ElementKind::Continuum {
+                    hypothesis: Hypothesis::PlaneStrain,
+                    material,
+                }
+            } else {
+                ElementKind::Boundary
+            },
+        })
+        .collect();
+    let model = Model::new(mesh.clone(), elements).unwrap();
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    g.resolve = false;
+    let zone = ResolvedZone::new(0, &g, &mesh).unwrap();
+    let slaves = zone.slave_nodes.clone();
+    let mut zc = ZoneContact::new(
+        zone,
+        ZoneLaw::Discrete(DiscreteAlgo::Contrainte),
+        GeomLoop::default(),
+    );
+    // The slave side lowered by 0.1 when last paired, by 0.3 at the end.
+    let lowered = |dy: f64| {
+        let mut u = vec![0.0; model.dofs().len()];
+        for &n in &slaves {
+            u[model.dofs().index(Dof::new(n, Comp::DY)).unwrap()] = -dy;
+        }
+        u
+    };
+    let (u1, u_end) = (lowered(0.1), lowered(0.3));
+    let state = |u| State {
+        mesh: model.mesh(),
+        dofs: model.dofs(),
+        displacement: u,
+        time: 2.0,
+    };
+    assert!(zc.rows(&state(&u1)).unwrap().is_empty());
+    zc.converged(&state(&u_end), &[]).unwrap();
+    let x_end = positions(model.mesh(), model.dofs(), &u_end);
+    let mut zones = [zc];
+    let reported = ContNoeu::at_step_time(&mut zones, &mesh, &x_end, &[vec![]], 2.0).unwrap();
+    let repaired = ContNoeu::at_step(&mut zones, &mesh, &x_end, &[vec![]]).unwrap();
+    for &n in &slaves {
+        let jeu = reported.value(n, "JEU").unwrap();
+        assert!((jeu - 0.4).abs() < 1e-14, "{jeu}");
+        let jeu_end = repaired.value(n, "JEU").unwrap();
+        assert!((jeu_end - 0.2).abs() < 1e-14, "{jeu_end}");
+    }
+}

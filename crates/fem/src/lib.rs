@@ -40,5 +40,6 @@ pub use nonlinear::{
 };
 pub use post::{CellValues, NodalValues};
 pub use unilateral::{
-    FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+    FixedRows, GeometryCriterion, GeometryUpdate, InequalityRow, RowOutcome, State,
+    UnilateralMethod, UnilateralSource,
 };

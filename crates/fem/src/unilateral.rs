@@ -65,6 +65,24 @@ pub enum GeometryUpdate {
     EachIteration,
 }
 
+/// code_aster's test ending the geometric loop of discrete contact
+/// (`REAC_GEOM='AUTOMATIQUE'`, routine `cfcgeo`): each time the residual has
+/// converged, the displacement change since the last pairing is compared
+/// with the step's displacement increment at that pairing (largest nodal
+/// norms); below `resi_geom` the step is converged, otherwise the sources
+/// pair again on the current geometry and Newton goes on. The first test of
+/// a step never passes (nothing to compare with), so every step is paired at
+/// least twice. The answer is therefore *not* the geometric fixed point: it
+/// is code_aster's, which differs from the fixed point by up to about
+/// `resi_geom` × the last change — visible in non-regression values at 1e-6.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GeometryCriterion {
+    /// `RESI_GEOM` (default 0.01).
+    pub resi_geom: f64,
+    /// `ITER_GEOM_MAXI` (default 10): tests allowed per step.
+    pub iter_maxi: usize,
+}
+
 /// The current mechanical state given to sources.
 #[derive(Clone, Copy, Debug)]
 pub struct State<'a> {
@@ -138,6 +156,13 @@ pub trait UnilateralSource {
         GeometryUpdate::Once
     }
 
+    /// With [`GeometryUpdate::EachIteration`]: `Some` ends the geometric
+    /// loop with code_aster's discrete-contact test ([`GeometryCriterion`]);
+    /// `None` (default) iterates until the rows stop changing.
+    fn geometry_criterion(&self) -> Option<GeometryCriterion> {
+        None
+    }
+
     /// The current rows for a state (the last converged one, or the current
     /// iterate with [`GeometryUpdate::EachIteration`]).
     fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError>;
@@ -180,6 +205,9 @@ impl<T: UnilateralSource + ?Sized> UnilateralSource for &mut T {
     }
     fn geometry_update(&self) -> GeometryUpdate {
         (**self).geometry_update()
+    }
+    fn geometry_criterion(&self) -> Option<GeometryCriterion> {
+        (**self).geometry_criterion()
     }
     fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
         (**self).rows(state)

@@ -301,22 +301,29 @@ pub fn solve(
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
-        let mut sources: Vec<Box<dyn UnilateralSource>> = Vec::new();
+        // The contact zones are lent to the solver, so that what they record
+        // during the solve (forces, last pairings) is there for CONT_NOEU.
         let mut contact_zones: Option<Vec<aster_contact::ZoneContact>> = None;
+        let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
-                ContactDef::Unilateral { zones, algo, .. } => sources.push(Box::new(LiaisonUnil {
-                    zones: zones.clone(),
-                    algo: *algo,
-                })),
+                ContactDef::Unilateral { zones, algo, .. } => {
+                    unil = Some(LiaisonUnil {
+                        zones: zones.clone(),
+                        algo: *algo,
+                    })
+                }
                 ContactDef::Zones { keywords, .. } => {
-                    let zones = crate::contactbridge::zones(ex, &mesh, keywords)?;
-                    contact_zones = Some(zones.clone());
-                    for z in zones {
-                        sources.push(Box::new(z));
-                    }
+                    contact_zones = Some(crate::contactbridge::zones(ex, &mesh, keywords)?);
                 }
             }
+        }
+        let mut sources: Vec<Box<dyn UnilateralSource + '_>> = Vec::new();
+        if let Some(u) = unil {
+            sources.push(Box::new(u));
+        }
+        for z in contact_zones.iter_mut().flatten() {
+            sources.push(Box::new(z));
         }
         let initial = match &setup.initial {
             Some((prev, t0)) => {
@@ -353,6 +360,7 @@ pub fn solve(
             ..StaticNonLinear::default()
         };
         let raw = snl.solve(&model, &loads).map_err(|e| fem_err(cmd, e))?;
+        drop(snl);
         if let Some(z) = contact_zones {
             post_zones = Some(z);
         }
@@ -378,8 +386,9 @@ pub fn solve(
             if let Some(zones) = &mut post_zones {
                 // CONT_NOEU: the zones re-paired on the step's geometry.
                 let x = aster_contact::positions(&mesh, model.dofs(), &s.displacement);
-                let cn = aster_contact::ContNoeu::at_step(zones, &mesh, &x, &s.unilateral)
-                    .map_err(|e| ExecError::new(format!("{cmd}: CONT_NOEU: {e}")))?;
+                let cn =
+                    aster_contact::ContNoeu::at_step_time(zones, &mesh, &x, &s.unilateral, s.time)
+                        .map_err(|e| ExecError::new(format!("{cmd}: CONT_NOEU: {e}")))?;
                 let mut f = NodalField::new(
                     aster_contact::CONT_NOEU_COMPONENTS
                         .iter()

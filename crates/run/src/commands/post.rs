@@ -303,6 +303,10 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             ty: ColumnType::Text(8),
         },
         Column {
+            name: "ABSC_CURV".into(),
+            ty: ColumnType::Real,
+        },
+        Column {
             name: "COOR_X".into(),
             ty: ColumnType::Real,
         },
@@ -428,7 +432,18 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 }
                 wanted
             };
-            for &n in &nodes {
+            // ABSC_CURV: length along the nodes in the order given, on the
+            // mesh's coordinates (code_aster's abscissa of a node path).
+            let mut absc = Vec::with_capacity(nodes.len());
+            let mut s = 0.0;
+            for (k, &n) in nodes.iter().enumerate() {
+                if k > 0 {
+                    let (a, b) = (mesh.coord(nodes[k - 1]), mesh.coord(n));
+                    s += ((0..3).map(|c| (b[c] - a[c]).powi(2)).sum::<f64>()).sqrt();
+                }
+                absc.push(s);
+            }
+            for (&n, &abscissa) in nodes.iter().zip(&absc) {
                 // Nodes without the field (outside the model) give no row.
                 let Some(vals) = f.values.get(&n) else {
                     continue;
@@ -446,6 +461,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     row.push(("INST", Value::Real(t)));
                 }
                 row.push(("NOEUD", Value::Text(select::node_name(&mesh, n))));
+                row.push(("ABSC_CURV", Value::Real(abscissa)));
                 row.push(("COOR_X", Value::Real(x[0])));
                 row.push(("COOR_Y", Value::Real(x[1])));
                 if mesh.dim == 3 {
