@@ -43,6 +43,22 @@ pub struct FactorizedStiffness {
 impl FactorizedStiffness {
     /// Assembles and factorises K on the DOFs not eliminated by `loads`.
     pub fn new(model: &Model, loads: &Loads) -> Result<Self, ContactError> {
+        let k = assemble_stiffness(model)
+            .map_err(|e: aster_fem::FemError| ContactError::Solver(e.to_string()))?;
+        Self::from_assembled(model, loads, k)
+    }
+
+    /// Factorises an already assembled stiffness `k` of `model` (from
+    /// [`assemble_stiffness`]) on the DOFs not eliminated by `loads`: lets
+    /// a caller time or reuse the assembly apart from the factorisation.
+    pub fn from_assembled(model: &Model, loads: &Loads, k: Csc) -> Result<Self, ContactError> {
+        if k.n != model.dofs().len() {
+            return Err(ContactError::Solver(format!(
+                "assembled stiffness of {} unknowns for a model of {}",
+                k.n,
+                model.dofs().len()
+            )));
+        }
         if loads
             .items
             .iter()
@@ -54,7 +70,6 @@ impl FactorizedStiffness {
             });
         }
         let fem = |e: aster_fem::FemError| ContactError::Solver(e.to_string());
-        let k = assemble_stiffness(model).map_err(fem)?;
         let elim = loads.eliminated(model, 0.0).map_err(fem)?;
         let n = model.dofs().len();
         let mut map = vec![usize::MAX; n];

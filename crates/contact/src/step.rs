@@ -28,6 +28,9 @@ pub struct StepReport {
     pub solves: usize,
     /// Number of active contact rows at convergence.
     pub active: usize,
+    /// Wall seconds spent pairing and building rows (all geometric
+    /// iterations), for profiles of where a step's time goes.
+    pub pairing_seconds: f64,
 }
 
 /// Solves one step: `u_free` is the displacement without contact (with
@@ -59,9 +62,11 @@ pub fn solve_step(
         contact_iterations: 0,
         solves: 0,
         active: 0,
+        pairing_seconds: 0.0,
     };
     let mut warm: Option<Vec<bool>> = None;
     for it in 0..max_geom {
+        let pairing_start = std::time::Instant::now();
         let x = positions(mesh, dofs, &u);
         let mut rows = Vec::new();
         let mut eps = Vec::new();
@@ -74,6 +79,7 @@ pub fn solve_step(
                 rows.push(index_row(&row, dofs, mesh)?);
             }
         }
+        report.pairing_seconds += pairing_start.elapsed().as_secs_f64();
         let warm_ok = warm
             .as_ref()
             .filter(|w| w.len() == rows.len())

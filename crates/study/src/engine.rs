@@ -1,6 +1,7 @@
 //! The sweep: runs every point, times it, records measures or the reason it
 //! failed, then resolves errors against the reference.
 
+use crate::clock::{cpu_now, cpu_since};
 use crate::memory;
 use crate::method::Method;
 use crate::outcome::{Failure, FailureKind, Measures, Status};
@@ -29,8 +30,11 @@ pub struct RunRecord {
     pub reason: Option<String>,
     /// What the run measured, if it got that far.
     pub measures: Option<Measures>,
-    /// Wall time of the run (the fastest of `repeat`), seconds.
+    /// Wall time of the kept run, seconds.
     pub wall_seconds: f64,
+    /// CPU time of the kept run (the fastest of `repeat` in CPU time),
+    /// seconds: the study's measure of speed (see [`crate::clock`]).
+    pub cpu_seconds: f64,
     /// Peak resident memory during the run, KiB (see [`crate::memory`]).
     pub peak_rss_kib: Option<u64>,
     /// Relative error |value − reference| / |reference|, when both exist.
@@ -40,11 +44,17 @@ pub struct RunRecord {
 }
 
 impl RunRecord {
-    /// Share of the wall time spent outside the linear solver, when the
-    /// scene reported the solver's time.
+    /// The run's time for comparisons (Pareto front, fastest method): its
+    /// CPU time.
+    pub fn seconds(&self) -> f64 {
+        self.cpu_seconds
+    }
+
+    /// Share of the run's CPU time spent outside the linear solver, when
+    /// the scene reported the solver's time.
     pub fn outside_solver_fraction(&self) -> Option<f64> {
         let s = self.measures.as_ref()?.solver_seconds?;
-        (self.wall_seconds > 0.0).then(|| ((self.wall_seconds - s) / self.wall_seconds).max(0.0))
+        (self.cpu_seconds > 0.0).then(|| ((self.cpu_seconds - s) / self.cpu_seconds).max(0.0))
     }
 }
 
@@ -92,10 +102,11 @@ fn progress_bar(len: u64, progress: Progress) -> ProgressBar {
 }
 
 fn run_point(scene: &dyn Scene, point: &Point, repeat: u32) -> RunRecord {
-    let mut best: Option<(f64, Option<u64>, Result<Measures, Failure>)> = None;
+    let mut best: Option<(f64, f64, Option<u64>, Result<Measures, Failure>)> = None;
     for _ in 0..repeat.max(1) {
         let reset = memory::reset_peak();
         let start = Instant::now();
+        let cpu_start = cpu_now();
         let outcome = catch_unwind(AssertUnwindSafe(|| scene.run(point))).unwrap_or_else(|p| {
             let message = p
                 .downcast_ref::<String>()
@@ -107,24 +118,26 @@ fn run_point(scene: &dyn Scene, point: &Point, repeat: u32) -> RunRecord {
                 format!("panicked: {message}"),
             ))
         });
-        let excluded = match &outcome {
-            Ok(m) => m.excluded_seconds,
-            Err(f) => f.measures.as_ref().map_or(0.0, |m| m.excluded_seconds),
-        };
-        let wall = (start.elapsed().as_secs_f64() - excluded).max(0.0);
+        let cpu = cpu_since(cpu_start);
+        let wall = start.elapsed().as_secs_f64();
         let peak = if reset { memory::peak_kib() } else { None };
         let failed = outcome.is_err();
-        if best.as_ref().is_none_or(|(t, _, _)| wall < *t) {
-            best = Some((wall, peak, outcome));
+        if best.as_ref().is_none_or(|(t, _, _, _)| cpu < *t) {
+            best = Some((cpu, wall, peak, outcome));
         }
         // A failing point is not repeated: its failure is the answer.
         if failed {
             break;
         }
     }
-    let (wall_seconds, peak_rss_kib, outcome) = match best {
+    let (cpu_seconds, wall_seconds, peak_rss_kib, outcome) = match best {
         Some(b) => b,
-        None => (0.0, None, Err(Failure::new(FailureKind::Other, "not run"))),
+        None => (
+            0.0,
+            0.0,
+            None,
+            Err(Failure::new(FailureKind::Other, "not run")),
+        ),
     };
     match outcome {
         Ok(m) => RunRecord {
@@ -134,6 +147,7 @@ fn run_point(scene: &dyn Scene, point: &Point, repeat: u32) -> RunRecord {
             reason: None,
             measures: Some(m),
             wall_seconds,
+            cpu_seconds,
             peak_rss_kib,
             error: None,
             reference: None,
@@ -145,6 +159,7 @@ fn run_point(scene: &dyn Scene, point: &Point, repeat: u32) -> RunRecord {
             reason: Some(f.message),
             measures: f.measures.map(|m| *m),
             wall_seconds,
+            cpu_seconds,
             peak_rss_kib,
             error: None,
             reference: None,

@@ -37,7 +37,18 @@ coefficients = [1e5]
     assert!(fine < coarse && fine < 0.01, "p0 errors {coarse} -> {fine}");
     let m = exact[1].measures.as_ref().unwrap();
     assert!(m.penetration.unwrap() < 1e-9);
-    assert!(m.solver_seconds.unwrap() > 0.0 && m.solver_seconds.unwrap() <= exact[1].wall_seconds);
+    // The phases cover the run: the solver is part of it, and the phases
+    // add up to the run's CPU time (up to the clock's overhead).
+    let phases = m.phases.unwrap();
+    let solver = m.solver_seconds.unwrap();
+    assert!(solver > 0.0 && solver == phases.solver());
+    let cpu = exact[1].cpu_seconds;
+    assert!(solver <= cpu, "solver {solver} s > run {cpu} s");
+    assert!(
+        (phases.total() - cpu).abs() <= 0.2 * cpu + 1e-4,
+        "phases {phases:?} do not add up to {cpu} s"
+    );
+    assert!(phases.assembly > 0.0 && phases.pairing > 0.0 && phases.mesh > 0.0);
     // E_N = 1e5 lets the cylinder sink by ~0.03 mm: a wrong answer, with why.
     let weak = result
         .records

@@ -1,13 +1,14 @@
 //! Runs a contact method on a linear elastic model with the contact crate's
 //! multiplier-space driver, timing the linear solver apart from the rest.
 //!
-//! It is `aster_contact::run_linear` unrolled so that the time spent in the
-//! linear solver can be measured: the stiffness factorisation (assembly
-//! excluded) and every solve with it, through a timing wrapper around
-//! [`StiffnessSolve`].
+//! It is `aster_contact::run_linear` unrolled so that each phase's CPU time
+//! can be measured: assembly, factorisation, every solve with the factor
+//! (through a timing wrapper around [`StiffnessSolve`]), pairing, and the
+//! rest of the contact algorithm.
 
+use crate::clock::{cpu_now, cpu_since};
 use crate::method::{Method, MethodFamily};
-use crate::outcome::{Failure, FailureKind};
+use crate::outcome::{Failure, FailureKind, Phases};
 use aster_contact::dual::StiffnessSolve;
 use aster_contact::{
     positions, solve_step, ContactDefinition, ContactError, ContinueAlgo, ContinueLaw,
@@ -16,7 +17,6 @@ use aster_contact::{
 use aster_fem::assembly::assemble_stiffness;
 use aster_fem::{Loads, Model};
 use std::cell::Cell;
-use std::time::Instant;
 
 /// A solved contact problem and what it cost.
 pub struct Solved {
@@ -25,11 +25,9 @@ pub struct Solved {
     pub u: Vec<f64>,
     pub contact_iterations: usize,
     pub geom_iterations: usize,
-    /// Factorisation and solves with the factorised stiffness.
-    pub solver_seconds: f64,
-    /// Time spent only to measure (a second assembly to subtract it from
-    /// the factorisation's time): to be removed from the run's wall time.
-    pub excluded_seconds: f64,
+    /// CPU time of the phases from the contact zones to the converged
+    /// contact solution (`mesh` and `post` are left to the scene).
+    pub phases: Phases,
 }
 
 /// The `DEFI_CONTACT` a method stands for, on one zone; `fixed_normal` is
@@ -115,41 +113,47 @@ impl StiffnessSolve for Timed<'_> {
         self.k.len()
     }
     fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String> {
-        let start = Instant::now();
+        let start = cpu_now();
         let out = self.k.solve(rhs);
-        self.seconds
-            .set(self.seconds.get() + start.elapsed().as_secs_f64());
+        self.seconds.set(self.seconds.get() + cpu_since(start));
         out
     }
 }
 
 /// Solves the contact problem at `instants` (the first one is the initial,
 /// unloaded state). Each instant pairs on the previous converged geometry.
+/// The phases from `model` to `contact` are filled in CPU seconds; the
+/// scene adds `mesh`, the model's construction and `post`.
 pub fn solve(
     def: &ContactDefinition,
     model: &Model,
     loads: &Loads,
     instants: &[f64],
 ) -> Result<Solved, Failure> {
+    let mut phases = Phases::default();
+    let start = cpu_now();
     let mut zones = ZoneContact::build_all(def, model.mesh()).map_err(contact_failure)?;
-    // Assembly alone, to take it out of the factorisation's time.
-    let start = Instant::now();
-    assemble_stiffness(model).map_err(|e| Failure::new(FailureKind::Other, e.to_string()))?;
-    let assembly = start.elapsed().as_secs_f64();
-    let start = Instant::now();
-    let k = FactorizedStiffness::new(model, loads).map_err(contact_failure)?;
-    let factor = (start.elapsed().as_secs_f64() - assembly).max(0.0);
+    phases.model = cpu_since(start);
+    let start = cpu_now();
+    let assembled =
+        assemble_stiffness(model).map_err(|e| Failure::new(FailureKind::Other, e.to_string()))?;
+    phases.assembly = cpu_since(start);
+    let start = cpu_now();
+    let k =
+        FactorizedStiffness::from_assembled(model, loads, assembled).map_err(contact_failure)?;
+    phases.factorisation = cpu_since(start);
     let timed = Timed {
         k: &k,
         seconds: Cell::new(0.0),
     };
     let mut u = vec![0.0; model.dofs().len()];
     let (mut contact_iterations, mut geom_iterations) = (0, 0);
-    let mut free_seconds = 0.0;
     for &t in instants.iter().skip(1) {
-        let start = Instant::now();
+        let start = cpu_now();
         let u_free = k.free_solution(model, loads, t).map_err(contact_failure)?;
-        free_seconds += start.elapsed().as_secs_f64();
+        phases.solves += cpu_since(start);
+        let start = cpu_now();
+        let solves_before = timed.seconds.get();
         let report = solve_step(
             def,
             &mut zones,
@@ -160,6 +164,14 @@ pub fn solve(
             &u,
         )
         .map_err(contact_failure)?;
+        let step = cpu_since(start);
+        let solves = timed.seconds.get() - solves_before;
+        // The step's pairing is timed on the wall clock by the contact
+        // crate: on one busy thread the two agree.
+        let pairing = report.pairing_seconds.min(step - solves).max(0.0);
+        phases.solves += solves;
+        phases.pairing += pairing;
+        phases.contact += (step - solves - pairing).max(0.0);
         contact_iterations += report.contact_iterations;
         geom_iterations += report.geom_iterations;
         u = report.u;
@@ -175,8 +187,7 @@ pub fn solve(
         u,
         contact_iterations,
         geom_iterations,
-        solver_seconds: factor + free_seconds + timed.seconds.get(),
-        excluded_seconds: assembly,
+        phases,
     })
 }
 

@@ -63,7 +63,7 @@ impl Scene for FakeScene {
             newton_iterations: p.steps as usize * 2,
             contact_iterations: p.steps as usize * 3,
             solver_seconds: None,
-            excluded_seconds: 0.0,
+            phases: None,
             penetration: Some(penetration),
             extras: vec![("busy".into(), acc)],
         };

@@ -10,14 +10,16 @@
 //! the error measures the contact pressure, not the load.
 
 use super::driver;
+use crate::clock::{cpu_now, cpu_since};
 use crate::error::StudyError;
-use crate::outcome::{Failure, FailureKind, Measures};
+use crate::outcome::{Failure, FailureKind, Measures, Phases};
 use crate::scene::{Params, Scene};
 use crate::spec::Point;
 use aster_contact::hertz::{hertz_mesh, plane_strain_modulus, HertzMesh, HertzSolution};
 use aster_fem::{
     Comp, Dof, Elastic, Element, ElementKind, Hypothesis, Load, Loads, Model, Multiplier,
 };
+use aster_mesh::Mesh;
 use std::collections::BTreeMap;
 
 pub struct Hertz {
@@ -56,9 +58,18 @@ impl Hertz {
 
     /// The model and loads with `n` cells across the refined sector.
     pub fn problem(&self, n: usize) -> Result<(Model, Loads), Failure> {
+        self.model(self.mesh(n)?)
+    }
+
+    /// The mesh with `n` cells across the refined sector.
+    pub fn mesh(&self, n: usize) -> Result<Mesh, Failure> {
+        hertz_mesh(&HertzMesh::new(self.radius, self.contact_angle, n))
+            .map_err(|e| Failure::new(FailureKind::Other, e.to_string()))
+    }
+
+    /// The model and loads on a mesh from [`Hertz::mesh`].
+    pub fn model(&self, mesh: Mesh) -> Result<(Model, Loads), Failure> {
         let other = |m: String| Failure::new(FailureKind::Other, m);
-        let mesh = hertz_mesh(&HertzMesh::new(self.radius, self.contact_angle, n))
-            .map_err(|e| other(e.to_string()))?;
         let material = Elastic::new(self.young, self.poisson).map_err(|e| other(e.to_string()))?;
         let group = |g: &str| {
             mesh.group_ma(g)
@@ -123,10 +134,16 @@ impl Scene for Hertz {
 
     fn run(&self, p: &Point) -> Result<Measures, Failure> {
         let n = p.refine as usize;
-        let (model, loads) = self.problem(n)?;
+        let start = cpu_now();
+        let mesh = self.mesh(n)?;
+        let mesh_seconds = cpu_since(start);
+        let start = cpu_now();
+        let (model, loads) = self.model(mesh)?;
         let def = driver::definition(&p.method, "MAIT", "ESCL", None)?;
+        let model_seconds = cpu_since(start);
         let instants: Vec<f64> = (0..=p.steps).map(|i| i as f64 / p.steps as f64).collect();
         let solved = driver::solve(&def, &model, &loads, &instants)?;
+        let post_start = cpu_now();
         let mesh = model.mesh();
         let mut forces: Vec<(f64, f64)> = solved
             .zones
@@ -147,6 +164,12 @@ impl Scene for Hertz {
             / (h / 2.0);
         let last = forces.iter().rposition(|f| f.1 > 0.0);
         let measured_a = last.map_or(0.0, |i| forces[i].0);
+        let phases = Phases {
+            mesh: mesh_seconds,
+            model: model_seconds + solved.phases.model,
+            post: cpu_since(post_start),
+            ..solved.phases
+        };
         let m = Measures {
             value: p0,
             reference: Some(exact.peak_pressure),
@@ -154,8 +177,8 @@ impl Scene for Hertz {
             dofs: model.dofs().len(),
             newton_iterations: solved.geom_iterations,
             contact_iterations: solved.contact_iterations,
-            solver_seconds: Some(solved.solver_seconds),
-            excluded_seconds: solved.excluded_seconds,
+            solver_seconds: Some(phases.solver()),
+            phases: Some(phases),
             penetration: Some(penetration),
             extras: vec![
                 ("load_P".into(), load),
