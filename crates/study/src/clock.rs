@@ -1,17 +1,25 @@
-//! The study's clock: CPU time of the process (user + system, all threads),
-//! from `CLOCK_PROCESS_CPUTIME_ID`.
+//! The study's clock: CPU time of the calling thread (user + system), from
+//! `CLOCK_THREAD_CPUTIME_ID`.
 //!
 //! Why CPU time rather than wall time: the study runs on machines shared
 //! with builds, where a run's wall time can double when another process
-//! takes the core; its CPU time barely moves. All threads count, so a
-//! factorisation that runs in parallel costs its total work, which is what
-//! the "share of time outside the linear solver" compares honestly.
+//! takes the core; its CPU time barely moves. Why the thread's: a study
+//! runs its points one after the other on one thread, with faer's
+//! parallelism turned off ([`run_sequentially`]), so the thread's CPU time
+//! is the run's whole cost — and other threads of the process (a test
+//! harness running tests in parallel) do not leak into it.
 
 use rustix::time::{clock_gettime, ClockId};
 
-/// CPU seconds consumed by this process so far.
+/// Makes faer (factorisations and solves) run on the calling thread, so
+/// that [`cpu_now`] sees all of a run's work. Affects the whole process.
+pub fn run_sequentially() {
+    faer::set_global_parallelism(faer::Par::Seq);
+}
+
+/// CPU seconds consumed by the calling thread so far.
 pub fn cpu_now() -> f64 {
-    let t = clock_gettime(ClockId::ProcessCPUTime);
+    let t = clock_gettime(ClockId::ThreadCPUTime);
     t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
 }
 

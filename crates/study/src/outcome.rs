@@ -10,6 +10,10 @@ pub struct Measures {
     pub value: f64,
     /// The analytic reference of `value` for this point, when there is one.
     pub reference: Option<f64>,
+    /// A reference that holds whatever the spec's `reference` says: the run
+    /// models another problem than the study's first method (LIAISON_UNIL
+    /// on a rigid base where the contact runs have a deformable one).
+    pub own_reference: Option<f64>,
     /// Characteristic mesh size near the contact.
     pub h: f64,
     /// Number of displacement unknowns.

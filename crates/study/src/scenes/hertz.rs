@@ -17,7 +17,8 @@ use crate::scene::{Params, Scene};
 use crate::spec::Point;
 use aster_contact::hertz::{hertz_mesh, plane_strain_modulus, HertzMesh, HertzSolution};
 use aster_fem::{
-    Comp, Dof, Elastic, Element, ElementKind, Hypothesis, Load, Loads, Model, Multiplier,
+    Comp, Dof, Elastic, Element, ElementKind, Hypothesis, InequalityRow, Load, Loads, Model,
+    Multiplier,
 };
 use aster_mesh::Mesh;
 use std::collections::BTreeMap;
@@ -120,6 +121,26 @@ impl Hertz {
     }
 }
 
+impl Hertz {
+    /// The rigid plane as LIAISON_UNIL on the cylinder's contact-side nodes
+    /// (`ESCL`): DY ≥ −gap, i.e. the row −DY ≤ gap with COEF_IMPO the
+    /// node's initial height above the plane y = 0.
+    fn unilateral_rows(&self, model: &Model) -> Result<Vec<InequalityRow>, Failure> {
+        let mesh = model.mesh();
+        let nodes = mesh.group_no("ESCL").ok_or_else(|| {
+            Failure::new(FailureKind::Other, "generated mesh lacks node group ESCL")
+        })?;
+        Ok(nodes
+            .members
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| {
+                InequalityRow::new(vec![(Dof::new(n, Comp::DY), -1.0)], mesh.coord(n)[1], i)
+            })
+            .collect())
+    }
+}
+
 impl Scene for Hertz {
     fn quantity(&self) -> String {
         "peak pressure p0 (MPa)".into()
@@ -139,22 +160,23 @@ impl Scene for Hertz {
         let mesh_seconds = cpu_since(start);
         let start = cpu_now();
         let (model, loads) = self.model(mesh)?;
-        let def = driver::definition(&p.method, "MAIT", "ESCL", None)?;
+        let conditions = driver::conditions(&p.method, "MAIT", "ESCL", None, || {
+            self.unilateral_rows(&model)
+        })?;
         let model_seconds = cpu_since(start);
         let instants: Vec<f64> = (0..=p.steps).map(|i| i as f64 / p.steps as f64).collect();
-        let solved = driver::solve(&def, &model, &loads, &instants)?;
+        let solved = driver::solve(&conditions, &model, &loads, &instants)?;
         let post_start = cpu_now();
         let mesh = model.mesh();
         let mut forces: Vec<(f64, f64)> = solved
-            .zones
+            .forces
             .iter()
-            .flat_map(|z| z.nodal_forces())
-            .map(|(node, f)| (mesh.coord(node)[0], f))
+            .map(|&(node, f)| (mesh.coord(node)[0], f))
             .collect();
         forces.sort_by(|a, b| a.0.total_cmp(&b.0));
         let h = self.radius * self.contact_angle / n as f64;
         let load = 2.0 * forces.iter().map(|f| f.1).sum::<f64>();
-        let penetration = driver::penetration(&solved, &model);
+        let penetration = solved.penetration;
         let e_star = plane_strain_modulus(self.young, self.poisson, f64::INFINITY, 0.0);
         let exact = HertzSolution::new(load.max(f64::MIN_POSITIVE), self.radius, e_star);
         let p0 = forces
@@ -173,6 +195,7 @@ impl Scene for Hertz {
         let m = Measures {
             value: p0,
             reference: Some(exact.peak_pressure),
+            own_reference: None,
             h,
             dofs: model.dofs().len(),
             newton_iterations: solved.geom_iterations,
