@@ -312,7 +312,14 @@ mod tests {
     fn block_scatter_matches_dense_assembly_3d() {
         let mut coords = Vec::new();
         for z in [0.0, 1.0] {
-            for (x, y) in [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (0.0, 1.0), (1.0, 1.0), (2.0, 1.1)] {
+            for (x, y) in [
+                (0.0, 0.0),
+                (1.0, 0.0),
+                (2.0, 0.0),
+                (0.0, 1.0),
+                (1.0, 1.0),
+                (2.0, 1.1),
+            ] {
                 coords.push([x + 0.05 * z, y, z]);
             }
         }

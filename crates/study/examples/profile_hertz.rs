@@ -32,6 +32,7 @@ fn main() {
         stiffness_ratio: 1.0,
         steps: 1,
     };
+    aster_study::clock::run_sequentially();
     let start = aster_study::clock::cpu_now();
     let mut sum = [0.0; 8];
     for _ in 0..reps {
