@@ -28,6 +28,9 @@
 //!   generalised Newton method on λ = max(0, λ − c s), i.e. the primal–dual
 //!   active set strategy.
 
+use std::collections::HashMap;
+use std::rc::Rc;
+
 use nalgebra::{DMatrix, DVector};
 
 use crate::error::ContactError;
@@ -42,6 +45,50 @@ pub trait StiffnessSolve {
     /// `K⁻¹ rhs` with every kinematic condition homogeneous (imposed
     /// displacements at zero).
     fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String>;
+    /// Whether `solve` reads `rhs[i]` (false for an eliminated DOF, whose
+    /// value is imposed): rows differing only there share their column
+    /// K⁻¹a in a [`ColumnCache`].
+    fn reads(&self, _i: usize) -> bool {
+        true
+    }
+}
+
+/// Columns K⁻¹aⱼ kept across dual solves with the same factorised K (the
+/// geometric iterations of a step, the steps of a linear analysis): a row
+/// whose coefficients on the DOFs K reads are bitwise unchanged reuses its
+/// column instead of a new solve. Valid for one K only: make a new cache
+/// when K changes.
+#[derive(Debug, Default)]
+pub struct ColumnCache {
+    columns: HashMap<Vec<(usize, u64)>, Rc<Vec<f64>>>,
+    /// Columns taken from the cache instead of solved.
+    pub hits: usize,
+}
+
+impl ColumnCache {
+    pub fn new() -> ColumnCache {
+        ColumnCache::default()
+    }
+
+    /// Number of columns held.
+    pub fn len(&self) -> usize {
+        self.columns.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.columns.is_empty()
+    }
+
+    fn key(k: &dyn StiffnessSolve, row: &IndexedRow) -> Vec<(usize, u64)> {
+        let mut key: Vec<(usize, u64)> = row
+            .terms
+            .iter()
+            .filter(|&&(i, c)| c != 0.0 && k.reads(i))
+            .map(|&(i, c)| (i, c.to_bits()))
+            .collect();
+        key.sort_unstable();
+        key
+    }
 }
 
 /// A row `Σ coef·u[index] ≤ rhs` in solver numbering.
@@ -104,6 +151,20 @@ pub fn solve_dual(
     algo: DualAlgorithm,
     warm: Option<&[bool]>,
 ) -> Result<DualSolution, ContactError> {
+    solve_dual_cached(k, u_free, rows, eps, algo, warm, &mut ColumnCache::new())
+}
+
+/// [`solve_dual`] reusing (and filling) `cache`'s columns K⁻¹aⱼ; `cache`
+/// must have been filled with the same K.
+pub fn solve_dual_cached(
+    k: &dyn StiffnessSolve,
+    u_free: &[f64],
+    rows: &[IndexedRow],
+    eps: &[f64],
+    algo: DualAlgorithm,
+    warm: Option<&[bool]>,
+    cache: &mut ColumnCache,
+) -> Result<DualSolution, ContactError> {
     if u_free.len() != k.len() || eps.len() != rows.len() {
         return Err(ContactError::Solver(format!(
             "inconsistent sizes: {} unknowns, free solution of {}, {} rows, {} penalties",
@@ -113,7 +174,7 @@ pub fn solve_dual(
             eps.len()
         )));
     }
-    let mut ctx = Context::new(k, u_free, rows, eps);
+    let mut ctx = Context::new(k, u_free, rows, eps, cache);
     let m = rows.len();
     if m == 0 {
         return ctx.finish(vec![], 0);
@@ -147,8 +208,9 @@ struct Context<'a> {
     rows: &'a [IndexedRow],
     eps: &'a [f64],
     q: Vec<f64>,
-    /// K⁻¹ aⱼ, computed on demand.
-    columns: Vec<Option<Vec<f64>>>,
+    /// K⁻¹ aⱼ, computed on demand (or taken from the cache).
+    columns: Vec<Option<Rc<Vec<f64>>>>,
+    cache: &'a mut ColumnCache,
     solves: usize,
     tol_s: f64,
 }
@@ -159,6 +221,7 @@ impl<'a> Context<'a> {
         u_free: &'a [f64],
         rows: &'a [IndexedRow],
         eps: &'a [f64],
+        cache: &'a mut ColumnCache,
     ) -> Self {
         let q: Vec<f64> = rows.iter().map(|r| r.rhs - r.dot(u_free)).collect();
         let scale = q
@@ -172,6 +235,7 @@ impl<'a> Context<'a> {
             eps,
             q,
             columns: vec![None; rows.len()],
+            cache,
             solves: 0,
             tol_s: 1e-10 * scale,
         }
@@ -191,15 +255,26 @@ impl<'a> Context<'a> {
 
     fn column(&mut self, j: usize) -> Result<&[f64], ContactError> {
         if self.columns[j].is_none() {
-            let mut a = vec![0.0; self.k.len()];
-            for &(i, c) in &self.rows[j].terms {
-                a[i] += c;
-            }
-            let z = self.k.solve(&a).map_err(ContactError::Solver)?;
-            self.solves += 1;
+            let key = ColumnCache::key(self.k, &self.rows[j]);
+            let z = match self.cache.columns.get(&key) {
+                Some(z) => {
+                    self.cache.hits += 1;
+                    Rc::clone(z)
+                }
+                None => {
+                    let mut a = vec![0.0; self.k.len()];
+                    for &(i, c) in &self.rows[j].terms {
+                        a[i] += c;
+                    }
+                    let z = Rc::new(self.k.solve(&a).map_err(ContactError::Solver)?);
+                    self.solves += 1;
+                    self.cache.columns.insert(key, Rc::clone(&z));
+                    z
+                }
+            };
             self.columns[j] = Some(z);
         }
-        Ok(self.columns[j].as_deref().unwrap_or(&[]))
+        Ok(self.columns[j].as_deref().map_or(&[], |v| v.as_slice()))
     }
 
     /// S_ij + ε_i δ_ij.
@@ -834,6 +909,74 @@ mod tests {
         )
         .unwrap();
         check_kkt(&k, &u_free, &rows, &eps, &s, 1e-9);
+    }
+
+    #[test]
+    fn cached_columns_are_reused_and_give_the_same_answer() {
+        let (k, u_free, rows) = problem(10);
+        let eps = vec![0.0; rows.len()];
+        let algo = DualAlgorithm::ActiveSet {
+            max_iter: 40,
+            stop_singulier: true,
+        };
+        let plain = solve_dual(&k, &u_free, &rows, &eps, algo, None).unwrap();
+        let mut cache = ColumnCache::new();
+        let first = solve_dual_cached(&k, &u_free, &rows, &eps, algo, None, &mut cache).unwrap();
+        assert_eq!(first, plain);
+        assert!(first.solves > 0 && cache.len() == first.solves);
+        // A second pass with the same rows (a geometric iteration that
+        // found the same pairing) solves nothing.
+        let again = solve_dual_cached(&k, &u_free, &rows, &eps, algo, None, &mut cache).unwrap();
+        assert_eq!((again.lambda, again.u), (plain.lambda, plain.u));
+        assert_eq!(again.solves, 0);
+        assert_eq!(cache.hits, first.solves);
+    }
+
+    /// K with DOF 0 eliminated: `solve` ignores rhs[0].
+    struct Eliminated0(Dense);
+
+    impl StiffnessSolve for Eliminated0 {
+        fn len(&self) -> usize {
+            self.0.len()
+        }
+        fn reads(&self, i: usize) -> bool {
+            i != 0
+        }
+        fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String> {
+            let mut b = rhs.to_vec();
+            b[0] = 0.0;
+            self.0.solve(&b)
+        }
+    }
+
+    #[test]
+    fn rows_differing_on_unread_dofs_share_their_column() {
+        let (k, u_free, mut rows) = problem(6);
+        // No row on the eliminated DOF itself (its column would be zero).
+        rows.remove(0);
+        let k = Eliminated0(k);
+        let eps = vec![0.0; rows.len()];
+        let algo = DualAlgorithm::ActiveSet {
+            max_iter: 40,
+            stop_singulier: true,
+        };
+        let mut cache = ColumnCache::new();
+        let first = solve_dual_cached(&k, &u_free, &rows, &eps, algo, None, &mut cache).unwrap();
+        // The same rows plus a term on the eliminated DOF 0 (a master node
+        // held fixed whose weight changed with the projection).
+        let moved: Vec<IndexedRow> = rows
+            .iter()
+            .map(|r| {
+                let mut r = r.clone();
+                r.terms.insert(0, (0, 0.37));
+                r
+            })
+            .collect();
+        let cached = solve_dual_cached(&k, &u_free, &moved, &eps, algo, None, &mut cache).unwrap();
+        let fresh = solve_dual(&k, &u_free, &moved, &eps, algo, None).unwrap();
+        assert_eq!(cached.solves, 0);
+        assert!(first.solves > 0 && cache.hits == first.solves);
+        assert_eq!((cached.lambda, cached.u), (fresh.lambda, fresh.u));
     }
 
     #[test]

@@ -19,10 +19,10 @@ use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Col, Side};
 
-use crate::dual::StiffnessSolve;
+use crate::dual::{ColumnCache, StiffnessSolve};
 use crate::error::ContactError;
 use crate::source::ZoneContact;
-use crate::step::{solve_step, StepReport};
+use crate::step::{solve_step_cached, StepReport};
 use crate::zone::ContactDefinition;
 
 enum Factor {
@@ -191,6 +191,10 @@ impl StiffnessSolve for FactorizedStiffness {
         self.map.len()
     }
 
+    fn reads(&self, i: usize) -> bool {
+        self.map.get(i).is_some_and(|&m| m != usize::MAX)
+    }
+
     fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String> {
         if rhs.len() != self.map.len() {
             return Err(format!(
@@ -234,11 +238,22 @@ pub fn run_linear(
     instants: &[f64],
 ) -> Result<Vec<Instant>, ContactError> {
     let k = FactorizedStiffness::new(model, loads)?;
+    // One K for the whole analysis: its columns K⁻¹aⱼ serve every step.
+    let mut cache = ColumnCache::new();
     let mut u = vec![0.0; model.dofs().len()];
     let mut out = Vec::with_capacity(instants.len());
     for &t in instants.iter().skip(1) {
         let u_free = k.free_solution(model, loads, t)?;
-        let report = solve_step(def, zones, model.mesh(), model.dofs(), &k, &u_free, &u)?;
+        let report = solve_step_cached(
+            def,
+            zones,
+            model.mesh(),
+            model.dofs(),
+            &k,
+            &u_free,
+            &u,
+            &mut cache,
+        )?;
         u = report.u.clone();
         out.push(Instant {
             time: t,

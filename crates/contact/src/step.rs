@@ -10,7 +10,7 @@
 use aster_fem::{DofNumbering, InequalityRow};
 use aster_mesh::Mesh;
 
-use crate::dual::{solve_dual, DualAlgorithm, IndexedRow, StiffnessSolve};
+use crate::dual::{solve_dual_cached, ColumnCache, DualAlgorithm, IndexedRow, StiffnessSolve};
 use crate::error::ContactError;
 use crate::source::{ZoneContact, ZoneLaw};
 use crate::zone::{ContactDefinition, ContinueAlgo, DiscreteAlgo, GeomLoop, Resolution};
@@ -45,6 +45,24 @@ pub fn solve_step(
     k: &dyn StiffnessSolve,
     u_free: &[f64],
     u_start: &[f64],
+) -> Result<StepReport, ContactError> {
+    let mut cache = ColumnCache::new();
+    solve_step_cached(def, zones, mesh, dofs, k, u_free, u_start, &mut cache)
+}
+
+/// [`solve_step`] keeping the columns K⁻¹aⱼ in `cache` (filled with the
+/// same K): a geometric iteration, or a later step, whose rows are
+/// unchanged on the free DOFs does not solve for them again.
+#[allow(clippy::too_many_arguments)]
+pub fn solve_step_cached(
+    def: &ContactDefinition,
+    zones: &mut [ZoneContact],
+    mesh: &Mesh,
+    dofs: &DofNumbering,
+    k: &dyn StiffnessSolve,
+    u_free: &[f64],
+    u_start: &[f64],
+    cache: &mut ColumnCache,
 ) -> Result<StepReport, ContactError> {
     let algo = algorithm(def, zones)?;
     let (max_geom, resi_geom) = match def.geom_loop() {
@@ -84,7 +102,7 @@ pub fn solve_step(
             .as_ref()
             .filter(|w| w.len() == rows.len())
             .map(|w| w.as_slice());
-        let sol = solve_dual(k, u_free, &rows, &eps, algo(rows.len()), warm_ok)?;
+        let sol = solve_dual_cached(k, u_free, &rows, &eps, algo(rows.len()), warm_ok, cache)?;
         report.geom_iterations = it + 1;
         report.contact_iterations += sol.iterations;
         report.solves += sol.solves;

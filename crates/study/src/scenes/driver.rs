@@ -9,10 +9,12 @@
 use crate::clock::{cpu_now, cpu_since};
 use crate::method::{Method, MethodFamily};
 use crate::outcome::{Failure, FailureKind, Phases};
-use aster_contact::dual::{solve_dual, DualAlgorithm, IndexedRow, StiffnessSolve};
+use aster_contact::dual::{
+    solve_dual_cached, ColumnCache, DualAlgorithm, IndexedRow, StiffnessSolve,
+};
 use aster_contact::{
-    index_row, positions, solve_step, ContactDefinition, ContactError, ContinueAlgo, ContinueLaw,
-    DiscreteAlgo, FactorizedStiffness, Frottement, Zone, ZoneContact, ZoneGeometry,
+    index_row, positions, solve_step_cached, ContactDefinition, ContactError, ContinueAlgo,
+    ContinueLaw, DiscreteAlgo, FactorizedStiffness, Frottement, Zone, ZoneContact, ZoneGeometry,
 };
 use aster_fem::assembly::assemble_stiffness;
 use aster_fem::{InequalityRow, Loads, Model};
@@ -153,6 +155,9 @@ impl StiffnessSolve for Timed<'_> {
     fn len(&self) -> usize {
         self.k.len()
     }
+    fn reads(&self, i: usize) -> bool {
+        self.k.reads(i)
+    }
     fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String> {
         let start = cpu_now();
         let out = self.k.solve(rhs);
@@ -207,6 +212,9 @@ pub fn solve(
         k: &k,
         seconds: Cell::new(0.0),
     };
+    // One K for the whole run: its columns K⁻¹aⱼ serve every geometric
+    // iteration and instant whose rows are unchanged on the free DOFs.
+    let mut cache = ColumnCache::new();
     let mut u = vec![0.0; model.dofs().len()];
     let (mut contact_iterations, mut geom_iterations) = (0, 0);
     for &t in instants.iter().skip(1) {
@@ -217,9 +225,17 @@ pub fn solve(
         let solves_before = timed.seconds.get();
         let (next, pairing_seconds) = match &mut enforced {
             Enforced::Zones(def, zones) => {
-                let report =
-                    solve_step(def, zones, model.mesh(), model.dofs(), &timed, &u_free, &u)
-                        .map_err(contact_failure)?;
+                let report = solve_step_cached(
+                    def,
+                    zones,
+                    model.mesh(),
+                    model.dofs(),
+                    &timed,
+                    &u_free,
+                    &u,
+                    &mut cache,
+                )
+                .map_err(contact_failure)?;
                 contact_iterations += report.contact_iterations;
                 geom_iterations += report.geom_iterations;
                 (report.u, report.pairing_seconds)
@@ -236,8 +252,16 @@ pub fn solve(
                     max_iter: 4 * m.max(1),
                     stop_singulier: true,
                 };
-                let sol = solve_dual(&timed, &u_free, indexed, eps, algo, active.as_deref())
-                    .map_err(contact_failure)?;
+                let sol = solve_dual_cached(
+                    &timed,
+                    &u_free,
+                    indexed,
+                    eps,
+                    algo,
+                    active.as_deref(),
+                    &mut cache,
+                )
+                .map_err(contact_failure)?;
                 contact_iterations += sol.iterations;
                 // Fixed rows: one "geometric" pass per instant.
                 geom_iterations += 1;
