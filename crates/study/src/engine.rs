@@ -103,8 +103,16 @@ fn progress_bar(len: u64, progress: Progress) -> ProgressBar {
     bar
 }
 
+/// One execution of a point: CPU and wall seconds, peak RSS, outcome.
+struct Attempt {
+    cpu: f64,
+    wall: f64,
+    peak: Option<u64>,
+    outcome: Result<Measures, Failure>,
+}
+
 fn run_point(scene: &dyn Scene, point: &Point, repeat: u32) -> RunRecord {
-    let mut best: Option<(f64, f64, Option<u64>, Result<Measures, Failure>)> = None;
+    let mut best: Option<Attempt> = None;
     for _ in 0..repeat.max(1) {
         let reset = memory::reset_peak();
         let start = Instant::now();
@@ -124,23 +132,30 @@ fn run_point(scene: &dyn Scene, point: &Point, repeat: u32) -> RunRecord {
         let wall = start.elapsed().as_secs_f64();
         let peak = if reset { memory::peak_kib() } else { None };
         let failed = outcome.is_err();
-        if best.as_ref().is_none_or(|(t, _, _, _)| cpu < *t) {
-            best = Some((cpu, wall, peak, outcome));
+        if best.as_ref().is_none_or(|b| cpu < b.cpu) {
+            best = Some(Attempt {
+                cpu,
+                wall,
+                peak,
+                outcome,
+            });
         }
         // A failing point is not repeated: its failure is the answer.
         if failed {
             break;
         }
     }
-    let (cpu_seconds, wall_seconds, peak_rss_kib, outcome) = match best {
-        Some(b) => b,
-        None => (
-            0.0,
-            0.0,
-            None,
-            Err(Failure::new(FailureKind::Other, "not run")),
-        ),
-    };
+    let Attempt {
+        cpu: cpu_seconds,
+        wall: wall_seconds,
+        peak: peak_rss_kib,
+        outcome,
+    } = best.unwrap_or(Attempt {
+        cpu: 0.0,
+        wall: 0.0,
+        peak: None,
+        outcome: Err(Failure::new(FailureKind::Other, "not run")),
+    });
     match outcome {
         Ok(m) => RunRecord {
             point: *point,
