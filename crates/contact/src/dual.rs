@@ -51,6 +51,11 @@ pub trait StiffnessSolve {
     fn reads(&self, _i: usize) -> bool {
         true
     }
+    /// `K⁻¹ rhsⱼ` for several right-hand sides; a factorisation overrides
+    /// it with a block solve (one traversal of the factor for all).
+    fn solve_many(&self, rhs: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, String> {
+        rhs.iter().map(|r| self.solve(r)).collect()
+    }
 }
 
 /// Columns K⁻¹aⱼ kept across dual solves with the same factorised K (the
@@ -277,6 +282,54 @@ impl<'a> Context<'a> {
         Ok(self.columns[j].as_deref().map_or(&[], |v| v.as_slice()))
     }
 
+    /// Computes the missing columns K⁻¹aⱼ of `js` in one block solve (the
+    /// rows entering the active set together), after the cache.
+    fn prefetch(&mut self, js: &[usize]) -> Result<(), ContactError> {
+        let mut missing: Vec<usize> = Vec::new();
+        let mut keys: Vec<Vec<(usize, u64)>> = Vec::new();
+        let mut duplicates: Vec<(usize, usize)> = Vec::new();
+        for &j in js {
+            if self.columns[j].is_some() {
+                continue;
+            }
+            let key = ColumnCache::key(self.k, &self.rows[j]);
+            if let Some(z) = self.cache.columns.get(&key) {
+                self.cache.hits += 1;
+                self.columns[j] = Some(Rc::clone(z));
+            } else if let Some(p) = keys.iter().position(|k| *k == key) {
+                duplicates.push((j, p));
+            } else {
+                missing.push(j);
+                keys.push(key);
+            }
+        }
+        if missing.is_empty() {
+            return Ok(());
+        }
+        let rhs: Vec<Vec<f64>> = missing
+            .iter()
+            .map(|&j| {
+                let mut a = vec![0.0; self.k.len()];
+                for &(i, c) in &self.rows[j].terms {
+                    a[i] += c;
+                }
+                a
+            })
+            .collect();
+        let zs = self.k.solve_many(&rhs).map_err(ContactError::Solver)?;
+        self.solves += missing.len();
+        for ((&j, key), z) in missing.iter().zip(keys).zip(zs) {
+            let z = Rc::new(z);
+            self.cache.columns.insert(key, Rc::clone(&z));
+            self.columns[j] = Some(z);
+        }
+        for (j, p) in duplicates {
+            self.cache.hits += 1;
+            self.columns[j] = self.columns[missing[p]].clone();
+        }
+        Ok(())
+    }
+
     /// S_ij + ε_i δ_ij.
     fn entry(&mut self, i: usize, j: usize) -> Result<f64, ContactError> {
         let rows = self.rows;
@@ -319,6 +372,7 @@ impl<'a> Context<'a> {
         shift: &[f64],
         extra: &[f64],
     ) -> Result<Result<Vec<f64>, usize>, ContactError> {
+        self.prefetch(set)?;
         let n = set.len();
         let mut mat = DMatrix::zeros(n, n);
         for (a, &i) in set.iter().enumerate() {
@@ -581,6 +635,8 @@ impl<'a> Context<'a> {
     }
 
     fn relative_coefs(&mut self, coef: f64) -> Result<Vec<f64>, ContactError> {
+        let all: Vec<usize> = (0..self.rows.len()).collect();
+        self.prefetch(&all)?;
         (0..self.rows.len())
             .map(|i| {
                 let d = self.entry(i, i)?;

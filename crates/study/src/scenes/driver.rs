@@ -164,6 +164,12 @@ impl StiffnessSolve for Timed<'_> {
         self.seconds.set(self.seconds.get() + cpu_since(start));
         out
     }
+    fn solve_many(&self, rhs: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, String> {
+        let start = cpu_now();
+        let out = self.k.solve_many(rhs);
+        self.seconds.set(self.seconds.get() + cpu_since(start));
+        out
+    }
 }
 
 /// Solves the contact problem at `instants` (the first one is the initial,
