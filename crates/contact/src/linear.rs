@@ -349,7 +349,11 @@ mod tests {
         let k = FactorizedStiffness::new(&model, &loads).unwrap();
         let n = k.len();
         let rhs: Vec<Vec<f64>> = (0..5)
-            .map(|j| (0..n).map(|i| ((i * 7 + j * 3) % 11) as f64 - 5.0).collect())
+            .map(|j| {
+                (0..n)
+                    .map(|i| ((i * 7 + j * 3) % 11) as f64 - 5.0)
+                    .collect()
+            })
             .collect();
         let block = k.solve_many(&rhs).unwrap();
         assert_eq!(block.len(), rhs.len());
