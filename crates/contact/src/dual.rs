@@ -28,6 +28,9 @@
 //!   generalised Newton method on λ = max(0, λ − c s), i.e. the primal–dual
 //!   active set strategy.
 
+use std::collections::HashMap;
+use std::rc::Rc;
+
 use nalgebra::{DMatrix, DVector};
 
 use crate::error::ContactError;
@@ -42,6 +45,55 @@ pub trait StiffnessSolve {
     /// `K⁻¹ rhs` with every kinematic condition homogeneous (imposed
     /// displacements at zero).
     fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String>;
+    /// Whether `solve` reads `rhs[i]` (false for an eliminated DOF, whose
+    /// value is imposed): rows differing only there share their column
+    /// K⁻¹a in a [`ColumnCache`].
+    fn reads(&self, _i: usize) -> bool {
+        true
+    }
+    /// `K⁻¹ rhsⱼ` for several right-hand sides; a factorisation overrides
+    /// it with a block solve (one traversal of the factor for all).
+    fn solve_many(&self, rhs: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, String> {
+        rhs.iter().map(|r| self.solve(r)).collect()
+    }
+}
+
+/// Columns K⁻¹aⱼ kept across dual solves with the same factorised K (the
+/// geometric iterations of a step, the steps of a linear analysis): a row
+/// whose coefficients on the DOFs K reads are bitwise unchanged reuses its
+/// column instead of a new solve. Valid for one K only: make a new cache
+/// when K changes.
+#[derive(Debug, Default)]
+pub struct ColumnCache {
+    columns: HashMap<Vec<(usize, u64)>, Rc<Vec<f64>>>,
+    /// Columns taken from the cache instead of solved.
+    pub hits: usize,
+}
+
+impl ColumnCache {
+    pub fn new() -> ColumnCache {
+        ColumnCache::default()
+    }
+
+    /// Number of columns held.
+    pub fn len(&self) -> usize {
+        self.columns.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.columns.is_empty()
+    }
+
+    fn key(k: &dyn StiffnessSolve, row: &IndexedRow) -> Vec<(usize, u64)> {
+        let mut key: Vec<(usize, u64)> = row
+            .terms
+            .iter()
+            .filter(|&&(i, c)| c != 0.0 && k.reads(i))
+            .map(|&(i, c)| (i, c.to_bits()))
+            .collect();
+        key.sort_unstable();
+        key
+    }
 }
 
 /// A row `Σ coef·u[index] ≤ rhs` in solver numbering.
@@ -104,6 +156,20 @@ pub fn solve_dual(
     algo: DualAlgorithm,
     warm: Option<&[bool]>,
 ) -> Result<DualSolution, ContactError> {
+    solve_dual_cached(k, u_free, rows, eps, algo, warm, &mut ColumnCache::new())
+}
+
+/// [`solve_dual`] reusing (and filling) `cache`'s columns K⁻¹aⱼ; `cache`
+/// must have been filled with the same K.
+pub fn solve_dual_cached(
+    k: &dyn StiffnessSolve,
+    u_free: &[f64],
+    rows: &[IndexedRow],
+    eps: &[f64],
+    algo: DualAlgorithm,
+    warm: Option<&[bool]>,
+    cache: &mut ColumnCache,
+) -> Result<DualSolution, ContactError> {
     if u_free.len() != k.len() || eps.len() != rows.len() {
         return Err(ContactError::Solver(format!(
             "inconsistent sizes: {} unknowns, free solution of {}, {} rows, {} penalties",
@@ -113,7 +179,7 @@ pub fn solve_dual(
             eps.len()
         )));
     }
-    let mut ctx = Context::new(k, u_free, rows, eps);
+    let mut ctx = Context::new(k, u_free, rows, eps, cache);
     let m = rows.len();
     if m == 0 {
         return ctx.finish(vec![], 0);
@@ -147,8 +213,9 @@ struct Context<'a> {
     rows: &'a [IndexedRow],
     eps: &'a [f64],
     q: Vec<f64>,
-    /// K⁻¹ aⱼ, computed on demand.
-    columns: Vec<Option<Vec<f64>>>,
+    /// K⁻¹ aⱼ, computed on demand (or taken from the cache).
+    columns: Vec<Option<Rc<Vec<f64>>>>,
+    cache: &'a mut ColumnCache,
     solves: usize,
     tol_s: f64,
 }
@@ -159,6 +226,7 @@ impl<'a> Context<'a> {
         u_free: &'a [f64],
         rows: &'a [IndexedRow],
         eps: &'a [f64],
+        cache: &'a mut ColumnCache,
     ) -> Self {
         let q: Vec<f64> = rows.iter().map(|r| r.rhs - r.dot(u_free)).collect();
         let scale = q
@@ -172,6 +240,7 @@ impl<'a> Context<'a> {
             eps,
             q,
             columns: vec![None; rows.len()],
+            cache,
             solves: 0,
             tol_s: 1e-10 * scale,
         }
@@ -191,15 +260,74 @@ impl<'a> Context<'a> {
 
     fn column(&mut self, j: usize) -> Result<&[f64], ContactError> {
         if self.columns[j].is_none() {
-            let mut a = vec![0.0; self.k.len()];
-            for &(i, c) in &self.rows[j].terms {
-                a[i] += c;
-            }
-            let z = self.k.solve(&a).map_err(ContactError::Solver)?;
-            self.solves += 1;
+            let key = ColumnCache::key(self.k, &self.rows[j]);
+            let z = match self.cache.columns.get(&key) {
+                Some(z) => {
+                    self.cache.hits += 1;
+                    Rc::clone(z)
+                }
+                None => {
+                    let mut a = vec![0.0; self.k.len()];
+                    for &(i, c) in &self.rows[j].terms {
+                        a[i] += c;
+                    }
+                    let z = Rc::new(self.k.solve(&a).map_err(ContactError::Solver)?);
+                    self.solves += 1;
+                    self.cache.columns.insert(key, Rc::clone(&z));
+                    z
+                }
+            };
             self.columns[j] = Some(z);
         }
-        Ok(self.columns[j].as_deref().unwrap_or(&[]))
+        Ok(self.columns[j].as_deref().map_or(&[], |v| v.as_slice()))
+    }
+
+    /// Computes the missing columns K⁻¹aⱼ of `js` in one block solve (the
+    /// rows entering the active set together), after the cache.
+    fn prefetch(&mut self, js: &[usize]) -> Result<(), ContactError> {
+        let mut missing: Vec<usize> = Vec::new();
+        let mut keys: Vec<Vec<(usize, u64)>> = Vec::new();
+        let mut duplicates: Vec<(usize, usize)> = Vec::new();
+        for &j in js {
+            if self.columns[j].is_some() {
+                continue;
+            }
+            let key = ColumnCache::key(self.k, &self.rows[j]);
+            if let Some(z) = self.cache.columns.get(&key) {
+                self.cache.hits += 1;
+                self.columns[j] = Some(Rc::clone(z));
+            } else if let Some(p) = keys.iter().position(|k| *k == key) {
+                duplicates.push((j, p));
+            } else {
+                missing.push(j);
+                keys.push(key);
+            }
+        }
+        if missing.is_empty() {
+            return Ok(());
+        }
+        let rhs: Vec<Vec<f64>> = missing
+            .iter()
+            .map(|&j| {
+                let mut a = vec![0.0; self.k.len()];
+                for &(i, c) in &self.rows[j].terms {
+                    a[i] += c;
+                }
+                a
+            })
+            .collect();
+        let zs = self.k.solve_many(&rhs).map_err(ContactError::Solver)?;
+        self.solves += missing.len();
+        for ((&j, key), z) in missing.iter().zip(keys).zip(zs) {
+            let z = Rc::new(z);
+            self.cache.columns.insert(key, Rc::clone(&z));
+            self.columns[j] = Some(z);
+        }
+        for (j, p) in duplicates {
+            self.cache.hits += 1;
+            self.columns[j] = self.columns[missing[p]].clone();
+        }
+        Ok(())
     }
 
     /// S_ij + ε_i δ_ij.
@@ -244,6 +372,7 @@ impl<'a> Context<'a> {
         shift: &[f64],
         extra: &[f64],
     ) -> Result<Result<Vec<f64>, usize>, ContactError> {
+        self.prefetch(set)?;
         let n = set.len();
         let mut mat = DMatrix::zeros(n, n);
         for (a, &i) in set.iter().enumerate() {
@@ -506,6 +635,8 @@ impl<'a> Context<'a> {
     }
 
     fn relative_coefs(&mut self, coef: f64) -> Result<Vec<f64>, ContactError> {
+        let all: Vec<usize> = (0..self.rows.len()).collect();
+        self.prefetch(&all)?;
         (0..self.rows.len())
             .map(|i| {
                 let d = self.entry(i, i)?;
@@ -834,6 +965,74 @@ mod tests {
         )
         .unwrap();
         check_kkt(&k, &u_free, &rows, &eps, &s, 1e-9);
+    }
+
+    #[test]
+    fn cached_columns_are_reused_and_give_the_same_answer() {
+        let (k, u_free, rows) = problem(10);
+        let eps = vec![0.0; rows.len()];
+        let algo = DualAlgorithm::ActiveSet {
+            max_iter: 40,
+            stop_singulier: true,
+        };
+        let plain = solve_dual(&k, &u_free, &rows, &eps, algo, None).unwrap();
+        let mut cache = ColumnCache::new();
+        let first = solve_dual_cached(&k, &u_free, &rows, &eps, algo, None, &mut cache).unwrap();
+        assert_eq!(first, plain);
+        assert!(first.solves > 0 && cache.len() == first.solves);
+        // A second pass with the same rows (a geometric iteration that
+        // found the same pairing) solves nothing.
+        let again = solve_dual_cached(&k, &u_free, &rows, &eps, algo, None, &mut cache).unwrap();
+        assert_eq!((again.lambda, again.u), (plain.lambda, plain.u));
+        assert_eq!(again.solves, 0);
+        assert_eq!(cache.hits, first.solves);
+    }
+
+    /// K with DOF 0 eliminated: `solve` ignores rhs[0].
+    struct Eliminated0(Dense);
+
+    impl StiffnessSolve for Eliminated0 {
+        fn len(&self) -> usize {
+            self.0.len()
+        }
+        fn reads(&self, i: usize) -> bool {
+            i != 0
+        }
+        fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String> {
+            let mut b = rhs.to_vec();
+            b[0] = 0.0;
+            self.0.solve(&b)
+        }
+    }
+
+    #[test]
+    fn rows_differing_on_unread_dofs_share_their_column() {
+        let (k, u_free, mut rows) = problem(6);
+        // No row on the eliminated DOF itself (its column would be zero).
+        rows.remove(0);
+        let k = Eliminated0(k);
+        let eps = vec![0.0; rows.len()];
+        let algo = DualAlgorithm::ActiveSet {
+            max_iter: 40,
+            stop_singulier: true,
+        };
+        let mut cache = ColumnCache::new();
+        let first = solve_dual_cached(&k, &u_free, &rows, &eps, algo, None, &mut cache).unwrap();
+        // The same rows plus a term on the eliminated DOF 0 (a master node
+        // held fixed whose weight changed with the projection).
+        let moved: Vec<IndexedRow> = rows
+            .iter()
+            .map(|r| {
+                let mut r = r.clone();
+                r.terms.insert(0, (0, 0.37));
+                r
+            })
+            .collect();
+        let cached = solve_dual_cached(&k, &u_free, &moved, &eps, algo, None, &mut cache).unwrap();
+        let fresh = solve_dual(&k, &u_free, &moved, &eps, algo, None).unwrap();
+        assert_eq!(cached.solves, 0);
+        assert!(first.solves > 0 && cache.hits == first.solves);
+        assert_eq!((cached.lambda, cached.u), (fresh.lambda, fresh.u));
     }
 
     #[test]

@@ -38,7 +38,7 @@ mod step;
 
 pub use post::{ContNoeu, CONT_NOEU_COMPONENTS};
 pub use source::{current_positions, ZoneContact, ZoneLaw};
-pub use step::{index_row, positions, solve_step, StepReport};
+pub use step::{index_row, positions, solve_step, solve_step_cached, StepReport};
 pub mod hertz;
 mod linear;
 pub mod scenes;

@@ -17,12 +17,12 @@ use aster_fem::linalg::Csc;
 use aster_fem::{Load, Loads, Model};
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Col, Side};
+use faer::{Col, Mat, Side};
 
-use crate::dual::StiffnessSolve;
+use crate::dual::{ColumnCache, StiffnessSolve};
 use crate::error::ContactError;
 use crate::source::ZoneContact;
-use crate::step::{solve_step, StepReport};
+use crate::step::{solve_step_cached, StepReport};
 use crate::zone::ContactDefinition;
 
 enum Factor {
@@ -43,6 +43,22 @@ pub struct FactorizedStiffness {
 impl FactorizedStiffness {
     /// Assembles and factorises K on the DOFs not eliminated by `loads`.
     pub fn new(model: &Model, loads: &Loads) -> Result<Self, ContactError> {
+        let k = assemble_stiffness(model)
+            .map_err(|e: aster_fem::FemError| ContactError::Solver(e.to_string()))?;
+        Self::from_assembled(model, loads, k)
+    }
+
+    /// Factorises an already assembled stiffness `k` of `model` (from
+    /// [`assemble_stiffness`]) on the DOFs not eliminated by `loads`: lets
+    /// a caller time or reuse the assembly apart from the factorisation.
+    pub fn from_assembled(model: &Model, loads: &Loads, k: Csc) -> Result<Self, ContactError> {
+        if k.n != model.dofs().len() {
+            return Err(ContactError::Solver(format!(
+                "assembled stiffness of {} unknowns for a model of {}",
+                k.n,
+                model.dofs().len()
+            )));
+        }
         if loads
             .items
             .iter()
@@ -54,7 +70,6 @@ impl FactorizedStiffness {
             });
         }
         let fem = |e: aster_fem::FemError| ContactError::Solver(e.to_string());
-        let k = assemble_stiffness(model).map_err(fem)?;
         let elim = loads.eliminated(model, 0.0).map_err(fem)?;
         let n = model.dofs().len();
         let mut map = vec![usize::MAX; n];
@@ -109,6 +124,49 @@ impl FactorizedStiffness {
             Factor::Lu(f) => f.solve_in_place(c.as_mat_mut()),
         }
         (0..b.len()).map(|i| c[i] * self.scale[i]).collect()
+    }
+
+    /// [`Self::solve_once`] for several right-hand sides in one block
+    /// solve: the factor is traversed once for all of them.
+    fn solve_once_many(&self, bs: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        let n = self.free.len();
+        let mut m = Mat::<f64>::from_fn(n, bs.len(), |i, j| bs[j][i] * self.scale[i]);
+        match &self.factor {
+            Factor::Llt(f) => f.solve_in_place(m.as_mut()),
+            Factor::Lu(f) => f.solve_in_place(m.as_mut()),
+        }
+        (0..bs.len())
+            .map(|j| (0..n).map(|i| m[(i, j)] * self.scale[i]).collect())
+            .collect()
+    }
+
+    /// [`Self::solve_free`] for several right-hand sides: block solves,
+    /// then the refinement of the columns whose residual is too large, in
+    /// one block too.
+    fn solve_free_many(&self, bs: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        let mut xs = self.solve_once_many(bs);
+        for _ in 0..2 {
+            let mut need = Vec::new();
+            let mut residuals = Vec::new();
+            for (j, (b, x)) in bs.iter().zip(&xs).enumerate() {
+                let bmax = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let kx = self.mul_free(x);
+                let r: Vec<f64> = b.iter().zip(&kx).map(|(bi, ki)| bi - ki).collect();
+                if r.iter().fold(0.0f64, |m, v| m.max(v.abs())) > 1e-12 * bmax {
+                    need.push(j);
+                    residuals.push(r);
+                }
+            }
+            if need.is_empty() {
+                break;
+            }
+            for (j, dx) in need.into_iter().zip(self.solve_once_many(&residuals)) {
+                for (xi, di) in xs[j].iter_mut().zip(&dx) {
+                    *xi += di;
+                }
+            }
+        }
+        xs
     }
 
     /// K_ff x for a free-DOF vector.
@@ -176,6 +234,10 @@ impl StiffnessSolve for FactorizedStiffness {
         self.map.len()
     }
 
+    fn reads(&self, i: usize) -> bool {
+        self.map.get(i).is_some_and(|&m| m != usize::MAX)
+    }
+
     fn solve(&self, rhs: &[f64]) -> Result<Vec<f64>, String> {
         if rhs.len() != self.map.len() {
             return Err(format!(
@@ -196,6 +258,36 @@ impl StiffnessSolve for FactorizedStiffness {
             out[i] = x[k];
         }
         Ok(out)
+    }
+
+    fn solve_many(&self, rhs: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, String> {
+        if let Some(bad) = rhs.iter().find(|r| r.len() != self.map.len()) {
+            return Err(format!(
+                "right-hand side of {} values for {} unknowns",
+                bad.len(),
+                self.map.len()
+            ));
+        }
+        let bs: Vec<Vec<f64>> = rhs
+            .iter()
+            .map(|r| self.free.iter().map(|&i| r[i]).collect())
+            .collect();
+        self.solve_free_many(&bs)
+            .into_iter()
+            .map(|x| {
+                if x.iter().any(|v| !v.is_finite()) {
+                    return Err(
+                        "the factorised stiffness gave a non-finite solution (singular system)"
+                            .to_string(),
+                    );
+                }
+                let mut out = vec![0.0; self.map.len()];
+                for (k, &i) in self.free.iter().enumerate() {
+                    out[i] = x[k];
+                }
+                Ok(out)
+            })
+            .collect()
     }
 }
 
@@ -219,11 +311,22 @@ pub fn run_linear(
     instants: &[f64],
 ) -> Result<Vec<Instant>, ContactError> {
     let k = FactorizedStiffness::new(model, loads)?;
+    // One K for the whole analysis: its columns K⁻¹aⱼ serve every step.
+    let mut cache = ColumnCache::new();
     let mut u = vec![0.0; model.dofs().len()];
     let mut out = Vec::with_capacity(instants.len());
     for &t in instants.iter().skip(1) {
         let u_free = k.free_solution(model, loads, t)?;
-        let report = solve_step(def, zones, model.mesh(), model.dofs(), &k, &u_free, &u)?;
+        let report = solve_step_cached(
+            def,
+            zones,
+            model.mesh(),
+            model.dofs(),
+            &k,
+            &u_free,
+            &u,
+            &mut cache,
+        )?;
         u = report.u.clone();
         out.push(Instant {
             time: t,
@@ -232,4 +335,36 @@ pub fn run_linear(
         });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenes::{two_blocks_mesh, two_blocks_problem};
+
+    #[test]
+    fn block_solves_match_single_solves() {
+        let mesh = two_blocks_mesh(3).unwrap();
+        let (model, loads) = two_blocks_problem(mesh, 1e3).unwrap();
+        let k = FactorizedStiffness::new(&model, &loads).unwrap();
+        let n = k.len();
+        let rhs: Vec<Vec<f64>> = (0..5)
+            .map(|j| {
+                (0..n)
+                    .map(|i| ((i * 7 + j * 3) % 11) as f64 - 5.0)
+                    .collect()
+            })
+            .collect();
+        let block = k.solve_many(&rhs).unwrap();
+        assert_eq!(block.len(), rhs.len());
+        for (b, x) in rhs.iter().zip(&block) {
+            let single = k.solve(b).unwrap();
+            let scale = single.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            assert!(scale > 0.0);
+            for (a, c) in x.iter().zip(&single) {
+                assert!((a - c).abs() <= 1e-10 * scale, "{a} vs {c}");
+            }
+        }
+        assert!(k.solve_many(&[vec![1.0; n + 1]]).is_err());
+    }
 }

@@ -10,7 +10,7 @@
 use aster_fem::{DofNumbering, InequalityRow};
 use aster_mesh::Mesh;
 
-use crate::dual::{solve_dual, DualAlgorithm, IndexedRow, StiffnessSolve};
+use crate::dual::{solve_dual_cached, ColumnCache, DualAlgorithm, IndexedRow, StiffnessSolve};
 use crate::error::ContactError;
 use crate::source::{ZoneContact, ZoneLaw};
 use crate::zone::{ContactDefinition, ContinueAlgo, DiscreteAlgo, GeomLoop, Resolution};
@@ -28,6 +28,9 @@ pub struct StepReport {
     pub solves: usize,
     /// Number of active contact rows at convergence.
     pub active: usize,
+    /// Wall seconds spent pairing and building rows (all geometric
+    /// iterations), for profiles of where a step's time goes.
+    pub pairing_seconds: f64,
 }
 
 /// Solves one step: `u_free` is the displacement without contact (with
@@ -42,6 +45,24 @@ pub fn solve_step(
     k: &dyn StiffnessSolve,
     u_free: &[f64],
     u_start: &[f64],
+) -> Result<StepReport, ContactError> {
+    let mut cache = ColumnCache::new();
+    solve_step_cached(def, zones, mesh, dofs, k, u_free, u_start, &mut cache)
+}
+
+/// [`solve_step`] keeping the columns K⁻¹aⱼ in `cache` (filled with the
+/// same K): a geometric iteration, or a later step, whose rows are
+/// unchanged on the free DOFs does not solve for them again.
+#[allow(clippy::too_many_arguments)]
+pub fn solve_step_cached(
+    def: &ContactDefinition,
+    zones: &mut [ZoneContact],
+    mesh: &Mesh,
+    dofs: &DofNumbering,
+    k: &dyn StiffnessSolve,
+    u_free: &[f64],
+    u_start: &[f64],
+    cache: &mut ColumnCache,
 ) -> Result<StepReport, ContactError> {
     let algo = algorithm(def, zones)?;
     let (max_geom, resi_geom) = match def.geom_loop() {
@@ -59,9 +80,11 @@ pub fn solve_step(
         contact_iterations: 0,
         solves: 0,
         active: 0,
+        pairing_seconds: 0.0,
     };
     let mut warm: Option<Vec<bool>> = None;
     for it in 0..max_geom {
+        let pairing_start = std::time::Instant::now();
         let x = positions(mesh, dofs, &u);
         let mut rows = Vec::new();
         let mut eps = Vec::new();
@@ -74,11 +97,12 @@ pub fn solve_step(
                 rows.push(index_row(&row, dofs, mesh)?);
             }
         }
+        report.pairing_seconds += pairing_start.elapsed().as_secs_f64();
         let warm_ok = warm
             .as_ref()
             .filter(|w| w.len() == rows.len())
             .map(|w| w.as_slice());
-        let sol = solve_dual(k, u_free, &rows, &eps, algo(rows.len()), warm_ok)?;
+        let sol = solve_dual_cached(k, u_free, &rows, &eps, algo(rows.len()), warm_ok, cache)?;
         report.geom_iterations = it + 1;
         report.contact_iterations += sol.iterations;
         report.solves += sol.solves;

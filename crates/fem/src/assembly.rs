@@ -175,6 +175,7 @@ fn scatter_columns(
     let mut hooke: Option<(Elastic, Hypothesis, [[f64; 6]; 6])> = None;
     let mut buf = vec![0.0; MAX_EL_DOFS * MAX_EL_DOFS];
     let mut dofs = Vec::with_capacity(MAX_EL_DOFS);
+    let ncomp = model.dofs().comps_per_node();
     for (idx, el) in model.elements().iter().enumerate() {
         if matches!(el.kind, ElementKind::Boundary) {
             continue;
@@ -222,6 +223,11 @@ fn scatter_columns(
             }
             ElementKind::Boundary => continue,
         };
+        let nodes = &mesh.cell(el.cell).nodes;
+        if dofs.len() == ndof && ndof == nodes.len() * ncomp && nodes.len() <= MAX_EL_NODES {
+            scatter_by_node_blocks(k, &cols, values, &dofs, ncomp, &buf[..ndof * ndof]);
+            continue;
+        }
         for (b, &j) in dofs.iter().enumerate() {
             if !cols.contains(&j) {
                 continue;
@@ -240,6 +246,60 @@ fn scatter_columns(
         }
     }
     Ok(())
+}
+
+/// Most nodes of a cell the block scatter handles (HEXA27 has 27).
+const MAX_EL_NODES: usize = 27;
+
+/// Adds a dense element matrix `ke` (`dofs.len()`² values, node-major:
+/// `ncomp` consecutive DOFs per node) into the columns `cols` of `k`.
+///
+/// Why by blocks: the pattern is node-major too (every component column of
+/// a node has the same rows, in blocks of `ncomp` per neighbour node), so
+/// the place of node a's block in node b's columns is searched once per
+/// node pair and reused for the ncomp² entries, instead of one binary
+/// search per entry (4× fewer in 2D, 9× in 3D).
+fn scatter_by_node_blocks(
+    k: &Pattern<'_>,
+    cols: &std::ops::Range<usize>,
+    values: &mut [f64],
+    dofs: &[usize],
+    ncomp: usize,
+    ke: &[f64],
+) {
+    let ndof = dofs.len();
+    let nn = ndof / ncomp;
+    // `values` holds the columns `cols` only (see `scatter_columns`).
+    let offset = k.col_ptr[cols.start];
+    for bn in 0..nn {
+        let jb = dofs[bn * ncomp];
+        if !(jb..jb + ncomp).any(|j| cols.contains(&j)) {
+            continue;
+        }
+        let (start, end) = (k.col_ptr[jb], k.col_ptr[jb + 1]);
+        let mut offsets = [usize::MAX; MAX_EL_NODES];
+        for (an, off) in offsets.iter_mut().enumerate().take(nn) {
+            if let Ok(p) = k.row_idx[start..end].binary_search(&dofs[an * ncomp]) {
+                *off = p;
+            }
+        }
+        for cb in 0..ncomp {
+            if !cols.contains(&(jb + cb)) {
+                continue;
+            }
+            let b = bn * ncomp + cb;
+            let col = k.col_ptr[jb + cb] - offset;
+            for (an, &off) in offsets.iter().enumerate().take(nn) {
+                if off == usize::MAX {
+                    continue;
+                }
+                for ca in 0..ncomp {
+                    // Symmetric element matrices: (a, b) = (b, a).
+                    values[col + off + ca] += ke[(an * ncomp + ca) * ndof + b];
+                }
+            }
+        }
+    }
 }
 
 /// The sub-matrix on the free DOFs: `map[i]` is the free index of DOF i or
@@ -327,5 +387,109 @@ mod tests {
         let copy = restrict(&k, &map, nfree);
         assert!(copy.n < k.n);
         assert_eq!(restrict_owned(k, &map, nfree), copy);
+    }
+
+    use crate::element::element_stiffness;
+    use crate::model::Element;
+    use aster_mesh::{Cell, CellId, CellType, Mesh};
+
+    fn mesh(dim: u8, coords: Vec<[f64; 3]>, cells: Vec<(CellType, Vec<u32>)>) -> Mesh {
+        Mesh {
+            dim,
+            node_names: (1..=coords.len()).map(|i| format!("N{i}")).collect(),
+            cell_names: (1..=cells.len()).map(|i| format!("M{i}")).collect(),
+            coords,
+            cells: cells
+                .into_iter()
+                .map(|(ty, n)| Cell {
+                    ty,
+                    nodes: n.into_iter().map(NodeId).collect(),
+                })
+                .collect(),
+            ..Mesh::default()
+        }
+    }
+
+    /// The block scatter against a dense sum of the element matrices, entry
+    /// by entry, with a numbering where element nodes are not in order.
+    fn check_against_dense(mesh: Mesh, hypothesis: Hypothesis) {
+        let material = Elastic::new(2e5, 0.3).unwrap();
+        let elements = (0..mesh.cells.len())
+            .map(|c| Element {
+                cell: CellId(c as u32),
+                kind: ElementKind::Continuum {
+                    hypothesis,
+                    material,
+                },
+            })
+            .collect();
+        let model = Model::new(mesh, elements).unwrap();
+        let k = assemble_stiffness(&model).unwrap();
+        let n = model.dofs().len();
+        let mut dense = vec![0.0; n * n];
+        let mut dofs = Vec::new();
+        for (idx, el) in model.elements().iter().enumerate() {
+            let ke = element_stiffness(&model, idx).unwrap().unwrap();
+            dofs.clear();
+            element_dofs_into(&model, el.cell, &mut dofs);
+            for (a, &i) in dofs.iter().enumerate() {
+                for (b, &j) in dofs.iter().enumerate() {
+                    dense[i * n + j] += ke[(a, b)];
+                }
+            }
+        }
+        let scale = dense.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for j in 0..n {
+            for i in 0..n {
+                let got = k.position(i, j).map_or(0.0, |p| k.values[p]);
+                assert!(
+                    (got - dense[i * n + j]).abs() <= 1e-12 * scale,
+                    "K[{i},{j}] = {got}, dense {}",
+                    dense[i * n + j]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn block_scatter_matches_dense_assembly_2d() {
+        // Two quads and a triangle; node numbers deliberately unordered.
+        let coords = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.1, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.1, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 1.2, 0.0],
+            [3.0, 0.5, 0.0],
+        ];
+        let cells = vec![
+            (CellType::QUAD4, vec![0, 2, 3, 4]),
+            (CellType::QUAD4, vec![2, 1, 5, 3]),
+            (CellType::TRIA3, vec![1, 6, 5]),
+        ];
+        check_against_dense(mesh(2, coords, cells), Hypothesis::PlaneStrain);
+    }
+
+    #[test]
+    fn block_scatter_matches_dense_assembly_3d() {
+        let mut coords = Vec::new();
+        for z in [0.0, 1.0] {
+            for (x, y) in [
+                (0.0, 0.0),
+                (1.0, 0.0),
+                (2.0, 0.0),
+                (0.0, 1.0),
+                (1.0, 1.0),
+                (2.0, 1.1),
+            ] {
+                coords.push([x + 0.05 * z, y, z]);
+            }
+        }
+        let cells = vec![
+            (CellType::HEXA8, vec![0, 1, 4, 3, 6, 7, 10, 9]),
+            (CellType::HEXA8, vec![1, 2, 5, 4, 7, 8, 11, 10]),
+        ];
+        check_against_dense(mesh(3, coords, cells), Hypothesis::Solid3D);
     }
 }

@@ -5,7 +5,7 @@ use crate::error::StudyError;
 use std::path::Path;
 
 /// The CSV's columns, in order.
-pub const COLUMNS: [&str; 24] = [
+pub const COLUMNS: [&str; 33] = [
     "run",
     "scene",
     "method",
@@ -22,8 +22,17 @@ pub const COLUMNS: [&str; 24] = [
     "reference",
     "error",
     "wall_s",
+    "cpu_s",
     "solver_s",
     "outside_solver_fraction",
+    "mesh_s",
+    "model_s",
+    "assembly_s",
+    "factorisation_s",
+    "solves_s",
+    "pairing_s",
+    "contact_s",
+    "post_s",
     "newton_iterations",
     "contact_iterations",
     "dofs",
@@ -56,7 +65,7 @@ fn opt<T: ToString>(v: Option<T>) -> String {
 fn row(scene: &str, r: &RunRecord) -> Vec<String> {
     let p = &r.point;
     let m = r.measures.as_ref();
-    vec![
+    let mut out = vec![
         p.index.to_string(),
         scene.to_string(),
         p.method.label(),
@@ -73,8 +82,15 @@ fn row(scene: &str, r: &RunRecord) -> Vec<String> {
         opt(r.reference),
         opt(r.error),
         format!("{:.6}", r.wall_seconds),
+        format!("{:.6}", r.cpu_seconds),
         opt(m.and_then(|m| m.solver_seconds).map(|s| format!("{s:.6}"))),
         opt(r.outside_solver_fraction().map(|f| format!("{f:.4}"))),
+    ];
+    let phases = m.and_then(|m| m.phases);
+    for i in 0..8 {
+        out.push(opt(phases.map(|p| format!("{:.6}", p.named()[i].1))));
+    }
+    out.extend([
         opt(m.map(|m| m.newton_iterations)),
         opt(m.map(|m| m.contact_iterations)),
         opt(m.map(|m| m.dofs)),
@@ -88,5 +104,6 @@ fn row(scene: &str, r: &RunRecord) -> Vec<String> {
                 .join(";")
         })
         .unwrap_or_default(),
-    ]
+    ]);
+    out
 }

@@ -10,6 +10,7 @@
 //! map) and a Markdown summary ([`summary`]).
 
 pub mod charts;
+pub mod clock;
 pub mod csv_out;
 pub mod engine;
 pub mod error;
@@ -25,7 +26,7 @@ pub mod summary;
 pub use engine::{run_study, Progress, RunRecord, StudyResult};
 pub use error::StudyError;
 pub use method::{Method, MethodFamily};
-pub use outcome::{Failure, FailureKind, Measures, Status};
+pub use outcome::{Failure, FailureKind, Measures, Phases, Status};
 pub use scene::{builtin_scene, Scene};
 pub use spec::{Point, Reference, StudySpec};
 

@@ -18,18 +18,22 @@ pub enum MethodFamily {
     ContinuousStandard,
     /// `FORMULATION='CONTINUE', ALGO_CONT='PENALISATION'` with `COEF_PENA_CONT`.
     ContinuousPenalisation,
-    /// `LIAISON_UNIL` on the slave nodes (no pairing: fixed rows).
+    /// `FORMULATION='LIAISON_UNIL', ALGO_CONT='CONTRAINTE'`: fixed
+    /// node-wise rows Σ COEF_MULT·u ≤ COEF_IMPO (no pairing), exact.
     LiaisonUnil,
+    /// `FORMULATION='LIAISON_UNIL', ALGO_CONT='PENALISATION'` with `COEF_PENA`.
+    LiaisonUnilPenalisation,
 }
 
 impl MethodFamily {
-    pub const ALL: [MethodFamily; 6] = [
+    pub const ALL: [MethodFamily; 7] = [
         MethodFamily::DiscreteContrainte,
         MethodFamily::DiscretePenalisation,
         MethodFamily::DiscreteGcp,
         MethodFamily::ContinuousStandard,
         MethodFamily::ContinuousPenalisation,
         MethodFamily::LiaisonUnil,
+        MethodFamily::LiaisonUnilPenalisation,
     ];
 
     /// The code_aster spelling, e.g. `DISCRETE/PENALISATION`.
@@ -40,7 +44,8 @@ impl MethodFamily {
             MethodFamily::DiscreteGcp => "DISCRETE/GCP",
             MethodFamily::ContinuousStandard => "CONTINUE/STANDARD",
             MethodFamily::ContinuousPenalisation => "CONTINUE/PENALISATION",
-            MethodFamily::LiaisonUnil => "LIAISON_UNIL",
+            MethodFamily::LiaisonUnil => "LIAISON_UNIL/CONTRAINTE",
+            MethodFamily::LiaisonUnilPenalisation => "LIAISON_UNIL/PENALISATION",
         }
     }
 
@@ -53,6 +58,7 @@ impl MethodFamily {
             MethodFamily::ContinuousStandard => "continuous-standard",
             MethodFamily::ContinuousPenalisation => "continuous-penalisation",
             MethodFamily::LiaisonUnil => "liaison-unil",
+            MethodFamily::LiaisonUnilPenalisation => "liaison-unil-penalisation",
         }
     }
 
@@ -62,6 +68,7 @@ impl MethodFamily {
             MethodFamily::DiscretePenalisation => Some("E_N"),
             MethodFamily::ContinuousStandard => Some("COEF_CONT"),
             MethodFamily::ContinuousPenalisation => Some("COEF_PENA_CONT"),
+            MethodFamily::LiaisonUnilPenalisation => Some("COEF_PENA"),
             _ => None,
         }
     }
@@ -70,7 +77,8 @@ impl MethodFamily {
     pub fn default_coefficient(self) -> Option<f64> {
         match self {
             MethodFamily::ContinuousStandard => Some(100.0),
-            // No default in code_aster: E_N and COEF_PENA_CONT are mandatory.
+            // No default in code_aster: E_N, COEF_PENA_CONT and COEF_PENA
+            // are mandatory.
             _ => None,
         }
     }
@@ -80,7 +88,18 @@ impl MethodFamily {
     pub fn is_exact(self) -> bool {
         !matches!(
             self,
-            MethodFamily::DiscretePenalisation | MethodFamily::ContinuousPenalisation
+            MethodFamily::DiscretePenalisation
+                | MethodFamily::ContinuousPenalisation
+                | MethodFamily::LiaisonUnilPenalisation
+        )
+    }
+
+    /// Whether the method is `LIAISON_UNIL` (fixed rows built by the scene,
+    /// no pairing) rather than `DEFI_CONTACT` contact.
+    pub fn is_unilateral(self) -> bool {
+        matches!(
+            self,
+            MethodFamily::LiaisonUnil | MethodFamily::LiaisonUnilPenalisation
         )
     }
 }
@@ -180,6 +199,19 @@ mod tests {
         let s = Method::new(MethodFamily::ContinuousStandard, None).unwrap();
         assert_eq!(s.coefficient(), Some(100.0));
         assert_eq!(s.label(), "CONTINUE/STANDARD COEF_CONT=100");
+    }
+
+    #[test]
+    fn liaison_unil_has_an_exact_and_a_penalised_variant() {
+        let exact = Method::new(MethodFamily::LiaisonUnil, None).unwrap();
+        assert_eq!(exact.label(), "LIAISON_UNIL/CONTRAINTE");
+        assert!(exact.family().is_exact() && exact.family().is_unilateral());
+        assert!(Method::new(MethodFamily::LiaisonUnil, Some(1e6)).is_err());
+        let e = Method::new(MethodFamily::LiaisonUnilPenalisation, None).unwrap_err();
+        assert!(e.contains("COEF_PENA"), "{e}");
+        let pen = Method::new(MethodFamily::LiaisonUnilPenalisation, Some(1e6)).unwrap();
+        assert_eq!(pen.label(), "LIAISON_UNIL/PENALISATION COEF_PENA=1e6");
+        assert!(!pen.family().is_exact());
     }
 
     #[test]

@@ -10,6 +10,10 @@ pub struct Measures {
     pub value: f64,
     /// The analytic reference of `value` for this point, when there is one.
     pub reference: Option<f64>,
+    /// A reference that holds whatever the spec's `reference` says: the run
+    /// models another problem than the study's first method (LIAISON_UNIL
+    /// on a rigid base where the contact runs have a deformable one).
+    pub own_reference: Option<f64>,
     /// Characteristic mesh size near the contact.
     pub h: f64,
     /// Number of displacement unknowns.
@@ -18,17 +22,70 @@ pub struct Measures {
     pub newton_iterations: usize,
     /// Contact (active-set / fixed-point) iterations summed over the steps.
     pub contact_iterations: usize,
-    /// Seconds spent in the linear solver (factorisation + solves), when
-    /// the solver reports it.
+    /// CPU seconds spent in the linear solver (factorisation + solves with
+    /// the factor), when the scene reports it.
     pub solver_seconds: Option<f64>,
-    /// Seconds the scene spent only to measure (e.g. a second assembly to
-    /// separate it from the factorisation); the engine removes them from the
-    /// run's wall time.
-    pub excluded_seconds: f64,
+    /// Where the run's CPU time went, when the scene reports it.
+    pub phases: Option<Phases>,
     /// Largest penetration at convergence (≥ 0), in length units.
     pub penetration: Option<f64>,
     /// Other named values worth a CSV column (e.g. the contact half-width).
     pub extras: Vec<(String, f64)>,
+}
+
+/// Where a run's CPU time went, in seconds (see [`crate::clock`]). The
+/// linear solver is `factorisation + solves`; every other phase is outside
+/// it. The phases cover the whole run: their sum is the run's CPU time up
+/// to the clock's resolution.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Phases {
+    /// Mesh generation (for a built-in scene, what reading the mesh file is
+    /// for a `.comm`).
+    pub mesh: f64,
+    /// Model: elements, DOF numbering, loads, contact zones resolved on the
+    /// mesh.
+    pub model: f64,
+    /// Stiffness assembly: sparsity pattern and element matrices.
+    pub assembly: f64,
+    /// Restriction to the free DOFs, equilibration, ordering, symbolic and
+    /// numeric sparse Cholesky.
+    pub factorisation: f64,
+    /// Solves with the factor: free solutions and the contact algorithm's
+    /// columns K⁻¹aⱼ (with their iterative refinement).
+    pub solves: f64,
+    /// Pairing and linearised contact rows, at every geometric iteration.
+    pub pairing: f64,
+    /// The rest of the contact algorithm: Schur complements on the active
+    /// set, multiplier updates, active-set bookkeeping.
+    pub contact: f64,
+    /// Post-processing: contact forces, penetration, the measured quantity.
+    pub post: f64,
+}
+
+impl Phases {
+    /// Names and values, in the order of the CSV columns.
+    pub fn named(&self) -> [(&'static str, f64); 8] {
+        [
+            ("mesh", self.mesh),
+            ("model", self.model),
+            ("assembly", self.assembly),
+            ("factorisation", self.factorisation),
+            ("solves", self.solves),
+            ("pairing", self.pairing),
+            ("contact", self.contact),
+            ("post", self.post),
+        ]
+    }
+
+    /// Time in the linear solver: factorisation and solves.
+    pub fn solver(&self) -> f64 {
+        self.factorisation + self.solves
+    }
+
+    /// Sum of all phases.
+    pub fn total(&self) -> f64 {
+        self.named().iter().map(|p| p.1).sum()
+    }
 }
 
 /// Why a run did not give a trustworthy answer.

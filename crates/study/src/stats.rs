@@ -40,7 +40,7 @@ pub fn pareto_front(result: &StudyResult) -> Vec<&RunRecord> {
         .iter()
         .filter(|r| r.status == Status::Converged && r.error.is_some())
         .collect();
-    runs.sort_by(|a, b| a.wall_seconds.total_cmp(&b.wall_seconds));
+    runs.sort_by(|a, b| a.seconds().total_cmp(&b.seconds()));
     let mut front = Vec::new();
     let mut best = f64::INFINITY;
     for r in runs {
@@ -59,7 +59,7 @@ pub fn fastest_within(result: &StudyResult, target: f64) -> Option<&RunRecord> {
         .records
         .iter()
         .filter(|r| r.status == Status::Converged && r.error.is_some_and(|e| e <= target))
-        .min_by(|a, b| a.wall_seconds.total_cmp(&b.wall_seconds))
+        .min_by(|a, b| a.seconds().total_cmp(&b.seconds()))
 }
 
 /// The fastest run within `target` for each method (spec order).
@@ -77,7 +77,7 @@ pub fn fastest_per_method(result: &StudyResult, target: f64) -> Vec<(Method, Opt
                         && r.status == Status::Converged
                         && r.error.is_some_and(|e| e <= target)
                 })
-                .min_by(|a, b| a.wall_seconds.total_cmp(&b.wall_seconds));
+                .min_by(|a, b| a.seconds().total_cmp(&b.seconds()));
             (m, best)
         })
         .collect()

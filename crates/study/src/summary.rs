@@ -53,7 +53,7 @@ pub fn markdown(result: &StudyResult) -> String {
                 r.point.refine,
                 short_number(r.point.stiffness_ratio),
                 r.point.steps,
-                r.wall_seconds,
+                r.seconds(),
                 100.0 * r.error.unwrap_or(f64::NAN)
             );
             match r.outside_solver_fraction() {
@@ -75,7 +75,7 @@ pub fn markdown(result: &StudyResult) -> String {
     }
     let _ = writeln!(
         s,
-        "| method | fastest run within target | time (s) | error | outside solver |"
+        "| method | fastest run within target | CPU time (s) | error | outside solver |"
     );
     let _ = writeln!(s, "| --- | --- | --- | --- | --- |");
     for (m, best) in stats::fastest_per_method(result, target) {
@@ -88,7 +88,7 @@ pub fn markdown(result: &StudyResult) -> String {
                     r.point.refine,
                     short_number(r.point.stiffness_ratio),
                     r.point.steps,
-                    r.wall_seconds,
+                    r.seconds(),
                     100.0 * r.error.unwrap_or(f64::NAN),
                     r.outside_solver_fraction()
                         .map(|f| format!("{:.0}%", 100.0 * f))

@@ -37,7 +37,18 @@ coefficients = [1e5]
     assert!(fine < coarse && fine < 0.01, "p0 errors {coarse} -> {fine}");
     let m = exact[1].measures.as_ref().unwrap();
     assert!(m.penetration.unwrap() < 1e-9);
-    assert!(m.solver_seconds.unwrap() > 0.0 && m.solver_seconds.unwrap() <= exact[1].wall_seconds);
+    // The phases cover the run: the solver is part of it, and the phases
+    // add up to the run's CPU time (up to the clock's overhead).
+    let phases = m.phases.unwrap();
+    let solver = m.solver_seconds.unwrap();
+    assert!(solver > 0.0 && solver == phases.solver());
+    let cpu = exact[1].cpu_seconds;
+    assert!(solver <= cpu, "solver {solver} s > run {cpu} s");
+    assert!(
+        (phases.total() - cpu).abs() <= 0.2 * cpu + 1e-4,
+        "phases {phases:?} do not add up to {cpu} s"
+    );
+    assert!(phases.assembly > 0.0 && phases.pairing > 0.0 && phases.mesh > 0.0);
     // E_N = 1e5 lets the cylinder sink by ~0.03 mm: a wrong answer, with why.
     let weak = result
         .records
@@ -77,4 +88,79 @@ kind = "discrete-gcp"
         .find(|r| r.point.refine == 2 && r.point.method.label() == "DISCRETE/CONTRAINTE")
         .unwrap();
     assert_eq!(finest.error, Some(0.0));
+}
+
+#[test]
+fn liaison_unil_matches_contact_on_hertz_and_the_rigid_base_on_zzzz237() {
+    let hertz = run(r#"
+name = "hertz-unil"
+scene = "hertz"
+reference = "analytic"
+[sweep]
+refine = [8]
+[[methods]]
+kind = "discrete-contrainte"
+[[methods]]
+kind = "liaison-unil"
+[[methods]]
+kind = "liaison-unil-penalisation"
+coefficients = [1e5, 1e9]
+"#);
+    let by = |label: &str| {
+        hertz
+            .records
+            .iter()
+            .find(|r| r.point.method.label() == label)
+            .unwrap_or_else(|| panic!("no run {label}"))
+    };
+    let contact = by("DISCRETE/CONTRAINTE");
+    let unil = by("LIAISON_UNIL/CONTRAINTE");
+    assert_eq!(unil.status, Status::Converged, "{unil:?}");
+    // A flat rigid plane: node-to-segment rows with normal (0, 1) and the
+    // node-wise rows −DY ≤ y are the same conditions.
+    let (a, b) = (
+        contact.measures.as_ref().unwrap().value,
+        unil.measures.as_ref().unwrap().value,
+    );
+    assert!(
+        (a - b).abs() < 1e-8 * a,
+        "p0 contact {a} vs LIAISON_UNIL {b}"
+    );
+    let m = unil.measures.as_ref().unwrap();
+    assert!(m.penetration.unwrap() < 1e-9);
+    assert_eq!(m.phases.unwrap().pairing, 0.0, "LIAISON_UNIL does not pair");
+    // Penalised: a weak COEF_PENA lets the cylinder sink (wrong, with why),
+    // a strong one is within 0.1% of the exact rows.
+    let weak = by("LIAISON_UNIL/PENALISATION COEF_PENA=1e5");
+    assert_eq!(weak.kind, Some(FailureKind::Penetration), "{weak:?}");
+    let strong = by("LIAISON_UNIL/PENALISATION COEF_PENA=1e9");
+    assert_eq!(strong.status, Status::Converged, "{strong:?}");
+    let c = strong.measures.as_ref().unwrap().value;
+    assert!((c - b).abs() < 1e-3 * b, "{c} vs {b}");
+
+    let blocks = run(r#"
+name = "zzzz237-unil"
+scene = "zzzz237"
+reference = "finest"
+[sweep]
+refine = [1, 4]
+stiffness_ratio = [1.0]
+[[methods]]
+kind = "discrete-contrainte"
+[[methods]]
+kind = "liaison-unil"
+"#);
+    // ZZZZ237 B: the rigid base gives 2 × 2.197802198e10 on any mesh (a
+    // uniform state); LIAISON_UNIL is compared with it, not with the
+    // deformable base of the contact runs.
+    for r in blocks
+        .records
+        .iter()
+        .filter(|r| r.point.method.family().is_unilateral())
+    {
+        assert_eq!(r.status, Status::Converged, "{r:?}");
+        let f = r.measures.as_ref().unwrap().value;
+        assert!((f - 4.395604396e10).abs() < 1e-6 * 4.395604396e10, "{f}");
+        assert!(r.error.unwrap() < 1e-6);
+    }
 }

@@ -99,6 +99,7 @@ fn family_color(f: MethodFamily) -> RGBColor {
         MethodFamily::ContinuousStandard => RGBColor(148, 103, 189),
         MethodFamily::ContinuousPenalisation => RGBColor(214, 39, 40),
         MethodFamily::LiaisonUnil => RGBColor(140, 86, 75),
+        MethodFamily::LiaisonUnilPenalisation => RGBColor(227, 119, 194),
     }
 }
 

@@ -1,4 +1,4 @@
-//! Error against wall time, log-log, per method: the Pareto front of speed
+//! Error against CPU time, log-log, per method: the Pareto front of speed
 //! and accuracy.
 
 use super::{draw_empty, family_color, log_bounds, sci, Chart};
@@ -20,16 +20,16 @@ impl Chart for Pareto<'_> {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let r = self.result;
-        let title = format!("{}: error against wall time", r.spec.name);
+        let title = format!("{}: error against CPU time", r.spec.name);
         // Converged runs (filled) and wrong answers (crosses) with an error.
         let runs: Vec<_> = r
             .records
             .iter()
             .filter(|x| matches!(x.status, Status::Converged | Status::Wrong))
-            .filter(|x| x.error.is_some_and(|e| e > 0.0) && x.wall_seconds > 0.0)
+            .filter(|x| x.error.is_some_and(|e| e > 0.0) && x.seconds() > 0.0)
             .collect();
         let (Some((t0, t1)), Some((e0, e1))) = (
-            log_bounds(runs.iter().map(|x| x.wall_seconds)),
+            log_bounds(runs.iter().map(|x| x.seconds())),
             log_bounds(runs.iter().filter_map(|x| x.error)),
         ) else {
             return draw_empty(root, &title, "no run with a positive error to plot");
@@ -43,7 +43,7 @@ impl Chart for Pareto<'_> {
             .map_err(|e| e.to_string())?;
         chart
             .configure_mesh()
-            .x_desc("wall time (s)")
+            .x_desc("CPU time (s)")
             .y_desc(format!("relative error of {}", r.quantity))
             .x_label_formatter(&sci)
             .y_label_formatter(&sci)
@@ -61,7 +61,7 @@ impl Chart for Pareto<'_> {
             let converged: Vec<(f64, f64)> = mine
                 .iter()
                 .filter(|x| x.status == Status::Converged)
-                .filter_map(|x| Some((x.wall_seconds, x.error?)))
+                .filter_map(|x| Some((x.seconds(), x.error?)))
                 .collect();
             chart
                 .draw_series(converged.iter().map(|&p| Circle::new(p, 5, color.filled())))
@@ -71,7 +71,7 @@ impl Chart for Pareto<'_> {
             let wrong: Vec<(f64, f64)> = mine
                 .iter()
                 .filter(|x| x.status == Status::Wrong)
-                .filter_map(|x| Some((x.wall_seconds, x.error?)))
+                .filter_map(|x| Some((x.seconds(), x.error?)))
                 .collect();
             chart
                 .draw_series(
@@ -83,7 +83,7 @@ impl Chart for Pareto<'_> {
         }
         let front: Vec<(f64, f64)> = stats::pareto_front(r)
             .iter()
-            .filter_map(|x| Some((x.wall_seconds, x.error.filter(|e| *e > 0.0)?)))
+            .filter_map(|x| Some((x.seconds(), x.error.filter(|e| *e > 0.0)?)))
             .collect();
         if front.len() >= 2 {
             chart

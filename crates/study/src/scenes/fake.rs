@@ -58,12 +58,13 @@ impl Scene for FakeScene {
         let mut m = Measures {
             value: 1.0 + 0.3 * h * h + penetration + noise,
             reference: Some(1.0),
+            own_reference: None,
             h,
             dofs: 2 * (p.refine as usize + 1).pow(2),
             newton_iterations: p.steps as usize * 2,
             contact_iterations: p.steps as usize * 3,
             solver_seconds: None,
-            excluded_seconds: 0.0,
+            phases: None,
             penetration: Some(penetration),
             extras: vec![("busy".into(), acc)],
         };

@@ -10,14 +10,17 @@
 //! the error measures the contact pressure, not the load.
 
 use super::driver;
+use crate::clock::{cpu_now, cpu_since};
 use crate::error::StudyError;
-use crate::outcome::{Failure, FailureKind, Measures};
+use crate::outcome::{Failure, FailureKind, Measures, Phases};
 use crate::scene::{Params, Scene};
 use crate::spec::Point;
 use aster_contact::hertz::{hertz_mesh, plane_strain_modulus, HertzMesh, HertzSolution};
 use aster_fem::{
-    Comp, Dof, Elastic, Element, ElementKind, Hypothesis, Load, Loads, Model, Multiplier,
+    Comp, Dof, Elastic, Element, ElementKind, Hypothesis, InequalityRow, Load, Loads, Model,
+    Multiplier,
 };
+use aster_mesh::Mesh;
 use std::collections::BTreeMap;
 
 pub struct Hertz {
@@ -56,9 +59,18 @@ impl Hertz {
 
     /// The model and loads with `n` cells across the refined sector.
     pub fn problem(&self, n: usize) -> Result<(Model, Loads), Failure> {
+        self.model(self.mesh(n)?)
+    }
+
+    /// The mesh with `n` cells across the refined sector.
+    pub fn mesh(&self, n: usize) -> Result<Mesh, Failure> {
+        hertz_mesh(&HertzMesh::new(self.radius, self.contact_angle, n))
+            .map_err(|e| Failure::new(FailureKind::Other, e.to_string()))
+    }
+
+    /// The model and loads on a mesh from [`Hertz::mesh`].
+    pub fn model(&self, mesh: Mesh) -> Result<(Model, Loads), Failure> {
         let other = |m: String| Failure::new(FailureKind::Other, m);
-        let mesh = hertz_mesh(&HertzMesh::new(self.radius, self.contact_angle, n))
-            .map_err(|e| other(e.to_string()))?;
         let material = Elastic::new(self.young, self.poisson).map_err(|e| other(e.to_string()))?;
         let group = |g: &str| {
             mesh.group_ma(g)
@@ -109,6 +121,26 @@ impl Hertz {
     }
 }
 
+impl Hertz {
+    /// The rigid plane as LIAISON_UNIL on the cylinder's contact-side nodes
+    /// (`ESCL`): DY ≥ −gap, i.e. the row −DY ≤ gap with COEF_IMPO the
+    /// node's initial height above the plane y = 0.
+    fn unilateral_rows(&self, model: &Model) -> Result<Vec<InequalityRow>, Failure> {
+        let mesh = model.mesh();
+        let nodes = mesh.group_no("ESCL").ok_or_else(|| {
+            Failure::new(FailureKind::Other, "generated mesh lacks node group ESCL")
+        })?;
+        Ok(nodes
+            .members
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| {
+                InequalityRow::new(vec![(Dof::new(n, Comp::DY), -1.0)], mesh.coord(n)[1], i)
+            })
+            .collect())
+    }
+}
+
 impl Scene for Hertz {
     fn quantity(&self) -> String {
         "peak pressure p0 (MPa)".into()
@@ -123,21 +155,28 @@ impl Scene for Hertz {
 
     fn run(&self, p: &Point) -> Result<Measures, Failure> {
         let n = p.refine as usize;
-        let (model, loads) = self.problem(n)?;
-        let def = driver::definition(&p.method, "MAIT", "ESCL", None)?;
+        let start = cpu_now();
+        let mesh = self.mesh(n)?;
+        let mesh_seconds = cpu_since(start);
+        let start = cpu_now();
+        let (model, loads) = self.model(mesh)?;
+        let conditions = driver::conditions(&p.method, "MAIT", "ESCL", None, || {
+            self.unilateral_rows(&model)
+        })?;
+        let model_seconds = cpu_since(start);
         let instants: Vec<f64> = (0..=p.steps).map(|i| i as f64 / p.steps as f64).collect();
-        let solved = driver::solve(&def, &model, &loads, &instants)?;
+        let solved = driver::solve(&conditions, &model, &loads, &instants)?;
+        let post_start = cpu_now();
         let mesh = model.mesh();
         let mut forces: Vec<(f64, f64)> = solved
-            .zones
+            .forces
             .iter()
-            .flat_map(|z| z.nodal_forces())
-            .map(|(node, f)| (mesh.coord(node)[0], f))
+            .map(|&(node, f)| (mesh.coord(node)[0], f))
             .collect();
         forces.sort_by(|a, b| a.0.total_cmp(&b.0));
         let h = self.radius * self.contact_angle / n as f64;
         let load = 2.0 * forces.iter().map(|f| f.1).sum::<f64>();
-        let penetration = driver::penetration(&solved, &model);
+        let penetration = solved.penetration;
         let e_star = plane_strain_modulus(self.young, self.poisson, f64::INFINITY, 0.0);
         let exact = HertzSolution::new(load.max(f64::MIN_POSITIVE), self.radius, e_star);
         let p0 = forces
@@ -147,15 +186,22 @@ impl Scene for Hertz {
             / (h / 2.0);
         let last = forces.iter().rposition(|f| f.1 > 0.0);
         let measured_a = last.map_or(0.0, |i| forces[i].0);
+        let phases = Phases {
+            mesh: mesh_seconds,
+            model: model_seconds + solved.phases.model,
+            post: cpu_since(post_start),
+            ..solved.phases
+        };
         let m = Measures {
             value: p0,
             reference: Some(exact.peak_pressure),
+            own_reference: None,
             h,
             dofs: model.dofs().len(),
             newton_iterations: solved.geom_iterations,
             contact_iterations: solved.contact_iterations,
-            solver_seconds: Some(solved.solver_seconds),
-            excluded_seconds: solved.excluded_seconds,
+            solver_seconds: Some(phases.solver()),
+            phases: Some(phases),
             penetration: Some(penetration),
             extras: vec![
                 ("load_P".into(), load),

@@ -1,6 +1,6 @@
 //! Built-in scenes.
 
-mod driver;
+pub mod driver;
 pub mod fake;
 pub mod hertz;
 pub mod zzzz237;
