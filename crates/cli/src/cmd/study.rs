@@ -33,11 +33,11 @@ pub fn run(spec_path: &Path, out: &Path) -> u8 {
     );
     match stats::fastest_within(&result, spec.accuracy_target) {
         Some(r) => println!(
-            "fastest within {}%: {} (refine {}) in {:.4} s, error {:.3}%",
+            "fastest within {}%: {} (refine {}) in {:.4} s CPU, error {:.3}%",
             100.0 * spec.accuracy_target,
             r.point.method.label(),
             r.point.refine,
-            r.wall_seconds,
+            r.seconds(),
             100.0 * r.error.unwrap_or(f64::NAN)
         ),
         None => println!("no converged run within {}%", 100.0 * spec.accuracy_target),
