@@ -54,6 +54,10 @@ pub struct ZoneContact {
     /// What each force acts on: slave nodes and weights (one entry per
     /// pair in discrete, per slave node row in continuous).
     carriers: Vec<Vec<(NodeId, f64)>>,
+    /// Per carrier, the measure its force is spread over: Wⱼ = Σₚ wₚ Nⱼ(p)
+    /// for a continuous slave-node row (force / Wⱼ is the contact pressure),
+    /// 1 for a discrete pair.
+    measures: Vec<f64>,
 }
 
 impl ZoneContact {
@@ -93,6 +97,7 @@ impl ZoneContact {
             length: 0.0,
             frozen_rows: Vec::new(),
             carriers: Vec::new(),
+            measures: Vec::new(),
             zone,
             law,
             geom_loop,
@@ -142,12 +147,14 @@ impl ZoneContact {
         self.paired_once = true;
         let mut rows = Vec::new();
         self.carriers.clear();
+        self.measures.clear();
         self.links.clear();
         if self.zone.geometry.resolve {
             match self.law {
                 ZoneLaw::Discrete(_) => {
                     for (i, pair) in self.pairs.iter().enumerate() {
                         self.carriers.push(pair.point.nodes.clone());
+                        self.measures.push(1.0);
                         self.links.push(None);
                         let Some(p) = pair.pairing() else { continue };
                         let row =
@@ -220,6 +227,7 @@ impl ZoneContact {
             }
             let id = self.carriers.len();
             self.carriers.push(vec![(j, 1.0)]);
+            self.measures.push(weight);
             self.links.push(Some(RowLink {
                 row: rows.len(),
                 scale,
@@ -289,6 +297,30 @@ impl ZoneContact {
             }
         }
         out
+    }
+
+    /// code_aster's `LAGS_C` (the contact multiplier component of DEPL in
+    /// the continuous formulation) on every slave node of the zone: minus
+    /// the contact pressure, force / Wⱼ (R5.03.52: the multiplier is the
+    /// normal stress on the slave surface, negative in compression); 0 on
+    /// slave nodes without contact. `None` for a discrete zone, whose
+    /// multipliers are not part of DEPL.
+    pub fn lags_c(&self) -> Option<Vec<(NodeId, f64)>> {
+        if !matches!(self.law, ZoneLaw::Continue(_)) {
+            return None;
+        }
+        let mut out: BTreeMap<NodeId, f64> =
+            self.zone.slave_nodes.iter().map(|n| (*n, 0.0)).collect();
+        for ((nodes, f), w) in self.carriers.iter().zip(&self.forces).zip(&self.measures) {
+            if let [(n, _)] = nodes.as_slice() {
+                if *w > 0.0 {
+                    if let Some(v) = out.get_mut(n) {
+                        *v = -f / w;
+                    }
+                }
+            }
+        }
+        Some(out.into_iter().collect())
     }
 
     fn describe(&self) -> String {
