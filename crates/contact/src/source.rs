@@ -10,6 +10,7 @@ use aster_fem::{
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
+use crate::geomloop::{GeomDecision, GeomLoopState};
 use crate::integration::integration_points;
 use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
 use crate::rows::contact_row;
@@ -43,6 +44,8 @@ pub struct ZoneContact {
     forces: Vec<f64>,
     /// Whether pairing was done once (REAC_GEOM='SANS' keeps it).
     paired_once: bool,
+    /// The geometric loop of fem's steps (when to pair again).
+    geom: GeomLoopState,
     /// The rows last handed to fem, kept while new ones differ only by
     /// round-off (fem compares rows exactly to decide that the geometric
     /// loop has settled).
@@ -105,6 +108,7 @@ impl ZoneContact {
             links: Vec::new(),
             forces: Vec::new(),
             paired_once: false,
+            geom: GeomLoopState::new(geom_loop),
         }
     }
 
@@ -367,6 +371,13 @@ fn same_rows(a: &[InequalityRow], b: &[InequalityRow], tol_coef: f64, tol_rhs: f
         })
 }
 
+/// Nodal translations of a fem state.
+fn nodal_displacements(state: &State) -> Vec<[f64; 3]> {
+    (0..state.mesh.coords.len())
+        .map(|i| state.node_displacement(NodeId(i as u32)))
+        .collect()
+}
+
 /// Current node positions of a fem state.
 pub fn current_positions(state: &State) -> Vec<[f64; 3]> {
     (0..state.mesh.coords.len())
@@ -399,8 +410,11 @@ impl UnilateralSource for ZoneContact {
     fn geometry_update(&self) -> GeometryUpdate {
         match self.geom_loop {
             GeomLoop::Sans => GeometryUpdate::Once,
-            GeomLoop::Controle { .. } => GeometryUpdate::EachStep,
-            GeomLoop::Automatique { .. } => GeometryUpdate::EachIteration,
+            // The loop (GeomLoopState) decides at each request whether to
+            // pair again; fem asks at every stable active set.
+            GeomLoop::Controle { .. } | GeomLoop::Automatique { .. } => {
+                GeometryUpdate::EachIteration
+            }
         }
     }
 
@@ -409,12 +423,36 @@ impl UnilateralSource for ZoneContact {
         if self.length == 0.0 {
             self.length = zone_length(&self.zone, &state.mesh.coords);
         }
+        let u = nodal_displacements(state);
+        match self.geom.decide(state.time, &u) {
+            GeomDecision::Keep if self.paired_once => return Ok(self.last_rows.clone()),
+            GeomDecision::Keep | GeomDecision::Pair => {}
+            GeomDecision::Diverged { pairings, residual } => {
+                let (iter_maxi, resi_geom) = match self.geom_loop {
+                    GeomLoop::Automatique {
+                        iter_maxi,
+                        resi_geom,
+                    } => (iter_maxi, resi_geom),
+                    _ => (pairings, 0.0),
+                };
+                return Err(FemError::Source(format!(
+                    "{}: the geometric loop (REAC_GEOM='AUTOMATIQUE') did not converge at time {}: \
+                     after ITER_GEOM_MAXI={iter_maxi} pairings the displacement still changes by \
+                     {:.3e} of the step's displacement (RESI_GEOM={resi_geom}); raise \
+                     ITER_GEOM_MAXI, cut the step, or fix the number of updates with \
+                     REAC_GEOM='CONTROLE'",
+                    self.describe(),
+                    state.time,
+                    residual
+                )));
+            }
+        }
         let rows = self
             .pair(state.mesh, &x)
             .map_err(|e| FemError::Source(format!("{}: {e}", self.describe())))?;
-        // Geometric convergence: rows that moved by round-off only are the
-        // same rows (coefficients to 1e-9, right-hand sides to 1e-9 × the
-        // zone size).
+        // Rows that moved by round-off only are the same rows (coefficients
+        // to 1e-9, right-hand sides to 1e-9 × the zone size): fem compares
+        // rows exactly.
         if same_rows(&rows, &self.last_rows, 1e-9, 1e-9 * self.length) {
             return Ok(self.last_rows.clone());
         }
@@ -422,8 +460,9 @@ impl UnilateralSource for ZoneContact {
         Ok(rows)
     }
 
-    fn converged(&mut self, _state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+    fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
         self.set_outcomes(outcomes);
+        self.geom.step_converged(nodal_displacements(state));
         Ok(())
     }
 }
