@@ -178,3 +178,87 @@ fn max_norm(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
         })
         .fold(0.0, f64::max)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(v: f64) -> Vec<[f64; 3]> {
+        vec![[0.0, v, 0.0], [0.0, 0.5 * v, 0.0]]
+    }
+
+    #[test]
+    fn controle_pairs_exactly_nb_iter_geom_times_per_step() {
+        let mut g = GeomLoopState::new(GeomLoop::Controle { nb_iter: 3 });
+        for t in [1.0, 2.0] {
+            // Whatever the displacements do, three pairings then keep.
+            assert_eq!(g.decide(t, &at(t)), GeomDecision::Pair);
+            assert_eq!(g.decide(t, &at(t + 0.5)), GeomDecision::Pair);
+            assert_eq!(g.decide(t, &at(t + 0.5)), GeomDecision::Pair);
+            assert_eq!(g.decide(t, &at(t + 0.7)), GeomDecision::Keep);
+            assert_eq!(g.decide(t, &at(t + 0.9)), GeomDecision::Keep);
+            assert_eq!(g.pairings(), 3);
+            g.step_converged(at(t + 0.9));
+        }
+    }
+
+    #[test]
+    fn sans_pairs_once_per_analysis() {
+        let mut g = GeomLoopState::new(GeomLoop::Sans);
+        assert_eq!(g.decide(1.0, &at(0.0)), GeomDecision::Pair);
+        assert_eq!(g.decide(1.0, &at(1.0)), GeomDecision::Keep);
+        assert_eq!(g.decide(2.0, &at(1.0)), GeomDecision::Keep);
+    }
+
+    #[test]
+    fn automatique_measures_the_change_against_the_step_displacement() {
+        let rule = GeomLoop::Automatique {
+            iter_maxi: 4,
+            resi_geom: 0.01,
+        };
+        let mut g = GeomLoopState::new(rule);
+        g.step_converged(at(0.0));
+        assert_eq!(g.decide(1.0, &at(0.0)), GeomDecision::Pair);
+        // First solve: no residual yet, always a second pairing.
+        assert_eq!(g.decide(1.0, &at(1.0)), GeomDecision::Pair);
+        // Second solve moved by 0.02 against a step displacement of 1: 2 %.
+        assert_eq!(g.decide(1.0, &at(1.02)), GeomDecision::Pair);
+        assert!((g.last_residual.unwrap() - 0.02).abs() < 1e-12);
+        // Third: 0.005 against 1.02 → below 1 %: settled.
+        assert_eq!(g.decide(1.0, &at(1.025)), GeomDecision::Keep);
+        assert!((g.last_residual.unwrap() - 0.005 / 1.02).abs() < 1e-12);
+        assert_eq!(g.pairings(), 3);
+    }
+
+    #[test]
+    fn automatique_fails_after_iter_geom_maxi_pairings() {
+        let rule = GeomLoop::Automatique {
+            iter_maxi: 2,
+            resi_geom: 0.01,
+        };
+        let mut g = GeomLoopState::new(rule);
+        g.step_converged(at(0.0));
+        assert_eq!(g.decide(1.0, &at(0.0)), GeomDecision::Pair);
+        assert_eq!(g.decide(1.0, &at(1.0)), GeomDecision::Pair);
+        match g.decide(1.0, &at(1.5)) {
+            GeomDecision::Diverged { pairings, residual } => {
+                assert_eq!(pairings, 2);
+                assert!((residual - 0.5).abs() < 1e-12);
+            }
+            other => panic!("expected a divergence, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_step_that_does_not_move_is_settled() {
+        let rule = GeomLoop::Automatique {
+            iter_maxi: 3,
+            resi_geom: 0.01,
+        };
+        let mut g = GeomLoopState::new(rule);
+        g.step_converged(at(1.0));
+        assert_eq!(g.decide(2.0, &at(1.0)), GeomDecision::Pair);
+        assert_eq!(g.decide(2.0, &at(1.0)), GeomDecision::Pair);
+        assert_eq!(g.decide(2.0, &at(1.0)), GeomDecision::Keep);
+    }
+}

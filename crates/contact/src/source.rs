@@ -278,6 +278,17 @@ impl ZoneContact {
         }
     }
 
+    /// Pairings done in the current (last) step of fem's geometric loop.
+    pub fn geom_pairings(&self) -> usize {
+        self.geom.pairings()
+    }
+
+    /// The last geometric residual of `REAC_GEOM='AUTOMATIQUE'`
+    /// (max‖uₖ − uₖ₋₁‖ / max‖uₖ₋₁ − u₀‖), if one was computed.
+    pub fn geom_residual(&self) -> Option<f64> {
+        self.geom.last_residual
+    }
+
     /// The pairs of the last pairing.
     pub fn pairs(&self) -> &[ContactPair] {
         &self.pairs
