@@ -184,7 +184,7 @@ pub fn pair_point(
                 });
             };
             let cell = &zone.master[ci];
-            let n = zone.cell_normal(cell, xi, x, g.vect_mait)?;
+            let n = master_normal_at(zone, cell, xi, x)?;
             let master = cell.nodes.iter().copied().zip(shape).collect();
             (Some((cell.id, xi)), master, xm, n)
         }
@@ -220,6 +220,53 @@ pub fn pair_point(
             nearest_master_node: nearest,
         }),
     })
+}
+
+/// The master normal at the reference coordinates `xi` of a master cell.
+///
+/// With `VECT_MAIT='AUTO'`: with `LISSAGE`, the nodal normals (averaged over
+/// the cells around each node) interpolated inside the cell; without it,
+/// the cell's own normal — except on a master node itself, where the cells
+/// around the node meet and their normals differ: there the averaged nodal
+/// normal is used, so that the answer does not depend on which of those
+/// cells the projection was attributed to.
+fn master_normal_at(
+    zone: &ResolvedZone,
+    cell: &crate::surface::SurfaceCell,
+    xi: [f64; 2],
+    x: &[[f64; 3]],
+) -> Result<[f64; 3], ContactError> {
+    let source = zone.geometry.vect_mait;
+    if !matches!(source, crate::zone::NormalSource::Auto) {
+        return zone.cell_normal(cell, xi, x, source);
+    }
+    if zone.geometry.lissage {
+        let (shape, _) = cell.kind.eval(xi);
+        let mut sum = [0.0; 3];
+        for (node, w) in cell.nodes.iter().zip(shape) {
+            let n = zone.nodal_normal(*node, true, x)?;
+            for c in 0..3 {
+                sum[c] += w * n[c];
+            }
+        }
+        let l = norm(sum);
+        // Nodal normals of a sane surface never cancel inside one cell;
+        // if they do, the cell's own normal is the only meaningful one.
+        return if l > 1e-12 {
+            Ok(scale(sum, 1.0 / l))
+        } else {
+            zone.cell_normal(cell, xi, x, source)
+        };
+    }
+    // Round-off-sized in reference coordinates: a projection computed onto
+    // a node lands within ~1e-15 of it.
+    const ON_NODE: f64 = 1e-10;
+    for (i, c) in cell.kind.node_coords().iter().enumerate() {
+        if (xi[0] - c[0]).abs() <= ON_NODE && (xi[1] - c[1]).abs() <= ON_NODE {
+            return zone.nodal_normal(cell.nodes[i], true, x);
+        }
+    }
+    zone.cell_normal(cell, xi, x, source)
 }
 
 /// A projection candidate: cell index, reference coordinates, shape
