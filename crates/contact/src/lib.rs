@@ -16,6 +16,7 @@
 
 pub mod dual;
 mod error;
+mod geomloop;
 mod integration;
 mod pairing;
 mod rows;
@@ -24,6 +25,7 @@ mod surface;
 mod zone;
 
 pub use error::ContactError;
+pub use geomloop::{GeomDecision, GeomLoopState};
 pub use integration::integration_points;
 pub use pairing::{
     nodal_points, pair_point, ContactPair, Exclusion, PairStatus, Pairing, SlavePoint,

@@ -200,7 +200,7 @@ pub fn pair_point(
                 });
             }
             let cell = &zone.master[c.cell];
-            let n = zone.cell_normal(cell, c.xi, x, g.vect_mait)?;
+            let n = master_normal_at(zone, cell, c.xi, x)?;
             let master = cell.nodes.iter().copied().zip(c.shape).collect();
             (Some((cell.id, c.xi)), master, c.point, n)
         }
@@ -246,6 +246,68 @@ enum ProjStatus {
     Tolerated,
     /// Outside by more than TOLE_PROJ_EXT.
     Outside,
+}
+
+/// The master normal at the reference coordinates `xi` of a master cell.
+///
+/// With `VECT_MAIT='AUTO'`: with `LISSAGE`, the nodal normals (averaged over
+/// the cells around each node) interpolated inside the cell; without it,
+/// the cell's own normal — except on a master node itself, where the cells
+/// around the node meet and their normals differ: there the averaged nodal
+/// normal is used, so that the answer does not depend on which of those
+/// cells the projection was attributed to.
+fn master_normal_at(
+    zone: &ResolvedZone,
+    cell: &crate::surface::SurfaceCell,
+    xi: [f64; 2],
+    x: &[[f64; 3]],
+) -> Result<[f64; 3], ContactError> {
+    let source = zone.geometry.vect_mait;
+    if !matches!(source, crate::zone::NormalSource::Auto) {
+        return zone.cell_normal(cell, xi, x, source);
+    }
+    if zone.geometry.lissage {
+        let (shape, _) = cell.kind.eval(xi);
+        let mut sum = [0.0; 3];
+        for (node, w) in cell.nodes.iter().zip(shape) {
+            let n = zone.nodal_normal(*node, true, x)?;
+            for c in 0..3 {
+                sum[c] += w * n[c];
+            }
+        }
+        let l = norm(sum);
+        // Nodal normals of a sane surface never cancel inside one cell;
+        // if they do, the cell's own normal is the only meaningful one.
+        return if l > 1e-12 {
+            Ok(scale(sum, 1.0 / l))
+        } else {
+            zone.cell_normal(cell, xi, x, source)
+        };
+    }
+    // On a master node (within 1e-6 of the cell in reference coordinates)
+    // the cells around the node meet. code_aster keeps the normal of the
+    // cell the projection was attributed to, and on a curved master that
+    // choice matters (SSNV104B's values depend on it at 1e-6): keep it.
+    // But where those cells are flat to within ~1e-6 rad, the choice cannot
+    // matter physically while its noise can: a slave node sitting on a
+    // master node by symmetry drifts off it by the solver's round-off
+    // (~1e-8 of the cell on ZZZZ237, whose square is held sideways by
+    // 10 N/m against 1e10 N of contact force), and switching between the
+    // cells' normals pushes it sideways by metres, so the geometric loop
+    // never settles. There the averaged nodal normal is used.
+    const ON_NODE: f64 = 1e-6;
+    const FLAT: f64 = 1e-12; // 1 − cos θ, θ ≈ 1.4e-6 rad
+    let own = zone.cell_normal(cell, xi, x, source)?;
+    for (i, c) in cell.kind.node_coords().iter().enumerate() {
+        if (xi[0] - c[0]).abs() <= ON_NODE && (xi[1] - c[1]).abs() <= ON_NODE {
+            let averaged = zone.nodal_normal(cell.nodes[i], true, x)?;
+            if 1.0 - crate::shape::dot(own, averaged) <= FLAT {
+                return Ok(averaged);
+            }
+            return Ok(own);
+        }
+    }
+    Ok(own)
 }
 
 /// A projection candidate on one master cell.

@@ -204,3 +204,134 @@ pub fn two_blocks_problem(mesh: Mesh, stiffness_ratio: f64) -> Result<(Model, Lo
     let model = Model::new(mesh, elements)?;
     Ok((model, loads))
 }
+
+/// Two plates pressed together (the SSNP121 kind of scene): an upper plate
+/// `[-1, 1] × [0, 1]` with `n_up × n_up` QUAD4 and a lower plate
+/// `[-1, 1] × [-1, 0]` with `n_low × n_low` QUAD4, meeting on y = 0 with
+/// non-matching nodes when `n_up ≠ n_low`. Cell groups: `UP`, `LOW`,
+/// `AB` (upper plate's bottom, A=(−1,0) → B=(1,0)), `EF` (lower plate's top,
+/// F=(1,0) → E=(−1,0)), `CD` (top, y = 1), `GH` (bottom, y = −1). Node
+/// groups: every cell group and A B E F.
+pub fn two_plates_mesh(n_up: usize, n_low: usize) -> Result<Mesh, FemError> {
+    if n_up == 0 || n_low == 0 {
+        return Err(FemError::Model(
+            "two_plates_mesh: each plate needs at least one cell".into(),
+        ));
+    }
+    let mut m = Mesh {
+        dim: 2,
+        ..Mesh::default()
+    };
+    let mut groups: Vec<(&str, Vec<CellId>)> = Vec::new();
+    let mut named: Vec<(&str, NodeId)> = Vec::new();
+    for (upper, n) in [(true, n_up), (false, n_low)] {
+        let base = m.coords.len();
+        let id = |i: usize, j: usize| NodeId((base + j * (n + 1) + i) as u32);
+        let y0 = if upper { 0.0 } else { -1.0 };
+        for j in 0..=n {
+            for i in 0..=n {
+                m.coords.push([
+                    -1.0 + 2.0 * i as f64 / n as f64,
+                    y0 + j as f64 / n as f64,
+                    0.0,
+                ]);
+            }
+        }
+        let mut push = |ty: CellType, nodes: Vec<NodeId>| {
+            m.cells.push(Cell { ty, nodes });
+            CellId((m.cells.len() - 1) as u32)
+        };
+        let mut body = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                body.push(push(
+                    CellType::QUAD4,
+                    vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)],
+                ));
+            }
+        }
+        let bottom: Vec<CellId> = (0..n)
+            .map(|i| push(CellType::SEG2, vec![id(i, 0), id(i + 1, 0)]))
+            .collect();
+        let top: Vec<CellId> = (0..n)
+            .rev()
+            .map(|i| push(CellType::SEG2, vec![id(i + 1, n), id(i, n)]))
+            .collect();
+        if upper {
+            named.extend([("A", id(0, 0)), ("B", id(n, 0))]);
+            groups.extend([("UP", body), ("AB", bottom), ("CD", top)]);
+        } else {
+            named.extend([("E", id(0, n)), ("F", id(n, n))]);
+            groups.extend([("LOW", body), ("GH", bottom), ("EF", top)]);
+        }
+    }
+    m.node_names = (1..=m.coords.len()).map(|i| format!("N{i}")).collect();
+    m.cell_names = (1..=m.cells.len()).map(|i| format!("M{i}")).collect();
+    for (name, cells) in groups {
+        let mut nodes: Vec<NodeId> = cells
+            .iter()
+            .flat_map(|c| m.cells[c.0 as usize].nodes.clone())
+            .collect();
+        nodes.sort();
+        nodes.dedup();
+        m.groups_ma.push(Group {
+            name: name.into(),
+            members: cells,
+        });
+        m.groups_no.push(Group {
+            name: name.into(),
+            members: nodes,
+        });
+    }
+    for (name, id) in named {
+        m.groups_no.push(Group {
+            name: name.into(),
+            members: vec![id],
+        });
+    }
+    Ok(m)
+}
+
+/// The SSNP121 loading on a [`two_plates_mesh`]: D_PLAN, E = 2e6, ν = 0 for
+/// both plates; `CD` moved by (0, −0.1 t), `GH` clamped (eliminated).
+/// Exact answer with a perfect interface: σ_yy = −1e5, the interface at
+/// DY = −0.05.
+pub fn two_plates_problem(mesh: Mesh) -> Result<(Model, Loads), FemError> {
+    let material = Elastic::new(2e6, 0.0)?;
+    let mut elements = Vec::new();
+    for g in ["UP", "LOW"] {
+        let cells = mesh
+            .group_ma(g)
+            .ok_or_else(|| FemError::Model(format!("mesh has no group {g}")))?;
+        for &cell in &cells.members {
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Continuum {
+                    hypothesis: Hypothesis::PlaneStrain,
+                    material,
+                },
+            });
+        }
+    }
+    let mut loads = Loads::new();
+    for (g, dy) in [("CD", -0.1), ("GH", 0.0)] {
+        let nodes = mesh
+            .group_no(g)
+            .ok_or_else(|| FemError::Model(format!("mesh has no node group {g}")))?;
+        for &n in &nodes.members {
+            loads.push(Load::Eliminated {
+                dof: Dof::new(n, Comp::DX),
+                value: 0.0,
+            });
+            loads.add(
+                Load::Eliminated {
+                    dof: Dof::new(n, Comp::DY),
+                    value: dy,
+                },
+                Multiplier::from_fn(Ok),
+            );
+        }
+    }
+    let model = Model::new(mesh, elements)?;
+    Ok((model, loads))
+}

@@ -4,12 +4,13 @@
 use std::collections::BTreeMap;
 
 use aster_fem::{
-    Dof, FemError, GeometryCriterion, GeometryUpdate, InequalityRow, RowOutcome, State,
-    UnilateralMethod, UnilateralSource,
+    Dof, FemError, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
+    UnilateralSource,
 };
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
+use crate::geomloop::{GeomDecision, GeomLoopState};
 use crate::integration::integration_points;
 use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
 use crate::rows::contact_row;
@@ -43,6 +44,8 @@ pub struct ZoneContact {
     forces: Vec<f64>,
     /// Whether pairing was done once (REAC_GEOM='SANS' keeps it).
     paired_once: bool,
+    /// The geometric loop of fem's steps (when to pair again).
+    geom: GeomLoopState,
     /// The rows last handed to fem, kept while new ones differ only by
     /// round-off (fem compares rows exactly to decide that the geometric
     /// loop has settled).
@@ -58,6 +61,10 @@ pub struct ZoneContact {
     /// step time (code_aster reports these zones' gaps as paired last, not
     /// on the final geometry).
     step_pairings: Vec<(f64, Vec<ContactPair>)>,
+    /// Per carrier, the measure its force is spread over: Wⱼ = Σₚ wₚ Nⱼ(p)
+    /// for a continuous slave-node row (force / Wⱼ is the contact pressure),
+    /// 1 for a discrete pair.
+    measures: Vec<f64>,
 }
 
 impl ZoneContact {
@@ -98,6 +105,7 @@ impl ZoneContact {
             frozen_rows: Vec::new(),
             carriers: Vec::new(),
             step_pairings: Vec::new(),
+            measures: Vec::new(),
             zone,
             law,
             geom_loop,
@@ -105,6 +113,7 @@ impl ZoneContact {
             links: Vec::new(),
             forces: Vec::new(),
             paired_once: false,
+            geom: GeomLoopState::new(geom_loop),
         }
     }
 
@@ -147,12 +156,14 @@ impl ZoneContact {
         self.paired_once = true;
         let mut rows = Vec::new();
         self.carriers.clear();
+        self.measures.clear();
         self.links.clear();
         if self.zone.geometry.resolve {
             match self.law {
                 ZoneLaw::Discrete(_) => {
                     for (i, pair) in self.pairs.iter().enumerate() {
                         self.carriers.push(pair.point.nodes.clone());
+                        self.measures.push(1.0);
                         self.links.push(None);
                         let Some(p) = pair.pairing() else { continue };
                         let row =
@@ -225,6 +236,7 @@ impl ZoneContact {
             }
             let id = self.carriers.len();
             self.carriers.push(vec![(j, 1.0)]);
+            self.measures.push(weight);
             self.links.push(Some(RowLink {
                 row: rows.len(),
                 scale,
@@ -281,6 +293,17 @@ impl ZoneContact {
             .map(|(_, p)| p.as_slice())
     }
 
+    /// Pairings done in the current (last) step of fem's geometric loop.
+    pub fn geom_pairings(&self) -> usize {
+        self.geom.pairings()
+    }
+
+    /// The last geometric residual of `REAC_GEOM='AUTOMATIQUE'`
+    /// (max‖uₖ − uₖ₋₁‖ / max‖uₖ₋₁ − u₀‖), if one was computed.
+    pub fn geom_residual(&self) -> Option<f64> {
+        self.geom.last_residual
+    }
+
     /// The pairs of the last pairing.
     pub fn pairs(&self) -> &[ContactPair] {
         &self.pairs
@@ -304,6 +327,30 @@ impl ZoneContact {
             }
         }
         out
+    }
+
+    /// code_aster's `LAGS_C` (the contact multiplier component of DEPL in
+    /// the continuous formulation) on every slave node of the zone: minus
+    /// the contact pressure, force / Wⱼ (R5.03.52: the multiplier is the
+    /// normal stress on the slave surface, negative in compression); 0 on
+    /// slave nodes without contact. `None` for a discrete zone, whose
+    /// multipliers are not part of DEPL.
+    pub fn lags_c(&self) -> Option<Vec<(NodeId, f64)>> {
+        if !matches!(self.law, ZoneLaw::Continue(_)) {
+            return None;
+        }
+        let mut out: BTreeMap<NodeId, f64> =
+            self.zone.slave_nodes.iter().map(|n| (*n, 0.0)).collect();
+        for ((nodes, f), w) in self.carriers.iter().zip(&self.forces).zip(&self.measures) {
+            if let [(n, _)] = nodes.as_slice() {
+                if *w > 0.0 {
+                    if let Some(v) = out.get_mut(n) {
+                        *v = -f / w;
+                    }
+                }
+            }
+        }
+        Some(out.into_iter().collect())
     }
 
     fn describe(&self) -> String {
@@ -350,6 +397,13 @@ fn same_rows(a: &[InequalityRow], b: &[InequalityRow], tol_coef: f64, tol_rhs: f
         })
 }
 
+/// Nodal translations of a fem state.
+fn nodal_displacements(state: &State) -> Vec<[f64; 3]> {
+    (0..state.mesh.coords.len())
+        .map(|i| state.node_displacement(NodeId(i as u32)))
+        .collect()
+}
+
 /// Current node positions of a fem state.
 pub fn current_positions(state: &State) -> Vec<[f64; 3]> {
     (0..state.mesh.coords.len())
@@ -382,26 +436,11 @@ impl UnilateralSource for ZoneContact {
     fn geometry_update(&self) -> GeometryUpdate {
         match self.geom_loop {
             GeomLoop::Sans => GeometryUpdate::Once,
-            GeomLoop::Controle { .. } => GeometryUpdate::EachStep,
-            GeomLoop::Automatique { .. } => GeometryUpdate::EachIteration,
-        }
-    }
-
-    /// Discrete contact ends its geometric loop as code_aster does
-    /// (`RESI_GEOM`); the continuous formulation iterates to the fixed point.
-    fn geometry_criterion(&self) -> Option<GeometryCriterion> {
-        match (self.law, self.geom_loop) {
-            (
-                ZoneLaw::Discrete(_),
-                GeomLoop::Automatique {
-                    iter_maxi,
-                    resi_geom,
-                },
-            ) => Some(GeometryCriterion {
-                resi_geom,
-                iter_maxi,
-            }),
-            _ => None,
+            // The loop (GeomLoopState) decides at each request whether to
+            // pair again; fem asks at every stable active set.
+            GeomLoop::Controle { .. } | GeomLoop::Automatique { .. } => {
+                GeometryUpdate::EachIteration
+            }
         }
     }
 
@@ -410,12 +449,40 @@ impl UnilateralSource for ZoneContact {
         if self.length == 0.0 {
             self.length = zone_length(&self.zone, &state.mesh.coords);
         }
+        let u = nodal_displacements(state);
+        // Discrete AUTOMATIQUE: fem's loop applies code_aster's RESI_GEOM
+        // test (`geometry_criterion`) and asks for rows exactly when it wants
+        // a new pairing; the zone's own loop state decides for the others.
+        let decision = self.geom.decide(state.time, &u);
+        match decision {
+            GeomDecision::Keep if self.paired_once => return Ok(self.last_rows.clone()),
+            GeomDecision::Keep | GeomDecision::Pair => {}
+            GeomDecision::Diverged { pairings, residual } => {
+                let (iter_maxi, resi_geom) = match self.geom_loop {
+                    GeomLoop::Automatique {
+                        iter_maxi,
+                        resi_geom,
+                    } => (iter_maxi, resi_geom),
+                    _ => (pairings, 0.0),
+                };
+                return Err(FemError::Source(format!(
+                    "{}: the geometric loop (REAC_GEOM='AUTOMATIQUE') did not converge at time {}: \
+                     after ITER_GEOM_MAXI={iter_maxi} pairings the displacement still changes by \
+                     {:.3e} of the step's displacement (RESI_GEOM={resi_geom}); raise \
+                     ITER_GEOM_MAXI, cut the step, or fix the number of updates with \
+                     REAC_GEOM='CONTROLE'",
+                    self.describe(),
+                    state.time,
+                    residual
+                )));
+            }
+        }
         let rows = self
             .pair(state.mesh, &x)
             .map_err(|e| FemError::Source(format!("{}: {e}", self.describe())))?;
-        // Geometric convergence: rows that moved by round-off only are the
-        // same rows (coefficients to 1e-9, right-hand sides to 1e-9 × the
-        // zone size).
+        // Rows that moved by round-off only are the same rows (coefficients
+        // to 1e-9, right-hand sides to 1e-9 × the zone size): fem compares
+        // rows exactly.
         if same_rows(&rows, &self.last_rows, 1e-9, 1e-9 * self.length) {
             return Ok(self.last_rows.clone());
         }
@@ -428,6 +495,7 @@ impl UnilateralSource for ZoneContact {
             self.step_pairings.push((state.time, self.pairs.clone()));
         }
         self.set_outcomes(outcomes);
+        self.geom.step_converged(nodal_displacements(state));
         Ok(())
     }
 }

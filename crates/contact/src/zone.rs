@@ -101,6 +101,12 @@ pub struct ZoneGeometry {
     /// `TOLE_INTERP` (with `RESOLUTION='NON'`): interpenetration allowed
     /// before the pairing-only zone reports it.
     pub tole_interp: f64,
+    /// `LISSAGE='OUI'`: smoothed master normals — the outward normals
+    /// averaged at the master nodes, interpolated with the shape functions
+    /// inside each cell, so the normal is continuous from cell to cell.
+    /// Default (code_aster's `'NON'`): the normal of the cell the slave
+    /// point projects on.
+    pub lissage: bool,
 }
 
 impl ZoneGeometry {
@@ -121,6 +127,7 @@ impl ZoneGeometry {
             dist_escl: Offset::Zero,
             resolve: true,
             tole_interp: 0.0,
+            lissage: false,
         }
     }
 

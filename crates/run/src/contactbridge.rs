@@ -314,6 +314,18 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
         }
     };
     def.set_geom_loop(geom_loop(kw));
+    // LISSAGE is global in DEFI_CONTACT; the zones carry it.
+    let lissage = kw.str("LISSAGE") == Some("OUI");
+    match &mut def {
+        ContactDefinition::Discrete(d) => d
+            .zones
+            .iter_mut()
+            .for_each(|z| z.geometry.lissage = lissage),
+        ContactDefinition::Continue(c) => c
+            .zones
+            .iter_mut()
+            .for_each(|z| z.geometry.lissage = lissage),
+    }
     Ok(def)
 }
 

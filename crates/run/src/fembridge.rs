@@ -401,6 +401,15 @@ pub fn solve(
                     }
                 }
                 fields.insert("CONT_NOEU".to_string(), Field::Nodal(f));
+                // Continuous formulation: the contact pressure is a DOF of
+                // DEPL on the slave nodes (LAGS_C).
+                if let Some(Field::Nodal(depl)) = fields.get_mut("DEPL") {
+                    for z in zones.iter() {
+                        for (n, p) in z.lags_c().into_iter().flatten() {
+                            depl.set(n, "LAGS_C", p);
+                        }
+                    }
+                }
             }
             Ok(Step {
                 nume_ordre: s.nume_ordre as u32,

@@ -1,0 +1,186 @@
+//! Two plates pressed together (`scenes::two_plates_mesh`, the SSNP121 kind
+//! of scene, generated here): continuous contact gives the contact pressure
+//! as code_aster's LAGS_C; the exact answer of a perfect interface is
+//! σ_yy = −1e5 (LAGS_C = −1e5) and DY = −0.05 at the interface.
+
+use aster_contact::scenes::{two_plates_mesh, two_plates_problem};
+use aster_contact::*;
+use aster_fem::{Comp, Dof, Model, StaticNonLinear, UnilateralSource};
+
+fn continuous(integration: Integration, geom_loop: GeomLoop) -> ContactDefinition {
+    let mut def = ContactDefinition::continuous(
+        vec![Zone {
+            geometry: ZoneGeometry::new("EF", "AB"),
+            law: ContinueLaw {
+                algo: ContinueAlgo::Standard { coef_cont: 1000.0 },
+                integration,
+            },
+        }],
+        Frottement::Sans,
+    )
+    .unwrap();
+    def.set_geom_loop(geom_loop);
+    def
+}
+
+/// Solves one step; returns the model, the displacement and the zones.
+fn solve(
+    n_up: usize,
+    n_low: usize,
+    def: &ContactDefinition,
+) -> (Model, Vec<f64>, Vec<ZoneContact>) {
+    let (model, loads) = two_plates_problem(two_plates_mesh(n_up, n_low).unwrap()).unwrap();
+    let mut zones = ZoneContact::build_all(def, model.mesh()).unwrap();
+    let res = {
+        let mut snl = StaticNonLinear {
+            instants: vec![0.0, 1.0],
+            sources: zones
+                .iter_mut()
+                .map(|z| Box::new(z) as Box<dyn UnilateralSource>)
+                .collect(),
+            ..Default::default()
+        };
+        snl.solve(&model, &loads).unwrap()
+    };
+    let u = res.last().unwrap().displacement.clone();
+    (model, u, zones)
+}
+
+fn dy(model: &Model, u: &[f64], node: aster_mesh::NodeId) -> f64 {
+    u[model.dofs().index(Dof::new(node, Comp::DY)).unwrap()]
+}
+
+#[test]
+fn lags_c_is_minus_the_contact_pressure_exact_on_matching_meshes() {
+    let def = continuous(Integration::Simpson(4), GeomLoop::Controle { nb_iter: 2 });
+    let (model, u, zones) = solve(4, 4, &def);
+    let lags = zones[0].lags_c().expect("continuous zone has LAGS_C");
+    // Every slave node of AB (5 nodes) carries LAGS_C.
+    assert_eq!(lags.len(), 5);
+    for (n, p) in &lags {
+        assert!((p + 1e5).abs() < 1e-6 * 1e5, "LAGS_C({n:?}) = {p}");
+        assert!((dy(&model, &u, *n) + 0.05).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn lags_c_on_non_matching_plates_is_within_one_percent_of_the_analytic_pressure() {
+    // 12 cells on the slave side against 11 on the master side (SSNP121's
+    // numbers), Simpson with ORDRE_INT = 4 and two geometric updates.
+    let def = continuous(Integration::Simpson(4), GeomLoop::Controle { nb_iter: 2 });
+    let (model, u, zones) = solve(12, 11, &def);
+    let lags = zones[0].lags_c().unwrap();
+    assert_eq!(lags.len(), 13);
+    let mean: f64 = lags.iter().map(|(_, p)| p).sum::<f64>() / lags.len() as f64;
+    for (n, p) in &lags {
+        assert!((p + 1e5).abs() < 1e-2 * 1e5, "LAGS_C({n:?}) = {p}");
+        assert!((dy(&model, &u, *n) + 0.05).abs() < 1e-2 * 0.05);
+    }
+    // Not a constant copied everywhere: the non-matching interface makes
+    // the pressure vary from node to node.
+    assert!(lags.iter().any(|(_, p)| (p - mean).abs() > 1.0));
+}
+
+#[test]
+fn discrete_zones_have_no_lags_c() {
+    let def = ContactDefinition::discrete(
+        vec![Zone {
+            geometry: ZoneGeometry::new("AB", "EF"),
+            law: DiscreteAlgo::Contrainte,
+        }],
+        Frottement::Sans,
+    )
+    .unwrap();
+    let (_, _, zones) = solve(3, 2, &def);
+    assert!(zones[0].lags_c().is_none());
+}
+
+fn discrete(geom_loop: GeomLoop) -> ContactDefinition {
+    let mut def = ContactDefinition::discrete(
+        vec![Zone {
+            geometry: ZoneGeometry::new("AB", "EF"),
+            law: DiscreteAlgo::Contrainte,
+        }],
+        Frottement::Sans,
+    )
+    .unwrap();
+    def.set_geom_loop(geom_loop);
+    def
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
+}
+
+#[test]
+fn controle_pairs_exactly_nb_iter_geom_times() {
+    for nb_iter in 1..=3 {
+        let (_, _, zones) = solve(12, 11, &discrete(GeomLoop::Controle { nb_iter }));
+        assert_eq!(zones[0].geom_pairings(), nb_iter);
+    }
+    // One pairing is the pairing on the initial geometry, i.e. SANS.
+    let (_, once, _) = solve(12, 11, &discrete(GeomLoop::Controle { nb_iter: 1 }));
+    let (_, sans, _) = solve(12, 11, &discrete(GeomLoop::Sans));
+    assert!(max_diff(&once, &sans) < 1e-14);
+}
+
+/// The reference for two geometric updates, computed by hand: solve with
+/// the pairing of the initial geometry, pair again on that solution, solve
+/// with those frozen rows.
+#[test]
+fn controle_two_is_one_explicit_re_pairing() {
+    let (model, first, _) = solve(12, 11, &discrete(GeomLoop::Sans));
+    let def = discrete(GeomLoop::Sans);
+    let mut zone = ZoneContact::build_all(&def, model.mesh())
+        .unwrap()
+        .remove(0);
+    let x = positions(model.mesh(), model.dofs(), &first);
+    let rows = zone.pair(model.mesh(), &x).unwrap();
+    let (model, loads) = two_plates_problem(two_plates_mesh(12, 11).unwrap()).unwrap();
+    let mut snl = StaticNonLinear {
+        instants: vec![0.0, 1.0],
+        sources: vec![Box::new(aster_fem::FixedRows {
+            name: "second pairing".into(),
+            rows,
+            method: aster_fem::UnilateralMethod::ActiveSet,
+        }) as Box<dyn UnilateralSource>],
+        ..Default::default()
+    };
+    let reference = snl.solve(&model, &loads).unwrap();
+    let reference = &reference.last().unwrap().displacement;
+
+    let (_, two, zones) = solve(12, 11, &discrete(GeomLoop::Controle { nb_iter: 2 }));
+    assert_eq!(zones[0].geom_pairings(), 2);
+    assert!(
+        max_diff(&two, reference) < 1e-12,
+        "{}",
+        max_diff(&two, reference)
+    );
+    // The re-pairing matters here (the interface bends): not the SANS answer.
+    assert!(max_diff(&two, &first) > 1e-6);
+}
+
+#[test]
+fn automatique_stops_below_resi_geom_after_at_least_two_pairings() {
+    let default = GeomLoop::default();
+    let (_, u2, zones) = solve(12, 11, &discrete(default));
+    let GeomLoop::Automatique { resi_geom, .. } = default else {
+        unreachable!()
+    };
+    assert!(zones[0].geom_pairings() >= 2);
+    assert!(zones[0].geom_residual().unwrap() < resi_geom);
+    // A tighter RESI_GEOM iterates further, to a nearby fixed point.
+    let tight = GeomLoop::Automatique {
+        iter_maxi: 30,
+        resi_geom: 1e-10,
+    };
+    let (_, uk, zones) = solve(12, 11, &discrete(tight));
+    let r = zones[0].geom_residual().unwrap();
+    eprintln!("{} pairings, residual {r:e}", zones[0].geom_pairings());
+    assert!(zones[0].geom_pairings() > 2);
+    // The loop ends on the residual, or earlier when a new pairing gives
+    // the same rows to round-off (a fixed point reached exactly).
+    assert!(r < 1e-6, "{r}");
+    let d = max_diff(&u2, &uk);
+    assert!(d > 0.0 && d < 1e-2 * 0.05, "{d}");
+}
