@@ -949,7 +949,7 @@ impl<'a> Interp<'a> {
         })
     }
 
-    fn attribute(&mut self, v: Value, name: &str, span: Span) -> R<Value> {
+    pub(crate) fn attribute(&mut self, v: Value, name: &str, span: Span) -> R<Value> {
         match &v {
             Value::Module(m) if &**m == "math" => builtins::math_attr(name)
                 .ok_or(())

@@ -107,7 +107,8 @@ fn value_cval(v: &Value) -> (CVal, Option<String>) {
             }
         }
         Value::Dict(_) => (CVal::Bool(true), None),
-        Value::Unknown => (CVal::Str(RUN_TIME.into()), None),
+        // Possibly a concept (`R.copy()`), of a type nobody knows yet.
+        Value::Unknown => (CVal::Str(RUN_TIME.into()), Some(types::UNKNOWN.into())),
         _ => (CVal::Str(v.to_string()), None),
     }
 }

@@ -2,7 +2,7 @@
 //! not supported (by reason), other errors (by kind), crashes.
 //!
 //! ```text
-//! cargo run --release -p aster-eval --example corpus -- ../shared/corpus/v17 [--list KIND]
+//! cargo run --release -p aster-eval --example check_corpus -- ../shared/corpus/v17 [--list KIND]
 //! ```
 //! `--list KIND` prints the first diagnostic of each file whose first error
 //! has that kind (e.g. `unknown_keyword`), to hunt false errors.
@@ -24,7 +24,7 @@ fn reason(message: &str) -> String {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let Some(dir) = args.first() else {
-        eprintln!("usage: corpus DIR [--list KIND]");
+        eprintln!("usage: check_corpus DIR [--list KIND]");
         std::process::exit(2);
     };
     let list = args
