@@ -176,6 +176,7 @@ fn convert(kw: RawKw, path: &str) -> Result<Node, String> {
                 .join(" "),
             rules: rules(kw.rules),
             keywords: entries(kw.keywords.unwrap_or(Ordered(Vec::new())), path)?,
+            parsed: None,
         })),
         other => Err(err(format!("unknown kind {other}"))),
     }

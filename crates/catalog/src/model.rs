@@ -257,6 +257,20 @@ pub struct Block {
     pub rules: Vec<Rule>,
     #[serde(rename = "k")]
     pub keywords: Vec<Entry>,
+    /// `condition` parsed, once, when the catalog loads (`None` in a
+    /// catalog built by hand; see [`Block::cond`]).
+    #[serde(skip)]
+    pub parsed: Option<Result<crate::cond::Cond, String>>,
+}
+
+impl Block {
+    /// The parsed condition (parsed now if the catalog did not do it).
+    pub fn cond(&self) -> std::borrow::Cow<'_, Result<crate::cond::Cond, String>> {
+        match &self.parsed {
+            Some(c) => std::borrow::Cow::Borrowed(c),
+            None => std::borrow::Cow::Owned(crate::cond::parse(&self.condition)),
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -352,10 +366,18 @@ impl Command {
     }
 }
 
+/// Whether two keyword names are equal. Names of one level often share
+/// their length and prefix (`GROUP_MA`, `GROUP_NO`): comparing the last
+/// byte first settles most pairs without a call to `memcmp`.
+#[inline]
+pub fn same_name(a: &str, b: &str) -> bool {
+    a.len() == b.len() && a.as_bytes().last() == b.as_bytes().last() && a == b
+}
+
 /// Finds a keyword at one level, looking through blocks.
 pub fn find_in<'a>(entries: &'a [Entry], name: &str) -> Option<&'a Entry> {
     for e in entries {
-        if e.name == name {
+        if same_name(&e.name, name) {
             return Some(e);
         }
         if let Node::Block(b) = &e.node {

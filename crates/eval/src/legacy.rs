@@ -155,9 +155,16 @@ pub(crate) fn transform_level(
         ""
     };
     let known = |n: &str| find_in(entries, n).is_some();
+    // Almost every level of a current file writes only known keywords: the
+    // rewrites keyed on an unknown one are then skipped at once.
+    let all_known = given.iter().all(|g| known(&g.name));
 
     // Structural rewrites first.
-    let names: Vec<String> = given.iter().map(|g| g.name.clone()).collect();
+    let names: Vec<String> = if all_known {
+        Vec::new()
+    } else {
+        given.iter().map(|g| g.name.clone()).collect()
+    };
     for name in names {
         if known(&name) {
             continue;
@@ -240,6 +247,9 @@ pub(crate) fn transform_level(
     }
     if cmd == "LIRE_FONCTION" && factor.is_empty() && !known("SEPAR") {
         lire_fonction_separ(path, given, diags);
+    }
+    if all_known {
+        return;
     }
     // DDL_IMPO/LIAISON='ENCASTRE' → BLOCAGE=('DEPLACEMENT', 'ROTATION')
     if !known("LIAISON") && known("BLOCAGE") {
