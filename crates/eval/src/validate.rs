@@ -790,11 +790,17 @@ impl Validator<'_> {
                     drop_defaults(drop);
                     None
                 } else if nw > 1 {
-                    Some(format!("exactly one of {} is required ({nw} given)", list()))
+                    Some(format!(
+                        "exactly one of {} is required ({nw} given)",
+                        list()
+                    ))
                 } else if nd == 1 {
                     None
                 } else {
-                    Some(format!("exactly one of {} is required (none given)", list()))
+                    Some(format!(
+                        "exactly one of {} is required (none given)",
+                        list()
+                    ))
                 }
             }
             RuleKind::AtMostOne => {
