@@ -289,18 +289,18 @@ impl Validator<'_> {
                 continue;
             };
             let entry = active[slot];
-            let kpath = format!("{path}/{}", g.name);
             let value = match &entry.node {
                 Node::Simple(s) if guessed.contains(&g.name.as_str()) => {
                     // Its block may or may not apply (the checker cannot
                     // know): take the value without judging it.
                     let n = self.diags.len();
-                    let v = self.simple(s, g, &kpath);
+                    let v = self.simple(s, g, path);
                     self.diags.truncate(n);
                     Some(KwValue::Simple(v.unwrap_or_else(|| lenient(&g.value))))
                 }
-                Node::Simple(s) => self.simple(s, g, &kpath).map(KwValue::Simple),
+                Node::Simple(s) => self.simple(s, g, path).map(KwValue::Simple),
                 Node::Factor(f) => {
+                    let kpath = format!("{path}/{}", g.name);
                     let occs: Vec<Value> = match &g.value {
                         Value::Dict(_) => vec![g.value.clone()],
                         Value::List(_) | Value::Tuple(_) => flatten(&g.value),
@@ -559,7 +559,10 @@ impl Validator<'_> {
         self.diags.push(d);
     }
 
-    fn simple(&mut self, kw: &SimpleKw, g: &Given, path: &str) -> Option<Vec<Scalar>> {
+    /// Validates a simple keyword given at level `parent` (its path, for
+    /// messages, is only built when there is something to report).
+    fn simple(&mut self, kw: &SimpleKw, g: &Given, parent: &str) -> Option<Vec<Scalar>> {
+        let kpath = || format!("{parent}/{}", g.name);
         let items = flatten(&g.value);
         let items = group_complex(kw, items);
         let mut out = Vec::with_capacity(items.len());
@@ -583,7 +586,7 @@ impl Validator<'_> {
                     self.error(
                         DiagKind::WrongType,
                         g.span,
-                        format!("`{path}`: expected {expected}, found {found}"),
+                        format!("`{}`: expected {expected}, found {found}", kpath()),
                     );
                     failed = true;
                 }
@@ -597,12 +600,13 @@ impl Validator<'_> {
                 if matches!(s, Scalar::Opaque(_)) || into_contains(into, s) {
                     continue;
                 }
-                if let Some(new) = legacy::value(&self.command, path, s, into) {
+                if let Some(new) = legacy::value(&self.command, &g.name, s, into) {
                     self.diags.push(Diagnostic::warning(
                         DiagKind::Legacy,
                         g.span,
                         format!(
-                            "`{path}`: legacy value {} is now {}",
+                            "`{}`: legacy value {} is now {}",
+                            kpath(),
                             scalar_repr(s),
                             scalar_repr(&new)
                         ),
@@ -621,7 +625,7 @@ impl Validator<'_> {
                 let mut d = Diagnostic::error(
                     DiagKind::NotInto,
                     g.span,
-                    format!("`{path}`: value {shown} is not allowed"),
+                    format!("`{}`: value {shown} is not allowed", kpath()),
                 );
                 if let Scalar::Str(x) = s {
                     if let Some(h) = did_you_mean(x, strs.iter().map(|s| s.as_str())) {
@@ -648,7 +652,8 @@ impl Validator<'_> {
                         DiagKind::OutOfRange,
                         g.span,
                         format!(
-                            "`{path}`: value {} out of range: must be {range}",
+                            "`{}`: value {} out of range: must be {range}",
+                            kpath(),
                             scalar_repr(s)
                         ),
                     );
@@ -666,7 +671,7 @@ impl Validator<'_> {
             self.error(
                 DiagKind::Count,
                 g.span,
-                format!("`{path}` expects {expect}, {n} given"),
+                format!("`{}` expects {expect}, {n} given", kpath()),
             );
             failed = true;
         }
