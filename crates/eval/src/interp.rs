@@ -139,6 +139,53 @@ impl<'a> Interp<'a> {
         }
     }
 
+    /// `try` whose handlers all catch ImportError (see `try_import`);
+    /// any other `try` is outside the subset.
+    fn exec_try(
+        &mut self,
+        span: Span,
+        body: &[ast::Stmt],
+        handlers: &[ast::ExceptHandler],
+        orelse: &[ast::Stmt],
+        finalbody: &[ast::Stmt],
+    ) -> R<Flow> {
+        use crate::try_import::*;
+        if handlers.is_empty() || !handlers.iter().all(catches_only_import_error) {
+            return unsupported(
+                span,
+                "try/except (only `except ImportError` around imports is supported)",
+            );
+        }
+        let imported = imported_paths(body);
+        let flow = match self.exec_block(body) {
+            Ok(Flow::Normal) => self.exec_block(orelse),
+            Ok(other) => Ok(other),
+            Err(Halt::Diag(d)) if is_missing_module(&d, &imported) => {
+                self.diags.push(Diagnostic::warning(
+                    DiagKind::NotSupported,
+                    d.span,
+                    format!(
+                        "{} raises ImportError here: checking the `except ImportError` branch",
+                        d.message.trim_start_matches("not supported: ")
+                    ),
+                ));
+                let h = &handlers[0];
+                if let Some(n) = &h.name {
+                    self.set_var(&n.name, Value::None);
+                }
+                self.exec_block(&h.body)
+            }
+            Err(e) => Err(e),
+        };
+        if finalbody.is_empty() {
+            return flow;
+        }
+        match self.exec_block(finalbody)? {
+            Flow::Normal => flow,
+            other => Ok(other),
+        }
+    }
+
     fn exec_block(&mut self, body: &[ast::Stmt]) -> R<Flow> {
         for s in body {
             if self.finished {
@@ -385,7 +432,12 @@ impl<'a> Interp<'a> {
             StmtKind::Raise { .. } => {
                 return py_err(s.span, "the program raises an exception");
             }
-            StmtKind::Try { .. } => return unsupported(s.span, "try/except"),
+            StmtKind::Try {
+                body,
+                handlers,
+                orelse,
+                finalbody,
+            } => return self.exec_try(s.span, body, handlers, orelse, finalbody),
             StmtKind::With { .. } => return unsupported(s.span, "with statements (file access)"),
             StmtKind::ClassDef { .. } => return unsupported(s.span, "class definitions"),
             StmtKind::Nonlocal { .. } => return unsupported(s.span, "nonlocal"),

@@ -251,3 +251,56 @@ L = DEFI_LIST_REEL(VALE=(x, len(s)))
     assert!(!report.ok());
     assert!(text.contains("attribute name must be a string"), "{text}");
 }
+
+#[test]
+fn try_except_import_error_runs_the_fallback() {
+    let (report, text) = clean(
+        r#"try:
+    from code_aster.Utilities import sympy
+    sympy.__version__
+    HAVE_SYMPY = True
+except ImportError:
+    HAVE_SYMPY = False
+if HAVE_SYMPY:
+    X = sympy.symbols("X")
+    F = FORMULE(VALE=str(X * 2), NOM_PARA="X")
+else:
+    F = FORMULE(VALE="X*2.0", NOM_PARA="X")
+try:
+    import math
+except (ImportError, ModuleNotFoundError):
+    raise
+else:
+    L = DEFI_LIST_REEL(VALE=math.pi)
+finally:
+    M = DEFI_LIST_REEL(VALE=1.0)
+"#,
+    );
+    assert!(
+        text.contains("c.comm:3:11: warning: `code_aster.Utilities.sympy.__version__` raises ImportError here: checking the `except ImportError` branch"),
+        "{text}"
+    );
+    let names: Vec<_> = report.calls.iter().map(|c| c.command.as_str()).collect();
+    assert_eq!(names, ["FORMULE", "DEFI_LIST_REEL", "DEFI_LIST_REEL"]);
+    assert_eq!(report.calls[0].keywords.str("VALE"), Some("X*2.0"));
+    let (report, _) = clean("try:\n    import numpy as np\nexcept ImportError:\n    np = None\n");
+    assert!(report.calls.is_empty());
+}
+
+#[test]
+fn other_try_statements_stay_outside_the_subset() {
+    // A handler for command errors would hide what the checker reports.
+    let (report, text) = check(
+        r#"try:
+    L = DEFI_LIST_REEL(VALE=1.0)
+except CA.AsterError:
+    pass
+"#,
+    );
+    assert!(!report.ok());
+    assert!(text.contains("c.comm:1:1: error: not supported: try/except (only `except ImportError` around imports is supported)"), "{text}");
+    // An ImportError handler does not swallow other unsupported things.
+    let (report, text) = check("try:\n    f = open('x')\nexcept ImportError:\n    f = None\n");
+    assert!(!report.ok());
+    assert!(text.contains("not supported: the builtin `open`"), "{text}");
+}
