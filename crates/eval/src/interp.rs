@@ -1006,6 +1006,9 @@ impl<'a> Interp<'a> {
             Value::Module(m) if &**m == "math" => builtins::math_attr(name)
                 .ok_or(())
                 .or_else(|_| py_err(span, format!("module 'math' has no attribute '{name}'"))),
+            Value::Module(m) if &**m == "code_aster.CA" && name == "TestCase" => {
+                Ok(Value::Builtin(Builtin::TestCase))
+            }
             Value::Module(m) if m.starts_with("code_aster") || m.starts_with("Accas") => {
                 match self.lookup_builtin(name) {
                     Some(b) => Ok(b),
@@ -1141,6 +1144,10 @@ impl<'a> Interp<'a> {
                 _ => py_err(span, "CO() takes one name, e.g. CO('RESU')"),
             },
             Value::Builtin(Builtin::Fn(name)) => builtins::call(self, name, args, span),
+            Value::Builtin(Builtin::TestCase) => Ok(Value::Builtin(Builtin::TestCaseObject)),
+            Value::Method(recv, m) if matches!(*recv, Value::Builtin(Builtin::TestCaseObject)) => {
+                crate::testcase::call(self, &m, args, span)
+            }
             Value::Func(uf) => self.call_user(&uf, args, span),
             Value::Method(recv, m) => builtins::method(self, *recv, &m, args, span),
             Value::Formula(c, formula) => {

@@ -15,6 +15,7 @@ mod format;
 pub mod formula;
 mod interp;
 pub mod legacy;
+mod testcase;
 mod try_import;
 mod validate;
 mod value;

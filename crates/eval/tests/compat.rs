@@ -304,3 +304,50 @@ except CA.AsterError:
     assert!(!report.ok());
     assert!(text.contains("not supported: the builtin `open`"), "{text}");
 }
+
+#[test]
+fn testcase_assertions_are_evaluated_when_their_values_are_known() {
+    let (report, _) = clean(
+        r#"test = CA.TestCase()
+n = len([1, 2, 3])
+test.assertEqual(n, 3)
+test.assertTrue(n > 2)
+test.assertFalse(n > 5)
+test.assertAlmostEqual(0.1 + 0.2, 0.3)
+test.assertAlmostEqual(1.0, 1.05, delta=0.1)
+test.assertSequenceEqual([1, 2], (1, 2))
+test.assertIn("DX", ("DX", "DY"))
+test.assertLessEqual(n, 3)
+test.assertIsNone(None)
+T = CREA_TABLE(LISTE=_F(PARA="X", LISTE_R=(1.0, 2.0)))
+test.assertEqual(T["X", 1], 99.0)
+test.printSummary()
+"#,
+    );
+    assert_eq!(report.calls.len(), 1);
+    // A failing assertion is what the run would report: an error, and the
+    // program goes on.
+    let (report, text) = check(
+        r#"test = CA.TestCase()
+test.assertEqual(2 + 2, 5)
+test.assertAlmostEqual(1.0, 1.001, places=4)
+L = DEFI_LIST_REEL(VALE=1.0)
+"#,
+    );
+    assert!(!report.ok());
+    assert!(
+        text.contains("c.comm:2:1: error: TestCase assertion fails: assertEqual(4, 5) is false"),
+        "{text}"
+    );
+    assert!(
+        text.contains("assertAlmostEqual(1.0, 1.001) is false"),
+        "{text}"
+    );
+    assert_eq!(report.calls.len(), 1);
+    let (report, text) = check("test = CA.TestCase()\ntest.assertRaises(1)\n");
+    assert!(!report.ok());
+    assert!(
+        text.contains("not supported: `TestCase.assertRaises`"),
+        "{text}"
+    );
+}
