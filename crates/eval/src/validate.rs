@@ -172,11 +172,16 @@ impl Validator<'_> {
         maybe: bool,
         guessed: &mut Vec<&'e str>,
     ) {
+        // The direct entries of a level are distinct (a Python dict in the
+        // catalog): only the keywords of blocks can repeat a name already
+        // active. Not scanning for the others keeps this linear for the
+        // levels with hundreds of keywords (DEFI_MATERIAU).
+        let top = active.is_empty();
         for e in entries {
             match &e.node {
                 Node::Block(_) => {}
                 Node::Simple(s) => {
-                    if active.iter().any(|a| same_name(&a.name, &e.name)) {
+                    if !top && active.iter().any(|a| same_name(&a.name, &e.name)) {
                         continue;
                     }
                     active.push(e);
@@ -191,7 +196,7 @@ impl Validator<'_> {
                     }
                 }
                 Node::Factor(f) => {
-                    if active.iter().any(|a| same_name(&a.name, &e.name)) {
+                    if !top && active.iter().any(|a| same_name(&a.name, &e.name)) {
                         continue;
                     }
                     active.push(e);
@@ -280,7 +285,9 @@ impl Validator<'_> {
         );
 
         // The validated value of each active entry, by position in `active`.
-        let mut values: Vec<Option<Keyword>> = vec![None; active.len()];
+        // The validated given keywords, with their position in `active`
+        // (few: a level with hundreds of possible keywords gets a handful).
+        let mut values: Vec<(usize, Keyword)> = Vec::with_capacity(given.len());
         let errors_before = self.diags.iter().filter(|d| d.is_error()).count();
         let mut inactive = Vec::new();
         for g in &given {
@@ -377,12 +384,15 @@ impl Validator<'_> {
                 Node::Block(_) => None,
             };
             if let Some(v) = value {
-                values[slot] = Some(Keyword {
-                    name: g.name.clone(),
-                    value: v,
-                    span: g.span,
-                    defaulted: false,
-                });
+                values.push((
+                    slot,
+                    Keyword {
+                        name: g.name.clone(),
+                        value: v,
+                        span: g.span,
+                        defaulted: false,
+                    },
+                ));
             }
         }
 
@@ -397,13 +407,25 @@ impl Validator<'_> {
         let mut out = Keywords {
             entries: Vec::with_capacity(active.len()),
         };
-        for (e, value) in active.iter().zip(values) {
-            if let Some(k) = value {
+        values.sort_by_key(|(slot, _)| *slot);
+        let mut values = values.into_iter().peekable();
+        for (i, e) in active.iter().enumerate() {
+            if let Some((_, k)) = values.next_if(|(slot, _)| *slot == i) {
                 out.entries.push(k);
                 continue;
             }
-            if given.iter().any(|g| g.name == e.name) || guessed.contains(&e.name.as_str()) {
-                continue; // given but invalid (already reported), or unsure
+            // Most entries of a large level are optional and absent:
+            // settle them before comparing names.
+            let needs_something = match &e.node {
+                Node::Simple(s) => s.default.is_some() || s.status == Status::Mandatory,
+                Node::Factor(f) => matches!(f.status, Status::Mandatory | Status::Defaulted),
+                Node::Block(_) => false,
+            };
+            if !needs_something
+                || given.iter().any(|g| same_name(&g.name, &e.name))
+                || guessed.contains(&e.name.as_str())
+            {
+                continue; // nothing to fill, given but invalid (already reported), or unsure
             }
             match &e.node {
                 Node::Simple(s) => match (&s.default, s.status) {
