@@ -158,6 +158,7 @@ fn convert(kw: RawKw, path: &str) -> Result<Node, String> {
                 max: max(kw.max).map_err(err)?,
                 val_min: kw.val_min,
                 val_max: kw.val_max,
+                default_cond: None,
             }))
         }
         "factor" => Ok(Node::Factor(FactorKw {

@@ -65,7 +65,7 @@ impl Catalog {
                         attach(&mut b.keywords, parsed);
                     }
                     Node::Factor(f) => attach(&mut f.keywords, parsed),
-                    Node::Simple(_) => {}
+                    Node::Simple(s) => s.default_cond = s.default.as_deref().map(lits_cval),
                 }
             }
         }

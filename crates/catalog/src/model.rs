@@ -217,6 +217,37 @@ pub struct SimpleKw {
     pub val_min: Option<f64>,
     #[serde(rename = "hi", default, skip_serializing_if = "Option::is_none")]
     pub val_max: Option<f64>,
+    /// `default` as block conditions see it (a scalar, or a tuple when
+    /// several values), made once when the catalog loads.
+    #[serde(skip)]
+    pub default_cond: Option<crate::cond::CVal>,
+}
+
+impl SimpleKw {
+    /// The default as block conditions see it (see `default_cond`).
+    pub fn default_cval(&self) -> Option<std::borrow::Cow<'_, crate::cond::CVal>> {
+        use std::borrow::Cow;
+        match (&self.default_cond, &self.default) {
+            (Some(c), _) => Some(Cow::Borrowed(c)),
+            (None, Some(d)) => Some(Cow::Owned(lits_cval(d))),
+            (None, None) => None,
+        }
+    }
+}
+
+/// Catalog literals as a condition value: one value is a scalar, several a
+/// tuple.
+pub fn lits_cval(v: &[Lit]) -> crate::cond::CVal {
+    use crate::cond::CVal;
+    let one = |l: &Lit| match l {
+        Lit::Int(i) => CVal::Int(*i),
+        Lit::Real(r) => CVal::Real(*r),
+        Lit::Str(s) => CVal::Str(s.clone()),
+    };
+    match v {
+        [x] => one(x),
+        many => CVal::Tuple(many.iter().map(one).collect()),
+    }
 }
 
 fn one() -> u32 {

@@ -13,6 +13,7 @@ use aster_catalog::{
     ValueType,
 };
 use aster_syntax::Span;
+use std::borrow::Cow;
 
 /// A keyword as written by the user.
 #[derive(Clone, Debug)]
@@ -26,12 +27,15 @@ pub(crate) struct Given {
 /// ones. A level has a few dozen keywords at most: a vector scanned by name
 /// beats hashing here.
 struct Ctx<'p> {
-    vals: Vec<(&'p str, CVal, Option<String>)>,
+    /// Name, value (defaults borrowed from the catalog), concept type.
+    vals: Vec<(&'p str, Cow<'p, CVal>, Option<String>)>,
     parent: Option<&'p Ctx<'p>>,
 }
 
+type CtxEntry<'p> = (&'p str, Cow<'p, CVal>, Option<String>);
+
 impl<'p> Ctx<'p> {
-    fn get(&self, k: &str) -> Option<&(&'p str, CVal, Option<String>)> {
+    fn get(&self, k: &str) -> Option<&CtxEntry<'p>> {
         self.vals.iter().find(|(n, _, _)| same_name(n, k))
     }
 
@@ -39,7 +43,7 @@ impl<'p> Ctx<'p> {
         self.get(k).is_some()
     }
 
-    fn insert(&mut self, k: &'p str, v: CVal) {
+    fn insert(&mut self, k: &'p str, v: Cow<'p, CVal>) {
         if !self.contains(k) {
             self.vals.push((k, v, None));
         }
@@ -62,11 +66,11 @@ thread_local! {
 impl CondEnv for Ctx<'_> {
     fn value(&self, k: &str) -> Option<&CVal> {
         match self.get(k) {
-            Some((_, CVal::Str(s), _)) if s == RUN_TIME => {
+            Some((_, v, _)) if matches!(v.as_ref(), CVal::Str(s) if s == RUN_TIME) => {
                 UNCERTAIN.with(|u| u.set(true));
                 Some(&RUN_TIME_NONE)
             }
-            Some((_, v, _)) => Some(v),
+            Some((_, v, _)) => Some(v.as_ref()),
             None => self.parent.and_then(|p| p.value(k)),
         }
     }
@@ -82,26 +86,11 @@ impl CondEnv for Ctx<'_> {
     }
 }
 
-fn lit_cval(l: &Lit) -> CVal {
-    match l {
-        Lit::Int(i) => CVal::Int(*i),
-        Lit::Real(r) => CVal::Real(*r),
-        Lit::Str(s) => CVal::Str(s.clone()),
-    }
-}
-
 fn lit_scalar(l: &Lit) -> Scalar {
     match l {
         Lit::Int(i) => Scalar::Int(*i),
         Lit::Real(r) => Scalar::Real(*r),
         Lit::Str(s) => Scalar::Str(s.clone()),
-    }
-}
-
-fn scalars_cval(v: &[Lit]) -> CVal {
-    match v {
-        [one] => lit_cval(one),
-        many => CVal::Tuple(many.iter().map(lit_cval).collect()),
     }
 }
 
@@ -189,9 +178,9 @@ impl Validator<'_> {
                         guessed.push(&e.name);
                         continue;
                     }
-                    if let Some(d) = &s.default {
-                        if !ctx.contains(&e.name) {
-                            ctx.insert(&e.name, scalars_cval(d));
+                    if s.default.is_some() && !ctx.contains(&e.name) {
+                        if let Some(d) = s.default_cval() {
+                            ctx.insert(&e.name, d);
                         }
                     }
                 }
@@ -205,7 +194,7 @@ impl Validator<'_> {
                         continue;
                     }
                     if f.status == Status::Defaulted {
-                        ctx.insert(&e.name, CVal::Bool(true));
+                        ctx.insert(&e.name, Cow::Owned(CVal::Bool(true)));
                     }
                 }
             }
@@ -268,8 +257,8 @@ impl Validator<'_> {
             }
             // Python keeps the last of repeated keys: so does a dict here.
             match ctx.vals.iter_mut().find(|(n, _, _)| *n == g.name) {
-                Some(slot) => *slot = (&g.name, v, t),
-                None => ctx.vals.push((&g.name, v, t)),
+                Some(slot) => *slot = (&g.name, Cow::Owned(v), t),
+                None => ctx.vals.push((&g.name, Cow::Owned(v), t)),
             }
         }
         let mut active: Vec<&Entry> = Vec::new();
