@@ -158,6 +158,7 @@ fn convert(kw: RawKw, path: &str) -> Result<Node, String> {
                 max: max(kw.max).map_err(err)?,
                 val_min: kw.val_min,
                 val_max: kw.val_max,
+                default_cond: None,
             }))
         }
         "factor" => Ok(Node::Factor(FactorKw {
@@ -176,6 +177,7 @@ fn convert(kw: RawKw, path: &str) -> Result<Node, String> {
                 .join(" "),
             rules: rules(kw.rules),
             keywords: entries(kw.keywords.unwrap_or(Ordered(Vec::new())), path)?,
+            parsed: None,
         })),
         other => Err(err(format!("unknown kind {other}"))),
     }

@@ -51,10 +51,15 @@ impl CVal {
 
     /// The values as a list (a scalar is a list of one).
     fn items(&self) -> Vec<CVal> {
+        self.as_slice().to_vec()
+    }
+
+    /// The values as a slice, without copying them.
+    fn as_slice(&self) -> &[CVal] {
         match self {
-            CVal::Tuple(t) => t.clone(),
-            CVal::None => Vec::new(),
-            v => vec![v.clone()],
+            CVal::Tuple(t) => t,
+            CVal::None => &[],
+            v => std::slice::from_ref(v),
         }
     }
 }
@@ -62,10 +67,11 @@ impl CVal {
 /// What a condition can ask about the keywords of its level.
 pub trait CondEnv {
     /// The value of a keyword (a scalar, or a tuple when several values),
-    /// `None` if absent.
-    fn value(&self, keyword: &str) -> Option<CVal>;
+    /// `None` if absent. Borrowed: conditions are evaluated for every block
+    /// of every call, and copying values would dominate their cost.
+    fn value(&self, keyword: &str) -> Option<&CVal>;
     /// The concept type of a keyword's (first) value, if it is a concept.
-    fn type_of(&self, keyword: &str) -> Option<String>;
+    fn type_of(&self, keyword: &str) -> Option<&str>;
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -404,10 +410,28 @@ pub fn parse(src: &str) -> Result<Cond, String> {
     Ok(c)
 }
 
-fn kw_name(args: &[Cond], env: &dyn CondEnv, f: &str) -> Result<String, String> {
-    match args.first().map(|a| eval(a, env)).transpose()? {
-        Some(CVal::Str(s)) => Ok(s),
-        _ => Err(format!("{f}() expects a keyword name")),
+/// The keyword named by a call's first argument (a literal in the catalog:
+/// borrowed, not evaluated).
+fn kw_name<'a>(
+    args: &'a [Cond],
+    env: &dyn CondEnv,
+    f: &str,
+) -> Result<std::borrow::Cow<'a, str>, String> {
+    match args.first() {
+        Some(Cond::Lit(CVal::Str(s))) => Ok(std::borrow::Cow::Borrowed(s)),
+        Some(a) => match eval(a, env)? {
+            CVal::Str(s) => Ok(std::borrow::Cow::Owned(s)),
+            _ => Err(format!("{f}() expects a keyword name")),
+        },
+        None => Err(format!("{f}() expects a keyword name")),
+    }
+}
+
+/// A sub-expression's value, borrowed when it is a literal.
+fn eval_lit<'a>(c: &'a Cond, env: &dyn CondEnv) -> Result<std::borrow::Cow<'a, CVal>, String> {
+    match c {
+        Cond::Lit(v) => Ok(std::borrow::Cow::Borrowed(v)),
+        other => eval(other, env).map(std::borrow::Cow::Owned),
     }
 }
 
@@ -445,7 +469,7 @@ pub fn eval(c: &Cond, env: &dyn CondEnv) -> Result<CVal, String> {
     Ok(match c {
         Cond::Lit(v) => v.clone(),
         Cond::Name(n) => match env.value(n) {
-            Some(v) => v,
+            Some(v) => v.clone(),
             None if n.chars().any(|c| c.is_ascii_lowercase()) => CVal::Type(n.clone()),
             None => CVal::None,
         },
@@ -563,42 +587,45 @@ pub fn eval(c: &Cond, env: &dyn CondEnv) -> Result<CVal, String> {
         }
         Cond::Call(f, args) => match f.as_str() {
             "exists" => CVal::Bool(env.value(&kw_name(args, env, f)?).is_some()),
-            "value" => env.value(&kw_name(args, env, f)?).unwrap_or(CVal::None),
+            "value" => env
+                .value(&kw_name(args, env, f)?)
+                .cloned()
+                .unwrap_or(CVal::None),
             "size" => CVal::Int(
                 env.value(&kw_name(args, env, f)?)
-                    .map(|v| v.items().len() as i64)
+                    .map(|v| v.as_slice().len() as i64)
                     .unwrap_or(0),
             ),
             "is_type" => env
                 .type_of(&kw_name(args, env, f)?)
-                .map(CVal::Type)
+                .map(|t| CVal::Type(t.to_string()))
                 .unwrap_or(CVal::None),
             "equal_to" | "is_in" | "greater_than" | "less_than" => {
                 let k = kw_name(args, env, f)?;
-                let expected = args
-                    .get(1)
-                    .map(|a| eval(a, env))
-                    .transpose()?
-                    .ok_or_else(|| format!("{f}() expects two arguments"))?;
                 let Some(v) = env.value(&k) else {
                     return Ok(CVal::Bool(false));
                 };
-                let items = v.items();
+                let expected = match args.get(1) {
+                    Some(a) => eval_lit(a, env)?,
+                    None => return Err(format!("{f}() expects two arguments")),
+                };
+                let expected: &CVal = &expected;
+                let items = v.as_slice();
                 let hit = |x: &CVal| -> Result<bool, String> {
                     Ok(match f.as_str() {
                         // `equal_to('MODELISATION', ('3D_HHO', 'D_PLAN_HHO'))`
                         // is used in the catalog to mean "one of".
                         "equal_to" if matches!(expected, CVal::Tuple(_)) => {
-                            compare(CmpOp::In, x, &expected)?
+                            compare(CmpOp::In, x, expected)?
                         }
-                        "equal_to" => x.py_eq(&expected),
-                        "is_in" => compare(CmpOp::In, x, &expected)?,
-                        "greater_than" => compare(CmpOp::Gt, x, &expected)?,
-                        _ => compare(CmpOp::Lt, x, &expected)?,
+                        "equal_to" => x.py_eq(expected),
+                        "is_in" => compare(CmpOp::In, x, expected)?,
+                        "greater_than" => compare(CmpOp::Gt, x, expected)?,
+                        _ => compare(CmpOp::Lt, x, expected)?,
                     })
                 };
                 let mut any = false;
-                for x in &items {
+                for x in items {
                     any |= hit(x)?;
                 }
                 CVal::Bool(any)
@@ -621,7 +648,10 @@ pub fn eval(c: &Cond, env: &dyn CondEnv) -> Result<CVal, String> {
                 _ => CVal::Type("object".into()),
             },
             "AsType" => match args.first() {
-                Some(Cond::Name(n)) => env.type_of(n).map(CVal::Type).unwrap_or(CVal::None),
+                Some(Cond::Name(n)) => env
+                    .type_of(n)
+                    .map(|t| CVal::Type(t.to_string()))
+                    .unwrap_or(CVal::None),
                 _ => CVal::None,
             },
             other => return Err(format!("unknown function {other}() in condition")),
@@ -667,11 +697,11 @@ mod tests {
         HashMap<&'static str, &'static str>,
     );
     impl CondEnv for Env {
-        fn value(&self, k: &str) -> Option<CVal> {
-            self.0.get(k).cloned()
+        fn value(&self, k: &str) -> Option<&CVal> {
+            self.0.get(k)
         }
-        fn type_of(&self, k: &str) -> Option<String> {
-            self.1.get(k).map(|s| s.to_string())
+        fn type_of(&self, k: &str) -> Option<&str> {
+            self.1.get(k).copied()
         }
     }
 

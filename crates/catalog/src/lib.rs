@@ -29,7 +29,7 @@ impl Catalog {
     fn load() -> Catalog {
         // The embedded data is produced by our generator and checked by the
         // tests; failing to read it is a build defect, not a user error.
-        let commands: Vec<Command> = match serde_json::from_str(DATA) {
+        let mut commands: Vec<Command> = match serde_json::from_str(DATA) {
             Ok(c) => c,
             Err(e) => panic!("embedded catalog is corrupt: {e}"),
         };
@@ -54,6 +54,23 @@ impl Catalog {
         }
         for c in &commands {
             collect(&c.keywords, &mut conditions);
+        }
+        // Each block keeps its parsed condition: evaluating a block must
+        // not cost a lookup by its source text.
+        fn attach(entries: &mut [Entry], parsed: &HashMap<String, Result<cond::Cond, String>>) {
+            for e in entries {
+                match &mut e.node {
+                    Node::Block(b) => {
+                        b.parsed = parsed.get(&b.condition).cloned();
+                        attach(&mut b.keywords, parsed);
+                    }
+                    Node::Factor(f) => attach(&mut f.keywords, parsed),
+                    Node::Simple(s) => s.default_cond = s.default.as_deref().map(lits_cval),
+                }
+            }
+        }
+        for c in &mut commands {
+            attach(&mut c.keywords, &conditions);
         }
         Catalog {
             commands,

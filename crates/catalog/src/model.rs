@@ -217,6 +217,37 @@ pub struct SimpleKw {
     pub val_min: Option<f64>,
     #[serde(rename = "hi", default, skip_serializing_if = "Option::is_none")]
     pub val_max: Option<f64>,
+    /// `default` as block conditions see it (a scalar, or a tuple when
+    /// several values), made once when the catalog loads.
+    #[serde(skip)]
+    pub default_cond: Option<crate::cond::CVal>,
+}
+
+impl SimpleKw {
+    /// The default as block conditions see it (see `default_cond`).
+    pub fn default_cval(&self) -> Option<std::borrow::Cow<'_, crate::cond::CVal>> {
+        use std::borrow::Cow;
+        match (&self.default_cond, &self.default) {
+            (Some(c), _) => Some(Cow::Borrowed(c)),
+            (None, Some(d)) => Some(Cow::Owned(lits_cval(d))),
+            (None, None) => None,
+        }
+    }
+}
+
+/// Catalog literals as a condition value: one value is a scalar, several a
+/// tuple.
+pub fn lits_cval(v: &[Lit]) -> crate::cond::CVal {
+    use crate::cond::CVal;
+    let one = |l: &Lit| match l {
+        Lit::Int(i) => CVal::Int(*i),
+        Lit::Real(r) => CVal::Real(*r),
+        Lit::Str(s) => CVal::Str(s.clone()),
+    };
+    match v {
+        [x] => one(x),
+        many => CVal::Tuple(many.iter().map(one).collect()),
+    }
 }
 
 fn one() -> u32 {
@@ -257,6 +288,20 @@ pub struct Block {
     pub rules: Vec<Rule>,
     #[serde(rename = "k")]
     pub keywords: Vec<Entry>,
+    /// `condition` parsed, once, when the catalog loads (`None` in a
+    /// catalog built by hand; see [`Block::cond`]).
+    #[serde(skip)]
+    pub parsed: Option<Result<crate::cond::Cond, String>>,
+}
+
+impl Block {
+    /// The parsed condition (parsed now if the catalog did not do it).
+    pub fn cond(&self) -> std::borrow::Cow<'_, Result<crate::cond::Cond, String>> {
+        match &self.parsed {
+            Some(c) => std::borrow::Cow::Borrowed(c),
+            None => std::borrow::Cow::Owned(crate::cond::parse(&self.condition)),
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -352,10 +397,18 @@ impl Command {
     }
 }
 
+/// Whether two keyword names are equal. Names of one level often share
+/// their length and prefix (`GROUP_MA`, `GROUP_NO`): comparing the last
+/// byte first settles most pairs without a call to `memcmp`.
+#[inline]
+pub fn same_name(a: &str, b: &str) -> bool {
+    a.len() == b.len() && a.as_bytes().last() == b.as_bytes().last() && a == b
+}
+
 /// Finds a keyword at one level, looking through blocks.
 pub fn find_in<'a>(entries: &'a [Entry], name: &str) -> Option<&'a Entry> {
     for e in entries {
-        if e.name == name {
+        if same_name(&e.name, name) {
             return Some(e);
         }
         if let Node::Block(b) = &e.node {

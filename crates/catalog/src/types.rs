@@ -10,10 +10,16 @@ pub fn parent(typ: &str) -> Option<&'static str> {
         "evol_elas" | "evol_noli" | "evol_ther" | "evol_char" | "evol_varc" | "evol_sech" => {
             "evol_sdaster"
         }
-        "evol_sdaster" | "dyna_trans" | "dyna_harmo" | "acou_harmo" | "mode_meca"
-        | "mode_meca_c" | "mode_acou" | "mode_flamb" | "mode_empi" | "mult_elas"
-        | "fourier_elas" | "fourier_ther" | "comb_fourier" | "mode_gene" | "tran_gene"
-        | "harm_gene" | "dyna_phys" => "resultat_sdaster",
+        // code_aster's DataStructure classes: mode_meca_c(mode_meca),
+        // formule_c(formule), the *_dict containers are ds_dict.
+        "mode_meca_c" => "mode_meca",
+        "formule_c" => "formule",
+        "evol_elas_dict" | "evol_ther_dict" | "evol_noli_dict" => "ds_dict",
+        "evol_sdaster" | "dyna_trans" | "dyna_harmo" | "acou_harmo" | "mode_meca" | "mode_acou"
+        | "mode_flamb" | "mode_empi" | "mult_elas" | "fourier_elas" | "fourier_ther"
+        | "comb_fourier" | "mode_gene" | "tran_gene" | "harm_gene" | "dyna_phys" => {
+            "resultat_sdaster"
+        }
         "cham_no_sdaster" | "cham_elem" | "carte_sdaster" => "cham_gd_sdaster",
         "table_container" | "table_fonction" => "table_sdaster",
         "maillage_p" | "squelette" | "grille_sdaster" | "super_mesh" => "maillage_sdaster",
@@ -37,6 +43,23 @@ pub fn is_a(actual: &str, expected: &str) -> bool {
             Some(p) => t = p,
             None => return false,
         }
+    }
+}
+
+/// The type of the concept a command really returns, where code_aster's
+/// implementation (its `ops` function) returns something else than the
+/// catalog's `sd_prod` says: the objects, not the catalog, are what later
+/// commands are checked against. `None` for every other command.
+pub fn actual_result(command: &str, type_of: &dyn Fn(&str) -> Option<String>) -> Option<String> {
+    match command {
+        // Declared `evol_ther`; the macro returns a ThermalResultDict, one
+        // result per loading case (read back with EXTR_CONCEPT).
+        "CALC_THER_MULT" => Some("evol_ther_dict".into()),
+        // Declared `cham_gd_sdaster`; the macro projects RESULTAT onto the
+        // cut lines and returns a result (or a dictionary of results) of
+        // the same type.
+        "EXTR_COUPE" => Some(type_of("RESULTAT").unwrap_or_else(|| UNKNOWN.into())),
+        _ => None,
     }
 }
 
@@ -199,6 +222,28 @@ mod tests {
         assert!(is_a("evol_noli", "evol_sdaster"));
         assert!(!is_a("char_cine_meca", "char_meca"));
         assert!(is_a("table_container", "table_sdaster"));
+        assert!(is_a("formule_c", "formule"));
+        assert!(!is_a("formule", "formule_c"));
+        assert!(is_a("evol_ther_dict", "ds_dict"));
+        assert!(is_a("mode_meca_c", "resultat_sdaster"));
+    }
+
+    #[test]
+    fn results_that_differ_from_the_catalog() {
+        let ty = |k: &str| (k == "RESULTAT").then(|| "evol_elas".to_string());
+        assert_eq!(
+            actual_result("EXTR_COUPE", &ty).as_deref(),
+            Some("evol_elas")
+        );
+        assert_eq!(
+            actual_result("EXTR_COUPE", &|_| None).as_deref(),
+            Some(UNKNOWN)
+        );
+        assert_eq!(
+            actual_result("CALC_THER_MULT", &|_| None).as_deref(),
+            Some("evol_ther_dict")
+        );
+        assert_eq!(actual_result("MECA_STATIQUE", &ty), None);
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! Built-in functions, the `math` module, methods of str/list/dict, and the
 //! arithmetic of the subset.
 
+use crate::diag::DiagKind;
 use crate::format;
-use crate::interp::{from_host, py_err, to_host, unsupported, CallArg, Interp, R};
+use crate::interp::{from_host, py_err, to_host, unsupported, CallArg, Halt, Interp, R};
 use crate::value::*;
 use aster_syntax::ast::BinOp;
 use aster_syntax::Span;
@@ -41,6 +42,7 @@ const BUILTINS: &[&str] = &[
     "set",
     "type",
     "hasattr",
+    "getattr",
     "open",
     "input",
     "eval",
@@ -563,6 +565,21 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
             match builtin(v[0].type_name()) {
                 Some(b) => b,
                 None => Value::str(v[0].type_name()),
+            }
+        }
+        // `getattr(obj, 'NAME')` is `obj.NAME`; the default of the
+        // three-argument form answers only when the attribute is missing.
+        "getattr" => {
+            if !(2..=3).contains(&v.len()) {
+                return py_err(span, "getattr() takes 2 or 3 arguments");
+            }
+            let Value::Str(attr) = &v[1] else {
+                return py_err(span, "getattr(): attribute name must be a string");
+            };
+            match (me.attribute(v[0].clone(), attr, span), v.get(2)) {
+                (Ok(x), _) => x,
+                (Err(Halt::Diag(d)), Some(dflt)) if d.kind == DiagKind::Python => dflt.clone(),
+                (Err(e), _) => return Err(e),
             }
         }
         "format" => {

@@ -126,7 +126,9 @@ pub(crate) fn call_command(
     }
 
     // The result concept.
+    let actual = types::actual_result(name, &|k: &str| keywords.concept(k).map(|c| c.typ.clone()));
     let typ = match &cmd.produces {
+        _ if actual.is_some() => actual,
         Produces::Nothing => None,
         Produces::Type(t) => Some(t.clone()),
         Produces::Computed(f) => {
@@ -221,6 +223,11 @@ pub(crate) fn call_command(
             Value::Formula(c, f)
         }
         (CommandOutput::Value(s), _, _) => from_scalar(s),
+        // `EXTR_TABLE(TYPE_RESU='ENTIER'|'REEL')` gives a plain number
+        // (code_aster's AsInteger/AsFloat): known when the commands run.
+        (CommandOutput::Concept, Some(c), None) if matches!(c.typ.as_str(), "entier" | "reel") => {
+            Value::Unknown
+        }
         (_, Some(c), None) => Value::Concept(c),
         (_, None, _) => Value::None,
     })

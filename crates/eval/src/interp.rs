@@ -139,6 +139,53 @@ impl<'a> Interp<'a> {
         }
     }
 
+    /// `try` whose handlers all catch ImportError (see `try_import`);
+    /// any other `try` is outside the subset.
+    fn exec_try(
+        &mut self,
+        span: Span,
+        body: &[ast::Stmt],
+        handlers: &[ast::ExceptHandler],
+        orelse: &[ast::Stmt],
+        finalbody: &[ast::Stmt],
+    ) -> R<Flow> {
+        use crate::try_import::*;
+        if handlers.is_empty() || !handlers.iter().all(catches_only_import_error) {
+            return unsupported(
+                span,
+                "try/except (only `except ImportError` around imports is supported)",
+            );
+        }
+        let imported = imported_paths(body);
+        let flow = match self.exec_block(body) {
+            Ok(Flow::Normal) => self.exec_block(orelse),
+            Ok(other) => Ok(other),
+            Err(Halt::Diag(d)) if is_missing_module(&d, &imported) => {
+                self.diags.push(Diagnostic::warning(
+                    DiagKind::NotSupported,
+                    d.span,
+                    format!(
+                        "{} raises ImportError here: checking the `except ImportError` branch",
+                        d.message.trim_start_matches("not supported: ")
+                    ),
+                ));
+                let h = &handlers[0];
+                if let Some(n) = &h.name {
+                    self.set_var(&n.name, Value::None);
+                }
+                self.exec_block(&h.body)
+            }
+            Err(e) => Err(e),
+        };
+        if finalbody.is_empty() {
+            return flow;
+        }
+        match self.exec_block(finalbody)? {
+            Flow::Normal => flow,
+            other => Ok(other),
+        }
+    }
+
     fn exec_block(&mut self, body: &[ast::Stmt]) -> R<Flow> {
         for s in body {
             if self.finished {
@@ -385,7 +432,12 @@ impl<'a> Interp<'a> {
             StmtKind::Raise { .. } => {
                 return py_err(s.span, "the program raises an exception");
             }
-            StmtKind::Try { .. } => return unsupported(s.span, "try/except"),
+            StmtKind::Try {
+                body,
+                handlers,
+                orelse,
+                finalbody,
+            } => return self.exec_try(s.span, body, handlers, orelse, finalbody),
             StmtKind::With { .. } => return unsupported(s.span, "with statements (file access)"),
             StmtKind::ClassDef { .. } => return unsupported(s.span, "class definitions"),
             StmtKind::Nonlocal { .. } => return unsupported(s.span, "nonlocal"),
@@ -949,11 +1001,14 @@ impl<'a> Interp<'a> {
         })
     }
 
-    fn attribute(&mut self, v: Value, name: &str, span: Span) -> R<Value> {
+    pub(crate) fn attribute(&mut self, v: Value, name: &str, span: Span) -> R<Value> {
         match &v {
             Value::Module(m) if &**m == "math" => builtins::math_attr(name)
                 .ok_or(())
                 .or_else(|_| py_err(span, format!("module 'math' has no attribute '{name}'"))),
+            Value::Module(m) if &**m == "code_aster.CA" && name == "TestCase" => {
+                Ok(Value::Builtin(Builtin::TestCase))
+            }
             Value::Module(m) if m.starts_with("code_aster") || m.starts_with("Accas") => {
                 match self.lookup_builtin(name) {
                     Some(b) => Ok(b),
@@ -1089,6 +1144,10 @@ impl<'a> Interp<'a> {
                 _ => py_err(span, "CO() takes one name, e.g. CO('RESU')"),
             },
             Value::Builtin(Builtin::Fn(name)) => builtins::call(self, name, args, span),
+            Value::Builtin(Builtin::TestCase) => Ok(Value::Builtin(Builtin::TestCaseObject)),
+            Value::Method(recv, m) if matches!(*recv, Value::Builtin(Builtin::TestCaseObject)) => {
+                crate::testcase::call(self, &m, args, span)
+            }
             Value::Func(uf) => self.call_user(&uf, args, span),
             Value::Method(recv, m) => builtins::method(self, *recv, &m, args, span),
             Value::Formula(c, formula) => {

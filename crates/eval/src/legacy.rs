@@ -67,6 +67,19 @@ pub const DROPPED: &[(&str, &str, &str, &str)] = &[
     ),
     ("DEBUT", "DEBUG", "HIST_ETAPE", "no longer exists"),
     (
+        "DETRUIRE",
+        "*",
+        "OBJET",
+        "only whole concepts are destroyed: DETRUIRE(NOM=...)",
+    ),
+    (
+        "FIN",
+        "*",
+        "FORMAT_HDF",
+        "the database is always saved in the same format",
+    ),
+    ("FIN", "*", "PROC0", "no longer exists"),
+    (
         "PROJ_CHAMP",
         "*",
         "PROL_ZERO",
@@ -142,9 +155,16 @@ pub(crate) fn transform_level(
         ""
     };
     let known = |n: &str| find_in(entries, n).is_some();
+    // Almost every level of a current file writes only known keywords: the
+    // rewrites keyed on an unknown one are then skipped at once.
+    let all_known = given.iter().all(|g| known(&g.name));
 
     // Structural rewrites first.
-    let names: Vec<String> = given.iter().map(|g| g.name.clone()).collect();
+    let names: Vec<String> = if all_known {
+        Vec::new()
+    } else {
+        given.iter().map(|g| g.name.clone()).collect()
+    };
     for name in names {
         if known(&name) {
             continue;
@@ -222,6 +242,15 @@ pub(crate) fn transform_level(
             });
         }
     }
+    if cmd == "SECH_NON_LINE" && factor.is_empty() {
+        sech_non_line(path, given, diags);
+    }
+    if cmd == "LIRE_FONCTION" && factor.is_empty() && !known("SEPAR") {
+        lire_fonction_separ(path, given, diags);
+    }
+    if all_known {
+        return;
+    }
     // DDL_IMPO/LIAISON='ENCASTRE' → BLOCAGE=('DEPLACEMENT', 'ROTATION')
     if !known("LIAISON") && known("BLOCAGE") {
         if let Some(g) = given.iter_mut().find(|g| g.name == "LIAISON") {
@@ -277,6 +306,102 @@ pub(crate) fn transform_level(
             continue;
         }
         i += 1;
+    }
+}
+
+/// The entry `key` of a `_F(...)` value (the first occurrence of a list).
+fn factor_entry(v: &Value, key: &str) -> Option<Value> {
+    let occ = match v {
+        Value::Dict(_) => v.clone(),
+        other => crate::validate::flatten(other).into_iter().next()?,
+    };
+    let Value::Dict(d) = occ else {
+        return None;
+    };
+    let found = d.borrow().get(&Value::str(key)).cloned();
+    found
+}
+
+/// code_aster 17's own compatibility rules of SECH_NON_LINE (its
+/// `compat_syntax`): a transient computation takes its theta from
+/// `SCHEMA_TEMPS=_F(THETA=x)` as `PARM_THETA=x`, and `ETAT_INIT` says
+/// `STAT='OUI'` where it said `STATIONNAIRE='OUI'`.
+fn sech_non_line(path: &str, given: &mut [Given], diags: &mut Vec<Diagnostic>) {
+    let transient = given
+        .iter()
+        .find(|g| g.name == "TYPE_CALCUL")
+        .is_none_or(|g| g.value.to_string() == "TRAN");
+    if transient && !given.iter().any(|g| g.name == "PARM_THETA") {
+        if let Some(i) = given.iter().position(|g| g.name == "SCHEMA_TEMPS") {
+            if let Some(theta) = factor_entry(&given[i].value, "THETA") {
+                let g = &mut given[i];
+                warn(
+                    diags,
+                    g,
+                    format!("`{path}/SCHEMA_TEMPS=_F(THETA=...)` is compatibility syntax: now PARM_THETA=..."),
+                );
+                g.name = "PARM_THETA".into();
+                g.value = theta;
+            }
+        }
+    }
+    if let Some(g) = given.iter().find(|g| g.name == "ETAT_INIT") {
+        if factor_entry(&g.value, "STATIONNAIRE").is_some() {
+            warn(
+                diags,
+                g,
+                format!("`{path}/ETAT_INIT/STATIONNAIRE` is legacy syntax: now STAT='OUI'"),
+            );
+            rename_inside(&g.value, "STATIONNAIRE", "STAT");
+        }
+    }
+}
+
+/// `LIRE_FONCTION(SEPAR=...)`, still translated by code_aster 17 into
+/// `SEPARATEUR` for the four separators it knew; anything else, or both
+/// keywords at once, is an error there too.
+fn lire_fonction_separ(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+    const ACCEPTED: [&str; 4] = ["None", ",", ";", "/"];
+    let Some(i) = given.iter().position(|g| g.name == "SEPAR") else {
+        return;
+    };
+    let g = &given[i];
+    if given.iter().any(|o| o.name == "SEPARATEUR") {
+        diags.push(Diagnostic::error(
+            DiagKind::Rule,
+            g.span,
+            format!("`{path}`: SEPAR is the old spelling of SEPARATEUR: give only SEPARATEUR"),
+        ));
+        given.remove(i);
+        return;
+    }
+    let sep = match &g.value {
+        Value::Str(s) => Some(s.to_string()),
+        _ => None,
+    };
+    match sep {
+        Some(s) if ACCEPTED.contains(&s.as_str()) => {
+            warn(
+                diags,
+                g,
+                format!("`{path}/SEPAR` is legacy syntax: now SEPARATEUR"),
+            );
+            given[i].name = "SEPARATEUR".into();
+        }
+        _ => {
+            diags.push(
+                Diagnostic::error(
+                    DiagKind::NotInto,
+                    g.span,
+                    format!(
+                        "`{path}/SEPAR` (legacy spelling of SEPARATEUR): value {} is not allowed",
+                        g.value.repr()
+                    ),
+                )
+                .note("note: allowed values: 'None', ',', ';', '/'".to_string()),
+            );
+            given.remove(i);
+        }
     }
 }
 

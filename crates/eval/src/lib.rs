@@ -15,6 +15,8 @@ mod format;
 pub mod formula;
 mod interp;
 pub mod legacy;
+mod testcase;
+mod try_import;
 mod validate;
 mod value;
 
@@ -129,11 +131,17 @@ pub fn check_source(map: &CodeMap, record: bool) -> CheckReport {
             }
         }
     };
+    check_module(map, &module, record)
+}
+
+/// Checks an already parsed command file (what [`check_source`] does after
+/// parsing): every command validated, none executed.
+pub fn check_module(map: &CodeMap, module: &ast::Module, record: bool) -> CheckReport {
     let mut sink = CheckSink {
         calls: Vec::new(),
         record,
     };
-    let diagnostics = match run_program(map, &module, &mut sink, RunOptions { keep_going: true }) {
+    let diagnostics = match run_program(map, module, &mut sink, RunOptions { keep_going: true }) {
         Ok(s) => s.warnings,
         Err(d) => d,
     };

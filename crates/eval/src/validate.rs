@@ -9,11 +9,11 @@ use crate::legacy;
 use crate::value::Value;
 use aster_catalog::cond::{CVal, CondEnv};
 use aster_catalog::{
-    catalog, find_in, types, Block, Command, Entry, Lit, Node, Rule, RuleKind, SimpleKw, Status,
+    find_in, same_name, types, Block, Command, Entry, Lit, Node, Rule, RuleKind, SimpleKw, Status,
     ValueType,
 };
 use aster_syntax::Span;
-use std::collections::HashMap;
+use std::borrow::Cow;
 
 /// A keyword as written by the user.
 #[derive(Clone, Debug)]
@@ -23,11 +23,35 @@ pub(crate) struct Given {
     pub value: Value,
 }
 
-/// Keyword values seen by block conditions: this level, then the enclosing ones.
+/// Keyword values seen by block conditions: this level, then the enclosing
+/// ones. A level has a few dozen keywords at most: a vector scanned by name
+/// beats hashing here.
 struct Ctx<'p> {
-    vals: HashMap<String, (CVal, Option<String>)>,
+    /// Name, value (defaults borrowed from the catalog), concept type.
+    vals: Vec<(&'p str, Cow<'p, CVal>, Option<String>)>,
     parent: Option<&'p Ctx<'p>>,
 }
+
+type CtxEntry<'p> = (&'p str, Cow<'p, CVal>, Option<String>);
+
+impl<'p> Ctx<'p> {
+    fn get(&self, k: &str) -> Option<&CtxEntry<'p>> {
+        self.vals.iter().find(|(n, _, _)| same_name(n, k))
+    }
+
+    fn contains(&self, k: &str) -> bool {
+        self.get(k).is_some()
+    }
+
+    fn insert(&mut self, k: &'p str, v: Cow<'p, CVal>) {
+        if !self.contains(k) {
+            self.vals.push((k, v, None));
+        }
+    }
+}
+
+/// What a condition sees for a keyword known only at run time.
+static RUN_TIME_NONE: CVal = CVal::None;
 
 /// The condition value of a keyword whose value is only known at run time.
 const RUN_TIME: &str = "\u{0}run-time value";
@@ -40,33 +64,25 @@ thread_local! {
 }
 
 impl CondEnv for Ctx<'_> {
-    fn value(&self, k: &str) -> Option<CVal> {
-        match self.vals.get(k) {
-            Some((CVal::Str(s), _)) if s == RUN_TIME => {
+    fn value(&self, k: &str) -> Option<&CVal> {
+        match self.get(k) {
+            Some((_, v, _)) if matches!(v.as_ref(), CVal::Str(s) if s == RUN_TIME) => {
                 UNCERTAIN.with(|u| u.set(true));
-                Some(CVal::None)
+                Some(&RUN_TIME_NONE)
             }
-            Some((v, _)) => Some(v.clone()),
+            Some((_, v, _)) => Some(v.as_ref()),
             None => self.parent.and_then(|p| p.value(k)),
         }
     }
-    fn type_of(&self, k: &str) -> Option<String> {
-        match self.vals.get(k) {
-            Some((_, Some(t))) if t == types::UNKNOWN => {
+    fn type_of(&self, k: &str) -> Option<&str> {
+        match self.get(k) {
+            Some((_, _, Some(t))) if t == types::UNKNOWN => {
                 UNCERTAIN.with(|u| u.set(true));
                 None
             }
-            Some((_, t)) => t.clone(),
+            Some((_, _, t)) => t.as_deref(),
             None => self.parent.and_then(|p| p.type_of(k)),
         }
-    }
-}
-
-fn lit_cval(l: &Lit) -> CVal {
-    match l {
-        Lit::Int(i) => CVal::Int(*i),
-        Lit::Real(r) => CVal::Real(*r),
-        Lit::Str(s) => CVal::Str(s.clone()),
     }
 }
 
@@ -75,13 +91,6 @@ fn lit_scalar(l: &Lit) -> Scalar {
         Lit::Int(i) => Scalar::Int(*i),
         Lit::Real(r) => Scalar::Real(*r),
         Lit::Str(s) => Scalar::Str(s.clone()),
-    }
-}
-
-fn scalars_cval(v: &[Lit]) -> CVal {
-    match v {
-        [one] => lit_cval(one),
-        many => CVal::Tuple(many.iter().map(lit_cval).collect()),
     }
 }
 
@@ -107,7 +116,8 @@ fn value_cval(v: &Value) -> (CVal, Option<String>) {
             }
         }
         Value::Dict(_) => (CVal::Bool(true), None),
-        Value::Unknown => (CVal::Str(RUN_TIME.into()), None),
+        // Possibly a concept (`R.copy()`), of a type nobody knows yet.
+        Value::Unknown => (CVal::Str(RUN_TIME.into()), Some(types::UNKNOWN.into())),
         _ => (CVal::Str(v.to_string()), None),
     }
 }
@@ -145,41 +155,46 @@ impl Validator<'_> {
     fn activate<'e>(
         &self,
         entries: &'e [Entry],
-        ctx: &mut Ctx,
+        ctx: &mut Ctx<'e>,
         active: &mut Vec<&'e Entry>,
         rules: &mut Vec<&'e Rule>,
         maybe: bool,
-        guessed: &mut Vec<String>,
+        guessed: &mut Vec<&'e str>,
     ) {
+        // The direct entries of a level are distinct (a Python dict in the
+        // catalog): only the keywords of blocks can repeat a name already
+        // active. Not scanning for the others keeps this linear for the
+        // levels with hundreds of keywords (DEFI_MATERIAU).
+        let top = active.is_empty();
         for e in entries {
             match &e.node {
                 Node::Block(_) => {}
                 Node::Simple(s) => {
-                    if active.iter().any(|a| a.name == e.name) {
+                    if !top && active.iter().any(|a| same_name(&a.name, &e.name)) {
                         continue;
                     }
                     active.push(e);
                     if maybe {
-                        guessed.push(e.name.clone());
+                        guessed.push(&e.name);
                         continue;
                     }
-                    if !ctx.vals.contains_key(&e.name) {
-                        if let Some(d) = &s.default {
-                            ctx.vals.insert(e.name.clone(), (scalars_cval(d), None));
+                    if s.default.is_some() && !ctx.contains(&e.name) {
+                        if let Some(d) = s.default_cval() {
+                            ctx.insert(&e.name, d);
                         }
                     }
                 }
                 Node::Factor(f) => {
-                    if active.iter().any(|a| a.name == e.name) {
+                    if !top && active.iter().any(|a| same_name(&a.name, &e.name)) {
                         continue;
                     }
                     active.push(e);
                     if maybe {
-                        guessed.push(e.name.clone());
+                        guessed.push(&e.name);
                         continue;
                     }
-                    if f.status == Status::Defaulted && !ctx.vals.contains_key(&e.name) {
-                        ctx.vals.insert(e.name.clone(), (CVal::Bool(true), None));
+                    if f.status == Status::Defaulted {
+                        ctx.insert(&e.name, Cow::Owned(CVal::Bool(true)));
                     }
                 }
             }
@@ -189,11 +204,10 @@ impl Validator<'_> {
                 // A condition that cannot be evaluated (e.g. comparing an
                 // absent keyword) does not hold: no false errors from it.
                 UNCERTAIN.with(|u| u.set(false));
-                let holds = catalog()
-                    .condition(&b.condition)
-                    .ok()
-                    .and_then(|c| aster_catalog::cond::holds(c, ctx).ok())
-                    .unwrap_or(false);
+                let holds = match b.cond().as_ref() {
+                    Ok(c) => aster_catalog::cond::holds(c, ctx).unwrap_or(false),
+                    Err(_) => false,
+                };
                 let unsure = UNCERTAIN.with(|u| u.replace(false));
                 if holds && !maybe && !unsure {
                     rules.extend(b.rules.iter());
@@ -227,27 +241,29 @@ impl Validator<'_> {
         legacy::transform_level(&self.command, path, entries, &mut given, &mut self.diags);
 
         let mut ctx = Ctx {
-            vals: given
-                .iter()
-                .map(|g| {
-                    let (mut v, t) = value_cval(&g.value);
-                    // A keyword that takes several values is a tuple for
-                    // the conditions (`len(CARA) == 1`), as in code_aster.
-                    let multi = matches!(
-                        find_in(entries, &g.name).map(|e| &e.node),
-                        Some(Node::Simple(s)) if s.max != aster_catalog::Max::Count(1)
-                    );
-                    if multi && !matches!(v, CVal::Tuple(_)) {
-                        v = CVal::Tuple(vec![v]);
-                    }
-                    (g.name.clone(), (v, t))
-                })
-                .collect(),
+            vals: Vec::with_capacity(given.len() + 8),
             parent,
         };
+        for g in &given {
+            let (mut v, t) = value_cval(&g.value);
+            // A keyword that takes several values is a tuple for the
+            // conditions (`len(CARA) == 1`), as in code_aster.
+            let multi = matches!(
+                find_in(entries, &g.name).map(|e| &e.node),
+                Some(Node::Simple(s)) if s.max != aster_catalog::Max::Count(1)
+            );
+            if multi && !matches!(v, CVal::Tuple(_)) {
+                v = CVal::Tuple(vec![v]);
+            }
+            // Python keeps the last of repeated keys: so does a dict here.
+            match ctx.vals.iter_mut().find(|(n, _, _)| *n == g.name) {
+                Some(slot) => *slot = (&g.name, Cow::Owned(v), t),
+                None => ctx.vals.push((&g.name, Cow::Owned(v), t)),
+            }
+        }
         let mut active: Vec<&Entry> = Vec::new();
         let mut rules: Vec<&Rule> = level_rules.iter().collect();
-        let mut guessed = Vec::new();
+        let mut guessed: Vec<&str> = Vec::new();
         self.activate(
             entries,
             &mut ctx,
@@ -257,26 +273,30 @@ impl Validator<'_> {
             &mut guessed,
         );
 
-        let mut values: HashMap<String, Keyword> = HashMap::new();
+        // The validated value of each active entry, by position in `active`.
+        // The validated given keywords, with their position in `active`
+        // (few: a level with hundreds of possible keywords gets a handful).
+        let mut values: Vec<(usize, Keyword)> = Vec::with_capacity(given.len());
         let errors_before = self.diags.iter().filter(|d| d.is_error()).count();
         let mut inactive = Vec::new();
         for g in &given {
-            let Some(entry) = active.iter().find(|a| a.name == g.name) else {
+            let Some(slot) = active.iter().position(|a| same_name(&a.name, &g.name)) else {
                 inactive.push(g);
                 continue;
             };
-            let kpath = format!("{path}/{}", g.name);
+            let entry = active[slot];
             let value = match &entry.node {
-                Node::Simple(s) if guessed.contains(&g.name) => {
+                Node::Simple(s) if guessed.contains(&g.name.as_str()) => {
                     // Its block may or may not apply (the checker cannot
                     // know): take the value without judging it.
                     let n = self.diags.len();
-                    let v = self.simple(s, g, &kpath);
+                    let v = self.simple(s, g, path);
                     self.diags.truncate(n);
                     Some(KwValue::Simple(v.unwrap_or_else(|| lenient(&g.value))))
                 }
-                Node::Simple(s) => self.simple(s, g, &kpath).map(KwValue::Simple),
+                Node::Simple(s) => self.simple(s, g, path).map(KwValue::Simple),
                 Node::Factor(f) => {
+                    let kpath = format!("{path}/{}", g.name);
                     let occs: Vec<Value> = match &g.value {
                         Value::Dict(_) => vec![g.value.clone()],
                         Value::List(_) | Value::Tuple(_) => flatten(&g.value),
@@ -353,15 +373,15 @@ impl Validator<'_> {
                 Node::Block(_) => None,
             };
             if let Some(v) = value {
-                values.insert(
-                    g.name.clone(),
+                values.push((
+                    slot,
                     Keyword {
                         name: g.name.clone(),
                         value: v,
                         span: g.span,
                         defaulted: false,
                     },
-                );
+                ));
             }
         }
 
@@ -373,14 +393,28 @@ impl Validator<'_> {
         }
 
         // Missing keywords and defaults, in catalog order.
-        let mut out = Keywords::default();
-        for e in &active {
-            if let Some(k) = values.remove(&e.name) {
+        let mut out = Keywords {
+            entries: Vec::with_capacity(active.len()),
+        };
+        values.sort_by_key(|(slot, _)| *slot);
+        let mut values = values.into_iter().peekable();
+        for (i, e) in active.iter().enumerate() {
+            if let Some((_, k)) = values.next_if(|(slot, _)| *slot == i) {
                 out.entries.push(k);
                 continue;
             }
-            if given.iter().any(|g| g.name == e.name) || guessed.contains(&e.name) {
-                continue; // given but invalid (already reported), or unsure
+            // Most entries of a large level are optional and absent:
+            // settle them before comparing names.
+            let needs_something = match &e.node {
+                Node::Simple(s) => s.default.is_some() || s.status == Status::Mandatory,
+                Node::Factor(f) => matches!(f.status, Status::Mandatory | Status::Defaulted),
+                Node::Block(_) => false,
+            };
+            if !needs_something
+                || given.iter().any(|g| same_name(&g.name, &e.name))
+                || guessed.contains(&e.name.as_str())
+            {
+                continue; // nothing to fill, given but invalid (already reported), or unsure
             }
             match &e.node {
                 Node::Simple(s) => match (&s.default, s.status) {
@@ -455,13 +489,12 @@ impl Validator<'_> {
             .into_iter()
             .filter(|r| !r.args.iter().any(|a| a == "reuse"))
             .collect();
-        let defaulted: Vec<String> = out
+        let defaulted: Vec<&str> = out
             .entries
             .iter()
             .filter(|k| k.defaulted)
-            .map(|k| k.name.clone())
+            .map(|k| k.name.as_str())
             .collect();
-        let defaulted: Vec<&str> = defaulted.iter().map(|s| s.as_str()).collect();
         let mut drop: Vec<String> = Vec::new();
         // An occurrence nobody wrote (a factor keyword present by default)
         // is not held to the "at least one" rules: code_aster fills those
@@ -484,8 +517,7 @@ impl Validator<'_> {
                 self.rule(r, &written, &defaulted, &mut drop, path, span);
             }
         }
-        out.entries
-            .retain(|k| !(k.defaulted && drop.contains(&k.name)));
+        drop_names(&mut out, &drop);
         out.entries.extend(implied);
         out
     }
@@ -538,7 +570,10 @@ impl Validator<'_> {
         self.diags.push(d);
     }
 
-    fn simple(&mut self, kw: &SimpleKw, g: &Given, path: &str) -> Option<Vec<Scalar>> {
+    /// Validates a simple keyword given at level `parent` (its path, for
+    /// messages, is only built when there is something to report).
+    fn simple(&mut self, kw: &SimpleKw, g: &Given, parent: &str) -> Option<Vec<Scalar>> {
+        let kpath = || format!("{parent}/{}", g.name);
         let items = flatten(&g.value);
         let items = group_complex(kw, items);
         let mut out = Vec::with_capacity(items.len());
@@ -562,7 +597,7 @@ impl Validator<'_> {
                     self.error(
                         DiagKind::WrongType,
                         g.span,
-                        format!("`{path}`: expected {expected}, found {found}"),
+                        format!("`{}`: expected {expected}, found {found}", kpath()),
                     );
                     failed = true;
                 }
@@ -576,12 +611,13 @@ impl Validator<'_> {
                 if matches!(s, Scalar::Opaque(_)) || into_contains(into, s) {
                     continue;
                 }
-                if let Some(new) = legacy::value(&self.command, path, s, into) {
+                if let Some(new) = legacy::value(&self.command, &g.name, s, into) {
                     self.diags.push(Diagnostic::warning(
                         DiagKind::Legacy,
                         g.span,
                         format!(
-                            "`{path}`: legacy value {} is now {}",
+                            "`{}`: legacy value {} is now {}",
+                            kpath(),
                             scalar_repr(s),
                             scalar_repr(&new)
                         ),
@@ -600,7 +636,7 @@ impl Validator<'_> {
                 let mut d = Diagnostic::error(
                     DiagKind::NotInto,
                     g.span,
-                    format!("`{path}`: value {shown} is not allowed"),
+                    format!("`{}`: value {shown} is not allowed", kpath()),
                 );
                 if let Scalar::Str(x) = s {
                     if let Some(h) = did_you_mean(x, strs.iter().map(|s| s.as_str())) {
@@ -627,7 +663,8 @@ impl Validator<'_> {
                         DiagKind::OutOfRange,
                         g.span,
                         format!(
-                            "`{path}`: value {} out of range: must be {range}",
+                            "`{}`: value {} out of range: must be {range}",
+                            kpath(),
                             scalar_repr(s)
                         ),
                     );
@@ -645,7 +682,7 @@ impl Validator<'_> {
             self.error(
                 DiagKind::Count,
                 g.span,
-                format!("`{path}` expects {expect}, {n} given"),
+                format!("`{}` expects {expect}, {n} given", kpath()),
             );
             failed = true;
         }
@@ -756,9 +793,10 @@ impl Validator<'_> {
         let d = |k: &str| defaulted.contains(&k) || (k == "TOUT" && nw_of(r, written) == 0);
         let nw = r.args.iter().filter(|a| w(a)).count();
         let nd = r.args.iter().filter(|a| d(a)).count();
-        let list = r.args.join(", ");
+        // Message parts, built only when a rule fails.
+        let list = || r.args.join(", ");
         let first = r.args.first().map(|s| s.as_str()).unwrap_or("");
-        let others = r.args.get(1..).unwrap_or(&[]).join(", ");
+        let others = || r.args.get(1..).unwrap_or(&[]).join(", ");
         let drop_defaults = |drop: &mut Vec<String>| {
             drop.extend(r.args.iter().filter(|a| d(a)).cloned());
         };
@@ -768,16 +806,22 @@ impl Validator<'_> {
                     drop_defaults(drop);
                     None
                 } else if nw > 1 {
-                    Some(format!("exactly one of {list} is required ({nw} given)"))
+                    Some(format!(
+                        "exactly one of {} is required ({nw} given)",
+                        list()
+                    ))
                 } else if nd == 1 {
                     None
                 } else {
-                    Some(format!("exactly one of {list} is required (none given)"))
+                    Some(format!(
+                        "exactly one of {} is required (none given)",
+                        list()
+                    ))
                 }
             }
             RuleKind::AtMostOne => {
                 if nw > 1 {
-                    Some(format!("at most one of {list} is allowed ({nw} given)"))
+                    Some(format!("at most one of {} is allowed ({nw} given)", list()))
                 } else {
                     if nw == 1 {
                         drop_defaults(drop);
@@ -786,17 +830,17 @@ impl Validator<'_> {
                 }
             }
             RuleKind::AtLeastOne | RuleKind::NotEmpty => {
-                (nw + nd == 0).then(|| format!("at least one of {list} is required"))
+                (nw + nd == 0).then(|| format!("at least one of {} is required", list()))
             }
             RuleKind::AllTogether => {
                 let n = r.args.iter().filter(|a| w(a) || d(a)).count();
                 (nw > 0 && n != r.args.len())
-                    .then(|| format!("{list} go together: give all of them or none"))
+                    .then(|| format!("{} go together: give all of them or none", list()))
             }
             RuleKind::OnlyFirstPresent => {
                 let others_written = r.args[1.min(r.args.len())..].iter().any(|a| w(a));
                 if w(first) && others_written {
-                    Some(format!("when {first} is given, {others} must not be"))
+                    Some(format!("when {first} is given, {} must not be", others()))
                 } else {
                     if w(first) {
                         drop.extend(r.args[1..].iter().filter(|a| d(a)).cloned());
@@ -809,12 +853,20 @@ impl Validator<'_> {
             RuleKind::IfFirstAllPresent => {
                 let all = r.args[1.min(r.args.len())..].iter().all(|a| w(a) || d(a));
                 (w(first) && !all)
-                    .then(|| format!("when {first} is given, {others} must be given too"))
+                    .then(|| format!("when {first} is given, {} must be given too", others()))
             }
         };
         if let Some(m) = msg {
             self.error(DiagKind::Rule, span, format!("`{path}`: {m}"));
         }
+    }
+}
+
+/// Removes the defaults that a written keyword displaced (see `rule`).
+fn drop_names(out: &mut Keywords, drop: &[String]) {
+    if !drop.is_empty() {
+        out.entries
+            .retain(|k| !(k.defaulted && drop.contains(&k.name)));
     }
 }
 

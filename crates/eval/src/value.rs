@@ -68,6 +68,10 @@ pub enum Builtin {
     Factor,
     /// `CO`
     Co,
+    /// `code_aster.CA.TestCase`, the class.
+    TestCase,
+    /// A `CA.TestCase()` object (see `testcase`).
+    TestCaseObject,
 }
 
 #[derive(Clone, Debug)]
@@ -273,6 +277,8 @@ impl fmt::Display for Value {
             Value::Builtin(Builtin::Fn(n)) => write!(f, "<built-in function {n}>"),
             Value::Builtin(Builtin::Factor) => write!(f, "<built-in function _F>"),
             Value::Builtin(Builtin::Co) => write!(f, "<class CO>"),
+            Value::Builtin(Builtin::TestCase) => write!(f, "<class TestCase>"),
+            Value::Builtin(Builtin::TestCaseObject) => write!(f, "<TestCase object>"),
             Value::Method(_, m) => write!(f, "<method {m}>"),
             Value::Command(c) => write!(f, "<command {c}>"),
             Value::Concept(c) | Value::Formula(c, _) => write!(f, "{}", c.name),
