@@ -654,10 +654,9 @@ impl Builder<'_> {
             Rule::testlist_star | Rule::exprlist | Rule::target_list => {}
             _ => return self.element(pair),
         }
-        let span = self.stmt_span(&pair);
         let mut elts = Vec::new();
         let mut comma = false;
-        for p in pair.into_inner() {
+        for p in pair.clone().into_inner() {
             if p.as_rule() == Rule::comma {
                 comma = true;
             } else {
@@ -669,9 +668,10 @@ impl Builder<'_> {
                 return Ok(e);
             }
         }
+        // Only a tuple needs the list's own span (a lone element has its own).
         Ok(Expr {
             kind: ExprKind::Tuple { elts },
-            span,
+            span: self.stmt_span(&pair),
         })
     }
 
@@ -1444,6 +1444,10 @@ impl Builder<'_> {
 
 /// Where a comment starts on a line (a `#` outside quotes), if any.
 fn comment_start(line: &str) -> Option<usize> {
+    // Most lines have no `#` at all: one byte scan instead of the quote walk.
+    if !line.as_bytes().contains(&b'#') {
+        return None;
+    }
     let mut quote: Option<char> = None;
     let mut escaped = false;
     for (i, c) in line.char_indices() {
