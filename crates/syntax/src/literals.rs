@@ -4,8 +4,31 @@
 
 use crate::ast::ExprKind;
 
+/// The common literals (`12`, `2.1e11`, `.5`, `1.E-3`) without allocating:
+/// decimal digits only, no `_`, no suffix, no leading `0` on an integer
+/// (Python 2 octal). Anything else goes the general way.
+fn plain_number(text: &str) -> Option<ExprKind> {
+    let bytes = text.as_bytes();
+    if bytes.iter().all(u8::is_ascii_digit) {
+        if bytes.len() > 1 && bytes[0] == b'0' {
+            return None;
+        }
+        return text.parse().ok().map(|value| ExprKind::Int { value });
+    }
+    let float_chars = bytes
+        .iter()
+        .all(|c| c.is_ascii_digit() || matches!(c, b'.' | b'e' | b'E' | b'+' | b'-'));
+    if float_chars {
+        return text.parse().ok().map(|value| ExprKind::Float { value });
+    }
+    None
+}
+
 /// The value of a number token (the grammar guarantees its shape).
 pub fn number(text: &str) -> Result<ExprKind, String> {
+    if let Some(kind) = plain_number(text) {
+        return Ok(kind);
+    }
     let clean: String = text.chars().filter(|&c| c != '_').collect();
     let (body, suffix) = match clean.chars().last() {
         Some(c @ ('j' | 'J' | 'l' | 'L')) => (&clean[..clean.len() - 1], Some(c)),

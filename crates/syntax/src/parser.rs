@@ -10,9 +10,7 @@ use crate::codemap::Span;
 use crate::literals;
 use crate::ParseError;
 use pest::iterators::{Pair, Pairs};
-use pest::pratt_parser::{Assoc, Op, PrattParser};
 use pest::Parser as _;
-use std::sync::LazyLock;
 
 #[derive(pest_derive::Parser)]
 #[grammar = "../../grammar/comm.pest"]
@@ -20,37 +18,6 @@ pub struct CommParser;
 
 type P<'i> = Pair<'i, Rule>;
 type R<T> = Result<T, ParseError>;
-
-/// Python's operator precedence, lowest first.
-static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
-    PrattParser::new()
-        .op(Op::infix(Rule::or, Assoc::Left))
-        .op(Op::infix(Rule::and, Assoc::Left))
-        .op(Op::prefix(Rule::not))
-        .op(Op::infix(Rule::lt, Assoc::Left)
-            | Op::infix(Rule::gt, Assoc::Left)
-            | Op::infix(Rule::eq, Assoc::Left)
-            | Op::infix(Rule::ne, Assoc::Left)
-            | Op::infix(Rule::ne_py2, Assoc::Left)
-            | Op::infix(Rule::le, Assoc::Left)
-            | Op::infix(Rule::ge, Assoc::Left)
-            | Op::infix(Rule::in_, Assoc::Left)
-            | Op::infix(Rule::not_in, Assoc::Left)
-            | Op::infix(Rule::is_, Assoc::Left)
-            | Op::infix(Rule::is_not, Assoc::Left))
-        .op(Op::infix(Rule::bitor, Assoc::Left))
-        .op(Op::infix(Rule::bitxor, Assoc::Left))
-        .op(Op::infix(Rule::bitand, Assoc::Left))
-        .op(Op::infix(Rule::lshift, Assoc::Left) | Op::infix(Rule::rshift, Assoc::Left))
-        .op(Op::infix(Rule::add, Assoc::Left) | Op::infix(Rule::sub, Assoc::Left))
-        .op(Op::infix(Rule::mul, Assoc::Left)
-            | Op::infix(Rule::matmul, Assoc::Left)
-            | Op::infix(Rule::div, Assoc::Left)
-            | Op::infix(Rule::floordiv, Assoc::Left)
-            | Op::infix(Rule::modulo, Assoc::Left))
-        .op(Op::prefix(Rule::neg) | Op::prefix(Rule::pos) | Op::prefix(Rule::invert))
-        .op(Op::infix(Rule::pow, Assoc::Right))
-});
 
 /// Parse a whole file into its AST (no post-parse validation).
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
@@ -687,10 +654,9 @@ impl Builder<'_> {
             Rule::testlist_star | Rule::exprlist | Rule::target_list => {}
             _ => return self.element(pair),
         }
-        let span = self.stmt_span(&pair);
         let mut elts = Vec::new();
         let mut comma = false;
-        for p in pair.into_inner() {
+        for p in pair.clone().into_inner() {
             if p.as_rule() == Rule::comma {
                 comma = true;
             } else {
@@ -702,9 +668,10 @@ impl Builder<'_> {
                 return Ok(e);
             }
         }
+        // Only a tuple needs the list's own span (a lone element has its own).
         Ok(Expr {
             kind: ExprKind::Tuple { elts },
-            span,
+            span: self.stmt_span(&pair),
         })
     }
 
@@ -759,22 +726,24 @@ impl Builder<'_> {
 
     fn test(&self, pair: P) -> R<Expr> {
         match pair.as_rule() {
-            Rule::test | Rule::test_nocond => {}
+            Rule::test => {}
+            Rule::test_nocond => match pair.into_inner().next() {
+                Some(p) => return self.test(p),
+                None => return Err(err(Span::default(), "internal: empty test")),
+            },
             Rule::lambdef | Rule::lambdef_nocond => return self.lambda(pair),
             _ => return self.element(pair),
         }
-        let span = self.stmt_span(&pair);
-        let mut inner = pair.into_inner();
-        let first = match inner.next() {
-            Some(p) => p,
-            None => return Err(err(span, "expected an expression")),
-        };
-        let body = match first.as_rule() {
-            Rule::lambdef | Rule::lambdef_nocond => return self.lambda(first),
-            _ => self.or_expr(first)?,
-        };
+        let mut inner = pair.clone().into_inner();
+        if let Some(first) = inner.peek() {
+            if first.as_rule() == Rule::lambdef {
+                return self.lambda(first);
+            }
+        }
+        let body = self.operation(&mut inner)?;
         match inner.next() {
             Some(ternary) => {
+                let span = self.stmt_span(&pair);
                 let mut parts = ternary
                     .into_inner()
                     .filter(|p| !matches!(p.as_rule(), Rule::kw_if | Rule::kw_else));
@@ -818,43 +787,59 @@ impl Builder<'_> {
         if pair.as_rule() != Rule::or_expr {
             return self.element(pair);
         }
-        PRATT
-            .map_primary(|p| self.primary(p))
-            .map_prefix(|op, operand| {
-                let operand = operand?;
-                let op_span = self.span(&op);
-                let op = match op.as_rule() {
-                    Rule::neg => UnaryOp::Neg,
-                    Rule::pos => UnaryOp::Pos,
-                    Rule::invert => UnaryOp::Invert,
-                    _ => UnaryOp::Not,
-                };
-                Ok(Expr {
-                    span: op_span.merge(operand.span),
-                    kind: ExprKind::UnaryOp {
-                        op,
-                        operand: Box::new(operand),
-                    },
-                })
-            })
-            .map_infix(|lhs, op, rhs| {
-                let lhs = lhs?;
-                let rhs = rhs?;
-                Ok(infix(lhs, op.as_rule(), rhs))
-            })
-            .parse(pair.into_inner())
+        self.operation(&mut pair.into_inner())
+    }
+
+    /// The flat operand/operator sequence of the grammar's `operation`, read
+    /// from `inner` up to the first pair that is neither (e.g. a `ternary`),
+    /// folded by Python's precedence. A lone operand (the common case: a
+    /// keyword's value) skips the folding.
+    fn operation(&self, inner: &mut Pairs<Rule>) -> R<Expr> {
+        let mut items = Vec::new();
+        loop {
+            while let Some(op) = inner.peek().and_then(|p| prefix_op(p.as_rule())) {
+                let span = inner.next().map(|p| self.span(&p)).unwrap_or_default();
+                items.push(OpItem::Prefix(op, span));
+            }
+            let operand = self.operand(inner)?;
+            match inner.peek().map(|p| p.as_rule()) {
+                Some(rule) if infix_prec(rule).is_some() => {
+                    inner.next();
+                    items.push(OpItem::Operand(operand));
+                    items.push(OpItem::Infix(rule));
+                }
+                _ if items.is_empty() => return Ok(operand),
+                _ => {
+                    items.push(OpItem::Operand(operand));
+                    break;
+                }
+            }
+        }
+        let mut items = items.into_iter().peekable();
+        fold(&mut items, 0)
     }
 
     fn primary(&self, pair: P) -> R<Expr> {
         if pair.as_rule() != Rule::primary {
             return self.atom(pair);
         }
-        let mut inner = pair.into_inner();
+        self.operand(&mut pair.into_inner())
+    }
+
+    /// An atom and its trailers (calls, subscripts, attributes), read from `inner`.
+    fn operand(&self, inner: &mut Pairs<Rule>) -> R<Expr> {
         let mut expr = match inner.next() {
             Some(atom) => self.atom(atom)?,
-            None => return Err(err(Span::default(), "internal: empty primary")),
+            None => return Err(err(Span::default(), "internal: missing operand")),
         };
-        for trailer in inner {
+        while let Some(trailer) = inner.peek() {
+            if !matches!(
+                trailer.as_rule(),
+                Rule::call | Rule::subscript | Rule::attribute
+            ) {
+                break;
+            }
+            inner.next();
             let tspan = self.span(&trailer);
             let span = expr.span.merge(tspan);
             let kind = match trailer.as_rule() {
@@ -1459,6 +1444,10 @@ impl Builder<'_> {
 
 /// Where a comment starts on a line (a `#` outside quotes), if any.
 fn comment_start(line: &str) -> Option<usize> {
+    // Most lines have no `#` at all: one byte scan instead of the quote walk.
+    if !line.as_bytes().contains(&b'#') {
+        return None;
+    }
     let mut quote: Option<char> = None;
     let mut escaped = false;
     for (i, c) in line.char_indices() {
@@ -1532,6 +1521,90 @@ fn aug_op(op: &str) -> BinOp {
 
 /// Fold one binary operator; comparisons chain and `and`/`or` flatten, unless
 /// the left operand was parenthesized (its span then ends after the `)`).
+/// One element of a flat operator sequence.
+enum OpItem {
+    Prefix(UnaryOp, Span),
+    Operand(Expr),
+    Infix(Rule),
+}
+
+// Binding powers, Python's precedence (lowest first); gaps of 10 leave
+// room for right associativity (`**` parses its right side at power - 1).
+const PREC_NOT: u32 = 30;
+const PREC_UNARY: u32 = 110;
+
+fn prefix_op(rule: Rule) -> Option<UnaryOp> {
+    match rule {
+        Rule::neg => Some(UnaryOp::Neg),
+        Rule::pos => Some(UnaryOp::Pos),
+        Rule::invert => Some(UnaryOp::Invert),
+        Rule::not => Some(UnaryOp::Not),
+        _ => None,
+    }
+}
+
+/// Binding power of an infix operator (None: not an infix operator).
+fn infix_prec(rule: Rule) -> Option<u32> {
+    Some(match rule {
+        Rule::or => 10,
+        Rule::and => 20,
+        Rule::lt
+        | Rule::gt
+        | Rule::eq
+        | Rule::ne
+        | Rule::ne_py2
+        | Rule::le
+        | Rule::ge
+        | Rule::in_
+        | Rule::not_in
+        | Rule::is_
+        | Rule::is_not => 40,
+        Rule::bitor => 50,
+        Rule::bitxor => 60,
+        Rule::bitand => 70,
+        Rule::lshift | Rule::rshift => 80,
+        Rule::add | Rule::sub => 90,
+        Rule::mul | Rule::matmul | Rule::div | Rule::floordiv | Rule::modulo => 100,
+        Rule::pow => 120,
+        _ => return None,
+    })
+}
+
+/// Pratt folding of an operator sequence: operators binding tighter than
+/// `min` are taken into the left operand.
+fn fold(items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>, min: u32) -> R<Expr> {
+    let mut lhs = match items.next() {
+        Some(OpItem::Operand(e)) => e,
+        Some(OpItem::Prefix(op, span)) => {
+            let prec = if op == UnaryOp::Not {
+                PREC_NOT
+            } else {
+                PREC_UNARY
+            };
+            let operand = fold(items, prec)?;
+            Expr {
+                span: span.merge(operand.span),
+                kind: ExprKind::UnaryOp {
+                    op,
+                    operand: Box::new(operand),
+                },
+            }
+        }
+        _ => return Err(err(Span::default(), "internal: operator without operand")),
+    };
+    while let Some(OpItem::Infix(rule)) = items.peek() {
+        let rule = *rule;
+        let prec = infix_prec(rule).unwrap_or(0);
+        if prec <= min {
+            break;
+        }
+        items.next();
+        let rhs = fold(items, if rule == Rule::pow { prec - 1 } else { prec })?;
+        lhs = infix(lhs, rule, rhs);
+    }
+    Ok(lhs)
+}
+
 fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
     let span = lhs.span.merge(rhs.span);
     let arith = match op {
