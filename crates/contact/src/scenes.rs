@@ -106,37 +106,20 @@ pub fn two_blocks_mesh(n: usize) -> Result<Mesh, FemError> {
         m.node_names[id.0 as usize] = name.to_string();
     }
     m.cell_names = (1..=m.cells.len()).map(|i| format!("M{i}")).collect();
-    for (name, cells) in [
-        ("ABCD", abcd),
-        ("EFGH", efgh),
-        ("AB", ab),
-        ("CD", cd),
-        ("HE", he),
-        ("FG", fg),
-        ("K1", k1),
-        ("K2", k2),
-    ] {
-        let mut nodes: Vec<NodeId> = cells
-            .iter()
-            .flat_map(|c| m.cells[c.0 as usize].nodes.clone())
-            .collect();
-        nodes.sort();
-        nodes.dedup();
-        m.groups_ma.push(Group {
-            name: name.into(),
-            members: cells,
-        });
-        m.groups_no.push(Group {
-            name: name.into(),
-            members: nodes,
-        });
-    }
-    for (name, id) in named {
-        m.groups_no.push(Group {
-            name: name.into(),
-            members: vec![id],
-        });
-    }
+    add_groups(
+        &mut m,
+        [
+            ("ABCD", abcd),
+            ("EFGH", efgh),
+            ("AB", ab),
+            ("CD", cd),
+            ("HE", he),
+            ("FG", fg),
+            ("K1", k1),
+            ("K2", k2),
+        ],
+        named,
+    );
     Ok(m)
 }
 
@@ -267,28 +250,7 @@ pub fn two_plates_mesh(n_up: usize, n_low: usize) -> Result<Mesh, FemError> {
     }
     m.node_names = (1..=m.coords.len()).map(|i| format!("N{i}")).collect();
     m.cell_names = (1..=m.cells.len()).map(|i| format!("M{i}")).collect();
-    for (name, cells) in groups {
-        let mut nodes: Vec<NodeId> = cells
-            .iter()
-            .flat_map(|c| m.cells[c.0 as usize].nodes.clone())
-            .collect();
-        nodes.sort();
-        nodes.dedup();
-        m.groups_ma.push(Group {
-            name: name.into(),
-            members: cells,
-        });
-        m.groups_no.push(Group {
-            name: name.into(),
-            members: nodes,
-        });
-    }
-    for (name, id) in named {
-        m.groups_no.push(Group {
-            name: name.into(),
-            members: vec![id],
-        });
-    }
+    add_groups(&mut m, groups, named);
     Ok(m)
 }
 
@@ -334,4 +296,35 @@ pub fn two_plates_problem(mesh: Mesh) -> Result<(Model, Loads), FemError> {
     }
     let model = Model::new(mesh, elements)?;
     Ok((model, loads))
+}
+
+/// Adds each cell group and the node group of its cells under the same
+/// name, then the one-node groups `named`.
+fn add_groups<'a>(
+    m: &mut Mesh,
+    groups: impl IntoIterator<Item = (&'a str, Vec<CellId>)>,
+    named: impl IntoIterator<Item = (&'a str, NodeId)>,
+) {
+    for (name, cells) in groups {
+        let mut nodes: Vec<NodeId> = cells
+            .iter()
+            .flat_map(|c| m.cells[c.0 as usize].nodes.clone())
+            .collect();
+        nodes.sort();
+        nodes.dedup();
+        m.groups_ma.push(Group {
+            name: name.into(),
+            members: cells,
+        });
+        m.groups_no.push(Group {
+            name: name.into(),
+            members: nodes,
+        });
+    }
+    for (name, id) in named {
+        m.groups_no.push(Group {
+            name: name.into(),
+            members: vec![id],
+        });
+    }
 }
