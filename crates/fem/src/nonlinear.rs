@@ -818,28 +818,7 @@ fn newton_step(
                             ),
                         });
                     }
-                    for (s, src) in sources.iter_mut().enumerate() {
-                        let Some(sr) = &srcs[s] else { continue };
-                        if sr.update != GeometryUpdate::EachIteration {
-                            continue;
-                        }
-                        let state = State {
-                            mesh: model.mesh(),
-                            dofs: model.dofs(),
-                            displacement: u,
-                            time: t,
-                        };
-                        let rows = src.rows(&state)?;
-                        let prev = Some(sr.active.clone());
-                        srcs[s] = Some(make_rows(
-                            model,
-                            rows,
-                            src.method(),
-                            src.geometry_update(),
-                            prev,
-                            u,
-                        )?);
-                    }
+                    refresh_geometry_rows(model, sources, srcs, u, t, false)?;
                 }
                 // code_aster counts iterations from 0: ITER_GLOB_MAXI solves
                 // after the prediction.
@@ -856,31 +835,7 @@ fn newton_step(
             // Geometry update at each iteration: re-ask the rows at the
             // current iterate; new rows mean another pass.
             if !changed {
-                for (s, src) in sources.iter_mut().enumerate() {
-                    let Some(sr) = &srcs[s] else { continue };
-                    if sr.update != GeometryUpdate::EachIteration {
-                        continue;
-                    }
-                    let state = State {
-                        mesh: model.mesh(),
-                        dofs: model.dofs(),
-                        displacement: u,
-                        time: t,
-                    };
-                    let rows = src.rows(&state)?;
-                    if rows != sr.rows {
-                        let prev = Some(sr.active.clone());
-                        srcs[s] = Some(make_rows(
-                            model,
-                            rows,
-                            src.method(),
-                            src.geometry_update(),
-                            prev,
-                            u,
-                        )?);
-                        changed = true;
-                    }
-                }
+                changed = refresh_geometry_rows(model, sources, srcs, u, t, true)?;
                 if changed {
                     set_changes += 1;
                     if set_changes > active_set_max_iter {
@@ -1018,6 +973,49 @@ fn length_scale(model: &Model, u: &[f64]) -> f64 {
     let size = (0..3).map(|k| (hi[k] - lo[k]).max(0.)).fold(0.0, f64::max);
     let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     size.max(umax).max(1e-300)
+}
+
+/// Asks every source that updates its geometry at each iteration for its
+/// rows at the current iterate `u` and installs them (keeping the previous
+/// active set as the start). With `only_changed`, rows equal to the current
+/// ones are left as they are. Returns whether any source's rows were
+/// replaced.
+fn refresh_geometry_rows(
+    model: &Model,
+    sources: &mut [Box<dyn UnilateralSource + '_>],
+    srcs: &mut [Option<SourceRows>],
+    u: &[f64],
+    t: f64,
+    only_changed: bool,
+) -> Result<bool, FemError> {
+    let mut changed = false;
+    for (src, slot) in sources.iter_mut().zip(srcs.iter_mut()) {
+        let Some(sr) = slot else { continue };
+        if sr.update != GeometryUpdate::EachIteration {
+            continue;
+        }
+        let state = State {
+            mesh: model.mesh(),
+            dofs: model.dofs(),
+            displacement: u,
+            time: t,
+        };
+        let rows = src.rows(&state)?;
+        if only_changed && rows == sr.rows {
+            continue;
+        }
+        let prev = Some(sr.active.clone());
+        *slot = Some(make_rows(
+            model,
+            rows,
+            src.method(),
+            src.geometry_update(),
+            prev,
+            u,
+        )?);
+        changed = true;
+    }
+    Ok(changed)
 }
 
 fn make_rows(
