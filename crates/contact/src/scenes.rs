@@ -262,6 +262,16 @@ pub fn two_plates_mesh(n_up: usize, n_low: usize) -> Result<Mesh, FemError> {
 /// Exact answer with a perfect interface: σ_yy = −1e5, the interface at
 /// DY = −0.05.
 pub fn two_plates_problem(mesh: Mesh) -> Result<(Model, Loads), FemError> {
+    two_plates_problem_as(mesh, Hypothesis::PlaneStrain)
+}
+
+/// [`two_plates_problem`] under another 2D `hypothesis`. With ν = 0 the
+/// answer is the same uniaxial one under AXIS (for a mesh in x ≥ 0, e.g.
+/// shifted by +1): σ_yy = −1e5 and no radial displacement.
+pub fn two_plates_problem_as(
+    mesh: Mesh,
+    hypothesis: Hypothesis,
+) -> Result<(Model, Loads), FemError> {
     let material = Elastic::new(2e6, 0.0)?;
     let mut elements = Vec::new();
     for g in ["UP", "LOW"] {
@@ -272,7 +282,7 @@ pub fn two_plates_problem(mesh: Mesh) -> Result<(Model, Loads), FemError> {
             elements.push(Element {
                 cell,
                 kind: ElementKind::Continuum {
-                    hypothesis: Hypothesis::PlaneStrain,
+                    hypothesis,
                     material,
                 },
             });
