@@ -8,8 +8,7 @@ use aster_contact::hertz::{hertz_mesh, HertzMesh};
 use aster_contact::scenes::{two_blocks_mesh, two_blocks_problem};
 use aster_contact::*;
 use aster_fem::{
-    Comp, Dof, Elastic, Element, ElementKind, Hypothesis, InitialState, Load, Loads, Model,
-    Multiplier, StaticNonLinear, UnilateralSource,
+    Comp, Dof, Elastic, InitialState, Loads, Model, StaticNonLinear, UnilateralSource,
 };
 use criterion::{criterion_group, criterion_main, Criterion};
 
@@ -97,50 +96,7 @@ fn linear_path(model: &Model, loads: &Loads, defs: &[ContactDefinition; 3]) -> f
 
 fn hertz_problem(n: usize) -> (Model, Loads) {
     let mesh = hertz_mesh(&HertzMesh::new(50.0, 0.15, n)).unwrap();
-    let material = Elastic::new(2e5, 0.3).unwrap();
-    let mut elements = Vec::new();
-    for g in ["CYL", "PLAN"] {
-        for &cell in &mesh.group_ma(g).unwrap().members {
-            elements.push(Element {
-                cell,
-                kind: ElementKind::Continuum {
-                    hypothesis: Hypothesis::PlaneStrain,
-                    material,
-                },
-            });
-        }
-    }
-    let mut loads = Loads::new();
-    for &n in &mesh.group_no("PLAN").unwrap().members {
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DX),
-            value: 0.0,
-        });
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DY),
-            value: 0.0,
-        });
-    }
-    for &n in &mesh.group_no("SYME").unwrap().members {
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DX),
-            value: 0.0,
-        });
-    }
-    for &n in &mesh.group_no("HUB").unwrap().members {
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DX),
-            value: 0.0,
-        });
-        loads.add(
-            Load::Eliminated {
-                dof: Dof::new(n, Comp::DY),
-                value: -0.25,
-            },
-            Multiplier::from_fn(Ok),
-        );
-    }
-    (Model::new(mesh, elements).unwrap(), loads)
+    scenes::hertz_problem(mesh, Elastic::new(2e5, 0.3).unwrap(), 0.25).unwrap()
 }
 
 fn bench(c: &mut Criterion) {

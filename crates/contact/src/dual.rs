@@ -207,6 +207,38 @@ pub fn solve_dual_cached(
     ctx.finish(lambda, iterations)
 }
 
+fn dotv(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Size of the projected gradient (free part φ and chopped part β): how far
+/// the multipliers are from the complementarity conditions.
+fn projected_gradient_norm(phi: &[f64], beta: &[f64]) -> f64 {
+    phi.iter().chain(beta).fold(0.0f64, |a, v| a.max(v.abs()))
+}
+
+/// The active sets an active-set loop has tried: meeting one again is
+/// cycling, reported with the iteration and the number of rows.
+#[derive(Default)]
+struct SeenSets(Vec<Vec<bool>>);
+
+impl SeenSets {
+    fn visit(&mut self, active: &[bool], iterations: usize) -> Result<(), ContactError> {
+        if self.0.iter().any(|s| s == active) {
+            return Err(ContactError::Cycling {
+                iterations,
+                points: active.len(),
+            });
+        }
+        self.0.push(active.to_vec());
+        Ok(())
+    }
+
+    fn clear(&mut self) {
+        self.0.clear();
+    }
+}
+
 struct Context<'a> {
     k: &'a dyn StiffnessSolve,
     u_free: &'a [f64],
@@ -404,6 +436,24 @@ impl<'a> Context<'a> {
         Ok(Err(set[n - 1]))
     }
 
+    /// The multipliers of all rows with exactly the rows of `set` active:
+    /// [`Context::solve_on`] scattered into a vector of every row (0 off the
+    /// set); `Err(row)` names a redundant row.
+    fn multipliers_on(
+        &mut self,
+        set: &[usize],
+        shift: &[f64],
+        extra: &[f64],
+    ) -> Result<Result<Vec<f64>, usize>, ContactError> {
+        Ok(self.solve_on(set, shift, extra)?.map(|on_set| {
+            let mut lambda = vec![0.0; self.rows.len()];
+            for (&i, l) in set.iter().zip(on_set) {
+                lambda[i] = l;
+            }
+            lambda
+        }))
+    }
+
     /// Active set with "add all violated, drop the most negative" moves.
     /// `shift` and `extra` modify q and the diagonal (augmented Lagrangian).
     fn active_set(
@@ -415,19 +465,13 @@ impl<'a> Context<'a> {
         stop_singulier: bool,
     ) -> Result<(Vec<f64>, usize), ContactError> {
         let m = self.rows.len();
-        let mut seen: Vec<Vec<bool>> = Vec::new();
+        let mut seen = SeenSets::default();
         let mut dropped = vec![false; m];
         let max_iter = max_iter.max(2 * m + 2);
         for it in 0..max_iter {
-            if seen.contains(&active) {
-                return Err(ContactError::Cycling {
-                    iterations: it,
-                    points: m,
-                });
-            }
-            seen.push(active.clone());
+            seen.visit(&active, it)?;
             let set: Vec<usize> = (0..m).filter(|&i| active[i] && !dropped[i]).collect();
-            let lam_a = match self.solve_on(&set, shift, extra)? {
+            let mut lambda = match self.multipliers_on(&set, shift, extra)? {
                 Ok(l) => l,
                 Err(bad) => {
                     if stop_singulier {
@@ -439,10 +483,6 @@ impl<'a> Context<'a> {
                     continue;
                 }
             };
-            let mut lambda = vec![0.0; m];
-            for (a, &i) in set.iter().enumerate() {
-                lambda[i] = lam_a[a];
-            }
             let lmax = lambda.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             if let Some((i, _)) = set
                 .iter()
@@ -488,6 +528,22 @@ impl<'a> Context<'a> {
             .zip(self.eps)
             .map(|((r, &pi), &e)| r.dot(&z) + e * pi)
             .collect())
+    }
+
+    /// Exact minimisation of ½λᵀMλ + qᵀλ from gradient `g` along `d`
+    /// (M = S + E): (M d, dᵀM d, step α = gᵀd / dᵀM d), M d costing one K
+    /// solve. Both moves of MPRGP (conjugate gradient and proportioning)
+    /// take their step so.
+    fn line_step(&mut self, d: &[f64], g: &[f64]) -> Result<(Vec<f64>, f64, f64), ContactError> {
+        let md = self.apply(d)?;
+        let dmd = dotv(d, &md);
+        if dmd.is_nan() || dmd <= 0.0 {
+            return Err(ContactError::Solver(
+                "the contact compliance matrix is not positive definite".into(),
+            ));
+        }
+        let alpha = dotv(g, d) / dmd;
+        Ok((md, dmd, alpha))
     }
 
     /// MPRGP for min ½λᵀMλ + qᵀλ, λ ≥ 0 (gradient g = Mλ + q = s).
@@ -536,16 +592,11 @@ impl<'a> Context<'a> {
                 .map(|(&xi, &gi)| if xi > 0.0 { 0.0 } else { gi.min(0.0) })
                 .collect()
         };
-        let dotv = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
         let mut p = free(&x, &g);
         for it in 0..max_iter {
             let phi = free(&x, &g);
             let beta = chopped(&x, &g);
-            let gp_norm = phi
-                .iter()
-                .chain(beta.iter())
-                .fold(0.0f64, |a, v| a.max(v.abs()));
-            if gp_norm <= tol {
+            if projected_gradient_norm(&phi, &beta) <= tol {
                 return Ok((x, it));
             }
             // Reduced free gradient φ̃ (largest feasible step α̅ along φ).
@@ -564,14 +615,7 @@ impl<'a> Context<'a> {
                 if dotv(&p, &p) == 0.0 {
                     p = phi.clone();
                 }
-                let ap = self.apply(&p)?;
-                let pap = dotv(&p, &ap);
-                if pap.is_nan() || pap <= 0.0 {
-                    return Err(ContactError::Solver(
-                        "the contact compliance matrix is not positive definite".into(),
-                    ));
-                }
-                let a_cg = dotv(&g, &p) / pap;
+                let (ap, pap, a_cg) = self.line_step(&p, &g)?;
                 let a_f = x
                     .iter()
                     .zip(&p)
@@ -606,14 +650,7 @@ impl<'a> Context<'a> {
                 }
             } else {
                 // Proportioning: leave the face along the chopped gradient.
-                let ad = self.apply(&beta)?;
-                let dad = dotv(&beta, &ad);
-                if dad.is_nan() || dad <= 0.0 {
-                    return Err(ContactError::Solver(
-                        "the contact compliance matrix is not positive definite".into(),
-                    ));
-                }
-                let a_cg = dotv(&g, &beta) / dad;
+                let (ad, _, a_cg) = self.line_step(&beta, &g)?;
                 for i in 0..m {
                     x[i] = (x[i] - a_cg * beta[i]).max(0.0);
                     g[i] -= a_cg * ad[i];
@@ -621,12 +658,7 @@ impl<'a> Context<'a> {
                 p = free(&x, &g);
             }
         }
-        let phi = free(&x, &g);
-        let beta = chopped(&x, &g);
-        let residual = phi
-            .iter()
-            .chain(beta.iter())
-            .fold(0.0f64, |a, v| a.max(v.abs()));
+        let residual = projected_gradient_norm(&free(&x, &g), &chopped(&x, &g));
         Err(ContactError::NotConverged {
             what: "GCP (projected conjugate gradient) contact loop",
             iterations: max_iter,
@@ -696,24 +728,14 @@ impl<'a> Context<'a> {
             Some(w) if w.len() == m => w.to_vec(),
             _ => self.q.iter().map(|&q| q < 0.0).collect(),
         };
-        let mut seen: Vec<Vec<bool>> = Vec::new();
+        let mut seen = SeenSets::default();
         let zero = vec![0.0; m];
         for it in 0..max_iter.max(2 * m + 2) {
-            if seen.contains(&active) {
-                return Err(ContactError::Cycling {
-                    iterations: it,
-                    points: m,
-                });
-            }
-            seen.push(active.clone());
+            seen.visit(&active, it)?;
             let set: Vec<usize> = (0..m).filter(|&i| active[i]).collect();
-            let lam_a = self
-                .solve_on(&set, &zero, &zero)?
+            let mut lambda = self
+                .multipliers_on(&set, &zero, &zero)?
                 .map_err(|bad| ContactError::SingularContact { point: bad })?;
-            let mut lambda = vec![0.0; m];
-            for (a, &i) in set.iter().enumerate() {
-                lambda[i] = lam_a[a];
-            }
             let s = self.slack(&lambda)?;
             let next: Vec<bool> = (0..m)
                 .map(|i| lambda[i] - c[i] * s[i] > c[i] * self.tol_s)

@@ -1,6 +1,9 @@
-//! Built-in contact scenes, generated in code (no mesh file): the ZZZZ237
-//! two-block scene (soft square pressed onto a near-rigid block) with
-//! `n × n` cells per block, and its fem model and loads.
+//! Built-in contact scenes, generated in code (no mesh file), with their fem
+//! models and loads: the ZZZZ237 two-block scene (soft square pressed onto
+//! a near-rigid block) with `n × n` cells per block, the SSNP121 kind of
+//! two plates, and the Hertz cylinder on a plane ([`hertz_problem`], on the
+//! mesh of [`crate::hertz::hertz_mesh`]). The tests, the benchmarks and
+//! aster-study build their scenes here, so they all solve the same problem.
 
 use aster_fem::{
     Comp, Dof, Elastic, Element, ElementKind, FemError, Frame, Hypothesis, Load, Loads, Model,
@@ -259,6 +262,16 @@ pub fn two_plates_mesh(n_up: usize, n_low: usize) -> Result<Mesh, FemError> {
 /// Exact answer with a perfect interface: σ_yy = −1e5, the interface at
 /// DY = −0.05.
 pub fn two_plates_problem(mesh: Mesh) -> Result<(Model, Loads), FemError> {
+    two_plates_problem_as(mesh, Hypothesis::PlaneStrain)
+}
+
+/// [`two_plates_problem`] under another 2D `hypothesis`. With ν = 0 the
+/// answer is the same uniaxial one under AXIS (for a mesh in x ≥ 0, e.g.
+/// shifted by +1): σ_yy = −1e5 and no radial displacement.
+pub fn two_plates_problem_as(
+    mesh: Mesh,
+    hypothesis: Hypothesis,
+) -> Result<(Model, Loads), FemError> {
     let material = Elastic::new(2e6, 0.0)?;
     let mut elements = Vec::new();
     for g in ["UP", "LOW"] {
@@ -269,7 +282,7 @@ pub fn two_plates_problem(mesh: Mesh) -> Result<(Model, Loads), FemError> {
             elements.push(Element {
                 cell,
                 kind: ElementKind::Continuum {
-                    hypothesis: Hypothesis::PlaneStrain,
+                    hypothesis,
                     material,
                 },
             });
@@ -300,6 +313,64 @@ pub fn two_plates_problem(mesh: Mesh) -> Result<(Model, Loads), FemError> {
 
 /// Adds each cell group and the node group of its cells under the same
 /// name, then the one-node groups `named`.
+/// The Hertz problem on a [`crate::hertz::hertz_mesh`]: plane strain, the
+/// half cylinder `CYL` and the layer `PLAN` of one elastic `material`; the
+/// base of `PLAN` clamped, the symmetry line `SYME` held in DX, the hub
+/// `HUB` held in DX and pushed down by `depth × t` (all eliminated). The
+/// contact pair is `MAIT` (the plane) and `ESCL` (the cylinder).
+pub fn hertz_problem(
+    mesh: Mesh,
+    material: Elastic,
+    depth: f64,
+) -> Result<(Model, Loads), FemError> {
+    let cells = |g: &str| {
+        mesh.group_ma(g)
+            .map(|g| g.members.clone())
+            .ok_or_else(|| FemError::Model(format!("the Hertz mesh has no cell group {g}")))
+    };
+    let nodes = |g: &str| {
+        mesh.group_no(g)
+            .map(|g| g.members.clone())
+            .ok_or_else(|| FemError::Model(format!("the Hertz mesh has no node group {g}")))
+    };
+    let mut elements = Vec::new();
+    for g in ["CYL", "PLAN"] {
+        for cell in cells(g)? {
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Continuum {
+                    hypothesis: Hypothesis::PlaneStrain,
+                    material,
+                },
+            });
+        }
+    }
+    let fixed = |n, comp| Load::Eliminated {
+        dof: Dof::new(n, comp),
+        value: 0.0,
+    };
+    let mut loads = Loads::new();
+    for n in nodes("PLAN")? {
+        loads.push(fixed(n, Comp::DX));
+        loads.push(fixed(n, Comp::DY));
+    }
+    for n in nodes("SYME")? {
+        loads.push(fixed(n, Comp::DX));
+    }
+    for n in nodes("HUB")? {
+        loads.push(fixed(n, Comp::DX));
+        loads.add(
+            Load::Eliminated {
+                dof: Dof::new(n, Comp::DY),
+                value: -depth,
+            },
+            Multiplier::from_fn(Ok),
+        );
+    }
+    let model = Model::new(mesh, elements)?;
+    Ok((model, loads))
+}
+
 fn add_groups<'a>(
     m: &mut Mesh,
     groups: impl IntoIterator<Item = (&'a str, Vec<CellId>)>,

@@ -5,9 +5,7 @@
 
 use aster_contact::hertz::{hertz_mesh, plane_strain_modulus, HertzMesh, HertzSolution};
 use aster_contact::*;
-use aster_fem::{
-    Comp, Dof, Elastic, Element, ElementKind, Hypothesis, Load, Loads, Model, Multiplier,
-};
+use aster_fem::Elastic;
 
 const E: f64 = 2e5;
 const NU: f64 = 0.3;
@@ -33,45 +31,8 @@ fn solve(n_contact: usize, algo: DiscreteAlgo, depth: f64) -> Hertz {
 }
 
 fn solve_with(n_contact: usize, def: &ContactDefinition, depth: f64) -> Hertz {
-    let params = HertzMesh::new(R, 0.15, n_contact);
-    let mesh = hertz_mesh(&params).unwrap();
-    let material = Elastic::new(E, NU).unwrap();
-    let mut elements = Vec::new();
-    for g in ["CYL", "PLAN"] {
-        for &cell in &mesh.group_ma(g).unwrap().members {
-            elements.push(Element {
-                cell,
-                kind: ElementKind::Continuum {
-                    hypothesis: Hypothesis::PlaneStrain,
-                    material,
-                },
-            });
-        }
-    }
-    let mut loads = Loads::new();
-    let fix = |loads: &mut Loads, n, c, v: f64, moving: bool| {
-        let load = Load::Eliminated {
-            dof: Dof::new(n, c),
-            value: v,
-        };
-        if moving {
-            loads.add(load, Multiplier::from_fn(Ok));
-        } else {
-            loads.push(load);
-        }
-    };
-    for &n in &mesh.group_no("PLAN").unwrap().members {
-        fix(&mut loads, n, Comp::DX, 0.0, false);
-        fix(&mut loads, n, Comp::DY, 0.0, false);
-    }
-    for &n in &mesh.group_no("SYME").unwrap().members {
-        fix(&mut loads, n, Comp::DX, 0.0, false);
-    }
-    for &n in &mesh.group_no("HUB").unwrap().members {
-        fix(&mut loads, n, Comp::DX, 0.0, false);
-        fix(&mut loads, n, Comp::DY, -depth, true);
-    }
-    let model = Model::new(mesh, elements).unwrap();
+    let mesh = hertz_mesh(&HertzMesh::new(R, 0.15, n_contact)).unwrap();
+    let (model, loads) = scenes::hertz_problem(mesh, Elastic::new(E, NU).unwrap(), depth).unwrap();
     let mut zones = ZoneContact::build_all(def, model.mesh()).unwrap();
     run_linear(def, &mut zones, &model, &loads, &[0.0, 1.0]).unwrap();
     let mesh = model.mesh();

@@ -3,9 +3,9 @@
 //! as code_aster's LAGS_C; the exact answer of a perfect interface is
 //! σ_yy = −1e5 (LAGS_C = −1e5) and DY = −0.05 at the interface.
 
-use aster_contact::scenes::{two_plates_mesh, two_plates_problem};
+use aster_contact::scenes::{two_plates_mesh, two_plates_problem, two_plates_problem_as};
 use aster_contact::*;
-use aster_fem::{Comp, Dof, Model, StaticNonLinear, UnilateralSource};
+use aster_fem::{Comp, Dof, Hypothesis, Model, StaticNonLinear, UnilateralSource};
 
 fn continuous(integration: Integration, geom_loop: GeomLoop) -> ContactDefinition {
     let mut def = ContactDefinition::continuous(
@@ -183,4 +183,39 @@ fn automatique_stops_below_resi_geom_after_at_least_two_pairings() {
     assert!(r < 1e-6, "{r}");
     let d = max_diff(&u2, &uk);
     assert!(d > 0.0 && d < 1e-2 * 0.05, "{d}");
+}
+
+#[test]
+fn axisymmetric_lags_c_is_the_pressure_when_weights_carry_the_radius() {
+    // The plates as two discs (x = r ∈ [0, 2]) under AXIS, ν = 0: the same
+    // uniaxial answer, σ_yy = −1e5 on the interface. fem's nodal forces are
+    // per radian (∫ … r dr), so the contact integrals must carry r too
+    // (code_aster's `mmmjac`): with plane weights LAGS_C would come out as
+    // pressure × r / (mean r of the node's cells), 20 % to 100 % off here.
+    let mut mesh = two_plates_mesh(4, 4).unwrap();
+    for c in &mut mesh.coords {
+        c[0] += 1.0;
+    }
+    let (model, loads) = two_plates_problem_as(mesh, Hypothesis::Axisymmetric).unwrap();
+    let def = continuous(Integration::Gauss(3), GeomLoop::Controle { nb_iter: 2 });
+    let mut zones = ZoneContact::build_all(&def, model.mesh()).unwrap();
+    zones[0].set_measure(Measure::Axisymmetric);
+    let res = {
+        let mut snl = StaticNonLinear {
+            instants: vec![0.0, 1.0],
+            sources: zones
+                .iter_mut()
+                .map(|z| Box::new(z) as Box<dyn UnilateralSource>)
+                .collect(),
+            ..Default::default()
+        };
+        snl.solve(&model, &loads).unwrap()
+    };
+    let u = &res.last().unwrap().displacement;
+    let lags = zones[0].lags_c().unwrap();
+    assert_eq!(lags.len(), 5);
+    for (n, p) in &lags {
+        assert!((p + 1e5).abs() < 1e-6 * 1e5, "LAGS_C({n:?}) = {p}");
+        assert!((dy(&model, u, *n) + 0.05).abs() < 1e-9);
+    }
 }

@@ -4,7 +4,7 @@
 
 mod common;
 
-use aster_eval::{CommandSink, ExecError};
+use aster_eval::{CommandSink, ConceptRef, ExecError};
 use aster_run::{Executor, RunOptions};
 use common::*;
 use std::path::PathBuf;
@@ -17,22 +17,76 @@ struct Scene {
     ex: Executor,
     out: Shared,
     p: Program,
-    resu: aster_eval::ConceptRef,
+    resu: ConceptRef,
 }
 
-fn scene(algo: &'static str) -> Result<Scene, ExecError> {
+/// An executor reading the project's mesh as unit 20.
+fn executor(out: Box<dyn std::io::Write>) -> Executor {
     let mut options = RunOptions::default();
     options.units.insert(20, mesh_path());
+    Executor::new(options, out)
+}
+
+/// An executor and the concepts it was given: runs `name = command(...)`
+/// lines as a .comm file does.
+struct Commands {
+    ex: Executor,
+    p: Program,
+}
+
+impl Commands {
+    /// `name = command(keywords)`: runs the command and returns the concept
+    /// it made.
+    fn define(
+        &mut self,
+        (name, typ): (&str, &str),
+        command: &str,
+        keywords: Vec<(&'static str, V)>,
+    ) -> Result<ConceptRef, ExecError> {
+        let c = self.p.concept(name, typ);
+        self.ex.execute(&call(command, Some(&c), keywords))?;
+        Ok(c)
+    }
+
+    /// `MA = LIRE_MAILLAGE(FORMAT='ASTER')`.
+    fn read_mesh(&mut self) -> Result<ConceptRef, ExecError> {
+        self.define(
+            ("MA", "maillage_sdaster"),
+            "LIRE_MAILLAGE",
+            vec![("FORMAT", V::S("ASTER"))],
+        )
+    }
+
+    /// A function of one value (DEFI_CONSTANTE).
+    fn constant(&mut self, name: &str, v: f64) -> Result<ConceptRef, ExecError> {
+        self.define(
+            (name, "fonction_sdaster"),
+            "DEFI_CONSTANTE",
+            vec![("VALE", V::R(v))],
+        )
+    }
+}
+
+/// One AFFE occurrence of AFFE_MODELE (mechanics).
+fn affe(group_ma: V, modelisation: &'static str) -> Vec<(&'static str, V)> {
+    vec![
+        ("GROUP_MA", group_ma),
+        ("PHENOMENE", V::S("MECANIQUE")),
+        ("MODELISATION", V::S(modelisation)),
+    ]
+}
+
+/// ZZZZ237 B: the square ABCD on springs K1, K2, pushed down by a ramped
+/// DDL_IMPO on CD onto the plane y = 0 (LIAISON_UNIL on AB with `algo`),
+/// 20 steps, then FORC_NODA and REAC_NODA.
+fn scene(algo: &'static str) -> Result<Scene, ExecError> {
     let out = Shared::default();
-    let mut ex = Executor::new(options, Box::new(out.clone()));
-    let mut p = Program::default();
-    let ma = p.concept("MA", "maillage_sdaster");
-    ex.execute(&call(
-        "LIRE_MAILLAGE",
-        Some(&ma),
-        vec![("FORMAT", V::S("ASTER"))],
-    ))?;
-    ex.execute(&reuse(
+    let mut c = Commands {
+        ex: executor(Box::new(out.clone())),
+        p: Program::default(),
+    };
+    let ma = c.read_mesh()?;
+    c.ex.execute(&reuse(
         "DEFI_GROUP",
         &ma,
         vec![
@@ -43,57 +97,43 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
             ),
         ],
     ))?;
-    let mou = p.concept("MAT_MOU", "mater_sdaster");
-    ex.execute(&call(
+    let mou = c.define(
+        ("MAT_MOU", "mater_sdaster"),
         "DEFI_MATERIAU",
-        Some(&mou),
         vec![(
             "ELAS",
             V::F(vec![vec![("E", V::R(2e9)), ("NU", V::R(0.3))]]),
         )],
-    ))?;
-    let mo = p.concept("MO", "modele_sdaster");
-    ex.execute(&call(
+    )?;
+    let springs = || V::L(vec![V::S("K1"), V::S("K2")]);
+    let mo = c.define(
+        ("MO", "modele_sdaster"),
         "AFFE_MODELE",
-        Some(&mo),
         vec![
             ("MAILLAGE", V::C(ma.clone())),
             (
                 "AFFE",
                 V::F(vec![
-                    vec![
-                        ("GROUP_MA", V::S("ABCD")),
-                        ("PHENOMENE", V::S("MECANIQUE")),
-                        ("MODELISATION", V::S("D_PLAN")),
-                    ],
-                    vec![
-                        ("GROUP_MA", V::L(vec![V::S("K1"), V::S("K2")])),
-                        ("PHENOMENE", V::S("MECANIQUE")),
-                        ("MODELISATION", V::S("2D_DIS_T")),
-                    ],
+                    affe(V::S("ABCD"), "D_PLAN"),
+                    affe(springs(), "2D_DIS_T"),
                 ]),
             ),
         ],
-    ))?;
-    let chmat = p.concept("CHMAT", "cham_mater");
-    ex.execute(&call(
+    )?;
+    let chmat = c.define(
+        ("CHMAT", "cham_mater"),
         "AFFE_MATERIAU",
-        Some(&chmat),
         vec![
             ("MAILLAGE", V::C(ma.clone())),
             (
                 "AFFE",
-                V::F(vec![vec![
-                    ("GROUP_MA", V::S("ABCD")),
-                    ("MATER", V::C(mou.clone())),
-                ]]),
+                V::F(vec![vec![("GROUP_MA", V::S("ABCD")), ("MATER", V::C(mou))]]),
             ),
         ],
-    ))?;
-    let car = p.concept("CAR", "cara_elem");
-    ex.execute(&call(
+    )?;
+    let car = c.define(
+        ("CAR", "cara_elem"),
         "AFFE_CARA_ELEM",
-        Some(&car),
         vec![
             ("MODELE", V::C(mo.clone())),
             (
@@ -101,16 +141,15 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
                 V::F(vec![vec![
                     ("REPERE", V::S("LOCAL")),
                     ("CARA", V::S("K_T_D_L")),
-                    ("GROUP_MA", V::L(vec![V::S("K1"), V::S("K2")])),
+                    ("GROUP_MA", springs()),
                     ("VALE", V::L(vec![V::I(10), V::I(10)])),
                 ]]),
             ),
         ],
-    ))?;
-    let bloc = p.concept("BLOC", "char_cine_meca");
-    ex.execute(&call(
+    )?;
+    let bloc = c.define(
+        ("BLOC", "char_cine_meca"),
         "AFFE_CHAR_CINE",
-        Some(&bloc),
         vec![
             ("MODELE", V::C(mo.clone())),
             (
@@ -122,11 +161,10 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
                 ]]),
             ),
         ],
-    ))?;
-    let depl = p.concept("DEPL", "char_meca");
-    ex.execute(&call(
+    )?;
+    let depl = c.define(
+        ("DEPL", "char_meca"),
         "AFFE_CHAR_MECA",
-        Some(&depl),
         vec![
             ("MODELE", V::C(mo.clone())),
             (
@@ -134,43 +172,31 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
                 V::F(vec![vec![("GROUP_NO", V::S("CD")), ("DY", V::R(-1.0))]]),
             ),
         ],
-    ))?;
-    let fimpo = p.concept("F_IMPO", "fonction_sdaster");
-    ex.execute(&call(
-        "DEFI_CONSTANTE",
-        Some(&fimpo),
-        vec![("VALE", V::R(0.0))],
-    ))?;
-    let fmult = p.concept("F_MULT", "fonction_sdaster");
-    ex.execute(&call(
-        "DEFI_CONSTANTE",
-        Some(&fmult),
-        vec![("VALE", V::R(-1.0))],
-    ))?;
-    let cont = p.concept("CONT", "char_contact");
+    )?;
+    let fimpo = c.constant("F_IMPO", 0.0)?;
+    let fmult = c.constant("F_MULT", -1.0)?;
     let mut zone = vec![
         ("GROUP_NO", V::S("AB")),
         ("NOM_CMP", V::S("DY")),
-        ("COEF_IMPO", V::C(fimpo.clone())),
-        ("COEF_MULT", V::C(fmult.clone())),
+        ("COEF_IMPO", V::C(fimpo)),
+        ("COEF_MULT", V::C(fmult)),
         ("ALGO_CONT", V::S(algo)),
     ];
     if algo == "PENALISATION" {
         zone.push(("COEF_PENA", V::R(1e16)));
     }
-    ex.execute(&call(
+    let cont = c.define(
+        ("CONT", "char_contact"),
         "DEFI_CONTACT",
-        Some(&cont),
         vec![
             ("MODELE", V::C(mo.clone())),
             ("FORMULATION", V::S("LIAISON_UNIL")),
             ("ZONE", V::F(vec![zone])),
         ],
-    ))?;
-    let ff = p.concept("F_FORC", "fonction_sdaster");
-    ex.execute(&call(
+    )?;
+    let ff = c.define(
+        ("F_FORC", "fonction_sdaster"),
         "DEFI_FONCTION",
-        Some(&ff),
         vec![
             ("NOM_PARA", V::S("INST")),
             (
@@ -179,11 +205,10 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
             ),
             ("PROL_DROITE", V::S("LINEAIRE")),
         ],
-    ))?;
-    let ltps = p.concept("L_TPS", "listr8_sdaster");
-    ex.execute(&call(
+    )?;
+    let ltps = c.define(
+        ("L_TPS", "listr8_sdaster"),
         "DEFI_LIST_REEL",
-        Some(&ltps),
         vec![
             ("DEBUT", V::R(0.0)),
             (
@@ -191,34 +216,27 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
                 V::F(vec![vec![("JUSQU_A", V::R(20.0)), ("NOMBRE", V::I(20))]]),
             ),
         ],
-    ))?;
-    let resu = p.concept("RESU", "evol_noli");
-    ex.execute(&call(
+    )?;
+    let resu = c.define(
+        ("RESU", "evol_noli"),
         "STAT_NON_LINE",
-        Some(&resu),
         vec![
-            ("MODELE", V::C(mo.clone())),
-            ("CHAM_MATER", V::C(chmat.clone())),
-            ("CARA_ELEM", V::C(car.clone())),
+            ("MODELE", V::C(mo)),
+            ("CHAM_MATER", V::C(chmat)),
+            ("CARA_ELEM", V::C(car)),
             (
                 "EXCIT",
                 V::F(vec![
-                    vec![
-                        ("CHARGE", V::C(depl.clone())),
-                        ("FONC_MULT", V::C(ff.clone())),
-                    ],
-                    vec![("CHARGE", V::C(bloc.clone()))],
+                    vec![("CHARGE", V::C(depl)), ("FONC_MULT", V::C(ff))],
+                    vec![("CHARGE", V::C(bloc))],
                 ]),
             ),
-            ("CONTACT", V::C(cont.clone())),
+            ("CONTACT", V::C(cont)),
             ("COMPORTEMENT", V::F(vec![vec![("RELATION", V::S("ELAS"))]])),
-            (
-                "INCREMENT",
-                V::F(vec![vec![("LIST_INST", V::C(ltps.clone()))]]),
-            ),
+            ("INCREMENT", V::F(vec![vec![("LIST_INST", V::C(ltps))]])),
         ],
-    ))?;
-    ex.execute(&reuse(
+    )?;
+    c.ex.execute(&reuse(
         "CALC_CHAMP",
         &resu,
         vec![
@@ -226,7 +244,12 @@ fn scene(algo: &'static str) -> Result<Scene, ExecError> {
             ("FORCE", V::L(vec![V::S("FORC_NODA"), V::S("REAC_NODA")])),
         ],
     ))?;
-    Ok(Scene { ex, out, p, resu })
+    Ok(Scene {
+        ex: c.ex,
+        out,
+        p: c.p,
+        resu,
+    })
 }
 
 fn test(
@@ -262,28 +285,16 @@ fn test(
 #[test]
 fn zzzz237b_through_the_executor_matches_code_aster() -> Result<(), ExecError> {
     let mut s = scene("CONTRAINTE")?;
-    test(&mut s, "A", "DEPL", "DY", -1.55431223e-15, 0.0, "ABSOLU")?;
-    test(&mut s, "B", "DEPL", "DY", -3.33066907e-15, 0.0, "ABSOLU")?;
-    test(&mut s, "A", "DEPL", "DX", -4.285714318, -4.28571, "RELATIF")?;
-    test(&mut s, "B", "DEPL", "DX", 4.285714274, 4.28571, "RELATIF")?;
-    test(
-        &mut s,
-        "A",
-        "FORC_NODA",
-        "DY",
-        2.19780220e10,
-        2.1978e10,
-        "RELATIF",
-    )?;
-    test(
-        &mut s,
-        "B",
-        "FORC_NODA",
-        "DY",
-        2.19780220e10,
-        2.1978e10,
-        "RELATIF",
-    )?;
+    for (node, cham, cmp, calc, refe, critere) in [
+        ("A", "DEPL", "DY", -1.55431223e-15, 0.0, "ABSOLU"),
+        ("B", "DEPL", "DY", -3.33066907e-15, 0.0, "ABSOLU"),
+        ("A", "DEPL", "DX", -4.285714318, -4.28571, "RELATIF"),
+        ("B", "DEPL", "DX", 4.285714274, 4.28571, "RELATIF"),
+        ("A", "FORC_NODA", "DY", 2.19780220e10, 2.1978e10, "RELATIF"),
+        ("B", "FORC_NODA", "DY", 2.19780220e10, 2.1978e10, "RELATIF"),
+    ] {
+        test(&mut s, node, cham, cmp, calc, refe, critere)?;
+    }
     let report = s.out.text();
     assert_eq!(s.ex.tally.nook, 0, "{report}");
     assert_eq!(s.ex.tally.ok, 12, "{report}");
@@ -344,34 +355,20 @@ fn penalty_is_close_to_exact() -> Result<(), ExecError> {
 
 #[test]
 fn unknown_group_suggests_a_name() {
-    let mut options = RunOptions::default();
-    options.units.insert(20, mesh_path());
-    let mut ex = Executor::new(options, Box::new(std::io::sink()));
-    let mut p = Program::default();
-    let ma = p.concept("MA", "maillage_sdaster");
-    ex.execute(&call(
-        "LIRE_MAILLAGE",
-        Some(&ma),
-        vec![("FORMAT", V::S("ASTER"))],
-    ))
-    .unwrap();
-    let mo = p.concept("MO", "modele_sdaster");
-    let err = ex
-        .execute(&call(
+    let mut c = Commands {
+        ex: executor(Box::new(std::io::sink())),
+        p: Program::default(),
+    };
+    let ma = c.read_mesh().unwrap();
+    let err = c
+        .define(
+            ("MO", "modele_sdaster"),
             "AFFE_MODELE",
-            Some(&mo),
             vec![
                 ("MAILLAGE", V::C(ma)),
-                (
-                    "AFFE",
-                    V::F(vec![vec![
-                        ("GROUP_MA", V::S("ABDC")),
-                        ("PHENOMENE", V::S("MECANIQUE")),
-                        ("MODELISATION", V::S("D_PLAN")),
-                    ]]),
-                ),
+                ("AFFE", V::F(vec![affe(V::S("ABDC"), "D_PLAN")])),
             ],
-        ))
+        )
         .unwrap_err();
     assert!(
         err.message

@@ -16,10 +16,8 @@ use crate::outcome::{Failure, FailureKind, Measures, Phases};
 use crate::scene::{Params, Scene};
 use crate::spec::Point;
 use aster_contact::hertz::{hertz_mesh, plane_strain_modulus, HertzMesh, HertzSolution};
-use aster_fem::{
-    Comp, Dof, Elastic, Element, ElementKind, Hypothesis, InequalityRow, Load, Loads, Model,
-    Multiplier,
-};
+use aster_contact::scenes::hertz_problem;
+use aster_fem::{Comp, Dof, Elastic, InequalityRow, Loads, Model};
 use aster_mesh::Mesh;
 use std::collections::BTreeMap;
 
@@ -68,56 +66,13 @@ impl Hertz {
             .map_err(|e| Failure::new(FailureKind::Other, e.to_string()))
     }
 
-    /// The model and loads on a mesh from [`Hertz::mesh`].
+    /// The model and loads on a mesh from [`Hertz::mesh`]: the contact
+    /// crate's Hertz problem ([`hertz_problem`]), so the study solves the
+    /// scene the contact tests check against the analytic solution.
     pub fn model(&self, mesh: Mesh) -> Result<(Model, Loads), Failure> {
         let other = |m: String| Failure::new(FailureKind::Other, m);
         let material = Elastic::new(self.young, self.poisson).map_err(|e| other(e.to_string()))?;
-        let group = |g: &str| {
-            mesh.group_ma(g)
-                .map(|g| g.members.clone())
-                .ok_or_else(|| other(format!("generated mesh lacks group {g}")))
-        };
-        let nodes = |g: &str| {
-            mesh.group_no(g)
-                .map(|g| g.members.clone())
-                .ok_or_else(|| other(format!("generated mesh lacks node group {g}")))
-        };
-        let mut elements = Vec::new();
-        for g in ["CYL", "PLAN"] {
-            for cell in group(g)? {
-                elements.push(Element {
-                    cell,
-                    kind: ElementKind::Continuum {
-                        hypothesis: Hypothesis::PlaneStrain,
-                        material,
-                    },
-                });
-            }
-        }
-        let mut loads = Loads::new();
-        let fixed = |n, comp| Load::Eliminated {
-            dof: Dof::new(n, comp),
-            value: 0.0,
-        };
-        for n in nodes("PLAN")? {
-            loads.push(fixed(n, Comp::DX));
-            loads.push(fixed(n, Comp::DY));
-        }
-        for n in nodes("SYME")? {
-            loads.push(fixed(n, Comp::DX));
-        }
-        for n in nodes("HUB")? {
-            loads.push(fixed(n, Comp::DX));
-            loads.add(
-                Load::Eliminated {
-                    dof: Dof::new(n, Comp::DY),
-                    value: -self.depth,
-                },
-                Multiplier::from_fn(Ok),
-            );
-        }
-        let model = Model::new(mesh, elements).map_err(|e| other(e.to_string()))?;
-        Ok((model, loads))
+        hertz_problem(mesh, material, self.depth).map_err(|e| other(e.to_string()))
     }
 }
 
