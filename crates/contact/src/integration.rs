@@ -30,7 +30,10 @@ pub fn integration_points(
     for (ci, cell) in zone.slave.iter().enumerate() {
         let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
         let quad = match (rule, cell.kind) {
-            (Integration::Auto, SurfaceKind::Tria6 | SurfaceKind::Quad8) => gauss(cell.kind, 3),
+            (
+                Integration::Auto,
+                SurfaceKind::Tria6 | SurfaceKind::Tria7 | SurfaceKind::Quad8 | SurfaceKind::Quad9,
+            ) => gauss(cell.kind, 3),
             (Integration::Auto, k) => {
                 // Nodal rule: weight of node i = ∫ N_i, exact for these cells.
                 let w: &[f64] = match k {
@@ -114,7 +117,7 @@ pub(crate) fn gauss(kind: SurfaceKind, order: u8) -> Vec<([f64; 2], f64)> {
             .into_iter()
             .map(|(x, w)| ([x, 0.0], w))
             .collect(),
-        SurfaceKind::Quad4 | SurfaceKind::Quad8 => {
+        SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
             let g = gauss_1d(n);
             let mut out = Vec::new();
             for &(x, wx) in &g {
@@ -124,7 +127,7 @@ pub(crate) fn gauss(kind: SurfaceKind, order: u8) -> Vec<([f64; 2], f64)> {
             }
             out
         }
-        SurfaceKind::Tria3 | SurfaceKind::Tria6 => match order {
+        SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => match order {
             0 | 1 => vec![([1.0 / 3.0, 1.0 / 3.0], 0.5)],
             2 => vec![
                 ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),

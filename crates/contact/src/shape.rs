@@ -12,6 +12,8 @@ pub enum SurfaceKind {
     Tria6,
     Quad4,
     Quad8,
+    Quad9,
+    Tria7,
 }
 
 impl SurfaceKind {
@@ -23,6 +25,8 @@ impl SurfaceKind {
             CellType::TRIA6 => SurfaceKind::Tria6,
             CellType::QUAD4 => SurfaceKind::Quad4,
             CellType::QUAD8 => SurfaceKind::Quad8,
+            CellType::QUAD9 => SurfaceKind::Quad9,
+            CellType::TRIA7 => SurfaceKind::Tria7,
             _ => return None,
         })
     }
@@ -43,7 +47,31 @@ impl SurfaceKind {
             SurfaceKind::Tria6 => 6,
             SurfaceKind::Quad4 => 4,
             SurfaceKind::Quad8 => 8,
+            SurfaceKind::Quad9 => 9,
+            SurfaceKind::Tria7 => 7,
         }
+    }
+
+    /// The mesh cell type of this kind.
+    pub fn cell_type(self) -> CellType {
+        match self {
+            SurfaceKind::Seg2 => CellType::SEG2,
+            SurfaceKind::Seg3 => CellType::SEG3,
+            SurfaceKind::Tria3 => CellType::TRIA3,
+            SurfaceKind::Tria6 => CellType::TRIA6,
+            SurfaceKind::Tria7 => CellType::TRIA7,
+            SurfaceKind::Quad4 => CellType::QUAD4,
+            SurfaceKind::Quad8 => CellType::QUAD8,
+            SurfaceKind::Quad9 => CellType::QUAD9,
+        }
+    }
+
+    /// Whether the reference domain is the unit triangle.
+    pub fn is_triangle(self) -> bool {
+        matches!(
+            self,
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7
+        )
     }
 
     /// Shape function values and derivatives (∂/∂ξ, ∂/∂η) at `xi`.
@@ -116,6 +144,12 @@ impl SurfaceKind {
                 }
                 (n, d)
             }
+            // Faces with a centre node: code_aster's functions, shared
+            // with the volume elements they bound.
+            SurfaceKind::Quad9 | SurfaceKind::Tria7 => {
+                let s = aster_fem::shape::shape(self.cell_type(), [x, y, 0.0]);
+                (s.n, s.dn.iter().map(|d| [d[0], d[1]]).collect())
+            }
         }
     }
 
@@ -124,12 +158,12 @@ impl SurfaceKind {
     pub fn outside_distance(self, xi: [f64; 2]) -> f64 {
         match self {
             SurfaceKind::Seg2 | SurfaceKind::Seg3 => (xi[0].abs() - 1.0).max(0.0),
-            SurfaceKind::Quad4 | SurfaceKind::Quad8 => {
+            SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
                 let dx = (xi[0].abs() - 1.0).max(0.0);
                 let dy = (xi[1].abs() - 1.0).max(0.0);
                 (dx * dx + dy * dy).sqrt()
             }
-            SurfaceKind::Tria3 | SurfaceKind::Tria6 => {
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => {
                 let c = self.clamp(xi);
                 ((xi[0] - c[0]).powi(2) + (xi[1] - c[1]).powi(2)).sqrt()
             }
@@ -140,10 +174,10 @@ impl SurfaceKind {
     pub fn clamp(self, xi: [f64; 2]) -> [f64; 2] {
         match self {
             SurfaceKind::Seg2 | SurfaceKind::Seg3 => [xi[0].clamp(-1.0, 1.0), 0.0],
-            SurfaceKind::Quad4 | SurfaceKind::Quad8 => {
+            SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
                 [xi[0].clamp(-1.0, 1.0), xi[1].clamp(-1.0, 1.0)]
             }
-            SurfaceKind::Tria3 | SurfaceKind::Tria6 => {
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => {
                 let (x, y) = (xi[0], xi[1]);
                 if x >= 0.0 && y >= 0.0 && x + y <= 1.0 {
                     return [x, y];
@@ -175,7 +209,7 @@ impl SurfaceKind {
     /// The centre of the reference domain (start of the projection).
     pub fn centre(self) -> [f64; 2] {
         match self {
-            SurfaceKind::Tria3 | SurfaceKind::Tria6 => [1.0 / 3.0, 1.0 / 3.0],
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => [1.0 / 3.0, 1.0 / 3.0],
             _ => [0.0, 0.0],
         }
     }
@@ -205,6 +239,12 @@ impl SurfaceKind {
                 [0.0, 1.0],
                 [-1.0, 0.0],
             ],
+            SurfaceKind::Quad9 | SurfaceKind::Tria7 => {
+                aster_fem::shape::reference_nodes(self.cell_type())
+                    .into_iter()
+                    .map(|p| [p[0], p[1]])
+                    .collect()
+            }
         }
     }
 }
@@ -336,13 +376,15 @@ pub fn project(kind: SurfaceKind, nodes: &[[f64; 3]], p: [f64; 3]) -> Option<Cel
 mod tests {
     use super::*;
 
-    const KINDS: [SurfaceKind; 6] = [
+    const KINDS: [SurfaceKind; 8] = [
         SurfaceKind::Seg2,
         SurfaceKind::Seg3,
         SurfaceKind::Tria3,
         SurfaceKind::Tria6,
+        SurfaceKind::Tria7,
         SurfaceKind::Quad4,
         SurfaceKind::Quad8,
+        SurfaceKind::Quad9,
     ];
 
     #[test]

@@ -284,8 +284,11 @@ impl RefData {
     }
 }
 
-/// Largest element: HEXA8 with 24 DOFs.
-pub const MAX_EL_DOFS: usize = 24;
+/// Largest element: HEXA27 with 81 DOFs.
+pub const MAX_EL_DOFS: usize = 81;
+
+/// Most nodes of a continuum cell (HEXA27).
+const MAX_EL_NODES: usize = 27;
 
 /// Allocation-free continuum stiffness into `out` (row-major, ndof×ndof),
 /// for the hot assembly loop. Same formulation as [`continuum_stiffness`].
@@ -302,7 +305,7 @@ pub fn continuum_stiffness_fast(
     let ndof = nn * dim;
     let ncomp = hyp.ncomp();
     out[..ndof * ndof].iter_mut().for_each(|v| *v = 0.);
-    let mut xs = [[0.0f64; 3]; 8];
+    let mut xs = [[0.0f64; 3]; MAX_EL_NODES];
     for (i, &n) in nodes.iter().enumerate() {
         xs[i] = mesh.coord(n);
     }
