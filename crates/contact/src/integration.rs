@@ -8,6 +8,13 @@
 //! QUAD8) have corner weights ≤ 0 with nodal rules, so `AUTO` falls back to
 //! Gauss points there. `SIMPSON` and `NCOTES` are segment rules; on faces
 //! they use Gauss points of the same order.
+//!
+//! Weights are measured as code_aster's contact elements do (`mmmjac`):
+//! on the **reference** slave geometry (the mesh as read, not the current
+//! positions), times the radius under AXIS. The contact pressure LAGS_C is
+//! then a force per unit of initial area (per radian under AXIS, as fem's
+//! nodal forces); measuring on the current geometry moved SSNP121 A's
+//! LAGS_C by up to 8.7e-5 from code_aster's values.
 
 use std::collections::BTreeMap;
 
@@ -18,12 +25,51 @@ use crate::shape::SurfaceKind;
 use crate::surface::ResolvedZone;
 use crate::zone::Integration;
 
-/// Integration points of the slave surface of `zone` on geometry `x`.
+/// How the weight of an integration point measures the slave surface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Measure {
+    /// Length (2D) or area (3D).
+    #[default]
+    Plane,
+    /// Length × radius x (AXIS, per radian); a point on the axis counts
+    /// with radius 1e-7, as code_aster's `mmmjac`.
+    Axisymmetric,
+}
+
+/// Radius code_aster substitutes for a point on the axis.
+const AXIS_RADIUS: f64 = 1e-7;
+
+/// Integration points of the slave surface of `zone`, weights measured on
+/// geometry `x` (plane measure).
 pub fn integration_points(
     zone: &ResolvedZone,
     rule: Integration,
     x: &[[f64; 3]],
 ) -> Vec<SlavePoint> {
+    integration_points_measured(zone, rule, x, Measure::Plane)
+}
+
+/// Integration points of the slave surface of `zone`, weights measured on
+/// geometry `reference` (code_aster: the mesh's initial coordinates) with
+/// `measure`. The points themselves are reference coordinates of the
+/// slave cells and do not depend on the geometry.
+pub fn integration_points_measured(
+    zone: &ResolvedZone,
+    rule: Integration,
+    reference: &[[f64; 3]],
+    measure: Measure,
+) -> Vec<SlavePoint> {
+    let x = reference;
+    let measured = |kind: SurfaceKind, nodes: &[[f64; 3]], xi: [f64; 2]| {
+        let j = jacobian(kind, nodes, xi);
+        match measure {
+            Measure::Plane => j,
+            Measure::Axisymmetric => {
+                let r = crate::shape::interpolate(kind, nodes, xi).x[0].abs();
+                j * if r == 0.0 { AXIS_RADIUS } else { r }
+            }
+        }
+    };
     let excluded = |n: &NodeId| zone.slave_nodes.binary_search(n).is_err();
     let mut nodal: BTreeMap<NodeId, f64> = BTreeMap::new();
     let mut points = Vec::new();
@@ -44,7 +90,7 @@ pub fn integration_points(
                 };
                 for (i, n) in cell.nodes.iter().enumerate() {
                     let xi = k.node_coords()[i];
-                    *nodal.entry(*n).or_default() += w[i] * jacobian(k, &nodes, xi);
+                    *nodal.entry(*n).or_default() += w[i] * measured(k, &nodes, xi);
                 }
                 continue;
             }
@@ -69,7 +115,7 @@ pub fn integration_points(
             points.push(SlavePoint {
                 zone: zone.index,
                 nodes: on_nodes,
-                weight: w * jacobian(cell.kind, &nodes, xi),
+                weight: w * measured(cell.kind, &nodes, xi),
                 cell: Some((ci, xi)),
             });
         }

@@ -26,7 +26,7 @@ mod zone;
 
 pub use error::ContactError;
 pub use geomloop::{GeomDecision, GeomLoopState};
-pub use integration::integration_points;
+pub use integration::{integration_points, integration_points_measured, Measure};
 pub use pairing::{
     nodal_points, pair_point, ContactPair, Exclusion, PairStatus, Pairing, SlavePoint,
 };

@@ -11,7 +11,7 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::geomloop::{GeomDecision, GeomLoopState};
-use crate::integration::integration_points;
+use crate::integration::{integration_points_measured, Measure};
 use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
 use crate::rows::contact_row;
 use crate::surface::ResolvedZone;
@@ -65,6 +65,9 @@ pub struct ZoneContact {
     /// for a continuous slave-node row (force / Wⱼ is the contact pressure),
     /// 1 for a discrete pair.
     measures: Vec<f64>,
+    /// How continuous integration weights measure the slave surface
+    /// (AXIS multiplies by the radius).
+    measure: Measure,
 }
 
 impl ZoneContact {
@@ -106,6 +109,7 @@ impl ZoneContact {
             carriers: Vec::new(),
             step_pairings: Vec::new(),
             measures: Vec::new(),
+            measure: Measure::Plane,
             zone,
             law,
             geom_loop,
@@ -117,11 +121,25 @@ impl ZoneContact {
         }
     }
 
-    /// The slave points of this zone on geometry `x`.
-    fn points(&self, x: &[[f64; 3]]) -> Vec<SlavePoint> {
+    /// Declares the model axisymmetric (AXIS): continuous integration
+    /// weights then carry the radius, as fem's nodal forces (per radian).
+    pub fn set_measure(&mut self, measure: Measure) {
+        self.measure = measure;
+    }
+
+    /// The measure continuous integration weights are taken with.
+    pub fn measure(&self) -> Measure {
+        self.measure
+    }
+
+    /// The slave points of this zone; continuous weights are measured on
+    /// the mesh's reference geometry, as code_aster's contact elements.
+    fn points(&self, mesh: &Mesh) -> Vec<SlavePoint> {
         match self.law {
             ZoneLaw::Discrete(_) => nodal_points(&self.zone),
-            ZoneLaw::Continue(l) => integration_points(&self.zone, l.integration, x),
+            ZoneLaw::Continue(l) => {
+                integration_points_measured(&self.zone, l.integration, &mesh.coords, self.measure)
+            }
         }
     }
 
@@ -148,7 +166,7 @@ impl ZoneContact {
             // REAC_GEOM='SANS': the rows of the initial pairing, as they were.
             return Ok(self.frozen_rows.clone());
         }
-        let points = self.points(x);
+        let points = self.points(mesh);
         self.pairs = points
             .iter()
             .map(|p| pair_point(&self.zone, p, x))

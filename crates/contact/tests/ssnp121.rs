@@ -1,6 +1,7 @@
-//! SSNP121 B and C (code_aster's two plates in contact, slave EF on master
-//! AB, DDL_IMPO on CD and GH) on the real mesh (../shared, skipped when
-//! absent), through fem's STAT_NON_LINE: the DEPL values of the TEST_RESU.
+//! SSNP121 A, B and C (code_aster's two plates in contact, DDL_IMPO on CD
+//! and GH) on the real mesh (../shared, skipped when absent), through fem's
+//! STAT_NON_LINE: the DEPL values of the TEST_RESU (DY, and LAGS_C for the
+//! continuous A).
 
 use std::path::Path;
 
@@ -12,8 +13,13 @@ use aster_fem::{
 use aster_mesh::CellType;
 
 fn problem() -> Option<(Model, Loads)> {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cases/ssnp121b/ssnp121a.mmed");
+    problem_on("ssnp121b/ssnp121a.mmed")
+}
+
+fn problem_on(mesh_file: &str) -> Option<(Model, Loads)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/cases")
+        .join(mesh_file);
     if !path.exists() {
         eprintln!("skipped: {} not found", path.display());
         return None;
@@ -111,5 +117,64 @@ fn ssnp121_b_and_c_displacements() {
         }
         drop(snl);
         assert_eq!(zones[0].geom_pairings(), 2);
+    }
+}
+
+#[test]
+fn ssnp121_a_continuous_simpson_lags_c() {
+    // Slave AB on master EF, FORMULATION='CONTINUE', SIMPSON ORDRE_INT=4,
+    // STANDARD (COEF_CONT=1000), POINT_FIXE, REAC_GEOM='CONTROLE' with two
+    // pairings. The contact integrals are measured on the reference slave
+    // geometry, as code_aster's `mmmjac`: measured on the current one,
+    // LAGS_C(N14) was −100359.4 (8.7e-5 off) and LAGS_C(A) −100079.5.
+    let Some((model, loads)) = problem_on("ssnp121a/ssnp121a.mmed") else {
+        return;
+    };
+    let mut def = ContactDefinition::continuous(
+        vec![Zone {
+            geometry: ZoneGeometry::new("EF", "AB"),
+            law: ContinueLaw {
+                algo: ContinueAlgo::Standard { coef_cont: 1000.0 },
+                integration: Integration::Simpson(4),
+            },
+        }],
+        Frottement::Sans,
+    )
+    .unwrap();
+    def.set_geom_loop(GeomLoop::Controle { nb_iter: 2 });
+    if let ContactDefinition::Continue(c) = &mut def {
+        c.algo_reso_cont = Resolution::PointFixe;
+        c.algo_reso_geom = Resolution::PointFixe;
+    }
+    let mut zones = ZoneContact::build_all(&def, model.mesh()).unwrap();
+    let mut snl = StaticNonLinear {
+        instants: vec![0.0, 1.0],
+        sources: zones
+            .iter_mut()
+            .map(|z| Box::new(z) as Box<dyn UnilateralSource>)
+            .collect(),
+        ..Default::default()
+    };
+    let res = snl.solve(&model, &loads).unwrap();
+    let u = res.last().unwrap().displacement.clone();
+    drop(snl);
+    let lags = zones[0].lags_c().unwrap();
+    let node = |g: &str| model.mesh().group_no(g).unwrap().members[0];
+    for (g, dy_calc, lags_calc) in [
+        ("N14", -0.049978357, -1.00350687e05),
+        ("A", -0.049996701, -1.00080281e05),
+        ("B", -0.049996701, -1.00080281e05),
+    ] {
+        let got = dy(&model, &u, g);
+        assert!(
+            (got - dy_calc).abs() < 1e-6 * dy_calc.abs(),
+            "DY({g}) = {got}"
+        );
+        let (_, l) = lags.iter().find(|(n, _)| *n == node(g)).unwrap();
+        eprintln!("LAGS_C({g}) = {l:.3} (code_aster {lags_calc})");
+        assert!(
+            (l - lags_calc).abs() < 1e-6 * lags_calc.abs(),
+            "LAGS_C({g}) = {l}"
+        );
     }
 }

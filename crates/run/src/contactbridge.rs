@@ -1,11 +1,13 @@
 //! The bridge to aster-contact: DEFI_CONTACT zones (DISCRETE/CONTINUE)
 //! from keywords, as row sources for fem's solver, and CONT_NOEU.
 
+use crate::concept::Modelisation;
 use crate::executor::Executor;
 use crate::function::Function;
 use aster_contact::{
     Appariement, ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, Frottement, GeomLoop,
-    Integration, NormalChoice, NormalSource, Offset, Resolution, Zone, ZoneContact, ZoneGeometry,
+    Integration, Measure, NormalChoice, NormalSource, Offset, Resolution, Zone, ZoneContact,
+    ZoneGeometry,
 };
 use aster_eval::{ExecError, Keywords};
 use aster_mesh::Mesh;
@@ -332,5 +334,22 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
 /// The zones of a definition resolved on the mesh (row sources).
 pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContact>, ExecError> {
     let def = definition(ex, kw)?;
-    ZoneContact::build_all(&def, mesh).map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
+    let mut zones = ZoneContact::build_all(&def, mesh)
+        .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))?;
+    // Under AXIS the contact integrals carry the radius (code_aster's
+    // `mmmjac`), as fem's nodal forces do.
+    let axis = match kw.concept("MODELE") {
+        Some(c) => ex
+            .model(c)?
+            .cells
+            .values()
+            .any(|m| *m == Modelisation::Axisymmetric),
+        None => false,
+    };
+    if axis {
+        zones
+            .iter_mut()
+            .for_each(|z| z.set_measure(Measure::Axisymmetric));
+    }
+    Ok(zones)
 }
