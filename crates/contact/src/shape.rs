@@ -153,6 +153,60 @@ impl SurfaceKind {
         }
     }
 
+    /// Number of corner nodes (numbered first, as in code_aster).
+    pub fn corner_count(self) -> usize {
+        match self {
+            SurfaceKind::Seg2 | SurfaceKind::Seg3 => 2,
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => 3,
+            _ => 4,
+        }
+    }
+
+    /// Whether the contact pressure is interpolated with the corner
+    /// (linear) functions only. TRIA6 and QUAD8 faces: their quadratic
+    /// functions integrate to zero (TRIA6) or a negative value (QUAD8) at
+    /// the corners, so a weighted gap per corner node would have no
+    /// measure; the pressure lives on the corners and the mid-side nodes
+    /// take the mean of their edge's corners (code_aster ties the LAGS_C of
+    /// QUAD8 mid-side nodes to their corners the same way). Segments,
+    /// QUAD9 and TRIA7 have positive nodal integrals and keep their own
+    /// functions.
+    pub fn linear_pressure(self) -> bool {
+        matches!(self, SurfaceKind::Tria6 | SurfaceKind::Quad8)
+    }
+
+    /// Functions interpolating the contact pressure at `xi`, one per node
+    /// (zero on the nodes that carry no pressure of their own).
+    pub fn pressure_eval(self, xi: [f64; 2]) -> Vec<f64> {
+        if !self.linear_pressure() {
+            return self.eval(xi).0;
+        }
+        let lin = if self.is_triangle() {
+            SurfaceKind::Tria3
+        } else {
+            SurfaceKind::Quad4
+        };
+        let mut n = lin.eval(xi).0;
+        n.resize(self.node_count(), 0.0);
+        n
+    }
+
+    /// The nodes (local indices) whose pressures a node's pressure is the
+    /// mean of: itself when it carries one, else the corners of its edge
+    /// (or of the face, for a centre node).
+    pub fn pressure_support(self, local: usize) -> Vec<usize> {
+        let nc = self.corner_count();
+        if !self.linear_pressure() || local < nc {
+            return vec![local];
+        }
+        if local < 2 * nc {
+            let k = local - nc;
+            vec![k, (k + 1) % nc]
+        } else {
+            (0..nc).collect()
+        }
+    }
+
     /// How far `xi` lies outside the reference domain, in reference
     /// coordinates (0 inside).
     pub fn outside_distance(self, xi: [f64; 2]) -> f64 {
@@ -454,6 +508,33 @@ mod tests {
         assert!(dot(r, cp.tangents[0]).abs() < 1e-10);
         assert!(dot(r, cp.tangents[1]).abs() < 1e-10);
         assert_eq!(SurfaceKind::Quad4.outside_distance(cp.xi), 0.0);
+    }
+
+    #[test]
+    fn pressure_functions_have_positive_nodal_measures() {
+        // ∫ over the reference cell of each node's pressure function: the
+        // weight of the node's contact row must be positive for the nodes
+        // that carry a pressure.
+        for k in KINDS {
+            let pts = crate::integration::gauss(k, 6);
+            let mut w = vec![0.0; k.node_count()];
+            for (xi, wt) in pts {
+                for (i, v) in k.pressure_eval(xi).iter().enumerate() {
+                    w[i] += wt * v;
+                }
+            }
+            for i in 0..k.node_count() {
+                let carries = k.pressure_support(i) == vec![i];
+                if carries {
+                    assert!(w[i] > 0.0, "{k:?} node {i}: {}", w[i]);
+                } else {
+                    assert_eq!(w[i], 0.0, "{k:?} node {i}");
+                }
+            }
+        }
+        assert_eq!(SurfaceKind::Tria6.pressure_support(4), vec![1, 2]);
+        assert_eq!(SurfaceKind::Quad8.pressure_support(7), vec![3, 0]);
+        assert_eq!(SurfaceKind::Quad9.pressure_support(8), vec![8]);
     }
 
     #[test]
