@@ -63,6 +63,8 @@ impl Neg for Ad {
 
 impl Mul for Ad {
     type Output = Ad;
+    // The product rule: (fg)' = f'g + fg'.
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn mul(self, o: Ad) -> Ad {
         Ad {
             v: self.v * o.v,
@@ -73,6 +75,8 @@ impl Mul for Ad {
 
 impl Div for Ad {
     type Output = Ad;
+    // The quotient rule: (f/g)' = (f'g − fg')/g².
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn div(self, o: Ad) -> Ad {
         let inv = 1. / o.v;
         Ad {

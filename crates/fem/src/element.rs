@@ -300,6 +300,23 @@ pub fn continuum_stiffness_fast(
     d: &[[f64; 6]; 6],
     out: &mut [f64],
 ) -> Result<usize, String> {
+    // Stack buffers sized for the element: the linear cells (≤ 24 DOFs)
+    // keep the small ones they had before the quadratic 3D families.
+    if nodes.len() * hyp.dim() <= 24 {
+        stiffness_fast::<24>(mesh, nodes, rd, hyp, d, out)
+    } else {
+        stiffness_fast::<MAX_EL_DOFS>(mesh, nodes, rd, hyp, d, out)
+    }
+}
+
+fn stiffness_fast<const N: usize>(
+    mesh: &Mesh,
+    nodes: &[aster_mesh::NodeId],
+    rd: &RefData,
+    hyp: Hypothesis,
+    d: &[[f64; 6]; 6],
+    out: &mut [f64],
+) -> Result<usize, String> {
     let dim = hyp.dim();
     let nn = nodes.len();
     let ndof = nn * dim;
@@ -310,8 +327,8 @@ pub fn continuum_stiffness_fast(
         xs[i] = mesh.coord(n);
     }
     let mut sign = 0.0f64;
-    let mut b = [[0.0f64; MAX_EL_DOFS]; 6];
-    let mut db = [[0.0f64; MAX_EL_DOFS]; 6];
+    let mut b = [[0.0f64; N]; 6];
+    let mut db = [[0.0f64; N]; 6];
     for (g, &wref) in rd.weights.iter().enumerate() {
         let dnr = &rd.dn[g];
         let mut j = [[0.0f64; 3]; 3];

@@ -164,9 +164,8 @@ fn solve_dirichlet(
     let dim = hyp.dim();
     let elements = continuum(&mesh, hyp, material);
     let model = Model::new(mesh, elements).unwrap();
-    let on_boundary = |p: [f64; 3]| {
-        (0..dim).any(|k| p[k].abs() < 1e-12 || (p[k] - size).abs() < 1e-12)
-    };
+    let on_boundary =
+        |p: [f64; 3]| (0..dim).any(|k| p[k].abs() < 1e-12 || (p[k] - size).abs() < 1e-12);
     let mut loads = Loads::new();
     for (n, &p) in model.mesh().coords.iter().enumerate() {
         let node = NodeId(n as u32);
