@@ -163,16 +163,21 @@ impl SurfaceKind {
     }
 
     /// Whether the contact pressure is interpolated with the corner
-    /// (linear) functions only. TRIA6 and QUAD8 faces: their quadratic
+    /// (linear) functions only: on quadratic faces. TRIA6 and QUAD8
     /// functions integrate to zero (TRIA6) or a negative value (QUAD8) at
     /// the corners, so a weighted gap per corner node would have no
-    /// measure; the pressure lives on the corners and the mid-side nodes
-    /// take the mean of their edge's corners (code_aster ties the LAGS_C of
-    /// QUAD8 mid-side nodes to their corners the same way). Segments,
-    /// QUAD9 and TRIA7 have positive nodal integrals and keep their own
-    /// functions.
+    /// measure; QUAD9 and TRIA7 have 9 and 7 pressure unknowns per face,
+    /// more than a 2×2 Gauss or a Simpson rule (no point inside the
+    /// edges' span for the centre) can determine. The pressure lives on the
+    /// corners; mid-side nodes take the mean of their edge's corners and a
+    /// centre node that of all corners. Segments keep their own functions
+    /// (SEG3: positive nodal integrals, and one point per node with every
+    /// rule).
     pub fn linear_pressure(self) -> bool {
-        matches!(self, SurfaceKind::Tria6 | SurfaceKind::Quad8)
+        matches!(
+            self,
+            SurfaceKind::Tria6 | SurfaceKind::Tria7 | SurfaceKind::Quad8 | SurfaceKind::Quad9
+        )
     }
 
     /// Functions interpolating the contact pressure at `xi`, one per node
@@ -643,7 +648,8 @@ mod tests {
         }
         assert_eq!(SurfaceKind::Tria6.pressure_support(4), vec![1, 2]);
         assert_eq!(SurfaceKind::Quad8.pressure_support(7), vec![3, 0]);
-        assert_eq!(SurfaceKind::Quad9.pressure_support(8), vec![8]);
+        assert_eq!(SurfaceKind::Quad9.pressure_support(8), vec![0, 1, 2, 3]);
+        assert_eq!(SurfaceKind::Seg3.pressure_support(2), vec![2]);
     }
 
     fn integrate(rule: &[([f64; 2], f64)], f: impl Fn(f64, f64) -> f64) -> f64 {
