@@ -432,3 +432,26 @@ fn hexa20_converges_at_third_order() {
     assert!(rate_l > 1.7, "HEXA8 rate {rate_l} ({l2:e} → {l4:e})");
     assert!(q4 < l4 / 5., "HEXA20 {q4:e} vs HEXA8 {l4:e}");
 }
+
+/// code_aster has no plane element on TRIA7: the error names the cell,
+/// its type, the modelisation and what the modelisation accepts.
+#[test]
+fn tria7_in_a_plane_model_is_an_error_that_lists_the_cells() {
+    let mut mb = MeshBuilder::new(2);
+    let nodes: Vec<NodeId> = reference_nodes(CellType::TRIA7)
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| mb.node(&format!("N{i}"), p))
+        .collect();
+    mb.cell("T7", CellType::TRIA7, &nodes);
+    let material = Elastic::new(1.0, 0.3).unwrap();
+    let elements = continuum(&mb.mesh, Hypothesis::PlaneStrain, material);
+    let err = Model::new(mb.mesh, elements).unwrap_err().to_string();
+    assert!(
+        err.contains(
+            "cell T7 is a TRIA7: modelisation D_PLAN has no element for it \
+             (supported: TRIA3, TRIA6, QUAD4, QUAD8, QUAD9)"
+        ),
+        "{err}"
+    );
+}
