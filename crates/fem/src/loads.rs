@@ -161,7 +161,7 @@ impl Loads {
                             "distributed load on cell {} ({}): expected a boundary {} of the {}D model",
                             model.cell_name(*cell),
                             c.ty.name(),
-                            if expected_dim == 1 { "segment (SEG2, SEG3)" } else { "face (TRIA3, QUAD4, TRIA6, QUAD8)" },
+                            if expected_dim == 1 { "segment (SEG2, SEG3)" } else { "face (TRIA3, TRIA6, TRIA7, QUAD4, QUAD8, QUAD9)" },
                             model.dim()
                         )));
                     }
