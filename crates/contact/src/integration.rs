@@ -6,8 +6,13 @@
 //! the cells around a node into one point per node — the contact pressure
 //! is then a nodal field, as code_aster's LAGS_C. Quadratic faces (TRIA6,
 //! QUAD8) have corner weights ≤ 0 with nodal rules, so `AUTO` falls back to
-//! Gauss points there. `SIMPSON` and `NCOTES` are segment rules; on faces
-//! they use Gauss points of the same order.
+//! Gauss points there. `SIMPSON` and `NCOTES` on faces are code_aster's
+//! face rules (`shape::face_simpson`, `shape::face_newton_cotes`), except
+//! on TRIA6/QUAD8 faces, whose pressure lives on the corners
+//! (`SurfaceKind::linear_pressure`): a uniform pressure is reproduced only
+//! if its products with the quadratic functions are integrated exactly,
+//! which the Simpson and low Newton–Cotes rules do not; they get Gauss
+//! points of degree 4.
 //!
 //! Weights are measured as code_aster's contact elements do (`mmmjac`):
 //! on the **reference** slave geometry (the mesh as read, not the current
@@ -76,7 +81,10 @@ pub fn integration_points_measured(
     for (ci, cell) in zone.slave.iter().enumerate() {
         let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
         let quad = match (rule, cell.kind) {
-            (Integration::Auto, SurfaceKind::Tria6 | SurfaceKind::Quad8) => gauss(cell.kind, 3),
+            (
+                Integration::Auto,
+                SurfaceKind::Tria6 | SurfaceKind::Tria7 | SurfaceKind::Quad8 | SurfaceKind::Quad9,
+            ) => gauss(cell.kind, 3),
             (Integration::Auto, k) => {
                 // Nodal rule: weight of node i = ∫ N_i, exact for these cells.
                 let w: &[f64] = match k {
@@ -94,7 +102,17 @@ pub fn integration_points_measured(
             (Integration::Gauss(o), k) => gauss(k, o),
             (Integration::Simpson(o), k) if k.dim() == 1 => simpson(o.max(1)),
             (Integration::NCotes(o), k) if k.dim() == 1 => newton_cotes(o.clamp(1, 8)),
-            (Integration::Simpson(o) | Integration::NCotes(o), k) => gauss(k, o),
+            // Corner pressures on TRIA6/QUAD8 need the products of pressure
+            // and displacement functions integrated exactly: Gauss, degree 4.
+            (Integration::Simpson(o) | Integration::NCotes(o), k) if k.linear_pressure() => {
+                gauss(k, o.max(4))
+            }
+            (Integration::Simpson(o), k) => {
+                crate::shape::face_simpson(k, o).unwrap_or_else(|| gauss(k, o))
+            }
+            (Integration::NCotes(o), k) => {
+                crate::shape::face_newton_cotes(k, o).unwrap_or_else(|| gauss(k, o))
+            }
         };
         for (xi, w) in quad {
             let (shape, _) = cell.kind.eval(xi);
@@ -160,7 +178,7 @@ pub(crate) fn gauss(kind: SurfaceKind, order: u8) -> Vec<([f64; 2], f64)> {
             .into_iter()
             .map(|(x, w)| ([x, 0.0], w))
             .collect(),
-        SurfaceKind::Quad4 | SurfaceKind::Quad8 => {
+        SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
             let g = gauss_1d(n);
             let mut out = Vec::new();
             for &(x, wx) in &g {
@@ -170,7 +188,7 @@ pub(crate) fn gauss(kind: SurfaceKind, order: u8) -> Vec<([f64; 2], f64)> {
             }
             out
         }
-        SurfaceKind::Tria3 | SurfaceKind::Tria6 => match order {
+        SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => match order {
             0 | 1 => vec![([1.0 / 3.0, 1.0 / 3.0], 0.5)],
             2 => vec![
                 ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),

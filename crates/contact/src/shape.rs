@@ -12,6 +12,8 @@ pub enum SurfaceKind {
     Tria6,
     Quad4,
     Quad8,
+    Quad9,
+    Tria7,
 }
 
 impl SurfaceKind {
@@ -23,6 +25,8 @@ impl SurfaceKind {
             CellType::TRIA6 => SurfaceKind::Tria6,
             CellType::QUAD4 => SurfaceKind::Quad4,
             CellType::QUAD8 => SurfaceKind::Quad8,
+            CellType::QUAD9 => SurfaceKind::Quad9,
+            CellType::TRIA7 => SurfaceKind::Tria7,
             _ => return None,
         })
     }
@@ -43,7 +47,31 @@ impl SurfaceKind {
             SurfaceKind::Tria6 => 6,
             SurfaceKind::Quad4 => 4,
             SurfaceKind::Quad8 => 8,
+            SurfaceKind::Quad9 => 9,
+            SurfaceKind::Tria7 => 7,
         }
+    }
+
+    /// The mesh cell type of this kind.
+    pub fn cell_type(self) -> CellType {
+        match self {
+            SurfaceKind::Seg2 => CellType::SEG2,
+            SurfaceKind::Seg3 => CellType::SEG3,
+            SurfaceKind::Tria3 => CellType::TRIA3,
+            SurfaceKind::Tria6 => CellType::TRIA6,
+            SurfaceKind::Tria7 => CellType::TRIA7,
+            SurfaceKind::Quad4 => CellType::QUAD4,
+            SurfaceKind::Quad8 => CellType::QUAD8,
+            SurfaceKind::Quad9 => CellType::QUAD9,
+        }
+    }
+
+    /// Whether the reference domain is the unit triangle.
+    pub fn is_triangle(self) -> bool {
+        matches!(
+            self,
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7
+        )
     }
 
     /// Shape function values and derivatives (∂/∂ξ, ∂/∂η) at `xi`.
@@ -116,6 +144,71 @@ impl SurfaceKind {
                 }
                 (n, d)
             }
+            // Faces with a centre node: code_aster's functions, shared
+            // with the volume elements they bound.
+            SurfaceKind::Quad9 | SurfaceKind::Tria7 => {
+                let s = aster_fem::shape::shape(self.cell_type(), [x, y, 0.0]);
+                (s.n, s.dn.iter().map(|d| [d[0], d[1]]).collect())
+            }
+        }
+    }
+
+    /// Number of corner nodes (numbered first, as in code_aster).
+    pub fn corner_count(self) -> usize {
+        match self {
+            SurfaceKind::Seg2 | SurfaceKind::Seg3 => 2,
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => 3,
+            _ => 4,
+        }
+    }
+
+    /// Whether the contact pressure is interpolated with the corner
+    /// (linear) functions only: on quadratic faces. TRIA6 and QUAD8
+    /// functions integrate to zero (TRIA6) or a negative value (QUAD8) at
+    /// the corners, so a weighted gap per corner node would have no
+    /// measure; QUAD9 and TRIA7 have 9 and 7 pressure unknowns per face,
+    /// more than a 2×2 Gauss or a Simpson rule (no point inside the
+    /// edges' span for the centre) can determine. The pressure lives on the
+    /// corners; mid-side nodes take the mean of their edge's corners and a
+    /// centre node that of all corners. Segments keep their own functions
+    /// (SEG3: positive nodal integrals, and one point per node with every
+    /// rule).
+    pub fn linear_pressure(self) -> bool {
+        matches!(
+            self,
+            SurfaceKind::Tria6 | SurfaceKind::Tria7 | SurfaceKind::Quad8 | SurfaceKind::Quad9
+        )
+    }
+
+    /// Functions interpolating the contact pressure at `xi`, one per node
+    /// (zero on the nodes that carry no pressure of their own).
+    pub fn pressure_eval(self, xi: [f64; 2]) -> Vec<f64> {
+        if !self.linear_pressure() {
+            return self.eval(xi).0;
+        }
+        let lin = if self.is_triangle() {
+            SurfaceKind::Tria3
+        } else {
+            SurfaceKind::Quad4
+        };
+        let mut n = lin.eval(xi).0;
+        n.resize(self.node_count(), 0.0);
+        n
+    }
+
+    /// The nodes (local indices) whose pressures a node's pressure is the
+    /// mean of: itself when it carries one, else the corners of its edge
+    /// (or of the face, for a centre node).
+    pub fn pressure_support(self, local: usize) -> Vec<usize> {
+        let nc = self.corner_count();
+        if !self.linear_pressure() || local < nc {
+            return vec![local];
+        }
+        if local < 2 * nc {
+            let k = local - nc;
+            vec![k, (k + 1) % nc]
+        } else {
+            (0..nc).collect()
         }
     }
 
@@ -124,12 +217,12 @@ impl SurfaceKind {
     pub fn outside_distance(self, xi: [f64; 2]) -> f64 {
         match self {
             SurfaceKind::Seg2 | SurfaceKind::Seg3 => (xi[0].abs() - 1.0).max(0.0),
-            SurfaceKind::Quad4 | SurfaceKind::Quad8 => {
+            SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
                 let dx = (xi[0].abs() - 1.0).max(0.0);
                 let dy = (xi[1].abs() - 1.0).max(0.0);
                 (dx * dx + dy * dy).sqrt()
             }
-            SurfaceKind::Tria3 | SurfaceKind::Tria6 => {
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => {
                 let c = self.clamp(xi);
                 ((xi[0] - c[0]).powi(2) + (xi[1] - c[1]).powi(2)).sqrt()
             }
@@ -140,10 +233,10 @@ impl SurfaceKind {
     pub fn clamp(self, xi: [f64; 2]) -> [f64; 2] {
         match self {
             SurfaceKind::Seg2 | SurfaceKind::Seg3 => [xi[0].clamp(-1.0, 1.0), 0.0],
-            SurfaceKind::Quad4 | SurfaceKind::Quad8 => {
+            SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
                 [xi[0].clamp(-1.0, 1.0), xi[1].clamp(-1.0, 1.0)]
             }
-            SurfaceKind::Tria3 | SurfaceKind::Tria6 => {
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => {
                 let (x, y) = (xi[0], xi[1]);
                 if x >= 0.0 && y >= 0.0 && x + y <= 1.0 {
                     return [x, y];
@@ -175,7 +268,7 @@ impl SurfaceKind {
     /// The centre of the reference domain (start of the projection).
     pub fn centre(self) -> [f64; 2] {
         match self {
-            SurfaceKind::Tria3 | SurfaceKind::Tria6 => [1.0 / 3.0, 1.0 / 3.0],
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => [1.0 / 3.0, 1.0 / 3.0],
             _ => [0.0, 0.0],
         }
     }
@@ -205,7 +298,122 @@ impl SurfaceKind {
                 [0.0, 1.0],
                 [-1.0, 0.0],
             ],
+            SurfaceKind::Quad9 | SurfaceKind::Tria7 => {
+                aster_fem::shape::reference_nodes(self.cell_type())
+                    .into_iter()
+                    .map(|p| [p[0], p[1]])
+                    .collect()
+            }
         }
+    }
+}
+
+/// code_aster's `SIMPSON` rule on a face with `p` subdivisions (`mmgaus`):
+/// on triangles the points of the grid of step 1/(2p) with weights
+/// 1 (vertices), 3/4 (even/odd edge points), 6/8 (even/odd interior
+/// points) over 30p²; on quadrangles the product of composite Simpson on
+/// each side. Weights sum to the reference measure. `None` on segments
+/// (their rule is the segment one).
+pub fn face_simpson(kind: SurfaceKind, p: u8) -> Option<Vec<([f64; 2], f64)>> {
+    let p = p.max(1) as usize;
+    let h = 2 * p;
+    if kind.dim() != 2 {
+        return None;
+    }
+    let mut out = Vec::new();
+    if kind.is_triangle() {
+        for j in 0..=h {
+            for i in 0..=h - j {
+                let on_edge = i == 0 || j == 0 || i + j == h;
+                let corner = (i == 0 && (j == 0 || j == h)) || (j == 0 && i == h);
+                // Along an edge the parity of the running index decides.
+                let along = if i == 0 || i + j == h { j } else { i };
+                let c = if corner {
+                    1.0
+                } else if on_edge {
+                    if along % 2 == 0 {
+                        3.0
+                    } else {
+                        4.0
+                    }
+                } else if i % 2 == 0 && j % 2 == 0 {
+                    6.0
+                } else {
+                    8.0
+                };
+                let xi = [i as f64 / h as f64, j as f64 / h as f64];
+                out.push((xi, c / (30.0 * (p * p) as f64)));
+            }
+        }
+    } else {
+        let one: Vec<(f64, f64)> = (0..=h)
+            .map(|i| {
+                let c = if i == 0 || i == h {
+                    1.0
+                } else if i % 2 == 1 {
+                    4.0
+                } else {
+                    2.0
+                };
+                (-1.0 + i as f64 / p as f64, c / (3.0 * p as f64))
+            })
+            .collect();
+        for &(y, wy) in &one {
+            for &(x, wx) in &one {
+                out.push(([x, y], wx * wy));
+            }
+        }
+    }
+    Some(out)
+}
+
+/// code_aster's `NCOTES` rule of degree `order` on a face: closed
+/// Newton–Cotes on the equispaced grid (triangles: (i/n, j/n), i + j ≤ n;
+/// quadrangles: the product of the segment rule). The weights are the
+/// integrals of the grid's Lagrange polynomials, found by matching the
+/// moments of every monomial of degree ≤ n. `None` on segments.
+pub fn face_newton_cotes(kind: SurfaceKind, order: u8) -> Option<Vec<([f64; 2], f64)>> {
+    let n = order.clamp(1, 8) as usize;
+    if kind.dim() != 2 {
+        return None;
+    }
+    if kind.is_triangle() {
+        let pts: Vec<[f64; 2]> = (0..=n)
+            .flat_map(|j| (0..=n - j).map(move |i| [i as f64 / n as f64, j as f64 / n as f64]))
+            .collect();
+        let monos: Vec<(i32, i32)> = (0..=n as i32)
+            .flat_map(|d| (0..=d).map(move |a| (a, d - a)))
+            .collect();
+        let fact = |k: i32| (1..=k).map(f64::from).product::<f64>();
+        let exact: Vec<f64> = monos
+            .iter()
+            .map(|&(a, b)| fact(a) * fact(b) / fact(a + b + 2))
+            .collect();
+        let m = nalgebra::DMatrix::from_fn(monos.len(), pts.len(), |r, c| {
+            pts[c][0].powi(monos[r].0) * pts[c][1].powi(monos[r].1)
+        });
+        let w = m.lu().solve(&nalgebra::DVector::from_vec(exact))?;
+        Some(pts.into_iter().zip(w.iter().copied()).collect())
+    } else {
+        let xs: Vec<f64> = (0..=n).map(|i| -1.0 + 2.0 * i as f64 / n as f64).collect();
+        let exact: Vec<f64> = (0..=n)
+            .map(|a| {
+                if a % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (a as f64 + 1.0)
+                }
+            })
+            .collect();
+        let m = nalgebra::DMatrix::from_fn(n + 1, n + 1, |r, c| xs[c].powi(r as i32));
+        let w = m.lu().solve(&nalgebra::DVector::from_vec(exact))?;
+        let mut out = Vec::with_capacity((n + 1) * (n + 1));
+        for (j, &y) in xs.iter().enumerate() {
+            for (i, &x) in xs.iter().enumerate() {
+                out.push(([x, y], w[i] * w[j]));
+            }
+        }
+        Some(out)
     }
 }
 
@@ -336,13 +544,15 @@ pub fn project(kind: SurfaceKind, nodes: &[[f64; 3]], p: [f64; 3]) -> Option<Cel
 mod tests {
     use super::*;
 
-    const KINDS: [SurfaceKind; 6] = [
+    const KINDS: [SurfaceKind; 8] = [
         SurfaceKind::Seg2,
         SurfaceKind::Seg3,
         SurfaceKind::Tria3,
         SurfaceKind::Tria6,
+        SurfaceKind::Tria7,
         SurfaceKind::Quad4,
         SurfaceKind::Quad8,
+        SurfaceKind::Quad9,
     ];
 
     #[test]
@@ -412,6 +622,96 @@ mod tests {
         assert!(dot(r, cp.tangents[0]).abs() < 1e-10);
         assert!(dot(r, cp.tangents[1]).abs() < 1e-10);
         assert_eq!(SurfaceKind::Quad4.outside_distance(cp.xi), 0.0);
+    }
+
+    #[test]
+    fn pressure_functions_have_positive_nodal_measures() {
+        // ∫ over the reference cell of each node's pressure function: the
+        // weight of the node's contact row must be positive for the nodes
+        // that carry a pressure.
+        for k in KINDS {
+            let pts = crate::integration::gauss(k, 6);
+            let mut w = vec![0.0; k.node_count()];
+            for (xi, wt) in pts {
+                for (i, v) in k.pressure_eval(xi).iter().enumerate() {
+                    w[i] += wt * v;
+                }
+            }
+            for i in 0..k.node_count() {
+                let carries = k.pressure_support(i) == vec![i];
+                if carries {
+                    assert!(w[i] > 0.0, "{k:?} node {i}: {}", w[i]);
+                } else {
+                    assert_eq!(w[i], 0.0, "{k:?} node {i}");
+                }
+            }
+        }
+        assert_eq!(SurfaceKind::Tria6.pressure_support(4), vec![1, 2]);
+        assert_eq!(SurfaceKind::Quad8.pressure_support(7), vec![3, 0]);
+        assert_eq!(SurfaceKind::Quad9.pressure_support(8), vec![0, 1, 2, 3]);
+        assert_eq!(SurfaceKind::Seg3.pressure_support(2), vec![2]);
+    }
+
+    fn integrate(rule: &[([f64; 2], f64)], f: impl Fn(f64, f64) -> f64) -> f64 {
+        rule.iter().map(|(p, w)| w * f(p[0], p[1])).sum()
+    }
+
+    #[test]
+    fn face_simpson_matches_code_aster_weights() {
+        // One subdivision on a triangle: vertices 1/30, mid-edges 4/30.
+        let r = face_simpson(SurfaceKind::Tria6, 1).unwrap();
+        assert_eq!(r.len(), 6);
+        for (p, w) in &r {
+            let vertex = (p[0] == 0.0 || p[0] == 1.0) && (p[1] == 0.0 || p[1] == 1.0);
+            let want = if vertex { 1.0 / 30.0 } else { 4.0 / 30.0 };
+            assert!((w - want).abs() < 1e-15, "{p:?}");
+        }
+        for p in 1..=4 {
+            let t = face_simpson(SurfaceKind::Tria3, p).unwrap();
+            assert_eq!(t.len(), (2 * p as usize + 1) * (2 * p as usize + 2) / 2);
+            assert!((integrate(&t, |_, _| 1.0) - 0.5).abs() < 1e-14);
+            assert!((integrate(&t, |x, y| x + 2.0 * y) - 0.5).abs() < 1e-14);
+            let q = face_simpson(SurfaceKind::Quad8, p).unwrap();
+            assert!((integrate(&q, |_, _| 1.0) - 4.0).abs() < 1e-14);
+            // Simpson is exact for cubics in each direction.
+            assert!((integrate(&q, |x, y| x * x * y * y) - 4.0 / 9.0).abs() < 1e-14);
+        }
+        assert!(face_simpson(SurfaceKind::Seg3, 1).is_none());
+    }
+
+    #[test]
+    fn face_newton_cotes_matches_code_aster_weights() {
+        // Degree 3 on the triangle (mmgaus): vertices 1/60, edge points
+        // 3/80, centre 9/40.
+        let r = face_newton_cotes(SurfaceKind::Tria3, 3).unwrap();
+        assert_eq!(r.len(), 10);
+        for (p, w) in &r {
+            let want = if (p[0] - 1.0 / 3.0).abs() < 1e-12 && (p[1] - 1.0 / 3.0).abs() < 1e-12 {
+                9.0 / 40.0
+            } else if [p[0], p[1], 1.0 - p[0] - p[1]]
+                .iter()
+                .filter(|v| v.abs() < 1e-12)
+                .count()
+                == 2
+            {
+                1.0 / 60.0
+            } else {
+                3.0 / 80.0
+            };
+            assert!((w - want).abs() < 1e-13, "{p:?}: {w}");
+        }
+        for n in 1..=8u8 {
+            let t = face_newton_cotes(SurfaceKind::Tria6, n).unwrap();
+            let d = n as i32;
+            // ∫ x^d over the unit triangle = d! / (d + 2)! = 1/((d+1)(d+2)).
+            let want = 1.0 / f64::from((d + 1) * (d + 2));
+            assert!(
+                (integrate(&t, |x, _| x.powi(d)) - want).abs() < 1e-10,
+                "{n}"
+            );
+            let q = face_newton_cotes(SurfaceKind::Quad4, n).unwrap();
+            assert!((integrate(&q, |_, _| 1.0) - 4.0).abs() < 1e-12, "{n}");
+        }
     }
 
     #[test]

@@ -217,7 +217,20 @@ impl ZoneContact {
         for pair in &self.pairs {
             let Some(p) = pair.pairing() else { continue };
             let r = contact_row(mesh, x, &pair.point.nodes, p, self.zone.space_dim, 1.0, 0);
-            for &(j, nj) in &pair.point.nodes {
+            // The pressure's functions weigh the gap (the corners' only on
+            // TRIA6/QUAD8 faces: SurfaceKind::linear_pressure).
+            let pressure: Vec<(NodeId, f64)> = match pair.point.cell {
+                Some((ci, xi)) => {
+                    let c = &self.zone.slave[ci];
+                    c.nodes
+                        .iter()
+                        .copied()
+                        .zip(c.kind.pressure_eval(xi))
+                        .collect()
+                }
+                None => pair.point.nodes.clone(),
+            };
+            for &(j, nj) in &pressure {
                 let w = pair.point.weight * nj;
                 if w == 0.0 || self.zone.slave_nodes.binary_search(&j).is_err() {
                     continue;
@@ -365,6 +378,23 @@ impl ZoneContact {
                     if let Some(v) = out.get_mut(n) {
                         *v = -f / w;
                     }
+                }
+            }
+        }
+        // Nodes without a pressure of their own (mid-sides of TRIA6/QUAD8
+        // faces): the mean of the corners they lie between.
+        for cell in &self.zone.slave {
+            for (local, n) in cell.nodes.iter().enumerate() {
+                let support = cell.kind.pressure_support(local);
+                if support == [local] || !out.contains_key(n) {
+                    continue;
+                }
+                let vals: Vec<f64> = support
+                    .iter()
+                    .filter_map(|&k| out.get(&cell.nodes[k]).copied())
+                    .collect();
+                if vals.len() == support.len() {
+                    out.insert(*n, vals.iter().sum::<f64>() / vals.len() as f64);
                 }
             }
         }

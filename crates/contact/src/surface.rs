@@ -250,7 +250,7 @@ fn surface_cells(
     let expected = if space_dim == 2 {
         "SEG2 or SEG3 in a 2D problem"
     } else {
-        "TRIA3, TRIA6, QUAD4 or QUAD8 in a 3D problem"
+        "TRIA3, TRIA6, TRIA7, QUAD4, QUAD8 or QUAD9 in a 3D problem"
     };
     let mut out = Vec::with_capacity(g.members.len());
     for &id in &g.members {

@@ -284,12 +284,32 @@ impl RefData {
     }
 }
 
-/// Largest element: HEXA8 with 24 DOFs.
-pub const MAX_EL_DOFS: usize = 24;
+/// Largest element: HEXA27 with 81 DOFs.
+pub const MAX_EL_DOFS: usize = 81;
+
+/// Most nodes of a continuum cell (HEXA27).
+const MAX_EL_NODES: usize = 27;
 
 /// Allocation-free continuum stiffness into `out` (row-major, ndof×ndof),
 /// for the hot assembly loop. Same formulation as [`continuum_stiffness`].
 pub fn continuum_stiffness_fast(
+    mesh: &Mesh,
+    nodes: &[aster_mesh::NodeId],
+    rd: &RefData,
+    hyp: Hypothesis,
+    d: &[[f64; 6]; 6],
+    out: &mut [f64],
+) -> Result<usize, String> {
+    // Stack buffers sized for the element: the linear cells (≤ 24 DOFs)
+    // keep the small ones they had before the quadratic 3D families.
+    if nodes.len() * hyp.dim() <= 24 {
+        stiffness_fast::<24>(mesh, nodes, rd, hyp, d, out)
+    } else {
+        stiffness_fast::<MAX_EL_DOFS>(mesh, nodes, rd, hyp, d, out)
+    }
+}
+
+fn stiffness_fast<const N: usize>(
     mesh: &Mesh,
     nodes: &[aster_mesh::NodeId],
     rd: &RefData,
@@ -302,13 +322,13 @@ pub fn continuum_stiffness_fast(
     let ndof = nn * dim;
     let ncomp = hyp.ncomp();
     out[..ndof * ndof].iter_mut().for_each(|v| *v = 0.);
-    let mut xs = [[0.0f64; 3]; 8];
+    let mut xs = [[0.0f64; 3]; MAX_EL_NODES];
     for (i, &n) in nodes.iter().enumerate() {
         xs[i] = mesh.coord(n);
     }
     let mut sign = 0.0f64;
-    let mut b = [[0.0f64; MAX_EL_DOFS]; 6];
-    let mut db = [[0.0f64; MAX_EL_DOFS]; 6];
+    let mut b = [[0.0f64; N]; 6];
+    let mut db = [[0.0f64; N]; 6];
     for (g, &wref) in rd.weights.iter().enumerate() {
         let dnr = &rd.dn[g];
         let mut j = [[0.0f64; 3]; 3];

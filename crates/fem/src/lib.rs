@@ -11,10 +11,12 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod assembly;
+pub mod autodiff;
 mod diag;
 pub mod dof;
 pub mod element;
 pub mod error;
+pub mod fpg;
 mod held;
 pub mod linalg;
 pub mod loads;
@@ -24,6 +26,7 @@ pub mod nonlinear;
 pub mod ordering;
 mod parallel;
 pub mod post;
+pub mod refcells;
 pub mod scenes;
 pub mod shape;
 mod split_llt;

@@ -6,7 +6,7 @@ use crate::error::FemError;
 use crate::material::Hypothesis;
 use crate::model::{ElementKind, Model};
 use crate::shape;
-use aster_mesh::{CellId, CellType, NodeId};
+use aster_mesh::{CellId, NodeId};
 use std::collections::HashMap;
 use std::fmt;
 use std::sync::Arc;
@@ -161,7 +161,7 @@ impl Loads {
                             "distributed load on cell {} ({}): expected a boundary {} of the {}D model",
                             model.cell_name(*cell),
                             c.ty.name(),
-                            if expected_dim == 1 { "segment (SEG2, SEG3)" } else { "face (TRIA3, QUAD4, TRIA6, QUAD8)" },
+                            if expected_dim == 1 { "segment (SEG2, SEG3)" } else { "face (TRIA3, TRIA6, TRIA7, QUAD4, QUAD8, QUAD9)" },
                             model.dim()
                         )));
                     }
@@ -247,8 +247,12 @@ impl Loads {
                     let p = pressure * item.mult.eval(t)?;
                     let adj = faces.get_or_insert_with(|| adjacent_centroids(model));
                     let c = model.mesh().cell(*cell);
-                    let mut key: Vec<NodeId> =
-                        c.nodes.iter().take(corner_count(c.ty)).copied().collect();
+                    let mut key: Vec<NodeId> = c
+                        .nodes
+                        .iter()
+                        .take(shape::corner_count(c.ty))
+                        .copied()
+                        .collect();
                     key.sort();
                     let inside = adj.get(&key).copied();
                     surface_load(
@@ -283,15 +287,6 @@ fn index(model: &Model, dof: Dof) -> Result<usize, FemError> {
     })
 }
 
-fn corner_count(ty: CellType) -> usize {
-    match ty {
-        CellType::SEG2 | CellType::SEG3 => 2,
-        CellType::TRIA3 | CellType::TRIA6 => 3,
-        CellType::QUAD4 | CellType::QUAD8 => 4,
-        other => other.node_count(),
-    }
-}
-
 /// Boundary facets of continuum elements (sorted corner nodes) → centroid of
 /// the element they bound, to orient pressure normals outward.
 fn adjacent_centroids(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
@@ -302,7 +297,7 @@ fn adjacent_centroids(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
             continue;
         }
         let c = mesh.cell(el.cell);
-        let nc = corner_count(c.ty);
+        let nc = shape::corner_count(c.ty);
         let mut ctr = [0.0; 3];
         for &n in &c.nodes[..nc] {
             let p = mesh.coord(n);
@@ -310,23 +305,7 @@ fn adjacent_centroids(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
                 ctr[k] += p[k] / nc as f64;
             }
         }
-        let facets: Vec<Vec<usize>> = match c.ty {
-            CellType::TRIA3 | CellType::TRIA6 => vec![vec![0, 1], vec![1, 2], vec![2, 0]],
-            CellType::QUAD4 | CellType::QUAD8 => {
-                vec![vec![0, 1], vec![1, 2], vec![2, 3], vec![3, 0]]
-            }
-            CellType::TETRA4 => vec![vec![0, 1, 2], vec![0, 1, 3], vec![1, 2, 3], vec![0, 2, 3]],
-            CellType::HEXA8 => vec![
-                vec![0, 1, 2, 3],
-                vec![4, 5, 6, 7],
-                vec![0, 1, 5, 4],
-                vec![1, 2, 6, 5],
-                vec![2, 3, 7, 6],
-                vec![3, 0, 4, 7],
-            ],
-            _ => vec![],
-        };
-        for f in facets {
+        for f in shape::facet_corners(c.ty) {
             let mut key: Vec<NodeId> = f.iter().map(|&i| c.nodes[i]).collect();
             key.sort();
             map.insert(key, ctr);

@@ -21,7 +21,7 @@ pub enum Frame {
 /// What a cell carries.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ElementKind {
-    /// Continuum element (TRIA3, QUAD4, TRIA6, QUAD8 in 2D; TETRA4, HEXA8 in 3D).
+    /// Continuum element (`shape::PLANE_CELLS` in 2D, `shape::SOLID_CELLS` in 3D).
     Continuum {
         hypothesis: Hypothesis,
         material: Elastic,
@@ -57,7 +57,7 @@ impl Model {
     ///
     /// As code_aster's AFFE_MODELE: a later element on the same cell
     /// replaces an earlier one; a continuum modelisation on a boundary cell
-    /// (SEG2/SEG3 in 2D, TRIA3/QUAD4/TRIA6/QUAD8 in 3D) gives a boundary
+    /// (SEG2/SEG3 in 2D, TRIA3/TRIA6/TRIA7/QUAD4/QUAD8/QUAD9 in 3D) gives a boundary
     /// element (for edge and face loads); on a cell of lower dimension
     /// still (POI1, SEG2 in 3D) it gives no element.
     pub fn new(mesh: impl Into<Arc<Mesh>>, elements: Vec<Element>) -> Result<Model, FemError> {
@@ -105,26 +105,19 @@ impl Model {
                     hypothesis: h,
                     material: _,
                 } => {
-                    let ok = match h {
-                        Hypothesis::Solid3D => {
-                            matches!(cell.ty, CellType::TETRA4 | CellType::HEXA8)
-                        }
-                        _ => matches!(
-                            cell.ty,
-                            CellType::TRIA3 | CellType::QUAD4 | CellType::TRIA6 | CellType::QUAD8
-                        ),
+                    let allowed: &[CellType] = if *h == Hypothesis::Solid3D {
+                        &shape::SOLID_CELLS
+                    } else {
+                        &shape::PLANE_CELLS
                     };
-                    if !ok {
+                    if !allowed.contains(&cell.ty) {
+                        let names: Vec<&str> = allowed.iter().map(|t| t.name()).collect();
                         return Err(FemError::Model(format!(
                             "cell {} is a {}: modelisation {} has no element for it (supported: {})",
                             cell_name(el.cell),
                             cell.ty.name(),
                             h.aster_name(),
-                            if *h == Hypothesis::Solid3D {
-                                "TETRA4, HEXA8"
-                            } else {
-                                "TRIA3, QUAD4, TRIA6, QUAD8"
-                            }
+                            names.join(", ")
                         )));
                     }
                     match hypothesis {

@@ -145,13 +145,28 @@ pub fn reac_noda(model: &Model, loads: &Loads, t: f64, u: &[f64]) -> Result<Vec<
     Ok(f)
 }
 
+/// The linear cell with the corners of `ty` (the corners of code_aster's
+/// quadratic reference cells are those of the linear ones).
+fn linear_type(ty: CellType) -> CellType {
+    match ty {
+        CellType::SEG3 | CellType::SEG4 => CellType::SEG2,
+        CellType::TRIA6 | CellType::TRIA7 => CellType::TRIA3,
+        CellType::QUAD8 | CellType::QUAD9 => CellType::QUAD4,
+        CellType::TETRA10 => CellType::TETRA4,
+        CellType::PENTA15 | CellType::PENTA18 => CellType::PENTA6,
+        CellType::HEXA20 | CellType::HEXA27 => CellType::HEXA8,
+        CellType::PYRAM13 => CellType::PYRAM5,
+        other => other,
+    }
+}
+
 /// Extrapolation matrix from Gauss points to the nodes of a cell type
 /// (nodes × points). TRIA3/TETRA4 (one point): constant. QUAD4, HEXA8,
 /// TRIA6: the field interpolated through the Gauss points with the linear
 /// (corner) shape functions of the cell, evaluated at every node (mid-side
-/// nodes get the mean of their corners). QUAD8 (9 points): least-squares
-/// fit with bilinear functions, i.e. code_aster's corner extrapolation of
-/// the 2×2 sub-family, then mid-sides as means.
+/// nodes get the mean of their corners). More points than corners (QUAD8/9,
+/// TETRA10, HEXA20/27, PENTA15/18, PYRAM13): least-squares fit with the
+/// linear cell's functions, evaluated at the corners, mid-nodes as means.
 fn extrapolation(ty: CellType) -> DMatrix<f64> {
     let scheme = shape::rigi_scheme(ty);
     let np = scheme.len();
@@ -160,12 +175,8 @@ fn extrapolation(ty: CellType) -> DMatrix<f64> {
     if np == 1 {
         return DMatrix::from_element(nn, 1, 1.0);
     }
-    let (lin, ncorner) = match ty {
-        CellType::TRIA6 => (CellType::TRIA3, 3),
-        CellType::QUAD4 | CellType::QUAD8 => (CellType::QUAD4, 4),
-        CellType::HEXA8 => (CellType::HEXA8, 8),
-        other => (other, nn),
-    };
+    let lin = linear_type(ty);
+    let ncorner = lin.node_count();
     // A: points × corner functions; fit coefficients c = (AᵀA)⁻¹Aᵀ v.
     let mut a = DMatrix::zeros(np, ncorner);
     for (p, gp) in scheme.iter().enumerate() {

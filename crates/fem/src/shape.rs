@@ -2,9 +2,14 @@
 //! schemes, with code_aster's node ordering and integration families.
 //!
 //! Reference cells (code_aster's): segments on [-1, 1]; triangles on
-//! (0,0) (1,0) (0,1); quadrangles on [-1, 1]²; tetrahedra on the unit
-//! simplex; hexahedra on [-1, 1]³.
+//! (0,0) (1,0) (0,1); quadrangles on [-1, 1]²; hexahedra on [-1, 1]³;
+//! tetrahedra, pentahedra and pyramids as in `refcells` (code_aster's
+//! `elrfno`). The linear and quadratic 2D cells and HEXA8 have closed forms
+//! here; the families added later (QUAD9, TRIA7, TETRA4/10, HEXA20/27,
+//! PENTA6/15/18, PYRAM5/13) are written once in `refcells` and
+//! differentiated automatically.
 
+use crate::{fpg, refcells};
 use aster_mesh::CellType;
 
 /// A quadrature point: reference coordinates and weight.
@@ -23,18 +28,32 @@ pub struct ShapeAt {
 
 /// Whether we have an isoparametric formulation for this cell type.
 pub fn supported(ty: CellType) -> bool {
-    matches!(
-        ty,
-        CellType::SEG2
-            | CellType::SEG3
-            | CellType::TRIA3
-            | CellType::TRIA6
-            | CellType::QUAD4
-            | CellType::QUAD8
-            | CellType::TETRA4
-            | CellType::HEXA8
-    )
+    !matches!(ty, CellType::POI1 | CellType::SEG4)
 }
+
+/// The volume cells a 3D model has elements for, in code_aster's order.
+pub const SOLID_CELLS: [CellType; 10] = [
+    CellType::HEXA8,
+    CellType::HEXA20,
+    CellType::HEXA27,
+    CellType::PENTA6,
+    CellType::PENTA15,
+    CellType::PENTA18,
+    CellType::TETRA4,
+    CellType::TETRA10,
+    CellType::PYRAM5,
+    CellType::PYRAM13,
+];
+
+/// The surface cells a plane or axisymmetric model has elements for
+/// (code_aster has no D_PLAN/AXIS element on TRIA7).
+pub const PLANE_CELLS: [CellType; 5] = [
+    CellType::TRIA3,
+    CellType::TRIA6,
+    CellType::QUAD4,
+    CellType::QUAD8,
+    CellType::QUAD9,
+];
 
 /// Reference coordinates of the nodes of a cell type.
 pub fn reference_nodes(ty: CellType) -> Vec<[f64; 3]> {
@@ -61,7 +80,6 @@ pub fn reference_nodes(ty: CellType) -> Vec<[f64; 3]> {
             [0., 1., 0.],
             [-1., 0., 0.],
         ],
-        CellType::TETRA4 => vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]],
         CellType::HEXA8 => vec![
             [-1., -1., -1.],
             [1., -1., -1.],
@@ -72,7 +90,7 @@ pub fn reference_nodes(ty: CellType) -> Vec<[f64; 3]> {
             [1., 1., 1.],
             [-1., 1., 1.],
         ],
-        _ => Vec::new(),
+        other => refcells::nodes(other),
     }
 }
 
@@ -151,10 +169,6 @@ pub fn shape(ty: CellType, xi: [f64; 3]) -> ShapeAt {
             }
             ShapeAt { n, dn }
         }
-        CellType::TETRA4 => ShapeAt {
-            n: vec![1. - x - y - z, x, y, z],
-            dn: vec![[-1., -1., -1.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]],
-        },
         CellType::HEXA8 => {
             let r = reference_nodes(ty);
             let mut n = Vec::with_capacity(8);
@@ -170,10 +184,13 @@ pub fn shape(ty: CellType, xi: [f64; 3]) -> ShapeAt {
             }
             ShapeAt { n, dn }
         }
-        _ => ShapeAt {
-            n: Vec::new(),
-            dn: Vec::new(),
-        },
+        other => {
+            let ad = refcells::shape(other, xi).unwrap_or_default();
+            ShapeAt {
+                n: ad.iter().map(|a| a.v).collect(),
+                dn: ad.iter().map(|a| a.d).collect(),
+            }
+        }
     }
 }
 
@@ -189,12 +206,15 @@ fn gauss_1d(order: usize) -> Vec<(f64, f64)> {
 }
 
 /// The stiffness ("RIGI") Gauss family code_aster uses for each cell type:
-/// SEG2 FPG2, SEG3 FPG3, TRIA3 FPG1, TRIA6 FPG3, QUAD4 FPG4 (2×2),
-/// QUAD8 FPG9 (3×3), TETRA4 FPG1, HEXA8 FPG8 (2×2×2).
+/// SEG2 FPG2, SEG3 FPG3, TRIA3 FPG1, TRIA6 FPG3, TRIA7 FPG6, QUAD4 FPG4
+/// (2×2), QUAD8/QUAD9 FPG9 (3×3), TETRA4 FPG1, TETRA10 FPG5, HEXA8 FPG8
+/// (2×2×2), HEXA20/HEXA27 FPG27 (3×3×3), PENTA6 FPG6, PENTA15/PENTA18
+/// FPG21, PYRAM5 FPG5, PYRAM13 FPG27.
 ///
 /// Point order follows code_aster's `elraga`: QUAD4 counter-clockwise from
 /// (-a,-a); QUAD8 corners, then mid-edges, then centre; TRIA6 (1/6,1/6),
-/// (2/3,1/6), (1/6,2/3).
+/// (2/3,1/6), (1/6,2/3); hexahedra with ξ slowest and ζ fastest;
+/// pentahedra ξ slowest, the triangle rule inside.
 pub fn rigi_scheme(ty: CellType) -> Vec<GaussPoint> {
     let gp = |x: f64, y: f64, z: f64, w: f64| GaussPoint {
         xi: [x, y, z],
@@ -221,7 +241,7 @@ pub fn rigi_scheme(ty: CellType) -> Vec<GaussPoint> {
             gp(G2, G2, 0., 1.),
             gp(-G2, G2, 0., 1.),
         ],
-        CellType::QUAD8 => {
+        CellType::QUAD8 | CellType::QUAD9 => {
             let (c, m) = (25. / 81., 40. / 81.);
             vec![
                 gp(-G3, -G3, 0., c),
@@ -235,18 +255,15 @@ pub fn rigi_scheme(ty: CellType) -> Vec<GaussPoint> {
                 gp(0., 0., 0., 64. / 81.),
             ]
         }
+        CellType::TRIA7 => fpg::tria_fpg6(),
         CellType::TETRA4 => vec![gp(0.25, 0.25, 0.25, 1. / 6.)],
-        CellType::HEXA8 => {
-            let mut v = Vec::with_capacity(8);
-            for &(z, _) in &gauss_1d(2) {
-                for &(y, _) in &gauss_1d(2) {
-                    for &(x, _) in &gauss_1d(2) {
-                        v.push(gp(x, y, z, 1.));
-                    }
-                }
-            }
-            v
-        }
+        CellType::TETRA10 => fpg::tetra5(),
+        CellType::HEXA8 => fpg::hexa(2),
+        CellType::HEXA20 | CellType::HEXA27 => fpg::hexa(3),
+        CellType::PENTA6 => fpg::penta6(),
+        CellType::PENTA15 | CellType::PENTA18 => fpg::penta21(),
+        CellType::PYRAM5 => fpg::pyram5(),
+        CellType::PYRAM13 => fpg::pyram27(),
         _ => Vec::new(),
     }
 }
@@ -255,6 +272,7 @@ pub fn rigi_scheme(ty: CellType) -> Vec<GaussPoint> {
 /// the polynomial degree of the load times the shape functions.
 pub fn load_scheme(ty: CellType) -> Vec<GaussPoint> {
     match ty {
+        CellType::TRIA6 | CellType::TRIA7 => fpg::tria_fpg6(),
         CellType::TRIA3 => vec![
             GaussPoint {
                 xi: [1. / 6., 1. / 6., 0.],
@@ -292,24 +310,176 @@ pub fn load_scheme(ty: CellType) -> Vec<GaussPoint> {
     }
 }
 
+/// Number of corner (vertex) nodes: code_aster numbers them first.
+pub fn corner_count(ty: CellType) -> usize {
+    match ty {
+        CellType::POI1 => 1,
+        CellType::SEG2 | CellType::SEG3 | CellType::SEG4 => 2,
+        CellType::TRIA3 | CellType::TRIA6 | CellType::TRIA7 => 3,
+        CellType::QUAD4 | CellType::QUAD8 | CellType::QUAD9 => 4,
+        CellType::TETRA4 | CellType::TETRA10 => 4,
+        CellType::PENTA6 | CellType::PENTA15 | CellType::PENTA18 => 6,
+        CellType::HEXA8 | CellType::HEXA20 | CellType::HEXA27 => 8,
+        CellType::PYRAM5 | CellType::PYRAM13 => 5,
+    }
+}
+
+/// Corner nodes of each facet (edges of a 2D cell, faces of a 3D cell),
+/// as local indices, before orientation.
+fn facet_corner_sets(ty: CellType) -> Vec<Vec<usize>> {
+    let v = |s: &[&[usize]]| s.iter().map(|f| f.to_vec()).collect();
+    match ty.dim() {
+        2 if corner_count(ty) == 3 => v(&[&[0, 1], &[1, 2], &[2, 0]]),
+        2 => v(&[&[0, 1], &[1, 2], &[2, 3], &[3, 0]]),
+        3 => match corner_count(ty) {
+            4 => v(&[&[0, 1, 2], &[0, 1, 3], &[1, 2, 3], &[0, 2, 3]]),
+            5 => v(&[
+                &[0, 1, 2, 3],
+                &[0, 1, 4],
+                &[1, 2, 4],
+                &[2, 3, 4],
+                &[3, 0, 4],
+            ]),
+            6 => v(&[
+                &[0, 1, 2],
+                &[3, 4, 5],
+                &[0, 1, 4, 3],
+                &[1, 2, 5, 4],
+                &[2, 0, 3, 5],
+            ]),
+            _ => v(&[
+                &[0, 1, 2, 3],
+                &[4, 5, 6, 7],
+                &[0, 1, 5, 4],
+                &[1, 2, 6, 5],
+                &[2, 3, 7, 6],
+                &[3, 0, 4, 7],
+            ]),
+        },
+        _ => Vec::new(),
+    }
+}
+
+/// Facets of a 2D or 3D cell as local node indices, in the node order of
+/// the boundary cell they are (corners, then edge midpoints, then the face
+/// centre: SEG3, TRIA6/TRIA7, QUAD8/QUAD9), oriented so that the normal of
+/// the reference cell points outward (2D: (t_y, −t_x) of the tangent; 3D:
+/// ∂x/∂ξ × ∂x/∂η). Mid-nodes are found by position in the reference cell,
+/// so the table holds for every family.
+pub fn facets(ty: CellType) -> Vec<Vec<usize>> {
+    let r = reference_nodes(ty);
+    let find = |p: [f64; 3]| {
+        r.iter()
+            .position(|q| (0..3).all(|k| (q[k] - p[k]).abs() < 1e-12))
+    };
+    let mut out = Vec::new();
+    for corners in facet_corners(ty) {
+        let mut f = corners.clone();
+        let m = corners.len();
+        if m > 1 {
+            for k in 0..m {
+                let (a, b) = (r[corners[k]], r[corners[(k + 1) % m]]);
+                if m == 2 && k == 1 {
+                    break;
+                }
+                if let Some(i) = find(std::array::from_fn(|c| 0.5 * (a[c] + b[c]))) {
+                    f.push(i);
+                }
+            }
+            if m > 2 && f.len() > m {
+                let pts: Vec<[f64; 3]> = corners.iter().map(|&i| r[i]).collect();
+                if let Some(i) = find(mean(&pts)) {
+                    f.push(i);
+                }
+            }
+        }
+        out.push(f);
+    }
+    out
+}
+
+/// The corner nodes of [`facets`], oriented the same way.
+pub fn facet_corners(ty: CellType) -> Vec<Vec<usize>> {
+    let r = reference_nodes(ty);
+    if r.is_empty() {
+        return Vec::new();
+    }
+    let nc = corner_count(ty);
+    let centroid = mean(&r[..nc]);
+    let mut out = Vec::new();
+    for mut f in facet_corner_sets(ty) {
+        let pts: Vec<[f64; 3]> = f.iter().map(|&i| r[i]).collect();
+        let fc = mean(&pts);
+        let out_dir = sub(fc, centroid);
+        let normal = if f.len() == 2 {
+            let t = sub(pts[1], pts[0]);
+            [t[1], -t[0], 0.]
+        } else {
+            cross(sub(pts[1], pts[0]), sub(pts[2], pts[0]))
+        };
+        if dot(normal, out_dir) < 0. {
+            if f.len() == 2 {
+                f.swap(0, 1);
+            } else {
+                f[1..].reverse();
+            }
+        }
+        out.push(f);
+    }
+    out
+}
+
+fn mean(p: &[[f64; 3]]) -> [f64; 3] {
+    let n = p.len() as f64;
+    std::array::from_fn(|k| p.iter().map(|q| q[k]).sum::<f64>() / n)
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    const ALL: [CellType; 18] = [
+        CellType::SEG2,
+        CellType::SEG3,
+        CellType::TRIA3,
+        CellType::TRIA6,
+        CellType::TRIA7,
+        CellType::QUAD4,
+        CellType::QUAD8,
+        CellType::QUAD9,
+        CellType::TETRA4,
+        CellType::TETRA10,
+        CellType::PENTA6,
+        CellType::PENTA15,
+        CellType::PENTA18,
+        CellType::HEXA8,
+        CellType::HEXA20,
+        CellType::HEXA27,
+        CellType::PYRAM5,
+        CellType::PYRAM13,
+    ];
+
     #[test]
     fn shape_functions_are_nodal_and_sum_to_one() {
-        for ty in [
-            CellType::SEG2,
-            CellType::SEG3,
-            CellType::TRIA3,
-            CellType::TRIA6,
-            CellType::QUAD4,
-            CellType::QUAD8,
-            CellType::TETRA4,
-            CellType::HEXA8,
-        ] {
+        for ty in ALL {
             let nodes = reference_nodes(ty);
-            assert_eq!(nodes.len(), ty.node_count());
+            assert_eq!(nodes.len(), ty.node_count(), "{ty:?}");
             for (i, &p) in nodes.iter().enumerate() {
                 let s = shape(ty, p);
                 for (j, &v) in s.n.iter().enumerate() {
@@ -321,7 +491,7 @@ mod tests {
             let p = [0.21, 0.17, 0.13];
             let s = shape(ty, p);
             let sum: f64 = s.n.iter().sum();
-            assert!((sum - 1.).abs() < 1e-14);
+            assert!((sum - 1.).abs() < 1e-14, "{ty:?}");
             let h = 1e-6;
             for k in 0..3 {
                 let mut a = p;
@@ -337,19 +507,167 @@ mod tests {
         }
     }
 
+    /// Every family reproduces the coordinates (isoparametric completeness):
+    /// Σ Nᵢ xᵢ = x and Σ ∂Nᵢ/∂ξ xᵢ = identity.
+    #[test]
+    fn shape_functions_reproduce_linear_fields() {
+        for ty in ALL {
+            let nodes = reference_nodes(ty);
+            let p = [0.11, 0.23, 0.31];
+            let s = shape(ty, p);
+            let dim = ty.dim() as usize;
+            for c in 0..dim {
+                let x: f64 = (0..nodes.len()).map(|i| s.n[i] * nodes[i][c]).sum();
+                assert!((x - p[c]).abs() < 1e-13, "{ty:?} x{c}");
+                for k in 0..dim {
+                    let d: f64 = (0..nodes.len()).map(|i| s.dn[i][k] * nodes[i][c]).sum();
+                    let want = if c == k { 1. } else { 0. };
+                    assert!((d - want).abs() < 1e-12, "{ty:?} dx{c}/dxi{k}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn schemes_integrate_the_reference_measure() {
         for (ty, measure) in [
             (CellType::SEG2, 2.),
             (CellType::TRIA3, 0.5),
             (CellType::TRIA6, 0.5),
+            (CellType::TRIA7, 0.5),
             (CellType::QUAD4, 4.),
             (CellType::QUAD8, 4.),
+            (CellType::QUAD9, 4.),
             (CellType::TETRA4, 1. / 6.),
+            (CellType::TETRA10, 1. / 6.),
+            (CellType::PENTA6, 1.),
+            (CellType::PENTA15, 1.),
+            (CellType::PENTA18, 1.),
             (CellType::HEXA8, 8.),
+            (CellType::HEXA20, 8.),
+            (CellType::HEXA27, 8.),
+            (CellType::PYRAM5, 2. / 3.),
+            (CellType::PYRAM13, 2. / 3.),
         ] {
             let w: f64 = rigi_scheme(ty).iter().map(|g| g.weight).sum();
-            assert!((w - measure).abs() < 1e-14, "{ty:?}");
+            // PYRAM13's FPG27 weights are given to 9 digits by code_aster.
+            let tol = if ty == CellType::PYRAM13 { 1e-7 } else { 1e-13 };
+            assert!((w - measure).abs() < tol, "{ty:?}: {w}");
         }
+    }
+
+    /// Exact integrals of monomials over the reference cells, against the
+    /// schemes' stated degrees (the degree a stiffness needs for affine
+    /// cells: 2·(order − 1)).
+    #[test]
+    fn schemes_are_exact_to_their_degree() {
+        // ∫ over the simplex of x^a y^b z^c = a! b! c! / (a+b+c+3)!
+        fn fact(n: u32) -> f64 {
+            (1..=n).map(f64::from).product()
+        }
+        let tet = |a: u32, b: u32, c: u32| fact(a) * fact(b) * fact(c) / fact(a + b + c + 3);
+        let tri = |a: u32, b: u32| fact(a) * fact(b) / fact(a + b + 2);
+        let seg = |a: u32| {
+            if a % 2 == 1 {
+                0.
+            } else {
+                2. / f64::from(a + 1)
+            }
+        };
+        let integrate = |ty: CellType, f: &dyn Fn([f64; 3]) -> f64| -> f64 {
+            rigi_scheme(ty).iter().map(|g| g.weight * f(g.xi)).sum()
+        };
+        for (ty, deg) in [(CellType::TETRA10, 3u32), (CellType::TETRA4, 1)] {
+            for a in 0..=deg {
+                for b in 0..=deg - a {
+                    for c in 0..=deg - a - b {
+                        let got = integrate(ty, &|p| {
+                            p[0].powi(a as i32) * p[1].powi(b as i32) * p[2].powi(c as i32)
+                        });
+                        assert!((got - tet(a, b, c)).abs() < 1e-14, "{ty:?} x{a}y{b}z{c}");
+                    }
+                }
+            }
+        }
+        // Pentahedra: ξ ∈ [-1,1] (Gauss, degree 2n−1) × triangle (η, ζ).
+        for (ty, dx, dt) in [(CellType::PENTA6, 3u32, 1u32), (CellType::PENTA15, 5, 5)] {
+            for a in 0..=dx {
+                for b in 0..=dt {
+                    for c in 0..=dt - b {
+                        let got = integrate(ty, &|p| {
+                            p[0].powi(a as i32) * p[1].powi(b as i32) * p[2].powi(c as i32)
+                        });
+                        let want = seg(a) * tri(b, c);
+                        assert!((got - want).abs() < 1e-13, "{ty:?} x{a}y{b}z{c}");
+                    }
+                }
+            }
+        }
+        for (ty, d) in [(CellType::HEXA8, 3u32), (CellType::HEXA20, 5)] {
+            for a in 0..=d {
+                for b in 0..=d {
+                    for c in 0..=d {
+                        let got = integrate(ty, &|p| {
+                            p[0].powi(a as i32) * p[1].powi(b as i32) * p[2].powi(c as i32)
+                        });
+                        assert!((got - seg(a) * seg(b) * seg(c)).abs() < 1e-13, "{ty:?}");
+                    }
+                }
+            }
+        }
+        // Triangle FPG6: degree 4.
+        for a in 0..=4u32 {
+            for b in 0..=4 - a {
+                let got = integrate(CellType::TRIA7, &|p| {
+                    p[0].powi(a as i32) * p[1].powi(b as i32)
+                });
+                assert!((got - tri(a, b)).abs() < 1e-14, "FPG6 x{a}y{b}");
+            }
+        }
+        // Pyramid FPG5 integrates z exactly: ∫ z dV = ∫₀¹ 2(1−z)² z dz = 1/6.
+        let got = integrate(CellType::PYRAM5, &|p| p[2]);
+        assert!((got - 1. / 6.).abs() < 1e-12, "PYRAM5 z: {got}");
+        let got = integrate(CellType::PYRAM13, &|p| p[2]);
+        assert!((got - 1. / 6.).abs() < 1e-7, "PYRAM13 z: {got}");
+    }
+
+    #[test]
+    fn hexa_points_in_code_aster_order() {
+        // elraga: ξ slowest, ζ fastest.
+        let s = rigi_scheme(CellType::HEXA8);
+        assert!(s[0].xi.iter().all(|&v| v < 0.));
+        assert!(s[1].xi[2] > 0. && s[1].xi[0] < 0. && s[1].xi[1] < 0.);
+        assert!(s[4].xi[0] > 0. && s[4].xi[1] < 0. && s[4].xi[2] < 0.);
+    }
+
+    #[test]
+    fn facets_carry_their_mid_nodes_and_point_outward() {
+        let cases: [(CellType, usize, &[usize]); 8] = [
+            (CellType::TRIA6, 3, &[3, 3, 3]),
+            (CellType::QUAD9, 4, &[3, 3, 3, 3]),
+            (CellType::TETRA10, 4, &[6, 6, 6, 6]),
+            (CellType::PENTA15, 5, &[6, 6, 8, 8, 8]),
+            (CellType::PENTA18, 5, &[6, 6, 9, 9, 9]),
+            (CellType::HEXA20, 6, &[8; 6]),
+            (CellType::HEXA27, 6, &[9; 6]),
+            (CellType::PYRAM13, 5, &[8, 6, 6, 6, 6]),
+        ];
+        for (ty, count, sizes) in cases {
+            let f = facets(ty);
+            assert_eq!(f.len(), count, "{ty:?}");
+            let got: Vec<usize> = f.iter().map(|v| v.len()).collect();
+            assert_eq!(got, sizes, "{ty:?}");
+            // Every node index is distinct within a facet.
+            for v in &f {
+                let mut s = v.clone();
+                s.sort();
+                s.dedup();
+                assert_eq!(s.len(), v.len(), "{ty:?} {v:?}");
+            }
+        }
+        // HEXA20 bottom face: corners 1 4 3 2 (outward −ζ), then mid-edges.
+        assert_eq!(facets(CellType::HEXA20)[0], vec![0, 3, 2, 1, 11, 10, 9, 8]);
+        // TRIA6 first edge: nodes 1 2 and its middle 4.
+        assert_eq!(facets(CellType::TRIA6)[0], vec![0, 1, 3]);
     }
 }
