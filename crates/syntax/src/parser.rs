@@ -655,9 +655,17 @@ impl Builder<'_> {
             Rule::testlist_star | Rule::exprlist | Rule::target_list => {}
             _ => return self.element(pair),
         }
-        let mut elts = Vec::new();
+        let inner = pair.into_inner();
+        // A lone element (nearly every statement's value) needs no vector.
+        let mut rest = inner.clone();
+        if let (Some(only), None) = (rest.next(), rest.next()) {
+            if only.as_rule() != Rule::comma {
+                return self.element(only);
+            }
+        }
+        let mut elts = Vec::with_capacity(inner.clone().count());
         let mut comma = false;
-        for p in pair.into_inner() {
+        for p in inner {
             if p.as_rule() == Rule::comma {
                 comma = true;
             } else {
@@ -878,8 +886,9 @@ impl Builder<'_> {
     }
 
     fn arglist(&self, pair: P) -> R<Vec<Arg>> {
-        let mut args = Vec::new();
-        for arg in pair.into_inner() {
+        let inner = pair.into_inner();
+        let mut args = Vec::with_capacity(inner.clone().count());
+        for arg in inner {
             let span = self.span(&arg);
             let rule = arg.as_rule();
             let mut inner = arg.into_inner();
@@ -1049,10 +1058,11 @@ impl Builder<'_> {
     /// Elements of a display, or one element and its `for` clauses.
     #[allow(clippy::type_complexity)]
     fn comp_body(&self, pair: P) -> R<(Vec<Expr>, Option<Vec<Comprehension>>, bool)> {
-        let mut elts = Vec::new();
+        let inner = pair.into_inner();
+        let mut elts = Vec::with_capacity(inner.clone().count());
         let mut generators = None;
         let mut comma = false;
-        for p in pair.into_inner() {
+        for p in inner {
             match p.as_rule() {
                 Rule::comp_for => generators = Some(self.comp_for(p)?),
                 Rule::comma => comma = true,
