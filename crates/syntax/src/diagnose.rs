@@ -617,7 +617,11 @@ mod tests {
                 + &" ".repeat(n)
                 + "pass\n"
         };
-        for n in [MAX_BRACKET_DEPTH - 1, MAX_BRACKET_DEPTH, MAX_BRACKET_DEPTH + 1] {
+        for n in [
+            MAX_BRACKET_DEPTH - 1,
+            MAX_BRACKET_DEPTH,
+            MAX_BRACKET_DEPTH + 1,
+        ] {
             same_verdict(&deep(n));
         }
         for n in [MAX_PREFIX_RUN, MAX_PREFIX_RUN + 1] {

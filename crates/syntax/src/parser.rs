@@ -8,8 +8,8 @@
 use crate::ast::*;
 use crate::codemap::Span;
 use crate::literals;
-use crate::ParseError;
 use crate::tree::{Children, Node, Tree};
+use crate::ParseError;
 use pest::Parser as _;
 
 #[derive(pest_derive::Parser)]
