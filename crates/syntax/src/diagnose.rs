@@ -406,6 +406,25 @@ pub const MAX_BRACKET_DEPTH: usize = 200;
 pub const MAX_INDENT_LEVELS: usize = 100;
 pub const MAX_PREFIX_RUN: usize = 100;
 
+/// Byte classes of [`check_limits`]: 0 resets the unary-operator run, 1
+/// (blanks) keeps it, [`LIMIT_SPECIAL`] needs the full step (comments,
+/// strings, brackets, newlines, unary operators).
+const LIMIT_SPECIAL: u8 = 2;
+const LIMIT_CLASS: [u8; 256] = {
+    let mut t = [0u8; 256];
+    t[b' ' as usize] = 1;
+    t[b'\t' as usize] = 1;
+    let special = b"#'\"([{)]}\n-+~";
+    let mut k = 0;
+    while k < special.len() {
+        t[special[k] as usize] = LIMIT_SPECIAL;
+        k += 1;
+    }
+    t
+};
+
+/// The nesting limits above (brackets, indentation levels, runs of unary
+/// operators), in one pass over the bytes.
 pub fn check_limits(source: &str) -> Result<(), ParseError> {
     let bytes = source.as_bytes();
     let mut depth = 0usize;
@@ -414,6 +433,21 @@ pub fn check_limits(source: &str) -> Result<(), ParseError> {
     let mut line_start = true;
     let mut indent_widths: Vec<usize> = Vec::new();
     while i < bytes.len() {
+        if !(line_start && depth == 0) {
+            // Most bytes only reset (or, for blanks, keep) the run of unary
+            // operators: skip them in a tight loop, it runs every parse.
+            while let Some(&b) = bytes.get(i) {
+                let class = LIMIT_CLASS[b as usize];
+                if class == LIMIT_SPECIAL {
+                    break;
+                }
+                prefix_run *= class as usize;
+                i += 1;
+            }
+            if i >= bytes.len() {
+                break;
+            }
+        }
         let c = bytes[i];
         if line_start && depth == 0 {
             let s = i;
@@ -496,6 +530,120 @@ mod tests {
         assert_eq!(width("  \t"), 8);
         assert_eq!(width("        "), 8);
         assert_eq!(width("\t "), 9);
+    }
+
+    /// The straightforward byte-by-byte version `check_limits` was before
+    /// its fast path: both must agree on every input.
+    fn check_limits_reference(source: &str) -> Result<(), ParseError> {
+        let bytes = source.as_bytes();
+        let mut depth = 0usize;
+        let mut prefix_run = 0usize;
+        let mut i = 0;
+        let mut line_start = true;
+        let mut indent_widths: Vec<usize> = Vec::new();
+        while i < bytes.len() {
+            let c = bytes[i];
+            if line_start && depth == 0 {
+                let s = i;
+                while i < bytes.len() && matches!(bytes[i], b' ' | b'\t') {
+                    i += 1;
+                }
+                if i < bytes.len() && !matches!(bytes[i], b'\n' | b'\r' | b'#') {
+                    let w = width(&source[s..i]);
+                    while indent_widths.last().is_some_and(|&t| t >= w) {
+                        indent_widths.pop();
+                    }
+                    if w > 0 {
+                        indent_widths.push(w);
+                    }
+                    if indent_widths.len() > MAX_INDENT_LEVELS {
+                        return Err(err(i, 1, "indent".into()));
+                    }
+                }
+                line_start = false;
+                continue;
+            }
+            match c {
+                b'#' => {
+                    while i < bytes.len() && bytes[i] != b'\n' {
+                        i += 1;
+                    }
+                    continue;
+                }
+                b'\'' | b'"' => {
+                    i = string_end(bytes, i).unwrap_or(bytes.len());
+                    prefix_run = 0;
+                    continue;
+                }
+                b'(' | b'[' | b'{' => {
+                    depth += 1;
+                    if depth > MAX_BRACKET_DEPTH {
+                        return Err(err(i, 1, "brackets".into()));
+                    }
+                }
+                b')' | b']' | b'}' => depth = depth.saturating_sub(1),
+                b'\n' => line_start = true,
+                _ => {}
+            }
+            match c {
+                b'-' | b'+' | b'~' => {
+                    prefix_run += 1;
+                    if prefix_run > MAX_PREFIX_RUN {
+                        return Err(err(i, 1, "unary".into()));
+                    }
+                }
+                b' ' | b'\t' => {}
+                _ => prefix_run = 0,
+            }
+            i += 1;
+        }
+        Ok(())
+    }
+
+    fn same_verdict(source: &str) {
+        let fast = check_limits(source).map_err(|e| e.span);
+        let reference = check_limits_reference(source).map_err(|e| e.span);
+        assert_eq!(fast, reference, "{source:?}");
+    }
+
+    #[test]
+    fn fast_limit_check_agrees_with_reference_at_the_limits() {
+        let deep = |n: usize| format!("x = {}1{}\n", "(".repeat(n), ")".repeat(n));
+        let unary = |n: usize| format!("x = {}1\ny = 2\n", "- ".repeat(n));
+        let indent = |n: usize| {
+            (0..n)
+                .map(|k| format!("{}if a:\n", " ".repeat(k)))
+                .collect::<String>()
+                + &" ".repeat(n)
+                + "pass\n"
+        };
+        for n in [
+            MAX_BRACKET_DEPTH - 1,
+            MAX_BRACKET_DEPTH,
+            MAX_BRACKET_DEPTH + 1,
+        ] {
+            same_verdict(&deep(n));
+        }
+        for n in [MAX_PREFIX_RUN, MAX_PREFIX_RUN + 1] {
+            same_verdict(&unary(n));
+            same_verdict(&format!("s = '{}'\n", "-".repeat(n + 5)));
+            same_verdict(&format!("# {}\nx = 1\n", "-".repeat(n + 5)));
+        }
+        for n in [MAX_INDENT_LEVELS, MAX_INDENT_LEVELS + 1] {
+            same_verdict(&indent(n));
+        }
+        assert!(check_limits(&deep(MAX_BRACKET_DEPTH + 1)).is_err());
+        assert!(check_limits(&unary(MAX_PREFIX_RUN + 1)).is_err());
+        assert!(check_limits(&indent(MAX_INDENT_LEVELS + 1)).is_err());
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn fast_limit_check_agrees_with_reference(
+            source in "([ \t\n#'\"(\\[{)\\]}+~a=-]|\\(\\(\\(\\(|- - - -){0,400}"
+        ) {
+            same_verdict(&source);
+        }
     }
 
     #[test]

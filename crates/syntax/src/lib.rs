@@ -13,6 +13,7 @@ pub mod error;
 pub mod fmt;
 pub mod literals;
 pub mod parser;
+mod tree;
 pub mod validate;
 
 pub use codemap::{CodeMap, LineCol, Span};

@@ -8,23 +8,24 @@
 use crate::ast::*;
 use crate::codemap::Span;
 use crate::literals;
+use crate::tree::{Children, Node, Tree};
 use crate::ParseError;
-use pest::iterators::{Pair, Pairs};
 use pest::Parser as _;
 
 #[derive(pest_derive::Parser)]
 #[grammar = "../../grammar/comm.pest"]
 pub struct CommParser;
 
-type P<'i> = Pair<'i, Rule>;
+type P<'t> = Node<'t>;
 type R<T> = Result<T, ParseError>;
 
 /// Parse a whole file into its AST (no post-parse validation).
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
-    let mut pairs =
+    let pairs =
         CommParser::parse(Rule::module, source).map_err(|e| crate::error::from_pest(&e, source))?;
+    let tree = Tree::new(pairs, source);
     let builder = Builder { base: 0, source };
-    let body = match pairs.next() {
+    let body = match tree.top().next() {
         Some(module) => builder.stmts(module.into_inner())?,
         None => Vec::new(),
     };
@@ -52,13 +53,13 @@ impl Builder<'_> {
     /// A pair's span, without the trailing whitespace pest's implicit
     /// whitespace may have consumed after an optional last element.
     fn span(&self, pair: &P) -> Span {
-        let s = pair.as_span();
-        let text = &self.source[s.start()..s.end()];
-        let end = s.start()
+        let (start, end) = (pair.start(), pair.end());
+        let text = &self.source[start..end];
+        let end = start
             + text
                 .trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\'])
                 .len();
-        Span::new(self.base + s.start(), self.base + end.max(s.start()))
+        Span::new(self.base + start, self.base + end.max(start))
     }
 
     /// A statement-level span: also without a trailing comment.
@@ -306,7 +307,7 @@ impl Builder<'_> {
         Ok(Alias { name, asname, span })
     }
 
-    fn expr_stmt(&self, mut inner: Pairs<Rule>) -> R<StmtKind> {
+    fn expr_stmt(&self, mut inner: Children) -> R<StmtKind> {
         let Some(first) = inner.next() else {
             return Ok(StmtKind::Pass);
         };
@@ -534,7 +535,7 @@ impl Builder<'_> {
         self.required_test(test, at)
     }
 
-    fn next_suite(&self, inner: &mut Pairs<Rule>, at: Span) -> R<Vec<Stmt>> {
+    fn next_suite(&self, inner: &mut Children, at: Span) -> R<Vec<Stmt>> {
         match inner.next() {
             Some(p) => self.suite(p),
             None => Err(err(at, "internal: missing block")),
@@ -552,7 +553,7 @@ impl Builder<'_> {
         }
     }
 
-    fn def_stmt(&self, span: Span, mut inner: Pairs<Rule>, decorators: Vec<Expr>) -> R<Stmt> {
+    fn def_stmt(&self, span: Span, mut inner: Children, decorators: Vec<Expr>) -> R<Stmt> {
         let head = self.head(inner.next(), span)?;
         let mut name = None;
         let mut params = Vec::new();
@@ -576,7 +577,7 @@ impl Builder<'_> {
         })
     }
 
-    fn class_stmt(&self, span: Span, mut inner: Pairs<Rule>, decorators: Vec<Expr>) -> R<Stmt> {
+    fn class_stmt(&self, span: Span, mut inner: Children, decorators: Vec<Expr>) -> R<Stmt> {
         let head = self.head(inner.next(), span)?;
         let mut name = None;
         let mut bases = Vec::new();
@@ -654,9 +655,17 @@ impl Builder<'_> {
             Rule::testlist_star | Rule::exprlist | Rule::target_list => {}
             _ => return self.element(pair),
         }
-        let mut elts = Vec::new();
+        let inner = pair.into_inner();
+        // A lone element (nearly every statement's value) needs no vector.
+        let mut rest = inner.clone();
+        if let (Some(only), None) = (rest.next(), rest.next()) {
+            if only.as_rule() != Rule::comma {
+                return self.element(only);
+            }
+        }
+        let mut elts = Vec::with_capacity(inner.clone().count());
         let mut comma = false;
-        for p in pair.clone().into_inner() {
+        for p in inner {
             if p.as_rule() == Rule::comma {
                 comma = true;
             } else {
@@ -734,7 +743,7 @@ impl Builder<'_> {
             Rule::lambdef | Rule::lambdef_nocond => return self.lambda(pair),
             _ => return self.element(pair),
         }
-        let mut inner = pair.clone().into_inner();
+        let mut inner = pair.into_inner();
         if let Some(first) = inner.peek() {
             if first.as_rule() == Rule::lambdef {
                 return self.lambda(first);
@@ -794,7 +803,7 @@ impl Builder<'_> {
     /// from `inner` up to the first pair that is neither (e.g. a `ternary`),
     /// folded by Python's precedence. A lone operand (the common case: a
     /// keyword's value) skips the folding.
-    fn operation(&self, inner: &mut Pairs<Rule>) -> R<Expr> {
+    fn operation(&self, inner: &mut Children) -> R<Expr> {
         let mut items = Vec::new();
         loop {
             while let Some(op) = inner.peek().and_then(|p| prefix_op(p.as_rule())) {
@@ -827,7 +836,7 @@ impl Builder<'_> {
     }
 
     /// An atom and its trailers (calls, subscripts, attributes), read from `inner`.
-    fn operand(&self, inner: &mut Pairs<Rule>) -> R<Expr> {
+    fn operand(&self, inner: &mut Children) -> R<Expr> {
         let mut expr = match inner.next() {
             Some(atom) => self.atom(atom)?,
             None => return Err(err(Span::default(), "internal: missing operand")),
@@ -877,8 +886,9 @@ impl Builder<'_> {
     }
 
     fn arglist(&self, pair: P) -> R<Vec<Arg>> {
-        let mut args = Vec::new();
-        for arg in pair.into_inner() {
+        let inner = pair.into_inner();
+        let mut args = Vec::with_capacity(inner.clone().count());
+        for arg in inner {
             let span = self.span(&arg);
             let rule = arg.as_rule();
             let mut inner = arg.into_inner();
@@ -1048,10 +1058,11 @@ impl Builder<'_> {
     /// Elements of a display, or one element and its `for` clauses.
     #[allow(clippy::type_complexity)]
     fn comp_body(&self, pair: P) -> R<(Vec<Expr>, Option<Vec<Comprehension>>, bool)> {
-        let mut elts = Vec::new();
+        let inner = pair.into_inner();
+        let mut elts = Vec::with_capacity(inner.clone().count());
         let mut generators = None;
         let mut comma = false;
-        for p in pair.into_inner() {
+        for p in inner {
             match p.as_rule() {
                 Rule::comp_for => generators = Some(self.comp_for(p)?),
                 Rule::comma => comma = true,
@@ -1360,7 +1371,7 @@ impl Builder<'_> {
             return Err(err(open, "f-string: empty expression not allowed"));
         }
         let expr_start = start + from + lead;
-        let mut pairs = CommParser::parse(Rule::fstring_expr, expr_text).map_err(|e| {
+        let pairs = CommParser::parse(Rule::fstring_expr, expr_text).map_err(|e| {
             let mut pe = crate::error::from_pest(&e, expr_text);
             pe.span = Span::new(
                 expr_start + pe.span.start as usize,
@@ -1373,7 +1384,9 @@ impl Builder<'_> {
             base: expr_start,
             source: expr_text,
         };
-        let value = match pairs
+        let tree = Tree::new(pairs, expr_text);
+        let value = match tree
+            .top()
             .next()
             .and_then(|p| p.into_inner().next())
             .and_then(|inner| inner.into_inner().next())
@@ -1494,8 +1507,7 @@ fn first(elts: &mut Vec<Expr>, span: Span) -> R<Expr> {
 }
 
 fn dotted(pair: &P) -> String {
-    pair.clone()
-        .into_inner()
+    pair.into_inner()
         .map(|p| p.as_str())
         .collect::<Vec<_>>()
         .join(".")

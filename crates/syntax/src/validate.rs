@@ -298,13 +298,17 @@ fn comprehensions(gens: &[Comprehension]) -> R {
 
 /// Keyword arguments are unique; no positional argument after a keyword one.
 fn check_args(args: &[Arg]) -> R {
-    let mut seen: Vec<&Ident> = Vec::new();
     let mut keyword_seen = false;
     let mut dstar_seen = false;
-    for arg in args {
+    for (i, arg) in args.iter().enumerate() {
         match &arg.kind {
             ArgKind::Keyword { name, value } => {
-                if seen.iter().any(|k| k.name == name.name) {
+                // The earlier arguments are the set of names seen so far (no
+                // allocation: this runs for every call of every file).
+                let repeated = args[..i].iter().any(
+                    |a| matches!(&a.kind, ArgKind::Keyword { name: k, .. } if k.name == name.name),
+                );
+                if repeated {
                     return Err(error(
                         name.span,
                         format!(
@@ -313,7 +317,6 @@ fn check_args(args: &[Arg]) -> R {
                         ),
                     ));
                 }
-                seen.push(name);
                 keyword_seen = true;
                 expr(value)?;
             }
