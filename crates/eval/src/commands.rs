@@ -74,6 +74,7 @@ pub(crate) fn call_command(
         diags: Vec::new(),
         created: Vec::new(),
         next_id: &mut me.next_id,
+        legacy: me.legacy,
     };
     let cmd = match crate::legacy::legacy_command(name, &given) {
         Some((legacy, why)) => {

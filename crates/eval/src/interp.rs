@@ -79,6 +79,9 @@ pub(crate) struct Interp<'a> {
     /// previous run (of a type the checker cannot know).
     pub continued: bool,
     pub commands: usize,
+    /// The program was written for an older code_aster (11–15): legacy
+    /// spellings that code_aster 17 dropped are translated.
+    pub legacy: bool,
     depth: usize,
 }
 
@@ -97,6 +100,7 @@ impl<'a> Interp<'a> {
             finished: false,
             continued: false,
             commands: 0,
+            legacy: false,
             depth: 0,
         }
     }

@@ -473,18 +473,71 @@ fn test_resu_vale(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic
     }
 }
 
-/// A renamed value of a keyword with allowed values.
-pub(crate) fn value(_cmd: &str, path: &str, s: &Scalar, into: &[Lit]) -> Option<Scalar> {
+/// Values of code_aster 11 that code_aster 17 no longer allows, translated
+/// only in a code_aster 11 file (a current file writing them is wrong):
+/// (keyword, old value, new value, why).
+pub const LEGACY_VALUES: &[(&str, &str, &str, &str)] = &[
+    (
+        "ALGO_CONT",
+        "LAGRANGIEN",
+        "CONTRAINTE",
+        "code_aster 11's discrete Lagrangian contact: for frictionless contact it is code_aster 17's active-set method",
+    ),
+];
+
+/// What becomes of a value that is not allowed.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum ValueFix {
+    /// The value under its current spelling, and why.
+    Renamed(Scalar, Option<&'static str>),
+    /// A code_aster 11 value with no code_aster 17 equivalent.
+    Unsupported(String),
+}
+
+/// A renamed value of a keyword with allowed values. `legacy`: the file was
+/// written for code_aster 11 (see `aster_syntax::dialect::generation`), so
+/// its values that code_aster 17 dropped are translated too; `default` is
+/// the keyword's default at that place.
+pub(crate) fn value(
+    path: &str,
+    s: &Scalar,
+    into: &[Lit],
+    default: Option<&[Lit]>,
+    legacy: bool,
+) -> Option<ValueFix> {
     let Scalar::Str(v) = s else {
         return None;
     };
     let kw = last_segment(path);
-    VALUES
+    let allowed = |new: &str| into.iter().any(|l| matches!(l, Lit::Str(x) if x == new));
+    if let Some((_, _, new)) = VALUES.iter().find(|(k, old, _)| *k == kw && old == v) {
+        return allowed(new).then(|| ValueFix::Renamed(Scalar::Str(new.to_string()), None));
+    }
+    if !legacy {
+        return None;
+    }
+    if let Some((_, _, new, why)) = LEGACY_VALUES
         .iter()
-        .find(|(k, old, _)| *k == kw && old == v)
-        .map(|(_, _, new)| new)
-        .filter(|new| into.iter().any(|l| matches!(l, Lit::Str(x) if x == *new)))
-        .map(|new| Scalar::Str(new.to_string()))
+        .find(|(k, old, _, _)| *k == kw && old == v)
+    {
+        return allowed(new).then(|| ValueFix::Renamed(Scalar::Str(new.to_string()), Some(why)));
+    }
+    match (kw, v.as_str()) {
+        // The renumbering of the unknowns changes the cost of a direct
+        // solve, never its solution: code_aster 11's choices that the
+        // method no longer offers become its current default.
+        ("RENUM", _) => match default {
+            Some([Lit::Str(d)]) => Some(ValueFix::Renamed(
+                Scalar::Str(d.clone()),
+                Some("the renumbering changes the cost of the solve, not its solution"),
+            )),
+            _ => None,
+        },
+        ("ALGO_FROT", "LAGRANGIEN") => Some(ValueFix::Unsupported(format!(
+            "not supported: `{path}='LAGRANGIEN'` (code_aster 11): discrete Lagrangian friction has no code_aster 17 form (its discrete friction is penalised only: ALGO_FROT='PENALISATION')"
+        ))),
+        _ => None,
+    }
 }
 
 /// Commands whose legacy form no longer exists in the v17 catalog but whose

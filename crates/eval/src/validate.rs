@@ -138,6 +138,9 @@ pub(crate) struct Validator<'n> {
     /// Concepts announced with `CO('name')`.
     pub created: Vec<ConceptRef>,
     pub next_id: &'n mut u32,
+    /// The file was written for an older code_aster: its spellings that
+    /// code_aster 17 dropped are translated (see `legacy`).
+    pub legacy: bool,
 }
 
 impl Validator<'_> {
@@ -278,6 +281,7 @@ impl Validator<'_> {
         // (few: a level with hundreds of possible keywords gets a handful).
         let mut values: Vec<(usize, Keyword)> = Vec::with_capacity(given.len());
         let errors_before = self.diags.iter().filter(|d| d.is_error()).count();
+        let diags_before = self.diags.len();
         let mut inactive = Vec::new();
         for g in &given {
             let Some(slot) = active.iter().position(|a| same_name(&a.name, &g.name)) else {
@@ -388,6 +392,12 @@ impl Validator<'_> {
         // A wrong value at this level may have closed the block a keyword
         // belongs to: then only truly unknown keywords are reported.
         let level_failed = self.diags.iter().filter(|d| d.is_error()).count() > errors_before;
+        // A value refused as unsupported (a code_aster 11 method with no
+        // current form) leaves the level's meaning unknown: the keywords
+        // code_aster 17 would require with it are not reported missing.
+        let refused = self.diags[diags_before..]
+            .iter()
+            .any(|d| d.is_error() && d.kind == DiagKind::NotSupported);
         for g in inactive {
             self.not_active(entries, &active, g, path, level_failed);
         }
@@ -424,6 +434,7 @@ impl Validator<'_> {
                         span,
                         defaulted: true,
                     }),
+                    (None, Status::Mandatory) if refused => {}
                     (None, Status::Mandatory) => {
                         let expected = s
                             .types
@@ -611,19 +622,32 @@ impl Validator<'_> {
                 if matches!(s, Scalar::Opaque(_)) || into_contains(into, s) {
                     continue;
                 }
-                if let Some(new) = legacy::value(&self.command, &g.name, s, into) {
-                    self.diags.push(Diagnostic::warning(
-                        DiagKind::Legacy,
-                        g.span,
-                        format!(
-                            "`{}`: legacy value {} is now {}",
-                            kpath(),
-                            scalar_repr(s),
-                            scalar_repr(&new)
-                        ),
-                    ));
-                    *s = new;
-                    continue;
+                match legacy::value(&kpath(), s, into, kw.default.as_deref(), self.legacy) {
+                    Some(legacy::ValueFix::Renamed(new, why)) => {
+                        let d = Diagnostic::warning(
+                            DiagKind::Legacy,
+                            g.span,
+                            format!(
+                                "`{}`: legacy value {} is now {}",
+                                kpath(),
+                                scalar_repr(s),
+                                scalar_repr(&new)
+                            ),
+                        );
+                        self.diags.push(match why {
+                            Some(w) => d.note(format!("note: {w}")),
+                            None => d,
+                        });
+                        *s = new;
+                        continue;
+                    }
+                    Some(legacy::ValueFix::Unsupported(msg)) => {
+                        self.diags
+                            .push(Diagnostic::error(DiagKind::NotSupported, g.span, msg));
+                        failed = true;
+                        continue;
+                    }
+                    None => {}
                 }
                 let shown = scalar_repr(s);
                 let strs: Vec<String> = into
