@@ -36,7 +36,14 @@ pub(crate) fn call_command(
     span: Span,
     target: Option<&str>,
 ) -> R<Value> {
-    let Some(cmd) = catalog().command(name) else {
+    // A code_aster 11 command replaced by another (`MODE_ITER_SIMULT` →
+    // `CALC_MODES`...): its keywords are translated below.
+    let replaced = if me.legacy {
+        crate::legacy_commands::replacement(name)
+    } else {
+        None
+    };
+    let Some(cmd) = catalog().command(replaced.unwrap_or(name)) else {
         return err_unknown(name, span);
     };
     if name == "INCLUDE" {
@@ -68,10 +75,17 @@ pub(crate) fn call_command(
         });
     }
 
+    let mut early = Vec::new();
+    let old_name = name;
+    let name = match replaced {
+        Some(_) => crate::legacy_commands::translate(old_name, span, &mut given, &mut early)
+            .unwrap_or(old_name),
+        None => name,
+    };
     let mut v = Validator {
         reuse_given: reuse.is_some(),
         command: name.to_string(),
-        diags: Vec::new(),
+        diags: early,
         created: Vec::new(),
         next_id: &mut me.next_id,
         legacy: me.legacy,

@@ -598,6 +598,9 @@ impl<'a> Interp<'a> {
                 if let Some(c) = catalog().command(name) {
                     return Some(Value::Command(Rc::from(c.name.as_str())));
                 }
+                if self.legacy && crate::legacy_commands::replacement(name).is_some() {
+                    return Some(Value::Command(Rc::from(name)));
+                }
                 builtins::math_attr(name)
             }
         }

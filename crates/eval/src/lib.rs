@@ -15,6 +15,7 @@ mod format;
 pub mod formula;
 mod interp;
 pub mod legacy;
+pub mod legacy_commands;
 mod testcase;
 mod try_import;
 mod validate;
