@@ -148,6 +148,7 @@ pub(crate) fn transform_level(
     entries: &[Entry],
     given: &mut Vec<Given>,
     diags: &mut Vec<Diagnostic>,
+    legacy: bool,
 ) {
     let factor = if path.contains('/') {
         last_segment(path)
@@ -159,6 +160,12 @@ pub(crate) fn transform_level(
     // rewrites keyed on an unknown one are then skipped at once.
     let all_known = given.iter().all(|g| known(&g.name));
 
+    if legacy && !all_known {
+        merge_comp_elas(path, given, diags);
+    }
+    if legacy && cmd == "CREA_RESU" && factor.is_empty() {
+        crea_resu_nom_cham(path, given, diags);
+    }
     // Structural rewrites first.
     let names: Vec<String> = if all_known {
         Vec::new()
@@ -402,6 +409,75 @@ fn lire_fonction_separ(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagn
             );
             given.remove(i);
         }
+    }
+}
+
+/// code_aster 11 wrote `COMP_INCR` and `COMP_ELAS` side by side (parts of
+/// the model in each): both become one `COMPORTEMENT` with the occurrences
+/// of both (then renamed with the other legacy keywords).
+fn merge_comp_elas(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+    let (Some(_), Some(e)) = (
+        given.iter().position(|g| g.name == "COMP_INCR"),
+        given.iter().position(|g| g.name == "COMP_ELAS"),
+    ) else {
+        return;
+    };
+    let elas = given.remove(e);
+    warn(
+        diags,
+        &elas,
+        format!("`{path}/COMP_ELAS` is legacy syntax: now COMPORTEMENT, together with the occurrences of COMP_INCR"),
+    );
+    if let Some(incr) = given.iter_mut().find(|g| g.name == "COMP_INCR") {
+        let mut occ = crate::validate::flatten(&incr.value);
+        occ.extend(crate::validate::flatten(&elas.value));
+        incr.value = Value::tuple(occ);
+    }
+}
+
+/// code_aster 11: `CREA_RESU(OPERATION='AFFE', NOM_CHAM='TEMP', AFFE=_F(...))`
+/// named the field once for every occurrence; code_aster 17 names it in
+/// each `AFFE` occurrence.
+fn crea_resu_nom_cham(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+    let affe_op = given
+        .iter()
+        .any(|g| g.name == "OPERATION" && g.value.to_string() == "AFFE");
+    let (Some(n), Some(a)) = (
+        given.iter().position(|g| g.name == "NOM_CHAM"),
+        given.iter().position(|g| g.name == "AFFE"),
+    ) else {
+        return;
+    };
+    if !affe_op {
+        return;
+    }
+    let nom = given[n].clone();
+    warn(
+        diags,
+        &nom,
+        format!("`{path}/NOM_CHAM` is code_aster 11 syntax: now AFFE=_F(NOM_CHAM=...) in each occurrence"),
+    );
+    given[a].value = with_entry_in_each(&given[a].value, "NOM_CHAM", &nom.value, nom.span);
+    given.remove(n);
+}
+
+/// A copy of a factor keyword value (`_F(...)` or several) with `key=value`
+/// added to each occurrence that lacks it. A copy, not an edit: the
+/// `_F(...)` may be a variable that other calls use too.
+fn with_entry_in_each(v: &Value, key: &str, value: &Value, span: aster_syntax::Span) -> Value {
+    let copy = |occ: &Value| match occ {
+        Value::Dict(d) => {
+            let mut d = d.borrow().clone();
+            if d.get(&Value::str(key)).is_none() {
+                d.insert(Value::str(key), value.clone(), span);
+            }
+            Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d)))
+        }
+        other => other.clone(),
+    };
+    match v {
+        Value::Dict(_) => copy(v),
+        other => Value::tuple(crate::validate::flatten(other).iter().map(copy).collect()),
     }
 }
 

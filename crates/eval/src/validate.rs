@@ -241,7 +241,14 @@ impl Validator<'_> {
             Value::Tuple(t) => !t.is_empty(),
             _ => true,
         });
-        legacy::transform_level(&self.command, path, entries, &mut given, &mut self.diags);
+        legacy::transform_level(
+            &self.command,
+            path,
+            entries,
+            &mut given,
+            &mut self.diags,
+            self.legacy,
+        );
 
         let mut ctx = Ctx {
             vals: Vec::with_capacity(given.len() + 8),
