@@ -89,6 +89,7 @@ pub(crate) fn call_command(
         created: Vec::new(),
         next_id: &mut me.next_id,
         legacy: me.legacy,
+        constants: Vec::new(),
     };
     let cmd = match crate::legacy::legacy_command(name, &given) {
         Some((legacy, why)) => {
@@ -99,7 +100,7 @@ pub(crate) fn call_command(
         None => cmd,
     };
     let keywords = v.validate(cmd, given, span);
-    let (mut diags, created) = (v.diags, v.created);
+    let (mut diags, created, constants) = (v.diags, v.created, v.constants);
 
     // reuse=
     let mut reused: Option<ConceptRef> = None;
@@ -138,6 +139,13 @@ pub(crate) fn call_command(
     me.diags.extend(diags);
     if has_error && !me.keep_going {
         return Err(Halt::Reported);
+    }
+
+    // Constant functions standing for code_aster 11 reals: defined first.
+    if !has_error {
+        for (c, x, cspan) in constants {
+            define_constant(me, c, x, cspan)?;
+        }
     }
 
     // The result concept.
@@ -246,6 +254,41 @@ pub(crate) fn call_command(
         (_, Some(c), None) => Value::Concept(c),
         (_, None, _) => Value::None,
     })
+}
+
+/// `DEFI_CONSTANTE(VALE=x)` producing `c`, handed to the sink like a
+/// command of the file (see `Validator::constants`).
+fn define_constant(me: &mut Interp, c: ConceptRef, x: f64, span: Span) -> R<()> {
+    let Some(cmd) = catalog().command("DEFI_CONSTANTE") else {
+        return Ok(());
+    };
+    let mut v = Validator {
+        reuse_given: false,
+        command: cmd.name.clone(),
+        diags: Vec::new(),
+        created: Vec::new(),
+        next_id: &mut me.next_id,
+        legacy: false,
+        constants: Vec::new(),
+    };
+    let given = vec![Given {
+        name: "VALE".into(),
+        span,
+        value: Value::Float(x),
+    }];
+    let keywords = v.validate(cmd, given, span);
+    let call = CommandCall {
+        command: cmd.name.clone(),
+        result: Some(c),
+        reuse: None,
+        keywords,
+        span,
+    };
+    me.commands += 1;
+    me.sink
+        .execute(&call)
+        .map_err(|e| Halt::from(exec_diag(span, e)))?;
+    Ok(())
 }
 
 fn destroy(me: &mut Interp, k: &Keywords) {

@@ -122,6 +122,26 @@ fn value_cval(v: &Value) -> (CVal, Option<String>) {
     }
 }
 
+/// The real a code_aster 11 file gave for a keyword that code_aster 17
+/// types as a function only (`DEFI_MATERIAU/THM_LIQU/ALPHA`,
+/// `ELAS_FO/RHO`...): it stands for a constant function.
+fn constant_function_wanted(kw: &SimpleKw, item: &Value) -> Option<f64> {
+    let x = match item {
+        Value::Float(f) => *f,
+        Value::Int(i) => *i as f64,
+        _ => return None,
+    };
+    let function = kw
+        .types
+        .iter()
+        .any(|t| matches!(t, ValueType::Concept(c) if c == "fonction_sdaster"));
+    let number = kw
+        .types
+        .iter()
+        .any(|t| matches!(t, ValueType::Real | ValueType::Int | ValueType::Any));
+    (function && !number).then_some(x)
+}
+
 pub(crate) fn flatten(v: &Value) -> Vec<Value> {
     match v {
         Value::List(l) => l.borrow().iter().flat_map(flatten).collect(),
@@ -141,6 +161,10 @@ pub(crate) struct Validator<'n> {
     /// The file was written for an older code_aster: its spellings that
     /// code_aster 17 dropped are translated (see `legacy`).
     pub legacy: bool,
+    /// Constant functions standing for the reals a code_aster 11 file gave
+    /// where code_aster 17 wants a function: (concept, value, where). The
+    /// caller defines each with `DEFI_CONSTANTE` before the command runs.
+    pub constants: Vec<(ConceptRef, f64, Span)>,
 }
 
 impl Validator<'_> {
@@ -599,6 +623,27 @@ impl Validator<'_> {
         for item in &items {
             match self.scalar(kw, item) {
                 Some(s) => out.push(s),
+                None if self.legacy && constant_function_wanted(kw, item).is_some() => {
+                    let x = constant_function_wanted(kw, item).unwrap_or_default();
+                    let id = *self.next_id;
+                    *self.next_id += 1;
+                    let c = ConceptRef {
+                        name: format!("_DEFI_CONSTANTE_{id}"),
+                        id,
+                        typ: "fonction_sdaster".into(),
+                    };
+                    self.diags.push(Diagnostic::warning(
+                        DiagKind::Legacy,
+                        g.span,
+                        format!(
+                            "`{}`: a real is code_aster 11 syntax here: now a function, DEFI_CONSTANTE(VALE={})",
+                            kpath(),
+                            item.repr()
+                        ),
+                    ));
+                    self.constants.push((c.clone(), x, g.span));
+                    out.push(Scalar::Concept(c));
+                }
                 None => {
                     let expected = kw
                         .types
