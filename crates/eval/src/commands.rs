@@ -89,7 +89,7 @@ pub(crate) fn call_command(
         created: Vec::new(),
         next_id: &mut me.next_id,
         legacy: me.legacy,
-        constants: Vec::new(),
+        synthesized: Vec::new(),
     };
     let cmd = match crate::legacy::legacy_command(name, &given) {
         Some((legacy, why)) => {
@@ -100,7 +100,7 @@ pub(crate) fn call_command(
         None => cmd,
     };
     let keywords = v.validate(cmd, given, span);
-    let (mut diags, created, constants) = (v.diags, v.created, v.constants);
+    let (mut diags, created, synthesized) = (v.diags, v.created, v.synthesized);
 
     // reuse=
     let mut reused: Option<ConceptRef> = None;
@@ -141,10 +141,11 @@ pub(crate) fn call_command(
         return Err(Halt::Reported);
     }
 
-    // Constant functions standing for code_aster 11 reals: defined first.
+    // Concepts the legacy layer added (constant functions, time lists):
+    // defined first.
     if !has_error {
-        for (c, x, cspan) in constants {
-            define_constant(me, c, x, cspan)?;
+        for s in synthesized {
+            define_synthesized(me, s)?;
         }
     }
 
@@ -256,10 +257,10 @@ pub(crate) fn call_command(
     })
 }
 
-/// `DEFI_CONSTANTE(VALE=x)` producing `c`, handed to the sink like a
-/// command of the file (see `Validator::constants`).
-fn define_constant(me: &mut Interp, c: ConceptRef, x: f64, span: Span) -> R<()> {
-    let Some(cmd) = catalog().command("DEFI_CONSTANTE") else {
+/// A command the legacy layer added (see `Validator::synthesized`), handed
+/// to the sink like a command of the file.
+fn define_synthesized(me: &mut Interp, s: crate::validate::Synthesized) -> R<()> {
+    let Some(cmd) = catalog().command(s.command) else {
         return Ok(());
     };
     let mut v = Validator {
@@ -269,25 +270,20 @@ fn define_constant(me: &mut Interp, c: ConceptRef, x: f64, span: Span) -> R<()> 
         created: Vec::new(),
         next_id: &mut me.next_id,
         legacy: false,
-        constants: Vec::new(),
+        synthesized: Vec::new(),
     };
-    let given = vec![Given {
-        name: "VALE".into(),
-        span,
-        value: Value::Float(x),
-    }];
-    let keywords = v.validate(cmd, given, span);
+    let keywords = v.validate(cmd, s.keywords, s.span);
     let call = CommandCall {
         command: cmd.name.clone(),
-        result: Some(c),
+        result: Some(s.result),
         reuse: None,
         keywords,
-        span,
+        span: s.span,
     };
     me.commands += 1;
     me.sink
         .execute(&call)
-        .map_err(|e| Halt::from(exec_diag(span, e)))?;
+        .map_err(|e| Halt::from(exec_diag(s.span, e)))?;
     Ok(())
 }
 

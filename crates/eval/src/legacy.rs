@@ -166,6 +166,9 @@ pub(crate) fn transform_level(
     if legacy && cmd == "CREA_RESU" && factor.is_empty() {
         crea_resu_nom_cham(path, given, diags);
     }
+    if legacy && cmd == "DEFI_LIST_INST" && factor.is_empty() {
+        defi_list_methode(path, given, diags);
+    }
     // Structural rewrites first.
     let names: Vec<String> = if all_known {
         Vec::new()
@@ -459,6 +462,44 @@ fn crea_resu_nom_cham(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagno
     );
     given[a].value = with_entry_in_each(&given[a].value, "NOM_CHAM", &nom.value, nom.span);
     given.remove(n);
+}
+
+/// code_aster 11: `DEFI_LIST_INST(DEFI_LIST=_F(METHODE='AUTO', ...))`; the
+/// method now sits at the top level (it opens the blocks of `DEFI_LIST`).
+fn defi_list_methode(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+    if given.iter().any(|g| g.name == "METHODE") {
+        return;
+    }
+    let Some(i) = given.iter().position(|g| g.name == "DEFI_LIST") else {
+        return;
+    };
+    let Some(methode) = factor_entry(&given[i].value, "METHODE") else {
+        return;
+    };
+    let Some(Value::Dict(d)) = crate::validate::flatten(&given[i].value).into_iter().next() else {
+        return;
+    };
+    // A copy without METHODE: the `_F(...)` may be shared.
+    let mut inner = d.borrow().clone();
+    let span = inner
+        .entries
+        .iter()
+        .find(|e| matches!(&e.key, Value::Str(k) if &**k == "METHODE"))
+        .map(|e| e.span)
+        .unwrap_or(given[i].span);
+    inner.remove(&Value::str("METHODE"));
+    let g = Given {
+        name: "METHODE".into(),
+        span,
+        value: methode,
+    };
+    warn(
+        diags,
+        &g,
+        format!("`{path}/DEFI_LIST/METHODE` is code_aster 11 syntax: now {path}/METHODE"),
+    );
+    given[i].value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(inner)));
+    given.push(g);
 }
 
 /// A copy of a factor keyword value (`_F(...)` or several) with `key=value`

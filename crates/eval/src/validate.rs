@@ -161,10 +161,89 @@ pub(crate) struct Validator<'n> {
     /// The file was written for an older code_aster: its spellings that
     /// code_aster 17 dropped are translated (see `legacy`).
     pub legacy: bool,
-    /// Constant functions standing for the reals a code_aster 11 file gave
-    /// where code_aster 17 wants a function: (concept, value, where). The
-    /// caller defines each with `DEFI_CONSTANTE` before the command runs.
-    pub constants: Vec<(ConceptRef, f64, Span)>,
+    /// Concepts that code_aster 17 needs where a code_aster 11 file wrote
+    /// none (a real where a function is wanted, no time list for a
+    /// stationary computation): the caller defines each, in order, before
+    /// the command runs.
+    pub synthesized: Vec<Synthesized>,
+}
+
+/// A command the legacy layer adds before the one being validated.
+#[derive(Clone, Debug)]
+pub(crate) struct Synthesized {
+    pub command: &'static str,
+    pub keywords: Vec<Given>,
+    pub result: ConceptRef,
+    pub span: Span,
+}
+
+impl Validator<'_> {
+    /// A new concept of type `typ` made by `command(keywords)`, defined
+    /// before the command being validated.
+    fn synthesize(
+        &mut self,
+        command: &'static str,
+        typ: &str,
+        keywords: Vec<(&str, Value)>,
+        span: Span,
+    ) -> ConceptRef {
+        let id = *self.next_id;
+        *self.next_id += 1;
+        let result = ConceptRef {
+            name: format!("_{command}_{id}"),
+            id,
+            typ: typ.into(),
+        };
+        self.synthesized.push(Synthesized {
+            command,
+            keywords: keywords
+                .into_iter()
+                .map(|(name, value)| Given {
+                    name: name.into(),
+                    span,
+                    value,
+                })
+                .collect(),
+            result: result.clone(),
+            span,
+        });
+        result
+    }
+
+    /// code_aster 11's stationary thermal computation: no `INCREMENT`.
+    /// code_aster 17 writes it `TYPE_CALCUL='STAT',
+    /// INCREMENT=_F(LIST_INST=DEFI_LIST_REEL(VALE=0.0))`.
+    fn stationary_thermal(&mut self, path: &str, given: &mut Vec<Given>, span: Span) {
+        if given
+            .iter()
+            .any(|g| g.name == "INCREMENT" || g.name == "TYPE_CALCUL")
+        {
+            return;
+        }
+        let list = self.synthesize(
+            "DEFI_LIST_REEL",
+            "listr8_sdaster",
+            vec![("VALE", Value::Float(0.0))],
+            span,
+        );
+        self.diags.push(Diagnostic::warning(
+            DiagKind::Legacy,
+            span,
+            format!("`{path}` without INCREMENT is code_aster 11's stationary computation: now TYPE_CALCUL='STAT', INCREMENT=_F(LIST_INST=DEFI_LIST_REEL(VALE=0.0))"),
+        ));
+        let mut d = crate::value::Dict::default();
+        d.insert(Value::str("LIST_INST"), Value::Concept(list), span);
+        given.push(Given {
+            name: "TYPE_CALCUL".into(),
+            span,
+            value: Value::str("STAT"),
+        });
+        given.push(Given {
+            name: "INCREMENT".into(),
+            span,
+            value: Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d))),
+        });
+    }
 }
 
 impl Validator<'_> {
@@ -265,6 +344,12 @@ impl Validator<'_> {
             Value::Tuple(t) => !t.is_empty(),
             _ => true,
         });
+        if self.legacy
+            && parent.is_none()
+            && matches!(self.command.as_str(), "THER_LINEAIRE" | "THER_NON_LINE")
+        {
+            self.stationary_thermal(path, &mut given, span);
+        }
         legacy::transform_level(
             &self.command,
             path,
@@ -625,13 +710,6 @@ impl Validator<'_> {
                 Some(s) => out.push(s),
                 None if self.legacy && constant_function_wanted(kw, item).is_some() => {
                     let x = constant_function_wanted(kw, item).unwrap_or_default();
-                    let id = *self.next_id;
-                    *self.next_id += 1;
-                    let c = ConceptRef {
-                        name: format!("_DEFI_CONSTANTE_{id}"),
-                        id,
-                        typ: "fonction_sdaster".into(),
-                    };
                     self.diags.push(Diagnostic::warning(
                         DiagKind::Legacy,
                         g.span,
@@ -641,7 +719,12 @@ impl Validator<'_> {
                             item.repr()
                         ),
                     ));
-                    self.constants.push((c.clone(), x, g.span));
+                    let c = self.synthesize(
+                        "DEFI_CONSTANTE",
+                        "fonction_sdaster",
+                        vec![("VALE", Value::Float(x))],
+                        g.span,
+                    );
                     out.push(Scalar::Concept(c));
                 }
                 None => {
