@@ -43,7 +43,7 @@ pub(crate) fn call_command(
     } else {
         None
     };
-    let Some(cmd) = catalog().command(replaced.unwrap_or(name)) else {
+    let Some(mut cmd) = catalog().command(replaced.unwrap_or(name)) else {
         return err_unknown(name, span);
     };
     if name == "INCLUDE" {
@@ -77,9 +77,19 @@ pub(crate) fn call_command(
 
     let mut early = Vec::new();
     let old_name = name;
+    let replaced = replaced.or_else(|| {
+        me.legacy
+            .then(|| crate::legacy_commands::replacement_by_keywords(name, &given))
+            .flatten()
+    });
     let name = match replaced {
-        Some(_) => crate::legacy_commands::translate(old_name, span, &mut given, &mut early)
-            .unwrap_or(old_name),
+        Some(new) => {
+            if let Some(c) = catalog().command(new) {
+                cmd = c;
+            }
+            crate::legacy_commands::translate(old_name, span, &mut given, &mut early)
+                .unwrap_or(old_name)
+        }
         None => name,
     };
     let mut v = Validator {

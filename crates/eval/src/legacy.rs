@@ -34,6 +34,10 @@ pub const RENAMES: &[(&str, &str, &str, &str)] = &[
     ("*", "NOEUD_EXTR", "GROUP_NO_EXTR", ""),
 ];
 
+/// Renames applied only in code_aster 11 files (see
+/// `aster_syntax::dialect::generation`): (command or `*`, old, new).
+pub const LEGACY_RENAMES: &[(&str, &str, &str)] = &[("AFFE_MATERIAU", "CHAMP_GD", "CHAM_GD")];
+
 /// Keywords that no longer exist and had no effect on the result: dropped
 /// with a warning. (command or `*`, factor keyword or `*`, name, why)
 pub const DROPPED: &[(&str, &str, &str, &str)] = &[
@@ -166,6 +170,9 @@ pub(crate) fn transform_level(
     if legacy && cmd == "CREA_RESU" && factor.is_empty() {
         crea_resu_nom_cham(path, given, diags);
     }
+    if legacy && cmd == "CREA_CHAMP" && factor.is_empty() {
+        crea_champ_prol_zero(path, given, diags);
+    }
     if legacy && cmd == "DEFI_LIST_INST" && factor.is_empty() {
         defi_list_methode(path, given, diags);
     }
@@ -283,8 +290,15 @@ pub(crate) fn transform_level(
             i += 1;
             continue;
         }
+        let legacy_rename = LEGACY_RENAMES
+            .iter()
+            .filter(|_| legacy)
+            .find(|(c, old, _)| applies(c, cmd) && *old == name)
+            .map(|(c, o, n)| (*c, *o, *n, ""));
         if let Some((_, _, new, note)) = RENAMES
             .iter()
+            .copied()
+            .chain(legacy_rename)
             .find(|(c, old, _, _)| applies(c, cmd) && *old == name)
         {
             if known(new) && !given.iter().any(|g| g.name == *new) {
@@ -462,6 +476,28 @@ fn crea_resu_nom_cham(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagno
     );
     given[a].value = with_entry_in_each(&given[a].value, "NOM_CHAM", &nom.value, nom.span);
     given.remove(n);
+}
+
+/// code_aster 11 accepted `CREA_CHAMP(PROL_ZERO='OUI')` for any field;
+/// code_aster 17 only where a numbering or a model field is given (nodal
+/// fields from `NUME_DDL`/`CHAM_NO`, element fields); elsewhere it has no
+/// such choice, so the keyword is dropped with a warning.
+fn crea_champ_prol_zero(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+    let applies = given.iter().any(|g| {
+        matches!(g.name.as_str(), "NUME_DDL" | "CHAM_NO")
+            || (g.name == "TYPE_CHAM" && g.value.to_string().starts_with("EL"))
+    });
+    if applies {
+        return;
+    }
+    if let Some(i) = given.iter().position(|g| g.name == "PROL_ZERO") {
+        let g = given.remove(i);
+        warn(
+            diags,
+            &g,
+            format!("`{path}/PROL_ZERO` applies only to fields with a numbering (NUME_DDL, CHAM_NO) or element fields since code_aster 12: ignored (code_aster 17 offers no such choice for this field)"),
+        );
+    }
 }
 
 /// code_aster 11: `DEFI_LIST_INST(DEFI_LIST=_F(METHODE='AUTO', ...))`; the

@@ -10,6 +10,7 @@
 //! | `MODE_ITER_SIMULT` | `CALC_MODES` (`CALC_FREQ/OPTION` → `OPTION`, method keywords → `SOLVEUR_MODAL`) |
 //! | `MODE_ITER_INV` | `CALC_MODES` (same, `CALC_MODE` → `SOLVEUR_MODAL/OPTION_INV...`, `OPTION` defaults to `'AJUSTE'`) |
 //! | `MACRO_MATR_ASSE` | `ASSEMBLAGE` (same keywords; `SOLVEUR` dropped: the numbering is the solver's) |
+//! | `CREA_MAILLAGE(MAILLAGE=M, COPIE=_F())` | `COPIER(CONCEPT=M)` |
 
 use crate::diag::{DiagKind, Diagnostic};
 use crate::validate::Given;
@@ -28,6 +29,13 @@ pub const REPLACED: &[(&str, &str)] = &[
 /// The command that replaced `old`, if its keywords map faithfully.
 pub fn replacement(old: &str) -> Option<&'static str> {
     REPLACED.iter().find(|(o, _)| *o == old).map(|(_, n)| *n)
+}
+
+/// A command that code_aster 17 still has, called with a keyword that made
+/// it another command's job: `CREA_MAILLAGE(COPIE=_F())` copied a mesh,
+/// now `COPIER`.
+pub(crate) fn replacement_by_keywords(name: &str, given: &[Given]) -> Option<&'static str> {
+    (name == "CREA_MAILLAGE" && given.iter().any(|g| g.name == "COPIE")).then_some("COPIER")
 }
 
 /// Keywords of the modal solver that code_aster 11 wrote at the top level
@@ -92,11 +100,16 @@ pub(crate) fn translate(
     given: &mut Vec<Given>,
     diags: &mut Vec<Diagnostic>,
 ) -> Option<&'static str> {
-    let new = replacement(old)?;
+    let new = replacement(old).or_else(|| replacement_by_keywords(old, given))?;
     diags.push(Diagnostic::warning(
         DiagKind::Legacy,
         span,
-        format!("`{old}` is code_aster 11 syntax: now {new}"),
+        match old {
+            "CREA_MAILLAGE" => {
+                format!("`{old}(COPIE=_F())` is code_aster 11 syntax: now {new}(CONCEPT=...)")
+            }
+            _ => format!("`{old}` is code_aster 11 syntax: now {new}"),
+        },
     ));
     match old {
         "MODE_ITER_SIMULT" | "MODE_ITER_INV" => modal(old, span, given, diags),
@@ -109,6 +122,12 @@ pub(crate) fn translate(
                     g.span,
                     format!("`{old}/SOLVEUR` no longer exists and is ignored: ASSEMBLAGE leaves the numbering to the solver"),
                 ));
+            }
+        }
+        "CREA_MAILLAGE" => {
+            given.retain(|g| g.name != "COPIE");
+            if let Some(g) = given.iter_mut().find(|g| g.name == "MAILLAGE") {
+                g.name = "CONCEPT".into();
             }
         }
         _ => {}
