@@ -101,6 +101,7 @@ pub(crate) fn translate(
     diags: &mut Vec<Diagnostic>,
 ) -> Option<&'static str> {
     let new = replacement(old).or_else(|| replacement_by_keywords(old, given))?;
+    let at = diags.len();
     diags.push(Diagnostic::warning(
         DiagKind::Legacy,
         span,
@@ -112,7 +113,12 @@ pub(crate) fn translate(
         },
     ));
     match old {
-        "MODE_ITER_SIMULT" | "MODE_ITER_INV" => modal(old, span, given, diags),
+        "MODE_ITER_SIMULT" | "MODE_ITER_INV" => {
+            let moved = modal(old, span, given, diags);
+            if let (false, Some(d)) = (moved.is_empty(), diags.get_mut(at)) {
+                d.notes.push(format!("note: {}", moved.join(", ")));
+            }
+        }
         "MACRO_MATR_ASSE" => {
             // The numbering of the unknowns is the solver's business.
             if let Some(i) = given.iter().position(|g| g.name == "SOLVEUR") {
@@ -136,7 +142,14 @@ pub(crate) fn translate(
 }
 
 /// `MODE_ITER_SIMULT` / `MODE_ITER_INV` → `CALC_MODES`.
-fn modal(old: &str, span: Span, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+/// Returns what moved (`METHODE → SOLVEUR_MODAL/METHODE`...), for the note.
+fn modal(
+    old: &str,
+    span: Span,
+    given: &mut Vec<Given>,
+    diags: &mut Vec<Diagnostic>,
+) -> Vec<String> {
+    let mut moved = Vec::new();
     // code_aster 11 named the matrices A, B (C) whatever the problem;
     // CALC_MODES keeps those names only for the general problem.
     let type_resu = given
@@ -155,6 +168,7 @@ fn modal(old: &str, span: Span, given: &mut Vec<Given>, diags: &mut Vec<Diagnost
     for (from, to) in names {
         if let Some(g) = given.iter_mut().find(|g| g.name == *from) {
             g.name = to.to_string();
+            moved.push(format!("{from} → {to}"));
         }
     }
     let solveur = new_dict();
@@ -163,6 +177,7 @@ fn modal(old: &str, span: Span, given: &mut Vec<Given>, diags: &mut Vec<Diagnost
     if let Some(i) = given.iter().position(|g| g.name == "OPTION") {
         let g = given.remove(i);
         if g.value.to_string() == "MODE_RIGIDE" {
+            moved.push("OPTION='MODE_RIGIDE' → SOLVEUR_MODAL/MODE_RIGIDE='OUI'".into());
             solveur
                 .borrow_mut()
                 .insert(key("MODE_RIGIDE"), Value::str("OUI"), g.span);
@@ -181,6 +196,7 @@ fn modal(old: &str, span: Span, given: &mut Vec<Given>, diags: &mut Vec<Diagnost
     // Top-level method keywords → SOLVEUR_MODAL.
     given.retain(|g| {
         if SOLVEUR_MODAL_KEYS.contains(&g.name.as_str()) {
+            moved.push(format!("{} → SOLVEUR_MODAL/{}", g.name, g.name));
             solveur
                 .borrow_mut()
                 .insert(key(&g.name), g.value.clone(), g.span);
@@ -207,8 +223,10 @@ fn modal(old: &str, span: Span, given: &mut Vec<Given>, diags: &mut Vec<Diagnost
                 _ => String::new(),
             };
             if name == "OPTION" {
+                moved.push(format!("{}/OPTION → OPTION", g.name));
                 option = Some((e.value.clone(), e.span));
             } else if SOLVEUR_MODAL_KEYS.contains(&name.as_str()) {
+                moved.push(format!("{}/{name} → SOLVEUR_MODAL/{name}", g.name));
                 solveur
                     .borrow_mut()
                     .insert(e.key.clone(), e.value.clone(), e.span);
@@ -226,6 +244,7 @@ fn modal(old: &str, span: Span, given: &mut Vec<Given>, diags: &mut Vec<Diagnost
             for e in d.borrow().entries.iter() {
                 let Value::Str(k) = &e.key else { continue };
                 if let Some((_, to)) = CALC_MODE_KEYS.iter().find(|(f, _)| **f == **k) {
+                    moved.push(format!("CALC_MODE/{k} → SOLVEUR_MODAL/{to}"));
                     solveur
                         .borrow_mut()
                         .insert(key(to), e.value.clone(), e.span);
@@ -236,6 +255,7 @@ fn modal(old: &str, span: Span, given: &mut Vec<Given>, diags: &mut Vec<Diagnost
     // code_aster 11's MODE_ITER_INV adjusted the given frequencies by
     // default; CALC_MODES' default is the lowest ones.
     if option.is_none() && old == "MODE_ITER_INV" {
+        moved.push("OPTION='AJUSTE' (code_aster 11's default)".into());
         option = Some((Value::str("AJUSTE"), span));
     }
     if let Some((value, vspan)) = option {
@@ -252,4 +272,5 @@ fn modal(old: &str, span: Span, given: &mut Vec<Given>, diags: &mut Vec<Diagnost
             value: Value::Dict(solveur),
         });
     }
+    moved
 }
