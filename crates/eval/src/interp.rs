@@ -601,6 +601,10 @@ impl<'a> Interp<'a> {
                 if self.legacy && crate::legacy_commands::replacement(name).is_some() {
                     return Some(Value::Command(Rc::from(name)));
                 }
+                // Python 2's lazy range: the same values for a loop.
+                if self.legacy && name == "xrange" {
+                    return builtins::builtin("range");
+                }
                 builtins::math_attr(name)
             }
         }

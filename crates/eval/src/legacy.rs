@@ -173,6 +173,9 @@ pub(crate) fn transform_level(
     if legacy && cmd == "CREA_CHAMP" && factor.is_empty() {
         crea_champ_prol_zero(path, given, diags);
     }
+    if legacy {
+        legacy_levels(cmd, path, factor, given, diags);
+    }
     if legacy && cmd == "DEFI_LIST_INST" && factor.is_empty() {
         defi_list_methode(path, given, diags);
     }
@@ -478,6 +481,70 @@ fn crea_resu_nom_cham(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagno
     given.remove(n);
 }
 
+/// Smaller code_aster 11 rewrites, one level at a time.
+fn legacy_levels(
+    cmd: &str,
+    path: &str,
+    factor: &str,
+    given: &mut Vec<Given>,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let has = |given: &[Given], n: &str| given.iter().any(|g| g.name == n);
+    // AFFE_MODELE/MODI_MODELE(PARTITION=_F(PARALLELISME=...)) →
+    // DISTRIBUTION=_F(METHODE=...): how elements are spread over processes.
+    if matches!(cmd, "AFFE_MODELE" | "MODI_MODELE")
+        && factor.is_empty()
+        && !has(given, "DISTRIBUTION")
+    {
+        if let Some(g) = given.iter_mut().find(|g| g.name == "PARTITION") {
+            warn(
+                diags,
+                g,
+                format!("`{path}/PARTITION=_F(PARALLELISME=...)` is code_aster 11 syntax: now DISTRIBUTION=_F(METHODE=...)"),
+            );
+            g.name = "DISTRIBUTION".into();
+            if let Some(Value::Dict(d)) = crate::validate::flatten(&g.value).into_iter().next() {
+                let mut d = d.borrow().clone();
+                // The FETI sub-domains (DEFI_PART_FETI) are gone with FETI.
+                d.remove(&Value::str("PARTITION"));
+                for e in d.entries.iter_mut() {
+                    if matches!(&e.key, Value::Str(k) if &**k == "PARALLELISME") {
+                        e.key = Value::str("METHODE");
+                    }
+                }
+                g.value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d)));
+            }
+        }
+    }
+    // IMPR_RESU printed in its own text format by default in code_aster 11
+    // (MED since code_aster 12).
+    if cmd == "IMPR_RESU" && factor.is_empty() && !has(given, "FORMAT") {
+        let span = given.first().map(|g| g.span).unwrap_or_default();
+        let g = Given {
+            name: "FORMAT".into(),
+            span,
+            value: Value::str("RESULTAT"),
+        };
+        given.push(g);
+    }
+    // INCREMENT/PRECISION served to find INST_INIT/INST_FIN in the list;
+    // without them code_aster 17 has no place for it, nor any use.
+    if factor == "INCREMENT"
+        && !has(given, "INST_INIT")
+        && !has(given, "INST_FIN")
+        && !has(given, "CRITERE")
+    {
+        if let Some(i) = given.iter().position(|g| g.name == "PRECISION") {
+            let g = given.remove(i);
+            warn(
+                diags,
+                &g,
+                format!("`{path}/PRECISION` without INST_INIT or INST_FIN has no use: ignored (code_aster 11 accepted it)"),
+            );
+        }
+    }
+}
+
 /// code_aster 11 accepted `CREA_CHAMP(PROL_ZERO='OUI')` for any field;
 /// code_aster 17 only where a numbering or a model field is given (nodal
 /// fields from `NUME_DDL`/`CHAM_NO`, element fields); elsewhere it has no
@@ -686,6 +753,9 @@ pub(crate) fn value(
             )),
             _ => None,
         },
+        ("FORMAT", "CASTEM") => Some(ValueFix::Unsupported(format!(
+            "not supported: `{path}='CASTEM'` (code_aster 11): the CASTEM output format was removed in code_aster 12 (formats now: RESULTAT, IDEAS, ASTER, MED, GMSH)"
+        ))),
         ("ALGO_FROT", "LAGRANGIEN") => Some(ValueFix::Unsupported(format!(
             "not supported: `{path}='LAGRANGIEN'` (code_aster 11): discrete Lagrangian friction has no code_aster 17 form (its discrete friction is penalised only: ALGO_FROT='PENALISATION')"
         ))),
