@@ -36,7 +36,13 @@ pub const RENAMES: &[(&str, &str, &str, &str)] = &[
 
 /// Renames applied only in code_aster 11 files (see
 /// `aster_syntax::dialect::generation`): (command or `*`, old, new).
-pub const LEGACY_RENAMES: &[(&str, &str, &str)] = &[("AFFE_MATERIAU", "CHAMP_GD", "CHAM_GD")];
+pub const LEGACY_RENAMES: &[(&str, &str, &str)] = &[
+    ("AFFE_MATERIAU", "CHAMP_GD", "CHAM_GD"),
+    ("THER_LINEAIRE", "STATIONNAIRE", "STAT"),
+    ("DEFI_CONTACT", "MAILLE_MAIT", "GROUP_MA_MAIT"),
+    ("DEFI_CONTACT", "MAILLE_ESCL", "GROUP_MA_ESCL"),
+    ("DEFI_CONTACT", "NOEUD_ESCL", "GROUP_NO_ESCL"),
+];
 
 /// Keywords that no longer exist and had no effect on the result: dropped
 /// with a warning. (command or `*`, factor keyword or `*`, name, why)
@@ -516,6 +522,15 @@ fn legacy_levels(
             }
         }
     }
+    // AFFE_MODELE/AFFE/MODELISATION=('D_PLAN', 'D_PLAN_SI'): code_aster 11
+    // applied each modelisation in turn, a later one taking the cells it
+    // has elements for. code_aster 17 takes one per occurrence: one
+    // occurrence per modelisation, in the same order, does the same.
+    if cmd == "AFFE_MODELE" && factor.is_empty() {
+        if let Some(g) = given.iter_mut().find(|g| g.name == "AFFE") {
+            split_modelisations(path, g, diags);
+        }
+    }
     // IMPR_RESU printed in its own text format by default in code_aster 11
     // (MED since code_aster 12).
     if cmd == "IMPR_RESU" && factor.is_empty() && !has(given, "FORMAT") {
@@ -543,6 +558,50 @@ fn legacy_levels(
             );
         }
     }
+}
+
+/// See `legacy_levels`: `AFFE=_F(MODELISATION=(a, b))` → `AFFE=(_F(MODELISATION=a),
+/// _F(MODELISATION=b))`, the other keywords copied.
+fn split_modelisations(path: &str, g: &mut Given, diags: &mut Vec<Diagnostic>) {
+    let occs = crate::validate::flatten(&g.value);
+    let several = |o: &Value| match o {
+        Value::Dict(d) => d
+            .borrow()
+            .get(&Value::str("MODELISATION"))
+            .map(|m| crate::validate::flatten(m).len() > 1)
+            .unwrap_or(false),
+        _ => false,
+    };
+    if !occs.iter().any(several) {
+        return;
+    }
+    warn(
+        diags,
+        g,
+        format!("`{path}/AFFE/MODELISATION` with several values is code_aster 11 syntax: now one AFFE occurrence per modelisation, in the same order (a later one takes the cells it has elements for)"),
+    );
+    let mut out = Vec::new();
+    for o in occs {
+        let Value::Dict(d) = &o else {
+            out.push(o);
+            continue;
+        };
+        let d = d.borrow();
+        let models = d
+            .get(&Value::str("MODELISATION"))
+            .map(crate::validate::flatten)
+            .unwrap_or_default();
+        if models.len() <= 1 {
+            out.push(o.clone());
+            continue;
+        }
+        for m in models {
+            let mut copy = d.clone();
+            copy.insert(Value::str("MODELISATION"), m, g.span);
+            out.push(Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(copy))));
+        }
+    }
+    g.value = Value::tuple(out);
 }
 
 /// code_aster 11 accepted `CREA_CHAMP(PROL_ZERO='OUI')` for any field;

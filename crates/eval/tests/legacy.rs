@@ -54,6 +54,24 @@ fn v11_file_checks_clean_with_each_construct_translated() {
         assert!(calls(&report, old).is_empty(), "{old} handed on");
     }
 
+    // Several modelisations in one AFFE → one occurrence each, in order;
+    // PARTITION → DISTRIBUTION.
+    let mo = &calls(&report, "AFFE_MODELE")[0].keywords;
+    let models: Vec<_> = mo
+        .factor("AFFE")
+        .iter()
+        .map(|o| str_of(o, "MODELISATION").unwrap_or(""))
+        .collect();
+    assert_eq!(models, ["D_PLAN", "D_PLAN_SI"]);
+    assert_eq!(
+        str_of(&mo.factor("DISTRIBUTION")[0], "METHODE"),
+        Some("CENTRALISE")
+    );
+    // `xrange` ran the loop; IMPR_RESU has code_aster 11's default format.
+    let prints = calls(&report, "IMPR_RESU");
+    assert_eq!(prints.len(), 2);
+    assert_eq!(str_of(&prints[0].keywords, "FORMAT"), Some("RESULTAT"));
+
     // Discrete Lagrangian contact → CONTRAINTE.
     let cont = calls(&report, "DEFI_CONTACT");
     let zone = &cont[0].keywords.factor("ZONE")[0];
