@@ -531,6 +531,9 @@ fn legacy_levels(
             split_modelisations(path, g, diags);
         }
     }
+    if cmd == "DEFI_CONTACT" && factor == "ZONE" {
+        contact_zone(path, given, diags);
+    }
     // IMPR_RESU printed in its own text format by default in code_aster 11
     // (MED since code_aster 12).
     if cmd == "IMPR_RESU" && factor.is_empty() && !has(given, "FORMAT") {
@@ -555,6 +558,48 @@ fn legacy_levels(
                 diags,
                 &g,
                 format!("`{path}/PRECISION` without INST_INIT or INST_FIN has no use: ignored (code_aster 11 accepted it)"),
+            );
+        }
+    }
+}
+
+/// code_aster 11's `DEFI_CONTACT/ZONE`: the pairing direction
+/// `TYPE_APPA='PROCHE'|'FIXE'` (with `DIRE_APPA`) is now
+/// `TYPE_PROJECTION='ORTHOGONALE'|'FIXE'` (`TYPE_APPA` now names LAC's
+/// pairing algorithm); `EXCLUSION_PIV_NUL` (drop slave nodes with a zero
+/// pivot) is gone: `'NON'` is what code_aster 17 does, `'OUI'` is refused.
+fn contact_zone(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+    if !given.iter().any(|g| g.name == "TYPE_PROJECTION") {
+        if let Some(g) = given.iter_mut().find(|g| g.name == "TYPE_APPA") {
+            let new = match g.value.to_string().as_str() {
+                "FIXE" => Some("FIXE"),
+                "PROCHE" => Some("ORTHOGONALE"),
+                _ => None,
+            };
+            if let Some(new) = new {
+                warn(
+                    diags,
+                    g,
+                    format!("`{path}/TYPE_APPA={}` is code_aster 11 syntax: now TYPE_PROJECTION='{new}'", g.value.repr()),
+                );
+                g.name = "TYPE_PROJECTION".into();
+                g.value = Value::str(new);
+            }
+        }
+    }
+    if let Some(i) = given.iter().position(|g| g.name == "EXCLUSION_PIV_NUL") {
+        let g = given.remove(i);
+        if g.value.to_string() == "OUI" {
+            diags.push(Diagnostic::error(
+                DiagKind::NotSupported,
+                g.span,
+                format!("not supported: `{path}/EXCLUSION_PIV_NUL='OUI'` (code_aster 11): excluding the slave nodes with a zero pivot has no code_aster 17 form"),
+            ));
+        } else {
+            warn(
+                diags,
+                &g,
+                format!("`{path}/EXCLUSION_PIV_NUL` no longer exists and is ignored: 'NON' is what code_aster 17 does"),
             );
         }
     }
@@ -756,6 +801,12 @@ fn test_resu_vale(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic
 /// only in a code_aster 11 file (a current file writing them is wrong):
 /// (keyword, old value, new value, why).
 pub const LEGACY_VALUES: &[(&str, &str, &str, &str)] = &[
+    (
+        "INFO_DBG",
+        "FACTORISATION",
+        "FACTOR",
+        "debugging output of the factorisation",
+    ),
     (
         "ALGO_CONT",
         "LAGRANGIEN",
