@@ -534,6 +534,27 @@ fn legacy_levels(
     if cmd == "DEFI_CONTACT" && factor == "ZONE" {
         contact_zone(path, given, diags);
     }
+    // Elements on nodes: code_aster 11 let AFFE_MODELE and the discrete
+    // characteristics name nodes; code_aster 17 puts discrete elements on
+    // POI1 cells, which the mesh must have (CREA_MAILLAGE(CREA_POI1=...)).
+    let on_nodes = matches!(
+        (cmd, factor),
+        ("AFFE_MODELE", "AFFE") | ("AFFE_CARA_ELEM", "DISCRET" | "DISCRET_2D")
+    );
+    if on_nodes {
+        if let Some(i) = given
+            .iter()
+            .position(|g| matches!(g.name.as_str(), "GROUP_NO" | "NOEUD"))
+        {
+            let g = given.remove(i);
+            given.retain(|o| !matches!(o.name.as_str(), "GROUP_NO" | "NOEUD"));
+            diags.push(Diagnostic::error(
+                DiagKind::NotSupported,
+                g.span,
+                format!("not supported: `{path}/{}` (code_aster 11): elements on nodes; code_aster 17 puts them on POI1 cells (make them with CREA_MAILLAGE(CREA_POI1=...), then name their GROUP_MA)", g.name),
+            ));
+        }
+    }
     // IMPR_RESU printed in its own text format by default in code_aster 11
     // (MED since code_aster 12).
     if cmd == "IMPR_RESU" && factor.is_empty() && !has(given, "FORMAT") {

@@ -344,6 +344,7 @@ impl Validator<'_> {
             Value::Tuple(t) => !t.is_empty(),
             _ => true,
         });
+        let level_start = self.diags.len();
         if self.legacy
             && parent.is_none()
             && matches!(self.command.as_str(), "THER_LINEAIRE" | "THER_NON_LINE")
@@ -510,8 +511,9 @@ impl Validator<'_> {
         let level_failed = self.diags.iter().filter(|d| d.is_error()).count() > errors_before;
         // A value refused as unsupported (a code_aster 11 method with no
         // current form) leaves the level's meaning unknown: the keywords
-        // code_aster 17 would require with it are not reported missing.
-        let refused = self.diags[diags_before..]
+        // code_aster 17 would require with it are not reported missing, nor
+        // its rules checked.
+        let refused = self.diags[level_start.min(diags_before)..]
             .iter()
             .any(|d| d.is_error() && d.kind == DiagKind::NotSupported);
         for g in inactive {
@@ -627,7 +629,7 @@ impl Validator<'_> {
         // is not held to the "at least one" rules: code_aster fills those
         // values when the command runs.
         let mut implied: Vec<Keyword> = Vec::new();
-        let check_rules = !given.is_empty() || parent.is_none();
+        let check_rules = (!given.is_empty() || parent.is_none()) && !refused;
         for r in rules {
             if let Some(k) = implicit_default(path, r, &written, span) {
                 implied.extend(k);
