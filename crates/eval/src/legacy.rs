@@ -534,6 +534,16 @@ fn legacy_levels(
     if cmd == "DEFI_CONTACT" && factor == "ZONE" {
         contact_zone(path, given, diags);
     }
+    if cmd == "MODI_MAILLAGE" && factor.is_empty() {
+        if let Some(i) = given.iter().position(|g| g.name == "ORIE_SHB") {
+            let g = given.remove(i);
+            diags.push(Diagnostic::error(
+                DiagKind::NotSupported,
+                g.span,
+                format!("not supported: `{path}/ORIE_SHB` (code_aster 11): the solid-shell elements are now MODELISATION='COQUE_SOLIDE', on a mesh prepared by CREA_MAILLAGE(COQUE_SOLIDE=...)"),
+            ));
+        }
+    }
     // Elements on nodes: code_aster 11 let AFFE_MODELE and the discrete
     // characteristics name nodes; code_aster 17 puts discrete elements on
     // POI1 cells, which the mesh must have (CREA_MAILLAGE(CREA_POI1=...)).
@@ -822,6 +832,12 @@ fn test_resu_vale(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic
 /// only in a code_aster 11 file (a current file writing them is wrong):
 /// (keyword, old value, new value, why).
 pub const LEGACY_VALUES: &[(&str, &str, &str, &str)] = &[
+    ("MODELISATION", "3D_INCO", "3D_INCO_UPG", INCO),
+    ("MODELISATION", "D_PLAN_INCO", "D_PLAN_INCO_UPG", INCO),
+    ("MODELISATION", "AXIS_INCO", "AXIS_INCO_UPG", INCO),
+    ("MODELISATION", "3D_INCO_OSGS", "3D_INCO_UPO", OSGS),
+    ("MODELISATION", "D_PLAN_INCO_OSGS", "D_PLAN_INCO_UPO", OSGS),
+    ("MODELISATION", "AXIS_INCO_OSGS", "AXIS_INCO_UPO", OSGS),
     (
         "INFO_DBG",
         "FACTORISATION",
@@ -834,6 +850,35 @@ pub const LEGACY_VALUES: &[(&str, &str, &str, &str)] = &[
         "CONTRAINTE",
         "code_aster 11's discrete Lagrangian contact: for frictionless contact it is code_aster 17's active-set method",
     ),
+];
+
+const INCO: &str = "the displacement-pressure-swelling formulation (as the code_aster 17 versions of the same test files write it)";
+const OSGS: &str = "the OSGS-stabilised displacement-pressure formulation (as the code_aster 17 versions of the same test files write it)";
+
+/// code_aster 11 modelisations that later versions removed (the test files
+/// that used them were rewritten with other elements): no code_aster 17
+/// form. The large-strain incompressible ones (`*_INCO_GD`, `*_INCO_LOG`)
+/// became a `COMPORTEMENT/DEFORMATION` of `*_INCO_UPG`: not a rename of
+/// the modelisation alone.
+pub const REMOVED_MODELISATIONS: &[&str] = &[
+    "SHB",
+    "POU_C_T",
+    "COQUE_C_PLAN",
+    "COQUE_D_PLAN",
+    "3D_GRAD_EPSI",
+    "D_PLAN_GRAD_EPSI",
+    "C_PLAN_GRAD_EPSI",
+    "3D_INCO_GD",
+    "D_PLAN_INCO_GD",
+    "AXIS_INCO_GD",
+    "3D_INCO_LOG",
+    "D_PLAN_INCO_LOG",
+    "AXIS_INCO_LOG",
+    "3D_XFEM_CONT",
+    "C_PLAN_XFEM_CONT",
+    "D_PLAN_XFEM_CONT",
+    "PLAN_ELDI",
+    "AXIS_ELDI",
 ];
 
 /// What becomes of a value that is not allowed.
@@ -884,6 +929,12 @@ pub(crate) fn value(
             )),
             _ => None,
         },
+        ("MODELISATION", "SHB") => Some(ValueFix::Unsupported(format!(
+            "not supported: `{path}='SHB'` (code_aster 11): the solid-shell elements are now MODELISATION='COQUE_SOLIDE', on a mesh prepared by CREA_MAILLAGE(COQUE_SOLIDE=...)"
+        ))),
+        ("MODELISATION", m) if REMOVED_MODELISATIONS.contains(&m) => Some(ValueFix::Unsupported(format!(
+            "not supported: `{path}='{m}'` (code_aster 11): this modelisation was removed after code_aster 11"
+        ))),
         ("FORMAT", "CASTEM") => Some(ValueFix::Unsupported(format!(
             "not supported: `{path}='CASTEM'` (code_aster 11): the CASTEM output format was removed in code_aster 12 (formats now: RESULTAT, IDEAS, ASTER, MED, GMSH)"
         ))),
