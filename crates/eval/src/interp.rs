@@ -1053,6 +1053,18 @@ impl<'a> Interp<'a> {
                             .chars()
                             .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') =>
                 {
+                    if let Some(why) = self
+                        .legacy
+                        .then(|| crate::legacy_commands::removed_after_v11(id))
+                        .flatten()
+                    {
+                        return Err(Diagnostic::error(
+                            DiagKind::NotSupported,
+                            func.span,
+                            format!("not supported: `{id}` (code_aster 11): {why}"),
+                        )
+                        .into());
+                    }
                     let mut nd = Diagnostic::error(
                         DiagKind::UnknownCommand,
                         func.span,

@@ -566,7 +566,7 @@ fn legacy_levels(
         }
     }
     // IMPR_RESU printed in its own text format by default in code_aster 11
-    // (MED since code_aster 12).
+    // (MED in code_aster 17).
     if cmd == "IMPR_RESU" && factor.is_empty() && !has(given, "FORMAT") {
         let span = given.first().map(|g| g.span).unwrap_or_default();
         let g = Given {
@@ -697,7 +697,7 @@ fn crea_champ_prol_zero(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diag
         warn(
             diags,
             &g,
-            format!("`{path}/PROL_ZERO` applies only to fields with a numbering (NUME_DDL, CHAM_NO) or element fields since code_aster 12: ignored (code_aster 17 offers no such choice for this field)"),
+            format!("`{path}/PROL_ZERO` applies only to fields with a numbering (NUME_DDL, CHAM_NO) or element fields in code_aster 17: ignored (code_aster 17 offers no such choice for this field)"),
         );
     }
 }
@@ -936,7 +936,7 @@ pub(crate) fn value(
             "not supported: `{path}='{m}'` (code_aster 11): this modelisation was removed after code_aster 11"
         ))),
         ("FORMAT", "CASTEM") => Some(ValueFix::Unsupported(format!(
-            "not supported: `{path}='CASTEM'` (code_aster 11): the CASTEM output format was removed in code_aster 12 (formats now: RESULTAT, IDEAS, ASTER, MED, GMSH)"
+            "not supported: `{path}='CASTEM'` (code_aster 11): the CASTEM output format was removed after code_aster 11 (formats now: RESULTAT, IDEAS, ASTER, MED, GMSH)"
         ))),
         ("ALGO_FROT", "LAGRANGIEN") => Some(ValueFix::Unsupported(format!(
             "not supported: `{path}='LAGRANGIEN'` (code_aster 11): discrete Lagrangian friction has no code_aster 17 form (its discrete friction is penalised only: ALGO_FROT='PENALISATION')"

@@ -31,6 +31,31 @@ pub fn replacement(old: &str) -> Option<&'static str> {
     REPLACED.iter().find(|(o, _)| *o == old).map(|(_, n)| *n)
 }
 
+/// code_aster 11 commands removed later whose keywords do not map onto a
+/// current command: in a code_aster 11 file they are "not supported" (with
+/// what replaced them), not unknown names.
+pub const REMOVED_AFTER_V11: &[(&str, &str)] = &[
+    ("CALC_THETA", "removed after code_aster 11; the theta field is now given to CALC_G (THETA=_F(...))"),
+    ("INTE_MAIL_2D", "removed after code_aster 11; results along a path are now extracted with MACR_LIGN_COUPE"),
+    ("INTE_MAIL_3D", "removed after code_aster 11; results along a path are now extracted with MACR_LIGN_COUPE"),
+    ("DEFI_PART_FETI", "removed with the FETI solver; the distribution of the elements is AFFE_MODELE/DISTRIBUTION"),
+    ("DEFI_PART_OPS", "removed with the FETI solver; the distribution of the elements is AFFE_MODELE/DISTRIBUTION"),
+    ("CALC_MODAL", "removed; modes are computed with CALC_MODES"),
+    ("MACRO_MODE_MECA", "removed after code_aster 11; modes in a frequency band are computed with CALC_MODES(OPTION='BANDE')"),
+    ("DYNA_TRAN_MODAL", "removed after code_aster 11; now DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE')"),
+    ("MACR_ECLA_PG", "removed; now CREA_MAILLAGE(ECLA_PG=...) then PROJ_CHAMP(METHODE='ECLA_PG')"),
+    ("POST_GP", "removed after code_aster 11"),
+    ("GENE_MATR_ALEA", "removed after code_aster 11"),
+];
+
+/// Why a code_aster 11 command is gone, if it is one of [`REMOVED_AFTER_V11`].
+pub fn removed_after_v11(name: &str) -> Option<&'static str> {
+    REMOVED_AFTER_V11
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, why)| *why)
+}
+
 /// A command that code_aster 17 still has, called with a keyword that made
 /// it another command's job: `CREA_MAILLAGE(COPIE=_F())` copied a mesh,
 /// now `COPIER`.
