@@ -202,7 +202,7 @@ fn v11_constructs_without_a_current_form_are_not_supported() {
         .collect();
     // One refusal each, no "missing E_T" or "missing GROUP_MA" that the
     // refused construct made moot.
-    assert_eq!(errors.len(), 2, "{text}");
+    assert_eq!(errors.len(), 4, "{text}");
     for e in &errors {
         assert_eq!(e.kind, DiagKind::NotSupported, "{text}");
         assert!(e.message.contains("(code_aster 11)"), "{text}");
