@@ -42,6 +42,8 @@ pub const LEGACY_RENAMES: &[(&str, &str, &str)] = &[
     ("DEFI_CONTACT", "MAILLE_MAIT", "GROUP_MA_MAIT"),
     ("DEFI_CONTACT", "MAILLE_ESCL", "GROUP_MA_ESCL"),
     ("DEFI_CONTACT", "NOEUD_ESCL", "GROUP_NO_ESCL"),
+    ("THER_NON_LINE", "COMP_THER_NL", "COMPORTEMENT"),
+    ("SECH_NON_LINE", "COMP_THER_NL", "COMPORTEMENT"),
 ];
 
 /// Keywords that no longer exist and had no effect on the result: dropped
@@ -533,6 +535,46 @@ fn legacy_levels(
     }
     if cmd == "DEFI_CONTACT" && factor == "ZONE" {
         contact_zone(path, given, diags);
+    }
+    // Drying computed by THER_NON_LINE (code_aster 11): now SECH_NON_LINE,
+    // on a model of its own — not a rename of the command.
+    if cmd == "THER_NON_LINE" && factor.is_empty() {
+        let drying_law = given
+            .iter()
+            .filter(|g| matches!(g.name.as_str(), "COMP_THER_NL" | "COMPORTEMENT"))
+            .filter_map(|g| factor_entry(&g.value, "RELATION"))
+            .any(|r| r.to_string().starts_with("SECH_"));
+        if drying_law || has(given, "EVOL_THER_SECH") {
+            let at = given
+                .iter()
+                .find(|g| matches!(g.name.as_str(), "COMP_THER_NL" | "EVOL_THER_SECH"))
+                .map(|g| g.span)
+                .unwrap_or_default();
+            given.retain(|g| !matches!(g.name.as_str(), "COMP_THER_NL" | "EVOL_THER_SECH"));
+            diags.push(Diagnostic::error(
+                DiagKind::NotSupported,
+                at,
+                format!("not supported: drying computed by `{path}` (code_aster 11, COMP_THER_NL=_F(RELATION='SECH_...'), EVOL_THER_SECH): now SECH_NON_LINE on a drying model"),
+            ));
+        }
+    }
+    // The kind of vector projected on a modal basis: code_aster 11's
+    // default was a force, code_aster 17 wants it said.
+    let projects_vector = (cmd == "PROJ_VECT_BASE" && factor.is_empty())
+        || (cmd == "PROJ_BASE" && factor == "VECT_ASSE_GENE");
+    if projects_vector && !has(given, "TYPE_VECT") {
+        let span = given.first().map(|g| g.span).unwrap_or_default();
+        let g = Given {
+            name: "TYPE_VECT".into(),
+            span,
+            value: Value::str("FORC"),
+        };
+        warn(
+            diags,
+            &g,
+            format!("`{path}` without TYPE_VECT: code_aster 11's default TYPE_VECT='FORC' is now written"),
+        );
+        given.push(g);
     }
     if cmd == "MODI_MAILLAGE" && factor.is_empty() {
         if let Some(i) = given.iter().position(|g| g.name == "ORIE_SHB") {
