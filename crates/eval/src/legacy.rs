@@ -46,6 +46,29 @@ pub const LEGACY_RENAMES: &[(&str, &str, &str)] = &[
     ("SECH_NON_LINE", "COMP_THER_NL", "COMPORTEMENT"),
 ];
 
+/// Keywords dropped only in code_aster 11 files, with why: (command or `*`,
+/// factor keyword or `*`, name, why).
+pub const LEGACY_DROPPED: &[(&str, &str, &str, &str)] = &[
+    (
+        "AFFE_CARA_ELEM",
+        "POUTRE",
+        "PREC_AIRE",
+        "the check of a multifibre section's area against the beam's is gone",
+    ),
+    (
+        "AFFE_CARA_ELEM",
+        "POUTRE",
+        "PREC_INERTIE",
+        "the check of a multifibre section's inertia against the beam's is gone",
+    ),
+    (
+        "CREA_MAILLAGE",
+        "*",
+        "PREF_NOEUD",
+        "the new nodes are named by code_aster",
+    ),
+];
+
 /// Keywords that no longer exist and had no effect on the result: dropped
 /// with a warning. (command or `*`, factor keyword or `*`, name, why)
 pub const DROPPED: &[(&str, &str, &str, &str)] = &[
@@ -328,8 +351,10 @@ pub(crate) fn transform_level(
                 continue;
             }
         }
+        let legacy_dropped = LEGACY_DROPPED.iter().filter(|_| legacy);
         if let Some((_, _, _, why)) = DROPPED
             .iter()
+            .chain(legacy_dropped)
             .find(|(c, f, n, _)| applies(c, cmd) && (*f == "*" || *f == factor) && *n == name)
         {
             warn(
@@ -556,6 +581,36 @@ fn legacy_levels(
                 at,
                 format!("not supported: drying computed by `{path}` (code_aster 11, COMP_THER_NL=_F(RELATION='SECH_...'), EVOL_THER_SECH): now SECH_NON_LINE on a drying model"),
             ));
+        }
+    }
+    // DEFI_MATERIAU(ELAS_FO=_F(..., FONC_DESORP=F)) (code_aster 11): the
+    // desorption function has its own factor keyword now,
+    // BETON_DESORP=_F(FONC_DESORP=F).
+    if cmd == "DEFI_MATERIAU" && factor.is_empty() && !has(given, "BETON_DESORP") {
+        if let Some(i) = given.iter().position(|g| g.name == "ELAS_FO") {
+            if let Some(f) = factor_entry(&given[i].value, "FONC_DESORP") {
+                if let Some(Value::Dict(d)) =
+                    crate::validate::flatten(&given[i].value).into_iter().next()
+                {
+                    let mut elas = d.borrow().clone();
+                    elas.remove(&Value::str("FONC_DESORP"));
+                    let span = given[i].span;
+                    given[i].value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(elas)));
+                    let mut desorp = crate::value::Dict::default();
+                    desorp.insert(Value::str("FONC_DESORP"), f, span);
+                    let g = Given {
+                        name: "BETON_DESORP".into(),
+                        span,
+                        value: Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(desorp))),
+                    };
+                    warn(
+                        diags,
+                        &g,
+                        format!("`{path}/ELAS_FO/FONC_DESORP` is code_aster 11 syntax: now BETON_DESORP=_F(FONC_DESORP=...)"),
+                    );
+                    given.push(g);
+                }
+            }
         }
     }
     // The kind of vector projected on a modal basis: code_aster 11's
