@@ -44,6 +44,7 @@ pub const LEGACY_RENAMES: &[(&str, &str, &str)] = &[
     ("DEFI_CONTACT", "NOEUD_ESCL", "GROUP_NO_ESCL"),
     ("THER_NON_LINE", "COMP_THER_NL", "COMPORTEMENT"),
     ("SECH_NON_LINE", "COMP_THER_NL", "COMPORTEMENT"),
+    ("DEFI_CABLE_BP", "NOEUD_ANCRAGE", "GROUP_NO_ANCRAGE"),
 ];
 
 /// Keywords dropped only in code_aster 11 files, with why: (command or `*`,
@@ -560,6 +561,23 @@ fn legacy_levels(
     }
     if cmd == "DEFI_CONTACT" && factor == "ZONE" {
         contact_zone(path, given, diags);
+    }
+    // Titles given as several strings (code_aster 11 printed one per
+    // line): one text now.
+    for g in given.iter_mut() {
+        if !matches!(g.name.as_str(), "TITRE" | "SOUS_TITRE") {
+            continue;
+        }
+        let parts = crate::validate::flatten(&g.value);
+        if parts.len() > 1 && parts.iter().all(|p| matches!(p, Value::Str(_))) {
+            let joined: Vec<String> = parts.iter().map(|p| p.to_string()).collect();
+            warn(
+                diags,
+                g,
+                format!("`{path}/{}` with several strings is code_aster 11 syntax: now one text (joined by spaces)", g.name),
+            );
+            g.value = Value::str(&joined.join(" "));
+        }
     }
     // Drying computed by THER_NON_LINE (code_aster 11): now SECH_NON_LINE,
     // on a model of its own — not a rename of the command.
