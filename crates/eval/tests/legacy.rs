@@ -143,6 +143,7 @@ fn v11_file_checks_clean_with_each_construct_translated() {
     // before it.
     let ther = &calls(&report, "THER_LINEAIRE")[0].keywords;
     assert_eq!(str_of(ther, "TYPE_CALCUL"), Some("STAT"));
+    assert_eq!(str_of(ther, "TITRE"), Some("STATIONARY CASE"));
     let list = ther.factor("INCREMENT")[0].concept("LIST_INST").cloned();
     let made = report
         .calls
@@ -178,6 +179,15 @@ fn v11_file_checks_clean_with_each_construct_translated() {
     assert_eq!(before.command, "DEFI_CONSTANTE");
     assert_eq!(before.result, rho);
     assert_eq!(before.keywords.f64("VALE"), Some(7800.0));
+    // ELAS_FO/FONC_DESORP → BETON_DESORP=_F(FONC_DESORP=...).
+    let acier = &report.calls[acier].keywords;
+    assert!(!acier.factor("ELAS_FO")[0].contains("FONC_DESORP"));
+    assert_eq!(
+        acier.factor("BETON_DESORP")[0]
+            .concept("FONC_DESORP")
+            .map(|c| c.name.as_str()),
+        Some("NUF")
+    );
 
     // CREA_MAILLAGE(COPIE=_F()) → COPIER(CONCEPT=MA).
     let copie = calls(&report, "COPIER");
