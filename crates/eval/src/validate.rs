@@ -708,10 +708,14 @@ impl Validator<'_> {
         let mut out = Vec::with_capacity(items.len());
         let mut failed = false;
         for item in &items {
-            match self.scalar(kw, item) {
-                Some(s) => out.push(s),
-                None if self.legacy && constant_function_wanted(kw, item).is_some() => {
-                    let x = constant_function_wanted(kw, item).unwrap_or_default();
+            let constant = if self.legacy {
+                constant_function_wanted(kw, item)
+            } else {
+                None
+            };
+            match (self.scalar(kw, item), constant) {
+                (Some(s), _) => out.push(s),
+                (None, Some(x)) => {
                     self.diags.push(Diagnostic::warning(
                         DiagKind::Legacy,
                         g.span,
@@ -729,7 +733,7 @@ impl Validator<'_> {
                     );
                     out.push(Scalar::Concept(c));
                 }
-                None => {
+                (None, None) => {
                     let expected = kw
                         .types
                         .iter()
