@@ -579,6 +579,45 @@ fn legacy_levels(
             g.value = Value::str(&joined.join(" "));
         }
     }
+    // Refused with one message each, the keywords that belong to them
+    // removed (they would only repeat it): (command, factor keyword, the
+    // keyword and value that mark the construct, its companions, why).
+    const REFUSED: &[(&str, &str, &str, &str, &[&str], &str)] = &[
+        (
+            "DYNA_NON_LINE",
+            "SCHEMA_TEMPS",
+            "SCHEMA",
+            "THETA_METHODE",
+            &["THETA"],
+            "the theta-method time scheme of DYNA_NON_LINE was removed",
+        ),
+        (
+            "DEFI_LIST_INST",
+            "ECHEC",
+            "EVENEMENT",
+            "COLLISION",
+            &["SUBD_INST", "SUBD_DUREE"],
+            "the collision event and its subdivision of the time step were removed",
+        ),
+    ];
+    for (c, f, kw, value, companions, why) in REFUSED {
+        if *c != cmd || *f != factor {
+            continue;
+        }
+        let Some(i) = given
+            .iter()
+            .position(|g| g.name == *kw && g.value.to_string() == *value)
+        else {
+            continue;
+        };
+        let g = given.remove(i);
+        given.retain(|o| !companions.contains(&o.name.as_str()));
+        diags.push(Diagnostic::error(
+            DiagKind::NotSupported,
+            g.span,
+            format!("not supported: `{path}/{kw}='{value}'` (code_aster 11): {why}"),
+        ));
+    }
     // Drying computed by THER_NON_LINE (code_aster 11): now SECH_NON_LINE,
     // on a model of its own — not a rename of the command.
     if cmd == "THER_NON_LINE" && factor.is_empty() {
@@ -732,6 +771,15 @@ fn contact_zone(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>)
                 g.value = Value::str(new);
             }
         }
+    }
+    if let Some(i) = given.iter().position(|g| g.name == "USURE") {
+        let g = given.remove(i);
+        given.retain(|o| !matches!(o.name.as_str(), "K" | "H"));
+        diags.push(Diagnostic::error(
+            DiagKind::NotSupported,
+            g.span,
+            format!("not supported: `{path}/USURE` (code_aster 11): the wear computation of the contact (with K, H) was removed"),
+        ));
     }
     if let Some(i) = given.iter().position(|g| g.name == "EXCLUSION_PIV_NUL") {
         let g = given.remove(i);
