@@ -515,6 +515,37 @@ fn crea_resu_nom_cham(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagno
     given.remove(n);
 }
 
+/// A code_aster 11 construct refused with one message, the keywords that
+/// belong to it removed (they would only repeat it).
+struct Refused {
+    command: &'static str,
+    factor: &'static str,
+    /// The keyword and value that mark the construct.
+    keyword: &'static str,
+    value: &'static str,
+    companions: &'static [&'static str],
+    why: &'static str,
+}
+
+const REFUSED: &[Refused] = &[
+    Refused {
+        command: "DYNA_NON_LINE",
+        factor: "SCHEMA_TEMPS",
+        keyword: "SCHEMA",
+        value: "THETA_METHODE",
+        companions: &["THETA"],
+        why: "the theta-method time scheme of DYNA_NON_LINE was removed",
+    },
+    Refused {
+        command: "DEFI_LIST_INST",
+        factor: "ECHEC",
+        keyword: "EVENEMENT",
+        value: "COLLISION",
+        companions: &["SUBD_INST", "SUBD_DUREE"],
+        why: "the collision event and its subdivision of the time step were removed",
+    },
+];
+
 /// Smaller code_aster 11 rewrites, one level at a time.
 fn legacy_levels(
     cmd: &str,
@@ -579,43 +610,25 @@ fn legacy_levels(
             g.value = Value::str(&joined.join(" "));
         }
     }
-    // Refused with one message each, the keywords that belong to them
-    // removed (they would only repeat it): (command, factor keyword, the
-    // keyword and value that mark the construct, its companions, why).
-    const REFUSED: &[(&str, &str, &str, &str, &[&str], &str)] = &[
-        (
-            "DYNA_NON_LINE",
-            "SCHEMA_TEMPS",
-            "SCHEMA",
-            "THETA_METHODE",
-            &["THETA"],
-            "the theta-method time scheme of DYNA_NON_LINE was removed",
-        ),
-        (
-            "DEFI_LIST_INST",
-            "ECHEC",
-            "EVENEMENT",
-            "COLLISION",
-            &["SUBD_INST", "SUBD_DUREE"],
-            "the collision event and its subdivision of the time step were removed",
-        ),
-    ];
-    for (c, f, kw, value, companions, why) in REFUSED {
-        if *c != cmd || *f != factor {
+    for r in REFUSED {
+        if r.command != cmd || r.factor != factor {
             continue;
         }
         let Some(i) = given
             .iter()
-            .position(|g| g.name == *kw && g.value.to_string() == *value)
+            .position(|g| g.name == r.keyword && g.value.to_string() == r.value)
         else {
             continue;
         };
         let g = given.remove(i);
-        given.retain(|o| !companions.contains(&o.name.as_str()));
+        given.retain(|o| !r.companions.contains(&o.name.as_str()));
         diags.push(Diagnostic::error(
             DiagKind::NotSupported,
             g.span,
-            format!("not supported: `{path}/{kw}='{value}'` (code_aster 11): {why}"),
+            format!(
+                "not supported: `{path}/{}='{}'` (code_aster 11): {}",
+                r.keyword, r.value, r.why
+            ),
         ));
     }
     // Drying computed by THER_NON_LINE (code_aster 11): now SECH_NON_LINE,
