@@ -733,15 +733,43 @@ fn legacy_levels(
         }
     }
     // IMPR_RESU printed in its own text format by default in code_aster 11
-    // (MED in code_aster 17).
+    // (MED in code_aster 17). The format is written only where the call
+    // asks for the text format (a keyword MED refuses): elsewhere both
+    // formats print the same results, and MED is what the runner writes.
     if cmd == "IMPR_RESU" && factor.is_empty() && !has(given, "FORMAT") {
-        let span = given.first().map(|g| g.span).unwrap_or_default();
-        let g = Given {
-            name: "FORMAT".into(),
-            span,
-            value: Value::str("RESULTAT"),
-        };
-        given.push(g);
+        const TEXT_ONLY: [&str; 8] = [
+            "BORNE_INF",
+            "BORNE_SUP",
+            "FORMAT_R",
+            "FORM_TABL",
+            "IMPR_COOR",
+            "TOUT_PARA",
+            "VALE_MAX",
+            "VALE_MIN",
+        ];
+        let text_resu = given.iter().filter(|g| g.name == "RESU").any(|g| {
+            TEXT_ONLY
+                .iter()
+                .any(|k| factor_entry(&g.value, k).is_some())
+        });
+        let asks_text = given.iter().find(|g| g.name == "MODELE").or(if text_resu {
+            given.iter().find(|g| g.name == "RESU")
+        } else {
+            None
+        });
+        if let Some(m) = asks_text {
+            let g = Given {
+                name: "FORMAT".into(),
+                span: m.span,
+                value: Value::str("RESULTAT"),
+            };
+            warn(
+                diags,
+                &g,
+                format!("`{path}` without FORMAT printed text in code_aster 11 (MED in code_aster 17): FORMAT='RESULTAT' written, as {} asks for it", m.name),
+            );
+            given.push(g);
+        }
     }
     // INCREMENT/PRECISION served to find INST_INIT/INST_FIN in the list;
     // without them code_aster 17 has no place for it, nor any use.
@@ -907,12 +935,22 @@ fn defi_list_methode(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnos
         span,
         value: methode,
     };
+    given[i].value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(inner)));
+    // 'MANUEL' is the default at the top: left to it, as a current file
+    // that wants the given instants writes nothing.
+    if g.value.to_string() == "MANUEL" {
+        warn(
+            diags,
+            &g,
+            format!("`{path}/DEFI_LIST/METHODE` is code_aster 11 syntax: now {path}/METHODE, whose default is 'MANUEL'"),
+        );
+        return;
+    }
     warn(
         diags,
         &g,
         format!("`{path}/DEFI_LIST/METHODE` is code_aster 11 syntax: now {path}/METHODE"),
     );
-    given[i].value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(inner)));
     given.push(g);
 }
 

@@ -67,10 +67,12 @@ fn v11_file_checks_clean_with_each_construct_translated() {
         str_of(&mo.factor("DISTRIBUTION")[0], "METHODE"),
         Some("CENTRALISE")
     );
-    // `xrange` ran the loop; IMPR_RESU has code_aster 11's default format.
+    // `xrange` ran the loop; IMPR_RESU keeps code_aster 17's default
+    // format unless MODELE= asks for code_aster 11's text one.
     let prints = calls(&report, "IMPR_RESU");
-    assert_eq!(prints.len(), 2);
-    assert_eq!(str_of(&prints[0].keywords, "FORMAT"), Some("RESULTAT"));
+    assert_eq!(prints.len(), 3);
+    assert_eq!(str_of(&prints[0].keywords, "FORMAT"), Some("MED"));
+    assert_eq!(str_of(&prints[2].keywords, "FORMAT"), Some("RESULTAT"));
 
     // Discrete Lagrangian contact → CONTRAINTE.
     let cont = calls(&report, "DEFI_CONTACT");
@@ -91,6 +93,9 @@ fn v11_file_checks_clean_with_each_construct_translated() {
     // DEFI_LIST/METHODE → METHODE.
     let li = &calls(&report, "DEFI_LIST_INST")[0].keywords;
     assert_eq!(str_of(li, "METHODE"), Some("MANUEL"));
+    // ... as the default: a runner that knows only the default method
+    // sees what a current file gives it.
+    assert!(li.keyword("METHODE").is_some_and(|k| k.defaulted));
     assert!(!li.factor("DEFI_LIST")[0].contains("METHODE"));
 
     // MACRO_MATR_ASSE → ASSEMBLAGE, SOLVEUR dropped.
