@@ -36,7 +36,14 @@ pub(crate) fn call_command(
     span: Span,
     target: Option<&str>,
 ) -> R<Value> {
-    let Some(cmd) = catalog().command(name) else {
+    // A code_aster 11 command replaced by another (`MODE_ITER_SIMULT` →
+    // `CALC_MODES`...): its keywords are translated below.
+    let replaced = if me.legacy {
+        crate::legacy_commands::replacement(name)
+    } else {
+        None
+    };
+    let Some(mut cmd) = catalog().command(replaced.unwrap_or(name)) else {
         return err_unknown(name, span);
     };
     if name == "INCLUDE" {
@@ -68,12 +75,31 @@ pub(crate) fn call_command(
         });
     }
 
+    let mut early = Vec::new();
+    let old_name = name;
+    let replaced = replaced.or_else(|| {
+        me.legacy
+            .then(|| crate::legacy_commands::replacement_by_keywords(name, &given))
+            .flatten()
+    });
+    let name = match replaced {
+        Some(new) => {
+            if let Some(c) = catalog().command(new) {
+                cmd = c;
+            }
+            crate::legacy_commands::translate(old_name, span, &mut given, &mut early)
+                .unwrap_or(old_name)
+        }
+        None => name,
+    };
     let mut v = Validator {
         reuse_given: reuse.is_some(),
         command: name.to_string(),
-        diags: Vec::new(),
+        diags: early,
         created: Vec::new(),
         next_id: &mut me.next_id,
+        legacy: me.legacy,
+        synthesized: Vec::new(),
     };
     let cmd = match crate::legacy::legacy_command(name, &given) {
         Some((legacy, why)) => {
@@ -84,7 +110,7 @@ pub(crate) fn call_command(
         None => cmd,
     };
     let keywords = v.validate(cmd, given, span);
-    let (mut diags, created) = (v.diags, v.created);
+    let (mut diags, created, synthesized) = (v.diags, v.created, v.synthesized);
 
     // reuse=
     let mut reused: Option<ConceptRef> = None;
@@ -123,6 +149,14 @@ pub(crate) fn call_command(
     me.diags.extend(diags);
     if has_error && !me.keep_going {
         return Err(Halt::Reported);
+    }
+
+    // Concepts the legacy layer added (constant functions, time lists):
+    // defined first.
+    if !has_error {
+        for s in synthesized {
+            define_synthesized(me, s)?;
+        }
     }
 
     // The result concept.
@@ -231,6 +265,36 @@ pub(crate) fn call_command(
         (_, Some(c), None) => Value::Concept(c),
         (_, None, _) => Value::None,
     })
+}
+
+/// A command the legacy layer added (see `Validator::synthesized`), handed
+/// to the sink like a command of the file.
+fn define_synthesized(me: &mut Interp, s: crate::validate::Synthesized) -> R<()> {
+    let Some(cmd) = catalog().command(s.command) else {
+        return Ok(());
+    };
+    let mut v = Validator {
+        reuse_given: false,
+        command: cmd.name.clone(),
+        diags: Vec::new(),
+        created: Vec::new(),
+        next_id: &mut me.next_id,
+        legacy: false,
+        synthesized: Vec::new(),
+    };
+    let keywords = v.validate(cmd, s.keywords, s.span);
+    let call = CommandCall {
+        command: cmd.name.clone(),
+        result: Some(s.result),
+        reuse: None,
+        keywords,
+        span: s.span,
+    };
+    me.commands += 1;
+    me.sink
+        .execute(&call)
+        .map_err(|e| Halt::from(exec_diag(s.span, e)))?;
+    Ok(())
 }
 
 fn destroy(me: &mut Interp, k: &Keywords) {

@@ -79,6 +79,9 @@ pub(crate) struct Interp<'a> {
     /// previous run (of a type the checker cannot know).
     pub continued: bool,
     pub commands: usize,
+    /// The program was written for an older code_aster (11–15): legacy
+    /// spellings that code_aster 17 dropped are translated.
+    pub legacy: bool,
     depth: usize,
 }
 
@@ -97,6 +100,7 @@ impl<'a> Interp<'a> {
             finished: false,
             continued: false,
             commands: 0,
+            legacy: false,
             depth: 0,
         }
     }
@@ -594,6 +598,13 @@ impl<'a> Interp<'a> {
                 if let Some(c) = catalog().command(name) {
                     return Some(Value::Command(Rc::from(c.name.as_str())));
                 }
+                if self.legacy && crate::legacy_commands::replacement(name).is_some() {
+                    return Some(Value::Command(Rc::from(name)));
+                }
+                // Python 2's lazy range: the same values for a loop.
+                if self.legacy && name == "xrange" {
+                    return builtins::builtin("range");
+                }
                 builtins::math_attr(name)
             }
         }
@@ -1042,6 +1053,18 @@ impl<'a> Interp<'a> {
                             .chars()
                             .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') =>
                 {
+                    if let Some(why) = self
+                        .legacy
+                        .then(|| crate::legacy_commands::removed_after_v11(id))
+                        .flatten()
+                    {
+                        return Err(Diagnostic::error(
+                            DiagKind::NotSupported,
+                            func.span,
+                            format!("not supported: `{id}` (code_aster 11): {why}"),
+                        )
+                        .into());
+                    }
                     let mut nd = Diagnostic::error(
                         DiagKind::UnknownCommand,
                         func.span,

@@ -15,6 +15,7 @@ mod format;
 pub mod formula;
 mod interp;
 pub mod legacy;
+pub mod legacy_commands;
 mod testcase;
 mod try_import;
 mod validate;
@@ -56,6 +57,7 @@ pub fn run_program(
     options: RunOptions,
 ) -> Result<RunSummary, Diagnostics> {
     let mut interp = interp::Interp::new(map, sink, options.keep_going);
+    interp.legacy = aster_syntax::dialect::generation(module).is_legacy();
     let r = interp.run_module(module);
     let mut diags = std::mem::take(&mut interp.diags);
     if let Err(interp::Halt::Diag(d)) = r {

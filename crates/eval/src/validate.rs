@@ -122,6 +122,26 @@ fn value_cval(v: &Value) -> (CVal, Option<String>) {
     }
 }
 
+/// The real a code_aster 11 file gave for a keyword that code_aster 17
+/// types as a function only (`DEFI_MATERIAU/THM_LIQU/ALPHA`,
+/// `ELAS_FO/RHO`...): it stands for a constant function.
+fn constant_function_wanted(kw: &SimpleKw, item: &Value) -> Option<f64> {
+    let x = match item {
+        Value::Float(f) => *f,
+        Value::Int(i) => *i as f64,
+        _ => return None,
+    };
+    let function = kw
+        .types
+        .iter()
+        .any(|t| matches!(t, ValueType::Concept(c) if c == "fonction_sdaster"));
+    let number = kw
+        .types
+        .iter()
+        .any(|t| matches!(t, ValueType::Real | ValueType::Int | ValueType::Any));
+    (function && !number).then_some(x)
+}
+
 pub(crate) fn flatten(v: &Value) -> Vec<Value> {
     match v {
         Value::List(l) => l.borrow().iter().flat_map(flatten).collect(),
@@ -138,6 +158,92 @@ pub(crate) struct Validator<'n> {
     /// Concepts announced with `CO('name')`.
     pub created: Vec<ConceptRef>,
     pub next_id: &'n mut u32,
+    /// The file was written for an older code_aster: its spellings that
+    /// code_aster 17 dropped are translated (see `legacy`).
+    pub legacy: bool,
+    /// Concepts that code_aster 17 needs where a code_aster 11 file wrote
+    /// none (a real where a function is wanted, no time list for a
+    /// stationary computation): the caller defines each, in order, before
+    /// the command runs.
+    pub synthesized: Vec<Synthesized>,
+}
+
+/// A command the legacy layer adds before the one being validated.
+#[derive(Clone, Debug)]
+pub(crate) struct Synthesized {
+    pub command: &'static str,
+    pub keywords: Vec<Given>,
+    pub result: ConceptRef,
+    pub span: Span,
+}
+
+impl Validator<'_> {
+    /// A new concept of type `typ` made by `command(keywords)`, defined
+    /// before the command being validated.
+    fn synthesize(
+        &mut self,
+        command: &'static str,
+        typ: &str,
+        keywords: Vec<(&str, Value)>,
+        span: Span,
+    ) -> ConceptRef {
+        let id = *self.next_id;
+        *self.next_id += 1;
+        let result = ConceptRef {
+            name: format!("_{command}_{id}"),
+            id,
+            typ: typ.into(),
+        };
+        self.synthesized.push(Synthesized {
+            command,
+            keywords: keywords
+                .into_iter()
+                .map(|(name, value)| Given {
+                    name: name.into(),
+                    span,
+                    value,
+                })
+                .collect(),
+            result: result.clone(),
+            span,
+        });
+        result
+    }
+
+    /// code_aster 11's stationary thermal computation: no `INCREMENT`.
+    /// code_aster 17 writes it `TYPE_CALCUL='STAT',
+    /// INCREMENT=_F(LIST_INST=DEFI_LIST_REEL(VALE=0.0))`.
+    fn stationary_thermal(&mut self, path: &str, given: &mut Vec<Given>, span: Span) {
+        if given
+            .iter()
+            .any(|g| g.name == "INCREMENT" || g.name == "TYPE_CALCUL")
+        {
+            return;
+        }
+        let list = self.synthesize(
+            "DEFI_LIST_REEL",
+            "listr8_sdaster",
+            vec![("VALE", Value::Float(0.0))],
+            span,
+        );
+        self.diags.push(Diagnostic::warning(
+            DiagKind::Legacy,
+            span,
+            format!("`{path}` without INCREMENT is code_aster 11's stationary computation: now TYPE_CALCUL='STAT', INCREMENT=_F(LIST_INST=DEFI_LIST_REEL(VALE=0.0))"),
+        ));
+        let mut d = crate::value::Dict::default();
+        d.insert(Value::str("LIST_INST"), Value::Concept(list), span);
+        given.push(Given {
+            name: "TYPE_CALCUL".into(),
+            span,
+            value: Value::str("STAT"),
+        });
+        given.push(Given {
+            name: "INCREMENT".into(),
+            span,
+            value: Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d))),
+        });
+    }
 }
 
 impl Validator<'_> {
@@ -238,7 +344,21 @@ impl Validator<'_> {
             Value::Tuple(t) => !t.is_empty(),
             _ => true,
         });
-        legacy::transform_level(&self.command, path, entries, &mut given, &mut self.diags);
+        let level_start = self.diags.len();
+        if self.legacy
+            && parent.is_none()
+            && matches!(self.command.as_str(), "THER_LINEAIRE" | "THER_NON_LINE")
+        {
+            self.stationary_thermal(path, &mut given, span);
+        }
+        legacy::transform_level(
+            &self.command,
+            path,
+            entries,
+            &mut given,
+            &mut self.diags,
+            self.legacy,
+        );
 
         let mut ctx = Ctx {
             vals: Vec::with_capacity(given.len() + 8),
@@ -278,6 +398,7 @@ impl Validator<'_> {
         // (few: a level with hundreds of possible keywords gets a handful).
         let mut values: Vec<(usize, Keyword)> = Vec::with_capacity(given.len());
         let errors_before = self.diags.iter().filter(|d| d.is_error()).count();
+        let diags_before = self.diags.len();
         let mut inactive = Vec::new();
         for g in &given {
             let Some(slot) = active.iter().position(|a| same_name(&a.name, &g.name)) else {
@@ -388,6 +509,13 @@ impl Validator<'_> {
         // A wrong value at this level may have closed the block a keyword
         // belongs to: then only truly unknown keywords are reported.
         let level_failed = self.diags.iter().filter(|d| d.is_error()).count() > errors_before;
+        // A value refused as unsupported (a code_aster 11 method with no
+        // current form) leaves the level's meaning unknown: the keywords
+        // code_aster 17 would require with it are not reported missing, nor
+        // its rules checked.
+        let refused = self.diags[level_start.min(diags_before)..]
+            .iter()
+            .any(|d| d.is_error() && d.kind == DiagKind::NotSupported);
         for g in inactive {
             self.not_active(entries, &active, g, path, level_failed);
         }
@@ -424,6 +552,7 @@ impl Validator<'_> {
                         span,
                         defaulted: true,
                     }),
+                    (None, Status::Mandatory) if refused => {}
                     (None, Status::Mandatory) => {
                         let expected = s
                             .types
@@ -500,7 +629,7 @@ impl Validator<'_> {
         // is not held to the "at least one" rules: code_aster fills those
         // values when the command runs.
         let mut implied: Vec<Keyword> = Vec::new();
-        let check_rules = !given.is_empty() || parent.is_none();
+        let check_rules = (!given.is_empty() || parent.is_none()) && !refused;
         for r in rules {
             if let Some(k) = implicit_default(path, r, &written, span) {
                 implied.extend(k);
@@ -579,9 +708,32 @@ impl Validator<'_> {
         let mut out = Vec::with_capacity(items.len());
         let mut failed = false;
         for item in &items {
-            match self.scalar(kw, item) {
-                Some(s) => out.push(s),
-                None => {
+            let constant = if self.legacy {
+                constant_function_wanted(kw, item)
+            } else {
+                None
+            };
+            match (self.scalar(kw, item), constant) {
+                (Some(s), _) => out.push(s),
+                (None, Some(x)) => {
+                    self.diags.push(Diagnostic::warning(
+                        DiagKind::Legacy,
+                        g.span,
+                        format!(
+                            "`{}`: a real is code_aster 11 syntax here: now a function, DEFI_CONSTANTE(VALE={})",
+                            kpath(),
+                            item.repr()
+                        ),
+                    ));
+                    let c = self.synthesize(
+                        "DEFI_CONSTANTE",
+                        "fonction_sdaster",
+                        vec![("VALE", Value::Float(x))],
+                        g.span,
+                    );
+                    out.push(Scalar::Concept(c));
+                }
+                (None, None) => {
                     let expected = kw
                         .types
                         .iter()
@@ -611,19 +763,32 @@ impl Validator<'_> {
                 if matches!(s, Scalar::Opaque(_)) || into_contains(into, s) {
                     continue;
                 }
-                if let Some(new) = legacy::value(&self.command, &g.name, s, into) {
-                    self.diags.push(Diagnostic::warning(
-                        DiagKind::Legacy,
-                        g.span,
-                        format!(
-                            "`{}`: legacy value {} is now {}",
-                            kpath(),
-                            scalar_repr(s),
-                            scalar_repr(&new)
-                        ),
-                    ));
-                    *s = new;
-                    continue;
+                match legacy::value(&kpath(), s, into, kw.default.as_deref(), self.legacy) {
+                    Some(legacy::ValueFix::Renamed(new, why)) => {
+                        let d = Diagnostic::warning(
+                            DiagKind::Legacy,
+                            g.span,
+                            format!(
+                                "`{}`: legacy value {} is now {}",
+                                kpath(),
+                                scalar_repr(s),
+                                scalar_repr(&new)
+                            ),
+                        );
+                        self.diags.push(match why {
+                            Some(w) => d.note(format!("note: {w}")),
+                            None => d,
+                        });
+                        *s = new;
+                        continue;
+                    }
+                    Some(legacy::ValueFix::Unsupported(msg)) => {
+                        self.diags
+                            .push(Diagnostic::error(DiagKind::NotSupported, g.span, msg));
+                        failed = true;
+                        continue;
+                    }
+                    None => {}
                 }
                 let shown = scalar_repr(s);
                 let strs: Vec<String> = into
