@@ -1,6 +1,15 @@
-//! Mesh operations the commands need: `DEFI_GROUP`, `MODI_MAILLAGE`.
+//! Mesh operations the commands need: `DEFI_GROUP`, `MODI_MAILLAGE`,
+//! `CREA_MAILLAGE`.
 
+mod degree;
 mod groups;
 mod orient;
+mod points;
+mod rebuild;
+mod restrict;
+#[cfg(test)]
+mod testmesh;
 
+pub use degree::{CentreNodes, DegreeReport};
 pub use orient::OrientReport;
+pub use restrict::Restriction;

@@ -1,6 +1,7 @@
 //! One module per family of commands; [`dispatch`] maps a command name to
 //! its implementation.
 
+mod crea_maillage;
 mod define;
 mod elementary;
 mod inspect;
@@ -22,6 +23,7 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "LIRE_MAILLAGE" => mesh::lire_maillage(ex, call),
         "DEFI_GROUP" => mesh::defi_group(ex, call),
         "MODI_MAILLAGE" => mesh::modi_maillage(ex, call),
+        "CREA_MAILLAGE" => crea_maillage::crea_maillage(ex, call),
         "DEFI_MATERIAU" => define::defi_materiau(ex, call),
         "AFFE_MATERIAU" => define::affe_materiau(ex, call),
         "AFFE_MODELE" => define::affe_modele(ex, call),
