@@ -108,7 +108,10 @@ impl CentreNodes {
         matches!(
             (self, ty),
             (CentreNodes::Hexa20To27, CellType::HEXA20 | CellType::QUAD8)
-                | (CentreNodes::Penta15To18, CellType::PENTA15 | CellType::QUAD8)
+                | (
+                    CentreNodes::Penta15To18,
+                    CellType::PENTA15 | CellType::QUAD8
+                )
                 | (CentreNodes::Quad8To9, CellType::QUAD8)
                 | (CentreNodes::Tria6To7, CellType::TRIA6)
         )
@@ -124,7 +127,11 @@ pub struct DegreeReport {
 }
 
 fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0]
+    [
+        (a[0] + b[0]) / 2.0,
+        (a[1] + b[1]) / 2.0,
+        (a[2] + b[2]) / 2.0,
+    ]
 }
 
 /// Σ wᵢ xᵢ over some nodes.
@@ -354,7 +361,10 @@ mod tests {
         assert_eq!(r.nodes_added, 1);
         assert_eq!(m.cells[0].ty, CellType::QUAD9);
         let c = m.coord(m.cells[0].nodes[8]);
-        assert!((c[0] - 0.5).abs() < 1e-15 && (c[1] - 0.4).abs() < 1e-15, "{c:?}");
+        assert!(
+            (c[0] - 0.5).abs() < 1e-15 && (c[1] - 0.4).abs() < 1e-15,
+            "{c:?}"
+        );
     }
 
     #[test]

@@ -102,7 +102,10 @@ mod tests {
         assert_eq!(m.cells[1].nodes, vec![NodeId(1), NodeId(2), NodeId(5)]);
         assert_eq!(m.cells[2].nodes, vec![NodeId(5), NodeId(4), NodeId(1)]);
         assert_eq!(m.cells[3].ty, CellType::SEG2);
-        assert_eq!(m.group_ma("RIGHT").unwrap().members, vec![CellId(1), CellId(2)]);
+        assert_eq!(
+            m.group_ma("RIGHT").unwrap().members,
+            vec![CellId(1), CellId(2)]
+        );
         assert_eq!(m.group_ma("EDGE").unwrap().members, vec![CellId(3)]);
         assert_eq!(m.cell_names[3], "M3");
     }

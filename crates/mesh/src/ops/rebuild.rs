@@ -48,10 +48,7 @@ impl Mesh {
     /// itself, a changed copy, or several pieces). New pieces keep the old
     /// name when there is one piece, else get fresh names; every cell group
     /// holding the old cell holds its pieces, in order.
-    pub(crate) fn rewrite_cells(
-        &mut self,
-        mut rewrite: impl FnMut(CellId, &Cell) -> Vec<Cell>,
-    ) {
+    pub(crate) fn rewrite_cells(&mut self, mut rewrite: impl FnMut(CellId, &Cell) -> Vec<Cell>) {
         let old_cells = std::mem::take(&mut self.cells);
         let old_names = std::mem::take(&mut self.cell_names);
         let mut namer = Namer::new(&old_names, "M");

@@ -16,7 +16,7 @@ fn comp_name(name: &str) -> Option<CompName> {
 
 /// Checks that a node carries a component in the model (2D models have
 /// no DZ; nodes outside the model have nothing).
-fn check_dof(
+pub(super) fn check_dof(
     model: &ModelDef,
     mesh: &Mesh,
     carried: &[bool],
@@ -164,6 +164,7 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         Concept::KinematicLoad(Rc::new(KinematicLoad {
             model: model_ref.id,
             imposed,
+            imposed_fn: Vec::new(),
         })),
     )
 }
@@ -197,6 +198,12 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "FORCE_CONTOUR/MAILLE",
             "FORCE_CONTOUR/FX",
             "FORCE_CONTOUR/FY",
+            "FORCE_FACE",
+            "FORCE_FACE/GROUP_MA",
+            "FORCE_FACE/MAILLE",
+            "FORCE_FACE/FX",
+            "FORCE_FACE/FY",
+            "FORCE_FACE/FZ",
             "PRES_REP",
             "PRES_REP/GROUP_MA",
             "PRES_REP/MAILLE",
@@ -233,13 +240,18 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         &["FX", "FY", "FZ"],
         "AFFE_CHAR_MECA/FORCE_NODALE",
     )?;
-    for occ in kw.factor("FORCE_CONTOUR") {
+    let surface = kw
+        .factor("FORCE_CONTOUR")
+        .iter()
+        .map(|o| ("FORCE_CONTOUR", o))
+        .chain(kw.factor("FORCE_FACE").iter().map(|o| ("FORCE_FACE", o)));
+    for (key, occ) in surface {
         let cells = select::cells(occ, &mesh, "")
-            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_CONTOUR: {e}")))?;
+            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/{key}: {e}")))?;
         let force = [
             occ.f64("FX").unwrap_or(0.0),
             occ.f64("FY").unwrap_or(0.0),
-            0.0,
+            occ.f64("FZ").unwrap_or(0.0),
         ];
         load.boundary.push(BoundaryLoad::Force { cells, force });
     }

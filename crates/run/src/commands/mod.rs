@@ -6,6 +6,7 @@ mod define;
 mod elementary;
 mod inspect;
 mod loads;
+mod loads_f;
 mod mesh;
 mod post;
 
@@ -34,6 +35,8 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "DEFI_LIST_INST" => define::defi_list_inst(ex, call),
         "AFFE_CHAR_CINE" => loads::affe_char_cine(ex, call),
         "AFFE_CHAR_MECA" => loads::affe_char_meca(ex, call),
+        "AFFE_CHAR_MECA_F" => loads_f::affe_char_meca_f(ex, call),
+        "AFFE_CHAR_CINE_F" => loads_f::affe_char_cine_f(ex, call),
         "DEFI_CONTACT" => loads::defi_contact(ex, call),
         "STAT_NON_LINE" => crate::solve::stat_non_line(ex, call),
         "MECA_STATIQUE" => crate::solve::meca_statique(ex, call),
