@@ -4,11 +4,13 @@
 mod crea_maillage;
 mod define;
 mod elementary;
+mod functions;
 mod inspect;
 mod loads;
 mod loads_f;
 mod mesh;
 mod post;
+mod tables;
 
 use crate::executor::Executor;
 use aster_eval::{CommandCall, CommandOutput, ExecError};
@@ -52,6 +54,14 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "EXTR_TABLE" => elementary::extr_table(ex, call),
         "NUME_DDL" => elementary::nume_ddl(ex, call),
         "ASSE_VECTEUR" => elementary::asse_vecteur(ex, call),
+        "RECU_FONCTION" => functions::recu_fonction(ex, call),
+        "CALC_FONC_INTERP" => functions::calc_fonc_interp(ex, call),
+        "CALC_FONCTION" => functions::calc_fonction(ex, call),
+        "IMPR_FONCTION" => functions::impr_fonction(ex, call),
+        "DEFI_LIST_ENTI" => functions::defi_list_enti(ex, call),
+        "DEFI_FICHIER" => functions::defi_fichier(ex, call),
+        "CREA_TABLE" => tables::crea_table(ex, call),
+        "CALC_TABLE" => tables::calc_table(ex, call),
         "DETRUIRE" => Ok(CommandOutput::Nothing),
         // The formula itself arrives through `CommandSink::formula`.
         "FORMULE" => Ok(CommandOutput::Concept),
