@@ -2,6 +2,7 @@
 //! `CREA_MAILLAGE`.
 
 mod degree;
+mod geom_groups;
 mod groups;
 mod orient;
 mod points;
@@ -11,5 +12,6 @@ mod restrict;
 mod testmesh;
 
 pub use degree::{CentreNodes, DegreeReport};
+pub use geom_groups::NodeKind;
 pub use orient::OrientReport;
 pub use restrict::Restriction;

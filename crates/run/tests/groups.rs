@@ -1,0 +1,24 @@
+//! The project's geometric-groups scene (comm/groups.comm on
+//! comm/strip.mail): PLAN, ENV_SPHERE, SEGM_DROI_ORDO and NOEUD_ORDO node
+//! groups carry the conditions of an exact tension test.
+
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+#[test]
+fn geometric_groups_carry_the_tension_test() {
+    let out = std::env::temp_dir().join(format!("aster-groups-{}", std::process::id()));
+    let case = aster_run::program::prepare(
+        &root().join("comm/groups.comm"),
+        Some(&root().join("comm/strip.mail")),
+        &out,
+    )
+    .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (6, 0));
+    let _ = std::fs::remove_dir_all(out);
+}
