@@ -4,7 +4,7 @@ use crate::concept::Concept;
 use crate::executor::{store_result, Executor};
 use crate::select;
 use aster_eval::{CommandCall, CommandOutput, ExecError};
-use aster_mesh::{Group, Mesh, NodeId, NodeKind};
+use aster_mesh::{Along, Group, Mesh, NodeId, NodeKind};
 use std::collections::BTreeSet;
 use std::path::Path;
 use std::sync::Arc;
@@ -234,10 +234,53 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "ORIE_PEAU/GROUP_MA_INTERNE",
             "ORIE_PEAU_2D",
             "ORIE_PEAU_2D/GROUP_MA",
+            "ORIE_NORM_COQUE",
+            "ORIE_NORM_COQUE/GROUP_MA",
+            "ORIE_NORM_COQUE/VECT_NORM",
+            "ORIE_NORM_COQUE/GROUP_NO",
+            "ORIE_NORM_COQUE/NOEUD",
+            "ORIE_LIGNE",
+            "ORIE_LIGNE/GROUP_MA",
+            "ORIE_LIGNE/VECT_TANG",
+            "ORIE_LIGNE/GROUP_NO",
+            "ORIE_LIGNE/NOEUD",
         ],
     )?;
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
+    for (key, vect, along) in [
+        ("ORIE_NORM_COQUE", "VECT_NORM", Along::Normal),
+        ("ORIE_LIGNE", "VECT_TANG", Along::Tangent),
+    ] {
+        for occ in kw.factor(key) {
+            let what = format!("MODI_MAILLAGE/{key}");
+            let cells = select::cells(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+            let v: Vec<f64> = occ.simple(vect).iter().filter_map(|s| s.as_f64()).collect();
+            let vector = match v.as_slice() {
+                [] => None,
+                [x, y] => Some([*x, *y, 0.0]),
+                [x, y, z, ..] => Some([*x, *y, *z]),
+                _ => return Err(ex.kw_error(&what, occ, vect, "2 or 3 components are needed")),
+            };
+            let node = if occ.contains("GROUP_NO") || occ.contains("NOEUD") {
+                select::single_node(occ, &mesh)
+                    .map_err(|e| ExecError::new(format!("{what}: {e}")))?
+                    .0
+            } else if vector.is_some() {
+                return Err(ExecError::new(format!(
+                    "{what}: {vect} needs the node where it applies (GROUP_NO or NOEUD)"
+                )));
+            } else {
+                match cells.first() {
+                    Some(c) => mesh.cell(*c).nodes[0],
+                    None => continue,
+                }
+            };
+            mesh.orient_along(&cells, node, vector, along)
+                .map_err(|e| ExecError::new(e.to_string()))?;
+        }
+    }
     let mut groups: Vec<String> = Vec::new();
     for occ in kw
         .factor("ORIE_PEAU")
