@@ -10,6 +10,7 @@ mod loads;
 mod loads_f;
 mod mesh;
 mod post;
+mod pressure;
 mod tables;
 
 use crate::executor::Executor;
@@ -62,6 +63,7 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "DEFI_FICHIER" => functions::defi_fichier(ex, call),
         "CREA_TABLE" => tables::crea_table(ex, call),
         "CALC_TABLE" => tables::calc_table(ex, call),
+        "CALC_PRESSION" => pressure::calc_pression(ex, call),
         "DETRUIRE" => Ok(CommandOutput::Nothing),
         // The formula itself arrives through `CommandSink::formula`.
         "FORMULE" => Ok(CommandOutput::Concept),
