@@ -1,6 +1,6 @@
 //! The project's functions-and-tables scene (comm/functions.comm on
 //! comm/strip.mail): RECU_FONCTION, CALC_FONCTION (COMB, INTEGRE),
-//! CALC_FONC_INTERP, CREA_TABLE, CALC_TABLE against analytic values, and
+//! CALC_FONC_INTERP, CREA_TABLE, CALC_TABLE, TEST_FONCTION against analytic values, and
 //! IMPR_FONCTION's XMGRACE file on a unit named by DEFI_FICHIER.
 
 use std::path::PathBuf;
@@ -20,7 +20,7 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
     .unwrap();
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (12, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (14, 0));
     let agr = std::fs::read_to_string(out.join("curves.agr")).unwrap();
     assert!(agr.contains("@title \"strip\""), "{agr}");
     assert!(
