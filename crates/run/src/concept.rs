@@ -169,6 +169,15 @@ pub enum BoundaryFn {
     },
 }
 
+/// `FORCE_INTERNE`: a force per unit volume (per unit area in 2D), each
+/// component a constant or (AFFE_CHAR_MECA_F) a function of `INST`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VolumeForce {
+    pub cells: Vec<CellId>,
+    pub force: [f64; 3],
+    pub functions: [Option<LoadFunction>; 3],
+}
+
 /// `AFFE_CHAR_CINE(MECA_IMPO=…)`: eliminated imposed values
 /// (`AFFE_CHAR_CINE_F`: `imposed_fn`).
 #[derive(Clone, Debug, PartialEq)]
@@ -186,6 +195,8 @@ pub struct MechanicalLoad {
     pub relations: Vec<LinearRelation>,
     pub nodal_forces: Vec<Imposed>,
     pub boundary: Vec<BoundaryLoad>,
+    /// `FORCE_INTERNE`: force per unit volume on continuum cells.
+    pub volume: Vec<VolumeForce>,
     /// `AFFE_CHAR_MECA_F`: the same loads given by functions.
     pub imposed_fn: Vec<ImposedFn>,
     pub nodal_forces_fn: Vec<ImposedFn>,

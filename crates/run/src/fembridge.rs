@@ -209,6 +209,23 @@ fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
                 }
             }
             LoadRef::Mechanical(l) => {
+                for v in &l.volume {
+                    for k in 0..3 {
+                        let mut unit = [0.0; 3];
+                        unit[k] = 1.0;
+                        let mk = match &v.functions[k] {
+                            Some(f) => function_multiplier(f, [0.0; 3], &m, &setup.instants)?,
+                            None if v.force[k] != 0.0 => {
+                                unit[k] = v.force[k];
+                                m.clone()
+                            }
+                            None => continue,
+                        };
+                        for &cell in &v.cells {
+                            loads.add(Load::VolumeForce { cell, force: unit }, mk.clone());
+                        }
+                    }
+                }
                 for i in &l.imposed_fn {
                     loads.add(
                         Load::Imposed {

@@ -405,7 +405,11 @@ pub fn test_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         let cmd = "TEST_FONCTION/VALEUR";
         let f_ref = ex.required(cmd, occ, "FONCTION")?;
         let f = ex.function(f_ref)?;
-        let paras: Vec<f64> = occ.simple("VALE_PARA").iter().filter_map(|s| s.as_f64()).collect();
+        let paras: Vec<f64> = occ
+            .simple("VALE_PARA")
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
         let [x] = paras.as_slice() else {
             return Err(ex.kw_error(
                 cmd,

@@ -209,6 +209,27 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "PRES_REP/MAILLE",
             "PRES_REP/TOUT",
             "PRES_REP/PRES",
+            "FORCE_INTERNE",
+            "FORCE_INTERNE/TOUT",
+            "FORCE_INTERNE/GROUP_MA",
+            "FORCE_INTERNE/MAILLE",
+            "FORCE_INTERNE/FX",
+            "FORCE_INTERNE/FY",
+            "FORCE_INTERNE/FZ",
+            "FACE_IMPO",
+            "FACE_IMPO/GROUP_MA",
+            "FACE_IMPO/MAILLE",
+            "FACE_IMPO/SANS_GROUP_NO",
+            "FACE_IMPO/DX",
+            "FACE_IMPO/DY",
+            "FACE_IMPO/DZ",
+            "LIAISON_UNIF",
+            "LIAISON_UNIF/GROUP_NO",
+            "LIAISON_UNIF/NOEUD",
+            "LIAISON_UNIF/GROUP_MA",
+            "LIAISON_UNIF/MAILLE",
+            "LIAISON_UNIF/SANS_GROUP_NO",
+            "LIAISON_UNIF/DDL",
             "LIAISON_DDL",
             "LIAISON_DDL/GROUP_NO",
             "LIAISON_DDL/NOEUD",
@@ -233,6 +254,48 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         &["DX", "DY", "DZ"],
         "AFFE_CHAR_MECA/DDL_IMPO",
     )?;
+    // FACE_IMPO with DX/DY/DZ imposes them on the nodes of the faces.
+    load.imposed.extend(imposed_values(
+        ex,
+        kw.factor("FACE_IMPO"),
+        (&model, &mesh, &carried),
+        &["DX", "DY", "DZ"],
+        "AFFE_CHAR_MECA/FACE_IMPO",
+    )?);
+    for occ in kw.factor("FORCE_INTERNE") {
+        let cells = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_INTERNE: {e}")))?;
+        let force = [
+            occ.f64("FX").unwrap_or(0.0),
+            occ.f64("FY").unwrap_or(0.0),
+            occ.f64("FZ").unwrap_or(0.0),
+        ];
+        load.volume.push(VolumeForce {
+            cells: continuum_cells(&model, &mesh, cells),
+            force,
+            functions: [None, None, None],
+        });
+    }
+    for occ in kw.factor("LIAISON_UNIF") {
+        let what = "AFFE_CHAR_MECA/LIAISON_UNIF";
+        let nodes = select::nodes_without(occ, &mesh)
+            .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+        for d in occ.simple("DDL").iter().filter_map(|s| s.as_str()) {
+            let comp = comp_name(d)
+                .ok_or_else(|| ExecError::new(format!("{what}: unknown component `{d}`")))?;
+            let Some((&first, rest)) = nodes.split_first() else {
+                continue;
+            };
+            check_dof(&model, &mesh, &carried, first, comp, what)?;
+            for &n in rest {
+                check_dof(&model, &mesh, &carried, n, comp, what)?;
+                load.relations.push(LinearRelation {
+                    terms: vec![(n, comp, 1.0), (first, comp, -1.0)],
+                    rhs: 0.0,
+                });
+            }
+        }
+    }
     load.nodal_forces = imposed_values(
         ex,
         kw.factor("FORCE_NODALE"),
@@ -441,4 +504,22 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
         algo,
     };
     store_result(ex, call, Concept::Contact(Rc::new(def)))
+}
+
+/// The cells of a selection that carry a continuum element of the model
+/// (`FORCE_INTERNE` on `TOUT='OUI'` skips boundary and discrete cells).
+pub(super) fn continuum_cells(
+    model: &ModelDef,
+    mesh: &Mesh,
+    cells: Vec<aster_mesh::CellId>,
+) -> Vec<aster_mesh::CellId> {
+    cells
+        .into_iter()
+        .filter(|c| {
+            model
+                .cells
+                .get(c)
+                .is_some_and(|m| !m.is_discrete() && mesh.cell(*c).ty.dim() as usize == m.dim())
+        })
+        .collect()
 }

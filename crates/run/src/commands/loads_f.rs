@@ -135,6 +135,13 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
             "FORCE_FACE/FX",
             "FORCE_FACE/FY",
             "FORCE_FACE/FZ",
+            "FORCE_INTERNE",
+            "FORCE_INTERNE/TOUT",
+            "FORCE_INTERNE/GROUP_MA",
+            "FORCE_INTERNE/MAILLE",
+            "FORCE_INTERNE/FX",
+            "FORCE_INTERNE/FY",
+            "FORCE_INTERNE/FZ",
             "PRES_REP",
             "PRES_REP/GROUP_MA",
             "PRES_REP/MAILLE",
@@ -175,6 +182,20 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
             ];
             load.boundary_fn.push(BoundaryFn::Force { cells, force });
         }
+    }
+    for occ in kw.factor("FORCE_INTERNE") {
+        let what = "AFFE_CHAR_MECA_F/FORCE_INTERNE";
+        let cells =
+            select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+        load.volume.push(VolumeForce {
+            cells: super::loads::continuum_cells(&model, &mesh, cells),
+            force: [0.0; 3],
+            functions: [
+                time_function(ex, what, occ, "FX")?,
+                time_function(ex, what, occ, "FY")?,
+                time_function(ex, what, occ, "FZ")?,
+            ],
+        });
     }
     for occ in kw.factor("PRES_REP") {
         let what = "AFFE_CHAR_MECA_F/PRES_REP";
