@@ -223,6 +223,17 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "FACE_IMPO/DX",
             "FACE_IMPO/DY",
             "FACE_IMPO/DZ",
+            "LIAISON_GROUP",
+            "LIAISON_GROUP/GROUP_NO_1",
+            "LIAISON_GROUP/GROUP_NO_2",
+            "LIAISON_GROUP/GROUP_MA_1",
+            "LIAISON_GROUP/GROUP_MA_2",
+            "LIAISON_GROUP/SANS_GROUP_NO",
+            "LIAISON_GROUP/DDL_1",
+            "LIAISON_GROUP/DDL_2",
+            "LIAISON_GROUP/COEF_MULT_1",
+            "LIAISON_GROUP/COEF_MULT_2",
+            "LIAISON_GROUP/COEF_IMPO",
             "LIAISON_UNIF",
             "LIAISON_UNIF/GROUP_NO",
             "LIAISON_UNIF/NOEUD",
@@ -275,6 +286,10 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             force,
             functions: [None, None, None],
         });
+    }
+    for occ in kw.factor("LIAISON_GROUP") {
+        load.relations
+            .extend(liaison_group(ex, occ, (&model, &mesh, &carried))?);
     }
     for occ in kw.factor("LIAISON_UNIF") {
         let what = "AFFE_CHAR_MECA/LIAISON_UNIF";
@@ -522,4 +537,114 @@ pub(super) fn continuum_cells(
                 .is_some_and(|m| !m.is_discrete() && mesh.cell(*c).ty.dim() as usize == m.dim())
         })
         .collect()
+}
+
+/// `LIAISON_GROUP`: each node of side 1 is paired with the nearest node of
+/// side 2 (code_aster's pairing without a transformation), and each pair
+/// gets Σ COEF_MULT_1·DDL_1(n₁) + Σ COEF_MULT_2·DDL_2(n₂) = COEF_IMPO. A
+/// node paired with itself gets no relation; two nodes of side 1 paired
+/// with one node of side 2 is an error.
+fn liaison_group(
+    ex: &Executor,
+    occ: &Keywords,
+    (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+) -> Result<Vec<LinearRelation>, ExecError> {
+    let what = "AFFE_CHAR_MECA/LIAISON_GROUP";
+    let err = |e: String| ExecError::new(format!("{what}: {e}"));
+    let excluded: std::collections::BTreeSet<NodeId> = select::nodes(occ, mesh, "SANS_")
+        .map_err(err)?
+        .into_iter()
+        .collect();
+    let side = |k: &str| -> Result<Vec<NodeId>, ExecError> {
+        let mut out = Vec::new();
+        for g in occ
+            .simple(&format!("GROUP_NO_{k}"))
+            .iter()
+            .filter_map(|s| s.as_str())
+        {
+            out.extend_from_slice(select::group_no(mesh, g).map_err(err)?);
+        }
+        for g in occ
+            .simple(&format!("GROUP_MA_{k}"))
+            .iter()
+            .filter_map(|s| s.as_str())
+        {
+            let cells = select::group_ma(mesh, g).map_err(err)?;
+            out.extend(mesh.nodes_of_cells(cells));
+        }
+        let mut seen = std::collections::BTreeSet::new();
+        out.retain(|n| !excluded.contains(n) && seen.insert(*n));
+        Ok(out)
+    };
+    let (one, two) = (side("1")?, side("2")?);
+    let terms = |k: &str| -> Result<Vec<(CompName, f64)>, ExecError> {
+        let ddl: Vec<&str> = occ
+            .simple(&format!("DDL_{k}"))
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let coef: Vec<f64> = occ
+            .simple(&format!("COEF_MULT_{k}"))
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
+        if ddl.len() != coef.len() {
+            return Err(ex.kw_error(
+                what,
+                occ,
+                &format!("COEF_MULT_{k}"),
+                format!(
+                    "{} coefficients for {} DDL_{k}: give one per component",
+                    coef.len(),
+                    ddl.len()
+                ),
+            ));
+        }
+        ddl.into_iter()
+            .zip(coef)
+            .map(|(d, c)| {
+                comp_name(d)
+                    .map(|d| (d, c))
+                    .ok_or_else(|| err(format!("unknown component `{d}`")))
+            })
+            .collect()
+    };
+    let (t1, t2) = (terms("1")?, terms("2")?);
+    let rhs = occ.f64("COEF_IMPO").unwrap_or(0.0);
+    let dist2 = |a: NodeId, b: NodeId| {
+        let (p, q) = (mesh.coord(a), mesh.coord(b));
+        (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()
+    };
+    let mut used: std::collections::BTreeMap<NodeId, NodeId> = std::collections::BTreeMap::new();
+    let mut out = Vec::new();
+    for &n1 in &one {
+        let Some(&n2) = two
+            .iter()
+            .min_by(|a, b| dist2(n1, **a).total_cmp(&dist2(n1, **b)))
+        else {
+            return Err(err("GROUP_NO_2/GROUP_MA_2 holds no node".into()));
+        };
+        if let Some(prev) = used.insert(n2, n1) {
+            return Err(err(format!(
+                "nodes {} and {} are both paired with node {} (the pairing must be one to one)",
+                select::node_name(mesh, prev),
+                select::node_name(mesh, n1),
+                select::node_name(mesh, n2)
+            )));
+        }
+        if n1 == n2 {
+            continue;
+        }
+        let mut terms = Vec::new();
+        for &(c, a) in &t1 {
+            check_dof(model, mesh, carried, n1, c, what)?;
+            terms.push((n1, c, a));
+        }
+        for &(c, a) in &t2 {
+            check_dof(model, mesh, carried, n2, c, what)?;
+            terms.push((n2, c, a));
+        }
+        out.push(LinearRelation { terms, rhs });
+    }
+    Ok(out)
 }

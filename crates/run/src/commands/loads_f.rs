@@ -3,7 +3,8 @@
 //!
 //! Nodal values (`DDL_IMPO`, `MECA_IMPO`, `FORCE_NODALE`) are evaluated at
 //! each node's coordinates and at each step's time, as code_aster does.
-//! Distributed loads (`FORCE_CONTOUR`, `FORCE_FACE`, `PRES_REP`) take
+//! Distributed loads (`FORCE_CONTOUR`, `FORCE_FACE`, `FORCE_INTERNE`,
+//! `PRES_REP`) take
 //! functions of `INST` only here: code_aster evaluates a function of the
 //! coordinates at the Gauss points, which is refused rather than
 //! approximated.
