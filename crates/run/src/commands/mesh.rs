@@ -244,10 +244,47 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "ORIE_LIGNE/VECT_TANG",
             "ORIE_LIGNE/GROUP_NO",
             "ORIE_LIGNE/NOEUD",
+            "DEFORME",
+            "DEFORME/OPTION",
+            "DEFORME/DEPL",
+            "ECHELLE",
         ],
     )?;
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
+    for occ in kw.factor("DEFORME") {
+        // OPTION='TRAN': every node moves by the field's DX, DY, DZ.
+        ex.only_values("MODI_MAILLAGE/DEFORME", occ, "OPTION", &["TRAN"])?;
+        let d = ex.required("MODI_MAILLAGE/DEFORME", occ, "DEPL")?;
+        let field = ex.field(d)?;
+        let crate::field::Field::Nodal(f) = &*field else {
+            return Err(ex.kw_error(
+                "MODI_MAILLAGE/DEFORME",
+                occ,
+                "DEPL",
+                "a nodal displacement field is required",
+            ));
+        };
+        for (node, _) in &f.values {
+            let Some(x) = mesh.coords.get_mut(node.0 as usize) else {
+                return Err(ExecError::new(format!(
+                    "MODI_MAILLAGE/DEFORME: field `{}` has node #{} which the mesh does not have",
+                    d.name,
+                    node.0 + 1
+                )));
+            };
+            for (k, c) in ["DX", "DY", "DZ"].iter().enumerate() {
+                x[k] += f.get(*node, c).unwrap_or(0.0);
+            }
+        }
+    }
+    if let Some(scale) = kw.f64("ECHELLE") {
+        for x in &mut mesh.coords {
+            for v in x.iter_mut() {
+                *v *= scale;
+            }
+        }
+    }
     for (key, vect, along) in [
         ("ORIE_NORM_COQUE", "VECT_NORM", Along::Normal),
         ("ORIE_LIGNE", "VECT_TANG", Along::Tangent),
