@@ -265,7 +265,7 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 "a nodal displacement field is required",
             ));
         };
-        for (node, _) in &f.values {
+        for node in f.values.keys() {
             let Some(x) = mesh.coords.get_mut(node.0 as usize) else {
                 return Err(ExecError::new(format!(
                     "MODI_MAILLAGE/DEFORME: field `{}` has node #{} which the mesh does not have",
