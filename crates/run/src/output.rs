@@ -133,11 +133,51 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "RESU/CRITERE",
             "RESU/INFO_MAILLAGE",
             "RESU/IMPR_NOM_VARI",
+            // FORMAT='RESULTAT' listing selections.
+            "RESU/NOM_CMP",
+            "RESU/GROUP_NO",
+            "RESU/NOEUD",
+            "RESU/GROUP_MA",
+            "RESU/MAILLE",
+            "RESU/FORMAT_R",
+            "RESU/IMPR_COOR",
         ],
     )?;
     let kw = &call.keywords;
     let format = kw.str("FORMAT").unwrap_or("RESULTAT");
-    ex.only_values("IMPR_RESU", kw, "FORMAT", &["MED", "ASTER"])?;
+    ex.only_values("IMPR_RESU", kw, "FORMAT", &["MED", "ASTER", "RESULTAT"])?;
+    for occ in kw.factor("RESU") {
+        for key in [
+            "NOM_CMP",
+            "GROUP_NO",
+            "NOEUD",
+            "GROUP_MA",
+            "MAILLE",
+            "IMPR_COOR",
+        ] {
+            if format != "RESULTAT" && occ.keyword(key).is_some_and(|k| !k.defaulted) {
+                let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
+                return Err(ex.unsupported(
+                    &format!("IMPR_RESU/RESU/{key} with FORMAT='{format}'"),
+                    span,
+                ));
+            }
+        }
+        if let Some(f) = occ.str("FORMAT_R").filter(|f| real_format(f).is_none()) {
+            let span = occ.keyword("FORMAT_R").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(&format!("IMPR_RESU/RESU/FORMAT_R='{f}'"), span));
+        }
+    }
+    if format == "RESULTAT" {
+        let text = listing(ex, kw)?;
+        let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(8);
+        if unit == 8 || unit == 6 {
+            ex.write_report(&text)?;
+        } else {
+            crate::commands::append_file(&ex.output_path(unit), &text)?;
+        }
+        return Ok(CommandOutput::Nothing);
+    }
     let default_unit = if format == "MED" { 80 } else { 8 };
     let unit = kw
         .first("UNITE")
@@ -212,4 +252,124 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         }
     }
     Ok(CommandOutput::Nothing)
+}
+
+/// Width and precision of a Fortran `1PEw.p` format (`FORMAT_R`).
+fn real_format(f: &str) -> Option<(usize, usize)> {
+    let (w, p) = f.strip_prefix("1PE")?.split_once('.')?;
+    Some((w.parse().ok()?, p.parse().ok()?))
+}
+
+/// `IMPR_RESU(FORMAT='RESULTAT')`: a text listing of nodal fields (one
+/// line per node: its name, then the components as `%12.5E`), per field
+/// and stored step, restricted to `GROUP_NO`/`NOEUD`/`GROUP_MA`/`MAILLE`
+/// and `NOM_CMP` when given. Element fields are listed by their name only.
+fn listing(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
+    use crate::pyfmt::c_exp;
+    let mut out = String::new();
+    fn print(
+        out: &mut String,
+        mesh: &Mesh,
+        occ: &Keywords,
+        title: String,
+        f: &crate::field::Field,
+    ) -> Result<(), ExecError> {
+        use crate::field::Field as RunField;
+        use crate::pyfmt::c_exp;
+        *out += &format!("\n{title}\n");
+        let RunField::Nodal(f) = f else {
+            *out += " (element field: not listed in FORMAT='RESULTAT')\n";
+            return Ok(());
+        };
+        let wanted: Vec<&str> = occ
+            .simple("NOM_CMP")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let cols: Vec<usize> = (0..f.components.len())
+            .filter(|i| wanted.is_empty() || wanted.contains(&f.components[*i].as_str()))
+            .collect();
+        let selected = ["GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"]
+            .iter()
+            .any(|k| occ.contains(k));
+        let nodes: Option<std::collections::BTreeSet<aster_mesh::NodeId>> = if selected {
+            Some(
+                crate::select::nodes(occ, mesh, "")
+                    .map_err(|e| ExecError::new(format!("IMPR_RESU/RESU: {e}")))?
+                    .into_iter()
+                    .collect(),
+            )
+        } else {
+            None
+        };
+        let (w, p) = real_format(occ.str("FORMAT_R").unwrap_or("1PE21.14")).unwrap_or((21, 14));
+        *out += &format!("{:<9}", "NOEUD");
+        for &c in &cols {
+            *out += &format!(" {:>w$}", f.components[c]);
+        }
+        *out += "\n";
+        for (node, vals) in &f.values {
+            if nodes.as_ref().is_some_and(|s| !s.contains(node)) {
+                continue;
+            }
+            *out += &format!("{:<9}", crate::select::node_name(mesh, *node));
+            for &c in &cols {
+                match vals.get(c).copied().flatten() {
+                    Some(v) => *out += &format!(" {}", c_exp(v, w, p)),
+                    None => *out += &format!(" {:>w$}", "-"),
+                }
+            }
+            *out += "\n";
+        }
+        Ok(())
+    }
+    for occ in kw.factor("RESU") {
+        if let Some(r) = occ.concept("RESULTAT") {
+            let result = ex.result(r)?;
+            let mesh = ex.mesh_by_id(result.mesh)?;
+            let names: Vec<&str> = occ
+                .simple("NOM_CHAM")
+                .iter()
+                .filter_map(|s| s.as_str())
+                .collect();
+            let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, &result)?;
+            for s in result
+                .steps
+                .iter()
+                .filter(|s| steps.contains(&s.nume_ordre))
+            {
+                for (name, f) in &s.fields {
+                    if !names.is_empty() && !names.contains(&name.as_str()) {
+                        continue;
+                    }
+                    let title = format!(
+                        "CHAMP AUX NOEUDS DE NOM SYMBOLIQUE  {name}\nNUMERO D'ORDRE: {} INST: {}",
+                        s.nume_ordre,
+                        c_exp(s.inst, 12, 5).trim()
+                    );
+                    print(&mut out, &mesh, occ, title, f)?;
+                }
+            }
+        }
+        if let Some(c) = occ.concept("CHAM_GD") {
+            let mesh = ex.single_mesh()?;
+            let f = ex.field(c)?;
+            print(&mut out, &mesh, occ, format!("CHAMP {}", c.name), &f)?;
+        }
+        if occ.concept("MAILLAGE").is_some()
+            && occ.concept("RESULTAT").is_none()
+            && occ.concept("CHAM_GD").is_none()
+        {
+            let m = ex.mesh(
+                occ.concept("MAILLAGE")
+                    .ok_or_else(|| ExecError::new("IMPR_RESU: no mesh"))?,
+            )?;
+            out += &format!(
+                "\nMAILLAGE: {} noeuds, {} mailles\n",
+                m.node_count(),
+                m.cells.len()
+            );
+        }
+    }
+    Ok(out)
 }

@@ -20,5 +20,28 @@ fn pressure_on_the_edges_of_a_strip_in_tension() {
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (6, 0));
+    let listing = std::fs::read_to_string(out.join("fort.73")).unwrap();
+    assert!(
+        listing.contains("CHAMP AUX NOEUDS DE NOM SYMBOLIQUE  PRES_NOEU"),
+        "{listing}"
+    );
+    assert!(
+        listing.contains(&format!("NOEUD     {:>21}\n", "PRES")),
+        "{listing}"
+    );
+    let row = listing
+        .lines()
+        .find(|l| l.starts_with("N7 "))
+        .expect("a line for B = N7");
+    let value: f64 = row[9..].trim().parse().unwrap();
+    assert!((value - 100.0).abs() < 1e-9, "{row}");
+    assert_eq!(
+        listing
+            .lines()
+            .filter(|l| l.starts_with('N') && !l.starts_with("NO") && !l.starts_with("NU"))
+            .count(),
+        1
+    );
+    assert!(!listing.contains("CISA"), "{listing}");
     let _ = std::fs::remove_dir_all(out);
 }

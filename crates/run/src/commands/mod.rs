@@ -84,3 +84,8 @@ pub fn select_steps_pub(
         .map(|s| s.nume_ordre)
         .collect())
 }
+
+/// Appends text to a file the program writes (IMPR_* on a unit).
+pub fn append_file(path: &std::path::Path, text: &str) -> Result<(), ExecError> {
+    post::append(path, text)
+}
