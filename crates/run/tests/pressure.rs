@@ -43,5 +43,23 @@ fn pressure_on_the_edges_of_a_strip_in_tension() {
         1
     );
     assert!(!listing.contains("CISA"), "{listing}");
+    let msh = std::fs::read_to_string(out.join("fort.74")).unwrap();
+    assert!(
+        msh.starts_with("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n"),
+        "{msh}"
+    );
+    // 2 QUAD4 and 2 SEG2 cells; one view, DX at the 6 nodes; B = N7 is
+    // node 6 of the restricted mesh, DX(B) = 1e-3.
+    assert!(msh.contains("$Elements\n4\n1 3 2 0 0 1 2 5 4\n"), "{msh}");
+    assert!(
+        msh.contains("\"resu_DEPL_DX\"\n1\n1.0\n3\n1\n1\n6\n"),
+        "{msh}"
+    );
+    let b = msh
+        .lines()
+        .find(|l| l.starts_with("6 0.00"))
+        .expect("DX of node 6");
+    let dx: f64 = b[2..].parse().unwrap();
+    assert!((dx - 1e-3).abs() < 1e-12, "{b}");
     let _ = std::fs::remove_dir_all(out);
 }
