@@ -223,6 +223,48 @@ impl Mesh {
     }
 }
 
+impl Mesh {
+    /// `CREA_GROUP_MA/OPTION='FACE_NORMALE'`: the boundary cells among
+    /// `candidates` (segments in a plane mesh, faces in 3D) whose normal
+    /// makes an angle of at most `angle_deg` with `vector` (or with its
+    /// opposite too when `same_sign` is false), in their order.
+    pub fn cells_facing(
+        &self,
+        candidates: &[CellId],
+        vector: [f64; 3],
+        angle_deg: f64,
+        same_sign: bool,
+    ) -> Result<Vec<CellId>, MeshError> {
+        let lv = norm(vector);
+        if lv == 0.0 || !lv.is_finite() {
+            return Err(MeshError::Operation(
+                "FACE_NORMALE: the vector is zero".into(),
+            ));
+        }
+        let plane = self.dim < 3 || self.coords.iter().all(|c| c[2] == 0.0);
+        let wanted_dim = if plane { 1 } else { 2 };
+        let cos_max = angle_deg.to_radians().cos();
+        Ok(candidates
+            .iter()
+            .copied()
+            .filter(|c| {
+                let cell = self.cell(*c);
+                if cell.ty.dim() != wanted_dim {
+                    return false;
+                }
+                let n = self.skin_normal(cell);
+                let ln = norm(n);
+                if ln == 0.0 {
+                    return false;
+                }
+                let cos = dot(n, vector) / (ln * lv);
+                let cos = if same_sign { cos } else { cos.abs() };
+                cos >= cos_max - 1e-12
+            })
+            .collect())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -288,5 +330,25 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("branch at node N2"), "{err}");
+    }
+
+    #[test]
+    fn faces_facing_a_direction() {
+        let m = two_quads();
+        let all: Vec<CellId> = (0..3).map(CellId).collect();
+        // M3 runs N4 -> N1 (downwards): its normal (dy, -dx) is (-1, 0).
+        assert_eq!(
+            m.cells_facing(&all, [-1.0, 0.0, 0.0], 0.5, true).unwrap(),
+            vec![CellId(2)]
+        );
+        assert!(m
+            .cells_facing(&all, [1.0, 0.0, 0.0], 0.5, true)
+            .unwrap()
+            .is_empty());
+        assert_eq!(
+            m.cells_facing(&all, [1.0, 0.0, 0.0], 0.5, false).unwrap(),
+            vec![CellId(2)]
+        );
+        assert!(m.cells_facing(&all, [0.0; 3], 0.5, true).is_err());
     }
 }

@@ -83,6 +83,11 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             "CREA_GROUP_MA/GROUP_MA",
             "CREA_GROUP_MA/MAILLE",
             "CREA_GROUP_MA/TOUT",
+            "CREA_GROUP_MA/OPTION",
+            "CREA_GROUP_MA/VECT_NORMALE",
+            "CREA_GROUP_MA/ANGL_NAUT",
+            "CREA_GROUP_MA/ANGL_PREC",
+            "CREA_GROUP_MA/VERI_SIGNE",
             "DETR_GROUP_NO",
             "DETR_GROUP_NO/NOM",
             "DETR_GROUP_MA",
@@ -112,8 +117,65 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         if set_operation(&mut mesh, occ, name, false)? {
             continue;
         }
-        let cells = select::cells(occ, &mesh, "")
-            .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_MA: {e}")))?;
+        // With OPTION and no selection, every cell is a candidate.
+        let given = ["TOUT", "GROUP_MA", "MAILLE"]
+            .iter()
+            .any(|k| occ.contains(k));
+        let mut cells = if given || !occ.contains("OPTION") {
+            select::cells(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_MA: {e}")))?
+        } else {
+            (0..mesh.cells.len() as u32)
+                .map(aster_mesh::CellId)
+                .collect()
+        };
+        match occ.str("OPTION") {
+            None => {}
+            Some("FACE_NORMALE") => {
+                let what = "DEFI_GROUP/CREA_GROUP_MA/OPTION='FACE_NORMALE'";
+                let v: Vec<f64> = occ
+                    .simple("VECT_NORMALE")
+                    .iter()
+                    .filter_map(|s| s.as_f64())
+                    .collect();
+                let a: Vec<f64> = occ
+                    .simple("ANGL_NAUT")
+                    .iter()
+                    .filter_map(|s| s.as_f64())
+                    .collect();
+                let vector = if !v.is_empty() {
+                    [
+                        v[0],
+                        v.get(1).copied().unwrap_or(0.0),
+                        v.get(2).copied().unwrap_or(0.0),
+                    ]
+                } else if !a.is_empty() {
+                    let (al, be) = (
+                        a[0].to_radians(),
+                        a.get(1).copied().unwrap_or(0.0).to_radians(),
+                    );
+                    [al.cos() * be.cos(), al.sin() * be.cos(), -be.sin()]
+                } else {
+                    return Err(ExecError::new(format!(
+                        "{what}: give VECT_NORMALE or ANGL_NAUT"
+                    )));
+                };
+                cells = mesh
+                    .cells_facing(
+                        &cells,
+                        vector,
+                        occ.f64("ANGL_PREC").unwrap_or(0.5),
+                        occ.str("VERI_SIGNE").unwrap_or("OUI") == "OUI",
+                    )
+                    .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+            }
+            Some(other) => {
+                let span = occ.keyword("OPTION").map(|k| k.span).unwrap_or_default();
+                return Err(
+                    ex.unsupported(&format!("DEFI_GROUP/CREA_GROUP_MA/OPTION='{other}'"), span)
+                );
+            }
+        }
         put_group(&mut mesh.groups_ma, name, cells);
     }
     for occ in kw.factor("CREA_GROUP_NO") {
