@@ -75,10 +75,15 @@ pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "MODI_MAILLE/PREF_NOEUD",
             "MODI_MAILLE/PREF_NUME",
             "MODI_MAILLE/PREF_MAILLE",
+            "COPIE",
         ],
     )?;
     let source = ex.required(CMD, kw, "MAILLAGE")?;
     let mut mesh = (*ex.mesh(source)?).clone();
+    // Legacy `COPIE=_F()` (code_aster ≤ 11): a plain copy.
+    if kw.keyword("COPIE").is_some() {
+        return store_result(ex, call, Concept::Mesh(Arc::new(mesh)));
+    }
     let present: Vec<&str> = OPERATIONS
         .into_iter()
         .filter(|op| kw.keyword(op).is_some_and(|k| !k.defaulted))
