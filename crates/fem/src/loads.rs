@@ -70,6 +70,9 @@ pub enum Load {
     SurfaceForce { cell: CellId, force: [f64; 3] },
     /// Pressure (`PRES_REP`): traction −p·n with n the outward normal.
     Pressure { cell: CellId, pressure: f64 },
+    /// Force per unit volume (per unit area in 2D) on a continuum cell
+    /// (`FORCE_INTERNE`), global components.
+    VolumeForce { cell: CellId, force: [f64; 3] },
 }
 
 /// A load with its multiplier.
@@ -145,6 +148,17 @@ impl Loads {
                 Load::Relation { terms, .. } => {
                     for (d, _) in terms {
                         check(*d, "linear relation (LIAISON_DDL)")?;
+                    }
+                }
+                Load::VolumeForce { cell, .. } => {
+                    let continuum = model.elements().iter().any(|e| {
+                        e.cell == *cell && matches!(e.kind, ElementKind::Continuum { .. })
+                    });
+                    if !continuum {
+                        return Err(FemError::Model(format!(
+                            "volume force (FORCE_INTERNE) on cell {}, which carries no continuum element of the model",
+                            model.cell_name(*cell)
+                        )));
                     }
                 }
                 Load::SurfaceForce { cell, .. } | Load::Pressure { cell, .. } => {
@@ -242,6 +256,11 @@ impl Loads {
                     let m = item.mult.eval(t)?;
                     let tr = [force[0] * m, force[1] * m, force[2] * m];
                     surface_load(model, *cell, |_, _| tr, &mut f)?;
+                }
+                Load::VolumeForce { cell, force } => {
+                    let m = item.mult.eval(t)?;
+                    let b = [force[0] * m, force[1] * m, force[2] * m];
+                    volume_load(model, *cell, b, &mut f)?;
                 }
                 Load::Pressure { cell, pressure } => {
                     let p = pressure * item.mult.eval(t)?;
@@ -372,6 +391,60 @@ fn surface_load(
             })?;
             for k in 0..dim {
                 f[first + k] += w * s.n[i] * tr[k];
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Integrates a constant body force b over a continuum cell into `f`
+/// (∫ Nᵢ b dV with the stiffness Gauss scheme; ×r in axisymmetry, as the
+/// stiffness is).
+fn volume_load(model: &Model, cell: CellId, b: [f64; 3], f: &mut [f64]) -> Result<(), FemError> {
+    let mesh = model.mesh();
+    let c = mesh.cell(cell);
+    let dim = model.dim();
+    let axis = model.hypothesis() == Some(Hypothesis::Axisymmetric);
+    for gp in shape::rigi_scheme(c.ty) {
+        let s = shape::shape(c.ty, gp.xi);
+        // Jacobian J[k][l] = ∂x_k/∂ξ_l.
+        let mut jac = [[0.0; 3]; 3];
+        let mut x = [0.0; 3];
+        for (i, &n) in c.nodes.iter().enumerate() {
+            let p = mesh.coord(n);
+            for k in 0..3 {
+                x[k] += s.n[i] * p[k];
+                for l in 0..3 {
+                    jac[k][l] += s.dn[i][l] * p[k];
+                }
+            }
+        }
+        let det = if dim == 2 {
+            jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0]
+        } else {
+            jac[0][0] * (jac[1][1] * jac[2][2] - jac[1][2] * jac[2][1])
+                - jac[0][1] * (jac[1][0] * jac[2][2] - jac[1][2] * jac[2][0])
+                + jac[0][2] * (jac[1][0] * jac[2][1] - jac[1][1] * jac[2][0])
+        };
+        if det.is_nan() || det <= 0.0 {
+            return Err(FemError::Model(format!(
+                "volume force on cell {}: its Jacobian is not positive (a degenerate or inverted cell)",
+                model.cell_name(cell)
+            )));
+        }
+        let mut w = gp.weight * det;
+        if axis {
+            w *= x[0];
+        }
+        for (i, &n) in c.nodes.iter().enumerate() {
+            let first = model.dofs().node_first(n).ok_or_else(|| {
+                FemError::Model(format!(
+                    "volume force on cell {}: a node carries no element of the model",
+                    model.cell_name(cell)
+                ))
+            })?;
+            for k in 0..dim {
+                f[first + k] += w * s.n[i] * b[k];
             }
         }
     }

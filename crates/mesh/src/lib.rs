@@ -22,7 +22,7 @@ pub use field::{Field, FieldLocation, ResultStep};
 pub use mail::{mail_string, parse_mail, read_mail, write_mail};
 pub use med::{med_bytes, read_med, read_med_named, write_med, MedInfo};
 pub use model::*;
-pub use ops::OrientReport;
+pub use ops::{Along, CentreNodes, DegreeReport, NodeKind, OrientReport, Restriction};
 pub use summary::{CellCounts, MeshSummary};
 pub use vtu::write_vtu;
 

@@ -132,11 +132,59 @@ pub enum BoundaryLoad {
     Pressure { cells: Vec<CellId>, pressure: f64 },
 }
 
-/// `AFFE_CHAR_CINE(MECA_IMPO=…)`: eliminated imposed values.
+/// A value given as a function (`AFFE_CHAR_MECA_F`, `AFFE_CHAR_CINE_F`):
+/// of `INST` and of the coordinates `X`, `Y`, `Z` where it applies.
+#[derive(Clone, Debug)]
+pub struct LoadFunction(pub Rc<Function>);
+
+impl PartialEq for LoadFunction {
+    fn eq(&self, other: &LoadFunction) -> bool {
+        Rc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+/// An imposed value or nodal force given by a function, with the node's
+/// coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImposedFn {
+    pub node: NodeId,
+    pub comp: CompName,
+    pub function: LoadFunction,
+    pub xyz: [f64; 3],
+}
+
+/// A distributed load given by functions of `INST` only (checked when the
+/// load is defined).
+#[derive(Clone, Debug, PartialEq)]
+pub enum BoundaryFn {
+    /// `FORCE_CONTOUR`/`FORCE_FACE`: per component, a function or nothing.
+    Force {
+        cells: Vec<CellId>,
+        force: [Option<LoadFunction>; 3],
+    },
+    /// `PRES_REP`.
+    Pressure {
+        cells: Vec<CellId>,
+        pressure: LoadFunction,
+    },
+}
+
+/// `FORCE_INTERNE`: a force per unit volume (per unit area in 2D), each
+/// component a constant or (AFFE_CHAR_MECA_F) a function of `INST`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VolumeForce {
+    pub cells: Vec<CellId>,
+    pub force: [f64; 3],
+    pub functions: [Option<LoadFunction>; 3],
+}
+
+/// `AFFE_CHAR_CINE(MECA_IMPO=…)`: eliminated imposed values
+/// (`AFFE_CHAR_CINE_F`: `imposed_fn`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct KinematicLoad {
     pub model: u32,
     pub imposed: Vec<Imposed>,
+    pub imposed_fn: Vec<ImposedFn>,
 }
 
 /// `AFFE_CHAR_MECA`: dualised conditions and forces.
@@ -147,6 +195,12 @@ pub struct MechanicalLoad {
     pub relations: Vec<LinearRelation>,
     pub nodal_forces: Vec<Imposed>,
     pub boundary: Vec<BoundaryLoad>,
+    /// `FORCE_INTERNE`: force per unit volume on continuum cells.
+    pub volume: Vec<VolumeForce>,
+    /// `AFFE_CHAR_MECA_F`: the same loads given by functions.
+    pub imposed_fn: Vec<ImposedFn>,
+    pub nodal_forces_fn: Vec<ImposedFn>,
+    pub boundary_fn: Vec<BoundaryFn>,
 }
 
 /// One `LIAISON_UNIL` zone: Σ COEF_MULT·u ≤ COEF_IMPO on each node.

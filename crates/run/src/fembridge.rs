@@ -134,6 +134,55 @@ fn multiplier(f: &Option<Rc<Function>>, instants: &[f64]) -> Result<Multiplier, 
     }
 }
 
+/// The multiplier of a value given by a function (`AFFE_CHAR_*_F`) at a
+/// point: m(t)·f(INST=t, X, Y, Z). Tabulated functions of `INST` and
+/// constants move into the closure; a function of the coordinates only is
+/// evaluated once; formulas of `INST` are sampled at the instants.
+fn function_multiplier(
+    f: &LoadFunction,
+    xyz: [f64; 3],
+    m: &Multiplier,
+    instants: &[f64],
+) -> Result<Multiplier, ExecError> {
+    let named = |t: f64| [("INST", t), ("X", xyz[0]), ("Y", xyz[1]), ("Z", xyz[2])];
+    let fun = &f.0;
+    let depends_on_time = fun.parameters().contains(&"INST");
+    let m = m.clone();
+    let scaled = move |t: f64, v: f64| -> Result<f64, String> {
+        Ok(m.eval(t).map_err(|e| e.to_string())? * v)
+    };
+    if !depends_on_time {
+        let v = fun
+            .eval_named(&named(0.0))
+            .map_err(|e| ExecError::new(format!("load function: {e}")))?;
+        return Ok(Multiplier::from_fn(move |t| scaled(t, v)));
+    }
+    if let Function::Tabulated(tab) = &**fun {
+        let tab = tab.clone();
+        return Ok(Multiplier::from_fn(move |t| {
+            scaled(t, tab.eval(t).map_err(|e| e.to_string())?)
+        }));
+    }
+    let samples: Vec<(f64, f64)> = instants
+        .iter()
+        .map(|&t| {
+            fun.eval_named(&named(t))
+                .map(|v| (t, v))
+                .map_err(|e| ExecError::new(format!("load function at INST={t}: {e}")))
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Multiplier::from_fn(move |x| {
+        let v = samples
+            .iter()
+            .find(|(t, _)| (t - x).abs() <= 1e-9 * t.abs().max(1.0))
+            .map(|&(_, v)| v)
+            .ok_or_else(|| {
+                format!("load formula asked at {x}, which is not an instant of the list")
+            })?;
+        scaled(x, v)
+    }))
+}
+
 fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
     let mut loads = Loads::new();
     for exc in &setup.excitations {
@@ -149,8 +198,79 @@ fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
                         m.clone(),
                     );
                 }
+                for i in &k.imposed_fn {
+                    loads.add(
+                        Load::Eliminated {
+                            dof: Dof::new(i.node, comp(i.comp)?),
+                            value: 1.0,
+                        },
+                        function_multiplier(&i.function, i.xyz, &m, &setup.instants)?,
+                    );
+                }
             }
             LoadRef::Mechanical(l) => {
+                for v in &l.volume {
+                    for k in 0..3 {
+                        let mut unit = [0.0; 3];
+                        unit[k] = 1.0;
+                        let mk = match &v.functions[k] {
+                            Some(f) => function_multiplier(f, [0.0; 3], &m, &setup.instants)?,
+                            None if v.force[k] != 0.0 => {
+                                unit[k] = v.force[k];
+                                m.clone()
+                            }
+                            None => continue,
+                        };
+                        for &cell in &v.cells {
+                            loads.add(Load::VolumeForce { cell, force: unit }, mk.clone());
+                        }
+                    }
+                }
+                for i in &l.imposed_fn {
+                    loads.add(
+                        Load::Imposed {
+                            dof: Dof::new(i.node, comp(i.comp)?),
+                            value: 1.0,
+                        },
+                        function_multiplier(&i.function, i.xyz, &m, &setup.instants)?,
+                    );
+                }
+                for i in &l.nodal_forces_fn {
+                    loads.add(
+                        Load::NodalForce {
+                            dof: Dof::new(i.node, comp(i.comp)?),
+                            value: 1.0,
+                        },
+                        function_multiplier(&i.function, i.xyz, &m, &setup.instants)?,
+                    );
+                }
+                for b in &l.boundary_fn {
+                    match b {
+                        BoundaryFn::Force { cells, force } => {
+                            for (k, f) in force.iter().enumerate() {
+                                let Some(f) = f else { continue };
+                                let mut unit = [0.0; 3];
+                                unit[k] = 1.0;
+                                let mk = function_multiplier(f, [0.0; 3], &m, &setup.instants)?;
+                                for &cell in cells {
+                                    loads.add(Load::SurfaceForce { cell, force: unit }, mk.clone());
+                                }
+                            }
+                        }
+                        BoundaryFn::Pressure { cells, pressure } => {
+                            let mk = function_multiplier(pressure, [0.0; 3], &m, &setup.instants)?;
+                            for &cell in cells {
+                                loads.add(
+                                    Load::Pressure {
+                                        cell,
+                                        pressure: 1.0,
+                                    },
+                                    mk.clone(),
+                                );
+                            }
+                        }
+                    }
+                }
                 for i in &l.imposed {
                     loads.add(
                         Load::Imposed {

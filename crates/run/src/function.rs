@@ -279,6 +279,46 @@ impl Function {
     }
 }
 
+impl Function {
+    /// The parameters it depends on (`NOM_PARA`).
+    pub fn parameters(&self) -> Vec<&str> {
+        match self {
+            Function::Constant { .. } => Vec::new(),
+            Function::Tabulated(t) => vec![t.parameter.as_str()],
+            Function::Formula { parameters, .. } => parameters.iter().map(String::as_str).collect(),
+        }
+    }
+
+    /// The value for named parameter values (`INST`, `X`, `Y`, `Z`…), as
+    /// code_aster evaluates the functions of `AFFE_CHAR_MECA_F`: each
+    /// parameter the function names must be among `args`.
+    pub fn eval_named(&self, args: &[(&str, f64)]) -> Result<f64, FunctionError> {
+        let value_of = |p: &str| {
+            args.iter()
+                .find(|(n, _)| *n == p)
+                .map(|(_, v)| *v)
+                .ok_or_else(|| {
+                    let known: Vec<&str> = args.iter().map(|(n, _)| *n).collect();
+                    FunctionError::Formula(format!(
+                        "the function depends on {p}, but only {} are known here",
+                        known.join(", ")
+                    ))
+                })
+        };
+        match self {
+            Function::Constant { value, .. } => Ok(*value),
+            Function::Tabulated(t) => t.eval(value_of(&t.parameter)?),
+            Function::Formula { parameters, eval } => {
+                let named: Vec<(String, f64)> = parameters
+                    .iter()
+                    .map(|p| value_of(p).map(|v| (p.clone(), v)))
+                    .collect::<Result<_, _>>()?;
+                eval(&named).map_err(FunctionError::Formula)
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -334,5 +374,27 @@ mod tests {
             Tabulated::from_pairs("X", &[0.0, 1.0, 0.0, 2.0]),
             Err(FunctionError::NotIncreasing { .. })
         ));
+    }
+
+    #[test]
+    fn named_evaluation_picks_the_parameter() {
+        let f = Function::Tabulated(Tabulated::from_pairs("Y", &[0.0, 0.0, 2.0, 4.0]).unwrap());
+        assert_eq!(
+            f.eval_named(&[("INST", 9.0), ("X", 7.0), ("Y", 1.0)])
+                .unwrap(),
+            2.0
+        );
+        let err = f.eval_named(&[("INST", 1.0)]).unwrap_err().to_string();
+        assert!(err.contains("depends on Y"), "{err}");
+        let g = Function::Formula {
+            parameters: vec!["X".into(), "INST".into()],
+            eval: std::rc::Rc::new(|a: &[(String, f64)]| Ok(a[0].1 * 10.0 + a[1].1)),
+        };
+        assert_eq!(
+            g.eval_named(&[("INST", 2.0), ("X", 3.0), ("Y", 5.0)])
+                .unwrap(),
+            32.0
+        );
+        assert_eq!(g.parameters(), vec!["X", "INST"]);
     }
 }

@@ -133,11 +133,77 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "RESU/CRITERE",
             "RESU/INFO_MAILLAGE",
             "RESU/IMPR_NOM_VARI",
+            // FORMAT='RESULTAT' listing selections.
+            "RESU/NOM_CMP",
+            "RESU/GROUP_NO",
+            "RESU/NOEUD",
+            "RESU/GROUP_MA",
+            "RESU/MAILLE",
+            "RESU/FORMAT_R",
+            "RESU/IMPR_COOR",
+            "RESU/TYPE_CHAM",
         ],
     )?;
     let kw = &call.keywords;
     let format = kw.str("FORMAT").unwrap_or("RESULTAT");
-    ex.only_values("IMPR_RESU", kw, "FORMAT", &["MED", "ASTER"])?;
+    ex.only_values(
+        "IMPR_RESU",
+        kw,
+        "FORMAT",
+        &["MED", "ASTER", "RESULTAT", "GMSH"],
+    )?;
+    for occ in kw.factor("RESU") {
+        for key in [
+            "NOM_CMP",
+            "GROUP_NO",
+            "NOEUD",
+            "GROUP_MA",
+            "MAILLE",
+            "IMPR_COOR",
+            "TYPE_CHAM",
+        ] {
+            let allowed = match format {
+                "RESULTAT" => key != "TYPE_CHAM",
+                "GMSH" => key == "NOM_CMP" || key == "TYPE_CHAM",
+                _ => false,
+            };
+            if !allowed && occ.keyword(key).is_some_and(|k| !k.defaulted) {
+                let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
+                return Err(ex.unsupported(
+                    &format!("IMPR_RESU/RESU/{key} with FORMAT='{format}'"),
+                    span,
+                ));
+            }
+        }
+        if let Some(f) = occ.str("FORMAT_R").filter(|f| real_format(f).is_none()) {
+            let span = occ.keyword("FORMAT_R").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(&format!("IMPR_RESU/RESU/FORMAT_R='{f}'"), span));
+        }
+    }
+    if format == "GMSH" {
+        let text = gmsh(ex, kw)?;
+        let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(37);
+        let path = ex.output_path(unit);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| {
+                ExecError::new(format!("IMPR_RESU: cannot create {}: {e}", dir.display()))
+            })?;
+        }
+        std::fs::write(&path, text).map_err(|e| {
+            ExecError::new(format!("IMPR_RESU: cannot write {}: {e}", path.display()))
+        })?;
+        return Ok(CommandOutput::Nothing);
+    }
+    if format == "RESULTAT" {
+        let text = listing(ex, kw)?;
+        let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(8);
+        if unit == 8 || unit == 6 {
+            ex.write_report(&text)?;
+        } else {
+            crate::commands::append_file(&ex.output_path(unit), &text)?;
+        }
+        return Ok(CommandOutput::Nothing);
+    }
     let default_unit = if format == "MED" { 80 } else { 8 };
     let unit = kw
         .first("UNITE")
@@ -212,4 +278,236 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         }
     }
     Ok(CommandOutput::Nothing)
+}
+
+/// Width and precision of a Fortran `1PEw.p` format (`FORMAT_R`).
+fn real_format(f: &str) -> Option<(usize, usize)> {
+    let (w, p) = f.strip_prefix("1PE")?.split_once('.')?;
+    Some((w.parse().ok()?, p.parse().ok()?))
+}
+
+/// `IMPR_RESU(FORMAT='RESULTAT')`: a text listing of nodal fields (one
+/// line per node: its name, then the components as `%12.5E`), per field
+/// and stored step, restricted to `GROUP_NO`/`NOEUD`/`GROUP_MA`/`MAILLE`
+/// and `NOM_CMP` when given. Element fields are listed by their name only.
+fn listing(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
+    use crate::pyfmt::c_exp;
+    let mut out = String::new();
+    fn print(
+        out: &mut String,
+        mesh: &Mesh,
+        occ: &Keywords,
+        title: String,
+        f: &crate::field::Field,
+    ) -> Result<(), ExecError> {
+        use crate::field::Field as RunField;
+        use crate::pyfmt::c_exp;
+        *out += &format!("\n{title}\n");
+        let RunField::Nodal(f) = f else {
+            *out += " (element field: not listed in FORMAT='RESULTAT')\n";
+            return Ok(());
+        };
+        let wanted: Vec<&str> = occ
+            .simple("NOM_CMP")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let cols: Vec<usize> = (0..f.components.len())
+            .filter(|i| wanted.is_empty() || wanted.contains(&f.components[*i].as_str()))
+            .collect();
+        let selected = ["GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"]
+            .iter()
+            .any(|k| occ.contains(k));
+        let nodes: Option<std::collections::BTreeSet<aster_mesh::NodeId>> = if selected {
+            Some(
+                crate::select::nodes(occ, mesh, "")
+                    .map_err(|e| ExecError::new(format!("IMPR_RESU/RESU: {e}")))?
+                    .into_iter()
+                    .collect(),
+            )
+        } else {
+            None
+        };
+        let (w, p) = real_format(occ.str("FORMAT_R").unwrap_or("1PE21.14")).unwrap_or((21, 14));
+        *out += &format!("{:<9}", "NOEUD");
+        for &c in &cols {
+            *out += &format!(" {:>w$}", f.components[c]);
+        }
+        *out += "\n";
+        for (node, vals) in &f.values {
+            if nodes.as_ref().is_some_and(|s| !s.contains(node)) {
+                continue;
+            }
+            *out += &format!("{:<9}", crate::select::node_name(mesh, *node));
+            for &c in &cols {
+                match vals.get(c).copied().flatten() {
+                    Some(v) => *out += &format!(" {}", c_exp(v, w, p)),
+                    None => *out += &format!(" {:>w$}", "-"),
+                }
+            }
+            *out += "\n";
+        }
+        Ok(())
+    }
+    for occ in kw.factor("RESU") {
+        if let Some(r) = occ.concept("RESULTAT") {
+            let result = ex.result(r)?;
+            let mesh = ex.mesh_by_id(result.mesh)?;
+            let names: Vec<&str> = occ
+                .simple("NOM_CHAM")
+                .iter()
+                .filter_map(|s| s.as_str())
+                .collect();
+            let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, &result)?;
+            for s in result
+                .steps
+                .iter()
+                .filter(|s| steps.contains(&s.nume_ordre))
+            {
+                for (name, f) in &s.fields {
+                    if !names.is_empty() && !names.contains(&name.as_str()) {
+                        continue;
+                    }
+                    let title = format!(
+                        "CHAMP AUX NOEUDS DE NOM SYMBOLIQUE  {name}\nNUMERO D'ORDRE: {} INST: {}",
+                        s.nume_ordre,
+                        c_exp(s.inst, 12, 5).trim()
+                    );
+                    print(&mut out, &mesh, occ, title, f)?;
+                }
+            }
+        }
+        if let Some(c) = occ.concept("CHAM_GD") {
+            let mesh = ex.single_mesh()?;
+            let f = ex.field(c)?;
+            print(&mut out, &mesh, occ, format!("CHAMP {}", c.name), &f)?;
+        }
+        if occ.concept("MAILLAGE").is_some()
+            && occ.concept("RESULTAT").is_none()
+            && occ.concept("CHAM_GD").is_none()
+        {
+            let m = ex.mesh(
+                occ.concept("MAILLAGE")
+                    .ok_or_else(|| ExecError::new("IMPR_RESU: no mesh"))?,
+            )?;
+            out += &format!(
+                "\nMAILLAGE: {} noeuds, {} mailles\n",
+                m.node_count(),
+                m.cells.len()
+            );
+        }
+    }
+    Ok(out)
+}
+
+/// gmsh element type of a cell and the nodes written (quadratic volumes are
+/// written by their corners: the file is for viewing).
+fn gmsh_cell(ty: aster_mesh::CellType) -> (u32, usize) {
+    use aster_mesh::CellType as T;
+    match ty {
+        T::POI1 => (15, 1),
+        T::SEG2 | T::SEG4 => (1, 2),
+        T::SEG3 => (8, 3),
+        T::TRIA3 | T::TRIA7 => (2, 3),
+        T::TRIA6 => (9, 6),
+        T::QUAD4 => (3, 4),
+        T::QUAD8 => (16, 8),
+        T::QUAD9 => (10, 9),
+        T::TETRA4 | T::TETRA10 => (4, 4),
+        T::HEXA8 | T::HEXA20 | T::HEXA27 => (5, 8),
+        T::PENTA6 | T::PENTA15 | T::PENTA18 => (6, 6),
+        T::PYRAM5 | T::PYRAM13 => (7, 5),
+    }
+}
+
+/// `IMPR_RESU(FORMAT='GMSH')`: a gmsh 2.2 ASCII file with the mesh and, for
+/// each nodal field, step and component (`NOM_CMP` when given), one
+/// `$NodeData` view named `<result>_<field>_<component>`.
+fn gmsh(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
+    let mut views = String::new();
+    let mut mesh: Option<Arc<Mesh>> = None;
+    for occ in kw.factor("RESU") {
+        if let Some(m) = occ.concept("MAILLAGE") {
+            mesh = Some(ex.mesh(m)?);
+        }
+        let Some(r) = occ.concept("RESULTAT") else {
+            continue;
+        };
+        let result = ex.result(r)?;
+        let m = ex.mesh_by_id(result.mesh)?;
+        let names: Vec<&str> = occ
+            .simple("NOM_CHAM")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let cmps: Vec<&str> = occ
+            .simple("NOM_CMP")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, &result)?;
+        for s in result
+            .steps
+            .iter()
+            .filter(|s| steps.contains(&s.nume_ordre))
+        {
+            for (name, f) in &s.fields {
+                if !names.is_empty() && !names.contains(&name.as_str()) {
+                    continue;
+                }
+                let Field::Nodal(f) = f else { continue };
+                for (c, comp) in f.components.iter().enumerate() {
+                    if !cmps.is_empty() && !cmps.contains(&comp.as_str()) {
+                        continue;
+                    }
+                    let values: Vec<(u32, f64)> = f
+                        .values
+                        .iter()
+                        .filter_map(|(n, v)| v.get(c).copied().flatten().map(|v| (n.0 + 1, v)))
+                        .collect();
+                    views += &format!(
+                        "$NodeData\n1\n\"{}_{}_{}\"\n1\n{}\n3\n{}\n1\n{}\n",
+                        r.name,
+                        name,
+                        comp,
+                        crate::pyfmt::py_repr(s.inst),
+                        s.nume_ordre,
+                        values.len()
+                    );
+                    for (n, v) in values {
+                        views += &format!("{n} {}\n", crate::pyfmt::py_repr(v));
+                    }
+                    views += "$EndNodeData\n";
+                }
+            }
+        }
+        mesh.get_or_insert(m);
+    }
+    let mesh = match mesh {
+        Some(m) => m,
+        None => ex.single_mesh()?,
+    };
+    let mut out = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n");
+    out += &format!("{}\n", mesh.node_count());
+    for (i, x) in mesh.coords.iter().enumerate() {
+        out += &format!(
+            "{} {} {} {}\n",
+            i + 1,
+            crate::pyfmt::py_repr(x[0]),
+            crate::pyfmt::py_repr(x[1]),
+            crate::pyfmt::py_repr(x[2])
+        );
+    }
+    out += &format!("$EndNodes\n$Elements\n{}\n", mesh.cells.len());
+    for (i, cell) in mesh.cells.iter().enumerate() {
+        let (ty, count) = gmsh_cell(cell.ty);
+        out += &format!("{} {ty} 2 0 0", i + 1);
+        for n in cell.nodes.iter().take(count) {
+            out += &format!(" {}", n.0 + 1);
+        }
+        out += "\n";
+    }
+    out += "$EndElements\n";
+    out += &views;
+    Ok(out)
 }

@@ -1,6 +1,19 @@
-//! Mesh operations the commands need: `DEFI_GROUP`, `MODI_MAILLAGE`.
+//! Mesh operations the commands need: `DEFI_GROUP`, `MODI_MAILLAGE`,
+//! `CREA_MAILLAGE`.
 
+mod degree;
+mod geom_groups;
 mod groups;
 mod orient;
+mod orient_along;
+mod points;
+mod rebuild;
+mod restrict;
+#[cfg(test)]
+mod testmesh;
 
+pub use degree::{CentreNodes, DegreeReport};
+pub use geom_groups::NodeKind;
 pub use orient::OrientReport;
+pub use orient_along::Along;
+pub use restrict::Restriction;

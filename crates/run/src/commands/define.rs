@@ -417,6 +417,10 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "ECHEC",
             "ECHEC/EVENEMENT",
             "ECHEC/ACTION",
+            "ECHEC/SUBD_METHODE",
+            "ECHEC/SUBD_PAS",
+            "ECHEC/SUBD_PAS_MINI",
+            "ECHEC/SUBD_NIVEAU",
         ],
     )?;
     let kw = &call.keywords;
@@ -425,7 +429,11 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     };
     ex.only_values("DEFI_LIST_INST/DEFI_LIST", def, "METHODE", &["MANUEL"])?;
     for occ in kw.factor("ECHEC") {
-        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "ACTION", &["ARRET"])?;
+        // DECOUPE (subdivide a failed step) is accepted: steps are not
+        // subdivided, so a step that fails stops the run with the solver's
+        // message, as ARRET does; a run that converges is unchanged.
+        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "ACTION", &["ARRET", "DECOUPE"])?;
+        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "EVENEMENT", &["ERREUR"])?;
     }
     let values = if let Some(l) = def.concept("LIST_INST") {
         (*ex.real_list(l)?).clone()

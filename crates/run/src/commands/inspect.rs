@@ -393,3 +393,45 @@ pub fn test_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     run_checks(ex, &header, kw, value)?;
     Ok(CommandOutput::Nothing)
 }
+
+/// TEST_FONCTION/VALEUR: a function's value at `VALE_PARA`, checked as
+/// TEST_RESU checks a value.
+pub fn test_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let mut allow: Vec<String> = vec!["INFO".into()];
+    allow.extend(allowed("VALEUR", &["FONCTION", "NOM_PARA", "VALE_PARA"]));
+    let allow: Vec<&str> = allow.iter().map(String::as_str).collect();
+    ex.check_keywords(call, &allow)?;
+    for occ in call.keywords.factor("VALEUR") {
+        let cmd = "TEST_FONCTION/VALEUR";
+        let f_ref = ex.required(cmd, occ, "FONCTION")?;
+        let f = ex.function(f_ref)?;
+        let paras: Vec<f64> = occ
+            .simple("VALE_PARA")
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
+        let [x] = paras.as_slice() else {
+            return Err(ex.kw_error(
+                cmd,
+                occ,
+                "VALE_PARA",
+                "one abscissa is needed (functions of two parameters are not supported yet)",
+            ));
+        };
+        let value = f
+            .eval(*x)
+            .map_err(|e| ExecError::new(format!("{cmd}: `{}` at {x}: {e}", f_ref.name)))?;
+        let para = occ
+            .str("NOM_PARA")
+            .map(str::to_string)
+            .or_else(|| f.parameters().first().map(|p| p.to_string()))
+            .unwrap_or_default();
+        let header: Vec<(&str, String)> = vec![
+            ("FONCTION", f_ref.name.clone()),
+            ("NOM_PARA", para),
+            ("VALE_PARA", py_repr(*x)),
+        ];
+        run_checks(ex, &header, occ, value)?;
+    }
+    Ok(CommandOutput::Nothing)
+}

@@ -16,7 +16,7 @@ fn comp_name(name: &str) -> Option<CompName> {
 
 /// Checks that a node carries a component in the model (2D models have
 /// no DZ; nodes outside the model have nothing).
-fn check_dof(
+pub(super) fn check_dof(
     model: &ModelDef,
     mesh: &Mesh,
     carried: &[bool],
@@ -164,6 +164,7 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         Concept::KinematicLoad(Rc::new(KinematicLoad {
             model: model_ref.id,
             imposed,
+            imposed_fn: Vec::new(),
         })),
     )
 }
@@ -197,11 +198,49 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "FORCE_CONTOUR/MAILLE",
             "FORCE_CONTOUR/FX",
             "FORCE_CONTOUR/FY",
+            "FORCE_FACE",
+            "FORCE_FACE/GROUP_MA",
+            "FORCE_FACE/MAILLE",
+            "FORCE_FACE/FX",
+            "FORCE_FACE/FY",
+            "FORCE_FACE/FZ",
             "PRES_REP",
             "PRES_REP/GROUP_MA",
             "PRES_REP/MAILLE",
             "PRES_REP/TOUT",
             "PRES_REP/PRES",
+            "FORCE_INTERNE",
+            "FORCE_INTERNE/TOUT",
+            "FORCE_INTERNE/GROUP_MA",
+            "FORCE_INTERNE/MAILLE",
+            "FORCE_INTERNE/FX",
+            "FORCE_INTERNE/FY",
+            "FORCE_INTERNE/FZ",
+            "FACE_IMPO",
+            "FACE_IMPO/GROUP_MA",
+            "FACE_IMPO/MAILLE",
+            "FACE_IMPO/SANS_GROUP_NO",
+            "FACE_IMPO/DX",
+            "FACE_IMPO/DY",
+            "FACE_IMPO/DZ",
+            "LIAISON_GROUP",
+            "LIAISON_GROUP/GROUP_NO_1",
+            "LIAISON_GROUP/GROUP_NO_2",
+            "LIAISON_GROUP/GROUP_MA_1",
+            "LIAISON_GROUP/GROUP_MA_2",
+            "LIAISON_GROUP/SANS_GROUP_NO",
+            "LIAISON_GROUP/DDL_1",
+            "LIAISON_GROUP/DDL_2",
+            "LIAISON_GROUP/COEF_MULT_1",
+            "LIAISON_GROUP/COEF_MULT_2",
+            "LIAISON_GROUP/COEF_IMPO",
+            "LIAISON_UNIF",
+            "LIAISON_UNIF/GROUP_NO",
+            "LIAISON_UNIF/NOEUD",
+            "LIAISON_UNIF/GROUP_MA",
+            "LIAISON_UNIF/MAILLE",
+            "LIAISON_UNIF/SANS_GROUP_NO",
+            "LIAISON_UNIF/DDL",
             "LIAISON_DDL",
             "LIAISON_DDL/GROUP_NO",
             "LIAISON_DDL/NOEUD",
@@ -226,6 +265,52 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         &["DX", "DY", "DZ"],
         "AFFE_CHAR_MECA/DDL_IMPO",
     )?;
+    // FACE_IMPO with DX/DY/DZ imposes them on the nodes of the faces.
+    load.imposed.extend(imposed_values(
+        ex,
+        kw.factor("FACE_IMPO"),
+        (&model, &mesh, &carried),
+        &["DX", "DY", "DZ"],
+        "AFFE_CHAR_MECA/FACE_IMPO",
+    )?);
+    for occ in kw.factor("FORCE_INTERNE") {
+        let cells = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_INTERNE: {e}")))?;
+        let force = [
+            occ.f64("FX").unwrap_or(0.0),
+            occ.f64("FY").unwrap_or(0.0),
+            occ.f64("FZ").unwrap_or(0.0),
+        ];
+        load.volume.push(VolumeForce {
+            cells: continuum_cells(&model, &mesh, cells),
+            force,
+            functions: [None, None, None],
+        });
+    }
+    for occ in kw.factor("LIAISON_GROUP") {
+        load.relations
+            .extend(liaison_group(ex, occ, (&model, &mesh, &carried))?);
+    }
+    for occ in kw.factor("LIAISON_UNIF") {
+        let what = "AFFE_CHAR_MECA/LIAISON_UNIF";
+        let nodes = select::nodes_without(occ, &mesh)
+            .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+        for d in occ.simple("DDL").iter().filter_map(|s| s.as_str()) {
+            let comp = comp_name(d)
+                .ok_or_else(|| ExecError::new(format!("{what}: unknown component `{d}`")))?;
+            let Some((&first, rest)) = nodes.split_first() else {
+                continue;
+            };
+            check_dof(&model, &mesh, &carried, first, comp, what)?;
+            for &n in rest {
+                check_dof(&model, &mesh, &carried, n, comp, what)?;
+                load.relations.push(LinearRelation {
+                    terms: vec![(n, comp, 1.0), (first, comp, -1.0)],
+                    rhs: 0.0,
+                });
+            }
+        }
+    }
     load.nodal_forces = imposed_values(
         ex,
         kw.factor("FORCE_NODALE"),
@@ -233,13 +318,18 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         &["FX", "FY", "FZ"],
         "AFFE_CHAR_MECA/FORCE_NODALE",
     )?;
-    for occ in kw.factor("FORCE_CONTOUR") {
+    let surface = kw
+        .factor("FORCE_CONTOUR")
+        .iter()
+        .map(|o| ("FORCE_CONTOUR", o))
+        .chain(kw.factor("FORCE_FACE").iter().map(|o| ("FORCE_FACE", o)));
+    for (key, occ) in surface {
         let cells = select::cells(occ, &mesh, "")
-            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_CONTOUR: {e}")))?;
+            .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/{key}: {e}")))?;
         let force = [
             occ.f64("FX").unwrap_or(0.0),
             occ.f64("FY").unwrap_or(0.0),
-            0.0,
+            occ.f64("FZ").unwrap_or(0.0),
         ];
         load.boundary.push(BoundaryLoad::Force { cells, force });
     }
@@ -429,4 +519,132 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
         algo,
     };
     store_result(ex, call, Concept::Contact(Rc::new(def)))
+}
+
+/// The cells of a selection that carry a continuum element of the model
+/// (`FORCE_INTERNE` on `TOUT='OUI'` skips boundary and discrete cells).
+pub(super) fn continuum_cells(
+    model: &ModelDef,
+    mesh: &Mesh,
+    cells: Vec<aster_mesh::CellId>,
+) -> Vec<aster_mesh::CellId> {
+    cells
+        .into_iter()
+        .filter(|c| {
+            model
+                .cells
+                .get(c)
+                .is_some_and(|m| !m.is_discrete() && mesh.cell(*c).ty.dim() as usize == m.dim())
+        })
+        .collect()
+}
+
+/// `LIAISON_GROUP`: each node of side 1 is paired with the nearest node of
+/// side 2 (code_aster's pairing without a transformation), and each pair
+/// gets Σ COEF_MULT_1·DDL_1(n₁) + Σ COEF_MULT_2·DDL_2(n₂) = COEF_IMPO. A
+/// node paired with itself gets no relation; two nodes of side 1 paired
+/// with one node of side 2 is an error.
+fn liaison_group(
+    ex: &Executor,
+    occ: &Keywords,
+    (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+) -> Result<Vec<LinearRelation>, ExecError> {
+    let what = "AFFE_CHAR_MECA/LIAISON_GROUP";
+    let err = |e: String| ExecError::new(format!("{what}: {e}"));
+    let excluded: std::collections::BTreeSet<NodeId> = select::nodes(occ, mesh, "SANS_")
+        .map_err(err)?
+        .into_iter()
+        .collect();
+    let side = |k: &str| -> Result<Vec<NodeId>, ExecError> {
+        let mut out = Vec::new();
+        for g in occ
+            .simple(&format!("GROUP_NO_{k}"))
+            .iter()
+            .filter_map(|s| s.as_str())
+        {
+            out.extend_from_slice(select::group_no(mesh, g).map_err(err)?);
+        }
+        for g in occ
+            .simple(&format!("GROUP_MA_{k}"))
+            .iter()
+            .filter_map(|s| s.as_str())
+        {
+            let cells = select::group_ma(mesh, g).map_err(err)?;
+            out.extend(mesh.nodes_of_cells(cells));
+        }
+        let mut seen = std::collections::BTreeSet::new();
+        out.retain(|n| !excluded.contains(n) && seen.insert(*n));
+        Ok(out)
+    };
+    let (one, two) = (side("1")?, side("2")?);
+    let terms = |k: &str| -> Result<Vec<(CompName, f64)>, ExecError> {
+        let ddl: Vec<&str> = occ
+            .simple(&format!("DDL_{k}"))
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let coef: Vec<f64> = occ
+            .simple(&format!("COEF_MULT_{k}"))
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
+        if ddl.len() != coef.len() {
+            return Err(ex.kw_error(
+                what,
+                occ,
+                &format!("COEF_MULT_{k}"),
+                format!(
+                    "{} coefficients for {} DDL_{k}: give one per component",
+                    coef.len(),
+                    ddl.len()
+                ),
+            ));
+        }
+        ddl.into_iter()
+            .zip(coef)
+            .map(|(d, c)| {
+                comp_name(d)
+                    .map(|d| (d, c))
+                    .ok_or_else(|| err(format!("unknown component `{d}`")))
+            })
+            .collect()
+    };
+    let (t1, t2) = (terms("1")?, terms("2")?);
+    let rhs = occ.f64("COEF_IMPO").unwrap_or(0.0);
+    let dist2 = |a: NodeId, b: NodeId| {
+        let (p, q) = (mesh.coord(a), mesh.coord(b));
+        (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()
+    };
+    let mut used: std::collections::BTreeMap<NodeId, NodeId> = std::collections::BTreeMap::new();
+    let mut out = Vec::new();
+    for &n1 in &one {
+        let Some(&n2) = two
+            .iter()
+            .min_by(|a, b| dist2(n1, **a).total_cmp(&dist2(n1, **b)))
+        else {
+            return Err(err("GROUP_NO_2/GROUP_MA_2 holds no node".into()));
+        };
+        if let Some(prev) = used.insert(n2, n1) {
+            return Err(err(format!(
+                "nodes {} and {} are both paired with node {} (the pairing must be one to one)",
+                select::node_name(mesh, prev),
+                select::node_name(mesh, n1),
+                select::node_name(mesh, n2)
+            )));
+        }
+        if n1 == n2 {
+            continue;
+        }
+        let mut terms = Vec::new();
+        for &(c, a) in &t1 {
+            check_dof(model, mesh, carried, n1, c, what)?;
+            terms.push((n1, c, a));
+        }
+        for &(c, a) in &t2 {
+            check_dof(model, mesh, carried, n2, c, what)?;
+            terms.push((n2, c, a));
+        }
+        out.push(LinearRelation { terms, rhs });
+    }
+    Ok(out)
 }

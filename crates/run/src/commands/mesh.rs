@@ -4,7 +4,7 @@ use crate::concept::Concept;
 use crate::executor::{store_result, Executor};
 use crate::select;
 use aster_eval::{CommandCall, CommandOutput, ExecError};
-use aster_mesh::{Group, Mesh, NodeId};
+use aster_mesh::{Along, Group, Mesh, NodeId, NodeKind};
 use std::collections::BTreeSet;
 use std::path::Path;
 use std::sync::Arc;
@@ -61,6 +61,17 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             "CREA_GROUP_NO/NOEUD",
             "CREA_GROUP_NO/GROUP_NO",
             "CREA_GROUP_NO/CRIT_NOEUD",
+            "CREA_GROUP_NO/OPTION",
+            "CREA_GROUP_NO/POINT",
+            "CREA_GROUP_NO/RAYON",
+            "CREA_GROUP_NO/PRECISION",
+            "CREA_GROUP_NO/CRITERE",
+            "CREA_GROUP_NO/NOEUD_CENTRE",
+            "CREA_GROUP_NO/GROUP_NO_CENTRE",
+            "CREA_GROUP_NO/VECT_NORMALE",
+            "CREA_GROUP_NO/ANGL_NAUT",
+            "CREA_GROUP_NO/GROUP_NO_ORIG",
+            "CREA_GROUP_NO/GROUP_NO_EXTR",
             "CREA_GROUP_NO/UNION",
             "CREA_GROUP_NO/INTERSEC",
             "CREA_GROUP_NO/DIFFE",
@@ -72,6 +83,11 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             "CREA_GROUP_MA/GROUP_MA",
             "CREA_GROUP_MA/MAILLE",
             "CREA_GROUP_MA/TOUT",
+            "CREA_GROUP_MA/OPTION",
+            "CREA_GROUP_MA/VECT_NORMALE",
+            "CREA_GROUP_MA/ANGL_NAUT",
+            "CREA_GROUP_MA/ANGL_PREC",
+            "CREA_GROUP_MA/VERI_SIGNE",
             "DETR_GROUP_NO",
             "DETR_GROUP_NO/NOM",
             "DETR_GROUP_MA",
@@ -101,13 +117,78 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         if set_operation(&mut mesh, occ, name, false)? {
             continue;
         }
-        let cells = select::cells(occ, &mesh, "")
-            .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_MA: {e}")))?;
+        // With OPTION and no selection, every cell is a candidate.
+        let given = ["TOUT", "GROUP_MA", "MAILLE"]
+            .iter()
+            .any(|k| occ.contains(k));
+        let mut cells = if given || !occ.contains("OPTION") {
+            select::cells(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_MA: {e}")))?
+        } else {
+            (0..mesh.cells.len() as u32)
+                .map(aster_mesh::CellId)
+                .collect()
+        };
+        match occ.str("OPTION") {
+            None => {}
+            Some("FACE_NORMALE") => {
+                let what = "DEFI_GROUP/CREA_GROUP_MA/OPTION='FACE_NORMALE'";
+                let v: Vec<f64> = occ
+                    .simple("VECT_NORMALE")
+                    .iter()
+                    .filter_map(|s| s.as_f64())
+                    .collect();
+                let a: Vec<f64> = occ
+                    .simple("ANGL_NAUT")
+                    .iter()
+                    .filter_map(|s| s.as_f64())
+                    .collect();
+                let vector = if !v.is_empty() {
+                    [
+                        v[0],
+                        v.get(1).copied().unwrap_or(0.0),
+                        v.get(2).copied().unwrap_or(0.0),
+                    ]
+                } else if !a.is_empty() {
+                    let (al, be) = (
+                        a[0].to_radians(),
+                        a.get(1).copied().unwrap_or(0.0).to_radians(),
+                    );
+                    [al.cos() * be.cos(), al.sin() * be.cos(), -be.sin()]
+                } else {
+                    return Err(ExecError::new(format!(
+                        "{what}: give VECT_NORMALE or ANGL_NAUT"
+                    )));
+                };
+                cells = mesh
+                    .cells_facing(
+                        &cells,
+                        vector,
+                        occ.f64("ANGL_PREC").unwrap_or(0.5),
+                        occ.str("VERI_SIGNE").unwrap_or("OUI") == "OUI",
+                    )
+                    .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+            }
+            Some(other) => {
+                let span = occ.keyword("OPTION").map(|k| k.span).unwrap_or_default();
+                return Err(
+                    ex.unsupported(&format!("DEFI_GROUP/CREA_GROUP_MA/OPTION='{other}'"), span)
+                );
+            }
+        }
         put_group(&mut mesh.groups_ma, name, cells);
     }
     for occ in kw.factor("CREA_GROUP_NO") {
-        if let Some(crit) = occ.str("CRIT_NOEUD") {
-            if crit != "TOUS" {
+        if let Some(option) = occ.str("OPTION") {
+            let (name, nodes) = geometric_group(ex, &mesh, occ, option)?;
+            put_group(&mut mesh.groups_no, &name, nodes);
+            continue;
+        }
+        let kind = match occ.str("CRIT_NOEUD").unwrap_or("TOUS") {
+            "TOUS" => NodeKind::All,
+            "SOMMET" => NodeKind::Corners,
+            "MILIEU" => NodeKind::MidEdges,
+            crit => {
                 let span = occ
                     .keyword("CRIT_NOEUD")
                     .map(|k| k.span)
@@ -117,13 +198,13 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                     span,
                 ));
             }
-        }
+        };
         if occ.str("TOUT_GROUP_MA") == Some("OUI") {
             // One node group per cell group, same name, nodes in cell order.
             let groups: Vec<(String, Vec<NodeId>)> = mesh
                 .groups_ma
                 .iter()
-                .map(|g| (g.name.clone(), nodes_of_cells(&mesh, &g.members)))
+                .map(|g| (g.name.clone(), mesh.nodes_of_cells_kind(&g.members, kind)))
                 .collect();
             for (name, nodes) in groups {
                 put_group(&mut mesh.groups_no, &name, nodes);
@@ -136,7 +217,7 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 let cells = select::group_ma(&mesh, &g)
                     .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?
                     .to_vec();
-                let nodes = nodes_of_cells(&mesh, &cells);
+                let nodes = mesh.nodes_of_cells_kind(&cells, kind);
                 put_group(&mut mesh.groups_no, &g, nodes);
             }
             continue;
@@ -149,8 +230,14 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 "CREA_GROUP_NO needs NOM (or TOUT_GROUP_MA/GROUP_MA)",
             ));
         };
-        let nodes = select::nodes(occ, &mesh, "")
-            .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?;
+        let nodes = if kind != NodeKind::All && !groups_ma.is_empty() {
+            let cells = select::cells(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?;
+            mesh.nodes_of_cells_kind(&cells, kind)
+        } else {
+            select::nodes(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?
+        };
         put_group(&mut mesh.groups_no, name, nodes);
     }
     store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
@@ -188,20 +275,6 @@ fn set_operation(
     Ok(false)
 }
 
-/// Nodes of cells, in order of first appearance.
-pub fn nodes_of_cells(mesh: &Mesh, cells: &[aster_mesh::CellId]) -> Vec<NodeId> {
-    let mut seen = BTreeSet::new();
-    let mut out = Vec::new();
-    for &c in cells {
-        for &n in &mesh.cell(c).nodes {
-            if seen.insert(n) {
-                out.push(n);
-            }
-        }
-    }
-    out
-}
-
 fn put_group<T>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) {
     // code_aster refuses an existing name; replacing keeps reruns simple
     // and matches `DETR_GROUP_*` followed by `CREA_GROUP_*`.
@@ -223,10 +296,90 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "ORIE_PEAU/GROUP_MA_INTERNE",
             "ORIE_PEAU_2D",
             "ORIE_PEAU_2D/GROUP_MA",
+            "ORIE_NORM_COQUE",
+            "ORIE_NORM_COQUE/GROUP_MA",
+            "ORIE_NORM_COQUE/VECT_NORM",
+            "ORIE_NORM_COQUE/GROUP_NO",
+            "ORIE_NORM_COQUE/NOEUD",
+            "ORIE_LIGNE",
+            "ORIE_LIGNE/GROUP_MA",
+            "ORIE_LIGNE/VECT_TANG",
+            "ORIE_LIGNE/GROUP_NO",
+            "ORIE_LIGNE/NOEUD",
+            "DEFORME",
+            "DEFORME/OPTION",
+            "DEFORME/DEPL",
+            "ECHELLE",
         ],
     )?;
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
+    for occ in kw.factor("DEFORME") {
+        // OPTION='TRAN': every node moves by the field's DX, DY, DZ.
+        ex.only_values("MODI_MAILLAGE/DEFORME", occ, "OPTION", &["TRAN"])?;
+        let d = ex.required("MODI_MAILLAGE/DEFORME", occ, "DEPL")?;
+        let field = ex.field(d)?;
+        let crate::field::Field::Nodal(f) = &*field else {
+            return Err(ex.kw_error(
+                "MODI_MAILLAGE/DEFORME",
+                occ,
+                "DEPL",
+                "a nodal displacement field is required",
+            ));
+        };
+        for node in f.values.keys() {
+            let Some(x) = mesh.coords.get_mut(node.0 as usize) else {
+                return Err(ExecError::new(format!(
+                    "MODI_MAILLAGE/DEFORME: field `{}` has node #{} which the mesh does not have",
+                    d.name,
+                    node.0 + 1
+                )));
+            };
+            for (k, c) in ["DX", "DY", "DZ"].iter().enumerate() {
+                x[k] += f.get(*node, c).unwrap_or(0.0);
+            }
+        }
+    }
+    if let Some(scale) = kw.f64("ECHELLE") {
+        for x in &mut mesh.coords {
+            for v in x.iter_mut() {
+                *v *= scale;
+            }
+        }
+    }
+    for (key, vect, along) in [
+        ("ORIE_NORM_COQUE", "VECT_NORM", Along::Normal),
+        ("ORIE_LIGNE", "VECT_TANG", Along::Tangent),
+    ] {
+        for occ in kw.factor(key) {
+            let what = format!("MODI_MAILLAGE/{key}");
+            let cells = select::cells(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+            let v: Vec<f64> = occ.simple(vect).iter().filter_map(|s| s.as_f64()).collect();
+            let vector = match v.as_slice() {
+                [] => None,
+                [x, y] => Some([*x, *y, 0.0]),
+                [x, y, z, ..] => Some([*x, *y, *z]),
+                _ => return Err(ex.kw_error(&what, occ, vect, "2 or 3 components are needed")),
+            };
+            let node = if occ.contains("GROUP_NO") || occ.contains("NOEUD") {
+                select::single_node(occ, &mesh)
+                    .map_err(|e| ExecError::new(format!("{what}: {e}")))?
+                    .0
+            } else if vector.is_some() {
+                return Err(ExecError::new(format!(
+                    "{what}: {vect} needs the node where it applies (GROUP_NO or NOEUD)"
+                )));
+            } else {
+                match cells.first() {
+                    Some(c) => mesh.cell(*c).nodes[0],
+                    None => continue,
+                }
+            };
+            mesh.orient_along(&cells, node, vector, along)
+                .map_err(|e| ExecError::new(e.to_string()))?;
+        }
+    }
     let mut groups: Vec<String> = Vec::new();
     for occ in kw
         .factor("ORIE_PEAU")
@@ -248,4 +401,146 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     crate::meshio::orient_skin(&mut mesh, &groups)
         .map_err(|e| ExecError::new(format!("MODI_MAILLAGE/ORIE_PEAU: {e}")))?;
     store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
+}
+
+/// A point given by `POINT` (2 or 3 coordinates), `NOEUD_CENTRE` or
+/// `GROUP_NO_CENTRE`.
+fn centre(ex: &Executor, mesh: &Mesh, occ: &aster_eval::Keywords) -> Result<[f64; 3], ExecError> {
+    let p: Vec<f64> = occ
+        .simple("POINT")
+        .iter()
+        .filter_map(|s| s.as_f64())
+        .collect();
+    if !p.is_empty() {
+        return Ok([
+            p[0],
+            p.get(1).copied().unwrap_or(0.0),
+            p.get(2).copied().unwrap_or(0.0),
+        ]);
+    }
+    if let Some(n) = occ.str("NOEUD_CENTRE") {
+        let id = select::node_named(mesh, n).map_err(ExecError::new)?;
+        return Ok(mesh.coord(id));
+    }
+    if let Some(g) = occ.str("GROUP_NO_CENTRE") {
+        let members = select::group_no(mesh, g).map_err(ExecError::new)?;
+        if let [n] = members {
+            return Ok(mesh.coord(*n));
+        }
+        return Err(ex.kw_error(
+            "DEFI_GROUP/CREA_GROUP_NO",
+            occ,
+            "GROUP_NO_CENTRE",
+            format!("group `{g}` has {} nodes; one is needed", members.len()),
+        ));
+    }
+    Err(ExecError::new(
+        "DEFI_GROUP/CREA_GROUP_NO: give the point (POINT, NOEUD_CENTRE or GROUP_NO_CENTRE)",
+    ))
+}
+
+/// The single node of a one-node group.
+fn one_node(mesh: &Mesh, group: &str, what: &str) -> Result<NodeId, ExecError> {
+    match select::group_no(mesh, group).map_err(|e| ExecError::new(format!("{what}: {e}")))? {
+        [n] => Ok(*n),
+        many => Err(ExecError::new(format!(
+            "{what}: group `{group}` has {} nodes; one is needed",
+            many.len()
+        ))),
+    }
+}
+
+/// `CREA_GROUP_NO/OPTION`: (name, nodes) of a group defined by geometry.
+fn geometric_group(
+    ex: &Executor,
+    mesh: &Mesh,
+    occ: &aster_eval::Keywords,
+    option: &str,
+) -> Result<(String, Vec<NodeId>), ExecError> {
+    let what = format!("DEFI_GROUP/CREA_GROUP_NO/OPTION='{option}'");
+    let name = occ
+        .str("NOM")
+        .ok_or_else(|| ExecError::new(format!("{what}: NOM is required")))?
+        .to_string();
+    let precision = || {
+        occ.f64("PRECISION")
+            .ok_or_else(|| ExecError::new(format!("{what}: PRECISION is required")))
+    };
+    let err = |e: aster_mesh::MeshError| ExecError::new(format!("{what}: {e}"));
+    let nodes = match option {
+        "ENV_SPHERE" => {
+            let radius = occ
+                .f64("RAYON")
+                .ok_or_else(|| ExecError::new(format!("{what}: RAYON is required")))?;
+            mesh.nodes_on_sphere(centre(ex, mesh, occ)?, radius, precision()?)
+        }
+        "PLAN" => {
+            let v: Vec<f64> = occ
+                .simple("VECT_NORMALE")
+                .iter()
+                .filter_map(|s| s.as_f64())
+                .collect();
+            let a: Vec<f64> = occ
+                .simple("ANGL_NAUT")
+                .iter()
+                .filter_map(|s| s.as_f64())
+                .collect();
+            let normal = if !v.is_empty() {
+                [
+                    v[0],
+                    v.get(1).copied().unwrap_or(0.0),
+                    v.get(2).copied().unwrap_or(0.0),
+                ]
+            } else if !a.is_empty() {
+                // Nautical angles (degrees): the normal is the rotated x axis.
+                let (al, be) = (
+                    a[0].to_radians(),
+                    a.get(1).copied().unwrap_or(0.0).to_radians(),
+                );
+                [al.cos() * be.cos(), al.sin() * be.cos(), -be.sin()]
+            } else {
+                return Err(ExecError::new(format!(
+                    "{what}: give VECT_NORMALE or ANGL_NAUT"
+                )));
+            };
+            mesh.nodes_on_plane(centre(ex, mesh, occ)?, normal, precision()?)
+                .map_err(err)?
+        }
+        "SEGM_DROI_ORDO" => {
+            let a = one_node(mesh, occ.str("GROUP_NO_ORIG").unwrap_or(""), &what)?;
+            let b = one_node(mesh, occ.str("GROUP_NO_EXTR").unwrap_or(""), &what)?;
+            let candidates = if occ.contains("GROUP_NO") || occ.contains("NOEUD") {
+                select::nodes(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?
+            } else {
+                (0..mesh.node_count() as u32).map(NodeId).collect()
+            };
+            let mut tol = precision()?;
+            if occ.str("CRITERE") != Some("ABSOLU") {
+                let d: f64 = (0..3)
+                    .map(|k| (mesh.coord(b)[k] - mesh.coord(a)[k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                tol *= d;
+            }
+            mesh.nodes_on_segment(&candidates, a, b, tol).map_err(err)?
+        }
+        "NOEUD_ORDO" => {
+            let cells =
+                select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+            let origin = occ
+                .str("GROUP_NO_ORIG")
+                .map(|g| one_node(mesh, g, &what))
+                .transpose()?;
+            let end = occ
+                .str("GROUP_NO_EXTR")
+                .map(|g| one_node(mesh, g, &what))
+                .transpose()?;
+            mesh.nodes_along_line(&cells, origin, end).map_err(err)?
+        }
+        other => {
+            let span = occ.keyword("OPTION").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(&format!("DEFI_GROUP/CREA_GROUP_NO/OPTION='{other}'"), span));
+        }
+    };
+    Ok((name, nodes))
 }

@@ -1,12 +1,17 @@
 //! One module per family of commands; [`dispatch`] maps a command name to
 //! its implementation.
 
+mod crea_maillage;
 mod define;
 mod elementary;
+mod functions;
 mod inspect;
 mod loads;
+mod loads_f;
 mod mesh;
 mod post;
+mod pressure;
+mod tables;
 
 use crate::executor::Executor;
 use aster_eval::{CommandCall, CommandOutput, ExecError};
@@ -22,6 +27,7 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "LIRE_MAILLAGE" => mesh::lire_maillage(ex, call),
         "DEFI_GROUP" => mesh::defi_group(ex, call),
         "MODI_MAILLAGE" => mesh::modi_maillage(ex, call),
+        "CREA_MAILLAGE" => crea_maillage::crea_maillage(ex, call),
         "DEFI_MATERIAU" => define::defi_materiau(ex, call),
         "AFFE_MATERIAU" => define::affe_materiau(ex, call),
         "AFFE_MODELE" => define::affe_modele(ex, call),
@@ -32,6 +38,8 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "DEFI_LIST_INST" => define::defi_list_inst(ex, call),
         "AFFE_CHAR_CINE" => loads::affe_char_cine(ex, call),
         "AFFE_CHAR_MECA" => loads::affe_char_meca(ex, call),
+        "AFFE_CHAR_MECA_F" => loads_f::affe_char_meca_f(ex, call),
+        "AFFE_CHAR_CINE_F" => loads_f::affe_char_cine_f(ex, call),
         "DEFI_CONTACT" => loads::defi_contact(ex, call),
         "STAT_NON_LINE" => crate::solve::stat_non_line(ex, call),
         "MECA_STATIQUE" => crate::solve::meca_statique(ex, call),
@@ -42,11 +50,21 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "IMPR_RESU" => post::impr_resu(ex, call),
         "TEST_RESU" => inspect::test_resu(ex, call),
         "TEST_TABLE" => inspect::test_table(ex, call),
+        "TEST_FONCTION" => inspect::test_fonction(ex, call),
         "CALCUL" => elementary::calcul(ex, call),
         "CALC_VECT_ELEM" => elementary::calc_vect_elem(ex, call),
         "EXTR_TABLE" => elementary::extr_table(ex, call),
         "NUME_DDL" => elementary::nume_ddl(ex, call),
         "ASSE_VECTEUR" => elementary::asse_vecteur(ex, call),
+        "RECU_FONCTION" => functions::recu_fonction(ex, call),
+        "CALC_FONC_INTERP" => functions::calc_fonc_interp(ex, call),
+        "CALC_FONCTION" => functions::calc_fonction(ex, call),
+        "IMPR_FONCTION" => functions::impr_fonction(ex, call),
+        "DEFI_LIST_ENTI" => functions::defi_list_enti(ex, call),
+        "DEFI_FICHIER" => functions::defi_fichier(ex, call),
+        "CREA_TABLE" => tables::crea_table(ex, call),
+        "CALC_TABLE" => tables::calc_table(ex, call),
+        "CALC_PRESSION" => pressure::calc_pression(ex, call),
         "DETRUIRE" => Ok(CommandOutput::Nothing),
         // The formula itself arrives through `CommandSink::formula`.
         "FORMULE" => Ok(CommandOutput::Concept),
@@ -65,4 +83,9 @@ pub fn select_steps_pub(
         .iter()
         .map(|s| s.nume_ordre)
         .collect())
+}
+
+/// Appends text to a file the program writes (IMPR_* on a unit).
+pub fn append_file(path: &std::path::Path, text: &str) -> Result<(), ExecError> {
+    post::append(path, text)
 }

@@ -117,6 +117,14 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             "ASSE/NOM_CMP",
             "ASSE/COEF_R",
             "ASSE/CUMUL",
+            "AFFE",
+            "AFFE/TOUT",
+            "AFFE/GROUP_NO",
+            "AFFE/NOEUD",
+            "AFFE/GROUP_MA",
+            "AFFE/MAILLE",
+            "AFFE/NOM_CMP",
+            "AFFE/VALE",
         ],
     )?;
     let kw = &call.keywords;
@@ -221,6 +229,7 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 acc.ok_or_else(|| ExecError::new("CREA_CHAMP/ASSE: no field to assemble"))?,
             )
         }
+        "AFFE" => Field::Nodal(crea_champ_affe(ex, call)?),
         other => {
             let span = kw.keyword("OPERATION").map(|k| k.span).unwrap_or(call.span);
             return Err(ex.unsupported(&format!("CREA_CHAMP/OPERATION='{other}'"), span));
@@ -232,6 +241,68 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         None => ex.field_origin.remove(&id),
     };
     store_result(ex, call, Concept::Field(Rc::new(field)))
+}
+
+/// `CREA_CHAMP(OPERATION='AFFE')` of a nodal field of reals (`NOEU_*_R`):
+/// constant values per component on the nodes of each occurrence (later
+/// occurrences overwrite earlier ones, as in code_aster).
+fn crea_champ_affe(ex: &Executor, call: &CommandCall) -> Result<NodalField, ExecError> {
+    let kw = &call.keywords;
+    let cmd = "CREA_CHAMP/AFFE";
+    let ty = kw.str("TYPE_CHAM").unwrap_or("");
+    if !(ty.starts_with("NOEU_") && ty.ends_with("_R")) {
+        let span = kw.keyword("TYPE_CHAM").map(|k| k.span).unwrap_or(call.span);
+        return Err(ex.unsupported(
+            &format!("CREA_CHAMP/OPERATION='AFFE' with TYPE_CHAM='{ty}' (nodal fields of reals, NOEU_*_R, only)"),
+            span,
+        ));
+    }
+    let (mesh, model_nodes) = if let Some(m) = kw.concept("MODELE") {
+        let model = ex.model(m)?;
+        let mesh = ex.mesh_by_id(model.mesh)?;
+        let carried = super::loads::carried_nodes(&model, &mesh);
+        (mesh, Some(carried))
+    } else if let Some(m) = kw.concept("MAILLAGE") {
+        (ex.mesh(m)?, None)
+    } else {
+        return Err(ExecError::new("CREA_CHAMP/AFFE: give MAILLAGE or MODELE"));
+    };
+    let mut field = NodalField::new(Vec::new());
+    for occ in kw.factor("AFFE") {
+        let cmps: Vec<&str> = occ
+            .simple("NOM_CMP")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let vals: Vec<f64> = occ
+            .simple("VALE")
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
+        if cmps.len() != vals.len() {
+            return Err(ex.kw_error(
+                cmd,
+                occ,
+                "VALE",
+                format!(
+                    "{} values for {} components in NOM_CMP: give one per component",
+                    vals.len(),
+                    cmps.len()
+                ),
+            ));
+        }
+        let mut nodes =
+            select::nodes(occ, &mesh, "").map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+        if let Some(carried) = &model_nodes {
+            nodes.retain(|n| carried[n.0 as usize]);
+        }
+        for n in nodes {
+            for (c, v) in cmps.iter().zip(&vals) {
+                field.set(n, c, *v);
+            }
+        }
+    }
+    Ok(field)
 }
 
 fn table_title(name: &str) -> Vec<String> {

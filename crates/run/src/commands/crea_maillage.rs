@@ -1,0 +1,170 @@
+//! CREA_MAILLAGE: a new mesh made from another (aster-mesh `ops`).
+
+use crate::concept::Concept;
+use crate::executor::{store_result, Executor};
+use crate::select;
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use aster_mesh::{CentreNodes, Mesh, Restriction};
+use std::sync::Arc;
+
+const CMD: &str = "CREA_MAILLAGE";
+
+/// The operations (factor keywords) this implementation executes.
+const OPERATIONS: [&str; 7] = [
+    "RESTREINT",
+    "LINE_QUAD",
+    "QUAD_LINE",
+    "HEXA20_27",
+    "PENTA15_18",
+    "CREA_POI1",
+    "MODI_MAILLE",
+];
+
+pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    if let Some(k) = kw.keyword("DECOUPE_LAC") {
+        return Err(ex.unsupported(
+            "CREA_MAILLAGE/DECOUPE_LAC (it prepares meshes for the LAC contact algorithm, which is not implemented)",
+            k.span,
+        ));
+    }
+    ex.check_keywords(
+        call,
+        &[
+            "MAILLAGE",
+            "INFO",
+            "TITRE",
+            "RESTREINT",
+            "RESTREINT/GROUP_MA",
+            "RESTREINT/GROUP_NO",
+            "RESTREINT/TOUT_GROUP_MA",
+            "RESTREINT/TOUT_GROUP_NO",
+            "LINE_QUAD",
+            "LINE_QUAD/TOUT",
+            "LINE_QUAD/GROUP_MA",
+            "LINE_QUAD/MAILLE",
+            "LINE_QUAD/PREF_NOEUD",
+            "LINE_QUAD/PREF_NUME",
+            "QUAD_LINE",
+            "QUAD_LINE/TOUT",
+            "QUAD_LINE/GROUP_MA",
+            "QUAD_LINE/MAILLE",
+            "HEXA20_27",
+            "HEXA20_27/TOUT",
+            "HEXA20_27/GROUP_MA",
+            "HEXA20_27/MAILLE",
+            "HEXA20_27/PREF_NOEUD",
+            "HEXA20_27/PREF_NUME",
+            "PENTA15_18",
+            "PENTA15_18/TOUT",
+            "PENTA15_18/GROUP_MA",
+            "PENTA15_18/MAILLE",
+            "PENTA15_18/PREF_NOEUD",
+            "PENTA15_18/PREF_NUME",
+            "CREA_POI1",
+            "CREA_POI1/NOM_GROUP_MA",
+            "CREA_POI1/TOUT",
+            "CREA_POI1/GROUP_MA",
+            "CREA_POI1/GROUP_NO",
+            "CREA_POI1/NOEUD",
+            "MODI_MAILLE",
+            "MODI_MAILLE/TOUT",
+            "MODI_MAILLE/GROUP_MA",
+            "MODI_MAILLE/MAILLE",
+            "MODI_MAILLE/OPTION",
+            "MODI_MAILLE/PREF_NOEUD",
+            "MODI_MAILLE/PREF_NUME",
+            "MODI_MAILLE/PREF_MAILLE",
+            "COPIE",
+        ],
+    )?;
+    let source = ex.required(CMD, kw, "MAILLAGE")?;
+    let mut mesh = (*ex.mesh(source)?).clone();
+    // Legacy `COPIE=_F()` (code_aster ≤ 11): a plain copy.
+    if kw.keyword("COPIE").is_some() {
+        return store_result(ex, call, Concept::Mesh(Arc::new(mesh)));
+    }
+    let present: Vec<&str> = OPERATIONS
+        .into_iter()
+        .filter(|op| kw.keyword(op).is_some_and(|k| !k.defaulted))
+        .collect();
+    if present.len() != 1 {
+        return Err(ExecError::new(format!(
+            "{CMD}: give exactly one operation among {} (found {})",
+            OPERATIONS.join(", "),
+            if present.is_empty() {
+                "none".to_string()
+            } else {
+                present.join(", ")
+            }
+        )));
+    }
+    let op = present[0];
+    let err = |e: String| ExecError::new(format!("{CMD}/{op}: {e}"));
+    let cells_of = |occ: &Keywords, mesh: &Mesh| select::cells(occ, mesh, "").map_err(err);
+    match op {
+        "RESTREINT" => {
+            let occ = &kw.factor(op)[0];
+            let names = |k: &str| -> Vec<&str> {
+                occ.simple(k).iter().filter_map(|s| s.as_str()).collect()
+            };
+            let (gma, gno) = (names("GROUP_MA"), names("GROUP_NO"));
+            mesh = mesh
+                .restrict(&Restriction {
+                    groups_ma: &gma,
+                    groups_no: &gno,
+                    all_groups_ma: occ.str("TOUT_GROUP_MA") == Some("OUI"),
+                    all_groups_no: occ.str("TOUT_GROUP_NO") == Some("OUI"),
+                })
+                .map_err(|e| err(e.to_string()))?;
+        }
+        "LINE_QUAD" => {
+            let cells = cells_of(&kw.factor(op)[0], &mesh)?;
+            mesh.line_to_quad(&cells);
+        }
+        "QUAD_LINE" => {
+            let cells = cells_of(&kw.factor(op)[0], &mesh)?;
+            mesh.quad_to_line(&cells);
+        }
+        "HEXA20_27" | "PENTA15_18" => {
+            let cells = cells_of(&kw.factor(op)[0], &mesh)?;
+            let kind = if op == "HEXA20_27" {
+                CentreNodes::Hexa20To27
+            } else {
+                CentreNodes::Penta15To18
+            };
+            mesh.add_centre_nodes(&cells, kind);
+        }
+        "CREA_POI1" => {
+            for occ in kw.factor(op) {
+                let nodes = select::nodes(occ, &mesh, "").map_err(err)?;
+                mesh.add_point_cells(&nodes, occ.str("NOM_GROUP_MA"));
+            }
+        }
+        _ => {
+            for occ in kw.factor(op) {
+                let cells = cells_of(occ, &mesh)?;
+                match occ.str("OPTION") {
+                    Some("QUAD8_9") => {
+                        mesh.add_centre_nodes(&cells, CentreNodes::Quad8To9);
+                    }
+                    Some("TRIA6_7") => {
+                        mesh.add_centre_nodes(&cells, CentreNodes::Tria6To7);
+                    }
+                    Some("QUAD_TRIA3") => {
+                        mesh.quad4_to_tria3(&cells)
+                            .map_err(|e| ExecError::new(e.to_string()))?;
+                    }
+                    other => {
+                        let span = occ.keyword("OPTION").map(|k| k.span).unwrap_or_default();
+                        return Err(ex.unsupported(
+                            &format!("{CMD}/MODI_MAILLE/OPTION='{}'", other.unwrap_or("")),
+                            span,
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
+}

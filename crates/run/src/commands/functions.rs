@@ -1,0 +1,707 @@
+//! Commands that make or print functions: RECU_FONCTION, CALC_FONC_INTERP,
+//! CALC_FONCTION, IMPR_FONCTION; and the small ones around them:
+//! DEFI_LIST_ENTI, DEFI_FICHIER.
+
+use super::inspect::filter_rows;
+use super::post::{append, select_steps};
+use crate::concept::Concept;
+use crate::executor::{store_result, Executor};
+use crate::field::Field;
+use crate::function::{Extension, Function, Scale, Tabulated};
+use crate::select;
+use crate::table::{Column, ColumnType, Table, Value};
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use std::path::PathBuf;
+use std::rc::Rc;
+
+fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
+    kw.simple(name).iter().filter_map(|s| s.as_f64()).collect()
+}
+
+/// `PROL_GAUCHE`, `PROL_DROITE`, `INTERPOL` of the command (defaults: the
+/// function's own, i.e. `EXCLU` and `LIN` for a new one).
+fn apply_options(
+    ex: &Executor,
+    cmd: &str,
+    kw: &Keywords,
+    f: &mut Tabulated,
+) -> Result<(), ExecError> {
+    for (key, slot) in [("PROL_GAUCHE", &mut f.left), ("PROL_DROITE", &mut f.right)] {
+        if let Some(v) = kw.str(key) {
+            *slot = Extension::from_keyword(v)
+                .ok_or_else(|| ex.kw_error(cmd, kw, key, format!("unknown extension `{v}`")))?;
+        }
+    }
+    let interp: Vec<&str> = kw
+        .simple("INTERPOL")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    let scale = |name: &str| {
+        Scale::from_keyword(name).ok_or_else(|| {
+            let span = kw.keyword("INTERPOL").map(|k| k.span).unwrap_or_default();
+            ex.unsupported(&format!("{cmd}/INTERPOL='{name}'"), span)
+        })
+    };
+    match interp.as_slice() {
+        [] => {}
+        [one] => {
+            f.scale_x = scale(one)?;
+            f.scale_y = f.scale_x;
+        }
+        [x, y, ..] => {
+            f.scale_x = scale(x)?;
+            f.scale_y = scale(y)?;
+        }
+    }
+    Ok(())
+}
+
+fn tabulated(
+    ex: &Executor,
+    cmd: &str,
+    kw: &Keywords,
+    para: &str,
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+) -> Result<Rc<Function>, ExecError> {
+    let mut f = Tabulated::new(para, xs, ys).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+    apply_options(ex, cmd, kw, &mut f)?;
+    Ok(Rc::new(Function::Tabulated(f)))
+}
+
+/// A real list given by concept (`LIST_PARA=…`).
+fn list_of(
+    ex: &Executor,
+    cmd: &str,
+    kw: &Keywords,
+    key: &str,
+) -> Result<Option<Vec<f64>>, ExecError> {
+    match kw.concept(key) {
+        Some(c) => Ok(Some((*ex.real_list(c)?).clone())),
+        None if kw.contains(key) => {
+            Err(ex.kw_error(cmd, kw, key, "a list of reals (DEFI_LIST_REEL) is required"))
+        }
+        None => Ok(None),
+    }
+}
+
+pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "RESULTAT",
+            "NOM_CHAM",
+            "NOM_CMP",
+            "GROUP_NO",
+            "NOEUD",
+            "TOUT_ORDRE",
+            "NUME_ORDRE",
+            "INST",
+            "LIST_INST",
+            "CRITERE",
+            "PRECISION",
+            "TABLE",
+            "PARA_X",
+            "PARA_Y",
+            "FILTRE",
+            "FILTRE/NOM_PARA",
+            "FILTRE/CRIT_COMP",
+            "FILTRE/VALE",
+            "FILTRE/VALE_I",
+            "FILTRE/VALE_K",
+            "FILTRE/CRITERE",
+            "FILTRE/PRECISION",
+            "NOM_PARA",
+            "NOM_RESU",
+            "INTERPOL",
+            "PROL_GAUCHE",
+            "PROL_DROITE",
+            "TITRE",
+            "INFO",
+        ],
+    )?;
+    let cmd = "RECU_FONCTION";
+    let kw = &call.keywords;
+    if let Some(t) = kw.concept("TABLE") {
+        let table = ex.table(t)?;
+        let para = |k: &str| {
+            kw.str(k)
+                .ok_or_else(|| ExecError::new(format!("{cmd}: TABLE needs {k}")))
+        };
+        let (px, py) = (para("PARA_X")?, para("PARA_Y")?);
+        let column = |p: &str| {
+            table.column_index(p).ok_or_else(|| {
+                ExecError::new(format!(
+                    "{cmd}: table `{}` has no column {p}{}",
+                    t.name,
+                    select::did_you_mean(p, table.columns.iter().map(|c| c.name.as_str()))
+                ))
+            })
+        };
+        let (cx, cy) = (column(px)?, column(py)?);
+        let rows = filter_rows(&table, kw.factor("FILTRE"))
+            .map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+        let mut xs = Vec::new();
+        let mut ys = Vec::new();
+        for r in rows {
+            let get = |c: usize| {
+                table.rows[r]
+                    .get(c)
+                    .and_then(|v| v.as_ref())
+                    .and_then(Value::as_f64)
+            };
+            if let (Some(x), Some(y)) = (get(cx), get(cy)) {
+                xs.push(x);
+                ys.push(y);
+            }
+        }
+        let f = tabulated(ex, cmd, kw, px, xs, ys)?;
+        return store_result(ex, call, Concept::Function(f));
+    }
+    let r = ex.required(cmd, kw, "RESULTAT")?;
+    let result = ex.result(r)?;
+    let mesh = ex.mesh_by_id(result.mesh)?;
+    let cham = kw
+        .str("NOM_CHAM")
+        .ok_or_else(|| ExecError::new(format!("{cmd}: RESULTAT needs NOM_CHAM")))?;
+    let cmp = kw
+        .str("NOM_CMP")
+        .ok_or_else(|| ExecError::new(format!("{cmd}: RESULTAT needs NOM_CMP")))?;
+    let (node, _) =
+        select::single_node(kw, &mesh).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+    let steps: Vec<&crate::concept::Step> = match list_of(ex, cmd, kw, "LIST_INST")? {
+        Some(list) => list
+            .iter()
+            .map(|&t| {
+                result
+                    .step_at(
+                        t,
+                        kw.f64("PRECISION").unwrap_or(1e-6),
+                        kw.str("CRITERE") == Some("ABSOLU"),
+                    )
+                    .ok_or_else(|| {
+                        ex.kw_error(
+                            cmd,
+                            kw,
+                            "LIST_INST",
+                            format!("the result has no instant {t}"),
+                        )
+                    })
+            })
+            .collect::<Result<_, _>>()?,
+        None => select_steps(ex, cmd, kw, &result)?,
+    };
+    let mut xs = Vec::new();
+    let mut ys = Vec::new();
+    for s in steps {
+        let field = s.fields.get(cham).ok_or_else(|| {
+            ExecError::new(format!(
+                "{cmd}: the result has no field {cham} at INST={} (compute it with CALC_CHAMP; it has {})",
+                s.inst,
+                s.fields.keys().cloned().collect::<Vec<_>>().join(", ")
+            ))
+        })?;
+        let Field::Nodal(f) = field else {
+            return Err(ExecError::new(format!(
+                "{cmd}: {cham} is an element field; only nodal fields (GROUP_NO/NOEUD) are read here"
+            )));
+        };
+        let v = f.get(node, cmp).ok_or_else(|| {
+            ExecError::new(format!(
+                "{cmd}: {cham} has no component {cmp} at node {} (components: {})",
+                select::node_name(&mesh, node),
+                f.components.join(", ")
+            ))
+        })?;
+        xs.push(s.inst);
+        ys.push(v);
+    }
+    let f = tabulated(ex, cmd, kw, "INST", xs, ys)?;
+    store_result(ex, call, Concept::Function(f))
+}
+
+pub fn calc_fonc_interp(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "FONCTION",
+            "LIST_PARA",
+            "VALE_PARA",
+            "NOM_PARA",
+            "NOM_RESU",
+            "INTERPOL",
+            "PROL_GAUCHE",
+            "PROL_DROITE",
+            "TITRE",
+            "INFO",
+        ],
+    )?;
+    let cmd = "CALC_FONC_INTERP";
+    let kw = &call.keywords;
+    let f = ex.function(ex.required(cmd, kw, "FONCTION")?)?;
+    let xs = match list_of(ex, cmd, kw, "LIST_PARA")? {
+        Some(l) => l,
+        None => reals(kw, "VALE_PARA"),
+    };
+    if xs.is_empty() {
+        return Err(ExecError::new(format!(
+            "{cmd}: give the abscissae (LIST_PARA or VALE_PARA)"
+        )));
+    }
+    let para = kw
+        .str("NOM_PARA")
+        .map(str::to_string)
+        .or_else(|| f.parameters().first().map(|p| p.to_string()))
+        .unwrap_or_else(|| "INST".into());
+    let ys = xs
+        .iter()
+        .map(|&x| {
+            f.eval(x)
+                .map_err(|e| ExecError::new(format!("{cmd}: at {para}={x}: {e}")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let g = tabulated(ex, cmd, kw, &para, xs, ys)?;
+    store_result(ex, call, Concept::Function(g))
+}
+
+/// The abscissae of a function (tabulated: its points; others: none).
+fn abscissae(f: &Function) -> Vec<f64> {
+    match f {
+        Function::Tabulated(t) => t.abscissae().to_vec(),
+        _ => Vec::new(),
+    }
+}
+
+fn sorted_union(mut xs: Vec<f64>) -> Vec<f64> {
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    xs
+}
+
+pub fn calc_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "COMB",
+            "COMB/FONCTION",
+            "COMB/COEF",
+            "INTEGRE",
+            "INTEGRE/FONCTION",
+            "INTEGRE/METHODE",
+            "INTEGRE/COEF",
+            "ABS",
+            "ABS/FONCTION",
+            "LIST_PARA",
+            "NOM_PARA",
+            "NOM_RESU",
+            "INTERPOL",
+            "PROL_GAUCHE",
+            "PROL_DROITE",
+            "TITRE",
+            "INFO",
+        ],
+    )?;
+    let cmd = "CALC_FONCTION";
+    let kw = &call.keywords;
+    let list = list_of(ex, cmd, kw, "LIST_PARA")?;
+    let eval = |f: &Function, x: f64| f.eval(x).map_err(|e| ExecError::new(format!("{cmd}: {e}")));
+    let param = |f: &Function| {
+        f.parameters()
+            .first()
+            .map(|p| p.to_string())
+            .unwrap_or_else(|| "INST".into())
+    };
+    let (para, xs, ys) = if !kw.factor("COMB").is_empty() {
+        let mut terms = Vec::new();
+        for occ in kw.factor("COMB") {
+            let f = ex.function(ex.required(cmd, occ, "FONCTION")?)?;
+            let c = occ
+                .f64("COEF")
+                .ok_or_else(|| ex.kw_error(cmd, occ, "COEF", "a real coefficient is required"))?;
+            terms.push((f, c));
+        }
+        let xs = match &list {
+            Some(l) => l.clone(),
+            None => sorted_union(terms.iter().flat_map(|(f, _)| abscissae(f)).collect()),
+        };
+        if xs.is_empty() {
+            return Err(ExecError::new(format!(
+                "{cmd}/COMB: formulas have no points of their own; give LIST_PARA"
+            )));
+        }
+        let mut ys = vec![0.0; xs.len()];
+        for (f, c) in &terms {
+            for (y, &x) in ys.iter_mut().zip(&xs) {
+                *y += c * eval(f, x)?;
+            }
+        }
+        (param(&terms[0].0), xs, ys)
+    } else if let Some(occ) = kw.factor("INTEGRE").first() {
+        if let Some(m) = occ.str("METHODE").filter(|m| *m != "TRAPEZE") {
+            let span = occ.keyword("METHODE").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(&format!("{cmd}/INTEGRE/METHODE='{m}'"), span));
+        }
+        let f = ex.function(ex.required(cmd, occ, "FONCTION")?)?;
+        let xs = list.clone().unwrap_or_else(|| abscissae(&f));
+        let mut ys = Vec::with_capacity(xs.len());
+        let mut acc = occ.f64("COEF").unwrap_or(0.0);
+        let mut prev: Option<(f64, f64)> = None;
+        for &x in &xs {
+            let y = eval(&f, x)?;
+            if let Some((x0, y0)) = prev {
+                acc += 0.5 * (x - x0) * (y + y0);
+            }
+            ys.push(acc);
+            prev = Some((x, y));
+        }
+        (param(&f), xs, ys)
+    } else if let Some(occ) = kw.factor("ABS").first() {
+        let f = ex.function(ex.required(cmd, occ, "FONCTION")?)?;
+        let xs = list.clone().unwrap_or_else(|| abscissae(&f));
+        let ys = xs
+            .iter()
+            .map(|&x| eval(&f, x).map(f64::abs))
+            .collect::<Result<_, _>>()?;
+        (param(&f), xs, ys)
+    } else {
+        return Err(ExecError::new(format!(
+            "{cmd}: give COMB, INTEGRE or ABS (the operations supported yet)"
+        )));
+    };
+    let para = kw.str("NOM_PARA").map(str::to_string).unwrap_or(para);
+    let g = tabulated(ex, cmd, kw, &para, xs, ys)?;
+    store_result(ex, call, Concept::Function(g))
+}
+
+/// One curve of IMPR_FONCTION: its points and its names.
+struct Curve {
+    x_name: String,
+    y_name: String,
+    points: Vec<(f64, f64)>,
+}
+
+fn curve(ex: &Executor, occ: &Keywords) -> Result<Curve, ExecError> {
+    let cmd = "IMPR_FONCTION/COURBE";
+    let list = list_of(ex, cmd, occ, "LIST_PARA")?;
+    let legend = occ.str("LEGENDE").map(str::to_string);
+    let eval = |f: &Function, x: f64| f.eval(x).map_err(|e| ExecError::new(format!("{cmd}: {e}")));
+    if let Some(c) = occ.concept("FONCTION") {
+        let f = ex.function(c)?;
+        let xs = match (&list, &*f) {
+            (Some(l), _) => l.clone(),
+            (None, Function::Tabulated(t)) => t.abscissae().to_vec(),
+            (None, _) => {
+                return Err(ex.kw_error(
+                    cmd,
+                    occ,
+                    "FONCTION",
+                    "a formula or constant has no points of its own: give LIST_PARA",
+                ))
+            }
+        };
+        let points = xs
+            .iter()
+            .map(|&x| Ok((x, eval(&f, x)?)))
+            .collect::<Result<_, ExecError>>()?;
+        return Ok(Curve {
+            x_name: f
+                .parameters()
+                .first()
+                .map(|p| p.to_string())
+                .unwrap_or_else(|| "INST".into()),
+            y_name: legend.unwrap_or_else(|| c.name.clone()),
+            points,
+        });
+    }
+    if let (Some(fx), Some(fy)) = (occ.concept("FONC_X"), occ.concept("FONC_Y")) {
+        let (gx, gy) = (ex.function(fx)?, ex.function(fy)?);
+        let ts = list.clone().unwrap_or_else(|| abscissae(&gx));
+        let points = ts
+            .iter()
+            .map(|&t| Ok((eval(&gx, t)?, eval(&gy, t)?)))
+            .collect::<Result<_, ExecError>>()?;
+        return Ok(Curve {
+            x_name: fx.name.clone(),
+            y_name: legend.unwrap_or_else(|| fy.name.clone()),
+            points,
+        });
+    }
+    let (xs, ys) = if occ.contains("ABSCISSE") {
+        (reals(occ, "ABSCISSE"), reals(occ, "ORDONNEE"))
+    } else if let Some(r) = occ.concept("LIST_RESU") {
+        let xs = list
+            .clone()
+            .ok_or_else(|| ex.kw_error(cmd, occ, "LIST_PARA", "LIST_RESU needs LIST_PARA"))?;
+        (xs, (*ex.real_list(r)?).clone())
+    } else {
+        return Err(ExecError::new(format!(
+            "{cmd}: give FONCTION, FONC_X/FONC_Y, ABSCISSE/ORDONNEE or LIST_RESU"
+        )));
+    };
+    if xs.len() != ys.len() {
+        return Err(ExecError::new(format!(
+            "{cmd}: {} abscissae for {} ordinates",
+            xs.len(),
+            ys.len()
+        )));
+    }
+    Ok(Curve {
+        x_name: "ABSCISSE".into(),
+        y_name: legend.unwrap_or_else(|| "ORDONNEE".into()),
+        points: xs.into_iter().zip(ys).collect(),
+    })
+}
+
+/// The curves as code_aster's TABLEAU text: one table per curve.
+fn tableau(title: Option<&str>, curves: &[Curve]) -> String {
+    let mut out = String::new();
+    for c in curves {
+        let mut t = Table::new(vec![
+            Column {
+                name: truncate(&c.x_name),
+                ty: ColumnType::Real,
+            },
+            Column {
+                name: truncate(&c.y_name),
+                ty: ColumnType::Real,
+            },
+        ]);
+        if let Some(title) = title {
+            t.title = title.lines().map(str::to_string).collect();
+        }
+        for &(x, y) in &c.points {
+            t.rows
+                .push(vec![Some(Value::Real(x)), Some(Value::Real(y))]);
+        }
+        out.push_str(&t.render());
+        out.push('\n');
+    }
+    out
+}
+
+fn truncate(s: &str) -> String {
+    s.chars().take(16).collect()
+}
+
+/// The curves as an XMGRACE (`.agr`) project: axes, legends, one xy set per
+/// curve.
+fn xmgrace(kw: &Keywords, curves: &[Curve]) -> String {
+    let quoted = |k: &str| kw.str(k).map(|s| s.replace('"', "'"));
+    let mut out = String::from("# Grace project file written by aster\n@version 50100\n");
+    if let Some(t) = quoted("TITRE") {
+        out += &format!("@title \"{t}\"\n");
+    }
+    if let Some(t) = quoted("SOUS_TITRE") {
+        out += &format!("@subtitle \"{t}\"\n");
+    }
+    for (axis, k) in [("xaxis", "X"), ("yaxis", "Y")] {
+        if let Some(l) = quoted(&format!("LEGENDE_{k}")) {
+            out += &format!("@{axis} label \"{l}\"\n");
+        }
+        if kw.str(&format!("ECHELLE_{k}")) == Some("LOG") {
+            out += &format!("@{axis}es scale Logarithmic\n");
+        }
+        let b = reals(kw, &format!("BORNE_{k}"));
+        if let [lo, hi] = b.as_slice() {
+            out += &format!(
+                "@world {}min {lo}\n@world {}max {hi}\n",
+                k.to_lowercase(),
+                k.to_lowercase()
+            );
+        }
+    }
+    for (i, c) in curves.iter().enumerate() {
+        out += &format!(
+            "@s{i} legend \"{}\"\n@target G0.S{i}\n@type xy\n",
+            c.y_name.replace('"', "'")
+        );
+        for &(x, y) in &c.points {
+            out += &format!(
+                "{} {}\n",
+                crate::pyfmt::py_repr(x),
+                crate::pyfmt::py_repr(y)
+            );
+        }
+        out += "&\n";
+    }
+    out
+}
+
+pub fn impr_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "FORMAT",
+            "UNITE",
+            "COURBE",
+            "COURBE/*",
+            "TITRE",
+            "SOUS_TITRE",
+            "LEGENDE_X",
+            "LEGENDE_Y",
+            "BORNE_X",
+            "BORNE_Y",
+            "ECHELLE_X",
+            "ECHELLE_Y",
+            "GRILLE_X",
+            "GRILLE_Y",
+            "PILOTE",
+            "SEPARATEUR",
+            "COMMENTAIRE",
+            "COMM_PARA",
+            "DEBUT_LIGNE",
+            "FIN_LIGNE",
+            "FORMAT_R",
+            "INFO",
+        ],
+    )?;
+    let kw = &call.keywords;
+    let format = kw.str("FORMAT").unwrap_or("TABLEAU");
+    ex.only_values("IMPR_FONCTION", kw, "FORMAT", &["TABLEAU", "XMGRACE"])?;
+    if let Some(p) = kw.str("PILOTE").filter(|p| !p.is_empty()) {
+        let span = kw.keyword("PILOTE").map(|k| k.span).unwrap_or_default();
+        return Err(ex.unsupported(
+            &format!("IMPR_FONCTION/PILOTE='{p}' (images are not drawn; the .agr data file is)"),
+            span,
+        ));
+    }
+    let curves = kw
+        .factor("COURBE")
+        .iter()
+        .map(|occ| curve(ex, occ))
+        .collect::<Result<Vec<_>, _>>()?;
+    let (text, default_unit) = if format == "XMGRACE" {
+        (xmgrace(kw, &curves), 29)
+    } else {
+        (tableau(kw.str("TITRE"), &curves), 8)
+    };
+    let unit = kw
+        .first("UNITE")
+        .and_then(|s| s.as_i64())
+        .unwrap_or(default_unit);
+    if unit == 8 || unit == 6 {
+        ex.write_report(&text)?;
+    } else {
+        append(&ex.output_path(unit), &text)?;
+    }
+    Ok(CommandOutput::Nothing)
+}
+
+pub fn defi_list_enti(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "OPERATION",
+            "DEBUT",
+            "INTERVALLE",
+            "INTERVALLE/JUSQU_A",
+            "INTERVALLE/PAS",
+            "INTERVALLE/NOMBRE",
+            "VALE",
+            "INFO",
+            "TITRE",
+        ],
+    )?;
+    let cmd = "DEFI_LIST_ENTI";
+    let kw = &call.keywords;
+    ex.only_values(cmd, kw, "OPERATION", &["DEFI"])?;
+    let ints = |k: &Keywords, n: &str| -> Vec<i64> {
+        k.simple(n).iter().filter_map(|s| s.as_i64()).collect()
+    };
+    let values: Vec<i64> = if kw.contains("VALE") {
+        ints(kw, "VALE")
+    } else {
+        let mut v = vec![kw
+            .first("DEBUT")
+            .and_then(|s| s.as_i64())
+            .ok_or_else(|| ExecError::new(format!("{cmd}: give VALE or DEBUT + INTERVALLE")))?];
+        for occ in kw.factor("INTERVALLE") {
+            let last = *v.last().unwrap_or(&0);
+            let end = occ
+                .first("JUSQU_A")
+                .and_then(|s| s.as_i64())
+                .ok_or_else(|| ex.kw_error(cmd, occ, "JUSQU_A", "an integer is required"))?;
+            let step = if let Some(p) = occ.first("PAS").and_then(|s| s.as_i64()) {
+                p
+            } else if let Some(n) = occ
+                .first("NOMBRE")
+                .and_then(|s| s.as_i64())
+                .filter(|n| *n > 0)
+            {
+                if (end - last) % n != 0 {
+                    return Err(ex.kw_error(
+                        cmd,
+                        occ,
+                        "NOMBRE",
+                        format!("{n} steps do not divide {last}..{end} into integers"),
+                    ));
+                }
+                (end - last) / n
+            } else {
+                return Err(ex.kw_error(cmd, occ, "PAS", "give PAS or NOMBRE"));
+            };
+            if step <= 0 || end <= last {
+                return Err(ex.kw_error(
+                    cmd,
+                    occ,
+                    "JUSQU_A",
+                    format!("the interval {last}..{end} with step {step} does not increase"),
+                ));
+            }
+            let mut x = last + step;
+            while x <= end {
+                v.push(x);
+                x += step;
+            }
+        }
+        v
+    };
+    // Integer lists are kept as reals: every consumer (NUME_ORDRE lists)
+    // reads them through `real_list`.
+    let as_reals: Vec<f64> = values.iter().map(|&i| i as f64).collect();
+    store_result(ex, call, Concept::RealList(Rc::new(as_reals)))
+}
+
+pub fn defi_fichier(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &["ACTION", "UNITE", "FICHIER", "TYPE", "ACCES", "INFO"],
+    )?;
+    let kw = &call.keywords;
+    let action = kw.str("ACTION").unwrap_or("ASSOCIER");
+    ex.only_values(
+        "DEFI_FICHIER",
+        kw,
+        "ACTION",
+        &["ASSOCIER", "LIBERER", "RESERVER"],
+    )?;
+    let unit = kw.first("UNITE").and_then(|s| s.as_i64());
+    match (action, unit, kw.str("FICHIER")) {
+        ("ASSOCIER", Some(u), Some(file)) => {
+            // Written files land in --out under the file's own name.
+            let name = PathBuf::from(file)
+                .file_name()
+                .map(PathBuf::from)
+                .unwrap_or_else(|| PathBuf::from(format!("fort.{u}")));
+            ex.options.result_units.insert(u as u32, name);
+            Ok(CommandOutput::Nothing)
+        }
+        ("ASSOCIER", None, file) => {
+            // A free unit is asked for: the highest one not in use (as
+            // code_aster, which counts down from 99).
+            let free = (20..=99u32)
+                .rev()
+                .find(|u| {
+                    !ex.options.result_units.contains_key(u) && !ex.options.units.contains_key(u)
+                })
+                .ok_or_else(|| ExecError::new("DEFI_FICHIER: no free unit left"))?;
+            let name = file
+                .and_then(|f| PathBuf::from(f).file_name().map(PathBuf::from))
+                .unwrap_or_else(|| PathBuf::from(format!("fort.{free}")));
+            ex.options.result_units.insert(free, name);
+            Ok(CommandOutput::Value(aster_eval::Scalar::Int(free as i64)))
+        }
+        _ => Ok(CommandOutput::Nothing),
+    }
+}

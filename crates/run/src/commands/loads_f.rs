@@ -1,0 +1,256 @@
+//! AFFE_CHAR_MECA_F and AFFE_CHAR_CINE_F: loads whose values are functions
+//! of the time `INST` and of the coordinates `X`, `Y`, `Z`.
+//!
+//! Nodal values (`DDL_IMPO`, `MECA_IMPO`, `FORCE_NODALE`) are evaluated at
+//! each node's coordinates and at each step's time, as code_aster does.
+//! Distributed loads (`FORCE_CONTOUR`, `FORCE_FACE`, `FORCE_INTERNE`,
+//! `PRES_REP`) take
+//! functions of `INST` only here: code_aster evaluates a function of the
+//! coordinates at the Gauss points, which is refused rather than
+//! approximated.
+
+use super::loads::{carried_nodes, check_dof};
+use crate::concept::*;
+use crate::executor::{store_result, Executor};
+use crate::select;
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use aster_mesh::Mesh;
+use std::rc::Rc;
+
+/// The function a keyword names (`DX=f`), or an error saying what to give.
+fn function_at(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    key: &str,
+) -> Result<Option<LoadFunction>, ExecError> {
+    let Some(s) = occ.first(key) else {
+        return Ok(None);
+    };
+    let c = s.as_concept().ok_or_else(|| {
+        ex.kw_error(
+            cmd,
+            occ,
+            key,
+            "a function (DEFI_FONCTION, DEFI_CONSTANTE, FORMULE) is required in a _F load; real values go in the command without _F",
+        )
+    })?;
+    let f = ex.function(c)?;
+    for p in f.parameters() {
+        if !["INST", "X", "Y", "Z"].contains(&p) {
+            return Err(ex.kw_error(
+                cmd,
+                occ,
+                key,
+                format!("the function depends on {p}; a load function may depend on INST, X, Y, Z"),
+            ));
+        }
+    }
+    Ok(Some(LoadFunction(f)))
+}
+
+/// (node, component, function) of one nodal occurrence, checked against the
+/// model.
+fn nodal_functions(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+    comps: &[(&str, CompName)],
+) -> Result<Vec<ImposedFn>, ExecError> {
+    let nodes =
+        select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+    let mut out = Vec::new();
+    for &(key, comp) in comps {
+        let Some(function) = function_at(ex, cmd, occ, key)? else {
+            continue;
+        };
+        for &n in &nodes {
+            check_dof(model, mesh, carried, n, comp, cmd)?;
+            out.push(ImposedFn {
+                node: n,
+                comp,
+                function: function.clone(),
+                xyz: mesh.coord(n),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// A distributed-load function, refused when it depends on the coordinates.
+fn time_function(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    key: &str,
+) -> Result<Option<LoadFunction>, ExecError> {
+    let f = function_at(ex, cmd, occ, key)?;
+    if let Some(f) = &f {
+        if let Some(p) = f.0.parameters().into_iter().find(|p| *p != "INST") {
+            let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!("{cmd}/{key} as a function of {p} (distributed loads take functions of INST only)"),
+                span,
+            ));
+        }
+    }
+    Ok(f)
+}
+
+const DISPLACEMENTS: [(&str, CompName); 3] = [("DX", "DX"), ("DY", "DY"), ("DZ", "DZ")];
+const FORCES: [(&str, CompName); 3] = [("FX", "DX"), ("FY", "DY"), ("FZ", "DZ")];
+
+pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "MODELE",
+            "INFO",
+            "VERI_NORM",
+            "DOUBLE_LAGRANGE",
+            "DDL_IMPO",
+            "DDL_IMPO/TOUT",
+            "DDL_IMPO/GROUP_NO",
+            "DDL_IMPO/NOEUD",
+            "DDL_IMPO/GROUP_MA",
+            "DDL_IMPO/MAILLE",
+            "DDL_IMPO/SANS_GROUP_NO",
+            "DDL_IMPO/DX",
+            "DDL_IMPO/DY",
+            "DDL_IMPO/DZ",
+            "FORCE_NODALE",
+            "FORCE_NODALE/GROUP_NO",
+            "FORCE_NODALE/NOEUD",
+            "FORCE_NODALE/FX",
+            "FORCE_NODALE/FY",
+            "FORCE_NODALE/FZ",
+            "FORCE_CONTOUR",
+            "FORCE_CONTOUR/GROUP_MA",
+            "FORCE_CONTOUR/MAILLE",
+            "FORCE_CONTOUR/FX",
+            "FORCE_CONTOUR/FY",
+            "FORCE_FACE",
+            "FORCE_FACE/GROUP_MA",
+            "FORCE_FACE/MAILLE",
+            "FORCE_FACE/FX",
+            "FORCE_FACE/FY",
+            "FORCE_FACE/FZ",
+            "FORCE_INTERNE",
+            "FORCE_INTERNE/TOUT",
+            "FORCE_INTERNE/GROUP_MA",
+            "FORCE_INTERNE/MAILLE",
+            "FORCE_INTERNE/FX",
+            "FORCE_INTERNE/FY",
+            "FORCE_INTERNE/FZ",
+            "PRES_REP",
+            "PRES_REP/GROUP_MA",
+            "PRES_REP/MAILLE",
+            "PRES_REP/TOUT",
+            "PRES_REP/PRES",
+        ],
+    )?;
+    let cmd = "AFFE_CHAR_MECA_F";
+    let kw = &call.keywords;
+    let model_ref = ex.required(cmd, kw, "MODELE")?;
+    let model = ex.model(model_ref)?;
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let carried = carried_nodes(&model, &mesh);
+    let ctx = (&*model, &*mesh, carried.as_slice());
+    let mut load = MechanicalLoad {
+        model: model_ref.id,
+        ..MechanicalLoad::default()
+    };
+    for occ in kw.factor("DDL_IMPO") {
+        let what = "AFFE_CHAR_MECA_F/DDL_IMPO";
+        load.imposed_fn
+            .extend(nodal_functions(ex, what, occ, ctx, &DISPLACEMENTS)?);
+    }
+    for occ in kw.factor("FORCE_NODALE") {
+        let what = "AFFE_CHAR_MECA_F/FORCE_NODALE";
+        load.nodal_forces_fn
+            .extend(nodal_functions(ex, what, occ, ctx, &FORCES)?);
+    }
+    for key in ["FORCE_CONTOUR", "FORCE_FACE"] {
+        let what = format!("{cmd}/{key}");
+        for occ in kw.factor(key) {
+            let cells = select::cells(occ, &mesh, "")
+                .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+            let force = [
+                time_function(ex, &what, occ, "FX")?,
+                time_function(ex, &what, occ, "FY")?,
+                time_function(ex, &what, occ, "FZ")?,
+            ];
+            load.boundary_fn.push(BoundaryFn::Force { cells, force });
+        }
+    }
+    for occ in kw.factor("FORCE_INTERNE") {
+        let what = "AFFE_CHAR_MECA_F/FORCE_INTERNE";
+        let cells =
+            select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+        load.volume.push(VolumeForce {
+            cells: super::loads::continuum_cells(&model, &mesh, cells),
+            force: [0.0; 3],
+            functions: [
+                time_function(ex, what, occ, "FX")?,
+                time_function(ex, what, occ, "FY")?,
+                time_function(ex, what, occ, "FZ")?,
+            ],
+        });
+    }
+    for occ in kw.factor("PRES_REP") {
+        let what = "AFFE_CHAR_MECA_F/PRES_REP";
+        let cells =
+            select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+        let pressure = time_function(ex, what, occ, "PRES")?
+            .ok_or_else(|| ex.kw_error(what, occ, "PRES", "a pressure function is required"))?;
+        load.boundary_fn
+            .push(BoundaryFn::Pressure { cells, pressure });
+    }
+    store_result(ex, call, Concept::MechanicalLoad(Rc::new(load)))
+}
+
+pub fn affe_char_cine_f(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(
+        call,
+        &[
+            "MODELE",
+            "INFO",
+            "MECA_IMPO",
+            "MECA_IMPO/TOUT",
+            "MECA_IMPO/GROUP_NO",
+            "MECA_IMPO/NOEUD",
+            "MECA_IMPO/GROUP_MA",
+            "MECA_IMPO/MAILLE",
+            "MECA_IMPO/SANS_GROUP_NO",
+            "MECA_IMPO/DX",
+            "MECA_IMPO/DY",
+            "MECA_IMPO/DZ",
+        ],
+    )?;
+    let cmd = "AFFE_CHAR_CINE_F/MECA_IMPO";
+    let kw = &call.keywords;
+    let model_ref = ex.required("AFFE_CHAR_CINE_F", kw, "MODELE")?;
+    let model = ex.model(model_ref)?;
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let carried = carried_nodes(&model, &mesh);
+    let ctx = (&*model, &*mesh, carried.as_slice());
+    if kw.factor("MECA_IMPO").is_empty() {
+        return Err(ExecError::new(
+            "AFFE_CHAR_CINE_F: MECA_IMPO is required (the only condition supported yet)",
+        ));
+    }
+    let mut imposed_fn = Vec::new();
+    for occ in kw.factor("MECA_IMPO") {
+        imposed_fn.extend(nodal_functions(ex, cmd, occ, ctx, &DISPLACEMENTS)?);
+    }
+    store_result(
+        ex,
+        call,
+        Concept::KinematicLoad(Rc::new(KinematicLoad {
+            model: model_ref.id,
+            imposed: Vec::new(),
+            imposed_fn,
+        })),
+    )
+}

@@ -1,0 +1,51 @@
+//! AFFE_CHAR_MECA_F / AFFE_CHAR_CINE_F: the project's scene
+//! (comm/loads_f.comm on comm/strip.mail) against its analytic values, and
+//! the refusal of what is not done (a distributed load of X).
+
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(comm: &Path, tag: &str) -> aster_run::program::Outcome {
+    let out = std::env::temp_dir().join(format!("aster-loads-f-{tag}-{}", std::process::id()));
+    let case =
+        aster_run::program::prepare(comm, Some(&root().join("comm/strip.mail")), &out).unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(out);
+    outcome
+}
+
+#[test]
+fn function_loads_pass_the_analytic_checks() {
+    let outcome = run(&root().join("comm/loads_f.comm"), "scene");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (10, 0));
+}
+
+#[test]
+fn a_pressure_of_x_is_refused_with_its_location() {
+    let dir = std::env::temp_dir().join(format!("aster-loads-f-src-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("pres_x.comm");
+    std::fs::write(
+        &comm,
+        r#"DEBUT()
+mesh = LIRE_MAILLAGE(FORMAT="ASTER")
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA=("PLATE", "RIGHT"), PHENOMENE="MECANIQUE", MODELISATION="C_PLAN"))
+p = FORMULE(NOM_PARA="X", VALE="10.0 * X")
+load = AFFE_CHAR_MECA_F(MODELE=model, PRES_REP=_F(GROUP_MA="RIGHT", PRES=p))
+FIN()
+"#,
+    )
+    .unwrap();
+    let outcome = run(&comm, "pres");
+    let err = outcome.error.expect("refused").message;
+    assert!(
+        err.contains("not supported yet: AFFE_CHAR_MECA_F/PRES_REP/PRES as a function of X"),
+        "{err}"
+    );
+    assert!(err.contains("pres_x.comm:5:"), "{err}");
+    let _ = std::fs::remove_dir_all(dir);
+}
