@@ -4,7 +4,8 @@
 //! `CONT` (-1 not paired, 0 no contact, 1 contact; in a RESOLUTION='NON'
 //! zone 3 for an interpenetration beyond TOLE_INTERP), `JEU` (gap on the
 //! current geometry; in a RESOLUTION='NON' zone on the last pairing's), `RN` (normal nodal force ≥ 0), `RNX RNY RNZ` (that
-//! force on the slave node, along the contact normal), the friction
+//! force along the contact normal: on the slave node in the discrete
+//! formulation, its opposite — the contact vector's sign — in the continuous one), the friction
 //! components `GLIX GLIY GLI RTAX RTAY RTAZ RTGX RTGY RTGZ` (all 0 without
 //! friction), `RX RY RZ` (total contact force = normal force here) and `R`
 //! (its norm).
@@ -14,7 +15,7 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::pairing::{nodal_points, pair_point, PairStatus};
-use crate::source::ZoneContact;
+use crate::source::{ZoneContact, ZoneLaw};
 
 /// The component names, in field order.
 pub const CONT_NOEU_COMPONENTS: [&str; 19] = [
@@ -139,9 +140,19 @@ impl ContNoeu {
                         };
                         v[1] = p.gap;
                         v[2] = rn;
+                        // The vector components: in the continuous formulation
+                        // code_aster reads them from the assembled contact
+                        // vector (CNELTC, on the internal-force side of the
+                        // balance), so they point against the force the master
+                        // exerts on the slave node; SSNV193A tests RZ < 0 on a
+                        // slave face pressed down onto its master.
+                        let sign = match z.law {
+                            ZoneLaw::Continue(_) => -1.0,
+                            ZoneLaw::Discrete(_) => 1.0,
+                        };
                         for c in 0..3 {
-                            v[3 + c] = rn * p.normal[c];
-                            v[15 + c] = rn * p.normal[c];
+                            v[3 + c] = sign * rn * p.normal[c];
+                            v[15 + c] = sign * rn * p.normal[c];
                         }
                         v[18] = rn;
                     }

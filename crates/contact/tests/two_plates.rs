@@ -219,3 +219,48 @@ fn axisymmetric_lags_c_is_the_pressure_when_weights_carry_the_radius() {
         assert!((dy(&model, u, *n) + 0.05).abs() < 1e-9);
     }
 }
+
+/// CONT_NOEU of a continuous zone: code_aster (`mmmres`) reads the vector
+/// components from the assembled contact vector, so on the upper plate
+/// pressed down onto the lower one RNY = RY = −RN (a discrete zone gives +RN,
+/// see zzzz237a.rs).
+#[test]
+fn continuous_cont_noeu_components_carry_the_contact_vector_sign() {
+    let def = continuous(Integration::Auto, GeomLoop::Controle { nb_iter: 2 });
+    let (model, loads) = two_plates_problem(two_plates_mesh(4, 4).unwrap()).unwrap();
+    let mut zones = ZoneContact::build_all(&def, model.mesh()).unwrap();
+    let res = {
+        let mut snl = StaticNonLinear {
+            instants: vec![0.0, 1.0],
+            sources: zones
+                .iter_mut()
+                .map(|z| Box::new(z) as Box<dyn UnilateralSource>)
+                .collect(),
+            ..Default::default()
+        };
+        snl.solve(&model, &loads).unwrap()
+    };
+    let step = res.last().unwrap();
+    let x = positions(model.mesh(), model.dofs(), &step.displacement);
+    let cn = ContNoeu::at_step(&mut zones, model.mesh(), &x, &step.unilateral).unwrap();
+    let lags = zones[0].lags_c().expect("continuous zone has LAGS_C");
+    let mut total = 0.0;
+    for (n, _) in &lags {
+        assert_eq!(cn.value(*n, "CONT"), Some(1.0), "CONT({n:?})");
+        let rn = cn.value(*n, "RN").unwrap();
+        assert!(rn > 0.0, "RN({n:?}) = {rn}");
+        for c in ["RNY", "RY"] {
+            let v = cn.value(*n, c).unwrap();
+            assert!((v + rn).abs() < 1e-9 * rn, "{c}({n:?}) = {v}, RN = {rn}");
+        }
+        total += rn;
+    }
+    // σ_yy = −1e5 over the width of AB: the nodal forces add up to it.
+    let xs: Vec<f64> = lags.iter().map(|(n, _)| x[n.0 as usize][0]).collect();
+    let width =
+        xs.iter().cloned().fold(f64::MIN, f64::max) - xs.iter().cloned().fold(f64::MAX, f64::min);
+    assert!(
+        (total - 1e5 * width).abs() < 1e-6 * 1e5 * width,
+        "sum RN = {total}, width {width}"
+    );
+}

@@ -120,6 +120,9 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "INFO",
             "PROC0",
             "VERSION_MED",
+            // The model code_aster uses to locate element fields: ours
+            // carry their model with the result.
+            "MODELE",
             "RESU",
             "RESU/MAILLAGE",
             "RESU/RESULTAT",
