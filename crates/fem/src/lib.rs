@@ -40,6 +40,5 @@ pub use nonlinear::{
 };
 pub use post::{CellValues, NodalValues};
 pub use unilateral::{
-    FixedRows, GeometryCriterion, GeometryUpdate, InequalityRow, RowOutcome, State,
-    UnilateralMethod, UnilateralSource,
+    FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };

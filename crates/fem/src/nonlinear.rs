@@ -33,8 +33,7 @@ use crate::loads::Loads;
 use crate::model::Model;
 use crate::post::{self, CellValues};
 use crate::unilateral::{
-    GeometryCriterion, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
-    UnilateralSource,
+    GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };
 
 /// `NEWTON(PREDICTION=…)`: all give the same steps for linear elasticity;
@@ -279,14 +278,10 @@ impl StaticNonLinear<'_> {
 
         let mut srcs: Vec<Option<SourceRows>> = (0..self.sources.len()).map(|_| None).collect();
         let mut checked_held = false;
-        // code_aster's largest step increment seen by the geometric test
-        // (`geom_maxi`, −1 before the first test of the analysis).
-        let mut geom_maxi = -1.0f64;
         for (step_no, &t) in times.iter().enumerate() {
             if linear {
                 u.iter_mut().for_each(|v| *v = 0.0);
             }
-            let u_start = u.clone();
             let elim = loads.eliminated(model, t)?;
             for (&i, &v) in &elim {
                 u[i] = v;
@@ -342,7 +337,6 @@ impl StaticNonLinear<'_> {
                 convergence: self.convergence,
                 active_set_max_iter: self.active_set_max_iter,
                 coords: &free_coords,
-                u_start: &u_start,
             };
             let step = newton_step(
                 &ctx,
@@ -353,7 +347,6 @@ impl StaticNonLinear<'_> {
                 &mut self.sources,
                 &mut u,
                 t,
-                &mut geom_maxi,
             )?;
             let (iterations, lambdas, resi_rela, resi_maxi) = step;
             // Outcomes to the sources.
@@ -466,9 +459,6 @@ struct StepContext<'a> {
     active_set_max_iter: usize,
     /// Coordinates of the free unknowns (for the fill-reducing ordering).
     coords: &'a [[f64; 3]],
-    /// Displacement at the end of the previous step (code_aster's geometric
-    /// test measures increments from it).
-    u_start: &'a [f64],
 }
 
 type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64);
@@ -485,7 +475,6 @@ fn newton_step(
     sources: &mut [Box<dyn UnilateralSource + '_>],
     u: &mut [f64],
     t: f64,
-    geom_maxi: &mut f64,
 ) -> Result<StepOutcome, FemError> {
     let StepContext {
         model,
@@ -497,22 +486,7 @@ fn newton_step(
         convergence,
         active_set_max_iter,
         coords,
-        u_start,
     } = *ctx;
-    // code_aster's discrete geometric loop, when a re-pairing source asks
-    // for it (the strictest RESI_GEOM wins).
-    let criterion = sources
-        .iter()
-        .filter(|s| s.geometry_update() == GeometryUpdate::EachIteration)
-        .filter_map(|s| s.geometry_criterion())
-        .reduce(|a, b| GeometryCriterion {
-            resi_geom: a.resi_geom.min(b.resi_geom),
-            iter_maxi: a.iter_maxi.min(b.iter_maxi),
-        });
-    let mut geom_test = GeometryTest {
-        previous: None,
-        tests: 0,
-    };
     {
         let nd = u.len();
         let mut history: Vec<Vec<Vec<bool>>> = Vec::new();
@@ -799,43 +773,10 @@ fn newton_step(
                     }
                 }
             }
-            // code_aster's discrete geometric loop: once the residual has
-            // converged, test the displacement since the last pairing; pair
-            // again (and iterate) until the test passes.
-            if let (false, Some(crit)) = (changed, criterion) {
-                if converged_resi {
-                    let vale = geom_test.value(model, u, u_start, geom_maxi, crit.resi_geom);
-                    if vale < crit.resi_geom {
-                        let eq_lam = lam_rows[..eq.len()].to_vec();
-                        return Ok((newton_iter, (eq_lam, src_lam), resi_rela, resi_maxi));
-                    }
-                    if geom_test.tests >= crit.iter_maxi {
-                        return Err(FemError::ActiveSet {
-                            time: t,
-                            message: format!(
-                                "the geometric loop of contact (REAC_GEOM='AUTOMATIQUE') does not converge: after {} pairings the displacement since the last one is still {:.3e} of the step's increment (RESI_GEOM = {}); raise ITER_GEOM_MAXI or cut the step",
-                                geom_test.tests, vale, crit.resi_geom
-                            ),
-                        });
-                    }
-                    refresh_geometry_rows(model, sources, srcs, u, t, false)?;
-                }
-                // code_aster counts iterations from 0: ITER_GLOB_MAXI solves
-                // after the prediction.
-                if newton_iter > convergence.iter_glob_maxi {
-                    return Err(FemError::NoConvergence {
-                        time: t,
-                        iterations: newton_iter,
-                        resi_rela,
-                        resi_maxi,
-                    });
-                }
-                continue;
-            }
             // Geometry update at each iteration: re-ask the rows at the
             // current iterate; new rows mean another pass.
             if !changed {
-                changed = refresh_geometry_rows(model, sources, srcs, u, t, true)?;
+                changed = refresh_geometry_rows(model, sources, srcs, u, t)?;
                 if changed {
                     set_changes += 1;
                     if set_changes > active_set_max_iter {
@@ -888,73 +829,6 @@ fn newton_step(
     }
 }
 
-/// State of code_aster's geometric test within a step (`cfcgeo`).
-struct GeometryTest {
-    /// Step increment at the previous test (`REA2`); `None` before the
-    /// first test of the step.
-    previous: Option<Vec<f64>>,
-    /// Tests made in this step.
-    tests: usize,
-}
-
-impl GeometryTest {
-    /// The criterion value: largest nodal norm of the displacement since the
-    /// previous test over that of the step increment at the previous test.
-    /// As code_aster: the first test of a step returns 10 × `resi_geom`
-    /// (fails); an increment below 1e-6 of the largest one seen so far
-    /// returns `resi_geom` / 10 (passes).
-    fn value(
-        &mut self,
-        model: &Model,
-        u: &[f64],
-        u_start: &[f64],
-        geom_maxi: &mut f64,
-        resi_geom: f64,
-    ) -> f64 {
-        self.tests += 1;
-        let depdel: Vec<f64> = u.iter().zip(u_start).map(|(a, b)| a - b).collect();
-        let rea2 = self
-            .previous
-            .take()
-            .unwrap_or_else(|| vec![0.0; depdel.len()]);
-        let rea1: Vec<f64> = depdel.iter().zip(&rea2).map(|(a, b)| a - b).collect();
-        let rea1_maxi = max_nodal_norm(model, &rea1);
-        let rea2_maxi = max_nodal_norm(model, &rea2);
-        let geom_mini = if *geom_maxi < 0.0 {
-            *geom_maxi = rea2_maxi;
-            f64::EPSILON
-        } else {
-            *geom_maxi = geom_maxi.max(rea2_maxi);
-            1e-6 * *geom_maxi
-        };
-        self.previous = Some(depdel);
-        if rea2_maxi <= geom_mini {
-            if rea2_maxi == 0.0 {
-                10.0 * resi_geom
-            } else {
-                0.1 * resi_geom
-            }
-        } else {
-            rea1_maxi / rea2_maxi
-        }
-    }
-}
-
-/// Largest Euclidean norm of a node's translation (DX, DY, DZ) in a field.
-fn max_nodal_norm(model: &Model, field: &[f64]) -> f64 {
-    let mut sq = vec![0.0f64; model.mesh().coords.len()];
-    for (i, v) in field.iter().enumerate() {
-        let d = model.dofs().dof(i);
-        if matches!(
-            d.comp,
-            crate::dof::Comp::DX | crate::dof::Comp::DY | crate::dof::Comp::DZ
-        ) {
-            sq[d.node.0 as usize] += v * v;
-        }
-    }
-    sq.into_iter().fold(0.0f64, f64::max).sqrt()
-}
-
 fn gap(idx: &[(usize, f64)], rhs: f64, u: &[f64]) -> f64 {
     idx.iter().map(|&(i, c)| c * u[i]).sum::<f64>() - rhs
 }
@@ -976,17 +850,15 @@ fn length_scale(model: &Model, u: &[f64]) -> f64 {
 }
 
 /// Asks every source that updates its geometry at each iteration for its
-/// rows at the current iterate `u` and installs them (keeping the previous
-/// active set as the start). With `only_changed`, rows equal to the current
-/// ones are left as they are. Returns whether any source's rows were
-/// replaced.
+/// rows at the current iterate `u` and installs the ones that changed
+/// (keeping the previous active set as the start). Returns whether any
+/// source's rows were replaced.
 fn refresh_geometry_rows(
     model: &Model,
     sources: &mut [Box<dyn UnilateralSource + '_>],
     srcs: &mut [Option<SourceRows>],
     u: &[f64],
     t: f64,
-    only_changed: bool,
 ) -> Result<bool, FemError> {
     let mut changed = false;
     for (src, slot) in sources.iter_mut().zip(srcs.iter_mut()) {
@@ -1001,7 +873,7 @@ fn refresh_geometry_rows(
             time: t,
         };
         let rows = src.rows(&state)?;
-        if only_changed && rows == sr.rows {
+        if rows == sr.rows {
             continue;
         }
         let prev = Some(sr.active.clone());

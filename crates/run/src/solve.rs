@@ -290,16 +290,7 @@ pub fn stat_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     if call.reuse.is_some() {
         return Err(ex.unsupported("STAT_NON_LINE with reuse= (continuing a result)", call.span));
     }
-    let setup = parse_setup(ex, call, false)?;
-    let mesh_id = setup.model.mesh;
-    let (steps, fem) = crate::fembridge::solve(ex, &setup, false)?;
-    let evol = EvolResult {
-        typ: "evol_noli".into(),
-        mesh: mesh_id,
-        steps,
-        fem: Some(fem),
-    };
-    store_result(ex, call, Concept::Result(Rc::new(evol)))
+    solve_and_store(ex, call, false)
 }
 
 pub fn meca_statique(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -322,11 +313,21 @@ pub fn meca_statique(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "OPTION",
         ],
     )?;
-    let setup = parse_setup(ex, call, true)?;
+    solve_and_store(ex, call, true)
+}
+
+/// The common tail of STAT_NON_LINE (`linear` false: an evol_noli) and
+/// MECA_STATIQUE (`linear` true: an evol_elas): set-up, solve, store.
+fn solve_and_store(
+    ex: &mut Executor,
+    call: &CommandCall,
+    linear: bool,
+) -> Result<CommandOutput, ExecError> {
+    let setup = parse_setup(ex, call, linear)?;
     let mesh_id = setup.model.mesh;
-    let (steps, fem) = crate::fembridge::solve(ex, &setup, true)?;
+    let (steps, fem) = crate::fembridge::solve(ex, &setup, linear)?;
     let evol = EvolResult {
-        typ: "evol_elas".into(),
+        typ: if linear { "evol_elas" } else { "evol_noli" }.into(),
         mesh: mesh_id,
         steps,
         fem: Some(fem),
