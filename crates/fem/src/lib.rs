@@ -11,6 +11,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod assembly;
+pub mod behaviour;
 mod diag;
 pub mod dof;
 pub mod element;
@@ -29,14 +30,15 @@ pub mod shape;
 mod split_llt;
 pub mod unilateral;
 
+pub use behaviour::{Behaviours, CurveEnd, VonMises};
 pub use dof::{Comp, Dof, DofNumbering};
 pub use error::FemError;
 pub use loads::{Load, LoadItem, Loads, Multiplier};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
 pub use nonlinear::{
-    meca_statique, Convergence, InitialState, NewtonOptions, NonLinearResult, Prediction,
-    StaticNonLinear, Step,
+    meca_statique, Convergence, InitialState, MatrixKind, NewtonOptions, NonLinearResult,
+    Prediction, StaticNonLinear, Step,
 };
 pub use post::{CellValues, NodalValues};
 pub use unilateral::{

@@ -26,6 +26,7 @@
 //!   when ‖r‖∞ ≤ 1e-6 × (largest |Kᵢᵢ| × largest |u|) or is 0.
 
 use crate::assembly::{assemble_stiffness, restrict};
+use crate::behaviour::{Behaviours, PlasticCells};
 use crate::error::FemError;
 use crate::held;
 use crate::linalg::{self, Csc, SolveFailure};
@@ -36,8 +37,11 @@ use crate::unilateral::{
     GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };
 
-/// `NEWTON(PREDICTION=…)`: all give the same steps for linear elasticity;
-/// kept so the runner can pass what the file says.
+/// `NEWTON(PREDICTION=…)`: the matrix of the first iteration of a step.
+/// `Tangente` (and `DeplCalcule`, `Extrapole`, which only change the first
+/// iterate in code_aster) uses the tangent at the converged state,
+/// `Elastique` the elastic stiffness. All give the same steps for linear
+/// elasticity.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Prediction {
     #[default]
@@ -47,13 +51,27 @@ pub enum Prediction {
     Extrapole,
 }
 
+/// `NEWTON(MATRICE=…)`: the matrix of the Newton iterations.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MatrixKind {
+    /// `TANGENTE`: the consistent tangent, reassembled every `REAC_ITER`
+    /// iterations.
+    #[default]
+    Tangente,
+    /// `ELASTIQUE`: the elastic stiffness throughout (more iterations,
+    /// never reassembled).
+    Elastique,
+}
+
 /// `NEWTON` keywords.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonOptions {
     pub prediction: Prediction,
-    /// `REAC_ITER`: reassemble the tangent every n iterations (the elastic
-    /// tangent is constant, so this only matters for reporting).
+    /// `REAC_ITER`: reassemble the tangent every n iterations (0: keep the
+    /// prediction's matrix for the whole step). The elastic tangent is
+    /// constant, so this only matters with a plastic behaviour.
     pub reac_iter: usize,
+    pub matrix: MatrixKind,
 }
 
 impl Default for NewtonOptions {
@@ -61,6 +79,7 @@ impl Default for NewtonOptions {
         NewtonOptions {
             prediction: Prediction::Tangente,
             reac_iter: 1,
+            matrix: MatrixKind::Tangente,
         }
     }
 }
@@ -113,6 +132,9 @@ pub struct Step {
     pub iterations: usize,
     pub resi_glob_rela: f64,
     pub resi_glob_maxi: f64,
+    /// RESI_GLOB_RELA after each Newton iteration of the step (code_aster's
+    /// convergence table; empty for the initial state).
+    pub residual_history: Vec<f64>,
 }
 
 /// A result: the stored steps (the first is the initial state).
@@ -170,6 +192,8 @@ pub struct StaticNonLinear<'s> {
     pub active_set_max_iter: usize,
     /// NUME_ORDRE of the first stored step (the initial state).
     pub first_order: usize,
+    /// `COMPORTEMENT`: the plastic cells (default: all elastic).
+    pub behaviours: Behaviours,
 }
 
 impl Default for StaticNonLinear<'_> {
@@ -184,6 +208,7 @@ impl Default for StaticNonLinear<'_> {
             sources: Vec::new(),
             active_set_max_iter: 100,
             first_order: 0,
+            behaviours: Behaviours::default(),
         }
     }
 }
@@ -237,6 +262,16 @@ impl StaticNonLinear<'_> {
             }
             None => vec![0.0; nd],
         };
+        let mut plastic = if linear {
+            None
+        } else {
+            PlasticCells::new(model, &self.behaviours)?
+        };
+        if plastic.is_some() && u.iter().any(|&v| v != 0.0) {
+            return Err(FemError::Model(
+                "an initial state (ETAT_INIT) with a plastic behaviour needs its stresses and internal variables; only a displacement was given: start from the undeformed state or use ELAS".into(),
+            ));
+        }
         let k = assemble_stiffness(model)?;
         let kdiag_max = k.diagonal().iter().fold(0.0f64, |m, v| m.max(v.abs()));
         // Eliminated DOFs (the set is fixed; values depend on t).
@@ -259,11 +294,16 @@ impl StaticNonLinear<'_> {
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
+            let mut stress = post::sief_elga(model, &u)?;
+            let internal_variables = match &plastic {
+                Some(pc) => pc.fields(&mut stress),
+                None => Vec::new(),
+            };
             steps.push(Step {
                 nume_ordre: self.first_order,
                 time: t0,
-                stress: post::sief_elga(model, &u)?,
-                internal_variables: Vec::new(),
+                stress,
+                internal_variables,
                 multipliers: vec![
                     0.0;
                     loads.equality_rows(model, t0).map(|r| r.len()).unwrap_or(0)
@@ -273,6 +313,7 @@ impl StaticNonLinear<'_> {
                 iterations: 0,
                 resi_glob_rela: 0.0,
                 resi_glob_maxi: 0.0,
+                residual_history: Vec::new(),
             });
         }
 
@@ -335,6 +376,7 @@ impl StaticNonLinear<'_> {
                 nfree,
                 kdiag_max,
                 convergence: self.convergence,
+                newton: self.newton,
                 active_set_max_iter: self.active_set_max_iter,
                 coords: &free_coords,
             };
@@ -347,8 +389,12 @@ impl StaticNonLinear<'_> {
                 &mut self.sources,
                 &mut u,
                 t,
+                &mut plastic,
             )?;
-            let (iterations, lambdas, resi_rela, resi_maxi) = step;
+            let (iterations, lambdas, resi_rela, resi_maxi, residual_history) = step;
+            if let Some(pc) = &mut plastic {
+                pc.commit();
+            }
             // Outcomes to the sources.
             let mut unil = Vec::with_capacity(self.sources.len());
             for (s, src) in self.sources.iter_mut().enumerate() {
@@ -389,17 +435,23 @@ impl StaticNonLinear<'_> {
                 src.converged(&state, &outcomes)?;
                 unil.push(outcomes);
             }
+            let mut stress = post::sief_elga(model, &u)?;
+            let internal_variables = match &plastic {
+                Some(pc) => pc.fields(&mut stress),
+                None => Vec::new(),
+            };
             steps.push(Step {
                 nume_ordre: self.first_order + step_no + usize::from(!linear),
                 time: t,
                 displacement: u.clone(),
-                stress: post::sief_elga(model, &u)?,
-                internal_variables: Vec::new(),
+                stress,
+                internal_variables,
                 multipliers: lambdas.0,
                 unilateral: unil,
                 iterations,
                 resi_glob_rela: resi_rela,
                 resi_glob_maxi: resi_maxi,
+                residual_history,
             });
         }
         Ok(NonLinearResult { steps })
@@ -456,12 +508,13 @@ struct StepContext<'a> {
     nfree: usize,
     kdiag_max: f64,
     convergence: Convergence,
+    newton: NewtonOptions,
     active_set_max_iter: usize,
     /// Coordinates of the free unknowns (for the fill-reducing ordering).
     coords: &'a [[f64; 3]],
 }
 
-type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64);
+type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64, Vec<f64>);
 
 /// Newton + active-set iterations of one step. Returns (iterations,
 /// (equality multipliers, per-source row multipliers), resi_rela, resi_maxi).
@@ -475,6 +528,7 @@ fn newton_step(
     sources: &mut [Box<dyn UnilateralSource + '_>],
     u: &mut [f64],
     t: f64,
+    plastic: &mut Option<PlasticCells>,
 ) -> Result<StepOutcome, FemError> {
     let StepContext {
         model,
@@ -484,9 +538,20 @@ fn newton_step(
         nfree,
         kdiag_max,
         convergence,
+        newton,
         active_set_max_iter,
         coords,
     } = *ctx;
+    // code_aster numbers the iterations from 0 (the prediction): with a
+    // plastic behaviour ITER_GLOB_MAXI allows that many corrections after
+    // it. (Elastic steps converge at the first solve.)
+    let max_solves = convergence.iter_glob_maxi + usize::from(plastic.is_some());
+    // The internal forces at the current iterate, once computed (the
+    // residual of one iteration is the right-hand side of the next).
+    let mut fint_now: Option<Vec<f64>> = None;
+    // The matrix of the plastic iterations (`None`: the elastic K_ff).
+    let mut tangent: Option<Csc> = None;
+    let mut residuals: Vec<f64> = Vec::new();
     {
         let nd = u.len();
         let mut history: Vec<Vec<Vec<bool>>> = Vec::new();
@@ -607,9 +672,18 @@ fn newton_step(
                     return Err(FemError::Singular { free_dofs: free });
                 }
             }
-            let a = kff.with_extra(nfree + nk, extra);
+            let fint = match fint_now.take() {
+                Some(f) => f,
+                None => internal_forces(model, k, plastic, u)?,
+            };
+            if let Some(pc) = plastic.as_mut() {
+                choose_tangent(&mut tangent, pc, model, k, map, nfree, newton, newton_iter)?;
+            }
+            let a = tangent
+                .as_ref()
+                .unwrap_or(kff)
+                .with_extra(nfree + nk, extra);
             // Right-hand side.
-            let fint = k.mul(u);
             let mut b = vec![0.0; nfree + nk];
             for i in 0..nd {
                 if map[i] != usize::MAX {
@@ -649,7 +723,7 @@ fn newton_step(
             }
             newton_iter += 1;
             // Residual at the new iterate.
-            let fint = k.mul(u);
+            let fint = internal_forces(model, k, plastic, u)?;
             let mut reac = vec![0.0; nd];
             for (r, (terms, _)) in rows.iter().enumerate() {
                 for &(i, c) in terms {
@@ -697,6 +771,8 @@ fn newton_step(
                 let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 resi_maxi <= 1e-6 * kdiag_max * umax || resi_maxi == 0.
             };
+            fint_now = Some(fint);
+            residuals.push(resi_rela);
             // Multipliers per source row (exact sources).
             let mut src_lam: Vec<Vec<f64>> = Vec::new();
             let mut changed = false;
@@ -791,9 +867,15 @@ fn newton_step(
                 }
                 if converged_resi {
                     let eq_lam = lam_rows[..eq.len()].to_vec();
-                    return Ok((newton_iter, (eq_lam, src_lam), resi_rela, resi_maxi));
+                    return Ok((
+                        newton_iter,
+                        (eq_lam, src_lam),
+                        resi_rela,
+                        resi_maxi,
+                        residuals,
+                    ));
                 }
-                if newton_iter >= convergence.iter_glob_maxi {
+                if newton_iter >= max_solves {
                     return Err(FemError::NoConvergence {
                         time: t,
                         iterations: newton_iter,
@@ -847,6 +929,56 @@ fn length_scale(model: &Model, u: &[f64]) -> f64 {
     let size = (0..3).map(|k| (hi[k] - lo[k]).max(0.)).fold(0.0, f64::max);
     let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     size.max(umax).max(1e-300)
+}
+
+/// f_int(u): K u, plus the plastic cells' corrections (their trial states
+/// and consistent tangents are updated on the way).
+fn internal_forces(
+    model: &Model,
+    k: &Csc,
+    plastic: &mut Option<PlasticCells>,
+    u: &[f64],
+) -> Result<Vec<f64>, FemError> {
+    let mut fint = k.mul(u);
+    if let Some(pc) = plastic.as_mut() {
+        pc.update(model, u, &mut fint)?;
+    }
+    Ok(fint)
+}
+
+/// The matrix of Newton iteration `iter` of a step with plastic cells
+/// (`None` in `tangent`: the elastic K_ff): iteration 0 uses the
+/// prediction (`PREDICTION`), later ones the consistent tangent of the last
+/// update every `REAC_ITER` iterations (0: never), `MATRICE='ELASTIQUE'`
+/// the elastic stiffness throughout.
+#[allow(clippy::too_many_arguments)]
+fn choose_tangent(
+    tangent: &mut Option<Csc>,
+    pc: &mut PlasticCells,
+    model: &Model,
+    k: &Csc,
+    map: &[usize],
+    nfree: usize,
+    newton: NewtonOptions,
+    iter: usize,
+) -> Result<(), FemError> {
+    if newton.matrix == MatrixKind::Elastique {
+        *tangent = None;
+        return Ok(());
+    }
+    if iter == 0 {
+        *tangent = if newton.prediction == Prediction::Elastique {
+            None
+        } else {
+            pc.prediction(model)?;
+            Some(restrict(&pc.tangent(k), map, nfree))
+        };
+        return Ok(());
+    }
+    if newton.reac_iter > 0 && iter.is_multiple_of(newton.reac_iter) {
+        *tangent = Some(restrict(&pc.tangent(k), map, nfree));
+    }
+    Ok(())
 }
 
 /// Asks every source that updates its geometry at each iteration for its
