@@ -552,6 +552,13 @@ fn newton_step(
     // The matrix of the plastic iterations (`None`: the elastic K_ff).
     let mut tangent: Option<Csc> = None;
     let mut residuals: Vec<f64> = Vec::new();
+    // With plastic cells, as code_aster: the active set is settled on the
+    // linearised problem of each Newton iteration (same iterate, internal
+    // forces and tangent); `outer` counts the Newton iterations proper,
+    // `base` holds the iterate and its internal forces while the set moves.
+    let mut outer = 0usize;
+    let mut new_outer = true;
+    let mut base: Option<(Vec<f64>, Vec<f64>)> = None;
     {
         let nd = u.len();
         let mut history: Vec<Vec<Vec<bool>>> = Vec::new();
@@ -677,7 +684,10 @@ fn newton_step(
                 None => internal_forces(model, k, plastic, u)?,
             };
             if let Some(pc) = plastic.as_mut() {
-                choose_tangent(&mut tangent, pc, model, k, map, nfree, newton, newton_iter)?;
+                if new_outer {
+                    choose_tangent(&mut tangent, pc, model, k, map, nfree, newton, outer)?;
+                }
+                base = Some((u.to_vec(), fint.clone()));
             }
             let a = tangent
                 .as_ref()
@@ -851,8 +861,21 @@ fn newton_step(
             }
             // Geometry update at each iteration: re-ask the rows at the
             // current iterate; new rows mean another pass.
+            if !changed && plastic.is_some() {
+                // A Newton iteration with a settled active set: the next
+                // one linearises at this iterate.
+                outer += 1;
+                new_outer = true;
+                history.clear();
+                set_changes = 0;
+            }
             if !changed {
-                changed = refresh_geometry_rows(model, sources, srcs, u, t)?;
+                // A new pairing on the current geometry once Newton has
+                // converged with the current one (at once when elastic: a
+                // stable active set is a converged solve then).
+                if plastic.is_none() || converged_resi {
+                    changed = refresh_geometry_rows(model, sources, srcs, u, t)?;
+                }
                 if changed {
                     set_changes += 1;
                     if set_changes > active_set_max_iter {
@@ -875,7 +898,8 @@ fn newton_step(
                         residuals,
                     ));
                 }
-                if newton_iter >= max_solves {
+                let iterations = if plastic.is_some() { outer } else { newton_iter };
+                if iterations >= max_solves {
                     return Err(FemError::NoConvergence {
                         time: t,
                         iterations: newton_iter,
@@ -884,6 +908,15 @@ fn newton_step(
                     });
                 }
             } else {
+                if let (Some(_), Some((u0, f0))) = (plastic.as_ref(), base.take()) {
+                    // Solve the same linearised problem with the new set:
+                    // back to its iterate (and the Gauss-point trial states
+                    // and tangents there).
+                    u.copy_from_slice(&u0);
+                    internal_forces(model, k, plastic, u)?;
+                    fint_now = Some(f0);
+                    new_outer = false;
+                }
                 set_changes += 1;
                 let state: Vec<Vec<bool>> =
                     srcs.iter().flatten().map(|s| s.active.clone()).collect();
