@@ -898,7 +898,11 @@ fn newton_step(
                         residuals,
                     ));
                 }
-                let iterations = if plastic.is_some() { outer } else { newton_iter };
+                let iterations = if plastic.is_some() {
+                    outer
+                } else {
+                    newton_iter
+                };
                 if iterations >= max_solves {
                     return Err(FemError::NoConvergence {
                         time: t,

@@ -565,3 +565,130 @@ fn a_plastic_initial_state_without_internal_variables_is_refused() {
         "{err}"
     );
 }
+
+/// The shear block of [`shear_block`] resting on unilateral supports
+/// (u_y ≥ 0 at every base node, one node pinned in x) instead of clamped:
+/// the pushed side lifts off while the other yields.
+fn block_on_supports(newton: NewtonOptions) -> (Model, NonLinearResult) {
+    let (nx, ny) = (6, 4);
+    let mut mb = MeshBuilder::new(2);
+    let mut grid = vec![vec![NodeId(0); nx + 1]; ny + 1];
+    for j in 0..=ny {
+        for i in 0..=nx {
+            grid[j][i] = mb.node(
+                &format!("N{i}_{j}"),
+                [i as f64 / nx as f64 * 2., j as f64 / ny as f64, 0.],
+            );
+        }
+    }
+    let mut elements = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let c = mb.cell(
+                &format!("M{i}_{j}"),
+                CellType::QUAD4,
+                &[
+                    grid[j][i],
+                    grid[j][i + 1],
+                    grid[j + 1][i + 1],
+                    grid[j + 1][i],
+                ],
+            );
+            elements.push(Element {
+                cell: c,
+                kind: ElementKind::Continuum {
+                    hypothesis: Hypothesis::PlaneStrain,
+                    material: steel(),
+                },
+            });
+        }
+    }
+    let model = Model::new(mb.mesh, elements).unwrap();
+    let mut loads = Loads::new();
+    loads.push(Load::Eliminated {
+        dof: Dof::new(grid[0][nx], Comp::DX),
+        value: 0.,
+    });
+    // Pressed down on the right of the top, pushed sideways at the top
+    // left: the left end of the base lifts, the right end is crushed.
+    for &n in &grid[ny][4..] {
+        loads.add(
+            Load::NodalForce {
+                dof: Dof::new(n, Comp::DY),
+                value: -140.,
+            },
+            Multiplier::from_fn(Ok),
+        );
+    }
+    loads.add(
+        Load::NodalForce {
+            dof: Dof::new(grid[ny][0], Comp::DX),
+            value: 120.,
+        },
+        Multiplier::from_fn(Ok),
+    );
+    let rows = grid[0]
+        .iter()
+        .enumerate()
+        .map(|(k, &n)| InequalityRow::new(vec![(Dof::new(n, Comp::DY), -1.)], 0., k))
+        .collect();
+    let mut snl = StaticNonLinear {
+        instants: vec![0., 0.5, 1.0],
+        newton,
+        convergence: TIGHT,
+        sources: vec![Box::new(FixedRows {
+            name: "base".into(),
+            rows,
+            method: UnilateralMethod::ActiveSet,
+        })],
+        behaviours: plastic_everywhere(&model, &ecro_line()),
+        ..Default::default()
+    };
+    let res = snl.solve(&model, &loads).unwrap();
+    (model, res)
+}
+
+#[test]
+fn plasticity_and_unilateral_supports_settle_together() {
+    let (_, res) = block_on_supports(NewtonOptions::default());
+    let last = res.last().unwrap();
+    let out = &last.unilateral[0];
+    // Vertical equilibrium: the supports carry the 3 × 140 pressing down.
+    let total: f64 = out.iter().map(|o| o.multiplier).sum();
+    assert!((total - 420.).abs() < 1e-8 * 420., "{total}");
+    // Complementarity: pressed rows are closed, open rows carry nothing.
+    for o in out {
+        assert!(o.multiplier >= -1e-9, "{o:?}");
+        if o.active {
+            assert!(o.violation.abs() < 1e-12, "{o:?}");
+        } else {
+            assert!(o.violation < 0. && o.multiplier == 0., "{o:?}");
+        }
+    }
+    assert!(out.iter().any(|o| !o.active), "part of the base lifts off");
+    let plastic = last
+        .internal_variables
+        .iter()
+        .flat_map(|cv| cv.points.iter())
+        .filter(|p| p[0] > 0.)
+        .count();
+    assert!(plastic > 0, "the crushed corner yields");
+    // The converged answer does not depend on the Newton path.
+    for newton in [
+        NewtonOptions {
+            prediction: Prediction::Elastique,
+            ..NewtonOptions::default()
+        },
+        NewtonOptions {
+            reac_iter: 2,
+            ..NewtonOptions::default()
+        },
+    ] {
+        let (_, other) = block_on_supports(newton);
+        let b = other.last().unwrap();
+        let umax = last.displacement.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (x, y) in last.displacement.iter().zip(&b.displacement) {
+            assert!((x - y).abs() < 1e-9 * umax, "{newton:?}: {x} vs {y}");
+        }
+    }
+}

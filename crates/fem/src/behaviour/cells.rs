@@ -45,7 +45,7 @@ pub(crate) struct PlasticCells {
 impl PlasticCells {
     /// `None` when every cell is elastic.
     pub fn new(model: &Model, behaviours: &Behaviours) -> Result<Option<PlasticCells>, FemError> {
-        let elements = behaviours.elements(model)?;
+        let elements = behaviours.elements(model);
         if elements.is_empty() {
             return Ok(None);
         }

@@ -15,7 +15,6 @@ pub use cells::forc_noda_from_stress;
 pub(crate) use cells::PlasticCells;
 pub use vmis::{CurveEnd, Hardening, PointState, VonMises};
 
-use crate::error::FemError;
 use crate::model::{ElementKind, Model};
 use aster_mesh::CellId;
 use std::collections::BTreeMap;
@@ -57,18 +56,16 @@ impl Behaviours {
     /// with their laws. Laws on cells without a continuum element are
     /// ignored (code_aster applies COMPORTEMENT to the model's cells only:
     /// boundary and discrete cells have no such behaviour).
-    pub(crate) fn elements(&self, model: &Model) -> Result<Vec<(usize, Arc<VonMises>)>, FemError> {
-        let mut out = Vec::new();
+    pub(crate) fn elements(&self, model: &Model) -> Vec<(usize, Arc<VonMises>)> {
         if self.by_cell.is_empty() {
-            return Ok(out);
+            return Vec::new();
         }
-        for (k, el) in model.elements().iter().enumerate() {
-            if let (ElementKind::Continuum { .. }, Some(law)) =
-                (&el.kind, self.by_cell.get(&el.cell))
-            {
-                out.push((k, law.clone()));
-            }
-        }
-        Ok(out)
+        model
+            .elements()
+            .iter()
+            .enumerate()
+            .filter(|(_, el)| matches!(el.kind, ElementKind::Continuum { .. }))
+            .filter_map(|(k, el)| self.by_cell.get(&el.cell).map(|law| (k, law.clone())))
+            .collect()
     }
 }
