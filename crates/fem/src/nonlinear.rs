@@ -558,6 +558,10 @@ fn newton_step(
     // `base` holds the iterate and its internal forces while the set moves.
     let mut outer = 0usize;
     let mut new_outer = true;
+    // The Newton iteration of the last pairing: each pairing of the
+    // geometric loop gets ITER_GLOB_MAXI iterations (the loop itself is
+    // bounded by the source's ITER_GEOM_MAXI).
+    let mut pairing_start = 0usize;
     let mut base: Option<(Vec<f64>, Vec<f64>)> = None;
     {
         let nd = u.len();
@@ -877,6 +881,7 @@ fn newton_step(
                     changed = refresh_geometry_rows(model, sources, srcs, u, t)?;
                 }
                 if changed {
+                    pairing_start = outer;
                     set_changes += 1;
                     if set_changes > active_set_max_iter {
                         return Err(FemError::ActiveSet {
@@ -899,7 +904,7 @@ fn newton_step(
                     ));
                 }
                 let iterations = if plastic.is_some() {
-                    outer
+                    outer - pairing_start
                 } else {
                     newton_iter
                 };
