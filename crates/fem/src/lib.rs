@@ -38,7 +38,7 @@ pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
 pub use nonlinear::{
     meca_statique, Convergence, InitialState, MatrixKind, NewtonOptions, NonLinearResult,
-    Prediction, StaticNonLinear, Step,
+    Prediction, StaticNonLinear, Step, Subdivision,
 };
 pub use post::{CellValues, NodalValues};
 pub use unilateral::{

@@ -194,6 +194,32 @@ pub struct StaticNonLinear<'s> {
     pub first_order: usize,
     /// `COMPORTEMENT`: the plastic cells (default: all elastic).
     pub behaviours: Behaviours,
+    /// Step cutting when Newton fails with plastic cells (`None`: fail).
+    pub subdivision: Option<Subdivision>,
+}
+
+/// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment is cut
+/// into `pieces` equal ones, at most `max_level` times in a row, never
+/// below `min_step`. Only used with plastic cells (an elastic step that
+/// fails would fail the same way in pieces).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Subdivision {
+    /// `SUBD_PAS` (default 4).
+    pub pieces: usize,
+    /// `SUBD_NIVEAU` (default 3).
+    pub max_level: usize,
+    /// `SUBD_PAS_MINI`.
+    pub min_step: f64,
+}
+
+impl Default for Subdivision {
+    fn default() -> Self {
+        Subdivision {
+            pieces: 4,
+            max_level: 3,
+            min_step: 0.0,
+        }
+    }
 }
 
 impl Default for StaticNonLinear<'_> {
@@ -209,6 +235,7 @@ impl Default for StaticNonLinear<'_> {
             active_set_max_iter: 100,
             first_order: 0,
             behaviours: Behaviours::default(),
+            subdivision: Some(Subdivision::default()),
         }
     }
 }
@@ -216,6 +243,7 @@ impl Default for StaticNonLinear<'_> {
 /// Time precision when comparing instants.
 const TIME_EPS: f64 = 1e-9;
 
+#[derive(Clone)]
 struct SourceRows {
     rows: Vec<InequalityRow>,
     /// Rows as (dof index, coef).
@@ -319,82 +347,129 @@ impl StaticNonLinear<'_> {
 
         let mut srcs: Vec<Option<SourceRows>> = (0..self.sources.len()).map(|_| None).collect();
         let mut checked_held = false;
+        let mut t_prev = t0;
         for (step_no, &t) in times.iter().enumerate() {
             if linear {
                 u.iter_mut().for_each(|v| *v = 0.0);
             }
-            let elim = loads.eliminated(model, t)?;
-            for (&i, &v) in &elim {
-                u[i] = v;
-            }
-            let fext = loads.external_forces(model, t)?;
-            let eq = loads.equality_rows(model, t)?;
-            // Rows of the sources, from the last converged state.
-            for (s, src) in self.sources.iter_mut().enumerate() {
-                let need = match (&srcs[s], src.geometry_update()) {
-                    (None, _) => true,
-                    (Some(_), GeometryUpdate::Once) => false,
-                    _ => true,
-                };
-                if need {
-                    let state = State {
-                        mesh: model.mesh(),
-                        dofs: model.dofs(),
-                        displacement: &u,
-                        time: t,
+            // The increment to t, cut into `pieces` when Newton fails with
+            // a plastic behaviour (code_aster's default ECHEC: DECOUPE,
+            // SUBD_PAS=4, SUBD_NIVEAU=3); `pending` holds the instants still
+            // to reach, the next on top.
+            let mut pending: Vec<(f64, usize)> = vec![(t, 0)];
+            let mut from = t_prev;
+            let mut step = None;
+            while let Some(&(target, level)) = pending.last() {
+                let saved = (u.clone(), srcs.clone());
+                let elim = loads.eliminated(model, target)?;
+                for (&i, &v) in &elim {
+                    u[i] = v;
+                }
+                let fext = loads.external_forces(model, target)?;
+                let eq = loads.equality_rows(model, target)?;
+                // Rows of the sources, from the last converged state.
+                for (s, src) in self.sources.iter_mut().enumerate() {
+                    let need = match (&srcs[s], src.geometry_update()) {
+                        (None, _) => true,
+                        (Some(_), GeometryUpdate::Once) => false,
+                        _ => true,
                     };
-                    let rows = src.rows(&state)?;
-                    let prev_active = srcs[s].as_ref().map(|r| r.active.clone());
-                    srcs[s] = Some(make_rows(
-                        model,
-                        rows,
-                        src.method(),
-                        src.geometry_update(),
-                        prev_active,
-                        &u,
-                    )?);
+                    if need {
+                        let state = State {
+                            mesh: model.mesh(),
+                            dofs: model.dofs(),
+                            displacement: &u,
+                            time: target,
+                        };
+                        let rows = src.rows(&state)?;
+                        let prev_active = srcs[s].as_ref().map(|r| r.active.clone());
+                        srcs[s] = Some(make_rows(
+                            model,
+                            rows,
+                            src.method(),
+                            src.geometry_update(),
+                            prev_active,
+                            &u,
+                        )?);
+                    }
+                }
+                if !checked_held {
+                    checked_held = true;
+                    let mut ground: Vec<Vec<(usize, f64)>> =
+                        elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                    ground.extend(eq.iter().map(|r| r.terms.clone()));
+                    for s in srcs.iter().flatten() {
+                        ground.extend(s.idx.iter().cloned());
+                    }
+                    let free = held::free_dofs(model, &ground);
+                    if !free.is_empty() {
+                        return Err(FemError::Singular { free_dofs: free });
+                    }
+                }
+                let ctx = StepContext {
+                    model,
+                    k: &k,
+                    kff: &kff,
+                    map: &map,
+                    nfree,
+                    kdiag_max,
+                    convergence: self.convergence,
+                    newton: self.newton,
+                    active_set_max_iter: self.active_set_max_iter,
+                    coords: &free_coords,
+                };
+                let attempt = newton_step(
+                    &ctx,
+                    &elim,
+                    &fext,
+                    &eq,
+                    &mut srcs,
+                    &mut self.sources,
+                    &mut u,
+                    target,
+                    &mut plastic,
+                );
+
+                match attempt {
+                    Ok(outcome) => {
+                        pending.pop();
+                        from = target;
+                        if let Some(pc) = &mut plastic {
+                            pc.commit();
+                        }
+                        step = Some(outcome);
+                    }
+                    Err(e) => {
+                        let cut = self.subdivision.filter(|_| plastic.is_some()).filter(|sd| {
+                            matches!(
+                                e,
+                                FemError::NoConvergence { .. } | FemError::ActiveSet { .. }
+                            ) && level < sd.max_level
+                                && (target - from) / sd.pieces as f64 >= sd.min_step
+                        });
+                        let Some(sd) = cut else {
+                            return Err(e);
+                        };
+                        (u, srcs) = saved;
+                        pending.pop();
+                        for piece in (1..=sd.pieces).rev() {
+                            let at = if piece == sd.pieces {
+                                target
+                            } else {
+                                from + (target - from) * piece as f64 / sd.pieces as f64
+                            };
+                            pending.push((at, level + 1));
+                        }
+                    }
                 }
             }
-            if !checked_held {
-                checked_held = true;
-                let mut ground: Vec<Vec<(usize, f64)>> =
-                    elim.keys().map(|&i| vec![(i, 1.0)]).collect();
-                ground.extend(eq.iter().map(|r| r.terms.clone()));
-                for s in srcs.iter().flatten() {
-                    ground.extend(s.idx.iter().cloned());
-                }
-                let free = held::free_dofs(model, &ground);
-                if !free.is_empty() {
-                    return Err(FemError::Singular { free_dofs: free });
-                }
-            }
-            let ctx = StepContext {
-                model,
-                k: &k,
-                kff: &kff,
-                map: &map,
-                nfree,
-                kdiag_max,
-                convergence: self.convergence,
-                newton: self.newton,
-                active_set_max_iter: self.active_set_max_iter,
-                coords: &free_coords,
+            t_prev = t;
+            let Some(step) = step else {
+                return Err(FemError::Model(format!(
+                    "no increment computed to time {t}"
+                )));
             };
-            let step = newton_step(
-                &ctx,
-                &elim,
-                &fext,
-                &eq,
-                &mut srcs,
-                &mut self.sources,
-                &mut u,
-                t,
-                &mut plastic,
-            )?;
             let (iterations, lambdas, resi_rela, resi_maxi, residual_history) = step;
-            if let Some(pc) = &mut plastic {
-                pc.commit();
-            }
             // Outcomes to the sources.
             let mut unil = Vec::with_capacity(self.sources.len());
             for (s, src) in self.sources.iter_mut().enumerate() {

@@ -418,6 +418,23 @@ fn axisymmetric_patch_carries_the_homogeneous_plastic_state() {
 /// A plane-strain block clamped at its base and pushed sideways and down at
 /// its top by forces: a non-uniform plastic zone.
 fn shear_block(newton: NewtonOptions, rela: f64, iter_glob_maxi: usize) -> NonLinearResult {
+    shear_block_at(
+        &[0., 0.5, 1.0, 1.25],
+        newton,
+        rela,
+        iter_glob_maxi,
+        Some(Subdivision::default()),
+    )
+    .unwrap()
+}
+
+fn shear_block_at(
+    instants: &[f64],
+    newton: NewtonOptions,
+    rela: f64,
+    iter_glob_maxi: usize,
+    subdivision: Option<Subdivision>,
+) -> Result<NonLinearResult, FemError> {
     let (nx, ny) = (6, 4);
     let mut mb = MeshBuilder::new(2);
     let mut grid = vec![vec![NodeId(0); nx + 1]; ny + 1];
@@ -475,7 +492,7 @@ fn shear_block(newton: NewtonOptions, rela: f64, iter_glob_maxi: usize) -> NonLi
         }
     }
     let mut snl = StaticNonLinear {
-        instants: vec![0., 0.5, 1.0, 1.25],
+        instants: instants.to_vec(),
         newton,
         convergence: Convergence {
             resi_glob_rela: Some(rela),
@@ -483,9 +500,39 @@ fn shear_block(newton: NewtonOptions, rela: f64, iter_glob_maxi: usize) -> NonLi
             iter_glob_maxi,
         },
         behaviours: plastic_everywhere(&model, &ecro_line()),
+        subdivision,
         ..Default::default()
     };
-    snl.solve(&model, &loads).unwrap()
+    snl.solve(&model, &loads)
+}
+
+#[test]
+fn a_failed_plastic_increment_is_cut_into_four() {
+    let newton = NewtonOptions::default();
+    // One big increment with 4 iterations allowed: Newton fails…
+    let err = shear_block_at(&[0., 1.25], newton, 1e-8, 4, None)
+        .map(|_| ())
+        .unwrap_err();
+    assert!(matches!(err, FemError::NoConvergence { .. }), "{err}");
+    // …and succeeds cut in pieces (the harder quarters cut again), as
+    // the four quarter instants given explicitly (cut the same way).
+    let sd = Some(Subdivision::default());
+    let cut = shear_block_at(&[0., 1.25], newton, 1e-8, 4, sd).unwrap();
+    let quarters = [0., 0.3125, 0.625, 0.9375, 1.25];
+    let listed = shear_block_at(&quarters, newton, 1e-8, 4, sd).unwrap();
+    assert_eq!(cut.steps.len(), 2, "only the asked instants are stored");
+    let (a, b) = (cut.last().unwrap(), listed.last().unwrap());
+    assert_eq!(a.time, 1.25);
+    let umax = b.displacement.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (x, y) in a.displacement.iter().zip(&b.displacement) {
+        assert!((x - y).abs() < 1e-9 * umax, "{x} vs {y}");
+    }
+    for (p, q) in a.internal_variables.iter().zip(&b.internal_variables) {
+        assert_eq!(p.points.len(), q.points.len());
+        for (x, y) in p.points.iter().zip(&q.points) {
+            assert!((x[0] - y[0]).abs() < 1e-12, "{x:?} vs {y:?}");
+        }
+    }
 }
 
 #[test]
