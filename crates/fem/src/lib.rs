@@ -12,6 +12,7 @@
 
 pub mod assembly;
 pub mod autodiff;
+pub mod behaviour;
 mod diag;
 pub mod dof;
 pub mod element;
@@ -32,17 +33,17 @@ pub mod shape;
 mod split_llt;
 pub mod unilateral;
 
+pub use behaviour::{Behaviours, CurveEnd, VonMises};
 pub use dof::{Comp, Dof, DofNumbering};
 pub use error::FemError;
 pub use loads::{Load, LoadItem, Loads, Multiplier};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
 pub use nonlinear::{
-    meca_statique, Convergence, InitialState, NewtonOptions, NonLinearResult, Prediction,
-    StaticNonLinear, Step,
+    meca_statique, Convergence, InitialState, MatrixKind, NewtonOptions, NonLinearResult,
+    Prediction, StaticNonLinear, Step, Subdivision,
 };
 pub use post::{CellValues, NodalValues};
 pub use unilateral::{
-    FixedRows, GeometryCriterion, GeometryUpdate, InequalityRow, RowOutcome, State,
-    UnilateralMethod, UnilateralSource,
+    FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };

@@ -26,6 +26,7 @@
 //!   when ‖r‖∞ ≤ 1e-6 × (largest |Kᵢᵢ| × largest |u|) or is 0.
 
 use crate::assembly::{assemble_stiffness, restrict};
+use crate::behaviour::{Behaviours, PlasticCells};
 use crate::error::FemError;
 use crate::held;
 use crate::linalg::{self, Csc, SolveFailure};
@@ -33,12 +34,14 @@ use crate::loads::Loads;
 use crate::model::Model;
 use crate::post::{self, CellValues};
 use crate::unilateral::{
-    GeometryCriterion, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
-    UnilateralSource,
+    GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };
 
-/// `NEWTON(PREDICTION=…)`: all give the same steps for linear elasticity;
-/// kept so the runner can pass what the file says.
+/// `NEWTON(PREDICTION=…)`: the matrix of the first iteration of a step.
+/// `Tangente` (and `DeplCalcule`, `Extrapole`, which only change the first
+/// iterate in code_aster) uses the tangent at the converged state,
+/// `Elastique` the elastic stiffness. All give the same steps for linear
+/// elasticity.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Prediction {
     #[default]
@@ -48,13 +51,27 @@ pub enum Prediction {
     Extrapole,
 }
 
+/// `NEWTON(MATRICE=…)`: the matrix of the Newton iterations.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MatrixKind {
+    /// `TANGENTE`: the consistent tangent, reassembled every `REAC_ITER`
+    /// iterations.
+    #[default]
+    Tangente,
+    /// `ELASTIQUE`: the elastic stiffness throughout (more iterations,
+    /// never reassembled).
+    Elastique,
+}
+
 /// `NEWTON` keywords.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonOptions {
     pub prediction: Prediction,
-    /// `REAC_ITER`: reassemble the tangent every n iterations (the elastic
-    /// tangent is constant, so this only matters for reporting).
+    /// `REAC_ITER`: reassemble the tangent every n iterations (0: keep the
+    /// prediction's matrix for the whole step). The elastic tangent is
+    /// constant, so this only matters with a plastic behaviour.
     pub reac_iter: usize,
+    pub matrix: MatrixKind,
 }
 
 impl Default for NewtonOptions {
@@ -62,6 +79,7 @@ impl Default for NewtonOptions {
         NewtonOptions {
             prediction: Prediction::Tangente,
             reac_iter: 1,
+            matrix: MatrixKind::Tangente,
         }
     }
 }
@@ -114,6 +132,9 @@ pub struct Step {
     pub iterations: usize,
     pub resi_glob_rela: f64,
     pub resi_glob_maxi: f64,
+    /// RESI_GLOB_RELA after each Newton iteration of the step (code_aster's
+    /// convergence table; empty for the initial state).
+    pub residual_history: Vec<f64>,
 }
 
 /// A result: the stored steps (the first is the initial state).
@@ -171,6 +192,34 @@ pub struct StaticNonLinear<'s> {
     pub active_set_max_iter: usize,
     /// NUME_ORDRE of the first stored step (the initial state).
     pub first_order: usize,
+    /// `COMPORTEMENT`: the plastic cells (default: all elastic).
+    pub behaviours: Behaviours,
+    /// Step cutting when Newton fails with plastic cells (`None`: fail).
+    pub subdivision: Option<Subdivision>,
+}
+
+/// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment is cut
+/// into `pieces` equal ones, at most `max_level` times in a row, never
+/// below `min_step`. Only used with plastic cells (an elastic step that
+/// fails would fail the same way in pieces).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Subdivision {
+    /// `SUBD_PAS` (default 4).
+    pub pieces: usize,
+    /// `SUBD_NIVEAU` (default 3).
+    pub max_level: usize,
+    /// `SUBD_PAS_MINI`.
+    pub min_step: f64,
+}
+
+impl Default for Subdivision {
+    fn default() -> Self {
+        Subdivision {
+            pieces: 4,
+            max_level: 3,
+            min_step: 0.0,
+        }
+    }
 }
 
 impl Default for StaticNonLinear<'_> {
@@ -185,6 +234,8 @@ impl Default for StaticNonLinear<'_> {
             sources: Vec::new(),
             active_set_max_iter: 100,
             first_order: 0,
+            behaviours: Behaviours::default(),
+            subdivision: Some(Subdivision::default()),
         }
     }
 }
@@ -192,6 +243,7 @@ impl Default for StaticNonLinear<'_> {
 /// Time precision when comparing instants.
 const TIME_EPS: f64 = 1e-9;
 
+#[derive(Clone)]
 struct SourceRows {
     rows: Vec<InequalityRow>,
     /// Rows as (dof index, coef).
@@ -238,6 +290,16 @@ impl StaticNonLinear<'_> {
             }
             None => vec![0.0; nd],
         };
+        let mut plastic = if linear {
+            None
+        } else {
+            PlasticCells::new(model, &self.behaviours)?
+        };
+        if plastic.is_some() && u.iter().any(|&v| v != 0.0) {
+            return Err(FemError::Model(
+                "an initial state (ETAT_INIT) with a plastic behaviour needs its stresses and internal variables; only a displacement was given: start from the undeformed state or use ELAS".into(),
+            ));
+        }
         let k = assemble_stiffness(model)?;
         let kdiag_max = k.diagonal().iter().fold(0.0f64, |m, v| m.max(v.abs()));
         // Eliminated DOFs (the set is fixed; values depend on t).
@@ -260,11 +322,16 @@ impl StaticNonLinear<'_> {
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
+            let mut stress = post::sief_elga(model, &u)?;
+            let internal_variables = match &plastic {
+                Some(pc) => pc.fields(&mut stress),
+                None => Vec::new(),
+            };
             steps.push(Step {
                 nume_ordre: self.first_order,
                 time: t0,
-                stress: post::sief_elga(model, &u)?,
-                internal_variables: Vec::new(),
+                stress,
+                internal_variables,
                 multipliers: vec![
                     0.0;
                     loads.equality_rows(model, t0).map(|r| r.len()).unwrap_or(0)
@@ -274,88 +341,135 @@ impl StaticNonLinear<'_> {
                 iterations: 0,
                 resi_glob_rela: 0.0,
                 resi_glob_maxi: 0.0,
+                residual_history: Vec::new(),
             });
         }
 
         let mut srcs: Vec<Option<SourceRows>> = (0..self.sources.len()).map(|_| None).collect();
         let mut checked_held = false;
-        // code_aster's largest step increment seen by the geometric test
-        // (`geom_maxi`, −1 before the first test of the analysis).
-        let mut geom_maxi = -1.0f64;
+        let mut t_prev = t0;
         for (step_no, &t) in times.iter().enumerate() {
             if linear {
                 u.iter_mut().for_each(|v| *v = 0.0);
             }
-            let u_start = u.clone();
-            let elim = loads.eliminated(model, t)?;
-            for (&i, &v) in &elim {
-                u[i] = v;
-            }
-            let fext = loads.external_forces(model, t)?;
-            let eq = loads.equality_rows(model, t)?;
-            // Rows of the sources, from the last converged state.
-            for (s, src) in self.sources.iter_mut().enumerate() {
-                let need = match (&srcs[s], src.geometry_update()) {
-                    (None, _) => true,
-                    (Some(_), GeometryUpdate::Once) => false,
-                    _ => true,
-                };
-                if need {
-                    let state = State {
-                        mesh: model.mesh(),
-                        dofs: model.dofs(),
-                        displacement: &u,
-                        time: t,
+            // The increment to t, cut into `pieces` when Newton fails with
+            // a plastic behaviour (code_aster's default ECHEC: DECOUPE,
+            // SUBD_PAS=4, SUBD_NIVEAU=3); `pending` holds the instants still
+            // to reach, the next on top.
+            let mut pending: Vec<(f64, usize)> = vec![(t, 0)];
+            let mut from = t_prev;
+            let mut step = None;
+            while let Some(&(target, level)) = pending.last() {
+                let saved = (u.clone(), srcs.clone());
+                let elim = loads.eliminated(model, target)?;
+                for (&i, &v) in &elim {
+                    u[i] = v;
+                }
+                let fext = loads.external_forces(model, target)?;
+                let eq = loads.equality_rows(model, target)?;
+                // Rows of the sources, from the last converged state.
+                for (s, src) in self.sources.iter_mut().enumerate() {
+                    let need = match (&srcs[s], src.geometry_update()) {
+                        (None, _) => true,
+                        (Some(_), GeometryUpdate::Once) => false,
+                        _ => true,
                     };
-                    let rows = src.rows(&state)?;
-                    let prev_active = srcs[s].as_ref().map(|r| r.active.clone());
-                    srcs[s] = Some(make_rows(
-                        model,
-                        rows,
-                        src.method(),
-                        src.geometry_update(),
-                        prev_active,
-                        &u,
-                    )?);
+                    if need {
+                        let state = State {
+                            mesh: model.mesh(),
+                            dofs: model.dofs(),
+                            displacement: &u,
+                            time: target,
+                        };
+                        let rows = src.rows(&state)?;
+                        let prev_active = srcs[s].as_ref().map(|r| r.active.clone());
+                        srcs[s] = Some(make_rows(
+                            model,
+                            rows,
+                            src.method(),
+                            src.geometry_update(),
+                            prev_active,
+                            &u,
+                        )?);
+                    }
+                }
+                if !checked_held {
+                    checked_held = true;
+                    let mut ground: Vec<Vec<(usize, f64)>> =
+                        elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                    ground.extend(eq.iter().map(|r| r.terms.clone()));
+                    for s in srcs.iter().flatten() {
+                        ground.extend(s.idx.iter().cloned());
+                    }
+                    let free = held::free_dofs(model, &ground);
+                    if !free.is_empty() {
+                        return Err(FemError::Singular { free_dofs: free });
+                    }
+                }
+                let ctx = StepContext {
+                    model,
+                    k: &k,
+                    kff: &kff,
+                    map: &map,
+                    nfree,
+                    kdiag_max,
+                    convergence: self.convergence,
+                    newton: self.newton,
+                    active_set_max_iter: self.active_set_max_iter,
+                    coords: &free_coords,
+                };
+                let attempt = newton_step(
+                    &ctx,
+                    &elim,
+                    &fext,
+                    &eq,
+                    &mut srcs,
+                    &mut self.sources,
+                    &mut u,
+                    target,
+                    &mut plastic,
+                );
+
+                match attempt {
+                    Ok(outcome) => {
+                        pending.pop();
+                        from = target;
+                        if let Some(pc) = &mut plastic {
+                            pc.commit();
+                        }
+                        step = Some(outcome);
+                    }
+                    Err(e) => {
+                        let cut = self.subdivision.filter(|_| plastic.is_some()).filter(|sd| {
+                            matches!(
+                                e,
+                                FemError::NoConvergence { .. } | FemError::ActiveSet { .. }
+                            ) && level < sd.max_level
+                                && (target - from) / sd.pieces as f64 >= sd.min_step
+                        });
+                        let Some(sd) = cut else {
+                            return Err(e);
+                        };
+                        (u, srcs) = saved;
+                        pending.pop();
+                        for piece in (1..=sd.pieces).rev() {
+                            let at = if piece == sd.pieces {
+                                target
+                            } else {
+                                from + (target - from) * piece as f64 / sd.pieces as f64
+                            };
+                            pending.push((at, level + 1));
+                        }
+                    }
                 }
             }
-            if !checked_held {
-                checked_held = true;
-                let mut ground: Vec<Vec<(usize, f64)>> =
-                    elim.keys().map(|&i| vec![(i, 1.0)]).collect();
-                ground.extend(eq.iter().map(|r| r.terms.clone()));
-                for s in srcs.iter().flatten() {
-                    ground.extend(s.idx.iter().cloned());
-                }
-                let free = held::free_dofs(model, &ground);
-                if !free.is_empty() {
-                    return Err(FemError::Singular { free_dofs: free });
-                }
-            }
-            let ctx = StepContext {
-                model,
-                k: &k,
-                kff: &kff,
-                map: &map,
-                nfree,
-                kdiag_max,
-                convergence: self.convergence,
-                active_set_max_iter: self.active_set_max_iter,
-                coords: &free_coords,
-                u_start: &u_start,
+            t_prev = t;
+            let Some(step) = step else {
+                return Err(FemError::Model(format!(
+                    "no increment computed to time {t}"
+                )));
             };
-            let step = newton_step(
-                &ctx,
-                &elim,
-                &fext,
-                &eq,
-                &mut srcs,
-                &mut self.sources,
-                &mut u,
-                t,
-                &mut geom_maxi,
-            )?;
-            let (iterations, lambdas, resi_rela, resi_maxi) = step;
+            let (iterations, lambdas, resi_rela, resi_maxi, residual_history) = step;
             // Outcomes to the sources.
             let mut unil = Vec::with_capacity(self.sources.len());
             for (s, src) in self.sources.iter_mut().enumerate() {
@@ -396,17 +510,23 @@ impl StaticNonLinear<'_> {
                 src.converged(&state, &outcomes)?;
                 unil.push(outcomes);
             }
+            let mut stress = post::sief_elga(model, &u)?;
+            let internal_variables = match &plastic {
+                Some(pc) => pc.fields(&mut stress),
+                None => Vec::new(),
+            };
             steps.push(Step {
                 nume_ordre: self.first_order + step_no + usize::from(!linear),
                 time: t,
                 displacement: u.clone(),
-                stress: post::sief_elga(model, &u)?,
-                internal_variables: Vec::new(),
+                stress,
+                internal_variables,
                 multipliers: lambdas.0,
                 unilateral: unil,
                 iterations,
                 resi_glob_rela: resi_rela,
                 resi_glob_maxi: resi_maxi,
+                residual_history,
             });
         }
         Ok(NonLinearResult { steps })
@@ -463,15 +583,13 @@ struct StepContext<'a> {
     nfree: usize,
     kdiag_max: f64,
     convergence: Convergence,
+    newton: NewtonOptions,
     active_set_max_iter: usize,
     /// Coordinates of the free unknowns (for the fill-reducing ordering).
     coords: &'a [[f64; 3]],
-    /// Displacement at the end of the previous step (code_aster's geometric
-    /// test measures increments from it).
-    u_start: &'a [f64],
 }
 
-type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64);
+type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64, Vec<f64>);
 
 /// Newton + active-set iterations of one step. Returns (iterations,
 /// (equality multipliers, per-source row multipliers), resi_rela, resi_maxi).
@@ -485,7 +603,7 @@ fn newton_step(
     sources: &mut [Box<dyn UnilateralSource + '_>],
     u: &mut [f64],
     t: f64,
-    geom_maxi: &mut f64,
+    plastic: &mut Option<PlasticCells>,
 ) -> Result<StepOutcome, FemError> {
     let StepContext {
         model,
@@ -495,24 +613,31 @@ fn newton_step(
         nfree,
         kdiag_max,
         convergence,
+        newton,
         active_set_max_iter,
         coords,
-        u_start,
     } = *ctx;
-    // code_aster's discrete geometric loop, when a re-pairing source asks
-    // for it (the strictest RESI_GEOM wins).
-    let criterion = sources
-        .iter()
-        .filter(|s| s.geometry_update() == GeometryUpdate::EachIteration)
-        .filter_map(|s| s.geometry_criterion())
-        .reduce(|a, b| GeometryCriterion {
-            resi_geom: a.resi_geom.min(b.resi_geom),
-            iter_maxi: a.iter_maxi.min(b.iter_maxi),
-        });
-    let mut geom_test = GeometryTest {
-        previous: None,
-        tests: 0,
-    };
+    // code_aster numbers the iterations from 0 (the prediction): with a
+    // plastic behaviour ITER_GLOB_MAXI allows that many corrections after
+    // it. (Elastic steps converge at the first solve.)
+    let max_solves = convergence.iter_glob_maxi + usize::from(plastic.is_some());
+    // The internal forces at the current iterate, once computed (the
+    // residual of one iteration is the right-hand side of the next).
+    let mut fint_now: Option<Vec<f64>> = None;
+    // The matrix of the plastic iterations (`None`: the elastic K_ff).
+    let mut tangent: Option<Csc> = None;
+    let mut residuals: Vec<f64> = Vec::new();
+    // With plastic cells, as code_aster: the active set is settled on the
+    // linearised problem of each Newton iteration (same iterate, internal
+    // forces and tangent); `outer` counts the Newton iterations proper,
+    // `base` holds the iterate and its internal forces while the set moves.
+    let mut outer = 0usize;
+    let mut new_outer = true;
+    // The Newton iteration of the last pairing: each pairing of the
+    // geometric loop gets ITER_GLOB_MAXI iterations (the loop itself is
+    // bounded by the source's ITER_GEOM_MAXI).
+    let mut pairing_start = 0usize;
+    let mut base: Option<(Vec<f64>, Vec<f64>)> = None;
     {
         let nd = u.len();
         let mut history: Vec<Vec<Vec<bool>>> = Vec::new();
@@ -633,9 +758,21 @@ fn newton_step(
                     return Err(FemError::Singular { free_dofs: free });
                 }
             }
-            let a = kff.with_extra(nfree + nk, extra);
+            let fint = match fint_now.take() {
+                Some(f) => f,
+                None => internal_forces(model, k, plastic, u)?,
+            };
+            if let Some(pc) = plastic.as_mut() {
+                if new_outer {
+                    choose_tangent(&mut tangent, pc, model, k, map, nfree, newton, outer)?;
+                }
+                base = Some((u.to_vec(), fint.clone()));
+            }
+            let a = tangent
+                .as_ref()
+                .unwrap_or(kff)
+                .with_extra(nfree + nk, extra);
             // Right-hand side.
-            let fint = k.mul(u);
             let mut b = vec![0.0; nfree + nk];
             for i in 0..nd {
                 if map[i] != usize::MAX {
@@ -675,7 +812,7 @@ fn newton_step(
             }
             newton_iter += 1;
             // Residual at the new iterate.
-            let fint = k.mul(u);
+            let fint = internal_forces(model, k, plastic, u)?;
             let mut reac = vec![0.0; nd];
             for (r, (terms, _)) in rows.iter().enumerate() {
                 for &(i, c) in terms {
@@ -723,6 +860,8 @@ fn newton_step(
                 let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 resi_maxi <= 1e-6 * kdiag_max * umax || resi_maxi == 0.
             };
+            fint_now = Some(fint);
+            residuals.push(resi_rela);
             // Multipliers per source row (exact sources).
             let mut src_lam: Vec<Vec<f64>> = Vec::new();
             let mut changed = false;
@@ -799,44 +938,25 @@ fn newton_step(
                     }
                 }
             }
-            // code_aster's discrete geometric loop: once the residual has
-            // converged, test the displacement since the last pairing; pair
-            // again (and iterate) until the test passes.
-            if let (false, Some(crit)) = (changed, criterion) {
-                if converged_resi {
-                    let vale = geom_test.value(model, u, u_start, geom_maxi, crit.resi_geom);
-                    if vale < crit.resi_geom {
-                        let eq_lam = lam_rows[..eq.len()].to_vec();
-                        return Ok((newton_iter, (eq_lam, src_lam), resi_rela, resi_maxi));
-                    }
-                    if geom_test.tests >= crit.iter_maxi {
-                        return Err(FemError::ActiveSet {
-                            time: t,
-                            message: format!(
-                                "the geometric loop of contact (REAC_GEOM='AUTOMATIQUE') does not converge: after {} pairings the displacement since the last one is still {:.3e} of the step's increment (RESI_GEOM = {}); raise ITER_GEOM_MAXI or cut the step",
-                                geom_test.tests, vale, crit.resi_geom
-                            ),
-                        });
-                    }
-                    refresh_geometry_rows(model, sources, srcs, u, t, false)?;
-                }
-                // code_aster counts iterations from 0: ITER_GLOB_MAXI solves
-                // after the prediction.
-                if newton_iter > convergence.iter_glob_maxi {
-                    return Err(FemError::NoConvergence {
-                        time: t,
-                        iterations: newton_iter,
-                        resi_rela,
-                        resi_maxi,
-                    });
-                }
-                continue;
-            }
             // Geometry update at each iteration: re-ask the rows at the
             // current iterate; new rows mean another pass.
+            if !changed && plastic.is_some() {
+                // A Newton iteration with a settled active set: the next
+                // one linearises at this iterate.
+                outer += 1;
+                new_outer = true;
+                history.clear();
+                set_changes = 0;
+            }
             if !changed {
-                changed = refresh_geometry_rows(model, sources, srcs, u, t, true)?;
+                // A new pairing on the current geometry once Newton has
+                // converged with the current one (at once when elastic: a
+                // stable active set is a converged solve then).
+                if plastic.is_none() || converged_resi {
+                    changed = refresh_geometry_rows(model, sources, srcs, u, t)?;
+                }
                 if changed {
+                    pairing_start = outer;
                     set_changes += 1;
                     if set_changes > active_set_max_iter {
                         return Err(FemError::ActiveSet {
@@ -850,9 +970,20 @@ fn newton_step(
                 }
                 if converged_resi {
                     let eq_lam = lam_rows[..eq.len()].to_vec();
-                    return Ok((newton_iter, (eq_lam, src_lam), resi_rela, resi_maxi));
+                    return Ok((
+                        newton_iter,
+                        (eq_lam, src_lam),
+                        resi_rela,
+                        resi_maxi,
+                        residuals,
+                    ));
                 }
-                if newton_iter >= convergence.iter_glob_maxi {
+                let iterations = if plastic.is_some() {
+                    outer - pairing_start
+                } else {
+                    newton_iter
+                };
+                if iterations >= max_solves {
                     return Err(FemError::NoConvergence {
                         time: t,
                         iterations: newton_iter,
@@ -861,6 +992,15 @@ fn newton_step(
                     });
                 }
             } else {
+                if let (Some(_), Some((u0, f0))) = (plastic.as_ref(), base.take()) {
+                    // Solve the same linearised problem with the new set:
+                    // back to its iterate (and the Gauss-point trial states
+                    // and tangents there).
+                    u.copy_from_slice(&u0);
+                    internal_forces(model, k, plastic, u)?;
+                    fint_now = Some(f0);
+                    new_outer = false;
+                }
                 set_changes += 1;
                 let state: Vec<Vec<bool>> =
                     srcs.iter().flatten().map(|s| s.active.clone()).collect();
@@ -888,73 +1028,6 @@ fn newton_step(
     }
 }
 
-/// State of code_aster's geometric test within a step (`cfcgeo`).
-struct GeometryTest {
-    /// Step increment at the previous test (`REA2`); `None` before the
-    /// first test of the step.
-    previous: Option<Vec<f64>>,
-    /// Tests made in this step.
-    tests: usize,
-}
-
-impl GeometryTest {
-    /// The criterion value: largest nodal norm of the displacement since the
-    /// previous test over that of the step increment at the previous test.
-    /// As code_aster: the first test of a step returns 10 × `resi_geom`
-    /// (fails); an increment below 1e-6 of the largest one seen so far
-    /// returns `resi_geom` / 10 (passes).
-    fn value(
-        &mut self,
-        model: &Model,
-        u: &[f64],
-        u_start: &[f64],
-        geom_maxi: &mut f64,
-        resi_geom: f64,
-    ) -> f64 {
-        self.tests += 1;
-        let depdel: Vec<f64> = u.iter().zip(u_start).map(|(a, b)| a - b).collect();
-        let rea2 = self
-            .previous
-            .take()
-            .unwrap_or_else(|| vec![0.0; depdel.len()]);
-        let rea1: Vec<f64> = depdel.iter().zip(&rea2).map(|(a, b)| a - b).collect();
-        let rea1_maxi = max_nodal_norm(model, &rea1);
-        let rea2_maxi = max_nodal_norm(model, &rea2);
-        let geom_mini = if *geom_maxi < 0.0 {
-            *geom_maxi = rea2_maxi;
-            f64::EPSILON
-        } else {
-            *geom_maxi = geom_maxi.max(rea2_maxi);
-            1e-6 * *geom_maxi
-        };
-        self.previous = Some(depdel);
-        if rea2_maxi <= geom_mini {
-            if rea2_maxi == 0.0 {
-                10.0 * resi_geom
-            } else {
-                0.1 * resi_geom
-            }
-        } else {
-            rea1_maxi / rea2_maxi
-        }
-    }
-}
-
-/// Largest Euclidean norm of a node's translation (DX, DY, DZ) in a field.
-fn max_nodal_norm(model: &Model, field: &[f64]) -> f64 {
-    let mut sq = vec![0.0f64; model.mesh().coords.len()];
-    for (i, v) in field.iter().enumerate() {
-        let d = model.dofs().dof(i);
-        if matches!(
-            d.comp,
-            crate::dof::Comp::DX | crate::dof::Comp::DY | crate::dof::Comp::DZ
-        ) {
-            sq[d.node.0 as usize] += v * v;
-        }
-    }
-    sq.into_iter().fold(0.0f64, f64::max).sqrt()
-}
-
 fn gap(idx: &[(usize, f64)], rhs: f64, u: &[f64]) -> f64 {
     idx.iter().map(|&(i, c)| c * u[i]).sum::<f64>() - rhs
 }
@@ -975,18 +1048,66 @@ fn length_scale(model: &Model, u: &[f64]) -> f64 {
     size.max(umax).max(1e-300)
 }
 
+/// f_int(u): K u, plus the plastic cells' corrections (their trial states
+/// and consistent tangents are updated on the way).
+fn internal_forces(
+    model: &Model,
+    k: &Csc,
+    plastic: &mut Option<PlasticCells>,
+    u: &[f64],
+) -> Result<Vec<f64>, FemError> {
+    let mut fint = k.mul(u);
+    if let Some(pc) = plastic.as_mut() {
+        pc.update(model, u, &mut fint)?;
+    }
+    Ok(fint)
+}
+
+/// The matrix of Newton iteration `iter` of a step with plastic cells
+/// (`None` in `tangent`: the elastic K_ff): iteration 0 uses the
+/// prediction (`PREDICTION`), later ones the consistent tangent of the last
+/// update every `REAC_ITER` iterations (0: never), `MATRICE='ELASTIQUE'`
+/// the elastic stiffness throughout.
+#[allow(clippy::too_many_arguments)]
+fn choose_tangent(
+    tangent: &mut Option<Csc>,
+    pc: &mut PlasticCells,
+    model: &Model,
+    k: &Csc,
+    map: &[usize],
+    nfree: usize,
+    newton: NewtonOptions,
+    iter: usize,
+) -> Result<(), FemError> {
+    if newton.matrix == MatrixKind::Elastique {
+        *tangent = None;
+        return Ok(());
+    }
+    if iter == 0 {
+        *tangent = if newton.prediction == Prediction::Elastique {
+            None
+        } else {
+            pc.prediction(model)?;
+            Some(restrict(&pc.tangent(k), map, nfree))
+        };
+        return Ok(());
+    }
+    if newton.reac_iter > 0 && iter.is_multiple_of(newton.reac_iter) {
+        *tangent = Some(restrict(&pc.tangent(k), map, nfree));
+    }
+    Ok(())
+}
+
 /// Asks every source that updates its geometry at each iteration for its
-/// rows at the current iterate `u` and installs them (keeping the previous
-/// active set as the start). With `only_changed`, rows equal to the current
-/// ones are left as they are. Returns whether any source's rows were
-/// replaced.
+/// rows at the current iterate `u` and installs the ones that changed
+/// (keeping the previous active set as the start). Returns whether any
+/// source's rows were replaced.
 fn refresh_geometry_rows(
     model: &Model,
     sources: &mut [Box<dyn UnilateralSource + '_>],
     srcs: &mut [Option<SourceRows>],
     u: &[f64],
     t: f64,
-    only_changed: bool,
 ) -> Result<bool, FemError> {
     let mut changed = false;
     for (src, slot) in sources.iter_mut().zip(srcs.iter_mut()) {
@@ -1001,7 +1122,7 @@ fn refresh_geometry_rows(
             time: t,
         };
         let rows = src.rows(&state)?;
-        if only_changed && rows == sr.rows {
+        if rows == sr.rows {
             continue;
         }
         let prev = Some(sr.active.clone());

@@ -60,27 +60,11 @@ pub enum GeometryUpdate {
     /// Rows are asked at the beginning of each time step (from the last
     /// converged state).
     EachStep,
-    /// Rows are asked again at each active-set/Newton iteration
-    /// (`REAC_GEOM='AUTOMATIQUE'`-like fixed point on the geometry).
+    /// Rows are asked again at each stable active set of a step, until the
+    /// source returns the rows it returned last (a fixed point on the
+    /// geometry; a source running code_aster's own geometric test, as
+    /// contact's `GeomLoopState`, ends the loop by repeating its rows).
     EachIteration,
-}
-
-/// code_aster's test ending the geometric loop of discrete contact
-/// (`REAC_GEOM='AUTOMATIQUE'`, routine `cfcgeo`): each time the residual has
-/// converged, the displacement change since the last pairing is compared
-/// with the step's displacement increment at that pairing (largest nodal
-/// norms); below `resi_geom` the step is converged, otherwise the sources
-/// pair again on the current geometry and Newton goes on. The first test of
-/// a step never passes (nothing to compare with), so every step is paired at
-/// least twice. The answer is therefore *not* the geometric fixed point: it
-/// is code_aster's, which differs from the fixed point by up to about
-/// `resi_geom` × the last change — visible in non-regression values at 1e-6.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GeometryCriterion {
-    /// `RESI_GEOM` (default 0.01).
-    pub resi_geom: f64,
-    /// `ITER_GEOM_MAXI` (default 10): tests allowed per step.
-    pub iter_maxi: usize,
 }
 
 /// The current mechanical state given to sources.
@@ -156,13 +140,6 @@ pub trait UnilateralSource {
         GeometryUpdate::Once
     }
 
-    /// With [`GeometryUpdate::EachIteration`]: `Some` ends the geometric
-    /// loop with code_aster's discrete-contact test ([`GeometryCriterion`]);
-    /// `None` (default) iterates until the rows stop changing.
-    fn geometry_criterion(&self) -> Option<GeometryCriterion> {
-        None
-    }
-
     /// The current rows for a state (the last converged one, or the current
     /// iterate with [`GeometryUpdate::EachIteration`]).
     fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError>;
@@ -205,9 +182,6 @@ impl<T: UnilateralSource + ?Sized> UnilateralSource for &mut T {
     }
     fn geometry_update(&self) -> GeometryUpdate {
         (**self).geometry_update()
-    }
-    fn geometry_criterion(&self) -> Option<GeometryCriterion> {
-        (**self).geometry_criterion()
     }
     fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
         (**self).rows(state)

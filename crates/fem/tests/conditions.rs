@@ -49,22 +49,28 @@ fn idx(m: &Model, n: NodeId, c: Comp) -> usize {
     m.dofs().index(Dof::new(n, c)).unwrap()
 }
 
+/// Holds `comps` of `nodes` at 0: eliminated (AFFE_CHAR_CINE) or dualised
+/// (DDL_IMPO).
+fn hold(loads: &mut Loads, nodes: &[NodeId], comps: &[Comp], dualised: bool) {
+    for &n in nodes {
+        for &c in comps {
+            let dof = Dof::new(n, c);
+            loads.push(if dualised {
+                Load::Imposed { dof, value: 0. }
+            } else {
+                Load::Eliminated { dof, value: 0. }
+            });
+        }
+    }
+}
+
 #[test]
 fn dualised_and_eliminated_supports_agree_and_reactions_balance() {
     let mut results = Vec::new();
     for dualised in [false, true] {
         let (m, bottom, top, _) = strip(3, Hypothesis::PlaneStrain);
         let mut loads = Loads::new();
-        for &n in &bottom {
-            for c in [Comp::DX, Comp::DY] {
-                let dof = Dof::new(n, c);
-                loads.push(if dualised {
-                    Load::Imposed { dof, value: 0. }
-                } else {
-                    Load::Eliminated { dof, value: 0. }
-                });
-            }
-        }
+        hold(&mut loads, &bottom, &[Comp::DX, Comp::DY], dualised);
         loads.push(Load::NodalForce {
             dof: Dof::new(top[3], Comp::DY),
             value: -2.,
@@ -112,16 +118,7 @@ fn dualised_and_eliminated_supports_agree_and_reactions_balance() {
 fn linear_relation_ties_dofs() {
     let (m, bottom, top, _) = strip(2, Hypothesis::PlaneStress);
     let mut loads = Loads::new();
-    for &n in &bottom {
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DX),
-            value: 0.,
-        });
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DY),
-            value: 0.,
-        });
-    }
+    hold(&mut loads, &bottom, &[Comp::DX, Comp::DY], false);
     // DY(T0) - DY(T2) = 0.01 and DX(T1) = 2 DX(T2) (LIAISON_DDL).
     loads.push(Load::Relation {
         terms: vec![
@@ -160,16 +157,8 @@ fn pressure_on_top_edge_gives_uniform_stress_whatever_the_edge_orientation() {
         }
         let m = Model::new(mesh, m0.elements().to_vec()).unwrap();
         let mut loads = Loads::new();
-        for &n in &bottom {
-            loads.push(Load::Eliminated {
-                dof: Dof::new(n, Comp::DY),
-                value: 0.,
-            });
-        }
-        loads.push(Load::Eliminated {
-            dof: Dof::new(bottom[0], Comp::DX),
-            value: 0.,
-        });
+        hold(&mut loads, &bottom, &[Comp::DY], false);
+        hold(&mut loads, &bottom[..1], &[Comp::DX], false);
         for &e in &edges {
             loads.add(
                 Load::Pressure {
@@ -241,12 +230,7 @@ fn edge_force_in_axis_is_per_radian() {
 fn missing_support_names_the_free_dofs() {
     let (m, bottom, _, _) = strip(2, Hypothesis::PlaneStrain);
     let mut loads = Loads::new();
-    for &n in &bottom {
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DY),
-            value: 0.,
-        });
-    }
+    hold(&mut loads, &bottom, &[Comp::DY], false);
     let err = meca_statique(&m, &loads, &[]).unwrap_err();
     let FemError::Singular { free_dofs } = &err else {
         panic!("expected a singular-system error, got {err}");
@@ -328,10 +312,7 @@ fn bad_inputs_are_errors_not_panics() {
 fn lift_off(method: UnilateralMethod) -> (Model, NonLinearResult, Vec<NodeId>) {
     let (m, bottom, top, _) = strip(6, Hypothesis::PlaneStrain);
     let mut loads = Loads::new();
-    loads.push(Load::Eliminated {
-        dof: Dof::new(bottom[0], Comp::DX),
-        value: 0.,
-    });
+    hold(&mut loads, &bottom[..1], &[Comp::DX], false);
     loads.add(
         Load::NodalForce {
             dof: Dof::new(top[1], Comp::DY),
@@ -405,16 +386,7 @@ fn penalty_converges_to_the_active_set_solution() {
 fn instants_honour_inst_init_and_inst_fin() {
     let (m, bottom, top, _) = strip(1, Hypothesis::PlaneStrain);
     let mut loads = Loads::new();
-    for &n in &bottom {
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DX),
-            value: 0.,
-        });
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DY),
-            value: 0.,
-        });
-    }
+    hold(&mut loads, &bottom, &[Comp::DX, Comp::DY], false);
     loads.add(
         Load::Imposed {
             dof: Dof::new(top[0], Comp::DY),
@@ -542,10 +514,7 @@ impl UnilateralSource for GeometricSource {
 fn sources_with_geometry_updates_get_their_outcomes_each_step() {
     let (m, bottom, top, _) = strip(2, Hypothesis::PlaneStrain);
     let mut loads = Loads::new();
-    loads.push(Load::Eliminated {
-        dof: Dof::new(bottom[0], Comp::DX),
-        value: 0.,
-    });
+    hold(&mut loads, &bottom[..1], &[Comp::DX], false);
     for &n in &top {
         loads.add(
             Load::NodalForce {
@@ -585,16 +554,7 @@ fn sources_with_geometry_updates_get_their_outcomes_each_step() {
 fn unreachable_convergence_criterion_is_a_clear_error() {
     let (m, bottom, top, _) = strip(2, Hypothesis::PlaneStrain);
     let mut loads = Loads::new();
-    for &n in &bottom {
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DX),
-            value: 0.,
-        });
-        loads.push(Load::Eliminated {
-            dof: Dof::new(n, Comp::DY),
-            value: 0.,
-        });
-    }
+    hold(&mut loads, &bottom, &[Comp::DX, Comp::DY], false);
     loads.push(Load::NodalForce {
         dof: Dof::new(top[1], Comp::DX),
         value: 1.234567,

@@ -81,6 +81,19 @@ pub struct Material {
     pub poisson: f64,
     pub density: Option<f64>,
     pub alpha: Option<f64>,
+    /// `ECRO_LINE=_F(D_SIGM_EPSI, SY)` (for VMIS_ISOT_LINE).
+    pub ecro_line: Option<EcroLine>,
+    /// `TRACTION=_F(SIGM=σ(EPSI))` (for VMIS_ISOT_TRAC): a tabulated
+    /// function.
+    pub traction: Option<crate::function::Tabulated>,
+}
+
+/// `ECRO_LINE`: the slope after yield of the uniaxial curve and the yield
+/// stress.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EcroLine {
+    pub d_sigm_epsi: f64,
+    pub sy: f64,
 }
 
 /// `AFFE_MATERIAU`: the material of each cell.

@@ -5,7 +5,7 @@ use crate::concept::*;
 use crate::executor::Executor;
 use crate::field::{ElemField, ElemLocation, Field, NodalField};
 use crate::function::Function;
-use crate::solve::{LoadRef, SolveSetup};
+use crate::solve::{BehaviourOcc, LoadRef, Relation, SolveSetup};
 use crate::unil::LiaisonUnil;
 use aster_eval::{CommandCall, ExecError};
 use aster_fem::{
@@ -24,6 +24,9 @@ pub struct FemRun {
     pub model: Model,
     pub loads: Loads,
     pub raw: NonLinearResult,
+    /// Some cells were plastic: their stresses are not D B u, so nodal
+    /// forces come from the stored SIEF_ELGA.
+    pub plastic: bool,
 }
 
 fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
@@ -90,6 +93,93 @@ pub fn build_model(
         elements.push(Element { cell, kind });
     }
     Model::new(mesh.clone(), elements).map_err(|e| fem_err("AFFE_MODELE", e))
+}
+
+/// The fem behaviours of the COMPORTEMENT occurrences: each plastic cell
+/// gets the law its material defines (ECRO_LINE for VMIS_ISOT_LINE,
+/// TRACTION for VMIS_ISOT_TRAC). Cells outside the model are skipped.
+pub fn build_behaviours(
+    mesh: &Mesh,
+    model: &Model,
+    occurrences: &[BehaviourOcc],
+    materials: &MaterialField,
+) -> Result<aster_fem::Behaviours, ExecError> {
+    let mut out = aster_fem::Behaviours::elastic();
+    let continuum: std::collections::BTreeSet<aster_mesh::CellId> = model
+        .elements()
+        .iter()
+        .filter(|e| matches!(e.kind, ElementKind::Continuum { .. }))
+        .map(|e| e.cell)
+        .collect();
+    // One law per (material, relation), shared by its cells.
+    let mut laws: Vec<(*const Material, Relation, Arc<aster_fem::VonMises>)> = Vec::new();
+    for occ in occurrences {
+        let cells: Vec<aster_mesh::CellId> = match &occ.cells {
+            None => continuum.iter().copied().collect(),
+            Some(c) => c
+                .iter()
+                .copied()
+                .filter(|c| continuum.contains(c))
+                .collect(),
+        };
+        for cell in cells {
+            if occ.relation == Relation::Elas {
+                out.make_elastic(cell);
+                continue;
+            }
+            let Some(mat) = materials.cells.get(&cell) else {
+                continue; // reported by build_model
+            };
+            let key = (Rc::as_ptr(mat), occ.relation);
+            let law = match laws.iter().find(|l| (l.0, l.1) == key) {
+                Some(l) => l.2.clone(),
+                None => {
+                    let law = Arc::new(plastic_law(mesh, cell, mat, occ.relation)?);
+                    laws.push((key.0, key.1, law.clone()));
+                    law
+                }
+            };
+            out.assign(cell, law);
+        }
+    }
+    Ok(out)
+}
+
+fn plastic_law(
+    mesh: &Mesh,
+    cell: aster_mesh::CellId,
+    mat: &Material,
+    relation: Relation,
+) -> Result<aster_fem::VonMises, ExecError> {
+    let missing = |what: &str| {
+        ExecError::new(format!(
+            "STAT_NON_LINE/COMPORTEMENT: RELATION='{}' on cell {} needs {what} in its material's DEFI_MATERIAU",
+            relation.keyword(),
+            crate::select::cell_name(mesh, cell)
+        ))
+    };
+    let law = match relation {
+        Relation::VmisIsotLine => {
+            let e = mat
+                .ecro_line
+                .ok_or_else(|| missing("ECRO_LINE=_F(D_SIGM_EPSI, SY)"))?;
+            aster_fem::VonMises::linear(mat.young, e.sy, e.d_sigm_epsi)
+        }
+        Relation::VmisIsotTrac => {
+            let t = mat
+                .traction
+                .as_ref()
+                .ok_or_else(|| missing("TRACTION=_F(SIGM=...)"))?;
+            let end = match t.right {
+                crate::function::Extension::Linear => aster_fem::CurveEnd::Linear,
+                crate::function::Extension::Constant => aster_fem::CurveEnd::Constant,
+                crate::function::Extension::Excluded => aster_fem::CurveEnd::Excluded,
+            };
+            aster_fem::VonMises::traction(mat.young, t.abscissae(), t.values(), end)
+        }
+        Relation::Elas => return Err(ExecError::new("ELAS has no plastic law")),
+    };
+    law.map_err(|e| fem_err("DEFI_MATERIAU", e))
 }
 
 fn comp(name: &str) -> Result<Comp, ExecError> {
@@ -417,6 +507,8 @@ pub fn solve(
     let mesh = ex.mesh_by_id(setup.model.mesh)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
     let loads = build_loads(setup)?;
+    let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
+    let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
@@ -469,7 +561,8 @@ pub fn solve(
             initial,
             newton: NewtonOptions {
                 reac_iter: setup.newton.reac_iter,
-                ..NewtonOptions::default()
+                matrix: setup.newton.matrix,
+                prediction: setup.newton.prediction,
             },
             convergence: Convergence {
                 resi_glob_rela: setup.newton.resi_glob_rela,
@@ -477,6 +570,7 @@ pub fn solve(
                 iter_glob_maxi: setup.newton.iter_glob_maxi,
             },
             sources,
+            behaviours,
             ..StaticNonLinear::default()
         };
         let raw = snl.solve(&model, &loads).map_err(|e| fem_err(cmd, e))?;
@@ -538,7 +632,15 @@ pub fn solve(
             })
         })
         .collect::<Result<Vec<_>, ExecError>>()?;
-    Ok((steps, Rc::new(FemRun { model, loads, raw })))
+    Ok((
+        steps,
+        Rc::new(FemRun {
+            model,
+            loads,
+            raw,
+            plastic,
+        }),
+    ))
 }
 
 /// CALC_CHAMP options on stored steps.
@@ -569,17 +671,29 @@ pub fn calc_champ(
         let u = &raw.displacement;
         let model = &run.model;
         let elno = || post::elno(model, &raw.stress);
+        let forc_noda = || {
+            if run.plastic {
+                aster_fem::behaviour::forc_noda_from_stress(model, u, &raw.stress)
+            } else {
+                post::forc_noda(model, u)
+            }
+            .map_err(|e| fem_err("CALC_CHAMP", e))
+        };
         for opt in options {
             let field = match opt.as_str() {
-                "FORC_NODA" => Field::Nodal(nodal_from_dofs(
-                    model,
-                    &post::forc_noda(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?,
-                )),
-                "REAC_NODA" => Field::Nodal(nodal_from_dofs(
-                    model,
-                    &post::reac_noda(model, &run.loads, raw.time, u)
-                        .map_err(|e| fem_err("CALC_CHAMP", e))?,
-                )),
+                "FORC_NODA" => Field::Nodal(nodal_from_dofs(model, &forc_noda()?)),
+                "REAC_NODA" => {
+                    // code_aster's REAC_NODA: FORC_NODA − the applied loads.
+                    let mut r = forc_noda()?;
+                    let fext = run
+                        .loads
+                        .external_forces(model, raw.time)
+                        .map_err(|e| fem_err("CALC_CHAMP", e))?;
+                    for (a, b) in r.iter_mut().zip(fext) {
+                        *a -= b;
+                    }
+                    Field::Nodal(nodal_from_dofs(model, &r))
+                }
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))
                 }
@@ -592,6 +706,10 @@ pub fn calc_champ(
                     ElemLocation::Nodes,
                     &post::elno(model, &raw.internal_variables),
                 )),
+                "VARI_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(
+                    model,
+                    &post::elno(model, &raw.internal_variables),
+                ))),
                 "SIEQ_ELGA" => Field::Elem(elem_field(
                     ElemLocation::Gauss,
                     &post::sieq_field(&raw.stress),

@@ -23,6 +23,34 @@ pub struct Excitation {
     pub multiplier: Option<Rc<Function>>,
 }
 
+/// `COMPORTEMENT/RELATION`, as far as supported.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Relation {
+    Elas,
+    /// Von Mises, linear isotropic hardening (material's ECRO_LINE).
+    VmisIsotLine,
+    /// Von Mises, isotropic hardening by a traction curve (TRACTION).
+    VmisIsotTrac,
+}
+
+impl Relation {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Relation::Elas => "ELAS",
+            Relation::VmisIsotLine => "VMIS_ISOT_LINE",
+            Relation::VmisIsotTrac => "VMIS_ISOT_TRAC",
+        }
+    }
+}
+
+/// One `COMPORTEMENT` occurrence: a relation on cells (`None`: all, the
+/// default TOUT='OUI').
+#[derive(Clone, Debug, PartialEq)]
+pub struct BehaviourOcc {
+    pub relation: Relation,
+    pub cells: Option<Vec<aster_mesh::CellId>>,
+}
+
 /// Newton and convergence settings (`NEWTON`, `CONVERGENCE`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct NewtonSettings {
@@ -33,6 +61,10 @@ pub struct NewtonSettings {
     pub iter_glob_maxi: usize,
     /// `REAC_ITER`: re-assemble the tangent every n iterations (0: never).
     pub reac_iter: usize,
+    /// `MATRICE`.
+    pub matrix: aster_fem::MatrixKind,
+    /// `PREDICTION`.
+    pub prediction: aster_fem::Prediction,
 }
 
 impl Default for NewtonSettings {
@@ -42,6 +74,8 @@ impl Default for NewtonSettings {
             resi_glob_maxi: None,
             iter_glob_maxi: 10,
             reac_iter: 1,
+            matrix: aster_fem::MatrixKind::Tangente,
+            prediction: aster_fem::Prediction::Tangente,
         }
     }
 }
@@ -54,6 +88,8 @@ pub struct SolveSetup {
     pub cara: Option<Rc<CaraElem>>,
     pub excitations: Vec<Excitation>,
     pub contact: Option<Rc<ContactDef>>,
+    /// `COMPORTEMENT`, in order (a later occurrence wins on a cell).
+    pub behaviours: Vec<BehaviourOcc>,
     /// The instants: the first is the initial state, each next one a step.
     pub instants: Vec<f64>,
     pub newton: NewtonSettings,
@@ -77,6 +113,14 @@ const SNL_KEYWORDS: &[&str] = &[
     "COMPORTEMENT/DEFORMATION",
     "COMPORTEMENT/TOUT",
     "COMPORTEMENT/GROUP_MA",
+    "COMPORTEMENT/MAILLE",
+    // Local (Gauss-point) integration settings: the radial return of the
+    // von Mises laws is exact, so they change nothing.
+    "COMPORTEMENT/RESI_INTE_RELA",
+    "COMPORTEMENT/RESI_INTE",
+    "COMPORTEMENT/ITER_INTE_MAXI",
+    "COMPORTEMENT/ITER_INTE_PAS",
+    "COMPORTEMENT/ALGO_INTE",
     "INCREMENT",
     "INCREMENT/LIST_INST",
     "INCREMENT/INST_INIT",
@@ -163,15 +207,7 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         Some(c) => Some(ex.contact(c)?),
         None => None,
     };
-    for occ in kw.factor("COMPORTEMENT") {
-        ex.only_values(&format!("{cmd}/COMPORTEMENT"), occ, "RELATION", &["ELAS"])?;
-        ex.only_values(
-            &format!("{cmd}/COMPORTEMENT"),
-            occ,
-            "DEFORMATION",
-            &["PETIT"],
-        )?;
-    }
+    let behaviours = parse_behaviours(ex, cmd, kw, model.mesh)?;
     ex.only_values(cmd, kw, "METHODE", &["NEWTON"])?;
     let mut newton = NewtonSettings::default();
     if let Some(conv) = kw.factor("CONVERGENCE").first() {
@@ -198,6 +234,21 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         )?;
         if let Some(n) = nw.first("REAC_ITER").and_then(|s| s.as_i64()) {
             newton.reac_iter = n.max(0) as usize;
+        }
+        newton.prediction = match nw.str("PREDICTION") {
+            Some("ELASTIQUE") => aster_fem::Prediction::Elastique,
+            Some("DEPL_CALCULE") => aster_fem::Prediction::DeplCalcule,
+            Some("EXTRAPOLE") => aster_fem::Prediction::Extrapole,
+            _ => aster_fem::Prediction::Tangente,
+        };
+        ex.only_values(
+            &format!("{cmd}/NEWTON"),
+            nw,
+            "MATRICE",
+            &["TANGENTE", "ELASTIQUE"],
+        )?;
+        if nw.str("MATRICE") == Some("ELASTIQUE") {
+            newton.matrix = aster_fem::MatrixKind::Elastique;
         }
     }
     let (instants, initial) = if linear {
@@ -265,11 +316,68 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         cara,
         excitations,
         contact,
+        behaviours,
         instants,
         newton,
         initial,
         verbose: kw.first("INFO").and_then(|s| s.as_i64()) == Some(2),
     })
+}
+
+/// The `COMPORTEMENT` occurrences: small strains only, ELAS and the von
+/// Mises laws with isotropic hardening.
+fn parse_behaviours(
+    ex: &Executor,
+    cmd: &str,
+    kw: &Keywords,
+    mesh_id: u32,
+) -> Result<Vec<BehaviourOcc>, ExecError> {
+    let mut out = Vec::new();
+    let occs = kw.factor("COMPORTEMENT");
+    if occs.is_empty() {
+        return Ok(out);
+    }
+    let mesh = ex.mesh_by_id(mesh_id)?;
+    let at = format!("{cmd}/COMPORTEMENT");
+    for occ in occs {
+        let relation = match occ.str("RELATION").unwrap_or("ELAS") {
+            "ELAS" => Relation::Elas,
+            "VMIS_ISOT_LINE" => Relation::VmisIsotLine,
+            "VMIS_ISOT_TRAC" => Relation::VmisIsotTrac,
+            other => {
+                let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
+                return Err(ex.unsupported(
+                    &format!(
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC)"
+                    ),
+                    span,
+                ));
+            }
+        };
+        if let Some(d) = occ.str("DEFORMATION").filter(|&d| d != "PETIT") {
+            let span = occ
+                .keyword("DEFORMATION")
+                .map(|k| k.span)
+                .unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!("{at}/DEFORMATION='{d}' (large strains or rotations): only small strains, DEFORMATION='PETIT'"),
+                span,
+            ));
+        }
+        let named = ["TOUT", "GROUP_MA", "MAILLE"]
+            .iter()
+            .any(|k| occ.keyword(k).is_some_and(|e| !e.defaulted));
+        let cells = if named && occ.str("TOUT") != Some("OUI") {
+            Some(
+                crate::select::cells(occ, &mesh, "")
+                    .map_err(|e| ExecError::new(format!("{at}: {e}")))?,
+            )
+        } else {
+            None
+        };
+        out.push(BehaviourOcc { relation, cells });
+    }
+    Ok(out)
 }
 
 /// MECA_STATIQUE: one step at INST (default 0), or the instants of LIST_INST.
@@ -290,16 +398,7 @@ pub fn stat_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     if call.reuse.is_some() {
         return Err(ex.unsupported("STAT_NON_LINE with reuse= (continuing a result)", call.span));
     }
-    let setup = parse_setup(ex, call, false)?;
-    let mesh_id = setup.model.mesh;
-    let (steps, fem) = crate::fembridge::solve(ex, &setup, false)?;
-    let evol = EvolResult {
-        typ: "evol_noli".into(),
-        mesh: mesh_id,
-        steps,
-        fem: Some(fem),
-    };
-    store_result(ex, call, Concept::Result(Rc::new(evol)))
+    solve_and_store(ex, call, false)
 }
 
 pub fn meca_statique(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -322,11 +421,21 @@ pub fn meca_statique(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "OPTION",
         ],
     )?;
-    let setup = parse_setup(ex, call, true)?;
+    solve_and_store(ex, call, true)
+}
+
+/// The common tail of STAT_NON_LINE (`linear` false: an evol_noli) and
+/// MECA_STATIQUE (`linear` true: an evol_elas): set-up, solve, store.
+fn solve_and_store(
+    ex: &mut Executor,
+    call: &CommandCall,
+    linear: bool,
+) -> Result<CommandOutput, ExecError> {
+    let setup = parse_setup(ex, call, linear)?;
     let mesh_id = setup.model.mesh;
-    let (steps, fem) = crate::fembridge::solve(ex, &setup, true)?;
+    let (steps, fem) = crate::fembridge::solve(ex, &setup, linear)?;
     let evol = EvolResult {
-        typ: "evol_elas".into(),
+        typ: if linear { "evol_elas" } else { "evol_noli" }.into(),
         mesh: mesh_id,
         steps,
         fem: Some(fem),

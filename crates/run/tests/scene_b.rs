@@ -387,8 +387,8 @@ fn unsupported_keyword_is_refused_not_skipped() {
         .execute(&call(
             "DEFI_MATERIAU",
             Some(&m),
-            vec![("ECRO_LINE", V::F(vec![vec![("SY", V::R(1.0))]]))],
+            vec![("ECRO_PUIS", V::F(vec![vec![("SY", V::R(1.0))]]))],
         ))
         .unwrap_err();
-    assert_eq!(err.message, "not supported yet: DEFI_MATERIAU/ECRO_LINE");
+    assert_eq!(err.message, "not supported yet: DEFI_MATERIAU/ECRO_PUIS");
 }

@@ -24,6 +24,11 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "ELAS/ALPHA",
             "ELAS/AMOR_ALPHA",
             "ELAS/AMOR_BETA",
+            "ECRO_LINE",
+            "ECRO_LINE/D_SIGM_EPSI",
+            "ECRO_LINE/SY",
+            "TRACTION",
+            "TRACTION/SIGM",
             "INFO",
         ],
     )?;
@@ -60,11 +65,65 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             format!("NU must be in (-1, 0.5), got {poisson}"),
         ));
     }
+    let ecro_line = match kw.factor("ECRO_LINE").first() {
+        Some(occ) => {
+            let get = |name: &str, what: &str| {
+                occ.f64(name).ok_or_else(|| {
+                    ex.kw_error(
+                        "DEFI_MATERIAU/ECRO_LINE",
+                        occ,
+                        name,
+                        format!("{what} is required"),
+                    )
+                })
+            };
+            let d_sigm_epsi = get("D_SIGM_EPSI", "the slope after yield D_SIGM_EPSI")?;
+            let sy = get("SY", "the yield stress SY")?;
+            // Checked here so the error points at the keyword (fem checks
+            // again when it builds the law).
+            aster_fem::VonMises::linear(young, sy, d_sigm_epsi).map_err(|e| {
+                ex.kw_error("DEFI_MATERIAU/ECRO_LINE", occ, "D_SIGM_EPSI", e.to_string())
+            })?;
+            Some(EcroLine { d_sigm_epsi, sy })
+        }
+        None => None,
+    };
+    let traction = match kw.factor("TRACTION").first() {
+        Some(occ) => {
+            let f = ex.required("DEFI_MATERIAU/TRACTION", occ, "SIGM")?;
+            match &*ex.function(f)? {
+                Function::Tabulated(t) => {
+                    aster_fem::VonMises::traction(
+                        young,
+                        t.abscissae(),
+                        t.values(),
+                        aster_fem::CurveEnd::Linear,
+                    )
+                    .map_err(|e| ex.kw_error("DEFI_MATERIAU/TRACTION", occ, "SIGM", e.to_string()))?;
+                    Some(t.clone())
+                }
+                _ => {
+                    return Err(ex.kw_error(
+                        "DEFI_MATERIAU/TRACTION",
+                        occ,
+                        "SIGM",
+                        format!(
+                            "`{}` must be a tabulated function of EPSI (DEFI_FONCTION): the traction curve σ(ε)",
+                            f.name
+                        ),
+                    ))
+                }
+            }
+        }
+        None => None,
+    };
     let m = Material {
         young,
         poisson,
         density: elas.f64("RHO"),
         alpha: elas.f64("ALPHA"),
+        ecro_line,
+        traction,
     };
     store_result(ex, call, Concept::Material(Rc::new(m)))
 }

@@ -1,0 +1,554 @@
+//! Von Mises plasticity with isotropic hardening, small strains
+//! (`VMIS_ISOT_LINE`, `VMIS_ISOT_TRAC`), integrated by radial return with
+//! its consistent tangent (code_aster R5.03.02).
+//!
+//! Vectors are in Voigt order (xx, yy, zz, xy, xz, yz); strains carry
+//! engineering shears (γ = 2ε), stresses tensor components, so the matrix
+//! D with σ = D ε has Dᵢⱼ = Cᵢⱼₖₗ — the convention of [`Elastic::hooke`].
+
+use crate::error::FemError;
+use crate::material::{Elastic, Hypothesis};
+
+/// What lies beyond the last point of a traction curve (its `PROL_DROITE`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CurveEnd {
+    /// The last segment is prolonged (`LINEAIRE`).
+    Linear,
+    /// The last stress is kept: perfect plasticity (`CONSTANT`).
+    Constant,
+    /// A plastic strain beyond the curve is an error (`EXCLU`).
+    Excluded,
+}
+
+/// The hardening function R(p) (yield stress after a cumulated plastic
+/// strain p).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Hardening {
+    /// `ECRO_LINE`: R(p) = SY + H p.
+    Linear { h: f64 },
+    /// `TRACTION`: R piecewise linear through (pᵢ, Rᵢ), p₀ = 0, R₀ = SY.
+    Curve {
+        p: Vec<f64>,
+        r: Vec<f64>,
+        end: CurveEnd,
+    },
+}
+
+/// A von Mises law with isotropic hardening. The elastic part is the
+/// element's [`Elastic`] material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VonMises {
+    /// Initial yield stress SY.
+    pub sy: f64,
+    pub hardening: Hardening,
+}
+
+impl VonMises {
+    /// `ECRO_LINE=_F(D_SIGM_EPSI=et, SY=sy)` with Young's modulus `e`: the
+    /// tangent modulus ET of the uniaxial curve gives the hardening modulus
+    /// H = E·ET / (E − ET) (code_aster's reading).
+    pub fn linear(e: f64, sy: f64, et: f64) -> Result<VonMises, FemError> {
+        if !(sy.is_finite() && sy > 0.) {
+            return Err(FemError::Model(format!(
+                "ECRO_LINE: the yield stress SY must be positive and finite, got {sy}"
+            )));
+        }
+        if !(et.is_finite() && et < e) {
+            return Err(FemError::Model(format!(
+                "ECRO_LINE: D_SIGM_EPSI = {et} must be less than Young's modulus E = {e} (the slope after yield is below the elastic one)"
+            )));
+        }
+        Ok(VonMises {
+            sy,
+            hardening: Hardening::Linear {
+                h: e * et / (e - et),
+            },
+        })
+    }
+
+    /// `TRACTION=_F(SIGM=σ(ε))` with Young's modulus `e`: the first point
+    /// gives the yield stress SY = σ₁ (it is the end of the elastic line);
+    /// each next point (εᵢ, σᵢ) gives R(pᵢ) = σᵢ at the plastic strain
+    /// pᵢ = εᵢ − σᵢ/E, which must increase.
+    pub fn traction(e: f64, eps: &[f64], sig: &[f64], end: CurveEnd) -> Result<VonMises, FemError> {
+        if eps.len() != sig.len() || eps.is_empty() {
+            return Err(FemError::Model(
+                "TRACTION: the curve needs at least one (strain, stress) point".into(),
+            ));
+        }
+        let sy = sig[0];
+        if !(sy.is_finite() && sy > 0. && eps[0] > 0.) {
+            return Err(FemError::Model(format!(
+                "TRACTION: the first point of the curve (ε = {}, σ = {sy}) is the elastic limit: both must be positive",
+                eps[0]
+            )));
+        }
+        let mut p = vec![0.0];
+        let mut r = vec![sy];
+        for i in 1..eps.len() {
+            let pi = eps[i] - sig[i] / e;
+            let last = p[p.len() - 1];
+            if pi.partial_cmp(&last) != Some(std::cmp::Ordering::Greater) {
+                return Err(FemError::Model(format!(
+                    "TRACTION: point {} of the curve (ε = {}, σ = {}) has the plastic strain ε − σ/E = {pi:e}, not above the previous point's {last:e}: the curve must rise more slowly than E = {e}",
+                    i + 1,
+                    eps[i],
+                    sig[i]
+                )));
+            }
+            p.push(pi);
+            r.push(sig[i]);
+        }
+        Ok(VonMises {
+            sy,
+            hardening: Hardening::Curve { p, r, end },
+        })
+    }
+
+    /// R(p) and its slope R'(p) (the slope of the segment p lies on, the
+    /// right one at a kink).
+    pub fn yield_stress(&self, p: f64) -> Result<(f64, f64), FemError> {
+        match &self.hardening {
+            Hardening::Linear { h } => Ok((self.sy + h * p, *h)),
+            Hardening::Curve { p: ps, r, end } => {
+                let k = segment(ps, p);
+                curve_at(ps, r, *end, k, p)
+            }
+        }
+    }
+
+    /// The plastic increment Δp ≥ 0 solving q − 3μΔp = R(p + Δp), given
+    /// q > R(p). Returns (Δp, R'(p + Δp)).
+    fn return_increment(&self, q: f64, p: f64, mu: f64) -> Result<(f64, f64), FemError> {
+        match &self.hardening {
+            Hardening::Linear { h } => {
+                let denom = 3. * mu + h;
+                if denom <= 0. {
+                    return Err(FemError::Model(format!(
+                        "VMIS_ISOT_LINE: the softening slope H = {h} is below −3μ = {}: the local problem has no solution",
+                        -3. * mu
+                    )));
+                }
+                Ok(((q - self.sy - h * p) / denom, *h))
+            }
+            Hardening::Curve { p: ps, r, end } => {
+                // g(Δp) = q − 3μΔp − R(p + Δp) decreases: walk the segments
+                // from p's until the root falls inside one.
+                let mut k = segment(ps, p);
+                loop {
+                    let (rk, hk) = curve_at(ps, r, *end, k, ps[k.min(ps.len() - 1)])?;
+                    let pk = ps[k.min(ps.len() - 1)];
+                    let denom = 3. * mu + hk;
+                    let dp = (q - rk - hk * (p - pk)) / denom;
+                    let next = ps.get(k + 1).copied().unwrap_or(f64::INFINITY);
+                    if p + dp <= next || k + 1 >= ps.len() {
+                        if k + 1 >= ps.len() && *end == CurveEnd::Excluded && dp > 0. {
+                            return Err(FemError::Model(format!(
+                                "VMIS_ISOT_TRAC: the plastic strain {:.6e} goes beyond the last point of the traction curve (p = {:.6e}) and the curve is not prolonged (PROL_DROITE='EXCLU')",
+                                p + dp,
+                                pk
+                            )));
+                        }
+                        return Ok((dp.max(0.), hk));
+                    }
+                    k += 1;
+                }
+            }
+        }
+    }
+}
+
+/// Index of the segment [pₖ, pₖ₊₁) holding p (the last point's index past
+/// the curve).
+fn segment(ps: &[f64], p: f64) -> usize {
+    ps.partition_point(|&x| x <= p).saturating_sub(1)
+}
+
+/// R and R' at p on segment k (k = last index: beyond the curve).
+fn curve_at(
+    ps: &[f64],
+    r: &[f64],
+    end: CurveEnd,
+    k: usize,
+    p: f64,
+) -> Result<(f64, f64), FemError> {
+    let n = ps.len();
+    if n == 1 {
+        // Only the elastic limit: perfect plasticity.
+        return Ok((r[0], 0.0));
+    }
+    if k + 1 < n {
+        let h = (r[k + 1] - r[k]) / (ps[k + 1] - ps[k]);
+        return Ok((r[k] + h * (p - ps[k]), h));
+    }
+    match end {
+        CurveEnd::Constant => Ok((r[n - 1], 0.0)),
+        CurveEnd::Linear | CurveEnd::Excluded => {
+            let h = (r[n - 1] - r[n - 2]) / (ps[n - 1] - ps[n - 2]);
+            Ok((r[n - 1] + h * (p - ps[n - 1]), h))
+        }
+    }
+}
+
+/// The state of one Gauss point.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointState {
+    /// Stress (xx, yy, zz, xy, xz, yz).
+    pub stress: [f64; 6],
+    /// Plastic strain, engineering shears (EPSP).
+    pub plastic_strain: [f64; 6],
+    /// Cumulated plastic strain p (code_aster's V1).
+    pub p: f64,
+    /// Whether the last increment was plastic (code_aster's V2).
+    pub plastic: bool,
+    /// Total εzz (C_PLAN only, where it is not a kinematic unknown).
+    pub eps_zz: f64,
+}
+
+impl PointState {
+    /// VARI: V1 = p, V2 = plasticity indicator.
+    pub fn vari(&self) -> [f64; 2] {
+        [self.p, if self.plastic { 1.0 } else { 0.0 }]
+    }
+}
+
+/// A 6×6 matrix.
+pub type Mat6 = [[f64; 6]; 6];
+
+fn lame(el: &Elastic) -> (f64, f64) {
+    let mu = el.e / (2. * (1. + el.nu));
+    let lambda = el.e * el.nu / ((1. + el.nu) * (1. - 2. * el.nu));
+    (lambda, mu)
+}
+
+fn elastic_3d(el: &Elastic) -> Mat6 {
+    let (lambda, mu) = lame(el);
+    let mut d = [[0.0; 6]; 6];
+    for i in 0..3 {
+        for j in 0..3 {
+            d[i][j] = if i == j { lambda + 2. * mu } else { lambda };
+        }
+        d[i + 3][i + 3] = mu;
+    }
+    d
+}
+
+/// Deviator of a stress and its von Mises norm q = √(3/2 s:s).
+fn deviator(s: &[f64; 6]) -> ([f64; 6], f64) {
+    let m = (s[0] + s[1] + s[2]) / 3.;
+    let d = [s[0] - m, s[1] - m, s[2] - m, s[3], s[4], s[5]];
+    let ss =
+        d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2. * (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]);
+    (d, (1.5 * ss).sqrt())
+}
+
+/// K 1⊗1 + 2μθ I_dev − 3μθ̄ (s⊗s)/q²: the tangent of the return (θ = 1,
+/// θ̄ = 0 is Hooke's matrix).
+fn tangent_3d(el: &Elastic, theta: f64, theta_bar: f64, s: &[f64; 6], q: f64) -> Mat6 {
+    let (lambda, mu) = lame(el);
+    let k = lambda + 2. * mu / 3.;
+    let mut c = [[0.0; 6]; 6];
+    for i in 0..3 {
+        for j in 0..3 {
+            let dev = if i == j { 2. / 3. } else { -1. / 3. };
+            c[i][j] = k + 2. * mu * theta * dev;
+        }
+        c[i + 3][i + 3] = mu * theta;
+    }
+    if theta_bar != 0. && q > 0. {
+        let f = 3. * mu * theta_bar / (q * q);
+        for i in 0..6 {
+            for j in 0..6 {
+                c[i][j] -= f * s[i] * s[j];
+            }
+        }
+    }
+    c
+}
+
+/// Radial return from `prev` for the total strain `eps` (3D, engineering
+/// shears). Returns the new state and the consistent tangent.
+pub fn integrate_3d(
+    law: &VonMises,
+    el: &Elastic,
+    eps: &[f64; 6],
+    prev: &PointState,
+) -> Result<(PointState, Mat6), FemError> {
+    let d = elastic_3d(el);
+    let (_, mu) = lame(el);
+    let mut ee = [0.0; 6];
+    for i in 0..6 {
+        ee[i] = eps[i] - prev.plastic_strain[i];
+    }
+    let mut trial = [0.0; 6];
+    for i in 0..6 {
+        trial[i] = (0..6).map(|j| d[i][j] * ee[j]).sum();
+    }
+    let (s, q) = deviator(&trial);
+    let (r, _) = law.yield_stress(prev.p)?;
+    if q <= r {
+        let next = PointState {
+            stress: trial,
+            plastic: false,
+            ..*prev
+        };
+        return Ok((next, d));
+    }
+    let (dp, h) = law.return_increment(q, prev.p, mu)?;
+    let ratio = 3. * mu * dp / q;
+    let mut next = PointState {
+        stress: trial,
+        plastic_strain: prev.plastic_strain,
+        p: prev.p + dp,
+        plastic: true,
+        eps_zz: prev.eps_zz,
+    };
+    for i in 0..6 {
+        next.stress[i] -= ratio * s[i];
+        // ε̇p = 3/2 Δp s/q; engineering shears double the off-diagonal.
+        let f = if i < 3 { 1.5 } else { 3.0 };
+        next.plastic_strain[i] += f * dp * s[i] / q;
+    }
+    let theta = 1. - ratio;
+    let theta_bar = 1. / (1. + h / (3. * mu)) - ratio;
+    Ok((next, tangent_3d(el, theta, theta_bar, &s, q)))
+}
+
+/// The tangent at a converged state with no increment (code_aster's
+/// prediction matrix RIGI_MECA_TANG): elastic if the last increment was
+/// elastic, else the continuum elasto-plastic tangent.
+pub fn prediction_tangent_3d(
+    law: &VonMises,
+    el: &Elastic,
+    state: &PointState,
+) -> Result<Mat6, FemError> {
+    if !state.plastic {
+        return Ok(elastic_3d(el));
+    }
+    let (_, mu) = lame(el);
+    let (s, q) = deviator(&state.stress);
+    let (_, h) = law.yield_stress(state.p)?;
+    Ok(tangent_3d(el, 1., 1. / (1. + h / (3. * mu)), &s, q))
+}
+
+/// Most local iterations on εzz in plane stress.
+const PLANE_STRESS_ITER: usize = 50;
+
+/// The behaviour for a hypothesis: `eps` has the hypothesis' components
+/// (4 in 2D: xx, yy, zz, xy, with zz = 0 in D_PLAN, u_r/r in AXIS and
+/// unused in C_PLAN; 6 in 3D). Returns the state and the tangent on those
+/// components (in C_PLAN condensed on σzz = 0, zz row and column zero).
+pub fn integrate(
+    law: &VonMises,
+    el: &Elastic,
+    hyp: Hypothesis,
+    eps: &[f64],
+    prev: &PointState,
+    prediction: bool,
+) -> Result<(PointState, Mat6), FemError> {
+    let mut e6 = [0.0; 6];
+    let n = hyp.ncomp();
+    e6[..n].copy_from_slice(&eps[..n]);
+    if hyp != Hypothesis::PlaneStress {
+        if prediction {
+            return Ok((*prev, prediction_tangent_3d(law, el, prev)?));
+        }
+        return integrate_3d(law, el, &e6, prev);
+    }
+    // Plane stress: find εzz with σzz = 0 by Newton on the 3D law.
+    let (mut state, mut c);
+    if prediction {
+        state = *prev;
+        c = prediction_tangent_3d(law, el, prev)?;
+    } else {
+        e6[2] = prev.eps_zz;
+        let mut k = 0;
+        loop {
+            (state, c) = integrate_3d(law, el, &e6, prev)?;
+            let scale = state
+                .stress
+                .iter()
+                .fold(law.sy * 1e-3, |m, v| m.max(v.abs()));
+            if state.stress[2].abs() <= 1e-12 * scale {
+                break;
+            }
+            k += 1;
+            if k > PLANE_STRESS_ITER || c[2][2] <= 0. {
+                return Err(FemError::Model(format!(
+                    "C_PLAN: the plane-stress condition σzz = 0 was not reached at a Gauss point after {PLANE_STRESS_ITER} local iterations (σzz = {:e})",
+                    state.stress[2]
+                )));
+            }
+            e6[2] -= state.stress[2] / c[2][2];
+        }
+        state.stress[2] = 0.0;
+        state.eps_zz = e6[2];
+    }
+    let mut cond = [[0.0; 6]; 6];
+    for a in [0usize, 1, 3] {
+        for b in [0usize, 1, 3] {
+            cond[a][b] = c[a][b] - c[a][2] * c[2][b] / c[2][2];
+        }
+    }
+    Ok((state, cond))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn steel() -> Elastic {
+        Elastic::new(200e3, 0.3).unwrap()
+    }
+
+    /// The consistent tangent against centred finite differences of the
+    /// stress, on a plastic increment with shear.
+    fn check_tangent(law: &VonMises, hyp: Hypothesis) {
+        let el = steel();
+        let prev = PointState {
+            p: 1e-3,
+            plastic_strain: [1e-3, -5e-4, -5e-4, 0., 0., 0.],
+            ..Default::default()
+        };
+        let eps = [
+            4e-3,
+            -1.5e-3,
+            if hyp == Hypothesis::Axisymmetric {
+                1e-3
+            } else {
+                0.
+            },
+            2e-3,
+            5e-4,
+            -3e-4,
+        ];
+        let eps = &eps[..hyp.ncomp()];
+        let (st, c) = integrate(law, &el, hyp, eps, &prev, false).unwrap();
+        assert!(st.plastic && st.p > prev.p);
+        let h = 1e-9;
+        for j in 0..hyp.ncomp() {
+            if hyp == Hypothesis::PlaneStress && j == 2 {
+                continue;
+            }
+            let mut ep = eps.to_vec();
+            let mut em = eps.to_vec();
+            ep[j] += h;
+            em[j] -= h;
+            let sp = integrate(law, &el, hyp, &ep, &prev, false)
+                .unwrap()
+                .0
+                .stress;
+            let sm = integrate(law, &el, hyp, &em, &prev, false)
+                .unwrap()
+                .0
+                .stress;
+            for i in 0..hyp.ncomp() {
+                let fd = (sp[i] - sm[i]) / (2. * h);
+                assert!(
+                    (fd - c[i][j]).abs() <= 1e-5 * el.e,
+                    "{hyp:?} C[{i}][{j}] = {} vs finite difference {fd}",
+                    c[i][j]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn consistent_tangent_matches_finite_differences() {
+        let e = steel().e;
+        let linear = VonMises::linear(e, 300., 20e3).unwrap();
+        let curve = VonMises::traction(
+            e,
+            &[1.5e-3, 3e-3, 1e-2, 5e-2],
+            &[300., 350., 420., 500.],
+            CurveEnd::Linear,
+        )
+        .unwrap();
+        for law in [&linear, &curve] {
+            for hyp in [
+                Hypothesis::Solid3D,
+                Hypothesis::PlaneStrain,
+                Hypothesis::Axisymmetric,
+                Hypothesis::PlaneStress,
+            ] {
+                check_tangent(law, hyp);
+            }
+        }
+    }
+
+    #[test]
+    fn the_returned_stress_lies_on_the_hardened_yield_surface() {
+        let e = steel().e;
+        let law = VonMises::traction(
+            e,
+            &[1.5e-3, 3e-3, 1e-2],
+            &[300., 350., 420.],
+            CurveEnd::Constant,
+        )
+        .unwrap();
+        // Large enough to cross two segments and reach the plateau.
+        for (k, eps) in [2.5e-3, 6e-3, 2e-2].into_iter().enumerate() {
+            let (st, _) = integrate_3d(
+                &law,
+                &steel(),
+                &[eps, 0., 0., 0., 0., 0.],
+                &PointState::default(),
+            )
+            .unwrap();
+            let (_, q) = deviator(&st.stress);
+            let (r, _) = law.yield_stress(st.p).unwrap();
+            assert!((q - r).abs() < 1e-9 * r, "step {k}: q = {q}, R(p) = {r}");
+            // Plastic flow is isochoric.
+            let tr = st.plastic_strain[0] + st.plastic_strain[1] + st.plastic_strain[2];
+            assert!(tr.abs() < 1e-15, "{tr}");
+        }
+    }
+
+    #[test]
+    fn ecro_line_hardening_modulus_is_e_et_over_e_minus_et() {
+        let law = VonMises::linear(200e3, 300., 20e3).unwrap();
+        assert_eq!(
+            law.hardening,
+            Hardening::Linear {
+                h: 200e3 * 20e3 / 180e3
+            }
+        );
+        let err = VonMises::linear(200e3, 300., 250e3)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("D_SIGM_EPSI = 250000 must be less than"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn traction_curve_reading_and_its_errors() {
+        let law = VonMises::traction(1000., &[0.1, 0.3], &[100., 140.], CurveEnd::Linear).unwrap();
+        // p₁ = 0.3 − 140/1000 = 0.16: slope (140 − 100)/0.16 = 250.
+        let (r, h) = law.yield_stress(0.08).unwrap();
+        assert!(
+            (r - 120.).abs() < 1e-12 && (h - 250.).abs() < 1e-9,
+            "{r} {h}"
+        );
+        // Beyond the curve: prolonged, kept, or refused.
+        assert!((law.yield_stress(0.32).unwrap().0 - 180.).abs() < 1e-9);
+        let flat =
+            VonMises::traction(1000., &[0.1, 0.3], &[100., 140.], CurveEnd::Constant).unwrap();
+        assert_eq!(flat.yield_stress(0.32).unwrap(), (140., 0.));
+        let excl =
+            VonMises::traction(1000., &[0.1, 0.3], &[100., 140.], CurveEnd::Excluded).unwrap();
+        let err = excl
+            .return_increment(1e6, 0.0, 400.)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("PROL_DROITE='EXCLU'"), "{err}");
+        let err = VonMises::traction(1000., &[0.1, 0.2], &[100., 210.], CurveEnd::Linear)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("point 2") && err.contains("rise more slowly than E"),
+            "{err}"
+        );
+    }
+}

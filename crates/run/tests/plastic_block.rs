@@ -1,0 +1,102 @@
+//! The project's plastic-block scene (comm/plastic_block.comm on
+//! comm/plastic_block.mail): a VMIS_ISOT_LINE block pressed by an elastic
+//! punch through discrete contact; every TEST_RESU (stresses, VARI_ELGA,
+//! VARI_NOEU, SIEF_NOEU, DEPL, REAC_NODA against the analytic uniaxial
+//! solution) must pass — also with the same hardening given as a traction
+//! curve (VMIS_ISOT_TRAC). Unsupported behaviours fail with clear messages.
+
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Runs the scene's text (possibly edited) and returns (OK, NOOK, error).
+fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
+    let out =
+        std::env::temp_dir().join(format!("aster-plastic-block-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let comm = out.join("case.comm");
+    std::fs::write(&comm, text).unwrap();
+    let case =
+        aster_run::program::prepare(&comm, Some(&root().join("comm/plastic_block.mail")), &out)
+            .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&out);
+    (
+        outcome.tally.ok,
+        outcome.tally.nook,
+        outcome.error.map(|e| format!("{e:?}")),
+    )
+}
+
+fn scene() -> String {
+    std::fs::read_to_string(root().join("comm/plastic_block.comm")).unwrap()
+}
+
+fn edited(from: &str, to: &str) -> String {
+    let text = scene();
+    assert!(text.contains(from), "the scene no longer has `{from}`");
+    text.replace(from, to)
+}
+
+#[test]
+fn plastic_block_under_a_punch_passes_every_check() {
+    let path = root().join("comm/plastic_block.comm");
+    assert!(Path::new(&path).exists());
+    assert_eq!(run(&scene(), "line"), (24, 0, None));
+}
+
+#[test]
+fn the_same_hardening_as_a_traction_curve_gives_the_same_answers() {
+    // σ(ε) through the elastic limit (SY/E, SY) with slope ET after it,
+    // prolonged linearly: VMIS_ISOT_TRAC then equals VMIS_ISOT_LINE.
+    let text = edited(
+        "block_mat = DEFI_MATERIAU(ELAS=_F(E=E, NU=NU), ECRO_LINE=_F(D_SIGM_EPSI=ET, SY=SY))",
+        "curve = DEFI_FONCTION(NOM_PARA=\"EPSI\", PROL_DROITE=\"LINEAIRE\",\n    \
+         VALE=(SY / E, SY, 0.05, SY + ET * (0.05 - SY / E)))\n\
+         block_mat = DEFI_MATERIAU(ELAS=_F(E=E, NU=NU), TRACTION=_F(SIGM=curve))",
+    )
+    .replace("RELATION=\"VMIS_ISOT_LINE\"", "RELATION=\"VMIS_ISOT_TRAC\"");
+    assert_eq!(run(&text, "trac"), (24, 0, None));
+}
+
+#[test]
+fn a_plastic_relation_without_its_material_data_is_a_clear_error() {
+    let text = edited(
+        "block_mat = DEFI_MATERIAU(ELAS=_F(E=E, NU=NU), ECRO_LINE=_F(D_SIGM_EPSI=ET, SY=SY))",
+        "block_mat = DEFI_MATERIAU(ELAS=_F(E=E, NU=NU))",
+    );
+    let (_, _, err) = run(&text, "noecro");
+    let err = err.expect("an error");
+    assert!(
+        err.contains("RELATION='VMIS_ISOT_LINE'") && err.contains("needs ECRO_LINE"),
+        "{err}"
+    );
+}
+
+#[test]
+fn large_strains_are_refused_with_the_reason() {
+    let text = edited(
+        "_F(RELATION=\"VMIS_ISOT_LINE\", GROUP_MA=\"BLOC\")",
+        "_F(RELATION=\"VMIS_ISOT_LINE\", DEFORMATION=\"GDEF_LOG\", GROUP_MA=\"BLOC\")",
+    );
+    let (_, _, err) = run(&text, "gdef");
+    let err = err.expect("an error");
+    assert!(
+        err.contains("DEFORMATION='GDEF_LOG'") && err.contains("only small strains"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_unknown_relation_lists_the_supported_ones() {
+    let text = edited("RELATION=\"VMIS_ISOT_LINE\"", "RELATION=\"VMIS_CINE_LINE\"");
+    let (_, _, err) = run(&text, "cine");
+    let err = err.expect("an error");
+    assert!(
+        err.contains("RELATION='VMIS_CINE_LINE'")
+            && err.contains("ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC"),
+        "{err}"
+    );
+}
