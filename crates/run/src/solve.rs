@@ -155,6 +155,8 @@ const SNL_KEYWORDS: &[&str] = &[
     "ETAT_INIT/PRECISION",
     "ETAT_INIT/CRITERE",
     "INFO",
+    // Debugging output of code_aster's internals: nothing to print here.
+    "INFO_DBG",
     "TITRE",
     "AFFICHAGE",
     "AFFICHAGE/*",

@@ -346,6 +346,63 @@ fn post_releve_t_extracts_and_impr_table_prints() -> Result<(), ExecError> {
 }
 
 #[test]
+fn post_releve_t_selects_the_instants_of_a_list_inst() -> Result<(), ExecError> {
+    let mut s = scene("CONTRAINTE")?;
+    let l = s.p.concept("L_POST", "listr8_sdaster");
+    s.ex.execute(&call(
+        "DEFI_LIST_REEL",
+        Some(&l),
+        vec![("VALE", V::L(vec![V::R(10.0), V::R(20.0)]))],
+    ))?;
+    let t = s.p.concept("T_LIST", "table_sdaster");
+    s.ex.execute(&call(
+        "POST_RELEVE_T",
+        Some(&t),
+        vec![(
+            "ACTION",
+            V::F(vec![vec![
+                ("OPERATION", V::S("EXTRACTION")),
+                ("INTITULE", V::S("Deplacements")),
+                ("RESULTAT", V::C(s.resu.clone())),
+                ("NOM_CHAM", V::S("DEPL")),
+                ("LIST_INST", V::C(l.clone())),
+                ("GROUP_NO", V::S("ABCD")),
+                ("TOUT_CMP", V::S("OUI")),
+            ]]),
+        )],
+    ))?;
+    // Only the listed instants: node NB appears on two rows of the table.
+    s.ex.execute(&call("IMPR_TABLE", None, vec![("TABLE", V::C(t.clone()))]))?;
+    let printed = s.out.text();
+    let rows = printed
+        .lines()
+        .filter(|l| l.split_whitespace().any(|w| w == "NB"))
+        .count();
+    assert_eq!(rows, 2, "{printed}");
+    // The load is a linear ramp: DX(NB) at t = 10 is half its value at 20.
+    for (inst, dx) in [(10.0, 4.285714274 / 2.0), (20.0, 4.285714274)] {
+        s.ex.execute(&call(
+            "TEST_TABLE",
+            None,
+            vec![
+                ("TABLE", V::C(t.clone())),
+                ("NOM_PARA", V::S("DX")),
+                (
+                    "FILTRE",
+                    V::F(vec![
+                        vec![("NOM_PARA", V::S("NOEUD")), ("VALE_K", V::S("NB"))],
+                        vec![("NOM_PARA", V::S("INST")), ("VALE", V::R(inst))],
+                    ]),
+                ),
+                ("VALE_CALC", V::R(dx)),
+            ],
+        ))?;
+    }
+    assert_eq!((s.ex.tally.ok, s.ex.tally.nook), (2, 0), "{}", s.out.text());
+    Ok(())
+}
+
+#[test]
 fn penalty_is_close_to_exact() -> Result<(), ExecError> {
     let mut s = scene("PENALISATION")?;
     test(&mut s, "A", "DEPL", "DX", -4.285714318, -4.28571, "RELATIF")?;

@@ -466,6 +466,8 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     ex.check_keywords(
         call,
         &[
+            // code_aster 17 writes METHODE at the top, older files in DEFI_LIST.
+            "METHODE",
             "DEFI_LIST",
             "DEFI_LIST/METHODE",
             "DEFI_LIST/LIST_INST",
@@ -486,6 +488,7 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let Some(def) = kw.factor("DEFI_LIST").first() else {
         return Err(ExecError::new("DEFI_LIST_INST: DEFI_LIST is required"));
     };
+    ex.only_values("DEFI_LIST_INST", kw, "METHODE", &["MANUEL"])?;
     ex.only_values("DEFI_LIST_INST/DEFI_LIST", def, "METHODE", &["MANUEL"])?;
     for occ in kw.factor("ECHEC") {
         // DECOUPE (subdivide a failed step) is accepted: steps are not

@@ -23,9 +23,24 @@ pub fn select_steps<'r>(
     let absolute = occ.str("CRITERE") == Some("ABSOLU");
     let precision = occ
         .f64("PRECISION")
-        .filter(|_| occ.contains("INST"))
+        .filter(|_| occ.contains("INST") || occ.contains("LIST_INST"))
         .unwrap_or(INST_PRECISION);
     let mut out = Vec::new();
+    // LIST_INST (a DEFI_LIST_REEL) designates its instants as INST would.
+    let listed: Option<Vec<f64>> = match occ.concept("LIST_INST") {
+        Some(l) => Some((*ex.real_list(l)?).clone()),
+        None => None,
+    };
+    let (inst_kw, instants) = match listed {
+        Some(v) => ("LIST_INST", v),
+        None => (
+            "INST",
+            occ.simple("INST")
+                .iter()
+                .filter_map(|s| s.as_f64())
+                .collect(),
+        ),
+    };
     if occ.contains("NUME_ORDRE") {
         for n in occ.simple("NUME_ORDRE").iter().filter_map(|s| s.as_i64()) {
             out.push(result.step_numbered(n as u32).ok_or_else(|| {
@@ -40,8 +55,8 @@ pub fn select_steps<'r>(
                 )
             })?);
         }
-    } else if occ.contains("INST") {
-        for t in occ.simple("INST").iter().filter_map(|s| s.as_f64()) {
+    } else if occ.contains("INST") || occ.contains("LIST_INST") {
+        for t in instants {
             out.push(result.step_at(t, precision, absolute).ok_or_else(|| {
                 let insts: Vec<String> = result
                     .steps
@@ -51,7 +66,7 @@ pub fn select_steps<'r>(
                 ex.kw_error(
                     cmd,
                     occ,
-                    "INST",
+                    inst_kw,
                     format!(
                         "the result has no instant {t} (instants: {})",
                         insts.join(", ")
@@ -329,6 +344,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             "ACTION/CHAM_GD",
             "ACTION/NOM_CHAM",
             "ACTION/INST",
+            "ACTION/LIST_INST",
             "ACTION/NUME_ORDRE",
             "ACTION/TOUT_ORDRE",
             "ACTION/CRITERE",
