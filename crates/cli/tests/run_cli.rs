@@ -119,7 +119,7 @@ fn unsupported_keyword_stops_with_its_location() {
     assert_eq!(r.code, 2, "{}\n{}", r.stdout, r.stderr);
     assert!(
         r.stderr
-            .contains("not supported yet: DEFI_MATERIAU/ECRO_LINE (")
+            .contains("not supported yet: DEFI_MATERIAU/ECRO_PUIS (")
             && r.stderr.contains("unsupported.comm:4:"),
         "{}",
         r.stderr
