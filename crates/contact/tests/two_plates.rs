@@ -5,7 +5,7 @@
 
 use aster_contact::scenes::{two_plates_mesh, two_plates_problem, two_plates_problem_as};
 use aster_contact::*;
-use aster_fem::{Comp, Dof, Hypothesis, Model, StaticNonLinear, UnilateralSource};
+use aster_fem::{Comp, Dof, Hypothesis, Model, NonLinearResult, StaticNonLinear, UnilateralSource};
 
 fn continuous(integration: Integration, geom_loop: GeomLoop) -> ContactDefinition {
     let mut def = ContactDefinition::continuous(
@@ -23,12 +23,12 @@ fn continuous(integration: Integration, geom_loop: GeomLoop) -> ContactDefinitio
     def
 }
 
-/// Solves one step; returns the model, the displacement and the zones.
-fn solve(
+/// Solves one step; returns the model, the result and the zones.
+fn solve_step(
     n_up: usize,
     n_low: usize,
     def: &ContactDefinition,
-) -> (Model, Vec<f64>, Vec<ZoneContact>) {
+) -> (Model, NonLinearResult, Vec<ZoneContact>) {
     let (model, loads) = two_plates_problem(two_plates_mesh(n_up, n_low).unwrap()).unwrap();
     let mut zones = ZoneContact::build_all(def, model.mesh()).unwrap();
     let res = {
@@ -42,6 +42,16 @@ fn solve(
         };
         snl.solve(&model, &loads).unwrap()
     };
+    (model, res, zones)
+}
+
+/// Solves one step; returns the model, the displacement and the zones.
+fn solve(
+    n_up: usize,
+    n_low: usize,
+    def: &ContactDefinition,
+) -> (Model, Vec<f64>, Vec<ZoneContact>) {
+    let (model, res, zones) = solve_step(n_up, n_low, def);
     let u = res.last().unwrap().displacement.clone();
     (model, u, zones)
 }
@@ -227,19 +237,7 @@ fn axisymmetric_lags_c_is_the_pressure_when_weights_carry_the_radius() {
 #[test]
 fn continuous_cont_noeu_components_carry_the_contact_vector_sign() {
     let def = continuous(Integration::Auto, GeomLoop::Controle { nb_iter: 2 });
-    let (model, loads) = two_plates_problem(two_plates_mesh(4, 4).unwrap()).unwrap();
-    let mut zones = ZoneContact::build_all(&def, model.mesh()).unwrap();
-    let res = {
-        let mut snl = StaticNonLinear {
-            instants: vec![0.0, 1.0],
-            sources: zones
-                .iter_mut()
-                .map(|z| Box::new(z) as Box<dyn UnilateralSource>)
-                .collect(),
-            ..Default::default()
-        };
-        snl.solve(&model, &loads).unwrap()
-    };
+    let (model, res, mut zones) = solve_step(4, 4, &def);
     let step = res.last().unwrap();
     let x = positions(model.mesh(), model.dofs(), &step.displacement);
     let cn = ContNoeu::at_step(&mut zones, model.mesh(), &x, &step.unilateral).unwrap();
