@@ -3,7 +3,7 @@
 use crate::concept::Concept;
 use crate::executor::{store_result, Executor};
 use crate::select;
-use aster_eval::{CommandCall, CommandOutput, ExecError};
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::{Along, Group, Mesh, NodeId, NodeKind};
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -133,33 +133,7 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             None => {}
             Some("FACE_NORMALE") => {
                 let what = "DEFI_GROUP/CREA_GROUP_MA/OPTION='FACE_NORMALE'";
-                let v: Vec<f64> = occ
-                    .simple("VECT_NORMALE")
-                    .iter()
-                    .filter_map(|s| s.as_f64())
-                    .collect();
-                let a: Vec<f64> = occ
-                    .simple("ANGL_NAUT")
-                    .iter()
-                    .filter_map(|s| s.as_f64())
-                    .collect();
-                let vector = if !v.is_empty() {
-                    [
-                        v[0],
-                        v.get(1).copied().unwrap_or(0.0),
-                        v.get(2).copied().unwrap_or(0.0),
-                    ]
-                } else if !a.is_empty() {
-                    let (al, be) = (
-                        a[0].to_radians(),
-                        a.get(1).copied().unwrap_or(0.0).to_radians(),
-                    );
-                    [al.cos() * be.cos(), al.sin() * be.cos(), -be.sin()]
-                } else {
-                    return Err(ExecError::new(format!(
-                        "{what}: give VECT_NORMALE or ANGL_NAUT"
-                    )));
-                };
+                let vector = normal_vector(occ, what)?;
                 cells = mesh
                     .cells_facing(
                         &cells,
@@ -475,34 +449,7 @@ fn geometric_group(
             mesh.nodes_on_sphere(centre(ex, mesh, occ)?, radius, precision()?)
         }
         "PLAN" => {
-            let v: Vec<f64> = occ
-                .simple("VECT_NORMALE")
-                .iter()
-                .filter_map(|s| s.as_f64())
-                .collect();
-            let a: Vec<f64> = occ
-                .simple("ANGL_NAUT")
-                .iter()
-                .filter_map(|s| s.as_f64())
-                .collect();
-            let normal = if !v.is_empty() {
-                [
-                    v[0],
-                    v.get(1).copied().unwrap_or(0.0),
-                    v.get(2).copied().unwrap_or(0.0),
-                ]
-            } else if !a.is_empty() {
-                // Nautical angles (degrees): the normal is the rotated x axis.
-                let (al, be) = (
-                    a[0].to_radians(),
-                    a.get(1).copied().unwrap_or(0.0).to_radians(),
-                );
-                [al.cos() * be.cos(), al.sin() * be.cos(), -be.sin()]
-            } else {
-                return Err(ExecError::new(format!(
-                    "{what}: give VECT_NORMALE or ANGL_NAUT"
-                )));
-            };
+            let normal = normal_vector(occ, &what)?;
             mesh.nodes_on_plane(centre(ex, mesh, occ)?, normal, precision()?)
                 .map_err(err)?
         }
@@ -543,4 +490,36 @@ fn geometric_group(
         }
     };
     Ok((name, nodes))
+}
+
+/// The direction an occurrence gives by `VECT_NORMALE` (missing components
+/// are 0) or by nautical angles `ANGL_NAUT` in degrees (the rotated x axis).
+fn normal_vector(occ: &Keywords, what: &str) -> Result<[f64; 3], ExecError> {
+    let v: Vec<f64> = occ
+        .simple("VECT_NORMALE")
+        .iter()
+        .filter_map(|s| s.as_f64())
+        .collect();
+    let a: Vec<f64> = occ
+        .simple("ANGL_NAUT")
+        .iter()
+        .filter_map(|s| s.as_f64())
+        .collect();
+    if !v.is_empty() {
+        Ok([
+            v[0],
+            v.get(1).copied().unwrap_or(0.0),
+            v.get(2).copied().unwrap_or(0.0),
+        ])
+    } else if !a.is_empty() {
+        let (al, be) = (
+            a[0].to_radians(),
+            a.get(1).copied().unwrap_or(0.0).to_radians(),
+        );
+        Ok([al.cos() * be.cos(), al.sin() * be.cos(), -be.sin()])
+    } else {
+        Err(ExecError::new(format!(
+            "{what}: give VECT_NORMALE or ANGL_NAUT"
+        )))
+    }
 }
