@@ -2,7 +2,7 @@
 //! (MED 4.1, ASTER `.mail`), into `--out` (`fort.<UNITE>` unless the
 //! `.export` names the unit's file).
 
-use crate::concept::EvolResult;
+use crate::concept::{EvolResult, Step};
 use crate::executor::Executor;
 use crate::field::{ElemLocation, Field};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
@@ -73,29 +73,49 @@ fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mesh::Field {
     }
 }
 
+/// A selected step and its selected fields, by name.
+type StepFields<'r> = (&'r Step, Vec<(&'r str, &'r Field)>);
+
+/// The steps an IMPR_RESU `RESU` occurrence selects (`NUME_ORDRE`/`INST`/…)
+/// with, for each, its fields named in `NOM_CHAM` (all fields without it).
+/// The MED, RESULTAT and GMSH writers all print this selection.
+fn selected_fields<'r>(
+    ex: &Executor,
+    occ: &Keywords,
+    result: &'r EvolResult,
+) -> Result<Vec<StepFields<'r>>, ExecError> {
+    let names: Vec<&str> = occ
+        .simple("NOM_CHAM")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, result)?;
+    Ok(result
+        .steps
+        .iter()
+        .filter(|s| steps.contains(&s.nume_ordre))
+        .map(|s| {
+            let fields = s
+                .fields
+                .iter()
+                .filter(|(name, _)| names.is_empty() || names.contains(&name.as_str()))
+                .map(|(name, f)| (name.as_str(), f))
+                .collect();
+            (s, fields)
+        })
+        .collect())
+}
+
 fn result_steps(
     ex: &Executor,
     occ: &Keywords,
     result: &EvolResult,
 ) -> Result<Vec<ResultStep>, ExecError> {
-    let names: Vec<String> = occ
-        .simple("NOM_CHAM")
-        .iter()
-        .filter_map(|s| s.as_str().map(str::to_string))
-        .collect();
     let mesh = ex.mesh_by_id(result.mesh)?;
-    let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, result)?;
     let mut out = Vec::new();
-    for s in result
-        .steps
-        .iter()
-        .filter(|s| steps.contains(&s.nume_ordre))
-    {
+    for (s, selected) in selected_fields(ex, occ, result)? {
         let mut fields = Vec::new();
-        for (name, f) in &s.fields {
-            if !names.is_empty() && !names.contains(name) {
-                continue;
-            }
+        for (name, f) in selected {
             // Fields without components (VARI_ELGA of ELAS) have nothing to write.
             if f.components().is_empty() {
                 continue;
@@ -356,21 +376,8 @@ fn listing(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
         if let Some(r) = occ.concept("RESULTAT") {
             let result = ex.result(r)?;
             let mesh = ex.mesh_by_id(result.mesh)?;
-            let names: Vec<&str> = occ
-                .simple("NOM_CHAM")
-                .iter()
-                .filter_map(|s| s.as_str())
-                .collect();
-            let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, &result)?;
-            for s in result
-                .steps
-                .iter()
-                .filter(|s| steps.contains(&s.nume_ordre))
-            {
-                for (name, f) in &s.fields {
-                    if !names.is_empty() && !names.contains(&name.as_str()) {
-                        continue;
-                    }
+            for (s, fields) in selected_fields(ex, occ, &result)? {
+                for (name, f) in fields {
                     let title = format!(
                         "CHAMP AUX NOEUDS DE NOM SYMBOLIQUE  {name}\nNUMERO D'ORDRE: {} INST: {}",
                         s.nume_ordre,
@@ -438,26 +445,13 @@ fn gmsh(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
         };
         let result = ex.result(r)?;
         let m = ex.mesh_by_id(result.mesh)?;
-        let names: Vec<&str> = occ
-            .simple("NOM_CHAM")
-            .iter()
-            .filter_map(|s| s.as_str())
-            .collect();
         let cmps: Vec<&str> = occ
             .simple("NOM_CMP")
             .iter()
             .filter_map(|s| s.as_str())
             .collect();
-        let steps = crate::commands::select_steps_pub(ex, "IMPR_RESU/RESU", occ, &result)?;
-        for s in result
-            .steps
-            .iter()
-            .filter(|s| steps.contains(&s.nume_ordre))
-        {
-            for (name, f) in &s.fields {
-                if !names.is_empty() && !names.contains(&name.as_str()) {
-                    continue;
-                }
+        for (s, fields) in selected_fields(ex, occ, &result)? {
+            for (name, f) in fields {
                 let Field::Nodal(f) = f else { continue };
                 for (c, comp) in f.components.iter().enumerate() {
                     if !cmps.is_empty() && !cmps.contains(&comp.as_str()) {
