@@ -301,10 +301,14 @@ fn zzzz237b_through_the_executor_matches_code_aster() -> Result<(), ExecError> {
     Ok(())
 }
 
-#[test]
-fn post_releve_t_extracts_and_impr_table_prints() -> Result<(), ExecError> {
-    let mut s = scene("CONTRAINTE")?;
-    let t = s.p.concept("T_DEP", "table_sdaster");
+/// POST_RELEVE_T extraction of DEPL on ABCD at the instants `selector`
+/// designates (`INST`, `LIST_INST`, …), into a table named `name`.
+fn extract_depl(
+    s: &mut Scene,
+    name: &'static str,
+    selector: (&'static str, V),
+) -> Result<ConceptRef, ExecError> {
+    let t = s.p.concept(name, "table_sdaster");
     s.ex.execute(&call(
         "POST_RELEVE_T",
         Some(&t),
@@ -315,32 +319,46 @@ fn post_releve_t_extracts_and_impr_table_prints() -> Result<(), ExecError> {
                 ("INTITULE", V::S("Deplacements")),
                 ("RESULTAT", V::C(s.resu.clone())),
                 ("NOM_CHAM", V::S("DEPL")),
-                ("INST", V::R(20.0)),
+                selector,
                 ("GROUP_NO", V::S("ABCD")),
                 ("TOUT_CMP", V::S("OUI")),
             ]]),
         )],
     ))?;
-    s.ex.execute(&call("IMPR_TABLE", None, vec![("TABLE", V::C(t.clone()))]))?;
-    // The table shows 6 significant digits: stable under solver round-off.
-    insta::assert_snapshot!(s.out.text());
-    // TEST_TABLE on the extracted table: DX of node NB.
+    Ok(t)
+}
+
+/// TEST_TABLE of DX on node NB's row of `t` (plus the `extra` filters).
+fn test_dx_of_nb(
+    s: &mut Scene,
+    t: &ConceptRef,
+    extra: Vec<Vec<(&'static str, V)>>,
+    dx: f64,
+) -> Result<(), ExecError> {
+    let mut filters = vec![vec![("NOM_PARA", V::S("NOEUD")), ("VALE_K", V::S("NB"))]];
+    filters.extend(extra);
     s.ex.execute(&call(
         "TEST_TABLE",
         None,
         vec![
             ("TABLE", V::C(t.clone())),
             ("NOM_PARA", V::S("DX")),
-            (
-                "FILTRE",
-                V::F(vec![vec![
-                    ("NOM_PARA", V::S("NOEUD")),
-                    ("VALE_K", V::S("NB")),
-                ]]),
-            ),
-            ("VALE_CALC", V::R(4.285714274)),
+            ("FILTRE", V::F(filters)),
+            ("VALE_CALC", V::R(dx)),
         ],
     ))?;
+    Ok(())
+}
+
+#[test]
+fn post_releve_t_extracts_and_impr_table_prints() -> Result<(), ExecError> {
+    let mut s = scene("CONTRAINTE")?;
+    let t = extract_depl(&mut s, "T_DEP", ("INST", V::R(20.0)))?;
+    s.ex.execute(&call("IMPR_TABLE", None, vec![("TABLE", V::C(t.clone()))]))?;
+    // The table shows 6 significant digits: stable under solver round-off.
+    insta::assert_snapshot!(s.out.text());
+    // TEST_TABLE on the extracted table: DX of node NB.
+    test_dx_of_nb(&mut s, &t, vec![], 4.285714274)?;
     assert_eq!((s.ex.tally.ok, s.ex.tally.nook), (1, 0), "{}", s.out.text());
     Ok(())
 }
@@ -354,23 +372,7 @@ fn post_releve_t_selects_the_instants_of_a_list_inst() -> Result<(), ExecError> 
         Some(&l),
         vec![("VALE", V::L(vec![V::R(10.0), V::R(20.0)]))],
     ))?;
-    let t = s.p.concept("T_LIST", "table_sdaster");
-    s.ex.execute(&call(
-        "POST_RELEVE_T",
-        Some(&t),
-        vec![(
-            "ACTION",
-            V::F(vec![vec![
-                ("OPERATION", V::S("EXTRACTION")),
-                ("INTITULE", V::S("Deplacements")),
-                ("RESULTAT", V::C(s.resu.clone())),
-                ("NOM_CHAM", V::S("DEPL")),
-                ("LIST_INST", V::C(l.clone())),
-                ("GROUP_NO", V::S("ABCD")),
-                ("TOUT_CMP", V::S("OUI")),
-            ]]),
-        )],
-    ))?;
+    let t = extract_depl(&mut s, "T_LIST", ("LIST_INST", V::C(l.clone())))?;
     // Only the listed instants: node NB appears on two rows of the table.
     s.ex.execute(&call("IMPR_TABLE", None, vec![("TABLE", V::C(t.clone()))]))?;
     let printed = s.out.text();
@@ -381,22 +383,8 @@ fn post_releve_t_selects_the_instants_of_a_list_inst() -> Result<(), ExecError> 
     assert_eq!(rows, 2, "{printed}");
     // The load is a linear ramp: DX(NB) at t = 10 is half its value at 20.
     for (inst, dx) in [(10.0, 4.285714274 / 2.0), (20.0, 4.285714274)] {
-        s.ex.execute(&call(
-            "TEST_TABLE",
-            None,
-            vec![
-                ("TABLE", V::C(t.clone())),
-                ("NOM_PARA", V::S("DX")),
-                (
-                    "FILTRE",
-                    V::F(vec![
-                        vec![("NOM_PARA", V::S("NOEUD")), ("VALE_K", V::S("NB"))],
-                        vec![("NOM_PARA", V::S("INST")), ("VALE", V::R(inst))],
-                    ]),
-                ),
-                ("VALE_CALC", V::R(dx)),
-            ],
-        ))?;
+        let at_inst = vec![("NOM_PARA", V::S("INST")), ("VALE", V::R(inst))];
+        test_dx_of_nb(&mut s, &t, vec![at_inst], dx)?;
     }
     assert_eq!((s.ex.tally.ok, s.ex.tally.nook), (2, 0), "{}", s.out.text());
     Ok(())
