@@ -212,7 +212,7 @@ impl<'a> Interp<'a> {
                 let v = match (&value.kind, targets.as_slice()) {
                     (ExprKind::Call { func, args }, [t]) => {
                         let name = match &t.kind {
-                            ExprKind::Name { id } => Some(id.clone()),
+                            ExprKind::Name { id } => Some(id.to_string()),
                             _ => Some(self.map.snippet(t.span).to_string()),
                         };
                         self.eval_call(func, args, value.span, name.as_deref())?
@@ -345,7 +345,7 @@ impl<'a> Interp<'a> {
                             let bind = a
                                 .asname
                                 .as_ref()
-                                .map(|i| i.name.clone())
+                                .map(|i| i.name.to_string())
                                 .unwrap_or(a.name.clone());
                             self.set_var(&bind, v);
                         }
@@ -358,7 +358,7 @@ impl<'a> Interp<'a> {
                             let bind = a
                                 .asname
                                 .as_ref()
-                                .map(|i| i.name.clone())
+                                .map(|i| i.name.to_string())
                                 .unwrap_or(a.name.clone());
                             let v = self.lookup_builtin(&a.name).unwrap_or_else(|| {
                                 Value::Module(Rc::from(format!("{m}.{}", a.name).as_str()))
@@ -374,7 +374,7 @@ impl<'a> Interp<'a> {
             StmtKind::Global { names } => {
                 if let Some(f) = self.frames.last_mut() {
                     for n in names {
-                        f.globals.insert(n.name.clone());
+                        f.globals.insert(n.name.to_string());
                     }
                 }
             }
@@ -397,8 +397,10 @@ impl<'a> Interp<'a> {
                     match &t.kind {
                         ExprKind::Name { id } => {
                             let removed = match self.frames.last_mut() {
-                                Some(f) if !f.globals.contains(id) => f.vars.remove(id).is_some(),
-                                _ => self.globals.remove(id).is_some(),
+                                Some(f) if !f.globals.contains(id.as_str()) => {
+                                    f.vars.remove(id.as_str()).is_some()
+                                }
+                                _ => self.globals.remove(id.as_str()).is_some(),
                             };
                             if !removed {
                                 return py_err(t.span, format!("name '{id}' is not defined"));
@@ -1089,7 +1091,7 @@ impl<'a> Interp<'a> {
                     span: a.span,
                 }),
                 ArgKind::Keyword { name, value } => cargs.push(CallArg {
-                    name: Some((name.name.clone(), name.span)),
+                    name: Some((name.name.to_string(), name.span)),
                     value: self.eval(value)?,
                     span: a.span,
                 }),
@@ -1243,14 +1245,14 @@ impl<'a> Interp<'a> {
                     } else {
                         return py_err(span, format!("{}() missing argument '{name}'", f.name));
                     };
-                    frame.vars.insert(name.clone(), v);
+                    frame.vars.insert(name.to_string(), v);
                 }
             }
         }
         let rest: Vec<Value> = pos.collect();
         match varargs_name {
             Some(n) => {
-                frame.vars.insert(n, Value::tuple(rest));
+                frame.vars.insert(n.to_string(), Value::tuple(rest));
             }
             None if !rest.is_empty() => {
                 return py_err(
@@ -1266,9 +1268,10 @@ impl<'a> Interp<'a> {
                 for (k, v, s) in keywords {
                     d.insert(Value::str(&k), v, s);
                 }
-                frame
-                    .vars
-                    .insert(n, Value::Dict(Rc::new(std::cell::RefCell::new(d))));
+                frame.vars.insert(
+                    n.to_string(),
+                    Value::Dict(Rc::new(std::cell::RefCell::new(d))),
+                );
             }
             None => {
                 if let Some((k, _, s)) = keywords.first() {

@@ -9,6 +9,12 @@
 use crate::codemap::Span;
 use serde::Serialize;
 
+/// The text of a name or of a string literal. Up to 24 bytes it is stored
+/// inline, without a heap allocation: nearly every code_aster keyword, concept
+/// name and string value fits, and these were 60 % of the allocations (and
+/// of the frees) of parsing the v17 corpus. It derefs to `str`.
+pub type Text = compact_str::CompactString;
+
 /// A whole file.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Module {
@@ -19,7 +25,7 @@ pub struct Module {
 /// A name as written in the source (variable, keyword argument, attribute).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Ident {
-    pub name: String,
+    pub name: Text,
     pub span: Span,
 }
 
@@ -200,7 +206,7 @@ pub struct Expr {
 #[serde(tag = "expr")]
 pub enum ExprKind {
     Name {
-        id: String,
+        id: Text,
     },
     /// Integer literal (decimal, hex, octal, binary; Python 2 `L` suffix accepted).
     /// Integers that do not fit an `i64` become [`ExprKind::Float`].
@@ -216,7 +222,7 @@ pub enum ExprKind {
     },
     /// A string literal, after escape processing and implicit concatenation.
     Str {
-        value: String,
+        value: Text,
     },
     Bytes {
         value: Vec<u8>,

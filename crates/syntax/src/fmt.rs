@@ -582,7 +582,7 @@ impl Printer<'_> {
         let mut out = Vec::new();
         for p in params {
             let mut t = match p.kind {
-                ParamKind::Normal => p.name.name.clone(),
+                ParamKind::Normal => p.name.name.to_string(),
                 ParamKind::VarArgs => format!("*{}", p.name.name),
                 ParamKind::KwArgs => format!("**{}", p.name.name),
                 ParamKind::KwOnlyMarker => "*".into(),
@@ -774,7 +774,7 @@ impl Printer<'_> {
     /// Render without line breaks.
     fn render(&mut self, e: &Expr) -> String {
         match &e.kind {
-            ExprKind::Name { id } => id.clone(),
+            ExprKind::Name { id } => id.to_string(),
             ExprKind::Int { value } => value.to_string(),
             ExprKind::Float { value } => float_str(*value),
             ExprKind::Imag { value } => format!("{}j", float_str(*value)),

@@ -85,7 +85,7 @@ impl Builder<'_> {
 
     fn ident(&self, pair: P) -> Ident {
         Ident {
-            name: pair.as_str().to_string(),
+            name: Text::new(pair.as_str()),
             span: self.span(&pair),
         }
     }
@@ -636,7 +636,10 @@ impl Builder<'_> {
                     _ => {}
                 }
             }
-            let name = name.unwrap_or(Ident { name: marker, span });
+            let name = name.unwrap_or(Ident {
+                name: marker.into(),
+                span,
+            });
             out.push(Param {
                 name,
                 kind,
@@ -976,7 +979,7 @@ impl Builder<'_> {
         let span = self.span(&pair);
         let kind = match pair.as_rule() {
             Rule::name => ExprKind::Name {
-                id: pair.as_str().to_string(),
+                id: Text::new(pair.as_str()),
             },
             Rule::number => literals::number(pair.as_str()).map_err(|m| err(span, m))?,
             Rule::strings => return self.strings(pair),
@@ -1192,7 +1195,8 @@ impl Builder<'_> {
     /// Adjacent literals, concatenated. Mixing bytes and text is an error.
     fn strings(&self, pair: P) -> R<Expr> {
         let span = self.span(&pair);
-        let mut text = String::new();
+        // Built inline (no allocation) while it fits in 24 bytes.
+        let mut text = Text::default();
         let mut bytes: Vec<u8> = Vec::new();
         let mut parts: Vec<FStringPart> = Vec::new();
         let mut kinds = (false, false); // (saw bytes, saw text)
@@ -1215,7 +1219,7 @@ impl Builder<'_> {
                     is_fstring = true;
                     if !text.is_empty() {
                         parts.push(FStringPart::Literal {
-                            value: std::mem::take(&mut text),
+                            value: std::mem::take(&mut text).into_string(),
                         });
                     }
                     let body_start = tok_span.start as usize + offset;
@@ -1237,7 +1241,9 @@ impl Builder<'_> {
             ExprKind::Bytes { value: bytes }
         } else if is_fstring {
             if !text.is_empty() {
-                parts.push(FStringPart::Literal { value: text });
+                parts.push(FStringPart::Literal {
+                    value: text.into_string(),
+                });
             }
             ExprKind::FString {
                 parts: merge_literals(parts),

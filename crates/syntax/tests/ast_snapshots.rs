@@ -56,7 +56,7 @@ fn expr(src: &str) -> Expr {
 /// A compact S-expression of an expression, to assert structure.
 fn sexp(e: &Expr) -> String {
     match &e.kind {
-        ExprKind::Name { id } => id.clone(),
+        ExprKind::Name { id } => id.to_string(),
         ExprKind::Int { value } => value.to_string(),
         ExprKind::Float { value } => format!("{value:?}"),
         ExprKind::BinOp { left, op, right } => format!("({op:?} {} {})", sexp(left), sexp(right)),

@@ -19,7 +19,7 @@ fn value(src: &str) -> Expr {
 /// A compact prefix form of an expression, to compare trees by eye.
 fn sexpr(e: &Expr) -> String {
     match &e.kind {
-        ExprKind::Name { id } => id.clone(),
+        ExprKind::Name { id } => id.to_string(),
         ExprKind::Int { value } => value.to_string(),
         ExprKind::Str { value } => format!("{value:?}"),
         ExprKind::Bool { value } => value.to_string(),
