@@ -50,37 +50,47 @@ struct Builder<'s> {
 }
 
 impl Builder<'_> {
-    /// A pair's span, without the trailing whitespace pest's implicit
-    /// whitespace may have consumed after an optional last element.
+    /// A pair's span, without the trailing whitespace and comments that
+    /// pest's implicit whitespace consumed after its last element (an
+    /// expression consumes the whitespace after it, so that the rule that
+    /// follows need not skip it again).
     fn span(&self, pair: &P) -> Span {
         let (start, end) = (pair.start(), pair.end());
         let text = &self.source[start..end];
-        let end = start
-            + text
-                .trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\'])
-                .len();
-        Span::new(self.base + start, self.base + end.max(start))
-    }
-
-    /// A statement-level span: also without a trailing comment.
-    fn stmt_span(&self, pair: &P) -> Span {
-        let mut span = self.span(pair);
+        // Most pairs end on their last token: nothing to trim. A pair that
+        // ends on another character can only end with a comment if a line
+        // break follows it (a comment runs to the end of its line).
+        let ends_blank = text
+            .as_bytes()
+            .last()
+            .is_some_and(|b| matches!(b, b' ' | b'\t' | b'\n' | b'\r' | b'\x0C' | b'\\'));
+        let at_line_end = self
+            .source
+            .as_bytes()
+            .get(end)
+            .is_none_or(|b| matches!(b, b'\n' | b'\r'));
+        if !ends_blank && !at_line_end {
+            return Span::new(self.base + start, self.base + end);
+        }
+        let mut text = text.trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\']);
         loop {
-            let local_start = span.start as usize - self.base;
-            let local_end = span.end as usize - self.base;
-            let text = &self.source[local_start..local_end];
             let line_start = text.rfind('\n').map_or(0, |i| i + 1);
             let Some(hash) = comment_start(&text[line_start..]) else {
-                return span;
+                break;
             };
-            let cut = text[..line_start + hash]
-                .trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\'])
-                .len();
-            if cut == 0 || cut == text.len() {
-                return span;
+            let cut =
+                text[..line_start + hash].trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\']);
+            if cut.is_empty() || cut.len() == text.len() {
+                break;
             }
-            span.end = (self.base + local_start + cut) as u32;
+            text = cut;
         }
+        Span::new(self.base + start, self.base + start + text.len())
+    }
+
+    /// A statement-level span (the same trimming as [`Builder::span`]).
+    fn stmt_span(&self, pair: &P) -> Span {
+        self.span(pair)
     }
 
     fn ident(&self, pair: P) -> Ident {

@@ -146,3 +146,31 @@ fn operator_precedence_follows_python() {
     ));
     assert_eq!((e.span.start, e.span.end), (4, 6));
 }
+
+/// An expression consumes the whitespace and comments after it (so that the
+/// rule that follows need not skip them again); no span includes them.
+#[test]
+fn spans_stop_before_trailing_comments() {
+    let src = "F(A=(1, 2)  # one\n  , B=g(x) # two\n  , C=[3] \\\n)\nX = 1.5  # three\n";
+    let module = match parse_module(src) {
+        Ok(m) => m,
+        Err(e) => panic!("should parse: {}", e.message),
+    };
+    let text = |span: aster_syntax::Span| &src[span.start as usize..span.end as usize];
+    let Some(StmtKind::Expr { value }) = module.body.first().map(|s| &s.kind) else {
+        panic!("expected a call statement");
+    };
+    let ExprKind::Call { args, .. } = &value.kind else {
+        panic!("expected a call");
+    };
+    let args: Vec<&str> = args.iter().map(|a| text(a.span)).collect();
+    assert_eq!(args, ["A=(1, 2)", "B=g(x)", "C=[3]"]);
+    let spans: Vec<&str> = module.body.iter().map(|s| text(s.span)).collect();
+    assert_eq!(spans[1], "X = 1.5");
+}
+
+/// Python's tokenizer reads `1if x else 2` as `1 if x else 2`; so do we.
+#[test]
+fn numbers_end_before_keywords() {
+    assert_eq!(sexpr(&value("x = 1if y else 2\n")), "(if y 1 2)");
+}
