@@ -58,9 +58,11 @@ fn describe(rule: Rule) -> Option<&'static str> {
     Some(match rule {
         test | test_nocond | or_expr | testlist_star | exprlist | primary | star_expr
         | comp_body | yield_expr | lambdef | lambdef_nocond | namedexpr | paren | list | brace
-        | strings | string | number | name | none | true_ | false_ | ellipsis | backquote
+        | string | number | name | none | true_ | false_ | ellipsis | backquote
         | subscript_list | slice | slice_bound | dict_body | set_body | dict_item | comp_arg
-        | kwarg | star_arg | dstar_arg | arglist | neg | pos | invert | not => "an expression",
+        | kwarg | kwarg_name | star_arg | dstar_arg | arglist | neg | pos | invert | not => {
+            "an expression"
+        }
         target_list | target | star_target => "an assignment target",
         pow | mul | matmul | floordiv | div | modulo | add | sub | lshift | rshift | bitand
         | bitxor | bitor | le | ge | ne_py2 | lt | gt | eq | ne | not_in | in_ | is_not | is_

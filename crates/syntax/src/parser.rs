@@ -100,6 +100,22 @@ impl Builder<'_> {
         }
     }
 
+    /// The name of a `kwarg_name` token (`NAME=`, `NAME =`): what precedes
+    /// the whitespace or the `=`.
+    fn kwarg_name(&self, pair: P) -> Ident {
+        let text = pair.as_str();
+        // A byte scan: the delimiters are ASCII, never inside a multi-byte char.
+        let len = text
+            .bytes()
+            .position(|b| matches!(b, b' ' | b'\t' | b'=' | b'\\' | b'#' | b'\n' | b'\r' | 0x0C))
+            .unwrap_or(text.len());
+        let start = self.base + pair.start();
+        Ident {
+            name: Text::new(&text[..len]),
+            span: Span::new(start, start + len),
+        }
+    }
+
     // ------------------------------------------------------------ statements
 
     fn stmts<'i>(&self, pairs: impl Iterator<Item = P<'i>>) -> R<Vec<Stmt>> {
@@ -756,16 +772,26 @@ impl Builder<'_> {
             Rule::lambdef | Rule::lambdef_nocond => return self.lambda(pair),
             _ => return self.element(pair),
         }
-        let mut inner = pair.into_inner();
-        if let Some(first) = inner.peek() {
-            if first.as_rule() == Rule::lambdef {
+        let span = self.span(&pair);
+        self.test_items(&mut pair.into_inner(), span)
+    }
+
+    /// The children of a `test` (an operand sequence and an optional
+    /// conditional, or a lambda), read from `inner`; also the value of a
+    /// keyword argument, which has no `test` pair of its own.
+    fn test_items(&self, inner: &mut Children, at: Span) -> R<Expr> {
+        match inner.peek() {
+            Some(first) if first.as_rule() == Rule::lambdef => {
+                inner.next();
                 return self.lambda(first);
             }
+            Some(_) => {}
+            None => return Err(err(at, "expected an expression")),
         }
-        let body = self.operation(&mut inner)?;
+        let body = self.operation(inner)?;
         match inner.next() {
             Some(ternary) => {
-                let span = self.stmt_span(&pair);
+                let span = body.span.merge(self.span(&ternary));
                 let mut parts = ternary
                     .into_inner()
                     .filter(|p| !matches!(p.as_rule(), Rule::kw_if | Rule::kw_else));
@@ -825,6 +851,13 @@ impl Builder<'_> {
             }
             let operand = self.operand(inner)?;
             match inner.peek().map(|p| p.as_rule()) {
+                Some(Rule::string) => {
+                    let span = inner.next().map(|p| self.span(&p)).unwrap_or_default();
+                    return Err(err(
+                        span,
+                        "expected an operator or `,` before this string (adjacent strings concatenate only with each other)",
+                    ));
+                }
                 Some(rule) if infix_prec(rule).is_some() => {
                     inner.next();
                     items.push(OpItem::Operand(operand));
@@ -851,6 +884,7 @@ impl Builder<'_> {
     /// An atom and its trailers (calls, subscripts, attributes), read from `inner`.
     fn operand(&self, inner: &mut Children) -> R<Expr> {
         let mut expr = match inner.next() {
+            Some(atom) if atom.as_rule() == Rule::string => self.strings(atom, inner)?,
             Some(atom) => self.atom(atom)?,
             None => return Err(err(Span::default(), "internal: missing operand")),
         };
@@ -908,10 +942,10 @@ impl Builder<'_> {
             let kind = match rule {
                 Rule::kwarg => {
                     let name = match inner.next() {
-                        Some(n) => self.ident(n),
+                        Some(n) => self.kwarg_name(n),
                         None => return Err(err(span, "expected a keyword name")),
                     };
-                    let value = self.required_test(inner.next(), span)?;
+                    let value = self.test_items(&mut inner, span)?;
                     ArgKind::Keyword { name, value }
                 }
                 Rule::star_arg => ArgKind::Star {
@@ -992,7 +1026,7 @@ impl Builder<'_> {
                 id: Text::new(pair.as_str()),
             },
             Rule::number => literals::number(pair.as_str()).map_err(|m| err(span, m))?,
-            Rule::strings => return self.strings(pair),
+            Rule::string => return self.strings(pair, &mut Children::default()),
             Rule::none => ExprKind::None,
             Rule::true_ => ExprKind::Bool { value: true },
             Rule::false_ => ExprKind::Bool { value: false },
@@ -1203,16 +1237,24 @@ impl Builder<'_> {
     // ------------------------------------------------------------ strings
 
     /// Adjacent literals, concatenated. Mixing bytes and text is an error.
-    fn strings(&self, pair: P) -> R<Expr> {
-        let span = self.span(&pair);
+    /// A string literal and the literals adjacent to it (implicit
+    /// concatenation), which follow it in `rest`.
+    fn strings<'i>(&self, first: P<'i>, rest: &mut Children<'i>) -> R<Expr> {
+        let mut span = self.span(&first);
         // Built inline (no allocation) while it fits in 24 bytes.
         let mut text = Text::default();
         let mut bytes: Vec<u8> = Vec::new();
         let mut parts: Vec<FStringPart> = Vec::new();
         let mut kinds = (false, false); // (saw bytes, saw text)
         let mut is_fstring = false;
-        for tok in pair.into_inner() {
+        let mut next = Some(first);
+        while let Some(tok) = next {
+            next = match rest.peek() {
+                Some(p) if p.as_rule() == Rule::string => rest.next(),
+                _ => None,
+            };
             let tok_span = self.span(&tok);
+            span = span.merge(tok_span);
             let token = tok.as_str();
             let (flags, offset, body) = literals::split_string(token);
             if flags.bytes {

@@ -115,7 +115,8 @@ impl<'t> Node<'t> {
 }
 
 /// The children of a node, in order (an iterator that can also peek).
-#[derive(Clone)]
+/// The default is an empty list.
+#[derive(Clone, Default)]
 pub struct Children<'t> {
     nodes: &'t [RawNode],
     input: &'t str,

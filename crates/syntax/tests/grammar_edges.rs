@@ -174,3 +174,20 @@ fn spans_stop_before_trailing_comments() {
 fn numbers_end_before_keywords() {
     assert_eq!(sexpr(&value("x = 1if y else 2\n")), "(if y 1 2)");
 }
+
+/// Adjacent literals are one string, across lines inside brackets; a literal
+/// after anything but a literal is an error at that literal.
+#[test]
+fn adjacent_strings_concatenate_only_with_each_other() {
+    assert_eq!(sexpr(&value("x = 'a' \"b\" r'\\c'\n")), "\"ab\\\\c\"");
+    assert_eq!(sexpr(&value("f(K='a'\n  'b', L=1)\n")), "(call f 2)");
+    for (src, col) in [("x = a 'b'\n", 7), ("x = 'a'.upper() 'b'\n", 17)] {
+        match parse_module(src) {
+            Ok(_) => panic!("{src:?} should not parse"),
+            Err(e) => {
+                assert_eq!(e.span.start as usize + 1, col, "{src:?}: {}", e.message);
+                assert!(e.message.contains("before this string"), "{}", e.message);
+            }
+        }
+    }
+}
