@@ -436,13 +436,22 @@ pub fn check_limits(source: &str) -> Result<(), ParseError> {
         if !(line_start && depth == 0) {
             // Most bytes only reset (or, for blanks, keep) the run of unary
             // operators: skip them in a tight loop, it runs every parse.
-            while let Some(&b) = bytes.get(i) {
-                let class = LIMIT_CLASS[b as usize];
-                if class == LIMIT_SPECIAL {
-                    break;
+            if prefix_run == 0 {
+                // No run to track (nearly always): only find the next
+                // special byte.
+                i += bytes[i..]
+                    .iter()
+                    .position(|&b| LIMIT_CLASS[b as usize] == LIMIT_SPECIAL)
+                    .unwrap_or(bytes.len() - i);
+            } else {
+                while let Some(&b) = bytes.get(i) {
+                    let class = LIMIT_CLASS[b as usize];
+                    if class == LIMIT_SPECIAL {
+                        break;
+                    }
+                    prefix_run *= class as usize;
+                    i += 1;
                 }
-                prefix_run *= class as usize;
-                i += 1;
             }
             if i >= bytes.len() {
                 break;
