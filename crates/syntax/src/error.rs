@@ -58,7 +58,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
     Some(match rule {
         test | test_nocond | or_expr | testlist_star | exprlist | primary | star_expr
         | comp_body | yield_expr | lambdef | lambdef_nocond | namedexpr | paren | list | brace
-        | string | number | name | none | true_ | false_ | ellipsis | backquote
+        | string | string_body | number | name | none | true_ | false_ | ellipsis | backquote
         | subscript_list | slice | slice_bound | dict_body | set_body | dict_item | comp_arg
         | kwarg | kwarg_name | star_arg | dstar_arg | arglist | neg | pos | invert | not => {
             "an expression"
