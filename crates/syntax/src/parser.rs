@@ -885,6 +885,18 @@ impl Builder<'_> {
     fn operand(&self, inner: &mut Children) -> R<Expr> {
         let mut expr = match inner.next() {
             Some(atom) if atom.as_rule() == Rule::string => self.strings(atom, inner)?,
+            Some(atom)
+                if atom.as_rule() == Rule::name
+                    && is_upper_string_prefix(atom.as_str())
+                    && inner.peek().is_some_and(|s| {
+                        s.as_rule() == Rule::string && s.start() == atom.end()
+                    }) =>
+            {
+                match inner.next() {
+                    Some(first) => self.prefixed_strings(Some(atom), first, inner)?,
+                    None => self.atom(atom)?,
+                }
+            }
             Some(atom) => self.atom(atom)?,
             None => return Err(err(Span::default(), "internal: missing operand")),
         };
@@ -1240,7 +1252,24 @@ impl Builder<'_> {
     /// A string literal and the literals adjacent to it (implicit
     /// concatenation), which follow it in `rest`.
     fn strings<'i>(&self, first: P<'i>, rest: &mut Children<'i>) -> R<Expr> {
+        self.prefixed_strings(None, first, rest)
+    }
+
+    /// [`Builder::strings`], the first literal possibly preceded by an
+    /// upper-case two-letter prefix (`RB`, `BR`, `FR`, `RF`, `UR`) that the
+    /// grammar read as a name: the name rule takes any upper-case letter
+    /// followed by another without checking for a quote (one test instead of
+    /// a lookahead on every name).
+    fn prefixed_strings<'i>(
+        &self,
+        mut prefix: Option<P<'i>>,
+        first: P<'i>,
+        rest: &mut Children<'i>,
+    ) -> R<Expr> {
         let mut span = self.span(&first);
+        if let Some(p) = &prefix {
+            span = span.merge(self.span(p));
+        }
         // Built inline (no allocation) while it fits in 24 bytes.
         let mut text = Text::default();
         let mut bytes: Vec<u8> = Vec::new();
@@ -1253,9 +1282,14 @@ impl Builder<'_> {
                 Some(p) if p.as_rule() == Rule::string => rest.next(),
                 _ => None,
             };
-            let tok_span = self.span(&tok);
+            let (tok_span, token) = match prefix.take() {
+                Some(p) => (
+                    self.span(&p).merge(self.span(&tok)),
+                    &self.source[p.start()..tok.end()],
+                ),
+                None => (self.span(&tok), tok.as_str()),
+            };
             span = span.merge(tok_span);
-            let token = tok.as_str();
             let (flags, offset, body) = literals::split_string(token);
             if flags.bytes {
                 kinds.0 = true;
@@ -1514,6 +1548,12 @@ impl Builder<'_> {
 }
 
 /// Where a comment starts on a line (a `#` outside quotes), if any.
+/// A two-letter upper-case string prefix, which the name rule reads as a
+/// name (see [`Builder::prefixed_strings`]).
+fn is_upper_string_prefix(name: &str) -> bool {
+    matches!(name, "RB" | "BR" | "FR" | "RF" | "UR")
+}
+
 fn comment_start(line: &str) -> Option<usize> {
     // Most lines have no `#` at all: one byte scan instead of the quote walk.
     if !line.as_bytes().contains(&b'#') {

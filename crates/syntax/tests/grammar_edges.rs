@@ -191,3 +191,24 @@ fn adjacent_strings_concatenate_only_with_each_other() {
         }
     }
 }
+
+/// Upper-case two-letter prefixes are read as a name by the grammar (see
+/// `upper_second`) and joined with their literal by the builder; a real name
+/// before a literal stays an error.
+#[test]
+fn upper_case_two_letter_prefixes_are_strings() {
+    assert_eq!(
+        sexpr(&value("x = RB'a\\\\b'\n")),
+        "Bytes { value: [97, 92, 92, 98] }"
+    );
+    assert_eq!(
+        sexpr(&value("x = FR'{y}' 'z'\n")),
+        sexpr(&value("x = fr'{y}' 'z'\n"))
+    );
+    assert_eq!(
+        sexpr(&value("x = BR'a' + RB\n")),
+        sexpr(&value("x = b'a' + RB\n"))
+    );
+    assert!(parse_module("x = RX'a'\n").is_err());
+    assert!(parse_module("x = RB 'a'\n").is_err());
+}
