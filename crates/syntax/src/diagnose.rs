@@ -304,7 +304,7 @@ fn string_start(bytes: &[u8], quote: usize) -> usize {
 }
 
 /// End of the string whose quote is at `i`; `Err(is_triple)` if unterminated.
-fn string_end(bytes: &[u8], i: usize) -> Result<usize, bool> {
+pub(crate) fn string_end(bytes: &[u8], i: usize) -> Result<usize, bool> {
     let q = bytes[i];
     let triple = bytes.get(i + 1) == Some(&q) && bytes.get(i + 2) == Some(&q);
     let mut j = if triple { i + 3 } else { i + 1 };

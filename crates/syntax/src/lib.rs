@@ -12,6 +12,7 @@ pub mod dialect;
 pub mod error;
 pub mod fmt;
 pub mod literals;
+pub mod logical;
 pub mod parser;
 mod tree;
 pub mod validate;

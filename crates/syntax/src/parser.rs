@@ -21,8 +21,11 @@ type R<T> = Result<T, ParseError>;
 
 /// Parse a whole file into its AST (no post-parse validation).
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
-    let pairs =
-        CommParser::parse(Rule::module, source).map_err(|e| crate::error::from_pest(&e, source))?;
+    // pest reads a copy whose logical line ends are marked (same offsets);
+    // the tree and the builder read the original text.
+    let marked = crate::logical::mark_line_ends(source);
+    let pairs = CommParser::parse(Rule::module, &marked)
+        .map_err(|e| crate::error::from_pest(&e, source))?;
     let tree = Tree::new(pairs, source);
     let builder = Builder { base: 0, source };
     let body = match tree.top().next() {

@@ -170,15 +170,17 @@ mod tests {
     #[test]
     fn flat_tree_mirrors_pest_pairs() {
         let source = "MA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\nfor i in range(3):\n    x = [a[i] + -b * 2 for a in (c, d) if a]\n";
-        let pairs = CommParser::parse(Rule::module, source).expect("parses");
-        let tree = Tree::new(pairs.clone(), source);
+        let marked = crate::logical::mark_line_ends(source);
+        let pairs = CommParser::parse(Rule::module, &marked).expect("parses");
+        let tree = Tree::new(pairs.clone(), &marked);
         same(pairs, tree.top());
     }
 
     #[test]
     fn peek_does_not_advance() {
         let source = "f(a, b)\n";
-        let pairs = CommParser::parse(Rule::module, source).expect("parses");
+        let marked = crate::logical::mark_line_ends(source);
+        let pairs = CommParser::parse(Rule::module, &marked).expect("parses");
         let tree = Tree::new(pairs, source);
         let mut top = tree.top();
         let first = top.peek().map(|n| n.as_rule());
