@@ -59,22 +59,20 @@ impl Builder<'_> {
     /// follows need not skip it again).
     fn span(&self, pair: &P) -> Span {
         let (start, end) = (pair.start(), pair.end());
-        let text = &self.source[start..end];
         // Most pairs end on their last token: nothing to trim. A pair that
         // ends on another character can only end with a comment if a line
         // break follows it (a comment runs to the end of its line).
-        let ends_blank = text
-            .as_bytes()
-            .last()
-            .is_some_and(|b| matches!(b, b' ' | b'\t' | b'\n' | b'\r' | b'\x0C' | b'\\'));
-        let at_line_end = self
-            .source
-            .as_bytes()
-            .get(end)
-            .is_none_or(|b| matches!(b, b'\n' | b'\r'));
+        // (Byte tests: no `str` slicing with its boundary checks here.)
+        let bytes = self.source.as_bytes();
+        let ends_blank = end > start
+            && bytes
+                .get(end - 1)
+                .is_some_and(|b| matches!(b, b' ' | b'\t' | b'\n' | b'\r' | b'\x0C' | b'\\'));
+        let at_line_end = bytes.get(end).is_none_or(|b| matches!(b, b'\n' | b'\r'));
         if !ends_blank && !at_line_end {
             return Span::new(self.base + start, self.base + end);
         }
+        let text = &self.source[start..end];
         let mut text = text.trim_end_matches([' ', '\t', '\n', '\r', '\x0C', '\\']);
         loop {
             let line_start = text.rfind('\n').map_or(0, |i| i + 1);
