@@ -65,11 +65,13 @@ pub fn decoupe_lac(mesh: &Mesh, slave_groups: &[&str]) -> Result<(Mesh, LacPatch
     let mut cutter = Cutter::new(mesh.clone());
     let mut patches = LacPatches::default();
     for &group in slave_groups {
-        let g = mesh.group_ma(group).ok_or_else(|| MeshError::UnknownGroup {
-            kind: GroupKind::Cells,
-            name: group.to_string(),
-            suggestion: suggest(group, mesh.groups_ma.iter().map(|g| g.name.as_str())),
-        })?;
+        let g = mesh
+            .group_ma(group)
+            .ok_or_else(|| MeshError::UnknownGroup {
+                kind: GroupKind::Cells,
+                name: group.to_string(),
+                suggestion: suggest(group, mesh.groups_ma.iter().map(|g| g.name.as_str())),
+            })?;
         let mut seen = HashSet::new();
         let mut zone = LacZonePatches {
             group: group.to_string(),
@@ -157,9 +159,7 @@ impl Cutter {
         }
         let (p, q) = (cell.nodes[0], cell.nodes[1]);
         let parent = self.parent_of(p, q).ok_or_else(|| {
-            refuse(
-                "it is not a side of any 2D cell (a slave surface must bound a body)".into(),
-            )
+            refuse("it is not a side of any 2D cell (a slave surface must bound a body)".into())
         })?;
         let pcell = self.mesh.cell(parent).clone();
         match (cell.ty, pcell.ty) {
@@ -487,7 +487,9 @@ mod tests {
     fn unknown_group_and_3d_faces_are_refused() {
         let e = decoupe_lac(&mesh(false), &["ESC"]).unwrap_err().to_string();
         assert!(e.contains("ESCL"), "{e}");
-        let e = decoupe_lac(&mesh(false), &["BODY"]).unwrap_err().to_string();
+        let e = decoupe_lac(&mesh(false), &["BODY"])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("3D slave faces are not supported"), "{e}");
     }
 }
