@@ -271,6 +271,16 @@ impl Executor {
         }
     }
 
+    /// The mesh a field concept lives on: that of the result it was
+    /// extracted from (`CREA_CHAMP(OPERATION='EXTR')`), else the program's
+    /// only mesh. Programs with `CREA_MAILLAGE` (DECOUPE_LAC…) have several.
+    pub(crate) fn field_mesh(&self, field: &ConceptRef) -> Result<Arc<Mesh>, ExecError> {
+        match self.field_origin.get(&field.id) {
+            Some((result, _)) => self.mesh_by_id(result.mesh),
+            None => self.single_mesh(),
+        }
+    }
+
     /// The program's mesh when there is exactly one (fields do not record
     /// their mesh).
     pub(crate) fn single_mesh(&self) -> Result<Arc<Mesh>, ExecError> {

@@ -236,7 +236,7 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         for occ in kw.factor(factor) {
             let c = ex.required(&format!("TEST_RESU/{factor}"), occ, "CHAM_GD")?;
             let field = ex.field(c)?;
-            let mesh = ex.single_mesh()?;
+            let mesh = ex.field_mesh(c)?;
             let mut header: Vec<(&str, String)> = vec![(label, c.name.clone())];
             let value = field_value(occ, &field, &mesh, &mut header)
                 .map_err(|e| ExecError::new(format!("TEST_RESU/{factor}: {e}")))?;
