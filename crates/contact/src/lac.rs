@@ -33,7 +33,7 @@ use crate::error::ContactError;
 use crate::integration::Measure;
 use crate::pairing::{jacobian, Pairing};
 use crate::rows::contact_row;
-use crate::shape::{dot, interpolate, norm, project, scale, sub};
+use crate::shape::{dot, interpolate, norm, scale, sub};
 use crate::surface::ResolvedZone;
 use crate::zone::NormalSource;
 
@@ -177,6 +177,17 @@ pub fn patch_integral(
         // Candidate master cells: overlapping the slave chord, facing it,
         // within one cell size.
         let ns_mid = zone.cell_normal(s, [0.0, 0.0], x, NormalSource::Auto)?;
+        // code_aster's `lcnorm_line`: the normal of the straight cell
+        // through the slave cell's corners, outwards.
+        let d = sub(c1, c0);
+        let chord_normal = {
+            let raw = scale([d[1], -d[0], 0.0], 1.0 / len_s.max(f64::MIN_POSITIVE));
+            if dot(raw, ns_mid) < 0.0 {
+                scale(raw, -1.0)
+            } else {
+                raw
+            }
+        };
         let mut candidates: Vec<(usize, f64, f64)> = Vec::new();
         for (mi, m) in zone.master.iter().enumerate() {
             let (a, b) = (x[m.nodes[0].0 as usize], x[m.nodes[1].0 as usize]);
@@ -210,6 +221,8 @@ pub fn patch_integral(
                 out.measure += w;
                 let sp = interpolate(s.kind, &xs, xi);
                 let chord_t = chord_parameter(c0, c1, sp.x);
+                let normal = scale(slave_normal(zone, si, xi, x, chord_normal)?, -1.0);
+                // The nearest master cell hit along the slave normal.
                 let mut best: Option<(f64, usize, crate::shape::CellPoint)> = None;
                 for &(mi, lo, hi) in &candidates {
                     if chord_t < lo - 1e-9 || chord_t > hi + 1e-9 {
@@ -217,12 +230,9 @@ pub fn patch_integral(
                     }
                     let m = &zone.master[mi];
                     let xm: Vec<[f64; 3]> = m.nodes.iter().map(|n| x[n.0 as usize]).collect();
-                    let Some(mp) = project(m.kind, &xm, sp.x) else {
+                    let Some(mp) = ray_projection(m.kind, &xm, sp.x, normal) else {
                         continue;
                     };
-                    if m.kind.outside_distance(mp.xi) > 1e-6 {
-                        continue;
-                    }
                     let d = norm(sub(sp.x, mp.x));
                     if best.as_ref().is_none_or(|b| d < b.0) {
                         best = Some((d, mi, mp));
@@ -230,8 +240,6 @@ pub fn patch_integral(
                 }
                 let Some((_, mi, mp)) = best else { continue };
                 let m = &zone.master[mi];
-                let ns = zone.cell_normal(s, xi, x, NormalSource::Auto)?;
-                let normal = scale(ns, -1.0);
                 let gap = dot(sub(sp.x, mp.x), normal);
                 let pairing = Pairing {
                     master_cell: Some((m.id, mp.xi)),
@@ -266,9 +274,86 @@ pub fn patch_integral(
     Ok(out)
 }
 
+/// Outward normal of slave cell `si` at `xi`: the chord normal, or with
+/// `LISSAGE='OUI'` the slave nodal normals (averaged over the cells around
+/// each node) interpolated in the cell — a continuous normal field.
+fn slave_normal(
+    zone: &ResolvedZone,
+    si: usize,
+    xi: [f64; 2],
+    x: &[[f64; 3]],
+    chord_normal: [f64; 3],
+) -> Result<[f64; 3], ContactError> {
+    if !zone.geometry.lissage {
+        return Ok(chord_normal);
+    }
+    let cell = &zone.slave[si];
+    let (shape, _) = cell.kind.eval(xi);
+    let mut sum = [0.0; 3];
+    for (node, w) in cell.nodes.iter().zip(shape) {
+        let n = zone.nodal_normal(*node, false, x)?;
+        for c in 0..3 {
+            sum[c] += w * n[c];
+        }
+    }
+    let l = norm(sum);
+    Ok(if l > 1e-12 {
+        scale(sum, 1.0 / l)
+    } else {
+        chord_normal
+    })
+}
+
+/// The point of a master segment on the line through `p` along `n` (the
+/// mortar projection along the slave normal): Newton on
+/// t·(x_m(η) − p) = 0 with t ⟂ n. `None` if the segment is parallel to
+/// `n` or the point falls outside it (beyond 1e-6 in reference
+/// coordinates).
+pub fn ray_projection(
+    kind: crate::shape::SurfaceKind,
+    nodes: &[[f64; 3]],
+    p: [f64; 3],
+    n: [f64; 3],
+) -> Option<crate::shape::CellPoint> {
+    let t = [-n[1], n[0], 0.0];
+    let mut eta = 0.0;
+    for _ in 0..30 {
+        let cp = interpolate(kind, nodes, [eta, 0.0]);
+        let f = dot(sub(cp.x, p), t);
+        let df = dot(cp.tangents[0], t);
+        if df.abs() < 1e-300 {
+            return None;
+        }
+        let step = f / df;
+        eta -= step;
+        if step.abs() < 1e-14 {
+            break;
+        }
+    }
+    let cp = interpolate(kind, nodes, [eta, 0.0]);
+    (eta.is_finite() && kind.outside_distance(cp.xi) <= 1e-6).then_some(cp)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ray_projection_follows_the_normal_not_the_perpendicular() {
+        use crate::shape::SurfaceKind;
+        // Master segment y = 0 from x = 0 to 2; a point above at (0.5, 1)
+        // cast along a normal tilted by 45°: lands at x = 1.5.
+        let nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let cp = ray_projection(SurfaceKind::Seg2, &nodes, [0.5, 1.0, 0.0], [-s, s, 0.0]).unwrap();
+        assert!(
+            (cp.x[0] - 1.5).abs() < 1e-14 && cp.x[1].abs() < 1e-14,
+            "{:?}",
+            cp.x
+        );
+        // Beyond the segment's end: none.
+        assert!(ray_projection(SurfaceKind::Seg2, &nodes, [2.5, 1.0, 0.0], [-s, s, 0.0]).is_none());
+    }
 
     #[test]
     fn chord_parameter_spans_minus_one_to_one() {
