@@ -395,23 +395,34 @@ fn lac_setup(
     let newton_geom = kw.str("ALGO_RESO_GEOM") == Some("NEWTON");
     for z in zones.iter_mut().filter(|z| z.is_lac()) {
         let group = z.zone.geometry.slave_group.clone();
-        let zp = patches.zone(&group).ok_or_else(|| {
-            located(
-                format!(
-                    "the LAC slave group '{group}' was not cut by CREA_MAILLAGE/DECOUPE_LAC \
-                     (cut: {})",
-                    patches
-                        .zones
-                        .iter()
-                        .map(|z| format!("'{}'", z.group))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-                "GROUP_MA_ESCL",
-            )
-        })?;
-        z.set_lac_patches(zp)
-            .map_err(|e| located(e.to_string(), "ALGO_CONT"))?;
+        // The slave group cut by DECOUPE_LAC, by name; else a cut group
+        // whose patches all lie on this slave surface (a group renamed or
+        // rebuilt with DEFI_GROUP after the cut).
+        let resolved = match patches.zone(&group) {
+            Some(zp) => z
+                .set_lac_patches(zp)
+                .map_err(|e| located(e.to_string(), "ALGO_CONT")),
+            None => patches
+                .zones
+                .iter()
+                .find_map(|zp| z.set_lac_patches(zp).ok())
+                .ok_or_else(|| {
+                    located(
+                        format!(
+                            "the LAC slave group '{group}' was not cut by \
+                             CREA_MAILLAGE/DECOUPE_LAC (cut: {})",
+                            patches
+                                .zones
+                                .iter()
+                                .map(|z| format!("'{}'", z.group))
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                        "GROUP_MA_ESCL",
+                    )
+                }),
+        };
+        resolved?;
         if newton_geom {
             if let GeomLoop::Automatique { iter_maxi, .. } = z.geom_loop {
                 z.set_geom_loop(GeomLoop::Automatique {
