@@ -145,11 +145,16 @@ impl Cutter {
             | CellType::QUAD8
             | CellType::TRIA7
             | CellType::QUAD9 => {
-                return Err(refuse(
+                let solid = self.mesh.cells.iter().any(|c| c.ty.dim() == 3);
+                return Err(refuse(if solid {
                     "3D slave faces are not supported yet (only 2D models: SEG2/SEG3 slave \
                      edges of TRIA3, QUAD4, TRIA6 and QUAD8 cells)"
-                        .into(),
-                ))
+                        .into()
+                } else {
+                    "in a 2D mesh the slave surface is made of edges (SEG2/SEG3); this group \
+                     holds the body's cells — give the group of its contact edges"
+                        .into()
+                }));
             }
             _ => {
                 return Err(refuse(
@@ -490,6 +495,14 @@ mod tests {
         let e = decoupe_lac(&mesh(false), &["BODY"])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("3D slave faces are not supported"), "{e}");
+        assert!(e.contains("give the group of its contact edges"), "{e}");
+        // A face of a solid: 3D LAC is refused as such.
+        let mut m = mesh(false);
+        m.cells.push(Cell {
+            ty: CellType::TETRA4,
+            nodes: vec![NodeId(0), NodeId(1), NodeId(2), NodeId(3)],
+        });
+        let e = decoupe_lac(&m, &["BODY"]).unwrap_err().to_string();
+        assert!(e.contains("3D slave faces are not supported yet"), "{e}");
     }
 }
