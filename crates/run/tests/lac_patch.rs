@@ -55,7 +55,7 @@ fn decoupe_lac_counts_on_the_scene_mesh() {
 /// The scene's first analysis with `edit` applied to its text.
 fn variant(edit: impl Fn(String) -> String) -> String {
     let comm = std::fs::read_to_string(root().join("comm/lac_patch.comm")).unwrap();
-    edit(comm.replace("for i in range(2):", "for i in range(1):"))
+    edit(comm.replace("for i in range(3):", "for i in range(1):"))
 }
 
 #[test]
@@ -80,8 +80,8 @@ fn lac_without_decoupe_lac_is_refused_with_a_located_message() {
 fn a_slave_group_not_cut_is_named() {
     let comm = variant(|c| {
         c.replace(
-            "slaves = [\"SUP\", \"SLOW\"]",
-            "slaves = [\"SUP\", \"SLOW\"]\nother = [\"SLOW\"]",
+            "slaves = [\"SUP\", \"SLOW\", \"SUP\"]",
+            "slaves = [\"SUP\", \"SLOW\", \"SUP\"]\nother = [\"SLOW\"]",
         )
         .replace(
             "GROUP_MA_ESCL=slaves[i],\n            GROUP_MA_MAIT=masters[i]",
