@@ -94,3 +94,29 @@ fn a_slave_group_not_cut_is_named() {
         "{e}"
     );
 }
+
+#[test]
+fn test_resu_maillage_counts_the_cut_meshes() {
+    let comm = r#"
+DEBUT(CODE="OUI")
+mesh = LIRE_MAILLAGE(FORMAT="ASTER", UNITE=20)
+up = CREA_MAILLAGE(MAILLAGE=mesh, DECOUPE_LAC=_F(GROUP_MA_ESCL="SUP"))
+both = CREA_MAILLAGE(MAILLAGE=mesh, DECOUPE_LAC=_F(GROUP_MA_ESCL=("SUP", "SLOW")))
+TEST_RESU(
+    MAILLAGE=(
+        _F(MAILLAGE=up, CARA="NB_MAILLE", VALE_CALC_I=77),
+        _F(MAILLAGE=up, CARA="NB_NOEUD", VALE_CALC_I=53),
+        _F(MAILLAGE=up, CARA="NB_MA_GROUP_MA", NOM_GROUP_MA="SUP", VALE_CALC_I=9),
+        _F(MAILLAGE=up, CARA="NB_MA_GROUP_MA", NOM_GROUP_MA="UP", VALE_CALC_I=18),
+        _F(MAILLAGE=up, CARA="NB_GROUP_MA", VALE_CALC_I=7),
+        _F(MAILLAGE=up, CARA="NB_NO_GROUP_NO", NOM_GROUP_NO="PTOP", VALE_CALC_I=1),
+        _F(MAILLAGE=both, CARA="NB_MAILLE", VALE_CALC_I=85),
+        _F(MAILLAGE=both, CARA="NB_NOEUD", VALE_CALC_I=57),
+    )
+)
+FIN()
+"#;
+    let outcome = run(comm, "counts");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (8, 0));
+}
