@@ -362,9 +362,10 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
 }
 
 /// ALGO_CONT='LAC' zones: the patches of CREA_MAILLAGE/DECOUPE_LAC, and
-/// the geometric loop of `ALGO_RESO_GEOM='NEWTON'` (code_aster updates the
-/// geometry inside Newton: the converged state is the geometric fixed
-/// point, which the loop reaches to 1e-6).
+/// the geometric loop of LAC's Newton (code_aster solves LAC with
+/// `ALGO_RESO_GEOM='NEWTON'` only: the geometry is updated inside Newton,
+/// the converged state is the geometric fixed point, which the loop
+/// reaches to 1e-6).
 fn lac_setup(
     ex: &Executor,
     mesh: &Mesh,
@@ -392,7 +393,6 @@ fn lac_setup(
             "ALGO_CONT",
         )
     })?;
-    let newton_geom = kw.str("ALGO_RESO_GEOM") == Some("NEWTON");
     for z in zones.iter_mut().filter(|z| z.is_lac()) {
         let group = z.zone.geometry.slave_group.clone();
         // The slave group cut by DECOUPE_LAC, by name; else a cut group
@@ -423,13 +423,11 @@ fn lac_setup(
                 }),
         };
         resolved?;
-        if newton_geom {
-            if let GeomLoop::Automatique { iter_maxi, .. } = z.geom_loop {
-                z.set_geom_loop(GeomLoop::Automatique {
-                    iter_maxi: iter_maxi.max(20),
-                    resi_geom: 1e-6,
-                });
-            }
+        if let GeomLoop::Automatique { iter_maxi, .. } = z.geom_loop {
+            z.set_geom_loop(GeomLoop::Automatique {
+                iter_maxi: iter_maxi.max(20),
+                resi_geom: 1e-6,
+            });
         }
     }
     Ok(())
