@@ -169,7 +169,8 @@ impl ZoneContact {
                 continue;
             };
             let force = self.forces.get(k).copied().unwrap_or(0.0);
-            let pres = if int.paired > 0.0 {
+            // Without force the pressure is +0 (not -0: printed values).
+            let pres = if int.paired > 0.0 && force > 0.0 {
                 -force / int.paired
             } else {
                 0.0
@@ -487,7 +488,7 @@ impl ZoneContact {
             for (k, p) in patches.iter().enumerate() {
                 let w = self.measures.get(k).copied().unwrap_or(0.0);
                 let f = self.forces.get(k).copied().unwrap_or(0.0);
-                let v = if w > 0.0 { -f / w } else { 0.0 };
+                let v = if w > 0.0 && f > 0.0 { -f / w } else { 0.0 };
                 for n in &p.pressure_nodes {
                     out.insert(*n, v);
                 }

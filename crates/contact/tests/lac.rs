@@ -126,3 +126,40 @@ fn axis_weights_carry_the_radius() {
     let int = integral(0.3, 0.0, Measure::Axisymmetric);
     assert!((int.measure - 0.8).abs() < 1e-14, "{}", int.measure);
 }
+
+/// A LAC zone on the blocks: rows, CONT_ELEM and LAGS_C from a multiplier.
+#[test]
+fn zone_reports_cont_elem_and_lags_c_per_patch() {
+    use aster_contact::{ContinueAlgo, ContinueLaw, GeomLoop, ZoneContact, ZoneLaw};
+    let (mesh, patches) = decoupe_lac(&blocks(1.5, 0.1), &["S"]).unwrap();
+    let zone = ResolvedZone::new(0, &ZoneGeometry::new("M", "S"), &mesh).unwrap();
+    let law = ZoneLaw::Continue(ContinueLaw {
+        algo: ContinueAlgo::Lac,
+        ..ContinueLaw::default()
+    });
+    let mut z = ZoneContact::new(zone, law, GeomLoop::default());
+    assert!(z.is_lac());
+    // Without patches the zone says what to do.
+    let e = z.pair(&mesh, &mesh.coords).unwrap_err().to_string();
+    assert!(e.contains("DECOUPE_LAC"), "{e}");
+    z.set_lac_patches(patches.zone("S").unwrap()).unwrap();
+    let rows = z.pair(&mesh, &mesh.coords).unwrap();
+    assert_eq!(rows.len(), 1, "one row per patch");
+    // Open: no force.
+    let cells = z.cont_elem().unwrap();
+    assert_eq!(cells.len(), 3, "one entry per slave cell of the patch");
+    let [pres, jeu, cont, coef, prescoor] = cells[0].1;
+    assert_eq!((pres, cont, prescoor), (0.0, 0.0, 0.0));
+    assert!(
+        (jeu - 0.1).abs() < 1e-14 && (coef - 0.5).abs() < 1e-12,
+        "{jeu} {coef}"
+    );
+    // Closed with multiplier 7 (the mean pressure over the paired half).
+    z.set_multipliers(&[7.0]);
+    let [pres, _, cont, coef, prescoor] = z.cont_elem().unwrap()[2].1;
+    assert!((pres + 7.0).abs() < 1e-12 && cont == 1.0, "{pres}");
+    assert!((prescoor - pres * coef).abs() < 1e-14);
+    let lags: Vec<f64> = z.lags_c().unwrap().iter().map(|(_, v)| *v).collect();
+    assert_eq!(lags.len(), 2, "the two pressure nodes of a cut QUAD4 edge");
+    assert!(lags.iter().all(|v| (v + 7.0).abs() < 1e-12), "{lags:?}");
+}
