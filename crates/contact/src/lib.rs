@@ -18,6 +18,7 @@ pub mod dual;
 mod error;
 mod geomloop;
 mod integration;
+pub mod lac;
 mod pairing;
 mod rows;
 mod shape;

@@ -7,11 +7,12 @@ use aster_fem::{
     Dof, FemError, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
     UnilateralSource,
 };
-use aster_mesh::{Mesh, NodeId};
+use aster_mesh::{CellId, LacZonePatches, Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::geomloop::{GeomDecision, GeomLoopState};
 use crate::integration::{integration_points_measured, Measure};
+use crate::lac::{patch_integral, resolve_patches, LacPatchRef, PatchIntegral};
 use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
 use crate::rows::contact_row;
 use crate::surface::ResolvedZone;
@@ -68,6 +69,11 @@ pub struct ZoneContact {
     /// How continuous integration weights measure the slave surface
     /// (AXIS multiplies by the radius).
     measure: Measure,
+    /// ALGO_CONT='LAC': the zone's patches (one carrier and at most one
+    /// row per patch, in this order).
+    lac: Option<Vec<LacPatchRef>>,
+    /// ALGO_CONT='LAC': the patches' integrals of the last pairing.
+    lac_integrals: Vec<PatchIntegral>,
 }
 
 impl ZoneContact {
@@ -110,6 +116,8 @@ impl ZoneContact {
             step_pairings: Vec::new(),
             measures: Vec::new(),
             measure: Measure::Plane,
+            lac: None,
+            lac_integrals: Vec::new(),
             zone,
             law,
             geom_loop,
@@ -127,6 +135,101 @@ impl ZoneContact {
         self.measure = measure;
     }
 
+    /// Whether the zone is an `ALGO_CONT='LAC'` zone.
+    pub fn is_lac(&self) -> bool {
+        matches!(
+            self.law,
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Lac,
+                ..
+            })
+        )
+    }
+
+    /// Gives a LAC zone the patches DECOUPE_LAC made on its slave group.
+    pub fn set_lac_patches(&mut self, patches: &LacZonePatches) -> Result<(), ContactError> {
+        self.lac = Some(resolve_patches(&self.zone, patches)?);
+        Ok(())
+    }
+
+    /// Replaces the geometric loop (and restarts its state).
+    pub fn set_geom_loop(&mut self, geom_loop: GeomLoop) {
+        self.geom_loop = geom_loop;
+        self.geom = GeomLoopState::new(geom_loop);
+    }
+
+    /// `CONT_ELEM` of a LAC zone: per slave cell, the values of its patch
+    /// (components `lac::CONT_ELEM_COMPONENTS`) at the last pairing and
+    /// outcome. `None` for other zones.
+    pub fn cont_elem(&self) -> Option<Vec<(CellId, [f64; 5])>> {
+        let patches = self.lac.as_ref()?;
+        let mut out = Vec::new();
+        for (k, p) in patches.iter().enumerate() {
+            let Some(int) = self.lac_integrals.get(k) else {
+                continue;
+            };
+            let force = self.forces.get(k).copied().unwrap_or(0.0);
+            // Without force the pressure is +0 (not -0: printed values).
+            let pres = if int.paired > 0.0 && force > 0.0 {
+                -force / int.paired
+            } else {
+                0.0
+            };
+            let cont = if force > 0.0 { 1.0 } else { 0.0 };
+            let coef = int.coverage();
+            let vals = [pres, int.mean_gap(), cont, coef, pres * coef];
+            for &c in &p.cells {
+                out.push((self.zone.slave[c].id, vals));
+            }
+        }
+        Some(out)
+    }
+
+    /// ALGO_CONT='LAC': one row per patch, its mortar-integrated gap
+    /// (module `lac`); the multiplier is the patch's mean pressure.
+    fn lac_rows(
+        &mut self,
+        mesh: &Mesh,
+        x: &[[f64; 3]],
+    ) -> Result<Vec<InequalityRow>, ContactError> {
+        let Some(patches) = self.lac.clone() else {
+            return Err(ContactError::Invalid {
+                keyword: "ALGO_CONT",
+                message: format!(
+                    "ALGO_CONT='LAC' needs the patches of CREA_MAILLAGE/DECOUPE_LAC on '{}': \
+                     cut the mesh with CREA_MAILLAGE(DECOUPE_LAC=_F(GROUP_MA_ESCL=...)) and \
+                     build the model on the new mesh",
+                    self.zone.geometry.slave_group
+                ),
+            });
+        };
+        self.lac_integrals.clear();
+        let mut rows = Vec::new();
+        for (k, p) in patches.iter().enumerate() {
+            let int = patch_integral(mesh, &self.zone, p, x, self.measure)?;
+            let n = p.pressure_nodes.len().max(1) as f64;
+            self.carriers
+                .push(p.pressure_nodes.iter().map(|m| (*m, 1.0 / n)).collect());
+            self.measures.push(int.paired);
+            self.links.push(None);
+            let terms: Vec<(Dof, f64)> = int
+                .terms
+                .iter()
+                .map(|(d, c)| (*d, *c))
+                .filter(|t| t.1 != 0.0)
+                .collect();
+            if int.paired > 0.0 && !terms.is_empty() {
+                self.links[k] = Some(RowLink {
+                    row: rows.len(),
+                    scale: int.paired,
+                });
+                rows.push(InequalityRow::new(terms, int.rhs, k));
+            }
+            self.lac_integrals.push(int);
+        }
+        Ok(rows)
+    }
+
     /// The measure continuous integration weights are taken with.
     pub fn measure(&self) -> Measure {
         self.measure
@@ -137,6 +240,11 @@ impl ZoneContact {
     fn points(&self, mesh: &Mesh) -> Vec<SlavePoint> {
         match self.law {
             ZoneLaw::Discrete(_) => nodal_points(&self.zone),
+            // LAC integrates on its own mortar pieces.
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Lac,
+                ..
+            }) => Vec::new(),
             ZoneLaw::Continue(l) => {
                 integration_points_measured(&self.zone, l.integration, &mesh.coords, self.measure)
             }
@@ -195,6 +303,10 @@ impl ZoneContact {
                         }
                     }
                 }
+                ZoneLaw::Continue(ContinueLaw {
+                    algo: ContinueAlgo::Lac,
+                    ..
+                }) => rows = self.lac_rows(mesh, x)?,
                 ZoneLaw::Continue(_) => rows = self.weighted_node_rows(mesh, x),
             }
         }
@@ -369,6 +481,19 @@ impl ZoneContact {
     pub fn lags_c(&self) -> Option<Vec<(NodeId, f64)>> {
         if !matches!(self.law, ZoneLaw::Continue(_)) {
             return None;
+        }
+        if let Some(patches) = &self.lac {
+            // LAC: the patch pressure on its pressure nodes only.
+            let mut out = BTreeMap::new();
+            for (k, p) in patches.iter().enumerate() {
+                let w = self.measures.get(k).copied().unwrap_or(0.0);
+                let f = self.forces.get(k).copied().unwrap_or(0.0);
+                let v = if w > 0.0 && f > 0.0 { -f / w } else { 0.0 };
+                for n in &p.pressure_nodes {
+                    out.insert(*n, v);
+                }
+            }
+            return Some(out.into_iter().collect());
         }
         let mut out: BTreeMap<NodeId, f64> =
             self.zone.slave_nodes.iter().map(|n| (*n, 0.0)).collect();

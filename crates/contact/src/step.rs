@@ -180,7 +180,7 @@ fn algorithm(
                 .find_map(|z| match z.law {
                     ZoneLaw::Continue(l) => match l.algo {
                         ContinueAlgo::Standard { coef_cont } => Some(coef_cont),
-                        ContinueAlgo::Penalisation { .. } => None,
+                        ContinueAlgo::Penalisation { .. } | ContinueAlgo::Lac => None,
                     },
                     _ => None,
                 })

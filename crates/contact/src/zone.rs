@@ -196,6 +196,10 @@ pub enum ContinueAlgo {
     Standard { coef_cont: f64 },
     /// `PENALISATION` with `COEF_PENA_CONT` (pressure per unit interpenetration).
     Penalisation { coef_pena_cont: f64 },
+    /// `LAC` (with `APPARIEMENT='MORTAR'`): one pressure per DECOUPE_LAC
+    /// patch, mortar-integrated gap (module `lac`); the zone needs its
+    /// patches (`ZoneContact::set_lac_patches`).
+    Lac,
 }
 
 impl Default for ContinueAlgo {
@@ -322,6 +326,7 @@ impl ContactDefinition {
                 ContinueAlgo::Penalisation { coef_pena_cont } => {
                     positive("COEF_PENA_CONT", coef_pena_cont)?
                 }
+                ContinueAlgo::Lac => {}
             }
         }
         Ok(ContactDefinition::Continue(ContinueDefinition {

@@ -70,6 +70,8 @@ const ALLOWED: &[&str] = &[
     "ZONE/CONTACT_INIT",
     "ZONE/ADAPTATION",
     "ZONE/SEUIL_INIT",
+    // LAC's pairing method (robust or fast search): same pairs here.
+    "ZONE/TYPE_APPA",
     // code_aster 11: only raises an alarm when a gap passes it; no effect
     // on the solution.
     "ZONE/ALARME_JEU",
@@ -275,6 +277,7 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                             .ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: COEF_PENA_CONT is required with ALGO_CONT='PENALISATION'"))?,
                     },
                     "STANDARD" => ContinueAlgo::Standard { coef_cont: occ.f64("COEF_CONT").unwrap_or(100.0) },
+                    "LAC" => ContinueAlgo::Lac,
                     other => {
                         let span = occ.keyword("ALGO_CONT").map(|k| k.span).unwrap_or_default();
                         return Err(ex.unsupported(&format!("DEFI_CONTACT/ZONE/ALGO_CONT='{other}'"), span));
@@ -354,5 +357,103 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
             .iter_mut()
             .for_each(|z| z.set_measure(Measure::Axisymmetric));
     }
+    lac_setup(ex, mesh, kw, &mut zones)?;
     Ok(zones)
+}
+
+/// ALGO_CONT='LAC' zones: the patches of CREA_MAILLAGE/DECOUPE_LAC, and
+/// the geometric loop of LAC's Newton (code_aster solves LAC with
+/// `ALGO_RESO_GEOM='NEWTON'` only: the geometry is updated inside Newton,
+/// the converged state is the geometric fixed point, which the loop
+/// reaches to 1e-6).
+fn lac_setup(
+    ex: &Executor,
+    mesh: &Mesh,
+    kw: &Keywords,
+    zones: &mut [ZoneContact],
+) -> Result<(), ExecError> {
+    if !zones.iter().any(|z| z.is_lac()) {
+        return Ok(());
+    }
+    let span_of = |name: &str| {
+        kw.factor("ZONE")
+            .iter()
+            .find_map(|o| o.keyword(name).map(|k| k.span))
+            .unwrap_or_default()
+    };
+    let located = |msg: String, name: &str| match ex.location(span_of(name)) {
+        Some(loc) => ExecError::new(format!("DEFI_CONTACT: {msg} ({loc})")),
+        None => ExecError::new(format!("DEFI_CONTACT: {msg}")),
+    };
+    let patches = ex.lac_patches_of(mesh).ok_or_else(|| {
+        located(
+            "ALGO_CONT='LAC' needs a mesh cut by CREA_MAILLAGE/DECOUPE_LAC (its patches carry \
+             the contact pressure); build the model on the mesh DECOUPE_LAC returns"
+                .to_string(),
+            "ALGO_CONT",
+        )
+    })?;
+    for z in zones.iter_mut().filter(|z| z.is_lac()) {
+        let group = z.zone.geometry.slave_group.clone();
+        // The slave group cut by DECOUPE_LAC, by name; else a cut group
+        // whose patches all lie on this slave surface (a group renamed or
+        // rebuilt with DEFI_GROUP after the cut).
+        let resolved = match patches.zone(&group) {
+            Some(zp) => z
+                .set_lac_patches(zp)
+                .map_err(|e| located(e.to_string(), "ALGO_CONT")),
+            None => patches
+                .zones
+                .iter()
+                .find_map(|zp| z.set_lac_patches(zp).ok())
+                .ok_or_else(|| {
+                    located(
+                        format!(
+                            "the LAC slave group '{group}' was not cut by \
+                             CREA_MAILLAGE/DECOUPE_LAC (cut: {})",
+                            patches
+                                .zones
+                                .iter()
+                                .map(|z| format!("'{}'", z.group))
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                        "GROUP_MA_ESCL",
+                    )
+                }),
+        };
+        resolved?;
+        if let GeomLoop::Automatique { iter_maxi, .. } = z.geom_loop {
+            z.set_geom_loop(GeomLoop::Automatique {
+                iter_maxi: iter_maxi.max(20),
+                resi_geom: 1e-6,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// `CONT_ELEM` (LAC zones): per slave cell, the values of its patch.
+pub fn cont_elem(zones: &[ZoneContact]) -> Option<crate::field::Field> {
+    use crate::field::{ElemField, ElemLocation, Field};
+    let mut values = std::collections::BTreeMap::new();
+    let mut any = false;
+    for z in zones {
+        if let Some(cells) = z.cont_elem() {
+            any = true;
+            for (c, v) in cells {
+                values.insert(c, vec![v.to_vec()]);
+            }
+        }
+    }
+    any.then(|| {
+        Field::Elem(ElemField {
+            location: ElemLocation::Cell,
+            components: aster_contact::lac::CONT_ELEM_COMPONENTS
+                .iter()
+                .map(|c| c.to_string())
+                .collect(),
+            values,
+        })
+    })
 }

@@ -42,6 +42,9 @@ pub struct Executor {
     codemap: Option<Rc<CodeMap>>,
     /// Set by `FIN`.
     pub finished: bool,
+    /// LAC patches recorded by `CREA_MAILLAGE/DECOUPE_LAC`, with the mesh
+    /// they belong to (the Arc is kept so the pointer stays unique).
+    pub(crate) lac_patches: Vec<(Arc<Mesh>, Arc<aster_mesh::LacPatches>)>,
 }
 
 impl Executor {
@@ -56,6 +59,7 @@ impl Executor {
             tally: Tally::default(),
             codemap: None,
             finished: false,
+            lac_patches: Vec::new(),
         }
     }
 
@@ -175,6 +179,20 @@ impl Executor {
         ExecError::new(format!("`{}` is {}, expected {want}", c.name, got.kind()))
     }
 
+    /// The LAC patches of a mesh made by `CREA_MAILLAGE/DECOUPE_LAC` — the
+    /// mesh itself or a copy with the same nodes and cells (DEFI_GROUP
+    /// with `reuse` only adds groups).
+    pub(crate) fn lac_patches_of(&self, mesh: &Mesh) -> Option<Arc<aster_mesh::LacPatches>> {
+        self.lac_patches
+            .iter()
+            .rev()
+            .find(|(m, _)| {
+                std::ptr::eq(Arc::as_ptr(m), mesh)
+                    || (m.coords == mesh.coords && m.cells == mesh.cells)
+            })
+            .map(|(_, p)| p.clone())
+    }
+
     pub(crate) fn mesh_by_id(&self, id: u32) -> Result<Arc<Mesh>, ExecError> {
         match self.store.get(&id) {
             Some(Concept::Mesh(m)) => Ok(m.clone()),
@@ -250,6 +268,16 @@ impl Executor {
                 other,
                 "a list of instants (DEFI_LIST_REEL/DEFI_LIST_INST)",
             )),
+        }
+    }
+
+    /// The mesh a field concept lives on: that of the result it was
+    /// extracted from (`CREA_CHAMP(OPERATION='EXTR')`), else the program's
+    /// only mesh. Programs with `CREA_MAILLAGE` (DECOUPE_LAC…) have several.
+    pub(crate) fn field_mesh(&self, field: &ConceptRef) -> Result<Arc<Mesh>, ExecError> {
+        match self.field_origin.get(&field.id) {
+            Some((result, _)) => self.mesh_by_id(result.mesh),
+            None => self.single_mesh(),
         }
     }
 

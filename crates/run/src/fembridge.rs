@@ -624,6 +624,9 @@ pub fn solve(
                         }
                     }
                 }
+                if let Some(f) = crate::contactbridge::cont_elem(zones) {
+                    fields.insert("CONT_ELEM".to_string(), f);
+                }
             }
             Ok(Step {
                 nume_ordre: s.nume_ordre as u32,

@@ -1,5 +1,5 @@
 //! CREA_MAILLAGE driven through the executor with hand-built commands:
-//! the legacy COPIE, the refusal of DECOUPE_LAC with its reason, and a call
+//! the legacy COPIE, DECOUPE_LAC (a cut and a refusal with its reason), and a call
 //! without an operation.
 
 mod common;
@@ -51,28 +51,50 @@ fn copie_copies_the_mesh() {
 }
 
 #[test]
-fn decoupe_lac_is_refused_with_its_reason() {
+fn decoupe_lac_cuts_a_quad4_edge_and_refuses_a_body_group() {
     let (mut ex, mut p, ma) = executor();
     let out = p.concept("MB", "maillage_sdaster");
+    ex.execute(&call(
+        "CREA_MAILLAGE",
+        Some(&out),
+        vec![
+            ("MAILLAGE", V::C(ma.clone())),
+            (
+                "DECOUPE_LAC",
+                V::F(vec![vec![("GROUP_MA_ESCL", V::S("LEFT"))]]),
+            ),
+        ],
+    ))
+    .unwrap();
+    let Concept::Mesh(m) = ex.concept(&out).unwrap() else {
+        panic!("mesh expected");
+    };
+    // LEFT is the SEG2 side of M1 (QUAD4): +4 nodes, 3 edges, 4 quadrangles.
+    assert_eq!((m.node_count(), m.cells.len()), (8 + 4, 6 + 5));
+    assert_eq!(m.group_ma("LEFT").unwrap().members.len(), 3);
+    assert_eq!(m.group_ma("PLATE").unwrap().members.len(), 2 + 3);
+
+    let bad = p.concept("MC", "maillage_sdaster");
     let err = ex
         .execute(&call(
             "CREA_MAILLAGE",
-            Some(&out),
+            Some(&bad),
             vec![
                 ("MAILLAGE", V::C(ma)),
                 (
                     "DECOUPE_LAC",
-                    V::F(vec![vec![("GROUP_MA_ESCL", V::S("LEFT"))]]),
+                    V::F(vec![vec![("GROUP_MA_ESCL", V::S("PLATE"))]]),
                 ),
             ],
         ))
         .unwrap_err()
         .message;
+    assert!(err.starts_with("CREA_MAILLAGE/GROUP_MA_ESCL:"), "{err}");
     assert!(
-        err.starts_with("not supported yet: CREA_MAILLAGE/DECOUPE_LAC"),
+        err.contains("cell M1 (QUAD4) of GROUP_MA_ESCL 'PLATE'"),
         "{err}"
     );
-    assert!(err.contains("LAC contact algorithm"), "{err}");
+    assert!(err.contains("give the group of its contact edges"), "{err}");
 }
 
 #[test]

@@ -22,11 +22,8 @@ const OPERATIONS: [&str; 7] = [
 
 pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
-    if let Some(k) = kw.keyword("DECOUPE_LAC") {
-        return Err(ex.unsupported(
-            "CREA_MAILLAGE/DECOUPE_LAC (it prepares meshes for the LAC contact algorithm, which is not implemented)",
-            k.span,
-        ));
+    if kw.keyword("DECOUPE_LAC").is_some_and(|k| !k.defaulted) {
+        return decoupe_lac(ex, call);
     }
     ex.check_keywords(
         call,
@@ -167,4 +164,34 @@ pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
     }
     store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
+}
+
+/// `DECOUPE_LAC`: the mesh cut for LAC contact; the patches are kept beside
+/// it for DEFI_CONTACT(ALGO_CONT='LAC').
+fn decoupe_lac(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    ex.check_keywords(
+        call,
+        &[
+            "MAILLAGE",
+            "INFO",
+            "TITRE",
+            "DECOUPE_LAC",
+            "DECOUPE_LAC/GROUP_MA_ESCL",
+            "DECOUPE_LAC/DECOUPE_HEXA",
+        ],
+    )?;
+    let source = ex.required(CMD, kw, "MAILLAGE")?;
+    let mesh = ex.mesh(source)?;
+    let occ = &kw.factor("DECOUPE_LAC")[0];
+    let groups: Vec<&str> = occ
+        .simple("GROUP_MA_ESCL")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    let (cut, patches) = aster_mesh::decoupe_lac(&mesh, &groups)
+        .map_err(|e| ex.kw_error(CMD, occ, "GROUP_MA_ESCL", e.to_string()))?;
+    let cut = Arc::new(cut);
+    ex.lac_patches.push((cut.clone(), Arc::new(patches)));
+    store_result(ex, call, Concept::Mesh(cut))
 }

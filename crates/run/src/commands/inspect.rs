@@ -33,6 +33,33 @@ fn allowed(factor: &str, own: &[&str]) -> Vec<String> {
     v
 }
 
+/// `TEST_RESU/MAILLAGE/CARA`: a count of the mesh (cells, nodes, groups,
+/// members of the group `NOM_GROUP_MA`/`NOM_GROUP_NO`).
+fn mesh_count(mesh: &aster_mesh::Mesh, cara: &str, occ: &Keywords) -> Result<usize, String> {
+    let group = |key: &str| occ.str(key).ok_or(format!("CARA='{cara}' needs {key}"));
+    Ok(match cara {
+        "NB_MAILLE" => mesh.cells.len(),
+        "NB_NOEUD" => mesh.coords.len(),
+        "NB_GROUP_MA" => mesh.groups_ma.len(),
+        "NB_GROUP_NO" => mesh.groups_no.len(),
+        "NB_MA_GROUP_MA" => {
+            let g = group("NOM_GROUP_MA")?;
+            mesh.group_ma(g)
+                .ok_or(format!("the mesh has no cell group `{g}`"))?
+                .members
+                .len()
+        }
+        "NB_NO_GROUP_NO" => {
+            let g = group("NOM_GROUP_NO")?;
+            mesh.group_no(g)
+                .ok_or(format!("the mesh has no node group `{g}`"))?
+                .members
+                .len()
+        }
+        other => return Err(format!("unknown CARA '{other}'")),
+    })
+}
+
 /// Reduces every value of a field/column (`TYPE_TEST`).
 fn reduce(kind: &str, values: &[f64]) -> Result<f64, ExecError> {
     if values.is_empty() {
@@ -190,9 +217,22 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "TYPE_TEST",
         ],
     ));
+    allow.extend(allowed(
+        "MAILLAGE",
+        &["MAILLAGE", "CARA", "NOM_GROUP_MA", "NOM_GROUP_NO"],
+    ));
     let allow: Vec<&str> = allow.iter().map(String::as_str).collect();
     ex.check_keywords(call, &allow)?;
     let kw = &call.keywords;
+    for occ in kw.factor("MAILLAGE") {
+        let c = ex.required("TEST_RESU/MAILLAGE", occ, "MAILLAGE")?;
+        let mesh = ex.mesh(c)?;
+        let cara = occ.str("CARA").unwrap_or("");
+        let value = mesh_count(&mesh, cara, occ)
+            .map_err(|e| ex.kw_error("TEST_RESU/MAILLAGE", occ, "CARA", e))?;
+        let header = vec![("MAILLAGE", c.name.clone()), ("CARA", cara.to_string())];
+        run_checks(ex, &header, occ, value as f64)?;
+    }
     for occ in kw.factor("RESU") {
         let r = ex.required("TEST_RESU/RESU", occ, "RESULTAT")?;
         let result = ex.result(r)?;
@@ -236,7 +276,7 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         for occ in kw.factor(factor) {
             let c = ex.required(&format!("TEST_RESU/{factor}"), occ, "CHAM_GD")?;
             let field = ex.field(c)?;
-            let mesh = ex.single_mesh()?;
+            let mesh = ex.field_mesh(c)?;
             let mut header: Vec<(&str, String)> = vec![(label, c.name.clone())];
             let value = field_value(occ, &field, &mesh, &mut header)
                 .map_err(|e| ExecError::new(format!("TEST_RESU/{factor}: {e}")))?;

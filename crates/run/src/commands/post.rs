@@ -577,9 +577,9 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
-fn occ_mesh(ex: &Executor, _field: &ConceptRef) -> Result<Arc<aster_mesh::Mesh>, ExecError> {
-    // A field does not record its mesh; a program has one mesh in practice.
-    ex.single_mesh()
+fn occ_mesh(ex: &Executor, field: &ConceptRef) -> Result<Arc<aster_mesh::Mesh>, ExecError> {
+    // A field does not record its mesh: that of its result, or the only one.
+    ex.field_mesh(field)
 }
 
 fn drop_empty_columns(t: &mut Table) {
