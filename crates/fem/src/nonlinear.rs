@@ -33,6 +33,7 @@ use crate::linalg::{self, Csc, SolveFailure};
 use crate::loads::Loads;
 use crate::model::Model;
 use crate::post::{self, CellValues};
+use crate::solver_constrained::{self, KktSolver, MatrixKey};
 use crate::unilateral::{
     GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };
@@ -315,10 +316,13 @@ impl StaticNonLinear<'_> {
             }
         }
         let kff = restrict(&k, &map, nfree);
-        let free_coords: Vec<[f64; 3]> = (0..nd)
-            .filter(|&i| map[i] != usize::MAX)
-            .map(|i| model.mesh().coord(model.dofs().dof(i).node))
+        let free_dof: Vec<usize> = (0..nd).filter(|&i| map[i] != usize::MAX).collect();
+        let free_coords: Vec<[f64; 3]> = free_dof
+            .iter()
+            .map(|&i| model.mesh().coord(model.dofs().dof(i).node))
             .collect();
+        // Factorisations kept across iterations and steps.
+        let mut kkt = KktSolver::default();
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
@@ -417,6 +421,7 @@ impl StaticNonLinear<'_> {
                     newton: self.newton,
                     active_set_max_iter: self.active_set_max_iter,
                     coords: &free_coords,
+                    free_dof: &free_dof,
                 };
                 let attempt = newton_step(
                     &ctx,
@@ -428,6 +433,7 @@ impl StaticNonLinear<'_> {
                     &mut u,
                     target,
                     &mut plastic,
+                    &mut kkt,
                 );
 
                 match attempt {
@@ -587,7 +593,14 @@ struct StepContext<'a> {
     active_set_max_iter: usize,
     /// Coordinates of the free unknowns (for the fill-reducing ordering).
     coords: &'a [[f64; 3]],
+    /// The DOF index of each free unknown.
+    free_dof: &'a [usize],
 }
+
+/// Systems without constraint rows of at least this many unknowns keep the
+/// bordered path ([`linalg::solve_with`]), whose nested-dissection
+/// Cholesky is split over two threads.
+const SCHUR_MAX_UNROWED: usize = 20_000;
 
 type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64, Vec<f64>);
 
@@ -604,6 +617,7 @@ fn newton_step(
     u: &mut [f64],
     t: f64,
     plastic: &mut Option<PlasticCells>,
+    kkt: &mut KktSolver,
 ) -> Result<StepOutcome, FemError> {
     let StepContext {
         model,
@@ -616,6 +630,7 @@ fn newton_step(
         newton,
         active_set_max_iter,
         coords,
+        free_dof,
     } = *ctx;
     // code_aster numbers the iterations from 0 (the prediction): with a
     // plastic behaviour ITER_GLOB_MAXI allows that many corrections after
@@ -626,6 +641,7 @@ fn newton_step(
     let mut fint_now: Option<Vec<f64>> = None;
     // The matrix of the plastic iterations (`None`: the elastic K_ff).
     let mut tangent: Option<Csc> = None;
+    let mut tangent_key = MatrixKey::Elastic;
     let mut residuals: Vec<f64> = Vec::new();
     // With plastic cells, as code_aster: the active set is settled on the
     // linearised problem of each Newton iteration (same iterate, internal
@@ -658,7 +674,8 @@ fn newton_step(
                 rows.push((r.terms.clone(), r.rhs));
             }
             let mut row_of: Vec<Vec<Option<usize>>> = Vec::new();
-            let mut extra: Vec<(usize, usize, f64)> = Vec::new();
+            // Penalty terms added to the matrix (free indices).
+            let mut pen_extra: Vec<(usize, usize, f64)> = Vec::new();
             let mut pen_force = vec![0.0; nd];
             for sr in srcs.iter().flatten() {
                 let mut ro = vec![None; sr.rows.len()];
@@ -680,7 +697,7 @@ fn newton_step(
                                 }
                                 for &(j, cj) in &sr.idx[r] {
                                     if map[j] != usize::MAX {
-                                        extra.push((map[i], map[j], coef * ci * cj));
+                                        pen_extra.push((map[i], map[j], coef * ci * cj));
                                     }
                                 }
                             }
@@ -730,14 +747,6 @@ fn newton_step(
                 kept.push(r);
             }
             let nk = kept.len();
-            for (k, &r) in kept.iter().enumerate() {
-                for &(i, c) in &rows[r].0 {
-                    if map[i] != usize::MAX {
-                        extra.push((nfree + k, map[i], c));
-                        extra.push((map[i], nfree + k, c));
-                    }
-                }
-            }
             // A state where the active conditions leave a rigid-body mode
             // free is reported (instead of factorising a singular matrix).
             {
@@ -763,15 +772,15 @@ fn newton_step(
                 None => internal_forces(model, k, plastic, u)?,
             };
             if let Some(pc) = plastic.as_mut() {
-                if new_outer {
-                    choose_tangent(&mut tangent, pc, model, k, map, nfree, newton, outer)?;
+                if new_outer && choose_tangent(&mut tangent, pc, model, kff, map, newton, outer)? {
+                    tangent_key = match tangent {
+                        Some(_) => kkt.new_tangent(),
+                        None => MatrixKey::Elastic,
+                    };
                 }
                 base = Some((u.to_vec(), fint.clone()));
             }
-            let a = tangent
-                .as_ref()
-                .unwrap_or(kff)
-                .with_extra(nfree + nk, extra);
+            let matrix = tangent.as_ref().unwrap_or(kff);
             // Right-hand side.
             let mut b = vec![0.0; nfree + nk];
             for i in 0..nd {
@@ -783,24 +792,81 @@ fn newton_step(
                 let (terms, rhs) = &rows[r];
                 b[nfree + k] = rhs - terms.iter().map(|&(i, c)| c * u[i]).sum::<f64>();
             }
-            let spd = nk == 0;
-            let sol =
-                linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
-                    SolveFailure::Singular { index } => {
-                        let mut ground: Vec<Vec<(usize, f64)>> =
-                            elim.keys().map(|&i| vec![(i, 1.0)]).collect();
-                        ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
-                        let free = held::free_dofs(model, &ground);
-                        if !free.is_empty() {
-                            FemError::Singular { free_dofs: free }
-                        } else {
-                            FemError::Singular {
-                                free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
-                            }
+            // The rows over free unknowns, for the Schur-complement solve
+            // (large systems without rows keep the bordered path: its
+            // nested-dissection Cholesky is split over two threads).
+            let free_rows: Vec<Vec<(usize, f64)>> = kept
+                .iter()
+                .map(|&r| {
+                    rows[r]
+                        .0
+                        .iter()
+                        .filter(|(i, _)| map[*i] != usize::MAX)
+                        .map(|&(i, c)| (map[i], c))
+                        .collect()
+                })
+                .collect();
+            let reduced = if nk == 0 && nfree >= SCHUR_MAX_UNROWED {
+                None
+            } else {
+                let krows: Vec<solver_constrained::Row> = kept
+                    .iter()
+                    .zip(&free_rows)
+                    .enumerate()
+                    .map(|(k, (&r, t))| solver_constrained::Row {
+                        terms: t,
+                        d: b[nfree + k],
+                        equality: r < eq.len(),
+                    })
+                    .collect();
+                let held_by = |pinned: &[usize]| {
+                    let mut ground: Vec<Vec<(usize, f64)>> =
+                        elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                    ground.extend(pinned.iter().map(|&f| vec![(free_dof[f], 1.0)]));
+                    held::free_dofs(model, &ground).is_empty()
+                };
+                kkt.solve(
+                    tangent_key,
+                    matrix,
+                    &pen_extra,
+                    &krows,
+                    &b[..nfree],
+                    Some(coords),
+                    &held_by,
+                )
+                .ok()
+                .flatten()
+            };
+            let sol = match reduced {
+                Some(sol) => sol,
+                None => {
+                    let mut extra = pen_extra.clone();
+                    for (k, t) in free_rows.iter().enumerate() {
+                        for &(i, c) in t {
+                            extra.push((nfree + k, i, c));
+                            extra.push((i, nfree + k, c));
                         }
                     }
-                    other => linalg::failure_to_error(other, name),
-                })?;
+                    let a = matrix.with_extra(nfree + nk, extra);
+                    let spd = nk == 0;
+                    linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
+                        SolveFailure::Singular { index } => {
+                            let mut ground: Vec<Vec<(usize, f64)>> =
+                                elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                            ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
+                            let free = held::free_dofs(model, &ground);
+                            if !free.is_empty() {
+                                FemError::Singular { free_dofs: free }
+                            } else {
+                                FemError::Singular {
+                                    free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
+                                }
+                            }
+                        }
+                        other => linalg::failure_to_error(other, name),
+                    })?
+                }
+            };
             for i in 0..nd {
                 if map[i] != usize::MAX {
                     u[i] += sol.x[map[i]];
@@ -1067,35 +1133,44 @@ fn internal_forces(
 /// (`None` in `tangent`: the elastic K_ff): iteration 0 uses the
 /// prediction (`PREDICTION`), later ones the consistent tangent of the last
 /// update every `REAC_ITER` iterations (0: never), `MATRICE='ELASTIQUE'`
-/// the elastic stiffness throughout.
+/// the elastic stiffness throughout. A tangent with no plastic correction
+/// is the elastic K_ff (kept as `None`, so that its factorisation is
+/// reused). Returns whether the matrix was set anew.
 #[allow(clippy::too_many_arguments)]
 fn choose_tangent(
     tangent: &mut Option<Csc>,
     pc: &mut PlasticCells,
     model: &Model,
-    k: &Csc,
+    kff: &Csc,
     map: &[usize],
-    nfree: usize,
     newton: NewtonOptions,
     iter: usize,
-) -> Result<(), FemError> {
+) -> Result<bool, FemError> {
+    let consistent = |pc: &PlasticCells| {
+        if pc.tangent_is_elastic() {
+            None
+        } else {
+            Some(pc.tangent_restricted(kff, map))
+        }
+    };
     if newton.matrix == MatrixKind::Elastique {
         *tangent = None;
-        return Ok(());
+        return Ok(true);
     }
     if iter == 0 {
         *tangent = if newton.prediction == Prediction::Elastique {
             None
         } else {
             pc.prediction(model)?;
-            Some(restrict(&pc.tangent(k), map, nfree))
+            consistent(pc)
         };
-        return Ok(());
+        return Ok(true);
     }
     if newton.reac_iter > 0 && iter.is_multiple_of(newton.reac_iter) {
-        *tangent = Some(restrict(&pc.tangent(k), map, nfree));
+        *tangent = consistent(pc);
+        return Ok(true);
     }
-    Ok(())
+    Ok(false)
 }
 
 /// Asks every source that updates its geometry at each iteration for its
