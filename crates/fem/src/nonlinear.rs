@@ -172,6 +172,8 @@ pub fn meca_statique(
     let mut s = StaticNonLinear {
         instants: instants.to_vec(),
         first_order: 1,
+        // Independent linear solves: nothing to cut.
+        subdivision: None,
         ..Default::default()
     };
     s.run(model, loads, true)
@@ -195,14 +197,16 @@ pub struct StaticNonLinear<'s> {
     pub first_order: usize,
     /// `COMPORTEMENT`: the plastic cells (default: all elastic).
     pub behaviours: Behaviours,
-    /// Step cutting when Newton fails with plastic cells (`None`: fail).
+    /// Step cutting when an increment fails (`None`: ACTION='ARRET', fail).
     pub subdivision: Option<Subdivision>,
 }
 
-/// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment is cut
-/// into `pieces` equal ones, at most `max_level` times in a row, never
-/// below `min_step`. Only used with plastic cells (an elastic step that
-/// fails would fail the same way in pieces).
+/// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment
+/// (Newton or active set not converging, a poor solve) is cut into
+/// `pieces` equal ones, at most `max_level` times in a row, never below
+/// `min_step`; beyond that the analysis stops with
+/// [`FemError::StepCutting`]. Elastic steps are cut too: with contact a
+/// smaller increment changes the pairing and the active set.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Subdivision {
     /// `SUBD_PAS` (default 4).
@@ -356,10 +360,10 @@ impl StaticNonLinear<'_> {
             if linear {
                 u.iter_mut().for_each(|v| *v = 0.0);
             }
-            // The increment to t, cut into `pieces` when Newton fails with
-            // a plastic behaviour (code_aster's default ECHEC: DECOUPE,
-            // SUBD_PAS=4, SUBD_NIVEAU=3); `pending` holds the instants still
-            // to reach, the next on top.
+            // The increment to t, cut into pieces when it fails
+            // (`subdivision`: DEFI_LIST_INST/ECHEC, code_aster's default
+            // DECOUPE, SUBD_PAS=4, SUBD_NIVEAU=3); `pending` holds the
+            // instants still to reach, the next on top, with their level.
             let mut pending: Vec<(f64, usize)> = vec![(t, 0)];
             let mut from = t_prev;
             let mut step = None;
@@ -446,23 +450,53 @@ impl StaticNonLinear<'_> {
                         step = Some(outcome);
                     }
                     Err(e) => {
-                        let cut = self.subdivision.filter(|_| plastic.is_some()).filter(|sd| {
-                            matches!(
-                                e,
-                                FemError::NoConvergence { .. } | FemError::ActiveSet { .. }
-                            ) && level < sd.max_level
-                                && (target - from) / sd.pieces as f64 >= sd.min_step
-                        });
-                        let Some(sd) = cut else {
+                        // DEFI_LIST_INST/ECHEC (EVENEMENT='ERREUR'): a
+                        // failed increment — elastic, plastic or contact —
+                        // is redone from the last converged state in
+                        // SUBD_PAS pieces, at most SUBD_NIVEAU levels deep,
+                        // never below SUBD_PAS_MINI.
+                        let cuttable = matches!(
+                            e,
+                            FemError::NoConvergence { .. }
+                                | FemError::ActiveSet { .. }
+                                | FemError::PoorSolve { .. }
+                        );
+                        let Some(sd) = self.subdivision.filter(|_| cuttable) else {
                             return Err(e);
                         };
+                        let piece = (target - from) / sd.pieces.max(2) as f64;
+                        let limit = if level >= sd.max_level {
+                            Some(format!("SUBD_NIVEAU = {} reached", sd.max_level))
+                        } else if piece < sd.min_step {
+                            Some(format!(
+                                "a piece of {piece:e} would be below SUBD_PAS_MINI = {:e}",
+                                sd.min_step
+                            ))
+                        } else {
+                            None
+                        };
+                        if let Some(limit) = limit {
+                            if level == 0 && sd.max_level == 0 {
+                                return Err(e);
+                            }
+                            return Err(FemError::StepCutting {
+                                from,
+                                to: target,
+                                levels: level,
+                                pieces: sd.pieces,
+                                smallest: target - from,
+                                limit,
+                                cause: Box::new(e),
+                            });
+                        }
                         (u, srcs) = saved;
                         pending.pop();
-                        for piece in (1..=sd.pieces).rev() {
-                            let at = if piece == sd.pieces {
+                        let pieces = sd.pieces.max(2);
+                        for k in (1..=pieces).rev() {
+                            let at = if k == pieces {
                                 target
                             } else {
-                                from + (target - from) * piece as f64 / sd.pieces as f64
+                                from + (target - from) * k as f64 / pieces as f64
                             };
                             pending.push((at, level + 1));
                         }

@@ -88,13 +88,17 @@ struct Reduced {
     columns: HashMap<Vec<(usize, u64)>, Vec<f64>>,
 }
 
+/// A symbolic Cholesky with the pattern (column pointers, row indices) it
+/// was computed for.
+type PatternSymbolic = (Vec<usize>, Vec<usize>, Arc<SymbolicCholesky<usize>>);
+
 /// Factorisations and their by-products kept across Newton iterations,
 /// active sets and steps.
 #[derive(Default)]
 pub(crate) struct KktSolver {
     reduced: Option<Reduced>,
     /// The symbolic Cholesky of the last reduced pattern.
-    symbolic: Option<(Vec<usize>, Vec<usize>, Arc<SymbolicCholesky<usize>>)>,
+    symbolic: Option<PatternSymbolic>,
     /// Whether the pinned DOFs (with the eliminated ones) hold the model.
     held: Vec<(Vec<usize>, bool)>,
     next_id: u64,
@@ -147,7 +151,7 @@ impl KktSolver {
         let mut pinned: Vec<usize> = pinned_rows.iter().map(|p| p.1).collect();
         pinned.sort_unstable();
         let mut penalty_sorted = penalty.to_vec();
-        penalty_sorted.sort_unstable_by(|a, b| (a.1, a.0).cmp(&(b.1, b.0)));
+        penalty_sorted.sort_unstable_by_key(|a| (a.1, a.0));
         let current = self
             .reduced
             .as_ref()
@@ -240,7 +244,7 @@ impl KktSolver {
                     let diag_max = (0..m).fold(0.0f64, |a, i| a.max(s[(i, i)].abs()));
                     let u = lu.u();
                     let min_piv = (0..m).fold(f64::INFINITY, |a, i| a.min(u[(i, i)].abs()));
-                    if !(min_piv > 1e-12 * diag_max) {
+                    if min_piv.is_nan() || min_piv <= 1e-12 * diag_max {
                         return Ok(None);
                     }
                     Some(SFactor::Lu(lu))
@@ -300,7 +304,7 @@ impl KktSolver {
             if std::env::var_os("ASTER_FEM_TRACE").is_some() {
                 eprintln!("[kkt] refinement: backward error {be:.3e}, correction {du_max:.3e} (u) {dl_max:.3e} (λ), relative {step:.3e}, {} rows, {} pinned", rows.len(), pinned_rows.len());
             }
-            if !(step < last_step) {
+            if step.is_nan() || step >= last_step {
                 break;
             }
             last_step = step;

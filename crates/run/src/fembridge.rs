@@ -571,9 +571,18 @@ pub fn solve(
             },
             sources,
             behaviours,
+            subdivision: setup.subdivision,
             ..StaticNonLinear::default()
         };
-        let raw = snl.solve(&model, &loads).map_err(|e| fem_err(cmd, e))?;
+        let raw = snl.solve(&model, &loads).map_err(|e| match (&e, &setup.time_list_at) {
+            (aster_fem::FemError::StepCutting { .. }, Some(at)) => ExecError::new(format!(
+                "{cmd}: {e} (cutting set by DEFI_LIST_INST/ECHEC at {at})"
+            )),
+            (aster_fem::FemError::StepCutting { .. }, None) => ExecError::new(format!(
+                "{cmd}: {e} (code_aster's default cutting of a list of reals: give INCREMENT/LIST_INST a DEFI_LIST_INST with ECHEC to change it)"
+            )),
+            _ => fem_err(cmd, e),
+        })?;
         drop(snl);
         if setup.verbose {
             ex.write_report(&convergence_report(&raw))?;
