@@ -367,6 +367,7 @@ impl StaticNonLinear<'_> {
             let mut pending: Vec<(f64, usize)> = vec![(t, 0)];
             let mut from = t_prev;
             let mut step = None;
+            let mut unil: Option<Vec<Vec<RowOutcome>>> = None;
             while let Some(&(target, level)) = pending.last() {
                 let saved = (u.clone(), srcs.clone());
                 let elim = loads.eliminated(model, target)?;
@@ -447,6 +448,17 @@ impl StaticNonLinear<'_> {
                         if let Some(pc) = &mut plastic {
                             pc.commit();
                         }
+                        // Each converged increment (a piece of a cut one
+                        // too) is reported to the sources: contact's
+                        // geometric loop measures from its start.
+                        unil = Some(report_outcomes(
+                            model,
+                            &mut self.sources,
+                            &srcs,
+                            &u,
+                            target,
+                            &outcome.1 .1,
+                        )?);
                         step = Some(outcome);
                     }
                     Err(e) => {
@@ -510,46 +522,7 @@ impl StaticNonLinear<'_> {
                 )));
             };
             let (iterations, lambdas, resi_rela, resi_maxi, residual_history) = step;
-            // Outcomes to the sources.
-            let mut unil = Vec::with_capacity(self.sources.len());
-            for (s, src) in self.sources.iter_mut().enumerate() {
-                let Some(sr) = &srcs[s] else {
-                    unil.push(Vec::new());
-                    continue;
-                };
-                let state = State {
-                    mesh: model.mesh(),
-                    dofs: model.dofs(),
-                    displacement: &u,
-                    time: t,
-                };
-                let outcomes: Vec<RowOutcome> = sr
-                    .rows
-                    .iter()
-                    .enumerate()
-                    .map(|(r, row)| {
-                        let g = gap(&sr.idx[r], row.rhs, &u);
-                        let multiplier = match sr.method {
-                            UnilateralMethod::ActiveSet => {
-                                if sr.active[r] {
-                                    lambdas.1[s][r]
-                                } else {
-                                    0.0
-                                }
-                            }
-                            UnilateralMethod::Penalty { coef } => coef * g.max(0.0),
-                        };
-                        RowOutcome {
-                            id: row.id,
-                            multiplier,
-                            active: sr.active[r],
-                            violation: g,
-                        }
-                    })
-                    .collect();
-                src.converged(&state, &outcomes)?;
-                unil.push(outcomes);
-            }
+            let unil = unil.unwrap_or_default();
             let mut stress = post::sief_elga(model, &u)?;
             let internal_variables = match &plastic {
                 Some(pc) => pc.fields(&mut stress),
@@ -1137,6 +1110,58 @@ fn newton_step(
             }
         }
     }
+}
+
+/// The outcome of every source's rows at a converged increment (time
+/// `t`, multipliers `lambdas` per source row), handed to the sources.
+fn report_outcomes(
+    model: &Model,
+    sources: &mut [Box<dyn UnilateralSource + '_>],
+    srcs: &[Option<SourceRows>],
+    u: &[f64],
+    t: f64,
+    lambdas: &[Vec<f64>],
+) -> Result<Vec<Vec<RowOutcome>>, FemError> {
+    let mut unil = Vec::with_capacity(sources.len());
+    for (s, src) in sources.iter_mut().enumerate() {
+        let Some(sr) = &srcs[s] else {
+            unil.push(Vec::new());
+            continue;
+        };
+        let state = State {
+            mesh: model.mesh(),
+            dofs: model.dofs(),
+            displacement: u,
+            time: t,
+        };
+        let outcomes: Vec<RowOutcome> = sr
+            .rows
+            .iter()
+            .enumerate()
+            .map(|(r, row)| {
+                let g = gap(&sr.idx[r], row.rhs, u);
+                let multiplier = match sr.method {
+                    UnilateralMethod::ActiveSet => {
+                        if sr.active[r] {
+                            lambdas[s][r]
+                        } else {
+                            0.0
+                        }
+                    }
+                    UnilateralMethod::Penalty { coef } => coef * g.max(0.0),
+                };
+                RowOutcome {
+                    id: row.id,
+                    multiplier,
+                    active: sr.active[r],
+                    violation: g,
+                }
+            })
+            .collect();
+        src.converged(&state, &outcomes)?;
+        unil.push(outcomes);
+    }
+    Ok(unil)
 }
 
 fn gap(idx: &[(usize, f64)], rhs: f64, u: &[f64]) -> f64 {

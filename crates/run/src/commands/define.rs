@@ -500,7 +500,12 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         // residuals; it is read as MANUEL's default cutting (4 pieces, 3
         // levels) bounded by its SUBD_PAS_MINI: the converged steps are
         // the same, the path between them may differ.
-        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "SUBD_METHODE", &["MANUEL", "AUTO"])?;
+        ex.only_values(
+            "DEFI_LIST_INST/ECHEC",
+            occ,
+            "SUBD_METHODE",
+            &["MANUEL", "AUTO"],
+        )?;
         if occ.str("ACTION") == Some("ARRET") {
             subdivision = None;
             continue;
@@ -513,7 +518,9 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
                         "DEFI_LIST_INST/ECHEC",
                         occ,
                         "SUBD_PAS",
-                        &format!("SUBD_PAS = {n}: a failed increment is cut into at least 2 pieces"),
+                        &format!(
+                            "SUBD_PAS = {n}: a failed increment is cut into at least 2 pieces"
+                        ),
                     ));
                 }
                 sd.pieces = n as usize;
