@@ -568,6 +568,20 @@ impl SolveCtx<'_> {
         for (j, &i) in red.full_of.iter().enumerate() {
             du[i] = ur[j];
         }
+        // A row on one free unknown holds exactly (a support or a contact
+        // row on a rigid master reads 0, not 1e-32): its value is set from
+        // the row, which moves it by round-off only.
+        for (k, &r) in self.general.iter().enumerate() {
+            if let [(j, c)] = self.reduced_terms[k].as_slice() {
+                let pinned_part: f64 = self.rows[r]
+                    .terms
+                    .iter()
+                    .filter(|(i, _)| red.red_of[*i] == usize::MAX)
+                    .map(|&(i, c)| c * du[i])
+                    .sum();
+                du[red.full_of[*j]] = (d[r] - pinned_part) / c;
+            }
+        }
         let mut x = du;
         let mut lam = vec![0.0; self.rows.len()];
         for (k, &r) in self.general.iter().enumerate() {
