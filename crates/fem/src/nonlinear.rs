@@ -129,8 +129,13 @@ pub struct Step {
     pub multipliers: Vec<f64>,
     /// Outcome of each unilateral source's rows (same order as the sources).
     pub unilateral: Vec<Vec<RowOutcome>>,
-    /// Newton iterations (0 for the initial state).
+    /// Linear solves of the step, active-set changes included (0 for the
+    /// initial state).
     pub iterations: usize,
+    /// Newton iterations proper, as code_aster counts them against
+    /// ITER_GLOB_MAXI: over the whole geometric loop, active-set changes
+    /// excluded (0 for the initial state).
+    pub newton_iterations: usize,
     pub resi_glob_rela: f64,
     pub resi_glob_maxi: f64,
     /// RESI_GLOB_RELA after each Newton iteration of the step (code_aster's
@@ -347,6 +352,7 @@ impl StaticNonLinear<'_> {
                 unilateral: vec![Vec::new(); self.sources.len()],
                 displacement: u.clone(),
                 iterations: 0,
+                newton_iterations: 0,
                 resi_glob_rela: 0.0,
                 resi_glob_maxi: 0.0,
                 residual_history: Vec::new(),
@@ -521,7 +527,8 @@ impl StaticNonLinear<'_> {
                     "no increment computed to time {t}"
                 )));
             };
-            let (iterations, lambdas, resi_rela, resi_maxi, residual_history) = step;
+            let (iterations, lambdas, resi_rela, resi_maxi, residual_history, newton_iterations) =
+                step;
             let unil = unil.unwrap_or_default();
             let mut stress = post::sief_elga(model, &u)?;
             let internal_variables = match &plastic {
@@ -537,6 +544,7 @@ impl StaticNonLinear<'_> {
                 multipliers: lambdas.0,
                 unilateral: unil,
                 iterations,
+                newton_iterations,
                 resi_glob_rela: resi_rela,
                 resi_glob_maxi: resi_maxi,
                 residual_history,
@@ -609,7 +617,7 @@ struct StepContext<'a> {
 /// Cholesky is split over two threads.
 const SCHUR_MAX_UNROWED: usize = 20_000;
 
-type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64, Vec<f64>);
+type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64, Vec<f64>, usize);
 
 /// Newton + active-set iterations of one step. Returns (iterations,
 /// (equality multipliers, per-source row multipliers), resi_rela, resi_maxi).
@@ -1065,6 +1073,7 @@ fn newton_step(
                         resi_rela,
                         resi_maxi,
                         residuals,
+                        settled,
                     ));
                 }
                 if settled >= max_iterations {

@@ -210,3 +210,103 @@ fn a_piece_below_subd_pas_mini_stops_the_cutting() {
     let (err, _) = solve(&[0., 1.], 0.07, Some(none));
     assert!(matches!(err, Err(FemError::ActiveSet { .. })));
 }
+
+/// A source standing in for a contact zone whose first pairings move: a
+/// row −DX(corner) ≤ bₖ (active: the corner contracts more) whose bound
+/// changes for the first `moving` pairings of each step, then stays.
+struct MovingPairing {
+    node: NodeId,
+    moving: usize,
+    time: f64,
+    pairings: usize,
+    most_pairings: usize,
+}
+
+impl UnilateralSource for MovingPairing {
+    fn geometry_update(&self) -> GeometryUpdate {
+        GeometryUpdate::EachIteration
+    }
+
+    fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        if state.time != self.time {
+            self.time = state.time;
+            self.pairings = 0;
+        }
+        self.pairings += 1;
+        self.most_pairings = self.most_pairings.max(self.pairings);
+        let k = self.pairings.min(self.moving) as f64;
+        Ok(vec![InequalityRow::new(
+            vec![(Dof::new(self.node, Comp::DX), -1.0)],
+            1e-3 * (1.0 + 0.2 * k),
+            0,
+        )])
+    }
+}
+
+/// The square made plastic (SY = 1 against a stress of ~10), its corner
+/// held by the moving pairing, one increment.
+fn plastic_with_moving_pairing(
+    iter_glob_maxi: usize,
+) -> (Result<NonLinearResult, FemError>, usize) {
+    let (model, loads, corner) = square();
+    let mut behaviours = Behaviours::elastic();
+    let law = std::sync::Arc::new(VonMises::linear(1000., 1.0, 50.).unwrap());
+    for el in model.elements() {
+        behaviours.assign(el.cell, law.clone());
+    }
+    let mut source = MovingPairing {
+        node: corner,
+        moving: 3,
+        time: f64::NAN,
+        pairings: 0,
+        most_pairings: 0,
+    };
+    let result = {
+        let mut snl = StaticNonLinear {
+            instants: vec![0., 1.],
+            sources: vec![Box::new(&mut source)],
+            behaviours,
+            convergence: Convergence {
+                resi_glob_rela: Some(1e-10),
+                resi_glob_maxi: None,
+                iter_glob_maxi,
+            },
+            subdivision: None,
+            ..Default::default()
+        };
+        snl.solve(&model, &loads)
+    };
+    (result, source.most_pairings)
+}
+
+#[test]
+fn newton_iterations_count_over_the_whole_geometric_loop() {
+    // Plenty of iterations: four pairings, each needing Newton iterations
+    // of its own (the active row moves the plastic solution).
+    let (ok, pairings) = plastic_with_moving_pairing(50);
+    let ok = ok.expect("converges");
+    assert!(pairings >= 4, "{pairings} pairings");
+    let total = ok.last().unwrap().newton_iterations;
+    assert!(
+        total > pairings,
+        "{total} iterations over {pairings} pairings"
+    );
+    // code_aster numbers them 0..ITER_GLOB_MAXI over the whole loop: the
+    // same step with one iteration fewer fails, although no pairing alone
+    // took that many (a per-pairing count would accept it).
+    let (exact, _) = plastic_with_moving_pairing(total - 1);
+    assert_eq!(
+        exact
+            .expect("just enough")
+            .last()
+            .unwrap()
+            .newton_iterations,
+        total
+    );
+    let (short, _) = plastic_with_moving_pairing(total - 2);
+    let err = short.map(|_| ()).unwrap_err();
+    assert!(
+        matches!(err, FemError::NoConvergence { iterations, .. } if iterations == total - 1),
+        "{err}"
+    );
+}
