@@ -1225,7 +1225,7 @@ fn choose_tangent(
     newton: NewtonOptions,
     iter: usize,
 ) -> Result<bool, FemError> {
-    let consistent = |pc: &PlasticCells| {
+    let consistent = |pc: &mut PlasticCells| {
         if pc.tangent_is_elastic() {
             None
         } else {

@@ -43,6 +43,10 @@ pub(crate) struct PlasticCells {
     /// Per cell: whether its tangent differs from its elastic stiffness
     /// (a plastic point at the last update or prediction).
     corrected: Vec<bool>,
+    /// Per cell, the position in the free stiffness' values of each of its
+    /// (a, b) entries (column-major; `usize::MAX`: an eliminated DOF), with
+    /// the number of values they were found for.
+    positions: Option<(usize, Vec<Vec<usize>>)>,
 }
 
 impl PlasticCells {
@@ -91,6 +95,7 @@ impl PlasticCells {
             trial: committed.clone(),
             committed,
             corrected,
+            positions: None,
         }))
     }
 
@@ -186,24 +191,53 @@ impl PlasticCells {
     /// cells restricted by `map`, DOF → free index or `usize::MAX`) with the
     /// plastic cells' corrections ∫BᵀC B − Kₑ at the last update or
     /// prediction.
-    pub fn tangent_restricted(&self, kff: &Csc, map: &[usize]) -> Csc {
+    pub fn tangent_restricted(&mut self, kff: &Csc, map: &[usize]) -> Csc {
+        // Where each cell's (a, b) entry sits in kff's values (the pattern
+        // is fixed for the analysis): found once, instead of a search per
+        // entry at every reassembly.
+        let stale = self
+            .positions
+            .as_ref()
+            .is_none_or(|(nnz, _)| *nnz != kff.values.len());
+        if stale {
+            let at = |i: usize, j: usize| -> usize {
+                match (map.get(i), map.get(j)) {
+                    (Some(&fi), Some(&fj)) if fi != usize::MAX && fj != usize::MAX => {
+                        kff.position(fi, fj).unwrap_or(usize::MAX)
+                    }
+                    _ => usize::MAX,
+                }
+            };
+            let positions = self
+                .cells
+                .iter()
+                .map(|cell| {
+                    let mut p = Vec::with_capacity(cell.dofs.len() * cell.dofs.len());
+                    for &j in &cell.dofs {
+                        for &i in &cell.dofs {
+                            p.push(at(i, j));
+                        }
+                    }
+                    p
+                })
+                .collect();
+            self.positions = Some((kff.values.len(), positions));
+        }
         let mut t = kff.clone();
+        let Some((_, positions)) = &self.positions else {
+            return t;
+        };
         for (c, cell) in self.cells.iter().enumerate() {
             if !self.corrected[c] {
                 continue;
             }
             let corr = cell_tangent(cell, &self.tangents[c]) - &cell.k_el;
-            for (b, &j) in cell.dofs.iter().enumerate() {
-                let Some(&fj) = map.get(j).filter(|&&f| f != usize::MAX) else {
-                    continue;
-                };
-                for (a, &i) in cell.dofs.iter().enumerate() {
-                    let Some(&fi) = map.get(i).filter(|&&f| f != usize::MAX) else {
-                        continue;
-                    };
-                    let v = corr[(a, b)];
-                    if v != 0. {
-                        t.add(fi, fj, v);
+            let n = cell.dofs.len();
+            for b in 0..n {
+                for a in 0..n {
+                    let p = positions[c][b * n + a];
+                    if p != usize::MAX {
+                        t.values[p] += corr[(a, b)];
                     }
                 }
             }

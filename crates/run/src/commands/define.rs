@@ -518,9 +518,7 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
                         "DEFI_LIST_INST/ECHEC",
                         occ,
                         "SUBD_PAS",
-                        &format!(
-                            "SUBD_PAS = {n}: a failed increment is cut into at least 2 pieces"
-                        ),
+                        format!("SUBD_PAS = {n}: a failed increment is cut into at least 2 pieces"),
                     ));
                 }
                 sd.pieces = n as usize;
