@@ -27,6 +27,22 @@ pub enum FemError {
     ActiveSet { time: f64, message: String },
     /// An error raised by a unilateral source (e.g. contact pairing).
     Source(String),
+    /// An increment still failed once cut as far as `DEFI_LIST_INST/ECHEC`
+    /// allows (`SUBD_NIVEAU` levels of `SUBD_PAS` pieces, or a piece below
+    /// `SUBD_PAS_MINI`).
+    StepCutting {
+        /// The increment that failed (from, to).
+        from: f64,
+        to: f64,
+        /// Levels of cutting done, pieces per cut, and the smallest piece.
+        levels: usize,
+        pieces: usize,
+        smallest: f64,
+        /// Why: `SUBD_NIVEAU` reached, or the next piece below `SUBD_PAS_MINI`.
+        limit: String,
+        /// The failure of the last piece tried.
+        cause: Box<FemError>,
+    },
 }
 
 impl fmt::Display for FemError {
@@ -66,6 +82,18 @@ impl fmt::Display for FemError {
                 write!(f, "unilateral conditions at time {time}: {message}")
             }
             FemError::Source(m) => write!(f, "{m}"),
+            FemError::StepCutting {
+                from,
+                to,
+                levels,
+                pieces,
+                smallest,
+                limit,
+                cause,
+            } => write!(
+                f,
+                "the increment from t = {from} to t = {to} fails even cut {levels} time(s) in {pieces} pieces (smallest piece {smallest:e}; {limit}); last failure: {cause}"
+            ),
         }
     }
 }

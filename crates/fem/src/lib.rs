@@ -30,6 +30,7 @@ pub mod post;
 pub mod refcells;
 pub mod scenes;
 pub mod shape;
+pub(crate) mod solver_constrained;
 mod split_llt;
 pub mod unilateral;
 

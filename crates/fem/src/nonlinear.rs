@@ -33,6 +33,7 @@ use crate::linalg::{self, Csc, SolveFailure};
 use crate::loads::Loads;
 use crate::model::Model;
 use crate::post::{self, CellValues};
+use crate::solver_constrained::{self, KktSolver, MatrixKey};
 use crate::unilateral::{
     GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };
@@ -128,8 +129,13 @@ pub struct Step {
     pub multipliers: Vec<f64>,
     /// Outcome of each unilateral source's rows (same order as the sources).
     pub unilateral: Vec<Vec<RowOutcome>>,
-    /// Newton iterations (0 for the initial state).
+    /// Linear solves of the step, active-set changes included (0 for the
+    /// initial state).
     pub iterations: usize,
+    /// Newton iterations proper, as code_aster counts them against
+    /// ITER_GLOB_MAXI: over the whole geometric loop, active-set changes
+    /// excluded (0 for the initial state).
+    pub newton_iterations: usize,
     pub resi_glob_rela: f64,
     pub resi_glob_maxi: f64,
     /// RESI_GLOB_RELA after each Newton iteration of the step (code_aster's
@@ -171,6 +177,8 @@ pub fn meca_statique(
     let mut s = StaticNonLinear {
         instants: instants.to_vec(),
         first_order: 1,
+        // Independent linear solves: nothing to cut.
+        subdivision: None,
         ..Default::default()
     };
     s.run(model, loads, true)
@@ -194,14 +202,16 @@ pub struct StaticNonLinear<'s> {
     pub first_order: usize,
     /// `COMPORTEMENT`: the plastic cells (default: all elastic).
     pub behaviours: Behaviours,
-    /// Step cutting when Newton fails with plastic cells (`None`: fail).
+    /// Step cutting when an increment fails (`None`: ACTION='ARRET', fail).
     pub subdivision: Option<Subdivision>,
 }
 
-/// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment is cut
-/// into `pieces` equal ones, at most `max_level` times in a row, never
-/// below `min_step`. Only used with plastic cells (an elastic step that
-/// fails would fail the same way in pieces).
+/// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment
+/// (Newton or active set not converging, a poor solve) is cut into
+/// `pieces` equal ones, at most `max_level` times in a row, never below
+/// `min_step`; beyond that the analysis stops with
+/// [`FemError::StepCutting`]. Elastic steps are cut too: with contact a
+/// smaller increment changes the pairing and the active set.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Subdivision {
     /// `SUBD_PAS` (default 4).
@@ -315,10 +325,13 @@ impl StaticNonLinear<'_> {
             }
         }
         let kff = restrict(&k, &map, nfree);
-        let free_coords: Vec<[f64; 3]> = (0..nd)
-            .filter(|&i| map[i] != usize::MAX)
-            .map(|i| model.mesh().coord(model.dofs().dof(i).node))
+        let free_dof: Vec<usize> = (0..nd).filter(|&i| map[i] != usize::MAX).collect();
+        let free_coords: Vec<[f64; 3]> = free_dof
+            .iter()
+            .map(|&i| model.mesh().coord(model.dofs().dof(i).node))
             .collect();
+        // Factorisations kept across iterations and steps.
+        let mut kkt = KktSolver::default();
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
@@ -339,6 +352,7 @@ impl StaticNonLinear<'_> {
                 unilateral: vec![Vec::new(); self.sources.len()],
                 displacement: u.clone(),
                 iterations: 0,
+                newton_iterations: 0,
                 resi_glob_rela: 0.0,
                 resi_glob_maxi: 0.0,
                 residual_history: Vec::new(),
@@ -352,13 +366,14 @@ impl StaticNonLinear<'_> {
             if linear {
                 u.iter_mut().for_each(|v| *v = 0.0);
             }
-            // The increment to t, cut into `pieces` when Newton fails with
-            // a plastic behaviour (code_aster's default ECHEC: DECOUPE,
-            // SUBD_PAS=4, SUBD_NIVEAU=3); `pending` holds the instants still
-            // to reach, the next on top.
+            // The increment to t, cut into pieces when it fails
+            // (`subdivision`: DEFI_LIST_INST/ECHEC, code_aster's default
+            // DECOUPE, SUBD_PAS=4, SUBD_NIVEAU=3); `pending` holds the
+            // instants still to reach, the next on top, with their level.
             let mut pending: Vec<(f64, usize)> = vec![(t, 0)];
             let mut from = t_prev;
             let mut step = None;
+            let mut unil: Option<Vec<Vec<RowOutcome>>> = None;
             while let Some(&(target, level)) = pending.last() {
                 let saved = (u.clone(), srcs.clone());
                 let elim = loads.eliminated(model, target)?;
@@ -417,6 +432,7 @@ impl StaticNonLinear<'_> {
                     newton: self.newton,
                     active_set_max_iter: self.active_set_max_iter,
                     coords: &free_coords,
+                    free_dof: &free_dof,
                 };
                 let attempt = newton_step(
                     &ctx,
@@ -428,6 +444,7 @@ impl StaticNonLinear<'_> {
                     &mut u,
                     target,
                     &mut plastic,
+                    &mut kkt,
                 );
 
                 match attempt {
@@ -437,26 +454,67 @@ impl StaticNonLinear<'_> {
                         if let Some(pc) = &mut plastic {
                             pc.commit();
                         }
+                        // Each converged increment (a piece of a cut one
+                        // too) is reported to the sources: contact's
+                        // geometric loop measures from its start.
+                        unil = Some(report_outcomes(
+                            model,
+                            &mut self.sources,
+                            &srcs,
+                            &u,
+                            target,
+                            &outcome.1 .1,
+                        )?);
                         step = Some(outcome);
                     }
                     Err(e) => {
-                        let cut = self.subdivision.filter(|_| plastic.is_some()).filter(|sd| {
-                            matches!(
-                                e,
-                                FemError::NoConvergence { .. } | FemError::ActiveSet { .. }
-                            ) && level < sd.max_level
-                                && (target - from) / sd.pieces as f64 >= sd.min_step
-                        });
-                        let Some(sd) = cut else {
+                        // DEFI_LIST_INST/ECHEC (EVENEMENT='ERREUR'): a
+                        // failed increment — elastic, plastic or contact —
+                        // is redone from the last converged state in
+                        // SUBD_PAS pieces, at most SUBD_NIVEAU levels deep,
+                        // never below SUBD_PAS_MINI.
+                        let cuttable = matches!(
+                            e,
+                            FemError::NoConvergence { .. }
+                                | FemError::ActiveSet { .. }
+                                | FemError::PoorSolve { .. }
+                        );
+                        let Some(sd) = self.subdivision.filter(|_| cuttable) else {
                             return Err(e);
                         };
+                        let piece = (target - from) / sd.pieces.max(2) as f64;
+                        let limit = if level >= sd.max_level {
+                            Some(format!("SUBD_NIVEAU = {} reached", sd.max_level))
+                        } else if piece < sd.min_step {
+                            Some(format!(
+                                "a piece of {piece:e} would be below SUBD_PAS_MINI = {:e}",
+                                sd.min_step
+                            ))
+                        } else {
+                            None
+                        };
+                        if let Some(limit) = limit {
+                            if level == 0 && sd.max_level == 0 {
+                                return Err(e);
+                            }
+                            return Err(FemError::StepCutting {
+                                from,
+                                to: target,
+                                levels: level,
+                                pieces: sd.pieces,
+                                smallest: target - from,
+                                limit,
+                                cause: Box::new(e),
+                            });
+                        }
                         (u, srcs) = saved;
                         pending.pop();
-                        for piece in (1..=sd.pieces).rev() {
-                            let at = if piece == sd.pieces {
+                        let pieces = sd.pieces.max(2);
+                        for k in (1..=pieces).rev() {
+                            let at = if k == pieces {
                                 target
                             } else {
-                                from + (target - from) * piece as f64 / sd.pieces as f64
+                                from + (target - from) * k as f64 / pieces as f64
                             };
                             pending.push((at, level + 1));
                         }
@@ -469,47 +527,9 @@ impl StaticNonLinear<'_> {
                     "no increment computed to time {t}"
                 )));
             };
-            let (iterations, lambdas, resi_rela, resi_maxi, residual_history) = step;
-            // Outcomes to the sources.
-            let mut unil = Vec::with_capacity(self.sources.len());
-            for (s, src) in self.sources.iter_mut().enumerate() {
-                let Some(sr) = &srcs[s] else {
-                    unil.push(Vec::new());
-                    continue;
-                };
-                let state = State {
-                    mesh: model.mesh(),
-                    dofs: model.dofs(),
-                    displacement: &u,
-                    time: t,
-                };
-                let outcomes: Vec<RowOutcome> = sr
-                    .rows
-                    .iter()
-                    .enumerate()
-                    .map(|(r, row)| {
-                        let g = gap(&sr.idx[r], row.rhs, &u);
-                        let multiplier = match sr.method {
-                            UnilateralMethod::ActiveSet => {
-                                if sr.active[r] {
-                                    lambdas.1[s][r]
-                                } else {
-                                    0.0
-                                }
-                            }
-                            UnilateralMethod::Penalty { coef } => coef * g.max(0.0),
-                        };
-                        RowOutcome {
-                            id: row.id,
-                            multiplier,
-                            active: sr.active[r],
-                            violation: g,
-                        }
-                    })
-                    .collect();
-                src.converged(&state, &outcomes)?;
-                unil.push(outcomes);
-            }
+            let (iterations, lambdas, resi_rela, resi_maxi, residual_history, newton_iterations) =
+                step;
+            let unil = unil.unwrap_or_default();
             let mut stress = post::sief_elga(model, &u)?;
             let internal_variables = match &plastic {
                 Some(pc) => pc.fields(&mut stress),
@@ -524,6 +544,7 @@ impl StaticNonLinear<'_> {
                 multipliers: lambdas.0,
                 unilateral: unil,
                 iterations,
+                newton_iterations,
                 resi_glob_rela: resi_rela,
                 resi_glob_maxi: resi_maxi,
                 residual_history,
@@ -587,9 +608,16 @@ struct StepContext<'a> {
     active_set_max_iter: usize,
     /// Coordinates of the free unknowns (for the fill-reducing ordering).
     coords: &'a [[f64; 3]],
+    /// The DOF index of each free unknown.
+    free_dof: &'a [usize],
 }
 
-type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64, Vec<f64>);
+/// Systems without constraint rows of at least this many unknowns keep the
+/// bordered path ([`linalg::solve_with`]), whose nested-dissection
+/// Cholesky is split over two threads.
+const SCHUR_MAX_UNROWED: usize = 20_000;
+
+type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64, Vec<f64>, usize);
 
 /// Newton + active-set iterations of one step. Returns (iterations,
 /// (equality multipliers, per-source row multipliers), resi_rela, resi_maxi).
@@ -604,6 +632,7 @@ fn newton_step(
     u: &mut [f64],
     t: f64,
     plastic: &mut Option<PlasticCells>,
+    kkt: &mut KktSolver,
 ) -> Result<StepOutcome, FemError> {
     let StepContext {
         model,
@@ -616,16 +645,27 @@ fn newton_step(
         newton,
         active_set_max_iter,
         coords,
+        free_dof,
     } = *ctx;
-    // code_aster numbers the iterations from 0 (the prediction): with a
-    // plastic behaviour ITER_GLOB_MAXI allows that many corrections after
-    // it. (Elastic steps converge at the first solve.)
-    let max_solves = convergence.iter_glob_maxi + usize::from(plastic.is_some());
+    // code_aster numbers the Newton iterations of a step from 0 (the
+    // prediction) up to ITER_GLOB_MAXI, and the passes of the geometric
+    // loop (REAC_GEOM) do not restart the count: the loop is nested in the
+    // Newton iterations. Measured on ssnv506c: its step 0.15 → 0.2 takes 14
+    // + 3 + 1 iterations over three pairings here; counting them together
+    // fails it with ITER_GLOB_MAXI = 15, code_aster cuts it in four
+    // (DECOUPE) and the ten TEST_TABLE values then agree to 1e-11, while
+    // per-pairing counts keep the full step and miss the value at 0.2 by
+    // 2.7 %. The iterations that only change the active set are not Newton
+    // iterations (code_aster settles the contact inside one).
+    let max_iterations = convergence.iter_glob_maxi + 1;
+    let mut settled = 0usize;
     // The internal forces at the current iterate, once computed (the
     // residual of one iteration is the right-hand side of the next).
     let mut fint_now: Option<Vec<f64>> = None;
     // The matrix of the plastic iterations (`None`: the elastic K_ff).
     let mut tangent: Option<Csc> = None;
+    let mut tangent_key = MatrixKey::Elastic;
+    let trace = std::env::var_os("ASTER_FEM_TRACE").is_some();
     let mut residuals: Vec<f64> = Vec::new();
     // With plastic cells, as code_aster: the active set is settled on the
     // linearised problem of each Newton iteration (same iterate, internal
@@ -633,9 +673,7 @@ fn newton_step(
     // `base` holds the iterate and its internal forces while the set moves.
     let mut outer = 0usize;
     let mut new_outer = true;
-    // The Newton iteration of the last pairing: each pairing of the
-    // geometric loop gets ITER_GLOB_MAXI iterations (the loop itself is
-    // bounded by the source's ITER_GEOM_MAXI).
+    // The Newton iteration the last pairing started at (for traces).
     let mut pairing_start = 0usize;
     let mut base: Option<(Vec<f64>, Vec<f64>)> = None;
     {
@@ -658,7 +696,8 @@ fn newton_step(
                 rows.push((r.terms.clone(), r.rhs));
             }
             let mut row_of: Vec<Vec<Option<usize>>> = Vec::new();
-            let mut extra: Vec<(usize, usize, f64)> = Vec::new();
+            // Penalty terms added to the matrix (free indices).
+            let mut pen_extra: Vec<(usize, usize, f64)> = Vec::new();
             let mut pen_force = vec![0.0; nd];
             for sr in srcs.iter().flatten() {
                 let mut ro = vec![None; sr.rows.len()];
@@ -680,7 +719,7 @@ fn newton_step(
                                 }
                                 for &(j, cj) in &sr.idx[r] {
                                     if map[j] != usize::MAX {
-                                        extra.push((map[i], map[j], coef * ci * cj));
+                                        pen_extra.push((map[i], map[j], coef * ci * cj));
                                     }
                                 }
                             }
@@ -730,14 +769,6 @@ fn newton_step(
                 kept.push(r);
             }
             let nk = kept.len();
-            for (k, &r) in kept.iter().enumerate() {
-                for &(i, c) in &rows[r].0 {
-                    if map[i] != usize::MAX {
-                        extra.push((nfree + k, map[i], c));
-                        extra.push((map[i], nfree + k, c));
-                    }
-                }
-            }
             // A state where the active conditions leave a rigid-body mode
             // free is reported (instead of factorising a singular matrix).
             {
@@ -763,15 +794,15 @@ fn newton_step(
                 None => internal_forces(model, k, plastic, u)?,
             };
             if let Some(pc) = plastic.as_mut() {
-                if new_outer {
-                    choose_tangent(&mut tangent, pc, model, k, map, nfree, newton, outer)?;
+                if new_outer && choose_tangent(&mut tangent, pc, model, kff, map, newton, outer)? {
+                    tangent_key = match tangent {
+                        Some(_) => kkt.new_tangent(),
+                        None => MatrixKey::Elastic,
+                    };
                 }
                 base = Some((u.to_vec(), fint.clone()));
             }
-            let a = tangent
-                .as_ref()
-                .unwrap_or(kff)
-                .with_extra(nfree + nk, extra);
+            let matrix = tangent.as_ref().unwrap_or(kff);
             // Right-hand side.
             let mut b = vec![0.0; nfree + nk];
             for i in 0..nd {
@@ -783,24 +814,81 @@ fn newton_step(
                 let (terms, rhs) = &rows[r];
                 b[nfree + k] = rhs - terms.iter().map(|&(i, c)| c * u[i]).sum::<f64>();
             }
-            let spd = nk == 0;
-            let sol =
-                linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
-                    SolveFailure::Singular { index } => {
-                        let mut ground: Vec<Vec<(usize, f64)>> =
-                            elim.keys().map(|&i| vec![(i, 1.0)]).collect();
-                        ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
-                        let free = held::free_dofs(model, &ground);
-                        if !free.is_empty() {
-                            FemError::Singular { free_dofs: free }
-                        } else {
-                            FemError::Singular {
-                                free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
-                            }
+            // The rows over free unknowns, for the Schur-complement solve
+            // (large systems without rows keep the bordered path: its
+            // nested-dissection Cholesky is split over two threads).
+            let free_rows: Vec<Vec<(usize, f64)>> = kept
+                .iter()
+                .map(|&r| {
+                    rows[r]
+                        .0
+                        .iter()
+                        .filter(|(i, _)| map[*i] != usize::MAX)
+                        .map(|&(i, c)| (map[i], c))
+                        .collect()
+                })
+                .collect();
+            let reduced = if nk == 0 && nfree >= SCHUR_MAX_UNROWED {
+                None
+            } else {
+                let krows: Vec<solver_constrained::Row> = kept
+                    .iter()
+                    .zip(&free_rows)
+                    .enumerate()
+                    .map(|(k, (&r, t))| solver_constrained::Row {
+                        terms: t,
+                        d: b[nfree + k],
+                        equality: r < eq.len(),
+                    })
+                    .collect();
+                let held_by = |pinned: &[usize]| {
+                    let mut ground: Vec<Vec<(usize, f64)>> =
+                        elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                    ground.extend(pinned.iter().map(|&f| vec![(free_dof[f], 1.0)]));
+                    held::free_dofs(model, &ground).is_empty()
+                };
+                kkt.solve(
+                    tangent_key,
+                    matrix,
+                    &pen_extra,
+                    &krows,
+                    &b[..nfree],
+                    Some(coords),
+                    &held_by,
+                )
+                .ok()
+                .flatten()
+            };
+            let sol = match reduced {
+                Some(sol) => sol,
+                None => {
+                    let mut extra = pen_extra.clone();
+                    for (k, t) in free_rows.iter().enumerate() {
+                        for &(i, c) in t {
+                            extra.push((nfree + k, i, c));
+                            extra.push((i, nfree + k, c));
                         }
                     }
-                    other => linalg::failure_to_error(other, name),
-                })?;
+                    let a = matrix.with_extra(nfree + nk, extra);
+                    let spd = nk == 0;
+                    linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
+                        SolveFailure::Singular { index } => {
+                            let mut ground: Vec<Vec<(usize, f64)>> =
+                                elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+                            ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
+                            let free = held::free_dofs(model, &ground);
+                            if !free.is_empty() {
+                                FemError::Singular { free_dofs: free }
+                            } else {
+                                FemError::Singular {
+                                    free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
+                                }
+                            }
+                        }
+                        other => linalg::failure_to_error(other, name),
+                    })?
+                }
+            };
             for i in 0..nd {
                 if map[i] != usize::MAX {
                     u[i] += sol.x[map[i]];
@@ -940,6 +1028,15 @@ fn newton_step(
             }
             // Geometry update at each iteration: re-ask the rows at the
             // current iterate; new rows mean another pass.
+            if trace {
+                eprintln!(
+                    "[newton] t={t} solve {newton_iter} iteration {outer} (pairing from {pairing_start}) resi_rela {resi_rela:.3e} active set {}",
+                    if changed { "changed" } else { "settled" }
+                );
+            }
+            if !changed {
+                settled += 1;
+            }
             if !changed && plastic.is_some() {
                 // A Newton iteration with a settled active set: the next
                 // one linearises at this iterate.
@@ -976,17 +1073,13 @@ fn newton_step(
                         resi_rela,
                         resi_maxi,
                         residuals,
+                        settled,
                     ));
                 }
-                let iterations = if plastic.is_some() {
-                    outer - pairing_start
-                } else {
-                    newton_iter
-                };
-                if iterations >= max_solves {
+                if settled >= max_iterations {
                     return Err(FemError::NoConvergence {
                         time: t,
-                        iterations: newton_iter,
+                        iterations: settled,
                         resi_rela,
                         resi_maxi,
                     });
@@ -1028,6 +1121,58 @@ fn newton_step(
     }
 }
 
+/// The outcome of every source's rows at a converged increment (time
+/// `t`, multipliers `lambdas` per source row), handed to the sources.
+fn report_outcomes(
+    model: &Model,
+    sources: &mut [Box<dyn UnilateralSource + '_>],
+    srcs: &[Option<SourceRows>],
+    u: &[f64],
+    t: f64,
+    lambdas: &[Vec<f64>],
+) -> Result<Vec<Vec<RowOutcome>>, FemError> {
+    let mut unil = Vec::with_capacity(sources.len());
+    for (s, src) in sources.iter_mut().enumerate() {
+        let Some(sr) = &srcs[s] else {
+            unil.push(Vec::new());
+            continue;
+        };
+        let state = State {
+            mesh: model.mesh(),
+            dofs: model.dofs(),
+            displacement: u,
+            time: t,
+        };
+        let outcomes: Vec<RowOutcome> = sr
+            .rows
+            .iter()
+            .enumerate()
+            .map(|(r, row)| {
+                let g = gap(&sr.idx[r], row.rhs, u);
+                let multiplier = match sr.method {
+                    UnilateralMethod::ActiveSet => {
+                        if sr.active[r] {
+                            lambdas[s][r]
+                        } else {
+                            0.0
+                        }
+                    }
+                    UnilateralMethod::Penalty { coef } => coef * g.max(0.0),
+                };
+                RowOutcome {
+                    id: row.id,
+                    multiplier,
+                    active: sr.active[r],
+                    violation: g,
+                }
+            })
+            .collect();
+        src.converged(&state, &outcomes)?;
+        unil.push(outcomes);
+    }
+    Ok(unil)
+}
+
 fn gap(idx: &[(usize, f64)], rhs: f64, u: &[f64]) -> f64 {
     idx.iter().map(|&(i, c)| c * u[i]).sum::<f64>() - rhs
 }
@@ -1067,35 +1212,44 @@ fn internal_forces(
 /// (`None` in `tangent`: the elastic K_ff): iteration 0 uses the
 /// prediction (`PREDICTION`), later ones the consistent tangent of the last
 /// update every `REAC_ITER` iterations (0: never), `MATRICE='ELASTIQUE'`
-/// the elastic stiffness throughout.
+/// the elastic stiffness throughout. A tangent with no plastic correction
+/// is the elastic K_ff (kept as `None`, so that its factorisation is
+/// reused). Returns whether the matrix was set anew.
 #[allow(clippy::too_many_arguments)]
 fn choose_tangent(
     tangent: &mut Option<Csc>,
     pc: &mut PlasticCells,
     model: &Model,
-    k: &Csc,
+    kff: &Csc,
     map: &[usize],
-    nfree: usize,
     newton: NewtonOptions,
     iter: usize,
-) -> Result<(), FemError> {
+) -> Result<bool, FemError> {
+    let consistent = |pc: &mut PlasticCells| {
+        if pc.tangent_is_elastic() {
+            None
+        } else {
+            Some(pc.tangent_restricted(kff, map))
+        }
+    };
     if newton.matrix == MatrixKind::Elastique {
         *tangent = None;
-        return Ok(());
+        return Ok(true);
     }
     if iter == 0 {
         *tangent = if newton.prediction == Prediction::Elastique {
             None
         } else {
             pc.prediction(model)?;
-            Some(restrict(&pc.tangent(k), map, nfree))
+            consistent(pc)
         };
-        return Ok(());
+        return Ok(true);
     }
     if newton.reac_iter > 0 && iter.is_multiple_of(newton.reac_iter) {
-        *tangent = Some(restrict(&pc.tangent(k), map, nfree));
+        *tangent = consistent(pc);
+        return Ok(true);
     }
-    Ok(())
+    Ok(false)
 }
 
 /// Asks every source that updates its geometry at each iteration for its

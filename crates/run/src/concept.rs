@@ -285,6 +285,17 @@ impl EvolResult {
     }
 }
 
+/// `DEFI_LIST_INST`: the instants and what to do when an increment fails
+/// (`ECHEC`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimeList {
+    pub instants: Rc<Vec<f64>>,
+    /// `ECHEC/ACTION='DECOUPE'` (`None`: `ARRET`).
+    pub subdivision: Option<aster_fem::Subdivision>,
+    /// Where the list was defined (`file:line:col`), for messages.
+    pub location: Option<String>,
+}
+
 /// Any concept.
 #[derive(Clone, Debug)]
 pub enum Concept {
@@ -297,7 +308,7 @@ pub enum Concept {
     MechanicalLoad(Rc<MechanicalLoad>),
     Function(Rc<Function>),
     RealList(Rc<Vec<f64>>),
-    TimeList(Rc<Vec<f64>>),
+    TimeList(Rc<TimeList>),
     Contact(Rc<ContactDef>),
     Result(Rc<EvolResult>),
     Table(Rc<Table>),

@@ -262,7 +262,8 @@ impl Executor {
 
     pub(crate) fn real_list(&self, c: &ConceptRef) -> Result<Rc<Vec<f64>>, ExecError> {
         match self.concept(c)? {
-            Concept::RealList(l) | Concept::TimeList(l) => Ok(l.clone()),
+            Concept::RealList(l) => Ok(l.clone()),
+            Concept::TimeList(l) => Ok(l.instants.clone()),
             other => Err(self.wrong(
                 c,
                 other,
@@ -279,6 +280,19 @@ impl Executor {
             Some((result, _)) => self.mesh_by_id(result.mesh),
             None => self.single_mesh(),
         }
+    }
+
+    /// The failure handling of a list of instants: a DEFI_LIST_INST's
+    /// `ECHEC` with where it was defined, code_aster's default (DECOUPE,
+    /// SUBD_PAS=4, SUBD_NIVEAU=3) for a plain list of reals.
+    pub(crate) fn time_stepping(
+        &self,
+        c: &ConceptRef,
+    ) -> Result<(Option<aster_fem::Subdivision>, Option<String>), ExecError> {
+        Ok(match self.concept(c)? {
+            Concept::TimeList(l) => (l.subdivision, l.location.clone()),
+            _ => (Some(aster_fem::Subdivision::default()), None),
+        })
     }
 
     /// The program's mesh when there is exactly one (fields do not record

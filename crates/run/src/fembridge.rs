@@ -571,10 +571,22 @@ pub fn solve(
             },
             sources,
             behaviours,
+            subdivision: setup.subdivision,
             ..StaticNonLinear::default()
         };
-        let raw = snl.solve(&model, &loads).map_err(|e| fem_err(cmd, e))?;
+        let raw = snl.solve(&model, &loads).map_err(|e| match (&e, &setup.time_list_at) {
+            (aster_fem::FemError::StepCutting { .. }, Some(at)) => ExecError::new(format!(
+                "{cmd}: {e} (cutting set by DEFI_LIST_INST/ECHEC at {at})"
+            )),
+            (aster_fem::FemError::StepCutting { .. }, None) => ExecError::new(format!(
+                "{cmd}: {e} (code_aster's default cutting of a list of reals: give INCREMENT/LIST_INST a DEFI_LIST_INST with ECHEC to change it)"
+            )),
+            _ => fem_err(cmd, e),
+        })?;
         drop(snl);
+        if setup.verbose {
+            ex.write_report(&convergence_report(&raw))?;
+        }
         if let Some(z) = contact_zones {
             post_zones = Some(z);
         }
@@ -644,6 +656,42 @@ pub fn solve(
             plastic,
         }),
     ))
+}
+
+/// `INFO=2`: one line per computed step — Newton iterations and the
+/// RESI_GLOB_RELA of each, active unilateral rows, plastic Gauss points.
+fn convergence_report(raw: &NonLinearResult) -> String {
+    let mut out = String::from(
+        "STAT_NON_LINE convergence (INFO=2)\n    INST        ITER  RESI_GLOB_RELA   ACTIVE ROWS  PLASTIC POINTS  RESIDUALS\n",
+    );
+    for s in raw.steps.iter().skip(1) {
+        let active: usize = s
+            .unilateral
+            .iter()
+            .map(|rows| rows.iter().filter(|r| r.active).count())
+            .sum();
+        let plastic: usize = s
+            .internal_variables
+            .iter()
+            .flat_map(|c| c.points.iter())
+            .filter(|p| p.get(1).is_some_and(|&v| v > 0.5))
+            .count();
+        let history: Vec<String> = s
+            .residual_history
+            .iter()
+            .map(|r| format!("{r:.2e}"))
+            .collect();
+        out.push_str(&format!(
+            "    {:<11.6} {:>4}  {:>14.6e}  {:>11}  {:>14}  {}\n",
+            s.time,
+            s.iterations,
+            s.resi_glob_rela,
+            active,
+            plastic,
+            history.join(" ")
+        ));
+    }
+    out
 }
 
 /// CALC_CHAMP options on stored steps.

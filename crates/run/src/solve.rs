@@ -97,6 +97,11 @@ pub struct SolveSetup {
     pub initial: Option<(Rc<EvolResult>, f64)>,
     /// `INFO=2`: print the iterations.
     pub verbose: bool,
+    /// What to do with a failed increment (`DEFI_LIST_INST/ECHEC`; a
+    /// plain list of reals gets code_aster's default cutting).
+    pub subdivision: Option<aster_fem::Subdivision>,
+    /// Where the DEFI_LIST_INST was defined, for messages.
+    pub time_list_at: Option<String>,
 }
 
 const SNL_KEYWORDS: &[&str] = &[
@@ -210,7 +215,9 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         None => None,
     };
     let behaviours = parse_behaviours(ex, cmd, kw, model.mesh)?;
-    ex.only_values(cmd, kw, "METHODE", &["NEWTON"])?;
+    // NEWTON_KRYLOV is Newton with inexact iterative linear solves: with
+    // the direct solver here it is Newton.
+    ex.only_values(cmd, kw, "METHODE", &["NEWTON", "NEWTON_KRYLOV"])?;
     let mut newton = NewtonSettings::default();
     if let Some(conv) = kw.factor("CONVERGENCE").first() {
         let rela = conv.f64("RESI_GLOB_RELA");
@@ -253,6 +260,8 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
             newton.matrix = aster_fem::MatrixKind::Elastique;
         }
     }
+    let mut subdivision = None;
+    let mut time_list_at = None;
     let (instants, initial) = if linear {
         instants_linear(ex, kw)?
     } else {
@@ -261,6 +270,7 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         };
         let l = ex.required(&format!("{cmd}/INCREMENT"), inc, "LIST_INST")?;
         let list = ex.real_list(l)?;
+        (subdivision, time_list_at) = ex.time_stepping(l)?;
         let mut init = inc.f64("INST_INIT");
         let mut fin = inc.f64("INST_FIN");
         if let Some(n) = inc.first("NUME_INST_INIT").and_then(|s| s.as_i64()) {
@@ -323,6 +333,8 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         newton,
         initial,
         verbose: kw.first("INFO").and_then(|s| s.as_i64()) == Some(2),
+        subdivision,
+        time_list_at,
     })
 }
 

@@ -38,8 +38,15 @@ pub(crate) struct PlasticCells {
     cells: Vec<PlasticCell>,
     committed: Vec<Vec<PointState>>,
     trial: Vec<Vec<PointState>>,
-    /// Per cell: tangent − elastic stiffness at the last update.
-    tangent_corr: Vec<DMatrix<f64>>,
+    /// The consistent tangents of the trial states.
+    tangents: Vec<Vec<[[f64; 6]; 6]>>,
+    /// Per cell: whether its tangent differs from its elastic stiffness
+    /// (a plastic point at the last update or prediction).
+    corrected: Vec<bool>,
+    /// Per cell, the position in the free stiffness' values of each of its
+    /// (a, b) entries (column-major; `usize::MAX`: an eliminated DOF), with
+    /// the number of values they were found for.
+    positions: Option<(usize, Vec<Vec<usize>>)>,
 }
 
 impl PlasticCells {
@@ -77,86 +84,160 @@ impl PlasticCells {
             .iter()
             .map(|c| vec![PointState::default(); c.gauss.len()])
             .collect();
-        let tangent_corr = cells
+        let corrected = vec![false; cells.len()];
+        let tangents = committed
             .iter()
-            .map(|c| DMatrix::zeros(c.dofs.len(), c.dofs.len()))
+            .map(|c| vec![[[0.0; 6]; 6]; c.len()])
             .collect();
         Ok(Some(PlasticCells {
             cells,
+            tangents,
             trial: committed.clone(),
             committed,
-            tangent_corr,
+            corrected,
+            positions: None,
         }))
     }
 
     /// Integrates the behaviour at every Gauss point for the total
     /// displacement `u` from the committed states, adds the cells'
     /// corrections to `fint` (which holds K u) and keeps their consistent
-    /// tangents.
+    /// tangents (assembled only when [`Self::tangent_restricted`] asks).
     pub fn update(&mut self, model: &Model, u: &[f64], fint: &mut [f64]) -> Result<(), FemError> {
         for (c, cell) in self.cells.iter().enumerate() {
-            let ue = DVector::from_iterator(cell.dofs.len(), cell.dofs.iter().map(|&i| u[i]));
-            let mut fe = -(&cell.k_el * &ue);
-            let mut ke = -cell.k_el.clone();
+            let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
+            // A cell whose points all stay elastic without plastic strain
+            // has σ = D ε and tangent D: its corrections vanish (most cells
+            // around a local plastic zone).
+            let mut virgin = true;
+            let n = cell.hypothesis.ncomp();
             for (g, gp) in cell.gauss.iter().enumerate() {
-                let eps = &gp.b * &ue;
+                let mut eps = [0.0; 6];
+                for (k, e) in eps.iter_mut().enumerate().take(n) {
+                    *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
+                }
+                let prev = &self.committed[c][g];
                 let (state, tangent) = integrate(
                     &cell.law,
                     &cell.elastic,
                     cell.hypothesis,
-                    eps.as_slice(),
-                    &self.committed[c][g],
+                    &eps[..n],
+                    prev,
                     false,
                 )
                 .map_err(|e| at_cell(model, cell.cell, g, e))?;
-                add_point(cell, gp, &state, &tangent, &mut fe, &mut ke);
+                virgin &= !state.plastic && state.p == 0.0;
                 self.trial[c][g] = state;
+                self.tangents[c][g] = tangent;
+            }
+            self.corrected[c] = !virgin;
+            if virgin {
+                continue;
+            }
+            // ∫Bᵀσ − Kₑuₑ.
+            let mut fe = vec![0.0; ue.len()];
+            for (a, f) in fe.iter_mut().enumerate() {
+                let row = cell.k_el.row(a);
+                *f = -(0..ue.len()).map(|b| row[b] * ue[b]).sum::<f64>();
+            }
+            for (g, gp) in cell.gauss.iter().enumerate() {
+                let sigma = &self.trial[c][g].stress;
+                for (a, f) in fe.iter_mut().enumerate() {
+                    *f += gp.w * (0..n).map(|k| gp.b[(k, a)] * sigma[k]).sum::<f64>();
+                }
             }
             for (a, &i) in cell.dofs.iter().enumerate() {
                 fint[i] += fe[a];
             }
-            self.tangent_corr[c] = ke;
         }
         Ok(())
     }
 
-    /// Sets the tangent to code_aster's prediction matrix at the committed
+    /// Whether the last update or prediction left every cell on its
+    /// elastic stiffness (the tangent is then the elastic K).
+    pub fn tangent_is_elastic(&self) -> bool {
+        !self.corrected.iter().any(|&c| c)
+    }
+
+    /// Sets the tangents to code_aster's prediction matrix at the committed
     /// states (elastic where the last increment was elastic, the continuum
     /// elasto-plastic tangent elsewhere).
     pub fn prediction(&mut self, model: &Model) -> Result<(), FemError> {
         for (c, cell) in self.cells.iter().enumerate() {
-            let n = cell.dofs.len();
-            let mut fe = DVector::zeros(n);
-            let mut ke = -cell.k_el.clone();
-            for (g, gp) in cell.gauss.iter().enumerate() {
+            // Elastic where the last increment was elastic: no correction.
+            self.corrected[c] = self.committed[c].iter().any(|s| s.plastic);
+            if !self.corrected[c] {
+                continue;
+            }
+            for g in 0..cell.gauss.len() {
                 let state = self.committed[c][g];
-                let eps = vec![0.0; cell.hypothesis.ncomp()];
+                let eps = [0.0; 6];
                 let (_, tangent) = integrate(
                     &cell.law,
                     &cell.elastic,
                     cell.hypothesis,
-                    &eps,
+                    &eps[..cell.hypothesis.ncomp()],
                     &state,
                     true,
                 )
                 .map_err(|e| at_cell(model, cell.cell, g, e))?;
-                add_point(cell, gp, &state, &tangent, &mut fe, &mut ke);
+                self.tangents[c][g] = tangent;
             }
-            self.tangent_corr[c] = ke;
         }
         Ok(())
     }
 
-    /// The full tangent: `k` (elastic, all cells) with the plastic cells'
-    /// corrections.
-    pub fn tangent(&self, k: &Csc) -> Csc {
-        let mut t = k.clone();
-        for (cell, corr) in self.cells.iter().zip(&self.tangent_corr) {
-            for (b, &j) in cell.dofs.iter().enumerate() {
-                for (a, &i) in cell.dofs.iter().enumerate() {
-                    let v = corr[(a, b)];
-                    if v != 0. {
-                        t.add(i, j, v);
+    /// The tangent on the free DOFs: `kff` (the elastic stiffness of all
+    /// cells restricted by `map`, DOF → free index or `usize::MAX`) with the
+    /// plastic cells' corrections ∫BᵀC B − Kₑ at the last update or
+    /// prediction.
+    pub fn tangent_restricted(&mut self, kff: &Csc, map: &[usize]) -> Csc {
+        // Where each cell's (a, b) entry sits in kff's values (the pattern
+        // is fixed for the analysis): found once, instead of a search per
+        // entry at every reassembly.
+        let stale = self
+            .positions
+            .as_ref()
+            .is_none_or(|(nnz, _)| *nnz != kff.values.len());
+        if stale {
+            let at = |i: usize, j: usize| -> usize {
+                match (map.get(i), map.get(j)) {
+                    (Some(&fi), Some(&fj)) if fi != usize::MAX && fj != usize::MAX => {
+                        kff.position(fi, fj).unwrap_or(usize::MAX)
+                    }
+                    _ => usize::MAX,
+                }
+            };
+            let positions = self
+                .cells
+                .iter()
+                .map(|cell| {
+                    let mut p = Vec::with_capacity(cell.dofs.len() * cell.dofs.len());
+                    for &j in &cell.dofs {
+                        for &i in &cell.dofs {
+                            p.push(at(i, j));
+                        }
+                    }
+                    p
+                })
+                .collect();
+            self.positions = Some((kff.values.len(), positions));
+        }
+        let mut t = kff.clone();
+        let Some((_, positions)) = &self.positions else {
+            return t;
+        };
+        for (c, cell) in self.cells.iter().enumerate() {
+            if !self.corrected[c] {
+                continue;
+            }
+            let corr = cell_tangent(cell, &self.tangents[c]) - &cell.k_el;
+            let n = cell.dofs.len();
+            for b in 0..n {
+                for a in 0..n {
+                    let p = positions[c][b * n + a];
+                    if p != usize::MAX {
+                        t.values[p] += corr[(a, b)];
                     }
                 }
             }
@@ -194,21 +275,24 @@ impl PlasticCells {
     }
 }
 
-/// Adds one Gauss point's Bᵀσ w to `fe` and BᵀC B w to `ke`.
-fn add_point(
-    cell: &PlasticCell,
-    gp: &GaussData,
-    state: &PointState,
-    tangent: &[[f64; 6]; 6],
-    fe: &mut DVector<f64>,
-    ke: &mut DMatrix<f64>,
-) {
+/// ∫BᵀC B of a cell for the tangents C of its points: the points' wCB
+/// blocks are stacked so that one product Bᵀ(wCB) does the sum.
+fn cell_tangent(cell: &PlasticCell, tangents: &[[[f64; 6]; 6]]) -> DMatrix<f64> {
     let n = cell.hypothesis.ncomp();
-    let sigma = DVector::from_column_slice(&state.stress[..n]);
-    fe.gemv_tr(gp.w, &gp.b, &sigma, 1.0);
-    let c = DMatrix::from_fn(n, n, |i, j| tangent[i][j]);
-    let cb = c * &gp.b;
-    ke.gemm_tr(gp.w, &gp.b, &cb, 1.0);
+    let nd = cell.dofs.len();
+    let np = cell.gauss.len();
+    let mut bt = DMatrix::<f64>::zeros(nd, n * np);
+    let mut wcb = DMatrix::<f64>::zeros(n * np, nd);
+    for (g, gp) in cell.gauss.iter().enumerate() {
+        let c = &tangents[g];
+        for a in 0..nd {
+            for k in 0..n {
+                bt[(a, g * n + k)] = gp.b[(k, a)];
+                wcb[(g * n + k, a)] = gp.w * (0..n).map(|l| c[k][l] * gp.b[(l, a)]).sum::<f64>();
+            }
+        }
+    }
+    bt * wcb
 }
 
 fn at_cell(model: &Model, cell: CellId, point: usize, e: FemError) -> FemError {

@@ -473,8 +473,8 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "DEFI_LIST/LIST_INST",
             "DEFI_LIST/VALE",
             "INFO",
-            // Failure handling only matters when a step fails to converge;
-            // the default (stop with an error) is what the runner does.
+            // Failure handling (code_aster's semantics): a failed increment
+            // is cut (DECOUPE) or stops the run (ARRET).
             "ECHEC",
             "ECHEC/EVENEMENT",
             "ECHEC/ACTION",
@@ -490,12 +490,47 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     };
     ex.only_values("DEFI_LIST_INST", kw, "METHODE", &["MANUEL"])?;
     ex.only_values("DEFI_LIST_INST/DEFI_LIST", def, "METHODE", &["MANUEL"])?;
+    // ECHEC is present by default (EVENEMENT='ERREUR', ACTION='DECOUPE',
+    // SUBD_PAS=4, SUBD_NIVEAU=3, SUBD_PAS_MINI=0).
+    let mut subdivision = Some(aster_fem::Subdivision::default());
     for occ in kw.factor("ECHEC") {
-        // DECOUPE (subdivide a failed step) is accepted: steps are not
-        // subdivided, so a step that fails stops the run with the solver's
-        // message, as ARRET does; a run that converges is unchanged.
-        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "ACTION", &["ARRET", "DECOUPE"])?;
         ex.only_values("DEFI_LIST_INST/ECHEC", occ, "EVENEMENT", &["ERREUR"])?;
+        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "ACTION", &["ARRET", "DECOUPE"])?;
+        // SUBD_METHODE='AUTO' chooses the pieces by extrapolating the
+        // residuals; it is read as MANUEL's default cutting (4 pieces, 3
+        // levels) bounded by its SUBD_PAS_MINI: the converged steps are
+        // the same, the path between them may differ.
+        ex.only_values(
+            "DEFI_LIST_INST/ECHEC",
+            occ,
+            "SUBD_METHODE",
+            &["MANUEL", "AUTO"],
+        )?;
+        if occ.str("ACTION") == Some("ARRET") {
+            subdivision = None;
+            continue;
+        }
+        let mut sd = aster_fem::Subdivision::default();
+        if occ.str("SUBD_METHODE") != Some("AUTO") {
+            if let Some(n) = occ.first("SUBD_PAS").and_then(|s| s.as_i64()) {
+                if n < 2 {
+                    return Err(ex.kw_error(
+                        "DEFI_LIST_INST/ECHEC",
+                        occ,
+                        "SUBD_PAS",
+                        format!("SUBD_PAS = {n}: a failed increment is cut into at least 2 pieces"),
+                    ));
+                }
+                sd.pieces = n as usize;
+            }
+            if let Some(n) = occ.first("SUBD_NIVEAU").and_then(|s| s.as_i64()) {
+                sd.max_level = n.max(0) as usize;
+            }
+        }
+        if let Some(m) = occ.f64("SUBD_PAS_MINI") {
+            sd.min_step = m.max(0.0);
+        }
+        subdivision = Some(sd);
     }
     let values = if let Some(l) = def.concept("LIST_INST") {
         (*ex.real_list(l)?).clone()
@@ -507,5 +542,14 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "DEFI_LIST_INST/DEFI_LIST: give LIST_INST or VALE",
         ));
     };
-    store_result(ex, call, Concept::TimeList(Rc::new(values)))
+    let location = ex.location(call.span);
+    store_result(
+        ex,
+        call,
+        Concept::TimeList(Rc::new(crate::concept::TimeList {
+            instants: Rc::new(values),
+            subdivision,
+            location,
+        })),
+    )
 }

@@ -56,7 +56,17 @@ pub fn select_steps<'r>(
             })?);
         }
     } else if occ.contains("INST") || occ.contains("LIST_INST") {
+        // Instants of a LIST_INST the result does not have are skipped, as
+        // code_aster does (an alarm): a list often goes further than the
+        // computation's INST_FIN. An instant asked with INST must exist.
+        let from_list = inst_kw == "LIST_INST";
+        let any = instants
+            .iter()
+            .any(|&t| result.step_at(t, precision, absolute).is_some());
         for t in instants {
+            if from_list && any && result.step_at(t, precision, absolute).is_none() {
+                continue;
+            }
             out.push(result.step_at(t, precision, absolute).ok_or_else(|| {
                 let insts: Vec<String> = result
                     .steps

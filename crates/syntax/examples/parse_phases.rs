@@ -1,6 +1,6 @@
 //! CPU time of each phase of `parse_module` over a directory of `.comm`
 //! files (limit check, pest parse alone, pairs → AST, validation, drop):
-//! `cargo run --release -p aster-syntax --example phases -- ../shared/corpus/v17`.
+//! `cargo run --release -p aster-syntax --example parse_phases -- ../shared/corpus/v17`.
 //! Times are this thread's CPU time (Linux `/proc/thread-self/schedstat`),
 //! so they stay meaningful on a loaded machine.
 

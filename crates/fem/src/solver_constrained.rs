@@ -1,0 +1,879 @@
+//! The constrained linear systems of Newton's iterations, solved through
+//! the stiffness alone (a Schur complement on the multipliers):
+//!
+//! ```text
+//! [ K  Aᵀ ] [Δu] = [b]
+//! [ A  0  ] [λ ]   [d]
+//! ```
+//!
+//! Why: assembling and LU-factorising the bordered (indefinite) matrix for
+//! every Newton iteration and every active-set change dominated the run time
+//! of contact cases (ssnv506c: ~450 sparse LU of 11,000 unknowns, two thirds
+//! of the CPU). Here
+//!
+//! - single-DOF equality rows (DDL_IMPO, and LIAISON_DDL rows reduced to one
+//!   free DOF) *pin* their DOF: Δuᵢ = dᵣ/cᵣ, the DOF leaves the factorised
+//!   matrix and its multiplier is the residual of its equilibrium row;
+//! - the remaining matrix K_rr is factorised once per matrix (Cholesky, the
+//!   symbolic analysis kept while the pattern is the same; LU when it is not
+//!   positive definite) and reused for every active set, step and geometric
+//!   pass that keeps the matrix — an elastic model factorises once for the
+//!   whole analysis;
+//! - the other rows (inequality rows, multi-DOF relations: a few hundred at
+//!   most) enter through S = A K_rr⁻¹ Aᵀ, a small dense matrix, with the
+//!   columns K_rr⁻¹ aᵣ cached per row for the current factor.
+//!
+//! When that structure does not apply (the pinned DOFs do not hold the
+//! model, a DOF pinned twice, S singular, a factorisation failure) the
+//! caller falls back to the bordered LU ([`crate::linalg::solve_with`]),
+//! which also names what is wrong.
+
+use crate::linalg::{Csc, SolveFailure, SolveReport, MAX_BACKWARD_ERROR};
+use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, SymbolicCholesky};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Mat, Side};
+use nalgebra::DMatrix;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// Which matrix the caller hands over: the constant elastic one, or a
+/// tangent identified by the id [`KktSolver::new_tangent`] gave it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum MatrixKey {
+    Elastic,
+    Tangent(u64),
+}
+
+/// One constraint row over free unknowns: Σ c·Δu = d.
+pub(crate) struct Row<'a> {
+    pub terms: &'a [(usize, f64)],
+    pub d: f64,
+    /// An equality (may pin its DOF); inequality rows never do, as their
+    /// activity changes.
+    pub equality: bool,
+}
+
+/// Most passes of iterative refinement per solve.
+const REFINEMENT_STEPS: usize = 4;
+
+/// Below this many reduced unknowns the factorisation uses AMD; above it, a
+/// geometric nested dissection when coordinates are given.
+const ND_THRESHOLD: usize = 20_000;
+
+enum RFactor {
+    Llt {
+        symbolic: Arc<SymbolicCholesky<usize>>,
+        values: Vec<f64>,
+    },
+    Lu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
+}
+
+/// The factorised reduced matrix and what it was built from.
+struct Reduced {
+    key: MatrixKey,
+    penalty: Vec<(usize, usize, f64)>,
+    pinned: Vec<usize>,
+    /// K + penalty terms, when there are penalty terms (else the caller's).
+    keff: Option<Csc>,
+    /// Free index → reduced index (usize::MAX when pinned).
+    red_of: Vec<usize>,
+    /// Reduced index → free index.
+    full_of: Vec<usize>,
+    /// Symmetric scaling 1/√|Kᵢᵢ| of the reduced matrix.
+    scale: Vec<f64>,
+    factor: RFactor,
+    /// ‖K_eff‖∞, for backward errors.
+    norm_inf: f64,
+    /// K_rr⁻¹ aᵣ per reduced row (keyed by its terms).
+    columns: HashMap<Vec<(usize, u64)>, Vec<f64>>,
+}
+
+/// A symbolic Cholesky with the pattern (column pointers, row indices) it
+/// was computed for.
+type PatternSymbolic = (Vec<usize>, Vec<usize>, Arc<SymbolicCholesky<usize>>);
+
+/// Factorisations and their by-products kept across Newton iterations,
+/// active sets and steps.
+#[derive(Default)]
+pub(crate) struct KktSolver {
+    reduced: Option<Reduced>,
+    /// The symbolic Cholesky of the last reduced pattern.
+    symbolic: Option<PatternSymbolic>,
+    /// Whether the pinned DOFs (with the eliminated ones) hold the model.
+    held: Vec<(Vec<usize>, bool)>,
+    next_id: u64,
+    /// Statistics: numeric factorisations and reduced solves done.
+    pub factorisations: usize,
+    pub solves: usize,
+}
+
+impl KktSolver {
+    /// A fresh id for a newly assembled tangent.
+    pub fn new_tangent(&mut self) -> MatrixKey {
+        self.next_id += 1;
+        MatrixKey::Tangent(self.next_id)
+    }
+
+    /// Solves the bordered system for `base` (+ `penalty` triplets, free
+    /// indices) with `rows`; `b` holds the free right-hand side. Returns
+    /// [Δu, λ in row order], or `None` when the structure does not apply
+    /// and the caller should use the bordered LU. `held(pinned)` says
+    /// whether the pinned free unknowns hold the model (asked once per
+    /// pinned set).
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(
+        &mut self,
+        key: MatrixKey,
+        base: &Csc,
+        penalty: &[(usize, usize, f64)],
+        rows: &[Row],
+        b: &[f64],
+        coords: Option<&[[f64; 3]]>,
+        held: &dyn Fn(&[usize]) -> bool,
+    ) -> Result<Option<SolveReport>, SolveFailure> {
+        let n = base.n;
+        // Pinned rows: equality rows on one free DOF.
+        let mut pin_of_dof: HashMap<usize, usize> = HashMap::new();
+        let mut pinned_rows: Vec<(usize, usize, f64)> = Vec::new(); // (row, dof, coef)
+        for (r, row) in rows.iter().enumerate() {
+            if let (true, [(i, c)]) = (row.equality, row.terms) {
+                if *c == 0.0 {
+                    return Ok(None);
+                }
+                if pin_of_dof.insert(*i, r).is_some() {
+                    // Two rows on one DOF: a redundant pair the bordered
+                    // path reports.
+                    return Ok(None);
+                }
+                pinned_rows.push((r, *i, *c));
+            }
+        }
+        let mut pinned: Vec<usize> = pinned_rows.iter().map(|p| p.1).collect();
+        pinned.sort_unstable();
+        let mut penalty_sorted = penalty.to_vec();
+        penalty_sorted.sort_unstable_by_key(|a| (a.1, a.0));
+        let current = self
+            .reduced
+            .as_ref()
+            .is_some_and(|r| r.key == key && r.pinned == pinned && r.penalty == penalty_sorted);
+        if !current {
+            self.reduced = None;
+            let is_held = match self.held.iter().find(|(p, _)| *p == pinned) {
+                Some(&(_, h)) => h,
+                None => {
+                    let h = held(&pinned);
+                    self.held.push((pinned.clone(), h));
+                    h
+                }
+            };
+            if !is_held {
+                return Ok(None);
+            }
+            let Some(red) = self.factorise(key, base, penalty_sorted, pinned, coords) else {
+                return Ok(None);
+            };
+            self.factorisations += 1;
+            self.reduced = Some(red);
+        }
+        let Some(red) = self.reduced.as_mut() else {
+            return Ok(None);
+        };
+        let keff = red.keff.as_ref().unwrap_or(base);
+        // General rows, reduced: terms on pinned DOFs move to the right.
+        let general: Vec<usize> = (0..rows.len())
+            .filter(|r| !pinned_rows.iter().any(|p| p.0 == *r))
+            .collect();
+        let reduced_terms: Vec<Vec<(usize, f64)>> = general
+            .iter()
+            .map(|&r| {
+                rows[r]
+                    .terms
+                    .iter()
+                    .filter(|(i, _)| red.red_of[*i] != usize::MAX)
+                    .map(|&(i, c)| (red.red_of[i], c))
+                    .collect()
+            })
+            .collect();
+        // K_rr⁻¹ aᵣ for the rows not seen with this factor.
+        let keys: Vec<Vec<(usize, u64)>> = reduced_terms
+            .iter()
+            .map(|t| t.iter().map(|&(i, c)| (i, c.to_bits())).collect())
+            .collect();
+        let missing: Vec<usize> = (0..keys.len())
+            .filter(|&k| !red.columns.contains_key(&keys[k]))
+            .collect();
+        if !missing.is_empty() {
+            let nr = red.full_of.len();
+            let mut rhs = Mat::<f64>::zeros(nr, missing.len());
+            for (col, &k) in missing.iter().enumerate() {
+                for &(j, c) in &reduced_terms[k] {
+                    rhs[(j, col)] += c;
+                }
+            }
+            red.solve_many(&mut rhs);
+            for (col, &k) in missing.iter().enumerate() {
+                let w: Vec<f64> = (0..nr).map(|j| rhs[(j, col)]).collect();
+                red.columns.insert(keys[k].clone(), w);
+            }
+        }
+        // Rows whose terms all sit on pinned DOFs must hold as they are;
+        // S would be singular with them.
+        if reduced_terms.iter().any(|t| t.is_empty()) {
+            return Ok(None);
+        }
+        let m = general.len();
+        let red: &Reduced = red;
+        let cols: Vec<&[f64]> = keys.iter().map(|k| red.columns[k].as_slice()).collect();
+        let mut s = DMatrix::<f64>::zeros(m, m);
+        for (q, tq) in reduced_terms.iter().enumerate() {
+            for (r, w) in cols.iter().enumerate() {
+                s[(q, r)] = tq.iter().map(|&(j, c)| c * w[j]).sum();
+            }
+        }
+        // S = A K⁻¹ Aᵀ is symmetric positive definite when the rows are
+        // independent; a rank-deficient S (redundant rows) goes to the
+        // bordered path.
+        let s_factor = if m == 0 {
+            None
+        } else {
+            let chol = nalgebra::linalg::Cholesky::new(s.clone());
+            match chol {
+                Some(c) => Some(SFactor::Chol(c)),
+                None => {
+                    let lu = s.clone().full_piv_lu();
+                    let diag_max = (0..m).fold(0.0f64, |a, i| a.max(s[(i, i)].abs()));
+                    let u = lu.u();
+                    let min_piv = (0..m).fold(f64::INFINITY, |a, i| a.min(u[(i, i)].abs()));
+                    if min_piv.is_nan() || min_piv <= 1e-12 * diag_max {
+                        return Ok(None);
+                    }
+                    Some(SFactor::Lu(lu))
+                }
+            }
+        };
+        let d: Vec<f64> = rows.iter().map(|r| r.d).collect();
+        let norm_aug = {
+            let mut row_sums = vec![0.0f64; n];
+            let mut cons = 0.0f64;
+            for row in rows {
+                let mut s = 0.0;
+                for &(i, c) in row.terms {
+                    row_sums[i] += c.abs();
+                    s += c.abs();
+                }
+                cons = cons.max(s);
+            }
+            red.norm_inf + row_sums.iter().fold(0.0f64, |a, v| a.max(*v)) + cons
+        };
+        let ctx = SolveCtx {
+            red,
+            keff,
+            rows,
+            pinned_rows: &pinned_rows,
+            general: &general,
+            reduced_terms: &reduced_terms,
+            cols: &cols,
+            s_factor: s_factor.as_ref(),
+        };
+        let mut x = ctx.apply(b, &d);
+        let norm_b = b.iter().chain(&d).fold(0.0f64, |a, v| a.max(v.abs()));
+        let berr = |x: &[f64]| -> (f64, Vec<f64>, Vec<f64>) {
+            let (ru, rd) = residual(keff, rows, b, &d, x);
+            let nr = ru.iter().chain(&rd).fold(0.0f64, |a, v| a.max(v.abs()));
+            let nx = x.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            let den = norm_aug * nx + norm_b;
+            (if den > 0.0 { nr / den } else { 0.0 }, ru, rd)
+        };
+        // Iterative refinement with accurate residuals: each pass divides
+        // the error by about cond(K_rr)·ε, so it converges to the solution
+        // of the system as given (soft modes included) even when the
+        // normwise backward error is already tiny. Stops when a correction
+        // no longer changes the displacements or the multipliers.
+        let (mut be, mut ru, mut rd) = berr(&x);
+        let block_max = |v: &[f64]| -> (f64, f64) {
+            let (a, b) = v.split_at(n);
+            let m = |s: &[f64]| s.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            (m(a), m(b))
+        };
+        let mut last_step = f64::INFINITY;
+        for _ in 0..REFINEMENT_STEPS {
+            let dx = ctx.apply(&ru, &rd);
+            let (du_max, dl_max) = block_max(&dx);
+            let (u_max, l_max) = block_max(&x);
+            let step = (du_max / u_max.max(1e-300)).max(dl_max / l_max.max(1e-300));
+            if std::env::var_os("ASTER_FEM_TRACE").is_some() {
+                eprintln!("[kkt] refinement: backward error {be:.3e}, correction {du_max:.3e} (u) {dl_max:.3e} (λ), relative {step:.3e}, {} rows, {} pinned", rows.len(), pinned_rows.len());
+            }
+            if step.is_nan() || step >= last_step {
+                break;
+            }
+            last_step = step;
+            let cand: Vec<f64> = x.iter().zip(&dx).map(|(a, b)| a + b).collect();
+            let (be2, ru2, rd2) = berr(&cand);
+            x = cand;
+            (be, ru, rd) = (be2, ru2, rd2);
+            if step <= 1e-15 {
+                break;
+            }
+        }
+        self.solves += 1;
+        if x.iter().any(|v| !v.is_finite()) || be > MAX_BACKWARD_ERROR {
+            return Ok(None);
+        }
+        Ok(Some(SolveReport {
+            x,
+            backward_error: be,
+            cholesky: matches!(
+                self.reduced.as_ref().map(|r| &r.factor),
+                Some(RFactor::Llt { .. })
+            ),
+        }))
+    }
+
+    /// Builds and factorises the reduced matrix; `None` when neither
+    /// Cholesky nor LU succeeds.
+    fn factorise(
+        &mut self,
+        key: MatrixKey,
+        base: &Csc,
+        penalty: Vec<(usize, usize, f64)>,
+        pinned: Vec<usize>,
+        coords: Option<&[[f64; 3]]>,
+    ) -> Option<Reduced> {
+        let n = base.n;
+        let keff = (!penalty.is_empty()).then(|| base.with_extra(n, penalty.clone()));
+        let k = keff.as_ref().unwrap_or(base);
+        let mut red_of = vec![0usize; n];
+        for &p in &pinned {
+            red_of[p] = usize::MAX;
+        }
+        let mut full_of = Vec::with_capacity(n - pinned.len());
+        for (i, r) in red_of.iter_mut().enumerate() {
+            if *r != usize::MAX {
+                *r = full_of.len();
+                full_of.push(i);
+            }
+        }
+        let krr = crate::assembly::restrict(k, &red_of, full_of.len());
+        let scale: Vec<f64> = krr
+            .diagonal()
+            .iter()
+            .map(|d| {
+                let d = d.abs();
+                if d > 0.0 && d.is_finite() {
+                    1.0 / d.sqrt()
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        let mut values = Vec::with_capacity(krr.values.len());
+        for j in 0..krr.n {
+            for p in krr.col_ptr[j]..krr.col_ptr[j + 1] {
+                values.push(krr.values[p] * scale[krr.row_idx[p]] * scale[j]);
+            }
+        }
+        let nr = krr.n;
+        let sym = SymbolicSparseColMatRef::new_checked(nr, nr, &krr.col_ptr, None, &krr.row_idx);
+        let mat = SparseColMatRef::new(sym, &values);
+        let factor = match self.cholesky(&krr, mat, &full_of, coords) {
+            Some(f) => f,
+            None => RFactor::Lu(Box::new(mat.sp_lu().ok()?)),
+        };
+        Some(Reduced {
+            key,
+            penalty,
+            pinned,
+            norm_inf: k.norm_inf(),
+            keff,
+            red_of,
+            full_of,
+            scale,
+            factor,
+            columns: HashMap::new(),
+        })
+    }
+
+    /// Numeric Cholesky of the scaled reduced matrix, reusing the symbolic
+    /// analysis when the pattern is unchanged.
+    fn cholesky(
+        &mut self,
+        krr: &Csc,
+        mat: SparseColMatRef<'_, usize, f64>,
+        full_of: &[usize],
+        coords: Option<&[[f64; 3]]>,
+    ) -> Option<RFactor> {
+        let same = self
+            .symbolic
+            .as_ref()
+            .is_some_and(|(cp, ri, _)| *cp == krr.col_ptr && *ri == krr.row_idx);
+        if !same {
+            use faer::sparse::linalg::cholesky::SymmetricOrdering;
+            let nr = krr.n;
+            let order: Option<Vec<usize>> = coords.filter(|_| nr >= ND_THRESHOLD).map(|c| {
+                let rc: Vec<[f64; 3]> = full_of.iter().map(|&i| c[i]).collect();
+                crate::ordering::nested_dissection(krr, &rc)
+            });
+            let symbolic = match &order {
+                Some(order) => {
+                    let mut inv = vec![0usize; nr];
+                    for (k, &i) in order.iter().enumerate() {
+                        inv[i] = k;
+                    }
+                    let perm = faer::perm::PermRef::new_checked(order, &inv, nr);
+                    factorize_symbolic_cholesky(
+                        mat.symbolic(),
+                        Side::Lower,
+                        SymmetricOrdering::Custom(perm),
+                        Default::default(),
+                    )
+                }
+                None => factorize_symbolic_cholesky(
+                    mat.symbolic(),
+                    Side::Lower,
+                    SymmetricOrdering::Amd,
+                    Default::default(),
+                ),
+            }
+            .ok()?;
+            self.symbolic = Some((krr.col_ptr.clone(), krr.row_idx.clone(), Arc::new(symbolic)));
+        }
+        let symbolic = self.symbolic.as_ref()?.2.clone();
+        let mut values = vec![0.0; symbolic.len_val()];
+        let par = parallelism(krr.n);
+        let mut mem = faer::dyn_stack::MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+        )
+        .ok()?;
+        symbolic
+            .factorize_numeric_llt(
+                &mut values,
+                mat,
+                Side::Lower,
+                Default::default(),
+                par,
+                faer::dyn_stack::MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .ok()?;
+        Some(RFactor::Llt { symbolic, values })
+    }
+}
+
+/// Below this many unknowns the factorisation and solves run on one
+/// thread: on ssnv506d (9,700 unknowns) the threads' synchronisation cost
+/// more CPU than they saved.
+const PARALLEL_MIN: usize = 20_000;
+
+fn parallelism(n: usize) -> faer::Par {
+    if n < PARALLEL_MIN {
+        faer::Par::Seq
+    } else {
+        faer::get_global_parallelism()
+    }
+}
+
+enum SFactor {
+    Chol(nalgebra::linalg::Cholesky<f64, nalgebra::Dyn>),
+    Lu(nalgebra::linalg::FullPivLU<f64, nalgebra::Dyn, nalgebra::Dyn>),
+}
+
+impl SFactor {
+    fn solve(&self, r: &nalgebra::DVector<f64>) -> Option<nalgebra::DVector<f64>> {
+        match self {
+            SFactor::Chol(c) => Some(c.solve(r)),
+            SFactor::Lu(l) => l.solve(r),
+        }
+    }
+}
+
+impl Reduced {
+    /// K_rr⁻¹ applied in place to the columns of `rhs` (reduced indexing).
+    fn solve_many(&self, rhs: &mut Mat<f64>) {
+        let (nr, nc) = (rhs.nrows(), rhs.ncols());
+        for j in 0..nc {
+            for i in 0..nr {
+                rhs[(i, j)] *= self.scale[i];
+            }
+        }
+        match &self.factor {
+            RFactor::Llt { symbolic, values } => {
+                let par = parallelism(nr);
+                let mut mem = faer::dyn_stack::MemBuffer::new(
+                    symbolic.solve_in_place_scratch::<f64>(nc, par),
+                );
+                faer::sparse::linalg::cholesky::LltRef::new(symbolic, values)
+                    .solve_in_place_with_conj(
+                        faer::Conj::No,
+                        rhs.as_mut(),
+                        par,
+                        faer::dyn_stack::MemStack::new(&mut mem),
+                    );
+            }
+            RFactor::Lu(lu) => {
+                use faer::linalg::solvers::Solve;
+                lu.solve_in_place(rhs.as_mut());
+            }
+        }
+        for j in 0..nc {
+            for i in 0..nr {
+                rhs[(i, j)] *= self.scale[i];
+            }
+        }
+    }
+}
+
+struct SolveCtx<'a> {
+    red: &'a Reduced,
+    keff: &'a Csc,
+    rows: &'a [Row<'a>],
+    pinned_rows: &'a [(usize, usize, f64)],
+    general: &'a [usize],
+    reduced_terms: &'a [Vec<(usize, f64)>],
+    /// K_rr⁻¹ aᵣ of the general rows, in their order.
+    cols: &'a [&'a [f64]],
+    s_factor: Option<&'a SFactor>,
+}
+
+impl SolveCtx<'_> {
+    /// [Δu, λ] for right-hand sides (b, d), exactly (up to round-off).
+    fn apply(&self, b: &[f64], d: &[f64]) -> Vec<f64> {
+        let red = self.red;
+        let n = b.len();
+        let nr = red.full_of.len();
+        let mut du = vec![0.0; n];
+        for &(r, i, c) in self.pinned_rows {
+            du[i] = d[r] / c;
+        }
+        // Right-hand side of the reduced unknowns: b − K_rp Δu_p.
+        let kp = self.keff.mul(&du);
+        let mut y = Mat::<f64>::zeros(nr, 1);
+        for (j, &i) in red.full_of.iter().enumerate() {
+            y[(j, 0)] = b[i] - kp[i];
+        }
+        red.solve_many(&mut y);
+        let m = self.general.len();
+        let mut lam_general = vec![0.0; m];
+        if let Some(sf) = self.s_factor {
+            let rhs = nalgebra::DVector::from_iterator(
+                m,
+                self.general.iter().zip(self.reduced_terms).map(|(&r, t)| {
+                    let pinned_part: f64 = self.rows[r]
+                        .terms
+                        .iter()
+                        .filter(|(i, _)| red.red_of[*i] == usize::MAX)
+                        .map(|&(i, c)| c * du[i])
+                        .sum();
+                    let ay: f64 = t.iter().map(|&(j, c)| c * y[(j, 0)]).sum();
+                    ay - (d[r] - pinned_part)
+                }),
+            );
+            if let Some(l) = sf.solve(&rhs) {
+                lam_general = l.iter().copied().collect();
+            }
+        }
+        let mut ur: Vec<f64> = (0..nr).map(|j| y[(j, 0)]).collect();
+        for (w, &l) in self.cols.iter().zip(&lam_general) {
+            for (v, wj) in ur.iter_mut().zip(w.iter()) {
+                *v -= wj * l;
+            }
+        }
+        for (j, &i) in red.full_of.iter().enumerate() {
+            du[i] = ur[j];
+        }
+        // A row on one free unknown holds exactly (a support or a contact
+        // row on a rigid master reads 0, not 1e-32): its value is set from
+        // the row, which moves it by round-off only.
+        for (k, &r) in self.general.iter().enumerate() {
+            if let [(j, c)] = self.reduced_terms[k].as_slice() {
+                let pinned_part: f64 = self.rows[r]
+                    .terms
+                    .iter()
+                    .filter(|(i, _)| red.red_of[*i] == usize::MAX)
+                    .map(|&(i, c)| c * du[i])
+                    .sum();
+                du[red.full_of[*j]] = (d[r] - pinned_part) / c;
+            }
+        }
+        let mut x = du;
+        let mut lam = vec![0.0; self.rows.len()];
+        for (k, &r) in self.general.iter().enumerate() {
+            lam[r] = lam_general[k];
+        }
+        // Pinned rows: λ is what their DOF's equilibrium lacks.
+        if !self.pinned_rows.is_empty() {
+            let kdu = self.keff.mul(&x);
+            let mut others = vec![0.0; n];
+            for (k, &r) in self.general.iter().enumerate() {
+                for &(i, c) in self.rows[r].terms {
+                    others[i] += c * lam_general[k];
+                }
+            }
+            for &(r, i, c) in self.pinned_rows {
+                lam[r] = (b[i] - kdu[i] - others[i]) / c;
+            }
+        }
+        x.extend(lam);
+        x
+    }
+}
+
+/// The rounding error of p = a·b (Dekker's product with Veltkamp's split):
+/// exact unless a·b over- or underflows. Inline arithmetic: without a
+/// hardware FMA in the target, `mul_add` is a library call that cost more
+/// than the rest of the residual.
+#[inline]
+fn product_error(a: f64, b: f64, p: f64) -> f64 {
+    const SPLIT: f64 = 134_217_729.0; // 2^27 + 1
+    let t = SPLIT * a;
+    let ah = t - (t - a);
+    let al = a - ah;
+    let t = SPLIT * b;
+    let bh = t - (t - b);
+    let bl = b - bh;
+    ((ah * bh - p) + ah * bl + al * bh) + al * bl
+}
+
+/// A sum carried with its rounding error (Ogita, Rump & Oishi's Dot2):
+/// the result is as accurate as if computed in twice the working precision,
+/// then rounded.
+#[derive(Clone, Copy, Default)]
+struct Compensated {
+    sum: f64,
+    err: f64,
+}
+
+impl Compensated {
+    fn new(v: f64) -> Self {
+        Compensated { sum: v, err: 0.0 }
+    }
+
+    /// Adds a·b.
+    #[inline]
+    fn add_product(&mut self, a: f64, b: f64) {
+        let p = a * b;
+        let ep = product_error(a, b, p);
+        let s = self.sum + p;
+        let bb = s - self.sum;
+        let es = (self.sum - (s - bb)) + (p - bb);
+        self.sum = s;
+        self.err += ep + es;
+    }
+
+    fn value(self) -> f64 {
+        self.sum + self.err
+    }
+}
+
+/// Residuals (b − K Δu − Aᵀλ, d − A Δu) of the bordered system at x,
+/// with compensated sums: a residual that is a small difference of large
+/// terms (a stiff body on a soft support) is then exact enough for the
+/// refinement to converge in the soft modes too.
+fn residual(k: &Csc, rows: &[Row], b: &[f64], d: &[f64], x: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let n = k.n;
+    let (du, lam) = x.split_at(n);
+    let mut ru: Vec<Compensated> = b.iter().map(|&v| Compensated::new(v)).collect();
+    for j in 0..n {
+        let xj = du[j];
+        if xj == 0.0 {
+            continue;
+        }
+        for p in k.col_ptr[j]..k.col_ptr[j + 1] {
+            ru[k.row_idx[p]].add_product(-k.values[p], xj);
+        }
+    }
+    let mut rd: Vec<Compensated> = d.iter().map(|&v| Compensated::new(v)).collect();
+    for (r, row) in rows.iter().enumerate() {
+        for &(i, c) in row.terms {
+            ru[i].add_product(-c, lam[r]);
+            rd[r].add_product(-c, du[i]);
+        }
+    }
+    (
+        ru.into_iter().map(Compensated::value).collect(),
+        rd.into_iter().map(Compensated::value).collect(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dense_to_csc(a: &[Vec<f64>]) -> Csc {
+        let n = a.len();
+        let cols: Vec<Vec<u32>> = (0..n)
+            .map(|j| {
+                (0..n)
+                    .filter(|&i| a[i][j] != 0.)
+                    .map(|i| i as u32)
+                    .collect()
+            })
+            .collect();
+        let mut m = Csc::from_columns(n, cols);
+        for j in 0..n {
+            for i in 0..n {
+                if a[i][j] != 0. {
+                    m.add(i, j, a[i][j]);
+                }
+            }
+        }
+        m
+    }
+
+    /// A chain of 4 springs (stiffness 1, 2, 3, 4) between 5 points.
+    fn chain() -> Csc {
+        let k = [1.0, 2.0, 3.0, 4.0];
+        let mut a = vec![vec![0.0; 5]; 5];
+        for (e, ke) in k.iter().enumerate() {
+            a[e][e] += ke;
+            a[e + 1][e + 1] += ke;
+            a[e][e + 1] -= ke;
+            a[e + 1][e] -= ke;
+        }
+        dense_to_csc(&a)
+    }
+
+    fn bordered(k: &Csc, rows: &[(Vec<(usize, f64)>, f64)], b: &[f64]) -> Vec<f64> {
+        let n = k.n;
+        let mut extra = Vec::new();
+        for (r, (t, _)) in rows.iter().enumerate() {
+            for &(i, c) in t {
+                extra.push((n + r, i, c));
+                extra.push((i, n + r, c));
+            }
+        }
+        let a = k.with_extra(n + rows.len(), extra);
+        let mut rhs = b.to_vec();
+        rhs.extend(rows.iter().map(|r| r.1));
+        crate::linalg::solve(&a, &rhs, n, false)
+            .expect("bordered")
+            .x
+    }
+
+    #[test]
+    fn matches_the_bordered_lu_with_pinned_and_general_rows() {
+        let k = chain();
+        // Point 0 pinned at 0.1, points 2 and 4 tied (u2 − u4 = 0.05), a
+        // unilateral-like row on 3 and 4 (u3 + 2 u4 = 0.3).
+        let rows_data = vec![
+            (vec![(0, 2.0)], 0.2),
+            (vec![(2, 1.0), (4, -1.0)], 0.05),
+            (vec![(3, 1.0), (4, 2.0)], 0.3),
+        ];
+        let b = vec![0.0, 1.0, -0.5, 0.25, 2.0];
+        let rows: Vec<Row> = rows_data
+            .iter()
+            .enumerate()
+            .map(|(r, (t, d))| Row {
+                terms: t,
+                d: *d,
+                equality: r < 2,
+            })
+            .collect();
+        let mut s = KktSolver::default();
+        let x = s
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_| true)
+            .expect("no failure")
+            .expect("applies")
+            .x;
+        let reference = bordered(&k, &rows_data, &b);
+        for (a, r) in x.iter().zip(&reference) {
+            assert!(
+                (a - r).abs() < 1e-12 * r.abs().max(1.0),
+                "{x:?} vs {reference:?}"
+            );
+        }
+        // Same matrix: the factor and the row columns are reused.
+        let again = s
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_| true)
+            .expect("no failure")
+            .expect("applies")
+            .x;
+        assert_eq!(s.factorisations, 1);
+        assert_eq!(x, again);
+    }
+
+    #[test]
+    fn penalty_terms_enter_the_factorised_matrix() {
+        let k = chain();
+        let rows_data = [(vec![(0, 1.0)], 0.0)];
+        let rows: Vec<Row> = rows_data
+            .iter()
+            .map(|(t, d)| Row {
+                terms: t,
+                d: *d,
+                equality: true,
+            })
+            .collect();
+        let b = vec![0.0, 0.0, 0.0, 0.0, 1.0];
+        let penalty = vec![(4, 4, 100.0)];
+        let mut s = KktSolver::default();
+        let x = s
+            .solve(MatrixKey::Elastic, &k, &penalty, &rows, &b, None, &|_| true)
+            .expect("no failure")
+            .expect("applies")
+            .x;
+        let kp = k.with_extra(5, penalty.clone());
+        let reference = bordered(&kp, &[(vec![(0, 1.0)], 0.0)], &b);
+        for (a, r) in x.iter().zip(&reference) {
+            assert!(
+                (a - r).abs() < 1e-12 * r.abs().max(1.0),
+                "{x:?} vs {reference:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn an_unheld_reduced_matrix_or_redundant_rows_fall_back() {
+        let k = chain();
+        let b = vec![0.0; 5];
+        let free = [(vec![(2usize, 1.0)], 0.0)];
+        let rows: Vec<Row> = free
+            .iter()
+            .map(|(t, d)| Row {
+                terms: t,
+                d: *d,
+                equality: false,
+            })
+            .collect();
+        let mut s = KktSolver::default();
+        // Nothing pinned: the chain floats, the caller's check says so.
+        assert!(s
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|p| !p
+                .is_empty())
+            .expect("no failure")
+            .is_none());
+        // Two equality rows on one DOF.
+        let twice = [(vec![(0usize, 1.0)], 0.0), (vec![(0usize, 2.0)], 0.0)];
+        let rows: Vec<Row> = twice
+            .iter()
+            .map(|(t, d)| Row {
+                terms: t,
+                d: *d,
+                equality: true,
+            })
+            .collect();
+        assert!(s
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_| true)
+            .expect("no failure")
+            .is_none());
+    }
+}
+
+#[cfg(test)]
+mod compensated_tests {
+    use super::*;
+
+    #[test]
+    fn products_and_sums_keep_their_rounding_errors() {
+        // 0.1·3 is not 0.3 in binary: the product's error is recovered.
+        let (a, b) = (0.1f64, 3.0f64);
+        let p = a * b;
+        assert_eq!(product_error(a, b, p), a.mul_add(b, -p));
+        // 1e16 + 1 − 1e16 cancels in plain arithmetic, not here.
+        let mut s = Compensated::new(1e16);
+        s.add_product(1.0, 1.0);
+        s.add_product(-1e16, 1.0);
+        assert_eq!(s.value(), 1.0);
+    }
+}
