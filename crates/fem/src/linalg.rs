@@ -490,30 +490,33 @@ pub fn failure_to_error(f: SolveFailure, name: impl Fn(usize) -> String) -> FemE
     }
 }
 
+/// A dense test matrix as a `Csc` (its nonzero entries only).
+#[cfg(test)]
+pub(crate) fn dense_to_csc(a: &[Vec<f64>]) -> Csc {
+    let n = a.len();
+    let cols: Vec<Vec<u32>> = (0..n)
+        .map(|j| {
+            (0..n)
+                .filter(|&i| a[i][j] != 0.)
+                .map(|i| i as u32)
+                .collect()
+        })
+        .collect();
+    let mut m = Csc::from_columns(n, cols);
+    for j in 0..n {
+        for i in 0..n {
+            if a[i][j] != 0. {
+                m.add(i, j, a[i][j]);
+            }
+        }
+    }
+    m
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn dense_to_csc(a: &[Vec<f64>]) -> Csc {
-        let n = a.len();
-        let cols: Vec<Vec<u32>> = (0..n)
-            .map(|j| {
-                (0..n)
-                    .filter(|&i| a[i][j] != 0.)
-                    .map(|i| i as u32)
-                    .collect()
-            })
-            .collect();
-        let mut m = Csc::from_columns(n, cols);
-        for j in 0..n {
-            for i in 0..n {
-                if a[i][j] != 0. {
-                    m.add(i, j, a[i][j]);
-                }
-            }
-        }
-        m
-    }
 
     #[test]
     fn solves_an_indefinite_kkt_system_with_wild_scales() {

@@ -699,26 +699,7 @@ fn residual(k: &Csc, rows: &[Row], b: &[f64], d: &[f64], x: &[f64]) -> (Vec<f64>
 mod tests {
     use super::*;
 
-    fn dense_to_csc(a: &[Vec<f64>]) -> Csc {
-        let n = a.len();
-        let cols: Vec<Vec<u32>> = (0..n)
-            .map(|j| {
-                (0..n)
-                    .filter(|&i| a[i][j] != 0.)
-                    .map(|i| i as u32)
-                    .collect()
-            })
-            .collect();
-        let mut m = Csc::from_columns(n, cols);
-        for j in 0..n {
-            for i in 0..n {
-                if a[i][j] != 0. {
-                    m.add(i, j, a[i][j]);
-                }
-            }
-        }
-        m
-    }
+    use crate::linalg::dense_to_csc;
 
     /// A chain of 4 springs (stiffness 1, 2, 3, 4) between 5 points.
     fn chain() -> Csc {
