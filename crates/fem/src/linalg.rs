@@ -517,7 +517,6 @@ pub(crate) fn dense_to_csc(a: &[Vec<f64>]) -> Csc {
 mod tests {
     use super::*;
 
-
     #[test]
     fn solves_an_indefinite_kkt_system_with_wild_scales() {
         // Two springs 2e16 and 2e9 in series, end 0 held by a multiplier.
