@@ -701,6 +701,18 @@ mod tests {
 
     use crate::linalg::dense_to_csc;
 
+    /// Rows over `data` (terms, right-hand side), all equalities or all
+    /// inequalities.
+    fn rows_of(data: &[(Vec<(usize, f64)>, f64)], equality: bool) -> Vec<Row<'_>> {
+        data.iter()
+            .map(|(t, d)| Row {
+                terms: t,
+                d: *d,
+                equality,
+            })
+            .collect()
+    }
+
     /// A chain of 4 springs (stiffness 1, 2, 3, 4) between 5 points.
     fn chain() -> Csc {
         let k = [1.0, 2.0, 3.0, 4.0];
@@ -778,14 +790,7 @@ mod tests {
     fn penalty_terms_enter_the_factorised_matrix() {
         let k = chain();
         let rows_data = [(vec![(0, 1.0)], 0.0)];
-        let rows: Vec<Row> = rows_data
-            .iter()
-            .map(|(t, d)| Row {
-                terms: t,
-                d: *d,
-                equality: true,
-            })
-            .collect();
+        let rows = rows_of(&rows_data, true);
         let b = vec![0.0, 0.0, 0.0, 0.0, 1.0];
         let penalty = vec![(4, 4, 100.0)];
         let mut s = KktSolver::default();
@@ -809,14 +814,7 @@ mod tests {
         let k = chain();
         let b = vec![0.0; 5];
         let free = [(vec![(2usize, 1.0)], 0.0)];
-        let rows: Vec<Row> = free
-            .iter()
-            .map(|(t, d)| Row {
-                terms: t,
-                d: *d,
-                equality: false,
-            })
-            .collect();
+        let rows = rows_of(&free, false);
         let mut s = KktSolver::default();
         // Nothing pinned: the chain floats, the caller's check says so.
         assert!(s
@@ -826,14 +824,7 @@ mod tests {
             .is_none());
         // Two equality rows on one DOF.
         let twice = [(vec![(0usize, 1.0)], 0.0), (vec![(0usize, 2.0)], 0.0)];
-        let rows: Vec<Row> = twice
-            .iter()
-            .map(|(t, d)| Row {
-                terms: t,
-                d: *d,
-                equality: true,
-            })
-            .collect();
+        let rows = rows_of(&twice, true);
         assert!(s
             .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_| true)
             .expect("no failure")
