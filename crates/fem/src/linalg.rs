@@ -229,6 +229,33 @@ pub fn solve(
     solve_with(a, b, n_primal, spd_hint, None)
 }
 
+/// The numeric Cholesky factor of `mat` into `values` (sized
+/// `symbolic.len_val()`), on `symbolic`'s pattern; `None` when `mat` is not
+/// positive definite (or the scratch memory cannot be had).
+pub(crate) fn numeric_llt<I: faer::Index>(
+    symbolic: &faer::sparse::linalg::cholesky::SymbolicCholesky<I>,
+    mat: SparseColMatRef<'_, I, f64>,
+    values: &mut [f64],
+    par: faer::Par,
+) -> Option<()> {
+    let mut mem = faer::dyn_stack::MemBuffer::try_new(
+        symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+    )
+    .ok()?;
+    symbolic
+        .factorize_numeric_llt(
+            values,
+            mat,
+            Side::Lower,
+            Default::default(),
+            par,
+            faer::dyn_stack::MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .ok()?;
+    Some(())
+}
+
 /// Below this many unknowns the default (AMD) ordering is used even when
 /// coordinates are given.
 const ND_THRESHOLD: usize = 20_000;
@@ -254,22 +281,7 @@ fn cholesky_ordered(mat: SparseColMatRef<'_, usize, f64>, order: &[usize]) -> Op
     if std::env::var_os("ASTER_FEM_TIMING").is_some() {
         eprintln!("[fem] Cholesky factor: {} non-zeros", symbolic.len_val());
     }
-    let par = faer::get_global_parallelism();
-    let mut mem = faer::dyn_stack::MemBuffer::try_new(
-        symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-    )
-    .ok()?;
-    symbolic
-        .factorize_numeric_llt(
-            &mut values,
-            mat,
-            Side::Lower,
-            Default::default(),
-            par,
-            faer::dyn_stack::MemStack::new(&mut mem),
-            Default::default(),
-        )
-        .ok()?;
+    numeric_llt(&symbolic, mat, &mut values, faer::get_global_parallelism())?;
     Some(Factor::LltOrdered {
         symbolic: Box::new(symbolic),
         values,

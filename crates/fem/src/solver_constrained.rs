@@ -440,22 +440,7 @@ impl KktSolver {
         }
         let symbolic = self.symbolic.as_ref()?.2.clone();
         let mut values = vec![0.0; symbolic.len_val()];
-        let par = parallelism(krr.n);
-        let mut mem = faer::dyn_stack::MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        )
-        .ok()?;
-        symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                mat,
-                Side::Lower,
-                Default::default(),
-                par,
-                faer::dyn_stack::MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .ok()?;
+        crate::linalg::numeric_llt(&symbolic, mat, &mut values, parallelism(krr.n))?;
         Some(RFactor::Llt { symbolic, values })
     }
 }
