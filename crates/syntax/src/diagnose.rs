@@ -414,7 +414,7 @@ const LIMIT_CLASS: [u8; 256] = {
     let mut t = [0u8; 256];
     t[b' ' as usize] = 1;
     t[b'\t' as usize] = 1;
-    let special = b"#'\"([{)]}\n-+~\\\r";
+    let special = b"#'\"([{)]}\n-+~";
     let mut k = 0;
     while k < special.len() {
         t[special[k] as usize] = LIMIT_SPECIAL;
@@ -426,15 +426,7 @@ const LIMIT_CLASS: [u8; 256] = {
 /// The nesting limits above (brackets, indentation levels, runs of unary
 /// operators), in one pass over the bytes.
 pub fn check_limits(source: &str) -> Result<(), ParseError> {
-    check_and_mark(source).map(|_| ())
-}
-
-/// [`check_limits`] and [`crate::logical::mark_line_ends`] in one pass (the
-/// scan that finds brackets, strings and comments for the one serves the
-/// other): the marked copy of `source`, or the first limit exceeded.
-pub fn check_and_mark(source: &str) -> Result<String, ParseError> {
     let bytes = source.as_bytes();
-    let mut marked = bytes.to_vec();
     let mut depth = 0usize;
     let mut prefix_run = 0usize;
     let mut i = 0;
@@ -492,26 +484,14 @@ pub fn check_and_mark(source: &str) -> Result<String, ParseError> {
         }
         match c {
             b'#' => {
-                while i < bytes.len() && !matches!(bytes[i], b'\n' | b'\r') {
+                while i < bytes.len() && bytes[i] != b'\n' {
                     i += 1;
                 }
                 continue;
             }
             b'\'' | b'"' => {
-                // An unterminated string ends at its quote, as in
-                // `mark_line_ends`: the parser then reports it there.
-                i = string_end(bytes, i).unwrap_or(i + 1);
+                i = string_end(bytes, i).unwrap_or(bytes.len());
                 prefix_run = 0;
-                continue;
-            }
-            // A continuation: the line break after the backslash stays.
-            b'\\' => {
-                prefix_run = 0;
-                i += match (bytes.get(i + 1), bytes.get(i + 2)) {
-                    (Some(b'\r'), Some(b'\n')) => 3,
-                    (Some(b'\n' | b'\r'), _) => 2,
-                    _ => 1,
-                };
                 continue;
             }
             b'(' | b'[' | b'{' => {
@@ -525,12 +505,7 @@ pub fn check_and_mark(source: &str) -> Result<String, ParseError> {
                 }
             }
             b')' | b']' | b'}' => depth = depth.saturating_sub(1),
-            b'\n' | b'\r' => {
-                if depth == 0 {
-                    marked[i] = crate::logical::LINE_END;
-                }
-                line_start |= c == b'\n';
-            }
+            b'\n' => line_start = true,
             _ => {}
         }
         match c {
@@ -551,9 +526,7 @@ pub fn check_and_mark(source: &str) -> Result<String, ParseError> {
         }
         i += 1;
     }
-    // Only ASCII bytes were replaced by an ASCII byte: still UTF-8.
-    String::from_utf8(marked)
-        .map_err(|_| err(0, 0, "internal: marked text is not UTF-8".to_string()))
+    Ok(())
 }
 
 #[cfg(test)]
@@ -601,23 +574,14 @@ mod tests {
             }
             match c {
                 b'#' => {
-                    while i < bytes.len() && !matches!(bytes[i], b'\n' | b'\r') {
+                    while i < bytes.len() && bytes[i] != b'\n' {
                         i += 1;
                     }
                     continue;
                 }
                 b'\'' | b'"' => {
-                    i = string_end(bytes, i).unwrap_or(i + 1);
+                    i = string_end(bytes, i).unwrap_or(bytes.len());
                     prefix_run = 0;
-                    continue;
-                }
-                b'\\' if matches!(bytes.get(i + 1), Some(b'\n' | b'\r')) => {
-                    prefix_run = 0;
-                    i += if bytes.get(i + 1) == Some(&b'\r') && bytes.get(i + 2) == Some(&b'\n') {
-                        3
-                    } else {
-                        2
-                    };
                     continue;
                 }
                 b'(' | b'[' | b'{' => {

@@ -107,39 +107,6 @@ mod tests {
         );
     }
 
-    /// The limit check marks the same bytes in the same pass.
-    #[test]
-    fn the_limit_check_marks_the_same_line_ends() {
-        let mut inputs: Vec<String> = [
-            "a = f(1,\n  2)\nb = 3\n",
-            "x = 1 \\\n  + 2\r\ny = '(' # (\n",
-            "s = \"\"\"a\nb\"\"\"\nt = ')'\n",
-            "x = ]\ny = 'open\nz = 1\n",
-            "if x:\r    y = [1,\r 2]\r# c\rz = -+-1\r",
-            "s = '''never closed\n(\nx = 1\n",
-            "f(a,  # c (\n  b)\\\r\n",
-        ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
-        for sub in ["inputs", "errors"] {
-            if let Ok(entries) = std::fs::read_dir(dir.join(sub)) {
-                for e in entries.flatten() {
-                    if let Ok(text) = std::fs::read_to_string(e.path()) {
-                        inputs.push(text);
-                    }
-                }
-            }
-        }
-        assert!(inputs.len() > 20);
-        for s in &inputs {
-            if let Ok(marked) = crate::diagnose::check_and_mark(s) {
-                assert_eq!(marked, mark_line_ends(s), "{s:?}");
-            }
-        }
-    }
-
     #[test]
     fn offsets_are_kept() {
         let s = "é = (1,\r\n 2)\r\n";
