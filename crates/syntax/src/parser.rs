@@ -89,11 +89,6 @@ impl Builder<'_> {
         Span::new(self.base + start, self.base + start + text.len())
     }
 
-    /// A statement-level span (the same trimming as [`Builder::span`]).
-    fn stmt_span(&self, pair: &P) -> Span {
-        self.span(pair)
-    }
-
     fn ident(&self, pair: P) -> Ident {
         Ident {
             name: Text::new(pair.as_str()),
@@ -144,7 +139,7 @@ impl Builder<'_> {
     }
 
     fn small_stmt(&self, pair: P) -> R<Stmt> {
-        let span = self.stmt_span(&pair);
+        let span = self.span(&pair);
         let rule = pair.as_rule();
         let mut inner = pair.into_inner();
         let kind = match rule {
@@ -398,7 +393,7 @@ impl Builder<'_> {
     }
 
     fn compound_stmt(&self, pair: P) -> R<Stmt> {
-        let span = self.stmt_span(&pair);
+        let span = self.span(&pair);
         let rule = pair.as_rule();
         let mut inner = pair.into_inner();
         let kind = match rule {
@@ -710,7 +705,7 @@ impl Builder<'_> {
         // Only a tuple needs the list's own span (a lone element has its own).
         Ok(Expr {
             kind: ExprKind::Tuple { elts },
-            span: self.stmt_span(&pair),
+            span: self.span(&pair),
         })
     }
 
