@@ -16,6 +16,7 @@
 
 pub mod dual;
 mod error;
+pub mod friction;
 mod geomloop;
 mod integration;
 pub mod lac;

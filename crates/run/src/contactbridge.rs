@@ -75,6 +75,19 @@ const ALLOWED: &[&str] = &[
     // code_aster 11: only raises an alarm when a gap passes it; no effect
     // on the solution.
     "ZONE/ALARME_JEU",
+    // FROTTEMENT='COULOMB' (module friction): continuous…
+    "ALGO_RESO_FROT",
+    "RESI_FROT",
+    "ITER_FROT_MAXI",
+    "ZONE/COULOMB",
+    "ZONE/ALGO_FROT",
+    "ZONE/COEF_FROT",
+    "ZONE/COEF_PENA_FROT",
+    "ZONE/SANS_GROUP_NO_FR",
+    "ZONE/DIRE_EXCL_FROT",
+    // … and discrete (penalised).
+    "ZONE/E_T",
+    "ZONE/COEF_MATR_FROT",
 ];
 
 fn vec3(kw: &Keywords, name: &str) -> [f64; 3] {
@@ -225,11 +238,8 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
     };
     ex.check_keywords(&check_call, ALLOWED)?;
     check_call.keywords.entries.clear();
-    let frottement = if kw.str("FROTTEMENT") == Some("COULOMB") {
-        Frottement::Coulomb
-    } else {
-        Frottement::Sans
-    };
+    let friction = kw.str("FROTTEMENT") == Some("COULOMB");
+    let frottement = Frottement::Sans;
     let cerr = |e: aster_contact::ContactError| ExecError::new(format!("DEFI_CONTACT: {e}"));
     let mut def = match kw.str("FORMULATION").unwrap_or("DISCRETE") {
         "DISCRETE" => {
@@ -258,7 +268,12 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                     law,
                 });
             }
-            let mut d = ContactDefinition::discrete(zones, frottement).map_err(cerr)?;
+            let mut d = if friction {
+                crate::friction::refuse_discrete(ex, kw)?;
+                ContactDefinition::discrete(zones, frottement).map_err(cerr)?
+            } else {
+                ContactDefinition::discrete(zones, frottement).map_err(cerr)?
+            };
             if let ContactDefinition::Discrete(dd) = &mut d {
                 if let Some(n) = kw.first("ITER_CONT_MULT").and_then(|s| s.as_i64()) {
                     dd.iter_cont_mult = n.max(1) as usize;
@@ -299,7 +314,12 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                     law: ContinueLaw { algo, integration },
                 });
             }
-            let mut d = ContactDefinition::continuous(zones, frottement).map_err(cerr)?;
+            let mut d = if friction {
+                let f = crate::friction::continuous(ex, kw)?;
+                ContactDefinition::continuous_with_friction(zones, f).map_err(cerr)?
+            } else {
+                ContactDefinition::continuous(zones, frottement).map_err(cerr)?
+            };
             if let ContactDefinition::Continue(c) = &mut d {
                 let reso = |k: &str, dflt: Resolution| match kw.str(k) {
                     Some("NEWTON") => Resolution::Newton,
@@ -344,21 +364,51 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))?;
     // Under AXIS the contact integrals carry the radius (code_aster's
     // `mmmjac`), as fem's nodal forces do.
-    let axis = match kw.concept("MODELE") {
-        Some(c) => ex
-            .model(c)?
-            .cells
-            .values()
-            .any(|m| *m == Modelisation::Axisymmetric),
-        None => false,
-    };
-    if axis {
+    if is_axis(ex, kw)? {
         zones
             .iter_mut()
             .for_each(|z| z.set_measure(Measure::Axisymmetric));
     }
     lac_setup(ex, mesh, kw, &mut zones)?;
     Ok(zones)
+}
+
+/// Whether DEFI_CONTACT keywords ask for Coulomb friction.
+pub fn has_friction(kw: &Keywords) -> bool {
+    kw.str("FROTTEMENT") == Some("COULOMB")
+}
+
+/// The continuous frictional contact elements of DEFI_CONTACT keywords
+/// (module `aster_contact::friction`), a force source for fem's solver.
+pub fn friction_source(
+    ex: &Executor,
+    mesh: &Mesh,
+    kw: &Keywords,
+) -> Result<aster_contact::friction::ContinuousFriction, ExecError> {
+    let def = definition(ex, kw)?;
+    let ContactDefinition::Continue(c) = &def else {
+        return Err(ExecError::new(
+            "DEFI_CONTACT: discrete friction is refused at DEFI_CONTACT".to_string(),
+        ));
+    };
+    let measure = if is_axis(ex, kw)? {
+        Measure::Axisymmetric
+    } else {
+        Measure::Plane
+    };
+    aster_contact::friction::ContinuousFriction::new(c, mesh, measure)
+        .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
+}
+
+fn is_axis(ex: &Executor, kw: &Keywords) -> Result<bool, ExecError> {
+    Ok(match kw.concept("MODELE") {
+        Some(c) => ex
+            .model(c)?
+            .cells
+            .values()
+            .any(|m| *m == Modelisation::Axisymmetric),
+        None => false,
+    })
 }
 
 /// ALGO_CONT='LAC' zones: the patches of CREA_MAILLAGE/DECOUPE_LAC, and

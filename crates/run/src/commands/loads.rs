@@ -407,13 +407,6 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONTACT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
-    if kw.str("FROTTEMENT") == Some("COULOMB") {
-        let span = kw.keyword("FROTTEMENT").map(|k| k.span).unwrap_or_default();
-        return Err(ex.unsupported(
-            "DEFI_CONTACT/FROTTEMENT='COULOMB' (frictionless contact only)",
-            span,
-        ));
-    }
     let formulation = kw.str("FORMULATION").unwrap_or("DISCRETE");
     if formulation != "LIAISON_UNIL" {
         // Check the keywords now (errors at the command that has them);

@@ -1,0 +1,93 @@
+//! `DEFI_CONTACT(FROTTEMENT='COULOMB')`: the friction keywords turned into
+//! `aster_contact::friction`'s plain types (the contact bridge calls these
+//! while it reads the zones).
+
+use aster_contact::friction::{
+    ContactInit, ContinueFriction, ContinueZoneFriction, FrictionAlgo,
+};
+use aster_contact::Resolution;
+use aster_eval::{ExecError, Keywords};
+
+use crate::executor::Executor;
+
+/// The friction of a continuous definition: one setting per zone and the
+/// friction loop. Refuses, located, what the elements do not reproduce.
+pub fn continuous(ex: &Executor, kw: &Keywords) -> Result<ContinueFriction, ExecError> {
+    let mut zones = Vec::new();
+    for occ in kw.factor("ZONE") {
+        let coulomb = occ.f64("COULOMB").ok_or_else(|| {
+            ExecError::new("DEFI_CONTACT/ZONE: COULOMB is required with FROTTEMENT='COULOMB'")
+        })?;
+        let mut z = ContinueZoneFriction::new(coulomb);
+        z.algo = match occ.str("ALGO_FROT").unwrap_or("STANDARD") {
+            "PENALISATION" => FrictionAlgo::Penalisation {
+                coef_pena_frot: occ.f64("COEF_PENA_FROT").unwrap_or(1e7),
+            },
+            _ => FrictionAlgo::Standard {
+                coef_frot: occ.f64("COEF_FROT").unwrap_or(100.0),
+            },
+        };
+        z.seuil_init = occ.f64("SEUIL_INIT");
+        z.contact_init = match occ.str("CONTACT_INIT").unwrap_or("INTERPENETRE") {
+            "OUI" => ContactInit::Oui,
+            "NON" => ContactInit::Non,
+            _ => ContactInit::Interpenetre,
+        };
+        z.excluded_node_groups = occ
+            .simple("SANS_GROUP_NO_FR")
+            .iter()
+            .filter_map(|s| s.as_str().map(str::to_string))
+            .collect();
+        let dir: Vec<f64> = occ
+            .simple("DIRE_EXCL_FROT")
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
+        if !dir.is_empty() {
+            z.dire_excl_frot = Some([
+                dir.first().copied().unwrap_or(0.0),
+                dir.get(1).copied().unwrap_or(0.0),
+                dir.get(2).copied().unwrap_or(0.0),
+            ]);
+        }
+        // The penalised friction coefficient adapted to GLIS_MAXI
+        // (code_aster's `mm_cycl_algo`) changes the converged answer: not
+        // reproduced.
+        if occ.contains("GLIS_MAXI") && matches!(z.algo, FrictionAlgo::Penalisation { .. }) {
+            let span = occ.keyword("GLIS_MAXI").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(
+                "DEFI_CONTACT/ZONE/GLIS_MAXI (the penalised friction coefficient adapted to a slip)",
+                span,
+            ));
+        }
+        if occ.str("GRAND_GLIS") == Some("OUI") {
+            let span = occ.keyword("GRAND_GLIS").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(
+                "DEFI_CONTACT/ZONE/GRAND_GLIS='OUI' (large-slip friction terms)",
+                span,
+            ));
+        }
+        zones.push(z);
+    }
+    let mut f = ContinueFriction::new(zones);
+    f.algo_reso_frot = match kw.str("ALGO_RESO_FROT") {
+        Some("POINT_FIXE") => Resolution::PointFixe,
+        _ => Resolution::Newton,
+    };
+    if let Some(r) = kw.f64("RESI_FROT") {
+        f.resi_frot = r;
+    }
+    if let Some(n) = kw.first("ITER_FROT_MAXI").and_then(|s| s.as_i64()) {
+        f.iter_frot_maxi = n.max(1) as usize;
+    }
+    Ok(f)
+}
+
+/// Discrete friction is not implemented yet: refused at FROTTEMENT.
+pub fn refuse_discrete(ex: &Executor, kw: &Keywords) -> Result<(), ExecError> {
+    let span = kw.keyword("FROTTEMENT").map(|k| k.span).unwrap_or_default();
+    Err(ex.unsupported(
+        "DEFI_CONTACT/FROTTEMENT='COULOMB' with FORMULATION='DISCRETE' (discrete penalised friction)",
+        span,
+    ))
+}
