@@ -147,3 +147,32 @@ fn deformable_base_keeps_coulomb_at_each_node() {
         assert!((rt - mu * rn).abs() <= 1e-8 * rn, "RT {rt} RN {rn}");
     }
 }
+
+#[test]
+fn small_coefficients_converge_to_the_same_answer() {
+    let mesh = two_plates_mesh(4, 3).unwrap();
+    let (model, loads) = two_plates_shear_problem(mesh, 0.2, true).unwrap();
+    let mut def = definition(0.3, Resolution::Newton);
+    if let ContactDefinition::Continue(c) = &mut def {
+        c.zones[0].law.algo = ContinueAlgo::Standard { coef_cont: 1.0 };
+        if let Some(f) = &mut c.friction {
+            f.zones[0].algo = aster_contact::friction::FrictionAlgo::Standard { coef_frot: 1.0 };
+        }
+    }
+    let ContactDefinition::Continue(c) = &def else {
+        unreachable!()
+    };
+    let mut f = ContinuousFriction::new(c, model.mesh(), Measure::Plane).unwrap();
+    let res = {
+        let mut snl = StaticNonLinear {
+            instants: vec![0.0, 1.0, 1.25, 1.5, 1.75, 2.0],
+            forces: vec![Box::new(&mut f) as Box<dyn ForceSource>],
+            ..Default::default()
+        };
+        snl.solve(&model, &loads).unwrap()
+    };
+    let s = res.last().unwrap();
+    let fx = group_force(&model, &s.displacement, "CD", aster_fem::Comp::DX);
+    let fy = group_force(&model, &s.displacement, "CD", aster_fem::Comp::DY);
+    assert!((fx.abs() - 0.3 * fy.abs()).abs() <= 1e-8 * fy.abs());
+}

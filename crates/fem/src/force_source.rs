@@ -83,8 +83,11 @@ pub trait ForceSource {
 
     /// After a Newton solve: update the statuses and the geometry the next
     /// evaluation uses; `true` when they did not change and the source's
-    /// own criteria hold (the iterate may be accepted).
-    fn after_iteration(&mut self, state: &State, own: &[f64]) -> Result<bool, FemError>;
+    /// own criteria hold (the iterate may be accepted). The source may
+    /// bring its unknowns back into their admissible set (e.g. friction
+    /// directions onto the unit ball): this changes the path, not the
+    /// solution.
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError>;
 
     /// Newton converged on the current statuses: accept, or ask for another
     /// solve (fixed-point loops).
@@ -94,6 +97,11 @@ pub trait ForceSource {
 
     /// The increment is accepted (called once per converged increment).
     fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError>;
+
+    /// A name for own unknown `k` in messages (e.g. `LAGS_C of node N3`).
+    fn unknown_name(&self, k: usize, _mesh: &aster_mesh::Mesh) -> String {
+        format!("unknown #{}", k + 1)
+    }
 }
 
 /// A borrowed source, so that the caller keeps it (and what it recorded)
@@ -111,7 +119,7 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
         (**self).evaluate(state, own)
     }
-    fn after_iteration(&mut self, state: &State, own: &[f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
         (**self).after_iteration(state, own)
     }
     fn after_convergence(&mut self, state: &State, own: &[f64]) -> Result<LoopVerdict, FemError> {
@@ -119,6 +127,9 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     }
     fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError> {
         (**self).converged(state, own)
+    }
+    fn unknown_name(&self, k: usize, mesh: &aster_mesh::Mesh) -> String {
+        (**self).unknown_name(k, mesh)
     }
 }
 
@@ -265,7 +276,11 @@ pub(crate) fn newton_step(
                 model.dofs().dof(dof).describe(model.mesh())
             } else if i < nfree + nown {
                 let s = offsets.iter().rposition(|&o| o <= i - nfree).unwrap_or(0);
-                format!("unknown #{} of {}", i - nfree - offsets[s] + 1, sources[s].name())
+                format!(
+                    "{} ({})",
+                    sources[s].unknown_name(i - nfree - offsets[s], model.mesh()),
+                    sources[s].name()
+                )
             } else {
                 format!("Lagrange multiplier #{}", i - nfree - nown + 1)
             }
@@ -276,6 +291,14 @@ pub(crate) fn newton_step(
             },
             other => linalg::failure_to_error(other, name),
         })?;
+        if trace {
+            let (imax, vmax) = sol
+                .x
+                .iter()
+                .enumerate()
+                .fold((0, 0.0f64), |(i0, v0), (i, v)| if v.abs() > v0 { (i, v.abs()) } else { (i0, v0) });
+            eprintln!("[newton/sources] largest correction {vmax:.3e} on {}", name(imax));
+        }
         solves += 1;
         iteration += 1;
         newton_iterations += 1;
@@ -296,7 +319,7 @@ pub(crate) fn newton_step(
         // Statuses and geometry at the new iterate.
         let mut settled = true;
         for (s, src) in sources.iter_mut().enumerate() {
-            let ok = src.after_iteration(&state(model, u, t), &own[s])?;
+            let ok = src.after_iteration(&state(model, u, t), &mut own[s])?;
             settled &= ok;
         }
         // Residual at the new iterate (with the new statuses).

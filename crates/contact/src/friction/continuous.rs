@@ -137,6 +137,9 @@ struct Local {
     k: Vec<f64>,
     /// The contact part of the slave rows' residual (the rest is friction).
     slave_cont: Vec<f64>,
+    /// Whether the point was in contact, and sticking or sliding.
+    contact: bool,
+    friction: bool,
 }
 
 /// A Lagrange node: its first own unknown and component count.
@@ -179,6 +182,10 @@ pub struct ContinuousFriction {
     edge_min: f64,
     edge_max: f64,
     snapshots: Snapshots,
+    /// Per Lagrange node, from the last evaluation: whether its equations
+    /// were those of an open point only (λ = 0) and of a point without
+    /// friction only (Λ = 0), so that the solved values are exactly zero.
+    decoupled: Vec<(bool, bool)>,
     /// The contact and friction nodal forces of the last evaluation.
     forces_cont: HashMap<NodeId, [f64; 3]>,
     forces_frot: HashMap<NodeId, [f64; 3]>,
@@ -487,6 +494,7 @@ impl ContinuousFriction {
             edge_min,
             edge_max,
             snapshots: Vec::new(),
+            decoupled: Vec::new(),
             forces_cont: HashMap::new(),
             forces_frot: HashMap::new(),
         })
@@ -771,11 +779,13 @@ impl ContinuousFriction {
         let mut fe = [0.0; 3];
         let mut fe_cont = [0.0; 3];
         let mut dfe = [[0.0; NZ]; 3];
-        let mut gc = 0.0;
+        let gc: f64;
         let mut dgc = [0.0; NZ];
         let mut gf = [0.0; 2];
         let mut dgf = [[0.0; NZ]; 2];
-        // Which derivatives code_aster's matrices leave out.
+        // Which derivatives code_aster's matrices leave out (`mmmtec`: the
+        // friction force's derivative with respect to λ only without
+        // friction penalisation).
         let mut keep_dfe_lam = true;
         let keep_dgf_lam = false;
         let pmat = |x: [f64; 3]| -> [f64; 3] {
@@ -942,7 +952,6 @@ impl ContinuousFriction {
                 }
             }
         }
-        let _ = phase;
         if !keep_dfe_lam {
             for row in dfe.iter_mut() {
                 row[8] = 0.0;
@@ -1020,6 +1029,8 @@ impl ContinuousFriction {
             r,
             k: kmat,
             slave_cont,
+            contact,
+            friction: phase == "ADHE" || phase == "GLIS",
         })
     }
 
@@ -1082,8 +1093,7 @@ impl ContinuousFriction {
     }
 
     /// Node of the first own unknown of each Lagrange node, for messages.
-    #[allow(dead_code)]
-    fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
+    fn name_of_unknown(&self, k: usize, mesh: &Mesh) -> String {
         for l in &self.lagr {
             if k >= l.first && k < l.first + l.comps {
                 let c = ["LAGS_C", "LAGS_F1", "LAGS_F2"][k - l.first];
@@ -1315,8 +1325,24 @@ impl ForceSource for ContinuousFriction {
             own_residual: vec![0.0; self.unknowns],
             tangent: Vec::new(),
         };
+        let mut decoupled = vec![(true, true); self.lagr.len()];
         for p in &self.points {
             let e = self.element(p, state, own)?;
+            for (i, &(n, shape)) in p.slave.iter().enumerate() {
+                if shape == 0.0 {
+                    continue;
+                }
+                let l = p.lagr[i];
+                if p.node != Some(n) {
+                    decoupled[l] = (false, false);
+                }
+                if e.contact {
+                    decoupled[l].0 = false;
+                }
+                if e.friction || !p.fric_excl.is_empty() {
+                    decoupled[l].1 = false;
+                }
+            }
             let size = e.unknowns.len();
             for (i, ui) in e.unknowns.iter().enumerate() {
                 match *ui {
@@ -1331,11 +1357,26 @@ impl ForceSource for ContinuousFriction {
                 }
             }
         }
+        self.decoupled = decoupled;
         Ok(c)
     }
 
-    fn after_iteration(&mut self, state: &State, own: &[f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
         self.newton_iterations += 1;
+        // An open node's pressure and a node without friction's directions
+        // solve equations of their own (λ/ρ = 0, Λ·τ = 0): their values are
+        // exactly zero; the factorisation leaves round-off there, which the
+        // status tests must not read.
+        for (l, &(open, free)) in self.lagr.iter().zip(&self.decoupled) {
+            if open {
+                own[l.first] = 0.0;
+            }
+            if free {
+                for k in 1..l.comps {
+                    own[l.first + k] = 0.0;
+                }
+            }
+        }
         if let FrictionGeometry::Newton { .. } = self.geometry {
             let x = Self::positions(state);
             self.pair_all(&x).map_err(|e| self.err(e))?;
@@ -1421,6 +1462,10 @@ impl ForceSource for ContinuousFriction {
             }
         }
         Ok(LoopVerdict::Done)
+    }
+
+    fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
+        self.name_of_unknown(k, mesh)
     }
 
     fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError> {
