@@ -15,8 +15,8 @@
 
 use crate::executor::RunOptions;
 use aster_eval::{
-    CommandCall, CommandOutput, CommandSink, ConceptRef, DiagKind, Diagnostic, Diagnostics,
-    ExecError, HostValue, Keywords, KwValue,
+    CheckSink, CommandCall, CommandOutput, CommandSink, ConceptRef, DiagKind, Diagnostic,
+    Diagnostics, ExecError, HostValue, Keywords, KwValue,
 };
 use aster_mesh::Mesh;
 use aster_syntax::{CodeMap, Span};
@@ -73,7 +73,8 @@ const MESH_COMMANDS: &[&str] = &[
 struct Sink<'o> {
     options: &'o RunOptions,
     findings: Vec<Diagnostic>,
-    calls: Vec<CommandCall>,
+    /// Types each result and records the calls, as `aster check` does.
+    check: CheckSink,
     meshes: Vec<ReadMesh>,
     /// A mesh the pass cannot follow is made: no group check.
     unknown_mesh: bool,
@@ -135,20 +136,22 @@ impl CommandSink for Sink<'_> {
         } else if produces_mesh(call) && !MESH_COMMANDS.contains(&call.command.as_str()) {
             self.unknown_mesh = true;
         }
-        self.calls.push(call.clone());
-        Ok(if call.result.is_some() {
-            CommandOutput::Concept
-        } else {
-            CommandOutput::Nothing
-        })
+        self.check.execute(call)
     }
-    fn method(&mut self, _: &ConceptRef, _: &str, _: &[HostValue]) -> Result<HostValue, ExecError> {
-        Ok(HostValue::Unknown)
+    fn method(
+        &mut self,
+        c: &ConceptRef,
+        name: &str,
+        args: &[HostValue],
+    ) -> Result<HostValue, ExecError> {
+        self.check.method(c, name, args)
     }
-    fn index(&mut self, _: &ConceptRef, _: &[HostValue]) -> Result<HostValue, ExecError> {
-        Ok(HostValue::Unknown)
+    fn index(&mut self, c: &ConceptRef, key: &[HostValue]) -> Result<HostValue, ExecError> {
+        self.check.index(c, key)
     }
-    fn print(&mut self, _: &str) {}
+    fn print(&mut self, line: &str) {
+        self.check.print(line)
+    }
 }
 
 /// The call makes a mesh (its result is a `maillage_*` concept).
@@ -162,7 +165,10 @@ pub fn check(map: &CodeMap, module: &aster_syntax::ast::Module, options: &RunOpt
     let mut sink = Sink {
         options,
         findings: Vec::new(),
-        calls: Vec::new(),
+        check: CheckSink {
+            calls: Vec::new(),
+            record: true,
+        },
         meshes: Vec::new(),
         unknown_mesh: false,
     };
@@ -185,13 +191,13 @@ pub fn check(map: &CodeMap, module: &aster_syntax::ast::Module, options: &RunOpt
         .collect();
     findings.append(&mut sink.findings);
     if !sink.unknown_mesh && !sink.meshes.is_empty() {
-        findings.extend(group_findings(&sink.calls, &sink.meshes));
+        findings.extend(group_findings(&sink.check.calls, &sink.meshes));
     }
     findings.sort_by_key(|d| (d.span.start, d.span.end));
     findings.dedup_by(|a, b| a.span == b.span && a.message == b.message);
     Preflight {
         findings: Diagnostics(findings),
-        commands: sink.calls.len(),
+        commands: sink.check.calls.len(),
         complete,
         meshes: sink.meshes,
     }
