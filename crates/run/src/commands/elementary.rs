@@ -42,6 +42,7 @@ pub fn calcul(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     ex.only_values("CALCUL", kw, "OPTION", &["FORC_NODA_ELEM"])?;
     for occ in kw.factor("COMPORTEMENT") {
         ex.only_values("CALCUL/COMPORTEMENT", occ, "RELATION", &["ELAS"])?;
+        ex.only_values("CALCUL/COMPORTEMENT", occ, "DEFORMATION", &["PETIT"])?;
     }
     let model = ex.model(ex.required("CALCUL", kw, "MODELE")?)?;
     let materials = ex.material_field(ex.required("CALCUL", kw, "CHAM_MATER")?)?;
