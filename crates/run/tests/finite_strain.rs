@@ -2,7 +2,8 @@
 //! comm/finite_strain.mail, comm/finite_strain_2d.comm on
 //! comm/finite_strain_2d.mail): homogeneous deformations — uniaxial stretch
 //! to 1.5, stretch then a rigid rotation of 90 degrees, simple shear,
-//! plane stress, axisymmetric growth — under GREEN_LAGRANGE, GDEF_LOG,
+//! plane stress, axisymmetric growth, a block compressed by 25 % through
+//! discrete and continuous contact — under GREEN_LAGRANGE, GDEF_LOG,
 //! SIMO_MIEHE and PETIT_REAC, every TEST_RESU against the closed-form
 //! answer of its formulation to 1e-9.
 
@@ -48,5 +49,17 @@ fn rotation_shear_plane_stress_and_axis_match_the_closed_forms() {
             "2d"
         ),
         (94, 0, None)
+    );
+}
+
+#[test]
+fn contact_is_paired_on_the_deformed_geometry() {
+    assert_eq!(
+        run(
+            "comm/finite_strain_contact.comm",
+            "comm/plastic_block.mail",
+            "contact"
+        ),
+        (24, 0, None)
     );
 }
