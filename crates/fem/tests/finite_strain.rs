@@ -199,13 +199,41 @@ fn consistent_tangents_converge_quadratically_in_large_strains() {
     let vmis = Arc::new(VonMises::linear(E, 5.0, 100.0).unwrap());
     let cases: Vec<(Hypothesis, Option<Arc<VonMises>>, Kinematics)> = vec![
         (Hypothesis::PlaneStrain, None, Kinematics::GreenLagrange),
-        (Hypothesis::PlaneStrain, Some(vmis.clone()), Kinematics::Logarithmic),
-        (Hypothesis::PlaneStress, Some(vmis.clone()), Kinematics::Logarithmic),
-        (Hypothesis::Axisymmetric, Some(vmis.clone()), Kinematics::Logarithmic),
-        (Hypothesis::PlaneStrain, Some(vmis.clone()), Kinematics::SimoMiehe),
-        (Hypothesis::Axisymmetric, Some(vmis.clone()), Kinematics::SimoMiehe),
-        (Hypothesis::Solid3D, Some(vmis.clone()), Kinematics::Logarithmic),
-        (Hypothesis::Solid3D, Some(vmis.clone()), Kinematics::SimoMiehe),
+        (
+            Hypothesis::PlaneStrain,
+            Some(vmis.clone()),
+            Kinematics::Logarithmic,
+        ),
+        (
+            Hypothesis::PlaneStress,
+            Some(vmis.clone()),
+            Kinematics::Logarithmic,
+        ),
+        (
+            Hypothesis::Axisymmetric,
+            Some(vmis.clone()),
+            Kinematics::Logarithmic,
+        ),
+        (
+            Hypothesis::PlaneStrain,
+            Some(vmis.clone()),
+            Kinematics::SimoMiehe,
+        ),
+        (
+            Hypothesis::Axisymmetric,
+            Some(vmis.clone()),
+            Kinematics::SimoMiehe,
+        ),
+        (
+            Hypothesis::Solid3D,
+            Some(vmis.clone()),
+            Kinematics::Logarithmic,
+        ),
+        (
+            Hypothesis::Solid3D,
+            Some(vmis.clone()),
+            Kinematics::SimoMiehe,
+        ),
         (Hypothesis::Solid3D, None, Kinematics::GreenLagrange),
     ];
     for (hyp, law, kinematics) in cases {
@@ -259,8 +287,7 @@ fn a_symmetrised_simo_miehe_tangent_converges_to_the_same_answer() {
     for (x, y) in a.iter().zip(b) {
         assert!((x - y).abs() < 1e-8 * scale, "{x} vs {y}");
     }
-    let iterations = |r: &NonLinearResult| -> usize {
-        r.steps.iter().map(|s| s.newton_iterations).sum()
-    };
+    let iterations =
+        |r: &NonLinearResult| -> usize { r.steps.iter().map(|s| s.newton_iterations).sum() };
     assert!(iterations(&sym) > iterations(&exact));
 }
