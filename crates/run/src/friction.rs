@@ -6,13 +6,13 @@ use aster_contact::friction::{
     ContactInit, ContinueFriction, ContinueZoneFriction, FrictionAlgo,
 };
 use aster_contact::Resolution;
-use aster_eval::{ExecError, Keywords};
+use aster_eval::{CommandCall, ExecError, Keywords};
 
-use crate::executor::Executor;
+use crate::support::Refusal;
 
 /// The friction of a continuous definition: one setting per zone and the
 /// friction loop. Refuses, located, what the elements do not reproduce.
-pub fn continuous(ex: &Executor, kw: &Keywords) -> Result<ContinueFriction, ExecError> {
+pub fn continuous(kw: &Keywords) -> Result<ContinueFriction, ExecError> {
     let mut zones = Vec::new();
     for occ in kw.factor("ZONE") {
         let coulomb = occ.f64("COULOMB").ok_or_else(|| {
@@ -50,23 +50,6 @@ pub fn continuous(ex: &Executor, kw: &Keywords) -> Result<ContinueFriction, Exec
                 dir.get(2).copied().unwrap_or(0.0),
             ]);
         }
-        // The penalised friction coefficient adapted to GLIS_MAXI
-        // (code_aster's `mm_cycl_algo`) changes the converged answer: not
-        // reproduced.
-        if occ.contains("GLIS_MAXI") && matches!(z.algo, FrictionAlgo::Penalisation { .. }) {
-            let span = occ.keyword("GLIS_MAXI").map(|k| k.span).unwrap_or_default();
-            return Err(ex.unsupported(
-                "DEFI_CONTACT/ZONE/GLIS_MAXI (the penalised friction coefficient adapted to a slip)",
-                span,
-            ));
-        }
-        if occ.str("GRAND_GLIS") == Some("OUI") {
-            let span = occ.keyword("GRAND_GLIS").map(|k| k.span).unwrap_or_default();
-            return Err(ex.unsupported(
-                "DEFI_CONTACT/ZONE/GRAND_GLIS='OUI' (large-slip friction terms)",
-                span,
-            ));
-        }
         zones.push(z);
     }
     let mut f = ContinueFriction::new(zones);
@@ -83,11 +66,41 @@ pub fn continuous(ex: &Executor, kw: &Keywords) -> Result<ContinueFriction, Exec
     Ok(f)
 }
 
-/// Discrete friction is not implemented yet: refused at FROTTEMENT.
-pub fn refuse_discrete(ex: &Executor, kw: &Keywords) -> Result<(), ExecError> {
-    let span = kw.keyword("FROTTEMENT").map(|k| k.span).unwrap_or_default();
-    Err(ex.unsupported(
-        "DEFI_CONTACT/FROTTEMENT='COULOMB' with FORMULATION='DISCRETE' (discrete penalised friction)",
-        span,
-    ))
+/// The static refusals of DEFI_CONTACT's friction (`crate::support`):
+/// what the friction module does not reproduce, located at its keyword.
+pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    let kw = &call.keywords;
+    if kw.str("FROTTEMENT") != Some("COULOMB") {
+        return;
+    }
+    if kw.str("FORMULATION").unwrap_or("DISCRETE") == "DISCRETE" {
+        out.push(Refusal::at(
+            "DEFI_CONTACT/FROTTEMENT='COULOMB' with FORMULATION='DISCRETE' (discrete penalised friction)"
+                .into(),
+            kw,
+            "FROTTEMENT",
+            call.span,
+        ));
+    }
+    for occ in kw.factor("ZONE") {
+        // The penalised friction coefficient adapted to GLIS_MAXI
+        // (code_aster's `mm_cycl_algo`) changes the converged answer.
+        if occ.contains("GLIS_MAXI") && occ.str("ALGO_FROT") == Some("PENALISATION") {
+            out.push(Refusal::at(
+                "DEFI_CONTACT/ZONE/GLIS_MAXI (the penalised friction coefficient adapted to a slip)"
+                    .into(),
+                occ,
+                "GLIS_MAXI",
+                call.span,
+            ));
+        }
+        if occ.str("GRAND_GLIS") == Some("OUI") {
+            out.push(Refusal::at(
+                "DEFI_CONTACT/ZONE/GRAND_GLIS='OUI' (large-slip friction terms)".into(),
+                occ,
+                "GRAND_GLIS",
+                call.span,
+            ));
+        }
+    }
 }
