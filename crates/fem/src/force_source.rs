@@ -296,8 +296,17 @@ pub(crate) fn newton_step(
                 .x
                 .iter()
                 .enumerate()
-                .fold((0, 0.0f64), |(i0, v0), (i, v)| if v.abs() > v0 { (i, v.abs()) } else { (i0, v0) });
-            eprintln!("[newton/sources] largest correction {vmax:.3e} on {}", name(imax));
+                .fold((0, 0.0f64), |(i0, v0), (i, v)| {
+                    if v.abs() > v0 {
+                        (i, v.abs())
+                    } else {
+                        (i0, v0)
+                    }
+                });
+            eprintln!(
+                "[newton/sources] largest correction {vmax:.3e} on {}",
+                name(imax)
+            );
         }
         solves += 1;
         iteration += 1;

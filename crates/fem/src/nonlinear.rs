@@ -28,13 +28,13 @@
 use crate::assembly::{assemble_stiffness, restrict};
 use crate::behaviour::{Behaviours, PlasticCells};
 use crate::error::FemError;
+use crate::force_source::{self, ForceSource, ForceStep};
 use crate::held;
 use crate::linalg::{self, Csc, SolveFailure};
 use crate::loads::Loads;
 use crate::model::Model;
 use crate::post::{self, CellValues};
 use crate::solver_constrained::{self, KktSolver, MatrixKey};
-use crate::force_source::{self, ForceSource, ForceStep};
 use crate::unilateral::{
     GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };
@@ -351,7 +351,11 @@ impl StaticNonLinear<'_> {
                 self.sources[0].name()
             )));
         }
-        let mut own: Vec<Vec<f64>> = self.forces.iter().map(|f| vec![0.0; f.unknowns()]).collect();
+        let mut own: Vec<Vec<f64>> = self
+            .forces
+            .iter()
+            .map(|f| vec![0.0; f.unknowns()])
+            .collect();
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {

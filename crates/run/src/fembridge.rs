@@ -532,7 +532,8 @@ pub fn solve(
                 }
                 ContactDef::Zones { keywords, .. } => {
                     if crate::contactbridge::has_friction(keywords) {
-                        friction = Some(crate::contactbridge::friction_source(ex, &mesh, keywords)?);
+                        friction =
+                            Some(crate::contactbridge::friction_source(ex, &mesh, keywords)?);
                     } else {
                         contact_zones = Some(crate::contactbridge::zones(ex, &mesh, keywords)?);
                     }
@@ -631,7 +632,13 @@ pub fn solve(
                 if let Some(Field::Nodal(depl)) = fields.get_mut("DEPL") {
                     let own = s.own_unknowns.first().map(|v| v.as_slice()).unwrap_or(&[]);
                     let friction_dofs = f.has_friction_unknowns();
-                    let dim = model.dofs().comps().iter().filter(|c| matches!(c, aster_fem::Comp::DZ)).count() + 2;
+                    let dim = model
+                        .dofs()
+                        .comps()
+                        .iter()
+                        .filter(|c| matches!(c, aster_fem::Comp::DZ))
+                        .count()
+                        + 2;
                     for (n, v) in f.multipliers(own) {
                         depl.set(n, "LAGS_C", v[0]);
                         if friction_dofs {

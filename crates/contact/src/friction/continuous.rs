@@ -257,7 +257,11 @@ fn auto_points(kind: SurfaceKind) -> Vec<([f64; 2], f64, Option<usize>)> {
                 4.0 / 9.0,
             ];
             let mut pts = at_nodes(&w);
-            let centre = if kind == SurfaceKind::Quad9 { Some(8) } else { None };
+            let centre = if kind == SurfaceKind::Quad9 {
+                Some(8)
+            } else {
+                None
+            };
             pts.push(([0.0, 0.0], 16.0 / 9.0, centre));
             pts
         }
@@ -444,7 +448,10 @@ impl ContinuousFriction {
                 let l = match c.kind {
                     SurfaceKind::Seg2 | SurfaceKind::Seg3 => norm(sub(p[1], p[0])),
                     k if k.is_triangle() => {
-                        let m = scale([p[0][0] + p[1][0], p[0][1] + p[1][1], p[0][2] + p[1][2]], 0.5);
+                        let m = scale(
+                            [p[0][0] + p[1][0], p[0][1] + p[1][1], p[0][2] + p[1][2]],
+                            0.5,
+                        );
                         norm(sub(p[2], m))
                     }
                     _ => norm(sub(p[2], p[0])) + norm(sub(p[3], p[1])),
@@ -569,8 +576,8 @@ impl ContinuousFriction {
                         let t1 = scale(t, 1.0 / l);
                         tau = [t1, cross(t1, n)];
                     }
-                    let jeusup = z.geometry.dist_mait.at(pp.master_x)
-                        + z.geometry.dist_escl.at(pp.slave_x);
+                    let jeusup =
+                        z.geometry.dist_mait.at(pp.master_x) + z.geometry.dist_escl.at(pp.slave_x);
                     p.pair = Some(PointPair {
                         master: pp.master,
                         n,

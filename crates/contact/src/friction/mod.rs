@@ -132,9 +132,7 @@ impl ContinueFriction {
             }
             let (k, v) = match z.algo {
                 FrictionAlgo::Standard { coef_frot } => ("COEF_FROT", coef_frot),
-                FrictionAlgo::Penalisation { coef_pena_frot } => {
-                    ("COEF_PENA_FROT", coef_pena_frot)
-                }
+                FrictionAlgo::Penalisation { coef_pena_frot } => ("COEF_PENA_FROT", coef_pena_frot),
             };
             if !(v.is_finite() && v > 0.0) {
                 return Err(ContactError::Invalid {
