@@ -327,8 +327,12 @@ pub(crate) fn newton_step(
         }
         // Statuses and geometry at the new iterate.
         let mut settled = true;
+        let mut unsettled = Vec::new();
         for (s, src) in sources.iter_mut().enumerate() {
             let ok = src.after_iteration(&state(model, u, t), &mut own[s])?;
+            if !ok {
+                unsettled.push(src.name());
+            }
             settled &= ok;
         }
         // Residual at the new iterate (with the new statuses).
@@ -417,6 +421,7 @@ pub(crate) fn newton_step(
                 iterations: iteration,
                 resi_rela,
                 resi_maxi,
+                cycling: (!settled).then(|| unsettled.join(", ")),
             });
         }
     }

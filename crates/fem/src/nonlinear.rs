@@ -1123,6 +1123,7 @@ fn newton_step(
                         iterations: settled,
                         resi_rela,
                         resi_maxi,
+                        cycling: None,
                     });
                 }
             } else {
