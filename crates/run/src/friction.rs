@@ -117,6 +117,23 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         }
     }
     for occ in kw.factor("ZONE") {
+        // A penalised zone with ADAPTATION='ADAPT_COEF'/'TOUT': code_aster
+        // replaces COEF_PENA_CONT/COEF_PENA_FROT by coefficients adapted
+        // to PENE_MAXI/GLIS_MAXI (`cazocc`, iadapt 2/3/7): the converged
+        // answer depends on them.
+        let penalised = occ.str("ALGO_CONT") == Some("PENALISATION")
+            || occ.str("ALGO_FROT") == Some("PENALISATION");
+        if penalised && matches!(occ.str("ADAPTATION"), Some("ADAPT_COEF" | "TOUT")) {
+            out.push(Refusal::at(
+                format!(
+                    "DEFI_CONTACT/ZONE/ADAPTATION='{}' with penalisation (penalty coefficients adapted to PENE_MAXI/GLIS_MAXI)",
+                    occ.str("ADAPTATION").unwrap_or_default()
+                ),
+                occ,
+                "ADAPTATION",
+                call.span,
+            ));
+        }
         // The penalised friction coefficient adapted to GLIS_MAXI
         // (code_aster's `mm_cycl_algo`) changes the converged answer.
         if occ.contains("GLIS_MAXI") && occ.str("ALGO_FROT") == Some("PENALISATION") {
