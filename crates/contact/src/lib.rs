@@ -20,6 +20,7 @@ mod geomloop;
 mod integration;
 pub mod lac;
 mod pairing;
+pub mod quad8;
 mod rows;
 mod shape;
 mod surface;

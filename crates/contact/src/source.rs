@@ -104,6 +104,7 @@ impl ZoneContact {
                 }
             }
         }
+        crate::quad8::remove_middle_nodes(&mut out);
         Ok(out)
     }
 
