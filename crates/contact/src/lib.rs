@@ -20,6 +20,7 @@ mod geomloop;
 mod integration;
 pub mod lac;
 mod pairing;
+mod penalty;
 pub mod quad8;
 mod rows;
 mod shape;

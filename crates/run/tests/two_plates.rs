@@ -25,6 +25,26 @@ fn lags_c_and_displacements_pass_every_check() {
     let _ = std::fs::remove_dir_all(out);
 }
 
+/// comm/two_plates_penalised.comm: continuous PENALISATION under a
+/// pressure load, kappa = 1e16. code_aster's penalised element is
+/// pointwise (aster_contact's `penalty` module): the interface is glued at
+/// every integration point and the uniform analytic state is the discrete
+/// solution — LAGS_C = -1e5 and DY = -0.05 to 1e-5 (measured ~5e-7).
+#[test]
+fn pointwise_penalty_gives_the_analytic_state() {
+    let out = std::env::temp_dir().join(format!("aster-two-plates-pena-{}", std::process::id()));
+    let case = aster_run::program::prepare(
+        &root().join("comm/two_plates_penalised.comm"),
+        Some(&root().join("comm/two_plates.mail")),
+        &out,
+    )
+    .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (12, 0));
+    let _ = std::fs::remove_dir_all(out);
+}
+
 #[test]
 fn the_mesh_file_is_the_generated_scene() {
     let file = aster_mesh::read_mail(&root().join("comm/two_plates.mail")).unwrap();
