@@ -1054,6 +1054,9 @@ fn newton_step(
                 }
                 if changed {
                     pairing_start = outer;
+                    // New rows: the active sets seen with the previous
+                    // ones say nothing about cycling with these.
+                    history.clear();
                     set_changes += 1;
                     if set_changes > active_set_max_iter {
                         return Err(FemError::ActiveSet {
