@@ -14,6 +14,7 @@
 // iterator chains in numerical code.
 #![allow(clippy::needless_range_loop)]
 
+mod augmented;
 pub mod dual;
 mod error;
 mod geomloop;

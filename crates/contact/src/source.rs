@@ -4,8 +4,8 @@
 use std::collections::BTreeMap;
 
 use aster_fem::{
-    Dof, FemError, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
-    UnilateralSource,
+    AugmentedTerm, Dof, FemError, GeometryUpdate, InequalityRow, RowOutcome, State,
+    UnilateralMethod, UnilateralSource,
 };
 use aster_mesh::{CellId, LacZonePatches, Mesh, NodeId};
 
@@ -74,6 +74,10 @@ pub struct ZoneContact {
     lac: Option<Vec<LacPatchRef>>,
     /// ALGO_CONT='LAC': the patches' integrals of the last pairing.
     lac_integrals: Vec<PatchIntegral>,
+    /// ALGO_CONT='STANDARD': the augmented term ρ·g of each paired
+    /// integration point (module `augmented`), for the rows of the last
+    /// pairing.
+    augmented: Vec<AugmentedTerm>,
 }
 
 impl ZoneContact {
@@ -119,6 +123,7 @@ impl ZoneContact {
             measure: Measure::Plane,
             lac: None,
             lac_integrals: Vec::new(),
+            augmented: Vec::new(),
             zone,
             law,
             geom_loop,
@@ -341,6 +346,20 @@ impl ZoneContact {
                 ZoneLaw::Continue(_) => rows = self.weighted_node_rows(mesh, x),
             }
         }
+        self.augmented = match self.law {
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Standard { coef_cont },
+                ..
+            }) if self.zone.geometry.resolve => crate::augmented::terms(
+                &self.zone,
+                &self.pairs,
+                &self.node_rows(),
+                coef_cont,
+                mesh,
+                x,
+            ),
+            _ => Vec::new(),
+        };
         self.forces = vec![0.0; self.carriers.len()];
         if self.geom_loop == GeomLoop::Sans {
             self.frozen_rows = rows.clone();
@@ -405,6 +424,19 @@ impl ZoneContact {
             rows.push(InequalityRow::new(terms, rhs, id));
         }
         rows
+    }
+
+    /// For each slave node that carries a continuous row: the row's index
+    /// in the rows of the last pairing.
+    fn node_rows(&self) -> BTreeMap<NodeId, usize> {
+        self.carriers
+            .iter()
+            .zip(&self.links)
+            .filter_map(|(nodes, link)| match (nodes.as_slice(), link) {
+                ([(n, _)], Some(l)) => Some((*n, l.row)),
+                _ => None,
+            })
+            .collect()
     }
 
     /// Penalty of each row for the dual algorithms (ε = 1/penalty, 0 = exact).
@@ -688,6 +720,10 @@ impl UnilateralSource for ZoneContact {
         }
         self.last_rows = rows.clone();
         Ok(rows)
+    }
+
+    fn augmented_terms(&self) -> Vec<AugmentedTerm> {
+        self.augmented.clone()
     }
 
     fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
