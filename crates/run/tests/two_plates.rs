@@ -40,6 +40,19 @@ fn sliding_plates_carry_mu_times_the_normal_force() {
     assert_eq!(run_scene("two_plates_friction.comm"), (8, 0));
 }
 
+/// comm/two_plates_glued.comm: continuous contact under a pressure load,
+/// PENALISATION with kappa = 1e16, then STANDARD with COEF_CONT = 1e14.
+/// code_aster's penalised element is pointwise (aster_contact's `penalty`
+/// module) and its STANDARD element adds rho * g at every point in contact
+/// (module `augmented`): either way the interface is glued at every
+/// integration point and the uniform analytic state is the discrete
+/// solution — LAGS_C = -1e5 and DY = -0.05 to 1e-5 (measured ~5e-7 and
+/// ~2e-8). Per-node weighted gaps alone put LAGS_C 0.2 % off.
+#[test]
+fn pointwise_glued_interfaces_give_the_analytic_state() {
+    assert_eq!(run_scene("two_plates_glued.comm"), (24, 0));
+}
+
 #[test]
 fn the_mesh_file_is_the_generated_scene() {
     let file = aster_mesh::read_mail(&root().join("comm/two_plates.mail")).unwrap();
