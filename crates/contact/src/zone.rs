@@ -196,7 +196,10 @@ pub enum Integration {
     /// `AUTO`: at the nodes of the slave cells (Newton–Cotes weights).
     #[default]
     Auto,
-    /// Gauss–Legendre, exact for polynomials of the given degree.
+    /// Gauss with code_aster's `ORDRE_INT` (`mmgaus`): on segments that
+    /// many Gauss–Legendre points, on quadrangles their square, on
+    /// triangles the rule of that rank (1, 3, 4, 6, 7, 12 points, exact
+    /// to degree 1…6).
     Gauss(u8),
     /// Composite Simpson with the given number of sub-intervals pairs (segments).
     Simpson(u8),
