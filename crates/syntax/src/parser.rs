@@ -232,10 +232,10 @@ impl Builder<'_> {
             }
             Rule::exec_stmt => {
                 inner.next();
-                let code = self.required_test(inner.next(), span)?;
+                let mut code = self.required_test(inner.next(), span)?;
                 let locals = inner.next().map(|p| self.test(p)).transpose()?;
                 // `exec code in g` was read as the comparison `code in g`.
-                let (code, globals) = match code.kind {
+                let (code, globals) = match std::mem::replace(&mut code.kind, ExprKind::None) {
                     ExprKind::Compare { left, mut ops }
                         if ops.len() == 1
                             && ops[0].0 == CmpOp::In
@@ -867,7 +867,7 @@ impl Builder<'_> {
             }
         }
         let mut items = items.into_iter().peekable();
-        fold(&mut items, 0)
+        fold(&mut items, 0, 0)
     }
 
     fn primary(&self, pair: P) -> R<Expr> {
@@ -1459,6 +1459,14 @@ impl Builder<'_> {
             return Err(err(open, "f-string: empty expression not allowed"));
         }
         let expr_start = start + from + lead;
+        // The field is parsed on its own: the nesting limits apply to it too.
+        crate::diagnose::check_limits(expr_text).map_err(|mut e| {
+            e.span = Span::new(
+                expr_start + e.span.start as usize,
+                expr_start + e.span.end as usize,
+            );
+            e
+        })?;
         let pairs = CommParser::parse(Rule::fstring_expr, expr_text).map_err(|e| {
             let mut pe = crate::error::from_pest(&e, expr_text);
             pe.span = Span::new(
@@ -1678,7 +1686,23 @@ fn infix_prec(rule: Rule) -> Option<u32> {
 
 /// Pratt folding of an operator sequence: operators binding tighter than
 /// `min` are taken into the left operand.
-fn fold(items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>, min: u32) -> R<Expr> {
+///
+/// `depth` counts the recursion (prefix operators and `**` chains nest the
+/// tree as deep as they are long): it stops at [`crate::limits::MAX_DEPTH`],
+/// as the tree would be refused at that depth anyway.
+fn fold(
+    items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>,
+    min: u32,
+    depth: usize,
+) -> R<Expr> {
+    if depth >= crate::limits::MAX_DEPTH {
+        let span = match items.peek() {
+            Some(OpItem::Operand(e)) => e.span,
+            Some(OpItem::Prefix(_, span)) => *span,
+            _ => Span::default(),
+        };
+        return Err(err(span, crate::limits::too_deep_message()));
+    }
     let mut lhs = match items.next() {
         Some(OpItem::Operand(e)) => e,
         Some(OpItem::Prefix(op, span)) => {
@@ -1687,7 +1711,7 @@ fn fold(items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>, min: u32) -
             } else {
                 PREC_UNARY
             };
-            let operand = fold(items, prec)?;
+            let operand = fold(items, prec, depth + 1)?;
             Expr {
                 span: span.merge(operand.span),
                 kind: ExprKind::UnaryOp {
@@ -1705,13 +1729,17 @@ fn fold(items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>, min: u32) -
             break;
         }
         items.next();
-        let rhs = fold(items, if rule == Rule::pow { prec - 1 } else { prec })?;
+        let rhs = fold(
+            items,
+            if rule == Rule::pow { prec - 1 } else { prec },
+            depth + 1,
+        )?;
         lhs = infix(lhs, rule, rhs);
     }
     Ok(lhs)
 }
 
-fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
+fn infix(mut lhs: Expr, op: Rule, rhs: Expr) -> Expr {
     let span = lhs.span.merge(rhs.span);
     let arith = match op {
         Rule::add => Some(BinOp::Add),
@@ -1746,7 +1774,7 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
             } else {
                 BoolOp::Or
             };
-            match lhs.kind {
+            match std::mem::replace(&mut lhs.kind, ExprKind::None) {
                 ExprKind::BoolOp {
                     op: lop,
                     mut values,
@@ -1785,7 +1813,7 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
                 Rule::is_not => CmpOp::IsNot,
                 _ => CmpOp::NotEq,
             };
-            match lhs.kind {
+            match std::mem::replace(&mut lhs.kind, ExprKind::None) {
                 ExprKind::Compare { left, mut ops }
                     if ops.last().is_some_and(|(_, e)| e.span.end == lhs.span.end) =>
                 {
