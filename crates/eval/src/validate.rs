@@ -868,6 +868,18 @@ impl Validator<'_> {
         }
         match v {
             Value::Unknown => Some(Scalar::Opaque("<run-time value>".into())),
+            // An integer beyond 64 bits: a real keyword takes it as code_aster
+            // does (`float()`); an integer keyword cannot hold it.
+            Value::Big(_) => {
+                let f = v.as_f64().filter(|f| f.is_finite())?;
+                if has(&ValueType::Real) {
+                    Some(Scalar::Real(f))
+                } else if has(&ValueType::Complex) {
+                    Some(Scalar::Complex(f, 0.0))
+                } else {
+                    None
+                }
+            }
             Value::Int(_) | Value::Bool(_) => {
                 let i = match v {
                     Value::Bool(b) => *b as i64,
