@@ -19,23 +19,110 @@ pub struct CommParser;
 type P<'t> = Node<'t>;
 type R<T> = Result<T, ParseError>;
 
+/// Files are parsed in pieces of about this many bytes, each ending at the
+/// end of a top-level statement: pest's token queue and the flat tree
+/// (about 20–80 bytes per input byte) then exist for one piece at a time,
+/// and the memory of a parse follows the size of the AST. Nearly every
+/// command file is a single piece.
+const CHUNK_BYTES: usize = 1 << 20;
+
 /// Parse a whole file into its AST (no post-parse validation).
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
     // pest reads a copy whose logical line ends are marked (same offsets);
     // the tree and the builder read the original text.
     let marked = crate::logical::mark_line_ends(source);
-    let pairs = CommParser::parse(Rule::module, &marked)
-        .map_err(|e| crate::error::from_pest(&e, source))?;
-    let tree = Tree::new(pairs, source);
-    let builder = Builder { base: 0, source };
-    let body = match tree.top().next() {
-        Some(module) => builder.stmts(module.into_inner())?,
-        None => Vec::new(),
-    };
+    let mut body = Vec::new();
+    let mut start = 0;
+    loop {
+        let end = chunk_end(marked.as_bytes(), start);
+        if let Err(e) = parse_piece(source, &marked, start, end, &mut body) {
+            if end == source.len() {
+                return Err(e);
+            }
+            // A failure in a piece: the rest of the file in one piece gives
+            // the error exactly as a parse of the whole file would (it may
+            // also succeed, if the cut was not a statement boundary).
+            parse_piece(source, &marked, start, source.len(), &mut body)?;
+            break;
+        }
+        if end == source.len() {
+            break;
+        }
+        start = end;
+    }
     Ok(Module {
         body,
         span: Span::new(0, source.len()),
     })
+}
+
+/// Parses `source[start..end]` (whole top-level statements) and appends its
+/// statements to `body` (nothing on failure).
+fn parse_piece(
+    source: &str,
+    marked: &str,
+    start: usize,
+    end: usize,
+    body: &mut Vec<Stmt>,
+) -> R<()> {
+    let text = &source[start..end];
+    let pairs = CommParser::parse(Rule::module, &marked[start..end]).map_err(|e| {
+        let mut pe = crate::error::from_pest(&e, text);
+        pe.span = Span::new(start + pe.span.start as usize, start + pe.span.end as usize);
+        pe
+    })?;
+    let tree = Tree::new(pairs, text);
+    let builder = Builder {
+        base: start,
+        source: text,
+    };
+    if let Some(module) = tree.top().next() {
+        let stmts = builder.stmts(module.into_inner())?;
+        body.extend(stmts);
+    }
+    Ok(())
+}
+
+/// Where the piece that starts at `start` ends: the start of the first
+/// top-level statement line at least [`CHUNK_BYTES`] further (a line after
+/// a marked line end that starts at column 0 with a name that is not a
+/// continuation clause, `def`, `class` or a decorator's target), or the end
+/// of the file.
+fn chunk_end(marked: &[u8], start: usize) -> usize {
+    let n = marked.len();
+    let mut i = start.saturating_add(CHUNK_BYTES);
+    while i < n {
+        let Some(k) = marked[i..]
+            .iter()
+            .position(|&b| b == crate::logical::LINE_END)
+        else {
+            return n;
+        };
+        let line = i + k + 1;
+        if line < n && starts_statement(&marked[line..]) {
+            return line;
+        }
+        i = line;
+    }
+    n
+}
+
+/// Whether a line (at column 0 after a logical line end) surely starts a
+/// new top-level statement.
+fn starts_statement(line: &[u8]) -> bool {
+    let word_len = line
+        .iter()
+        .position(|b| !(b.is_ascii_alphanumeric() || *b == b'_'))
+        .unwrap_or(line.len());
+    let word = &line[..word_len];
+    let first_ok = line
+        .first()
+        .is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_');
+    first_ok
+        && !matches!(
+            word,
+            b"else" | b"elif" | b"except" | b"finally" | b"def" | b"class" | b"async"
+        )
 }
 
 fn err(span: Span, message: impl Into<String>) -> ParseError {

@@ -145,3 +145,70 @@ fn a_tree_at_the_depth_limit_goes_through_every_pass() {
         assert!(parse_module(&over).is_err());
     });
 }
+
+/// A file larger than one parse piece (1 MB): every statement comes out
+/// once, with its own text as span, whatever construct straddles a piece
+/// boundary (clauses of compound statements, decorators, docstrings and
+/// brackets holding lines at column 0, backslash continuations, `\r\n`);
+/// an error in a later piece is located in the whole file.
+#[test]
+fn files_parsed_in_pieces_give_the_whole_file_result() {
+    let block = concat!(
+        "@dec\r\n",
+        "def f(a,\n",
+        "b=1):\n",
+        "    \"\"\"doc\n",
+        "x = 1\n",
+        "\"\"\"\n",
+        "    return a\n",
+        "class C:\n",
+        "    pass\n",
+        "if a:\n",
+        "    b = 1\n",
+        "elif c:\n",
+        "    b = 2\n",
+        "else:\n",
+        "    b = 3\n",
+        "try:\n",
+        "    x = 1\n",
+        "except E:\n",
+        "    pass\n",
+        "finally:\n",
+        "    pass\n",
+        "for i in range(3):\n",
+        "    pass\n",
+        "else:\n",
+        "    pass\n",
+        "y = [1,\n",
+        "z]\n",
+        "z = 1 + \\\n",
+        "w\n",
+        "s = '''\n",
+        "w = 3\n",
+        "'''\n",
+    );
+    let stmts = parse_module(block).expect("block").body;
+    let texts: Vec<&str> = stmts
+        .iter()
+        .map(|s| &block[s.span.start as usize..s.span.end as usize])
+        .collect();
+    assert_eq!(texts.len(), 9);
+    // Over 3 MB: at least three pieces, cut at many different places.
+    let copies = (3 << 20) / block.len() + 1;
+    let source = block.repeat(copies);
+    let module = parse_module(&source).expect("whole file");
+    assert_eq!(module.body.len(), texts.len() * copies);
+    for (k, stmt) in module.body.iter().enumerate() {
+        let shift = (k / texts.len()) * block.len();
+        let (start, end) = (stmt.span.start as usize, stmt.span.end as usize);
+        assert_eq!(&source[start..end], texts[k % texts.len()], "statement {k}");
+        assert_eq!(start - shift, stmts[k % texts.len()].span.start as usize);
+    }
+    // An error near the end: located in the whole file.
+    let bad = format!("{source}x = (1,\n");
+    let e = parse_module(&bad).expect_err("unclosed");
+    let map = CodeMap::new("x.comm", bad.clone());
+    let lc = map.line_col(e.span.start as usize);
+    let lines = source.matches('\n').count();
+    assert!(lc.line > lines, "{} at {}:{}", e.message, lc.line, lc.column);
+}
