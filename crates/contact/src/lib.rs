@@ -14,12 +14,15 @@
 // iterator chains in numerical code.
 #![allow(clippy::needless_range_loop)]
 
+mod augmented;
 pub mod dual;
 mod error;
 mod geomloop;
 mod integration;
 pub mod lac;
 mod pairing;
+mod penalty;
+pub mod quad8;
 mod rows;
 mod shape;
 mod surface;
