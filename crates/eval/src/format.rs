@@ -24,7 +24,11 @@ const EXACT_FRACTION_DIGITS: usize = 1_100;
 
 /// `x` with `p` digits after the point (Python's `%.pf`), for any `p`.
 fn fixed(x: f64, p: usize) -> String {
-    if p <= EXACT_FRACTION_DIGITS || !x.is_finite() {
+    if !x.is_finite() {
+        // `inf`, `nan`: no digits (Rust's formatting would refuse p > 65,535).
+        return format!("{x}");
+    }
+    if p <= EXACT_FRACTION_DIGITS {
         return format!("{x:.p$}");
     }
     let mut s = format!("{x:.EXACT_FRACTION_DIGITS$}");

@@ -815,6 +815,22 @@ impl Validator<'_> {
         }
         for s in &out {
             if let Some(x) = s.as_f64() {
+                // No keyword of code_aster takes an infinity or a NaN: caught
+                // here, at the keyword, rather than as a singular system or
+                // a degenerate cell later.
+                if !x.is_finite() {
+                    self.error(
+                        DiagKind::OutOfRange,
+                        g.span,
+                        format!(
+                            "`{}`: value {} is not a finite number",
+                            kpath(),
+                            scalar_repr(s)
+                        ),
+                    );
+                    failed = true;
+                    continue;
+                }
                 let lo = kw.val_min.is_some_and(|m| x < m);
                 let hi = kw.val_max.is_some_and(|m| x > m);
                 if lo || hi {

@@ -182,3 +182,17 @@ fn nested_values_are_bounded() {
     );
     run("a = []\nfor i in range(500000):\n    a = [a]\n").unwrap();
 }
+
+#[test]
+fn non_finite_keyword_values_are_refused_at_the_keyword() {
+    refused(
+        "M = DEFI_MATERIAU(ELAS=_F(E=float('inf'), NU=0.3))\n",
+        "is not a finite number",
+        "1:",
+    );
+    refused(
+        "F = DEFI_FONCTION(NOM_PARA='X', VALE=(0.0, 1.0, 1.0, float('nan')))\n",
+        "`DEFI_FONCTION/VALE`: value nan is not a finite number",
+        "1:",
+    );
+}

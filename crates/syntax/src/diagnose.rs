@@ -58,20 +58,18 @@ fn width(indent: &str) -> usize {
 }
 
 fn line_col(source: &str, pos: usize) -> (usize, usize) {
-    let before = &source[..pos.min(source.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before
-        .rfind('\n')
-        .map_or(before.chars().count(), |i| before[i + 1..].chars().count())
-        + 1;
-    (line, col)
+    // Error path only: the code map's rule for line ends (lone `\r` too).
+    let lc = crate::codemap::CodeMap::new("", source).line_col(pos);
+    (lc.line, lc.column)
 }
 
 fn scan(source: &str) -> Scan {
     let bytes = source.as_bytes();
     let mut lines: Vec<LogicalLine> = Vec::new();
     let mut brackets: Vec<(char, usize)> = Vec::new();
-    let mut indents: Vec<usize> = vec![0];
+    // Each level's width with tabs to 8 columns and to 1 column: Python 3
+    // refuses indentation whose order depends on the tab size (TabError).
+    let mut indents: Vec<(usize, usize)> = vec![(0, 0)];
     let mut expect_indent: Option<usize> = None; // header line start, when the last line ended with `:`
     let mut i = 0;
     let mut at_line_start = true;
@@ -100,7 +98,19 @@ fn scan(source: &str) -> Scan {
                 _ => {}
             }
             let w = width(&source[start..i]);
-            let top = indents.last().copied().unwrap_or(0);
+            let alt = i - start;
+            let (top, top_alt) = indents.last().copied().unwrap_or((0, 0));
+            let tab_error = || {
+                err(
+                    start,
+                    i - start,
+                    "inconsistent use of tabs and spaces in indentation (TabError): indent with spaces only"
+                        .into(),
+                )
+            };
+            if (w == top) != (alt == top_alt) || (w > top) != (alt > top_alt) {
+                return fail(tab_error(), lines);
+            }
             if let Some(header) = expect_indent.take() {
                 if w <= top {
                     let (l, _) = line_col(source, header);
@@ -113,7 +123,7 @@ fn scan(source: &str) -> Scan {
                         lines,
                     );
                 }
-                indents.push(w);
+                indents.push((w, alt));
             } else if w > top {
                 return fail(
                     err(
@@ -125,10 +135,15 @@ fn scan(source: &str) -> Scan {
                     lines,
                 );
             } else if w < top {
-                while indents.last().is_some_and(|&t| t > w) {
+                while indents.last().is_some_and(|&(t, _)| t > w) {
                     indents.pop();
                 }
-                if indents.last().copied() != Some(w) {
+                if let Some(&(t, t_alt)) = indents.last() {
+                    if t == w && t_alt != alt {
+                        return fail(tab_error(), lines);
+                    }
+                }
+                if indents.last().map(|l| l.0) != Some(w) {
                     return fail(
                         err(
                             i,
