@@ -278,6 +278,10 @@ struct SourceRows {
     aug: Vec<AugRow>,
 }
 
+/// Where the augmented terms' tangent goes: the free-unknown map and the
+/// triplets it adds to.
+type AugmentedMatrix<'a> = (&'a [usize], &'a mut Vec<(usize, usize, f64)>);
+
 /// An augmented term in DOF indices, with its contact status.
 #[derive(Clone)]
 struct AugRow {
@@ -303,12 +307,7 @@ impl SourceRows {
 
     /// Adds the penalty forces (and, with `matrix`, their stiffness on the
     /// free unknowns `map`) of the augmented terms that are on.
-    fn add_augmented(
-        &self,
-        u: &[f64],
-        force: &mut [f64],
-        matrix: Option<(&[usize], &mut Vec<(usize, usize, f64)>)>,
-    ) {
+    fn add_augmented(&self, u: &[f64], force: &mut [f64], matrix: Option<AugmentedMatrix<'_>>) {
         let mut matrix = matrix;
         for a in self.aug.iter().filter(|a| a.on) {
             let g = gap(&a.idx, a.rhs, u);
