@@ -10,6 +10,7 @@
 pub mod commands;
 pub mod concept;
 mod contactbridge;
+pub mod dyna;
 mod evaluate;
 pub mod executor;
 pub mod export;

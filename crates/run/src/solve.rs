@@ -102,9 +102,22 @@ pub struct SolveSetup {
     pub subdivision: Option<aster_fem::Subdivision>,
     /// Where the DEFI_LIST_INST was defined, for messages.
     pub time_list_at: Option<String>,
+    /// `ETAT_INIT/DEPL`, `VITE`, `ACCE` fields (without EVOL_NOLI).
+    pub initial_fields: InitialFields,
+    /// DYNA_NON_LINE's time scheme and mass (`None`: statics).
+    pub dynamics: Option<crate::dyna::DynamicSetup>,
 }
 
-const SNL_KEYWORDS: &[&str] = &[
+/// Initial fields given one by one in `ETAT_INIT` (`DEPL`, and in
+/// dynamics `VITE`, `ACCE`), each with where its keyword is written.
+#[derive(Clone, Debug, Default)]
+pub struct InitialFields {
+    pub depl: Option<(Rc<crate::field::Field>, aster_syntax::Span)>,
+    pub vite: Option<(Rc<crate::field::Field>, aster_syntax::Span)>,
+    pub acce: Option<(Rc<crate::field::Field>, aster_syntax::Span)>,
+}
+
+pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "MODELE",
     "CHAM_MATER",
     "CARA_ELEM",
@@ -200,7 +213,11 @@ fn parse_excitations(
     Ok(out)
 }
 
-fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveSetup, ExecError> {
+pub(crate) fn parse_setup(
+    ex: &Executor,
+    call: &CommandCall,
+    linear: bool,
+) -> Result<SolveSetup, ExecError> {
     let cmd = call.command.as_str();
     let kw = &call.keywords;
     let model = ex.model(ex.required(cmd, kw, "MODELE")?)?;
@@ -262,6 +279,7 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
     }
     let mut subdivision = None;
     let mut time_list_at = None;
+    let mut initial_fields = InitialFields::default();
     let (instants, initial) = if linear {
         instants_linear(ex, kw)?
     } else {
@@ -291,32 +309,49 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         }
         let mut initial = None;
         if let Some(ei) = kw.factor("ETAT_INIT").first() {
-            let Some(r) = ei.concept("EVOL_NOLI") else {
-                let span = ei.entries.first().map(|k| k.span).unwrap_or(call.span);
-                return Err(ex.unsupported(
-                    &format!("{cmd}/ETAT_INIT without EVOL_NOLI (DEPL/SIGM fields)"),
-                    span,
-                ));
-            };
-            let prev = ex.result(r)?;
-            let step = if let Some(t) = ei.f64("INST") {
-                prev.step_at(t, 1e-6, false)
-            } else if let Some(n) = ei.first("NUME_ORDRE").and_then(|s| s.as_i64()) {
-                prev.step_numbered(n as u32)
+            if let Some(r) = ei.concept("EVOL_NOLI") {
+                let prev = ex.result(r)?;
+                let step = if let Some(t) = ei.f64("INST") {
+                    prev.step_at(t, 1e-6, false)
+                } else if let Some(n) = ei.first("NUME_ORDRE").and_then(|s| s.as_i64()) {
+                    prev.step_numbered(n as u32)
+                } else {
+                    prev.steps.last()
+                }
+                .ok_or_else(|| {
+                    ExecError::new(format!(
+                        "{cmd}/ETAT_INIT: the instant asked is not in `{}`",
+                        r.name
+                    ))
+                })?;
+                let t0 = step.inst;
+                if init.is_none() {
+                    init = Some(t0);
+                }
+                initial = Some((prev.clone(), t0));
             } else {
-                prev.steps.last()
+                // Fields one by one (the keywords a command accepts are
+                // checked by its list).
+                for (name, slot) in [
+                    ("DEPL", &mut initial_fields.depl),
+                    ("VITE", &mut initial_fields.vite),
+                    ("ACCE", &mut initial_fields.acce),
+                ] {
+                    if let (Some(c), Some(k)) = (ei.concept(name), ei.keyword(name)) {
+                        *slot = Some((ex.field(c)?, k.span));
+                    }
+                }
+                if initial_fields.depl.is_none()
+                    && initial_fields.vite.is_none()
+                    && initial_fields.acce.is_none()
+                {
+                    let span = ei.entries.first().map(|k| k.span).unwrap_or(call.span);
+                    return Err(ex.unsupported(
+                        &format!("{cmd}/ETAT_INIT without EVOL_NOLI, DEPL, VITE or ACCE"),
+                        span,
+                    ));
+                }
             }
-            .ok_or_else(|| {
-                ExecError::new(format!(
-                    "{cmd}/ETAT_INIT: the instant asked is not in `{}`",
-                    r.name
-                ))
-            })?;
-            let t0 = step.inst;
-            if init.is_none() {
-                init = Some(t0);
-            }
-            initial = Some((prev.clone(), t0));
         }
         let instants = list::select_instants(&list, init, fin)
             .map_err(|e| ExecError::new(format!("{cmd}/INCREMENT: {e}")))?;
@@ -335,6 +370,8 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         verbose: kw.first("INFO").and_then(|s| s.as_i64()) == Some(2),
         subdivision,
         time_list_at,
+        initial_fields,
+        dynamics: None,
     })
 }
 
@@ -446,8 +483,18 @@ fn solve_and_store(
     linear: bool,
 ) -> Result<CommandOutput, ExecError> {
     let setup = parse_setup(ex, call, linear)?;
+    store_solution(ex, call, &setup, linear)
+}
+
+/// Solves a set-up and stores the result (`linear`: an evol_elas).
+pub(crate) fn store_solution(
+    ex: &mut Executor,
+    call: &CommandCall,
+    setup: &SolveSetup,
+    linear: bool,
+) -> Result<CommandOutput, ExecError> {
     let mesh_id = setup.model.mesh;
-    let (steps, fem) = crate::fembridge::solve(ex, &setup, linear)?;
+    let (steps, fem) = crate::fembridge::solve(ex, setup, linear)?;
     let evol = EvolResult {
         typ: if linear { "evol_elas" } else { "evol_noli" }.into(),
         mesh: mesh_id,
