@@ -5,6 +5,7 @@
 //! (`ETAT_INIT`), turned into aster-fem's [`DynamicNonLinear`]. The Newton
 //! loop, conditions, contact and behaviours are STAT_NON_LINE's.
 
+use crate::concept::ContactDef;
 use crate::executor::Executor;
 use crate::field::Field;
 use crate::solve::{parse_setup, store_solution, SolveSetup, SNL_KEYWORDS};
@@ -50,7 +51,27 @@ pub fn dyna_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         return Err(ex.unsupported("DYNA_NON_LINE with reuse= (continuing a result)", call.span));
     }
     let mut setup = parse_setup(ex, call, false)?;
-    setup.dynamics = Some(parse_dynamics(ex, call)?);
+    let dynamics = parse_dynamics(ex, call)?;
+    // The weighted equilibrium also weights the continuous contact forces
+    // of the previous step (code_aster's CNELTC): not done here.
+    if let (Scheme::Hht { modified: true, .. }, Some(c)) = (dynamics.scheme, &setup.contact) {
+        if let ContactDef::Zones { keywords, .. } = &**c {
+            if keywords.str("FORMULATION") == Some("CONTINUE") {
+                let span = call
+                    .keywords
+                    .factor("SCHEMA_TEMPS")
+                    .first()
+                    .and_then(|st| st.keyword("MODI_EQUI").or(st.keyword("SCHEMA")))
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
+                return Err(ex.unsupported(
+                    "DYNA_NON_LINE/SCHEMA_TEMPS HHT with MODI_EQUI='OUI' and a continuous contact (FORMULATION='CONTINUE': its forces of the previous step are weighted)",
+                    span,
+                ));
+            }
+        }
+    }
+    setup.dynamics = Some(dynamics);
     store_solution(ex, call, &setup, false)
 }
 

@@ -594,7 +594,7 @@ pub fn solve(
                 out
             }
         };
-        let raw = outcome.map_err(|e| match (&e, &setup.time_list_at) {
+        let mut raw = outcome.map_err(|e| match (&e, &setup.time_list_at) {
             (aster_fem::FemError::StepCutting { .. }, Some(at)) => ExecError::new(format!(
                 "{cmd}: {e} (cutting set by DEFI_LIST_INST/ECHEC at {at})"
             )),
@@ -603,6 +603,7 @@ pub fn solve(
             )),
             _ => fem_err(cmd, e),
         })?;
+        setup.archive.apply(&mut raw);
         if setup.verbose {
             ex.write_report(&convergence_report(&raw))?;
         }

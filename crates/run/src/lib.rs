@@ -7,6 +7,7 @@
 //! crates. TEST_RESU/TEST_TABLE verdicts are printed as code_aster prints
 //! them and tallied.
 
+pub mod archive;
 pub mod commands;
 pub mod concept;
 mod contactbridge;
@@ -18,6 +19,7 @@ pub mod fembridge;
 pub mod field;
 pub mod function;
 pub mod list;
+pub mod meca_non_line;
 mod meshio;
 pub mod output;
 pub mod program;

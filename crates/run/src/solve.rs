@@ -106,6 +106,8 @@ pub struct SolveSetup {
     pub initial_fields: InitialFields,
     /// DYNA_NON_LINE's time scheme and mass (`None`: statics).
     pub dynamics: Option<crate::dyna::DynamicSetup>,
+    /// `ARCHIVAGE`: the steps stored.
+    pub archive: crate::archive::Archive,
 }
 
 /// Initial fields given one by one in `ETAT_INIT` (`DEPL`, and in
@@ -372,7 +374,39 @@ pub(crate) fn parse_setup(
         time_list_at,
         initial_fields,
         dynamics: None,
+        archive: parse_archive(ex, kw)?,
     })
+}
+
+/// `ARCHIVAGE`: `LIST_INST`/`INST` (with `PRECISION`, `CRITERE`) or
+/// `PAS_ARCH`.
+fn parse_archive(ex: &Executor, kw: &Keywords) -> Result<crate::archive::Archive, ExecError> {
+    let mut archive = crate::archive::Archive::default();
+    let Some(occ) = kw.factor("ARCHIVAGE").first() else {
+        return Ok(archive);
+    };
+    let list: Option<Vec<f64>> = match occ.concept("LIST_INST") {
+        Some(l) => Some((*ex.real_list(l)?).clone()),
+        None if occ.contains("INST") => Some(
+            occ.simple("INST")
+                .iter()
+                .filter_map(|v| v.as_f64())
+                .collect(),
+        ),
+        None => None,
+    };
+    if let Some(list) = list {
+        archive.instants = Some((
+            list,
+            occ.f64("PRECISION").unwrap_or(1e-6),
+            occ.str("CRITERE") == Some("ABSOLU"),
+        ));
+    }
+    archive.every = occ
+        .first("PAS_ARCH")
+        .and_then(|v| v.as_i64())
+        .map(|k| k.max(1) as usize);
+    Ok(archive)
 }
 
 /// The `COMPORTEMENT` occurrences: small strains only, ELAS and the von

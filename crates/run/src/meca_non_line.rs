@@ -1,0 +1,86 @@
+//! MECA_NON_LINE, code_aster 17's Python non-linear operator: mapped onto
+//! the machinery of STAT_NON_LINE (the same equations, Newton loop,
+//! conditions, behaviours, time list and step cutting; the converged steps
+//! are those of STAT_NON_LINE within the Newton tolerance).
+//!
+//! Its own keywords: `CONTACT` is a factor keyword whose `DEFINITION` is a
+//! `DEFI_CONT` (code_aster 17's mortar augmented-Lagrangian contact), not
+//! a `DEFI_CONTACT`: refused, located (see docs/contact.md, "DEFI_CONT").
+//! `METHODE='SNES'`/`'RASPEN'` (PETSc solvers) and `RECH_LINEAIRE` are
+//! refused; `ARCHIVAGE`, `SOLVEUR` and `INFO` are accepted as in
+//! STAT_NON_LINE.
+
+use crate::executor::Executor;
+use crate::solve::{parse_setup, store_solution};
+use aster_eval::{CommandCall, CommandOutput, ExecError};
+
+const KEYWORDS: &[&str] = &[
+    "MODELE",
+    "CHAM_MATER",
+    "CARA_ELEM",
+    "EXCIT",
+    "EXCIT/CHARGE",
+    "EXCIT/FONC_MULT",
+    "EXCIT/TYPE_CHARGE",
+    "COMPORTEMENT",
+    "COMPORTEMENT/RELATION",
+    "COMPORTEMENT/DEFORMATION",
+    "COMPORTEMENT/TOUT",
+    "COMPORTEMENT/GROUP_MA",
+    "COMPORTEMENT/MAILLE",
+    "COMPORTEMENT/RESI_INTE_RELA",
+    "COMPORTEMENT/RESI_INTE",
+    "COMPORTEMENT/ITER_INTE_MAXI",
+    "COMPORTEMENT/ITER_INTE_PAS",
+    "COMPORTEMENT/ALGO_INTE",
+    "INCREMENT",
+    "INCREMENT/LIST_INST",
+    "INCREMENT/INST_INIT",
+    "INCREMENT/INST_FIN",
+    "INCREMENT/NUME_INST_INIT",
+    "INCREMENT/NUME_INST_FIN",
+    "INCREMENT/PRECISION",
+    "METHODE",
+    "NEWTON",
+    "NEWTON/PREDICTION",
+    "NEWTON/MATRICE",
+    "NEWTON/REAC_ITER",
+    "NEWTON/REAC_INCR",
+    "NEWTON/MATR_RIGI_SYME",
+    "NEWTON/REAC_ITER_ELAS",
+    "CONVERGENCE",
+    "CONVERGENCE/RESI_GLOB_RELA",
+    "CONVERGENCE/RESI_GLOB_MAXI",
+    "CONVERGENCE/ITER_GLOB_MAXI",
+    "CONVERGENCE/ITER_GLOB_ELAS",
+    "CONVERGENCE/ARRET",
+    "SOLVEUR",
+    "SOLVEUR/*",
+    "ETAT_INIT",
+    "ETAT_INIT/EVOL_NOLI",
+    "ETAT_INIT/INST",
+    "ETAT_INIT/NUME_ORDRE",
+    "ETAT_INIT/PRECISION",
+    "ETAT_INIT/CRITERE",
+    "INFO",
+    "TITRE",
+    "ARCHIVAGE",
+    "ARCHIVAGE/*",
+];
+
+pub fn meca_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    if let Some(k) = kw.keyword("CONTACT") {
+        return Err(ex.unsupported(
+            "MECA_NON_LINE/CONTACT (a DEFI_CONT definition: code_aster 17's mortar augmented-Lagrangian contact)",
+            k.span,
+        ));
+    }
+    ex.check_keywords(call, KEYWORDS)?;
+    if call.reuse.is_some() {
+        return Err(ex.unsupported("MECA_NON_LINE with reuse= (continuing a result)", call.span));
+    }
+    ex.only_values("MECA_NON_LINE", kw, "METHODE", &["NEWTON"])?;
+    let setup = parse_setup(ex, call, false)?;
+    store_solution(ex, call, &setup, false)
+}
