@@ -29,7 +29,7 @@ use crate::linalg::{self, Csc};
 use crate::loads::Loads;
 use crate::mass::{assemble_mass, assemble_rayleigh, Lumping, MassData, Rayleigh};
 use crate::model::Model;
-use crate::nonlinear::{IncrementTerms, Kinematics, NonLinearResult, StaticNonLinear};
+use crate::nonlinear::{IncrementTerms, Motion, NonLinearResult, StaticNonLinear};
 use aster_mesh::CellId;
 use std::collections::HashMap;
 
@@ -114,7 +114,7 @@ impl<'s> DynamicNonLinear<'s> {
         }
     }
 
-    /// Runs the analysis; every stored step has its `kinematics`.
+    /// Runs the analysis; every stored step has its `motion`.
     pub fn solve(&mut self, model: &Model, loads: &Loads) -> Result<NonLinearResult, FemError> {
         self.scheme.validate()?;
         loads.validate(model)?;
@@ -417,8 +417,8 @@ impl IncrementTerms for Newmark {
         }
     }
 
-    fn kinematics(&self) -> Kinematics {
-        Kinematics {
+    fn motion(&self) -> Motion {
+        Motion {
             velocity: self.v.clone(),
             acceleration: self.a.clone(),
         }

@@ -35,6 +35,7 @@ pub mod scenes;
 pub mod shape;
 pub(crate) mod solver_constrained;
 mod split_llt;
+pub mod strain;
 pub mod unilateral;
 
 pub use behaviour::{Behaviours, CurveEnd, VonMises};
@@ -46,10 +47,11 @@ pub use mass::{DiscreteMass, Lumping, MassData, Rayleigh};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
 pub use nonlinear::{
-    meca_statique, Convergence, IncrementTerms, InitialState, Kinematics, MatrixKind,
-    NewtonOptions, NonLinearResult, Prediction, StaticNonLinear, Step, Subdivision,
+    meca_statique, Convergence, IncrementTerms, InitialState, MatrixKind, Motion, NewtonOptions,
+    NonLinearResult, Prediction, StaticNonLinear, Step, Subdivision,
 };
 pub use post::{CellValues, NodalValues};
+pub use strain::Kinematics;
 pub use unilateral::{
     FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
 };

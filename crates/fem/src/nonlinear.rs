@@ -73,6 +73,9 @@ pub struct NewtonOptions {
     /// constant, so this only matters with a plastic behaviour.
     pub reac_iter: usize,
     pub matrix: MatrixKind,
+    /// `MATR_RIGI_SYME='OUI'`: a non-symmetric tangent (SIMO_MIEHE) is
+    /// replaced by its symmetric part (K + Kᵀ)/2.
+    pub symmetrize: bool,
 }
 
 impl Default for NewtonOptions {
@@ -81,6 +84,7 @@ impl Default for NewtonOptions {
             prediction: Prediction::Tangente,
             reac_iter: 1,
             matrix: MatrixKind::Tangente,
+            symmetrize: false,
         }
     }
 }
@@ -143,12 +147,12 @@ pub struct Step {
     pub residual_history: Vec<f64>,
     /// VITE and ACCE of a dynamic analysis (see [`IncrementTerms`]), per
     /// DOF index; `None` in statics.
-    pub kinematics: Option<Kinematics>,
+    pub motion: Option<Motion>,
 }
 
 /// Velocity and acceleration per DOF index.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Kinematics {
+pub struct Motion {
     pub velocity: Vec<f64>,
     pub acceleration: Vec<f64>,
 }
@@ -177,7 +181,7 @@ pub trait IncrementTerms {
     /// forces when asked for).
     fn converged(&mut self, to: f64, u: &[f64], fext: &[f64], fint: Option<&[f64]>);
     /// The last converged state's velocity and acceleration.
-    fn kinematics(&self) -> Kinematics;
+    fn motion(&self) -> Motion;
     /// Whether the mass holds every free DOF, so that a rigid-body mode
     /// not held by conditions is no error (an impacting body).
     fn mass_holds(&self) -> bool;
@@ -346,7 +350,7 @@ impl StaticNonLinear<'_> {
         let mut plastic = if linear {
             None
         } else {
-            PlasticCells::new(model, &self.behaviours)?
+            PlasticCells::new(model, &self.behaviours, self.newton.symmetrize)?
         };
         if plastic.is_some() && u.iter().any(|&v| v != 0.0) {
             return Err(FemError::Model(
@@ -399,7 +403,7 @@ impl StaticNonLinear<'_> {
                 resi_glob_rela: 0.0,
                 resi_glob_maxi: 0.0,
                 residual_history: Vec::new(),
-                kinematics: self.dynamics.as_ref().map(|d| d.kinematics()),
+                motion: self.dynamics.as_ref().map(|d| d.motion()),
             });
         }
         // Dynamics: K + the integrator's matrix, rebuilt when it changes
@@ -560,6 +564,7 @@ impl StaticNonLinear<'_> {
                             FemError::NoConvergence { .. }
                                 | FemError::ActiveSet { .. }
                                 | FemError::PoorSolve { .. }
+                                | FemError::Integration(_)
                         );
                         let Some(sd) = self.subdivision.filter(|_| cuttable) else {
                             return Err(e);
@@ -630,7 +635,7 @@ impl StaticNonLinear<'_> {
                 resi_glob_rela: resi_rela,
                 resi_glob_maxi: resi_maxi,
                 residual_history,
-                kinematics: self.dynamics.as_ref().map(|d| d.kinematics()),
+                motion: self.dynamics.as_ref().map(|d| d.motion()),
             });
         }
         Ok(NonLinearResult { steps })
@@ -885,7 +890,7 @@ fn newton_step(
             if let Some(pc) = plastic.as_mut() {
                 if new_outer && choose_tangent(&mut tangent, pc, model, kff, map, newton, outer)? {
                     tangent_key = match tangent {
-                        Some(_) => kkt.new_tangent(),
+                        Some(_) => kkt.new_tangent(pc.symmetric_tangent()),
                         None => MatrixKey::Elastic,
                     };
                 }
@@ -962,7 +967,8 @@ fn newton_step(
                         }
                     }
                     let a = matrix.with_extra(nfree + nk, extra);
-                    let spd = nk == 0;
+                    let symmetric = plastic.as_ref().is_none_or(|pc| pc.symmetric_tangent());
+                    let spd = nk == 0 && symmetric;
                     linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
                         SolveFailure::Singular { index } => {
                             let mut ground: Vec<Vec<(usize, f64)>> =
@@ -1337,10 +1343,12 @@ fn choose_tangent(
         return Ok(true);
     }
     if iter == 0 {
-        *tangent = if newton.prediction == Prediction::Elastique {
+        *tangent = if newton.prediction == Prediction::Elastique && !pc.has_finite_strains() {
             None
         } else {
-            pc.prediction(model)?;
+            // Finite strains: code_aster's RIGI_MECA_ELAS is the tangent
+            // at the converged geometry with the elastic material matrix.
+            pc.prediction(model, newton.prediction == Prediction::Elastique)?;
             consistent(pc)
         };
         return Ok(true);

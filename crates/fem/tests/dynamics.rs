@@ -65,7 +65,7 @@ fn run_oscillator(scheme: Scheme, dt: f64, steps: usize, u0: f64) -> Vec<(f64, f
     res.steps
         .iter()
         .map(|s| {
-            let k = s.kinematics.as_ref().unwrap();
+            let k = s.motion.as_ref().unwrap();
             (s.displacement[0], k.velocity[0], k.acceleration[0])
         })
         .collect()
@@ -247,7 +247,7 @@ fn free_bar_with_initial_velocity_translates_rigidly() {
     dyna.velocity = Some(v0);
     let res = dyna.solve(&model, &loads).unwrap();
     for s in &res.steps {
-        let kin = s.kinematics.as_ref().unwrap();
+        let kin = s.motion.as_ref().unwrap();
         for c in &cols {
             for &n in c {
                 let i = model.dofs().index(Dof::new(n, Comp::DX)).unwrap();
@@ -317,7 +317,7 @@ fn clamped_bar_with_initial_velocity_conserves_energy() {
     dyna.velocity = Some(v0);
     let res = dyna.solve(&model, &loads).unwrap();
     for s in &res.steps {
-        let v = &s.kinematics.as_ref().unwrap().velocity;
+        let v = &s.motion.as_ref().unwrap().velocity;
         let ku = k.mul(&s.displacement);
         let strain: f64 = 0.5
             * ku.iter()
@@ -427,7 +427,7 @@ fn bar_impacting_a_wall_rebounds_without_penetrating() {
     // After the release the bar moves back with (nearly) the momentum it
     // came with.
     let end = res.steps.last().unwrap();
-    let v = &end.kinematics.as_ref().unwrap().velocity;
+    let v = &end.motion.as_ref().unwrap().velocity;
     let p: f64 = m.mul(v).iter().zip(&v0).map(|(a, b)| a * b).sum::<f64>()
         / m.mul(&v0).iter().zip(&v0).map(|(a, b)| a * b).sum::<f64>();
     let e_end = kinetic_energy(&m, v);
@@ -446,7 +446,7 @@ fn bar_impacting_a_wall_rebounds_without_penetrating() {
                 .zip(&s.displacement)
                 .map(|(a, b)| a * b)
                 .sum::<f64>();
-        let e = kinetic_energy(&m, &s.kinematics.as_ref().unwrap().velocity) + strain;
+        let e = kinetic_energy(&m, &s.motion.as_ref().unwrap().velocity) + strain;
         assert!(e <= previous * (1.0 + 1e-12), "energy grows at {}", s.time);
         previous = e;
     }

@@ -8,7 +8,10 @@
 use crate::concept::ContactDef;
 use crate::executor::Executor;
 use crate::field::Field;
-use crate::solve::{parse_setup, store_solution, SolveSetup, SNL_KEYWORDS};
+use crate::solve::{
+    kinematics_rules, parse_setup, store_solution, SolveSetup, SNL_KEYWORDS, SNL_VALUES,
+};
+use crate::support::{joined, Refusal, Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 use aster_fem::{
     DiscreteMass, DynamicNonLinear, Frame, Lumping, MassData, Model, NonLinearResult, Rayleigh,
@@ -35,6 +38,7 @@ const DYNA_KEYWORDS: &[&str] = &[
     "SCHEMA_TEMPS/ALPHA",
     "SCHEMA_TEMPS/MODI_EQUI",
     "MASS_DIAG",
+    "AMOR_RAYL_RIGI",
     "ETAT_INIT/DEPL",
     "ETAT_INIT/VITE",
     "ETAT_INIT/ACCE",
@@ -44,12 +48,48 @@ const DYNA_KEYWORDS: &[&str] = &[
     "SUIVI_DDL/*",
 ];
 
-pub fn dyna_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    let allowed: Vec<&str> = SNL_KEYWORDS.iter().chain(DYNA_KEYWORDS).copied().collect();
-    ex.check_keywords(call, &allowed)?;
-    if call.reuse.is_some() {
-        return Err(ex.unsupported("DYNA_NON_LINE with reuse= (continuing a result)", call.span));
+/// The values DYNA_NON_LINE handles besides STAT_NON_LINE's.
+const DYNA_VALUES: &[Values] = &[
+    Values::new("SCHEMA_TEMPS/SCHEMA", &["NEWMARK", "HHT"])
+        .why("(the explicit schemes and NOHHT are not implemented: no contact case uses them)"),
+    Values::new("SCHEMA_TEMPS/FORMULATION", &["DEPLACEMENT"])
+        .why("(only the displacement formulation of the implicit schemes)"),
+    Values::new("AMOR_RAYL_RIGI", &["ELASTIQUE"])
+        .why("(Rayleigh damping on the tangent stiffness)"),
+];
+
+const DYNA_ALL_KEYWORDS: [&str; SNL_KEYWORDS.len() + DYNA_KEYWORDS.len()] =
+    joined(SNL_KEYWORDS, DYNA_KEYWORDS);
+const DYNA_ALL_VALUES: [Values; SNL_VALUES.len() + DYNA_VALUES.len()] =
+    joined(SNL_VALUES, DYNA_VALUES);
+
+/// What DYNA_NON_LINE reads (`crate::support`): STAT_NON_LINE's keywords
+/// and values, the time scheme, the mass options and the initial velocity
+/// and acceleration.
+pub(crate) const DYNA_NON_LINE: Support = Support {
+    keywords: &DYNA_ALL_KEYWORDS,
+    values: &DYNA_ALL_VALUES,
+    hints: &[],
+    reuse: false,
+    rules: Some(dyna_rules),
+};
+
+/// STAT_NON_LINE's rules, and a mass shift (`COEF_MASS_SHIFT`) refused.
+fn dyna_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    kinematics_rules(call, out);
+    for st in call.keywords.factor("SCHEMA_TEMPS") {
+        if st.f64("COEF_MASS_SHIFT").is_some_and(|c| c != 0.0) {
+            out.push(Refusal::at(
+                "DYNA_NON_LINE/SCHEMA_TEMPS/COEF_MASS_SHIFT (mass shift)".into(),
+                st,
+                "COEF_MASS_SHIFT",
+                call.span,
+            ));
+        }
     }
+}
+
+pub fn dyna_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let mut setup = parse_setup(ex, call, false)?;
     let dynamics = parse_dynamics(ex, call)?;
     // The weighted equilibrium also weights the continuous contact forces
@@ -81,9 +121,6 @@ fn parse_dynamics(ex: &Executor, call: &CommandCall) -> Result<DynamicSetup, Exe
     let Some(st) = kw.factor("SCHEMA_TEMPS").first() else {
         return Err(ExecError::new(format!("{cmd}: SCHEMA_TEMPS is required")));
     };
-    let at = format!("{cmd}/SCHEMA_TEMPS");
-    ex.only_values(&at, st, "SCHEMA", &["NEWMARK", "HHT"])?;
-    ex.only_values(&at, st, "FORMULATION", &["DEPLACEMENT"])?;
     let real = |name: &str, default: f64| st.f64(name).unwrap_or(default);
     let scheme = match st.str("SCHEMA") {
         Some("HHT") => Scheme::Hht {
@@ -95,11 +132,6 @@ fn parse_dynamics(ex: &Executor, call: &CommandCall) -> Result<DynamicSetup, Exe
             gamma: real("GAMMA", 0.5),
         },
     };
-    if let Some(k) = st.keyword("COEF_MASS_SHIFT") {
-        if st.f64("COEF_MASS_SHIFT").unwrap_or(0.0) != 0.0 {
-            return Err(ex.unsupported(&format!("{at}/COEF_MASS_SHIFT (mass shift)"), k.span));
-        }
-    }
     // code_aster (MECANONLINE5_13): a diagonal mass is for explicit schemes.
     if kw.str("MASS_DIAG") == Some("OUI") {
         return Err(ex.kw_error(
@@ -107,16 +139,6 @@ fn parse_dynamics(ex: &Executor, call: &CommandCall) -> Result<DynamicSetup, Exe
             kw,
             "MASS_DIAG",
             "a diagonal (lumped) mass is only for the explicit schemes (DIFF_CENT, TCHAMWA); the implicit NEWMARK and HHT use the consistent mass",
-        ));
-    }
-    if kw.str("AMOR_RAYL_RIGI") == Some("TANGENTE") {
-        let span = kw
-            .keyword("AMOR_RAYL_RIGI")
-            .map(|k| k.span)
-            .unwrap_or(call.span);
-        return Err(ex.unsupported(
-            &format!("{cmd}/AMOR_RAYL_RIGI='TANGENTE' (Rayleigh damping on the tangent stiffness)"),
-            span,
         ));
     }
     Ok(DynamicSetup {

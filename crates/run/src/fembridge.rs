@@ -24,9 +24,11 @@ pub struct FemRun {
     pub model: Model,
     pub loads: Loads,
     pub raw: NonLinearResult,
-    /// Some cells were plastic: their stresses are not D B u, so nodal
-    /// forces come from the stored SIEF_ELGA.
+    /// Some cells were plastic or in finite strains: their stresses are not
+    /// D B u, so nodal forces come from the stored SIEF_ELGA (on the
+    /// deformed geometry for the finite-strain cells).
     pub plastic: bool,
+    pub behaviours: aster_fem::Behaviours,
 }
 
 fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
@@ -131,7 +133,7 @@ pub fn build_behaviours(
         };
         for cell in cells {
             if occ.relation == Relation::Elas {
-                out.make_elastic(cell);
+                out.assign_with(cell, None, occ.kinematics);
                 continue;
             }
             let Some(mat) = materials.cells.get(&cell) else {
@@ -146,7 +148,7 @@ pub fn build_behaviours(
                     law
                 }
             };
-            out.assign(cell, law);
+            out.assign_with(cell, Some(law), occ.kinematics);
         }
     }
     Ok(out)
@@ -182,7 +184,8 @@ fn plastic_law(
                 crate::function::Extension::Constant => aster_fem::CurveEnd::Constant,
                 crate::function::Extension::Excluded => aster_fem::CurveEnd::Excluded,
             };
-            aster_fem::VonMises::traction(mat.young, t.abscissae(), t.values(), end)
+            // code_aster reads Young's modulus from the curve (σ₁/ε₁).
+            aster_fem::VonMises::traction_curve(t.abscissae(), t.values(), end)
         }
         Relation::Elas => return Err(ExecError::new("ELAS has no plastic law")),
     };
@@ -575,6 +578,7 @@ pub fn solve(
                 reac_iter: setup.newton.reac_iter,
                 matrix: setup.newton.matrix,
                 prediction: setup.newton.prediction,
+                symmetrize: setup.newton.symmetrize,
             },
             convergence: Convergence {
                 resi_glob_rela: setup.newton.resi_glob_rela,
@@ -582,7 +586,7 @@ pub fn solve(
                 iter_glob_maxi: setup.newton.iter_glob_maxi,
             },
             sources,
-            behaviours,
+            behaviours: behaviours.clone(),
             subdivision: setup.subdivision,
             ..StaticNonLinear::default()
         };
@@ -629,7 +633,7 @@ pub fn solve(
                 "VARI_ELGA".to_string(),
                 Field::Elem(elem_field(ElemLocation::Gauss, &s.internal_variables)),
             );
-            if let Some(k) = &s.kinematics {
+            if let Some(k) = &s.motion {
                 fields.insert(
                     "VITE".to_string(),
                     Field::Nodal(nodal_from_dofs(&model, &k.velocity)),
@@ -684,6 +688,7 @@ pub fn solve(
             loads,
             raw,
             plastic,
+            behaviours,
         }),
     ))
 }
@@ -754,7 +759,7 @@ pub fn calc_champ(
         let elno = || post::elno(model, &raw.stress);
         let forc_noda = || {
             if run.plastic {
-                aster_fem::behaviour::forc_noda_from_stress(model, u, &raw.stress)
+                aster_fem::behaviour::forc_noda_deformed(model, u, &raw.stress, &run.behaviours)
             } else {
                 post::forc_noda(model, u)
             }

@@ -11,8 +11,27 @@
 //! STAT_NON_LINE.
 
 use crate::executor::Executor;
-use crate::solve::{parse_setup, store_solution};
+use crate::solve::{kinematics_rules, parse_setup, store_solution, SNL_VALUES};
+use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
+
+/// What MECA_NON_LINE reads (`crate::support`): STAT_NON_LINE's set-up
+/// without the keywords code_aster 17's operator does not have.
+pub(crate) const MECA_NON_LINE: Support = Support {
+    keywords: KEYWORDS,
+    values: &MECA_VALUES,
+    hints: &[(
+        "CONTACT",
+        "a DEFI_CONT definition: code_aster 17's mortar augmented-Lagrangian contact, see docs/contact.md",
+    )],
+    reuse: false,
+    rules: Some(kinematics_rules),
+};
+
+const MECA_VALUES: [Values; SNL_VALUES.len() + 1] = crate::support::joined(
+    SNL_VALUES,
+    &[Values::new("METHODE", &["NEWTON"]).why("(the PETSc solvers SNES and RASPEN)")],
+);
 
 const KEYWORDS: &[&str] = &[
     "MODELE",
@@ -69,18 +88,6 @@ const KEYWORDS: &[&str] = &[
 ];
 
 pub fn meca_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    let kw = &call.keywords;
-    if let Some(k) = kw.keyword("CONTACT") {
-        return Err(ex.unsupported(
-            "MECA_NON_LINE/CONTACT (a DEFI_CONT definition: code_aster 17's mortar augmented-Lagrangian contact)",
-            k.span,
-        ));
-    }
-    ex.check_keywords(call, KEYWORDS)?;
-    if call.reuse.is_some() {
-        return Err(ex.unsupported("MECA_NON_LINE with reuse= (continuing a result)", call.span));
-    }
-    ex.only_values("MECA_NON_LINE", kw, "METHODE", &["NEWTON"])?;
     let setup = parse_setup(ex, call, false)?;
     store_solution(ex, call, &setup, false)
 }
