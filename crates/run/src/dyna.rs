@@ -74,9 +74,30 @@ pub(crate) const DYNA_NON_LINE: Support = Support {
     rules: Some(dyna_rules),
 };
 
-/// STAT_NON_LINE's rules, and a mass shift (`COEF_MASS_SHIFT`) refused.
+/// STAT_NON_LINE's rules, the finite-strain kinematics not validated in
+/// dynamics and a mass shift (`COEF_MASS_SHIFT`) refused.
 fn dyna_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     kinematics_rules(call, out);
+    // PETIT_REAC is validated in dynamics (SDNL111D, every TEST_RESU OK);
+    // the total-Lagrangian and multiplicative kinematics are not: with
+    // SIMO_MIEHE, SDNV103E matches code_aster to 1e-6 but one symmetry
+    // velocity (0 by symmetry) is round-off amplified by γ/(βΔt) = 3.7e7,
+    // 6.7e-8 where code_aster's is 2e-9 and the test's absolute tolerance
+    // 1e-8.
+    for occ in call.keywords.factor("COMPORTEMENT") {
+        if let Some(d @ ("GREEN_LAGRANGE" | "GROT_GDEP" | "GDEF_LOG" | "SIMO_MIEHE")) =
+            occ.str("DEFORMATION")
+        {
+            out.push(Refusal::at(
+                format!(
+                    "DYNA_NON_LINE/COMPORTEMENT/DEFORMATION='{d}' (finite strains in dynamics are not validated against code_aster: PETIT and PETIT_REAC only)"
+                ),
+                occ,
+                "DEFORMATION",
+                call.span,
+            ));
+        }
+    }
     for st in call.keywords.factor("SCHEMA_TEMPS") {
         if st.f64("COEF_MASS_SHIFT").is_some_and(|c| c != 0.0) {
             out.push(Refusal::at(
