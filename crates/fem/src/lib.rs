@@ -19,6 +19,7 @@ pub mod dof;
 pub mod dynamics;
 pub mod element;
 pub mod error;
+pub mod force_source;
 pub mod fpg;
 mod held;
 pub mod linalg;
@@ -42,6 +43,7 @@ pub use behaviour::{Behaviours, CurveEnd, VonMises};
 pub use dof::{Comp, Dof, DofNumbering};
 pub use dynamics::{DynamicNonLinear, Scheme};
 pub use error::FemError;
+pub use force_source::{Contribution, ForceSource, LoopVerdict, Unknown};
 pub use loads::{Load, LoadItem, Loads, Multiplier};
 pub use mass::{DiscreteMass, Lumping, MassData, Rayleigh};
 pub use material::{Elastic, Hypothesis};
@@ -53,5 +55,6 @@ pub use nonlinear::{
 pub use post::{CellValues, NodalValues};
 pub use strain::Kinematics;
 pub use unilateral::{
-    FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+    AugmentedTerm, FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
+    UnilateralSource,
 };

@@ -132,6 +132,23 @@ pub fn dyna_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             }
         }
     }
+    // Friction runs its own Newton loop (force sources), without the
+    // time integrator.
+    if let Some(c) = &setup.contact {
+        if let ContactDef::Zones { keywords, .. } = &**c {
+            if keywords.str("FROTTEMENT") == Some("COULOMB") {
+                let span = call
+                    .keywords
+                    .keyword("CONTACT")
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
+                return Err(ex.unsupported(
+                    "DYNA_NON_LINE/CONTACT with FROTTEMENT='COULOMB' (friction in dynamics)",
+                    span,
+                ));
+            }
+        }
+    }
     setup.dynamics = Some(dynamics);
     store_solution(ex, call, &setup, false)
 }

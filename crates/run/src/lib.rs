@@ -17,6 +17,7 @@ pub mod executor;
 pub mod export;
 pub mod fembridge;
 pub mod field;
+mod friction;
 pub mod function;
 pub mod list;
 pub mod meca_non_line;
