@@ -42,7 +42,7 @@ type PointData = (Vec<f64>, Vec<[f64; 3]>, f64, [f64; 3]);
 /// Jacobian, physical derivatives and |det J| at one reference point.
 /// Clockwise cells have det J < 0: derivatives stay exact (J⁻¹ handles the
 /// sign) and the measure uses |det J|, as code_aster does.
-fn physical_derivatives(
+pub(crate) fn physical_derivatives(
     mesh: &Mesh,
     cell: CellId,
     dim: usize,
@@ -177,7 +177,7 @@ pub fn continuum_stiffness(
 }
 
 /// Rotation from global to local axes of a SEG2 spring (rows = local axes).
-fn spring_rotation(mesh: &Mesh, cell: CellId, dim: usize, frame: Frame) -> DMatrix<f64> {
+pub(crate) fn spring_rotation(mesh: &Mesh, cell: CellId, dim: usize, frame: Frame) -> DMatrix<f64> {
     if frame == Frame::Global {
         return DMatrix::identity(dim, dim);
     }

@@ -116,6 +116,35 @@ pub fn tetra4() -> Vec<GaussPoint> {
     ]
 }
 
+/// Tetrahedra FPG15 (degree 5, Touzot), code_aster's order (the MASS
+/// family of TETRA10).
+pub fn tetra15() -> Vec<GaussPoint> {
+    let r = 15f64.sqrt();
+    let (a1, b1) = ((7. + r) / 34., (13. - 3. * r) / 34.);
+    let w1 = (2665. - 14. * r) / 226_800.;
+    let (a2, b2) = ((7. - r) / 34., (13. + 3. * r) / 34.);
+    let w2 = (2665. + 14. * r) / 226_800.;
+    let (c, d) = ((5. - r) / 20., (5. + r) / 20.);
+    let w3 = 5. / 567.;
+    vec![
+        gp(0.25, 0.25, 0.25, 8. / 405.),
+        gp(a1, a1, a1, w1),
+        gp(a1, a1, b1, w1),
+        gp(a1, b1, a1, w1),
+        gp(b1, a1, a1, w1),
+        gp(a2, a2, a2, w2),
+        gp(a2, a2, b2, w2),
+        gp(a2, b2, a2, w2),
+        gp(b2, a2, a2, w2),
+        gp(c, c, d, w3),
+        gp(c, d, c, w3),
+        gp(d, c, c, w3),
+        gp(c, d, d, w3),
+        gp(d, c, d, w3),
+        gp(d, d, c, w3),
+    ]
+}
+
 /// Tetrahedra FPG5 (degree 3; its centre weight is negative, as in
 /// code_aster's stiffness of TETRA10).
 pub fn tetra5() -> Vec<GaussPoint> {

@@ -268,6 +268,20 @@ pub fn rigi_scheme(ty: CellType) -> Vec<GaussPoint> {
     }
 }
 
+/// code_aster's `MASS` Gauss family of a continuum cell (mass matrices,
+/// kinetic energy): the stiffness family where it integrates N·N exactly
+/// on the reference cell, a richer one elsewhere (TRIA3 FPG3, TRIA6 FPG6,
+/// QUAD8 FPG9 in every modelisation, TETRA4 FPG4, TETRA10 FPG15).
+pub fn mass_scheme(ty: CellType) -> Vec<GaussPoint> {
+    match ty {
+        CellType::TRIA3 => rigi_scheme(CellType::TRIA6),
+        CellType::TRIA6 => fpg::tria_fpg6(),
+        CellType::TETRA4 => fpg::tetra4(),
+        CellType::TETRA10 => fpg::tetra15(),
+        other => rigi_scheme(other),
+    }
+}
+
 /// Integration scheme for boundary loads on a segment or face: exact for
 /// the polynomial degree of the load times the shape functions.
 pub fn load_scheme(ty: CellType) -> Vec<GaussPoint> {
