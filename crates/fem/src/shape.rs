@@ -94,6 +94,23 @@ pub fn reference_nodes(ty: CellType) -> Vec<[f64; 3]> {
     }
 }
 
+/// code_aster's reference cells (node coordinates and shape functions) for
+/// the mesh operations that place nodes in reference space
+/// (`CREA_MAILLAGE/DECOUPE_LAC` on 3D faces).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ReferenceCells;
+
+impl aster_mesh::ReferenceCells for ReferenceCells {
+    fn nodes(&self, ty: CellType) -> Option<Vec<[f64; 3]>> {
+        let v = reference_nodes(ty);
+        (supported(ty) && v.len() == ty.node_count()).then_some(v)
+    }
+
+    fn shape(&self, ty: CellType, xi: [f64; 3]) -> Option<Vec<f64>> {
+        supported(ty).then(|| shape(ty, xi).n)
+    }
+}
+
 /// Shape functions and reference derivatives at `xi`.
 pub fn shape(ty: CellType, xi: [f64; 3]) -> ShapeAt {
     let [x, y, z] = xi;
