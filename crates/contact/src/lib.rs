@@ -19,6 +19,7 @@ mod error;
 mod geomloop;
 mod integration;
 pub mod lac;
+pub mod lac_mortar;
 mod pairing;
 mod rows;
 mod shape;

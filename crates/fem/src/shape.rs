@@ -226,7 +226,7 @@ fn gauss_1d(order: usize) -> Vec<(f64, f64)> {
 /// SEG2 FPG2, SEG3 FPG3, TRIA3 FPG1, TRIA6 FPG3, TRIA7 FPG6, QUAD4 FPG4
 /// (2×2), QUAD8/QUAD9 FPG9 (3×3), TETRA4 FPG1, TETRA10 FPG5, HEXA8 FPG8
 /// (2×2×2), HEXA20/HEXA27 FPG27 (3×3×3), PENTA6 FPG6, PENTA15/PENTA18
-/// FPG21, PYRAM5 FPG5, PYRAM13 FPG27.
+/// FPG21, PYRAM5 FPG5, PYRAM13 FPG10 (code_aster 17; FPG27 before).
 ///
 /// Point order follows code_aster's `elraga`: QUAD4 counter-clockwise from
 /// (-a,-a); QUAD8 corners, then mid-edges, then centre; TRIA6 (1/6,1/6),
@@ -280,7 +280,7 @@ pub fn rigi_scheme(ty: CellType) -> Vec<GaussPoint> {
         CellType::PENTA6 => fpg::penta6(),
         CellType::PENTA15 | CellType::PENTA18 => fpg::penta21(),
         CellType::PYRAM5 => fpg::pyram5(),
-        CellType::PYRAM13 => fpg::pyram27(),
+        CellType::PYRAM13 => fpg::pyram10(),
         _ => Vec::new(),
     }
 }
