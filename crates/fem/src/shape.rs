@@ -285,6 +285,17 @@ pub fn rigi_scheme(ty: CellType) -> Vec<GaussPoint> {
     }
 }
 
+/// The stiffness Gauss family of a continuum element: [`rigi_scheme`],
+/// except code_aster's axisymmetric TRIA6 (`MEAXTR6`), integrated with
+/// FPG6 where the plane TRIA6 elements use FPG3.
+pub fn stiffness_scheme(ty: CellType, hyp: Option<crate::Hypothesis>) -> Vec<GaussPoint> {
+    if ty == CellType::TRIA6 && hyp == Some(crate::Hypothesis::Axisymmetric) {
+        fpg::tria_fpg6()
+    } else {
+        rigi_scheme(ty)
+    }
+}
+
 /// Integration scheme for boundary loads on a segment or face: exact for
 /// the polynomial degree of the load times the shape functions.
 pub fn load_scheme(ty: CellType) -> Vec<GaussPoint> {
