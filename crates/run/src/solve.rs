@@ -5,6 +5,7 @@ use crate::concept::*;
 use crate::executor::{store_result, Executor};
 use crate::function::Function;
 use crate::list;
+use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use std::rc::Rc;
 
@@ -104,72 +105,96 @@ pub struct SolveSetup {
     pub time_list_at: Option<String>,
 }
 
-const SNL_KEYWORDS: &[&str] = &[
-    "MODELE",
-    "CHAM_MATER",
-    "CARA_ELEM",
-    "EXCIT",
-    "EXCIT/CHARGE",
-    "EXCIT/FONC_MULT",
-    "EXCIT/TYPE_CHARGE",
-    "CONTACT",
-    "COMPORTEMENT",
-    "COMPORTEMENT/RELATION",
-    "COMPORTEMENT/DEFORMATION",
-    "COMPORTEMENT/TOUT",
-    "COMPORTEMENT/GROUP_MA",
-    "COMPORTEMENT/MAILLE",
-    // Local (Gauss-point) integration settings: the radial return of the
-    // von Mises laws is exact, so they change nothing.
-    "COMPORTEMENT/RESI_INTE_RELA",
-    "COMPORTEMENT/RESI_INTE",
-    "COMPORTEMENT/ITER_INTE_MAXI",
-    "COMPORTEMENT/ITER_INTE_PAS",
-    "COMPORTEMENT/ALGO_INTE",
-    "INCREMENT",
-    "INCREMENT/LIST_INST",
-    "INCREMENT/INST_INIT",
-    "INCREMENT/INST_FIN",
-    "INCREMENT/NUME_INST_INIT",
-    "INCREMENT/NUME_INST_FIN",
-    "INCREMENT/PRECISION",
-    "METHODE",
-    "NEWTON",
-    "NEWTON/PREDICTION",
-    "NEWTON/MATRICE",
-    "NEWTON/REAC_ITER",
-    "NEWTON/REAC_INCR",
-    "NEWTON/MATR_RIGI_SYME",
-    "NEWTON/REAC_ITER_ELAS",
-    "NEWTON/PAS_MINI_ELAS",
-    // The prediction from a previous result only changes the first
-    // iterate; the converged steps are the same.
-    "NEWTON/EVOL_NOLI",
-    "CONVERGENCE",
-    "CONVERGENCE/RESI_GLOB_RELA",
-    "CONVERGENCE/RESI_GLOB_MAXI",
-    "CONVERGENCE/ITER_GLOB_MAXI",
-    "CONVERGENCE/ITER_GLOB_ELAS",
-    "CONVERGENCE/ARRET",
-    "SOLVEUR",
-    "SOLVEUR/*",
-    "ETAT_INIT",
-    "ETAT_INIT/EVOL_NOLI",
-    "ETAT_INIT/INST",
-    "ETAT_INIT/NUME_ORDRE",
-    "ETAT_INIT/PRECISION",
-    "ETAT_INIT/CRITERE",
-    "INFO",
-    // Debugging output of code_aster's internals: nothing to print here.
-    "INFO_DBG",
-    "TITRE",
-    "AFFICHAGE",
-    "AFFICHAGE/*",
-    "ARCHIVAGE",
-    "ARCHIVAGE/*",
-    "MESURE",
-    "MESURE/*",
-];
+/// What STAT_NON_LINE reads (`crate::support`).
+pub(crate) const STAT_NON_LINE: Support = Support {
+    values: &[
+        Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"]),
+        // NEWTON_KRYLOV is Newton with inexact iterative linear solves: with
+        // the direct solver here it is Newton.
+        Values::new("METHODE", &["NEWTON", "NEWTON_KRYLOV"]),
+        Values::new("CONVERGENCE/ARRET", &["OUI"]),
+        Values::new(
+            "NEWTON/PREDICTION",
+            &["ELASTIQUE", "TANGENTE", "DEPL_CALCULE", "EXTRAPOLE"],
+        ),
+        Values::new("NEWTON/MATRICE", &["TANGENTE", "ELASTIQUE"]),
+        Values::listed(
+            "COMPORTEMENT/RELATION",
+            &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC"],
+        ),
+        Values::new("COMPORTEMENT/DEFORMATION", &["PETIT"])
+            .why("(large strains or rotations): only small strains, DEFORMATION='PETIT'"),
+    ],
+    hints: &[],
+    reuse: false,
+    rules: None,
+    keywords: &[
+        "MODELE",
+        "CHAM_MATER",
+        "CARA_ELEM",
+        "EXCIT",
+        "EXCIT/CHARGE",
+        "EXCIT/FONC_MULT",
+        "EXCIT/TYPE_CHARGE",
+        "CONTACT",
+        "COMPORTEMENT",
+        "COMPORTEMENT/RELATION",
+        "COMPORTEMENT/DEFORMATION",
+        "COMPORTEMENT/TOUT",
+        "COMPORTEMENT/GROUP_MA",
+        "COMPORTEMENT/MAILLE",
+        // Local (Gauss-point) integration settings: the radial return of the
+        // von Mises laws is exact, so they change nothing.
+        "COMPORTEMENT/RESI_INTE_RELA",
+        "COMPORTEMENT/RESI_INTE",
+        "COMPORTEMENT/ITER_INTE_MAXI",
+        "COMPORTEMENT/ITER_INTE_PAS",
+        "COMPORTEMENT/ALGO_INTE",
+        "INCREMENT",
+        "INCREMENT/LIST_INST",
+        "INCREMENT/INST_INIT",
+        "INCREMENT/INST_FIN",
+        "INCREMENT/NUME_INST_INIT",
+        "INCREMENT/NUME_INST_FIN",
+        "INCREMENT/PRECISION",
+        "METHODE",
+        "NEWTON",
+        "NEWTON/PREDICTION",
+        "NEWTON/MATRICE",
+        "NEWTON/REAC_ITER",
+        "NEWTON/REAC_INCR",
+        "NEWTON/MATR_RIGI_SYME",
+        "NEWTON/REAC_ITER_ELAS",
+        "NEWTON/PAS_MINI_ELAS",
+        // The prediction from a previous result only changes the first
+        // iterate; the converged steps are the same.
+        "NEWTON/EVOL_NOLI",
+        "CONVERGENCE",
+        "CONVERGENCE/RESI_GLOB_RELA",
+        "CONVERGENCE/RESI_GLOB_MAXI",
+        "CONVERGENCE/ITER_GLOB_MAXI",
+        "CONVERGENCE/ITER_GLOB_ELAS",
+        "CONVERGENCE/ARRET",
+        "SOLVEUR",
+        "SOLVEUR/*",
+        "ETAT_INIT",
+        "ETAT_INIT/EVOL_NOLI",
+        "ETAT_INIT/INST",
+        "ETAT_INIT/NUME_ORDRE",
+        "ETAT_INIT/PRECISION",
+        "ETAT_INIT/CRITERE",
+        "INFO",
+        // Debugging output of code_aster's internals: nothing to print here.
+        "INFO_DBG",
+        "TITRE",
+        "AFFICHAGE",
+        "AFFICHAGE/*",
+        "ARCHIVAGE",
+        "ARCHIVAGE/*",
+        "MESURE",
+        "MESURE/*",
+    ],
+};
 
 fn parse_excitations(
     ex: &Executor,
@@ -178,7 +203,6 @@ fn parse_excitations(
 ) -> Result<Vec<Excitation>, ExecError> {
     let mut out = Vec::new();
     for occ in kw.factor("EXCIT") {
-        ex.only_values(&format!("{cmd}/EXCIT"), occ, "TYPE_CHARGE", &["FIXE_CSTE"])?;
         let c = ex.required(&format!("{cmd}/EXCIT"), occ, "CHARGE")?;
         let load = match ex.concept(c)? {
             Concept::KinematicLoad(l) => LoadRef::Kinematic(l.clone()),
@@ -215,9 +239,6 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         None => None,
     };
     let behaviours = parse_behaviours(ex, cmd, kw, model.mesh)?;
-    // NEWTON_KRYLOV is Newton with inexact iterative linear solves: with
-    // the direct solver here it is Newton.
-    ex.only_values(cmd, kw, "METHODE", &["NEWTON", "NEWTON_KRYLOV"])?;
     let mut newton = NewtonSettings::default();
     if let Some(conv) = kw.factor("CONVERGENCE").first() {
         let rela = conv.f64("RESI_GLOB_RELA");
@@ -232,15 +253,8 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         if let Some(n) = conv.first("ITER_GLOB_MAXI").and_then(|s| s.as_i64()) {
             newton.iter_glob_maxi = n.max(1) as usize;
         }
-        ex.only_values(&format!("{cmd}/CONVERGENCE"), conv, "ARRET", &["OUI"])?;
     }
     if let Some(nw) = kw.factor("NEWTON").first() {
-        ex.only_values(
-            &format!("{cmd}/NEWTON"),
-            nw,
-            "PREDICTION",
-            &["ELASTIQUE", "TANGENTE", "DEPL_CALCULE", "EXTRAPOLE"],
-        )?;
         if let Some(n) = nw.first("REAC_ITER").and_then(|s| s.as_i64()) {
             newton.reac_iter = n.max(0) as usize;
         }
@@ -250,12 +264,6 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
             Some("EXTRAPOLE") => aster_fem::Prediction::Extrapole,
             _ => aster_fem::Prediction::Tangente,
         };
-        ex.only_values(
-            &format!("{cmd}/NEWTON"),
-            nw,
-            "MATRICE",
-            &["TANGENTE", "ELASTIQUE"],
-        )?;
         if nw.str("MATRICE") == Some("ELASTIQUE") {
             newton.matrix = aster_fem::MatrixKind::Elastique;
         }
@@ -408,33 +416,31 @@ fn instants_linear(ex: &Executor, kw: &Keywords) -> Result<Instants, ExecError> 
 }
 
 pub fn stat_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, SNL_KEYWORDS)?;
-    if call.reuse.is_some() {
-        return Err(ex.unsupported("STAT_NON_LINE with reuse= (continuing a result)", call.span));
-    }
     solve_and_store(ex, call, false)
 }
 
+/// What MECA_STATIQUE reads (`crate::support`).
+pub(crate) const MECA_STATIQUE: Support = Support {
+    values: &[Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"])],
+    ..Support::keywords(&[
+        "MODELE",
+        "CHAM_MATER",
+        "CARA_ELEM",
+        "EXCIT",
+        "EXCIT/CHARGE",
+        "EXCIT/FONC_MULT",
+        "EXCIT/TYPE_CHARGE",
+        "INST",
+        "LIST_INST",
+        "SOLVEUR",
+        "SOLVEUR/*",
+        "INFO",
+        "TITRE",
+        "OPTION",
+    ])
+};
+
 pub fn meca_statique(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "CHAM_MATER",
-            "CARA_ELEM",
-            "EXCIT",
-            "EXCIT/CHARGE",
-            "EXCIT/FONC_MULT",
-            "EXCIT/TYPE_CHARGE",
-            "INST",
-            "LIST_INST",
-            "SOLVEUR",
-            "SOLVEUR/*",
-            "INFO",
-            "TITRE",
-            "OPTION",
-        ],
-    )?;
     solve_and_store(ex, call, true)
 }
 
@@ -457,33 +463,32 @@ fn solve_and_store(
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }
 
+/// What CALC_CHAMP reads (`crate::support`).
+pub(crate) const CALC_CHAMP: Support = Support::keywords(&[
+    "RESULTAT",
+    "MODELE",
+    "CHAM_MATER",
+    "CARA_ELEM",
+    "EXCIT",
+    "EXCIT/CHARGE",
+    "EXCIT/FONC_MULT",
+    "FORCE",
+    "CONTRAINTE",
+    "CRITERES",
+    "DEFORMATION",
+    "VARI_INTERNE",
+    "TOUT_ORDRE",
+    "NUME_ORDRE",
+    "INST",
+    "PRECISION",
+    "CRITERE",
+    "TOUT",
+    "GROUP_MA",
+    "INFO",
+    "TITRE",
+]);
+
 pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "RESULTAT",
-            "MODELE",
-            "CHAM_MATER",
-            "CARA_ELEM",
-            "EXCIT",
-            "EXCIT/CHARGE",
-            "EXCIT/FONC_MULT",
-            "FORCE",
-            "CONTRAINTE",
-            "CRITERES",
-            "DEFORMATION",
-            "VARI_INTERNE",
-            "TOUT_ORDRE",
-            "NUME_ORDRE",
-            "INST",
-            "PRECISION",
-            "CRITERE",
-            "TOUT",
-            "GROUP_MA",
-            "INFO",
-            "TITRE",
-        ],
-    )?;
     let kw = &call.keywords;
     let r = ex.required("CALC_CHAMP", kw, "RESULTAT")?;
     let result = ex.result(r)?;
