@@ -141,6 +141,25 @@ impl PatchState {
     }
 }
 
+/// The zone keywords of LAC (`TYPE_JACOBIEN`, `RESI_APPA`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LacOptions {
+    /// `TYPE_JACOBIEN='ACTUALISE'`: the force's measures on the current
+    /// geometry (default `'INITIAL'`: on the reference one).
+    pub updated_jacobian: bool,
+    /// `RESI_APPA`: tolerance of the pairing (default 1e-8).
+    pub resi_appa: f64,
+}
+
+impl Default for LacOptions {
+    fn default() -> Self {
+        LacOptions {
+            updated_jacobian: false,
+            resi_appa: PAIR_TOLE,
+        }
+    }
+}
+
 /// A LAC zone: its patches, the pairs and patch values of the last
 /// pairing, and the patch pressures of the last converged step.
 #[derive(Clone, Debug)]
@@ -157,6 +176,8 @@ pub struct LacZone {
     pub axis: bool,
     /// `TYPE_JACOBIEN='ACTUALISE'`.
     pub updated_jacobian: bool,
+    /// `RESI_APPA`: tolerance of the pairing.
+    pub tole: f64,
 }
 
 /// Positions of a cell's nodes.
@@ -213,6 +234,7 @@ impl LacZone {
             abandoned: 0,
             axis: false,
             updated_jacobian: false,
+            tole: PAIR_TOLE,
         })
     }
 
@@ -243,18 +265,19 @@ impl LacZone {
                     x: xm,
                     sign: m.sign,
                 };
-                let inter = match intersect(sc, mc) {
+                let inter = match intersect(sc, mc, self.tole) {
                     Ok(i) => i,
                     Err(()) => {
                         self.abandoned += 1;
                         continue;
                     }
                 };
-                if inter.weight <= PAIR_TOLE {
+                if inter.weight <= self.tole {
                     continue;
                 }
                 faced = true;
-                let Some((master_points, gauss_master)) = master_images(sc, mc, &inter.points)
+                let Some((master_points, gauss_master)) =
+                    master_images(sc, mc, &inter.points, self.tole)
                 else {
                     self.abandoned += 1;
                     continue;

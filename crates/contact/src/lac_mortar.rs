@@ -23,11 +23,13 @@
 //! - Normals: `mmnorm` is the *interior* normal (t₂ × t₁ in 3D, (−t_y, t_x)
 //!   in 2D) of a cell oriented outwards; cells are oriented outwards here
 //!   with `SurfaceCell::sign` (code_aster relies on `ORIE_PEAU`).
-//! - Tolerance `pair_tole` = 1e-8 (`RESI_APPA`).
+//! - Tolerance `pair_tole` (`RESI_APPA`, default 1e-8) for the pairing;
+//!   1e-8 for the paired measure of a patch (`lac_gapi`).
 
 use crate::shape::{cross, dot, interpolate, norm, scale, sub, SurfaceKind};
 
-/// code_aster's `RESI_APPA` default: tolerance of the LAC pairing.
+/// code_aster's `RESI_APPA` default (tolerance of the LAC pairing), and
+/// the fixed threshold of a paired measure (`lac_gapi`).
 pub const PAIR_TOLE: f64 = 1e-8;
 
 /// A cell as the mortar routines see it: its kind, its node positions and
@@ -325,10 +327,11 @@ pub fn project_along(
     p: [f64; 3],
     dir: [f64; 3],
     iter_maxi: usize,
+    tole: f64,
 ) -> Option<[f64; 2]> {
     let dim = cell.dim();
-    let tole_rela = PAIR_TOLE;
-    let tole_abso = PAIR_TOLE / 100.0;
+    let tole_rela = tole;
+    let tole_abso = tole / 100.0;
     let (mut k1, mut k2, mut beta) = (0.0, 0.0, 1.0);
     let mut best = (f64::MAX, 0.0, 0.0);
     let mut iter = 0;
@@ -565,8 +568,7 @@ pub struct Intersection {
     pub weight: f64,
 }
 
-pub fn intersect(slave: MortarCell, master: MortarCell) -> Result<Intersection, ()> {
-    let tol = PAIR_TOLE;
+pub fn intersect(slave: MortarCell, master: MortarCell, tol: f64) -> Result<Intersection, ()> {
     let dim = slave.dim();
     let none = Intersection {
         points: Vec::new(),
@@ -722,13 +724,14 @@ pub fn master_images(
     slave: MortarCell,
     master: MortarCell,
     slave_points: &[[f64; 2]],
+    tole: f64,
 ) -> Option<(Vec<[f64; 2]>, Vec<[f64; 2]>)> {
     let dim = slave.dim();
     let mut master_points = Vec::with_capacity(slave_points.len());
     for &xi in slave_points {
         let p = slave.point(xi);
         let n = slave.interior_normal(xi);
-        master_points.push(project_along(master, p, n, 100)?);
+        master_points.push(project_along(master, p, n, 100, tole)?);
     }
     let mut gauss = Vec::new();
     for piece in pieces(dim, slave_points.len()) {
@@ -737,7 +740,7 @@ pub fn master_images(
         for (xi, _) in piece_points(dim, &corners, family) {
             let p = slave.point(xi);
             let n = scale(slave.interior_normal(xi), -1.0);
-            gauss.push(project_along(master, p, n, 200)?);
+            gauss.push(project_along(master, p, n, 200, tole)?);
         }
     }
     Some((master_points, gauss))
@@ -928,12 +931,12 @@ mod tests {
         let sc = cell(SurfaceKind::Quad4, &s);
         let mc = cell(SurfaceKind::Quad4, &m);
         assert!(dot(sc.interior_normal([0., 0.]), [0., 0., 1.]) > 0.99);
-        let i = intersect(sc, mc).unwrap();
+        let i = intersect(sc, mc, PAIR_TOLE).unwrap();
         assert_eq!(i.points.len(), 4);
         // Overlap 0.5 × 0.75 in physical space; the QUAD4's reference
         // square has 4 × the unit square's area.
         assert!((i.weight - 4.0 * 0.375).abs() < 1e-12, "{}", i.weight);
-        let (mp, gauss) = master_images(sc, mc, &i.points).unwrap();
+        let (mp, gauss) = master_images(sc, mc, &i.points, PAIR_TOLE).unwrap();
         assert_eq!(gauss.len(), 12);
         let pair = MortarPair {
             slave: 0,
@@ -970,7 +973,7 @@ mod tests {
         );
         // Master cell facing away: no intersection.
         let away = [m[0], m[3], m[2], m[1]];
-        let i = intersect(sc, cell(SurfaceKind::Quad4, &away)).unwrap();
+        let i = intersect(sc, cell(SurfaceKind::Quad4, &away), PAIR_TOLE).unwrap();
         assert!(i.points.is_empty() && i.weight == 0.0);
     }
 
@@ -980,7 +983,12 @@ mod tests {
         // triangle, area ½ in its space.
         let s = [[0.2, 0.2, 0.0], [0.2, 0.6, 0.0], [0.6, 0.2, 0.0]];
         let m = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]];
-        let i = intersect(cell(SurfaceKind::Tria3, &s), cell(SurfaceKind::Quad4, &m)).unwrap();
+        let i = intersect(
+            cell(SurfaceKind::Tria3, &s),
+            cell(SurfaceKind::Quad4, &m),
+            PAIR_TOLE,
+        )
+        .unwrap();
         assert_eq!(i.points.len(), 3);
         assert!((i.weight - 0.5).abs() < 1e-14);
         // 2D: slave segment [0, 2] (outward −y), master [1.5, 3] below.
@@ -988,7 +996,7 @@ mod tests {
         let m = [[3., -0.01, 0.], [1.5, -0.01, 0.]];
         let sc = cell(SurfaceKind::Seg2, &s);
         assert!(dot(sc.interior_normal([0., 0.]), [0., 1., 0.]) > 0.99);
-        let i = intersect(sc, cell(SurfaceKind::Seg2, &m)).unwrap();
+        let i = intersect(sc, cell(SurfaceKind::Seg2, &m), PAIR_TOLE).unwrap();
         // ξ of x = 1.5 on the slave (from x = 0 to 2) is 0.5: [0.5, 1].
         assert_eq!(i.points.len(), 2);
         assert!((i.points[0][0] - 0.5).abs() < 1e-14 && (i.points[1][0] - 1.0).abs() < 1e-14);
@@ -1009,7 +1017,7 @@ mod tests {
             f(0., 0.5),
         ];
         let c = cell(SurfaceKind::Tria6, &m);
-        let xi = project_along(c, [0.3, 0.2, 5.0], [0.0, 0.0, 1.0], 100).unwrap();
+        let xi = project_along(c, [0.3, 0.2, 5.0], [0.0, 0.0, 1.0], 100, PAIR_TOLE).unwrap();
         let p = c.point(xi);
         assert!((p[0] - 0.3).abs() < 1e-12 && (p[1] - 0.2).abs() < 1e-12);
         assert!((p[2] - 0.009).abs() < 1e-12);

@@ -12,7 +12,7 @@ use aster_mesh::{CellId, LacZonePatches, Mesh, NodeId};
 use crate::error::ContactError;
 use crate::geomloop::{GeomDecision, GeomLoopState};
 use crate::integration::{integration_points_measured, Measure};
-use crate::lac::LacZone;
+use crate::lac::{LacOptions, LacZone};
 use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
 use crate::rows::contact_row;
 use crate::surface::ResolvedZone;
@@ -72,7 +72,7 @@ pub struct ZoneContact {
     /// ALGO_CONT='LAC': the zone's patches, pairs and pressures (one
     /// carrier and at most one row per patch, in this order).
     lac: Option<LacZone>,
-    lac_updated_jacobian: bool,
+    lac_options: LacOptions,
 }
 
 impl ZoneContact {
@@ -116,7 +116,7 @@ impl ZoneContact {
             measures: Vec::new(),
             measure: Measure::Plane,
             lac: None,
-            lac_updated_jacobian: false,
+            lac_options: LacOptions::default(),
             zone,
             law,
             geom_loop,
@@ -152,7 +152,8 @@ impl ZoneContact {
     pub fn set_lac_patches(&mut self, patches: &LacZonePatches) -> Result<(), ContactError> {
         let mut lac = LacZone::new(&self.zone, patches)?;
         lac.axis = self.measure == Measure::Axisymmetric;
-        lac.updated_jacobian = self.lac_updated_jacobian;
+        lac.updated_jacobian = self.lac_options.updated_jacobian;
+        lac.tole = self.lac_options.resi_appa;
         self.lac = Some(lac);
         Ok(())
     }
@@ -162,12 +163,12 @@ impl ZoneContact {
         self.lac.as_ref()
     }
 
-    /// `TYPE_JACOBIEN='ACTUALISE'` (LAC): force measures on the current
-    /// geometry instead of the reference one.
-    pub fn set_lac_updated_jacobian(&mut self, updated: bool) {
-        self.lac_updated_jacobian = updated;
+    /// LAC's zone keywords (`TYPE_JACOBIEN`, `RESI_APPA`).
+    pub fn set_lac_options(&mut self, options: LacOptions) {
+        self.lac_options = options;
         if let Some(l) = &mut self.lac {
-            l.updated_jacobian = updated;
+            l.updated_jacobian = options.updated_jacobian;
+            l.tole = options.resi_appa;
         }
     }
 

@@ -18,6 +18,7 @@ pub mod field;
 pub mod function;
 pub mod list;
 mod meshio;
+mod observation;
 pub mod output;
 pub mod preflight;
 pub mod program;
