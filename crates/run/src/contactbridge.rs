@@ -145,10 +145,15 @@ fn offset(ex: &Executor, occ: &Keywords, name: &str) -> Result<Offset, ExecError
                 "X" => 0,
                 "Y" => 1,
                 "Z" => 2,
-                _ => {
-                    return Ok(Offset::Constant(t.eval(0.0).map_err(|e| {
-                        ExecError::new(format!("DEFI_CONTACT/ZONE/{name}: {e}"))
-                    })?))
+                "INST" => {
+                    return Ok(Offset::OfTime(std::sync::Arc::new(move |time: f64| {
+                        t.eval(time).unwrap_or(f64::NAN)
+                    })))
+                }
+                other => {
+                    return Err(ExecError::new(format!(
+                        "not supported yet: DEFI_CONTACT/ZONE/{name} given by a function of {other} (X, Y, Z or INST)"
+                    )))
                 }
             };
             Ok(Offset::Function(std::sync::Arc::new(move |x: [f64; 3]| {

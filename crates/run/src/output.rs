@@ -113,6 +113,11 @@ fn result_steps(
     result: &EvolResult,
 ) -> Result<Vec<ResultStep>, ExecError> {
     let mesh = ex.mesh_by_id(result.mesh)?;
+    let wanted: Vec<&str> = occ
+        .simple("NOM_CMP")
+        .iter()
+        .filter_map(|v| v.as_str())
+        .collect();
     let mut out = Vec::new();
     for (s, selected) in selected_fields(ex, occ, result)? {
         let mut fields = Vec::new();
@@ -121,7 +126,13 @@ fn result_steps(
             if f.components().is_empty() {
                 continue;
             }
-            fields.push(to_mesh_field(name, f, &mesh));
+            let field = to_mesh_field(name, f, &mesh);
+            // NOM_CMP (FORMAT='MED'): only these components are written; a
+            // field with none of them is left out, as code_aster does.
+            match only_components(field, &wanted) {
+                Some(field) => fields.push(field),
+                None => continue,
+            }
         }
         out.push(ResultStep {
             nume_ordre: s.nume_ordre as i32,
@@ -130,6 +141,31 @@ fn result_steps(
         });
     }
     Ok(out)
+}
+
+/// A field restricted to the components `wanted` (all when empty); `None`
+/// when it has none of them.
+fn only_components(field: aster_mesh::Field, wanted: &[&str]) -> Option<aster_mesh::Field> {
+    if wanted.is_empty() {
+        return Some(field);
+    }
+    let keep: Vec<usize> = (0..field.components.len())
+        .filter(|&c| wanted.contains(&field.components[c].as_str()))
+        .collect();
+    if keep.is_empty() {
+        return None;
+    }
+    let n = field.components.len();
+    let values = field
+        .values
+        .chunks(n)
+        .flat_map(|set| keep.iter().map(move |&c| set[c]))
+        .collect();
+    Some(aster_mesh::Field {
+        components: keep.iter().map(|&c| field.components[c].clone()).collect(),
+        values,
+        ..field
+    })
 }
 
 /// What IMPR_RESU reads (`crate::support`).
@@ -187,6 +223,7 @@ fn impr_resu_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             let allowed = match format {
                 "RESULTAT" => key != "TYPE_CHAM",
                 "GMSH" => key == "NOM_CMP" || key == "TYPE_CHAM",
+                "MED" => key == "NOM_CMP",
                 _ => false,
             };
             if !allowed && occ.keyword(key).is_some_and(|k| !k.defaulted) {

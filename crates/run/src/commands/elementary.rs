@@ -17,6 +17,7 @@ pub(crate) const CALCUL: Support = Support {
     values: &[
         Values::new("OPTION", &["FORC_NODA_ELEM"]),
         Values::new("COMPORTEMENT/RELATION", &["ELAS"]),
+        Values::new("COMPORTEMENT/DEFORMATION", &["PETIT"]),
     ],
     ..Support::keywords(&[
         "OPTION",

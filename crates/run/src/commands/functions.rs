@@ -168,8 +168,7 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let cmp = kw
         .str("NOM_CMP")
         .ok_or_else(|| ExecError::new(format!("{cmd}: RESULTAT needs NOM_CMP")))?;
-    let (node, _) =
-        select::single_node(kw, &mesh).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+    let node = select::first_node(kw, &mesh).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
     let steps: Vec<&crate::concept::Step> = match list_of(ex, cmd, kw, "LIST_INST")? {
         Some(list) => list
             .iter()

@@ -215,6 +215,9 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 "CREA_GROUP_NO needs NOM (or TOUT_GROUP_MA/GROUP_MA)",
             ));
         };
+        if set_operation(&mut mesh, occ, name, true)? {
+            continue;
+        }
         let nodes = if kind != NodeKind::All && !groups_ma.is_empty() {
             let cells = select::cells(occ, &mesh, "")
                 .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?;
