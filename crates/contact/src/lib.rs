@@ -14,6 +14,7 @@
 // iterator chains in numerical code.
 #![allow(clippy::needless_range_loop)]
 
+mod augmented;
 pub mod dual;
 mod error;
 mod geomloop;
@@ -21,6 +22,8 @@ mod integration;
 pub mod lac;
 pub mod lac_mortar;
 mod pairing;
+mod penalty;
+pub mod quad8;
 mod rows;
 mod shape;
 mod surface;

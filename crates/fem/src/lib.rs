@@ -48,5 +48,6 @@ pub use nonlinear::{
 pub use post::{CellValues, NodalValues};
 pub use strain::Kinematics;
 pub use unilateral::{
-    FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+    AugmentedTerm, FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
+    UnilateralSource,
 };

@@ -35,7 +35,8 @@ use crate::model::Model;
 use crate::post::{self, CellValues};
 use crate::solver_constrained::{self, KktSolver, MatrixKey};
 use crate::unilateral::{
-    GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+    AugmentedTerm, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
+    UnilateralSource,
 };
 
 /// `NEWTON(PREDICTION=…)`: the matrix of the first iteration of a step.
@@ -265,6 +266,59 @@ struct SourceRows {
     active: Vec<bool>,
     method: UnilateralMethod,
     update: GeometryUpdate,
+    /// The source's augmented terms (`UnilateralSource::augmented_terms`).
+    aug: Vec<AugRow>,
+}
+
+/// An augmented term in DOF indices, with its contact status.
+#[derive(Clone)]
+struct AugRow {
+    idx: Vec<(usize, f64)>,
+    rhs: f64,
+    /// coef · weight: the stiffness of the term.
+    stiffness: f64,
+    coef: f64,
+    support: Vec<(usize, f64)>,
+    on: bool,
+}
+
+impl SourceRows {
+    /// The active flags of the rows and the augmented terms, for the
+    /// cycling test.
+    fn state(&self) -> Vec<bool> {
+        self.active
+            .iter()
+            .copied()
+            .chain(self.aug.iter().map(|a| a.on))
+            .collect()
+    }
+
+    /// Adds the penalty forces (and, with `matrix`, their stiffness on the
+    /// free unknowns `map`) of the augmented terms that are on.
+    fn add_augmented(
+        &self,
+        u: &[f64],
+        force: &mut [f64],
+        matrix: Option<(&[usize], &mut Vec<(usize, usize, f64)>)>,
+    ) {
+        let mut matrix = matrix;
+        for a in self.aug.iter().filter(|a| a.on) {
+            let g = gap(&a.idx, a.rhs, u);
+            for &(i, ci) in &a.idx {
+                force[i] += a.stiffness * ci * g;
+                if let Some((map, extra)) = matrix.as_mut() {
+                    if map[i] == usize::MAX {
+                        continue;
+                    }
+                    for &(j, cj) in &a.idx {
+                        if map[j] != usize::MAX {
+                            extra.push((map[i], map[j], a.stiffness * ci * cj));
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl StaticNonLinear<'_> {
@@ -405,6 +459,7 @@ impl StaticNonLinear<'_> {
                         srcs[s] = Some(make_rows(
                             model,
                             rows,
+                            src.augmented_terms(),
                             src.method(),
                             src.geometry_update(),
                             prev_active,
@@ -731,6 +786,7 @@ fn newton_step(
                         }
                     }
                 }
+                sr.add_augmented(u, &mut pen_force, Some((map, &mut pen_extra)));
                 row_of.push(ro);
             }
             // Drop rows entirely on eliminated DOFs (they cannot be enforced
@@ -788,6 +844,7 @@ fn newton_step(
                             }
                         }
                     }
+                    ground.extend(sr.aug.iter().filter(|a| a.on).map(|a| a.idx.clone()));
                 }
                 let free = held::free_dofs(model, &ground);
                 if !free.is_empty() {
@@ -925,6 +982,7 @@ fn newton_step(
                         }
                     }
                 }
+                sr.add_augmented(u, &mut pen_new, None);
             }
             let mut resi_maxi = 0.0f64;
             let mut reference = 0.0f64;
@@ -1000,6 +1058,20 @@ fn newton_step(
                         sr.active[r] = now;
                     }
                 }
+                // Augmented terms: code_aster's status of a point,
+                // Σ Nⱼ λⱼ + ρ g > 0 with the multipliers just computed.
+                for a in sr.aug.iter_mut() {
+                    let pressure: f64 = a
+                        .support
+                        .iter()
+                        .map(|&(r, n)| n * lam.get(r).copied().unwrap_or(0.0))
+                        .sum();
+                    let now = pressure + a.coef * gap(&a.idx, a.rhs, u) > 0.0;
+                    if now != a.on {
+                        a.on = now;
+                        changed = true;
+                    }
+                }
                 src_lam.push(lam);
             }
             // Releasing every row in tension at once may leave the model
@@ -1060,6 +1132,9 @@ fn newton_step(
                 }
                 if changed {
                     pairing_start = outer;
+                    // New rows: the active sets seen with the previous
+                    // ones say nothing about cycling with these.
+                    history.clear();
                     set_changes += 1;
                     if set_changes > active_set_max_iter {
                         return Err(FemError::ActiveSet {
@@ -1101,8 +1176,7 @@ fn newton_step(
                     new_outer = false;
                 }
                 set_changes += 1;
-                let state: Vec<Vec<bool>> =
-                    srcs.iter().flatten().map(|s| s.active.clone()).collect();
+                let state: Vec<Vec<bool>> = srcs.iter().flatten().map(|s| s.state()).collect();
                 if history.contains(&state) {
                     return Err(FemError::ActiveSet {
                         time: t,
@@ -1291,6 +1365,7 @@ fn refresh_geometry_rows(
         *slot = Some(make_rows(
             model,
             rows,
+            src.augmented_terms(),
             src.method(),
             src.geometry_update(),
             prev,
@@ -1304,13 +1379,13 @@ fn refresh_geometry_rows(
 fn make_rows(
     model: &Model,
     rows: Vec<InequalityRow>,
+    augmented: Vec<AugmentedTerm>,
     method: UnilateralMethod,
     update: GeometryUpdate,
     prev_active: Option<Vec<bool>>,
     u: &[f64],
 ) -> Result<SourceRows, FemError> {
-    let mut idx = Vec::with_capacity(rows.len());
-    for row in &rows {
+    let indices = |row: &InequalityRow| -> Result<Vec<(usize, f64)>, FemError> {
         let mut r = Vec::with_capacity(row.terms.len());
         for &(dof, c) in &row.terms {
             let i = model.dofs().index(dof).ok_or_else(|| {
@@ -1321,7 +1396,11 @@ fn make_rows(
             })?;
             r.push((i, c));
         }
-        idx.push(r);
+        Ok(r)
+    };
+    let mut idx = Vec::with_capacity(rows.len());
+    for row in &rows {
+        idx.push(indices(row)?);
     }
     let active = match prev_active {
         Some(a) if a.len() == rows.len() => a,
@@ -1334,11 +1413,24 @@ fn make_rows(
             .map(|(row, r)| gap(r, row.rhs, u) >= -1e-10 * length_scale(model, u))
             .collect(),
     };
+    // An augmented term starts on when one of the rows it rides on is.
+    let mut aug = Vec::with_capacity(augmented.len());
+    for a in &augmented {
+        aug.push(AugRow {
+            idx: indices(&a.row)?,
+            rhs: a.row.rhs,
+            stiffness: a.coef * a.weight,
+            coef: a.coef,
+            on: a.support.iter().any(|&(r, _)| active.get(r) == Some(&true)),
+            support: a.support.clone(),
+        });
+    }
     Ok(SourceRows {
         rows,
         idx,
         active,
         method,
         update,
+        aug,
     })
 }

@@ -363,6 +363,29 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
     Ok(zones)
 }
 
+/// Discrete contact on QUAD8 faces (`aster_contact::quad8`): the
+/// relations u(middle) = ½ u(a) + ½ u(b) on every translation of the
+/// model, dualised like LIAISON_DDL.
+pub fn add_middle_relations(
+    zones: &[ZoneContact],
+    model: &aster_fem::Model,
+    loads: &mut aster_fem::Loads,
+) {
+    use aster_fem::{Comp, Dof, Load};
+    for link in aster_contact::quad8::middle_links(zones) {
+        for c in [Comp::DX, Comp::DY, Comp::DZ] {
+            let terms = vec![
+                (Dof::new(link.middle, c), 1.0),
+                (Dof::new(link.ends[0], c), -0.5),
+                (Dof::new(link.ends[1], c), -0.5),
+            ];
+            if terms.iter().all(|(d, _)| model.dofs().index(*d).is_some()) {
+                loads.push(Load::Relation { terms, rhs: 0.0 });
+            }
+        }
+    }
+}
+
 /// ALGO_CONT='LAC' zones: the patches of CREA_MAILLAGE/DECOUPE_LAC, and
 /// the geometric loop of LAC's Newton (code_aster solves LAC with
 /// `ALGO_RESO_GEOM='NEWTON'` only: the geometry is updated inside Newton,

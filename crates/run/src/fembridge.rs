@@ -509,7 +509,7 @@ pub fn solve(
     };
     let mesh = ex.mesh_by_id(setup.model.mesh)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
-    let loads = build_loads(setup)?;
+    let mut loads = build_loads(setup)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
     let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
@@ -529,7 +529,11 @@ pub fn solve(
                     })
                 }
                 ContactDef::Zones { keywords, .. } => {
-                    contact_zones = Some(crate::contactbridge::zones(ex, &mesh, keywords)?);
+                    let zones = crate::contactbridge::zones(ex, &mesh, keywords)?;
+                    // Discrete contact on QUAD8 faces: code_aster ties the
+                    // middle nodes to their edges.
+                    crate::contactbridge::add_middle_relations(&zones, &model, &mut loads);
+                    contact_zones = Some(zones);
                 }
             }
         }
