@@ -110,7 +110,7 @@ pub fn continuum_gauss(
     let dim = hyp.dim();
     let nn = c.nodes.len();
     let ncomp = hyp.ncomp();
-    let scheme = shape::rigi_scheme(c.ty);
+    let scheme = shape::stiffness_scheme(c.ty, Some(hyp));
     let mut out = Vec::with_capacity(scheme.len());
     let mut sign = 0.0f64;
     for gp in &scheme {
@@ -260,14 +260,15 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
 /// per assembly instead of once per element.
 pub struct RefData {
     pub ty: CellType,
+    pub hyp: Hypothesis,
     pub weights: Vec<f64>,
     pub n: Vec<Vec<f64>>,
     pub dn: Vec<Vec<[f64; 3]>>,
 }
 
 impl RefData {
-    pub fn new(ty: CellType) -> RefData {
-        let scheme = shape::rigi_scheme(ty);
+    pub fn new(ty: CellType, hyp: Hypothesis) -> RefData {
+        let scheme = shape::stiffness_scheme(ty, Some(hyp));
         let mut n = Vec::with_capacity(scheme.len());
         let mut dn = Vec::with_capacity(scheme.len());
         for gp in &scheme {
@@ -277,6 +278,7 @@ impl RefData {
         }
         RefData {
             ty,
+            hyp,
             weights: scheme.iter().map(|g| g.weight).collect(),
             n,
             dn,

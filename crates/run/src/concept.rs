@@ -280,6 +280,8 @@ pub struct EvolResult {
     pub steps: Vec<Step>,
     /// What produced it, to compute more fields on demand (`CALC_CHAMP`).
     pub fem: Option<Rc<crate::fembridge::FemRun>>,
+    /// Tables the computation made (`OBSERVATION`), for `RECU_TABLE`.
+    pub tables: Vec<(String, Rc<crate::table::Table>)>,
 }
 
 impl EvolResult {

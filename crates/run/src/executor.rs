@@ -312,6 +312,29 @@ impl CommandSink for Executor {
         self.insert(concept, Concept::Function(Rc::new(function)));
     }
 
+    /// `TAB.EXTR_TABLE()`: the table's text, as `print` shows a code_aster
+    /// `Table` (its `IMPR_TABLE` form).
+    fn method(
+        &mut self,
+        concept: &ConceptRef,
+        name: &str,
+        args: &[aster_eval::HostValue],
+    ) -> Result<aster_eval::HostValue, ExecError> {
+        use aster_eval::{HostValue, Scalar};
+        match (name, args) {
+            ("EXTR_TABLE", []) => {
+                let table = self.table(concept)?;
+                Ok(HostValue::Scalar(Scalar::Str(
+                    table.render().trim_end().to_string(),
+                )))
+            }
+            _ => Err(ExecError::new(format!(
+                "not supported: method {name}() of concept {} ({})",
+                concept.name, concept.typ
+            ))),
+        }
+    }
+
     fn index(
         &mut self,
         concept: &ConceptRef,

@@ -22,6 +22,7 @@ pub mod function;
 pub mod list;
 pub mod meca_non_line;
 mod meshio;
+mod observation;
 pub mod output;
 pub mod preflight;
 pub mod program;

@@ -191,6 +191,27 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "ARCHIVAGE/*",
     "MESURE",
     "MESURE/*",
+    // Module `observation`.
+    "OBSERVATION",
+    "OBSERVATION/NOM_CHAM",
+    "OBSERVATION/NOM_CMP",
+    "OBSERVATION/EVAL_CMP",
+    "OBSERVATION/EVAL_CHAM",
+    "OBSERVATION/EVAL_ELGA",
+    "OBSERVATION/TITRE",
+    "OBSERVATION/OBSE_ETAT_INIT",
+    "OBSERVATION/INST",
+    "OBSERVATION/LIST_INST",
+    "OBSERVATION/PAS_OBSE",
+    "OBSERVATION/CRITERE",
+    "OBSERVATION/PRECISION",
+    "OBSERVATION/TOUT",
+    "OBSERVATION/NOEUD",
+    "OBSERVATION/GROUP_NO",
+    "OBSERVATION/MAILLE",
+    "OBSERVATION/GROUP_MA",
+    "OBSERVATION/POINT",
+    "OBSERVATION/SOUS_POINT",
 ];
 
 /// The values STAT_NON_LINE handles (also DYNA_NON_LINE's).
@@ -653,12 +674,20 @@ pub(crate) fn store_solution(
     linear: bool,
 ) -> Result<CommandOutput, ExecError> {
     let mesh_id = setup.model.mesh;
+    let mesh = ex.mesh_by_id(mesh_id)?;
+    let observations = crate::observation::parse(ex, &call.keywords, &mesh)?;
     let (steps, fem) = crate::fembridge::solve(ex, setup, linear)?;
+    let mut tables = Vec::new();
+    if !observations.is_empty() {
+        let t = crate::observation::table(&observations, &steps, &mesh);
+        tables.push(("OBSERVATION".to_string(), Rc::new(t)));
+    }
     let evol = EvolResult {
         typ: if linear { "evol_elas" } else { "evol_noli" }.into(),
         mesh: mesh_id,
         steps,
         fem: Some(fem),
+        tables,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }

@@ -267,6 +267,11 @@ pub static COMMANDS: &[Command] = &[
         support: tables::CALC_TABLE,
     },
     Command {
+        name: "RECU_TABLE",
+        run: tables::recu_table,
+        support: tables::RECU_TABLE,
+    },
+    Command {
         name: "CALC_PRESSION",
         run: pressure::calc_pression,
         support: pressure::CALC_PRESSION,
