@@ -4,7 +4,7 @@
 use aster_mesh::{CellId, NodeId};
 
 use crate::error::ContactError;
-use crate::shape::{dot, norm, project, scale, sub, SurfaceKind};
+use crate::shape::{dot, norm, scale, sub, SurfaceKind};
 use crate::surface::ResolvedZone;
 use crate::zone::{Appariement, NormalChoice};
 
