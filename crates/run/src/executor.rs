@@ -335,7 +335,12 @@ impl Executor {
 impl CommandSink for Executor {
     fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
         if self.finished {
-            return Ok(CommandOutput::Nothing);
+            // The next command file of a study starts again.
+            if call.command == "POURSUITE" {
+                self.finished = false;
+            } else {
+                return Ok(CommandOutput::Nothing);
+            }
         }
         crate::commands::dispatch(self, call)
     }

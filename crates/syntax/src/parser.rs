@@ -21,20 +21,29 @@ type R<T> = Result<T, ParseError>;
 
 /// Parse a whole file into its AST (no post-parse validation).
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
+    parse_module_unchecked_at(source, 0)
+}
+
+/// [`parse_module_unchecked`] with every span shifted by `base` (a file at
+/// that offset of a several-file code map).
+pub fn parse_module_unchecked_at(source: &str, base: usize) -> R<Module> {
     // pest reads a copy whose logical line ends are marked (same offsets);
     // the tree and the builder read the original text.
     let marked = crate::logical::mark_line_ends(source);
-    let pairs = CommParser::parse(Rule::module, &marked)
-        .map_err(|e| crate::error::from_pest(&e, source))?;
+    let pairs = CommParser::parse(Rule::module, &marked).map_err(|e| {
+        let mut pe = crate::error::from_pest(&e, source);
+        pe.span = Span::new(pe.span.start as usize + base, pe.span.end as usize + base);
+        pe
+    })?;
     let tree = Tree::new(pairs, source);
-    let builder = Builder { base: 0, source };
+    let builder = Builder { base, source };
     let body = match tree.top().next() {
         Some(module) => builder.stmts(module.into_inner())?,
         None => Vec::new(),
     };
     Ok(Module {
         body,
-        span: Span::new(0, source.len()),
+        span: Span::new(base, base + source.len()),
     })
 }
 
