@@ -504,7 +504,7 @@ pub fn solve(
     } else {
         "STAT_NON_LINE"
     };
-    let mesh = ex.mesh_by_id(setup.model.mesh)?;
+    let mesh = ex.model_mesh(&setup.model)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
     let loads = build_loads(setup)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;

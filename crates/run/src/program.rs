@@ -171,6 +171,17 @@ pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
         }
     };
     let mut copies = Vec::new();
+    if !case.report_files.is_empty() {
+        if let Err(e) = std::fs::create_dir_all(&case.options.out_dir) {
+            return Outcome {
+                tally: Tally::default(),
+                error: Some(fail(format!(
+                    "{}: cannot create: {e}",
+                    case.options.out_dir.display()
+                ))),
+            };
+        }
+    }
     for path in &case.report_files {
         match std::fs::File::create(path) {
             Ok(f) => copies.push(f),

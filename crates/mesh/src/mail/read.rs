@@ -314,18 +314,24 @@ fn hint<'b>(name: &str, candidates: impl IntoIterator<Item = &'b str>) -> String
         .unwrap_or_default()
 }
 
-/// A group defined twice gets the union of its members, in order.
-fn push_group<T: PartialEq>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) {
+/// A group defined twice gets the union of its members, in order. A member
+/// listed twice counts once and a group with no member is not created
+/// (code_aster's `lrmast`: an alarm, then the first occurrence is kept).
+fn push_group<T: PartialEq + Copy + std::hash::Hash + Eq>(
+    groups: &mut Vec<Group<T>>,
+    name: &str,
+    members: Vec<T>,
+) {
+    let mut seen: std::collections::HashSet<T> = std::collections::HashSet::new();
+    let mut unique: Vec<T> = members.into_iter().filter(|m| seen.insert(*m)).collect();
     if let Some(g) = groups.iter_mut().find(|g| g.name == name) {
-        for m in members {
-            if !g.members.contains(&m) {
-                g.members.push(m);
-            }
-        }
-    } else {
+        let have: std::collections::HashSet<T> = g.members.iter().copied().collect();
+        g.members
+            .extend(unique.drain(..).filter(|m| !have.contains(m)));
+    } else if !unique.is_empty() {
         groups.push(Group {
             name: name.to_string(),
-            members,
+            members: unique,
         });
     }
 }

@@ -29,17 +29,66 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     )?;
     let kw = &call.keywords;
     let format = kw.str("FORMAT").unwrap_or("MED");
-    ex.only_values("LIRE_MAILLAGE", kw, "FORMAT", &["MED", "ASTER"])?;
+    ex.only_values(
+        "LIRE_MAILLAGE",
+        kw,
+        "FORMAT",
+        &["MED", "ASTER", "GMSH", "GIBI"],
+    )?;
+    // code_aster's default unit is 20 whatever the format.
     let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(20);
     let path = ex.input_path(unit as u32).map(Path::to_path_buf).ok_or_else(|| {
         ExecError::new(format!(
             "LIRE_MAILLAGE: no file for unit {unit} (give the mesh with --mesh, or a .export line `F {} mesh-file D {unit}`)",
-            if format == "MED" { "mmed" } else { "mail" }
+            match format {
+                "MED" => "mmed",
+                "GMSH" => "msh",
+                "GIBI" => "mgib",
+                _ => "mail",
+            }
         ))
     })?;
     let mesh = read_mesh_file(&path, format)
         .map_err(|e| ExecError::new(format!("LIRE_MAILLAGE: {}: {e}", path.display())))?;
     store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
+}
+
+/// `PRE_GMSH` / `PRE_GIBI`: converts the GMSH (`UNITE_GMSH`, default 19)
+/// or GIBI (`UNITE_GIBI`, default 19) file into an ASTER text mesh written
+/// on `UNITE_MAILLAGE` (default 20, `fort.20` in the output directory),
+/// which a later `LIRE_MAILLAGE(FORMAT='ASTER')` reads.
+pub fn pre_convert(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let (format, source_kw) = if call.command == "PRE_GMSH" {
+        ("GMSH", "UNITE_GMSH")
+    } else {
+        ("GIBI", "UNITE_GIBI")
+    };
+    ex.check_keywords(call, &[source_kw, "UNITE_MAILLAGE"])?;
+    let kw = &call.keywords;
+    let source = kw.first(source_kw).and_then(|s| s.as_i64()).unwrap_or(19);
+    let target = kw
+        .first("UNITE_MAILLAGE")
+        .and_then(|s| s.as_i64())
+        .unwrap_or(20);
+    let path = ex
+        .input_path(source as u32)
+        .map(Path::to_path_buf)
+        .ok_or_else(|| {
+            ExecError::new(format!(
+                "{}: no file for unit {source} (a .export line `F {} mesh-file D {source}`)",
+                call.command,
+                if format == "GMSH" { "msh" } else { "mgib" }
+            ))
+        })?;
+    let text = crate::meshio::convert(&path, format)
+        .map_err(|e| ExecError::new(format!("{}: {e}", call.command)))?;
+    let out = ex.output_path(target);
+    // The unit's file is written anew (not appended to).
+    let _ = std::fs::remove_file(&out);
+    crate::commands::append_file(&out, &text)
+        .map_err(|e| ExecError::new(format!("{}: {}", call.command, e.message)))?;
+    ex.options.units.insert(target as u32, out);
+    Ok(CommandOutput::Nothing)
 }
 
 /// The mesh updated in place (`reuse=`) or copied into a new concept.

@@ -25,6 +25,7 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
             Ok(CommandOutput::Nothing)
         }
         "LIRE_MAILLAGE" => mesh::lire_maillage(ex, call),
+        "PRE_GMSH" | "PRE_GIBI" => mesh::pre_convert(ex, call),
         "DEFI_GROUP" => mesh::defi_group(ex, call),
         "MODI_MAILLAGE" => mesh::modi_maillage(ex, call),
         "CREA_MAILLAGE" => crea_maillage::crea_maillage(ex, call),
