@@ -16,6 +16,7 @@ pub mod behaviour;
 mod diag;
 pub mod dof;
 pub mod element;
+pub mod energy;
 pub mod error;
 pub mod fpg;
 mod held;

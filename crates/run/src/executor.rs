@@ -31,6 +31,8 @@ pub struct RunOptions {
 /// Executes validated commands.
 pub struct Executor {
     store: HashMap<u32, Concept>,
+    /// The name each stored concept was given (`LIEU` of POST_ELEM tables…).
+    names: HashMap<u32, String>,
     /// Objects tables refer to by name (`NOM_SD` of CALCUL's table).
     pub(crate) objects: HashMap<String, Concept>,
     /// Fields extracted from a result step (`CREA_CHAMP(OPERATION='EXTR')`),
@@ -52,6 +54,7 @@ impl Executor {
     pub fn new(options: RunOptions, out: Box<dyn Write>) -> Executor {
         Executor {
             store: HashMap::new(),
+            names: HashMap::new(),
             objects: HashMap::new(),
             field_origin: HashMap::new(),
             options,
@@ -164,6 +167,12 @@ impl Executor {
 
     pub(crate) fn insert(&mut self, c: &ConceptRef, concept: Concept) {
         self.store.insert(c.id, concept);
+        self.names.insert(c.id, c.name.clone());
+    }
+
+    /// The name a concept was given (`None` for one made without a name).
+    pub(crate) fn concept_name(&self, id: u32) -> Option<&str> {
+        self.names.get(&id).map(String::as_str)
     }
 
     pub fn concept(&self, c: &ConceptRef) -> Result<&Concept, ExecError> {

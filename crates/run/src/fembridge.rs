@@ -420,7 +420,7 @@ fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
 }
 
 /// A displacement vector of `model` from a stored DEPL field.
-fn displacement_from(model: &Model, depl: &NodalField) -> Vec<f64> {
+pub(crate) fn displacement_from(model: &Model, depl: &NodalField) -> Vec<f64> {
     model
         .dofs()
         .dofs()

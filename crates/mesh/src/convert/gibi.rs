@@ -604,9 +604,8 @@ fn write(g: &Gibi, lines: &Lines<'_>) -> Result<String, MeshError> {
             };
             let mut members = Vec::new();
             for j in parts {
-                for c in cumul[j]..cumul[j] + g.objects[j].nbele {
-                    members.push(format!("M{}", numanew[c] + 1));
-                }
+                let cells = numanew.iter().skip(cumul[j]).take(g.objects[j].nbele);
+                members.extend(cells.map(|c| format!("M{}", c + 1)));
             }
             text.group("GROUP_MA", name, &members);
         }

@@ -48,8 +48,15 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             }
         ))
     })?;
-    let mesh = read_mesh_file(&path, format)
-        .map_err(|e| ExecError::new(format!("LIRE_MAILLAGE: {}: {e}", path.display())))?;
+    let mesh = read_mesh_file(&path, format).map_err(|e| {
+        // Reader errors mostly start with the file (and its line): not twice.
+        let file = path.display().to_string();
+        if e.starts_with(&file) {
+            ExecError::new(format!("LIRE_MAILLAGE: {e}"))
+        } else {
+            ExecError::new(format!("LIRE_MAILLAGE: {file}: {e}"))
+        }
+    })?;
     store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
 }
 

@@ -10,6 +10,7 @@ mod loads;
 mod loads_f;
 mod mesh;
 mod post;
+mod post_elem;
 mod pressure;
 mod tables;
 
@@ -66,6 +67,11 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "CREA_TABLE" => tables::crea_table(ex, call),
         "CALC_TABLE" => tables::calc_table(ex, call),
         "CALC_PRESSION" => pressure::calc_pression(ex, call),
+        "POST_ELEM" => post_elem::post_elem(ex, call),
+        "MACR_ADAP_MAIL" => Err(ex.unsupported(
+            "MACR_ADAP_MAIL (mesh adaptation runs the external HOMARD tool, which aster does not have)",
+            call.span,
+        )),
         "DETRUIRE" => Ok(CommandOutput::Nothing),
         // The formula itself arrives through `CommandSink::formula`.
         "FORMULE" => Ok(CommandOutput::Concept),
