@@ -381,6 +381,48 @@ impl CommandSink for Executor {
         self.insert(concept, Concept::Function(Rc::new(function)));
     }
 
+    /// Methods of concepts: `mesh.getMinMaxEdgeSizes(group)` (`'TOUT'`: every cell).
+    fn method(
+        &mut self,
+        concept: &ConceptRef,
+        name: &str,
+        args: &[aster_eval::HostValue],
+    ) -> Result<aster_eval::HostValue, ExecError> {
+        use aster_eval::{HostValue, Scalar};
+        match (self.concept(concept)?, name) {
+            (Concept::Mesh(mesh), "getMinMaxEdgeSizes") => {
+                let cells: Vec<aster_mesh::CellId> = match args {
+                    [] => (0..mesh.cells.len() as u32)
+                        .map(aster_mesh::CellId)
+                        .collect(),
+                    [HostValue::Scalar(Scalar::Str(g))] if g == "TOUT" => (0..mesh.cells.len()
+                        as u32)
+                        .map(aster_mesh::CellId)
+                        .collect(),
+                    [HostValue::Scalar(Scalar::Str(g))] => crate::select::group_ma(mesh, g)
+                        .map_err(|e| ExecError::new(format!("getMinMaxEdgeSizes: {e}")))?
+                        .to_vec(),
+                    _ => {
+                        return Err(ExecError::new(
+                            "getMinMaxEdgeSizes takes a group name or 'TOUT'",
+                        ))
+                    }
+                };
+                let (lo, hi) = mesh
+                    .edge_length_range(&cells)
+                    .ok_or_else(|| ExecError::new("getMinMaxEdgeSizes: the cells have no edge"))?;
+                Ok(HostValue::List(vec![
+                    HostValue::Scalar(Scalar::Real(lo)),
+                    HostValue::Scalar(Scalar::Real(hi)),
+                ]))
+            }
+            _ => Err(ExecError::new(format!(
+                "not supported: method {name}() of concept {} ({})",
+                concept.name, concept.typ
+            ))),
+        }
+    }
+
     fn index(
         &mut self,
         concept: &ConceptRef,

@@ -188,6 +188,7 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             let allowed = match format {
                 "RESULTAT" => key != "TYPE_CHAM",
                 "GMSH" => key == "NOM_CMP" || key == "TYPE_CHAM",
+                "MED" => key == "NOM_CMP",
                 _ => false,
             };
             if !allowed && occ.keyword(key).is_some_and(|k| !k.defaulted) {
@@ -250,6 +251,21 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 mesh = Some((ex.mesh_by_id(result.mesh)?, r.name.clone()));
             }
             let mut s = result_steps(ex, occ, &result)?;
+            // NOM_CMP: only those components (a field with none is left out).
+            let cmps: Vec<&str> = occ
+                .simple("NOM_CMP")
+                .iter()
+                .filter_map(|c| c.as_str())
+                .collect();
+            if !cmps.is_empty() {
+                for st in &mut s {
+                    st.fields = st
+                        .fields
+                        .iter()
+                        .filter_map(|f| f.with_components(&cmps))
+                        .collect();
+                }
+            }
             // Several results in one file: prefix field names with the result's.
             for st in &mut s {
                 for f in &mut st.fields {
@@ -261,10 +277,21 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         if let Some(c) = occ.concept("CHAM_GD") {
             let m = ex.single_mesh()?;
             let f = ex.field(c)?;
+            let field = to_mesh_field(&c.name, &f, &m);
+            let cmps: Vec<&str> = occ
+                .simple("NOM_CMP")
+                .iter()
+                .filter_map(|c| c.as_str())
+                .collect();
+            let fields = if cmps.is_empty() {
+                vec![field]
+            } else {
+                field.with_components(&cmps).into_iter().collect()
+            };
             steps.push(ResultStep {
                 nume_ordre: 0,
                 inst: 0.0,
-                fields: vec![to_mesh_field(&c.name, &f, &m)],
+                fields,
             });
             if mesh.is_none() {
                 mesh = Some((m, c.name.clone()));

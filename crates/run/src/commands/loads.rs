@@ -69,11 +69,60 @@ fn imposed_values(
     for occ in occurrences {
         let start = out.len();
         imposed_in(ex, occ, mesh, comps, what, &mut out)?;
+        blocked_in(ex, occ, model, mesh, what, &mut out)?;
         for i in &out[start..] {
             check_dof(model, mesh, carried, i.node, i.comp, what)?;
         }
     }
     Ok(out)
+}
+
+/// `DDL_IMPO/BLOCAGE`: zero on every degree of freedom of the kinds listed
+/// that the nodes carry — 'DEPLACEMENT': the translations of the model
+/// (DX, DY, and DZ in 3D); 'ROTATION': the rotations, which the continuum
+/// and translation-only discrete models here have none of (nothing to
+/// block, as code_aster blocks only the DOFs present).
+fn blocked_in(
+    ex: &Executor,
+    occ: &Keywords,
+    model: &ModelDef,
+    mesh: &Mesh,
+    what: &str,
+    out: &mut Vec<Imposed>,
+) -> Result<(), ExecError> {
+    let kinds: Vec<&str> = occ
+        .simple("BLOCAGE")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    if kinds.is_empty() {
+        return Ok(());
+    }
+    let nodes =
+        select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    for kind in kinds {
+        let comps: &[&'static str] = match kind {
+            "DEPLACEMENT" if model.dim() == 3 => &["DX", "DY", "DZ"],
+            "DEPLACEMENT" => &["DX", "DY"],
+            "ROTATION" => &[],
+            other => {
+                return Err(ex.unsupported(
+                    &format!("{what}/BLOCAGE='{other}'"),
+                    occ.keyword("BLOCAGE").map(|k| k.span).unwrap_or_default(),
+                ))
+            }
+        };
+        for &n in &nodes {
+            for &comp in comps {
+                out.push(Imposed {
+                    node: n,
+                    comp,
+                    value: 0.0,
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The imposed values of one occurrence, appended to `out`.
@@ -187,6 +236,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "DDL_IMPO/DX",
             "DDL_IMPO/DY",
             "DDL_IMPO/DZ",
+            "DDL_IMPO/BLOCAGE",
             "FORCE_NODALE",
             "FORCE_NODALE/GROUP_NO",
             "FORCE_NODALE/NOEUD",
