@@ -318,6 +318,17 @@ pub enum Concept {
     VectElem(Rc<crate::field::NodalField>),
     /// `NUME_DDL`: the numbering of a model's DOFs (the model's id).
     Numbering(u32),
+    /// A nodal field of functions (`CREA_CHAMP(OPERATION='AFFE',
+    /// TYPE_CHAM='NOEU_*_F', AFFE=_F(VALE_F=…))`), evaluated by
+    /// `CREA_CHAMP(OPERATION='EVAL')`.
+    FunctionField(Rc<NodalFunctionField>),
+}
+
+/// Per node, per component, a function (`NOEU_*_F`).
+#[derive(Clone, Debug, Default)]
+pub struct NodalFunctionField {
+    pub components: Vec<String>,
+    pub values: BTreeMap<NodeId, BTreeMap<String, Rc<Function>>>,
 }
 
 impl Concept {
@@ -340,6 +351,7 @@ impl Concept {
             Concept::Field(_) => "a field",
             Concept::VectElem(_) => "elementary vectors",
             Concept::Numbering(_) => "a DOF numbering",
+            Concept::FunctionField(_) => "a field of functions",
         }
     }
 }

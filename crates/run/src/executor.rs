@@ -38,6 +38,9 @@ pub struct Executor {
     /// Fields extracted from a result step (`CREA_CHAMP(OPERATION='EXTR')`),
     /// by concept id: the result and the NUME_ORDRE they come from.
     pub(crate) field_origin: HashMap<u32, (Rc<EvolResult>, u32)>,
+    /// The mesh (id) a field made by CREA_CHAMP lives on, when the command
+    /// tells it (MAILLAGE, MODELE, or the fields it was made from).
+    pub(crate) field_meshes: HashMap<u32, u32>,
     pub(crate) options: RunOptions,
     out: Box<dyn Write>,
     pub tally: Tally,
@@ -57,6 +60,7 @@ impl Executor {
             names: HashMap::new(),
             objects: HashMap::new(),
             field_origin: HashMap::new(),
+            field_meshes: HashMap::new(),
             options,
             out,
             tally: Tally::default(),
@@ -300,9 +304,18 @@ impl Executor {
     /// extracted from (`CREA_CHAMP(OPERATION='EXTR')`), else the program's
     /// only mesh. Programs with `CREA_MAILLAGE` (DECOUPE_LAC…) have several.
     pub(crate) fn field_mesh(&self, field: &ConceptRef) -> Result<Arc<Mesh>, ExecError> {
-        match self.field_origin.get(&field.id) {
-            Some((result, _)) => self.mesh_by_id(result.mesh),
-            None => self.single_mesh(),
+        self.mesh_by_id(self.field_mesh_id(field)?)
+    }
+
+    /// The id of the mesh concept a field lives on ([`Executor::field_mesh`]).
+    pub(crate) fn field_mesh_id(&self, field: &ConceptRef) -> Result<u32, ExecError> {
+        match (
+            self.field_origin.get(&field.id),
+            self.field_meshes.get(&field.id),
+        ) {
+            (Some((result, _)), _) => Ok(result.mesh),
+            (None, Some(&m)) => Ok(m),
+            (None, None) => self.single_mesh_id(),
         }
     }
 
@@ -322,16 +335,18 @@ impl Executor {
     /// The program's mesh when there is exactly one (fields do not record
     /// their mesh).
     pub(crate) fn single_mesh(&self) -> Result<Arc<Mesh>, ExecError> {
-        let meshes: Vec<&Arc<Mesh>> = self
+        self.mesh_by_id(self.single_mesh_id()?)
+    }
+
+    /// The id of the program's only mesh.
+    pub(crate) fn single_mesh_id(&self) -> Result<u32, ExecError> {
+        let meshes: Vec<u32> = self
             .store
-            .values()
-            .filter_map(|c| match c {
-                Concept::Mesh(m) => Some(m),
-                _ => None,
-            })
+            .iter()
+            .filter_map(|(id, c)| matches!(c, Concept::Mesh(_)).then_some(*id))
             .collect();
         match meshes.as_slice() {
-            [m] => Ok((*m).clone()),
+            [m] => Ok(*m),
             [] => Err(ExecError::new("no mesh has been read")),
             _ => Err(ExecError::new(
                 "several meshes exist: this command cannot tell which one a field lives on",

@@ -98,6 +98,19 @@ pub fn pre_convert(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     Ok(CommandOutput::Nothing)
 }
 
+/// `ASSE_MAILLAGE(OPERATION='SUPERPOSE')`: the two meshes side by side
+/// (aster-mesh `Mesh::superpose`: nodes and cells renumbered N1…, M1…, the
+/// second mesh's groups renamed when their name is taken). `COLLAGE` and
+/// `SOUS_STR` are refused.
+pub fn asse_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.check_keywords(call, &["MAILLAGE_1", "MAILLAGE_2", "OPERATION"])?;
+    let kw = &call.keywords;
+    ex.only_values("ASSE_MAILLAGE", kw, "OPERATION", &["SUPERPOSE"])?;
+    let a = ex.mesh(ex.required("ASSE_MAILLAGE", kw, "MAILLAGE_1")?)?;
+    let b = ex.mesh(ex.required("ASSE_MAILLAGE", kw, "MAILLAGE_2")?)?;
+    store_result(ex, call, Concept::Mesh(Arc::new(a.superpose(&b))))
+}
+
 /// The mesh updated in place (`reuse=`) or copied into a new concept.
 fn mesh_to_modify(ex: &Executor, call: &CommandCall) -> Result<Mesh, ExecError> {
     let src = ex.required(&call.command, &call.keywords, "MAILLAGE")?;

@@ -12,6 +12,7 @@ mod mesh;
 mod post;
 mod post_elem;
 mod pressure;
+mod results;
 mod tables;
 
 use crate::executor::Executor;
@@ -27,6 +28,7 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         }
         "LIRE_MAILLAGE" => mesh::lire_maillage(ex, call),
         "PRE_GMSH" | "PRE_GIBI" => mesh::pre_convert(ex, call),
+        "ASSE_MAILLAGE" => mesh::asse_maillage(ex, call),
         "DEFI_GROUP" => mesh::defi_group(ex, call),
         "MODI_MAILLAGE" => mesh::modi_maillage(ex, call),
         "CREA_MAILLAGE" => crea_maillage::crea_maillage(ex, call),
@@ -68,6 +70,8 @@ pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, 
         "CALC_TABLE" => tables::calc_table(ex, call),
         "CALC_PRESSION" => pressure::calc_pression(ex, call),
         "POST_ELEM" => post_elem::post_elem(ex, call),
+        "CREA_RESU" => results::crea_resu(ex, call),
+        "RECU_TABLE" => results::recu_table(ex, call),
         "MACR_ADAP_MAIL" => Err(ex.unsupported(
             "MACR_ADAP_MAIL (mesh adaptation runs the external HOMARD tool, which aster does not have)",
             call.span,
