@@ -166,8 +166,8 @@ pub struct ImposedFn {
     pub xyz: [f64; 3],
 }
 
-/// A distributed load given by functions of `INST` only (checked when the
-/// load is defined).
+/// A distributed load given by functions of `INST` or of the coordinates
+/// `X`, `Y`, `Z` (not both: checked when the load is defined).
 #[derive(Clone, Debug, PartialEq)]
 pub enum BoundaryFn {
     /// `FORCE_CONTOUR`/`FORCE_FACE`: per component, a function or nothing.
@@ -183,7 +183,8 @@ pub enum BoundaryFn {
 }
 
 /// `FORCE_INTERNE`: a force per unit volume (per unit area in 2D), each
-/// component a constant or (AFFE_CHAR_MECA_F) a function of `INST`.
+/// component a constant or (AFFE_CHAR_MECA_F) a function of `INST` or of
+/// the coordinates.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VolumeForce {
     pub cells: Vec<CellId>,
