@@ -650,6 +650,7 @@ impl UnilateralSource for ZoneContact {
                 )));
             }
         }
+        self.zone.time = state.time;
         let rows = self
             .pair(state.mesh, &x)
             .map_err(|e| FemError::Source(format!("{}: {e}", self.describe())))?;

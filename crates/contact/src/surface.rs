@@ -39,6 +39,9 @@ pub struct ResolvedZone {
     pub slave_cells_of_node: HashMap<NodeId, Vec<usize>>,
     /// Space dimension of the problem (2 or 3).
     pub space_dim: usize,
+    /// The time of the current pairing (for offsets given as functions of
+    /// time).
+    pub time: f64,
 }
 
 impl ResolvedZone {
@@ -101,6 +104,7 @@ impl ResolvedZone {
         slave_nodes.sort();
 
         Ok(ResolvedZone {
+            time: 0.0,
             index,
             geometry: geometry.clone(),
             master,

@@ -73,6 +73,9 @@ pub struct NewtonOptions {
     /// constant, so this only matters with a plastic behaviour.
     pub reac_iter: usize,
     pub matrix: MatrixKind,
+    /// `MATR_RIGI_SYME='OUI'`: a non-symmetric tangent (SIMO_MIEHE) is
+    /// replaced by its symmetric part (K + Kᵀ)/2.
+    pub symmetrize: bool,
 }
 
 impl Default for NewtonOptions {
@@ -81,6 +84,7 @@ impl Default for NewtonOptions {
             prediction: Prediction::Tangente,
             reac_iter: 1,
             matrix: MatrixKind::Tangente,
+            symmetrize: false,
         }
     }
 }
@@ -303,7 +307,7 @@ impl StaticNonLinear<'_> {
         let mut plastic = if linear {
             None
         } else {
-            PlasticCells::new(model, &self.behaviours)?
+            PlasticCells::new(model, &self.behaviours, self.newton.symmetrize)?
         };
         if plastic.is_some() && u.iter().any(|&v| v != 0.0) {
             return Err(FemError::Model(
@@ -478,6 +482,7 @@ impl StaticNonLinear<'_> {
                             FemError::NoConvergence { .. }
                                 | FemError::ActiveSet { .. }
                                 | FemError::PoorSolve { .. }
+                                | FemError::Integration(_)
                         );
                         let Some(sd) = self.subdivision.filter(|_| cuttable) else {
                             return Err(e);
@@ -796,7 +801,7 @@ fn newton_step(
             if let Some(pc) = plastic.as_mut() {
                 if new_outer && choose_tangent(&mut tangent, pc, model, kff, map, newton, outer)? {
                     tangent_key = match tangent {
-                        Some(_) => kkt.new_tangent(),
+                        Some(_) => kkt.new_tangent(pc.symmetric_tangent()),
                         None => MatrixKey::Elastic,
                     };
                 }
@@ -870,7 +875,8 @@ fn newton_step(
                         }
                     }
                     let a = matrix.with_extra(nfree + nk, extra);
-                    let spd = nk == 0;
+                    let symmetric = plastic.as_ref().is_none_or(|pc| pc.symmetric_tangent());
+                    let spd = nk == 0 && symmetric;
                     linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
                         SolveFailure::Singular { index } => {
                             let mut ground: Vec<Vec<(usize, f64)>> =
@@ -1237,10 +1243,12 @@ fn choose_tangent(
         return Ok(true);
     }
     if iter == 0 {
-        *tangent = if newton.prediction == Prediction::Elastique {
+        *tangent = if newton.prediction == Prediction::Elastique && !pc.has_finite_strains() {
             None
         } else {
-            pc.prediction(model)?;
+            // Finite strains: code_aster's RIGI_MECA_ELAS is the tangent
+            // at the converged geometry with the elastic material matrix.
+            pc.prediction(model, newton.prediction == Prediction::Elastique)?;
             consistent(pc)
         };
         return Ok(true);

@@ -68,29 +68,6 @@ impl Field {
         }
     }
 
-    /// The field restricted to the named components (in the field's order):
-    /// `None` when it has none of them (`IMPR_RESU/NOM_CMP`).
-    pub fn with_components(&self, names: &[&str]) -> Option<Field> {
-        let keep: Vec<usize> = (0..self.components.len())
-            .filter(|&c| names.contains(&self.components[c].as_str()))
-            .collect();
-        if keep.is_empty() {
-            return None;
-        }
-        let nc = self.components.len().max(1);
-        let values = self
-            .values
-            .chunks(nc)
-            .flat_map(|set| keep.iter().map(move |&c| set[c]))
-            .collect();
-        Some(Field {
-            name: self.name.clone(),
-            components: keep.iter().map(|&c| self.components[c].clone()).collect(),
-            location: self.location.clone(),
-            values,
-        })
-    }
-
     /// Check the value count against the mesh.
     pub fn check(&self, mesh: &Mesh) -> Result<(), MeshError> {
         let nc = self.components.len();
@@ -146,19 +123,5 @@ impl Field {
                 Some(Cow::Owned(out))
             }
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn selected_components_keep_the_field_order() {
-        let f = Field::nodal("DEPL", &["DX", "DY", "DZ"], vec![1., 2., 3., 4., 5., 6.]);
-        let g = f.with_components(&["DZ", "DX"]).unwrap();
-        assert_eq!(g.components, ["DX", "DZ"]);
-        assert_eq!(g.values, [1., 3., 4., 6.]);
-        assert!(f.with_components(&["TEMP"]).is_none());
     }
 }

@@ -52,6 +52,15 @@ pub fn run_sources(
             .collect(),
         declared,
     };
+    // Everything that would be refused is refused now, before any command
+    // runs (crate::preflight).
+    let pre = crate::preflight::check_study(&map, &study, &executor.options);
+    if !pre.findings.0.is_empty() {
+        return Err(RunFailure {
+            message: pre.render(&map),
+        });
+    }
+    executor.read_meshes = pre.meshes;
     executor.set_codemap(Rc::new(map.clone()));
     let options = aster_eval::RunOptions { keep_going: false };
     match aster_eval::run_study(&map, &study, executor, options) {

@@ -5,6 +5,7 @@
 use crate::concept::{EvolResult, Step};
 use crate::executor::Executor;
 use crate::field::{ElemLocation, Field};
+use crate::support::{Refusal, Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::{FieldLocation, Mesh, ResultStep};
 use std::sync::Arc;
@@ -112,6 +113,11 @@ fn result_steps(
     result: &EvolResult,
 ) -> Result<Vec<ResultStep>, ExecError> {
     let mesh = ex.mesh_by_id(result.mesh)?;
+    let wanted: Vec<&str> = occ
+        .simple("NOM_CMP")
+        .iter()
+        .filter_map(|v| v.as_str())
+        .collect();
     let mut out = Vec::new();
     for (s, selected) in selected_fields(ex, occ, result)? {
         let mut fields = Vec::new();
@@ -120,7 +126,13 @@ fn result_steps(
             if f.components().is_empty() {
                 continue;
             }
-            fields.push(to_mesh_field(name, f, &mesh));
+            let field = to_mesh_field(name, f, &mesh);
+            // NOM_CMP (FORMAT='MED'): only these components are written; a
+            // field with none of them is left out, as code_aster does.
+            match only_components(field, &wanted) {
+                Some(field) => fields.push(field),
+                None => continue,
+            }
         }
         out.push(ResultStep {
             nume_ordre: s.nume_ordre as i32,
@@ -131,50 +143,73 @@ fn result_steps(
     Ok(out)
 }
 
-pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "FORMAT",
-            "UNITE",
-            "INFO",
-            "PROC0",
-            "VERSION_MED",
-            // The model code_aster uses to locate element fields: ours
-            // carry their model with the result.
-            "MODELE",
-            "RESU",
-            "RESU/MAILLAGE",
-            "RESU/RESULTAT",
-            "RESU/CHAM_GD",
-            "RESU/NOM_CHAM",
-            "RESU/TOUT",
-            "RESU/TOUT_ORDRE",
-            "RESU/NUME_ORDRE",
-            "RESU/INST",
-            "RESU/PRECISION",
-            "RESU/CRITERE",
-            "RESU/INFO_MAILLAGE",
-            "RESU/IMPR_NOM_VARI",
-            // FORMAT='RESULTAT' listing selections.
-            "RESU/NOM_CMP",
-            "RESU/GROUP_NO",
-            "RESU/NOEUD",
-            "RESU/GROUP_MA",
-            "RESU/MAILLE",
-            "RESU/FORMAT_R",
-            "RESU/IMPR_COOR",
-            "RESU/TYPE_CHAM",
-        ],
-    )?;
+/// A field restricted to the components `wanted` (all when empty); `None`
+/// when it has none of them.
+fn only_components(field: aster_mesh::Field, wanted: &[&str]) -> Option<aster_mesh::Field> {
+    if wanted.is_empty() {
+        return Some(field);
+    }
+    let keep: Vec<usize> = (0..field.components.len())
+        .filter(|&c| wanted.contains(&field.components[c].as_str()))
+        .collect();
+    if keep.is_empty() {
+        return None;
+    }
+    let n = field.components.len();
+    let values = field
+        .values
+        .chunks(n)
+        .flat_map(|set| keep.iter().map(move |&c| set[c]))
+        .collect();
+    Some(aster_mesh::Field {
+        components: keep.iter().map(|&c| field.components[c].clone()).collect(),
+        values,
+        ..field
+    })
+}
+
+/// What IMPR_RESU reads (`crate::support`).
+pub(crate) const IMPR_RESU: Support = Support {
+    values: &[Values::new("FORMAT", &["MED", "ASTER", "RESULTAT", "GMSH"])],
+    rules: Some(impr_resu_rules),
+    ..Support::keywords(&[
+        "FORMAT",
+        "UNITE",
+        "INFO",
+        "PROC0",
+        "VERSION_MED",
+        // The model code_aster uses to locate element fields: ours
+        // carry their model with the result.
+        "MODELE",
+        "RESU",
+        "RESU/MAILLAGE",
+        "RESU/RESULTAT",
+        "RESU/CHAM_GD",
+        "RESU/NOM_CHAM",
+        "RESU/TOUT",
+        "RESU/TOUT_ORDRE",
+        "RESU/NUME_ORDRE",
+        "RESU/INST",
+        "RESU/PRECISION",
+        "RESU/CRITERE",
+        "RESU/INFO_MAILLAGE",
+        "RESU/IMPR_NOM_VARI",
+        // FORMAT='RESULTAT' listing selections.
+        "RESU/NOM_CMP",
+        "RESU/GROUP_NO",
+        "RESU/NOEUD",
+        "RESU/GROUP_MA",
+        "RESU/MAILLE",
+        "RESU/FORMAT_R",
+        "RESU/IMPR_COOR",
+        "RESU/TYPE_CHAM",
+    ])
+};
+
+/// The selections of `RESU` each format prints, and the real formats.
+fn impr_resu_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     let kw = &call.keywords;
     let format = kw.str("FORMAT").unwrap_or("RESULTAT");
-    ex.only_values(
-        "IMPR_RESU",
-        kw,
-        "FORMAT",
-        &["MED", "ASTER", "RESULTAT", "GMSH"],
-    )?;
     for occ in kw.factor("RESU") {
         for key in [
             "NOM_CMP",
@@ -192,18 +227,28 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 _ => false,
             };
             if !allowed && occ.keyword(key).is_some_and(|k| !k.defaulted) {
-                let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
-                return Err(ex.unsupported(
-                    &format!("IMPR_RESU/RESU/{key} with FORMAT='{format}'"),
-                    span,
+                out.push(Refusal::at(
+                    format!("IMPR_RESU/RESU/{key} with FORMAT='{format}'"),
+                    occ,
+                    key,
+                    call.span,
                 ));
             }
         }
         if let Some(f) = occ.str("FORMAT_R").filter(|f| real_format(f).is_none()) {
-            let span = occ.keyword("FORMAT_R").map(|k| k.span).unwrap_or_default();
-            return Err(ex.unsupported(&format!("IMPR_RESU/RESU/FORMAT_R='{f}'"), span));
+            out.push(Refusal::at(
+                format!("IMPR_RESU/RESU/FORMAT_R='{f}'"),
+                occ,
+                "FORMAT_R",
+                call.span,
+            ));
         }
     }
+}
+
+pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let format = kw.str("FORMAT").unwrap_or("RESULTAT");
     if format == "GMSH" {
         let text = gmsh(ex, kw)?;
         let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(37);
@@ -251,21 +296,6 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 mesh = Some((ex.mesh_by_id(result.mesh)?, r.name.clone()));
             }
             let mut s = result_steps(ex, occ, &result)?;
-            // NOM_CMP: only those components (a field with none is left out).
-            let cmps: Vec<&str> = occ
-                .simple("NOM_CMP")
-                .iter()
-                .filter_map(|c| c.as_str())
-                .collect();
-            if !cmps.is_empty() {
-                for st in &mut s {
-                    st.fields = st
-                        .fields
-                        .iter()
-                        .filter_map(|f| f.with_components(&cmps))
-                        .collect();
-                }
-            }
             // Several results in one file: prefix field names with the result's.
             for st in &mut s {
                 for f in &mut st.fields {
@@ -283,11 +313,7 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 .iter()
                 .filter_map(|c| c.as_str())
                 .collect();
-            let fields = if cmps.is_empty() {
-                vec![field]
-            } else {
-                field.with_components(&cmps).into_iter().collect()
-            };
+            let fields = only_components(field, &cmps).into_iter().collect();
             steps.push(ResultStep {
                 nume_ordre: 0,
                 inst: 0.0,

@@ -3,6 +3,7 @@
 use crate::concept::*;
 use crate::executor::{store_result, Executor};
 use crate::select;
+use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::{Mesh, NodeId};
 use std::rc::Rc;
@@ -172,24 +173,23 @@ fn imposed_in(
     Ok(())
 }
 
+/// What AFFE_CHAR_CINE reads (`crate::support`).
+pub(crate) const AFFE_CHAR_CINE: Support = Support::keywords(&[
+    "MODELE",
+    "INFO",
+    "MECA_IMPO",
+    "MECA_IMPO/TOUT",
+    "MECA_IMPO/GROUP_NO",
+    "MECA_IMPO/NOEUD",
+    "MECA_IMPO/GROUP_MA",
+    "MECA_IMPO/MAILLE",
+    "MECA_IMPO/SANS_GROUP_NO",
+    "MECA_IMPO/DX",
+    "MECA_IMPO/DY",
+    "MECA_IMPO/DZ",
+]);
+
 pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "INFO",
-            "MECA_IMPO",
-            "MECA_IMPO/TOUT",
-            "MECA_IMPO/GROUP_NO",
-            "MECA_IMPO/NOEUD",
-            "MECA_IMPO/GROUP_MA",
-            "MECA_IMPO/MAILLE",
-            "MECA_IMPO/SANS_GROUP_NO",
-            "MECA_IMPO/DX",
-            "MECA_IMPO/DY",
-            "MECA_IMPO/DZ",
-        ],
-    )?;
     let kw = &call.keywords;
     let model_ref = ex.required("AFFE_CHAR_CINE", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
@@ -218,87 +218,95 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     )
 }
 
+/// What AFFE_CHAR_MECA reads (`crate::support`).
+pub(crate) const AFFE_CHAR_MECA: Support = Support {
+    keywords: &[
+        "MODELE",
+        "INFO",
+        "VERI_NORM",
+        "DOUBLE_LAGRANGE",
+        "DDL_IMPO",
+        "DDL_IMPO/TOUT",
+        "DDL_IMPO/GROUP_NO",
+        "DDL_IMPO/NOEUD",
+        "DDL_IMPO/GROUP_MA",
+        "DDL_IMPO/MAILLE",
+        "DDL_IMPO/SANS_GROUP_NO",
+        "DDL_IMPO/DX",
+        "DDL_IMPO/DY",
+        "DDL_IMPO/DZ",
+        "DDL_IMPO/BLOCAGE",
+        "FORCE_NODALE",
+        "FORCE_NODALE/GROUP_NO",
+        "FORCE_NODALE/NOEUD",
+        "FORCE_NODALE/FX",
+        "FORCE_NODALE/FY",
+        "FORCE_NODALE/FZ",
+        "FORCE_CONTOUR",
+        "FORCE_CONTOUR/GROUP_MA",
+        "FORCE_CONTOUR/MAILLE",
+        "FORCE_CONTOUR/FX",
+        "FORCE_CONTOUR/FY",
+        "FORCE_FACE",
+        "FORCE_FACE/GROUP_MA",
+        "FORCE_FACE/MAILLE",
+        "FORCE_FACE/FX",
+        "FORCE_FACE/FY",
+        "FORCE_FACE/FZ",
+        "PRES_REP",
+        "PRES_REP/GROUP_MA",
+        "PRES_REP/MAILLE",
+        "PRES_REP/TOUT",
+        "PRES_REP/PRES",
+        "FORCE_INTERNE",
+        "FORCE_INTERNE/TOUT",
+        "FORCE_INTERNE/GROUP_MA",
+        "FORCE_INTERNE/MAILLE",
+        "FORCE_INTERNE/FX",
+        "FORCE_INTERNE/FY",
+        "FORCE_INTERNE/FZ",
+        "FACE_IMPO",
+        "FACE_IMPO/GROUP_MA",
+        "FACE_IMPO/MAILLE",
+        "FACE_IMPO/SANS_GROUP_NO",
+        "FACE_IMPO/DX",
+        "FACE_IMPO/DY",
+        "FACE_IMPO/DZ",
+        "LIAISON_GROUP",
+        "LIAISON_GROUP/GROUP_NO_1",
+        "LIAISON_GROUP/GROUP_NO_2",
+        "LIAISON_GROUP/GROUP_MA_1",
+        "LIAISON_GROUP/GROUP_MA_2",
+        "LIAISON_GROUP/SANS_GROUP_NO",
+        "LIAISON_GROUP/DDL_1",
+        "LIAISON_GROUP/DDL_2",
+        "LIAISON_GROUP/COEF_MULT_1",
+        "LIAISON_GROUP/COEF_MULT_2",
+        "LIAISON_GROUP/COEF_IMPO",
+        "LIAISON_UNIF",
+        "LIAISON_UNIF/GROUP_NO",
+        "LIAISON_UNIF/NOEUD",
+        "LIAISON_UNIF/GROUP_MA",
+        "LIAISON_UNIF/MAILLE",
+        "LIAISON_UNIF/SANS_GROUP_NO",
+        "LIAISON_UNIF/DDL",
+        "LIAISON_DDL",
+        "LIAISON_DDL/GROUP_NO",
+        "LIAISON_DDL/NOEUD",
+        "LIAISON_DDL/DDL",
+        "LIAISON_DDL/COEF_MULT",
+        "LIAISON_DDL/COEF_IMPO",
+    ],
+    values: &[Values::new(
+        "DDL_IMPO/BLOCAGE",
+        &["DEPLACEMENT", "ROTATION"],
+    )],
+    hints: &[],
+    reuse: true,
+    rules: None,
+};
+
 pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "INFO",
-            "VERI_NORM",
-            "DOUBLE_LAGRANGE",
-            "DDL_IMPO",
-            "DDL_IMPO/TOUT",
-            "DDL_IMPO/GROUP_NO",
-            "DDL_IMPO/NOEUD",
-            "DDL_IMPO/GROUP_MA",
-            "DDL_IMPO/MAILLE",
-            "DDL_IMPO/SANS_GROUP_NO",
-            "DDL_IMPO/DX",
-            "DDL_IMPO/DY",
-            "DDL_IMPO/DZ",
-            "DDL_IMPO/BLOCAGE",
-            "FORCE_NODALE",
-            "FORCE_NODALE/GROUP_NO",
-            "FORCE_NODALE/NOEUD",
-            "FORCE_NODALE/FX",
-            "FORCE_NODALE/FY",
-            "FORCE_NODALE/FZ",
-            "FORCE_CONTOUR",
-            "FORCE_CONTOUR/GROUP_MA",
-            "FORCE_CONTOUR/MAILLE",
-            "FORCE_CONTOUR/FX",
-            "FORCE_CONTOUR/FY",
-            "FORCE_FACE",
-            "FORCE_FACE/GROUP_MA",
-            "FORCE_FACE/MAILLE",
-            "FORCE_FACE/FX",
-            "FORCE_FACE/FY",
-            "FORCE_FACE/FZ",
-            "PRES_REP",
-            "PRES_REP/GROUP_MA",
-            "PRES_REP/MAILLE",
-            "PRES_REP/TOUT",
-            "PRES_REP/PRES",
-            "FORCE_INTERNE",
-            "FORCE_INTERNE/TOUT",
-            "FORCE_INTERNE/GROUP_MA",
-            "FORCE_INTERNE/MAILLE",
-            "FORCE_INTERNE/FX",
-            "FORCE_INTERNE/FY",
-            "FORCE_INTERNE/FZ",
-            "FACE_IMPO",
-            "FACE_IMPO/GROUP_MA",
-            "FACE_IMPO/MAILLE",
-            "FACE_IMPO/SANS_GROUP_NO",
-            "FACE_IMPO/DX",
-            "FACE_IMPO/DY",
-            "FACE_IMPO/DZ",
-            "LIAISON_GROUP",
-            "LIAISON_GROUP/GROUP_NO_1",
-            "LIAISON_GROUP/GROUP_NO_2",
-            "LIAISON_GROUP/GROUP_MA_1",
-            "LIAISON_GROUP/GROUP_MA_2",
-            "LIAISON_GROUP/SANS_GROUP_NO",
-            "LIAISON_GROUP/DDL_1",
-            "LIAISON_GROUP/DDL_2",
-            "LIAISON_GROUP/COEF_MULT_1",
-            "LIAISON_GROUP/COEF_MULT_2",
-            "LIAISON_GROUP/COEF_IMPO",
-            "LIAISON_UNIF",
-            "LIAISON_UNIF/GROUP_NO",
-            "LIAISON_UNIF/NOEUD",
-            "LIAISON_UNIF/GROUP_MA",
-            "LIAISON_UNIF/MAILLE",
-            "LIAISON_UNIF/SANS_GROUP_NO",
-            "LIAISON_UNIF/DDL",
-            "LIAISON_DDL",
-            "LIAISON_DDL/GROUP_NO",
-            "LIAISON_DDL/NOEUD",
-            "LIAISON_DDL/DDL",
-            "LIAISON_DDL/COEF_MULT",
-            "LIAISON_DDL/COEF_IMPO",
-        ],
-    )?;
     let kw = &call.keywords;
     let model_ref = ex.required("AFFE_CHAR_MECA", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
@@ -457,13 +465,6 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONTACT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
-    if kw.str("FROTTEMENT") == Some("COULOMB") {
-        let span = kw.keyword("FROTTEMENT").map(|k| k.span).unwrap_or_default();
-        return Err(ex.unsupported(
-            "DEFI_CONTACT/FROTTEMENT='COULOMB' (frictionless contact only)",
-            span,
-        ));
-    }
     let formulation = kw.str("FORMULATION").unwrap_or("DISCRETE");
     if formulation != "LIAISON_UNIL" {
         // Check the keywords now (errors at the command that has them);
@@ -475,23 +476,6 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
         };
         return store_result(ex, call, Concept::Contact(Rc::new(def)));
     }
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "INFO",
-            "FORMULATION",
-            "ZONE",
-            "ZONE/GROUP_NO",
-            "ZONE/GROUP_MA",
-            "ZONE/SANS_GROUP_NO",
-            "ZONE/NOM_CMP",
-            "ZONE/COEF_IMPO",
-            "ZONE/COEF_MULT",
-            "ZONE/ALGO_CONT",
-            "ZONE/COEF_PENA",
-        ],
-    )?;
     let mesh = ex.mesh_by_id(model.mesh)?;
     let carried = carried_nodes(&model, &mesh);
     let mut zones = Vec::new();

@@ -21,6 +21,7 @@
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
+use crate::support::Support;
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_fem::Model;
@@ -28,30 +29,29 @@ use aster_mesh::{CellId, Mesh};
 use std::collections::HashMap;
 use std::rc::Rc;
 
+/// What POST_ELEM computes (`crate::support`).
+pub(crate) const POST_ELEM: Support = Support::keywords(&[
+    "ENER_POT",
+    "ENER_POT/TOUT",
+    "ENER_POT/GROUP_MA",
+    "ENER_ELAS",
+    "ENER_ELAS/TOUT",
+    "ENER_ELAS/GROUP_MA",
+    "RESULTAT",
+    "CHAM_GD",
+    "MODELE",
+    "CHAM_MATER",
+    "CARA_ELEM",
+    "TOUT_ORDRE",
+    "NUME_ORDRE",
+    "INST",
+    "LIST_INST",
+    "PRECISION",
+    "CRITERE",
+    "TITRE",
+]);
+
 pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "ENER_POT",
-            "ENER_POT/TOUT",
-            "ENER_POT/GROUP_MA",
-            "ENER_ELAS",
-            "ENER_ELAS/TOUT",
-            "ENER_ELAS/GROUP_MA",
-            "RESULTAT",
-            "CHAM_GD",
-            "MODELE",
-            "CHAM_MATER",
-            "CARA_ELEM",
-            "TOUT_ORDRE",
-            "NUME_ORDRE",
-            "INST",
-            "LIST_INST",
-            "PRECISION",
-            "CRITERE",
-            "TITRE",
-        ],
-    )?;
     let kw = &call.keywords;
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)

@@ -14,34 +14,44 @@
 
 use crate::concept::{Concept, EvolResult, Step};
 use crate::executor::{store_result, Executor};
+use crate::support::{Support, Values};
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 use std::collections::BTreeMap;
 use std::rc::Rc;
 
+/// What CREA_RESU builds (`crate::support`).
+pub(crate) const CREA_RESU: Support = Support {
+    keywords: &[
+        "OPERATION",
+        "TYPE_RESU",
+        "RESULTAT",
+        "AFFE",
+        "AFFE/NOM_CHAM",
+        "AFFE/CHAM_GD",
+        "AFFE/INST",
+        "AFFE/LIST_INST",
+        "AFFE/PRECISION",
+        "AFFE/CRITERE",
+        "AFFE/MODELE",
+        "AFFE/CHAM_MATER",
+        "AFFE/CARA_ELEM",
+        "AFFE/CHARGE",
+    ],
+    values: &[
+        Values::new("OPERATION", &["AFFE"]),
+        Values::new("TYPE_RESU", &["EVOL_ELAS", "EVOL_NOLI"]),
+    ],
+    hints: &[],
+    reuse: true,
+    rules: None,
+};
+
+/// What RECU_TABLE reads (`crate::support`).
+pub(crate) const RECU_TABLE: Support = Support::keywords(&["CO", "NOM_PARA", "TITRE"]);
+
 pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "OPERATION",
-            "TYPE_RESU",
-            "RESULTAT",
-            "AFFE",
-            "AFFE/NOM_CHAM",
-            "AFFE/CHAM_GD",
-            "AFFE/INST",
-            "AFFE/LIST_INST",
-            "AFFE/PRECISION",
-            "AFFE/CRITERE",
-            "AFFE/MODELE",
-            "AFFE/CHAM_MATER",
-            "AFFE/CARA_ELEM",
-            "AFFE/CHARGE",
-        ],
-    )?;
     let kw = &call.keywords;
-    ex.only_values("CREA_RESU", kw, "OPERATION", &["AFFE"])?;
-    ex.only_values("CREA_RESU", kw, "TYPE_RESU", &["EVOL_ELAS", "EVOL_NOLI"])?;
     let typ = kw
         .str("TYPE_RESU")
         .unwrap_or("EVOL_ELAS")
@@ -119,7 +129,6 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
 }
 
 pub fn recu_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, &["CO", "NOM_PARA", "TITRE"])?;
     let kw = &call.keywords;
     let co = ex.required("RECU_TABLE", kw, "CO")?;
     let result = ex.result(co)?;
