@@ -522,13 +522,15 @@ fn volume_load(
                 - jac[0][1] * (jac[1][0] * jac[2][2] - jac[1][2] * jac[2][0])
                 + jac[0][2] * (jac[1][0] * jac[2][1] - jac[1][1] * jac[2][0])
         };
-        if det.is_nan() || det <= 0.0 {
+        // An inverted cell integrates with |J|, as its stiffness does
+        // (code_aster's dfdm2d/dfdm3d); a degenerate one is an error.
+        if det.is_nan() || det == 0.0 {
             return Err(FemError::Model(format!(
-                "volume force on cell {}: its Jacobian is not positive (a degenerate or inverted cell)",
+                "volume force on cell {}: its Jacobian is zero (a degenerate cell)",
                 model.cell_name(cell)
             )));
         }
-        let mut w = gp.weight * det;
+        let mut w = gp.weight * det.abs();
         if axis {
             w *= x[0];
         }

@@ -159,19 +159,15 @@ impl Executor {
         }
     }
 
-    /// The mesh as a model sees it: a plane model (D_PLAN, C_PLAN, AXIS…)
-    /// works in the (x, y) plane even on a mesh written with three
-    /// coordinates (`COOR_3D`, as `PRE_GMSH` writes every mesh): code_aster
-    /// takes the problem's dimension from the model's elements (`DIM_GEOM`),
-    /// not from the mesh file.
+    /// The mesh a model is solved on. code_aster takes the problem's
+    /// dimension from the model's elements (`DIM_GEOM`), so a plane model
+    /// on a mesh written with three coordinates (`COOR_3D`, as `PRE_GMSH`
+    /// writes every mesh) works in the (x, y) plane; seeing such meshes in
+    /// the plane here gave wrong contact results (ssnp167a–c, ssnp152g), so
+    /// the mesh is kept as written (and such a contact is refused by the
+    /// contact bridge) until that is understood.
     pub(crate) fn model_mesh(&self, model: &ModelDef) -> Result<Arc<Mesh>, ExecError> {
-        let mesh = self.mesh_by_id(model.mesh)?;
-        if model.dim() == 2 && mesh.dim == 3 {
-            let mut plane = (*mesh).clone();
-            plane.dim = 2;
-            return Ok(Arc::new(plane));
-        }
-        Ok(mesh)
+        self.mesh_by_id(model.mesh)
     }
 
     /// The concept behind a keyword, typed.

@@ -106,10 +106,16 @@ pub struct Refusal {
 
 /// Commands not executed whose refusal says why (what a user cannot get
 /// from aster at all, rather than "not yet").
-pub const COMMAND_HINTS: &[(&str, &str)] = &[(
-    "MACR_ADAP_MAIL",
-    "mesh adaptation runs the external HOMARD tool, which aster does not have",
-)];
+pub const COMMAND_HINTS: &[(&str, &str)] = &[
+    (
+        "MACR_ADAP_MAIL",
+        "mesh adaptation runs the external HOMARD tool, which aster does not have",
+    ),
+    (
+        "PRE_GIBI",
+        "GIBI meshes are read by `aster mesh` but not yet run: the node or cell order code_aster takes from them is not reproduced",
+    ),
+];
 
 /// Checks one call against its command's entry; `None` when the command
 /// itself is not executed. Every refusal is returned, in keyword order.

@@ -17,7 +17,7 @@ pub fn read_mesh_file(path: &Path, format: &str) -> Result<Mesh, String> {
 
 /// What LIRE_MAILLAGE reads (`crate::support`).
 pub(crate) const LIRE_MAILLAGE: Support = Support {
-    values: &[Values::new("FORMAT", &["MED", "ASTER", "GMSH", "GIBI"])],
+    values: &[Values::new("FORMAT", &["MED", "ASTER", "GMSH"]).why(GIBI_WHY)],
     ..Support::keywords(&[
         "FORMAT",
         "UNITE",
@@ -68,8 +68,12 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
 /// What PRE_GMSH reads (`crate::support`).
 pub(crate) const PRE_GMSH: Support = Support::keywords(&["UNITE_GMSH", "UNITE_MAILLAGE"]);
 
-/// What PRE_GIBI reads (`crate::support`).
-pub(crate) const PRE_GIBI: Support = Support::keywords(&["UNITE_GIBI", "UNITE_MAILLAGE"]);
+/// Why GIBI meshes are refused by the run although `aster mesh` reads them
+/// (`crate::meshio`): ssnv104i, on its GIBI mesh, gives the values of two
+/// symmetric points swapped (a 1e-6 NOOK): something of the file's order
+/// is not reproduced yet.
+pub(crate) const GIBI_WHY: &str =
+    "(GIBI meshes are read by `aster mesh` but not yet run: the node or cell order code_aster takes from them is not reproduced)";
 
 /// What ASSE_MAILLAGE does (`crate::support`): `SUPERPOSE` only.
 pub(crate) const ASSE_MAILLAGE: Support = Support {
