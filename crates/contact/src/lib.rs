@@ -14,12 +14,16 @@
 // iterator chains in numerical code.
 #![allow(clippy::needless_range_loop)]
 
+mod augmented;
 pub mod dual;
 mod error;
+pub mod friction;
 mod geomloop;
 mod integration;
 pub mod lac;
 mod pairing;
+mod penalty;
+pub mod quad8;
 mod rows;
 mod shape;
 mod surface;

@@ -35,6 +35,8 @@ pub struct ResolvedZone {
     pub slave_nodes: Vec<NodeId>,
     /// Master nodes, sorted.
     pub master_nodes: Vec<NodeId>,
+    /// The nodes of SANS_GROUP_NO and SANS_GROUP_MA, sorted.
+    pub excluded_nodes: Vec<NodeId>,
     pub master_cells_of_node: HashMap<NodeId, Vec<usize>>,
     pub slave_cells_of_node: HashMap<NodeId, Vec<usize>>,
     /// Space dimension of the problem (2 or 3).
@@ -111,6 +113,7 @@ impl ResolvedZone {
             slave,
             slave_nodes,
             master_nodes,
+            excluded_nodes: excluded.into_iter().collect(),
             master_cells_of_node,
             slave_cells_of_node,
             space_dim,

@@ -18,6 +18,7 @@ pub mod dof;
 pub mod element;
 pub mod energy;
 pub mod error;
+pub mod force_source;
 pub mod fpg;
 mod held;
 pub mod linalg;
@@ -39,6 +40,7 @@ pub mod unilateral;
 pub use behaviour::{Behaviours, CurveEnd, VonMises};
 pub use dof::{Comp, Dof, DofNumbering};
 pub use error::FemError;
+pub use force_source::{Contribution, ForceSource, LoopVerdict, Unknown};
 pub use loads::{Load, LoadItem, Loads, Multiplier};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
@@ -49,5 +51,6 @@ pub use nonlinear::{
 pub use post::{CellValues, NodalValues};
 pub use strain::Kinematics;
 pub use unilateral::{
-    FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+    AugmentedTerm, FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
+    UnilateralSource,
 };

@@ -126,6 +126,25 @@ fn blocked_in(
     Ok(())
 }
 
+/// One imposed value per node and component in a load, the last one given
+/// (code_aster: `ordlrl` drops the earlier single-term relations of an
+/// AFFE_CHAR_MECA load, whatever their values; AFFE_CHAR_CINE's `charci`
+/// overwrites its field occurrence after occurrence). A DOF on two lines
+/// of a boundary, e.g. given by a function on one and 0 on the other,
+/// is no conflict.
+pub(crate) fn last_per_dof<T>(items: Vec<T>, key: impl Fn(&T) -> (NodeId, CompName)) -> Vec<T> {
+    let mut last = std::collections::HashMap::new();
+    for (k, item) in items.iter().enumerate() {
+        last.insert(key(item), k);
+    }
+    items
+        .into_iter()
+        .enumerate()
+        .filter(|(k, item)| last.get(&key(item)) == Some(k))
+        .map(|(_, item)| item)
+        .collect()
+}
+
 /// The imposed values of one occurrence, appended to `out`.
 fn imposed_in(
     ex: &Executor,
@@ -207,6 +226,7 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "AFFE_CHAR_CINE: MECA_IMPO is required (the only condition supported yet)",
         ));
     }
+    let imposed = last_per_dof(imposed, |i| (i.node, i.comp));
     store_result(
         ex,
         call,
@@ -331,6 +351,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         &["DX", "DY", "DZ"],
         "AFFE_CHAR_MECA/FACE_IMPO",
     )?);
+    load.imposed = last_per_dof(std::mem::take(&mut load.imposed), |i| (i.node, i.comp));
     for occ in kw.factor("FORCE_INTERNE") {
         let cells = select::cells(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_INTERNE: {e}")))?;
@@ -681,4 +702,33 @@ fn liaison_group(
         out.push(LinearRelation { terms, rhs });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_dof_given_twice_in_a_load_keeps_its_last_value() {
+        let i = |n: u32, comp: CompName, value: f64| Imposed {
+            node: NodeId(n),
+            comp,
+            value,
+        };
+        // SSNP167E: a node on the loaded arc (DX = -4.8e-19 by a function)
+        // and on the symmetry line (DX = 0).
+        let kept = last_per_dof(
+            vec![
+                i(4, "DX", -4.8e-19),
+                i(4, "DY", 1.0),
+                i(5, "DX", 2.0),
+                i(4, "DX", 0.0),
+            ],
+            |i| (i.node, i.comp),
+        );
+        assert_eq!(
+            kept,
+            vec![i(4, "DY", 1.0), i(5, "DX", 2.0), i(4, "DX", 0.0)]
+        );
+    }
 }

@@ -169,6 +169,8 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
         load.imposed_fn
             .extend(nodal_functions(ex, what, occ, ctx, &DISPLACEMENTS)?);
     }
+    load.imposed_fn =
+        super::loads::last_per_dof(std::mem::take(&mut load.imposed_fn), |i| (i.node, i.comp));
     for occ in kw.factor("FORCE_NODALE") {
         let what = "AFFE_CHAR_MECA_F/FORCE_NODALE";
         load.nodal_forces_fn
@@ -246,6 +248,7 @@ pub fn affe_char_cine_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
     for occ in kw.factor("MECA_IMPO") {
         imposed_fn.extend(nodal_functions(ex, cmd, occ, ctx, &DISPLACEMENTS)?);
     }
+    let imposed_fn = super::loads::last_per_dof(imposed_fn, |i| (i.node, i.comp));
     store_result(
         ex,
         call,
