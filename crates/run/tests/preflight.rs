@@ -53,7 +53,7 @@ FIN()
         messages(&p, &map),
         vec![
             "case.comm:4:43: error: not supported yet: DEFI_MATERIAU/LEMAITRE",
-            "case.comm:6:5: error: not supported yet: MACR_ADAP_MAIL",
+            "case.comm:6:5: error: not supported yet: MACR_ADAP_MAIL (mesh adaptation runs the external HOMARD tool, which aster does not have)",
         ]
     );
 }

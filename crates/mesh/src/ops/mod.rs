@@ -9,6 +9,7 @@ mod orient_along;
 mod points;
 mod rebuild;
 mod restrict;
+mod superpose;
 #[cfg(test)]
 mod testmesh;
 
