@@ -68,6 +68,7 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             mesh: u32::MAX,
             steps: Vec::new(),
             fem: None,
+            tables: Vec::new(),
         },
     };
     for occ in kw.factor("AFFE") {
