@@ -188,8 +188,22 @@ mod tests {
     #[test]
     fn lone_carriage_returns_end_lines() {
         let cm = CodeMap::new("f.comm", "a = 1\rb = 2\r\nc = (\r");
-        assert_eq!(cm.line_col(6), LineCol { line: 2, column: 1 });
-        assert_eq!(cm.line_col(13), LineCol { line: 3, column: 1 });
+        assert_eq!(
+            cm.line_col(6),
+            LineCol {
+                line: 2,
+                column: 1,
+                file: 0
+            }
+        );
+        assert_eq!(
+            cm.line_col(13),
+            LineCol {
+                line: 3,
+                column: 1,
+                file: 0
+            }
+        );
         assert_eq!(cm.line_text(2), "b = 2");
         assert_eq!(cm.line_text(3), "c = (");
     }
