@@ -298,11 +298,6 @@ pub static COMMANDS: &[Command] = &[
         run: results::crea_resu,
         support: results::CREA_RESU,
     },
-    Command {
-        name: "RECU_TABLE",
-        run: results::recu_table,
-        support: results::RECU_TABLE,
-    },
 ];
 
 fn nothing(_: &mut Executor, _: &CommandCall) -> Result<CommandOutput, ExecError> {

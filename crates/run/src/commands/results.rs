@@ -1,4 +1,4 @@
-//! Results built or read field by field: CREA_RESU (AFFE) and RECU_TABLE.
+//! Results built field by field: CREA_RESU (AFFE).
 //!
 //! - `CREA_RESU(OPERATION='AFFE', TYPE_RESU='EVOL_ELAS'|'EVOL_NOLI')`
 //!   (code_aster's `crtype`): each `AFFE` occurrence stores its field
@@ -6,16 +6,12 @@
 //!   the NUME_ORDRE already holding that instant (within `PRECISION`,
 //!   `CRITERE`), else at a new NUME_ORDRE after the largest (1 for a new
 //!   result). `reuse=` with `RESULTAT` adds to a result.
-//! - `RECU_TABLE(CO=result, NOM_PARA=…)` (`op0174`): the table
-//!   `NUME_ORDRE` + the parameters, one row per stored step; the results
-//!   here store `INST`. `NOM_TABLE` (the tables a command attached to a
-//!   concept: `OBSERVATION`…) and `TOUT_PARA` are refused: no command here
-//!   attaches such tables.
+//!
+//! `RECU_TABLE` (both its `NOM_TABLE` and `NOM_PARA` forms) is in `tables`.
 
 use crate::concept::{Concept, EvolResult, Step};
 use crate::executor::{store_result, Executor};
 use crate::support::{Support, Values};
-use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 use std::collections::BTreeMap;
 use std::rc::Rc;
@@ -46,9 +42,6 @@ pub(crate) const CREA_RESU: Support = Support {
     reuse: true,
     rules: None,
 };
-
-/// What RECU_TABLE reads (`crate::support`).
-pub(crate) const RECU_TABLE: Support = Support::keywords(&["CO", "NOM_PARA", "TITRE"]);
 
 pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
@@ -127,45 +120,4 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     result.steps.sort_by_key(|s| s.nume_ordre);
     store_result(ex, call, Concept::Result(Rc::new(result)))
-}
-
-pub fn recu_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    let kw = &call.keywords;
-    let co = ex.required("RECU_TABLE", kw, "CO")?;
-    let result = ex.result(co)?;
-    let params: Vec<&str> = kw
-        .simple("NOM_PARA")
-        .iter()
-        .filter_map(|s| s.as_str())
-        .collect();
-    let mut columns = vec![Column {
-        name: "NUME_ORDRE".into(),
-        ty: ColumnType::Int,
-    }];
-    for p in &params {
-        if *p != "INST" {
-            return Err(ex.kw_error(
-                "RECU_TABLE",
-                kw,
-                "NOM_PARA",
-                format!(
-                    "result `{}` has no parameter {p} here (its steps store INST)",
-                    co.name
-                ),
-            ));
-        }
-        columns.push(Column {
-            name: p.to_string(),
-            ty: ColumnType::Real,
-        });
-    }
-    let mut table = Table::new(columns);
-    for s in &result.steps {
-        let mut row = vec![("NUME_ORDRE", Value::Int(s.nume_ordre as i64))];
-        for p in &params {
-            row.push((p, Value::Real(s.inst)));
-        }
-        table.push_row(row);
-    }
-    store_result(ex, call, Concept::Table(Rc::new(table)))
 }
