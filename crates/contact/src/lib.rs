@@ -17,6 +17,7 @@
 mod augmented;
 pub mod dual;
 mod error;
+pub mod friction;
 mod geomloop;
 mod integration;
 pub mod lac;
