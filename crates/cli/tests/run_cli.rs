@@ -204,7 +204,10 @@ fn crash_corpus_runs_end_in_a_result_or_a_located_error() {
     for (name, text) in [
         ("not.comm", format!("x = {}1\n", "not ".repeat(30_000))),
         ("attr.comm", format!("x = a{}\n", ".b".repeat(150_000))),
-        ("elif.comm", format!("if 1:\n    pass\n{}", "elif 1:\n    pass\n".repeat(87_000))),
+        (
+            "elif.comm",
+            format!("if 1:\n    pass\n{}", "elif 1:\n    pass\n".repeat(87_000)),
+        ),
     ] {
         let p = gen.join(name);
         std::fs::write(&p, text).unwrap();
@@ -215,7 +218,12 @@ fn crash_corpus_runs_end_in_a_result_or_a_located_error() {
     for f in &files {
         let t = std::time::Instant::now();
         let r = aster_run(&[f.as_path()], None, "crash");
-        assert!(t.elapsed().as_secs_f64() < 10.0, "{}: {:?}", f.display(), t.elapsed());
+        assert!(
+            t.elapsed().as_secs_f64() < 10.0,
+            "{}: {:?}",
+            f.display(),
+            t.elapsed()
+        );
         match r.code {
             0 => {}
             2 => {

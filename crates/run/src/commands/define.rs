@@ -151,9 +151,6 @@ pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     };
     let mesh = ex.mesh_by_id(mesh_id)?;
     let mut cells = BTreeMap::new();
-    // Where MODELISATION='3D' is first written, to name it when no volume
-    // cell receives it.
-    let mut solid3d_at = None;
     for occ in kw.factor("AFFE") {
         let mat = ex.required("AFFE_MATERIAU", occ, "MATER")?;
         let mat = ex.material(mat)?;
