@@ -21,6 +21,7 @@ pub mod friction;
 mod geomloop;
 mod integration;
 pub mod lac;
+pub mod lac_mortar;
 mod pairing;
 mod penalty;
 pub mod quad8;

@@ -29,7 +29,7 @@ fn mesh_files(shared: &Path) -> Vec<PathBuf> {
                 let p = e.path();
                 if matches!(
                     p.extension().and_then(|x| x.to_str()),
-                    Some("mmed" | "med" | "mail")
+                    Some("mmed" | "med" | "mail" | "msh" | "mgib")
                 ) {
                     files.push(p);
                 }

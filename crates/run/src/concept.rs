@@ -81,6 +81,10 @@ pub struct Material {
     pub poisson: f64,
     pub density: Option<f64>,
     pub alpha: Option<f64>,
+    /// Rayleigh damping `AMOR_ALPHA` (× stiffness) and `AMOR_BETA`
+    /// (× mass), used by DYNA_NON_LINE.
+    pub amor_alpha: Option<f64>,
+    pub amor_beta: Option<f64>,
     /// `ECRO_LINE=_F(D_SIGM_EPSI, SY)` (for VMIS_ISOT_LINE).
     pub ecro_line: Option<EcroLine>,
     /// `TRACTION=_F(SIGM=σ(EPSI))` (for VMIS_ISOT_TRAC): a tabulated
@@ -115,10 +119,22 @@ pub struct DiscreteStiffness {
     pub local: bool,
 }
 
+/// `AFFE_CARA_ELEM/DISCRET(_2D)`: a mass on discrete cells (`M_T_D_N`:
+/// one value; `M_T_N`, `M_T_L`: the upper triangle by columns).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiscreteMassDef {
+    pub cells: Vec<CellId>,
+    pub cara: String,
+    pub values: Vec<f64>,
+    pub local: bool,
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct CaraElem {
     pub model: u32,
     pub discrete: Vec<DiscreteStiffness>,
+    /// Discrete masses (DYNA_NON_LINE).
+    pub masses: Vec<DiscreteMassDef>,
 }
 
 /// An imposed component value on a node.
@@ -166,8 +182,8 @@ pub struct ImposedFn {
     pub xyz: [f64; 3],
 }
 
-/// A distributed load given by functions of `INST` only (checked when the
-/// load is defined).
+/// A distributed load given by functions of `INST` or of the coordinates
+/// `X`, `Y`, `Z` (not both: checked when the load is defined).
 #[derive(Clone, Debug, PartialEq)]
 pub enum BoundaryFn {
     /// `FORCE_CONTOUR`/`FORCE_FACE`: per component, a function or nothing.
@@ -183,7 +199,8 @@ pub enum BoundaryFn {
 }
 
 /// `FORCE_INTERNE`: a force per unit volume (per unit area in 2D), each
-/// component a constant or (AFFE_CHAR_MECA_F) a function of `INST`.
+/// component a constant or (AFFE_CHAR_MECA_F) a function of `INST` or of
+/// the coordinates.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VolumeForce {
     pub cells: Vec<CellId>,
@@ -264,6 +281,8 @@ pub struct EvolResult {
     pub steps: Vec<Step>,
     /// What produced it, to compute more fields on demand (`CALC_CHAMP`).
     pub fem: Option<Rc<crate::fembridge::FemRun>>,
+    /// Tables the computation made (`OBSERVATION`), for `RECU_TABLE`.
+    pub tables: Vec<(String, Rc<crate::table::Table>)>,
 }
 
 impl EvolResult {
@@ -318,6 +337,17 @@ pub enum Concept {
     VectElem(Rc<crate::field::NodalField>),
     /// `NUME_DDL`: the numbering of a model's DOFs (the model's id).
     Numbering(u32),
+    /// A nodal field of functions (`CREA_CHAMP(OPERATION='AFFE',
+    /// TYPE_CHAM='NOEU_*_F', AFFE=_F(VALE_F=…))`), evaluated by
+    /// `CREA_CHAMP(OPERATION='EVAL')`.
+    FunctionField(Rc<NodalFunctionField>),
+}
+
+/// Per node, per component, a function (`NOEU_*_F`).
+#[derive(Clone, Debug, Default)]
+pub struct NodalFunctionField {
+    pub components: Vec<String>,
+    pub values: BTreeMap<NodeId, BTreeMap<String, Rc<Function>>>,
 }
 
 impl Concept {
@@ -340,6 +370,7 @@ impl Concept {
             Concept::Field(_) => "a field",
             Concept::VectElem(_) => "elementary vectors",
             Concept::Numbering(_) => "a DOF numbering",
+            Concept::FunctionField(_) => "a field of functions",
         }
     }
 }

@@ -19,7 +19,7 @@ use std::collections::HashMap;
 
 /// Local corner pairs of each linear type's edges, in the order its
 /// quadratic counterpart numbers the mid-edge nodes.
-fn edges(ty: CellType) -> Option<(CellType, &'static [[usize; 2]])> {
+pub(crate) fn edges(ty: CellType) -> Option<(CellType, &'static [[usize; 2]])> {
     Some(match ty {
         CellType::SEG2 => (CellType::SEG3, &[[0, 1]]),
         CellType::TRIA3 => (CellType::TRIA6, &[[0, 1], [1, 2], [2, 0]]),
@@ -192,6 +192,30 @@ fn quad_faces(ty: CellType) -> &'static [([usize; 4], [usize; 4])] {
 }
 
 impl Mesh {
+    /// The shortest and longest edges of the cells, each edge measured
+    /// straight between its two corner nodes (code_aster's
+    /// `getMinMaxEdgeSizes`); `None` when the cells have no edge (points).
+    pub fn edge_length_range(&self, cells: &[CellId]) -> Option<(f64, f64)> {
+        let mut range: Option<(f64, f64)> = None;
+        for &c in cells {
+            let cell = self.cell(c);
+            let linear = linear_of(cell.ty).unwrap_or(cell.ty);
+            let Some((_, pairs)) = edges(linear) else {
+                continue;
+            };
+            for [a, b] in pairs {
+                let (p, q) = (self.coord(cell.nodes[*a]), self.coord(cell.nodes[*b]));
+                let l =
+                    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
+                range = Some(match range {
+                    None => (l, l),
+                    Some((lo, hi)) => (lo.min(l), hi.max(l)),
+                });
+            }
+        }
+        range
+    }
+
     /// `LINE_QUAD`: the selected linear cells become quadratic (SEG2→SEG3,
     /// TRIA3→TRIA6, QUAD4→QUAD8, TETRA4→TETRA10, PENTA6→PENTA15,
     /// HEXA8→HEXA20, PYRAM5→PYRAM13); other types are kept as they are.

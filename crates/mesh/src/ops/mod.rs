@@ -9,9 +9,11 @@ mod orient_along;
 mod points;
 mod rebuild;
 mod restrict;
+mod superpose;
 #[cfg(test)]
 mod testmesh;
 
+pub(crate) use degree::edges;
 pub use degree::{CentreNodes, DegreeReport};
 pub use geom_groups::NodeKind;
 pub use orient::OrientReport;

@@ -3,7 +3,7 @@
 use crate::concept::*;
 use crate::executor::{store_result, Executor};
 use crate::select;
-use crate::support::Support;
+use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::{Mesh, NodeId};
 use std::rc::Rc;
@@ -70,11 +70,60 @@ fn imposed_values(
     for occ in occurrences {
         let start = out.len();
         imposed_in(ex, occ, mesh, comps, what, &mut out)?;
+        blocked_in(ex, occ, model, mesh, what, &mut out)?;
         for i in &out[start..] {
             check_dof(model, mesh, carried, i.node, i.comp, what)?;
         }
     }
     Ok(out)
+}
+
+/// `DDL_IMPO/BLOCAGE`: zero on every degree of freedom of the kinds listed
+/// that the nodes carry — 'DEPLACEMENT': the translations of the model
+/// (DX, DY, and DZ in 3D); 'ROTATION': the rotations, which the continuum
+/// and translation-only discrete models here have none of (nothing to
+/// block, as code_aster blocks only the DOFs present).
+fn blocked_in(
+    ex: &Executor,
+    occ: &Keywords,
+    model: &ModelDef,
+    mesh: &Mesh,
+    what: &str,
+    out: &mut Vec<Imposed>,
+) -> Result<(), ExecError> {
+    let kinds: Vec<&str> = occ
+        .simple("BLOCAGE")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    if kinds.is_empty() {
+        return Ok(());
+    }
+    let nodes =
+        select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    for kind in kinds {
+        let comps: &[&'static str] = match kind {
+            "DEPLACEMENT" if model.dim() == 3 => &["DX", "DY", "DZ"],
+            "DEPLACEMENT" => &["DX", "DY"],
+            "ROTATION" => &[],
+            other => {
+                return Err(ex.unsupported(
+                    &format!("{what}/BLOCAGE='{other}'"),
+                    occ.keyword("BLOCAGE").map(|k| k.span).unwrap_or_default(),
+                ))
+            }
+        };
+        for &n in &nodes {
+            for &comp in comps {
+                out.push(Imposed {
+                    node: n,
+                    comp,
+                    value: 0.0,
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// One imposed value per node and component in a load, the last one given
@@ -190,82 +239,92 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
 }
 
 /// What AFFE_CHAR_MECA reads (`crate::support`).
-pub(crate) const AFFE_CHAR_MECA: Support = Support::keywords(&[
-    "MODELE",
-    "INFO",
-    "VERI_NORM",
-    "DOUBLE_LAGRANGE",
-    "DDL_IMPO",
-    "DDL_IMPO/TOUT",
-    "DDL_IMPO/GROUP_NO",
-    "DDL_IMPO/NOEUD",
-    "DDL_IMPO/GROUP_MA",
-    "DDL_IMPO/MAILLE",
-    "DDL_IMPO/SANS_GROUP_NO",
-    "DDL_IMPO/DX",
-    "DDL_IMPO/DY",
-    "DDL_IMPO/DZ",
-    "FORCE_NODALE",
-    "FORCE_NODALE/GROUP_NO",
-    "FORCE_NODALE/NOEUD",
-    "FORCE_NODALE/FX",
-    "FORCE_NODALE/FY",
-    "FORCE_NODALE/FZ",
-    "FORCE_CONTOUR",
-    "FORCE_CONTOUR/GROUP_MA",
-    "FORCE_CONTOUR/MAILLE",
-    "FORCE_CONTOUR/FX",
-    "FORCE_CONTOUR/FY",
-    "FORCE_FACE",
-    "FORCE_FACE/GROUP_MA",
-    "FORCE_FACE/MAILLE",
-    "FORCE_FACE/FX",
-    "FORCE_FACE/FY",
-    "FORCE_FACE/FZ",
-    "PRES_REP",
-    "PRES_REP/GROUP_MA",
-    "PRES_REP/MAILLE",
-    "PRES_REP/TOUT",
-    "PRES_REP/PRES",
-    "FORCE_INTERNE",
-    "FORCE_INTERNE/TOUT",
-    "FORCE_INTERNE/GROUP_MA",
-    "FORCE_INTERNE/MAILLE",
-    "FORCE_INTERNE/FX",
-    "FORCE_INTERNE/FY",
-    "FORCE_INTERNE/FZ",
-    "FACE_IMPO",
-    "FACE_IMPO/GROUP_MA",
-    "FACE_IMPO/MAILLE",
-    "FACE_IMPO/SANS_GROUP_NO",
-    "FACE_IMPO/DX",
-    "FACE_IMPO/DY",
-    "FACE_IMPO/DZ",
-    "LIAISON_GROUP",
-    "LIAISON_GROUP/GROUP_NO_1",
-    "LIAISON_GROUP/GROUP_NO_2",
-    "LIAISON_GROUP/GROUP_MA_1",
-    "LIAISON_GROUP/GROUP_MA_2",
-    "LIAISON_GROUP/SANS_GROUP_NO",
-    "LIAISON_GROUP/DDL_1",
-    "LIAISON_GROUP/DDL_2",
-    "LIAISON_GROUP/COEF_MULT_1",
-    "LIAISON_GROUP/COEF_MULT_2",
-    "LIAISON_GROUP/COEF_IMPO",
-    "LIAISON_UNIF",
-    "LIAISON_UNIF/GROUP_NO",
-    "LIAISON_UNIF/NOEUD",
-    "LIAISON_UNIF/GROUP_MA",
-    "LIAISON_UNIF/MAILLE",
-    "LIAISON_UNIF/SANS_GROUP_NO",
-    "LIAISON_UNIF/DDL",
-    "LIAISON_DDL",
-    "LIAISON_DDL/GROUP_NO",
-    "LIAISON_DDL/NOEUD",
-    "LIAISON_DDL/DDL",
-    "LIAISON_DDL/COEF_MULT",
-    "LIAISON_DDL/COEF_IMPO",
-]);
+pub(crate) const AFFE_CHAR_MECA: Support = Support {
+    keywords: &[
+        "MODELE",
+        "INFO",
+        "VERI_NORM",
+        "DOUBLE_LAGRANGE",
+        "DDL_IMPO",
+        "DDL_IMPO/TOUT",
+        "DDL_IMPO/GROUP_NO",
+        "DDL_IMPO/NOEUD",
+        "DDL_IMPO/GROUP_MA",
+        "DDL_IMPO/MAILLE",
+        "DDL_IMPO/SANS_GROUP_NO",
+        "DDL_IMPO/DX",
+        "DDL_IMPO/DY",
+        "DDL_IMPO/DZ",
+        "DDL_IMPO/BLOCAGE",
+        "FORCE_NODALE",
+        "FORCE_NODALE/GROUP_NO",
+        "FORCE_NODALE/NOEUD",
+        "FORCE_NODALE/FX",
+        "FORCE_NODALE/FY",
+        "FORCE_NODALE/FZ",
+        "FORCE_CONTOUR",
+        "FORCE_CONTOUR/GROUP_MA",
+        "FORCE_CONTOUR/MAILLE",
+        "FORCE_CONTOUR/FX",
+        "FORCE_CONTOUR/FY",
+        "FORCE_FACE",
+        "FORCE_FACE/GROUP_MA",
+        "FORCE_FACE/MAILLE",
+        "FORCE_FACE/FX",
+        "FORCE_FACE/FY",
+        "FORCE_FACE/FZ",
+        "PRES_REP",
+        "PRES_REP/GROUP_MA",
+        "PRES_REP/MAILLE",
+        "PRES_REP/TOUT",
+        "PRES_REP/PRES",
+        "FORCE_INTERNE",
+        "FORCE_INTERNE/TOUT",
+        "FORCE_INTERNE/GROUP_MA",
+        "FORCE_INTERNE/MAILLE",
+        "FORCE_INTERNE/FX",
+        "FORCE_INTERNE/FY",
+        "FORCE_INTERNE/FZ",
+        "FACE_IMPO",
+        "FACE_IMPO/GROUP_MA",
+        "FACE_IMPO/MAILLE",
+        "FACE_IMPO/SANS_GROUP_NO",
+        "FACE_IMPO/DX",
+        "FACE_IMPO/DY",
+        "FACE_IMPO/DZ",
+        "LIAISON_GROUP",
+        "LIAISON_GROUP/GROUP_NO_1",
+        "LIAISON_GROUP/GROUP_NO_2",
+        "LIAISON_GROUP/GROUP_MA_1",
+        "LIAISON_GROUP/GROUP_MA_2",
+        "LIAISON_GROUP/SANS_GROUP_NO",
+        "LIAISON_GROUP/DDL_1",
+        "LIAISON_GROUP/DDL_2",
+        "LIAISON_GROUP/COEF_MULT_1",
+        "LIAISON_GROUP/COEF_MULT_2",
+        "LIAISON_GROUP/COEF_IMPO",
+        "LIAISON_UNIF",
+        "LIAISON_UNIF/GROUP_NO",
+        "LIAISON_UNIF/NOEUD",
+        "LIAISON_UNIF/GROUP_MA",
+        "LIAISON_UNIF/MAILLE",
+        "LIAISON_UNIF/SANS_GROUP_NO",
+        "LIAISON_UNIF/DDL",
+        "LIAISON_DDL",
+        "LIAISON_DDL/GROUP_NO",
+        "LIAISON_DDL/NOEUD",
+        "LIAISON_DDL/DDL",
+        "LIAISON_DDL/COEF_MULT",
+        "LIAISON_DDL/COEF_IMPO",
+    ],
+    values: &[Values::new(
+        "DDL_IMPO/BLOCAGE",
+        &["DEPLACEMENT", "ROTATION"],
+    )],
+    hints: &[],
+    reuse: true,
+    rules: None,
+};
 
 pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;

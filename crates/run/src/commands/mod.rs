@@ -10,7 +10,9 @@ pub(crate) mod loads;
 pub(crate) mod loads_f;
 pub(crate) mod mesh;
 pub(crate) mod post;
+pub(crate) mod post_elem;
 pub(crate) mod pressure;
+pub(crate) mod results;
 pub(crate) mod tables;
 
 use crate::executor::Executor;
@@ -60,6 +62,16 @@ pub static COMMANDS: &[Command] = &[
         name: "LIRE_MAILLAGE",
         run: mesh::lire_maillage,
         support: mesh::LIRE_MAILLAGE,
+    },
+    Command {
+        name: "PRE_GMSH",
+        run: mesh::pre_convert,
+        support: mesh::PRE_GMSH,
+    },
+    Command {
+        name: "ASSE_MAILLAGE",
+        run: mesh::asse_maillage,
+        support: mesh::ASSE_MAILLAGE,
     },
     Command {
         name: "DEFI_GROUP",
@@ -145,6 +157,16 @@ pub static COMMANDS: &[Command] = &[
         name: "STAT_NON_LINE",
         run: crate::solve::stat_non_line,
         support: crate::solve::STAT_NON_LINE,
+    },
+    Command {
+        name: "DYNA_NON_LINE",
+        run: crate::dyna::dyna_non_line,
+        support: crate::dyna::DYNA_NON_LINE,
+    },
+    Command {
+        name: "MECA_NON_LINE",
+        run: crate::meca_non_line::meca_non_line,
+        support: crate::meca_non_line::MECA_NON_LINE,
     },
     Command {
         name: "MECA_STATIQUE",
@@ -257,9 +279,29 @@ pub static COMMANDS: &[Command] = &[
         support: tables::CALC_TABLE,
     },
     Command {
+        name: "RECU_TABLE",
+        run: tables::recu_table,
+        support: tables::RECU_TABLE,
+    },
+    Command {
         name: "CALC_PRESSION",
         run: pressure::calc_pression,
         support: pressure::CALC_PRESSION,
+    },
+    Command {
+        name: "POST_ELEM",
+        run: post_elem::post_elem,
+        support: post_elem::POST_ELEM,
+    },
+    Command {
+        name: "CREA_RESU",
+        run: results::crea_resu,
+        support: results::CREA_RESU,
+    },
+    Command {
+        name: "RECU_TABLE",
+        run: results::recu_table,
+        support: results::RECU_TABLE,
     },
 ];
 
