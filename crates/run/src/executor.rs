@@ -74,9 +74,8 @@ impl Executor {
     pub(crate) fn append_unit(&mut self, unit: i64, text: &str) -> Result<(), ExecError> {
         let path = self.output_path(unit);
         if self.written_units.insert(path.clone()) && path.exists() {
-            std::fs::write(&path, b"").map_err(|e| {
-                ExecError::new(format!("cannot write {}: {e}", path.display()))
-            })?;
+            std::fs::write(&path, b"")
+                .map_err(|e| ExecError::new(format!("cannot write {}: {e}", path.display())))?;
         }
         crate::commands::append_file(&path, text)
     }
