@@ -4,19 +4,22 @@
 use std::collections::BTreeMap;
 
 use aster_fem::{
-    Dof, FemError, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
-    UnilateralSource,
+    Dof, FemError, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State,
+    UnilateralMethod, UnilateralSource,
 };
 use aster_mesh::{CellId, LacZonePatches, Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::geomloop::{GeomDecision, GeomLoopState};
+use crate::glissiere::Glissiere;
 use crate::integration::{integration_points_measured, Measure};
 use crate::lac::{patch_integral, resolve_patches, LacPatchRef, PatchIntegral};
 use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
 use crate::rows::contact_row;
 use crate::surface::ResolvedZone;
-use crate::zone::{ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, GeomLoop};
+use crate::zone::{
+    ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, GeomLoop, Resolution,
+};
 
 /// The law a zone enforces.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,6 +34,16 @@ pub enum ZoneLaw {
 struct RowLink {
     row: usize,
     scale: f64,
+}
+
+impl ZoneContact {
+    /// The slave node a continuous row id stands for.
+    fn row_node(&self, id: usize) -> Option<NodeId> {
+        match self.carriers.get(id).map(Vec::as_slice) {
+            Some([(n, _)]) => Some(*n),
+            _ => None,
+        }
+    }
 }
 
 /// One contact zone at work: pairing, rows, and the last converged outcome.
@@ -74,6 +87,11 @@ pub struct ZoneContact {
     lac: Option<Vec<LacPatchRef>>,
     /// ALGO_CONT='LAC': the patches' integrals of the last pairing.
     lac_integrals: Vec<PatchIntegral>,
+    /// GLISSIERE='OUI': which rows are bilateral links.
+    glissiere: Glissiere,
+    /// Continuous zones' ALGO_RESO_GEOM / ALGO_RESO_CONT = 'POINT_FIXE':
+    /// loops outside Newton (its iteration count restarts with each pass).
+    outer: OuterLoops,
 }
 
 impl ZoneContact {
@@ -82,25 +100,43 @@ impl ZoneContact {
         def: &ContactDefinition,
         mesh: &Mesh,
     ) -> Result<Vec<ZoneContact>, ContactError> {
+        let dim = if mesh.dim >= 3 { 3 } else { 2 };
+        Self::build_all_in(def, mesh, dim)
+    }
+
+    /// [`ZoneContact::build_all`] for a model of dimension `space_dim`
+    /// (2 for plane and axisymmetric models, whatever the mesh's number of
+    /// coordinates).
+    pub fn build_all_in(
+        def: &ContactDefinition,
+        mesh: &Mesh,
+        space_dim: usize,
+    ) -> Result<Vec<ZoneContact>, ContactError> {
         let geom_loop = def.geom_loop();
         let mut out = Vec::new();
         match def {
             ContactDefinition::Discrete(d) => {
                 for (i, z) in d.zones.iter().enumerate() {
                     out.push(ZoneContact::new(
-                        ResolvedZone::new(i, &z.geometry, mesh)?,
+                        ResolvedZone::new_in(i, &z.geometry, mesh, space_dim)?,
                         ZoneLaw::Discrete(z.law),
                         geom_loop,
                     ));
                 }
             }
             ContactDefinition::Continue(c) => {
+                let outer = OuterLoops {
+                    pairing_restarts: c.algo_reso_geom == Resolution::PointFixe,
+                    status_restarts: c.algo_reso_cont == Resolution::PointFixe,
+                };
                 for (i, z) in c.zones.iter().enumerate() {
-                    out.push(ZoneContact::new(
-                        ResolvedZone::new(i, &z.geometry, mesh)?,
+                    let mut zc = ZoneContact::new(
+                        ResolvedZone::new_in(i, &z.geometry, mesh, space_dim)?,
                         ZoneLaw::Continue(z.law),
                         geom_loop,
-                    ));
+                    );
+                    zc.outer = outer;
+                    out.push(zc);
                 }
             }
         }
@@ -108,7 +144,16 @@ impl ZoneContact {
     }
 
     pub fn new(zone: ResolvedZone, law: ZoneLaw, geom_loop: GeomLoop) -> Self {
+        let g = &zone.geometry;
+        let glissiere = Glissiere::new(
+            g.glissiere,
+            matches!(law, ZoneLaw::Discrete(_)),
+            g.contact_init,
+            g.dist_maxi,
+        );
         ZoneContact {
+            glissiere,
+            outer: OuterLoops::default(),
             last_rows: Vec::new(),
             length: 0.0,
             frozen_rows: Vec::new(),
@@ -271,8 +316,11 @@ impl ZoneContact {
         }
         let frozen = self.geom_loop == GeomLoop::Sans && self.paired_once;
         if frozen {
-            // REAC_GEOM='SANS': the rows of the initial pairing, as they were.
-            return Ok(self.frozen_rows.clone());
+            // REAC_GEOM='SANS': the rows of the initial pairing, as they were
+            // (links made since then included).
+            let mut rows = self.frozen_rows.clone();
+            self.glissiere.mark(&mut rows, |id| self.row_node(id));
+            return Ok(rows);
         }
         let points = self.points(mesh);
         self.pairs = points
@@ -314,6 +362,7 @@ impl ZoneContact {
         if self.geom_loop == GeomLoop::Sans {
             self.frozen_rows = rows.clone();
         }
+        self.glissiere.mark(&mut rows, |id| self.row_node(id));
         Ok(rows)
     }
 
@@ -324,7 +373,7 @@ impl ZoneContact {
     /// The row is scaled by Wⱼ (λ is then the pressure) or √Wⱼ under
     /// penalty (fem's λ = coef·(a·u − b) then gives the force c·Wⱼ·penetration).
     fn weighted_node_rows(&mut self, mesh: &Mesh, x: &[[f64; 3]]) -> Vec<InequalityRow> {
-        type Acc = (f64, BTreeMap<Dof, f64>, f64);
+        type Acc = (f64, BTreeMap<Dof, f64>, f64, f64);
         let mut acc: BTreeMap<NodeId, Acc> = BTreeMap::new();
         for pair in &self.pairs {
             let Some(p) = pair.pairing() else { continue };
@@ -347,12 +396,15 @@ impl ZoneContact {
                 if w == 0.0 || self.zone.slave_nodes.binary_search(&j).is_err() {
                     continue;
                 }
-                let e = acc.entry(j).or_insert_with(|| (0.0, BTreeMap::new(), 0.0));
+                let e = acc
+                    .entry(j)
+                    .or_insert_with(|| (0.0, BTreeMap::new(), 0.0, 0.0));
                 e.0 += w;
                 for &(d, c) in &r.terms {
                     *e.1.entry(d).or_default() += w * c;
                 }
                 e.2 += w * r.rhs;
+                e.3 += w * p.gap;
             }
         }
         let penalised = matches!(
@@ -362,8 +414,16 @@ impl ZoneContact {
                 ..
             })
         );
+        if self.glissiere.is_on() {
+            let gaps: Vec<(NodeId, f64)> = acc
+                .iter()
+                .filter(|(_, a)| a.0 > 0.0)
+                .map(|(j, a)| (*j, a.3 / a.0))
+                .collect();
+            self.glissiere.start(mesh, &gaps);
+        }
         let mut rows = Vec::new();
-        for (j, (weight, terms, rhs)) in acc {
+        for (j, (weight, terms, rhs, _)) in acc {
             if weight <= 0.0 {
                 continue;
             }
@@ -407,8 +467,13 @@ impl ZoneContact {
         self.forces = vec![0.0; self.carriers.len()];
         for (i, link) in self.links.iter().enumerate() {
             if let Some(l) = link {
-                if let Some(m) = multipliers.get(l.row) {
-                    self.forces[i] = m.max(0.0) * l.scale;
+                if let Some(&m) = multipliers.get(l.row) {
+                    let m = if self.glissiere.links(self.row_node(i)) {
+                        m
+                    } else {
+                        m.max(0.0)
+                    };
+                    self.forces[i] = m * l.scale;
                 }
             }
         }
@@ -421,7 +486,13 @@ impl ZoneContact {
         self.forces = vec![0.0; self.carriers.len()];
         for o in outcomes {
             if let Some(Some(l)) = self.links.get(o.id) {
-                self.forces[o.id] = o.multiplier.max(0.0) * l.scale;
+                // A bilateral link (GLISSIERE) may pull.
+                let m = if self.glissiere.links(self.row_node(o.id)) {
+                    o.multiplier
+                } else {
+                    o.multiplier.max(0.0)
+                };
+                self.forces[o.id] = m * l.scale;
             }
         }
     }
@@ -561,6 +632,7 @@ fn same_rows(a: &[InequalityRow], b: &[InequalityRow], tol_coef: f64, tol_rhs: f
     a.len() == b.len()
         && a.iter().zip(b).all(|(r, s)| {
             r.id == s.id
+                && r.bilateral == s.bilateral
                 && (r.rhs - s.rhs).abs() <= tol_rhs
                 && r.terms.len() == s.terms.len()
                 && r.terms
@@ -604,6 +676,10 @@ impl UnilateralSource for ZoneContact {
             // fem's active set computes that solution directly.
             _ => UnilateralMethod::ActiveSet,
         }
+    }
+
+    fn outer_loops(&self) -> OuterLoops {
+        self.outer
     }
 
     fn geometry_update(&self) -> GeometryUpdate {
@@ -668,6 +744,14 @@ impl UnilateralSource for ZoneContact {
             self.step_pairings.push((state.time, self.pairs.clone()));
         }
         self.set_outcomes(outcomes);
+        let carriers = &self.carriers;
+        let node_of = |id: usize| match carriers.get(id).map(Vec::as_slice) {
+            Some([(n, _)]) => Some(*n),
+            _ => None,
+        };
+        self.glissiere.converged(outcomes, node_of);
+        // The rows kept for the next requests carry the new links.
+        self.glissiere.mark(&mut self.last_rows, node_of);
         self.geom.step_converged(nodal_displacements(state));
         Ok(())
     }

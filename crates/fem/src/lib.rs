@@ -41,10 +41,11 @@ pub use loads::{Load, LoadItem, Loads, Multiplier};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
 pub use nonlinear::{
-    meca_statique, Convergence, InitialState, MatrixKind, NewtonOptions, NonLinearResult,
+    meca_statique, Attempt, Convergence, InitialState, MatrixKind, NewtonOptions, NonLinearResult,
     Prediction, StaticNonLinear, Step, Subdivision,
 };
 pub use post::{CellValues, NodalValues};
 pub use unilateral::{
-    FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+    FixedRows, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State, UnilateralMethod,
+    UnilateralSource,
 };

@@ -5,7 +5,7 @@ use crate::concept::Modelisation;
 use crate::executor::Executor;
 use crate::function::Function;
 use aster_contact::{
-    Appariement, ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, Frottement, GeomLoop,
+    Appariement, ContactDefinition, ContactInit, ContinueAlgo, ContinueLaw, DiscreteAlgo, Frottement, GeomLoop,
     Integration, Measure, NormalChoice, NormalSource, Offset, Resolution, Zone, ZoneContact,
     ZoneGeometry,
 };
@@ -33,6 +33,11 @@ const ALLOWED: &[&str] = &[
     "ITER_GCP_MAXI",
     "RECH_LINEAIRE",
     "PRE_COND",
+    // GCP's Dirichlet preconditioner (when it starts, how many iterations):
+    // it changes the path of GCP, not the contact solution, which fem's
+    // exact active set computes.
+    "COEF_RESI",
+    "ITER_PRE_MAXI",
     "LISSAGE",
     "VERI_NORM",
     "STOP_INTERP",
@@ -52,6 +57,7 @@ const ALLOWED: &[&str] = &[
     "ZONE/ESCL_FIXE",
     "ZONE/ESCL_VECT_Y",
     "ZONE/TYPE_PROJECTION",
+    "ZONE/DIRE_APPA",
     "ZONE/DIST_POUTRE",
     "ZONE/DIST_COQUE",
     "ZONE/DIST_MAIT",
@@ -68,6 +74,7 @@ const ALLOWED: &[&str] = &[
     "ZONE/INTEGRATION",
     "ZONE/ORDRE_INT",
     "ZONE/CONTACT_INIT",
+    "ZONE/DIST_MAXI",
     "ZONE/ADAPTATION",
     "ZONE/SEUIL_INIT",
     // LAC's pairing method (robust or fast search): same pairs here.
@@ -182,14 +189,27 @@ fn geometry(ex: &Executor, occ: &Keywords) -> Result<ZoneGeometry, ExecError> {
     g.dist_escl = offset(ex, occ, "DIST_ESCL")?;
     g.resolve = occ.str("RESOLUTION") != Some("NON");
     g.tole_interp = occ.f64("TOLE_INTERP").unwrap_or(0.0);
-    for (k, ok) in [
-        ("TYPE_PROJECTION", "ORTHOGONALE"),
-        ("DIST_POUTRE", "NON"),
-        ("DIST_COQUE", "NON"),
-        ("GLISSIERE", "NON"),
-    ] {
+    for (k, ok) in [("DIST_POUTRE", "NON"), ("DIST_COQUE", "NON")] {
         ex.only_values("DEFI_CONTACT/ZONE", occ, k, &[ok])?;
     }
+    if occ.str("TYPE_PROJECTION") == Some("FIXE") {
+        if !occ.contains("DIRE_APPA") {
+            return Err(ex.kw_error(
+                "DEFI_CONTACT/ZONE",
+                occ,
+                "TYPE_PROJECTION",
+                "TYPE_PROJECTION='FIXE' needs the direction DIRE_APPA",
+            ));
+        }
+        g.dire_appa = Some(normalise(vec3(occ, "DIRE_APPA"), "DIRE_APPA")?);
+    }
+    g.glissiere = occ.str("GLISSIERE") == Some("OUI");
+    g.contact_init = match occ.str("CONTACT_INIT") {
+        Some("OUI") => ContactInit::Oui,
+        Some("NON") => ContactInit::Non,
+        _ => ContactInit::Interpenetre,
+    };
+    g.dist_maxi = occ.f64("DIST_MAXI");
     Ok(g)
 }
 
@@ -340,18 +360,21 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
 /// The zones of a definition resolved on the mesh (row sources).
 pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContact>, ExecError> {
     let def = definition(ex, kw)?;
-    let mut zones = ZoneContact::build_all(&def, mesh)
+    let model = kw.concept("MODELE").map(|c| ex.model(c)).transpose()?;
+    // The problem's dimension is the model's (a plane model on a mesh with
+    // three coordinates is 2D, as code_aster's `model_ndim`).
+    let dim = match &model {
+        Some(m) => m.dim(),
+        None if mesh.dim >= 3 => 3,
+        None => 2,
+    };
+    let mut zones = ZoneContact::build_all_in(&def, mesh, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))?;
     // Under AXIS the contact integrals carry the radius (code_aster's
     // `mmmjac`), as fem's nodal forces do.
-    let axis = match kw.concept("MODELE") {
-        Some(c) => ex
-            .model(c)?
-            .cells
-            .values()
-            .any(|m| *m == Modelisation::Axisymmetric),
-        None => false,
-    };
+    let axis = model
+        .as_ref()
+        .is_some_and(|m| m.cells.values().any(|m| *m == Modelisation::Axisymmetric));
     if axis {
         zones
             .iter_mut()

@@ -352,6 +352,51 @@ impl CommandSink for Executor {
         self.insert(concept, Concept::Function(Rc::new(function)));
     }
 
+    fn method(
+        &mut self,
+        concept: &ConceptRef,
+        name: &str,
+        args: &[aster_eval::HostValue],
+    ) -> Result<aster_eval::HostValue, ExecError> {
+        use aster_eval::{HostValue, Scalar};
+        match (name, concept.typ.as_str()) {
+            // code_aster 17's Mesh.getMinMaxEdgeSizes(group): the shortest
+            // and longest cell edge of a cell group ('TOUT': every cell).
+            ("getMinMaxEdgeSizes", "maillage_sdaster") => {
+                let mesh = self.mesh(concept)?;
+                let group = match args {
+                    [] => "TOUT".to_string(),
+                    [HostValue::Scalar(Scalar::Str(g))] => g.clone(),
+                    _ => {
+                        return Err(ExecError::new(
+                            "getMinMaxEdgeSizes(): give one cell group name (or 'TOUT')",
+                        ))
+                    }
+                };
+                let range = if group == "TOUT" {
+                    mesh.edge_sizes()
+                } else {
+                    let cells = crate::select::group_ma(&mesh, &group)
+                        .map_err(|e| ExecError::new(format!("getMinMaxEdgeSizes(): {e}")))?;
+                    mesh.edge_size_range(cells.iter().copied())
+                };
+                let (lo, hi) = range.ok_or_else(|| {
+                    ExecError::new(format!(
+                        "getMinMaxEdgeSizes('{group}'): the cells have no edge of positive length"
+                    ))
+                })?;
+                Ok(HostValue::List(vec![
+                    HostValue::Scalar(Scalar::Real(lo)),
+                    HostValue::Scalar(Scalar::Real(hi)),
+                ]))
+            }
+            _ => Err(ExecError::new(format!(
+                "not supported: method {name}() of concept {} ({})",
+                concept.name, concept.typ
+            ))),
+        }
+    }
+
     fn index(
         &mut self,
         concept: &ConceptRef,

@@ -115,12 +115,23 @@ fn result_steps(
     let mut out = Vec::new();
     for (s, selected) in selected_fields(ex, occ, result)? {
         let mut fields = Vec::new();
+        // NOM_CMP: only these components, in fields that have some of them.
+        let keep: Vec<&str> = occ
+            .simple("NOM_CMP")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
         for (name, f) in selected {
             // Fields without components (VARI_ELGA of ELAS) have nothing to write.
             if f.components().is_empty() {
                 continue;
             }
-            fields.push(to_mesh_field(name, f, &mesh));
+            let field = to_mesh_field(name, f, &mesh);
+            if keep.is_empty() {
+                fields.push(field);
+            } else if let Some(kept) = field.with_components(&keep) {
+                fields.push(kept);
+            }
         }
         out.push(ResultStep {
             nume_ordre: s.nume_ordre as i32,
@@ -188,6 +199,7 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             let allowed = match format {
                 "RESULTAT" => key != "TYPE_CHAM",
                 "GMSH" => key == "NOM_CMP" || key == "TYPE_CHAM",
+                "MED" => key == "NOM_CMP",
                 _ => false,
             };
             if !allowed && occ.keyword(key).is_some_and(|k| !k.defaulted) {
@@ -290,11 +302,19 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 .map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
         }
         _ => {
-            if !steps.is_empty() {
+            // code_aster's FORMAT='ASTER' prints the mesh only: result
+            // fields are left out with an alarm (RESULT3_67), and without
+            // MAILLAGE nothing can be printed (RESULT3_70).
+            if !kw.factor("RESU").iter().any(|o| o.contains("MAILLAGE")) {
                 return Err(ex.unsupported(
-                    "IMPR_RESU/FORMAT='ASTER' of result fields (only the mesh)",
+                    "IMPR_RESU/FORMAT='ASTER' without RESU/MAILLAGE (code_aster prints only a mesh in this format: RESULT3_70)",
                     call.span,
                 ));
+            }
+            if !steps.is_empty() {
+                ex.write_report(
+                    "<A> IMPR_RESU: the ASTER format prints only the mesh; the fields are not printed (code_aster RESULT3_67: use FORMAT='RESULTAT')\n",
+                )?;
             }
             aster_mesh::write_mail(&path, &mesh)
                 .map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;

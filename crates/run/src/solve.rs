@@ -65,6 +65,8 @@ pub struct NewtonSettings {
     pub matrix: aster_fem::MatrixKind,
     /// `PREDICTION`.
     pub prediction: aster_fem::Prediction,
+    /// `CONVERGENCE/VERIF='AU_MOINS_UN'`: one criterion met is enough.
+    pub at_least_one: bool,
 }
 
 impl Default for NewtonSettings {
@@ -76,6 +78,7 @@ impl Default for NewtonSettings {
             reac_iter: 1,
             matrix: aster_fem::MatrixKind::Tangente,
             prediction: aster_fem::Prediction::Tangente,
+            at_least_one: false,
         }
     }
 }
@@ -151,6 +154,7 @@ const SNL_KEYWORDS: &[&str] = &[
     "CONVERGENCE/ITER_GLOB_MAXI",
     "CONVERGENCE/ITER_GLOB_ELAS",
     "CONVERGENCE/ARRET",
+    "CONVERGENCE/VERIF",
     "SOLVEUR",
     "SOLVEUR/*",
     "ETAT_INIT",
@@ -233,6 +237,7 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
             newton.iter_glob_maxi = n.max(1) as usize;
         }
         ex.only_values(&format!("{cmd}/CONVERGENCE"), conv, "ARRET", &["OUI"])?;
+        newton.at_least_one = conv.str("VERIF") == Some("AU_MOINS_UN");
     }
     if let Some(nw) = kw.factor("NEWTON").first() {
         ex.only_values(

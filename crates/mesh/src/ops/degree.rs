@@ -19,7 +19,7 @@ use std::collections::HashMap;
 
 /// Local corner pairs of each linear type's edges, in the order its
 /// quadratic counterpart numbers the mid-edge nodes.
-fn edges(ty: CellType) -> Option<(CellType, &'static [[usize; 2]])> {
+pub(crate) fn edges(ty: CellType) -> Option<(CellType, &'static [[usize; 2]])> {
     Some(match ty {
         CellType::SEG2 => (CellType::SEG3, &[[0, 1]]),
         CellType::TRIA3 => (CellType::TRIA6, &[[0, 1], [1, 2], [2, 0]]),
@@ -77,7 +77,7 @@ fn edges(ty: CellType) -> Option<(CellType, &'static [[usize; 2]])> {
 }
 
 /// The linear type of a quadratic one (`QUAD_LINE`).
-fn linear_of(ty: CellType) -> Option<CellType> {
+pub(crate) fn linear_of(ty: CellType) -> Option<CellType> {
     Some(match ty {
         CellType::SEG3 | CellType::SEG4 => CellType::SEG2,
         CellType::TRIA6 | CellType::TRIA7 => CellType::TRIA3,

@@ -2,6 +2,7 @@
 //! `CREA_MAILLAGE`.
 
 mod degree;
+mod edge_sizes;
 mod geom_groups;
 mod groups;
 mod orient;
