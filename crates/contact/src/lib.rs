@@ -21,6 +21,7 @@ mod glissiere;
 mod integration;
 pub mod lac;
 mod pairing;
+mod pointwise;
 mod rows;
 mod shape;
 mod surface;

@@ -597,6 +597,85 @@ impl ZoneContact {
         Some(out.into_iter().collect())
     }
 
+    /// Penalised continuous zone with code_aster's adaptive coefficient
+    /// (`ZoneGeometry::pene_maxi`): the converged penetrations (weighted
+    /// mean per slave node) must stay within the limit, where code_aster
+    /// leaves the coefficient as it is.
+    fn check_penetration(&self, time: f64, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        let Some(limit) = self.zone.geometry.pene_maxi else {
+            return Ok(());
+        };
+        for o in outcomes.iter().filter(|o| o.active) {
+            let Some(Some(l)) = self.links.get(o.id) else {
+                continue;
+            };
+            let penetration = o.violation / l.scale.max(f64::MIN_POSITIVE);
+            if penetration > limit {
+                let node = self
+                    .row_node(o.id)
+                    .map(|n| format!(" at slave node #{}", n.0 + 1))
+                    .unwrap_or_default();
+                return Err(FemError::Source(format!(
+                    "{}: at time {time} the penetration{node} is {penetration:.4e}, beyond \
+                     {limit:.4e} (PENE_MAXI, or 1 % of the shortest master cell): code_aster \
+                     would raise COEF_PENA_CONT there (ADAPTATION='ADAPT_COEF'/'TOUT', \
+                     Bussetta's rule), which is not reproduced; give ADAPTATION='NON' with \
+                     COEF_PENA_CONT, or use ALGO_CONT='STANDARD'",
+                    self.describe()
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Continuous zone integrated at points other than the nodes: refuses
+    /// a converged step with a slave cell partly in contact (module
+    /// `pointwise`: code_aster's per-point statuses are not reproduced).
+    fn check_pointwise(&self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        // Continuous STANDARD only: a penalised zone is pointwise on its
+        // own (κ wₚ gₚ at each point), and LAC has its own patches.
+        if !matches!(
+            self.law,
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Standard { .. },
+                ..
+            })
+        ) {
+            return Ok(());
+        }
+        let Some((ci, on, off)) =
+            crate::pointwise::mixed_cell(&self.zone, &self.pairs, outcomes, |id| {
+                self.row_node(id)
+            })
+        else {
+            return Ok(());
+        };
+        let mesh = state.mesh;
+        let name = |n: &NodeId| {
+            mesh.node_names
+                .get(n.0 as usize)
+                .cloned()
+                .unwrap_or_else(|| format!("N{}", n.0 + 1))
+        };
+        let cell = self.zone.slave[ci].id;
+        let cell_name = mesh
+            .cell_names
+            .get(cell.0 as usize)
+            .cloned()
+            .unwrap_or_else(|| format!("M{}", cell.0 + 1));
+        Err(FemError::Source(format!(
+            "{}: at time {} slave cell {cell_name} is partly in contact (nodes {} in, {} out) \
+             and integrated at points other than its nodes: code_aster decides contact at \
+             each integration point there (its answer then depends on the points' statuses \
+             and COEF_CONT), which is not reproduced; INTEGRATION='AUTO' on linear cells \
+             (points at the nodes) is",
+            self.describe(),
+            state.time,
+            on.iter().map(name).collect::<Vec<_>>().join(" "),
+            off.iter().map(name).collect::<Vec<_>>().join(" "),
+        )))
+    }
+
     fn describe(&self) -> String {
         format!(
             "contact zone {} ({} on {})",
@@ -714,7 +793,7 @@ impl UnilateralSource for ZoneContact {
                     } => (iter_maxi, resi_geom),
                     _ => (pairings, 0.0),
                 };
-                return Err(FemError::Source(format!(
+                return Err(FemError::SourceLoop(format!(
                     "{}: the geometric loop (REAC_GEOM='AUTOMATIQUE') did not converge at time {}: \
                      after ITER_GEOM_MAXI={iter_maxi} pairings the displacement still changes by \
                      {:.3e} of the step's displacement (RESI_GEOM={resi_geom}); raise \
@@ -740,6 +819,8 @@ impl UnilateralSource for ZoneContact {
     }
 
     fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        self.check_penetration(state.time, outcomes)?;
+        self.check_pointwise(state, outcomes)?;
         if !self.zone.geometry.resolve {
             self.step_pairings.push((state.time, self.pairs.clone()));
         }

@@ -127,6 +127,13 @@ pub struct ZoneGeometry {
     /// of orthogonally (code_aster's `mmnewd`); the normal stays the master
     /// cell's.
     pub dire_appa: Option<[f64; 3]>,
+    /// Continuous `ALGO_CONT='PENALISATION'` with `ADAPTATION='ADAPT_COEF'`
+    /// or `'TOUT'`: code_aster raises the penalty coefficient at a point
+    /// whose penetration exceeds this (`PENE_MAXI`, or 1 % of the shortest
+    /// master cell). That adaptation (Bussetta's rule, `mm_cycl_algo`) is
+    /// not reproduced: a converged step whose penetration stays below the
+    /// limit is code_aster's; one that exceeds it is an error.
+    pub pene_maxi: Option<f64>,
 }
 
 /// `CONTACT_INIT` of a continuous zone.
@@ -165,6 +172,7 @@ impl ZoneGeometry {
             contact_init: ContactInit::Interpenetre,
             dist_maxi: None,
             dire_appa: None,
+            pene_maxi: None,
         }
     }
 

@@ -27,6 +27,10 @@ pub enum FemError {
     ActiveSet { time: f64, message: String },
     /// An error raised by a unilateral source (e.g. contact pairing).
     Source(String),
+    /// A unilateral source's own loop did not converge within its bound
+    /// (contact's geometric loop at ITER_GEOM_MAXI): an increment failure,
+    /// cut like a Newton failure (code_aster's event ERRE_CTCG).
+    SourceLoop(String),
     /// An increment still failed once cut as far as `DEFI_LIST_INST/ECHEC`
     /// allows (`SUBD_NIVEAU` levels of `SUBD_PAS` pieces, or a piece below
     /// `SUBD_PAS_MINI`).
@@ -81,7 +85,7 @@ impl fmt::Display for FemError {
             FemError::ActiveSet { time, message } => {
                 write!(f, "unilateral conditions at time {time}: {message}")
             }
-            FemError::Source(m) => write!(f, "{m}"),
+            FemError::Source(m) | FemError::SourceLoop(m) => write!(f, "{m}"),
             FemError::StepCutting {
                 from,
                 to,

@@ -527,6 +527,7 @@ impl StaticNonLinear<'_> {
                             FemError::NoConvergence { .. }
                                 | FemError::ActiveSet { .. }
                                 | FemError::PoorSolve { .. }
+                                | FemError::SourceLoop(_)
                         );
                         let Some(sd) = self.subdivision.filter(|_| cuttable) else {
                             return Err(e);

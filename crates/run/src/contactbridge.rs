@@ -77,6 +77,7 @@ const ALLOWED: &[&str] = &[
     "ZONE/DIST_MAXI",
     "ZONE/ADAPTATION",
     "ZONE/SEUIL_INIT",
+    "ZONE/PENE_MAXI",
     // LAC's pairing method (robust or fast search): same pairs here.
     "ZONE/TYPE_APPA",
     // code_aster 11: only raises an alarm when a gap passes it; no effect
@@ -278,6 +279,25 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                     law,
                 });
             }
+            // code_aster (`cazocd`/`cazouu`): GLISSIERE is one setting for
+            // all discrete zones (its algorithm is chosen for the whole
+            // contact problem).
+            let gliss: Vec<bool> = zones.iter().map(|z| z.geometry.glissiere).collect();
+            if gliss.iter().any(|&g| g != gliss[0]) {
+                let span = kw
+                    .factor("ZONE")
+                    .iter()
+                    .find_map(|o| o.keyword("GLISSIERE").map(|k| k.span))
+                    .unwrap_or_default();
+                let loc = ex
+                    .location(span)
+                    .map(|l| format!(" ({l})"))
+                    .unwrap_or_default();
+                return Err(ExecError::new(format!(
+                    "DEFI_CONTACT/ZONE/GLISSIERE: with FORMULATION='DISCRETE' every zone must give \
+                     the same GLISSIERE (code_aster solves all zones with one algorithm){loc}"
+                )));
+            }
             let mut d = ContactDefinition::discrete(zones, frottement).map_err(cerr)?;
             if let ContactDefinition::Discrete(dd) = &mut d {
                 if let Some(n) = kw.first("ITER_CONT_MULT").and_then(|s| s.as_i64()) {
@@ -290,7 +310,22 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
         "CONTINUE" => {
             let mut zones = Vec::new();
             for occ in kw.factor("ZONE") {
+                let adaptive_penalty = occ.str("ALGO_CONT") == Some("PENALISATION")
+                    && matches!(occ.str("ADAPTATION"), Some("ADAPT_COEF" | "TOUT"));
+                if adaptive_penalty
+                    && occ.keyword("COEF_PENA_CONT").is_some_and(|k| !k.defaulted)
+                {
+                    return Err(ex.unsupported(
+                        "DEFI_CONTACT/ZONE/COEF_PENA_CONT with ADAPTATION='ADAPT_COEF' or 'TOUT' \
+                         (code_aster 15 starts the adaptation from 100 whatever is given)",
+                        occ.keyword("COEF_PENA_CONT").map(|k| k.span).unwrap_or_default(),
+                    ));
+                }
                 let algo = match occ.str("ALGO_CONT").unwrap_or("STANDARD") {
+                    // code_aster's adaptive penalty starts from 100 (`cazocc`).
+                    "PENALISATION" if adaptive_penalty => ContinueAlgo::Penalisation {
+                        coef_pena_cont: 100.0,
+                    },
                     "PENALISATION" => ContinueAlgo::Penalisation {
                         coef_pena_cont: occ
                             .f64("COEF_PENA_CONT")
@@ -314,8 +349,14 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                     "NCOTES" => Integration::NCotes(order),
                     _ => Integration::Auto,
                 };
+                let mut geometry = geometry(ex, occ)?;
+                if adaptive_penalty {
+                    // A negative value: 1 % of the shortest master cell,
+                    // resolved with the mesh (`zones`).
+                    geometry.pene_maxi = Some(occ.f64("PENE_MAXI").unwrap_or(-1.0));
+                }
                 zones.push(Zone {
-                    geometry: geometry(ex, occ)?,
+                    geometry,
                     law: ContinueLaw { algo, integration },
                 });
             }
@@ -380,8 +421,51 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
             .iter_mut()
             .for_each(|z| z.set_measure(Measure::Axisymmetric));
     }
+    resolve_pene_maxi(mesh, &mut zones);
     lac_setup(ex, mesh, kw, &mut zones)?;
     Ok(zones)
+}
+
+/// The adaptive penalty's limit without PENE_MAXI: 1 % of code_aster's
+/// `arete_min` (`mmopti`: the shortest master cell — a segment's chord, a
+/// triangle's median from its third corner, a quadrangle's two diagonals
+/// added), over every zone.
+fn resolve_pene_maxi(mesh: &Mesh, zones: &mut [ZoneContact]) {
+    if !zones
+        .iter()
+        .any(|z| z.zone.geometry.pene_maxi.is_some_and(|p| p < 0.0))
+    {
+        return;
+    }
+    let dist = |a: [f64; 3], b: [f64; 3]| {
+        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    };
+    let mut arete_min = f64::INFINITY;
+    for z in zones.iter() {
+        for c in &z.zone.master {
+            let p: Vec<[f64; 3]> = c.nodes.iter().map(|n| mesh.coord(*n)).collect();
+            let size = match (c.kind.dim(), c.kind.corner_count()) {
+                (1, _) => dist(p[0], p[1]),
+                (_, 3) => {
+                    let mid = [
+                        0.5 * (p[0][0] + p[1][0]),
+                        0.5 * (p[0][1] + p[1][1]),
+                        0.5 * (p[0][2] + p[1][2]),
+                    ];
+                    dist(p[2], mid)
+                }
+                _ => dist(p[2], p[0]) + dist(p[3], p[1]),
+            };
+            if size > 0.0 {
+                arete_min = arete_min.min(size);
+            }
+        }
+    }
+    for z in zones.iter_mut() {
+        if z.zone.geometry.pene_maxi.is_some_and(|p| p < 0.0) {
+            z.zone.geometry.pene_maxi = Some(1e-2 * arete_min);
+        }
+    }
 }
 
 /// ALGO_CONT='LAC' zones: the patches of CREA_MAILLAGE/DECOUPE_LAC, and

@@ -34,7 +34,8 @@ pub struct Comparison {
     pub order: f64,
     /// The value is zero and no order of magnitude was given.
     pub skip: bool,
-    /// `VALE_ABS='OUI'`: compare absolute values.
+    /// `VALE_ABS='OUI'`: compare absolute values (of the computed and the
+    /// expected values, as code_aster's `tresu_print`).
     pub absolute_value: bool,
 }
 
@@ -64,10 +65,12 @@ impl Comparison {
         } else {
             computed
         };
+        // VALE_ABS='OUI': code_aster's tresu_print takes the absolute value
+        // of the reference too.
         let expected = self
             .expected
             .iter()
-            .copied()
+            .map(|v| if self.absolute_value { v.abs() } else { *v })
             .min_by(|a, b| (a - computed).abs().total_cmp(&(b - computed).abs()))
             .unwrap_or(f64::NAN);
         if self.skip {
@@ -439,6 +442,20 @@ mod tests {
         assert_eq!(cs[0].kind, "ANALYTIQUE");
         assert_eq!(cs[0].judge(4.2857142857).verdict, Verdict::Ok);
         assert_eq!(cs[0].judge(4.2867).verdict, Verdict::Nook);
+    }
+
+    #[test]
+    fn vale_abs_compares_the_absolute_values_of_both_sides() {
+        // SSNP167E: VALE_CALC=-0.00505517006413 with VALE_ABS='OUI' and a
+        // computed -0.005055170.
+        let k = kw(vec![
+            ("VALE_CALC", Scalar::Real(-0.00505517006413)),
+            ("VALE_ABS", Scalar::Str("OUI".into())),
+        ]);
+        let c = &comparisons(&k).unwrap()[0];
+        assert_eq!(c.judge(-0.005055170).verdict, Verdict::Ok);
+        assert_eq!(c.judge(0.005055170).verdict, Verdict::Ok);
+        assert_eq!(c.judge(-0.0051).verdict, Verdict::Nook);
     }
 
     #[test]
