@@ -66,9 +66,9 @@ impl Glissiere {
             return;
         }
         self.started = true;
-        let eps = self.threshold.unwrap_or_else(|| {
-            1e-6 * mesh.edge_sizes().map(|(lo, _)| lo).unwrap_or(0.0)
-        });
+        let eps = self
+            .threshold
+            .unwrap_or_else(|| 1e-6 * mesh.edge_sizes().map(|(lo, _)| lo).unwrap_or(0.0));
         for &(n, g) in gaps {
             let link = match self.init {
                 ContactInit::Oui => true,
@@ -89,7 +89,11 @@ impl Glissiere {
 
     /// Marks the linked rows bilateral (`node_of`: the slave node of a
     /// row id, for continuous rows).
-    pub(crate) fn mark(&self, rows: &mut [InequalityRow], node_of: impl Fn(usize) -> Option<NodeId>) {
+    pub(crate) fn mark(
+        &self,
+        rows: &mut [InequalityRow],
+        node_of: impl Fn(usize) -> Option<NodeId>,
+    ) {
         if !self.on {
             return;
         }

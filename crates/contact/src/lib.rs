@@ -14,6 +14,7 @@
 // iterator chains in numerical code.
 #![allow(clippy::needless_range_loop)]
 
+mod augmented;
 pub mod dual;
 mod error;
 mod geomloop;
@@ -21,7 +22,9 @@ mod glissiere;
 mod integration;
 pub mod lac;
 mod pairing;
+mod penalty;
 mod pointwise;
+pub mod quad8;
 mod rows;
 mod shape;
 mod surface;

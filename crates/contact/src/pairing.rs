@@ -227,7 +227,9 @@ pub fn pair_point(
             }
         }
     };
-    let gap = dot(sub(xs, xm), normal) - g.dist_mait.at(xm) - g.dist_escl.at(xs);
+    let gap = dot(sub(xs, xm), normal)
+        - g.dist_mait.at_time(xm, zone.time)
+        - g.dist_escl.at_time(xs, zone.time);
     Ok(ContactPair {
         point: point.clone(),
         status: PairStatus::Paired(Pairing {

@@ -115,13 +115,27 @@ impl ContNoeu {
                 Some(t) if !z.zone.geometry.resolve => z.verification_pairing(t),
                 _ => None,
             };
-            for point in nodal_points(&z.zone) {
+            // Offsets that vary in time are taken at the step's time.
+            let timed = match time {
+                Some(t)
+                    if z.zone.time != t
+                        && (z.zone.geometry.dist_mait.depends_on_time()
+                            || z.zone.geometry.dist_escl.depends_on_time()) =>
+                {
+                    let mut c = z.zone.clone();
+                    c.time = t;
+                    Some(c)
+                }
+                _ => None,
+            };
+            let zone = timed.as_ref().unwrap_or(&z.zone);
+            for point in nodal_points(zone) {
                 let Some(node) = point.node() else { continue };
                 let mut v = [0.0; 19];
                 let pair =
                     match recorded.and_then(|r| r.iter().find(|p| p.point.node() == Some(node))) {
                         Some(p) => p.clone(),
-                        None => pair_point(&z.zone, &point, x)?,
+                        None => pair_point(zone, &point, x)?,
                     };
                 match &pair.status {
                     PairStatus::Excluded(_) => v[0] = -1.0,

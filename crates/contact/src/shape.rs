@@ -631,18 +631,36 @@ mod tests {
         // down (0,-1) it is hit at x = 1.5, y = 0.75 (ξ = 0.5).
         let seg = [[0.0, 0.0, 0.0], [2.0, 1.0, 0.0]];
         let cp = project_along(SurfaceKind::Seg2, &seg, [1.5, 3.0, 0.0], [0.0, -1.0, 0.0]).unwrap();
-        assert!((cp.x[0] - 1.5).abs() < 1e-12 && (cp.x[1] - 0.75).abs() < 1e-12, "{:?}", cp.x);
+        assert!(
+            (cp.x[0] - 1.5).abs() < 1e-12 && (cp.x[1] - 0.75).abs() < 1e-12,
+            "{:?}",
+            cp.x
+        );
         assert!((cp.xi[0] - 0.5).abs() < 1e-12);
         // The orthogonal projection lands elsewhere.
         let o = project(SurfaceKind::Seg2, &seg, [1.5, 3.0, 0.0]).unwrap();
         assert!((o.x[0] - 1.5).abs() > 0.1);
         // A curved QUAD8 face z = 0.1 (1 − x²) hit vertically at (0.3, −0.2).
         let mut q8 = vec![];
-        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (0.0, -1.0), (1.0, 0.0), (0.0, 1.0), (-1.0, 0.0)] {
+        for (x, y) in [
+            (-1.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 1.0),
+            (-1.0, 1.0),
+            (0.0, -1.0),
+            (1.0, 0.0),
+            (0.0, 1.0),
+            (-1.0, 0.0),
+        ] {
             q8.push([x, y, 0.1 * (1.0 - x * x)]);
         }
-        let cp = project_along(SurfaceKind::Quad8, &q8, [0.3, -0.2, 5.0], [0.0, 0.0, -1.0]).unwrap();
-        assert!((cp.x[0] - 0.3).abs() < 1e-12 && (cp.x[1] + 0.2).abs() < 1e-12, "{:?}", cp.x);
+        let cp =
+            project_along(SurfaceKind::Quad8, &q8, [0.3, -0.2, 5.0], [0.0, 0.0, -1.0]).unwrap();
+        assert!(
+            (cp.x[0] - 0.3).abs() < 1e-12 && (cp.x[1] + 0.2).abs() < 1e-12,
+            "{:?}",
+            cp.x
+        );
         assert!((cp.x[2] - 0.1 * (1.0 - 0.09)).abs() < 1e-12);
         // Parallel to the segment: no hit.
         assert!(project_along(SurfaceKind::Seg2, &seg, [1.5, 3.0, 0.0], [2.0, 1.0, 0.0]).is_none());

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use aster_fem::{
-    Dof, FemError, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State,
+    AugmentedTerm, Dof, FemError, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State,
     UnilateralMethod, UnilateralSource,
 };
 use aster_mesh::{CellId, LacZonePatches, Mesh, NodeId};
@@ -92,6 +92,10 @@ pub struct ZoneContact {
     /// Continuous zones' ALGO_RESO_GEOM / ALGO_RESO_CONT = 'POINT_FIXE':
     /// loops outside Newton (its iteration count restarts with each pass).
     outer: OuterLoops,
+    /// ALGO_CONT='STANDARD': the augmented term ρ·g of each paired
+    /// integration point (module `augmented`), for the rows of the last
+    /// pairing.
+    augmented: Vec<AugmentedTerm>,
 }
 
 impl ZoneContact {
@@ -140,6 +144,7 @@ impl ZoneContact {
                 }
             }
         }
+        crate::quad8::remove_middle_nodes(&mut out);
         Ok(out)
     }
 
@@ -163,6 +168,7 @@ impl ZoneContact {
             measure: Measure::Plane,
             lac: None,
             lac_integrals: Vec::new(),
+            augmented: Vec::new(),
             zone,
             law,
             geom_loop,
@@ -178,6 +184,17 @@ impl ZoneContact {
     /// weights then carry the radius, as fem's nodal forces (per radian).
     pub fn set_measure(&mut self, measure: Measure) {
         self.measure = measure;
+    }
+
+    /// Whether the zone is a continuous `ALGO_CONT='PENALISATION'` zone.
+    fn is_penalised_continue(&self) -> bool {
+        matches!(
+            self.law,
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Penalisation { .. },
+                ..
+            })
+        )
     }
 
     /// Whether the zone is an `ALGO_CONT='LAC'` zone.
@@ -355,9 +372,42 @@ impl ZoneContact {
                     algo: ContinueAlgo::Lac,
                     ..
                 }) => rows = self.lac_rows(mesh, x)?,
+                ZoneLaw::Continue(ContinueLaw {
+                    algo: ContinueAlgo::Penalisation { .. },
+                    ..
+                }) => {
+                    // Pointwise penalty (module `penalty`): one row and one
+                    // carrier per integration point.
+                    let point_rows = crate::penalty::point_rows(&self.zone, &self.pairs, mesh, x);
+                    for (pair, r) in self.pairs.iter().zip(point_rows) {
+                        self.carriers.push(pair.point.nodes.clone());
+                        self.measures.push(pair.point.weight);
+                        self.links.push(r.as_ref().map(|(_, scale)| RowLink {
+                            row: rows.len(),
+                            scale: *scale,
+                        }));
+                        if let Some((row, _)) = r {
+                            rows.push(row);
+                        }
+                    }
+                }
                 ZoneLaw::Continue(_) => rows = self.weighted_node_rows(mesh, x),
             }
         }
+        self.augmented = match self.law {
+            ZoneLaw::Continue(ContinueLaw {
+                algo: ContinueAlgo::Standard { coef_cont },
+                ..
+            }) if self.zone.geometry.resolve => crate::augmented::terms(
+                &self.zone,
+                &self.pairs,
+                &self.node_rows(),
+                coef_cont,
+                mesh,
+                x,
+            ),
+            _ => Vec::new(),
+        };
         self.forces = vec![0.0; self.carriers.len()];
         if self.geom_loop == GeomLoop::Sans {
             self.frozen_rows = rows.clone();
@@ -370,8 +420,8 @@ impl ZoneContact {
     /// Σₚ wₚ Nⱼ(p) gₚ / Wⱼ (Wⱼ = Σₚ wₚ Nⱼ(p)) over the paired integration
     /// points — the contact pressure is a nodal field, as code_aster's
     /// LAGS_C, and several points on one cell never make redundant rows.
-    /// The row is scaled by Wⱼ (λ is then the pressure) or √Wⱼ under
-    /// penalty (fem's λ = coef·(a·u − b) then gives the force c·Wⱼ·penetration).
+    /// The row is scaled by Wⱼ (λ is then the pressure). (PENALISATION is
+    /// pointwise: module `penalty`.)
     fn weighted_node_rows(&mut self, mesh: &Mesh, x: &[[f64; 3]]) -> Vec<InequalityRow> {
         type Acc = (f64, BTreeMap<Dof, f64>, f64, f64);
         let mut acc: BTreeMap<NodeId, Acc> = BTreeMap::new();
@@ -407,13 +457,6 @@ impl ZoneContact {
                 e.3 += w * p.gap;
             }
         }
-        let penalised = matches!(
-            self.law,
-            ZoneLaw::Continue(ContinueLaw {
-                algo: ContinueAlgo::Penalisation { .. },
-                ..
-            })
-        );
         if self.glissiere.is_on() {
             let gaps: Vec<(NodeId, f64)> = acc
                 .iter()
@@ -427,13 +470,7 @@ impl ZoneContact {
             if weight <= 0.0 {
                 continue;
             }
-            let scale = if penalised { weight.sqrt() } else { weight };
-            let f = scale / weight;
-            let terms: Vec<(Dof, f64)> = terms
-                .into_iter()
-                .map(|(d, c)| (d, c * f))
-                .filter(|t| t.1 != 0.0)
-                .collect();
+            let terms: Vec<(Dof, f64)> = terms.into_iter().filter(|t| t.1 != 0.0).collect();
             if terms.is_empty() {
                 continue;
             }
@@ -442,11 +479,24 @@ impl ZoneContact {
             self.measures.push(weight);
             self.links.push(Some(RowLink {
                 row: rows.len(),
-                scale,
+                scale: weight,
             }));
-            rows.push(InequalityRow::new(terms, rhs * f, id));
+            rows.push(InequalityRow::new(terms, rhs, id));
         }
         rows
+    }
+
+    /// For each slave node that carries a continuous row: the row's index
+    /// in the rows of the last pairing.
+    fn node_rows(&self) -> BTreeMap<NodeId, usize> {
+        self.carriers
+            .iter()
+            .zip(&self.links)
+            .filter_map(|(nodes, link)| match (nodes.as_slice(), link) {
+                ([(n, _)], Some(l)) => Some((*n, l.row)),
+                _ => None,
+            })
+            .collect()
     }
 
     /// Penalty of each row for the dual algorithms (ε = 1/penalty, 0 = exact).
@@ -568,11 +618,20 @@ impl ZoneContact {
         }
         let mut out: BTreeMap<NodeId, f64> =
             self.zone.slave_nodes.iter().map(|n| (*n, 0.0)).collect();
-        for ((nodes, f), w) in self.carriers.iter().zip(&self.forces).zip(&self.measures) {
-            if let [(n, _)] = nodes.as_slice() {
-                if *w > 0.0 {
-                    if let Some(v) = out.get_mut(n) {
-                        *v = -f / w;
+        if self.is_penalised_continue() {
+            // The L² projection of the pointwise pressure (module `penalty`).
+            out.extend(crate::penalty::lags_c(
+                &self.zone,
+                &self.pairs,
+                &self.forces,
+            ));
+        } else {
+            for ((nodes, f), w) in self.carriers.iter().zip(&self.forces).zip(&self.measures) {
+                if let [(n, _)] = nodes.as_slice() {
+                    if *w > 0.0 {
+                        if let Some(v) = out.get_mut(n) {
+                            *v = -f / w;
+                        }
                     }
                 }
             }
@@ -644,9 +703,7 @@ impl ZoneContact {
             return Ok(());
         }
         let Some((ci, on, off)) =
-            crate::pointwise::mixed_cell(&self.zone, &self.pairs, outcomes, |id| {
-                self.row_node(id)
-            })
+            crate::pointwise::mixed_cell(&self.zone, &self.pairs, outcomes, |id| self.row_node(id))
         else {
             return Ok(());
         };
@@ -805,6 +862,7 @@ impl UnilateralSource for ZoneContact {
                 )));
             }
         }
+        self.zone.time = state.time;
         let rows = self
             .pair(state.mesh, &x)
             .map_err(|e| FemError::Source(format!("{}: {e}", self.describe())))?;
@@ -816,6 +874,10 @@ impl UnilateralSource for ZoneContact {
         }
         self.last_rows = rows.clone();
         Ok(rows)
+    }
+
+    fn augmented_terms(&self) -> Vec<AugmentedTerm> {
+        self.augmented.clone()
     }
 
     fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {

@@ -35,10 +35,15 @@ pub struct ResolvedZone {
     pub slave_nodes: Vec<NodeId>,
     /// Master nodes, sorted.
     pub master_nodes: Vec<NodeId>,
+    /// The nodes of SANS_GROUP_NO and SANS_GROUP_MA, sorted.
+    pub excluded_nodes: Vec<NodeId>,
     pub master_cells_of_node: HashMap<NodeId, Vec<usize>>,
     pub slave_cells_of_node: HashMap<NodeId, Vec<usize>>,
     /// Space dimension of the problem (2 or 3).
     pub space_dim: usize,
+    /// The time of the current pairing (for offsets given as functions of
+    /// time).
+    pub time: f64,
 }
 
 impl ResolvedZone {
@@ -116,12 +121,14 @@ impl ResolvedZone {
         slave_nodes.sort();
 
         Ok(ResolvedZone {
+            time: 0.0,
             index,
             geometry: geometry.clone(),
             master,
             slave,
             slave_nodes,
             master_nodes,
+            excluded_nodes: excluded.into_iter().collect(),
             master_cells_of_node,
             slave_cells_of_node,
             space_dim,

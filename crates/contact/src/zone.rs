@@ -42,22 +42,36 @@ pub enum NormalChoice {
 }
 
 /// An extra gap (`DIST_MAIT`, `DIST_ESCL`): thickness of shells or beams
-/// modelled by their mid-surface. A function of the point coordinates.
+/// modelled by their mid-surface. A function of the point coordinates, or
+/// of the time (`NOM_PARA='INST'`).
 #[derive(Clone, Default)]
 pub enum Offset {
     #[default]
     Zero,
     Constant(f64),
     Function(Arc<dyn Fn([f64; 3]) -> f64 + Send + Sync>),
+    /// A function of the time of the pairing.
+    OfTime(Arc<dyn Fn(f64) -> f64 + Send + Sync>),
 }
 
 impl Offset {
+    /// The offset at a point (a function of time is taken at t = 0).
     pub fn at(&self, x: [f64; 3]) -> f64 {
+        self.at_time(x, 0.0)
+    }
+
+    /// The offset at a point and time.
+    pub fn at_time(&self, x: [f64; 3], t: f64) -> f64 {
         match self {
             Offset::Zero => 0.0,
             Offset::Constant(c) => *c,
             Offset::Function(f) => f(x),
+            Offset::OfTime(f) => f(t),
         }
+    }
+
+    pub fn depends_on_time(&self) -> bool {
+        matches!(self, Offset::OfTime(_))
     }
 }
 
@@ -67,6 +81,7 @@ impl fmt::Debug for Offset {
             Offset::Zero => write!(f, "Zero"),
             Offset::Constant(c) => write!(f, "Constant({c})"),
             Offset::Function(_) => write!(f, "Function(..)"),
+            Offset::OfTime(_) => write!(f, "OfTime(..)"),
         }
     }
 }

@@ -465,11 +465,18 @@ fn a_fixed_projection_direction_moves_the_master_point() {
     let fixed = pairs(&mesh, g);
     let f = fixed[0].pairing().unwrap();
     // Down and to the right at 45°: the master at x = 1.5.
-    assert!((f.master_x[0] - 1.5).abs() < 1e-12 && f.master_x[1].abs() < 1e-12, "{:?}", f.master_x);
+    assert!(
+        (f.master_x[0] - 1.5).abs() < 1e-12 && f.master_x[1].abs() < 1e-12,
+        "{:?}",
+        f.master_x
+    );
     assert!((f.gap - o.gap).abs() < 1e-14 && (f.gap - 0.5).abs() < 1e-14);
     // Weights of the master cell's nodes (x = 0 and x = 2): 1/4 and 3/4.
     let mut w: Vec<f64> = f.master.iter().map(|m| m.1).collect();
     w.sort_by(f64::total_cmp);
-    assert!((w[0] - 0.25).abs() < 1e-12 && (w[1] - 0.75).abs() < 1e-12, "{w:?}");
+    assert!(
+        (w[0] - 0.25).abs() < 1e-12 && (w[1] - 0.75).abs() < 1e-12,
+        "{w:?}"
+    );
     assert_eq!(f.normal, o.normal);
 }

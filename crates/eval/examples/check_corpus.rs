@@ -9,7 +9,7 @@
 //! `--list KIND` prints the first diagnostic of each file whose first error
 //! has that kind (e.g. `unknown_keyword`), to hunt false errors.
 
-use aster_eval::{check_source, DiagKind};
+use aster_eval::check_source;
 use aster_syntax::CodeMap;
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -91,7 +91,7 @@ fn main() {
                     warned += 1;
                 }
             }
-            Some(ref d) if d.kind == DiagKind::NotSupported => {
+            Some(ref d) if d.kind.is_not_supported() => {
                 *unsupported.entry(reason(&d.message)).or_default() += 1;
             }
             Some(ref d) => {

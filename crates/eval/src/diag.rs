@@ -20,6 +20,10 @@ pub enum DiagKind {
     Syntax,
     /// A Python construct, module or builtin outside the supported subset.
     NotSupported,
+    /// A step that needs a value known only when the commands run (a
+    /// condition on a table value…): checking cannot go past it, running
+    /// can. Reported as "not supported" by `check`.
+    RunTimeValue,
     /// A Python-level error (unknown name, wrong operand types...).
     Python,
     UnknownCommand,
@@ -42,10 +46,15 @@ pub enum DiagKind {
 }
 
 impl DiagKind {
+    /// "not supported" (by the checker or the runner).
+    pub fn is_not_supported(self) -> bool {
+        matches!(self, DiagKind::NotSupported | DiagKind::RunTimeValue)
+    }
+
     pub fn label(self) -> &'static str {
         match self {
             DiagKind::Syntax => "syntax error",
-            DiagKind::NotSupported => "not supported",
+            DiagKind::NotSupported | DiagKind::RunTimeValue => "not supported",
             DiagKind::Python => "Python error",
             DiagKind::UnknownCommand => "unknown command",
             DiagKind::UnknownKeyword => "unknown keyword",

@@ -42,6 +42,15 @@ pub(crate) fn unsupported<T>(span: Span, what: impl std::fmt::Display) -> R<T> {
     )
 }
 
+/// A step checking cannot take: it needs a value known only at run time.
+pub(crate) fn needs_run_time<T>(span: Span, what: impl std::fmt::Display) -> R<T> {
+    err(
+        DiagKind::RunTimeValue,
+        span,
+        format!("not supported: {what}"),
+    )
+}
+
 pub(crate) fn py_err<T>(span: Span, msg: impl Into<String>) -> R<T> {
     err(DiagKind::Python, span, msg)
 }
@@ -659,7 +668,7 @@ impl<'a> Interp<'a> {
     pub fn truth(&self, v: &Value, span: Span) -> R<bool> {
         match v.truthy() {
             Some(b) => Ok(b),
-            None => unsupported(
+            None => needs_run_time(
                 span,
                 "a condition on a value known only when the commands run (checking does not execute them)",
             ),
@@ -947,7 +956,7 @@ impl<'a> Interp<'a> {
             Value::Str(s) => s.chars().map(|c| Value::str(&c.to_string())).collect(),
             Value::Dict(d) => d.borrow().entries.iter().map(|e| e.key.clone()).collect(),
             Value::Unknown => {
-                return unsupported(
+                return needs_run_time(
                     span,
                     "iterating over a value known only when the commands run",
                 )
@@ -1118,7 +1127,7 @@ impl<'a> Interp<'a> {
                             });
                         }
                     }
-                    Value::Unknown => return unsupported(a.span, "`**` of a run-time value"),
+                    Value::Unknown => return needs_run_time(a.span, "`**` of a run-time value"),
                     other => {
                         return py_err(
                             a.span,

@@ -6,7 +6,7 @@
 //! raises ImportError there, exactly as on a code_aster without them, and
 //! the `except ImportError` branch is what runs.
 
-use crate::diag::{DiagKind, Diagnostic};
+use crate::diag::Diagnostic;
 use aster_syntax::ast::{ExceptHandler, Expr, ExprKind, Stmt, StmtKind};
 
 const IMPORT_ERRORS: [&str; 2] = ["ImportError", "ModuleNotFoundError"];
@@ -48,7 +48,7 @@ pub(crate) fn imported_paths(body: &[Stmt]) -> Vec<String> {
 /// Whether a "not supported" stop is a module the checker does not
 /// provide, imported by this `try` body: an ImportError at run time.
 pub(crate) fn is_missing_module(d: &Diagnostic, imported: &[String]) -> bool {
-    if d.kind != DiagKind::NotSupported {
+    if !d.kind.is_not_supported() {
         return false;
     }
     let Some(what) = d.message.strip_prefix("not supported: ") else {

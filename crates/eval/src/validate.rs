@@ -515,7 +515,7 @@ impl Validator<'_> {
         // its rules checked.
         let refused = self.diags[level_start.min(diags_before)..]
             .iter()
-            .any(|d| d.is_error() && d.kind == DiagKind::NotSupported);
+            .any(|d| d.is_error() && d.kind.is_not_supported());
         for g in inactive {
             self.not_active(entries, &active, g, path, level_failed);
         }

@@ -194,7 +194,7 @@ if v > 1.0:
     let report = check_source(&map, true);
     let errs: Vec<_> = report.diagnostics.errors().collect();
     assert_eq!(errs.len(), 1, "{}", report.diagnostics.render(&map));
-    assert_eq!(errs[0].kind, DiagKind::NotSupported);
+    assert_eq!(errs[0].kind, DiagKind::RunTimeValue);
     assert_eq!(map.location(errs[0].span), "r.comm:5:4");
     assert_eq!(report.calls.len(), 2);
 }

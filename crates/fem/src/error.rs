@@ -31,6 +31,11 @@ pub enum FemError {
     /// (contact's geometric loop at ITER_GEOM_MAXI): an increment failure,
     /// cut like a Newton failure (code_aster's event ERRE_CTCG).
     SourceLoop(String),
+    /// The behaviour could not be integrated at a Gauss point of the
+    /// iterate (a crushed or inverted element, a Jacobian increment out of
+    /// bounds): code_aster's integration failure, which a smaller increment
+    /// may avoid (step cutting applies).
+    Integration(String),
     /// An increment still failed once cut as far as `DEFI_LIST_INST/ECHEC`
     /// allows (`SUBD_NIVEAU` levels of `SUBD_PAS` pieces, or a piece below
     /// `SUBD_PAS_MINI`).
@@ -86,6 +91,7 @@ impl fmt::Display for FemError {
                 write!(f, "unilateral conditions at time {time}: {message}")
             }
             FemError::Source(m) | FemError::SourceLoop(m) => write!(f, "{m}"),
+            FemError::Integration(m) => write!(f, "behaviour integration failed: {m}"),
             FemError::StepCutting {
                 from,
                 to,

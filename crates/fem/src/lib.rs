@@ -32,6 +32,7 @@ pub mod scenes;
 pub mod shape;
 pub(crate) mod solver_constrained;
 mod split_llt;
+pub mod strain;
 pub mod unilateral;
 
 pub use behaviour::{Behaviours, CurveEnd, VonMises};
@@ -45,7 +46,8 @@ pub use nonlinear::{
     Prediction, StaticNonLinear, Step, Subdivision,
 };
 pub use post::{CellValues, NodalValues};
+pub use strain::Kinematics;
 pub use unilateral::{
-    FixedRows, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State, UnilateralMethod,
-    UnilateralSource,
+    AugmentedTerm, FixedRows, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State,
+    UnilateralMethod, UnilateralSource,
 };

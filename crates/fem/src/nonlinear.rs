@@ -35,8 +35,8 @@ use crate::model::Model;
 use crate::post::{self, CellValues};
 use crate::solver_constrained::{self, KktSolver, MatrixKey};
 use crate::unilateral::{
-    OuterLoops,
-    GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod, UnilateralSource,
+    AugmentedTerm, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State, UnilateralMethod,
+    UnilateralSource,
 };
 
 /// `NEWTON(PREDICTION=…)`: the matrix of the first iteration of a step.
@@ -74,6 +74,9 @@ pub struct NewtonOptions {
     /// constant, so this only matters with a plastic behaviour.
     pub reac_iter: usize,
     pub matrix: MatrixKind,
+    /// `MATR_RIGI_SYME='OUI'`: a non-symmetric tangent (SIMO_MIEHE) is
+    /// replaced by its symmetric part (K + Kᵀ)/2.
+    pub symmetrize: bool,
 }
 
 impl Default for NewtonOptions {
@@ -82,6 +85,7 @@ impl Default for NewtonOptions {
             prediction: Prediction::Tangente,
             reac_iter: 1,
             matrix: MatrixKind::Tangente,
+            symmetrize: false,
         }
     }
 }
@@ -294,6 +298,59 @@ struct SourceRows {
     method: UnilateralMethod,
     update: GeometryUpdate,
     outer: OuterLoops,
+    /// The source's augmented terms (`UnilateralSource::augmented_terms`).
+    aug: Vec<AugRow>,
+}
+
+/// An augmented term in DOF indices, with its contact status.
+#[derive(Clone)]
+struct AugRow {
+    idx: Vec<(usize, f64)>,
+    rhs: f64,
+    /// coef · weight: the stiffness of the term.
+    stiffness: f64,
+    coef: f64,
+    support: Vec<(usize, f64)>,
+    on: bool,
+}
+
+impl SourceRows {
+    /// The active flags of the rows and the augmented terms, for the
+    /// cycling test.
+    fn state(&self) -> Vec<bool> {
+        self.active
+            .iter()
+            .copied()
+            .chain(self.aug.iter().map(|a| a.on))
+            .collect()
+    }
+
+    /// Adds the penalty forces (and, with `matrix`, their stiffness on the
+    /// free unknowns `map`) of the augmented terms that are on.
+    fn add_augmented(
+        &self,
+        u: &[f64],
+        force: &mut [f64],
+        matrix: Option<(&[usize], &mut Vec<(usize, usize, f64)>)>,
+    ) {
+        let mut matrix = matrix;
+        for a in self.aug.iter().filter(|a| a.on) {
+            let g = gap(&a.idx, a.rhs, u);
+            for &(i, ci) in &a.idx {
+                force[i] += a.stiffness * ci * g;
+                if let Some((map, extra)) = matrix.as_mut() {
+                    if map[i] == usize::MAX {
+                        continue;
+                    }
+                    for &(j, cj) in &a.idx {
+                        if map[j] != usize::MAX {
+                            extra.push((map[i], map[j], a.stiffness * ci * cj));
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl StaticNonLinear<'_> {
@@ -336,7 +393,7 @@ impl StaticNonLinear<'_> {
         let mut plastic = if linear {
             None
         } else {
-            PlasticCells::new(model, &self.behaviours)?
+            PlasticCells::new(model, &self.behaviours, self.newton.symmetrize)?
         };
         if plastic.is_some() && u.iter().any(|&v| v != 0.0) {
             return Err(FemError::Model(
@@ -436,6 +493,7 @@ impl StaticNonLinear<'_> {
                         srcs[s] = Some(make_rows(
                             model,
                             rows,
+                            src.augmented_terms(),
                             (src.method(), src.geometry_update(), src.outer_loops()),
                             prev_active,
                             &u,
@@ -528,6 +586,7 @@ impl StaticNonLinear<'_> {
                                 | FemError::ActiveSet { .. }
                                 | FemError::PoorSolve { .. }
                                 | FemError::SourceLoop(_)
+                                | FemError::Integration(_)
                         );
                         let Some(sd) = self.subdivision.filter(|_| cuttable) else {
                             return Err(e);
@@ -810,6 +869,7 @@ fn newton_step(
                         }
                     }
                 }
+                sr.add_augmented(u, &mut pen_force, Some((map, &mut pen_extra)));
                 row_of.push(ro);
             }
             // Drop rows entirely on eliminated DOFs (they cannot be enforced
@@ -867,6 +927,7 @@ fn newton_step(
                             }
                         }
                     }
+                    ground.extend(sr.aug.iter().filter(|a| a.on).map(|a| a.idx.clone()));
                 }
                 let free = held::free_dofs(model, &ground);
                 if !free.is_empty() {
@@ -901,7 +962,7 @@ fn newton_step(
             if let Some(pc) = plastic.as_mut() {
                 if new_outer && choose_tangent(&mut tangent, pc, model, kff, map, newton, outer)? {
                     tangent_key = match tangent {
-                        Some(_) => kkt.new_tangent(),
+                        Some(_) => kkt.new_tangent(pc.symmetric_tangent()),
                         None => MatrixKey::Elastic,
                     };
                 }
@@ -988,7 +1049,8 @@ fn newton_step(
                         }
                     }
                     let a = matrix.with_extra(nfree + nk, extra);
-                    let spd = nk == 0;
+                    let symmetric = plastic.as_ref().is_none_or(|pc| pc.symmetric_tangent());
+                    let spd = nk == 0 && symmetric;
                     linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
                         SolveFailure::Singular { index } => {
                             let mut ground: Vec<Vec<(usize, f64)>> =
@@ -1037,6 +1099,7 @@ fn newton_step(
                         }
                     }
                 }
+                sr.add_augmented(u, &mut pen_new, None);
             }
             let mut resi_maxi = 0.0f64;
             let mut reference = 0.0f64;
@@ -1059,9 +1122,7 @@ fn newton_step(
             }
             let swapped = !first
                 && convergence.resi_glob_rela.is_some()
-                && loads_seen
-                    .load_mini
-                    .is_some_and(|m| reference <= 1e-6 * m)
+                && loads_seen.load_mini.is_some_and(|m| reference <= 1e-6 * m)
                 && loads_seen.last_resi_maxi.is_some();
             let converged_resi = if linear {
                 // MECA_STATIQUE: the solve is the answer (its accuracy is
@@ -1148,6 +1209,20 @@ fn newton_step(
                         sr.active[r] = now;
                     }
                 }
+                // Augmented terms: code_aster's status of a point,
+                // Σ Nⱼ λⱼ + ρ g > 0 with the multipliers just computed.
+                for a in sr.aug.iter_mut() {
+                    let pressure: f64 = a
+                        .support
+                        .iter()
+                        .map(|&(r, n)| n * lam.get(r).copied().unwrap_or(0.0))
+                        .sum();
+                    let now = pressure + a.coef * gap(&a.idx, a.rhs, u) > 0.0;
+                    if now != a.on {
+                        a.on = now;
+                        changed = true;
+                    }
+                }
                 src_lam.push(lam);
             }
             // Releasing every row in tension at once may leave the model
@@ -1219,6 +1294,9 @@ fn newton_step(
                 }
                 if changed {
                     pairing_start = outer;
+                    // New rows: the active sets seen with the previous
+                    // ones say nothing about cycling with these.
+                    history.clear();
                     set_changes += 1;
                     if set_changes > active_set_max_iter {
                         return Err(FemError::ActiveSet {
@@ -1260,8 +1338,7 @@ fn newton_step(
                     new_outer = false;
                 }
                 set_changes += 1;
-                let state: Vec<Vec<bool>> =
-                    srcs.iter().flatten().map(|s| s.active.clone()).collect();
+                let state: Vec<Vec<bool>> = srcs.iter().flatten().map(|s| s.state()).collect();
                 if history.contains(&state) {
                     return Err(FemError::ActiveSet {
                         time: t,
@@ -1403,10 +1480,12 @@ fn choose_tangent(
         return Ok(true);
     }
     if iter == 0 {
-        *tangent = if newton.prediction == Prediction::Elastique {
+        *tangent = if newton.prediction == Prediction::Elastique && !pc.has_finite_strains() {
             None
         } else {
-            pc.prediction(model)?;
+            // Finite strains: code_aster's RIGI_MECA_ELAS is the tangent
+            // at the converged geometry with the elastic material matrix.
+            pc.prediction(model, newton.prediction == Prediction::Elastique)?;
             consistent(pc)
         };
         return Ok(true);
@@ -1451,6 +1530,7 @@ fn refresh_geometry_rows(
         *slot = Some(make_rows(
             model,
             rows,
+            src.augmented_terms(),
             (src.method(), src.geometry_update(), src.outer_loops()),
             prev,
             u,
@@ -1464,12 +1544,12 @@ fn refresh_geometry_rows(
 fn make_rows(
     model: &Model,
     rows: Vec<InequalityRow>,
+    augmented: Vec<AugmentedTerm>,
     (method, update, outer): (UnilateralMethod, GeometryUpdate, OuterLoops),
     prev_active: Option<Vec<bool>>,
     u: &[f64],
 ) -> Result<SourceRows, FemError> {
-    let mut idx = Vec::with_capacity(rows.len());
-    for row in &rows {
+    let indices = |row: &InequalityRow| -> Result<Vec<(usize, f64)>, FemError> {
         let mut r = Vec::with_capacity(row.terms.len());
         for &(dof, c) in &row.terms {
             let i = model.dofs().index(dof).ok_or_else(|| {
@@ -1480,7 +1560,11 @@ fn make_rows(
             })?;
             r.push((i, c));
         }
-        idx.push(r);
+        Ok(r)
+    };
+    let mut idx = Vec::with_capacity(rows.len());
+    for row in &rows {
+        idx.push(indices(row)?);
     }
     let active = match prev_active {
         Some(a) if a.len() == rows.len() => a,
@@ -1494,11 +1578,23 @@ fn make_rows(
             .collect(),
     };
     // Bilateral rows (GLISSIERE) are always enforced.
-    let active = active
+    let active: Vec<bool> = active
         .into_iter()
         .zip(&rows)
         .map(|(a, row)| a || row.bilateral)
         .collect();
+    // An augmented term starts on when one of the rows it rides on is.
+    let mut aug = Vec::with_capacity(augmented.len());
+    for a in &augmented {
+        aug.push(AugRow {
+            idx: indices(&a.row)?,
+            rhs: a.row.rhs,
+            stiffness: a.coef * a.weight,
+            coef: a.coef,
+            on: a.support.iter().any(|&(r, _)| active.get(r) == Some(&true)),
+            support: a.support.clone(),
+        });
+    }
     Ok(SourceRows {
         rows,
         idx,
@@ -1506,5 +1602,6 @@ fn make_rows(
         method,
         update,
         outer,
+        aug,
     })
 }

@@ -41,7 +41,20 @@ use std::sync::Arc;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum MatrixKey {
     Elastic,
-    Tangent(u64),
+    /// A tangent; a non-symmetric one (SIMO_MIEHE) is factorised by LU.
+    Tangent {
+        id: u64,
+        symmetric: bool,
+    },
+}
+
+impl MatrixKey {
+    fn symmetric(self) -> bool {
+        match self {
+            MatrixKey::Elastic => true,
+            MatrixKey::Tangent { symmetric, .. } => symmetric,
+        }
+    }
 }
 
 /// One constraint row over free unknowns: Σ c·Δu = d.
@@ -109,9 +122,12 @@ pub(crate) struct KktSolver {
 
 impl KktSolver {
     /// A fresh id for a newly assembled tangent.
-    pub fn new_tangent(&mut self) -> MatrixKey {
+    pub fn new_tangent(&mut self, symmetric: bool) -> MatrixKey {
         self.next_id += 1;
-        MatrixKey::Tangent(self.next_id)
+        MatrixKey::Tangent {
+            id: self.next_id,
+            symmetric,
+        }
     }
 
     /// Solves the bordered system for `base` (+ `penalty` triplets, free
@@ -236,7 +252,11 @@ impl KktSolver {
         let s_factor = if m == 0 {
             None
         } else {
-            let chol = nalgebra::linalg::Cholesky::new(s.clone());
+            let chol = if key.symmetric() {
+                nalgebra::linalg::Cholesky::new(s.clone())
+            } else {
+                None
+            };
             match chol {
                 Some(c) => Some(SFactor::Chol(c)),
                 None => {
@@ -376,7 +396,12 @@ impl KktSolver {
         let nr = krr.n;
         let sym = SymbolicSparseColMatRef::new_checked(nr, nr, &krr.col_ptr, None, &krr.row_idx);
         let mat = SparseColMatRef::new(sym, &values);
-        let factor = match self.cholesky(&krr, mat, &full_of, coords) {
+        let chol = if key.symmetric() {
+            self.cholesky(&krr, mat, &full_of, coords)
+        } else {
+            None
+        };
+        let factor = match chol {
             Some(f) => f,
             None => RFactor::Lu(Box::new(mat.sp_lu().ok()?)),
         };

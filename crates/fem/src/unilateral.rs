@@ -156,6 +156,27 @@ pub struct RowOutcome {
     pub violation: f64,
 }
 
+/// A bilateral penalty term riding on a source's rows: code_aster's
+/// augmented term ρ·g of the continuous `STANDARD` formulation (`mmmvee`:
+/// the force at a contact point is −(λ − ρ g)·n, λ the interpolated
+/// multiplier, g the pointwise penetration). While the point is in
+/// contact — Σ Nⱼ λⱼ + ρ (a·u − b) > 0, code_aster's `mmstac` — it adds
+/// `coef · weight · (a·u − b) · a` to the forces, whatever the sign of
+/// a·u − b.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AugmentedTerm {
+    /// a·u − b: the penetration at the point.
+    pub row: InequalityRow,
+    /// ρ (`COEF_CONT`).
+    pub coef: f64,
+    /// The point's integration weight.
+    pub weight: f64,
+    /// The source's rows (indices into its last [`UnilateralSource::rows`]
+    /// answer) whose multipliers λⱼ the point's pressure interpolates,
+    /// with their weights Nⱼ.
+    pub support: Vec<(usize, f64)>,
+}
+
 /// A producer of inequality rows (a LIAISON_UNIL zone, a contact zone).
 pub trait UnilateralSource {
     /// Short name used in messages (e.g. `"LIAISON_UNIL"`, `"contact zone 1"`).
@@ -186,6 +207,12 @@ pub trait UnilateralSource {
     /// last call to [`UnilateralSource::rows`] (same order).
     fn converged(&mut self, _state: &State, _outcomes: &[RowOutcome]) -> Result<(), FemError> {
         Ok(())
+    }
+
+    /// The augmented terms that go with the rows of the last call to
+    /// [`UnilateralSource::rows`] (none by default).
+    fn augmented_terms(&self) -> Vec<AugmentedTerm> {
+        Vec::new()
     }
 }
 
@@ -229,5 +256,8 @@ impl<T: UnilateralSource + ?Sized> UnilateralSource for &mut T {
     }
     fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
         (**self).converged(state, outcomes)
+    }
+    fn augmented_terms(&self) -> Vec<AugmentedTerm> {
+        (**self).augmented_terms()
     }
 }

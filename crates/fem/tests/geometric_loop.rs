@@ -240,3 +240,72 @@ fn a_dof_imposed_twice_with_two_values_is_an_error() {
     assert!(msg.contains("imposed twice"), "{msg}");
     assert!(msg.contains("0.5"), "{msg}");
 }
+
+/// A penalised source whose second pairing brings back, on new rows, an
+/// active set seen during the first pairing: that is no cycle (SSNV104H's
+/// step 2 stopped so — "the active set cycles" — and was cut, moving its
+/// results by 0.3 %). One node on a ground spring (k = 1) pushed down by
+/// 1 onto two obstacles; pairing 1: obstacles at −0.5 and −0.9, the
+/// second released after one pass (active sets {0, 1} then {0}); pairing 2
+/// raises the second to −0.45: {0, 1} again, then {1}.
+struct RaisedObstacle {
+    node: NodeId,
+    calls: usize,
+}
+
+impl UnilateralSource for RaisedObstacle {
+    fn method(&self) -> UnilateralMethod {
+        UnilateralMethod::Penalty { coef: 1e3 }
+    }
+    fn geometry_update(&self) -> GeometryUpdate {
+        GeometryUpdate::EachIteration
+    }
+    fn rows(&mut self, _state: &State) -> Result<Vec<InequalityRow>, FemError> {
+        self.calls += 1;
+        let second = if self.calls == 1 { 0.9 } else { 0.45 };
+        let dy = Dof::new(self.node, Comp::DY);
+        Ok(vec![
+            InequalityRow::new(vec![(dy, -1.)], 0.5, 0),
+            InequalityRow::new(vec![(dy, -1.)], second, 1),
+        ])
+    }
+}
+
+#[test]
+fn an_active_set_seen_with_the_previous_pairing_is_no_cycle() {
+    let mut mb = MeshBuilder::new(2);
+    let p = mb.node("P", [0., 0., 0.]);
+    let cell = mb.cell("PT", CellType::POI1, &[p]);
+    let m = Model::new(
+        mb.mesh,
+        vec![Element {
+            cell,
+            kind: ElementKind::Spring {
+                stiffness: vec![1., 1.],
+                frame: Frame::Global,
+            },
+        }],
+    )
+    .unwrap();
+    let mut loads = Loads::new();
+    loads.push(Load::NodalForce {
+        dof: Dof::new(p, Comp::DY),
+        value: -1.,
+    });
+    let mut src = RaisedObstacle { node: p, calls: 0 };
+    let res = {
+        let mut snl = StaticNonLinear {
+            instants: vec![0., 1.],
+            sources: vec![Box::new(&mut src)],
+            // No step cutting: the step must pass as it is.
+            subdivision: None,
+            ..Default::default()
+        };
+        snl.solve(&m, &loads)
+    };
+    let res = res.expect("no cycle across pairings");
+    let d = &res.last().unwrap().displacement;
+    let i = m.dofs().index(Dof::new(p, Comp::DY)).unwrap();
+    // Only the raised obstacle presses: (1 + κ) u = −1 − 0.45 κ.
+    assert!((d[i] - (-1. - 450.) / 1001.).abs() < 1e-12, "{}", d[i]);
+}

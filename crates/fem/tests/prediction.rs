@@ -44,7 +44,12 @@ fn punched_block_by(eliminated: bool, instants: &[f64], dy: f64) -> (Model, NonL
             let c = mb.cell(
                 &format!("M{i}_{j}"),
                 CellType::QUAD4,
-                &[grid[j][i], grid[j][i + 1], grid[j + 1][i + 1], grid[j + 1][i]],
+                &[
+                    grid[j][i],
+                    grid[j][i + 1],
+                    grid[j + 1][i + 1],
+                    grid[j + 1][i],
+                ],
             );
             elements.push(Element {
                 cell: c,
@@ -135,7 +140,10 @@ fn eliminated_and_dualised_punches_give_the_same_newton_and_answer() {
         assert!(
             res.steps.iter().all(|s| s.newton_iterations <= 6),
             "{:?}",
-            res.steps.iter().map(|s| s.newton_iterations).collect::<Vec<_>>()
+            res.steps
+                .iter()
+                .map(|s| s.newton_iterations)
+                .collect::<Vec<_>>()
         );
     }
 }
@@ -159,7 +167,12 @@ fn failed_attempts_and_cuts_are_recorded() {
             .collect();
         assert_eq!(
             pieces,
-            [(0.0, 0.25, 1), (0.25, 0.5, 1), (0.5, 0.75, 1), (0.75, 1.0, 1)]
+            [
+                (0.0, 0.25, 1),
+                (0.25, 0.5, 1),
+                (0.5, 0.75, 1),
+                (0.75, 1.0, 1)
+            ]
         );
         assert!(res.attempts[1..].iter().all(|a| a.failure.is_none()));
     }

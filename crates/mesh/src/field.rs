@@ -68,29 +68,6 @@ impl Field {
         }
     }
 
-    /// The field restricted to the listed components that it has, in its
-    /// own order (IMPR_RESU/NOM_CMP); `None` when it has none of them.
-    pub fn with_components(&self, keep: &[&str]) -> Option<Field> {
-        let nc = self.components.len();
-        let cols: Vec<usize> = (0..nc)
-            .filter(|&c| keep.contains(&self.components[c].as_str()))
-            .collect();
-        if cols.is_empty() || nc == 0 {
-            return None;
-        }
-        let values = self
-            .values
-            .chunks(nc)
-            .flat_map(|set| cols.iter().map(move |&c| set[c]))
-            .collect();
-        Some(Field {
-            name: self.name.clone(),
-            components: cols.iter().map(|&c| self.components[c].clone()).collect(),
-            location: self.location.clone(),
-            values,
-        })
-    }
-
     /// Check the value count against the mesh.
     pub fn check(&self, mesh: &Mesh) -> Result<(), MeshError> {
         let nc = self.components.len();
@@ -146,19 +123,5 @@ impl Field {
                 Some(Cow::Owned(out))
             }
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn keeping_components_keeps_their_values_in_the_field_order() {
-        let f = Field::nodal("DEPL", &["DX", "DY", "DZ"], vec![1., 2., 3., 4., 5., 6.]);
-        let g = f.with_components(&["DZ", "DX"]).unwrap();
-        assert_eq!(g.components, ["DX", "DZ"]);
-        assert_eq!(g.values, [1., 3., 4., 6.]);
-        assert!(f.with_components(&["LAGS_C"]).is_none());
     }
 }

@@ -67,34 +67,36 @@ fn every_shared_mesh_reads_consistently() {
         files.len()
     );
     let mut failures = Vec::new();
-    // Files with volume cells, and those whose volumes are mostly inverted.
-    let (mut with_volumes, mut mostly_inverted) = (0usize, Vec::new());
+    // Volume cells, and those whose corner trihedra disagree in sign.
+    let (mut volumes, mut twisted, mut first_twisted) = (0usize, 0usize, None);
+    let (mut with_volumes, mut inverted_files) = (0usize, 0usize);
     for f in &files {
-        let (mut volumes, mut negative) = (0usize, 0usize);
         match read_mesh(f) {
             Ok(m) => {
                 assert!(m.node_count() > 0, "{}: no nodes", f.display());
                 assert_eq!(m.node_names.len(), m.node_count());
                 assert_eq!(m.cell_names.len(), m.cells.len());
+                let (mut file_volumes, mut file_negative) = (0usize, 0usize);
                 for c in &m.cells {
                     assert_eq!(c.nodes.len(), c.ty.node_count());
                     assert!(c.nodes.iter().all(|n| (n.0 as usize) < m.node_count()));
-                    // code_aster orders volumes so that the corner trihedron is direct.
-                    let v = match c.ty {
-                        CellType::TETRA4 | CellType::TETRA10 => {
-                            Some(corner_volume(&m, &c.nodes, 0, 1, 2, 3))
-                        }
-                        CellType::HEXA8 | CellType::HEXA20 | CellType::HEXA27 => {
-                            Some(corner_volume(&m, &c.nodes, 0, 1, 3, 4))
-                        }
-                        CellType::PENTA6 | CellType::PENTA15 | CellType::PENTA18 => {
-                            Some(corner_volume(&m, &c.nodes, 0, 1, 2, 3))
-                        }
-                        _ => None,
+                    let Some(signs) = corner_signs(&m, c.ty, &c.nodes) else {
+                        continue;
                     };
-                    if let Some(v) = v {
-                        volumes += 1;
-                        negative += (v < 0.0) as usize;
+                    volumes += 1;
+                    file_volumes += 1;
+                    // A wrong node permutation (MED to code_aster order)
+                    // turns a hexahedron or a prism into a twisted cell whose
+                    // corners disagree; a whole cell inverted on purpose (or
+                    // by the mesher: code_aster integrates with |J|) keeps
+                    // every corner of one sign.
+                    if signs.iter().all(|&s| s < 0.0) {
+                        file_negative += 1;
+                    } else if !signs.iter().all(|&s| s > 0.0) {
+                        twisted += 1;
+                        first_twisted.get_or_insert_with(|| {
+                            format!("{}: {} {:?}", f.display(), c.ty.name(), signs)
+                        });
                     }
                 }
                 for g in &m.groups_ma {
@@ -105,11 +107,9 @@ fn every_shared_mesh_reads_consistently() {
                         g.name
                     );
                 }
-                if volumes > 0 {
+                if file_volumes > 0 {
                     with_volumes += 1;
-                    if 2 * negative > volumes {
-                        mostly_inverted.push(f.display().to_string());
-                    }
+                    inverted_files += (2 * file_negative > file_volumes) as usize;
                 }
             }
             Err(e) => failures.push(e.to_string()),
@@ -122,18 +122,52 @@ fn every_shared_mesh_reads_consistently() {
         failures.join("\n")
     );
     eprintln!(
-        "{} meshes read; {with_volumes} with volumes, {} of them mostly inverted: {mostly_inverted:?}",
-        files.len(),
-        mostly_inverted.len()
+        "{} meshes read; {with_volumes} with volumes ({inverted_files} mostly inverted), \
+         {volumes} volume cells, {twisted} twisted",
+        files.len()
     );
-    // A few test meshes are inverted on purpose (reorientation tests); a
-    // wrong MED permutation would invert nearly all of them.
     assert!(with_volumes >= 30);
+    // A few real cells are degenerate (a collapsed corner gives a zero
+    // trihedron); a wrong permutation would twist every cell of its type.
     assert!(
-        mostly_inverted.len() * 8 < with_volumes,
-        "{} of {with_volumes} meshes have mostly inverted volumes: wrong MED node permutation?",
-        mostly_inverted.len()
+        twisted * 1000 < volumes,
+        "{twisted} of {volumes} volume cells have corners of both signs \
+         (wrong MED node permutation?), first: {first_twisted:?}"
     );
+    // Tetrahedra cannot twist: a wrong permutation inverts all of them in
+    // every file, so most files must still read direct.
+    assert!(
+        inverted_files * 4 < with_volumes,
+        "{inverted_files} of {with_volumes} meshes have mostly inverted volumes"
+    );
+}
+
+/// Signed volumes of the corner trihedra of a volume cell (code_aster
+/// order: each corner with its three edge neighbours, ordered so that the
+/// reference element gives positive values); `None` for other cells.
+fn corner_signs(m: &Mesh, ty: CellType, nodes: &[aster_mesh::NodeId]) -> Option<Vec<f64>> {
+    let corners: Vec<[usize; 4]> = match ty {
+        CellType::TETRA4 | CellType::TETRA10 => vec![[0, 1, 2, 3]],
+        CellType::HEXA8 | CellType::HEXA20 | CellType::HEXA27 => (0..4)
+            .flat_map(|k| {
+                let (prev, next) = ((k + 3) % 4, (k + 1) % 4);
+                [[k, next, prev, k + 4], [k + 4, prev + 4, next + 4, k]]
+            })
+            .collect(),
+        CellType::PENTA6 | CellType::PENTA15 | CellType::PENTA18 => (0..3)
+            .flat_map(|k| {
+                let (prev, next) = ((k + 2) % 3, (k + 1) % 3);
+                [[k, next, prev, k + 3], [k + 3, prev + 3, next + 3, k]]
+            })
+            .collect(),
+        _ => return None,
+    };
+    Some(
+        corners
+            .iter()
+            .map(|&[a, b, c, d]| corner_volume(m, nodes, a, b, c, d))
+            .collect(),
+    )
 }
 
 #[test]

@@ -13,6 +13,15 @@ pub fn run_source(path: &Path, source: &str, executor: &mut Executor) -> Result<
     let module = aster_syntax::parse_module(source).map_err(|e| RunFailure {
         message: e.render(&map).trim_end().to_string(),
     })?;
+    // Everything that would be refused is refused now, before any command
+    // runs (crate::preflight).
+    let pre = crate::preflight::check(&map, &module, &executor.options);
+    if !pre.findings.0.is_empty() {
+        return Err(RunFailure {
+            message: pre.render(&map),
+        });
+    }
+    executor.read_meshes = pre.meshes;
     executor.set_codemap(Rc::new(map.clone()));
     let options = aster_eval::RunOptions { keep_going: false };
     match aster_eval::run_program(&map, &module, executor, options) {

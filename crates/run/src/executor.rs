@@ -6,9 +6,7 @@ use crate::field::Field;
 use crate::function::Function;
 use crate::table::Table;
 use crate::test_resu::Tally;
-use aster_eval::{
-    CommandCall, CommandOutput, CommandSink, ConceptRef, ExecError, Keywords, KwValue,
-};
+use aster_eval::{CommandCall, CommandOutput, CommandSink, ConceptRef, ExecError, Keywords};
 use aster_mesh::Mesh;
 use aster_syntax::{CodeMap, Span};
 use std::collections::{BTreeMap, HashMap};
@@ -45,6 +43,8 @@ pub struct Executor {
     /// LAC patches recorded by `CREA_MAILLAGE/DECOUPE_LAC`, with the mesh
     /// they belong to (the Arc is kept so the pointer stays unique).
     pub(crate) lac_patches: Vec<(Arc<Mesh>, Arc<aster_mesh::LacPatches>)>,
+    /// Meshes the static pass already read (`LIRE_MAILLAGE` takes them).
+    pub(crate) read_meshes: Vec<crate::preflight::ReadMesh>,
 }
 
 impl Executor {
@@ -60,6 +60,7 @@ impl Executor {
             codemap: None,
             finished: false,
             lac_patches: Vec::new(),
+            read_meshes: Vec::new(),
         }
     }
 
@@ -103,63 +104,6 @@ impl Executor {
             .map(|l| format!(" ({l})"))
             .unwrap_or_default();
         ExecError::new(format!("{cmd}/{name}: {}{loc}", msg.as_ref()))
-    }
-
-    /// Refuses any keyword written by the user that the implementation
-    /// does not handle. `allowed` lists paths (`"DDL_IMPO"`, `"DDL_IMPO/DX"`);
-    /// `"X/*"` accepts every keyword under factor `X`.
-    pub(crate) fn check_keywords(
-        &self,
-        call: &CommandCall,
-        allowed: &[&str],
-    ) -> Result<(), ExecError> {
-        self.check_level(&call.command, &call.keywords, "", allowed)
-    }
-
-    fn check_level(
-        &self,
-        cmd: &str,
-        kws: &Keywords,
-        prefix: &str,
-        allowed: &[&str],
-    ) -> Result<(), ExecError> {
-        for k in &kws.entries {
-            if k.defaulted {
-                continue;
-            }
-            let path = format!("{prefix}{}", k.name);
-            if !allowed.contains(&path.as_str()) {
-                return Err(self.unsupported(&format!("{cmd}/{path}"), k.span));
-            }
-            if let KwValue::Factor(occurrences) = &k.value {
-                if allowed.contains(&format!("{path}/*").as_str()) {
-                    continue;
-                }
-                for occ in occurrences {
-                    self.check_level(cmd, occ, &format!("{path}/"), allowed)?;
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Refuses a keyword value the implementation does not handle.
-    pub(crate) fn only_values(
-        &self,
-        cmd: &str,
-        kw: &Keywords,
-        name: &str,
-        supported: &[&str],
-    ) -> Result<(), ExecError> {
-        for s in kw.simple(name) {
-            if let Some(v) = s.as_str() {
-                if !supported.contains(&v) {
-                    let span = kw.keyword(name).map(|k| k.span).unwrap_or_default();
-                    return Err(self.unsupported(&format!("{cmd}/{name}='{v}'"), span));
-                }
-            }
-        }
-        Ok(())
     }
 
     pub(crate) fn insert(&mut self, c: &ConceptRef, concept: Concept) {

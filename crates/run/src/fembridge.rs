@@ -24,9 +24,11 @@ pub struct FemRun {
     pub model: Model,
     pub loads: Loads,
     pub raw: NonLinearResult,
-    /// Some cells were plastic: their stresses are not D B u, so nodal
-    /// forces come from the stored SIEF_ELGA.
+    /// Some cells were plastic or in finite strains: their stresses are not
+    /// D B u, so nodal forces come from the stored SIEF_ELGA (on the
+    /// deformed geometry for the finite-strain cells).
     pub plastic: bool,
+    pub behaviours: aster_fem::Behaviours,
 }
 
 fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
@@ -124,7 +126,7 @@ pub fn build_behaviours(
         };
         for cell in cells {
             if occ.relation == Relation::Elas {
-                out.make_elastic(cell);
+                out.assign_with(cell, None, occ.kinematics);
                 continue;
             }
             let Some(mat) = materials.cells.get(&cell) else {
@@ -139,7 +141,7 @@ pub fn build_behaviours(
                     law
                 }
             };
-            out.assign(cell, law);
+            out.assign_with(cell, Some(law), occ.kinematics);
         }
     }
     Ok(out)
@@ -175,7 +177,8 @@ fn plastic_law(
                 crate::function::Extension::Constant => aster_fem::CurveEnd::Constant,
                 crate::function::Extension::Excluded => aster_fem::CurveEnd::Excluded,
             };
-            aster_fem::VonMises::traction(mat.young, t.abscissae(), t.values(), end)
+            // code_aster reads Young's modulus from the curve (σ₁/ε₁).
+            aster_fem::VonMises::traction_curve(t.abscissae(), t.values(), end)
         }
         Relation::Elas => return Err(ExecError::new("ELAS has no plastic law")),
     };
@@ -506,7 +509,7 @@ pub fn solve(
     };
     let mesh = ex.mesh_by_id(setup.model.mesh)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
-    let loads = build_loads(setup)?;
+    let mut loads = build_loads(setup)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
     let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
@@ -526,7 +529,11 @@ pub fn solve(
                     })
                 }
                 ContactDef::Zones { keywords, .. } => {
-                    contact_zones = Some(crate::contactbridge::zones(ex, &mesh, keywords)?);
+                    let zones = crate::contactbridge::zones(ex, &mesh, keywords)?;
+                    // Discrete contact on QUAD8 faces: code_aster ties the
+                    // middle nodes to their edges.
+                    crate::contactbridge::add_middle_relations(&zones, &model, &mut loads);
+                    contact_zones = Some(zones);
                 }
             }
         }
@@ -563,6 +570,7 @@ pub fn solve(
                 reac_iter: setup.newton.reac_iter,
                 matrix: setup.newton.matrix,
                 prediction: setup.newton.prediction,
+                symmetrize: setup.newton.symmetrize,
             },
             convergence: Convergence {
                 resi_glob_rela: setup.newton.resi_glob_rela,
@@ -571,7 +579,7 @@ pub fn solve(
                 at_least_one: setup.newton.at_least_one,
             },
             sources,
-            behaviours,
+            behaviours: behaviours.clone(),
             subdivision: setup.subdivision,
             ..StaticNonLinear::default()
         };
@@ -655,6 +663,7 @@ pub fn solve(
             loads,
             raw,
             plastic,
+            behaviours,
         }),
     ))
 }
@@ -707,11 +716,7 @@ fn convergence_report(raw: &NonLinearResult) -> String {
             history.join(" ")
         ));
         if let Some(f) = &a.failure {
-            let what = if a.cut {
-                "failed, cut"
-            } else {
-                "failed"
-            };
+            let what = if a.cut { "failed, cut" } else { "failed" };
             out.push_str(&format!("      {what}: {f}\n"));
         }
     }
@@ -748,7 +753,7 @@ pub fn calc_champ(
         let elno = || post::elno(model, &raw.stress);
         let forc_noda = || {
             if run.plastic {
-                aster_fem::behaviour::forc_noda_from_stress(model, u, &raw.stress)
+                aster_fem::behaviour::forc_noda_deformed(model, u, &raw.stress, &run.behaviours)
             } else {
                 post::forc_noda(model, u)
             }

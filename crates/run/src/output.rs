@@ -5,6 +5,7 @@
 use crate::concept::{EvolResult, Step};
 use crate::executor::Executor;
 use crate::field::{ElemLocation, Field};
+use crate::support::{Refusal, Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::{FieldLocation, Mesh, ResultStep};
 use std::sync::Arc;
@@ -112,25 +113,25 @@ fn result_steps(
     result: &EvolResult,
 ) -> Result<Vec<ResultStep>, ExecError> {
     let mesh = ex.mesh_by_id(result.mesh)?;
+    let wanted: Vec<&str> = occ
+        .simple("NOM_CMP")
+        .iter()
+        .filter_map(|v| v.as_str())
+        .collect();
     let mut out = Vec::new();
     for (s, selected) in selected_fields(ex, occ, result)? {
         let mut fields = Vec::new();
-        // NOM_CMP: only these components, in fields that have some of them.
-        let keep: Vec<&str> = occ
-            .simple("NOM_CMP")
-            .iter()
-            .filter_map(|s| s.as_str())
-            .collect();
         for (name, f) in selected {
             // Fields without components (VARI_ELGA of ELAS) have nothing to write.
             if f.components().is_empty() {
                 continue;
             }
             let field = to_mesh_field(name, f, &mesh);
-            if keep.is_empty() {
-                fields.push(field);
-            } else if let Some(kept) = field.with_components(&keep) {
-                fields.push(kept);
+            // NOM_CMP (FORMAT='MED'): only these components are written; a
+            // field with none of them is left out, as code_aster does.
+            match only_components(field, &wanted) {
+                Some(field) => fields.push(field),
+                None => continue,
             }
         }
         out.push(ResultStep {
@@ -142,50 +143,73 @@ fn result_steps(
     Ok(out)
 }
 
-pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "FORMAT",
-            "UNITE",
-            "INFO",
-            "PROC0",
-            "VERSION_MED",
-            // The model code_aster uses to locate element fields: ours
-            // carry their model with the result.
-            "MODELE",
-            "RESU",
-            "RESU/MAILLAGE",
-            "RESU/RESULTAT",
-            "RESU/CHAM_GD",
-            "RESU/NOM_CHAM",
-            "RESU/TOUT",
-            "RESU/TOUT_ORDRE",
-            "RESU/NUME_ORDRE",
-            "RESU/INST",
-            "RESU/PRECISION",
-            "RESU/CRITERE",
-            "RESU/INFO_MAILLAGE",
-            "RESU/IMPR_NOM_VARI",
-            // FORMAT='RESULTAT' listing selections.
-            "RESU/NOM_CMP",
-            "RESU/GROUP_NO",
-            "RESU/NOEUD",
-            "RESU/GROUP_MA",
-            "RESU/MAILLE",
-            "RESU/FORMAT_R",
-            "RESU/IMPR_COOR",
-            "RESU/TYPE_CHAM",
-        ],
-    )?;
+/// A field restricted to the components `wanted` (all when empty); `None`
+/// when it has none of them.
+fn only_components(field: aster_mesh::Field, wanted: &[&str]) -> Option<aster_mesh::Field> {
+    if wanted.is_empty() {
+        return Some(field);
+    }
+    let keep: Vec<usize> = (0..field.components.len())
+        .filter(|&c| wanted.contains(&field.components[c].as_str()))
+        .collect();
+    if keep.is_empty() {
+        return None;
+    }
+    let n = field.components.len();
+    let values = field
+        .values
+        .chunks(n)
+        .flat_map(|set| keep.iter().map(move |&c| set[c]))
+        .collect();
+    Some(aster_mesh::Field {
+        components: keep.iter().map(|&c| field.components[c].clone()).collect(),
+        values,
+        ..field
+    })
+}
+
+/// What IMPR_RESU reads (`crate::support`).
+pub(crate) const IMPR_RESU: Support = Support {
+    values: &[Values::new("FORMAT", &["MED", "ASTER", "RESULTAT", "GMSH"])],
+    rules: Some(impr_resu_rules),
+    ..Support::keywords(&[
+        "FORMAT",
+        "UNITE",
+        "INFO",
+        "PROC0",
+        "VERSION_MED",
+        // The model code_aster uses to locate element fields: ours
+        // carry their model with the result.
+        "MODELE",
+        "RESU",
+        "RESU/MAILLAGE",
+        "RESU/RESULTAT",
+        "RESU/CHAM_GD",
+        "RESU/NOM_CHAM",
+        "RESU/TOUT",
+        "RESU/TOUT_ORDRE",
+        "RESU/NUME_ORDRE",
+        "RESU/INST",
+        "RESU/PRECISION",
+        "RESU/CRITERE",
+        "RESU/INFO_MAILLAGE",
+        "RESU/IMPR_NOM_VARI",
+        // FORMAT='RESULTAT' listing selections.
+        "RESU/NOM_CMP",
+        "RESU/GROUP_NO",
+        "RESU/NOEUD",
+        "RESU/GROUP_MA",
+        "RESU/MAILLE",
+        "RESU/FORMAT_R",
+        "RESU/IMPR_COOR",
+        "RESU/TYPE_CHAM",
+    ])
+};
+
+/// The selections of `RESU` each format prints, and the real formats.
+fn impr_resu_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     let kw = &call.keywords;
     let format = kw.str("FORMAT").unwrap_or("RESULTAT");
-    ex.only_values(
-        "IMPR_RESU",
-        kw,
-        "FORMAT",
-        &["MED", "ASTER", "RESULTAT", "GMSH"],
-    )?;
     for occ in kw.factor("RESU") {
         for key in [
             "NOM_CMP",
@@ -203,18 +227,28 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 _ => false,
             };
             if !allowed && occ.keyword(key).is_some_and(|k| !k.defaulted) {
-                let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
-                return Err(ex.unsupported(
-                    &format!("IMPR_RESU/RESU/{key} with FORMAT='{format}'"),
-                    span,
+                out.push(Refusal::at(
+                    format!("IMPR_RESU/RESU/{key} with FORMAT='{format}'"),
+                    occ,
+                    key,
+                    call.span,
                 ));
             }
         }
         if let Some(f) = occ.str("FORMAT_R").filter(|f| real_format(f).is_none()) {
-            let span = occ.keyword("FORMAT_R").map(|k| k.span).unwrap_or_default();
-            return Err(ex.unsupported(&format!("IMPR_RESU/RESU/FORMAT_R='{f}'"), span));
+            out.push(Refusal::at(
+                format!("IMPR_RESU/RESU/FORMAT_R='{f}'"),
+                occ,
+                "FORMAT_R",
+                call.span,
+            ));
         }
     }
+}
+
+pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let format = kw.str("FORMAT").unwrap_or("RESULTAT");
     if format == "GMSH" {
         let text = gmsh(ex, kw)?;
         let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(37);

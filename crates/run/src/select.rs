@@ -139,6 +139,19 @@ pub fn single_node(kw: &Keywords, mesh: &Mesh) -> Result<(NodeId, Option<String>
     Err("no node given (NOEUD or GROUP_NO)".into())
 }
 
+/// The node a `RECU_FONCTION` reads (`NOEUD`, or the first node of
+/// `GROUP_NO`: code_aster's `utnono` takes the group's first node, with an
+/// alarm, when it has several).
+pub fn first_node(kw: &Keywords, mesh: &Mesh) -> Result<NodeId, String> {
+    if let Some(g) = kw.str("GROUP_NO").filter(|_| kw.str("NOEUD").is_none()) {
+        return group_no(mesh, g)?
+            .first()
+            .copied()
+            .ok_or_else(|| format!("node group `{g}` is empty"));
+    }
+    single_node(kw, mesh).map(|(n, _)| n)
+}
+
 pub fn node_name(mesh: &Mesh, n: NodeId) -> String {
     mesh.node_names
         .get(n.0 as usize)

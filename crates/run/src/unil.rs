@@ -18,20 +18,9 @@ pub struct LiaisonUnil {
 
 fn eval_at(f: &Function, state: &State, node: NodeId) -> Result<f64, FemError> {
     let x = state.mesh.coord(node);
-    let param = match f {
-        Function::Tabulated(t) => t.parameter.as_str(),
-        Function::Constant { .. } => "INST",
-        Function::Formula { parameters, .. } => {
-            parameters.first().map(String::as_str).unwrap_or("INST")
-        }
-    };
-    let at = match param {
-        "X" => x[0],
-        "Y" => x[1],
-        "Z" => x[2],
-        _ => state.time,
-    };
-    f.eval(at)
+    // Every parameter the function names (a FORMULE of X, Y, Z names
+    // them all; a constant none).
+    f.eval_named(&[("INST", state.time), ("X", x[0]), ("Y", x[1]), ("Z", x[2])])
         .map_err(|e| FemError::Source(format!("LIAISON_UNIL coefficient: {e}")))
 }
 

@@ -76,15 +76,25 @@ fn a_plastic_relation_without_its_material_data_is_a_clear_error() {
 }
 
 #[test]
-fn large_strains_are_refused_with_the_reason() {
+fn kinematics_a_relation_cannot_take_are_refused_with_the_reason() {
     let text = edited(
-        "_F(RELATION=\"VMIS_ISOT_LINE\", GROUP_MA=\"BLOC\")",
-        "_F(RELATION=\"VMIS_ISOT_LINE\", DEFORMATION=\"GDEF_LOG\", GROUP_MA=\"BLOC\")",
+        "_F(RELATION=\"ELAS\", GROUP_MA=\"PUNCH\")",
+        "_F(RELATION=\"ELAS\", DEFORMATION=\"SIMO_MIEHE\", GROUP_MA=\"PUNCH\")",
     );
-    let (_, _, err) = run(&text, "gdef");
+    let (_, _, err) = run(&text, "simo");
     let err = err.expect("an error");
     assert!(
-        err.contains("DEFORMATION='GDEF_LOG'") && err.contains("only small strains"),
+        err.contains("DEFORMATION='SIMO_MIEHE' with RELATION='ELAS'"),
+        "{err}"
+    );
+    let text = edited(
+        "_F(RELATION=\"VMIS_ISOT_LINE\", GROUP_MA=\"BLOC\")",
+        "_F(RELATION=\"VMIS_ISOT_LINE\", DEFORMATION=\"GROT_GDEP\", GROUP_MA=\"BLOC\")",
+    );
+    let (_, _, err) = run(&text, "grot");
+    let err = err.expect("an error");
+    assert!(
+        err.contains("DEFORMATION='GROT_GDEP' with RELATION='VMIS_ISOT_LINE'"),
         "{err}"
     );
 }

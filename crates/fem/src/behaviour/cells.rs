@@ -1,13 +1,16 @@
-//! The plastic cells of a model during STAT_NON_LINE: their Gauss-point
-//! states, internal forces and tangent.
+//! The behaviour cells of a model during STAT_NON_LINE (plastic laws and
+//! finite-strain kinematics): their Gauss-point states, internal forces
+//! and tangent.
 //!
 //! Why corrections: the assembled elastic stiffness K already holds every
 //! cell, so elastic cells cost nothing more than today (f_int = K u). A
-//! plastic cell adds (∫Bᵀσ − Kₑ uₑ) to f_int and (∫BᵀC B − Kₑ) to the
-//! tangent; while it stays elastic both corrections vanish.
+//! behaviour cell adds (f_e(u) − Kₑ uₑ) to f_int and (K_T − Kₑ) to the
+//! tangent; while a small-strain plastic cell stays elastic both
+//! corrections vanish. A finite-strain cell (`crate::strain`) always
+//! carries them: its forces depend on the geometry.
 
-use super::vmis::{integrate, PointState, VonMises};
-use super::Behaviours;
+use super::vmis::{integrate, VonMises};
+use super::{Behaviours, GaussState, Kinematics};
 use crate::element::{
     continuum_gauss, continuum_stiffness, element_dofs, spring_stiffness, GaussData,
 };
@@ -16,6 +19,7 @@ use crate::linalg::Csc;
 use crate::material::{Elastic, Hypothesis};
 use crate::model::{ElementKind, Model};
 use crate::post::CellValues;
+use crate::strain::element::{self as fs, CellSetup, Phase, PointGeom};
 use aster_mesh::CellId;
 use nalgebra::{DMatrix, DVector};
 use std::collections::HashMap;
@@ -25,21 +29,50 @@ struct PlasticCell {
     cell: CellId,
     hypothesis: Hypothesis,
     elastic: Elastic,
-    law: Arc<VonMises>,
+    /// `None`: ELAS (under a finite-strain kinematics).
+    law: Option<Arc<VonMises>>,
+    kinematics: Kinematics,
     dofs: Vec<usize>,
     gauss: Vec<GaussData>,
+    /// The Gauss points on the initial geometry (finite strains only).
+    geoms: Vec<PointGeom>,
     /// The cell's elastic stiffness (its share of the assembled K).
     k_el: DMatrix<f64>,
 }
 
-/// The plastic cells, their converged (committed) states and the trial
+impl PlasticCell {
+    fn setup(&self) -> CellSetup<'_> {
+        CellSetup {
+            hyp: self.hypothesis,
+            elastic: &self.elastic,
+            law: self.law.as_deref(),
+            kinematics: self.kinematics,
+            geoms: &self.geoms,
+        }
+    }
+
+    fn finite(&self) -> bool {
+        self.kinematics != Kinematics::Small
+    }
+}
+
+/// The behaviour cells, their converged (committed) states and the trial
 /// states of the current Newton iterate.
 pub(crate) struct PlasticCells {
     cells: Vec<PlasticCell>,
-    committed: Vec<Vec<PointState>>,
-    trial: Vec<Vec<PointState>>,
-    /// The consistent tangents of the trial states.
+    committed: Vec<Vec<GaussState>>,
+    trial: Vec<Vec<GaussState>>,
+    /// The element displacements of the converged state and of the last
+    /// update (finite strains only).
+    u_committed: Vec<Vec<f64>>,
+    u_trial: Vec<Vec<f64>>,
+    /// The consistent tangents of the trial states (small strains).
     tangents: Vec<Vec<[[f64; 6]; 6]>>,
+    /// K_T − Kₑ of the finite-strain cells at the last update or
+    /// prediction.
+    finite_k: Vec<Option<DMatrix<f64>>>,
+    /// `MATR_RIGI_SYME='OUI'`: the finite-strain tangents are symmetrised.
+    symmetrize: bool,
     /// Per cell: whether its tangent differs from its elastic stiffness
     /// (a plastic point at the last update or prediction).
     corrected: Vec<bool>,
@@ -50,14 +83,18 @@ pub(crate) struct PlasticCells {
 }
 
 impl PlasticCells {
-    /// `None` when every cell is elastic.
-    pub fn new(model: &Model, behaviours: &Behaviours) -> Result<Option<PlasticCells>, FemError> {
+    /// `None` when every cell is elastic in small strains.
+    pub fn new(
+        model: &Model,
+        behaviours: &Behaviours,
+        symmetrize: bool,
+    ) -> Result<Option<PlasticCells>, FemError> {
         let elements = behaviours.elements(model);
         if elements.is_empty() {
             return Ok(None);
         }
         let mut cells = Vec::with_capacity(elements.len());
-        for (k, law) in elements {
+        for (k, behaviour) in elements {
             let el = &model.elements()[k];
             let ElementKind::Continuum {
                 hypothesis,
@@ -70,33 +107,94 @@ impl PlasticCells {
                 FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
             })?;
             let k_el = continuum_stiffness(&gauss, material, *hypothesis);
+            if behaviour.kinematics == Kinematics::SimoMiehe {
+                if behaviour.law.is_none() {
+                    return Err(FemError::Model(format!(
+                        "cell {}: DEFORMATION='SIMO_MIEHE' needs a plastic law (VMIS_ISOT_LINE, VMIS_ISOT_TRAC), not ELAS",
+                        model.cell_name(el.cell)
+                    )));
+                }
+                if *hypothesis == Hypothesis::PlaneStress {
+                    return Err(FemError::Model(format!(
+                        "cell {}: DEFORMATION='SIMO_MIEHE' is not available in plane stress (C_PLAN), as in code_aster",
+                        model.cell_name(el.cell)
+                    )));
+                }
+            }
+            let geoms = if behaviour.kinematics == Kinematics::Small {
+                Vec::new()
+            } else {
+                fs::point_geoms(&gauss, *hypothesis)
+            };
+            let dofs = element_dofs(model, el.cell);
             cells.push(PlasticCell {
                 cell: el.cell,
                 hypothesis: *hypothesis,
                 elastic: *material,
-                law,
-                dofs: element_dofs(model, el.cell),
+                law: behaviour.law,
+                kinematics: behaviour.kinematics,
+                dofs,
                 gauss,
+                geoms,
                 k_el,
             });
         }
-        let committed: Vec<Vec<PointState>> = cells
+        let committed: Vec<Vec<GaussState>> = cells
             .iter()
-            .map(|c| vec![PointState::default(); c.gauss.len()])
+            .map(|c| vec![GaussState::default(); c.gauss.len()])
             .collect();
         let corrected = vec![false; cells.len()];
         let tangents = committed
             .iter()
             .map(|c| vec![[[0.0; 6]; 6]; c.len()])
             .collect();
+        let u_committed: Vec<Vec<f64>> = cells
+            .iter()
+            .map(|c| {
+                if c.finite() {
+                    vec![0.0; c.dofs.len()]
+                } else {
+                    Vec::new()
+                }
+            })
+            .collect();
         Ok(Some(PlasticCells {
+            finite_k: vec![None; cells.len()],
             cells,
             tangents,
             trial: committed.clone(),
             committed,
+            u_trial: u_committed.clone(),
+            u_committed,
             corrected,
             positions: None,
+            symmetrize,
         }))
+    }
+
+    /// Whether some cell has a finite-strain kinematics.
+    pub fn has_finite_strains(&self) -> bool {
+        self.cells.iter().any(|c| c.finite())
+    }
+
+    /// Whether the tangent is symmetric (SIMO_MIEHE's is not, unless
+    /// `MATR_RIGI_SYME='OUI'` symmetrises it).
+    pub fn symmetric_tangent(&self) -> bool {
+        self.symmetrize
+            || !self
+                .cells
+                .iter()
+                .any(|c| c.kinematics == Kinematics::SimoMiehe)
+    }
+
+    /// Stores K_T − Kₑ of a finite-strain cell.
+    fn set_finite_tangent(&mut self, c: usize, k: DMatrix<f64>) {
+        let mut corr = k - &self.cells[c].k_el;
+        if self.symmetrize {
+            corr = (&corr + corr.transpose()) * 0.5;
+        }
+        self.finite_k[c] = Some(corr);
+        self.corrected[c] = true;
     }
 
     /// Integrates the behaviour at every Gauss point for the total
@@ -104,30 +202,56 @@ impl PlasticCells {
     /// corrections to `fint` (which holds K u) and keeps their consistent
     /// tangents (assembled only when [`Self::tangent_restricted`] asks).
     pub fn update(&mut self, model: &Model, u: &[f64], fint: &mut [f64]) -> Result<(), FemError> {
+        for c in 0..self.cells.len() {
+            if !self.cells[c].finite() {
+                continue;
+            }
+            let cell = &self.cells[c];
+            let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
+            let out = fs::compute(
+                &cell.setup(),
+                &self.u_committed[c],
+                &ue,
+                &self.committed[c],
+                Phase::Correction,
+            )
+            .map_err(|e| at_cell_finite(model, cell.cell, e))?;
+            let ku = &cell.k_el * DVector::from_column_slice(&ue);
+            for (a, &i) in cell.dofs.iter().enumerate() {
+                fint[i] += out.f[a] - ku[a];
+            }
+            self.trial[c] = out.states;
+            self.u_trial[c] = ue;
+            self.set_finite_tangent(c, out.k);
+        }
         for (c, cell) in self.cells.iter().enumerate() {
+            if cell.finite() {
+                continue;
+            }
+            let Some(law) = cell.law.as_deref() else {
+                continue;
+            };
             let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
             // A cell whose points all stay elastic without plastic strain
             // has σ = D ε and tangent D: its corrections vanish (most cells
             // around a local plastic zone).
-            let mut virgin = true;
+            let mut virgin = law.elastic(&cell.elastic) == cell.elastic;
             let n = cell.hypothesis.ncomp();
             for (g, gp) in cell.gauss.iter().enumerate() {
                 let mut eps = [0.0; 6];
                 for (k, e) in eps.iter_mut().enumerate().take(n) {
                     *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
                 }
-                let prev = &self.committed[c][g];
-                let (state, tangent) = integrate(
-                    &cell.law,
-                    &cell.elastic,
-                    cell.hypothesis,
-                    &eps[..n],
-                    prev,
-                    false,
-                )
-                .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                let prev = &self.committed[c][g].law;
+                let (state, tangent) =
+                    integrate(law, &cell.elastic, cell.hypothesis, &eps[..n], prev, false)
+                        .map_err(|e| at_cell(model, cell.cell, g, e))?;
                 virgin &= !state.plastic && state.p == 0.0;
-                self.trial[c][g] = state;
+                self.trial[c][g] = GaussState {
+                    law: state,
+                    cauchy: state.stress,
+                    extra: [0.0; 6],
+                };
                 self.tangents[c][g] = tangent;
             }
             self.corrected[c] = !virgin;
@@ -141,7 +265,7 @@ impl PlasticCells {
                 *f = -(0..ue.len()).map(|b| row[b] * ue[b]).sum::<f64>();
             }
             for (g, gp) in cell.gauss.iter().enumerate() {
-                let sigma = &self.trial[c][g].stress;
+                let sigma = &self.trial[c][g].law.stress;
                 for (a, f) in fe.iter_mut().enumerate() {
                     *f += gp.w * (0..n).map(|k| gp.b[(k, a)] * sigma[k]).sum::<f64>();
                 }
@@ -161,19 +285,45 @@ impl PlasticCells {
 
     /// Sets the tangents to code_aster's prediction matrix at the committed
     /// states (elastic where the last increment was elastic, the continuum
-    /// elasto-plastic tangent elsewhere).
-    pub fn prediction(&mut self, model: &Model) -> Result<(), FemError> {
+    /// elasto-plastic tangent elsewhere; `elastic`: the elastic material
+    /// tangent, RIGI_MECA_ELAS). Finite-strain cells get their tangent at
+    /// the converged geometry and stresses (geometric stiffness included).
+    pub fn prediction(&mut self, model: &Model, elastic: bool) -> Result<(), FemError> {
+        for c in 0..self.cells.len() {
+            if !self.cells[c].finite() {
+                continue;
+            }
+            let cell = &self.cells[c];
+            let out = fs::compute(
+                &cell.setup(),
+                &self.u_committed[c],
+                &self.u_committed[c],
+                &self.committed[c],
+                Phase::Prediction { elastic },
+            )
+            .map_err(|e| at_cell_finite(model, cell.cell, e))?;
+            self.set_finite_tangent(c, out.k);
+        }
         for (c, cell) in self.cells.iter().enumerate() {
-            // Elastic where the last increment was elastic: no correction.
-            self.corrected[c] = self.committed[c].iter().any(|s| s.plastic);
+            if cell.finite() {
+                continue;
+            }
+            let Some(law) = cell.law.as_deref() else {
+                continue;
+            };
+            // Elastic where the last increment was elastic: no correction
+            // (unless the law has its own Young's modulus).
+            let own_modulus = law.elastic(&cell.elastic) != cell.elastic;
+            self.corrected[c] =
+                !elastic && (own_modulus || self.committed[c].iter().any(|s| s.law.plastic));
             if !self.corrected[c] {
                 continue;
             }
             for g in 0..cell.gauss.len() {
-                let state = self.committed[c][g];
+                let state = self.committed[c][g].law;
                 let eps = [0.0; 6];
                 let (_, tangent) = integrate(
-                    &cell.law,
+                    law,
                     &cell.elastic,
                     cell.hypothesis,
                     &eps[..cell.hypothesis.ncomp()],
@@ -231,7 +381,10 @@ impl PlasticCells {
             if !self.corrected[c] {
                 continue;
             }
-            let corr = cell_tangent(cell, &self.tangents[c]) - &cell.k_el;
+            let corr = match &self.finite_k[c] {
+                Some(k) if cell.finite() => k.clone(),
+                _ => cell_tangent(cell, &self.tangents[c]) - &cell.k_el,
+            };
             let n = cell.dofs.len();
             for b in 0..n {
                 for a in 0..n {
@@ -271,11 +424,15 @@ impl PlasticCells {
     /// The trial states become the converged ones (end of a step).
     pub fn commit(&mut self) {
         self.committed.clone_from(&self.trial);
+        self.u_committed.clone_from(&self.u_trial);
     }
 
-    /// Replaces the plastic cells' stresses in a SIEF_ELGA field by their
-    /// committed states' and returns VARI_ELGA (V1 = p, V2 = indicator) for
-    /// them.
+    /// Replaces the behaviour cells' stresses in a SIEF_ELGA field by their
+    /// committed states' (Cauchy stresses) and returns their VARI_ELGA in
+    /// code_aster's order: V1 = p, V2 = plasticity indicator for the von
+    /// Mises laws; then, with GDEF_LOG, the six components of T (Mandel:
+    /// TXX TYY TZZ √2·TXY √2·TXZ √2·TYZ; ELAS has V1 = 0 first) and, with
+    /// SIMO_MIEHE, the six of the elastic strain (I − bₑ)/2.
     pub fn fields(&self, stress: &mut [CellValues]) -> Vec<CellValues> {
         let at: HashMap<CellId, usize> = stress
             .iter()
@@ -286,16 +443,50 @@ impl PlasticCells {
         for (cell, states) in self.cells.iter().zip(&self.committed) {
             let n = cell.hypothesis.ncomp();
             if let Some(&k) = at.get(&cell.cell) {
-                stress[k].points = states.iter().map(|s| s.stress[..n].to_vec()).collect();
+                stress[k].points = states.iter().map(|s| s.cauchy[..n].to_vec()).collect();
+            }
+            let points: Vec<Vec<f64>> =
+                states.iter().map(|s| internal_variables(cell, s)).collect();
+            let count = points.first().map(|p| p.len()).unwrap_or(0);
+            if count == 0 {
+                continue;
             }
             vari.push(CellValues {
                 cell: cell.cell,
-                names: vec!["V1", "V2"],
-                points: states.iter().map(|s| s.vari().to_vec()).collect(),
+                names: VARI_NAMES[..count].to_vec(),
+                points,
             });
         }
         vari
     }
+}
+
+const VARI_NAMES: [&str; 8] = ["V1", "V2", "V3", "V4", "V5", "V6", "V7", "V8"];
+
+/// VARI of a point in code_aster's order (see [`PlasticCells::fields`]).
+fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
+    let mut v = Vec::with_capacity(8);
+    match &cell.law {
+        Some(_) => v.extend(s.law.vari()),
+        None if cell.kinematics == Kinematics::Logarithmic => v.push(0.0),
+        None => {}
+    }
+    match cell.kinematics {
+        Kinematics::Logarithmic => {
+            let dim = cell.hypothesis.dim();
+            for k in 0..6 {
+                let t = if dim == 2 && k >= 4 {
+                    0.0
+                } else {
+                    s.law.stress[k] * crate::strain::log::mandel_factor(k)
+                };
+                v.push(t);
+            }
+        }
+        Kinematics::SimoMiehe => v.extend(s.extra),
+        _ => {}
+    }
+    v
 }
 
 /// ∫BᵀC B of a cell for the tangents C of its points: the points' wCB
@@ -318,6 +509,16 @@ fn cell_tangent(cell: &PlasticCell, tangents: &[[[f64; 6]; 6]]) -> DMatrix<f64> 
     bt * wcb
 }
 
+fn at_cell_finite(model: &Model, cell: CellId, e: FemError) -> FemError {
+    match e {
+        FemError::Integration(m) => {
+            FemError::Integration(format!("cell {}, {m}", model.cell_name(cell)))
+        }
+        FemError::Model(m) => FemError::Model(format!("cell {}, {m}", model.cell_name(cell))),
+        other => other,
+    }
+}
+
 fn at_cell(model: &Model, cell: CellId, point: usize, e: FemError) -> FemError {
     FemError::Model(format!(
         "cell {}, Gauss point {}: {e}",
@@ -334,6 +535,19 @@ pub fn forc_noda_from_stress(
     u: &[f64],
     stress: &[CellValues],
 ) -> Result<Vec<f64>, FemError> {
+    forc_noda_deformed(model, u, stress, &Behaviours::default())
+}
+
+/// [`forc_noda_from_stress`] where the cells of a finite-strain
+/// kinematics (`behaviours`) integrate their Cauchy stresses on the
+/// deformed geometry X + u, as code_aster's FORC_NODA does for any
+/// DEFORMATION other than PETIT.
+pub fn forc_noda_deformed(
+    model: &Model,
+    u: &[f64],
+    stress: &[CellValues],
+    behaviours: &Behaviours,
+) -> Result<Vec<f64>, FemError> {
     let at: HashMap<CellId, &CellValues> = stress.iter().map(|cv| (cv.cell, cv)).collect();
     let mut f = vec![0.0; model.dofs().len()];
     for el in model.elements() {
@@ -346,12 +560,20 @@ pub fn forc_noda_from_stress(
                 let g = continuum_gauss(model.mesh(), el.cell, *hypothesis).map_err(|m| {
                     FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
                 })?;
-                let mut fe = DVector::zeros(dofs.len());
-                for (gp, s) in g.iter().zip(&cv.points) {
-                    let sigma = DVector::from_column_slice(&s[..hypothesis.ncomp()]);
-                    fe.gemv_tr(gp.w, &gp.b, &sigma, 1.0);
+                if behaviours.kinematics(el.cell).deformed_geometry() {
+                    let ue: Vec<f64> = dofs.iter().map(|&i| u[i]).collect();
+                    let geoms = fs::point_geoms(&g, *hypothesis);
+                    let fe = fs::forces_on_deformed(&geoms, *hypothesis, &ue, &cv.points)
+                        .map_err(|e| at_cell_finite(model, el.cell, e))?;
+                    DVector::from_vec(fe)
+                } else {
+                    let mut fe = DVector::zeros(dofs.len());
+                    for (gp, s) in g.iter().zip(&cv.points) {
+                        let sigma = DVector::from_column_slice(&s[..hypothesis.ncomp()]);
+                        fe.gemv_tr(gp.w, &gp.b, &sigma, 1.0);
+                    }
+                    fe
                 }
-                fe
             }
             ElementKind::Spring { stiffness, frame } => {
                 let (k, _) = spring_stiffness(model.mesh(), el.cell, stiffness, *frame);

@@ -1,18 +1,26 @@
 //! Non-linear material behaviours of STAT_NON_LINE (`COMPORTEMENT`).
 //!
-//! Cells without a behaviour here are elastic (`RELATION='ELAS'`) and keep
-//! the assembled elastic stiffness (K u for their internal forces). Cells
-//! given a [`VonMises`] law carry a state per Gauss point ([`PointState`]:
-//! stress, plastic strain, cumulated plastic strain p and the plasticity
-//! indicator, code_aster's VARI V1 and V2); their internal forces ∫Bᵀσ and
-//! consistent tangent ∫BᵀC B replace their elastic share of K u and K (see
-//! `cells`). Small strains only (`DEFORMATION='PETIT'`).
+//! Cells without a behaviour here are elastic in small strains
+//! (`RELATION='ELAS'`, `DEFORMATION='PETIT'`) and keep the assembled elastic
+//! stiffness (K u for their internal forces). Cells given a [`VonMises`]
+//! law or a finite-strain kinematics ([`Kinematics`], `DEFORMATION`) carry
+//! a state per Gauss point ([`GaussState`]); their internal forces and
+//! consistent tangent replace their elastic share of K u and K (see
+//! `cells`).
+//!
+//! - small strains (`PETIT`): von Mises with isotropic hardening
+//!   ([`vmis`]), stress σ, VARI V1 = p, V2 = plasticity indicator;
+//! - `PETIT_REAC`, `GREEN_LAGRANGE`, `GDEF_LOG`: the same small-strain laws
+//!   (or ELAS) on the strain measure of [`crate::strain`];
+//! - `SIMO_MIEHE`: multiplicative von Mises plasticity ([`simo_miehe`]).
 
 mod cells;
+pub mod simo_miehe;
 pub mod vmis;
 
-pub use cells::forc_noda_from_stress;
+pub use crate::strain::{GaussState, Kinematics};
 pub(crate) use cells::PlasticCells;
+pub use cells::{forc_noda_deformed, forc_noda_from_stress};
 pub use vmis::{CurveEnd, Hardening, PointState, VonMises};
 
 use crate::model::{ElementKind, Model};
@@ -20,11 +28,19 @@ use aster_mesh::CellId;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-/// Which cells follow a plastic law (`COMPORTEMENT` occurrences other than
-/// ELAS); every other cell is elastic.
+/// The behaviour of a cell: a plastic law (`None`: ELAS) and a kinematics.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellBehaviour {
+    pub law: Option<Arc<VonMises>>,
+    pub kinematics: Kinematics,
+}
+
+/// Which cells follow a plastic law or a finite-strain kinematics
+/// (`COMPORTEMENT` occurrences other than ELAS in small strains); every
+/// other cell is elastic in small strains.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Behaviours {
-    by_cell: BTreeMap<CellId, Arc<VonMises>>,
+    by_cell: BTreeMap<CellId, CellBehaviour>,
 }
 
 impl Behaviours {
@@ -33,30 +49,63 @@ impl Behaviours {
         Behaviours::default()
     }
 
-    /// Gives `law` to `cell` (a later assignment replaces an earlier one,
-    /// as COMPORTEMENT occurrences do).
+    /// Gives `law` in small strains to `cell` (a later assignment replaces
+    /// an earlier one, as COMPORTEMENT occurrences do).
     pub fn assign(&mut self, cell: CellId, law: Arc<VonMises>) {
-        self.by_cell.insert(cell, law);
+        self.assign_with(cell, Some(law), Kinematics::Small);
     }
 
-    /// Makes `cell` elastic again (a later `RELATION='ELAS'` occurrence).
+    /// Gives `cell` a law (`None`: ELAS) under a kinematics; ELAS in small
+    /// strains is the default and removes the cell.
+    pub fn assign_with(
+        &mut self,
+        cell: CellId,
+        law: Option<Arc<VonMises>>,
+        kinematics: Kinematics,
+    ) {
+        if law.is_none() && kinematics == Kinematics::Small {
+            self.by_cell.remove(&cell);
+        } else {
+            self.by_cell.insert(cell, CellBehaviour { law, kinematics });
+        }
+    }
+
+    /// Makes `cell` elastic in small strains again (a later
+    /// `RELATION='ELAS'` occurrence with `DEFORMATION='PETIT'`).
     pub fn make_elastic(&mut self, cell: CellId) {
         self.by_cell.remove(&cell);
     }
 
+    /// Whether every cell is elastic in small strains.
     pub fn is_elastic(&self) -> bool {
         self.by_cell.is_empty()
     }
 
+    /// The plastic law of a cell.
     pub fn law(&self, cell: CellId) -> Option<&Arc<VonMises>> {
-        self.by_cell.get(&cell)
+        self.by_cell.get(&cell).and_then(|b| b.law.as_ref())
     }
 
-    /// The plastic elements of the model (indices into `model.elements()`)
-    /// with their laws. Laws on cells without a continuum element are
-    /// ignored (code_aster applies COMPORTEMENT to the model's cells only:
-    /// boundary and discrete cells have no such behaviour).
-    pub(crate) fn elements(&self, model: &Model) -> Vec<(usize, Arc<VonMises>)> {
+    /// The kinematics of a cell (small strains when not assigned).
+    pub fn kinematics(&self, cell: CellId) -> Kinematics {
+        self.by_cell
+            .get(&cell)
+            .map(|b| b.kinematics)
+            .unwrap_or_default()
+    }
+
+    /// Whether some cell has a finite-strain kinematics.
+    pub fn has_finite_strains(&self) -> bool {
+        self.by_cell
+            .values()
+            .any(|b| b.kinematics != Kinematics::Small)
+    }
+
+    /// The behaviour cells of the model (indices into `model.elements()`).
+    /// Behaviours on cells without a continuum element are ignored
+    /// (code_aster applies COMPORTEMENT to the model's cells only: boundary
+    /// and discrete cells have no such behaviour).
+    pub(crate) fn elements(&self, model: &Model) -> Vec<(usize, CellBehaviour)> {
         if self.by_cell.is_empty() {
             return Vec::new();
         }
@@ -65,7 +114,7 @@ impl Behaviours {
             .iter()
             .enumerate()
             .filter(|(_, el)| matches!(el.kind, ElementKind::Continuum { .. }))
-            .filter_map(|(k, el)| self.by_cell.get(&el.cell).map(|law| (k, law.clone())))
+            .filter_map(|(k, el)| self.by_cell.get(&el.cell).map(|b| (k, b.clone())))
             .collect()
     }
 }

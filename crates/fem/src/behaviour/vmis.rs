@@ -41,6 +41,10 @@ pub struct VonMises {
     /// Initial yield stress SY.
     pub sy: f64,
     pub hardening: Hardening,
+    /// Young's modulus of the law when it is not ELAS's: a traction curve
+    /// carries its own, σ₁/ε₁ of its first point (code_aster's `rctrac`,
+    /// used by `nmisot` and `lcpima` in place of ELAS/E).
+    pub young: Option<f64>,
 }
 
 impl VonMises {
@@ -63,6 +67,7 @@ impl VonMises {
             hardening: Hardening::Linear {
                 h: e * et / (e - et),
             },
+            young: None,
         })
     }
 
@@ -102,7 +107,38 @@ impl VonMises {
         Ok(VonMises {
             sy,
             hardening: Hardening::Curve { p, r, end },
+            young: None,
         })
+    }
+
+    /// `TRACTION=_F(SIGM=σ(ε))` as code_aster reads it (`rctrac`): Young's
+    /// modulus is the slope of the first point, E = σ₁/ε₁, and replaces
+    /// ELAS's in the law (elasticity and the plastic strains
+    /// pᵢ = εᵢ − σᵢ/E of the curve).
+    pub fn traction_curve(eps: &[f64], sig: &[f64], end: CurveEnd) -> Result<VonMises, FemError> {
+        let (Some(&e1), Some(&s1)) = (eps.first(), sig.first()) else {
+            return Err(FemError::Model(
+                "TRACTION: the curve needs at least one (strain, stress) point".into(),
+            ));
+        };
+        let e = s1 / e1;
+        if !(e.is_finite() && e > 0.) {
+            return Err(FemError::Model(format!(
+                "TRACTION: the first point of the curve (ε = {e1}, σ = {s1}) is the elastic limit: both must be positive"
+            )));
+        }
+        let mut law = VonMises::traction(e, eps, sig, end)?;
+        law.young = Some(e);
+        Ok(law)
+    }
+
+    /// The elastic material of the law: the cell's, with the law's own
+    /// Young's modulus if it has one.
+    pub fn elastic(&self, el: &Elastic) -> Elastic {
+        match self.young {
+            Some(e) => Elastic { e, nu: el.nu },
+            None => *el,
+        }
     }
 
     /// R(p) and its slope R'(p) (the slope of the segment p lies on, the
@@ -119,7 +155,7 @@ impl VonMises {
 
     /// The plastic increment Δp ≥ 0 solving q − 3μΔp = R(p + Δp), given
     /// q > R(p). Returns (Δp, R'(p + Δp)).
-    fn return_increment(&self, q: f64, p: f64, mu: f64) -> Result<(f64, f64), FemError> {
+    pub(crate) fn return_increment(&self, q: f64, p: f64, mu: f64) -> Result<(f64, f64), FemError> {
         match &self.hardening {
             Hardening::Linear { h } => {
                 let denom = 3. * mu + h;
@@ -346,6 +382,7 @@ pub fn integrate(
     prev: &PointState,
     prediction: bool,
 ) -> Result<(PointState, Mat6), FemError> {
+    let el = &law.elastic(el);
     let mut e6 = [0.0; 6];
     let n = hyp.ncomp();
     e6[..n].copy_from_slice(&eps[..n]);
@@ -365,10 +402,14 @@ pub fn integrate(
         let mut k = 0;
         loop {
             (state, c) = integrate_3d(law, el, &e6, prev)?;
+            // The stress scale of the point: its stresses, or E times its
+            // strains (not the yield stress, which may be 1e15 for an
+            // elastic use of the law).
             let scale = state
                 .stress
                 .iter()
-                .fold(law.sy * 1e-3, |m, v| m.max(v.abs()));
+                .chain(e6.iter().map(|e| e * el.e).collect::<Vec<_>>().iter())
+                .fold(0.0f64, |m, v| m.max(v.abs()));
             if state.stress[2].abs() <= 1e-12 * scale {
                 break;
             }

@@ -16,7 +16,9 @@ impl Mesh {
         for c in cells {
             let cell = self.cell(c);
             let ty = linear_of(cell.ty).unwrap_or(cell.ty);
-            let Some((_, pairs)) = edges(ty) else { continue };
+            let Some((_, pairs)) = edges(ty) else {
+                continue;
+            };
             for [a, b] in pairs {
                 let (Some(&na), Some(&nb)) = (cell.nodes.get(*a), cell.nodes.get(*b)) else {
                     continue;

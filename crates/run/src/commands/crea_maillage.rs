@@ -3,6 +3,7 @@
 use crate::concept::Concept;
 use crate::executor::{store_result, Executor};
 use crate::select;
+use crate::support::Support;
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::{CentreNodes, Mesh, Restriction};
 use std::sync::Arc;
@@ -20,61 +21,63 @@ const OPERATIONS: [&str; 7] = [
     "MODI_MAILLE",
 ];
 
+/// What CREA_MAILLAGE reads (`crate::support`), DECOUPE_LAC included.
+pub(crate) const CREA_MAILLAGE: Support = Support::keywords(&[
+    "MAILLAGE",
+    "INFO",
+    "TITRE",
+    "RESTREINT",
+    "RESTREINT/GROUP_MA",
+    "RESTREINT/GROUP_NO",
+    "RESTREINT/TOUT_GROUP_MA",
+    "RESTREINT/TOUT_GROUP_NO",
+    "LINE_QUAD",
+    "LINE_QUAD/TOUT",
+    "LINE_QUAD/GROUP_MA",
+    "LINE_QUAD/MAILLE",
+    "LINE_QUAD/PREF_NOEUD",
+    "LINE_QUAD/PREF_NUME",
+    "QUAD_LINE",
+    "QUAD_LINE/TOUT",
+    "QUAD_LINE/GROUP_MA",
+    "QUAD_LINE/MAILLE",
+    "HEXA20_27",
+    "HEXA20_27/TOUT",
+    "HEXA20_27/GROUP_MA",
+    "HEXA20_27/MAILLE",
+    "HEXA20_27/PREF_NOEUD",
+    "HEXA20_27/PREF_NUME",
+    "PENTA15_18",
+    "PENTA15_18/TOUT",
+    "PENTA15_18/GROUP_MA",
+    "PENTA15_18/MAILLE",
+    "PENTA15_18/PREF_NOEUD",
+    "PENTA15_18/PREF_NUME",
+    "CREA_POI1",
+    "CREA_POI1/NOM_GROUP_MA",
+    "CREA_POI1/TOUT",
+    "CREA_POI1/GROUP_MA",
+    "CREA_POI1/GROUP_NO",
+    "CREA_POI1/NOEUD",
+    "MODI_MAILLE",
+    "MODI_MAILLE/TOUT",
+    "MODI_MAILLE/GROUP_MA",
+    "MODI_MAILLE/MAILLE",
+    "MODI_MAILLE/OPTION",
+    "MODI_MAILLE/PREF_NOEUD",
+    "MODI_MAILLE/PREF_NUME",
+    "MODI_MAILLE/PREF_MAILLE",
+    "COPIE",
+    "DECOUPE_LAC",
+    "DECOUPE_LAC/GROUP_MA_ESCL",
+    "DECOUPE_LAC/DECOUPE_HEXA",
+]);
+
 pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     if kw.keyword("DECOUPE_LAC").is_some_and(|k| !k.defaulted) {
         return decoupe_lac(ex, call);
     }
-    ex.check_keywords(
-        call,
-        &[
-            "MAILLAGE",
-            "INFO",
-            "TITRE",
-            "RESTREINT",
-            "RESTREINT/GROUP_MA",
-            "RESTREINT/GROUP_NO",
-            "RESTREINT/TOUT_GROUP_MA",
-            "RESTREINT/TOUT_GROUP_NO",
-            "LINE_QUAD",
-            "LINE_QUAD/TOUT",
-            "LINE_QUAD/GROUP_MA",
-            "LINE_QUAD/MAILLE",
-            "LINE_QUAD/PREF_NOEUD",
-            "LINE_QUAD/PREF_NUME",
-            "QUAD_LINE",
-            "QUAD_LINE/TOUT",
-            "QUAD_LINE/GROUP_MA",
-            "QUAD_LINE/MAILLE",
-            "HEXA20_27",
-            "HEXA20_27/TOUT",
-            "HEXA20_27/GROUP_MA",
-            "HEXA20_27/MAILLE",
-            "HEXA20_27/PREF_NOEUD",
-            "HEXA20_27/PREF_NUME",
-            "PENTA15_18",
-            "PENTA15_18/TOUT",
-            "PENTA15_18/GROUP_MA",
-            "PENTA15_18/MAILLE",
-            "PENTA15_18/PREF_NOEUD",
-            "PENTA15_18/PREF_NUME",
-            "CREA_POI1",
-            "CREA_POI1/NOM_GROUP_MA",
-            "CREA_POI1/TOUT",
-            "CREA_POI1/GROUP_MA",
-            "CREA_POI1/GROUP_NO",
-            "CREA_POI1/NOEUD",
-            "MODI_MAILLE",
-            "MODI_MAILLE/TOUT",
-            "MODI_MAILLE/GROUP_MA",
-            "MODI_MAILLE/MAILLE",
-            "MODI_MAILLE/OPTION",
-            "MODI_MAILLE/PREF_NOEUD",
-            "MODI_MAILLE/PREF_NUME",
-            "MODI_MAILLE/PREF_MAILLE",
-            "COPIE",
-        ],
-    )?;
     let source = ex.required(CMD, kw, "MAILLAGE")?;
     let mut mesh = (*ex.mesh(source)?).clone();
     // Legacy `COPIE=_F()` (code_aster ≤ 11): a plain copy.
@@ -170,17 +173,6 @@ pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
 /// it for DEFI_CONTACT(ALGO_CONT='LAC').
 fn decoupe_lac(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
-    ex.check_keywords(
-        call,
-        &[
-            "MAILLAGE",
-            "INFO",
-            "TITRE",
-            "DECOUPE_LAC",
-            "DECOUPE_LAC/GROUP_MA_ESCL",
-            "DECOUPE_LAC/DECOUPE_HEXA",
-        ],
-    )?;
     let source = ex.required(CMD, kw, "MAILLAGE")?;
     let mesh = ex.mesh(source)?;
     let occ = &kw.factor("DECOUPE_LAC")[0];

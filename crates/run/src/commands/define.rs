@@ -5,6 +5,7 @@ use crate::executor::{store_result, Executor};
 use crate::function::{Extension, Function, Scale, Tabulated};
 use crate::list::{self, Interval};
 use crate::select;
+use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use std::collections::BTreeMap;
 use std::rc::Rc;
@@ -13,25 +14,24 @@ fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
     kw.simple(name).iter().filter_map(|s| s.as_f64()).collect()
 }
 
+/// What DEFI_MATERIAU reads (`crate::support`).
+pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
+    "ELAS",
+    "ELAS/E",
+    "ELAS/NU",
+    "ELAS/RHO",
+    "ELAS/ALPHA",
+    "ELAS/AMOR_ALPHA",
+    "ELAS/AMOR_BETA",
+    "ECRO_LINE",
+    "ECRO_LINE/D_SIGM_EPSI",
+    "ECRO_LINE/SY",
+    "TRACTION",
+    "TRACTION/SIGM",
+    "INFO",
+]);
+
 pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "ELAS",
-            "ELAS/E",
-            "ELAS/NU",
-            "ELAS/RHO",
-            "ELAS/ALPHA",
-            "ELAS/AMOR_ALPHA",
-            "ELAS/AMOR_BETA",
-            "ECRO_LINE",
-            "ECRO_LINE/D_SIGM_EPSI",
-            "ECRO_LINE/SY",
-            "TRACTION",
-            "TRACTION/SIGM",
-            "INFO",
-        ],
-    )?;
     let kw = &call.keywords;
     let Some(elas) = kw.factor("ELAS").first() else {
         return Err(ExecError::new(
@@ -128,20 +128,19 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     store_result(ex, call, Concept::Material(Rc::new(m)))
 }
 
+/// What AFFE_MATERIAU reads (`crate::support`).
+pub(crate) const AFFE_MATERIAU: Support = Support::keywords(&[
+    "MAILLAGE",
+    "MODELE",
+    "AFFE",
+    "AFFE/TOUT",
+    "AFFE/GROUP_MA",
+    "AFFE/MAILLE",
+    "AFFE/MATER",
+    "INFO",
+]);
+
 pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MAILLAGE",
-            "MODELE",
-            "AFFE",
-            "AFFE/TOUT",
-            "AFFE/GROUP_MA",
-            "AFFE/MAILLE",
-            "AFFE/MATER",
-            "INFO",
-        ],
-    )?;
     let kw = &call.keywords;
     let mesh_id = if let Some(m) = kw.concept("MAILLAGE") {
         m.id
@@ -171,31 +170,35 @@ pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     )
 }
 
+/// What AFFE_MODELE reads (`crate::support`).
+pub(crate) const AFFE_MODELE: Support = Support {
+    values: &[
+        Values::new("AFFE/PHENOMENE", &["MECANIQUE"]),
+        Values::listed("AFFE/MODELISATION", &Modelisation::KEYWORDS),
+    ],
+    ..Support::keywords(&[
+        "MAILLAGE",
+        "AFFE",
+        "AFFE/TOUT",
+        "AFFE/GROUP_MA",
+        "AFFE/MAILLE",
+        "AFFE/PHENOMENE",
+        "AFFE/MODELISATION",
+        "INFO",
+        "VERI_JACOBIEN",
+        "VERI_NORM_IFS",
+        "VERI_PLAN",
+        "DISTRIBUTION",
+        "DISTRIBUTION/*",
+    ])
+};
+
 pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MAILLAGE",
-            "AFFE",
-            "AFFE/TOUT",
-            "AFFE/GROUP_MA",
-            "AFFE/MAILLE",
-            "AFFE/PHENOMENE",
-            "AFFE/MODELISATION",
-            "INFO",
-            "VERI_JACOBIEN",
-            "VERI_NORM_IFS",
-            "VERI_PLAN",
-            "DISTRIBUTION",
-            "DISTRIBUTION/*",
-        ],
-    )?;
     let kw = &call.keywords;
     let mesh_ref = ex.required("AFFE_MODELE", kw, "MAILLAGE")?;
     let mesh = ex.mesh(mesh_ref)?;
     let mut cells = BTreeMap::new();
     for occ in kw.factor("AFFE") {
-        ex.only_values("AFFE_MODELE/AFFE", occ, "PHENOMENE", &["MECANIQUE"])?;
         let names: Vec<&str> = occ
             .simple("MODELISATION")
             .iter()
@@ -250,8 +253,13 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     store_result(ex, call, Concept::Model(Rc::new(model)))
 }
 
-pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    const ALLOWED: &[&str] = &[
+/// What AFFE_CARA_ELEM reads (`crate::support`).
+pub(crate) const AFFE_CARA_ELEM: Support = Support {
+    values: &[
+        Values::listed("DISCRET/CARA", &["K_T_D_L", "K_T_D_N"]),
+        Values::listed("DISCRET_2D/CARA", &["K_T_D_L", "K_T_D_N"]),
+    ],
+    ..Support::keywords(&[
         "MODELE",
         "INFO",
         "DISCRET",
@@ -268,8 +276,10 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         "DISCRET_2D/VALE",
         "DISCRET_2D/REPERE",
         "DISCRET_2D/SYME",
-    ];
-    ex.check_keywords(call, ALLOWED)?;
+    ])
+};
+
+pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let model_ref = ex.required("AFFE_CARA_ELEM", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
@@ -327,23 +337,22 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     )
 }
 
+/// What DEFI_FONCTION reads (`crate::support`).
+pub(crate) const DEFI_FONCTION: Support = Support::keywords(&[
+    "NOM_PARA",
+    "NOM_RESU",
+    "VALE",
+    "ABSCISSE",
+    "ORDONNEE",
+    "INTERPOL",
+    "PROL_GAUCHE",
+    "PROL_DROITE",
+    "VERIF",
+    "INFO",
+    "TITRE",
+]);
+
 pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "NOM_PARA",
-            "NOM_RESU",
-            "VALE",
-            "ABSCISSE",
-            "ORDONNEE",
-            "INTERPOL",
-            "PROL_GAUCHE",
-            "PROL_DROITE",
-            "VERIF",
-            "INFO",
-            "TITRE",
-        ],
-    )?;
     let kw = &call.keywords;
     let para = kw.str("NOM_PARA").unwrap_or("INST");
     let mut f = if kw.contains("VALE") {
@@ -401,8 +410,10 @@ pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     store_result(ex, call, Concept::Function(Rc::new(Function::Tabulated(f))))
 }
 
+/// What DEFI_CONSTANTE reads (`crate::support`).
+pub(crate) const DEFI_CONSTANTE: Support = Support::keywords(&["VALE", "NOM_RESU", "TITRE"]);
+
 pub fn defi_constante(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, &["VALE", "NOM_RESU", "TITRE"])?;
     let kw = &call.keywords;
     let value = kw
         .f64("VALE")
@@ -414,20 +425,19 @@ pub fn defi_constante(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     store_result(ex, call, Concept::Function(Rc::new(f)))
 }
 
+/// What DEFI_LIST_REEL reads (`crate::support`).
+pub(crate) const DEFI_LIST_REEL: Support = Support::keywords(&[
+    "DEBUT",
+    "INTERVALLE",
+    "INTERVALLE/JUSQU_A",
+    "INTERVALLE/NOMBRE",
+    "INTERVALLE/PAS",
+    "VALE",
+    "INFO",
+    "TITRE",
+]);
+
 pub fn defi_list_reel(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "DEBUT",
-            "INTERVALLE",
-            "INTERVALLE/JUSQU_A",
-            "INTERVALLE/NOMBRE",
-            "INTERVALLE/PAS",
-            "VALE",
-            "INFO",
-            "TITRE",
-        ],
-    )?;
     let kw = &call.keywords;
     let values = if kw.contains("VALE") {
         list::from_values(&reals(kw, "VALE"))
@@ -462,50 +472,48 @@ pub fn defi_list_reel(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     store_result(ex, call, Concept::RealList(Rc::new(values)))
 }
 
-pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            // code_aster 17 writes METHODE at the top, older files in DEFI_LIST.
-            "METHODE",
-            "DEFI_LIST",
-            "DEFI_LIST/METHODE",
-            "DEFI_LIST/LIST_INST",
-            "DEFI_LIST/VALE",
-            "INFO",
-            // Failure handling (code_aster's semantics): a failed increment
-            // is cut (DECOUPE) or stops the run (ARRET).
-            "ECHEC",
-            "ECHEC/EVENEMENT",
-            "ECHEC/ACTION",
-            "ECHEC/SUBD_METHODE",
-            "ECHEC/SUBD_PAS",
-            "ECHEC/SUBD_PAS_MINI",
-            "ECHEC/SUBD_NIVEAU",
-        ],
-    )?;
-    let kw = &call.keywords;
-    let Some(def) = kw.factor("DEFI_LIST").first() else {
-        return Err(ExecError::new("DEFI_LIST_INST: DEFI_LIST is required"));
-    };
-    ex.only_values("DEFI_LIST_INST", kw, "METHODE", &["MANUEL"])?;
-    ex.only_values("DEFI_LIST_INST/DEFI_LIST", def, "METHODE", &["MANUEL"])?;
-    // ECHEC is present by default (EVENEMENT='ERREUR', ACTION='DECOUPE',
-    // SUBD_PAS=4, SUBD_NIVEAU=3, SUBD_PAS_MINI=0).
-    let mut subdivision = Some(aster_fem::Subdivision::default());
-    for occ in kw.factor("ECHEC") {
-        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "EVENEMENT", &["ERREUR"])?;
-        ex.only_values("DEFI_LIST_INST/ECHEC", occ, "ACTION", &["ARRET", "DECOUPE"])?;
+/// What DEFI_LIST_INST reads (`crate::support`).
+pub(crate) const DEFI_LIST_INST: Support = Support {
+    values: &[
+        Values::new("METHODE", &["MANUEL"]),
+        Values::new("DEFI_LIST/METHODE", &["MANUEL"]),
+        Values::new("ECHEC/EVENEMENT", &["ERREUR"]),
+        Values::new("ECHEC/ACTION", &["ARRET", "DECOUPE"]),
         // SUBD_METHODE='AUTO' chooses the pieces by extrapolating the
         // residuals; it is read as MANUEL's default cutting (4 pieces, 3
         // levels) bounded by its SUBD_PAS_MINI: the converged steps are
         // the same, the path between them may differ.
-        ex.only_values(
-            "DEFI_LIST_INST/ECHEC",
-            occ,
-            "SUBD_METHODE",
-            &["MANUEL", "AUTO"],
-        )?;
+        Values::new("ECHEC/SUBD_METHODE", &["MANUEL", "AUTO"]),
+    ],
+    ..Support::keywords(&[
+        // code_aster 17 writes METHODE at the top, older files in DEFI_LIST.
+        "METHODE",
+        "DEFI_LIST",
+        "DEFI_LIST/METHODE",
+        "DEFI_LIST/LIST_INST",
+        "DEFI_LIST/VALE",
+        "INFO",
+        // Failure handling (code_aster's semantics): a failed increment
+        // is cut (DECOUPE) or stops the run (ARRET).
+        "ECHEC",
+        "ECHEC/EVENEMENT",
+        "ECHEC/ACTION",
+        "ECHEC/SUBD_METHODE",
+        "ECHEC/SUBD_PAS",
+        "ECHEC/SUBD_PAS_MINI",
+        "ECHEC/SUBD_NIVEAU",
+    ])
+};
+
+pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let Some(def) = kw.factor("DEFI_LIST").first() else {
+        return Err(ExecError::new("DEFI_LIST_INST: DEFI_LIST is required"));
+    };
+    // ECHEC is present by default (EVENEMENT='ERREUR', ACTION='DECOUPE',
+    // SUBD_PAS=4, SUBD_NIVEAU=3, SUBD_PAS_MINI=0).
+    let mut subdivision = Some(aster_fem::Subdivision::default());
+    for occ in kw.factor("ECHEC") {
         if occ.str("ACTION") == Some("ARRET") {
             subdivision = None;
             continue;

@@ -7,42 +7,45 @@ use crate::concept::Concept;
 use crate::executor::{result_of, store_result, Executor};
 use crate::fembridge;
 use crate::field::Field;
+use crate::support::{Support, Values};
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Scalar};
 use std::rc::Rc;
 
+/// What CALCUL reads (`crate::support`).
+pub(crate) const CALCUL: Support = Support {
+    values: &[
+        Values::new("OPTION", &["FORC_NODA_ELEM"]),
+        Values::new("COMPORTEMENT/RELATION", &["ELAS"]),
+        Values::new("COMPORTEMENT/DEFORMATION", &["PETIT"]),
+    ],
+    ..Support::keywords(&[
+        "OPTION",
+        "PHENOMENE",
+        "MODELE",
+        "CARA_ELEM",
+        "CHAM_MATER",
+        "SIGM",
+        "VARI",
+        "DEPL",
+        "INCR_DEPL",
+        "EXCIT",
+        "EXCIT/CHARGE",
+        "EXCIT/FONC_MULT",
+        "EXCIT/TYPE_CHARGE",
+        "COMPORTEMENT",
+        "COMPORTEMENT/RELATION",
+        "COMPORTEMENT/DEFORMATION",
+        "COMPORTEMENT/TOUT",
+        "INCREMENT",
+        "INCREMENT/LIST_INST",
+        "INCREMENT/NUME_ORDRE",
+        "INFO",
+    ])
+};
+
 pub fn calcul(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "OPTION",
-            "PHENOMENE",
-            "MODELE",
-            "CARA_ELEM",
-            "CHAM_MATER",
-            "SIGM",
-            "VARI",
-            "DEPL",
-            "INCR_DEPL",
-            "EXCIT",
-            "EXCIT/CHARGE",
-            "EXCIT/FONC_MULT",
-            "EXCIT/TYPE_CHARGE",
-            "COMPORTEMENT",
-            "COMPORTEMENT/RELATION",
-            "COMPORTEMENT/DEFORMATION",
-            "COMPORTEMENT/TOUT",
-            "INCREMENT",
-            "INCREMENT/LIST_INST",
-            "INCREMENT/NUME_ORDRE",
-            "INFO",
-        ],
-    )?;
     let kw = &call.keywords;
-    ex.only_values("CALCUL", kw, "OPTION", &["FORC_NODA_ELEM"])?;
-    for occ in kw.factor("COMPORTEMENT") {
-        ex.only_values("CALCUL/COMPORTEMENT", occ, "RELATION", &["ELAS"])?;
-    }
     let model = ex.model(ex.required("CALCUL", kw, "MODELE")?)?;
     let materials = ex.material_field(ex.required("CALCUL", kw, "CHAM_MATER")?)?;
     let cara = match kw.concept("CARA_ELEM") {
@@ -94,24 +97,25 @@ pub fn calcul(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
+/// What CALC_VECT_ELEM reads (`crate::support`).
+pub(crate) const CALC_VECT_ELEM: Support = Support {
+    values: &[Values::new("OPTION", &["FORC_NODA"])],
+    ..Support::keywords(&[
+        "OPTION",
+        "MODELE",
+        "SIEF_ELGA",
+        "CARA_ELEM",
+        "CHAM_MATER",
+        "INST",
+    ])
+};
+
 /// Legacy `CALC_VECT_ELEM(OPTION='FORC_NODA', SIEF_ELGA=…)` (code_aster
 /// ≤ 14): the nodal forces of a stress field. The field must have been
 /// extracted from a computed result (CREA_CHAMP/EXTR): its step's
 /// displacement gives the same Bᵀσ in linear elasticity, springs included.
 pub fn calc_vect_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "OPTION",
-            "MODELE",
-            "SIEF_ELGA",
-            "CARA_ELEM",
-            "CHAM_MATER",
-            "INST",
-        ],
-    )?;
     let kw = &call.keywords;
-    ex.only_values("CALC_VECT_ELEM", kw, "OPTION", &["FORC_NODA"])?;
     let model = ex.required("CALC_VECT_ELEM", kw, "MODELE")?;
     ex.model(model)?;
     let sigma = ex.required("CALC_VECT_ELEM", kw, "SIEF_ELGA")?;
@@ -138,24 +142,23 @@ pub fn calc_vect_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     store_result(ex, call, Concept::VectElem(Rc::new(vect)))
 }
 
+/// What EXTR_TABLE reads (`crate::support`).
+pub(crate) const EXTR_TABLE: Support = Support::keywords(&[
+    "TYPE_RESU",
+    "TABLE",
+    "NOM_PARA",
+    "FILTRE",
+    "FILTRE/NOM_PARA",
+    "FILTRE/CRIT_COMP",
+    "FILTRE/VALE",
+    "FILTRE/VALE_I",
+    "FILTRE/VALE_K",
+    "FILTRE/CRITERE",
+    "FILTRE/PRECISION",
+    "TITRE",
+]);
+
 pub fn extr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "TYPE_RESU",
-            "TABLE",
-            "NOM_PARA",
-            "FILTRE",
-            "FILTRE/NOM_PARA",
-            "FILTRE/CRIT_COMP",
-            "FILTRE/VALE",
-            "FILTRE/VALE_I",
-            "FILTRE/VALE_K",
-            "FILTRE/CRITERE",
-            "FILTRE/PRECISION",
-            "TITRE",
-        ],
-    )?;
     let kw = &call.keywords;
     let t = ex.required("EXTR_TABLE", kw, "TABLE")?;
     let table = ex.table(t)?;
@@ -208,16 +211,20 @@ pub fn extr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     }
 }
 
+/// What NUME_DDL reads (`crate::support`).
+pub(crate) const NUME_DDL: Support = Support::keywords(&["MODELE", "CHARGE", "INFO"]);
+
 pub fn nume_ddl(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, &["MODELE", "CHARGE", "INFO"])?;
     let m = ex.required("NUME_DDL", &call.keywords, "MODELE")?;
     ex.model(m)?;
     let id = m.id;
     store_result(ex, call, Concept::Numbering(id))
 }
 
+/// What ASSE_VECTEUR reads (`crate::support`).
+pub(crate) const ASSE_VECTEUR: Support = Support::keywords(&["VECT_ELEM", "NUME_DDL", "INFO"]);
+
 pub fn asse_vecteur(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(call, &["VECT_ELEM", "NUME_DDL", "INFO"])?;
     let kw = &call.keywords;
     let n = ex.required("ASSE_VECTEUR", kw, "NUME_DDL")?;
     if !matches!(ex.concept(n)?, Concept::Numbering(_)) {

@@ -9,6 +9,7 @@ use crate::executor::{store_result, Executor};
 use crate::field::Field;
 use crate::function::{Extension, Function, Scale, Tabulated};
 use crate::select;
+use crate::support::{Support, Values};
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use std::path::PathBuf;
@@ -86,41 +87,40 @@ fn list_of(
     }
 }
 
+/// What RECU_FONCTION reads (`crate::support`).
+pub(crate) const RECU_FONCTION: Support = Support::keywords(&[
+    "RESULTAT",
+    "NOM_CHAM",
+    "NOM_CMP",
+    "GROUP_NO",
+    "NOEUD",
+    "TOUT_ORDRE",
+    "NUME_ORDRE",
+    "INST",
+    "LIST_INST",
+    "CRITERE",
+    "PRECISION",
+    "TABLE",
+    "PARA_X",
+    "PARA_Y",
+    "FILTRE",
+    "FILTRE/NOM_PARA",
+    "FILTRE/CRIT_COMP",
+    "FILTRE/VALE",
+    "FILTRE/VALE_I",
+    "FILTRE/VALE_K",
+    "FILTRE/CRITERE",
+    "FILTRE/PRECISION",
+    "NOM_PARA",
+    "NOM_RESU",
+    "INTERPOL",
+    "PROL_GAUCHE",
+    "PROL_DROITE",
+    "TITRE",
+    "INFO",
+]);
+
 pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "RESULTAT",
-            "NOM_CHAM",
-            "NOM_CMP",
-            "GROUP_NO",
-            "NOEUD",
-            "TOUT_ORDRE",
-            "NUME_ORDRE",
-            "INST",
-            "LIST_INST",
-            "CRITERE",
-            "PRECISION",
-            "TABLE",
-            "PARA_X",
-            "PARA_Y",
-            "FILTRE",
-            "FILTRE/NOM_PARA",
-            "FILTRE/CRIT_COMP",
-            "FILTRE/VALE",
-            "FILTRE/VALE_I",
-            "FILTRE/VALE_K",
-            "FILTRE/CRITERE",
-            "FILTRE/PRECISION",
-            "NOM_PARA",
-            "NOM_RESU",
-            "INTERPOL",
-            "PROL_GAUCHE",
-            "PROL_DROITE",
-            "TITRE",
-            "INFO",
-        ],
-    )?;
     let cmd = "RECU_FONCTION";
     let kw = &call.keywords;
     if let Some(t) = kw.concept("TABLE") {
@@ -168,8 +168,7 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let cmp = kw
         .str("NOM_CMP")
         .ok_or_else(|| ExecError::new(format!("{cmd}: RESULTAT needs NOM_CMP")))?;
-    let (node, _) =
-        select::single_node(kw, &mesh).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+    let node = select::first_node(kw, &mesh).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
     let steps: Vec<&crate::concept::Step> = match list_of(ex, cmd, kw, "LIST_INST")? {
         Some(list) => list
             .iter()
@@ -221,22 +220,21 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     store_result(ex, call, Concept::Function(f))
 }
 
+/// What CALC_FONC_INTERP reads (`crate::support`).
+pub(crate) const CALC_FONC_INTERP: Support = Support::keywords(&[
+    "FONCTION",
+    "LIST_PARA",
+    "VALE_PARA",
+    "NOM_PARA",
+    "NOM_RESU",
+    "INTERPOL",
+    "PROL_GAUCHE",
+    "PROL_DROITE",
+    "TITRE",
+    "INFO",
+]);
+
 pub fn calc_fonc_interp(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "FONCTION",
-            "LIST_PARA",
-            "VALE_PARA",
-            "NOM_PARA",
-            "NOM_RESU",
-            "INTERPOL",
-            "PROL_GAUCHE",
-            "PROL_DROITE",
-            "TITRE",
-            "INFO",
-        ],
-    )?;
     let cmd = "CALC_FONC_INTERP";
     let kw = &call.keywords;
     let f = ex.function(ex.required(cmd, kw, "FONCTION")?)?;
@@ -279,29 +277,31 @@ fn sorted_union(mut xs: Vec<f64>) -> Vec<f64> {
     xs
 }
 
+/// What CALC_FONCTION reads (`crate::support`).
+pub(crate) const CALC_FONCTION: Support = Support {
+    values: &[Values::new("INTEGRE/METHODE", &["TRAPEZE"])],
+    ..Support::keywords(&[
+        "COMB",
+        "COMB/FONCTION",
+        "COMB/COEF",
+        "INTEGRE",
+        "INTEGRE/FONCTION",
+        "INTEGRE/METHODE",
+        "INTEGRE/COEF",
+        "ABS",
+        "ABS/FONCTION",
+        "LIST_PARA",
+        "NOM_PARA",
+        "NOM_RESU",
+        "INTERPOL",
+        "PROL_GAUCHE",
+        "PROL_DROITE",
+        "TITRE",
+        "INFO",
+    ])
+};
+
 pub fn calc_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "COMB",
-            "COMB/FONCTION",
-            "COMB/COEF",
-            "INTEGRE",
-            "INTEGRE/FONCTION",
-            "INTEGRE/METHODE",
-            "INTEGRE/COEF",
-            "ABS",
-            "ABS/FONCTION",
-            "LIST_PARA",
-            "NOM_PARA",
-            "NOM_RESU",
-            "INTERPOL",
-            "PROL_GAUCHE",
-            "PROL_DROITE",
-            "TITRE",
-            "INFO",
-        ],
-    )?;
     let cmd = "CALC_FONCTION";
     let kw = &call.keywords;
     let list = list_of(ex, cmd, kw, "LIST_PARA")?;
@@ -338,10 +338,6 @@ pub fn calc_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         (param(&terms[0].0), xs, ys)
     } else if let Some(occ) = kw.factor("INTEGRE").first() {
-        if let Some(m) = occ.str("METHODE").filter(|m| *m != "TRAPEZE") {
-            let span = occ.keyword("METHODE").map(|k| k.span).unwrap_or_default();
-            return Err(ex.unsupported(&format!("{cmd}/INTEGRE/METHODE='{m}'"), span));
-        }
         let f = ex.function(ex.required(cmd, occ, "FONCTION")?)?;
         let xs = list.clone().unwrap_or_else(|| abscissae(&f));
         let mut ys = Vec::with_capacity(xs.len());
@@ -528,44 +524,41 @@ fn xmgrace(kw: &Keywords, curves: &[Curve]) -> String {
     out
 }
 
+/// What IMPR_FONCTION reads (`crate::support`).
+pub(crate) const IMPR_FONCTION: Support = Support {
+    values: &[
+        Values::new("FORMAT", &["TABLEAU", "XMGRACE"]),
+        Values::new("PILOTE", &[""]).why("(images are not drawn; the .agr data file is)"),
+    ],
+    ..Support::keywords(&[
+        "FORMAT",
+        "UNITE",
+        "COURBE",
+        "COURBE/*",
+        "TITRE",
+        "SOUS_TITRE",
+        "LEGENDE_X",
+        "LEGENDE_Y",
+        "BORNE_X",
+        "BORNE_Y",
+        "ECHELLE_X",
+        "ECHELLE_Y",
+        "GRILLE_X",
+        "GRILLE_Y",
+        "PILOTE",
+        "SEPARATEUR",
+        "COMMENTAIRE",
+        "COMM_PARA",
+        "DEBUT_LIGNE",
+        "FIN_LIGNE",
+        "FORMAT_R",
+        "INFO",
+    ])
+};
+
 pub fn impr_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "FORMAT",
-            "UNITE",
-            "COURBE",
-            "COURBE/*",
-            "TITRE",
-            "SOUS_TITRE",
-            "LEGENDE_X",
-            "LEGENDE_Y",
-            "BORNE_X",
-            "BORNE_Y",
-            "ECHELLE_X",
-            "ECHELLE_Y",
-            "GRILLE_X",
-            "GRILLE_Y",
-            "PILOTE",
-            "SEPARATEUR",
-            "COMMENTAIRE",
-            "COMM_PARA",
-            "DEBUT_LIGNE",
-            "FIN_LIGNE",
-            "FORMAT_R",
-            "INFO",
-        ],
-    )?;
     let kw = &call.keywords;
     let format = kw.str("FORMAT").unwrap_or("TABLEAU");
-    ex.only_values("IMPR_FONCTION", kw, "FORMAT", &["TABLEAU", "XMGRACE"])?;
-    if let Some(p) = kw.str("PILOTE").filter(|p| !p.is_empty()) {
-        let span = kw.keyword("PILOTE").map(|k| k.span).unwrap_or_default();
-        return Err(ex.unsupported(
-            &format!("IMPR_FONCTION/PILOTE='{p}' (images are not drawn; the .agr data file is)"),
-            span,
-        ));
-    }
     let curves = kw
         .factor("COURBE")
         .iter()
@@ -588,24 +581,25 @@ pub fn impr_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     Ok(CommandOutput::Nothing)
 }
 
+/// What DEFI_LIST_ENTI reads (`crate::support`).
+pub(crate) const DEFI_LIST_ENTI: Support = Support {
+    values: &[Values::new("OPERATION", &["DEFI"])],
+    ..Support::keywords(&[
+        "OPERATION",
+        "DEBUT",
+        "INTERVALLE",
+        "INTERVALLE/JUSQU_A",
+        "INTERVALLE/PAS",
+        "INTERVALLE/NOMBRE",
+        "VALE",
+        "INFO",
+        "TITRE",
+    ])
+};
+
 pub fn defi_list_enti(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "OPERATION",
-            "DEBUT",
-            "INTERVALLE",
-            "INTERVALLE/JUSQU_A",
-            "INTERVALLE/PAS",
-            "INTERVALLE/NOMBRE",
-            "VALE",
-            "INFO",
-            "TITRE",
-        ],
-    )?;
     let cmd = "DEFI_LIST_ENTI";
     let kw = &call.keywords;
-    ex.only_values(cmd, kw, "OPERATION", &["DEFI"])?;
     let ints = |k: &Keywords, n: &str| -> Vec<i64> {
         k.simple(n).iter().filter_map(|s| s.as_i64()).collect()
     };
@@ -663,19 +657,15 @@ pub fn defi_list_enti(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     store_result(ex, call, Concept::RealList(Rc::new(as_reals)))
 }
 
+/// What DEFI_FICHIER reads (`crate::support`).
+pub(crate) const DEFI_FICHIER: Support = Support {
+    values: &[Values::new("ACTION", &["ASSOCIER", "LIBERER", "RESERVER"])],
+    ..Support::keywords(&["ACTION", "UNITE", "FICHIER", "TYPE", "ACCES", "INFO"])
+};
+
 pub fn defi_fichier(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &["ACTION", "UNITE", "FICHIER", "TYPE", "ACCES", "INFO"],
-    )?;
     let kw = &call.keywords;
     let action = kw.str("ACTION").unwrap_or("ASSOCIER");
-    ex.only_values(
-        "DEFI_FICHIER",
-        kw,
-        "ACTION",
-        &["ASSOCIER", "LIBERER", "RESERVER"],
-    )?;
     let unit = kw.first("UNITE").and_then(|s| s.as_i64());
     match (action, unit, kw.str("FICHIER")) {
         ("ASSOCIER", Some(u), Some(file)) => {

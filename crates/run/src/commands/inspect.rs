@@ -5,33 +5,11 @@ use crate::executor::Executor;
 use crate::field::{ElemLocation, Field};
 use crate::pyfmt::py_repr;
 use crate::select;
+use crate::support::{Support, Values};
 use crate::table::{Table, Value};
 use crate::test_resu::{check_block, comparisons};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::Mesh;
-
-const TEST_KEYS: &[&str] = &[
-    "VALE_CALC",
-    "VALE_CALC_I",
-    "VALE_REFE",
-    "VALE_REFE_I",
-    "VALE",
-    "VALE_I",
-    "REFERENCE",
-    "PRECISION",
-    "CRITERE",
-    "TOLE_MACHINE",
-    "ORDRE_GRANDEUR",
-    "LEGENDE",
-    "VALE_ABS",
-    "VERSION",
-];
-
-fn allowed(factor: &str, own: &[&str]) -> Vec<String> {
-    let mut v = vec![factor.to_string()];
-    v.extend(own.iter().chain(TEST_KEYS).map(|k| format!("{factor}/{k}")));
-    v
-}
 
 /// `TEST_RESU/MAILLAGE/CARA`: a count of the mesh (cells, nodes, groups,
 /// members of the group `NOM_GROUP_MA`/`NOM_GROUP_NO`).
@@ -179,50 +157,108 @@ fn run_checks(
     ex.write_report(&text)
 }
 
-pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    let mut allow: Vec<String> = vec!["INFO".into()];
-    allow.extend(allowed(
+/// What TEST_RESU reads (`crate::support`): each factor takes its own
+/// keywords and the comparison keywords (`VALE_CALC`, `PRECISION`…).
+pub(crate) const TEST_RESU: Support = Support {
+    // ITER_GLOB: the Newton iterations of the converged increment.
+    values: &[Values::new("RESU/PARA", &["INST", "ITER_GLOB"])],
+    ..Support::keywords(&[
+        "INFO",
         "RESU",
-        &[
-            "RESULTAT",
-            "NUME_ORDRE",
-            "INST",
-            "NOM_CHAM",
-            "PARA",
-            "NOM_CMP",
-            "GROUP_NO",
-            "NOEUD",
-            "GROUP_MA",
-            "MAILLE",
-            "POINT",
-            "SOUS_POINT",
-            "TYPE_TEST",
-        ],
-    ));
-    allow.extend(allowed(
+        "RESU/RESULTAT",
+        "RESU/NUME_ORDRE",
+        "RESU/INST",
+        "RESU/NOM_CHAM",
+        "RESU/PARA",
+        "RESU/NOM_CMP",
+        "RESU/GROUP_NO",
+        "RESU/NOEUD",
+        "RESU/GROUP_MA",
+        "RESU/MAILLE",
+        "RESU/POINT",
+        "RESU/SOUS_POINT",
+        "RESU/TYPE_TEST",
+        "RESU/VALE_CALC",
+        "RESU/VALE_CALC_I",
+        "RESU/VALE_REFE",
+        "RESU/VALE_REFE_I",
+        "RESU/VALE",
+        "RESU/VALE_I",
+        "RESU/REFERENCE",
+        "RESU/PRECISION",
+        "RESU/CRITERE",
+        "RESU/TOLE_MACHINE",
+        "RESU/ORDRE_GRANDEUR",
+        "RESU/LEGENDE",
+        "RESU/VALE_ABS",
+        "RESU/VERSION",
         "CHAM_NO",
-        &["CHAM_GD", "NOM_CMP", "GROUP_NO", "NOEUD", "TYPE_TEST"],
-    ));
-    allow.extend(allowed(
+        "CHAM_NO/CHAM_GD",
+        "CHAM_NO/NOM_CMP",
+        "CHAM_NO/GROUP_NO",
+        "CHAM_NO/NOEUD",
+        "CHAM_NO/TYPE_TEST",
+        "CHAM_NO/VALE_CALC",
+        "CHAM_NO/VALE_CALC_I",
+        "CHAM_NO/VALE_REFE",
+        "CHAM_NO/VALE_REFE_I",
+        "CHAM_NO/VALE",
+        "CHAM_NO/VALE_I",
+        "CHAM_NO/REFERENCE",
+        "CHAM_NO/PRECISION",
+        "CHAM_NO/CRITERE",
+        "CHAM_NO/TOLE_MACHINE",
+        "CHAM_NO/ORDRE_GRANDEUR",
+        "CHAM_NO/LEGENDE",
+        "CHAM_NO/VALE_ABS",
+        "CHAM_NO/VERSION",
         "CHAM_ELEM",
-        &[
-            "CHAM_GD",
-            "NOM_CMP",
-            "GROUP_MA",
-            "MAILLE",
-            "POINT",
-            "SOUS_POINT",
-            "GROUP_NO",
-            "NOEUD",
-            "TYPE_TEST",
-        ],
-    ));
-    allow.extend(allowed(
+        "CHAM_ELEM/CHAM_GD",
+        "CHAM_ELEM/NOM_CMP",
+        "CHAM_ELEM/GROUP_MA",
+        "CHAM_ELEM/MAILLE",
+        "CHAM_ELEM/POINT",
+        "CHAM_ELEM/SOUS_POINT",
+        "CHAM_ELEM/GROUP_NO",
+        "CHAM_ELEM/NOEUD",
+        "CHAM_ELEM/TYPE_TEST",
+        "CHAM_ELEM/VALE_CALC",
+        "CHAM_ELEM/VALE_CALC_I",
+        "CHAM_ELEM/VALE_REFE",
+        "CHAM_ELEM/VALE_REFE_I",
+        "CHAM_ELEM/VALE",
+        "CHAM_ELEM/VALE_I",
+        "CHAM_ELEM/REFERENCE",
+        "CHAM_ELEM/PRECISION",
+        "CHAM_ELEM/CRITERE",
+        "CHAM_ELEM/TOLE_MACHINE",
+        "CHAM_ELEM/ORDRE_GRANDEUR",
+        "CHAM_ELEM/LEGENDE",
+        "CHAM_ELEM/VALE_ABS",
+        "CHAM_ELEM/VERSION",
         "MAILLAGE",
-        &["MAILLAGE", "CARA", "NOM_GROUP_MA", "NOM_GROUP_NO"],
-    ));
-    let allow: Vec<&str> = allow.iter().map(String::as_str).collect();
-    ex.check_keywords(call, &allow)?;
+        "MAILLAGE/MAILLAGE",
+        "MAILLAGE/CARA",
+        "MAILLAGE/NOM_GROUP_MA",
+        "MAILLAGE/NOM_GROUP_NO",
+        "MAILLAGE/VALE_CALC",
+        "MAILLAGE/VALE_CALC_I",
+        "MAILLAGE/VALE_REFE",
+        "MAILLAGE/VALE_REFE_I",
+        "MAILLAGE/VALE",
+        "MAILLAGE/VALE_I",
+        "MAILLAGE/REFERENCE",
+        "MAILLAGE/PRECISION",
+        "MAILLAGE/CRITERE",
+        "MAILLAGE/TOLE_MACHINE",
+        "MAILLAGE/ORDRE_GRANDEUR",
+        "MAILLAGE/LEGENDE",
+        "MAILLAGE/VALE_ABS",
+        "MAILLAGE/VERSION",
+    ])
+};
+
+pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     for occ in kw.factor("MAILLAGE") {
         let c = ex.required("TEST_RESU/MAILLAGE", occ, "MAILLAGE")?;
@@ -270,7 +306,10 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                             "TEST_RESU/RESU",
                             occ,
                             "PARA",
-                            format!("ITER_GLOB: no computed increment at NUME_ORDRE {}", step.nume_ordre),
+                            format!(
+                                "ITER_GLOB: no computed increment at NUME_ORDRE {}",
+                                step.nume_ordre
+                            ),
                         )
                     })?;
                     raw.newton_iterations as f64
@@ -385,23 +424,37 @@ pub(crate) fn filter_rows(table: &Table, filters: &[Keywords]) -> Result<Vec<usi
     Ok(rows)
 }
 
+/// What TEST_TABLE reads (`crate::support`).
+pub(crate) const TEST_TABLE: Support = Support::keywords(&[
+    "TABLE",
+    "NOM_PARA",
+    "TYPE_TEST",
+    "INFO",
+    "FILTRE",
+    "FILTRE/NOM_PARA",
+    "FILTRE/CRIT_COMP",
+    "FILTRE/VALE",
+    "FILTRE/VALE_I",
+    "FILTRE/VALE_K",
+    "FILTRE/CRITERE",
+    "FILTRE/PRECISION",
+    "VALE_CALC",
+    "VALE_CALC_I",
+    "VALE_REFE",
+    "VALE_REFE_I",
+    "VALE",
+    "VALE_I",
+    "REFERENCE",
+    "PRECISION",
+    "CRITERE",
+    "TOLE_MACHINE",
+    "ORDRE_GRANDEUR",
+    "LEGENDE",
+    "VALE_ABS",
+    "VERSION",
+]);
+
 pub fn test_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    let mut allow: Vec<&str> = vec![
-        "TABLE",
-        "NOM_PARA",
-        "TYPE_TEST",
-        "INFO",
-        "FILTRE",
-        "FILTRE/NOM_PARA",
-        "FILTRE/CRIT_COMP",
-        "FILTRE/VALE",
-        "FILTRE/VALE_I",
-        "FILTRE/VALE_K",
-        "FILTRE/CRITERE",
-        "FILTRE/PRECISION",
-    ];
-    allow.extend_from_slice(TEST_KEYS);
-    ex.check_keywords(call, &allow)?;
     let kw = &call.keywords;
     let t = ex.required("TEST_TABLE", kw, "TABLE")?;
     let table = ex.table(t)?;
@@ -457,11 +510,30 @@ pub fn test_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
 
 /// TEST_FONCTION/VALEUR: a function's value at `VALE_PARA`, checked as
 /// TEST_RESU checks a value.
+/// What TEST_FONCTION reads (`crate::support`).
+pub(crate) const TEST_FONCTION: Support = Support::keywords(&[
+    "INFO",
+    "VALEUR",
+    "VALEUR/FONCTION",
+    "VALEUR/NOM_PARA",
+    "VALEUR/VALE_PARA",
+    "VALEUR/VALE_CALC",
+    "VALEUR/VALE_CALC_I",
+    "VALEUR/VALE_REFE",
+    "VALEUR/VALE_REFE_I",
+    "VALEUR/VALE",
+    "VALEUR/VALE_I",
+    "VALEUR/REFERENCE",
+    "VALEUR/PRECISION",
+    "VALEUR/CRITERE",
+    "VALEUR/TOLE_MACHINE",
+    "VALEUR/ORDRE_GRANDEUR",
+    "VALEUR/LEGENDE",
+    "VALEUR/VALE_ABS",
+    "VALEUR/VERSION",
+]);
+
 pub fn test_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    let mut allow: Vec<String> = vec!["INFO".into()];
-    allow.extend(allowed("VALEUR", &["FONCTION", "NOM_PARA", "VALE_PARA"]));
-    let allow: Vec<&str> = allow.iter().map(String::as_str).collect();
-    ex.check_keywords(call, &allow)?;
     for occ in call.keywords.factor("VALEUR") {
         let cmd = "TEST_FONCTION/VALEUR";
         let f_ref = ex.required(cmd, occ, "FONCTION")?;

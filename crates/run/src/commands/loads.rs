@@ -3,6 +3,7 @@
 use crate::concept::*;
 use crate::executor::{store_result, Executor};
 use crate::select;
+use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::{Mesh, NodeId};
 use std::rc::Rc;
@@ -118,6 +119,25 @@ fn blocage(
     Ok(())
 }
 
+/// One imposed value per node and component in a load, the last one given
+/// (code_aster: `ordlrl` drops the earlier single-term relations of an
+/// AFFE_CHAR_MECA load, whatever their values; AFFE_CHAR_CINE's `charci`
+/// overwrites its field occurrence after occurrence). A DOF on two lines
+/// of a boundary, e.g. given by a function on one and 0 on the other,
+/// is no conflict.
+pub(crate) fn last_per_dof<T>(items: Vec<T>, key: impl Fn(&T) -> (NodeId, CompName)) -> Vec<T> {
+    let mut last = std::collections::HashMap::new();
+    for (k, item) in items.iter().enumerate() {
+        last.insert(key(item), k);
+    }
+    items
+        .into_iter()
+        .enumerate()
+        .filter(|(k, item)| last.get(&key(item)) == Some(k))
+        .map(|(_, item)| item)
+        .collect()
+}
+
 /// The imposed values of one occurrence, appended to `out`.
 fn imposed_in(
     ex: &Executor,
@@ -165,24 +185,23 @@ fn imposed_in(
     Ok(())
 }
 
+/// What AFFE_CHAR_CINE reads (`crate::support`).
+pub(crate) const AFFE_CHAR_CINE: Support = Support::keywords(&[
+    "MODELE",
+    "INFO",
+    "MECA_IMPO",
+    "MECA_IMPO/TOUT",
+    "MECA_IMPO/GROUP_NO",
+    "MECA_IMPO/NOEUD",
+    "MECA_IMPO/GROUP_MA",
+    "MECA_IMPO/MAILLE",
+    "MECA_IMPO/SANS_GROUP_NO",
+    "MECA_IMPO/DX",
+    "MECA_IMPO/DY",
+    "MECA_IMPO/DZ",
+]);
+
 pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "INFO",
-            "MECA_IMPO",
-            "MECA_IMPO/TOUT",
-            "MECA_IMPO/GROUP_NO",
-            "MECA_IMPO/NOEUD",
-            "MECA_IMPO/GROUP_MA",
-            "MECA_IMPO/MAILLE",
-            "MECA_IMPO/SANS_GROUP_NO",
-            "MECA_IMPO/DX",
-            "MECA_IMPO/DY",
-            "MECA_IMPO/DZ",
-        ],
-    )?;
     let kw = &call.keywords;
     let model_ref = ex.required("AFFE_CHAR_CINE", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
@@ -200,6 +219,7 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "AFFE_CHAR_CINE: MECA_IMPO is required (the only condition supported yet)",
         ));
     }
+    let imposed = last_per_dof(imposed, |i| (i.node, i.comp));
     store_result(
         ex,
         call,
@@ -211,90 +231,95 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     )
 }
 
+/// What AFFE_CHAR_MECA reads (`crate::support`).
+pub(crate) const AFFE_CHAR_MECA: Support = Support {
+    values: &[Values::new(
+        "DDL_IMPO/BLOCAGE",
+        &["DEPLACEMENT", "ROTATION"],
+    )],
+    ..Support::keywords(&[
+        "MODELE",
+        "INFO",
+        "VERI_NORM",
+        "DOUBLE_LAGRANGE",
+        "DDL_IMPO",
+        "DDL_IMPO/TOUT",
+        "DDL_IMPO/GROUP_NO",
+        "DDL_IMPO/NOEUD",
+        "DDL_IMPO/GROUP_MA",
+        "DDL_IMPO/MAILLE",
+        "DDL_IMPO/SANS_GROUP_NO",
+        "DDL_IMPO/SANS_GROUP_MA",
+        "DDL_IMPO/BLOCAGE",
+        "DDL_IMPO/DX",
+        "DDL_IMPO/DY",
+        "DDL_IMPO/DZ",
+        "FORCE_NODALE",
+        "FORCE_NODALE/GROUP_NO",
+        "FORCE_NODALE/NOEUD",
+        "FORCE_NODALE/FX",
+        "FORCE_NODALE/FY",
+        "FORCE_NODALE/FZ",
+        "FORCE_CONTOUR",
+        "FORCE_CONTOUR/GROUP_MA",
+        "FORCE_CONTOUR/MAILLE",
+        "FORCE_CONTOUR/FX",
+        "FORCE_CONTOUR/FY",
+        "FORCE_FACE",
+        "FORCE_FACE/GROUP_MA",
+        "FORCE_FACE/MAILLE",
+        "FORCE_FACE/FX",
+        "FORCE_FACE/FY",
+        "FORCE_FACE/FZ",
+        "PRES_REP",
+        "PRES_REP/GROUP_MA",
+        "PRES_REP/MAILLE",
+        "PRES_REP/TOUT",
+        "PRES_REP/PRES",
+        "FORCE_INTERNE",
+        "FORCE_INTERNE/TOUT",
+        "FORCE_INTERNE/GROUP_MA",
+        "FORCE_INTERNE/MAILLE",
+        "FORCE_INTERNE/FX",
+        "FORCE_INTERNE/FY",
+        "FORCE_INTERNE/FZ",
+        "FACE_IMPO",
+        "FACE_IMPO/GROUP_MA",
+        "FACE_IMPO/MAILLE",
+        "FACE_IMPO/SANS_GROUP_NO",
+        "FACE_IMPO/DX",
+        "FACE_IMPO/DY",
+        "FACE_IMPO/DZ",
+        "FACE_IMPO/DNOR",
+        "FACE_IMPO/SANS_GROUP_MA",
+        "LIAISON_GROUP",
+        "LIAISON_GROUP/GROUP_NO_1",
+        "LIAISON_GROUP/GROUP_NO_2",
+        "LIAISON_GROUP/GROUP_MA_1",
+        "LIAISON_GROUP/GROUP_MA_2",
+        "LIAISON_GROUP/SANS_GROUP_NO",
+        "LIAISON_GROUP/DDL_1",
+        "LIAISON_GROUP/DDL_2",
+        "LIAISON_GROUP/COEF_MULT_1",
+        "LIAISON_GROUP/COEF_MULT_2",
+        "LIAISON_GROUP/COEF_IMPO",
+        "LIAISON_UNIF",
+        "LIAISON_UNIF/GROUP_NO",
+        "LIAISON_UNIF/NOEUD",
+        "LIAISON_UNIF/GROUP_MA",
+        "LIAISON_UNIF/MAILLE",
+        "LIAISON_UNIF/SANS_GROUP_NO",
+        "LIAISON_UNIF/DDL",
+        "LIAISON_DDL",
+        "LIAISON_DDL/GROUP_NO",
+        "LIAISON_DDL/NOEUD",
+        "LIAISON_DDL/DDL",
+        "LIAISON_DDL/COEF_MULT",
+        "LIAISON_DDL/COEF_IMPO",
+    ])
+};
+
 pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "INFO",
-            "VERI_NORM",
-            "DOUBLE_LAGRANGE",
-            "DDL_IMPO",
-            "DDL_IMPO/TOUT",
-            "DDL_IMPO/GROUP_NO",
-            "DDL_IMPO/NOEUD",
-            "DDL_IMPO/GROUP_MA",
-            "DDL_IMPO/MAILLE",
-            "DDL_IMPO/SANS_GROUP_NO",
-            "DDL_IMPO/SANS_GROUP_MA",
-            "DDL_IMPO/BLOCAGE",
-            "DDL_IMPO/DX",
-            "DDL_IMPO/DY",
-            "DDL_IMPO/DZ",
-            "FORCE_NODALE",
-            "FORCE_NODALE/GROUP_NO",
-            "FORCE_NODALE/NOEUD",
-            "FORCE_NODALE/FX",
-            "FORCE_NODALE/FY",
-            "FORCE_NODALE/FZ",
-            "FORCE_CONTOUR",
-            "FORCE_CONTOUR/GROUP_MA",
-            "FORCE_CONTOUR/MAILLE",
-            "FORCE_CONTOUR/FX",
-            "FORCE_CONTOUR/FY",
-            "FORCE_FACE",
-            "FORCE_FACE/GROUP_MA",
-            "FORCE_FACE/MAILLE",
-            "FORCE_FACE/FX",
-            "FORCE_FACE/FY",
-            "FORCE_FACE/FZ",
-            "PRES_REP",
-            "PRES_REP/GROUP_MA",
-            "PRES_REP/MAILLE",
-            "PRES_REP/TOUT",
-            "PRES_REP/PRES",
-            "FORCE_INTERNE",
-            "FORCE_INTERNE/TOUT",
-            "FORCE_INTERNE/GROUP_MA",
-            "FORCE_INTERNE/MAILLE",
-            "FORCE_INTERNE/FX",
-            "FORCE_INTERNE/FY",
-            "FORCE_INTERNE/FZ",
-            "FACE_IMPO",
-            "FACE_IMPO/GROUP_MA",
-            "FACE_IMPO/MAILLE",
-            "FACE_IMPO/SANS_GROUP_NO",
-            "FACE_IMPO/DX",
-            "FACE_IMPO/DY",
-            "FACE_IMPO/DZ",
-            "FACE_IMPO/DNOR",
-            "FACE_IMPO/SANS_GROUP_MA",
-            "LIAISON_GROUP",
-            "LIAISON_GROUP/GROUP_NO_1",
-            "LIAISON_GROUP/GROUP_NO_2",
-            "LIAISON_GROUP/GROUP_MA_1",
-            "LIAISON_GROUP/GROUP_MA_2",
-            "LIAISON_GROUP/SANS_GROUP_NO",
-            "LIAISON_GROUP/DDL_1",
-            "LIAISON_GROUP/DDL_2",
-            "LIAISON_GROUP/COEF_MULT_1",
-            "LIAISON_GROUP/COEF_MULT_2",
-            "LIAISON_GROUP/COEF_IMPO",
-            "LIAISON_UNIF",
-            "LIAISON_UNIF/GROUP_NO",
-            "LIAISON_UNIF/NOEUD",
-            "LIAISON_UNIF/GROUP_MA",
-            "LIAISON_UNIF/MAILLE",
-            "LIAISON_UNIF/SANS_GROUP_NO",
-            "LIAISON_UNIF/DDL",
-            "LIAISON_DDL",
-            "LIAISON_DDL/GROUP_NO",
-            "LIAISON_DDL/NOEUD",
-            "LIAISON_DDL/DDL",
-            "LIAISON_DDL/COEF_MULT",
-            "LIAISON_DDL/COEF_IMPO",
-        ],
-    )?;
     let kw = &call.keywords;
     let model_ref = ex.required("AFFE_CHAR_MECA", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
@@ -319,6 +344,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         &["DX", "DY", "DZ"],
         "AFFE_CHAR_MECA/FACE_IMPO",
     )?);
+    load.imposed = last_per_dof(std::mem::take(&mut load.imposed), |i| (i.node, i.comp));
     for occ in kw.factor("FORCE_INTERNE") {
         let cells = select::cells(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/FORCE_INTERNE: {e}")))?;
@@ -459,13 +485,6 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONTACT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
-    if kw.str("FROTTEMENT") == Some("COULOMB") {
-        let span = kw.keyword("FROTTEMENT").map(|k| k.span).unwrap_or_default();
-        return Err(ex.unsupported(
-            "DEFI_CONTACT/FROTTEMENT='COULOMB' (frictionless contact only)",
-            span,
-        ));
-    }
     let formulation = kw.str("FORMULATION").unwrap_or("DISCRETE");
     if formulation != "LIAISON_UNIL" {
         // Check the keywords now (errors at the command that has them);
@@ -477,23 +496,6 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
         };
         return store_result(ex, call, Concept::Contact(Rc::new(def)));
     }
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "INFO",
-            "FORMULATION",
-            "ZONE",
-            "ZONE/GROUP_NO",
-            "ZONE/GROUP_MA",
-            "ZONE/SANS_GROUP_NO",
-            "ZONE/NOM_CMP",
-            "ZONE/COEF_IMPO",
-            "ZONE/COEF_MULT",
-            "ZONE/ALGO_CONT",
-            "ZONE/COEF_PENA",
-        ],
-    )?;
     let mesh = ex.mesh_by_id(model.mesh)?;
     let carried = carried_nodes(&model, &mesh);
     let mut zones = Vec::new();
@@ -616,8 +618,7 @@ fn face_dnor(
             ));
         }
     }
-    let cells =
-        select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    let cells = select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
     let nodes =
         select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
     let dim = model.dim();
@@ -687,7 +688,6 @@ fn face_dnor(
     }
     Ok(out)
 }
-
 
 /// `LIAISON_GROUP`: each node of side 1 is paired with the nearest node of
 /// side 2 (code_aster's pairing without a transformation), and each pair
@@ -797,4 +797,33 @@ fn liaison_group(
         out.push(LinearRelation { terms, rhs });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_dof_given_twice_in_a_load_keeps_its_last_value() {
+        let i = |n: u32, comp: CompName, value: f64| Imposed {
+            node: NodeId(n),
+            comp,
+            value,
+        };
+        // SSNP167E: a node on the loaded arc (DX = -4.8e-19 by a function)
+        // and on the symmetry line (DX = 0).
+        let kept = last_per_dof(
+            vec![
+                i(4, "DX", -4.8e-19),
+                i(4, "DY", 1.0),
+                i(5, "DX", 2.0),
+                i(4, "DX", 0.0),
+            ],
+            |i| (i.node, i.comp),
+        );
+        assert_eq!(
+            kept,
+            vec![i(4, "DY", 1.0), i(5, "DX", 2.0), i(4, "DX", 0.0)]
+        );
+    }
 }

@@ -13,6 +13,7 @@ use super::loads::{carried_nodes, check_dof};
 use crate::concept::*;
 use crate::executor::{store_result, Executor};
 use crate::select;
+use crate::support::Support;
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::Mesh;
 use std::rc::Rc;
@@ -101,55 +102,54 @@ fn time_function(
 const DISPLACEMENTS: [(&str, CompName); 3] = [("DX", "DX"), ("DY", "DY"), ("DZ", "DZ")];
 const FORCES: [(&str, CompName); 3] = [("FX", "DX"), ("FY", "DY"), ("FZ", "DZ")];
 
+/// What AFFE_CHAR_MECA_F reads (`crate::support`).
+pub(crate) const AFFE_CHAR_MECA_F: Support = Support::keywords(&[
+    "MODELE",
+    "INFO",
+    "VERI_NORM",
+    "DOUBLE_LAGRANGE",
+    "DDL_IMPO",
+    "DDL_IMPO/TOUT",
+    "DDL_IMPO/GROUP_NO",
+    "DDL_IMPO/NOEUD",
+    "DDL_IMPO/GROUP_MA",
+    "DDL_IMPO/MAILLE",
+    "DDL_IMPO/SANS_GROUP_NO",
+    "DDL_IMPO/DX",
+    "DDL_IMPO/DY",
+    "DDL_IMPO/DZ",
+    "FORCE_NODALE",
+    "FORCE_NODALE/GROUP_NO",
+    "FORCE_NODALE/NOEUD",
+    "FORCE_NODALE/FX",
+    "FORCE_NODALE/FY",
+    "FORCE_NODALE/FZ",
+    "FORCE_CONTOUR",
+    "FORCE_CONTOUR/GROUP_MA",
+    "FORCE_CONTOUR/MAILLE",
+    "FORCE_CONTOUR/FX",
+    "FORCE_CONTOUR/FY",
+    "FORCE_FACE",
+    "FORCE_FACE/GROUP_MA",
+    "FORCE_FACE/MAILLE",
+    "FORCE_FACE/FX",
+    "FORCE_FACE/FY",
+    "FORCE_FACE/FZ",
+    "FORCE_INTERNE",
+    "FORCE_INTERNE/TOUT",
+    "FORCE_INTERNE/GROUP_MA",
+    "FORCE_INTERNE/MAILLE",
+    "FORCE_INTERNE/FX",
+    "FORCE_INTERNE/FY",
+    "FORCE_INTERNE/FZ",
+    "PRES_REP",
+    "PRES_REP/GROUP_MA",
+    "PRES_REP/MAILLE",
+    "PRES_REP/TOUT",
+    "PRES_REP/PRES",
+]);
+
 pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "INFO",
-            "VERI_NORM",
-            "DOUBLE_LAGRANGE",
-            "DDL_IMPO",
-            "DDL_IMPO/TOUT",
-            "DDL_IMPO/GROUP_NO",
-            "DDL_IMPO/NOEUD",
-            "DDL_IMPO/GROUP_MA",
-            "DDL_IMPO/MAILLE",
-            "DDL_IMPO/SANS_GROUP_NO",
-            "DDL_IMPO/DX",
-            "DDL_IMPO/DY",
-            "DDL_IMPO/DZ",
-            "FORCE_NODALE",
-            "FORCE_NODALE/GROUP_NO",
-            "FORCE_NODALE/NOEUD",
-            "FORCE_NODALE/FX",
-            "FORCE_NODALE/FY",
-            "FORCE_NODALE/FZ",
-            "FORCE_CONTOUR",
-            "FORCE_CONTOUR/GROUP_MA",
-            "FORCE_CONTOUR/MAILLE",
-            "FORCE_CONTOUR/FX",
-            "FORCE_CONTOUR/FY",
-            "FORCE_FACE",
-            "FORCE_FACE/GROUP_MA",
-            "FORCE_FACE/MAILLE",
-            "FORCE_FACE/FX",
-            "FORCE_FACE/FY",
-            "FORCE_FACE/FZ",
-            "FORCE_INTERNE",
-            "FORCE_INTERNE/TOUT",
-            "FORCE_INTERNE/GROUP_MA",
-            "FORCE_INTERNE/MAILLE",
-            "FORCE_INTERNE/FX",
-            "FORCE_INTERNE/FY",
-            "FORCE_INTERNE/FZ",
-            "PRES_REP",
-            "PRES_REP/GROUP_MA",
-            "PRES_REP/MAILLE",
-            "PRES_REP/TOUT",
-            "PRES_REP/PRES",
-        ],
-    )?;
     let cmd = "AFFE_CHAR_MECA_F";
     let kw = &call.keywords;
     let model_ref = ex.required(cmd, kw, "MODELE")?;
@@ -166,6 +166,8 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
         load.imposed_fn
             .extend(nodal_functions(ex, what, occ, ctx, &DISPLACEMENTS)?);
     }
+    load.imposed_fn =
+        super::loads::last_per_dof(std::mem::take(&mut load.imposed_fn), |i| (i.node, i.comp));
     for occ in kw.factor("FORCE_NODALE") {
         let what = "AFFE_CHAR_MECA_F/FORCE_NODALE";
         load.nodal_forces_fn
@@ -210,24 +212,23 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
     store_result(ex, call, Concept::MechanicalLoad(Rc::new(load)))
 }
 
+/// What AFFE_CHAR_CINE_F reads (`crate::support`).
+pub(crate) const AFFE_CHAR_CINE_F: Support = Support::keywords(&[
+    "MODELE",
+    "INFO",
+    "MECA_IMPO",
+    "MECA_IMPO/TOUT",
+    "MECA_IMPO/GROUP_NO",
+    "MECA_IMPO/NOEUD",
+    "MECA_IMPO/GROUP_MA",
+    "MECA_IMPO/MAILLE",
+    "MECA_IMPO/SANS_GROUP_NO",
+    "MECA_IMPO/DX",
+    "MECA_IMPO/DY",
+    "MECA_IMPO/DZ",
+]);
+
 pub fn affe_char_cine_f(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MODELE",
-            "INFO",
-            "MECA_IMPO",
-            "MECA_IMPO/TOUT",
-            "MECA_IMPO/GROUP_NO",
-            "MECA_IMPO/NOEUD",
-            "MECA_IMPO/GROUP_MA",
-            "MECA_IMPO/MAILLE",
-            "MECA_IMPO/SANS_GROUP_NO",
-            "MECA_IMPO/DX",
-            "MECA_IMPO/DY",
-            "MECA_IMPO/DZ",
-        ],
-    )?;
     let cmd = "AFFE_CHAR_CINE_F/MECA_IMPO";
     let kw = &call.keywords;
     let model_ref = ex.required("AFFE_CHAR_CINE_F", kw, "MODELE")?;
@@ -244,6 +245,7 @@ pub fn affe_char_cine_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
     for occ in kw.factor("MECA_IMPO") {
         imposed_fn.extend(nodal_functions(ex, cmd, occ, ctx, &DISPLACEMENTS)?);
     }
+    let imposed_fn = super::loads::last_per_dof(imposed_fn, |i| (i.node, i.comp));
     store_result(
         ex,
         call,

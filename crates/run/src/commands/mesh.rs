@@ -3,6 +3,7 @@
 use crate::concept::Concept;
 use crate::executor::{store_result, Executor};
 use crate::select;
+use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::{Along, Group, Mesh, NodeId, NodeKind};
 use std::collections::BTreeSet;
@@ -14,22 +15,23 @@ pub fn read_mesh_file(path: &Path, format: &str) -> Result<Mesh, String> {
     crate::meshio::read(path, format)
 }
 
+/// What LIRE_MAILLAGE reads (`crate::support`).
+pub(crate) const LIRE_MAILLAGE: Support = Support {
+    values: &[Values::new("FORMAT", &["MED", "ASTER"])],
+    ..Support::keywords(&[
+        "FORMAT",
+        "UNITE",
+        "NOM_MED",
+        "INFO",
+        "INFO_MED",
+        "VERI_MAIL",
+        "VERI_MAIL/*",
+    ])
+};
+
 pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "FORMAT",
-            "UNITE",
-            "NOM_MED",
-            "INFO",
-            "INFO_MED",
-            "VERI_MAIL",
-            "VERI_MAIL/*",
-        ],
-    )?;
     let kw = &call.keywords;
     let format = kw.str("FORMAT").unwrap_or("MED");
-    ex.only_values("LIRE_MAILLAGE", kw, "FORMAT", &["MED", "ASTER"])?;
     let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(20);
     let path = ex.input_path(unit as u32).map(Path::to_path_buf).ok_or_else(|| {
         ExecError::new(format!(
@@ -37,9 +39,19 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             if format == "MED" { "mmed" } else { "mail" }
         ))
     })?;
-    let mesh = read_mesh_file(&path, format)
-        .map_err(|e| ExecError::new(format!("LIRE_MAILLAGE: {}: {e}", path.display())))?;
-    store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
+    let read = ex
+        .read_meshes
+        .iter()
+        .find(|m| m.path == path && m.format == format)
+        .map(|m| m.mesh.clone());
+    let mesh = match read {
+        Some(m) => m,
+        None => Arc::new(
+            read_mesh_file(&path, format)
+                .map_err(|e| ExecError::new(format!("LIRE_MAILLAGE: {}: {e}", path.display())))?,
+        ),
+    };
+    store_result(ex, call, Concept::Mesh(mesh))
 }
 
 /// The mesh updated in place (`reuse=`) or copied into a new concept.
@@ -48,52 +60,51 @@ fn mesh_to_modify(ex: &Executor, call: &CommandCall) -> Result<Mesh, ExecError> 
     Ok((*ex.mesh(src)?).clone())
 }
 
+/// What DEFI_GROUP reads (`crate::support`).
+pub(crate) const DEFI_GROUP: Support = Support::keywords(&[
+    "MAILLAGE",
+    "INFO",
+    "CREA_GROUP_NO",
+    "CREA_GROUP_NO/TOUT_GROUP_MA",
+    "CREA_GROUP_NO/GROUP_MA",
+    "CREA_GROUP_NO/NOM",
+    "CREA_GROUP_NO/NOEUD",
+    "CREA_GROUP_NO/GROUP_NO",
+    "CREA_GROUP_NO/CRIT_NOEUD",
+    "CREA_GROUP_NO/OPTION",
+    "CREA_GROUP_NO/POINT",
+    "CREA_GROUP_NO/RAYON",
+    "CREA_GROUP_NO/PRECISION",
+    "CREA_GROUP_NO/CRITERE",
+    "CREA_GROUP_NO/NOEUD_CENTRE",
+    "CREA_GROUP_NO/GROUP_NO_CENTRE",
+    "CREA_GROUP_NO/VECT_NORMALE",
+    "CREA_GROUP_NO/ANGL_NAUT",
+    "CREA_GROUP_NO/GROUP_NO_ORIG",
+    "CREA_GROUP_NO/GROUP_NO_EXTR",
+    "CREA_GROUP_NO/UNION",
+    "CREA_GROUP_NO/INTERSEC",
+    "CREA_GROUP_NO/DIFFE",
+    "CREA_GROUP_MA/UNION",
+    "CREA_GROUP_MA/INTERSEC",
+    "CREA_GROUP_MA/DIFFE",
+    "CREA_GROUP_MA",
+    "CREA_GROUP_MA/NOM",
+    "CREA_GROUP_MA/GROUP_MA",
+    "CREA_GROUP_MA/MAILLE",
+    "CREA_GROUP_MA/TOUT",
+    "CREA_GROUP_MA/OPTION",
+    "CREA_GROUP_MA/VECT_NORMALE",
+    "CREA_GROUP_MA/ANGL_NAUT",
+    "CREA_GROUP_MA/ANGL_PREC",
+    "CREA_GROUP_MA/VERI_SIGNE",
+    "DETR_GROUP_NO",
+    "DETR_GROUP_NO/NOM",
+    "DETR_GROUP_MA",
+    "DETR_GROUP_MA/NOM",
+]);
+
 pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MAILLAGE",
-            "INFO",
-            "CREA_GROUP_NO",
-            "CREA_GROUP_NO/TOUT_GROUP_MA",
-            "CREA_GROUP_NO/GROUP_MA",
-            "CREA_GROUP_NO/NOM",
-            "CREA_GROUP_NO/NOEUD",
-            "CREA_GROUP_NO/GROUP_NO",
-            "CREA_GROUP_NO/CRIT_NOEUD",
-            "CREA_GROUP_NO/OPTION",
-            "CREA_GROUP_NO/POINT",
-            "CREA_GROUP_NO/RAYON",
-            "CREA_GROUP_NO/PRECISION",
-            "CREA_GROUP_NO/CRITERE",
-            "CREA_GROUP_NO/NOEUD_CENTRE",
-            "CREA_GROUP_NO/GROUP_NO_CENTRE",
-            "CREA_GROUP_NO/VECT_NORMALE",
-            "CREA_GROUP_NO/ANGL_NAUT",
-            "CREA_GROUP_NO/GROUP_NO_ORIG",
-            "CREA_GROUP_NO/GROUP_NO_EXTR",
-            "CREA_GROUP_NO/UNION",
-            "CREA_GROUP_NO/INTERSEC",
-            "CREA_GROUP_NO/DIFFE",
-            "CREA_GROUP_MA/UNION",
-            "CREA_GROUP_MA/INTERSEC",
-            "CREA_GROUP_MA/DIFFE",
-            "CREA_GROUP_MA",
-            "CREA_GROUP_MA/NOM",
-            "CREA_GROUP_MA/GROUP_MA",
-            "CREA_GROUP_MA/MAILLE",
-            "CREA_GROUP_MA/TOUT",
-            "CREA_GROUP_MA/OPTION",
-            "CREA_GROUP_MA/VECT_NORMALE",
-            "CREA_GROUP_MA/ANGL_NAUT",
-            "CREA_GROUP_MA/ANGL_PREC",
-            "CREA_GROUP_MA/VERI_SIGNE",
-            "DETR_GROUP_NO",
-            "DETR_GROUP_NO/NOM",
-            "DETR_GROUP_MA",
-            "DETR_GROUP_MA/NOM",
-        ],
-    )?;
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
     let names = |k: &aster_eval::Keywords, n: &str| -> Vec<String> {
@@ -204,6 +215,9 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 "CREA_GROUP_NO needs NOM (or TOUT_GROUP_MA/GROUP_MA)",
             ));
         };
+        if set_operation(&mut mesh, occ, name, true)? {
+            continue;
+        }
         let nodes = if kind != NodeKind::All && !groups_ma.is_empty() {
             let cells = select::cells(occ, &mesh, "")
                 .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?;
@@ -259,38 +273,39 @@ fn put_group<T>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) {
     });
 }
 
+/// What MODI_MAILLAGE reads (`crate::support`).
+pub(crate) const MODI_MAILLAGE: Support = Support {
+    values: &[Values::new("DEFORME/OPTION", &["TRAN"])],
+    ..Support::keywords(&[
+        "MAILLAGE",
+        "INFO",
+        "ORIE_PEAU",
+        "ORIE_PEAU/GROUP_MA_PEAU",
+        "ORIE_PEAU/GROUP_MA_INTERNE",
+        "ORIE_PEAU_2D",
+        "ORIE_PEAU_2D/GROUP_MA",
+        "ORIE_NORM_COQUE",
+        "ORIE_NORM_COQUE/GROUP_MA",
+        "ORIE_NORM_COQUE/VECT_NORM",
+        "ORIE_NORM_COQUE/GROUP_NO",
+        "ORIE_NORM_COQUE/NOEUD",
+        "ORIE_LIGNE",
+        "ORIE_LIGNE/GROUP_MA",
+        "ORIE_LIGNE/VECT_TANG",
+        "ORIE_LIGNE/GROUP_NO",
+        "ORIE_LIGNE/NOEUD",
+        "DEFORME",
+        "DEFORME/OPTION",
+        "DEFORME/DEPL",
+        "ECHELLE",
+    ])
+};
+
 pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MAILLAGE",
-            "INFO",
-            "ORIE_PEAU",
-            "ORIE_PEAU/GROUP_MA_PEAU",
-            "ORIE_PEAU/GROUP_MA_INTERNE",
-            "ORIE_PEAU_2D",
-            "ORIE_PEAU_2D/GROUP_MA",
-            "ORIE_NORM_COQUE",
-            "ORIE_NORM_COQUE/GROUP_MA",
-            "ORIE_NORM_COQUE/VECT_NORM",
-            "ORIE_NORM_COQUE/GROUP_NO",
-            "ORIE_NORM_COQUE/NOEUD",
-            "ORIE_LIGNE",
-            "ORIE_LIGNE/GROUP_MA",
-            "ORIE_LIGNE/VECT_TANG",
-            "ORIE_LIGNE/GROUP_NO",
-            "ORIE_LIGNE/NOEUD",
-            "DEFORME",
-            "DEFORME/OPTION",
-            "DEFORME/DEPL",
-            "ECHELLE",
-        ],
-    )?;
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
     for occ in kw.factor("DEFORME") {
         // OPTION='TRAN': every node moves by the field's DX, DY, DZ.
-        ex.only_values("MODI_MAILLAGE/DEFORME", occ, "OPTION", &["TRAN"])?;
         let d = ex.required("MODI_MAILLAGE/DEFORME", occ, "DEPL")?;
         let field = ex.field(d)?;
         let crate::field::Field::Nodal(f) = &*field else {

@@ -1,74 +1,297 @@
 //! One module per family of commands; [`dispatch`] maps a command name to
 //! its implementation.
 
-mod crea_maillage;
-mod define;
-mod elementary;
-mod functions;
-mod inspect;
-mod loads;
-mod loads_f;
-mod mesh;
-mod post;
-mod pressure;
-mod tables;
+pub(crate) mod crea_maillage;
+pub(crate) mod define;
+pub(crate) mod elementary;
+pub(crate) mod functions;
+pub(crate) mod inspect;
+pub(crate) mod loads;
+pub(crate) mod loads_f;
+pub(crate) mod mesh;
+pub(crate) mod post;
+pub(crate) mod pressure;
+pub(crate) mod tables;
 
 use crate::executor::Executor;
+use crate::support::Support;
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 
-/// Runs one command.
+/// The implementation of one command.
+type Handler = fn(&mut Executor, &CommandCall) -> Result<CommandOutput, ExecError>;
+
+/// A command `aster run` executes: its implementation and what it supports.
+pub struct Command {
+    pub name: &'static str,
+    run: Handler,
+    pub support: Support,
+}
+
+/// Every command `aster run` executes. Any other is refused (before the run,
+/// by `crate::preflight`).
+pub static COMMANDS: &[Command] = &[
+    Command {
+        name: "DEBUT",
+        run: nothing,
+        support: Support::keywords(&["*"]),
+    },
+    Command {
+        name: "POURSUITE",
+        run: nothing,
+        support: Support::keywords(&["*"]),
+    },
+    Command {
+        name: "FIN",
+        run: fin,
+        support: Support::keywords(&["*"]),
+    },
+    Command {
+        name: "DETRUIRE",
+        run: nothing,
+        support: Support::keywords(&["*"]),
+    },
+    // The formula itself arrives through `CommandSink::formula`.
+    Command {
+        name: "FORMULE",
+        run: concept,
+        support: Support::keywords(&["*"]),
+    },
+    Command {
+        name: "LIRE_MAILLAGE",
+        run: mesh::lire_maillage,
+        support: mesh::LIRE_MAILLAGE,
+    },
+    Command {
+        name: "DEFI_GROUP",
+        run: mesh::defi_group,
+        support: mesh::DEFI_GROUP,
+    },
+    Command {
+        name: "MODI_MAILLAGE",
+        run: mesh::modi_maillage,
+        support: mesh::MODI_MAILLAGE,
+    },
+    Command {
+        name: "CREA_MAILLAGE",
+        run: crea_maillage::crea_maillage,
+        support: crea_maillage::CREA_MAILLAGE,
+    },
+    Command {
+        name: "DEFI_MATERIAU",
+        run: define::defi_materiau,
+        support: define::DEFI_MATERIAU,
+    },
+    Command {
+        name: "AFFE_MATERIAU",
+        run: define::affe_materiau,
+        support: define::AFFE_MATERIAU,
+    },
+    Command {
+        name: "AFFE_MODELE",
+        run: define::affe_modele,
+        support: define::AFFE_MODELE,
+    },
+    Command {
+        name: "AFFE_CARA_ELEM",
+        run: define::affe_cara_elem,
+        support: define::AFFE_CARA_ELEM,
+    },
+    Command {
+        name: "DEFI_FONCTION",
+        run: define::defi_fonction,
+        support: define::DEFI_FONCTION,
+    },
+    Command {
+        name: "DEFI_CONSTANTE",
+        run: define::defi_constante,
+        support: define::DEFI_CONSTANTE,
+    },
+    Command {
+        name: "DEFI_LIST_REEL",
+        run: define::defi_list_reel,
+        support: define::DEFI_LIST_REEL,
+    },
+    Command {
+        name: "DEFI_LIST_INST",
+        run: define::defi_list_inst,
+        support: define::DEFI_LIST_INST,
+    },
+    Command {
+        name: "AFFE_CHAR_CINE",
+        run: loads::affe_char_cine,
+        support: loads::AFFE_CHAR_CINE,
+    },
+    Command {
+        name: "AFFE_CHAR_MECA",
+        run: loads::affe_char_meca,
+        support: loads::AFFE_CHAR_MECA,
+    },
+    Command {
+        name: "AFFE_CHAR_MECA_F",
+        run: loads_f::affe_char_meca_f,
+        support: loads_f::AFFE_CHAR_MECA_F,
+    },
+    Command {
+        name: "AFFE_CHAR_CINE_F",
+        run: loads_f::affe_char_cine_f,
+        support: loads_f::AFFE_CHAR_CINE_F,
+    },
+    Command {
+        name: "DEFI_CONTACT",
+        run: loads::defi_contact,
+        support: crate::contactbridge::DEFI_CONTACT,
+    },
+    Command {
+        name: "STAT_NON_LINE",
+        run: crate::solve::stat_non_line,
+        support: crate::solve::STAT_NON_LINE,
+    },
+    Command {
+        name: "MECA_STATIQUE",
+        run: crate::solve::meca_statique,
+        support: crate::solve::MECA_STATIQUE,
+    },
+    Command {
+        name: "CALC_CHAMP",
+        run: crate::solve::calc_champ,
+        support: crate::solve::CALC_CHAMP,
+    },
+    Command {
+        name: "CREA_CHAMP",
+        run: post::crea_champ,
+        support: post::CREA_CHAMP,
+    },
+    Command {
+        name: "POST_RELEVE_T",
+        run: post::post_releve_t,
+        support: post::POST_RELEVE_T,
+    },
+    Command {
+        name: "IMPR_TABLE",
+        run: post::impr_table,
+        support: post::IMPR_TABLE,
+    },
+    Command {
+        name: "IMPR_RESU",
+        run: post::impr_resu,
+        support: crate::output::IMPR_RESU,
+    },
+    Command {
+        name: "TEST_RESU",
+        run: inspect::test_resu,
+        support: inspect::TEST_RESU,
+    },
+    Command {
+        name: "TEST_TABLE",
+        run: inspect::test_table,
+        support: inspect::TEST_TABLE,
+    },
+    Command {
+        name: "TEST_FONCTION",
+        run: inspect::test_fonction,
+        support: inspect::TEST_FONCTION,
+    },
+    Command {
+        name: "CALCUL",
+        run: elementary::calcul,
+        support: elementary::CALCUL,
+    },
+    Command {
+        name: "CALC_VECT_ELEM",
+        run: elementary::calc_vect_elem,
+        support: elementary::CALC_VECT_ELEM,
+    },
+    Command {
+        name: "EXTR_TABLE",
+        run: elementary::extr_table,
+        support: elementary::EXTR_TABLE,
+    },
+    Command {
+        name: "NUME_DDL",
+        run: elementary::nume_ddl,
+        support: elementary::NUME_DDL,
+    },
+    Command {
+        name: "ASSE_VECTEUR",
+        run: elementary::asse_vecteur,
+        support: elementary::ASSE_VECTEUR,
+    },
+    Command {
+        name: "RECU_FONCTION",
+        run: functions::recu_fonction,
+        support: functions::RECU_FONCTION,
+    },
+    Command {
+        name: "CALC_FONC_INTERP",
+        run: functions::calc_fonc_interp,
+        support: functions::CALC_FONC_INTERP,
+    },
+    Command {
+        name: "CALC_FONCTION",
+        run: functions::calc_fonction,
+        support: functions::CALC_FONCTION,
+    },
+    Command {
+        name: "IMPR_FONCTION",
+        run: functions::impr_fonction,
+        support: functions::IMPR_FONCTION,
+    },
+    Command {
+        name: "DEFI_LIST_ENTI",
+        run: functions::defi_list_enti,
+        support: functions::DEFI_LIST_ENTI,
+    },
+    Command {
+        name: "DEFI_FICHIER",
+        run: functions::defi_fichier,
+        support: functions::DEFI_FICHIER,
+    },
+    Command {
+        name: "CREA_TABLE",
+        run: tables::crea_table,
+        support: tables::CREA_TABLE,
+    },
+    Command {
+        name: "CALC_TABLE",
+        run: tables::calc_table,
+        support: tables::CALC_TABLE,
+    },
+    Command {
+        name: "CALC_PRESSION",
+        run: pressure::calc_pression,
+        support: pressure::CALC_PRESSION,
+    },
+];
+
+fn nothing(_: &mut Executor, _: &CommandCall) -> Result<CommandOutput, ExecError> {
+    Ok(CommandOutput::Nothing)
+}
+
+fn concept(_: &mut Executor, _: &CommandCall) -> Result<CommandOutput, ExecError> {
+    Ok(CommandOutput::Concept)
+}
+
+fn fin(ex: &mut Executor, _: &CommandCall) -> Result<CommandOutput, ExecError> {
+    ex.finished = true;
+    Ok(CommandOutput::Nothing)
+}
+
+/// The command of that name, if `aster run` executes it.
+pub fn find(name: &str) -> Option<&'static Command> {
+    COMMANDS.iter().find(|c| c.name == name)
+}
+
+/// Runs one command, after checking it against its support entry (the
+/// same check the static pass made: a refusal here is located the same way).
 pub fn dispatch(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    match call.command.as_str() {
-        "DEBUT" | "POURSUITE" => Ok(CommandOutput::Nothing),
-        "FIN" => {
-            ex.finished = true;
-            Ok(CommandOutput::Nothing)
-        }
-        "LIRE_MAILLAGE" => mesh::lire_maillage(ex, call),
-        "DEFI_GROUP" => mesh::defi_group(ex, call),
-        "MODI_MAILLAGE" => mesh::modi_maillage(ex, call),
-        "CREA_MAILLAGE" => crea_maillage::crea_maillage(ex, call),
-        "DEFI_MATERIAU" => define::defi_materiau(ex, call),
-        "AFFE_MATERIAU" => define::affe_materiau(ex, call),
-        "AFFE_MODELE" => define::affe_modele(ex, call),
-        "AFFE_CARA_ELEM" => define::affe_cara_elem(ex, call),
-        "DEFI_FONCTION" => define::defi_fonction(ex, call),
-        "DEFI_CONSTANTE" => define::defi_constante(ex, call),
-        "DEFI_LIST_REEL" => define::defi_list_reel(ex, call),
-        "DEFI_LIST_INST" => define::defi_list_inst(ex, call),
-        "AFFE_CHAR_CINE" => loads::affe_char_cine(ex, call),
-        "AFFE_CHAR_MECA" => loads::affe_char_meca(ex, call),
-        "AFFE_CHAR_MECA_F" => loads_f::affe_char_meca_f(ex, call),
-        "AFFE_CHAR_CINE_F" => loads_f::affe_char_cine_f(ex, call),
-        "DEFI_CONTACT" => loads::defi_contact(ex, call),
-        "STAT_NON_LINE" => crate::solve::stat_non_line(ex, call),
-        "MECA_STATIQUE" => crate::solve::meca_statique(ex, call),
-        "CALC_CHAMP" => crate::solve::calc_champ(ex, call),
-        "CREA_CHAMP" => post::crea_champ(ex, call),
-        "POST_RELEVE_T" => post::post_releve_t(ex, call),
-        "IMPR_TABLE" => post::impr_table(ex, call),
-        "IMPR_RESU" => post::impr_resu(ex, call),
-        "TEST_RESU" => inspect::test_resu(ex, call),
-        "TEST_TABLE" => inspect::test_table(ex, call),
-        "TEST_FONCTION" => inspect::test_fonction(ex, call),
-        "CALCUL" => elementary::calcul(ex, call),
-        "CALC_VECT_ELEM" => elementary::calc_vect_elem(ex, call),
-        "EXTR_TABLE" => elementary::extr_table(ex, call),
-        "NUME_DDL" => elementary::nume_ddl(ex, call),
-        "ASSE_VECTEUR" => elementary::asse_vecteur(ex, call),
-        "RECU_FONCTION" => functions::recu_fonction(ex, call),
-        "CALC_FONC_INTERP" => functions::calc_fonc_interp(ex, call),
-        "CALC_FONCTION" => functions::calc_fonction(ex, call),
-        "IMPR_FONCTION" => functions::impr_fonction(ex, call),
-        "DEFI_LIST_ENTI" => functions::defi_list_enti(ex, call),
-        "DEFI_FICHIER" => functions::defi_fichier(ex, call),
-        "CREA_TABLE" => tables::crea_table(ex, call),
-        "CALC_TABLE" => tables::calc_table(ex, call),
-        "CALC_PRESSION" => pressure::calc_pression(ex, call),
-        "DETRUIRE" => Ok(CommandOutput::Nothing),
-        // The formula itself arrives through `CommandSink::formula`.
-        "FORMULE" => Ok(CommandOutput::Concept),
-        other => Err(ex.unsupported(other, call.span)),
+    let command = find(&call.command);
+    let support = command.map(|c| &c.support);
+    if let Some(r) = crate::support::check_call(support, call).into_iter().next() {
+        return Err(ex.unsupported(&r.what, r.span));
+    }
+    match command {
+        Some(c) => (c.run)(ex, call),
+        None => Err(ex.unsupported(&call.command, call.span)),
     }
 }
 

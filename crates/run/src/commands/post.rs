@@ -4,6 +4,7 @@ use crate::concept::*;
 use crate::executor::{store_result, Executor};
 use crate::field::{Field, NodalField};
 use crate::select;
+use crate::support::{Support, Values};
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ConceptRef, ExecError, Keywords};
 use std::rc::Rc;
@@ -115,43 +116,42 @@ pub fn step_field<'s>(
     })
 }
 
+/// What CREA_CHAMP reads (`crate::support`).
+pub(crate) const CREA_CHAMP: Support = Support::keywords(&[
+    "TYPE_CHAM",
+    "OPERATION",
+    "RESULTAT",
+    "NOM_CHAM",
+    "INST",
+    "NUME_ORDRE",
+    "PRECISION",
+    "CRITERE",
+    "INFO",
+    "TITRE",
+    "MAILLAGE",
+    "MODELE",
+    "COMB",
+    "COMB/CHAM_GD",
+    "COMB/COEF_R",
+    "ASSE",
+    "ASSE/TOUT",
+    "ASSE/GROUP_NO",
+    "ASSE/GROUP_MA",
+    "ASSE/CHAM_GD",
+    "ASSE/NOM_CMP",
+    "ASSE/COEF_R",
+    "ASSE/CUMUL",
+    "AFFE",
+    "AFFE/TOUT",
+    "AFFE/GROUP_NO",
+    "AFFE/NOEUD",
+    "AFFE/GROUP_MA",
+    "AFFE/MAILLE",
+    "AFFE/NOM_CMP",
+    "AFFE/VALE",
+]);
+
 pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "TYPE_CHAM",
-            "OPERATION",
-            "RESULTAT",
-            "NOM_CHAM",
-            "INST",
-            "NUME_ORDRE",
-            "PRECISION",
-            "CRITERE",
-            "INFO",
-            "TITRE",
-            "MAILLAGE",
-            "MODELE",
-            "COMB",
-            "COMB/CHAM_GD",
-            "COMB/COEF_R",
-            "ASSE",
-            "ASSE/TOUT",
-            "ASSE/GROUP_NO",
-            "ASSE/GROUP_MA",
-            "ASSE/CHAM_GD",
-            "ASSE/NOM_CMP",
-            "ASSE/COEF_R",
-            "ASSE/CUMUL",
-            "AFFE",
-            "AFFE/TOUT",
-            "AFFE/GROUP_NO",
-            "AFFE/NOEUD",
-            "AFFE/GROUP_MA",
-            "AFFE/MAILLE",
-            "AFFE/NOM_CMP",
-            "AFFE/VALE",
-        ],
-    )?;
     let kw = &call.keywords;
     let op = kw.str("OPERATION").unwrap_or("");
     let mut origin = None;
@@ -343,35 +343,37 @@ fn table_title(name: &str) -> Vec<String> {
 /// A field to extract from: (result name, field name, (NUME_ORDRE, INST), field).
 type Source = (Option<String>, Option<String>, Option<(u32, f64)>, Field);
 
+/// What POST_RELEVE_T reads (`crate::support`).
+pub(crate) const POST_RELEVE_T: Support = Support {
+    values: &[Values::new("ACTION/REPERE", &["GLOBAL"])],
+    ..Support::keywords(&[
+        "ACTION",
+        "ACTION/OPERATION",
+        "ACTION/INTITULE",
+        "ACTION/RESULTAT",
+        "ACTION/CHAM_GD",
+        "ACTION/NOM_CHAM",
+        "ACTION/INST",
+        "ACTION/LIST_INST",
+        "ACTION/NUME_ORDRE",
+        "ACTION/TOUT_ORDRE",
+        "ACTION/CRITERE",
+        "ACTION/PRECISION",
+        "ACTION/GROUP_NO",
+        "ACTION/NOEUD",
+        "ACTION/GROUP_MA",
+        "ACTION/MAILLE",
+        "ACTION/TOUT",
+        "ACTION/TOUT_CMP",
+        "ACTION/NOM_CMP",
+        "ACTION/RESULTANTE",
+        "ACTION/REPERE",
+        "INFO",
+        "TITRE",
+    ])
+};
+
 pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "ACTION",
-            "ACTION/OPERATION",
-            "ACTION/INTITULE",
-            "ACTION/RESULTAT",
-            "ACTION/CHAM_GD",
-            "ACTION/NOM_CHAM",
-            "ACTION/INST",
-            "ACTION/LIST_INST",
-            "ACTION/NUME_ORDRE",
-            "ACTION/TOUT_ORDRE",
-            "ACTION/CRITERE",
-            "ACTION/PRECISION",
-            "ACTION/GROUP_NO",
-            "ACTION/NOEUD",
-            "ACTION/GROUP_MA",
-            "ACTION/MAILLE",
-            "ACTION/TOUT",
-            "ACTION/TOUT_CMP",
-            "ACTION/NOM_CMP",
-            "ACTION/RESULTANTE",
-            "ACTION/REPERE",
-            "INFO",
-            "TITRE",
-        ],
-    )?;
     let kw = &call.keywords;
     let name = crate::executor::result_of(call)?.name.clone();
     let mut table = Table::new(vec![
@@ -462,7 +464,6 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         let nodes = select::nodes(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("POST_RELEVE_T/ACTION: {e}")))?;
-        ex.only_values("POST_RELEVE_T/ACTION", occ, "REPERE", &["GLOBAL"])?;
         let resultant: Vec<String> = occ
             .simple("RESULTANTE")
             .iter()
@@ -610,25 +611,28 @@ fn drop_empty_columns(t: &mut Table) {
     }
 }
 
+/// What IMPR_TABLE reads (`crate::support`).
+pub(crate) const IMPR_TABLE: Support = Support {
+    values: &[
+        Values::new("FORMAT", &["TABLEAU"]),
+        Values::new("FORMAT_R", &["E12.5"]),
+    ],
+    ..Support::keywords(&[
+        "TABLE",
+        "FORMAT",
+        "UNITE",
+        "NOM_PARA",
+        "TITRE",
+        "INFO",
+        "TRI",
+        "TRI/NOM_PARA",
+        "TRI/ORDRE",
+        "FORMAT_R",
+    ])
+};
+
 pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "TABLE",
-            "FORMAT",
-            "UNITE",
-            "NOM_PARA",
-            "TITRE",
-            "INFO",
-            "TRI",
-            "TRI/NOM_PARA",
-            "TRI/ORDRE",
-            "FORMAT_R",
-        ],
-    )?;
     let kw = &call.keywords;
-    ex.only_values("IMPR_TABLE", kw, "FORMAT", &["TABLEAU"])?;
-    ex.only_values("IMPR_TABLE", kw, "FORMAT_R", &["E12.5"])?;
     let t = ex.required("IMPR_TABLE", kw, "TABLE")?;
     let mut table = (*ex.table(t)?).clone();
     let wanted: Vec<&str> = kw

@@ -14,6 +14,7 @@ use crate::concept::{Concept, EvolResult, Step};
 use crate::executor::{result_of, Executor};
 use crate::field::{Field, NodalField};
 use crate::select;
+use crate::support::Support;
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 use aster_mesh::{CellId, Mesh, NodeId};
 use std::collections::BTreeMap;
@@ -143,22 +144,21 @@ fn pressure_field(
     Ok(out)
 }
 
+/// What CALC_PRESSION reads (`crate::support`).
+pub(crate) const CALC_PRESSION: Support = Support::keywords(&[
+    "MAILLAGE",
+    "RESULTAT",
+    "GROUP_MA",
+    "INST",
+    "TOUT_ORDRE",
+    "GEOMETRIE",
+    "CRITERE",
+    "PRECISION",
+    "INFO",
+    "MODELE",
+]);
+
 pub fn calc_pression(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "MAILLAGE",
-            "RESULTAT",
-            "GROUP_MA",
-            "INST",
-            "TOUT_ORDRE",
-            "GEOMETRIE",
-            "CRITERE",
-            "PRECISION",
-            "INFO",
-            "MODELE",
-        ],
-    )?;
     let kw = &call.keywords;
     let r = ex.required(CMD, kw, "RESULTAT")?;
     let result = ex.result(r)?;

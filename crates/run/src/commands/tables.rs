@@ -6,6 +6,7 @@ use crate::concept::Concept;
 use crate::executor::{store_result, Executor};
 use crate::function::Function;
 use crate::select;
+use crate::support::Support;
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use std::rc::Rc;
@@ -21,24 +22,23 @@ fn text_width(ty: Option<&str>) -> usize {
         .unwrap_or(8)
 }
 
+/// What CREA_TABLE reads (`crate::support`).
+pub(crate) const CREA_TABLE: Support = Support::keywords(&[
+    "LISTE",
+    "LISTE/PARA",
+    "LISTE/LISTE_R",
+    "LISTE/LISTE_I",
+    "LISTE/LISTE_K",
+    "LISTE/TYPE_K",
+    "LISTE/NUME_LIGN",
+    "FONCTION",
+    "FONCTION/FONCTION",
+    "FONCTION/PARA",
+    "TYPE_TABLE",
+    "TITRE",
+]);
+
 pub fn crea_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "LISTE",
-            "LISTE/PARA",
-            "LISTE/LISTE_R",
-            "LISTE/LISTE_I",
-            "LISTE/LISTE_K",
-            "LISTE/TYPE_K",
-            "LISTE/NUME_LIGN",
-            "FONCTION",
-            "FONCTION/FONCTION",
-            "FONCTION/PARA",
-            "TYPE_TABLE",
-            "TITRE",
-        ],
-    )?;
     let cmd = "CREA_TABLE";
     let kw = &call.keywords;
     let mut table = Table::default();
@@ -147,26 +147,25 @@ fn keep_columns(table: &mut Table, keep: &[usize]) {
     }
 }
 
+/// What CALC_TABLE reads (`crate::support`).
+pub(crate) const CALC_TABLE: Support = Support::keywords(&[
+    "TABLE",
+    "ACTION",
+    "ACTION/OPERATION",
+    "ACTION/NOM_PARA",
+    "ACTION/CRIT_COMP",
+    "ACTION/VALE",
+    "ACTION/VALE_I",
+    "ACTION/VALE_K",
+    "ACTION/CRITERE",
+    "ACTION/PRECISION",
+    "ACTION/ORDRE",
+    "ACTION/FORMULE",
+    "TITRE",
+    "INFO",
+]);
+
 pub fn calc_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    ex.check_keywords(
-        call,
-        &[
-            "TABLE",
-            "ACTION",
-            "ACTION/OPERATION",
-            "ACTION/NOM_PARA",
-            "ACTION/CRIT_COMP",
-            "ACTION/VALE",
-            "ACTION/VALE_I",
-            "ACTION/VALE_K",
-            "ACTION/CRITERE",
-            "ACTION/PRECISION",
-            "ACTION/ORDRE",
-            "ACTION/FORMULE",
-            "TITRE",
-            "INFO",
-        ],
-    )?;
     let cmd = "CALC_TABLE";
     let kw = &call.keywords;
     let mut table = (*ex.table(ex.required(cmd, kw, "TABLE")?)?).clone();

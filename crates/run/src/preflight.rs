@@ -1,0 +1,273 @@
+//! The static pass of `aster run`: the whole program is evaluated without
+//! executing any command (as `aster check` does), and every call is checked
+//! against what `aster run` executes ([`crate::support`]) and every group
+//! name against the meshes the program reads — all before anything runs, so
+//! that a case is refused in milliseconds with every reason located, never
+//! after seconds of solving.
+//!
+//! The pass reports only what is certain. Evaluation stops, without a
+//! finding, at the first step that needs a value known only when the
+//! commands run (a condition on a table value): what follows is checked by
+//! the executor as it goes. The group check runs only when every mesh of the
+//! program is one the pass can read (`LIRE_MAILLAGE` of a MED or ASTER file,
+//! changed by `DEFI_GROUP`, `MODI_MAILLAGE`, `CREA_MAILLAGE`); a name counts
+//! as known when a mesh has it or any command names it in a `NOM…` keyword.
+
+use crate::executor::RunOptions;
+use aster_eval::{
+    CheckSink, CommandCall, CommandOutput, CommandSink, ConceptRef, DiagKind, Diagnostic,
+    Diagnostics, ExecError, HostValue, Keywords, KwValue,
+};
+use aster_mesh::Mesh;
+use aster_syntax::{CodeMap, Span};
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// A mesh the pass read, kept for the run (`LIRE_MAILLAGE` reuses it).
+#[derive(Clone, Debug)]
+pub struct ReadMesh {
+    pub path: PathBuf,
+    pub format: String,
+    pub mesh: Arc<Mesh>,
+}
+
+/// What the static pass found.
+#[derive(Debug, Default)]
+pub struct Preflight {
+    /// Every refusal and error, in the order of the commands: the case is
+    /// refused when there is any.
+    pub findings: Diagnostics,
+    /// Calls evaluated before the pass stopped.
+    pub commands: usize,
+    /// The evaluation reached the end of the program (no step needed a
+    /// run-time value).
+    pub complete: bool,
+    /// The meshes read (for the run to reuse).
+    pub meshes: Vec<ReadMesh>,
+}
+
+impl Preflight {
+    /// The findings rendered with their source lines, and a last line
+    /// counting them.
+    pub fn render(&self, map: &CodeMap) -> String {
+        let mut out = self.findings.render(map);
+        let n = self.findings.0.len();
+        out.push_str(&format!(
+            "aster run: {n} reason{} to refuse this case, found before running anything",
+            if n == 1 { "" } else { "s" }
+        ));
+        out
+    }
+}
+
+/// Commands that make or change a mesh whose groups the pass follows.
+const MESH_COMMANDS: &[&str] = &[
+    "LIRE_MAILLAGE",
+    "DEFI_GROUP",
+    "MODI_MAILLAGE",
+    "CREA_MAILLAGE",
+];
+
+/// The sink of the static pass: checks each call, executes none.
+struct Sink<'o> {
+    options: &'o RunOptions,
+    findings: Vec<Diagnostic>,
+    /// Types each result and records the calls, as `aster check` does.
+    check: CheckSink,
+    meshes: Vec<ReadMesh>,
+    /// A mesh the pass cannot follow is made: no group check.
+    unknown_mesh: bool,
+}
+
+impl Sink<'_> {
+    fn refuse(&mut self, what: String, span: Span) {
+        self.findings.push(Diagnostic::error(
+            DiagKind::NotSupported,
+            span,
+            format!("not supported yet: {what}"),
+        ));
+    }
+
+    fn read_mesh(&mut self, call: &CommandCall) {
+        let kw = &call.keywords;
+        let format = kw.str("FORMAT").unwrap_or("MED").to_string();
+        if format != "MED" && format != "ASTER" {
+            self.unknown_mesh = true;
+            return;
+        }
+        let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(20);
+        let Some(path) = u32::try_from(unit)
+            .ok()
+            .and_then(|u| self.options.units.get(&u))
+        else {
+            // The run says which unit has no file.
+            self.unknown_mesh = true;
+            return;
+        };
+        if self
+            .meshes
+            .iter()
+            .any(|m| &m.path == path && m.format == format)
+        {
+            return;
+        }
+        match crate::meshio::read(path, &format) {
+            Ok(mesh) => self.meshes.push(ReadMesh {
+                path: path.clone(),
+                format,
+                mesh: Arc::new(mesh),
+            }),
+            // The run reports the reading error at the command.
+            Err(_) => self.unknown_mesh = true,
+        }
+    }
+}
+
+impl CommandSink for Sink<'_> {
+    fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+        let command = crate::commands::find(&call.command);
+        let refusals = crate::support::check_call(command.map(|c| &c.support), call);
+        for r in refusals {
+            self.refuse(r.what, r.span);
+        }
+        if call.command == "LIRE_MAILLAGE" && command.is_some() {
+            self.read_mesh(call);
+        } else if produces_mesh(call) && !MESH_COMMANDS.contains(&call.command.as_str()) {
+            self.unknown_mesh = true;
+        }
+        self.check.execute(call)
+    }
+    fn method(
+        &mut self,
+        c: &ConceptRef,
+        name: &str,
+        args: &[HostValue],
+    ) -> Result<HostValue, ExecError> {
+        self.check.method(c, name, args)
+    }
+    fn index(&mut self, c: &ConceptRef, key: &[HostValue]) -> Result<HostValue, ExecError> {
+        self.check.index(c, key)
+    }
+    fn print(&mut self, line: &str) {
+        self.check.print(line)
+    }
+}
+
+/// The call makes a mesh (its result is a `maillage_*` concept).
+fn produces_mesh(call: &CommandCall) -> bool {
+    let typ = |c: &ConceptRef| c.typ.starts_with("maillage");
+    call.result.as_ref().is_some_and(typ) || call.reuse.as_ref().is_some_and(typ)
+}
+
+/// Runs the static pass over a parsed program.
+pub fn check(map: &CodeMap, module: &aster_syntax::ast::Module, options: &RunOptions) -> Preflight {
+    let mut sink = Sink {
+        options,
+        findings: Vec::new(),
+        check: CheckSink {
+            calls: Vec::new(),
+            record: true,
+        },
+        meshes: Vec::new(),
+        unknown_mesh: false,
+    };
+    let result = aster_eval::run_program(
+        map,
+        module,
+        &mut sink,
+        aster_eval::RunOptions { keep_going: true },
+    );
+    let diags = match result {
+        Ok(_) => Vec::new(),
+        Err(d) => d.0,
+    };
+    // Where the evaluation stopped for a run-time value, the pass ends
+    // there: errors are kept, that stop is not one.
+    let complete = !diags.iter().any(|d| d.kind == DiagKind::RunTimeValue);
+    let mut findings: Vec<Diagnostic> = diags
+        .into_iter()
+        .filter(|d| d.is_error() && d.kind != DiagKind::RunTimeValue)
+        .collect();
+    findings.append(&mut sink.findings);
+    if !sink.unknown_mesh && !sink.meshes.is_empty() {
+        findings.extend(group_findings(&sink.check.calls, &sink.meshes));
+    }
+    findings.sort_by_key(|d| (d.span.start, d.span.end));
+    findings.dedup_by(|a, b| a.span == b.span && a.message == b.message);
+    Preflight {
+        findings: Diagnostics(findings),
+        commands: sink.check.calls.len(),
+        complete,
+        meshes: sink.meshes,
+    }
+}
+
+/// Keywords whose values name groups of the mesh.
+fn names_group(keyword: &str) -> bool {
+    keyword.starts_with("GROUP_MA")
+        || keyword.starts_with("GROUP_NO")
+        || keyword.starts_with("SANS_GROUP_")
+}
+
+/// Group names used by the program and found in no mesh nor made by any
+/// command.
+fn group_findings(calls: &[CommandCall], meshes: &[ReadMesh]) -> Vec<Diagnostic> {
+    let mut known: BTreeSet<&str> = BTreeSet::new();
+    for m in meshes {
+        known.extend(m.mesh.groups_ma.iter().map(|g| g.name.as_str()));
+        known.extend(m.mesh.groups_no.iter().map(|g| g.name.as_str()));
+    }
+    for c in calls {
+        walk(&c.keywords, "", &mut |_, name, scalars, _| {
+            if name.starts_with("NOM") {
+                known.extend(scalars.iter().filter_map(|s| s.as_str()));
+            }
+        });
+    }
+    let mut out = Vec::new();
+    for c in calls {
+        walk(&c.keywords, "", &mut |path, name, scalars, span| {
+            if !names_group(name) {
+                return;
+            }
+            for g in scalars.iter().filter_map(|s| s.as_str()) {
+                if known.contains(g) {
+                    continue;
+                }
+                let hint = crate::select::did_you_mean(g, known.iter().copied());
+                out.push(Diagnostic::error(
+                    DiagKind::Exec,
+                    span,
+                    format!(
+                        "{}/{path}: no mesh of the case has a group `{g}`{hint}",
+                        c.command
+                    ),
+                ));
+            }
+        });
+    }
+    out
+}
+
+/// A visitor of simple keywords: path, name, values, span.
+type Visit<'v, 'k> = dyn FnMut(&str, &str, &'k [aster_eval::Scalar], Span) + 'v;
+
+/// Calls `f(path, keyword, values, span)` for every simple keyword written
+/// by the user (defaults are not), at any depth; `path` is `F/K` under a
+/// factor keyword `F`.
+fn walk<'k>(kws: &'k Keywords, prefix: &str, f: &mut Visit<'_, 'k>) {
+    for k in &kws.entries {
+        match &k.value {
+            KwValue::Simple(v) if !k.defaulted => {
+                f(&format!("{prefix}{}", k.name), &k.name, v, k.span)
+            }
+            KwValue::Simple(_) => {}
+            KwValue::Factor(occs) => {
+                for o in occs {
+                    walk(o, &format!("{prefix}{}/", k.name), f);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,266 @@
+//! What `aster run` can execute, as data: for each command, the keywords its
+//! implementation reads and the values it handles.
+//!
+//! This table is the one place that says what is supported. It is read twice:
+//! by the static pass ([`crate::preflight`]) that validates a whole program
+//! before anything runs — so that a case is refused before any solve, with
+//! every unsupported keyword located at once — and by the executor before it
+//! runs each command (the same check, so both always agree).
+//!
+//! Each command module declares its entry next to its implementation
+//! (`pub(crate) const SUPPORT: Support`); `commands::COMMANDS` lists them
+//! with the implementations. What the table cannot say — a combination of
+//! keywords, a property of a concept or of the mesh — stays a run-time check
+//! in the implementation, located the same way.
+
+use aster_eval::{CommandCall, Keywords, KwValue};
+use aster_syntax::Span;
+
+/// The keywords and values one command's implementation handles.
+#[derive(Clone, Copy, Debug)]
+pub struct Support {
+    /// Keyword paths the implementation reads: `"DDL_IMPO"`,
+    /// `"DDL_IMPO/DX"`; `"X/*"` accepts every keyword under factor `X`,
+    /// `"*"` every keyword of the command.
+    /// Catalog defaults are never refused (the user did not write them).
+    pub keywords: &'static [&'static str],
+    /// Keywords whose values are restricted.
+    pub values: &'static [Values],
+    /// Keywords refused with an explanation (`"ZONE/SANS_NOEUD"`, "use
+    /// SANS_GROUP_NO") rather than the plain "not supported yet".
+    pub hints: &'static [(&'static str, &'static str)],
+    /// `reuse=` is handled (the result continues or enriches a concept).
+    pub reuse: bool,
+    /// Static rules the lists cannot say (a keyword allowed only with some
+    /// value of another): pushes its refusals.
+    pub rules: Option<fn(&CommandCall, &mut Vec<Refusal>)>,
+}
+
+impl Support {
+    /// An entry with keywords only.
+    pub const fn keywords(keywords: &'static [&'static str]) -> Support {
+        Support {
+            keywords,
+            values: &[],
+            hints: &[],
+            reuse: true,
+            rules: None,
+        }
+    }
+}
+
+/// The values handled for one keyword path.
+#[derive(Clone, Copy, Debug)]
+pub struct Values {
+    /// `"FORMAT"`, `"AFFE/MODELISATION"`.
+    pub path: &'static str,
+    pub allowed: &'static [&'static str],
+    /// Said after the refused value, e.g. "(large strains or rotations):
+    /// only small strains". Empty: the plain message.
+    pub why: &'static str,
+    /// List the allowed values in the message.
+    pub list: bool,
+}
+
+impl Values {
+    pub const fn new(path: &'static str, allowed: &'static [&'static str]) -> Values {
+        Values {
+            path,
+            allowed,
+            why: "",
+            list: false,
+        }
+    }
+    /// The message lists the supported values.
+    pub const fn listed(path: &'static str, allowed: &'static [&'static str]) -> Values {
+        Values {
+            path,
+            allowed,
+            why: "",
+            list: true,
+        }
+    }
+    pub const fn why(mut self, why: &'static str) -> Values {
+        self.why = why;
+        self
+    }
+}
+
+impl Refusal {
+    /// A refusal of keyword `name` of `kw` (at the keyword when written,
+    /// else at `fallback`).
+    pub fn at(what: String, kw: &Keywords, name: &str, fallback: Span) -> Refusal {
+        let span = kw.keyword(name).map(|k| k.span).unwrap_or(fallback);
+        Refusal { what, span }
+    }
+}
+
+/// One thing a command uses that `aster run` does not execute.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Refusal {
+    /// `COMMAND/KEYWORD='VALUE' (why)`: what follows "not supported yet: ".
+    pub what: String,
+    /// Where the keyword (or the command) is written.
+    pub span: Span,
+}
+
+/// Checks one call against its command's entry; `None` when the command
+/// itself is not executed. Every refusal is returned, in keyword order.
+pub fn check_call(support: Option<&Support>, call: &CommandCall) -> Vec<Refusal> {
+    let cmd = call.command.as_str();
+    let Some(support) = support else {
+        return vec![Refusal {
+            what: cmd.to_string(),
+            span: call.span,
+        }];
+    };
+    let mut out = Vec::new();
+    if call.reuse.is_some() && !support.reuse {
+        out.push(Refusal {
+            what: format!("{cmd} with reuse= (continuing a result)"),
+            span: call.span,
+        });
+    }
+    check_level(cmd, support, &call.keywords, "", &mut out);
+    if let Some(rules) = support.rules {
+        rules(call, &mut out);
+    }
+    out
+}
+
+fn check_level(cmd: &str, s: &Support, kws: &Keywords, prefix: &str, out: &mut Vec<Refusal>) {
+    if s.keywords.contains(&format!("{prefix}*").as_str()) {
+        return;
+    }
+    for k in &kws.entries {
+        let path = format!("{prefix}{}", k.name);
+        if !s.keywords.contains(&path.as_str()) {
+            if k.defaulted {
+                continue;
+            }
+            let what = match s.hints.iter().find(|(p, _)| *p == path) {
+                Some((_, hint)) => format!("{cmd}/{path} ({hint})"),
+                None => format!("{cmd}/{path}"),
+            };
+            out.push(Refusal { what, span: k.span });
+            continue;
+        }
+        match &k.value {
+            KwValue::Factor(occurrences) => {
+                for occ in occurrences {
+                    check_level(cmd, s, occ, &format!("{path}/"), out);
+                }
+            }
+            KwValue::Simple(scalars) => {
+                let Some(rule) = s.values.iter().find(|v| v.path == path) else {
+                    continue;
+                };
+                for v in scalars.iter().filter_map(|s| s.as_str()) {
+                    if rule.allowed.contains(&v) {
+                        continue;
+                    }
+                    let mut what = format!("{cmd}/{path}='{v}'");
+                    if !rule.why.is_empty() {
+                        what.push(' ');
+                        what.push_str(rule.why);
+                    }
+                    if rule.list {
+                        what.push_str(&format!(" (supported: {})", rule.allowed.join(", ")));
+                    }
+                    out.push(Refusal { what, span: k.span });
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use aster_eval::{Keyword, Scalar};
+
+    fn simple(name: &str, v: &str, at: usize) -> Keyword {
+        Keyword {
+            name: name.into(),
+            value: KwValue::Simple(vec![Scalar::Str(v.into())]),
+            span: Span::new(at, at + 1),
+            defaulted: false,
+        }
+    }
+
+    fn call(entries: Vec<Keyword>) -> CommandCall {
+        CommandCall {
+            command: "CMD".into(),
+            result: None,
+            reuse: None,
+            keywords: Keywords { entries },
+            span: Span::new(0, 1),
+        }
+    }
+
+    const S: Support = Support {
+        keywords: &["A", "F", "F/B", "G", "G/*"],
+        values: &[
+            Values::new("A", &["X"]).why("(only X)"),
+            Values::listed("F/B", &["Y", "Z"]),
+        ],
+        hints: &[("F/C", "use F/B")],
+        reuse: false,
+        rules: None,
+    };
+
+    #[test]
+    fn every_refusal_is_reported_at_its_keyword() {
+        let factor = |entries| Keyword {
+            name: "F".into(),
+            value: KwValue::Factor(vec![Keywords { entries }]),
+            span: Span::new(10, 11),
+            defaulted: false,
+        };
+        let c = call(vec![
+            simple("A", "W", 2),
+            factor(vec![simple("B", "Q", 12), simple("C", "1", 14)]),
+            simple("H", "1", 20),
+        ]);
+        let r = check_call(Some(&S), &c);
+        let got: Vec<(String, usize)> = r
+            .iter()
+            .map(|r| (r.what.clone(), r.span.start as usize))
+            .collect();
+        assert_eq!(
+            got,
+            vec![
+                ("CMD/A='W' (only X)".to_string(), 2),
+                ("CMD/F/B='Q' (supported: Y, Z)".to_string(), 12),
+                ("CMD/F/C (use F/B)".to_string(), 14),
+                ("CMD/H".to_string(), 20),
+            ]
+        );
+    }
+
+    #[test]
+    fn defaults_star_factors_and_reuse() {
+        let mut d = simple("UNREAD", "1", 3);
+        d.defaulted = true;
+        let g = Keyword {
+            name: "G".into(),
+            value: KwValue::Factor(vec![Keywords {
+                entries: vec![simple("ANY", "1", 5)],
+            }]),
+            span: Span::new(4, 5),
+            defaulted: false,
+        };
+        let mut c = call(vec![d, g, simple("A", "X", 6)]);
+        assert!(check_call(Some(&S), &c).is_empty());
+        c.reuse = Some(aster_eval::ConceptRef {
+            id: 1,
+            name: "R".into(),
+            typ: "evol_noli".into(),
+        });
+        assert_eq!(
+            check_call(Some(&S), &c)[0].what,
+            "CMD with reuse= (continuing a result)"
+        );
+        assert_eq!(check_call(None, &c)[0].what, "CMD");
+    }
+}

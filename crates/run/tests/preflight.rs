@@ -1,0 +1,132 @@
+//! The static pass of `aster run` (`aster_run::preflight`): what it refuses
+//! before anything runs, and what it must leave to the run.
+
+use aster_run::preflight::{self, Preflight};
+use aster_run::RunOptions;
+use aster_syntax::CodeMap;
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn pass(source: &str, mesh: Option<&str>) -> (Preflight, CodeMap) {
+    let map = CodeMap::new("case.comm".to_string(), source);
+    let module = aster_syntax::parse_module(source).expect("the scene parses");
+    let mut options = RunOptions::default();
+    if let Some(m) = mesh {
+        options.units.insert(20, root().join("comm").join(m));
+    }
+    (preflight::check(&map, &module, &options), map)
+}
+
+fn messages(p: &Preflight, map: &CodeMap) -> Vec<String> {
+    p.findings.0.iter().map(|d| d.headline(map)).collect()
+}
+
+const HEAD: &str = r#"DEBUT()
+mesh = LIRE_MAILLAGE(FORMAT="ASTER")
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
+"#;
+
+#[test]
+fn a_supported_program_has_no_finding() {
+    let src = format!("{HEAD}FIN()\n");
+    let (p, map) = pass(&src, Some("zzzz237.mail"));
+    assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
+    assert!(p.complete);
+    assert_eq!(p.commands, 4);
+    assert_eq!(p.meshes.len(), 1, "the mesh is read once, for the run too");
+}
+
+#[test]
+fn every_refusal_is_found_at_its_keyword() {
+    let src = format!(
+        "{HEAD}m = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3), LEMAITRE=_F(N=1.0, UN_SUR_K=1.0, UN_SUR_M=0.0))
+t = DEFI_LIST_REEL(VALE=(0.0, 1.0))
+x = MACR_ADAP_MAIL(ADAPTATION='RAFFINEMENT_UNIFORME', MAILLAGE_N=mesh, MAILLAGE_NP1=CO('m2'))
+FIN()
+"
+    );
+    let (p, map) = pass(&src, Some("zzzz237.mail"));
+    assert_eq!(
+        messages(&p, &map),
+        vec![
+            "case.comm:4:43: error: not supported yet: DEFI_MATERIAU/LEMAITRE",
+            "case.comm:6:5: error: not supported yet: MACR_ADAP_MAIL",
+        ]
+    );
+}
+
+#[test]
+fn a_misspelt_group_is_found_with_the_closest_name() {
+    let mesh = aster_mesh::read_mesh(&root().join("comm/zzzz237.mail")).expect("mesh");
+    let real = &mesh.groups_ma[0].name;
+    let typo = format!("{real}X");
+    let src = format!(
+        "{HEAD}m = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3))
+cm = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(GROUP_MA='{typo}', MATER=m))
+FIN()
+"
+    );
+    let (p, map) = pass(&src, Some("zzzz237.mail"));
+    let got = messages(&p, &map);
+    assert_eq!(got.len(), 1, "{got:?}");
+    assert!(
+        got[0].contains(&format!(
+            "AFFE_MATERIAU/AFFE/GROUP_MA: no mesh of the case has a group `{typo}` (did you mean `{real}`?)"
+        )),
+        "{got:?}"
+    );
+}
+
+#[test]
+fn groups_made_by_the_program_are_known() {
+    let src = format!(
+        "{HEAD}mesh = DEFI_GROUP(reuse=mesh, MAILLAGE=mesh, CREA_GROUP_NO=_F(NOM='NEW', NOEUD='N1'))
+ch = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=_F(GROUP_NO='NEW', DX=0.0))
+FIN()
+"
+    );
+    let (p, map) = pass(&src, Some("zzzz237.mail"));
+    assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
+}
+
+#[test]
+fn no_group_check_when_a_mesh_cannot_be_followed() {
+    // The mesh file of unit 20 is not given: the pass cannot know its
+    // groups, so it says nothing of them (the run reports the missing file).
+    let src = format!(
+        "{HEAD}ch = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=_F(GROUP_NO='ANY', DX=0.0))
+FIN()
+"
+    );
+    let (p, map) = pass(&src, None);
+    assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
+}
+
+#[test]
+fn the_pass_stops_without_finding_at_a_run_time_value() {
+    // A condition on a value from a result table: checking cannot decide it,
+    // running can. The keyword after it is left to the run: no finding, and
+    // the pass says it did not reach the end.
+    let src = format!(
+        "{HEAD}t = CREA_TABLE(LISTE=_F(PARA='X', LISTE_R=(1.0,)))
+if t['X', 1] > 0.0:
+    m = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3), LEMAITRE=_F(N=1.0, UN_SUR_K=1.0, UN_SUR_M=0.0))
+FIN()
+"
+    );
+    let (p, map) = pass(&src, Some("zzzz237.mail"));
+    assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
+    assert!(!p.complete);
+}
+
+#[test]
+fn catalog_errors_are_reported_with_the_refusals() {
+    let src = format!("{HEAD}m = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3, NUU=0.2))\nFIN()\n");
+    let (p, map) = pass(&src, Some("zzzz237.mail"));
+    let got = messages(&p, &map);
+    assert_eq!(got.len(), 1, "{got:?}");
+    assert!(got[0].starts_with("case.comm:4:"), "{got:?}");
+}
