@@ -71,9 +71,32 @@ enum Command {
     },
 }
 
+/// The stack of the thread that runs a command. Every recursive pass of the
+/// syntax and the evaluator is bounded (`aster_syntax::limits`,
+/// `aster_eval::limits`) to fit in a main thread's usual 8 MB with a 2x
+/// margin (measured: the deepest evaluation the limits allow takes under
+/// 4 MB in the `ci` profile); the command runs on a thread with more, so
+/// that the margin holds for any build profile.
+const STACK_BYTES: usize = 64 << 20;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let code = match cli.command {
+    let worker = std::thread::Builder::new()
+        .name("aster".into())
+        .stack_size(STACK_BYTES)
+        .spawn(move || run(cli));
+    match worker.map(|w| w.join()) {
+        Ok(Ok(code)) => ExitCode::from(code),
+        Ok(Err(_)) => ExitCode::from(101),
+        Err(e) => {
+            eprintln!("aster: cannot start the worker thread: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cli: Cli) -> u8 {
+    match cli.command {
         Command::Parse { files, json } => cmd::parse::run(&files, json),
         Command::Fmt { file } => cmd::fmt::run(&file),
         Command::Check { files, emit } => cmd::check::run(&files, emit.as_deref()),
@@ -86,6 +109,5 @@ fn main() -> ExitCode {
         } => cmd::mesh::run(&file, json, to.as_deref(), out.as_deref()),
         Command::Run { case, mesh, out } => cmd::run::run(&case, mesh.as_deref(), &out),
         Command::Study { spec, out } => cmd::study::run(&spec, &out),
-    };
-    ExitCode::from(code)
+    }
 }

@@ -99,7 +99,7 @@ pub fn integration_points_measured(
                 }
                 continue;
             }
-            (Integration::Gauss(o), k) => gauss(k, o),
+            (Integration::Gauss(o), k) => ordre_int_gauss(k, o),
             (Integration::Simpson(o), k) if k.dim() == 1 => simpson(o.max(1)),
             (Integration::NCotes(o), k) if k.dim() == 1 => newton_cotes(o.clamp(1, 8)),
             // Corner pressures on TRIA6/QUAD8 need the products of pressure
@@ -166,6 +166,138 @@ fn gauss_1d(n: usize) -> Vec<(f64, f64)> {
             let wa = (18.0 + 30f64.sqrt()) / 36.0;
             let wb = (18.0 - 30f64.sqrt()) / 36.0;
             vec![(-b, wb), (-a, wa), (a, wa), (b, wb)]
+        }
+    }
+}
+
+/// code_aster's `INTEGRATION='GAUSS'` rule of rank `ordre_int` (`mmgaus`):
+/// `ORDRE_INT` is the number of Gauss–Legendre points on a segment (1 to
+/// 6), their tensor square on a quadrangle, and on a triangle the rank of
+/// the rule in code_aster's table (1, 3, 4, 6, 7, 12 points, exact to
+/// degree 1 to 6). It is not a polynomial degree: reading ORDRE_INT = 3 as
+/// "exact to degree 3" gave 2 points per SEG3 instead of 3 and moved
+/// ssnp154b's indentation by 2.5e-4.
+pub(crate) fn ordre_int_gauss(kind: SurfaceKind, ordre_int: u8) -> Vec<([f64; 2], f64)> {
+    let n = ordre_int.clamp(1, 6) as usize;
+    match kind {
+        SurfaceKind::Seg2 | SurfaceKind::Seg3 => gauss_legendre(n)
+            .into_iter()
+            .map(|(x, w)| ([x, 0.0], w))
+            .collect(),
+        SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
+            // Point g: i = (g−1) mod n along ξ, j = (g−1) div n along η.
+            let g = gauss_legendre(n);
+            let mut out = Vec::with_capacity(n * n);
+            for &(y, wy) in &g {
+                for &(x, wx) in &g {
+                    out.push(([x, y], wx * wy));
+                }
+            }
+            out
+        }
+        SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => triangle_rule(n),
+    }
+}
+
+/// Gauss–Legendre points on [-1, 1], `n` = 1 … 6 (code_aster's `fpgseg`).
+fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    let sym = |pairs: &[(f64, f64)], centre: Option<f64>| {
+        let mut v = Vec::new();
+        for &(x, w) in pairs {
+            v.push((-x, w));
+            v.push((x, w));
+        }
+        if let Some(w) = centre {
+            v.push((0.0, w));
+        }
+        v
+    };
+    match n {
+        1..=4 => gauss_1d(n),
+        5 => sym(
+            &[
+                (0.906_179_845_938_664, 0.236_926_885_056_189),
+                (0.538_469_310_105_683, 0.478_628_670_499_366),
+            ],
+            Some(0.568_888_888_888_889),
+        ),
+        _ => sym(
+            &[
+                (0.238_619_186_083_197, 0.467_913_934_572_691),
+                (0.661_209_386_466_265, 0.360_761_573_048_139),
+                (0.932_469_514_203_152, 0.171_324_492_379_17),
+            ],
+            None,
+        ),
+    }
+}
+
+/// code_aster's triangle rules of rank 1 … 6 (`fpgtri`) on the reference
+/// triangle (0,0) (1,0) (0,1).
+fn triangle_rule(rank: usize) -> Vec<([f64; 2], f64)> {
+    let orbit3 = |a: f64, w: f64| {
+        vec![
+            ([a, a], w),
+            ([1.0 - 2.0 * a, a], w),
+            ([a, 1.0 - 2.0 * a], w),
+        ]
+    };
+    match rank {
+        1 => vec![([1.0 / 3.0, 1.0 / 3.0], 0.5)],
+        2 => vec![
+            ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),
+            ([2.0 / 3.0, 1.0 / 6.0], 1.0 / 6.0),
+            ([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
+        ],
+        3 => vec![
+            ([0.2, 0.2], 25.0 / 96.0),
+            ([0.6, 0.2], 25.0 / 96.0),
+            ([0.2, 0.6], 25.0 / 96.0),
+            ([1.0 / 3.0, 1.0 / 3.0], -27.0 / 96.0),
+        ],
+        4 => {
+            let (a, b) = (0.445_948_490_915_965, 0.091_576_213_509_771);
+            let (p1, p2) = (0.111_690_794_839_005, 0.054_975_871_827_661);
+            let mut v = orbit3(b, p2);
+            v.extend([
+                ([a, 1.0 - 2.0 * a], p1),
+                ([a, a], p1),
+                ([1.0 - 2.0 * a, a], p1),
+            ]);
+            v
+        }
+        5 => {
+            let (a, b) = (0.470_142_064_105_115, 0.101_286_507_323_456);
+            let (p1, p2) = (0.066_197_076_394_253, 0.062_969_590_272_413);
+            let mut v = vec![([1.0 / 3.0, 1.0 / 3.0], 9.0 / 80.0)];
+            v.extend([
+                ([a, a], p1),
+                ([1.0 - 2.0 * a, a], p1),
+                ([a, 1.0 - 2.0 * a], p1),
+            ]);
+            v.extend(orbit3(b, p2));
+            v
+        }
+        _ => {
+            let (a, b) = (0.063_089_014_491_502, 0.249_286_745_170_91);
+            let (c, d) = (0.310_352_451_033_785, 0.053_145_049_844_816);
+            let (p1, p2, p3) = (
+                0.025_422_453_185_103,
+                0.058_393_137_863_189,
+                0.041_425_537_809_187,
+            );
+            let mut v = orbit3(a, p1);
+            v.extend(orbit3(b, p2));
+            let e = 1.0 - c - d;
+            v.extend([
+                ([c, d], p3),
+                ([d, c], p3),
+                ([e, c], p3),
+                ([e, d], p3),
+                ([c, e], p3),
+                ([d, e], p3),
+            ]);
+            v
         }
     }
 }
@@ -314,6 +446,45 @@ mod tests {
         assert!((integrate(&t, |x, y| x * x * y * y) - 1.0 / 180.0).abs() < 1e-14);
         let q = gauss(SurfaceKind::Quad4, 3);
         assert!((integrate(&q, |x, y| x * x * y * y) - 4.0 / 9.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn ordre_int_is_code_aster_rank_of_the_gauss_rule() {
+        // Segments: ORDRE_INT points, exact to degree 2n − 1.
+        for n in 1..=6u8 {
+            let r = ordre_int_gauss(SurfaceKind::Seg3, n);
+            assert_eq!(r.len(), n as usize);
+            for d in 0..(2 * n as i32) {
+                let exact = if d % 2 == 0 {
+                    2.0 / (d as f64 + 1.0)
+                } else {
+                    0.0
+                };
+                assert!(
+                    (integrate(&r, |x, _| x.powi(d)) - exact).abs() < 1e-13,
+                    "n {n} degree {d}"
+                );
+            }
+            let q = ordre_int_gauss(SurfaceKind::Quad8, n);
+            assert_eq!(q.len(), (n * n) as usize);
+            let d = 2 * n as i32 - 2;
+            let e = 2.0 / (d as f64 + 1.0);
+            assert!((integrate(&q, |x, y| x.powi(d) * y.powi(d)) - e * e).abs() < 1e-13);
+        }
+        // Triangles: 1, 3, 4, 6, 7, 12 points, exact to degree 1 … 6:
+        // ∫_T x^a y^b = a! b! / (a + b + 2)!.
+        let fact = |k: u32| (1..=k).map(f64::from).product::<f64>();
+        for (rank, count) in [(1u8, 1usize), (2, 3), (3, 4), (4, 6), (5, 7), (6, 12)] {
+            let t = ordre_int_gauss(SurfaceKind::Tria6, rank);
+            assert_eq!(t.len(), count);
+            for a in 0..=rank as u32 {
+                for b in 0..=(rank as u32 - a) {
+                    let exact = fact(a) * fact(b) / fact(a + b + 2);
+                    let got = integrate(&t, |x, y| x.powi(a as i32) * y.powi(b as i32));
+                    assert!((got - exact).abs() < 1e-13, "rank {rank} x^{a} y^{b}");
+                }
+            }
+        }
     }
 
     #[test]

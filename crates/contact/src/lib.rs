@@ -17,13 +17,13 @@
 mod augmented;
 pub mod dual;
 mod error;
+pub mod friction;
 mod geomloop;
 mod glissiere;
 mod integration;
 pub mod lac;
 mod pairing;
 mod penalty;
-mod pointwise;
 pub mod quad8;
 mod rows;
 mod shape;

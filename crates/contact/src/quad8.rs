@@ -154,6 +154,7 @@ mod tests {
             master_cells_of_node: HashMap::new(),
             slave_cells_of_node: HashMap::new(),
             space_dim: 3,
+            time: 0.0,
         };
         ZoneContact::new(resolved, ZoneLaw::Discrete(law), GeomLoop::Sans)
     }

@@ -311,6 +311,72 @@ pub fn two_plates_problem_as(
     Ok((model, loads))
 }
 
+/// Two plates pressed, then sheared (the friction scene, on a
+/// [`two_plates_mesh`]): D_PLAN, E = 2e6, ν = 0; `GH` clamped; `CD` moved
+/// down by 0.1 t up to t = 1, then sideways by `shear × (t − 1)` (all
+/// eliminated). With `rigid_base` the whole lower plate is clamped (a
+/// flat rigid master): at full slip the friction forces then carry μ times
+/// the normal force, Σ FX(CD) = μ Σ FY(CD).
+pub fn two_plates_shear_problem(
+    mesh: Mesh,
+    shear: f64,
+    rigid_base: bool,
+) -> Result<(Model, Loads), FemError> {
+    let material = Elastic::new(2e6, 0.0)?;
+    let mut elements = Vec::new();
+    for g in ["UP", "LOW"] {
+        let cells = mesh
+            .group_ma(g)
+            .ok_or_else(|| FemError::Model(format!("mesh has no group {g}")))?;
+        for &cell in &cells.members {
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Continuum {
+                    hypothesis: Hypothesis::PlaneStrain,
+                    material,
+                },
+            });
+        }
+    }
+    let mut loads = Loads::new();
+    let node_group = |g: &str| {
+        mesh.group_no(g)
+            .map(|g| g.members.clone())
+            .ok_or_else(|| FemError::Model(format!("mesh has no node group {g}")))
+    };
+    let clamped = if rigid_base {
+        node_group("LOW")?
+    } else {
+        node_group("GH")?
+    };
+    for n in clamped {
+        for comp in [Comp::DX, Comp::DY] {
+            loads.push(Load::Eliminated {
+                dof: Dof::new(n, comp),
+                value: 0.0,
+            });
+        }
+    }
+    for n in node_group("CD")? {
+        loads.add(
+            Load::Eliminated {
+                dof: Dof::new(n, Comp::DY),
+                value: -0.1,
+            },
+            Multiplier::from_fn(|t: f64| Ok(t.min(1.0))),
+        );
+        loads.add(
+            Load::Eliminated {
+                dof: Dof::new(n, Comp::DX),
+                value: shear,
+            },
+            Multiplier::from_fn(|t: f64| Ok((t - 1.0).max(0.0))),
+        );
+    }
+    let model = Model::new(mesh, elements)?;
+    Ok((model, loads))
+}
+
 /// Adds each cell group and the node group of its cells under the same
 /// name, then the one-node groups `named`.
 /// The Hertz problem on a [`crate::hertz::hertz_mesh`]: plane strain, the

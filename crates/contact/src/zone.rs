@@ -241,7 +241,10 @@ pub enum Integration {
     /// `AUTO`: at the nodes of the slave cells (Newton–Cotes weights).
     #[default]
     Auto,
-    /// Gauss–Legendre, exact for polynomials of the given degree.
+    /// Gauss with code_aster's `ORDRE_INT` (`mmgaus`): on segments that
+    /// many Gauss–Legendre points, on quadrangles their square, on
+    /// triangles the rule of that rank (1, 3, 4, 6, 7, 12 points, exact
+    /// to degree 1…6).
     Gauss(u8),
     /// Composite Simpson with the given number of sub-intervals pairs (segments).
     Simpson(u8),
@@ -337,6 +340,8 @@ pub struct DiscreteDefinition {
     /// `STOP_SINGULIER`: stop on a singular contact matrix (default yes);
     /// with `false` the redundant point is dropped.
     pub stop_singulier: bool,
+    /// `FROTTEMENT='COULOMB'`: the zones' friction (module `friction`).
+    pub friction: Option<crate::friction::DiscreteFrictionDef>,
 }
 
 #[derive(Clone, Debug)]
@@ -350,6 +355,8 @@ pub struct ContinueDefinition {
     /// `RESI_CONT`: relative change of the pressures that ends the
     /// contact loop; code_aster's default -1 means "active set stable".
     pub resi_cont: Option<f64>,
+    /// `FROTTEMENT='COULOMB'`: the zones' friction (module `friction`).
+    pub friction: Option<crate::friction::ContinueFriction>,
 }
 
 impl ContactDefinition {
@@ -370,7 +377,52 @@ impl ContactDefinition {
             geom_loop: GeomLoop::default(),
             iter_cont_mult: 4,
             stop_singulier: true,
+            friction: None,
         }))
+    }
+
+    /// A discrete definition with Coulomb friction (`ALGO_FROT=
+    /// 'PENALISATION'`), one friction setting per zone.
+    pub fn discrete_with_friction(
+        zones: Vec<Zone<DiscreteAlgo>>,
+        friction: crate::friction::DiscreteFrictionDef,
+    ) -> Result<Self, ContactError> {
+        friction.check(zones.len())?;
+        let mut d = ContactDefinition::discrete(zones, Frottement::Sans)?;
+        if let ContactDefinition::Discrete(dd) = &mut d {
+            dd.friction = Some(friction);
+        }
+        Ok(d)
+    }
+
+    /// A continuous definition with Coulomb friction, one friction setting
+    /// per zone.
+    pub fn continuous_with_friction(
+        zones: Vec<Zone<ContinueLaw>>,
+        friction: crate::friction::ContinueFriction,
+    ) -> Result<Self, ContactError> {
+        friction.check(zones.len())?;
+        for z in &zones {
+            if z.law.algo == ContinueAlgo::Lac {
+                return Err(ContactError::Unsupported {
+                    feature: "ALGO_CONT='LAC' with FROTTEMENT='COULOMB'".into(),
+                    hint: "code_aster's LAC method is frictionless".into(),
+                });
+            }
+        }
+        let mut d = ContactDefinition::continuous(zones, Frottement::Sans)?;
+        if let ContactDefinition::Continue(c) = &mut d {
+            c.friction = Some(friction);
+        }
+        Ok(d)
+    }
+
+    /// Whether the definition has Coulomb friction.
+    pub fn has_friction(&self) -> bool {
+        match self {
+            ContactDefinition::Discrete(d) => d.friction.is_some(),
+            ContactDefinition::Continue(c) => c.friction.is_some(),
+        }
     }
 
     /// A continuous definition with code_aster's defaults. Refuses friction.
@@ -396,6 +448,7 @@ impl ContactDefinition {
             algo_reso_geom: Resolution::PointFixe,
             iter_cont_maxi: 30,
             resi_cont: None,
+            friction: None,
         }))
     }
 
@@ -427,7 +480,7 @@ fn refuse_friction(f: Frottement) -> Result<(), ContactError> {
         Frottement::Sans => Ok(()),
         Frottement::Coulomb => Err(ContactError::Unsupported {
             feature: "FROTTEMENT='COULOMB'".into(),
-            hint: "only frictionless contact (FROTTEMENT='SANS') is implemented".into(),
+            hint: "give the zones' friction (ContactDefinition::discrete_with_friction / continuous_with_friction)".into(),
         }),
     }
 }

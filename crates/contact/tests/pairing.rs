@@ -210,7 +210,7 @@ fn user_errors_are_explained() {
     .unwrap_err();
     assert_eq!(
         err.to_string(),
-        "FROTTEMENT='COULOMB' is not supported yet: only frictionless contact (FROTTEMENT='SANS') is implemented"
+        "FROTTEMENT='COULOMB' is not supported yet: give the zones' friction (ContactDefinition::discrete_with_friction / continuous_with_friction)"
     );
     let err = ContactDefinition::discrete(
         vec![Zone {

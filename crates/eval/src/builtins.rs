@@ -3,6 +3,8 @@
 
 use crate::diag::DiagKind;
 use crate::format;
+use crate::int;
+use crate::limits::{too_large, MAX_ITEMS, MAX_STR_BYTES};
 use crate::interp::{from_host, py_err, to_host, unsupported, CallArg, Halt, Interp, R};
 use crate::value::*;
 use aster_syntax::ast::BinOp;
@@ -171,6 +173,9 @@ fn math_fn_name(n: &'static str) -> &'static str {
 
 fn num(v: &Value, span: Span) -> R<f64> {
     match v.as_f64() {
+        Some(f) if f.is_infinite() && matches!(v, Value::Big(_)) => {
+            py_err(span, "int too large to convert to float")
+        }
         Some(f) => Ok(f),
         None => py_err(span, format!("a number is required, not {}", v.type_name())),
     }
@@ -216,11 +221,47 @@ fn arity(v: &[Value], n: usize, name: &str, span: Span) -> R<()> {
     Ok(())
 }
 
+/// Python's `int(f)`: exact, however large.
 fn to_int(f: f64, span: Span) -> R<Value> {
-    if !f.is_finite() {
-        return py_err(span, "cannot convert infinity or NaN to integer");
+    int::from_f64(f).or_else(|m| py_err(span, m))
+}
+
+/// A count (of repetitions, a width) as Python reads it: big integers
+/// saturate, so that they are refused as too large.
+fn count(v: &Value) -> Option<i128> {
+    int::as_count(v)
+}
+
+/// `n` copies of `items` (list or tuple repetition), its size checked first.
+fn repeat_items(items: &[Value], n: i128) -> Result<Vec<Value>, String> {
+    if n <= 0 || items.is_empty() {
+        return Ok(Vec::new());
     }
-    Ok(Value::Int(f.trunc() as i64))
+    let total = (items.len() as u128).saturating_mul(n as u128);
+    if total > MAX_ITEMS as u128 {
+        return Err(too_large(total, MAX_ITEMS, "items"));
+    }
+    let mut v = Vec::with_capacity(total as usize);
+    for _ in 0..n {
+        v.extend(items.iter().cloned());
+    }
+    Ok(v)
+}
+
+/// A string of `n` bytes at most [`MAX_STR_BYTES`].
+fn check_str_len(n: u128) -> Result<(), String> {
+    if n > MAX_STR_BYTES as u128 {
+        return Err(too_large(n, MAX_STR_BYTES, "characters"));
+    }
+    Ok(())
+}
+
+/// A list or tuple of `n` items at most [`MAX_ITEMS`].
+fn check_items(n: usize) -> Result<(), String> {
+    if n > MAX_ITEMS {
+        return Err(too_large(n as u128, MAX_ITEMS, "items"));
+    }
+    Ok(())
 }
 
 pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Value> {
@@ -247,6 +288,10 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
                 .map(|x| match x {
                     Value::Int(i) => Ok(*i),
                     Value::Bool(b) => Ok(*b as i64),
+                    Value::Big(_) => py_err(
+                        span,
+                        too_large(int::bits(x) as u128, 64, "bits for a range bound"),
+                    ),
                     other => py_err(
                         span,
                         format!("range() needs integers, not {}", other.type_name()),
@@ -262,15 +307,23 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
             if s == 0 {
                 return py_err(span, "range() step must not be zero");
             }
+            // In i128: no overflow for any i64 bounds and step.
+            let (a, b, s) = (a as i128, b as i128, s as i128);
             let n = if s > 0 {
                 (b - a + s - 1).max(0) / s
             } else {
                 (a - b - s - 1).max(0) / -s
             };
-            if n > 10_000_000 {
-                return py_err(span, "range() too long");
+            if n > MAX_ITEMS as i128 {
+                return py_err(
+                    span,
+                    format!(
+                        "range() too long: {n} items (the limit is {MAX_ITEMS}; ranges are built as lists)"
+                    ),
+                );
             }
-            Value::list((0..n).map(|k| Value::Int(a + k * s)).collect())
+            me.charge(n as u64, span, "this range()")?;
+            Value::list((0..n).map(|k| Value::Int((a + k * s) as i64)).collect())
         }
         "len" => {
             arity(&v, 1, name, span)?;
@@ -291,7 +344,7 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
         "abs" => {
             arity(&v, 1, name, span)?;
             match &v[0] {
-                Value::Int(i) => Value::Int(i.abs()),
+                x @ (Value::Int(_) | Value::Bool(_) | Value::Big(_)) => int::abs(x),
                 Value::Float(f) => Value::Float(f.abs()),
                 Value::Complex(a, b) => Value::Float(a.hypot(*b)),
                 other => {
@@ -369,11 +422,14 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
         },
         "int" => match v.first() {
             None => Value::Int(0),
-            Some(Value::Str(s)) => Value::Int(
-                s.trim()
-                    .parse()
-                    .or_else(|_| py_err(span, format!("invalid literal for int(): '{s}'")))?,
-            ),
+            Some(Value::Str(s)) => match int::parse(s) {
+                Some(i) => i,
+                None => {
+                    let shown: String = s.chars().take(60).collect();
+                    return py_err(span, format!("invalid literal for int() with base 10: '{shown}'"));
+                }
+            },
+            Some(x @ (Value::Int(_) | Value::Big(_))) => x.clone(),
             Some(x) => to_int(num(x, span)?, span)?,
         },
         "bool" => Value::Bool(match v.first() {
@@ -385,22 +441,54 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
             let b = v.get(1).map(|x| num(x, span)).transpose()?.unwrap_or(0.0);
             Value::Complex(a, b)
         }
-        "str" => Value::str(&v.first().map(|x| x.to_string()).unwrap_or_default()),
-        "repr" => Value::str(&v.first().map(|x| x.repr()).unwrap_or_default()),
+        "str" => Value::str(
+            &v.first()
+                .map(|x| x.try_str())
+                .transpose()
+                .or_else(|m| py_err(span, m))?
+                .unwrap_or_default(),
+        ),
+        "repr" => Value::str(
+            &v.first()
+                .map(|x| x.try_repr())
+                .transpose()
+                .or_else(|m| py_err(span, m))?
+                .unwrap_or_default(),
+        ),
         "round" => {
-            let x = num(v.first().unwrap_or(&Value::None), span)?;
+            let first = v.first().unwrap_or(&Value::None);
             let nd = v.get(1).or(kwarg(&args, "ndigits"));
+            if int::is_int(first) {
+                // An integer rounded to digits at or after the point is itself.
+                match nd.map(count) {
+                    None | Some(None) => return Ok(int::plain(first)),
+                    Some(Some(n)) if n >= 0 => return Ok(int::plain(first)),
+                    Some(Some(n)) => {
+                        return int::round_int(first, (-n).min(u32::MAX as i128) as u32)
+                            .or_else(|m| py_err(span, m))
+                    }
+                }
+            }
+            let x = num(first, span)?;
             match nd {
                 None | Some(Value::None) => to_int(round_half_even(x), span)?,
                 Some(n) => {
-                    // Python rounds the exact binary value (round(2.675, 2)
-                    // is 2.67): so does Rust's decimal formatting.
-                    let n = num(n, span)? as i32;
-                    if n >= 0 {
+                    let Some(n) = count(n) else {
+                        return py_err(span, "round(): ndigits must be an integer");
+                    };
+                    if !x.is_finite() || n > 400 {
+                        // Beyond a float's digits: the number itself.
+                        Value::Float(x)
+                    } else if n >= 0 {
+                        // Python rounds the exact binary value (round(2.675, 2)
+                        // is 2.67): so does Rust's decimal formatting.
                         let digits = n as usize;
                         Value::Float(format!("{x:.digits$}").parse().unwrap_or(x))
+                    } else if n < -308 {
+                        // 10^-n is beyond the floats: everything rounds to zero.
+                        Value::Float(0.0 * x.signum())
                     } else {
-                        let p = 10f64.powi(-n);
+                        let p = 10f64.powi(-n as i32);
                         Value::Float(round_half_even(x / p) * p)
                     }
                 }
@@ -533,12 +621,11 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
             }
             Value::list(out)
         }
-        "pow" => {
-            if v.len() < 2 {
-                return py_err(span, "pow() takes 2 arguments");
-            }
-            binop(BinOp::Pow, v[0].clone(), v[1].clone()).or_else(|m| py_err(span, m))?
-        }
+        "pow" => match v.as_slice() {
+            [a, b] => binop(BinOp::Pow, a.clone(), b.clone()).or_else(|m| py_err(span, m))?,
+            [a, b, m] => int::pow_mod(a, b, m).or_else(|e| py_err(span, e))?,
+            _ => return py_err(span, "pow() takes 2 or 3 arguments"),
+        },
         "divmod" => {
             if v.len() != 2 {
                 return py_err(span, "divmod() takes 2 arguments");
@@ -597,21 +684,23 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
             _ => return py_err(span, "ord() expects a character"),
         },
         "chr" => match v.first() {
-            Some(Value::Int(i)) => Value::str(
-                &char::from_u32(*i as u32)
-                    .map(|c| c.to_string())
-                    .unwrap_or_default(),
-            ),
+            Some(Value::Int(i)) => match u32::try_from(*i).ok().and_then(char::from_u32) {
+                Some(c) => Value::str(&c.to_string()),
+                None => return py_err(span, "chr() arg not in range(0x110000)"),
+            },
             _ => return py_err(span, "chr() expects an integer"),
         },
         "print" => {
             let sep = kwarg(&args, "sep")
-                .map(|s| s.to_string())
+                .map(|s| s.try_str())
+                .transpose()
+                .or_else(|m| py_err(span, m))?
                 .unwrap_or(" ".into());
             let line = v
                 .iter()
-                .map(|x| x.to_string())
-                .collect::<Vec<_>>()
+                .map(|x| x.try_str())
+                .collect::<Result<Vec<_>, _>>()
+                .or_else(|m| py_err(span, m))?
                 .join(&sep);
             if kwarg(&args, "file").is_some() {
                 return unsupported(span, "print(file=...)");
@@ -736,7 +825,9 @@ fn math_call(m: &str, v: &[Value], span: Span) -> R<Value> {
         "isinf" => Value::Bool(x(0)?.is_infinite()),
         "factorial" => match v.first() {
             Some(Value::Int(n)) if *n >= 0 && *n <= 20 => Value::Int((1..=*n).product()),
-            _ => return py_err(span, "factorial() needs a small non-negative integer"),
+            Some(x @ Value::Int(n)) if *n > 20 => int::factorial(x).or_else(|m| py_err(span, m))?,
+            Some(Value::Big(_)) => return py_err(span, int::too_large()),
+            _ => return py_err(span, "factorial() not defined for negative values or non-integers"),
         },
         other => return unsupported(span, format!("math.{other}")),
     })
@@ -787,9 +878,14 @@ pub fn method(me: &mut Interp, recv: Value, m: &str, args: Vec<CallArg>, span: S
                 "join" => {
                     let items = me.iterate(&arg(0), span)?;
                     let mut parts = Vec::new();
+                    let mut total = 0u128;
                     for it in items {
                         match it {
-                            Value::Str(x) => parts.push(x.to_string()),
+                            Value::Str(x) => {
+                                total += (x.len() + s.len()) as u128;
+                                check_str_len(total).or_else(|m| py_err(span, m))?;
+                                parts.push(x.to_string())
+                            }
                             other => {
                                 return py_err(
                                     span,
@@ -800,7 +896,18 @@ pub fn method(me: &mut Interp, recv: Value, m: &str, args: Vec<CallArg>, span: S
                     }
                     Value::str(&parts.join(s))
                 }
-                "replace" => Value::str(&s.replace(&s_arg(0)?, &s_arg(1)?)),
+                "replace" => {
+                    let (old, new) = (s_arg(0)?, s_arg(1)?);
+                    // The result's size, before building it.
+                    let hits = if old.is_empty() {
+                        s.chars().count() + 1
+                    } else {
+                        s.matches(old.as_str()).count()
+                    };
+                    let size = s.len() as u128 + hits as u128 * new.len() as u128;
+                    check_str_len(size).or_else(|m| py_err(span, m))?;
+                    Value::str(&s.replace(&old, &new))
+                }
                 "startswith" | "endswith" => {
                     let pats: Vec<String> = match arg(0) {
                         Value::Tuple(t) => t.iter().map(|x| x.to_string()).collect(),
@@ -824,20 +931,17 @@ pub fn method(me: &mut Interp, recv: Value, m: &str, args: Vec<CallArg>, span: S
                 }
                 "count" => Value::Int(s.matches(&s_arg(0)?).count() as i64),
                 "zfill" => {
-                    let w = match arg(0) {
-                        Value::Int(w) => w as usize,
-                        _ => 0,
-                    };
+                    let w = count(&arg(0)).unwrap_or(0).max(0);
+                    check_str_len(w as u128).or_else(|m| py_err(span, m))?;
+                    let w = w as usize;
                     Value::str(&format!(
                         "{}{s}",
                         "0".repeat(w.saturating_sub(s.chars().count()))
                     ))
                 }
                 "ljust" | "rjust" | "center" => {
-                    let w = match arg(0) {
-                        Value::Int(w) => w as usize,
-                        _ => 0,
-                    };
+                    let w = count(&arg(0)).unwrap_or(0).max(0);
+                    check_str_len(w as u128).or_else(|m| py_err(span, m))?;
                     let spec = format!(
                         "{}{w}",
                         match m {
@@ -878,20 +982,22 @@ pub fn method(me: &mut Interp, recv: Value, m: &str, args: Vec<CallArg>, span: S
                 }
                 "extend" => {
                     let items = me.iterate(&arg(0), span)?;
+                    check_items(l.borrow().len() + items.len()).or_else(|m| py_err(span, m))?;
                     l.borrow_mut().extend(items);
                     Value::None
                 }
                 "insert" => {
                     let n = l.borrow().len() as i64;
-                    let i = match arg(0) {
-                        Value::Int(i) => {
+                    let i = match count(&arg(0)) {
+                        Some(i) => {
+                            let n = n as i128;
                             if i < 0 {
                                 (n + i).max(0)
                             } else {
                                 i.min(n)
                             }
                         }
-                        _ => return py_err(span, "insert() needs an index"),
+                        None => return py_err(span, "insert() needs an index"),
                     };
                     l.borrow_mut().insert(i as usize, arg(1));
                     Value::None
@@ -934,16 +1040,16 @@ pub fn method(me: &mut Interp, recv: Value, m: &str, args: Vec<CallArg>, span: S
                     Value::None
                 }
                 "sort" => {
-                    let items = l.borrow().clone();
+                    let items = l.borrow().to_vec();
                     let key = kwarg(&args, "key").cloned();
                     let rev = kwarg(&args, "reverse")
                         .and_then(|r| r.truthy())
                         .unwrap_or(false);
                     let sorted = sort_values(me, items, key, rev, span)?;
-                    *l.borrow_mut() = sorted;
+                    *l.borrow_mut() = Items(sorted);
                     Value::None
                 }
-                "copy" => Value::list(l.borrow().clone()),
+                "copy" => Value::list(l.borrow().to_vec()),
                 _ => return py_err(span, format!("'list' object has no attribute '{m}'")),
             });
         }
@@ -1098,6 +1204,13 @@ pub fn slice(
         match x {
             None | Some(Value::None) => Ok(None),
             Some(Value::Int(i)) => Ok(Some(*i)),
+            Some(Value::Bool(b)) => Ok(Some(*b as i64)),
+            // A huge index clamps to the ends, as in Python.
+            Some(x @ Value::Big(_)) => Ok(Some(if count(x).is_some_and(|c| c < 0) {
+                i64::MIN / 2
+            } else {
+                i64::MAX / 2
+            })),
             Some(other) => py_err(
                 span,
                 format!("slice indices must be integers, not {}", other.type_name()),
@@ -1155,6 +1268,16 @@ pub fn order(a: &Value, b: &Value) -> Result<Ordering, String> {
     match (a, b) {
         (Value::Str(x), Value::Str(y)) => Ok(x.cmp(y)),
         (Value::Int(x), Value::Int(y)) => Ok(x.cmp(y)),
+        (Value::Int(_) | Value::Big(_) | Value::Bool(_), Value::Int(_) | Value::Big(_) | Value::Bool(_)) => {
+            Ok(int::big(a).cmp(&int::big(b)))
+        }
+        (Value::Int(_) | Value::Big(_), Value::Float(f)) => Ok(int::big(a)
+            .and_then(|x| int::cmp_float(&x, *f))
+            .unwrap_or(Ordering::Equal)),
+        (Value::Float(f), Value::Int(_) | Value::Big(_)) => Ok(int::big(b)
+            .and_then(|x| int::cmp_float(&x, *f))
+            .map(Ordering::reverse)
+            .unwrap_or(Ordering::Equal)),
         (Value::List(x), Value::List(y)) => seq_order(&x.borrow(), &y.borrow()),
         (Value::Tuple(x), Value::Tuple(y)) => seq_order(x, y),
         _ => match (a.as_f64(), b.as_f64()) {
@@ -1201,92 +1324,39 @@ pub fn binop(op: BinOp, l: Value, r: Value) -> Result<Value, String> {
     let r = if let Bool(b) = r { Int(b as i64) } else { r };
     Ok(match (op, &l, &r) {
         (_, Unknown, _) | (_, _, Unknown) => Unknown,
-        (BinOp::Add, Str(a), Str(b)) => Value::str(&format!("{a}{b}")),
+        (BinOp::Add, Str(a), Str(b)) => {
+            check_str_len(a.len() as u128 + b.len() as u128)?;
+            Value::str(&format!("{a}{b}"))
+        }
         (BinOp::Add, List(a), List(b)) => {
-            let mut v = a.borrow().clone();
+            check_items(a.borrow().len() + b.borrow().len())?;
+            let mut v = a.borrow().to_vec();
             v.extend(b.borrow().iter().cloned());
             Value::list(v)
         }
         (BinOp::Add, Tuple(a), Tuple(b)) => {
+            check_items(a.len() + b.len())?;
             let mut v = a.to_vec();
             v.extend(b.iter().cloned());
             Value::tuple(v)
         }
-        (BinOp::Mul, Str(s), Int(n)) | (BinOp::Mul, Int(n), Str(s)) => {
-            Value::str(&s.repeat((*n).max(0) as usize))
-        }
-        (BinOp::Mul, List(a), Int(n)) | (BinOp::Mul, Int(n), List(a)) => {
-            let a = a.borrow();
-            let mut v = Vec::new();
-            for _ in 0..(*n).max(0) {
-                v.extend(a.iter().cloned());
+        (BinOp::Mul, Str(s), n) | (BinOp::Mul, n, Str(s)) if int::is_int(n) => {
+            let n = count(n).unwrap_or(0);
+            if n <= 0 || s.is_empty() {
+                Value::str("")
+            } else {
+                check_str_len((s.len() as u128).saturating_mul(n as u128))?;
+                Value::str(&s.repeat(n as usize))
             }
-            Value::list(v)
         }
-        (BinOp::Mul, Tuple(a), Int(n)) | (BinOp::Mul, Int(n), Tuple(a)) => {
-            let mut v = Vec::new();
-            for _ in 0..(*n).max(0) {
-                v.extend(a.iter().cloned());
-            }
-            Value::tuple(v)
+        (BinOp::Mul, List(a), n) | (BinOp::Mul, n, List(a)) if int::is_int(n) => {
+            Value::list(repeat_items(&a.borrow(), count(n).unwrap_or(0))?)
+        }
+        (BinOp::Mul, Tuple(a), n) | (BinOp::Mul, n, Tuple(a)) if int::is_int(n) => {
+            Value::tuple(repeat_items(a, count(n).unwrap_or(0))?)
         }
         (BinOp::Mod, Str(f), args) => Value::str(&format::percent(f, args)?),
-        (_, Int(a), Int(b)) => {
-            let (a, b) = (*a, *b);
-            match op {
-                BinOp::Add => a
-                    .checked_add(b)
-                    .map(Int)
-                    .unwrap_or(Float(a as f64 + b as f64)),
-                BinOp::Sub => a
-                    .checked_sub(b)
-                    .map(Int)
-                    .unwrap_or(Float(a as f64 - b as f64)),
-                BinOp::Mul => a
-                    .checked_mul(b)
-                    .map(Int)
-                    .unwrap_or(Float(a as f64 * b as f64)),
-                BinOp::Div => {
-                    if b == 0 {
-                        return Err("division by zero".into());
-                    }
-                    Float(a as f64 / b as f64)
-                }
-                BinOp::FloorDiv => {
-                    if b == 0 {
-                        return Err("integer division by zero".into());
-                    }
-                    Int(a.div_euclid(b)
-                        - if (a.rem_euclid(b) != 0) && b < 0 {
-                            1
-                        } else {
-                            0
-                        })
-                }
-                BinOp::Mod => {
-                    if b == 0 {
-                        return Err("integer modulo by zero".into());
-                    }
-                    Int(py_mod(a as f64, b as f64) as i64)
-                }
-                BinOp::Pow => {
-                    if b >= 0 {
-                        match u32::try_from(b).ok().and_then(|e| a.checked_pow(e)) {
-                            Some(v) => Int(v),
-                            Option::None => Float((a as f64).powf(b as f64)),
-                        }
-                    } else {
-                        Float((a as f64).powf(b as f64))
-                    }
-                }
-                BinOp::BitAnd => Int(a & b),
-                BinOp::BitOr => Int(a | b),
-                BinOp::BitXor => Int(a ^ b),
-                BinOp::LShift => Int(a.checked_shl(b as u32).unwrap_or(0)),
-                BinOp::RShift => Int(a >> b.clamp(0, 63)),
-                BinOp::MatMul => return bad(&l, &r),
-            }
-        }
+        (_, a, b) if int::is_int(a) && int::is_int(b) => int::binop(op, a, b)?,
         (_, Complex(..), _) | (_, _, Complex(..)) => {
             let c = |v: &Value| match v {
                 Complex(a, b) => Some((*a, *b)),
@@ -1313,6 +1383,9 @@ pub fn binop(op: BinOp, l: Value, r: Value) -> Result<Value, String> {
             let (Some(a), Some(b)) = (l.as_f64(), r.as_f64()) else {
                 return bad(&l, &r);
             };
+            if (matches!(l, Big(_)) && a.is_infinite()) || (matches!(r, Big(_)) && b.is_infinite()) {
+                return Err("int too large to convert to float".into());
+            }
             match op {
                 BinOp::Add => Float(a + b),
                 BinOp::Sub => Float(a - b),

@@ -1,12 +1,46 @@
 //! String formatting: `%`-formatting, `str.format` and f-string format specs.
 
+use crate::limits::{too_large, MAX_STR_BYTES};
 use crate::value::{float_str, Value};
+
+/// A width or precision read from a format: digits, saturating (a huge
+/// one is refused by [`check_len`] rather than overflowing).
+fn digits_value(acc: usize, d: u32) -> usize {
+    acc.saturating_mul(10).saturating_add(d as usize)
+}
+
+/// A width or precision within what one string may hold.
+fn check_len(n: usize) -> Result<(), String> {
+    if n > MAX_STR_BYTES {
+        return Err(too_large(n as u128, MAX_STR_BYTES, "characters"));
+    }
+    Ok(())
+}
+
+/// Digits after the point beyond which a float's exact decimal expansion
+/// has only zeros (2^-1074 has 1,074 of them): Rust's formatting takes at
+/// most 65,535, so longer precisions are these digits and zeros.
+const EXACT_FRACTION_DIGITS: usize = 1_100;
+
+/// `x` with `p` digits after the point (Python's `%.pf`), for any `p`.
+fn fixed(x: f64, p: usize) -> String {
+    if !x.is_finite() {
+        // `inf`, `nan`: no digits (Rust's formatting would refuse p > 65,535).
+        return format!("{x}");
+    }
+    if p <= EXACT_FRACTION_DIGITS {
+        return format!("{x:.p$}");
+    }
+    let mut s = format!("{x:.EXACT_FRACTION_DIGITS$}");
+    s.push_str(&"0".repeat(p - EXACT_FRACTION_DIGITS));
+    s
+}
 
 /// Formats one value with a format-spec of the mini-language
 /// (`[[fill]align][sign][0][width][,][.precision][type]`).
 pub fn format_spec(v: &Value, spec: &str) -> Result<String, String> {
     if spec.is_empty() {
-        return Ok(v.to_string());
+        return v.try_str();
     }
     let chars: Vec<char> = spec.chars().collect();
     let mut i = 0;
@@ -34,9 +68,10 @@ pub fn format_spec(v: &Value, spec: &str) -> Result<String, String> {
     }
     let mut width = 0usize;
     while i < chars.len() && chars[i].is_ascii_digit() {
-        width = width * 10 + chars[i].to_digit(10).unwrap_or(0) as usize;
+        width = digits_value(width, chars[i].to_digit(10).unwrap_or(0));
         i += 1;
     }
+    check_len(width)?;
     if i < chars.len() && (chars[i] == ',' || chars[i] == '_') {
         i += 1;
     }
@@ -45,9 +80,10 @@ pub fn format_spec(v: &Value, spec: &str) -> Result<String, String> {
         i += 1;
         let mut p = 0usize;
         while i < chars.len() && chars[i].is_ascii_digit() {
-            p = p * 10 + chars[i].to_digit(10).unwrap_or(0) as usize;
+            p = digits_value(p, chars[i].to_digit(10).unwrap_or(0));
             i += 1;
         }
+        check_len(p)?;
         prec = Some(p);
     }
     let ty = chars.get(i).copied();
@@ -56,22 +92,23 @@ pub fn format_spec(v: &Value, spec: &str) -> Result<String, String> {
     }
     let body = format_one(v, ty, prec, sign)?;
     let numeric = v.as_f64().is_some();
-    Ok(pad(
+    pad(
         &body,
         width,
         fill,
         align.unwrap_or(if numeric { '>' } else { '<' }),
-    ))
+    )
 }
 
-fn pad(body: &str, width: usize, fill: char, align: char) -> String {
+fn pad(body: &str, width: usize, fill: char, align: char) -> Result<String, String> {
+    check_len(width)?;
     let n = body.chars().count();
     if n >= width {
-        return body.to_string();
+        return Ok(body.to_string());
     }
     let k = width - n;
     let f = |m: usize| fill.to_string().repeat(m);
-    match align {
+    Ok(match align {
         '<' => format!("{body}{}", f(k)),
         '^' => format!("{}{body}{}", f(k / 2), f(k - k / 2)),
         '=' => {
@@ -84,12 +121,24 @@ fn pad(body: &str, width: usize, fill: char, align: char) -> String {
             }
         }
         _ => format!("{}{body}", f(k)),
-    }
+    })
 }
 
+/// Significant digits beyond which a float's exact decimal expansion has
+/// only zeros (at most 767 significant digits).
+const EXACT_SIGNIFICANT_DIGITS: usize = 800;
+
 fn exp_form(x: f64, prec: usize, upper: bool) -> String {
-    let s = format!("{x:.prec$e}");
+    let shown = prec.min(EXACT_SIGNIFICANT_DIGITS);
+    let s = format!("{x:.shown$e}");
     let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+    let zeros;
+    let m = if prec > shown && x.is_finite() {
+        zeros = format!("{m}{}", "0".repeat(prec - shown));
+        zeros.as_str()
+    } else {
+        m
+    };
     let e: i32 = e.parse().unwrap_or(0);
     let out = format!("{m}e{}{:02}", if e < 0 { '-' } else { '+' }, e.abs());
     if upper {
@@ -105,7 +154,7 @@ fn general(x: f64, prec: usize, upper: bool, strip: bool) -> String {
         return "0".into();
     }
     let exp = x.abs().log10().floor() as i32;
-    let s = if exp < -4 || exp >= p as i32 {
+    let s = if exp < -4 || exp as i64 >= p as i64 {
         let s = exp_form(x, p - 1, upper);
         if strip {
             let (m, e) = s
@@ -121,8 +170,8 @@ fn general(x: f64, prec: usize, upper: bool, strip: bool) -> String {
             s
         }
     } else {
-        let decimals = (p as i32 - 1 - exp).max(0) as usize;
-        let s = format!("{x:.decimals$}");
+        let decimals = (p as i64 - 1 - exp as i64).max(0) as usize;
+        let s = fixed(x, decimals);
         if strip && s.contains('.') {
             s.trim_end_matches('0').trim_end_matches('.').to_string()
         } else {
@@ -150,8 +199,10 @@ fn format_one(
         }
     };
     match ty {
-        Some('s') | None if !matches!(v, Value::Float(_) | Value::Int(_)) || ty == Some('s') => {
-            let s = v.to_string();
+        Some('s') | None
+            if !matches!(v, Value::Float(_) | Value::Int(_) | Value::Big(_)) || ty == Some('s') =>
+        {
+            let s = v.try_str()?;
             Ok(match prec {
                 Some(p) => s.chars().take(p).collect(),
                 None => s,
@@ -159,9 +210,10 @@ fn format_one(
         }
         Some('d') | Some('i') => match v {
             Value::Int(i) => Ok(signed(i.to_string(), *i < 0)),
+            Value::Big(b) => Ok(signed(b.to_string(), b.sign() == num_bigint::Sign::Minus)),
             Value::Bool(b) => Ok((*b as i64).to_string()),
             Value::Float(f) if ty == Some('i') || f.fract() == 0.0 => {
-                Ok(signed(format!("{}", f.trunc() as i64), *f < 0.0))
+                Ok(signed(crate::int::from_f64(*f)?.to_string(), *f < 0.0))
             }
             other => Err(format!("format code 'd' for {}", other.type_name())),
         },
@@ -169,11 +221,14 @@ fn format_one(
             let x = v
                 .as_f64()
                 .ok_or_else(|| format!("format code '{c}' for {}", v.type_name()))?;
+            if x.is_infinite() && matches!(v, Value::Big(_)) {
+                return Err("int too large to convert to float".into());
+            }
             let p = prec.unwrap_or(6);
             let s = match c {
-                'f' | 'F' => format!("{x:.p$}"),
+                'f' | 'F' => fixed(x, p),
                 'e' | 'E' => exp_form(x, p, c == 'E'),
-                '%' => format!("{:.p$}%", x * 100.0),
+                '%' => format!("{}%", fixed(x * 100.0, p)),
                 _ => general(x, p, c == 'G', true),
             };
             Ok(signed(s, x < 0.0))
@@ -183,9 +238,9 @@ fn format_one(
                 Some(p) => Ok(signed(general(*f, p, false, true), *f < 0.0)),
                 None => Ok(signed(float_str(*f), *f < 0.0)),
             },
-            other => Ok(signed(other.to_string(), false)),
+            other => Ok(signed(other.try_str()?, false)),
         },
-        Some('r') => Ok(v.repr()),
+        Some('r') => v.try_repr(),
         Some(c) => Err(format!("unknown format code '{c}'")),
     }
 }
@@ -241,7 +296,7 @@ pub fn percent(fmt: &str, args: &Value) -> Result<String, String> {
             Ok(v)
         };
         if i < chars.len() && chars[i] == '*' {
-            width = take_arg(&mut next)?.to_string();
+            width = take_arg(&mut next)?.try_str()?;
             i += 1;
         }
         while i < chars.len() && chars[i].is_ascii_digit() {
@@ -256,7 +311,11 @@ pub fn percent(fmt: &str, args: &Value) -> Result<String, String> {
                 p.push(chars[i]);
                 i += 1;
             }
-            prec = Some(p.parse::<usize>().unwrap_or(0));
+            let p = p
+                .bytes()
+                .fold(0usize, |acc, d| digits_value(acc, (d - b'0') as u32));
+            check_len(p)?;
+            prec = Some(p);
         }
         let Some(&ty) = chars.get(i) else {
             return Err("incomplete format".into());
@@ -281,13 +340,11 @@ pub fn percent(fmt: &str, args: &Value) -> Result<String, String> {
             '-'
         };
         let body = match ty {
-            's' => v.to_string(),
-            'r' | 'a' => v.repr(),
-            'c' => v.to_string(),
+            's' => v.try_str()?,
+            'r' | 'a' => v.try_repr()?,
+            'c' => v.try_str()?,
             'd' | 'i' => match &v {
-                Value::Float(f) => {
-                    format_one(&Value::Int(f.trunc() as i64), Some('d'), None, sign)?
-                }
+                Value::Float(f) => format_one(&crate::int::from_f64(*f)?, Some('d'), None, sign)?,
                 other => format_one(other, Some('d'), None, sign)?,
             },
             t => format_one(&v, Some(t), prec.or(Some(6)), sign)?,
@@ -300,7 +357,11 @@ pub fn percent(fmt: &str, args: &Value) -> Result<String, String> {
         } else {
             body
         };
-        let w: usize = width.parse().unwrap_or(0);
+        let w: usize = width
+            .trim_start_matches('-')
+            .bytes()
+            .filter(u8::is_ascii_digit)
+            .fold(0usize, |acc, d| digits_value(acc, (d - b'0') as u32));
         let (fill, align) = if flags.contains('-') {
             (' ', '<')
         } else if flags.contains('0') && ty != 's' {
@@ -308,7 +369,8 @@ pub fn percent(fmt: &str, args: &Value) -> Result<String, String> {
         } else {
             (' ', '>')
         };
-        out.push_str(&pad(&body, w, fill, align));
+        out.push_str(&pad(&body, w, fill, align)?);
+        check_len(out.len())?;
     }
     if key_free(&dict) && next < items.len() && !matches!(args, Value::Dict(_)) {
         return Err("not all arguments converted during string formatting".into());

@@ -41,6 +41,13 @@ impl Formula {
         let vals: Vec<Value> = args.iter().map(|a| Value::Float(*a)).collect();
         match self.call(&vals)? {
             Value::Int(i) => Ok(i as f64),
+            big @ Value::Big(_) => match big.as_f64() {
+                Some(f) if f.is_finite() => Ok(f),
+                _ => Err(format!(
+                    "formula `{}` gave an integer too large for a real",
+                    self.source
+                )),
+            },
             Value::Float(f) => Ok(f),
             Value::Bool(b) => Ok(b as i64 as f64),
             other => Err(format!(

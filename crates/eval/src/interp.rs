@@ -10,6 +10,9 @@ use crate::value::*;
 use aster_catalog::catalog;
 use aster_syntax::ast::{self, ArgKind, BinOp, CmpOp, ExprKind, StmtKind, UnaryOp};
 use aster_syntax::{CodeMap, Span};
+use crate::limits::{
+    MAX_CALL_DEPTH, MAX_EVAL_DEPTH, STEP_BUDGET, STR_BYTES_PER_STEP,
+};
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 
@@ -91,10 +94,16 @@ pub(crate) struct Interp<'a> {
     /// The program was written for an older code_aster (11–15): legacy
     /// spellings that code_aster 17 dropped are translated.
     pub legacy: bool,
+    /// User function calls in progress (see [`MAX_CALL_DEPTH`]).
     depth: usize,
+    /// Nested evaluation levels in progress (see [`MAX_EVAL_DEPTH`]).
+    nesting: usize,
+    /// Steps spent from the program's [`STEP_BUDGET`].
+    steps: std::cell::Cell<u64>,
+    /// The loops in progress (where, and what), innermost last: the one a
+    /// spent budget is blamed on.
+    loops: Vec<(Span, &'static str)>,
 }
-
-const MAX_DEPTH: usize = 150;
 
 impl<'a> Interp<'a> {
     pub fn new(map: &'a CodeMap, sink: &'a mut dyn CommandSink, keep_going: bool) -> Interp<'a> {
@@ -111,7 +120,47 @@ impl<'a> Interp<'a> {
             commands: 0,
             legacy: false,
             depth: 0,
+            nesting: 0,
+            steps: std::cell::Cell::new(0),
+            loops: Vec::new(),
         }
+    }
+
+    /// Spends `n` steps of the program's budget on `what` (at `span`):
+    /// an error naming it when the budget runs out.
+    /// Inside a loop, the innermost loop is named instead.
+    pub(crate) fn charge(&self, n: u64, span: Span, what: &str) -> R<()> {
+        let used = self.steps.get().saturating_add(n);
+        self.steps.set(used);
+        if used > STEP_BUDGET {
+            let (span, what) = match self.loops.last() {
+                Some((loop_span, kind)) => (*loop_span, format!("this {kind}")),
+                None => (span, what.to_string()),
+            };
+            return py_err(
+                span,
+                format!(
+                    "{what} runs too long: the program used up its budget of {STEP_BUDGET} evaluation steps (loop turns, calls, items built)"
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// Spends the cost of building `v` (its items, or its text by
+    /// [`STR_BYTES_PER_STEP`]) on `what`.
+    pub(crate) fn charge_value(&self, v: &Value, span: Span, what: &str) -> R<()> {
+        let n = match v {
+            Value::List(l) => l.borrow().len() as u64,
+            Value::Tuple(t) => t.len() as u64,
+            Value::Dict(d) => d.borrow().entries.len() as u64,
+            Value::Str(s) => (s.len() / STR_BYTES_PER_STEP) as u64,
+            _ => return Ok(()),
+        };
+        if n > 0 {
+            self.charge(n, span, what)?;
+        }
+        Ok(())
     }
 
     pub fn for_formula(
@@ -212,7 +261,65 @@ impl<'a> Interp<'a> {
         Ok(Flow::Normal)
     }
 
+    /// Executes a statement: one level of [`MAX_EVAL_DEPTH`].
     fn exec(&mut self, s: &ast::Stmt) -> R<Flow> {
+        if self.nesting >= MAX_EVAL_DEPTH {
+            return self.too_deep(s.span);
+        }
+        self.nesting += 1;
+        let r = self.exec_stmt(s);
+        self.nesting -= 1;
+        r
+    }
+
+    /// A `for` or `while` loop (each turn is a step of the budget).
+    fn exec_loop(&mut self, s: &ast::Stmt) -> R<Flow> {
+        match &s.kind {
+            StmtKind::For {
+                target,
+                iter,
+                body,
+                orelse,
+            } => {
+                let it = self.eval(iter)?;
+                let items = self.iterate(&it, iter.span)?;
+                for item in items {
+                    self.charge(1, s.span, "this `for` loop")?;
+                    self.assign(target, item)?;
+                    match self.exec_block(body)? {
+                        Flow::Break => return Ok(Flow::Normal),
+                        Flow::Return(v) => return Ok(Flow::Return(v)),
+                        Flow::Normal | Flow::Continue => {}
+                    }
+                    if self.finished {
+                        return Ok(Flow::Normal);
+                    }
+                }
+                self.exec_block(orelse)
+            }
+            StmtKind::While { test, body, orelse } => {
+                loop {
+                    let t = self.eval(test)?;
+                    if !self.truth(&t, test.span)? {
+                        break;
+                    }
+                    self.charge(1, s.span, "this `while` loop")?;
+                    match self.exec_block(body)? {
+                        Flow::Break => return Ok(Flow::Normal),
+                        Flow::Return(v) => return Ok(Flow::Return(v)),
+                        Flow::Normal | Flow::Continue => {}
+                    }
+                    if self.finished {
+                        return Ok(Flow::Normal);
+                    }
+                }
+                self.exec_block(orelse)
+            }
+            _ => Ok(Flow::Normal),
+        }
+    }
+
+    fn exec_stmt(&mut self, s: &ast::Stmt) -> R<Flow> {
         match &s.kind {
             StmtKind::Expr { value } => {
                 self.eval(value)?;
@@ -249,48 +356,17 @@ impl<'a> Interp<'a> {
                 let b = self.truth(&t, test.span)?;
                 return self.exec_block(if b { body } else { orelse });
             }
-            StmtKind::For {
-                target,
-                iter,
-                body,
-                orelse,
-            } => {
-                let it = self.eval(iter)?;
-                let items = self.iterate(&it, iter.span)?;
-                for item in items {
-                    self.assign(target, item)?;
-                    match self.exec_block(body)? {
-                        Flow::Break => return Ok(Flow::Normal),
-                        Flow::Return(v) => return Ok(Flow::Return(v)),
-                        Flow::Normal | Flow::Continue => {}
-                    }
-                    if self.finished {
-                        return Ok(Flow::Normal);
-                    }
-                }
-                return self.exec_block(orelse);
+            StmtKind::For { .. } => {
+                self.loops.push((s.span, "`for` loop"));
+                let r = self.exec_loop(s);
+                self.loops.pop();
+                return r;
             }
-            StmtKind::While { test, body, orelse } => {
-                let mut n = 0u64;
-                loop {
-                    let t = self.eval(test)?;
-                    if !self.truth(&t, test.span)? {
-                        break;
-                    }
-                    n += 1;
-                    if n > 10_000_000 {
-                        return py_err(s.span, "while loop runs more than 10^7 times");
-                    }
-                    match self.exec_block(body)? {
-                        Flow::Break => return Ok(Flow::Normal),
-                        Flow::Return(v) => return Ok(Flow::Return(v)),
-                        Flow::Normal | Flow::Continue => {}
-                    }
-                    if self.finished {
-                        return Ok(Flow::Normal);
-                    }
-                }
-                return self.exec_block(orelse);
+            StmtKind::While { .. } => {
+                self.loops.push((s.span, "`while` loop"));
+                let r = self.exec_loop(s);
+                self.loops.pop();
+                return r;
             }
             StmtKind::FunctionDef {
                 name,
@@ -397,7 +473,8 @@ impl<'a> Interp<'a> {
                 }
                 let mut parts = Vec::new();
                 for v in values {
-                    parts.push(self.eval(v)?.to_string());
+                    let text = self.eval(v)?.try_str().or_else(|m| py_err(v.span, m))?;
+                    parts.push(text);
                 }
                 self.sink.print(&parts.join(" "));
             }
@@ -675,7 +752,27 @@ impl<'a> Interp<'a> {
         }
     }
 
+    /// Evaluates an expression: one level of [`MAX_EVAL_DEPTH`].
     pub fn eval(&mut self, e: &ast::Expr) -> R<Value> {
+        if self.nesting >= MAX_EVAL_DEPTH {
+            return self.too_deep(e.span);
+        }
+        self.nesting += 1;
+        let r = self.eval_expr(e);
+        self.nesting -= 1;
+        r
+    }
+
+    fn too_deep<T>(&self, span: Span) -> R<T> {
+        py_err(
+            span,
+            format!(
+                "maximum recursion depth exceeded: evaluation nested more than {MAX_EVAL_DEPTH} levels (expressions, blocks and calls)"
+            ),
+        )
+    }
+
+    fn eval_expr(&mut self, e: &ast::Expr) -> R<Value> {
         Ok(match &e.kind {
             ExprKind::Name { id } => self.lookup(id, e.span)?,
             ExprKind::Int { value } => Value::Int(*value),
@@ -684,7 +781,11 @@ impl<'a> Interp<'a> {
             ExprKind::Str { value } => Value::str(value),
             ExprKind::Bool { value } => Value::Bool(*value),
             ExprKind::None => Value::None,
-            ExprKind::FString { parts } => Value::str(&self.fstring(parts)?),
+            ExprKind::FString { parts } => {
+                let v = Value::str(&self.fstring(parts)?);
+                self.charge_value(&v, e.span, "this f-string")?;
+                v
+            }
             ExprKind::List { elts } => Value::list(self.eval_elts(elts)?),
             ExprKind::Tuple { elts } => Value::tuple(self.eval_elts(elts)?),
             ExprKind::Set { elts } => {
@@ -752,12 +853,19 @@ impl<'a> Interp<'a> {
                         None => Value::Unknown,
                     },
                     (_, Value::Unknown) => Value::Unknown,
-                    (UnaryOp::Neg, Value::Int(i)) => Value::Int(-i),
-                    (UnaryOp::Neg, Value::Bool(b)) => Value::Int(-(b as i64)),
+                    (UnaryOp::Neg, v @ (Value::Int(_) | Value::Bool(_) | Value::Big(_))) => {
+                        crate::int::neg(&v)
+                    }
                     (UnaryOp::Neg, Value::Float(f)) => Value::Float(-f),
                     (UnaryOp::Neg, Value::Complex(a, b)) => Value::Complex(-a, -b),
-                    (UnaryOp::Pos, v @ (Value::Int(_) | Value::Float(_) | Value::Complex(..))) => v,
-                    (UnaryOp::Invert, Value::Int(i)) => Value::Int(!i),
+                    (UnaryOp::Pos, Value::Bool(b)) => Value::Int(b as i64),
+                    (
+                        UnaryOp::Pos,
+                        v @ (Value::Int(_) | Value::Big(_) | Value::Float(_) | Value::Complex(..)),
+                    ) => v,
+                    (UnaryOp::Invert, v @ (Value::Int(_) | Value::Bool(_) | Value::Big(_))) => {
+                        crate::int::invert(&v)
+                    }
                     (_, v) => {
                         return py_err(
                             e.span,
@@ -812,7 +920,7 @@ impl<'a> Interp<'a> {
             | ExprKind::SetComp { elt, generators }
             | ExprKind::GeneratorExp { elt, generators } => {
                 let mut out = Vec::new();
-                self.comprehension(generators, &mut |me| {
+                self.comprehension(e.span, generators, &mut |me| {
                     out.push(me.eval(elt)?);
                     Ok(())
                 })?;
@@ -833,7 +941,7 @@ impl<'a> Interp<'a> {
                 generators,
             } => {
                 let mut d = Dict::default();
-                self.comprehension(generators, &mut |me| {
+                self.comprehension(e.span, generators, &mut |me| {
                     let k = me.eval(key)?;
                     let v = me.eval(value)?;
                     d.insert(k, v, key.span);
@@ -847,7 +955,9 @@ impl<'a> Interp<'a> {
                 self.set_var(&target.name, v.clone());
                 v
             }
-            ExprKind::Repr { value } => Value::str(&self.eval(value)?.repr()),
+            ExprKind::Repr { value } => {
+                Value::str(&self.eval(value)?.try_repr().or_else(|m| py_err(e.span, m))?)
+            }
             ExprKind::Bytes { .. } => return unsupported(e.span, "bytes literals"),
             ExprKind::Ellipsis => return unsupported(e.span, "`...`"),
             ExprKind::Yield { .. } | ExprKind::YieldFrom { .. } => {
@@ -872,6 +982,7 @@ impl<'a> Interp<'a> {
 
     fn comprehension(
         &mut self,
+        span: Span,
         gens: &[ast::Comprehension],
         body: &mut dyn FnMut(&mut Interp<'a>) -> R<()>,
     ) -> R<()> {
@@ -887,7 +998,9 @@ impl<'a> Interp<'a> {
             .map(|f| f.globals.clone())
             .unwrap_or_default();
         self.frames.push(Frame { vars, globals });
+        self.loops.push((span, "comprehension"));
         let r = self.comp_level(gens, body);
+        self.loops.pop();
         self.frames.pop();
         r
     }
@@ -902,6 +1015,7 @@ impl<'a> Interp<'a> {
         };
         let it = self.eval(&g.iter)?;
         for item in self.iterate(&it, g.iter.span)? {
+            self.charge(1, g.iter.span, "this comprehension")?;
             self.assign(&g.target, item)?;
             let mut keep = true;
             for cond in &g.ifs {
@@ -935,23 +1049,47 @@ impl<'a> Interp<'a> {
                         out.push('=');
                     }
                     let v = match conversion {
-                        Some('r') | Some('a') => Value::str(&v.repr()),
-                        Some('s') => Value::str(&v.to_string()),
+                        Some('r') | Some('a') => {
+                            Value::str(&v.try_repr().or_else(|m| py_err(value.span, m))?)
+                        }
+                        Some('s') => Value::str(&v.try_str().or_else(|m| py_err(value.span, m))?),
                         _ => v,
                     };
                     let spec = self.fstring(format_spec)?;
                     out.push_str(
                         &format::format_spec(&v, &spec).or_else(|m| py_err(value.span, m))?,
                     );
+                    if out.len() > crate::limits::MAX_STR_BYTES {
+                        return py_err(
+                            value.span,
+                            crate::limits::too_large(
+                                out.len() as u128,
+                                crate::limits::MAX_STR_BYTES,
+                                "characters",
+                            ),
+                        );
+                    }
                 }
             }
         }
         Ok(out)
     }
 
+    /// The items of an iterable, materialized: their number is charged to
+    /// the step budget before they are copied.
     pub fn iterate(&self, v: &Value, span: Span) -> R<Vec<Value>> {
+        let n = match v {
+            Value::List(l) => l.borrow().len(),
+            Value::Tuple(t) => t.len(),
+            Value::Str(s) => s.len(),
+            Value::Dict(d) => d.borrow().entries.len(),
+            _ => 0,
+        };
+        if n > 0 {
+            self.charge(n as u64, span, "this iteration")?;
+        }
         Ok(match v {
-            Value::List(l) => l.borrow().clone(),
+            Value::List(l) => l.borrow().to_vec(),
             Value::Tuple(t) => t.to_vec(),
             Value::Str(s) => s.chars().map(|c| Value::str(&c.to_string())).collect(),
             Value::Dict(d) => d.borrow().entries.iter().map(|e| e.key.clone()).collect(),
@@ -974,6 +1112,9 @@ impl<'a> Interp<'a> {
         let i = match k {
             Value::Int(i) => *i,
             Value::Bool(b) => *b as i64,
+            Value::Big(_) => {
+                return py_err(span, format!("index {k} out of range (length {n})"));
+            }
             other => {
                 return py_err(
                     span,
@@ -1177,13 +1318,21 @@ impl<'a> Interp<'a> {
                 }] => Ok(Value::Co(s.clone())),
                 _ => py_err(span, "CO() takes one name, e.g. CO('RESU')"),
             },
-            Value::Builtin(Builtin::Fn(name)) => builtins::call(self, name, args, span),
+            Value::Builtin(Builtin::Fn(name)) => {
+                let v = builtins::call(self, name, args, span)?;
+                self.charge_value(&v, span, "this call")?;
+                Ok(v)
+            }
             Value::Builtin(Builtin::TestCase) => Ok(Value::Builtin(Builtin::TestCaseObject)),
             Value::Method(recv, m) if matches!(*recv, Value::Builtin(Builtin::TestCaseObject)) => {
                 crate::testcase::call(self, &m, args, span)
             }
             Value::Func(uf) => self.call_user(&uf, args, span),
-            Value::Method(recv, m) => builtins::method(self, *recv, &m, args, span),
+            Value::Method(recv, m) => {
+                let v = builtins::method(self, *recv, &m, args, span)?;
+                self.charge_value(&v, span, "this call")?;
+                Ok(v)
+            }
             Value::Formula(c, formula) => {
                 let mut vals = Vec::new();
                 for a in args {
@@ -1215,9 +1364,13 @@ impl<'a> Interp<'a> {
     }
 
     fn call_user(&mut self, f: &Rc<UserFunc>, args: Vec<CallArg>, span: Span) -> R<Value> {
-        if self.depth >= MAX_DEPTH {
-            return py_err(span, "maximum recursion depth exceeded");
+        if self.depth >= MAX_CALL_DEPTH {
+            return py_err(
+                span,
+                format!("maximum recursion depth exceeded: more than {MAX_CALL_DEPTH} calls inside one another"),
+            );
         }
+        self.charge(1, span, "this call")?;
         let mut frame = Frame {
             vars: f.closure.clone(),
             globals: HashSet::new(),
@@ -1322,7 +1475,11 @@ impl<'a> Interp<'a> {
                 Err(e) => Err(exec_diag(span, e).into()),
             };
         }
-        builtins::binop(op, l, r).or_else(|m| py_err(span, m))
+        let v = builtins::binop(op, l, r).or_else(|m| py_err(span, m))?;
+        if matches!(op, BinOp::Add | BinOp::Mul | BinOp::Mod) {
+            self.charge_value(&v, span, "this operation")?;
+        }
+        Ok(v)
     }
 
     /// `None` when the answer depends on a run-time value.
@@ -1330,9 +1487,14 @@ impl<'a> Interp<'a> {
         if matches!(l, Value::Unknown) || matches!(r, Value::Unknown) {
             return Ok(None);
         }
+        let eq = |a: &Value, b: &Value| -> R<bool> {
+            let e = a.py_eq(b);
+            crate::value::guard::check().or_else(|m| py_err(span, m))?;
+            Ok(e)
+        };
         Ok(Some(match op {
-            CmpOp::Eq => l.py_eq(r),
-            CmpOp::NotEq => !l.py_eq(r),
+            CmpOp::Eq => eq(l, r)?,
+            CmpOp::NotEq => !eq(l, r)?,
             CmpOp::Is => l.py_eq(r) && l.type_name() == r.type_name(),
             CmpOp::IsNot => !(l.py_eq(r) && l.type_name() == r.type_name()),
             CmpOp::In | CmpOp::NotIn => {
@@ -1381,6 +1543,11 @@ pub(crate) fn to_host(v: &Value) -> HostValue {
         Value::None => HostValue::None,
         Value::Bool(b) => HostValue::Scalar(Scalar::Int(*b as i64)),
         Value::Int(i) => HostValue::Scalar(Scalar::Int(*i)),
+        // code_aster converts an integer given for a real with `float()`.
+        Value::Big(_) => match v.as_f64() {
+            Some(f) if f.is_finite() => HostValue::Scalar(Scalar::Real(f)),
+            _ => HostValue::Scalar(Scalar::Opaque(v.to_string())),
+        },
         Value::Float(f) => HostValue::Scalar(Scalar::Real(*f)),
         Value::Complex(a, b) => HostValue::Scalar(Scalar::Complex(*a, *b)),
         Value::Str(s) => HostValue::Scalar(Scalar::Str(s.to_string())),

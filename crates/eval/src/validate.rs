@@ -815,6 +815,22 @@ impl Validator<'_> {
         }
         for s in &out {
             if let Some(x) = s.as_f64() {
+                // No keyword of code_aster takes an infinity or a NaN: caught
+                // here, at the keyword, rather than as a singular system or
+                // a degenerate cell later.
+                if !x.is_finite() {
+                    self.error(
+                        DiagKind::OutOfRange,
+                        g.span,
+                        format!(
+                            "`{}`: value {} is not a finite number",
+                            kpath(),
+                            scalar_repr(s)
+                        ),
+                    );
+                    failed = true;
+                    continue;
+                }
                 let lo = kw.val_min.is_some_and(|m| x < m);
                 let hi = kw.val_max.is_some_and(|m| x > m);
                 if lo || hi {
@@ -868,6 +884,18 @@ impl Validator<'_> {
         }
         match v {
             Value::Unknown => Some(Scalar::Opaque("<run-time value>".into())),
+            // An integer beyond 64 bits: a real keyword takes it as code_aster
+            // does (`float()`); an integer keyword cannot hold it.
+            Value::Big(_) => {
+                let f = v.as_f64().filter(|f| f.is_finite())?;
+                if has(&ValueType::Real) {
+                    Some(Scalar::Real(f))
+                } else if has(&ValueType::Complex) {
+                    Some(Scalar::Complex(f, 0.0))
+                } else {
+                    None
+                }
+            }
             Value::Int(_) | Value::Bool(_) => {
                 let i = match v {
                     Value::Bool(b) => *b as i64,

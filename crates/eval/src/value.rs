@@ -26,6 +26,93 @@ pub enum FuncBody {
     Lambda(ast::Expr),
 }
 
+/// The items of a list or tuple (a `Vec<Value>`; dropping a structure
+/// nested deeper than the stack allows is bounded: see [`deep_drop`]).
+#[derive(Clone, Debug, Default)]
+pub struct Items(pub Vec<Value>);
+
+impl std::ops::Deref for Items {
+    type Target = Vec<Value>;
+    fn deref(&self) -> &Vec<Value> {
+        &self.0
+    }
+}
+
+impl std::ops::DerefMut for Items {
+    fn deref_mut(&mut self) -> &mut Vec<Value> {
+        &mut self.0
+    }
+}
+
+impl Drop for Items {
+    fn drop(&mut self) {
+        if !self.0.is_empty() {
+            deep_drop::values(std::mem::take(&mut self.0));
+        }
+    }
+}
+
+impl Drop for Dict {
+    fn drop(&mut self) {
+        if !self.entries.is_empty() {
+            let entries = std::mem::take(&mut self.entries);
+            deep_drop::values(
+                entries
+                    .into_iter()
+                    .flat_map(|e| [e.key, e.value])
+                    .collect(),
+            );
+        }
+    }
+}
+
+impl Drop for UserFunc {
+    fn drop(&mut self) {
+        // Defaults and closures can chain functions (`g = lambda g=g: g`
+        // in a loop).
+        let mut held: Vec<Value> = std::mem::take(&mut self.defaults)
+            .into_iter()
+            .flatten()
+            .collect();
+        held.extend(std::mem::take(&mut self.closure).into_values());
+        if !held.is_empty() {
+            deep_drop::values(held);
+        }
+    }
+}
+
+/// Dropping nested values with bounded recursion: the usual nested drop
+/// up to a fixed depth, deeper containers queued and dropped by the loop of
+/// the outermost drop (a list nested a million deep frees without
+/// exhausting the stack; Python's "trashcan" does the same).
+pub mod deep_drop {
+    use super::Value;
+    use std::cell::{Cell, RefCell};
+
+    const NESTING: u32 = 200;
+
+    thread_local! {
+        static DEPTH: Cell<u32> = const { Cell::new(0) };
+        static DEFERRED: RefCell<Vec<Vec<Value>>> = const { RefCell::new(Vec::new()) };
+    }
+
+    pub fn values(v: Vec<Value>) {
+        let depth = DEPTH.with(|d| d.get());
+        if depth >= NESTING {
+            DEFERRED.with(|q| q.borrow_mut().push(v));
+            return;
+        }
+        DEPTH.with(|d| d.set(depth + 1));
+        drop(v);
+        if depth == 0 {
+            while let Some(next) = DEFERRED.with(|q| q.borrow_mut().pop()) {
+                drop(next);
+            }
+        }
+        DEPTH.with(|d| d.set(depth));
+    }
+}
+
 /// One entry of a dict; `_F(...)` keeps where each keyword was written.
 #[derive(Clone, Debug)]
 pub struct DictEntry {
@@ -79,11 +166,13 @@ pub enum Value {
     None,
     Bool(bool),
     Int(i64),
+    /// An integer beyond `i64` (see `int`): never one that fits an `Int`.
+    Big(Rc<num_bigint::BigInt>),
     Float(f64),
     Complex(f64, f64),
     Str(Rc<str>),
-    List(Rc<RefCell<Vec<Value>>>),
-    Tuple(Rc<Vec<Value>>),
+    List(Rc<RefCell<Items>>),
+    Tuple(Rc<Items>),
     Dict(Rc<RefCell<Dict>>),
     Func(Rc<UserFunc>),
     Builtin(Builtin),
@@ -108,17 +197,17 @@ impl Value {
         Value::Str(Rc::from(s))
     }
     pub fn list(v: Vec<Value>) -> Value {
-        Value::List(Rc::new(RefCell::new(v)))
+        Value::List(Rc::new(RefCell::new(Items(v))))
     }
     pub fn tuple(v: Vec<Value>) -> Value {
-        Value::Tuple(Rc::new(v))
+        Value::Tuple(Rc::new(Items(v)))
     }
 
     pub fn type_name(&self) -> &'static str {
         match self {
             Value::None => "NoneType",
             Value::Bool(_) => "bool",
-            Value::Int(_) => "int",
+            Value::Int(_) | Value::Big(_) => "int",
             Value::Float(_) => "float",
             Value::Complex(..) => "complex",
             Value::Str(_) => "str",
@@ -139,6 +228,7 @@ impl Value {
             Value::None => false,
             Value::Bool(b) => *b,
             Value::Int(i) => *i != 0,
+            Value::Big(_) => true,
             Value::Float(f) => *f != 0.0,
             Value::Complex(a, b) => *a != 0.0 || *b != 0.0,
             Value::Str(s) => !s.is_empty(),
@@ -150,19 +240,58 @@ impl Value {
         })
     }
 
+    /// The value as a float; a big integer beyond the float range is
+    /// infinite here (arithmetic refuses it: see `builtins::binop`).
     pub fn as_f64(&self) -> Option<f64> {
         match self {
             Value::Bool(b) => Some(*b as i64 as f64),
             Value::Int(i) => Some(*i as f64),
+            Value::Big(b) => Some(
+                num_traits::ToPrimitive::to_f64(&**b).unwrap_or(if num_traits::Signed::is_negative(&**b) {
+                    f64::NEG_INFINITY
+                } else {
+                    f64::INFINITY
+                }),
+            ),
             Value::Float(f) => Some(*f),
             _ => None,
         }
     }
 
+    /// Python's `==`. Containers compare their items with Python's
+    /// identity shortcut (`a == a` is true for a list that contains
+    /// itself); comparing two different structures nested deeper than the
+    /// evaluator's depth limit stops there and marks the comparison as
+    /// failed ([`guard::take_overflow`]), as Python raises `RecursionError`.
     pub fn py_eq(&self, other: &Value) -> bool {
+        match (self, other) {
+            (Value::List(a), Value::List(b)) if Rc::ptr_eq(a, b) => return true,
+            (Value::Tuple(a), Value::Tuple(b)) if Rc::ptr_eq(a, b) => return true,
+            (Value::Dict(a), Value::Dict(b)) if Rc::ptr_eq(a, b) => return true,
+            (Value::List(_) | Value::Tuple(_) | Value::Dict(_), _) => {
+                let Some(_level) = guard::enter() else {
+                    return false;
+                };
+                return self.py_eq_items(other);
+            }
+            _ => {}
+        }
+        self.py_eq_items(other)
+    }
+
+    fn py_eq_items(&self, other: &Value) -> bool {
         match (self, other) {
             (Value::Str(a), Value::Str(b)) => a == b,
             (Value::Int(a), Value::Int(b)) => a == b,
+            (Value::Big(a), Value::Big(b)) => a == b,
+            (Value::Big(_), Value::Int(_) | Value::Bool(_))
+            | (Value::Int(_) | Value::Bool(_), Value::Big(_)) => false,
+            (Value::Int(_) | Value::Big(_), Value::Float(f)) => crate::int::big(self)
+                .and_then(|a| crate::int::cmp_float(&a, *f))
+                .is_some_and(|o| o.is_eq()),
+            (Value::Float(f), Value::Int(_) | Value::Big(_)) => crate::int::big(other)
+                .and_then(|a| crate::int::cmp_float(&a, *f))
+                .is_some_and(|o| o.is_eq()),
             (Value::None, Value::None) => true,
             (Value::List(a), Value::List(b)) => {
                 let (a, b) = (a.borrow(), b.borrow());
@@ -188,6 +317,22 @@ impl Value {
                 _ => false,
             },
         }
+    }
+
+    /// Python's `repr`, or an error when the value is nested deeper than
+    /// the evaluator's depth limit (Python's `RecursionError`); a container
+    /// that contains itself prints as `[...]`, as in Python.
+    pub fn try_repr(&self) -> Result<String, String> {
+        let s = self.repr();
+        guard::check()?;
+        Ok(s)
+    }
+
+    /// Python's `str`, with the errors of [`Value::try_repr`].
+    pub fn try_str(&self) -> Result<String, String> {
+        let s = self.to_string();
+        guard::check()?;
+        Ok(s)
     }
 
     /// Python's `repr`.
@@ -237,10 +382,14 @@ impl fmt::Display for Value {
             Value::None => write!(f, "None"),
             Value::Bool(b) => write!(f, "{}", if *b { "True" } else { "False" }),
             Value::Int(i) => write!(f, "{i}"),
+            Value::Big(b) => write!(f, "{b}"),
             Value::Float(x) => write!(f, "{}", float_str(*x)),
             Value::Complex(a, b) => write!(f, "({}{:+}j)", float_str(*a), b),
             Value::Str(s) => write!(f, "{s}"),
             Value::List(l) => {
+                let Some(_level) = guard::enter_repr(Rc::as_ptr(l) as *const ()) else {
+                    return write!(f, "[...]");
+                };
                 write!(f, "[")?;
                 for (i, v) in l.borrow().iter().enumerate() {
                     if i > 0 {
@@ -251,6 +400,9 @@ impl fmt::Display for Value {
                 write!(f, "]")
             }
             Value::Tuple(t) => {
+                let Some(_level) = guard::enter_repr(Rc::as_ptr(t) as *const ()) else {
+                    return write!(f, "(...)");
+                };
                 write!(f, "(")?;
                 for (i, v) in t.iter().enumerate() {
                     if i > 0 {
@@ -264,6 +416,9 @@ impl fmt::Display for Value {
                 write!(f, ")")
             }
             Value::Dict(d) => {
+                let Some(_level) = guard::enter_repr(Rc::as_ptr(d) as *const ()) else {
+                    return write!(f, "{{...}}");
+                };
                 write!(f, "{{")?;
                 for (i, e) in d.borrow().entries.iter().enumerate() {
                     if i > 0 {
@@ -286,5 +441,72 @@ impl fmt::Display for Value {
             Value::Module(m) => write!(f, "<module '{m}'>"),
             Value::Unknown => write!(f, "<run-time value>"),
         }
+    }
+}
+
+/// Recursion over values (printing, comparing): nested containers are
+/// bounded by the evaluator's depth limit, and a container met again while
+/// it is being printed prints as `[...]` (Python's `Py_ReprEnter`).
+pub mod guard {
+    use crate::limits::MAX_EVAL_DEPTH;
+    use std::cell::{Cell, RefCell};
+
+    thread_local! {
+        static DEPTH: Cell<usize> = const { Cell::new(0) };
+        static OVERFLOW: Cell<bool> = const { Cell::new(false) };
+        static PRINTING: RefCell<Vec<*const ()>> = const { RefCell::new(Vec::new()) };
+    }
+
+    /// One level of recursion; leaves it when dropped.
+    pub struct Level {
+        printing: bool,
+    }
+
+    impl Drop for Level {
+        fn drop(&mut self) {
+            DEPTH.with(|d| d.set(d.get().saturating_sub(1)));
+            if self.printing {
+                PRINTING.with(|p| p.borrow_mut().pop());
+            }
+        }
+    }
+
+    /// Enters one level; `None` (and the overflow mark) past the limit.
+    pub fn enter() -> Option<Level> {
+        let depth = DEPTH.with(|d| d.get());
+        if depth >= MAX_EVAL_DEPTH {
+            OVERFLOW.with(|o| o.set(true));
+            return None;
+        }
+        DEPTH.with(|d| d.set(depth + 1));
+        Some(Level { printing: false })
+    }
+
+    /// Enters the printing of container `ptr`; `None` when it is already
+    /// being printed (a cycle) or past the depth limit.
+    pub fn enter_repr(ptr: *const ()) -> Option<Level> {
+        if PRINTING.with(|p| p.borrow().contains(&ptr)) {
+            return None;
+        }
+        let mut level = enter()?;
+        PRINTING.with(|p| p.borrow_mut().push(ptr));
+        level.printing = true;
+        Some(level)
+    }
+
+    /// Whether a recursion went past the limit since the last call (and
+    /// clears the mark).
+    pub fn take_overflow() -> bool {
+        OVERFLOW.with(|o| o.replace(false))
+    }
+
+    /// `Err` with Python's message when a recursion went past the limit.
+    pub fn check() -> Result<(), String> {
+        if take_overflow() {
+            return Err(format!(
+                "maximum recursion depth exceeded (values nested more than {MAX_EVAL_DEPTH} deep)"
+            ));
+        }
+        Ok(())
     }
 }

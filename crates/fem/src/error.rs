@@ -21,6 +21,9 @@ pub enum FemError {
         iterations: usize,
         resi_rela: f64,
         resi_maxi: f64,
+        /// The force sources whose statuses (contact open/closed, stick/
+        /// slip) still changed at the last iteration: the likely cause.
+        cycling: Option<String>,
     },
     /// The active-set iterations on unilateral conditions cycle or exceed
     /// their bound.
@@ -58,6 +61,10 @@ impl fmt::Display for FemError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             FemError::Model(m) => write!(f, "{m}"),
+            FemError::Singular { free_dofs } if free_dofs.is_empty() => write!(
+                f,
+                "singular system: the factorisation found a zero pivot it cannot locate (a rigid-body mode, or redundant conditions: e.g. contact or friction multipliers on nodes that DDL_IMPO also holds — exclude them with SANS_GROUP_NO / SANS_GROUP_NO_FR)"
+            ),
             FemError::Singular { free_dofs } => {
                 const SHOWN: usize = 12;
                 write!(
@@ -83,10 +90,20 @@ impl fmt::Display for FemError {
                 iterations,
                 resi_rela,
                 resi_maxi,
-            } => write!(
-                f,
-                "Newton did not converge at time {time}: after {iterations} iterations RESI_GLOB_RELA = {resi_rela:.3e}, RESI_GLOB_MAXI = {resi_maxi:.3e} (raise ITER_GLOB_MAXI or check the loading)"
-            ),
+                cycling,
+            } => {
+                write!(
+                    f,
+                    "Newton did not converge at time {time}: after {iterations} iterations RESI_GLOB_RELA = {resi_rela:.3e}, RESI_GLOB_MAXI = {resi_maxi:.3e}"
+                )?;
+                match cycling {
+                    Some(who) => write!(
+                        f,
+                        "; the statuses or pairing of {who} still changed at the last iteration (contact open/closed or stick/slip cycling; code_aster's ADAPTATION treatment of cycling is not reproduced): cut the step (DEFI_LIST_INST), raise ITER_GLOB_MAXI, or raise COEF_CONT/COEF_FROT"
+                    ),
+                    None => write!(f, " (raise ITER_GLOB_MAXI or check the loading)"),
+                }
+            }
             FemError::ActiveSet { time, message } => {
                 write!(f, "unilateral conditions at time {time}: {message}")
             }
@@ -109,3 +126,30 @@ impl fmt::Display for FemError {
 }
 
 impl std::error::Error for FemError {}
+
+#[cfg(test)]
+mod tests {
+    use super::FemError;
+
+    #[test]
+    fn no_convergence_names_cycling_statuses_and_their_remedy() {
+        let e = |cycling: Option<&str>| FemError::NoConvergence {
+            time: 1.0,
+            iterations: 20,
+            resi_rela: 0.5,
+            resi_maxi: 3.0,
+            cycling: cycling.map(str::to_string),
+        };
+        let plain = e(None).to_string();
+        assert!(
+            plain.ends_with("(raise ITER_GLOB_MAXI or check the loading)"),
+            "{plain}"
+        );
+        let cyc = e(Some("contact with friction (A on B)")).to_string();
+        assert!(
+            cyc.contains("the statuses or pairing of contact with friction (A on B) still changed"),
+            "{cyc}"
+        );
+        assert!(cyc.contains("raise COEF_CONT/COEF_FROT"), "{cyc}");
+    }
+}

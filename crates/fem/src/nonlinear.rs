@@ -28,6 +28,7 @@
 use crate::assembly::{assemble_stiffness, restrict};
 use crate::behaviour::{Behaviours, PlasticCells};
 use crate::error::FemError;
+use crate::force_source::{self, ForceSource, ForceStep};
 use crate::held;
 use crate::linalg::{self, Csc, SolveFailure};
 use crate::loads::Loads;
@@ -152,6 +153,9 @@ pub struct Step {
     /// RESI_GLOB_RELA after each Newton iteration of the step (code_aster's
     /// convergence table; empty for the initial state).
     pub residual_history: Vec<f64>,
+    /// The own unknowns of each force source (same order as
+    /// [`StaticNonLinear::forces`]) at the step.
+    pub own_unknowns: Vec<Vec<f64>>,
 }
 
 /// A result: the stored steps (the first is the initial state).
@@ -232,6 +236,9 @@ pub struct StaticNonLinear<'s> {
     pub newton: NewtonOptions,
     pub convergence: Convergence,
     pub sources: Vec<Box<dyn UnilateralSource + 's>>,
+    /// Force sources with their own unknowns (contact with friction),
+    /// solved by a generalised Newton method ([`crate::force_source`]).
+    pub forces: Vec<Box<dyn ForceSource + 's>>,
     /// Bound on active-set updates per step.
     pub active_set_max_iter: usize,
     /// NUME_ORDRE of the first stored step (the initial state).
@@ -278,6 +285,7 @@ impl Default for StaticNonLinear<'_> {
             newton: NewtonOptions::default(),
             convergence: Convergence::default(),
             sources: Vec::new(),
+            forces: Vec::new(),
             active_set_max_iter: 100,
             first_order: 0,
             behaviours: Behaviours::default(),
@@ -422,6 +430,18 @@ impl StaticNonLinear<'_> {
             .collect();
         // Factorisations kept across iterations and steps.
         let mut kkt = KktSolver::default();
+        if !self.forces.is_empty() && !self.sources.is_empty() {
+            return Err(FemError::Model(format!(
+                "{} and {} cannot be solved together (a force source with its own unknowns beside inequality rows)",
+                self.forces[0].name(),
+                self.sources[0].name()
+            )));
+        }
+        let mut own: Vec<Vec<f64>> = self
+            .forces
+            .iter()
+            .map(|f| vec![0.0; f.unknowns()])
+            .collect();
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
@@ -446,6 +466,7 @@ impl StaticNonLinear<'_> {
                 resi_glob_rela: 0.0,
                 resi_glob_maxi: 0.0,
                 residual_history: Vec::new(),
+                own_unknowns: own.clone(),
             });
         }
 
@@ -467,7 +488,18 @@ impl StaticNonLinear<'_> {
             let mut step = None;
             let mut unil: Option<Vec<Vec<RowOutcome>>> = None;
             while let Some(&(target, level)) = pending.last() {
-                let saved = (u.clone(), srcs.clone());
+                let saved = (u.clone(), srcs.clone(), own.clone());
+                // Force sources start the increment from the last converged
+                // state (before the new imposed values).
+                for (f, o) in self.forces.iter_mut().zip(own.iter_mut()) {
+                    let state = State {
+                        mesh: model.mesh(),
+                        dofs: model.dofs(),
+                        displacement: &u,
+                        time: target,
+                    };
+                    f.begin_increment(&state, o)?;
+                }
                 let elim = loads.eliminated(model, target)?;
                 for (&i, &v) in &elim {
                     u[i] = v;
@@ -500,7 +532,9 @@ impl StaticNonLinear<'_> {
                         )?);
                     }
                 }
-                if !checked_held {
+                // Force sources (friction) may hold what nothing else does:
+                // a singular system is then reported by the factorisation.
+                if !checked_held && self.forces.is_empty() {
                     checked_held = true;
                     let mut ground: Vec<Vec<(usize, f64)>> =
                         elim.keys().map(|&i| vec![(i, 1.0)]).collect();
@@ -529,21 +563,50 @@ impl StaticNonLinear<'_> {
                     first: attempts.is_empty(),
                 };
                 let mut log = AttemptLog::default();
-                let attempt = newton_step(
-                    &ctx,
-                    &mut history,
-                    &mut log,
-                    &saved.0,
-                    &elim,
-                    &fext,
-                    &eq,
-                    &mut srcs,
-                    &mut self.sources,
-                    &mut u,
-                    target,
-                    &mut plastic,
-                    &mut kkt,
-                );
+                let attempt = if self.forces.is_empty() {
+                    newton_step(
+                        &ctx,
+                        &mut history,
+                        &mut log,
+                        &saved.0,
+                        &elim,
+                        &fext,
+                        &eq,
+                        &mut srcs,
+                        &mut self.sources,
+                        &mut u,
+                        target,
+                        &mut plastic,
+                        &mut kkt,
+                    )
+                } else {
+                    let fctx = ForceStep {
+                        model,
+                        k: &k,
+                        kff: &kff,
+                        map: &map,
+                        nfree,
+                        kdiag_max,
+                        newton: self.newton,
+                        resi_glob_rela: self.convergence.resi_glob_rela,
+                        resi_glob_maxi: self.convergence.resi_glob_maxi,
+                        iter_glob_maxi: self.convergence.iter_glob_maxi,
+                        loops_max: self.active_set_max_iter,
+                    };
+                    force_source::newton_step(
+                        &fctx,
+                        &fext,
+                        &eq,
+                        &mut self.forces,
+                        &mut own,
+                        &mut u,
+                        target,
+                        &mut plastic,
+                    )
+                    .map(|(solves, lam, rela, maxi, history, its)| {
+                        (solves, (lam, Vec::new()), rela, maxi, history, its)
+                    })
+                };
 
                 attempts.push(Attempt {
                     from,
@@ -564,6 +627,15 @@ impl StaticNonLinear<'_> {
                         // Each converged increment (a piece of a cut one
                         // too) is reported to the sources: contact's
                         // geometric loop measures from its start.
+                        for (f, o) in self.forces.iter_mut().zip(&own) {
+                            let state = State {
+                                mesh: model.mesh(),
+                                dofs: model.dofs(),
+                                displacement: &u,
+                                time: target,
+                            };
+                            f.converged(&state, o)?;
+                        }
                         unil = Some(report_outcomes(
                             model,
                             &mut self.sources,
@@ -619,7 +691,7 @@ impl StaticNonLinear<'_> {
                         if let Some(a) = attempts.last_mut() {
                             a.cut = true;
                         }
-                        (u, srcs) = saved;
+                        (u, srcs, own) = saved;
                         pending.pop();
                         let pieces = sd.pieces.max(2);
                         for k in (1..=pieces).rev() {
@@ -660,6 +732,7 @@ impl StaticNonLinear<'_> {
                 resi_glob_rela: resi_rela,
                 resi_glob_maxi: resi_maxi,
                 residual_history,
+                own_unknowns: own.clone(),
             });
         }
         Ok(NonLinearResult { steps, attempts })
@@ -872,46 +945,8 @@ fn newton_step(
                 sr.add_augmented(u, &mut pen_force, Some((map, &mut pen_extra)));
                 row_of.push(ro);
             }
-            // Drop rows entirely on eliminated DOFs (they cannot be enforced
-            // by a multiplier); an inconsistent one is an error.
             let m_rows = rows.len();
-            let mut kept = Vec::with_capacity(m_rows);
-            let mut imposed: std::collections::HashMap<usize, f64> = Default::default();
-            for (r, (terms, rhs)) in rows.iter().enumerate() {
-                if terms.iter().all(|&(i, _)| map[i] == usize::MAX) {
-                    let v: f64 = terms.iter().map(|&(i, c)| c * u[i]).sum();
-                    if (v - rhs).abs() > 1e-9 * rhs.abs().max(v.abs()).max(1e-300) && r < eq.len() {
-                        return Err(FemError::Model(format!(
-                            "a dualised condition on {} contradicts the value imposed by elimination",
-                            terms.iter().map(|&(i, _)| model.dofs().dof(i).describe(model.mesh())).collect::<Vec<_>>().join(", ")
-                        )));
-                    }
-                    continue;
-                }
-                // The same DOF imposed twice (e.g. a node shared by two
-                // DDL_IMPO groups) would make two identical multiplier rows,
-                // a singular system: as code_aster, which imposes a value
-                // once per node and component, keep the first; two
-                // different values are an error.
-                if let ([(i, c)], true) = (terms.as_slice(), r < eq.len()) {
-                    let value = rhs / c;
-                    match imposed.get(i) {
-                        Some(&v) if (v - value).abs() <= 1e-12 * v.abs().max(value.abs()) => {
-                            continue
-                        }
-                        Some(&v) => {
-                            return Err(FemError::Model(format!(
-                                "{} is imposed twice with different values ({v} and {value})",
-                                model.dofs().dof(*i).describe(model.mesh())
-                            )))
-                        }
-                        None => {
-                            imposed.insert(*i, value);
-                        }
-                    }
-                }
-                kept.push(r);
-            }
+            let kept = kept_rows(model, &rows, eq.len(), map, u)?;
             let nk = kept.len();
             // A state where the active conditions leave a rigid-body mode
             // free is reported (instead of factorising a singular matrix).
@@ -1325,6 +1360,7 @@ fn newton_step(
                         iterations: settled,
                         resi_rela,
                         resi_maxi,
+                        cycling: None,
                     });
                 }
             } else {
@@ -1361,6 +1397,55 @@ fn newton_step(
             }
         }
     }
+}
+
+/// The rows to dualise among `rows` (the first `n_eq` are equalities, the
+/// others active unilateral rows): rows entirely on eliminated DOFs are
+/// dropped (an inconsistent equality is an error), and a DOF imposed twice
+/// by equalities is kept once, as code_aster imposes one value per node and
+/// component (two different values are an error).
+pub(crate) fn kept_rows(
+    model: &Model,
+    rows: &[(Vec<(usize, f64)>, f64)],
+    n_eq: usize,
+    map: &[usize],
+    u: &[f64],
+) -> Result<Vec<usize>, FemError> {
+    let mut kept = Vec::with_capacity(rows.len());
+    let mut imposed: std::collections::HashMap<usize, f64> = Default::default();
+    for (r, (terms, rhs)) in rows.iter().enumerate() {
+        if terms.iter().all(|&(i, _)| map[i] == usize::MAX) {
+            let v: f64 = terms.iter().map(|&(i, c)| c * u[i]).sum();
+            if (v - rhs).abs() > 1e-9 * rhs.abs().max(v.abs()).max(1e-300) && r < n_eq {
+                return Err(FemError::Model(format!(
+                    "a dualised condition on {} contradicts the value imposed by elimination",
+                    terms
+                        .iter()
+                        .map(|&(i, _)| model.dofs().dof(i).describe(model.mesh()))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )));
+            }
+            continue;
+        }
+        if let ([(i, c)], true) = (terms.as_slice(), r < n_eq) {
+            let value = rhs / c;
+            match imposed.get(i) {
+                Some(&v) if (v - value).abs() <= 1e-12 * v.abs().max(value.abs()) => continue,
+                Some(&v) => {
+                    return Err(FemError::Model(format!(
+                        "{} is imposed twice with different values ({v} and {value})",
+                        model.dofs().dof(*i).describe(model.mesh())
+                    )))
+                }
+                None => {
+                    imposed.insert(*i, value);
+                }
+            }
+        }
+        kept.push(r);
+    }
+    Ok(kept)
 }
 
 /// The outcome of every source's rows at a converged increment (time
@@ -1438,7 +1523,7 @@ fn length_scale(model: &Model, u: &[f64]) -> f64 {
 
 /// f_int(u): K u, plus the plastic cells' corrections (their trial states
 /// and consistent tangents are updated on the way).
-fn internal_forces(
+pub(crate) fn internal_forces(
     model: &Model,
     k: &Csc,
     plastic: &mut Option<PlasticCells>,
@@ -1459,7 +1544,7 @@ fn internal_forces(
 /// is the elastic K_ff (kept as `None`, so that its factorisation is
 /// reused). Returns whether the matrix was set anew.
 #[allow(clippy::too_many_arguments)]
-fn choose_tangent(
+pub(crate) fn choose_tangent(
     tangent: &mut Option<Csc>,
     pc: &mut PlasticCells,
     model: &Model,

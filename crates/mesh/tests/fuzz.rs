@@ -68,6 +68,23 @@ proptest! {
         bytes.truncate(keep);
         let _ = read_med_bytes(bytes, Path::new("fuzz.med"), None);
     }
+
+    #[test]
+    fn export_reader_never_panics(lines in prop::collection::vec(prop_oneof![
+        "F (comm|mmed|mail|rmed) [a-z./]{0,12} (D|R|DR|X) -?[0-9]{0,12}",
+        "[FPA] [ -~]{0,30}",
+        "\\PC{0,40}",
+    ], 0..8), unit in 0u32..100) {
+        static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let k = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let path = std::env::temp_dir().join(format!("aster-fuzz-{}-{k}.export", std::process::id()));
+        std::fs::write(&path, lines.join("\n")).unwrap();
+        if let Ok(files) = aster_mesh::read_export(&path) {
+            prop_assert!(files.iter().all(|f| !f.kind.is_empty()));
+        }
+        let _ = aster_mesh::unit_path(&path, unit);
+        let _ = std::fs::remove_file(&path);
+    }
 }
 
 #[test]

@@ -18,7 +18,7 @@ use aster_mesh::Mesh;
 /// keeps each formulation's keywords to it).
 pub(crate) const DEFI_CONTACT: Support = Support {
     values: &[
-        Values::new("FROTTEMENT", &["SANS"]).why("(frictionless contact only)"),
+        Values::new("FROTTEMENT", &["SANS", "COULOMB"]),
         // FIXE: projection along DIRE_APPA (code_aster's `mmnewd`).
         Values::new("ZONE/TYPE_PROJECTION", &["ORTHOGONALE", "FIXE"]),
         Values::new("ZONE/DIST_POUTRE", &["NON"]),
@@ -116,6 +116,19 @@ pub(crate) const DEFI_CONTACT: Support = Support {
         "ZONE/COEF_IMPO",
         "ZONE/COEF_MULT",
         "ZONE/COEF_PENA",
+        // FROTTEMENT='COULOMB' (module friction), continuous formulation;
+        // what it does not reproduce is refused by `friction::rules`.
+        "ALGO_RESO_FROT",
+        "RESI_FROT",
+        "ITER_FROT_MAXI",
+        "ZONE/COULOMB",
+        "ZONE/ALGO_FROT",
+        "ZONE/COEF_FROT",
+        "ZONE/COEF_PENA_FROT",
+        "ZONE/SANS_GROUP_NO_FR",
+        "ZONE/DIRE_EXCL_FROT",
+        "ZONE/GRAND_GLIS",
+        "ZONE/GLIS_MAXI",
     ])
 };
 
@@ -130,6 +143,7 @@ pub(crate) const DEFI_CONTACT: Support = Support {
 /// intermediate geometry, and differences of 1e-4 to 1e-3 with code_aster
 /// remain (ssnv504 b and g): refused until they are understood.
 fn defi_contact_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    crate::friction::rules(call, out);
     let kw = &call.keywords;
     if kw.str("FORMULATION") != Some("DISCRETE") || kw.str("LISSAGE") != Some("OUI") {
         return;
@@ -303,11 +317,8 @@ fn geom_loop(kw: &Keywords) -> GeomLoop {
 
 /// The contact definition of DEFI_CONTACT keywords.
 pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, ExecError> {
-    let frottement = if kw.str("FROTTEMENT") == Some("COULOMB") {
-        Frottement::Coulomb
-    } else {
-        Frottement::Sans
-    };
+    let friction = kw.str("FROTTEMENT") == Some("COULOMB");
+    let frottement = Frottement::Sans;
     let cerr = |e: aster_contact::ContactError| ExecError::new(format!("DEFI_CONTACT: {e}"));
     let mut def = match kw.str("FORMULATION").unwrap_or("DISCRETE") {
         "DISCRETE" => {
@@ -417,7 +428,12 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                     law: ContinueLaw { algo, integration },
                 });
             }
-            let mut d = ContactDefinition::continuous(zones, frottement).map_err(cerr)?;
+            let mut d = if friction {
+                let f = crate::friction::continuous(kw)?;
+                ContactDefinition::continuous_with_friction(zones, f).map_err(cerr)?
+            } else {
+                ContactDefinition::continuous(zones, frottement).map_err(cerr)?
+            };
             if let ContactDefinition::Continue(c) = &mut d {
                 let reso = |k: &str, dflt: Resolution| match kw.str(k) {
                     Some("NEWTON") => Resolution::Newton,
@@ -470,10 +486,7 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))?;
     // Under AXIS the contact integrals carry the radius (code_aster's
     // `mmmjac`), as fem's nodal forces do.
-    let axis = model
-        .as_ref()
-        .is_some_and(|m| m.cells.values().any(|m| *m == Modelisation::Axisymmetric));
-    if axis {
+    if is_axis(ex, kw)? {
         zones
             .iter_mut()
             .for_each(|z| z.set_measure(Measure::Axisymmetric));
@@ -523,6 +536,44 @@ fn resolve_pene_maxi(mesh: &Mesh, zones: &mut [ZoneContact]) {
             z.zone.geometry.pene_maxi = Some(1e-2 * arete_min);
         }
     }
+}
+
+/// Whether DEFI_CONTACT keywords ask for Coulomb friction.
+pub fn has_friction(kw: &Keywords) -> bool {
+    kw.str("FROTTEMENT") == Some("COULOMB")
+}
+
+/// The continuous frictional contact elements of DEFI_CONTACT keywords
+/// (module `aster_contact::friction`), a force source for fem's solver.
+pub fn friction_source(
+    ex: &Executor,
+    mesh: &Mesh,
+    kw: &Keywords,
+) -> Result<aster_contact::friction::ContinuousFriction, ExecError> {
+    let def = definition(ex, kw)?;
+    let ContactDefinition::Continue(c) = &def else {
+        return Err(ExecError::new(
+            "DEFI_CONTACT: discrete friction is refused at DEFI_CONTACT".to_string(),
+        ));
+    };
+    let measure = if is_axis(ex, kw)? {
+        Measure::Axisymmetric
+    } else {
+        Measure::Plane
+    };
+    aster_contact::friction::ContinuousFriction::new(c, mesh, measure)
+        .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
+}
+
+fn is_axis(ex: &Executor, kw: &Keywords) -> Result<bool, ExecError> {
+    Ok(match kw.concept("MODELE") {
+        Some(c) => ex
+            .model(c)?
+            .cells
+            .values()
+            .any(|m| *m == Modelisation::Axisymmetric),
+        None => false,
+    })
 }
 
 /// Discrete contact on QUAD8 faces (`aster_contact::quad8`): the

@@ -45,6 +45,10 @@ pub struct Executor {
     pub(crate) lac_patches: Vec<(Arc<Mesh>, Arc<aster_mesh::LacPatches>)>,
     /// Meshes the static pass already read (`LIRE_MAILLAGE` takes them).
     pub(crate) read_meshes: Vec<crate::preflight::ReadMesh>,
+    /// Text files this run has written on a unit: the first write of a run
+    /// truncates what an earlier run left there (code_aster starts each run
+    /// with fresh `fort.<UNITE>` files), later ones append.
+    written_units: std::collections::HashSet<PathBuf>,
 }
 
 impl Executor {
@@ -61,7 +65,20 @@ impl Executor {
             finished: false,
             lac_patches: Vec::new(),
             read_meshes: Vec::new(),
+            written_units: Default::default(),
         }
+    }
+
+    /// Appends `text` to the file of logical unit `unit`, emptied first if
+    /// this run has not written it yet.
+    pub(crate) fn append_unit(&mut self, unit: i64, text: &str) -> Result<(), ExecError> {
+        let path = self.output_path(unit);
+        if self.written_units.insert(path.clone()) && path.exists() {
+            std::fs::write(&path, b"").map_err(|e| {
+                ExecError::new(format!("cannot write {}: {e}", path.display()))
+            })?;
+        }
+        crate::commands::append_file(&path, text)
     }
 
     /// Lets messages give `file:line:col` of keywords.

@@ -513,12 +513,14 @@ pub fn solve(
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
     let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
+    let mut post_friction: Option<aster_contact::friction::ContinuousFriction> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
         // The contact zones are lent to the solver, so that what they record
         // during the solve (forces, last pairings) is there for CONT_NOEU.
         let mut contact_zones: Option<Vec<aster_contact::ZoneContact>> = None;
+        let mut friction: Option<aster_contact::friction::ContinuousFriction> = None;
         let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
@@ -529,11 +531,16 @@ pub fn solve(
                     })
                 }
                 ContactDef::Zones { keywords, .. } => {
-                    let zones = crate::contactbridge::zones(ex, &mesh, keywords)?;
-                    // Discrete contact on QUAD8 faces: code_aster ties the
-                    // middle nodes to their edges.
-                    crate::contactbridge::add_middle_relations(&zones, &model, &mut loads);
-                    contact_zones = Some(zones);
+                    if crate::contactbridge::has_friction(keywords) {
+                        friction =
+                            Some(crate::contactbridge::friction_source(ex, &mesh, keywords)?);
+                    } else {
+                        let zones = crate::contactbridge::zones(ex, &mesh, keywords)?;
+                        // Discrete contact on QUAD8 faces: code_aster ties the
+                        // middle nodes to their edges.
+                        crate::contactbridge::add_middle_relations(&zones, &model, &mut loads);
+                        contact_zones = Some(zones);
+                    }
                 }
             }
         }
@@ -543,6 +550,10 @@ pub fn solve(
         }
         for z in contact_zones.iter_mut().flatten() {
             sources.push(Box::new(z));
+        }
+        let mut forces: Vec<Box<dyn aster_fem::ForceSource + '_>> = Vec::new();
+        if let Some(f) = friction.as_mut() {
+            forces.push(Box::new(f));
         }
         let initial = match &setup.initial {
             Some((prev, t0)) => {
@@ -579,6 +590,7 @@ pub fn solve(
                 at_least_one: setup.newton.at_least_one,
             },
             sources,
+            forces,
             behaviours: behaviours.clone(),
             subdivision: setup.subdivision,
             ..StaticNonLinear::default()
@@ -599,6 +611,7 @@ pub fn solve(
         if let Some(z) = contact_zones {
             post_zones = Some(z);
         }
+        post_friction = friction;
         raw
     };
     let steps = raw
@@ -618,6 +631,44 @@ pub fn solve(
                 "VARI_ELGA".to_string(),
                 Field::Elem(elem_field(ElemLocation::Gauss, &s.internal_variables)),
             );
+            if let Some(f) = &post_friction {
+                // Contact with friction: the multipliers are DOFs of DEPL on
+                // the slave nodes, CONT_NOEU as recorded at convergence.
+                if let Some(Field::Nodal(depl)) = fields.get_mut("DEPL") {
+                    let own = s.own_unknowns.first().map(|v| v.as_slice()).unwrap_or(&[]);
+                    let friction_dofs = f.has_friction_unknowns();
+                    let dim = model
+                        .dofs()
+                        .comps()
+                        .iter()
+                        .filter(|c| matches!(c, aster_fem::Comp::DZ))
+                        .count()
+                        + 2;
+                    for (n, v) in f.multipliers(own) {
+                        depl.set(n, "LAGS_C", v[0]);
+                        if friction_dofs {
+                            depl.set(n, "LAGS_F1", v[1]);
+                            if dim == 3 {
+                                depl.set(n, "LAGS_F2", v[2]);
+                            }
+                        }
+                    }
+                }
+                if let Some(cn) = f.cont_noeu_at(s.time) {
+                    let mut nf = NodalField::new(
+                        aster_contact::CONT_NOEU_COMPONENTS
+                            .iter()
+                            .map(|c| c.to_string())
+                            .collect(),
+                    );
+                    for (n, vals) in cn.nodes.iter().zip(&cn.values) {
+                        for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
+                            nf.set(*n, c, *v);
+                        }
+                    }
+                    fields.insert("CONT_NOEU".to_string(), Field::Nodal(nf));
+                }
+            }
             if let Some(zones) = &mut post_zones {
                 // CONT_NOEU: the zones re-paired on the step's geometry.
                 let x = aster_contact::positions(&mesh, model.dofs(), &s.displacement);

@@ -15,6 +15,7 @@ pub mod executor;
 pub mod export;
 pub mod fembridge;
 pub mod field;
+mod friction;
 pub mod function;
 pub mod list;
 mod meshio;

@@ -27,7 +27,16 @@ pub enum ListError {
         previous: f64,
         next: f64,
     },
+    /// More values than [`MAX_VALUES`] (checked before building them).
+    TooLong {
+        index: usize,
+        values: f64,
+    },
 }
+
+/// The most values a list may hold (80 MB of reals): a step or a count
+/// asking for more is refused before anything is allocated.
+pub const MAX_VALUES: usize = 10_000_000;
 
 impl fmt::Display for ListError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -54,6 +63,11 @@ impl fmt::Display for ListError {
             } => write!(
                 f,
                 "values must be strictly increasing: value {} is {next} after {previous}",
+                index + 1
+            ),
+            ListError::TooLong { index, values } => write!(
+                f,
+                "INTERVALLE[{}]: result too large: {values:.3e} values (at most {MAX_VALUES})",
                 index + 1
             ),
         }
@@ -84,10 +98,19 @@ pub fn from_intervals(start: f64, intervals: &[Interval]) -> Result<Vec<f64>, Li
                     });
                 }
                 // Tolerate rounding: 1.0/0.1 is 9.999…
-                let n = ((end - from) / step * (1.0 + 1e-12)).round().max(1.0) as usize;
-                (end, n)
+                let n = ((end - from) / step * (1.0 + 1e-12)).round().max(1.0);
+                if n.is_nan() || n > MAX_VALUES as f64 {
+                    return Err(ListError::TooLong { index, values: n });
+                }
+                (end, n as usize)
             }
         };
+        if n > MAX_VALUES.saturating_sub(out.len()) {
+            return Err(ListError::TooLong {
+                index,
+                values: n as f64,
+            });
+        }
         for i in 1..=n {
             out.push(if i == n {
                 end
@@ -170,6 +193,31 @@ pub fn select_instants(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn huge_lists_are_refused_before_building() {
+        let e = from_intervals(
+            0.0,
+            &[Interval::Step {
+                end: 1.0,
+                step: 1e-9,
+            }],
+        )
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "INTERVALLE[1]: result too large: 1.000e9 values (at most 10000000)"
+        );
+        let e = from_intervals(
+            0.0,
+            &[Interval::Count {
+                end: 1.0,
+                count: 1_000_000_000,
+            }],
+        )
+        .unwrap_err();
+        assert!(matches!(e, ListError::TooLong { index: 0, .. }), "{e}");
+    }
 
     #[test]
     fn twenty_steps_to_twenty() {

@@ -269,7 +269,7 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         if unit == 8 || unit == 6 {
             ex.write_report(&text)?;
         } else {
-            crate::commands::append_file(&ex.output_path(unit), &text)?;
+            ex.append_unit(unit, &text)?;
         }
         return Ok(CommandOutput::Nothing);
     }

@@ -130,3 +130,35 @@ fn catalog_errors_are_reported_with_the_refusals() {
     assert_eq!(got.len(), 1, "{got:?}");
     assert!(got[0].starts_with("case.comm:4:"), "{got:?}");
 }
+
+/// DEFI_CONTACT's friction: what the friction module does not reproduce is
+/// refused statically, at its keyword (`run::friction::rules`).
+#[test]
+fn friction_variants_not_reproduced_are_refused_at_their_keyword() {
+    let src = format!(
+        r#"{HEAD}d = DEFI_CONTACT(MODELE=model, FROTTEMENT="COULOMB",
+    ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB", COULOMB=0.3))
+c = DEFI_CONTACT(MODELE=model, FORMULATION="CONTINUE", FROTTEMENT="COULOMB",
+    ZONE=(_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB", COULOMB=0.3, ALGO_CONT="PENALISATION",
+             ADAPTATION="TOUT"),
+          _F(GROUP_MA_MAIT="AB", GROUP_MA_ESCL="EF", COULOMB=0.0)))
+n = DEFI_CONTACT(MODELE=model, FORMULATION="CONTINUE", FROTTEMENT="COULOMB",
+    ALGO_RESO_GEOM="NEWTON",
+    ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB", COULOMB=0.3))
+FIN()
+"#
+    );
+    let (p, map) = pass(&src, Some("two_plates.mail"));
+    let m = messages(&p, &map);
+    assert_eq!(m.len(), 4, "{m:?}");
+    assert!(m[0].starts_with("case.comm:4:32: error: not supported yet: DEFI_CONTACT/FROTTEMENT='COULOMB' with FORMULATION='DISCRETE'"), "{m:?}");
+    assert!(m[1].starts_with("case.comm:6:56: error: not supported yet: DEFI_CONTACT/FROTTEMENT='COULOMB' with ALGO_RESO_GEOM='POINT_FIXE' and REAC_GEOM='AUTOMATIQUE'"), "{m:?}");
+    assert!(
+        m[2].contains("DEFI_CONTACT/ZONE/COULOMB=0 beside frictional zones"),
+        "{m:?}"
+    );
+    assert!(
+        m[3].contains("DEFI_CONTACT/ZONE/ADAPTATION='TOUT' with penalisation"),
+        "{m:?}"
+    );
+}

@@ -61,5 +61,10 @@ fn pressure_on_the_edges_of_a_strip_in_tension() {
         .expect("DX of node 6");
     let dx: f64 = b[2..].parse().unwrap();
     assert!((dx - 1e-3).abs() < 1e-12, "{b}");
+    // A second run into the same directory starts the listing afresh (as
+    // code_aster does), rather than appending to the first run's.
+    let again = aster_run::program::run(&case, Box::new(std::io::sink()));
+    assert!(again.error.is_none(), "{:?}", again.error);
+    assert_eq!(std::fs::read_to_string(out.join("fort.73")).unwrap(), listing);
     let _ = std::fs::remove_dir_all(out);
 }

@@ -10,19 +10,34 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-#[test]
-fn lags_c_and_displacements_pass_every_check() {
-    let out = std::env::temp_dir().join(format!("aster-two-plates-{}", std::process::id()));
+/// Runs a scene of comm/ on the two-plate mesh: (TEST_RESU OK, NOOK).
+fn run_scene(comm: &str) -> (usize, usize) {
+    let out = std::env::temp_dir().join(format!("aster-{comm}-{}", std::process::id()));
     let case = aster_run::program::prepare(
-        &root().join("comm/two_plates.comm"),
+        &root().join("comm").join(comm),
         Some(&root().join("comm/two_plates.mail")),
         &out,
     )
     .unwrap();
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (8, 0));
     let _ = std::fs::remove_dir_all(out);
+    (outcome.tally.ok, outcome.tally.nook)
+}
+
+#[test]
+fn lags_c_and_displacements_pass_every_check() {
+    assert_eq!(run_scene("two_plates.comm"), (8, 0));
+}
+
+/// comm/two_plates_friction.comm: DEFI_CONTACT(FROTTEMENT='COULOMB')
+/// through STAT_NON_LINE, CALC_CHAMP/REAC_NODA, POST_RELEVE_T and
+/// CONT_NOEU. The plates stick while pressed (CONT = 1), then slide
+/// (CONT = 2) with a friction resultant of exactly μ times the normal one
+/// (1e-8).
+#[test]
+fn sliding_plates_carry_mu_times_the_normal_force() {
+    assert_eq!(run_scene("two_plates_friction.comm"), (8, 0));
 }
 
 /// comm/two_plates_glued.comm: continuous contact under a pressure load,
@@ -35,17 +50,7 @@ fn lags_c_and_displacements_pass_every_check() {
 /// ~2e-8). Per-node weighted gaps alone put LAGS_C 0.2 % off.
 #[test]
 fn pointwise_glued_interfaces_give_the_analytic_state() {
-    let out = std::env::temp_dir().join(format!("aster-two-plates-pena-{}", std::process::id()));
-    let case = aster_run::program::prepare(
-        &root().join("comm/two_plates_glued.comm"),
-        Some(&root().join("comm/two_plates.mail")),
-        &out,
-    )
-    .unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (24, 0));
-    let _ = std::fs::remove_dir_all(out);
+    assert_eq!(run_scene("two_plates_glued.comm"), (24, 0));
 }
 
 #[test]

@@ -446,3 +446,89 @@ pub enum CmpOp {
     In,
     NotIn,
 }
+
+// ---------------------------------------------------------------- dropping
+
+/// A node whose children are being dropped (see [`drop_bounded`]); only
+/// its own drop matters.
+#[allow(dead_code)]
+enum Detached {
+    Expr(ExprKind),
+    Stmt(StmtKind),
+}
+
+/// How many nested drops run on the native stack before deeper nodes are
+/// deferred to the loop of the outermost drop.
+const DROP_NESTING: u32 = 200;
+
+thread_local! {
+    static DROP_DEPTH: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
+    static DEFERRED: std::cell::RefCell<Vec<Detached>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Drops a node's children with bounded recursion: the usual nested drop up
+/// to [`DROP_NESTING`] levels, deeper nodes are queued and dropped by the
+/// outermost call's loop. A tree of any depth (a rejected `1 + 1 + …` of a
+/// million terms) is freed without exhausting the stack.
+fn drop_bounded(node: Detached) {
+    let depth = DROP_DEPTH.with(|d| d.get());
+    if depth >= DROP_NESTING {
+        DEFERRED.with(|q| q.borrow_mut().push(node));
+        return;
+    }
+    DROP_DEPTH.with(|d| d.set(depth + 1));
+    drop(node);
+    if depth == 0 {
+        while let Some(next) = DEFERRED.with(|q| q.borrow_mut().pop()) {
+            drop(next);
+        }
+    }
+    DROP_DEPTH.with(|d| d.set(depth));
+}
+
+impl Expr {
+    /// The node's kind, moved out (a node with `Drop` cannot be destructured).
+    pub fn into_kind(mut self) -> ExprKind {
+        std::mem::replace(&mut self.kind, ExprKind::None)
+    }
+}
+
+impl Stmt {
+    /// The statement's kind, moved out (a node with `Drop` cannot be destructured).
+    pub fn into_kind(mut self) -> StmtKind {
+        std::mem::replace(&mut self.kind, StmtKind::Pass)
+    }
+}
+
+impl Drop for Expr {
+    fn drop(&mut self) {
+        match self.kind {
+            // Leaves: nothing nested to drop (their text frees itself).
+            ExprKind::Name { .. }
+            | ExprKind::Int { .. }
+            | ExprKind::Float { .. }
+            | ExprKind::Imag { .. }
+            | ExprKind::Str { .. }
+            | ExprKind::Bytes { .. }
+            | ExprKind::Bool { .. }
+            | ExprKind::None
+            | ExprKind::Ellipsis => {}
+            _ => drop_bounded(Detached::Expr(std::mem::replace(
+                &mut self.kind,
+                ExprKind::None,
+            ))),
+        }
+    }
+}
+
+impl Drop for Stmt {
+    fn drop(&mut self) {
+        match self.kind {
+            StmtKind::Pass | StmtKind::Break | StmtKind::Continue => {}
+            _ => drop_bounded(Detached::Stmt(std::mem::replace(
+                &mut self.kind,
+                StmtKind::Pass,
+            ))),
+        }
+    }
+}

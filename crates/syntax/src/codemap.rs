@@ -54,7 +54,16 @@ impl CodeMap {
     pub fn new(name: impl Into<String>, source: impl Into<String>) -> CodeMap {
         let source = source.into();
         let mut line_starts = vec![0];
-        line_starts.extend(source.match_indices('\n').map(|(i, _)| i + 1));
+        // A line ends at `\n`, `\r\n` or a lone `\r` (old Mac files),
+        // as for Python.
+        let bytes = source.as_bytes();
+        line_starts.extend(
+            bytes
+                .iter()
+                .enumerate()
+                .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')))
+                .map(|(i, _)| i + 1),
+        );
         CodeMap {
             name: name.into(),
             source,
@@ -120,6 +129,15 @@ impl CodeMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lone_carriage_returns_end_lines() {
+        let cm = CodeMap::new("f.comm", "a = 1\rb = 2\r\nc = (\r");
+        assert_eq!(cm.line_col(6), LineCol { line: 2, column: 1 });
+        assert_eq!(cm.line_col(13), LineCol { line: 3, column: 1 });
+        assert_eq!(cm.line_text(2), "b = 2");
+        assert_eq!(cm.line_text(3), "c = (");
+    }
 
     #[test]
     fn line_col_counts_from_one() {

@@ -58,20 +58,18 @@ fn width(indent: &str) -> usize {
 }
 
 fn line_col(source: &str, pos: usize) -> (usize, usize) {
-    let before = &source[..pos.min(source.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before
-        .rfind('\n')
-        .map_or(before.chars().count(), |i| before[i + 1..].chars().count())
-        + 1;
-    (line, col)
+    // Error path only: the code map's rule for line ends (lone `\r` too).
+    let lc = crate::codemap::CodeMap::new("", source).line_col(pos);
+    (lc.line, lc.column)
 }
 
 fn scan(source: &str) -> Scan {
     let bytes = source.as_bytes();
     let mut lines: Vec<LogicalLine> = Vec::new();
     let mut brackets: Vec<(char, usize)> = Vec::new();
-    let mut indents: Vec<usize> = vec![0];
+    // Each level's width with tabs to 8 columns and to 1 column: Python 3
+    // refuses indentation whose order depends on the tab size (TabError).
+    let mut indents: Vec<(usize, usize)> = vec![(0, 0)];
     let mut expect_indent: Option<usize> = None; // header line start, when the last line ended with `:`
     let mut i = 0;
     let mut at_line_start = true;
@@ -100,7 +98,19 @@ fn scan(source: &str) -> Scan {
                 _ => {}
             }
             let w = width(&source[start..i]);
-            let top = indents.last().copied().unwrap_or(0);
+            let alt = i - start;
+            let (top, top_alt) = indents.last().copied().unwrap_or((0, 0));
+            let tab_error = || {
+                err(
+                    start,
+                    i - start,
+                    "inconsistent use of tabs and spaces in indentation (TabError): indent with spaces only"
+                        .into(),
+                )
+            };
+            if (w == top) != (alt == top_alt) || (w > top) != (alt > top_alt) {
+                return fail(tab_error(), lines);
+            }
             if let Some(header) = expect_indent.take() {
                 if w <= top {
                     let (l, _) = line_col(source, header);
@@ -113,7 +123,7 @@ fn scan(source: &str) -> Scan {
                         lines,
                     );
                 }
-                indents.push(w);
+                indents.push((w, alt));
             } else if w > top {
                 return fail(
                     err(
@@ -125,10 +135,15 @@ fn scan(source: &str) -> Scan {
                     lines,
                 );
             } else if w < top {
-                while indents.last().is_some_and(|&t| t > w) {
+                while indents.last().is_some_and(|&(t, _)| t > w) {
                     indents.pop();
                 }
-                if indents.last().copied() != Some(w) {
+                if let Some(&(t, t_alt)) = indents.last() {
+                    if t == w && t_alt != alt {
+                        return fail(tab_error(), lines);
+                    }
+                }
+                if indents.last().map(|l| l.0) != Some(w) {
                     return fail(
                         err(
                             i,
@@ -399,22 +414,22 @@ fn inside_brackets(source: &str, pos: usize) -> bool {
     depth > 0
 }
 
-/// Nesting limits, checked before parsing so that pathological input gets a
-/// clear error instead of exhausting the native stack (Python has the same
-/// kind of limits: 200 nested brackets, 100 indentation levels).
-pub const MAX_BRACKET_DEPTH: usize = 200;
-pub const MAX_INDENT_LEVELS: usize = 100;
-pub const MAX_PREFIX_RUN: usize = 100;
+pub use crate::limits::{
+    MAX_BRACKET_DEPTH, MAX_INDENT_LEVELS, MAX_KEYWORD_NESTING, MAX_PREFIX_RUN,
+};
 
 /// Byte classes of [`check_limits`]: 0 resets the unary-operator run, 1
 /// (blanks) keeps it, [`LIMIT_SPECIAL`] needs the full step (comments,
-/// strings, brackets, newlines, unary operators).
+/// strings, brackets, line breaks, unary operators, the separators `,` `:`
+/// `;`, backquotes, a backslash, and the first letters of `lambda`, `not`,
+/// `if`, `else`, `for`, `in`).
 const LIMIT_SPECIAL: u8 = 2;
 const LIMIT_CLASS: [u8; 256] = {
     let mut t = [0u8; 256];
     t[b' ' as usize] = 1;
     t[b'\t' as usize] = 1;
-    let special = b"#'\"([{)]}\n-+~";
+    t[0x0C] = 1;
+    let special = b"#'\"([{)]}\n\r-+~,:;`\\efiln";
     let mut k = 0;
     while k < special.len() {
         t[special[k] as usize] = LIMIT_SPECIAL;
@@ -423,8 +438,148 @@ const LIMIT_CLASS: [u8; 256] = {
     t
 };
 
-/// The nesting limits above (brackets, indentation levels, runs of unary
-/// operators), in one pass over the bytes.
+fn is_ident_byte(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_' || b >= 0x80
+}
+
+/// What a word does to the nesting estimate of [`check_limits`].
+#[derive(Clone, Copy, PartialEq)]
+enum Word {
+    /// `lambda`: one level, and its parameters run to its `:`.
+    Lambda,
+    /// `for`: one level (a comprehension clause), and its targets run to `in`.
+    For,
+    /// `in`: ends the targets of a `for`.
+    In,
+    /// `not`, `if`, `elif`, `else`: one level.
+    Nest,
+    Other,
+}
+
+fn word(w: &[u8]) -> Word {
+    match w {
+        b"lambda" => Word::Lambda,
+        b"for" => Word::For,
+        b"in" => Word::In,
+        b"not" | b"if" | b"elif" | b"else" => Word::Nest,
+        _ => Word::Other,
+    }
+}
+
+/// The nesting estimate of one bracket level (see [`check_limits`]).
+#[derive(Clone, Copy, Default)]
+struct Level {
+    /// Keywords seen in the current element of this level.
+    pending: usize,
+    /// `lambda`s whose `:` is still to come (their commas separate parameters).
+    lambda_params: usize,
+    /// `for`s whose `in` is still to come (their commas separate targets).
+    for_targets: usize,
+}
+
+/// The limits' state while scanning: bracket levels and their keyword
+/// counts (shared by [`check_limits`] and its reference version in the tests).
+struct Nesting {
+    levels: Vec<Level>,
+    /// The sum of `pending` over all levels, plus the backquotes of the line.
+    total: usize,
+}
+
+impl Nesting {
+    fn new() -> Nesting {
+        Nesting {
+            levels: vec![Level::default()],
+            total: 0,
+        }
+    }
+    fn top(&mut self) -> &mut Level {
+        if self.levels.is_empty() {
+            self.levels.push(Level::default());
+        }
+        let last = self.levels.len() - 1;
+        &mut self.levels[last]
+    }
+    fn open(&mut self) {
+        self.levels.push(Level::default());
+    }
+    fn close(&mut self) {
+        if self.levels.len() > 1 {
+            if let Some(l) = self.levels.pop() {
+                self.total -= l.pending;
+            }
+        }
+    }
+    /// The end of an element of the current level (`,`, `:`, `;`): the
+    /// expression that was nesting there is complete.
+    fn end_element(&mut self) {
+        let l = self.top();
+        let done = l.pending;
+        l.pending = 0;
+        self.total -= done;
+    }
+    fn end_line(&mut self) {
+        self.levels.truncate(1);
+        self.levels[0] = Level::default();
+        self.total = 0;
+    }
+    /// A word at `pos`; an error when the nesting goes over the limit.
+    fn word(&mut self, w: Word, pos: usize, len: usize) -> Result<(), ParseError> {
+        let l = self.top();
+        match w {
+            Word::Lambda => l.lambda_params += 1,
+            Word::For => l.for_targets += 1,
+            Word::In => {
+                l.for_targets = l.for_targets.saturating_sub(1);
+                return Ok(());
+            }
+            Word::Nest => {}
+            Word::Other => return Ok(()),
+        }
+        l.pending += 1;
+        self.total += 1;
+        self.over(pos, len)
+    }
+    fn comma(&mut self) {
+        let l = self.top();
+        if l.lambda_params == 0 && l.for_targets == 0 {
+            self.end_element();
+        }
+    }
+    fn colon(&mut self) {
+        let l = self.top();
+        if l.lambda_params > 0 {
+            l.lambda_params -= 1;
+        } else {
+            l.for_targets = 0;
+            self.end_element();
+        }
+    }
+    fn backquote(&mut self, pos: usize) -> Result<(), ParseError> {
+        // Backquotes (Python 2 `repr`) can nest without brackets: each one
+        // counts until the end of the logical line.
+        self.total += 1;
+        self.over(pos, 1)
+    }
+    fn over(&self, pos: usize, len: usize) -> Result<(), ParseError> {
+        if self.total > MAX_KEYWORD_NESTING {
+            return Err(err(
+                pos,
+                len,
+                format!(
+                    "expression too deeply nested: more than {MAX_KEYWORD_NESTING} `lambda`, `not`, `if`/`else`, `for` or backquotes inside one another"
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Nesting limits, checked in one pass over the bytes before parsing, so
+/// that pathological input gets a located error instead of exhausting the
+/// parser's native stack (see [`crate::limits`]): brackets, indentation
+/// levels, runs of unary operators, and an estimate of the keyword nesting
+/// (`lambda`, `not`, conditionals, comprehension clauses, backquotes) that
+/// never under-counts what the grammar nests.
 pub fn check_limits(source: &str) -> Result<(), ParseError> {
     let bytes = source.as_bytes();
     let mut depth = 0usize;
@@ -432,6 +587,7 @@ pub fn check_limits(source: &str) -> Result<(), ParseError> {
     let mut i = 0;
     let mut line_start = true;
     let mut indent_widths: Vec<usize> = Vec::new();
+    let mut nesting = Nesting::new();
     while i < bytes.len() {
         if !(line_start && depth == 0) {
             // Most bytes only reset (or, for blanks, keep) the run of unary
@@ -482,9 +638,24 @@ pub fn check_limits(source: &str) -> Result<(), ParseError> {
             line_start = false;
             continue;
         }
+        if c.is_ascii_lowercase() {
+            // A word (the class table stops only at the first letters of
+            // the keywords that nest): read it whole.
+            let start = i;
+            while i < bytes.len() && is_ident_byte(bytes[i]) {
+                i += 1;
+            }
+            let at_word_start = start == 0 || !is_ident_byte(bytes[start - 1]);
+            if at_word_start {
+                nesting.word(word(&bytes[start..i]), start, i - start)?;
+            }
+            prefix_run = 0;
+            continue;
+        }
         match c {
             b'#' => {
-                while i < bytes.len() && bytes[i] != b'\n' {
+                // A comment is whitespace: it keeps the run of unary operators.
+                while i < bytes.len() && !matches!(bytes[i], b'\n' | b'\r') {
                     i += 1;
                 }
                 continue;
@@ -492,6 +663,15 @@ pub fn check_limits(source: &str) -> Result<(), ParseError> {
             b'\'' | b'"' => {
                 i = string_end(bytes, i).unwrap_or(bytes.len());
                 prefix_run = 0;
+                continue;
+            }
+            b'\\' if matches!(bytes.get(i + 1), Some(b'\n' | b'\r')) => {
+                // A continuation line: whitespace too.
+                i += if bytes[i + 1] == b'\r' && bytes.get(i + 2) == Some(&b'\n') {
+                    3
+                } else {
+                    2
+                };
                 continue;
             }
             b'(' | b'[' | b'{' => {
@@ -503,9 +683,26 @@ pub fn check_limits(source: &str) -> Result<(), ParseError> {
                         format!("too many nested brackets (more than {MAX_BRACKET_DEPTH})"),
                     ));
                 }
+                nesting.open();
             }
-            b')' | b']' | b'}' => depth = depth.saturating_sub(1),
-            b'\n' => line_start = true,
+            b')' | b']' | b'}' => {
+                depth = depth.saturating_sub(1);
+                nesting.close();
+            }
+            b'\n' | b'\r' => {
+                if depth == 0 {
+                    line_start = c == b'\n';
+                    nesting.end_line();
+                    prefix_run = 0;
+                }
+                // Inside brackets a line break is whitespace.
+                i += 1;
+                continue;
+            }
+            b',' => nesting.comma(),
+            b':' if bytes.get(i + 1) != Some(&b'=') => nesting.colon(),
+            b';' => nesting.end_element(),
+            b'`' => nesting.backquote(i)?,
             _ => {}
         }
         match c {
@@ -521,7 +718,6 @@ pub fn check_limits(source: &str) -> Result<(), ParseError> {
                     ));
                 }
             }
-            b' ' | b'\t' => {}
             _ => prefix_run = 0,
         }
         i += 1;
@@ -550,6 +746,7 @@ mod tests {
         let mut i = 0;
         let mut line_start = true;
         let mut indent_widths: Vec<usize> = Vec::new();
+        let mut nesting = Nesting::new();
         while i < bytes.len() {
             let c = bytes[i];
             if line_start && depth == 0 {
@@ -572,9 +769,21 @@ mod tests {
                 line_start = false;
                 continue;
             }
+            if is_ident_byte(c) {
+                let start = i;
+                while i < bytes.len() && is_ident_byte(bytes[i]) {
+                    i += 1;
+                }
+                let w = &bytes[start..i];
+                if w[0].is_ascii_lowercase() {
+                    nesting.word(word(w), start, i - start)?;
+                }
+                prefix_run = 0;
+                continue;
+            }
             match c {
                 b'#' => {
-                    while i < bytes.len() && bytes[i] != b'\n' {
+                    while i < bytes.len() && !matches!(bytes[i], b'\n' | b'\r') {
                         i += 1;
                     }
                     continue;
@@ -584,14 +793,38 @@ mod tests {
                     prefix_run = 0;
                     continue;
                 }
+                b'\\' if matches!(bytes.get(i + 1), Some(b'\n' | b'\r')) => {
+                    i += if bytes[i + 1] == b'\r' && bytes.get(i + 2) == Some(&b'\n') {
+                        3
+                    } else {
+                        2
+                    };
+                    continue;
+                }
                 b'(' | b'[' | b'{' => {
                     depth += 1;
                     if depth > MAX_BRACKET_DEPTH {
                         return Err(err(i, 1, "brackets".into()));
                     }
+                    nesting.open();
                 }
-                b')' | b']' | b'}' => depth = depth.saturating_sub(1),
-                b'\n' => line_start = true,
+                b')' | b']' | b'}' => {
+                    depth = depth.saturating_sub(1);
+                    nesting.close();
+                }
+                b'\n' | b'\r' => {
+                    if depth == 0 {
+                        line_start = c == b'\n';
+                        nesting.end_line();
+                        prefix_run = 0;
+                    }
+                    i += 1;
+                    continue;
+                }
+                b',' => nesting.comma(),
+                b':' if bytes.get(i + 1) != Some(&b'=') => nesting.colon(),
+                b';' => nesting.end_element(),
+                b'`' => nesting.backquote(i)?,
                 _ => {}
             }
             match c {
@@ -601,7 +834,7 @@ mod tests {
                         return Err(err(i, 1, "unary".into()));
                     }
                 }
-                b' ' | b'\t' => {}
+                b' ' | b'\t' | 0x0C => {}
                 _ => prefix_run = 0,
             }
             i += 1;

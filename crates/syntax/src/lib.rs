@@ -11,6 +11,7 @@ pub mod diagnose;
 pub mod dialect;
 pub mod error;
 pub mod fmt;
+pub mod limits;
 pub mod literals;
 pub mod logical;
 pub mod parser;

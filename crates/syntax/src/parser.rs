@@ -19,23 +19,110 @@ pub struct CommParser;
 type P<'t> = Node<'t>;
 type R<T> = Result<T, ParseError>;
 
+/// Files are parsed in pieces of about this many bytes, each ending at the
+/// end of a top-level statement: pest's token queue and the flat tree
+/// (about 20–80 bytes per input byte) then exist for one piece at a time,
+/// and the memory of a parse follows the size of the AST. Nearly every
+/// command file is a single piece.
+const CHUNK_BYTES: usize = 1 << 20;
+
 /// Parse a whole file into its AST (no post-parse validation).
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
     // pest reads a copy whose logical line ends are marked (same offsets);
     // the tree and the builder read the original text.
     let marked = crate::logical::mark_line_ends(source);
-    let pairs = CommParser::parse(Rule::module, &marked)
-        .map_err(|e| crate::error::from_pest(&e, source))?;
-    let tree = Tree::new(pairs, source);
-    let builder = Builder { base: 0, source };
-    let body = match tree.top().next() {
-        Some(module) => builder.stmts(module.into_inner())?,
-        None => Vec::new(),
-    };
+    let mut body = Vec::new();
+    let mut start = 0;
+    loop {
+        let end = chunk_end(marked.as_bytes(), start);
+        if let Err(e) = parse_piece(source, &marked, start, end, &mut body) {
+            if end == source.len() {
+                return Err(e);
+            }
+            // A failure in a piece: the rest of the file in one piece gives
+            // the error exactly as a parse of the whole file would (it may
+            // also succeed, if the cut was not a statement boundary).
+            parse_piece(source, &marked, start, source.len(), &mut body)?;
+            break;
+        }
+        if end == source.len() {
+            break;
+        }
+        start = end;
+    }
     Ok(Module {
         body,
         span: Span::new(0, source.len()),
     })
+}
+
+/// Parses `source[start..end]` (whole top-level statements) and appends its
+/// statements to `body` (nothing on failure).
+fn parse_piece(
+    source: &str,
+    marked: &str,
+    start: usize,
+    end: usize,
+    body: &mut Vec<Stmt>,
+) -> R<()> {
+    let text = &source[start..end];
+    let pairs = CommParser::parse(Rule::module, &marked[start..end]).map_err(|e| {
+        let mut pe = crate::error::from_pest(&e, text);
+        pe.span = Span::new(start + pe.span.start as usize, start + pe.span.end as usize);
+        pe
+    })?;
+    let tree = Tree::new(pairs, text);
+    let builder = Builder {
+        base: start,
+        source: text,
+    };
+    if let Some(module) = tree.top().next() {
+        let stmts = builder.stmts(module.into_inner())?;
+        body.extend(stmts);
+    }
+    Ok(())
+}
+
+/// Where the piece that starts at `start` ends: the start of the first
+/// top-level statement line at least [`CHUNK_BYTES`] further (a line after
+/// a marked line end that starts at column 0 with a name that is not a
+/// continuation clause, `def`, `class` or a decorator's target), or the end
+/// of the file.
+fn chunk_end(marked: &[u8], start: usize) -> usize {
+    let n = marked.len();
+    let mut i = start.saturating_add(CHUNK_BYTES);
+    while i < n {
+        let Some(k) = marked[i..]
+            .iter()
+            .position(|&b| b == crate::logical::LINE_END)
+        else {
+            return n;
+        };
+        let line = i + k + 1;
+        if line < n && starts_statement(&marked[line..]) {
+            return line;
+        }
+        i = line;
+    }
+    n
+}
+
+/// Whether a line (at column 0 after a logical line end) surely starts a
+/// new top-level statement.
+fn starts_statement(line: &[u8]) -> bool {
+    let word_len = line
+        .iter()
+        .position(|b| !(b.is_ascii_alphanumeric() || *b == b'_'))
+        .unwrap_or(line.len());
+    let word = &line[..word_len];
+    let first_ok = line
+        .first()
+        .is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_');
+    first_ok
+        && !matches!(
+            word,
+            b"else" | b"elif" | b"except" | b"finally" | b"def" | b"class" | b"async"
+        )
 }
 
 fn err(span: Span, message: impl Into<String>) -> ParseError {
@@ -232,10 +319,10 @@ impl Builder<'_> {
             }
             Rule::exec_stmt => {
                 inner.next();
-                let code = self.required_test(inner.next(), span)?;
+                let mut code = self.required_test(inner.next(), span)?;
                 let locals = inner.next().map(|p| self.test(p)).transpose()?;
                 // `exec code in g` was read as the comparison `code in g`.
-                let (code, globals) = match code.kind {
+                let (code, globals) = match std::mem::replace(&mut code.kind, ExprKind::None) {
                     ExprKind::Compare { left, mut ops }
                         if ops.len() == 1
                             && ops[0].0 == CmpOp::In
@@ -867,7 +954,7 @@ impl Builder<'_> {
             }
         }
         let mut items = items.into_iter().peekable();
-        fold(&mut items, 0)
+        fold(&mut items, 0, 0)
     }
 
     fn primary(&self, pair: P) -> R<Expr> {
@@ -1459,6 +1546,14 @@ impl Builder<'_> {
             return Err(err(open, "f-string: empty expression not allowed"));
         }
         let expr_start = start + from + lead;
+        // The field is parsed on its own: the nesting limits apply to it too.
+        crate::diagnose::check_limits(expr_text).map_err(|mut e| {
+            e.span = Span::new(
+                expr_start + e.span.start as usize,
+                expr_start + e.span.end as usize,
+            );
+            e
+        })?;
         let pairs = CommParser::parse(Rule::fstring_expr, expr_text).map_err(|e| {
             let mut pe = crate::error::from_pest(&e, expr_text);
             pe.span = Span::new(
@@ -1678,7 +1773,23 @@ fn infix_prec(rule: Rule) -> Option<u32> {
 
 /// Pratt folding of an operator sequence: operators binding tighter than
 /// `min` are taken into the left operand.
-fn fold(items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>, min: u32) -> R<Expr> {
+///
+/// `depth` counts the recursion (prefix operators and `**` chains nest the
+/// tree as deep as they are long): it stops at [`crate::limits::MAX_DEPTH`],
+/// as the tree would be refused at that depth anyway.
+fn fold(
+    items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>,
+    min: u32,
+    depth: usize,
+) -> R<Expr> {
+    if depth >= crate::limits::MAX_DEPTH {
+        let span = match items.peek() {
+            Some(OpItem::Operand(e)) => e.span,
+            Some(OpItem::Prefix(_, span)) => *span,
+            _ => Span::default(),
+        };
+        return Err(err(span, crate::limits::too_deep_message()));
+    }
     let mut lhs = match items.next() {
         Some(OpItem::Operand(e)) => e,
         Some(OpItem::Prefix(op, span)) => {
@@ -1687,7 +1798,7 @@ fn fold(items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>, min: u32) -
             } else {
                 PREC_UNARY
             };
-            let operand = fold(items, prec)?;
+            let operand = fold(items, prec, depth + 1)?;
             Expr {
                 span: span.merge(operand.span),
                 kind: ExprKind::UnaryOp {
@@ -1705,13 +1816,17 @@ fn fold(items: &mut std::iter::Peekable<std::vec::IntoIter<OpItem>>, min: u32) -
             break;
         }
         items.next();
-        let rhs = fold(items, if rule == Rule::pow { prec - 1 } else { prec })?;
+        let rhs = fold(
+            items,
+            if rule == Rule::pow { prec - 1 } else { prec },
+            depth + 1,
+        )?;
         lhs = infix(lhs, rule, rhs);
     }
     Ok(lhs)
 }
 
-fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
+fn infix(mut lhs: Expr, op: Rule, rhs: Expr) -> Expr {
     let span = lhs.span.merge(rhs.span);
     let arith = match op {
         Rule::add => Some(BinOp::Add),
@@ -1746,7 +1861,7 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
             } else {
                 BoolOp::Or
             };
-            match lhs.kind {
+            match std::mem::replace(&mut lhs.kind, ExprKind::None) {
                 ExprKind::BoolOp {
                     op: lop,
                     mut values,
@@ -1785,7 +1900,7 @@ fn infix(lhs: Expr, op: Rule, rhs: Expr) -> Expr {
                 Rule::is_not => CmpOp::IsNot,
                 _ => CmpOp::NotEq,
             };
-            match lhs.kind {
+            match std::mem::replace(&mut lhs.kind, ExprKind::None) {
                 ExprKind::Compare { left, mut ops }
                     if ops.last().is_some_and(|(_, e)| e.span.end == lhs.span.end) =>
                 {

@@ -8,9 +8,15 @@
 //!   default after one with a default.
 
 use crate::ast::*;
+use crate::limits::MAX_DEPTH;
 use crate::ParseError;
 
 type R = Result<(), ParseError>;
+
+/// The tree is deeper than [`MAX_DEPTH`] at this node.
+fn too_deep(span: crate::Span) -> ParseError {
+    error(span, crate::limits::too_deep_message())
+}
 
 fn error(span: crate::Span, message: String) -> ParseError {
     ParseError { span, message }
@@ -21,6 +27,7 @@ pub fn check(module: &Module) -> R {
     let ctx = Ctx {
         in_function: false,
         in_loop: false,
+        depth: 0,
     };
     stmts(&module.body, ctx)
 }
@@ -29,6 +36,8 @@ pub fn check(module: &Module) -> R {
 struct Ctx {
     in_function: bool,
     in_loop: bool,
+    /// How deep the statement is (see [`crate::limits::MAX_DEPTH`]).
+    depth: usize,
 }
 
 fn stmts(body: &[Stmt], ctx: Ctx) -> R {
@@ -36,27 +45,35 @@ fn stmts(body: &[Stmt], ctx: Ctx) -> R {
 }
 
 fn stmt(s: &Stmt, ctx: Ctx) -> R {
+    if ctx.depth >= MAX_DEPTH {
+        return Err(too_deep(s.span));
+    }
+    let ctx = Ctx {
+        depth: ctx.depth + 1,
+        ..ctx
+    };
+    let d = ctx.depth;
     match &s.kind {
-        StmtKind::Expr { value } => expr(value),
+        StmtKind::Expr { value } => expr(value, d),
         StmtKind::Assign { targets, value } => {
-            targets.iter().try_for_each(expr)?;
-            expr(value)
+            targets.iter().try_for_each(|e| expr(e, d))?;
+            expr(value, d)
         }
         StmtKind::AugAssign { target, value, .. } => {
-            expr(target)?;
-            expr(value)
+            expr(target, d)?;
+            expr(value, d)
         }
         StmtKind::AnnAssign {
             target,
             annotation,
             value,
         } => {
-            expr(target)?;
-            expr(annotation)?;
-            opt(value.as_ref())
+            expr(target, d)?;
+            expr(annotation, d)?;
+            opt(value.as_ref(), d)
         }
         StmtKind::If { test, body, orelse } => {
-            expr(test)?;
+            expr(test, d)?;
             stmts(body, ctx)?;
             stmts(orelse, ctx)
         }
@@ -66,8 +83,8 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
             body,
             orelse,
         } => {
-            expr(target)?;
-            expr(iter)?;
+            expr(target, d)?;
+            expr(iter, d)?;
             stmts(
                 body,
                 Ctx {
@@ -78,7 +95,7 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
             stmts(orelse, ctx)
         }
         StmtKind::While { test, body, orelse } => {
-            expr(test)?;
+            expr(test, d)?;
             stmts(
                 body,
                 Ctx {
@@ -94,13 +111,14 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
             decorators,
             ..
         } => {
-            decorators.iter().try_for_each(expr)?;
-            check_params(params)?;
+            decorators.iter().try_for_each(|e| expr(e, d))?;
+            check_params(params, d)?;
             stmts(
                 body,
                 Ctx {
                     in_function: true,
                     in_loop: false,
+                    ..ctx
                 },
             )
         }
@@ -110,13 +128,14 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
             decorators,
             ..
         } => {
-            decorators.iter().try_for_each(expr)?;
-            check_args(bases)?;
+            decorators.iter().try_for_each(|e| expr(e, d))?;
+            check_args(bases, d)?;
             stmts(
                 body,
                 Ctx {
                     in_function: false,
                     in_loop: false,
+                    ..ctx
                 },
             )
         }
@@ -127,7 +146,7 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
                     "`return` outside a function: a command file's top level cannot return".into(),
                 ));
             }
-            opt(value.as_ref())
+            opt(value.as_ref(), d)
         }
         StmtKind::Break | StmtKind::Continue => {
             if !ctx.in_loop {
@@ -151,7 +170,7 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
         } => {
             stmts(body, ctx)?;
             for h in handlers {
-                opt(h.typ.as_ref())?;
+                opt(h.typ.as_ref(), d)?;
                 stmts(&h.body, ctx)?;
             }
             stmts(orelse, ctx)?;
@@ -159,32 +178,32 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
         }
         StmtKind::With { items, body } => {
             for item in items {
-                expr(&item.context)?;
-                opt(item.target.as_ref())?;
+                expr(&item.context, d)?;
+                opt(item.target.as_ref(), d)?;
             }
             stmts(body, ctx)
         }
         StmtKind::Raise { exc, cause } => {
-            opt(exc.as_ref())?;
-            opt(cause.as_ref())
+            opt(exc.as_ref(), d)?;
+            opt(cause.as_ref(), d)
         }
         StmtKind::Assert { test, msg } => {
-            expr(test)?;
-            opt(msg.as_ref())
+            expr(test, d)?;
+            opt(msg.as_ref(), d)
         }
-        StmtKind::Del { targets } => targets.iter().try_for_each(expr),
+        StmtKind::Del { targets } => targets.iter().try_for_each(|e| expr(e, d)),
         StmtKind::Print { dest, values, .. } => {
-            opt(dest.as_ref())?;
-            values.iter().try_for_each(expr)
+            opt(dest.as_ref(), d)?;
+            values.iter().try_for_each(|e| expr(e, d))
         }
         StmtKind::Exec {
             code,
             globals,
             locals,
         } => {
-            expr(code)?;
-            opt(globals.as_ref())?;
-            opt(locals.as_ref())
+            expr(code, d)?;
+            opt(globals.as_ref(), d)?;
+            opt(locals.as_ref(), d)
         }
         StmtKind::Import { .. }
         | StmtKind::ImportFrom { .. }
@@ -194,15 +213,19 @@ fn stmt(s: &Stmt, ctx: Ctx) -> R {
     }
 }
 
-fn opt(e: Option<&Expr>) -> R {
-    e.map_or(Ok(()), expr)
+fn opt(e: Option<&Expr>, d: usize) -> R {
+    e.map_or(Ok(()), |e| expr(e, d))
 }
 
-fn expr(e: &Expr) -> R {
+fn expr(e: &Expr, d: usize) -> R {
+    if d >= MAX_DEPTH {
+        return Err(too_deep(e.span));
+    }
+    let d = d + 1;
     match &e.kind {
         ExprKind::Call { func, args } => {
-            expr(func)?;
-            check_args(args)
+            expr(func, d)?;
+            check_args(args, d)
         }
         ExprKind::Name { .. }
         | ExprKind::Int { .. }
@@ -213,91 +236,91 @@ fn expr(e: &Expr) -> R {
         | ExprKind::Bool { .. }
         | ExprKind::None
         | ExprKind::Ellipsis => Ok(()),
-        ExprKind::FString { parts } => fstring(parts),
+        ExprKind::FString { parts } => fstring(parts, d),
         ExprKind::List { elts } | ExprKind::Tuple { elts } | ExprKind::Set { elts } => {
-            elts.iter().try_for_each(expr)
+            elts.iter().try_for_each(|e| expr(e, d))
         }
         ExprKind::Dict { items } => items.iter().try_for_each(|i| {
-            opt(i.key.as_ref())?;
-            expr(&i.value)
+            opt(i.key.as_ref(), d)?;
+            expr(&i.value, d)
         }),
-        ExprKind::Attribute { value, .. } => expr(value),
+        ExprKind::Attribute { value, .. } => expr(value, d),
         ExprKind::Subscript { value, index } => {
-            expr(value)?;
-            expr(index)
+            expr(value, d)?;
+            expr(index, d)
         }
         ExprKind::Slice { lower, upper, step } => {
-            opt(lower.as_deref())?;
-            opt(upper.as_deref())?;
-            opt(step.as_deref())
+            opt(lower.as_deref(), d)?;
+            opt(upper.as_deref(), d)?;
+            opt(step.as_deref(), d)
         }
         ExprKind::BinOp { left, right, .. } => {
-            expr(left)?;
-            expr(right)
+            expr(left, d)?;
+            expr(right, d)
         }
-        ExprKind::UnaryOp { operand, .. } => expr(operand),
-        ExprKind::BoolOp { values, .. } => values.iter().try_for_each(expr),
+        ExprKind::UnaryOp { operand, .. } => expr(operand, d),
+        ExprKind::BoolOp { values, .. } => values.iter().try_for_each(|e| expr(e, d)),
         ExprKind::Compare { left, ops } => {
-            expr(left)?;
-            ops.iter().try_for_each(|(_, e)| expr(e))
+            expr(left, d)?;
+            ops.iter().try_for_each(|(_, e)| expr(e, d))
         }
         ExprKind::IfExp { test, body, orelse } => {
-            expr(test)?;
-            expr(body)?;
-            expr(orelse)
+            expr(test, d)?;
+            expr(body, d)?;
+            expr(orelse, d)
         }
         ExprKind::Lambda { params, body } => {
-            check_params(params)?;
-            expr(body)
+            check_params(params, d)?;
+            expr(body, d)
         }
         ExprKind::ListComp { elt, generators }
         | ExprKind::SetComp { elt, generators }
         | ExprKind::GeneratorExp { elt, generators } => {
-            expr(elt)?;
-            comprehensions(generators)
+            expr(elt, d)?;
+            comprehensions(generators, d)
         }
         ExprKind::DictComp {
             key,
             value,
             generators,
         } => {
-            expr(key)?;
-            expr(value)?;
-            comprehensions(generators)
+            expr(key, d)?;
+            expr(value, d)?;
+            comprehensions(generators, d)
         }
         ExprKind::Starred { value }
         | ExprKind::YieldFrom { value }
         | ExprKind::Await { value }
-        | ExprKind::Repr { value } => expr(value),
-        ExprKind::Yield { value } => opt(value.as_deref()),
-        ExprKind::NamedExpr { value, .. } => expr(value),
+        | ExprKind::Repr { value } => expr(value, d),
+        ExprKind::Yield { value } => opt(value.as_deref(), d),
+        ExprKind::NamedExpr { value, .. } => expr(value, d),
     }
 }
 
-fn fstring(parts: &[FStringPart]) -> R {
+fn fstring(parts: &[FStringPart], d: usize) -> R {
     for p in parts {
         if let FStringPart::Field {
             value, format_spec, ..
         } = p
         {
-            expr(value)?;
-            fstring(format_spec)?;
+            expr(value, d)?;
+            fstring(format_spec, d)?;
         }
     }
     Ok(())
 }
 
-fn comprehensions(gens: &[Comprehension]) -> R {
+fn comprehensions(gens: &[Comprehension], d: usize) -> R {
     for g in gens {
-        expr(&g.target)?;
-        expr(&g.iter)?;
-        g.ifs.iter().try_for_each(expr)?;
+        expr(&g.target, d)?;
+        expr(&g.iter, d)?;
+        g.ifs.iter().try_for_each(|e| expr(e, d))?;
     }
     Ok(())
 }
 
 /// Keyword arguments are unique; no positional argument after a keyword one.
-fn check_args(args: &[Arg]) -> R {
+fn check_args(args: &[Arg], d: usize) -> R {
     let mut keyword_seen = false;
     let mut dstar_seen = false;
     for (i, arg) in args.iter().enumerate() {
@@ -318,7 +341,7 @@ fn check_args(args: &[Arg]) -> R {
                     ));
                 }
                 keyword_seen = true;
-                expr(value)?;
+                expr(value, d)?;
             }
             ArgKind::Positional { value } => {
                 if dstar_seen {
@@ -333,7 +356,7 @@ fn check_args(args: &[Arg]) -> R {
                         "positional argument follows keyword argument: put positional arguments first, or name this one (`KEYWORD=...`)".into(),
                     ));
                 }
-                expr(value)?;
+                expr(value, d)?;
             }
             ArgKind::Star { value } => {
                 if dstar_seen {
@@ -342,11 +365,11 @@ fn check_args(args: &[Arg]) -> R {
                         "iterable argument unpacking (`*`) follows keyword argument unpacking (`**`)".into(),
                     ));
                 }
-                expr(value)?;
+                expr(value, d)?;
             }
             ArgKind::DoubleStar { value } => {
                 dstar_seen = true;
-                expr(value)?;
+                expr(value, d)?;
             }
         }
     }
@@ -355,7 +378,7 @@ fn check_args(args: &[Arg]) -> R {
 
 /// Parameter names are unique; defaults are not followed by non-defaults
 /// (before `*`).
-fn check_params(params: &[Param]) -> R {
+fn check_params(params: &[Param], d: usize) -> R {
     let mut names: Vec<&str> = Vec::new();
     let mut default_seen = false;
     let mut kw_only = false;
@@ -391,8 +414,8 @@ fn check_params(params: &[Param]) -> R {
             }
             _ => {}
         }
-        opt(p.default.as_ref())?;
-        opt(p.annotation.as_ref())?;
+        opt(p.default.as_ref(), d)?;
+        opt(p.annotation.as_ref(), d)?;
     }
     Ok(())
 }

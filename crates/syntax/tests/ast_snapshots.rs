@@ -46,7 +46,7 @@ fn crlf_and_tabs_ast() {
 /// The single expression of a one-statement module.
 fn expr(src: &str) -> Expr {
     let m = parse_ok(src);
-    match m.body.into_iter().next().map(|s| s.kind) {
+    match m.body.into_iter().next().map(|s| s.into_kind()) {
         Some(StmtKind::Expr { value }) => value,
         Some(StmtKind::Assign { value, .. }) => value,
         other => panic!("not an expression statement: {other:?}"),

@@ -10,7 +10,7 @@ fn value(src: &str) -> Expr {
         Ok(m) => m,
         Err(e) => panic!("{src:?} should parse: {}", e.message),
     };
-    match module.body.into_iter().next().map(|s| s.kind) {
+    match module.body.into_iter().next().map(|s| s.into_kind()) {
         Some(StmtKind::Assign { value, .. }) | Some(StmtKind::Expr { value }) => value,
         other => panic!("{src:?}: unexpected statement {other:?}"),
     }

@@ -227,7 +227,7 @@ pub fn parse_mail(text: &str, path: &Path) -> Result<Mesh, MeshError> {
                         })?;
                         ids.push(id);
                     }
-                    push_group(&mut p.mesh.groups_ma, name.text, ids);
+                    push_group(&mut p.mesh.groups_ma, name.text, ids).map_err(|m| p.err(&name, m))?;
                 } else {
                     let mut ids = Vec::new();
                     for m in members {
@@ -244,7 +244,7 @@ pub fn parse_mail(text: &str, path: &Path) -> Result<Mesh, MeshError> {
                         })?;
                         ids.push(id);
                     }
-                    push_group(&mut p.mesh.groups_no, name.text, ids);
+                    push_group(&mut p.mesh.groups_no, name.text, ids).map_err(|m| p.err(&name, m))?;
                 }
             }
             _ => {
@@ -314,20 +314,19 @@ fn hint<'b>(name: &str, candidates: impl IntoIterator<Item = &'b str>) -> String
         .unwrap_or_default()
 }
 
-/// A group defined twice gets the union of its members, in order.
-fn push_group<T: PartialEq>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) {
-    if let Some(g) = groups.iter_mut().find(|g| g.name == name) {
-        for m in members {
-            if !g.members.contains(&m) {
-                g.members.push(m);
-            }
-        }
-    } else {
-        groups.push(Group {
-            name: name.to_string(),
-            members,
-        });
+/// Adds a group; a second block of the same name is an error (code_aster
+/// refuses it rather than merging the two lists).
+fn push_group<T>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) -> Result<(), String> {
+    if groups.iter().any(|g| g.name == name) {
+        return Err(format!(
+            "group `{name}` is defined twice: give each GROUP_MA/GROUP_NO block its own name"
+        ));
     }
+    groups.push(Group {
+        name: name.to_string(),
+        members,
+    });
+    Ok(())
 }
 
 /// A real as Fortran writes it: `1.5`, `1.`, `.5`, `1.5E+00`, `1.5D+00`.
@@ -388,6 +387,22 @@ mod tests {
             "{e}"
         );
         assert!(e.to_string().contains("did you mean"), "{e}");
+    }
+
+    #[test]
+    fn a_group_defined_twice_is_refused_at_its_second_name() {
+        let e = parse(
+            "COOR_2D\nN1 0 0\nN2 1 0\nFINSF\nSEG2\nS1 N1 N2\nFINSF\n\
+             GROUP_MA\nG S1\nFINSF\nGROUP_MA\nG S1\nFINSF\nFIN\n",
+        )
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.mail:12:1: group `G` is defined twice: give each GROUP_MA/GROUP_NO block its own name"
+        );
+        let e = parse("COOR_2D\nN1 0 0\nFINSF\nGROUP_NO NOM=P\nN1\nFINSF\nGROUP_NO NOM=P\nN1\nFINSF\n")
+            .unwrap_err();
+        assert!(e.to_string().starts_with("t.mail:7:"), "{e}");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! DEFI_LIST_ENTI, DEFI_FICHIER.
 
 use super::inspect::filter_rows;
-use super::post::{append, select_steps};
+use super::post::select_steps;
 use crate::concept::Concept;
 use crate::executor::{store_result, Executor};
 use crate::field::Field;
@@ -576,7 +576,7 @@ pub fn impr_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     if unit == 8 || unit == 6 {
         ex.write_report(&text)?;
     } else {
-        append(&ex.output_path(unit), &text)?;
+        ex.append_unit(unit, &text)?;
     }
     Ok(CommandOutput::Nothing)
 }

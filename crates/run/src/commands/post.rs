@@ -692,8 +692,7 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         ex.write_report(&text)?;
         ex.write_report("\n")?;
     } else {
-        let path = ex.output_path(unit);
-        append(&path, &(text + "\n"))?;
+        ex.append_unit(unit, &(text + "\n"))?;
     }
     Ok(CommandOutput::Nothing)
 }

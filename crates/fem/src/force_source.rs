@@ -1,0 +1,455 @@
+//! Force sources: nonlinear contributions to the equilibrium with their own
+//! unknowns (contact elements with friction and their multipliers), solved
+//! by a generalised Newton method on the whole system.
+//!
+//! A [`ForceSource`] adds, at the current state, forces to the internal
+//! force side of the equilibrium (`f_int + f_src = f_ext`), equations of its
+//! own unknowns (e.g. the contact pressure and friction multipliers of the
+//! slave nodes), and the derivatives of both with respect to the
+//! displacements and its unknowns. The tangent need not be symmetric
+//! (friction), so the system is factorised by sparse LU.
+//!
+//! Per Newton iteration:
+//!
+//! ```text
+//! [ K_ff + ∂f_src/∂u   ∂f_src/∂y   Aᵀ ] [Δu]   [ f_ext − f_int − f_src ]
+//! [ ∂g/∂u              ∂g/∂y       0  ] [Δy] = [ −g                    ]
+//! [ A                  0           0  ] [λ ]   [ d − A u               ]
+//! ```
+//!
+//! where `y` are the sources' unknowns and `g` their equations. After each
+//! solve a source updates its statuses ([`ForceSource::after_iteration`]:
+//! contact statuses, pairing on the new geometry); the step has converged
+//! when the residual criteria hold and every source reports its statuses
+//! settled. A source may then ask for another Newton solve
+//! ([`ForceSource::after_convergence`]: code_aster's fixed-point loops on
+//! the contact statuses, the friction threshold or the geometry).
+
+use crate::behaviour::PlasticCells;
+use crate::error::FemError;
+use crate::linalg::{self, Csc, SolveFailure};
+use crate::loads::EqualityRow;
+use crate::model::Model;
+use crate::nonlinear::{choose_tangent, internal_forces, kept_rows, NewtonOptions};
+use crate::unilateral::State;
+
+/// An unknown of the system a source contributes to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unknown {
+    /// A displacement DOF (index of the model's numbering).
+    Dof(usize),
+    /// One of the source's own unknowns.
+    Own(usize),
+}
+
+/// What a source contributes at a state.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Contribution {
+    /// Forces on the internal-force side, per DOF index (summed when a DOF
+    /// appears several times).
+    pub forces: Vec<(usize, f64)>,
+    /// Residual of each own unknown's equation (length [`ForceSource::unknowns`]).
+    pub own_residual: Vec<f64>,
+    /// Derivatives (row, column, value) of the forces (rows `Dof`) and of
+    /// the own equations (rows `Own`); summed when repeated.
+    pub tangent: Vec<(Unknown, Unknown, f64)>,
+}
+
+/// What a source decides once Newton has converged.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LoopVerdict {
+    /// The state is accepted.
+    Done,
+    /// Solve again from the current state (a fixed-point loop of the source
+    /// has not converged); the Newton iteration count starts again.
+    Again,
+}
+
+/// A producer of forces with its own unknowns (see the module docs).
+pub trait ForceSource {
+    /// Short name used in messages.
+    fn name(&self) -> String;
+
+    /// Number of own unknowns (constant over the analysis).
+    fn unknowns(&self) -> usize;
+
+    /// Start of an increment from the last converged state `state` (at
+    /// the new time, before its imposed values are applied). The source may
+    /// set its unknowns' starting values.
+    fn begin_increment(&mut self, state: &State, own: &mut [f64]) -> Result<(), FemError>;
+
+    /// Forces, own equations and tangent at the current iterate.
+    fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError>;
+
+    /// After a Newton solve: update the statuses and the geometry the next
+    /// evaluation uses; `true` when they did not change and the source's
+    /// own criteria hold (the iterate may be accepted). The source may
+    /// bring its unknowns back into their admissible set (e.g. friction
+    /// directions onto the unit ball): this changes the path, not the
+    /// solution.
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError>;
+
+    /// Newton converged on the current statuses: accept, or ask for another
+    /// solve (fixed-point loops).
+    fn after_convergence(&mut self, _state: &State, _own: &[f64]) -> Result<LoopVerdict, FemError> {
+        Ok(LoopVerdict::Done)
+    }
+
+    /// The increment is accepted (called once per converged increment).
+    fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError>;
+
+    /// A name for own unknown `k` in messages (e.g. `LAGS_C of node N3`).
+    fn unknown_name(&self, k: usize, _mesh: &aster_mesh::Mesh) -> String {
+        format!("unknown #{}", k + 1)
+    }
+}
+
+/// A borrowed source, so that the caller keeps it (and what it recorded)
+/// after the solve.
+impl<T: ForceSource + ?Sized> ForceSource for &mut T {
+    fn name(&self) -> String {
+        (**self).name()
+    }
+    fn unknowns(&self) -> usize {
+        (**self).unknowns()
+    }
+    fn begin_increment(&mut self, state: &State, own: &mut [f64]) -> Result<(), FemError> {
+        (**self).begin_increment(state, own)
+    }
+    fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
+        (**self).evaluate(state, own)
+    }
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
+        (**self).after_iteration(state, own)
+    }
+    fn after_convergence(&mut self, state: &State, own: &[f64]) -> Result<LoopVerdict, FemError> {
+        (**self).after_convergence(state, own)
+    }
+    fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError> {
+        (**self).converged(state, own)
+    }
+    fn unknown_name(&self, k: usize, mesh: &aster_mesh::Mesh) -> String {
+        (**self).unknown_name(k, mesh)
+    }
+}
+
+/// What one step's generalised Newton needs from the solver.
+pub(crate) struct ForceStep<'a> {
+    pub model: &'a Model,
+    pub k: &'a Csc,
+    pub kff: &'a Csc,
+    pub map: &'a [usize],
+    pub nfree: usize,
+    pub kdiag_max: f64,
+    pub newton: NewtonOptions,
+    pub resi_glob_rela: Option<f64>,
+    pub resi_glob_maxi: Option<f64>,
+    pub iter_glob_maxi: usize,
+    /// Bound on the restarts asked by the sources' fixed-point loops.
+    pub loops_max: usize,
+}
+
+/// The outcome of a converged step: (solves, equality multipliers,
+/// RESI_GLOB_RELA, RESI_GLOB_MAXI, RESI_GLOB_RELA per iteration, Newton
+/// iterations).
+pub(crate) type ForceOutcome = (usize, Vec<f64>, f64, f64, Vec<f64>, usize);
+
+fn state<'a>(model: &'a Model, u: &'a [f64], t: f64) -> State<'a> {
+    State {
+        mesh: model.mesh(),
+        dofs: model.dofs(),
+        displacement: u,
+        time: t,
+    }
+}
+
+/// One step of the generalised Newton method with force sources.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn newton_step(
+    ctx: &ForceStep,
+    fext: &[f64],
+    eq: &[EqualityRow],
+    sources: &mut [Box<dyn ForceSource + '_>],
+    own: &mut [Vec<f64>],
+    u: &mut [f64],
+    t: f64,
+    plastic: &mut Option<PlasticCells>,
+) -> Result<ForceOutcome, FemError> {
+    let ForceStep {
+        model,
+        k,
+        kff,
+        map,
+        nfree,
+        kdiag_max,
+        newton,
+        ..
+    } = *ctx;
+    let nd = u.len();
+    let offsets: Vec<usize> = own
+        .iter()
+        .scan(0usize, |acc, o| {
+            let start = *acc;
+            *acc += o.len();
+            Some(start)
+        })
+        .collect();
+    let nown: usize = own.iter().map(|o| o.len()).sum();
+    let trace = std::env::var_os("ASTER_FEM_TRACE").is_some();
+    let mut residuals = Vec::new();
+    let mut solves = 0usize;
+    let mut newton_iterations = 0usize;
+    let mut loops = 0usize;
+    // Newton iterations of the current solve (restarted by a source's loop).
+    let mut iteration = 0usize;
+    let max_iterations = ctx.iter_glob_maxi + 1;
+    let mut tangent: Option<Csc> = None;
+    let mut evaluated: Option<(Vec<f64>, Vec<crate::force_source::Contribution>)> = None;
+    loop {
+        // Internal forces and the sources' contributions at the iterate.
+        let (fint, contributions) = match evaluated.take() {
+            Some(e) => e,
+            None => evaluate_all(model, k, plastic, sources, own, u, t)?,
+        };
+        if let Some(pc) = plastic.as_mut() {
+            choose_tangent(&mut tangent, pc, model, kff, map, newton, iteration)?;
+        }
+        let matrix = tangent.as_ref().unwrap_or(kff);
+        let rows: Vec<(Vec<(usize, f64)>, f64)> =
+            eq.iter().map(|r| (r.terms.clone(), r.rhs)).collect();
+        let kept = kept_rows(model, &rows, eq.len(), map, u)?;
+        let nk = kept.len();
+        let n = nfree + nown + nk;
+        let mut b = vec![0.0; n];
+        let mut src_force = vec![0.0; nd];
+        for c in &contributions {
+            for &(i, f) in &c.forces {
+                src_force[i] += f;
+            }
+        }
+        for i in 0..nd {
+            if map[i] != usize::MAX {
+                b[map[i]] = fext[i] - fint[i] - src_force[i];
+            }
+        }
+        let mut extra: Vec<(usize, usize, f64)> = Vec::new();
+        for (s, c) in contributions.iter().enumerate() {
+            for (k, r) in c.own_residual.iter().enumerate() {
+                b[nfree + offsets[s] + k] = -r;
+            }
+            let index = |x: Unknown| -> Option<usize> {
+                match x {
+                    Unknown::Dof(i) => (map[i] != usize::MAX).then(|| map[i]),
+                    Unknown::Own(k) => Some(nfree + offsets[s] + k),
+                }
+            };
+            for &(r, col, v) in &c.tangent {
+                let Some(ri) = index(r) else { continue };
+                match col {
+                    Unknown::Dof(j) if map[j] == usize::MAX => {
+                        // An eliminated DOF is at its value: nothing to solve.
+                        continue;
+                    }
+                    _ => {}
+                }
+                if let Some(ci) = index(col) {
+                    extra.push((ri, ci, v));
+                }
+            }
+        }
+        for (kk, &r) in kept.iter().enumerate() {
+            let row = &eq[r];
+            let mut au = 0.0;
+            for &(i, c) in &row.terms {
+                au += c * u[i];
+                if map[i] != usize::MAX {
+                    extra.push((nfree + nown + kk, map[i], c));
+                    extra.push((map[i], nfree + nown + kk, c));
+                }
+            }
+            b[nfree + nown + kk] = row.rhs - au;
+        }
+        let a = matrix.with_extra(n, extra);
+        let name = |i: usize| -> String {
+            if i < nfree {
+                let dof = map.iter().position(|&m| m == i).unwrap_or(0);
+                model.dofs().dof(dof).describe(model.mesh())
+            } else if i < nfree + nown {
+                let s = offsets.iter().rposition(|&o| o <= i - nfree).unwrap_or(0);
+                format!(
+                    "{} ({})",
+                    sources[s].unknown_name(i - nfree - offsets[s], model.mesh()),
+                    sources[s].name()
+                )
+            } else {
+                format!("Lagrange multiplier #{}", i - nfree - nown + 1)
+            }
+        };
+        let sol = linalg::solve_with(&a, &b, nfree, false, None).map_err(|f| match f {
+            SolveFailure::Singular { index } => FemError::Singular {
+                free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
+            },
+            other => linalg::failure_to_error(other, name),
+        })?;
+        if trace {
+            let (imax, vmax) = sol
+                .x
+                .iter()
+                .enumerate()
+                .fold((0, 0.0f64), |(i0, v0), (i, v)| {
+                    if v.abs() > v0 {
+                        (i, v.abs())
+                    } else {
+                        (i0, v0)
+                    }
+                });
+            eprintln!(
+                "[newton/sources] largest correction {vmax:.3e} on {}",
+                name(imax)
+            );
+        }
+        solves += 1;
+        iteration += 1;
+        newton_iterations += 1;
+        for i in 0..nd {
+            if map[i] != usize::MAX {
+                u[i] += sol.x[map[i]];
+            }
+        }
+        for (s, o) in own.iter_mut().enumerate() {
+            for (k, v) in o.iter_mut().enumerate() {
+                *v += sol.x[nfree + offsets[s] + k];
+            }
+        }
+        let mut lam = vec![0.0; eq.len()];
+        for (kk, &r) in kept.iter().enumerate() {
+            lam[r] = sol.x[nfree + nown + kk];
+        }
+        // Statuses and geometry at the new iterate.
+        let mut settled = true;
+        let mut unsettled = Vec::new();
+        for (s, src) in sources.iter_mut().enumerate() {
+            let ok = src.after_iteration(&state(model, u, t), &mut own[s])?;
+            if !ok {
+                unsettled.push(src.name());
+            }
+            settled &= ok;
+        }
+        // Residual at the new iterate (with the new statuses).
+        let (fint, contributions) = evaluate_all(model, k, plastic, sources, own, u, t)?;
+        let mut src_force = vec![0.0; nd];
+        for c in &contributions {
+            for &(i, f) in &c.forces {
+                src_force[i] += f;
+            }
+        }
+        let mut reac = vec![0.0; nd];
+        for (r, row) in eq.iter().enumerate() {
+            for &(i, c) in &row.terms {
+                reac[i] -= c * lam[r];
+            }
+        }
+        let mut resi_maxi = 0.0f64;
+        let mut reference = 0.0f64;
+        for i in 0..nd {
+            if map[i] == usize::MAX {
+                reference = reference.max(fint[i].abs());
+            } else {
+                let r = fext[i] - fint[i] + reac[i] - src_force[i];
+                resi_maxi = resi_maxi.max(r.abs());
+                reference = reference.max((fext[i] + reac[i] - src_force[i]).abs());
+            }
+        }
+        let resi_rela = if reference > 0. {
+            resi_maxi / reference
+        } else {
+            0.0
+        };
+        let converged_resi = if reference > 0. {
+            ctx.resi_glob_rela.is_none_or(|tol| resi_rela <= tol)
+                && ctx.resi_glob_maxi.is_none_or(|tol| resi_maxi <= tol)
+        } else {
+            let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            resi_maxi <= 1e-6 * kdiag_max * umax || resi_maxi == 0.
+        };
+        residuals.push(resi_rela);
+        if trace {
+            eprintln!(
+                "[newton/sources] t={t} iteration {iteration} resi_rela {resi_rela:.3e} resi_maxi {resi_maxi:.3e} statuses {}",
+                if settled { "settled" } else { "changed" }
+            );
+        }
+        evaluated = Some((fint, contributions));
+        if converged_resi && settled {
+            let mut again = false;
+            for (s, src) in sources.iter_mut().enumerate() {
+                if src.after_convergence(&state(model, u, t), &own[s])? == LoopVerdict::Again {
+                    again = true;
+                }
+            }
+            if !again {
+                return Ok((
+                    solves,
+                    lam,
+                    resi_rela,
+                    resi_maxi,
+                    residuals,
+                    newton_iterations,
+                ));
+            }
+            loops += 1;
+            if loops > ctx.loops_max {
+                return Err(FemError::Source(format!(
+                    "the fixed-point loops of {} did not settle after {} Newton solves at time {t}",
+                    sources
+                        .iter()
+                        .map(|s| s.name())
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    ctx.loops_max
+                )));
+            }
+            // A new Newton solve from the current state (code_aster
+            // restarts the iteration count for each pass of its loops).
+            iteration = 0;
+            evaluated = None;
+            continue;
+        }
+        if iteration >= max_iterations {
+            return Err(FemError::NoConvergence {
+                time: t,
+                iterations: iteration,
+                resi_rela,
+                resi_maxi,
+                cycling: (!settled).then(|| unsettled.join(", ")),
+            });
+        }
+    }
+}
+
+/// Internal forces and every source's contribution at `u`.
+fn evaluate_all(
+    model: &Model,
+    k: &Csc,
+    plastic: &mut Option<PlasticCells>,
+    sources: &mut [Box<dyn ForceSource + '_>],
+    own: &[Vec<f64>],
+    u: &[f64],
+    t: f64,
+) -> Result<(Vec<f64>, Vec<Contribution>), FemError> {
+    let fint = internal_forces(model, k, plastic, u)?;
+    let mut out = Vec::with_capacity(sources.len());
+    for (s, src) in sources.iter_mut().enumerate() {
+        let c = src.evaluate(&state(model, u, t), &own[s])?;
+        if c.own_residual.len() != own[s].len() {
+            return Err(FemError::Model(format!(
+                "{} returned {} equations for {} unknowns",
+                src.name(),
+                c.own_residual.len(),
+                own[s].len()
+            )));
+        }
+        out.push(c);
+    }
+    Ok((fint, out))
+}
