@@ -143,7 +143,6 @@ mod tests {
         let slave = vec![quad8(0)];
         let master = vec![quad8(8)];
         let resolved = ResolvedZone {
-            time: 0.0,
             index: 0,
             geometry: ZoneGeometry::new("M", "S"),
             slave_nodes: (0..8).map(NodeId).collect(),

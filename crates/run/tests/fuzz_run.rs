@@ -45,9 +45,15 @@ fn literals(src: &str) -> Vec<(usize, usize)> {
                 out.push((s, (i + 1).min(b.len())));
                 i += 1;
             }
-            c if c.is_ascii_digit() && (i == 0 || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_')) => {
+            c if c.is_ascii_digit()
+                && (i == 0 || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_')) =>
+            {
                 let s = i;
-                while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'.' || ((b[i] == b'-' || b[i] == b'+') && matches!(b[i - 1], b'e' | b'E'))) {
+                while i < b.len()
+                    && (b[i].is_ascii_alphanumeric()
+                        || b[i] == b'.'
+                        || ((b[i] == b'-' || b[i] == b'+') && matches!(b[i - 1], b'e' | b'E')))
+                {
                     i += 1;
                 }
                 out.push((s, i));
@@ -111,9 +117,12 @@ fn exercise(comm: String, mesh: String, budget: Duration) {
 fn run_in(dir: &Path, comm: &str, mesh: &str) -> Option<aster_run::program::Outcome> {
     std::fs::write(dir.join("f.comm"), comm).expect("write");
     std::fs::write(dir.join("f.mail"), mesh).expect("write");
-    let case =
-        aster_run::program::prepare(&dir.join("f.comm"), Some(&dir.join("f.mail")), &dir.join("out"))
-            .ok()?;
+    let case = aster_run::program::prepare(
+        &dir.join("f.comm"),
+        Some(&dir.join("f.mail")),
+        &dir.join("out"),
+    )
+    .ok()?;
     Some(aster_run::program::run(&case, Box::new(std::io::sink())))
 }
 

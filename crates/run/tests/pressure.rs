@@ -65,6 +65,9 @@ fn pressure_on_the_edges_of_a_strip_in_tension() {
     // code_aster does), rather than appending to the first run's.
     let again = aster_run::program::run(&case, Box::new(std::io::sink()));
     assert!(again.error.is_none(), "{:?}", again.error);
-    assert_eq!(std::fs::read_to_string(out.join("fort.73")).unwrap(), listing);
+    assert_eq!(
+        std::fs::read_to_string(out.join("fort.73")).unwrap(),
+        listing
+    );
     let _ = std::fs::remove_dir_all(out);
 }

@@ -210,5 +210,11 @@ fn files_parsed_in_pieces_give_the_whole_file_result() {
     let map = CodeMap::new("x.comm", bad.clone());
     let lc = map.line_col(e.span.start as usize);
     let lines = source.matches('\n').count();
-    assert!(lc.line > lines, "{} at {}:{}", e.message, lc.line, lc.column);
+    assert!(
+        lc.line > lines,
+        "{} at {}:{}",
+        e.message,
+        lc.line,
+        lc.column
+    );
 }
