@@ -1,11 +1,11 @@
-//! LAC pairing: the mortar integrals of every patch of the two-plates
-//! interface (`scenes::two_plates_mesh(n, n - 1)`, QUAD4 slave edges cut in
-//! three by DECOUPE_LAC, non-matching master edges) — one pairing, as the
-//! geometric loop does it once per update.
+//! LAC pairing: code_aster's mortar pairing and gap integrals of every
+//! patch of the two-plates interface (`scenes::two_plates_mesh(n, n - 1)`,
+//! QUAD4 slave edges cut in three by DECOUPE_LAC, non-matching master
+//! edges) — one pairing, as the geometric loop does it once per update.
 
-use aster_contact::lac::{patch_integral, resolve_patches};
+use aster_contact::lac::LacZone;
 use aster_contact::scenes::two_plates_mesh;
-use aster_contact::{Measure, ResolvedZone, ZoneGeometry};
+use aster_contact::{ResolvedZone, ZoneGeometry};
 use criterion::{criterion_group, criterion_main, Criterion};
 
 fn bench(c: &mut Criterion) {
@@ -20,17 +20,13 @@ fn bench(c: &mut Criterion) {
             return;
         };
         let Some(zp) = patches.zone("AB") else { return };
-        let Ok(refs) = resolve_patches(&zone, zp) else {
+        let Ok(mut lac) = LacZone::new(&zone, zp) else {
             return;
         };
         c.bench_function(&format!("lac_pairing_two_plates_{n}_patches"), |b| {
             b.iter(|| {
-                let mut total = 0.0;
-                for p in &refs {
-                    if let Ok(i) = patch_integral(&mesh, &zone, p, &mesh.coords, Measure::Plane) {
-                        total += i.paired;
-                    }
-                }
+                lac.pair(&zone, &mesh.coords);
+                let total: f64 = lac.state.iter().map(|s| s.paired).sum();
                 assert!((total - 2.0).abs() < 1e-9, "{total}");
                 total
             })

@@ -1,44 +1,51 @@
 //! LAC contact (`ALGO_CONT='LAC'`, code_aster's mortar method on the
-//! patches of `CREA_MAILLAGE/DECOUPE_LAC`), 2D.
+//! patches of `CREA_MAILLAGE/DECOUPE_LAC`), 2D and 3D.
 //!
-//! One contact pressure per **patch** (an original slave face): the
-//! constraint is the patch's mortar-integrated gap
+//! One contact pressure λ per **patch** (an original slave face), the
+//! constraint being the patch's mortar-integrated gap (code_aster's
+//! `lac_gapi`, `mmmbca_lac`, `lcvect`):
 //!
-//! G_P = ∫_{P ∩ master} g dΓ ≥ 0,   λ_P ≥ 0,   λ_P G_P = 0,
+//! G_P = Σ_pairs ∫_{slave ∩ master} d dΓ ≥ 0,  λ_P ≥ 0,  λ_P G_P = 0,
 //!
-//! with g = (x_s − x_m)·n, n the slave normal turned towards the slave
-//! body, x_m the orthogonal projection of the slave point on the master
-//! cell. The integral is cut at the projections of the master cells'
-//! corners onto the slave cell, so every piece sees one master cell and a
-//! smooth integrand (4-point Gauss per piece: exact for a flat
-//! interface, which is what makes the patch test pass to round-off).
-//! Measures are taken on the reference slave geometry (× radius under
-//! AXIS), as code_aster's contact elements.
+//! d the distance from the slave point to the master cell along the slave
+//! normal (positive apart). Pairs, their intersection polygons and the
+//! integration points are code_aster's (module `lac_mortar`). The gap's
+//! measure is taken on the current positions (`gapint` measures on the
+//! updated geometry); the force on each side is λ Σ w J₀ N n with each
+//! side's own normal and integration points, J₀ on the reference
+//! positions (`TYPE_JACOBIEN='INITIAL'`, the default).
 //!
-//! The row handed to fem is Σₚ wₚ (linearised gₚ) ≥ 0: its multiplier is
-//! the mean contact pressure over the paired part of the patch (LAGS_C is
-//! minus it), force = pressure × paired measure.
+//! fem's row for a patch is `a·u ≤ b` with `a` the force direction above
+//! (the force is −λ a) and `b = a·u⁰ + G_P(u⁰)`: at the fixed point of the
+//! geometric loop, G_P = 0 on active patches — code_aster's converged
+//! Newton state, whose tangent is the same approximation of ∂G_P.
+//! A patch gets a row only if its paired measure exceeds 1e-8 and covers
+//! at least 1e-5 of its (paired) cells (code_aster's `tole_inter`).
 //!
-//! `CONT_ELEM` (per slave cell, the values of its patch): `PRES` (−λ,
-//! negative in compression), `JEU` (mean gap G_P / paired measure),
-//! `CONT` (1 in contact, 0 not), `COEFSURF` (paired / patch measure, 1
-//! when the master covers the patch) and `PRESCOOR` (PRES × COEFSURF).
+//! `CONT_ELEM` (per slave cell, its patch's values): `PRES` (LAGS_C = −λ),
+//! `JEU` (mean gap G_P / paired measure, −1 without pairing), `CONT`
+//! (1 contact, 0 not, −1 not paired), `COEFSURF` (paired measure over the
+//! measure of the patch's cells that face a master cell, `clpoma`) and
+//! `PRESCOOR` (COEFSURF × PRES).
 
 use std::collections::BTreeMap;
 
-use aster_fem::Dof;
+use aster_fem::{Comp, Dof, InequalityRow};
 use aster_mesh::{CellId, LacZonePatches, Mesh, NodeId};
 
 use crate::error::ContactError;
-use crate::integration::Measure;
-use crate::pairing::{jacobian, Pairing};
-use crate::rows::contact_row;
-use crate::shape::{dot, interpolate, norm, scale, sub};
-use crate::surface::ResolvedZone;
-use crate::zone::NormalSource;
+use crate::lac_mortar::{
+    cell_measure, gap_integral, intersect, master_images, pair_force, ForceCells, MortarCell,
+    MortarPair, PAIR_TOLE,
+};
+use crate::shape::{dot, sub};
+use crate::surface::{ResolvedZone, SurfaceCell};
 
 /// Components of `CONT_ELEM`, in code_aster's names.
 pub const CONT_ELEM_COMPONENTS: [&str; 5] = ["PRES", "JEU", "CONT", "COEFSURF", "PRESCOOR"];
+
+/// Smallest coverage of a patch in contact (code_aster's `tole_inter`).
+pub const TOLE_INTER: f64 = 1e-5;
 
 /// A patch resolved on a zone: its slave cells (indices into
 /// `ResolvedZone::slave`) and pressure nodes.
@@ -53,13 +60,6 @@ pub fn resolve_patches(
     zone: &ResolvedZone,
     patches: &LacZonePatches,
 ) -> Result<Vec<LacPatchRef>, ContactError> {
-    if zone.space_dim != 2 {
-        return Err(ContactError::Invalid {
-            keyword: "ALGO_CONT",
-            message: "ALGO_CONT='LAC' is supported in 2D (D_PLAN, C_PLAN, AXIS) only for now"
-                .into(),
-        });
-    }
     let index: BTreeMap<CellId, usize> = zone
         .slave
         .iter()
@@ -97,280 +97,349 @@ pub fn resolve_patches(
     Ok(out)
 }
 
-/// The mortar integrals of one patch on one geometry.
+/// What one pairing gives a patch (code_aster's `.WPAT`, `.POID`, `.GAPI`
+/// × `.POID`, `.NMCP`).
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct PatchIntegral {
-    /// Measure of the whole patch (reference geometry, × r under AXIS).
+pub struct PatchState {
+    /// Measure of the patch's cells that face some master cell (`clpoma`).
     pub measure: f64,
-    /// Measure of its part paired with a master cell.
+    /// Measure of the intersections (Σ w·J, × r under AXIS).
     pub paired: f64,
-    /// ∫ g over the paired part.
+    /// ∫ d over the intersections (positive apart).
     pub gap: f64,
-    /// The linearised constraint Σ w·row (terms and right-hand side).
-    pub terms: BTreeMap<Dof, f64>,
-    pub rhs: f64,
+    /// Number of pairs (contact elements) of the patch.
+    pub pairs: usize,
 }
 
-impl PatchIntegral {
-    /// Mean gap over the paired part (0 when nothing is paired).
+impl PatchState {
+    /// No intersection worth the name (code_aster's NaN gap).
+    pub fn unpaired(&self) -> bool {
+        self.paired <= PAIR_TOLE
+    }
+
+    /// Mean gap (`JEU`), −1 when unpaired.
     pub fn mean_gap(&self) -> f64 {
-        if self.paired > 0.0 {
+        if self.unpaired() {
+            -1.0
+        } else {
             self.gap / self.paired
-        } else {
-            0.0
         }
     }
 
-    /// COEFSURF: paired part / patch.
+    /// COEFSURF: paired measure over the patch's paired cells' measure.
     pub fn coverage(&self) -> f64 {
-        if self.measure > 0.0 {
-            self.paired / self.measure
-        } else {
+        if self.unpaired() || self.measure <= 0.0 {
             0.0
+        } else {
+            self.paired / self.measure
+        }
+    }
+
+    /// Whether the patch may be in contact (gets a row).
+    pub fn can_touch(&self) -> bool {
+        !self.unpaired() && self.coverage() >= TOLE_INTER
+    }
+}
+
+/// The zone keywords of LAC (`TYPE_JACOBIEN`, `RESI_APPA`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LacOptions {
+    /// `TYPE_JACOBIEN='ACTUALISE'`: the force's measures on the current
+    /// geometry (default `'INITIAL'`: on the reference one).
+    pub updated_jacobian: bool,
+    /// `RESI_APPA`: tolerance of the pairing (default 1e-8).
+    pub resi_appa: f64,
+}
+
+impl Default for LacOptions {
+    fn default() -> Self {
+        LacOptions {
+            updated_jacobian: false,
+            resi_appa: PAIR_TOLE,
         }
     }
 }
 
-/// Gauss–Legendre, 4 points on [-1, 1].
-const GAUSS4: [(f64, f64); 4] = [
-    (-0.861_136_311_594_052_6, 0.347_854_845_137_453_85),
-    (-0.339_981_043_584_856_26, 0.652_145_154_862_546_1),
-    (0.339_981_043_584_856_26, 0.652_145_154_862_546_1),
-    (0.861_136_311_594_052_6, 0.347_854_845_137_453_85),
-];
-
-/// Parameter in [-1, 1] along the chord c0→c1 of the orthogonal projection
-/// of `p` on the chord's line.
-pub fn chord_parameter(c0: [f64; 3], c1: [f64; 3], p: [f64; 3]) -> f64 {
-    let d = sub(c1, c0);
-    -1.0 + 2.0 * dot(sub(p, c0), d) / dot(d, d)
+/// A LAC zone: its patches, the pairs and patch values of the last
+/// pairing, and the patch pressures of the last converged step.
+#[derive(Clone, Debug)]
+pub struct LacZone {
+    pub patches: Vec<LacPatchRef>,
+    patch_of: Vec<Option<usize>>,
+    pub pairs: Vec<MortarPair>,
+    pub state: Vec<PatchState>,
+    /// Pairs code_aster would drop with an alarm (CONTACT4_6).
+    pub abandoned: usize,
+    /// λ ≥ 0 per patch (LAGS_C = −λ).
+    pub pressures: Vec<f64>,
+    /// AXIS: measures × r.
+    pub axis: bool,
+    /// `TYPE_JACOBIEN='ACTUALISE'`.
+    pub updated_jacobian: bool,
+    /// `RESI_APPA`: tolerance of the pairing.
+    pub tole: f64,
 }
 
-/// The pieces of [-1, 1] cut at the given parameters (sorted, merged
-/// within 1e-12, pieces shorter than 1e-10 dropped).
-pub fn pieces(cuts: &[f64]) -> Vec<(f64, f64)> {
-    let mut pts: Vec<f64> = vec![-1.0, 1.0];
-    pts.extend(cuts.iter().copied().filter(|t| *t > -1.0 && *t < 1.0));
-    pts.sort_by(|a, b| a.total_cmp(b));
-    pts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-    pts.windows(2)
-        .filter(|w| w[1] - w[0] > 1e-10)
-        .map(|w| (w[0], w[1]))
-        .collect()
+/// Positions of a cell's nodes.
+fn positions(cell: &SurfaceCell, x: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    cell.nodes.iter().map(|n| x[n.0 as usize]).collect()
 }
 
-/// Mortar integrals of a patch on the current positions `x`.
-pub fn patch_integral(
-    mesh: &Mesh,
-    zone: &ResolvedZone,
-    patch: &LacPatchRef,
-    x: &[[f64; 3]],
-    measure: Measure,
-) -> Result<PatchIntegral, ContactError> {
-    let mut out = PatchIntegral::default();
-    for &si in &patch.cells {
-        let s = &zone.slave[si];
-        let xs: Vec<[f64; 3]> = s.nodes.iter().map(|n| x[n.0 as usize]).collect();
-        let xref: Vec<[f64; 3]> = s.nodes.iter().map(|n| mesh.coords[n.0 as usize]).collect();
-        let (c0, c1) = (xs[0], xs[1]);
-        let len_s = norm(sub(c1, c0));
-        // Candidate master cells: overlapping the slave chord, facing it,
-        // within one cell size.
-        let ns_mid = zone.cell_normal(s, [0.0, 0.0], x, NormalSource::Auto)?;
-        // code_aster's `lcnorm_line`: the normal of the straight cell
-        // through the slave cell's corners, outwards.
-        let d = sub(c1, c0);
-        let chord_normal = {
-            let raw = scale([d[1], -d[0], 0.0], 1.0 / len_s.max(f64::MIN_POSITIVE));
-            if dot(raw, ns_mid) < 0.0 {
-                scale(raw, -1.0)
-            } else {
-                raw
-            }
-        };
-        let mut candidates: Vec<(usize, f64, f64)> = Vec::new();
-        for (mi, m) in zone.master.iter().enumerate() {
-            let (a, b) = (x[m.nodes[0].0 as usize], x[m.nodes[1].0 as usize]);
-            let (ta, tb) = (chord_parameter(c0, c1, a), chord_parameter(c0, c1, b));
-            let (lo, hi) = (ta.min(tb), ta.max(tb));
-            if hi <= -1.0 + 1e-10 || lo >= 1.0 - 1e-10 {
-                continue;
-            }
-            let nm = zone.cell_normal(m, [0.0, 0.0], x, zone.geometry.vect_mait)?;
-            if dot(nm, ns_mid) >= 0.0 {
-                continue;
-            }
-            let len_m = norm(sub(b, a));
-            let mid = scale([a[0] + b[0], a[1] + b[1], a[2] + b[2]], 0.5);
-            let dist = dot(sub(mid, c0), ns_mid).abs();
-            if dist > len_s.max(len_m) {
-                continue;
-            }
-            candidates.push((mi, lo, hi));
-        }
-        let cuts: Vec<f64> = candidates.iter().flat_map(|c| [c.1, c.2]).collect();
-        for (a, b) in pieces(&cuts) {
-            let half = 0.5 * (b - a);
-            for (t, gw) in GAUSS4 {
-                let xi = [0.5 * (a + b) + half * t, 0.0];
-                let mut w = gw * half * jacobian(s.kind, &xref, xi);
-                if measure == Measure::Axisymmetric {
-                    let r = interpolate(s.kind, &xref, xi).x[0].abs();
-                    w *= if r == 0.0 { 1e-7 } else { r };
-                }
-                out.measure += w;
-                let sp = interpolate(s.kind, &xs, xi);
-                let chord_t = chord_parameter(c0, c1, sp.x);
-                let normal = scale(slave_normal(zone, si, xi, x, chord_normal)?, -1.0);
-                // The nearest master cell hit along the slave normal.
-                let mut best: Option<(f64, usize, crate::shape::CellPoint)> = None;
-                for &(mi, lo, hi) in &candidates {
-                    if chord_t < lo - 1e-9 || chord_t > hi + 1e-9 {
-                        continue;
-                    }
-                    let m = &zone.master[mi];
-                    let xm: Vec<[f64; 3]> = m.nodes.iter().map(|n| x[n.0 as usize]).collect();
-                    let Some(mp) = ray_projection(m.kind, &xm, sp.x, normal) else {
-                        continue;
-                    };
-                    let d = norm(sub(sp.x, mp.x));
-                    if best.as_ref().is_none_or(|b| d < b.0) {
-                        best = Some((d, mi, mp));
-                    }
-                }
-                let Some((_, mi, mp)) = best else { continue };
-                let m = &zone.master[mi];
-                let gap = dot(sub(sp.x, mp.x), normal);
-                let pairing = Pairing {
-                    master_cell: Some((m.id, mp.xi)),
-                    master: m
-                        .nodes
-                        .iter()
-                        .copied()
-                        .zip(mp.shape.iter().copied())
-                        .collect(),
-                    normal,
-                    gap,
-                    slave_x: sp.x,
-                    master_x: mp.x,
-                    nearest_master_node: m.nodes[0],
-                };
-                let slave: Vec<(NodeId, f64)> = s
-                    .nodes
-                    .iter()
-                    .copied()
-                    .zip(sp.shape.iter().copied())
-                    .collect();
-                let row = contact_row(mesh, x, &slave, &pairing, 2, 1.0, 0);
-                for (d, c) in row.terms {
-                    *out.terms.entry(d).or_default() += w * c;
-                }
-                out.rhs += w * row.rhs;
-                out.paired += w;
-                out.gap += w * gap;
-            }
-        }
-    }
-    Ok(out)
-}
-
-/// Outward normal of slave cell `si` at `xi`: the chord normal, or with
-/// `LISSAGE='OUI'` the slave nodal normals (averaged over the cells around
-/// each node) interpolated in the cell — a continuous normal field.
-fn slave_normal(
-    zone: &ResolvedZone,
-    si: usize,
-    xi: [f64; 2],
-    x: &[[f64; 3]],
-    chord_normal: [f64; 3],
-) -> Result<[f64; 3], ContactError> {
-    if !zone.geometry.lissage {
-        return Ok(chord_normal);
-    }
-    let cell = &zone.slave[si];
-    let (shape, _) = cell.kind.eval(xi);
-    let mut sum = [0.0; 3];
-    for (node, w) in cell.nodes.iter().zip(shape) {
-        let n = zone.nodal_normal(*node, false, x)?;
-        for c in 0..3 {
-            sum[c] += w * n[c];
-        }
-    }
-    let l = norm(sum);
-    Ok(if l > 1e-12 {
-        scale(sum, 1.0 / l)
+/// In-plane bounding boxes of two cells do not overlap (a master cell
+/// that cannot intersect the slave cell whatever its distance).
+fn apart_in_plane(slave: &[[f64; 3]], master: &[[f64; 3]], dim: usize) -> bool {
+    let c = slave[0];
+    let (e1, e2) = if dim == 2 {
+        let t = sub(slave[1], slave[0]);
+        (t, [0.0; 3])
     } else {
-        chord_normal
+        let t1 = sub(slave[1], slave[0]);
+        let t2 = sub(slave[2], slave[0]);
+        let n = crate::shape::cross(t1, t2);
+        (t1, crate::shape::cross(n, t1))
+    };
+    let span = |pts: &[[f64; 3]], e: [f64; 3]| {
+        let l = dot(e, e).sqrt();
+        if l == 0.0 {
+            return (0.0, 0.0);
+        }
+        pts.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+            let s = dot(sub(*p, c), e) / l;
+            (lo.min(s), hi.max(s))
+        })
+    };
+    let axes: &[[f64; 3]] = if dim == 2 { &[e1] } else { &[e1, e2] };
+    axes.iter().any(|&e| {
+        let (a, b) = (span(slave, e), span(master, e));
+        let margin = 1e-6 * ((a.1 - a.0).abs() + (b.1 - b.0).abs());
+        a.1 + margin < b.0 || b.1 + margin < a.0
     })
 }
 
-/// The point of a master segment on the line through `p` along `n` (the
-/// mortar projection along the slave normal): Newton on
-/// t·(x_m(η) − p) = 0 with t ⟂ n. `None` if the segment is parallel to
-/// `n` or the point falls outside it (beyond 1e-6 in reference
-/// coordinates).
-pub fn ray_projection(
-    kind: crate::shape::SurfaceKind,
-    nodes: &[[f64; 3]],
-    p: [f64; 3],
-    n: [f64; 3],
-) -> Option<crate::shape::CellPoint> {
-    let t = [-n[1], n[0], 0.0];
-    let mut eta = 0.0;
-    for _ in 0..30 {
-        let cp = interpolate(kind, nodes, [eta, 0.0]);
-        let f = dot(sub(cp.x, p), t);
-        let df = dot(cp.tangents[0], t);
-        if df.abs() < 1e-300 {
-            return None;
+impl LacZone {
+    pub fn new(zone: &ResolvedZone, patches: &LacZonePatches) -> Result<Self, ContactError> {
+        let patches = resolve_patches(zone, patches)?;
+        let mut patch_of = vec![None; zone.slave.len()];
+        for (k, p) in patches.iter().enumerate() {
+            for &c in &p.cells {
+                patch_of[c] = Some(k);
+            }
         }
-        let step = f / df;
-        eta -= step;
-        if step.abs() < 1e-14 {
-            break;
+        Ok(LacZone {
+            pressures: vec![0.0; patches.len()],
+            state: vec![PatchState::default(); patches.len()],
+            patches,
+            patch_of,
+            pairs: Vec::new(),
+            abandoned: 0,
+            axis: false,
+            updated_jacobian: false,
+            tole: PAIR_TOLE,
+        })
+    }
+
+    /// Pairs the zone on the positions `x` and integrates every patch's gap
+    /// (code_aster's `aplcpg` then `lac_gapi`).
+    pub fn pair(&mut self, zone: &ResolvedZone, x: &[[f64; 3]]) {
+        let dim = zone.space_dim;
+        self.pairs.clear();
+        self.abandoned = 0;
+        self.state = vec![PatchState::default(); self.patches.len()];
+        let masters: Vec<Vec<[f64; 3]>> = zone.master.iter().map(|m| positions(m, x)).collect();
+        for (si, s) in zone.slave.iter().enumerate() {
+            let Some(k) = self.patch_of[si] else { continue };
+            let xs = positions(s, x);
+            let sc = MortarCell {
+                kind: s.kind,
+                x: &xs,
+                sign: s.sign,
+            };
+            let mut faced = false;
+            for (mi, m) in zone.master.iter().enumerate() {
+                let xm = &masters[mi];
+                if apart_in_plane(&xs, xm, dim) {
+                    continue;
+                }
+                let mc = MortarCell {
+                    kind: m.kind,
+                    x: xm,
+                    sign: m.sign,
+                };
+                let inter = match intersect(sc, mc, self.tole) {
+                    Ok(i) => i,
+                    Err(()) => {
+                        self.abandoned += 1;
+                        continue;
+                    }
+                };
+                if inter.weight <= self.tole {
+                    continue;
+                }
+                faced = true;
+                let Some((master_points, gauss_master)) =
+                    master_images(sc, mc, &inter.points, self.tole)
+                else {
+                    self.abandoned += 1;
+                    continue;
+                };
+                let pair = MortarPair {
+                    slave: si,
+                    master: mi,
+                    slave_points: inter.points,
+                    master_points,
+                    gauss_master,
+                };
+                let (gap, w) = gap_integral(sc, mc, &pair, self.axis);
+                let st = &mut self.state[k];
+                st.gap -= gap;
+                st.paired += w;
+                st.pairs += 1;
+                self.pairs.push(pair);
+            }
+            if faced {
+                self.state[k].measure += cell_measure(sc);
+            }
         }
     }
-    let cp = interpolate(kind, nodes, [eta, 0.0]);
-    (eta.is_finite() && kind.outside_distance(cp.xi) <= 1e-6).then_some(cp)
-}
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ray_projection_follows_the_normal_not_the_perpendicular() {
-        use crate::shape::SurfaceKind;
-        // Master segment y = 0 from x = 0 to 2; a point above at (0.5, 1)
-        // cast along a normal tilted by 45°: lands at x = 1.5.
-        let nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let cp = ray_projection(SurfaceKind::Seg2, &nodes, [0.5, 1.0, 0.0], [-s, s, 0.0]).unwrap();
-        assert!(
-            (cp.x[0] - 1.5).abs() < 1e-14 && cp.x[1].abs() < 1e-14,
-            "{:?}",
-            cp.x
-        );
-        // Beyond the segment's end: none.
-        assert!(ray_projection(SurfaceKind::Seg2, &nodes, [2.5, 1.0, 0.0], [-s, s, 0.0]).is_none());
+    /// The rows of the patches that may touch (id = patch index), for the
+    /// pairs of the last [`LacZone::pair`] on the same positions `x`.
+    /// `smooth`: exterior nodal normals (LISSAGE='OUI') by node.
+    pub fn rows(
+        &self,
+        mesh: &Mesh,
+        zone: &ResolvedZone,
+        x: &[[f64; 3]],
+        smooth: Option<&BTreeMap<NodeId, [f64; 3]>>,
+    ) -> Vec<InequalityRow> {
+        let comps = Comp::translations(zone.space_dim);
+        let mut acc: Vec<BTreeMap<Dof, f64>> = vec![BTreeMap::new(); self.patches.len()];
+        for pair in &self.pairs {
+            let Some(k) = self.patch_of[pair.slave] else {
+                continue;
+            };
+            if !self.state[k].can_touch() {
+                continue;
+            }
+            let (s, m) = (&zone.slave[pair.slave], &zone.master[pair.master]);
+            let (xs, xm) = (positions(s, x), positions(m, x));
+            let (rs, rm) = (positions(s, &mesh.coords), positions(m, &mesh.coords));
+            let normals = |c: &SurfaceCell| -> Option<Vec<[f64; 3]>> {
+                let map = smooth?;
+                c.nodes.iter().map(|n| map.get(n).copied()).collect()
+            };
+            let (ns, nm) = (normals(s), normals(m));
+            let cells = ForceCells {
+                slave: MortarCell {
+                    kind: s.kind,
+                    x: &xs,
+                    sign: s.sign,
+                },
+                slave_ref: MortarCell {
+                    kind: s.kind,
+                    x: &rs,
+                    sign: s.sign,
+                },
+                master: MortarCell {
+                    kind: m.kind,
+                    x: &xm,
+                    sign: m.sign,
+                },
+                master_ref: MortarCell {
+                    kind: m.kind,
+                    x: &rm,
+                    sign: m.sign,
+                },
+                slave_normals: ns.as_deref(),
+                master_normals: nm.as_deref(),
+                axis: self.axis,
+                updated_jacobian: self.updated_jacobian,
+            };
+            let f = pair_force(&cells, pair);
+            for (nodes, vals) in [(&s.nodes, &f.slave), (&m.nodes, &f.master)] {
+                for (node, v) in nodes.iter().zip(vals) {
+                    for (c, comp) in comps.iter().enumerate() {
+                        if v[c] != 0.0 {
+                            *acc[k].entry(Dof::new(*node, *comp)).or_default() += v[c];
+                        }
+                    }
+                }
+            }
+        }
+        let mut rows = Vec::new();
+        for (k, terms) in acc.into_iter().enumerate() {
+            if terms.is_empty() {
+                continue;
+            }
+            // Round-off terms (1e-12 of the largest) come and go between
+            // pairings; drop them so that a settled geometry repeats its rows.
+            let big = terms.values().fold(0.0_f64, |a, c| a.max(c.abs()));
+            let terms: Vec<(Dof, f64)> = terms
+                .into_iter()
+                .filter(|(_, c)| c.abs() > 1e-12 * big)
+                .collect();
+            let au: f64 = terms
+                .iter()
+                .map(|(d, c)| {
+                    let i = d.node.0 as usize;
+                    let j = match d.comp {
+                        Comp::DX => 0,
+                        Comp::DY => 1,
+                        _ => 2,
+                    };
+                    c * (x[i][j] - mesh.coords[i][j])
+                })
+                .sum();
+            rows.push(InequalityRow::new(terms, au + self.state[k].gap, k));
+        }
+        rows
     }
 
-    #[test]
-    fn chord_parameter_spans_minus_one_to_one() {
-        let (a, b) = ([0.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
-        assert_eq!(chord_parameter(a, b, a), -1.0);
-        assert_eq!(chord_parameter(a, b, b), 1.0);
-        assert_eq!(chord_parameter(a, b, [0.5, 3.0, 0.0]), -0.5);
+    /// code_aster's contact status of a patch: 1 when LAGS_C + JEU ≤ 0
+    /// with enough coverage, 0 otherwise, −1 unpaired.
+    pub fn status(&self, k: usize) -> f64 {
+        let st = &self.state[k];
+        if st.unpaired() {
+            return -1.0;
+        }
+        let lagc = -self.pressures.get(k).copied().unwrap_or(0.0);
+        if lagc + st.mean_gap() <= f64::EPSILON && st.coverage() >= TOLE_INTER {
+            1.0
+        } else {
+            0.0
+        }
     }
 
-    #[test]
-    fn pieces_cut_at_inner_parameters_only() {
-        assert_eq!(pieces(&[]), vec![(-1.0, 1.0)]);
-        assert_eq!(
-            pieces(&[-3.0, 0.25, 0.25 + 1e-14, 2.0]),
-            vec![(-1.0, 0.25), (0.25, 1.0)]
-        );
-        let p = pieces(&[-0.5, 0.5, -0.5]);
-        assert_eq!(p, vec![(-1.0, -0.5), (-0.5, 0.5), (0.5, 1.0)]);
+    /// `CONT_ELEM`: per slave cell of every patch, its patch's values.
+    pub fn cont_elem(&self, zone: &ResolvedZone) -> Vec<(CellId, [f64; 5])> {
+        let mut out = Vec::new();
+        for (k, p) in self.patches.iter().enumerate() {
+            let st = &self.state[k];
+            let lagc = match self.pressures.get(k) {
+                Some(&l) if l > 0.0 => -l,
+                _ => 0.0,
+            };
+            let coef = st.coverage();
+            let vals = [lagc, st.mean_gap(), self.status(k), coef, coef * lagc];
+            for &c in &p.cells {
+                out.push((zone.slave[c].id, vals));
+            }
+        }
+        out
+    }
+
+    /// LAGS_C (= −λ) on every pressure node.
+    pub fn lags_c(&self) -> Vec<(NodeId, f64)> {
+        let mut out = BTreeMap::new();
+        for (k, p) in self.patches.iter().enumerate() {
+            let v = match self.pressures.get(k) {
+                Some(&l) if l > 0.0 => -l,
+                _ => 0.0,
+            };
+            for n in &p.pressure_nodes {
+                out.insert(*n, v);
+            }
+        }
+        out.into_iter().collect()
     }
 }

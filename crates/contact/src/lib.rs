@@ -22,6 +22,7 @@ mod geomloop;
 mod glissiere;
 mod integration;
 pub mod lac;
+pub mod lac_mortar;
 mod pairing;
 mod penalty;
 pub mod quad8;

@@ -589,6 +589,109 @@ pub fn project_along(
     Some(interpolate(kind, nodes, xi))
 }
 
+/// code_aster's projection of a point on a master cell (`mmnewt` with the
+/// line search `mmreli`, as `approj` calls it for `MAIT_ESCL` pairing):
+/// Newton on the stationarity of the distance from ξ = 0 (a vertex for
+/// triangles), with the curvature term except on QUAD4/QUAD8 (Gauss–Newton
+/// there), a backtracking line search on ½‖r‖², stopped when the step is
+/// below `PROJ_NEWT_RESI` = 1e-4 relative to ξ (1e-6 absolute when
+/// ‖ξ‖² ≤ 1e-4), at most `PROJ_NEWT_ITER` = 200 iterations (then the
+/// iterate of smallest distance). Unlike [`project`] it is not the exact
+/// nearest stationary point: far outside a curved cell it may stop at
+/// another one, and code_aster's exclusion by `TOLE_PROJ_EXT` depends on
+/// where it stops. `None` on a singular iteration (code_aster stops there
+/// with APPARIEMENT_13).
+pub fn project_mmnewt(kind: SurfaceKind, nodes: &[[f64; 3]], p: [f64; 3]) -> Option<CellPoint> {
+    const ITER_MAXI: usize = 200;
+    const TOLE: f64 = 1e-4;
+    let faces = kind.dim() == 2;
+    let curvature = !matches!(kind, SurfaceKind::Quad4 | SurfaceKind::Quad8);
+    // ½‖r‖², r = ((p − x(ξ))·t₁, (p − x(ξ))·t₂): mmresi.
+    let half_residual = |xi: [f64; 2]| {
+        let cp = interpolate(kind, nodes, xi);
+        let v = sub(p, cp.x);
+        let r1 = dot(v, cp.tangents[0]);
+        let r2 = if faces { dot(v, cp.tangents[1]) } else { 0.0 };
+        0.5 * (r1 * r1 + r2 * r2)
+    };
+    let h = 1e-5;
+    let mut xi = [0.0, 0.0];
+    let mut best = (f64::INFINITY, xi);
+    // mmnewt keeps the line-search step between iterations (mmreli leaves
+    // it unchanged when none of its trials is accepted).
+    let mut alpha = 1.0;
+    let mut iter = 0;
+    loop {
+        let cp = interpolate(kind, nodes, xi);
+        let v = sub(p, cp.x);
+        let dist = norm(v);
+        let t = cp.tangents;
+        let r = [dot(v, t[0]), if faces { dot(v, t[1]) } else { 0.0 }];
+        let mut m = [
+            [-dot(t[0], t[0]), -dot(t[1], t[0])],
+            [-dot(t[0], t[1]), -dot(t[1], t[1])],
+        ];
+        if curvature {
+            // Second derivatives of x(ξ): central differences of the
+            // tangents, exact for the (at most quadratic) shape functions.
+            for l in 0..kind.dim() {
+                let mut a = xi;
+                let mut b = xi;
+                a[l] += h;
+                b[l] -= h;
+                let (ta, tb) = (
+                    interpolate(kind, nodes, a).tangents,
+                    interpolate(kind, nodes, b).tangents,
+                );
+                for (k, row) in m.iter_mut().enumerate().take(kind.dim()) {
+                    let d2 = scale(sub(ta[k], tb[k]), 1.0 / (2.0 * h));
+                    row[l] += dot(d2, v);
+                }
+            }
+        }
+        let (d1, d2) = if faces {
+            let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+            if det == 0.0 {
+                return None;
+            }
+            (
+                (m[1][1] * -r[0] - m[0][1] * -r[1]) / det,
+                (m[0][0] * -r[1] - m[1][0] * -r[0]) / det,
+            )
+        } else {
+            if m[0][0] == 0.0 {
+                return None;
+            }
+            (-r[0] / m[0][0], 0.0)
+        };
+        alpha = mmreli(&half_residual, xi, [d1, d2], alpha);
+        xi = [xi[0] + alpha * d1, xi[1] + alpha * d2];
+        if !(xi[0].is_finite() && xi[1].is_finite()) {
+            return None;
+        }
+        if dist <= best.0 {
+            // As mmnewt: the distance before the step, the point after it.
+            best = (dist, xi);
+        }
+        let refe = xi[0] * xi[0] + xi[1] * xi[1];
+        let step = (d1 * d1 + d2 * d2).sqrt();
+        let (test, tole) = if refe <= TOLE {
+            (step, TOLE / 100.0)
+        } else {
+            (step / refe.sqrt(), TOLE)
+        };
+        if test > tole && iter < ITER_MAXI {
+            iter += 1;
+            continue;
+        }
+        if test > tole {
+            xi = best.1;
+        }
+        break;
+    }
+    Some(interpolate(kind, nodes, xi))
+}
+
 /// Solves the n×n (n ≤ 3) symmetric system `a x = b` by Gaussian
 /// elimination with partial pivoting; `None` when singular.
 fn solve_small(a: &[[f64; 3]; 3], b: &[f64; 3], n: usize) -> Option<[f64; 3]> {
@@ -619,6 +722,53 @@ fn solve_small(a: &[[f64; 3]; 3], b: &[f64; 3], n: usize) -> Option<[f64; 3]> {
         x[c] = (v[c] - s) / m[c][c];
     }
     Some(x)
+}
+
+/// code_aster's line search of the projection (`mmreli`): Armijo test with
+/// ω = 1e-4 on ½‖r‖², a quadratic then two cubic backtracks, each step
+/// kept within [0.1, 0.5] of the previous; `previous` when none passes.
+fn mmreli(g: &dyn Fn([f64; 2]) -> f64, xi: [f64; 2], d: [f64; 2], previous: f64) -> f64 {
+    const OMEGA: f64 = 1e-4;
+    const AMIN: f64 = 0.1;
+    const AMAX: f64 = 0.5;
+    let at = |a: f64| g([xi[0] + a * d[0], xi[1] + a * d[1]]);
+    let g0 = g(xi);
+    let gp0 = -2.0 * g0;
+    let mut alpha1 = 1.0;
+    let ga1 = at(alpha1);
+    if ga1 <= g0 + OMEGA * gp0 {
+        return alpha1;
+    }
+    let mut res1 = ga1 - g0 - gp0 * alpha1;
+    let mut alpha2 = (-gp0 / (2.0 * res1)).clamp(AMIN * alpha1, AMAX * alpha1);
+    let ga2 = at(alpha2);
+    if ga2 <= g0 + OMEGA * gp0 * alpha2 {
+        return alpha2;
+    }
+    let mut res2 = ga2 - g0 - gp0 * alpha2;
+    for _ in 0..2 {
+        let unsdet = 1.0 / (alpha1 - alpha2);
+        let a = unsdet * (res1 / (alpha1 * alpha1) - res2 / (alpha2 * alpha2));
+        let b = unsdet * (-alpha2 * res1 / (alpha1 * alpha1) + alpha1 * res2 / (alpha2 * alpha2));
+        alpha1 = alpha2;
+        res1 = res2;
+        if a.abs() <= f64::EPSILON {
+            return alpha2;
+        }
+        alpha2 = (-b + (b * b - 3.0 * a * gp0).sqrt()) / (3.0 * a);
+        if alpha2 < AMIN * alpha1 {
+            alpha2 = AMIN * alpha1;
+        }
+        if alpha2 > AMAX * alpha1 {
+            alpha2 = AMAX * alpha1;
+        }
+        let ga2 = at(alpha2);
+        if ga2 <= g0 + OMEGA * gp0 * alpha2 {
+            return alpha2;
+        }
+        res2 = ga2 - g0 - gp0 * alpha2;
+    }
+    previous
 }
 
 #[cfg(test)]
@@ -842,5 +992,27 @@ mod tests {
         assert_eq!(k.clamp([2.0, 0.0]), [1.0, 0.0]);
         assert!((k.outside_distance([1.0, 1.0]) - (0.5f64).sqrt()).abs() < 1e-14);
         assert_eq!(k.outside_distance([0.2, 0.2]), 0.0);
+    }
+
+    #[test]
+    fn mmnewt_projection_agrees_with_the_exact_one_inside_a_curved_cell() {
+        // A SEG3 arc and points above it: code_aster's iteration stops at
+        // a relative step of 1e-4, after which Newton's quadratic
+        // convergence leaves it far below that.
+        let nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 0.3, 0.0]];
+        for p in [[0.4, 1.0, 0.0], [1.3, 0.8, 0.0], [1.9, 0.5, 0.0]] {
+            let a = project(SurfaceKind::Seg3, &nodes, p).unwrap();
+            let b = project_mmnewt(SurfaceKind::Seg3, &nodes, p).unwrap();
+            assert!((a.xi[0] - b.xi[0]).abs() < 1e-8, "{:?} {:?}", a.xi, b.xi);
+        }
+        // Affine QUAD4 (Gauss-Newton there): exact in one step.
+        let quad = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let b = project_mmnewt(SurfaceKind::Quad4, &quad, [1.5, 0.25, 3.0]).unwrap();
+        assert!((b.xi[0] - 0.5).abs() < 1e-12 && (b.xi[1] + 0.5).abs() < 1e-12);
     }
 }

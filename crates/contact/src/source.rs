@@ -13,7 +13,7 @@ use crate::error::ContactError;
 use crate::geomloop::{GeomDecision, GeomLoopState};
 use crate::glissiere::Glissiere;
 use crate::integration::{integration_points_measured, Measure};
-use crate::lac::{patch_integral, resolve_patches, LacPatchRef, PatchIntegral};
+use crate::lac::{LacOptions, LacZone};
 use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
 use crate::rows::contact_row;
 use crate::surface::ResolvedZone;
@@ -82,11 +82,10 @@ pub struct ZoneContact {
     /// How continuous integration weights measure the slave surface
     /// (AXIS multiplies by the radius).
     measure: Measure,
-    /// ALGO_CONT='LAC': the zone's patches (one carrier and at most one
-    /// row per patch, in this order).
-    lac: Option<Vec<LacPatchRef>>,
-    /// ALGO_CONT='LAC': the patches' integrals of the last pairing.
-    lac_integrals: Vec<PatchIntegral>,
+    /// ALGO_CONT='LAC': the zone's patches, pairs and pressures (one
+    /// carrier and at most one row per patch, in this order).
+    lac: Option<LacZone>,
+    lac_options: LacOptions,
     /// GLISSIERE='OUI': which rows are bilateral links.
     glissiere: Glissiere,
     /// Continuous zones' ALGO_RESO_GEOM / ALGO_RESO_CONT = 'POINT_FIXE':
@@ -167,7 +166,7 @@ impl ZoneContact {
             measures: Vec::new(),
             measure: Measure::Plane,
             lac: None,
-            lac_integrals: Vec::new(),
+            lac_options: LacOptions::default(),
             augmented: Vec::new(),
             zone,
             law,
@@ -184,6 +183,9 @@ impl ZoneContact {
     /// weights then carry the radius, as fem's nodal forces (per radian).
     pub fn set_measure(&mut self, measure: Measure) {
         self.measure = measure;
+        if let Some(l) = &mut self.lac {
+            l.axis = measure == Measure::Axisymmetric;
+        }
     }
 
     /// Whether the zone is a continuous `ALGO_CONT='PENALISATION'` zone.
@@ -210,8 +212,26 @@ impl ZoneContact {
 
     /// Gives a LAC zone the patches DECOUPE_LAC made on its slave group.
     pub fn set_lac_patches(&mut self, patches: &LacZonePatches) -> Result<(), ContactError> {
-        self.lac = Some(resolve_patches(&self.zone, patches)?);
+        let mut lac = LacZone::new(&self.zone, patches)?;
+        lac.axis = self.measure == Measure::Axisymmetric;
+        lac.updated_jacobian = self.lac_options.updated_jacobian;
+        lac.tole = self.lac_options.resi_appa;
+        self.lac = Some(lac);
         Ok(())
+    }
+
+    /// The LAC state of the zone (patches, last pairing, pressures).
+    pub fn lac(&self) -> Option<&LacZone> {
+        self.lac.as_ref()
+    }
+
+    /// LAC's zone keywords (`TYPE_JACOBIEN`, `RESI_APPA`).
+    pub fn set_lac_options(&mut self, options: LacOptions) {
+        self.lac_options = options;
+        if let Some(l) = &mut self.lac {
+            l.updated_jacobian = options.updated_jacobian;
+            l.tole = options.resi_appa;
+        }
     }
 
     /// Replaces the geometric loop (and restarts its state).
@@ -224,37 +244,32 @@ impl ZoneContact {
     /// (components `lac::CONT_ELEM_COMPONENTS`) at the last pairing and
     /// outcome. `None` for other zones.
     pub fn cont_elem(&self) -> Option<Vec<(CellId, [f64; 5])>> {
-        let patches = self.lac.as_ref()?;
-        let mut out = Vec::new();
-        for (k, p) in patches.iter().enumerate() {
-            let Some(int) = self.lac_integrals.get(k) else {
-                continue;
-            };
-            let force = self.forces.get(k).copied().unwrap_or(0.0);
-            // Without force the pressure is +0 (not -0: printed values).
-            let pres = if int.paired > 0.0 && force > 0.0 {
-                -force / int.paired
-            } else {
-                0.0
-            };
-            let cont = if force > 0.0 { 1.0 } else { 0.0 };
-            let coef = int.coverage();
-            let vals = [pres, int.mean_gap(), cont, coef, pres * coef];
-            for &c in &p.cells {
-                out.push((self.zone.slave[c].id, vals));
-            }
-        }
-        Some(out)
+        Some(self.lac.as_ref()?.cont_elem(&self.zone))
     }
 
-    /// ALGO_CONT='LAC': one row per patch, its mortar-integrated gap
-    /// (module `lac`); the multiplier is the patch's mean pressure.
+    /// ALGO_CONT='LAC': pairs the zone (module `lac`) and returns one row
+    /// per patch that may touch; the multiplier is the patch pressure.
     fn lac_rows(
         &mut self,
         mesh: &Mesh,
         x: &[[f64; 3]],
     ) -> Result<Vec<InequalityRow>, ContactError> {
-        let Some(patches) = self.lac.clone() else {
+        let smooth = if self.zone.geometry.lissage {
+            let mut map = BTreeMap::new();
+            for c in self.zone.slave.iter().chain(&self.zone.master) {
+                for n in &c.nodes {
+                    if !map.contains_key(n) {
+                        let master = self.zone.master_cells_of_node.contains_key(n)
+                            && !self.zone.slave_cells_of_node.contains_key(n);
+                        map.insert(*n, self.zone.nodal_normal(*n, master, x)?);
+                    }
+                }
+            }
+            Some(map)
+        } else {
+            None
+        };
+        let Some(lac) = self.lac.as_mut() else {
             return Err(ContactError::Invalid {
                 keyword: "ALGO_CONT",
                 message: format!(
@@ -265,29 +280,20 @@ impl ZoneContact {
                 ),
             });
         };
-        self.lac_integrals.clear();
-        let mut rows = Vec::new();
-        for (k, p) in patches.iter().enumerate() {
-            let int = patch_integral(mesh, &self.zone, p, x, self.measure)?;
+        lac.pair(&self.zone, x);
+        let rows = lac.rows(mesh, &self.zone, x, smooth.as_ref());
+        for (k, p) in lac.patches.iter().enumerate() {
             let n = p.pressure_nodes.len().max(1) as f64;
             self.carriers
                 .push(p.pressure_nodes.iter().map(|m| (*m, 1.0 / n)).collect());
-            self.measures.push(int.paired);
+            self.measures.push(lac.state[k].paired);
             self.links.push(None);
-            let terms: Vec<(Dof, f64)> = int
-                .terms
-                .iter()
-                .map(|(d, c)| (*d, *c))
-                .filter(|t| t.1 != 0.0)
-                .collect();
-            if int.paired > 0.0 && !terms.is_empty() {
-                self.links[k] = Some(RowLink {
-                    row: rows.len(),
-                    scale: int.paired,
-                });
-                rows.push(InequalityRow::new(terms, int.rhs, k));
-            }
-            self.lac_integrals.push(int);
+        }
+        for (r, row) in rows.iter().enumerate() {
+            self.links[row.id] = Some(RowLink {
+                row: r,
+                scale: lac.state[row.id].paired,
+            });
         }
         Ok(rows)
     }
@@ -515,15 +521,22 @@ impl ZoneContact {
     /// Records the multipliers of this zone's rows (in row order).
     pub fn set_multipliers(&mut self, multipliers: &[f64]) {
         self.forces = vec![0.0; self.carriers.len()];
+        if let Some(z) = self.lac.as_mut() {
+            z.pressures.iter_mut().for_each(|p| *p = 0.0);
+        }
         for (i, link) in self.links.iter().enumerate() {
             if let Some(l) = link {
                 if let Some(&m) = multipliers.get(l.row) {
+                    // A bilateral link (GLISSIERE) may pull.
                     let m = if self.glissiere.links(self.row_node(i)) {
                         m
                     } else {
                         m.max(0.0)
                     };
                     self.forces[i] = m * l.scale;
+                    if let Some(p) = self.lac.as_mut().and_then(|z| z.pressures.get_mut(i)) {
+                        *p = m;
+                    }
                 }
             }
         }
@@ -534,6 +547,9 @@ impl ZoneContact {
     /// continuous).
     pub fn set_outcomes(&mut self, outcomes: &[RowOutcome]) {
         self.forces = vec![0.0; self.carriers.len()];
+        if let Some(z) = self.lac.as_mut() {
+            z.pressures.iter_mut().for_each(|p| *p = 0.0);
+        }
         for o in outcomes {
             if let Some(Some(l)) = self.links.get(o.id) {
                 // A bilateral link (GLISSIERE) may pull.
@@ -543,6 +559,9 @@ impl ZoneContact {
                     o.multiplier.max(0.0)
                 };
                 self.forces[o.id] = m * l.scale;
+                if let Some(p) = self.lac.as_mut().and_then(|z| z.pressures.get_mut(o.id)) {
+                    *p = m;
+                }
             }
         }
     }
@@ -603,18 +622,9 @@ impl ZoneContact {
         if !matches!(self.law, ZoneLaw::Continue(_)) {
             return None;
         }
-        if let Some(patches) = &self.lac {
+        if let Some(lac) = &self.lac {
             // LAC: the patch pressure on its pressure nodes only.
-            let mut out = BTreeMap::new();
-            for (k, p) in patches.iter().enumerate() {
-                let w = self.measures.get(k).copied().unwrap_or(0.0);
-                let f = self.forces.get(k).copied().unwrap_or(0.0);
-                let v = if w > 0.0 && f > 0.0 { -f / w } else { 0.0 };
-                for n in &p.pressure_nodes {
-                    out.insert(*n, v);
-                }
-            }
-            return Some(out.into_iter().collect());
+            return Some(lac.lags_c());
         }
         let mut out: BTreeMap<NodeId, f64> =
             self.zone.slave_nodes.iter().map(|n| (*n, 0.0)).collect();
@@ -849,6 +859,10 @@ impl UnilateralSource for ZoneContact {
         // The rows kept for the next requests carry the new links.
         self.glissiere.mark(&mut self.last_rows, node_of);
         self.refuse_mixed_statuses(state, outcomes)?;
+        if let Some(lac) = self.lac.as_mut() {
+            // CONT_ELEM reports the patches on the converged geometry.
+            lac.pair(&self.zone, &current_positions(state));
+        }
         self.geom.step_converged(nodal_displacements(state));
         Ok(())
     }

@@ -210,10 +210,21 @@ fn solve(b: &Blocks, def: &ContactDefinition) -> (Vec<f64>, Vec<ZoneContact>) {
     (u, zones)
 }
 
-fn check_interface(b: &Blocks, u: &[f64], what: &str) {
+fn check_interface(b: &Blocks, u: &[f64], what: &str, tol: f64) {
     for &n in &b.interface {
         let dz = u[b.model.dofs().index(Dof::new(n, Comp::DZ)).unwrap()];
-        assert!((dz + 0.05).abs() < 1e-8, "{what}: DZ = {dz}");
+        assert!((dz + 0.05).abs() < tol, "{what}: DZ = {dz}");
+    }
+}
+
+/// Tolerances of the blocks' exact answer (DZ absolute, LAGS_C relative):
+/// PYRAM13 does not pass the patch test exactly with code_aster 17's FPG10
+/// (fem's `pyram13_with_fpg10_is_close_to_the_patch_test`).
+fn tolerances(ty: CellType) -> (f64, f64) {
+    if ty == CellType::PYRAM13 {
+        (1e-4, 1e-3)
+    } else {
+        (1e-8, 1e-6)
     }
 }
 
@@ -253,11 +264,12 @@ fn continuous_contact_on_every_face_family() {
             .unwrap();
             let (u, zones) = solve(&b, &def);
             let what = format!("{ty:?} {integration:?}");
-            check_interface(&b, &u, &what);
+            let (tu, tl) = tolerances(ty);
+            check_interface(&b, &u, &what, tu);
             let lags = zones[0].lags_c().unwrap();
             assert!(!lags.is_empty(), "{what}");
             for (n, l) in lags {
-                assert!((l + 1e5).abs() < 1e-6 * 1e5, "{what}: LAGS_C({n:?}) = {l}");
+                assert!((l + 1e5).abs() < tl * 1e5, "{what}: LAGS_C({n:?}) = {l}");
             }
         }
     }
@@ -283,7 +295,7 @@ fn discrete_contact_on_every_face_family() {
         )
         .unwrap();
         let (u, zones) = solve(&b, &def);
-        check_interface(&b, &u, &format!("{ty:?} discrete"));
+        check_interface(&b, &u, &format!("{ty:?} discrete"), tolerances(ty).0);
         // The nodal contact forces balance the load E·ε·A = 1e5.
         let total: f64 = zones[0].nodal_forces().iter().map(|(_, f)| f).sum();
         assert!(

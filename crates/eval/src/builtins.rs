@@ -4,8 +4,8 @@
 use crate::diag::DiagKind;
 use crate::format;
 use crate::int;
-use crate::limits::{too_large, MAX_ITEMS, MAX_STR_BYTES};
 use crate::interp::{from_host, py_err, to_host, unsupported, CallArg, Halt, Interp, R};
+use crate::limits::{too_large, MAX_ITEMS, MAX_STR_BYTES};
 use crate::value::*;
 use aster_syntax::ast::BinOp;
 use aster_syntax::Span;
@@ -426,7 +426,10 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
                 Some(i) => i,
                 None => {
                     let shown: String = s.chars().take(60).collect();
-                    return py_err(span, format!("invalid literal for int() with base 10: '{shown}'"));
+                    return py_err(
+                        span,
+                        format!("invalid literal for int() with base 10: '{shown}'"),
+                    );
                 }
             },
             Some(x @ (Value::Int(_) | Value::Big(_))) => x.clone(),
@@ -827,7 +830,12 @@ fn math_call(m: &str, v: &[Value], span: Span) -> R<Value> {
             Some(Value::Int(n)) if *n >= 0 && *n <= 20 => Value::Int((1..=*n).product()),
             Some(x @ Value::Int(n)) if *n > 20 => int::factorial(x).or_else(|m| py_err(span, m))?,
             Some(Value::Big(_)) => return py_err(span, int::too_large()),
-            _ => return py_err(span, "factorial() not defined for negative values or non-integers"),
+            _ => {
+                return py_err(
+                    span,
+                    "factorial() not defined for negative values or non-integers",
+                )
+            }
         },
         other => return unsupported(span, format!("math.{other}")),
     })
@@ -1268,9 +1276,10 @@ pub fn order(a: &Value, b: &Value) -> Result<Ordering, String> {
     match (a, b) {
         (Value::Str(x), Value::Str(y)) => Ok(x.cmp(y)),
         (Value::Int(x), Value::Int(y)) => Ok(x.cmp(y)),
-        (Value::Int(_) | Value::Big(_) | Value::Bool(_), Value::Int(_) | Value::Big(_) | Value::Bool(_)) => {
-            Ok(int::big(a).cmp(&int::big(b)))
-        }
+        (
+            Value::Int(_) | Value::Big(_) | Value::Bool(_),
+            Value::Int(_) | Value::Big(_) | Value::Bool(_),
+        ) => Ok(int::big(a).cmp(&int::big(b))),
         (Value::Int(_) | Value::Big(_), Value::Float(f)) => Ok(int::big(a)
             .and_then(|x| int::cmp_float(&x, *f))
             .unwrap_or(Ordering::Equal)),
@@ -1383,7 +1392,8 @@ pub fn binop(op: BinOp, l: Value, r: Value) -> Result<Value, String> {
             let (Some(a), Some(b)) = (l.as_f64(), r.as_f64()) else {
                 return bad(&l, &r);
             };
-            if (matches!(l, Big(_)) && a.is_infinite()) || (matches!(r, Big(_)) && b.is_infinite()) {
+            if (matches!(l, Big(_)) && a.is_infinite()) || (matches!(r, Big(_)) && b.is_infinite())
+            {
                 return Err("int too large to convert to float".into());
             }
             match op {

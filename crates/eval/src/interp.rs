@@ -6,13 +6,11 @@ use crate::command::*;
 use crate::diag::{did_you_mean, DiagKind, Diagnostic};
 use crate::format;
 use crate::formula::Formula;
+use crate::limits::{MAX_CALL_DEPTH, MAX_EVAL_DEPTH, STEP_BUDGET, STR_BYTES_PER_STEP};
 use crate::value::*;
 use aster_catalog::catalog;
 use aster_syntax::ast::{self, ArgKind, BinOp, CmpOp, ExprKind, StmtKind, UnaryOp};
 use aster_syntax::{CodeMap, Span};
-use crate::limits::{
-    MAX_CALL_DEPTH, MAX_EVAL_DEPTH, STEP_BUDGET, STR_BYTES_PER_STEP,
-};
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 
@@ -955,9 +953,12 @@ impl<'a> Interp<'a> {
                 self.set_var(&target.name, v.clone());
                 v
             }
-            ExprKind::Repr { value } => {
-                Value::str(&self.eval(value)?.try_repr().or_else(|m| py_err(e.span, m))?)
-            }
+            ExprKind::Repr { value } => Value::str(
+                &self
+                    .eval(value)?
+                    .try_repr()
+                    .or_else(|m| py_err(e.span, m))?,
+            ),
             ExprKind::Bytes { .. } => return unsupported(e.span, "bytes literals"),
             ExprKind::Ellipsis => return unsupported(e.span, "`...`"),
             ExprKind::Yield { .. } | ExprKind::YieldFrom { .. } => {

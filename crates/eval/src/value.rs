@@ -56,12 +56,7 @@ impl Drop for Dict {
     fn drop(&mut self) {
         if !self.entries.is_empty() {
             let entries = std::mem::take(&mut self.entries);
-            deep_drop::values(
-                entries
-                    .into_iter()
-                    .flat_map(|e| [e.key, e.value])
-                    .collect(),
-            );
+            deep_drop::values(entries.into_iter().flat_map(|e| [e.key, e.value]).collect());
         }
     }
 }
@@ -246,13 +241,13 @@ impl Value {
         match self {
             Value::Bool(b) => Some(*b as i64 as f64),
             Value::Int(i) => Some(*i as f64),
-            Value::Big(b) => Some(
-                num_traits::ToPrimitive::to_f64(&**b).unwrap_or(if num_traits::Signed::is_negative(&**b) {
+            Value::Big(b) => Some(num_traits::ToPrimitive::to_f64(&**b).unwrap_or(
+                if num_traits::Signed::is_negative(&**b) {
                     f64::NEG_INFINITY
                 } else {
                     f64::INFINITY
-                }),
-            ),
+                },
+            )),
             Value::Float(f) => Some(*f),
             _ => None,
         }

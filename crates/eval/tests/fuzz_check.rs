@@ -130,8 +130,11 @@ fn stmt() -> impl Strategy<Value = String> {
         expr().prop_map(|e| format!("def f(k):\n    return f(k) if {e} else k\nx = f(1)\n")),
         Just("a = [1]\na.append(a)\nprint(a, a == a)\n".to_string()),
         expr().prop_map(|e| format!("x = {e}\nx = x * x\n")),
-        expr().prop_map(|e| format!("L = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A={e}, NOMBRE={e}))\n")),
-        expr().prop_map(|e| format!("F = DEFI_FONCTION(NOM_PARA='X', VALE=(0.0, {e}, 1.0, {e}))\n")),
+        expr().prop_map(|e| format!(
+            "L = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A={e}, NOMBRE={e}))\n"
+        )),
+        expr()
+            .prop_map(|e| format!("F = DEFI_FONCTION(NOM_PARA='X', VALE=(0.0, {e}, 1.0, {e}))\n")),
         expr().prop_map(|e| format!("FO = FORMULE(VALE='X * {e}', NOM_PARA='X')\nv = FO({e})\n")),
         expr().prop_map(|e| format!("M = DEFI_MATERIAU(ELAS=_F(E={e}, NU=0.3))\n")),
     ]
@@ -156,9 +159,8 @@ fn deep() -> impl Strategy<Value = String> {
         ("x = ", "{1: ", "1"),
         ("if 1:\n    pass\n", "elif 1:\n    pass\n", ""),
     ]);
-    (shapes, 0usize..30_000).prop_map(|((head, rep, tail), n)| {
-        format!("n = 0\na = 1\n{head}{}{tail}\n", rep.repeat(n))
-    })
+    (shapes, 0usize..30_000)
+        .prop_map(|((head, rep, tail), n)| format!("n = 0\na = 1\n{head}{}{tail}\n", rep.repeat(n)))
 }
 
 proptest! {

@@ -74,17 +74,35 @@ fn integers_are_exact_like_python() {
     );
     assert_eq!(py("pow(3, 10**18, 7)"), "4");
     assert_eq!(py("pow(3, 10**18, -7)"), "-3");
-    assert_eq!(py("(-9223372036854775807 - 1) // -1"), "9223372036854775808");
+    assert_eq!(
+        py("(-9223372036854775807 - 1) // -1"),
+        "9223372036854775808"
+    );
     assert_eq!(py("(-9223372036854775807 - 1) % -1"), "0");
     assert_eq!(py("2**64 - 2**64 + 5"), "5");
     assert_eq!(py("type(2**64 - 2**64)"), "<built-in function int>");
     assert_eq!(py("2**100 // 3**20"), "363558641556578823726");
-    assert_eq!(py("-(2**70) >> 3, ~(2**70)"), "(-147573952589676412928, -1180591620717411303425)");
-    assert_eq!(py("2**53 + 1 == 2.0**53, 2**53 + 1 > 2.0**53"), "(False, True)");
+    assert_eq!(
+        py("-(2**70) >> 3, ~(2**70)"),
+        "(-147573952589676412928, -1180591620717411303425)"
+    );
+    assert_eq!(
+        py("2**53 + 1 == 2.0**53, 2**53 + 1 > 2.0**53"),
+        "(False, True)"
+    );
     assert_eq!(py("10**20 / 10**10"), "10000000000.0");
-    assert_eq!(py("round(12345, -2), round(12350, -2), round(-5, -1)"), "(12300, 12400, 0)");
-    assert_eq!(py("int('123456789012345678901234567890') + 1"), "123456789012345678901234567891");
-    assert_eq!(py("'%d' % 2**70, '{:d}'.format(-2**70)"), "('1180591620717411303424', '-1180591620717411303424')");
+    assert_eq!(
+        py("round(12345, -2), round(12350, -2), round(-5, -1)"),
+        "(12300, 12400, 0)"
+    );
+    assert_eq!(
+        py("int('123456789012345678901234567890') + 1"),
+        "123456789012345678901234567891"
+    );
+    assert_eq!(
+        py("'%d' % 2**70, '{:d}'.format(-2**70)"),
+        "('1180591620717411303424', '-1180591620717411303424')"
+    );
     assert_eq!(py("[1, 2, 3][2**70:]"), "[]");
 }
 
@@ -92,7 +110,11 @@ fn integers_are_exact_like_python() {
 fn integer_errors_are_located() {
     refused("x = 1\ny = 2**10**9\n", "integer result too large", "2:5");
     refused("x = 1 << -1\n", "negative shift count", "1:5");
-    refused("x = 10**400 * 1.0\n", "int too large to convert to float", "1:5");
+    refused(
+        "x = 10**400 * 1.0\n",
+        "int too large to convert to float",
+        "1:5",
+    );
     refused("x = 1 // 0\n", "division or modulo by zero", "1:5");
     refused("x = [1, 2][2**64]\n", "out of range", "1:5");
 }
@@ -148,14 +170,22 @@ fn unbounded_work_is_refused_quickly() {
     refused("x = [0] * 10**9\n", "result too large", "1:5");
     refused("x = [0] * 10**30\n", "result too large", "1:5");
     refused("x = 'a'.center(10**10)\n", "result too large", "1:5");
-    refused("x = '{:99999999999999999999}'.format(1)\n", "result too large", "1:5");
+    refused(
+        "x = '{:99999999999999999999}'.format(1)\n",
+        "result too large",
+        "1:5",
+    );
     refused("x = '%099999999999d' % 1\n", "result too large", "1:5");
     refused(
         "n = 0\nfor i in range(100000):\n    for j in range(100000):\n        n += 1\n",
         "this `for` loop runs too long",
         "3:5",
     );
-    refused("while True:\n    pass\n", "this `while` loop runs too long", "1:1");
+    refused(
+        "while True:\n    pass\n",
+        "this `while` loop runs too long",
+        "1:1",
+    );
     refused(
         "x = [i * j for i in range(10000) for j in range(10000)]\n",
         "this comprehension runs too long",
@@ -167,7 +197,11 @@ fn unbounded_work_is_refused_quickly() {
         "this `for` loop runs too long",
         "2:1",
     );
-    refused("s = 'ab' * (2 * 10**7)\nt = s + s\n", "result too large", "2:5");
+    refused(
+        "s = 'ab' * (2 * 10**7)\nt = s + s\n",
+        "result too large",
+        "2:5",
+    );
     refused("x = list(range(10**9))\n", "range() too long", "1:10");
 }
 

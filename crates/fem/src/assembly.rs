@@ -191,10 +191,13 @@ fn scatter_columns(
                 material,
             } => {
                 let cell = mesh.cell(el.cell);
-                let rd = match refs.iter().position(|r| r.ty == cell.ty) {
+                let rd = match refs
+                    .iter()
+                    .position(|r| r.ty == cell.ty && r.hyp == *hypothesis)
+                {
                     Some(p) => &refs[p],
                     None => {
-                        refs.push(RefData::new(cell.ty));
+                        refs.push(RefData::new(cell.ty, *hypothesis));
                         &refs[refs.len() - 1]
                     }
                 };

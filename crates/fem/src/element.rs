@@ -42,7 +42,7 @@ type PointData = (Vec<f64>, Vec<[f64; 3]>, f64, [f64; 3]);
 /// Jacobian, physical derivatives and |det J| at one reference point.
 /// Clockwise cells have det J < 0: derivatives stay exact (J⁻¹ handles the
 /// sign) and the measure uses |det J|, as code_aster does.
-fn physical_derivatives(
+pub(crate) fn physical_derivatives(
     mesh: &Mesh,
     cell: CellId,
     dim: usize,
@@ -110,7 +110,7 @@ pub fn continuum_gauss(
     let dim = hyp.dim();
     let nn = c.nodes.len();
     let ncomp = hyp.ncomp();
-    let scheme = shape::rigi_scheme(c.ty);
+    let scheme = shape::stiffness_scheme(c.ty, Some(hyp));
     let mut out = Vec::with_capacity(scheme.len());
     let mut sign = 0.0f64;
     for gp in &scheme {
@@ -177,7 +177,7 @@ pub fn continuum_stiffness(
 }
 
 /// Rotation from global to local axes of a SEG2 spring (rows = local axes).
-fn spring_rotation(mesh: &Mesh, cell: CellId, dim: usize, frame: Frame) -> DMatrix<f64> {
+pub(crate) fn spring_rotation(mesh: &Mesh, cell: CellId, dim: usize, frame: Frame) -> DMatrix<f64> {
     if frame == Frame::Global {
         return DMatrix::identity(dim, dim);
     }
@@ -260,14 +260,15 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
 /// per assembly instead of once per element.
 pub struct RefData {
     pub ty: CellType,
+    pub hyp: Hypothesis,
     pub weights: Vec<f64>,
     pub n: Vec<Vec<f64>>,
     pub dn: Vec<Vec<[f64; 3]>>,
 }
 
 impl RefData {
-    pub fn new(ty: CellType) -> RefData {
-        let scheme = shape::rigi_scheme(ty);
+    pub fn new(ty: CellType, hyp: Hypothesis) -> RefData {
+        let scheme = shape::stiffness_scheme(ty, Some(hyp));
         let mut n = Vec::with_capacity(scheme.len());
         let mut dn = Vec::with_capacity(scheme.len());
         for gp in &scheme {
@@ -277,6 +278,7 @@ impl RefData {
         }
         RefData {
             ty,
+            hyp,
             weights: scheme.iter().map(|g| g.weight).collect(),
             n,
             dn,

@@ -116,6 +116,35 @@ pub fn tetra4() -> Vec<GaussPoint> {
     ]
 }
 
+/// Tetrahedra FPG15 (degree 5, Touzot), code_aster's order (the MASS
+/// family of TETRA10).
+pub fn tetra15() -> Vec<GaussPoint> {
+    let r = 15f64.sqrt();
+    let (a1, b1) = ((7. + r) / 34., (13. - 3. * r) / 34.);
+    let w1 = (2665. - 14. * r) / 226_800.;
+    let (a2, b2) = ((7. - r) / 34., (13. + 3. * r) / 34.);
+    let w2 = (2665. + 14. * r) / 226_800.;
+    let (c, d) = ((5. - r) / 20., (5. + r) / 20.);
+    let w3 = 5. / 567.;
+    vec![
+        gp(0.25, 0.25, 0.25, 8. / 405.),
+        gp(a1, a1, a1, w1),
+        gp(a1, a1, b1, w1),
+        gp(a1, b1, a1, w1),
+        gp(b1, a1, a1, w1),
+        gp(a2, a2, a2, w2),
+        gp(a2, a2, b2, w2),
+        gp(a2, b2, a2, w2),
+        gp(b2, a2, a2, w2),
+        gp(c, c, d, w3),
+        gp(c, d, c, w3),
+        gp(d, c, c, w3),
+        gp(c, d, d, w3),
+        gp(d, c, d, w3),
+        gp(d, d, c, w3),
+    ]
+}
+
 /// Tetrahedra FPG5 (degree 3; its centre weight is negative, as in
 /// code_aster's stiffness of TETRA10).
 pub fn tetra5() -> Vec<GaussPoint> {
@@ -142,63 +171,70 @@ pub fn pyram5() -> Vec<GaussPoint> {
     ]
 }
 
-/// Pyramids FPG27 (code_aster's PYRAM13 stiffness family up to v17).
-pub fn pyram27() -> Vec<GaussPoint> {
-    let (a1, b6, b1, c8, c1, d12, d1) = (
-        0.788_073_483,
-        0.499_369_002,
-        0.848_418_011,
-        0.478_508_449,
-        0.652_816_472,
-        0.032_303_742,
-        1.106_412_899,
+/// Pyramids FPG10 (code_aster's PYRAM13 stiffness family in v17, an
+/// order-4 rule of Witherden and Vincent, 2015), code_aster's points.
+pub fn pyram10() -> Vec<GaussPoint> {
+    let (a, zb, wb) = (
+        0.325_290_778_199_116_3,
+        0.322_384_149_578_213_7,
+        0.070_883_058_592_883_67,
     );
-    // (x, y, z, weight before the (1−z)²/4 factor), code_aster's order.
-    let mut raw: Vec<[f64; 4]> = Vec::with_capacity(27);
-    raw.push([0., 0., 0.5, a1]);
-    let zb = 0.5;
-    let r = 0.5 * b1 * (1. - zb);
-    raw.extend([
-        [r, r, zb, b6],
-        [-r, r, zb, b6],
-        [-r, -r, zb, b6],
-        [r, -r, zb, b6],
-    ]);
-    raw.push([0., 0., 0.5 * (1. - b1), b6]);
-    raw.push([0., 0., 0.5 * (1. + b1), b6]);
-    for zc in [0.5 * (1. - c1), 0.5 * (1. + c1)] {
-        let r = c1 * (1. - zc);
-        raw.extend([
-            [r, 0., zc, c8],
-            [0., r, zc, c8],
-            [-r, 0., zc, c8],
-            [0., -r, zc, c8],
-        ]);
+    let (b, zc, wc) = (
+        0.657_966_997_121_69,
+        0.039_248_283_898_815_4,
+        0.042_346_060_447_083_94,
+    );
+    vec![
+        gp(0., 0., 0.677_232_788_886_137_4, 0.075_827_922_113_761_27),
+        gp(0., 0., 0.125_136_953_108_746_5, 0.137_922_268_393_034_9),
+        gp(-a, -a, zb, wb),
+        gp(-a, a, zb, wb),
+        gp(a, a, zb, wb),
+        gp(a, -a, zb, wb),
+        gp(-b, 0., zc, wc),
+        gp(0., -b, zc, wc),
+        gp(0., b, zc, wc),
+        gp(b, 0., zc, wc),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn factorial(n: u32) -> f64 {
+        (1..=n).map(f64::from).product()
     }
-    let zd = 0.5 * (1. - d1);
-    let r = 0.5 * d1 * (1. - zd);
-    raw.extend([
-        [r, r, zd, d12],
-        [-r, r, zd, d12],
-        [-r, -r, zd, d12],
-        [r, -r, zd, d12],
-    ]);
-    let r = d1 * 0.5;
-    raw.extend([
-        [r, 0., 0.5, d12],
-        [0., r, 0.5, d12],
-        [-r, 0., 0.5, d12],
-        [0., -r, 0.5, d12],
-    ]);
-    let zd = 0.5 * (1. + d1);
-    let r = 0.5 * d1 * (1. - zd);
-    raw.extend([
-        [r, r, zd, d12],
-        [-r, r, zd, d12],
-        [-r, -r, zd, d12],
-        [r, -r, zd, d12],
-    ]);
-    raw.into_iter()
-        .map(|[x, y, z, w]| gp(x, y, z, w * 0.25 * (1. - z) * (1. - z)))
-        .collect()
+
+    /// FPG10 integrates every monomial xᵃ yᵇ zᶜ of degree ≤ 4 exactly on
+    /// code_aster's pyramid (|x| + |y| ≤ 1 − z, 0 ≤ z ≤ 1), whose exact
+    /// integral is (1 + (−1)ᵃ)(1 + (−1)ᵇ) a! b! c! / (a + b + c + 3)!.
+    #[test]
+    fn pyram10_is_exact_to_degree_four() {
+        let pts = pyram10();
+        assert_eq!(pts.len(), 10);
+        for a in 0..=4u32 {
+            for b in 0..=4 - a {
+                for c in 0..=4 - a - b {
+                    let sa = if a % 2 == 0 { 2.0 } else { 0.0 };
+                    let sb = if b % 2 == 0 { 2.0 } else { 0.0 };
+                    let exact = sa * sb * factorial(a) * factorial(b) * factorial(c)
+                        / factorial(a + b + c + 3);
+                    let q: f64 = pts
+                        .iter()
+                        .map(|p| {
+                            p.weight
+                                * p.xi[0].powi(a as i32)
+                                * p.xi[1].powi(b as i32)
+                                * p.xi[2].powi(c as i32)
+                        })
+                        .sum();
+                    assert!(
+                        (q - exact).abs() < 1e-13,
+                        "x^{a} y^{b} z^{c}: {q} vs {exact}"
+                    );
+                }
+            }
+        }
+    }
 }

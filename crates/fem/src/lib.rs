@@ -1,6 +1,7 @@
 //! Numerics for aster: elements, assembly, sparse solves (faer), the
 //! incremental Newton solver (`STAT_NON_LINE`), kinematic conditions
-//! (eliminated and dualised), unilateral conditions shared with contact, and
+//! (eliminated and dualised), unilateral conditions shared with contact,
+//! mass matrices and implicit time integration (`DYNA_NON_LINE`), and
 //! post-processing (FORC_NODA, REAC_NODA, ELNO/NOEU stresses, SIEQ).
 //!
 //! The API uses plain Rust types and no command keywords: the runner maps
@@ -15,6 +16,7 @@ pub mod autodiff;
 pub mod behaviour;
 mod diag;
 pub mod dof;
+pub mod dynamics;
 pub mod element;
 pub mod error;
 pub mod force_source;
@@ -22,6 +24,7 @@ pub mod fpg;
 mod held;
 pub mod linalg;
 pub mod loads;
+pub mod mass;
 pub mod material;
 pub mod model;
 pub mod nonlinear;
@@ -38,14 +41,16 @@ pub mod unilateral;
 
 pub use behaviour::{Behaviours, CurveEnd, VonMises};
 pub use dof::{Comp, Dof, DofNumbering};
+pub use dynamics::{DynamicNonLinear, Scheme};
 pub use error::FemError;
 pub use force_source::{Contribution, ForceSource, LoopVerdict, Unknown};
 pub use loads::{Load, LoadItem, Loads, Multiplier};
+pub use mass::{DiscreteMass, Lumping, MassData, Rayleigh};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
 pub use nonlinear::{
-    meca_statique, Attempt, Convergence, InitialState, MatrixKind, NewtonOptions, NonLinearResult,
-    Prediction, StaticNonLinear, Step, Subdivision,
+    meca_statique, Attempt, Convergence, IncrementTerms, InitialState, MatrixKind, Motion,
+    NewtonOptions, NonLinearResult, Prediction, StaticNonLinear, Step, Subdivision,
 };
 pub use post::{CellValues, NodalValues};
 pub use strain::Kinematics;

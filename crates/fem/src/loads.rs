@@ -405,7 +405,7 @@ fn volume_load(model: &Model, cell: CellId, b: [f64; 3], f: &mut [f64]) -> Resul
     let c = mesh.cell(cell);
     let dim = model.dim();
     let axis = model.hypothesis() == Some(Hypothesis::Axisymmetric);
-    for gp in shape::rigi_scheme(c.ty) {
+    for gp in shape::stiffness_scheme(c.ty, model.hypothesis()) {
         let s = shape::shape(c.ty, gp.xi);
         // Jacobian J[k][l] = ∂x_k/∂ξ_l.
         let mut jac = [[0.0; 3]; 3];

@@ -153,9 +153,49 @@ pub struct Step {
     /// RESI_GLOB_RELA after each Newton iteration of the step (code_aster's
     /// convergence table; empty for the initial state).
     pub residual_history: Vec<f64>,
+    /// VITE and ACCE of a dynamic analysis (see [`IncrementTerms`]), per
+    /// DOF index; `None` in statics.
+    pub motion: Option<Motion>,
     /// The own unknowns of each force source (same order as
     /// [`StaticNonLinear::forces`]) at the step.
     pub own_unknowns: Vec<Vec<f64>>,
+}
+
+/// Velocity and acceleration per DOF index.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Motion {
+    pub velocity: Vec<f64>,
+    pub acceleration: Vec<f64>,
+}
+
+/// What a time integrator (`dynamics`) adds to every increment of the
+/// Newton loop: a matrix added to the stiffness (constant during the
+/// increment) and a force affine in the displacement, `matrix·u − offset`
+/// (inertia and damping). STAT_NON_LINE has none; DYNA_NON_LINE runs the
+/// same loop with one.
+pub trait IncrementTerms {
+    /// Starts the increment `from` → `to` from the last converged
+    /// displacement `u`. Returns whether [`matrix`](Self::matrix) changed
+    /// since the previous increment (its factorisation is then redone).
+    fn begin(&mut self, from: f64, to: f64, u: &[f64]) -> Result<bool, FemError>;
+    /// The matrix over all DOFs, in the stiffness pattern.
+    fn matrix(&self) -> &Csc;
+    /// The constant part of the force (moved to the external forces).
+    fn offset(&self) -> &[f64];
+    /// The largest inertia force code_aster adds to the residual's
+    /// reference (`RESI_GLOB_RELA`) at the iterate `u`.
+    fn reference(&self, u: &[f64]) -> f64;
+    /// Whether [`converged`](Self::converged) needs the internal forces
+    /// (multi-step schemes).
+    fn needs_internal_forces(&self) -> bool;
+    /// The increment converged at `u` (external forces at `to`, internal
+    /// forces when asked for).
+    fn converged(&mut self, to: f64, u: &[f64], fext: &[f64], fint: Option<&[f64]>);
+    /// The last converged state's velocity and acceleration.
+    fn motion(&self) -> Motion;
+    /// Whether the mass holds every free DOF, so that a rigid-body mode
+    /// not held by conditions is no error (an impacting body).
+    fn mass_holds(&self) -> bool;
 }
 
 /// A result: the stored steps (the first is the initial state).
@@ -247,6 +287,8 @@ pub struct StaticNonLinear<'s> {
     pub behaviours: Behaviours,
     /// Step cutting when an increment fails (`None`: ACTION='ARRET', fail).
     pub subdivision: Option<Subdivision>,
+    /// Inertia and damping of a dynamic analysis (`None`: statics).
+    pub dynamics: Option<Box<dyn IncrementTerms + 's>>,
 }
 
 /// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment
@@ -290,6 +332,7 @@ impl Default for StaticNonLinear<'_> {
             first_order: 0,
             behaviours: Behaviours::default(),
             subdivision: Some(Subdivision::default()),
+            dynamics: None,
         }
     }
 }
@@ -309,6 +352,10 @@ struct SourceRows {
     /// The source's augmented terms (`UnilateralSource::augmented_terms`).
     aug: Vec<AugRow>,
 }
+
+/// Where the augmented terms' tangent goes: the free-unknown map and the
+/// triplets it adds to.
+type AugmentedMatrix<'a> = (&'a [usize], &'a mut Vec<(usize, usize, f64)>);
 
 /// An augmented term in DOF indices, with its contact status.
 #[derive(Clone)]
@@ -335,12 +382,7 @@ impl SourceRows {
 
     /// Adds the penalty forces (and, with `matrix`, their stiffness on the
     /// free unknowns `map`) of the augmented terms that are on.
-    fn add_augmented(
-        &self,
-        u: &[f64],
-        force: &mut [f64],
-        matrix: Option<(&[usize], &mut Vec<(usize, usize, f64)>)>,
-    ) {
+    fn add_augmented(&self, u: &[f64], force: &mut [f64], matrix: Option<AugmentedMatrix<'_>>) {
         let mut matrix = matrix;
         for a in self.aug.iter().filter(|a| a.on) {
             let g = gap(&a.idx, a.rhs, u);
@@ -437,6 +479,12 @@ impl StaticNonLinear<'_> {
                 self.sources[0].name()
             )));
         }
+        if let (Some(f), Some(_)) = (self.forces.first(), &self.dynamics) {
+            return Err(FemError::Model(format!(
+                "{} in dynamics: the force sources' Newton loop has no time integrator",
+                f.name()
+            )));
+        }
         let mut own: Vec<Vec<f64>> = self
             .forces
             .iter()
@@ -466,9 +514,14 @@ impl StaticNonLinear<'_> {
                 resi_glob_rela: 0.0,
                 resi_glob_maxi: 0.0,
                 residual_history: Vec::new(),
+                motion: self.dynamics.as_ref().map(|d| d.motion()),
                 own_unknowns: own.clone(),
             });
         }
+        // Dynamics: K + the integrator's matrix, rebuilt when it changes
+        // (a new time step), and its restriction to the free DOFs.
+        let mut k_dyn: Option<(Csc, Csc)> = None;
+        let mass_holds = self.dynamics.as_ref().is_some_and(|d| d.mass_holds());
 
         let mut attempts: Vec<Attempt> = Vec::new();
         let mut history = LoadHistory::default();
@@ -500,11 +553,32 @@ impl StaticNonLinear<'_> {
                     };
                     f.begin_increment(&state, o)?;
                 }
+                if let Some(d) = self.dynamics.as_mut() {
+                    // The predictor starts from the converged state (before
+                    // the imposed values of `target` are set).
+                    if d.begin(from, target, &u)? || k_dyn.is_none() {
+                        let mut ke = k.clone();
+                        for (v, a) in ke.values.iter_mut().zip(&d.matrix().values) {
+                            *v += a;
+                        }
+                        let kef = restrict(&ke, &map, nfree);
+                        k_dyn = Some((ke, kef));
+                        kkt = KktSolver::default();
+                    }
+                }
                 let elim = loads.eliminated(model, target)?;
                 for (&i, &v) in &elim {
                     u[i] = v;
                 }
-                let fext = loads.external_forces(model, target)?;
+                let fext_loads = loads.external_forces(model, target)?;
+                let fext = match &self.dynamics {
+                    Some(d) => fext_loads
+                        .iter()
+                        .zip(d.offset())
+                        .map(|(a, b)| a + b)
+                        .collect(),
+                    None => fext_loads.clone(),
+                };
                 let eq = loads.equality_rows(model, target)?;
                 // Rows of the sources, from the last converged state.
                 for (s, src) in self.sources.iter_mut().enumerate() {
@@ -534,7 +608,7 @@ impl StaticNonLinear<'_> {
                 }
                 // Force sources (friction) may hold what nothing else does:
                 // a singular system is then reported by the factorisation.
-                if !checked_held && self.forces.is_empty() {
+                if !checked_held && !mass_holds && self.forces.is_empty() {
                     checked_held = true;
                     let mut ground: Vec<Vec<(usize, f64)>> =
                         elim.keys().map(|&i| vec![(i, 1.0)]).collect();
@@ -547,10 +621,14 @@ impl StaticNonLinear<'_> {
                         return Err(FemError::Singular { free_dofs: free });
                     }
                 }
+                let (k_used, kff_used) = match &k_dyn {
+                    Some((ke, kef)) => (ke, kef),
+                    None => (&k, &kff),
+                };
                 let ctx = StepContext {
                     model,
-                    k: &k,
-                    kff: &kff,
+                    k: k_used,
+                    kff: kff_used,
                     map: &map,
                     nfree,
                     kdiag_max,
@@ -561,6 +639,7 @@ impl StaticNonLinear<'_> {
                     free_dof: &free_dof,
                     linear,
                     first: attempts.is_empty(),
+                    dynamics: self.dynamics.as_deref(),
                 };
                 let mut log = AttemptLog::default();
                 let attempt = if self.forces.is_empty() {
@@ -623,6 +702,14 @@ impl StaticNonLinear<'_> {
                         from = target;
                         if let Some(pc) = &mut plastic {
                             pc.commit();
+                        }
+                        if let Some(d) = self.dynamics.as_mut() {
+                            let fint = if d.needs_internal_forces() {
+                                Some(internal_forces(model, &k, &mut plastic, &u)?)
+                            } else {
+                                None
+                            };
+                            d.converged(target, &u, &fext_loads, fint.as_deref());
                         }
                         // Each converged increment (a piece of a cut one
                         // too) is reported to the sources: contact's
@@ -732,6 +819,7 @@ impl StaticNonLinear<'_> {
                 resi_glob_rela: resi_rela,
                 resi_glob_maxi: resi_maxi,
                 residual_history,
+                motion: self.dynamics.as_ref().map(|d| d.motion()),
                 own_unknowns: own.clone(),
             });
         }
@@ -739,7 +827,7 @@ impl StaticNonLinear<'_> {
     }
 
     /// Initial time and the instants to compute.
-    fn schedule(&self) -> Result<(f64, Vec<f64>), FemError> {
+    pub(crate) fn schedule(&self) -> Result<(f64, Vec<f64>), FemError> {
         if self.instants.is_empty() {
             return Err(FemError::Model(
                 "STAT_NON_LINE needs a list of instants (INCREMENT/LIST_INST)".into(),
@@ -795,6 +883,9 @@ struct StepContext<'a> {
     coords: &'a [[f64; 3]],
     /// The DOF index of each free unknown.
     free_dof: &'a [usize],
+    /// A time integrator's terms (their matrix is already in `k`, `kff`
+    /// and their offset in the external forces).
+    dynamics: Option<&'a dyn IncrementTerms>,
     /// MECA_STATIQUE: one linear solve is the answer (code_aster checks no
     /// residual there).
     linear: bool,
@@ -862,7 +953,10 @@ fn newton_step(
         free_dof,
         linear,
         first,
+        dynamics,
     } = *ctx;
+    // With a mass on every free DOF a body need not be held by conditions.
+    let mass_holds = dynamics.is_some_and(|d| d.mass_holds());
     // code_aster numbers the Newton iterations of a step from 0 (the
     // prediction) up to ITER_GLOB_MAXI, and the passes of the geometric
     // loop (REAC_GEOM) do not restart the count: the loop is nested in the
@@ -950,7 +1044,7 @@ fn newton_step(
             let nk = kept.len();
             // A state where the active conditions leave a rigid-body mode
             // free is reported (instead of factorising a singular matrix).
-            {
+            if !mass_holds {
                 let mut ground: Vec<Vec<(usize, f64)>> =
                     elim.keys().map(|&i| vec![(i, 1.0)]).collect();
                 ground.extend(kept.iter().map(|&r| rows[r].0.clone()));
@@ -1056,6 +1150,9 @@ fn newton_step(
                     })
                     .collect();
                 let held_by = |pinned: &[usize]| {
+                    if mass_holds {
+                        return true;
+                    }
                     let mut ground: Vec<Vec<(usize, f64)>> =
                         elim.keys().map(|&i| vec![(i, 1.0)]).collect();
                     ground.extend(pinned.iter().map(|&f| vec![(free_dof[f], 1.0)]));
@@ -1138,14 +1235,22 @@ fn newton_step(
             }
             let mut resi_maxi = 0.0f64;
             let mut reference = 0.0f64;
+            // Dynamics: code_aster's reference counts the inertia and
+            // damping forces with the external ones (not with the internal
+            // forces), and the inertia force of the velocity.
+            let dyn_u = dynamics.map(|d| d.matrix().mul(u));
+            let dyn_at = |i: usize| dyn_u.as_ref().map_or(0.0, |f| f[i]);
             for i in 0..nd {
                 if map[i] == usize::MAX {
-                    reference = reference.max(fint[i].abs());
+                    reference = reference.max((fint[i] - dyn_at(i)).abs());
                 } else {
                     let r = fext[i] - fint[i] + reac[i] - pen_new[i];
                     resi_maxi = resi_maxi.max(r.abs());
-                    reference = reference.max((fext[i] + reac[i] - pen_new[i]).abs());
+                    reference = reference.max((fext[i] - dyn_at(i) + reac[i] - pen_new[i]).abs());
                 }
+            }
+            if let Some(d) = dynamics {
+                reference = reference.max(d.reference(u));
             }
             let resi_rela = if reference > 0. {
                 resi_maxi / reference
@@ -1263,7 +1368,7 @@ fn newton_step(
             // Releasing every row in tension at once may leave the model
             // unheld (a body resting on its supports): then release only the
             // most negative one.
-            if releases.len() > 1 {
+            if releases.len() > 1 && !mass_holds {
                 let mut ground: Vec<Vec<(usize, f64)>> =
                     elim.keys().map(|&i| vec![(i, 1.0)]).collect();
                 ground.extend(eq.iter().map(|r| r.terms.clone()));

@@ -167,8 +167,8 @@ fn linear_type(ty: CellType) -> CellType {
 /// nodes get the mean of their corners). More points than corners (QUAD8/9,
 /// TETRA10, HEXA20/27, PENTA15/18, PYRAM13): least-squares fit with the
 /// linear cell's functions, evaluated at the corners, mid-nodes as means.
-fn extrapolation(ty: CellType) -> DMatrix<f64> {
-    let scheme = shape::rigi_scheme(ty);
+fn extrapolation(ty: CellType, hyp: Option<crate::Hypothesis>) -> DMatrix<f64> {
+    let scheme = shape::stiffness_scheme(ty, hyp);
     let np = scheme.len();
     let nodes = shape::reference_nodes(ty);
     let nn = nodes.len();
@@ -212,7 +212,7 @@ pub fn elno(model: &Model, elga: &[CellValues]) -> Vec<CellValues> {
             let e = if cv.points.len() == 1 {
                 DMatrix::from_element(nn, 1, 1.0)
             } else {
-                extrapolation(ty)
+                extrapolation(ty, model.hypothesis())
             };
             let points = (0..nn)
                 .map(|n| {

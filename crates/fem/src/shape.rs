@@ -94,6 +94,23 @@ pub fn reference_nodes(ty: CellType) -> Vec<[f64; 3]> {
     }
 }
 
+/// code_aster's reference cells (node coordinates and shape functions) for
+/// the mesh operations that place nodes in reference space
+/// (`CREA_MAILLAGE/DECOUPE_LAC` on 3D faces).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ReferenceCells;
+
+impl aster_mesh::ReferenceCells for ReferenceCells {
+    fn nodes(&self, ty: CellType) -> Option<Vec<[f64; 3]>> {
+        let v = reference_nodes(ty);
+        (supported(ty) && v.len() == ty.node_count()).then_some(v)
+    }
+
+    fn shape(&self, ty: CellType, xi: [f64; 3]) -> Option<Vec<f64>> {
+        supported(ty).then(|| shape(ty, xi).n)
+    }
+}
+
 /// Shape functions and reference derivatives at `xi`.
 pub fn shape(ty: CellType, xi: [f64; 3]) -> ShapeAt {
     let [x, y, z] = xi;
@@ -209,7 +226,7 @@ fn gauss_1d(order: usize) -> Vec<(f64, f64)> {
 /// SEG2 FPG2, SEG3 FPG3, TRIA3 FPG1, TRIA6 FPG3, TRIA7 FPG6, QUAD4 FPG4
 /// (2×2), QUAD8/QUAD9 FPG9 (3×3), TETRA4 FPG1, TETRA10 FPG5, HEXA8 FPG8
 /// (2×2×2), HEXA20/HEXA27 FPG27 (3×3×3), PENTA6 FPG6, PENTA15/PENTA18
-/// FPG21, PYRAM5 FPG5, PYRAM13 FPG27.
+/// FPG21, PYRAM5 FPG5, PYRAM13 FPG10 (code_aster 17; FPG27 before).
 ///
 /// Point order follows code_aster's `elraga`: QUAD4 counter-clockwise from
 /// (-a,-a); QUAD8 corners, then mid-edges, then centre; TRIA6 (1/6,1/6),
@@ -263,8 +280,33 @@ pub fn rigi_scheme(ty: CellType) -> Vec<GaussPoint> {
         CellType::PENTA6 => fpg::penta6(),
         CellType::PENTA15 | CellType::PENTA18 => fpg::penta21(),
         CellType::PYRAM5 => fpg::pyram5(),
-        CellType::PYRAM13 => fpg::pyram27(),
+        CellType::PYRAM13 => fpg::pyram10(),
         _ => Vec::new(),
+    }
+}
+
+/// code_aster's `MASS` Gauss family of a continuum cell (mass matrices,
+/// kinetic energy): the stiffness family where it integrates N·N exactly
+/// on the reference cell, a richer one elsewhere (TRIA3 FPG3, TRIA6 FPG6,
+/// QUAD8 FPG9 in every modelisation, TETRA4 FPG4, TETRA10 FPG15).
+pub fn mass_scheme(ty: CellType) -> Vec<GaussPoint> {
+    match ty {
+        CellType::TRIA3 => rigi_scheme(CellType::TRIA6),
+        CellType::TRIA6 => fpg::tria_fpg6(),
+        CellType::TETRA4 => fpg::tetra4(),
+        CellType::TETRA10 => fpg::tetra15(),
+        other => rigi_scheme(other),
+    }
+}
+
+/// The stiffness Gauss family of a continuum element: [`rigi_scheme`],
+/// except code_aster's axisymmetric TRIA6 (`MEAXTR6`), integrated with
+/// FPG6 where the plane TRIA6 elements use FPG3.
+pub fn stiffness_scheme(ty: CellType, hyp: Option<crate::Hypothesis>) -> Vec<GaussPoint> {
+    if ty == CellType::TRIA6 && hyp == Some(crate::Hypothesis::Axisymmetric) {
+        fpg::tria_fpg6()
+    } else {
+        rigi_scheme(ty)
     }
 }
 

@@ -194,7 +194,11 @@ fn linear_field(p: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|i| (0..3).map(|j| G[i][j] * p[j]).sum())
 }
 
-fn patch(ty: CellType) {
+/// The patch test of a family: a linear displacement imposed on the box
+/// boundary; returns the largest errors of the nodal displacements (against
+/// the linear field), of the Gauss stresses and of the nodal (NOEU)
+/// stresses (both relative to the exact constant stress).
+fn patch_errors(ty: CellType) -> (f64, f64, f64) {
     let hyp = if ty.dim() == 2 {
         Hypothesis::PlaneStrain
     } else {
@@ -205,18 +209,14 @@ fn patch(ty: CellType) {
     let (model, u) = solve_dirichlet(mesh, hyp, 2., &linear_field);
     let mesh = model.mesh();
     let mut interior = 0;
+    let mut du = 0.0_f64;
     for (n, &p) in mesh.coords.iter().enumerate() {
         let want = linear_field(p);
         for (k, &comp) in Comp::translations(dim).iter().enumerate() {
             let Some(i) = model.dofs().index(Dof::new(NodeId(n as u32), comp)) else {
                 continue;
             };
-            assert!(
-                (u[i] - want[k]).abs() < 1e-12,
-                "{ty:?} node {n} {comp:?}: {} vs {}",
-                u[i],
-                want[k]
-            );
+            du = du.max((u[i] - want[k]).abs());
         }
         if (0..dim).all(|k| p[k] > 1e-9 && p[k] < 2. - 1e-9) {
             interior += 1;
@@ -241,29 +241,33 @@ fn patch(ty: CellType) {
     let scale = sig.amax();
     let stress = post::sief_elga(&model, &u).unwrap();
     let npg = aster_fem::shape::rigi_scheme(ty).len();
-    // PYRAM13's FPG27 is given to 9 digits: equilibrium holds to ~1e-9.
-    let tol = if ty == CellType::PYRAM13 { 1e-8 } else { 1e-9 };
+    let mut ds = 0.0_f64;
     for cv in &stress {
         assert_eq!(cv.points.len(), npg);
         for p in &cv.points {
             for c in 0..sig.len() {
-                assert!(
-                    (p[c] - sig[c]).abs() < tol * scale,
-                    "{ty:?} {}: {} vs {}",
-                    cv.names[c],
-                    p[c],
-                    sig[c]
-                );
+                ds = ds.max((p[c] - sig[c]).abs() / scale);
             }
         }
     }
     // Extrapolated to the nodes and averaged, the constant stays.
     let noeu = post::noeu(&model, &post::elno(&model, &stress));
+    let mut dn = 0.0_f64;
     for v in noeu.values.iter().flatten() {
         for c in 0..sig.len() {
-            assert!((v[c] - sig[c]).abs() < 10. * tol * scale, "{ty:?} NOEU");
+            dn = dn.max((v[c] - sig[c]).abs() / scale);
         }
     }
+    (du, ds, dn)
+}
+
+/// The family passes the patch test: displacements to 1e-12, stresses to
+/// 1e-9 at the Gauss points and 1e-8 at the nodes.
+fn patch(ty: CellType) {
+    let (du, ds, dn) = patch_errors(ty);
+    assert!(du < 1e-12, "{ty:?}: displacement off by {du}");
+    assert!(ds < 1e-9, "{ty:?}: Gauss stress off by {ds}");
+    assert!(dn < 1e-8, "{ty:?}: NOEU stress off by {dn}");
 }
 
 #[test]
@@ -288,7 +292,20 @@ fn patch_tetrahedra() {
 #[test]
 fn patch_pyramids() {
     patch(CellType::PYRAM5);
-    patch(CellType::PYRAM13);
+}
+
+/// code_aster 17 integrates PYRAM13 with FPG10 (an order-4 rule, where
+/// v15 used FPG27): its rational functions are then not integrated
+/// exactly and the patch test is passed only approximately — as in
+/// code_aster (SSNP170 R/U/W/Y/Z test 0.25 % stress deviations on a
+/// uniform pressure, reproduced to 1e-10).
+#[test]
+fn pyram13_with_fpg10_is_close_to_the_patch_test() {
+    let (du, ds, dn) = patch_errors(CellType::PYRAM13);
+    // Measured: 5.7e-8 on |u| ~ 2e-3, 2.4e-4 and 1.5e-4 of the stress.
+    assert!(du > 1e-9 && du < 5e-7, "{du}");
+    assert!(ds > 2e-5 && ds < 2e-3, "{ds}");
+    assert!(dn > 2e-5 && dn < 2e-3, "{dn}");
 }
 
 #[test]

@@ -18,11 +18,13 @@
 //! Cell ids are kept: the first piece of a cut cell keeps the id (and the
 //! name) of the cell it comes from, the other pieces are appended. Cell
 //! groups holding a cut cell hold all its pieces; node groups are copied
-//! unchanged (as code_aster does). 3D slave faces are refused.
+//! unchanged (as code_aster does). 3D slave faces (TRIA3/6, QUAD4/8/9) and
+//! the volume cells holding them are cut by module `lac3d`.
 
 use std::collections::{BTreeSet, HashMap, HashSet};
 
 use crate::error::{suggest, GroupKind, MeshError};
+use crate::lac3d::{DecoupeHexa, LinearCells, ReferenceCells};
 use crate::model::{Cell, CellId, CellType, Mesh, NodeId};
 
 /// One LAC patch: the pieces of an original slave face.
@@ -59,9 +61,37 @@ impl LacPatches {
     }
 }
 
+/// How DECOUPE_LAC cuts: `DECOUPE_HEXA` and the reference cells that place
+/// the new nodes of 3D cuts (`aster-fem` gives every type; the default,
+/// [`LinearCells`], knows the linear volumes only).
+#[derive(Clone, Copy)]
+pub struct LacOptions<'a> {
+    pub hexa: DecoupeHexa,
+    pub reference: &'a dyn ReferenceCells,
+}
+
+impl Default for LacOptions<'_> {
+    fn default() -> Self {
+        LacOptions {
+            hexa: DecoupeHexa::Pyra,
+            reference: &LinearCells,
+        }
+    }
+}
+
 /// Cuts the slave faces of `slave_groups` for LAC contact (see the module
-/// documentation). Errors name the group and cell that cannot be cut.
+/// documentation), with the default options. Errors name the group and cell
+/// that cannot be cut.
 pub fn decoupe_lac(mesh: &Mesh, slave_groups: &[&str]) -> Result<(Mesh, LacPatches), MeshError> {
+    decoupe_lac_with(mesh, slave_groups, LacOptions::default())
+}
+
+/// [`decoupe_lac`] with explicit options (`DECOUPE_HEXA`, reference cells).
+pub fn decoupe_lac_with(
+    mesh: &Mesh,
+    slave_groups: &[&str],
+    options: LacOptions<'_>,
+) -> Result<(Mesh, LacPatches), MeshError> {
     let mut cutter = Cutter::new(mesh.clone());
     let mut patches = LacPatches::default();
     for &group in slave_groups {
@@ -79,7 +109,7 @@ pub fn decoupe_lac(mesh: &Mesh, slave_groups: &[&str]) -> Result<(Mesh, LacPatch
         };
         for &face in &g.members {
             if seen.insert(face) {
-                zone.patches.push(cutter.cut_face(face, group)?);
+                zone.patches.push(cutter.cut_face(face, group, options)?);
             }
         }
         patches.zones.push(zone);
@@ -87,10 +117,11 @@ pub fn decoupe_lac(mesh: &Mesh, slave_groups: &[&str]) -> Result<(Mesh, LacPatch
     Ok((cutter.finish(), patches))
 }
 
-/// The mesh being cut, with the node → 2D cell adjacency kept up to date.
-struct Cutter {
-    mesh: Mesh,
-    cells_of_node: HashMap<NodeId, Vec<CellId>>,
+/// The mesh being cut, with the node → body cell (2D and 3D cells)
+/// adjacency kept up to date.
+pub(crate) struct Cutter {
+    pub(crate) mesh: Mesh,
+    pub(crate) cells_of_node: HashMap<NodeId, Vec<CellId>>,
     /// Pieces appended for each cut cell (transitively resolved at the end).
     children: HashMap<CellId, Vec<CellId>>,
     node_names: HashSet<String>,
@@ -103,7 +134,7 @@ impl Cutter {
     fn new(mesh: Mesh) -> Cutter {
         let mut cells_of_node: HashMap<NodeId, Vec<CellId>> = HashMap::new();
         for (i, c) in mesh.cells.iter().enumerate() {
-            if c.ty.dim() == 2 {
+            if c.ty.dim() >= 2 {
                 for n in &c.nodes {
                     cells_of_node.entry(*n).or_default().push(CellId(i as u32));
                 }
@@ -120,7 +151,7 @@ impl Cutter {
         }
     }
 
-    fn cell_name(&self, id: CellId) -> String {
+    pub(crate) fn cell_name(&self, id: CellId) -> String {
         self.mesh
             .cell_names
             .get(id.0 as usize)
@@ -128,7 +159,12 @@ impl Cutter {
             .unwrap_or_else(|| format!("#{}", id.0 + 1))
     }
 
-    fn cut_face(&mut self, face: CellId, group: &str) -> Result<LacPatch, MeshError> {
+    fn cut_face(
+        &mut self,
+        face: CellId,
+        group: &str,
+        options: LacOptions<'_>,
+    ) -> Result<LacPatch, MeshError> {
         let cell = self.mesh.cell(face).clone();
         let name = self.cell_name(face);
         let refuse = |what: String| {
@@ -146,15 +182,14 @@ impl Cutter {
             | CellType::TRIA7
             | CellType::QUAD9 => {
                 let solid = self.mesh.cells.iter().any(|c| c.ty.dim() == 3);
-                return Err(refuse(if solid {
-                    "3D slave faces are not supported yet (only 2D models: SEG2/SEG3 slave \
-                     edges of TRIA3, QUAD4, TRIA6 and QUAD8 cells)"
-                        .into()
-                } else {
+                if solid {
+                    return self.cut_face_3d(face, options.hexa, options.reference, &refuse);
+                }
+                return Err(refuse(
                     "in a 2D mesh the slave surface is made of edges (SEG2/SEG3); this group \
                      holds the body's cells — give the group of its contact edges"
-                        .into()
-                }));
+                        .into(),
+                ));
             }
             _ => {
                 return Err(refuse(
@@ -193,7 +228,7 @@ impl Cutter {
         })
     }
 
-    fn add_node(&mut self, x: [f64; 3]) -> NodeId {
+    pub(crate) fn add_node(&mut self, x: [f64; 3]) -> NodeId {
         let id = NodeId(self.mesh.coords.len() as u32);
         let name = loop {
             let n = format!("NL{}", self.next_node);
@@ -207,19 +242,25 @@ impl Cutter {
         id
     }
 
-    /// Replaces cell `id` by `pieces`: the first keeps the id, the others
-    /// are appended (and recorded as its children).
+    /// Replaces cell `id` by `pieces` of type `ty`: the first keeps the id,
+    /// the others are appended (and recorded as its children).
     fn replace(&mut self, id: CellId, ty: CellType, pieces: Vec<Vec<NodeId>>) -> Vec<CellId> {
+        self.replace_mixed(id, pieces.into_iter().map(|p| (ty, p)).collect())
+    }
+
+    /// [`Cutter::replace`] with a type per piece.
+    pub(crate) fn replace_mixed(
+        &mut self,
+        id: CellId,
+        pieces: Vec<(CellType, Vec<NodeId>)>,
+    ) -> Vec<CellId> {
         let mut ids = Vec::new();
-        let is_2d = ty.dim() == 2;
-        if is_2d {
-            for n in &self.mesh.cell(id).nodes {
-                if let Some(v) = self.cells_of_node.get_mut(n) {
-                    v.retain(|c| *c != id);
-                }
+        for n in &self.mesh.cell(id).nodes {
+            if let Some(v) = self.cells_of_node.get_mut(n) {
+                v.retain(|c| *c != id);
             }
         }
-        for (k, nodes) in pieces.into_iter().enumerate() {
+        for (k, (ty, nodes)) in pieces.into_iter().enumerate() {
             let cid = if k == 0 {
                 self.mesh.cells[id.0 as usize] = Cell {
                     ty,
@@ -243,7 +284,7 @@ impl Cutter {
                 self.children.entry(id).or_default().push(cid);
                 cid
             };
-            if is_2d {
+            if ty.dim() >= 2 {
                 for n in &nodes {
                     self.cells_of_node.entry(*n).or_default().push(cid);
                 }
@@ -496,13 +537,19 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("give the group of its contact edges"), "{e}");
-        // A face of a solid: 3D LAC is refused as such.
+        // In a mesh with solids, a face that bounds none is refused.
         let mut m = mesh(false);
+        m.coords.push([0.0, 0.0, 1.0]);
+        m.node_names.push("N5".into());
         m.cells.push(Cell {
             ty: CellType::TETRA4,
-            nodes: vec![NodeId(0), NodeId(1), NodeId(2), NodeId(3)],
+            nodes: vec![NodeId(0), NodeId(1), NodeId(3), NodeId(4)],
         });
+        m.cell_names.push("M4".into());
         let e = decoupe_lac(&m, &["BODY"]).unwrap_err().to_string();
-        assert!(e.contains("3D slave faces are not supported yet"), "{e}");
+        assert!(
+            e.contains("cell M1 (TRIA3)") && e.contains("not a face of any volume"),
+            "{e}"
+        );
     }
 }

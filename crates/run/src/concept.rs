@@ -81,6 +81,10 @@ pub struct Material {
     pub poisson: f64,
     pub density: Option<f64>,
     pub alpha: Option<f64>,
+    /// Rayleigh damping `AMOR_ALPHA` (× stiffness) and `AMOR_BETA`
+    /// (× mass), used by DYNA_NON_LINE.
+    pub amor_alpha: Option<f64>,
+    pub amor_beta: Option<f64>,
     /// `ECRO_LINE=_F(D_SIGM_EPSI, SY)` (for VMIS_ISOT_LINE).
     pub ecro_line: Option<EcroLine>,
     /// `TRACTION=_F(SIGM=σ(EPSI))` (for VMIS_ISOT_TRAC): a tabulated
@@ -115,10 +119,22 @@ pub struct DiscreteStiffness {
     pub local: bool,
 }
 
+/// `AFFE_CARA_ELEM/DISCRET(_2D)`: a mass on discrete cells (`M_T_D_N`:
+/// one value; `M_T_N`, `M_T_L`: the upper triangle by columns).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiscreteMassDef {
+    pub cells: Vec<CellId>,
+    pub cara: String,
+    pub values: Vec<f64>,
+    pub local: bool,
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct CaraElem {
     pub model: u32,
     pub discrete: Vec<DiscreteStiffness>,
+    /// Discrete masses (DYNA_NON_LINE).
+    pub masses: Vec<DiscreteMassDef>,
 }
 
 /// An imposed component value on a node.
@@ -264,6 +280,8 @@ pub struct EvolResult {
     pub steps: Vec<Step>,
     /// What produced it, to compute more fields on demand (`CALC_CHAMP`).
     pub fem: Option<Rc<crate::fembridge::FemRun>>,
+    /// Tables the computation made (`OBSERVATION`), for `RECU_TABLE`.
+    pub tables: Vec<(String, Rc<crate::table::Table>)>,
 }
 
 impl EvolResult {

@@ -106,6 +106,8 @@ pub(crate) const DEFI_CONTACT: Support = Support {
         "ZONE/PENE_MAXI",
         // LAC's pairing method (robust or fast search): same pairs here.
         "ZONE/TYPE_APPA",
+        "ZONE/TYPE_JACOBIEN",
+        "ZONE/RESI_APPA",
         // code_aster 11: only raises an alarm when a gap passes it; no effect
         // on the solution.
         "ZONE/ALARME_JEU",
@@ -661,6 +663,16 @@ fn lac_setup(
                 }),
         };
         resolved?;
+        if let Some(occ) = kw.factor("ZONE").get(z.zone.index) {
+            z.set_lac_options(aster_contact::lac::LacOptions {
+                updated_jacobian: occ.str("TYPE_JACOBIEN") == Some("ACTUALISE"),
+                resi_appa: occ
+                    .simple("RESI_APPA")
+                    .first()
+                    .and_then(|v| v.as_f64())
+                    .unwrap_or(aster_contact::lac_mortar::PAIR_TOLE),
+            });
+        }
         if let GeomLoop::Automatique { iter_maxi, .. } = z.geom_loop {
             z.set_geom_loop(GeomLoop::Automatique {
                 iter_maxi: iter_maxi.max(20),

@@ -74,9 +74,8 @@ impl Executor {
     pub(crate) fn append_unit(&mut self, unit: i64, text: &str) -> Result<(), ExecError> {
         let path = self.output_path(unit);
         if self.written_units.insert(path.clone()) && path.exists() {
-            std::fs::write(&path, b"").map_err(|e| {
-                ExecError::new(format!("cannot write {}: {e}", path.display()))
-            })?;
+            std::fs::write(&path, b"")
+                .map_err(|e| ExecError::new(format!("cannot write {}: {e}", path.display())))?;
         }
         crate::commands::append_file(&path, text)
     }
@@ -313,6 +312,9 @@ impl CommandSink for Executor {
         self.insert(concept, Concept::Function(Rc::new(function)));
     }
 
+    /// Methods of concepts: `TAB.EXTR_TABLE()` (the table's text, as
+    /// `print` shows a code_aster `Table`: its `IMPR_TABLE` form) and
+    /// `mesh.getMinMaxEdgeSizes(group)`.
     fn method(
         &mut self,
         concept: &ConceptRef,
@@ -321,6 +323,12 @@ impl CommandSink for Executor {
     ) -> Result<aster_eval::HostValue, ExecError> {
         use aster_eval::{HostValue, Scalar};
         match (name, concept.typ.as_str()) {
+            ("EXTR_TABLE", _) if args.is_empty() => {
+                let table = self.table(concept)?;
+                Ok(HostValue::Scalar(Scalar::Str(
+                    table.render().trim_end().to_string(),
+                )))
+            }
             // code_aster 17's Mesh.getMinMaxEdgeSizes(group): the shortest
             // and longest cell edge of a cell group ('TOUT': every cell).
             ("getMinMaxEdgeSizes", "maillage_sdaster") => {

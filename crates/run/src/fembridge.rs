@@ -79,18 +79,25 @@ pub fn build_model(
                 }
             }
             Some(_) => ElementKind::Boundary,
-            None => {
-                let d = springs.get(&cell).ok_or_else(|| {
-                    ExecError::new(format!(
-                        "cell {} carries a discrete element but AFFE_CARA_ELEM gives it no stiffness (DISCRET/DISCRET_2D K_T_D_L or K_T_D_N)",
-                        crate::select::cell_name(mesh, cell)
-                    ))
-                })?;
-                ElementKind::Spring {
+            None => match springs.get(&cell) {
+                Some(d) => ElementKind::Spring {
                     stiffness: d.values.clone(),
                     frame: if d.local { Frame::Local } else { Frame::Global },
+                },
+                // A discrete cell with only a mass (DYNA_NON_LINE).
+                None if cara.is_some_and(|c| c.masses.iter().any(|m| m.cells.contains(&cell))) => {
+                    ElementKind::Spring {
+                        stiffness: vec![0.0; m.dim()],
+                        frame: Frame::Global,
+                    }
                 }
-            }
+                None => {
+                    return Err(ExecError::new(format!(
+                        "cell {} carries a discrete element but AFFE_CARA_ELEM gives it no stiffness (DISCRET/DISCRET_2D K_T_D_L or K_T_D_N)",
+                        crate::select::cell_name(mesh, cell)
+                    )))
+                }
+            },
         };
         elements.push(Element { cell, kind });
     }
@@ -504,6 +511,8 @@ pub fn solve(
 ) -> Result<(Vec<Step>, Rc<FemRun>), ExecError> {
     let cmd = if linear {
         "MECA_STATIQUE"
+    } else if setup.dynamics.is_some() {
+        "DYNA_NON_LINE"
     } else {
         "STAT_NON_LINE"
     };
@@ -570,7 +579,10 @@ pub fn solve(
                     displacement: displacement_from(&model, depl),
                 })
             }
-            None => None,
+            None => {
+                crate::dyna::initial_displacement(ex, setup, &model)?;
+                None
+            }
         };
         let mut snl = StaticNonLinear {
             instants: setup.instants.clone(),
@@ -595,7 +607,15 @@ pub fn solve(
             subdivision: setup.subdivision,
             ..StaticNonLinear::default()
         };
-        let raw = snl.solve(&model, &loads).map_err(|e| match (&e, &setup.time_list_at) {
+        let outcome = match &setup.dynamics {
+            Some(d) => crate::dyna::solve(ex, d, setup, &mesh, &model, &loads, snl)?,
+            None => {
+                let out = snl.solve(&model, &loads);
+                drop(snl);
+                out
+            }
+        };
+        let mut raw = outcome.map_err(|e| match (&e, &setup.time_list_at) {
             (aster_fem::FemError::StepCutting { .. }, Some(at)) => ExecError::new(format!(
                 "{cmd}: {e} (cutting set by DEFI_LIST_INST/ECHEC at {at})"
             )),
@@ -604,7 +624,7 @@ pub fn solve(
             )),
             _ => fem_err(cmd, e),
         })?;
-        drop(snl);
+        setup.archive.apply(&mut raw);
         if setup.verbose {
             ex.write_report(&convergence_report(&raw))?;
         }
@@ -631,6 +651,16 @@ pub fn solve(
                 "VARI_ELGA".to_string(),
                 Field::Elem(elem_field(ElemLocation::Gauss, &s.internal_variables)),
             );
+            if let Some(k) = &s.motion {
+                fields.insert(
+                    "VITE".to_string(),
+                    Field::Nodal(nodal_from_dofs(&model, &k.velocity)),
+                );
+                fields.insert(
+                    "ACCE".to_string(),
+                    Field::Nodal(nodal_from_dofs(&model, &k.acceleration)),
+                );
+            }
             if let Some(f) = &post_friction {
                 // Contact with friction: the multipliers are DOFs of DEPL on
                 // the slave nodes, CONT_NOEU as recorded at convergence.

@@ -204,8 +204,18 @@ impl Tabulated {
             max: last,
             side,
         };
+        // code_aster (fointe, folocx): with PROL_*='EXCLU', an abscissa
+        // beyond an end by at most √ε times the end interval takes the end
+        // value (a list's last instant and a parameter typed apart often
+        // differ by an ulp).
+        let near = |end: usize, other: usize| {
+            n > 1
+                && (x - self.xs[end]).abs()
+                    <= f64::EPSILON.sqrt() * (self.xs[end] - self.xs[other]).abs()
+        };
         if x < first {
             return match self.left {
+                Extension::Excluded if near(0, 1) => Ok(self.ys[0]),
                 Extension::Excluded => Err(out_of_range("GAUCHE")),
                 Extension::Constant => Ok(self.ys[0]),
                 Extension::Linear if n == 1 => Ok(self.ys[0]),
@@ -214,6 +224,7 @@ impl Tabulated {
         }
         if x > last {
             return match self.right {
+                Extension::Excluded if near(n - 1, n - 2) => Ok(self.ys[n - 1]),
                 Extension::Excluded => Err(out_of_range("DROITE")),
                 Extension::Constant => Ok(self.ys[n - 1]),
                 Extension::Linear if n == 1 => Ok(self.ys[0]),

@@ -7,9 +7,11 @@
 //! crates. TEST_RESU/TEST_TABLE verdicts are printed as code_aster prints
 //! them and tallied.
 
+pub mod archive;
 pub mod commands;
 pub mod concept;
 mod contactbridge;
+pub mod dyna;
 mod evaluate;
 pub mod executor;
 pub mod export;
@@ -18,7 +20,9 @@ pub mod field;
 mod friction;
 pub mod function;
 pub mod list;
+pub mod meca_non_line;
 mod meshio;
+mod observation;
 pub mod output;
 pub mod preflight;
 pub mod program;

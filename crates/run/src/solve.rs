@@ -110,115 +110,158 @@ pub struct SolveSetup {
     pub subdivision: Option<aster_fem::Subdivision>,
     /// Where the DEFI_LIST_INST was defined, for messages.
     pub time_list_at: Option<String>,
+    /// `ETAT_INIT/DEPL`, `VITE`, `ACCE` fields (without EVOL_NOLI).
+    pub initial_fields: InitialFields,
+    /// DYNA_NON_LINE's time scheme and mass (`None`: statics).
+    pub dynamics: Option<crate::dyna::DynamicSetup>,
+    /// `ARCHIVAGE`: the steps stored.
+    pub archive: crate::archive::Archive,
 }
+
+/// Initial fields given one by one in `ETAT_INIT` (`DEPL`, and in
+/// dynamics `VITE`, `ACCE`), each with where its keyword is written.
+#[derive(Clone, Debug, Default)]
+pub struct InitialFields {
+    pub depl: Option<(Rc<crate::field::Field>, aster_syntax::Span)>,
+    pub vite: Option<(Rc<crate::field::Field>, aster_syntax::Span)>,
+    pub acce: Option<(Rc<crate::field::Field>, aster_syntax::Span)>,
+}
+
+/// The keywords STAT_NON_LINE reads (also DYNA_NON_LINE's and
+/// MECA_NON_LINE's: the same set-up).
+pub(crate) const SNL_KEYWORDS: &[&str] = &[
+    "MODELE",
+    "CHAM_MATER",
+    "CARA_ELEM",
+    "EXCIT",
+    "EXCIT/CHARGE",
+    "EXCIT/FONC_MULT",
+    "EXCIT/TYPE_CHARGE",
+    "CONTACT",
+    "COMPORTEMENT",
+    "COMPORTEMENT/RELATION",
+    "COMPORTEMENT/DEFORMATION",
+    "COMPORTEMENT/TOUT",
+    "COMPORTEMENT/GROUP_MA",
+    "COMPORTEMENT/MAILLE",
+    // Local (Gauss-point) integration settings: the radial return of the
+    // von Mises laws is exact, so they change nothing.
+    "COMPORTEMENT/RESI_INTE_RELA",
+    "COMPORTEMENT/RESI_INTE",
+    "COMPORTEMENT/ITER_INTE_MAXI",
+    "COMPORTEMENT/ITER_INTE_PAS",
+    "COMPORTEMENT/ALGO_INTE",
+    "INCREMENT",
+    "INCREMENT/LIST_INST",
+    "INCREMENT/INST_INIT",
+    "INCREMENT/INST_FIN",
+    "INCREMENT/NUME_INST_INIT",
+    "INCREMENT/NUME_INST_FIN",
+    "INCREMENT/PRECISION",
+    "METHODE",
+    "NEWTON",
+    "NEWTON/PREDICTION",
+    "NEWTON/MATRICE",
+    "NEWTON/REAC_ITER",
+    "NEWTON/REAC_INCR",
+    "NEWTON/MATR_RIGI_SYME",
+    "NEWTON/REAC_ITER_ELAS",
+    "NEWTON/PAS_MINI_ELAS",
+    // The prediction from a previous result only changes the first
+    // iterate; the converged steps are the same.
+    "NEWTON/EVOL_NOLI",
+    "CONVERGENCE",
+    "CONVERGENCE/RESI_GLOB_RELA",
+    "CONVERGENCE/RESI_GLOB_MAXI",
+    "CONVERGENCE/ITER_GLOB_MAXI",
+    "CONVERGENCE/ITER_GLOB_ELAS",
+    "CONVERGENCE/ARRET",
+    // 'AU_MOINS_UN': one of RESI_GLOB_RELA/MAXI met is enough.
+    "CONVERGENCE/VERIF",
+    "SOLVEUR",
+    "SOLVEUR/*",
+    "ETAT_INIT",
+    "ETAT_INIT/EVOL_NOLI",
+    "ETAT_INIT/INST",
+    "ETAT_INIT/NUME_ORDRE",
+    "ETAT_INIT/PRECISION",
+    "ETAT_INIT/CRITERE",
+    "INFO",
+    // Debugging output of code_aster's internals: nothing to print here.
+    "INFO_DBG",
+    "TITRE",
+    "AFFICHAGE",
+    "AFFICHAGE/*",
+    "ARCHIVAGE",
+    "ARCHIVAGE/*",
+    "MESURE",
+    "MESURE/*",
+    // Module `observation`.
+    "OBSERVATION",
+    "OBSERVATION/NOM_CHAM",
+    "OBSERVATION/NOM_CMP",
+    "OBSERVATION/EVAL_CMP",
+    "OBSERVATION/EVAL_CHAM",
+    "OBSERVATION/EVAL_ELGA",
+    "OBSERVATION/TITRE",
+    "OBSERVATION/OBSE_ETAT_INIT",
+    "OBSERVATION/INST",
+    "OBSERVATION/LIST_INST",
+    "OBSERVATION/PAS_OBSE",
+    "OBSERVATION/CRITERE",
+    "OBSERVATION/PRECISION",
+    "OBSERVATION/TOUT",
+    "OBSERVATION/NOEUD",
+    "OBSERVATION/GROUP_NO",
+    "OBSERVATION/MAILLE",
+    "OBSERVATION/GROUP_MA",
+    "OBSERVATION/POINT",
+    "OBSERVATION/SOUS_POINT",
+];
+
+/// The values STAT_NON_LINE handles (also DYNA_NON_LINE's).
+pub(crate) const SNL_VALUES: &[Values] = &[
+    Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"]),
+    // NEWTON_KRYLOV is Newton with inexact iterative linear solves: with
+    // the direct solver here it is Newton.
+    Values::new("METHODE", &["NEWTON", "NEWTON_KRYLOV"]),
+    Values::new("CONVERGENCE/ARRET", &["OUI"]),
+    Values::new(
+        "NEWTON/PREDICTION",
+        &["ELASTIQUE", "TANGENTE", "DEPL_CALCULE", "EXTRAPOLE"],
+    ),
+    Values::new("NEWTON/MATRICE", &["TANGENTE", "ELASTIQUE"]),
+    Values::listed(
+        "COMPORTEMENT/RELATION",
+        &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC"],
+    ),
+    Values::listed(
+        "COMPORTEMENT/DEFORMATION",
+        &[
+            "PETIT",
+            "PETIT_REAC",
+            "GREEN_LAGRANGE",
+            "GROT_GDEP",
+            "GDEF_LOG",
+            "SIMO_MIEHE",
+        ],
+    ),
+];
 
 /// What STAT_NON_LINE reads (`crate::support`).
 pub(crate) const STAT_NON_LINE: Support = Support {
-    values: &[
-        Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"]),
-        // NEWTON_KRYLOV is Newton with inexact iterative linear solves: with
-        // the direct solver here it is Newton.
-        Values::new("METHODE", &["NEWTON", "NEWTON_KRYLOV"]),
-        Values::new("CONVERGENCE/ARRET", &["OUI"]),
-        Values::new(
-            "NEWTON/PREDICTION",
-            &["ELASTIQUE", "TANGENTE", "DEPL_CALCULE", "EXTRAPOLE"],
-        ),
-        Values::new("NEWTON/MATRICE", &["TANGENTE", "ELASTIQUE"]),
-        Values::listed(
-            "COMPORTEMENT/RELATION",
-            &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC"],
-        ),
-        Values::listed(
-            "COMPORTEMENT/DEFORMATION",
-            &[
-                "PETIT",
-                "PETIT_REAC",
-                "GREEN_LAGRANGE",
-                "GROT_GDEP",
-                "GDEF_LOG",
-                "SIMO_MIEHE",
-            ],
-        ),
-    ],
+    keywords: SNL_KEYWORDS,
+    values: SNL_VALUES,
     hints: &[],
     reuse: false,
     rules: Some(kinematics_rules),
-    keywords: &[
-        "MODELE",
-        "CHAM_MATER",
-        "CARA_ELEM",
-        "EXCIT",
-        "EXCIT/CHARGE",
-        "EXCIT/FONC_MULT",
-        "EXCIT/TYPE_CHARGE",
-        "CONTACT",
-        "COMPORTEMENT",
-        "COMPORTEMENT/RELATION",
-        "COMPORTEMENT/DEFORMATION",
-        "COMPORTEMENT/TOUT",
-        "COMPORTEMENT/GROUP_MA",
-        "COMPORTEMENT/MAILLE",
-        // Local (Gauss-point) integration settings: the radial return of the
-        // von Mises laws is exact, so they change nothing.
-        "COMPORTEMENT/RESI_INTE_RELA",
-        "COMPORTEMENT/RESI_INTE",
-        "COMPORTEMENT/ITER_INTE_MAXI",
-        "COMPORTEMENT/ITER_INTE_PAS",
-        "COMPORTEMENT/ALGO_INTE",
-        "INCREMENT",
-        "INCREMENT/LIST_INST",
-        "INCREMENT/INST_INIT",
-        "INCREMENT/INST_FIN",
-        "INCREMENT/NUME_INST_INIT",
-        "INCREMENT/NUME_INST_FIN",
-        "INCREMENT/PRECISION",
-        "METHODE",
-        "NEWTON",
-        "NEWTON/PREDICTION",
-        "NEWTON/MATRICE",
-        "NEWTON/REAC_ITER",
-        "NEWTON/REAC_INCR",
-        "NEWTON/MATR_RIGI_SYME",
-        "NEWTON/REAC_ITER_ELAS",
-        "NEWTON/PAS_MINI_ELAS",
-        // The prediction from a previous result only changes the first
-        // iterate; the converged steps are the same.
-        "NEWTON/EVOL_NOLI",
-        "CONVERGENCE",
-        "CONVERGENCE/RESI_GLOB_RELA",
-        "CONVERGENCE/RESI_GLOB_MAXI",
-        "CONVERGENCE/ITER_GLOB_MAXI",
-        "CONVERGENCE/ITER_GLOB_ELAS",
-        "CONVERGENCE/ARRET",
-        // 'AU_MOINS_UN': one of RESI_GLOB_RELA/MAXI met is enough.
-        "CONVERGENCE/VERIF",
-        "SOLVEUR",
-        "SOLVEUR/*",
-        "ETAT_INIT",
-        "ETAT_INIT/EVOL_NOLI",
-        "ETAT_INIT/INST",
-        "ETAT_INIT/NUME_ORDRE",
-        "ETAT_INIT/PRECISION",
-        "ETAT_INIT/CRITERE",
-        "INFO",
-        // Debugging output of code_aster's internals: nothing to print here.
-        "INFO_DBG",
-        "TITRE",
-        "AFFICHAGE",
-        "AFFICHAGE/*",
-        "ARCHIVAGE",
-        "ARCHIVAGE/*",
-        "MESURE",
-        "MESURE/*",
-    ],
 };
 
 /// The DEFORMATION a relation cannot take: GROT_GDEP on continuum
 /// elements is code_aster's hyperelastic kinematics (with ELAS it is Saint
 /// Venant-Kirchhoff, the same as GREEN_LAGRANGE), SIMO_MIEHE is for the
 /// plastic laws.
-fn kinematics_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+pub(crate) fn kinematics_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     for occ in call.keywords.factor("COMPORTEMENT") {
         let relation = occ.str("RELATION").unwrap_or("ELAS");
         let why = match (occ.str("DEFORMATION"), relation) {
@@ -268,7 +311,11 @@ fn parse_excitations(
     Ok(out)
 }
 
-fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveSetup, ExecError> {
+pub(crate) fn parse_setup(
+    ex: &Executor,
+    call: &CommandCall,
+    linear: bool,
+) -> Result<SolveSetup, ExecError> {
     let cmd = call.command.as_str();
     let kw = &call.keywords;
     let model = ex.model(ex.required(cmd, kw, "MODELE")?)?;
@@ -319,6 +366,7 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
     }
     let mut subdivision = None;
     let mut time_list_at = None;
+    let mut initial_fields = InitialFields::default();
     let (instants, initial) = if linear {
         instants_linear(ex, kw)?
     } else {
@@ -348,32 +396,49 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         }
         let mut initial = None;
         if let Some(ei) = kw.factor("ETAT_INIT").first() {
-            let Some(r) = ei.concept("EVOL_NOLI") else {
-                let span = ei.entries.first().map(|k| k.span).unwrap_or(call.span);
-                return Err(ex.unsupported(
-                    &format!("{cmd}/ETAT_INIT without EVOL_NOLI (DEPL/SIGM fields)"),
-                    span,
-                ));
-            };
-            let prev = ex.result(r)?;
-            let step = if let Some(t) = ei.f64("INST") {
-                prev.step_at(t, 1e-6, false)
-            } else if let Some(n) = ei.first("NUME_ORDRE").and_then(|s| s.as_i64()) {
-                prev.step_numbered(n as u32)
+            if let Some(r) = ei.concept("EVOL_NOLI") {
+                let prev = ex.result(r)?;
+                let step = if let Some(t) = ei.f64("INST") {
+                    prev.step_at(t, 1e-6, false)
+                } else if let Some(n) = ei.first("NUME_ORDRE").and_then(|s| s.as_i64()) {
+                    prev.step_numbered(n as u32)
+                } else {
+                    prev.steps.last()
+                }
+                .ok_or_else(|| {
+                    ExecError::new(format!(
+                        "{cmd}/ETAT_INIT: the instant asked is not in `{}`",
+                        r.name
+                    ))
+                })?;
+                let t0 = step.inst;
+                if init.is_none() {
+                    init = Some(t0);
+                }
+                initial = Some((prev.clone(), t0));
             } else {
-                prev.steps.last()
+                // Fields one by one (the keywords a command accepts are
+                // checked by its list).
+                for (name, slot) in [
+                    ("DEPL", &mut initial_fields.depl),
+                    ("VITE", &mut initial_fields.vite),
+                    ("ACCE", &mut initial_fields.acce),
+                ] {
+                    if let (Some(c), Some(k)) = (ei.concept(name), ei.keyword(name)) {
+                        *slot = Some((ex.field(c)?, k.span));
+                    }
+                }
+                if initial_fields.depl.is_none()
+                    && initial_fields.vite.is_none()
+                    && initial_fields.acce.is_none()
+                {
+                    let span = ei.entries.first().map(|k| k.span).unwrap_or(call.span);
+                    return Err(ex.unsupported(
+                        &format!("{cmd}/ETAT_INIT without EVOL_NOLI, DEPL, VITE or ACCE"),
+                        span,
+                    ));
+                }
             }
-            .ok_or_else(|| {
-                ExecError::new(format!(
-                    "{cmd}/ETAT_INIT: the instant asked is not in `{}`",
-                    r.name
-                ))
-            })?;
-            let t0 = step.inst;
-            if init.is_none() {
-                init = Some(t0);
-            }
-            initial = Some((prev.clone(), t0));
         }
         let instants = list::select_instants(&list, init, fin)
             .map_err(|e| ExecError::new(format!("{cmd}/INCREMENT: {e}")))?;
@@ -392,7 +457,41 @@ fn parse_setup(ex: &Executor, call: &CommandCall, linear: bool) -> Result<SolveS
         verbose: kw.first("INFO").and_then(|s| s.as_i64()) == Some(2),
         subdivision,
         time_list_at,
+        initial_fields,
+        dynamics: None,
+        archive: parse_archive(ex, kw)?,
     })
+}
+
+/// `ARCHIVAGE`: `LIST_INST`/`INST` (with `PRECISION`, `CRITERE`) or
+/// `PAS_ARCH`.
+fn parse_archive(ex: &Executor, kw: &Keywords) -> Result<crate::archive::Archive, ExecError> {
+    let mut archive = crate::archive::Archive::default();
+    let Some(occ) = kw.factor("ARCHIVAGE").first() else {
+        return Ok(archive);
+    };
+    let list: Option<Vec<f64>> = match occ.concept("LIST_INST") {
+        Some(l) => Some((*ex.real_list(l)?).clone()),
+        None if occ.contains("INST") => Some(
+            occ.simple("INST")
+                .iter()
+                .filter_map(|v| v.as_f64())
+                .collect(),
+        ),
+        None => None,
+    };
+    if let Some(list) = list {
+        archive.instants = Some((
+            list,
+            occ.f64("PRECISION").unwrap_or(1e-6),
+            occ.str("CRITERE") == Some("ABSOLU"),
+        ));
+    }
+    archive.every = occ
+        .first("PAS_ARCH")
+        .and_then(|v| v.as_i64())
+        .map(|k| k.max(1) as usize);
+    Ok(archive)
 }
 
 /// The `COMPORTEMENT` occurrences: ELAS and the von Mises laws with
@@ -570,13 +669,31 @@ fn solve_and_store(
     linear: bool,
 ) -> Result<CommandOutput, ExecError> {
     let setup = parse_setup(ex, call, linear)?;
+    store_solution(ex, call, &setup, linear)
+}
+
+/// Solves a set-up and stores the result (`linear`: an evol_elas).
+pub(crate) fn store_solution(
+    ex: &mut Executor,
+    call: &CommandCall,
+    setup: &SolveSetup,
+    linear: bool,
+) -> Result<CommandOutput, ExecError> {
     let mesh_id = setup.model.mesh;
-    let (steps, fem) = crate::fembridge::solve(ex, &setup, linear)?;
+    let mesh = ex.mesh_by_id(mesh_id)?;
+    let observations = crate::observation::parse(ex, &call.keywords, &mesh)?;
+    let (steps, fem) = crate::fembridge::solve(ex, setup, linear)?;
+    let mut tables = Vec::new();
+    if !observations.is_empty() {
+        let t = crate::observation::table(&observations, &steps, &mesh);
+        tables.push(("OBSERVATION".to_string(), Rc::new(t)));
+    }
     let evol = EvolResult {
         typ: if linear { "evol_elas" } else { "evol_noli" }.into(),
         mesh: mesh_id,
         steps,
         fem: Some(fem),
+        tables,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }

@@ -49,6 +49,25 @@ impl Support {
     }
 }
 
+/// `a` followed by `b`, at compile time: a command that reads another's
+/// keywords and values plus its own declares them as
+/// `joined::<_, { A.len() + B.len() }>(A, B)`. `N` must be the total length
+/// (checked when the constant is evaluated).
+pub const fn joined<T: Copy, const N: usize>(a: &[T], b: &[T]) -> [T; N] {
+    assert!(N > 0 && a.len() + b.len() == N);
+    let mut out = [if a.is_empty() { b[0] } else { a[0] }; N];
+    let mut i = 0;
+    while i < a.len() {
+        out[i] = a[i];
+        i += 1;
+    }
+    while i < N {
+        out[i] = b[i - a.len()];
+        i += 1;
+    }
+    out
+}
+
 /// The values handled for one keyword path.
 #[derive(Clone, Copy, Debug)]
 pub struct Values {
@@ -262,5 +281,15 @@ mod tests {
             "CMD with reuse= (continuing a result)"
         );
         assert_eq!(check_call(None, &c)[0].what, "CMD");
+    }
+
+    #[test]
+    fn joined_keeps_both_lists_in_order() {
+        const A: &[&str] = &["A", "B"];
+        const B: &[&str] = &["C"];
+        const J: [&str; 3] = joined::<_, { A.len() + B.len() }>(A, B);
+        assert_eq!(J, ["A", "B", "C"]);
+        const E: [&str; 1] = joined::<_, 1>(&[], B);
+        assert_eq!(E, ["C"]);
     }
 }

@@ -137,7 +137,7 @@ fn catalog_errors_are_reported_with_the_refusals() {
 fn friction_variants_not_reproduced_are_refused_at_their_keyword() {
     let src = format!(
         r#"{HEAD}d = DEFI_CONTACT(MODELE=model, FROTTEMENT="COULOMB",
-    ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB", COULOMB=0.3))
+    ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB", COULOMB=0.3, E_T=1.0e3))
 c = DEFI_CONTACT(MODELE=model, FORMULATION="CONTINUE", FROTTEMENT="COULOMB",
     ZONE=(_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB", COULOMB=0.3, ALGO_CONT="PENALISATION",
              ADAPTATION="TOUT"),
@@ -153,12 +153,6 @@ FIN()
     assert_eq!(m.len(), 4, "{m:?}");
     assert!(m[0].starts_with("case.comm:4:32: error: not supported yet: DEFI_CONTACT/FROTTEMENT='COULOMB' with FORMULATION='DISCRETE'"), "{m:?}");
     assert!(m[1].starts_with("case.comm:6:56: error: not supported yet: DEFI_CONTACT/FROTTEMENT='COULOMB' with ALGO_RESO_GEOM='POINT_FIXE' and REAC_GEOM='AUTOMATIQUE'"), "{m:?}");
-    assert!(
-        m[2].contains("DEFI_CONTACT/ZONE/COULOMB=0 beside frictional zones"),
-        "{m:?}"
-    );
-    assert!(
-        m[3].contains("DEFI_CONTACT/ZONE/ADAPTATION='TOUT' with penalisation"),
-        "{m:?}"
-    );
+    assert!(m[2].starts_with("case.comm:8:14: error: not supported yet: DEFI_CONTACT/ZONE/ADAPTATION='TOUT' with penalisation"), "{m:?}");
+    assert!(m[3].starts_with("case.comm:9:54: error: not supported yet: DEFI_CONTACT/ZONE/COULOMB=0 beside frictional zones"), "{m:?}");
 }

@@ -403,7 +403,7 @@ fn total_lagrangian(
         } else {
             f.determinant()
         };
-        if !(j > 0.0) {
+        if j.is_nan() || j <= 0.0 {
             return Err(FemError::Integration(format!(
                 "the element is inverted (det F = {j:.3e})"
             )));
@@ -515,9 +515,7 @@ fn simo_miehe_point(
     // ∂N_a/∂x_j with code_aster's AXIS mapping (nmmalu): the hoop
     // direction pairs only with itself (N/r).
     let gr = |a: usize, i: usize, j: usize| -> f64 {
-        if !axi {
-            dn[a][j]
-        } else if i < 2 && j < 2 {
+        if !axi || (i < 2 && j < 2) {
             dn[a][j]
         } else if i == 2 && j == 2 {
             pg.n[a] / r
@@ -597,7 +595,7 @@ fn updated_small(
     let dn = spatial_derivatives(pg, hyp, &f)?;
     let axi = hyp == Hypothesis::Axisymmetric;
     let r = if axi { pg.r * f[(2, 2)] } else { 0.0 };
-    if axi && !(r > 0.0) {
+    if axi && (r.is_nan() || r <= 0.0) {
         return Err(FemError::Integration(format!(
             "a Gauss point reaches the axis (r = {r:.3e})"
         )));

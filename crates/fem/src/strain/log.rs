@@ -179,7 +179,7 @@ impl LogStrain {
             (g, [l1, l2, c[(2, 2)]])
         };
         let smallest = lamb.iter().copied().fold(f64::INFINITY, f64::min);
-        if !(smallest > f64::EPSILON) {
+        if smallest.is_nan() || smallest <= f64::EPSILON {
             return Err(Crushed { smallest });
         }
         let mut e = Matrix3::zeros();

@@ -227,7 +227,8 @@ pub fn parse_mail(text: &str, path: &Path) -> Result<Mesh, MeshError> {
                         })?;
                         ids.push(id);
                     }
-                    push_group(&mut p.mesh.groups_ma, name.text, ids).map_err(|m| p.err(&name, m))?;
+                    push_group(&mut p.mesh.groups_ma, name.text, ids)
+                        .map_err(|m| p.err(&name, m))?;
                 } else {
                     let mut ids = Vec::new();
                     for m in members {
@@ -244,7 +245,8 @@ pub fn parse_mail(text: &str, path: &Path) -> Result<Mesh, MeshError> {
                         })?;
                         ids.push(id);
                     }
-                    push_group(&mut p.mesh.groups_no, name.text, ids).map_err(|m| p.err(&name, m))?;
+                    push_group(&mut p.mesh.groups_no, name.text, ids)
+                        .map_err(|m| p.err(&name, m))?;
                 }
             }
             _ => {
@@ -400,8 +402,9 @@ mod tests {
             e.to_string(),
             "t.mail:12:1: group `G` is defined twice: give each GROUP_MA/GROUP_NO block its own name"
         );
-        let e = parse("COOR_2D\nN1 0 0\nFINSF\nGROUP_NO NOM=P\nN1\nFINSF\nGROUP_NO NOM=P\nN1\nFINSF\n")
-            .unwrap_err();
+        let e =
+            parse("COOR_2D\nN1 0 0\nFINSF\nGROUP_NO NOM=P\nN1\nFINSF\nGROUP_NO NOM=P\nN1\nFINSF\n")
+                .unwrap_err();
         assert!(e.to_string().starts_with("t.mail:7:"), "{e}");
     }
 

@@ -13,6 +13,7 @@ mod restrict;
 #[cfg(test)]
 mod testmesh;
 
+pub(crate) use degree::edges;
 pub use degree::{CentreNodes, DegreeReport};
 pub use geom_groups::NodeKind;
 pub use orient::OrientReport;

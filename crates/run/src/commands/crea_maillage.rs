@@ -181,7 +181,16 @@ fn decoupe_lac(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, E
         .iter()
         .filter_map(|s| s.as_str())
         .collect();
-    let (cut, patches) = aster_mesh::decoupe_lac(&mesh, &groups)
+    // DECOUPE_HEXA (default 'PYRA'): how the quadrangles of hexahedra are cut.
+    let hexa = match occ.simple("DECOUPE_HEXA").first().and_then(|v| v.as_str()) {
+        Some("HEXA") => aster_mesh::DecoupeHexa::Hexa,
+        _ => aster_mesh::DecoupeHexa::Pyra,
+    };
+    let options = aster_mesh::LacOptions {
+        hexa,
+        reference: &aster_fem::shape::ReferenceCells,
+    };
+    let (cut, patches) = aster_mesh::decoupe_lac_with(&mesh, &groups, options)
         .map_err(|e| ex.kw_error(CMD, occ, "GROUP_MA_ESCL", e.to_string()))?;
     let cut = Arc::new(cut);
     ex.lac_patches.push((cut.clone(), Arc::new(patches)));

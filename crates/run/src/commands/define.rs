@@ -122,6 +122,8 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         poisson,
         density: elas.f64("RHO"),
         alpha: elas.f64("ALPHA"),
+        amor_alpha: elas.f64("AMOR_ALPHA"),
+        amor_beta: elas.f64("AMOR_BETA"),
         ecro_line,
         traction,
     };
@@ -256,8 +258,14 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
 /// What AFFE_CARA_ELEM reads (`crate::support`).
 pub(crate) const AFFE_CARA_ELEM: Support = Support {
     values: &[
-        Values::listed("DISCRET/CARA", &["K_T_D_L", "K_T_D_N"]),
-        Values::listed("DISCRET_2D/CARA", &["K_T_D_L", "K_T_D_N"]),
+        Values::listed(
+            "DISCRET/CARA",
+            &["K_T_D_L", "K_T_D_N", "M_T_D_N", "M_T_N", "M_T_L"],
+        ),
+        Values::listed(
+            "DISCRET_2D/CARA",
+            &["K_T_D_L", "K_T_D_N", "M_T_D_N", "M_T_N", "M_T_L"],
+        ),
     ],
     ..Support::keywords(&[
         "MODELE",
@@ -285,14 +293,21 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let model = ex.model(model_ref)?;
     let mesh = ex.mesh_by_id(model.mesh)?;
     let mut discrete = Vec::new();
+    let mut masses = Vec::new();
     for f in ["DISCRET", "DISCRET_2D"] {
         for occ in kw.factor(f) {
             let cara = occ.str("CARA").unwrap_or_default().to_string();
             let dim = if f == "DISCRET_2D" { 2 } else { 3 };
+            if let Some(m) = discrete_mass(ex, f, occ, &cara, dim, &mesh)? {
+                masses.push(m);
+                continue;
+            }
             if cara != "K_T_D_L" && cara != "K_T_D_N" {
                 let span = occ.keyword("CARA").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
-                    &format!("AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N)"),
+                    &format!(
+                        "AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N, M_T_D_N, M_T_N, M_T_L)"
+                    ),
                     span,
                 ));
             }
@@ -333,8 +348,62 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         Concept::CaraElem(Rc::new(CaraElem {
             model: model_ref.id,
             discrete,
+            masses,
         })),
     )
+}
+
+/// A translational mass of `DISCRET(_2D)` (`M_T_D_N` on POI1, `M_T_N` on
+/// POI1, `M_T_L` on SEG2; symmetric, upper triangle by columns), or `None`
+/// for another `CARA`.
+fn discrete_mass(
+    ex: &Executor,
+    factor: &str,
+    occ: &Keywords,
+    cara: &str,
+    dim: usize,
+    mesh: &aster_mesh::Mesh,
+) -> Result<Option<DiscreteMassDef>, ExecError> {
+    let (nodes, count) = match cara {
+        "M_T_D_N" => (1, 1),
+        "M_T_N" => (1, dim * (dim + 1) / 2),
+        "M_T_L" => (2, 2 * dim * (2 * dim + 1) / 2),
+        _ => return Ok(None),
+    };
+    let at = format!("AFFE_CARA_ELEM/{factor}");
+    if occ.str("SYME") == Some("NON") {
+        let span = occ.keyword("SYME").map(|k| k.span).unwrap_or_default();
+        return Err(ex.unsupported(&format!("{at}/SYME='NON' (a non-symmetric {cara})"), span));
+    }
+    let values = reals(occ, "VALE");
+    if values.len() != count {
+        return Err(ex.kw_error(
+            &at,
+            occ,
+            "VALE",
+            format!(
+                "{cara} in {factor} needs {count} values, got {}",
+                values.len()
+            ),
+        ));
+    }
+    let cells = select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{at}: {e}")))?;
+    if let Some(&bad) = cells.iter().find(|&&c| {
+        mesh.cell(c).nodes.len() != nodes || mesh.cell(c).ty.dim() as usize + 1 != nodes
+    }) {
+        return Err(ExecError::new(format!(
+            "{at}: {cara} applies to {} cells, but cell {} is a {}",
+            if nodes == 2 { "SEG2" } else { "POI1" },
+            select::cell_name(mesh, bad),
+            mesh.cell(bad).ty.name()
+        )));
+    }
+    Ok(Some(DiscreteMassDef {
+        cells,
+        cara: cara.to_string(),
+        values,
+        local: occ.str("REPERE") == Some("LOCAL"),
+    }))
 }
 
 /// What DEFI_FONCTION reads (`crate::support`).

@@ -273,7 +273,36 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         let r = ex.required("TEST_RESU/RESU", occ, "RESULTAT")?;
         let result = ex.result(r)?;
         let mesh = ex.mesh_by_id(result.mesh)?;
-        let steps = select_steps(ex, "TEST_RESU/RESU", occ, &result)?;
+        let steps = match (occ.f64("INST"), occ.contains("NUME_ORDRE")) {
+            (Some(t), false) => {
+                // code_aster (trprec, tresu_tole): the instant is matched
+                // with TOLE_MACHINE's second value (default 1e-6) and the
+                // second CRITERE (the only one when one is given);
+                // PRECISION is the tolerance of the value.
+                let crit: Vec<&str> = occ
+                    .simple("CRITERE")
+                    .iter()
+                    .filter_map(|s| s.as_str())
+                    .collect();
+                let absolute = crit.last() == Some(&"ABSOLU");
+                let tole: Vec<f64> = occ
+                    .simple("TOLE_MACHINE")
+                    .iter()
+                    .filter_map(|s| s.as_f64())
+                    .collect();
+                let prec = tole.last().copied().unwrap_or(1e-6);
+                let step = result.step_at(t, prec, absolute).ok_or_else(|| {
+                    ex.kw_error(
+                        "TEST_RESU/RESU",
+                        occ,
+                        "INST",
+                        format!("the result has no instant {t}"),
+                    )
+                })?;
+                vec![step]
+            }
+            _ => select_steps(ex, "TEST_RESU/RESU", occ, &result)?,
+        };
         let step = match steps.as_slice() {
             [s] => *s,
             _ => {

@@ -147,6 +147,16 @@ pub static COMMANDS: &[Command] = &[
         support: crate::solve::STAT_NON_LINE,
     },
     Command {
+        name: "DYNA_NON_LINE",
+        run: crate::dyna::dyna_non_line,
+        support: crate::dyna::DYNA_NON_LINE,
+    },
+    Command {
+        name: "MECA_NON_LINE",
+        run: crate::meca_non_line::meca_non_line,
+        support: crate::meca_non_line::MECA_NON_LINE,
+    },
+    Command {
         name: "MECA_STATIQUE",
         run: crate::solve::meca_statique,
         support: crate::solve::MECA_STATIQUE,
@@ -255,6 +265,11 @@ pub static COMMANDS: &[Command] = &[
         name: "CALC_TABLE",
         run: tables::calc_table,
         support: tables::CALC_TABLE,
+    },
+    Command {
+        name: "RECU_TABLE",
+        run: tables::recu_table,
+        support: tables::RECU_TABLE,
     },
     Command {
         name: "CALC_PRESSION",

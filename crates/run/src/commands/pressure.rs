@@ -1,8 +1,9 @@
 //! CALC_PRESSION: the pressure on a boundary from the nodal stresses, as
 //! code_aster 17 computes it (a macro-command): at each node of the
 //! `GROUP_MA` cells, with n the nodal normal (the normalised mean of the
-//! unit normals of the group's cells at the node, on the initial or the
-//! deformed geometry) and σ the `SIEF_NOEU` stress,
+//! unit normals of the group's cells at the node, each from the cell's
+//! tangents at that node, on the initial or the deformed geometry) and σ
+//! the `SIEF_NOEU` stress,
 //!
 //!   PRES = n·σ·n;  in 2D also V = σ·n − PRES·n (VX, VY) and CISA = |V|.
 //!
@@ -23,8 +24,11 @@ use std::rc::Rc;
 const CMD: &str = "CALC_PRESSION";
 
 /// Nodal normals of boundary cells (segments in 2D, faces in 3D) on the
-/// coordinates `xyz`: each cell's unit normal ((Δy, −Δx) for a segment,
-/// the right-hand rule for a face) summed at its nodes, then normalised.
+/// coordinates `xyz`, as code_aster's `CREA_CHAMP(OPERATION='NORMALE')`
+/// (`canort`): in each cell, the unit normal at the node from the cell's
+/// own tangents there ((t_y, −t_x) for a segment, t₁ × t₂ for a face, so a
+/// curved quadratic cell gives each node its own normal), summed over the
+/// cells around the node, then normalised.
 fn nodal_normals(
     mesh: &Mesh,
     cells: &[CellId],
@@ -33,37 +37,44 @@ fn nodal_normals(
     let mut sum: BTreeMap<NodeId, [f64; 3]> = BTreeMap::new();
     for &c in cells {
         let cell = mesh.cell(c);
-        let k = cell.ty.corner_count().min(cell.nodes.len());
-        let p: Vec<[f64; 3]> = cell.nodes[..k].iter().map(|n| xyz(*n)).collect();
-        let n = match cell.ty.dim() {
-            1 => [p[1][1] - p[0][1], -(p[1][0] - p[0][0]), 0.0],
-            2 => {
-                // Newell's normal of the corner polygon.
-                let mut n = [0.0; 3];
-                for i in 0..k {
-                    let (a, b) = (p[i], p[(i + 1) % k]);
-                    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-                    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-                    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-                }
-                n
-            }
-            _ => {
-                return Err(ExecError::new(format!(
-                    "{CMD}/GROUP_MA: cell {} is a {}; the pressure is computed on boundary cells (segments in 2D, faces in 3D)",
-                    select::cell_name(mesh, c),
-                    cell.ty.name()
-                )))
-            }
-        };
-        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if l == 0.0 || !l.is_finite() {
+        let dim = cell.ty.dim();
+        if !(dim == 1 || dim == 2) || !aster_fem::shape::supported(cell.ty) {
             return Err(ExecError::new(format!(
-                "{CMD}: cell {} is degenerate (no normal)",
-                select::cell_name(mesh, c)
+                "{CMD}/GROUP_MA: cell {} is a {}; the pressure is computed on boundary cells (segments in 2D, faces in 3D)",
+                select::cell_name(mesh, c),
+                cell.ty.name()
             )));
         }
-        for &node in &cell.nodes {
+        let p: Vec<[f64; 3]> = cell.nodes.iter().map(|n| xyz(*n)).collect();
+        let reference = aster_fem::shape::reference_nodes(cell.ty);
+        for (i, &node) in cell.nodes.iter().enumerate() {
+            let Some(&xi) = reference.get(i) else {
+                continue;
+            };
+            let dn = aster_fem::shape::shape(cell.ty, xi).dn;
+            let (mut t1, mut t2) = ([0.0; 3], [0.0; 3]);
+            for (k, x) in p.iter().enumerate() {
+                for d in 0..3 {
+                    t1[d] += dn[k][0] * x[d];
+                    t2[d] += dn[k][1] * x[d];
+                }
+            }
+            let n = if dim == 1 {
+                [t1[1], -t1[0], 0.0]
+            } else {
+                [
+                    t1[1] * t2[2] - t1[2] * t2[1],
+                    t1[2] * t2[0] - t1[0] * t2[2],
+                    t1[0] * t2[1] - t1[1] * t2[0],
+                ]
+            };
+            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            if l == 0.0 || !l.is_finite() {
+                return Err(ExecError::new(format!(
+                    "{CMD}: cell {} is degenerate (no normal)",
+                    select::cell_name(mesh, c)
+                )));
+            }
             let s = sum.entry(node).or_insert([0.0; 3]);
             for d in 0..3 {
                 s[d] += n[d] / l;

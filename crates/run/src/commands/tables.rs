@@ -292,3 +292,39 @@ fn compare(a: &Option<Value>, b: &Option<Value>) -> std::cmp::Ordering {
         (None, None) => Ordering::Equal,
     }
 }
+
+/// What RECU_TABLE reads (`crate::support`): a table a computation made.
+pub(crate) const RECU_TABLE: Support = Support {
+    values: &[crate::support::Values::listed(
+        "NOM_TABLE",
+        &["OBSERVATION"],
+    )],
+    ..Support::keywords(&["CO", "NOM_TABLE", "TITRE"])
+};
+
+/// `RECU_TABLE(CO=result, NOM_TABLE=...)`: a table carried by a result
+/// (`STAT_NON_LINE/OBSERVATION` makes 'OBSERVATION').
+pub fn recu_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let co = ex.required("RECU_TABLE", kw, "CO")?;
+    let name = kw.str("NOM_TABLE").unwrap_or("");
+    let result = ex.result(co)?;
+    let Some((_, t)) = result.tables.iter().find(|(n, _)| n == name) else {
+        return Err(ExecError::new(format!(
+            "RECU_TABLE: `{}` has no table '{name}' (it has: {})",
+            co.name,
+            if result.tables.is_empty() {
+                "none; STAT_NON_LINE makes 'OBSERVATION' with OBSERVATION=_F(...)".to_string()
+            } else {
+                result
+                    .tables
+                    .iter()
+                    .map(|(n, _)| format!("'{n}'"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            }
+        )));
+    };
+    let table = (**t).clone();
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}

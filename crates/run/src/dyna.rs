@@ -1,0 +1,323 @@
+//! DYNA_NON_LINE: the keywords of STAT_NON_LINE (read by
+//! [`crate::solve::parse_setup`]) plus the time scheme (`SCHEMA_TEMPS`),
+//! the mass (`ELAS/RHO`, discrete masses, `MASS_DIAG`), Rayleigh damping
+//! (`AMOR_ALPHA`, `AMOR_BETA`) and the initial velocity and acceleration
+//! (`ETAT_INIT`), turned into aster-fem's [`DynamicNonLinear`]. The Newton
+//! loop, conditions, contact and behaviours are STAT_NON_LINE's.
+
+use crate::concept::ContactDef;
+use crate::executor::Executor;
+use crate::field::Field;
+use crate::solve::{
+    kinematics_rules, parse_setup, store_solution, SolveSetup, SNL_KEYWORDS, SNL_VALUES,
+};
+use crate::support::{joined, Refusal, Support, Values};
+use aster_eval::{CommandCall, CommandOutput, ExecError};
+use aster_fem::{
+    DiscreteMass, DynamicNonLinear, Frame, Lumping, MassData, Model, NonLinearResult, Rayleigh,
+    Scheme, StaticNonLinear,
+};
+use aster_mesh::Mesh;
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// DYNA_NON_LINE's settings beyond STAT_NON_LINE's.
+#[derive(Clone, Debug)]
+pub struct DynamicSetup {
+    pub scheme: Scheme,
+    pub lumping: Lumping,
+}
+
+/// The keywords DYNA_NON_LINE executes besides STAT_NON_LINE's.
+const DYNA_KEYWORDS: &[&str] = &[
+    "SCHEMA_TEMPS",
+    "SCHEMA_TEMPS/SCHEMA",
+    "SCHEMA_TEMPS/FORMULATION",
+    "SCHEMA_TEMPS/BETA",
+    "SCHEMA_TEMPS/GAMMA",
+    "SCHEMA_TEMPS/ALPHA",
+    "SCHEMA_TEMPS/MODI_EQUI",
+    "MASS_DIAG",
+    "AMOR_RAYL_RIGI",
+    "ETAT_INIT/DEPL",
+    "ETAT_INIT/VITE",
+    "ETAT_INIT/ACCE",
+    // Columns of the convergence table code_aster prints: nothing to print
+    // here.
+    "SUIVI_DDL",
+    "SUIVI_DDL/*",
+];
+
+/// The values DYNA_NON_LINE handles besides STAT_NON_LINE's.
+const DYNA_VALUES: &[Values] = &[
+    Values::new("SCHEMA_TEMPS/SCHEMA", &["NEWMARK", "HHT"])
+        .why("(the explicit schemes and NOHHT are not implemented: no contact case uses them)"),
+    Values::new("SCHEMA_TEMPS/FORMULATION", &["DEPLACEMENT"])
+        .why("(only the displacement formulation of the implicit schemes)"),
+    Values::new("AMOR_RAYL_RIGI", &["ELASTIQUE"])
+        .why("(Rayleigh damping on the tangent stiffness)"),
+];
+
+const DYNA_ALL_KEYWORDS: [&str; SNL_KEYWORDS.len() + DYNA_KEYWORDS.len()] =
+    joined(SNL_KEYWORDS, DYNA_KEYWORDS);
+const DYNA_ALL_VALUES: [Values; SNL_VALUES.len() + DYNA_VALUES.len()] =
+    joined(SNL_VALUES, DYNA_VALUES);
+
+/// What DYNA_NON_LINE reads (`crate::support`): STAT_NON_LINE's keywords
+/// and values, the time scheme, the mass options and the initial velocity
+/// and acceleration.
+pub(crate) const DYNA_NON_LINE: Support = Support {
+    keywords: &DYNA_ALL_KEYWORDS,
+    values: &DYNA_ALL_VALUES,
+    hints: &[],
+    reuse: false,
+    rules: Some(dyna_rules),
+};
+
+/// STAT_NON_LINE's rules, the finite-strain kinematics not validated in
+/// dynamics and a mass shift (`COEF_MASS_SHIFT`) refused.
+fn dyna_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    kinematics_rules(call, out);
+    // PETIT_REAC is validated in dynamics (SDNL111D, every TEST_RESU OK);
+    // the total-Lagrangian and multiplicative kinematics are not: with
+    // SIMO_MIEHE, SDNV103E matches code_aster to 1e-6 but one symmetry
+    // velocity (0 by symmetry) is round-off amplified by γ/(βΔt) = 3.7e7,
+    // 6.7e-8 where code_aster's is 2e-9 and the test's absolute tolerance
+    // 1e-8.
+    for occ in call.keywords.factor("COMPORTEMENT") {
+        if let Some(d @ ("GREEN_LAGRANGE" | "GROT_GDEP" | "GDEF_LOG" | "SIMO_MIEHE")) =
+            occ.str("DEFORMATION")
+        {
+            out.push(Refusal::at(
+                format!(
+                    "DYNA_NON_LINE/COMPORTEMENT/DEFORMATION='{d}' (finite strains in dynamics are not validated against code_aster: PETIT and PETIT_REAC only)"
+                ),
+                occ,
+                "DEFORMATION",
+                call.span,
+            ));
+        }
+    }
+    for st in call.keywords.factor("SCHEMA_TEMPS") {
+        if st.f64("COEF_MASS_SHIFT").is_some_and(|c| c != 0.0) {
+            out.push(Refusal::at(
+                "DYNA_NON_LINE/SCHEMA_TEMPS/COEF_MASS_SHIFT (mass shift)".into(),
+                st,
+                "COEF_MASS_SHIFT",
+                call.span,
+            ));
+        }
+    }
+}
+
+pub fn dyna_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let mut setup = parse_setup(ex, call, false)?;
+    let dynamics = parse_dynamics(ex, call)?;
+    // The weighted equilibrium also weights the continuous contact forces
+    // of the previous step (code_aster's CNELTC): not done here.
+    if let (Scheme::Hht { modified: true, .. }, Some(c)) = (dynamics.scheme, &setup.contact) {
+        if let ContactDef::Zones { keywords, .. } = &**c {
+            if keywords.str("FORMULATION") == Some("CONTINUE") {
+                let span = call
+                    .keywords
+                    .factor("SCHEMA_TEMPS")
+                    .first()
+                    .and_then(|st| st.keyword("MODI_EQUI").or(st.keyword("SCHEMA")))
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
+                return Err(ex.unsupported(
+                    "DYNA_NON_LINE/SCHEMA_TEMPS HHT with MODI_EQUI='OUI' and a continuous contact (FORMULATION='CONTINUE': its forces of the previous step are weighted)",
+                    span,
+                ));
+            }
+        }
+    }
+    // Friction runs its own Newton loop (force sources), without the
+    // time integrator.
+    if let Some(c) = &setup.contact {
+        if let ContactDef::Zones { keywords, .. } = &**c {
+            if keywords.str("FROTTEMENT") == Some("COULOMB") {
+                let span = call
+                    .keywords
+                    .keyword("CONTACT")
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
+                return Err(ex.unsupported(
+                    "DYNA_NON_LINE/CONTACT with FROTTEMENT='COULOMB' (friction in dynamics)",
+                    span,
+                ));
+            }
+        }
+    }
+    setup.dynamics = Some(dynamics);
+    store_solution(ex, call, &setup, false)
+}
+
+fn parse_dynamics(ex: &Executor, call: &CommandCall) -> Result<DynamicSetup, ExecError> {
+    let cmd = call.command.as_str();
+    let kw = &call.keywords;
+    let Some(st) = kw.factor("SCHEMA_TEMPS").first() else {
+        return Err(ExecError::new(format!("{cmd}: SCHEMA_TEMPS is required")));
+    };
+    let real = |name: &str, default: f64| st.f64(name).unwrap_or(default);
+    let scheme = match st.str("SCHEMA") {
+        Some("HHT") => Scheme::Hht {
+            alpha: real("ALPHA", -0.1),
+            modified: st.str("MODI_EQUI").unwrap_or("OUI") == "OUI",
+        },
+        _ => Scheme::Newmark {
+            beta: real("BETA", 0.25),
+            gamma: real("GAMMA", 0.5),
+        },
+    };
+    // code_aster (MECANONLINE5_13): a diagonal mass is for explicit schemes.
+    if kw.str("MASS_DIAG") == Some("OUI") {
+        return Err(ex.kw_error(
+            cmd,
+            kw,
+            "MASS_DIAG",
+            "a diagonal (lumped) mass is only for the explicit schemes (DIFF_CENT, TCHAMWA); the implicit NEWMARK and HHT use the consistent mass",
+        ));
+    }
+    Ok(DynamicSetup {
+        scheme,
+        lumping: Lumping::Consistent,
+    })
+}
+
+/// The densities (ELAS/RHO) of the model's cells, the discrete masses and
+/// the Rayleigh coefficients.
+fn mass_data(
+    mesh: &Mesh,
+    setup: &SolveSetup,
+) -> Result<(MassData, HashMap<aster_mesh::CellId, Rayleigh>), ExecError> {
+    let mut data = MassData::default();
+    let mut rayleigh = HashMap::new();
+    for (&cell, _) in setup.model.cells.iter() {
+        let Some(mat) = setup.materials.cells.get(&cell) else {
+            continue;
+        };
+        if let Some(rho) = mat.density {
+            data.density.insert(cell, rho);
+        }
+        let r = Rayleigh {
+            alpha: mat.amor_alpha.unwrap_or(0.0),
+            beta: mat.amor_beta.unwrap_or(0.0),
+        };
+        if r.alpha != 0.0 || r.beta != 0.0 {
+            rayleigh.insert(cell, r);
+        }
+    }
+    if let Some(cara) = &setup.cara {
+        for m in &cara.masses {
+            for &cell in &m.cells {
+                if !setup.model.cells.contains_key(&cell) {
+                    return Err(ExecError::new(format!(
+                        "AFFE_CARA_ELEM: a mass ({}) on cell {}, which is not in the model",
+                        m.cara,
+                        crate::select::cell_name(mesh, cell)
+                    )));
+                }
+                data.discrete.push(match m.cara.as_str() {
+                    "M_T_D_N" => DiscreteMass::Node {
+                        cell,
+                        mass: m.values[0],
+                    },
+                    _ => DiscreteMass::Matrix {
+                        cell,
+                        upper: m.values.clone(),
+                        frame: if m.local { Frame::Local } else { Frame::Global },
+                    },
+                });
+            }
+        }
+    }
+    Ok((data, rayleigh))
+}
+
+/// A vector per DOF index of `model` from a nodal field (components the
+/// field lacks are zero).
+fn dof_vector(model: &Model, field: &Field) -> Option<Vec<f64>> {
+    let Field::Nodal(f) = field else {
+        return None;
+    };
+    Some(
+        model
+            .dofs()
+            .dofs()
+            .iter()
+            .map(|d| f.get(d.node, d.comp.name()).unwrap_or(0.0))
+            .collect(),
+    )
+}
+
+/// Runs the dynamic analysis of a set-up with the static solver `solver`
+/// (instants, Newton, conditions, contact, behaviours, initial
+/// displacement) and the initial velocity and acceleration: those of
+/// `ETAT_INIT`, else of its `EVOL_NOLI` step, else zero and the
+/// equilibrium's.
+pub(crate) fn solve(
+    ex: &mut Executor,
+    dynamics: &DynamicSetup,
+    setup: &SolveSetup,
+    mesh: &Mesh,
+    model: &Model,
+    loads: &aster_fem::Loads,
+    solver: StaticNonLinear<'_>,
+) -> Result<Result<NonLinearResult, aster_fem::FemError>, ExecError> {
+    let cmd = "DYNA_NON_LINE";
+    let (data, rayleigh) = mass_data(mesh, setup)?;
+    let mut dyna = DynamicNonLinear::new(solver, dynamics.scheme, data);
+    dyna.lumping = dynamics.lumping;
+    dyna.rayleigh = rayleigh;
+    let vector = |f: &(Rc<Field>, aster_syntax::Span), what: &str| {
+        dof_vector(model, &f.0).ok_or_else(|| {
+            ExecError::new(format!(
+                "{cmd}/ETAT_INIT/{what}: expected a nodal field (CREA_CHAMP NOEU_DEPL_R)"
+            ))
+        })
+    };
+    if let Some(v) = &setup.initial_fields.vite {
+        dyna.velocity = Some(vector(v, "VITE")?);
+    }
+    if let Some(a) = &setup.initial_fields.acce {
+        dyna.acceleration = Some(vector(a, "ACCE")?);
+    }
+    if let Some((prev, t0)) = &setup.initial {
+        if let Some(step) = prev.step_at(*t0, 1e-6, false) {
+            if let Some(v) = step.fields.get("VITE") {
+                dyna.velocity = dof_vector(model, v);
+            }
+            if let Some(a) = step.fields.get("ACCE") {
+                dyna.acceleration = dof_vector(model, a);
+            }
+        }
+    }
+    let out = dyna.solve(model, loads);
+    if dyna.acceleration_singular {
+        ex.write_report(
+            "<A> DYNA_NON_LINE: the initial acceleration could not be computed (the mass matrix is singular): it is taken as zero, as code_aster does (MECANONLINE_69)\n",
+        )?;
+    }
+    Ok(out)
+}
+
+/// The initial displacement of `ETAT_INIT/DEPL`: only a zero field is
+/// accepted, since code_aster starts such a state stress-free (σ₀ = 0, not
+/// the stresses of the displacement) and the solver here does not.
+pub(crate) fn initial_displacement(
+    ex: &Executor,
+    setup: &SolveSetup,
+    model: &Model,
+) -> Result<(), ExecError> {
+    if let Some((f, span)) = &setup.initial_fields.depl {
+        let zero = dof_vector(model, f).is_some_and(|v| v.iter().all(|&x| x == 0.0));
+        if !zero {
+            return Err(ex.unsupported(
+                "ETAT_INIT/DEPL with a non-zero displacement and no SIGM (a stress-free initial displacement)",
+                *span,
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,207 @@
+//! The project's dynamics scenes (DYNA_NON_LINE) and MECA_NON_LINE:
+//! - comm/dyna_oscillator.comm: a mass-spring oscillator, Newmark's average
+//!   acceleration against its exact discrete solution (period elongation),
+//!   HHT (MODI_EQUI 'NON' and 'OUI') against the schemes' recursions;
+//! - comm/dyna_bar.comm: a bar with an initial velocity, in free flight
+//!   (exact rigid translation) and thrown against a wall (discrete contact:
+//!   the end held at the wall during 2L/c, the wave solution);
+//! - comm/dyna_impact.comm: a point mass on a rigid wall (LIAISON_UNIL),
+//!   the elastic impact of the average acceleration and the dissipation of
+//!   GAMMA > 1/2;
+//! - error cases: located refusals and errors;
+//! - MECA_NON_LINE on the step-cutting scene gives STAT_NON_LINE's values.
+
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Runs a command file's text on a mesh: (OK, NOOK, error).
+fn run_text(text: &str, mesh: &Path, tag: &str) -> (usize, usize, Option<String>) {
+    let out = std::env::temp_dir().join(format!("aster-dyna-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let comm = out.join("case.comm");
+    std::fs::write(&comm, text).unwrap();
+    let case = aster_run::program::prepare(&comm, Some(mesh), &out).unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&out);
+    (
+        outcome.tally.ok,
+        outcome.tally.nook,
+        outcome.error.map(|e| format!("{e:?}")),
+    )
+}
+
+fn scene(name: &str) -> String {
+    std::fs::read_to_string(root().join("comm").join(name)).unwrap()
+}
+
+fn edited(name: &str, pairs: &[(&str, &str)]) -> String {
+    let mut text = scene(name);
+    for (from, to) in pairs {
+        assert!(text.contains(from), "{name} no longer has `{from}`");
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
+fn oscillator_mesh() -> PathBuf {
+    root().join("comm/dyna_oscillator.mail")
+}
+
+#[test]
+fn oscillator_matches_newmark_and_hht_references() {
+    let r = run_text(&scene("dyna_oscillator.comm"), &oscillator_mesh(), "osc");
+    assert_eq!(r, (26, 0, None));
+}
+
+#[test]
+fn bar_in_flight_and_against_a_wall() {
+    let r = run_text(
+        &scene("dyna_bar.comm"),
+        &root().join("comm/dyna_bar.mail"),
+        "bar",
+    );
+    assert_eq!(r, (20, 0, None));
+}
+
+#[test]
+fn point_mass_impacts_a_rigid_wall() {
+    let r = run_text(&scene("dyna_impact.comm"), &oscillator_mesh(), "impact");
+    assert_eq!(r, (30, 0, None));
+}
+
+#[test]
+fn archivage_keeps_the_listed_instants_and_renumbers() {
+    // Only t = 5dt and 17dt are archived (with the initial state and the
+    // last step, always kept): NUME_ORDRE 1, 2, 3 are steps 5, 17, 40.
+    let text = edited(
+        "dyna_oscillator.comm",
+        &[
+            (
+                "times = DEFI_LIST_REEL",
+                "archived = DEFI_LIST_REEL(VALE=(5 * dt, 17 * dt))\ntimes = DEFI_LIST_REEL",
+            ),
+            (
+                "INCREMENT=_F(LIST_INST=times),",
+                "INCREMENT=_F(LIST_INST=times),\n    ARCHIVAGE=_F(LIST_INST=archived),",
+            ),
+            (
+                "for n in (5, 17, 40):",
+                "for n, no in ((5, 1), (17, 2), (40, 3)):",
+            ),
+            (
+                "NUME_ORDRE=n, NOM_CHAM=\"DEPL\"",
+                "NUME_ORDRE=no, NOM_CHAM=\"DEPL\"",
+            ),
+            (
+                "NUME_ORDRE=n, NOM_CHAM=\"VITE\"",
+                "NUME_ORDRE=no, NOM_CHAM=\"VITE\"",
+            ),
+            (
+                "NUME_ORDRE=n, NOM_CHAM=\"ACCE\"",
+                "NUME_ORDRE=no, NOM_CHAM=\"ACCE\"",
+            ),
+        ],
+    );
+    assert_eq!(
+        run_text(&text, &oscillator_mesh(), "archive"),
+        (26, 0, None)
+    );
+}
+
+const NEWMARK: &str =
+    r#"SCHEMA_TEMPS=_F(SCHEMA="NEWMARK", FORMULATION="DEPLACEMENT", BETA=0.25, GAMMA=0.5),"#;
+
+fn oscillator_error(pairs: &[(&str, &str)], tag: &str) -> String {
+    let text = edited("dyna_oscillator.comm", pairs);
+    let (_, nook, err) = run_text(&text, &oscillator_mesh(), tag);
+    assert_eq!(nook, 0);
+    err.expect("an error")
+}
+
+#[test]
+fn unsupported_schemes_and_settings_are_refused_where_written() {
+    let err = oscillator_error(
+        &[(
+            NEWMARK,
+            r#"SCHEMA_TEMPS=_F(SCHEMA="DIFF_CENT", FORMULATION="ACCELERATION"),"#,
+        )],
+        "diffcent",
+    );
+    assert!(
+        err.contains("not supported yet: DYNA_NON_LINE/SCHEMA_TEMPS/SCHEMA='DIFF_CENT'")
+            && err.contains("case.comm:"),
+        "{err}"
+    );
+    let err = oscillator_error(
+        &[(
+            NEWMARK,
+            r#"SCHEMA_TEMPS=_F(SCHEMA="NEWMARK", FORMULATION="DEPLACEMENT"), MASS_DIAG="OUI","#,
+        )],
+        "massdiag",
+    );
+    assert!(
+        err.contains("MASS_DIAG") && err.contains("explicit schemes"),
+        "{err}"
+    );
+    // A stress-free initial displacement (DEPL without SIGM) is refused.
+    let err = oscillator_error(
+        &[
+            (
+                "times = DEFI_LIST_REEL",
+                "shifted = CREA_CHAMP(TYPE_CHAM=\"NOEU_DEPL_R\", OPERATION=\"AFFE\", MAILLAGE=mesh, AFFE=_F(GROUP_NO=\"A\", NOM_CMP=(\"DX\", \"DY\"), VALE=(0.5, 0.0)))\ntimes = DEFI_LIST_REEL",
+            ),
+            ("ETAT_INIT=_F(VITE=launch),", "ETAT_INIT=_F(VITE=launch, DEPL=shifted),"),
+        ],
+        "depl",
+    );
+    assert!(
+        err.contains("ETAT_INIT/DEPL with a non-zero displacement"),
+        "{err}"
+    );
+    // BETA = 0 is an explicit scheme.
+    let err = oscillator_error(
+        &[(
+            NEWMARK,
+            r#"SCHEMA_TEMPS=_F(SCHEMA="NEWMARK", FORMULATION="DEPLACEMENT", BETA=0.0, GAMMA=0.5),"#,
+        )],
+        "beta0",
+    );
+    assert!(err.contains("BETA must be positive"), "{err}");
+}
+
+#[test]
+fn a_massless_unheld_dof_is_a_located_singular_system() {
+    // Without the mass the free node has nothing holding it along x.
+    let err = oscillator_error(
+        &[
+            (
+                r#"_F(GROUP_MA="MASS", CARA="K_T_D_N", VALE=(k, k)),"#,
+                r#"_F(GROUP_MA="MASS", CARA="K_T_D_N", VALE=(0.0, 0.0)),"#,
+            ),
+            (
+                r#"_F(GROUP_MA="MASS", CARA="M_T_D_N", VALE=m),"#,
+                r#"_F(GROUP_MA="MASS", CARA="M_T_D_N", VALE=0.0),"#,
+            ),
+        ],
+        "massless",
+    );
+    assert!(
+        err.contains("singular system") && err.contains("N1 DX"),
+        "{err}"
+    );
+}
+
+fn cutting_mesh() -> PathBuf {
+    root().join("comm/plastic3d_cutting.mail")
+}
+
+#[test]
+fn meca_non_line_gives_stat_non_line_steps() {
+    let text =
+        scene("plastic3d_cutting.comm").replace("resu = STAT_NON_LINE(", "resu = MECA_NON_LINE(");
+    assert!(text.contains("MECA_NON_LINE("));
+    assert_eq!(run_text(&text, &cutting_mesh(), "meca"), (3, 0, None));
+}
