@@ -185,3 +185,56 @@ fn real_zzzz237b_all_versions() {
         );
     }
 }
+
+/// Issue 15's reproducers and the inputs the fuzzers found
+/// (crates/eval/tests/crashes): `aster run` ends each with its result or
+/// exit code 2 and a located message (`file:line:col`), quickly — never a
+/// crash (101), an abort or a hang. Deep nesting is built here (the files
+/// would be large).
+#[test]
+fn crash_corpus_runs_end_in_a_result_or_a_located_error() {
+    let dir = root().join("crates/eval/tests/crashes");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "comm"))
+        .collect();
+    let gen = out_dir("crash-gen");
+    for (name, text) in [
+        ("not.comm", format!("x = {}1\n", "not ".repeat(30_000))),
+        ("attr.comm", format!("x = a{}\n", ".b".repeat(150_000))),
+        (
+            "elif.comm",
+            format!("if 1:\n    pass\n{}", "elif 1:\n    pass\n".repeat(87_000)),
+        ),
+    ] {
+        let p = gen.join(name);
+        std::fs::write(&p, text).unwrap();
+        files.push(p);
+    }
+    files.sort();
+    assert!(files.len() > 10);
+    for f in &files {
+        let t = std::time::Instant::now();
+        let r = aster_run(&[f.as_path()], None, "crash");
+        assert!(
+            t.elapsed().as_secs_f64() < 10.0,
+            "{}: {:?}",
+            f.display(),
+            t.elapsed()
+        );
+        match r.code {
+            0 => {}
+            2 => {
+                let name = f.file_name().unwrap().to_string_lossy().to_string();
+                let all = format!("{}{}", r.stdout, r.stderr);
+                assert!(
+                    all.contains(&format!("{name}:")),
+                    "{name}: no location in\n{all}"
+                );
+            }
+            c => panic!("{}: exit {c}\n{}{}", f.display(), r.stdout, r.stderr),
+        }
+    }
+}

@@ -23,7 +23,7 @@
 use std::collections::BTreeSet;
 
 use aster_fem::{InequalityRow, RowOutcome};
-use aster_mesh::{Mesh, NodeId};
+use aster_mesh::{CellId, Mesh, NodeId};
 
 use crate::zone::ContactInit;
 
@@ -68,7 +68,10 @@ impl Glissiere {
         self.started = true;
         let eps = self
             .threshold
-            .unwrap_or_else(|| 1e-6 * mesh.edge_sizes().map(|(lo, _)| lo).unwrap_or(0.0));
+            .unwrap_or_else(|| {
+                let all: Vec<CellId> = (0..mesh.cells.len() as u32).map(CellId).collect();
+                1e-6 * mesh.edge_length_range(&all).map(|(lo, _)| lo).unwrap_or(0.0)
+            });
         for &(n, g) in gaps {
             let link = match self.init {
                 ContactInit::Oui => true,

@@ -557,6 +557,9 @@ fn sort_points(dim: usize, pts: &mut Vec<[f64; 2]>, tol: f64) {
     }
 }
 
+/// Points in a cell's parametric space.
+pub type ParamPoints = Vec<[f64; 2]>;
+
 /// The intersection of a slave cell with a master cell in the slave's
 /// parametric space (`prjint`): its points (sorted) and its measure in
 /// that space. `Err(())` when code_aster gives up on the pair with an
@@ -568,6 +571,8 @@ pub struct Intersection {
     pub weight: f64,
 }
 
+// `Err(())`: a projection failed (code_aster's `ierr`); the caller skips the pair.
+#[allow(clippy::result_unit_err)]
 pub fn intersect(slave: MortarCell, master: MortarCell, tol: f64) -> Result<Intersection, ()> {
     let dim = slave.dim();
     let none = Intersection {
@@ -725,7 +730,7 @@ pub fn master_images(
     master: MortarCell,
     slave_points: &[[f64; 2]],
     tole: f64,
-) -> Option<(Vec<[f64; 2]>, Vec<[f64; 2]>)> {
+) -> Option<(ParamPoints, ParamPoints)> {
     let dim = slave.dim();
     let mut master_points = Vec::with_capacity(slave_points.len());
     for &xi in slave_points {

@@ -4,7 +4,7 @@
 use aster_mesh::{CellId, NodeId};
 
 use crate::error::ContactError;
-use crate::shape::{dot, norm, project_along, scale, sub, SurfaceKind};
+use crate::shape::{dot, norm, project_along, project_mmnewt, scale, sub, SurfaceKind};
 use crate::surface::ResolvedZone;
 use crate::zone::{Appariement, NormalChoice};
 
@@ -147,7 +147,7 @@ pub fn pair_point(
                 let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
                 let projected = match g.dire_appa {
                     Some(d) => project_along(cell.kind, &nodes, xs, d),
-                    None => crate::shape::project_mmnewt(cell.kind, &nodes, xs),
+                    None => project_mmnewt(cell.kind, &nodes, xs),
                 };
                 let Some(p) = projected else {
                     continue;

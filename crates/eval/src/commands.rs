@@ -43,7 +43,12 @@ pub(crate) fn call_command(
     } else {
         None
     };
-    let Some(mut cmd) = catalog().command(replaced.unwrap_or(name)) else {
+    let Some(mut cmd) = catalog().command(replaced.unwrap_or(name)).or_else(|| {
+        // code_aster 17: `POURSUITE(...)` is `DEBUT(MODE='POURSUITE', ...)`.
+        (name == "POURSUITE")
+            .then(|| catalog().command("DEBUT"))
+            .flatten()
+    }) else {
         return err_unknown(name, span);
     };
     if name == "INCLUDE" {
@@ -245,8 +250,16 @@ pub(crate) fn call_command(
     if name == "FIN" {
         me.finished = true;
     }
-    if name == "POURSUITE" {
-        me.continued = true;
+    let restart = name == "POURSUITE"
+        || (name == "DEBUT"
+            && matches!(call.keywords.get("MODE"), Some(KwValue::Simple(v))
+                if matches!(v.as_slice(), [Scalar::Str(m)] if m == "POURSUITE")));
+    if restart {
+        if me.study.several_files {
+            me.restore_context();
+        } else {
+            me.continued = true;
+        }
     }
 
     Ok(match (output, result, formula) {

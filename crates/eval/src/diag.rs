@@ -122,7 +122,7 @@ impl Diagnostic {
         out.push('\n');
         let lc = map.line_col(self.span.start as usize);
         let end = map.line_col((self.span.end.max(self.span.start)) as usize);
-        let text = map.line_text(lc.line);
+        let text = map.line_text_at(lc);
         let num = lc.line.to_string();
         let pad = " ".repeat(num.len());
         let width = if end.line == lc.line && end.column > lc.column {

@@ -94,6 +94,8 @@ pub(crate) struct Interp<'a> {
     pub legacy: bool,
     /// User function calls in progress (see [`MAX_CALL_DEPTH`]).
     depth: usize,
+    /// Several command files and their Python modules (see `study`).
+    pub study: crate::study::StudyState<'a>,
     /// Nested evaluation levels in progress (see [`MAX_EVAL_DEPTH`]).
     nesting: usize,
     /// Steps spent from the program's [`STEP_BUDGET`].
@@ -118,6 +120,7 @@ impl<'a> Interp<'a> {
             commands: 0,
             legacy: false,
             depth: 0,
+            study: crate::study::StudyState::default(),
             nesting: 0,
             steps: std::cell::Cell::new(0),
             loops: Vec::new(),
@@ -388,10 +391,13 @@ impl<'a> Interp<'a> {
             StmtKind::Import { names } => {
                 for a in names {
                     let bind = |n: &str| n.split('.').next().unwrap_or(n).to_string();
-                    let module = module_kind(&a.name).ok_or(()).or_else(|_| {
-                        unsupported(a.span, format!("import of module `{}`", a.name))
-                    })?;
-                    let _ = module;
+                    if self.study.has_module(&a.name) {
+                        self.load_module(&a.name, a.span)?;
+                    } else if module_kind(&a.name).is_none() {
+                        return Err(
+                            self.missing_module(a.span, format!("import of module `{}`", a.name))
+                        );
+                    }
                     match &a.asname {
                         Some(as_) => {
                             self.set_var(&as_.name, Value::Module(Rc::from(a.name.as_str())))
@@ -413,8 +419,19 @@ impl<'a> Interp<'a> {
                 if *level > 0 {
                     return unsupported(s.span, "relative imports");
                 }
+                if self.study.has_module(&m) {
+                    self.import_from_user_module(&m, names, *star, s.span)?;
+                    return Ok(Flow::Normal);
+                }
                 match module_kind(&m) {
-                    None => return unsupported(s.span, format!("import from module `{m}`")),
+                    None => {
+                        return Err(self.missing_module(s.span, format!("import from module `{m}`")))
+                    }
+                    Some(ModuleKind::Re) => {
+                        if *star || !names.is_empty() {
+                            return unsupported(s.span, format!("import from module `{m}`"));
+                        }
+                    }
                     Some(ModuleKind::Math) => {
                         if *star {
                             for n in builtins::MATH_NAMES {
@@ -578,6 +595,7 @@ impl<'a> Interp<'a> {
             defaults,
             body,
             closure,
+            module: self.study.current.clone(),
         })))
     }
 
@@ -684,6 +702,10 @@ impl<'a> Interp<'a> {
                 if let Some(c) = catalog().command(name) {
                     return Some(Value::Command(Rc::from(c.name.as_str())));
                 }
+                // code_aster 17 keeps `POURSUITE` as `DEBUT(MODE='POURSUITE')`.
+                if name == "POURSUITE" {
+                    return Some(Value::Command(Rc::from("POURSUITE")));
+                }
                 if self.legacy && crate::legacy_commands::replacement(name).is_some() {
                     return Some(Value::Command(Rc::from(name)));
                 }
@@ -709,7 +731,9 @@ impl<'a> Interp<'a> {
             return Ok(v);
         }
         if name == "__name__" {
-            return Ok(Value::str("__main__"));
+            return Ok(Value::str(
+                self.study.current.as_deref().unwrap_or("__main__"),
+            ));
         }
         if self.continued {
             return Ok(Value::Concept(ConceptRef {
@@ -1179,6 +1203,7 @@ impl<'a> Interp<'a> {
                     None => unsupported(span, format!("`{m}.{name}`")),
                 }
             }
+            Value::Module(m) if self.study.is_loaded(m) => self.module_attr(m, name, span),
             Value::Module(m) => unsupported(span, format!("`{m}.{name}`")),
             Value::Complex(a, b) => match name {
                 "real" => Ok(Value::Float(*a)),
@@ -1445,6 +1470,8 @@ impl<'a> Interp<'a> {
                 }
             }
         }
+        // A function of a module sees that module's globals.
+        let home = self.enter_namespace(f.module.clone(), span)?;
         self.frames.push(frame);
         self.depth += 1;
         let r = match &f.body {
@@ -1456,6 +1483,7 @@ impl<'a> Interp<'a> {
         };
         self.depth -= 1;
         self.frames.pop();
+        self.leave_namespace(home);
         r
     }
 
@@ -1526,11 +1554,16 @@ impl<'a> Interp<'a> {
 enum ModuleKind {
     Math,
     NoOp,
+    /// `re`: the import is accepted; its functions are refused where used.
+    Re,
 }
 
 fn module_kind(m: &str) -> Option<ModuleKind> {
     if m == "math" {
         return Some(ModuleKind::Math);
+    }
+    if m == "re" {
+        return Some(ModuleKind::Re);
     }
     let top = m.split('.').next().unwrap_or(m);
     match top {

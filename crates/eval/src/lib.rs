@@ -18,6 +18,7 @@ mod interp;
 pub mod legacy;
 pub mod legacy_commands;
 pub mod limits;
+mod study;
 mod testcase;
 mod try_import;
 mod validate;
@@ -58,12 +59,56 @@ pub fn run_program(
     sink: &mut dyn CommandSink,
     options: RunOptions,
 ) -> Result<RunSummary, Diagnostics> {
+    let study = Study {
+        files: vec![module],
+        modules: Vec::new(),
+        declared: false,
+    };
+    run_study(map, &study, sink, options)
+}
+
+/// A study as an `.export` describes it: command files run in order, and
+/// the Python modules they may import. Every file is parsed at its own
+/// offset of one [`CodeMap`] (`CodeMap::add_file`, `parse_module_at`).
+pub struct Study<'m> {
+    /// The command files, in order (`F comm X.comm D 1`, `X.com1`…).
+    pub files: Vec<&'m ast::Module>,
+    /// The modules (`F nom name.py D 0`), by module name.
+    pub modules: Vec<(String, &'m ast::Module)>,
+    /// The module list is the study's whole list (an `.export` gave it): a
+    /// missing module is said so.
+    pub declared: bool,
+}
+
+/// Runs a study: each command file in turn in one interpreter; at the end
+/// of a file the context `FIN` saves (concepts and plain values, not
+/// functions or modules) is what `POURSUITE` in the next file restores.
+pub fn run_study(
+    map: &CodeMap,
+    study: &Study,
+    sink: &mut dyn CommandSink,
+    options: RunOptions,
+) -> Result<RunSummary, Diagnostics> {
     let mut interp = interp::Interp::new(map, sink, options.keep_going);
-    interp.legacy = aster_syntax::dialect::generation(module).is_legacy();
-    let r = interp.run_module(module);
-    let mut diags = std::mem::take(&mut interp.diags);
-    if let Err(interp::Halt::Diag(d)) = r {
-        diags.push(*d);
+    interp.study.sources = study.modules.iter().map(|(n, m)| (n.clone(), *m)).collect();
+    interp.study.declared = study.declared;
+    let mut diags = Vec::new();
+    let mut reached_fin = false;
+    for (i, module) in study.files.iter().enumerate() {
+        if i > 0 {
+            interp.end_command_file();
+            interp.study.several_files = true;
+        }
+        interp.legacy = aster_syntax::dialect::generation(module).is_legacy();
+        let r = interp.run_module(module);
+        diags.append(&mut interp.diags);
+        reached_fin = interp.finished;
+        if let Err(interp::Halt::Diag(d)) = r {
+            diags.push(*d);
+        }
+        if diags.iter().any(Diagnostic::is_error) {
+            break;
+        }
     }
     let diags = Diagnostics(diags);
     if diags.has_errors() {
@@ -71,7 +116,7 @@ pub fn run_program(
     }
     Ok(RunSummary {
         commands: interp.commands,
-        reached_fin: interp.finished,
+        reached_fin,
         warnings: diags,
     })
 }

@@ -18,6 +18,9 @@ pub struct UserFunc {
     pub body: FuncBody,
     /// The enclosing function's variables when defined inside a function.
     pub closure: std::collections::HashMap<String, Value>,
+    /// The study module the function was defined in (`None`: the command
+    /// file): its globals are the module's.
+    pub module: Option<Rc<str>>,
 }
 
 #[derive(Debug)]

@@ -347,7 +347,9 @@ impl IncrementTerms for Newmark {
                 "time step from {from} to {to}: the instants must increase"
             )));
         }
-        let changed = !((dt - self.dt).abs() <= 1e-12 * dt);
+        // NaN in the previous step counts as a change.
+        let diff = (dt - self.dt).abs();
+        let changed = diff.is_nan() || diff > 1e-12 * dt;
         self.dt = dt;
         let (b, g) = (self.beta, self.gamma);
         let n = self.u.len();

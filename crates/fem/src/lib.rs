@@ -18,6 +18,7 @@ mod diag;
 pub mod dof;
 pub mod dynamics;
 pub mod element;
+pub mod energy;
 pub mod error;
 pub mod force_source;
 pub mod fpg;

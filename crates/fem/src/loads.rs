@@ -73,6 +73,16 @@ pub enum Load {
     /// Force per unit volume (per unit area in 2D) on a continuum cell
     /// (`FORCE_INTERNE`), global components.
     VolumeForce { cell: CellId, force: [f64; 3] },
+    /// A surface force given point by point: its value at each point of
+    /// [`shape::skin_scheme`] (a function of the coordinates evaluated
+    /// there, as code_aster does for `AFFE_CHAR_MECA_F`); see
+    /// [`Loads::skin_points`].
+    SurfaceForceAt { cell: CellId, forces: Vec<[f64; 3]> },
+    /// A pressure given at each point of [`shape::skin_scheme`].
+    PressureAt { cell: CellId, pressures: Vec<f64> },
+    /// A force per unit volume given at each point of the cell's stiffness
+    /// scheme ([`shape::rigi_scheme`]); see [`Loads::volume_points`].
+    VolumeForceAt { cell: CellId, forces: Vec<[f64; 3]> },
 }
 
 /// A load with its multiplier.
@@ -150,7 +160,7 @@ impl Loads {
                         check(*d, "linear relation (LIAISON_DDL)")?;
                     }
                 }
-                Load::VolumeForce { cell, .. } => {
+                Load::VolumeForce { cell, .. } | Load::VolumeForceAt { cell, .. } => {
                     let continuum = model.elements().iter().any(|e| {
                         e.cell == *cell && matches!(e.kind, ElementKind::Continuum { .. })
                     });
@@ -161,7 +171,10 @@ impl Loads {
                         )));
                     }
                 }
-                Load::SurfaceForce { cell, .. } | Load::Pressure { cell, .. } => {
+                Load::SurfaceForce { cell, .. }
+                | Load::Pressure { cell, .. }
+                | Load::SurfaceForceAt { cell, .. }
+                | Load::PressureAt { cell, .. } => {
                     let mesh = model.mesh();
                     let Some(c) = mesh.cells.get(cell.0 as usize) else {
                         return Err(FemError::Model(format!(
@@ -255,15 +268,49 @@ impl Loads {
                 Load::SurfaceForce { cell, force } => {
                     let m = item.mult.eval(t)?;
                     let tr = [force[0] * m, force[1] * m, force[2] * m];
-                    surface_load(model, *cell, |_, _| tr, &mut f)?;
+                    let scheme = shape::load_scheme(model.mesh().cell(*cell).ty);
+                    surface_load(model, *cell, &scheme, |_, _, _| tr, &mut f)?;
+                }
+                Load::SurfaceForceAt { cell, forces } => {
+                    let m = item.mult.eval(t)?;
+                    let scheme = point_scheme(model, *cell, forces.len(), true)?;
+                    surface_load(
+                        model,
+                        *cell,
+                        &scheme,
+                        |k, _, _| [forces[k][0] * m, forces[k][1] * m, forces[k][2] * m],
+                        &mut f,
+                    )?;
                 }
                 Load::VolumeForce { cell, force } => {
                     let m = item.mult.eval(t)?;
                     let b = [force[0] * m, force[1] * m, force[2] * m];
-                    volume_load(model, *cell, b, &mut f)?;
+                    volume_load(model, *cell, |_| b, &mut f)?;
                 }
-                Load::Pressure { cell, pressure } => {
-                    let p = pressure * item.mult.eval(t)?;
+                Load::VolumeForceAt { cell, forces } => {
+                    let m = item.mult.eval(t)?;
+                    point_scheme(model, *cell, forces.len(), false)?;
+                    volume_load(
+                        model,
+                        *cell,
+                        |k| [forces[k][0] * m, forces[k][1] * m, forces[k][2] * m],
+                        &mut f,
+                    )?;
+                }
+                Load::Pressure { cell, .. } | Load::PressureAt { cell, .. } => {
+                    let m = item.mult.eval(t)?;
+                    let (scheme, values): (Vec<shape::GaussPoint>, Vec<f64>) = match &item.load {
+                        Load::PressureAt { pressures, .. } => (
+                            point_scheme(model, *cell, pressures.len(), true)?,
+                            pressures.iter().map(|p| p * m).collect(),
+                        ),
+                        Load::Pressure { pressure, .. } => {
+                            let scheme = shape::load_scheme(model.mesh().cell(*cell).ty);
+                            let n = scheme.len();
+                            (scheme, vec![pressure * m; n])
+                        }
+                        _ => unreachable!("matched above"),
+                    };
                     let adj = faces.get_or_insert_with(|| adjacent_centroids(model));
                     let c = model.mesh().cell(*cell);
                     let mut key: Vec<NodeId> = c
@@ -277,7 +324,9 @@ impl Loads {
                     surface_load(
                         model,
                         *cell,
-                        |x, n| {
+                        &scheme,
+                        |k, x, n| {
+                            let p = values[k];
                             let mut n = *n;
                             if let Some(ctr) = inside {
                                 let d: f64 = (0..3).map(|k| (x[k] - ctr[k]) * n[k]).sum();
@@ -295,6 +344,46 @@ impl Loads {
         }
         Ok(f)
     }
+}
+
+impl Loads {
+    /// Where a load given point by point on a boundary cell takes its
+    /// values ([`Load::SurfaceForceAt`], [`Load::PressureAt`]): the
+    /// physical coordinates of the points of [`shape::skin_scheme`].
+    pub fn skin_points(mesh: &aster_mesh::Mesh, cell: CellId) -> Vec<[f64; 3]> {
+        shape::scheme_points(mesh, cell, &shape::skin_scheme(mesh.cell(cell).ty))
+    }
+
+    /// Where [`Load::VolumeForceAt`] takes its values: the points of the
+    /// cell's stiffness scheme.
+    pub fn volume_points(mesh: &aster_mesh::Mesh, cell: CellId) -> Vec<[f64; 3]> {
+        shape::scheme_points(mesh, cell, &shape::rigi_scheme(mesh.cell(cell).ty))
+    }
+}
+
+/// The scheme of a load given at `count` points (skin or stiffness),
+/// checked against the count.
+fn point_scheme(
+    model: &Model,
+    cell: CellId,
+    count: usize,
+    skin: bool,
+) -> Result<Vec<shape::GaussPoint>, FemError> {
+    let ty = model.mesh().cell(cell).ty;
+    let scheme = if skin {
+        shape::skin_scheme(ty)
+    } else {
+        shape::rigi_scheme(ty)
+    };
+    if scheme.len() != count {
+        return Err(FemError::Model(format!(
+            "load on cell {} given at {count} points; its {} scheme has {}",
+            model.cell_name(cell),
+            ty.name(),
+            scheme.len()
+        )));
+    }
+    Ok(scheme)
 }
 
 fn index(model: &Model, dof: Dof) -> Result<usize, FemError> {
@@ -339,14 +428,15 @@ fn adjacent_centroids(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
 fn surface_load(
     model: &Model,
     cell: CellId,
-    traction: impl Fn(&[f64; 3], &[f64; 3]) -> [f64; 3],
+    scheme: &[shape::GaussPoint],
+    traction: impl Fn(usize, &[f64; 3], &[f64; 3]) -> [f64; 3],
     f: &mut [f64],
 ) -> Result<(), FemError> {
     let mesh = model.mesh();
     let c = mesh.cell(cell);
     let dim = model.dim();
     let axis = model.hypothesis() == Some(Hypothesis::Axisymmetric);
-    for gp in shape::load_scheme(c.ty) {
+    for (k, gp) in scheme.iter().enumerate() {
         let s = shape::shape(c.ty, gp.xi);
         let mut x = [0.0; 3];
         let mut t1 = [0.0; 3];
@@ -381,7 +471,7 @@ fn surface_load(
         if axis {
             w *= x[0];
         }
-        let tr = traction(&x, &normal);
+        let tr = traction(k, &x, &normal);
         for (i, &n) in c.nodes.iter().enumerate() {
             let first = model.dofs().node_first(n).ok_or_else(|| {
                 FemError::Model(format!(
@@ -400,12 +490,21 @@ fn surface_load(
 /// Integrates a constant body force b over a continuum cell into `f`
 /// (∫ Nᵢ b dV with the stiffness Gauss scheme; ×r in axisymmetry, as the
 /// stiffness is).
-fn volume_load(model: &Model, cell: CellId, b: [f64; 3], f: &mut [f64]) -> Result<(), FemError> {
+fn volume_load(
+    model: &Model,
+    cell: CellId,
+    force: impl Fn(usize) -> [f64; 3],
+    f: &mut [f64],
+) -> Result<(), FemError> {
     let mesh = model.mesh();
     let c = mesh.cell(cell);
     let dim = model.dim();
     let axis = model.hypothesis() == Some(Hypothesis::Axisymmetric);
-    for gp in shape::stiffness_scheme(c.ty, model.hypothesis()) {
+    for (g, gp) in shape::stiffness_scheme(c.ty, model.hypothesis())
+        .into_iter()
+        .enumerate()
+    {
+        let b = force(g);
         let s = shape::shape(c.ty, gp.xi);
         // Jacobian J[k][l] = ∂x_k/∂ξ_l.
         let mut jac = [[0.0; 3]; 3];
@@ -426,13 +525,15 @@ fn volume_load(model: &Model, cell: CellId, b: [f64; 3], f: &mut [f64]) -> Resul
                 - jac[0][1] * (jac[1][0] * jac[2][2] - jac[1][2] * jac[2][0])
                 + jac[0][2] * (jac[1][0] * jac[2][1] - jac[1][1] * jac[2][0])
         };
-        if det.is_nan() || det <= 0.0 {
+        // An inverted cell integrates with |J|, as its stiffness does
+        // (code_aster's dfdm2d/dfdm3d); a degenerate one is an error.
+        if det.is_nan() || det == 0.0 {
             return Err(FemError::Model(format!(
-                "volume force on cell {}: its Jacobian is not positive (a degenerate or inverted cell)",
+                "volume force on cell {}: its Jacobian is zero (a degenerate cell)",
                 model.cell_name(cell)
             )));
         }
-        let mut w = gp.weight * det;
+        let mut w = gp.weight * det.abs();
         if axis {
             w *= x[0];
         }

@@ -352,6 +352,53 @@ pub fn load_scheme(ty: CellType) -> Vec<GaussPoint> {
     }
 }
 
+/// code_aster's "RIGI" Gauss family of the skin elements (edges of plane
+/// models, faces of 3D ones: `MEPLSE2`, `MECA_FACE3`…), where loads given
+/// by functions of the coordinates are evaluated: SEG2 FPG2, SEG3 FPG4,
+/// TRIA3 FPG3, QUAD4 FPG4, TRIA6/TRIA7 FPG6, QUAD8/QUAD9 FPG9 (`elraga`
+/// order: FPG2 (+a, −a), FPG4 (b, −b, c, −c)).
+pub fn skin_scheme(ty: CellType) -> Vec<GaussPoint> {
+    let gp = |x: f64, w: f64| GaussPoint {
+        xi: [x, 0., 0.],
+        weight: w,
+    };
+    match ty {
+        CellType::SEG2 => vec![gp(G2, 1.), gp(-G2, 1.)],
+        CellType::SEG3 | CellType::SEG4 => {
+            let (b, c) = (0.339_981_043_584_856_26, 0.861_136_311_594_052_6);
+            let (wb, wc) = (0.652_145_154_862_546_1, 0.347_854_845_137_453_9);
+            vec![gp(b, wb), gp(-b, wb), gp(c, wc), gp(-c, wc)]
+        }
+        CellType::TRIA3 => load_scheme(ty),
+        CellType::TRIA6 | CellType::TRIA7 => fpg::tria_fpg6(),
+        CellType::QUAD4 | CellType::QUAD8 | CellType::QUAD9 => rigi_scheme(ty),
+        _ => Vec::new(),
+    }
+}
+
+/// Physical coordinates of the points of a scheme on a cell.
+pub fn scheme_points(
+    mesh: &aster_mesh::Mesh,
+    cell: aster_mesh::CellId,
+    scheme: &[GaussPoint],
+) -> Vec<[f64; 3]> {
+    let c = mesh.cell(cell);
+    scheme
+        .iter()
+        .map(|gp| {
+            let s = shape(c.ty, gp.xi);
+            let mut x = [0.0; 3];
+            for (i, &n) in c.nodes.iter().enumerate() {
+                let p = mesh.coord(n);
+                for k in 0..3 {
+                    x[k] += s.n[i] * p[k];
+                }
+            }
+            x
+        })
+        .collect()
+}
+
 /// Number of corner (vertex) nodes: code_aster numbers them first.
 pub fn corner_count(ty: CellType) -> usize {
     match ty {

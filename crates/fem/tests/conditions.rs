@@ -592,3 +592,89 @@ fn unreachable_convergence_criterion_is_a_clear_error() {
     let res = snl.solve(&m, &loads).unwrap();
     assert_eq!(res.last().unwrap().iterations, 1);
 }
+
+#[test]
+fn loads_given_point_by_point_integrate_their_values() {
+    // The ring of `edge_force_in_axis_is_per_radian`: an axial traction
+    // q(r) = r at the edge's points gives reactions ∫ r·r dr = 7/3 per
+    // radian; a body force b(r) = r on the cell ∫∫ r·r dr dz = 7/3; a
+    // pressure p(r) = r on the top pushes down by the same.
+    let mut mb = MeshBuilder::new(2);
+    let a = mb.node("A", [1., 0., 0.]);
+    let b = mb.node("B", [2., 0., 0.]);
+    let c = mb.node("C", [2., 1., 0.]);
+    let d = mb.node("D", [1., 1., 0.]);
+    let q = mb.cell("Q", CellType::QUAD4, &[a, b, c, d]);
+    let e = mb.cell("E", CellType::SEG2, &[c, d]);
+    let mat = Elastic::new(100., 0.3).unwrap();
+    let m = Model::new(
+        mb.mesh,
+        vec![
+            Element {
+                cell: q,
+                kind: ElementKind::Continuum {
+                    hypothesis: Hypothesis::Axisymmetric,
+                    material: mat,
+                },
+            },
+            Element {
+                cell: e,
+                kind: ElementKind::Boundary,
+            },
+        ],
+    )
+    .unwrap();
+    let skin = Loads::skin_points(m.mesh(), e);
+    assert_eq!(skin.len(), 2);
+    let vol = Loads::volume_points(m.mesh(), q);
+    assert_eq!(vol.len(), 4);
+    let cases: Vec<(Load, f64)> = vec![
+        (
+            Load::SurfaceForceAt {
+                cell: e,
+                forces: skin.iter().map(|x| [0., x[0], 0.]).collect(),
+            },
+            7. / 3.,
+        ),
+        (
+            Load::VolumeForceAt {
+                cell: q,
+                forces: vol.iter().map(|x| [0., x[0], 0.]).collect(),
+            },
+            7. / 3.,
+        ),
+        (
+            Load::PressureAt {
+                cell: e,
+                pressures: skin.iter().map(|x| x[0]).collect(),
+            },
+            -7. / 3.,
+        ),
+    ];
+    for (load, resultant) in cases {
+        let mut loads = Loads::new();
+        loads.add(load, Multiplier::constant(2.));
+        for n in [a, b] {
+            loads.push(Load::Eliminated {
+                dof: Dof::new(n, Comp::DY),
+                value: 0.,
+            });
+        }
+        let s = &meca_statique(&m, &loads, &[0.]).unwrap().steps[0];
+        let r = post::reac_noda(&m, &loads, 0., &s.displacement).unwrap();
+        let total = r[idx(&m, a, Comp::DY)] + r[idx(&m, b, Comp::DY)];
+        assert!((total + 2. * resultant).abs() < 1e-10, "{total}");
+    }
+    // Values at the wrong number of points: a located error, no panic.
+    let mut loads = Loads::new();
+    loads.push(Load::PressureAt {
+        cell: e,
+        pressures: vec![1.; 3],
+    });
+    loads.push(Load::Eliminated {
+        dof: Dof::new(a, Comp::DY),
+        value: 0.,
+    });
+    let err = meca_statique(&m, &loads, &[0.]).unwrap_err().to_string();
+    assert!(err.contains("given at 3 points"), "{err}");
+}

@@ -98,11 +98,17 @@ fn average_acceleration_oscillator_is_cos_n_theta_and_conserves_energy() {
         let e = 0.5 * 2.0 * v * v + 0.5 * 8.0 * u * u;
         assert!((e - 4.0).abs() < 1e-11, "step {n}: energy {e}");
     }
-    // Period elongation: T̄/T = ωΔt/θ = 1 + Ω²/12 − Ω⁴/180 + 11Ω⁶/15120 + O(Ω⁸).
+    // Period elongation: T̄/T = ωΔt/θ = y/atan(y) with y = Ω/2
+    // = 1 + Ω²/12 − Ω⁴/180 + 11Ω⁶/15120 − 107Ω⁸/907200 + O(Ω¹⁰);
+    // at Ω = 0.6 the Ω¹⁰ term is about 1.2e-7.
     let ratio = omega * dt / theta;
     let big = omega * dt;
-    let series = 1.0 + big.powi(2) / 12.0 - big.powi(4) / 180.0 + 11.0 * big.powi(6) / 15120.0;
-    assert!((ratio - series).abs() < 1e-6, "{ratio} vs {series}");
+    let series = 1.0 + big.powi(2) / 12.0 - big.powi(4) / 180.0 + 11.0 * big.powi(6) / 15120.0
+        - 107.0 * big.powi(8) / 907_200.0;
+    assert!((ratio - series).abs() < 2e-7, "{ratio} vs {series}");
+    // Without the Ω⁸ term the series misses by about 2e-6: the check has
+    // the resolution to tell the terms apart.
+    assert!((ratio - series - 107.0 * big.powi(8) / 907_200.0).abs() > 1e-6);
 }
 
 /// The scalar recursion of the Newmark family with a weighted
@@ -435,9 +441,11 @@ fn bar_impacting_a_wall_rebounds_without_penetrating() {
     // Newmark with γ > ½ (sdnv100's β = 0.28, γ = 0.55) damps the
     // contact node's velocity flips (with the average acceleration the
     // node's velocity changes sign every step it stays in contact and the
-    // bar chatters, gaining energy: see docs/fem.md): the energy never
-    // grows, and the scheme dissipates a few per cent of it.
-    let mut previous = f64::INFINITY;
+    // bar chatters, gaining energy: see docs/fem.md). The end node still
+    // opens and closes a few times in the first steps of the impact (the
+    // status is decided at the end of each step), and a release step may
+    // gain up to about 1 % of the energy; over the impact the scheme
+    // dissipates a few per cent of it.
     let k = assemble_stiffness(&model).unwrap();
     for s in &res.steps {
         let ku = k.mul(&s.displacement);
@@ -447,8 +455,7 @@ fn bar_impacting_a_wall_rebounds_without_penetrating() {
                 .map(|(a, b)| a * b)
                 .sum::<f64>();
         let e = kinetic_energy(&m, &s.motion.as_ref().unwrap().velocity) + strain;
-        assert!(e <= previous * (1.0 + 1e-12), "energy grows at {}", s.time);
-        previous = e;
+        assert!(e <= e0 * 1.02, "energy {e} at {} vs {e0}", s.time);
     }
     assert!(e_end > 0.9 * e0 && e_end < e0, "energy {e_end} vs {e0}");
     assert!((p + 1.0).abs() < 0.05, "momentum ratio {p}");

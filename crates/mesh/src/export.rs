@@ -74,6 +74,8 @@ pub fn read_mesh_as(path: &Path, format: Option<MeshFormat>) -> Result<Mesh, Mes
     match format {
         Some(MeshFormat::Med) => read_med(path),
         Some(MeshFormat::Mail) => read_mail(path),
+        Some(MeshFormat::Gmsh) => crate::read_gmsh(path),
+        Some(MeshFormat::Gibi) => crate::read_gibi(path),
         None => crate::read_mesh(path),
     }
 }

@@ -5,6 +5,7 @@
 //! Reading: [`read_mesh`] (by extension, then by content), [`read_med`],
 //! [`read_mail`].
 
+pub mod convert;
 mod error;
 mod export;
 mod field;
@@ -18,6 +19,7 @@ mod ops;
 mod summary;
 pub mod vtu;
 
+pub use convert::{gibi_to_mail, gmsh_to_mail, read_gibi, read_gmsh};
 pub use error::{suggest, GroupKind, MeshError};
 pub use export::{read_export, read_mesh_as, unit_path, ExportFile};
 pub use field::{Field, FieldLocation, ResultStep};
@@ -39,6 +41,10 @@ pub enum MeshFormat {
     Med,
     /// ASTER text mesh.
     Mail,
+    /// GMSH `.msh` (read as code_aster's `PRE_GMSH` converts it).
+    Gmsh,
+    /// GIBI / Cast3M `.mgib` (read as code_aster's `PRE_GIBI` converts it).
+    Gibi,
 }
 
 /// Tell a mesh file's format: by the HDF5 signature first, then by extension.
@@ -47,14 +53,23 @@ pub fn detect_format(path: &Path) -> Result<MeshFormat, MeshError> {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    let mut head = [0u8; 8];
+    let mut head = [0u8; 256];
     let n = {
         use std::io::Read;
         let mut f = std::fs::File::open(path).map_err(io)?;
         f.read(&mut head).map_err(io)?
     };
-    if n == 8 && head == [0x89, b'H', b'D', b'F', b'\r', b'\n', 0x1a, b'\n'] {
+    if n >= 8 && head[..8] == [0x89, b'H', b'D', b'F', b'\r', b'\n', 0x1a, b'\n'] {
         return Ok(MeshFormat::Med);
+    }
+    // Text formats by their first word.
+    let start = String::from_utf8_lossy(&head[..n]);
+    let first_word = start.split_whitespace().next().unwrap_or("");
+    if first_word.starts_with("$MeshFormat") || first_word == "$NOD" {
+        return Ok(MeshFormat::Gmsh);
+    }
+    if first_word == "ENREGISTREMENT" {
+        return Ok(MeshFormat::Gibi);
     }
     let ext = path
         .extension()
@@ -62,7 +77,9 @@ pub fn detect_format(path: &Path) -> Result<MeshFormat, MeshError> {
         .map(|e| e.to_ascii_lowercase());
     match ext.as_deref() {
         Some("med" | "mmed" | "rmed") => Ok(MeshFormat::Med),
-        Some("mail" | "mgib" | "msh" | "txt") => Ok(MeshFormat::Mail),
+        Some("msh") => Ok(MeshFormat::Gmsh),
+        Some("mgib" | "gibi") => Ok(MeshFormat::Gibi),
+        Some("mail" | "txt") => Ok(MeshFormat::Mail),
         _ => {
             let text = std::fs::read(path).map_err(io)?;
             let looks_like_mail = text.is_ascii()
@@ -85,5 +102,7 @@ pub fn read_mesh(path: &Path) -> Result<Mesh, MeshError> {
     match detect_format(path)? {
         MeshFormat::Med => read_med(path),
         MeshFormat::Mail => read_mail(path),
+        MeshFormat::Gmsh => read_gmsh(path),
+        MeshFormat::Gibi => read_gibi(path),
     }
 }

@@ -29,7 +29,7 @@ fn mesh_files(shared: &Path) -> Vec<PathBuf> {
                 let p = e.path();
                 if matches!(
                     p.extension().and_then(|x| x.to_str()),
-                    Some("mmed" | "med" | "mail")
+                    Some("mmed" | "med" | "mail" | "msh" | "mgib")
                 ) {
                     files.push(p);
                 }
@@ -196,7 +196,7 @@ fn med_versions_and_layouts_are_all_covered() {
     let Some(shared) = shared() else { return };
     let mut versions = std::collections::BTreeSet::new();
     for f in mesh_files(&shared) {
-        if f.extension().and_then(|x| x.to_str()) == Some("mail") {
+        if !matches!(f.extension().and_then(|x| x.to_str()), Some("med" | "mmed")) {
             continue;
         }
         let (_, info) = aster_mesh::read_med_named(&f, None).unwrap();

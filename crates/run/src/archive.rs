@@ -31,7 +31,7 @@ impl Archive {
             });
         }
         match self.every {
-            Some(k) if k > 1 => index % k == 0,
+            Some(k) if k > 1 => index.is_multiple_of(k),
             _ => true,
         }
     }

@@ -182,8 +182,8 @@ pub struct ImposedFn {
     pub xyz: [f64; 3],
 }
 
-/// A distributed load given by functions of `INST` only (checked when the
-/// load is defined).
+/// A distributed load given by functions of `INST` or of the coordinates
+/// `X`, `Y`, `Z` (not both: checked when the load is defined).
 #[derive(Clone, Debug, PartialEq)]
 pub enum BoundaryFn {
     /// `FORCE_CONTOUR`/`FORCE_FACE`: per component, a function or nothing.
@@ -199,7 +199,8 @@ pub enum BoundaryFn {
 }
 
 /// `FORCE_INTERNE`: a force per unit volume (per unit area in 2D), each
-/// component a constant or (AFFE_CHAR_MECA_F) a function of `INST`.
+/// component a constant or (AFFE_CHAR_MECA_F) a function of `INST` or of
+/// the coordinates.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VolumeForce {
     pub cells: Vec<CellId>,
@@ -336,6 +337,17 @@ pub enum Concept {
     VectElem(Rc<crate::field::NodalField>),
     /// `NUME_DDL`: the numbering of a model's DOFs (the model's id).
     Numbering(u32),
+    /// A nodal field of functions (`CREA_CHAMP(OPERATION='AFFE',
+    /// TYPE_CHAM='NOEU_*_F', AFFE=_F(VALE_F=…))`), evaluated by
+    /// `CREA_CHAMP(OPERATION='EVAL')`.
+    FunctionField(Rc<NodalFunctionField>),
+}
+
+/// Per node, per component, a function (`NOEU_*_F`).
+#[derive(Clone, Debug, Default)]
+pub struct NodalFunctionField {
+    pub components: Vec<String>,
+    pub values: BTreeMap<NodeId, BTreeMap<String, Rc<Function>>>,
 }
 
 impl Concept {
@@ -358,6 +370,7 @@ impl Concept {
             Concept::Field(_) => "a field",
             Concept::VectElem(_) => "elementary vectors",
             Concept::Numbering(_) => "a DOF numbering",
+            Concept::FunctionField(_) => "a field of functions",
         }
     }
 }

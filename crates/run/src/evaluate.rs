@@ -3,19 +3,58 @@
 use crate::executor::Executor;
 use crate::program::RunFailure;
 use aster_syntax::CodeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-/// Parses and runs a command file with the executor. Legacy-syntax warnings
-/// go to stderr; the first error stops the run.
-pub fn run_source(path: &Path, source: &str, executor: &mut Executor) -> Result<(), RunFailure> {
-    let map = CodeMap::new(path.display().to_string(), source);
-    let module = aster_syntax::parse_module(source).map_err(|e| RunFailure {
-        message: e.render(&map).trim_end().to_string(),
-    })?;
+/// Parses and runs a study: command files run in order in one interpreter
+/// (`POURSUITE` continuing with the concepts of the file before), and the
+/// Python modules they may import (a module's name is its file's stem).
+/// Every file is parsed before anything runs. `declared`: the module list
+/// is the study's whole list (an `.export` gave it).
+pub fn run_sources(
+    comms: &[(PathBuf, String)],
+    modules: &[(PathBuf, String)],
+    declared: bool,
+    executor: &mut Executor,
+) -> Result<(), RunFailure> {
+    let mut map: Option<CodeMap> = None;
+    let mut bases = Vec::new();
+    for (path, source) in comms.iter().chain(modules) {
+        let name = path.display().to_string();
+        let base = match map.as_mut() {
+            None => {
+                map = Some(CodeMap::new(name, source.as_str()));
+                0
+            }
+            Some(m) => m.add_file(name, source.as_str()),
+        };
+        bases.push(base);
+    }
+    let Some(map) = map else {
+        return Err(RunFailure {
+            message: "no command file".to_string(),
+        });
+    };
+    let mut parsed = Vec::new();
+    for ((_, source), base) in comms.iter().chain(modules).zip(&bases) {
+        let module = aster_syntax::parse_module_at(source, *base).map_err(|e| RunFailure {
+            message: e.render(&map).trim_end().to_string(),
+        })?;
+        parsed.push(module);
+    }
+    let (files, mods) = parsed.split_at(comms.len());
+    let study = aster_eval::Study {
+        files: files.iter().collect(),
+        modules: modules
+            .iter()
+            .zip(mods)
+            .map(|((path, _), m)| (module_name(path), m))
+            .collect(),
+        declared,
+    };
     // Everything that would be refused is refused now, before any command
     // runs (crate::preflight).
-    let pre = crate::preflight::check(&map, &module, &executor.options);
+    let pre = crate::preflight::check_study(&map, &study, &executor.options);
     if !pre.findings.0.is_empty() {
         return Err(RunFailure {
             message: pre.render(&map),
@@ -24,7 +63,7 @@ pub fn run_source(path: &Path, source: &str, executor: &mut Executor) -> Result<
     executor.read_meshes = pre.meshes;
     executor.set_codemap(Rc::new(map.clone()));
     let options = aster_eval::RunOptions { keep_going: false };
-    match aster_eval::run_program(&map, &module, executor, options) {
+    match aster_eval::run_study(&map, &study, executor, options) {
         Ok(summary) => {
             for w in &summary.warnings.0 {
                 eprintln!("{}", w.headline(&map));
@@ -41,4 +80,11 @@ pub fn run_source(path: &Path, source: &str, executor: &mut Executor) -> Result<
             })
         }
     }
+}
+
+/// The name a command file imports a module by: its file's stem.
+fn module_name(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }

@@ -29,11 +29,16 @@ pub struct RunOptions {
 /// Executes validated commands.
 pub struct Executor {
     store: HashMap<u32, Concept>,
+    /// The name each stored concept was given (`LIEU` of POST_ELEM tables…).
+    names: HashMap<u32, String>,
     /// Objects tables refer to by name (`NOM_SD` of CALCUL's table).
     pub(crate) objects: HashMap<String, Concept>,
     /// Fields extracted from a result step (`CREA_CHAMP(OPERATION='EXTR')`),
     /// by concept id: the result and the NUME_ORDRE they come from.
     pub(crate) field_origin: HashMap<u32, (Rc<EvolResult>, u32)>,
+    /// The mesh (id) a field made by CREA_CHAMP lives on, when the command
+    /// tells it (MAILLAGE, MODELE, or the fields it was made from).
+    pub(crate) field_meshes: HashMap<u32, u32>,
     pub(crate) options: RunOptions,
     out: Box<dyn Write>,
     pub tally: Tally,
@@ -56,8 +61,10 @@ impl Executor {
     pub fn new(options: RunOptions, out: Box<dyn Write>) -> Executor {
         Executor {
             store: HashMap::new(),
+            names: HashMap::new(),
             objects: HashMap::new(),
             field_origin: HashMap::new(),
+            field_meshes: HashMap::new(),
             options,
             out,
             tally: Tally::default(),
@@ -124,6 +131,12 @@ impl Executor {
 
     pub(crate) fn insert(&mut self, c: &ConceptRef, concept: Concept) {
         self.store.insert(c.id, concept);
+        self.names.insert(c.id, c.name.clone());
+    }
+
+    /// The name a concept was given (`None` for one made without a name).
+    pub(crate) fn concept_name(&self, id: u32) -> Option<&str> {
+        self.names.get(&id).map(String::as_str)
     }
 
     pub fn concept(&self, c: &ConceptRef) -> Result<&Concept, ExecError> {
@@ -160,6 +173,17 @@ impl Executor {
                 "the mesh of this concept is no longer available",
             )),
         }
+    }
+
+    /// The mesh a model is solved on. code_aster takes the problem's
+    /// dimension from the model's elements (`DIM_GEOM`), so a plane model
+    /// on a mesh written with three coordinates (`COOR_3D`, as `PRE_GMSH`
+    /// writes every mesh) works in the (x, y) plane; seeing such meshes in
+    /// the plane here gave wrong contact results (ssnp167a–c, ssnp152g), so
+    /// the mesh is kept as written (and such a contact is refused by the
+    /// contact bridge) until that is understood.
+    pub(crate) fn model_mesh(&self, model: &ModelDef) -> Result<Arc<Mesh>, ExecError> {
+        self.mesh_by_id(model.mesh)
     }
 
     /// The concept behind a keyword, typed.
@@ -236,9 +260,18 @@ impl Executor {
     /// extracted from (`CREA_CHAMP(OPERATION='EXTR')`), else the program's
     /// only mesh. Programs with `CREA_MAILLAGE` (DECOUPE_LAC…) have several.
     pub(crate) fn field_mesh(&self, field: &ConceptRef) -> Result<Arc<Mesh>, ExecError> {
-        match self.field_origin.get(&field.id) {
-            Some((result, _)) => self.mesh_by_id(result.mesh),
-            None => self.single_mesh(),
+        self.mesh_by_id(self.field_mesh_id(field)?)
+    }
+
+    /// The id of the mesh concept a field lives on ([`Executor::field_mesh`]).
+    pub(crate) fn field_mesh_id(&self, field: &ConceptRef) -> Result<u32, ExecError> {
+        match (
+            self.field_origin.get(&field.id),
+            self.field_meshes.get(&field.id),
+        ) {
+            (Some((result, _)), _) => Ok(result.mesh),
+            (None, Some(&m)) => Ok(m),
+            (None, None) => self.single_mesh_id(),
         }
     }
 
@@ -258,16 +291,18 @@ impl Executor {
     /// The program's mesh when there is exactly one (fields do not record
     /// their mesh).
     pub(crate) fn single_mesh(&self) -> Result<Arc<Mesh>, ExecError> {
-        let meshes: Vec<&Arc<Mesh>> = self
+        self.mesh_by_id(self.single_mesh_id()?)
+    }
+
+    /// The id of the program's only mesh.
+    pub(crate) fn single_mesh_id(&self) -> Result<u32, ExecError> {
+        let meshes: Vec<u32> = self
             .store
-            .values()
-            .filter_map(|c| match c {
-                Concept::Mesh(m) => Some(m),
-                _ => None,
-            })
+            .iter()
+            .filter_map(|(id, c)| matches!(c, Concept::Mesh(_)).then_some(*id))
             .collect();
         match meshes.as_slice() {
-            [m] => Ok((*m).clone()),
+            [m] => Ok(*m),
             [] => Err(ExecError::new("no mesh has been read")),
             _ => Err(ExecError::new(
                 "several meshes exist: this command cannot tell which one a field lives on",
@@ -295,7 +330,12 @@ impl Executor {
 impl CommandSink for Executor {
     fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
         if self.finished {
-            return Ok(CommandOutput::Nothing);
+            // The next command file of a study starts again.
+            if call.command == "POURSUITE" {
+                self.finished = false;
+            } else {
+                return Ok(CommandOutput::Nothing);
+            }
         }
         crate::commands::dispatch(self, call)
     }
@@ -312,9 +352,9 @@ impl CommandSink for Executor {
         self.insert(concept, Concept::Function(Rc::new(function)));
     }
 
-    /// Methods of concepts: `TAB.EXTR_TABLE()` (the table's text, as
-    /// `print` shows a code_aster `Table`: its `IMPR_TABLE` form) and
-    /// `mesh.getMinMaxEdgeSizes(group)`.
+    /// Methods of concepts: `TAB.EXTR_TABLE()` (the table's text, as `print`
+    /// shows a code_aster `Table`, its `IMPR_TABLE` form) and
+    /// `mesh.getMinMaxEdgeSizes(group)` (`'TOUT'`: every cell).
     fn method(
         &mut self,
         concept: &ConceptRef,
@@ -322,38 +362,34 @@ impl CommandSink for Executor {
         args: &[aster_eval::HostValue],
     ) -> Result<aster_eval::HostValue, ExecError> {
         use aster_eval::{HostValue, Scalar};
-        match (name, concept.typ.as_str()) {
-            ("EXTR_TABLE", _) if args.is_empty() => {
-                let table = self.table(concept)?;
-                Ok(HostValue::Scalar(Scalar::Str(
-                    table.render().trim_end().to_string(),
-                )))
-            }
-            // code_aster 17's Mesh.getMinMaxEdgeSizes(group): the shortest
-            // and longest cell edge of a cell group ('TOUT': every cell).
-            ("getMinMaxEdgeSizes", "maillage_sdaster") => {
-                let mesh = self.mesh(concept)?;
-                let group = match args {
-                    [] => "TOUT".to_string(),
-                    [HostValue::Scalar(Scalar::Str(g))] => g.clone(),
+        if let ("EXTR_TABLE", []) = (name, args) {
+            let table = self.table(concept)?;
+            return Ok(HostValue::Scalar(Scalar::Str(
+                table.render().trim_end().to_string(),
+            )));
+        }
+        match (self.concept(concept)?, name) {
+            (Concept::Mesh(mesh), "getMinMaxEdgeSizes") => {
+                let cells: Vec<aster_mesh::CellId> = match args {
+                    [] => (0..mesh.cells.len() as u32)
+                        .map(aster_mesh::CellId)
+                        .collect(),
+                    [HostValue::Scalar(Scalar::Str(g))] if g == "TOUT" => (0..mesh.cells.len()
+                        as u32)
+                        .map(aster_mesh::CellId)
+                        .collect(),
+                    [HostValue::Scalar(Scalar::Str(g))] => crate::select::group_ma(mesh, g)
+                        .map_err(|e| ExecError::new(format!("getMinMaxEdgeSizes: {e}")))?
+                        .to_vec(),
                     _ => {
                         return Err(ExecError::new(
-                            "getMinMaxEdgeSizes(): give one cell group name (or 'TOUT')",
+                            "getMinMaxEdgeSizes takes a group name or 'TOUT'",
                         ))
                     }
                 };
-                let range = if group == "TOUT" {
-                    mesh.edge_sizes()
-                } else {
-                    let cells = crate::select::group_ma(&mesh, &group)
-                        .map_err(|e| ExecError::new(format!("getMinMaxEdgeSizes(): {e}")))?;
-                    mesh.edge_size_range(cells.iter().copied())
-                };
-                let (lo, hi) = range.ok_or_else(|| {
-                    ExecError::new(format!(
-                        "getMinMaxEdgeSizes('{group}'): the cells have no edge of positive length"
-                    ))
-                })?;
+                let (lo, hi) = mesh
+                    .edge_length_range(&cells)
+                    .ok_or_else(|| ExecError::new("getMinMaxEdgeSizes: the cells have no edge"))?;
                 Ok(HostValue::List(vec![
                     HostValue::Scalar(Scalar::Real(lo)),
                     HostValue::Scalar(Scalar::Real(hi)),

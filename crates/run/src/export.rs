@@ -69,9 +69,12 @@ impl Export {
         Ok(export)
     }
 
+    /// Reads an `.export`: UTF-8, else Latin-1 (comments of old exports),
+    /// as command files are read.
     pub fn read(path: &Path) -> Result<Export, String> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        let bytes =
+            std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        let text = aster_syntax::decode(&bytes);
         let base = path.parent().unwrap_or(Path::new("."));
         Export::parse(&text, base).map_err(|e| format!("{}: {e}", path.display()))
     }
@@ -85,22 +88,45 @@ impl Export {
             .collect()
     }
 
+    /// The Python modules of the study (`F nom module.py D 0`), in order.
+    pub fn modules(&self) -> Vec<&Path> {
+        self.files
+            .iter()
+            .filter(|f| f.kind == "nom" && f.data)
+            .map(|f| f.path.as_path())
+            .collect()
+    }
+
     /// The file read as a logical unit.
     pub fn data_unit(&self, unit: u32) -> Option<&Path> {
         self.files
             .iter()
-            .find(|f| f.unit == unit && f.data && f.kind != "comm")
+            .find(|f| f.unit == unit && f.data && is_unit_file(f))
             .map(|f| f.path.as_path())
     }
 
-    /// Data units other than command files.
+    /// Data units other than command files and modules.
     pub fn data_units(&self) -> BTreeMap<u32, PathBuf> {
         self.files
             .iter()
-            .filter(|f| f.data && f.kind != "comm")
+            .filter(|f| f.data && is_unit_file(f))
             .map(|f| (f.unit, f.path.clone()))
             .collect()
     }
+
+    /// The first file written with one of these kinds (`resu`, `mess`).
+    pub fn result_file(&self, kind: &str) -> Option<&Path> {
+        self.files
+            .iter()
+            .find(|f| f.result && f.kind == kind)
+            .map(|f| f.path.as_path())
+    }
+}
+
+/// A line that stands for a logical unit (not a command file, a module, or
+/// a database directory).
+fn is_unit_file(f: &ExportFile) -> bool {
+    !matches!(f.kind.as_str(), "comm" | "nom" | "base" | "bhdf")
 }
 
 #[cfg(test)]
@@ -118,6 +144,30 @@ mod tests {
             e.params.get("testlist").map(String::as_str),
             Some("verification")
         );
+    }
+
+    #[test]
+    fn several_command_files_and_modules() {
+        let text = "# ssnv219x\nF comm s.comm D 1\nF comm s.com1 D 1\nF nom m.py D 0\nF mmed s.mmed D 20\nF resu s.resu R 8\n";
+        let e = Export::parse(text, Path::new("/c")).unwrap();
+        assert_eq!(
+            e.comm_files(),
+            vec![Path::new("/c/s.comm"), Path::new("/c/s.com1")]
+        );
+        assert_eq!(e.modules(), vec![Path::new("/c/m.py")]);
+        assert_eq!(e.data_units().keys().copied().collect::<Vec<_>>(), [20]);
+        assert_eq!(e.result_file("resu"), Some(Path::new("/c/s.resu")));
+    }
+
+    #[test]
+    fn latin1_comments_are_read() {
+        let dir = std::env::temp_dir().join(format!("aster-export-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("l.export");
+        std::fs::write(&path, b"# donn\xe9es\nF comm l.comm D 1\n").unwrap();
+        let e = Export::read(&path).unwrap();
+        assert_eq!(e.comm_files(), vec![dir.join("l.comm").as_path()]);
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]

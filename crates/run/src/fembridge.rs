@@ -283,7 +283,73 @@ fn function_multiplier(
     }))
 }
 
-fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
+/// Distributed loads given by functions of the coordinates are validated
+/// under small strains only: with large strains the real cases that use
+/// them (ssnp150a, ssnv219a) do not reproduce code_aster yet, so the
+/// combination is refused.
+fn refuse_coordinate_loads_in_large_strains(setup: &SolveSetup) -> Result<(), ExecError> {
+    let large = setup
+        .behaviours
+        .iter()
+        .any(|b| b.kinematics != aster_fem::Kinematics::Small);
+    if !large {
+        return Ok(());
+    }
+    let coordinate_loads = setup.excitations.iter().any(|e| match &e.load {
+        LoadRef::Mechanical(l) => {
+            l.boundary_fn.iter().any(|b| match b {
+                BoundaryFn::Force { force, .. } => force.iter().flatten().any(of_coordinates),
+                BoundaryFn::Pressure { pressure, .. } => of_coordinates(pressure),
+            }) || l
+                .volume
+                .iter()
+                .any(|v| v.functions.iter().flatten().any(of_coordinates))
+        }
+        LoadRef::Kinematic(_) => false,
+    });
+    if coordinate_loads {
+        return Err(ExecError::new(
+            "not supported yet: COMPORTEMENT/DEFORMATION other than PETIT with distributed loads given by functions of the coordinates (AFFE_CHAR_MECA_F FORCE_CONTOUR, FORCE_FACE, FORCE_INTERNE, PRES_REP): not validated under large strains",
+        ));
+    }
+    Ok(())
+}
+
+/// A load function of the coordinates (and then not of the time: checked
+/// when the load is defined), evaluated at the Gauss points of each cell.
+fn of_coordinates(f: &LoadFunction) -> bool {
+    f.0.parameters().iter().any(|p| ["X", "Y", "Z"].contains(p))
+}
+
+/// A load function's values at points.
+fn point_values(f: &LoadFunction, points: &[[f64; 3]]) -> Result<Vec<f64>, ExecError> {
+    points
+        .iter()
+        .map(|x| {
+            f.0.eval_named(&[("INST", 0.0), ("X", x[0]), ("Y", x[1]), ("Z", x[2])])
+                .map_err(|e| {
+                    ExecError::new(format!(
+                        "load function at ({}, {}, {}): {e}",
+                        x[0], x[1], x[2]
+                    ))
+                })
+        })
+        .collect()
+}
+
+/// Values of component `k` as vectors.
+fn along(k: usize, values: Vec<f64>) -> Vec<[f64; 3]> {
+    values
+        .into_iter()
+        .map(|v| {
+            let mut f = [0.0; 3];
+            f[k] = v;
+            f
+        })
+        .collect()
+}
+
+fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
     let mut loads = Loads::new();
     for exc in &setup.excitations {
         let m = multiplier(&exc.multiplier, &setup.instants)?;
@@ -314,6 +380,14 @@ fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
                         let mut unit = [0.0; 3];
                         unit[k] = 1.0;
                         let mk = match &v.functions[k] {
+                            Some(f) if of_coordinates(f) => {
+                                for &cell in &v.cells {
+                                    let points = Loads::volume_points(mesh, cell);
+                                    let forces = along(k, point_values(f, &points)?);
+                                    loads.add(Load::VolumeForceAt { cell, forces }, m.clone());
+                                }
+                                continue;
+                            }
                             Some(f) => function_multiplier(f, [0.0; 3], &m, &setup.instants)?,
                             None if v.force[k] != 0.0 => {
                                 unit[k] = v.force[k];
@@ -349,12 +423,27 @@ fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
                         BoundaryFn::Force { cells, force } => {
                             for (k, f) in force.iter().enumerate() {
                                 let Some(f) = f else { continue };
+                                if of_coordinates(f) {
+                                    for &cell in cells {
+                                        let points = Loads::skin_points(mesh, cell);
+                                        let forces = along(k, point_values(f, &points)?);
+                                        loads.add(Load::SurfaceForceAt { cell, forces }, m.clone());
+                                    }
+                                    continue;
+                                }
                                 let mut unit = [0.0; 3];
                                 unit[k] = 1.0;
                                 let mk = function_multiplier(f, [0.0; 3], &m, &setup.instants)?;
                                 for &cell in cells {
                                     loads.add(Load::SurfaceForce { cell, force: unit }, mk.clone());
                                 }
+                            }
+                        }
+                        BoundaryFn::Pressure { cells, pressure } if of_coordinates(pressure) => {
+                            for &cell in cells {
+                                let points = Loads::skin_points(mesh, cell);
+                                let pressures = point_values(pressure, &points)?;
+                                loads.add(Load::PressureAt { cell, pressures }, m.clone());
                             }
                         }
                         BoundaryFn::Pressure { cells, pressure } => {
@@ -430,7 +519,7 @@ fn build_loads(setup: &SolveSetup) -> Result<Loads, ExecError> {
 }
 
 /// A displacement vector of `model` from a stored DEPL field.
-fn displacement_from(model: &Model, depl: &NodalField) -> Vec<f64> {
+pub(crate) fn displacement_from(model: &Model, depl: &NodalField) -> Vec<f64> {
     model
         .dofs()
         .dofs()
@@ -516,9 +605,10 @@ pub fn solve(
     } else {
         "STAT_NON_LINE"
     };
-    let mesh = ex.mesh_by_id(setup.model.mesh)?;
+    let mesh = ex.model_mesh(&setup.model)?;
+    refuse_coordinate_loads_in_large_strains(setup)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
-    let mut loads = build_loads(setup)?;
+    let mut loads = build_loads(setup, &mesh)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
     let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;

@@ -102,7 +102,7 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     if kw.str("FORMULATION") == Some("CONTINUE") {
         let zones = kw.factor("ZONE");
         let frictional = |o: &Keywords| o.f64("COULOMB").is_some_and(|m| m > f64::EPSILON);
-        if zones.iter().any(|o| frictional(o)) {
+        if zones.iter().any(&frictional) {
             // Frictionless zones beside frictional ones: code_aster gives
             // them contact-only elements, as we do, but the one real case
             // (ssna102f) is 1.07e-6 off at a 1e-6 tolerance; not traced.

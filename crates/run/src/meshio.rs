@@ -3,24 +3,43 @@
 use aster_mesh::Mesh;
 use std::path::Path;
 
-/// Reads a mesh; the format is told from the file itself (HDF5 signature,
-/// extension), so `FORMAT=` only has to be consistent with it.
+/// Reads a mesh in the format `LIRE_MAILLAGE(FORMAT=…)` names. MED and
+/// ASTER files must be what they claim (the format is told from the file
+/// itself); GMSH and GIBI files are converted to ASTER text as code_aster's
+/// `PRE_GMSH`/`PRE_GIBI` do, then read.
 pub fn read(path: &Path, format: &str) -> Result<Mesh, String> {
+    use aster_mesh::MeshFormat;
     let detected = aster_mesh::detect_format(path).map_err(|e| e.to_string())?;
     let want = match format {
-        "MED" => aster_mesh::MeshFormat::Med,
-        _ => aster_mesh::MeshFormat::Mail,
+        "MED" => MeshFormat::Med,
+        "GMSH" => MeshFormat::Gmsh,
+        "GIBI" => MeshFormat::Gibi,
+        _ => MeshFormat::Mail,
     };
     if detected != want {
         return Err(format!(
             "FORMAT='{format}' but the file is {} (fix FORMAT or the mesh file)",
             match detected {
-                aster_mesh::MeshFormat::Med => "a MED file",
-                aster_mesh::MeshFormat::Mail => "an ASTER text mesh",
+                MeshFormat::Med => "a MED file",
+                MeshFormat::Mail => "an ASTER text mesh",
+                MeshFormat::Gmsh => "a GMSH mesh",
+                MeshFormat::Gibi => "a GIBI mesh",
             }
         ));
     }
     aster_mesh::read_mesh(path).map_err(|e| e.to_string())
+}
+
+/// `PRE_GMSH`/`PRE_GIBI`: the ASTER text code_aster's converter writes for
+/// a GMSH or GIBI file.
+pub fn convert(path: &Path, format: &str) -> Result<String, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+    let text = aster_syntax::decode(&bytes);
+    match format {
+        "GMSH" => aster_mesh::gmsh_to_mail(&text, path),
+        _ => aster_mesh::gibi_to_mail(&text, path),
+    }
+    .map_err(|e| e.to_string())
 }
 
 /// `ORIE_PEAU`: outward normals on the skin cells of the groups.

@@ -285,6 +285,8 @@ pub fn table(observations: &[Observation], steps: &[Step], mesh: &Mesh) -> Table
             };
             for comp in &obs.components {
                 let samples = obs.samples(mesh, field, comp);
+                #[allow(clippy::type_complexity)]
+                // (label, (point, sub-point), value), as samples gives them
                 let mut rows: Vec<(String, Option<(i64, i64)>, f64)> = Vec::new();
                 if obs.eval_cham == "VALE" {
                     rows = samples;

@@ -307,10 +307,17 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         if let Some(c) = occ.concept("CHAM_GD") {
             let m = ex.single_mesh()?;
             let f = ex.field(c)?;
+            let field = to_mesh_field(&c.name, &f, &m);
+            let cmps: Vec<&str> = occ
+                .simple("NOM_CMP")
+                .iter()
+                .filter_map(|c| c.as_str())
+                .collect();
+            let fields = only_components(field, &cmps).into_iter().collect();
             steps.push(ResultStep {
                 nume_ordre: 0,
                 inst: 0.0,
-                fields: vec![to_mesh_field(&c.name, &f, &m)],
+                fields,
             });
             if mesh.is_none() {
                 mesh = Some((m, c.name.clone()));

@@ -9,7 +9,8 @@
 //! finding, at the first step that needs a value known only when the
 //! commands run (a condition on a table value): what follows is checked by
 //! the executor as it goes. The group check runs only when every mesh of the
-//! program is one the pass can read (`LIRE_MAILLAGE` of a MED or ASTER file,
+//! program is one the pass can read (`LIRE_MAILLAGE` of a MED, ASTER, GMSH
+//! or GIBI file,
 //! changed by `DEFI_GROUP`, `MODI_MAILLAGE`, `CREA_MAILLAGE`); a name counts
 //! as known when a mesh has it or any command names it in a `NOM…` keyword.
 
@@ -92,7 +93,7 @@ impl Sink<'_> {
     fn read_mesh(&mut self, call: &CommandCall) {
         let kw = &call.keywords;
         let format = kw.str("FORMAT").unwrap_or("MED").to_string();
-        if format != "MED" && format != "ASTER" {
+        if !["MED", "ASTER", "GMSH", "GIBI"].contains(&format.as_str()) {
             self.unknown_mesh = true;
             return;
         }
@@ -162,6 +163,18 @@ fn produces_mesh(call: &CommandCall) -> bool {
 
 /// Runs the static pass over a parsed program.
 pub fn check(map: &CodeMap, module: &aster_syntax::ast::Module, options: &RunOptions) -> Preflight {
+    let study = aster_eval::Study {
+        files: vec![module],
+        modules: Vec::new(),
+        declared: false,
+    };
+    check_study(map, &study, options)
+}
+
+/// Runs the static pass over a whole study: its command files in order in
+/// one interpreter (`POURSUITE` continuing with the concepts of the file
+/// before), importing its modules, as the run does.
+pub fn check_study(map: &CodeMap, study: &aster_eval::Study, options: &RunOptions) -> Preflight {
     let mut sink = Sink {
         options,
         findings: Vec::new(),
@@ -172,9 +185,9 @@ pub fn check(map: &CodeMap, module: &aster_syntax::ast::Module, options: &RunOpt
         meshes: Vec::new(),
         unknown_mesh: false,
     };
-    let result = aster_eval::run_program(
+    let result = aster_eval::run_study(
         map,
-        module,
+        study,
         &mut sink,
         aster_eval::RunOptions { keep_going: true },
     );

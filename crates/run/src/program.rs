@@ -11,8 +11,24 @@ use std::path::{Path, PathBuf};
 /// A case ready to run.
 #[derive(Clone, Debug)]
 pub struct Case {
-    pub comm: PathBuf,
+    /// The command files, in order (one for a `.comm`; an `.export` may
+    /// give several: `X.comm`, `X.com1`…, run as one study).
+    pub comms: Vec<PathBuf>,
+    /// The study's Python modules (`F nom module.py D 0`).
+    pub modules: Vec<PathBuf>,
+    /// The case is an `.export`: its module list is the study's whole list.
+    pub from_export: bool,
+    /// Files the report is also written to (`F resu … R 8`, `F mess … R 6`
+    /// of the `.export`: their file name, inside the output directory).
+    pub report_files: Vec<PathBuf>,
     pub options: RunOptions,
+}
+
+impl Case {
+    /// The first command file.
+    pub fn comm(&self) -> &Path {
+        &self.comms[0]
+    }
 }
 
 /// Why a case stopped.
@@ -43,35 +59,54 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
         out_dir: out_dir.to_path_buf(),
         ..RunOptions::default()
     };
-    let comm = if case.extension().is_some_and(|e| e == "export") {
+    let mut modules = Vec::new();
+    let mut report_files = Vec::new();
+    let from_export = case.extension().is_some_and(|e| e == "export");
+    let comms = if from_export {
         let export = Export::read(case).map_err(fail)?;
-        let comms = export.comm_files();
-        let comm = match comms.as_slice() {
-            [c] => c.to_path_buf(),
-            [] => {
-                return Err(fail(format!(
-                    "{}: no command file (`F comm FILE D 1`)",
-                    case.display()
-                )))
-            }
-            _ => {
-                return Err(fail(format!(
-                    "{}: several command files are not supported yet",
-                    case.display()
-                )))
-            }
-        };
+        if let Some(f) = export
+            .files
+            .iter()
+            .find(|f| matches!(f.kind.as_str(), "base" | "bhdf"))
+        {
+            return Err(fail(format!(
+                "{}: `{} {}` (a code_aster database {}) is not supported: aster keeps no database; \
+                 a study's command files (`F comm … D 1`, in order) run in one process instead",
+                case.display(),
+                f.kind,
+                f.path.display(),
+                if f.data { "to start from" } else { "to save" },
+            )));
+        }
+        let comms: Vec<PathBuf> = export
+            .comm_files()
+            .iter()
+            .map(|p| p.to_path_buf())
+            .collect();
+        if comms.is_empty() {
+            return Err(fail(format!(
+                "{}: no command file (`F comm FILE D 1`)",
+                case.display()
+            )));
+        }
+        modules = export.modules().iter().map(|p| p.to_path_buf()).collect();
         options.units = export.data_units();
         options.result_units = export
             .files
             .iter()
-            .filter(|f| f.result)
+            .filter(|f| f.result && !matches!(f.kind.as_str(), "resu" | "mess"))
             .map(|f| (f.unit, f.path.clone()))
             .collect();
-        comm
+        for kind in ["resu", "mess"] {
+            if let Some(name) = export.result_file(kind).and_then(Path::file_name) {
+                report_files.push(out_dir.join(name));
+            }
+        }
+        comms
     } else {
-        case.to_path_buf()
+        vec![case.to_path_buf()]
     };
+    let comm = comms[0].clone();
     if let std::collections::btree_map::Entry::Vacant(slot) = options.units.entry(20) {
         let found = match mesh {
             Some(m) => Some(m.to_path_buf()),
@@ -92,7 +127,18 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
             )));
         }
     }
-    Ok(Case { comm, options })
+    for path in comms.iter().chain(&modules) {
+        if !path.exists() {
+            return Err(fail(format!("{}: no such file", path.display())));
+        }
+    }
+    Ok(Case {
+        comms,
+        modules,
+        from_export,
+        report_files,
+        options,
+    })
 }
 
 /// What a run did: the verdicts so far, and the error that stopped it.
@@ -102,25 +148,96 @@ pub struct Outcome {
     pub error: Option<RunFailure>,
 }
 
-/// Runs a case, writing its report (TEST_RESU lines, tables) to `report`.
+/// Runs a case, writing its report (TEST_RESU lines, tables) to `report`
+/// (and to the `.export`'s `resu`/`mess` files).
 pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
-    // Old files may be Latin-1: decode byte per byte when not UTF-8.
-    let source = match std::fs::read(&case.comm) {
-        Ok(bytes) => match String::from_utf8(bytes) {
-            Ok(s) => s,
-            Err(e) => e.into_bytes().iter().map(|&c| c as char).collect(),
-        },
+    let read = |paths: &[PathBuf]| -> Result<Vec<(PathBuf, String)>, RunFailure> {
+        paths
+            .iter()
+            .map(|p| match aster_syntax::read_source(p) {
+                Ok(text) => Ok((p.clone(), text)),
+                Err(e) => Err(fail(format!("{}: cannot read: {e}", p.display()))),
+            })
+            .collect()
+    };
+    let sources = read(&case.comms).and_then(|c| Ok((c, read(&case.modules)?)));
+    let (comms, modules) = match sources {
+        Ok(s) => s,
         Err(e) => {
             return Outcome {
                 tally: Tally::default(),
-                error: Some(fail(format!("{}: cannot read: {e}", case.comm.display()))),
+                error: Some(e),
             }
         }
     };
+    let mut copies = Vec::new();
+    if !case.report_files.is_empty() {
+        if let Err(e) = std::fs::create_dir_all(&case.options.out_dir) {
+            return Outcome {
+                tally: Tally::default(),
+                error: Some(fail(format!(
+                    "{}: cannot create: {e}",
+                    case.options.out_dir.display()
+                ))),
+            };
+        }
+    }
+    for path in &case.report_files {
+        match std::fs::File::create(path) {
+            Ok(f) => copies.push(f),
+            Err(e) => {
+                return Outcome {
+                    tally: Tally::default(),
+                    error: Some(fail(format!("{}: cannot write: {e}", path.display()))),
+                }
+            }
+        }
+    }
+    let report: Box<dyn Write> = if copies.is_empty() {
+        report
+    } else {
+        Box::new(Tee {
+            first: report,
+            copies: copies.iter().filter_map(|f| f.try_clone().ok()).collect(),
+        })
+    };
     let mut executor = Executor::new(case.options.clone(), report);
-    let error = crate::evaluate::run_source(&case.comm, &source, &mut executor).err();
+    let error =
+        crate::evaluate::run_sources(&comms, &modules, case.from_export, &mut executor).err();
+    // The files end as the report does: the error, then the summary.
+    for mut f in copies {
+        let mut tail = String::new();
+        if let Some(e) = &error {
+            tail.push_str(&format!("{e}\n"));
+        }
+        tail.push_str(&format!("{}\n", executor.tally.summary()));
+        let _ = f.write_all(tail.as_bytes());
+    }
     Outcome {
         tally: executor.tally,
         error,
+    }
+}
+
+/// A report written to several places.
+struct Tee {
+    first: Box<dyn Write>,
+    copies: Vec<std::fs::File>,
+}
+
+impl Write for Tee {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.first.write_all(buf)?;
+        for c in &mut self.copies {
+            c.write_all(buf)?;
+        }
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.first.flush()?;
+        for c in &mut self.copies {
+            c.flush()?;
+        }
+        Ok(())
     }
 }

@@ -123,13 +123,30 @@ pub struct Refusal {
     pub span: Span,
 }
 
+/// Commands not executed whose refusal says why (what a user cannot get
+/// from aster at all, rather than "not yet").
+pub const COMMAND_HINTS: &[(&str, &str)] = &[
+    (
+        "MACR_ADAP_MAIL",
+        "mesh adaptation runs the external HOMARD tool, which aster does not have",
+    ),
+    (
+        "PRE_GIBI",
+        "GIBI meshes are read by `aster mesh` but not yet run: the node or cell order code_aster takes from them is not reproduced",
+    ),
+];
+
 /// Checks one call against its command's entry; `None` when the command
 /// itself is not executed. Every refusal is returned, in keyword order.
 pub fn check_call(support: Option<&Support>, call: &CommandCall) -> Vec<Refusal> {
     let cmd = call.command.as_str();
     let Some(support) = support else {
+        let what = match COMMAND_HINTS.iter().find(|(c, _)| *c == cmd) {
+            Some((_, why)) => format!("{cmd} ({why})"),
+            None => cmd.to_string(),
+        };
         return vec![Refusal {
-            what: cmd.to_string(),
+            what,
             span: call.span,
         }];
     };

@@ -160,6 +160,25 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// The `.export` reader of `aster run`: any text gives an export or an
+    /// error, and what it lists is consistent.
+    #[test]
+    fn export_text_ends_in_an_export_or_an_error(lines in prop::collection::vec(prop_oneof![
+        "F (comm|mmed|mail|rmed|libr) [a-z./]{0,12} (D|R|DR|X) -?[0-9]{0,12}",
+        "P [a-z_]{0,12} [ -~]{0,20}",
+        "[FPAR] [ -~]{0,30}",
+        "\\PC{0,40}",
+    ], 0..10)) {
+        if let Ok(e) = aster_run::export::Export::parse(&lines.join("\n"), Path::new("/cases/x")) {
+            let _ = e.comm_files();
+            let _ = e.data_units();
+        }
+    }
+}
+
 #[test]
 fn the_literal_scanner_finds_the_values() {
     let src = "# 1 2\nx = F(A=1.5e-3, B='G1')\n";
@@ -178,4 +197,18 @@ fn the_unmodified_scenes_pass_in_the_harness() {
         assert!(outcome.tally.ok > 0 && outcome.tally.nook == 0, "{scene}");
         let _ = std::fs::remove_dir_all(&dir);
     }
+}
+
+/// MODELISATION='3D' on a 2D mesh: said at AFFE_MODELE, not as a singular
+/// system at the solve.
+#[test]
+fn a_3d_model_on_a_2d_mesh_is_refused_at_its_modelisation() {
+    let dir = std::env::temp_dir().join(format!("aster-fuzz-run-{}-3d", std::process::id()));
+    let _ = std::fs::create_dir_all(&dir);
+    let comm = read("comm/pressure.comm").replace("MODELISATION=\"C_PLAN\"", "MODELISATION=\"3D\"");
+    let outcome = run_in(&dir, &comm, &read("comm/strip.mail")).expect("prepared");
+    let e = outcome.error.expect("refused").message;
+    assert!(e.contains("MODELISATION='3D' needs volume cells"), "{e}");
+    assert!(e.contains("f.comm:13:"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,6 +1,6 @@
 //! AFFE_CHAR_MECA_F / AFFE_CHAR_CINE_F: the project's scene
 //! (comm/loads_f.comm on comm/strip.mail) against its analytic values, and
-//! the refusal of what is not done (a distributed load of X).
+//! the refusal of what is not done (a distributed load of both X and INST).
 
 use std::path::{Path, PathBuf};
 
@@ -25,7 +25,7 @@ fn function_loads_pass_the_analytic_checks() {
 }
 
 #[test]
-fn a_pressure_of_x_is_refused_with_its_location() {
+fn a_pressure_of_x_and_inst_is_refused_with_its_location() {
     let dir = std::env::temp_dir().join(format!("aster-loads-f-src-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let comm = dir.join("pres_x.comm");
@@ -34,7 +34,7 @@ fn a_pressure_of_x_is_refused_with_its_location() {
         r#"DEBUT()
 mesh = LIRE_MAILLAGE(FORMAT="ASTER")
 model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA=("PLATE", "RIGHT"), PHENOMENE="MECANIQUE", MODELISATION="C_PLAN"))
-p = FORMULE(NOM_PARA="X", VALE="10.0 * X")
+p = FORMULE(NOM_PARA=("X", "INST"), VALE="10.0 * X * INST")
 load = AFFE_CHAR_MECA_F(MODELE=model, PRES_REP=_F(GROUP_MA="RIGHT", PRES=p))
 FIN()
 "#,
@@ -43,7 +43,9 @@ FIN()
     let outcome = run(&comm, "pres");
     let err = outcome.error.expect("refused").message;
     assert!(
-        err.contains("not supported yet: AFFE_CHAR_MECA_F/PRES_REP/PRES as a function of X"),
+        err.contains(
+            "not supported yet: AFFE_CHAR_MECA_F/PRES_REP/PRES as a function of both INST and X"
+        ),
         "{err}"
     );
     assert!(err.contains("pres_x.comm:5:"), "{err}");

@@ -144,7 +144,7 @@ pub fn join_or(items: &[&str]) -> String {
 /// Render an error as `file:line:col: message`, then the source line and a caret.
 pub fn render(map: &CodeMap, error: &ParseError) -> String {
     let lc = map.line_col(error.span.start as usize);
-    let line = map.line_text(lc.line);
+    let line = map.line_text_at(lc);
     let number = lc.line.to_string();
     let gutter = " ".repeat(number.len());
     // The caret goes under the character, counting tabs as one column each

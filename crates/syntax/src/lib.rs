@@ -48,10 +48,34 @@ impl std::error::Error for ParseError {}
 
 /// Parse a whole command file and run the post-parse checks of [`validate`].
 pub fn parse_module(source: &str) -> Result<ast::Module, ParseError> {
-    diagnose::check_limits(source)?;
-    let module = match parser::parse_module_unchecked(source) {
+    parse_module_at(source, 0)
+}
+
+/// [`parse_module`] for a file a [`CodeMap`] holds at offset `base`
+/// ([`CodeMap::add_file`]): every span (of the AST and of the error) is
+/// shifted by `base`.
+pub fn parse_module_at(source: &str, base: usize) -> Result<ast::Module, ParseError> {
+    let shift = |mut e: ParseError| {
+        e.span = Span::new(e.span.start as usize + base, e.span.end as usize + base);
+        e
+    };
+    diagnose::check_limits(source).map_err(shift)?;
+    let module = match parser::parse_module_unchecked_at(source, base) {
         Ok(m) => m,
-        Err(e) => return Err(diagnose::refine(source, e)),
+        Err(e) => {
+            // `refine` reads the text: it works on unshifted positions.
+            let local = Span::new(
+                (e.span.start as usize).saturating_sub(base),
+                (e.span.end as usize).saturating_sub(base),
+            );
+            return Err(shift(diagnose::refine(
+                source,
+                ParseError {
+                    span: local,
+                    message: e.message,
+                },
+            )));
+        }
     };
     validate::check(&module)?;
     Ok(module)

@@ -28,6 +28,12 @@ const CHUNK_BYTES: usize = 1 << 20;
 
 /// Parse a whole file into its AST (no post-parse validation).
 pub fn parse_module_unchecked(source: &str) -> R<Module> {
+    parse_module_unchecked_at(source, 0)
+}
+
+/// [`parse_module_unchecked`] with every span shifted by `base` (a file at
+/// that offset of a several-file code map).
+pub fn parse_module_unchecked_at(source: &str, base: usize) -> R<Module> {
     // pest reads a copy whose logical line ends are marked (same offsets);
     // the tree and the builder read the original text.
     let marked = crate::logical::mark_line_ends(source);
@@ -35,14 +41,14 @@ pub fn parse_module_unchecked(source: &str) -> R<Module> {
     let mut start = 0;
     loop {
         let end = chunk_end(marked.as_bytes(), start);
-        if let Err(e) = parse_piece(source, &marked, start, end, &mut body) {
+        if let Err(e) = parse_piece(source, &marked, (start, end), base, &mut body) {
             if end == source.len() {
                 return Err(e);
             }
             // A failure in a piece: the rest of the file in one piece gives
             // the error exactly as a parse of the whole file would (it may
             // also succeed, if the cut was not a statement boundary).
-            parse_piece(source, &marked, start, source.len(), &mut body)?;
+            parse_piece(source, &marked, (start, source.len()), base, &mut body)?;
             break;
         }
         if end == source.len() {
@@ -52,28 +58,30 @@ pub fn parse_module_unchecked(source: &str) -> R<Module> {
     }
     Ok(Module {
         body,
-        span: Span::new(0, source.len()),
+        span: Span::new(base, base + source.len()),
     })
 }
 
 /// Parses `source[start..end]` (whole top-level statements) and appends its
-/// statements to `body` (nothing on failure).
+/// statements to `body` (nothing on failure); spans shifted by `base` (the
+/// file's offset in a several-file code map).
 fn parse_piece(
     source: &str,
     marked: &str,
-    start: usize,
-    end: usize,
+    (start, end): (usize, usize),
+    base: usize,
     body: &mut Vec<Stmt>,
 ) -> R<()> {
     let text = &source[start..end];
+    let at = base + start;
     let pairs = CommParser::parse(Rule::module, &marked[start..end]).map_err(|e| {
         let mut pe = crate::error::from_pest(&e, text);
-        pe.span = Span::new(start + pe.span.start as usize, start + pe.span.end as usize);
+        pe.span = Span::new(at + pe.span.start as usize, at + pe.span.end as usize);
         pe
     })?;
     let tree = Tree::new(pairs, text);
     let builder = Builder {
-        base: start,
+        base: at,
         source: text,
     };
     if let Some(module) = tree.top().next() {

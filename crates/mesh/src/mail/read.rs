@@ -317,17 +317,27 @@ fn hint<'b>(name: &str, candidates: impl IntoIterator<Item = &'b str>) -> String
 }
 
 /// Adds a group; a second block of the same name is an error (code_aster
-/// refuses it rather than merging the two lists).
-fn push_group<T>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) -> Result<(), String> {
+/// refuses it rather than merging the two lists). A member listed twice
+/// counts once and a group with no member is not created (code_aster's
+/// `lrmast`: an alarm, then the first occurrence is kept).
+fn push_group<T: Copy + std::hash::Hash + Eq>(
+    groups: &mut Vec<Group<T>>,
+    name: &str,
+    members: Vec<T>,
+) -> Result<(), String> {
     if groups.iter().any(|g| g.name == name) {
         return Err(format!(
             "group `{name}` is defined twice: give each GROUP_MA/GROUP_NO block its own name"
         ));
     }
-    groups.push(Group {
-        name: name.to_string(),
-        members,
-    });
+    let mut seen: std::collections::HashSet<T> = std::collections::HashSet::new();
+    let unique: Vec<T> = members.into_iter().filter(|m| seen.insert(*m)).collect();
+    if !unique.is_empty() {
+        groups.push(Group {
+            name: name.to_string(),
+            members: unique,
+        });
+    }
     Ok(())
 }
 

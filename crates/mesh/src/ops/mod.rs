@@ -2,7 +2,6 @@
 //! `CREA_MAILLAGE`.
 
 mod degree;
-mod edge_sizes;
 mod geom_groups;
 mod groups;
 mod orient;
@@ -10,6 +9,7 @@ mod orient_along;
 mod points;
 mod rebuild;
 mod restrict;
+mod superpose;
 #[cfg(test)]
 mod testmesh;
 

@@ -20,6 +20,10 @@ pub struct OrientReport {
     pub cells: usize,
     /// Skin cells whose node order was reversed.
     pub reversed: usize,
+    /// Skin cells bounding no cell of one dimension more, left as they are
+    /// (code_aster's `orilma` counts them as "not treated": a rigid
+    /// master line drawn alone, say).
+    pub untreated: usize,
 }
 
 impl CellType {
@@ -97,8 +101,9 @@ impl Mesh {
 
     /// Orient the skin cells of the named groups outwards (`ORIE_PEAU`).
     /// Errors: unknown group (with did-you-mean), a cell that is not a
-    /// segment or face, a skin cell with no support cell or with two (an
-    /// inner boundary has no "outside"), a segment skin in a 3D mesh.
+    /// segment or face, a skin cell with two support cells (an inner
+    /// boundary has no "outside"), a segment skin in a 3D mesh. A skin cell
+    /// with no support cell is left as it is (counted in the report).
     pub fn orient_skin(&mut self, groups: &[&str]) -> Result<OrientReport, MeshError> {
         let skin = self.cells_of_groups(groups)?;
         // Support candidates: cells of one dimension more, indexed by node.
@@ -145,10 +150,8 @@ impl Mesh {
             let support = match supports.as_slice() {
                 [s] => *s,
                 [] => {
-                    return Err(MeshError::Operation(format!(
-                        "ORIE_PEAU: skin cell `{name}` bounds no {} cell: nothing to orient it against",
-                        if cell.ty.dim() == 1 { "2D" } else { "3D" }
-                    )))
+                    report.untreated += 1;
+                    continue;
                 }
                 [a, b, ..] => {
                     return Err(MeshError::Operation(format!(

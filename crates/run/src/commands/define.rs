@@ -200,6 +200,9 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     let mesh_ref = ex.required("AFFE_MODELE", kw, "MAILLAGE")?;
     let mesh = ex.mesh(mesh_ref)?;
     let mut cells = BTreeMap::new();
+    // Where MODELISATION='3D' is first written, to name it when no volume
+    // cell receives it.
+    let mut solid3d_at = None;
     for occ in kw.factor("AFFE") {
         let names: Vec<&str> = occ
             .simple("MODELISATION")
@@ -227,6 +230,9 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 span,
             ));
         };
+        if modelisation == Modelisation::Solid3D && solid3d_at.is_none() {
+            solid3d_at = Some(occ);
+        }
         let sel = select::cells(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_MODELE/AFFE: {e}")))?;
         for c in sel {
@@ -247,6 +253,23 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
         return Err(ExecError::new(
             "AFFE_MODELE: no cell of the mesh received an element",
         ));
+    }
+    // A 3D model whose 3D elements are all faces (a 2D mesh, or only
+    // surface groups) has no stiffness: say so here, not as a singular
+    // system later.
+    if let Some(occ) = solid3d_at {
+        let has_volume = cells
+            .iter()
+            .any(|(c, m)| *m == Modelisation::Solid3D && mesh.cell(*c).ty.dim() == 3);
+        if !has_volume {
+            return Err(ex.kw_error(
+                "AFFE_MODELE",
+                occ,
+                "MODELISATION",
+                "MODELISATION='3D' needs volume cells, and the cells it is given have none \
+                 (a 2D mesh takes D_PLAN, C_PLAN or AXIS)",
+            ));
+        }
     }
     let model = ModelDef {
         mesh: mesh_ref.id,

@@ -70,7 +70,7 @@ fn imposed_values(
     for occ in occurrences {
         let start = out.len();
         imposed_in(ex, occ, mesh, comps, what, &mut out)?;
-        blocage(ex, occ, mesh, model.dim(), what, &mut out)?;
+        blocked_in(ex, occ, model, mesh, what, &mut out)?;
         for i in &out[start..] {
             check_dof(model, mesh, carried, i.node, i.comp, what)?;
         }
@@ -78,41 +78,48 @@ fn imposed_values(
     Ok(out)
 }
 
-/// `BLOCAGE` (code_aster 17): 'DEPLACEMENT' sets every translation the
-/// model carries to 0, 'ROTATION' every rotation (continuum nodes carry
-/// none, so it adds nothing here).
-fn blocage(
+/// `DDL_IMPO/BLOCAGE`: zero on every degree of freedom of the kinds listed
+/// that the nodes carry — 'DEPLACEMENT': the translations of the model
+/// (DX, DY, and DZ in 3D); 'ROTATION': the rotations, which the continuum
+/// and translation-only discrete models here have none of (nothing to
+/// block, as code_aster blocks only the DOFs present).
+fn blocked_in(
     ex: &Executor,
     occ: &Keywords,
+    model: &ModelDef,
     mesh: &Mesh,
-    dim: usize,
     what: &str,
     out: &mut Vec<Imposed>,
 ) -> Result<(), ExecError> {
-    if !occ.contains("BLOCAGE") {
+    let kinds: Vec<&str> = occ
+        .simple("BLOCAGE")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    if kinds.is_empty() {
         return Ok(());
     }
     let nodes =
         select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
-    for b in occ.simple("BLOCAGE").iter().filter_map(|s| s.as_str()) {
-        match b {
-            "DEPLACEMENT" => {
-                for &n in &nodes {
-                    for &comp in &COMPS[..dim] {
-                        out.push(Imposed {
-                            node: n,
-                            comp,
-                            value: 0.0,
-                        });
-                    }
-                }
-            }
-            "ROTATION" => {}
+    for kind in kinds {
+        let comps: &[&'static str] = match kind {
+            "DEPLACEMENT" if model.dim() == 3 => &["DX", "DY", "DZ"],
+            "DEPLACEMENT" => &["DX", "DY"],
+            "ROTATION" => &[],
             other => {
                 return Err(ex.unsupported(
                     &format!("{what}/BLOCAGE='{other}'"),
                     occ.keyword("BLOCAGE").map(|k| k.span).unwrap_or_default(),
                 ))
+            }
+        };
+        for &n in &nodes {
+            for &comp in comps {
+                out.push(Imposed {
+                    node: n,
+                    comp,
+                    value: 0.0,
+                });
             }
         }
     }
@@ -233,11 +240,7 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
 
 /// What AFFE_CHAR_MECA reads (`crate::support`).
 pub(crate) const AFFE_CHAR_MECA: Support = Support {
-    values: &[Values::new(
-        "DDL_IMPO/BLOCAGE",
-        &["DEPLACEMENT", "ROTATION"],
-    )],
-    ..Support::keywords(&[
+    keywords: &[
         "MODELE",
         "INFO",
         "VERI_NORM",
@@ -250,10 +253,10 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "DDL_IMPO/MAILLE",
         "DDL_IMPO/SANS_GROUP_NO",
         "DDL_IMPO/SANS_GROUP_MA",
-        "DDL_IMPO/BLOCAGE",
         "DDL_IMPO/DX",
         "DDL_IMPO/DY",
         "DDL_IMPO/DZ",
+        "DDL_IMPO/BLOCAGE",
         "FORCE_NODALE",
         "FORCE_NODALE/GROUP_NO",
         "FORCE_NODALE/NOEUD",
@@ -316,7 +319,14 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "LIAISON_DDL/DDL",
         "LIAISON_DDL/COEF_MULT",
         "LIAISON_DDL/COEF_IMPO",
-    ])
+    ],
+    values: &[Values::new(
+        "DDL_IMPO/BLOCAGE",
+        &["DEPLACEMENT", "ROTATION"],
+    )],
+    hints: &[],
+    reuse: true,
+    rules: None,
 };
 
 pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {

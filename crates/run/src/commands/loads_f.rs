@@ -4,10 +4,10 @@
 //! Nodal values (`DDL_IMPO`, `MECA_IMPO`, `FORCE_NODALE`) are evaluated at
 //! each node's coordinates and at each step's time, as code_aster does.
 //! Distributed loads (`FORCE_CONTOUR`, `FORCE_FACE`, `FORCE_INTERNE`,
-//! `PRES_REP`) take
-//! functions of `INST` only here: code_aster evaluates a function of the
-//! coordinates at the Gauss points, which is refused rather than
-//! approximated.
+//! `PRES_REP`) take functions of `INST`, or of the coordinates: code_aster
+//! evaluates those at the Gauss points of the load's elements (the RIGI
+//! family of the skin or volume element), and so does `fembridge`. A
+//! function of both the time and the coordinates is refused.
 
 use super::loads::{carried_nodes, check_dof};
 use crate::concept::*;
@@ -79,7 +79,8 @@ fn nodal_functions(
     Ok(out)
 }
 
-/// A distributed-load function, refused when it depends on the coordinates.
+/// A distributed-load function, refused when it depends on both the time
+/// and the coordinates.
 fn time_function(
     ex: &Executor,
     cmd: &str,
@@ -88,10 +89,12 @@ fn time_function(
 ) -> Result<Option<LoadFunction>, ExecError> {
     let f = function_at(ex, cmd, occ, key)?;
     if let Some(f) = &f {
-        if let Some(p) = f.0.parameters().into_iter().find(|p| *p != "INST") {
+        let params = f.0.parameters();
+        let coord = params.iter().find(|p| **p != "INST");
+        if let (Some(p), true) = (coord, params.contains(&"INST")) {
             let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
             return Err(ex.unsupported(
-                &format!("{cmd}/{key} as a function of {p} (distributed loads take functions of INST only)"),
+                &format!("{cmd}/{key} as a function of both INST and {p} (distributed loads take functions of INST or of the coordinates)"),
                 span,
             ));
         }

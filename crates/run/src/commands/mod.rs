@@ -10,7 +10,9 @@ pub(crate) mod loads;
 pub(crate) mod loads_f;
 pub(crate) mod mesh;
 pub(crate) mod post;
+pub(crate) mod post_elem;
 pub(crate) mod pressure;
+pub(crate) mod results;
 pub(crate) mod tables;
 
 use crate::executor::Executor;
@@ -60,6 +62,16 @@ pub static COMMANDS: &[Command] = &[
         name: "LIRE_MAILLAGE",
         run: mesh::lire_maillage,
         support: mesh::LIRE_MAILLAGE,
+    },
+    Command {
+        name: "PRE_GMSH",
+        run: mesh::pre_convert,
+        support: mesh::PRE_GMSH,
+    },
+    Command {
+        name: "ASSE_MAILLAGE",
+        run: mesh::asse_maillage,
+        support: mesh::ASSE_MAILLAGE,
     },
     Command {
         name: "DEFI_GROUP",
@@ -275,6 +287,16 @@ pub static COMMANDS: &[Command] = &[
         name: "CALC_PRESSION",
         run: pressure::calc_pression,
         support: pressure::CALC_PRESSION,
+    },
+    Command {
+        name: "POST_ELEM",
+        run: post_elem::post_elem,
+        support: post_elem::POST_ELEM,
+    },
+    Command {
+        name: "CREA_RESU",
+        run: results::crea_resu,
+        support: results::CREA_RESU,
     },
 ];
 

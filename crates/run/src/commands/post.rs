@@ -149,13 +149,41 @@ pub(crate) const CREA_CHAMP: Support = Support::keywords(&[
     "AFFE/MAILLE",
     "AFFE/NOM_CMP",
     "AFFE/VALE",
+    "AFFE/VALE_F",
+    "ASSE/NOM_CMP_RESU",
+    "CHAM_F",
+    "CHAM_PARA",
 ]);
 
 pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let op = kw.str("OPERATION").unwrap_or("");
     let mut origin = None;
+    // The mesh of the new field, when the command tells it.
+    let mesh_id = crea_champ_mesh(ex, kw)?;
+    let id = crate::executor::result_of(call)?.id;
+    match mesh_id {
+        Some(m) => ex.field_meshes.insert(id, m),
+        None => ex.field_meshes.remove(&id),
+    };
+    if op == "AFFE" && kw.str("TYPE_CHAM").is_some_and(|t| t.ends_with("_F")) {
+        let f = crea_champ_affe_functions(ex, call)?;
+        return store_result(ex, call, Concept::FunctionField(Rc::new(f)));
+    }
     let field = match op {
+        "EXTR" if kw.str("NOM_CHAM") == Some("GEOMETRIE") && !kw.contains("RESULTAT") => {
+            // The coordinates of the mesh's nodes (NOEU_GEOM_R: X, Y, Z).
+            let mesh = ex.mesh(ex.required("CREA_CHAMP", kw, "MAILLAGE")?)?;
+            let mut f = NodalField::new(vec!["X".into(), "Y".into(), "Z".into()]);
+            for (i, c) in mesh.coords.iter().enumerate() {
+                let n = aster_mesh::NodeId(i as u32);
+                for (k, name) in ["X", "Y", "Z"].iter().enumerate() {
+                    f.set(n, name, c[k]);
+                }
+            }
+            Field::Nodal(f)
+        }
+        "EVAL" => Field::Nodal(crea_champ_eval(ex, call)?),
         "EXTR" => {
             let r = ex.required("CREA_CHAMP", kw, "RESULTAT")?;
             let result = ex.result(r)?;
@@ -225,6 +253,30 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                     .iter()
                     .filter_map(|s| s.as_str().map(str::to_string))
                     .collect();
+                // NOM_CMP_RESU: the i-th component is stored under the i-th name.
+                let renamed: Vec<String> = occ
+                    .simple("NOM_CMP_RESU")
+                    .iter()
+                    .filter_map(|s| s.as_str().map(str::to_string))
+                    .collect();
+                if !renamed.is_empty() && renamed.len() != cmps.len() {
+                    return Err(ex.kw_error(
+                        "CREA_CHAMP/ASSE",
+                        occ,
+                        "NOM_CMP_RESU",
+                        format!(
+                            "{} names for the {} components of NOM_CMP: give one per component",
+                            renamed.len(),
+                            cmps.len()
+                        ),
+                    ));
+                }
+                let target = |name: &String| -> String {
+                    match cmps.iter().position(|c| c == name) {
+                        Some(i) if !renamed.is_empty() => renamed[i].clone(),
+                        _ => name.clone(),
+                    }
+                };
                 let coef = occ.f64("COEF_R").unwrap_or(1.0);
                 let cumul = occ.str("CUMUL") == Some("OUI");
                 let acc = acc.get_or_insert_with(|| NodalField::new(Vec::new()));
@@ -240,12 +292,13 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                             continue;
                         }
                         if let Some(v) = v {
+                            let out = target(name);
                             let base = if cumul {
-                                acc.get(*node, name).unwrap_or(0.0)
+                                acc.get(*node, &out).unwrap_or(0.0)
                             } else {
                                 0.0
                             };
-                            acc.set(*node, name, base + coef * v);
+                            acc.set(*node, &out, base + coef * v);
                         }
                     }
                 }
@@ -260,7 +313,6 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             return Err(ex.unsupported(&format!("CREA_CHAMP/OPERATION='{other}'"), span));
         }
     };
-    let id = crate::executor::result_of(call)?.id;
     match origin {
         Some(o) => ex.field_origin.insert(id, o),
         None => ex.field_origin.remove(&id),
@@ -328,6 +380,154 @@ fn crea_champ_affe(ex: &Executor, call: &CommandCall) -> Result<NodalField, Exec
         }
     }
     Ok(field)
+}
+
+/// The mesh (id) a CREA_CHAMP's field lives on: `MAILLAGE`, `MODELE`'s,
+/// the result's (EXTR), or that of the first field it is made from.
+fn crea_champ_mesh(ex: &Executor, kw: &Keywords) -> Result<Option<u32>, ExecError> {
+    if let Some(m) = kw.concept("MAILLAGE") {
+        return Ok(Some(m.id));
+    }
+    if let Some(m) = kw.concept("MODELE") {
+        return Ok(Some(ex.model(m)?.mesh));
+    }
+    if let Some(r) = kw.concept("RESULTAT") {
+        return Ok(Some(ex.result(r)?.mesh));
+    }
+    let sources = kw
+        .factor("COMB")
+        .iter()
+        .chain(kw.factor("ASSE"))
+        .filter_map(|o| o.concept("CHAM_GD"))
+        .chain(kw.concept("CHAM_F"));
+    for f in sources {
+        if let Some(&m) = ex.field_meshes.get(&f.id) {
+            return Ok(Some(m));
+        }
+        if let Some((r, _)) = ex.field_origin.get(&f.id) {
+            return Ok(Some(r.mesh));
+        }
+    }
+    Ok(None)
+}
+
+/// `CREA_CHAMP(OPERATION='AFFE', TYPE_CHAM='NOEU_*_F')`: a function per
+/// component on the nodes of each occurrence (`VALE_F`).
+fn crea_champ_affe_functions(
+    ex: &Executor,
+    call: &CommandCall,
+) -> Result<NodalFunctionField, ExecError> {
+    let kw = &call.keywords;
+    let cmd = "CREA_CHAMP/AFFE";
+    let ty = kw.str("TYPE_CHAM").unwrap_or("");
+    if !ty.starts_with("NOEU_") {
+        let span = kw.keyword("TYPE_CHAM").map(|k| k.span).unwrap_or(call.span);
+        return Err(ex.unsupported(
+            &format!("CREA_CHAMP/OPERATION='AFFE' with TYPE_CHAM='{ty}' (nodal fields of functions, NOEU_*_F, only)"),
+            span,
+        ));
+    }
+    let mesh = if let Some(m) = kw.concept("MODELE") {
+        ex.mesh_by_id(ex.model(m)?.mesh)?
+    } else {
+        ex.mesh(ex.required("CREA_CHAMP", kw, "MAILLAGE")?)?
+    };
+    let mut field = NodalFunctionField::default();
+    for occ in kw.factor("AFFE") {
+        let cmps: Vec<&str> = occ
+            .simple("NOM_CMP")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let mut functions = Vec::new();
+        for s in occ.simple("VALE_F") {
+            let Some(c) = s.as_concept() else {
+                return Err(ex.kw_error(cmd, occ, "VALE_F", "a function is required"));
+            };
+            functions.push(ex.function(c)?);
+        }
+        if cmps.len() != functions.len() {
+            return Err(ex.kw_error(
+                cmd,
+                occ,
+                "VALE_F",
+                format!(
+                    "{} functions for {} components in NOM_CMP: give one per component",
+                    functions.len(),
+                    cmps.len()
+                ),
+            ));
+        }
+        let nodes =
+            select::nodes(occ, &mesh, "").map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+        for c in &cmps {
+            if !field.components.iter().any(|k| k == c) {
+                field.components.push(c.to_string());
+            }
+        }
+        for n in nodes {
+            let slot = field.values.entry(n).or_default();
+            for (c, f) in cmps.iter().zip(&functions) {
+                slot.insert(c.to_string(), f.clone());
+            }
+        }
+    }
+    Ok(field)
+}
+
+/// `CREA_CHAMP(OPERATION='EVAL')`: each function of `CHAM_F` evaluated at
+/// each of its nodes, its parameters (`X`, `Y`, `Z`, …) read by name among
+/// the components of the `CHAM_PARA` fields at that node.
+fn crea_champ_eval(ex: &Executor, call: &CommandCall) -> Result<NodalField, ExecError> {
+    let kw = &call.keywords;
+    let f_ref = ex.required("CREA_CHAMP", kw, "CHAM_F")?;
+    let Concept::FunctionField(functions) = ex.concept(f_ref)? else {
+        return Err(ex.kw_error(
+            "CREA_CHAMP",
+            kw,
+            "CHAM_F",
+            "a field of functions (CREA_CHAMP AFFE with TYPE_CHAM='NOEU_*_F') is required",
+        ));
+    };
+    let functions = functions.clone();
+    let mut params = Vec::new();
+    for s in kw.simple("CHAM_PARA") {
+        let Some(c) = s.as_concept() else { continue };
+        match &*ex.field(c)? {
+            Field::Nodal(f) => params.push(f.clone()),
+            Field::Elem(_) => {
+                return Err(ex.unsupported(
+                    "CREA_CHAMP/EVAL with an element field in CHAM_PARA",
+                    kw.keyword("CHAM_PARA").map(|k| k.span).unwrap_or(call.span),
+                ))
+            }
+        }
+    }
+    let mut out = NodalField::new(functions.components.clone());
+    for (&node, comps) in &functions.values {
+        for (c, f) in comps {
+            let mut args: Vec<(&str, f64)> = Vec::new();
+            for p in f.parameters() {
+                let v = params
+                    .iter()
+                    .find_map(|field| field.get(node, p))
+                    .ok_or_else(|| {
+                        ex.kw_error(
+                            "CREA_CHAMP",
+                            kw,
+                            "CHAM_PARA",
+                            format!("no field of CHAM_PARA gives {p} at a node of CHAM_F"),
+                        )
+                    })?;
+                args.push((p, v));
+            }
+            let v = f
+                .eval_named(&args)
+                .map_err(|e| ExecError::new(format!("CREA_CHAMP/EVAL: {e}")))?;
+            out.set(node, c, v);
+        }
+    }
+    Ok(out)
 }
 
 fn table_title(name: &str) -> Vec<String> {

@@ -299,13 +299,16 @@ pub(crate) const RECU_TABLE: Support = Support {
         "NOM_TABLE",
         &["OBSERVATION"],
     )],
-    ..Support::keywords(&["CO", "NOM_TABLE", "TITRE"])
+    ..Support::keywords(&["CO", "NOM_TABLE", "NOM_PARA", "TITRE"])
 };
 
 /// `RECU_TABLE(CO=result, NOM_TABLE=...)`: a table carried by a result
 /// (`STAT_NON_LINE/OBSERVATION` makes 'OBSERVATION').
 pub fn recu_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
+    if kw.get("NOM_PARA").is_some() {
+        return recu_parameters(ex, call);
+    }
     let co = ex.required("RECU_TABLE", kw, "CO")?;
     let name = kw.str("NOM_TABLE").unwrap_or("");
     let result = ex.result(co)?;
@@ -326,5 +329,48 @@ pub fn recu_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         )));
     };
     let table = (**t).clone();
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+/// `RECU_TABLE(CO=result, NOM_PARA=...)`: the result's parameters per
+/// step (NUME_ORDRE and, here, INST).
+fn recu_parameters(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let co = ex.required("RECU_TABLE", kw, "CO")?;
+    let result = ex.result(co)?;
+    let params: Vec<&str> = kw
+        .simple("NOM_PARA")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    let mut columns = vec![Column {
+        name: "NUME_ORDRE".into(),
+        ty: ColumnType::Int,
+    }];
+    for p in &params {
+        if *p != "INST" {
+            return Err(ex.kw_error(
+                "RECU_TABLE",
+                kw,
+                "NOM_PARA",
+                format!(
+                    "result `{}` has no parameter {p} here (its steps store INST)",
+                    co.name
+                ),
+            ));
+        }
+        columns.push(Column {
+            name: p.to_string(),
+            ty: ColumnType::Real,
+        });
+    }
+    let mut table = Table::new(columns);
+    for s in &result.steps {
+        let mut row = vec![("NUME_ORDRE", Value::Int(s.nume_ordre as i64))];
+        for p in &params {
+            row.push((p, Value::Real(s.inst)));
+        }
+        table.push_row(row);
+    }
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }

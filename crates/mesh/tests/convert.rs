@@ -1,0 +1,83 @@
+//! GMSH and GIBI files the project wrote (comm/study.msh, study41.msh,
+//! square3.mgib), read as code_aster's PRE_GMSH / PRE_GIBI convert them:
+//! node and cell names, cell order (type by type), groups, coordinates.
+
+use aster_mesh::{read_mesh, CellType, Mesh};
+use std::path::PathBuf;
+
+fn comm(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../comm")
+        .join(name)
+}
+
+fn names_of_group(m: &Mesh, g: &str) -> Vec<String> {
+    m.group_ma(g)
+        .unwrap()
+        .members
+        .iter()
+        .map(|c| m.cell_names[c.0 as usize].clone())
+        .collect()
+}
+
+#[test]
+fn gmsh_22_as_pre_gmsh_converts_it() {
+    let m = read_mesh(&comm("study.msh")).unwrap();
+    // PRE_GMSH always writes COOR_3D.
+    assert_eq!(m.dim, 3);
+    assert_eq!(m.node_names, ["N1", "N2", "N3", "N4", "N5", "N6"]);
+    // Cells type by type (GMSH types 1 SEG2, 3 QUAD4, 15 POI1), file order within.
+    assert_eq!(m.cell_names, ["M2", "M3", "M4", "M5", "M1"]);
+    let types: Vec<CellType> = m.cells.iter().map(|c| c.ty).collect();
+    assert_eq!(
+        types,
+        [
+            CellType::SEG2,
+            CellType::SEG2,
+            CellType::QUAD4,
+            CellType::QUAD4,
+            CellType::POI1
+        ]
+    );
+    // Groups GM<physical> in the order the physicals first appear; the
+    // physical names of $PhysicalNames are not read (code_aster skips to $Nodes).
+    let groups: Vec<&str> = m.groups_ma.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(groups, ["GM5", "GM1", "GM2", "GM10", "GM11"]);
+    assert_eq!(names_of_group(&m, "GM10"), ["M4"]);
+    // A physical group of one point cell is also a node group.
+    assert_eq!(m.groups_no.len(), 1);
+    assert_eq!(
+        m.node_names[m.group_no("GM5").unwrap().members[0].0 as usize],
+        "N1"
+    );
+}
+
+#[test]
+fn gmsh_41_reads_as_the_same_mesh() {
+    let a = read_mesh(&comm("study.msh")).unwrap();
+    let b = read_mesh(&comm("study41.msh")).unwrap();
+    assert_eq!(a, b);
+}
+
+#[test]
+fn gibi_level_3_with_an_indirection() {
+    let m = read_mesh(&comm("square3.mgib")).unwrap();
+    assert_eq!(m.dim, 2);
+    // The coordinate indices the indirection reaches (point 7 is not), sorted.
+    assert_eq!(m.node_names, ["N1", "N2", "N3", "N4", "N5", "N6"]);
+    assert_eq!(m.coords[0], [2.0, 1.0, 0.0]);
+    assert_eq!(m.cell_names, ["M1", "M2", "M3"]);
+    // Point p is coordinate 7 - p: the first quad (points 1 2 5 4).
+    let first: Vec<&str> = m.cells[0]
+        .nodes
+        .iter()
+        .map(|n| m.node_names[n.0 as usize].as_str())
+        .collect();
+    assert_eq!(first, ["N6", "N5", "N2", "N3"]);
+    assert_eq!(names_of_group(&m, "PLAQ"), ["M1", "M2"]);
+    assert_eq!(names_of_group(&m, "BAS"), ["M3"]);
+    assert_eq!(
+        m.node_names[m.group_no("PA").unwrap().members[0].0 as usize],
+        "N1"
+    );
+}

@@ -1,0 +1,306 @@
+//! POST_ELEM: quantities integrated over cells, as a table.
+//!
+//! - `ENER_POT` (code_aster's `peepot`): the potential energy of a
+//!   displacement (`EPOT_ELEM`: ½ uₑᵀ Kₑ uₑ per cell, aster-fem
+//!   `energy::potential_energy_by_cell`), summed over the whole model
+//!   (`TOUT`, `LIEU` = the mesh's name) or per group (`GROUP_MA`), with
+//!   `POUR_CENT` the share of the model's total. From a result
+//!   (`RESULTAT`, every stored instant unless `NUME_ORDRE`/`INST`/
+//!   `LIST_INST` choose) the table has `NUME_ORDRE`, `INST`, `LIEU` (K24),
+//!   `ENTITE`, `TOTALE`, `POUR_CENT`; from a field (`CHAM_GD` with
+//!   `MODELE`, `CHAM_MATER`, `CARA_ELEM`) `LIEU` (K8), `ENTITE`, `TOTALE`,
+//!   `POUR_CENT`.
+//! - `ENER_ELAS` (`peingl`, option `ENEL_ELEM`): the elastic energy of a
+//!   result's stresses, per instant, with code_aster's columns `TOTALE`,
+//!   `MEMBRANE`, `FLEXION`, `CISAILLE`, `COUPL_MF` (the last four are for
+//!   plates: 0 for continuum cells). Elastic results only: there it is the
+//!   same ½ σ:D⁻¹:σ = ½ ε:D:ε as `ENER_POT`.
+//!
+//! Every other quantity (MASS_INER, ENER_CIN, NORME, INTEGRALE, MINMAX,
+//! TRAV_EXT…) is refused with its location.
+
+use crate::concept::{Concept, EvolResult};
+use crate::executor::{store_result, Executor};
+use crate::support::Support;
+use crate::table::{Column, ColumnType, Table, Value};
+use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use aster_fem::Model;
+use aster_mesh::{CellId, Mesh};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// What POST_ELEM computes (`crate::support`).
+pub(crate) const POST_ELEM: Support = Support::keywords(&[
+    "ENER_POT",
+    "ENER_POT/TOUT",
+    "ENER_POT/GROUP_MA",
+    "ENER_ELAS",
+    "ENER_ELAS/TOUT",
+    "ENER_ELAS/GROUP_MA",
+    "RESULTAT",
+    "CHAM_GD",
+    "MODELE",
+    "CHAM_MATER",
+    "CARA_ELEM",
+    "TOUT_ORDRE",
+    "NUME_ORDRE",
+    "INST",
+    "LIST_INST",
+    "PRECISION",
+    "CRITERE",
+    "TITRE",
+]);
+
+pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let (factor, elastic) = if kw.contains("ENER_ELAS") {
+        ("ENER_ELAS", true)
+    } else {
+        ("ENER_POT", false)
+    };
+    let places = places(ex, kw, factor)?;
+    let table = if let Some(r) = kw.concept("RESULTAT") {
+        let result = ex.result(r)?;
+        let steps = super::post::select_steps(ex, "POST_ELEM", kw, &result)?;
+        let orders: Vec<(u32, f64)> = steps.iter().map(|s| (s.nume_ordre, s.inst)).collect();
+        let (model, mesh_name) = result_model(ex, kw, r, &result)?;
+        let mut columns = vec![
+            col("NUME_ORDRE", ColumnType::Int),
+            col("INST", ColumnType::Real),
+            col("LIEU", ColumnType::Text(24)),
+            col("ENTITE", ColumnType::Text(8)),
+            col("TOTALE", ColumnType::Real),
+        ];
+        if elastic {
+            for c in ["MEMBRANE", "FLEXION", "CISAILLE", "COUPL_MF"] {
+                columns.push(col(c, ColumnType::Real));
+            }
+        } else {
+            columns.push(col("POUR_CENT", ColumnType::Real));
+        }
+        let mut table = Table::new(columns);
+        for (order, inst) in orders {
+            let u = displacement(ex, &result, &model, order, &r.name)?;
+            let energies = energies(&model, &u)?;
+            for place in &places {
+                let (value, percent) = place.sum(&energies, &model);
+                let mut row = vec![
+                    ("NUME_ORDRE", Value::Int(order as i64)),
+                    ("INST", Value::Real(inst)),
+                    ("LIEU", Value::Text(place.lieu(&mesh_name))),
+                    ("ENTITE", Value::Text(place.entite().into())),
+                    ("TOTALE", Value::Real(value)),
+                ];
+                if elastic {
+                    for c in ["MEMBRANE", "FLEXION", "CISAILLE", "COUPL_MF"] {
+                        row.push((c, Value::Real(0.0)));
+                    }
+                } else {
+                    row.push(("POUR_CENT", Value::Real(percent)));
+                }
+                table.push_row(row);
+            }
+        }
+        table
+    } else {
+        let Some(f) = kw.concept("CHAM_GD") else {
+            return Err(ExecError::new(format!(
+                "POST_ELEM/{factor}: give RESULTAT, or CHAM_GD with MODELE and CHAM_MATER"
+            )));
+        };
+        let field = ex.field(f)?;
+        let crate::field::Field::Nodal(depl) = &*field else {
+            return Err(ex.kw_error(
+                "POST_ELEM",
+                kw,
+                "CHAM_GD",
+                "ENER_POT of an element field (ENER_ELEM) is not supported: give the displacement (a NOEU_DEPL_R field)",
+            ));
+        };
+        let (model, mesh_name) = model_from_keywords(ex, kw)?;
+        let u = crate::fembridge::displacement_from(&model, depl);
+        let energies = energies(&model, &u)?;
+        let mut table = Table::new(vec![
+            col("LIEU", ColumnType::Text(8)),
+            col("ENTITE", ColumnType::Text(8)),
+            col("TOTALE", ColumnType::Real),
+            col("POUR_CENT", ColumnType::Real),
+        ]);
+        for place in &places {
+            let (value, percent) = place.sum(&energies, &model);
+            table.push_row(vec![
+                ("LIEU", Value::Text(place.lieu(&mesh_name))),
+                ("ENTITE", Value::Text(place.entite().into())),
+                ("TOTALE", Value::Real(value)),
+                ("POUR_CENT", Value::Real(percent)),
+            ]);
+        }
+        table
+    };
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+fn col(name: &str, ty: ColumnType) -> Column {
+    Column {
+        name: name.to_string(),
+        ty,
+    }
+}
+
+/// Where a row sums: the whole model, or a group of cells.
+enum Place {
+    All,
+    Group(String, Vec<CellId>),
+}
+
+impl Place {
+    fn lieu(&self, mesh_name: &str) -> String {
+        match self {
+            Place::All => mesh_name.to_string(),
+            Place::Group(g, _) => g.clone(),
+        }
+    }
+
+    fn entite(&self) -> &'static str {
+        match self {
+            Place::All => "TOUT",
+            Place::Group(..) => "GROUP_MA",
+        }
+    }
+
+    /// The sum over the place and its share of the total (`peenca`).
+    fn sum(&self, energies: &HashMap<CellId, f64>, model: &Model) -> (f64, f64) {
+        let total: f64 = model
+            .elements()
+            .iter()
+            .filter_map(|e| energies.get(&e.cell))
+            .sum();
+        match self {
+            Place::All => (total, 100.0),
+            Place::Group(_, cells) => {
+                let v: f64 = cells.iter().filter_map(|c| energies.get(c)).sum();
+                let percent = if v < f64::EPSILON && total < f64::EPSILON {
+                    0.0
+                } else {
+                    100.0 * v / total
+                };
+                (v, percent)
+            }
+        }
+    }
+}
+
+/// The places of every occurrence of the factor keyword, in order.
+fn places(ex: &Executor, kw: &Keywords, factor: &str) -> Result<Vec<Place>, ExecError> {
+    let mut out = Vec::new();
+    let mesh: Option<std::sync::Arc<Mesh>> = match (kw.concept("RESULTAT"), kw.concept("MODELE")) {
+        (_, Some(m)) => Some(ex.mesh_by_id(ex.model(m)?.mesh)?),
+        (Some(r), None) => Some(ex.mesh_by_id(ex.result(r)?.mesh)?),
+        _ => None,
+    };
+    for occ in kw.factor(factor) {
+        if occ.contains("TOUT") {
+            out.push(Place::All);
+        }
+        for g in occ.simple("GROUP_MA").iter().filter_map(|s| s.as_str()) {
+            let Some(mesh) = &mesh else {
+                return Err(ExecError::new(format!(
+                    "POST_ELEM/{factor}: no mesh to find group `{g}` in"
+                )));
+            };
+            let group = crate::select::group_ma(mesh, g)
+                .map_err(|e| ex.kw_error("POST_ELEM", occ, "GROUP_MA", e))?;
+            out.push(Place::Group(g.to_string(), group.to_vec()));
+        }
+    }
+    Ok(out)
+}
+
+/// The fem model a result was computed with, or the one `MODELE` +
+/// `CHAM_MATER` (+ `CARA_ELEM`) describe; and the mesh's name.
+fn result_model(
+    ex: &Executor,
+    kw: &Keywords,
+    r: &aster_eval::ConceptRef,
+    result: &EvolResult,
+) -> Result<(Rc<ModelRef>, String), ExecError> {
+    if kw.contains("MODELE") {
+        let (m, name) = model_from_keywords(ex, kw)?;
+        return Ok((Rc::new(ModelRef::Own(m)), name));
+    }
+    let Some(run) = result.fem.clone() else {
+        return Err(ExecError::new(format!(
+            "POST_ELEM: result `{}` was not computed in this run: give MODELE and CHAM_MATER",
+            r.name
+        )));
+    };
+    if run.plastic {
+        return Err(ex.unsupported(
+            "POST_ELEM on a result with plastic cells (the energies of elastic results only)",
+            kw.keyword("RESULTAT").map(|k| k.span).unwrap_or_default(),
+        ));
+    }
+    let name = ex.concept_name(result.mesh).unwrap_or("").to_string();
+    Ok((Rc::new(ModelRef::Run(run)), name))
+}
+
+/// A model owned here or the one of a computed result.
+enum ModelRef {
+    Own(Model),
+    Run(Rc<crate::fembridge::FemRun>),
+}
+
+impl std::ops::Deref for ModelRef {
+    type Target = Model;
+    fn deref(&self) -> &Model {
+        match self {
+            ModelRef::Own(m) => m,
+            ModelRef::Run(r) => &r.model,
+        }
+    }
+}
+
+fn model_from_keywords(ex: &Executor, kw: &Keywords) -> Result<(Model, String), ExecError> {
+    let model = ex.model(ex.required("POST_ELEM", kw, "MODELE")?)?;
+    let materials = ex.material_field(ex.required("POST_ELEM", kw, "CHAM_MATER")?)?;
+    let cara = match kw.concept("CARA_ELEM") {
+        Some(c) => Some(ex.cara_elem(c)?),
+        None => None,
+    };
+    let mesh = ex.model_mesh(&model)?;
+    let name = ex.concept_name(model.mesh).unwrap_or("").to_string();
+    let m = crate::fembridge::build_model(&mesh, &model, &materials, cara.as_deref())?;
+    Ok((m, name))
+}
+
+/// The displacement (per DOF of the model) of a result at a NUME_ORDRE.
+fn displacement(
+    ex: &Executor,
+    result: &EvolResult,
+    model: &ModelRef,
+    order: u32,
+    name: &str,
+) -> Result<Vec<f64>, ExecError> {
+    if let ModelRef::Run(run) = model {
+        if let Some(step) = run.raw.by_order(order as usize) {
+            return Ok(step.displacement.clone());
+        }
+    }
+    let _ = ex;
+    let step = result
+        .step_numbered(order)
+        .ok_or_else(|| ExecError::new(format!("POST_ELEM: no NUME_ORDRE {order} in `{name}`")))?;
+    match super::post::step_field(step, "DEPL", name)? {
+        crate::field::Field::Nodal(depl) => Ok(crate::fembridge::displacement_from(model, depl)),
+        _ => Err(ExecError::new(format!(
+            "POST_ELEM: DEPL of `{name}` is not a nodal field"
+        ))),
+    }
+}
+
+fn energies(model: &Model, u: &[f64]) -> Result<HashMap<CellId, f64>, ExecError> {
+    Ok(aster_fem::energy::potential_energy_by_cell(model, u)
+        .map_err(|e| ExecError::new(format!("POST_ELEM: {e}")))?
+        .into_iter()
+        .collect())
+}
