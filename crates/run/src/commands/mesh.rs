@@ -173,6 +173,11 @@ pub(crate) const DEFI_GROUP: Support = Support::keywords(&[
     "CREA_GROUP_MA/ANGL_NAUT",
     "CREA_GROUP_MA/ANGL_PREC",
     "CREA_GROUP_MA/VERI_SIGNE",
+    "CREA_GROUP_MA/POINT",
+    "CREA_GROUP_MA/NOEUD_CENTRE",
+    "CREA_GROUP_MA/GROUP_NO_CENTRE",
+    "CREA_GROUP_MA/RAYON",
+    "CREA_GROUP_MA/CRIT_NOEUD",
     "DETR_GROUP_NO",
     "DETR_GROUP_NO/NOM",
     "DETR_GROUP_MA",
@@ -228,6 +233,29 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                         occ.str("VERI_SIGNE").unwrap_or("OUI") == "OUI",
                     )
                     .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+            }
+            Some("CYLINDRE") => {
+                let what = "DEFI_GROUP/CREA_GROUP_MA/OPTION='CYLINDRE'";
+                if mesh.dim != 3 {
+                    return Err(ExecError::new(format!("{what}: the mesh must be 3D")));
+                }
+                let axis = normal_vector(occ, what)?;
+                let radius = occ
+                    .f64("RAYON")
+                    .ok_or_else(|| ExecError::new(format!("{what}: RAYON is required")))?;
+                let at_least_one = match occ.str("CRIT_NOEUD").unwrap_or("AU_MOINS_UN") {
+                    "AU_MOINS_UN" => true,
+                    "TOUS" => false,
+                    other => {
+                        let span = occ.keyword("CRIT_NOEUD").map(|k| k.span).unwrap_or_default();
+                        return Err(ex.unsupported(&format!("{what} with CRIT_NOEUD='{other}'"), span));
+                    }
+                };
+                let inside = mesh
+                    .cells_in_cylinder(centre(ex, &mesh, occ)?, axis, radius, at_least_one)
+                    .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+                let inside: BTreeSet<aster_mesh::CellId> = inside.into_iter().collect();
+                cells.retain(|c| inside.contains(c));
             }
             Some(other) => {
                 let span = occ.keyword("OPTION").map(|k| k.span).unwrap_or_default();
