@@ -223,8 +223,14 @@ impl TableFormat {
     /// column is wider than its values.
     fn string_cell(&self, ty: ColumnType, width: usize, s: &str) -> String {
         let value = self.value_width(ty);
-        let lead = if ty == ColumnType::Real { self.real_lead } else { 0 };
-        let shift = width.saturating_sub(s.len()).min(width.saturating_sub(value));
+        let lead = if ty == ColumnType::Real {
+            self.real_lead
+        } else {
+            0
+        };
+        let shift = width
+            .saturating_sub(s.len())
+            .min(width.saturating_sub(value));
         let w = value - lead;
         format!("{}{}{s:<w$}", " ".repeat(shift), " ".repeat(lead))
     }
@@ -247,7 +253,9 @@ impl TableFormat {
                 c_exp(*r, self.real_width, self.real_precision)
             ),
             Some(Value::Int(i)) => format!("{}{:>12}", " ".repeat(shift), i),
-            Some(Value::Text(s)) => format!("{}{s:<w$}", " ".repeat(shift), w = self.value_width(ty)),
+            Some(Value::Text(s)) => {
+                format!("{}{s:<w$}", " ".repeat(shift), w = self.value_width(ty))
+            }
         }
     }
 }

@@ -47,6 +47,9 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
     );
     let table = std::fs::read_to_string(out.join("table.agraf")).unwrap();
     assert!(table.contains("\n X             XY          \n"), "{table}");
-    assert!(table.contains("\n 1.0000000E+00  1.0000000E+01\n"), "{table}");
+    assert!(
+        table.contains("\n 1.0000000E+00  1.0000000E+01\n"),
+        "{table}"
+    );
     let _ = std::fs::remove_dir_all(out);
 }

@@ -108,10 +108,14 @@ impl Mesh {
     ) -> Result<Vec<CellId>, MeshError> {
         let l = norm(axis);
         if l == 0.0 || !l.is_finite() {
-            return Err(MeshError::Operation("CYLINDRE: the axis vector is zero".into()));
+            return Err(MeshError::Operation(
+                "CYLINDRE: the axis vector is zero".into(),
+            ));
         }
         if !(radius > 0.0) {
-            return Err(MeshError::Operation("CYLINDRE: RAYON must be positive".into()));
+            return Err(MeshError::Operation(
+                "CYLINDRE: RAYON must be positive".into(),
+            ));
         }
         let a = [axis[0] / l, axis[1] / l, axis[2] / l];
         // Squared distance to the axis, as cgmacy computes it:
@@ -357,13 +361,19 @@ mod tests {
         let c = [2.1, 0.5, 0.0];
         let z = [0.0, 0.0, 3.0];
         assert_eq!(m.cells_in_cylinder(c, z, 0.5, true).unwrap(), vec![]);
-        assert_eq!(m.cells_in_cylinder(c, z, 0.6, true).unwrap(), vec![CellId(1)]);
+        assert_eq!(
+            m.cells_in_cylinder(c, z, 0.6, true).unwrap(),
+            vec![CellId(1)]
+        );
         assert_eq!(m.cells_in_cylinder(c, z, 0.6, false).unwrap(), vec![]);
         assert_eq!(
             m.cells_in_cylinder(c, z, 1.25, true).unwrap(),
             vec![CellId(0), CellId(1)]
         );
-        assert_eq!(m.cells_in_cylinder(c, z, 1.25, false).unwrap(), vec![CellId(1)]);
+        assert_eq!(
+            m.cells_in_cylinder(c, z, 1.25, false).unwrap(),
+            vec![CellId(1)]
+        );
         // A node on the axis point selects its cells whatever the rule.
         assert_eq!(
             m.cells_in_cylinder([0.0; 3], z, 1e-3, false).unwrap(),

@@ -338,7 +338,11 @@ fn crea_champ_normale(ex: &Executor, call: &CommandCall) -> Result<NodalField, E
     let cells = select::cells(kw, &mesh, "").map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
     let normals = super::pressure::nodal_normals(&mesh, &cells, &|n| mesh.coord(n))
         .map_err(|e| ExecError::new(format!("{cmd}: {}", e.message)))?;
-    let names: &[&str] = if mesh.dim == 3 { &["X", "Y", "Z"] } else { &["X", "Y"] };
+    let names: &[&str] = if mesh.dim == 3 {
+        &["X", "Y", "Z"]
+    } else {
+        &["X", "Y"]
+    };
     let mut out = NodalField::new(names.iter().map(|s| s.to_string()).collect());
     for (node, n) in normals {
         for (d, c) in names.iter().enumerate() {
@@ -580,7 +584,10 @@ fn polar_components(f: &NodalField, mesh: &aster_mesh::Mesh) -> NodalField {
             ([x[0] / r, x[1] / r], [x[1] / r, -x[0] / r])
         };
         let orig = f.values.get(&node).cloned().unwrap_or_default();
-        let get = |i: Option<usize>| i.and_then(|i| orig.get(i).copied().flatten()).unwrap_or(0.0);
+        let get = |i: Option<usize>| {
+            i.and_then(|i| orig.get(i).copied().flatten())
+                .unwrap_or(0.0)
+        };
         if let (Some(ix), Some(iy)) = vector {
             let u = [get(Some(ix)), get(Some(iy))];
             vals[ix] = Some(v1[0] * u[0] + v1[1] * u[1]);
@@ -824,7 +831,11 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     )
                 })?,
             };
-            let f = if polar { polar_components(&f, &mesh) } else { f };
+            let f = if polar {
+                polar_components(&f, &mesh)
+            } else {
+                f
+            };
             let cmps: Vec<String> = if occ.str("TOUT_CMP") == Some("OUI") {
                 f.components.clone()
             } else {
@@ -981,7 +992,12 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     };
     if let Some(f) = kw.str("FORMAT_R") {
         let (lead, width, precision) = TableFormat::real_from_fortran(f).ok_or_else(|| {
-            ex.kw_error("IMPR_TABLE", kw, "FORMAT_R", "a real edit descriptor [nP]Ew.d")
+            ex.kw_error(
+                "IMPR_TABLE",
+                kw,
+                "FORMAT_R",
+                "a real edit descriptor [nP]Ew.d",
+            )
         })?;
         format.real_lead = lead;
         format.real_width = width;

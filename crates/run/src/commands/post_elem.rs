@@ -197,10 +197,15 @@ fn ener_cin(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exec
             data
         }
         (None, ModelRef::Run(run)) => run.mass.clone().ok_or_else(|| {
-            ExecError::new(format!("{cmd}: the masses of `{}` could not be gathered", r.name))
+            ExecError::new(format!(
+                "{cmd}: the masses of `{}` could not be gathered",
+                r.name
+            ))
         })?,
         (None, ModelRef::Own(_)) => {
-            return Err(ExecError::new(format!("{cmd}: give CHAM_MATER with MODELE")));
+            return Err(ExecError::new(format!(
+                "{cmd}: give CHAM_MATER with MODELE"
+            )));
         }
     };
     if !mass.discrete.is_empty() {
