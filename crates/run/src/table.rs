@@ -208,38 +208,58 @@ impl TableFormat {
         (w > p && w <= 40).then_some((lead, w, p))
     }
 
-    /// The width of one formatted value (`len(fmt % 0)`).
-    fn value_width(&self, ty: ColumnType) -> usize {
+    /// `len(formR % 0)`: the real format's width, or more when the digits
+    /// overflow it (`%12.7E` writes 13 characters), after its blanks.
+    fn real_len(&self) -> usize {
+        let digits = if self.real_precision == 0 {
+            5
+        } else {
+            self.real_precision + 6
+        };
+        self.real_lead + self.real_width.max(digits)
+    }
+
+    /// The string format of a column's type (`FMT(…, 'formK', type)`):
+    /// (leading blanks, width of `%-ws`). For reals and integers code_aster
+    /// derives it from their number format (`%12.5E` → `%-12s`).
+    fn string_format(&self, ty: ColumnType) -> (usize, usize) {
         match ty {
-            ColumnType::Int => 12,
-            ColumnType::Real => self.real_lead + self.real_width,
+            ColumnType::Real => (self.real_lead, self.real_width),
+            ColumnType::Int => (0, 12),
+            ColumnType::Text(n) => (0, n),
+        }
+    }
+
+    /// The width of a column before its name is counted: the longest of
+    /// its string, real and integer formats applied to 0 (code_aster's
+    /// `ReprTable`: an integer column is as wide as a real one).
+    fn value_width(&self, ty: ColumnType) -> usize {
+        let (lead, w) = self.string_format(ty);
+        match ty {
             ColumnType::Text(n) => n,
+            _ => (lead + w).max(self.real_len()).max(12),
         }
     }
 
     /// A string in a column of `width` (a header, the `-` of an empty
-    /// cell, a text value): the column's string format `%-ns` (its value
-    /// width, after the leading blanks of reals), shifted right when the
-    /// column is wider than its values.
+    /// cell, a text value): the column's string format, shifted right when
+    /// the column is wider than that format and than the string.
     fn string_cell(&self, ty: ColumnType, width: usize, s: &str) -> String {
-        let value = self.value_width(ty);
-        let lead = if ty == ColumnType::Real {
-            self.real_lead
-        } else {
-            0
-        };
+        let (lead, w) = self.string_format(ty);
         let shift = width
             .saturating_sub(s.len())
-            .min(width.saturating_sub(value));
-        let w = value - lead;
+            .min(width.saturating_sub(lead + w));
         format!("{}{}{s:<w$}", " ".repeat(shift), " ".repeat(lead))
     }
 
     fn cell(&self, ty: ColumnType, width: usize, value: Option<&Value>) -> String {
-        let shift = width.saturating_sub(self.value_width(ty));
         match value {
             None => {
-                let s = self.string_cell(ty, width, "-");
+                // The empty cell's format is the string one, shifted as for
+                // an empty string.
+                let (lead, w) = self.string_format(ty);
+                let shift = width.saturating_sub(lead + w);
+                let s = format!("{}{}{:<w$}", " ".repeat(shift), " ".repeat(lead), "-");
                 if self.agraf {
                     format!("\\{s}")
                 } else {
@@ -248,13 +268,14 @@ impl TableFormat {
             }
             Some(Value::Real(r)) => format!(
                 "{}{}{}",
-                " ".repeat(shift),
+                " ".repeat(width.saturating_sub(self.real_len())),
                 " ".repeat(self.real_lead),
                 c_exp(*r, self.real_width, self.real_precision)
             ),
-            Some(Value::Int(i)) => format!("{}{:>12}", " ".repeat(shift), i),
+            Some(Value::Int(i)) => format!("{}{:>12}", " ".repeat(width.saturating_sub(12)), i),
             Some(Value::Text(s)) => {
-                format!("{}{s:<w$}", " ".repeat(shift), w = self.value_width(ty))
+                let n = self.value_width(ty);
+                format!("{}{s:<n$}", " ".repeat(width.saturating_sub(n)))
             }
         }
     }

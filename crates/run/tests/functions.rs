@@ -46,7 +46,10 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
         "{digr}"
     );
     let table = std::fs::read_to_string(out.join("table.agraf")).unwrap();
-    assert!(table.contains("\n X             XY          \n"), "{table}");
+    assert!(
+        table.contains("\n  X              XY          \n"),
+        "{table}"
+    );
     assert!(
         table.contains("\n 1.0000000E+00  1.0000000E+01\n"),
         "{table}"
