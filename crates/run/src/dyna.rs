@@ -187,7 +187,7 @@ fn parse_dynamics(ex: &Executor, call: &CommandCall) -> Result<DynamicSetup, Exe
 
 /// The densities (ELAS/RHO) of the model's cells, the discrete masses and
 /// the Rayleigh coefficients.
-fn mass_data(
+pub(crate) fn mass_data(
     mesh: &Mesh,
     setup: &SolveSetup,
 ) -> Result<(MassData, HashMap<aster_mesh::CellId, Rayleigh>), ExecError> {
