@@ -170,9 +170,16 @@ pub struct Motion {
 
 /// What a time integrator (`dynamics`) adds to every increment of the
 /// Newton loop: a matrix added to the stiffness (constant during the
-/// increment) and a force affine in the displacement, `matrix·u − offset`
-/// (inertia and damping). STAT_NON_LINE has none; DYNA_NON_LINE runs the
-/// same loop with one.
+/// increment) and a force affine in the displacement,
+/// `matrix·(u − uₙ) − offset` (inertia and damping), uₙ the converged
+/// displacement the increment starts from. STAT_NON_LINE has none;
+/// DYNA_NON_LINE runs the same loop with one.
+///
+/// The force is taken on the increment u − uₙ, as code_aster accumulates
+/// the acceleration from the Newton corrections: `matrix·u − offset'`
+/// would subtract two terms of size M uₙ/(βΔt²) and leave their round-off
+/// (an acceleration noise of ulp(uₙ)/(βΔt²), 0.4 mm/s² per ulp on SDNV103E)
+/// in every residual.
 pub trait IncrementTerms {
     /// Starts the increment `from` → `to` from the last converged
     /// displacement `u`. Returns whether [`matrix`](Self::matrix) changed
@@ -182,6 +189,9 @@ pub trait IncrementTerms {
     fn matrix(&self) -> &Csc;
     /// The constant part of the force (moved to the external forces).
     fn offset(&self) -> &[f64];
+    /// The part of the force that moves with the iterate `u`:
+    /// `matrix·(u − uₙ)`.
+    fn force(&self, u: &[f64]) -> Vec<f64>;
     /// The largest inertia force code_aster adds to the residual's
     /// reference (`RESI_GLOB_RELA`) at the iterate `u`.
     fn reference(&self, u: &[f64]) -> f64;
@@ -520,7 +530,7 @@ impl StaticNonLinear<'_> {
         }
         // Dynamics: K + the integrator's matrix, rebuilt when it changes
         // (a new time step), and its restriction to the free DOFs.
-        let mut k_dyn: Option<(Csc, Csc)> = None;
+        let mut k_dyn: Option<Csc> = None;
         let mass_holds = self.dynamics.as_ref().is_some_and(|d| d.mass_holds());
 
         let mut attempts: Vec<Attempt> = Vec::new();
@@ -561,8 +571,7 @@ impl StaticNonLinear<'_> {
                         for (v, a) in ke.values.iter_mut().zip(&d.matrix().values) {
                             *v += a;
                         }
-                        let kef = restrict(&ke, &map, nfree);
-                        k_dyn = Some((ke, kef));
+                        k_dyn = Some(restrict(&ke, &map, nfree));
                         kkt = KktSolver::default();
                     }
                 }
@@ -621,8 +630,11 @@ impl StaticNonLinear<'_> {
                         return Err(FemError::Singular { free_dofs: free });
                     }
                 }
+                // The internal forces are K u (+ the plastic cells), the
+                // integrator's force added apart (`IncrementTerms::force`);
+                // the solves use K + its matrix.
                 let (k_used, kff_used) = match &k_dyn {
-                    Some((ke, kef)) => (ke, kef),
+                    Some(kef) => (&k, kef),
                     None => (&k, &kff),
                 };
                 let ctx = StepContext {
@@ -1084,9 +1096,9 @@ fn newton_step(
                     for &i in elim.keys() {
                         u0[i] = start[i];
                     }
-                    internal_forces(model, k, plastic, &u0)?
+                    step_forces(model, k, dynamics, plastic, &u0)?
                 }
-                None => internal_forces(model, k, plastic, u)?,
+                None => step_forces(model, k, dynamics, plastic, u)?,
             };
             if let Some(pc) = plastic.as_mut() {
                 if new_outer && choose_tangent(&mut tangent, pc, model, kff, map, newton, outer)? {
@@ -1212,7 +1224,7 @@ fn newton_step(
             }
             newton_iter += 1;
             // Residual at the new iterate.
-            let fint = internal_forces(model, k, plastic, u)?;
+            let fint = step_forces(model, k, dynamics, plastic, u)?;
             let mut reac = vec![0.0; nd];
             for (r, (terms, _)) in rows.iter().enumerate() {
                 for &(i, c) in terms {
@@ -1238,7 +1250,7 @@ fn newton_step(
             // Dynamics: code_aster's reference counts the inertia and
             // damping forces with the external ones (not with the internal
             // forces), and the inertia force of the velocity.
-            let dyn_u = dynamics.map(|d| d.matrix().mul(u));
+            let dyn_u = dynamics.map(|d| d.force(u));
             let dyn_at = |i: usize| dyn_u.as_ref().map_or(0.0, |f| f[i]);
             for i in 0..nd {
                 if map[i] == usize::MAX {
@@ -1334,7 +1346,14 @@ fn newton_step(
                                 g > 1e-10 * length
                             }
                         }
-                        UnilateralMethod::Penalty { .. } => g > 0. || sr.rows[r].bilateral,
+                        // code_aster's status (`compute_ineq_conditions_vector`):
+                        // in contact while the gap −g < r8prem, so a row
+                        // the penalty brought back to g = 0 stays active
+                        // (with `g > 0` it would be released and
+                        // re-penetrate: a cycle); bilateral rows always are.
+                        UnilateralMethod::Penalty { .. } => {
+                            g > -f64::EPSILON || sr.rows[r].bilateral
+                        }
                     };
                     if now != sr.active[r] {
                         changed = true;
@@ -1474,7 +1493,7 @@ fn newton_step(
                     // back to its iterate (and the Gauss-point trial states
                     // and tangents there).
                     u.copy_from_slice(&u0);
-                    internal_forces(model, k, plastic, u)?;
+                    step_forces(model, k, dynamics, plastic, u)?;
                     fint_now = Some(f0);
                     new_outer = false;
                 }
@@ -1628,6 +1647,24 @@ fn length_scale(model: &Model, u: &[f64]) -> f64 {
 
 /// f_int(u): K u, plus the plastic cells' corrections (their trial states
 /// and consistent tangents are updated on the way).
+/// The internal forces of a step's Newton loop: K u, the plastic cells
+/// and the time integrator's force (inertia, damping).
+fn step_forces(
+    model: &Model,
+    k: &Csc,
+    dynamics: Option<&dyn IncrementTerms>,
+    plastic: &mut Option<PlasticCells>,
+    u: &[f64],
+) -> Result<Vec<f64>, FemError> {
+    let mut fint = internal_forces(model, k, plastic, u)?;
+    if let Some(d) = dynamics {
+        for (f, x) in fint.iter_mut().zip(d.force(u)) {
+            *f += x;
+        }
+    }
+    Ok(fint)
+}
+
 pub(crate) fn internal_forces(
     model: &Model,
     k: &Csc,

@@ -29,6 +29,9 @@ pub struct FemRun {
     /// deformed geometry for the finite-strain cells).
     pub plastic: bool,
     pub behaviours: aster_fem::Behaviours,
+    /// The densities and discrete masses of the model (`None`: they could
+    /// not be gathered), for the kinetic energy (`POST_ELEM/ENER_CIN`).
+    pub mass: Option<aster_fem::MassData>,
 }
 
 fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
@@ -835,6 +838,7 @@ pub fn solve(
             raw,
             plastic,
             behaviours,
+            mass: crate::dyna::mass_data(&mesh, setup).ok().map(|(m, _)| m),
         }),
     ))
 }
