@@ -352,12 +352,14 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
             // code_aster (`cazocd`/`cazouu`): GLISSIERE is one setting for
             // all discrete zones (its algorithm is chosen for the whole
             // contact problem).
+            // Located at the first zone that disagrees with the first one
+            // (its GLISSIERE, or its _F when the value is the default).
             let gliss: Vec<bool> = zones.iter().map(|z| z.geometry.glissiere).collect();
-            if gliss.iter().any(|&g| g != gliss[0]) {
+            if let Some(i) = gliss.iter().position(|&g| g != gliss[0]) {
                 let span = kw
                     .factor("ZONE")
-                    .iter()
-                    .find_map(|o| o.keyword("GLISSIERE").map(|k| k.span))
+                    .get(i)
+                    .and_then(|o| o.keyword("GLISSIERE").map(|k| k.span))
                     .unwrap_or_default();
                 let loc = ex
                     .location(span)
