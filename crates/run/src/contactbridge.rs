@@ -376,6 +376,32 @@ pub fn has_friction(kw: &Keywords) -> bool {
     kw.str("FROTTEMENT") == Some("COULOMB")
 }
 
+/// Whether a frictionless continuous DEFI_CONTACT is solved by code_aster's
+/// contact elements (`aster_contact::friction::continuous` with μ = 0: the
+/// pressures `LAGS_C` as unknowns, one status per integration point, the
+/// points out of contact entering their nodes' equations by −∫ λ Nⱼ / ρ,
+/// the geometry re-paired inside Newton with `ALGO_RESO_GEOM='NEWTON'`).
+/// Every zone `STANDARD` or `PENALISATION` (LAC has its own module),
+/// integrated at the nodes (`AUTO`) or by code_aster's Gauss rule, resolved
+/// (a `RESOLUTION='NON'` verification zone needs the row zones). The
+/// others keep the node-row formulation (`aster_contact::ZoneContact`),
+/// which reproduces code_aster only where a node's points share one status.
+pub fn contact_elements(kw: &Keywords) -> bool {
+    kw.str("FORMULATION") == Some("CONTINUE")
+        && !has_friction(kw)
+        && kw.factor("ZONE").iter().all(|occ| {
+            occ.str("ALGO_CONT").unwrap_or("STANDARD") != "LAC"
+                && match occ.str("INTEGRATION").unwrap_or("AUTO") {
+                    "AUTO" => true,
+                    // Gauss points carry no node: SANS_GROUP_NO would need
+                    // code_aster's exclusion of points, not reproduced.
+                    "GAUSS" => occ.keyword("SANS_GROUP_NO").is_none(),
+                    _ => false,
+                }
+                && occ.str("RESOLUTION") != Some("NON")
+        })
+}
+
 /// The continuous frictional contact elements of DEFI_CONTACT keywords
 /// (module `aster_contact::friction`), a force source for fem's solver.
 pub fn friction_source(
@@ -383,7 +409,12 @@ pub fn friction_source(
     mesh: &Mesh,
     kw: &Keywords,
 ) -> Result<aster_contact::friction::ContinuousFriction, ExecError> {
-    let def = definition(ex, kw)?;
+    let mut def = definition(ex, kw)?;
+    if let ContactDefinition::Continue(c) = &mut def {
+        if c.friction.is_none() {
+            c.friction = Some(crate::friction::continuous(kw)?);
+        }
+    }
     let ContactDefinition::Continue(c) = &def else {
         return Err(ExecError::new(
             "DEFI_CONTACT: discrete friction is refused at DEFI_CONTACT".to_string(),
