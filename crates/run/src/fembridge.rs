@@ -633,7 +633,9 @@ pub fn solve(
                     })
                 }
                 ContactDef::Zones { keywords, .. } => {
-                    if crate::contactbridge::has_friction(keywords) {
+                    if crate::contactbridge::has_friction(keywords)
+                        || crate::contactbridge::contact_elements(keywords)
+                    {
                         friction =
                             Some(crate::contactbridge::friction_source(ex, &mesh, keywords)?);
                     } else {

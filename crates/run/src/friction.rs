@@ -11,11 +11,20 @@ use crate::support::Refusal;
 /// The friction of a continuous definition: one setting per zone and the
 /// friction loop. Refuses, located, what the elements do not reproduce.
 pub fn continuous(kw: &Keywords) -> Result<ContinueFriction, ExecError> {
+    let frictionless = kw.str("FROTTEMENT") != Some("COULOMB");
     let mut zones = Vec::new();
     for occ in kw.factor("ZONE") {
-        let coulomb = occ.f64("COULOMB").ok_or_else(|| {
-            ExecError::new("DEFI_CONTACT/ZONE: COULOMB is required with FROTTEMENT='COULOMB'")
-        })?;
+        // Without FROTTEMENT='COULOMB' the zones are frictionless (μ = 0):
+        // code_aster's contact-only elements.
+        let coulomb = match occ.f64("COULOMB") {
+            Some(c) => c,
+            None if frictionless => 0.0,
+            None => {
+                return Err(ExecError::new(
+                    "DEFI_CONTACT/ZONE: COULOMB is required with FROTTEMENT='COULOMB'",
+                ))
+            }
+        };
         let mut z = ContinueZoneFriction::new(coulomb);
         z.algo = match occ.str("ALGO_FROT").unwrap_or("STANDARD") {
             "PENALISATION" => FrictionAlgo::Penalisation {
@@ -67,6 +76,7 @@ pub fn continuous(kw: &Keywords) -> Result<ContinueFriction, ExecError> {
 /// The static refusals of DEFI_CONTACT's friction (`crate::support`):
 /// what the friction module does not reproduce, located at its keyword.
 pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    continuous_rules(call, out);
     let kw = &call.keywords;
     if kw.str("FROTTEMENT") != Some("COULOMB") {
         return;
@@ -153,6 +163,35 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
                 "DEFI_CONTACT/ZONE/GRAND_GLIS='OUI' (large-slip friction terms)".into(),
                 occ,
                 "GRAND_GLIS",
+                call.span,
+            ));
+        }
+    }
+}
+
+/// Continuous zones (with or without friction): what code_aster's contact
+/// elements do that is not reproduced.
+fn continuous_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    let kw = &call.keywords;
+    for occ in kw.factor("ZONE") {
+        // Augmented (STANDARD) zones with ADAPTATION='ADAPT_COEF'/'TOUT'
+        // and the fixed-point contact loop: code_aster's status treatment
+        // (`mmmbca` → `mm_cycl_algo`, `mm_cycl_prop`) changes COEF_CONT
+        // point by point when a status flips between the loops; ssnp154a's
+        // indentation is then 2.3e-4 off code_aster's (the same scene with
+        // ALGO_RESO_CONT='NEWTON', ssnp154b, matches).
+        if kw.str("FORMULATION") == Some("CONTINUE")
+            && occ.str("ALGO_CONT").unwrap_or("STANDARD") == "STANDARD"
+            && kw.str("ALGO_RESO_CONT") == Some("POINT_FIXE")
+            && matches!(occ.str("ADAPTATION"), Some("ADAPT_COEF" | "TOUT"))
+        {
+            out.push(Refusal::at(
+                format!(
+                    "DEFI_CONTACT/ZONE/ADAPTATION='{}' with ALGO_RESO_CONT='POINT_FIXE' (COEF_CONT adapted point by point when contact statuses flip between the fixed-point loops, code_aster's mm_cycl_algo; ALGO_RESO_CONT='NEWTON' or ADAPTATION='CYCLAGE' are reproduced)",
+                    occ.str("ADAPTATION").unwrap_or_default()
+                ),
+                occ,
+                "ADAPTATION",
                 call.span,
             ));
         }
