@@ -110,6 +110,9 @@ pub(crate) const DEFI_CONTACT: Support = Support {
         "ZONE/DIRE_EXCL_FROT",
         "ZONE/GRAND_GLIS",
         "ZONE/GLIS_MAXI",
+        // Discrete formulation (friction::discrete).
+        "ZONE/E_T",
+        "ZONE/COEF_MATR_FROT",
     ])
 };
 
@@ -271,7 +274,12 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                     law,
                 });
             }
-            let mut d = ContactDefinition::discrete(zones, frottement).map_err(cerr)?;
+            let mut d = if friction {
+                let f = crate::friction::discrete(kw)?;
+                ContactDefinition::discrete_with_friction(zones, f).map_err(cerr)?
+            } else {
+                ContactDefinition::discrete(zones, frottement).map_err(cerr)?
+            };
             if let ContactDefinition::Discrete(dd) = &mut d {
                 if let Some(n) = kw.first("ITER_CONT_MULT").and_then(|s| s.as_i64()) {
                     dd.iter_cont_mult = n.max(1) as usize;
@@ -374,6 +382,23 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
 /// Whether DEFI_CONTACT keywords ask for Coulomb friction.
 pub fn has_friction(kw: &Keywords) -> bool {
     kw.str("FROTTEMENT") == Some("COULOMB")
+}
+
+/// Whether DEFI_CONTACT keywords ask for discrete (penalised) friction.
+pub fn has_discrete_friction(kw: &Keywords) -> bool {
+    has_friction(kw) && kw.str("FORMULATION").unwrap_or("DISCRETE") == "DISCRETE"
+}
+
+/// The discrete penalised contact with friction of DEFI_CONTACT keywords
+/// (module `aster_contact::friction::discrete`), a force source for fem.
+pub fn discrete_friction_source(
+    ex: &Executor,
+    mesh: &Mesh,
+    kw: &Keywords,
+) -> Result<aster_contact::friction::DiscreteFriction, ExecError> {
+    let def = definition(ex, kw)?;
+    aster_contact::friction::DiscreteFriction::new(&def, mesh)
+        .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
 }
 
 /// The continuous frictional contact elements of DEFI_CONTACT keywords
