@@ -97,6 +97,18 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         return;
     }
     if kw.str("FORMULATION").unwrap_or("DISCRETE") == "DISCRETE" {
+        // aster_contact::friction::discrete reproduces code_aster's
+        // `frogdp` (the two-plate scene slides at μN to 4e-15; ssnp502b,
+        // ssnv503f/g pass every TEST_RESU), but ssnv128 a/c/d (plates
+        // pushed by pressures, μ = 1) end with wrong numbers (NOOK), not
+        // yet understood: refused until they are.
+        out.push(Refusal::at(
+            "DEFI_CONTACT/FROTTEMENT='COULOMB' with FORMULATION='DISCRETE' (discrete penalised friction: implemented, not yet validated — ssnv128 a/c/d differ from code_aster)"
+                .into(),
+            kw,
+            "FROTTEMENT",
+            call.span,
+        ));
         // code_aster's discrete friction is penalised contact and friction
         // (`cfalgo`: `frogdp`); with CONTRAINTE or GCP its contact
         // algorithms ignore or refuse the friction.

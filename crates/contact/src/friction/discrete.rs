@@ -447,7 +447,11 @@ impl ForceSource for DiscreteFriction {
                     }
                 }
             }
-            if !st.stick && !reversed && st.glis > 0.0 {
+            // Near the stick/slip boundary (|s| < 2 μλ/E_T) the full
+            // derivative sends the node back and forth across it: the
+            // secant k TᵀT alone there.
+            let deep = e_t > 2.0 * st.k;
+            if !st.stick && !reversed && st.glis > 0.0 && deep {
                 // The sliding force μλ Tᵀŝ: −k (Tᵀŝ)(Tᵀŝ)ᵀ (what code_aster's
                 // `cffpm2` subtracts, weighted by COEF_MATR_FROT far from
                 // convergence and fully near it) and its dependence on the
