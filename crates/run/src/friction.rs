@@ -3,8 +3,8 @@
 //! while it reads the zones).
 
 use aster_contact::friction::{
-    ContactInit, ContinueFriction, ContinueZoneFriction, DiscreteFrictionDef,
-    DiscreteZoneFriction, FrictionAlgo,
+    ContactInit, ContinueFriction, ContinueZoneFriction, DiscreteFrictionDef, DiscreteZoneFriction,
+    FrictionAlgo,
 };
 use aster_contact::Resolution;
 use aster_eval::{CommandCall, ExecError, Keywords};

@@ -150,10 +150,7 @@ impl DiscreteFriction {
                 friction: *f,
             });
         }
-        let dim = zones
-            .first()
-            .map(|z| z.contact.zone.space_dim)
-            .unwrap_or(2);
+        let dim = zones.first().map(|z| z.contact.zone.space_dim).unwrap_or(2);
         Ok(DiscreteFriction {
             zones,
             links: Vec::new(),
@@ -431,7 +428,8 @@ impl ForceSource for DiscreteFriction {
             for &(i, a) in &l.row {
                 c.forces.push((i, st.lambda * a));
                 for &(j, b) in &l.row {
-                    c.tangent.push((Unknown::Dof(i), Unknown::Dof(j), e_n * a * b));
+                    c.tangent
+                        .push((Unknown::Dof(i), Unknown::Dof(j), e_n * a * b));
                 }
             }
             if st.k == 0.0 {
@@ -443,7 +441,8 @@ impl ForceSource for DiscreteFriction {
                 for &(i, a) in t {
                     c.forces.push((i, st.k * st.slip[k] * a));
                     for &(j, b) in t {
-                        c.tangent.push((Unknown::Dof(i), Unknown::Dof(j), kt * a * b));
+                        c.tangent
+                            .push((Unknown::Dof(i), Unknown::Dof(j), kt * a * b));
                     }
                 }
             }
@@ -464,7 +463,8 @@ impl ForceSource for DiscreteFriction {
                 let mu = self.zones[l.zone].friction.coulomb;
                 for &(i, a) in &v {
                     for &(j, b) in &v {
-                        c.tangent.push((Unknown::Dof(i), Unknown::Dof(j), -st.k * a * b));
+                        c.tangent
+                            .push((Unknown::Dof(i), Unknown::Dof(j), -st.k * a * b));
                     }
                     for &(j, b) in &l.row {
                         c.tangent
