@@ -131,6 +131,9 @@ pub(crate) const DEFI_CONTACT: Support = Support {
         "ZONE/DIRE_EXCL_FROT",
         "ZONE/GRAND_GLIS",
         "ZONE/GLIS_MAXI",
+        // Discrete formulation (friction::discrete).
+        "ZONE/E_T",
+        "ZONE/COEF_MATR_FROT",
     ])
 };
 
@@ -370,7 +373,12 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                      the same GLISSIERE (code_aster solves all zones with one algorithm){loc}"
                 )));
             }
-            let mut d = ContactDefinition::discrete(zones, frottement).map_err(cerr)?;
+            let mut d = if friction {
+                let f = crate::friction::discrete(kw)?;
+                ContactDefinition::discrete_with_friction(zones, f).map_err(cerr)?
+            } else {
+                ContactDefinition::discrete(zones, frottement).map_err(cerr)?
+            };
             if let ContactDefinition::Discrete(dd) = &mut d {
                 if let Some(n) = kw.first("ITER_CONT_MULT").and_then(|s| s.as_i64()) {
                     dd.iter_cont_mult = n.max(1) as usize;
@@ -621,6 +629,23 @@ pub fn contact_elements(kw: &Keywords) -> bool {
                 && !(occ.str("ALGO_CONT") == Some("PENALISATION")
                     && matches!(occ.str("ADAPTATION"), Some("ADAPT_COEF" | "TOUT")))
         })
+}
+
+/// Whether DEFI_CONTACT keywords ask for discrete (penalised) friction.
+pub fn has_discrete_friction(kw: &Keywords) -> bool {
+    has_friction(kw) && kw.str("FORMULATION").unwrap_or("DISCRETE") == "DISCRETE"
+}
+
+/// The discrete penalised contact with friction of DEFI_CONTACT keywords
+/// (module `aster_contact::friction::discrete`), a force source for fem.
+pub fn discrete_friction_source(
+    ex: &Executor,
+    mesh: &Mesh,
+    kw: &Keywords,
+) -> Result<aster_contact::friction::DiscreteFriction, ExecError> {
+    let def = definition(ex, kw)?;
+    aster_contact::friction::DiscreteFriction::new(&def, mesh)
+        .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
 }
 
 /// The continuous frictional contact elements of DEFI_CONTACT keywords

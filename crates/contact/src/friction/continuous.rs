@@ -192,7 +192,7 @@ pub struct ContinuousFriction {
 }
 
 /// Orthonormal tangents from code_aster's normal (`mmmron`, `mmtann`).
-fn tangents(dim: usize, n: [f64; 3]) -> [[f64; 3]; 2] {
+pub(super) fn tangents(dim: usize, n: [f64; 3]) -> [[f64; 3]; 2] {
     if dim == 2 {
         let t1 = [n[1], -n[0], 0.0];
         let l = norm(t1);
