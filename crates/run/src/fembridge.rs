@@ -634,7 +634,7 @@ pub fn solve(
                 }
                 ContactDef::Zones { keywords, .. } => {
                     if crate::contactbridge::has_friction(keywords)
-                        || crate::contactbridge::contact_elements(keywords)
+                        || crate::contactbridge::contact_elements(&mesh, keywords)
                     {
                         friction =
                             Some(crate::contactbridge::friction_source(ex, &mesh, keywords)?);
