@@ -610,8 +610,24 @@ pub fn has_friction(kw: &Keywords) -> bool {
 /// (a `RESOLUTION='NON'` verification zone needs the row zones). The
 /// others keep the node-row formulation (`aster_contact::ZoneContact`),
 /// which reproduces code_aster only where a node's points share one status.
-pub fn contact_elements(kw: &Keywords) -> bool {
+pub fn contact_elements(mesh: &Mesh, kw: &Keywords) -> bool {
+    // The element is validated on 3D quadrangular faces only (see
+    // `refuse_friction_on_triangles`): triangles keep the row zones.
+    let triangles = |occ: &Keywords| {
+        mesh.dim >= 3
+            && ["GROUP_MA_MAIT", "GROUP_MA_ESCL"].iter().any(|k| {
+                occ.simple(k).iter().filter_map(|v| v.as_str()).any(|g| {
+                    mesh.group_ma(g).is_some_and(|group| {
+                        group
+                            .members
+                            .iter()
+                            .any(|c| mesh.cell(*c).ty.name().starts_with("TRIA"))
+                    })
+                })
+            })
+    };
     kw.str("FORMULATION") == Some("CONTINUE")
+        && !kw.factor("ZONE").iter().any(|o| triangles(o))
         && !has_friction(kw)
         && kw.factor("ZONE").iter().all(|occ| {
             occ.str("ALGO_CONT").unwrap_or("STANDARD") != "LAC"

@@ -640,7 +640,7 @@ pub fn solve(
                             ex, &mesh, keywords,
                         )?);
                     } else if crate::contactbridge::has_friction(keywords)
-                        || crate::contactbridge::contact_elements(keywords)
+                        || crate::contactbridge::contact_elements(&mesh, keywords)
                     {
                         friction =
                             Some(crate::contactbridge::friction_source(ex, &mesh, keywords)?);
