@@ -483,18 +483,22 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
     Ok(def)
 }
 
+/// The problem's dimension: the model's (a plane model on a mesh with
+/// three coordinates is 2D, as code_aster's `model_ndim`), else the mesh's.
+fn problem_dim(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<usize, ExecError> {
+    let model = kw.concept("MODELE").map(|c| ex.model(c)).transpose()?;
+    Ok(match &model {
+        Some(m) => m.dim(),
+        None if mesh.dim >= 3 => 3,
+        None => 2,
+    })
+}
+
 /// The zones of a definition resolved on the mesh (row sources).
 pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContact>, ExecError> {
     let def = definition(ex, kw)?;
     refuse_loose_gcp(ex, mesh, kw)?;
-    let model = kw.concept("MODELE").map(|c| ex.model(c)).transpose()?;
-    // The problem's dimension is the model's (a plane model on a mesh with
-    // three coordinates is 2D, as code_aster's `model_ndim`).
-    let dim = match &model {
-        Some(m) => m.dim(),
-        None if mesh.dim >= 3 => 3,
-        None => 2,
-    };
+    let dim = problem_dim(ex, mesh, kw)?;
     let mut zones = ZoneContact::build_all_in(&def, mesh, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))?;
     // Under AXIS the contact integrals carry the radius (code_aster's
@@ -660,7 +664,8 @@ pub fn discrete_friction_source(
     kw: &Keywords,
 ) -> Result<aster_contact::friction::DiscreteFriction, ExecError> {
     let def = definition(ex, kw)?;
-    aster_contact::friction::DiscreteFriction::new(&def, mesh)
+    let dim = problem_dim(ex, mesh, kw)?;
+    aster_contact::friction::DiscreteFriction::new_in(&def, mesh, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
 }
 
@@ -688,7 +693,8 @@ pub fn friction_source(
     } else {
         Measure::Plane
     };
-    aster_contact::friction::ContinuousFriction::new(c, mesh, measure)
+    let dim = problem_dim(ex, mesh, kw)?;
+    aster_contact::friction::ContinuousFriction::new_in(c, mesh, measure, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
 }
 
@@ -830,10 +836,13 @@ fn lac_setup(
                     .unwrap_or(aster_contact::lac_mortar::PAIR_TOLE),
             });
         }
+        // Under ALGO_RESO_GEOM='NEWTON' RESI_GEOM is one of Newton's
+        // residuals (code_aster's `nonlinDSConvergenceInit`: the user's
+        // value, 1e-6 by default), not the fixed-point loop's 0.01.
         if let GeomLoop::Automatique { iter_maxi, .. } = z.geom_loop {
             z.set_geom_loop(GeomLoop::Automatique {
                 iter_maxi: iter_maxi.max(20),
-                resi_geom: 1e-6,
+                resi_geom: kw.f64("RESI_GEOM").unwrap_or(1e-6),
             });
         }
     }

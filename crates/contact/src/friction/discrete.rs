@@ -122,6 +122,16 @@ impl DiscreteFriction {
     /// be `ALGO_CONT='PENALISATION'` (code_aster's only discrete friction,
     /// `cfalgo`: `frogdp`).
     pub fn new(def: &ContactDefinition, mesh: &Mesh) -> Result<Self, ContactError> {
+        Self::new_in(def, mesh, if mesh.dim >= 3 { 3 } else { 2 })
+    }
+
+    /// As [`DiscreteFriction::new`] in a problem of dimension `space_dim`
+    /// (the model's: a plane model on a mesh with three coordinates is 2D).
+    pub fn new_in(
+        def: &ContactDefinition,
+        mesh: &Mesh,
+        space_dim: usize,
+    ) -> Result<Self, ContactError> {
         let ContactDefinition::Discrete(d) = def else {
             return Err(ContactError::Unsupported {
                 feature: "discrete friction on a continuous definition".into(),
@@ -135,7 +145,7 @@ impl DiscreteFriction {
             });
         };
         friction.check(d.zones.len())?;
-        let contacts = ZoneContact::build_all(def, mesh)?;
+        let contacts = ZoneContact::build_all_in(def, mesh, space_dim)?;
         let mut zones = Vec::new();
         for ((c, z), f) in contacts.into_iter().zip(&d.zones).zip(&friction.zones) {
             let DiscreteAlgo::Penalisation { e_n } = z.law else {
