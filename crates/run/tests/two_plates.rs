@@ -66,7 +66,10 @@ fn run_scene_on_3_coordinates(comm: &str) -> (usize, usize) {
 #[test]
 fn a_plane_model_on_three_coordinates_is_solved_as_in_2d() {
     assert_eq!(run_scene_on_3_coordinates("two_plates.comm"), (8, 0));
-    assert_eq!(run_scene_on_3_coordinates("two_plates_friction.comm"), (8, 0));
+    assert_eq!(
+        run_scene_on_3_coordinates("two_plates_friction.comm"),
+        (8, 0)
+    );
 }
 
 #[test]
