@@ -91,6 +91,8 @@ struct Link {
     tangents: Vec<Vec<(usize, f64)>>,
     /// The slave node's translation DOFs (for its forces in CONT_NOEU).
     slave_dofs: [Option<usize>; 3],
+    /// The master point it is paired with (`APPROJ`: CONT_NOEU's PROJ_X…).
+    proj: [f64; 3],
 }
 
 /// The state of a link at an iterate.
@@ -292,6 +294,7 @@ impl DiscreteFriction {
                     rhs: row.rhs,
                     tangents: trows,
                     slave_dofs,
+                    proj: p.master_x,
                 });
             }
         }
@@ -367,21 +370,26 @@ impl DiscreteFriction {
     }
 
     fn cont_noeu(&self, state: &State) -> ContNoeu {
-        let mut out = ContNoeu {
-            nodes: Vec::new(),
-            values: Vec::new(),
-        };
-        let mut put = |node: NodeId, v: [f64; 19]| match out.nodes.iter().position(|n| *n == node) {
-            Some(k) => out.values[k] = v,
+        let mut out = ContNoeu::default();
+        let mut put = |node: NodeId, v: [f64; 19], proj: [f64; 3]| match out
+            .nodes
+            .iter()
+            .position(|n| *n == node)
+        {
+            Some(k) => {
+                out.values[k] = v;
+                out.proj[k] = proj;
+            }
             None => {
                 out.nodes.push(node);
                 out.values.push(v);
+                out.proj.push(proj);
             }
         };
         for &(_, n) in &self.unpaired {
             let mut v = [0.0; 19];
             v[0] = -1.0;
-            put(n, v);
+            put(n, v, [0.0; 3]);
         }
         for (li, l) in self.links.iter().enumerate() {
             let st = match self.last_states.get(li) {
@@ -411,7 +419,13 @@ impl DiscreteFriction {
                 }
                 v[18] = (v[15] * v[15] + v[16] * v[16] + v[17] * v[17]).sqrt();
             }
-            put(l.node, v);
+            // cfresu: PROJ_X… of the links in contact, zero elsewhere.
+            let proj = if st.gap < f64::EPSILON {
+                l.proj
+            } else {
+                [0.0; 3]
+            };
+            put(l.node, v, proj);
         }
         out
     }
