@@ -48,7 +48,10 @@ impl ContNoeu {
     /// slave node or the component unknown).
     pub fn value(&self, node: NodeId, component: &str) -> Option<f64> {
         let k = self.nodes.iter().position(|n| *n == node)?;
-        if let Some(c) = CONT_NOEU_PROJ_COMPONENTS.iter().position(|c| *c == component) {
+        if let Some(c) = CONT_NOEU_PROJ_COMPONENTS
+            .iter()
+            .position(|c| *c == component)
+        {
             return self.proj.get(k).map(|p| p[c]);
         }
         Some(self.values[k][Self::component(component)?])

@@ -121,7 +121,10 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         // 0.9993e-5 against 1e-5, one iteration before code_aster, and is
         // 1.3e-6..4.9e-6 off; every case with E_N ≤ 1e15 matches.
         for occ in kw.factor("ZONE") {
-            if occ.f64("E_N").is_some_and(|e| e > DISCRETE_FRICTION_E_N_MAX) {
+            if occ
+                .f64("E_N")
+                .is_some_and(|e| e > DISCRETE_FRICTION_E_N_MAX)
+            {
                 out.push(Refusal::at(
                     format!(
                         "DEFI_CONTACT/ZONE/E_N above {DISCRETE_FRICTION_E_N_MAX:e} with FROTTEMENT='COULOMB' and FORMULATION='DISCRETE' (code_aster's penalised friction converges linearly and its answer is where Newton stops at RESI_GLOB_RELA; with so stiff a normal penalty that stop is not reproduced)"

@@ -165,5 +165,10 @@ FIN()
     assert!(m[3].starts_with("case.comm:9:54: error: not supported yet: DEFI_CONTACT/ZONE/COULOMB=0 beside frictional zones"), "{m:?}");
     // Discrete friction with a normal penalty stiffer than 1e16 (ssnv128c
     // stops one Newton iteration before code_aster); 1e15 is accepted.
-    assert!(m[4].starts_with("case.comm:15:13: error: not supported yet: DEFI_CONTACT/ZONE/E_N above 1e16"), "{m:?}");
+    assert!(
+        m[4].starts_with(
+            "case.comm:15:13: error: not supported yet: DEFI_CONTACT/ZONE/E_N above 1e16"
+        ),
+        "{m:?}"
+    );
 }
