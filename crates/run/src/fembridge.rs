@@ -906,17 +906,30 @@ pub fn solve(
     ))
 }
 
-/// CONT_NOEU as a nodal field.
+/// CONT_NOEU as a nodal field (with PROJ_X… when the formulation writes
+/// them).
 fn cont_noeu_field(cn: &aster_contact::ContNoeu) -> NodalField {
-    let mut nf = NodalField::new(
-        aster_contact::CONT_NOEU_COMPONENTS
-            .iter()
-            .map(|c| c.to_string())
-            .collect(),
-    );
-    for (n, vals) in cn.nodes.iter().zip(&cn.values) {
+    let with_proj = !cn.proj.is_empty();
+    let mut names: Vec<String> = aster_contact::CONT_NOEU_COMPONENTS
+        .iter()
+        .map(|c| c.to_string())
+        .collect();
+    if with_proj {
+        names.extend(
+            aster_contact::CONT_NOEU_PROJ_COMPONENTS
+                .iter()
+                .map(|c| c.to_string()),
+        );
+    }
+    let mut nf = NodalField::new(names);
+    for (k, (n, vals)) in cn.nodes.iter().zip(&cn.values).enumerate() {
         for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
             nf.set(*n, c, *v);
+        }
+        if let Some(p) = cn.proj.get(k) {
+            for (c, v) in aster_contact::CONT_NOEU_PROJ_COMPONENTS.iter().zip(p) {
+                nf.set(*n, c, *v);
+            }
         }
     }
     nf

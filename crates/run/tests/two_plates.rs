@@ -87,6 +87,15 @@ fn sliding_plates_carry_mu_times_the_normal_force() {
     assert_eq!(run_scene("two_plates_friction.comm"), (8, 0));
 }
 
+/// comm/two_plates_friction_discrete.comm: discrete penalised friction
+/// (code_aster's `frogdp` iterates): pressed, the plates stick (CONT = 2,
+/// GLI the penalty's 7e-9); sheared beyond μN they slide (CONT = 1) with a
+/// friction resultant of μ times the normal one to 1e-8.
+#[test]
+fn discrete_sliding_plates_carry_mu_times_the_normal_force() {
+    assert_eq!(run_scene("two_plates_friction_discrete.comm"), (10, 0));
+}
+
 /// comm/two_plates_glued.comm: continuous contact under a pressure load,
 /// PENALISATION with kappa = 1e16, then STANDARD with COEF_CONT = 1e14.
 /// code_aster's penalised element is pointwise (aster_contact's `penalty`

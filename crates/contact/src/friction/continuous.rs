@@ -1205,7 +1205,11 @@ impl ContinuousFriction {
                 }
             }
         }
-        ContNoeu { nodes, values }
+        ContNoeu {
+            nodes,
+            values,
+            proj: Vec::new(),
+        }
     }
 
     /// The contact and friction forces at the slave nodes (the assembled
