@@ -1066,7 +1066,8 @@ fn drop_empty_columns(t: &mut Table) {
 /// What IMPR_TABLE reads (`crate::support`).
 pub(crate) const IMPR_TABLE: Support = Support {
     values: &[
-        Values::new("FORMAT", &["TABLEAU", "AGRAF"]),
+        Values::new("FORMAT", &["TABLEAU", "AGRAF", "XMGRACE"]),
+        Values::new("PILOTE", &[""]).why("(images are not drawn; the .agr data file is)"),
         Values::new("IMPR_FONCTION", &["NON"])
             .why("(the functions named in a FONCTION column are not printed)"),
     ],
@@ -1091,6 +1092,22 @@ pub(crate) const IMPR_TABLE: Support = Support {
         "FILTRE/VALE_K",
         "FILTRE/CRITERE",
         "FILTRE/PRECISION",
+        // FORMAT='XMGRACE': the graph's legends and bounds are written;
+        // its look (grid, colour, style, marker) is not drawn.
+        "PILOTE",
+        "LEGENDE",
+        "LEGENDE_X",
+        "LEGENDE_Y",
+        "BORNE_X",
+        "BORNE_Y",
+        "ECHELLE_X",
+        "ECHELLE_Y",
+        "GRILLE_X",
+        "GRILLE_Y",
+        "COULEUR",
+        "STYLE",
+        "MARQUEUR",
+        "FREQ_MARQUEUR",
     ])
 };
 
@@ -1187,6 +1204,16 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             .map(|r| cols.iter().map(|&i| r[i].clone()).collect())
             .collect();
     }
+    if kw.str("FORMAT") == Some("XMGRACE") {
+        let text = super::functions::xmgrace(kw, &table_curves(kw, &table)?);
+        let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(29);
+        if unit == 8 || unit == 6 {
+            ex.write_report(&text)?;
+        } else {
+            ex.append_unit(unit, &text)?;
+        }
+        return Ok(CommandOutput::Nothing);
+    }
     if let Some(title) = kw.str("TITRE") {
         table.title = title.lines().map(str::to_string).collect();
     }
@@ -1199,6 +1226,34 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         ex.append_unit(unit, &(text + "\n"))?;
     }
     Ok(CommandOutput::Nothing)
+}
+
+/// IMPR_TABLE(FORMAT='XMGRACE'): code_aster's `Table.Impr` draws the first
+/// column (of NOM_PARA) as the abscissa and each further column as a curve
+/// (named LEGENDE, else the column), over the rows where both are reals.
+fn table_curves(
+    kw: &Keywords,
+    table: &Table,
+) -> Result<Vec<super::functions::Curve>, ExecError> {
+    if table.columns.len() < 2 {
+        return Err(ExecError::new(
+            "IMPR_TABLE/FORMAT='XMGRACE': give NOM_PARA with an abscissa and at least one ordinate",
+        ));
+    }
+    let real = |c: &Option<Value>| c.as_ref()?.as_f64();
+    let legend = kw.str("LEGENDE").map(str::to_string);
+    Ok((1..table.columns.len())
+        .map(|j| super::functions::Curve {
+            x_name: table.columns[0].name.clone(),
+            y_name: legend.clone().unwrap_or_else(|| table.columns[j].name.clone()),
+            legend: legend.clone(),
+            points: table
+                .rows
+                .iter()
+                .filter_map(|r| Some((real(&r[0])?, real(&r[j])?)))
+                .collect(),
+        })
+        .collect())
 }
 
 fn compare_cells(a: &Option<Value>, b: &Option<Value>) -> std::cmp::Ordering {
