@@ -1577,7 +1577,8 @@ impl<'a> Interp<'a> {
 enum ModuleKind {
     Math,
     NoOp,
-    /// `re`: the import is accepted; its functions are refused where used.
+    /// `re`, `numpy`: the import is accepted; their functions are refused
+    /// where used (a study that imports numpy without using it runs).
     Re,
 }
 
@@ -1585,7 +1586,7 @@ fn module_kind(m: &str) -> Option<ModuleKind> {
     if m == "math" {
         return Some(ModuleKind::Math);
     }
-    if m == "re" {
+    if m == "re" || m == "numpy" {
         return Some(ModuleKind::Re);
     }
     let top = m.split('.').next().unwrap_or(m);
