@@ -534,7 +534,10 @@ fn refuse_smoothing_on_quadratic_3d(
                 continue;
             };
             let quadratic = |c: &&aster_mesh::CellId| {
-                matches!(mesh.cell(**c).ty.name(), "QUAD8" | "QUAD9" | "TRIA6" | "TRIA7")
+                matches!(
+                    mesh.cell(**c).ty.name(),
+                    "QUAD8" | "QUAD9" | "TRIA6" | "TRIA7"
+                )
             };
             if let Some(&cell) = group.members.iter().find(quadratic) {
                 let span = kw.keyword("LISSAGE").map(|k| k.span).unwrap_or_default();

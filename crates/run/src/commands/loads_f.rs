@@ -229,7 +229,10 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
             .ok_or_else(|| ex.kw_error(what, occ, "COEF_IMPO", "a function is required"))?;
         // code_aster evaluates COEF_IMPO of a pair with the time only.
         if let Some(p) = function.0.parameters().into_iter().find(|p| *p != "INST") {
-            let span = occ.keyword("COEF_IMPO").map(|k| k.span).unwrap_or(call.span);
+            let span = occ
+                .keyword("COEF_IMPO")
+                .map(|k| k.span)
+                .unwrap_or(call.span);
             return Err(ex.unsupported(
                 &format!("{what}/COEF_IMPO as a function of {p} (only functions of INST)"),
                 span,

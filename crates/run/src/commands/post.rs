@@ -785,7 +785,9 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     .map(|k| k.span)
                     .unwrap_or(call.span);
                 return Err(ex.unsupported(
-                    &format!("POST_RELEVE_T/ACTION/OPERATION={ops:?} (one of 'EXTRACTION', 'MOYENNE')"),
+                    &format!(
+                        "POST_RELEVE_T/ACTION/OPERATION={ops:?} (one of 'EXTRACTION', 'MOYENNE')"
+                    ),
                     span,
                 ));
             }
@@ -1231,10 +1233,7 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
 /// IMPR_TABLE(FORMAT='XMGRACE'): code_aster's `Table.Impr` draws the first
 /// column (of NOM_PARA) as the abscissa and each further column as a curve
 /// (named LEGENDE, else the column), over the rows where both are reals.
-fn table_curves(
-    kw: &Keywords,
-    table: &Table,
-) -> Result<Vec<super::functions::Curve>, ExecError> {
+fn table_curves(kw: &Keywords, table: &Table) -> Result<Vec<super::functions::Curve>, ExecError> {
     if table.columns.len() < 2 {
         return Err(ExecError::new(
             "IMPR_TABLE/FORMAT='XMGRACE': give NOM_PARA with an abscissa and at least one ordinate",
@@ -1245,7 +1244,9 @@ fn table_curves(
     Ok((1..table.columns.len())
         .map(|j| super::functions::Curve {
             x_name: table.columns[0].name.clone(),
-            y_name: legend.clone().unwrap_or_else(|| table.columns[j].name.clone()),
+            y_name: legend
+                .clone()
+                .unwrap_or_else(|| table.columns[j].name.clone()),
             legend: legend.clone(),
             points: table
                 .rows
@@ -1308,7 +1309,10 @@ mod moyenne_tests {
     fn segments_with_a_missing_value_are_skipped() {
         // Only the segment [0, 1] counts: mean of 1 and 3, moment 2.
         let m = path_moments(&[0.0, 1.0, 3.0], &[Some(1.0), Some(3.0), None]);
-        assert!((m[0] - 2.0).abs() < 1e-12 && (m[1] - 2.0).abs() < 1e-12, "{m:?}");
+        assert!(
+            (m[0] - 2.0).abs() < 1e-12 && (m[1] - 2.0).abs() < 1e-12,
+            "{m:?}"
+        );
         assert_eq!((m[2], m[3]), (1.0, 3.0));
     }
 }
