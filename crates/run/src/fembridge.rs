@@ -528,6 +528,21 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                         .collect::<Result<Vec<_>, ExecError>>()?;
                     loads.add(Load::Relation { terms, rhs: r.rhs }, m.clone());
                 }
+                for r in &l.relations_fn {
+                    let terms = r
+                        .relation
+                        .terms
+                        .iter()
+                        .map(|(n, c, a)| Ok((Dof::new(*n, comp(c)?), *a)))
+                        .collect::<Result<Vec<_>, ExecError>>()?;
+                    loads.add(
+                        Load::Relation {
+                            terms,
+                            rhs: r.relation.rhs,
+                        },
+                        function_multiplier(&r.function, [0.0; 3], &m, &setup.instants)?,
+                    );
+                }
                 for f in &l.nodal_forces {
                     loads.add(
                         Load::NodalForce {
