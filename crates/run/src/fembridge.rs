@@ -104,7 +104,9 @@ pub fn build_model(
         };
         elements.push(Element { cell, kind });
     }
-    Model::new(mesh.clone(), elements).map_err(|e| fem_err("AFFE_MODELE", e))
+    Model::new(mesh.clone(), elements)
+        .and_then(|m| m.with_reduced_integration(model.reduced.iter().copied()))
+        .map_err(|e| fem_err("AFFE_MODELE", e))
 }
 
 /// The fem behaviours of the COMPORTEMENT occurrences: each plastic cell
@@ -352,7 +354,7 @@ fn along(k: usize, values: Vec<f64>) -> Vec<[f64; 3]> {
         .collect()
 }
 
-fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
+fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, ExecError> {
     let mut loads = Loads::new();
     for exc in &setup.excitations {
         let m = multiplier(&exc.multiplier, &setup.instants)?;
@@ -385,7 +387,7 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                         let mk = match &v.functions[k] {
                             Some(f) if of_coordinates(f) => {
                                 for &cell in &v.cells {
-                                    let points = Loads::volume_points(mesh, cell);
+                                    let points = Loads::model_volume_points(model, cell);
                                     let forces = along(k, point_values(f, &points)?);
                                     loads.add(Load::VolumeForceAt { cell, forces }, m.clone());
                                 }
@@ -611,7 +613,7 @@ pub fn solve(
     let mesh = ex.model_mesh(&setup.model)?;
     refuse_coordinate_loads_in_large_strains(setup)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
-    let mut loads = build_loads(setup, &mesh)?;
+    let mut loads = build_loads(setup, &mesh, &model)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
     let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
