@@ -516,8 +516,7 @@ fn volume_load(
     let c = mesh.cell(cell);
     let dim = model.dim();
     let axis = model.hypothesis() == Some(Hypothesis::Axisymmetric);
-    for (g, gp) in model.stiffness_scheme(cell).into_iter().enumerate()
-    {
+    for (g, gp) in model.stiffness_scheme(cell).into_iter().enumerate() {
         let b = force(g);
         let s = shape::shape(c.ty, gp.xi);
         // Jacobian J[k][l] = ∂x_k/∂ξ_l.

@@ -798,7 +798,12 @@ mod tests {
         assert!((sum(&t, &|_| 1.0) - 1.0 / 6.0).abs() < 1e-14);
         // ∫ x² over the unit tetrahedron = 1/60.
         assert!((sum(&t, &|x| x[0] * x[0]) - 1.0 / 60.0).abs() < 1e-14);
-        for ty in [CellType::QUAD4, CellType::HEXA8, CellType::TRIA6, CellType::PENTA15] {
+        for ty in [
+            CellType::QUAD4,
+            CellType::HEXA8,
+            CellType::TRIA6,
+            CellType::PENTA15,
+        ] {
             assert!(reduced_scheme(ty).is_none(), "{ty:?}");
         }
     }

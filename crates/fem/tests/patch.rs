@@ -399,5 +399,8 @@ fn under_integration_refused_on_linear_cells() {
         .with_reduced_integration([aster_mesh::CellId(0)])
         .unwrap_err()
         .to_string();
-    assert!(err.contains("is a QUAD4") && err.contains("QUAD8, HEXA20 and TETRA10"), "{err}");
+    assert!(
+        err.contains("is a QUAD4") && err.contains("QUAD8, HEXA20 and TETRA10"),
+        "{err}"
+    );
 }

@@ -92,7 +92,9 @@ fn simo_miehe_nodal_forces_with_contact_are_refused() {
     let outcome = run(&comm, "comm/plastic_block.mail", "simo");
     let err = format!("{:?}", outcome.error.expect("refused"));
     assert!(
-        err.contains("FORCE='REAC_NODA' of a result computed with DEFORMATION='SIMO_MIEHE' and contact"),
+        err.contains(
+            "FORCE='REAC_NODA' of a result computed with DEFORMATION='SIMO_MIEHE' and contact"
+        ),
         "{err}"
     );
     assert_eq!(outcome.tally.ok, 0);

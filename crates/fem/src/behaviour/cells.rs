@@ -11,9 +11,7 @@
 
 use super::vmis::{integrate, VonMises};
 use super::{Behaviours, GaussState, Kinematics};
-use crate::element::{
-    continuum_stiffness, element_dofs, model_gauss, spring_stiffness, GaussData,
-};
+use crate::element::{continuum_stiffness, element_dofs, model_gauss, spring_stiffness, GaussData};
 use crate::error::FemError;
 use crate::linalg::Csc;
 use crate::material::{Elastic, Hypothesis};
