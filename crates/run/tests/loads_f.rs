@@ -21,7 +21,7 @@ fn run(comm: &Path, tag: &str) -> aster_run::program::Outcome {
 fn function_loads_pass_the_analytic_checks() {
     let outcome = run(&root().join("comm/loads_f.comm"), "scene");
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (13, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (16, 0));
 }
 
 #[test]

@@ -525,9 +525,11 @@ pub(crate) fn xmgrace(kw: &Keywords, curves: &[Curve]) -> String {
         let b = reals(kw, &format!("BORNE_{k}"));
         if let [lo, hi] = b.as_slice() {
             out += &format!(
-                "@world {}min {lo}\n@world {}max {hi}\n",
+                "@world {}min {}\n@world {}max {}\n",
                 k.to_lowercase(),
-                k.to_lowercase()
+                crate::pyfmt::py_repr(*lo),
+                k.to_lowercase(),
+                crate::pyfmt::py_repr(*hi)
             );
         }
     }
