@@ -17,7 +17,10 @@ fn neovim_reports_the_diagnostics_of_a_broken_file() {
     let status = Command::new("nvim")
         .args(["--headless", "-u", "NONE", "-i", "NONE", "-n"])
         .arg("-c")
-        .arg(format!("luafile {}", dir.join("lsp_nvim/check.lua").display()))
+        .arg(format!(
+            "luafile {}",
+            dir.join("lsp_nvim/check.lua").display()
+        ))
         .env("ASTER_LSP_FILE", dir.join("lsp_data/broken.comm"))
         .env("ASTER_LSP_OUT", &out)
         .env("ASTER_BIN", env!("CARGO_BIN_EXE_aster"))

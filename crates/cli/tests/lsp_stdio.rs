@@ -49,7 +49,10 @@ impl Client {
         let mut len = 0usize;
         loop {
             let mut line = String::new();
-            assert!(self.stdout.read_line(&mut line).unwrap() > 0, "server closed");
+            assert!(
+                self.stdout.read_line(&mut line).unwrap() > 0,
+                "server closed"
+            );
             let line = line.trim_end();
             if line.is_empty() {
                 break;
@@ -92,8 +95,7 @@ impl Client {
                 Some(i) => self.pending.remove(i),
                 None => self.read(),
             };
-            if msg["method"] == "textDocument/publishDiagnostics" && msg["params"]["uri"] == uri
-            {
+            if msg["method"] == "textDocument/publishDiagnostics" && msg["params"]["uri"] == uri {
                 return msg["params"]["diagnostics"]
                     .as_array()
                     .cloned()
@@ -213,7 +215,10 @@ fn a_clean_scene_has_no_diagnostic_and_an_outline() {
     let (u, text) = open(&mut c, &path);
     let d = c.diagnostics(&u);
     assert!(d.is_empty(), "{}", show_diagnostics(&d));
-    let symbols = c.request("textDocument/documentSymbol", json!({"textDocument": {"uri": u}}));
+    let symbols = c.request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": u}}),
+    );
     let outline: Vec<String> = symbols
         .as_array()
         .unwrap()
@@ -225,7 +230,12 @@ fn a_clean_scene_has_no_diagnostic_and_an_outline() {
                 .flatten()
                 .map(|c| c["name"].as_str().unwrap())
                 .collect();
-            format!("{} {} {:?}", range(&s["range"]), s["name"].as_str().unwrap(), children)
+            format!(
+                "{} {} {:?}",
+                range(&s["range"]),
+                s["name"].as_str().unwrap(),
+                children
+            )
         })
         .collect();
     insta::assert_snapshot!("lsp_outline_zzzz237b", outline.join("\n"));
@@ -237,15 +247,26 @@ fn a_clean_scene_has_no_diagnostic_and_an_outline() {
         "textDocument/references",
         json!({"textDocument": {"uri": u}, "position": pos(l, col), "context": {"includeDeclaration": true}}),
     );
-    let refs: Vec<String> = refs.as_array().unwrap().iter().map(|r| range(&r["range"])).collect();
+    let refs: Vec<String> = refs
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| range(&r["range"]))
+        .collect();
     insta::assert_snapshot!("lsp_references_model", refs.join("\n"));
     // Hover on the concept and on a keyword.
     let h = c.request("textDocument/hover", at(&u, l, col));
-    insta::assert_snapshot!("lsp_hover_concept", h["contents"]["value"].as_str().unwrap());
+    insta::assert_snapshot!(
+        "lsp_hover_concept",
+        h["contents"]["value"].as_str().unwrap()
+    );
     let (l, col) = find(&text, "DEFI_CONTACT(", "FORMULATION");
     let h = c.request("textDocument/hover", at(&u, l, col + 3));
     assert_eq!(range(&h["range"]), format!("{l}:{col}-{l}:{}", col + 11));
-    insta::assert_snapshot!("lsp_hover_keyword", h["contents"]["value"].as_str().unwrap());
+    insta::assert_snapshot!(
+        "lsp_hover_keyword",
+        h["contents"]["value"].as_str().unwrap()
+    );
     stop(c);
 }
 
@@ -301,8 +322,14 @@ fn a_broken_file_its_fixes_and_edits() {
     let (l, col) = find(&text, "ZONE=_F(", "GROUP_MA_MAIT");
     let comp = c.request("textDocument/completion", at(&u, l, col));
     let kws = labels(&comp);
-    assert!(kws.iter().any(|k| k.starts_with("GROUP_MA_ESCL ")), "{kws:?}");
-    assert!(!kws.iter().any(|k| k.starts_with("GROUP_MA_MAIT ")), "{kws:?}");
+    assert!(
+        kws.iter().any(|k| k.starts_with("GROUP_MA_ESCL ")),
+        "{kws:?}"
+    );
+    assert!(
+        !kws.iter().any(|k| k.starts_with("GROUP_MA_MAIT ")),
+        "{kws:?}"
+    );
     insta::assert_snapshot!("lsp_completion_zone_discrete", kws.join("\n"));
     stop(c);
 }
@@ -342,16 +369,34 @@ fn completion_while_typing() {
     };
     let mut out = Vec::new();
     let (l, col) = typed(&mut c, "mo = AFFE_MO");
-    out.push(("commands `AFFE_MO`", c.request("textDocument/completion", at(&u, l, col))));
+    out.push((
+        "commands `AFFE_MO`",
+        c.request("textDocument/completion", at(&u, l, col)),
+    ));
     let (l, col) = typed(&mut c, "DELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA='");
-    out.push(("cell groups of the mesh", c.request("textDocument/completion", at(&u, l, col))));
+    out.push((
+        "cell groups of the mesh",
+        c.request("textDocument/completion", at(&u, l, col)),
+    ));
     let (l, col) = typed(&mut c, "ABCD', PHENOMENE='");
-    out.push(("values of PHENOMENE", c.request("textDocument/completion", at(&u, l, col))));
+    out.push((
+        "values of PHENOMENE",
+        c.request("textDocument/completion", at(&u, l, col)),
+    ));
     let (l, col) = typed(&mut c, "MECANIQUE', ");
-    out.push(("keywords of AFFE after PHENOMENE", c.request("textDocument/completion", at(&u, l, col))));
+    out.push((
+        "keywords of AFFE after PHENOMENE",
+        c.request("textDocument/completion", at(&u, l, col)),
+    ));
     let sig = c.request("textDocument/signatureHelp", at(&u, l, col));
-    let (l, col) = typed(&mut c, "MODELISATION='D_PLAN'))\nmat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT='OUI', MATER=");
-    out.push(("concepts of type mater_sdaster", c.request("textDocument/completion", at(&u, l, col))));
+    let (l, col) = typed(
+        &mut c,
+        "MODELISATION='D_PLAN'))\nmat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT='OUI', MATER=",
+    );
+    out.push((
+        "concepts of type mater_sdaster",
+        c.request("textDocument/completion", at(&u, l, col)),
+    ));
     let shown: Vec<String> = out
         .iter()
         .map(|(what, comp)| format!("== {what}\n{}", labels(comp).join("\n")))

@@ -38,7 +38,14 @@ fn recheck(c: &mut Criterion) {
     let text = program(2000);
     assert!(text.lines().count() >= 2000);
     let clean = analyse("bench.comm", &text);
-    assert!(clean.findings.iter().all(|f| f.code == "not_supported_by_run"), "{:?}", clean.findings);
+    assert!(
+        clean
+            .findings
+            .iter()
+            .all(|f| f.code == "not_supported_by_run"),
+        "{:?}",
+        clean.findings
+    );
     let mut doc = Document::new(text, 1);
     // The keystroke: a digit typed into a value in the middle of the file
     // (`NU=0.3` becomes `NU=0.33`, and back).

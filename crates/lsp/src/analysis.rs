@@ -290,8 +290,8 @@ pub fn index(src: &str, tokens: &[Token]) -> (Vec<Occurrence>, Vec<OutlineItem>)
         match t.kind {
             Kind::Newline => line_start = i + 1,
             Kind::Open => {
-                let call = prev.is_some_and(|p| p.kind == Kind::Name)
-                    && src.as_bytes()[t.start] == b'(';
+                let call =
+                    prev.is_some_and(|p| p.kind == Kind::Name) && src.as_bytes()[t.start] == b'(';
                 stack.push(call);
                 // A command call of the outline: the first call of a
                 // statement at depth 0.
@@ -415,8 +415,7 @@ fn assigned(src: &str, line: &[Token], k: usize) -> bool {
     };
     k < eq
         && line[..eq].iter().all(|t| {
-            matches!(t.kind, Kind::Name | Kind::Comma)
-                || (t.kind == Kind::Op && t.text(src) == "*")
+            matches!(t.kind, Kind::Name | Kind::Comma) || (t.kind == Kind::Op && t.text(src) == "*")
         })
 }
 
@@ -440,13 +439,19 @@ mod tests {
             .filter(|o| !o.definition)
             .map(|o| o.name.as_str())
             .collect();
-        assert!(uses.contains(&"MA") && !uses.contains(&"MAILLAGE"), "{uses:?}");
+        assert!(
+            uses.contains(&"MA") && !uses.contains(&"MAILLAGE"),
+            "{uses:?}"
+        );
         let names: Vec<&str> = outline.iter().map(|o| o.name.as_str()).collect();
         assert_eq!(
             names,
             vec!["DEBUT", "MA = LIRE_MAILLAGE", "MO = AFFE_MODELE"]
         );
         assert_eq!(outline[2].children[0].name, "AFFE");
-        assert_eq!(&src[outline[2].start..outline[2].end].chars().last(), &Some(')'));
+        assert_eq!(
+            &src[outline[2].start..outline[2].end].chars().last(),
+            &Some(')')
+        );
     }
 }

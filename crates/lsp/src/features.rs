@@ -136,7 +136,12 @@ pub fn fixes(doc: &Document, f: &Finding) -> Vec<(String, usize, usize, String)>
             continue;
         };
         for cand in list.split('`').skip(1).step_by(2) {
-            out.push((format!("Replace with {cand}"), s, e, unquote(cand).to_string()));
+            out.push((
+                format!("Replace with {cand}"),
+                s,
+                e,
+                unquote(cand).to_string(),
+            ));
         }
     }
     out
@@ -313,7 +318,10 @@ fn kw_detail(e: &Entry) -> String {
             if let Some(def) = &s.default {
                 d.push_str(&format!(
                     ", default {}",
-                    def.iter().map(Lit::to_string).collect::<Vec<_>>().join(", ")
+                    def.iter()
+                        .map(Lit::to_string)
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ));
             }
             d
@@ -380,12 +388,18 @@ pub fn completion(
                             continue;
                         }
                         let (kind, insert) = match &e.node {
-                            Node::Factor(_) => (CompletionItemKind::STRUCT, format!("{}=_F(", e.name)),
+                            Node::Factor(_) => {
+                                (CompletionItemKind::STRUCT, format!("{}=_F(", e.name))
+                            }
                             _ => (CompletionItemKind::FIELD, format!("{}=", e.name)),
                         };
-                        let mandatory = matches!(&e.node,
-                            Node::Simple(SimpleKw { status: Status::Mandatory, .. }))
-                            || matches!(&e.node, Node::Factor(f) if f.status == Status::Mandatory);
+                        let mandatory = matches!(
+                            &e.node,
+                            Node::Simple(SimpleKw {
+                                status: Status::Mandatory,
+                                ..
+                            })
+                        ) || matches!(&e.node, Node::Factor(f) if f.status == Status::Mandatory);
                         let mut it = item(e.name.clone(), kind, kw_detail(e));
                         it.sort_text = Some(format!("{}{}", u8::from(!mandatory), e.name));
                         it.text_edit = Some(CompletionTextEdit::Edit(TextEdit {
@@ -454,7 +468,11 @@ fn names(
     items: &mut Vec<CompletionItem>,
 ) {
     let mut seen: Vec<&str> = Vec::new();
-    for o in a.occurrences.iter().filter(|o| o.definition && o.start < offset) {
+    for o in a
+        .occurrences
+        .iter()
+        .filter(|o| o.definition && o.start < offset)
+    {
         if seen.contains(&o.name.as_str()) || !o.name.to_uppercase().starts_with(prefix) {
             continue;
         }
@@ -503,7 +521,11 @@ fn value_items(
             items.push(item(
                 label,
                 CompletionItemKind::ENUM_MEMBER,
-                if default { "default".into() } else { String::new() },
+                if default {
+                    "default".into()
+                } else {
+                    String::new()
+                },
             ));
         }
         return;
@@ -543,11 +565,7 @@ fn value_items(
         })
         .collect();
     if !expected.is_empty() {
-        let accept = |typ: &str| {
-            expected
-                .iter()
-                .any(|e| aster_catalog::types::is_a(typ, e))
-        };
+        let accept = |typ: &str| expected.iter().any(|e| aster_catalog::types::is_a(typ, e));
         let range = Range::default();
         names(a, offset, "", Some(&accept), range, items);
         for it in items.iter_mut() {

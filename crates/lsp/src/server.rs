@@ -178,10 +178,12 @@ impl Server {
             diagnostics: features::diagnostics(&state.doc, uri, &state.analysis),
             version: Some(state.doc.version),
         };
-        self.conn.sender.send(Message::Notification(Notification::new(
-            notification::PublishDiagnostics::METHOD.into(),
-            params,
-        )))?;
+        self.conn
+            .sender
+            .send(Message::Notification(Notification::new(
+                notification::PublishDiagnostics::METHOD.into(),
+                params,
+            )))?;
         Ok(())
     }
 
@@ -210,14 +212,16 @@ impl Server {
                 let p: DidCloseTextDocumentParams = serde_json::from_value(n.params)?;
                 if self.docs.remove(&p.text_document.uri).is_some() {
                     // Clear what the editor shows for it.
-                    self.conn.sender.send(Message::Notification(Notification::new(
-                        notification::PublishDiagnostics::METHOD.into(),
-                        PublishDiagnosticsParams {
-                            uri: p.text_document.uri,
-                            diagnostics: Vec::new(),
-                            version: None,
-                        },
-                    )))?;
+                    self.conn
+                        .sender
+                        .send(Message::Notification(Notification::new(
+                            notification::PublishDiagnostics::METHOD.into(),
+                            PublishDiagnosticsParams {
+                                uri: p.text_document.uri,
+                                diagnostics: Vec::new(),
+                                version: None,
+                            },
+                        )))?;
                 }
             }
             _ => {}
@@ -435,8 +439,20 @@ fn group_names(
             );
         }
         if let Some(g) = cache.get(path) {
-            cells.extend(g.cells.iter().filter(|c| !cells.contains(c)).cloned().collect::<Vec<_>>());
-            nodes.extend(g.nodes.iter().filter(|c| !nodes.contains(c)).cloned().collect::<Vec<_>>());
+            cells.extend(
+                g.cells
+                    .iter()
+                    .filter(|c| !cells.contains(c))
+                    .cloned()
+                    .collect::<Vec<_>>(),
+            );
+            nodes.extend(
+                g.nodes
+                    .iter()
+                    .filter(|c| !nodes.contains(c))
+                    .cloned()
+                    .collect::<Vec<_>>(),
+            );
         }
     }
     (cells, nodes)

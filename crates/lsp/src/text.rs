@@ -146,10 +146,19 @@ mod tests {
         let sigma = text.find('𝜎').unwrap();
         assert_eq!(idx.offset(text, Position::new(0, 7)), sigma);
         // Lines after \r\n and a lone \r.
-        assert_eq!(idx.offset(text, Position::new(2, 0)), text.find('C').unwrap());
-        assert_eq!(idx.offset(text, Position::new(3, 0)), text.find('D').unwrap());
+        assert_eq!(
+            idx.offset(text, Position::new(2, 0)),
+            text.find('C').unwrap()
+        );
+        assert_eq!(
+            idx.offset(text, Position::new(3, 0)),
+            text.find('D').unwrap()
+        );
         // A column past the end of a line is the line's end, not the next line.
-        assert_eq!(idx.offset(text, Position::new(1, 99)), text.find("\r\n").unwrap());
+        assert_eq!(
+            idx.offset(text, Position::new(1, 99)),
+            text.find("\r\n").unwrap()
+        );
         // A line past the end is the end of the text.
         assert_eq!(idx.offset(text, Position::new(9, 0)), text.len());
     }

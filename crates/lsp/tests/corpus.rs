@@ -36,7 +36,10 @@ fn clean_v17_files_get_no_false_diagnostic() {
     let _ = client.receiver.recv().unwrap();
     client
         .sender
-        .send(Message::Notification(Notification::new("initialized".into(), json!({}))))
+        .send(Message::Notification(Notification::new(
+            "initialized".into(),
+            json!({}),
+        )))
         .unwrap();
     let (mut clean, mut opened) = (0, 0);
     let mut false_diags = Vec::new();
@@ -49,14 +52,26 @@ fn clean_v17_files_get_no_false_diagnostic() {
         }
         clean += 1;
         let warnings = report.diagnostics.0.len();
-        let uri = format!("file:///corpus/{}", f.file_name().unwrap().to_string_lossy());
+        let uri = format!(
+            "file:///corpus/{}",
+            f.file_name().unwrap().to_string_lossy()
+        );
         for (method, params) in [
-            ("textDocument/didOpen", json!({"textDocument": {"uri": uri, "languageId": "comm", "version": 1, "text": text}})),
-            ("textDocument/didClose", json!({"textDocument": {"uri": uri}})),
+            (
+                "textDocument/didOpen",
+                json!({"textDocument": {"uri": uri, "languageId": "comm", "version": 1, "text": text}}),
+            ),
+            (
+                "textDocument/didClose",
+                json!({"textDocument": {"uri": uri}}),
+            ),
         ] {
             client
                 .sender
-                .send(Message::Notification(Notification::new(method.into(), params)))
+                .send(Message::Notification(Notification::new(
+                    method.into(),
+                    params,
+                )))
                 .unwrap();
             let Message::Notification(n) = client.receiver.recv().unwrap() else {
                 panic!("expected a notification");
@@ -67,22 +82,35 @@ fn clean_v17_files_get_no_false_diagnostic() {
                 let errors = diags.iter().filter(|d| d["severity"] == 1).count();
                 let warns = diags.iter().filter(|d| d["severity"] == 2).count();
                 if errors > 0 || warns != warnings {
-                    false_diags.push(format!("{}: {errors} errors, {warns} warnings (check: {warnings})", f.display()));
+                    false_diags.push(format!(
+                        "{}: {errors} errors, {warns} warnings (check: {warnings})",
+                        f.display()
+                    ));
                 }
             }
         }
     }
     client
         .sender
-        .send(Message::Request(Request::new(RequestId::from(2), "shutdown".into(), json!(null))))
+        .send(Message::Request(Request::new(
+            RequestId::from(2),
+            "shutdown".into(),
+            json!(null),
+        )))
         .unwrap();
     let _ = client.receiver.recv().unwrap();
     client
         .sender
-        .send(Message::Notification(Notification::new("exit".into(), json!(null))))
+        .send(Message::Notification(Notification::new(
+            "exit".into(),
+            json!(null),
+        )))
         .unwrap();
     thread.join().unwrap().unwrap();
-    eprintln!("{opened} clean files opened in the server ({} files)", files.len());
+    eprintln!(
+        "{opened} clean files opened in the server ({} files)",
+        files.len()
+    );
     assert_eq!(opened, clean);
     assert!(false_diags.is_empty(), "{}", false_diags.join("\n"));
 }
