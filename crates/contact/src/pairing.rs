@@ -4,7 +4,7 @@
 use aster_mesh::{CellId, NodeId};
 
 use crate::error::ContactError;
-use crate::shape::{dot, norm, project_mmnewt, scale, sub, SurfaceKind};
+use crate::shape::{dot, norm, project_along, project_mmnewt, scale, sub, SurfaceKind};
 use crate::surface::ResolvedZone;
 use crate::zone::{Appariement, NormalChoice};
 
@@ -145,7 +145,11 @@ pub fn pair_point(
             for &ci in near {
                 let cell = &zone.master[ci];
                 let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
-                let Some(p) = project_mmnewt(cell.kind, &nodes, xs) else {
+                let projected = match g.dire_appa {
+                    Some(d) => project_along(cell.kind, &nodes, xs, d),
+                    None => project_mmnewt(cell.kind, &nodes, xs),
+                };
+                let Some(p) = projected else {
                     continue;
                 };
                 let outside = cell.kind.outside_distance(p.xi);

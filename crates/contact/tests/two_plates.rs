@@ -233,7 +233,8 @@ fn axisymmetric_lags_c_is_the_pressure_when_weights_carry_the_radius() {
 /// CONT_NOEU of a continuous zone: code_aster (`mmmres`) reads the vector
 /// components from the assembled contact vector, so on the upper plate
 /// pressed down onto the lower one RNY = RY = −RN (a discrete zone gives +RN,
-/// see zzzz237a.rs).
+/// see zzzz237a.rs). A frictionless continuous node in contact has CONT = 2
+/// ("sliding", `mmmres`; a discrete one 1).
 #[test]
 fn continuous_cont_noeu_components_carry_the_contact_vector_sign() {
     let def = continuous(Integration::Auto, GeomLoop::Controle { nb_iter: 2 });
@@ -244,7 +245,7 @@ fn continuous_cont_noeu_components_carry_the_contact_vector_sign() {
     let lags = zones[0].lags_c().expect("continuous zone has LAGS_C");
     let mut total = 0.0;
     for (n, _) in &lags {
-        assert_eq!(cn.value(*n, "CONT"), Some(1.0), "CONT({n:?})");
+        assert_eq!(cn.value(*n, "CONT"), Some(2.0), "CONT({n:?})");
         let rn = cn.value(*n, "RN").unwrap();
         assert!(rn > 0.0, "RN({n:?}) = {rn}");
         for c in ["RNY", "RY"] {
