@@ -172,7 +172,14 @@ impl Server {
         if state.due.take().is_none() {
             return Ok(());
         }
-        state.analysis = analysis::analyse(&file_name(uri), &state.doc.text);
+        let mut fresh = analysis::analyse(&file_name(uri), &state.doc.text);
+        if fresh.findings.iter().any(|f| f.code == "syntax") {
+            // A file being typed does not parse: the concepts and meshes of
+            // its last parsed version still serve completion and hover.
+            fresh.concepts = std::mem::take(&mut state.analysis.concepts);
+            fresh.meshes = std::mem::take(&mut state.analysis.meshes);
+        }
+        state.analysis = fresh;
         let params = PublishDiagnosticsParams {
             uri: uri.clone(),
             diagnostics: features::diagnostics(&state.doc, uri, &state.analysis),
