@@ -102,13 +102,19 @@ pub fn at(src: &str, offset: usize) -> Context {
     let mut prefix_start = offset;
     let mut in_string = false;
     let mut last: Option<usize> = None;
+    // Where the reading stopped, and whether at a word being typed.
+    let mut stop = tokens.len();
+    let mut typing = false;
     for (i, t) in tokens.iter().enumerate() {
         if t.start >= offset {
+            stop = i;
             break;
         }
         if t.end >= offset && matches!(t.kind, Kind::Name) {
             prefix = src[t.start..offset].to_string();
             prefix_start = t.start;
+            stop = i;
+            typing = true;
             break;
         }
         if let Kind::Str { closed } = t.kind {
@@ -117,6 +123,8 @@ pub fn at(src: &str, offset: usize) -> Context {
                 in_string = true;
                 prefix = src[cs..offset].to_string();
                 prefix_start = cs;
+                stop = i;
+                typing = true;
                 break;
             }
         }
@@ -125,6 +133,7 @@ pub fn at(src: &str, offset: usize) -> Context {
     }
     let slot = slot_of(&tokens, &frames, last, in_string);
     let path = catalog_path(&frames);
+    written_after(src, &tokens, stop, typing, &mut frames);
     Context {
         tokens,
         frames,
@@ -133,6 +142,57 @@ pub fn at(src: &str, offset: usize) -> Context {
         prefix_start,
         in_string,
         path,
+    }
+}
+
+/// Adds to the open levels the keywords written after the position, up to
+/// the end of the innermost level (they are "already present" too). The
+/// word being typed, and its value, are not counted.
+fn written_after(src: &str, tokens: &[Token], stop: usize, typing: bool, frames: &mut [Frame]) {
+    let depth = frames.len();
+    if depth == 0 {
+        return;
+    }
+    let mut more: Vec<Frame> = frames.to_vec();
+    for f in &mut more {
+        f.pending = None;
+    }
+    let mut skipping = typing;
+    let mut i = stop + usize::from(typing);
+    while i < tokens.len() && more.len() >= depth {
+        let t = tokens[i];
+        if skipping {
+            // The rest of the item being typed, to the next comma of its level.
+            match t.kind {
+                Kind::Open => more.push(Frame {
+                    open: i,
+                    callee: None,
+                    kw: None,
+                    written: Vec::new(),
+                    pending: None,
+                }),
+                Kind::Close => {
+                    more.pop();
+                }
+                Kind::Comma if more.len() == depth => skipping = false,
+                Kind::Newline => break,
+                _ => {}
+            }
+            i += 1;
+            continue;
+        }
+        if t.kind == Kind::Newline {
+            break;
+        }
+        step(src, tokens, i, &mut more);
+        i += 1;
+    }
+    for (f, m) in frames.iter_mut().zip(more) {
+        for w in m.written {
+            if !f.written.iter().any(|x| x.start == w.start) {
+                f.written.push(w);
+            }
+        }
     }
 }
 
