@@ -66,12 +66,13 @@ impl Glissiere {
             return;
         }
         self.started = true;
-        let eps = self
-            .threshold
-            .unwrap_or_else(|| {
-                let all: Vec<CellId> = (0..mesh.cells.len() as u32).map(CellId).collect();
-                1e-6 * mesh.edge_length_range(&all).map(|(lo, _)| lo).unwrap_or(0.0)
-            });
+        let eps = self.threshold.unwrap_or_else(|| {
+            let all: Vec<CellId> = (0..mesh.cells.len() as u32).map(CellId).collect();
+            1e-6 * mesh
+                .edge_length_range(&all)
+                .map(|(lo, _)| lo)
+                .unwrap_or(0.0)
+        });
         for &(n, g) in gaps {
             let link = match self.init {
                 ContactInit::Oui => true,

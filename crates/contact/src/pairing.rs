@@ -306,9 +306,14 @@ fn master_normal_at(
     let own = zone.cell_normal(cell, xi, x, source)?;
     for (i, c) in cell.kind.node_coords().iter().enumerate() {
         if (xi[0] - c[0]).abs() <= ON_NODE && (xi[1] - c[1]).abs() <= ON_NODE {
-            let averaged = zone.nodal_normal(cell.nodes[i], true, x)?;
-            if 1.0 - crate::shape::dot(own, averaged) <= FLAT {
-                return Ok(averaged);
+            // Where the cells around the node fold back on each other
+            // (their normals cancel out: a master line that turns by
+            // 180°), no average exists and the cells are anything but
+            // flat: the attributed cell's normal, as code_aster.
+            if let Ok(averaged) = zone.nodal_normal(cell.nodes[i], true, x) {
+                if 1.0 - crate::shape::dot(own, averaged) <= FLAT {
+                    return Ok(averaged);
+                }
             }
             return Ok(own);
         }

@@ -188,6 +188,18 @@ impl ContNoeu {
                     }
                 }
             }
+            // Discrete zones: code_aster's field is initialised to zero at
+            // every slave node of the zone, `SANS_GROUP_NO` ones included
+            // (`cfmxr0`), and `cfresu` fills only the contact links; so an
+            // excluded slave node carries every component, at 0.
+            if matches!(z.law, ZoneLaw::Discrete(_)) {
+                for node in &zone.excluded_nodes {
+                    if zone.slave_cells_of_node.contains_key(node) && !out.nodes.contains(node) {
+                        out.nodes.push(*node);
+                        out.values.push([0.0; 19]);
+                    }
+                }
+            }
         }
         Ok(out)
     }

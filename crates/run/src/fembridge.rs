@@ -616,6 +616,7 @@ pub fn solve(
     let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
     let mut post_friction: Option<aster_contact::friction::ContinuousFriction> = None;
+    let mut post_discrete: Option<aster_contact::friction::DiscreteFriction> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
@@ -623,6 +624,7 @@ pub fn solve(
         // during the solve (forces, last pairings) is there for CONT_NOEU.
         let mut contact_zones: Option<Vec<aster_contact::ZoneContact>> = None;
         let mut friction: Option<aster_contact::friction::ContinuousFriction> = None;
+        let mut discrete: Option<aster_contact::friction::DiscreteFriction> = None;
         let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
@@ -633,7 +635,13 @@ pub fn solve(
                     })
                 }
                 ContactDef::Zones { keywords, .. } => {
-                    if crate::contactbridge::has_friction(keywords) {
+                    if crate::contactbridge::has_discrete_friction(keywords) {
+                        discrete = Some(crate::contactbridge::discrete_friction_source(
+                            ex, &mesh, keywords,
+                        )?);
+                    } else if crate::contactbridge::has_friction(keywords)
+                        || crate::contactbridge::contact_elements(&mesh, keywords)
+                    {
                         friction =
                             Some(crate::contactbridge::friction_source(ex, &mesh, keywords)?);
                     } else {
@@ -655,6 +663,9 @@ pub fn solve(
         }
         let mut forces: Vec<Box<dyn aster_fem::ForceSource + '_>> = Vec::new();
         if let Some(f) = friction.as_mut() {
+            forces.push(Box::new(f));
+        }
+        if let Some(f) = discrete.as_mut() {
             forces.push(Box::new(f));
         }
         let initial = match &setup.initial {
@@ -725,6 +736,7 @@ pub fn solve(
             post_zones = Some(z);
         }
         post_friction = friction;
+        post_discrete = discrete;
         raw
     };
     let steps = raw
@@ -792,6 +804,9 @@ pub fn solve(
                     fields.insert("CONT_NOEU".to_string(), Field::Nodal(nf));
                 }
             }
+            if let Some(cn) = post_discrete.as_ref().and_then(|f| f.cont_noeu_at(s.time)) {
+                fields.insert("CONT_NOEU".to_string(), Field::Nodal(cont_noeu_field(cn)));
+            }
             if let Some(zones) = &mut post_zones {
                 // CONT_NOEU: the zones re-paired on the step's geometry.
                 let x = aster_contact::positions(&mesh, model.dofs(), &s.displacement);
@@ -841,6 +856,22 @@ pub fn solve(
             mass: crate::dyna::mass_data(&mesh, setup).ok().map(|(m, _)| m),
         }),
     ))
+}
+
+/// CONT_NOEU as a nodal field.
+fn cont_noeu_field(cn: &aster_contact::ContNoeu) -> NodalField {
+    let mut nf = NodalField::new(
+        aster_contact::CONT_NOEU_COMPONENTS
+            .iter()
+            .map(|c| c.to_string())
+            .collect(),
+    );
+    for (n, vals) in cn.nodes.iter().zip(&cn.values) {
+        for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
+            nf.set(*n, c, *v);
+        }
+    }
+    nf
 }
 
 /// `INFO=2`: one line per increment tried — Newton iterations and the

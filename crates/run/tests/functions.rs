@@ -20,7 +20,7 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
     .unwrap();
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (14, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (16, 0));
     let agr = std::fs::read_to_string(out.join("curves.agr")).unwrap();
     assert!(agr.contains("@title \"strip\""), "{agr}");
     assert!(

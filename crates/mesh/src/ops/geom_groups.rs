@@ -112,7 +112,7 @@ impl Mesh {
                 "CYLINDRE: the axis vector is zero".into(),
             ));
         }
-        if !(radius > 0.0) {
+        if radius.is_nan() || radius <= 0.0 {
             return Err(MeshError::Operation(
                 "CYLINDRE: RAYON must be positive".into(),
             ));

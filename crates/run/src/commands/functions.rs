@@ -63,10 +63,12 @@ fn tabulated(
     cmd: &str,
     kw: &Keywords,
     para: &str,
+    result: Option<&str>,
     xs: Vec<f64>,
     ys: Vec<f64>,
 ) -> Result<Rc<Function>, ExecError> {
     let mut f = Tabulated::new(para, xs, ys).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+    f.result = result.map(str::to_string);
     apply_options(ex, cmd, kw, &mut f)?;
     Ok(Rc::new(Function::Tabulated(f)))
 }
@@ -156,7 +158,15 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 ys.push(y);
             }
         }
-        let f = tabulated(ex, cmd, kw, px, xs, ys)?;
+        let f = tabulated(
+            ex,
+            cmd,
+            kw,
+            px,
+            Some(kw.str("NOM_RESU").unwrap_or(py)),
+            xs,
+            ys,
+        )?;
         return store_result(ex, call, Concept::Function(f));
     }
     let r = ex.required(cmd, kw, "RESULTAT")?;
@@ -216,7 +226,15 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         xs.push(s.inst);
         ys.push(v);
     }
-    let f = tabulated(ex, cmd, kw, "INST", xs, ys)?;
+    let f = tabulated(
+        ex,
+        cmd,
+        kw,
+        "INST",
+        Some(kw.str("NOM_RESU").unwrap_or(cmp)),
+        xs,
+        ys,
+    )?;
     store_result(ex, call, Concept::Function(f))
 }
 
@@ -259,7 +277,7 @@ pub fn calc_fonc_interp(ex: &mut Executor, call: &CommandCall) -> Result<Command
                 .map_err(|e| ExecError::new(format!("{cmd}: at {para}={x}: {e}")))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let g = tabulated(ex, cmd, kw, &para, xs, ys)?;
+    let g = tabulated(ex, cmd, kw, &para, kw.str("NOM_RESU"), xs, ys)?;
     store_result(ex, call, Concept::Function(g))
 }
 
@@ -366,7 +384,7 @@ pub fn calc_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         )));
     };
     let para = kw.str("NOM_PARA").map(str::to_string).unwrap_or(para);
-    let g = tabulated(ex, cmd, kw, &para, xs, ys)?;
+    let g = tabulated(ex, cmd, kw, &para, kw.str("NOM_RESU"), xs, ys)?;
     store_result(ex, call, Concept::Function(g))
 }
 

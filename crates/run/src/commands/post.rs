@@ -729,7 +729,15 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             let field_name = occ.str("NOM_CHAM").ok_or_else(|| {
                 ExecError::new("POST_RELEVE_T/ACTION: NOM_CHAM is required with RESULTAT")
             })?;
-            for step in select_steps(ex, "POST_RELEVE_T/ACTION", occ, &result)? {
+            let steps = select_steps(ex, "POST_RELEVE_T/ACTION", occ, &result)?;
+            // A step without the field gives no row (code_aster's `rvgchf`:
+            // alarm POSTRELE_41), e.g. CALC_PRESSION at one INST of the
+            // result; a field no selected step has stays an error.
+            let any = steps.iter().any(|s| s.fields.contains_key(field_name));
+            for step in steps {
+                if any && !step.fields.contains_key(field_name) {
+                    continue;
+                }
                 let f = step_field(step, field_name, &r.name)?.clone();
                 sources.push((
                     Some(r.name.clone()),
