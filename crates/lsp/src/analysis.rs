@@ -127,18 +127,16 @@ impl Analysis {
 }
 
 /// The sink of the analysis: types each result as `aster check` does and
-/// asks `aster-run`'s support table whether the call would run.
+/// asks `aster run`'s static pass whether the call would run.
 struct Sink {
     check: CheckSink,
-    refusals: Vec<(Span, String)>,
+    run: aster_run::preflight::CallRefusals,
+    refusals: Vec<(String, Span)>,
 }
 
 impl CommandSink for Sink {
     fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-        let command = aster_run::commands::find(&call.command);
-        for r in aster_run::support::check_call(command.map(|c| &c.support), call) {
-            self.refusals.push((r.span, r.what));
-        }
+        self.refusals.extend(self.run.call(call));
         self.check.execute(call)
     }
     fn method(
@@ -218,6 +216,7 @@ pub fn analyse(name: &str, text: &str) -> Analysis {
             calls: Vec::new(),
             record: true,
         },
+        run: Default::default(),
         refusals: Vec::new(),
     };
     let diags = match aster_eval::run_program(
@@ -230,7 +229,7 @@ pub fn analyse(name: &str, text: &str) -> Analysis {
         Err(d) => d.0,
     };
     out.findings.extend(diags.into_iter().map(finding));
-    for (span, what) in sink.refusals {
+    for (what, span) in sink.refusals {
         out.findings.push(Finding {
             level: Level::Information,
             code: "not_supported_by_run".into(),

@@ -8,7 +8,7 @@
 
 use crate::lex::{self, Kind, Token};
 use aster_catalog::cond::{CVal, CondEnv};
-use aster_catalog::{catalog, Command, Entry, Node, SimpleKw};
+use aster_catalog::{catalog, Command, Entry, Node, Rule, RuleKind, SimpleKw};
 use std::collections::HashMap;
 
 /// A keyword written at one level.
@@ -146,26 +146,52 @@ pub fn at(src: &str, offset: usize) -> Context {
 }
 
 /// Adds to the open levels the keywords written after the position, up to
-/// the end of the innermost level (they are "already present" too). The
-/// word being typed, and its value, are not counted.
+/// the end of each level (they are "already present" too: a keyword
+/// written further in the same `_F(` or call is not offered again, and the
+/// block conditions read it). The word being typed, and its value, are not
+/// counted; nor are the keywords of calls and `_F(` opened after the
+/// position (a sibling occurrence of a factor keyword is another level).
 fn written_after(src: &str, tokens: &[Token], stop: usize, typing: bool, frames: &mut [Frame]) {
-    let depth = frames.len();
-    if depth == 0 {
+    if frames.is_empty() {
         return;
     }
+    // The open levels are a prefix of `more`; a frame is one of them when
+    // its bracket was opened before the position.
     let mut more: Vec<Frame> = frames.to_vec();
     for f in &mut more {
         f.pending = None;
     }
+    let merge = |frames: &mut [Frame], k: usize, m: Frame| {
+        for w in m.written {
+            if !frames[k].written.iter().any(|x| x.start == w.start) {
+                frames[k].written.push(w);
+            }
+        }
+    };
+    let depth = frames.len();
     let mut skipping = typing;
     let mut i = stop + usize::from(typing);
-    while i < tokens.len() && more.len() >= depth {
+    while i < tokens.len() && !more.is_empty() {
         let t = tokens[i];
+        i += 1;
+        match t.kind {
+            Kind::Newline => break,
+            Kind::Close if more.last().is_some_and(|f| f.open < stop) => {
+                // An open level ends: what it holds is final.
+                let k = more.len() - 1;
+                if let Some(m) = more.pop() {
+                    merge(frames, k, m);
+                }
+                skipping = false;
+                continue;
+            }
+            _ => {}
+        }
         if skipping {
             // The rest of the item being typed, to the next comma of its level.
             match t.kind {
                 Kind::Open => more.push(Frame {
-                    open: i,
+                    open: i - 1,
                     callee: None,
                     kw: None,
                     written: Vec::new(),
@@ -175,23 +201,15 @@ fn written_after(src: &str, tokens: &[Token], stop: usize, typing: bool, frames:
                     more.pop();
                 }
                 Kind::Comma if more.len() == depth => skipping = false,
-                Kind::Newline => break,
                 _ => {}
             }
-            i += 1;
             continue;
         }
-        if t.kind == Kind::Newline {
-            break;
-        }
-        step(src, tokens, i, &mut more);
-        i += 1;
+        step(src, tokens, i - 1, &mut more);
     }
-    for (f, m) in frames.iter_mut().zip(more) {
-        for w in m.written {
-            if !f.written.iter().any(|x| x.start == w.start) {
-                f.written.push(w);
-            }
+    for (k, m) in more.into_iter().enumerate() {
+        if m.open < stop {
+            merge(frames, k, m);
         }
     }
 }
@@ -333,6 +351,36 @@ fn catalog_path(frames: &[Frame]) -> Option<CatalogPath> {
     None
 }
 
+/// What is valid at one catalog level given what is written: its entries
+/// (direct keywords and those of the open blocks) and the rules of the
+/// level and of those blocks.
+pub struct Level<'c> {
+    pub entries: Vec<&'c Entry>,
+    pub rules: Vec<&'c Rule>,
+}
+
+impl Level<'_> {
+    /// Whether a rule of the level forbids writing `name` next to the
+    /// keywords already `written`: `UN_PARMI`/`EXCLUS` once one of their
+    /// keywords is written, `PRESENT_ABSENT` (the first excludes the
+    /// others, any other the first).
+    pub fn excluded(&self, name: &str, written: &[String]) -> bool {
+        let w = |k: &String| k != name && written.contains(k);
+        self.rules.iter().any(|r| {
+            let mine = r.args.iter().any(|a| a == name);
+            match r.kind {
+                RuleKind::ExactlyOne | RuleKind::AtMostOne => mine && r.args.iter().any(w),
+                RuleKind::OnlyFirstPresent => match r.args.split_first() {
+                    Some((first, others)) if first == name => others.iter().any(w),
+                    Some((first, _)) => mine && w(first),
+                    None => false,
+                },
+                _ => false,
+            }
+        })
+    }
+}
+
 /// The entries valid at the level a path ends in: at each level down, the
 /// factor keyword of the path is taken among the entries valid there (a
 /// factor such as `DEFI_CONTACT/ZONE` has one definition per block).
@@ -341,19 +389,26 @@ pub fn level_active<'c>(
     cmd: &'c Command,
     factors: &[String],
     env: &mut Env<'_>,
-) -> Option<Vec<&'c Entry>> {
+) -> Option<Level<'c>> {
     let mut entries: &[Entry] = &cmd.keywords;
+    let mut rules: &[Rule] = &cmd.rules;
     for f in factors {
         let mut act = Vec::new();
-        active(entries, env, &mut act);
+        active(entries, env, &mut act, &mut Vec::new());
         match &act.iter().find(|e| &e.name == f)?.node {
-            Node::Factor(fk) => entries = &fk.keywords,
+            Node::Factor(fk) => {
+                entries = &fk.keywords;
+                rules = &fk.rules;
+            }
             _ => return None,
         }
     }
-    let mut act = Vec::new();
-    active(entries, env, &mut act);
-    Some(act)
+    let mut level = Level {
+        entries: Vec::new(),
+        rules: rules.iter().collect(),
+    };
+    active(entries, env, &mut level.entries, &mut level.rules);
+    Some(level)
 }
 
 /// Keyword values as block conditions read them: what is written (this
@@ -407,9 +462,15 @@ impl<'a> Env<'a> {
 
 /// The entries valid at a level given `env`: its direct keywords, and
 /// those of the blocks whose condition holds (or cannot be decided yet:
-/// completion offers rather than hides). Defaults of the open keywords
-/// become visible to the blocks after them, as in the validator.
-pub fn active<'c>(entries: &'c [Entry], env: &mut Env<'_>, out: &mut Vec<&'c Entry>) {
+/// completion offers rather than hides), with the rules of those blocks.
+/// Defaults of the open keywords become visible to the blocks after them,
+/// as in the validator.
+pub fn active<'c>(
+    entries: &'c [Entry],
+    env: &mut Env<'_>,
+    out: &mut Vec<&'c Entry>,
+    rules: &mut Vec<&'c Rule>,
+) {
     for e in entries {
         match &e.node {
             Node::Block(_) => {}
@@ -433,7 +494,8 @@ pub fn active<'c>(entries: &'c [Entry], env: &mut Env<'_>, out: &mut Vec<&'c Ent
                 Err(_) => true,
             };
             if open {
-                active(&b.keywords, env, out);
+                rules.extend(b.rules.iter());
+                active(&b.keywords, env, out, rules);
             }
         }
     }
@@ -462,6 +524,39 @@ mod tests {
         let top = &ctx.frames[path.frames[0]];
         assert_eq!(top.written[1].name, "FORMULATION");
         assert_eq!(top.written[1].values, vec![CVal::Str("CONTINUE".into())]);
+    }
+
+    #[test]
+    fn keywords_written_after_the_position_count_to_the_end_of_each_level() {
+        let src = "C = DEFI_CONTACT(MODELE=MO,\n  ZONE=(_F(GROUP_MA_MAIT='A', ), _F(GROUP_MA_ESCL='B')),\n  FORMULATION='CONTINUE')\nX = 1\n";
+        // Before GROUP_MA_MAIT, in the first ZONE occurrence.
+        let at_kw = src.find("GROUP_MA_MAIT").unwrap();
+        let ctx = at(src, at_kw);
+        let path = ctx.path.clone().expect("a catalog path");
+        let names = |fi: usize| -> Vec<String> {
+            ctx.frames[fi]
+                .written
+                .iter()
+                .map(|w| w.name.clone())
+                .collect()
+        };
+        // The occurrence holds GROUP_MA_MAIT, not its sibling's GROUP_MA_ESCL.
+        assert_eq!(names(path.frames[1]), vec!["GROUP_MA_MAIT".to_string()]);
+        // The command level sees FORMULATION, written after the factor.
+        assert_eq!(names(path.frames[0]), vec!["MODELE", "ZONE", "FORMULATION"]);
+        let top = &ctx.frames[path.frames[0]];
+        assert_eq!(top.written[2].values, vec![CVal::Str("CONTINUE".into())]);
+        // Typing a keyword: the word being typed is not counted.
+        let ctx = at(src, at_kw + 5);
+        assert_eq!(ctx.prefix, "GROUP");
+        let path = ctx.path.clone().unwrap();
+        assert!(ctx.frames[path.frames[1]].written.is_empty());
+        // Typing a string value: the keyword it is the value of is written
+        // before the position; nothing after it in the occurrence.
+        let ctx = at(src, src.find("'A'").unwrap() + 1);
+        assert!(ctx.in_string);
+        let path = ctx.path.unwrap();
+        assert_eq!(ctx.frames[path.frames[1]].written.len(), 1);
     }
 
     #[test]

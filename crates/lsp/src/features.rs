@@ -340,13 +340,13 @@ fn status(s: Status) -> &'static str {
     }
 }
 
-/// The keywords valid at the innermost catalog level of `ctx`, and the
-/// names already written there.
+/// The keywords valid at the innermost catalog level of `ctx` (with the
+/// rules that apply there), and the names already written there.
 pub fn valid_keywords<'c>(
     ctx: &Context,
     a: &Analysis,
     offset: usize,
-) -> Option<(Vec<&'c Entry>, Vec<String>)> {
+) -> Option<(context::Level<'c>, Vec<String>)> {
     let path = ctx.path.as_ref()?;
     let cmd = catalog().command(&path.command)?;
     let types = |n: &str| a.concept_before(n, offset).map(|c| c.typ.clone());
@@ -381,9 +381,12 @@ pub fn completion(
     let mut items: Vec<CompletionItem> = Vec::new();
     match &ctx.slot {
         Slot::Keyword => {
-            if let Some((active, written)) = valid_keywords(&ctx, a, offset) {
-                for e in active {
-                    if e.name.starts_with(&prefix) && !written.contains(&e.name) {
+            if let Some((level, written)) = valid_keywords(&ctx, a, offset) {
+                for &e in &level.entries {
+                    if e.name.starts_with(&prefix)
+                        && !written.contains(&e.name)
+                        && !level.excluded(&e.name, &written)
+                    {
                         if matches!(&e.node, Node::Simple(s) if s.status == Status::Hidden) {
                             continue;
                         }
@@ -413,7 +416,7 @@ pub fn completion(
         }
         Slot::Value { keyword } => {
             let entry = valid_keywords(&ctx, a, offset)
-                .and_then(|(active, _)| active.into_iter().find(|e| &e.name == keyword));
+                .and_then(|(level, _)| level.entries.into_iter().find(|e| &e.name == keyword));
             if let Some(Entry {
                 node: Node::Simple(s),
                 ..
@@ -582,7 +585,8 @@ pub fn signature_help(doc: &Document, a: &Analysis, pos: Position) -> Option<Sig
     let offset = doc.offset(pos);
     let ctx = context::at(&doc.text, offset);
     let path = ctx.path.as_ref()?;
-    let (active, _) = valid_keywords(&ctx, a, offset)?;
+    let (level, _) = valid_keywords(&ctx, a, offset)?;
+    let active = level.entries;
     let level = &ctx.frames[*path.frames.last()?];
     let current: Option<String> = match &ctx.slot {
         Slot::Value { keyword } => Some(keyword.clone()),
