@@ -627,7 +627,7 @@ pub fn contact_elements(mesh: &Mesh, kw: &Keywords) -> bool {
             })
     };
     kw.str("FORMULATION") == Some("CONTINUE")
-        && !kw.factor("ZONE").iter().any(|o| triangles(o))
+        && !kw.factor("ZONE").iter().any(triangles)
         && !has_friction(kw)
         && kw.factor("ZONE").iter().all(|occ| {
             occ.str("ALGO_CONT").unwrap_or("STANDARD") != "LAC"

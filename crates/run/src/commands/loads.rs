@@ -671,8 +671,8 @@ fn face_dnor(
                 )));
             }
             let e = sum.entry(node).or_insert(([0.0; 3], 0));
-            for d in 0..3 {
-                e.0[d] += n[d] / l;
+            for (acc, nd) in e.0.iter_mut().zip(n.iter()) {
+                *acc += nd / l;
             }
             e.1 += 1;
         }
