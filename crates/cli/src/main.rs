@@ -62,6 +62,12 @@ enum Command {
         #[arg(long, default_value = ".")]
         out: PathBuf,
     },
+    /// Serve the Language Server Protocol on stdin/stdout (docs/editors.md).
+    Lsp {
+        /// Accepted for editors that pass it; stdio is the only transport.
+        #[arg(long)]
+        stdio: bool,
+    },
     /// Sweep contact methods and parameters on a scene (TOML spec); write a
     /// CSV, error/time, convergence and stability charts, and a summary.
     Study {
@@ -109,5 +115,6 @@ fn run(cli: Cli) -> u8 {
         } => cmd::mesh::run(&file, json, to.as_deref(), out.as_deref()),
         Command::Run { case, mesh, out } => cmd::run::run(&case, mesh.as_deref(), &out),
         Command::Study { spec, out } => cmd::study::run(&spec, &out),
+        Command::Lsp { .. } => cmd::lsp::run(),
     }
 }

@@ -81,9 +81,7 @@ struct Sink<'o> {
     meshes: Vec<ReadMesh>,
     /// A mesh the pass cannot follow is made: no group check.
     unknown_mesh: bool,
-    /// Results of a static non-linear solve with finite strains
-    /// (SIMO_MIEHE), by concept id.
-    finite_strain_results: Vec<u32>,
+    refusals: CallRefusals,
 }
 
 impl Sink<'_> {
@@ -131,7 +129,32 @@ impl Sink<'_> {
     }
 }
 
-impl Sink<'_> {
+/// What `aster run` refuses, call by call, as a program is followed in
+/// order: the support table ([`crate::support::check_call`]) and the
+/// refusals that depend on earlier calls. The static pass uses it, and so
+/// does `aster lsp` on each edit (its "not supported by aster run"
+/// information).
+#[derive(Debug, Default)]
+pub struct CallRefusals {
+    /// Results of a static non-linear solve with finite strains
+    /// (SIMO_MIEHE), by concept id.
+    finite_strain_results: Vec<u32>,
+}
+
+impl CallRefusals {
+    /// The refusals of one call (what, where), the calls before it having
+    /// been given in order.
+    pub fn call(&mut self, call: &CommandCall) -> Vec<(String, Span)> {
+        let command = crate::commands::find(&call.command);
+        let mut out: Vec<(String, Span)> =
+            crate::support::check_call(command.map(|c| &c.support), call)
+                .into_iter()
+                .map(|r| (r.what, r.span))
+                .collect();
+        out.extend(self.follow_finite_strains(call));
+        out
+    }
+
     /// Nodal forces (FORC_NODA, REAC_NODA) of a static result computed
     /// with DEFORMATION='SIMO_MIEHE' and contact are not validated against
     /// code_aster. Without contact they are (ssna303a, AXIS_SI: REAC_NODA
@@ -142,7 +165,7 @@ impl Sink<'_> {
     /// converged (RESI_GLOB_RELA 1e-10 moves it by 5e-7): the gap is in the
     /// contact state, not in this post-processing. Refused at CALC_CHAMP.
     /// (DYNA_NON_LINE's are the dynamics' own, validated by sdnv103e.)
-    fn follow_finite_strains(&mut self, call: &CommandCall) {
+    fn follow_finite_strains(&mut self, call: &CommandCall) -> Option<(String, Span)> {
         let kw = &call.keywords;
         if ["STAT_NON_LINE", "MECA_NON_LINE"].contains(&call.command.as_str()) {
             let finite = kw
@@ -156,36 +179,31 @@ impl Sink<'_> {
                 }
             }
         } else if call.command == "CALC_CHAMP" {
-            let Some(r) = kw.concept("RESULTAT") else {
-                return;
-            };
+            let r = kw.concept("RESULTAT")?;
             if !self.finite_strain_results.contains(&r.id) {
-                return;
+                return None;
             }
             let forces = kw.simple("FORCE");
-            if let Some(f) = forces
+            let f = forces
                 .iter()
                 .filter_map(|s| s.as_str())
-                .find(|f| ["FORC_NODA", "REAC_NODA"].contains(f))
-            {
-                let span = kw.keyword("FORCE").map(|k| k.span).unwrap_or(call.span);
-                self.refuse(
-                    format!("CALC_CHAMP/FORCE='{f}' of a result computed with DEFORMATION='SIMO_MIEHE' and contact (the contact forces under finite strains are not validated against code_aster: ssna111a's differ by 5e-5 while its displacements agree; without contact these nodal forces are, ssna303a)"),
-                    span,
-                );
-            }
+                .find(|f| ["FORC_NODA", "REAC_NODA"].contains(f))?;
+            let span = kw.keyword("FORCE").map(|k| k.span).unwrap_or(call.span);
+            return Some((
+                format!("CALC_CHAMP/FORCE='{f}' of a result computed with DEFORMATION='SIMO_MIEHE' and contact (the contact forces under finite strains are not validated against code_aster: ssna111a's differ by 5e-5 while its displacements agree; without contact these nodal forces are, ssna303a)"),
+                span,
+            ));
         }
+        None
     }
 }
 
 impl CommandSink for Sink<'_> {
     fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-        let command = crate::commands::find(&call.command);
-        let refusals = crate::support::check_call(command.map(|c| &c.support), call);
-        for r in refusals {
-            self.refuse(r.what, r.span);
+        for (what, span) in self.refusals.call(call) {
+            self.refuse(what, span);
         }
-        self.follow_finite_strains(call);
+        let command = crate::commands::find(&call.command);
         if call.command == "LIRE_MAILLAGE" && command.is_some() {
             self.read_mesh(call);
         } else if produces_mesh(call) && !MESH_COMMANDS.contains(&call.command.as_str()) {
@@ -238,7 +256,7 @@ pub fn check_study(map: &CodeMap, study: &aster_eval::Study, options: &RunOption
         },
         meshes: Vec::new(),
         unknown_mesh: false,
-        finite_strain_results: Vec::new(),
+        refusals: CallRefusals::default(),
     };
     let result = aster_eval::run_study(
         map,
