@@ -97,6 +97,15 @@ pub fn detect_format(path: &Path) -> Result<MeshFormat, MeshError> {
     }
 }
 
+/// Read a mesh file as [`read_mesh`] does, with the warnings of what was
+/// read but could not be used (MED nodes or cells of undefined families).
+pub fn read_mesh_noted(path: &Path) -> Result<(Mesh, Vec<String>), MeshError> {
+    match detect_format(path)? {
+        MeshFormat::Med => read_med_named(path, None).map(|(m, info)| (m, info.warnings)),
+        _ => read_mesh(path).map(|m| (m, Vec::new())),
+    }
+}
+
 /// Read a mesh file, MED or ASTER, telling the format from the content or extension.
 pub fn read_mesh(path: &Path) -> Result<Mesh, MeshError> {
     match detect_format(path)? {

@@ -304,3 +304,38 @@ fn first_node_of_every_cell_is_valid_after_roundtrip() {
         .all(|n| (n.0 as usize) < back.node_count()));
     assert_eq!(back.cells[0].nodes, [NodeId(1)]);
 }
+
+/// A family header whose `NUM` attribute is damaged: the file still reads,
+/// and the reader says which entities lost their groups instead of
+/// dropping the groups silently.
+#[test]
+fn a_damaged_family_header_is_reported() {
+    let text = "COOR_2D\nN1 0 0\nN2 1 0\nN3 1 1\nFINSF\nSEG2\nM1 N1 N2\nM2 N2 N3\nFINSF\nGROUP_MA\nLOW M1\nFINSF\nGROUP_MA\nSIDE M2\nFINSF\nGROUP_NO\nTOP N3\nFINSF\nFIN\n";
+    let mesh = parse_mail(text, Path::new("fam.mail")).unwrap();
+    let bytes = med_bytes(&mesh, "M", &[]).unwrap();
+    let (intact, info) = read_med_bytes(bytes.clone(), Path::new("fam.med"), None).unwrap();
+    assert_eq!(intact.groups_ma.len(), 2);
+    assert!(info.warnings.is_empty(), "{:?}", info.warnings);
+    // Rename every `NUM` attribute: no family is defined any more.
+    let mut damaged = bytes;
+    let mut hits = 0;
+    for i in 0..damaged.len().saturating_sub(4) {
+        if &damaged[i..i + 4] == b"NUM\0" {
+            damaged[i + 2] = b'X';
+            hits += 1;
+        }
+    }
+    assert!(
+        hits > 0,
+        "the writer stores family numbers as NUM attributes"
+    );
+    let (broken, info) = read_med_bytes(damaged, Path::new("fam.med"), None).unwrap();
+    assert!(broken.groups_ma.is_empty() && broken.groups_no.is_empty());
+    let text = info.warnings.join("\n");
+    assert!(
+        text.contains("1 node(s) belong to family")
+            && text.contains("cell(s) belong to family")
+            && text.contains("which the file does not define"),
+        "{text}"
+    );
+}

@@ -6,8 +6,9 @@ use std::path::Path;
 /// Reads a mesh in the format `LIRE_MAILLAGE(FORMAT=…)` names. MED and
 /// ASTER files must be what they claim (the format is told from the file
 /// itself); GMSH and GIBI files are converted to ASTER text as code_aster's
-/// `PRE_GMSH`/`PRE_GIBI` do, then read.
-pub fn read(path: &Path, format: &str) -> Result<Mesh, String> {
+/// `PRE_GMSH`/`PRE_GIBI` do, then read. With the mesh, the reader's
+/// warnings (MED entities of undefined families: their groups are missing).
+pub fn read(path: &Path, format: &str) -> Result<(Mesh, Vec<String>), String> {
     use aster_mesh::MeshFormat;
     let detected = aster_mesh::detect_format(path).map_err(|e| e.to_string())?;
     let want = match format {
@@ -27,7 +28,7 @@ pub fn read(path: &Path, format: &str) -> Result<Mesh, String> {
             }
         ));
     }
-    aster_mesh::read_mesh(path).map_err(|e| e.to_string())
+    aster_mesh::read_mesh_noted(path).map_err(|e| e.to_string())
 }
 
 /// `PRE_GMSH`/`PRE_GIBI`: the ASTER text code_aster's converter writes for

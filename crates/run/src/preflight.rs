@@ -31,6 +31,8 @@ pub struct ReadMesh {
     pub path: PathBuf,
     pub format: String,
     pub mesh: Arc<Mesh>,
+    /// The reader's warnings, printed by LIRE_MAILLAGE.
+    pub warnings: Vec<String>,
 }
 
 /// What the static pass found.
@@ -114,10 +116,11 @@ impl Sink<'_> {
             return;
         }
         match crate::meshio::read(path, &format) {
-            Ok(mesh) => self.meshes.push(ReadMesh {
+            Ok((mesh, warnings)) => self.meshes.push(ReadMesh {
                 path: path.clone(),
                 format,
                 mesh: Arc::new(mesh),
+                warnings,
             }),
             // The run reports the reading error at the command.
             Err(_) => self.unknown_mesh = true,

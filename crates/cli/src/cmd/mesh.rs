@@ -3,8 +3,13 @@
 use std::path::Path;
 
 pub fn run(file: &Path, json: bool, to: Option<&str>, out: Option<&Path>) -> u8 {
-    let mesh = match aster_mesh::read_mesh(file) {
-        Ok(m) => m,
+    let mesh = match aster_mesh::read_mesh_noted(file) {
+        Ok((m, warnings)) => {
+            for w in warnings {
+                eprintln!("warning: {}: {w}", file.display());
+            }
+            m
+        }
         Err(e) => {
             eprintln!("error: {e}");
             return 2;

@@ -28,6 +28,10 @@ pub struct MedInfo {
     pub meshes: Vec<String>,
     /// The mesh that was read.
     pub mesh_name: String,
+    /// What was read but could not be used: nodes or cells whose family
+    /// the file does not define (a damaged or missing family header), so
+    /// that the groups they belong to are missing.
+    pub warnings: Vec<String>,
 }
 
 /// Read the first mesh of a MED file.
@@ -86,7 +90,7 @@ pub fn read_med_bytes(
             })?,
     };
     let mesh_obj = file.object_at(mesh_addr).map_err(h5)?;
-    let mesh = r.mesh(&mesh_obj, &mesh_name, path).map_err(|e| match e {
+    let (mesh, warnings) = r.mesh(&mesh_obj, &mesh_name, path).map_err(|e| match e {
         ReadError::H5(e) => h5(e),
         ReadError::Mesh(e) => e,
     })?;
@@ -96,6 +100,7 @@ pub fn read_med_bytes(
             version,
             meshes: meshes.into_iter().map(|m| m.0).collect(),
             mesh_name,
+            warnings,
         },
     ))
 }
@@ -143,7 +148,12 @@ impl Reader<'_> {
         Ok(self.file.attribute(obj, name)?.and_then(|a| a.as_i64()))
     }
 
-    fn mesh(&self, mesh_obj: &Object, mesh_name: &str, path: &Path) -> Result<Mesh, ReadError> {
+    fn mesh(
+        &self,
+        mesh_obj: &Object,
+        mesh_name: &str,
+        path: &Path,
+    ) -> Result<(Mesh, Vec<String>), ReadError> {
         let med_err = |message: String| {
             ReadError::Mesh(MeshError::Med {
                 path: path.to_path_buf(),
@@ -274,7 +284,7 @@ impl Reader<'_> {
         }
 
         let families = self.families(mesh_obj, mesh_name)?;
-        let (groups_no, groups_ma) = build_groups(&families, &node_fam, &cell_fam);
+        let (groups_no, groups_ma, warnings) = build_groups(&families, &node_fam, &cell_fam);
 
         let node_names = match node_names {
             Some(n) => n,
@@ -288,15 +298,18 @@ impl Reader<'_> {
                     .unwrap_or_else(|| numbered_name('M', i + 1))
             })
             .collect();
-        Ok(Mesh {
-            dim: dim as u8,
-            coords,
-            node_names,
-            cells,
-            cell_names,
-            groups_ma,
-            groups_no,
-        })
+        Ok((
+            Mesh {
+                dim: dim as u8,
+                coords,
+                node_names,
+                cells,
+                cell_names,
+                groups_ma,
+                groups_no,
+            },
+            warnings,
+        ))
     }
 
     /// An integer dataset of `n` values (family numbers), zeros when absent.
@@ -406,11 +419,13 @@ pub(crate) fn numbered_name(prefix: char, mut i: usize) -> String {
     s
 }
 
+/// The groups, and a warning per family number that nodes or cells carry
+/// but the file does not define.
 fn build_groups(
     families: &[Family],
     node_fam: &[i64],
     cell_fam: &[i64],
-) -> (Vec<Group<NodeId>>, Vec<Group<CellId>>) {
+) -> (Vec<Group<NodeId>>, Vec<Group<CellId>>, Vec<String>) {
     let mut node_families: Vec<&Family> = families.iter().filter(|f| f.num > 0).collect();
     node_families.sort_by_key(|f| f.num);
     let mut cell_families: Vec<&Family> = families.iter().filter(|f| f.num < 0).collect();
@@ -465,39 +480,72 @@ fn build_groups(
     // code_aster creates no empty group.
     groups_no.retain(|g| !g.members.is_empty());
     groups_ma.retain(|g| !g.members.is_empty());
-    (groups_no, groups_ma)
+    let mut warnings = undefined_families("node", node_fam, &nfam);
+    warnings.extend(undefined_families("cell", cell_fam, &cfam));
+    (groups_no, groups_ma, warnings)
 }
 
-/// Family number → group indices, as a table over the numbers' range.
-struct DenseFamilies {
-    min: i64,
-    groups: Vec<Vec<usize>>,
+/// Family numbers (other than 0, "no group") that entities carry but no
+/// family header defines, with how many entities carry each.
+fn undefined_families(what: &str, fam: &[i64], known: &DenseFamilies) -> Vec<String> {
+    let mut missing: std::collections::BTreeMap<i64, usize> = Default::default();
+    for &f in fam {
+        if f != 0 && !known.defines(f) {
+            *missing.entry(f).or_default() += 1;
+        }
+    }
+    missing
+        .into_iter()
+        .map(|(f, n)| {
+            format!(
+                "{n} {what}(s) belong to family {f}, which the file does not define (a damaged or missing family header): the groups of these {what}s are missing"
+            )
+        })
+        .collect()
+}
+
+/// Family number → group indices: a table over the numbers' range when
+/// it is small and dense (as MED writers number families), a map
+/// otherwise.
+enum DenseFamilies {
+    Table {
+        min: i64,
+        groups: Vec<Option<Vec<usize>>>,
+    },
+    Map(HashMap<i64, Vec<usize>>),
 }
 
 impl DenseFamilies {
+    fn lookup(&self, num: i64) -> Option<&Vec<usize>> {
+        match self {
+            DenseFamilies::Table { min, groups } => num
+                .checked_sub(*min)
+                .and_then(|i| usize::try_from(i).ok())
+                .and_then(|i| groups.get(i))
+                .and_then(Option::as_ref),
+            DenseFamilies::Map(map) => map.get(&num),
+        }
+    }
+
     fn get(&self, num: &i64) -> &[usize] {
-        num.checked_sub(self.min)
-            .and_then(|i| usize::try_from(i).ok())
-            .and_then(|i| self.groups.get(i))
-            .map_or(&[], |v| v.as_slice())
+        self.lookup(*num).map_or(&[], |v| v.as_slice())
+    }
+
+    fn defines(&self, num: i64) -> bool {
+        self.lookup(num).is_some()
     }
 }
 
 fn dense(map: HashMap<i64, Vec<usize>>) -> DenseFamilies {
     let min = map.keys().copied().min().unwrap_or(0);
     let max = map.keys().copied().max().unwrap_or(0);
-    // Family numbers are small and dense in practice; fall back to an
-    // empty table rather than allocate for absurd ranges.
     let span = max.saturating_sub(min).saturating_add(1);
     if span > 10_000_000 {
-        return DenseFamilies {
-            min,
-            groups: Vec::new(),
-        };
+        return DenseFamilies::Map(map);
     }
-    let mut groups = vec![Vec::new(); span as usize];
+    let mut groups = vec![None; span as usize];
     for (num, ids) in map {
-        groups[(num - min) as usize] = ids;
+        groups[(num - min) as usize] = Some(ids);
     }
-    DenseFamilies { min, groups }
+    DenseFamilies::Table { min, groups }
 }

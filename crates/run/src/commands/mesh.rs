@@ -10,8 +10,9 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::sync::Arc;
 
-/// Reads a mesh file in the format the command asks for.
-pub fn read_mesh_file(path: &Path, format: &str) -> Result<Mesh, String> {
+/// Reads a mesh file in the format the command asks for, with the
+/// reader's warnings.
+pub fn read_mesh_file(path: &Path, format: &str) -> Result<(Mesh, Vec<String>), String> {
     crate::meshio::read(path, format)
 }
 
@@ -49,19 +50,25 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         .read_meshes
         .iter()
         .find(|m| m.path == path && m.format == format)
-        .map(|m| m.mesh.clone());
-    let mesh = match read {
+        .map(|m| (m.mesh.clone(), m.warnings.clone()));
+    let (mesh, warnings) = match read {
         Some(m) => m,
-        None => Arc::new(read_mesh_file(&path, format).map_err(|e| {
-            // Reader errors mostly start with the file (and its line): not twice.
-            let file = path.display().to_string();
-            if e.starts_with(&file) {
-                ExecError::new(format!("LIRE_MAILLAGE: {e}"))
-            } else {
-                ExecError::new(format!("LIRE_MAILLAGE: {file}: {e}"))
-            }
-        })?),
+        None => {
+            let (mesh, warnings) = read_mesh_file(&path, format).map_err(|e| {
+                // Reader errors mostly start with the file (and its line): not twice.
+                let file = path.display().to_string();
+                if e.starts_with(&file) {
+                    ExecError::new(format!("LIRE_MAILLAGE: {e}"))
+                } else {
+                    ExecError::new(format!("LIRE_MAILLAGE: {file}: {e}"))
+                }
+            })?;
+            (Arc::new(mesh), warnings)
+        }
     };
+    for w in &warnings {
+        ex.write_report(&format!("<A> LIRE_MAILLAGE: {}: {w}\n", path.display()))?;
+    }
     store_result(ex, call, Concept::Mesh(mesh))
 }
 
