@@ -293,7 +293,7 @@ fn json_report_has_every_check_and_command() {
     let commands = v["commands"].as_array().unwrap();
     assert!(commands
         .iter()
-        .any(|c| c["command"] == "STAT_NON_LINE" && c["result"] == "RESU"));
+        .any(|c| c["command"] == "STAT_NON_LINE" && c["result"] == "resu"));
     let dir = root().join("comm").canonicalize().unwrap();
     let shown = without_times(&text)
         .replace(&root().join("comm").display().to_string(), "<comm>")
