@@ -6,7 +6,7 @@
 use serde::{Deserialize, Serialize};
 
 /// A literal of the catalog: a default or an allowed value.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Lit {
     Int(i64),
@@ -75,7 +75,7 @@ impl Status {
 }
 
 /// The maximum number of values/occurrences.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(untagged)]
 pub enum Max {
     Count(u32),
@@ -317,6 +317,7 @@ pub enum Node {
 
 /// A named entry of a keyword level (blocks are named too: `b_xxx`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "crate::load::RawEntry")]
 pub struct Entry {
     #[serde(rename = "n")]
     pub name: String,

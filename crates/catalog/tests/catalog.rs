@@ -8,6 +8,26 @@ fn has_all_267_commands() {
 }
 
 #[test]
+fn a_command_is_read_on_its_first_use_and_alone() {
+    let cat = aster_catalog::Catalog::new();
+    assert_eq!(cat.read_count(), 0);
+    assert_eq!(cat.names().count(), 267, "names need no read");
+    let debut = cat.command("DEBUT").expect("DEBUT exists");
+    assert_eq!(debut.name, "DEBUT");
+    assert_eq!(cat.read_count(), 1);
+    assert!(cat.command("DEBUT").is_some());
+    assert!(cat.command("NO_SUCH").is_none());
+    assert_eq!(cat.read_count(), 1);
+    // Read one by one or all at once, a command is the same.
+    let lazy = aster_catalog::Catalog::new();
+    for (c, name) in cat.commands().iter().zip(cat.names()) {
+        assert_eq!(c.name, name);
+        assert_eq!(lazy.command(name), Some(c), "{name}");
+    }
+    assert_eq!(cat.read_count(), 267);
+}
+
+#[test]
 fn every_condition_parses() {
     fn walk(entries: &[aster_catalog::Entry], bad: &mut Vec<String>) {
         for e in entries {

@@ -19,6 +19,7 @@ pub mod dual;
 mod error;
 pub mod friction;
 mod geomloop;
+mod glissiere;
 mod integration;
 pub mod lac;
 pub mod lac_mortar;
@@ -37,7 +38,7 @@ pub use pairing::{
     nodal_points, pair_point, ContactPair, Exclusion, PairStatus, Pairing, SlavePoint,
 };
 pub use rows::contact_row;
-pub use shape::{interpolate, project, CellPoint, SurfaceKind};
+pub use shape::{interpolate, project, project_along, CellPoint, SurfaceKind};
 pub use surface::{ResolvedZone, SurfaceCell};
 pub use zone::*;
 mod post;

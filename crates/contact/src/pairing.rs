@@ -4,7 +4,7 @@
 use aster_mesh::{CellId, NodeId};
 
 use crate::error::ContactError;
-use crate::shape::{dot, norm, project_mmnewt, scale, sub, SurfaceKind};
+use crate::shape::{dot, norm, project_along, project_mmnewt, scale, sub, SurfaceKind};
 use crate::surface::ResolvedZone;
 use crate::zone::{Appariement, NormalChoice};
 
@@ -145,7 +145,11 @@ pub fn pair_point(
             for &ci in near {
                 let cell = &zone.master[ci];
                 let nodes: Vec<[f64; 3]> = cell.nodes.iter().map(|n| x[n.0 as usize]).collect();
-                let Some(p) = project_mmnewt(cell.kind, &nodes, xs) else {
+                let projected = match g.dire_appa {
+                    Some(d) => project_along(cell.kind, &nodes, xs, d),
+                    None => project_mmnewt(cell.kind, &nodes, xs),
+                };
+                let Some(p) = projected else {
                     continue;
                 };
                 let outside = cell.kind.outside_distance(p.xi);
@@ -302,9 +306,14 @@ fn master_normal_at(
     let own = zone.cell_normal(cell, xi, x, source)?;
     for (i, c) in cell.kind.node_coords().iter().enumerate() {
         if (xi[0] - c[0]).abs() <= ON_NODE && (xi[1] - c[1]).abs() <= ON_NODE {
-            let averaged = zone.nodal_normal(cell.nodes[i], true, x)?;
-            if 1.0 - crate::shape::dot(own, averaged) <= FLAT {
-                return Ok(averaged);
+            // Where the cells around the node fold back on each other
+            // (their normals cancel out: a master line that turns by
+            // 180°), no average exists and the cells are anything but
+            // flat: the attributed cell's normal, as code_aster.
+            if let Ok(averaged) = zone.nodal_normal(cell.nodes[i], true, x) {
+                if 1.0 - crate::shape::dot(own, averaged) <= FLAT {
+                    return Ok(averaged);
+                }
             }
             return Ok(own);
         }

@@ -145,15 +145,22 @@ impl ContNoeu {
                             .find(|(n, _)| *n == node)
                             .map(|e| e.1)
                             .unwrap_or(0.0);
+                        // In contact: a positive force, or any force of a
+                        // bilateral link (GLISSIERE), which may pull. A
+                        // frictionless continuous node in contact is
+                        // "sliding", 2 (code_aster's `mmmres`); discrete, 1.
                         v[0] = if !z.zone.geometry.resolve {
                             verification_status(p.gap, z.zone.geometry.tole_interp)
-                        } else if rn > 0.0 {
-                            1.0
+                        } else if rn != 0.0 {
+                            match z.law {
+                                ZoneLaw::Continue(_) => 2.0,
+                                ZoneLaw::Discrete(_) => 1.0,
+                            }
                         } else {
                             0.0
                         };
                         v[1] = p.gap;
-                        v[2] = rn;
+                        v[2] = rn.abs();
                         // The vector components: in the continuous formulation
                         // code_aster reads them from the assembled contact
                         // vector (CNELTC, on the internal-force side of the
@@ -168,7 +175,7 @@ impl ContNoeu {
                             v[3 + c] = sign * rn * p.normal[c];
                             v[15 + c] = sign * rn * p.normal[c];
                         }
-                        v[18] = rn;
+                        v[18] = rn.abs();
                     }
                 }
                 // A node slave in several zones reports the last one, as
@@ -178,6 +185,18 @@ impl ContNoeu {
                     None => {
                         out.nodes.push(node);
                         out.values.push(v);
+                    }
+                }
+            }
+            // Discrete zones: code_aster's field is initialised to zero at
+            // every slave node of the zone, `SANS_GROUP_NO` ones included
+            // (`cfmxr0`), and `cfresu` fills only the contact links; so an
+            // excluded slave node carries every component, at 0.
+            if matches!(z.law, ZoneLaw::Discrete(_)) {
+                for node in &zone.excluded_nodes {
+                    if zone.slave_cells_of_node.contains_key(node) && !out.nodes.contains(node) {
+                        out.nodes.push(*node);
+                        out.values.push([0.0; 19]);
                     }
                 }
             }

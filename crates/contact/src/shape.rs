@@ -540,6 +540,55 @@ pub fn project(kind: SurfaceKind, nodes: &[[f64; 3]], p: [f64; 3]) -> Option<Cel
     Some(interpolate(kind, nodes, xi))
 }
 
+/// Projection of `p` onto the (curved) cell along the fixed direction `dir`
+/// (`TYPE_PROJECTION='FIXE'` with `DIRE_APPA`, code_aster's `mmnewd`): the
+/// point x(ξ) of the cell with x(ξ) + β·dir = p, by Newton's method on
+/// (ξ, β) from the cell centre. The system is solved in the least-squares
+/// sense (exact when the direction crosses the cell's plane or line; a
+/// segment is taken in the plane of the problem, its z components being
+/// 0). Unconstrained: the result may lie outside the reference domain;
+/// callers apply `TOLE_PROJ_EXT`. `None` when the direction is parallel to
+/// the cell.
+pub fn project_along(
+    kind: SurfaceKind,
+    nodes: &[[f64; 3]],
+    p: [f64; 3],
+    dir: [f64; 3],
+) -> Option<CellPoint> {
+    let dim = kind.dim();
+    let mut xi = kind.centre();
+    for _ in 0..50 {
+        let cp = interpolate(kind, nodes, xi);
+        // Unknowns: ξ (dim of them) and β; residual r = p − x(ξ) − β d
+        // with β eliminated by least squares at each step.
+        let cols: Vec<[f64; 3]> = (0..dim).map(|k| cp.tangents[k]).chain([dir]).collect();
+        let n = cols.len();
+        let r = sub(p, cp.x);
+        let mut a = [[0.0f64; 3]; 3];
+        let mut b = [0.0f64; 3];
+        for i in 0..n {
+            for j in 0..n {
+                a[i][j] = dot(cols[i], cols[j]);
+            }
+            b[i] = dot(cols[i], r);
+        }
+        let sol = solve_small(&a, &b, n)?;
+        let step = [sol[0], if dim == 2 { sol[1] } else { 0.0 }];
+        xi = [xi[0] + step[0], xi[1] + step[1]];
+        if !(xi[0].is_finite() && xi[1].is_finite()) {
+            return None;
+        }
+        let len = (step[0] * step[0] + step[1] * step[1]).sqrt();
+        if len < 1e-14 {
+            break;
+        }
+        if kind.outside_distance(xi) > 8.0 {
+            break;
+        }
+    }
+    Some(interpolate(kind, nodes, xi))
+}
+
 /// code_aster's projection of a point on a master cell (`mmnewt` with the
 /// line search `mmreli`, as `approj` calls it for `MAIT_ESCL` pairing):
 /// Newton on the stationarity of the distance from ξ = 0 (a vertex for
@@ -643,6 +692,38 @@ pub fn project_mmnewt(kind: SurfaceKind, nodes: &[[f64; 3]], p: [f64; 3]) -> Opt
     Some(interpolate(kind, nodes, xi))
 }
 
+/// Solves the n×n (n ≤ 3) symmetric system `a x = b` by Gaussian
+/// elimination with partial pivoting; `None` when singular.
+fn solve_small(a: &[[f64; 3]; 3], b: &[f64; 3], n: usize) -> Option<[f64; 3]> {
+    let mut m = *a;
+    let mut v = *b;
+    let scale = (0..n).map(|i| m[i][i].abs()).fold(0.0f64, f64::max);
+    if scale == 0.0 {
+        return None;
+    }
+    for c in 0..n {
+        let piv = (c..n).max_by(|&i, &j| m[i][c].abs().total_cmp(&m[j][c].abs()))?;
+        if m[piv][c].abs() <= 1e-14 * scale {
+            return None;
+        }
+        m.swap(c, piv);
+        v.swap(c, piv);
+        for r in c + 1..n {
+            let f = m[r][c] / m[c][c];
+            for k in c..n {
+                m[r][k] -= f * m[c][k];
+            }
+            v[r] -= f * v[c];
+        }
+    }
+    let mut x = [0.0; 3];
+    for c in (0..n).rev() {
+        let s: f64 = (c + 1..n).map(|k| m[c][k] * x[k]).sum();
+        x[c] = (v[c] - s) / m[c][c];
+    }
+    Some(x)
+}
+
 /// code_aster's line search of the projection (`mmreli`): Armijo test with
 /// ω = 1e-4 on ½‖r‖², a quadratic then two cubic backtracks, each step
 /// kept within [0.1, 0.5] of the previous; `previous` when none passes.
@@ -693,6 +774,47 @@ fn mmreli(g: &dyn Fn([f64; 2]) -> f64, xi: [f64; 2], d: [f64; 2], previous: f64)
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn projection_along_a_direction_hits_the_cell_on_that_line() {
+        // A tilted segment from (0,0) to (2,1); from p = (1.5, 3) straight
+        // down (0,-1) it is hit at x = 1.5, y = 0.75 (ξ = 0.5).
+        let seg = [[0.0, 0.0, 0.0], [2.0, 1.0, 0.0]];
+        let cp = project_along(SurfaceKind::Seg2, &seg, [1.5, 3.0, 0.0], [0.0, -1.0, 0.0]).unwrap();
+        assert!(
+            (cp.x[0] - 1.5).abs() < 1e-12 && (cp.x[1] - 0.75).abs() < 1e-12,
+            "{:?}",
+            cp.x
+        );
+        assert!((cp.xi[0] - 0.5).abs() < 1e-12);
+        // The orthogonal projection lands elsewhere.
+        let o = project(SurfaceKind::Seg2, &seg, [1.5, 3.0, 0.0]).unwrap();
+        assert!((o.x[0] - 1.5).abs() > 0.1);
+        // A curved QUAD8 face z = 0.1 (1 − x²) hit vertically at (0.3, −0.2).
+        let mut q8 = vec![];
+        for (x, y) in [
+            (-1.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 1.0),
+            (-1.0, 1.0),
+            (0.0, -1.0),
+            (1.0, 0.0),
+            (0.0, 1.0),
+            (-1.0, 0.0),
+        ] {
+            q8.push([x, y, 0.1 * (1.0 - x * x)]);
+        }
+        let cp =
+            project_along(SurfaceKind::Quad8, &q8, [0.3, -0.2, 5.0], [0.0, 0.0, -1.0]).unwrap();
+        assert!(
+            (cp.x[0] - 0.3).abs() < 1e-12 && (cp.x[1] + 0.2).abs() < 1e-12,
+            "{:?}",
+            cp.x
+        );
+        assert!((cp.x[2] - 0.1 * (1.0 - 0.09)).abs() < 1e-12);
+        // Parallel to the segment: no hit.
+        assert!(project_along(SurfaceKind::Seg2, &seg, [1.5, 3.0, 0.0], [2.0, 1.0, 0.0]).is_none());
+    }
 
     const KINDS: [SurfaceKind; 8] = [
         SurfaceKind::Seg2,

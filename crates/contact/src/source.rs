@@ -4,19 +4,22 @@
 use std::collections::BTreeMap;
 
 use aster_fem::{
-    AugmentedTerm, Dof, FemError, GeometryUpdate, InequalityRow, RowOutcome, State,
+    AugmentedTerm, Dof, FemError, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State,
     UnilateralMethod, UnilateralSource,
 };
 use aster_mesh::{CellId, LacZonePatches, Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::geomloop::{GeomDecision, GeomLoopState};
+use crate::glissiere::Glissiere;
 use crate::integration::{integration_points_measured, Measure};
 use crate::lac::{LacOptions, LacZone};
 use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
 use crate::rows::contact_row;
 use crate::surface::ResolvedZone;
-use crate::zone::{ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, GeomLoop};
+use crate::zone::{
+    ContactDefinition, ContinueAlgo, ContinueLaw, DiscreteAlgo, GeomLoop, Resolution,
+};
 
 /// The law a zone enforces.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,6 +34,16 @@ pub enum ZoneLaw {
 struct RowLink {
     row: usize,
     scale: f64,
+}
+
+impl ZoneContact {
+    /// The slave node a continuous row id stands for.
+    fn row_node(&self, id: usize) -> Option<NodeId> {
+        match self.carriers.get(id).map(Vec::as_slice) {
+            Some([(n, _)]) => Some(*n),
+            _ => None,
+        }
+    }
 }
 
 /// One contact zone at work: pairing, rows, and the last converged outcome.
@@ -73,6 +86,11 @@ pub struct ZoneContact {
     /// carrier and at most one row per patch, in this order).
     lac: Option<LacZone>,
     lac_options: LacOptions,
+    /// GLISSIERE='OUI': which rows are bilateral links.
+    glissiere: Glissiere,
+    /// Continuous zones' ALGO_RESO_GEOM / ALGO_RESO_CONT = 'POINT_FIXE':
+    /// loops outside Newton (its iteration count restarts with each pass).
+    outer: OuterLoops,
     /// ALGO_CONT='STANDARD': the augmented term ρ·g of each paired
     /// integration point (module `augmented`), for the rows of the last
     /// pairing.
@@ -85,25 +103,43 @@ impl ZoneContact {
         def: &ContactDefinition,
         mesh: &Mesh,
     ) -> Result<Vec<ZoneContact>, ContactError> {
+        let dim = if mesh.dim >= 3 { 3 } else { 2 };
+        Self::build_all_in(def, mesh, dim)
+    }
+
+    /// [`ZoneContact::build_all`] for a model of dimension `space_dim`
+    /// (2 for plane and axisymmetric models, whatever the mesh's number of
+    /// coordinates).
+    pub fn build_all_in(
+        def: &ContactDefinition,
+        mesh: &Mesh,
+        space_dim: usize,
+    ) -> Result<Vec<ZoneContact>, ContactError> {
         let geom_loop = def.geom_loop();
         let mut out = Vec::new();
         match def {
             ContactDefinition::Discrete(d) => {
                 for (i, z) in d.zones.iter().enumerate() {
                     out.push(ZoneContact::new(
-                        ResolvedZone::new(i, &z.geometry, mesh)?,
+                        ResolvedZone::new_in(i, &z.geometry, mesh, space_dim)?,
                         ZoneLaw::Discrete(z.law),
                         geom_loop,
                     ));
                 }
             }
             ContactDefinition::Continue(c) => {
+                let outer = OuterLoops {
+                    pairing_restarts: c.algo_reso_geom == Resolution::PointFixe,
+                    status_restarts: c.algo_reso_cont == Resolution::PointFixe,
+                };
                 for (i, z) in c.zones.iter().enumerate() {
-                    out.push(ZoneContact::new(
-                        ResolvedZone::new(i, &z.geometry, mesh)?,
+                    let mut zc = ZoneContact::new(
+                        ResolvedZone::new_in(i, &z.geometry, mesh, space_dim)?,
                         ZoneLaw::Continue(z.law),
                         geom_loop,
-                    ));
+                    );
+                    zc.outer = outer;
+                    out.push(zc);
                 }
             }
         }
@@ -112,7 +148,16 @@ impl ZoneContact {
     }
 
     pub fn new(zone: ResolvedZone, law: ZoneLaw, geom_loop: GeomLoop) -> Self {
+        let g = &zone.geometry;
+        let glissiere = Glissiere::new(
+            g.glissiere,
+            matches!(law, ZoneLaw::Discrete(_)),
+            g.contact_init,
+            g.dist_maxi,
+        );
         ZoneContact {
+            glissiere,
+            outer: OuterLoops::default(),
             last_rows: Vec::new(),
             length: 0.0,
             frozen_rows: Vec::new(),
@@ -294,8 +339,11 @@ impl ZoneContact {
         }
         let frozen = self.geom_loop == GeomLoop::Sans && self.paired_once;
         if frozen {
-            // REAC_GEOM='SANS': the rows of the initial pairing, as they were.
-            return Ok(self.frozen_rows.clone());
+            // REAC_GEOM='SANS': the rows of the initial pairing, as they were
+            // (links made since then included).
+            let mut rows = self.frozen_rows.clone();
+            self.glissiere.mark(&mut rows, |id| self.row_node(id));
+            return Ok(rows);
         }
         let points = self.points(mesh);
         self.pairs = points
@@ -370,6 +418,7 @@ impl ZoneContact {
         if self.geom_loop == GeomLoop::Sans {
             self.frozen_rows = rows.clone();
         }
+        self.glissiere.mark(&mut rows, |id| self.row_node(id));
         Ok(rows)
     }
 
@@ -380,7 +429,7 @@ impl ZoneContact {
     /// The row is scaled by Wⱼ (λ is then the pressure). (PENALISATION is
     /// pointwise: module `penalty`.)
     fn weighted_node_rows(&mut self, mesh: &Mesh, x: &[[f64; 3]]) -> Vec<InequalityRow> {
-        type Acc = (f64, BTreeMap<Dof, f64>, f64);
+        type Acc = (f64, BTreeMap<Dof, f64>, f64, f64);
         let mut acc: BTreeMap<NodeId, Acc> = BTreeMap::new();
         for pair in &self.pairs {
             let Some(p) = pair.pairing() else { continue };
@@ -403,16 +452,27 @@ impl ZoneContact {
                 if w == 0.0 || self.zone.slave_nodes.binary_search(&j).is_err() {
                     continue;
                 }
-                let e = acc.entry(j).or_insert_with(|| (0.0, BTreeMap::new(), 0.0));
+                let e = acc
+                    .entry(j)
+                    .or_insert_with(|| (0.0, BTreeMap::new(), 0.0, 0.0));
                 e.0 += w;
                 for &(d, c) in &r.terms {
                     *e.1.entry(d).or_default() += w * c;
                 }
                 e.2 += w * r.rhs;
+                e.3 += w * p.gap;
             }
         }
+        if self.glissiere.is_on() {
+            let gaps: Vec<(NodeId, f64)> = acc
+                .iter()
+                .filter(|(_, a)| a.0 > 0.0)
+                .map(|(j, a)| (*j, a.3 / a.0))
+                .collect();
+            self.glissiere.start(mesh, &gaps);
+        }
         let mut rows = Vec::new();
-        for (j, (weight, terms, rhs)) in acc {
+        for (j, (weight, terms, rhs, _)) in acc {
             if weight <= 0.0 {
                 continue;
             }
@@ -466,10 +526,16 @@ impl ZoneContact {
         }
         for (i, link) in self.links.iter().enumerate() {
             if let Some(l) = link {
-                if let Some(m) = multipliers.get(l.row) {
-                    self.forces[i] = m.max(0.0) * l.scale;
+                if let Some(&m) = multipliers.get(l.row) {
+                    // A bilateral link (GLISSIERE) may pull.
+                    let m = if self.glissiere.links(self.row_node(i)) {
+                        m
+                    } else {
+                        m.max(0.0)
+                    };
+                    self.forces[i] = m * l.scale;
                     if let Some(p) = self.lac.as_mut().and_then(|z| z.pressures.get_mut(i)) {
-                        *p = m.max(0.0);
+                        *p = m;
                     }
                 }
             }
@@ -486,9 +552,15 @@ impl ZoneContact {
         }
         for o in outcomes {
             if let Some(Some(l)) = self.links.get(o.id) {
-                self.forces[o.id] = o.multiplier.max(0.0) * l.scale;
+                // A bilateral link (GLISSIERE) may pull.
+                let m = if self.glissiere.links(self.row_node(o.id)) {
+                    o.multiplier
+                } else {
+                    o.multiplier.max(0.0)
+                };
+                self.forces[o.id] = m * l.scale;
                 if let Some(p) = self.lac.as_mut().and_then(|z| z.pressures.get_mut(o.id)) {
-                    *p = o.multiplier.max(0.0);
+                    *p = m;
                 }
             }
         }
@@ -594,6 +666,37 @@ impl ZoneContact {
         Some(out.into_iter().collect())
     }
 
+    /// Penalised continuous zone with code_aster's adaptive coefficient
+    /// (`ZoneGeometry::pene_maxi`): the converged penetrations (weighted
+    /// mean per slave node) must stay within the limit, where code_aster
+    /// leaves the coefficient as it is.
+    fn check_penetration(&self, time: f64, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        let Some(limit) = self.zone.geometry.pene_maxi else {
+            return Ok(());
+        };
+        for o in outcomes.iter().filter(|o| o.active) {
+            let Some(Some(l)) = self.links.get(o.id) else {
+                continue;
+            };
+            let penetration = o.violation / l.scale.max(f64::MIN_POSITIVE);
+            if penetration > limit {
+                let node = self
+                    .row_node(o.id)
+                    .map(|n| format!(" at slave node #{}", n.0 + 1))
+                    .unwrap_or_default();
+                return Err(FemError::Source(format!(
+                    "{}: at time {time} the penetration{node} is {penetration:.4e}, beyond \
+                     {limit:.4e} (PENE_MAXI, or 1 % of the shortest master cell): code_aster \
+                     would raise COEF_PENA_CONT there (ADAPTATION='ADAPT_COEF'/'TOUT', \
+                     Bussetta's rule), which is not reproduced; give ADAPTATION='NON' with \
+                     COEF_PENA_CONT, or use ALGO_CONT='STANDARD'",
+                    self.describe()
+                )));
+            }
+        }
+        Ok(())
+    }
+
     fn describe(&self) -> String {
         format!(
             "contact zone {} ({} on {})",
@@ -629,6 +732,7 @@ fn same_rows(a: &[InequalityRow], b: &[InequalityRow], tol_coef: f64, tol_rhs: f
     a.len() == b.len()
         && a.iter().zip(b).all(|(r, s)| {
             r.id == s.id
+                && r.bilateral == s.bilateral
                 && (r.rhs - s.rhs).abs() <= tol_rhs
                 && r.terms.len() == s.terms.len()
                 && r.terms
@@ -674,6 +778,10 @@ impl UnilateralSource for ZoneContact {
         }
     }
 
+    fn outer_loops(&self) -> OuterLoops {
+        self.outer
+    }
+
     fn geometry_update(&self) -> GeometryUpdate {
         match self.geom_loop {
             GeomLoop::Sans => GeometryUpdate::Once,
@@ -706,7 +814,7 @@ impl UnilateralSource for ZoneContact {
                     } => (iter_maxi, resi_geom),
                     _ => (pairings, 0.0),
                 };
-                return Err(FemError::Source(format!(
+                let message = format!(
                     "{}: the geometric loop (REAC_GEOM='AUTOMATIQUE') did not converge at time {}: \
                      after ITER_GEOM_MAXI={iter_maxi} pairings the displacement still changes by \
                      {:.3e} of the step's displacement (RESI_GEOM={resi_geom}); raise \
@@ -715,7 +823,24 @@ impl UnilateralSource for ZoneContact {
                     self.describe(),
                     state.time,
                     residual
-                )));
+                );
+                // A continuous zone with ALGO_RESO_GEOM='NEWTON' (or LAC)
+                // has no geometric loop in code_aster: the geometry moves
+                // inside its Newton. The loop here stands in for it, so its
+                // failure is not code_aster's event ERRE_CTCG: stop rather
+                // than cut (cutting does not help a loop whose criterion is
+                // relative to the step's displacement: ssnv505l cut to
+                // 1/64 steps for 100 s, still failing).
+                let stand_in =
+                    matches!(self.law, ZoneLaw::Continue(_)) && !self.outer.pairing_restarts;
+                return Err(if stand_in {
+                    FemError::Source(format!(
+                        "{message} (ALGO_RESO_GEOM='NEWTON': code_aster updates the geometry \
+                         inside Newton; this loop stands in for it and is not cut)"
+                    ))
+                } else {
+                    FemError::SourceLoop(message)
+                });
             }
         }
         self.zone.time = state.time;
@@ -737,10 +862,19 @@ impl UnilateralSource for ZoneContact {
     }
 
     fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
+        self.check_penetration(state.time, outcomes)?;
         if !self.zone.geometry.resolve {
             self.step_pairings.push((state.time, self.pairs.clone()));
         }
         self.set_outcomes(outcomes);
+        let carriers = &self.carriers;
+        let node_of = |id: usize| match carriers.get(id).map(Vec::as_slice) {
+            Some([(n, _)]) => Some(*n),
+            _ => None,
+        };
+        self.glissiere.converged(outcomes, node_of);
+        // The rows kept for the next requests carry the new links.
+        self.glissiere.mark(&mut self.last_rows, node_of);
         self.refuse_mixed_statuses(state, outcomes)?;
         if let Some(lac) = self.lac.as_mut() {
             // CONT_ELEM reports the patches on the converged geometry.

@@ -47,8 +47,23 @@ pub struct ResolvedZone {
 }
 
 impl ResolvedZone {
+    /// A zone of a problem whose dimension is the mesh's (3 when its nodes
+    /// have three coordinates).
     pub fn new(index: usize, geometry: &ZoneGeometry, mesh: &Mesh) -> Result<Self, ContactError> {
         let space_dim = if mesh.dim >= 3 { 3 } else { 2 };
+        Self::new_in(index, geometry, mesh, space_dim)
+    }
+
+    /// A zone of a problem of dimension `space_dim` (the model's, as
+    /// code_aster's `model_ndim`: a plane model on a mesh whose nodes have
+    /// three coordinates is 2D).
+    pub fn new_in(
+        index: usize,
+        geometry: &ZoneGeometry,
+        mesh: &Mesh,
+        space_dim: usize,
+    ) -> Result<Self, ContactError> {
+        let space_dim = if space_dim >= 3 { 3 } else { 2 };
         let parents = ParentIndex::new(mesh, space_dim);
         let master = surface_cells(
             mesh,

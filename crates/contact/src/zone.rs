@@ -122,6 +122,46 @@ pub struct ZoneGeometry {
     /// Default (code_aster's `'NON'`): the normal of the cell the slave
     /// point projects on.
     pub lissage: bool,
+    /// `GLISSIERE='OUI'`: bilateral sliding contact — links that never
+    /// open. Discrete (code_aster's `cfinal` + `algogl`): every paired
+    /// slave node is linked from the first pairing, whatever its gap.
+    /// Continuous (`mmopti`, `mmglis`, `mm_cycl_algo`): a slave point is
+    /// linked from the start as `contact_init` says, and once it has been
+    /// in contact at a converged state it stays linked.
+    pub glissiere: bool,
+    /// `CONTACT_INIT` (continuous zones): which points start in contact.
+    /// It only changes the path of the active set, except with
+    /// `glissiere`, where it says which points are linked from the start.
+    pub contact_init: ContactInit,
+    /// `DIST_MAXI` (with `CONTACT_INIT='INTERPENETRE'`, code_aster 17):
+    /// the initial gap below which a point starts in contact (default: 1e-6
+    /// × the shortest edge of the mesh).
+    pub dist_maxi: Option<f64>,
+    /// `TYPE_PROJECTION='FIXE'` with `DIRE_APPA`: slave points are
+    /// projected on the master cells along this (unit) direction instead
+    /// of orthogonally (code_aster's `mmnewd`); the normal stays the master
+    /// cell's.
+    pub dire_appa: Option<[f64; 3]>,
+    /// Continuous `ALGO_CONT='PENALISATION'` with `ADAPTATION='ADAPT_COEF'`
+    /// or `'TOUT'`: code_aster raises the penalty coefficient at a point
+    /// whose penetration exceeds this (`PENE_MAXI`, or 1 % of the shortest
+    /// master cell). That adaptation (Bussetta's rule, `mm_cycl_algo`) is
+    /// not reproduced: a converged step whose penetration stays below the
+    /// limit is code_aster's; one that exceeds it is an error.
+    pub pene_maxi: Option<f64>,
+}
+
+/// `CONTACT_INIT` of a continuous zone.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ContactInit {
+    /// `'OUI'`: every point.
+    Oui,
+    /// `'INTERPENETRE'` (default): the points whose initial gap is at most
+    /// 1e-6 × the shortest edge of the mesh (code_aster's `epsint`).
+    #[default]
+    Interpenetre,
+    /// `'NON'`: none.
+    Non,
 }
 
 impl ZoneGeometry {
@@ -143,6 +183,11 @@ impl ZoneGeometry {
             resolve: true,
             tole_interp: 0.0,
             lissage: false,
+            glissiere: false,
+            contact_init: ContactInit::Interpenetre,
+            dist_maxi: None,
+            dire_appa: None,
+            pene_maxi: None,
         }
     }
 

@@ -446,3 +446,37 @@ fn verification_zone_reports_the_last_pairing_of_the_step() {
         assert!((jeu_end - 0.2).abs() < 1e-14, "{jeu_end}");
     }
 }
+
+/// TYPE_PROJECTION='FIXE' with DIRE_APPA (code_aster's `mmnewd`): the
+/// master point is where the line through the slave node along the
+/// direction meets the master, not its foot; on a flat master the gap
+/// (measured along the master normal) is the same, the master weights are
+/// not.
+#[test]
+fn a_fixed_projection_direction_moves_the_master_point() {
+    // Slave node at (1, 0.5) above the first master cell [0, 2] × {0}.
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [3.0, 0.5, 0.0]]);
+    let orth = pairs(&mesh, ZoneGeometry::new("MAIT", "ESCL"));
+    let o = orth[0].pairing().unwrap();
+    assert_eq!(o.master_x, [1.0, 0.0, 0.0]);
+    let mut g = ZoneGeometry::new("MAIT", "ESCL");
+    let s = 0.5f64.sqrt();
+    g.dire_appa = Some([s, -s, 0.0]);
+    let fixed = pairs(&mesh, g);
+    let f = fixed[0].pairing().unwrap();
+    // Down and to the right at 45°: the master at x = 1.5.
+    assert!(
+        (f.master_x[0] - 1.5).abs() < 1e-12 && f.master_x[1].abs() < 1e-12,
+        "{:?}",
+        f.master_x
+    );
+    assert!((f.gap - o.gap).abs() < 1e-14 && (f.gap - 0.5).abs() < 1e-14);
+    // Weights of the master cell's nodes (x = 0 and x = 2): 1/4 and 3/4.
+    let mut w: Vec<f64> = f.master.iter().map(|m| m.1).collect();
+    w.sort_by(f64::total_cmp);
+    assert!(
+        (w[0] - 0.25).abs() < 1e-12 && (w[1] - 0.75).abs() < 1e-12,
+        "{w:?}"
+    );
+    assert_eq!(f.normal, o.normal);
+}

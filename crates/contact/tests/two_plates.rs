@@ -233,7 +233,8 @@ fn axisymmetric_lags_c_is_the_pressure_when_weights_carry_the_radius() {
 /// CONT_NOEU of a continuous zone: code_aster (`mmmres`) reads the vector
 /// components from the assembled contact vector, so on the upper plate
 /// pressed down onto the lower one RNY = RY = −RN (a discrete zone gives +RN,
-/// see zzzz237a.rs).
+/// see zzzz237a.rs). A frictionless continuous node in contact has CONT = 2
+/// ("sliding", `mmmres`; a discrete one 1).
 #[test]
 fn continuous_cont_noeu_components_carry_the_contact_vector_sign() {
     let def = continuous(Integration::Auto, GeomLoop::Controle { nb_iter: 2 });
@@ -244,7 +245,7 @@ fn continuous_cont_noeu_components_carry_the_contact_vector_sign() {
     let lags = zones[0].lags_c().expect("continuous zone has LAGS_C");
     let mut total = 0.0;
     for (n, _) in &lags {
-        assert_eq!(cn.value(*n, "CONT"), Some(1.0), "CONT({n:?})");
+        assert_eq!(cn.value(*n, "CONT"), Some(2.0), "CONT({n:?})");
         let rn = cn.value(*n, "RN").unwrap();
         assert!(rn > 0.0, "RN({n:?}) = {rn}");
         for c in ["RNY", "RY"] {
@@ -261,4 +262,39 @@ fn continuous_cont_noeu_components_carry_the_contact_vector_sign() {
         (total - 1e5 * width).abs() < 1e-6 * 1e5 * width,
         "sum RN = {total}, width {width}"
     );
+}
+
+/// A discrete zone's CONT_NOEU has every component at the `SANS_GROUP_NO`
+/// slave nodes too, all zero (code_aster initialises the field at every
+/// slave node of the zone, `cfmxr0`, and fills only the contact links):
+/// RECU_FONCTION on such a node reads zeros (ssnp501a).
+#[test]
+fn discrete_cont_noeu_has_zeros_at_sans_group_no_nodes() {
+    let mut def = ContactDefinition::discrete(
+        vec![Zone {
+            geometry: {
+                let mut g = ZoneGeometry::new("EF", "AB");
+                g.excluded_node_groups = vec!["A".into()];
+                g
+            },
+            law: DiscreteAlgo::Contrainte,
+        }],
+        Frottement::Sans,
+    )
+    .unwrap();
+    def.set_geom_loop(GeomLoop::Controle { nb_iter: 2 });
+    let (model, res, mut zones) = solve_step(4, 4, &def);
+    let step = res.last().unwrap();
+    let x = positions(model.mesh(), model.dofs(), &step.displacement);
+    let cn = ContNoeu::at_step(&mut zones, model.mesh(), &x, &step.unilateral).unwrap();
+    let a = model.mesh().group_no("A").unwrap().members[0];
+    for c in ["CONT", "JEU", "RN", "RNY", "R"] {
+        assert_eq!(cn.value(a, c), Some(0.0), "{c}(A)");
+    }
+    let in_contact = cn
+        .nodes
+        .iter()
+        .filter(|n| **n != a && cn.value(**n, "CONT") == Some(1.0))
+        .count();
+    assert_eq!(in_contact, cn.nodes.len() - 1, "{cn:?}");
 }

@@ -43,6 +43,23 @@ pub(crate) fn unsupported<T>(span: Span, what: impl std::fmt::Display) -> R<T> {
     )
 }
 
+/// Why a code_aster callable imported from a module is not executed, when
+/// it is known.
+fn module_call_why(path: &str) -> &'static str {
+    match path {
+        // code_aster 17 (code_aster/MacroCommands/defi_cont.py) builds a
+        // `ContactNew`/`FrictionNew` object for MECA_NON_LINE: pairing
+        // APPARIEMENT='MORTAR' on the intersections of slave and master
+        // cells, ALGO_CONT LAGRANGIEN/NITSCHE/PENALISATION. DEFI_CONTACT's
+        // formulations pair slave points with their projections: the
+        // numbers differ, so it cannot be mapped onto DEFI_CONTACT.
+        "code_aster.MacroCommands.defi_cont.DEFI_CONT" => {
+            " (code_aster 17's mortar contact of MECA_NON_LINE: pairing on intersections of slave and master cells, ALGO_CONT LAGRANGIEN/NITSCHE/PENALISATION; a discretisation other than DEFI_CONTACT's, not reproduced)"
+        }
+        _ => "",
+    }
+}
+
 /// A step checking cannot take: it needs a value known only at run time.
 pub(crate) fn needs_run_time<T>(span: Span, what: impl std::fmt::Display) -> R<T> {
     err(
@@ -213,6 +230,12 @@ impl<'a> Interp<'a> {
         finalbody: &[ast::Stmt],
     ) -> R<Flow> {
         use crate::try_import::*;
+        if handlers.iter().any(catches_aster_error) {
+            return unsupported(
+                span,
+                "try/except of code_aster's errors (the program tests which error a command raises, by code_aster's message id: aster's errors do not carry code_aster's message ids)",
+            );
+        }
         if handlers.is_empty() || !handlers.iter().all(catches_only_import_error) {
             return unsupported(
                 span,
@@ -1381,7 +1404,7 @@ impl<'a> Interp<'a> {
                     Err(e) => Err(exec_diag(span, e).into()),
                 }
             }
-            Value::Module(m) => unsupported(span, format!("calling `{m}`")),
+            Value::Module(m) => unsupported(span, format!("calling `{m}`{}", module_call_why(&m))),
             other => py_err(
                 span,
                 format!("'{}' object is not callable", other.type_name()),

@@ -24,6 +24,20 @@ pub(crate) fn catches_only_import_error(h: &ExceptHandler) -> bool {
     h.typ.as_ref().is_some_and(is_import_error)
 }
 
+/// The handler catches code_aster's errors (`except CA.AsterError`,
+/// `except AsterError`): the program checks which error a command raises.
+pub(crate) fn catches_aster_error(h: &ExceptHandler) -> bool {
+    fn is_aster_error(e: &Expr) -> bool {
+        match &e.kind {
+            ExprKind::Name { id } => id.ends_with("Error") && id.starts_with("Aster"),
+            ExprKind::Attribute { attr, .. } => attr.name.starts_with("Aster"),
+            ExprKind::Tuple { elts } => elts.iter().any(is_aster_error),
+            _ => false,
+        }
+    }
+    h.typ.as_ref().is_some_and(is_aster_error)
+}
+
 /// The modules and module members a `try` body imports at its top level
 /// (`code_aster.Utilities.sympy` for `from code_aster.Utilities import sympy`).
 pub(crate) fn imported_paths(body: &[Stmt]) -> Vec<String> {

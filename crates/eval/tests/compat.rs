@@ -298,6 +298,9 @@ except CA.AsterError:
 "#,
     );
     assert!(!report.ok());
+    assert!(text.contains("c.comm:1:1: error: not supported: try/except of code_aster's errors (the program tests which error a command raises, by code_aster's message id: aster's errors do not carry code_aster's message ids)"), "{text}");
+    let (report, text) = check("try:\n    x = 1 / 0\nexcept ZeroDivisionError:\n    x = 0\n");
+    assert!(!report.ok());
     assert!(text.contains("c.comm:1:1: error: not supported: try/except (only `except ImportError` around imports is supported)"), "{text}");
     // An ImportError handler does not swallow other unsupported things.
     let (report, text) = check("try:\n    f = open('x')\nexcept ImportError:\n    f = None\n");
@@ -348,6 +351,20 @@ L = DEFI_LIST_REEL(VALE=1.0)
     assert!(!report.ok());
     assert!(
         text.contains("not supported: `TestCase.assertRaises`"),
+        "{text}"
+    );
+}
+
+#[test]
+fn defi_cont_is_refused_with_what_it_is() {
+    // code_aster 17's DEFI_CONT (a Python macro) defines the mortar contact
+    // of MECA_NON_LINE: not DEFI_CONTACT's formulations.
+    let (report, text) = check(
+        "from code_aster.MacroCommands.defi_cont import DEFI_CONT\nC = DEFI_CONT(ZONE=_F(GROUP_MA_ESCL='S', GROUP_MA_MAIT='M'))\n",
+    );
+    assert!(!report.ok());
+    assert!(
+        text.contains("c.comm:2:5: error: not supported: calling `code_aster.MacroCommands.defi_cont.DEFI_CONT` (code_aster 17's mortar contact of MECA_NON_LINE"),
         "{text}"
     );
 }

@@ -46,6 +46,11 @@ impl Clock {
 
 /// Checks `src` on a thread with a main thread's 8 MB stack: no panic, no
 /// overflow, under `budget`; every error located in the file.
+///
+/// A loop that uses up the whole step budget costs 1 to 3.5 s of CPU on a
+/// 2-core machine (3.4 s measured under load for `while 'x': n = n + 1`),
+/// and a generated program may hold several such loops: the budgets are
+/// about "no hang", not speed (speed lives in the benchmarks).
 fn exercise(src: String, budget: Duration) {
     let shown = src.chars().take(400).collect::<String>();
     let handle = std::thread::Builder::new()
@@ -198,7 +203,7 @@ proptest! {
     fn generated_programs_end_in_a_result_or_located_errors(
         stmts in prop::collection::vec(stmt(), 1..6)
     ) {
-        exercise(format!("n = 0\na = 1\nx = 2\n{}", stmts.concat()), Duration::from_secs(5));
+        exercise(format!("n = 0\na = 1\nx = 2\n{}", stmts.concat()), Duration::from_secs(20));
     }
 }
 
@@ -207,7 +212,7 @@ proptest! {
 
     #[test]
     fn deep_and_long_input_is_refused_or_checked_quickly(src in deep()) {
-        exercise(src, Duration::from_secs(5));
+        exercise(src, Duration::from_secs(20));
     }
 }
 
@@ -226,6 +231,6 @@ fn crash_corpus_is_handled() {
     assert!(!files.is_empty());
     for path in files {
         let src = std::fs::read_to_string(&path).expect("read");
-        exercise(src, Duration::from_secs(5));
+        exercise(src, Duration::from_secs(20));
     }
 }

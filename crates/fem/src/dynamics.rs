@@ -372,17 +372,15 @@ impl IncrementTerms for Newmark {
             }
             self.matrix = mat;
         }
-        // M a(u) + C v(u) = (cm M + cc C) u − [M(cm uₙ − a_pred) + C(cc uₙ − v_pred)].
-        let ma: Vec<f64> = (0..n).map(|i| cm * self.u[i] - self.a_pred[i]).collect();
-        let mut off = self.mass.mul(&ma);
+        // M a(u) + C v(u) = (cm M + cc C)(u − uₙ) + M a_pred + C v_pred.
+        let mut off = self.mass.mul(&self.a_pred);
         if let Some(c) = &self.damping {
-            let cv: Vec<f64> = (0..n).map(|i| cc * self.u[i] - self.v_pred[i]).collect();
-            for (o, x) in off.iter_mut().zip(c.mul(&cv)) {
+            for (o, x) in off.iter_mut().zip(c.mul(&self.v_pred)) {
                 *o += x;
             }
         }
         for i in 0..n {
-            self.offset[i] = equ * off[i] + ext * (self.fext[i] - self.fint[i]);
+            self.offset[i] = -equ * off[i] + ext * (self.fext[i] - self.fint[i]);
         }
         Ok(changed)
     }
@@ -393,6 +391,11 @@ impl IncrementTerms for Newmark {
 
     fn offset(&self) -> &[f64] {
         &self.offset
+    }
+
+    fn force(&self, u: &[f64]) -> Vec<f64> {
+        let du: Vec<f64> = u.iter().zip(&self.u).map(|(a, b)| a - b).collect();
+        self.matrix.mul(&du)
     }
 
     fn reference(&self, u: &[f64]) -> f64 {

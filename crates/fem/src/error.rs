@@ -30,6 +30,10 @@ pub enum FemError {
     ActiveSet { time: f64, message: String },
     /// An error raised by a unilateral source (e.g. contact pairing).
     Source(String),
+    /// A unilateral source's own loop did not converge within its bound
+    /// (contact's geometric loop at ITER_GEOM_MAXI): an increment failure,
+    /// cut like a Newton failure (code_aster's event ERRE_CTCG).
+    SourceLoop(String),
     /// The behaviour could not be integrated at a Gauss point of the
     /// iterate (a crushed or inverted element, a Jacobian increment out of
     /// bounds): code_aster's integration failure, which a smaller increment
@@ -103,7 +107,7 @@ impl fmt::Display for FemError {
             FemError::ActiveSet { time, message } => {
                 write!(f, "unilateral conditions at time {time}: {message}")
             }
-            FemError::Source(m) => write!(f, "{m}"),
+            FemError::Source(m) | FemError::SourceLoop(m) => write!(f, "{m}"),
             FemError::Integration(m) => write!(f, "behaviour integration failed: {m}"),
             FemError::StepCutting {
                 from,

@@ -51,12 +51,12 @@ pub use mass::{DiscreteMass, Lumping, MassData, Rayleigh};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};
 pub use nonlinear::{
-    meca_statique, Convergence, IncrementTerms, InitialState, MatrixKind, Motion, NewtonOptions,
-    NonLinearResult, Prediction, StaticNonLinear, Step, Subdivision,
+    meca_statique, Attempt, Convergence, IncrementTerms, InitialState, MatrixKind, Motion,
+    NewtonOptions, NonLinearResult, Prediction, StaticNonLinear, Step, Subdivision,
 };
 pub use post::{CellValues, NodalValues};
 pub use strain::Kinematics;
 pub use unilateral::{
-    AugmentedTerm, FixedRows, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
-    UnilateralSource,
+    AugmentedTerm, FixedRows, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State,
+    UnilateralMethod, UnilateralSource,
 };

@@ -36,7 +36,7 @@ use crate::model::Model;
 use crate::post::{self, CellValues};
 use crate::solver_constrained::{self, KktSolver, MatrixKey};
 use crate::unilateral::{
-    AugmentedTerm, GeometryUpdate, InequalityRow, RowOutcome, State, UnilateralMethod,
+    AugmentedTerm, GeometryUpdate, InequalityRow, OuterLoops, RowOutcome, State, UnilateralMethod,
     UnilateralSource,
 };
 
@@ -100,6 +100,9 @@ pub struct Convergence {
     pub resi_glob_maxi: Option<f64>,
     /// `ITER_GLOB_MAXI` (default 10).
     pub iter_glob_maxi: usize,
+    /// `VERIF='AU_MOINS_UN'`: with both residual criteria given, either
+    /// one met is convergence (default `'TOUT'`: both).
+    pub at_least_one: bool,
 }
 
 impl Default for Convergence {
@@ -108,6 +111,7 @@ impl Default for Convergence {
             resi_glob_rela: Some(1e-6),
             resi_glob_maxi: None,
             iter_glob_maxi: 10,
+            at_least_one: false,
         }
     }
 }
@@ -139,8 +143,10 @@ pub struct Step {
     /// initial state).
     pub iterations: usize,
     /// Newton iterations proper, as code_aster counts them against
-    /// ITER_GLOB_MAXI: over the whole geometric loop, active-set changes
-    /// excluded (0 for the initial state).
+    /// ITER_GLOB_MAXI (its `ITER_GLOB`): over the whole geometric loop,
+    /// active-set changes excluded, except that a source whose loops are
+    /// outside Newton ([`OuterLoops`]) restarts the count with each new
+    /// pass (0 for the initial state).
     pub newton_iterations: usize,
     pub resi_glob_rela: f64,
     pub resi_glob_maxi: f64,
@@ -164,9 +170,16 @@ pub struct Motion {
 
 /// What a time integrator (`dynamics`) adds to every increment of the
 /// Newton loop: a matrix added to the stiffness (constant during the
-/// increment) and a force affine in the displacement, `matrix·u − offset`
-/// (inertia and damping). STAT_NON_LINE has none; DYNA_NON_LINE runs the
-/// same loop with one.
+/// increment) and a force affine in the displacement,
+/// `matrix·(u − uₙ) − offset` (inertia and damping), uₙ the converged
+/// displacement the increment starts from. STAT_NON_LINE has none;
+/// DYNA_NON_LINE runs the same loop with one.
+///
+/// The force is taken on the increment u − uₙ, as code_aster accumulates
+/// the acceleration from the Newton corrections: `matrix·u − offset'`
+/// would subtract two terms of size M uₙ/(βΔt²) and leave their round-off
+/// (an acceleration noise of ulp(uₙ)/(βΔt²), 0.4 mm/s² per ulp on SDNV103E)
+/// in every residual.
 pub trait IncrementTerms {
     /// Starts the increment `from` → `to` from the last converged
     /// displacement `u`. Returns whether [`matrix`](Self::matrix) changed
@@ -176,6 +189,9 @@ pub trait IncrementTerms {
     fn matrix(&self) -> &Csc;
     /// The constant part of the force (moved to the external forces).
     fn offset(&self) -> &[f64];
+    /// The part of the force that moves with the iterate `u`:
+    /// `matrix·(u − uₙ)`.
+    fn force(&self, u: &[f64]) -> Vec<f64>;
     /// The largest inertia force code_aster adds to the residual's
     /// reference (`RESI_GLOB_RELA`) at the iterate `u`.
     fn reference(&self, u: &[f64]) -> f64;
@@ -196,6 +212,31 @@ pub trait IncrementTerms {
 #[derive(Clone, Debug, PartialEq)]
 pub struct NonLinearResult {
     pub steps: Vec<Step>,
+    /// Every increment tried, in order — failed ones and the pieces of cut
+    /// ones included (the `INFO=2` convergence table).
+    pub attempts: Vec<Attempt>,
+}
+
+/// One increment tried by STAT_NON_LINE (a whole step or a piece of a cut
+/// one).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Attempt {
+    /// From this time…
+    pub from: f64,
+    /// …to this one.
+    pub to: f64,
+    /// Cutting level: 0 for an increment of the list, 1 for a piece of a
+    /// cut one, and so on.
+    pub level: usize,
+    /// Newton iterations done (code_aster's count).
+    pub iterations: usize,
+    /// RESI_GLOB_RELA after each Newton iteration.
+    pub residuals: Vec<f64>,
+    /// `None` when it converged; the reason it failed otherwise.
+    pub failure: Option<String>,
+    /// Whether the failure made the increment be cut (else it stopped the
+    /// analysis).
+    pub cut: bool,
 }
 
 impl NonLinearResult {
@@ -317,6 +358,7 @@ struct SourceRows {
     active: Vec<bool>,
     method: UnilateralMethod,
     update: GeometryUpdate,
+    outer: OuterLoops,
     /// The source's augmented terms (`UnilateralSource::augmented_terms`).
     aug: Vec<AugRow>,
 }
@@ -488,9 +530,11 @@ impl StaticNonLinear<'_> {
         }
         // Dynamics: K + the integrator's matrix, rebuilt when it changes
         // (a new time step), and its restriction to the free DOFs.
-        let mut k_dyn: Option<(Csc, Csc)> = None;
+        let mut k_dyn: Option<Csc> = None;
         let mass_holds = self.dynamics.as_ref().is_some_and(|d| d.mass_holds());
 
+        let mut attempts: Vec<Attempt> = Vec::new();
+        let mut history = LoadHistory::default();
         let mut srcs: Vec<Option<SourceRows>> = (0..self.sources.len()).map(|_| None).collect();
         let mut checked_held = false;
         let mut t_prev = t0;
@@ -527,8 +571,7 @@ impl StaticNonLinear<'_> {
                         for (v, a) in ke.values.iter_mut().zip(&d.matrix().values) {
                             *v += a;
                         }
-                        let kef = restrict(&ke, &map, nfree);
-                        k_dyn = Some((ke, kef));
+                        k_dyn = Some(restrict(&ke, &map, nfree));
                         kkt = KktSolver::default();
                     }
                 }
@@ -566,8 +609,7 @@ impl StaticNonLinear<'_> {
                             model,
                             rows,
                             src.augmented_terms(),
-                            src.method(),
-                            src.geometry_update(),
+                            (src.method(), src.geometry_update(), src.outer_loops()),
                             prev_active,
                             &u,
                         )?);
@@ -588,8 +630,11 @@ impl StaticNonLinear<'_> {
                         return Err(FemError::Singular { free_dofs: free });
                     }
                 }
+                // The internal forces are K u (+ the plastic cells), the
+                // integrator's force added apart (`IncrementTerms::force`);
+                // the solves use K + its matrix.
                 let (k_used, kff_used) = match &k_dyn {
-                    Some((ke, kef)) => (ke, kef),
+                    Some(kef) => (&k, kef),
                     None => (&k, &kff),
                 };
                 let ctx = StepContext {
@@ -604,11 +649,17 @@ impl StaticNonLinear<'_> {
                     active_set_max_iter: self.active_set_max_iter,
                     coords: &free_coords,
                     free_dof: &free_dof,
+                    linear,
+                    first: attempts.is_empty(),
                     dynamics: self.dynamics.as_deref(),
                 };
+                let mut log = AttemptLog::default();
                 let attempt = if self.forces.is_empty() {
                     newton_step(
                         &ctx,
+                        &mut history,
+                        &mut log,
+                        &saved.0,
                         &elim,
                         &fext,
                         &eq,
@@ -648,6 +699,15 @@ impl StaticNonLinear<'_> {
                     })
                 };
 
+                attempts.push(Attempt {
+                    from,
+                    to: target,
+                    level,
+                    iterations: log.iterations,
+                    residuals: log.residuals,
+                    failure: attempt.as_ref().err().map(|e| e.to_string()),
+                    cut: false,
+                });
                 match attempt {
                     Ok(outcome) => {
                         pending.pop();
@@ -696,6 +756,7 @@ impl StaticNonLinear<'_> {
                             FemError::NoConvergence { .. }
                                 | FemError::ActiveSet { .. }
                                 | FemError::PoorSolve { .. }
+                                | FemError::SourceLoop(_)
                                 | FemError::Integration(_)
                         );
                         let Some(sd) = self.subdivision.filter(|_| cuttable) else {
@@ -725,6 +786,9 @@ impl StaticNonLinear<'_> {
                                 limit,
                                 cause: Box::new(e),
                             });
+                        }
+                        if let Some(a) = attempts.last_mut() {
+                            a.cut = true;
                         }
                         (u, srcs, own) = saved;
                         pending.pop();
@@ -780,7 +844,7 @@ impl StaticNonLinear<'_> {
                 iterations: newton_iterations,
             });
         }
-        Ok(NonLinearResult { steps })
+        Ok(NonLinearResult { steps, attempts })
     }
 
     /// Initial time and the instants to compute.
@@ -843,6 +907,25 @@ struct StepContext<'a> {
     /// A time integrator's terms (their matrix is already in `k`, `kff`
     /// and their offset in the external forces).
     dynamics: Option<&'a dyn IncrementTerms>,
+    /// MECA_STATIQUE: one linear solve is the answer (code_aster checks no
+    /// residual there).
+    linear: bool,
+    /// The first increment of the analysis (code_aster's `nume_inst = 1`).
+    first: bool,
+}
+
+/// code_aster's swap of convergence criteria (`nmcore_swap`): when the
+/// load (applied forces + support reactions) falls to 1e-6 of the smallest
+/// load met so far, RESI_GLOB_RELA means nothing and is replaced by
+/// RESI_GLOB_MAXI ≤ the maximum residual at the last convergence (never at
+/// the first increment).
+#[derive(Clone, Copy, Debug, Default)]
+struct LoadHistory {
+    /// `load_mini`: the reference at the first iteration, then the
+    /// smallest reference of a converged iteration without the swap.
+    load_mini: Option<f64>,
+    /// RESI_GLOB_MAXI at the last convergence.
+    last_resi_maxi: Option<f64>,
 }
 
 /// Systems without constraint rows of at least this many unknowns keep the
@@ -852,11 +935,21 @@ const SCHUR_MAX_UNROWED: usize = 20_000;
 
 type StepOutcome = (usize, (Vec<f64>, Vec<Vec<f64>>), f64, f64, Vec<f64>, usize);
 
+/// What a Newton attempt did, kept whether it converges or not.
+#[derive(Default)]
+struct AttemptLog {
+    iterations: usize,
+    residuals: Vec<f64>,
+}
+
 /// Newton + active-set iterations of one step. Returns (iterations,
 /// (equality multipliers, per-source row multipliers), resi_rela, resi_maxi).
 #[allow(clippy::too_many_arguments)]
 fn newton_step(
     ctx: &StepContext,
+    loads_seen: &mut LoadHistory,
+    log: &mut AttemptLog,
+    start: &[f64],
     elim: &std::collections::HashMap<usize, f64>,
     fext: &[f64],
     eq: &[crate::loads::EqualityRow],
@@ -879,6 +972,8 @@ fn newton_step(
         active_set_max_iter,
         coords,
         free_dof,
+        linear,
+        first,
         dynamics,
     } = *ctx;
     // With a mass on every free DOF a body need not be held by conditions.
@@ -991,9 +1086,30 @@ fn newton_step(
                     return Err(FemError::Singular { free_dofs: free });
                 }
             }
-            let fint = match fint_now.take() {
+            // The prediction (code_aster's `nmprta`, PREDICTION='TANGENTE'
+            // or 'ELASTIQUE'): the increment of the eliminated DOFs
+            // (AFFE_CHAR_CINE) is spread through the body by the
+            // prediction's tangent solve — the residual is taken at the
+            // start of the increment and the imposed increment enters as
+            // −K_T Δū — rather than internal forces computed on the state
+            // where only the eliminated DOFs moved (whose neighbouring cells
+            // would yield in that kinked trial state). Dualised conditions
+            // (DDL_IMPO) enter the same solve through their rows, so both
+            // ways of imposing give the same iterates. Elastic models are
+            // linear: K u is the same either way.
+            let predict = plastic.is_some() && fint_now.is_none() && newton_iter == 0 && {
+                elim.keys().any(|&i| u[i] != start[i])
+            };
+            let mut fint = match fint_now.take() {
                 Some(f) => f,
-                None => internal_forces(model, k, plastic, u)?,
+                None if predict => {
+                    let mut u0 = u.to_vec();
+                    for &i in elim.keys() {
+                        u0[i] = start[i];
+                    }
+                    step_forces(model, k, dynamics, plastic, &u0)?
+                }
+                None => step_forces(model, k, dynamics, plastic, u)?,
             };
             if let Some(pc) = plastic.as_mut() {
                 if new_outer && choose_tangent(&mut tangent, pc, model, kff, map, newton, outer)? {
@@ -1001,6 +1117,19 @@ fn newton_step(
                         Some(_) => kkt.new_tangent(pc.symmetric_tangent()),
                         None => MatrixKey::Elastic,
                     };
+                }
+                if predict {
+                    let mut du = vec![0.0; nd];
+                    for &i in elim.keys() {
+                        du[i] = u[i] - start[i];
+                    }
+                    let mut kdu = k.mul(&du);
+                    if tangent.is_some() {
+                        pc.add_tangent_correction_times(&du, &mut kdu);
+                    }
+                    for (f, d) in fint.iter_mut().zip(&kdu) {
+                        *f += d;
+                    }
                 }
                 base = Some((u.to_vec(), fint.clone()));
             }
@@ -1106,7 +1235,7 @@ fn newton_step(
             }
             newton_iter += 1;
             // Residual at the new iterate.
-            let fint = internal_forces(model, k, plastic, u)?;
+            let fint = step_forces(model, k, dynamics, plastic, u)?;
             let mut reac = vec![0.0; nd];
             for (r, (terms, _)) in rows.iter().enumerate() {
                 for &(i, c) in terms {
@@ -1132,7 +1261,7 @@ fn newton_step(
             // Dynamics: code_aster's reference counts the inertia and
             // damping forces with the external ones (not with the internal
             // forces), and the inertia force of the velocity.
-            let dyn_u = dynamics.map(|d| d.matrix().mul(u));
+            let dyn_u = dynamics.map(|d| d.force(u));
             let dyn_at = |i: usize| dyn_u.as_ref().map_or(0.0, |f| f[i]);
             for i in 0..nd {
                 if map[i] == usize::MAX {
@@ -1151,20 +1280,48 @@ fn newton_step(
             } else {
                 0.0
             };
-            let converged_resi = if reference > 0. {
+            if first && newton_iter == 1 && loads_seen.load_mini.is_none() {
+                loads_seen.load_mini = Some(reference);
+            }
+            let swapped = !first
+                && convergence.resi_glob_rela.is_some()
+                && loads_seen.load_mini.is_some_and(|m| reference <= 1e-6 * m)
+                && loads_seen.last_resi_maxi.is_some();
+            let converged_resi = if linear {
+                // MECA_STATIQUE: the solve is the answer (its accuracy is
+                // checked by the solver); a residual against a load that is
+                // zero up to round-off means nothing.
+                true
+            } else if swapped {
+                resi_maxi <= loads_seen.last_resi_maxi.unwrap_or(0.0)
+            } else if reference > 0. {
                 let rela_ok = convergence
                     .resi_glob_rela
                     .is_none_or(|tol| resi_rela <= tol);
                 let maxi_ok = convergence
                     .resi_glob_maxi
                     .is_none_or(|tol| resi_maxi <= tol);
-                rela_ok && maxi_ok
+                let both_given =
+                    convergence.resi_glob_rela.is_some() && convergence.resi_glob_maxi.is_some();
+                if convergence.at_least_one && both_given {
+                    rela_ok || maxi_ok
+                } else {
+                    rela_ok && maxi_ok
+                }
             } else {
                 let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 resi_maxi <= 1e-6 * kdiag_max * umax || resi_maxi == 0.
             };
+            if converged_resi {
+                if !swapped {
+                    loads_seen.load_mini =
+                        Some(loads_seen.load_mini.map_or(reference, |m| m.min(reference)));
+                }
+                loads_seen.last_resi_maxi = Some(resi_maxi);
+            }
             fint_now = Some(fint);
             residuals.push(resi_rela);
+            log.residuals.push(resi_rela);
             // Multipliers per source row (exact sources).
             let mut src_lam: Vec<Vec<f64>> = Vec::new();
             let mut changed = false;
@@ -1173,6 +1330,9 @@ fn newton_step(
             // Rows leaving the active set: (source, row, score); the most
             // negative score leaves first.
             let mut releases: Vec<(usize, usize, f64)> = Vec::new();
+            // A source whose contact loop is outside Newton (POINT_FIXE)
+            // starts Newton's count again when its active set changes.
+            let mut restart = false;
             for (s_no, sr) in srcs.iter_mut().enumerate() {
                 let Some(sr) = sr else {
                     src_lam.push(Vec::new());
@@ -1189,16 +1349,26 @@ fn newton_step(
                             if let Some(k) = ro[r] {
                                 lam[r] = lam_rows[k];
                             }
-                            if sr.active[r] {
+                            if sr.rows[r].bilateral {
+                                true
+                            } else if sr.active[r] {
                                 lam[r] >= -1e-10 * force_scale
                             } else {
                                 g > 1e-10 * length
                             }
                         }
-                        UnilateralMethod::Penalty { .. } => g > 0.,
+                        // code_aster's status (`compute_ineq_conditions_vector`):
+                        // in contact while the gap −g < r8prem, so a row
+                        // the penalty brought back to g = 0 stays active
+                        // (with `g > 0` it would be released and
+                        // re-penetrate: a cycle); bilateral rows always are.
+                        UnilateralMethod::Penalty { .. } => {
+                            g > -f64::EPSILON || sr.rows[r].bilateral
+                        }
                     };
                     if now != sr.active[r] {
                         changed = true;
+                        restart |= sr.outer.status_restarts;
                         if !now {
                             let score = match sr.method {
                                 UnilateralMethod::ActiveSet => lam[r] / force_scale,
@@ -1274,9 +1444,13 @@ fn newton_step(
                     if changed { "changed" } else { "settled" }
                 );
             }
+            if restart {
+                settled = 0;
+            }
             if !changed {
                 settled += 1;
             }
+            log.iterations = settled;
             if !changed && plastic.is_some() {
                 // A Newton iteration with a settled active set: the next
                 // one linearises at this iterate.
@@ -1290,7 +1464,14 @@ fn newton_step(
                 // converged with the current one (at once when elastic: a
                 // stable active set is a converged solve then).
                 if plastic.is_none() || converged_resi {
-                    changed = refresh_geometry_rows(model, sources, srcs, u, t)?;
+                    let (new_rows, restarts) = refresh_geometry_rows(model, sources, srcs, u, t)?;
+                    changed = new_rows;
+                    // A geometric loop outside Newton (POINT_FIXE) starts
+                    // Newton's count again with the new pairing.
+                    if restarts {
+                        settled = 0;
+                        log.iterations = 0;
+                    }
                 }
                 if changed {
                     pairing_start = outer;
@@ -1335,7 +1516,7 @@ fn newton_step(
                     // back to its iterate (and the Gauss-point trial states
                     // and tangents there).
                     u.copy_from_slice(&u0);
-                    internal_forces(model, k, plastic, u)?;
+                    step_forces(model, k, dynamics, plastic, u)?;
                     fint_now = Some(f0);
                     new_outer = false;
                 }
@@ -1450,6 +1631,7 @@ fn report_outcomes(
                             0.0
                         }
                     }
+                    UnilateralMethod::Penalty { coef } if row.bilateral => coef * g,
                     UnilateralMethod::Penalty { coef } => coef * g.max(0.0),
                 };
                 RowOutcome {
@@ -1488,6 +1670,24 @@ fn length_scale(model: &Model, u: &[f64]) -> f64 {
 
 /// f_int(u): K u, plus the plastic cells' corrections (their trial states
 /// and consistent tangents are updated on the way).
+/// The internal forces of a step's Newton loop: K u, the plastic cells
+/// and the time integrator's force (inertia, damping).
+fn step_forces(
+    model: &Model,
+    k: &Csc,
+    dynamics: Option<&dyn IncrementTerms>,
+    plastic: &mut Option<PlasticCells>,
+    u: &[f64],
+) -> Result<Vec<f64>, FemError> {
+    let mut fint = internal_forces(model, k, plastic, u)?;
+    if let Some(d) = dynamics {
+        for (f, x) in fint.iter_mut().zip(d.force(u)) {
+            *f += x;
+        }
+    }
+    Ok(fint)
+}
+
 pub(crate) fn internal_forces(
     model: &Model,
     k: &Csc,
@@ -1550,15 +1750,17 @@ pub(crate) fn choose_tangent(
 /// Asks every source that updates its geometry at each iteration for its
 /// rows at the current iterate `u` and installs the ones that changed
 /// (keeping the previous active set as the start). Returns whether any
-/// source's rows were replaced.
+/// source's rows were replaced, and whether one of those restarts Newton's
+/// count with a new pairing ([`OuterLoops::pairing_restarts`]).
 fn refresh_geometry_rows(
     model: &Model,
     sources: &mut [Box<dyn UnilateralSource + '_>],
     srcs: &mut [Option<SourceRows>],
     u: &[f64],
     t: f64,
-) -> Result<bool, FemError> {
+) -> Result<(bool, bool), FemError> {
     let mut changed = false;
+    let mut restarts = false;
     for (src, slot) in sources.iter_mut().zip(srcs.iter_mut()) {
         let Some(sr) = slot else { continue };
         if sr.update != GeometryUpdate::EachIteration {
@@ -1579,22 +1781,21 @@ fn refresh_geometry_rows(
             model,
             rows,
             src.augmented_terms(),
-            src.method(),
-            src.geometry_update(),
+            (src.method(), src.geometry_update(), src.outer_loops()),
             prev,
             u,
         )?);
         changed = true;
+        restarts |= src.outer_loops().pairing_restarts;
     }
-    Ok(changed)
+    Ok((changed, restarts))
 }
 
 fn make_rows(
     model: &Model,
     rows: Vec<InequalityRow>,
     augmented: Vec<AugmentedTerm>,
-    method: UnilateralMethod,
-    update: GeometryUpdate,
+    (method, update, outer): (UnilateralMethod, GeometryUpdate, OuterLoops),
     prev_active: Option<Vec<bool>>,
     u: &[f64],
 ) -> Result<SourceRows, FemError> {
@@ -1626,6 +1827,12 @@ fn make_rows(
             .map(|(row, r)| gap(r, row.rhs, u) >= -1e-10 * length_scale(model, u))
             .collect(),
     };
+    // Bilateral rows (GLISSIERE) are always enforced.
+    let active: Vec<bool> = active
+        .into_iter()
+        .zip(&rows)
+        .map(|(a, row)| a || row.bilateral)
+        .collect();
     // An augmented term starts on when one of the rows it rides on is.
     let mut aug = Vec::with_capacity(augmented.len());
     for a in &augmented {
@@ -1644,6 +1851,7 @@ fn make_rows(
         active,
         method,
         update,
+        outer,
         aug,
     })
 }

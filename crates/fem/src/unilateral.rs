@@ -25,11 +25,27 @@ pub struct InequalityRow {
     /// Identifier chosen by the source (e.g. the slave node), handed back in
     /// [`RowOutcome::id`].
     pub id: usize,
+    /// A bilateral row (contact's `GLISSIERE='OUI'`): always enforced, as
+    /// an equality `Σ aᵢ uᵢ = b`, whatever the sign of its multiplier — the
+    /// link may pull as well as push and never opens. Under penalty the
+    /// force is `coef·(Σ a u − b)` on both sides.
+    pub bilateral: bool,
 }
 
 impl InequalityRow {
     pub fn new(terms: Vec<(Dof, f64)>, rhs: f64, id: usize) -> InequalityRow {
-        InequalityRow { terms, rhs, id }
+        InequalityRow {
+            terms,
+            rhs,
+            id,
+            bilateral: false,
+        }
+    }
+
+    /// The same row made bilateral (see [`InequalityRow::bilateral`]).
+    pub fn into_bilateral(mut self) -> InequalityRow {
+        self.bilateral = true;
+        self
     }
 
     /// `Σ aᵢ uᵢ - b` for a state: positive means violated (penetration).
@@ -65,6 +81,22 @@ pub enum GeometryUpdate {
     /// geometry; a source running code_aster's own geometric test, as
     /// contact's `GeomLoopState`, ends the loop by repeating its rows).
     EachIteration,
+}
+
+/// How a source's own loops sit with respect to Newton's iterations, for
+/// code_aster's iteration count (`ITER_GLOB`, and `ITER_GLOB_MAXI`).
+/// By default (discrete contact, LIAISON_UNIL) the active set is settled
+/// inside one Newton iteration and new pairings are nested in the
+/// iterations: the count runs over the whole increment.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OuterLoops {
+    /// A new pairing starts Newton again from iteration 0 (continuous
+    /// contact's `ALGO_RESO_GEOM='POINT_FIXE'`: the geometric loop is
+    /// outside Newton).
+    pub pairing_restarts: bool,
+    /// A change of the active set starts Newton again from iteration 0
+    /// (`ALGO_RESO_CONT='POINT_FIXE'`: the contact loop is outside Newton).
+    pub status_restarts: bool,
 }
 
 /// The current mechanical state given to sources.
@@ -115,6 +147,7 @@ pub struct RowOutcome {
     /// The row's [`InequalityRow::id`].
     pub id: usize,
     /// Multiplier λ ≥ 0 (reaction magnitude along the row); 0 when inactive.
+    /// A bilateral row's may be negative (the link pulls).
     pub multiplier: f64,
     /// Whether the row is enforced as an equality (in the active set, or
     /// penetrating under penalty).
@@ -159,6 +192,11 @@ pub trait UnilateralSource {
     /// When the rows must be recomputed.
     fn geometry_update(&self) -> GeometryUpdate {
         GeometryUpdate::Once
+    }
+
+    /// Where the source's loops sit with respect to Newton's iterations.
+    fn outer_loops(&self) -> OuterLoops {
+        OuterLoops::default()
     }
 
     /// The current rows for a state (the last converged one, or the current
@@ -209,6 +247,9 @@ impl<T: UnilateralSource + ?Sized> UnilateralSource for &mut T {
     }
     fn geometry_update(&self) -> GeometryUpdate {
         (**self).geometry_update()
+    }
+    fn outer_loops(&self) -> OuterLoops {
+        (**self).outer_loops()
     }
     fn rows(&mut self, state: &State) -> Result<Vec<InequalityRow>, FemError> {
         (**self).rows(state)

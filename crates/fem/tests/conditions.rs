@@ -565,6 +565,7 @@ fn unreachable_convergence_criterion_is_a_clear_error() {
             resi_glob_rela: Some(1e-300),
             resi_glob_maxi: None,
             iter_glob_maxi: 3,
+            at_least_one: false,
         },
         // ECHEC ACTION='ARRET': the failure itself (cutting would only
         // fail again on smaller pieces, see tests/step_cutting.rs).

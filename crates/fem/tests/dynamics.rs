@@ -379,11 +379,7 @@ fn bar_impacting_a_wall_rebounds_without_penetrating() {
         rows: cols[40]
             .iter()
             .enumerate()
-            .map(|(r, &n)| InequalityRow {
-                terms: vec![(Dof::new(n, Comp::DX), 1.0)],
-                rhs: gap,
-                id: r,
-            })
+            .map(|(r, &n)| InequalityRow::new(vec![(Dof::new(n, Comp::DX), 1.0)], gap, r))
             .collect(),
         method: UnilateralMethod::ActiveSet,
     };

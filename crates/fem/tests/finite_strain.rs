@@ -151,6 +151,7 @@ fn solve(
             resi_glob_rela: Some(1e-12),
             resi_glob_maxi: None,
             iter_glob_maxi: 25,
+            at_least_one: false,
         },
         behaviours,
         ..StaticNonLinear::default()

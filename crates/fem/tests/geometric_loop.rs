@@ -123,6 +123,7 @@ fn lift(criterion: Option<ResiGeom>) -> (Result<NonLinearResult, FemError>, Vec<
                 resi_glob_rela: None,
                 resi_glob_maxi: Some(1e-9),
                 iter_glob_maxi: 10,
+                at_least_one: false,
             },
             sources: vec![Box::new(&mut src)],
             ..Default::default()

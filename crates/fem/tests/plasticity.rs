@@ -26,6 +26,7 @@ const TIGHT: Convergence = Convergence {
     resi_glob_rela: Some(1e-12),
     resi_glob_maxi: None,
     iter_glob_maxi: 20,
+    at_least_one: false,
 };
 
 fn steel() -> Elastic {
@@ -498,6 +499,7 @@ fn shear_block_at(
             resi_glob_rela: Some(rela),
             resi_glob_maxi: None,
             iter_glob_maxi,
+            at_least_one: false,
         },
         behaviours: plastic_everywhere(&model, &ecro_line()),
         subdivision,

@@ -270,6 +270,7 @@ fn plastic_with_moving_pairing(
                 resi_glob_rela: Some(1e-10),
                 resi_glob_maxi: None,
                 iter_glob_maxi,
+                at_least_one: false,
             },
             subdivision: None,
             ..Default::default()

@@ -29,6 +29,9 @@ pub struct FemRun {
     /// deformed geometry for the finite-strain cells).
     pub plastic: bool,
     pub behaviours: aster_fem::Behaviours,
+    /// The densities and discrete masses of the model (`None`: they could
+    /// not be gathered), for the kinetic energy (`POST_ELEM/ENER_CIN`).
+    pub mass: Option<aster_fem::MassData>,
 }
 
 fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
@@ -613,6 +616,7 @@ pub fn solve(
     let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
     let mut post_friction: Option<aster_contact::friction::ContinuousFriction> = None;
+    let mut post_discrete: Option<aster_contact::friction::DiscreteFriction> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
@@ -620,6 +624,7 @@ pub fn solve(
         // during the solve (forces, last pairings) is there for CONT_NOEU.
         let mut contact_zones: Option<Vec<aster_contact::ZoneContact>> = None;
         let mut friction: Option<aster_contact::friction::ContinuousFriction> = None;
+        let mut discrete: Option<aster_contact::friction::DiscreteFriction> = None;
         let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
@@ -630,7 +635,13 @@ pub fn solve(
                     })
                 }
                 ContactDef::Zones { keywords, .. } => {
-                    if crate::contactbridge::has_friction(keywords) {
+                    if crate::contactbridge::has_discrete_friction(keywords) {
+                        discrete = Some(crate::contactbridge::discrete_friction_source(
+                            ex, &mesh, keywords,
+                        )?);
+                    } else if crate::contactbridge::has_friction(keywords)
+                        || crate::contactbridge::contact_elements(&mesh, keywords)
+                    {
                         friction =
                             Some(crate::contactbridge::friction_source(ex, &mesh, keywords)?);
                     } else {
@@ -652,6 +663,9 @@ pub fn solve(
         }
         let mut forces: Vec<Box<dyn aster_fem::ForceSource + '_>> = Vec::new();
         if let Some(f) = friction.as_mut() {
+            forces.push(Box::new(f));
+        }
+        if let Some(f) = discrete.as_mut() {
             forces.push(Box::new(f));
         }
         let initial = match &setup.initial {
@@ -689,6 +703,7 @@ pub fn solve(
                 resi_glob_rela: setup.newton.resi_glob_rela,
                 resi_glob_maxi: setup.newton.resi_glob_maxi,
                 iter_glob_maxi: setup.newton.iter_glob_maxi,
+                at_least_one: setup.newton.at_least_one,
             },
             sources,
             forces,
@@ -721,6 +736,7 @@ pub fn solve(
             post_zones = Some(z);
         }
         post_friction = friction;
+        post_discrete = discrete;
         raw
     };
     let steps = raw
@@ -788,6 +804,9 @@ pub fn solve(
                     fields.insert("CONT_NOEU".to_string(), Field::Nodal(nf));
                 }
             }
+            if let Some(cn) = post_discrete.as_ref().and_then(|f| f.cont_noeu_at(s.time)) {
+                fields.insert("CONT_NOEU".to_string(), Field::Nodal(cont_noeu_field(cn)));
+            }
             if let Some(zones) = &mut post_zones {
                 // CONT_NOEU: the zones re-paired on the step's geometry.
                 let x = aster_contact::positions(&mesh, model.dofs(), &s.displacement);
@@ -834,42 +853,78 @@ pub fn solve(
             raw,
             plastic,
             behaviours,
+            mass: crate::dyna::mass_data(&mesh, setup).ok().map(|(m, _)| m),
         }),
     ))
 }
 
-/// `INFO=2`: one line per computed step — Newton iterations and the
-/// RESI_GLOB_RELA of each, active unilateral rows, plastic Gauss points.
+/// CONT_NOEU as a nodal field.
+fn cont_noeu_field(cn: &aster_contact::ContNoeu) -> NodalField {
+    let mut nf = NodalField::new(
+        aster_contact::CONT_NOEU_COMPONENTS
+            .iter()
+            .map(|c| c.to_string())
+            .collect(),
+    );
+    for (n, vals) in cn.nodes.iter().zip(&cn.values) {
+        for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
+            nf.set(*n, c, *v);
+        }
+    }
+    nf
+}
+
+/// `INFO=2`: one line per increment tried — Newton iterations and the
+/// RESI_GLOB_RELA of each; for converged increments the active unilateral
+/// rows and plastic Gauss points of the stored step; failed increments and
+/// the pieces of cut ones with their outcome.
 fn convergence_report(raw: &NonLinearResult) -> String {
     let mut out = String::from(
         "STAT_NON_LINE convergence (INFO=2)\n    INST        ITER  RESI_GLOB_RELA   ACTIVE ROWS  PLASTIC POINTS  RESIDUALS\n",
     );
-    for s in raw.steps.iter().skip(1) {
-        let active: usize = s
-            .unilateral
+    let stored = |t: f64| {
+        raw.steps
             .iter()
-            .map(|rows| rows.iter().filter(|r| r.active).count())
-            .sum();
-        let plastic: usize = s
-            .internal_variables
-            .iter()
-            .flat_map(|c| c.points.iter())
-            .filter(|p| p.get(1).is_some_and(|&v| v > 0.5))
-            .count();
-        let history: Vec<String> = s
-            .residual_history
-            .iter()
-            .map(|r| format!("{r:.2e}"))
-            .collect();
+            .skip(1)
+            .find(|s| (s.time - t).abs() <= 1e-12 * t.abs().max(1.0))
+    };
+    for a in &raw.attempts {
+        let history: Vec<String> = a.residuals.iter().map(|r| format!("{r:.2e}")).collect();
+        let last = a.residuals.last().copied().unwrap_or(f64::NAN);
+        let (active, plastic) = match stored(a.to).filter(|_| a.failure.is_none()) {
+            Some(s) => (
+                s.unilateral
+                    .iter()
+                    .map(|rows| rows.iter().filter(|r| r.active).count())
+                    .sum::<usize>()
+                    .to_string(),
+                s.internal_variables
+                    .iter()
+                    .flat_map(|c| c.points.iter())
+                    .filter(|p| p.get(1).is_some_and(|&v| v > 0.5))
+                    .count()
+                    .to_string(),
+            ),
+            None => ("-".to_string(), "-".to_string()),
+        };
+        let piece = if a.level > 0 {
+            format!(" (piece from {} , level {})", a.from, a.level)
+        } else {
+            String::new()
+        };
         out.push_str(&format!(
-            "    {:<11.6} {:>4}  {:>14.6e}  {:>11}  {:>14}  {}\n",
-            s.time,
-            s.iterations,
-            s.resi_glob_rela,
+            "    {:<11.6} {:>4}  {:>14.6e}  {:>11}  {:>14}  {}{piece}\n",
+            a.to,
+            a.iterations,
+            last,
             active,
             plastic,
             history.join(" ")
         ));
+        if let Some(f) = &a.failure {
+            let what = if a.cut { "failed, cut" } else { "failed" };
+            out.push_str(&format!("      {what}: {f}\n"));
+        }
     }
     out
 }

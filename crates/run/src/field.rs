@@ -71,6 +71,33 @@ impl ElemField {
         self.components.iter().position(|c| c == name)
     }
 
+    /// An `_ELNO` field averaged at the nodes (code_aster's
+    /// `MOYE_NOEUD='OUI'`): each node's value is the mean of the values the
+    /// cells that carry the field give it. `None` for other locations.
+    pub fn nodal_mean(&self, mesh: &aster_mesh::Mesh) -> Option<NodalField> {
+        if self.location != ElemLocation::Nodes {
+            return None;
+        }
+        let mut sum: BTreeMap<NodeId, (Vec<f64>, usize)> = BTreeMap::new();
+        for (&cell, points) in &self.values {
+            for (&node, v) in mesh.cell(cell).nodes.iter().zip(points) {
+                let slot = sum
+                    .entry(node)
+                    .or_insert_with(|| (vec![0.0; self.components.len()], 0));
+                for (acc, x) in slot.0.iter_mut().zip(v) {
+                    *acc += x;
+                }
+                slot.1 += 1;
+            }
+        }
+        let mut out = NodalField::new(self.components.clone());
+        for (node, (v, n)) in sum {
+            out.values
+                .insert(node, v.into_iter().map(|x| Some(x / n as f64)).collect());
+        }
+        Some(out)
+    }
+
     /// The value at a point (1-based, as `POINT=` counts) of a cell.
     pub fn get(&self, cell: CellId, point: usize, comp: &str) -> Option<f64> {
         let c = self.component_index(comp)?;

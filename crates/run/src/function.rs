@@ -69,6 +69,10 @@ impl Scale {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tabulated {
     pub parameter: String,
+    /// `NOM_RESU`, the name of the values (`None`: code_aster's default
+    /// `TOUTRESU`); RECU_FONCTION names them after the component or the
+    /// table column it read.
+    pub result: Option<String>,
     xs: Vec<f64>,
     ys: Vec<f64>,
     pub scale_x: Scale,
@@ -159,6 +163,7 @@ impl Tabulated {
         }
         Ok(Tabulated {
             parameter: parameter.to_string(),
+            result: None,
             xs,
             ys,
             scale_x: Scale::Linear,

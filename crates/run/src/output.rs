@@ -343,11 +343,19 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 .map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
         }
         _ => {
-            if !steps.is_empty() {
+            // code_aster's FORMAT='ASTER' prints the mesh only: result
+            // fields are left out with an alarm (RESULT3_67), and without
+            // MAILLAGE nothing can be printed (RESULT3_70).
+            if !kw.factor("RESU").iter().any(|o| o.contains("MAILLAGE")) {
                 return Err(ex.unsupported(
-                    "IMPR_RESU/FORMAT='ASTER' of result fields (only the mesh)",
+                    "IMPR_RESU/FORMAT='ASTER' without RESU/MAILLAGE (code_aster prints only a mesh in this format: RESULT3_70)",
                     call.span,
                 ));
+            }
+            if !steps.is_empty() {
+                ex.write_report(
+                    "<A> IMPR_RESU: the ASTER format prints only the mesh; the fields are not printed (code_aster RESULT3_67: use FORMAT='RESULTAT')\n",
+                )?;
             }
             aster_mesh::write_mail(&path, &mesh)
                 .map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;

@@ -67,6 +67,8 @@ pub struct NewtonSettings {
     pub matrix: aster_fem::MatrixKind,
     /// `PREDICTION`.
     pub prediction: aster_fem::Prediction,
+    /// `CONVERGENCE/VERIF='AU_MOINS_UN'`: one criterion met is enough.
+    pub at_least_one: bool,
     /// `MATR_RIGI_SYME='OUI'`.
     pub symmetrize: bool,
 }
@@ -80,6 +82,7 @@ impl Default for NewtonSettings {
             reac_iter: 1,
             matrix: aster_fem::MatrixKind::Tangente,
             prediction: aster_fem::Prediction::Tangente,
+            at_least_one: false,
             symmetrize: false,
         }
     }
@@ -173,6 +176,8 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "CONVERGENCE/ITER_GLOB_MAXI",
     "CONVERGENCE/ITER_GLOB_ELAS",
     "CONVERGENCE/ARRET",
+    // 'AU_MOINS_UN': one of RESI_GLOB_RELA/MAXI met is enough.
+    "CONVERGENCE/VERIF",
     "SOLVEUR",
     "SOLVEUR/*",
     "ETAT_INIT",
@@ -342,6 +347,7 @@ pub(crate) fn parse_setup(
         if let Some(n) = conv.first("ITER_GLOB_MAXI").and_then(|s| s.as_i64()) {
             newton.iter_glob_maxi = n.max(1) as usize;
         }
+        newton.at_least_one = conv.str("VERIF") == Some("AU_MOINS_UN");
     }
     if let Some(nw) = kw.factor("NEWTON").first() {
         if let Some(n) = nw.first("REAC_ITER").and_then(|s| s.as_i64()) {

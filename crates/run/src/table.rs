@@ -22,14 +22,6 @@ impl ColumnType {
             ColumnType::Text(n) => format!("K{n}"),
         }
     }
-
-    /// The width of one formatted value (code_aster: 12 for numbers).
-    fn value_width(self) -> usize {
-        match self {
-            ColumnType::Int | ColumnType::Real => 12,
-            ColumnType::Text(n) => n,
-        }
-    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -121,8 +113,15 @@ impl Table {
         self.rows.get(row)?.get(c)?.as_ref()
     }
 
-    /// The `IMPR_TABLE` text (FORMAT='TABLEAU').
+    /// The `IMPR_TABLE` text (FORMAT='TABLEAU', reals as `%12.5E`).
     pub fn render(&self) -> String {
+        self.render_as(&TableFormat::default())
+    }
+
+    /// The `IMPR_TABLE` text in a given format: code_aster's
+    /// `TableBase.ReprTable` (code_aster/Objects/table_py.py), the widths
+    /// and paddings of its `FMT` rule included.
+    pub fn render_as(&self, format: &TableFormat) -> String {
         let mut out = String::new();
         out.push_str("#\n#");
         out.push_str(&"-".repeat(80));
@@ -142,13 +141,13 @@ impl Table {
         let widths: Vec<usize> = self
             .columns
             .iter()
-            .map(|c| c.ty.value_width().max(c.name.len()))
+            .map(|c| format.value_width(c.ty).max(c.name.len()))
             .collect();
         let header: Vec<String> = self
             .columns
             .iter()
             .zip(&widths)
-            .map(|(c, &w)| format!("{:<w$}", c.name))
+            .map(|(c, &w)| format.string_cell(c.ty, w, &c.name))
             .collect();
         out.push_str(&header.join(" "));
         out.push('\n');
@@ -161,7 +160,7 @@ impl Table {
                 .iter()
                 .zip(&widths)
                 .zip(row)
-                .map(|((c, &w), v)| format_cell(c.ty, w, v.as_ref()))
+                .map(|((c, &w), v)| format.cell(c.ty, w, v.as_ref()))
                 .collect();
             out.push_str(&cells.join(" "));
             out.push('\n');
@@ -170,15 +169,115 @@ impl Table {
     }
 }
 
-fn format_cell(ty: ColumnType, width: usize, value: Option<&Value>) -> String {
-    // Numbers are right-aligned in their 12 characters, then the column is
-    // padded on the left when its name is wider (code_aster's FMT rule).
-    let pad = width - ty.value_width().min(width);
-    match value {
-        None => format!("{:<width$}", "-"),
-        Some(Value::Real(r)) => format!("{}{}", " ".repeat(pad), c_exp(*r, 12, 5)),
-        Some(Value::Int(i)) => format!("{}{:>12}", " ".repeat(pad), i),
-        Some(Value::Text(s)) => format!("{s:<width$}"),
+/// How `IMPR_TABLE` writes a table: the real format (`FORMAT_R`, a Fortran
+/// edit descriptor such as `E12.5` or `1PE12.7`) and the AGRAF flavour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TableFormat {
+    /// Blanks before each real: code_aster turns a Fortran scale factor
+    /// `nP` into n leading blanks (`fmtF2PY`: `1PE12.7` → `' %12.7E'`).
+    pub real_lead: usize,
+    pub real_width: usize,
+    pub real_precision: usize,
+    /// FORMAT='AGRAF': the TABLEAU text with a `\\` before each empty cell.
+    pub agraf: bool,
+}
+
+impl Default for TableFormat {
+    fn default() -> TableFormat {
+        TableFormat {
+            real_lead: 0,
+            real_width: 12,
+            real_precision: 5,
+            agraf: false,
+        }
+    }
+}
+
+impl TableFormat {
+    /// The format of reals from a Fortran edit descriptor `[nP]Ew.d` (or
+    /// `D`), as code_aster's `fmtF2PY` reads it; `None` for any other.
+    pub fn real_from_fortran(descriptor: &str) -> Option<(usize, usize, usize)> {
+        let d = descriptor.trim().to_ascii_uppercase();
+        let (lead, rest) = match d.split_once('P') {
+            Some((n, rest)) => (n.parse::<usize>().ok()?, rest),
+            None => (0, d.as_str()),
+        };
+        let rest = rest.strip_prefix('E').or_else(|| rest.strip_prefix('D'))?;
+        let (w, p) = rest.split_once('.')?;
+        let (w, p) = (w.parse::<usize>().ok()?, p.parse::<usize>().ok()?);
+        (w > p && w <= 40).then_some((lead, w, p))
+    }
+
+    /// `len(formR % 0)`: the real format's width, or more when the digits
+    /// overflow it (`%12.7E` writes 13 characters), after its blanks.
+    fn real_len(&self) -> usize {
+        let digits = if self.real_precision == 0 {
+            5
+        } else {
+            self.real_precision + 6
+        };
+        self.real_lead + self.real_width.max(digits)
+    }
+
+    /// The string format of a column's type (`FMT(…, 'formK', type)`):
+    /// (leading blanks, width of `%-ws`). For reals and integers code_aster
+    /// derives it from their number format (`%12.5E` → `%-12s`).
+    fn string_format(&self, ty: ColumnType) -> (usize, usize) {
+        match ty {
+            ColumnType::Real => (self.real_lead, self.real_width),
+            ColumnType::Int => (0, 12),
+            ColumnType::Text(n) => (0, n),
+        }
+    }
+
+    /// The width of a column before its name is counted: the longest of
+    /// its string, real and integer formats applied to 0 (code_aster's
+    /// `ReprTable`: an integer column is as wide as a real one).
+    fn value_width(&self, ty: ColumnType) -> usize {
+        let (lead, w) = self.string_format(ty);
+        match ty {
+            ColumnType::Text(n) => n,
+            _ => (lead + w).max(self.real_len()).max(12),
+        }
+    }
+
+    /// A string in a column of `width` (a header, the `-` of an empty
+    /// cell, a text value): the column's string format, shifted right when
+    /// the column is wider than that format and than the string.
+    fn string_cell(&self, ty: ColumnType, width: usize, s: &str) -> String {
+        let (lead, w) = self.string_format(ty);
+        let shift = width
+            .saturating_sub(s.len())
+            .min(width.saturating_sub(lead + w));
+        format!("{}{}{s:<w$}", " ".repeat(shift), " ".repeat(lead))
+    }
+
+    fn cell(&self, ty: ColumnType, width: usize, value: Option<&Value>) -> String {
+        match value {
+            None => {
+                // The empty cell's format is the string one, shifted as for
+                // an empty string.
+                let (lead, w) = self.string_format(ty);
+                let shift = width.saturating_sub(lead + w);
+                let s = format!("{}{}{:<w$}", " ".repeat(shift), " ".repeat(lead), "-");
+                if self.agraf {
+                    format!("\\{s}")
+                } else {
+                    s
+                }
+            }
+            Some(Value::Real(r)) => format!(
+                "{}{}{}",
+                " ".repeat(width.saturating_sub(self.real_len())),
+                " ".repeat(self.real_lead),
+                c_exp(*r, self.real_width, self.real_precision)
+            ),
+            Some(Value::Int(i)) => format!("{}{:>12}", " ".repeat(width.saturating_sub(12)), i),
+            Some(Value::Text(s)) => {
+                let n = self.value_width(ty);
+                format!("{}{s:<n$}", " ".repeat(width.saturating_sub(n)))
+            }
+        }
     }
 }
 
@@ -223,5 +322,76 @@ mod tests {
             ("DX", Value::Real(1.0)),
         ]);
         insta::assert_snapshot!(t.render());
+    }
+
+    /// Rows as code_aster's `ReprTable` writes them (its Python run on the
+    /// same table gave these lines): `FORMAT_R='1PE12.7'` is `' %12.7E'`,
+    /// AGRAF puts `\\` before empty cells, and a column whose name is wider
+    /// than its values shifts them right.
+    #[test]
+    fn agraf_and_fortran_real_format_as_repr_table() {
+        let mut t = Table::new(vec![
+            Column {
+                name: "NOEUD".into(),
+                ty: ColumnType::Text(8),
+            },
+            Column {
+                name: "INST".into(),
+                ty: ColumnType::Real,
+            },
+            Column {
+                name: "COOR_X".into(),
+                ty: ColumnType::Real,
+            },
+            Column {
+                name: "LAGS_C".into(),
+                ty: ColumnType::Real,
+            },
+            Column {
+                name: "A_LONG_COLUMN_NAME".into(),
+                ty: ColumnType::Real,
+            },
+        ]);
+        t.push_row(vec![
+            ("NOEUD", Value::Text("N1".into())),
+            ("INST", Value::Real(0.25)),
+            ("COOR_X", Value::Real(-1.5)),
+            ("A_LONG_COLUMN_NAME", Value::Real(3.0)),
+        ]);
+        t.push_row(vec![
+            ("NOEUD", Value::Text("N12".into())),
+            ("INST", Value::Real(1.0)),
+            ("COOR_X", Value::Real(2.0e-3)),
+            ("LAGS_C", Value::Real(-8105.9650734574)),
+        ]);
+        let (lead, width, precision) = TableFormat::real_from_fortran("1PE12.7").unwrap();
+        let agraf = TableFormat {
+            real_lead: lead,
+            real_width: width,
+            real_precision: precision,
+            agraf: true,
+        };
+        let text = t.render_as(&agraf);
+        let lines: Vec<&str> = text.lines().skip(3).collect();
+        assert_eq!(
+            lines,
+            [
+                "NOEUD      INST           COOR_X         LAGS_C        A_LONG_COLUMN_NAME",
+                "N1        2.5000000E-01  -1.5000000E+00 \\  -                 3.0000000E+00",
+                "N12       1.0000000E+00  2.0000000E-03  -8.1059651E+03 \\      -           ",
+            ]
+        );
+        let text = t.render();
+        let lines: Vec<&str> = text.lines().skip(3).collect();
+        assert_eq!(
+            lines,
+            [
+                "NOEUD    INST         COOR_X       LAGS_C       A_LONG_COLUMN_NAME",
+                "N1        2.50000E-01 -1.50000E+00 -                   3.00000E+00",
+                "N12       1.00000E+00  2.00000E-03 -8.10597E+03       -           ",
+            ]
+        );
+        assert_eq!(TableFormat::real_from_fortran("E12.5"), Some((0, 12, 5)));
+        assert_eq!(TableFormat::real_from_fortran("F8.3"), None);
     }
 }

@@ -63,7 +63,7 @@ fn bar_in_flight_and_against_a_wall() {
         &root().join("comm/dyna_bar.mail"),
         "bar",
     );
-    assert_eq!(r, (20, 0, None));
+    assert_eq!(r, (26, 0, None));
 }
 
 #[test]

@@ -20,7 +20,7 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
     .unwrap();
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (14, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (16, 0));
     let agr = std::fs::read_to_string(out.join("curves.agr")).unwrap();
     assert!(agr.contains("@title \"strip\""), "{agr}");
     assert!(
@@ -28,5 +28,31 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
         "{agr}"
     );
     assert!(agr.contains("0.5 0.0004999999999999"), "{agr}");
+    // AGRAF as code_aster's TraceAgraf writes it: the bounds are the
+    // curve's box widened by 2.5 % of its size on each side.
+    let dogr = std::fs::read_to_string(out.join("curves.dogr")).unwrap();
+    assert_eq!(
+        dogr,
+        "#NOM DE LA FONCTION: f_xy\n  1.00000E+00  1.00000E+01\n  2.00000E+00  4.00000E+01\n  3.00000E+00  9.00000E+01\n\n"
+    );
+    let digr = std::fs::read_to_string(out.join("curves.digr")).unwrap();
+    assert!(digr.starts_with("\nASPECT_GRAPHIQUE:\n"), "{digr}");
+    assert!(
+        digr.ends_with(
+            "GRAPHIQUE:\nTitre :strip\nFrequence Grille X :0\nFrequence Grille Y :0\nEchelle X :0\nEchelle Y :0\nLegende X :X\n\
+             Min X : 0.95\nMax X : 3.05\nMin Y : 8.0\nMax Y : 92.0\n  COURBE:\n     Trait :0\n     Couleur :0\n     Marqueur :0\n\
+             \x20    Frequence Marqueur :0\n     Legende :f_xy\n     Tri :N\n     Abscisses : [ 1, 1]\n     Ordonnees : [ 1, 2]\n"
+        ),
+        "{digr}"
+    );
+    let table = std::fs::read_to_string(out.join("table.agraf")).unwrap();
+    assert!(
+        table.contains("\n  X              XY          \n"),
+        "{table}"
+    );
+    assert!(
+        table.contains("\n 1.0000000E+00  1.0000000E+01\n"),
+        "{table}"
+    );
     let _ = std::fs::remove_dir_all(out);
 }

@@ -20,7 +20,7 @@ fn geometric_groups_carry_the_tension_test() {
     .unwrap();
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (6, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (12, 0));
     // ORIE_LIGNE: the left edge now starts at A = (0, 0) and goes up.
     let mesh = aster_mesh::read_mail(&out.join("fort.71")).unwrap();
     let left = mesh.group_ma("LEFT").unwrap().members[0];

@@ -19,7 +19,7 @@ fn pressure_on_the_edges_of_a_strip_in_tension() {
     .unwrap();
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (6, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (16, 0));
     let listing = std::fs::read_to_string(out.join("fort.73")).unwrap();
     assert!(
         listing.contains("CHAMP AUX NOEUDS DE NOM SYMBOLIQUE  PRES_NOEU"),

@@ -192,7 +192,7 @@ pub struct ContinuousFriction {
 }
 
 /// Orthonormal tangents from code_aster's normal (`mmmron`, `mmtann`).
-fn tangents(dim: usize, n: [f64; 3]) -> [[f64; 3]; 2] {
+pub(super) fn tangents(dim: usize, n: [f64; 3]) -> [[f64; 3]; 2] {
     if dim == 2 {
         let t1 = [n[1], -n[0], 0.0];
         let l = norm(t1);
@@ -298,7 +298,10 @@ impl ContinuousFriction {
         let dim = if mesh.dim >= 3 { 3 } else { 2 };
         let mut zones = Vec::new();
         for (i, (z, f)) in def.zones.iter().zip(&friction.zones).enumerate() {
-            if z.law.integration != Integration::Auto {
+            // Frictionless zones also take code_aster's Gauss rule (points
+            // inside the cells, no node of their own).
+            let gauss_ok = matches!(z.law.integration, Integration::Gauss(_)) && !f.frictional();
+            if z.law.integration != Integration::Auto && !gauss_ok {
                 return Err(ContactError::Unsupported {
                     feature: "INTEGRATION other than 'AUTO' with FROTTEMENT='COULOMB'".into(),
                     hint: "the frictional contact elements integrate at the slave nodes (code_aster's default 'AUTO')".into(),
@@ -384,6 +387,7 @@ impl ContinuousFriction {
                 }
             }
         }
+        let fz_rule: Vec<Integration> = def.zones.iter().map(|z| z.law.integration).collect();
         let mut points = Vec::new();
         for (zi, fz) in zones.iter().enumerate() {
             let z = &fz.zone;
@@ -393,7 +397,14 @@ impl ContinuousFriction {
                     .iter()
                     .map(|n| mesh.coords[n.0 as usize])
                     .collect();
-                for (xi, w, on) in auto_points(cell.kind) {
+                let rule = match fz_rule[zi] {
+                    Integration::Gauss(o) => crate::integration::ordre_int_gauss(cell.kind, o)
+                        .into_iter()
+                        .map(|(xi, w)| (xi, w, None))
+                        .collect(),
+                    _ => auto_points(cell.kind),
+                };
+                for (xi, w, on) in rule {
                     let (shape, _) = cell.kind.eval(xi);
                     let mut j = jacobian(cell.kind, &reference, xi);
                     if measure == Measure::Axisymmetric {
@@ -536,8 +547,9 @@ impl ContinuousFriction {
             .map(|(_, c)| c)
     }
 
-    /// Pairs every point on the current geometry `x`.
-    fn pair_all(&mut self, x: &[[f64; 3]]) -> Result<(), ContactError> {
+    /// Pairs every point on the current geometry `x` at `time` (the
+    /// `DIST_MAIT`/`DIST_ESCL` functions of `INST` are taken there).
+    fn pair_all(&mut self, x: &[[f64; 3]], time: f64) -> Result<(), ContactError> {
         let dim = self.dim;
         for p in self.points.iter_mut() {
             let fz = &self.zones[p.zone];
@@ -576,8 +588,8 @@ impl ContinuousFriction {
                         let t1 = scale(t, 1.0 / l);
                         tau = [t1, cross(t1, n)];
                     }
-                    let jeusup =
-                        z.geometry.dist_mait.at(pp.master_x) + z.geometry.dist_escl.at(pp.slave_x);
+                    let jeusup = z.geometry.dist_mait.at_time(pp.master_x, time)
+                        + z.geometry.dist_escl.at_time(pp.slave_x, time);
                     p.pair = Some(PointPair {
                         master: pp.master,
                         n,
@@ -1314,7 +1326,7 @@ impl ForceSource for ContinuousFriction {
             }
         };
         if pair {
-            self.pair_all(&x).map_err(|e| self.err(e))?;
+            self.pair_all(&x, state.time).map_err(|e| self.err(e))?;
         }
         if self.first_increment {
             self.initial_statuses(state);
@@ -1386,7 +1398,7 @@ impl ForceSource for ContinuousFriction {
         }
         if let FrictionGeometry::Newton { .. } = self.geometry {
             let x = Self::positions(state);
-            self.pair_all(&x).map_err(|e| self.err(e))?;
+            self.pair_all(&x, state.time).map_err(|e| self.err(e))?;
         }
         let mut settled = true;
         if self.reso_cont == Resolution::Newton {
@@ -1456,7 +1468,7 @@ impl ForceSource for ContinuousFriction {
                 GeomDecision::Keep => {}
                 GeomDecision::Pair => {
                     let x = Self::positions(state);
-                    self.pair_all(&x).map_err(|e| self.err(e))?;
+                    self.pair_all(&x, state.time).map_err(|e| self.err(e))?;
                     return Ok(LoopVerdict::Again);
                 }
                 GeomDecision::Diverged { pairings, residual } => {

@@ -398,6 +398,29 @@ impl PlasticCells {
         t
     }
 
+    /// Adds to `out` (one value per DOF of the model) the plastic cells'
+    /// tangent corrections (∫BᵀC B − Kₑ at the last update or prediction)
+    /// times `du`: with K·du, the tangent times `du` over every DOF,
+    /// eliminated ones included (the prediction's coupling of an imposed
+    /// increment, code_aster's `nmprta`).
+    pub fn add_tangent_correction_times(&self, du: &[f64], out: &mut [f64]) {
+        for (c, cell) in self.cells.iter().enumerate() {
+            if !self.corrected[c] {
+                continue;
+            }
+            let de: Vec<f64> = cell.dofs.iter().map(|&i| du[i]).collect();
+            if de.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            let corr = cell_tangent(cell, &self.tangents[c]) - &cell.k_el;
+            let n = cell.dofs.len();
+            for a in 0..n {
+                let v: f64 = (0..n).map(|b| corr[(a, b)] * de[b]).sum();
+                out[cell.dofs[a]] += v;
+            }
+        }
+    }
+
     /// The trial states become the converged ones (end of a step).
     pub fn commit(&mut self) {
         self.committed.clone_from(&self.trial);

@@ -121,6 +121,42 @@ fn gradient(pg: &PointGeom, hyp: Hypothesis, ue: &[f64]) -> Matrix3<f64> {
     f
 }
 
+/// ΔF = I + ∂Δu/∂x₋ on the configuration of the converged step
+/// (code_aster's `nmgpfi`: `nmepsi` of the increment on `geomPrev`), with
+/// ∂N/∂x₋ = ∂N/∂X F₋⁻¹ (AXIS: ΔF₃₃ = 1 + Δu_r/r₋). From the increment,
+/// not F(u) F₋⁻¹: a rigid translation then leaves ΔF = I to the round-off
+/// of the increment, not of the total displacement.
+fn increment_gradient(
+    pg: &PointGeom,
+    hyp: Hypothesis,
+    u_prev: &[f64],
+    u: &[f64],
+    fm: &Matrix3<f64>,
+    fm_inv: &Matrix3<f64>,
+) -> Matrix3<f64> {
+    let dim = hyp.dim();
+    let du = |k: usize| u[k] - u_prev[k];
+    let mut g = Matrix3::<f64>::zeros();
+    for (a, d) in pg.dn.iter().enumerate() {
+        for i in 0..dim {
+            for k in 0..dim {
+                g[(i, k)] += du(dim * a + i) * d[k];
+            }
+        }
+    }
+    let mut f = Matrix3::<f64>::identity();
+    for i in 0..dim {
+        for j in 0..dim {
+            f[(i, j)] += (0..dim).map(|k| g[(i, k)] * fm_inv[(k, j)]).sum::<f64>();
+        }
+    }
+    if hyp == Hypothesis::Axisymmetric {
+        let dur: f64 = pg.n.iter().enumerate().map(|(a, n)| n * du(dim * a)).sum();
+        f[(2, 2)] += dur / (pg.r * fm[(2, 2)]);
+    }
+    f
+}
+
 /// Hooke's matrix padded to 6×6 (engineering shears).
 fn hooke6(el: &Elastic, hyp: Hypothesis) -> Mat6 {
     let d = el.hooke(hyp);
@@ -485,11 +521,15 @@ fn simo_miehe_point(
     }
     let correction = phase == Phase::Correction;
     let fm = gradient(pg, hyp, u_prev);
-    let fp = if correction { gradient(pg, hyp, u) } else { fm };
     let fm_inv = fm.try_inverse().ok_or_else(|| {
         FemError::Integration("the converged element is degenerate (det F = 0)".into())
     })?;
-    let df = fp * fm_inv;
+    let df = if correction {
+        increment_gradient(pg, hyp, u_prev, u, &fm, &fm_inv)
+    } else {
+        Matrix3::identity()
+    };
+    let fp = df * fm;
     let dj = df.determinant();
     if correction && !(dj > 1e-2 && dj <= 1e2) {
         return Err(FemError::Integration(format!(
@@ -561,7 +601,7 @@ fn simo_miehe_point(
     }
     let mut state = *prev;
     if correction {
-        let j = fp.determinant();
+        let j = fm.determinant() * dj; // jacoPrev·jacoIncr
         state.law.p = out.state.p;
         state.law.plastic = out.state.plastic;
         state.law.stress = out.tau;

@@ -77,7 +77,7 @@ pub(crate) fn edges(ty: CellType) -> Option<(CellType, &'static [[usize; 2]])> {
 }
 
 /// The linear type of a quadratic one (`QUAD_LINE`).
-fn linear_of(ty: CellType) -> Option<CellType> {
+pub(crate) fn linear_of(ty: CellType) -> Option<CellType> {
     Some(match ty {
         CellType::SEG3 | CellType::SEG4 => CellType::SEG2,
         CellType::TRIA6 | CellType::TRIA7 => CellType::TRIA3,
@@ -194,7 +194,10 @@ fn quad_faces(ty: CellType) -> &'static [([usize; 4], [usize; 4])] {
 impl Mesh {
     /// The shortest and longest edges of the cells, each edge measured
     /// straight between its two corner nodes (code_aster's
-    /// `getMinMaxEdgeSizes`); `None` when the cells have no edge (points).
+    /// `getMinMaxEdgeSizes`, and `AR_MIN`/`AR_MAX` of `cargeo`: the
+    /// shortest edge *of non-zero length*, so the coincident corners of a
+    /// degenerate cell are skipped); `None` when the cells have no edge of
+    /// positive length (points only).
     pub fn edge_length_range(&self, cells: &[CellId]) -> Option<(f64, f64)> {
         let mut range: Option<(f64, f64)> = None;
         for &c in cells {
@@ -207,6 +210,9 @@ impl Mesh {
                 let (p, q) = (self.coord(cell.nodes[*a]), self.coord(cell.nodes[*b]));
                 let l =
                     ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
+                if l == 0.0 {
+                    continue;
+                }
                 range = Some(match range {
                     None => (l, l),
                     Some((lo, hi)) => (lo.min(l), hi.max(l)),
@@ -430,5 +436,22 @@ mod tests {
         assert_eq!(m.coord(c.nodes[21]), [0.5, 0.0, 0.5]);
         assert_eq!(m.coord(c.nodes[25]), [0.5, 0.5, 1.0]);
         assert_eq!(m.coord(c.nodes[26]), [0.5, 0.5, 0.5]);
+    }
+
+    #[test]
+    fn edge_lengths_skip_coincident_corners() {
+        let mut m = two_quads();
+        assert_eq!(m.edge_length_range(&all(&m)), Some((1.0, 1.0)));
+        // Stretch N3 and N6 to x = 4: M2's horizontal edges become 3 long.
+        m.coords[2][0] = 4.0;
+        m.coords[5][0] = 4.0;
+        assert_eq!(m.edge_length_range(&all(&m)), Some((1.0, 3.0)));
+        // M1 alone keeps unit edges.
+        assert_eq!(m.edge_length_range(&[CellId(0)]), Some((1.0, 1.0)));
+        // Collapse M2's right edge (N3 onto N6): a zero-length edge is not
+        // the shortest one (cargeo's AR_MIN is the shortest non-zero edge).
+        m.coords[2] = m.coords[5];
+        let (lo, _) = m.edge_length_range(&all(&m)).unwrap();
+        assert_eq!(lo, 1.0);
     }
 }

@@ -94,6 +94,73 @@ impl Mesh {
         Ok(self.nodes_where(|x| dot(sub(x, point), n).abs() <= precision))
     }
 
+    /// `CREA_GROUP_MA/OPTION='CYLINDRE'` (code_aster's `cgmacy`, 3D
+    /// meshes): the cells, in cell order, with at least one node
+    /// (`at_least_one`) or all their nodes within `radius` of the axis
+    /// through `point` along `axis`. A node at `point` itself selects its
+    /// cell.
+    pub fn cells_in_cylinder(
+        &self,
+        point: [f64; 3],
+        axis: [f64; 3],
+        radius: f64,
+        at_least_one: bool,
+    ) -> Result<Vec<CellId>, MeshError> {
+        let l = norm(axis);
+        if l == 0.0 || !l.is_finite() {
+            return Err(MeshError::Operation(
+                "CYLINDRE: the axis vector is zero".into(),
+            ));
+        }
+        if radius.is_nan() || radius <= 0.0 {
+            return Err(MeshError::Operation(
+                "CYLINDRE: RAYON must be positive".into(),
+            ));
+        }
+        let a = [axis[0] / l, axis[1] / l, axis[2] / l];
+        // Squared distance to the axis, as cgmacy computes it:
+        // |x − x0|² sin²(angle between x − x0 and the axis).
+        let inside = |x: [f64; 3]| -> Option<bool> {
+            let d = sub(x, point);
+            let r2 = dot(d, d);
+            if r2 == 0.0 {
+                return None;
+            }
+            let r = r2.sqrt();
+            let mut c = (dot(d, a) / r).abs();
+            if c > 1.0 {
+                c -= 100.0 * f64::EPSILON;
+            }
+            let s = c.acos().sin();
+            Some(r2 * s * s <= radius * radius)
+        };
+        let mut out = Vec::new();
+        for (i, cell) in self.cells.iter().enumerate() {
+            let mut inside_count = 0;
+            let mut at_point = false;
+            for &n in &cell.nodes {
+                match inside(self.coord(n)) {
+                    None => at_point = true,
+                    Some(true) => inside_count += 1,
+                    Some(false) => {}
+                }
+                if at_point {
+                    break;
+                }
+            }
+            let keep = at_point
+                || if at_least_one {
+                    inside_count > 0
+                } else {
+                    inside_count == cell.nodes.len()
+                };
+            if keep {
+                out.push(CellId(i as u32));
+            }
+        }
+        Ok(out)
+    }
+
     fn nodes_where(&self, keep: impl Fn([f64; 3]) -> bool) -> Vec<NodeId> {
         (0..self.node_count() as u32)
             .map(NodeId)
@@ -284,6 +351,36 @@ mod tests {
             .unwrap();
         assert_eq!(on, vec![NodeId(1), NodeId(4)]);
         assert!(m.nodes_on_plane([0.0; 3], [0.0; 3], 1e-6).is_err());
+    }
+
+    /// Axis along z through (2.1, 0.5): N3 and N6 are 0.51 from it, N2
+    /// and N5 1.208, N1 and N4 2.16.
+    #[test]
+    fn cylinder_selects_cells_by_their_nodes() {
+        let m = two_quads();
+        let c = [2.1, 0.5, 0.0];
+        let z = [0.0, 0.0, 3.0];
+        assert_eq!(m.cells_in_cylinder(c, z, 0.5, true).unwrap(), vec![]);
+        assert_eq!(
+            m.cells_in_cylinder(c, z, 0.6, true).unwrap(),
+            vec![CellId(1)]
+        );
+        assert_eq!(m.cells_in_cylinder(c, z, 0.6, false).unwrap(), vec![]);
+        assert_eq!(
+            m.cells_in_cylinder(c, z, 1.25, true).unwrap(),
+            vec![CellId(0), CellId(1)]
+        );
+        assert_eq!(
+            m.cells_in_cylinder(c, z, 1.25, false).unwrap(),
+            vec![CellId(1)]
+        );
+        // A node on the axis point selects its cells whatever the rule.
+        assert_eq!(
+            m.cells_in_cylinder([0.0; 3], z, 1e-3, false).unwrap(),
+            vec![CellId(0), CellId(2)]
+        );
+        assert!(m.cells_in_cylinder(c, [0.0; 3], 1.0, true).is_err());
+        assert!(m.cells_in_cylinder(c, z, 0.0, true).is_err());
     }
 
     #[test]

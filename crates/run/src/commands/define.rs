@@ -465,6 +465,7 @@ pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         return Err(ExecError::new("DEFI_FONCTION: give VALE (or ABSCISSE and ORDONNEE); VALE_C/NOEUD_PARA are not supported yet"));
     }
     .map_err(|e| ex.kw_error("DEFI_FONCTION", kw, "VALE", e.to_string()))?;
+    f.result = kw.str("NOM_RESU").map(str::to_string);
     let interp: Vec<&str> = kw
         .simple("INTERPOL")
         .iter()

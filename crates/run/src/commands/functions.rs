@@ -63,10 +63,12 @@ fn tabulated(
     cmd: &str,
     kw: &Keywords,
     para: &str,
+    result: Option<&str>,
     xs: Vec<f64>,
     ys: Vec<f64>,
 ) -> Result<Rc<Function>, ExecError> {
     let mut f = Tabulated::new(para, xs, ys).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+    f.result = result.map(str::to_string);
     apply_options(ex, cmd, kw, &mut f)?;
     Ok(Rc::new(Function::Tabulated(f)))
 }
@@ -156,7 +158,15 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 ys.push(y);
             }
         }
-        let f = tabulated(ex, cmd, kw, px, xs, ys)?;
+        let f = tabulated(
+            ex,
+            cmd,
+            kw,
+            px,
+            Some(kw.str("NOM_RESU").unwrap_or(py)),
+            xs,
+            ys,
+        )?;
         return store_result(ex, call, Concept::Function(f));
     }
     let r = ex.required(cmd, kw, "RESULTAT")?;
@@ -216,7 +226,15 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         xs.push(s.inst);
         ys.push(v);
     }
-    let f = tabulated(ex, cmd, kw, "INST", xs, ys)?;
+    let f = tabulated(
+        ex,
+        cmd,
+        kw,
+        "INST",
+        Some(kw.str("NOM_RESU").unwrap_or(cmp)),
+        xs,
+        ys,
+    )?;
     store_result(ex, call, Concept::Function(f))
 }
 
@@ -259,7 +277,7 @@ pub fn calc_fonc_interp(ex: &mut Executor, call: &CommandCall) -> Result<Command
                 .map_err(|e| ExecError::new(format!("{cmd}: at {para}={x}: {e}")))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let g = tabulated(ex, cmd, kw, &para, xs, ys)?;
+    let g = tabulated(ex, cmd, kw, &para, kw.str("NOM_RESU"), xs, ys)?;
     store_result(ex, call, Concept::Function(g))
 }
 
@@ -366,7 +384,7 @@ pub fn calc_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         )));
     };
     let para = kw.str("NOM_PARA").map(str::to_string).unwrap_or(para);
-    let g = tabulated(ex, cmd, kw, &para, xs, ys)?;
+    let g = tabulated(ex, cmd, kw, &para, kw.str("NOM_RESU"), xs, ys)?;
     store_result(ex, call, Concept::Function(g))
 }
 
@@ -374,6 +392,9 @@ pub fn calc_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
 struct Curve {
     x_name: String,
     y_name: String,
+    /// code_aster's legend: LEGENDE, else the name of the function
+    /// (FONCTION, FONC_X) the curve comes from.
+    legend: Option<String>,
     points: Vec<(f64, f64)>,
 }
 
@@ -401,6 +422,7 @@ fn curve(ex: &Executor, occ: &Keywords) -> Result<Curve, ExecError> {
             .map(|&x| Ok((x, eval(&f, x)?)))
             .collect::<Result<_, ExecError>>()?;
         return Ok(Curve {
+            legend: legend.clone().or_else(|| Some(c.name.clone())),
             x_name: f
                 .parameters()
                 .first()
@@ -418,6 +440,7 @@ fn curve(ex: &Executor, occ: &Keywords) -> Result<Curve, ExecError> {
             .map(|&t| Ok((eval(&gx, t)?, eval(&gy, t)?)))
             .collect::<Result<_, ExecError>>()?;
         return Ok(Curve {
+            legend: legend.clone().or_else(|| Some(fx.name.clone())),
             x_name: fx.name.clone(),
             y_name: legend.unwrap_or_else(|| fy.name.clone()),
             points,
@@ -443,6 +466,7 @@ fn curve(ex: &Executor, occ: &Keywords) -> Result<Curve, ExecError> {
         )));
     }
     Ok(Curve {
+        legend: legend.clone(),
         x_name: "ABSCISSE".into(),
         y_name: legend.unwrap_or_else(|| "ORDONNEE".into()),
         points: xs.into_iter().zip(ys).collect(),
@@ -524,15 +548,187 @@ fn xmgrace(kw: &Keywords, curves: &[Curve]) -> String {
     out
 }
 
+/// The curves in AGRAF form: the directives (`.digr`: the graph's
+/// aspect, then one COURBE block per curve) and the data (`.dogr`: one
+/// block of `%12.5E` columns per curve), as code_aster's `TraceAgraf`
+/// (code_aster/Objects/table_graph.py) writes them. The plot bounds not
+/// given by BORNE_X/BORNE_Y are the curves' bounding box widened by 2.5 %
+/// of its size on each side (`SetExtrema(marge=0.05)`).
+fn agraf(kw: &Keywords, curves: &[Curve]) -> (String, String) {
+    let mut digr = String::new();
+    let mut dogr = String::new();
+    if curves.is_empty() {
+        return (digr, dogr);
+    }
+    let py = |x: f64| crate::pyfmt::py_repr(x).to_lowercase();
+    let log = |k: &str| kw.str(&format!("ECHELLE_{k}")) == Some("LOG");
+    // Bounding box of all curves; MinP: the smallest positive value (the
+    // lower bound of a LOG axis).
+    let (mut x0, mut x1, mut y0, mut y1) = (1e99f64, -1e99f64, 1e99f64, -1e99f64);
+    let (mut minp_x, mut minp_y) = (1e99f64, 1e99f64);
+    for c in curves {
+        for &(x, y) in &c.points {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+            if x > 0.0 {
+                minp_x = minp_x.min(x);
+            }
+            if y > 0.0 {
+                minp_y = minp_y.min(y);
+            }
+        }
+    }
+    let bounds = |k: &str, lo: f64, hi: f64, minp: f64| -> (f64, f64) {
+        let given = reals(kw, &format!("BORNE_{k}"));
+        let (mut a, b) = match given.as_slice() {
+            [a, b] if a <= b => (*a, *b),
+            _ => {
+                let mut d = (hi - lo).max(0.01 * hi);
+                if d == 0.0 {
+                    d = 1e-6;
+                }
+                (lo - 0.05 * d / 2.0, hi + 0.05 * d / 2.0)
+            }
+        };
+        if log(k) && a < 0.0 {
+            a = minp;
+        }
+        (a, b)
+    };
+    let (min_x, max_x) = bounds("X", x0, x1, minp_x);
+    let (min_y, max_y) = bounds("Y", y0, y1, minp_y);
+    // A LOG axis has a grid every 10; a grid not given on either axis
+    // leaves both without one.
+    let grid = |k: &str| -> i64 {
+        if log(k) {
+            10
+        } else {
+            kw.first(&format!("GRILLE_{k}"))
+                .and_then(|s| s.as_f64())
+                .map_or(-1, |g| g as i64)
+        }
+    };
+    let (grid_x, grid_y) = match (grid("X"), grid("Y")) {
+        (x, y) if x < 0 || y < 0 => (0, 0),
+        xy => xy,
+    };
+    digr.push_str(AGRAF_ASPECT);
+    let title = kw
+        .simple("TITRE")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect::<Vec<_>>()
+        .join(" ");
+    let title = if title.is_empty() {
+        "GRAPHIQUE CODE_ASTER".to_string()
+    } else {
+        title
+    };
+    digr += &format!("Titre :{title}\n");
+    if let Some(t) = kw.str("SOUS_TITRE").filter(|t| !t.is_empty()) {
+        digr += &format!("Commentaire :{t}\n");
+    }
+    digr += &format!("Frequence Grille X :{grid_x}\nFrequence Grille Y :{grid_y}\n");
+    for k in ["X", "Y"] {
+        digr += &format!("Echelle {k} :{}\n", if log(k) { 1 } else { 0 });
+    }
+    for k in ["X", "Y"] {
+        if let Some(l) = kw.str(&format!("LEGENDE_{k}")).filter(|l| !l.is_empty()) {
+            digr += &format!("Legende {k} :{l}\n");
+        }
+    }
+    digr += &format!("Min X : {}\nMax X : {}\n", py(min_x), py(max_x));
+    digr += &format!("Min Y : {}\nMax Y : {}\n", py(min_y), py(max_y));
+    for (i, c) in curves.iter().enumerate() {
+        digr += "  COURBE:\n     Trait :0\n";
+        digr += &format!("     Couleur :{}\n     Marqueur :{}\n", i % 13, i % 13);
+        digr += "     Frequence Marqueur :0\n";
+        if let Some(l) = c.legend.as_deref().filter(|l| !l.is_empty()) {
+            digr += &format!("     Legende :{l}\n");
+        }
+        digr += "     Tri :N\n";
+        digr += &format!("     Abscisses : [ {}, 1]\n", i + 1);
+        digr += &format!("     Ordonnees : [ {}, 2]\n", i + 1);
+        let name = match c.legend.as_deref().filter(|l| !l.is_empty()) {
+            Some(l) => l.to_string(),
+            None => format!("COURBE_{i}"),
+        };
+        dogr += &format!("#NOM DE LA FONCTION: {name}\n");
+        for &(x, y) in &c.points {
+            dogr += &format!(
+                " {} {}\n",
+                crate::pyfmt::c_exp(x, 12, 5),
+                crate::pyfmt::c_exp(y, 12, 5)
+            );
+        }
+        dogr.push('\n');
+    }
+    (digr, dogr)
+}
+
+/// The fixed aspect block that opens AGRAF directives.
+const AGRAF_ASPECT: &str = "
+ASPECT_GRAPHIQUE:
+  En-tete :Departement Analyses Mecaniques et Acoustique
+  Aspect :0
+  Nombre de vues :1
+  Cesure commentaire :40
+  MinMax :0
+  Fonte Titre :%helvetica-14
+  Fonte Axes :%courier-12
+  Fonte Autre :%times-12
+
+  DEFAUT_COURBE:
+    Couleur (rvb) :     0     0     0
+
+  DEFAUT_COURBE:
+    Couleur (rvb) : 65535     0     0
+
+  DEFAUT_COURBE:
+    Couleur (rvb) : 11822 35723 22359
+
+  DEFAUT_COURBE:
+    Couleur (rvb) :     0     0 65535
+
+  DEFAUT_COURBE:
+    Couleur (rvb) : 65535     0 65535
+
+  DEFAUT_COURBE:
+    Couleur (rvb) :     0 65535 65535
+
+  DEFAUT_COURBE:
+    Couleur (rvb) :     0 65535     0
+
+  DEFAUT_COURBE:
+    Couleur (rvb) : 41120 21074 11565
+
+  DEFAUT_COURBE:
+    Couleur (rvb) : 65535 42405     0
+
+  DEFAUT_COURBE:
+    Couleur (rvb) : 41120  8224 61680
+
+  DEFAUT_COURBE:
+    Couleur (rvb) : 65535 65535     0
+
+  DEFAUT_COURBE:
+    Couleur (rvb) : 53970 46260 35980
+
+GRAPHIQUE:
+";
+
 /// What IMPR_FONCTION reads (`crate::support`).
 pub(crate) const IMPR_FONCTION: Support = Support {
     values: &[
-        Values::new("FORMAT", &["TABLEAU", "XMGRACE"]),
+        Values::new("FORMAT", &["TABLEAU", "XMGRACE", "AGRAF"]),
         Values::new("PILOTE", &[""]).why("(images are not drawn; the .agr data file is)"),
     ],
     ..Support::keywords(&[
         "FORMAT",
         "UNITE",
+        "UNITE_DIGR",
         "COURBE",
         "COURBE/*",
         "TITRE",
@@ -564,6 +760,18 @@ pub fn impr_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         .iter()
         .map(|occ| curve(ex, occ))
         .collect::<Result<Vec<_>, _>>()?;
+    if format == "AGRAF" {
+        let (digr, dogr) = agraf(kw, &curves);
+        let unit = |k: &str, default: i64| kw.first(k).and_then(|s| s.as_i64()).unwrap_or(default);
+        for (u, text) in [(unit("UNITE", 25), dogr), (unit("UNITE_DIGR", 26), digr)] {
+            if u == 8 || u == 6 {
+                ex.write_report(&text)?;
+            } else {
+                ex.append_unit(u, &text)?;
+            }
+        }
+        return Ok(CommandOutput::Nothing);
+    }
     let (text, default_unit) = if format == "XMGRACE" {
         (xmgrace(kw, &curves), 29)
     } else {

@@ -171,7 +171,8 @@ fn run_checks(
 /// What TEST_RESU reads (`crate::support`): each factor takes its own
 /// keywords and the comparison keywords (`VALE_CALC`, `PRECISION`…).
 pub(crate) const TEST_RESU: Support = Support {
-    values: &[Values::new("RESU/PARA", &["INST"])],
+    // ITER_GLOB: the Newton iterations of the converged increment.
+    values: &[Values::new("RESU/PARA", &["INST", "ITER_GLOB"])],
     ..Support::keywords(&[
         "INFO",
         "RESU",
@@ -329,6 +330,30 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             header.push(("PARA", para.to_string()));
             match para {
                 "INST" => step.inst,
+                // The Newton iterations of the converged increment
+                // (code_aster's ITER_GLOB = the last iteration index + 1).
+                "ITER_GLOB" => {
+                    let run = result.fem.as_ref().ok_or_else(|| {
+                        ex.kw_error(
+                            "TEST_RESU/RESU",
+                            occ,
+                            "PARA",
+                            "ITER_GLOB: this result was not computed by STAT_NON_LINE in this run",
+                        )
+                    })?;
+                    let raw = run.raw.by_order(step.nume_ordre as usize).ok_or_else(|| {
+                        ex.kw_error(
+                            "TEST_RESU/RESU",
+                            occ,
+                            "PARA",
+                            format!(
+                                "ITER_GLOB: no computed increment at NUME_ORDRE {}",
+                                step.nume_ordre
+                            ),
+                        )
+                    })?;
+                    raw.newton_iterations as f64
+                }
                 other => {
                     return Err(ex.unsupported(
                         &format!("TEST_RESU/RESU/PARA='{other}'"),

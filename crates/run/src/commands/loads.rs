@@ -252,6 +252,7 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "DDL_IMPO/GROUP_MA",
         "DDL_IMPO/MAILLE",
         "DDL_IMPO/SANS_GROUP_NO",
+        "DDL_IMPO/SANS_GROUP_MA",
         "DDL_IMPO/DX",
         "DDL_IMPO/DY",
         "DDL_IMPO/DZ",
@@ -292,6 +293,8 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "FACE_IMPO/DX",
         "FACE_IMPO/DY",
         "FACE_IMPO/DZ",
+        "FACE_IMPO/DNOR",
+        "FACE_IMPO/SANS_GROUP_MA",
         "LIAISON_GROUP",
         "LIAISON_GROUP/GROUP_NO_1",
         "LIAISON_GROUP/GROUP_NO_2",
@@ -365,6 +368,12 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             force,
             functions: [None, None, None],
         });
+    }
+    for occ in kw.factor("FACE_IMPO") {
+        if occ.contains("DNOR") {
+            load.relations
+                .extend(face_dnor(ex, occ, (&model, &mesh, &carried))?);
+        }
     }
     for occ in kw.factor("LIAISON_GROUP") {
         load.relations
@@ -592,6 +601,102 @@ pub(super) fn continuum_cells(
                 .is_some_and(|m| !m.is_discrete() && mesh.cell(*c).ty.dim() as usize == m.dim())
         })
         .collect()
+}
+
+/// `FACE_IMPO/DNOR`: at each node of the cells, u·n = DNOR, with n the
+/// nodal normal of code_aster's `canort` — each cell's unit normal at the
+/// node, from the derivatives of its shape functions there (segments:
+/// (t_y, −t_x); faces: t_ξ × t_η, in the cell's node order), averaged over
+/// the cells of the occurrence and normalised. A dualised relation per
+/// node, as code_aster's `afrela`.
+fn face_dnor(
+    ex: &Executor,
+    occ: &Keywords,
+    (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+) -> Result<Vec<LinearRelation>, ExecError> {
+    let what = "AFFE_CHAR_MECA/FACE_IMPO";
+    let value = occ
+        .f64("DNOR")
+        .ok_or_else(|| ex.kw_error(what, occ, "DNOR", "a real value is required"))?;
+    for other in ["DX", "DY", "DZ"] {
+        if occ.contains(other) {
+            return Err(ex.kw_error(
+                what,
+                occ,
+                other,
+                "DNOR and DX/DY/DZ cannot be given together (code_aster CHARGES2_63)",
+            ));
+        }
+    }
+    let cells = select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    let nodes =
+        select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    let dim = model.dim();
+    let mut sum: std::collections::BTreeMap<NodeId, ([f64; 3], usize)> = Default::default();
+    for &c in &cells {
+        let cell = mesh.cell(c);
+        let kind = aster_contact::SurfaceKind::of(cell.ty)
+            .filter(|k| k.dim() + 1 == dim)
+            .ok_or_else(|| {
+                ex.kw_error(
+                    what,
+                    occ,
+                    "GROUP_MA",
+                    format!(
+                        "cell {} is a {}; DNOR needs boundary cells (segments in 2D, faces in 3D)",
+                        select::cell_name(mesh, c),
+                        cell.ty.name()
+                    ),
+                )
+            })?;
+        let xyz: Vec<[f64; 3]> = cell.nodes.iter().map(|n| mesh.coord(*n)).collect();
+        for (&node, xi) in cell.nodes.iter().zip(kind.node_coords()) {
+            let p = aster_contact::interpolate(kind, &xyz, xi);
+            let [t, s] = p.tangents;
+            let n = if dim == 2 {
+                [t[1], -t[0], 0.0]
+            } else {
+                [
+                    t[1] * s[2] - t[2] * s[1],
+                    t[2] * s[0] - t[0] * s[2],
+                    t[0] * s[1] - t[1] * s[0],
+                ]
+            };
+            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            if !(l > 0.0 && l.is_finite()) {
+                return Err(ExecError::new(format!(
+                    "{what}: cell {} is degenerate at node {} (no normal)",
+                    select::cell_name(mesh, c),
+                    select::node_name(mesh, node)
+                )));
+            }
+            let e = sum.entry(node).or_insert(([0.0; 3], 0));
+            for (acc, nd) in e.0.iter_mut().zip(n.iter()) {
+                *acc += nd / l;
+            }
+            e.1 += 1;
+        }
+    }
+    let mut out = Vec::new();
+    for n in nodes {
+        let Some((v, _)) = sum.get(&n) else { continue };
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if l < 1e-2 {
+            return Err(ExecError::new(format!(
+                "{what}: the normals of the cells meeting at node {} cancel out (code_aster CHARGES2_30)",
+                select::node_name(mesh, n)
+            )));
+        }
+        let mut terms = Vec::new();
+        for (d, &comp) in COMPS[..dim].iter().enumerate() {
+            check_dof(model, mesh, carried, n, comp, what)?;
+            if v[d] != 0.0 {
+                terms.push((n, comp, v[d] / l));
+            }
+        }
+        out.push(LinearRelation { terms, rhs: value });
+    }
+    Ok(out)
 }
 
 /// `LIAISON_GROUP`: each node of side 1 is paired with the nearest node of

@@ -167,6 +167,9 @@ pub(crate) const DEFI_GROUP: Support = Support::keywords(&[
     "CREA_GROUP_NO/UNION",
     "CREA_GROUP_NO/INTERSEC",
     "CREA_GROUP_NO/DIFFE",
+    "CREA_GROUP_NO/POSITION",
+    "CREA_GROUP_NO/NUME_INIT",
+    "CREA_GROUP_NO/NUME_FIN",
     "CREA_GROUP_MA/UNION",
     "CREA_GROUP_MA/INTERSEC",
     "CREA_GROUP_MA/DIFFE",
@@ -180,6 +183,11 @@ pub(crate) const DEFI_GROUP: Support = Support::keywords(&[
     "CREA_GROUP_MA/ANGL_NAUT",
     "CREA_GROUP_MA/ANGL_PREC",
     "CREA_GROUP_MA/VERI_SIGNE",
+    "CREA_GROUP_MA/POINT",
+    "CREA_GROUP_MA/NOEUD_CENTRE",
+    "CREA_GROUP_MA/GROUP_NO_CENTRE",
+    "CREA_GROUP_MA/RAYON",
+    "CREA_GROUP_MA/CRIT_NOEUD",
     "DETR_GROUP_NO",
     "DETR_GROUP_NO/NOM",
     "DETR_GROUP_MA",
@@ -235,6 +243,34 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                         occ.str("VERI_SIGNE").unwrap_or("OUI") == "OUI",
                     )
                     .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+            }
+            Some("CYLINDRE") => {
+                let what = "DEFI_GROUP/CREA_GROUP_MA/OPTION='CYLINDRE'";
+                if mesh.dim != 3 {
+                    return Err(ExecError::new(format!("{what}: the mesh must be 3D")));
+                }
+                let axis = normal_vector(occ, what)?;
+                let radius = occ
+                    .f64("RAYON")
+                    .ok_or_else(|| ExecError::new(format!("{what}: RAYON is required")))?;
+                let at_least_one = match occ.str("CRIT_NOEUD").unwrap_or("AU_MOINS_UN") {
+                    "AU_MOINS_UN" => true,
+                    "TOUS" => false,
+                    other => {
+                        let span = occ
+                            .keyword("CRIT_NOEUD")
+                            .map(|k| k.span)
+                            .unwrap_or_default();
+                        return Err(
+                            ex.unsupported(&format!("{what} with CRIT_NOEUD='{other}'"), span)
+                        );
+                    }
+                };
+                let inside = mesh
+                    .cells_in_cylinder(centre(ex, &mesh, occ)?, axis, radius, at_least_one)
+                    .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+                let inside: BTreeSet<aster_mesh::CellId> = inside.into_iter().collect();
+                cells.retain(|c| inside.contains(c));
             }
             Some(other) => {
                 let span = occ.keyword("OPTION").map(|k| k.span).unwrap_or_default();
@@ -298,6 +334,14 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             ));
         };
         if set_operation(&mut mesh, occ, name, true)? {
+            continue;
+        }
+        if ["POSITION", "NUME_INIT", "NUME_FIN"]
+            .iter()
+            .any(|k| occ.contains(k))
+        {
+            let nodes = part_of_group(&mesh, occ)?;
+            put_group(&mut mesh.groups_no, name, nodes);
             continue;
         }
         let nodes = if kind != NodeKind::All && !groups_ma.is_empty() {
@@ -519,6 +563,58 @@ fn one_node(mesh: &Mesh, group: &str, what: &str) -> Result<NodeId, ExecError> {
             many.len()
         ))),
     }
+}
+
+/// `CREA_GROUP_NO` with `GROUP_NO` (one group) and `POSITION` or
+/// `NUME_INIT`/`NUME_FIN` (code_aster's `sscgno`): the group's first
+/// (`INIT`), last (`FIN`) or middle (`MILIEU`: the ((n + 1) / 2)-th) node,
+/// or its nodes NUME_INIT to NUME_FIN (1-based, defaults 1 and n), in the
+/// group's order.
+fn part_of_group(mesh: &Mesh, occ: &Keywords) -> Result<Vec<NodeId>, ExecError> {
+    let what = "DEFI_GROUP/CREA_GROUP_NO";
+    let groups: Vec<&str> = occ
+        .simple("GROUP_NO")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    let g = match groups.as_slice() {
+        [g] => *g,
+        _ => {
+            return Err(ExecError::new(format!(
+                "{what}: POSITION, NUME_INIT and NUME_FIN take one GROUP_NO"
+            )))
+        }
+    };
+    let members = select::group_no(mesh, g).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    let n = members.len();
+    if n == 0 {
+        return Err(ExecError::new(format!("{what}: group `{g}` is empty")));
+    }
+    if let Some(p) = occ.str("POSITION") {
+        let i = match p {
+            "INIT" => 1,
+            "FIN" => n,
+            "MILIEU" => n.div_ceil(2),
+            other => {
+                return Err(ExecError::new(format!("{what}: POSITION='{other}'")));
+            }
+        };
+        return Ok(vec![members[i - 1]]);
+    }
+    let index = |k: &str, default: usize| -> Result<usize, ExecError> {
+        match occ.first(k).and_then(|v| v.as_i64()) {
+            None => Ok(default),
+            Some(i) if i >= 1 && (i as usize) <= n => Ok(i as usize),
+            Some(i) => Err(ExecError::new(format!(
+                "{what}: {k}={i} outside group `{g}` (1 to {n})"
+            ))),
+        }
+    };
+    let (a, b) = (index("NUME_INIT", 1)?, index("NUME_FIN", n)?);
+    if b < a {
+        return Err(ExecError::new(format!("{what}: NUME_FIN < NUME_INIT")));
+    }
+    Ok(members[a - 1..b].to_vec())
 }
 
 /// `CREA_GROUP_NO/OPTION`: (name, nodes) of a group defined by geometry.

@@ -4,8 +4,8 @@ use crate::concept::*;
 use crate::executor::{store_result, Executor};
 use crate::field::{Field, NodalField};
 use crate::select;
-use crate::support::{Support, Values};
-use crate::table::{Column, ColumnType, Table, Value};
+use crate::support::{Refusal, Support, Values};
+use crate::table::{Column, ColumnType, Table, TableFormat, Value};
 use aster_eval::{CommandCall, CommandOutput, ConceptRef, ExecError, Keywords};
 use std::rc::Rc;
 use std::sync::Arc;
@@ -120,6 +120,8 @@ pub fn step_field<'s>(
 pub(crate) const CREA_CHAMP: Support = Support::keywords(&[
     "TYPE_CHAM",
     "OPERATION",
+    "GROUP_MA",
+    "MAILLE",
     "RESULTAT",
     "NOM_CHAM",
     "INST",
@@ -308,6 +310,7 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             )
         }
         "AFFE" => Field::Nodal(crea_champ_affe(ex, call)?),
+        "NORMALE" => Field::Nodal(crea_champ_normale(ex, call)?),
         other => {
             let span = kw.keyword("OPERATION").map(|k| k.span).unwrap_or(call.span);
             return Err(ex.unsupported(&format!("CREA_CHAMP/OPERATION='{other}'"), span));
@@ -318,6 +321,35 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         None => ex.field_origin.remove(&id),
     };
     store_result(ex, call, Concept::Field(Rc::new(field)))
+}
+
+/// `CREA_CHAMP(OPERATION='NORMALE')` (code_aster's `cnonor`): the unit
+/// normal (`NOEU_GEOM_R`: X, Y[, Z]) at the nodes of the boundary cells of
+/// `GROUP_MA`/`MAILLE`, on the mesh's current coordinates (`canort`: the
+/// normalised sum of each cell's unit normal at the node).
+fn crea_champ_normale(ex: &Executor, call: &CommandCall) -> Result<NodalField, ExecError> {
+    let kw = &call.keywords;
+    let cmd = "CREA_CHAMP/NORMALE";
+    if kw.str("TYPE_CHAM") != Some("NOEU_GEOM_R") {
+        return Err(ex.kw_error(cmd, kw, "TYPE_CHAM", "the normal is a NOEU_GEOM_R field"));
+    }
+    let model = ex.model(ex.required(cmd, kw, "MODELE")?)?;
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let cells = select::cells(kw, &mesh, "").map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+    let normals = super::pressure::nodal_normals(&mesh, &cells, &|n| mesh.coord(n))
+        .map_err(|e| ExecError::new(format!("{cmd}: {}", e.message)))?;
+    let names: &[&str] = if mesh.dim == 3 {
+        &["X", "Y", "Z"]
+    } else {
+        &["X", "Y"]
+    };
+    let mut out = NodalField::new(names.iter().map(|s| s.to_string()).collect());
+    for (node, n) in normals {
+        for (d, c) in names.iter().enumerate() {
+            out.set(node, c, n[d]);
+        }
+    }
+    Ok(out)
 }
 
 /// `CREA_CHAMP(OPERATION='AFFE')` of a nodal field of reals (`NOEU_*_R`):
@@ -530,6 +562,59 @@ fn crea_champ_eval(ex: &Executor, call: &CommandCall) -> Result<NodalField, Exec
     Ok(out)
 }
 
+/// A nodal field's vectors (DX, DY) and stress tensors (SIXX…SIYZ) in the
+/// polar frame of each node (`REPERE='POLAIRE'`, code_aster's `rvrthe` and
+/// `rvcalq`): with r the distance of the node to the z axis, v₁ = (x, y)/r
+/// and v₂ = (y, −x)/r (the opposite of the tangent rvrthe gives; (1, 0) and
+/// (0, −1) when r < 1e-6). DX' = v₁·u, DY' = v₂·u; SIXX' = v₁·σ·v₁,
+/// SIYY' = v₂·σ·v₂, SIXY' = v₁·σ·v₂, SIXZ' = v₁·(σxz, σyz),
+/// SIYZ' = v₂·(σxz, σyz); z components and the others unchanged. A missing
+/// component counts as 0.
+fn polar_components(f: &NodalField, mesh: &aster_mesh::Mesh) -> NodalField {
+    let mut out = f.clone();
+    let idx = |c: &str| f.component_index(c);
+    let vector = (idx("DX"), idx("DY"));
+    let tensor = ["SIXX", "SIYY", "SIXY", "SIXZ", "SIYZ"].map(idx);
+    for (&node, vals) in out.values.iter_mut() {
+        let x = mesh.coord(node);
+        let r = (x[0] * x[0] + x[1] * x[1]).sqrt();
+        let (v1, v2) = if r.abs() < 1e-6 {
+            ([1.0, 0.0], [0.0, -1.0])
+        } else {
+            ([x[0] / r, x[1] / r], [x[1] / r, -x[0] / r])
+        };
+        let orig = f.values.get(&node).cloned().unwrap_or_default();
+        let get = |i: Option<usize>| {
+            i.and_then(|i| orig.get(i).copied().flatten())
+                .unwrap_or(0.0)
+        };
+        if let (Some(ix), Some(iy)) = vector {
+            let u = [get(Some(ix)), get(Some(iy))];
+            vals[ix] = Some(v1[0] * u[0] + v1[1] * u[1]);
+            vals[iy] = Some(v2[0] * u[0] + v2[1] * u[1]);
+        }
+        if tensor[0].is_some() && tensor[1].is_some() {
+            let [sxx, syy, sxy, sxz, syz] = tensor.map(get);
+            let quad = |a: [f64; 2], b: [f64; 2]| {
+                a[0] * (b[0] * sxx + b[1] * sxy) + a[1] * (b[0] * sxy + b[1] * syy)
+            };
+            let rotated = [
+                quad(v1, v1),
+                quad(v2, v2),
+                quad(v1, v2),
+                v1[0] * sxz + v1[1] * syz,
+                v2[0] * sxz + v2[1] * syz,
+            ];
+            for (i, v) in tensor.iter().zip(rotated) {
+                if let Some(i) = i {
+                    vals[*i] = Some(v);
+                }
+            }
+        }
+    }
+    out
+}
+
 fn table_title(name: &str) -> Vec<String> {
     vec![
         format!(
@@ -545,7 +630,10 @@ type Source = (Option<String>, Option<String>, Option<(u32, f64)>, Field);
 
 /// What POST_RELEVE_T reads (`crate::support`).
 pub(crate) const POST_RELEVE_T: Support = Support {
-    values: &[Values::new("ACTION/REPERE", &["GLOBAL"])],
+    values: &[
+        Values::new("ACTION/REPERE", &["GLOBAL", "POLAIRE"]),
+        Values::new("ACTION/MOYE_NOEUD", &["OUI"]),
+    ],
     ..Support::keywords(&[
         "ACTION",
         "ACTION/OPERATION",
@@ -568,6 +656,7 @@ pub(crate) const POST_RELEVE_T: Support = Support {
         "ACTION/NOM_CMP",
         "ACTION/RESULTANTE",
         "ACTION/REPERE",
+        "ACTION/MOYE_NOEUD",
         "INFO",
         "TITRE",
     ])
@@ -640,7 +729,15 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             let field_name = occ.str("NOM_CHAM").ok_or_else(|| {
                 ExecError::new("POST_RELEVE_T/ACTION: NOM_CHAM is required with RESULTAT")
             })?;
-            for step in select_steps(ex, "POST_RELEVE_T/ACTION", occ, &result)? {
+            let steps = select_steps(ex, "POST_RELEVE_T/ACTION", occ, &result)?;
+            // A step without the field gives no row (code_aster's `rvgchf`:
+            // alarm POSTRELE_41), e.g. CALC_PRESSION at one INST of the
+            // result; a field no selected step has stays an error.
+            let any = steps.iter().any(|s| s.fields.contains_key(field_name));
+            for step in steps {
+                if any && !step.fields.contains_key(field_name) {
+                    continue;
+                }
                 let f = step_field(step, field_name, &r.name)?.clone();
                 sources.push((
                     Some(r.name.clone()),
@@ -669,6 +766,31 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .iter()
             .filter_map(|s| s.as_str().map(str::to_string))
             .collect();
+        let polar = occ.str("REPERE") == Some("POLAIRE");
+        if polar {
+            // code_aster (rvchgr) needs a plane mesh: every z equal (to 1e-3,
+            // relatively, of the first node's).
+            let z0 = mesh.coords.first().map_or(0.0, |c| c[2]);
+            if mesh
+                .coords
+                .iter()
+                .any(|c| (c[2] - z0).abs() > 1e-3 * z0.abs().max(1.0))
+            {
+                return Err(ex.kw_error(
+                    "POST_RELEVE_T/ACTION",
+                    occ,
+                    "REPERE",
+                    "REPERE='POLAIRE' needs a plane mesh (z constant)",
+                ));
+            }
+            if !resultant.is_empty() {
+                let span = occ.keyword("REPERE").map(|k| k.span).unwrap_or(call.span);
+                return Err(ex.unsupported(
+                    "POST_RELEVE_T/ACTION/RESULTANTE with REPERE='POLAIRE'",
+                    span,
+                ));
+            }
+        }
         if !resultant.is_empty() {
             // One row per instant: the sums of the components over the nodes.
             for (resu, cham, order, field) in &sources {
@@ -706,11 +828,21 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             continue;
         }
         for (resu, cham, order, field) in sources {
-            let Field::Nodal(f) = field else {
-                return Err(ex.unsupported(
-                    "POST_RELEVE_T/ACTION on element fields",
-                    occ.keyword("NOM_CHAM").map(|k| k.span).unwrap_or(call.span),
-                ));
+            // Element fields at nodes (_ELNO) are averaged at each node
+            // (MOYE_NOEUD='OUI'); other element fields are refused.
+            let f = match field {
+                Field::Nodal(f) => f,
+                Field::Elem(e) => e.nodal_mean(&mesh).ok_or_else(|| {
+                    ex.unsupported(
+                        "POST_RELEVE_T/ACTION on element fields other than _ELNO",
+                        occ.keyword("NOM_CHAM").map(|k| k.span).unwrap_or(call.span),
+                    )
+                })?,
+            };
+            let f = if polar {
+                polar_components(&f, &mesh)
+            } else {
+                f
             };
             let cmps: Vec<String> = if occ.str("TOUT_CMP") == Some("OUI") {
                 f.components.clone()
@@ -814,9 +946,11 @@ fn drop_empty_columns(t: &mut Table) {
 /// What IMPR_TABLE reads (`crate::support`).
 pub(crate) const IMPR_TABLE: Support = Support {
     values: &[
-        Values::new("FORMAT", &["TABLEAU"]),
-        Values::new("FORMAT_R", &["E12.5"]),
+        Values::new("FORMAT", &["TABLEAU", "AGRAF"]),
+        Values::new("IMPR_FONCTION", &["NON"])
+            .why("(the functions named in a FONCTION column are not printed)"),
     ],
+    rules: Some(impr_table_rules),
     ..Support::keywords(&[
         "TABLE",
         "FORMAT",
@@ -828,35 +962,62 @@ pub(crate) const IMPR_TABLE: Support = Support {
         "TRI/NOM_PARA",
         "TRI/ORDRE",
         "FORMAT_R",
+        "IMPR_FONCTION",
+        "FILTRE",
+        "FILTRE/NOM_PARA",
+        "FILTRE/CRIT_COMP",
+        "FILTRE/VALE",
+        "FILTRE/VALE_I",
+        "FILTRE/VALE_K",
+        "FILTRE/CRITERE",
+        "FILTRE/PRECISION",
     ])
 };
+
+/// FORMAT_R is a Fortran real edit descriptor code_aster's `fmtF2PY`
+/// reads: `[nP]Ew.d` (or `D`) is handled.
+fn impr_table_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    let kw = &call.keywords;
+    if let Some(f) = kw.str("FORMAT_R") {
+        if TableFormat::real_from_fortran(f).is_none() {
+            out.push(Refusal::at(
+                format!("IMPR_TABLE/FORMAT_R='{f}' (only the E and D edit descriptors [nP]Ew.d)"),
+                kw,
+                "FORMAT_R",
+                call.span,
+            ));
+        }
+    }
+}
 
 pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let t = ex.required("IMPR_TABLE", kw, "TABLE")?;
     let mut table = (*ex.table(t)?).clone();
-    let wanted: Vec<&str> = kw
-        .simple("NOM_PARA")
-        .iter()
-        .filter_map(|s| s.as_str())
-        .collect();
-    if !wanted.is_empty() {
-        let mut cols = Vec::new();
-        for w in &wanted {
-            let i = table.column_index(w).ok_or_else(|| {
-                ExecError::new(format!(
-                    "IMPR_TABLE/NOM_PARA: the table has no column {w}{}",
-                    select::did_you_mean(w, table.columns.iter().map(|c| c.name.as_str()))
-                ))
-            })?;
-            cols.push(i);
-        }
-        table.columns = cols.iter().map(|&i| table.columns[i].clone()).collect();
-        table.rows = table
-            .rows
-            .iter()
-            .map(|r| cols.iter().map(|&i| r[i].clone()).collect())
-            .collect();
+    let mut format = TableFormat {
+        agraf: kw.str("FORMAT") == Some("AGRAF"),
+        ..TableFormat::default()
+    };
+    if let Some(f) = kw.str("FORMAT_R") {
+        let (lead, width, precision) = TableFormat::real_from_fortran(f).ok_or_else(|| {
+            ex.kw_error(
+                "IMPR_TABLE",
+                kw,
+                "FORMAT_R",
+                "a real edit descriptor [nP]Ew.d",
+            )
+        })?;
+        format.real_lead = lead;
+        format.real_width = width;
+        format.real_precision = precision;
+    }
+    // Filtered, then sorted, before the columns are chosen (code_aster's
+    // impr_table_ops: FILTRE and TRI act on the whole table).
+    let filters = kw.factor("FILTRE");
+    if !filters.is_empty() {
+        let rows = super::inspect::filter_rows(&table, filters)
+            .map_err(|e| ExecError::new(format!("IMPR_TABLE/{e}")))?;
+        table.rows = rows.into_iter().map(|r| table.rows[r].clone()).collect();
     }
     if let Some(tri) = kw.factor("TRI").first() {
         let keys: Vec<usize> = tri
@@ -883,10 +1044,33 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             }
         });
     }
+    let wanted: Vec<&str> = kw
+        .simple("NOM_PARA")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    if !wanted.is_empty() {
+        let mut cols = Vec::new();
+        for w in &wanted {
+            let i = table.column_index(w).ok_or_else(|| {
+                ExecError::new(format!(
+                    "IMPR_TABLE/NOM_PARA: the table has no column {w}{}",
+                    select::did_you_mean(w, table.columns.iter().map(|c| c.name.as_str()))
+                ))
+            })?;
+            cols.push(i);
+        }
+        table.columns = cols.iter().map(|&i| table.columns[i].clone()).collect();
+        table.rows = table
+            .rows
+            .iter()
+            .map(|r| cols.iter().map(|&i| r[i].clone()).collect())
+            .collect();
+    }
     if let Some(title) = kw.str("TITRE") {
         table.title = title.lines().map(str::to_string).collect();
     }
-    let text = table.render();
+    let text = table.render_as(&format);
     let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(8);
     if unit == 8 || unit == 6 {
         ex.write_report(&text)?;

@@ -16,8 +16,16 @@
 //!   plates: 0 for continuum cells). Elastic results only: there it is the
 //!   same ½ σ:D⁻¹:σ = ½ ε:D:ε as `ENER_POT`.
 //!
-//! Every other quantity (MASS_INER, ENER_CIN, NORME, INTEGRALE, MINMAX,
-//! TRAV_EXT…) is refused with its location.
+//! - `ENER_CIN` (`peecin`, option `ECIN_ELEM`): the kinetic energy
+//!   ½ vₑᵀ Mₑ vₑ of each continuum cell with the consistent mass
+//!   (`MASS_MECA`, aster-fem `mass::kinetic_energy_by_cell`) and the
+//!   velocity `VITE` of each stored instant of a result (code_aster takes
+//!   `VITE` when the result has instants; an instant without `VITE` gives
+//!   no row). Same columns as `ENER_POT`. Densities from `CHAM_MATER`
+//!   when given, else those of the computation; discrete masses refused.
+//!
+//! Every other quantity (MASS_INER, NORME, INTEGRALE, MINMAX, TRAV_EXT…)
+//! is refused with its location.
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
@@ -37,6 +45,9 @@ pub(crate) const POST_ELEM: Support = Support::keywords(&[
     "ENER_ELAS",
     "ENER_ELAS/TOUT",
     "ENER_ELAS/GROUP_MA",
+    "ENER_CIN",
+    "ENER_CIN/TOUT",
+    "ENER_CIN/GROUP_MA",
     "RESULTAT",
     "CHAM_GD",
     "MODELE",
@@ -53,6 +64,9 @@ pub(crate) const POST_ELEM: Support = Support::keywords(&[
 
 pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
+    if kw.contains("ENER_CIN") {
+        return ener_cin(ex, call);
+    }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
     } else {
@@ -64,6 +78,14 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         let steps = super::post::select_steps(ex, "POST_ELEM", kw, &result)?;
         let orders: Vec<(u32, f64)> = steps.iter().map(|s| (s.nume_ordre, s.inst)).collect();
         let (model, mesh_name) = result_model(ex, kw, r, &result)?;
+        if let ModelRef::Run(run) = &*model {
+            if run.plastic {
+                return Err(ex.unsupported(
+                    "POST_ELEM on a result with plastic cells (the energies of elastic results only)",
+                    kw.keyword("RESULTAT").map(|k| k.span).unwrap_or_default(),
+                ));
+            }
+        }
         let mut columns = vec![
             col("NUME_ORDRE", ColumnType::Int),
             col("INST", ColumnType::Real),
@@ -137,6 +159,91 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         }
         table
     };
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+/// `POST_ELEM/ENER_CIN` of a result: one row per stored instant with a
+/// velocity and per place.
+fn ener_cin(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let cmd = "POST_ELEM/ENER_CIN";
+    let places = places(ex, kw, "ENER_CIN")?;
+    let Some(r) = kw.concept("RESULTAT") else {
+        return Err(ex.unsupported(
+            "POST_ELEM/ENER_CIN of a field (CHAM_GD): give RESULTAT",
+            kw.keyword("CHAM_GD").map(|k| k.span).unwrap_or(call.span),
+        ));
+    };
+    let result = ex.result(r)?;
+    let steps = super::post::select_steps(ex, "POST_ELEM", kw, &result)?;
+    let (model, mesh_name) = result_model(ex, kw, r, &result)?;
+    let mass = match (kw.concept("CHAM_MATER"), &*model) {
+        (Some(m), _) => {
+            let materials = ex.material_field(m)?;
+            let mut data = aster_fem::MassData::default();
+            for el in model.elements() {
+                if let Some(rho) = materials.cells.get(&el.cell).and_then(|m| m.density) {
+                    data.density.insert(el.cell, rho);
+                }
+            }
+            if let Some(c) = kw.concept("CARA_ELEM") {
+                if !ex.cara_elem(c)?.masses.is_empty() {
+                    return Err(ex.unsupported(
+                        "POST_ELEM/ENER_CIN with discrete masses (AFFE_CARA_ELEM M_T_D_N, M_T_N, M_T_L): the kinetic energy of continuum cells only",
+                        kw.keyword("CARA_ELEM").map(|k| k.span).unwrap_or(call.span),
+                    ));
+                }
+            }
+            data
+        }
+        (None, ModelRef::Run(run)) => run.mass.clone().ok_or_else(|| {
+            ExecError::new(format!(
+                "{cmd}: the masses of `{}` could not be gathered",
+                r.name
+            ))
+        })?,
+        (None, ModelRef::Own(_)) => {
+            return Err(ExecError::new(format!(
+                "{cmd}: give CHAM_MATER with MODELE"
+            )));
+        }
+    };
+    if !mass.discrete.is_empty() {
+        return Err(ex.unsupported(
+            "POST_ELEM/ENER_CIN with discrete masses (AFFE_CARA_ELEM M_T_D_N, M_T_N, M_T_L): the kinetic energy of continuum cells only",
+            kw.keyword("ENER_CIN").map(|k| k.span).unwrap_or(call.span),
+        ));
+    }
+    let mut table = Table::new(vec![
+        col("NUME_ORDRE", ColumnType::Int),
+        col("INST", ColumnType::Real),
+        col("LIEU", ColumnType::Text(24)),
+        col("ENTITE", ColumnType::Text(8)),
+        col("TOTALE", ColumnType::Real),
+        col("POUR_CENT", ColumnType::Real),
+    ]);
+    for step in steps {
+        let Some(crate::field::Field::Nodal(vite)) = step.fields.get("VITE") else {
+            continue;
+        };
+        let v = crate::fembridge::displacement_from(&model, vite);
+        let energies: HashMap<CellId, f64> =
+            aster_fem::mass::kinetic_energy_by_cell(&model, &mass, &v)
+                .map_err(|e| ExecError::new(format!("{cmd}: {e}")))?
+                .into_iter()
+                .collect();
+        for place in &places {
+            let (value, percent) = place.sum(&energies, &model);
+            table.push_row(vec![
+                ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
+                ("INST", Value::Real(step.inst)),
+                ("LIEU", Value::Text(place.lieu(&mesh_name))),
+                ("ENTITE", Value::Text(place.entite().into())),
+                ("TOTALE", Value::Real(value)),
+                ("POUR_CENT", Value::Real(percent)),
+            ]);
+        }
+    }
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
@@ -234,12 +341,6 @@ fn result_model(
             r.name
         )));
     };
-    if run.plastic {
-        return Err(ex.unsupported(
-            "POST_ELEM on a result with plastic cells (the energies of elastic results only)",
-            kw.keyword("RESULTAT").map(|k| k.span).unwrap_or_default(),
-        ));
-    }
     let name = ex.concept_name(result.mesh).unwrap_or("").to_string();
     Ok((Rc::new(ModelRef::Run(run)), name))
 }

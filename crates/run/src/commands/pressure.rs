@@ -29,7 +29,7 @@ const CMD: &str = "CALC_PRESSION";
 /// own tangents there ((t_y, −t_x) for a segment, t₁ × t₂ for a face, so a
 /// curved quadratic cell gives each node its own normal), summed over the
 /// cells around the node, then normalised.
-fn nodal_normals(
+pub(crate) fn nodal_normals(
     mesh: &Mesh,
     cells: &[CellId],
     xyz: &dyn Fn(NodeId) -> [f64; 3],
@@ -40,7 +40,7 @@ fn nodal_normals(
         let dim = cell.ty.dim();
         if !(dim == 1 || dim == 2) || !aster_fem::shape::supported(cell.ty) {
             return Err(ExecError::new(format!(
-                "{CMD}/GROUP_MA: cell {} is a {}; the pressure is computed on boundary cells (segments in 2D, faces in 3D)",
+                "GROUP_MA: cell {} is a {}; normals are computed on boundary cells (segments in 2D, faces in 3D)",
                 select::cell_name(mesh, c),
                 cell.ty.name()
             )));
@@ -71,7 +71,7 @@ fn nodal_normals(
             let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
             if l == 0.0 || !l.is_finite() {
                 return Err(ExecError::new(format!(
-                    "{CMD}: cell {} is degenerate (no normal)",
+                    "cell {} is degenerate (no normal)",
                     select::cell_name(mesh, c)
                 )));
             }

@@ -103,7 +103,10 @@ pub fn crea_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         let names = strs(occ, "PARA");
         let (px, py) = match names.as_slice() {
             [x, y] => (x.to_string(), y.to_string()),
-            _ => (t.parameter.clone(), "TOUTRESU".to_string()),
+            _ => (
+                t.parameter.clone(),
+                t.result.clone().unwrap_or_else(|| "TOUTRESU".to_string()),
+            ),
         };
         table.columns = vec![
             Column {
