@@ -45,7 +45,7 @@ mod post;
 mod source;
 mod step;
 
-pub use post::{ContNoeu, CONT_NOEU_COMPONENTS};
+pub use post::{ContNoeu, CONT_NOEU_COMPONENTS, CONT_NOEU_PROJ_COMPONENTS};
 pub use source::{current_positions, ZoneContact, ZoneLaw};
 pub use step::{index_row, positions, solve_step, solve_step_cached, StepReport};
 pub mod hertz;

@@ -23,12 +23,19 @@ pub const CONT_NOEU_COMPONENTS: [&str; 19] = [
     "RTGX", "RTGY", "RTGZ", "RX", "RY", "RZ", "R",
 ];
 
+/// The projection components of the discrete formulation's CONT_NOEU
+/// (`cfresu`: the master point a slave node in contact is paired with).
+pub const CONT_NOEU_PROJ_COMPONENTS: [&str; 3] = ["PROJ_X", "PROJ_Y", "PROJ_Z"];
+
 /// A nodal field on the slave nodes.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct ContNoeu {
     pub nodes: Vec<NodeId>,
     /// `values[k][c]`: node `nodes[k]`, component `CONT_NOEU_COMPONENTS[c]`.
     pub values: Vec<[f64; 19]>,
+    /// `proj[k]`: PROJ_X, PROJ_Y, PROJ_Z of node `nodes[k]`, when the
+    /// formulation writes them (discrete friction); empty otherwise.
+    pub proj: Vec<[f64; 3]>,
 }
 
 impl ContNoeu {
@@ -41,6 +48,12 @@ impl ContNoeu {
     /// slave node or the component unknown).
     pub fn value(&self, node: NodeId, component: &str) -> Option<f64> {
         let k = self.nodes.iter().position(|n| *n == node)?;
+        if let Some(c) = CONT_NOEU_PROJ_COMPONENTS
+            .iter()
+            .position(|c| *c == component)
+        {
+            return self.proj.get(k).map(|p| p[c]);
+        }
         Some(self.values[k][Self::component(component)?])
     }
 
@@ -95,10 +108,7 @@ impl ContNoeu {
         mesh: &Mesh,
         time: Option<f64>,
     ) -> Result<ContNoeu, ContactError> {
-        let mut out = ContNoeu {
-            nodes: Vec::new(),
-            values: Vec::new(),
-        };
+        let mut out = ContNoeu::default();
         if x.len() != mesh.coords.len() {
             return Err(ContactError::Invalid {
                 keyword: "CONT_NOEU",

@@ -51,10 +51,12 @@ fn module_call_why(path: &str) -> &'static str {
         // `ContactNew`/`FrictionNew` object for MECA_NON_LINE: pairing
         // APPARIEMENT='MORTAR' on the intersections of slave and master
         // cells, ALGO_CONT LAGRANGIEN/NITSCHE/PENALISATION. DEFI_CONTACT's
-        // formulations pair slave points with their projections: the
-        // numbers differ, so it cannot be mapped onto DEFI_CONTACT.
+        // formulations pair slave points with their projections, and its
+        // LAC mortar (ALGO_CONT='LAC') has one multiplier per patch of a
+        // DECOUPE_LAC mesh rather than per slave node: the numbers differ,
+        // so no setting of DEFI_CONT maps onto DEFI_CONTACT.
         "code_aster.MacroCommands.defi_cont.DEFI_CONT" => {
-            " (code_aster 17's mortar contact of MECA_NON_LINE: pairing on intersections of slave and master cells, ALGO_CONT LAGRANGIEN/NITSCHE/PENALISATION; a discretisation other than DEFI_CONTACT's, not reproduced)"
+            " (code_aster 17's mortar contact of MECA_NON_LINE: multipliers at the slave nodes integrated on the intersections of slave and master cells, ALGO_CONT LAGRANGIEN (the default and every real use)/NITSCHE/PENALISATION; none of its settings is a discretisation aster has: DEFI_CONTACT's DISCRETE/CONTINUE pair slave points with their projections, its LAC mortar puts one multiplier per DECOUPE_LAC patch)"
         }
         _ => "",
     }
@@ -1577,7 +1579,8 @@ impl<'a> Interp<'a> {
 enum ModuleKind {
     Math,
     NoOp,
-    /// `re`: the import is accepted; its functions are refused where used.
+    /// `re`, `numpy`: the import is accepted; their functions are refused
+    /// where used (a study that imports numpy without using it runs).
     Re,
 }
 
@@ -1585,7 +1588,7 @@ fn module_kind(m: &str) -> Option<ModuleKind> {
     if m == "math" {
         return Some(ModuleKind::Math);
     }
-    if m == "re" {
+    if m == "re" || m == "numpy" {
         return Some(ModuleKind::Re);
     }
     let top = m.split('.').next().unwrap_or(m);

@@ -368,3 +368,23 @@ fn defi_cont_is_refused_with_what_it_is() {
         "{text}"
     );
 }
+
+#[test]
+fn numpy_is_imported_and_refused_where_used() {
+    // SSNP167G imports numpy and never uses it: the file runs.
+    let (report, _) = clean("import numpy as NP\nL = DEFI_LIST_REEL(VALE=1.0)\n");
+    assert_eq!(report.calls.len(), 1);
+    // A use is refused at the attribute, located.
+    let (report, text) = check("import numpy as NP\nx = NP.array([1.0])\n");
+    assert!(!report.ok());
+    assert!(
+        text.contains("c.comm:2:8: error: not supported: `numpy.array`"),
+        "{text}"
+    );
+    let (report, text) = check("from numpy import array\n");
+    assert!(!report.ok());
+    assert!(
+        text.contains("not supported: import from module `numpy`"),
+        "{text}"
+    );
+}

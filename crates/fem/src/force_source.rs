@@ -102,6 +102,11 @@ pub trait ForceSource {
     fn unknown_name(&self, k: usize, _mesh: &aster_mesh::Mesh) -> String {
         format!("unknown #{}", k + 1)
     }
+
+    /// RESI_GLOB_RELA of the iterate just evaluated (called once per
+    /// Newton iteration, after the convergence test). code_aster's
+    /// discrete friction weights its tangent by it (`cffpm2`).
+    fn observe_residual(&mut self, _resi_glob_rela: f64) {}
 }
 
 /// A borrowed source, so that the caller keeps it (and what it recorded)
@@ -130,6 +135,9 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     }
     fn unknown_name(&self, k: usize, mesh: &aster_mesh::Mesh) -> String {
         (**self).unknown_name(k, mesh)
+    }
+    fn observe_residual(&mut self, resi_glob_rela: f64) {
+        (**self).observe_residual(resi_glob_rela)
     }
 }
 
@@ -373,6 +381,9 @@ pub(crate) fn newton_step(
             resi_maxi <= 1e-6 * kdiag_max * umax || resi_maxi == 0.
         };
         residuals.push(resi_rela);
+        for src in sources.iter_mut() {
+            src.observe_residual(resi_rela);
+        }
         if trace {
             eprintln!(
                 "[newton/sources] t={t} iteration {iteration} resi_rela {resi_rela:.3e} resi_maxi {resi_maxi:.3e} statuses {}",

@@ -231,6 +231,16 @@ pub struct MechanicalLoad {
     pub imposed_fn: Vec<ImposedFn>,
     pub nodal_forces_fn: Vec<ImposedFn>,
     pub boundary_fn: Vec<BoundaryFn>,
+    /// `AFFE_CHAR_MECA_F/LIAISON_GROUP`: relations whose right-hand side
+    /// is a function of `INST`.
+    pub relations_fn: Vec<RelationFn>,
+}
+
+/// A linear relation Σ aᵢ·uᵢ = f(INST) (its `rhs` is 1, scaled by `function`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RelationFn {
+    pub relation: LinearRelation,
+    pub function: LoadFunction,
 }
 
 /// One `LIAISON_UNIL` zone: Σ COEF_MULT·u ≤ COEF_IMPO on each node.

@@ -200,8 +200,13 @@ fn comp(name: &str) -> Result<Comp, ExecError> {
 }
 
 /// A multiplier for fem. Tabulated functions and constants are plain data
-/// and are moved into the closure; formulas are sampled at the instants.
-fn multiplier(f: &Option<Rc<Function>>, instants: &[f64]) -> Result<Multiplier, ExecError> {
+/// and are moved into the closure; formulas are sampled at the instants
+/// and at the times a step cut can reach (`cuts`, [`cut_instants`]).
+fn multiplier(
+    f: &Option<Rc<Function>>,
+    instants: &[f64],
+    cuts: &[f64],
+) -> Result<Multiplier, ExecError> {
     let Some(f) = f else {
         return Ok(Multiplier::one());
     };
@@ -214,7 +219,7 @@ fn multiplier(f: &Option<Rc<Function>>, instants: &[f64]) -> Result<Multiplier, 
             }))
         }
         Function::Formula { .. } => {
-            let samples: Vec<(f64, f64)> = instants
+            let mut samples: Vec<(f64, f64)> = instants
                 .iter()
                 .map(|&t| {
                     f.eval(t)
@@ -222,6 +227,7 @@ fn multiplier(f: &Option<Rc<Function>>, instants: &[f64]) -> Result<Multiplier, 
                         .map_err(|e| ExecError::new(format!("FONC_MULT: {e}")))
                 })
                 .collect::<Result<_, _>>()?;
+            samples.extend(cuts.iter().filter_map(|&t| f.eval(t).ok().map(|v| (t, v))));
             Ok(Multiplier::from_fn(move |x| {
                 samples
                     .iter()
@@ -246,6 +252,7 @@ fn function_multiplier(
     xyz: [f64; 3],
     m: &Multiplier,
     instants: &[f64],
+    cuts: &[f64],
 ) -> Result<Multiplier, ExecError> {
     let named = |t: f64| [("INST", t), ("X", xyz[0]), ("Y", xyz[1]), ("Z", xyz[2])];
     let fun = &f.0;
@@ -266,7 +273,7 @@ fn function_multiplier(
             scaled(t, tab.eval(t).map_err(|e| e.to_string())?)
         }));
     }
-    let samples: Vec<(f64, f64)> = instants
+    let mut samples: Vec<(f64, f64)> = instants
         .iter()
         .map(|&t| {
             fun.eval_named(&named(t))
@@ -274,6 +281,10 @@ fn function_multiplier(
                 .map_err(|e| ExecError::new(format!("load function at INST={t}: {e}")))
         })
         .collect::<Result<_, _>>()?;
+    samples.extend(
+        cuts.iter()
+            .filter_map(|&t| fun.eval_named(&named(t)).ok().map(|v| (t, v))),
+    );
     Ok(Multiplier::from_fn(move |x| {
         let v = samples
             .iter()
@@ -352,10 +363,38 @@ fn along(k: usize, values: Vec<f64>) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// The times between the list's instants that step cutting can reach:
+/// SUBD_NIVEAU nested cuts into SUBD_PAS equal pieces put them at
+/// tᵢ + k·(tᵢ₊₁ − tᵢ)/SUBD_PAS^SUBD_NIVEAU. Formulas of INST are sampled
+/// there too (they cannot be evaluated inside the solver), up to 256
+/// points per step and 4096 in all; beyond that a cut reaching an
+/// unsampled time stops with the time named.
+fn cut_instants(instants: &[f64], subdivision: Option<aster_fem::Subdivision>) -> Vec<f64> {
+    let Some(sd) = subdivision else {
+        return Vec::new();
+    };
+    let pieces = sd.pieces.max(2);
+    let Some(n) = u32::try_from(sd.max_level)
+        .ok()
+        .and_then(|l| pieces.checked_pow(l))
+        .filter(|&n| n > 1 && n <= 256)
+    else {
+        return Vec::new();
+    };
+    if instants.len().saturating_mul(n) > 4096 {
+        return Vec::new();
+    }
+    instants
+        .windows(2)
+        .flat_map(|w| (1..n).map(move |k| w[0] + (w[1] - w[0]) * k as f64 / n as f64))
+        .collect()
+}
+
 fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
+    let cuts = cut_instants(&setup.instants, setup.subdivision);
     let mut loads = Loads::new();
     for exc in &setup.excitations {
-        let m = multiplier(&exc.multiplier, &setup.instants)?;
+        let m = multiplier(&exc.multiplier, &setup.instants, &cuts)?;
         match &exc.load {
             LoadRef::Kinematic(k) => {
                 for i in &k.imposed {
@@ -373,7 +412,7 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                             dof: Dof::new(i.node, comp(i.comp)?),
                             value: 1.0,
                         },
-                        function_multiplier(&i.function, i.xyz, &m, &setup.instants)?,
+                        function_multiplier(&i.function, i.xyz, &m, &setup.instants, &cuts)?,
                     );
                 }
             }
@@ -391,7 +430,9 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                                 }
                                 continue;
                             }
-                            Some(f) => function_multiplier(f, [0.0; 3], &m, &setup.instants)?,
+                            Some(f) => {
+                                function_multiplier(f, [0.0; 3], &m, &setup.instants, &cuts)?
+                            }
                             None if v.force[k] != 0.0 => {
                                 unit[k] = v.force[k];
                                 m.clone()
@@ -409,7 +450,7 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                             dof: Dof::new(i.node, comp(i.comp)?),
                             value: 1.0,
                         },
-                        function_multiplier(&i.function, i.xyz, &m, &setup.instants)?,
+                        function_multiplier(&i.function, i.xyz, &m, &setup.instants, &cuts)?,
                     );
                 }
                 for i in &l.nodal_forces_fn {
@@ -418,7 +459,7 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                             dof: Dof::new(i.node, comp(i.comp)?),
                             value: 1.0,
                         },
-                        function_multiplier(&i.function, i.xyz, &m, &setup.instants)?,
+                        function_multiplier(&i.function, i.xyz, &m, &setup.instants, &cuts)?,
                     );
                 }
                 for b in &l.boundary_fn {
@@ -436,7 +477,8 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                                 }
                                 let mut unit = [0.0; 3];
                                 unit[k] = 1.0;
-                                let mk = function_multiplier(f, [0.0; 3], &m, &setup.instants)?;
+                                let mk =
+                                    function_multiplier(f, [0.0; 3], &m, &setup.instants, &cuts)?;
                                 for &cell in cells {
                                     loads.add(Load::SurfaceForce { cell, force: unit }, mk.clone());
                                 }
@@ -450,7 +492,13 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                             }
                         }
                         BoundaryFn::Pressure { cells, pressure } => {
-                            let mk = function_multiplier(pressure, [0.0; 3], &m, &setup.instants)?;
+                            let mk = function_multiplier(
+                                pressure,
+                                [0.0; 3],
+                                &m,
+                                &setup.instants,
+                                &cuts,
+                            )?;
                             for &cell in cells {
                                 loads.add(
                                     Load::Pressure {
@@ -479,6 +527,21 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                         .map(|(n, c, a)| Ok((Dof::new(*n, comp(c)?), *a)))
                         .collect::<Result<Vec<_>, ExecError>>()?;
                     loads.add(Load::Relation { terms, rhs: r.rhs }, m.clone());
+                }
+                for r in &l.relations_fn {
+                    let terms = r
+                        .relation
+                        .terms
+                        .iter()
+                        .map(|(n, c, a)| Ok((Dof::new(*n, comp(c)?), *a)))
+                        .collect::<Result<Vec<_>, ExecError>>()?;
+                    loads.add(
+                        Load::Relation {
+                            terms,
+                            rhs: r.relation.rhs,
+                        },
+                        function_multiplier(&r.function, [0.0; 3], &m, &setup.instants)?,
+                    );
                 }
                 for f in &l.nodal_forces {
                     loads.add(
@@ -858,17 +921,30 @@ pub fn solve(
     ))
 }
 
-/// CONT_NOEU as a nodal field.
+/// CONT_NOEU as a nodal field (with PROJ_X… when the formulation writes
+/// them).
 fn cont_noeu_field(cn: &aster_contact::ContNoeu) -> NodalField {
-    let mut nf = NodalField::new(
-        aster_contact::CONT_NOEU_COMPONENTS
-            .iter()
-            .map(|c| c.to_string())
-            .collect(),
-    );
-    for (n, vals) in cn.nodes.iter().zip(&cn.values) {
+    let with_proj = !cn.proj.is_empty();
+    let mut names: Vec<String> = aster_contact::CONT_NOEU_COMPONENTS
+        .iter()
+        .map(|c| c.to_string())
+        .collect();
+    if with_proj {
+        names.extend(
+            aster_contact::CONT_NOEU_PROJ_COMPONENTS
+                .iter()
+                .map(|c| c.to_string()),
+        );
+    }
+    let mut nf = NodalField::new(names);
+    for (k, (n, vals)) in cn.nodes.iter().zip(&cn.values).enumerate() {
         for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
             nf.set(*n, c, *v);
+        }
+        if let Some(p) = cn.proj.get(k) {
+            for (c, v) in aster_contact::CONT_NOEU_PROJ_COMPONENTS.iter().zip(p) {
+                nf.set(*n, c, *v);
+            }
         }
     }
     nf
@@ -1032,4 +1108,52 @@ fn continuum_only(cells: Vec<CellValues>) -> Vec<CellValues> {
         .into_iter()
         .filter(|c| c.names.first() == Some(&"SIXX"))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::function::FormulaFn;
+
+    #[test]
+    fn cut_instants_are_the_nested_subdivisions_of_each_step() {
+        let sd = aster_fem::Subdivision {
+            pieces: 2,
+            max_level: 2,
+            min_step: 0.0,
+        };
+        assert_eq!(
+            cut_instants(&[0.0, 1.0, 3.0], Some(sd)),
+            vec![0.25, 0.5, 0.75, 1.5, 2.0, 2.5]
+        );
+        assert!(cut_instants(&[0.0, 1.0], None).is_empty());
+        // SUBD_PAS^SUBD_NIVEAU beyond 256 points a step: not sampled.
+        let deep = aster_fem::Subdivision {
+            pieces: 5,
+            max_level: 5,
+            min_step: 0.0,
+        };
+        assert!(cut_instants(&[0.0, 1.0], Some(deep)).is_empty());
+    }
+
+    /// A formula of INST given as FONC_MULT is known at the times a cut
+    /// reaches (code_aster's default cutting: 4 pieces, 3 levels), not only
+    /// at the list's instants; elsewhere the time is named.
+    #[test]
+    fn a_formula_multiplier_is_known_where_steps_are_cut() {
+        let f: Rc<FormulaFn> = Rc::new(|args: &[(String, f64)]| Ok(10.0 * args[0].1 * args[0].1));
+        let formula = Some(Rc::new(Function::Formula {
+            parameters: vec!["INST".into()],
+            eval: f,
+        }));
+        let instants = [0.0, 0.4, 0.5];
+        let cuts = cut_instants(&instants, Some(aster_fem::Subdivision::default()));
+        let m = multiplier(&formula, &instants, &cuts).unwrap();
+        let at = 0.4 + 0.1 * 3.0 / 64.0;
+        assert!((m.eval(at).unwrap() - 10.0 * at * at).abs() < 1e-12);
+        assert!((m.eval(0.5).unwrap() - 2.5).abs() < 1e-12);
+        let without = multiplier(&formula, &instants, &[]).unwrap();
+        let e = without.eval(at).unwrap_err().to_string();
+        assert!(e.contains("not an instant of the list"), "{e}");
+    }
 }

@@ -170,7 +170,11 @@ fn only_components(field: aster_mesh::Field, wanted: &[&str]) -> Option<aster_me
 
 /// What IMPR_RESU reads (`crate::support`).
 pub(crate) const IMPR_RESU: Support = Support {
-    values: &[Values::new("FORMAT", &["MED", "ASTER", "RESULTAT", "GMSH"])],
+    values: &[
+        Values::new("FORMAT", &["MED", "ASTER", "RESULTAT", "GMSH"]),
+        // 'OUI' is what no NOM_CHAM means: every field of the result.
+        Values::new("RESU/TOUT_CHAM", &["OUI"]),
+    ],
     rules: Some(impr_resu_rules),
     ..Support::keywords(&[
         "FORMAT",
@@ -186,6 +190,7 @@ pub(crate) const IMPR_RESU: Support = Support {
         "RESU/RESULTAT",
         "RESU/CHAM_GD",
         "RESU/NOM_CHAM",
+        "RESU/TOUT_CHAM",
         "RESU/TOUT",
         "RESU/TOUT_ORDRE",
         "RESU/NUME_ORDRE",

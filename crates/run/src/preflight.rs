@@ -254,6 +254,10 @@ pub fn check_study(map: &CodeMap, study: &aster_eval::Study, options: &RunOption
     findings.append(&mut sink.findings);
     if !sink.unknown_mesh && !sink.meshes.is_empty() {
         findings.extend(group_findings(&sink.check.calls, &sink.meshes));
+        findings.extend(crate::contactbridge::tied_verification_zones(
+            &sink.check.calls,
+            &sink.meshes,
+        ));
     }
     findings.sort_by_key(|d| (d.span.start, d.span.end));
     findings.dedup_by(|a, b| a.span == b.span && a.message == b.message);

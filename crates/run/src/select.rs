@@ -38,7 +38,19 @@ pub fn group_ma<'m>(mesh: &'m Mesh, name: &str) -> Result<&'m [CellId], String> 
 }
 
 pub fn node_named(mesh: &Mesh, name: &str) -> Result<NodeId, String> {
-    match mesh.node_names.iter().position(|n| n == name) {
+    // `N12` also names node 12 of a mesh whose nodes are named by their
+    // numbers (a MED file without node names, as code_aster 17 reads it).
+    let numbered = || {
+        let k: usize = name.strip_prefix('N')?.parse().ok()?;
+        let i = k.checked_sub(1)?;
+        (mesh.node_names.get(i)? == &k.to_string()).then_some(i)
+    };
+    match mesh
+        .node_names
+        .iter()
+        .position(|n| n == name)
+        .or_else(numbered)
+    {
         Some(i) => Ok(NodeId(i as u32)),
         None => Err(format!(
             "the mesh has no node `{name}`{}",

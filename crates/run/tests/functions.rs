@@ -1,7 +1,8 @@
 //! The project's functions-and-tables scene (comm/functions.comm on
 //! comm/strip.mail): RECU_FONCTION, CALC_FONCTION (COMB, INTEGRE),
 //! CALC_FONC_INTERP, CREA_TABLE, CALC_TABLE, TEST_FONCTION against analytic values, and
-//! IMPR_FONCTION's XMGRACE file on a unit named by DEFI_FICHIER.
+//! IMPR_FONCTION's XMGRACE file on a unit named by DEFI_FICHIER, and
+//! IMPR_TABLE's.
 
 use std::path::PathBuf;
 
@@ -53,6 +54,20 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
     assert!(
         table.contains("\n 1.0000000E+00  1.0000000E+01\n"),
         "{table}"
+    );
+    // IMPR_TABLE(FORMAT='XMGRACE'): X the abscissa, YY and XY one set
+    // each, in the table's order (sorted by decreasing X).
+    let agr = std::fs::read_to_string(out.join("table.agr")).unwrap();
+    assert!(
+        agr.contains("@xaxis label \"X\"\n@world xmin 0.0\n@world xmax 4.0\n"),
+        "{agr}"
+    );
+    assert!(
+        agr.contains(
+            "@s0 legend \"YY\"\n@target G0.S0\n@type xy\n3.0 30.0\n2.0 20.0\n1.0 10.0\n&\n\
+             @s1 legend \"XY\"\n@target G0.S1\n@type xy\n3.0 90.0\n2.0 40.0\n1.0 10.0\n&\n"
+        ),
+        "{agr}"
     );
     let _ = std::fs::remove_dir_all(out);
 }

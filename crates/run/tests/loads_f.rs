@@ -21,7 +21,7 @@ fn run(comm: &Path, tag: &str) -> aster_run::program::Outcome {
 fn function_loads_pass_the_analytic_checks() {
     let outcome = run(&root().join("comm/loads_f.comm"), "scene");
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (10, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (13, 0));
 }
 
 #[test]
@@ -49,5 +49,33 @@ FIN()
         "{err}"
     );
     assert!(err.contains("pres_x.comm:5:"), "{err}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_liaison_group_of_the_coordinates_is_refused_with_its_location() {
+    let dir = std::env::temp_dir().join(format!("aster-loads-f-lg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("lg_x.comm");
+    std::fs::write(
+        &comm,
+        r#"DEBUT()
+mesh = LIRE_MAILLAGE(FORMAT="ASTER")
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA=("PLATE", "RIGHT", "LEFT"), PHENOMENE="MECANIQUE", MODELISATION="C_PLAN"))
+g = FORMULE(NOM_PARA=("X",), VALE="1.0e-3 * X")
+load = AFFE_CHAR_MECA_F(MODELE=model, LIAISON_GROUP=_F(GROUP_MA_1="RIGHT", GROUP_MA_2="LEFT", DDL_1="DX", COEF_MULT_1=1.0, DDL_2="DX", COEF_MULT_2=-1.0, COEF_IMPO=g))
+FIN()
+"#,
+    )
+    .unwrap();
+    let outcome = run(&comm, "lg");
+    let err = outcome.error.expect("refused").message;
+    assert!(
+        err.contains(
+            "not supported yet: AFFE_CHAR_MECA_F/LIAISON_GROUP/COEF_IMPO as a function of X (only functions of INST)"
+        ),
+        "{err}"
+    );
+    assert!(err.contains("lg_x.comm:5:"), "{err}");
     let _ = std::fs::remove_dir_all(dir);
 }

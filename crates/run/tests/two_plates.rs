@@ -25,6 +25,53 @@ fn run_scene(comm: &str) -> (usize, usize) {
     (outcome.tally.ok, outcome.tally.nook)
 }
 
+/// Runs a scene of comm/ on the two-plate mesh written with three
+/// coordinates (z = 0), as gmsh and MED files of plane studies are.
+fn run_scene_on_3_coordinates(comm: &str) -> (usize, usize) {
+    let dir = std::env::temp_dir().join(format!("aster-3c-{comm}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(root().join("comm/two_plates.mail")).unwrap();
+    let mut lines = Vec::new();
+    let mut in_coords = false;
+    for line in text.lines() {
+        if line.trim() == "COOR_2D" {
+            in_coords = true;
+            lines.push("COOR_3D".to_string());
+        } else if in_coords && line.trim() == "FINSF" {
+            in_coords = false;
+            lines.push(line.to_string());
+        } else if in_coords {
+            lines.push(format!("{line} 0e0"));
+        } else {
+            lines.push(line.to_string());
+        }
+    }
+    let mesh = dir.join("two_plates_3c.mail");
+    std::fs::write(&mesh, lines.join("\n") + "\n").unwrap();
+    assert_eq!(aster_mesh::read_mail(&mesh).unwrap().dim, 3);
+    let out = dir.join("out");
+    let case =
+        aster_run::program::prepare(&root().join("comm").join(comm), Some(&mesh), &out).unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    let _ = std::fs::remove_dir_all(dir);
+    (outcome.tally.ok, outcome.tally.nook)
+}
+
+/// A plane model on a mesh whose nodes have three coordinates is a 2D
+/// problem (code_aster's `model_ndim`): its contact segments have normals
+/// of their own, in the frictionless and the frictional contact elements
+/// alike (before, the elements took the mesh's dimension and refused the
+/// segments as 3D ones without VECT_MAIT: ssnp152 b/c/e/g, ssnp504e).
+#[test]
+fn a_plane_model_on_three_coordinates_is_solved_as_in_2d() {
+    assert_eq!(run_scene_on_3_coordinates("two_plates.comm"), (8, 0));
+    assert_eq!(
+        run_scene_on_3_coordinates("two_plates_friction.comm"),
+        (8, 0)
+    );
+}
+
 #[test]
 fn lags_c_and_displacements_pass_every_check() {
     assert_eq!(run_scene("two_plates.comm"), (8, 0));
@@ -38,6 +85,15 @@ fn lags_c_and_displacements_pass_every_check() {
 #[test]
 fn sliding_plates_carry_mu_times_the_normal_force() {
     assert_eq!(run_scene("two_plates_friction.comm"), (8, 0));
+}
+
+/// comm/two_plates_friction_discrete.comm: discrete penalised friction
+/// (code_aster's `frogdp` iterates): pressed, the plates stick (CONT = 2,
+/// GLI the penalty's 7e-9); sheared beyond μN they slide (CONT = 1) with a
+/// friction resultant of μ times the normal one to 1e-8.
+#[test]
+fn discrete_sliding_plates_carry_mu_times_the_normal_force() {
+    assert_eq!(run_scene("two_plates_friction_discrete.comm"), (10, 0));
 }
 
 /// comm/two_plates_glued.comm: continuous contact under a pressure load,

@@ -283,19 +283,32 @@ fn auto_points(kind: SurfaceKind) -> Vec<([f64; 2], f64, Option<usize>)> {
 }
 
 impl ContinuousFriction {
-    /// The elements of a continuous definition with friction, on `mesh`;
-    /// `measure`: AXIS weights carry the radius.
+    /// The elements of a continuous definition with friction, on `mesh`,
+    /// in a problem whose dimension is the mesh's (3 when its nodes have
+    /// three coordinates); `measure`: AXIS weights carry the radius.
     pub fn new(
         def: &ContinueDefinition,
         mesh: &Mesh,
         measure: Measure,
+    ) -> Result<ContinuousFriction, ContactError> {
+        Self::new_in(def, mesh, measure, if mesh.dim >= 3 { 3 } else { 2 })
+    }
+
+    /// As [`ContinuousFriction::new`] in a problem of dimension `space_dim`
+    /// (the model's, as code_aster's `model_ndim`: a plane model on a mesh
+    /// whose nodes have three coordinates is 2D, its segments have normals).
+    pub fn new_in(
+        def: &ContinueDefinition,
+        mesh: &Mesh,
+        measure: Measure,
+        space_dim: usize,
     ) -> Result<ContinuousFriction, ContactError> {
         let friction: &ContinueFriction =
             def.friction.as_ref().ok_or_else(|| ContactError::Invalid {
                 keyword: "FROTTEMENT",
                 message: "the definition has no friction".into(),
             })?;
-        let dim = if mesh.dim >= 3 { 3 } else { 2 };
+        let dim = if space_dim >= 3 { 3 } else { 2 };
         let mut zones = Vec::new();
         for (i, (z, f)) in def.zones.iter().zip(&friction.zones).enumerate() {
             // Frictionless zones also take code_aster's Gauss rule (points
@@ -323,7 +336,7 @@ impl ContinuousFriction {
             };
             let mut geometry = z.geometry.clone();
             geometry.lissage = z.geometry.lissage;
-            let zone = ResolvedZone::new(i, &geometry, mesh)?;
+            let zone = ResolvedZone::new_in(i, &geometry, mesh, dim)?;
             zones.push(FZone {
                 zone,
                 coef_cont,
@@ -1192,7 +1205,11 @@ impl ContinuousFriction {
                 }
             }
         }
-        ContNoeu { nodes, values }
+        ContNoeu {
+            nodes,
+            values,
+            proj: Vec::new(),
+        }
     }
 
     /// The contact and friction forces at the slave nodes (the assembled

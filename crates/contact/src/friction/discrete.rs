@@ -17,28 +17,37 @@
 //!   tangents (`JEUITE` 2:3 are zeroed at pairing, `cfaddm`);
 //! - friction: k = E_T when |s| ≤ μλ/E_T (stick), k = μλ/|s| otherwise
 //!   (slip, force exactly μλ), force k Tᵀ s (`cffpfo`, `cffpm1`: the
-//!   friction matrix (√k T)ᵀ(√k T) times the step's displacement);
-//! - tangent: E_N a aᵀ + k TᵀT, and when slipping the derivative of the
-//!   sliding force μλ Tᵀŝ (ŝ = s/|s|): −k (Tᵀŝ)(Tᵀŝ)ᵀ + μ E_N (Tᵀŝ) aᵀ.
-//!   code_aster (`cffpm2`) subtracts the first term weighted by
-//!   `COEF_MATR_FROT` while RESI_GLOB_RELA ≥ 1e-3 and fully afterwards,
-//!   and omits the second (its matrix stays symmetric; its cases allow up
-//!   to 1500 Newton iterations). The tangent changes the iterates, not the
-//!   converged state: the full derivative converges in a few iterations
-//!   (fem's LU takes the unsymmetric matrix), and a node whose slip
-//!   reverses between two iterates (the stick/slip boundary) takes the
-//!   sticking tangent E_T TᵀT for that iteration. `COEF_MATR_FROT` is read
-//!   and checked but does not change the answer.
+//!   friction matrix (√k T)ᵀ(√k T) times the step's displacement).
+//!
+//! The answer is where code_aster's Newton stops, not the exact solution
+//! of this law: code_aster's tangent is symmetric and misses the μ E_N
+//! coupling of the sliding force with the normal one, so its Newton
+//! converges linearly (a factor 0.5–0.75 per iteration on ssnv128) and
+//! stops at RESI_GLOB_RELA with the friction still a few 1e-6 from its
+//! limit. The converged solution is 1.6–3.4 % off code_aster's numbers on
+//! ssnv128c: the iterates are reproduced instead, pass for pass
+//! (`DiscreteFriction::frogdp`):
+//!
+//! - the prediction (`nmprta`) solves with the matrix without contact
+//!   terms (`nmmatr` adds them in the correction phase only) and the
+//!   forces of the last evaluation (`CNCTDF`) held fixed;
+//! - each evaluation computes the forces and the next matrix at the
+//!   iterate: E_N a aᵀ (`cfcpem`) + k TᵀT (`cffpm1`) − β² f fᵀ per sliding
+//!   link (`cffpm2`), f the friction forces `AFMU` on the link's DOFs and
+//!   β² = 1/(μλ|s|), times `COEF_MATR_FROT` while the previous
+//!   RESI_GLOB_RELA is ≥ 1e-3 (infinite at the start of a step);
+//! - the friction of a link is switched on one evaluation after it comes
+//!   into contact, and off for every link at the start of a step
+//!   (`MU(2·nbliai + i)`, `cfprep`, `cffpm2`);
+//! - a geometric iteration (`cfconv` → `cfcgeo`) does not restart Newton:
+//!   the next iteration solves with the current matrix and residual, then
+//!   pairs on the geometry before that solve (`nmcofr` → `cfgeom`).
 //!
 //! The friction force has no memory across steps: it is E_T times the
-//! step's slip, capped at μλ. So a node that sticks through a step after a
-//! slipping one carries only the friction of that step's motion — this is
-//! code_aster's law, not an elastoplastic regularisation.
-//!
-//! code_aster switches a link's friction on one iteration after it comes
-//! into contact (`MU(2·nbliai + i)`, set in `cffpm2`): the converged state
-//! is the same, since an iteration with the friction missing does not
-//! balance a frictional load.
+//! step's slip, capped at μλ (`cfjein`: `JEUX(2:3)` is `APCOFR` applied to
+//! the step's cumulated increment). So a node that sticks through a step
+//! after a slipping one carries only the friction of that step's motion —
+//! this is code_aster's law, not an elastoplastic regularisation.
 //!
 //! CONT_NOEU (`cfresu`): CONT is 1 for a link whose friction coefficient
 //! is not √E_T (sliding) and 2 for a sticking one — code_aster's own
@@ -48,6 +57,7 @@
 
 use aster_fem::{Contribution, Dof, FemError, ForceSource, LoopVerdict, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
+use std::collections::HashMap;
 
 use super::continuous::tangents;
 use super::DiscreteZoneFriction;
@@ -81,6 +91,8 @@ struct Link {
     tangents: Vec<Vec<(usize, f64)>>,
     /// The slave node's translation DOFs (for its forces in CONT_NOEU).
     slave_dofs: [Option<usize>; 3],
+    /// The master point it is paired with (`APPROJ`: CONT_NOEU's PROJ_X…).
+    proj: [f64; 3],
 }
 
 /// The state of a link at an iterate.
@@ -112,9 +124,30 @@ pub struct DiscreteFriction {
     u_start: Vec<f64>,
     first_increment: bool,
     snapshots: Snapshots,
-    /// Per link, the slip of the previous evaluation (a reversal between
-    /// two iterates takes the sticking tangent: see `evaluate`).
-    last_slip: Vec<Option<[f64; 2]>>,
+    /// code_aster's `MU(2·nbliai + i)` per slave node: the friction of a
+    /// link is switched on one evaluation after it comes into contact, and
+    /// off for every link at the start of a step (`cfprep`, `cffpm2`).
+    friction_on: HashMap<NodeId, bool>,
+    /// RESI_GLOB_RELA of the previous iterate (`cffpm2` weights the
+    /// sliding tangent by COEF_MATR_FROT while it is ≥ 1e-3); infinite at
+    /// the start of a step (`nmnpas`: r8vide).
+    resigr: f64,
+    /// The next evaluation is the step's prediction (see `evaluate`).
+    prediction: bool,
+    /// The contact and friction forces of the last evaluation (code_aster's
+    /// `CNCTDF`), which the prediction of the next step takes as given.
+    last_forces: Vec<(usize, f64)>,
+    /// The last evaluation, replayed once when a geometric iteration
+    /// restarts Newton from the same iterate.
+    replay: Option<Contribution>,
+    /// Displacement at which to pair before the next evaluation (the
+    /// geometry before the solve, as `cfgeom` in `nmcofr`).
+    pending_pair: Option<Vec<f64>>,
+    /// The link states of the last evaluation (CONT_NOEU of the converged
+    /// state: code_aster's `cfresu` reads the coefficients of that pass).
+    last_states: Vec<LinkState>,
+    /// The contribution of the last evaluation.
+    last_eval: Option<Contribution>,
 }
 
 impl DiscreteFriction {
@@ -122,6 +155,16 @@ impl DiscreteFriction {
     /// be `ALGO_CONT='PENALISATION'` (code_aster's only discrete friction,
     /// `cfalgo`: `frogdp`).
     pub fn new(def: &ContactDefinition, mesh: &Mesh) -> Result<Self, ContactError> {
+        Self::new_in(def, mesh, if mesh.dim >= 3 { 3 } else { 2 })
+    }
+
+    /// As [`DiscreteFriction::new`] in a problem of dimension `space_dim`
+    /// (the model's: a plane model on a mesh with three coordinates is 2D).
+    pub fn new_in(
+        def: &ContactDefinition,
+        mesh: &Mesh,
+        space_dim: usize,
+    ) -> Result<Self, ContactError> {
         let ContactDefinition::Discrete(d) = def else {
             return Err(ContactError::Unsupported {
                 feature: "discrete friction on a continuous definition".into(),
@@ -135,7 +178,7 @@ impl DiscreteFriction {
             });
         };
         friction.check(d.zones.len())?;
-        let contacts = ZoneContact::build_all(def, mesh)?;
+        let contacts = ZoneContact::build_all_in(def, mesh, space_dim)?;
         let mut zones = Vec::new();
         for ((c, z), f) in contacts.into_iter().zip(&d.zones).zip(&friction.zones) {
             let DiscreteAlgo::Penalisation { e_n } = z.law else {
@@ -160,7 +203,14 @@ impl DiscreteFriction {
             u_start: Vec::new(),
             first_increment: true,
             snapshots: Vec::new(),
-            last_slip: Vec::new(),
+            friction_on: HashMap::new(),
+            resigr: f64::INFINITY,
+            prediction: false,
+            last_forces: Vec::new(),
+            replay: None,
+            pending_pair: None,
+            last_states: Vec::new(),
+            last_eval: None,
         })
     }
 
@@ -254,17 +304,22 @@ impl DiscreteFriction {
                     rhs: row.rhs,
                     tangents: trows,
                     slave_dofs,
+                    proj: p.master_x,
                 });
             }
         }
-        self.last_slip = vec![None; links.len()];
         self.links = links;
         self.unpaired = unpaired;
         Ok(())
     }
 
-    /// The state of a link at the displacement `u`.
+    /// The state of a link at the displacement `u`, its friction switched
+    /// on (`cffpfo` with `MU(2·nbliai + i)` ≠ 0).
     fn link_state(&self, l: &Link, u: &[f64]) -> LinkState {
+        self.link_state_with(l, u, true)
+    }
+
+    fn link_state_with(&self, l: &Link, u: &[f64], friction_on: bool) -> LinkState {
         let z = &self.zones[l.zone];
         let au: f64 = l.row.iter().map(|&(i, c)| c * u[i]).sum();
         let gap = l.rhs - au;
@@ -290,7 +345,7 @@ impl DiscreteFriction {
         } else {
             0.0
         };
-        if threshold > 0.0 {
+        if threshold > 0.0 && friction_on {
             if st.glis <= threshold / f.e_t {
                 st.k = f.e_t;
                 st.stick = true;
@@ -325,24 +380,32 @@ impl DiscreteFriction {
     }
 
     fn cont_noeu(&self, state: &State) -> ContNoeu {
-        let mut out = ContNoeu {
-            nodes: Vec::new(),
-            values: Vec::new(),
-        };
-        let mut put = |node: NodeId, v: [f64; 19]| match out.nodes.iter().position(|n| *n == node) {
-            Some(k) => out.values[k] = v,
+        let mut out = ContNoeu::default();
+        let mut put = |node: NodeId, v: [f64; 19], proj: [f64; 3]| match out
+            .nodes
+            .iter()
+            .position(|n| *n == node)
+        {
+            Some(k) => {
+                out.values[k] = v;
+                out.proj[k] = proj;
+            }
             None => {
                 out.nodes.push(node);
                 out.values.push(v);
+                out.proj.push(proj);
             }
         };
         for &(_, n) in &self.unpaired {
             let mut v = [0.0; 19];
             v[0] = -1.0;
-            put(n, v);
+            put(n, v, [0.0; 3]);
         }
-        for l in &self.links {
-            let st = self.link_state(l, state.displacement);
+        for (li, l) in self.links.iter().enumerate() {
+            let st = match self.last_states.get(li) {
+                Some(st) if self.last_states.len() == self.links.len() => *st,
+                _ => self.link_state(l, state.displacement),
+            };
             let mut v = [0.0; 19];
             v[1] = st.gap;
             if st.gap < f64::EPSILON {
@@ -366,9 +429,109 @@ impl DiscreteFriction {
                 }
                 v[18] = (v[15] * v[15] + v[16] * v[16] + v[17] * v[17]).sqrt();
             }
-            put(l.node, v);
+            // cfresu: PROJ_X… of the links in contact, zero elsewhere.
+            let proj = if st.gap < f64::EPSILON {
+                l.proj
+            } else {
+                [0.0; 3]
+            };
+            put(l.node, v, proj);
         }
         out
+    }
+
+    /// One pass of code_aster's `frogdp` at the displacement `u`: the
+    /// contact forces (`cfcpes`), the friction coefficients (`cffpfo`),
+    /// the friction forces `AFMU` = Σ k TᵀT Δu (`cffpm1`), and the matrix
+    /// `MACT + MAF1 − MAF2` (`cfcpem`, `cffpm1`, `cffpm2`), where MAF2
+    /// subtracts, per sliding link, β² (AFMU on its DOFs)(…)ᵀ with
+    /// β² = 1/(μλ|s|), times COEF_MATR_FROT while the previous
+    /// RESI_GLOB_RELA is ≥ 1e-3. The friction flags then switch on the
+    /// links in contact and off the others (`cffpm2`).
+    fn frogdp(&mut self, u: &[f64]) -> Contribution {
+        let mut c = Contribution::default();
+        let states: Vec<LinkState> = self
+            .links
+            .iter()
+            .map(|l| {
+                let on = self.friction_on.get(&l.node).copied().unwrap_or(false);
+                self.link_state_with(l, u, on)
+            })
+            .collect();
+        // AFMU: the friction forces, on every DOF.
+        let mut afmu: HashMap<usize, f64> = HashMap::new();
+        for (l, st) in self.links.iter().zip(&states) {
+            if st.k == 0.0 {
+                continue;
+            }
+            for (k, t) in l.tangents.iter().enumerate() {
+                for &(i, a) in t {
+                    *afmu.entry(i).or_insert(0.0) += st.k * st.slip[k] * a;
+                }
+            }
+        }
+        let trace = std::env::var_os("ASTER_FRICTION_TRACE").is_some();
+        for (l, st) in self.links.iter().zip(&states) {
+            if trace {
+                eprintln!("[discrete friction] node {:?} {:?}", l.node, st);
+            }
+            if st.gap >= f64::EPSILON {
+                continue;
+            }
+            let z = &self.zones[l.zone];
+            for &(i, a) in &l.row {
+                c.forces.push((i, st.lambda * a));
+                for &(j, b) in &l.row {
+                    c.tangent
+                        .push((Unknown::Dof(i), Unknown::Dof(j), z.e_n * a * b));
+                }
+            }
+            for t in &l.tangents {
+                for &(i, a) in t {
+                    for &(j, b) in t {
+                        c.tangent
+                            .push((Unknown::Dof(i), Unknown::Dof(j), st.k * a * b));
+                    }
+                }
+            }
+            let lambdf = z.friction.coulomb * st.lambda.max(0.0);
+            let on = self.friction_on.get(&l.node).copied().unwrap_or(false);
+            if lambdf != 0.0 && on && st.glis > lambdf / z.friction.e_t {
+                let mut beta2 = 1.0 / (lambdf * st.glis);
+                if self.resigr >= 1e-3 {
+                    beta2 *= z.friction.coef_matr_frot;
+                }
+                let mut dofs: Vec<usize> = l.row.iter().map(|&(i, _)| i).collect();
+                dofs.sort_unstable();
+                dofs.dedup();
+                let v: Vec<(usize, f64)> = dofs
+                    .iter()
+                    .map(|&i| (i, afmu.get(&i).copied().unwrap_or(0.0)))
+                    .collect();
+                for &(i, a) in &v {
+                    for &(j, b) in &v {
+                        c.tangent
+                            .push((Unknown::Dof(i), Unknown::Dof(j), -beta2 * a * b));
+                    }
+                }
+            }
+        }
+        for (i, f) in afmu {
+            c.forces.push((i, f));
+        }
+        // cffpm2: the flags of the next evaluation.
+        for (l, st) in self.links.iter().zip(&states) {
+            let z = &self.zones[l.zone];
+            if st.gap < 0.0 {
+                if z.friction.coulomb * st.lambda > 0.0 {
+                    self.friction_on.insert(l.node, true);
+                }
+            } else {
+                self.friction_on.insert(l.node, false);
+            }
+        }
+        self.last_states = states;
+        c
     }
 
     fn nodal(state: &State) -> Vec<[f64; 3]> {
@@ -396,84 +559,47 @@ impl ForceSource for DiscreteFriction {
         };
         if pair {
             self.pair_all(state).map_err(|e| self.err(e))?;
+            // cfprep: the friction flags start off with each step's first
+            // pairing (l_first_geom).
+            self.friction_on.clear();
         }
+        self.resigr = f64::INFINITY;
+        self.prediction = true;
+        self.replay = None;
+        self.pending_pair = None;
         Ok(())
     }
 
     fn evaluate(&mut self, state: &State, _own: &[f64]) -> Result<Contribution, FemError> {
-        let u = state.displacement;
-        let mut c = Contribution::default();
-        for (li, l) in self.links.iter().enumerate() {
-            let st = self.link_state(l, u);
-            // A node whose slip reversed since the previous iterate sits at
-            // the stick/slip boundary: the sliding tangent (1 − c) μλ/|s|
-            // sends it across by (1 + c)… times its slip, back and forth
-            // (a corner of a pressed plate does so for ever with c = 0.5).
-            // The sticking tangent E_T brings it back to the boundary. The
-            // tangent only changes the iterates, not the converged state.
-            let reversed = match self.last_slip.get(li).copied().flatten() {
-                Some(p) => p[0] * st.slip[0] + p[1] * st.slip[1] < 0.0,
-                None => false,
-            };
-            if let Some(ls) = self.last_slip.get_mut(li) {
-                *ls = (st.glis > 0.0).then_some(st.slip);
-            }
-            if std::env::var_os("ASTER_FRICTION_TRACE").is_some() {
-                eprintln!("[discrete friction] node {:?} {:?}", l.node, st);
-            }
-            if st.gap >= f64::EPSILON {
-                continue;
-            }
-            let e_n = self.zones[l.zone].e_n;
-            for &(i, a) in &l.row {
-                c.forces.push((i, st.lambda * a));
-                for &(j, b) in &l.row {
-                    c.tangent
-                        .push((Unknown::Dof(i), Unknown::Dof(j), e_n * a * b));
-                }
-            }
-            if st.k == 0.0 {
-                continue;
-            }
-            let e_t = self.zones[l.zone].friction.e_t;
-            let kt = if reversed && !st.stick { e_t } else { st.k };
-            for (k, t) in l.tangents.iter().enumerate() {
-                for &(i, a) in t {
-                    c.forces.push((i, st.k * st.slip[k] * a));
-                    for &(j, b) in t {
-                        c.tangent
-                            .push((Unknown::Dof(i), Unknown::Dof(j), kt * a * b));
-                    }
-                }
-            }
-            // Near the stick/slip boundary (|s| < 2 μλ/E_T) the full
-            // derivative sends the node back and forth across it: the
-            // secant k TᵀT alone there.
-            let deep = e_t > 2.0 * st.k;
-            if !st.stick && !reversed && st.glis > 0.0 && deep {
-                // The sliding force μλ Tᵀŝ: −k (Tᵀŝ)(Tᵀŝ)ᵀ (what code_aster's
-                // `cffpm2` subtracts, weighted by COEF_MATR_FROT far from
-                // convergence and fully near it) and its dependence on the
-                // normal force, μ E_N (Tᵀŝ) aᵀ (code_aster omits it).
-                let mut v: Vec<(usize, f64)> = Vec::new();
-                for (k, t) in l.tangents.iter().enumerate() {
-                    let sk = st.slip[k] / st.glis;
-                    v.extend(t.iter().map(|&(i, a)| (i, a * sk)));
-                }
-                let mu = self.zones[l.zone].friction.coulomb;
-                for &(i, a) in &v {
-                    for &(j, b) in &v {
-                        c.tangent
-                            .push((Unknown::Dof(i), Unknown::Dof(j), -st.k * a * b));
-                    }
-                    for &(j, b) in &l.row {
-                        c.tangent
-                            .push((Unknown::Dof(i), Unknown::Dof(j), mu * e_n * a * b));
-                    }
-                }
-            }
+        // code_aster's prediction (`nmprta`): the matrix without the
+        // contact and friction terms (`nmmatr` adds them in the correction
+        // phase only) and the forces of the last evaluation (`CNCTDF`,
+        // those of the previous step's converged state) held fixed.
+        if self.prediction {
+            self.prediction = false;
+            return Ok(Contribution {
+                forces: self.last_forces.clone(),
+                ..Contribution::default()
+            });
         }
+        if let Some(c) = self.replay.take() {
+            return Ok(c);
+        }
+        if let Some(u) = self.pending_pair.take() {
+            let at = State {
+                displacement: &u,
+                ..*state
+            };
+            self.pair_all(&at).map_err(|e| self.err(e))?;
+        }
+        let c = self.frogdp(state.displacement);
+        self.last_forces = c.forces.clone();
+        self.last_eval = Some(c.clone());
         Ok(c)
+    }
+
+    fn observe_residual(&mut self, resi_glob_rela: f64) {
+        self.resigr = resi_glob_rela;
     }
 
     fn after_iteration(&mut self, _state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
@@ -486,7 +612,12 @@ impl ForceSource for DiscreteFriction {
         match self.geom.decide(state.time, &Self::nodal(state)) {
             GeomDecision::Keep => Ok(LoopVerdict::Done),
             GeomDecision::Pair => {
-                self.pair_all(state).map_err(|e| self.err(e))?;
+                // code_aster's discrete geometric loop (`cfconv` →
+                // `cfcgeo`) does not restart Newton: the next iteration
+                // solves with the current matrix and residual, then pairs
+                // on the geometry before that solve (`nmcofr` → `cfgeom`).
+                self.replay = self.last_eval.clone();
+                self.pending_pair = Some(state.displacement.to_vec());
                 Ok(LoopVerdict::Again)
             }
             GeomDecision::Diverged { pairings, residual } => Err(FemError::Source(format!(

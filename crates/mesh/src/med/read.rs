@@ -286,9 +286,20 @@ impl Reader<'_> {
         let families = self.families(mesh_obj, mesh_name)?;
         let (groups_no, groups_ma, warnings) = build_groups(&families, &node_fam, &cell_fam);
 
+        // Names `N1`, `N2`… in order are code_aster's defaults written
+        // back: the node is unnamed (code_aster 17 ignores them too).
+        let node_names = node_names.filter(|names| {
+            !names
+                .iter()
+                .enumerate()
+                .all(|(i, n)| n.strip_prefix('N') == Some((i + 1).to_string().as_str()))
+        });
         let node_names = match node_names {
             Some(n) => n,
-            None => (1..=n_nodes).map(|i| numbered_name('N', i)).collect(),
+            // code_aster 17 names an unnamed node by its number: its
+            // tables print `783` (ssnv127f filters POST_RELEVE_T rows on
+            // NOEUD='783'); `N783` still finds it (`aster_run::select`).
+            None => (1..=n_nodes).map(|i| i.to_string()).collect(),
         };
         let cell_names = cell_names
             .into_iter()

@@ -244,10 +244,11 @@ pub fn med_bytes(mesh: &Mesh, mesh_name: &str, steps: &[ResultStep]) -> Result<V
 
 /// Whether names are code_aster's defaults (`N1`, `N2`… or `M1`…), which need not be stored.
 fn default_names(names: &[String], prefix: char) -> bool {
+    // `N12` or, for the nodes of a MED file read without names, `12`.
     names
         .iter()
         .enumerate()
-        .all(|(i, s)| s.strip_prefix(prefix).and_then(|r| r.parse::<usize>().ok()) == Some(i + 1))
+        .all(|(i, s)| s.strip_prefix(prefix).unwrap_or(s).parse::<usize>().ok() == Some(i + 1))
 }
 
 /// Family number of each entity, and the families (number, group names).

@@ -6,6 +6,7 @@ mod geom_groups;
 mod groups;
 mod orient;
 mod orient_along;
+mod perturb;
 mod points;
 mod rebuild;
 mod restrict;

@@ -389,13 +389,13 @@ pub fn calc_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
 }
 
 /// One curve of IMPR_FONCTION: its points and its names.
-struct Curve {
-    x_name: String,
-    y_name: String,
+pub(crate) struct Curve {
+    pub(crate) x_name: String,
+    pub(crate) y_name: String,
     /// code_aster's legend: LEGENDE, else the name of the function
     /// (FONCTION, FONC_X) the curve comes from.
-    legend: Option<String>,
-    points: Vec<(f64, f64)>,
+    pub(crate) legend: Option<String>,
+    pub(crate) points: Vec<(f64, f64)>,
 }
 
 fn curve(ex: &Executor, occ: &Keywords) -> Result<Curve, ExecError> {
@@ -506,7 +506,7 @@ fn truncate(s: &str) -> String {
 
 /// The curves as an XMGRACE (`.agr`) project: axes, legends, one xy set per
 /// curve.
-fn xmgrace(kw: &Keywords, curves: &[Curve]) -> String {
+pub(crate) fn xmgrace(kw: &Keywords, curves: &[Curve]) -> String {
     let quoted = |k: &str| kw.str(k).map(|s| s.replace('"', "'"));
     let mut out = String::from("# Grace project file written by aster\n@version 50100\n");
     if let Some(t) = quoted("TITRE") {

@@ -376,8 +376,14 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         }
     }
     for occ in kw.factor("LIAISON_GROUP") {
-        load.relations
-            .extend(liaison_group(ex, occ, (&model, &mesh, &carried))?);
+        let rhs = occ.f64("COEF_IMPO").unwrap_or(0.0);
+        load.relations.extend(liaison_group(
+            ex,
+            "AFFE_CHAR_MECA/LIAISON_GROUP",
+            occ,
+            (&model, &mesh, &carried),
+            rhs,
+        )?);
     }
     for occ in kw.factor("LIAISON_UNIF") {
         let what = "AFFE_CHAR_MECA/LIAISON_UNIF";
@@ -703,13 +709,16 @@ fn face_dnor(
 /// side 2 (code_aster's pairing without a transformation), and each pair
 /// gets Σ COEF_MULT_1·DDL_1(n₁) + Σ COEF_MULT_2·DDL_2(n₂) = COEF_IMPO. A
 /// node paired with itself gets no relation; two nodes of side 1 paired
-/// with one node of side 2 is an error.
-fn liaison_group(
+/// with one node of side 2 is an error. `rhs` is COEF_IMPO (1 for
+/// AFFE_CHAR_MECA_F, whose function then multiplies the relation's
+/// right-hand side).
+pub(super) fn liaison_group(
     ex: &Executor,
+    what: &str,
     occ: &Keywords,
     (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+    rhs: f64,
 ) -> Result<Vec<LinearRelation>, ExecError> {
-    let what = "AFFE_CHAR_MECA/LIAISON_GROUP";
     let err = |e: String| ExecError::new(format!("{what}: {e}"));
     let excluded: std::collections::BTreeSet<NodeId> = select::nodes(occ, mesh, "SANS_")
         .map_err(err)?
@@ -770,7 +779,6 @@ fn liaison_group(
             .collect()
     };
     let (t1, t2) = (terms("1")?, terms("2")?);
-    let rhs = occ.f64("COEF_IMPO").unwrap_or(0.0);
     let dist2 = |a: NodeId, b: NodeId| {
         let (p, q) = (mesh.coord(a), mesh.coord(b));
         (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()

@@ -150,6 +150,17 @@ pub(crate) const AFFE_CHAR_MECA_F: Support = Support::keywords(&[
     "PRES_REP/MAILLE",
     "PRES_REP/TOUT",
     "PRES_REP/PRES",
+    "LIAISON_GROUP",
+    "LIAISON_GROUP/GROUP_NO_1",
+    "LIAISON_GROUP/GROUP_NO_2",
+    "LIAISON_GROUP/GROUP_MA_1",
+    "LIAISON_GROUP/GROUP_MA_2",
+    "LIAISON_GROUP/SANS_GROUP_NO",
+    "LIAISON_GROUP/DDL_1",
+    "LIAISON_GROUP/DDL_2",
+    "LIAISON_GROUP/COEF_MULT_1",
+    "LIAISON_GROUP/COEF_MULT_2",
+    "LIAISON_GROUP/COEF_IMPO",
 ]);
 
 pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -211,6 +222,28 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
             .ok_or_else(|| ex.kw_error(what, occ, "PRES", "a pressure function is required"))?;
         load.boundary_fn
             .push(BoundaryFn::Pressure { cells, pressure });
+    }
+    for occ in kw.factor("LIAISON_GROUP") {
+        let what = "AFFE_CHAR_MECA_F/LIAISON_GROUP";
+        let function = function_at(ex, what, occ, "COEF_IMPO")?
+            .ok_or_else(|| ex.kw_error(what, occ, "COEF_IMPO", "a function is required"))?;
+        // code_aster evaluates COEF_IMPO of a pair with the time only.
+        if let Some(p) = function.0.parameters().into_iter().find(|p| *p != "INST") {
+            let span = occ
+                .keyword("COEF_IMPO")
+                .map(|k| k.span)
+                .unwrap_or(call.span);
+            return Err(ex.unsupported(
+                &format!("{what}/COEF_IMPO as a function of {p} (only functions of INST)"),
+                span,
+            ));
+        }
+        let relations = super::loads::liaison_group(ex, what, occ, ctx, 1.0)?;
+        load.relations_fn
+            .extend(relations.into_iter().map(|relation| RelationFn {
+                relation,
+                function: function.clone(),
+            }));
     }
     store_result(ex, call, Concept::MechanicalLoad(Rc::new(load)))
 }

@@ -423,6 +423,7 @@ pub(crate) const MODI_MAILLAGE: Support = Support {
         "DEFORME",
         "DEFORME/OPTION",
         "DEFORME/DEPL",
+        "DEFORME/ALEA",
         "ECHELLE",
     ])
 };
@@ -431,6 +432,11 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
     for occ in kw.factor("DEFORME") {
+        // ALEA: code_aster's pseudo-random move of every node.
+        if let Some(alea) = occ.f64("ALEA") {
+            mesh.perturb_randomly(alea);
+            continue;
+        }
         // OPTION='TRAN': every node moves by the field's DX, DY, DZ.
         let d = ex.required("MODI_MAILLAGE/DEFORME", occ, "DEPL")?;
         let field = ex.field(d)?;

@@ -633,7 +633,9 @@ pub(crate) const POST_RELEVE_T: Support = Support {
     values: &[
         Values::new("ACTION/REPERE", &["GLOBAL", "POLAIRE"]),
         Values::new("ACTION/MOYE_NOEUD", &["OUI"]),
+        Values::new("ACTION/OPERATION", &["EXTRACTION", "MOYENNE"]),
     ],
+    rules: Some(post_releve_t_rules),
     ..Support::keywords(&[
         "ACTION",
         "ACTION/OPERATION",
@@ -661,6 +663,70 @@ pub(crate) const POST_RELEVE_T: Support = Support {
         "TITRE",
     ])
 };
+
+/// One operation per ACTION occurrence (code_aster accepts
+/// `('EXTRACTION', 'MOYENNE')` together: not handled).
+fn post_releve_t_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    for occ in call.keywords.factor("ACTION") {
+        if occ.simple("OPERATION").len() > 1 {
+            out.push(Refusal::at(
+                "POST_RELEVE_T/ACTION/OPERATION with several operations in one occurrence (give one ACTION per operation)".into(),
+                occ,
+                "OPERATION",
+                call.span,
+            ));
+        }
+        if occ.str("OPERATION") == Some("MOYENNE") {
+            for key in ["RESULTANTE", "REPERE"] {
+                if occ.keyword(key).is_some_and(|k| !k.defaulted) {
+                    out.push(Refusal::at(
+                        format!("POST_RELEVE_T/ACTION/{key} with OPERATION='MOYENNE'"),
+                        occ,
+                        key,
+                        call.span,
+                    ));
+                }
+            }
+        }
+    }
+}
+
+/// code_aster's `rvpstm`: the six quantities OPERATION='MOYENNE' gives for
+/// one component along a path of nodes with abscissae `absc`, from the
+/// values at the nodes (`None` where the node has no value: its segments
+/// are skipped). MOMENT_0 is the mean by the trapezoidal rule, MOMENT_1
+/// the linear moment 6·(∫v·s ds / L² − MOMENT_0) by Simpson's rule,
+/// MOYE_INT/MOYE_EXT = MOMENT_0 ∓ MOMENT_1/2; MINIMUM/MAXIMUM over the
+/// ends of the segments counted.
+fn path_moments(absc: &[f64], values: &[Option<f64>]) -> [f64; 6] {
+    let (mut m1, mut m2, mut xl) = (0.0, 0.0, 0.0);
+    let (mut mi, mut ma) = (1.0e50_f64, -1.0e50_f64);
+    for k in 0..absc.len().saturating_sub(1) {
+        let (Some(t1), Some(t2)) = (values[k], values[k + 1]) else {
+            continue;
+        };
+        let s1 = absc[k] - absc[0];
+        let s2 = absc[k + 1] - absc[0];
+        let s12 = s2 - s1;
+        xl += s12;
+        let t12 = (t1 + t2) / 2.0;
+        let smil = (s1 + s2) / 2.0;
+        m1 += s12 * (t1 + t2);
+        m2 += s12 / 3.0 * (t1 * s1 + 4.0 * t12 * smil + t2 * s2);
+        ma = ma.max(t1).max(t2);
+        mi = mi.min(t1).min(t2);
+    }
+    m1 /= xl;
+    m2 /= xl * xl;
+    m1 *= 0.5;
+    m2 = 6.0 * (m2 - m1);
+    [m1, m2, mi, ma, m1 - 0.5 * m2, m1 + 0.5 * m2]
+}
+
+/// The QUANTITE of each row of [`path_moments`], in code_aster's order.
+const PATH_QUANTITIES: [&str; 6] = [
+    "MOMENT_0", "MOMENT_1", "MINIMUM", "MAXIMUM", "MOYE_INT", "MOYE_EXT",
+];
 
 pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
@@ -710,16 +776,22 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .iter()
             .filter_map(|s| s.as_str())
             .collect();
-        if ops != ["EXTRACTION"] {
-            let span = occ
-                .keyword("OPERATION")
-                .map(|k| k.span)
-                .unwrap_or(call.span);
-            return Err(ex.unsupported(
-                &format!("POST_RELEVE_T/ACTION/OPERATION={ops:?} (only 'EXTRACTION')"),
-                span,
-            ));
-        }
+        let moyenne = match ops.as_slice() {
+            ["EXTRACTION"] => false,
+            ["MOYENNE"] => true,
+            _ => {
+                let span = occ
+                    .keyword("OPERATION")
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
+                return Err(ex.unsupported(
+                    &format!(
+                        "POST_RELEVE_T/ACTION/OPERATION={ops:?} (one of 'EXTRACTION', 'MOYENNE')"
+                    ),
+                    span,
+                ));
+            }
+        };
         let title = occ.str("INTITULE").unwrap_or("").to_string();
         let mut sources: Vec<Source> = Vec::new();
         let mesh;
@@ -832,6 +904,14 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             // (MOYE_NOEUD='OUI'); other element fields are refused.
             let f = match field {
                 Field::Nodal(f) => f,
+                // code_aster's MOYENNE of an element field works on the
+                // cells' values along the path, not on nodal means.
+                Field::Elem(_) if moyenne => {
+                    return Err(ex.unsupported(
+                        "POST_RELEVE_T/ACTION/OPERATION='MOYENNE' of an element field",
+                        occ.keyword("NOM_CHAM").map(|k| k.span).unwrap_or(call.span),
+                    ))
+                }
                 Field::Elem(e) => e.nodal_mean(&mesh).ok_or_else(|| {
                     ex.unsupported(
                         "POST_RELEVE_T/ACTION on element fields other than _ELNO",
@@ -872,6 +952,48 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     s += ((0..3).map(|c| (b[c] - a[c]).powi(2)).sum::<f64>()).sqrt();
                 }
                 absc.push(s);
+            }
+            if moyenne {
+                if nodes.len() < 2 {
+                    return Err(ExecError::new(
+                        "POST_RELEVE_T/ACTION: OPERATION='MOYENNE' needs a path of at least two nodes (code_aster POSTRELE_6)",
+                    ));
+                }
+                table.ensure_column("QUANTITE", ColumnType::Text(16));
+                let moments: Vec<(String, [f64; 6])> = cmps
+                    .iter()
+                    .filter_map(|c| {
+                        let i = f.component_index(c)?;
+                        let vals: Vec<Option<f64>> = nodes
+                            .iter()
+                            .map(|n| f.values.get(n).and_then(|v| v[i]))
+                            .collect();
+                        Some((c.clone(), path_moments(&absc, &vals)))
+                    })
+                    .collect();
+                for (c, _) in &moments {
+                    table.ensure_column(c, ColumnType::Real);
+                }
+                for (q, quantity) in PATH_QUANTITIES.iter().enumerate() {
+                    let mut row: Vec<(String, Value)> =
+                        vec![("INTITULE".into(), Value::Text(title.clone()))];
+                    if let Some(r) = &resu {
+                        row.push(("RESU".into(), Value::Text(r.clone())));
+                    }
+                    if let Some(c) = &cham {
+                        row.push(("NOM_CHAM".into(), Value::Text(c.clone())));
+                    }
+                    if let Some((no, t)) = order {
+                        row.push(("NUME_ORDRE".into(), Value::Int(no as i64)));
+                        row.push(("INST".into(), Value::Real(t)));
+                    }
+                    row.push(("QUANTITE".into(), Value::Text(quantity.to_string())));
+                    for (c, m) in &moments {
+                        row.push((c.clone(), Value::Real(m[q])));
+                    }
+                    table.push_row(row.iter().map(|(k, v)| (k.as_str(), v.clone())).collect());
+                }
+                continue;
             }
             for (&n, &abscissa) in nodes.iter().zip(&absc) {
                 // Nodes without the field (outside the model) give no row.
@@ -946,7 +1068,8 @@ fn drop_empty_columns(t: &mut Table) {
 /// What IMPR_TABLE reads (`crate::support`).
 pub(crate) const IMPR_TABLE: Support = Support {
     values: &[
-        Values::new("FORMAT", &["TABLEAU", "AGRAF"]),
+        Values::new("FORMAT", &["TABLEAU", "AGRAF", "XMGRACE"]),
+        Values::new("PILOTE", &[""]).why("(images are not drawn; the .agr data file is)"),
         Values::new("IMPR_FONCTION", &["NON"])
             .why("(the functions named in a FONCTION column are not printed)"),
     ],
@@ -971,6 +1094,22 @@ pub(crate) const IMPR_TABLE: Support = Support {
         "FILTRE/VALE_K",
         "FILTRE/CRITERE",
         "FILTRE/PRECISION",
+        // FORMAT='XMGRACE': the graph's legends and bounds are written;
+        // its look (grid, colour, style, marker) is not drawn.
+        "PILOTE",
+        "LEGENDE",
+        "LEGENDE_X",
+        "LEGENDE_Y",
+        "BORNE_X",
+        "BORNE_Y",
+        "ECHELLE_X",
+        "ECHELLE_Y",
+        "GRILLE_X",
+        "GRILLE_Y",
+        "COULEUR",
+        "STYLE",
+        "MARQUEUR",
+        "FREQ_MARQUEUR",
     ])
 };
 
@@ -1067,6 +1206,16 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             .map(|r| cols.iter().map(|&i| r[i].clone()).collect())
             .collect();
     }
+    if kw.str("FORMAT") == Some("XMGRACE") {
+        let text = super::functions::xmgrace(kw, &table_curves(kw, &table)?);
+        let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(29);
+        if unit == 8 || unit == 6 {
+            ex.write_report(&text)?;
+        } else {
+            ex.append_unit(unit, &text)?;
+        }
+        return Ok(CommandOutput::Nothing);
+    }
     if let Some(title) = kw.str("TITRE") {
         table.title = title.lines().map(str::to_string).collect();
     }
@@ -1079,6 +1228,33 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         ex.append_unit(unit, &(text + "\n"))?;
     }
     Ok(CommandOutput::Nothing)
+}
+
+/// IMPR_TABLE(FORMAT='XMGRACE'): code_aster's `Table.Impr` draws the first
+/// column (of NOM_PARA) as the abscissa and each further column as a curve
+/// (named LEGENDE, else the column), over the rows where both are reals.
+fn table_curves(kw: &Keywords, table: &Table) -> Result<Vec<super::functions::Curve>, ExecError> {
+    if table.columns.len() < 2 {
+        return Err(ExecError::new(
+            "IMPR_TABLE/FORMAT='XMGRACE': give NOM_PARA with an abscissa and at least one ordinate",
+        ));
+    }
+    let real = |c: &Option<Value>| c.as_ref()?.as_f64();
+    let legend = kw.str("LEGENDE").map(str::to_string);
+    Ok((1..table.columns.len())
+        .map(|j| super::functions::Curve {
+            x_name: table.columns[0].name.clone(),
+            y_name: legend
+                .clone()
+                .unwrap_or_else(|| table.columns[j].name.clone()),
+            legend: legend.clone(),
+            points: table
+                .rows
+                .iter()
+                .filter_map(|r| Some((real(&r[0])?, real(&r[j])?)))
+                .collect(),
+        })
+        .collect())
 }
 
 fn compare_cells(a: &Option<Value>, b: &Option<Value>) -> std::cmp::Ordering {
@@ -1112,4 +1288,31 @@ pub(crate) fn append(path: &std::path::Path, text: &str) -> Result<(), ExecError
 
 pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     crate::output::impr_resu(ex, call)
+}
+
+#[cfg(test)]
+mod moyenne_tests {
+    use super::path_moments;
+
+    #[test]
+    fn a_linear_distribution_gives_its_mean_and_its_end_values() {
+        // v = 2 + 3 s on s in [0, 2]: mean 5, linear moment 3·2 = 6,
+        // MOYE_INT = v(0) = 2, MOYE_EXT = v(2) = 8.
+        let m = path_moments(&[0.0, 1.0, 2.0], &[Some(2.0), Some(5.0), Some(8.0)]);
+        let want = [5.0, 6.0, 2.0, 8.0, 2.0, 8.0];
+        for (g, w) in m.iter().zip(want) {
+            assert!((g - w).abs() < 1e-12, "{m:?}");
+        }
+    }
+
+    #[test]
+    fn segments_with_a_missing_value_are_skipped() {
+        // Only the segment [0, 1] counts: mean of 1 and 3, moment 2.
+        let m = path_moments(&[0.0, 1.0, 3.0], &[Some(1.0), Some(3.0), None]);
+        assert!(
+            (m[0] - 2.0).abs() < 1e-12 && (m[1] - 2.0).abs() < 1e-12,
+            "{m:?}"
+        );
+        assert_eq!((m[2], m[3]), (1.0, 3.0));
+    }
 }
