@@ -186,6 +186,19 @@ fn scatter_columns(
             continue;
         }
         let ndof = match &el.kind {
+            // Under-integrated (`_SI`) cells: the general element path.
+            ElementKind::Continuum { .. } if model.is_reduced(el.cell) => {
+                let Some(ke) = element_stiffness(model, idx)? else {
+                    continue;
+                };
+                let n = ke.nrows();
+                for a in 0..n {
+                    for b in 0..n {
+                        buf[a * n + b] = ke[(a, b)];
+                    }
+                }
+                n
+            }
             ElementKind::Continuum {
                 hypothesis,
                 material,

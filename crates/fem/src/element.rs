@@ -106,14 +106,30 @@ pub fn continuum_gauss(
     cell: CellId,
     hyp: Hypothesis,
 ) -> Result<Vec<GaussData>, String> {
+    let scheme = shape::stiffness_scheme(mesh.cell(cell).ty, Some(hyp));
+    continuum_gauss_on(mesh, cell, hyp, &scheme)
+}
+
+/// [`continuum_gauss`] with the model's scheme for the cell
+/// ([`Model::stiffness_scheme`]: reduced for the `_SI` cells).
+pub fn model_gauss(model: &Model, cell: CellId, hyp: Hypothesis) -> Result<Vec<GaussData>, String> {
+    continuum_gauss_on(model.mesh(), cell, hyp, &model.stiffness_scheme(cell))
+}
+
+/// [`continuum_gauss`] on a given scheme.
+fn continuum_gauss_on(
+    mesh: &Mesh,
+    cell: CellId,
+    hyp: Hypothesis,
+    scheme: &[GaussPoint],
+) -> Result<Vec<GaussData>, String> {
     let c = mesh.cell(cell);
     let dim = hyp.dim();
     let nn = c.nodes.len();
     let ncomp = hyp.ncomp();
-    let scheme = shape::stiffness_scheme(c.ty, Some(hyp));
     let mut out = Vec::with_capacity(scheme.len());
     let mut sign = 0.0f64;
-    for gp in &scheme {
+    for gp in scheme {
         let (n, dn, det, x) = physical_derivatives(mesh, cell, dim, gp)?;
         if sign != 0. && sign * det < 0. {
             return Err("distorted: its Jacobian changes sign inside the cell".into());
@@ -244,7 +260,7 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
             hypothesis,
             material,
         } => {
-            let g = continuum_gauss(model.mesh(), el.cell, *hypothesis).map_err(|m| {
+            let g = model_gauss(model, el.cell, *hypothesis).map_err(|m| {
                 FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
             })?;
             Ok(Some(continuum_stiffness(&g, material, *hypothesis)))

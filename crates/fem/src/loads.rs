@@ -359,6 +359,22 @@ impl Loads {
     pub fn volume_points(mesh: &aster_mesh::Mesh, cell: CellId) -> Vec<[f64; 3]> {
         shape::scheme_points(mesh, cell, &shape::rigi_scheme(mesh.cell(cell).ty))
     }
+
+    /// [`Loads::volume_points`] of a model's cell: the reduced family of an
+    /// under-integrated (`_SI`) cell, where code_aster's RIGI family is.
+    pub fn model_volume_points(model: &Model, cell: CellId) -> Vec<[f64; 3]> {
+        shape::scheme_points(model.mesh(), cell, &volume_scheme(model, cell))
+    }
+}
+
+/// The points a volume load is integrated on: [`shape::rigi_scheme`], the
+/// reduced family of an `_SI` cell.
+fn volume_scheme(model: &Model, cell: CellId) -> Vec<shape::GaussPoint> {
+    if model.is_reduced(cell) {
+        model.stiffness_scheme(cell)
+    } else {
+        shape::rigi_scheme(model.mesh().cell(cell).ty)
+    }
 }
 
 /// The scheme of a load given at `count` points (skin or stiffness),
@@ -373,7 +389,7 @@ fn point_scheme(
     let scheme = if skin {
         shape::skin_scheme(ty)
     } else {
-        shape::rigi_scheme(ty)
+        volume_scheme(model, cell)
     };
     if scheme.len() != count {
         return Err(FemError::Model(format!(
@@ -500,10 +516,7 @@ fn volume_load(
     let c = mesh.cell(cell);
     let dim = model.dim();
     let axis = model.hypothesis() == Some(Hypothesis::Axisymmetric);
-    for (g, gp) in shape::stiffness_scheme(c.ty, model.hypothesis())
-        .into_iter()
-        .enumerate()
-    {
+    for (g, gp) in model.stiffness_scheme(cell).into_iter().enumerate() {
         let b = force(g);
         let s = shape::shape(c.ty, gp.xi);
         // Jacobian J[k][l] = ∂x_k/∂ξ_l.

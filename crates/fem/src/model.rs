@@ -50,6 +50,9 @@ pub struct Model {
     dofs: DofNumbering,
     dim: usize,
     hypothesis: Option<Hypothesis>,
+    /// Cells integrated with code_aster's under-integrated (`_SI`)
+    /// stiffness family ([`shape::reduced_scheme`]).
+    reduced: std::collections::BTreeSet<CellId>,
 }
 
 impl Model {
@@ -225,7 +228,52 @@ impl Model {
             dofs,
             dim,
             hypothesis,
+            reduced: Default::default(),
         })
+    }
+
+    /// Integrates `cells` with the under-integrated stiffness family of
+    /// code_aster's `_SI` modelisations ([`shape::reduced_scheme`]): their
+    /// stiffness, internal forces and Gauss-point fields (SIEF_ELGA,
+    /// VARI_ELGA) use it; their mass keeps the full family. Each cell must
+    /// carry a continuum element of a type that has such a family.
+    pub fn with_reduced_integration(
+        mut self,
+        cells: impl IntoIterator<Item = CellId>,
+    ) -> Result<Model, FemError> {
+        for cell in cells {
+            let continuum = self
+                .elements
+                .iter()
+                .any(|e| e.cell == cell && matches!(e.kind, ElementKind::Continuum { .. }));
+            let ty = self.mesh.cell(cell).ty;
+            if !continuum || shape::reduced_scheme(ty).is_none() {
+                return Err(FemError::Model(format!(
+                    "cell {} is a {}: under-integrated elements (_SI) exist here for QUAD8, HEXA20 and TETRA10 continuum cells only",
+                    self.cell_name(cell),
+                    ty.name()
+                )));
+            }
+            self.reduced.insert(cell);
+        }
+        Ok(self)
+    }
+
+    /// Whether a cell is under-integrated ([`Model::with_reduced_integration`]).
+    pub fn is_reduced(&self, cell: CellId) -> bool {
+        self.reduced.contains(&cell)
+    }
+
+    /// The stiffness Gauss family of a continuum cell: the reduced one of
+    /// an `_SI` cell, else [`shape::stiffness_scheme`].
+    pub fn stiffness_scheme(&self, cell: CellId) -> Vec<shape::GaussPoint> {
+        let ty = self.mesh.cell(cell).ty;
+        if self.reduced.contains(&cell) {
+            if let Some(s) = shape::reduced_scheme(ty) {
+                return s;
+            }
+        }
+        shape::stiffness_scheme(ty, self.hypothesis)
     }
 
     pub fn mesh(&self) -> &Mesh {

@@ -3,7 +3,7 @@
 //! (SIGM_ELNO/SIEF_ELNO), nodal averages (SIGM_NOEU) and equivalent stresses
 //! (SIEQ).
 
-use crate::element::{continuum_gauss, element_dofs, spring_stiffness};
+use crate::element::{element_dofs, model_gauss, spring_stiffness};
 use crate::error::FemError;
 use crate::loads::Loads;
 use crate::model::{ElementKind, Model};
@@ -61,7 +61,7 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
                 hypothesis,
                 material,
             } => {
-                let g = continuum_gauss(model.mesh(), el.cell, *hypothesis)
+                let g = model_gauss(model, el.cell, *hypothesis)
                     .map_err(|m| cell_error(model, el.cell, m))?;
                 let d = material.hooke(*hypothesis);
                 let points = g
@@ -111,7 +111,7 @@ pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
                 hypothesis,
                 material,
             } => {
-                let g = continuum_gauss(model.mesh(), el.cell, *hypothesis)
+                let g = model_gauss(model, el.cell, *hypothesis)
                     .map_err(|m| cell_error(model, el.cell, m))?;
                 let d = material.hooke(*hypothesis);
                 let mut fe = DVector::zeros(dofs.len());
@@ -167,8 +167,7 @@ fn linear_type(ty: CellType) -> CellType {
 /// nodes get the mean of their corners). More points than corners (QUAD8/9,
 /// TETRA10, HEXA20/27, PENTA15/18, PYRAM13): least-squares fit with the
 /// linear cell's functions, evaluated at the corners, mid-nodes as means.
-fn extrapolation(ty: CellType, hyp: Option<crate::Hypothesis>) -> DMatrix<f64> {
-    let scheme = shape::stiffness_scheme(ty, hyp);
+fn extrapolation(ty: CellType, scheme: &[shape::GaussPoint]) -> DMatrix<f64> {
     let np = scheme.len();
     let nodes = shape::reference_nodes(ty);
     let nn = nodes.len();
@@ -212,7 +211,7 @@ pub fn elno(model: &Model, elga: &[CellValues]) -> Vec<CellValues> {
             let e = if cv.points.len() == 1 {
                 DMatrix::from_element(nn, 1, 1.0)
             } else {
-                extrapolation(ty, model.hypothesis())
+                extrapolation(ty, &model.stiffness_scheme(cv.cell))
             };
             let points = (0..nn)
                 .map(|n| {

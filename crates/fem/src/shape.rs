@@ -310,6 +310,22 @@ pub fn stiffness_scheme(ty: CellType, hyp: Option<crate::Hypothesis>) -> Vec<Gau
     }
 }
 
+/// The stiffness family of code_aster's under-integrated elements
+/// (`D_PLAN_SI`, `C_PLAN_SI`, `AXIS_SI`, `3D_SI`: `MEDPQS8`, `MECPQS8`,
+/// `MEAXQS8`, `MECA_HEXS20`, `MECA_TETRS10`): QUAD8 FPG4 (2×2), HEXA20
+/// FPG8 (2×2×2), TETRA10 FPG4, in `elraga` order. `None` for the other
+/// cells (code_aster's QUAD4 and HEXA8 `_SI` elements use one point with
+/// an hourglass stabilisation, not reproduced). Their mass keeps the full
+/// family ([`mass_scheme`]: MASS=FPG9, FPG27, FPG15 as the full elements).
+pub fn reduced_scheme(ty: CellType) -> Option<Vec<GaussPoint>> {
+    match ty {
+        CellType::QUAD8 => Some(rigi_scheme(CellType::QUAD4)),
+        CellType::HEXA20 => Some(fpg::hexa(2)),
+        CellType::TETRA10 => Some(fpg::tetra4()),
+        _ => None,
+    }
+}
+
 /// Integration scheme for boundary loads on a segment or face: exact for
 /// the polynomial degree of the load times the shape functions.
 pub fn load_scheme(ty: CellType) -> Vec<GaussPoint> {
@@ -758,5 +774,37 @@ mod tests {
         assert_eq!(facets(CellType::HEXA20)[0], vec![0, 3, 2, 1, 11, 10, 9, 8]);
         // TRIA6 first edge: nodes 1 2 and its middle 4.
         assert_eq!(facets(CellType::TRIA6)[0], vec![0, 1, 3]);
+    }
+
+    /// The reduced families (`_SI`): weights sum to the reference measure
+    /// and integrate the monomials of degree ≤ 3 per direction (2-point
+    /// Gauss) or the total degree ≤ 2 (TETRA FPG4) exactly.
+    #[test]
+    fn reduced_families() {
+        let q = reduced_scheme(CellType::QUAD8).unwrap();
+        assert_eq!(q.len(), 4);
+        let h = reduced_scheme(CellType::HEXA20).unwrap();
+        assert_eq!(h.len(), 8);
+        let t = reduced_scheme(CellType::TETRA10).unwrap();
+        assert_eq!(t.len(), 4);
+        let sum = |s: &[GaussPoint], f: &dyn Fn([f64; 3]) -> f64| -> f64 {
+            s.iter().map(|g| g.weight * f(g.xi)).sum()
+        };
+        assert!((sum(&q, &|_| 1.0) - 4.0).abs() < 1e-14);
+        assert!((sum(&q, &|x| x[0].powi(2) * x[1].powi(2)) - 4.0 / 9.0).abs() < 1e-14);
+        assert!(sum(&q, &|x| x[0].powi(3) * x[1]).abs() < 1e-14);
+        assert!((sum(&h, &|_| 1.0) - 8.0).abs() < 1e-14);
+        assert!((sum(&h, &|x| (x[0] * x[1] * x[2]).powi(2)) - 8.0 / 27.0).abs() < 1e-14);
+        assert!((sum(&t, &|_| 1.0) - 1.0 / 6.0).abs() < 1e-14);
+        // ∫ x² over the unit tetrahedron = 1/60.
+        assert!((sum(&t, &|x| x[0] * x[0]) - 1.0 / 60.0).abs() < 1e-14);
+        for ty in [
+            CellType::QUAD4,
+            CellType::HEXA8,
+            CellType::TRIA6,
+            CellType::PENTA15,
+        ] {
+            assert!(reduced_scheme(ty).is_none(), "{ty:?}");
+        }
     }
 }

@@ -183,6 +183,11 @@ fn patch3d(ty: CellType) -> Mesh {
 }
 
 fn run_patch(mesh: Mesh, hyp: Hypothesis, field: &Field) {
+    run_patch_with(mesh, hyp, field, false)
+}
+
+/// The patch test; `reduced`: every cell under-integrated (`_SI`).
+fn run_patch_with(mesh: Mesh, hyp: Hypothesis, field: &Field, reduced: bool) {
     let material = Elastic::new(210e3, 0.28).unwrap();
     let elements = (0..mesh.cells.len())
         .map(|c| Element {
@@ -206,7 +211,13 @@ fn run_patch(mesh: Mesh, hyp: Hypothesis, field: &Field) {
     let on_boundary = |p: [f64; 3]| {
         (0..dim).any(|k| (p[k] - lo[k]).abs() < 1e-12 || (p[k] - hi[k]).abs() < 1e-12)
     };
-    let model = Model::new(mesh, elements).unwrap();
+    let ncells = mesh.cells.len() as u32;
+    let mut model = Model::new(mesh, elements).unwrap();
+    if reduced {
+        model = model
+            .with_reduced_integration((0..ncells).map(aster_mesh::CellId))
+            .unwrap();
+    }
     let mesh = model.mesh().clone();
     let mut loads = Loads::new();
     let mut interior = Vec::new();
@@ -268,6 +279,13 @@ fn run_patch(mesh: Mesh, hyp: Hypothesis, field: &Field) {
     let sig = &d * nalgebra::DVector::from_vec(eps);
     let scale = sig.amax();
     for cv in &step.stress {
+        let ty = mesh.cell(cv.cell).ty;
+        let npg = if reduced {
+            aster_fem::shape::reduced_scheme(ty).unwrap().len()
+        } else {
+            aster_fem::shape::stiffness_scheme(ty, Some(hyp)).len()
+        };
+        assert_eq!(cv.points.len(), npg, "{hyp:?} {ty:?}: Gauss points");
         for p in &cv.points {
             for c in 0..sig.len() {
                 assert!(
@@ -338,4 +356,51 @@ fn patch_3d_elements() {
     for ty in [CellType::TETRA4, CellType::HEXA8] {
         run_patch(patch3d(ty), Hypothesis::Solid3D, &f);
     }
+}
+
+/// code_aster's under-integrated QUAD8 (`D_PLAN_SI`, `C_PLAN_SI`,
+/// `AXIS_SI`: 2×2 points) passes the patch test, curved edges included in
+/// the plane (its 2×2 rule integrates ∂N/∂ξ times the Jacobian's cofactors,
+/// of degree 3 in each direction, exactly).
+#[test]
+fn patch_under_integrated_quad8() {
+    for hyp in [Hypothesis::PlaneStrain, Hypothesis::PlaneStress] {
+        run_patch_with(patch2d(CellType::QUAD8, 0., false), hyp, &G2D, true);
+    }
+    let axis = Field {
+        g: [[1e-3, 0., 0.], [0., -5e-4, 0.], [0., 0., 0.]],
+    };
+    run_patch_with(
+        patch2d(CellType::QUAD8, 1., true),
+        Hypothesis::Axisymmetric,
+        &axis,
+        true,
+    );
+}
+
+/// Only QUAD8, HEXA20 and TETRA10 have a reduced family: a QUAD4 is
+/// refused (code_aster's QUAD4 `_SI` element is stabilised, not
+/// reproduced).
+#[test]
+fn under_integration_refused_on_linear_cells() {
+    let mesh = patch2d(CellType::QUAD4, 0., false);
+    let material = Elastic::new(210e3, 0.28).unwrap();
+    let elements = (0..mesh.cells.len())
+        .map(|c| Element {
+            cell: aster_mesh::CellId(c as u32),
+            kind: ElementKind::Continuum {
+                hypothesis: Hypothesis::PlaneStrain,
+                material,
+            },
+        })
+        .collect();
+    let model = Model::new(mesh, elements).unwrap();
+    let err = model
+        .with_reduced_integration([aster_mesh::CellId(0)])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("is a QUAD4") && err.contains("QUAD8, HEXA20 and TETRA10"),
+        "{err}"
+    );
 }

@@ -44,7 +44,32 @@ impl Modelisation {
         })
     }
 
-    pub const KEYWORDS: [&'static str; 6] = ["D_PLAN", "C_PLAN", "AXIS", "3D", "2D_DIS_T", "DIS_T"];
+    /// A `MODELISATION` value: the modelisation, and whether it is one of
+    /// code_aster's under-integrated ones (`D_PLAN_SI`, `C_PLAN_SI`,
+    /// `AXIS_SI`, `3D_SI`: the same modelisation, its QUAD8, HEXA20 and
+    /// TETRA10 cells integrated with a reduced family).
+    pub fn from_keyword_si(value: &str) -> Option<(Modelisation, bool)> {
+        match value.strip_suffix("_SI") {
+            Some(base @ ("D_PLAN" | "C_PLAN" | "AXIS" | "3D")) => {
+                Modelisation::from_keyword(base).map(|m| (m, true))
+            }
+            Some(_) => None,
+            None => Modelisation::from_keyword(value).map(|m| (m, false)),
+        }
+    }
+
+    pub const KEYWORDS: [&'static str; 10] = [
+        "D_PLAN",
+        "C_PLAN",
+        "AXIS",
+        "3D",
+        "2D_DIS_T",
+        "DIS_T",
+        "D_PLAN_SI",
+        "C_PLAN_SI",
+        "AXIS_SI",
+        "3D_SI",
+    ];
 
     /// Space dimension of the displacement.
     pub fn dim(self) -> usize {
@@ -66,6 +91,9 @@ pub struct ModelDef {
     /// Per cell, its modelisation (the last `AFFE` occurrence wins, as in
     /// code_aster); cells of no occurrence are not in the model.
     pub cells: BTreeMap<CellId, Modelisation>,
+    /// Cells of an under-integrated modelisation (`_SI`): QUAD8, HEXA20,
+    /// TETRA10 integrated with code_aster's reduced stiffness family.
+    pub reduced: std::collections::BTreeSet<CellId>,
 }
 
 impl ModelDef {

@@ -104,7 +104,9 @@ pub fn build_model(
         };
         elements.push(Element { cell, kind });
     }
-    Model::new(mesh.clone(), elements).map_err(|e| fem_err("AFFE_MODELE", e))
+    Model::new(mesh.clone(), elements)
+        .and_then(|m| m.with_reduced_integration(model.reduced.iter().copied()))
+        .map_err(|e| fem_err("AFFE_MODELE", e))
 }
 
 /// The fem behaviours of the COMPORTEMENT occurrences: each plastic cell
@@ -390,7 +392,7 @@ fn cut_instants(instants: &[f64], subdivision: Option<aster_fem::Subdivision>) -
         .collect()
 }
 
-fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
+fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, ExecError> {
     let cuts = cut_instants(&setup.instants, setup.subdivision);
     let mut loads = Loads::new();
     for exc in &setup.excitations {
@@ -424,7 +426,7 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                         let mk = match &v.functions[k] {
                             Some(f) if of_coordinates(f) => {
                                 for &cell in &v.cells {
-                                    let points = Loads::volume_points(mesh, cell);
+                                    let points = Loads::model_volume_points(model, cell);
                                     let forces = along(k, point_values(f, &points)?);
                                     loads.add(Load::VolumeForceAt { cell, forces }, m.clone());
                                 }
@@ -540,7 +542,7 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh) -> Result<Loads, ExecError> {
                             terms,
                             rhs: r.relation.rhs,
                         },
-                        function_multiplier(&r.function, [0.0; 3], &m, &setup.instants)?,
+                        function_multiplier(&r.function, [0.0; 3], &m, &setup.instants, &cuts)?,
                     );
                 }
                 for f in &l.nodal_forces {
@@ -674,7 +676,7 @@ pub fn solve(
     let mesh = ex.model_mesh(&setup.model)?;
     refuse_coordinate_loads_in_large_strains(setup)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
-    let mut loads = build_loads(setup, &mesh)?;
+    let mut loads = build_loads(setup, &mesh, &model)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
     let plastic = !behaviours.is_elastic();
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;

@@ -133,9 +133,14 @@ impl Sink<'_> {
 
 impl Sink<'_> {
     /// Nodal forces (FORC_NODA, REAC_NODA) of a static result computed
-    /// with DEFORMATION='SIMO_MIEHE' are not validated against code_aster:
-    /// in ssna111a (axisymmetric, discrete contact) the reactions differ by
-    /// 5e-5 while the displacements agree to 1e-9. Refused at CALC_CHAMP.
+    /// with DEFORMATION='SIMO_MIEHE' and contact are not validated against
+    /// code_aster. Without contact they are (ssna303a, AXIS_SI: REAC_NODA
+    /// within 6e-8 at every tested step, the formula being code_aster's
+    /// te0008, Bᵀσ on X + u with the stored Cauchy stresses). With contact,
+    /// ssna111a's reaction at the cone tip differs by 4.85e-5 at t = 0.5 and
+    /// 9.2e-5 at t = 1 while its displacements agree to 1e-9, and ours is
+    /// converged (RESI_GLOB_RELA 1e-10 moves it by 5e-7): the gap is in the
+    /// contact state, not in this post-processing. Refused at CALC_CHAMP.
     /// (DYNA_NON_LINE's are the dynamics' own, validated by sdnv103e.)
     fn follow_finite_strains(&mut self, call: &CommandCall) {
         let kw = &call.keywords;
@@ -143,7 +148,8 @@ impl Sink<'_> {
             let finite = kw
                 .factor("COMPORTEMENT")
                 .iter()
-                .any(|c| c.str("DEFORMATION") == Some("SIMO_MIEHE"));
+                .any(|c| c.str("DEFORMATION") == Some("SIMO_MIEHE"))
+                && kw.concept("CONTACT").is_some();
             if let Some(r) = call.result.as_ref().or(call.reuse.as_ref()) {
                 if finite {
                     self.finite_strain_results.push(r.id);
@@ -164,7 +170,7 @@ impl Sink<'_> {
             {
                 let span = kw.keyword("FORCE").map(|k| k.span).unwrap_or(call.span);
                 self.refuse(
-                    format!("CALC_CHAMP/FORCE='{f}' of a result computed with DEFORMATION='SIMO_MIEHE' (nodal forces under finite strains are not validated against code_aster: the large-strain issue)"),
+                    format!("CALC_CHAMP/FORCE='{f}' of a result computed with DEFORMATION='SIMO_MIEHE' and contact (the contact forces under finite strains are not validated against code_aster: ssna111a's differ by 5e-5 while its displacements agree; without contact these nodal forces are, ssna303a)"),
                     span,
                 );
             }

@@ -11,9 +11,7 @@
 
 use super::vmis::{integrate, VonMises};
 use super::{Behaviours, GaussState, Kinematics};
-use crate::element::{
-    continuum_gauss, continuum_stiffness, element_dofs, spring_stiffness, GaussData,
-};
+use crate::element::{continuum_stiffness, element_dofs, model_gauss, spring_stiffness, GaussData};
 use crate::error::FemError;
 use crate::linalg::Csc;
 use crate::material::{Elastic, Hypothesis};
@@ -103,7 +101,7 @@ impl PlasticCells {
             else {
                 continue;
             };
-            let gauss = continuum_gauss(model.mesh(), el.cell, *hypothesis).map_err(|m| {
+            let gauss = model_gauss(model, el.cell, *hypothesis).map_err(|m| {
                 FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
             })?;
             let k_el = continuum_stiffness(&gauss, material, *hypothesis);
@@ -557,7 +555,7 @@ pub fn forc_noda_deformed(
                 let Some(cv) = at.get(&el.cell) else {
                     continue;
                 };
-                let g = continuum_gauss(model.mesh(), el.cell, *hypothesis).map_err(|m| {
+                let g = model_gauss(model, el.cell, *hypothesis).map_err(|m| {
                     FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
                 })?;
                 if behaviours.kinematics(el.cell).deformed_geometry() {

@@ -200,6 +200,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     let mesh_ref = ex.required("AFFE_MODELE", kw, "MAILLAGE")?;
     let mesh = ex.mesh(mesh_ref)?;
     let mut cells = BTreeMap::new();
+    let mut reduced = std::collections::BTreeSet::new();
     // Where MODELISATION='3D' is first written, to name it when no volume
     // cell receives it.
     let mut solid3d_at = None;
@@ -217,7 +218,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 "exactly one modelisation per occurrence is supported",
             ));
         };
-        let Some(modelisation) = Modelisation::from_keyword(name) else {
+        let Some((modelisation, under_integrated)) = Modelisation::from_keyword_si(name) else {
             let span = occ
                 .keyword("MODELISATION")
                 .map(|k| k.span)
@@ -244,9 +245,34 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 Modelisation::Solid3D => ty.dim() >= 2,
                 _ => (1..=2).contains(&ty.dim()),
             };
-            if fits {
-                cells.insert(c, modelisation);
+            if !fits {
+                continue;
             }
+            let continuum = ty.dim() as usize == modelisation.dim();
+            if under_integrated && continuum {
+                match si_element(modelisation, ty) {
+                    SiElement::Reduced => {
+                        reduced.insert(c);
+                    }
+                    // No element of the modelisation: the cell keeps an
+                    // earlier occurrence's (code_aster's AFFE_MODELE).
+                    SiElement::None => continue,
+                    SiElement::Stabilised => {
+                        return Err(ex.kw_error(
+                            "AFFE_MODELE",
+                            occ,
+                            "MODELISATION",
+                            &format!(
+                                "not supported yet: MODELISATION='{name}' on {} cells (code_aster's one-point element with hourglass stabilisation; QUAD8, HEXA20 and TETRA10 cells are supported)",
+                                ty.name()
+                            ),
+                        ));
+                    }
+                }
+            } else {
+                reduced.remove(&c);
+            }
+            cells.insert(c, modelisation);
         }
     }
     if cells.is_empty() {
@@ -274,8 +300,35 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     let model = ModelDef {
         mesh: mesh_ref.id,
         cells,
+        reduced,
     };
     store_result(ex, call, Concept::Model(Rc::new(model)))
+}
+
+/// What an under-integrated (`_SI`) modelisation puts on a continuum cell.
+enum SiElement {
+    /// Reduced integration (`MEDPQS8`, `MECPQS8`, `MEAXQS8`,
+    /// `MECA_HEXS20`, `MECA_TETRS10`).
+    Reduced,
+    /// One point with hourglass stabilisation (`MEDPQS4`, `MECPQS4`,
+    /// `MECA_HEXS8`): not reproduced.
+    Stabilised,
+    /// No element of the modelisation for this cell type.
+    None,
+}
+
+/// code_aster's catalogue (`phenomenons_modelisations.py`): `D_PLAN_SI`
+/// and `C_PLAN_SI` have QUAD8 and QUAD4; `AXIS_SI` QUAD8 only; `3D_SI`
+/// HEXA20, HEXA8 and TETRA10.
+fn si_element(m: Modelisation, ty: aster_mesh::CellType) -> SiElement {
+    use aster_mesh::CellType as T;
+    match (m, ty) {
+        (_, T::QUAD8) if m != Modelisation::Solid3D => SiElement::Reduced,
+        (Modelisation::PlaneStrain | Modelisation::PlaneStress, T::QUAD4) => SiElement::Stabilised,
+        (Modelisation::Solid3D, T::HEXA20 | T::TETRA10) => SiElement::Reduced,
+        (Modelisation::Solid3D, T::HEXA8) => SiElement::Stabilised,
+        _ => SiElement::None,
+    }
 }
 
 /// What AFFE_CARA_ELEM reads (`crate::support`).

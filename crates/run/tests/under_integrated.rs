@@ -1,0 +1,101 @@
+//! Under-integrated modelisations (`3D_SI`, `AXIS_SI`, `C_PLAN_SI`,
+//! `D_PLAN_SI`) on the project's scenes, and the refusal of SIMO_MIEHE
+//! nodal forces with contact. code_aster's `_SI` QUAD8, HEXA20 and TETRA10
+//! elements integrate their stiffness with 2×2, 2×2×2 and 4 points (their
+//! mass keeps the full family); validated against code_aster on ssna303a
+//! (AXIS_SI, GDEF_LOG and SIMO_MIEHE, 24 TEST_RESU, `.ci/devset`).
+
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(comm: &str, mesh: &str, name: &str) -> aster_run::program::Outcome {
+    let dir = std::env::temp_dir().join(format!("aster-si-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join(format!("{name}.comm"));
+    std::fs::write(&file, comm).unwrap();
+    let case = aster_run::program::prepare(&file, Some(&root().join(mesh)), &dir).unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(dir);
+    outcome
+}
+
+fn punch(modelisation: &str, extra: &str) -> String {
+    let comm = std::fs::read_to_string(root().join("comm/quad8_punch.comm")).unwrap();
+    assert!(comm.contains("MODELISATION=\"3D\""));
+    comm.replace(
+        "MODELISATION=\"3D\"",
+        &format!("MODELISATION=\"{modelisation}\""),
+    )
+    .replace("\nFIN()", &format!("\n{extra}\nFIN()"))
+}
+
+/// σzz at a Gauss point of an upper block cell (the uniform −F).
+fn sizz_at(point: usize) -> String {
+    format!(
+        "mesh = DEFI_GROUP(reuse=mesh, MAILLAGE=mesh, CREA_GROUP_MA=_F(NOM=\"C1\", MAILLE=\"M1\"))\n\
+         TEST_RESU(RESU=_F(INST=1.0, RESULTAT=result, NOM_CHAM=\"SIEF_ELGA\", GROUP_MA=\"C1\", \
+         POINT={point}, NOM_CMP=\"SIZZ\", VALE_CALC=-20000.0, VALE_REFE=-20000.0, \
+         REFERENCE=\"ANALYTIQUE\", PRECISION=1.0e-8))"
+    )
+}
+
+/// The HEXA20 punch under 3D_SI: the homogeneous answer (DZ = −0.1 on the
+/// interface, the consistent QUAD8 reactions, σzz = −20000) is exact with
+/// 8 points as with 27, and the cells have 8 points.
+#[test]
+fn hexa20_punch_under_3d_si_is_exact_with_eight_points() {
+    let outcome = run(
+        &punch("3D_SI", &sizz_at(8)),
+        "comm/quad8_punch.mail",
+        "punch8",
+    );
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (34, 0));
+    // A ninth point exists with 3D (27 points), not with 3D_SI.
+    let full = run(&punch("3D", &sizz_at(9)), "comm/quad8_punch.mail", "full9");
+    assert!(full.error.is_none(), "{:?}", full.error);
+    assert_eq!((full.tally.ok, full.tally.nook), (34, 0));
+    let reduced = run(
+        &punch("3D_SI", &sizz_at(9)),
+        "comm/quad8_punch.mail",
+        "punch9",
+    );
+    let err = format!("{:?}", reduced.error.expect("POINT=9 of an 8-point cell"));
+    assert!(err.contains("POINT"), "{err}");
+}
+
+/// code_aster's QUAD4 and HEXA8 `_SI` elements (one point, hourglass
+/// stabilisation) are refused at AFFE_MODELE, located.
+#[test]
+fn stabilised_si_elements_are_refused_at_affe_modele() {
+    let comm = std::fs::read_to_string(root().join("comm/finite_strain_contact.comm"))
+        .unwrap()
+        .replace("MODELISATION=\"3D\"", "MODELISATION=\"3D_SI\"");
+    let outcome = run(&comm, "comm/plastic_block.mail", "hexa8");
+    let err = format!("{:?}", outcome.error.expect("HEXA8 under 3D_SI"));
+    assert!(
+        err.contains("MODELISATION='3D_SI' on HEXA8 cells") && err.contains("hexa8.comm"),
+        "{err}"
+    );
+}
+
+/// Nodal forces of a SIMO_MIEHE result with contact are refused before the
+/// run (ssna111a's contact forces differ from code_aster's by 5e-5).
+#[test]
+fn simo_miehe_nodal_forces_with_contact_are_refused() {
+    let comm = std::fs::read_to_string(root().join("comm/finite_strain_contact.comm"))
+        .unwrap()
+        .replace("DEFORMATION=\"GDEF_LOG\"", "DEFORMATION=\"SIMO_MIEHE\"");
+    let outcome = run(&comm, "comm/plastic_block.mail", "simo");
+    let err = format!("{:?}", outcome.error.expect("refused"));
+    assert!(
+        err.contains(
+            "FORCE='REAC_NODA' of a result computed with DEFORMATION='SIMO_MIEHE' and contact"
+        ),
+        "{err}"
+    );
+    assert_eq!(outcome.tally.ok, 0);
+}
