@@ -1,7 +1,8 @@
 //! `aster`: read, check, explain and run code_aster command files.
 //!
-//! Exit codes follow the contract in DEVELOPERS.md: 0 success, 1 a failed
-//! check (parse/check errors, a NOOK test), 2 an error that stopped the run.
+//! Exit codes follow the contract in the README: 0 success, 1 a failed
+//! check (parse/check errors, a NOOK test), 2 an error that stopped the run,
+//! 3 (`check`) nothing wrong but something aster does not support.
 
 mod cmd;
 
@@ -37,6 +38,12 @@ enum Command {
         /// Emit the evaluated program (`commands`) as JSON.
         #[arg(long, value_name = "WHAT")]
         emit: Option<String>,
+        /// How diagnostics are printed: `human` (stderr), `json` (JSON
+        /// Lines, one object per file), `sarif` (SARIF 2.1.0), `github`
+        /// (GitHub Actions annotations). Exit 0 clean, 1 errors, 3 only
+        /// constructs aster does not support.
+        #[arg(long, value_enum, default_value = "human")]
+        format: cmd::check::Format,
     },
     /// Explain a command or a keyword: `aster explain CMD[/KEYWORD/...]`.
     Explain { path: String },
@@ -58,9 +65,18 @@ enum Command {
         /// Mesh file for unit 20 when no .export names one.
         #[arg(long)]
         mesh: Option<PathBuf>,
-        /// Directory for files the case writes (IMPR_RESU, IMPR_TABLE).
-        #[arg(long, default_value = ".")]
-        out: PathBuf,
+        /// Directory for files the case writes (IMPR_RESU, IMPR_TABLE, the
+        /// `.export`'s result files); default `<case>-out/` in the current
+        /// directory.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Write a report of every TEST_RESU comparison and every command's
+        /// time: `--report json FILE` or `--report junit FILE`.
+        #[arg(long, num_args = 2, value_names = ["FORMAT", "FILE"])]
+        report: Vec<String>,
+        /// No live progress on stderr (the `.mess` file still gets it).
+        #[arg(short, long)]
+        quiet: bool,
     },
     /// Serve the Language Server Protocol on stdin/stdout (docs/editors.md).
     Lsp {
@@ -105,7 +121,11 @@ fn run(cli: Cli) -> u8 {
     match cli.command {
         Command::Parse { files, json } => cmd::parse::run(&files, json),
         Command::Fmt { file } => cmd::fmt::run(&file),
-        Command::Check { files, emit } => cmd::check::run(&files, emit.as_deref()),
+        Command::Check {
+            files,
+            emit,
+            format,
+        } => cmd::check::run(&files, emit.as_deref(), format),
         Command::Explain { path } => cmd::explain::run(&path),
         Command::Mesh {
             file,
@@ -113,7 +133,13 @@ fn run(cli: Cli) -> u8 {
             to,
             out,
         } => cmd::mesh::run(&file, json, to.as_deref(), out.as_deref()),
-        Command::Run { case, mesh, out } => cmd::run::run(&case, mesh.as_deref(), &out),
+        Command::Run {
+            case,
+            mesh,
+            out,
+            report,
+            quiet,
+        } => cmd::run::run(&case, mesh.as_deref(), out.as_deref(), &report, quiet),
         Command::Study { spec, out } => cmd::study::run(&spec, &out),
         Command::Lsp { .. } => cmd::lsp::run(),
     }

@@ -238,3 +238,145 @@ fn crash_corpus_runs_end_in_a_result_or_a_located_error() {
         }
     }
 }
+
+/// Replaces every `"seconds": <number>` and `time="<number>"` by a fixed
+/// text: run times differ from run to run.
+fn without_times(text: &str) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        let mut l = line.to_string();
+        for key in ["\"seconds\": ", "time=\""] {
+            if let Some(i) = l.find(key) {
+                let start = i + key.len();
+                let end = l[start..]
+                    .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == '-'))
+                    .map_or(l.len(), |e| start + e);
+                l.replace_range(start..end, "T");
+            }
+        }
+        out.push_str(&l);
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn json_report_has_every_check_and_command() {
+    let out = out_dir("report-json");
+    let report = out.join("report.json");
+    let o = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .arg("run")
+        .arg(root().join("comm/zzzz237b.comm"))
+        .arg("--mesh")
+        .arg(root().join("comm/zzzz237.mail"))
+        .arg("--out")
+        .arg(&out)
+        .args(["-q", "--report", "json"])
+        .arg(&report)
+        .output()
+        .expect("aster runs");
+    assert_eq!(o.status.code(), Some(0));
+    assert!(o.stderr.is_empty(), "-q: no progress");
+    let text = std::fs::read_to_string(&report).expect("the report is written");
+    let v: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    assert_eq!(v["summary"]["ok"], 14);
+    assert_eq!(v["summary"]["nook"], 0);
+    let checks = v["checks"].as_array().unwrap();
+    assert_eq!(checks.len(), 14);
+    for c in checks {
+        assert_eq!(c["verdict"], "OK");
+        assert!(c["file"].as_str().unwrap().ends_with("comm/zzzz237b.comm"));
+        assert!(c["line"].as_u64().unwrap() > 1);
+        let err = c["error"].as_f64().unwrap();
+        assert!(err <= c["tolerance"].as_f64().unwrap(), "{c}");
+    }
+    let commands = v["commands"].as_array().unwrap();
+    assert!(commands
+        .iter()
+        .any(|c| c["command"] == "STAT_NON_LINE" && c["result"] == "resu"));
+    let dir = root().join("comm").canonicalize().unwrap();
+    let shown = without_times(&text)
+        .replace(&root().join("comm").display().to_string(), "<comm>")
+        .replace(&dir.display().to_string(), "<comm>");
+    insta::assert_snapshot!(shown);
+}
+
+#[test]
+fn junit_report_marks_nook_as_failures() {
+    let out = out_dir("report-junit");
+    let report = out.join("report.xml");
+    let o = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .arg("run")
+        .arg(data("nook.comm"))
+        .arg("--out")
+        .arg(&out)
+        .args(["-q", "--report", "junit"])
+        .arg(&report)
+        .output()
+        .expect("aster runs");
+    assert_eq!(o.status.code(), Some(1));
+    let text = std::fs::read_to_string(&report).expect("the report is written");
+    assert!(text.contains("<failure type=\"NOOK\""), "{text}");
+    assert!(text.contains("tests=\"2\" failures=\"1\""), "{text}");
+    let shown = without_times(&text).replace(&data("").display().to_string(), "<data>/");
+    insta::assert_snapshot!(shown);
+}
+
+#[test]
+fn default_out_is_a_fresh_case_folder_and_progress_is_live() {
+    let cwd = out_dir("default-out");
+    let o = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .arg("run")
+        .arg(root().join("comm/zzzz237a.comm"))
+        .arg("--mesh")
+        .arg(root().join("comm/zzzz237.mail"))
+        .current_dir(&cwd)
+        .output()
+        .expect("aster runs");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{stderr}");
+    assert!(cwd.join("zzzz237a-out").is_dir());
+    let stray: Vec<_> = std::fs::read_dir(&cwd)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("fort."))
+        .collect();
+    assert!(stray.is_empty(), "{stray:?}");
+    // One line per command with its time, a table per increment.
+    assert!(stderr.contains("= STAT_NON_LINE"), "{stderr}");
+    assert!(stderr.contains("| RESI_GLOB_RELA |"), "{stderr}");
+    assert!(stderr.contains("converged in"), "{stderr}");
+    let commands = stderr.lines().filter(|l| l.contains(" s  ")).count();
+    assert!(commands > 10, "{stderr}");
+}
+
+#[test]
+fn mess_file_of_the_export_gets_the_progress() {
+    let dir = out_dir("mess");
+    let export = dir.join("case.export");
+    std::fs::write(
+        &export,
+        format!(
+            "P testlist verification\nF comm {} D 1\nF mail {} D 20\nF mess {} R 6\n",
+            root().join("comm/zzzz237b.comm").display(),
+            root().join("comm/zzzz237.mail").display(),
+            dir.join("case.mess").display(),
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .arg("run")
+        .arg(&export)
+        .arg("--out")
+        .arg(&out)
+        .arg("-q")
+        .output()
+        .expect("aster runs");
+    assert_eq!(o.status.code(), Some(0));
+    let mess = std::fs::read_to_string(out.join("case.mess")).expect("the .mess is written");
+    assert!(mess.contains("= STAT_NON_LINE"), "{mess}");
+    assert!(mess.contains("| RESI_GLOB_RELA |"), "{mess}");
+    assert!(mess.contains("TEST_RESU: 14 OK, 0 NOOK"), "{mess}");
+}

@@ -70,6 +70,80 @@ impl DiagKind {
             DiagKind::Exec => "execution error",
         }
     }
+
+    /// The stable name of the kind, used in diagnostic codes
+    /// (`E-unknown-keyword`): tools may filter on it, so a name never
+    /// changes once published (docs/check.md lists them).
+    pub fn slug(self) -> &'static str {
+        match self {
+            DiagKind::Syntax => "syntax",
+            DiagKind::NotSupported => "unsupported",
+            DiagKind::RunTimeValue => "run-time-value",
+            DiagKind::Python => "python",
+            DiagKind::UnknownCommand => "unknown-command",
+            DiagKind::UnknownKeyword => "unknown-keyword",
+            DiagKind::KeywordNotApplicable => "not-applicable",
+            DiagKind::MissingKeyword => "missing-keyword",
+            DiagKind::WrongType => "wrong-type",
+            DiagKind::NotInto => "not-into",
+            DiagKind::Count => "count",
+            DiagKind::OutOfRange => "out-of-range",
+            DiagKind::Rule => "rule",
+            DiagKind::Reuse => "reuse",
+            DiagKind::Legacy => "legacy",
+            DiagKind::Exec => "exec",
+        }
+    }
+
+    /// Every kind, in declaration order (the rules of a SARIF log).
+    pub const ALL: [DiagKind; 16] = [
+        DiagKind::Syntax,
+        DiagKind::NotSupported,
+        DiagKind::RunTimeValue,
+        DiagKind::Python,
+        DiagKind::UnknownCommand,
+        DiagKind::UnknownKeyword,
+        DiagKind::KeywordNotApplicable,
+        DiagKind::MissingKeyword,
+        DiagKind::WrongType,
+        DiagKind::NotInto,
+        DiagKind::Count,
+        DiagKind::OutOfRange,
+        DiagKind::Rule,
+        DiagKind::Reuse,
+        DiagKind::Legacy,
+        DiagKind::Exec,
+    ];
+}
+
+/// How a diagnostic counts for a user or a CI system: an error in the file,
+/// a construct `aster` does not support (the file may well be valid
+/// code_aster: numpy, a table value only known at run time…), or a warning.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Level {
+    Error,
+    Unsupported,
+    Warning,
+}
+
+impl Level {
+    /// The letter that starts a diagnostic code.
+    pub fn letter(self) -> char {
+        match self {
+            Level::Error => 'E',
+            Level::Unsupported => 'U',
+            Level::Warning => 'W',
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Level::Error => "error",
+            Level::Unsupported => "unsupported",
+            Level::Warning => "warning",
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -105,6 +179,22 @@ impl Diagnostic {
     }
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
+    }
+
+    /// Error, unsupported or warning: an error of a "not supported" kind
+    /// is [`Level::Unsupported`].
+    pub fn level(&self) -> Level {
+        match self.severity {
+            Severity::Warning => Level::Warning,
+            Severity::Error if self.kind.is_not_supported() => Level::Unsupported,
+            Severity::Error => Level::Error,
+        }
+    }
+
+    /// The stable code: the level's letter and the kind's slug
+    /// (`E-unknown-keyword`, `U-unsupported`, `W-legacy`).
+    pub fn code(&self) -> String {
+        format!("{}-{}", self.level().letter(), self.kind.slug())
     }
 
     /// The one-line form: `file:line:col: error: message`.

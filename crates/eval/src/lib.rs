@@ -25,7 +25,7 @@ mod validate;
 mod value;
 
 pub use command::*;
-pub use diag::{DiagKind, Diagnostic, Diagnostics, Severity};
+pub use diag::{DiagKind, Diagnostic, Diagnostics, Level, Severity};
 pub use formula::Formula;
 
 use aster_syntax::{ast, CodeMap};

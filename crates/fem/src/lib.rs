@@ -32,6 +32,7 @@ pub mod nonlinear;
 pub mod ordering;
 mod parallel;
 pub mod post;
+pub mod progress;
 pub mod refcells;
 pub mod scenes;
 pub mod shape;

@@ -793,6 +793,11 @@ impl StaticNonLinear<'_> {
                         (u, srcs, own) = saved;
                         pending.pop();
                         let pieces = sd.pieces.max(2);
+                        crate::progress::emit(crate::progress::Event::Cut {
+                            from,
+                            to: target,
+                            pieces,
+                        });
                         for k in (1..=pieces).rev() {
                             let at = if k == pieces {
                                 target
@@ -833,6 +838,10 @@ impl StaticNonLinear<'_> {
                 residual_history,
                 motion: self.dynamics.as_ref().map(|d| d.motion()),
                 own_unknowns: own.clone(),
+            });
+            crate::progress::emit(crate::progress::Event::Converged {
+                time: t,
+                iterations: newton_iterations,
             });
         }
         Ok(NonLinearResult { steps, attempts })
@@ -1003,6 +1012,8 @@ fn newton_step(
         let mut history: Vec<Vec<Vec<bool>>> = Vec::new();
         let mut newton_iter = 0usize;
         let mut set_changes = 0usize;
+        // Geometric re-pairings of the increment (progress reports).
+        let mut pairings = 0usize;
         let name = |i: usize| -> String {
             if i < nfree {
                 let dof = map.iter().position(|&m| m == i).unwrap_or(0);
@@ -1414,6 +1425,17 @@ fn newton_step(
                     }
                 }
             }
+            crate::progress::emit(crate::progress::Event::Iteration(
+                crate::progress::Iteration {
+                    time: t,
+                    newton: settled + usize::from(!changed),
+                    resi_glob_rela: resi_rela,
+                    resi_glob_maxi: resi_maxi,
+                    contact_iterations: set_changes,
+                    pairings,
+                    active_set_changed: changed,
+                },
+            ));
             // Geometry update at each iteration: re-ask the rows at the
             // current iterate; new rows mean another pass.
             if trace {
@@ -1453,6 +1475,7 @@ fn newton_step(
                 }
                 if changed {
                     pairing_start = outer;
+                    pairings += 1;
                     // New rows: the active sets seen with the previous
                     // ones say nothing about cycling with these.
                     history.clear();

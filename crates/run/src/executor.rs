@@ -54,6 +54,12 @@ pub struct Executor {
     /// truncates what an earlier run left there (code_aster starts each run
     /// with fresh `fort.<UNITE>` files), later ones append.
     written_units: std::collections::HashSet<PathBuf>,
+    /// Each command and each TEST_* comparison as they ran (reports).
+    pub journal: crate::journal::Journal,
+    /// Where live progress goes (nowhere unless set).
+    pub progress: crate::progress::Progress,
+    /// The command running now (named in the journal's checks).
+    current: String,
 }
 
 impl Executor {
@@ -73,6 +79,9 @@ impl Executor {
             lac_patches: Vec::new(),
             read_meshes: Vec::new(),
             written_units: Default::default(),
+            journal: Default::default(),
+            progress: Default::default(),
+            current: String::new(),
         }
     }
 
@@ -102,6 +111,26 @@ impl Executor {
     /// `file:line:col` of a span, when the source is known.
     pub(crate) fn location(&self, span: Span) -> Option<String> {
         self.codemap.as_ref().map(|cm| cm.location(span))
+    }
+
+    /// File, line and column of a span, when the source is known.
+    pub(crate) fn position(&self, span: Span) -> crate::journal::Position {
+        match &self.codemap {
+            Some(cm) => {
+                let lc = cm.line_col(span.start as usize);
+                crate::journal::Position {
+                    file: cm.file_name(lc.file).to_string(),
+                    line: lc.line,
+                    column: lc.column,
+                }
+            }
+            None => Default::default(),
+        }
+    }
+
+    /// The command running now.
+    pub(crate) fn current_command(&self) -> &str {
+        &self.current
     }
 
     /// "not supported yet: CMD/KEYWORD (file:line:col)".
@@ -337,7 +366,33 @@ impl CommandSink for Executor {
                 return Ok(CommandOutput::Nothing);
             }
         }
-        crate::commands::dispatch(self, call)
+        self.current = call.command.clone();
+        let started = std::time::Instant::now();
+        let outcome = crate::commands::dispatch(self, call);
+        let seconds = started.elapsed().as_secs_f64();
+        let at = self.position(call.span);
+        let result = call
+            .result
+            .as_ref()
+            .or(call.reuse.as_ref())
+            .map(|c| c.name.clone());
+        if self.progress.is_on() {
+            let loc = format!("{}:{}:{}", at.file, at.line, at.column);
+            self.progress.line(&crate::progress::command_line(
+                &call.command,
+                result.as_deref(),
+                seconds,
+                &loc,
+            ));
+        }
+        self.journal.commands.push(crate::journal::CommandRecord {
+            command: call.command.clone(),
+            result,
+            at,
+            seconds,
+            error: outcome.as_ref().err().map(|e| e.message.clone()),
+        });
+        outcome
     }
 
     fn formula(&mut self, concept: &ConceptRef, formula: &Rc<aster_eval::Formula>) {

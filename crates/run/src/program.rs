@@ -21,6 +21,11 @@ pub struct Case {
     /// Files the report is also written to (`F resu … R 8`, `F mess … R 6`
     /// of the `.export`: their file name, inside the output directory).
     pub report_files: Vec<PathBuf>,
+    /// The `.export`'s `mess` file (in the output directory): it also
+    /// receives the live progress.
+    pub mess: Option<PathBuf>,
+    /// Write the live progress ([`crate::progress`]) to stderr too.
+    pub progress_stderr: bool,
     pub options: RunOptions,
 }
 
@@ -61,6 +66,7 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
     };
     let mut modules = Vec::new();
     let mut report_files = Vec::new();
+    let mut mess = None;
     let from_export = case.extension().is_some_and(|e| e == "export");
     let comms = if from_export {
         let export = Export::read(case).map_err(fail)?;
@@ -100,6 +106,9 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
         for kind in ["resu", "mess"] {
             if let Some(name) = export.result_file(kind).and_then(Path::file_name) {
                 report_files.push(out_dir.join(name));
+                if kind == "mess" {
+                    mess = Some(out_dir.join(name));
+                }
             }
         }
         comms
@@ -137,6 +146,8 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
         modules,
         from_export,
         report_files,
+        mess,
+        progress_stderr: false,
         options,
     })
 }
@@ -146,6 +157,8 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
 pub struct Outcome {
     pub tally: Tally,
     pub error: Option<RunFailure>,
+    /// Each command and comparison (reports).
+    pub journal: crate::journal::Journal,
 }
 
 /// Runs a case, writing its report (TEST_RESU lines, tables) to `report`
@@ -167,11 +180,14 @@ pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
             return Outcome {
                 tally: Tally::default(),
                 error: Some(e),
+                journal: Default::default(),
             }
         }
     };
     let mut copies = Vec::new();
-    if !case.report_files.is_empty() {
+    // The files the case writes go there (created even when the `.export`
+    // names no result file, so `IMPR_*` and `--vtu` find it).
+    {
         if let Err(e) = std::fs::create_dir_all(&case.options.out_dir) {
             return Outcome {
                 tally: Tally::default(),
@@ -179,6 +195,7 @@ pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
                     "{}: cannot create: {e}",
                     case.options.out_dir.display()
                 ))),
+                journal: Default::default(),
             };
         }
     }
@@ -189,6 +206,7 @@ pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
                 return Outcome {
                     tally: Tally::default(),
                     error: Some(fail(format!("{}: cannot write: {e}", path.display()))),
+                    journal: Default::default(),
                 }
             }
         }
@@ -202,8 +220,20 @@ pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
         })
     };
     let mut executor = Executor::new(case.options.clone(), report);
-    let error =
-        crate::evaluate::run_sources(&comms, &modules, case.from_export, &mut executor).err();
+    // The `.mess` file gets the progress too (the report's copy shares its
+    // file offset, so the two interleave in order).
+    let mess = case.mess.as_ref().and_then(|m| {
+        case.report_files
+            .iter()
+            .position(|p| p == m)
+            .and_then(|i| copies.get(i))
+            .and_then(|f| f.try_clone().ok())
+    });
+    executor.progress = crate::progress::Progress::new(case.progress_stderr, mess);
+    let observer = executor.progress.observer();
+    let (error, _) = aster_fem::progress::observe(observer, || {
+        crate::evaluate::run_sources(&comms, &modules, case.from_export, &mut executor).err()
+    });
     // The files end as the report does: the error, then the summary.
     for mut f in copies {
         let mut tail = String::new();
@@ -216,6 +246,7 @@ pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
     Outcome {
         tally: executor.tally,
         error,
+        journal: executor.journal,
     }
 }
 

@@ -174,6 +174,11 @@ impl CodeMap {
         f.source.get(start - f.base..end - f.base).unwrap_or("")
     }
 
+    /// The name of a file of the map (`LineCol::file`).
+    pub fn file_name(&self, file: usize) -> &str {
+        self.files.get(file).map_or("", |f| f.name.as_str())
+    }
+
     /// `file:line:col` of a span's start.
     pub fn location(&self, span: Span) -> String {
         let lc = self.line_col(span.start as usize);

@@ -1,10 +1,33 @@
 //! `aster check FILE...`: parse, evaluate (commands are not executed) and
-//! validate every command against the catalog. Exit 0 iff no error.
-//! `--emit commands` prints the evaluated program as JSON.
+//! validate every command against the catalog. `--emit commands` prints the
+//! evaluated program as JSON; `--format json|sarif|github` prints the
+//! diagnostics for tools ([`super::diag_out`]).
+//!
+//! Exit codes: 0 every file clean (warnings allowed), 1 some file has an
+//! error (or cannot be read), 3 no error but some file uses a construct
+//! aster does not support (the file may be valid code_aster), 2 a usage
+//! error.
 
-use aster_eval::{check_source, CommandCall, Severity};
+use super::diag_out::{self, Located};
+use aster_eval::{check_source, CommandCall, Level};
 use aster_syntax::CodeMap;
 use std::path::{Path, PathBuf};
+
+/// The exit code when nothing is wrong but something is not supported.
+pub const EXIT_UNSUPPORTED: u8 = 3;
+
+/// How diagnostics are printed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// rustc-style text with the source line and a caret, on stderr.
+    Human,
+    /// JSON Lines on stdout: one object per file (schema in docs/check.md).
+    Json,
+    /// One SARIF 2.1.0 log on stdout.
+    Sarif,
+    /// GitHub Actions workflow commands (`::error file=…::…`) on stdout.
+    Github,
+}
 
 /// Reads a command file; old files are Latin-1, so bytes that are not UTF-8
 /// are decoded as such rather than rejected.
@@ -22,10 +45,31 @@ struct Emitted<'a> {
     commands: &'a [CommandCall],
 }
 
-pub fn run(files: &[PathBuf], emit: Option<&str>) -> u8 {
+/// A file that cannot be read, as a diagnostic of the machine formats.
+fn unreadable(path: &str, message: String) -> Located {
+    Located {
+        code: "E-io".into(),
+        level: Level::Error,
+        kind: "io",
+        file: path.to_string(),
+        line: 1,
+        column: 1,
+        end_line: 1,
+        end_column: 1,
+        message,
+        suggestion: None,
+        notes: Vec::new(),
+    }
+}
+
+pub fn run(files: &[PathBuf], emit: Option<&str>, format: Format) -> u8 {
     if let Some(what) = emit {
         if what != "commands" {
             eprintln!("aster check: unknown --emit `{what}` (expected `commands`)");
+            return 2;
+        }
+        if format != Format::Human {
+            eprintln!("aster check: --emit prints the program, --format the diagnostics: give one");
             return 2;
         }
     }
@@ -33,46 +77,82 @@ pub fn run(files: &[PathBuf], emit: Option<&str>) -> u8 {
         eprintln!("aster check: no file given");
         return 2;
     }
-    let mut failed = false;
-    let (mut clean, mut with_errors) = (0usize, 0usize);
+    let (mut clean, mut with_errors, mut unsupported) = (0usize, 0usize, 0usize);
     let mut emitted = Vec::new();
+    let mut all: Vec<(String, Vec<Located>)> = Vec::new();
     for f in files {
-        let source = match read(f) {
-            Ok(s) => s,
+        let path = f.display().to_string();
+        let diags = match read(f) {
+            Ok(source) => {
+                let map = CodeMap::new(path.clone(), source);
+                let report = check_source(&map, emit.is_some());
+                if format == Format::Human {
+                    for d in &report.diagnostics.0 {
+                        eprint!("{}", d.render(&map));
+                    }
+                }
+                if emit.is_some() {
+                    emitted.push((path.clone(), report.calls));
+                }
+                report
+                    .diagnostics
+                    .0
+                    .iter()
+                    .map(|d| Located::new(d, &map, &path))
+                    .collect()
+            }
             Err(e) => {
-                eprintln!("{e}");
-                failed = true;
-                with_errors += 1;
-                continue;
+                if format == Format::Human {
+                    eprintln!("{e}");
+                }
+                vec![unreadable(&path, e)]
             }
         };
-        let map = CodeMap::new(f.display().to_string(), source);
-        let report = check_source(&map, emit.is_some());
-        let (mut errors, mut warnings) = (0, 0);
-        for d in &report.diagnostics.0 {
-            match d.severity {
-                Severity::Error => errors += 1,
-                Severity::Warning => warnings += 1,
-            }
-            eprint!("{}", d.render(&map));
+        let count = |l: Level| diags.iter().filter(|d| d.level == l).count();
+        let (errors, nosup, warnings) = (
+            count(Level::Error),
+            count(Level::Unsupported),
+            count(Level::Warning),
+        );
+        match diag_out::status(&diags) {
+            "error" => with_errors += 1,
+            "unsupported" => unsupported += 1,
+            _ => clean += 1,
         }
-        if errors > 0 {
-            failed = true;
-            with_errors += 1;
-            eprintln!("{}: {errors} error(s), {warnings} warning(s)", f.display());
-        } else {
-            clean += 1;
-            if emit.is_none() {
-                eprintln!("{}: ok ({warnings} warning(s))", f.display());
+        match format {
+            Format::Human if errors > 0 => {
+                eprintln!("{path}: {errors} error(s), {warnings} warning(s)")
             }
+            Format::Human if nosup > 0 => {
+                eprintln!("{path}: not supported by aster ({warnings} warning(s))")
+            }
+            Format::Human if emit.is_none() => eprintln!("{path}: ok ({warnings} warning(s))"),
+            Format::Human => {}
+            Format::Json => println!("{}", diag_out::json_line(&path, &diags)),
+            Format::Github => {
+                for d in &diags {
+                    println!("{}", diag_out::github_line(d));
+                }
+            }
+            Format::Sarif => {}
         }
-        if emit.is_some() {
-            emitted.push((f.display().to_string(), report.calls));
+        if format == Format::Sarif {
+            all.push((path, diags));
         }
     }
-    // The summary line CI's ratchet reads; only worth printing for batches.
+    // The summary line CI's ratchet reads (`check: N clean`); only worth
+    // printing for batches.
     if files.len() > 1 && emit.is_none() {
-        eprintln!("check: {clean} clean, {with_errors} with errors");
+        eprintln!("check: {clean} clean, {with_errors} with errors, {unsupported} not supported");
+    }
+    if format == Format::Sarif {
+        match serde_json::to_string_pretty(&diag_out::sarif(&all)) {
+            Ok(j) => println!("{j}"),
+            Err(e) => {
+                eprintln!("aster check: cannot write SARIF: {e}");
+                return 2;
+            }
+        }
     }
     if emit.is_some() {
         let out: Vec<Emitted> = emitted
@@ -95,5 +175,11 @@ pub fn run(files: &[PathBuf], emit: Option<&str>) -> u8 {
             }
         }
     }
-    u8::from(failed)
+    if with_errors > 0 {
+        1
+    } else if unsupported > 0 {
+        EXIT_UNSUPPORTED
+    } else {
+        0
+    }
 }

@@ -1,18 +1,63 @@
-//! `aster run CASE [--mesh PATH] [--out DIR]`: runs a `.comm` or `.export`,
-//! prints each TEST_RESU check as code_aster does and a last line
-//! `TEST_RESU: <n> OK, <m> NOOK`. Exit 0 iff every check is OK, 1 if any is
-//! NOOK, 2 when the run stops on an error.
+//! `aster run CASE [--mesh PATH] [--out DIR] [--report json|junit FILE] [-q]`:
+//! runs a `.comm` or `.export`, prints each TEST_RESU check as code_aster
+//! does and a last line `TEST_RESU: <n> OK, <m> NOOK`. Live progress (one
+//! line per command, a table per non-linear increment) goes to stderr
+//! unless `-q`. Exit 0 iff every check is OK, 1 if any is NOOK, 2 when the
+//! run stops on an error.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-pub fn run(case: &Path, mesh: Option<&Path>, out: &Path) -> u8 {
-    let prepared = match aster_run::program::prepare(case, mesh, out) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
+/// The default output directory: `<case stem>-out` in the current
+/// directory.
+pub fn default_out(case: &Path) -> PathBuf {
+    let stem = case
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "case".into());
+    PathBuf::from(format!("{stem}-out"))
+}
+
+enum ReportFormat {
+    Json,
+    Junit,
+}
+
+pub fn run(
+    case: &Path,
+    mesh: Option<&Path>,
+    out: Option<&Path>,
+    report: &[String],
+    quiet: bool,
+) -> u8 {
+    let report = match report {
+        [] => None,
+        [format, file] => match format.as_str() {
+            "json" => Some((ReportFormat::Json, PathBuf::from(file))),
+            "junit" => Some((ReportFormat::Junit, PathBuf::from(file))),
+            other => {
+                eprintln!(
+                    "aster run: unknown report format `{other}` (expected `json` or `junit`)"
+                );
+                return 2;
+            }
+        },
+        _ => {
+            eprintln!("aster run: --report takes a format and a file: `--report json FILE`");
             return 2;
         }
     };
+    let out = out.map_or_else(|| default_out(case), Path::to_path_buf);
+    let mut prepared = match aster_run::program::prepare(case, mesh, &out) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            if let Some((format, file)) = &report {
+                write_report(format, file, case, &Default::default(), Some(&e.message));
+            }
+            return 2;
+        }
+    };
+    prepared.progress_stderr = !quiet;
     let outcome = aster_run::program::run(&prepared, Box::new(std::io::stdout()));
     if let Some(e) = &outcome.error {
         // Errors of the program carry `file:line:col: error:` already.
@@ -20,6 +65,12 @@ pub fn run(case: &Path, mesh: Option<&Path>, out: &Path) -> u8 {
             eprintln!("{e}");
         } else {
             eprintln!("error: {e}");
+        }
+    }
+    if let Some((format, file)) = &report {
+        let error = outcome.error.as_ref().map(|e| e.message.as_str());
+        if !write_report(format, file, case, &outcome.journal, error) {
+            return 2;
         }
     }
     // The summary line always ends the output, so a stopped run still
@@ -32,4 +83,35 @@ pub fn run(case: &Path, mesh: Option<&Path>, out: &Path) -> u8 {
     } else {
         0
     }
+}
+
+fn write_report(
+    format: &ReportFormat,
+    file: &Path,
+    case: &Path,
+    journal: &aster_run::journal::Journal,
+    error: Option<&str>,
+) -> bool {
+    let name = case
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let text = match format {
+        ReportFormat::Json => match serde_json::to_string_pretty(&journal.to_json(&name, error)) {
+            Ok(t) => t + "\n",
+            Err(e) => {
+                eprintln!("aster run: cannot write the report: {e}");
+                return false;
+            }
+        },
+        ReportFormat::Junit => journal.to_junit(&name, error),
+    };
+    if let Err(e) = std::fs::write(file, text) {
+        eprintln!(
+            "aster run: {}: cannot write the report: {e}",
+            file.display()
+        );
+        return false;
+    }
+    true
 }

@@ -151,9 +151,20 @@ fn run_checks(
 ) -> Result<(), ExecError> {
     let cs = comparisons(occ).map_err(ExecError::new)?;
     let (text, verdicts) = check_block(header, &cs, computed);
-    for v in verdicts {
+    for &v in &verdicts {
         ex.tally.add(v);
     }
+    // The report's record: each comparison at the keyword of its value.
+    let span = ["VALE_CALC", "VALE_REFE", "VALE"]
+        .iter()
+        .find_map(|k| occ.keyword(k))
+        .or(occ.entries.first())
+        .map(|k| k.span)
+        .unwrap_or_default();
+    let at = ex.position(span);
+    let judged: Vec<_> = cs.iter().map(|c| (c, c.judge(computed))).collect();
+    let command = ex.current_command().to_string();
+    ex.journal.checks_of(&command, at, header, &judged);
     ex.write_report(&text)
 }
 
