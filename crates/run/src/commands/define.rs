@@ -262,7 +262,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                             "AFFE_MODELE",
                             occ,
                             "MODELISATION",
-                            &format!(
+                            format!(
                                 "not supported yet: MODELISATION='{name}' on {} cells (code_aster's one-point element with hourglass stabilisation; QUAD8, HEXA20 and TETRA10 cells are supported)",
                                 ty.name()
                             ),
