@@ -153,6 +153,9 @@ fn unquote(s: &str) -> &str {
 }
 
 /// The quick fixes of the findings a range touches.
+// `WorkspaceEdit::changes` is lsp-types' `HashMap<Uri, _>`; `Uri` caches its
+// parse lazily (interior mutability) but never changes its hash.
+#[allow(clippy::mutable_key_type)]
 pub fn code_actions(doc: &Document, uri: &Uri, a: &Analysis, range: Range) -> Vec<CodeAction> {
     let (rs, re) = (doc.offset(range.start), doc.offset(range.end));
     let mut out = Vec::new();
