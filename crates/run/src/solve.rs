@@ -192,10 +192,6 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "TITRE",
     "AFFICHAGE",
     "AFFICHAGE/*",
-    // Columns code_aster adds to its convergence table: display only, no
-    // effect on the solution.
-    "SUIVI_DDL",
-    "SUIVI_DDL/*",
     "ARCHIVAGE",
     "ARCHIVAGE/*",
     "MESURE",
