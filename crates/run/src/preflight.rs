@@ -82,6 +82,9 @@ struct Sink<'o> {
     /// A mesh the pass cannot follow is made: no group check.
     unknown_mesh: bool,
     refusals: CallRefusals,
+    /// Refusals of commands that run an external program
+    /// ([`crate::support::CommandHint::external`]): reported first.
+    external: Vec<Diagnostic>,
 }
 
 impl Sink<'_> {
@@ -246,10 +249,17 @@ impl CallRefusals {
 
 impl CommandSink for Sink<'_> {
     fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+        let before = self.findings.len();
         for (what, span) in self.refusals.call(call) {
             self.refuse(what, span);
         }
         let command = crate::commands::find(&call.command);
+        if command.is_none()
+            && crate::support::command_hint(&call.command).is_some_and(|h| h.external)
+        {
+            let mut these = self.findings.split_off(before);
+            self.external.append(&mut these);
+        }
         if call.command == "LIRE_MAILLAGE" && command.is_some() {
             self.read_mesh(call);
         } else if produces_mesh(call) && !MESH_COMMANDS.contains(&call.command.as_str()) {
@@ -303,6 +313,7 @@ pub fn check_study(map: &CodeMap, study: &aster_eval::Study, options: &RunOption
         meshes: Vec::new(),
         unknown_mesh: false,
         refusals: CallRefusals::default(),
+        external: Vec::new(),
     };
     let result = aster_eval::run_study(
         map,
@@ -330,6 +341,12 @@ pub fn check_study(map: &CodeMap, study: &aster_eval::Study, options: &RunOption
         ));
     }
     findings.sort_by_key(|d| (d.span.start, d.span.end));
+    // A command running a program aster does not have is the case's real
+    // blocker, whatever else it uses: it comes first.
+    let mut external = std::mem::take(&mut sink.external);
+    external.sort_by_key(|d| (d.span.start, d.span.end));
+    external.append(&mut findings);
+    let mut findings = external;
     findings.dedup_by(|a, b| a.span == b.span && a.message == b.message);
     Preflight {
         findings: Diagnostics(findings),

@@ -52,8 +52,10 @@ FIN()
     assert_eq!(
         messages(&p, &map),
         vec![
+            // A command running an external program is the real blocker:
+            // reported first, at its keyword.
+            "case.comm:6:20: error: not supported yet: MACR_ADAP_MAIL/ADAPTATION='RAFFINEMENT_UNIFORME' (mesh adaptation runs the external HOMARD tool, which aster does not have)",
             "case.comm:4:43: error: not supported yet: DEFI_MATERIAU/LEMAITRE",
-            "case.comm:6:5: error: not supported yet: MACR_ADAP_MAIL (mesh adaptation runs the external HOMARD tool, which aster does not have)",
         ]
     );
 }
