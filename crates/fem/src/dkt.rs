@@ -354,23 +354,31 @@ fn gtria3(xy: &[[f64; 2]]) -> [f64; 21] {
 }
 
 /// Membrane and bending elasticity matrices of the section (`dxmate`).
-fn section_matrices(material: &Elastic, section: &ShellSection) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
+pub(crate) fn section_matrices(
+    material: &Elastic,
+    section: &ShellSection,
+) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
     let (e, nu, h) = (material.e, material.nu, section.thickness);
     let a = e * h / (1. - nu * nu);
-    let dm = [[a, a * nu, 0.], [a * nu, a, 0.], [0., 0., a * (1. - nu) / 2.]];
+    let dm = [
+        [a, a * nu, 0.],
+        [a * nu, a, 0.],
+        [0., 0., a * (1. - nu) / 2.],
+    ];
     let f = h * h / 12.;
     let df = dm.map(|row| row.map(|v| v * f));
     (dm, df)
 }
 
-/// Local index of membrane unknown `k` (u₁ v₁ u₂ …) among the 18 DOFs.
-fn membrane_dof(k: usize) -> usize {
+/// Local index of membrane unknown `k` (u₁ v₁ u₂ …) among the element's
+/// DOFs (6 per node).
+pub(crate) fn membrane_dof(k: usize) -> usize {
     6 * (k / 2) + k % 2
 }
 
 /// Local index and sign of bending unknown `k` (w₁ βx₁ βy₁ …): w = DZ,
 /// βx = DRY, βy = −DRX.
-fn bending_dof(k: usize) -> (usize, f64) {
+pub(crate) fn bending_dof(k: usize) -> (usize, f64) {
     let node = 6 * (k / 3);
     match k % 3 {
         0 => (node + 2, 1.),
