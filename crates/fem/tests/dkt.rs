@@ -26,6 +26,9 @@ struct Plate {
     cells: Vec<Vec<usize>>,
 }
 
+/// Moments (MXX MYY MXY) at a Gauss point, and the shears where computed.
+type MomentsAndShear = ([f64; 3], Option<[f64; 2]>);
+
 /// Which facets a grid is made of.
 #[derive(Clone, Copy, Debug)]
 enum Cells {
@@ -101,7 +104,7 @@ impl Plate {
         for c in &self.cells {
             let x = |i: usize| self.nodes[c[i]];
             let ue: Vec<f64> = (0..6 * c.len()).map(|a| u[dof(c[a / 6], a % 6)]).collect();
-            let (pgl, ef): (Matrix3<f64>, Vec<([f64; 3], Option<[f64; 2]>)>) = match c.len() {
+            let (pgl, ef): (Matrix3<f64>, Vec<MomentsAndShear>) = match c.len() {
                 3 => {
                     let xyz = [x(0), x(1), x(2)];
                     let ue: [f64; 18] = ue.try_into().unwrap();
@@ -308,7 +311,6 @@ fn constant_curvature_is_reproduced_exactly() {
 /// strip bends as a beam of inertia b·h³/12.
 struct Strip {
     plate: Plate,
-    cells: Cells,
     r: Matrix3<f64>,
     nx: usize,
     ny: usize,
@@ -324,7 +326,6 @@ impl Strip {
         let r = tilted();
         Strip {
             plate: Plate::grid(l, b, nx, ny, &r, cells),
-            cells,
             r,
             nx,
             ny,
