@@ -77,6 +77,11 @@ enum Command {
         /// No live progress on stderr (the `.mess` file still gets it).
         #[arg(short, long)]
         quiet: bool,
+        /// Write every result (all steps: displacement, stresses, contact
+        /// status…) for ParaView, no IMPR_RESU needed: DIR/<RESULT>.pvd and
+        /// DIR/<RESULT>_<NUME_ORDRE>.vtu.
+        #[arg(long, value_name = "DIR")]
+        vtu: Option<PathBuf>,
     },
     /// Serve the Language Server Protocol on stdin/stdout (docs/editors.md).
     Lsp {
@@ -139,7 +144,15 @@ fn run(cli: Cli) -> u8 {
             out,
             report,
             quiet,
-        } => cmd::run::run(&case, mesh.as_deref(), out.as_deref(), &report, quiet),
+            vtu,
+        } => cmd::run::run(
+            &case,
+            mesh.as_deref(),
+            out.as_deref(),
+            &report,
+            quiet,
+            vtu.as_deref(),
+        ),
         Command::Study { spec, out } => cmd::study::run(&spec, &out),
         Command::Lsp { .. } => cmd::lsp::run(),
     }
