@@ -47,6 +47,20 @@ enum Command {
     },
     /// Explain a command or a keyword: `aster explain CMD[/KEYWORD/...]`.
     Explain { path: String },
+    /// Rewrite code_aster 11/14/15 command files in code_aster 17 spelling
+    /// (comments and layout kept); print a unified diff, or --write.
+    ///
+    /// Example: `aster migrate study.comm` (diff), `aster migrate --write *.comm`.
+    /// Exit 0 when every legacy construct was rewritten, 1 when some are
+    /// left (listed on stderr), 2 when a file cannot be read or parsed.
+    Migrate {
+        /// The command files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Rewrite the files in place instead of printing a diff.
+        #[arg(long)]
+        write: bool,
+    },
     /// Describe a mesh file.
     Mesh {
         file: PathBuf,
@@ -131,6 +145,7 @@ fn run(cli: Cli) -> u8 {
             emit,
             format,
         } => cmd::check::run(&files, emit.as_deref(), format),
+        Command::Migrate { files, write } => cmd::migrate::run(&files, write),
         Command::Explain { path } => cmd::explain::run(&path),
         Command::Mesh {
             file,
