@@ -72,8 +72,11 @@ fn read(file: &Path) -> Result<(Mesh, Vec<ResultStep>), aster_mesh::MeshError> {
 
 /// Each field once, in the order first met: its location, components and
 /// the (NUME_ORDRE, INST) of the steps that hold it.
-fn field_table(steps: &[ResultStep]) -> Vec<(&str, &'static str, &[String], Vec<(i32, f64)>)> {
-    let mut table: Vec<(&str, &'static str, &[String], Vec<(i32, f64)>)> = Vec::new();
+/// A field: name, location, components, (NUME_ORDRE, INST) of its steps.
+type FieldRow<'a> = (&'a str, &'static str, &'a [String], Vec<(i32, f64)>);
+
+fn field_table(steps: &[ResultStep]) -> Vec<FieldRow<'_>> {
+    let mut table: Vec<FieldRow<'_>> = Vec::new();
     for s in steps {
         for f in &s.fields {
             let at = match f.location {
