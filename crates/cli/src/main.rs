@@ -47,6 +47,20 @@ enum Command {
     },
     /// Explain a command or a keyword: `aster explain CMD[/KEYWORD/...]`.
     Explain { path: String },
+    /// Rewrite code_aster 11/14/15 command files in code_aster 17 spelling
+    /// (comments and layout kept); print a unified diff, or --write.
+    ///
+    /// Example: `aster migrate study.comm` (diff), `aster migrate --write *.comm`.
+    /// Exit 0 when every legacy construct was rewritten, 1 when some are
+    /// left (listed on stderr), 2 when a file cannot be read or parsed.
+    Migrate {
+        /// The command files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Rewrite the files in place instead of printing a diff.
+        #[arg(long)]
+        write: bool,
+    },
     /// Describe a mesh file.
     Mesh {
         file: PathBuf,
@@ -77,6 +91,11 @@ enum Command {
         /// No live progress on stderr (the `.mess` file still gets it).
         #[arg(short, long)]
         quiet: bool,
+        /// Write every result (all steps: displacement, stresses, contact
+        /// status…) for ParaView, no IMPR_RESU needed: DIR/<RESULT>.pvd and
+        /// DIR/<RESULT>_<NUME_ORDRE>.vtu.
+        #[arg(long, value_name = "DIR")]
+        vtu: Option<PathBuf>,
     },
     /// Serve the Language Server Protocol on stdin/stdout (docs/editors.md).
     Lsp {
@@ -126,6 +145,7 @@ fn run(cli: Cli) -> u8 {
             emit,
             format,
         } => cmd::check::run(&files, emit.as_deref(), format),
+        Command::Migrate { files, write } => cmd::migrate::run(&files, write),
         Command::Explain { path } => cmd::explain::run(&path),
         Command::Mesh {
             file,
@@ -139,7 +159,15 @@ fn run(cli: Cli) -> u8 {
             out,
             report,
             quiet,
-        } => cmd::run::run(&case, mesh.as_deref(), out.as_deref(), &report, quiet),
+            vtu,
+        } => cmd::run::run(
+            &case,
+            mesh.as_deref(),
+            out.as_deref(),
+            &report,
+            quiet,
+            vtu.as_deref(),
+        ),
         Command::Study { spec, out } => cmd::study::run(&spec, &out),
         Command::Lsp { .. } => cmd::lsp::run(),
     }

@@ -18,6 +18,7 @@ mod interp;
 pub mod legacy;
 pub mod legacy_commands;
 pub mod limits;
+pub mod migrate;
 mod study;
 mod testcase;
 mod try_import;

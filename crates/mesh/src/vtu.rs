@@ -56,6 +56,50 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, step: Option<&ResultStep>) -> Result<
     })
 }
 
+/// Write every step of a result as `<dir>/<stem>_<NUME_ORDRE>.vtu` and a
+/// ParaView collection `<dir>/<stem>.pvd` listing them by INST (ParaView's
+/// time). Returns the files written, the `.pvd` first.
+pub fn write_vtu_series(
+    dir: &Path,
+    stem: &str,
+    mesh: &Mesh,
+    steps: &[ResultStep],
+) -> Result<Vec<std::path::PathBuf>, MeshError> {
+    let write = |path: &Path, text: &str| {
+        std::fs::write(path, text).map_err(|e| MeshError::Write {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    };
+    std::fs::create_dir_all(dir).map_err(|e| MeshError::Write {
+        path: dir.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    let mut pvd = String::new();
+    let _ = writeln!(pvd, "<?xml version=\"1.0\"?>");
+    let _ = writeln!(
+        pvd,
+        "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">"
+    );
+    let _ = writeln!(pvd, "<Collection>");
+    let mut written = vec![dir.join(format!("{stem}.pvd"))];
+    for step in steps {
+        let name = format!("{stem}_{:06}.vtu", step.nume_ordre);
+        write(&dir.join(&name), &vtu_string(mesh, Some(step))?)?;
+        let _ = writeln!(
+            pvd,
+            "<DataSet timestep=\"{:e}\" part=\"0\" file=\"{}\"/>",
+            step.inst,
+            escape(&name)
+        );
+        written.push(dir.join(name));
+    }
+    let _ = writeln!(pvd, "</Collection>");
+    let _ = writeln!(pvd, "</VTKFile>");
+    write(&written[0], &pvd)?;
+    Ok(written)
+}
+
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('"', "&quot;")

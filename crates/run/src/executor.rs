@@ -163,6 +163,22 @@ impl Executor {
         self.names.insert(c.id, c.name.clone());
     }
 
+    /// Every result the program holds now, by creation order, with its name.
+    pub(crate) fn results(&self) -> Vec<(u32, &str, Rc<EvolResult>)> {
+        let mut out: Vec<(u32, &str, Rc<EvolResult>)> = self
+            .store
+            .iter()
+            .filter_map(|(id, c)| match c {
+                Concept::Result(r) => {
+                    Some((*id, self.concept_name(*id).unwrap_or("RESU"), r.clone()))
+                }
+                _ => None,
+            })
+            .collect();
+        out.sort_by_key(|r| r.0);
+        out
+    }
+
     /// The name a concept was given (`None` for one made without a name).
     pub(crate) fn concept_name(&self, id: u32) -> Option<&str> {
         self.names.get(&id).map(String::as_str)

@@ -35,5 +35,6 @@ pub mod support;
 pub mod table;
 pub mod test_resu;
 pub mod unil;
+mod vtu_export;
 
 pub use executor::{Executor, RunOptions};

@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 /// A stored field in the writer's form (every node / cell of the mesh;
 /// entities the field does not cover get 0).
-fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mesh::Field {
+pub(crate) fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mesh::Field {
     match field {
         Field::Nodal(f) => {
             let nc = f.components.len();

@@ -26,6 +26,9 @@ pub struct Case {
     pub mess: Option<PathBuf>,
     /// Write the live progress ([`crate::progress`]) to stderr too.
     pub progress_stderr: bool,
+    /// Write every result (all steps, all fields) as VTU/PVD there when
+    /// the run ends (`aster run --vtu DIR`).
+    pub vtu_dir: Option<PathBuf>,
     pub options: RunOptions,
 }
 
@@ -148,6 +151,7 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
         report_files,
         mess,
         progress_stderr: false,
+        vtu_dir: None,
         options,
     })
 }
@@ -231,9 +235,25 @@ pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
     });
     executor.progress = crate::progress::Progress::new(case.progress_stderr, mess);
     let observer = executor.progress.observer();
-    let (error, _) = aster_fem::progress::observe(observer, || {
+    let (mut error, _) = aster_fem::progress::observe(observer, || {
         crate::evaluate::run_sources(&comms, &modules, case.from_export, &mut executor).err()
     });
+    // The results as they are when the run ends (also after an error: what
+    // was computed up to it is what a user wants to look at).
+    if let Some(dir) = &case.vtu_dir {
+        match crate::vtu_export::write_results(&executor, dir) {
+            Ok(files) if case.progress_stderr => {
+                let pvd = files
+                    .iter()
+                    .filter(|f| f.extension().is_some_and(|e| e == "pvd"));
+                for f in pvd {
+                    eprintln!("vtu: {}", f.display());
+                }
+            }
+            Ok(_) => {}
+            Err(e) => error = error.or(Some(fail(e))),
+        }
+    }
     // The files end as the report does: the error, then the summary.
     for mut f in copies {
         let mut tail = String::new();

@@ -31,7 +31,7 @@ pub enum Format {
 
 /// Reads a command file; old files are Latin-1, so bytes that are not UTF-8
 /// are decoded as such rather than rejected.
-fn read(path: &Path) -> Result<String, String> {
+pub(crate) fn read(path: &Path) -> Result<String, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
     Ok(match String::from_utf8(bytes) {
         Ok(s) => s,

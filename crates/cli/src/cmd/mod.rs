@@ -6,6 +6,7 @@ pub mod explain;
 pub mod fmt;
 pub mod lsp;
 pub mod mesh;
+pub mod migrate;
 pub mod parse;
 pub mod run;
 pub mod study;

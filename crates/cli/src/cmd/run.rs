@@ -1,4 +1,4 @@
-//! `aster run CASE [--mesh PATH] [--out DIR] [--report json|junit FILE] [-q]`:
+//! `aster run CASE [--mesh PATH] [--out DIR] [--report json|junit FILE] [-q] [--vtu DIR]`:
 //! runs a `.comm` or `.export`, prints each TEST_RESU check as code_aster
 //! does and a last line `TEST_RESU: <n> OK, <m> NOOK`. Live progress (one
 //! line per command, a table per non-linear increment) goes to stderr
@@ -28,6 +28,7 @@ pub fn run(
     out: Option<&Path>,
     report: &[String],
     quiet: bool,
+    vtu: Option<&Path>,
 ) -> u8 {
     let report = match report {
         [] => None,
@@ -58,6 +59,7 @@ pub fn run(
         }
     };
     prepared.progress_stderr = !quiet;
+    prepared.vtu_dir = vtu.map(Path::to_path_buf);
     let outcome = aster_run::program::run(&prepared, Box::new(std::io::stdout()));
     if let Some(e) = &outcome.error {
         // Errors of the program carry `file:line:col: error:` already.

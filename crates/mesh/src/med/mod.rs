@@ -1,8 +1,10 @@
 //! MED files (HDF5): reading meshes, writing meshes and result fields.
 
 pub mod celltypes;
+mod fields;
 mod read;
 mod write;
 
+pub use fields::read_med_steps;
 pub use read::{read_med, read_med_bytes, read_med_named, MedInfo};
 pub use write::{med_bytes, write_med};
