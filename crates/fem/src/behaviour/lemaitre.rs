@@ -380,9 +380,11 @@ mod tests {
                     st.stress[3]
                 );
             }
-            // The exact relaxation after 0.2: within the scheme's error.
+            // The exact relaxation after 0.2 (τ/τ₀ = e^(−4.6) ≈ 0.010 at
+            // r·Δt ≈ 0.23): the trapezoidal rule ends 2.2e-4 τ₀ from it,
+            // backward Euler 5.9e-3 τ₀.
             let exact = mu * e0 * (-rate * 0.2).exp();
-            let tol = if theta == 0.5 { 1e-4 } else { 2e-2 };
+            let tol = if theta == 0.5 { 3e-4 } else { 7e-3 };
             assert!((st.stress[3] - exact).abs() < tol * mu * e0);
         }
     }
