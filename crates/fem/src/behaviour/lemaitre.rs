@@ -51,7 +51,8 @@ impl Lemaitre {
                 "LEMAITRE: PARM_THETA must be 0.5 or 1 (code_aster's semi-implicit or implicit scheme), got {theta}"
             )));
         }
-        if !(n.is_finite() && n > 0.0) || !(un_sur_k >= 0.0) || !(un_sur_m >= 0.0) {
+        let valid = n.is_finite() && n > 0.0 && un_sur_k >= 0.0 && un_sur_m >= 0.0;
+        if !valid {
             return Err(FemError::Model(format!(
                 "LEMAITRE: N must be positive and UN_SUR_K, UN_SUR_M non-negative, got N = {n}, UN_SUR_K = {un_sur_k}, UN_SUR_M = {un_sur_m}"
             )));
@@ -131,7 +132,7 @@ fn zerof2(
         if fy > 0.0 {
             let (mut a, mut b, mut fa, mut fb) = (x, y, fx, fy);
             loop {
-                let z = if n % 3 == 0 {
+                let z = if n.is_multiple_of(3) {
                     (a + b) * 0.5
                 } else {
                     (a * fb - b * fa) / (fb - fa)
@@ -153,7 +154,7 @@ fn zerof2(
                 }
             }
         }
-        if fy < fx || fy == fx {
+        if fy <= fx {
             return Err("the scalar equation does not rise on its interval".into());
         }
         let z = (x * fy - y * fx) / (fy - fx);
