@@ -364,6 +364,15 @@ pub(crate) fn newton_step(
                 reference = reference.max(fint[i].abs());
             } else {
                 let r = fext[i] - fint[i] + reac[i] - src_force[i];
+                if trace && r.abs() > resi_maxi {
+                    eprintln!(
+                        "[newton/sources] max residual {r:.3e} at {} (fint {:.3e}, sources {:.3e}, reactions {:.3e})",
+                        model.dofs().dof(i).describe(model.mesh()),
+                        fint[i],
+                        src_force[i],
+                        reac[i]
+                    );
+                }
                 resi_maxi = resi_maxi.max(r.abs());
                 reference = reference.max((fext[i] + reac[i] - src_force[i]).abs());
             }

@@ -15,6 +15,8 @@ pub mod assembly;
 pub mod autodiff;
 pub mod behaviour;
 mod diag;
+pub mod dkq;
+pub mod dkt;
 pub mod dof;
 pub mod dynamics;
 pub mod element;

@@ -217,6 +217,206 @@ impl Factor {
     }
 }
 
+/// The symbolic factorisations (fill-reducing ordering, elimination tree,
+/// supernodes) of the last sparsity pattern factorised on this thread.
+///
+/// A Newton loop factorises nearly the same pattern again and again: the
+/// tangent of a plastic or large-strain problem changes its values, not its
+/// non-zeros, and a contact problem's bordered matrix changes only where
+/// the active set or the pairing moves. The symbolic work — COLAMD and the
+/// supernodal structure for LU, the ordering and elimination tree for
+/// Cholesky — depends on the pattern only, so it is kept:
+///
+/// - Cholesky reuses it when the pattern is the same (the factor is then
+///   the one a fresh analysis gives, to the bit);
+/// - LU also when the pattern is contained in the kept one: the matrix is
+///   written on the kept pattern, the missing entries as explicit zeros.
+///   When it is not contained, the union of both patterns is analysed and
+///   kept (unless the union is over 25 % larger than the new pattern: then
+///   the new pattern alone), so that after a few iterations every active
+///   set a step visits fits. Explicit zeros change no value of the
+///   factors; the ordering computed on a larger pattern may differ, which
+///   changes the solution by rounding only.
+mod symbolic_cache {
+    use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+    use faer::sparse::linalg::LuError;
+    use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+    use faer::Side;
+    use std::cell::RefCell;
+
+    /// A pattern (column pointers, row indices) and its symbolic factor.
+    type Kept<S> = Option<(Vec<usize>, Vec<usize>, S)>;
+
+    thread_local! {
+        static LU: RefCell<Kept<SymbolicLu<usize>>> = const { RefCell::new(None) };
+        static LLT: RefCell<Kept<SymbolicLlt<usize>>> = const { RefCell::new(None) };
+    }
+
+    /// How much larger than the new pattern a kept union may be.
+    const UNION_SLACK: f64 = 1.25;
+
+    fn timing(what: &str) {
+        if std::env::var_os("ASTER_FEM_TIMING").is_some() {
+            eprintln!("[fem] symbolic factorisation {what}");
+        }
+    }
+
+    /// `mat`'s values written on the pattern (`cp`, `ri`), zeros where
+    /// `mat` has no entry; `None` when `mat` has an entry outside it. Rows
+    /// are sorted in every column of both.
+    fn scatter(
+        cp: &[usize],
+        ri: &[usize],
+        mat: SparseColMatRef<'_, usize, f64>,
+    ) -> Option<Vec<f64>> {
+        let sym = mat.symbolic();
+        let (mcp, mri, mv) = (sym.col_ptr(), sym.row_idx(), mat.val());
+        if cp.len() != mcp.len() {
+            return None;
+        }
+        let mut values = vec![0.0; ri.len()];
+        for j in 0..cp.len() - 1 {
+            let mut p = cp[j];
+            for q in mcp[j]..mcp[j + 1] {
+                while p < cp[j + 1] && ri[p] < mri[q] {
+                    p += 1;
+                }
+                if p == cp[j + 1] || ri[p] != mri[q] {
+                    return None;
+                }
+                values[p] = mv[q];
+                p += 1;
+            }
+        }
+        Some(values)
+    }
+
+    /// The union of two patterns of the same size (sorted rows).
+    fn union(
+        cp: &[usize],
+        ri: &[usize],
+        sym: SymbolicSparseColMatRef<'_, usize>,
+    ) -> (Vec<usize>, Vec<usize>) {
+        let (mcp, mri) = (sym.col_ptr(), sym.row_idx());
+        let mut ucp = Vec::with_capacity(cp.len());
+        let mut uri = Vec::with_capacity(ri.len().max(mri.len()));
+        ucp.push(0);
+        for j in 0..cp.len() - 1 {
+            let (a, b) = (&ri[cp[j]..cp[j + 1]], &mri[mcp[j]..mcp[j + 1]]);
+            let (mut x, mut y) = (0, 0);
+            while x < a.len() || y < b.len() {
+                let r = match (a.get(x), b.get(y)) {
+                    (Some(&u), Some(&v)) if u == v => {
+                        x += 1;
+                        y += 1;
+                        u
+                    }
+                    (Some(&u), Some(&v)) if u < v => {
+                        x += 1;
+                        u
+                    }
+                    (Some(_), Some(&v)) | (None, Some(&v)) => {
+                        y += 1;
+                        v
+                    }
+                    (Some(&u), None) => {
+                        x += 1;
+                        u
+                    }
+                    (None, None) => break,
+                };
+                uri.push(r);
+            }
+            ucp.push(uri.len());
+        }
+        (ucp, uri)
+    }
+
+    /// Sparse LU with partial pivoting (`SparseColMatRef::sp_lu`), on the
+    /// kept pattern when `mat`'s fits in it.
+    pub(super) fn lu(mat: SparseColMatRef<'_, usize, f64>) -> Result<Lu<usize, f64>, LuError> {
+        let sym = mat.symbolic();
+        let n = sym.ncols();
+        let kept = LU.with(|k| k.borrow_mut().take());
+        let fitted = kept.and_then(|(cp, ri, s)| {
+            if cp.len() != n + 1 {
+                return None;
+            }
+            match scatter(&cp, &ri, mat) {
+                Some(v) => Some(Ok((cp, ri, s, v))),
+                None => Some(Err((cp, ri))),
+            }
+        });
+        let (cp, ri, symbolic, values) = match fitted {
+            Some(Ok(found)) => {
+                timing("reused");
+                found
+            }
+            other => {
+                let (cp, ri) = match other {
+                    Some(Err((cp, ri))) => {
+                        let (ucp, uri) = union(&cp, &ri, sym);
+                        if (uri.len() as f64) <= UNION_SLACK * sym.row_idx().len() as f64 {
+                            timing("new (union with the kept pattern)");
+                            (ucp, uri)
+                        } else {
+                            timing("new");
+                            (sym.col_ptr().to_vec(), sym.row_idx().to_vec())
+                        }
+                    }
+                    _ => {
+                        timing("new");
+                        (sym.col_ptr().to_vec(), sym.row_idx().to_vec())
+                    }
+                };
+                let pattern = SymbolicSparseColMatRef::new_checked(n, n, &cp, None, &ri);
+                let symbolic = SymbolicLu::try_new(pattern)?;
+                let values = match scatter(&cp, &ri, mat) {
+                    Some(v) => v,
+                    // Unreachable: the pattern contains mat's; factorise
+                    // mat alone rather than fail.
+                    None => return mat.sp_lu(),
+                };
+                (cp, ri, symbolic, values)
+            }
+        };
+        let pattern = SymbolicSparseColMatRef::new_checked(n, n, &cp, None, &ri);
+        let lu =
+            Lu::try_new_with_symbolic(symbolic.clone(), SparseColMatRef::new(pattern, &values));
+        LU.with(|k| *k.borrow_mut() = Some((cp, ri, symbolic)));
+        lu
+    }
+
+    /// Sparse Cholesky of the lower triangle (`sp_cholesky(Side::Lower)`),
+    /// reusing the kept analysis of the same pattern; `None` when the
+    /// matrix is not positive definite.
+    pub(super) fn llt(mat: SparseColMatRef<'_, usize, f64>) -> Option<Llt<usize, f64>> {
+        let sym = mat.symbolic();
+        let hit = LLT.with(|k| {
+            k.borrow().as_ref().and_then(|(cp, ri, s)| {
+                (cp.as_slice() == sym.col_ptr() && ri.as_slice() == sym.row_idx())
+                    .then(|| s.clone())
+            })
+        });
+        let symbolic = match hit {
+            Some(s) => {
+                timing("reused");
+                s
+            }
+            None => {
+                timing("new");
+                let s = SymbolicLlt::try_new(sym, Side::Lower).ok()?;
+                LLT.with(|k| {
+                    *k.borrow_mut() =
+                        Some((sym.col_ptr().to_vec(), sym.row_idx().to_vec(), s.clone()))
+                });
+                s
+            }
+        };
+        Llt::try_new_with_symbolic(symbolic, mat, Side::Lower).ok()
+    }
+}
+
 /// Solves A x = b. `n_primal` is the number of leading displacement unknowns
 /// (the rest are multipliers); `spd_hint` says the matrix should be
 /// symmetric positive definite (no multipliers), so Cholesky is tried first.
@@ -418,13 +618,13 @@ pub fn solve_with(
             let scaled = scaled_copy(a, &s);
             let mat = scaled.as_ref();
             let llt = if try_cholesky {
-                mat.sp_cholesky(Side::Lower).ok()
+                symbolic_cache::llt(mat)
             } else {
                 None
             };
             match llt {
                 Some(f) => Factor::Llt(f),
-                None => match mat.sp_lu() {
+                None => match symbolic_cache::lu(mat) {
                     Ok(f) => Factor::Lu(Box::new(f)),
                     Err(faer::sparse::linalg::LuError::SymbolicSingular { index }) => {
                         return Err(SolveFailure::Singular { index: Some(index) })
@@ -546,6 +746,83 @@ mod tests {
         let u2 = 1. / k1 + 1. / k2;
         assert!((r.x[2] - u2).abs() / u2 < 1e-12, "{:?}", r.x);
         assert!((r.x[3] - 1.).abs() < 1e-9, "multiplier {:?}", r.x[3]);
+    }
+
+    /// A bordered (KKT) system of a chain of `n` springs with multiplier
+    /// rows holding the given nodes, and its exact solution for a unit
+    /// load at the free end.
+    fn chain_with_holds(n: usize, holds: &[usize]) -> (Csc, Vec<f64>) {
+        let m = n + holds.len();
+        let mut a = vec![vec![0.0; m]; m];
+        for i in 0..n - 1 {
+            let k = 1.0 + i as f64;
+            a[i][i] += k;
+            a[i + 1][i + 1] += k;
+            a[i][i + 1] -= k;
+            a[i + 1][i] -= k;
+        }
+        for (r, &h) in holds.iter().enumerate() {
+            a[n + r][h] = 1.0;
+            a[h][n + r] = 1.0;
+        }
+        let mut b = vec![0.0; m];
+        b[n - 1] = 1.0;
+        (dense_to_csc(&a), b)
+    }
+
+    #[test]
+    fn lu_keeps_its_symbolic_analysis_across_nearby_patterns() {
+        // The same pattern, a pattern inside it (a hold released: its row
+        // stays, uncoupled, as a released contact row does), one outside it
+        // (another node held): each solve must be what a fresh
+        // factorisation gives.
+        let n = 6;
+        let (a0, b0) = chain_with_holds(n, &[0, 2]);
+        let mut released = a0.clone();
+        // Release the second hold: its coupling becomes a zero value, then
+        // drops out of the pattern, the row keeping a unit diagonal.
+        let (r, h) = (n + 1, 2);
+        let mut dense = vec![vec![0.0; n + 2]; n + 2];
+        for j in 0..n + 2 {
+            for p in released.col_ptr[j]..released.col_ptr[j + 1] {
+                dense[released.row_idx[p]][j] = released.values[p];
+            }
+        }
+        dense[r][h] = 0.0;
+        dense[h][r] = 0.0;
+        dense[r][r] = 1.0;
+        released = dense_to_csc(&dense);
+        let (moved, bm) = chain_with_holds(n, &[0, 4]);
+        for (a, b) in [
+            (&a0, &b0),
+            (&a0, &b0),
+            (&released, &b0),
+            (&moved, &bm),
+            (&a0, &b0),
+        ] {
+            let r = solve(a, b, n, false).expect("solvable");
+            assert!(!r.cholesky);
+            let fresh = {
+                let s =
+                    SymbolicSparseColMatRef::new_checked(a.n, a.n, &a.col_ptr, None, &a.row_idx);
+                let lu = SparseColMatRef::new(s, &a.values).sp_lu().expect("regular");
+                let mut c = Col::<f64>::from_fn(b.len(), |i| b[i]);
+                lu.solve_in_place(c.as_mat_mut());
+                c
+            };
+            for i in 0..a.n {
+                assert!(
+                    (r.x[i] - fresh[i]).abs() <= 1e-12 * (1.0 + fresh[i].abs()),
+                    "{i}: {:?}",
+                    r.x
+                );
+            }
+            // Residual of the original system.
+            let ax = a.mul(&r.x);
+            for i in 0..a.n {
+                assert!((ax[i] - b[i]).abs() < 1e-12, "row {i}: {ax:?}");
+            }
+        }
     }
 
     #[test]

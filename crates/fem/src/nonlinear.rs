@@ -361,6 +361,9 @@ struct SourceRows {
     outer: OuterLoops,
     /// The source's augmented terms (`UnilateralSource::augmented_terms`).
     aug: Vec<AugRow>,
+    /// Penalty rows: the gaps carried from iteration to iteration by the
+    /// Newton corrections (`None`: taken from the iterate on next use).
+    tracked: Option<Vec<f64>>,
 }
 
 /// Where the augmented terms' tangent goes: the free-unknown map and the
@@ -380,6 +383,36 @@ struct AugRow {
 }
 
 impl SourceRows {
+    /// The gaps of the penalty rows, as code_aster's discrete penalty
+    /// (`cfjein`) carries them: taken from the geometry once (a new pairing,
+    /// a new step), then updated by each Newton correction δ alone,
+    /// g ← g + a·δ (code_aster's JEUITE − A·DDEPLA). Recomputing a·u − b on
+    /// the total displacement instead rounds the gap at ε·|u|, which the
+    /// penalty multiplies by E_N: with E_N = 1e10 the residual then stalls
+    /// near 1e-8 and a tight RESI_GLOB_MAXI is never met (ssnv104d).
+    fn penalty_gaps(&mut self, u: &[f64]) -> &[f64] {
+        if self.tracked.is_none() {
+            let g = self
+                .rows
+                .iter()
+                .zip(&self.idx)
+                .map(|(row, idx)| gap(idx, row.rhs, u))
+                .collect();
+            self.tracked = Some(g);
+        }
+        self.tracked.as_deref().unwrap_or(&[])
+    }
+
+    /// Carries the tracked penalty gaps over a Newton correction `delta`
+    /// (per DOF index; eliminated DOFs do not move within a step).
+    fn advance_penalty_gaps(&mut self, delta: &[f64]) {
+        if let Some(g) = self.tracked.as_mut() {
+            for (g, idx) in g.iter_mut().zip(&self.idx) {
+                *g += idx.iter().map(|&(i, c)| c * delta[i]).sum::<f64>();
+            }
+        }
+    }
+
     /// The active flags of the rows and the augmented terms, for the
     /// cycling test.
     fn state(&self) -> Vec<bool> {
@@ -993,6 +1026,10 @@ fn newton_step(
     // iterations (code_aster settles the contact inside one).
     let max_iterations = convergence.iter_glob_maxi + 1;
     let mut settled = 0usize;
+    // The penalty gaps are taken again from this attempt's starting state.
+    for sr in srcs.iter_mut().flatten() {
+        sr.tracked = None;
+    }
     // The internal forces at the current iterate, once computed (the
     // residual of one iteration is the right-hand side of the next).
     let mut fint_now: Option<Vec<f64>> = None;
@@ -1035,8 +1072,12 @@ fn newton_step(
             // Penalty terms added to the matrix (free indices).
             let mut pen_extra: Vec<(usize, usize, f64)> = Vec::new();
             let mut pen_force = vec![0.0; nd];
-            for sr in srcs.iter().flatten() {
+            for sr in srcs.iter_mut().flatten() {
                 let mut ro = vec![None; sr.rows.len()];
+                let gaps: Vec<f64> = match sr.method {
+                    UnilateralMethod::Penalty { .. } => sr.penalty_gaps(u).to_vec(),
+                    UnilateralMethod::ActiveSet => Vec::new(),
+                };
                 for (r, row) in sr.rows.iter().enumerate() {
                     if !sr.active[r] {
                         continue;
@@ -1047,7 +1088,7 @@ fn newton_step(
                             rows.push((sr.idx[r].clone(), row.rhs));
                         }
                         UnilateralMethod::Penalty { coef } => {
-                            let g = gap(&sr.idx[r], row.rhs, u);
+                            let g = gaps[r];
                             for &(i, ci) in &sr.idx[r] {
                                 pen_force[i] += coef * ci * g;
                                 if map[i] == usize::MAX {
@@ -1227,10 +1268,15 @@ fn newton_step(
                     })?
                 }
             };
+            let mut delta = vec![0.0; nd];
             for i in 0..nd {
                 if map[i] != usize::MAX {
-                    u[i] += sol.x[map[i]];
+                    delta[i] = sol.x[map[i]];
+                    u[i] += delta[i];
                 }
+            }
+            for sr in srcs.iter_mut().flatten() {
+                sr.advance_penalty_gaps(&delta);
             }
             let mut lam_rows = vec![0.0; m_rows];
             for (k, &r) in kept.iter().enumerate() {
@@ -1246,11 +1292,12 @@ fn newton_step(
                 }
             }
             let mut pen_new = vec![0.0; nd];
-            for sr in srcs.iter().flatten() {
+            for sr in srcs.iter_mut().flatten() {
                 if let UnilateralMethod::Penalty { coef } = sr.method {
-                    for (r, row) in sr.rows.iter().enumerate() {
+                    let gaps = sr.penalty_gaps(u).to_vec();
+                    for r in 0..sr.rows.len() {
                         if sr.active[r] {
-                            let g = gap(&sr.idx[r], row.rhs, u);
+                            let g = gaps[r];
                             for &(i, ci) in &sr.idx[r] {
                                 pen_new[i] += coef * ci * g;
                             }
@@ -1271,6 +1318,9 @@ fn newton_step(
                     reference = reference.max((fint[i] - dyn_at(i)).abs());
                 } else {
                     let r = fext[i] - fint[i] + reac[i] - pen_new[i];
+                    if trace && r.abs() > resi_maxi {
+                        eprintln!("[newton] max residual {r:.3e} at {} fint {:.3e} pen {:.3e} reac {:.3e}", model.dofs().dof(i).describe(model.mesh()), fint[i], pen_new[i], reac[i]);
+                    }
                     resi_maxi = resi_maxi.max(r.abs());
                     reference = reference.max((fext[i] - dyn_at(i) + reac[i] - pen_new[i]).abs());
                 }
@@ -1345,8 +1395,12 @@ fn newton_step(
                 si += 1;
                 let mut lam = vec![0.0; sr.rows.len()];
                 let length = length_scale(model, u);
+                let tracked = sr.tracked.clone();
                 for r in 0..sr.rows.len() {
-                    let g = gap(&sr.idx[r], sr.rows[r].rhs, u);
+                    let g = match (sr.method, &tracked) {
+                        (UnilateralMethod::Penalty { .. }, Some(t)) => t[r],
+                        _ => gap(&sr.idx[r], sr.rows[r].rhs, u),
+                    };
                     let now = match sr.method {
                         UnilateralMethod::ActiveSet => {
                             if let Some(k) = ro[r] {
@@ -1519,6 +1573,9 @@ fn newton_step(
                     // back to its iterate (and the Gauss-point trial states
                     // and tangents there).
                     u.copy_from_slice(&u0);
+                    for sr in srcs.iter_mut().flatten() {
+                        sr.tracked = None;
+                    }
                     step_forces(model, k, dynamics, plastic, u)?;
                     fint_now = Some(f0);
                     new_outer = false;
@@ -1625,7 +1682,10 @@ fn report_outcomes(
             .iter()
             .enumerate()
             .map(|(r, row)| {
-                let g = gap(&sr.idx[r], row.rhs, u);
+                let g = match (sr.method, &sr.tracked) {
+                    (UnilateralMethod::Penalty { .. }, Some(t)) => t[r],
+                    _ => gap(&sr.idx[r], row.rhs, u),
+                };
                 let multiplier = match sr.method {
                     UnilateralMethod::ActiveSet => {
                         if sr.active[r] {
@@ -1856,5 +1916,6 @@ fn make_rows(
         update,
         outer,
         aug,
+        tracked: None,
     })
 }

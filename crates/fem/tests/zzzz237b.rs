@@ -12,6 +12,10 @@ struct Scene {
     loads: Loads,
     a: aster_mesh::NodeId,
     b: aster_mesh::NodeId,
+    /// The top corners and the springs' fixed ends.
+    c: aster_mesh::NodeId,
+    d: aster_mesh::NodeId,
+    r: [aster_mesh::NodeId; 2],
 }
 
 fn scene() -> Scene {
@@ -70,7 +74,15 @@ fn scene() -> Scene {
             Multiplier::from_fn(Ok),
         );
     }
-    Scene { model, loads, a, b }
+    Scene {
+        model,
+        loads,
+        a,
+        b,
+        c,
+        d,
+        r: [r1, r2],
+    }
 }
 
 fn unil(s: &Scene, method: UnilateralMethod) -> FixedRows {
@@ -162,4 +174,66 @@ fn zzzz237b_penalty_approaches_the_exact_solution() {
     assert!((dxa - -4.285714318).abs() < 1e-4, "DX(A)={dxa}");
     let o = &last.unilateral[0][0];
     assert!(o.active && (o.multiplier - 2.1978022e10).abs() / 2.1978022e10 < 1e-4);
+}
+
+/// The penalty gaps are carried by the Newton corrections, as code_aster's
+/// discrete penalty does (`cfjein`: JEUITE − A·δu), not recomputed as a·u − b
+/// on the total displacement. Here the square travels 1000 before touching
+/// its support: recomputing the gap rounds it at ε·1000 ≈ 2e-13, which the
+/// penalty 1e16 turns into a force noise of ~2e3, so an absolute
+/// RESI_GLOB_MAXI of 1 could never be met; carried gaps meet it.
+#[test]
+fn zzzz237b_penalty_gap_is_carried_by_the_corrections() {
+    let s = scene();
+    let mut loads = Loads::new();
+    for n in s.r {
+        for comp in [Comp::DX, Comp::DY] {
+            loads.push(Load::Eliminated {
+                dof: Dof::new(n, comp),
+                value: 0.,
+            });
+        }
+    }
+    for n in [s.c, s.d] {
+        loads.add(
+            Load::Imposed {
+                dof: Dof::new(n, Comp::DY),
+                value: -1001.,
+            },
+            Multiplier::from_fn(Ok),
+        );
+    }
+    let rows = FixedRows {
+        name: "LIAISON_UNIL".into(),
+        rows: [s.a, s.b]
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| InequalityRow::new(vec![(Dof::new(n, Comp::DY), -1.)], 1000., k))
+            .collect(),
+        method: UnilateralMethod::Penalty { coef: 1e16 },
+    };
+    let mut snl = StaticNonLinear {
+        instants: vec![0., 1.],
+        sources: vec![Box::new(rows)],
+        convergence: Convergence {
+            resi_glob_rela: None,
+            resi_glob_maxi: Some(1.0),
+            iter_glob_maxi: 10,
+            at_least_one: false,
+        },
+        ..Default::default()
+    };
+    let res = snl.solve(&s.model, &loads).unwrap();
+    let last = res.last().unwrap();
+    assert!((last.time - 1.).abs() < 1e-12);
+    assert!(last.resi_glob_maxi <= 1.0, "{}", last.resi_glob_maxi);
+    // Pressed by 1 after the 1000 gap closed: DY(A) just below −1000, the
+    // same reaction as ZZZZ237 B at one unit of compression.
+    let dya = value(&s, last, s.a, Comp::DY);
+    assert!(dya < -1000. && dya > -1000. - 1e-5, "DY(A)={dya}");
+    let o = &last.unilateral[0][0];
+    assert!(
+        o.active && (o.multiplier - 1.0989011e9).abs() / 1.0989011e9 < 1e-3,
+        "{o:?}"
+    );
 }

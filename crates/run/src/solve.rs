@@ -270,7 +270,7 @@ pub(crate) const STAT_NON_LINE: Support = Support {
     keywords: SNL_KEYWORDS,
     values: SNL_VALUES,
     hints: &[],
-    reuse: false,
+    reuse: true,
     rules: Some(kinematics_rules),
 };
 
@@ -729,7 +729,15 @@ pub(crate) fn store_solution(
     let mesh_id = setup.model.mesh;
     let mesh = ex.mesh_by_id(mesh_id)?;
     let observations = crate::observation::parse(ex, &call.keywords, &mesh)?;
-    let (steps, fem) = crate::fembridge::solve(ex, setup, linear)?;
+    let continued = match linear {
+        // MECA_STATIQUE's reuse= replaces the result.
+        true => None,
+        false => continued_result(ex, call, setup, !observations.is_empty())?,
+    };
+    let (mut steps, mut fem) = crate::fembridge::solve(ex, setup, linear)?;
+    if let Some((prev, t0)) = continued {
+        (steps, fem) = continue_steps(&prev, t0, steps, fem)?;
+    }
     let mut tables = Vec::new();
     if !observations.is_empty() {
         let t = crate::observation::table(&observations, &steps, &mesh);
@@ -743,6 +751,83 @@ pub(crate) fn store_solution(
         tables,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
+}
+
+/// `reuse=R`: the computation continues `R` from its state named by
+/// `ETAT_INIT/EVOL_NOLI=R` (the one continuation code_aster's tests make);
+/// returns that result and the initial instant. Refused: a `reuse` whose
+/// `ETAT_INIT` names another result or none, and observations (their table
+/// would have to be continued too).
+fn continued_result(
+    ex: &Executor,
+    call: &CommandCall,
+    setup: &SolveSetup,
+    observed: bool,
+) -> Result<Option<(Rc<EvolResult>, f64)>, ExecError> {
+    let Some(r) = call.reuse.as_ref() else {
+        return Ok(None);
+    };
+    let cmd = &call.command;
+    let reused = ex.result(r)?;
+    let Some((prev, t0)) = setup
+        .initial
+        .as_ref()
+        .filter(|(p, _)| Rc::ptr_eq(p, &reused))
+    else {
+        return Err(ex.unsupported(
+            &format!("{cmd} with reuse= whose ETAT_INIT/EVOL_NOLI is not the reused result (only continuing a result from one of its own states)"),
+            call.span,
+        ));
+    };
+    if observed || !prev.tables.is_empty() {
+        return Err(ex.unsupported(
+            &format!("{cmd} with reuse= and OBSERVATION (the observation table is not continued)"),
+            call.span,
+        ));
+    }
+    if prev.mesh != setup.model.mesh || prev.typ != "evol_noli" {
+        return Err(ex.unsupported(
+            &format!("{cmd} with reuse= of a result on another mesh or of another type"),
+            call.span,
+        ));
+    }
+    Ok(Some((prev.clone(), *t0)))
+}
+
+/// The steps of a continued result, as code_aster's `reuse` keeps them:
+/// those of `prev` up to the initial state (at `t0`, NUME_ORDRE k₀; later
+/// ones are dropped), then the new ones numbered from k₀ + 1. The new
+/// run's own copy of the initial state is not stored. The computation kept
+/// for CALC_CHAMP is the new one, renumbered the same way: a step before
+/// k₀ is not in it, so a field asked there is an error, never another
+/// step's values.
+fn continue_steps(
+    prev: &EvolResult,
+    t0: f64,
+    steps: Vec<Step>,
+    mut fem: Rc<crate::fembridge::FemRun>,
+) -> Result<(Vec<Step>, Rc<crate::fembridge::FemRun>), ExecError> {
+    let k0 = prev
+        .step_at(t0, 1e-6, false)
+        .map(|s| s.nume_ordre)
+        .ok_or_else(|| ExecError::new(format!("reuse=: no state at {t0} in the reused result")))?;
+    let mut merged: Vec<Step> = prev
+        .steps
+        .iter()
+        .filter(|s| s.nume_ordre <= k0)
+        .cloned()
+        .collect();
+    let first = steps.first().map(|s| s.nume_ordre).unwrap_or(0);
+    merged.extend(steps.into_iter().skip(1).map(|mut s| {
+        s.nume_ordre = s.nume_ordre - first + k0;
+        s
+    }));
+    let run =
+        Rc::get_mut(&mut fem).ok_or_else(|| ExecError::new("reuse=: the computation is shared"))?;
+    for s in &mut run.raw.steps {
+        s.nume_ordre = s.nume_ordre - first as usize + k0 as usize;
+    }
+    Ok((merged, fem))
 }
 
 /// What CALC_CHAMP reads (`crate::support`).

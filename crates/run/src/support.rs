@@ -123,31 +123,76 @@ pub struct Refusal {
     pub span: Span,
 }
 
-/// Commands not executed whose refusal says why (what a user cannot get
+/// A command not executed whose refusal says why (what a user cannot get
 /// from aster at all, rather than "not yet").
-pub const COMMAND_HINTS: &[(&str, &str)] = &[
-    (
-        "MACR_ADAP_MAIL",
-        "mesh adaptation runs the external HOMARD tool, which aster does not have",
-    ),
-    (
-        "PRE_GIBI",
-        "GIBI meshes are read by `aster mesh` but not yet run: the node or cell order code_aster takes from them is not reproduced",
-    ),
+#[derive(Clone, Copy, Debug)]
+pub struct CommandHint {
+    pub command: &'static str,
+    /// The keyword the refusal is located at, its value quoted (the
+    /// command's own position when the call does not write it).
+    pub keyword: Option<&'static str>,
+    pub why: &'static str,
+    /// The command runs a program outside code_aster (HOMARD, ECREVISSE):
+    /// nothing else in the case matters until it is available, so the
+    /// static pass reports it first, whatever its position.
+    pub external: bool,
+}
+
+/// Commands not executed whose refusal says why.
+pub const COMMAND_HINTS: &[CommandHint] = &[
+    CommandHint {
+        command: "MACR_ADAP_MAIL",
+        keyword: Some("ADAPTATION"),
+        why: "mesh adaptation runs the external HOMARD tool, which aster does not have",
+        external: true,
+    },
+    CommandHint {
+        command: "MACR_ECREVISSE",
+        keyword: None,
+        why: "couples code_aster's thermal and mechanical solves with the external ECREVISSE code (flow through the crack), which aster does not have",
+        external: true,
+    },
+    CommandHint {
+        command: "PRE_GIBI",
+        keyword: None,
+        why: "GIBI meshes are read by `aster mesh` but not yet run: the node or cell order code_aster takes from them is not reproduced",
+        external: false,
+    },
 ];
+
+/// The hint of a command not executed, if it has one.
+pub fn command_hint(cmd: &str) -> Option<&'static CommandHint> {
+    COMMAND_HINTS.iter().find(|h| h.command == cmd)
+}
 
 /// Checks one call against its command's entry; `None` when the command
 /// itself is not executed. Every refusal is returned, in keyword order.
 pub fn check_call(support: Option<&Support>, call: &CommandCall) -> Vec<Refusal> {
     let cmd = call.command.as_str();
     let Some(support) = support else {
-        let what = match COMMAND_HINTS.iter().find(|(c, _)| *c == cmd) {
-            Some((_, why)) => format!("{cmd} ({why})"),
-            None => cmd.to_string(),
+        let Some(hint) = command_hint(cmd) else {
+            return vec![Refusal {
+                what: cmd.to_string(),
+                span: call.span,
+            }];
+        };
+        let at = hint.keyword.and_then(|k| call.keywords.keyword(k));
+        let what = match at.map(|k| (k, &k.value)) {
+            Some((k, KwValue::Simple(v))) => {
+                let values: Vec<String> = v
+                    .iter()
+                    .map(|s| match s.as_str() {
+                        Some(t) => format!("'{t}'"),
+                        None => format!("{s:?}"),
+                    })
+                    .collect();
+                format!("{cmd}/{}={} ({})", k.name, values.join(","), hint.why)
+            }
+            _ => format!("{cmd} ({})", hint.why),
         };
         return vec![Refusal {
             what,
-            span: call.span,
+            span: at.map(|k| k.span).unwrap_or(call.span),
         }];
     };
     let mut out = Vec::new();

@@ -194,7 +194,7 @@ fn mesh_adaptation_is_refused_with_its_reason() {
     );
     let error = error.unwrap().replace(&dir.display().to_string(), "DIR");
     assert!(
-        error.contains("DIR/s.comm:3:1: error: not supported yet: MACR_ADAP_MAIL (mesh adaptation runs the external HOMARD tool, which aster does not have)"),
+        error.contains("DIR/s.comm:3:16: error: not supported yet: MACR_ADAP_MAIL/ADAPTATION='RAFFINEMENT_UNIFORME' (mesh adaptation runs the external HOMARD tool, which aster does not have)"),
         "{error}"
     );
     let _ = std::fs::remove_dir_all(dir);

@@ -204,7 +204,9 @@ pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
 /// What AFFE_MODELE reads (`crate::support`).
 pub(crate) const AFFE_MODELE: Support = Support {
     values: &[
-        Values::new("AFFE/PHENOMENE", &["MECANIQUE"]),
+        Values::new("AFFE/PHENOMENE", &["MECANIQUE"]).why(
+            "(aster solves mechanics only: thermal analyses (THER_LINEAIRE, THER_NON_LINE) and the temperatures they give to AFFE_VARC are not implemented)",
+        ),
         Values::listed("AFFE/MODELISATION", &Modelisation::KEYWORDS),
     ],
     ..Support::keywords(&[

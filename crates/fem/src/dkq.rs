@@ -1,0 +1,405 @@
+//! Batoz–Tahar's discrete Kirchhoff quadrilateral: code_aster's `DKT`
+//! modelisation on QUAD4 (`MEDKQU4`), a flat facet with six DOFs per node
+//! (DX DY DZ DRX DRY DRZ). The triangle's companion ([`crate::dkt`]), with
+//! the same section, bending unknowns and drilling spring.
+//!
+//! Following code_aster's routines:
+//! - frame `pgl` (`dxqpgl`): x from the middle of side 4–1 to the middle
+//!   of side 2–3, z normal to both mid-side lines, y = z × x. A warped
+//!   quadrangle is projected on that plane (code_aster only warns when the
+//!   fourth node is off the plane of the first three by more than 1e-4 of
+//!   |x₁₄|: [`Quad::warping`] gives that ratio);
+//! - membrane: the bilinear quadrangle (`dxqbm`) on FPG4;
+//! - bending: the DKQ curvature operator (`dkqbf`) on FPG4, on the
+//!   unknowns (w, βx, βy) = (DZ, DRY, −DRX) (`dxqloc`, `dkqedg`);
+//! - drilling: `COEF_RIGI_DRZ · min(bending rotation diagonal)` on each
+//!   DRZ (`dxqloc`; code_aster's alternative drilling formulation, chosen
+//!   by a negative `COEF_RIGI_DRZ`, is not reproduced: [`stiffness`]
+//!   refuses it);
+//! - membrane efforts and moments at the FPG4 points (`dkqedg`,
+//!   `EFGE_ELGA`: NXX NYY NXY MXX MYY MXY) in the facet's frame; the
+//!   transverse shears (`dkqtxy`) are not computed yet.
+
+use crate::dkt::{bending_dof, membrane_dof, section_matrices, ShellSection};
+use crate::material::Elastic;
+use crate::shape::{rigi_scheme, GaussPoint};
+use aster_mesh::CellType;
+use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
+
+/// 24×24 element matrix, node-major (DX DY DZ DRX DRY DRZ of node 1, …).
+pub type Matrix24 = SMatrix<f64, 24, 24>;
+
+/// Membrane efforts and moments at one point: NXX NYY NXY MXX MYY MXY.
+pub type QuadEfforts = [f64; 6];
+
+/// The quadrangular facet: frame, local node coordinates and `gquad4`'s
+/// edge data.
+#[derive(Clone, Debug)]
+pub struct Quad {
+    /// Rows are the local axes x, y, z in global coordinates (`pgl`).
+    pub pgl: Matrix3<f64>,
+    xy: [[f64; 2]; 4],
+    c: [f64; 25],
+    warping: f64,
+}
+
+impl Quad {
+    /// Frame and geometry of the quadrangle `xyz` (global coordinates).
+    /// Errors on a degenerate quadrangle (zero-length side, first three
+    /// nodes aligned, or a non-positive Jacobian at a Gauss point).
+    pub fn new(xyz: &[[f64; 3]; 4]) -> Result<Quad, String> {
+        let p = |i: usize| Vector3::new(xyz[i][0], xyz[i][1], xyz[i][2]);
+        let mid = |a: usize, b: usize| (p(a) + p(b)) / 2.;
+        let (i, j, k, l) = (mid(0, 3), mid(2, 1), mid(1, 0), mid(3, 2));
+        let size = (p(2) - p(0)).norm().max((p(3) - p(1)).norm());
+        let ex = j - i;
+        let ez = ex.cross(&(l - k));
+        let u = (p(1) - p(0)).cross(&(p(2) - p(0)));
+        if !(size > 0. && ex.norm() > 1e-12 * size && ez.norm() > 1e-12 * size * size)
+            || u.norm() <= 1e-12 * size * size
+        {
+            return Err(format!(
+                "a DKT quadrangle is degenerate (zero area): nodes {xyz:?}"
+            ));
+        }
+        let ex = ex.normalize();
+        let ez = ez.normalize();
+        let ey = ez.cross(&ex).normalize();
+        let pgl = Matrix3::from_rows(&[ex.transpose(), ey.transpose(), ez.transpose()]);
+        let x14 = p(3) - p(0);
+        let warping = (u.dot(&x14) / u.norm() / x14.norm()).abs();
+        let mut xy = [[0.; 2]; 4];
+        for n in 0..4 {
+            let d = p(n) - p(0);
+            xy[n] = [ex.dot(&d), ey.dot(&d)];
+        }
+        let quad = Quad {
+            pgl,
+            xy,
+            c: gquad4(&xy),
+            warping,
+        };
+        for g in fpg4() {
+            if quad.jacobian(g.xi[0], g.xi[1]).0 <= 0. {
+                return Err(format!(
+                    "a DKT quadrangle has a non-positive Jacobian (nodes not in order, or a re-entrant corner): nodes {xyz:?}"
+                ));
+            }
+        }
+        Ok(quad)
+    }
+
+    /// Distance of node 4 to the plane of nodes 1–3 over |x₁₄|
+    /// (`dxqpgl`'s warping measure; code_aster warns above 1e-4).
+    pub fn warping(&self) -> f64 {
+        self.warping
+    }
+
+    /// `jquad4`: Jacobian determinant and inverse (vj11 vj12 vj21 vj22) at
+    /// (ξ, η).
+    fn jacobian(&self, qsi: f64, eta: f64) -> (f64, [f64; 4]) {
+        let xy = &self.xy;
+        let d = |a: usize, b: usize, k: usize| xy[a][k] - xy[b][k];
+        let (x21, x32, x43, x14) = (d(1, 0, 0), d(2, 1, 0), d(3, 2, 0), d(0, 3, 0));
+        let (y21, y32, y43, y14) = (d(1, 0, 1), d(2, 1, 1), d(3, 2, 1), d(0, 3, 1));
+        let j11 = (x21 - x43 - eta * (x43 + x21)) / 4.;
+        let j12 = (y21 - y43 - eta * (y43 + y21)) / 4.;
+        let j21 = (x32 - x14 + qsi * (x32 + x14)) / 4.;
+        let j22 = (y32 - y14 + qsi * (y32 + y14)) / 4.;
+        let det = j11 * j22 - j12 * j21;
+        (det, [j22 / det, -j12 / det, -j21 / det, j11 / det])
+    }
+
+    /// Membrane strain operator (`dxqbm`) on (u₁ v₁ … u₄ v₄).
+    fn bm(qsi: f64, eta: f64, vj: &[f64; 4]) -> [[f64; 8]; 3] {
+        let [vj11, vj12, vj21, vj22] = *vj;
+        let peta = (1. + eta) / 4.;
+        let meta = (1. - eta) / 4.;
+        let pqsi = (1. + qsi) / 4.;
+        let mqsi = (1. - qsi) / 4.;
+        let dx = [
+            -meta * vj11 - mqsi * vj12,
+            meta * vj11 - pqsi * vj12,
+            peta * vj11 + pqsi * vj12,
+            -peta * vj11 + mqsi * vj12,
+        ];
+        let dy = [
+            -meta * vj21 - mqsi * vj22,
+            meta * vj21 - pqsi * vj22,
+            peta * vj21 + pqsi * vj22,
+            -peta * vj21 + mqsi * vj22,
+        ];
+        let mut bm = [[0.; 8]; 3];
+        for n in 0..4 {
+            bm[0][2 * n] = dx[n];
+            bm[1][2 * n + 1] = dy[n];
+            bm[2][2 * n] = dy[n];
+            bm[2][2 * n + 1] = dx[n];
+        }
+        bm
+    }
+
+    /// Bending curvature operator (`dkqbf`) at (ξ, η) on (w₁ βx₁ βy₁ …).
+    fn bf(&self, qsi: f64, eta: f64, vj: &[f64; 4]) -> [[f64; 12]; 3] {
+        let c = &self.c;
+        let [vj11, vj12, vj21, vj22] = *vj;
+        let (c5, c6, c7, c8) = (c[12], c[13], c[14], c[15]);
+        let (s5, s6, s7, s8) = (c[16], c[17], c[18], c[19]);
+        let (l5, l6, l7, l8) = (c[8], c[9], c[10], c[11]);
+        let peta = (1. + eta) / 4.;
+        let meta = (1. - eta) / 4.;
+        let pqsi = (1. + qsi) / 4.;
+        let mqsi = (1. - qsi) / 4.;
+        let etac = (1. - eta * eta) / 8.;
+        let qsic = (1. - qsi * qsi) / 8.;
+        let cu = |c: f64| 3. * c * c;
+        let cs = |c: f64, s: f64| 3. * c * s;
+        let (cu5, cu6, cu7, cu8) = (cu(c5), cu(c6), cu(c7), cu(c8));
+        let (su5, su6, su7, su8) = (cu(s5), cu(s6), cu(s7), cu(s8));
+        let (cs5, cs6, cs7, cs8) = (cs(c5, s5), cs(c6, s6), cs(c7, s7), cs(c8, s8));
+        let (cl5, cl6, cl7, cl8) = (6. * c5 / l5, 6. * c6 / l6, 6. * c7 / l7, 6. * c8 / l8);
+        let (sl5, sl6, sl7, sl8) = (6. * s5 / l5, 6. * s6 / l6, 6. * s7 / l7, 6. * s8 / l8);
+        let bxq = [
+            -qsi * meta * cl5 + etac * cl8,
+            -meta + qsi * meta * cu5 + etac * cu8,
+            qsi * meta * cs5 + etac * cs8,
+            qsi * meta * cl5 + etac * cl6,
+            meta + qsi * meta * cu5 - etac * cu6,
+            qsi * meta * cs5 - etac * cs6,
+            -qsi * peta * cl7 - etac * cl6,
+            peta + qsi * peta * cu7 - etac * cu6,
+            qsi * peta * cs7 - etac * cs6,
+            qsi * peta * cl7 - etac * cl8,
+            -peta + qsi * peta * cu7 + etac * cu8,
+            qsi * peta * cs7 + etac * cs8,
+        ];
+        let byq = [
+            -qsi * meta * sl5 + etac * sl8,
+            bxq[2],
+            -meta + qsi * meta * su5 + etac * su8,
+            qsi * meta * sl5 + etac * sl6,
+            bxq[5],
+            meta + qsi * meta * su5 - etac * su6,
+            -qsi * peta * sl7 - etac * sl6,
+            bxq[8],
+            peta + qsi * peta * su7 - etac * su6,
+            qsi * peta * sl7 - etac * sl8,
+            bxq[11],
+            -peta + qsi * peta * su7 + etac * su8,
+        ];
+        let bxe = [
+            eta * mqsi * cl8 - qsic * cl5,
+            -mqsi + eta * mqsi * cu8 + qsic * cu5,
+            eta * mqsi * cs8 + qsic * cs5,
+            -eta * pqsi * cl6 + qsic * cl5,
+            -pqsi + eta * pqsi * cu6 + qsic * cu5,
+            eta * pqsi * cs6 + qsic * cs5,
+            eta * pqsi * cl6 + qsic * cl7,
+            pqsi + eta * pqsi * cu6 - qsic * cu7,
+            eta * pqsi * cs6 - qsic * cs7,
+            -eta * mqsi * cl8 - qsic * cl7,
+            mqsi + eta * mqsi * cu8 - qsic * cu7,
+            eta * mqsi * cs8 - qsic * cs7,
+        ];
+        let bye = [
+            eta * mqsi * sl8 - qsic * sl5,
+            bxe[2],
+            -mqsi + eta * mqsi * su8 + qsic * su5,
+            -eta * pqsi * sl6 + qsic * sl5,
+            bxe[5],
+            -pqsi + eta * pqsi * su6 + qsic * su5,
+            eta * pqsi * sl6 + qsic * sl7,
+            bxe[8],
+            pqsi + eta * pqsi * su6 - qsic * su7,
+            -eta * mqsi * sl8 - qsic * sl7,
+            bxe[11],
+            mqsi + eta * mqsi * su8 - qsic * su7,
+        ];
+        let mut bf = [[0.; 12]; 3];
+        for i in 0..12 {
+            bf[0][i] = vj11 * bxq[i] + vj12 * bxe[i];
+            bf[1][i] = vj21 * byq[i] + vj22 * bye[i];
+            bf[2][i] = vj11 * byq[i] + vj12 * bye[i] + vj21 * bxq[i] + vj22 * bxe[i];
+        }
+        bf
+    }
+}
+
+/// `gquad4`: edge vectors, lengths, cosines and sines, and areas, from the
+/// local (x, y) of the nodes (0-based).
+fn gquad4(xy: &[[f64; 2]; 4]) -> [f64; 25] {
+    let d = |a: usize, b: usize, k: usize| xy[a][k] - xy[b][k];
+    let (x21, x32, x43, x14) = (d(1, 0, 0), d(2, 1, 0), d(3, 2, 0), d(0, 3, 0));
+    let (y21, y32, y43, y14) = (d(1, 0, 1), d(2, 1, 1), d(3, 2, 1), d(0, 3, 1));
+    let (x31, x42, y31, y42) = (d(2, 0, 0), d(3, 1, 0), d(2, 0, 1), d(3, 1, 1));
+    let l = [
+        (x21 * x21 + y21 * y21).sqrt(),
+        (x32 * x32 + y32 * y32).sqrt(),
+        (x43 * x43 + y43 * y43).sqrt(),
+        (x14 * x14 + y14 * y14).sqrt(),
+    ];
+    [
+        x21,
+        x32,
+        x43,
+        x14,
+        y21,
+        y32,
+        y43,
+        y14,
+        l[0],
+        l[1],
+        l[2],
+        l[3],
+        x21 / l[0],
+        x32 / l[1],
+        x43 / l[2],
+        x14 / l[3],
+        y21 / l[0],
+        y32 / l[1],
+        y43 / l[2],
+        y14 / l[3],
+        (x31 * y42 - y31 * x42) / 2.,
+        (-x21 * y14 + y21 * x14) / 2.,
+        (-x32 * y21 + y32 * x21) / 2.,
+        (-x43 * y32 + y43 * x32) / 2.,
+        (-x14 * y43 + y14 * x43) / 2.,
+    ]
+}
+
+/// FPG4, code_aster's `RIGI` family of `MEDKQU4`.
+fn fpg4() -> Vec<GaussPoint> {
+    rigi_scheme(CellType::QUAD4)
+}
+
+/// Stiffness in the facet's frame (`dkqrig` then `dxqloc`), DOFs
+/// node-major DX DY DZ DRX DRY DRZ along the local axes.
+pub fn local_stiffness(quad: &Quad, material: &Elastic, section: &ShellSection) -> Matrix24 {
+    let (dm, df) = section_matrices(material, section);
+    let mut memb = [[0.; 8]; 8];
+    let mut flex = [[0.; 12]; 12];
+    for g in fpg4() {
+        let (qsi, eta) = (g.xi[0], g.xi[1]);
+        let (det, vj) = quad.jacobian(qsi, eta);
+        let w = g.weight * det;
+        let bf = quad.bf(qsi, eta, &vj);
+        let bm = Quad::bm(qsi, eta, &vj);
+        for a in 0..12 {
+            for b in 0..12 {
+                let mut v = 0.;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        v += bf[i][a] * df[i][j] * bf[j][b];
+                    }
+                }
+                flex[a][b] += w * v;
+            }
+        }
+        for a in 0..8 {
+            for b in 0..8 {
+                let mut v = 0.;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        v += bm[i][a] * dm[i][j] * bm[j][b];
+                    }
+                }
+                memb[a][b] += w * v;
+            }
+        }
+    }
+    let mut k = Matrix24::zeros();
+    for a in 0..8 {
+        for b in 0..8 {
+            k[(membrane_dof(a), membrane_dof(b))] += memb[a][b];
+        }
+    }
+    for a in 0..12 {
+        let (ia, sa) = bending_dof(a);
+        for b in 0..12 {
+            let (ib, sb) = bending_dof(b);
+            k[(ia, ib)] += sa * sb * flex[a][b];
+        }
+    }
+    let rotation_min = [1, 2, 4, 5, 7, 8, 10, 11]
+        .iter()
+        .map(|&i| flex[i][i])
+        .fold(f64::INFINITY, f64::min);
+    let drill = section.drilling * rotation_min;
+    for n in 0..4 {
+        k[(6 * n + 5, 6 * n + 5)] = drill;
+    }
+    k
+}
+
+/// The 24×24 global→local rotation: `pgl` on every translation and
+/// rotation triple.
+pub fn rotation(quad: &Quad) -> Matrix24 {
+    let mut r = Matrix24::zeros();
+    for b in 0..8 {
+        r.fixed_view_mut::<3, 3>(3 * b, 3 * b).copy_from(&quad.pgl);
+    }
+    r
+}
+
+/// Global stiffness of a DKQ quadrangle with nodes at `xyz` (24×24,
+/// node-major DX DY DZ DRX DRY DRZ).
+pub fn stiffness(
+    xyz: &[[f64; 3]; 4],
+    material: &Elastic,
+    section: &ShellSection,
+) -> Result<DMatrix<f64>, String> {
+    if section.drilling < 0. {
+        return Err(format!(
+            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation for DKQ, which is not reproduced",
+            section.drilling
+        ));
+    }
+    let quad = Quad::new(xyz)?;
+    let r = rotation(&quad);
+    let k = r.transpose() * local_stiffness(&quad, material, section) * r;
+    Ok(DMatrix::from_column_slice(24, 24, k.as_slice()))
+}
+
+/// Membrane efforts and moments at the FPG4 points from the global
+/// displacements `u` (24 values, node-major), in the facet's frame
+/// (`dkqedg`, `EFGE_ELGA` without QX QY).
+pub fn efforts(
+    xyz: &[[f64; 3]; 4],
+    material: &Elastic,
+    section: &ShellSection,
+    u: &[f64; 24],
+) -> Result<Vec<QuadEfforts>, String> {
+    let quad = Quad::new(xyz)?;
+    let ul = rotation(&quad) * SMatrix::<f64, 24, 1>::from_column_slice(u);
+    let (dm, df) = section_matrices(material, section);
+    let um: Vec<f64> = (0..8).map(|k| ul[membrane_dof(k)]).collect();
+    let ub: Vec<f64> = (0..12)
+        .map(|k| {
+            let (i, s) = bending_dof(k);
+            s * ul[i]
+        })
+        .collect();
+    Ok(fpg4()
+        .iter()
+        .map(|g| {
+            let (qsi, eta) = (g.xi[0], g.xi[1]);
+            let (_, vj) = quad.jacobian(qsi, eta);
+            let bm = Quad::bm(qsi, eta, &vj);
+            let bf = quad.bf(qsi, eta, &vj);
+            let eps: Vec<f64> = (0..3)
+                .map(|i| (0..8).map(|j| bm[i][j] * um[j]).sum())
+                .collect();
+            let kappa: Vec<f64> = (0..3)
+                .map(|i| (0..12).map(|j| bf[i][j] * ub[j]).sum())
+                .collect();
+            let mut e = [0.; 6];
+            for i in 0..3 {
+                for j in 0..3 {
+                    e[i] += dm[i][j] * eps[j];
+                    e[3 + i] += df[i][j] * kappa[j];
+                }
+            }
+            e
+        })
+        .collect())
+}

@@ -1,0 +1,513 @@
+//! Batoz' discrete Kirchhoff triangle: code_aster's `DKT` thin-shell
+//! element on TRIA3 (`MEDKTR3`), a flat facet with six DOFs per node
+//! (DX DY DZ DRX DRY DRZ).
+//!
+//! What it computes, following code_aster's routines one to one:
+//! - the facet's local frame `pgl` (`dxtpgl`): x along node 1 → node 2, z
+//!   the normal (x₂₁ × x₃₁)/|…|, y = z × x;
+//! - membrane: the constant-strain triangle (`dxtbm`), integrated exactly
+//!   (area · Bmᵀ·Dm·Bm);
+//! - bending: the DKT curvature operator (`dktbf`), integrated with FPG3
+//!   ((1/6,1/6), (2/3,1/6), (1/6,2/3), weights 1/6), on the bending unknowns
+//!   (w, βx, βy) = (DZ, DRY, −DRX) of each node (`dktedg`, `dxtloc`);
+//! - the drilling rotation DRZ, which the facet has no stiffness for, gets
+//!   code_aster's fictitious spring `COEF_RIGI_DRZ · min(bending rotation
+//!   diagonal)` on each node (`dxtloc`, `CARA_ELEM/COQUE/COEF_RIGI_DRZ`,
+//!   default 1e-5);
+//! - generalised efforts at the Gauss points (`dktedg`, option
+//!   `EFGE_ELGA`): N = Dm·Bm·u, M = Df·Bf·β, and the transverse shears
+//!   (QX, QY) from the moments' derivatives (`dsxhft`, `dkttxy`), in the
+//!   facet's frame `pgl`.
+//!
+//! Section: a homogeneous isotropic elastic thickness h with no offset
+//! (`EXCENTREMENT`), so membrane and bending are uncoupled:
+//! Dm = E·h/(1−ν²)·[1 ν 0; ν 1 0; 0 0 (1−ν)/2], Df = Dm·h²/12 (`dxmate`).
+//! The efforts are given in `pgl`; code_aster reports them in the user's
+//! frame (`ANGL_REP`/`VECTEUR` of `CARA_ELEM/COQUE`, by default the
+//! projection of global X on the facet), a rotation left to the caller.
+//!
+//! Numerics only: no keyword is read here; the runner (not yet wired, see
+//! `docs/fem.md`) maps `AFFE_MODELE/MODELISATION='DKT'` and
+//! `AFFE_CARA_ELEM/COQUE` onto [`ShellSection`].
+
+use crate::material::Elastic;
+use crate::shape::{rigi_scheme, GaussPoint};
+use aster_mesh::CellType;
+use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
+
+/// Thin-shell section of `CARA_ELEM/COQUE`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShellSection {
+    /// `EPAIS`.
+    pub thickness: f64,
+    /// `COEF_RIGI_DRZ` (code_aster's default 1e-5).
+    pub drilling: f64,
+}
+
+impl ShellSection {
+    /// A section of thickness `h` with code_aster's default drilling coefficient.
+    pub fn new(thickness: f64) -> ShellSection {
+        ShellSection {
+            thickness,
+            drilling: 1e-5,
+        }
+    }
+}
+
+/// Generalised efforts at one point, code_aster's `EFGE` components in the
+/// facet's frame: NXX NYY NXY MXX MYY MXY QX QY.
+pub type Efforts = [f64; 8];
+
+/// 18×18 element matrix, node-major (DX DY DZ DRX DRY DRZ of node 1, …).
+pub type Matrix18 = SMatrix<f64, 18, 18>;
+
+/// The facet: its frame and code_aster's `carat3` geometric data.
+#[derive(Clone, Debug)]
+pub struct Facet {
+    /// Rows are the local axes x, y, z in global coordinates (`pgl`).
+    pub pgl: Matrix3<f64>,
+    /// `gtria3`'s 21 values (1-based in the Fortran, 0-based here).
+    c: [f64; 21],
+}
+
+impl Facet {
+    /// Frame and geometry of the triangle `xyz` (global coordinates).
+    /// Errors on a degenerate (zero-length side or zero-area) triangle.
+    pub fn new(xyz: &[[f64; 3]; 3]) -> Result<Facet, String> {
+        let p = |i: usize| Vector3::new(xyz[i][0], xyz[i][1], xyz[i][2]);
+        let (x21, x31) = (p(1) - p(0), p(2) - p(0));
+        let size = x21.norm().max(x31.norm());
+        let n = x21.cross(&x31);
+        if !(size > 0. && n.norm() > 1e-12 * size * size) {
+            return Err(format!(
+                "a DKT triangle is degenerate (zero area): nodes {:?}",
+                xyz
+            ));
+        }
+        let ex = x21.normalize();
+        let ez = n.normalize();
+        let ey = ez.cross(&ex);
+        let pgl = Matrix3::from_rows(&[ex.transpose(), ey.transpose(), ez.transpose()]);
+        let local: Vec<[f64; 2]> = (0..3)
+            .map(|i| {
+                let d = p(i) - p(0);
+                [ex.dot(&d), ey.dot(&d)]
+            })
+            .collect();
+        Ok(Facet {
+            pgl,
+            c: gtria3(&local),
+        })
+    }
+
+    /// Area of the facet.
+    pub fn area(&self) -> f64 {
+        self.c[7]
+    }
+
+    /// Membrane strain operator (`dxtbm`) on (u₁ v₁ u₂ v₂ u₃ v₃):
+    /// (εxx, εyy, 2εxy).
+    fn bm(&self) -> [[f64; 6]; 3] {
+        let (j11, j12, j21, j22) = (self.c[8], self.c[9], self.c[10], self.c[11]);
+        [
+            [-j11 - j12, 0., j11, 0., j12, 0.],
+            [0., -j21 - j22, 0., j21, 0., j22],
+            [-j21 - j22, -j11 - j12, j21, j11, j22, j12],
+        ]
+    }
+
+    /// Bending curvature operator (`dktbf`) at (ξ, η) on the bending
+    /// unknowns (w₁ βx₁ βy₁ w₂ …): (βx,x, βy,y, βx,y + βy,x).
+    fn bf(&self, qsi: f64, eta: f64) -> [[f64; 9]; 3] {
+        let c = &self.c;
+        let (vj11, vj12, vj21, vj22) = (c[8], c[9], c[10], c[11]);
+        let (l4, l5, l6) = (c[12], c[13], c[14]);
+        let (c4, c5, c6) = (c[15], c[16], c[17]);
+        let (s4, s5, s6) = (c[18], c[19], c[20]);
+        let (cu4, cu5, cu6) = (3. * c4 * c4, 3. * c5 * c5, 3. * c6 * c6);
+        let (su4, su5, su6) = (3. * s4 * s4, 3. * s5 * s5, 3. * s6 * s6);
+        let (cs4, cs5, cs6) = (3. * c4 * s4, 3. * c5 * s5, 3. * c6 * s6);
+        let (cl4, cl5, cl6) = (6. * c4 / l4, 6. * c5 / l5, 6. * c6 / l6);
+        let (sl4, sl5, sl6) = (6. * s4 / l4, 6. * s5 / l5, 6. * s6 / l6);
+        let lmq = 1. - 2. * qsi - eta;
+        let lme = 1. - qsi - 2. * eta;
+        let bxq = [
+            lmq * cl4 + eta * cl6,
+            -1. - lmq * cu4 + eta * cu6,
+            -lmq * cs4 + eta * cs6,
+            -lmq * cl4 + eta * cl5,
+            1. - lmq * cu4 - eta * cu5,
+            -lmq * cs4 - eta * cs5,
+            -eta * cl6 - eta * cl5,
+            eta * cu6 - eta * cu5,
+            eta * cs6 - eta * cs5,
+        ];
+        let byq = [
+            lmq * sl4 + eta * sl6,
+            bxq[2],
+            -1. - lmq * su4 + eta * su6,
+            -lmq * sl4 + eta * sl5,
+            bxq[5],
+            1. - lmq * su4 - eta * su5,
+            -eta * sl6 - eta * sl5,
+            bxq[8],
+            eta * su6 - eta * su5,
+        ];
+        let bxe = [
+            -lme * cl6 - qsi * cl4,
+            -1. - lme * cu6 + qsi * cu4,
+            -lme * cs6 + qsi * cs4,
+            qsi * cl4 + qsi * cl5,
+            qsi * cu4 - qsi * cu5,
+            qsi * cs4 - qsi * cs5,
+            lme * cl6 - qsi * cl5,
+            1. - lme * cu6 - qsi * cu5,
+            -lme * cs6 - qsi * cs5,
+        ];
+        let bye = [
+            -lme * sl6 - qsi * sl4,
+            bxe[2],
+            -1. - lme * su6 + qsi * su4,
+            qsi * sl4 + qsi * sl5,
+            bxe[5],
+            qsi * su4 - qsi * su5,
+            lme * sl6 - qsi * sl5,
+            bxe[8],
+            1. - lme * su6 - qsi * su5,
+        ];
+        let mut bf = [[0.; 9]; 3];
+        for i in 0..9 {
+            bf[0][i] = vj11 * bxq[i] + vj12 * bxe[i];
+            bf[1][i] = vj21 * byq[i] + vj22 * bye[i];
+            bf[2][i] = vj11 * byq[i] + vj12 * bye[i] + vj21 * bxq[i] + vj22 * bxe[i];
+        }
+        bf
+    }
+
+    /// Transverse shear operator (`dsxhft` then `dkttxy`): (QX, QY) from
+    /// the bending unknowns, constant over the facet.
+    fn shear(&self, df: &[[f64; 3]; 3]) -> [[f64; 9]; 2] {
+        let c = &self.c;
+        let (vj11, vj12, vj21, vj22) = (c[8], c[9], c[10], c[11]);
+        let hf = [
+            [
+                df[0][0],
+                df[2][2],
+                2. * df[0][2],
+                df[0][2],
+                df[1][2],
+                df[0][1] + df[2][2],
+            ],
+            [
+                df[0][2],
+                df[1][2],
+                df[0][1] + df[2][2],
+                df[2][2],
+                df[1][1],
+                2. * df[1][2],
+            ],
+        ];
+        let t2 = [
+            [vj11 * vj11, vj12 * vj12, 2. * vj11 * vj12],
+            [vj21 * vj21, vj22 * vj22, 2. * vj21 * vj22],
+            [vj11 * vj21, vj12 * vj22, vj11 * vj22 + vj12 * vj21],
+        ];
+        let mut hft2 = [[0.; 6]; 2];
+        for r in 0..2 {
+            for j in 0..3 {
+                for k in 0..3 {
+                    hft2[r][j] += hf[r][k] * t2[k][j];
+                    hft2[r][j + 3] += hf[r][k + 3] * t2[k][j];
+                }
+            }
+        }
+        // codi = (c4 c5 c6 s4 s5 s6), lcot = (l4 l5 l6).
+        let mut cl = [0.; 3];
+        let mut sl = [0.; 3];
+        let mut cs = [0.; 3];
+        let mut cu = [0.; 3];
+        let mut su = [0.; 3];
+        for i in 0..3 {
+            let (co, si, l) = (c[15 + i], c[18 + i], c[12 + i]);
+            cl[i] = 6. * co / l;
+            sl[i] = 6. * si / l;
+            cs[i] = 3. * co * si;
+            cu[i] = 3. * co * co;
+            su[i] = 3. * si * si;
+        }
+        let tkt: [[f64; 9]; 6] = [
+            [
+                -2. * cl[0],
+                2. * cu[0],
+                2. * cs[0],
+                2. * cl[0],
+                2. * cu[0],
+                2. * cs[0],
+                0.,
+                0.,
+                0.,
+            ],
+            [
+                2. * cl[2],
+                2. * cu[2],
+                2. * cs[2],
+                0.,
+                0.,
+                0.,
+                -2. * cl[2],
+                2. * cu[2],
+                2. * cs[2],
+            ],
+            [
+                cl[2] - cl[0],
+                cu[2] + cu[0],
+                cs[2] + cs[0],
+                cl[0] + cl[1],
+                cu[0] - cu[1],
+                cs[0] - cs[1],
+                -cl[2] - cl[1],
+                cu[2] - cu[1],
+                cs[2] - cs[1],
+            ],
+            [
+                -2. * sl[0],
+                2. * cs[0],
+                2. * su[0],
+                2. * sl[0],
+                2. * cs[0],
+                2. * su[0],
+                0.,
+                0.,
+                0.,
+            ],
+            [
+                2. * sl[2],
+                2. * cs[2],
+                2. * su[2],
+                0.,
+                0.,
+                0.,
+                -2. * sl[2],
+                2. * cs[2],
+                2. * su[2],
+            ],
+            [
+                sl[2] - sl[0],
+                cs[2] + cs[0],
+                su[2] + su[0],
+                sl[0] + sl[1],
+                cs[0] - cs[1],
+                su[0] - su[1],
+                -sl[2] - sl[1],
+                cs[2] - cs[1],
+                su[2] - su[1],
+            ],
+        ];
+        let mut bc = [[0.; 9]; 2];
+        for i in 0..2 {
+            for j in 0..9 {
+                for k in 0..6 {
+                    bc[i][j] += hft2[i][k] * tkt[k][j];
+                }
+            }
+        }
+        bc
+    }
+}
+
+/// `gtria3`: edge vectors, twice the area, the inverse Jacobian and the
+/// edges' lengths, cosines and sines, from the local (x, y) of the nodes.
+fn gtria3(xy: &[[f64; 2]]) -> [f64; 21] {
+    let x21 = xy[1][0] - xy[0][0];
+    let x32 = xy[2][0] - xy[1][0];
+    let x13 = xy[0][0] - xy[2][0];
+    let y21 = xy[1][1] - xy[0][1];
+    let y32 = xy[2][1] - xy[1][1];
+    let y13 = xy[0][1] - xy[2][1];
+    let det = -x21 * y13 + y21 * x13;
+    let l4 = (x21 * x21 + y21 * y21).sqrt();
+    let l5 = (x32 * x32 + y32 * y32).sqrt();
+    let l6 = (x13 * x13 + y13 * y13).sqrt();
+    [
+        x21,
+        x32,
+        x13,
+        y21,
+        y32,
+        y13,
+        det,
+        det / 2.,
+        -y13 / det,
+        -y21 / det,
+        x13 / det,
+        x21 / det,
+        l4,
+        l5,
+        l6,
+        x21 / l4,
+        x32 / l5,
+        x13 / l6,
+        y21 / l4,
+        y32 / l5,
+        y13 / l6,
+    ]
+}
+
+/// Membrane and bending elasticity matrices of the section (`dxmate`).
+pub(crate) fn section_matrices(
+    material: &Elastic,
+    section: &ShellSection,
+) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
+    let (e, nu, h) = (material.e, material.nu, section.thickness);
+    let a = e * h / (1. - nu * nu);
+    let dm = [
+        [a, a * nu, 0.],
+        [a * nu, a, 0.],
+        [0., 0., a * (1. - nu) / 2.],
+    ];
+    let f = h * h / 12.;
+    let df = dm.map(|row| row.map(|v| v * f));
+    (dm, df)
+}
+
+/// Local index of membrane unknown `k` (u₁ v₁ u₂ …) among the element's
+/// DOFs (6 per node).
+pub(crate) fn membrane_dof(k: usize) -> usize {
+    6 * (k / 2) + k % 2
+}
+
+/// Local index and sign of bending unknown `k` (w₁ βx₁ βy₁ …): w = DZ,
+/// βx = DRY, βy = −DRX.
+pub(crate) fn bending_dof(k: usize) -> (usize, f64) {
+    let node = 6 * (k / 3);
+    match k % 3 {
+        0 => (node + 2, 1.),
+        1 => (node + 4, 1.),
+        _ => (node + 3, -1.),
+    }
+}
+
+/// FPG3, code_aster's `RIGI` family of `MEDKTR3`.
+fn fpg3() -> Vec<GaussPoint> {
+    rigi_scheme(CellType::TRIA6)
+}
+
+/// Stiffness in the facet's frame (`dktrig` then `dxtloc`), DOFs
+/// node-major DX DY DZ DRX DRY DRZ along the local axes.
+pub fn local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection) -> Matrix18 {
+    let (dm, df) = section_matrices(material, section);
+    let mut k = Matrix18::zeros();
+    let bm = facet.bm();
+    let area = facet.area();
+    for a in 0..6 {
+        for b in 0..6 {
+            let mut v = 0.;
+            for i in 0..3 {
+                for j in 0..3 {
+                    v += bm[i][a] * dm[i][j] * bm[j][b];
+                }
+            }
+            k[(membrane_dof(a), membrane_dof(b))] += area * v;
+        }
+    }
+    let mut flex = [[0.; 9]; 9];
+    for g in fpg3() {
+        let w = g.weight * facet.c[6];
+        let bf = facet.bf(g.xi[0], g.xi[1]);
+        for a in 0..9 {
+            for b in 0..9 {
+                let mut v = 0.;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        v += bf[i][a] * df[i][j] * bf[j][b];
+                    }
+                }
+                flex[a][b] += w * v;
+            }
+        }
+    }
+    for a in 0..9 {
+        let (ia, sa) = bending_dof(a);
+        for b in 0..9 {
+            let (ib, sb) = bending_dof(b);
+            k[(ia, ib)] += sa * sb * flex[a][b];
+        }
+    }
+    let rotation_min = [1, 2, 4, 5, 7, 8]
+        .iter()
+        .map(|&i| flex[i][i])
+        .fold(f64::INFINITY, f64::min);
+    let drill = section.drilling * rotation_min;
+    for n in 0..3 {
+        k[(6 * n + 5, 6 * n + 5)] = drill;
+    }
+    k
+}
+
+/// The 18×18 global→local rotation: `pgl` on every translation and
+/// rotation triple.
+pub fn rotation(facet: &Facet) -> Matrix18 {
+    let mut r = Matrix18::zeros();
+    for b in 0..6 {
+        r.fixed_view_mut::<3, 3>(3 * b, 3 * b).copy_from(&facet.pgl);
+    }
+    r
+}
+
+/// Global stiffness of a DKT triangle with nodes at `xyz` (18×18,
+/// node-major DX DY DZ DRX DRY DRZ).
+pub fn stiffness(
+    xyz: &[[f64; 3]; 3],
+    material: &Elastic,
+    section: &ShellSection,
+) -> Result<DMatrix<f64>, String> {
+    let facet = Facet::new(xyz)?;
+    let r = rotation(&facet);
+    let k = r.transpose() * local_stiffness(&facet, material, section) * r;
+    Ok(DMatrix::from_column_slice(18, 18, k.as_slice()))
+}
+
+/// Generalised efforts at the FPG3 points from the global displacements
+/// `u` (18 values, node-major DX DY DZ DRX DRY DRZ), in the facet's frame
+/// (`dktedg`, `EFGE_ELGA`).
+pub fn efforts(
+    xyz: &[[f64; 3]; 3],
+    material: &Elastic,
+    section: &ShellSection,
+    u: &[f64; 18],
+) -> Result<Vec<Efforts>, String> {
+    let facet = Facet::new(xyz)?;
+    let ul = rotation(&facet) * SMatrix::<f64, 18, 1>::from_column_slice(u);
+    let (dm, df) = section_matrices(material, section);
+    let um: Vec<f64> = (0..6).map(|k| ul[membrane_dof(k)]).collect();
+    let ub: Vec<f64> = (0..9)
+        .map(|k| {
+            let (i, s) = bending_dof(k);
+            s * ul[i]
+        })
+        .collect();
+    let bm = facet.bm();
+    let eps: Vec<f64> = (0..3)
+        .map(|i| (0..6).map(|j| bm[i][j] * um[j]).sum())
+        .collect();
+    let n: Vec<f64> = (0..3)
+        .map(|i| (0..3).map(|j| dm[i][j] * eps[j]).sum())
+        .collect();
+    let bc = facet.shear(&df);
+    let q: Vec<f64> = (0..2)
+        .map(|i| (0..9).map(|j| bc[i][j] * ub[j]).sum())
+        .collect();
+    Ok(fpg3()
+        .iter()
+        .map(|g| {
+            let bf = facet.bf(g.xi[0], g.xi[1]);
+            let kappa: Vec<f64> = (0..3)
+                .map(|i| (0..9).map(|j| bf[i][j] * ub[j]).sum())
+                .collect();
+            let m: Vec<f64> = (0..3)
+                .map(|i| (0..3).map(|j| df[i][j] * kappa[j]).sum())
+                .collect();
+            [n[0], n[1], n[2], m[0], m[1], m[2], q[0], q[1]]
+        })
+        .collect())
+}
