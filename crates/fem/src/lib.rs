@@ -43,7 +43,7 @@ mod split_llt;
 pub mod strain;
 pub mod unilateral;
 
-pub use behaviour::{Behaviours, CurveEnd, VonMises};
+pub use behaviour::{Behaviours, CurveEnd, Lemaitre, VonMises};
 pub use dof::{Comp, Dof, DofNumbering};
 pub use dynamics::{DynamicNonLinear, Scheme};
 pub use error::FemError;

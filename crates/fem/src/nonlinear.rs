@@ -585,6 +585,9 @@ impl StaticNonLinear<'_> {
             let mut unil: Option<Vec<Vec<RowOutcome>>> = None;
             while let Some(&(target, level)) = pending.last() {
                 let saved = (u.clone(), srcs.clone(), own.clone());
+                if let Some(pc) = plastic.as_mut() {
+                    pc.set_step(target - from);
+                }
                 // Force sources start the increment from the last converged
                 // state (before the new imposed values).
                 for (f, o) in self.forces.iter_mut().zip(own.iter_mut()) {

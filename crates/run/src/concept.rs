@@ -118,6 +118,16 @@ pub struct Material {
     /// `TRACTION=_F(SIGM=σ(EPSI))` (for VMIS_ISOT_TRAC): a tabulated
     /// function.
     pub traction: Option<crate::function::Tabulated>,
+    /// `LEMAITRE=_F(N, UN_SUR_K, UN_SUR_M)` (for RELATION='LEMAITRE').
+    pub lemaitre: Option<LemaitreCoefs>,
+}
+
+/// `LEMAITRE`: Lemaitre's viscoplastic coefficients.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LemaitreCoefs {
+    pub n: f64,
+    pub un_sur_k: f64,
+    pub un_sur_m: f64,
 }
 
 /// `ECRO_LINE`: the slope after yield of the uniaxial curve and the yield

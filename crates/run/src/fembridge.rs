@@ -128,6 +128,9 @@ pub fn build_behaviours(
     // One law per (material, relation), shared by its cells.
     let mut laws: Vec<(*const Material, Relation, Arc<aster_fem::VonMises>)> = Vec::new();
     for occ in occurrences {
+        // LEMAITRE: one law per material for this occurrence (its local
+        // integration settings are the occurrence's).
+        let mut viscous: Vec<(*const Material, Arc<aster_fem::Lemaitre>)> = Vec::new();
         let cells: Vec<aster_mesh::CellId> = match &occ.cells {
             None => continuum.iter().copied().collect(),
             Some(c) => c
@@ -144,6 +147,33 @@ pub fn build_behaviours(
             let Some(mat) = materials.cells.get(&cell) else {
                 continue; // reported by build_model
             };
+            if occ.relation == Relation::Lemaitre {
+                let law = match viscous.iter().find(|l| l.0 == Rc::as_ptr(mat)) {
+                    Some(l) => l.1.clone(),
+                    None => {
+                        let c = mat.lemaitre.ok_or_else(|| {
+                            ExecError::new(format!(
+                                "STAT_NON_LINE/COMPORTEMENT: RELATION='LEMAITRE' on cell {} needs LEMAITRE=_F(N, UN_SUR_K) in its material's DEFI_MATERIAU",
+                                crate::select::cell_name(mesh, cell)
+                            ))
+                        })?;
+                        let law = aster_fem::Lemaitre::new(
+                            c.n,
+                            c.un_sur_k,
+                            c.un_sur_m,
+                            occ.local.theta,
+                            occ.local.resi_inte,
+                            occ.local.iter_inte_maxi,
+                        )
+                        .map_err(|e| fem_err("STAT_NON_LINE/COMPORTEMENT", e))?;
+                        let law = Arc::new(law);
+                        viscous.push((Rc::as_ptr(mat), law.clone()));
+                        law
+                    }
+                };
+                out.assign_viscous(cell, law);
+                continue;
+            }
             let key = (Rc::as_ptr(mat), occ.relation);
             let law = match laws.iter().find(|l| (l.0, l.1) == key) {
                 Some(l) => l.2.clone(),
@@ -192,7 +222,12 @@ fn plastic_law(
             // code_aster reads Young's modulus from the curve (σ₁/ε₁).
             aster_fem::VonMises::traction_curve(t.abscissae(), t.values(), end)
         }
-        Relation::Elas => return Err(ExecError::new("ELAS has no plastic law")),
+        Relation::Elas | Relation::Lemaitre => {
+            return Err(ExecError::new(format!(
+                "{} has no von Mises law",
+                relation.keyword()
+            )))
+        }
     };
     law.map_err(|e| fem_err("DEFI_MATERIAU", e))
 }

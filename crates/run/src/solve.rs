@@ -32,6 +32,8 @@ pub enum Relation {
     VmisIsotLine,
     /// Von Mises, isotropic hardening by a traction curve (TRACTION).
     VmisIsotTrac,
+    /// Lemaitre's viscoplasticity (material's LEMAITRE), small strains.
+    Lemaitre,
 }
 
 impl Relation {
@@ -40,6 +42,7 @@ impl Relation {
             Relation::Elas => "ELAS",
             Relation::VmisIsotLine => "VMIS_ISOT_LINE",
             Relation::VmisIsotTrac => "VMIS_ISOT_TRAC",
+            Relation::Lemaitre => "LEMAITRE",
         }
     }
 }
@@ -51,6 +54,17 @@ pub struct BehaviourOcc {
     pub relation: Relation,
     pub kinematics: aster_fem::Kinematics,
     pub cells: Option<Vec<aster_mesh::CellId>>,
+    /// The local integration settings the viscous laws use.
+    pub local: LocalIntegration,
+}
+
+/// `PARM_THETA`, `RESI_INTE_RELA`, `ITER_INTE_MAXI` of a `COMPORTEMENT`
+/// occurrence (code_aster's defaults 1, 1e-6, 20).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalIntegration {
+    pub theta: f64,
+    pub resi_inte: f64,
+    pub iter_inte_maxi: usize,
 }
 
 /// Newton and convergence settings (`NEWTON`, `CONVERGENCE`).
@@ -145,7 +159,10 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "COMPORTEMENT/GROUP_MA",
     "COMPORTEMENT/MAILLE",
     // Local (Gauss-point) integration settings: the radial return of the
-    // von Mises laws is exact, so they change nothing.
+    // von Mises laws is exact, so they change nothing; LEMAITRE's scalar
+    // equation uses RESI_INTE_RELA, ITER_INTE_MAXI and its θ-scheme
+    // PARM_THETA (refused with the other relations but at its default 1).
+    "COMPORTEMENT/PARM_THETA",
     "COMPORTEMENT/RESI_INTE_RELA",
     "COMPORTEMENT/RESI_INTE",
     "COMPORTEMENT/ITER_INTE_MAXI",
@@ -233,7 +250,7 @@ pub(crate) const SNL_VALUES: &[Values] = &[
     Values::new("NEWTON/MATRICE", &["TANGENTE", "ELASTIQUE"]),
     Values::listed(
         "COMPORTEMENT/RELATION",
-        &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC"],
+        &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC", "LEMAITRE"],
     ),
     Values::listed(
         "COMPORTEMENT/DEFORMATION",
@@ -271,7 +288,23 @@ pub(crate) fn kinematics_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             (Some("SIMO_MIEHE"), "ELAS") => {
                 "with RELATION='ELAS' (code_aster's SIMO_MIEHE is for the plastic laws)".into()
             }
-            _ => continue,
+            (Some(d), "LEMAITRE") if d != "PETIT" => {
+                "with RELATION='LEMAITRE' (its viscoplastic integration is implemented in small strains only)".into()
+            }
+            _ => {
+                if relation != "LEMAITRE" && occ.f64("PARM_THETA").is_some_and(|t| t != 1.0) {
+                    out.push(Refusal::at(
+                        format!(
+                            "{}/COMPORTEMENT/PARM_THETA other than 1 with RELATION='{relation}' (the θ-scheme is implemented for LEMAITRE only)",
+                            call.command
+                        ),
+                        occ,
+                        "PARM_THETA",
+                        call.span,
+                    ));
+                }
+                continue;
+            }
         };
         let d = occ.str("DEFORMATION").unwrap_or_default();
         out.push(Refusal::at(
@@ -518,11 +551,12 @@ fn parse_behaviours(
             "ELAS" => Relation::Elas,
             "VMIS_ISOT_LINE" => Relation::VmisIsotLine,
             "VMIS_ISOT_TRAC" => Relation::VmisIsotTrac,
+            "LEMAITRE" => Relation::Lemaitre,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, LEMAITRE)"
                     ),
                     span,
                 ));
@@ -568,10 +602,23 @@ fn parse_behaviours(
                 ));
             }
         }
+        let local = LocalIntegration {
+            theta: occ.f64("PARM_THETA").unwrap_or(1.0),
+            resi_inte: occ
+                .f64("RESI_INTE_RELA")
+                .or_else(|| occ.f64("RESI_INTE"))
+                .unwrap_or(1e-6),
+            iter_inte_maxi: occ
+                .first("ITER_INTE_MAXI")
+                .and_then(|v| v.as_i64())
+                .map(|k| k.max(1) as usize)
+                .unwrap_or(20),
+        };
         out.push(BehaviourOcc {
             relation,
             kinematics,
             cells,
+            local,
         });
     }
     Ok(out)

@@ -9,6 +9,7 @@
 //! corrections vanish. A finite-strain cell (`crate::strain`) always
 //! carries them: its forces depend on the geometry.
 
+use super::lemaitre::{self, Lemaitre};
 use super::vmis::{integrate, VonMises};
 use super::{Behaviours, GaussState, Kinematics};
 use crate::element::{continuum_stiffness, element_dofs, model_gauss, spring_stiffness, GaussData};
@@ -29,6 +30,8 @@ struct PlasticCell {
     elastic: Elastic,
     /// `None`: ELAS (under a finite-strain kinematics).
     law: Option<Arc<VonMises>>,
+    /// `LEMAITRE` (small strains), in place of `law`.
+    viscous: Option<Arc<Lemaitre>>,
     kinematics: Kinematics,
     dofs: Vec<usize>,
     gauss: Vec<GaussData>,
@@ -78,6 +81,8 @@ pub(crate) struct PlasticCells {
     /// (a, b) entries (column-major; `usize::MAX`: an eliminated DOF), with
     /// the number of values they were found for.
     positions: Option<(usize, Vec<Vec<usize>>)>,
+    /// The duration of the current step (the viscous laws').
+    dt: f64,
 }
 
 impl PlasticCells {
@@ -130,6 +135,7 @@ impl PlasticCells {
                 hypothesis: *hypothesis,
                 elastic: *material,
                 law: behaviour.law,
+                viscous: behaviour.viscous,
                 kinematics: behaviour.kinematics,
                 dofs,
                 gauss,
@@ -167,7 +173,14 @@ impl PlasticCells {
             corrected,
             positions: None,
             symmetrize,
+            dt: 0.0,
         }))
+    }
+
+    /// The duration of the step about to be solved (from the last
+    /// converged instant to the target; a cut step's own).
+    pub fn set_step(&mut self, dt: f64) {
+        self.dt = dt;
     }
 
     /// Whether some cell has a finite-strain kinematics.
@@ -226,10 +239,39 @@ impl PlasticCells {
             if cell.finite() {
                 continue;
             }
+            let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
+            if let Some(visc) = cell.viscous.as_deref() {
+                let n = cell.hypothesis.ncomp();
+                for (g, gp) in cell.gauss.iter().enumerate() {
+                    let mut eps = [0.0; 6];
+                    for (k, e) in eps.iter_mut().enumerate().take(n) {
+                        *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
+                    }
+                    let prev = &self.committed[c][g].law;
+                    let (state, tangent) = lemaitre::integrate(
+                        visc,
+                        &cell.elastic,
+                        cell.hypothesis,
+                        &eps[..n],
+                        prev,
+                        self.dt,
+                        false,
+                    )
+                    .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                    self.trial[c][g] = GaussState {
+                        law: state,
+                        cauchy: state.stress,
+                        extra: [0.0; 6],
+                    };
+                    self.tangents[c][g] = tangent;
+                }
+                self.corrected[c] = true;
+                add_stress_correction(cell, &self.trial[c], &ue, fint);
+                continue;
+            }
             let Some(law) = cell.law.as_deref() else {
                 continue;
             };
-            let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
             // A cell whose points all stay elastic without plastic strain
             // has σ = D ε and tangent D: its corrections vanish (most cells
             // around a local plastic zone).
@@ -256,21 +298,7 @@ impl PlasticCells {
             if virgin {
                 continue;
             }
-            // ∫Bᵀσ − Kₑuₑ.
-            let mut fe = vec![0.0; ue.len()];
-            for (a, f) in fe.iter_mut().enumerate() {
-                let row = cell.k_el.row(a);
-                *f = -(0..ue.len()).map(|b| row[b] * ue[b]).sum::<f64>();
-            }
-            for (g, gp) in cell.gauss.iter().enumerate() {
-                let sigma = &self.trial[c][g].law.stress;
-                for (a, f) in fe.iter_mut().enumerate() {
-                    *f += gp.w * (0..n).map(|k| gp.b[(k, a)] * sigma[k]).sum::<f64>();
-                }
-            }
-            for (a, &i) in cell.dofs.iter().enumerate() {
-                fint[i] += fe[a];
-            }
+            add_stress_correction(cell, &self.trial[c], &ue, fint);
         }
         Ok(())
     }
@@ -304,6 +332,31 @@ impl PlasticCells {
         }
         for (c, cell) in self.cells.iter().enumerate() {
             if cell.finite() {
+                continue;
+            }
+            if let Some(visc) = cell.viscous.as_deref() {
+                // The viscous flow goes on over the step: code_aster's
+                // RIGI_MECA_TANG at a zero increment (ELASTIQUE: the
+                // elastic stiffness).
+                self.corrected[c] = !elastic;
+                if elastic {
+                    continue;
+                }
+                for g in 0..cell.gauss.len() {
+                    let state = self.committed[c][g].law;
+                    let eps = [0.0; 6];
+                    let (_, tangent) = lemaitre::integrate(
+                        visc,
+                        &cell.elastic,
+                        cell.hypothesis,
+                        &eps[..cell.hypothesis.ncomp()],
+                        &state,
+                        self.dt,
+                        true,
+                    )
+                    .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                    self.tangents[c][g] = tangent;
+                }
                 continue;
             }
             let Some(law) = cell.law.as_deref() else {
@@ -466,6 +519,7 @@ fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
     let mut v = Vec::with_capacity(8);
     match &cell.law {
         Some(_) => v.extend(s.law.vari()),
+        None if cell.viscous.is_some() => v.extend(s.law.vari()),
         None if cell.kinematics == Kinematics::Logarithmic => v.push(0.0),
         None => {}
     }
@@ -485,6 +539,26 @@ fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
         _ => {}
     }
     v
+}
+
+/// Adds ∫Bᵀσ − Kₑuₑ of a small-strain cell (its points' trial stresses)
+/// to `fint`.
+fn add_stress_correction(cell: &PlasticCell, trial: &[GaussState], ue: &[f64], fint: &mut [f64]) {
+    let n = cell.hypothesis.ncomp();
+    let mut fe = vec![0.0; ue.len()];
+    for (a, f) in fe.iter_mut().enumerate() {
+        let row = cell.k_el.row(a);
+        *f = -(0..ue.len()).map(|b| row[b] * ue[b]).sum::<f64>();
+    }
+    for (g, gp) in cell.gauss.iter().enumerate() {
+        let sigma = &trial[g].law.stress;
+        for (a, f) in fe.iter_mut().enumerate() {
+            *f += gp.w * (0..n).map(|k| gp.b[(k, a)] * sigma[k]).sum::<f64>();
+        }
+    }
+    for (a, &i) in cell.dofs.iter().enumerate() {
+        fint[i] += fe[a];
+    }
 }
 
 /// ∫BᵀC B of a cell for the tangents C of its points: the points' wCB

@@ -12,15 +12,19 @@
 //!   ([`vmis`]), stress σ, VARI V1 = p, V2 = plasticity indicator;
 //! - `PETIT_REAC`, `GREEN_LAGRANGE`, `GDEF_LOG`: the same small-strain laws
 //!   (or ELAS) on the strain measure of [`crate::strain`];
-//! - `SIMO_MIEHE`: multiplicative von Mises plasticity ([`simo_miehe`]).
+//! - `SIMO_MIEHE`: multiplicative von Mises plasticity ([`simo_miehe`]);
+//! - `LEMAITRE` (small strains): viscoplasticity without threshold
+//!   ([`lemaitre`]), integrated over the step's duration.
 
 mod cells;
+pub mod lemaitre;
 pub mod simo_miehe;
 pub mod vmis;
 
 pub use crate::strain::{GaussState, Kinematics};
 pub(crate) use cells::PlasticCells;
 pub use cells::{forc_noda_deformed, forc_noda_from_stress};
+pub use lemaitre::Lemaitre;
 pub use vmis::{CurveEnd, Hardening, PointState, VonMises};
 
 use crate::model::{ElementKind, Model};
@@ -33,6 +37,8 @@ use std::sync::Arc;
 pub struct CellBehaviour {
     pub law: Option<Arc<VonMises>>,
     pub kinematics: Kinematics,
+    /// A viscoplastic law (`LEMAITRE`, small strains) in place of `law`.
+    pub viscous: Option<Arc<Lemaitre>>,
 }
 
 /// Which cells follow a plastic law or a finite-strain kinematics
@@ -66,8 +72,27 @@ impl Behaviours {
         if law.is_none() && kinematics == Kinematics::Small {
             self.by_cell.remove(&cell);
         } else {
-            self.by_cell.insert(cell, CellBehaviour { law, kinematics });
+            self.by_cell.insert(
+                cell,
+                CellBehaviour {
+                    law,
+                    kinematics,
+                    viscous: None,
+                },
+            );
         }
+    }
+
+    /// Gives `cell` Lemaitre's viscoplastic law in small strains.
+    pub fn assign_viscous(&mut self, cell: CellId, law: Arc<Lemaitre>) {
+        self.by_cell.insert(
+            cell,
+            CellBehaviour {
+                law: None,
+                kinematics: Kinematics::Small,
+                viscous: Some(law),
+            },
+        );
     }
 
     /// Makes `cell` elastic in small strains again (a later

@@ -28,6 +28,10 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "ECRO_LINE/SY",
     "TRACTION",
     "TRACTION/SIGM",
+    "LEMAITRE",
+    "LEMAITRE/N",
+    "LEMAITRE/UN_SUR_K",
+    "LEMAITRE/UN_SUR_M",
     "INFO",
 ]);
 
@@ -117,6 +121,30 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         None => None,
     };
+    let lemaitre = match kw.factor("LEMAITRE").first() {
+        Some(occ) => {
+            let get = |name: &str| {
+                occ.f64(name).ok_or_else(|| {
+                    ex.kw_error(
+                        "DEFI_MATERIAU/LEMAITRE",
+                        occ,
+                        name,
+                        format!("{name} is required"),
+                    )
+                })
+            };
+            let coefs = LemaitreCoefs {
+                n: get("N")?,
+                un_sur_k: get("UN_SUR_K")?,
+                un_sur_m: occ.f64("UN_SUR_M").unwrap_or(0.0),
+            };
+            // Checked here so the error points at the keyword.
+            aster_fem::Lemaitre::new(coefs.n, coefs.un_sur_k, coefs.un_sur_m, 1.0, 1e-6, 20)
+                .map_err(|e| ex.kw_error("DEFI_MATERIAU/LEMAITRE", occ, "N", e.to_string()))?;
+            Some(coefs)
+        }
+        None => None,
+    };
     let m = Material {
         young,
         poisson,
@@ -126,6 +154,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         amor_beta: elas.f64("AMOR_BETA"),
         ecro_line,
         traction,
+        lemaitre,
     };
     store_result(ex, call, Concept::Material(Rc::new(m)))
 }
