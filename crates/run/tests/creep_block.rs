@@ -5,31 +5,18 @@
 //! relaxation equation (VALE_CALC to 1e-6), within 2e-3 of the closed-form
 //! exponential. LEMAITRE outside small strains is refused before solving.
 
-use std::path::PathBuf;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod scene;
 
 fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
-    let out = std::env::temp_dir().join(format!("aster-creep-block-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&out).unwrap();
-    let comm = out.join("case.comm");
-    std::fs::write(&comm, text).unwrap();
-    let case =
-        aster_run::program::prepare(&comm, Some(&root().join("comm/plastic_block.mail")), &out)
-            .unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(&out);
-    (
-        outcome.tally.ok,
-        outcome.tally.nook,
-        outcome.error.map(|e| format!("{e:?}")),
+    scene::run_on(
+        text,
+        "comm/plastic_block.mail",
+        &format!("creep-block-{tag}"),
     )
 }
 
 fn scene() -> String {
-    std::fs::read_to_string(root().join("comm/creep_block.comm")).unwrap()
+    scene::read("creep_block.comm")
 }
 
 #[test]

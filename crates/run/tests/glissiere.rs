@@ -4,30 +4,15 @@
 //! together under a pull, slide without shear, part without GLISSIERE);
 //! then the refusals around it.
 
-use std::path::PathBuf;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod scene;
 
 /// Runs a scene text on a mesh and returns (OK, NOOK, error).
 fn run_on(text: &str, mesh: &str, tag: &str) -> (usize, usize, Option<String>) {
-    let out = std::env::temp_dir().join(format!("aster-glissiere-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&out).unwrap();
-    let comm = out.join("case.comm");
-    std::fs::write(&comm, text).unwrap();
-    let case = aster_run::program::prepare(&comm, Some(&root().join(mesh)), &out).unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(&out);
-    (
-        outcome.tally.ok,
-        outcome.tally.nook,
-        outcome.error.map(|e| format!("{e:?}")),
-    )
+    scene::run_on(text, mesh, &format!("glissiere-{tag}"))
 }
 
 fn scene() -> String {
-    std::fs::read_to_string(root().join("comm/glissiere.comm")).unwrap()
+    scene::read("glissiere.comm")
 }
 
 fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {

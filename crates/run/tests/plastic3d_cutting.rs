@@ -6,35 +6,19 @@
 //! must stop with an error naming the increment, the limit and where the
 //! cutting was set.
 
-use std::path::PathBuf;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod scene;
 
 /// Runs the scene's text (possibly edited): (OK, NOOK, error).
 fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
-    let out = std::env::temp_dir().join(format!("aster-cutting-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&out).unwrap();
-    let comm = out.join("case.comm");
-    std::fs::write(&comm, text).unwrap();
-    let case = aster_run::program::prepare(
-        &comm,
-        Some(&root().join("comm/plastic3d_cutting.mail")),
-        &out,
-    )
-    .unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(&out);
-    (
-        outcome.tally.ok,
-        outcome.tally.nook,
-        outcome.error.map(|e| format!("{e:?}")),
+    scene::run_on(
+        text,
+        "comm/plastic3d_cutting.mail",
+        &format!("cutting-{tag}"),
     )
 }
 
 fn scene() -> String {
-    std::fs::read_to_string(root().join("comm/plastic3d_cutting.comm")).unwrap()
+    scene::read("plastic3d_cutting.comm")
 }
 
 fn edited(pairs: &[(&str, &str)]) -> String {

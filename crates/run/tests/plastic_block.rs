@@ -5,33 +5,22 @@
 //! solution) must pass — also with the same hardening given as a traction
 //! curve (VMIS_ISOT_TRAC). Unsupported behaviours fail with clear messages.
 
-use std::path::{Path, PathBuf};
+mod scene;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+use scene::root;
+use std::path::Path;
 
 /// Runs the scene's text (possibly edited) and returns (OK, NOOK, error).
 fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
-    let out =
-        std::env::temp_dir().join(format!("aster-plastic-block-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&out).unwrap();
-    let comm = out.join("case.comm");
-    std::fs::write(&comm, text).unwrap();
-    let case =
-        aster_run::program::prepare(&comm, Some(&root().join("comm/plastic_block.mail")), &out)
-            .unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(&out);
-    (
-        outcome.tally.ok,
-        outcome.tally.nook,
-        outcome.error.map(|e| format!("{e:?}")),
+    scene::run_on(
+        text,
+        "comm/plastic_block.mail",
+        &format!("plastic-block-{tag}"),
     )
 }
 
 fn scene() -> String {
-    std::fs::read_to_string(root().join("comm/plastic_block.comm")).unwrap()
+    scene::read("plastic_block.comm")
 }
 
 fn edited(from: &str, to: &str) -> String {

@@ -3,27 +3,11 @@
 //! (comm/zzzz237b.comm, elastic, analytic answers) is solved to t = 8, then
 //! continued to t = 20: every check passes as in one go.
 
-use std::path::PathBuf;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod scene;
 
 /// Runs a command file's text on the seed mesh: (OK, NOOK, error).
 fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
-    let out = std::env::temp_dir().join(format!("aster-reuse-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&out).unwrap();
-    let comm = out.join("case.comm");
-    std::fs::write(&comm, text).unwrap();
-    let case =
-        aster_run::program::prepare(&comm, Some(&root().join("comm/zzzz237.mail")), &out).unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(&out);
-    (
-        outcome.tally.ok,
-        outcome.tally.nook,
-        outcome.error.map(|e| format!("{e:?}")),
-    )
+    scene::run_on(text, "comm/zzzz237.mail", &format!("reuse-{tag}"))
 }
 
 const FIRST: &str = "    INCREMENT=_F(LIST_INST=times),\n)\n";
@@ -38,7 +22,7 @@ fn continued(second: &str) -> String {
 
 /// The same with the nodal forces computed at every step.
 fn all_steps(second: &str) -> String {
-    let text = std::fs::read_to_string(root().join("comm/zzzz237b.comm")).unwrap();
+    let text = scene::read("zzzz237b.comm");
     assert!(
         text.contains(FIRST) && text.contains(FORCES),
         "the scene changed"
