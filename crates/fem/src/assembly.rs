@@ -191,13 +191,7 @@ fn scatter_columns(
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;
                 };
-                let n = ke.nrows();
-                for a in 0..n {
-                    for b in 0..n {
-                        buf[a * n + b] = ke[(a, b)];
-                    }
-                }
-                n
+                copy_dense(&ke, &mut buf)
             }
             ElementKind::Continuum {
                 hypothesis,
@@ -229,13 +223,7 @@ fn scatter_columns(
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;
                 };
-                let n = ke.nrows();
-                for a in 0..n {
-                    for b in 0..n {
-                        buf[a * n + b] = ke[(a, b)];
-                    }
-                }
-                n
+                copy_dense(&ke, &mut buf)
             }
             ElementKind::Boundary => continue,
         };
@@ -377,6 +365,18 @@ pub fn restrict_owned(mut k: Csc, map: &[usize], nfree: usize) -> Csc {
         row_idx: k.row_idx,
         values: k.values,
     }
+}
+
+/// Writes the square matrix `ke` row-major into `buf` (the element-matrix
+/// buffer of the fast scatter) and returns its size.
+fn copy_dense(ke: &nalgebra::DMatrix<f64>, buf: &mut [f64]) -> usize {
+    let n = ke.nrows();
+    for a in 0..n {
+        for b in 0..n {
+            buf[a * n + b] = ke[(a, b)];
+        }
+    }
+    n
 }
 
 #[cfg(test)]
