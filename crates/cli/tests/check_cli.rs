@@ -1,23 +1,15 @@
 //! `aster check` and `aster explain` from the command line.
 
+mod cli;
+
 use std::path::PathBuf;
-use std::process::Command;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 fn aster(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_aster"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("run aster");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    cli::aster_in(&root(), args)
 }
 
 #[test]

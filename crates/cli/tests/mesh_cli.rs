@@ -1,7 +1,8 @@
 //! `aster mesh FILE --json` and `--to FORMAT --out PATH`.
 
+mod cli;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 const SQUARE: &str = "COOR_2D\nA 0 0\nB 1 0\nC 1 1\nD 0 1\nFINSF\nSEG2\nAB A B\nCD C D\nFINSF\nQUAD4\nQ A B C D\nFINSF\n\
     GROUP_MA\nSURF Q\nFINSF\nGROUP_MA\nBOTTOM AB\nFINSF\nGROUP_NO\nORIGIN A\nFINSF\nFIN\n";
@@ -12,17 +13,7 @@ fn dir() -> PathBuf {
     d
 }
 
-fn aster(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_aster"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use cli::aster;
 
 const EXPECTED: &str = r#"{"nodes":4,"cells":{"SEG2":2,"QUAD4":1},"groups_ma":["SURF","BOTTOM"],"groups_no":["ORIGIN"]}"#;
 

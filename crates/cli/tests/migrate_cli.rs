@@ -2,8 +2,9 @@
 //! comments and layout kept; a unified diff by default, `--write` in place.
 //! The scene is written for this test (the legacy forms of docs/legacy.md).
 
+mod cli;
+
 use std::path::PathBuf;
-use std::process::Command;
 
 const V11: &str = "\
 # A code_aster 11 study (comments stay).
@@ -27,17 +28,7 @@ DETRUIRE(CONCEPT=_F(NOM=L))
 FIN()
 ";
 
-fn aster(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_aster"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
-}
+use cli::aster;
 
 fn file(tag: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("aster-migrate-{}-{tag}", std::process::id()));

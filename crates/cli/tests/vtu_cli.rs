@@ -4,8 +4,9 @@
 //! writer: `run --vtu` converts the results in memory, `mesh` reads them
 //! back from the MED file `IMPR_RESU` wrote, so equal arrays check both.
 
+mod cli;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -18,17 +19,7 @@ fn dir(tag: &str) -> PathBuf {
     d
 }
 
-fn aster(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_aster"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use cli::aster;
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
