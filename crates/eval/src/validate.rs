@@ -673,7 +673,8 @@ impl Validator<'_> {
                 g.span,
                 format!(
                     "`{path}/{}` is not allowed here: it applies only when {}",
-                    g.name, b.condition
+                    g.name,
+                    aster_catalog::explain::plain_condition(&b.condition)
                 ),
             );
             if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name.as_str())) {
