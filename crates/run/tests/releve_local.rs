@@ -1,7 +1,8 @@
 //! POST_RELEVE_T in the local frame of a path of nodes (comm/releve_local.comm
 //! on comm/bent_path.mail): the components of a constant vector along and
 //! across a bent path, against the frame code_aster's `rvrlln` builds
-//! (derived by hand in the command file), the path walked both ways; and
+//! (derived by hand in the command file), the path walked both ways and
+//! read from a node group made from cells listed backwards; and
 //! a resultant in that frame refused, located.
 
 use std::path::{Path, PathBuf};
@@ -23,7 +24,7 @@ fn run(comm: &Path, tag: &str) -> aster_run::program::Outcome {
 fn components_in_the_local_frame_of_a_bent_path() {
     let outcome = run(&root().join("comm/releve_local.comm"), "ok");
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (16, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
 }
 
 #[test]
@@ -44,7 +45,7 @@ fn a_resultant_in_the_local_frame_is_refused_at_repere() {
     let err = outcome.error.expect("refused").to_string();
     assert!(
         err.contains("POST_RELEVE_T/ACTION/REPERE='LOCAL' with RESULTANTE")
-            && err.contains("resultant.comm:24:26)"),
+            && err.contains("resultant.comm:28:26)"),
         "{err}"
     );
 }

@@ -1446,3 +1446,28 @@ mod moyenne_tests {
         assert_eq!((m[2], m[3]), (1.0, 3.0));
     }
 }
+
+#[cfg(test)]
+mod local_frame_tests {
+    use super::local_path_frames;
+
+    #[test]
+    fn a_straight_path_has_its_direction_and_the_left_normal_everywhere() {
+        // Along (0.8, 0.6) with a z step (dropped from the tangent but
+        // counted in the length, as rvrlln does): t = (0.8, 0.6)·5/√26.
+        let f = local_path_frames(&[[0.0, 0.0, 0.0], [4.0, 3.0, 0.0], [8.0, 6.0, 0.0]]).unwrap();
+        for (t, n) in &f {
+            assert!((t[0] - 0.8).abs() < 1e-15 && (t[1] - 0.6).abs() < 1e-15, "{f:?}");
+            assert!((n[0] + 0.6).abs() < 1e-15 && (n[1] - 0.8).abs() < 1e-15, "{f:?}");
+        }
+        let g = local_path_frames(&[[0.0, 0.0, 0.0], [4.0, 3.0, 1.0]]).unwrap();
+        let s = 5.0 / 26f64.sqrt();
+        assert!((g[0].0[0] - 0.8 * s).abs() < 1e-15 && (g[1].0[1] - 0.6 * s).abs() < 1e-15);
+    }
+
+    #[test]
+    fn paths_without_a_frame() {
+        assert!(local_path_frames(&[[1.0, 2.0, 0.0]]).is_none());
+        assert!(local_path_frames(&[[0.0; 3], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]).is_none());
+    }
+}
