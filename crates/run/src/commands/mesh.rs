@@ -729,7 +729,11 @@ fn normal_vector(occ: &Keywords, what: &str) -> Result<[f64; 3], ExecError> {
 /// once, in the order of the node numbers (not of the cells). The order
 /// matters where a group is read as a path (POST_RELEVE_T's abscissa, its
 /// local frame, MOYENNE).
-fn nodes_of_cells(mesh: &aster_mesh::Mesh, cells: &[aster_mesh::CellId], kind: NodeKind) -> Vec<NodeId> {
+fn nodes_of_cells(
+    mesh: &aster_mesh::Mesh,
+    cells: &[aster_mesh::CellId],
+    kind: NodeKind,
+) -> Vec<NodeId> {
     let mut nodes = mesh.nodes_of_cells_kind(cells, kind);
     nodes.sort_unstable();
     nodes

@@ -563,11 +563,14 @@ fn crea_champ_eval(ex: &Executor, call: &CommandCall) -> Result<NodalField, Exec
     Ok(out)
 }
 
+/// A node's frame in the plane (x, y): (v₁, v₂).
+type Frame = ([f64; 2], [f64; 2]);
+
 /// The polar frame of each node (`REPERE='POLAIRE'`, code_aster's
 /// `rvrthe` and `rvcalq`): with r the distance of the node to the z axis,
 /// v₁ = (x, y)/r and v₂ = (y, −x)/r (the opposite of the tangent rvrthe
 /// gives; (1, 0) and (0, −1) when r < 1e-6).
-fn polar_frame(x: [f64; 3]) -> ([f64; 2], [f64; 2]) {
+fn polar_frame(x: [f64; 3]) -> Frame {
     let r = (x[0] * x[0] + x[1] * x[1]).sqrt();
     if r.abs() < 1e-6 {
         ([1.0, 0.0], [0.0, -1.0])
@@ -583,7 +586,7 @@ fn polar_frame(x: [f64; 3]) -> ([f64; 2], [f64; 2]) {
 /// arriving segment's at the last node) and v₂ = (−t_y, t_x) in the plane
 /// (x, y). `None` for a path of fewer than two nodes or with two
 /// consecutive nodes at the same place (code_aster divides by zero).
-fn local_path_frames(points: &[[f64; 3]]) -> Option<Vec<([f64; 2], [f64; 2])>> {
+fn local_path_frames(points: &[[f64; 3]]) -> Option<Vec<Frame>> {
     if points.len() < 2 {
         return None;
     }
@@ -624,10 +627,7 @@ fn local_path_frames(points: &[[f64; 3]]) -> Option<Vec<([f64; 2], [f64; 2])>> {
 /// SIXY' = v₁·σ·v₂, SIXZ' = v₁·(σxz, σyz), SIYZ' = v₂·(σxz, σyz); z
 /// components and the others unchanged. A missing component counts as 0.
 /// Nodes without a frame are left as they are.
-fn frame_components(
-    f: &NodalField,
-    frame: impl Fn(NodeId) -> Option<([f64; 2], [f64; 2])>,
-) -> NodalField {
+fn frame_components(f: &NodalField, frame: impl Fn(NodeId) -> Option<Frame>) -> NodalField {
     let mut out = f.clone();
     let idx = |c: &str| f.component_index(c);
     let vector = (idx("DX"), idx("DY"));
@@ -893,7 +893,14 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .collect();
         let polar = occ.str("REPERE") == Some("POLAIRE");
         let local = if occ.str("REPERE") == Some("LOCAL") {
-            Some(local_frames(ex, occ, &mesh, &nodes, !resultant.is_empty(), call.span)?)
+            Some(local_frames(
+                ex,
+                occ,
+                &mesh,
+                &nodes,
+                !resultant.is_empty(),
+                call.span,
+            )?)
         } else {
             None
         };
@@ -973,7 +980,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     return Err(ex.unsupported(
                         &format!("POST_RELEVE_T/ACTION/{what} of an element field"),
                         occ.keyword("NOM_CHAM").map(|k| k.span).unwrap_or(call.span),
-                    ))
+                    ));
                 }
                 Field::Elem(e) => e.nodal_mean(&mesh).ok_or_else(|| {
                     ex.unsupported(
@@ -1121,7 +1128,7 @@ fn local_frames(
     nodes: &[NodeId],
     resultant: bool,
     fallback: aster_syntax::Span,
-) -> Result<std::collections::HashMap<NodeId, ([f64; 2], [f64; 2])>, ExecError> {
+) -> Result<std::collections::HashMap<NodeId, Frame>, ExecError> {
     let refuse = |why: &str| {
         let span = occ.keyword("REPERE").map(|k| k.span).unwrap_or(fallback);
         ex.unsupported(&format!("POST_RELEVE_T/ACTION/REPERE='LOCAL' {why}"), span)
@@ -1156,11 +1163,12 @@ fn local_frames(
     }
     // rvchgr: every z equal to the first mesh node's (rvegal, relative 1e-3).
     let z0 = mesh.coords.first().map_or(0.0, |c| c[2]);
-    let seuil = if z0.abs() >= 1e-3 { 1e-3 * z0.abs() } else { 1e-3 };
-    if path
-        .iter()
-        .any(|&n| (z0 - mesh.coord(n)[2]).abs() >= seuil)
-    {
+    let seuil = if z0.abs() >= 1e-3 {
+        1e-3 * z0.abs()
+    } else {
+        1e-3
+    };
+    if path.iter().any(|&n| (z0 - mesh.coord(n)[2]).abs() >= seuil) {
         return Err(refuse(
             "on a path off the plane z of the mesh's first node (code_aster computes no frame: alarm POSTRELE_28)",
         ));
@@ -1457,8 +1465,14 @@ mod local_frame_tests {
         // counted in the length, as rvrlln does): t = (0.8, 0.6)·5/√26.
         let f = local_path_frames(&[[0.0, 0.0, 0.0], [4.0, 3.0, 0.0], [8.0, 6.0, 0.0]]).unwrap();
         for (t, n) in &f {
-            assert!((t[0] - 0.8).abs() < 1e-15 && (t[1] - 0.6).abs() < 1e-15, "{f:?}");
-            assert!((n[0] + 0.6).abs() < 1e-15 && (n[1] - 0.8).abs() < 1e-15, "{f:?}");
+            assert!(
+                (t[0] - 0.8).abs() < 1e-15 && (t[1] - 0.6).abs() < 1e-15,
+                "{f:?}"
+            );
+            assert!(
+                (n[0] + 0.6).abs() < 1e-15 && (n[1] - 0.8).abs() < 1e-15,
+                "{f:?}"
+            );
         }
         let g = local_path_frames(&[[0.0, 0.0, 0.0], [4.0, 3.0, 1.0]]).unwrap();
         let s = 5.0 / 26f64.sqrt();
