@@ -12,12 +12,12 @@ use aster_mesh::NodeId;
 
 /// The sparsity pattern of the model's stiffness: DOFs of nodes sharing an
 /// element are coupled. Built from node adjacency (node-major numbering, so
-/// every component of a node shares its column structure).
+/// every component of a node shares its column structure; a node's block
+/// of rows holds all its components, whichever elements couple them).
 pub fn stiffness_pattern(model: &Model) -> Csc {
     let mesh = model.mesh();
     let dofs = model.dofs();
     let nd = dofs.len();
-    let ncomp = dofs.comps_per_node();
     let nnodes = mesh.node_count();
     // Node → cells incidence (CSR), then each node's sorted neighbours.
     let mut count = vec![0usize; nnodes + 1];
@@ -43,7 +43,7 @@ pub fn stiffness_pattern(model: &Model) -> Csc {
     }
     let mut col_ptr = Vec::with_capacity(nd + 1);
     col_ptr.push(0usize);
-    let mut row_idx: Vec<usize> = Vec::with_capacity(nd * 9 * ncomp);
+    let mut row_idx: Vec<usize> = Vec::with_capacity(nd * 9 * dofs.comps().len());
     let mut neigh: Vec<u32> = Vec::with_capacity(64);
     for node in 0..nnodes {
         let Some(first) = dofs.node_first(NodeId(node as u32)) else {
@@ -64,9 +64,10 @@ pub fn stiffness_pattern(model: &Model) -> Csc {
         let start = row_idx.len();
         for &m in &neigh {
             if let Some(f) = dofs.node_first(NodeId(m)) {
-                row_idx.extend(f..f + ncomp);
+                row_idx.extend(f..f + dofs.node_comps(NodeId(m)).len());
             }
         }
+        let ncomp = dofs.node_comps(NodeId(node as u32)).len();
         let end = row_idx.len();
         col_ptr.push(end);
         for _ in 1..ncomp {
@@ -175,7 +176,6 @@ fn scatter_columns(
     let mut hooke: Option<(Elastic, Hypothesis, [[f64; 6]; 6])> = None;
     let mut buf = vec![0.0; MAX_EL_DOFS * MAX_EL_DOFS];
     let mut dofs = Vec::with_capacity(MAX_EL_DOFS);
-    let ncomp = model.dofs().comps_per_node();
     for (idx, el) in model.elements().iter().enumerate() {
         if matches!(el.kind, ElementKind::Boundary) {
             continue;
@@ -219,7 +219,7 @@ fn scatter_columns(
                     |m| FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell))),
                 )?
             }
-            ElementKind::Spring { .. } => {
+            ElementKind::Spring { .. } | ElementKind::Shell { .. } => {
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;
                 };
@@ -227,6 +227,7 @@ fn scatter_columns(
             }
             ElementKind::Boundary => continue,
         };
+        let ncomp = model.element_comps(el.cell);
         let nodes = &mesh.cell(el.cell).nodes;
         if dofs.len() == ndof && ndof == nodes.len() * ncomp && nodes.len() <= MAX_EL_NODES {
             scatter_by_node_blocks(k, &cols, values, &dofs, ncomp, &buf[..ndof * ndof]);
