@@ -440,7 +440,10 @@ mod tests {
                 },
             })
             .collect();
-        let model = Model::new(mesh, elements).unwrap();
+        check_model_against_dense(Model::new(mesh, elements).unwrap());
+    }
+
+    fn check_model_against_dense(model: Model) {
         let k = assemble_stiffness(&model).unwrap();
         let n = model.dofs().len();
         let mut dense = vec![0.0; n * n];
@@ -508,5 +511,60 @@ mod tests {
             (CellType::HEXA8, vec![1, 2, 5, 4, 7, 8, 11, 10]),
         ];
         check_against_dense(mesh(3, coords, cells), Hypothesis::Solid3D);
+    }
+
+    /// A solid and a shell sharing nodes: the shell's nodes carry six
+    /// components, the others three; the solid uses the translations of the
+    /// shared nodes, the shell all six; the assembly equals the dense sum.
+    #[test]
+    fn shells_beside_solids_number_rotations_on_their_nodes_only() {
+        let mut coords = Vec::new();
+        for z in [0.0, 1.0] {
+            for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+                coords.push([x + 0.1 * z, y, z]);
+            }
+        }
+        let m = mesh(
+            3,
+            coords,
+            vec![
+                (CellType::HEXA8, vec![0, 1, 2, 3, 4, 5, 6, 7]),
+                (CellType::QUAD4, vec![4, 5, 6, 7]),
+            ],
+        );
+        let material = Elastic::new(2e5, 0.3).unwrap();
+        let model = Model::new(
+            m,
+            vec![
+                Element {
+                    cell: CellId(0),
+                    kind: ElementKind::Continuum {
+                        hypothesis: Hypothesis::Solid3D,
+                        material,
+                    },
+                },
+                Element {
+                    cell: CellId(1),
+                    kind: ElementKind::Shell {
+                        material,
+                        section: crate::dkt::ShellSection::new(0.05),
+                    },
+                },
+            ],
+        )
+        .unwrap();
+        let dofs = model.dofs();
+        assert_eq!(dofs.len(), 4 * 3 + 4 * 6);
+        assert_eq!(dofs.node_comps(NodeId(0)).len(), 3);
+        assert_eq!(dofs.node_comps(NodeId(4)), &crate::dof::Comp::ALL);
+        assert_eq!(dofs.index(crate::dof::Dof::new(NodeId(0), crate::dof::Comp::DRX)), None);
+        assert_eq!(model.element_comps(CellId(0)), 3);
+        assert_eq!(model.element_comps(CellId(1)), 6);
+        let solid = crate::element::element_dofs(&model, CellId(0));
+        assert_eq!(solid.len(), 24);
+        let first4 = dofs.node_first(NodeId(4)).unwrap();
+        assert_eq!(&solid[12..15], &[first4, first4 + 1, first4 + 2]);
+        assert_eq!(crate::element::element_dofs(&model, CellId(1)).len(), 24);
+        check_model_against_dense(model);
     }
 }
