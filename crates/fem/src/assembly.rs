@@ -557,7 +557,10 @@ mod tests {
         assert_eq!(dofs.len(), 4 * 3 + 4 * 6);
         assert_eq!(dofs.node_comps(NodeId(0)).len(), 3);
         assert_eq!(dofs.node_comps(NodeId(4)), &crate::dof::Comp::ALL);
-        assert_eq!(dofs.index(crate::dof::Dof::new(NodeId(0), crate::dof::Comp::DRX)), None);
+        assert_eq!(
+            dofs.index(crate::dof::Dof::new(NodeId(0), crate::dof::Comp::DRX)),
+            None
+        );
         assert_eq!(model.element_comps(CellId(0)), 3);
         assert_eq!(model.element_comps(CellId(1)), 6);
         let solid = crate::element::element_dofs(&model, CellId(0));

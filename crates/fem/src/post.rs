@@ -116,7 +116,10 @@ pub fn efge_elga(
             ));
         }
         let proj = proj / norm;
-        let (c0, s0) = (pgl.row(0).transpose().dot(&proj), pgl.row(1).transpose().dot(&proj));
+        let (c0, s0) = (
+            pgl.row(0).transpose().dot(&proj),
+            pgl.row(1).transpose().dot(&proj),
+        );
         let cs = c0 / (c0 * c0 + s0 * s0).sqrt();
         let sn = s0 / (cs * cs + s0 * s0).sqrt();
         let rot = |xx: f64, yy: f64, xy: f64| {

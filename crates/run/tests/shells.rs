@@ -64,7 +64,10 @@ fn contact_on_shells_is_refused_at_the_zone() {
     refused(
         &text,
         "contact",
-        &["DEFI_CONTACT/ZONE/GROUP_MA_MAIT on shell cells", "DIST_COQUE"],
+        &[
+            "DEFI_CONTACT/ZONE/GROUP_MA_MAIT on shell cells",
+            "DIST_COQUE",
+        ],
     );
 }
 

@@ -655,7 +655,9 @@ pub fn forc_noda_deformed(
             // Linear elastic facets: K u.
             ElementKind::Shell { material, section } => {
                 let k = crate::element::shell_stiffness(model.mesh(), el.cell, material, section)
-                    .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))?;
+                    .map_err(|m| {
+                    FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))
+                })?;
                 let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
                 k * ue
             }

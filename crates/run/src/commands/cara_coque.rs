@@ -60,10 +60,16 @@ pub(crate) fn shells(
     for occ in kw.factor("COQUE") {
         let err = |key: &str, m: String| ex.kw_error("AFFE_CARA_ELEM", occ, key, m);
         let Some(thickness) = occ.f64("EPAIS") else {
-            return Err(err("EPAIS", "COQUE needs EPAIS (EPAIS_FO is not supported)".into()));
+            return Err(err(
+                "EPAIS",
+                "COQUE needs EPAIS (EPAIS_FO is not supported)".into(),
+            ));
         };
         if !(thickness > 0. && thickness.is_finite()) {
-            return Err(err("EPAIS", format!("EPAIS = {thickness}: a thickness must be positive")));
+            return Err(err(
+                "EPAIS",
+                format!("EPAIS = {thickness}: a thickness must be positive"),
+            ));
         }
         let drilling = occ.f64("COEF_RIGI_DRZ").unwrap_or(1e-5);
         if !(drilling > 0. && drilling.is_finite()) {
@@ -78,7 +84,10 @@ pub(crate) fn shells(
             let v = reals(occ, "VECTEUR");
             let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
             if v.len() != 3 || !(norm > 0.) {
-                return Err(err("VECTEUR", "VECTEUR needs three components, not all zero".into()));
+                return Err(err(
+                    "VECTEUR",
+                    "VECTEUR needs three components, not all zero".into(),
+                ));
             }
             [v[0] / norm, v[1] / norm, v[2] / norm]
         } else {

@@ -277,7 +277,10 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 // code_aster's DKT elements: MEDKTR3, MEDKQU4 (its edge
                 // elements for FORCE_ARETE are not reproduced).
                 Modelisation::Dkt => {
-                    matches!(ty, aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4)
+                    matches!(
+                        ty,
+                        aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4
+                    )
                 }
                 _ => (1..=2).contains(&ty.dim()),
             };

@@ -32,7 +32,11 @@ pub(super) fn check_dof(
         )));
     }
     let dim = model.dim();
-    let rotations = model.rotations.get(node.0 as usize).copied().unwrap_or(false);
+    let rotations = model
+        .rotations
+        .get(node.0 as usize)
+        .copied()
+        .unwrap_or(false);
     let ok = match comp {
         "DX" | "DY" => true,
         "DZ" => dim == 3,
