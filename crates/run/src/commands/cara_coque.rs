@@ -83,7 +83,7 @@ pub(crate) fn shells(
         let direction = if occ.keyword("VECTEUR").is_some() {
             let v = reals(occ, "VECTEUR");
             let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if v.len() != 3 || !(norm > 0.) {
+            if v.len() != 3 || norm.is_nan() || norm <= 0. {
                 return Err(err(
                     "VECTEUR",
                     "VECTEUR needs three components, not all zero".into(),
