@@ -145,7 +145,7 @@ fn tree(out: &mut String, entries: &[Entry], rules: &[Rule], indent: usize, dept
 fn header(c: &Command) -> String {
     let produces = match &c.produces {
         Produces::Nothing => "nothing (a procedure)".to_string(),
-        Produces::Type(t) => t.clone(),
+        Produces::Type(t) => t.to_string(),
         Produces::Computed(f) => format!("a type computed from the keywords ({f})"),
     };
     let reuse = match &c.reentrant {
@@ -185,7 +185,7 @@ fn lookup<'a>(
         match &e.node {
             Node::Block(b) => {
                 let mut c = conds.clone();
-                c.push(b.condition.clone());
+                c.push(b.condition.to_string());
                 lookup(&b.keywords, path, c, out);
             }
             _ if e.name == *first => {

@@ -90,7 +90,7 @@ fn lit_scalar(l: &Lit) -> Scalar {
     match l {
         Lit::Int(i) => Scalar::Int(*i),
         Lit::Real(r) => Scalar::Real(*r),
-        Lit::Str(s) => Scalar::Str(s.clone()),
+        Lit::Str(s) => Scalar::Str(s.to_string()),
     }
 }
 
@@ -134,7 +134,7 @@ fn constant_function_wanted(kw: &SimpleKw, item: &Value) -> Option<f64> {
     let function = kw
         .types
         .iter()
-        .any(|t| matches!(t, ValueType::Concept(c) if c == "fonction_sdaster"));
+        .any(|t| matches!(t, ValueType::Concept(c) if *c == "fonction_sdaster"));
     let number = kw
         .types
         .iter()
@@ -286,7 +286,7 @@ impl Validator<'_> {
                     }
                     if s.default.is_some() && !ctx.contains(&e.name) {
                         if let Some(d) = s.default_cval() {
-                            ctx.insert(&e.name, d);
+                            ctx.insert(e.name, Cow::Borrowed(d));
                         }
                     }
                 }
@@ -540,14 +540,14 @@ impl Validator<'_> {
             };
             if !needs_something
                 || given.iter().any(|g| same_name(&g.name, &e.name))
-                || guessed.contains(&e.name.as_str())
+                || guessed.contains(&e.name)
             {
                 continue; // nothing to fill, given but invalid (already reported), or unsure
             }
             match &e.node {
                 Node::Simple(s) => match (&s.default, s.status) {
                     (Some(d), _) => out.entries.push(Keyword {
-                        name: e.name.clone(),
+                        name: e.name.to_string(),
                         value: KwValue::Simple(d.iter().map(|l| default_scalar(l, s)).collect()),
                         span,
                         defaulted: true,
@@ -596,7 +596,7 @@ impl Validator<'_> {
                             span,
                         );
                         out.entries.push(Keyword {
-                            name: e.name.clone(),
+                            name: e.name.to_string(),
                             value: KwValue::Factor(vec![occ]),
                             span,
                             defaulted: true,
@@ -616,7 +616,7 @@ impl Validator<'_> {
         // (THER_NON_LINE(reuse=R) without RESULTAT is valid).
         let rules: Vec<&Rule> = rules
             .into_iter()
-            .filter(|r| !r.args.iter().any(|a| a == "reuse"))
+            .filter(|r| !r.args.iter().any(|a| *a == "reuse"))
             .collect();
         let defaulted: Vec<&str> = out
             .entries
@@ -671,7 +671,7 @@ impl Validator<'_> {
                     g.name, b.condition
                 ),
             );
-            if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name.as_str())) {
+            if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name)) {
                 d = d.note(h);
             }
             self.diags.push(d);
@@ -679,7 +679,7 @@ impl Validator<'_> {
         }
         let names: Vec<&str> = active
             .iter()
-            .map(|a| a.name.as_str())
+            .map(|a| a.name)
             .filter(|n| *n != "reuse")
             .collect();
         let mut d = Diagnostic::error(
@@ -794,7 +794,7 @@ impl Validator<'_> {
                 let strs: Vec<String> = into
                     .iter()
                     .map(|l| match l {
-                        Lit::Str(x) => x.clone(),
+                        Lit::Str(x) => x.to_string(),
                         other => other.to_string(),
                     })
                     .collect();
@@ -988,10 +988,10 @@ impl Validator<'_> {
         let nd = r.args.iter().filter(|a| d(a)).count();
         // Message parts, built only when a rule fails.
         let list = || r.args.join(", ");
-        let first = r.args.first().map(|s| s.as_str()).unwrap_or("");
+        let first = r.args.first().copied().unwrap_or("");
         let others = || r.args.get(1..).unwrap_or(&[]).join(", ");
         let drop_defaults = |drop: &mut Vec<String>| {
-            drop.extend(r.args.iter().filter(|a| d(a)).cloned());
+            drop.extend(r.args.iter().filter(|a| d(a)).map(|a| a.to_string()));
         };
         let msg = match r.kind {
             RuleKind::ExactlyOne => {
@@ -1036,7 +1036,7 @@ impl Validator<'_> {
                     Some(format!("when {first} is given, {} must not be", others()))
                 } else {
                     if w(first) {
-                        drop.extend(r.args[1..].iter().filter(|a| d(a)).cloned());
+                        drop.extend(r.args[1..].iter().filter(|a| d(a)).map(|a| a.to_string()));
                     } else if others_written && d(first) {
                         drop.push(first.to_string());
                     }
@@ -1074,7 +1074,7 @@ fn implicit_default(path: &str, r: &Rule, written: &[&str], span: Span) -> Optio
     }
     let last = path.rsplit('/').next().unwrap_or(path);
     let last = last.split('[').next().unwrap_or(last);
-    let has = |k: &str| r.args.iter().any(|a| a == k);
+    let has = |k: &str| r.args.iter().any(|a| *a == k);
     let add = |name: &str, v: Scalar| {
         Some(Some(Keyword {
             name: name.to_string(),
@@ -1109,7 +1109,7 @@ fn lenient(v: &Value) -> Vec<Scalar> {
 fn nw_of(r: &Rule, written: &[&str]) -> usize {
     r.args
         .iter()
-        .filter(|a| written.contains(&a.as_str()))
+        .filter(|a| written.contains(a))
         .count()
 }
 

@@ -365,13 +365,13 @@ impl Level<'_> {
     /// keywords is written, `PRESENT_ABSENT` (the first excludes the
     /// others, any other the first).
     pub fn excluded(&self, name: &str, written: &[String]) -> bool {
-        let w = |k: &String| k != name && written.contains(k);
+        let w = |k: &&str| *k != name && written.iter().any(|x| x == k);
         self.rules.iter().any(|r| {
-            let mine = r.args.iter().any(|a| a == name);
+            let mine = r.args.iter().any(|a| *a == name);
             match r.kind {
                 RuleKind::ExactlyOne | RuleKind::AtMostOne => mine && r.args.iter().any(w),
                 RuleKind::OnlyFirstPresent => match r.args.split_first() {
-                    Some((first, others)) if first == name => others.iter().any(w),
+                    Some((first, others)) if *first == name => others.iter().any(w),
                     Some((first, _)) => mine && w(first),
                     None => false,
                 },
@@ -504,7 +504,7 @@ pub fn active<'c>(
 fn default_into(env: &mut Env<'_>, name: &str, s: &SimpleKw) {
     if !env.values.contains_key(name) {
         if let Some(d) = s.default_cval() {
-            env.values.insert(name.to_string(), d.into_owned());
+            env.values.insert(name.to_string(), d.clone());
         }
     }
 }
