@@ -146,6 +146,11 @@ pub(crate) fn flatten(v: &Value) -> Vec<Value> {
     match v {
         Value::List(l) => l.borrow().iter().flat_map(flatten).collect(),
         Value::Tuple(t) => t.iter().flat_map(flatten).collect(),
+        // An attribute of a concept (`getattr(resu, 'CHAMP_1')`, a result
+        // of a macro): known only when the commands run.
+        Value::Method(r, _) if matches!(**r, Value::Concept(_) | Value::Formula(..)) => {
+            vec![Value::Unknown]
+        }
         other => vec![other.clone()],
     }
 }
@@ -854,7 +859,9 @@ impl Validator<'_> {
             }
         }
         let n = out.len();
-        if n < kw.min as usize || !kw.max.allows(n) {
+        // A run-time value may stand for any number of values.
+        let count_known = !items.iter().any(|v| matches!(v, Value::Unknown));
+        if count_known && (n < kw.min as usize || !kw.max.allows(n)) {
             let expect = if kw.min as usize == 1 && kw.max == aster_catalog::Max::Count(1) {
                 "exactly one value".to_string()
             } else {
