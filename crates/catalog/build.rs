@@ -57,7 +57,12 @@ fn strs(v: &Value, at: &str) -> String {
         .as_array()
         .unwrap_or_else(|| panic!("{at}: not an array"))
         .iter()
-        .map(|s| format!("{:?}", s.as_str().unwrap_or_else(|| panic!("{at}: not a string"))))
+        .map(|s| {
+            format!(
+                "{:?}",
+                s.as_str().unwrap_or_else(|| panic!("{at}: not a string"))
+            )
+        })
         .collect();
     format!("&[{}]", items.join(","))
 }
@@ -66,7 +71,8 @@ fn lit(v: &Value, at: &str) -> String {
     match v {
         Value::Number(n) if n.is_i64() || n.is_u64() => format!(
             "Lit::Int({})",
-            n.as_i64().unwrap_or_else(|| panic!("{at}: integer out of range"))
+            n.as_i64()
+                .unwrap_or_else(|| panic!("{at}: integer out of range"))
         ),
         Value::Number(n) => {
             let r = n.as_f64().unwrap_or_else(|| panic!("{at}: not a number"));
@@ -82,7 +88,9 @@ fn real(v: Option<&Value>, at: &str) -> String {
     match v {
         None => "None".into(),
         Some(x) => {
-            let r = x.as_f64().unwrap_or_else(|| panic!("{at}: bound is not a number"));
+            let r = x
+                .as_f64()
+                .unwrap_or_else(|| panic!("{at}: bound is not a number"));
             assert!(r.is_finite(), "{at}: {r} is not finite");
             format!("Some({r:?})")
         }

@@ -1114,10 +1114,7 @@ fn lenient(v: &Value) -> Vec<Scalar> {
 }
 
 fn nw_of(r: &Rule, written: &[&str]) -> usize {
-    r.args
-        .iter()
-        .filter(|a| written.contains(a))
-        .count()
+    r.args.iter().filter(|a| written.contains(a)).count()
 }
 
 /// `('RI', re, im)` / `('MP', mod, phase)` given to a complex keyword.
