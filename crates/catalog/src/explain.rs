@@ -114,7 +114,7 @@ fn tree(out: &mut String, entries: &[Entry], rules: &[Rule], indent: usize, dept
         match &e.node {
             Node::Simple(s) if s.status == Status::Hidden => {}
             Node::Simple(s) => {
-                let _ = writeln!(out, "{pad}{}", simple_line(&e.name, s));
+                let _ = writeln!(out, "{pad}{}", simple_line(e.name, s));
             }
             Node::Factor(f) => {
                 let occ = match (f.min, f.max) {
@@ -129,14 +129,14 @@ fn tree(out: &mut String, entries: &[Entry], rules: &[Rule], indent: usize, dept
                     status_word(f.status)
                 );
                 if depth > 0 {
-                    tree(out, &f.keywords, &f.rules, indent + 4, depth - 1);
+                    tree(out, f.keywords, f.rules, indent + 4, depth - 1);
                 } else {
                     let _ = writeln!(out, "{pad}    … (aster explain …/{})", e.name);
                 }
             }
             Node::Block(b) => {
                 let _ = writeln!(out, "{pad}when {}:", b.condition);
-                tree(out, &b.keywords, &b.rules, indent + 4, depth);
+                tree(out, b.keywords, b.rules, indent + 4, depth);
             }
         }
     }
@@ -186,13 +186,13 @@ fn lookup<'a>(
             Node::Block(b) => {
                 let mut c = conds.clone();
                 c.push(b.condition.to_string());
-                lookup(&b.keywords, path, c, out);
+                lookup(b.keywords, path, c, out);
             }
             _ if e.name == *first => {
                 if rest.is_empty() {
                     out.push((conds.clone(), e));
                 } else if let Node::Factor(f) = &e.node {
-                    lookup(&f.keywords, rest, conds.clone(), out);
+                    lookup(f.keywords, rest, conds.clone(), out);
                 }
             }
             _ => {}
@@ -261,29 +261,29 @@ pub fn explain_in(cat: &Catalog, path: &str) -> Result<String, String> {
     let mut out = header(cmd);
     if kws.is_empty() {
         out.push('\n');
-        tree(&mut out, &cmd.keywords, &cmd.rules, 2, 1);
+        tree(&mut out, cmd.keywords, cmd.rules, 2, 1);
         return Ok(out);
     }
     let kws: Vec<String> = kws.iter().map(|k| k.to_uppercase()).collect();
     let kref: Vec<&str> = kws.iter().map(|s| s.as_str()).collect();
     let mut found = Vec::new();
-    lookup(&cmd.keywords, &kref, Vec::new(), &mut found);
+    lookup(cmd.keywords, &kref, Vec::new(), &mut found);
     if found.is_empty() {
         // Suggest among the keywords of the deepest level that exists.
         let mut names: Vec<&str> = Vec::new();
         if kref.len() == 1 {
-            names = names_in(&cmd.keywords);
+            names = names_in(cmd.keywords);
         } else {
             let mut parents = Vec::new();
             lookup(
-                &cmd.keywords,
+                cmd.keywords,
                 &kref[..kref.len() - 1],
                 Vec::new(),
                 &mut parents,
             );
             for (_, p) in parents {
                 if let Node::Factor(f) = &p.node {
-                    for n in names_in(&f.keywords) {
+                    for n in names_in(f.keywords) {
                         if !names.contains(&n) {
                             names.push(n);
                         }
@@ -341,7 +341,7 @@ pub fn explain_in(cat: &Catalog, path: &str) -> Result<String, String> {
             Node::Factor(f) => {
                 let _ = writeln!(out, "  status: {}", f.status.describe());
                 let _ = writeln!(out, "  occurrences: {} to {}", f.min, f.max.describe());
-                tree(&mut out, &f.keywords, &f.rules, 2, 2);
+                tree(&mut out, f.keywords, f.rules, 2, 2);
             }
             Node::Block(_) => {}
         }

@@ -75,17 +75,14 @@ fn keyword_facts_survive_generation() {
         panic!("ZONE missing");
     };
     assert!(
-        find_in(&zone.keywords, "NOM_CMP").is_some(),
+        find_in(zone.keywords, "NOM_CMP").is_some(),
         "first ZONE is the LIAISON_UNIL one"
     );
 
     let lm = catalog().command("LIRE_MAILLAGE").unwrap();
-    assert_eq!(
-        lm.produces,
-        Produces::Computed("lire_maillage_sdprod".into())
-    );
+    assert_eq!(lm.produces, Produces::Computed("lire_maillage_sdprod"));
     let snl = catalog().command("STAT_NON_LINE").unwrap();
-    assert_eq!(snl.produces, Produces::Type("evol_noli".into()));
+    assert_eq!(snl.produces, Produces::Type("evol_noli"));
     assert!(matches!(snl.reentrant, Reentrant::Yes { .. }));
     let Some(Node::Factor(newton)) = snl.find("NEWTON").map(|e| &e.node) else {
         panic!("NEWTON missing");

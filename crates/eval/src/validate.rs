@@ -253,7 +253,7 @@ impl Validator<'_> {
 
 impl Validator<'_> {
     pub fn validate(&mut self, cmd: &Command, given: Vec<Given>, span: Span) -> Keywords {
-        self.level(&cmd.keywords, &cmd.rules, given, &cmd.name, None, span)
+        self.level(cmd.keywords, cmd.rules, given, cmd.name, None, span)
     }
 
     fn error(&mut self, kind: DiagKind, span: Span, msg: String) -> &mut Diagnostic {
@@ -281,31 +281,31 @@ impl Validator<'_> {
             match &e.node {
                 Node::Block(_) => {}
                 Node::Simple(s) => {
-                    if !top && active.iter().any(|a| same_name(&a.name, &e.name)) {
+                    if !top && active.iter().any(|a| same_name(a.name, e.name)) {
                         continue;
                     }
                     active.push(e);
                     if maybe {
-                        guessed.push(&e.name);
+                        guessed.push(e.name);
                         continue;
                     }
-                    if s.default.is_some() && !ctx.contains(&e.name) {
+                    if s.default.is_some() && !ctx.contains(e.name) {
                         if let Some(d) = s.default_cval() {
                             ctx.insert(e.name, Cow::Borrowed(d));
                         }
                     }
                 }
                 Node::Factor(f) => {
-                    if !top && active.iter().any(|a| same_name(&a.name, &e.name)) {
+                    if !top && active.iter().any(|a| same_name(a.name, e.name)) {
                         continue;
                     }
                     active.push(e);
                     if maybe {
-                        guessed.push(&e.name);
+                        guessed.push(e.name);
                         continue;
                     }
                     if f.status == Status::Defaulted {
-                        ctx.insert(&e.name, Cow::Owned(CVal::Bool(true)));
+                        ctx.insert(e.name, Cow::Owned(CVal::Bool(true)));
                     }
                 }
             }
@@ -322,11 +322,11 @@ impl Validator<'_> {
                 let unsure = UNCERTAIN.with(|u| u.replace(false));
                 if holds && !maybe && !unsure {
                     rules.extend(b.rules.iter());
-                    self.activate(&b.keywords, ctx, active, rules, false, guessed);
+                    self.activate(b.keywords, ctx, active, rules, false, guessed);
                 } else if holds || unsure {
                     // Accept the block's keywords without requiring or
                     // defaulting any: the checker cannot know.
-                    self.activate(&b.keywords, ctx, active, rules, true, guessed);
+                    self.activate(b.keywords, ctx, active, rules, true, guessed);
                 }
             }
         }
@@ -406,7 +406,7 @@ impl Validator<'_> {
         let diags_before = self.diags.len();
         let mut inactive = Vec::new();
         for g in &given {
-            let Some(slot) = active.iter().position(|a| same_name(&a.name, &g.name)) else {
+            let Some(slot) = active.iter().position(|a| same_name(a.name, &g.name)) else {
                 inactive.push(g);
                 continue;
             };
@@ -470,8 +470,8 @@ impl Validator<'_> {
                         let occ_span = d.borrow().entries.first().map(|e| e.span).unwrap_or(g.span);
                         let occ_path = format!("{kpath}[{}]", i + 1);
                         out.push(self.level(
-                            &f.keywords,
-                            &f.rules,
+                            f.keywords,
+                            f.rules,
                             inner,
                             &occ_path,
                             Some(&ctx),
@@ -544,7 +544,7 @@ impl Validator<'_> {
                 Node::Block(_) => false,
             };
             if !needs_something
-                || given.iter().any(|g| same_name(&g.name, &e.name))
+                || given.iter().any(|g| same_name(&g.name, e.name))
                 || guessed.contains(&e.name)
             {
                 continue; // nothing to fill, given but invalid (already reported), or unsure
@@ -593,8 +593,8 @@ impl Validator<'_> {
                     }
                     Status::Defaulted => {
                         let occ = self.level(
-                            &f.keywords,
-                            &f.rules,
+                            f.keywords,
+                            f.rules,
                             Vec::new(),
                             &format!("{path}/{}[1]", e.name),
                             Some(&ctx),
@@ -621,7 +621,7 @@ impl Validator<'_> {
         // (THER_NON_LINE(reuse=R) without RESULTAT is valid).
         let rules: Vec<&Rule> = rules
             .into_iter()
-            .filter(|r| !r.args.iter().any(|a| *a == "reuse"))
+            .filter(|r| !r.args.contains(&"reuse"))
             .collect();
         let defaulted: Vec<&str> = out
             .entries
@@ -768,7 +768,7 @@ impl Validator<'_> {
                 if matches!(s, Scalar::Opaque(_)) || into_contains(into, s) {
                     continue;
                 }
-                match legacy::value(&kpath(), s, into, kw.default.as_deref(), self.legacy) {
+                match legacy::value(&kpath(), s, into, kw.default, self.legacy) {
                     Some(legacy::ValueFix::Renamed(new, why)) => {
                         let d = Diagnostic::warning(
                             DiagKind::Legacy,
@@ -1081,7 +1081,7 @@ fn implicit_default(path: &str, r: &Rule, written: &[&str], span: Span) -> Optio
     }
     let last = path.rsplit('/').next().unwrap_or(path);
     let last = last.split('[').next().unwrap_or(last);
-    let has = |k: &str| r.args.iter().any(|a| *a == k);
+    let has = |k: &str| r.args.contains(&k);
     let add = |name: &str, v: Scalar| {
         Some(Some(Keyword {
             name: name.to_string(),
@@ -1186,7 +1186,7 @@ pub(crate) fn scalar_repr(s: &Scalar) -> String {
 fn block_of<'e>(entries: &'e [Entry], name: &str) -> Option<&'e Block> {
     for e in entries {
         if let Node::Block(b) = &e.node {
-            if let Some(inner) = block_of(&b.keywords, name) {
+            if let Some(inner) = block_of(b.keywords, name) {
                 return Some(inner);
             }
             if b.keywords

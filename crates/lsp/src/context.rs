@@ -367,7 +367,7 @@ impl Level<'_> {
     pub fn excluded(&self, name: &str, written: &[String]) -> bool {
         let w = |k: &&str| *k != name && written.iter().any(|x| x == k);
         self.rules.iter().any(|r| {
-            let mine = r.args.iter().any(|a| *a == name);
+            let mine = r.args.contains(&name);
             match r.kind {
                 RuleKind::ExactlyOne | RuleKind::AtMostOne => mine && r.args.iter().any(w),
                 RuleKind::OnlyFirstPresent => match r.args.split_first() {
@@ -390,15 +390,15 @@ pub fn level_active<'c>(
     factors: &[String],
     env: &mut Env<'_>,
 ) -> Option<Level<'c>> {
-    let mut entries: &[Entry] = &cmd.keywords;
-    let mut rules: &[Rule] = &cmd.rules;
+    let mut entries: &[Entry] = cmd.keywords;
+    let mut rules: &[Rule] = cmd.rules;
     for f in factors {
         let mut act = Vec::new();
         active(entries, env, &mut act, &mut Vec::new());
-        match &act.iter().find(|e| &e.name == f)?.node {
+        match &act.iter().find(|e| e.name == f)?.node {
             Node::Factor(fk) => {
-                entries = &fk.keywords;
-                rules = &fk.rules;
+                entries = fk.keywords;
+                rules = fk.rules;
             }
             _ => return None,
         }
@@ -478,7 +478,7 @@ pub fn active<'c>(
                 if !out.iter().any(|a| a.name == e.name) {
                     out.push(e);
                 }
-                default_into(env, &e.name, s);
+                default_into(env, e.name, s);
             }
             Node::Factor(_) => {
                 if !out.iter().any(|a| a.name == e.name) {
@@ -495,7 +495,7 @@ pub fn active<'c>(
             };
             if open {
                 rules.extend(b.rules.iter());
-                active(&b.keywords, env, out, rules);
+                active(b.keywords, env, out, rules);
             }
         }
     }

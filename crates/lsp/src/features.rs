@@ -419,7 +419,7 @@ pub fn completion(
         }
         Slot::Value { keyword } => {
             let entry = valid_keywords(&ctx, a, offset)
-                .and_then(|(level, _)| level.entries.into_iter().find(|e| &e.name == keyword));
+                .and_then(|(level, _)| level.entries.into_iter().find(|e| e.name == keyword));
             if let Some(Entry {
                 node: Node::Simple(s),
                 ..
@@ -625,7 +625,7 @@ pub fn signature_help(doc: &Document, a: &Analysis, pos: Position) -> Option<Sig
             label.push_str(", ");
         }
         let start = label.encode_utf16().count() as u32;
-        label.push_str(&e.name);
+        label.push_str(e.name);
         let end = label.encode_utf16().count() as u32;
         if current.as_deref() == Some(e.name) {
             active_param = Some(i as u32);
