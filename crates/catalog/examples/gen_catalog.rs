@@ -15,6 +15,15 @@ use std::fmt;
 use std::marker::PhantomData;
 use std::path::PathBuf;
 
+// The model holds `&'static` data (the program's catalog is static tables
+// made by the build script); this one-shot generator leaks what it builds.
+fn text(s: String) -> &'static str {
+    s.leak()
+}
+fn list<T>(v: Vec<T>) -> &'static [T] {
+    v.leak()
+}
+
 /// A JSON object read in file order (the catalog's keyword order matters:
 /// it is the order `explain` shows and `--emit` writes).
 struct Ordered<T>(Vec<(String, T)>);
@@ -81,18 +90,20 @@ fn lit(v: &serde_json::Value) -> Result<Lit, String> {
                 .map(Lit::Real)
                 .ok_or_else(|| format!("bad number {n}")),
         },
-        serde_json::Value::String(s) => Ok(Lit::Str(s.clone())),
+        serde_json::Value::String(s) => Ok(Lit::Str(text(s.clone()))),
         other => Err(format!("unexpected literal {other}")),
     }
 }
 
-fn rules(raw: Vec<RawRule>) -> Vec<Rule> {
-    raw.into_iter()
-        .map(|r| Rule {
-            kind: r.rule,
-            args: r.args,
-        })
-        .collect()
+fn rules(raw: Vec<RawRule>) -> &'static [Rule] {
+    list(
+        raw.into_iter()
+            .map(|r| Rule {
+                kind: r.rule,
+                args: list(r.args.into_iter().map(text).collect()),
+            })
+            .collect(),
+    )
 }
 
 fn max(v: Option<serde_json::Value>) -> Result<Max, String> {
@@ -107,15 +118,19 @@ fn max(v: Option<serde_json::Value>) -> Result<Max, String> {
     }
 }
 
-fn entries(raw: Ordered<RawKw>, at: &str) -> Result<Vec<Entry>, String> {
+fn entries(raw: Ordered<RawKw>, at: &str) -> Result<&'static [Entry], String> {
     raw.0
         .into_iter()
         .map(|(name, kw)| {
             let path = format!("{at}/{name}");
             let node = convert(kw, &path)?;
-            Ok(Entry { name, node })
+            Ok(Entry {
+                name: text(name),
+                node,
+            })
         })
-        .collect()
+        .collect::<Result<Vec<_>, String>>()
+        .map(list)
 }
 
 fn convert(kw: RawKw, path: &str) -> Result<Node, String> {
@@ -124,11 +139,11 @@ fn convert(kw: RawKw, path: &str) -> Result<Node, String> {
         "simple" => {
             let types = match kw.typ {
                 None | Some(serde_json::Value::Null) => Vec::new(),
-                Some(serde_json::Value::String(s)) => vec![ValueType::from(s)],
+                Some(serde_json::Value::String(s)) => vec![ValueType::from(text(s))],
                 Some(serde_json::Value::Array(a)) => a
                     .into_iter()
                     .map(|t| match t {
-                        serde_json::Value::String(s) => Ok(ValueType::from(s)),
+                        serde_json::Value::String(s) => Ok(ValueType::from(text(s))),
                         other => Err(err(format!("bad type {other}"))),
                     })
                     .collect::<Result<_, _>>()?,
@@ -151,14 +166,14 @@ fn convert(kw: RawKw, path: &str) -> Result<Node, String> {
             };
             Ok(Node::Simple(SimpleKw {
                 status: kw.statut.ok_or_else(|| err("no status".into()))?,
-                types,
-                into,
-                default,
+                types: list(types),
+                into: into.map(list),
+                default: default.map(list),
                 min: kw.min.unwrap_or(1),
                 max: max(kw.max).map_err(err)?,
                 val_min: kw.val_min,
                 val_max: kw.val_max,
-                default_cond: None,
+                default_cond: Cache::new(),
             }))
         }
         "factor" => Ok(Node::Factor(FactorKw {
@@ -169,15 +184,16 @@ fn convert(kw: RawKw, path: &str) -> Result<Node, String> {
             keywords: entries(kw.keywords.unwrap_or(Ordered(Vec::new())), path)?,
         })),
         "bloc" => Ok(Node::Block(Block {
-            condition: kw
-                .condition
-                .ok_or_else(|| err("block without condition".into()))?
-                .split_whitespace()
-                .collect::<Vec<_>>()
-                .join(" "),
+            condition: text(
+                kw.condition
+                    .ok_or_else(|| err("block without condition".into()))?
+                    .split_whitespace()
+                    .collect::<Vec<_>>()
+                    .join(" "),
+            ),
             rules: rules(kw.rules),
             keywords: entries(kw.keywords.unwrap_or(Ordered(Vec::new())), path)?,
-            parsed: None,
+            parsed: Cache::new(),
         })),
         other => Err(err(format!("unknown kind {other}"))),
     }
@@ -191,11 +207,12 @@ fn reentrant(s: &str) -> Reentrant {
             let (flag, rest) = s.split_once(':').unwrap_or((s, ""));
             Reentrant::Yes {
                 mandatory: flag == "o",
-                keywords: rest
-                    .split('|')
-                    .filter(|k| !k.is_empty())
-                    .map(|k| k.replace(':', "/"))
-                    .collect(),
+                keywords: list(
+                    rest.split('|')
+                        .filter(|k| !k.is_empty())
+                        .map(|k| text(k.replace(':', "/")))
+                        .collect(),
+                ),
             }
         }
     }
@@ -204,8 +221,8 @@ fn reentrant(s: &str) -> Reentrant {
 fn produces(sd: Option<String>) -> Produces {
     match sd {
         None => Produces::Nothing,
-        Some(s) if s.ends_with("_prod") || s.ends_with("_sdprod") => Produces::Computed(s),
-        Some(s) => Produces::Type(s),
+        Some(s) if s.ends_with("_prod") || s.ends_with("_sdprod") => Produces::Computed(text(s)),
+        Some(s) => Produces::Type(text(s)),
     }
 }
 
@@ -220,15 +237,15 @@ fn main() -> Result<(), String> {
         .next()
         .map(PathBuf::from)
         .unwrap_or_else(|| root.join("crates/catalog/data/catalog-v17.json"));
-    let text = std::fs::read_to_string(&input)
+    let source = std::fs::read_to_string(&input)
         .map_err(|e| format!("cannot read {}: {e}", input.display()))?;
     let raw: Ordered<RawCmd> =
-        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", input.display()))?;
+        serde_json::from_str(&source).map_err(|e| format!("{}: {e}", input.display()))?;
     let mut commands = Vec::new();
     for (name, c) in raw.0 {
         commands.push(Command {
             keywords: entries(c.keywords, &name)?,
-            name,
+            name: text(name),
             kind: c.kind,
             produces: produces(c.sd_prod),
             reentrant: reentrant(&c.reentrant),

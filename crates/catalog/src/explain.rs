@@ -138,7 +138,7 @@ fn tree(
         match &e.node {
             Node::Simple(s) if s.status == Status::Hidden => {}
             Node::Simple(s) => {
-                let _ = writeln!(out, "{pad}{}", simple_line(&e.name, s, list_max));
+                let _ = writeln!(out, "{pad}{}", simple_line(e.name, s, list_max));
             }
             Node::Factor(f) => {
                 let occ = match (f.min, f.max) {
@@ -153,14 +153,14 @@ fn tree(
                     status_word(f.status)
                 );
                 if depth > 0 {
-                    tree(out, &f.keywords, &f.rules, indent + 4, depth - 1, list_max);
+                    tree(out, f.keywords, f.rules, indent + 4, depth - 1, list_max);
                 } else {
                     let _ = writeln!(out, "{pad}    … (aster explain …/{})", e.name);
                 }
             }
             Node::Block(b) => {
-                let _ = writeln!(out, "{pad}when {}:", plain_condition(&b.condition));
-                tree(out, &b.keywords, &b.rules, indent + 4, depth, list_max);
+                let _ = writeln!(out, "{pad}when {}:", plain_condition(b.condition));
+                tree(out, b.keywords, b.rules, indent + 4, depth, list_max);
             }
         }
     }
@@ -169,7 +169,7 @@ fn tree(
 fn header(c: &Command) -> String {
     let produces = match &c.produces {
         Produces::Nothing => "nothing (a procedure)".to_string(),
-        Produces::Type(t) => t.clone(),
+        Produces::Type(t) => t.to_string(),
         Produces::Computed(f) => format!("a type computed from the keywords ({f})"),
     };
     let reuse = match &c.reentrant {
@@ -360,14 +360,14 @@ fn lookup<'a>(
         match &e.node {
             Node::Block(b) => {
                 let mut c = conds.clone();
-                c.push(plain_condition(&b.condition));
-                lookup(&b.keywords, path, c, out);
+                c.push(plain_condition(b.condition));
+                lookup(b.keywords, path, c, out);
             }
             _ if e.name == *first => {
                 if rest.is_empty() {
                     out.push((conds.clone(), e));
                 } else if let Node::Factor(f) = &e.node {
-                    lookup(&f.keywords, rest, conds.clone(), out);
+                    lookup(f.keywords, rest, conds.clone(), out);
                 }
             }
             _ => {}
@@ -413,8 +413,8 @@ fn find_anywhere(
         match &e.node {
             Node::Block(b) => {
                 let mut c = conds.to_vec();
-                c.push(plain_condition(&b.condition));
-                find_anywhere(&b.keywords, name, prefix, &c, out);
+                c.push(plain_condition(b.condition));
+                find_anywhere(b.keywords, name, prefix, &c, out);
             }
             node => {
                 let path = format!("{prefix}/{}", e.name);
@@ -422,7 +422,7 @@ fn find_anywhere(
                     out.push((path.clone(), conds.to_vec()));
                 }
                 if let Node::Factor(f) = node {
-                    find_anywhere(&f.keywords, name, &path, conds, out);
+                    find_anywhere(f.keywords, name, &path, conds, out);
                 }
             }
         }
@@ -484,36 +484,29 @@ pub fn explain_in(cat: &Catalog, path: &str, options: Options) -> Result<String,
     let mut out = header(cmd);
     if kws.is_empty() {
         out.push('\n');
-        tree(
-            &mut out,
-            &cmd.keywords,
-            &cmd.rules,
-            2,
-            1,
-            options.list_max(6),
-        );
+        tree(&mut out, cmd.keywords, cmd.rules, 2, 1, options.list_max(6));
         return Ok(out);
     }
     let kws: Vec<String> = kws.iter().map(|k| k.to_uppercase()).collect();
     let kref: Vec<&str> = kws.iter().map(|s| s.as_str()).collect();
     let mut found = Vec::new();
-    lookup(&cmd.keywords, &kref, Vec::new(), &mut found);
+    lookup(cmd.keywords, &kref, Vec::new(), &mut found);
     if found.is_empty() {
         // Suggest among the keywords of the deepest level that exists.
         let mut names: Vec<&str> = Vec::new();
         if kref.len() == 1 {
-            names = names_in(&cmd.keywords);
+            names = names_in(cmd.keywords);
         } else {
             let mut parents = Vec::new();
             lookup(
-                &cmd.keywords,
+                cmd.keywords,
                 &kref[..kref.len() - 1],
                 Vec::new(),
                 &mut parents,
             );
             for (_, p) in parents {
                 if let Node::Factor(f) = &p.node {
-                    for n in names_in(&f.keywords) {
+                    for n in names_in(f.keywords) {
                         if !names.contains(&n) {
                             names.push(n);
                         }
@@ -523,7 +516,7 @@ pub fn explain_in(cat: &Catalog, path: &str, options: Options) -> Result<String,
         }
         let last = kref.last().copied().unwrap_or("");
         let mut elsewhere = Vec::new();
-        find_anywhere(&cmd.keywords, last, &cmd.name, &[], &mut elsewhere);
+        find_anywhere(cmd.keywords, last, cmd.name, &[], &mut elsewhere);
         if !elsewhere.is_empty() {
             let mut paths: Vec<&str> = elsewhere.iter().map(|(p, _)| p.as_str()).collect();
             paths.dedup();
@@ -602,7 +595,7 @@ pub fn explain_in(cat: &Catalog, path: &str, options: Options) -> Result<String,
             Node::Factor(f) => {
                 let _ = writeln!(out, "  status: {}", f.status.describe());
                 let _ = writeln!(out, "  occurrences: {} to {}", f.min, f.max.describe());
-                tree(&mut out, &f.keywords, &f.rules, 2, 2, options.list_max(6));
+                tree(&mut out, f.keywords, f.rules, 2, 2, options.list_max(6));
             }
             Node::Block(_) => {}
         }

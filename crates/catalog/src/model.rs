@@ -1,17 +1,20 @@
 //! The catalog's own data model: commands, keywords, blocks, rules.
 //!
 //! Generated once from code_aster's keyword facts by `examples/gen_catalog.rs`
-//! and embedded as compact JSON (see `data/catalog-v17.json`).
+//! into `data/catalog-v17.json`; the build script turns that JSON into static
+//! tables of these types (`build.rs`), so every string and list here is
+//! `&'static` and nothing is read or allocated when the catalog is used.
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
+use std::sync::OnceLock;
 
 /// A literal of the catalog: a default or an allowed value.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Lit {
     Int(i64),
     Real(f64),
-    Str(String),
+    Str(&'static str),
 }
 
 impl std::fmt::Display for Lit {
@@ -47,7 +50,7 @@ pub fn fmt_real(r: f64) -> String {
 }
 
 /// Whether a keyword must be given.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub enum Status {
     /// `o`: obligatory.
     #[serde(rename = "o")]
@@ -83,7 +86,7 @@ pub enum Max {
     Unbounded(Unbounded),
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum Unbounded {
     #[serde(rename = "**")]
     Stars,
@@ -105,8 +108,8 @@ impl Max {
 }
 
 /// One of the accepted types of a simple keyword.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(from = "String", into = "String")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(into = "&str")]
 pub enum ValueType {
     /// `R`
     Real,
@@ -131,49 +134,34 @@ pub enum ValueType {
     /// Anything (`not_checked`, `DataStructure`).
     Any,
     /// A concept type such as `maillage_sdaster`.
-    Concept(String),
+    Concept(&'static str),
 }
 
-impl From<String> for ValueType {
-    fn from(s: String) -> ValueType {
-        match s.as_str() {
-            "R" => ValueType::Real,
-            "I" => ValueType::Int,
-            "TXM" => ValueType::Text,
-            "C" => ValueType::Complex,
-            "grma" => ValueType::GroupMa,
-            "grno" => ValueType::GroupNo,
-            "ma" => ValueType::Cell,
-            "no" => ValueType::Node,
-            "CO" => ValueType::Co,
-            "UnitDefault" | "UnitMed" => ValueType::Unit,
-            "not_checked" | "DataStructure" => ValueType::Any,
-            _ => ValueType::Concept(s),
-        }
+include!("type_codes.rs");
+
+impl From<&'static str> for ValueType {
+    fn from(s: &'static str) -> ValueType {
+        TYPE_CODES
+            .iter()
+            .find(|(code, _)| *code == s)
+            .map_or(ValueType::Concept(s), |&(_, t)| t)
     }
 }
 
-impl From<ValueType> for String {
-    fn from(t: ValueType) -> String {
-        t.code().to_string()
+impl From<ValueType> for &'static str {
+    fn from(t: ValueType) -> &'static str {
+        t.code()
     }
 }
 
 impl ValueType {
-    pub fn code(&self) -> &str {
+    pub fn code(&self) -> &'static str {
         match self {
-            ValueType::Real => "R",
-            ValueType::Int => "I",
-            ValueType::Text => "TXM",
-            ValueType::Complex => "C",
-            ValueType::GroupMa => "grma",
-            ValueType::GroupNo => "grno",
-            ValueType::Cell => "ma",
-            ValueType::Node => "no",
-            ValueType::Co => "CO",
-            ValueType::Unit => "UnitDefault",
-            ValueType::Any => "not_checked",
             ValueType::Concept(s) => s,
+            t => TYPE_CODES
+                .iter()
+                .find(|(_, u)| u == t)
+                .map_or("", |&(code, _)| code),
         }
     }
 
@@ -196,42 +184,80 @@ impl ValueType {
     }
 }
 
+/// A value computed on first use and kept: the parsed condition of a block,
+/// the default of a keyword as conditions see it. It lives inside the static
+/// catalog, so it is made at most once per process. It takes no part in
+/// equality (two keywords are equal whether or not their caches are filled)
+/// nor in serialisation.
+pub struct Cache<T>(OnceLock<T>);
+
+impl<T> Cache<T> {
+    pub const fn new() -> Cache<T> {
+        Cache(OnceLock::new())
+    }
+    pub fn get_or_init(&self, f: impl FnOnce() -> T) -> &T {
+        self.0.get_or_init(f)
+    }
+}
+
+impl<T> Default for Cache<T> {
+    fn default() -> Self {
+        Cache::new()
+    }
+}
+
+impl<T: Clone> Clone for Cache<T> {
+    fn clone(&self) -> Self {
+        Cache(self.0.clone())
+    }
+}
+
+impl<T> PartialEq for Cache<T> {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl<T> std::fmt::Debug for Cache<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Cache")
+    }
+}
+
 /// A simple keyword: a list of values.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SimpleKw {
     #[serde(rename = "s")]
     pub status: Status,
     /// Accepted types (any of them).
-    #[serde(rename = "t", default, skip_serializing_if = "Vec::is_empty")]
-    pub types: Vec<ValueType>,
-    #[serde(rename = "into", default, skip_serializing_if = "Option::is_none")]
-    pub into: Option<Vec<Lit>>,
+    #[serde(rename = "t", skip_serializing_if = "<[_]>::is_empty")]
+    pub types: &'static [ValueType],
+    #[serde(rename = "into", skip_serializing_if = "Option::is_none")]
+    pub into: Option<&'static [Lit]>,
     /// The default value(s).
-    #[serde(rename = "d", default, skip_serializing_if = "Option::is_none")]
-    pub default: Option<Vec<Lit>>,
-    #[serde(default = "one", skip_serializing_if = "is_one")]
+    #[serde(rename = "d", skip_serializing_if = "Option::is_none")]
+    pub default: Option<&'static [Lit]>,
+    #[serde(skip_serializing_if = "is_one")]
     pub min: u32,
-    #[serde(default = "max_one", skip_serializing_if = "is_max_one")]
+    #[serde(skip_serializing_if = "is_max_one")]
     pub max: Max,
-    #[serde(rename = "lo", default, skip_serializing_if = "Option::is_none")]
+    #[serde(rename = "lo", skip_serializing_if = "Option::is_none")]
     pub val_min: Option<f64>,
-    #[serde(rename = "hi", default, skip_serializing_if = "Option::is_none")]
+    #[serde(rename = "hi", skip_serializing_if = "Option::is_none")]
     pub val_max: Option<f64>,
-    /// `default` as block conditions see it (a scalar, or a tuple when
-    /// several values), made once when the catalog loads.
+    /// `default` as block conditions see it, made on first use (see
+    /// [`SimpleKw::default_cval`]).
     #[serde(skip)]
-    pub default_cond: Option<crate::cond::CVal>,
+    pub default_cond: Cache<Option<crate::cond::CVal>>,
 }
 
 impl SimpleKw {
-    /// The default as block conditions see it (see `default_cond`).
-    pub fn default_cval(&self) -> Option<std::borrow::Cow<'_, crate::cond::CVal>> {
-        use std::borrow::Cow;
-        match (&self.default_cond, &self.default) {
-            (Some(c), _) => Some(Cow::Borrowed(c)),
-            (None, Some(d)) => Some(Cow::Owned(lits_cval(d))),
-            (None, None) => None,
-        }
+    /// The default as block conditions see it: a scalar, or a tuple when
+    /// several values (made once, on first use).
+    pub fn default_cval(&self) -> Option<&crate::cond::CVal> {
+        self.default_cond
+            .get_or_init(|| self.default.map(lits_cval))
+            .as_ref()
     }
 }
 
@@ -242,7 +268,7 @@ pub fn lits_cval(v: &[Lit]) -> crate::cond::CVal {
     let one = |l: &Lit| match l {
         Lit::Int(i) => CVal::Int(*i),
         Lit::Real(r) => CVal::Real(*r),
-        Lit::Str(s) => CVal::Str(s.clone()),
+        Lit::Str(s) => CVal::Str(s.to_string()),
     };
     match v {
         [x] => one(x),
@@ -250,61 +276,52 @@ pub fn lits_cval(v: &[Lit]) -> crate::cond::CVal {
     }
 }
 
-fn one() -> u32 {
-    1
-}
 fn is_one(v: &u32) -> bool {
     *v == 1
-}
-fn max_one() -> Max {
-    Max::Count(1)
 }
 fn is_max_one(m: &Max) -> bool {
     *m == Max::Count(1)
 }
 
 /// A factor keyword: occurrences of `_F(...)`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FactorKw {
     #[serde(rename = "s")]
     pub status: Status,
-    #[serde(default = "one", skip_serializing_if = "is_one")]
+    #[serde(skip_serializing_if = "is_one")]
     pub min: u32,
-    #[serde(default = "max_one", skip_serializing_if = "is_max_one")]
+    #[serde(skip_serializing_if = "is_max_one")]
     pub max: Max,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub rules: Vec<Rule>,
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    pub rules: &'static [Rule],
     #[serde(rename = "k")]
-    pub keywords: Vec<Entry>,
+    pub keywords: &'static [Entry],
 }
 
 /// A conditional block: its keywords apply when `condition` holds.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Block {
     /// The condition as written in the catalog (a Python expression).
     #[serde(rename = "if")]
-    pub condition: String,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub rules: Vec<Rule>,
+    pub condition: &'static str,
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    pub rules: &'static [Rule],
     #[serde(rename = "k")]
-    pub keywords: Vec<Entry>,
-    /// `condition` parsed, once, when the catalog loads (`None` in a
-    /// catalog built by hand; see [`Block::cond`]).
+    pub keywords: &'static [Entry],
+    /// `condition` parsed, on first use (see [`Block::cond`]).
     #[serde(skip)]
-    pub parsed: Option<Result<crate::cond::Cond, String>>,
+    pub parsed: Cache<Result<crate::cond::Cond, String>>,
 }
 
 impl Block {
-    /// The parsed condition (parsed now if the catalog did not do it).
-    pub fn cond(&self) -> std::borrow::Cow<'_, Result<crate::cond::Cond, String>> {
-        match &self.parsed {
-            Some(c) => std::borrow::Cow::Borrowed(c),
-            None => std::borrow::Cow::Owned(crate::cond::parse(&self.condition)),
-        }
+    /// The parsed condition (parsed once, on first use).
+    pub fn cond(&self) -> &Result<crate::cond::Cond, String> {
+        self.parsed
+            .get_or_init(|| crate::cond::parse(self.condition))
     }
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "kind")]
 pub enum Node {
     #[serde(rename = "S")]
@@ -316,16 +333,15 @@ pub enum Node {
 }
 
 /// A named entry of a keyword level (blocks are named too: `b_xxx`).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "crate::load::RawEntry")]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Entry {
     #[serde(rename = "n")]
-    pub name: String,
+    pub name: &'static str,
     #[serde(flatten)]
     pub node: Node,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub enum RuleKind {
     ExactlyOne,
     AtMostOne,
@@ -336,15 +352,15 @@ pub enum RuleKind {
     NotEmpty,
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Rule {
     #[serde(rename = "r")]
     pub kind: RuleKind,
     #[serde(rename = "a")]
-    pub args: Vec<String>,
+    pub args: &'static [&'static str],
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub enum CommandKind {
     Operator,
     Macro,
@@ -353,18 +369,18 @@ pub enum CommandKind {
 }
 
 /// What a command produces.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum Produces {
     /// Nothing (a procedure).
     Nothing,
     /// Always this concept type.
-    Type(String),
+    Type(&'static str),
     /// Computed from the arguments by a code_aster function (`crea_champ_prod`).
-    Computed(String),
+    Computed(&'static str),
 }
 
 /// How `reuse=` is accepted.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum Reentrant {
     /// `n`: never.
     No,
@@ -372,29 +388,29 @@ pub enum Reentrant {
     /// given under one of the keyword paths (`RESULTAT`, `ETAT_INIT:EVOL_NOLI`).
     Yes {
         mandatory: bool,
-        keywords: Vec<String>,
+        keywords: &'static [&'static str],
     },
     /// Not stated by the catalog (`""`): accepted.
     Unstated,
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Command {
-    pub name: String,
+    pub name: &'static str,
     pub kind: CommandKind,
     pub produces: Produces,
     pub reentrant: Reentrant,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub rules: Vec<Rule>,
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    pub rules: &'static [Rule],
     #[serde(rename = "k")]
-    pub keywords: Vec<Entry>,
+    pub keywords: &'static [Entry],
 }
 
 impl Command {
     /// Finds a keyword by name anywhere at the top level of this command,
     /// looking inside blocks (first match wins).
-    pub fn find(&self, name: &str) -> Option<&Entry> {
-        find_in(&self.keywords, name)
+    pub fn find(&self, name: &str) -> Option<&'static Entry> {
+        find_in(self.keywords, name)
     }
 }
 
@@ -409,11 +425,11 @@ pub fn same_name(a: &str, b: &str) -> bool {
 /// Finds a keyword at one level, looking through blocks.
 pub fn find_in<'a>(entries: &'a [Entry], name: &str) -> Option<&'a Entry> {
     for e in entries {
-        if same_name(&e.name, name) {
+        if same_name(e.name, name) {
             return Some(e);
         }
         if let Node::Block(b) = &e.node {
-            if let Some(found) = find_in(&b.keywords, name) {
+            if let Some(found) = find_in(b.keywords, name) {
                 return Some(found);
             }
         }
@@ -427,10 +443,10 @@ pub fn names_in(entries: &[Entry]) -> Vec<&str> {
     fn walk<'a>(entries: &'a [Entry], out: &mut Vec<&'a str>) {
         for e in entries {
             match &e.node {
-                Node::Block(b) => walk(&b.keywords, out),
+                Node::Block(b) => walk(b.keywords, out),
                 _ => {
-                    if !out.contains(&e.name.as_str()) {
-                        out.push(&e.name)
+                    if !out.contains(&e.name) {
+                        out.push(e.name)
                     }
                 }
             }

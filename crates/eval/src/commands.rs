@@ -171,7 +171,7 @@ pub(crate) fn call_command(
     let typ = match &cmd.produces {
         _ if actual.is_some() => actual,
         Produces::Nothing => None,
-        Produces::Type(t) => Some(t.clone()),
+        Produces::Type(t) => Some(t.to_string()),
         Produces::Computed(f) => {
             let value = |k: &str| kw_cval(&keywords, k);
             let type_of = |k: &str| keywords.concept(k).map(|c| c.typ.clone());
@@ -290,7 +290,7 @@ fn define_synthesized(me: &mut Interp, s: crate::validate::Synthesized) -> R<()>
     };
     let mut v = Validator {
         reuse_given: false,
-        command: cmd.name.clone(),
+        command: cmd.name.to_string(),
         diags: Vec::new(),
         created: Vec::new(),
         next_id: &mut me.next_id,
@@ -299,7 +299,7 @@ fn define_synthesized(me: &mut Interp, s: crate::validate::Synthesized) -> R<()>
     };
     let keywords = v.validate(cmd, s.keywords, s.span);
     let call = CommandCall {
-        command: cmd.name.clone(),
+        command: cmd.name.to_string(),
         result: Some(s.result),
         reuse: None,
         keywords,

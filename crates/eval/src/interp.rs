@@ -781,7 +781,7 @@ impl<'a> Interp<'a> {
                     return Some(b);
                 }
                 if let Some(c) = catalog().command(name) {
-                    return Some(Value::Command(Rc::from(c.name.as_str())));
+                    return Some(Value::Command(Rc::from(c.name)));
                 }
                 // code_aster 17 keeps `POURSUITE` as `DEBUT(MODE='POURSUITE')`.
                 if name == "POURSUITE" {

@@ -1119,7 +1119,7 @@ pub(crate) fn value(
         return None;
     };
     let kw = last_segment(path);
-    let allowed = |new: &str| into.iter().any(|l| matches!(l, Lit::Str(x) if x == new));
+    let allowed = |new: &str| into.iter().any(|l| matches!(l, Lit::Str(x) if *x == new));
     if let Some((_, _, new)) = VALUES.iter().find(|(k, old, _)| *k == kw && old == v) {
         return allowed(new).then(|| ValueFix::Renamed(Scalar::Str(new.to_string()), None));
     }
@@ -1138,7 +1138,7 @@ pub(crate) fn value(
         // method no longer offers become its current default.
         ("RENUM", _) => match default {
             Some([Lit::Str(d)]) => Some(ValueFix::Renamed(
-                Scalar::Str(d.clone()),
+                Scalar::Str(d.to_string()),
                 Some("the renumbering changes the cost of the solve, not its solution"),
             )),
             _ => None,
@@ -1168,8 +1168,84 @@ pub(crate) fn legacy_command(
     name: &str,
     given: &[Given],
 ) -> Option<(&'static aster_catalog::Command, String)> {
-    static FORC_NODA: std::sync::OnceLock<Option<aster_catalog::Command>> =
-        std::sync::OnceLock::new();
+    use aster_catalog::{
+        Cache, Command, CommandKind, Entry, Max, Node, Produces, Reentrant, SimpleKw, Status,
+        ValueType,
+    };
+    const fn kw(
+        name: &'static str,
+        status: Status,
+        types: &'static [ValueType],
+        into: Option<&'static [Lit]>,
+        default: Option<&'static [Lit]>,
+    ) -> Entry {
+        Entry {
+            name,
+            node: Node::Simple(SimpleKw {
+                status,
+                types,
+                into,
+                default,
+                min: 1,
+                max: Max::Count(1),
+                val_min: None,
+                val_max: None,
+                default_cond: Cache::new(),
+            }),
+        }
+    }
+    static KEYWORDS: [Entry; 6] = [
+        kw(
+            "OPTION",
+            Status::Mandatory,
+            &[ValueType::Text],
+            Some(&[Lit::Str("FORC_NODA")]),
+            None,
+        ),
+        kw(
+            "MODELE",
+            Status::Mandatory,
+            &[ValueType::Concept("modele_sdaster")],
+            None,
+            None,
+        ),
+        kw(
+            "SIEF_ELGA",
+            Status::Mandatory,
+            &[ValueType::Concept("cham_elem")],
+            None,
+            None,
+        ),
+        kw(
+            "CARA_ELEM",
+            Status::Optional,
+            &[ValueType::Concept("cara_elem")],
+            None,
+            None,
+        ),
+        kw(
+            "CHAM_MATER",
+            Status::Optional,
+            &[ValueType::Concept("cham_mater")],
+            None,
+            None,
+        ),
+        kw(
+            "INST",
+            Status::Optional,
+            &[ValueType::Real],
+            None,
+            Some(&[Lit::Real(0.0)]),
+        ),
+    ];
+    static FORC_NODA: Command = Command {
+        name: "CALC_VECT_ELEM",
+        kind: CommandKind::Operator,
+        produces: Produces::Type("vect_elem_depl_r"),
+        reentrant: Reentrant::No,
+        rules: &[],
+        keywords: &KEYWORDS,
+    };
     let option = given
         .iter()
         .find(|g| g.name == "OPTION")
@@ -1177,20 +1253,7 @@ pub(crate) fn legacy_command(
     if name != "CALC_VECT_ELEM" || option.as_deref() != Some("FORC_NODA") {
         return None;
     }
-    let cmd = FORC_NODA
-        .get_or_init(|| {
-            serde_json::from_str(
-                r#"{"name":"CALC_VECT_ELEM","kind":"Operator","produces":{"Type":"vect_elem_depl_r"},"reentrant":"No","k":[
-                {"n":"OPTION","kind":"S","s":"o","t":["TXM"],"into":["FORC_NODA"]},
-                {"n":"MODELE","kind":"S","s":"o","t":["modele_sdaster"]},
-                {"n":"SIEF_ELGA","kind":"S","s":"o","t":["cham_elem"]},
-                {"n":"CARA_ELEM","kind":"S","s":"f","t":["cara_elem"]},
-                {"n":"CHAM_MATER","kind":"S","s":"f","t":["cham_mater"]},
-                {"n":"INST","kind":"S","s":"f","t":["R"],"d":[0.0]}]}"#,
-            )
-            .ok()
-        })
-        .as_ref()?;
+    let cmd = &FORC_NODA;
     Some((
         cmd,
         "CALC_VECT_ELEM(OPTION='FORC_NODA') was removed in code_aster 15 (now CALCUL(OPTION='FORC_NODA_ELEM') then EXTR_TABLE); checked against its code_aster 11 definition".to_string(),

@@ -90,7 +90,7 @@ fn lit_scalar(l: &Lit) -> Scalar {
     match l {
         Lit::Int(i) => Scalar::Int(*i),
         Lit::Real(r) => Scalar::Real(*r),
-        Lit::Str(s) => Scalar::Str(s.clone()),
+        Lit::Str(s) => Scalar::Str(s.to_string()),
     }
 }
 
@@ -134,7 +134,7 @@ fn constant_function_wanted(kw: &SimpleKw, item: &Value) -> Option<f64> {
     let function = kw
         .types
         .iter()
-        .any(|t| matches!(t, ValueType::Concept(c) if c == "fonction_sdaster"));
+        .any(|t| matches!(t, ValueType::Concept(c) if *c == "fonction_sdaster"));
     let number = kw
         .types
         .iter()
@@ -253,7 +253,7 @@ impl Validator<'_> {
 
 impl Validator<'_> {
     pub fn validate(&mut self, cmd: &Command, given: Vec<Given>, span: Span) -> Keywords {
-        self.level(&cmd.keywords, &cmd.rules, given, &cmd.name, None, span)
+        self.level(cmd.keywords, cmd.rules, given, cmd.name, None, span)
     }
 
     fn error(&mut self, kind: DiagKind, span: Span, msg: String) -> &mut Diagnostic {
@@ -281,31 +281,31 @@ impl Validator<'_> {
             match &e.node {
                 Node::Block(_) => {}
                 Node::Simple(s) => {
-                    if !top && active.iter().any(|a| same_name(&a.name, &e.name)) {
+                    if !top && active.iter().any(|a| same_name(a.name, e.name)) {
                         continue;
                     }
                     active.push(e);
                     if maybe {
-                        guessed.push(&e.name);
+                        guessed.push(e.name);
                         continue;
                     }
-                    if s.default.is_some() && !ctx.contains(&e.name) {
+                    if s.default.is_some() && !ctx.contains(e.name) {
                         if let Some(d) = s.default_cval() {
-                            ctx.insert(&e.name, d);
+                            ctx.insert(e.name, Cow::Borrowed(d));
                         }
                     }
                 }
                 Node::Factor(f) => {
-                    if !top && active.iter().any(|a| same_name(&a.name, &e.name)) {
+                    if !top && active.iter().any(|a| same_name(a.name, e.name)) {
                         continue;
                     }
                     active.push(e);
                     if maybe {
-                        guessed.push(&e.name);
+                        guessed.push(e.name);
                         continue;
                     }
                     if f.status == Status::Defaulted {
-                        ctx.insert(&e.name, Cow::Owned(CVal::Bool(true)));
+                        ctx.insert(e.name, Cow::Owned(CVal::Bool(true)));
                     }
                 }
             }
@@ -322,11 +322,11 @@ impl Validator<'_> {
                 let unsure = UNCERTAIN.with(|u| u.replace(false));
                 if holds && !maybe && !unsure {
                     rules.extend(b.rules.iter());
-                    self.activate(&b.keywords, ctx, active, rules, false, guessed);
+                    self.activate(b.keywords, ctx, active, rules, false, guessed);
                 } else if holds || unsure {
                     // Accept the block's keywords without requiring or
                     // defaulting any: the checker cannot know.
-                    self.activate(&b.keywords, ctx, active, rules, true, guessed);
+                    self.activate(b.keywords, ctx, active, rules, true, guessed);
                 }
             }
         }
@@ -406,7 +406,7 @@ impl Validator<'_> {
         let diags_before = self.diags.len();
         let mut inactive = Vec::new();
         for g in &given {
-            let Some(slot) = active.iter().position(|a| same_name(&a.name, &g.name)) else {
+            let Some(slot) = active.iter().position(|a| same_name(a.name, &g.name)) else {
                 inactive.push(g);
                 continue;
             };
@@ -470,8 +470,8 @@ impl Validator<'_> {
                         let occ_span = d.borrow().entries.first().map(|e| e.span).unwrap_or(g.span);
                         let occ_path = format!("{kpath}[{}]", i + 1);
                         out.push(self.level(
-                            &f.keywords,
-                            &f.rules,
+                            f.keywords,
+                            f.rules,
                             inner,
                             &occ_path,
                             Some(&ctx),
@@ -544,15 +544,15 @@ impl Validator<'_> {
                 Node::Block(_) => false,
             };
             if !needs_something
-                || given.iter().any(|g| same_name(&g.name, &e.name))
-                || guessed.contains(&e.name.as_str())
+                || given.iter().any(|g| same_name(&g.name, e.name))
+                || guessed.contains(&e.name)
             {
                 continue; // nothing to fill, given but invalid (already reported), or unsure
             }
             match &e.node {
                 Node::Simple(s) => match (&s.default, s.status) {
                     (Some(d), _) => out.entries.push(Keyword {
-                        name: e.name.clone(),
+                        name: e.name.to_string(),
                         value: KwValue::Simple(d.iter().map(|l| default_scalar(l, s)).collect()),
                         span,
                         defaulted: true,
@@ -593,15 +593,15 @@ impl Validator<'_> {
                     }
                     Status::Defaulted => {
                         let occ = self.level(
-                            &f.keywords,
-                            &f.rules,
+                            f.keywords,
+                            f.rules,
                             Vec::new(),
                             &format!("{path}/{}[1]", e.name),
                             Some(&ctx),
                             span,
                         );
                         out.entries.push(Keyword {
-                            name: e.name.clone(),
+                            name: e.name.to_string(),
                             value: KwValue::Factor(vec![occ]),
                             span,
                             defaulted: true,
@@ -621,7 +621,7 @@ impl Validator<'_> {
         // (THER_NON_LINE(reuse=R) without RESULTAT is valid).
         let rules: Vec<&Rule> = rules
             .into_iter()
-            .filter(|r| !r.args.iter().any(|a| a == "reuse"))
+            .filter(|r| !r.args.contains(&"reuse"))
             .collect();
         let defaulted: Vec<&str> = out
             .entries
@@ -674,10 +674,10 @@ impl Validator<'_> {
                 format!(
                     "`{path}/{}` is not allowed here: it applies only when {}",
                     g.name,
-                    aster_catalog::explain::plain_condition(&b.condition)
+                    aster_catalog::explain::plain_condition(b.condition)
                 ),
             );
-            if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name.as_str())) {
+            if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name)) {
                 d = d.note(h);
             }
             self.diags.push(d);
@@ -685,7 +685,7 @@ impl Validator<'_> {
         }
         let names: Vec<&str> = active
             .iter()
-            .map(|a| a.name.as_str())
+            .map(|a| a.name)
             .filter(|n| *n != "reuse")
             .collect();
         let mut d = Diagnostic::error(
@@ -769,7 +769,7 @@ impl Validator<'_> {
                 if matches!(s, Scalar::Opaque(_)) || into_contains(into, s) {
                     continue;
                 }
-                match legacy::value(&kpath(), s, into, kw.default.as_deref(), self.legacy) {
+                match legacy::value(&kpath(), s, into, kw.default, self.legacy) {
                     Some(legacy::ValueFix::Renamed(new, why)) => {
                         let d = Diagnostic::warning(
                             DiagKind::Legacy,
@@ -800,7 +800,7 @@ impl Validator<'_> {
                 let strs: Vec<String> = into
                     .iter()
                     .map(|l| match l {
-                        Lit::Str(x) => x.clone(),
+                        Lit::Str(x) => x.to_string(),
                         other => other.to_string(),
                     })
                     .collect();
@@ -996,10 +996,10 @@ impl Validator<'_> {
         let nd = r.args.iter().filter(|a| d(a)).count();
         // Message parts, built only when a rule fails.
         let list = || r.args.join(", ");
-        let first = r.args.first().map(|s| s.as_str()).unwrap_or("");
+        let first = r.args.first().copied().unwrap_or("");
         let others = || r.args.get(1..).unwrap_or(&[]).join(", ");
         let drop_defaults = |drop: &mut Vec<String>| {
-            drop.extend(r.args.iter().filter(|a| d(a)).cloned());
+            drop.extend(r.args.iter().filter(|a| d(a)).map(|a| a.to_string()));
         };
         let msg = match r.kind {
             RuleKind::ExactlyOne => {
@@ -1044,7 +1044,7 @@ impl Validator<'_> {
                     Some(format!("when {first} is given, {} must not be", others()))
                 } else {
                     if w(first) {
-                        drop.extend(r.args[1..].iter().filter(|a| d(a)).cloned());
+                        drop.extend(r.args[1..].iter().filter(|a| d(a)).map(|a| a.to_string()));
                     } else if others_written && d(first) {
                         drop.push(first.to_string());
                     }
@@ -1082,7 +1082,7 @@ fn implicit_default(path: &str, r: &Rule, written: &[&str], span: Span) -> Optio
     }
     let last = path.rsplit('/').next().unwrap_or(path);
     let last = last.split('[').next().unwrap_or(last);
-    let has = |k: &str| r.args.iter().any(|a| a == k);
+    let has = |k: &str| r.args.contains(&k);
     let add = |name: &str, v: Scalar| {
         Some(Some(Keyword {
             name: name.to_string(),
@@ -1115,10 +1115,7 @@ fn lenient(v: &Value) -> Vec<Scalar> {
 }
 
 fn nw_of(r: &Rule, written: &[&str]) -> usize {
-    r.args
-        .iter()
-        .filter(|a| written.contains(&a.as_str()))
-        .count()
+    r.args.iter().filter(|a| written.contains(a)).count()
 }
 
 /// `('RI', re, im)` / `('MP', mod, phase)` given to a complex keyword.
@@ -1190,7 +1187,7 @@ pub(crate) fn scalar_repr(s: &Scalar) -> String {
 fn block_of<'e>(entries: &'e [Entry], name: &str) -> Option<&'e Block> {
     for e in entries {
         if let Node::Block(b) = &e.node {
-            if let Some(inner) = block_of(&b.keywords, name) {
+            if let Some(inner) = block_of(b.keywords, name) {
                 return Some(inner);
             }
             if b.keywords

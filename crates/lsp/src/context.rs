@@ -365,13 +365,13 @@ impl Level<'_> {
     /// keywords is written, `PRESENT_ABSENT` (the first excludes the
     /// others, any other the first).
     pub fn excluded(&self, name: &str, written: &[String]) -> bool {
-        let w = |k: &String| k != name && written.contains(k);
+        let w = |k: &&str| *k != name && written.iter().any(|x| x == k);
         self.rules.iter().any(|r| {
-            let mine = r.args.iter().any(|a| a == name);
+            let mine = r.args.contains(&name);
             match r.kind {
                 RuleKind::ExactlyOne | RuleKind::AtMostOne => mine && r.args.iter().any(w),
                 RuleKind::OnlyFirstPresent => match r.args.split_first() {
-                    Some((first, others)) if first == name => others.iter().any(w),
+                    Some((first, others)) if *first == name => others.iter().any(w),
                     Some((first, _)) => mine && w(first),
                     None => false,
                 },
@@ -390,15 +390,15 @@ pub fn level_active<'c>(
     factors: &[String],
     env: &mut Env<'_>,
 ) -> Option<Level<'c>> {
-    let mut entries: &[Entry] = &cmd.keywords;
-    let mut rules: &[Rule] = &cmd.rules;
+    let mut entries: &[Entry] = cmd.keywords;
+    let mut rules: &[Rule] = cmd.rules;
     for f in factors {
         let mut act = Vec::new();
         active(entries, env, &mut act, &mut Vec::new());
-        match &act.iter().find(|e| &e.name == f)?.node {
+        match &act.iter().find(|e| e.name == f)?.node {
             Node::Factor(fk) => {
-                entries = &fk.keywords;
-                rules = &fk.rules;
+                entries = fk.keywords;
+                rules = fk.rules;
             }
             _ => return None,
         }
@@ -478,7 +478,7 @@ pub fn active<'c>(
                 if !out.iter().any(|a| a.name == e.name) {
                     out.push(e);
                 }
-                default_into(env, &e.name, s);
+                default_into(env, e.name, s);
             }
             Node::Factor(_) => {
                 if !out.iter().any(|a| a.name == e.name) {
@@ -495,7 +495,7 @@ pub fn active<'c>(
             };
             if open {
                 rules.extend(b.rules.iter());
-                active(&b.keywords, env, out, rules);
+                active(b.keywords, env, out, rules);
             }
         }
     }
@@ -504,7 +504,7 @@ pub fn active<'c>(
 fn default_into(env: &mut Env<'_>, name: &str, s: &SimpleKw) {
     if !env.values.contains_key(name) {
         if let Some(d) = s.default_cval() {
-            env.values.insert(name.to_string(), d.into_owned());
+            env.values.insert(name.to_string(), d.clone());
         }
     }
 }

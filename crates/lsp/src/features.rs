@@ -387,8 +387,8 @@ pub fn completion(
             if let Some((level, written)) = valid_keywords(&ctx, a, offset) {
                 for &e in &level.entries {
                     if e.name.starts_with(&prefix)
-                        && !written.contains(&e.name)
-                        && !level.excluded(&e.name, &written)
+                        && !written.iter().any(|w| w == e.name)
+                        && !level.excluded(e.name, &written)
                     {
                         if matches!(&e.node, Node::Simple(s) if s.status == Status::Hidden) {
                             continue;
@@ -406,7 +406,7 @@ pub fn completion(
                                 ..
                             })
                         ) || matches!(&e.node, Node::Factor(f) if f.status == Status::Mandatory);
-                        let mut it = item(e.name.clone(), kind, kw_detail(e));
+                        let mut it = item(e.name.to_string(), kind, kw_detail(e));
                         it.sort_text = Some(format!("{}{}", u8::from(!mandatory), e.name));
                         it.text_edit = Some(CompletionTextEdit::Edit(TextEdit {
                             range: edit_range,
@@ -419,7 +419,7 @@ pub fn completion(
         }
         Slot::Value { keyword } => {
             let entry = valid_keywords(&ctx, a, offset)
-                .and_then(|(level, _)| level.entries.into_iter().find(|e| &e.name == keyword));
+                .and_then(|(level, _)| level.entries.into_iter().find(|e| e.name == keyword));
             if let Some(Entry {
                 node: Node::Simple(s),
                 ..
@@ -447,13 +447,13 @@ pub fn completion(
             if c.name.starts_with(&prefix) && !prefix.is_empty() {
                 let produces = match &c.produces {
                     Produces::Nothing => "procedure".to_string(),
-                    Produces::Type(t) => t.clone(),
+                    Produces::Type(t) => t.to_string(),
                     Produces::Computed(_) => "type from its keywords".to_string(),
                 };
-                let mut it = item(c.name.clone(), CompletionItemKind::FUNCTION, produces);
+                let mut it = item(c.name.to_string(), CompletionItemKind::FUNCTION, produces);
                 it.text_edit = Some(CompletionTextEdit::Edit(TextEdit {
                     range: edit_range,
-                    new_text: c.name.clone(),
+                    new_text: c.name.to_string(),
                 }));
                 items.push(it);
             }
@@ -517,7 +517,7 @@ fn value_items(
             format!("'{v}'")
         }
     };
-    if let Some(into) = &s.into {
+    if let Some(into) = s.into {
         for l in into {
             let label = match l {
                 Lit::Str(v) => quote(v),
@@ -546,7 +546,7 @@ fn value_items(
         (Vec::new(), Vec::new())
     };
     let mut seen: Vec<String> = Vec::new();
-    for t in &s.types {
+    for t in s.types {
         let (list, what) = match t {
             ValueType::GroupMa => (&ma, "cell group"),
             ValueType::GroupNo => (&no, "node group"),
@@ -566,7 +566,7 @@ fn value_items(
         .types
         .iter()
         .filter_map(|t| match t {
-            ValueType::Concept(c) => Some(c.as_str()),
+            ValueType::Concept(c) => Some(*c),
             _ => None,
         })
         .collect();
@@ -608,7 +608,7 @@ pub fn signature_help(doc: &Document, a: &Analysis, pos: Position) -> Option<Sig
             Node::Factor(f) => f.status == Status::Mandatory,
             Node::Block(_) => false,
         };
-        let is_current = current.as_deref() == Some(e.name.as_str());
+        let is_current = current.as_deref() == Some(e.name);
         (!is_current, !mandatory, !written)
     };
     shown.sort_by_key(|e| rank(e));
@@ -625,9 +625,9 @@ pub fn signature_help(doc: &Document, a: &Analysis, pos: Position) -> Option<Sig
             label.push_str(", ");
         }
         let start = label.encode_utf16().count() as u32;
-        label.push_str(&e.name);
+        label.push_str(e.name);
         let end = label.encode_utf16().count() as u32;
-        if current.as_deref() == Some(e.name.as_str()) {
+        if current.as_deref() == Some(e.name) {
             active_param = Some(i as u32);
         }
         params.push(ParameterInformation {
