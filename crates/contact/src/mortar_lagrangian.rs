@@ -136,7 +136,18 @@ pub struct MortarLagrangian {
     iterations: usize,
     /// Number of paired slave cells at the last evaluation.
     paired: usize,
+    /// The status (H) of every integration point at the last evaluation,
+    /// in pairing order, and whether its own equations held there.
+    statuses: Vec<bool>,
+    own_ok: bool,
+    /// Length scale of the model (diagonal of the slave and master nodes'
+    /// bounding box), for the gap tolerance.
+    scale: f64,
 }
+
+/// The gap equations are held when their residual, per node, is below
+/// this fraction of the node's weight times the model's size.
+const GAP_TOLE: f64 = 1e-10;
 
 fn err(e: ContactError) -> FemError {
     FemError::Source(format!("DEFI_CONT: {e}"))
@@ -279,6 +290,19 @@ impl MortarLagrangian {
                 h,
             });
         }
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for z in &out {
+            for s in z.slave.iter().chain(&z.master) {
+                for n in s.nodes {
+                    let p = mesh.coords[n.0 as usize];
+                    for c in 0..3 {
+                        lo[c] = lo[c].min(p[c]);
+                        hi[c] = hi[c].max(p[c]);
+                    }
+                }
+            }
+        }
+        let scale = norm(sub(hi, lo)).max(f64::MIN_POSITIVE);
         Ok(MortarLagrangian {
             zones: out,
             lagr,
@@ -287,6 +311,9 @@ impl MortarLagrangian {
             first_pairing: true,
             iterations: 0,
             paired: 0,
+            statuses: Vec::new(),
+            own_ok: false,
+            scale,
         })
     }
 
@@ -425,6 +452,8 @@ impl ForceSource for MortarLagrangian {
             tangent: Vec::new(),
         };
         let mut paired = vec![false; self.lagr.len()];
+        let mut weight = vec![0.0; self.lagr.len()];
+        let mut statuses = Vec::new();
         let mut paired_cells = 0;
         let mut seen = std::collections::HashSet::new();
         for p in &pairs {
@@ -475,6 +504,9 @@ impl ForceSource for MortarLagrangian {
                 } else {
                     (false, 0.0)
                 };
+                statuses.push(h);
+                weight[lk[0]] += w * nsl[0];
+                weight[lk[1]] += w * nsl[1];
                 // Displacement DOFs of the jump v_s − v_m with their factors.
                 let mut jump: Vec<(usize, f64)> = Vec::with_capacity(8);
                 for (a, node) in s.nodes.iter().enumerate() {
@@ -535,14 +567,25 @@ impl ForceSource for MortarLagrangian {
             c.tangent.push((Unknown::Own(k), Unknown::Own(k), 0.0));
         }
         self.paired = paired_cells;
+        self.own_ok = c
+            .own_residual
+            .iter()
+            .zip(&weight)
+            .all(|(r, w)| r.abs() <= GAP_TOLE * w.abs() * self.scale);
+        self.statuses = statuses;
         Ok(c)
     }
 
-    fn after_iteration(&mut self, _state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
         // The first pairing (CONTACT_INIT) was that of this iteration.
         self.iterations += 1;
         self.first_pairing = false;
-        Ok(true)
+        // fem's residual test reads the displacement rows only: the
+        // iterate is accepted when the pairing and statuses it was solved
+        // with are those of the new iterate and the gap equations hold.
+        let before = std::mem::take(&mut self.statuses);
+        self.evaluate(state, own)?;
+        Ok(before == self.statuses && self.own_ok)
     }
 
     fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {

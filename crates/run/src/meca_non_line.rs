@@ -4,8 +4,10 @@
 //! are those of STAT_NON_LINE within the Newton tolerance).
 //!
 //! Its own keywords: `CONTACT` is a factor keyword whose `DEFINITION` is a
-//! `DEFI_CONT` (code_aster 17's mortar augmented-Lagrangian contact), not
-//! a `DEFI_CONTACT`: refused, located (see docs/contact.md, "DEFI_CONT").
+//! `DEFI_CONT` (code_aster 17's mortar augmented-Lagrangian contact,
+//! `crate::defi_cont`), paired again before every Newton iteration
+//! (`ALGO_RESO_GEOM='NEWTON'`, the only value reproduced); `RESI_GEOM` is
+//! accepted (the Newton tolerance decides the converged state).
 //! `METHODE='SNES'`/`'RASPEN'` (PETSc solvers) and `RECH_LINEAIRE` are
 //! refused; `ARCHIVAGE`, `SOLVEUR` and `INFO` are accepted as in
 //! STAT_NON_LINE.
@@ -20,17 +22,18 @@ use aster_eval::{CommandCall, CommandOutput, ExecError};
 pub(crate) const MECA_NON_LINE: Support = Support {
     keywords: KEYWORDS,
     values: &MECA_VALUES,
-    hints: &[(
-        "CONTACT",
-        "a DEFI_CONT definition: code_aster 17's mortar augmented-Lagrangian contact, see docs/contact.md",
-    )],
+    hints: &[],
     reuse: false,
     rules: Some(kinematics_rules),
 };
 
-const MECA_VALUES: [Values; SNL_VALUES.len() + 1] = crate::support::joined(
+const MECA_VALUES: [Values; SNL_VALUES.len() + 2] = crate::support::joined(
     SNL_VALUES,
-    &[Values::new("METHODE", &["NEWTON"]).why("(the PETSc solvers SNES and RASPEN)")],
+    &[
+        Values::new("METHODE", &["NEWTON"]).why("(the PETSc solvers SNES and RASPEN)"),
+        Values::new("CONTACT/ALGO_RESO_GEOM", &["NEWTON"])
+            .why("(the fixed-point geometric loop of code_aster 17's mortar contact)"),
+    ],
 );
 
 const KEYWORDS: &[&str] = &[
@@ -41,6 +44,10 @@ const KEYWORDS: &[&str] = &[
     "EXCIT/CHARGE",
     "EXCIT/FONC_MULT",
     "EXCIT/TYPE_CHARGE",
+    "CONTACT",
+    "CONTACT/DEFINITION",
+    "CONTACT/ALGO_RESO_GEOM",
+    "CONTACT/RESI_GEOM",
     "COMPORTEMENT",
     "COMPORTEMENT/RELATION",
     "COMPORTEMENT/DEFORMATION",
