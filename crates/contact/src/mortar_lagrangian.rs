@@ -203,8 +203,11 @@ impl MortarLagrangian {
                     .map(|c| {
                         if c.kind != SurfaceKind::Seg2 {
                             return Err(ContactError::Unsupported {
-                                feature: format!("DEFI_CONT {key} on {:?} cells", c.kind),
-                                hint: "the mortar Lagrangian contact is reproduced on SEG2 cells (2D, linear)".into(),
+                                feature: format!(
+                                    "{} cells in {key} (code_aster 17's mortar contact)",
+                                    c.kind.cell_type().name()
+                                ),
+                                hint: "it is reproduced on SEG2 cells (2D, linear)".into(),
                             });
                         }
                         Ok(Seg {

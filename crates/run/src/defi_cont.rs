@@ -42,6 +42,14 @@ pub(crate) const DEFI_CONT: Support = Support {
         "ZONE/LISSAGE",
         "ZONE/VERI_NORM",
         "ZONE/FROTTEMENT",
+        // Only present with FROTTEMENT='OUI' or ALGO_CONT='NITSCHE', both
+        // refused by their values: one refusal, at the value.
+        "ZONE/TYPE_FROT",
+        "ZONE/COULOMB",
+        "ZONE/TRESCA",
+        "ZONE/ALGO_FROT",
+        "ZONE/COEF_FROT",
+        "ZONE/SYME",
     ],
     values: &[
         Values::new("ZONE/ALGO_CONT", &["LAGRANGIEN"])
