@@ -7,9 +7,9 @@
 //! As code_aster's (2025 main: `laVect_ct_pr`, `laElemCont`,
 //! `contact_module`, `getQuadCont`, `mesh_pairing_module`):
 //!
-//! - **Pairing** (`cellInteProj`, `addPoinInte2D`, `inteCellChck`): the
-//!   slave segment's nodes are cast along the slave normal onto the master
-//!   segment's line; the overlap, in the master's parametric space, is
+//! - **Pairing** (`cellInteProj`, `addPoinInte2D`, `inteCellChck`), on the
+//!   cells linearised on their ends: the slave ends are cast along the
+//!   (full) slave cell's normal there onto the master's end-to-end line; the overlap, in the master's parametric space, is
 //!   mapped back linearly into the slave's. A pair is kept when its length
 //!   (slave parametric) exceeds `PAIR_TOLE` = 1e-8, the cells are not
 //!   orthogonal (|n_s·n_m| > 1e-8), the projected edge keeps its direction
@@ -18,13 +18,14 @@
 //!   the same pairs on a connected master surface). `COEF_MULT_APPA` > 0
 //!   skips master cells whose centre is farther than 2 × ratio × the larger
 //!   diameter.
-//! - **Quadrature** (`getQuadCont`, `lcptga`): FPG3 on the intersection
-//!   segment in slave parametric space; weights are the slave Jacobian on
+//! - **Quadrature** (`getQuadCont`, `lcptga`): FPG3 (both cells SEG2) or
+//!   FPG4 on the intersection segment in slave parametric space; weights are the slave Jacobian on
 //!   the **initial** coordinates (× the initial radius in AXIS).
 //! - **At a point** (`laElemCont`, `projQpSl2Ma`): n_s the outward slave
 //!   normal on the current geometry; the master point by ray tracing along
-//!   n_s; the gap g = −(x_s − x_m)·n_s; λ and the coefficient interpolated
-//!   with the slave's P1 functions; γ = COEF_CONT / h_F with h_F the slave
+//!   n_s (exact on a SEG2 master, `shape::project_along` on a SEG3 one,
+//!   code_aster's `mmnewd`); the gap g = −(x_s − x_m)·n_s; λ and the
+//!   coefficient interpolated with the slave's functions; γ = COEF_CONT / h_F with h_F the slave
 //!   cell's initial diameter. Active (H = 1) when λ + γg ≤ 0.
 //! - **Residual** (`laVect_ct_pr`): on the displacements −w λ n_s·(v_s −
 //!   v_m) at active points; on each multiplier w ([λ + γg]₋ − λ)/γ μ.
@@ -49,7 +50,7 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::lac_mortar::{piece_points, Family};
-use crate::shape::{dot, norm, sub, SurfaceKind};
+use crate::shape::{dot, interpolate, norm, project_along, sub, SurfaceKind};
 use crate::source::current_positions;
 use crate::surface::{ResolvedZone, SurfaceCell};
 use crate::zone::ZoneGeometry;
@@ -99,8 +100,24 @@ impl MortarZoneDef {
 
 #[derive(Clone, Debug)]
 struct Seg {
-    nodes: [NodeId; 2],
+    kind: SurfaceKind,
+    /// SEG2: its two nodes; SEG3: its ends, then its middle node.
+    nodes: Vec<NodeId>,
     sign: f64,
+}
+
+impl Seg {
+    fn positions(&self, x: &[[f64; 3]]) -> Vec<[f64; 3]> {
+        self.nodes.iter().map(|n| x[n.0 as usize]).collect()
+    }
+}
+
+/// Outward unit normal of a (possibly curved) segment at ξ (`apnorm`).
+fn normal_at(kind: SurfaceKind, x: &[[f64; 3]], xi: f64, sign: f64) -> Option<[f64; 3]> {
+    let t = interpolate(kind, x, [xi, 0.0]).tangents[0];
+    let raw = [t[1], -t[0], 0.0];
+    let l = norm(raw);
+    (l > 0.0 && l.is_finite()).then(|| [sign * raw[0] / l, sign * raw[1] / l, 0.0])
 }
 
 #[derive(Clone, Debug)]
@@ -195,28 +212,28 @@ impl MortarLagrangian {
         for (i, z) in zones.iter().enumerate() {
             let geometry = ZoneGeometry::new(z.master_group.clone(), z.slave_group.clone());
             let resolved = ResolvedZone::new_in(i, &geometry, mesh, 2)?;
-            let segs = |cells: &[SurfaceCell],
-                        key: &'static str|
-             -> Result<Vec<Seg>, ContactError> {
-                cells
-                    .iter()
-                    .map(|c| {
-                        if c.kind != SurfaceKind::Seg2 {
-                            return Err(ContactError::Unsupported {
-                                feature: format!(
-                                    "{} cells in {key} (code_aster 17's mortar contact)",
-                                    c.kind.cell_type().name()
-                                ),
-                                hint: "it is reproduced on SEG2 cells (2D, linear)".into(),
-                            });
-                        }
-                        Ok(Seg {
-                            nodes: [c.nodes[0], c.nodes[1]],
-                            sign: c.sign,
+            let segs =
+                |cells: &[SurfaceCell], key: &'static str| -> Result<Vec<Seg>, ContactError> {
+                    cells
+                        .iter()
+                        .map(|c| {
+                            if !matches!(c.kind, SurfaceKind::Seg2 | SurfaceKind::Seg3) {
+                                return Err(ContactError::Unsupported {
+                                    feature: format!(
+                                        "{} cells in {key} (code_aster 17's mortar contact)",
+                                        c.kind.cell_type().name()
+                                    ),
+                                    hint: "it is reproduced on segments (2D)".into(),
+                                });
+                            }
+                            Ok(Seg {
+                                kind: c.kind,
+                                nodes: c.nodes.clone(),
+                                sign: c.sign,
+                            })
                         })
-                    })
-                    .collect()
-            };
+                        .collect()
+                };
             let master = segs(&resolved.master, "GROUP_MA_MAIT")?;
             let mut slave = segs(&resolved.slave, "GROUP_MA_ESCL")?;
             // SANS_GROUP_NO / SANS_GROUP_MA: the slave cells holding those
@@ -267,17 +284,22 @@ impl MortarLagrangian {
                     ),
                 });
             }
+            // `diameter`: the largest distance between two nodes.
             let h = slave
                 .iter()
                 .map(|s| {
-                    norm(sub(
-                        mesh.coords[s.nodes[1].0 as usize],
-                        mesh.coords[s.nodes[0].0 as usize],
-                    ))
+                    let p = s.positions(&mesh.coords);
+                    let mut d = 0.0f64;
+                    for i in 0..p.len() {
+                        for j in i + 1..p.len() {
+                            d = d.max(norm(sub(p[i], p[j])));
+                        }
+                    }
+                    d
                 })
                 .collect();
             for s in &slave {
-                for n in s.nodes {
+                for &n in &s.nodes {
                     if let std::collections::hash_map::Entry::Vacant(e) = lagr_of.entry(n) {
                         e.insert(lagr.len());
                         lagr.push(n);
@@ -296,7 +318,7 @@ impl MortarLagrangian {
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for z in &out {
             for s in z.slave.iter().chain(&z.master) {
-                for n in s.nodes {
+                for &n in &s.nodes {
                     let p = mesh.coords[n.0 as usize];
                     for c in 0..3 {
                         lo[c] = lo[c].min(p[c]);
@@ -328,18 +350,30 @@ impl MortarLagrangian {
             .map(move |(k, n)| (*n, own.get(k).copied().unwrap_or(0.0)))
     }
 
-    /// The pairs on positions `x` (`fastPair` + `cellInteProj`, 2D).
+    /// The pairs on positions `x` (`fastPair` + `cellInteProj`, 2D): on
+    /// the cells linearised on their ends, the slave ends cast along the
+    /// full slave cell's normal there.
     fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
         let mut out = Vec::new();
         for (zi, z) in self.zones.iter().enumerate() {
             for (si, s) in z.slave.iter().enumerate() {
-                let (sa, sb) = (x[s.nodes[0].0 as usize], x[s.nodes[1].0 as usize]);
-                let Some(ns) = seg_normal(sa, sb, s.sign) else {
+                let sp = s.positions(x);
+                let (sa, sb) = (sp[0], sp[1]);
+                let (Some(ns), Some(na), Some(nb)) = (
+                    seg_normal(sa, sb, s.sign),
+                    normal_at(s.kind, &sp, -1.0, s.sign),
+                    normal_at(s.kind, &sp, 1.0, s.sign),
+                ) else {
                     continue;
                 };
-                let ds = norm(sub(sb, sa));
+                let ds = s
+                    .positions(x)
+                    .iter()
+                    .flat_map(|p| sp.iter().map(move |q| norm(sub(*p, *q))))
+                    .fold(0.0f64, f64::max);
                 for (mi, m) in z.master.iter().enumerate() {
-                    let (ma, mb) = (x[m.nodes[0].0 as usize], x[m.nodes[1].0 as usize]);
+                    let mp = m.positions(x);
+                    let (ma, mb) = (mp[0], mp[1]);
                     let Some(nm) = seg_normal(ma, mb, m.sign) else {
                         continue;
                     };
@@ -354,23 +388,19 @@ impl MortarLagrangian {
                             continue;
                         }
                     }
-                    // Slave nodes cast along the slave normal onto the master.
-                    let (Some(k1), Some(k2)) = (ray_hit(sa, ns, ma, mb), ray_hit(sb, ns, ma, mb))
+                    // Slave ends cast along the slave normal onto the master.
+                    let (Some(k1), Some(k2)) = (ray_hit(sa, na, ma, mb), ray_hit(sb, nb, ma, mb))
                     else {
                         continue;
                     };
                     let proj = [lerp(ma, mb, k1), lerp(ma, mb, k2)];
                     // inteCellChck
                     let orig = [sa, sb];
-                    let edge_o = sub(sb, sa);
-                    let edge_p = sub(proj[1], proj[0]);
                     let mut empty = false;
                     for i in 0..2 {
-                        let (eo, ep) = if i == 0 {
-                            (edge_o, edge_p)
-                        } else {
-                            (sub(sa, sb), sub(proj[0], proj[1]))
-                        };
+                        let j = 1 - i;
+                        let eo = sub(orig[j], orig[i]);
+                        let ep = sub(proj[j], proj[i]);
                         let v = sub(proj[i], orig[i]);
                         let sig = dot(ep, eo);
                         let a = dot(ns, v);
@@ -466,37 +496,48 @@ impl ForceSource for MortarLagrangian {
             if seen.insert((p.zone, p.slave)) {
                 paired_cells += 1;
             }
-            let (sa, sb) = (x[s.nodes[0].0 as usize], x[s.nodes[1].0 as usize]);
-            let (ma, mb) = (x[m.nodes[0].0 as usize], x[m.nodes[1].0 as usize]);
-            let (s0a, s0b) = (x0[s.nodes[0].0 as usize], x0[s.nodes[1].0 as usize]);
-            let ns = seg_normal(sa, sb, s.sign).ok_or_else(|| {
-                err(ContactError::Invalid {
-                    keyword: "GROUP_MA_ESCL",
-                    message: "a slave cell is degenerate (zero length)".into(),
-                })
-            })?;
+            let sp = s.positions(&x);
+            let mp = m.positions(&x);
+            let s0 = s.positions(x0);
             let hf = z.h[p.slave];
             let gamma = z.coef / hf;
-            let lk = [self.lagr_of[&s.nodes[0]], self.lagr_of[&s.nodes[1]]];
-            paired[lk[0]] = true;
-            paired[lk[1]] = true;
-            let jac0 = norm(sub(s0b, s0a)) / 2.0;
-            for (xi, w_ref) in piece_points(2, &[[p.xi[0], 0.0], [p.xi[1], 0.0]], Family::Fpg3) {
-                let xi = xi[0];
-                let nsl = [(1.0 - xi) / 2.0, (1.0 + xi) / 2.0];
-                let mut w = w_ref * jac0;
+            let lk: Vec<usize> = s.nodes.iter().map(|n| self.lagr_of[n]).collect();
+            for &k in &lk {
+                paired[k] = true;
+            }
+            // FPG3 when both cells are linear, FPG4 otherwise (getQuadCont).
+            let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
+                Family::Fpg3
+            } else {
+                Family::Fpg4
+            };
+            for (xi, w_ref) in piece_points(2, &[[p.xi[0], 0.0], [p.xi[1], 0.0]], family) {
+                let at0 = interpolate(s.kind, &s0, xi);
+                let nsl = at0.shape.clone();
+                let mut w = w_ref * norm(at0.tangents[0]);
                 if self.axis {
-                    let r = nsl[0] * s0a[0] + nsl[1] * s0b[0];
+                    let r = at0.x[0];
                     w *= if r == 0.0 { 1e-7 } else { r };
                 }
-                let xs = lerp(sa, sb, xi);
-                let Some(km) = ray_hit(xs, ns, ma, mb) else {
+                let ns = normal_at(s.kind, &sp, xi[0], s.sign).ok_or_else(|| {
+                    err(ContactError::Invalid {
+                        keyword: "GROUP_MA_ESCL",
+                        message: "a slave cell is degenerate (zero length)".into(),
+                    })
+                })?;
+                let xs = interpolate(s.kind, &sp, xi).x;
+                let hit = if m.kind == SurfaceKind::Seg2 {
+                    ray_hit(xs, ns, mp[0], mp[1]).map(|k| interpolate(m.kind, &mp, [k, 0.0]))
+                } else {
+                    project_along(m.kind, &mp, xs, ns)
+                };
+                let Some(hit) = hit else {
                     continue;
                 };
-                let nm = [(1.0 - km) / 2.0, (1.0 + km) / 2.0];
-                let xm = lerp(ma, mb, km);
+                let nm = hit.shape.clone();
+                let xm = hit.x;
                 let gap = -dot(sub(xs, xm), ns);
-                let lam = nsl[0] * own[lk[0]] + nsl[1] * own[lk[1]];
+                let lam: f64 = nsl.iter().zip(&lk).map(|(f, &k)| f * own[k]).sum();
                 let lg = lam + gamma * gap;
                 let (h, proj) = if self.first_pairing && z.init == InitialState::No {
                     (false, 0.0)
@@ -508,10 +549,11 @@ impl ForceSource for MortarLagrangian {
                     (false, 0.0)
                 };
                 statuses.push(h);
-                weight[lk[0]] += w * nsl[0];
-                weight[lk[1]] += w * nsl[1];
+                for (a, &k) in lk.iter().enumerate() {
+                    weight[k] += w * nsl[a];
+                }
                 // Displacement DOFs of the jump v_s − v_m with their factors.
-                let mut jump: Vec<(usize, f64)> = Vec::with_capacity(8);
+                let mut jump: Vec<(usize, f64)> = Vec::with_capacity(12);
                 for (a, node) in s.nodes.iter().enumerate() {
                     for d in 0..2 {
                         if let Some(i) = Self::dof(state, *node, d) {
@@ -530,26 +572,26 @@ impl ForceSource for MortarLagrangian {
                     // −w λ n·(v_s − v_m)
                     for &(i, f) in &jump {
                         c.forces.push((i, -w * lam * f));
-                        for a in 0..2 {
+                        for (a, &k) in lk.iter().enumerate() {
                             c.tangent
-                                .push((Unknown::Dof(i), Unknown::Own(lk[a]), -w * nsl[a] * f));
+                                .push((Unknown::Dof(i), Unknown::Own(k), -w * nsl[a] * f));
                         }
                     }
                 }
                 // w ([λ + γg]₋ − λ)/γ μ
-                for a in 0..2 {
-                    c.own_residual[lk[a]] += w * (proj - lam) / gamma * nsl[a];
+                for (a, &ka) in lk.iter().enumerate() {
+                    c.own_residual[ka] += w * (proj - lam) / gamma * nsl[a];
                     if h {
                         // d(γ g)/du / γ = dg/du = −n·(δu_s − δu_m)
                         for &(i, f) in &jump {
                             c.tangent
-                                .push((Unknown::Own(lk[a]), Unknown::Dof(i), -w * nsl[a] * f));
+                                .push((Unknown::Own(ka), Unknown::Dof(i), -w * nsl[a] * f));
                         }
                     } else {
-                        for b in 0..2 {
+                        for (b, &kb) in lk.iter().enumerate() {
                             c.tangent.push((
-                                Unknown::Own(lk[a]),
-                                Unknown::Own(lk[b]),
+                                Unknown::Own(ka),
+                                Unknown::Own(kb),
                                 -w * nsl[a] * nsl[b] / gamma,
                             ));
                         }

@@ -5,11 +5,10 @@
 //!
 //! Reproduced: `ALGO_CONT='LAGRANGIEN'` with `VARIANTE='ROBUSTE'` (the
 //! defaults), frictionless, unilateral, on 2D models (D_PLAN, C_PLAN,
-//! AXIS) whose contact cells are SEG2; `COEF_CONT`, `CONTACT_INIT`,
+//! AXIS) whose contact cells are SEG2 or SEG3; `COEF_CONT`, `CONTACT_INIT`,
 //! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`. Refused, located:
 //! NITSCHE, PENALISATION, CLASSIQUE, BILATERAL, LISSAGE, friction,
-//! DIST_SUPP/CARA_ELEM, 3D models and quadratic cells (docs/contact.md,
-//! "DEFI_CONT").
+//! DIST_SUPP/CARA_ELEM and 3D models (docs/contact.md, "DEFI_CONT").
 
 use std::rc::Rc;
 

@@ -280,8 +280,18 @@ FIN()
     let (p, map) = pass(&src, Some("two_plates.mail"));
     let m = messages(&p, &map);
     assert_eq!(m.len(), 4, "{m:?}");
-    assert!(m[0].starts_with("case.comm:7:77: error: not supported yet: DEFI_CONT/ZONE/ALGO_CONT='NITSCHE'"), "{m:?}");
-    assert!(m[1].starts_with("case.comm:8:77: error: not supported yet: DEFI_CONT/ZONE/FROTTEMENT='OUI'"), "{m:?}");
+    assert!(
+        m[0].starts_with(
+            "case.comm:7:77: error: not supported yet: DEFI_CONT/ZONE/ALGO_CONT='NITSCHE'"
+        ),
+        "{m:?}"
+    );
+    assert!(
+        m[1].starts_with(
+            "case.comm:8:77: error: not supported yet: DEFI_CONT/ZONE/FROTTEMENT='OUI'"
+        ),
+        "{m:?}"
+    );
     assert!(m[2].starts_with("case.comm:14:21: error: not supported yet: MECA_NON_LINE/COMPORTEMENT/RELATION='VMIS_ISOT_LINE' with a DEFI_CONT contact"), "{m:?}");
     assert!(m[3].starts_with("case.comm:15:20: error: not supported yet: MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above 1e-4 with a DEFI_CONT contact"), "{m:?}");
 }
