@@ -24,16 +24,38 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Parse command files; print the AST with --json.
+    #[command(
+        after_help = "Examples:\n  aster parse study.comm            syntax errors only, exit 1 on any\n  aster parse --json study.comm     the AST as JSON"
+    )]
     Parse {
+        /// Command files (.comm, .com1…); syntax only, nothing is evaluated.
         files: Vec<PathBuf>,
         /// Print the AST of each file as JSON.
         #[arg(long)]
         json: bool,
     },
-    /// Print a command file in canonical form.
-    Fmt { file: PathBuf },
+    /// Print command files in canonical form, check or rewrite them.
+    #[command(
+        after_help = "Examples:\n  aster fmt study.comm              print the canonical form\n  aster fmt --check comm/*.comm     diff of what would change; exit 1 if any\n  aster fmt --write comm/*.comm     rewrite in place (encoding kept)"
+    )]
+    Fmt {
+        /// Command files to format.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Change nothing: print a diff of each file that is not canonical
+        /// and exit 1 if there is one (for CI and pre-commit hooks).
+        #[arg(long, conflicts_with = "write")]
+        check: bool,
+        /// Rewrite the files in place.
+        #[arg(long)]
+        write: bool,
+    },
     /// Validate command files against the catalog (commands are not run).
+    #[command(
+        after_help = "Examples:\n  aster check study.comm                 rustc-style diagnostics on stderr\n  aster check --format sarif *.comm      SARIF 2.1.0 for code-scanning\n  aster check --format github *.comm     GitHub Actions annotations\n  aster check --emit commands study.comm the evaluated commands as JSON\n\nExit: 0 clean, 1 errors, 3 only constructs `aster run` does not support."
+    )]
     Check {
+        /// Command files (.comm, .com1…), checked one after the other.
         files: Vec<PathBuf>,
         /// Emit the evaluated program (`commands`) as JSON.
         #[arg(long, value_name = "WHAT")]
@@ -46,13 +68,18 @@ enum Command {
         format: cmd::check::Format,
     },
     /// Explain a command or a keyword: `aster explain CMD[/KEYWORD/...]`.
-    Explain { path: String },
+    #[command(
+        after_help = "Examples:\n  aster explain DEFI_CONTACT\n  aster explain DEFI_CONTACT/ZONE/COEF_CONT\n  aster explain STAT_NON_LINE/CONVERGENCE"
+    )]
+    Explain {
+        /// A command, or a path of keywords under it separated by `/`.
+        path: String,
+    },
     /// Rewrite code_aster 11/14/15 command files in code_aster 17 spelling
     /// (comments and layout kept); print a unified diff, or --write.
-    ///
-    /// Example: `aster migrate study.comm` (diff), `aster migrate --write *.comm`.
-    /// Exit 0 when every legacy construct was rewritten, 1 when some are
-    /// left (listed on stderr), 2 when a file cannot be read or parsed.
+    #[command(
+        after_help = "Examples:\n  aster migrate study.comm            a unified diff on stdout\n  aster migrate --write old/*.comm    rewrite in place (encoding kept)\n\nExit: 0 every legacy construct rewritten, 1 some left (listed on stderr),\n2 a file that cannot be read or parsed."
+    )]
     Migrate {
         /// The command files.
         #[arg(required = true)]
@@ -62,7 +89,12 @@ enum Command {
         write: bool,
     },
     /// Describe a mesh file.
+    #[command(
+        after_help = "Examples:\n  aster mesh block.mail                     nodes, cells per type, groups\n  aster mesh --json block.med               the same as JSON\n  aster mesh result.med --to vtu --out r.vtu  convert, fields kept"
+    )]
     Mesh {
+        /// A mesh or result file: Aster `.mail`, MED (`.med`, `.mmed`),
+        /// GMSH `.msh`, GIBI `.mgib`.
         file: PathBuf,
         /// Print a JSON summary (nodes, cells per type, groups).
         #[arg(long)]
@@ -70,11 +102,17 @@ enum Command {
         /// Convert to another format (`mail`, `med`, `vtu`), written to --out.
         #[arg(long, value_name = "FORMAT")]
         to: Option<String>,
+        /// Where --to writes (a file; with result steps, beside it a .pvd).
         #[arg(long, value_name = "PATH")]
         out: Option<PathBuf>,
     },
     /// Run a case (.comm or .export) and its TEST_RESU checks.
+    #[command(
+        after_help = "Examples:\n  aster run case.export                      every command file of the study\n  aster run case.comm --mesh case.mail       a lone command file and its mesh\n  aster run case.export --report junit r.xml one JUnit test per TEST_RESU check\n  aster run case.export --vtu vtu/           results for ParaView\n\nExit: 0 every check OK, 1 a NOOK, 2 an error or a refusal (located)."
+    )]
     Run {
+        /// The case: an `.export` (its command files run in order, its
+        /// meshes on their units) or a single command file.
         case: PathBuf,
         /// Mesh file for unit 20 when no .export names one.
         #[arg(long)]
@@ -98,15 +136,29 @@ enum Command {
         vtu: Option<PathBuf>,
     },
     /// Serve the Language Server Protocol on stdin/stdout (docs/editors.md).
+    #[command(
+        after_help = "Example: an editor starts `aster lsp` and talks to it on stdin/stdout\n(set-ups for VS Code, Neovim, Helix and Emacs in docs/editors.md)."
+    )]
     Lsp {
         /// Accepted for editors that pass it; stdio is the only transport.
         #[arg(long)]
         stdio: bool,
     },
+    /// Print a shell completion script for `aster`.
+    #[command(
+        after_help = "Examples:\n  aster completions bash > ~/.local/share/bash-completion/completions/aster\n  aster completions zsh > ~/.zfunc/_aster\n  aster completions fish > ~/.config/fish/completions/aster.fish"
+    )]
+    Completions {
+        /// The shell: bash, elvish, fish, powershell or zsh.
+        shell: clap_complete::Shell,
+    },
     /// Sweep contact methods and parameters on a scene (TOML spec); write a
     /// CSV, error/time, convergence and stability charts, and a summary.
+    #[command(after_help = "Example:\n  aster study comm/study-hertz.toml --out sweep/")]
     Study {
+        /// The study specification (TOML).
         spec: PathBuf,
+        /// Directory for the CSV, the charts and the summary.
         #[arg(long, default_value = "study-out")]
         out: PathBuf,
     },
@@ -139,7 +191,18 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> u8 {
     match cli.command {
         Command::Parse { files, json } => cmd::parse::run(&files, json),
-        Command::Fmt { file } => cmd::fmt::run(&file),
+        Command::Fmt {
+            files,
+            check,
+            write,
+        } => {
+            let mode = match (check, write) {
+                (true, _) => cmd::fmt::Mode::Check,
+                (false, true) => cmd::fmt::Mode::Write,
+                (false, false) => cmd::fmt::Mode::Print,
+            };
+            cmd::fmt::run(&files, mode)
+        }
         Command::Check {
             files,
             emit,
@@ -170,5 +233,11 @@ fn run(cli: Cli) -> u8 {
         ),
         Command::Study { spec, out } => cmd::study::run(&spec, &out),
         Command::Lsp { .. } => cmd::lsp::run(),
+        Command::Completions { shell } => {
+            use clap::CommandFactory;
+            let mut command = Cli::command();
+            clap_complete::generate(shell, &mut command, "aster", &mut std::io::stdout());
+            0
+        }
     }
 }

@@ -67,7 +67,7 @@ pub fn diff(name: &str, old: &str, new: &str) -> String {
 
 /// The text in the file's own encoding: a file that was not UTF-8 (old
 /// files are Latin-1) is written back as Latin-1 when every character fits.
-fn encode_like(text: &str, path: &std::path::Path) -> Vec<u8> {
+pub fn encode_like(text: &str, path: &std::path::Path) -> Vec<u8> {
     let was_utf8 = std::fs::read(path).is_ok_and(|b| std::str::from_utf8(&b).is_ok());
     if !was_utf8 && text.chars().all(|c| (c as u32) < 256) {
         return text.chars().map(|c| c as u8).collect();
