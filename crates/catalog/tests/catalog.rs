@@ -1,8 +1,11 @@
 use aster_catalog::{catalog, find_in, Node, Produces, Reentrant, Status, ValueType};
 
+/// code_aster 17's 267 catalog commands and `DEFI_CONT`, the macro of
+/// `code_aster.MacroCommands.defi_cont` (its catalog `DEFI_CONT_CATA`).
 #[test]
-fn has_all_267_commands() {
-    assert_eq!(catalog().commands().len(), 267);
+fn has_all_268_commands() {
+    assert_eq!(catalog().commands().len(), 268);
+    assert!(catalog().command("DEFI_CONT").is_some());
     assert!(catalog().command("STAT_NON_LINE").is_some());
     assert!(catalog().command("NO_SUCH").is_none());
 }
@@ -11,7 +14,7 @@ fn has_all_267_commands() {
 fn a_command_is_read_on_its_first_use_and_alone() {
     let cat = aster_catalog::Catalog::new();
     assert_eq!(cat.read_count(), 0);
-    assert_eq!(cat.names().count(), 267, "names need no read");
+    assert_eq!(cat.names().count(), 268, "names need no read");
     let debut = cat.command("DEBUT").expect("DEBUT exists");
     assert_eq!(debut.name, "DEBUT");
     assert_eq!(cat.read_count(), 1);
@@ -24,7 +27,7 @@ fn a_command_is_read_on_its_first_use_and_alone() {
         assert_eq!(c.name, name);
         assert_eq!(lazy.command(name), Some(c), "{name}");
     }
-    assert_eq!(cat.read_count(), 267);
+    assert_eq!(cat.read_count(), 268);
 }
 
 #[test]

@@ -539,15 +539,13 @@ impl ForceSource for MortarLagrangian {
                 let gap = -dot(sub(xs, xm), ns);
                 let lam: f64 = nsl.iter().zip(&lk).map(|(f, &k)| f * own[k]).sum();
                 let lg = lam + gamma * gap;
-                let (h, proj) = if self.first_pairing && z.init == InitialState::No {
-                    (false, 0.0)
-                } else if self.first_pairing && z.init == InitialState::Yes {
-                    (true, lg)
-                } else if -lg >= 0.0 {
-                    (true, lg)
-                } else {
-                    (false, 0.0)
+                // CONTACT_INIT at the first pairing, then Heaviside(−(λ + γg)).
+                let active = match (self.first_pairing, z.init) {
+                    (true, InitialState::No) => false,
+                    (true, InitialState::Yes) => true,
+                    _ => -lg >= 0.0,
                 };
+                let (h, proj) = if active { (true, lg) } else { (false, 0.0) };
                 statuses.push(h);
                 for (a, &k) in lk.iter().enumerate() {
                     weight[k] += w * nsl[a];
