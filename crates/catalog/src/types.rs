@@ -157,7 +157,19 @@ pub fn computed(
                     .map(|t| t.to_lowercase())
                     .unwrap_or_else(|| UNKNOWN.to_string());
             }
-            "table_sdaster"
+            // CREA_TABLE and CALC_TABLE: TYPE_TABLE when given; CALC_TABLE
+            // otherwise keeps a table_fonction/table_container it works on.
+            match text("TYPE_TABLE").as_deref() {
+                Some("TABLE_FONCTION") => "table_fonction",
+                Some("TABLE_CONTAINER") => "table_container",
+                Some(_) => "table_sdaster",
+                None if function == "calc_table_prod" => match type_of("TABLE").as_deref() {
+                    Some("table_fonction") => "table_fonction",
+                    Some("table_container") => "table_container",
+                    _ => "table_sdaster",
+                },
+                None => "table_sdaster",
+            }
         }
         "calc_vect_elem_prod" => "vect_elem_depl_r",
         "calc_matr_elem_prod" => match text("OPTION") {

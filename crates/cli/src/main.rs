@@ -72,8 +72,12 @@ enum Command {
         after_help = "Examples:\n  aster explain DEFI_CONTACT\n  aster explain DEFI_CONTACT/ZONE/COEF_CONT\n  aster explain STAT_NON_LINE/CONVERGENCE"
     )]
     Explain {
-        /// A command, or a path of keywords under it separated by `/`.
+        /// A command, or a path of keywords under it separated by `/`
+        /// (as diagnostics print it: `DEFI_CONTACT/ZONE[1]/COEF_CONT`).
         path: String,
+        /// Every allowed value, however long the list.
+        #[arg(long)]
+        all: bool,
     },
     /// Rewrite code_aster 11/14/15 command files in code_aster 17 spelling
     /// (comments and layout kept); print a unified diff, or --write.
@@ -209,7 +213,7 @@ fn run(cli: Cli) -> u8 {
             format,
         } => cmd::check::run(&files, emit.as_deref(), format),
         Command::Migrate { files, write } => cmd::migrate::run(&files, write),
-        Command::Explain { path } => cmd::explain::run(&path),
+        Command::Explain { path, all } => cmd::explain::run(&path, all),
         Command::Mesh {
             file,
             json,

@@ -66,6 +66,44 @@ fn explain_prints_trees_and_suggests() {
     assert!(err.contains("`DEFI_CONTACT`"), "{err}");
 }
 
+/// `explain` for learners: what `aster run` does with the keyword, paths
+/// copied from diagnostics, legacy names with their replacement.
+#[test]
+fn explain_says_what_run_supports_and_reads_legacy_names() {
+    let (code, out, _) = aster(&["explain", "AFFE_MODELE/AFFE[1]/MODELISATION"]);
+    assert_eq!(code, 0);
+    let run = out.lines().last().unwrap_or("");
+    assert!(
+        run.starts_with(
+            "aster run: AFFE_MODELE/AFFE/MODELISATION is supported with the values 'D_PLAN'"
+        ),
+        "{out}"
+    );
+    let (_, out, _) = aster(&["explain", "MACR_ADAP_MAIL"]);
+    assert!(out.contains("aster run: MACR_ADAP_MAIL is refused before the run (mesh adaptation runs the external HOMARD tool"), "{out}");
+    let (code, out, _) = aster(&["explain", "DEFI_CONTACT/ZONE/TOLE_APPA"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with(
+            "TOLE_APPA is the code_aster 11–15 name of DIST_APPA: `aster migrate` rewrites it\n"
+        ),
+        "{out}"
+    );
+    assert!(out.contains("DEFI_CONTACT/ZONE/DIST_APPA\n"), "{out}");
+    let (code, out, _) = aster(&["explain", "STAT_NON_LINE/SOLVEUR/SYME"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with("SYME is gone from code_aster 17 (the solver detects symmetry itself)"),
+        "{out}"
+    );
+    let (code, _, err) = aster(&["explain", "STAT_NON_LINE/RESI_GLOB_RELA"]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("exists as `STAT_NON_LINE/CONVERGENCE/RESI_GLOB_RELA`"),
+        "{err}"
+    );
+}
+
 /// `--format json`: one JSON object per file (JSON Lines), stable codes,
 /// levels and positions.
 #[test]

@@ -1132,6 +1132,11 @@ pub fn method(me: &mut Interp, recv: Value, m: &str, args: Vec<CallArg>, span: S
                 Err(e) => Err(crate::interp::exec_diag(span, e).into()),
             };
         }
+        // A method of an attribute of a concept (`resu.userName.ljust(8)`):
+        // the attribute is known only when the commands run.
+        Value::Method(r, _) if matches!(**r, Value::Concept(_) | Value::Formula(..)) => {
+            return Ok(Value::Unknown)
+        }
         Value::Float(f) if m == "is_integer" => return Ok(Value::Bool(f.fract() == 0.0)),
         Value::Complex(a, b) if m == "conjugate" => return Ok(Value::Complex(*a, -*b)),
         _ => {}

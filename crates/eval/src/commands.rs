@@ -52,6 +52,8 @@ pub(crate) fn call_command(
         return err_unknown(name, span);
     };
     if name == "INCLUDE" {
+        // What the included file defines is not known (`recover`).
+        me.recovery.names_unknown = true;
         return unsupported(span, "INCLUDE (reading another command file)");
     }
     let mut given = Vec::with_capacity(args.len());

@@ -111,6 +111,8 @@ pub(crate) struct Interp<'a> {
     /// The loops in progress (where, and what), innermost last: the one a
     /// spent budget is blamed on.
     loops: Vec<(Span, &'static str)>,
+    /// What failed statements left unknown while checking (`recover`).
+    pub(crate) recovery: crate::recover::Recovery,
 }
 
 impl<'a> Interp<'a> {
@@ -132,6 +134,7 @@ impl<'a> Interp<'a> {
             nesting: 0,
             steps: std::cell::Cell::new(0),
             loops: Vec::new(),
+            recovery: Default::default(),
         }
     }
 
@@ -203,11 +206,64 @@ impl<'a> Interp<'a> {
 
     // ---------- statements ----------
 
+    /// Runs a command file's statements. The checker (`keep_going`) goes on
+    /// after a recoverable error in a statement (see `recover`).
     pub fn run_module(&mut self, m: &ast::Module) -> R<()> {
-        match self.exec_block(&m.body)? {
-            Flow::Normal => Ok(()),
-            Flow::Return(_) | Flow::Break | Flow::Continue => Ok(()),
+        if !self.keep_going {
+            self.exec_block(&m.body)?;
+            return Ok(());
         }
+        for s in &m.body {
+            if self.finished {
+                break;
+            }
+            let before = self.diags.len();
+            let text = self.map.snippet(s.span);
+            let hits = self.recovery.unknown_names_read.get();
+            let mentions = self.recovery.is_consequence(text);
+            let r = self.exec(s);
+            let consequence = mentions || self.recovery.unknown_names_read.get() > hits;
+            match r {
+                Ok(Flow::Normal) => {}
+                Ok(Flow::Return(_) | Flow::Break | Flow::Continue) => break,
+                Err(Halt::Diag(d))
+                    if crate::recover::recoverable(&d) && self.steps.get() <= STEP_BUDGET =>
+                {
+                    if !consequence && !self.recovery.undefined_name_explained(&d) {
+                        self.diags.push(*d);
+                    }
+                    self.recover_from(s, text);
+                    continue;
+                }
+                Err(e) => return Err(e),
+            }
+            // A statement that uses what a failed one left unknown: its
+            // errors recorded without stopping (a command's keywords) are
+            // consequences, and what it binds or touches is derived from
+            // unknowns in turn.
+            if consequence {
+                if self.diags[before..].iter().any(Diagnostic::is_error) {
+                    self.diags.truncate(before);
+                }
+                let mut bound = Vec::new();
+                crate::recover::bound_names(s, &mut bound);
+                let defined = |w: &str| self.globals.contains_key(w);
+                self.recovery.derived(text, bound, defined);
+            }
+        }
+        Ok(())
+    }
+
+    /// After `s` failed while checking: what it would have bound becomes
+    /// unknown (`recover`).
+    fn recover_from(&mut self, s: &ast::Stmt, text: &str) {
+        let mut bound = Vec::new();
+        crate::recover::bound_names(s, &mut bound);
+        for n in &bound {
+            self.set_var(n, Value::Unknown);
+        }
+        let defined = |w: &str| self.globals.contains_key(w);
+        self.recovery.failed(s, text, bound, defined);
     }
 
     /// `try` whose handlers all catch ImportError (see `try_import`);
@@ -749,6 +805,19 @@ impl<'a> Interp<'a> {
                 self.study.current.as_deref().unwrap_or("__main__"),
             ));
         }
+        if name == "VARIABLE" {
+            // code_aster 17 puts it in scope beside the catalog's commands.
+            return unsupported(
+                span,
+                "VARIABLE (a parameter of a parametric study, read from the inputs.pick file code_aster's study tools write)",
+            );
+        }
+        if self.recovery.undefined_is_unknown(name) {
+            self.recovery
+                .unknown_names_read
+                .set(self.recovery.unknown_names_read.get() + 1);
+            return Ok(Value::Unknown);
+        }
         if self.continued {
             return Ok(Value::Concept(ConceptRef {
                 name: name.to_string(),
@@ -870,6 +939,10 @@ impl<'a> Interp<'a> {
                     let hi = upper.as_ref().map(|x| self.eval(x)).transpose()?;
                     let st = step.as_ref().map(|x| self.eval(x)).transpose()?;
                     return builtins::slice(&v, lo, hi, st, e.span);
+                }
+                if matches!(v, Value::Unknown) {
+                    // `m[0:n, 0:n]` of a run-time matrix.
+                    return Ok(Value::Unknown);
                 }
                 let k = self.eval(index)?;
                 self.subscript(v, k, e.span)?
@@ -1240,7 +1313,8 @@ impl<'a> Interp<'a> {
             ExprKind::Name { id } => match self.lookup(id, func.span) {
                 Ok(v) => v,
                 Err(Halt::Diag(d))
-                    if id.len() > 2
+                    if d.kind == DiagKind::Python
+                        && id.len() > 2
                         && id
                             .chars()
                             .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') =>
@@ -1355,7 +1429,10 @@ impl<'a> Interp<'a> {
                     name: None,
                     value: Value::Str(s),
                     ..
-                }] => Ok(Value::Co(s.clone())),
+                }] => {
+                    self.recovery.made_by_co.insert(s.to_string());
+                    Ok(Value::Co(s.clone()))
+                }
                 _ => py_err(span, "CO() takes one name, e.g. CO('RESU')"),
             },
             Value::Builtin(Builtin::Fn(name)) => {

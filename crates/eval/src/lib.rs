@@ -19,6 +19,7 @@ pub mod legacy;
 pub mod legacy_commands;
 pub mod limits;
 pub mod migrate;
+mod recover;
 mod study;
 mod testcase;
 mod try_import;

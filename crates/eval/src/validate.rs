@@ -146,6 +146,11 @@ pub(crate) fn flatten(v: &Value) -> Vec<Value> {
     match v {
         Value::List(l) => l.borrow().iter().flat_map(flatten).collect(),
         Value::Tuple(t) => t.iter().flat_map(flatten).collect(),
+        // An attribute of a concept (`getattr(resu, 'CHAMP_1')`, a result
+        // of a macro): known only when the commands run.
+        Value::Method(r, _) if matches!(**r, Value::Concept(_) | Value::Formula(..)) => {
+            vec![Value::Unknown]
+        }
         other => vec![other.clone()],
     }
 }
@@ -668,7 +673,8 @@ impl Validator<'_> {
                 g.span,
                 format!(
                     "`{path}/{}` is not allowed here: it applies only when {}",
-                    g.name, b.condition
+                    g.name,
+                    aster_catalog::explain::plain_condition(&b.condition)
                 ),
             );
             if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name.as_str())) {
@@ -854,7 +860,9 @@ impl Validator<'_> {
             }
         }
         let n = out.len();
-        if n < kw.min as usize || !kw.max.allows(n) {
+        // A run-time value may stand for any number of values.
+        let count_known = !items.iter().any(|v| matches!(v, Value::Unknown));
+        if count_known && (n < kw.min as usize || !kw.max.allows(n)) {
             let expect = if kw.min as usize == 1 && kw.max == aster_catalog::Max::Count(1) {
                 "exactly one value".to_string()
             } else {

@@ -81,3 +81,22 @@ fn legacy_file_checks_with_warnings() {
     assert!(kinds.len() >= 6, "{text}");
     insta::assert_snapshot!("legacy_v11", text);
 }
+
+/// `aster check` reports every independent error of a file, and no
+/// consequence of one (`recover`).
+#[test]
+fn checking_goes_on_after_an_error_without_consequences() {
+    let (text, kinds, ok) = check("keep_going.comm");
+    assert!(!ok);
+    let lines: Vec<u32> = text
+        .lines()
+        .filter(|l| l.starts_with("tests/errors/keep_going.comm:") && l.contains("error"))
+        .filter_map(|l| l.split(':').nth(1)?.parse().ok())
+        .collect();
+    // The import (4), the undefined name (8), FOO_BAR (12), BAD (14), the
+    // loop (18), the undefined macro (25) and the second typo (28).
+    assert_eq!(lines, [4, 8, 12, 14, 18, 25, 28], "{text}");
+    assert!(kinds.contains(&DiagKind::UnknownCommand), "{kinds:?}");
+    assert!(kinds.contains(&DiagKind::UnknownKeyword), "{kinds:?}");
+    insta::assert_snapshot!("keep_going", text);
+}

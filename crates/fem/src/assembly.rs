@@ -12,12 +12,12 @@ use aster_mesh::NodeId;
 
 /// The sparsity pattern of the model's stiffness: DOFs of nodes sharing an
 /// element are coupled. Built from node adjacency (node-major numbering, so
-/// every component of a node shares its column structure).
+/// every component of a node shares its column structure; a node's block
+/// of rows holds all its components, whichever elements couple them).
 pub fn stiffness_pattern(model: &Model) -> Csc {
     let mesh = model.mesh();
     let dofs = model.dofs();
     let nd = dofs.len();
-    let ncomp = dofs.comps_per_node();
     let nnodes = mesh.node_count();
     // Node → cells incidence (CSR), then each node's sorted neighbours.
     let mut count = vec![0usize; nnodes + 1];
@@ -43,7 +43,7 @@ pub fn stiffness_pattern(model: &Model) -> Csc {
     }
     let mut col_ptr = Vec::with_capacity(nd + 1);
     col_ptr.push(0usize);
-    let mut row_idx: Vec<usize> = Vec::with_capacity(nd * 9 * ncomp);
+    let mut row_idx: Vec<usize> = Vec::with_capacity(nd * 9 * dofs.comps().len());
     let mut neigh: Vec<u32> = Vec::with_capacity(64);
     for node in 0..nnodes {
         let Some(first) = dofs.node_first(NodeId(node as u32)) else {
@@ -64,9 +64,10 @@ pub fn stiffness_pattern(model: &Model) -> Csc {
         let start = row_idx.len();
         for &m in &neigh {
             if let Some(f) = dofs.node_first(NodeId(m)) {
-                row_idx.extend(f..f + ncomp);
+                row_idx.extend(f..f + dofs.node_comps(NodeId(m)).len());
             }
         }
+        let ncomp = dofs.node_comps(NodeId(node as u32)).len();
         let end = row_idx.len();
         col_ptr.push(end);
         for _ in 1..ncomp {
@@ -175,7 +176,6 @@ fn scatter_columns(
     let mut hooke: Option<(Elastic, Hypothesis, [[f64; 6]; 6])> = None;
     let mut buf = vec![0.0; MAX_EL_DOFS * MAX_EL_DOFS];
     let mut dofs = Vec::with_capacity(MAX_EL_DOFS);
-    let ncomp = model.dofs().comps_per_node();
     for (idx, el) in model.elements().iter().enumerate() {
         if matches!(el.kind, ElementKind::Boundary) {
             continue;
@@ -219,7 +219,7 @@ fn scatter_columns(
                     |m| FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell))),
                 )?
             }
-            ElementKind::Spring { .. } => {
+            ElementKind::Spring { .. } | ElementKind::Shell { .. } => {
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;
                 };
@@ -227,6 +227,7 @@ fn scatter_columns(
             }
             ElementKind::Boundary => continue,
         };
+        let ncomp = model.element_comps(el.cell);
         let nodes = &mesh.cell(el.cell).nodes;
         if dofs.len() == ndof && ndof == nodes.len() * ncomp && nodes.len() <= MAX_EL_NODES {
             scatter_by_node_blocks(k, &cols, values, &dofs, ncomp, &buf[..ndof * ndof]);
@@ -439,7 +440,10 @@ mod tests {
                 },
             })
             .collect();
-        let model = Model::new(mesh, elements).unwrap();
+        check_model_against_dense(Model::new(mesh, elements).unwrap());
+    }
+
+    fn check_model_against_dense(model: Model) {
         let k = assemble_stiffness(&model).unwrap();
         let n = model.dofs().len();
         let mut dense = vec![0.0; n * n];
@@ -507,5 +511,63 @@ mod tests {
             (CellType::HEXA8, vec![1, 2, 5, 4, 7, 8, 11, 10]),
         ];
         check_against_dense(mesh(3, coords, cells), Hypothesis::Solid3D);
+    }
+
+    /// A solid and a shell sharing nodes: the shell's nodes carry six
+    /// components, the others three; the solid uses the translations of the
+    /// shared nodes, the shell all six; the assembly equals the dense sum.
+    #[test]
+    fn shells_beside_solids_number_rotations_on_their_nodes_only() {
+        let mut coords = Vec::new();
+        for z in [0.0, 1.0] {
+            for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+                coords.push([x + 0.1 * z, y, z]);
+            }
+        }
+        let m = mesh(
+            3,
+            coords,
+            vec![
+                (CellType::HEXA8, vec![0, 1, 2, 3, 4, 5, 6, 7]),
+                (CellType::QUAD4, vec![4, 5, 6, 7]),
+            ],
+        );
+        let material = Elastic::new(2e5, 0.3).unwrap();
+        let model = Model::new(
+            m,
+            vec![
+                Element {
+                    cell: CellId(0),
+                    kind: ElementKind::Continuum {
+                        hypothesis: Hypothesis::Solid3D,
+                        material,
+                    },
+                },
+                Element {
+                    cell: CellId(1),
+                    kind: ElementKind::Shell {
+                        material,
+                        section: crate::dkt::ShellSection::new(0.05),
+                    },
+                },
+            ],
+        )
+        .unwrap();
+        let dofs = model.dofs();
+        assert_eq!(dofs.len(), 4 * 3 + 4 * 6);
+        assert_eq!(dofs.node_comps(NodeId(0)).len(), 3);
+        assert_eq!(dofs.node_comps(NodeId(4)), &crate::dof::Comp::ALL);
+        assert_eq!(
+            dofs.index(crate::dof::Dof::new(NodeId(0), crate::dof::Comp::DRX)),
+            None
+        );
+        assert_eq!(model.element_comps(CellId(0)), 3);
+        assert_eq!(model.element_comps(CellId(1)), 6);
+        let solid = crate::element::element_dofs(&model, CellId(0));
+        assert_eq!(solid.len(), 24);
+        let first4 = dofs.node_first(NodeId(4)).unwrap();
+        assert_eq!(&solid[12..15], &[first4, first4 + 1, first4 + 2]);
+        assert_eq!(crate::element::element_dofs(&model, CellId(1)).len(), 24);
+        check_model_against_dense(model);
     }
 }

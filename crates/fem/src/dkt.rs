@@ -26,9 +26,9 @@
 //! frame (`ANGL_REP`/`VECTEUR` of `CARA_ELEM/COQUE`, by default the
 //! projection of global X on the facet), a rotation left to the caller.
 //!
-//! Numerics only: no keyword is read here; the runner (not yet wired, see
-//! `docs/fem.md`) maps `AFFE_MODELE/MODELISATION='DKT'` and
-//! `AFFE_CARA_ELEM/COQUE` onto [`ShellSection`].
+//! Numerics only: no keyword is read here; the runner maps
+//! `AFFE_MODELE/MODELISATION='DKT'` and `AFFE_CARA_ELEM/COQUE` onto
+//! [`crate::model::ElementKind::Shell`] and [`ShellSection`].
 
 use crate::material::Elastic;
 use crate::shape::{rigi_scheme, GaussPoint};

@@ -80,14 +80,23 @@ impl fmt::Display for Dof {
 }
 
 /// The numbering of the displacement unknowns: only nodes carried by an
-/// element of the model get DOFs, each with the model's components (DX DY in
-/// plane problems, DX DY DZ in 3D). Numbering is node-major, so the DOFs of a
-/// node are contiguous.
+/// element of the model get DOFs. Each numbered node has its own component
+/// set, which always begins with the model's translations (DX DY in plane
+/// problems, DX DY DZ in 3D): the nodes of continuum elements have only
+/// those, the nodes of shell elements the rotations DRX DRY DRZ after them.
+/// Numbering is node-major, so the DOFs of a node are contiguous and an
+/// element that uses the first `k` components of its nodes finds them at
+/// `node_first(n)..node_first(n) + k`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DofNumbering {
+    /// The translations every numbered node carries first.
     comps: Vec<Comp>,
+    /// The component sets of the nodes (`sets[0]` is `comps`).
+    sets: Vec<Vec<Comp>>,
     /// First DOF index of each mesh node, `u32::MAX` when the node has none.
     node_first: Vec<u32>,
+    /// Index in `sets` of each numbered node's components.
+    node_set: Vec<u8>,
     dofs: Vec<Dof>,
 }
 
@@ -96,19 +105,31 @@ const NONE: u32 = u32::MAX;
 impl DofNumbering {
     /// Numbers `comps` on every node with `carried[node] == true`, in node order.
     pub fn new(comps: &[Comp], carried: &[bool]) -> DofNumbering {
-        let mut node_first = vec![NONE; carried.len()];
+        let sets: Vec<Option<u8>> = carried.iter().map(|&c| c.then_some(0)).collect();
+        DofNumbering::per_node(vec![comps.to_vec()], &sets)
+    }
+
+    /// Numbers, on each node with `set[node] = Some(s)`, the components
+    /// `sets[s]`, in node order. Every set must begin with `sets[0]` (the
+    /// translations), so that an element using only those finds them first.
+    pub fn per_node(sets: Vec<Vec<Comp>>, set: &[Option<u8>]) -> DofNumbering {
+        let mut node_first = vec![NONE; set.len()];
+        let mut node_set = vec![0u8; set.len()];
         let mut dofs = Vec::new();
-        for (n, &c) in carried.iter().enumerate() {
-            if c {
+        for (n, s) in set.iter().enumerate() {
+            if let Some(s) = *s {
                 node_first[n] = dofs.len() as u32;
-                for &comp in comps {
+                node_set[n] = s;
+                for &comp in &sets[s as usize] {
                     dofs.push(Dof::new(NodeId(n as u32), comp));
                 }
             }
         }
         DofNumbering {
-            comps: comps.to_vec(),
+            comps: sets.first().cloned().unwrap_or_default(),
+            sets,
             node_first,
+            node_set,
             dofs,
         }
     }
@@ -122,9 +143,18 @@ impl DofNumbering {
         self.dofs.is_empty()
     }
 
-    /// Components carried by every numbered node.
+    /// The translations, which every numbered node carries first.
     pub fn comps(&self) -> &[Comp] {
         &self.comps
+    }
+
+    /// The components of a node, in their numbering order (empty when the
+    /// node carries no element).
+    pub fn node_comps(&self, node: NodeId) -> &[Comp] {
+        match self.node_first.get(node.0 as usize) {
+            Some(&f) if f != NONE => &self.sets[self.node_set[node.0 as usize] as usize],
+            _ => &[],
+        }
     }
 
     /// All DOFs in index order.
@@ -137,13 +167,16 @@ impl DofNumbering {
     }
 
     /// Index of a DOF, `None` when the node carries no element or the
-    /// component is not part of the model.
+    /// component is not one of the node's.
     pub fn index(&self, dof: Dof) -> Option<usize> {
         let first = *self.node_first.get(dof.node.0 as usize)?;
         if first == NONE {
             return None;
         }
-        let k = self.comps.iter().position(|&c| c == dof.comp)?;
+        let k = self
+            .node_comps(dof.node)
+            .iter()
+            .position(|&c| c == dof.comp)?;
         Some(first as usize + k)
     }
 
@@ -166,8 +199,8 @@ impl DofNumbering {
         self.node_first(node).is_some()
     }
 
-    /// Number of components per node.
-    pub fn comps_per_node(&self) -> usize {
-        self.comps.len()
+    /// Whether some node carries more than the translations (rotations).
+    pub fn has_rotations(&self) -> bool {
+        self.sets.len() > 1
     }
 }

@@ -18,7 +18,8 @@ pub struct GaussData {
     pub x: [f64; 3],
 }
 
-/// DOF indices of an element's nodes (node-major, model components).
+/// DOF indices of an element's nodes (node-major: the first
+/// [`Model::element_comps`] components of each node).
 pub fn element_dofs(model: &Model, cell: CellId) -> Vec<usize> {
     let mut v = Vec::new();
     element_dofs_into(model, cell, &mut v);
@@ -28,7 +29,7 @@ pub fn element_dofs(model: &Model, cell: CellId) -> Vec<usize> {
 /// [`element_dofs`] into a reused buffer.
 pub fn element_dofs_into(model: &Model, cell: CellId, v: &mut Vec<usize>) {
     let nodes = &model.mesh().cell(cell).nodes;
-    let ncomp = model.dofs().comps_per_node();
+    let ncomp = model.element_comps(cell);
     for &n in nodes {
         // Every node of a model element is numbered (Model::new).
         let first = model.dofs().node_first(n).unwrap_or(0);
@@ -269,6 +270,33 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
             spring_stiffness(model.mesh(), el.cell, stiffness, *frame).0,
         )),
         ElementKind::Boundary => Ok(None),
+        ElementKind::Shell { material, section } => {
+            shell_stiffness(model.mesh(), el.cell, material, section)
+                .map(Some)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+        }
+    }
+}
+
+/// The global stiffness of a shell facet (DKT on TRIA3, DKQ on QUAD4),
+/// node-major DX DY DZ DRX DRY DRZ.
+pub fn shell_stiffness(
+    mesh: &Mesh,
+    cell: CellId,
+    material: &Elastic,
+    section: &crate::dkt::ShellSection,
+) -> Result<DMatrix<f64>, String> {
+    let c = mesh.cell(cell);
+    match c.ty {
+        CellType::TRIA3 => {
+            let xyz = [0, 1, 2].map(|i| mesh.coord(c.nodes[i]));
+            crate::dkt::stiffness(&xyz, material, section)
+        }
+        CellType::QUAD4 => {
+            let xyz = [0, 1, 2, 3].map(|i| mesh.coord(c.nodes[i]));
+            crate::dkq::stiffness(&xyz, material, section)
+        }
+        ty => Err(format!("no shell element on a {}", ty.name())),
     }
 }
 

@@ -9,6 +9,7 @@
 //! springs. A combination of modes that no condition sees is a mechanism;
 //! its DOFs are reported.
 
+use crate::dof::Comp;
 use crate::material::Hypothesis;
 use crate::model::{ElementKind, Model};
 use aster_mesh::CellType;
@@ -28,7 +29,7 @@ fn find(p: &mut [usize], mut i: usize) -> usize {
 pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
     let mesh = model.mesh();
     let dofs = model.dofs();
-    let ncomp = dofs.comps_per_node();
+    let ncomp = dofs.comps().len();
     let nn = mesh.node_count();
     let mut parent: Vec<usize> = (0..nn).collect();
     let union = |p: &mut Vec<usize>, a: usize, b: usize| {
@@ -41,7 +42,7 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
     for el in model.elements() {
         let c = mesh.cell(el.cell);
         match &el.kind {
-            ElementKind::Continuum { .. } => {
+            ElementKind::Continuum { .. } | ElementKind::Shell { .. } => {
                 for w in c.nodes.windows(2) {
                     union(&mut parent, w[0].0 as usize, w[1].0 as usize);
                 }
@@ -143,7 +144,9 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
                 }
             }
         };
-        let value = |m: &str, n: usize, c: usize| -> f64 {
+        // Rotation components (shell nodes): the mode's rotation, 1/size
+        // about its axis as the translations above are scaled.
+        let value = |m: &str, n: usize, c: Comp| -> f64 {
             let p = mesh.coords[n];
             let (x, y, z) = (
                 (p[0] - ctr[0]) / size,
@@ -151,13 +154,14 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
                 (p[2] - ctr[2]) / size,
             );
             match (m, c) {
-                ("TX", 0) | ("TY", 1) | ("TZ", 2) => 1.,
-                ("RZ", 0) => -y,
-                ("RZ", 1) => x,
-                ("RX", 1) => -z,
-                ("RX", 2) => y,
-                ("RY", 0) => z,
-                ("RY", 2) => -x,
+                ("TX", Comp::DX) | ("TY", Comp::DY) | ("TZ", Comp::DZ) => 1.,
+                ("RZ", Comp::DX) => -y,
+                ("RZ", Comp::DY) => x,
+                ("RX", Comp::DY) => -z,
+                ("RX", Comp::DZ) => y,
+                ("RY", Comp::DX) => z,
+                ("RY", Comp::DZ) => -x,
+                ("RX", Comp::DRX) | ("RY", Comp::DRY) | ("RZ", Comp::DRZ) => 1. / size,
                 _ => 0.,
             }
         };
@@ -168,9 +172,8 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
             let scale = row.iter().fold(0.0f64, |m, &(_, c)| m.max(c.abs()));
             for &(i, c) in row.iter() {
                 let d = dofs.dof(i);
-                let comp = dofs.comps().iter().position(|&x| x == d.comp).unwrap_or(0);
                 for (mi, m) in modes.iter().enumerate() {
-                    g[(r, mi)] += c / scale * value(m, d.node.0 as usize, comp);
+                    g[(r, mi)] += c / scale * value(m, d.node.0 as usize, d.comp);
                 }
             }
         }
@@ -182,7 +185,16 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
             .iter()
             .fold(0.0f64, |m: f64, v: &f64| m.max(v.abs()));
         let tol = 1e-10 * maxev.max(1.0);
-        let mut free = vec![false; nodes.len() * ncomp];
+        // The part's DOFs, node-major (each node with its own components).
+        let part_dofs: Vec<usize> = nodes
+            .iter()
+            .flat_map(|&n| {
+                let node = aster_mesh::NodeId(n as u32);
+                let first = dofs.node_first(node).unwrap_or(0);
+                first..first + dofs.node_comps(node).len()
+            })
+            .collect();
+        let mut free = vec![false; part_dofs.len()];
         let mut any = false;
         for (e, &ev) in eig.eigenvalues.iter().enumerate() {
             if ev.abs() > tol {
@@ -190,18 +202,15 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
             }
             any = true;
             let v = eig.eigenvectors.column(e);
-            let field: Vec<f64> = nodes
+            let field: Vec<f64> = part_dofs
                 .iter()
-                .flat_map(|&n| {
-                    let v = &v;
-                    let modes = &modes;
-                    (0..ncomp).map(move |c| {
-                        modes
-                            .iter()
-                            .enumerate()
-                            .map(|(mi, m)| v[mi] * value(m, n, c))
-                            .sum::<f64>()
-                    })
+                .map(|&i| {
+                    let d = dofs.dof(i);
+                    modes
+                        .iter()
+                        .enumerate()
+                        .map(|(mi, m)| v[mi] * value(m, d.node.0 as usize, d.comp))
+                        .sum::<f64>()
                 })
                 .collect();
             let fmax = field.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -212,12 +221,9 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
             }
         }
         if any {
-            for (a, &n) in nodes.iter().enumerate() {
-                for c in 0..ncomp {
-                    if free[a * ncomp + c] {
-                        let first = dofs.node_first(aster_mesh::NodeId(n as u32)).unwrap_or(0);
-                        out.push(dofs.dof(first + c).describe(mesh));
-                    }
+            for (k, &i) in part_dofs.iter().enumerate() {
+                if free[k] {
+                    out.push(dofs.dof(i).describe(mesh));
                 }
             }
         }

@@ -44,6 +44,7 @@ pub mod strain;
 pub mod unilateral;
 
 pub use behaviour::{Behaviours, CurveEnd, Lemaitre, VonMises};
+pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};
 pub use dynamics::{DynamicNonLinear, Scheme};
 pub use error::FemError;

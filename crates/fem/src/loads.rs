@@ -143,9 +143,14 @@ impl Loads {
                     mesh.node_names.get(dof.node.0 as usize).map(String::as_str).unwrap_or("?")
                 )));
             }
-            let comps: Vec<&str> = model.dofs().comps().iter().map(|c| c.name()).collect();
+            let comps: Vec<&str> = model
+                .dofs()
+                .node_comps(dof.node)
+                .iter()
+                .map(|c| c.name())
+                .collect();
             Err(FemError::Model(format!(
-                "{what} on {}: the model's nodes carry only {}",
+                "{what} on {}: this node of the model carries only {}",
                 dof.describe(mesh),
                 comps.join(", ")
             )))
@@ -182,6 +187,12 @@ impl Loads {
                             cell.0 + 1
                         )));
                     };
+                    if model.element_comps(*cell) == 6 {
+                        return Err(FemError::Model(format!(
+                            "distributed load on shell cell {}: pressures and forces on shell elements are not supported yet",
+                            model.cell_name(*cell)
+                        )));
+                    }
                     let expected_dim = model.dim() - 1;
                     if c.ty.dim() as usize != expected_dim || !shape::supported(c.ty) {
                         return Err(FemError::Model(format!(

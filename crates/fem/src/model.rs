@@ -33,6 +33,13 @@ pub enum ElementKind {
     /// A cell of the model that carries no stiffness (e.g. a boundary SEG2
     /// of a D_PLAN model, used by edge loads); its nodes get DOFs.
     Boundary,
+    /// A thin-shell facet (`DKT`: [`crate::dkt`] on TRIA3, [`crate::dkq`]
+    /// on QUAD4), linear elastic; its nodes get the rotations DRX DRY DRZ
+    /// beside the translations. 3D models only.
+    Shell {
+        material: Elastic,
+        section: crate::dkt::ShellSection,
+    },
 }
 
 /// One element: a mesh cell and what it carries.
@@ -53,6 +60,8 @@ pub struct Model {
     /// Cells integrated with code_aster's under-integrated (`_SI`)
     /// stiffness family ([`shape::reduced_scheme`]).
     reduced: std::collections::BTreeSet<CellId>,
+    /// Cells carrying a shell element: they use six components per node.
+    shells: std::collections::BTreeSet<CellId>,
 }
 
 impl Model {
@@ -68,6 +77,7 @@ impl Model {
         let elements = normalise(&mesh, elements);
         let mut hypothesis: Option<Hypothesis> = None;
         let mut spring_dim: Option<usize> = None;
+        let mut shell = false;
         let cell_name = |id: CellId| {
             mesh.cell_names
                 .get(id.0 as usize)
@@ -186,6 +196,30 @@ impl Model {
                     }
                 }
                 ElementKind::Boundary => {}
+                ElementKind::Shell { section, .. } => {
+                    if !matches!(cell.ty, CellType::TRIA3 | CellType::QUAD4) {
+                        return Err(FemError::Model(format!(
+                            "cell {} is a {}: the DKT shell element exists on TRIA3 and QUAD4 cells only",
+                            cell_name(el.cell),
+                            cell.ty.name()
+                        )));
+                    }
+                    if !(section.thickness > 0. && section.thickness.is_finite()) {
+                        return Err(FemError::Model(format!(
+                            "shell on cell {} has thickness {}: it must be positive",
+                            cell_name(el.cell),
+                            section.thickness
+                        )));
+                    }
+                    if !(section.drilling > 0. && section.drilling.is_finite()) {
+                        return Err(FemError::Model(format!(
+                            "shell on cell {} has drilling coefficient (COEF_RIGI_DRZ) {}: only code_aster's positive drilling spring is implemented",
+                            cell_name(el.cell),
+                            section.drilling
+                        )));
+                    }
+                    shell = true;
+                }
             }
             if let ElementKind::Continuum { .. } = el.kind {
                 if !shape::supported(cell.ty) {
@@ -208,20 +242,37 @@ impl Model {
             (Some(h), _) => h.dim(),
             (None, Some(d)) => d,
             (None, None) => {
-                if mesh.dim >= 3 {
+                if mesh.dim >= 3 || shell {
                     3
                 } else {
                     2
                 }
             }
         };
-        let mut carried = vec![false; mesh.coords.len()];
+        if shell && dim != 3 {
+            return Err(FemError::Model(format!(
+                "shell elements (DKT) in a {dim}D model: shells need a 3D model"
+            )));
+        }
+        // Component set per node: 0 the translations, 1 with the rotations
+        // of the shells' nodes.
+        let mut set: Vec<Option<u8>> = vec![None; mesh.coords.len()];
+        let mut shells = std::collections::BTreeSet::new();
         for el in &elements {
+            let rot = matches!(el.kind, ElementKind::Shell { .. });
+            if rot {
+                shells.insert(el.cell);
+            }
             for n in &mesh.cells[el.cell.0 as usize].nodes {
-                carried[n.0 as usize] = true;
+                let s = &mut set[n.0 as usize];
+                *s = Some(s.unwrap_or(0).max(rot as u8));
             }
         }
-        let dofs = DofNumbering::new(Comp::translations(dim), &carried);
+        let mut sets = vec![Comp::translations(dim).to_vec()];
+        if shell {
+            sets.push(Comp::ALL.to_vec());
+        }
+        let dofs = DofNumbering::per_node(sets, &set);
         Ok(Model {
             mesh,
             elements,
@@ -229,6 +280,7 @@ impl Model {
             dim,
             hypothesis,
             reduced: Default::default(),
+            shells,
         })
     }
 
@@ -257,6 +309,22 @@ impl Model {
             self.reduced.insert(cell);
         }
         Ok(self)
+    }
+
+    /// How many components per node the element on `cell` uses: the
+    /// first ones of each node's set (six on a shell, the translations
+    /// otherwise).
+    pub fn element_comps(&self, cell: CellId) -> usize {
+        if self.shells.contains(&cell) {
+            6
+        } else {
+            self.dim
+        }
+    }
+
+    /// Whether the model has shell elements (nodes with rotations).
+    pub fn has_shells(&self) -> bool {
+        !self.shells.is_empty()
     }
 
     /// Whether a cell is under-integrated ([`Model::with_reduced_integration`]).

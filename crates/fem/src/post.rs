@@ -3,7 +3,7 @@
 //! (SIGM_ELNO/SIEF_ELNO), nodal averages (SIGM_NOEU) and equivalent stresses
 //! (SIEQ).
 
-use crate::element::{element_dofs, model_gauss, spring_stiffness};
+use crate::element::{element_dofs, model_gauss, shell_stiffness, spring_stiffness};
 use crate::error::FemError;
 use crate::loads::Loads;
 use crate::model::{ElementKind, Model};
@@ -47,6 +47,104 @@ impl NodalValues {
 
 fn cell_error(model: &Model, cell: CellId, m: String) -> FemError {
     FemError::Model(format!("cell {} is {m}", model.cell_name(cell)))
+}
+
+/// code_aster's `EFGE` components of a DKT triangle (`MEDKTR3`): the
+/// membrane forces, moments and transverse shears.
+const EFGE_TRIA: [&str; 8] = ["NXX", "NYY", "NXY", "MXX", "MYY", "MXY", "QX", "QY"];
+
+/// Generalised efforts at the Gauss points (`EFGE_ELGA`) of the shell
+/// elements, in the user's frame of each facet: its x axis is the
+/// projection on the facet of the global direction `direction(cell)`
+/// (code_aster's `ANGL_REP`/`VECTEUR`, by default global X; `coqrep`), its
+/// z axis the facet's normal. NXX NYY NXY MXX MYY MXY, and QX QY on
+/// triangles (the quadrangle's shears are not computed here). A direction
+/// normal to a facet is an error naming the cell (code_aster's
+/// `PLATE1_40`).
+pub fn efge_elga(
+    model: &Model,
+    u: &[f64],
+    direction: &dyn Fn(CellId) -> [f64; 3],
+) -> Result<Vec<CellValues>, FemError> {
+    let mut out = Vec::new();
+    for el in model.elements() {
+        let ElementKind::Shell { material, section } = &el.kind else {
+            continue;
+        };
+        let dofs = element_dofs(model, el.cell);
+        let c = model.mesh().cell(el.cell);
+        let err = |m: String| cell_error(model, el.cell, m);
+        let (pgl, efforts, names): (_, Vec<[f64; 8]>, &[&str]) = match c.ty {
+            CellType::TRIA3 => {
+                let xyz = [0, 1, 2].map(|i| model.mesh().coord(c.nodes[i]));
+                let mut ue = [0.0; 18];
+                for (a, &i) in dofs.iter().enumerate() {
+                    ue[a] = u[i];
+                }
+                let facet = crate::dkt::Facet::new(&xyz).map_err(err)?;
+                let e = crate::dkt::efforts(&xyz, material, section, &ue).map_err(err)?;
+                (facet.pgl, e, &EFGE_TRIA[..])
+            }
+            CellType::QUAD4 => {
+                let xyz = [0, 1, 2, 3].map(|i| model.mesh().coord(c.nodes[i]));
+                let mut ue = [0.0; 24];
+                for (a, &i) in dofs.iter().enumerate() {
+                    ue[a] = u[i];
+                }
+                let quad = crate::dkq::Quad::new(&xyz).map_err(err)?;
+                let e = crate::dkq::efforts(&xyz, material, section, &ue).map_err(err)?;
+                let e = e
+                    .into_iter()
+                    .map(|x| [x[0], x[1], x[2], x[3], x[4], x[5], 0., 0.])
+                    .collect();
+                (quad.pgl, e, &EFGE_TRIA[..6])
+            }
+            _ => continue,
+        };
+        // Rotation of the in-plane tensors from pgl's (x, y) to the user's
+        // axes (`coqrep`): c, s are the cosine and sine of the user's x
+        // axis in pgl.
+        let d = nalgebra::Vector3::from(direction(el.cell));
+        let n = pgl.row(2).transpose();
+        let proj = d - n * d.dot(&n);
+        let norm = proj.norm();
+        if norm <= f64::EPSILON * d.norm().max(1.0) {
+            return Err(cell_error(
+                model,
+                el.cell,
+                "a shell whose reference direction (ANGL_REP/VECTEUR) is normal to its plane: the efforts' frame is undefined".into(),
+            ));
+        }
+        let proj = proj / norm;
+        let (c0, s0) = (
+            pgl.row(0).transpose().dot(&proj),
+            pgl.row(1).transpose().dot(&proj),
+        );
+        let cs = c0 / (c0 * c0 + s0 * s0).sqrt();
+        let sn = s0 / (cs * cs + s0 * s0).sqrt();
+        let rot = |xx: f64, yy: f64, xy: f64| {
+            (
+                cs * cs * xx + sn * sn * yy + 2. * cs * sn * xy,
+                sn * sn * xx + cs * cs * yy - 2. * cs * sn * xy,
+                -cs * sn * xx + cs * sn * yy + (cs * cs - sn * sn) * xy,
+            )
+        };
+        let points = efforts
+            .iter()
+            .map(|e| {
+                let (nxx, nyy, nxy) = rot(e[0], e[1], e[2]);
+                let (mxx, myy, mxy) = rot(e[3], e[4], e[5]);
+                let (qx, qy) = (cs * e[6] + sn * e[7], -sn * e[6] + cs * e[7]);
+                [nxx, nyy, nxy, mxx, myy, mxy, qx, qy][..names.len()].to_vec()
+            })
+            .collect();
+        out.push(CellValues {
+            cell: el.cell,
+            names: names.to_vec(),
+            points,
+        });
+    }
+    Ok(out)
 }
 
 /// Stresses at Gauss points (SIEF_ELGA) for continuum elements, and the
@@ -93,7 +191,9 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
                     points: vec![f],
                 });
             }
-            ElementKind::Boundary => {}
+            // Shells' stresses are by layer (code_aster's sub-points), not
+            // computed: their efforts are [`efge_elga`]'s.
+            ElementKind::Boundary | ElementKind::Shell { .. } => {}
         }
     }
     Ok(out)
@@ -124,6 +224,11 @@ pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
             ElementKind::Spring { stiffness, frame } => {
                 let (k, _) = spring_stiffness(model.mesh(), el.cell, stiffness, *frame);
                 k * ue
+            }
+            ElementKind::Shell { material, section } => {
+                shell_stiffness(model.mesh(), el.cell, material, section)
+                    .map_err(|m| cell_error(model, el.cell, m))?
+                    * ue
             }
             ElementKind::Boundary => continue,
         };

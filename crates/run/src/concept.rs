@@ -29,6 +29,9 @@ pub enum Modelisation {
     Discrete2D,
     /// `DIS_T`: discrete translational elements in 3D.
     Discrete3D,
+    /// `DKT`: thin-shell facets (DKT on TRIA3, DKQ on QUAD4) with the
+    /// rotations DRX DRY DRZ on their nodes.
+    Dkt,
 }
 
 impl Modelisation {
@@ -40,6 +43,7 @@ impl Modelisation {
             "3D" => Modelisation::Solid3D,
             "2D_DIS_T" => Modelisation::Discrete2D,
             "DIS_T" => Modelisation::Discrete3D,
+            "DKT" => Modelisation::Dkt,
             _ => return None,
         })
     }
@@ -58,7 +62,7 @@ impl Modelisation {
         }
     }
 
-    pub const KEYWORDS: [&'static str; 10] = [
+    pub const KEYWORDS: [&'static str; 11] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -69,12 +73,13 @@ impl Modelisation {
         "C_PLAN_SI",
         "AXIS_SI",
         "3D_SI",
+        "DKT",
     ];
 
     /// Space dimension of the displacement.
     pub fn dim(self) -> usize {
         match self {
-            Modelisation::Solid3D | Modelisation::Discrete3D => 3,
+            Modelisation::Solid3D | Modelisation::Discrete3D | Modelisation::Dkt => 3,
             _ => 2,
         }
     }
@@ -94,9 +99,17 @@ pub struct ModelDef {
     /// Cells of an under-integrated modelisation (`_SI`): QUAD8, HEXA20,
     /// TETRA10 integrated with code_aster's reduced stiffness family.
     pub reduced: std::collections::BTreeSet<CellId>,
+    /// Per mesh node, whether it carries the rotations DRX DRY DRZ (a
+    /// node of a shell cell).
+    pub rotations: Vec<bool>,
 }
 
 impl ModelDef {
+    /// Whether the model has shell elements (`DKT`).
+    pub fn has_shells(&self) -> bool {
+        self.rotations.iter().any(|&r| r)
+    }
+
     pub fn dim(&self) -> usize {
         self.cells.values().map(|m| m.dim()).max().unwrap_or(2)
     }
@@ -171,6 +184,8 @@ pub struct DiscreteMassDef {
 pub struct CaraElem {
     pub model: u32,
     pub discrete: Vec<DiscreteStiffness>,
+    /// `COQUE`: the shells' sections and frames.
+    pub shells: Vec<crate::commands::cara_coque::ShellCara>,
     /// Discrete masses (DYNA_NON_LINE).
     pub masses: Vec<DiscreteMassDef>,
 }

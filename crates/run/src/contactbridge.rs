@@ -711,8 +711,36 @@ pub fn discrete_friction_source(
 ) -> Result<aster_contact::friction::DiscreteFriction, ExecError> {
     let def = definition(ex, kw)?;
     let dim = problem_dim(ex, mesh, kw)?;
+    refuse_fictitious_gap_in_2d(ex, kw, dim)?;
     aster_contact::friction::DiscreteFriction::new_in(&def, mesh, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
+}
+
+/// Penalised discrete friction with a fictitious gap (`DIST_ESCL`,
+/// `DIST_MAIT`) in a plane model: in ssnv503b the first increment, which
+/// closes a 2-unit fictitious gap against E_N = 1e7, does not converge
+/// here (RESI_GLOB_RELA stays near 1) and is cut, where code_aster's Newton
+/// converges; friction being path-dependent, the displacements then end
+/// 3e-6 off. The same scene in 3D (ssnv503f) and without the fictitious
+/// gap (ssnv503d) match: refused in 2D until the failing iterations are
+/// understood.
+fn refuse_fictitious_gap_in_2d(ex: &Executor, kw: &Keywords, dim: usize) -> Result<(), ExecError> {
+    if dim >= 3 {
+        return Ok(());
+    }
+    for occ in kw.factor("ZONE") {
+        for key in ["DIST_ESCL", "DIST_MAIT"] {
+            if let Some(k) = occ.keyword(key).filter(|k| !k.defaulted) {
+                return Err(ex.unsupported(
+                    &format!(
+                        "DEFI_CONTACT/ZONE/{key} with penalised discrete friction in a plane model (the increment closing the fictitious gap does not converge here and is cut where code_aster's converges: the friction path then differs, ssnv503b 3e-6 off; 3D matches)"
+                    ),
+                    k.span,
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The continuous frictional contact elements of DEFI_CONTACT keywords

@@ -32,6 +32,8 @@ pub struct FemRun {
     /// The densities and discrete masses of the model (`None`: they could
     /// not be gathered), for the kinetic energy (`POST_ELEM/ENER_CIN`).
     pub mass: Option<aster_fem::MassData>,
+    /// The element characteristics (the shells' frames of `EFGE_ELGA`).
+    pub cara: Option<Rc<CaraElem>>,
 }
 
 fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
@@ -44,7 +46,7 @@ fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
         Modelisation::PlaneStress => Some(Hypothesis::PlaneStress),
         Modelisation::Axisymmetric => Some(Hypothesis::Axisymmetric),
         Modelisation::Solid3D => Some(Hypothesis::Solid3D),
-        Modelisation::Discrete2D | Modelisation::Discrete3D => None,
+        Modelisation::Discrete2D | Modelisation::Discrete3D | Modelisation::Dkt => None,
     }
 }
 
@@ -63,24 +65,47 @@ pub fn build_model(
             }
         }
     }
+    let mut shells: BTreeMap<aster_mesh::CellId, aster_fem::ShellSection> = BTreeMap::new();
+    if let Some(c) = cara {
+        for s in &c.shells {
+            for &cell in &s.cells {
+                shells.insert(cell, s.section);
+            }
+        }
+    }
+    let material_of = |cell: aster_mesh::CellId| -> Result<Elastic, ExecError> {
+        let mat = materials.cells.get(&cell).ok_or_else(|| {
+            ExecError::new(format!(
+                "cell {} of the model has no material: assign one with AFFE_MATERIAU",
+                crate::select::cell_name(mesh, cell)
+            ))
+        })?;
+        Elastic::new(mat.young, mat.poisson).map_err(|e| fem_err("DEFI_MATERIAU", e))
+    };
     let mut elements = Vec::with_capacity(model.cells.len());
     for (&cell, &m) in &model.cells {
         let ty = mesh.cell(cell).ty;
+        if m == Modelisation::Dkt {
+            let section = shells.get(&cell).copied().ok_or_else(|| {
+                ExecError::new(format!(
+                    "cell {} carries a DKT shell element but no section: give AFFE_CARA_ELEM/COQUE with EPAIS (and CARA_ELEM to the solver)",
+                    crate::select::cell_name(mesh, cell)
+                ))
+            })?;
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Shell {
+                    material: material_of(cell)?,
+                    section,
+                },
+            });
+            continue;
+        }
         let kind = match hypothesis(m) {
-            Some(h) if ty.dim() as usize == h.dim() => {
-                let mat = materials.cells.get(&cell).ok_or_else(|| {
-                    ExecError::new(format!(
-                        "cell {} of the model has no material: assign one with AFFE_MATERIAU",
-                        crate::select::cell_name(mesh, cell)
-                    ))
-                })?;
-                let material = Elastic::new(mat.young, mat.poisson)
-                    .map_err(|e| fem_err("DEFI_MATERIAU", e))?;
-                ElementKind::Continuum {
-                    hypothesis: h,
-                    material,
-                }
-            }
+            Some(h) if ty.dim() as usize == h.dim() => ElementKind::Continuum {
+                hypothesis: h,
+                material: material_of(cell)?,
+            },
             Some(_) => ElementKind::Boundary,
             None => match springs.get(&cell) {
                 Some(d) => ElementKind::Spring {
@@ -978,6 +1003,7 @@ pub fn solve(
             plastic,
             behaviours,
             mass: crate::dyna::mass_data(&mesh, setup).ok().map(|(m, _)| m),
+            cara: setup.cara.clone(),
         }),
     ))
 }
@@ -1117,6 +1143,11 @@ pub fn calc_champ(
                     }
                     Field::Nodal(nodal_from_dofs(model, &r))
                 }
+                "EFGE_ELGA" if model.has_shells() => Field::Elem(elem_field(
+                    ElemLocation::Gauss,
+                    &crate::shells::efge_elga(model, run.cara.as_deref(), u)
+                        .map_err(|e| fem_err("CALC_CHAMP", e))?,
+                )),
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))
                 }

@@ -31,6 +31,7 @@ pub mod program;
 pub mod progress;
 pub mod pyfmt;
 pub mod select;
+mod shells;
 pub mod solve;
 pub mod support;
 pub mod table;

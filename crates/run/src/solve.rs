@@ -369,6 +369,7 @@ pub(crate) fn parse_setup(
         None => None,
     };
     let behaviours = parse_behaviours(ex, cmd, kw, &model)?;
+    crate::shells::check_solve(ex, call, &model, &behaviours)?;
     if let Some(c) = &contact {
         check_contact_with_finite_strains(ex, c, &behaviours)?;
     }

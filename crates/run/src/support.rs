@@ -355,3 +355,84 @@ mod tests {
         assert_eq!(E, ["C"]);
     }
 }
+
+/// What `aster run` does with a command, or with one of its keyword paths
+/// (`"ZONE/ALGO_CONT"`, occurrence indices dropped), in a sentence for
+/// `aster explain`. Read from the same table as the refusals.
+pub fn describe(command: &str, path: &str) -> String {
+    let Some(c) = crate::commands::find(command) else {
+        return match command_hint(command) {
+            Some(h) => format!("{command} is refused before the run ({})", h.why),
+            None => format!("{command} is not executed yet: a case using it is refused before the run (aster check validates it)"),
+        };
+    };
+    let s = &c.support;
+    if path.is_empty() {
+        return format!(
+            "{command} is executed{}",
+            if s.reuse { "" } else { " (not with reuse=)" }
+        );
+    }
+    let covered = s.keywords.iter().any(|k| {
+        *k == path
+            || *k == "*"
+            || k.strip_suffix('*')
+                .is_some_and(|p| path.starts_with(p) && p.ends_with('/'))
+    });
+    if !covered {
+        return match s.hints.iter().find(|(p, _)| *p == path) {
+            Some((_, hint)) => format!("{command}/{path} is not supported yet ({hint})"),
+            None => format!(
+                "{command}/{path} is not supported yet: a case that writes it is refused before the run (its catalog default is accepted)"
+            ),
+        };
+    }
+    match s.values.iter().find(|v| v.path == path) {
+        Some(v) => {
+            let why = if v.why.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", v.why)
+            };
+            let values: Vec<String> = v.allowed.iter().map(|a| format!("'{a}'")).collect();
+            format!(
+                "{command}/{path} is supported with the values {}; others are refused before the run{why}",
+                values.join(", ")
+            )
+        }
+        None => {
+            let ruled = if s.rules.is_some() {
+                " (some combinations with other keywords are refused before the run)"
+            } else {
+                ""
+            };
+            format!("{command}/{path} is supported{ruled}")
+        }
+    }
+}
+
+#[cfg(test)]
+mod describe_tests {
+    use super::describe;
+
+    #[test]
+    fn describe_reads_the_support_table() {
+        assert_eq!(describe("FIN", ""), "FIN is executed");
+        assert!(
+            describe("DEFI_CONTACT", "ZONE/GROUP_MA_ESCL").ends_with("is supported")
+                || describe("DEFI_CONTACT", "ZONE/GROUP_MA_ESCL").contains("is supported (")
+        );
+        let m = describe("AFFE_MODELE", "AFFE/MODELISATION");
+        assert!(
+            m.contains("supported with the values") && m.contains("'D_PLAN'"),
+            "{m}"
+        );
+        let n = describe("NOT_A_COMMAND_X", "");
+        assert!(n.contains("not executed yet"), "{n}");
+        let h = describe("MACR_ADAP_MAIL", "");
+        assert!(
+            h.contains("refused before the run (") && h.contains("HOMARD"),
+            "{h}"
+        );
+    }
+}

@@ -274,6 +274,14 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
             let fits = match modelisation {
                 Modelisation::Discrete2D | Modelisation::Discrete3D => ty.dim() <= 1,
                 Modelisation::Solid3D => ty.dim() >= 2,
+                // code_aster's DKT elements: MEDKTR3, MEDKQU4 (its edge
+                // elements for FORCE_ARETE are not reproduced).
+                Modelisation::Dkt => {
+                    matches!(
+                        ty,
+                        aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4
+                    )
+                }
                 _ => (1..=2).contains(&ty.dim()),
             };
             if !fits {
@@ -328,10 +336,19 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
             ));
         }
     }
+    let mut rotations = vec![false; mesh.node_count()];
+    for (c, m) in &cells {
+        if *m == Modelisation::Dkt {
+            for n in &mesh.cell(*c).nodes {
+                rotations[n.0 as usize] = true;
+            }
+        }
+    }
     let model = ModelDef {
         mesh: mesh_ref.id,
         cells,
         reduced,
+        rotations,
     };
     store_result(ex, call, Concept::Model(Rc::new(model)))
 }
@@ -362,7 +379,28 @@ fn si_element(m: Modelisation, ty: aster_mesh::CellType) -> SiElement {
     }
 }
 
-/// What AFFE_CARA_ELEM reads (`crate::support`).
+/// The DISCRET keywords AFFE_CARA_ELEM reads.
+const CARA_DISCRET: [&str; 16] = [
+    "MODELE",
+    "INFO",
+    "DISCRET",
+    "DISCRET/GROUP_MA",
+    "DISCRET/MAILLE",
+    "DISCRET/CARA",
+    "DISCRET/VALE",
+    "DISCRET/REPERE",
+    "DISCRET/SYME",
+    "DISCRET_2D",
+    "DISCRET_2D/GROUP_MA",
+    "DISCRET_2D/MAILLE",
+    "DISCRET_2D/CARA",
+    "DISCRET_2D/VALE",
+    "DISCRET_2D/REPERE",
+    "DISCRET_2D/SYME",
+];
+
+/// What AFFE_CARA_ELEM reads (`crate::support`): DISCRET(_2D) here, COQUE
+/// in [`super::cara_coque`].
 pub(crate) const AFFE_CARA_ELEM: Support = Support {
     values: &[
         Values::listed(
@@ -373,25 +411,12 @@ pub(crate) const AFFE_CARA_ELEM: Support = Support {
             "DISCRET_2D/CARA",
             &["K_T_D_L", "K_T_D_N", "M_T_D_N", "M_T_N", "M_T_L"],
         ),
+        super::cara_coque::VALUES[0],
     ],
-    ..Support::keywords(&[
-        "MODELE",
-        "INFO",
-        "DISCRET",
-        "DISCRET/GROUP_MA",
-        "DISCRET/MAILLE",
-        "DISCRET/CARA",
-        "DISCRET/VALE",
-        "DISCRET/REPERE",
-        "DISCRET/SYME",
-        "DISCRET_2D",
-        "DISCRET_2D/GROUP_MA",
-        "DISCRET_2D/MAILLE",
-        "DISCRET_2D/CARA",
-        "DISCRET_2D/VALE",
-        "DISCRET_2D/REPERE",
-        "DISCRET_2D/SYME",
-    ])
+    ..Support::keywords(&crate::support::joined::<_, 25>(
+        &CARA_DISCRET,
+        &super::cara_coque::KEYWORDS,
+    ))
 };
 
 pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -401,6 +426,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let mesh = ex.mesh_by_id(model.mesh)?;
     let mut discrete = Vec::new();
     let mut masses = Vec::new();
+    let shells = super::cara_coque::shells(ex, kw, &mesh)?;
     for f in ["DISCRET", "DISCRET_2D"] {
         for occ in kw.factor(f) {
             let cara = occ.str("CARA").unwrap_or_default().to_string();
@@ -456,6 +482,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             model: model_ref.id,
             discrete,
             masses,
+            shells,
         })),
     )
 }

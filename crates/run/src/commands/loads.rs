@@ -32,11 +32,23 @@ pub(super) fn check_dof(
         )));
     }
     let dim = model.dim();
+    let rotations = model
+        .rotations
+        .get(node.0 as usize)
+        .copied()
+        .unwrap_or(false);
     let ok = match comp {
         "DX" | "DY" => true,
         "DZ" => dim == 3,
+        "DRX" | "DRY" | "DRZ" => rotations,
         _ => false,
     };
+    if !ok && model.has_shells() {
+        return Err(ExecError::new(format!(
+            "{what}: node {} has no component {comp} (only the nodes of shell cells carry DRX, DRY, DRZ)",
+            select::node_name(mesh, node)
+        )));
+    }
     if !ok {
         return Err(ExecError::new(format!(
             "{what}: the model has no component {comp} (a {dim}D model of translations)",
@@ -80,9 +92,8 @@ fn imposed_values(
 
 /// `DDL_IMPO/BLOCAGE`: zero on every degree of freedom of the kinds listed
 /// that the nodes carry — 'DEPLACEMENT': the translations of the model
-/// (DX, DY, and DZ in 3D); 'ROTATION': the rotations, which the continuum
-/// and translation-only discrete models here have none of (nothing to
-/// block, as code_aster blocks only the DOFs present).
+/// (DX, DY, and DZ in 3D); 'ROTATION': DRX DRY DRZ on the nodes of shell
+/// cells, nothing elsewhere (code_aster blocks only the DOFs present).
 fn blocked_in(
     ex: &Executor,
     occ: &Keywords,
@@ -105,7 +116,7 @@ fn blocked_in(
         let comps: &[&'static str] = match kind {
             "DEPLACEMENT" if model.dim() == 3 => &["DX", "DY", "DZ"],
             "DEPLACEMENT" => &["DX", "DY"],
-            "ROTATION" => &[],
+            "ROTATION" => &["DRX", "DRY", "DRZ"],
             other => {
                 return Err(ex.unsupported(
                     &format!("{what}/BLOCAGE='{other}'"),
@@ -114,7 +125,11 @@ fn blocked_in(
             }
         };
         for &n in &nodes {
+            let rotations = model.rotations.get(n.0 as usize).copied().unwrap_or(false);
             for &comp in comps {
+                if comp.starts_with("DR") && !rotations {
+                    continue;
+                }
                 out.push(Imposed {
                     node: n,
                     comp,
@@ -173,6 +188,11 @@ fn imposed_in(
                 "FX" => "DX",
                 "FY" => "DY",
                 "FZ" => "DZ",
+                // Rotations and moments: the shells' nodes carry them
+                // (`check_dof` refuses them elsewhere).
+                "DRX" | "MX" => "DRX",
+                "DRY" | "MY" => "DRY",
+                "DRZ" | "MZ" => "DRZ",
                 _ => {
                     return Err(ex.unsupported(
                         &format!("{what}/{c}"),
@@ -206,6 +226,9 @@ pub(crate) const AFFE_CHAR_CINE: Support = Support::keywords(&[
     "MECA_IMPO/DX",
     "MECA_IMPO/DY",
     "MECA_IMPO/DZ",
+    "MECA_IMPO/DRX",
+    "MECA_IMPO/DRY",
+    "MECA_IMPO/DRZ",
 ]);
 
 pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -218,7 +241,7 @@ pub fn affe_char_cine(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         ex,
         kw.factor("MECA_IMPO"),
         (&model, &mesh, &carried),
-        &["DX", "DY", "DZ"],
+        &COMPS,
         "AFFE_CHAR_CINE/MECA_IMPO",
     )?;
     if kw.factor("MECA_IMPO").is_empty() {
@@ -256,6 +279,9 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "DDL_IMPO/DX",
         "DDL_IMPO/DY",
         "DDL_IMPO/DZ",
+        "DDL_IMPO/DRX",
+        "DDL_IMPO/DRY",
+        "DDL_IMPO/DRZ",
         "DDL_IMPO/BLOCAGE",
         "FORCE_NODALE",
         "FORCE_NODALE/GROUP_NO",
@@ -263,6 +289,9 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "FORCE_NODALE/FX",
         "FORCE_NODALE/FY",
         "FORCE_NODALE/FZ",
+        "FORCE_NODALE/MX",
+        "FORCE_NODALE/MY",
+        "FORCE_NODALE/MZ",
         "FORCE_CONTOUR",
         "FORCE_CONTOUR/GROUP_MA",
         "FORCE_CONTOUR/MAILLE",
@@ -343,7 +372,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         ex,
         kw.factor("DDL_IMPO"),
         (&model, &mesh, &carried),
-        &["DX", "DY", "DZ"],
+        &COMPS,
         "AFFE_CHAR_MECA/DDL_IMPO",
     )?;
     // FACE_IMPO with DX/DY/DZ imposes them on the nodes of the faces.
@@ -409,7 +438,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         ex,
         kw.factor("FORCE_NODALE"),
         (&model, &mesh, &carried),
-        &["FX", "FY", "FZ"],
+        &["FX", "FY", "FZ", "MX", "MY", "MZ"],
         "AFFE_CHAR_MECA/FORCE_NODALE",
     )?;
     let surface = kw
@@ -420,6 +449,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     for (key, occ) in surface {
         let cells = select::cells(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/{key}: {e}")))?;
+        crate::shells::refuse_loads_on_shells(ex, key, occ, &model, &mesh, &cells)?;
         let force = [
             occ.f64("FX").unwrap_or(0.0),
             occ.f64("FY").unwrap_or(0.0),
@@ -430,6 +460,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     for occ in kw.factor("PRES_REP") {
         let cells = select::cells(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/PRES_REP: {e}")))?;
+        crate::shells::refuse_loads_on_shells(ex, "PRES_REP", occ, &model, &mesh, &cells)?;
         let pressure = occ.f64("PRES").ok_or_else(|| {
             ex.kw_error(
                 "AFFE_CHAR_MECA/PRES_REP",
@@ -501,6 +532,7 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONTACT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
+    crate::shells::refuse_contact_zones(ex, kw, &model, &*ex.mesh_by_id(model.mesh)?)?;
     let formulation = kw.str("FORMULATION").unwrap_or("DISCRETE");
     if formulation != "LIAISON_UNIL" {
         // Check the keywords now (errors at the command that has them);

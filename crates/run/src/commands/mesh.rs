@@ -303,11 +303,11 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             }
         };
         if occ.str("TOUT_GROUP_MA") == Some("OUI") {
-            // One node group per cell group, same name, nodes in cell order.
+            // One node group per cell group, same name.
             let groups: Vec<(String, Vec<NodeId>)> = mesh
                 .groups_ma
                 .iter()
-                .map(|g| (g.name.clone(), mesh.nodes_of_cells_kind(&g.members, kind)))
+                .map(|g| (g.name.clone(), nodes_of_cells(&mesh, &g.members, kind)))
                 .collect();
             for (name, nodes) in groups {
                 put_group(&mut mesh.groups_no, &name, nodes);
@@ -320,7 +320,7 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 let cells = select::group_ma(&mesh, &g)
                     .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?
                     .to_vec();
-                let nodes = mesh.nodes_of_cells_kind(&cells, kind);
+                let nodes = nodes_of_cells(&mesh, &cells, kind);
                 put_group(&mut mesh.groups_no, &g, nodes);
             }
             continue;
@@ -344,10 +344,11 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             put_group(&mut mesh.groups_no, name, nodes);
             continue;
         }
-        let nodes = if kind != NodeKind::All && !groups_ma.is_empty() {
+        let only_cells = !occ.contains("GROUP_NO") && !occ.contains("NOEUD");
+        let nodes = if (kind != NodeKind::All || only_cells) && !groups_ma.is_empty() {
             let cells = select::cells(occ, &mesh, "")
                 .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?;
-            mesh.nodes_of_cells_kind(&cells, kind)
+            nodes_of_cells(&mesh, &cells, kind)
         } else {
             select::nodes(occ, &mesh, "")
                 .map_err(|e| ExecError::new(format!("DEFI_GROUP/CREA_GROUP_NO: {e}")))?
@@ -721,4 +722,19 @@ fn normal_vector(occ: &Keywords, what: &str) -> Result<[f64; 3], ExecError> {
             "{what}: give VECT_NORMALE or ANGL_NAUT"
         )))
     }
+}
+
+/// The nodes of cells as code_aster's `gmgnre` lists them for a node group
+/// made from cells (`CREA_GROUP_NO` with `GROUP_MA`/`TOUT_GROUP_MA`): each
+/// once, in the order of the node numbers (not of the cells). The order
+/// matters where a group is read as a path (POST_RELEVE_T's abscissa, its
+/// local frame, MOYENNE).
+fn nodes_of_cells(
+    mesh: &aster_mesh::Mesh,
+    cells: &[aster_mesh::CellId],
+    kind: NodeKind,
+) -> Vec<NodeId> {
+    let mut nodes = mesh.nodes_of_cells_kind(cells, kind);
+    nodes.sort_unstable();
+    nodes
 }

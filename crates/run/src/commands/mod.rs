@@ -1,6 +1,7 @@
 //! One module per family of commands; [`dispatch`] maps a command name to
 //! its implementation.
 
+pub(crate) mod cara_coque;
 pub(crate) mod crea_maillage;
 pub(crate) mod define;
 pub(crate) mod elementary;

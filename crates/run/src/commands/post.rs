@@ -7,6 +7,7 @@ use crate::select;
 use crate::support::{Refusal, Support, Values};
 use crate::table::{Column, ColumnType, Table, TableFormat, Value};
 use aster_eval::{CommandCall, CommandOutput, ConceptRef, ExecError, Keywords};
+use aster_mesh::NodeId;
 use std::rc::Rc;
 use std::sync::Arc;
 
@@ -562,26 +563,78 @@ fn crea_champ_eval(ex: &Executor, call: &CommandCall) -> Result<NodalField, Exec
     Ok(out)
 }
 
-/// A nodal field's vectors (DX, DY) and stress tensors (SIXX…SIYZ) in the
-/// polar frame of each node (`REPERE='POLAIRE'`, code_aster's `rvrthe` and
-/// `rvcalq`): with r the distance of the node to the z axis, v₁ = (x, y)/r
-/// and v₂ = (y, −x)/r (the opposite of the tangent rvrthe gives; (1, 0) and
-/// (0, −1) when r < 1e-6). DX' = v₁·u, DY' = v₂·u; SIXX' = v₁·σ·v₁,
-/// SIYY' = v₂·σ·v₂, SIXY' = v₁·σ·v₂, SIXZ' = v₁·(σxz, σyz),
-/// SIYZ' = v₂·(σxz, σyz); z components and the others unchanged. A missing
-/// component counts as 0.
-fn polar_components(f: &NodalField, mesh: &aster_mesh::Mesh) -> NodalField {
+/// A node's frame in the plane (x, y): (v₁, v₂).
+type Frame = ([f64; 2], [f64; 2]);
+
+/// The polar frame of each node (`REPERE='POLAIRE'`, code_aster's
+/// `rvrthe` and `rvcalq`): with r the distance of the node to the z axis,
+/// v₁ = (x, y)/r and v₂ = (y, −x)/r (the opposite of the tangent rvrthe
+/// gives; (1, 0) and (0, −1) when r < 1e-6).
+fn polar_frame(x: [f64; 3]) -> Frame {
+    let r = (x[0] * x[0] + x[1] * x[1]).sqrt();
+    if r.abs() < 1e-6 {
+        ([1.0, 0.0], [0.0, -1.0])
+    } else {
+        ([x[0] / r, x[1] / r], [x[1] / r, -x[0] / r])
+    }
+}
+
+/// The local frame of a path of nodes (`REPERE='LOCAL'` without VECT_Y,
+/// code_aster's `rvrlln`): at each node v₁ is the unit tangent
+/// t = (x₍ᵢ₊₁₎ − xᵢ)/|x₍ᵢ₊₁₎ − xᵢ| of the segment leaving it (the mean of
+/// the two unit tangents, not renormalised, at an interior node; the
+/// arriving segment's at the last node) and v₂ = (−t_y, t_x) in the plane
+/// (x, y). `None` for a path of fewer than two nodes or with two
+/// consecutive nodes at the same place (code_aster divides by zero).
+fn local_path_frames(points: &[[f64; 3]]) -> Option<Vec<Frame>> {
+    if points.len() < 2 {
+        return None;
+    }
+    let mut tangents = Vec::with_capacity(points.len() - 1);
+    for w in points.windows(2) {
+        let d = [w[1][0] - w[0][0], w[1][1] - w[0][1], w[1][2] - w[0][2]];
+        let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if l == 0.0 {
+            return None;
+        }
+        // rvrlln: l = 1/|d| then t = d·l (the z part is dropped).
+        let inv = 1.0 / l;
+        tangents.push([d[0] * inv, d[1] * inv]);
+    }
+    // rvrlln averages the normals too: the normal of the mean tangent.
+    let normal = |t: [f64; 2]| [-t[1], t[0]];
+    let n = points.len();
+    Some(
+        (0..n)
+            .map(|i| {
+                let t = if i == 0 {
+                    tangents[0]
+                } else if i + 1 < n {
+                    let (a, b) = (tangents[i], tangents[i - 1]);
+                    [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]
+                } else {
+                    tangents[i - 1]
+                };
+                (t, normal(t))
+            })
+            .collect(),
+    )
+}
+
+/// A nodal field's vectors (DX, DY) and stress tensors (SIXX…SIYZ) in a
+/// frame (v₁, v₂) given at each node (code_aster's `rvcalq`):
+/// DX' = v₁·u, DY' = v₂·u; SIXX' = v₁·σ·v₁, SIYY' = v₂·σ·v₂,
+/// SIXY' = v₁·σ·v₂, SIXZ' = v₁·(σxz, σyz), SIYZ' = v₂·(σxz, σyz); z
+/// components and the others unchanged. A missing component counts as 0.
+/// Nodes without a frame are left as they are.
+fn frame_components(f: &NodalField, frame: impl Fn(NodeId) -> Option<Frame>) -> NodalField {
     let mut out = f.clone();
     let idx = |c: &str| f.component_index(c);
     let vector = (idx("DX"), idx("DY"));
     let tensor = ["SIXX", "SIYY", "SIXY", "SIXZ", "SIYZ"].map(idx);
     for (&node, vals) in out.values.iter_mut() {
-        let x = mesh.coord(node);
-        let r = (x[0] * x[0] + x[1] * x[1]).sqrt();
-        let (v1, v2) = if r.abs() < 1e-6 {
-            ([1.0, 0.0], [0.0, -1.0])
-        } else {
-            ([x[0] / r, x[1] / r], [x[1] / r, -x[0] / r])
+        let Some((v1, v2)) = frame(node) else {
+            continue;
         };
         let orig = f.values.get(&node).cloned().unwrap_or_default();
         let get = |i: Option<usize>| {
@@ -631,7 +684,7 @@ type Source = (Option<String>, Option<String>, Option<(u32, f64)>, Field);
 /// What POST_RELEVE_T reads (`crate::support`).
 pub(crate) const POST_RELEVE_T: Support = Support {
     values: &[
-        Values::new("ACTION/REPERE", &["GLOBAL", "POLAIRE"]),
+        Values::new("ACTION/REPERE", &["GLOBAL", "POLAIRE", "LOCAL"]),
         Values::new("ACTION/MOYE_NOEUD", &["OUI"]),
         Values::new("ACTION/OPERATION", &["EXTRACTION", "MOYENNE"]),
     ],
@@ -839,6 +892,18 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .filter_map(|s| s.as_str().map(str::to_string))
             .collect();
         let polar = occ.str("REPERE") == Some("POLAIRE");
+        let local = if occ.str("REPERE") == Some("LOCAL") {
+            Some(local_frames(
+                ex,
+                occ,
+                &mesh,
+                &nodes,
+                !resultant.is_empty(),
+                call.span,
+            )?)
+        } else {
+            None
+        };
         if polar {
             // code_aster (rvchgr) needs a plane mesh: every z equal (to 1e-3,
             // relatively, of the first node's).
@@ -906,11 +971,16 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 Field::Nodal(f) => f,
                 // code_aster's MOYENNE of an element field works on the
                 // cells' values along the path, not on nodal means.
-                Field::Elem(_) if moyenne => {
+                Field::Elem(_) if moyenne || local.is_some() => {
+                    let what = if moyenne {
+                        "OPERATION='MOYENNE'"
+                    } else {
+                        "REPERE='LOCAL'"
+                    };
                     return Err(ex.unsupported(
-                        "POST_RELEVE_T/ACTION/OPERATION='MOYENNE' of an element field",
+                        &format!("POST_RELEVE_T/ACTION/{what} of an element field"),
                         occ.keyword("NOM_CHAM").map(|k| k.span).unwrap_or(call.span),
-                    ))
+                    ));
                 }
                 Field::Elem(e) => e.nodal_mean(&mesh).ok_or_else(|| {
                     ex.unsupported(
@@ -920,7 +990,9 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 })?,
             };
             let f = if polar {
-                polar_components(&f, &mesh)
+                frame_components(&f, |n| Some(polar_frame(mesh.coord(n))))
+            } else if let Some(frames) = &local {
+                frame_components(&f, |n| frames.get(&n).copied())
             } else {
                 f
             };
@@ -1040,6 +1112,72 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     // Columns nobody filled (RESU for a CHAM_GD…) are dropped, as code_aster does.
     drop_empty_columns(&mut table);
     store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+/// The frame of each node of an ACTION's path for `REPERE='LOCAL'`
+/// (code_aster's `rvchgr`/`rvrlln`), refusing what code_aster would not
+/// compute the same way: a path whose order code_aster builds differently
+/// (`rvgnoe`: the NOEUD list, then each GROUP_NO's nodes in the group's
+/// order, consecutive repeats dropped), `VECT_Y`, a path off the plane z of
+/// the mesh's first node (code_aster then gives nothing), fewer than two
+/// nodes, and RESULTANTE.
+fn local_frames(
+    ex: &Executor,
+    occ: &Keywords,
+    mesh: &aster_mesh::Mesh,
+    nodes: &[NodeId],
+    resultant: bool,
+    fallback: aster_syntax::Span,
+) -> Result<std::collections::HashMap<NodeId, Frame>, ExecError> {
+    let refuse = |why: &str| {
+        let span = occ.keyword("REPERE").map(|k| k.span).unwrap_or(fallback);
+        ex.unsupported(&format!("POST_RELEVE_T/ACTION/REPERE='LOCAL' {why}"), span)
+    };
+    if resultant {
+        return Err(refuse("with RESULTANTE"));
+    }
+    if occ.contains("GROUP_MA") || occ.contains("MAILLE") || occ.str("TOUT") == Some("OUI") {
+        return Err(refuse(
+            "on cells (the local frame of a path of nodes, GROUP_NO/NOEUD, only)",
+        ));
+    }
+    // rvgnoe's order.
+    let mut path: Vec<NodeId> = Vec::new();
+    let mut push = |n: NodeId| {
+        if path.last() != Some(&n) {
+            path.push(n);
+        }
+    };
+    for name in occ.simple("NOEUD").iter().filter_map(|s| s.as_str()) {
+        push(select::node_named(mesh, name).map_err(ExecError::new)?);
+    }
+    for g in occ.simple("GROUP_NO").iter().filter_map(|s| s.as_str()) {
+        for &n in select::group_no(mesh, g).map_err(ExecError::new)? {
+            push(n);
+        }
+    }
+    if path != nodes {
+        return Err(refuse(
+            "on a path given by several NOEUD/GROUP_NO lists or repeating a node (code_aster's node order for it is not reproduced)",
+        ));
+    }
+    // rvchgr: every z equal to the first mesh node's (rvegal, relative 1e-3).
+    let z0 = mesh.coords.first().map_or(0.0, |c| c[2]);
+    let seuil = if z0.abs() >= 1e-3 {
+        1e-3 * z0.abs()
+    } else {
+        1e-3
+    };
+    if path.iter().any(|&n| (z0 - mesh.coord(n)[2]).abs() >= seuil) {
+        return Err(refuse(
+            "on a path off the plane z of the mesh's first node (code_aster computes no frame: alarm POSTRELE_28)",
+        ));
+    }
+    let points: Vec<[f64; 3]> = path.iter().map(|&n| mesh.coord(n)).collect();
+    let frames = local_path_frames(&points).ok_or_else(|| {
+        refuse("on a path of fewer than two nodes or with two consecutive nodes at the same place")
+    })?;
+    Ok(path.into_iter().zip(frames).collect())
 }
 
 fn occ_mesh(ex: &Executor, field: &ConceptRef) -> Result<Arc<aster_mesh::Mesh>, ExecError> {
@@ -1314,5 +1452,36 @@ mod moyenne_tests {
             "{m:?}"
         );
         assert_eq!((m[2], m[3]), (1.0, 3.0));
+    }
+}
+
+#[cfg(test)]
+mod local_frame_tests {
+    use super::local_path_frames;
+
+    #[test]
+    fn a_straight_path_has_its_direction_and_the_left_normal_everywhere() {
+        // Along (0.8, 0.6) with a z step (dropped from the tangent but
+        // counted in the length, as rvrlln does): t = (0.8, 0.6)·5/√26.
+        let f = local_path_frames(&[[0.0, 0.0, 0.0], [4.0, 3.0, 0.0], [8.0, 6.0, 0.0]]).unwrap();
+        for (t, n) in &f {
+            assert!(
+                (t[0] - 0.8).abs() < 1e-15 && (t[1] - 0.6).abs() < 1e-15,
+                "{f:?}"
+            );
+            assert!(
+                (n[0] + 0.6).abs() < 1e-15 && (n[1] - 0.8).abs() < 1e-15,
+                "{f:?}"
+            );
+        }
+        let g = local_path_frames(&[[0.0, 0.0, 0.0], [4.0, 3.0, 1.0]]).unwrap();
+        let s = 5.0 / 26f64.sqrt();
+        assert!((g[0].0[0] - 0.8 * s).abs() < 1e-15 && (g[1].0[1] - 0.6 * s).abs() < 1e-15);
+    }
+
+    #[test]
+    fn paths_without_a_frame() {
+        assert!(local_path_frames(&[[1.0, 2.0, 0.0]]).is_none());
+        assert!(local_path_frames(&[[0.0; 3], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]).is_none());
     }
 }

@@ -333,7 +333,7 @@ fn result_model(
 ) -> Result<(Rc<ModelRef>, String), ExecError> {
     if kw.contains("MODELE") {
         let (m, name) = model_from_keywords(ex, kw)?;
-        return Ok((Rc::new(ModelRef::Own(m)), name));
+        return Ok((Rc::new(ModelRef::Own(Box::new(m))), name));
     }
     let Some(run) = result.fem.clone() else {
         return Err(ExecError::new(format!(
@@ -347,7 +347,7 @@ fn result_model(
 
 /// A model owned here or the one of a computed result.
 enum ModelRef {
-    Own(Model),
+    Own(Box<Model>),
     Run(Rc<crate::fembridge::FemRun>),
 }
 

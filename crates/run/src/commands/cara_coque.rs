@@ -1,0 +1,131 @@
+//! `AFFE_CARA_ELEM/COQUE`: the sections of the thin-shell (`DKT`) cells —
+//! thickness `EPAIS`, drilling coefficient `COEF_RIGI_DRZ` — and the
+//! reference direction of their efforts (`ANGL_REP` or `VECTEUR`: the x
+//! axis of the user's frame is its projection on each facet, code_aster's
+//! `coqrep`).
+//!
+//! Read here, handed to aster-fem as [`aster_fem::ShellSection`] and a
+//! direction per cell. Not reproduced, so refused by the support table:
+//! `EPAIS_FO`, `EXCENTREMENT(_FO)` (an offset couples membrane and
+//! bending), `INER_ROTA`, `MODI_METRIQUE='OUI'` (COQUE_3D only).
+//! `COQUE_NCOU` (the layers of the stresses through the thickness) and
+//! `A_CIS` (the shear coefficient of DST/Q4G) do not change a DKT's
+//! stiffness: accepted.
+
+use crate::executor::Executor;
+use crate::select;
+use aster_eval::{ExecError, Keywords};
+use aster_fem::ShellSection;
+use aster_mesh::{CellId, CellType, Mesh};
+
+/// One `COQUE` occurrence resolved on the mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShellCara {
+    pub cells: Vec<CellId>,
+    pub section: ShellSection,
+    /// The global direction whose projection on a facet is the x axis of
+    /// its efforts' frame (`ANGL_REP` α, β: (cos β cos α, cos β sin α,
+    /// −sin β); `VECTEUR` as given; by default global X).
+    pub direction: [f64; 3],
+}
+
+/// The `COQUE` keywords AFFE_CARA_ELEM reads (`crate::support`).
+pub(crate) const KEYWORDS: [&str; 9] = [
+    "COQUE",
+    "COQUE/GROUP_MA",
+    "COQUE/EPAIS",
+    "COQUE/COEF_RIGI_DRZ",
+    "COQUE/COQUE_NCOU",
+    "COQUE/ANGL_REP",
+    "COQUE/VECTEUR",
+    "COQUE/A_CIS",
+    "COQUE/MODI_METRIQUE",
+];
+
+/// `MODI_METRIQUE='OUI'` is COQUE_3D's.
+pub(crate) const VALUES: [crate::support::Values; 1] =
+    [crate::support::Values::new("COQUE/MODI_METRIQUE", &["NON"])];
+
+fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
+    kw.simple(name).iter().filter_map(|s| s.as_f64()).collect()
+}
+
+/// The `COQUE` occurrences of an AFFE_CARA_ELEM call.
+pub(crate) fn shells(
+    ex: &Executor,
+    kw: &Keywords,
+    mesh: &Mesh,
+) -> Result<Vec<ShellCara>, ExecError> {
+    let mut out = Vec::new();
+    for occ in kw.factor("COQUE") {
+        let err = |key: &str, m: String| ex.kw_error("AFFE_CARA_ELEM", occ, key, m);
+        let Some(thickness) = occ.f64("EPAIS") else {
+            return Err(err(
+                "EPAIS",
+                "COQUE needs EPAIS (EPAIS_FO is not supported)".into(),
+            ));
+        };
+        if !(thickness > 0. && thickness.is_finite()) {
+            return Err(err(
+                "EPAIS",
+                format!("EPAIS = {thickness}: a thickness must be positive"),
+            ));
+        }
+        let drilling = occ.f64("COEF_RIGI_DRZ").unwrap_or(1e-5);
+        if !(drilling > 0. && drilling.is_finite()) {
+            return Err(ex.unsupported(
+                &format!(
+                    "AFFE_CARA_ELEM/COQUE/COEF_RIGI_DRZ={drilling} (a negative coefficient selects code_aster's other drilling formulation; only the positive spring is reproduced)"
+                ),
+                occ.keyword("COEF_RIGI_DRZ").map(|k| k.span).unwrap_or_default(),
+            ));
+        }
+        let direction = if occ.keyword("VECTEUR").is_some() {
+            let v = reals(occ, "VECTEUR");
+            let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if v.len() != 3 || norm.is_nan() || norm <= 0. {
+                return Err(err(
+                    "VECTEUR",
+                    "VECTEUR needs three components, not all zero".into(),
+                ));
+            }
+            [v[0] / norm, v[1] / norm, v[2] / norm]
+        } else {
+            let a = reals(occ, "ANGL_REP");
+            let (alpha, beta) = match a.as_slice() {
+                [] => (0., 0.),
+                [a, b] => (a.to_radians(), b.to_radians()),
+                _ => return Err(err("ANGL_REP", "ANGL_REP needs two angles (α, β)".into())),
+            };
+            [
+                beta.cos() * alpha.cos(),
+                beta.cos() * alpha.sin(),
+                -beta.sin(),
+            ]
+        };
+        let cells = select::cells(occ, mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/COQUE: {e}")))?;
+        if let Some(&bad) = cells
+            .iter()
+            .find(|&&c| !matches!(mesh.cell(c).ty, CellType::TRIA3 | CellType::QUAD4))
+        {
+            return Err(err(
+                "GROUP_MA",
+                format!(
+                    "COQUE applies to the DKT cells (TRIA3, QUAD4), but cell {} is a {}",
+                    select::cell_name(mesh, bad),
+                    mesh.cell(bad).ty.name()
+                ),
+            ));
+        }
+        out.push(ShellCara {
+            cells,
+            section: ShellSection {
+                thickness,
+                drilling,
+            },
+            direction,
+        });
+    }
+    Ok(out)
+}

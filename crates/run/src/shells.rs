@@ -1,0 +1,162 @@
+//! Shell elements (`MODELISATION='DKT'`) in the solvers and CALC_CHAMP:
+//! what a model with shells can run, refused where it cannot (located at
+//! the keyword), and the shells' efforts `EFGE_ELGA` in the frame of
+//! `AFFE_CARA_ELEM/COQUE` (`ANGL_REP`/`VECTEUR`).
+//!
+//! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`]):
+//! refused with them are contact zones on shell cells (code_aster pairs
+//! the mid-surface, or with `DIST_COQUE='OUI'` the surface offset by half
+//! the thickness: not reproduced), behaviours other than `ELAS` in small
+//! strains, dynamics (no rotational inertia), and the fields through the
+//! thickness (`SIEF_ELGA`/`SIGM_ELNO` by layer).
+
+use crate::concept::{CaraElem, ModelDef, Modelisation};
+use crate::executor::Executor;
+use crate::solve::{BehaviourOcc, Relation};
+use aster_eval::{CommandCall, ExecError, Keywords};
+use aster_fem::{CellValues, Kinematics, Model};
+use aster_mesh::{CellId, Mesh};
+use std::collections::BTreeMap;
+
+fn is_shell(model: &ModelDef, cell: CellId) -> bool {
+    model.cells.get(&cell) == Some(&Modelisation::Dkt)
+}
+
+/// DEFI_CONTACT: a zone whose master or slave cells are shells is refused
+/// at its `GROUP_MA_MAIT`/`GROUP_MA_ESCL`.
+pub(crate) fn refuse_contact_zones(
+    ex: &Executor,
+    kw: &Keywords,
+    model: &ModelDef,
+    mesh: &Mesh,
+) -> Result<(), ExecError> {
+    if !model.has_shells() {
+        return Ok(());
+    }
+    for occ in kw.factor("ZONE") {
+        for key in ["GROUP_MA_MAIT", "GROUP_MA_ESCL"] {
+            let mut cells = Vec::new();
+            for g in occ.simple(key).iter().filter_map(|s| s.as_str()) {
+                if let Ok(c) = crate::select::group_ma(mesh, g) {
+                    cells.extend_from_slice(c);
+                }
+            }
+            if let Some(&c) = cells.iter().find(|&&c| is_shell(model, c)) {
+                let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
+                return Err(ex.unsupported(
+                    &format!(
+                        "DEFI_CONTACT/ZONE/{key} on shell cells (cell {} is DKT): contact of shell surfaces (the mid-surface, or with DIST_COQUE='OUI' the surface offset by half the thickness) is not implemented",
+                        crate::select::cell_name(mesh, c)
+                    ),
+                    span,
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// AFFE_CHAR_MECA: a distributed load (`PRES_REP`, `FORCE_FACE`) on shell
+/// cells is refused at its factor keyword (code_aster's shell pressure
+/// acts along the facet's normal on the shell itself: not reproduced).
+pub(crate) fn refuse_loads_on_shells(
+    ex: &Executor,
+    key: &str,
+    occ: &Keywords,
+    model: &ModelDef,
+    mesh: &Mesh,
+    cells: &[CellId],
+) -> Result<(), ExecError> {
+    let Some(&c) = cells.iter().find(|&&c| is_shell(model, c)) else {
+        return Ok(());
+    };
+    let span = ["GROUP_MA", "MAILLE", "TOUT"]
+        .iter()
+        .find_map(|k| occ.keyword(k))
+        .map(|k| k.span)
+        .unwrap_or_default();
+    Err(ex.unsupported(
+        &format!(
+            "AFFE_CHAR_MECA/{key} on shell cells (cell {} is DKT): distributed loads on shells are not implemented",
+            crate::select::cell_name(mesh, c)
+        ),
+        span,
+    ))
+}
+
+/// STAT_NON_LINE, MECA_STATIQUE, DYNA_NON_LINE: with shells, only `ELAS`
+/// in small strains (`COMPORTEMENT` occurrences covering shell cells) and
+/// no dynamics.
+pub(crate) fn check_solve(
+    ex: &Executor,
+    call: &CommandCall,
+    model: &ModelDef,
+    behaviours: &[BehaviourOcc],
+) -> Result<(), ExecError> {
+    if !model.has_shells() {
+        return Ok(());
+    }
+    let cmd = call.command.as_str();
+    let kw = &call.keywords;
+    if cmd == "DYNA_NON_LINE" {
+        let span = kw.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
+        return Err(ex.unsupported(
+            "DYNA_NON_LINE on a model with shell elements (DKT): their mass and rotational inertia are not implemented",
+            span,
+        ));
+    }
+    let occurrences = kw.factor("COMPORTEMENT");
+    for (k, b) in behaviours.iter().enumerate() {
+        let on_shell = match &b.cells {
+            None => true,
+            Some(cells) => cells.iter().any(|&c| is_shell(model, c)),
+        };
+        if !on_shell {
+            continue;
+        }
+        let occ = occurrences.get(k);
+        let at = |key: &str| {
+            occ.and_then(|o| o.keyword(key))
+                .map(|k| k.span)
+                .unwrap_or(call.span)
+        };
+        if b.relation != Relation::Elas {
+            return Err(ex.unsupported(
+                &format!(
+                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell cells (DKT): the shells are linear elastic here"
+                ),
+                at("RELATION"),
+            ));
+        }
+        if b.kinematics != Kinematics::Small {
+            return Err(ex.unsupported(
+                &format!(
+                    "{cmd}/COMPORTEMENT/DEFORMATION other than PETIT on shell cells (DKT): the shells are in small strains here"
+                ),
+                at("DEFORMATION"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `EFGE_ELGA` of the shells of `model`: NXX NYY NXY MXX MYY MXY (QX QY on
+/// triangles) at the Gauss points, in the frame of each cell's
+/// `AFFE_CARA_ELEM/COQUE` (global X projected on the facet by default).
+pub(crate) fn efge_elga(
+    model: &Model,
+    cara: Option<&CaraElem>,
+    u: &[f64],
+) -> Result<Vec<CellValues>, aster_fem::FemError> {
+    let mut direction: BTreeMap<CellId, [f64; 3]> = BTreeMap::new();
+    if let Some(c) = cara {
+        for s in &c.shells {
+            for &cell in &s.cells {
+                direction.insert(cell, s.direction);
+            }
+        }
+    }
+    aster_fem::post::efge_elga(model, u, &|cell| {
+        direction.get(&cell).copied().unwrap_or([1., 0., 0.])
+    })
+}
