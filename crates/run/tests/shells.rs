@@ -26,7 +26,10 @@ fn cantilever_strips_of_dkt_and_dkq_match_beam_theory() {
 fn meca_statique_gives_the_same_strips() {
     let text = strips()
         .replace("RESU = STAT_NON_LINE(", "RESU = MECA_STATIQUE(")
-        .replace("    COMPORTEMENT=_F(RELATION=\"ELAS\", TOUT=\"OUI\"),\n", "")
+        .replace(
+            "    COMPORTEMENT=_F(RELATION=\"ELAS\", TOUT=\"OUI\"),\n",
+            "",
+        )
         .replace("INCREMENT=_F(LIST_INST=LINST),", "LIST_INST=LINST,");
     assert!(text.contains("MECA_STATIQUE") && !text.contains("INCREMENT"));
     assert_eq!(run(&text, "meca"), (20, 0, None));
