@@ -177,6 +177,7 @@ enum Command {
 const STACK_BYTES: usize = 64 << 20;
 
 fn main() -> ExitCode {
+    quiet_on_closed_pipe();
     let cli = Cli::parse();
     let worker = std::thread::Builder::new()
         .name("aster".into())
@@ -190,6 +191,25 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// `aster explain X | head`: when the reader of stdout goes away, stop
+/// quietly with the shell's code for SIGPIPE (141), as C tools do, instead
+/// of the panic `print!` raises on a closed pipe.
+fn quiet_on_closed_pipe() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default(info);
+    }));
 }
 
 fn run(cli: Cli) -> u8 {

@@ -162,3 +162,35 @@ fn every_subcommand_help_has_examples() {
         assert!(help.contains(&format!("aster {sub} ")), "{sub}:\n{help}");
     }
 }
+
+/// A reader that stops early (`aster explain X | head -1`): a quiet stop
+/// with the SIGPIPE status, no panic message.
+#[test]
+fn a_closed_stdout_stops_quietly() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .args(["explain", "--all", "DEFI_MATERIAU"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    child
+        .stdout
+        .as_mut()
+        .unwrap()
+        .read_exact(&mut first)
+        .unwrap();
+    drop(child.stdout.take());
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    let status = child.wait().unwrap();
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(matches!(status.code(), Some(141) | Some(0)), "{status:?}");
+}

@@ -44,22 +44,11 @@ pub(crate) fn unsupported<T>(span: Span, what: impl std::fmt::Display) -> R<T> {
 }
 
 /// Why a code_aster callable imported from a module is not executed, when
-/// it is known.
-fn module_call_why(path: &str) -> &'static str {
-    match path {
-        // code_aster 17 (code_aster/MacroCommands/defi_cont.py) builds a
-        // `ContactNew`/`FrictionNew` object for MECA_NON_LINE: pairing
-        // APPARIEMENT='MORTAR' on the intersections of slave and master
-        // cells, ALGO_CONT LAGRANGIEN/NITSCHE/PENALISATION. DEFI_CONTACT's
-        // formulations pair slave points with their projections, and its
-        // LAC mortar (ALGO_CONT='LAC') has one multiplier per patch of a
-        // DECOUPE_LAC mesh rather than per slave node: the numbers differ,
-        // so no setting of DEFI_CONT maps onto DEFI_CONTACT.
-        "code_aster.MacroCommands.defi_cont.DEFI_CONT" => {
-            " (code_aster 17's mortar contact of MECA_NON_LINE: multipliers at the slave nodes integrated on the intersections of slave and master cells, ALGO_CONT LAGRANGIEN (the default and every real use)/NITSCHE/PENALISATION; none of its settings is a discretisation aster has: DEFI_CONTACT's DISCRETE/CONTINUE pair slave points with their projections, its LAC mortar puts one multiplier per DECOUPE_LAC patch)"
-        }
-        _ => "",
-    }
+/// it is known. (code_aster 17's `DEFI_CONT`, imported from
+/// `code_aster.MacroCommands.defi_cont`, is a catalog command: the import
+/// binds it.)
+fn module_call_why(_path: &str) -> &'static str {
+    ""
 }
 
 /// A step checking cannot take: it needs a value known only at run time.

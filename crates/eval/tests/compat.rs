@@ -356,17 +356,23 @@ L = DEFI_LIST_REEL(VALE=1.0)
 }
 
 #[test]
-fn defi_cont_is_refused_with_what_it_is() {
-    // code_aster 17's DEFI_CONT (a Python macro) defines the mortar contact
-    // of MECA_NON_LINE: not DEFI_CONTACT's formulations.
+fn defi_cont_is_imported_as_its_catalog_command() {
+    // code_aster 17's DEFI_CONT (a Python macro, imported from
+    // code_aster.MacroCommands.defi_cont) is checked against its catalog
+    // (DEFI_CONT_CATA): MODELE is required, and the result is a char_cont.
     let (report, text) = check(
         "from code_aster.MacroCommands.defi_cont import DEFI_CONT\nC = DEFI_CONT(ZONE=_F(GROUP_MA_ESCL='S', GROUP_MA_MAIT='M'))\n",
     );
     assert!(!report.ok());
     assert!(
-        text.contains("c.comm:2:5: error: not supported: calling `code_aster.MacroCommands.defi_cont.DEFI_CONT` (code_aster 17's mortar contact of MECA_NON_LINE"),
+        text.contains("c.comm:2:5: error:") && text.contains("MODELE"),
         "{text}"
     );
+    let (report, _) = clean(
+        "from code_aster.MacroCommands.defi_cont import DEFI_CONT\nM = LIRE_MAILLAGE()\nMO = AFFE_MODELE(MAILLAGE=M, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='D_PLAN'))\nC = DEFI_CONT(MODELE=MO, ZONE=_F(GROUP_MA_ESCL='S', GROUP_MA_MAIT='M', COEF_CONT=10.0))\n",
+    );
+    assert_eq!(report.calls.len(), 3);
+    assert_eq!(report.calls[2].command, "DEFI_CONT");
 }
 
 #[test]

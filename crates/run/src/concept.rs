@@ -312,7 +312,7 @@ pub enum UnilateralAlgo {
     Penalty(f64),
 }
 
-/// `DEFI_CONTACT`.
+/// `DEFI_CONTACT` and `DEFI_CONT`.
 #[derive(Clone, Debug)]
 pub enum ContactDef {
     Unilateral {
@@ -325,6 +325,11 @@ pub enum ContactDef {
     Zones {
         model: u32,
         keywords: aster_eval::Keywords,
+    },
+    /// `DEFI_CONT` (code_aster 17's mortar contact of MECA_NON_LINE).
+    Mortar {
+        model: u32,
+        zones: Vec<aster_contact::mortar_lagrangian::MortarZoneDef>,
     },
 }
 

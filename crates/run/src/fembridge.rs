@@ -742,6 +742,7 @@ pub fn solve(
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
     let mut post_friction: Option<aster_contact::friction::ContinuousFriction> = None;
     let mut post_discrete: Option<aster_contact::friction::DiscreteFriction> = None;
+    let mut post_mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
@@ -750,9 +751,18 @@ pub fn solve(
         let mut contact_zones: Option<Vec<aster_contact::ZoneContact>> = None;
         let mut friction: Option<aster_contact::friction::ContinuousFriction> = None;
         let mut discrete: Option<aster_contact::friction::DiscreteFriction> = None;
+        let mut mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
         let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
+                ContactDef::Mortar { zones, .. } => {
+                    let axis = setup
+                        .model
+                        .cells
+                        .values()
+                        .any(|m| *m == crate::concept::Modelisation::Axisymmetric);
+                    mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                }
                 ContactDef::Unilateral { zones, algo, .. } => {
                     unil = Some(LiaisonUnil {
                         zones: zones.clone(),
@@ -791,6 +801,9 @@ pub fn solve(
             forces.push(Box::new(f));
         }
         if let Some(f) = discrete.as_mut() {
+            forces.push(Box::new(f));
+        }
+        if let Some(f) = mortar.as_mut() {
             forces.push(Box::new(f));
         }
         let initial = match &setup.initial {
@@ -862,6 +875,7 @@ pub fn solve(
         }
         post_friction = friction;
         post_discrete = discrete;
+        post_mortar = mortar;
         raw
     };
     let steps = raw
@@ -927,6 +941,16 @@ pub fn solve(
                         }
                     }
                     fields.insert("CONT_NOEU".to_string(), Field::Nodal(nf));
+                }
+            }
+            if let Some(m) = &post_mortar {
+                // DEFI_CONT: the contact pressures are DOFs of DEPL on the
+                // slave nodes (LAGS_C).
+                if let Some(Field::Nodal(depl)) = fields.get_mut("DEPL") {
+                    let own = s.own_unknowns.first().map(|v| v.as_slice()).unwrap_or(&[]);
+                    for (n, p) in m.multipliers(own) {
+                        depl.set(n, "LAGS_C", p);
+                    }
                 }
             }
             if let Some(cn) = post_discrete.as_ref().and_then(|f| f.cont_noeu_at(s.time)) {

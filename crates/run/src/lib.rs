@@ -11,6 +11,7 @@ pub mod archive;
 pub mod commands;
 pub mod concept;
 mod contactbridge;
+pub mod defi_cont;
 pub mod dyna;
 mod evaluate;
 pub mod executor;

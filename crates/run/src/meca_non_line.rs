@@ -4,15 +4,17 @@
 //! are those of STAT_NON_LINE within the Newton tolerance).
 //!
 //! Its own keywords: `CONTACT` is a factor keyword whose `DEFINITION` is a
-//! `DEFI_CONT` (code_aster 17's mortar augmented-Lagrangian contact), not
-//! a `DEFI_CONTACT`: refused, located (see docs/contact.md, "DEFI_CONT").
+//! `DEFI_CONT` (code_aster 17's mortar augmented-Lagrangian contact,
+//! `crate::defi_cont`), paired again before every Newton iteration
+//! (`ALGO_RESO_GEOM='NEWTON'`, the only value reproduced); `RESI_GEOM` is
+//! accepted (the Newton tolerance decides the converged state).
 //! `METHODE='SNES'`/`'RASPEN'` (PETSc solvers) and `RECH_LINEAIRE` are
 //! refused; `ARCHIVAGE`, `SOLVEUR` and `INFO` are accepted as in
 //! STAT_NON_LINE.
 
 use crate::executor::Executor;
 use crate::solve::{kinematics_rules, parse_setup, store_solution, SNL_VALUES};
-use crate::support::{Support, Values};
+use crate::support::{Refusal, Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 
 /// What MECA_NON_LINE reads (`crate::support`): STAT_NON_LINE's set-up
@@ -20,17 +22,68 @@ use aster_eval::{CommandCall, CommandOutput, ExecError};
 pub(crate) const MECA_NON_LINE: Support = Support {
     keywords: KEYWORDS,
     values: &MECA_VALUES,
-    hints: &[(
-        "CONTACT",
-        "a DEFI_CONT definition: code_aster 17's mortar augmented-Lagrangian contact, see docs/contact.md",
-    )],
+    hints: &[],
     reuse: false,
-    rules: Some(kinematics_rules),
+    rules: Some(rules),
 };
 
-const MECA_VALUES: [Values; SNL_VALUES.len() + 1] = crate::support::joined(
+/// The loosest `CONVERGENCE/RESI_GLOB_RELA` accepted with a DEFI_CONT
+/// contact. cont008a (RESI_GLOB_RELA = 3e-3) ends 1.2e-4 off code_aster on
+/// every value while ours does not move when the tolerance is tightened to
+/// 1e-9; the cases at code_aster's default 1e-6 match to 1e-6 or better.
+/// The likeliest cause, not shown, is a partly converged iterate of
+/// code_aster's at that tolerance (as ssnv128r with continuous friction).
+const DEFI_CONT_RESI_GLOB_RELA_MAX: f64 = 1e-4;
+
+fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    kinematics_rules(call, out);
+    let kw = &call.keywords;
+    if kw.factor("CONTACT").is_empty() {
+        return;
+    }
+    // History-dependent behaviours with DEFI_CONT: cont010a (LEMAITRE,
+    // AXIS, 130 steps) ends 1.25e-6 off code_aster's new contact at a
+    // 1e-6 tolerance — and on the value code_aster's own DEFI_CONTACT
+    // version of the study gave (2.11960763e-3): where code_aster 17 stops
+    // each step of a path-dependent history is not reproduced. Validated
+    // with ELAS only.
+    for occ in kw.factor("COMPORTEMENT") {
+        let relation = occ.str("RELATION").unwrap_or("ELAS");
+        if relation != "ELAS" {
+            out.push(Refusal::at(
+                format!(
+                    "MECA_NON_LINE/COMPORTEMENT/RELATION='{relation}' with a DEFI_CONT contact (validated with ELAS only: with a history-dependent law, cont010a (LEMAITRE) ends 1.25e-6 off code_aster 17 at a 1e-6 tolerance; see docs/contact.md, DEFI_CONT)"
+                ),
+                occ,
+                "RELATION",
+                call.span,
+            ));
+        }
+    }
+    for conv in kw.factor("CONVERGENCE") {
+        if conv
+            .f64("RESI_GLOB_RELA")
+            .is_some_and(|r| r > DEFI_CONT_RESI_GLOB_RELA_MAX)
+        {
+            out.push(Refusal::at(
+                format!(
+                    "MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above {DEFI_CONT_RESI_GLOB_RELA_MAX:e} with a DEFI_CONT contact (code_aster's answer at so loose a tolerance is not reproduced: cont008a, 3e-3, ends 1.2e-4 off while the converged solution does not move; see docs/contact.md, DEFI_CONT)"
+                ),
+                conv,
+                "RESI_GLOB_RELA",
+                call.span,
+            ));
+        }
+    }
+}
+
+const MECA_VALUES: [Values; SNL_VALUES.len() + 2] = crate::support::joined(
     SNL_VALUES,
-    &[Values::new("METHODE", &["NEWTON"]).why("(the PETSc solvers SNES and RASPEN)")],
+    &[
+        Values::new("METHODE", &["NEWTON"]).why("(the PETSc solvers SNES and RASPEN)"),
+        Values::new("CONTACT/ALGO_RESO_GEOM", &["NEWTON"])
+            .why("(the fixed-point geometric loop of code_aster 17's mortar contact)"),
+    ],
 );
 
 const KEYWORDS: &[&str] = &[
@@ -41,12 +94,17 @@ const KEYWORDS: &[&str] = &[
     "EXCIT/CHARGE",
     "EXCIT/FONC_MULT",
     "EXCIT/TYPE_CHARGE",
+    "CONTACT",
+    "CONTACT/DEFINITION",
+    "CONTACT/ALGO_RESO_GEOM",
+    "CONTACT/RESI_GEOM",
     "COMPORTEMENT",
     "COMPORTEMENT/RELATION",
     "COMPORTEMENT/DEFORMATION",
     "COMPORTEMENT/TOUT",
     "COMPORTEMENT/GROUP_MA",
     "COMPORTEMENT/MAILLE",
+    "COMPORTEMENT/PARM_THETA",
     "COMPORTEMENT/RESI_INTE_RELA",
     "COMPORTEMENT/RESI_INTE",
     "COMPORTEMENT/ITER_INTE_MAXI",

@@ -358,7 +358,13 @@ pub(crate) fn parse_setup(
         None => None,
     };
     let excitations = parse_excitations(ex, cmd, kw)?;
-    let contact = match kw.concept("CONTACT") {
+    // STAT_NON_LINE/DYNA_NON_LINE: CONTACT=DEFI_CONTACT; MECA_NON_LINE:
+    // CONTACT=_F(DEFINITION=DEFI_CONT, …) (crate::meca_non_line).
+    let contact_factor = kw.factor("CONTACT");
+    let contact_ref = kw
+        .concept("CONTACT")
+        .or_else(|| contact_factor.first().and_then(|o| o.concept("DEFINITION")));
+    let contact = match contact_ref {
         Some(c) => Some(ex.contact(c)?),
         None => None,
     };

@@ -109,6 +109,20 @@ fn pointwise_glued_interfaces_give_the_analytic_state() {
     assert_eq!(run_scene("two_plates_glued.comm"), (24, 0));
 }
 
+/// comm/two_plates_defi_cont.comm: code_aster 17's mortar contact
+/// (DEFI_CONT + MECA_NON_LINE, aster_contact::mortar_lagrangian) passes
+/// the patch test on the non-matching interface: LAGS_C = -1e5 at every
+/// slave node and DY = -0.05 to 1e-6 (measured 3e-13), at both steps; and
+/// the same on the mesh made quadratic (SEG3 contact cells, P2 multipliers).
+#[test]
+fn mortar_contact_passes_the_patch_test_on_non_matching_meshes() {
+    assert_eq!(run_scene("two_plates_defi_cont.comm"), (22, 0));
+    assert_eq!(
+        run_scene_on_3_coordinates("two_plates_defi_cont.comm"),
+        (22, 0)
+    );
+}
+
 #[test]
 fn the_mesh_file_is_the_generated_scene() {
     let file = aster_mesh::read_mail(&root().join("comm/two_plates.mail")).unwrap();

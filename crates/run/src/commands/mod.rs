@@ -150,6 +150,11 @@ pub static COMMANDS: &[Command] = &[
         support: loads_f::AFFE_CHAR_CINE_F,
     },
     Command {
+        name: "DEFI_CONT",
+        run: crate::defi_cont::defi_cont,
+        support: crate::defi_cont::DEFI_CONT,
+    },
+    Command {
         name: "DEFI_CONTACT",
         run: loads::defi_contact,
         support: crate::contactbridge::DEFI_CONTACT,

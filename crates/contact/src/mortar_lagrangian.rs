@@ -1,0 +1,673 @@
+//! code_aster 17's mortar contact of `DEFI_CONT` (`MECA_NON_LINE`),
+//! `ALGO_CONT='LAGRANGIEN'`, `VARIANTE='ROBUSTE'` (Poulios & Renard's
+//! augmented Lagrangian), frictionless, in 2D on SEG2 cells, as a fem
+//! force source with the slave nodes' contact pressures (`LAGS_C`) as
+//! unknowns.
+//!
+//! As code_aster's (2025 main: `laVect_ct_pr`, `laElemCont`,
+//! `contact_module`, `getQuadCont`, `mesh_pairing_module`):
+//!
+//! - **Pairing** (`cellInteProj`, `addPoinInte2D`, `inteCellChck`), on the
+//!   cells linearised on their ends: the slave ends are cast along the
+//!   (full) slave cell's normal there onto the master's end-to-end line; the overlap, in the master's parametric space, is
+//!   mapped back linearly into the slave's. A pair is kept when its length
+//!   (slave parametric) exceeds `PAIR_TOLE` = 1e-8, the cells are not
+//!   orthogonal (|n_s·n_m| > 1e-8), the projected edge keeps its direction
+//!   and the master faces the slave. Pairs are searched over every master
+//!   cell of the zone (code_aster walks neighbours from the closest cell:
+//!   the same pairs on a connected master surface). `COEF_MULT_APPA` > 0
+//!   skips master cells whose centre is farther than 2 × ratio × the larger
+//!   diameter.
+//! - **Quadrature** (`getQuadCont`, `lcptga`): FPG3 (both cells SEG2) or
+//!   FPG4 on the intersection segment in slave parametric space; weights are the slave Jacobian on
+//!   the **initial** coordinates (× the initial radius in AXIS).
+//! - **At a point** (`laElemCont`, `projQpSl2Ma`): n_s the outward slave
+//!   normal on the current geometry; the master point by ray tracing along
+//!   n_s (exact on a SEG2 master, `shape::project_along` on a SEG3 one,
+//!   code_aster's `mmnewd`); the gap g = −(x_s − x_m)·n_s; λ and the
+//!   coefficient interpolated with the slave's functions; γ = COEF_CONT / h_F with h_F the slave
+//!   cell's initial diameter. Active (H = 1) when λ + γg ≤ 0.
+//! - **Residual** (`laVect_ct_pr`): on the displacements −w λ n_s·(v_s −
+//!   v_m) at active points; on each multiplier w ([λ + γg]₋ − λ)/γ μ.
+//! - Slave nodes of no paired cell: λ = 0 (code_aster's POI1 elements).
+//! - `SANS_GROUP_NO` / `SANS_GROUP_MA` remove the slave cells holding those
+//!   nodes (`MeshPairing::initObjects`); the slave nodes are those of the
+//!   remaining cells.
+//! - `CONTACT_INIT` (`ContactComputation::contactData`): at the first
+//!   pairing of the computation only, 'OUI' makes every point active and
+//!   'NON' every point inactive; later, and with 'INTERPENETRE', the status
+//!   follows λ + γg.
+//! - `ALGO_RESO_GEOM='NEWTON'`: the pairing and normals are those of the
+//!   iterate (code_aster pairs before every Newton iteration); the tangent
+//!   here freezes them (normals, master points) over an iteration — the
+//!   converged state is the same, code_aster's analytic tangent only
+//!   changes the path.
+
+use std::collections::HashMap;
+
+use aster_fem::{Comp, Contribution, Dof, FemError, ForceSource, State, Unknown};
+use aster_mesh::{Mesh, NodeId};
+
+use crate::error::ContactError;
+use crate::lac_mortar::{piece_points, Family};
+use crate::shape::{dot, interpolate, norm, project_along, sub, SurfaceKind};
+use crate::source::current_positions;
+use crate::surface::{ResolvedZone, SurfaceCell};
+use crate::zone::ZoneGeometry;
+
+/// code_aster's pairing tolerance (`ContactPairing::compute`).
+const PAIR_TOLE: f64 = 1e-8;
+
+/// `CONTACT_INIT` of a DEFI_CONT zone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum InitialState {
+    /// `'INTERPENETRE'` (the default): the status follows λ + γg.
+    #[default]
+    Interpenetrated,
+    /// `'NON'`: no point active at the first pairing.
+    No,
+    /// `'OUI'`: every point active at the first pairing.
+    Yes,
+}
+
+/// One zone of a mortar Lagrangian definition.
+#[derive(Clone, Debug)]
+pub struct MortarZoneDef {
+    pub master_group: String,
+    pub slave_group: String,
+    pub excluded_node_groups: Vec<String>,
+    pub excluded_cell_groups: Vec<String>,
+    /// `COEF_CONT` (default 100).
+    pub coef_cont: f64,
+    pub contact_init: InitialState,
+    /// `COEF_MULT_APPA` when positive.
+    pub dist_ratio: Option<f64>,
+}
+
+impl MortarZoneDef {
+    pub fn new(master: impl Into<String>, slave: impl Into<String>) -> Self {
+        MortarZoneDef {
+            master_group: master.into(),
+            slave_group: slave.into(),
+            excluded_node_groups: Vec::new(),
+            excluded_cell_groups: Vec::new(),
+            coef_cont: 100.0,
+            contact_init: InitialState::Interpenetrated,
+            dist_ratio: None,
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+struct Seg {
+    kind: SurfaceKind,
+    /// SEG2: its two nodes; SEG3: its ends, then its middle node.
+    nodes: Vec<NodeId>,
+    sign: f64,
+}
+
+impl Seg {
+    fn positions(&self, x: &[[f64; 3]]) -> Vec<[f64; 3]> {
+        self.nodes.iter().map(|n| x[n.0 as usize]).collect()
+    }
+}
+
+/// Outward unit normal of a (possibly curved) segment at ξ (`apnorm`).
+fn normal_at(kind: SurfaceKind, x: &[[f64; 3]], xi: f64, sign: f64) -> Option<[f64; 3]> {
+    let t = interpolate(kind, x, [xi, 0.0]).tangents[0];
+    let raw = [t[1], -t[0], 0.0];
+    let l = norm(raw);
+    (l > 0.0 && l.is_finite()).then(|| [sign * raw[0] / l, sign * raw[1] / l, 0.0])
+}
+
+#[derive(Clone, Debug)]
+struct MZone {
+    slave: Vec<Seg>,
+    master: Vec<Seg>,
+    coef: f64,
+    init: InitialState,
+    dist_ratio: Option<f64>,
+    /// Initial diameter and the FPG weights' Jacobian data of each slave cell.
+    h: Vec<f64>,
+}
+
+/// A pair: slave cell, master cell, intersection in slave parametric space.
+#[derive(Clone, Copy, Debug)]
+struct Pair {
+    zone: usize,
+    slave: usize,
+    master: usize,
+    xi: [f64; 2],
+}
+
+/// The mortar contact of a DEFI_CONT, as a fem force source.
+#[derive(Clone, Debug)]
+pub struct MortarLagrangian {
+    zones: Vec<MZone>,
+    lagr: Vec<NodeId>,
+    lagr_of: HashMap<NodeId, usize>,
+    axis: bool,
+    /// No pairing has been made yet (CONTACT_INIT applies).
+    first_pairing: bool,
+    /// Whether the first pairing has been consumed by a Newton iteration.
+    iterations: usize,
+    /// Number of paired slave cells at the last evaluation.
+    paired: usize,
+    /// The status (H) of every integration point at the last evaluation,
+    /// in pairing order, and whether its own equations held there.
+    statuses: Vec<bool>,
+    own_ok: bool,
+    /// Length scale of the model (diagonal of the slave and master nodes'
+    /// bounding box), for the gap tolerance.
+    scale: f64,
+}
+
+/// The gap equations are held when their residual, per node, is below
+/// this fraction of the node's weight times the model's size.
+const GAP_TOLE: f64 = 1e-10;
+
+fn err(e: ContactError) -> FemError {
+    FemError::Source(format!("DEFI_CONT: {e}"))
+}
+
+/// Outward unit normal of a segment (2D) on positions `a` → `b`.
+fn seg_normal(a: [f64; 3], b: [f64; 3], sign: f64) -> Option<[f64; 3]> {
+    // Tangent dx/dξ = (b − a)/2; code_aster's 2D normal (t_y, −t_x)
+    // oriented out of the body.
+    let t = [(b[0] - a[0]) / 2.0, (b[1] - a[1]) / 2.0, 0.0];
+    let raw = [t[1], -t[0], 0.0];
+    let l = norm(raw);
+    (l > 0.0 && l.is_finite()).then(|| [sign * raw[0] / l, sign * raw[1] / l, 0.0])
+}
+
+fn lerp(a: [f64; 3], b: [f64; 3], xi: f64) -> [f64; 3] {
+    let (na, nb) = ((1.0 - xi) / 2.0, (1.0 + xi) / 2.0);
+    [
+        na * a[0] + nb * b[0],
+        na * a[1] + nb * b[1],
+        na * a[2] + nb * b[2],
+    ]
+}
+
+/// The parameter ξ ∈ ℝ of the point of line a–b hit by the ray p + t·v
+/// (`poinProjByVect` on a SEG2: exact in one Newton step).
+fn ray_hit(p: [f64; 3], v: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Option<f64> {
+    // a + s(b − a) = p + t v, s = (1 + ξ)/2.
+    let e = sub(b, a);
+    let det = e[0] * (-v[1]) - e[1] * (-v[0]);
+    if det.abs() <= f64::EPSILON * (norm(e) * norm(v)).max(f64::MIN_POSITIVE) {
+        return None;
+    }
+    let r = sub(p, a);
+    let s = (r[0] * (-v[1]) - r[1] * (-v[0])) / det;
+    Some(2.0 * s - 1.0)
+}
+
+impl MortarLagrangian {
+    /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights).
+    pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
+        let mut out = Vec::new();
+        let mut lagr = Vec::new();
+        let mut lagr_of = HashMap::new();
+        for (i, z) in zones.iter().enumerate() {
+            let geometry = ZoneGeometry::new(z.master_group.clone(), z.slave_group.clone());
+            let resolved = ResolvedZone::new_in(i, &geometry, mesh, 2)?;
+            let segs =
+                |cells: &[SurfaceCell], key: &'static str| -> Result<Vec<Seg>, ContactError> {
+                    cells
+                        .iter()
+                        .map(|c| {
+                            if !matches!(c.kind, SurfaceKind::Seg2 | SurfaceKind::Seg3) {
+                                return Err(ContactError::Unsupported {
+                                    feature: format!(
+                                        "{} cells in {key} (code_aster 17's mortar contact)",
+                                        c.kind.cell_type().name()
+                                    ),
+                                    hint: "it is reproduced on segments (2D)".into(),
+                                });
+                            }
+                            Ok(Seg {
+                                kind: c.kind,
+                                nodes: c.nodes.clone(),
+                                sign: c.sign,
+                            })
+                        })
+                        .collect()
+                };
+            let master = segs(&resolved.master, "GROUP_MA_MAIT")?;
+            let mut slave = segs(&resolved.slave, "GROUP_MA_ESCL")?;
+            // SANS_GROUP_NO / SANS_GROUP_MA: the slave cells holding those
+            // nodes, or in those groups, are removed.
+            let mut excluded_nodes = Vec::new();
+            for g in &z.excluded_node_groups {
+                let group = mesh.group_no(g).ok_or_else(|| ContactError::UnknownGroup {
+                    keyword: "SANS_GROUP_NO",
+                    name: g.clone(),
+                    suggestion: crate::error::did_you_mean(
+                        g,
+                        mesh.groups_no.iter().map(|g| g.name.as_str()),
+                    ),
+                })?;
+                excluded_nodes.extend(group.members.iter().copied());
+            }
+            let mut excluded_cells = Vec::new();
+            for g in &z.excluded_cell_groups {
+                let group = mesh.group_ma(g).ok_or_else(|| ContactError::UnknownGroup {
+                    keyword: "SANS_GROUP_MA",
+                    name: g.clone(),
+                    suggestion: crate::error::did_you_mean(
+                        g,
+                        mesh.groups_ma.iter().map(|g| g.name.as_str()),
+                    ),
+                })?;
+                excluded_cells.extend(group.members.iter().copied());
+            }
+            let kept: Vec<bool> = resolved
+                .slave
+                .iter()
+                .map(|c| {
+                    !excluded_cells.contains(&c.id)
+                        && !c.nodes.iter().any(|n| excluded_nodes.contains(n))
+                })
+                .collect();
+            slave = slave
+                .into_iter()
+                .zip(&kept)
+                .filter_map(|(s, &k)| k.then_some(s))
+                .collect();
+            if slave.is_empty() {
+                return Err(ContactError::Invalid {
+                    keyword: "GROUP_MA_ESCL",
+                    message: format!(
+                        "no slave cell of {} is left once SANS_GROUP_NO/SANS_GROUP_MA are removed",
+                        z.slave_group
+                    ),
+                });
+            }
+            // `diameter`: the largest distance between two nodes.
+            let h = slave
+                .iter()
+                .map(|s| {
+                    let p = s.positions(&mesh.coords);
+                    let mut d = 0.0f64;
+                    for i in 0..p.len() {
+                        for j in i + 1..p.len() {
+                            d = d.max(norm(sub(p[i], p[j])));
+                        }
+                    }
+                    d
+                })
+                .collect();
+            for s in &slave {
+                for &n in &s.nodes {
+                    if let std::collections::hash_map::Entry::Vacant(e) = lagr_of.entry(n) {
+                        e.insert(lagr.len());
+                        lagr.push(n);
+                    }
+                }
+            }
+            out.push(MZone {
+                slave,
+                master,
+                coef: z.coef_cont,
+                init: z.contact_init,
+                dist_ratio: z.dist_ratio.filter(|r| *r > 0.0),
+                h,
+            });
+        }
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for z in &out {
+            for s in z.slave.iter().chain(&z.master) {
+                for &n in &s.nodes {
+                    let p = mesh.coords[n.0 as usize];
+                    for c in 0..3 {
+                        lo[c] = lo[c].min(p[c]);
+                        hi[c] = hi[c].max(p[c]);
+                    }
+                }
+            }
+        }
+        let scale = norm(sub(hi, lo)).max(f64::MIN_POSITIVE);
+        Ok(MortarLagrangian {
+            zones: out,
+            lagr,
+            lagr_of,
+            axis,
+            first_pairing: true,
+            iterations: 0,
+            paired: 0,
+            statuses: Vec::new(),
+            own_ok: false,
+            scale,
+        })
+    }
+
+    /// The contact pressure of each slave node (`LAGS_C`).
+    pub fn multipliers<'a>(&'a self, own: &'a [f64]) -> impl Iterator<Item = (NodeId, f64)> + 'a {
+        self.lagr
+            .iter()
+            .enumerate()
+            .map(move |(k, n)| (*n, own.get(k).copied().unwrap_or(0.0)))
+    }
+
+    /// The pairs on positions `x` (`fastPair` + `cellInteProj`, 2D): on
+    /// the cells linearised on their ends, the slave ends cast along the
+    /// full slave cell's normal there.
+    fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
+        let mut out = Vec::new();
+        for (zi, z) in self.zones.iter().enumerate() {
+            for (si, s) in z.slave.iter().enumerate() {
+                let sp = s.positions(x);
+                let (sa, sb) = (sp[0], sp[1]);
+                let (Some(ns), Some(na), Some(nb)) = (
+                    seg_normal(sa, sb, s.sign),
+                    normal_at(s.kind, &sp, -1.0, s.sign),
+                    normal_at(s.kind, &sp, 1.0, s.sign),
+                ) else {
+                    continue;
+                };
+                let ds = s
+                    .positions(x)
+                    .iter()
+                    .flat_map(|p| sp.iter().map(move |q| norm(sub(*p, *q))))
+                    .fold(0.0f64, f64::max);
+                for (mi, m) in z.master.iter().enumerate() {
+                    let mp = m.positions(x);
+                    let (ma, mb) = (mp[0], mp[1]);
+                    let Some(nm) = seg_normal(ma, mb, m.sign) else {
+                        continue;
+                    };
+                    if dot(ns, nm).abs() <= PAIR_TOLE {
+                        continue;
+                    }
+                    if let Some(r) = z.dist_ratio {
+                        let dm = norm(sub(mb, ma));
+                        let bs = lerp(sa, sb, 0.0);
+                        let bm = lerp(ma, mb, 0.0);
+                        if norm(sub(bm, bs)) >= 2.0 * r * dm.max(ds) {
+                            continue;
+                        }
+                    }
+                    // Slave ends cast along the slave normal onto the master.
+                    let (Some(k1), Some(k2)) = (ray_hit(sa, na, ma, mb), ray_hit(sb, nb, ma, mb))
+                    else {
+                        continue;
+                    };
+                    let proj = [lerp(ma, mb, k1), lerp(ma, mb, k2)];
+                    // inteCellChck
+                    let orig = [sa, sb];
+                    let mut empty = false;
+                    for i in 0..2 {
+                        let j = 1 - i;
+                        let eo = sub(orig[j], orig[i]);
+                        let ep = sub(proj[j], proj[i]);
+                        let v = sub(proj[i], orig[i]);
+                        let sig = dot(ep, eo);
+                        let a = dot(ns, v);
+                        let b = dot(nm, v);
+                        if sig < -PAIR_TOLE
+                            || (a < -PAIR_TOLE && b < -PAIR_TOLE)
+                            || (a > PAIR_TOLE && b > PAIR_TOLE)
+                        {
+                            empty = true;
+                            break;
+                        }
+                    }
+                    if empty {
+                        continue;
+                    }
+                    // addPoinInte2D
+                    let ksi = [k1, k2];
+                    let para = [-1.0, 1.0];
+                    let mut pts = Vec::new();
+                    for i in 0..2 {
+                        if ksi[i] > -1.0 - PAIR_TOLE && ksi[i] < 1.0 + PAIR_TOLE {
+                            pts.push(para[i]);
+                        }
+                    }
+                    let (lo, hi) = (k1.min(k2), k1.max(k2));
+                    for end in [-1.0, 1.0] {
+                        if lo - PAIR_TOLE <= end && end <= hi + PAIR_TOLE {
+                            if (end - k1).abs() < PAIR_TOLE {
+                                pts.push(-1.0);
+                            } else {
+                                let t = (end - k1) / (k2 - k1);
+                                pts.push(2.0 * t - 1.0);
+                            }
+                        }
+                    }
+                    if pts.len() < 2 {
+                        continue;
+                    }
+                    // intePoinSort (2D): the extreme points.
+                    let a = pts.iter().copied().fold(f64::INFINITY, f64::min);
+                    let b = pts.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    if (b - a) > PAIR_TOLE {
+                        out.push(Pair {
+                            zone: zi,
+                            slave: si,
+                            master: mi,
+                            xi: [a, b],
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    fn dof(state: &State, n: NodeId, c: usize) -> Option<usize> {
+        let comp = if c == 0 { Comp::DX } else { Comp::DY };
+        state.dofs.index(Dof::new(n, comp))
+    }
+}
+
+impl ForceSource for MortarLagrangian {
+    fn name(&self) -> String {
+        "DEFI_CONT (mortar Lagrangian contact)".into()
+    }
+
+    fn unknowns(&self) -> usize {
+        self.lagr.len()
+    }
+
+    fn begin_increment(&mut self, _state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        Ok(())
+    }
+
+    fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
+        let x = current_positions(state);
+        let x0 = &state.mesh.coords;
+        let pairs = self.pairs(&x);
+        let mut c = Contribution {
+            forces: Vec::new(),
+            own_residual: vec![0.0; self.lagr.len()],
+            tangent: Vec::new(),
+        };
+        let mut paired = vec![false; self.lagr.len()];
+        let mut weight = vec![0.0; self.lagr.len()];
+        let mut statuses = Vec::new();
+        let mut paired_cells = 0;
+        let mut seen = std::collections::HashSet::new();
+        for p in &pairs {
+            let z = &self.zones[p.zone];
+            let s = &z.slave[p.slave];
+            let m = &z.master[p.master];
+            if seen.insert((p.zone, p.slave)) {
+                paired_cells += 1;
+            }
+            let sp = s.positions(&x);
+            let mp = m.positions(&x);
+            let s0 = s.positions(x0);
+            let hf = z.h[p.slave];
+            let gamma = z.coef / hf;
+            let lk: Vec<usize> = s.nodes.iter().map(|n| self.lagr_of[n]).collect();
+            for &k in &lk {
+                paired[k] = true;
+            }
+            // FPG3 when both cells are linear, FPG4 otherwise (getQuadCont).
+            let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
+                Family::Fpg3
+            } else {
+                Family::Fpg4
+            };
+            for (xi, w_ref) in piece_points(2, &[[p.xi[0], 0.0], [p.xi[1], 0.0]], family) {
+                let at0 = interpolate(s.kind, &s0, xi);
+                let nsl = at0.shape.clone();
+                let mut w = w_ref * norm(at0.tangents[0]);
+                if self.axis {
+                    let r = at0.x[0];
+                    w *= if r == 0.0 { 1e-7 } else { r };
+                }
+                let ns = normal_at(s.kind, &sp, xi[0], s.sign).ok_or_else(|| {
+                    err(ContactError::Invalid {
+                        keyword: "GROUP_MA_ESCL",
+                        message: "a slave cell is degenerate (zero length)".into(),
+                    })
+                })?;
+                let xs = interpolate(s.kind, &sp, xi).x;
+                let hit = if m.kind == SurfaceKind::Seg2 {
+                    ray_hit(xs, ns, mp[0], mp[1]).map(|k| interpolate(m.kind, &mp, [k, 0.0]))
+                } else {
+                    project_along(m.kind, &mp, xs, ns)
+                };
+                let Some(hit) = hit else {
+                    continue;
+                };
+                let nm = hit.shape.clone();
+                let xm = hit.x;
+                let gap = -dot(sub(xs, xm), ns);
+                let lam: f64 = nsl.iter().zip(&lk).map(|(f, &k)| f * own[k]).sum();
+                let lg = lam + gamma * gap;
+                // CONTACT_INIT at the first pairing, then Heaviside(−(λ + γg)).
+                let active = match (self.first_pairing, z.init) {
+                    (true, InitialState::No) => false,
+                    (true, InitialState::Yes) => true,
+                    _ => -lg >= 0.0,
+                };
+                let (h, proj) = if active { (true, lg) } else { (false, 0.0) };
+                statuses.push(h);
+                for (a, &k) in lk.iter().enumerate() {
+                    weight[k] += w * nsl[a];
+                }
+                // Displacement DOFs of the jump v_s − v_m with their factors.
+                let mut jump: Vec<(usize, f64)> = Vec::with_capacity(12);
+                for (a, node) in s.nodes.iter().enumerate() {
+                    for d in 0..2 {
+                        if let Some(i) = Self::dof(state, *node, d) {
+                            jump.push((i, nsl[a] * ns[d]));
+                        }
+                    }
+                }
+                for (b, node) in m.nodes.iter().enumerate() {
+                    for d in 0..2 {
+                        if let Some(i) = Self::dof(state, *node, d) {
+                            jump.push((i, -nm[b] * ns[d]));
+                        }
+                    }
+                }
+                if h {
+                    // −w λ n·(v_s − v_m)
+                    for &(i, f) in &jump {
+                        c.forces.push((i, -w * lam * f));
+                        for (a, &k) in lk.iter().enumerate() {
+                            c.tangent
+                                .push((Unknown::Dof(i), Unknown::Own(k), -w * nsl[a] * f));
+                        }
+                    }
+                }
+                // w ([λ + γg]₋ − λ)/γ μ
+                for (a, &ka) in lk.iter().enumerate() {
+                    c.own_residual[ka] += w * (proj - lam) / gamma * nsl[a];
+                    if h {
+                        // d(γ g)/du / γ = dg/du = −n·(δu_s − δu_m)
+                        for &(i, f) in &jump {
+                            c.tangent
+                                .push((Unknown::Own(ka), Unknown::Dof(i), -w * nsl[a] * f));
+                        }
+                    } else {
+                        for (b, &kb) in lk.iter().enumerate() {
+                            c.tangent.push((
+                                Unknown::Own(ka),
+                                Unknown::Own(kb),
+                                -w * nsl[a] * nsl[b] / gamma,
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+        // Slave nodes of no paired cell: λ = 0.
+        for (k, p) in paired.iter().enumerate() {
+            if !p {
+                c.own_residual[k] += -own[k];
+                c.tangent.push((Unknown::Own(k), Unknown::Own(k), -1.0));
+            }
+        }
+        // A node whose every point is inactive solves −λ/γ ∫μ = 0 only:
+        // nothing to add. Keep the diagonal present for the factorisation.
+        for k in 0..self.lagr.len() {
+            c.tangent.push((Unknown::Own(k), Unknown::Own(k), 0.0));
+        }
+        self.paired = paired_cells;
+        self.own_ok = c
+            .own_residual
+            .iter()
+            .zip(&weight)
+            .all(|(r, w)| r.abs() <= GAP_TOLE * w.abs() * self.scale);
+        self.statuses = statuses;
+        Ok(c)
+    }
+
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
+        // The first pairing (CONTACT_INIT) was that of this iteration.
+        self.iterations += 1;
+        self.first_pairing = false;
+        // fem's residual test reads the displacement rows only: the
+        // iterate is accepted when the pairing and statuses it was solved
+        // with are those of the new iterate and the gap equations hold.
+        let before = std::mem::take(&mut self.statuses);
+        self.evaluate(state, own)?;
+        Ok(before == self.statuses && self.own_ok)
+    }
+
+    fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {
+        self.first_pairing = false;
+        Ok(())
+    }
+
+    fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
+        match self.lagr.get(k) {
+            Some(n) => format!(
+                "LAGS_C of node {}",
+                mesh.node_names
+                    .get(n.0 as usize)
+                    .cloned()
+                    .unwrap_or_else(|| format!("#{}", n.0 + 1))
+            ),
+            None => format!("unknown #{}", k + 1),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ray_hits_the_line_at_its_parameter() {
+        let a = [0.0, 0.0, 0.0];
+        let b = [2.0, 0.0, 0.0];
+        let k = ray_hit([1.5, 1.0, 0.0], [0.0, -1.0, 0.0], a, b).unwrap();
+        assert!((k - 0.5).abs() < 1e-15);
+        assert!(ray_hit([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], a, b).is_none());
+    }
+
+    #[test]
+    fn outward_normal_follows_the_sign() {
+        let n = seg_normal([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1.0).unwrap();
+        assert_eq!(n, [0.0, -1.0, 0.0]);
+        let n = seg_normal([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], -1.0).unwrap();
+        assert_eq!(n, [-0.0, 1.0, 0.0]);
+    }
+}
