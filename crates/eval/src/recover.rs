@@ -151,16 +151,13 @@ impl Recovery {
         bound: Vec<String>,
         defined: impl Fn(&str) -> bool,
     ) {
+        self.derived(text, bound, defined);
         for w in words(text) {
-            if defined(w) {
-                self.names.insert(w.to_string());
-            }
             if w == "exec" {
                 self.names_unknown = true;
             }
             self.words.insert(w.to_string());
         }
-        self.names.extend(bound);
         if matches!(&s.kind, StmtKind::ImportFrom { star: true, .. }) {
             self.names_unknown = true;
         }

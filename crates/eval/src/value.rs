@@ -234,6 +234,11 @@ impl Value {
             Value::Tuple(t) => !t.is_empty(),
             Value::Dict(d) => !d.borrow().entries.is_empty(),
             Value::Unknown => return None,
+            // An attribute of a concept (`contact.hasFriction`, a property
+            // in code_aster): known only when the commands run.
+            Value::Method(r, _) if matches!(**r, Value::Concept(_) | Value::Formula(..)) => {
+                return None
+            }
             _ => true,
         })
     }
