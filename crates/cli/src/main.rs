@@ -139,6 +139,42 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         vtu: Option<PathBuf>,
     },
+    /// Draw the tables and functions a case wrote (IMPR_TABLE, IMPR_FONCTION:
+    /// TABLEAU, AGRAF or XMGRACE text) as an SVG or PNG line chart.
+    #[command(
+        after_help = "Examples:\n  aster plot out/fort.8                        every numeric column against INST\n  aster plot out/fort.8 --x DY --y FY --out f-u.png\n  aster plot out/fort.8 --where NOEUD=N3 --y DX   one node's rows only\n  aster plot a.agr b.agr --log-y               curves of two XMGRACE files\n\nExit: 0 the chart is written, 2 an unreadable file or an unknown column (named)."
+    )]
+    Plot {
+        /// Text files written by IMPR_TABLE or IMPR_FONCTION (every table
+        /// of each file is drawn).
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// The abscissa column (default: INST, ABSC_CURV, ABSCISSE or FREQ
+        /// when present, else the first numeric column).
+        #[arg(short, long, value_name = "COLUMN")]
+        x: Option<String>,
+        /// An ordinate column; repeat for several (default: every other
+        /// numeric column but NUME_ORDRE).
+        #[arg(short, long, value_name = "COLUMN")]
+        y: Vec<String>,
+        /// Keep only the rows whose COLUMN holds VALUE (repeatable: all
+        /// must hold), e.g. `--where NOEUD=N3`.
+        #[arg(long = "where", value_name = "COLUMN=VALUE")]
+        filters: Vec<String>,
+        /// The chart file, `.svg` or `.png` (default: `<first file>.svg` in
+        /// the current directory).
+        #[arg(long, value_name = "PATH")]
+        out: Option<PathBuf>,
+        /// The chart's title (default: the file names).
+        #[arg(long)]
+        title: Option<String>,
+        /// Logarithmic abscissa (non-positive values are left out).
+        #[arg(long)]
+        log_x: bool,
+        /// Logarithmic ordinate (non-positive values are left out).
+        #[arg(long)]
+        log_y: bool,
+    },
     /// Serve the Language Server Protocol on stdin/stdout (docs/editors.md).
     #[command(
         after_help = "Example: an editor starts `aster lsp` and talks to it on stdin/stdout\n(set-ups for VS Code, Neovim, Helix and Emacs in docs/editors.md)."
@@ -254,6 +290,27 @@ fn run(cli: Cli) -> u8 {
             &report,
             quiet,
             vtu.as_deref(),
+        ),
+        Command::Plot {
+            files,
+            x,
+            y,
+            filters,
+            out,
+            title,
+            log_x,
+            log_y,
+        } => cmd::plot::run(
+            &files,
+            &cmd::plot::Options {
+                x: x.as_deref(),
+                y: &y,
+                filters: &filters,
+                out: out.as_deref(),
+                title: title.as_deref(),
+                log_x,
+                log_y,
+            },
         ),
         Command::Study { spec, out } => cmd::study::run(&spec, &out),
         Command::Lsp { .. } => cmd::lsp::run(),

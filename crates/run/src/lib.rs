@@ -35,6 +35,7 @@ mod shells;
 pub mod solve;
 pub mod support;
 pub mod table;
+pub mod table_read;
 pub mod test_resu;
 pub mod unil;
 mod vtu_export;

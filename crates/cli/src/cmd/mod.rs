@@ -8,5 +8,6 @@ pub mod lsp;
 pub mod mesh;
 pub mod migrate;
 pub mod parse;
+pub mod plot;
 pub mod run;
 pub mod study;

@@ -1,12 +1,16 @@
 //! The three charts of a study, each as SVG and PNG: the error/time Pareto
-//! front, the convergence in mesh size and the stability map.
+//! front, the convergence in mesh size and the stability map; and the line
+//! chart of curves that `aster plot` draws from tables and functions.
 //!
 //! Text is drawn with `ab_glyph` from an embedded DejaVu Sans (licence in
 //! `assets/`), so no system font library (fontconfig, freetype) is needed.
 
 mod convergence;
+mod lines;
 mod pareto;
 mod stability;
+
+pub use lines::{write_line_chart, LineChart, Series};
 
 use crate::engine::StudyResult;
 use crate::error::StudyError;
@@ -44,28 +48,34 @@ trait Chart {
 
 /// Writes `<out>/<study>-<kind>.svg` and `.png`.
 fn render<C: Chart>(chart: &C, out: &Path, study: &str) -> Result<Vec<PathBuf>, StudyError> {
-    ensure_font().map_err(|message| StudyError::Chart {
-        path: out.to_path_buf(),
+    let mut files = Vec::new();
+    for ext in ["svg", "png"] {
+        let path = out.join(format!("{study}-{}.{ext}", chart.kind()));
+        render_file(chart, &path)?;
+        files.push(path);
+    }
+    Ok(files)
+}
+
+/// Writes one chart to `path`: SVG or PNG after its extension.
+fn render_file<C: Chart>(chart: &C, path: &Path) -> Result<(), StudyError> {
+    let fail = |message: String| StudyError::Chart {
+        path: path.to_path_buf(),
         message,
-    })?;
+    };
+    ensure_font().map_err(fail)?;
     let size = chart.size();
-    let svg = out.join(format!("{study}-{}.svg", chart.kind()));
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
     {
-        let root = SVGBackend::new(&svg, size).into_drawing_area();
-        draw_on(chart, &root).map_err(|message| StudyError::Chart {
-            path: svg.clone(),
-            message,
-        })?;
+        Some("svg") => draw_on(chart, &SVGBackend::new(path, size).into_drawing_area()),
+        Some("png") => draw_on(chart, &BitMapBackend::new(path, size).into_drawing_area()),
+        _ => Err("a chart is written as .svg or .png".to_string()),
     }
-    let png = out.join(format!("{study}-{}.png", chart.kind()));
-    {
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
-        draw_on(chart, &root).map_err(|message| StudyError::Chart {
-            path: png.clone(),
-            message,
-        })?;
-    }
-    Ok(vec![svg, png])
+    .map_err(fail)
 }
 
 fn draw_on<C: Chart, DB: DrawingBackend>(
