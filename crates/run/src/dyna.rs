@@ -113,10 +113,13 @@ pub fn dyna_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let mut setup = parse_setup(ex, call, false)?;
     let dynamics = parse_dynamics(ex, call)?;
     // The weighted equilibrium also weights the continuous contact forces
-    // of the previous step (code_aster's CNELTC): not done here.
+    // of the previous step (code_aster's CNELTC): not done here; nor
+    // validated for the discrete friction forces (no real case).
     if let (Scheme::Hht { modified: true, .. }, Some(c)) = (dynamics.scheme, &setup.contact) {
         if let ContactDef::Zones { keywords, .. } = &**c {
-            if keywords.str("FORMULATION") == Some("CONTINUE") {
+            let continuous = keywords.str("FORMULATION") == Some("CONTINUE");
+            let friction = keywords.str("FROTTEMENT") == Some("COULOMB");
+            if continuous || friction {
                 let span = call
                     .keywords
                     .factor("SCHEMA_TEMPS")
@@ -125,7 +128,11 @@ pub fn dyna_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     .map(|k| k.span)
                     .unwrap_or(call.span);
                 return Err(ex.unsupported(
-                    "DYNA_NON_LINE/SCHEMA_TEMPS HHT with MODI_EQUI='OUI' and a continuous contact (FORMULATION='CONTINUE': its forces of the previous step are weighted)",
+                    if continuous {
+                        "DYNA_NON_LINE/SCHEMA_TEMPS HHT with MODI_EQUI='OUI' and a continuous contact (FORMULATION='CONTINUE': its forces of the previous step are weighted)"
+                    } else {
+                        "DYNA_NON_LINE/SCHEMA_TEMPS HHT with MODI_EQUI='OUI' and discrete friction (FROTTEMENT='COULOMB': how code_aster weights the friction forces of the previous step is not validated; MODI_EQUI='NON' is)"
+                    },
                     span,
                 ));
             }
