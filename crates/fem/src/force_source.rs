@@ -158,7 +158,10 @@ pub(crate) struct ForceStep<'a> {
     /// A time integrator's terms (DYNA_NON_LINE): their matrix is already
     /// in `kff`, their constant force in the external forces; their force
     /// of the iterate is added to the internal forces, as in the Newton
-    /// loop without force sources.
+    /// loop without force sources. A weighted equilibrium (HHT with
+    /// `MODI_EQUI='OUI'`) weights the internal forces of the previous step,
+    /// not the sources' forces (code_aster weights its continuous contact
+    /// forces too: aster-run refuses that combination).
     pub dynamics: Option<&'a dyn IncrementTerms>,
 }
 
