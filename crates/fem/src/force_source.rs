@@ -30,7 +30,7 @@ use crate::error::FemError;
 use crate::linalg::{self, Csc, SolveFailure};
 use crate::loads::EqualityRow;
 use crate::model::Model;
-use crate::nonlinear::{choose_tangent, internal_forces, kept_rows, NewtonOptions};
+use crate::nonlinear::{choose_tangent, kept_rows, step_forces, IncrementTerms, NewtonOptions};
 use crate::unilateral::State;
 
 /// An unknown of the system a source contributes to.
@@ -155,6 +155,14 @@ pub(crate) struct ForceStep<'a> {
     pub iter_glob_maxi: usize,
     /// Bound on the restarts asked by the sources' fixed-point loops.
     pub loops_max: usize,
+    /// A time integrator's terms (DYNA_NON_LINE): their matrix is already
+    /// in `kff`, their constant force in the external forces; their force
+    /// of the iterate is added to the internal forces, as in the Newton
+    /// loop without force sources. A weighted equilibrium (HHT with
+    /// `MODI_EQUI='OUI'`) weights the internal forces of the previous step,
+    /// not the sources' forces (code_aster weights its continuous contact
+    /// forces too: aster-run refuses that combination).
+    pub dynamics: Option<&'a dyn IncrementTerms>,
 }
 
 /// The outcome of a converged step: (solves, equality multipliers,
@@ -191,6 +199,7 @@ pub(crate) fn newton_step(
         nfree,
         kdiag_max,
         newton,
+        dynamics,
         ..
     } = *ctx;
     let nd = u.len();
@@ -217,7 +226,7 @@ pub(crate) fn newton_step(
         // Internal forces and the sources' contributions at the iterate.
         let (fint, contributions) = match evaluated.take() {
             Some(e) => e,
-            None => evaluate_all(model, k, plastic, sources, own, u, t)?,
+            None => evaluate_all(model, k, dynamics, plastic, sources, own, u, t)?,
         };
         if let Some(pc) = plastic.as_mut() {
             choose_tangent(&mut tangent, pc, model, kff, map, newton, iteration)?;
@@ -344,7 +353,7 @@ pub(crate) fn newton_step(
             settled &= ok;
         }
         // Residual at the new iterate (with the new statuses).
-        let (fint, contributions) = evaluate_all(model, k, plastic, sources, own, u, t)?;
+        let (fint, contributions) = evaluate_all(model, k, dynamics, plastic, sources, own, u, t)?;
         let mut src_force = vec![0.0; nd];
         for c in &contributions {
             for &(i, f) in &c.forces {
@@ -359,9 +368,13 @@ pub(crate) fn newton_step(
         }
         let mut resi_maxi = 0.0f64;
         let mut reference = 0.0f64;
+        // Dynamics: the reference counts the inertia and damping forces
+        // with the external ones, as the loop without force sources.
+        let dyn_u = dynamics.map(|d| d.force(u));
+        let dyn_at = |i: usize| dyn_u.as_ref().map_or(0.0, |f| f[i]);
         for i in 0..nd {
             if map[i] == usize::MAX {
-                reference = reference.max(fint[i].abs());
+                reference = reference.max((fint[i] - dyn_at(i)).abs());
             } else {
                 let r = fext[i] - fint[i] + reac[i] - src_force[i];
                 if trace && r.abs() > resi_maxi {
@@ -374,8 +387,11 @@ pub(crate) fn newton_step(
                     );
                 }
                 resi_maxi = resi_maxi.max(r.abs());
-                reference = reference.max((fext[i] + reac[i] - src_force[i]).abs());
+                reference = reference.max((fext[i] - dyn_at(i) + reac[i] - src_force[i]).abs());
             }
+        }
+        if let Some(d) = dynamics {
+            reference = reference.max(d.reference(u));
         }
         let resi_rela = if reference > 0. {
             resi_maxi / reference
@@ -447,17 +463,20 @@ pub(crate) fn newton_step(
     }
 }
 
-/// Internal forces and every source's contribution at `u`.
+/// Internal forces (with the time integrator's) and every source's
+/// contribution at `u`.
+#[allow(clippy::too_many_arguments)]
 fn evaluate_all(
     model: &Model,
     k: &Csc,
+    dynamics: Option<&dyn IncrementTerms>,
     plastic: &mut Option<PlasticCells>,
     sources: &mut [Box<dyn ForceSource + '_>],
     own: &[Vec<f64>],
     u: &[f64],
     t: f64,
 ) -> Result<(Vec<f64>, Vec<Contribution>), FemError> {
-    let fint = internal_forces(model, k, plastic, u)?;
+    let fint = step_forces(model, k, dynamics, plastic, u)?;
     let mut out = Vec::with_capacity(sources.len());
     for (s, src) in sources.iter_mut().enumerate() {
         let c = src.evaluate(&state(model, u, t), &own[s])?;

@@ -205,3 +205,64 @@ fn meca_non_line_gives_stat_non_line_steps() {
     assert!(text.contains("MECA_NON_LINE("));
     assert_eq!(run_text(&text, &cutting_mesh(), "meca"), (3, 0, None));
 }
+
+/// comm/dyna_sliding_block.comm made discrete (penalised friction).
+fn discrete_sliding_block(extra: &[(&str, &str)], tag: &str) -> String {
+    let mut pairs: Vec<(&str, &str)> = vec![
+        (r#"FORMULATION="CONTINUE","#, r#"FORMULATION="DISCRETE","#),
+        (r#"    ALGO_RESO_CONT="NEWTON","#, ""),
+        (r#"    ALGO_RESO_GEOM="NEWTON","#, ""),
+        (r#"    ALGO_RESO_FROT="NEWTON","#, ""),
+        (
+            r#"ALGO_CONT="STANDARD","#,
+            r#"ALGO_CONT="PENALISATION", E_N=1.0e12,"#,
+        ),
+        (r#"COEF_CONT=1.0e4,"#, ""),
+        (
+            r#"ALGO_FROT="STANDARD","#,
+            r#"ALGO_FROT="PENALISATION", E_T=1.0e12,"#,
+        ),
+        (r#"COEF_FROT=1.0e4,"#, ""),
+    ];
+    pairs.extend_from_slice(extra);
+    let text = edited("dyna_sliding_block.comm", &pairs);
+    let (_, nook, err) = run_text(&text, &root().join("comm/two_plates.mail"), tag);
+    assert_eq!(nook, 0);
+    err.expect("an error")
+}
+
+#[test]
+fn discrete_friction_in_dynamics_is_refused_with_plasticity_and_weighted_hht() {
+    let schema =
+        r#"SCHEMA_TEMPS=_F(SCHEMA="NEWMARK", FORMULATION="DEPLACEMENT", BETA=0.49, GAMMA=0.9),"#;
+    let err = discrete_sliding_block(
+        &[(
+            schema,
+            r#"SCHEMA_TEMPS=_F(SCHEMA="HHT", FORMULATION="DEPLACEMENT"),"#,
+        )],
+        "hhtfrot",
+    );
+    assert!(
+        err.contains("HHT with MODI_EQUI='OUI' and discrete friction")
+            && err.contains("case.comm:"),
+        "{err}"
+    );
+    let err = discrete_sliding_block(
+        &[
+            (
+                "steel = DEFI_MATERIAU(ELAS=_F(E=2.0e8, NU=0.0, RHO=1.0e4))",
+                "steel = DEFI_MATERIAU(ELAS=_F(E=2.0e8, NU=0.0, RHO=1.0e4), ECRO_LINE=_F(D_SIGM_EPSI=1.0e7, SY=1.0e9))",
+            ),
+            (
+                r#"COMPORTEMENT=_F(RELATION="ELAS"),"#,
+                r#"COMPORTEMENT=_F(RELATION="VMIS_ISOT_LINE"),"#,
+            ),
+        ],
+        "plasfrot",
+    );
+    assert!(
+        err.contains("COMPORTEMENT/RELATION='VMIS_ISOT_LINE' with discrete friction")
+            && err.contains("case.comm:"),
+        "{err}"
+    );
+}

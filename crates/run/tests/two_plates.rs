@@ -96,6 +96,16 @@ fn discrete_sliding_plates_carry_mu_times_the_normal_force() {
     assert_eq!(run_scene("two_plates_friction_discrete.comm"), (10, 0));
 }
 
+/// comm/dyna_sliding_block.comm: continuous Coulomb friction under
+/// DYNA_NON_LINE (the force sources' Newton loop with the time
+/// integrator): a block pressed by 4e4 and pushed by 2.4e4 > μN slides
+/// (CONT = 2) with the rigid acceleration (F − μN)/m = 0.6 to 1e-4 and
+/// RTGX = μ RN at a sliding node to 1e-8.
+#[test]
+fn block_pushed_beyond_mu_n_slides_with_the_rigid_acceleration_in_dynamics() {
+    assert_eq!(run_scene("dyna_sliding_block.comm"), (6, 0));
+}
+
 /// comm/two_plates_glued.comm: continuous contact under a pressure load,
 /// PENALISATION with kappa = 1e16, then STANDARD with COEF_CONT = 1e14.
 /// code_aster's penalised element is pointwise (aster_contact's `penalty`
