@@ -123,6 +123,18 @@ fn mortar_contact_passes_the_patch_test_on_non_matching_meshes() {
     );
 }
 
+/// comm/post_erreur.comm: POST_ERREUR(OPTION='LAGR_RELA') on the mortar
+/// patch test (LAGS_C = -1e5 on AB, length 2): against the exact pressure
+/// the REFERENCE norm is 1e5 sqrt(2) and the error 0; against -1e5 (1 + X)
+/// DIFFERENCE = 1e5 sqrt(2/3), REFERENCE = 1e5 sqrt(8/3), ERREUR RELATIVE
+/// = 1/2, all to 1e-6 (measured 6e-16); a DEFI_FONCTION is called in the
+/// command file and inside a FORMULE.
+#[test]
+fn post_erreur_measures_the_contact_pressure_error() {
+    assert_eq!(run_scene("post_erreur.comm"), (12, 0));
+    assert_eq!(run_scene_on_3_coordinates("post_erreur.comm"), (12, 0));
+}
+
 #[test]
 fn the_mesh_file_is_the_generated_scene() {
     let file = aster_mesh::read_mail(&root().join("comm/two_plates.mail")).unwrap();
