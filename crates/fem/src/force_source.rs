@@ -30,7 +30,7 @@ use crate::error::FemError;
 use crate::linalg::{self, Csc, SolveFailure};
 use crate::loads::EqualityRow;
 use crate::model::Model;
-use crate::nonlinear::{choose_tangent, internal_forces, kept_rows, NewtonOptions};
+use crate::nonlinear::{choose_tangent, internal_forces, kept_rows, IncrementTerms, NewtonOptions};
 use crate::unilateral::State;
 
 /// An unknown of the system a source contributes to.
@@ -155,6 +155,10 @@ pub(crate) struct ForceStep<'a> {
     pub iter_glob_maxi: usize,
     /// Bound on the restarts asked by the sources' fixed-point loops.
     pub loops_max: usize,
+    /// Inertia and damping of a dynamic analysis: its matrix is in `kff`,
+    /// its force is added to the internal forces and its reference to the
+    /// residual's (as STAT_NON_LINE's loop does).
+    pub dynamics: Option<&'a dyn IncrementTerms>,
 }
 
 /// The outcome of a converged step: (solves, equality multipliers,
@@ -217,7 +221,7 @@ pub(crate) fn newton_step(
         // Internal forces and the sources' contributions at the iterate.
         let (fint, contributions) = match evaluated.take() {
             Some(e) => e,
-            None => evaluate_all(model, k, plastic, sources, own, u, t)?,
+            None => evaluate_all(model, k, ctx.dynamics, plastic, sources, own, u, t)?,
         };
         if let Some(pc) = plastic.as_mut() {
             choose_tangent(&mut tangent, pc, model, kff, map, newton, iteration)?;
@@ -344,7 +348,8 @@ pub(crate) fn newton_step(
             settled &= ok;
         }
         // Residual at the new iterate (with the new statuses).
-        let (fint, contributions) = evaluate_all(model, k, plastic, sources, own, u, t)?;
+        let (fint, contributions) =
+            evaluate_all(model, k, ctx.dynamics, plastic, sources, own, u, t)?;
         let mut src_force = vec![0.0; nd];
         for c in &contributions {
             for &(i, f) in &c.forces {
@@ -359,9 +364,13 @@ pub(crate) fn newton_step(
         }
         let mut resi_maxi = 0.0f64;
         let mut reference = 0.0f64;
+        // Dynamics: code_aster's reference counts the inertia and damping
+        // forces with the external ones, and the inertia of the velocity.
+        let dyn_u = ctx.dynamics.map(|d| d.force(u));
+        let dyn_at = |i: usize| dyn_u.as_ref().map_or(0.0, |f| f[i]);
         for i in 0..nd {
             if map[i] == usize::MAX {
-                reference = reference.max(fint[i].abs());
+                reference = reference.max((fint[i] - dyn_at(i)).abs());
             } else {
                 let r = fext[i] - fint[i] + reac[i] - src_force[i];
                 if trace && r.abs() > resi_maxi {
@@ -374,8 +383,11 @@ pub(crate) fn newton_step(
                     );
                 }
                 resi_maxi = resi_maxi.max(r.abs());
-                reference = reference.max((fext[i] + reac[i] - src_force[i]).abs());
+                reference = reference.max((fext[i] - dyn_at(i) + reac[i] - src_force[i]).abs());
             }
+        }
+        if let Some(d) = ctx.dynamics {
+            reference = reference.max(d.reference(u));
         }
         let resi_rela = if reference > 0. {
             resi_maxi / reference
@@ -447,17 +459,25 @@ pub(crate) fn newton_step(
     }
 }
 
-/// Internal forces and every source's contribution at `u`.
+/// Internal forces (with the time integrator's inertia and damping) and
+/// every source's contribution at `u`.
+#[allow(clippy::too_many_arguments)]
 fn evaluate_all(
     model: &Model,
     k: &Csc,
+    dynamics: Option<&dyn IncrementTerms>,
     plastic: &mut Option<PlasticCells>,
     sources: &mut [Box<dyn ForceSource + '_>],
     own: &[Vec<f64>],
     u: &[f64],
     t: f64,
 ) -> Result<(Vec<f64>, Vec<Contribution>), FemError> {
-    let fint = internal_forces(model, k, plastic, u)?;
+    let mut fint = internal_forces(model, k, plastic, u)?;
+    if let Some(d) = dynamics {
+        for (f, x) in fint.iter_mut().zip(d.force(u)) {
+            *f += x;
+        }
+    }
     let mut out = Vec::with_capacity(sources.len());
     for (s, src) in sources.iter_mut().enumerate() {
         let c = src.evaluate(&state(model, u, t), &own[s])?;

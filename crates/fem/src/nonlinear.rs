@@ -522,12 +522,6 @@ impl StaticNonLinear<'_> {
                 self.sources[0].name()
             )));
         }
-        if let (Some(f), Some(_)) = (self.forces.first(), &self.dynamics) {
-            return Err(FemError::Model(format!(
-                "{} in dynamics: the force sources' Newton loop has no time integrator",
-                f.name()
-            )));
-        }
         let mut own: Vec<Vec<f64>> = self
             .forces
             .iter()
@@ -710,7 +704,7 @@ impl StaticNonLinear<'_> {
                     let fctx = ForceStep {
                         model,
                         k: &k,
-                        kff: &kff,
+                        kff: kff_used,
                         map: &map,
                         nfree,
                         kdiag_max,
@@ -719,6 +713,7 @@ impl StaticNonLinear<'_> {
                         resi_glob_maxi: self.convergence.resi_glob_maxi,
                         iter_glob_maxi: self.convergence.iter_glob_maxi,
                         loops_max: self.active_set_max_iter,
+                        dynamics: self.dynamics.as_deref(),
                     };
                     force_source::newton_step(
                         &fctx,
