@@ -3,7 +3,7 @@
 
 use crate::interp::Interp;
 use crate::value::Value;
-use crate::{CommandCall, CommandOutput, CommandSink, ExecError};
+use crate::{CommandCall, CommandOutput, CommandSink, ConceptRef, ExecError};
 use aster_syntax::{ast, CodeMap};
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -38,8 +38,27 @@ impl Formula {
     /// Evaluates the formula for real parameter values given in the order of
     /// [`Formula::params`].
     pub fn eval(&self, args: &[f64]) -> Result<f64, String> {
+        self.eval_in(args, &mut NoCommands)
+    }
+
+    /// The concepts the expression can see (the function concepts it may
+    /// call, `F(INST)`).
+    pub fn concepts(&self) -> Vec<ConceptRef> {
+        self.context
+            .values()
+            .filter_map(|v| match v {
+                Value::Concept(c) => Some(c.clone()),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// [`Formula::eval`] with a sink that answers the calls of concepts
+    /// (`F(INST)` of a function concept is `sink.method(F, "__call__", …)`);
+    /// no command can run.
+    pub fn eval_in(&self, args: &[f64], sink: &mut dyn CommandSink) -> Result<f64, String> {
         let vals: Vec<Value> = args.iter().map(|a| Value::Float(*a)).collect();
-        match self.call(&vals)? {
+        match self.call_in(&vals, sink)? {
             Value::Int(i) => Ok(i as f64),
             big @ Value::Big(_) => match big.as_f64() {
                 Some(f) if f.is_finite() => Ok(f),
@@ -60,6 +79,15 @@ impl Formula {
 
     /// Evaluates the formula with named parameters (any order).
     pub fn eval_named(&self, args: &[(&str, f64)]) -> Result<f64, String> {
+        self.eval_named_in(args, &mut NoCommands)
+    }
+
+    /// [`Formula::eval_named`] with a sink for the calls of concepts.
+    pub fn eval_named_in(
+        &self,
+        args: &[(&str, f64)],
+        sink: &mut dyn CommandSink,
+    ) -> Result<f64, String> {
         let mut ordered = Vec::with_capacity(self.params.len());
         for p in &self.params {
             let v = args
@@ -69,10 +97,14 @@ impl Formula {
                 .ok_or_else(|| format!("formula `{}`: parameter {p} not given", self.source))?;
             ordered.push(v);
         }
-        self.eval(&ordered)
+        self.eval_in(&ordered, sink)
     }
 
     pub(crate) fn call(&self, args: &[Value]) -> Result<Value, String> {
+        self.call_in(args, &mut NoCommands)
+    }
+
+    fn call_in(&self, args: &[Value], sink: &mut dyn CommandSink) -> Result<Value, String> {
         if args.len() != self.params.len() {
             return Err(format!(
                 "formula `{}` takes {} parameter(s) ({}), {} given",
@@ -82,8 +114,7 @@ impl Formula {
                 args.len()
             ));
         }
-        let mut sink = NoCommands;
-        let mut interp = Interp::for_formula(&self.map, &mut sink, self.context.clone());
+        let mut interp = Interp::for_formula(&self.map, sink, self.context.clone());
         let mut locals = HashMap::new();
         for (p, a) in self.params.iter().zip(args) {
             locals.insert(p.clone(), a.clone());

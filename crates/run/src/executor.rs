@@ -413,11 +413,21 @@ impl CommandSink for Executor {
 
     fn formula(&mut self, concept: &ConceptRef, formula: &Rc<aster_eval::Formula>) {
         let f = formula.clone();
+        // The function concepts the expression may call (`F(INST)`), as
+        // they are now: a formula sees the values of its definition.
+        let functions: Vec<(u32, Rc<Function>)> = formula
+            .concepts()
+            .iter()
+            .filter_map(|c| match self.store.get(&c.id) {
+                Some(Concept::Function(g)) => Some((c.id, g.clone())),
+                _ => None,
+            })
+            .collect();
         let function = Function::Formula {
             parameters: formula.params.clone(),
             eval: Rc::new(move |args: &[(String, f64)]| {
                 let named: Vec<(&str, f64)> = args.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-                f.eval_named(&named)
+                f.eval_named_in(&named, &mut FunctionCalls(&functions))
             }),
         };
         self.insert(concept, Concept::Function(Rc::new(function)));
@@ -440,6 +450,9 @@ impl CommandSink for Executor {
             )));
         }
         match (self.concept(concept)?, name) {
+            // A function concept called in a formula (`F(INST)`): its value,
+            // the arguments taken in the order of its parameters.
+            (Concept::Function(f), "__call__") => call_function(f, &concept.name, args),
             (Concept::Mesh(mesh), "getMinMaxEdgeSizes") => {
                 let cells: Vec<aster_mesh::CellId> = match args {
                     [] => (0..mesh.cells.len() as u32)
@@ -540,4 +553,71 @@ pub(crate) fn store_result(
     let r = result_of(call)?.clone();
     ex.insert(&r, concept);
     Ok(CommandOutput::Concept)
+}
+
+/// The value of a function concept called with numbers (`F(0.5)`, in the
+/// command file or in a formula), the arguments taken in the order of its
+/// parameters.
+fn call_function(
+    f: &Function,
+    name: &str,
+    args: &[aster_eval::HostValue],
+) -> Result<aster_eval::HostValue, ExecError> {
+    use aster_eval::{HostValue, Scalar};
+    let xs: Vec<f64> = args
+        .iter()
+        .map(|a| match a {
+            HostValue::Scalar(Scalar::Real(x)) => Some(*x),
+            HostValue::Scalar(Scalar::Int(i)) => Some(*i as f64),
+            _ => None,
+        })
+        .collect::<Option<_>>()
+        .ok_or_else(|| ExecError::new(format!("function {name} takes numbers")))?;
+    let params = f.parameters();
+    let value = match xs.as_slice() {
+        [x] if params.len() <= 1 => f.eval(*x),
+        _ if xs.len() == params.len() => {
+            let named: Vec<(&str, f64)> = params.iter().copied().zip(xs.iter().copied()).collect();
+            f.eval_named(&named)
+        }
+        _ => {
+            return Err(ExecError::new(format!(
+                "function {name} takes {} argument(s) ({}), {} given",
+                params.len().max(1),
+                params.join(", "),
+                xs.len()
+            )))
+        }
+    };
+    value
+        .map(|v| HostValue::Scalar(Scalar::Real(v)))
+        .map_err(|e| ExecError::new(format!("function {name}: {e}")))
+}
+
+/// What a formula's evaluation may ask of concepts: the calls of the
+/// function concepts it refers to; it runs no command.
+struct FunctionCalls<'f>(&'f [(u32, Rc<Function>)]);
+
+impl CommandSink for FunctionCalls<'_> {
+    fn execute(&mut self, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+        Err(ExecError::new(format!(
+            "a formula cannot run the command {}",
+            call.command
+        )))
+    }
+
+    fn method(
+        &mut self,
+        concept: &ConceptRef,
+        name: &str,
+        args: &[aster_eval::HostValue],
+    ) -> Result<aster_eval::HostValue, ExecError> {
+        match self.0.iter().find(|(id, _)| *id == concept.id) {
+            Some((_, f)) if name == "__call__" => call_function(f, &concept.name, args),
+            _ => Err(ExecError::new(format!(
+                "not supported: method {name}() of concept {} ({}) in a formula",
+                concept.name, concept.typ
+            ))),
+        }
+    }
 }

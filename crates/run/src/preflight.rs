@@ -144,6 +144,9 @@ pub struct CallRefusals {
     finite_strain_results: Vec<u32>,
     /// Continuous contact definitions with Coulomb friction, by concept id.
     continuous_friction: Vec<u32>,
+    /// `DEFI_CONTACT(FORMULATION='LIAISON_UNIL')` definitions, by concept
+    /// id: node-wise unilateral rows without pairing.
+    unilateral_links: Vec<u32>,
 }
 
 impl CallRefusals {
@@ -213,15 +216,24 @@ impl CallRefusals {
     /// 9.2e-5 at t = 1 while its displacements agree to 1e-9, and ours is
     /// converged (RESI_GLOB_RELA 1e-10 moves it by 5e-7): the gap is in the
     /// contact state, not in this post-processing. Refused at CALC_CHAMP.
+    /// `FORMULATION='LIAISON_UNIL'` (node-wise rows, no pairing) is not
+    /// refused: ssna111c, the same punch held by LIAISON_UNIL, has every
+    /// REAC_NODA within 1e-6 of code_aster.
     /// (DYNA_NON_LINE's are the dynamics' own, validated by sdnv103e.)
     fn follow_finite_strains(&mut self, call: &CommandCall) -> Option<(String, Span)> {
         let kw = &call.keywords;
-        if ["STAT_NON_LINE", "MECA_NON_LINE"].contains(&call.command.as_str()) {
+        if call.command == "DEFI_CONTACT" && kw.str("FORMULATION") == Some("LIAISON_UNIL") {
+            if let Some(r) = call.result.as_ref() {
+                self.unilateral_links.push(r.id);
+            }
+        } else if ["STAT_NON_LINE", "MECA_NON_LINE"].contains(&call.command.as_str()) {
             let finite = kw
                 .factor("COMPORTEMENT")
                 .iter()
                 .any(|c| c.str("DEFORMATION") == Some("SIMO_MIEHE"))
-                && kw.concept("CONTACT").is_some();
+                && kw
+                    .concept("CONTACT")
+                    .is_some_and(|c| !self.unilateral_links.contains(&c.id));
             if let Some(r) = call.result.as_ref().or(call.reuse.as_ref()) {
                 if finite {
                     self.finite_strain_results.push(r.id);

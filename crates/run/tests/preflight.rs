@@ -255,12 +255,12 @@ FIN()
 }
 
 /// DEFI_CONT (code_aster 17's mortar contact): what is not reproduced is
-/// refused at its keyword — Nitsche, friction, a history-dependent law, a
+/// refused at its keyword — Nitsche, friction, a viscous law (LEMAITRE), a
 /// loose Newton tolerance — and the reproduced default passes.
 #[test]
 fn defi_cont_variants_not_reproduced_are_refused_at_their_keyword() {
     let src = format!(
-        r#"{HEAD}mat = DEFI_MATERIAU(ELAS=_F(E=1.0e5, NU=0.3), ECRO_LINE=_F(D_SIGM_EPSI=1.0e3, SY=1.0e2))
+        r#"{HEAD}mat = DEFI_MATERIAU(ELAS=_F(E=1.0e5, NU=0.3), LEMAITRE=_F(N=1.0, UN_SUR_K=1.0, UN_SUR_M=0.0))
 chmat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", MATER=mat))
 ok = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB", COEF_CONT=10.0))
 n = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB", ALGO_CONT="NITSCHE"))
@@ -270,7 +270,7 @@ bc = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=_F(GROUP_NO="E", DX=0.0, DY=0.0))
 times = DEFI_LIST_REEL(VALE=(0.0, 1.0))
 r = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
     CONTACT=_F(DEFINITION=ok, ALGO_RESO_GEOM="NEWTON"),
-    COMPORTEMENT=_F(RELATION="VMIS_ISOT_LINE"), INCREMENT=_F(LIST_INST=times),
+    COMPORTEMENT=_F(RELATION="LEMAITRE"), INCREMENT=_F(LIST_INST=times),
     CONVERGENCE=_F(RESI_GLOB_RELA=1.0e-3))
 s = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
     CONTACT=_F(DEFINITION=ok), COMPORTEMENT=_F(RELATION="ELAS"), INCREMENT=_F(LIST_INST=times))
@@ -292,6 +292,6 @@ FIN()
         ),
         "{m:?}"
     );
-    assert!(m[2].starts_with("case.comm:14:21: error: not supported yet: MECA_NON_LINE/COMPORTEMENT/RELATION='VMIS_ISOT_LINE' with a DEFI_CONT contact"), "{m:?}");
+    assert!(m[2].starts_with("case.comm:14:21: error: not supported yet: MECA_NON_LINE/COMPORTEMENT/RELATION='LEMAITRE' with a DEFI_CONT contact"), "{m:?}");
     assert!(m[3].starts_with("case.comm:15:20: error: not supported yet: MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above 1e-4 with a DEFI_CONT contact"), "{m:?}");
 }

@@ -133,6 +133,28 @@ fn mortar_contact_passes_the_patch_test_on_non_matching_meshes() {
     );
 }
 
+/// comm/post_erreur.comm: POST_ERREUR(OPTION='LAGR_RELA') on the mortar
+/// patch test (LAGS_C = -1e5 on AB, length 2): against the exact pressure
+/// the REFERENCE norm is 1e5 sqrt(2) and the error 0; against -1e5 (1 + X)
+/// DIFFERENCE = 1e5 sqrt(2/3), REFERENCE = 1e5 sqrt(8/3), ERREUR RELATIVE
+/// = 1/2, all to 1e-6 (measured 6e-16); a DEFI_FONCTION is called in the
+/// command file and inside a FORMULE.
+#[test]
+fn post_erreur_measures_the_contact_pressure_error() {
+    assert_eq!(run_scene("post_erreur.comm"), (12, 0));
+    assert_eq!(run_scene_on_3_coordinates("post_erreur.comm"), (12, 0));
+}
+
+/// comm/two_plates_dyna.comm: the continuous contact element (a force
+/// source with the LAGS_C unknowns) in DYNA_NON_LINE: with a negligible
+/// density (inertia 2e-15 of the stiffness) the Newmark answer is the
+/// static one at 1e-6 (measured 1e-14) at both steps, and both are within
+/// 1 % of the analytic patch-test state.
+#[test]
+fn contact_elements_in_dynamics_reach_the_static_answer_without_inertia() {
+    assert_eq!(run_scene("two_plates_dyna.comm"), (16, 0));
+}
+
 #[test]
 fn the_mesh_file_is_the_generated_scene() {
     let file = aster_mesh::read_mail(&root().join("comm/two_plates.mail")).unwrap();
