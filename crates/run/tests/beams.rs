@@ -87,3 +87,48 @@ fn an_equal_ended_homothetic_circle_is_a_circle() {
     );
     assert_eq!(run(&t, "circle"), (2, 0, None));
 }
+
+/// Discrete contact with nodal pairing between point cells (POI1), as
+/// code_aster's APPARIEMENT='NODAL' with a fixed slave normal: the tip of
+/// the horizontal cantilever, pushed down by P = 1000 (free deflection
+/// P·L³/(3·E·IY) = 1.28e-2), meets a fixed point 0.01 below it: the tip
+/// stops at DZ = −0.01, the support carries P − 3·E·IY·0.01/L³ =
+/// 1000·(1 − 0.01/0.0128) = 218.75 and the clamp the rest, 781.25
+/// (REAC_NODA: the contact force is not a reaction of the point).
+#[test]
+fn a_beam_tip_on_a_point_support_by_nodal_pairing() {
+    let t = text();
+    let head = &t[..t.find("LINST = ").unwrap()];
+    let head = head
+        .replace(
+            "_F(GROUP_MA=(\"P\", \"K\"), PHENOMENE",
+            "_F(GROUP_MA=(\"P\", \"K\", \"G\", \"TIP\"), PHENOMENE",
+        )
+        .replace(
+            "_F(GROUP_MA=\"P\", CARA=\"M_TR_D_N\"",
+            "_F(GROUP_MA=(\"G\", \"TIP\"), CARA=\"K_TR_D_N\", VALE=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),\n        \
+             _F(GROUP_MA=\"P\", CARA=\"M_TR_D_N\"",
+        )
+        .replace("GROUP_NO=\"CLAMP\"", "GROUP_NO=(\"CLAMP\", \"G0\")")
+        .replace(
+            "FX=1.0e4, FY=500.0, FZ=1000.0, MX=100.0",
+            "FZ=-1000.0",
+        );
+    let text = format!(
+        "{head}CONT = DEFI_CONTACT(MODELE=MO, FORMULATION=\"DISCRETE\", ZONE=_F(\
+         APPARIEMENT=\"NODAL\", GROUP_MA_MAIT=\"G\", GROUP_MA_ESCL=\"TIP\", NORMALE=\"ESCL\", \
+         VECT_ESCL=\"FIXE\", ESCL_FIXE=(0.0, 0.0, -1.0)))\n\n\
+         LINST = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A=1.0, NOMBRE=1))\n\n\
+         RESU = STAT_NON_LINE(MODELE=MO, CHAM_MATER=MAT, CARA_ELEM=CARA, \
+         EXCIT=(_F(CHARGE=CLAMP), _F(CHARGE=TIP)), CONTACT=CONT, \
+         COMPORTEMENT=_F(RELATION=\"ELAS\", TOUT=\"OUI\"), INCREMENT=_F(LIST_INST=LINST))\n\n\
+         RESU = CALC_CHAMP(reuse=RESU, RESULTAT=RESU, FORCE=\"REAC_NODA\")\n\n\
+         TEST_RESU(RESU=(\
+         _F(NUME_ORDRE=1, RESULTAT=RESU, NOM_CHAM=\"DEPL\", GROUP_NO=\"H4\", NOM_CMP=\"DZ\", \
+         VALE_CALC=-0.01, VALE_REFE=-0.01, REFERENCE=\"ANALYTIQUE\", PRECISION=1.0e-9),\
+         _F(NUME_ORDRE=1, RESULTAT=RESU, NOM_CHAM=\"REAC_NODA\", GROUP_NO=\"H0\", NOM_CMP=\"DZ\", \
+         VALE_CALC=781.25, VALE_REFE=781.25, REFERENCE=\"ANALYTIQUE\", PRECISION=1.0e-9),\
+         ))\n\nFIN()\n"
+    );
+    assert_eq!(run(&text, "nodal-contact"), (4, 0, None));
+}
