@@ -239,7 +239,8 @@ pub fn pair_point(
     };
     let gap = dot(sub(xs, xm), normal)
         - g.dist_mait.at_time(xm, zone.time)
-        - g.dist_escl.at_time(xs, zone.time);
+        - g.dist_escl.at_time(xs, zone.time)
+        - zone.structural_gap(point);
     Ok(ContactPair {
         point: point.clone(),
         status: PairStatus::Paired(Pairing {

@@ -87,6 +87,21 @@ impl ResolvedZone {
             nodal.then_some(&mut slave_points),
         )?;
 
+        if let Some(radius) = &geometry.beam_radius {
+            if let Some(c) = slave.iter().find(|c| !radius.contains_key(&c.id)) {
+                let name = mesh
+                    .cell_names
+                    .get(c.id.0 as usize)
+                    .cloned()
+                    .unwrap_or_else(|| format!("#{}", c.id.0 + 1));
+                return Err(ContactError::Invalid {
+                    keyword: "DIST_POUTRE",
+                    message: format!(
+                        "slave cell {name} has no circular beam section (SECTION='CERCLE') in the zone's CARA_ELEM: DIST_POUTRE needs one (code_aster's CONTACT3_32)"
+                    ),
+                });
+            }
+        }
         let mut excluded = BTreeSet::new();
         for g in &geometry.excluded_node_groups {
             let group = mesh.group_no(g).ok_or_else(|| ContactError::UnknownGroup {
@@ -190,6 +205,32 @@ impl ResolvedZone {
                     })
                 }
             }
+        }
+    }
+
+    /// The structural offset of a slave point (`DIST_POUTRE`): the radius
+    /// of its slave cell, or at a node the mean over the slave cells
+    /// around it (code_aster's `cfdist`, `cfdism`); 0 without it.
+    pub fn structural_gap(&self, point: &crate::pairing::SlavePoint) -> f64 {
+        let Some(radius) = &self.geometry.beam_radius else {
+            return 0.0;
+        };
+        let of = |ci: usize| {
+            self.slave
+                .get(ci)
+                .and_then(|c| radius.get(&c.id))
+                .copied()
+                .unwrap_or(0.0)
+        };
+        match (point.cell, point.node()) {
+            (Some((ci, _)), _) => of(ci),
+            (None, Some(n)) => match self.slave_cells_of_node.get(&n) {
+                Some(cells) if !cells.is_empty() => {
+                    cells.iter().map(|&ci| of(ci)).sum::<f64>() / cells.len() as f64
+                }
+                _ => 0.0,
+            },
+            _ => 0.0,
         }
     }
 

@@ -69,14 +69,13 @@ fn a_varying_section_is_refused_at_vari_sect() {
 #[test]
 fn an_equal_ended_homothetic_circle_is_a_circle() {
     let r: f64 = (5.0e-3 / std::f64::consts::PI).sqrt();
-    let t = text()
-        .replace(
-            "SECTION=\"RECTANGLE\", CARA=(\"HY\", \"HZ\"), VALE=(0.1, 0.05)",
-            &format!(
-                "SECTION=\"CERCLE\", VARI_SECT=\"HOMOTHETIQUE\", CARA=(\"R_DEBUT\", \"R_FIN\"), \
+    let t = text().replace(
+        "SECTION=\"RECTANGLE\", CARA=(\"HY\", \"HZ\"), VALE=(0.1, 0.05)",
+        &format!(
+            "SECTION=\"CERCLE\", VARI_SECT=\"HOMOTHETIQUE\", CARA=(\"R_DEBUT\", \"R_FIN\"), \
                  VALE=({r:e}, {r:e})"
-            ),
-        );
+        ),
+    );
     // Keep only the axial check (A = 5e-3 as the rectangle's).
     let start = t.find("TEST_RESU(").unwrap();
     let mut t = t[..start].to_string();
@@ -131,4 +130,53 @@ fn a_beam_tip_on_a_point_support_by_nodal_pairing() {
          ))\n\nFIN()\n"
     );
     assert_eq!(run(&text, "nodal-contact"), (4, 0, None));
+}
+
+/// `DIST_POUTRE='OUI'`: the radius of the slave beams' circular section is
+/// part of the gap (code_aster's `cfdist`/`cfdism`). The horizontal
+/// cantilever, now a solid circle R = 0.05 (EI = E·π·R⁴/4), its last cell
+/// the slave side of a nodal zone against a point 0.051 below the axis of
+/// its tip: the surface of the beam is 0.001 above it, so the tip stops at
+/// DZ = −0.001 and the clamp carries 3·EI·0.001/L³ = 368.155… (the support
+/// the rest of P).
+#[test]
+fn dist_poutre_puts_the_beam_surface_on_the_support() {
+    let t = text();
+    let head = &t[..t.find("LINST = ").unwrap()];
+    let head = head
+        .replace(
+            "_F(GROUP_MA=(\"P\", \"K\"), PHENOMENE",
+            "_F(GROUP_MA=(\"P\", \"K\", \"G1\"), PHENOMENE",
+        )
+        .replace(
+            "POUTRE=_F(GROUP_MA=(\"H\", \"V\"), SECTION=\"RECTANGLE\"",
+            "POUTRE=(_F(GROUP_MA=\"H\", SECTION=\"CERCLE\", CARA=\"R\", VALE=0.05), \
+             _F(GROUP_MA=\"V\", SECTION=\"RECTANGLE\"",
+        )
+        .replace("VALE=(0.1, 0.05)),", "VALE=(0.1, 0.05))),")
+        .replace(
+            "_F(GROUP_MA=\"P\", CARA=\"M_TR_D_N\"",
+            "_F(GROUP_MA=\"G1\", CARA=\"K_TR_D_N\", VALE=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),\n        \
+             _F(GROUP_MA=\"P\", CARA=\"M_TR_D_N\"",
+        )
+        .replace("GROUP_NO=\"CLAMP\"", "GROUP_NO=(\"CLAMP\", \"G1\")")
+        .replace("FX=1.0e4, FY=500.0, FZ=1000.0, MX=100.0", "FZ=-1000.0");
+    let text = format!(
+        "{head}CONT = DEFI_CONTACT(MODELE=MO, FORMULATION=\"DISCRETE\", ZONE=_F(\
+         APPARIEMENT=\"NODAL\", GROUP_MA_MAIT=\"G1\", GROUP_MA_ESCL=\"MH4\", NORMALE=\"ESCL\", \
+         VECT_ESCL=\"FIXE\", ESCL_FIXE=(0.0, 0.0, -1.0), DIST_POUTRE=\"OUI\", CARA_ELEM=CARA))\n\n\
+         LINST = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A=1.0, NOMBRE=1))\n\n\
+         RESU = STAT_NON_LINE(MODELE=MO, CHAM_MATER=MAT, CARA_ELEM=CARA, \
+         EXCIT=(_F(CHARGE=CLAMP), _F(CHARGE=TIP)), CONTACT=CONT, \
+         COMPORTEMENT=_F(RELATION=\"ELAS\", TOUT=\"OUI\"), INCREMENT=_F(LIST_INST=LINST))\n\n\
+         RESU = CALC_CHAMP(reuse=RESU, RESULTAT=RESU, FORCE=\"REAC_NODA\")\n\n\
+         TEST_RESU(RESU=(\
+         _F(NUME_ORDRE=1, RESULTAT=RESU, NOM_CHAM=\"DEPL\", GROUP_NO=\"H4\", NOM_CMP=\"DZ\", \
+         VALE_CALC=-0.001, VALE_REFE=-0.001, REFERENCE=\"ANALYTIQUE\", PRECISION=1.0e-9),\
+         _F(NUME_ORDRE=1, RESULTAT=RESU, NOM_CHAM=\"REAC_NODA\", GROUP_NO=\"H0\", NOM_CMP=\"DZ\", \
+         VALE_CALC=368.15538909255395, VALE_REFE=368.15538909255395, REFERENCE=\"ANALYTIQUE\", \
+         PRECISION=1.0e-9),\
+         ))\n\nFIN()\n"
+    );
+    assert_eq!(run(&text, "dist-poutre"), (4, 0, None));
 }

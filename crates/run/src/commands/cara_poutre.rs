@@ -23,6 +23,9 @@ use aster_mesh::{CellId, CellType, Mesh};
 pub struct BeamCara {
     pub cells: Vec<CellId>,
     pub section: BeamSection,
+    /// The outer radius of a circular section (`DEFI_CONTACT/ZONE/
+    /// DIST_POUTRE`).
+    pub radius: Option<f64>,
 }
 
 /// The `POUTRE` keywords AFFE_CARA_ELEM reads (`crate::support`).
@@ -91,6 +94,7 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
                 )),
             }
         };
+        let mut radius = None;
         let section = match section_kind {
             "CERCLE" => {
                 let Some(r) = end("R", "R_DEBUT", "R_FIN")? else {
@@ -103,6 +107,7 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
                         format!("CERCLE with R = {r}, EP = {ep}: needs 0 < EP ≤ R"),
                     ));
                 }
+                radius = Some(r);
                 BeamSection::circle(r, ep)
             }
             "RECTANGLE" => {
@@ -176,7 +181,11 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
                 ),
             ));
         }
-        out.push(BeamCara { cells, section });
+        out.push(BeamCara {
+            cells,
+            section,
+            radius,
+        });
     }
     Ok(out)
 }
