@@ -1,6 +1,6 @@
 //! `AFFE_CARA_ELEM/POUTRE`: the sections of the beam (`POU_D_E`) cells,
-//! as code_aster's `affgen` turns the geometric characteristics into A, IY,
-//! IZ, JX:
+//! A, IY, IZ, JX as code_aster's `affgen` computes them.
+//!
 //! - `SECTION='CERCLE'`: `R` and `EP` (a tube; `EP` absent: solid);
 //! - `SECTION='RECTANGLE'`: `HY`/`HZ` or `H` (square), `EPY`/`EPZ` or `EP`
 //!   (hollow; absent: solid);
