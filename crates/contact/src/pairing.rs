@@ -124,9 +124,15 @@ pub fn pair_point(
         }
     }
 
-    let (master_cell, master, xm, master_normal) = match g.appariement {
+    let (master_cell, master, xm, master_normal_opt) = match g.appariement {
         Appariement::Nodal => {
-            let n = zone.nodal_normal(nearest, true, x)?;
+            // With NORMALE='ESCL' the master normal is not used (and a
+            // master point, POI1, has none).
+            let n = if g.normale == NormalChoice::Escl {
+                None
+            } else {
+                Some(zone.nodal_normal(nearest, true, x)?)
+            };
             (None, vec![(nearest, 1.0)], x[nearest.0 as usize], n)
         }
         Appariement::MaitEscl => {
@@ -206,30 +212,35 @@ pub fn pair_point(
             let cell = &zone.master[c.cell];
             let n = master_normal_at(zone, cell, c.xi, x)?;
             let master = cell.nodes.iter().copied().zip(c.shape).collect();
-            (Some((cell.id, c.xi)), master, c.point, n)
+            (Some((cell.id, c.xi)), master, c.point, Some(n))
         }
     };
 
+    let master_normal = |m: Option<[f64; 3]>| match m {
+        Some(n) => Ok(n),
+        None => zone.nodal_normal(nearest, true, x),
+    };
     let normal = match g.normale {
-        NormalChoice::Mait => master_normal,
+        NormalChoice::Mait => master_normal(master_normal_opt)?,
         NormalChoice::Escl | NormalChoice::MaitEscl => {
             let ns = slave_normal(zone, point, x)?;
             let v = if g.normale == NormalChoice::Escl {
                 scale(ns, -1.0)
             } else {
-                sub(master_normal, ns)
+                sub(master_normal(master_normal_opt)?, ns)
             };
             let l = norm(v);
             if l > 0.0 {
                 scale(v, 1.0 / l)
             } else {
-                master_normal
+                master_normal(master_normal_opt)?
             }
         }
     };
     let gap = dot(sub(xs, xm), normal)
         - g.dist_mait.at_time(xm, zone.time)
-        - g.dist_escl.at_time(xs, zone.time);
+        - g.dist_escl.at_time(xs, zone.time)
+        - zone.structural_gap(point);
     Ok(ContactPair {
         point: point.clone(),
         status: PairStatus::Paired(Pairing {

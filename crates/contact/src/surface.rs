@@ -65,12 +65,18 @@ impl ResolvedZone {
     ) -> Result<Self, ContactError> {
         let space_dim = if space_dim >= 3 { 3 } else { 2 };
         let parents = ParentIndex::new(mesh, space_dim);
+        // Nodal pairing (APPARIEMENT='NODAL') pairs nodes with nodes: point
+        // cells (POI1) are contact nodes without a surface of their own.
+        let nodal = geometry.appariement == crate::zone::Appariement::Nodal;
+        let mut master_points = Vec::new();
+        let mut slave_points = Vec::new();
         let master = surface_cells(
             mesh,
             &geometry.master_group,
             "GROUP_MA_MAIT",
             space_dim,
             &parents,
+            nodal.then_some(&mut master_points),
         )?;
         let slave = surface_cells(
             mesh,
@@ -78,8 +84,24 @@ impl ResolvedZone {
             "GROUP_MA_ESCL",
             space_dim,
             &parents,
+            nodal.then_some(&mut slave_points),
         )?;
 
+        if let Some(radius) = &geometry.beam_radius {
+            if let Some(c) = slave.iter().find(|c| !radius.contains_key(&c.id)) {
+                let name = mesh
+                    .cell_names
+                    .get(c.id.0 as usize)
+                    .cloned()
+                    .unwrap_or_else(|| format!("#{}", c.id.0 + 1));
+                return Err(ContactError::Invalid {
+                    keyword: "DIST_POUTRE",
+                    message: format!(
+                        "slave cell {name} has no circular beam section (SECTION='CERCLE') in the zone's CARA_ELEM: DIST_POUTRE needs one (code_aster's CONTACT3_32)"
+                    ),
+                });
+            }
+        }
         let mut excluded = BTreeSet::new();
         for g in &geometry.excluded_node_groups {
             let group = mesh.group_no(g).ok_or_else(|| ContactError::UnknownGroup {
@@ -112,13 +134,17 @@ impl ResolvedZone {
         let master_cells_of_node = adjacency(&master);
         let slave_cells_of_node = adjacency(&slave);
         let mut master_nodes: Vec<NodeId> = master_cells_of_node.keys().copied().collect();
+        master_nodes.extend(master_points);
         master_nodes.sort();
+        master_nodes.dedup();
         let mut slave_nodes: Vec<NodeId> = slave_cells_of_node
             .keys()
             .copied()
+            .chain(slave_points)
             .filter(|n| !excluded.contains(n))
             .collect();
         slave_nodes.sort();
+        slave_nodes.dedup();
 
         Ok(ResolvedZone {
             time: 0.0,
@@ -182,6 +208,32 @@ impl ResolvedZone {
         }
     }
 
+    /// The structural offset of a slave point (`DIST_POUTRE`): the radius
+    /// of its slave cell, or at a node the mean over the slave cells
+    /// around it (code_aster's `cfdist`, `cfdism`); 0 without it.
+    pub fn structural_gap(&self, point: &crate::pairing::SlavePoint) -> f64 {
+        let Some(radius) = &self.geometry.beam_radius else {
+            return 0.0;
+        };
+        let of = |ci: usize| {
+            self.slave
+                .get(ci)
+                .and_then(|c| radius.get(&c.id))
+                .copied()
+                .unwrap_or(0.0)
+        };
+        match (point.cell, point.node()) {
+            (Some((ci, _)), _) => of(ci),
+            (None, Some(n)) => match self.slave_cells_of_node.get(&n) {
+                Some(cells) if !cells.is_empty() => {
+                    cells.iter().map(|&ci| of(ci)).sum::<f64>() / cells.len() as f64
+                }
+                _ => 0.0,
+            },
+            _ => 0.0,
+        }
+    }
+
     /// Averaged outward normal of a side at one of its nodes.
     pub fn nodal_normal(
         &self,
@@ -189,6 +241,19 @@ impl ResolvedZone {
         master: bool,
         x: &[[f64; 3]],
     ) -> Result<[f64; 3], ContactError> {
+        let fixed = if master {
+            self.geometry.vect_mait
+        } else {
+            self.geometry.vect_escl
+        };
+        // A fixed normal (VECT_MAIT/VECT_ESCL='FIXE') needs no cell: it is
+        // the normal of a contact point (POI1) too.
+        if let NormalSource::Fixed(v) = fixed {
+            let l = norm(v);
+            if l > 0.0 && l.is_finite() {
+                return Ok(scale(v, 1.0 / l));
+            }
+        }
         let (cells, map, source) = if master {
             (
                 &self.master,
@@ -213,6 +278,18 @@ impl ResolvedZone {
         let l = norm(sum);
         if l > 0.0 {
             Ok(scale(sum, 1.0 / l))
+        } else if !map.contains_key(&node) {
+            Err(ContactError::Invalid {
+                keyword: if master {
+                    "GROUP_MA_MAIT"
+                } else {
+                    "GROUP_MA_ESCL"
+                },
+                message: format!(
+                    "a contact point (POI1) has no normal of its own: give {}='FIXE'",
+                    if master { "VECT_MAIT" } else { "VECT_ESCL" }
+                ),
+            })
         } else {
             Err(ContactError::Invalid {
                 keyword: if master {
@@ -261,6 +338,7 @@ fn surface_cells(
     keyword: &'static str,
     space_dim: usize,
     parents: &ParentIndex,
+    mut points: Option<&mut Vec<NodeId>>,
 ) -> Result<Vec<SurfaceCell>, ContactError> {
     let g = mesh
         .group_ma(group)
@@ -290,6 +368,12 @@ fn surface_cells(
             .get(id.0 as usize)
             .cloned()
             .unwrap_or_else(|| format!("#{}", id.0));
+        if cell.ty == aster_mesh::CellType::POI1 {
+            if let (Some(points), Some(&n)) = (points.as_deref_mut(), cell.nodes.first()) {
+                points.push(n);
+                continue;
+            }
+        }
         let kind = SurfaceKind::of(cell.ty)
             .filter(|k| k.dim() + 1 == space_dim || (space_dim == 3 && k.dim() == 1))
             .ok_or(ContactError::BadCell {

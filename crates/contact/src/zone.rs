@@ -149,6 +149,11 @@ pub struct ZoneGeometry {
     /// not reproduced: a converged step whose penetration stays below the
     /// limit is code_aster's; one that exceeds it is an error.
     pub pene_maxi: Option<f64>,
+    /// `DIST_POUTRE='OUI'`: the radius of each slave beam cell's circular
+    /// section (`CARA_ELEM`), added to the gap (code_aster's `capoco`,
+    /// `cfdist`; at a node, the mean over its slave cells, `cfdism`).
+    /// `None`: no such offset.
+    pub beam_radius: Option<std::collections::BTreeMap<aster_mesh::CellId, f64>>,
 }
 
 /// `CONTACT_INIT` of a continuous zone.
@@ -188,6 +193,7 @@ impl ZoneGeometry {
             dist_maxi: None,
             dire_appa: None,
             pene_maxi: None,
+            beam_radius: None,
         }
     }
 

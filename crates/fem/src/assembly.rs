@@ -219,7 +219,7 @@ fn scatter_columns(
                     |m| FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell))),
                 )?
             }
-            ElementKind::Spring { .. } | ElementKind::Shell { .. } => {
+            ElementKind::Spring { .. } | ElementKind::Shell { .. } | ElementKind::Beam { .. } => {
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;
                 };

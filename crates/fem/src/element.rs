@@ -233,7 +233,16 @@ pub fn spring_stiffness(
     frame: Frame,
 ) -> (DMatrix<f64>, DMatrix<f64>) {
     let dim = stiffness.len();
-    let r = spring_rotation(mesh, cell, dim, frame);
+    let r = if dim == 6 {
+        // DIS_TR: the same rotation on the translations and the rotations.
+        let r3 = spring_rotation(mesh, cell, 3, frame);
+        let mut r = DMatrix::zeros(6, 6);
+        r.view_mut((0, 0), (3, 3)).copy_from(&r3);
+        r.view_mut((3, 3), (3, 3)).copy_from(&r3);
+        r
+    } else {
+        spring_rotation(mesh, cell, dim, frame)
+    };
     let kl = DMatrix::from_diagonal(&DVector::from_column_slice(stiffness));
     let kg = r.transpose() * kl * &r;
     let nn = mesh.cell(cell).nodes.len();
@@ -275,7 +284,32 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
                 .map(Some)
                 .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
         }
+        ElementKind::Beam { material, section } => {
+            beam_stiffness(model.mesh(), el.cell, material, section)
+                .map(Some)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+        }
     }
+}
+
+/// The global stiffness of a beam (`POU_D_E` on SEG2), node-major DX DY
+/// DZ DRX DRY DRZ.
+pub fn beam_stiffness(
+    mesh: &Mesh,
+    cell: CellId,
+    material: &Elastic,
+    section: &crate::beam::BeamSection,
+) -> Result<DMatrix<f64>, String> {
+    crate::beam::stiffness(&beam_coords(mesh, cell)?, material, section)
+}
+
+/// The two node coordinates of a beam cell.
+pub fn beam_coords(mesh: &Mesh, cell: CellId) -> Result<[[f64; 3]; 2], String> {
+    let c = mesh.cell(cell);
+    if c.ty != CellType::SEG2 {
+        return Err(format!("no beam element on a {}", c.ty.name()));
+    }
+    Ok([mesh.coord(c.nodes[0]), mesh.coord(c.nodes[1])])
 }
 
 /// The global stiffness of a shell facet (DKT on TRIA3, DKQ on QUAD4),

@@ -42,7 +42,9 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
     for el in model.elements() {
         let c = mesh.cell(el.cell);
         match &el.kind {
-            ElementKind::Continuum { .. } | ElementKind::Shell { .. } => {
+            ElementKind::Continuum { .. }
+            | ElementKind::Shell { .. }
+            | ElementKind::Beam { .. } => {
                 for w in c.nodes.windows(2) {
                     union(&mut parent, w[0].0 as usize, w[1].0 as usize);
                 }

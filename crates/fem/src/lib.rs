@@ -13,6 +13,7 @@
 
 pub mod assembly;
 pub mod autodiff;
+pub mod beam;
 pub mod behaviour;
 mod diag;
 pub mod dkq;
@@ -43,6 +44,7 @@ mod split_llt;
 pub mod strain;
 pub mod unilateral;
 
+pub use beam::BeamSection;
 pub use behaviour::{Behaviours, CurveEnd, Lemaitre, VonMises};
 pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};

@@ -26,9 +26,11 @@ pub enum ElementKind {
         hypothesis: Hypothesis,
         material: Elastic,
     },
-    /// Translational spring: on SEG2 between its nodes (`K_T_D_L`), on POI1
-    /// between the node and the ground (`K_T_D_N`). `stiffness` has 2 values
-    /// (`2D_DIS_T`: kx, ky) or 3 (`DIS_T`: kx, ky, kz).
+    /// Discrete spring: on SEG2 between its nodes (`K_T_D_L`, `K_TR_D_L`),
+    /// on POI1 between the node and the ground (`K_T_D_N`, `K_TR_D_N`).
+    /// `stiffness` has 2 values (`2D_DIS_T`: kx, ky), 3 (`DIS_T`: kx, ky,
+    /// kz) or 6 (`DIS_TR`: kx, ky, kz, krx, kry, krz — the cell's nodes
+    /// then carry the rotations DRX DRY DRZ).
     Spring { stiffness: Vec<f64>, frame: Frame },
     /// A cell of the model that carries no stiffness (e.g. a boundary SEG2
     /// of a D_PLAN model, used by edge loads); its nodes get DOFs.
@@ -40,6 +42,24 @@ pub enum ElementKind {
         material: Elastic,
         section: crate::dkt::ShellSection,
     },
+    /// An Euler–Bernoulli beam on SEG2 (`POU_D_E`: [`crate::beam`]),
+    /// linear elastic; its nodes get the rotations DRX DRY DRZ. 3D models
+    /// only.
+    Beam {
+        material: Elastic,
+        section: crate::beam::BeamSection,
+    },
+}
+
+impl ElementKind {
+    /// Whether the element's nodes carry the rotations DRX DRY DRZ.
+    pub fn has_rotations(&self) -> bool {
+        match self {
+            ElementKind::Shell { .. } | ElementKind::Beam { .. } => true,
+            ElementKind::Spring { stiffness, .. } => stiffness.len() == 6,
+            _ => false,
+        }
+    }
 }
 
 /// One element: a mesh cell and what it carries.
@@ -60,7 +80,8 @@ pub struct Model {
     /// Cells integrated with code_aster's under-integrated (`_SI`)
     /// stiffness family ([`shape::reduced_scheme`]).
     reduced: std::collections::BTreeSet<CellId>,
-    /// Cells carrying a shell element: they use six components per node.
+    /// Cells carrying an element with rotations (shell, beam, `DIS_TR`):
+    /// they use six components per node.
     shells: std::collections::BTreeSet<CellId>,
 }
 
@@ -153,9 +174,9 @@ impl Model {
                             cell.ty.name()
                         )));
                     }
-                    if !(stiffness.len() == 2 || stiffness.len() == 3) {
+                    if !matches!(stiffness.len(), 2 | 3 | 6) {
                         return Err(FemError::Model(format!(
-                            "spring on cell {} has {} stiffness values; expected 2 (2D_DIS_T) or 3 (DIS_T)",
+                            "spring on cell {} has {} stiffness values; expected 2 (2D_DIS_T), 3 (DIS_T) or 6 (DIS_TR)",
                             cell_name(el.cell),
                             stiffness.len()
                         )));
@@ -166,15 +187,19 @@ impl Model {
                             cell_name(el.cell)
                         )));
                     }
+                    let sdim = stiffness.len().min(3);
+                    if stiffness.len() == 6 {
+                        shell = true;
+                    }
                     match spring_dim {
-                        Some(d) if d != stiffness.len() => {
+                        Some(d) if d != sdim => {
                             return Err(FemError::Model(format!(
-                                "spring on cell {} has {} components, others have {d}",
+                                "spring on cell {} has {} translation components, others have {d}",
                                 cell_name(el.cell),
-                                stiffness.len()
+                                sdim
                             )))
                         }
-                        _ => spring_dim = Some(stiffness.len()),
+                        _ => spring_dim = Some(sdim),
                     }
                     if cell.ty == CellType::SEG2 {
                         let (a, b) = (mesh.coord(cell.nodes[0]), mesh.coord(cell.nodes[1]));
@@ -220,6 +245,19 @@ impl Model {
                     }
                     shell = true;
                 }
+                ElementKind::Beam { section, .. } => {
+                    if cell.ty != CellType::SEG2 {
+                        return Err(FemError::Model(format!(
+                            "cell {} is a {}: the POU_D_E beam element exists on SEG2 cells only",
+                            cell_name(el.cell),
+                            cell.ty.name()
+                        )));
+                    }
+                    section.check().map_err(|m| {
+                        FemError::Model(format!("beam on cell {}: {m}", cell_name(el.cell)))
+                    })?;
+                    shell = true;
+                }
             }
             if let ElementKind::Continuum { .. } = el.kind {
                 if !shape::supported(cell.ty) {
@@ -251,7 +289,7 @@ impl Model {
         };
         if shell && dim != 3 {
             return Err(FemError::Model(format!(
-                "shell elements (DKT) in a {dim}D model: shells need a 3D model"
+                "elements with rotations (DKT, POU_D_E, DIS_TR) in a {dim}D model: they need a 3D model"
             )));
         }
         // Component set per node: 0 the translations, 1 with the rotations
@@ -259,7 +297,7 @@ impl Model {
         let mut set: Vec<Option<u8>> = vec![None; mesh.coords.len()];
         let mut shells = std::collections::BTreeSet::new();
         for el in &elements {
-            let rot = matches!(el.kind, ElementKind::Shell { .. });
+            let rot = el.kind.has_rotations();
             if rot {
                 shells.insert(el.cell);
             }
@@ -322,8 +360,22 @@ impl Model {
         }
     }
 
-    /// Whether the model has shell elements (nodes with rotations).
+    /// Whether the model has shell elements (`DKT`).
     pub fn has_shells(&self) -> bool {
+        self.elements
+            .iter()
+            .any(|e| matches!(e.kind, ElementKind::Shell { .. }))
+    }
+
+    /// Whether the model has beams (`POU_D_E`).
+    pub fn has_beams(&self) -> bool {
+        self.elements
+            .iter()
+            .any(|e| matches!(e.kind, ElementKind::Beam { .. }))
+    }
+
+    /// Whether some nodes carry rotations (shells, beams, `DIS_TR`).
+    pub fn has_rotations(&self) -> bool {
         !self.shells.is_empty()
     }
 

@@ -53,6 +53,27 @@ fn cell_error(model: &Model, cell: CellId, m: String) -> FemError {
 /// membrane forces, moments and transverse shears.
 const EFGE_TRIA: [&str; 8] = ["NXX", "NYY", "NXY", "MXX", "MYY", "MXY", "QX", "QY"];
 
+/// `EFGE_ELNO` of the beams (`POU_D_E`): N VY VZ MT MFY MFZ at their two
+/// nodes, in each beam's local frame ([`crate::beam::efforts`]).
+pub fn beam_efge_elno(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
+    let mut out = Vec::new();
+    for el in model.elements() {
+        let ElementKind::Beam { material, section } = &el.kind else {
+            continue;
+        };
+        let err = |m: String| cell_error(model, el.cell, m);
+        let xyz = crate::element::beam_coords(model.mesh(), el.cell).map_err(err)?;
+        let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
+        let e = crate::beam::efforts(&xyz, material, section, &ue).map_err(err)?;
+        out.push(CellValues {
+            cell: el.cell,
+            names: crate::beam::EFFORT_NAMES.to_vec(),
+            points: e.iter().map(|p| p.to_vec()).collect(),
+        });
+    }
+    Ok(out)
+}
+
 /// Generalised efforts at the Gauss points (`EFGE_ELGA`) of the shell
 /// elements, in the user's frame of each facet: its x axis is the
 /// projection on the facet of the global direction `direction(cell)`
@@ -187,13 +208,13 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
                 let f: Vec<f64> = (0..dim).map(|k| stiffness[k] * local[k]).collect();
                 out.push(CellValues {
                     cell: el.cell,
-                    names: ["N", "VY", "VZ"][..dim].to_vec(),
+                    names: ["N", "VY", "VZ", "MT", "MFY", "MFZ"][..dim].to_vec(),
                     points: vec![f],
                 });
             }
             // Shells' stresses are by layer (code_aster's sub-points), not
             // computed: their efforts are [`efge_elga`]'s.
-            ElementKind::Boundary | ElementKind::Shell { .. } => {}
+            ElementKind::Boundary | ElementKind::Shell { .. } | ElementKind::Beam { .. } => {}
         }
     }
     Ok(out)
@@ -227,6 +248,11 @@ pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
             }
             ElementKind::Shell { material, section } => {
                 shell_stiffness(model.mesh(), el.cell, material, section)
+                    .map_err(|m| cell_error(model, el.cell, m))?
+                    * ue
+            }
+            ElementKind::Beam { material, section } => {
+                crate::element::beam_stiffness(model.mesh(), el.cell, material, section)
                     .map_err(|m| cell_error(model, el.cell, m))?
                     * ue
             }

@@ -29,6 +29,11 @@ pub enum Modelisation {
     Discrete2D,
     /// `DIS_T`: discrete translational elements in 3D.
     Discrete3D,
+    /// `DIS_TR`: discrete elements in 3D with the rotations DRX DRY DRZ
+    /// on their nodes.
+    DiscreteRot3D,
+    /// `POU_D_E`: Euler–Bernoulli beams on SEG2, with the rotations.
+    BeamEuler,
     /// `DKT`: thin-shell facets (DKT on TRIA3, DKQ on QUAD4) with the
     /// rotations DRX DRY DRZ on their nodes.
     Dkt,
@@ -43,6 +48,8 @@ impl Modelisation {
             "3D" => Modelisation::Solid3D,
             "2D_DIS_T" => Modelisation::Discrete2D,
             "DIS_T" => Modelisation::Discrete3D,
+            "DIS_TR" => Modelisation::DiscreteRot3D,
+            "POU_D_E" => Modelisation::BeamEuler,
             "DKT" => Modelisation::Dkt,
             _ => return None,
         })
@@ -62,7 +69,7 @@ impl Modelisation {
         }
     }
 
-    pub const KEYWORDS: [&'static str; 11] = [
+    pub const KEYWORDS: [&'static str; 13] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -74,18 +81,35 @@ impl Modelisation {
         "AXIS_SI",
         "3D_SI",
         "DKT",
+        "DIS_TR",
+        "POU_D_E",
     ];
 
     /// Space dimension of the displacement.
     pub fn dim(self) -> usize {
         match self {
-            Modelisation::Solid3D | Modelisation::Discrete3D | Modelisation::Dkt => 3,
+            Modelisation::Solid3D
+            | Modelisation::Discrete3D
+            | Modelisation::DiscreteRot3D
+            | Modelisation::BeamEuler
+            | Modelisation::Dkt => 3,
             _ => 2,
         }
     }
 
     pub fn is_discrete(self) -> bool {
-        matches!(self, Modelisation::Discrete2D | Modelisation::Discrete3D)
+        matches!(
+            self,
+            Modelisation::Discrete2D | Modelisation::Discrete3D | Modelisation::DiscreteRot3D
+        )
+    }
+
+    /// Whether its nodes carry the rotations DRX DRY DRZ.
+    pub fn has_rotations(self) -> bool {
+        matches!(
+            self,
+            Modelisation::Dkt | Modelisation::DiscreteRot3D | Modelisation::BeamEuler
+        )
     }
 }
 
@@ -107,7 +131,17 @@ pub struct ModelDef {
 impl ModelDef {
     /// Whether the model has shell elements (`DKT`).
     pub fn has_shells(&self) -> bool {
+        self.cells.values().any(|&m| m == Modelisation::Dkt)
+    }
+
+    /// Whether some nodes carry rotations (`DKT`, `POU_D_E`, `DIS_TR`).
+    pub fn has_rotations(&self) -> bool {
         self.rotations.iter().any(|&r| r)
+    }
+
+    /// Whether the model has beams (`POU_D_E`).
+    pub fn has_beams(&self) -> bool {
+        self.cells.values().any(|&m| m == Modelisation::BeamEuler)
     }
 
     pub fn dim(&self) -> usize {
@@ -162,9 +196,10 @@ pub struct MaterialField {
 #[derive(Clone, Debug, PartialEq)]
 pub struct DiscreteStiffness {
     pub cells: Vec<CellId>,
-    /// `K_T_D_L` (segments) or `K_T_D_N` (points).
+    /// `K_T_D_L`, `K_TR_D_L` (segments) or `K_T_D_N`, `K_TR_D_N` (points).
     pub cara: String,
-    /// Translational stiffness per direction (kx, ky[, kz]).
+    /// Stiffness per direction (kx, ky[, kz]; `K_TR_*`: kx, ky, kz, krx,
+    /// kry, krz).
     pub values: Vec<f64>,
     /// `REPERE='LOCAL'`: along the segment (x) and across; else global.
     pub local: bool,
@@ -188,6 +223,8 @@ pub struct CaraElem {
     pub shells: Vec<crate::commands::cara_coque::ShellCara>,
     /// Discrete masses (DYNA_NON_LINE).
     pub masses: Vec<DiscreteMassDef>,
+    /// `POUTRE`: the beams' sections.
+    pub beams: Vec<crate::commands::cara_poutre::BeamCara>,
 }
 
 /// An imposed component value on a node.

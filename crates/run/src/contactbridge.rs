@@ -21,7 +21,7 @@ pub(crate) const DEFI_CONTACT: Support = Support {
         Values::new("FROTTEMENT", &["SANS", "COULOMB"]),
         // FIXE: projection along DIRE_APPA (code_aster's `mmnewd`).
         Values::new("ZONE/TYPE_PROJECTION", &["ORTHOGONALE", "FIXE"]),
-        Values::new("ZONE/DIST_POUTRE", &["NON"]),
+        Values::new("ZONE/DIST_POUTRE", &["NON", "OUI"]),
         Values::new("ZONE/DIST_COQUE", &["NON"]),
     ],
     rules: Some(defi_contact_rules),
@@ -85,6 +85,7 @@ pub(crate) const DEFI_CONTACT: Support = Support {
         "ZONE/TYPE_PROJECTION",
         "ZONE/DIRE_APPA",
         "ZONE/DIST_POUTRE",
+        "ZONE/CARA_ELEM",
         "ZONE/DIST_COQUE",
         "ZONE/DIST_MAIT",
         "ZONE/DIST_ESCL",
@@ -296,6 +297,26 @@ fn geometry(ex: &Executor, occ: &Keywords) -> Result<ZoneGeometry, ExecError> {
         _ => ContactInit::Interpenetre,
     };
     g.dist_maxi = occ.f64("DIST_MAXI");
+    if occ.str("DIST_POUTRE") == Some("OUI") {
+        let Some(c) = occ.concept("CARA_ELEM") else {
+            return Err(ex.kw_error(
+                "DEFI_CONTACT/ZONE",
+                occ,
+                "DIST_POUTRE",
+                "DIST_POUTRE='OUI' needs the beams' CARA_ELEM",
+            ));
+        };
+        let cara = ex.cara_elem(c)?;
+        let mut radius = std::collections::BTreeMap::new();
+        for b in &cara.beams {
+            if let Some(r) = b.radius {
+                for &cell in &b.cells {
+                    radius.insert(cell, r);
+                }
+            }
+        }
+        g.beam_radius = Some(radius);
+    }
     Ok(g)
 }
 
@@ -323,6 +344,19 @@ fn geom_loop(kw: &Keywords) -> GeomLoop {
 /// The contact definition of DEFI_CONTACT keywords.
 pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, ExecError> {
     let friction = kw.str("FROTTEMENT") == Some("COULOMB");
+    if friction {
+        if let Some(k) = kw
+            .factor("ZONE")
+            .iter()
+            .find(|o| o.str("DIST_POUTRE") == Some("OUI"))
+            .and_then(|o| o.keyword("DIST_POUTRE"))
+        {
+            return Err(ex.unsupported(
+                "DEFI_CONTACT/ZONE/DIST_POUTRE='OUI' with FROTTEMENT='COULOMB' (the beams' radii are added to the frictionless gap only)",
+                k.span,
+            ));
+        }
+    }
     let frottement = Frottement::Sans;
     let cerr = |e: aster_contact::ContactError| ExecError::new(format!("DEFI_CONTACT: {e}"));
     let mut def = match kw.str("FORMULATION").unwrap_or("DISCRETE") {

@@ -237,6 +237,12 @@ pub(crate) fn mass_data(
                     )));
                 }
                 data.discrete.push(match m.cara.as_str() {
+                    "M_TR_D_N" => {
+                        return Err(ExecError::new(format!(
+                            "DYNA_NON_LINE: the rotational mass M_TR_D_N on cell {} is not implemented (translational masses M_T_D_N, M_T_N, M_T_L are)",
+                            crate::select::cell_name(mesh, cell)
+                        )))
+                    }
                     "M_T_D_N" => DiscreteMass::Node {
                         cell,
                         mass: m.values[0],

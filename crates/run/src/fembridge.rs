@@ -46,7 +46,11 @@ fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
         Modelisation::PlaneStress => Some(Hypothesis::PlaneStress),
         Modelisation::Axisymmetric => Some(Hypothesis::Axisymmetric),
         Modelisation::Solid3D => Some(Hypothesis::Solid3D),
-        Modelisation::Discrete2D | Modelisation::Discrete3D | Modelisation::Dkt => None,
+        Modelisation::Discrete2D
+        | Modelisation::Discrete3D
+        | Modelisation::DiscreteRot3D
+        | Modelisation::BeamEuler
+        | Modelisation::Dkt => None,
     }
 }
 
@@ -70,6 +74,14 @@ pub fn build_model(
         for s in &c.shells {
             for &cell in &s.cells {
                 shells.insert(cell, s.section);
+            }
+        }
+    }
+    let mut beams: BTreeMap<aster_mesh::CellId, aster_fem::BeamSection> = BTreeMap::new();
+    if let Some(c) = cara {
+        for b in &c.beams {
+            for &cell in &b.cells {
+                beams.insert(cell, b.section);
             }
         }
     }
@@ -101,6 +113,34 @@ pub fn build_model(
             });
             continue;
         }
+        if m == Modelisation::BeamEuler {
+            let section = beams.get(&cell).copied().ok_or_else(|| {
+                ExecError::new(format!(
+                    "cell {} carries a POU_D_E beam element but no section: give AFFE_CARA_ELEM/POUTRE (and CARA_ELEM to the solver)",
+                    crate::select::cell_name(mesh, cell)
+                ))
+            })?;
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Beam {
+                    material: material_of(cell)?,
+                    section,
+                },
+            });
+            continue;
+        }
+        let rotational = m == Modelisation::DiscreteRot3D;
+        if let Some(d) = springs.get(&cell) {
+            if rotational != (d.values.len() == 6) {
+                return Err(ExecError::new(format!(
+                    "cell {} is {} but AFFE_CARA_ELEM/DISCRET gives it {} ({} values): DIS_TR takes K_TR_D_N/K_TR_D_L, DIS_T K_T_D_N/K_T_D_L",
+                    crate::select::cell_name(mesh, cell),
+                    if rotational { "DIS_TR" } else { "DIS_T" },
+                    d.cara,
+                    d.values.len()
+                )));
+            }
+        }
         let kind = match hypothesis(m) {
             Some(h) if ty.dim() as usize == h.dim() => ElementKind::Continuum {
                 hypothesis: h,
@@ -115,7 +155,7 @@ pub fn build_model(
                 // A discrete cell with only a mass (DYNA_NON_LINE).
                 None if cara.is_some_and(|c| c.masses.iter().any(|m| m.cells.contains(&cell))) => {
                     ElementKind::Spring {
-                        stiffness: vec![0.0; m.dim()],
+                        stiffness: vec![0.0; if rotational { 6 } else { m.dim() }],
                         frame: Frame::Global,
                     }
                 }
@@ -1147,6 +1187,10 @@ pub fn calc_champ(
                     ElemLocation::Gauss,
                     &crate::shells::efge_elga(model, run.cara.as_deref(), u)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
+                )),
+                "EFGE_ELNO" if model.has_beams() => Field::Elem(elem_field(
+                    ElemLocation::Nodes,
+                    &post::beam_efge_elno(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?,
                 )),
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))

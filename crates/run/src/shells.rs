@@ -22,6 +22,14 @@ fn is_shell(model: &ModelDef, cell: CellId) -> bool {
     model.cells.get(&cell) == Some(&Modelisation::Dkt)
 }
 
+/// A shell or a beam: a linear elastic structural element here.
+fn is_structural(model: &ModelDef, cell: CellId) -> bool {
+    matches!(
+        model.cells.get(&cell),
+        Some(Modelisation::Dkt | Modelisation::BeamEuler)
+    )
+}
+
 /// DEFI_CONTACT: a zone whose master or slave cells are shells is refused
 /// at its `GROUP_MA_MAIT`/`GROUP_MA_ESCL`.
 pub(crate) fn refuse_contact_zones(
@@ -84,16 +92,17 @@ pub(crate) fn refuse_loads_on_shells(
     ))
 }
 
-/// STAT_NON_LINE, MECA_STATIQUE, DYNA_NON_LINE: with shells, only `ELAS`
-/// in small strains (`COMPORTEMENT` occurrences covering shell cells) and
-/// no dynamics.
+/// STAT_NON_LINE, MECA_STATIQUE, DYNA_NON_LINE: with shells or beams,
+/// only `ELAS` in small strains (`COMPORTEMENT` occurrences covering shell
+/// or beam cells), and no dynamics with any element carrying rotations
+/// (shells, beams, `DIS_TR`: no rotational inertia).
 pub(crate) fn check_solve(
     ex: &Executor,
     call: &CommandCall,
     model: &ModelDef,
     behaviours: &[BehaviourOcc],
 ) -> Result<(), ExecError> {
-    if !model.has_shells() {
+    if !model.has_rotations() {
         return Ok(());
     }
     let cmd = call.command.as_str();
@@ -101,15 +110,15 @@ pub(crate) fn check_solve(
     if cmd == "DYNA_NON_LINE" {
         let span = kw.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
         return Err(ex.unsupported(
-            "DYNA_NON_LINE on a model with shell elements (DKT): their mass and rotational inertia are not implemented",
+            "DYNA_NON_LINE on a model with rotations (DKT shells, POU_D_E beams or DIS_TR discrete elements): their mass and rotational inertia are not implemented",
             span,
         ));
     }
     let occurrences = kw.factor("COMPORTEMENT");
     for (k, b) in behaviours.iter().enumerate() {
         let on_shell = match &b.cells {
-            None => true,
-            Some(cells) => cells.iter().any(|&c| is_shell(model, c)),
+            None => model.cells.keys().any(|&c| is_structural(model, c)),
+            Some(cells) => cells.iter().any(|&c| is_structural(model, c)),
         };
         if !on_shell {
             continue;
@@ -123,7 +132,7 @@ pub(crate) fn check_solve(
         if b.relation != Relation::Elas {
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell cells (DKT): the shells are linear elastic here"
+                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell or beam cells (DKT, POU_D_E): they are linear elastic here"
                 ),
                 at("RELATION"),
             ));
@@ -131,7 +140,7 @@ pub(crate) fn check_solve(
         if b.kinematics != Kinematics::Small {
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd}/COMPORTEMENT/DEFORMATION other than PETIT on shell cells (DKT): the shells are in small strains here"
+                    "{cmd}/COMPORTEMENT/DEFORMATION other than PETIT on shell or beam cells (DKT, POU_D_E): they are in small strains here"
                 ),
                 at("DEFORMATION"),
             ));

@@ -96,7 +96,7 @@ fn plasticity_and_pressure_on_shells_are_refused() {
     refused(
         &plastic,
         "plastic",
-        &["COMPORTEMENT/RELATION other than ELAS on shell cells"],
+        &["COMPORTEMENT/RELATION other than ELAS on shell or beam cells"],
     );
     let pressure = strips().replace(
         "FORCE_NODALE=(",

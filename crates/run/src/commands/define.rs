@@ -272,7 +272,11 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
             // As code_aster: a modelisation goes only to the cells it has
             // elements for (a 2D modelisation on TOUT skips volumes…).
             let fits = match modelisation {
-                Modelisation::Discrete2D | Modelisation::Discrete3D => ty.dim() <= 1,
+                Modelisation::Discrete2D
+                | Modelisation::Discrete3D
+                | Modelisation::DiscreteRot3D => ty.dim() <= 1,
+                // code_aster's MECA_POU_D_E: SEG2.
+                Modelisation::BeamEuler => ty == aster_mesh::CellType::SEG2,
                 Modelisation::Solid3D => ty.dim() >= 2,
                 // code_aster's DKT elements: MEDKTR3, MEDKQU4 (its edge
                 // elements for FORCE_ARETE are not reproduced).
@@ -338,7 +342,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     }
     let mut rotations = vec![false; mesh.node_count()];
     for (c, m) in &cells {
-        if *m == Modelisation::Dkt {
+        if m.has_rotations() {
             for n in &mesh.cell(*c).nodes {
                 rotations[n.0 as usize] = true;
             }
@@ -405,17 +409,23 @@ pub(crate) const AFFE_CARA_ELEM: Support = Support {
     values: &[
         Values::listed(
             "DISCRET/CARA",
-            &["K_T_D_L", "K_T_D_N", "M_T_D_N", "M_T_N", "M_T_L"],
+            &[
+                "K_T_D_L", "K_T_D_N", "M_T_D_N", "M_T_N", "M_T_L", "K_TR_D_L", "K_TR_D_N",
+                "M_TR_D_N",
+            ],
         ),
         Values::listed(
             "DISCRET_2D/CARA",
             &["K_T_D_L", "K_T_D_N", "M_T_D_N", "M_T_N", "M_T_L"],
         ),
         super::cara_coque::VALUES[0],
+        super::cara_poutre::VALUES[0],
+        super::cara_poutre::VALUES[1],
+        super::cara_poutre::VALUES[2],
     ],
-    ..Support::keywords(&crate::support::joined::<_, 25>(
-        &CARA_DISCRET,
-        &super::cara_coque::KEYWORDS,
+    ..Support::keywords(&crate::support::joined::<_, 34>(
+        &crate::support::joined::<_, 25>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
+        &super::cara_poutre::KEYWORDS,
     ))
 };
 
@@ -427,6 +437,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let mut discrete = Vec::new();
     let mut masses = Vec::new();
     let shells = super::cara_coque::shells(ex, kw, &mesh)?;
+    let beams = super::cara_poutre::beams(ex, kw, &mesh)?;
     for f in ["DISCRET", "DISCRET_2D"] {
         for occ in kw.factor(f) {
             let cara = occ.str("CARA").unwrap_or_default().to_string();
@@ -435,16 +446,18 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
                 masses.push(m);
                 continue;
             }
-            if cara != "K_T_D_L" && cara != "K_T_D_N" {
+            let rotational = cara == "K_TR_D_L" || cara == "K_TR_D_N";
+            if !(cara == "K_T_D_L" || cara == "K_T_D_N" || rotational && dim == 3) {
                 let span = occ.keyword("CARA").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N, M_T_D_N, M_T_N, M_T_L)"
+                        "AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N, M_T_D_N, M_T_N, M_T_L; in DISCRET also K_TR_D_L, K_TR_D_N, M_TR_D_N)"
                     ),
                     span,
                 ));
             }
             let values = reals(occ, "VALE");
+            let dim = if rotational { 6 } else { dim };
             if values.len() != dim {
                 return Err(ex.kw_error(
                     "AFFE_CARA_ELEM",
@@ -458,7 +471,11 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             }
             let cells = select::cells(occ, &mesh, "")
                 .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/{f}: {e}")))?;
-            let want_dim = if cara == "K_T_D_L" { 1 } else { 0 };
+            let want_dim = if cara == "K_T_D_L" || cara == "K_TR_D_L" {
+                1
+            } else {
+                0
+            };
             if let Some(&bad) = cells.iter().find(|&&c| mesh.cell(c).ty.dim() != want_dim) {
                 return Err(ExecError::new(format!(
                     "AFFE_CARA_ELEM/{f}: {cara} applies to {} cells, but cell {} is a {}",
@@ -483,6 +500,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             discrete,
             masses,
             shells,
+            beams,
         })),
     )
 }
@@ -502,6 +520,8 @@ fn discrete_mass(
         "M_T_D_N" => (1, 1),
         "M_T_N" => (1, dim * (dim + 1) / 2),
         "M_T_L" => (2, 2 * dim * (2 * dim + 1) / 2),
+        // m, Ixx, Iyy, Izz, Ixy, Iyz, Ixz, ex, ey, ez.
+        "M_TR_D_N" if dim == 3 => (1, 10),
         _ => return Ok(None),
     };
     let at = format!("AFFE_CARA_ELEM/{factor}");

@@ -43,9 +43,9 @@ pub(super) fn check_dof(
         "DRX" | "DRY" | "DRZ" => rotations,
         _ => false,
     };
-    if !ok && model.has_shells() {
+    if !ok && model.has_rotations() {
         return Err(ExecError::new(format!(
-            "{what}: node {} has no component {comp} (only the nodes of shell cells carry DRX, DRY, DRZ)",
+            "{what}: node {} has no component {comp} (only the nodes of shell, beam and DIS_TR cells carry DRX, DRY, DRZ)",
             select::node_name(mesh, node)
         )));
     }

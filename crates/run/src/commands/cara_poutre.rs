@@ -1,0 +1,191 @@
+//! `AFFE_CARA_ELEM/POUTRE`: the sections of the beam (`POU_D_E`) cells,
+//! A, IY, IZ, JX as code_aster's `affgen` computes them.
+//!
+//! - `SECTION='CERCLE'`: `R` and `EP` (a tube; `EP` absent: solid);
+//! - `SECTION='RECTANGLE'`: `HY`/`HZ` or `H` (square), `EPY`/`EPZ` or `EP`
+//!   (hollow; absent: solid);
+//! - `SECTION='GENERALE'`: `A`, `IY`, `IZ`, `JX` given (the other
+//!   characteristics — shear areas, offsets, warping — do not enter an
+//!   Euler–Bernoulli beam without offset; a non-zero `EY`/`EZ` is refused);
+//! - `VARI_SECT='HOMOTHETIQUE'` is accepted when both ends are equal (a
+//!   constant section); a varying section is refused at `VARI_SECT`.
+//!
+//! Read here, handed to aster-fem as [`aster_fem::BeamSection`].
+
+use crate::executor::Executor;
+use crate::select;
+use aster_eval::{ExecError, Keywords};
+use aster_fem::BeamSection;
+use aster_mesh::{CellId, CellType, Mesh};
+
+/// One `POUTRE` occurrence resolved on the mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BeamCara {
+    pub cells: Vec<CellId>,
+    pub section: BeamSection,
+    /// The outer radius of a circular section (`DEFI_CONTACT/ZONE/
+    /// DIST_POUTRE`).
+    pub radius: Option<f64>,
+}
+
+/// The `POUTRE` keywords AFFE_CARA_ELEM reads (`crate::support`).
+pub(crate) const KEYWORDS: [&str; 9] = [
+    "POUTRE",
+    "POUTRE/GROUP_MA",
+    "POUTRE/SECTION",
+    "POUTRE/VARI_SECT",
+    "POUTRE/CARA",
+    "POUTRE/VALE",
+    "POUTRE/MODI_METRIQUE",
+    "POUTRE/TUYAU_NSEC",
+    "POUTRE/TUYAU_NCOU",
+];
+
+/// The sections reproduced; `MODI_METRIQUE='OUI'` is the pipes'.
+pub(crate) const VALUES: [crate::support::Values; 3] = [
+    crate::support::Values::listed("POUTRE/SECTION", &["CERCLE", "RECTANGLE", "GENERALE"]),
+    crate::support::Values::listed("POUTRE/VARI_SECT", &["CONSTANT", "HOMOTHETIQUE"]),
+    crate::support::Values::new("POUTRE/MODI_METRIQUE", &["NON"]),
+];
+
+/// The `POUTRE` occurrences of an AFFE_CARA_ELEM call.
+pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<BeamCara>, ExecError> {
+    let mut out = Vec::new();
+    for occ in kw.factor("POUTRE") {
+        let err = |key: &str, m: String| ex.kw_error("AFFE_CARA_ELEM", occ, key, m);
+        let names: Vec<&str> = occ
+            .simple("CARA")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let values: Vec<f64> = occ
+            .simple("VALE")
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
+        if names.len() != values.len() {
+            return Err(err(
+                "VALE",
+                format!(
+                    "POUTRE gives {} characteristics (CARA) and {} values (VALE)",
+                    names.len(),
+                    values.len()
+                ),
+            ));
+        }
+        let get = |n: &str| names.iter().position(|&c| c == n).map(|k| values[k]);
+        let section_kind = occ.str("SECTION").unwrap_or("GENERALE");
+        let homothetic = occ.str("VARI_SECT") == Some("HOMOTHETIQUE");
+        // A homothetic section equal at both ends is a constant one.
+        let end = |base: &str, first: &str, last: &str| -> Result<Option<f64>, ExecError> {
+            if !homothetic {
+                return Ok(get(base));
+            }
+            match (get(first), get(last)) {
+                (None, None) => Ok(None),
+                (Some(a), Some(b)) if a == b => Ok(Some(a)),
+                (a, b) => Err(ex.unsupported(
+                    &format!(
+                        "AFFE_CARA_ELEM/POUTRE/VARI_SECT='HOMOTHETIQUE' with {first}={} and {last}={} (a section varying along the beam is not reproduced; equal ends are)",
+                        a.map_or("-".into(), |v| v.to_string()),
+                        b.map_or("-".into(), |v| v.to_string())
+                    ),
+                    occ.keyword("VARI_SECT").map(|k| k.span).unwrap_or_default(),
+                )),
+            }
+        };
+        let mut radius = None;
+        let section = match section_kind {
+            "CERCLE" => {
+                let Some(r) = end("R", "R_DEBUT", "R_FIN")? else {
+                    return Err(err("CARA", "SECTION='CERCLE' needs R".into()));
+                };
+                let ep = end("EP", "EP_DEBUT", "EP_FIN")?.unwrap_or(r);
+                if !(r > 0. && ep > 0. && ep <= r) {
+                    return Err(err(
+                        "VALE",
+                        format!("CERCLE with R = {r}, EP = {ep}: needs 0 < EP ≤ R"),
+                    ));
+                }
+                radius = Some(r);
+                BeamSection::circle(r, ep)
+            }
+            "RECTANGLE" => {
+                if homothetic {
+                    return Err(ex.unsupported(
+                        "AFFE_CARA_ELEM/POUTRE/VARI_SECT='HOMOTHETIQUE' on a RECTANGLE (a section varying along the beam is not reproduced)",
+                        occ.keyword("VARI_SECT").map(|k| k.span).unwrap_or_default(),
+                    ));
+                }
+                let h = get("H");
+                let (Some(hy), Some(hz)) = (get("HY").or(h), get("HZ").or(h)) else {
+                    return Err(err(
+                        "CARA",
+                        "SECTION='RECTANGLE' needs HY and HZ, or H".into(),
+                    ));
+                };
+                let ep = get("EP");
+                let walls = match (get("EPY").or(ep), get("EPZ").or(ep)) {
+                    (None, None) => None,
+                    (Some(a), Some(b)) => Some((a, b)),
+                    _ => {
+                        return Err(err(
+                            "CARA",
+                            "a hollow RECTANGLE needs both EPY and EPZ, or EP".into(),
+                        ))
+                    }
+                };
+                if !(hy > 0. && hz > 0.) {
+                    return Err(err("VALE", format!("RECTANGLE with HY = {hy}, HZ = {hz}")));
+                }
+                BeamSection::rectangle(hy, hz, walls)
+            }
+            _ => {
+                if homothetic {
+                    return Err(ex.unsupported(
+                        "AFFE_CARA_ELEM/POUTRE/VARI_SECT='HOMOTHETIQUE' on a GENERALE section (a section varying along the beam is not reproduced)",
+                        occ.keyword("VARI_SECT").map(|k| k.span).unwrap_or_default(),
+                    ));
+                }
+                for off in ["EY", "EZ"] {
+                    if get(off).is_some_and(|v| v != 0.) {
+                        return Err(ex.unsupported(
+                            &format!(
+                                "AFFE_CARA_ELEM/POUTRE/CARA='{off}' non-zero (a shear centre offset from the centroid couples torsion and bending: not reproduced)"
+                            ),
+                            occ.keyword("CARA").map(|k| k.span).unwrap_or_default(),
+                        ));
+                    }
+                }
+                let (Some(area), Some(iy), Some(iz), Some(jx)) =
+                    (get("A"), get("IY"), get("IZ"), get("JX"))
+                else {
+                    return Err(err(
+                        "CARA",
+                        "SECTION='GENERALE' needs A, IY, IZ and JX".into(),
+                    ));
+                };
+                BeamSection { area, iy, iz, jx }
+            }
+        };
+        section.check().map_err(|m| err("VALE", m))?;
+        let cells = select::cells(occ, mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/POUTRE: {e}")))?;
+        if let Some(&bad) = cells.iter().find(|&&c| mesh.cell(c).ty != CellType::SEG2) {
+            return Err(err(
+                "GROUP_MA",
+                format!(
+                    "POUTRE applies to the beam cells (SEG2), but cell {} is a {}",
+                    select::cell_name(mesh, bad),
+                    mesh.cell(bad).ty.name()
+                ),
+            ));
+        }
+        out.push(BeamCara {
+            cells,
+            section,
+            radius,
+        });
+    }
+    Ok(out)
+}
