@@ -199,6 +199,7 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "SOLVEUR/*",
     "ETAT_INIT",
     "ETAT_INIT/EVOL_NOLI",
+    "ETAT_INIT/DEPL",
     "ETAT_INIT/INST",
     "ETAT_INIT/NUME_ORDRE",
     "ETAT_INIT/PRECISION",

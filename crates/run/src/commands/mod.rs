@@ -12,6 +12,7 @@ pub(crate) mod loads_f;
 pub(crate) mod mesh;
 pub(crate) mod post;
 pub(crate) mod post_elem;
+pub(crate) mod post_erreur;
 pub(crate) mod pressure;
 pub(crate) mod results;
 pub(crate) mod tables;
@@ -298,6 +299,11 @@ pub static COMMANDS: &[Command] = &[
         name: "POST_ELEM",
         run: post_elem::post_elem,
         support: post_elem::POST_ELEM,
+    },
+    Command {
+        name: "POST_ERREUR",
+        run: post_erreur::post_erreur,
+        support: post_erreur::POST_ERREUR,
     },
     Command {
         name: "CREA_RESU",
