@@ -39,6 +39,7 @@ pub mod progress;
 pub mod refcells;
 pub mod scenes;
 pub mod shape;
+pub mod skin_norm;
 pub(crate) mod solver_constrained;
 mod split_llt;
 pub mod strain;

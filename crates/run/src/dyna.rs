@@ -39,7 +39,6 @@ const DYNA_KEYWORDS: &[&str] = &[
     "SCHEMA_TEMPS/MODI_EQUI",
     "MASS_DIAG",
     "AMOR_RAYL_RIGI",
-    "ETAT_INIT/DEPL",
     "ETAT_INIT/VITE",
     "ETAT_INIT/ACCE",
     // Columns of the convergence table code_aster prints: nothing to print
@@ -326,22 +325,45 @@ pub(crate) fn solve(
     Ok(out)
 }
 
-/// The initial displacement of `ETAT_INIT/DEPL`: only a zero field is
-/// accepted, since code_aster starts such a state stress-free (σ₀ = 0, not
-/// the stresses of the displacement) and the solver here does not.
+/// The initial displacement of `ETAT_INIT/DEPL` given without stresses.
+/// code_aster starts such a state stress-free: σ₀ = 0 (no `SIGM`) and its
+/// elastic law is incremental (`nmelas`: σ = σ₀ + D·Δε), so the strains
+/// count from u₀. The solver here computes elastic stresses from the total
+/// displacement, which is the same only when u₀ strains nothing: a rigid
+/// motion of each body, K·u₀ = 0 to rounding (‖K·u₀‖∞ ≤ 1e-10 · max Kᵢᵢ ·
+/// ‖u₀‖∞). Such a u₀ is the initial state (stored at the first instant, the
+/// geometry of contact pairing moved by it); any other is refused at the
+/// keyword.
 pub(crate) fn initial_displacement(
     ex: &Executor,
     setup: &SolveSetup,
     model: &Model,
-) -> Result<(), ExecError> {
-    if let Some((f, span)) = &setup.initial_fields.depl {
-        let zero = dof_vector(model, f).is_some_and(|v| v.iter().all(|&x| x == 0.0));
-        if !zero {
-            return Err(ex.unsupported(
-                "ETAT_INIT/DEPL with a non-zero displacement and no SIGM (a stress-free initial displacement)",
-                *span,
-            ));
-        }
+) -> Result<Option<Vec<f64>>, ExecError> {
+    let Some((f, span)) = &setup.initial_fields.depl else {
+        return Ok(None);
+    };
+    let Some(u0) = dof_vector(model, f) else {
+        return Err(ex.unsupported(
+            "ETAT_INIT/DEPL other than a nodal field (CREA_CHAMP NOEU_DEPL_R)",
+            *span,
+        ));
+    };
+    let umax = u0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if umax == 0.0 {
+        return Ok(None);
     }
-    Ok(())
+    let k = aster_fem::assembly::assemble_stiffness(model)
+        .map_err(|e| ExecError::new(format!("ETAT_INIT/DEPL: {e}")))?;
+    let kmax = k.diagonal().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let ku = k.mul(&u0);
+    let kumax = ku.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if kumax > 1e-10 * kmax * umax {
+        return Err(ex.unsupported(
+            &format!(
+                "ETAT_INIT/DEPL with a displacement that strains the structure (|K·u0| = {kumax:.3e}, not zero: code_aster starts it stress-free, its strains counted from u0, and aster's elastic stresses are those of the total displacement) and no SIGM"
+            ),
+            *span,
+        ));
+    }
+    Ok(Some(u0))
 }

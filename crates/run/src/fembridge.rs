@@ -861,10 +861,10 @@ pub fn solve(
                     displacement: displacement_from(&model, depl),
                 })
             }
-            None => {
-                crate::dyna::initial_displacement(ex, setup, &model)?;
-                None
-            }
+            None => crate::dyna::initial_displacement(ex, setup, &model)?.map(|u0| InitialState {
+                time: None,
+                displacement: u0,
+            }),
         };
         let mut snl = StaticNonLinear {
             instants: setup.instants.clone(),

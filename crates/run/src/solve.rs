@@ -199,6 +199,7 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "SOLVEUR/*",
     "ETAT_INIT",
     "ETAT_INIT/EVOL_NOLI",
+    "ETAT_INIT/DEPL",
     "ETAT_INIT/INST",
     "ETAT_INIT/NUME_ORDRE",
     "ETAT_INIT/PRECISION",
@@ -437,6 +438,15 @@ pub(crate) fn parse_setup(
         let mut initial = None;
         if let Some(ei) = kw.factor("ETAT_INIT").first() {
             if let Some(r) = ei.concept("EVOL_NOLI") {
+                // code_aster's DEPL would replace the result's displacement.
+                for name in ["DEPL", "VITE", "ACCE"] {
+                    if let Some(k) = ei.keyword(name) {
+                        return Err(ex.unsupported(
+                            &format!("{cmd}/ETAT_INIT/{name} together with EVOL_NOLI (a field replacing the initial result's)"),
+                            k.span,
+                        ));
+                    }
+                }
                 let prev = ex.result(r)?;
                 let step = if let Some(t) = ei.f64("INST") {
                     prev.step_at(t, 1e-6, false)

@@ -146,7 +146,8 @@ fn unsupported_schemes_and_settings_are_refused_where_written() {
         err.contains("MASS_DIAG") && err.contains("explicit schemes"),
         "{err}"
     );
-    // A stress-free initial displacement (DEPL without SIGM) is refused.
+    // A stress-free initial displacement (DEPL without SIGM) that strains
+    // the spring is refused.
     let err = oscillator_error(
         &[
             (
@@ -158,7 +159,7 @@ fn unsupported_schemes_and_settings_are_refused_where_written() {
         "depl",
     );
     assert!(
-        err.contains("ETAT_INIT/DEPL with a non-zero displacement"),
+        err.contains("ETAT_INIT/DEPL with a displacement that strains the structure"),
         "{err}"
     );
     // BETA = 0 is an explicit scheme.

@@ -686,7 +686,10 @@ pub(crate) const POST_RELEVE_T: Support = Support {
     values: &[
         Values::new("ACTION/REPERE", &["GLOBAL", "POLAIRE", "LOCAL"]),
         Values::new("ACTION/MOYE_NOEUD", &["OUI"]),
-        Values::new("ACTION/OPERATION", &["EXTRACTION", "MOYENNE"]),
+        Values::new(
+            "ACTION/OPERATION",
+            &["EXTRACTION", "MOYENNE", "MOYENNE_ARITH"],
+        ),
     ],
     rules: Some(post_releve_t_rules),
     ..Support::keywords(&[
@@ -829,9 +832,10 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .iter()
             .filter_map(|s| s.as_str())
             .collect();
-        let moyenne = match ops.as_slice() {
-            ["EXTRACTION"] => false,
-            ["MOYENNE"] => true,
+        let (moyenne, arith) = match ops.as_slice() {
+            ["EXTRACTION"] => (false, false),
+            ["MOYENNE"] => (true, false),
+            ["MOYENNE_ARITH"] => (false, true),
             _ => {
                 let span = occ
                     .keyword("OPERATION")
@@ -839,7 +843,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     .unwrap_or(call.span);
                 return Err(ex.unsupported(
                     &format!(
-                        "POST_RELEVE_T/ACTION/OPERATION={ops:?} (one of 'EXTRACTION', 'MOYENNE')"
+                        "POST_RELEVE_T/ACTION/OPERATION={ops:?} (one of 'EXTRACTION', 'MOYENNE', 'MOYENNE_ARITH')"
                     ),
                     span,
                 ));
@@ -886,6 +890,11 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         let nodes = select::nodes(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("POST_RELEVE_T/ACTION: {e}")))?;
+        if arith {
+            let chamgd = occ.concept("CHAM_GD").map(|c| c.name.clone());
+            arith_mean_rows(ex, &mut table, occ, &title, chamgd, &sources, &mesh, &nodes)?;
+            continue;
+        }
         let resultant: Vec<String> = occ
             .simple("RESULTANTE")
             .iter()
@@ -1112,6 +1121,96 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     // Columns nobody filled (RESU for a CHAM_GD…) are dropped, as code_aster does.
     drop_empty_columns(&mut table);
     store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+/// `OPERATION='MOYENNE_ARITH'` (code_aster's `rvmoye` and `prmono`): per
+/// instant and component, the sum of the component over the selected nodes
+/// (all the mesh's nodes when none is selected) that carry it, divided by
+/// the number of selected nodes — nodes without the component count in the
+/// divisor (code_aster's arithmetic, e.g. the middle nodes of quadratic
+/// cells for `LAGS_C`). One row per component: `CMP`, `MOYENNE`.
+#[allow(clippy::too_many_arguments)]
+fn arith_mean_rows(
+    ex: &Executor,
+    table: &mut Table,
+    occ: &Keywords,
+    title: &str,
+    chamgd: Option<String>,
+    sources: &[Source],
+    mesh: &aster_mesh::Mesh,
+    nodes: &[NodeId],
+) -> Result<(), ExecError> {
+    let all: Vec<NodeId>;
+    let nodes = if nodes.is_empty() {
+        all = (0..mesh.node_count() as u32).map(NodeId).collect();
+        &all
+    } else {
+        nodes
+    };
+    if chamgd.is_some() {
+        table.ensure_column("CHAM_GD", ColumnType::Text(8));
+    }
+    table.ensure_column("CMP", ColumnType::Text(8));
+    table.ensure_column("MOYENNE", ColumnType::Real);
+    for (resu, cham, order, field) in sources {
+        let Field::Nodal(f) = field else {
+            // code_aster: ALGORITH17_5, a nodal field only.
+            return Err(ex.kw_error(
+                "POST_RELEVE_T/ACTION",
+                occ,
+                if chamgd.is_some() {
+                    "CHAM_GD"
+                } else {
+                    "NOM_CHAM"
+                },
+                "OPERATION='MOYENNE_ARITH' needs a nodal field (code_aster ALGORITH17_5)",
+            ));
+        };
+        let cmps: Vec<String> = if occ.contains("NOM_CMP") {
+            occ.simple("NOM_CMP")
+                .iter()
+                .filter_map(|s| s.as_str().map(str::to_string))
+                .collect()
+        } else {
+            f.components.clone()
+        };
+        for c in &cmps {
+            let Some(i) = f.component_index(c) else {
+                return Err(ex.kw_error(
+                    "POST_RELEVE_T/ACTION",
+                    occ,
+                    "NOM_CMP",
+                    format!(
+                        "the field has no component {c} (it has {})",
+                        f.components.join(", ")
+                    ),
+                ));
+            };
+            let sum: f64 = nodes
+                .iter()
+                .filter_map(|n| f.values.get(n).and_then(|v| v[i]))
+                .sum();
+            let mean = sum / nodes.len() as f64;
+            let mut row: Vec<(&str, Value)> = vec![("INTITULE", Value::Text(title.to_string()))];
+            if let Some(g) = &chamgd {
+                row.push(("CHAM_GD", Value::Text(g.clone())));
+            }
+            if let Some(r) = resu {
+                row.push(("RESU", Value::Text(r.clone())));
+            }
+            if let Some(ch) = cham {
+                row.push(("NOM_CHAM", Value::Text(ch.clone())));
+            }
+            if let Some((no, t)) = order {
+                row.push(("NUME_ORDRE", Value::Int(*no as i64)));
+                row.push(("INST", Value::Real(*t)));
+            }
+            row.push(("CMP", Value::Text(c.clone())));
+            row.push(("MOYENNE", Value::Real(mean)));
+            table.push_row(row);
+        }
+    }
+    Ok(())
 }
 
 /// The frame of each node of an ACTION's path for `REPERE='LOCAL'`
