@@ -1,6 +1,6 @@
 //! Error against mesh size, log-log, with the fitted slope per method.
 
-use super::{draw_empty, family_color, log_bounds, sci, Chart};
+use super::{draw_empty, family_color, log_bounds, sci, series_legend, Chart};
 use crate::engine::StudyResult;
 use crate::method::short_number;
 use crate::stats;
@@ -73,13 +73,6 @@ impl Chart for ConvergenceChart<'_> {
                 .draw_series(c.points.iter().map(|&p| Circle::new(p, 4, color.filled())))
                 .map_err(|e| e.to_string())?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::LowerRight)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(|e| e.to_string())
+        series_legend(&mut chart, SeriesLabelPosition::LowerRight, 13)
     }
 }

@@ -2,7 +2,7 @@
 //! what `aster plot` draws from the tables and functions a case writes
 //! (a force–displacement curve, a contact pressure along a line).
 
-use super::{draw_empty, log_bounds, render_file, sci, Chart};
+use super::{draw_empty, log_bounds, render_file, sci, series_legend, Chart};
 use crate::error::StudyError;
 use plotters::coord::ranged1d::{AsRangedCoord, Ranged, ValueFormatter};
 use plotters::coord::Shift;
@@ -129,14 +129,7 @@ impl LineChart {
                     .map_err(|e| e.to_string())?;
             }
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 14))
-            .draw()
-            .map_err(|e| e.to_string())
+        series_legend(&mut chart, SeriesLabelPosition::UpperRight, 14)
     }
 }
 

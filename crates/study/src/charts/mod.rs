@@ -15,7 +15,7 @@ pub use lines::{write_line_chart, LineChart, Series};
 use crate::engine::StudyResult;
 use crate::error::StudyError;
 use crate::method::MethodFamily;
-use plotters::coord::Shift;
+use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -98,6 +98,22 @@ pub fn write_all(result: &StudyResult, out: &Path) -> Result<Vec<PathBuf>, Study
     )?);
     files.extend(render(&stability::StabilityMap { result }, out, name)?);
     Ok(files)
+}
+
+/// The legend box of the charts: each series' label on a light background.
+fn series_legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+    font_size: u32,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(position)
+        .label_font(("sans-serif", font_size))
+        .draw()
+        .map_err(|e| e.to_string())
 }
 
 /// One colour per method family, the same on every chart.

@@ -1,7 +1,7 @@
 //! Error against CPU time, log-log, per method: the Pareto front of speed
 //! and accuracy.
 
-use super::{draw_empty, family_color, log_bounds, sci, Chart};
+use super::{draw_empty, family_color, log_bounds, sci, series_legend, Chart};
 use crate::engine::StudyResult;
 use crate::method::MethodFamily;
 use crate::outcome::Status;
@@ -92,13 +92,6 @@ impl Chart for Pareto<'_> {
                 .label("Pareto front (x: wrong answer)")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 14))
-            .draw()
-            .map_err(|e| e.to_string())
+        series_legend(&mut chart, SeriesLabelPosition::UpperRight, 14)
     }
 }
