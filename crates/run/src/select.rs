@@ -2,7 +2,7 @@
 //! `GROUP_MA`, `MAILLE`, `TOUT`), with did-you-mean on unknown names.
 
 use aster_eval::Keywords;
-use aster_mesh::{CellId, Mesh, NodeId};
+use aster_mesh::{Cell, CellId, Mesh, NodeId};
 use std::collections::BTreeSet;
 
 /// "did you mean `X`?" for a misspelt name among candidates.
@@ -169,6 +169,17 @@ pub fn node_name(mesh: &Mesh, n: NodeId) -> String {
         .get(n.0 as usize)
         .cloned()
         .unwrap_or_else(|| format!("N{}", n.0 + 1))
+}
+
+/// The first of `cells` that `fits` rejects, said as `cell M12 is a QUAD4`
+/// (for messages "… applies to SEG2 cells, but cell M12 is a QUAD4").
+pub fn misfit(mesh: &Mesh, cells: &[CellId], fits: impl Fn(&Cell) -> bool) -> Option<String> {
+    let &bad = cells.iter().find(|&&c| !fits(mesh.cell(c)))?;
+    Some(format!(
+        "cell {} is a {}",
+        cell_name(mesh, bad),
+        mesh.cell(bad).ty.name()
+    ))
 }
 
 pub fn cell_name(mesh: &Mesh, c: CellId) -> String {

@@ -105,17 +105,12 @@ pub(crate) fn shells(
         };
         let cells = select::cells(occ, mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/COQUE: {e}")))?;
-        if let Some(&bad) = cells
-            .iter()
-            .find(|&&c| !matches!(mesh.cell(c).ty, CellType::TRIA3 | CellType::QUAD4))
-        {
+        if let Some(bad) = select::misfit(mesh, &cells, |c| {
+            matches!(c.ty, CellType::TRIA3 | CellType::QUAD4)
+        }) {
             return Err(err(
                 "GROUP_MA",
-                format!(
-                    "COQUE applies to the DKT cells (TRIA3, QUAD4), but cell {} is a {}",
-                    select::cell_name(mesh, bad),
-                    mesh.cell(bad).ty.name()
-                ),
+                format!("COQUE applies to the DKT cells (TRIA3, QUAD4), but {bad}"),
             ));
         }
         out.push(ShellCara {

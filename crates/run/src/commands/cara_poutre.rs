@@ -171,14 +171,10 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
         section.check().map_err(|m| err("VALE", m))?;
         let cells = select::cells(occ, mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/POUTRE: {e}")))?;
-        if let Some(&bad) = cells.iter().find(|&&c| mesh.cell(c).ty != CellType::SEG2) {
+        if let Some(bad) = select::misfit(mesh, &cells, |c| c.ty == CellType::SEG2) {
             return Err(err(
                 "GROUP_MA",
-                format!(
-                    "POUTRE applies to the beam cells (SEG2), but cell {} is a {}",
-                    select::cell_name(mesh, bad),
-                    mesh.cell(bad).ty.name()
-                ),
+                format!("POUTRE applies to the beam cells (SEG2), but {bad}"),
             ));
         }
         out.push(BeamCara {

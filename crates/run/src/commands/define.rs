@@ -476,12 +476,10 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             } else {
                 0
             };
-            if let Some(&bad) = cells.iter().find(|&&c| mesh.cell(c).ty.dim() != want_dim) {
+            if let Some(bad) = select::misfit(&mesh, &cells, |c| c.ty.dim() == want_dim) {
                 return Err(ExecError::new(format!(
-                    "AFFE_CARA_ELEM/{f}: {cara} applies to {} cells, but cell {} is a {}",
+                    "AFFE_CARA_ELEM/{f}: {cara} applies to {} cells, but {bad}",
                     if want_dim == 1 { "SEG2" } else { "POI1" },
-                    select::cell_name(&mesh, bad),
-                    mesh.cell(bad).ty.name()
                 )));
             }
             discrete.push(DiscreteStiffness {
@@ -542,14 +540,12 @@ fn discrete_mass(
         ));
     }
     let cells = select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{at}: {e}")))?;
-    if let Some(&bad) = cells.iter().find(|&&c| {
-        mesh.cell(c).nodes.len() != nodes || mesh.cell(c).ty.dim() as usize + 1 != nodes
+    if let Some(bad) = select::misfit(mesh, &cells, |c| {
+        c.nodes.len() == nodes && c.ty.dim() as usize + 1 == nodes
     }) {
         return Err(ExecError::new(format!(
-            "{at}: {cara} applies to {} cells, but cell {} is a {}",
+            "{at}: {cara} applies to {} cells, but {bad}",
             if nodes == 2 { "SEG2" } else { "POI1" },
-            select::cell_name(mesh, bad),
-            mesh.cell(bad).ty.name()
         )));
     }
     Ok(Some(DiscreteMassDef {
