@@ -188,3 +188,23 @@ pub fn cell_name(mesh: &Mesh, c: CellId) -> String {
         .cloned()
         .unwrap_or_else(|| format!("M{}", c.0 + 1))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use aster_mesh::CellType;
+
+    #[test]
+    fn misfit_names_the_first_cell_of_another_kind() {
+        let text = "COOR_2D\nN1 0.0 0.0\nN2 1.0 0.0\nN3 1.0 1.0\nN4 0.0 1.0\nFINSF\n\
+                    SEG2\nS1 N1 N2\nFINSF\nQUAD4\nQ1 N1 N2 N3 N4\nFINSF\nSEG2\nS2 N3 N4\nFINSF\nFIN\n";
+        let mesh = aster_mesh::parse_mail(text, std::path::Path::new("t.mail")).expect("mesh");
+        let all: Vec<CellId> = (0..3).map(CellId).collect();
+        let seg = |c: &Cell| c.ty == CellType::SEG2;
+        assert_eq!(
+            misfit(&mesh, &all, seg).as_deref(),
+            Some("cell Q1 is a QUAD4")
+        );
+        assert_eq!(misfit(&mesh, &[CellId(0), CellId(2)], seg), None);
+    }
+}
