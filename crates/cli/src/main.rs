@@ -25,14 +25,18 @@ struct Cli {
 enum Command {
     /// Parse command files; print the AST with --json.
     #[command(
-        after_help = "Examples:\n  aster parse study.comm            syntax errors only, exit 1 on any\n  aster parse --json study.comm     the AST as JSON"
+        after_help = "Examples:\n  aster parse study.comm            syntax errors only, exit 1 on any\n  aster parse --json study.comm     the AST as JSON\n  aster parse --json --compact *.comm  JSON Lines: one AST per line"
     )]
     Parse {
         /// Command files (.comm, .com1…); syntax only, nothing is evaluated.
         files: Vec<PathBuf>,
-        /// Print the AST of each file as JSON.
+        /// Print the AST of each file as JSON: one object per file with
+        /// `schema_version`, `kind` "ast", `path` and `body` (docs/json.md).
         #[arg(long)]
         json: bool,
+        /// With --json: one object per line (JSON Lines) instead of indented.
+        #[arg(long)]
+        compact: bool,
     },
     /// Print command files in canonical form, check or rewrite them.
     #[command(
@@ -52,14 +56,22 @@ enum Command {
     },
     /// Validate command files against the catalog (commands are not run).
     #[command(
-        after_help = "Examples:\n  aster check study.comm                 rustc-style diagnostics on stderr\n  aster check --format sarif *.comm      SARIF 2.1.0 for code-scanning\n  aster check --format github *.comm     GitHub Actions annotations\n  aster check --emit commands study.comm the evaluated commands as JSON\n\nExit: 0 clean, 1 errors, 3 only constructs `aster run` does not support."
+        after_help = "Examples:\n  aster check study.comm                 rustc-style diagnostics on stderr\n  aster check --format sarif *.comm      SARIF 2.1.0 for code-scanning\n  aster check --format github *.comm     GitHub Actions annotations\n  aster check --emit commands study.comm the evaluated commands as JSON\n  aster check --emit commands --compact --no-defaults *.comm\n                                         JSON Lines, only what was written\n\nExit: 0 clean, 1 errors, 3 only constructs `aster run` does not support."
     )]
     Check {
         /// Command files (.comm, .com1…), checked one after the other.
         files: Vec<PathBuf>,
-        /// Emit the evaluated program (`commands`) as JSON.
+        /// Emit the evaluated program (`commands`) as JSON: one object per
+        /// file with `schema_version`, `kind` "commands", `path` and
+        /// `commands`, each located by line and column (docs/json.md).
         #[arg(long, value_name = "WHAT")]
         emit: Option<String>,
+        /// With --emit: one object per line (JSON Lines) instead of indented.
+        #[arg(long)]
+        compact: bool,
+        /// With --emit: leave out the keywords the catalog filled in.
+        #[arg(long)]
+        no_defaults: bool,
         /// How diagnostics are printed: `human` (stderr), `json` (JSON
         /// Lines, one object per file), `sarif` (SARIF 2.1.0), `github`
         /// (GitHub Actions annotations). Exit 0 clean, 1 errors, 3 only
@@ -250,7 +262,11 @@ fn quiet_on_closed_pipe() {
 
 fn run(cli: Cli) -> u8 {
     match cli.command {
-        Command::Parse { files, json } => cmd::parse::run(&files, json),
+        Command::Parse {
+            files,
+            json,
+            compact,
+        } => cmd::parse::run(&files, json, compact),
         Command::Fmt {
             files,
             check,
@@ -266,8 +282,18 @@ fn run(cli: Cli) -> u8 {
         Command::Check {
             files,
             emit,
+            compact,
+            no_defaults,
             format,
-        } => cmd::check::run(&files, emit.as_deref(), format),
+        } => cmd::check::run(
+            &files,
+            emit.as_deref(),
+            format,
+            cmd::json_out::JsonOptions {
+                compact,
+                no_defaults,
+            },
+        ),
         Command::Migrate { files, write } => cmd::migrate::run(&files, write),
         Command::Explain { path, all } => cmd::explain::run(&path, all),
         Command::Mesh {

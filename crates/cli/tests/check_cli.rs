@@ -39,8 +39,78 @@ fn emitted_commands_of_the_scenes() {
         assert_eq!(code, 0, "{err}");
         let json: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
         assert!(json["commands"].as_array().is_some_and(|c| c.len() > 10));
+        assert_eq!(json["schema_version"], 1);
+        assert_eq!(json["kind"], "commands");
+        assert_eq!(json["path"], scene);
         insta::assert_snapshot!(name, out);
     }
+}
+
+/// `--emit commands --compact --no-defaults`: JSON Lines, one object per
+/// file; only the keywords written, each with its line and column.
+#[test]
+fn emitted_commands_compact_without_defaults() {
+    let dir = std::env::temp_dir().join(format!("aster-emit-{}", std::process::id()));
+    let _ = std::fs::create_dir_all(&dir);
+    let (a, b) = (dir.join("a.comm"), dir.join("b.comm"));
+    let _ = std::fs::write(
+        &a,
+        "DEBUT()\nMAT = DEFI_MATERIAU(\n    ELAS=_F(E=2.0e5, NU=0.3))\nFIN()\n",
+    );
+    let _ = std::fs::write(&b, "DEBUT()\nFIN()\n");
+    let (a, b) = (a.display().to_string(), b.display().to_string());
+    let (code, out, err) = aster(&[
+        "check",
+        "--emit",
+        "commands",
+        "--compact",
+        "--no-defaults",
+        &a,
+        &b,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON object per line"))
+        .collect();
+    assert_eq!(lines.len(), 2, "{out}");
+    assert_eq!(lines[0]["path"], a.as_str());
+    assert_eq!(lines[1]["path"], b.as_str());
+    let mat = &lines[0]["commands"][1];
+    assert_eq!(mat["command"], "DEFI_MATERIAU");
+    assert_eq!((&mat["line"], &mat["column"]), (&2.into(), &7.into()));
+    assert_eq!(
+        (&mat["end_line"], &mat["end_column"]),
+        (&3.into(), &30.into())
+    );
+    let elas = &mat["keywords"][0];
+    assert_eq!(elas["name"], "ELAS");
+    assert_eq!(mat["keywords"].as_array().map(Vec::len), Some(1), "{mat}");
+    let occ = &elas["value"]["value"][0];
+    let names: Vec<&str> = occ
+        .as_array()
+        .map(|o| o.iter().filter_map(|k| k["name"].as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(names, ["E", "NU"], "defaults left out: {occ}");
+    assert_eq!(
+        (&occ[1]["line"], &occ[1]["column"]),
+        (&3.into(), &22.into())
+    );
+    // With the defaults they are there, flagged and without a position.
+    let (_, full, _) = aster(&["check", "--emit", "commands", "--compact", &a]);
+    let full: serde_json::Value =
+        serde_json::from_str(full.lines().next().unwrap_or("")).expect("JSON");
+    let occ = &full["commands"][1]["keywords"][0]["value"]["value"][0];
+    let defaulted: Vec<&serde_json::Value> = occ
+        .as_array()
+        .map(|o| o.iter().filter(|k| k["defaulted"] == true).collect())
+        .unwrap_or_default();
+    assert!(!defaulted.is_empty(), "{occ}");
+    assert!(defaulted.iter().all(|k| k.get("line").is_none()), "{occ}");
+    // The shaping options need --emit.
+    let (code, _, _) = aster(&["check", "--compact", &a]);
+    assert_eq!(code, 2);
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -274,4 +344,93 @@ fn sarif_format_follows_the_2_1_0_schema() {
     assert!(codes.contains(&"U-unsupported"), "{codes:?}");
     assert!(codes.contains(&"E-rule"), "{codes:?}");
     insta::assert_snapshot!("sarif_format", out);
+}
+
+/// The JSON Schema of docs/json.md holds for what `--emit commands` prints:
+/// every `required` field of the envelope, of each command, keyword and
+/// scalar is there, and scalar tags are the listed ones.
+#[test]
+fn emitted_commands_follow_the_documented_schema() {
+    let Ok(doc) = std::fs::read_to_string(root().join("docs/json.md")) else {
+        eprintln!("skipped: docs/json.md not found");
+        return;
+    };
+    let section = doc.split("## `kind: \"commands\"`").nth(1).unwrap_or("");
+    let block = section
+        .split("```json")
+        .nth(1)
+        .and_then(|b| b.split("```").next());
+    let schema: serde_json::Value = serde_json::from_str(block.unwrap_or(""))
+        .expect("the schema block of docs/json.md is JSON");
+    let required = |v: &serde_json::Value| -> Vec<String> {
+        v["required"]
+            .as_array()
+            .map(|r| {
+                r.iter()
+                    .filter_map(|s| s.as_str().map(String::from))
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    let defs = &schema["$defs"];
+    let tags: Vec<&str> = defs["scalar"]["properties"]["t"]["enum"]
+        .as_array()
+        .map(|e| e.iter().filter_map(|s| s.as_str()).collect())
+        .unwrap_or_default();
+    assert!(tags.contains(&"Real") && !required(&defs["command"]).is_empty());
+    fn keywords(
+        list: &serde_json::Value,
+        kw_req: &[String],
+        scalar_req: &[String],
+        tags: &[&str],
+        seen: &mut usize,
+    ) {
+        for kw in list.as_array().into_iter().flatten() {
+            *seen += 1;
+            for r in kw_req {
+                assert!(kw.get(r).is_some(), "keyword without `{r}`: {kw}");
+            }
+            let value = &kw["value"];
+            match value["kind"].as_str() {
+                Some("Simple") => {
+                    for s in value["value"].as_array().into_iter().flatten() {
+                        for r in scalar_req {
+                            assert!(s.get(r).is_some(), "scalar without `{r}`: {s}");
+                        }
+                        assert!(tags.contains(&s["t"].as_str().unwrap_or("")), "{s}");
+                    }
+                }
+                Some("Factor") => {
+                    for occ in value["value"].as_array().into_iter().flatten() {
+                        keywords(occ, kw_req, scalar_req, tags, seen);
+                    }
+                }
+                other => panic!("keyword value kind {other:?}: {kw}"),
+            }
+        }
+    }
+    let (code, out, err) = aster(&[
+        "check",
+        "--emit",
+        "commands",
+        "--compact",
+        "comm/zzzz237a.comm",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("one object");
+    for r in required(&schema) {
+        assert!(v.get(&r).is_some(), "envelope without `{r}`");
+    }
+    assert_eq!(
+        v["schema_version"],
+        schema["properties"]["schema_version"]["const"]
+    );
+    let (mut seen, kw_req, sc_req) = (0, required(&defs["keyword"]), required(&defs["scalar"]));
+    for c in v["commands"].as_array().into_iter().flatten() {
+        for r in required(&defs["command"]) {
+            assert!(c.get(&r).is_some(), "command without `{r}`: {c}");
+        }
+        keywords(&c["keywords"], &kw_req, &sc_req, &tags, &mut seen);
+    }
+    assert!(seen > 100, "{seen} keywords");
 }

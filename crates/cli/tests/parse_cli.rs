@@ -53,6 +53,51 @@ fn parse_json_is_the_ast() {
     assert_eq!(v["body"][0]["value"]["func"]["id"], "DEBUT");
     assert_eq!(v["body"][1]["stmt"], "Assign");
     assert_eq!(v["body"][1]["value"]["args"][0]["name"]["name"], "FORMAT");
+    assert_eq!(v["schema_version"], 1);
+    assert_eq!(v["kind"], "ast");
+    assert_eq!(v["path"], good.display().to_string());
+}
+
+/// `--json --compact`: JSON Lines, one AST per file in the order given,
+/// every node located by line and column beside its byte span.
+#[test]
+fn parse_json_compact_is_one_line_per_file_with_positions() {
+    let dir = std::env::temp_dir().join(format!("aster-parse-json-{}", std::process::id()));
+    let _ = std::fs::create_dir_all(&dir);
+    let (a, b) = (dir.join("a.comm"), dir.join("b.comm"));
+    let _ = std::fs::write(&a, "DEBUT()\nMA = LIRE_MAILLAGE(\n    FORMAT='MED')\n");
+    let _ = std::fs::write(&b, "FIN()\n");
+    let out = match aster()
+        .args(["parse", "--json", "--compact"])
+        .arg(&a)
+        .arg(&b)
+        .output()
+    {
+        Ok(o) => o,
+        Err(e) => panic!("cannot run aster: {e}"),
+    };
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON object per line"))
+        .collect();
+    assert_eq!(lines.len(), 2, "{text}");
+    assert_eq!(lines[0]["path"], a.display().to_string());
+    assert_eq!(lines[1]["path"], b.display().to_string());
+    let call = &lines[0]["body"][1]["value"];
+    assert_eq!((&call["line"], &call["column"]), (&2.into(), &6.into()));
+    let kw = &call["args"][0];
+    assert_eq!(kw["name"]["name"], "FORMAT");
+    assert_eq!((&kw["line"], &kw["column"]), (&3.into(), &5.into()));
+    assert_eq!(kw["span"][0], 32);
+    // --compact alone is a usage error.
+    let out = match aster().args(["parse", "--compact"]).arg(&a).output() {
+        Ok(o) => o,
+        Err(e) => panic!("cannot run aster: {e}"),
+    };
+    assert_eq!(out.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

@@ -9,7 +9,8 @@
 //! error.
 
 use super::diag_out::{self, Located};
-use aster_eval::{check_source, CommandCall, Level};
+use super::json_out::{self, JsonOptions};
+use aster_eval::{check_source, Level};
 use aster_syntax::CodeMap;
 use std::path::{Path, PathBuf};
 
@@ -39,12 +40,6 @@ pub(crate) fn read(path: &Path) -> Result<String, String> {
     })
 }
 
-#[derive(serde::Serialize)]
-struct Emitted<'a> {
-    file: String,
-    commands: &'a [CommandCall],
-}
-
 /// A file that cannot be read, as a diagnostic of the machine formats.
 fn unreadable(path: &str, message: String) -> Located {
     Located {
@@ -62,7 +57,11 @@ fn unreadable(path: &str, message: String) -> Located {
     }
 }
 
-pub fn run(files: &[PathBuf], emit: Option<&str>, format: Format) -> u8 {
+pub fn run(files: &[PathBuf], emit: Option<&str>, format: Format, json: JsonOptions) -> u8 {
+    if emit.is_none() && (json.compact || json.no_defaults) {
+        eprintln!("aster check: --compact and --no-defaults shape the output of --emit commands: give --emit commands too");
+        return 2;
+    }
     if let Some(what) = emit {
         if what != "commands" {
             eprintln!("aster check: unknown --emit `{what}` (expected `commands`)");
@@ -92,7 +91,13 @@ pub fn run(files: &[PathBuf], emit: Option<&str>, format: Format) -> u8 {
                     }
                 }
                 if emit.is_some() {
-                    emitted.push((path.clone(), report.calls));
+                    match json_out::commands_object(&path, &map, &report.calls, json) {
+                        Ok(v) => emitted.push(v),
+                        Err(e) => {
+                            eprintln!("aster check: cannot write JSON: {e}");
+                            return 2;
+                        }
+                    }
                 }
                 report
                     .diagnostics
@@ -155,21 +160,10 @@ pub fn run(files: &[PathBuf], emit: Option<&str>, format: Format) -> u8 {
         }
     }
     if emit.is_some() {
-        let out: Vec<Emitted> = emitted
-            .iter()
-            .map(|(f, c)| Emitted {
-                file: f.clone(),
-                commands: c,
-            })
-            .collect();
-        let json = if out.len() == 1 {
-            serde_json::to_string_pretty(&out[0])
-        } else {
-            serde_json::to_string_pretty(&out)
-        };
-        match json {
-            Ok(j) => println!("{j}"),
-            Err(e) => {
+        let stdout = std::io::stdout();
+        let mut out = stdout.lock();
+        for v in &emitted {
+            if let Err(e) = json_out::write_object(&mut out, v, json.compact) {
                 eprintln!("aster check: cannot write JSON: {e}");
                 return 2;
             }

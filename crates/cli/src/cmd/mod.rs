@@ -4,6 +4,7 @@ pub mod check;
 pub mod diag_out;
 pub mod explain;
 pub mod fmt;
+pub mod json_out;
 pub mod lsp;
 pub mod mesh;
 pub mod migrate;
