@@ -5,6 +5,7 @@
 //! 3 (`check`) nothing wrong but something aster does not support.
 
 mod cmd;
+mod style;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;

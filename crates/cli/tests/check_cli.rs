@@ -434,3 +434,47 @@ fn emitted_commands_follow_the_documented_schema() {
     }
     assert!(seen > 100, "{seen} keywords");
 }
+
+/// Colour only on a terminal: piped output (as here) has no escape codes;
+/// `CLICOLOR_FORCE=1` colours the same text, `NO_COLOR` wins over it.
+#[test]
+fn diagnostics_are_coloured_only_when_asked_or_on_a_terminal() {
+    let file = "crates/eval/tests/errors/unknown_keyword.comm";
+    let run = |env: &[(&str, &str)]| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_aster"));
+        c.args(["check", file]).current_dir(root());
+        c.env_remove("NO_COLOR").env_remove("CLICOLOR_FORCE");
+        for (k, v) in env {
+            c.env(k, v);
+        }
+        let out = c.output().expect("run aster");
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let plain = run(&[]);
+    assert!(!plain.contains('\u{1b}'), "{plain:?}");
+    assert!(plain.contains(":8:33: error: "), "{plain}");
+    let forced = run(&[("CLICOLOR_FORCE", "1")]);
+    assert!(
+        forced.contains("\u{1b}[1m\u{1b}[31merror\u{1b}[0m"),
+        "{forced:?}"
+    );
+    let stripped: String = {
+        let mut out = String::new();
+        let mut chars = forced.chars();
+        while let Some(c) = chars.next() {
+            if c == '\u{1b}' {
+                for d in chars.by_ref() {
+                    if d == 'm' {
+                        break;
+                    }
+                }
+            } else {
+                out.push(c);
+            }
+        }
+        out
+    };
+    assert_eq!(stripped, plain);
+    let no_color = run(&[("CLICOLOR_FORCE", "1"), ("NO_COLOR", "1")]);
+    assert_eq!(no_color, plain);
+}

@@ -87,7 +87,7 @@ pub fn run(files: &[PathBuf], emit: Option<&str>, format: Format, json: JsonOpti
                 let report = check_source(&map, emit.is_some());
                 if format == Format::Human {
                     for d in &report.diagnostics.0 {
-                        eprint!("{}", d.render(&map));
+                        crate::style::eprint_diagnostic(&d.render(&map));
                     }
                 }
                 if emit.is_some() {

@@ -39,7 +39,7 @@ pub fn run(files: &[PathBuf], mode: Mode) -> u8 {
             Ok(text) => text,
             Err(e) => {
                 let map = CodeMap::new(name.as_str(), source.as_str());
-                eprint!("{}", e.render(&map));
+                crate::style::eprint_diagnostic(&e.render(&map));
                 code = code.max(1);
                 continue;
             }

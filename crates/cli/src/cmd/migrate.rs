@@ -31,8 +31,10 @@ pub fn run(files: &[PathBuf], write: bool) -> u8 {
         };
         let map = CodeMap::new(name.as_str(), source.as_str());
         for d in &m.left {
-            eprint!("{}", d.render(&map));
-            eprintln!("  = note: aster migrate has no rewrite for this: left as written");
+            crate::style::eprint_diagnostic(&format!(
+                "{}  = note: aster migrate has no rewrite for this: left as written\n",
+                d.render(&map)
+            ));
         }
         if !m.left.is_empty() {
             code = code.max(1);

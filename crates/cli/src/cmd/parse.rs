@@ -39,10 +39,7 @@ pub fn run(files: &[PathBuf], json: bool, compact: bool) -> u8 {
             }
             Err(rendered) => {
                 failed += 1;
-                eprint!("{rendered}");
-                if !rendered.ends_with('\n') {
-                    eprintln!();
-                }
+                crate::style::eprint_diagnostic(&rendered);
             }
         }
     }

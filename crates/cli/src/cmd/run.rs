@@ -51,7 +51,7 @@ pub fn run(
     let mut prepared = match aster_run::program::prepare(case, mesh, &out) {
         Ok(c) => c,
         Err(e) => {
-            eprintln!("error: {e}");
+            crate::style::eprint_diagnostic(&format!("error: {e}"));
             if let Some((format, file)) = &report {
                 write_report(format, file, case, &Default::default(), Some(&e.message));
             }
@@ -60,13 +60,13 @@ pub fn run(
     };
     prepared.progress_stderr = !quiet;
     prepared.vtu_dir = vtu.map(Path::to_path_buf);
-    let outcome = aster_run::program::run(&prepared, Box::new(std::io::stdout()));
+    let outcome = aster_run::program::run(&prepared, Box::new(crate::style::Listing::stdout()));
     if let Some(e) = &outcome.error {
         // Errors of the program carry `file:line:col: error:` already.
         if e.message.contains(": error: ") {
-            eprintln!("{e}");
+            crate::style::eprint_diagnostic(&e.to_string());
         } else {
-            eprintln!("error: {e}");
+            crate::style::eprint_diagnostic(&format!("error: {e}"));
         }
     }
     if let Some((format, file)) = &report {
