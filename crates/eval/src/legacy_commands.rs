@@ -66,7 +66,7 @@ pub(crate) fn replacement_by_keywords(name: &str, given: &[Given]) -> Option<&'s
 /// Keywords of the modal solver that code_aster 11 wrote at the top level
 /// of `MODE_ITER_SIMULT` (or in `CALC_FREQ`) and code_aster 17 groups under
 /// `SOLVEUR_MODAL`.
-const SOLVEUR_MODAL_KEYS: &[&str] = &[
+pub(crate) const SOLVEUR_MODAL_KEYS: &[&str] = &[
     "METHODE",
     "PREC_SOREN",
     "NMAX_ITER_SOREN",

@@ -17,12 +17,19 @@
 //! | `PARM_THETA=x` | `SCHEMA_TEMPS=_F(SCHEMA='THETA', THETA=x)` |
 //! | `LIAISON='ENCASTRE'` | `BLOCAGE=('DEPLACEMENT', 'ROTATION')` |
 //!
+//! and the structures code_aster 17 rebuilt, from the same legacy mapping
+//! (docs/legacy.md has the table): a command replaced by another with its
+//! keywords moved (`MODE_ITER_SIMULT`/`MODE_ITER_INV` → `CALC_MODES`,
+//! `MACRO_MATR_ASSE` → `ASSEMBLAGE`), a keyword moved to another level
+//! (`CREA_RESU/NOM_CHAM` into each `AFFE`, `DEFI_LIST/METHODE` up), one
+//! occurrence split per modelisation, a real wrapped in `DEFI_CONSTANTE`, a
+//! keyword code_aster 11 implied written, an ignored one removed;
 //! and the Python 2 statements the AST keeps become Python 3: `print x` →
 //! `print(x)`, `exec c` → `exec(c)`, `` `x` `` → `repr(x)`, `xrange` →
 //! `range`. A legacy
-//! diagnostic with no local rewrite (a command replaced by another, values
-//! moved between keywords) is left as it is and reported: the file keeps
-//! the old spelling there.
+//! diagnostic with no source rewrite (a structure the program builds in a
+//! dictionary, `**kw`) is left as it is and reported: the file keeps the
+//! old spelling there.
 
 use crate::diag::{DiagKind, Diagnostic};
 use aster_syntax::CodeMap;
@@ -53,6 +60,109 @@ struct KwArg<'a> {
     value: &'a Json,
 }
 
+/// A call of the AST: `NAME(args)` (a command, or `_F` of a factor keyword).
+struct Call<'a> {
+    span: (usize, usize),
+    /// The called name when it is a plain name.
+    name: Option<&'a str>,
+    name_span: (usize, usize),
+    args: &'a [Json],
+}
+
+impl<'a> Call<'a> {
+    fn of(v: &'a Json) -> Option<Call<'a>> {
+        if v.get("expr").and_then(Json::as_str) != Some("Call") {
+            return None;
+        }
+        let func = v.get("func")?;
+        Some(Call {
+            span: span_of(v)?,
+            name: (func.get("expr").and_then(Json::as_str) == Some("Name"))
+                .then(|| func.get("id").and_then(Json::as_str))
+                .flatten(),
+            name_span: span_of(func)?,
+            args: v.get("args")?.as_array()?,
+        })
+    }
+
+    /// The keyword argument `name` written in this call.
+    fn keyword(&self, name: &str) -> Option<KwArg<'a>> {
+        self.args.iter().find_map(|a| {
+            (a.get("arg").and_then(Json::as_str) == Some("Keyword")
+                && a.get("name")
+                    .and_then(|n| n.get("name"))
+                    .and_then(Json::as_str)
+                    == Some(name))
+            .then(|| {
+                Some(KwArg {
+                    span: span_of(a)?,
+                    name: a.get("name")?.get("name")?.as_str()?,
+                    value: a.get("value")?,
+                })
+            })
+            .flatten()
+        })
+    }
+
+    /// Every keyword argument written in this call, in order.
+    fn keywords(&self) -> Vec<KwArg<'a>> {
+        self.args
+            .iter()
+            .filter_map(|a| {
+                if a.get("arg").and_then(Json::as_str) != Some("Keyword") {
+                    return None;
+                }
+                Some(KwArg {
+                    span: span_of(a)?,
+                    name: a.get("name")?.get("name")?.as_str()?,
+                    value: a.get("value")?,
+                })
+            })
+            .collect()
+    }
+
+    /// The offset just after the opening parenthesis.
+    fn inside(&self, source: &str) -> Option<usize> {
+        let from = self.name_span.1;
+        Some(from + source.get(from..self.span.1)?.find('(')? + 1)
+    }
+}
+
+/// What a rewrite may look at: the source, every keyword argument and call.
+struct Context<'a> {
+    source: &'a str,
+    calls: Vec<Call<'a>>,
+}
+
+impl<'a> Context<'a> {
+    /// The innermost command call (not `_F`) around `span`.
+    fn command_around(&self, span: (usize, usize)) -> Option<&Call<'a>> {
+        self.calls
+            .iter()
+            .filter(|c| c.span.0 <= span.0 && span.1 <= c.span.1 && c.span != span)
+            .filter(|c| c.name.is_some_and(|n| n != "_F"))
+            .min_by_key(|c| c.span.1 - c.span.0)
+    }
+
+    fn text(&self, span: (usize, usize)) -> &'a str {
+        self.source.get(span.0..span.1).unwrap_or("")
+    }
+
+    /// The `_F(...)` occurrences a factor keyword's value writes (one call,
+    /// or a tuple/list of calls); `None` when it is built otherwise (a
+    /// variable, a comprehension).
+    fn occurrences(&self, value: &'a Json) -> Option<Vec<Call<'a>>> {
+        let items: Vec<&Json> = match value.get("expr").and_then(Json::as_str) {
+            Some("Tuple" | "List") => value.get("elts")?.as_array()?.iter().collect(),
+            _ => vec![value],
+        };
+        items
+            .into_iter()
+            .map(|v| Call::of(v).filter(|c| c.name == Some("_F")))
+            .collect()
+    }
+}
+
 fn span_of(v: &Json) -> Option<(usize, usize)> {
     let s = v.get("span")?.as_array()?;
     Some((s.first()?.as_u64()? as usize, s.get(1)?.as_u64()? as usize))
@@ -60,8 +170,21 @@ fn span_of(v: &Json) -> Option<(usize, usize)> {
 
 /// Every keyword argument, Python 2 statement and backquote of the module.
 fn walk<'a>(v: &'a Json, kws: &mut Vec<KwArg<'a>>, py2: &mut Vec<&'a Json>) {
+    walk_all(v, kws, py2, &mut Vec::new());
+}
+
+/// [`walk`], and every call.
+fn walk_all<'a>(
+    v: &'a Json,
+    kws: &mut Vec<KwArg<'a>>,
+    py2: &mut Vec<&'a Json>,
+    calls: &mut Vec<Call<'a>>,
+) {
     match v {
         Json::Object(o) => {
+            if let Some(c) = Call::of(v) {
+                calls.push(c);
+            }
             if o.get("arg").and_then(Json::as_str) == Some("Keyword") {
                 if let (Some(span), Some(name), Some(value)) = (
                     span_of(v),
@@ -81,12 +204,12 @@ fn walk<'a>(v: &'a Json, kws: &mut Vec<KwArg<'a>>, py2: &mut Vec<&'a Json>) {
                 py2.push(v);
             }
             for x in o.values() {
-                walk(x, kws, py2);
+                walk_all(x, kws, py2, calls);
             }
         }
         Json::Array(a) => {
             for x in a {
-                walk(x, kws, py2);
+                walk_all(x, kws, py2, calls);
             }
         }
         _ => {}
@@ -136,7 +259,9 @@ fn migrate_once(name: &str, source: &str) -> Result<Migration, String> {
     let ast = serde_json::to_value(&module).map_err(|e| e.to_string())?;
     let mut kws = Vec::new();
     let mut py2 = Vec::new();
-    walk(&ast, &mut kws, &mut py2);
+    let mut calls = Vec::new();
+    walk_all(&ast, &mut kws, &mut py2, &mut calls);
+    let ctx = Context { source, calls };
     let map = CodeMap::new(name, source);
     let report = crate::check_source(&map, false);
     let text = |s: (usize, usize)| source.get(s.0..s.1).unwrap_or("");
@@ -150,7 +275,17 @@ fn migrate_once(name: &str, source: &str) -> Result<Migration, String> {
     {
         let span = (d.span.start as usize, d.span.end as usize);
         let arg = kws.iter().find(|k| k.span == span);
-        match arg.and_then(|a| legacy_edit(&d.message, a, source)) {
+        let edit = match arg {
+            Some(a) => legacy_edit(&d.message, a, &ctx),
+            // A diagnostic about a whole call (a command replaced by
+            // another, a keyword it lacks) spans the call.
+            None => ctx
+                .calls
+                .iter()
+                .find(|c| c.span.0 == span.0 && c.name.is_some())
+                .and_then(|c| call_edit(&d.message, c, &ctx)),
+        };
+        match edit {
             Some(e) => edits.extend(e),
             None => left.push(d.clone()),
         }
@@ -162,14 +297,25 @@ fn migrate_once(name: &str, source: &str) -> Result<Migration, String> {
     }
     // Apply in order; an edit inside one already made is dropped (the
     // outer one rewrote that text).
-    edits.sort_by_key(|e| (e.start, std::cmp::Reverse(e.end)));
+    // At one place: an insertion before what replaces or removes the text
+    // there (`CALC_MODES(` + `OPTION=…, ` then `OPTION='SANS',` removed).
+    edits.sort_by_key(|e| (e.start, e.end != e.start, std::cmp::Reverse(e.end)));
+    // A call in a loop gives its diagnostics once per pass through it.
+    edits.dedup_by(|a, b| a.start == b.start && a.end == b.end && a.text == b.text);
     let mut out = String::with_capacity(source.len());
     let mut at = 0;
     let mut applied = 0;
+    let mut last_removal = false;
     for e in edits {
         if e.start < at {
+            // Two removals that touch (an argument and the comma of the
+            // next one) remove their union.
+            if last_removal && e.text.is_empty() && e.end > at {
+                at = e.end;
+            }
             continue;
         }
+        last_removal = e.text.is_empty() && e.end > e.start;
         out.push_str(&source[at..e.start]);
         out.push_str(&e.text);
         at = e.end;
@@ -186,7 +332,8 @@ fn migrate_once(name: &str, source: &str) -> Result<Migration, String> {
 /// The edits for a legacy diagnostic about the keyword argument `arg`:
 /// as small as can be (a name, a string), so that the rewrites of keywords
 /// inside it (`COMP_INCR=_F(RESI_INTE_RELA=...)`) apply too.
-fn legacy_edit(message: &str, arg: &KwArg, source: &str) -> Option<Vec<Edit>> {
+fn legacy_edit(message: &str, arg: &KwArg, ctx: &Context) -> Option<Vec<Edit>> {
+    let source = ctx.source;
     let (start, end) = arg.span;
     let whole = source.get(start..end)?;
     // The argument must be written as `NAME = value` here (not built by
@@ -200,6 +347,9 @@ fn legacy_edit(message: &str, arg: &KwArg, source: &str) -> Option<Vec<Edit>> {
         text: text.to_string(),
     };
     let subj = subject(message)?;
+    if let Some(e) = moved_or_rewritten(message, subj, arg, value_src, ctx) {
+        return Some(e);
+    }
     if let Some(rest) = message.split_once(" is legacy syntax: now ").map(|p| p.1) {
         if subj == arg.name && is_ident(rest) {
             return Some(vec![at(start, arg.name.len(), rest)]);
@@ -275,6 +425,368 @@ fn legacy_edit(message: &str, arg: &KwArg, source: &str) -> Option<Vec<Edit>> {
     }
 }
 
+/// A quoted Python string of `text` (single quotes unless it has one).
+fn quoted(text: &str) -> String {
+    if text.contains('\'') && !text.contains('"') {
+        format!("\"{text}\"")
+    } else {
+        format!("'{}'", text.replace('\\', "\\\\").replace('\'', "\\'"))
+    }
+}
+
+/// The rewrites that move a value to another place or rebuild it (the
+/// structures of docs/legacy.md, "Rewritten structures").
+fn moved_or_rewritten(
+    message: &str,
+    subj: &str,
+    arg: &KwArg,
+    value_src: &str,
+    ctx: &Context,
+) -> Option<Vec<Edit>> {
+    let source = ctx.source;
+    let (start, end) = arg.span;
+    let value = value_src.trim();
+    let insert = |at: usize, text: String| Edit {
+        start: at,
+        end: at,
+        text,
+    };
+    // ALPHA=1.0e-5 where a function is expected now.
+    if message.contains(": a real is code_aster 11 syntax here: now a function, DEFI_CONSTANTE(") {
+        return Some(vec![Edit {
+            start,
+            end,
+            text: format!("{}=DEFI_CONSTANTE(VALE={value})", arg.name),
+        }]);
+    }
+    // Ignored keywords (no use, or no such choice in code_aster 17).
+    if subj == arg.name
+        && (message.contains(" has no use: ignored")
+            || message.contains(" in code_aster 17: ignored"))
+    {
+        return Some(vec![removal(source, start, end)]);
+    }
+    // CREA_RESU(NOM_CHAM=X, AFFE=_F(...)) → AFFE=_F(NOM_CHAM=X, ...).
+    if subj == "NOM_CHAM" && message.contains("now AFFE=_F(NOM_CHAM=...) in each occurrence") {
+        let cmd = ctx.command_around(arg.span)?;
+        let affe = cmd.keyword("AFFE")?;
+        let mut edits = vec![removal(source, start, end)];
+        // AFFE=l_affe, a list of dictionaries built by the program: each
+        // element gets the field name as the program runs.
+        if affe.value.get("expr").and_then(Json::as_str) == Some("Name") {
+            let list = affe.value.get("id")?.as_str()?;
+            edits.push(Edit {
+                start: affe.span.0,
+                end: affe.span.1,
+                text: format!("AFFE=[_F(NOM_CHAM={value}, **occ) for occ in {list}]"),
+            });
+            return Some(edits);
+        }
+        for occ in ctx.occurrences(affe.value)? {
+            if occ.keyword("NOM_CHAM").is_none() {
+                edits.push(insert(occ.inside(source)?, format!("NOM_CHAM={value}, ")));
+            }
+        }
+        return Some(edits);
+    }
+    // DEFI_LIST_INST(DEFI_LIST=_F(METHODE=M, ...)) → DEFI_LIST_INST(METHODE=M, ...).
+    if subj == "METHODE" && message.contains("/DEFI_LIST/METHODE` is code_aster 11 syntax: now ") {
+        let cmd = ctx.command_around(arg.span)?;
+        let mut edits = vec![removal(source, start, end)];
+        if !message.contains("whose default is") {
+            edits.push(insert(cmd.inside(source)?, format!("METHODE={value}, ")));
+        }
+        return Some(edits);
+    }
+    // PARTITION=_F(PARALLELISME=P) → DISTRIBUTION=_F(METHODE=P).
+    if subj.starts_with("PARTITION=_F(") && message.contains("now DISTRIBUTION=_F(METHODE=...)") {
+        let mut edits = vec![Edit {
+            start,
+            end: start + arg.name.len(),
+            text: "DISTRIBUTION".into(),
+        }];
+        for occ in ctx.occurrences(arg.value)? {
+            for kw in occ.keywords() {
+                match kw.name {
+                    "PARALLELISME" => edits.push(Edit {
+                        start: kw.span.0,
+                        end: kw.span.0 + kw.name.len(),
+                        text: "METHODE".into(),
+                    }),
+                    // The FETI sub-domains went with FETI.
+                    "PARTITION" => edits.push(removal(source, kw.span.0, kw.span.1)),
+                    _ => {}
+                }
+            }
+        }
+        return Some(edits);
+    }
+    // TITRE=('a', 'b') → TITRE='a b'.
+    if message
+        .contains(" with several strings is code_aster 11 syntax: now one text (joined by spaces)")
+    {
+        let elts = arg.value.get("elts")?.as_array()?;
+        let parts: Vec<&str> = elts
+            .iter()
+            .map(|e| {
+                (e.get("expr").and_then(Json::as_str) == Some("Str"))
+                    .then(|| e.get("value").and_then(Json::as_str))
+                    .flatten()
+            })
+            .collect::<Option<_>>()?;
+        return Some(vec![Edit {
+            start,
+            end,
+            text: format!("{}={}", arg.name, quoted(&parts.join(" "))),
+        }]);
+    }
+    // A keyword code_aster 11 implied, written now beside `arg` (the
+    // warning spans an argument of the call that lacks it).
+    for (marker, text) in [
+        (
+            "` without TYPE_VECT: code_aster 11's default TYPE_VECT='FORC' is now written",
+            "TYPE_VECT='FORC', ",
+        ),
+        (
+            "` without FORMAT printed text in code_aster 11 (MED in code_aster 17): FORMAT='RESULTAT' written",
+            "FORMAT='RESULTAT', ",
+        ),
+    ] {
+        if message.contains(marker) {
+            return Some(vec![insert(start, text.to_string())]);
+        }
+    }
+    // DEFI_CONTACT/ZONE/TYPE_APPA='FIXE' → TYPE_PROJECTION='FIXE'.
+    if subj.starts_with("TYPE_APPA=") {
+        let now = message.split_once(" is code_aster 11 syntax: now ")?.1;
+        if now.starts_with("TYPE_PROJECTION='") {
+            return Some(vec![Edit {
+                start,
+                end,
+                text: now.to_string(),
+            }]);
+        }
+    }
+    // AFFE=_F(..., MODELISATION=('A', 'B')) → AFFE=(_F(..., MODELISATION='A'),
+    // _F(..., MODELISATION='B')), in the same order.
+    if arg.name == "AFFE"
+        && message.contains("/AFFE/MODELISATION` with several values is code_aster 11 syntax")
+    {
+        let mut occs_text = Vec::new();
+        for occ in ctx.occurrences(arg.value)? {
+            let whole = ctx.text(occ.span);
+            let Some(m) = occ.keyword("MODELISATION") else {
+                occs_text.push(whole.to_string());
+                continue;
+            };
+            let models: Vec<&str> = match m.value.get("expr").and_then(Json::as_str) {
+                Some("Tuple" | "List") => m
+                    .value
+                    .get("elts")?
+                    .as_array()?
+                    .iter()
+                    .map(|e| span_of(e).map(|s| ctx.text(s)))
+                    .collect::<Option<_>>()?,
+                _ => vec![ctx.text(span_of(m.value)?)],
+            };
+            let (a, b) = (m.span.0 - occ.span.0, m.span.1 - occ.span.0);
+            for model in models {
+                occs_text.push(format!(
+                    "{}MODELISATION={model}{}",
+                    &whole[..a],
+                    &whole[b..]
+                ));
+            }
+        }
+        return Some(vec![Edit {
+            start,
+            end,
+            text: format!("AFFE=({},)", occs_text.join(", ")),
+        }]);
+    }
+    // COMP_ELAS beside COMP_INCR: one COMPORTEMENT with the occurrences of
+    // both (COMP_INCR's first); alone, a rename.
+    if subj == "COMP_ELAS"
+        && message.contains("now COMPORTEMENT, together with the occurrences of COMP_INCR")
+    {
+        let cmd = ctx.command_around(arg.span)?;
+        let Some(incr) = cmd.keyword("COMP_INCR") else {
+            if cmd.keyword("COMPORTEMENT").is_some() {
+                return None;
+            }
+            return Some(vec![Edit {
+                start,
+                end: start + arg.name.len(),
+                text: "COMPORTEMENT".into(),
+            }]);
+        };
+        let items = |v: &Json| -> Option<Vec<&str>> {
+            Some(match v.get("expr").and_then(Json::as_str) {
+                Some("Tuple" | "List") => v
+                    .get("elts")?
+                    .as_array()?
+                    .iter()
+                    .map(|e| span_of(e).map(|s| ctx.text(s)))
+                    .collect::<Option<_>>()?,
+                _ => vec![ctx.text(span_of(v)?)],
+            })
+        };
+        let mut all = items(incr.value)?;
+        all.extend(items(arg.value)?);
+        return Some(vec![
+            Edit {
+                start: incr.span.0,
+                end: incr.span.1,
+                text: format!("COMPORTEMENT=({},)", all.join(", ")),
+            },
+            removal(source, start, end),
+        ]);
+    }
+    None
+}
+
+/// Keywords of the modal solver that code_aster 11 wrote at the top level
+/// of `MODE_ITER_SIMULT` (or in `CALC_FREQ`): `SOLVEUR_MODAL` now (the
+/// list of [`crate::legacy_commands`]).
+fn solveur_modal_key(name: &str) -> bool {
+    crate::legacy_commands::SOLVEUR_MODAL_KEYS.contains(&name)
+}
+
+/// The edits for a legacy diagnostic about a whole call `call`.
+fn call_edit(message: &str, call: &Call, ctx: &Context) -> Option<Vec<Edit>> {
+    let source = ctx.source;
+    let name = call.name?;
+    let rename = |to: &str| Edit {
+        start: call.name_span.0,
+        end: call.name_span.1,
+        text: to.to_string(),
+    };
+    if let Some(now) = message.strip_prefix(&format!(
+        "`{name}` without INCREMENT is code_aster 11's stationary computation: now "
+    )) {
+        return Some(vec![Edit {
+            start: call.inside(source)?,
+            end: call.inside(source)?,
+            text: format!("{now}, "),
+        }]);
+    }
+    match message.strip_prefix(&format!("`{name}` is code_aster 11 syntax: now "))? {
+        "ASSEMBLAGE" if name == "MACRO_MATR_ASSE" => Some(vec![rename("ASSEMBLAGE")]),
+        "CALC_MODES" if matches!(name, "MODE_ITER_SIMULT" | "MODE_ITER_INV") => {
+            modal_edits(name, call, ctx).map(|mut e| {
+                e.push(rename("CALC_MODES"));
+                e
+            })
+        }
+        _ => None,
+    }
+}
+
+/// `MODE_ITER_SIMULT` / `MODE_ITER_INV` → `CALC_MODES`, as the checker maps
+/// them (`legacy_commands::modal`): the matrices renamed after the problem,
+/// `CALC_FREQ/OPTION` up to `OPTION`, the method keywords into
+/// `SOLVEUR_MODAL`, code_aster 11's top-level `OPTION='MODE_RIGIDE'` into
+/// `SOLVEUR_MODAL/MODE_RIGIDE='OUI'`, `STOP_FREQ_VIDE` dropped.
+fn modal_edits(old: &str, call: &Call, ctx: &Context) -> Option<Vec<Edit>> {
+    let source = ctx.source;
+    let mut edits = Vec::new();
+    let mut solveur: Vec<String> = Vec::new();
+    let mut option: Option<String> = None;
+    fn literal(v: &Json) -> Option<&str> {
+        (v.get("expr").and_then(Json::as_str) == Some("Str"))
+            .then(|| v.get("value").and_then(Json::as_str))
+            .flatten()
+    }
+    let type_resu = match call.keyword("TYPE_RESU") {
+        Some(t) => Some(literal(t.value)?),
+        None => None,
+    };
+    let names: &[(&str, &str)] = match type_resu {
+        Some("GENERAL") => &[],
+        Some("MODE_FLAMB") => &[("MATR_A", "MATR_RIGI"), ("MATR_B", "MATR_RIGI_GEOM")],
+        _ => &[
+            ("MATR_A", "MATR_RIGI"),
+            ("MATR_B", "MATR_MASS"),
+            ("MATR_C", "MATR_AMOR"),
+        ],
+    };
+    for kw in call.keywords() {
+        let value = ctx.text(span_of(kw.value)?);
+        if let Some((_, to)) = names.iter().find(|(f, _)| *f == kw.name) {
+            edits.push(Edit {
+                start: kw.span.0,
+                end: kw.span.0 + kw.name.len(),
+                text: to.to_string(),
+            });
+            continue;
+        }
+        match kw.name {
+            "OPTION" => {
+                if literal(kw.value)? == "MODE_RIGIDE" {
+                    solveur.push("MODE_RIGIDE='OUI'".into());
+                }
+                edits.push(removal(source, kw.span.0, kw.span.1));
+            }
+            "STOP_FREQ_VIDE" => edits.push(removal(source, kw.span.0, kw.span.1)),
+            n if solveur_modal_key(n) => {
+                solveur.push(format!("{n}={value}"));
+                edits.push(removal(source, kw.span.0, kw.span.1));
+            }
+            "CALC_FREQ" | "CALC_CHAR_CRIT" => {
+                let occs = ctx.occurrences(kw.value)?;
+                let first = occs.first()?;
+                for inner in first.keywords() {
+                    let v = ctx.text(span_of(inner.value)?);
+                    if inner.name == "OPTION" {
+                        option = Some(v.to_string());
+                    } else if solveur_modal_key(inner.name) {
+                        solveur.push(format!("{}={v}", inner.name));
+                    } else {
+                        continue;
+                    }
+                    edits.push(removal(source, inner.span.0, inner.span.1));
+                }
+            }
+            "CALC_MODE" => {
+                let occs = ctx.occurrences(kw.value)?;
+                for inner in occs.first()?.keywords() {
+                    let v = ctx.text(span_of(inner.value)?);
+                    let to = match inner.name {
+                        "OPTION" => "OPTION_INV",
+                        "PREC" => "PREC_INV",
+                        "NMAX_ITER" => "NMAX_ITER_INV",
+                        _ => continue,
+                    };
+                    solveur.push(format!("{to}={v}"));
+                }
+                edits.push(removal(source, kw.span.0, kw.span.1));
+            }
+            // An explicit SOLVEUR_MODAL (not code_aster 11) is not merged.
+            "SOLVEUR_MODAL" if !solveur.is_empty() => return None,
+            _ => {}
+        }
+    }
+    if option.is_none() && old == "MODE_ITER_INV" {
+        option = Some("'AJUSTE'".into());
+    }
+    let mut head = String::new();
+    if let Some(o) = option {
+        head.push_str(&format!("OPTION={o}, "));
+    }
+    if !solveur.is_empty() {
+        head.push_str(&format!("SOLVEUR_MODAL=_F({}), ", solveur.join(", ")));
+    }
+    if !head.is_empty() {
+        let at = call.inside(source)?;
+        edits.push(Edit {
+            start: at,
+            end: at,
+            text: head,
+        });
+    }
+    Some(edits)
+}
+
 /// Removing `source[start..end]`, an argument: with the comma after it (or
 /// before it when it is the last), and its whole line when it is alone there.
 fn removal(source: &str, start: usize, end: usize) -> Edit {
@@ -297,8 +809,15 @@ fn removal(source: &str, start: usize, end: usize) -> Edit {
                 text: String::new(),
             };
         }
+        // Nothing after it on its line: no trailing blank left either.
+        let mut s = start;
+        if e >= b.len() || b[e] == b'\n' {
+            while s > line_start && (b[s - 1] == b' ' || b[s - 1] == b'\t') {
+                s -= 1;
+            }
+        }
         return Edit {
-            start,
+            start: s,
             end: e,
             text: String::new(),
         };
