@@ -380,3 +380,54 @@ fn mess_file_of_the_export_gets_the_progress() {
     assert!(mess.contains("| RESI_GLOB_RELA |"), "{mess}");
     assert!(mess.contains("TEST_RESU: 14 OK, 0 NOOK"), "{mess}");
 }
+
+/// The live progress as a snapshot: a line per command, a code_aster-style
+/// table per increment. Times are masked, and so are the residuals of rows
+/// at round-off (relative residual below 1e-6: they depend on the order of
+/// floating-point sums, which the SIMD path of the CPU decides).
+#[test]
+fn progress_table_snapshot() {
+    let cwd = out_dir("progress-snapshot");
+    let o = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .arg("run")
+        .arg("comm/zzzz237a.comm")
+        .arg("--mesh")
+        .arg("comm/zzzz237.mail")
+        .arg("--out")
+        .arg(&cwd)
+        .current_dir(root())
+        .env_remove("CLICOLOR_FORCE")
+        .output()
+        .expect("aster runs");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{stderr}");
+    let mask = |line: &str| -> String {
+        let mut words: Vec<String> = Vec::new();
+        let cells: Vec<&str> = line.split('|').collect();
+        if cells.len() == 8 && cells[1].trim().parse::<u32>().is_ok() {
+            // | iter | RESI_RELA | RESI_MAXI | contact | pairings | time |
+            // A row at round-off (relative residual below 1e-6): both
+            // residuals masked.
+            let converged = cells[2].trim().parse::<f64>().is_ok_and(|v| v.abs() < 1e-6);
+            for (i, c) in cells.iter().enumerate() {
+                let masked = match i {
+                    2 | 3 if converged => format!("{:>w$}", "round-off ", w = c.len()),
+                    6 => format!("{:>w$}", "T ", w = c.len()),
+                    _ => c.to_string(),
+                };
+                words.push(masked);
+            }
+            return words.join("|");
+        }
+        // `name = COMMAND   0.003 s  file:line:col`
+        match line.find(" s  ") {
+            Some(p) => {
+                let start = line[..p].rfind(' ').map_or(0, |s| s + 1);
+                format!("{}T{}", &line[..start], &line[p..])
+            }
+            None => line.to_string(),
+        }
+    };
+    let shown: Vec<String> = stderr.lines().map(mask).collect();
+    insta::assert_snapshot!(shown.join("\n"));
+}
