@@ -381,6 +381,26 @@ pub fn explain(path: &str) -> Result<String, String> {
     explain_in(catalog(), path, Options::default())
 }
 
+/// Whether `aster explain PATH` explains something (a command, or keywords
+/// under it), without writing the explanation: cheap enough for every
+/// diagnostic to ask.
+pub fn resolves(path: &str) -> bool {
+    let parts = path_parts(path);
+    let Some((cname, kws)) = parts.split_first() else {
+        return false;
+    };
+    let Some(cmd) = catalog().command(cname) else {
+        return false;
+    };
+    if kws.is_empty() {
+        return true;
+    }
+    let kref: Vec<&str> = kws.iter().map(String::as_str).collect();
+    let mut found = Vec::new();
+    lookup(cmd.keywords, &kref, Vec::new(), &mut found);
+    !found.is_empty()
+}
+
 /// [`explain`] with [`Options`].
 pub fn explain_with(path: &str, options: Options) -> Result<String, String> {
     explain_in(catalog(), path, options)

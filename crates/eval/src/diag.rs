@@ -197,6 +197,32 @@ impl Diagnostic {
         format!("{}-{}", self.level().letter(), self.kind.slug())
     }
 
+    /// The `aster explain` path of what the diagnostic is about: the
+    /// catalog path its message starts with (`` `DEFI_CONTACT/ZONE[1]/COEF_CONT` ``),
+    /// a value written after it dropped (`` `DEBUT/CODE=_F(...)` ``); `None`
+    /// when it names nothing `aster explain` knows (a Python name, a command
+    /// code_aster 17 no longer has).
+    pub fn explain_path(&self) -> Option<String> {
+        let inner = self.message.strip_prefix('`')?;
+        let quoted = &inner[..inner.find('`')?];
+        let path = quoted.split('=').next()?.trim();
+        let catalog_like =
+            |c: char| c.is_ascii_uppercase() || c.is_ascii_digit() || "_/[]".contains(c);
+        if path.is_empty() || !path.chars().all(catalog_like) {
+            return None;
+        }
+        aster_catalog::explain::resolves(path).then(|| path.to_string())
+    }
+
+    /// The notes, ending with `see: aster explain PATH` where there is one.
+    pub fn notes_with_explain(&self) -> Vec<String> {
+        let mut notes = self.notes.clone();
+        if let Some(path) = self.explain_path() {
+            notes.push(format!("see: aster explain {path}"));
+        }
+        notes
+    }
+
     /// The one-line form: `file:line:col: error: message`.
     pub fn headline(&self, map: &CodeMap) -> String {
         let sev = match self.severity {
@@ -230,7 +256,7 @@ impl Diagnostic {
             ),
         );
         out.push('\n');
-        for n in &self.notes {
+        for n in self.notes_with_explain() {
             out.push_str(&format!("{pad} = {n}\n"));
         }
         out
@@ -292,5 +318,61 @@ pub fn allowed_list<T: std::fmt::Display>(items: &[T]) -> String {
         format!("{}, … ({} in all)", shown.join(", "), items.len())
     } else {
         shown.join(", ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn about(message: &str) -> Option<String> {
+        Diagnostic::error(DiagKind::Rule, Span::new(0, 1), message).explain_path()
+    }
+
+    #[test]
+    fn the_explain_path_is_the_catalog_path_the_message_names() {
+        assert_eq!(
+            about("`DEFI_CONTACT/ZONE[1]/COEF_CONT`: value 0 is not allowed").as_deref(),
+            Some("DEFI_CONTACT/ZONE[1]/COEF_CONT")
+        );
+        assert_eq!(
+            about("`AFFE_MODELE`: missing").as_deref(),
+            Some("AFFE_MODELE")
+        );
+        // A value written after the keyword is dropped.
+        assert_eq!(
+            about("`DEBUT/CODE=_F(NOM=...)` is code_aster 11 syntax").as_deref(),
+            Some("DEBUT/CODE")
+        );
+        // Nothing aster explain knows: a Python name, an unknown keyword,
+        // a command code_aster 17 no longer has, no path at all.
+        assert_eq!(about("name `YOUNG` is not defined"), None);
+        assert_eq!(about("`YOUNG` is not defined"), None);
+        assert_eq!(about("`AFFE_MODELE/NO_SUCH`: unknown"), None);
+        assert_eq!(
+            about("`MODE_ITER_SIMULT` is not a code_aster 17 command"),
+            None
+        );
+        assert_eq!(about("unknown keyword"), None);
+    }
+
+    #[test]
+    fn rendered_diagnostics_end_with_their_explain_path() {
+        let map = CodeMap::new("a.comm", "X = AFFE_MODELE()\n");
+        let d = Diagnostic::error(
+            DiagKind::Rule,
+            Span::new(4, 17),
+            "`AFFE_MODELE`: missing MAILLAGE",
+        )
+        .note("help: give MAILLAGE");
+        let text = d.render(&map);
+        assert!(
+            text.ends_with("  = help: give MAILLAGE\n  = see: aster explain AFFE_MODELE\n"),
+            "{text}"
+        );
+        assert_eq!(
+            d.notes_with_explain().last().map(String::as_str),
+            Some("see: aster explain AFFE_MODELE")
+        );
     }
 }

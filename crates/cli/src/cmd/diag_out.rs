@@ -60,7 +60,7 @@ impl Located {
             end_column,
             message: d.message.clone(),
             suggestion,
-            notes: d.notes.clone(),
+            notes: d.notes_with_explain(),
         }
     }
 }
