@@ -26,6 +26,7 @@ pub mod error;
 pub mod force_source;
 pub mod fpg;
 mod held;
+pub mod hexs8;
 pub mod linalg;
 pub mod loads;
 pub mod mass;

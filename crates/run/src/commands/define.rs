@@ -306,7 +306,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                             occ,
                             "MODELISATION",
                             format!(
-                                "not supported yet: MODELISATION='{name}' on {} cells (code_aster's one-point element with hourglass stabilisation; QUAD8, HEXA20 and TETRA10 cells are supported)",
+                                "not supported yet: MODELISATION='{name}' on {} cells (code_aster's one-point element with hourglass stabilisation in 2D; QUAD8, and in 3D_SI HEXA8, HEXA20 and TETRA10 cells are supported)",
                                 ty.name()
                             ),
                         ));
@@ -360,10 +360,11 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
 /// What an under-integrated (`_SI`) modelisation puts on a continuum cell.
 enum SiElement {
     /// Reduced integration (`MEDPQS8`, `MECPQS8`, `MEAXQS8`,
-    /// `MECA_HEXS20`, `MECA_TETRS10`).
+    /// `MECA_HEXS20`, `MECA_TETRS10`), or for HEXA8 the stabilised
+    /// one-point `MECA_HEXS8`.
     Reduced,
-    /// One point with hourglass stabilisation (`MEDPQS4`, `MECPQS4`,
-    /// `MECA_HEXS8`): not reproduced.
+    /// One point with hourglass stabilisation in 2D (`MEDPQS4`,
+    /// `MECPQS4`): not reproduced.
     Stabilised,
     /// No element of the modelisation for this cell type.
     None,
@@ -378,7 +379,9 @@ fn si_element(m: Modelisation, ty: aster_mesh::CellType) -> SiElement {
         (_, T::QUAD8) if m != Modelisation::Solid3D => SiElement::Reduced,
         (Modelisation::PlaneStrain | Modelisation::PlaneStress, T::QUAD4) => SiElement::Stabilised,
         (Modelisation::Solid3D, T::HEXA20 | T::TETRA10) => SiElement::Reduced,
-        (Modelisation::Solid3D, T::HEXA8) => SiElement::Stabilised,
+        // MECA_HEXS8: one point with hourglass stabilisation (aster-fem's
+        // `hexs8`, in the non-linear operators).
+        (Modelisation::Solid3D, T::HEXA8) => SiElement::Reduced,
         _ => SiElement::None,
     }
 }
