@@ -47,7 +47,7 @@ pub mod strain;
 pub mod unilateral;
 
 pub use beam::BeamSection;
-pub use behaviour::{Behaviours, CurveEnd, Lemaitre, VonMises};
+pub use behaviour::{Behaviours, CurveEnd, EcroNl, Lemaitre, VonMises};
 pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};
 pub use dynamics::{DynamicNonLinear, Scheme};

@@ -638,12 +638,28 @@ impl PlasticCells {
     }
 }
 
-const VARI_NAMES: [&str; 8] = ["V1", "V2", "V3", "V4", "V5", "V6", "V7", "V8"];
+const VARI_NAMES: [&str; 14] = [
+    "V1", "V2", "V3", "V4", "V5", "V6", "V7", "V8", "V9", "V10", "V11", "V12", "V13", "V14",
+];
 
 /// VARI of a point in code_aster's order (see [`PlasticCells::fields`]).
 fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
     let mut v = Vec::with_capacity(8);
     match &cell.law {
+        // VMIS_ISOT_NL: EPSPEQ, INDIPLAS, then EPSP (tensor components;
+        // V7, V8 zero in 2D, as `vmis_isot_nl_module` packs them).
+        Some(law) if matches!(law.hardening, super::Hardening::NonLinear(_)) => {
+            v.extend(s.law.vari());
+            let n = cell.hypothesis.ncomp();
+            for k in 0..6 {
+                let e = s.law.plastic_strain[k];
+                v.push(match k {
+                    _ if k >= n => 0.0,
+                    3..=5 => e / 2.0,
+                    _ => e,
+                });
+            }
+        }
         Some(_) => v.extend(s.law.vari()),
         None if cell.viscous.is_some() => v.extend(s.law.vari()),
         None if cell.kinematics == Kinematics::Logarithmic => v.push(0.0),

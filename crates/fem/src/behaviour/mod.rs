@@ -25,7 +25,7 @@ pub use crate::strain::{GaussState, Kinematics};
 pub(crate) use cells::PlasticCells;
 pub use cells::{forc_noda_deformed, forc_noda_from_stress};
 pub use lemaitre::Lemaitre;
-pub use vmis::{CurveEnd, Hardening, PointState, VonMises};
+pub use vmis::{CurveEnd, EcroNl, Hardening, PointState, VonMises};
 
 use crate::model::{ElementKind, Model};
 use aster_mesh::CellId;
