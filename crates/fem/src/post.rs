@@ -51,7 +51,7 @@ impl NodalValues {
 pub fn refuse_stabilised(model: &Model, what: &str) -> Result<(), FemError> {
     match model.elements().iter().find(|e| model.is_stabilised(e.cell)) {
         Some(e) => Err(FemError::Model(format!(
-            "{what} on the under-integrated HEXA8 of 3D_SI (cell {}) are not implemented: its forces come from its 72 hourglass stresses",
+            "{what} on the under-integrated HEXA8 of 3D_SI (cell {}) are not implemented: its forces and stiffness come from its one-point behaviour and 72 hourglass stresses",
             model.cell_name(e.cell)
         ))),
         None => Ok(()),
