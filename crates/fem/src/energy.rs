@@ -15,6 +15,7 @@ use aster_mesh::CellId;
 
 /// ½ uₑᵀ Kₑ uₑ for each element that has a stiffness, in element order.
 pub fn potential_energy_by_cell(model: &Model, u: &[f64]) -> Result<Vec<(CellId, f64)>, FemError> {
+    crate::post::refuse_stabilised(model, "elastic energies (½ uᵀ K u)")?;
     let mut out = Vec::with_capacity(model.elements().len());
     let mut dofs = Vec::new();
     for (i, el) in model.elements().iter().enumerate() {

@@ -26,6 +26,7 @@ pub mod error;
 pub mod force_source;
 pub mod fpg;
 mod held;
+pub mod hexs8;
 pub mod linalg;
 pub mod loads;
 pub mod mass;
@@ -46,7 +47,7 @@ pub mod strain;
 pub mod unilateral;
 
 pub use beam::BeamSection;
-pub use behaviour::{Behaviours, CurveEnd, Lemaitre, VonMises};
+pub use behaviour::{Behaviours, CurveEnd, EcroNl, Lemaitre, VonMises};
 pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};
 pub use dynamics::{DynamicNonLinear, Scheme};

@@ -523,6 +523,12 @@ fn volume_load(
     force: impl Fn(usize) -> [f64; 3],
     f: &mut [f64],
 ) -> Result<(), FemError> {
+    if model.is_stabilised(cell) {
+        return Err(FemError::Model(format!(
+            "volume loads on the under-integrated HEXA8 of 3D_SI (cell {}) are not implemented",
+            model.cell_name(cell)
+        )));
+    }
     let mesh = model.mesh();
     let c = mesh.cell(cell);
     let dim = model.dim();

@@ -80,6 +80,10 @@ pub struct Model {
     /// Cells integrated with code_aster's under-integrated (`_SI`)
     /// stiffness family ([`shape::reduced_scheme`]).
     reduced: std::collections::BTreeSet<CellId>,
+    /// `_SI` HEXA8 cells: code_aster's one-point element with hourglass
+    /// stabilisation (`MECA_HEXS8`, [`crate::hexs8`]), computed by the
+    /// behaviour cells of the non-linear operators only.
+    stabilised: std::collections::BTreeSet<CellId>,
     /// Cells carrying an element with rotations (shell, beam, `DIS_TR`):
     /// they use six components per node.
     shells: std::collections::BTreeSet<CellId>,
@@ -318,6 +322,7 @@ impl Model {
             dim,
             hypothesis,
             reduced: Default::default(),
+            stabilised: Default::default(),
             shells,
         })
     }
@@ -337,9 +342,14 @@ impl Model {
                 .iter()
                 .any(|e| e.cell == cell && matches!(e.kind, ElementKind::Continuum { .. }));
             let ty = self.mesh.cell(cell).ty;
+            let three_d = self.dim == 3;
+            if continuum && three_d && ty == aster_mesh::CellType::HEXA8 {
+                self.stabilised.insert(cell);
+                continue;
+            }
             if !continuum || shape::reduced_scheme(ty).is_none() {
                 return Err(FemError::Model(format!(
-                    "cell {} is a {}: under-integrated elements (_SI) exist here for QUAD8, HEXA20 and TETRA10 continuum cells only",
+                    "cell {} is a {}: under-integrated elements (_SI) exist here for QUAD8, HEXA20, TETRA10 and (3D) HEXA8 continuum cells only",
                     self.cell_name(cell),
                     ty.name()
                 )));
@@ -377,6 +387,17 @@ impl Model {
     /// Whether some nodes carry rotations (shells, beams, `DIS_TR`).
     pub fn has_rotations(&self) -> bool {
         !self.shells.is_empty()
+    }
+
+    /// Whether a cell is code_aster's stabilised one-point HEXA8 of
+    /// `3D_SI` ([`crate::hexs8`]).
+    pub fn is_stabilised(&self, cell: CellId) -> bool {
+        self.stabilised.contains(&cell)
+    }
+
+    /// Whether the model has stabilised one-point HEXA8 cells.
+    pub fn has_stabilised(&self) -> bool {
+        !self.stabilised.is_empty()
     }
 
     /// Whether a cell is under-integrated ([`Model::with_reduced_integration`]).

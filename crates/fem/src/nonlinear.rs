@@ -264,6 +264,11 @@ pub fn meca_statique(
     loads: &Loads,
     instants: &[f64],
 ) -> Result<NonLinearResult, FemError> {
+    if model.has_stabilised() {
+        return Err(FemError::Model(
+            "the under-integrated HEXA8 of 3D_SI (code_aster's MECA_HEXS8) is computed by the non-linear operators only: its linear stiffness (te0392) is not reproduced".into(),
+        ));
+    }
     let mut s = StaticNonLinear {
         instants: instants.to_vec(),
         first_order: 1,

@@ -45,6 +45,19 @@ impl NodalValues {
     }
 }
 
+/// An error when the model has stabilised one-point HEXA8 cells
+/// (`crate::hexs8`): `what` is computed by code_aster's `te0395`/`te0015`…
+/// of `MECA_HEXS8`, not reproduced.
+pub fn refuse_stabilised(model: &Model, what: &str) -> Result<(), FemError> {
+    match model.elements().iter().find(|e| model.is_stabilised(e.cell)) {
+        Some(e) => Err(FemError::Model(format!(
+            "{what} on the under-integrated HEXA8 of 3D_SI (cell {}) are not implemented: its forces and stiffness come from its one-point behaviour and 72 hourglass stresses",
+            model.cell_name(e.cell)
+        ))),
+        None => Ok(()),
+    }
+}
+
 fn cell_error(model: &Model, cell: CellId, m: String) -> FemError {
     FemError::Model(format!("cell {} is {m}", model.cell_name(cell)))
 }
@@ -223,6 +236,7 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
 /// Nodal internal forces (FORC_NODA): Σ ∫ Bᵀσ over continuum elements plus
 /// spring forces, per DOF index of the model. In AXIS they are per radian.
 pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
+    refuse_stabilised(model, "nodal forces (FORC_NODA, REAC_NODA)")?;
     let mut f = vec![0.0; model.dofs().len()];
     for el in model.elements() {
         let dofs = element_dofs(model, el.cell);

@@ -378,9 +378,9 @@ fn patch_under_integrated_quad8() {
     );
 }
 
-/// Only QUAD8, HEXA20 and TETRA10 have a reduced family: a QUAD4 is
-/// refused (code_aster's QUAD4 `_SI` element is stabilised, not
-/// reproduced).
+/// Only QUAD8, HEXA20 and TETRA10 have a reduced family, and the 3D HEXA8
+/// its stabilised element (`hexs8`): a QUAD4 is refused (code_aster's
+/// QUAD4 `_SI` element is stabilised in 2D, not reproduced).
 #[test]
 fn under_integration_refused_on_linear_cells() {
     let mesh = patch2d(CellType::QUAD4, 0., false);
@@ -400,7 +400,7 @@ fn under_integration_refused_on_linear_cells() {
         .unwrap_err()
         .to_string();
     assert!(
-        err.contains("is a QUAD4") && err.contains("QUAD8, HEXA20 and TETRA10"),
+        err.contains("is a QUAD4") && err.contains("QUAD8, HEXA20, TETRA10 and (3D) HEXA8"),
         "{err}"
     );
 }

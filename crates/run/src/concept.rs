@@ -167,6 +167,9 @@ pub struct Material {
     pub traction: Option<crate::function::Tabulated>,
     /// `LEMAITRE=_F(N, UN_SUR_K, UN_SUR_M)` (for RELATION='LEMAITRE').
     pub lemaitre: Option<LemaitreCoefs>,
+    /// `ECRO_NL=_F(R0, RH, R1, GAMMA_1, R2, GAMMA_2, RK, P0, GAMMA_M)`
+    /// (for VMIS_ISOT_NL; its `resi_inte` is the COMPORTEMENT's).
+    pub ecro_nl: Option<aster_fem::EcroNl>,
 }
 
 /// `LEMAITRE`: Lemaitre's viscoplastic coefficients.

@@ -243,7 +243,13 @@ pub fn build_behaviours(
             let law = match laws.iter().find(|l| (l.0, l.1) == key) {
                 Some(l) => l.2.clone(),
                 None => {
-                    let law = Arc::new(plastic_law(mesh, cell, mat, occ.relation)?);
+                    let law = Arc::new(plastic_law(
+                        mesh,
+                        cell,
+                        mat,
+                        occ.relation,
+                        occ.local.resi_inte,
+                    )?);
                     laws.push((key.0, key.1, law.clone()));
                     law
                 }
@@ -259,6 +265,7 @@ fn plastic_law(
     cell: aster_mesh::CellId,
     mat: &Material,
     relation: Relation,
+    resi_inte: f64,
 ) -> Result<aster_fem::VonMises, ExecError> {
     let missing = |what: &str| {
         ExecError::new(format!(
@@ -286,6 +293,10 @@ fn plastic_law(
             };
             // code_aster reads Young's modulus from the curve (σ₁/ε₁).
             aster_fem::VonMises::traction_curve(t.abscissae(), t.values(), end)
+        }
+        Relation::VmisIsotNl => {
+            let c = mat.ecro_nl.ok_or_else(|| missing("ECRO_NL=_F(R0, ...)"))?;
+            aster_fem::VonMises::nonlinear(aster_fem::EcroNl { resi_inte, ..c })
         }
         Relation::Elas | Relation::Lemaitre => {
             return Err(ExecError::new(format!(

@@ -34,6 +34,8 @@ pub enum Relation {
     VmisIsotTrac,
     /// Lemaitre's viscoplasticity (material's LEMAITRE), small strains.
     Lemaitre,
+    /// Von Mises, non-linear isotropic hardening (material's ECRO_NL).
+    VmisIsotNl,
 }
 
 impl Relation {
@@ -43,6 +45,7 @@ impl Relation {
             Relation::VmisIsotLine => "VMIS_ISOT_LINE",
             Relation::VmisIsotTrac => "VMIS_ISOT_TRAC",
             Relation::Lemaitre => "LEMAITRE",
+            Relation::VmisIsotNl => "VMIS_ISOT_NL",
         }
     }
 }
@@ -251,7 +254,13 @@ pub(crate) const SNL_VALUES: &[Values] = &[
     Values::new("NEWTON/MATRICE", &["TANGENTE", "ELASTIQUE"]),
     Values::listed(
         "COMPORTEMENT/RELATION",
-        &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC", "LEMAITRE"],
+        &[
+            "ELAS",
+            "VMIS_ISOT_LINE",
+            "VMIS_ISOT_TRAC",
+            "VMIS_ISOT_NL",
+            "LEMAITRE",
+        ],
     ),
     Values::listed(
         "COMPORTEMENT/DEFORMATION",
@@ -569,11 +578,12 @@ fn parse_behaviours(
             "VMIS_ISOT_LINE" => Relation::VmisIsotLine,
             "VMIS_ISOT_TRAC" => Relation::VmisIsotTrac,
             "LEMAITRE" => Relation::Lemaitre,
+            "VMIS_ISOT_NL" => Relation::VmisIsotNl,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, LEMAITRE)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, LEMAITRE)"
                     ),
                     span,
                 ));
@@ -595,6 +605,14 @@ fn parse_behaviours(
             ("SIMO_MIEHE", _) => Kinematics::SimoMiehe,
             (other, _) => return Err(refuse(&format!("(got {other})"))),
         };
+        // code_aster's catalogue of VMIS_ISOT_NL: PETIT and GDEF_LOG only.
+        if relation == Relation::VmisIsotNl
+            && !matches!(kinematics, Kinematics::Small | Kinematics::Logarithmic)
+        {
+            return Err(refuse(
+                "with RELATION='VMIS_ISOT_NL' (code_aster's law takes PETIT and GDEF_LOG only)",
+            ));
+        }
         let named = ["TOUT", "GROUP_MA", "MAILLE"]
             .iter()
             .any(|k| occ.keyword(k).is_some_and(|e| !e.defaulted));

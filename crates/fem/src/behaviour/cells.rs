@@ -24,6 +24,10 @@ use nalgebra::{DMatrix, DVector};
 use std::collections::HashMap;
 use std::sync::Arc;
 
+/// The 72 generalised hourglass stresses of a stabilised HEXA8, converged
+/// and trial.
+type Hourglass = ([f64; 72], [f64; 72]);
+
 struct PlasticCell {
     cell: CellId,
     hypothesis: Hypothesis,
@@ -39,6 +43,9 @@ struct PlasticCell {
     geoms: Vec<PointGeom>,
     /// The cell's elastic stiffness (its share of the assembled K).
     k_el: DMatrix<f64>,
+    /// code_aster's stabilised one-point HEXA8 of `3D_SI`
+    /// ([`crate::hexs8`]): its initial node coordinates.
+    stabilised: Option<[[f64; 3]; 8]>,
 }
 
 impl PlasticCell {
@@ -52,8 +59,10 @@ impl PlasticCell {
         }
     }
 
+    /// Whether the cell computes its own forces and tangent (a
+    /// finite-strain kinematics, or the stabilised HEXA8).
     fn finite(&self) -> bool {
-        self.kinematics != Kinematics::Small
+        self.kinematics != Kinematics::Small || self.stabilised.is_some()
     }
 }
 
@@ -72,6 +81,9 @@ pub(crate) struct PlasticCells {
     /// K_T − Kₑ of the finite-strain cells at the last update or
     /// prediction.
     finite_k: Vec<Option<DMatrix<f64>>>,
+    /// The generalised hourglass stresses (`FSTAB`) of the stabilised
+    /// HEXA8 cells, converged and trial (empty for the other cells).
+    hourglass: Vec<Option<Box<Hourglass>>>,
     /// `MATR_RIGI_SYME='OUI'`: the finite-strain tangents are symmetrised.
     symmetrize: bool,
     /// Per cell: whether its tangent differs from its elastic stiffness
@@ -130,6 +142,11 @@ impl PlasticCells {
                 fs::point_geoms(&gauss, *hypothesis)
             };
             let dofs = element_dofs(model, el.cell);
+            let stabilised = if model.is_stabilised(el.cell) {
+                stabilised_setup(model, el.cell, &behaviour)?
+            } else {
+                None
+            };
             cells.push(PlasticCell {
                 cell: el.cell,
                 hypothesis: *hypothesis,
@@ -141,11 +158,23 @@ impl PlasticCells {
                 gauss,
                 geoms,
                 k_el,
+                stabilised,
             });
         }
         let committed: Vec<Vec<GaussState>> = cells
             .iter()
-            .map(|c| vec![GaussState::default(); c.gauss.len()])
+            .map(|c| {
+                let n = if c.stabilised.is_some() {
+                    1
+                } else {
+                    c.gauss.len()
+                };
+                vec![GaussState::default(); n]
+            })
+            .collect();
+        let hourglass = cells
+            .iter()
+            .map(|c| c.stabilised.map(|_| Box::new(([0.0; 72], [0.0; 72]))))
             .collect();
         let corrected = vec![false; cells.len()];
         let tangents = committed
@@ -172,6 +201,7 @@ impl PlasticCells {
             u_committed,
             corrected,
             positions: None,
+            hourglass,
             symmetrize,
             dt: 0.0,
         }))
@@ -219,6 +249,19 @@ impl PlasticCells {
             }
             let cell = &self.cells[c];
             let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
+            if cell.stabilised.is_some() {
+                let (f, k) = self
+                    .stabilised(c, &ue, Phase::Correction)
+                    .map_err(|e| at_cell_finite(model, self.cells[c].cell, e))?;
+                let cell = &self.cells[c];
+                let ku = &cell.k_el * DVector::from_column_slice(&ue);
+                for (a, &i) in cell.dofs.iter().enumerate() {
+                    fint[i] += f[a] - ku[a];
+                }
+                self.u_trial[c] = ue;
+                self.set_finite_tangent(c, k);
+                continue;
+            }
             let out = fs::compute(
                 &cell.setup(),
                 &self.u_committed[c],
@@ -320,6 +363,14 @@ impl PlasticCells {
                 continue;
             }
             let cell = &self.cells[c];
+            if cell.stabilised.is_some() {
+                let ue = self.u_committed[c].clone();
+                let (_, k) = self
+                    .stabilised(c, &ue, Phase::Prediction { elastic })
+                    .map_err(|e| at_cell_finite(model, self.cells[c].cell, e))?;
+                self.set_finite_tangent(c, k);
+                continue;
+            }
             let out = fs::compute(
                 &cell.setup(),
                 &self.u_committed[c],
@@ -463,7 +514,10 @@ impl PlasticCells {
             if de.iter().all(|&v| v == 0.0) {
                 continue;
             }
-            let corr = cell_tangent(cell, &self.tangents[c]) - &cell.k_el;
+            let corr = match &self.finite_k[c] {
+                Some(k) if cell.stabilised.is_some() => k.clone(),
+                _ => cell_tangent(cell, &self.tangents[c]) - &cell.k_el,
+            };
             let n = cell.dofs.len();
             for a in 0..n {
                 let v: f64 = (0..n).map(|b| corr[(a, b)] * de[b]).sum();
@@ -474,8 +528,80 @@ impl PlasticCells {
 
     /// The trial states become the converged ones (end of a step).
     pub fn commit(&mut self) {
+        for hg in self.hourglass.iter_mut().flatten() {
+            hg.0 = hg.1;
+        }
         self.committed.clone_from(&self.trial);
         self.u_committed.clone_from(&self.u_trial);
+    }
+
+    /// Forces (empty in prediction) and tangent of stabilised HEXA8 cell
+    /// `c` at the element displacement `ue` (`nmas3d`); in correction, its
+    /// trial state and hourglass stresses.
+    fn stabilised(
+        &mut self,
+        c: usize,
+        ue: &[f64],
+        phase: Phase,
+    ) -> Result<(Vec<f64>, DMatrix<f64>), FemError> {
+        use crate::hexs8::{to_sqrt2, Geometry, Projection};
+        let cell = &self.cells[c];
+        let Some(x0) = cell.stabilised else {
+            return Err(FemError::Model("not a stabilised HEXA8 cell".into()));
+        };
+        let mut geom = x0;
+        if cell.kinematics == Kinematics::SmallUpdated {
+            for (a, x) in geom.iter_mut().enumerate() {
+                for (i, xi) in x.iter_mut().enumerate() {
+                    *xi += ue[3 * a + i];
+                }
+            }
+        }
+        let g = Geometry::new(&geom)?;
+        let proj = if cell.law.is_none() {
+            Projection::Asqbi
+        } else {
+            Projection::Ads
+        };
+        let nu = cell.elastic.nu;
+        let prev = self.committed[c][0];
+        let du: Vec<f64> = ue
+            .iter()
+            .zip(&self.u_committed[c])
+            .map(|(u, u0)| u - u0)
+            .collect();
+        let mut eps = prev.extra;
+        if phase == Phase::Correction {
+            let de = g.strain(&du);
+            for k in 0..6 {
+                eps[k] += de[k];
+            }
+        }
+        let setup = fs::CellSetup {
+            hyp: Hypothesis::Solid3D,
+            elastic: &cell.elastic,
+            law: cell.law.as_deref(),
+            kinematics: cell.kinematics,
+            geoms: &[],
+        };
+        let (law, tangent) = fs::behave(&setup, &eps, &prev.law, phase)?;
+        let d = to_sqrt2(&tangent);
+        let k = DMatrix::from_row_slice(24, 24, &g.stiffness(&d, proj, nu));
+        if phase != Phase::Correction {
+            return Ok((Vec::new(), k));
+        }
+        let Some(hg) = self.hourglass[c].as_mut() else {
+            return Err(FemError::Model("a stabilised cell without FSTAB".into()));
+        };
+        let q = g.hourglass_stresses(&d, proj, nu, &du, &hg.0);
+        let f = g.forces(&law.stress, &q, proj, nu);
+        hg.1 = q;
+        self.trial[c][0] = GaussState {
+            law,
+            cauchy: law.stress,
+            extra: eps,
+        };
+        Ok((f, k))
     }
 
     /// Replaces the behaviour cells' stresses in a SIEF_ELGA field by their
@@ -512,12 +638,28 @@ impl PlasticCells {
     }
 }
 
-const VARI_NAMES: [&str; 8] = ["V1", "V2", "V3", "V4", "V5", "V6", "V7", "V8"];
+const VARI_NAMES: [&str; 14] = [
+    "V1", "V2", "V3", "V4", "V5", "V6", "V7", "V8", "V9", "V10", "V11", "V12", "V13", "V14",
+];
 
 /// VARI of a point in code_aster's order (see [`PlasticCells::fields`]).
 fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
     let mut v = Vec::with_capacity(8);
     match &cell.law {
+        // VMIS_ISOT_NL: EPSPEQ, INDIPLAS, then EPSP (tensor components;
+        // V7, V8 zero in 2D, as `vmis_isot_nl_module` packs them).
+        Some(law) if matches!(law.hardening, super::Hardening::NonLinear(_)) => {
+            v.extend(s.law.vari());
+            let n = cell.hypothesis.ncomp();
+            for k in 0..6 {
+                let e = s.law.plastic_strain[k];
+                v.push(match k {
+                    _ if k >= n => 0.0,
+                    3..=5 => e / 2.0,
+                    _ => e,
+                });
+            }
+        }
         Some(_) => v.extend(s.law.vari()),
         None if cell.viscous.is_some() => v.extend(s.law.vari()),
         None if cell.kinematics == Kinematics::Logarithmic => v.push(0.0),
@@ -620,6 +762,7 @@ pub fn forc_noda_deformed(
     stress: &[CellValues],
     behaviours: &Behaviours,
 ) -> Result<Vec<f64>, FemError> {
+    crate::post::refuse_stabilised(model, "nodal forces (FORC_NODA, REAC_NODA)")?;
     let at: HashMap<CellId, &CellValues> = stress.iter().map(|cv| (cv.cell, cv)).collect();
     let mut f = vec![0.0; model.dofs().len()];
     for el in model.elements() {
@@ -677,4 +820,39 @@ pub fn forc_noda_deformed(
         }
     }
     Ok(f)
+}
+
+/// The initial node coordinates of a stabilised HEXA8 cell, with the
+/// behaviours `nmas3d` computes (small strains, PETIT or PETIT_REAC, and
+/// the von Mises laws or ELAS).
+fn stabilised_setup(
+    model: &Model,
+    cell: CellId,
+    behaviour: &super::CellBehaviour,
+) -> Result<Option<[[f64; 3]; 8]>, FemError> {
+    let name = model.cell_name(cell);
+    if !matches!(
+        behaviour.kinematics,
+        Kinematics::Small | Kinematics::SmallUpdated
+    ) {
+        return Err(FemError::Model(format!(
+            "cell {name}: the under-integrated HEXA8 of 3D_SI takes DEFORMATION='PETIT' or 'PETIT_REAC' only (code_aster's ELEMENTSSI_1), not '{}'",
+            behaviour.kinematics.aster_name()
+        )));
+    }
+    if behaviour.viscous.is_some() {
+        return Err(FemError::Model(format!(
+            "cell {name}: LEMAITRE on the under-integrated HEXA8 of 3D_SI is not implemented"
+        )));
+    }
+    let mesh = model.mesh();
+    let nodes = &mesh.cell(cell).nodes;
+    let mut x = [[0.0; 3]; 8];
+    if nodes.len() != 8 {
+        return Err(FemError::Model(format!("cell {name} is not a HEXA8")));
+    }
+    for (a, n) in nodes.iter().enumerate() {
+        x[a] = mesh.coord(*n);
+    }
+    Ok(Some(x))
 }

@@ -25,7 +25,7 @@ pub use crate::strain::{GaussState, Kinematics};
 pub(crate) use cells::PlasticCells;
 pub use cells::{forc_noda_deformed, forc_noda_from_stress};
 pub use lemaitre::Lemaitre;
-pub use vmis::{CurveEnd, Hardening, PointState, VonMises};
+pub use vmis::{CurveEnd, EcroNl, Hardening, PointState, VonMises};
 
 use crate::model::{ElementKind, Model};
 use aster_mesh::CellId;
@@ -131,15 +131,26 @@ impl Behaviours {
     /// (code_aster applies COMPORTEMENT to the model's cells only: boundary
     /// and discrete cells have no such behaviour).
     pub(crate) fn elements(&self, model: &Model) -> Vec<(usize, CellBehaviour)> {
-        if self.by_cell.is_empty() {
+        if self.by_cell.is_empty() && !model.has_stabilised() {
             return Vec::new();
         }
+        // The stabilised HEXA8 cells are always computed here, ELAS
+        // included: their forces are not K u (`crate::hexs8`).
+        let elastic = CellBehaviour {
+            law: None,
+            kinematics: Kinematics::Small,
+            viscous: None,
+        };
         model
             .elements()
             .iter()
             .enumerate()
             .filter(|(_, el)| matches!(el.kind, ElementKind::Continuum { .. }))
-            .filter_map(|(k, el)| self.by_cell.get(&el.cell).map(|b| (k, b.clone())))
+            .filter_map(|(k, el)| match self.by_cell.get(&el.cell) {
+                Some(b) => Some((k, b.clone())),
+                None if model.is_stabilised(el.cell) => Some((k, elastic.clone())),
+                None => None,
+            })
             .collect()
     }
 }

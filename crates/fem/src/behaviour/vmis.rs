@@ -32,6 +32,48 @@ pub enum Hardening {
         r: Vec<f64>,
         end: CurveEnd,
     },
+    /// `ECRO_NL` (`VMIS_ISOT_NL`): R(p) = R0 + RH p + R1 (1 − e^(−γ₁p)) +
+    /// R2 (1 − e^(−γ₂p)) + RK (p + P0)^γₘ (code_aster's `f_ecro` of
+    /// `vmis_isot_nl_module`).
+    NonLinear(EcroNl),
+}
+
+/// The coefficients of `DEFI_MATERIAU/ECRO_NL` and the local tolerance of
+/// `VMIS_ISOT_NL`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EcroNl {
+    pub r0: f64,
+    pub rh: f64,
+    pub r1: f64,
+    pub gamma_1: f64,
+    pub r2: f64,
+    pub gamma_2: f64,
+    pub rk: f64,
+    pub p0: f64,
+    pub gamma_m: f64,
+    /// `RESI_INTE` (code_aster's `cvuser`): a point stays elastic while
+    /// q − R(p) ≤ R(0) · RESI_INTE (`presig`).
+    pub resi_inte: f64,
+}
+
+impl EcroNl {
+    /// R(p) and R'(p) (`f_ecro`, `dka_ecro`).
+    pub fn r(&self, p: f64) -> (f64, f64) {
+        let e1 = (-self.gamma_1 * p).exp();
+        let e2 = (-self.gamma_2 * p).exp();
+        let (pk, dpk) = if self.rk == 0.0 {
+            (0.0, 0.0)
+        } else {
+            (
+                self.rk * (p + self.p0).powf(self.gamma_m),
+                self.rk * self.gamma_m * (p + self.p0).powf(self.gamma_m - 1.0),
+            )
+        };
+        (
+            self.r0 + self.rh * p + self.r1 * (1.0 - e1) + self.r2 * (1.0 - e2) + pk,
+            self.rh + self.r1 * self.gamma_1 * e1 + self.r2 * self.gamma_2 * e2 + dpk,
+        )
+    }
 }
 
 /// A von Mises law with isotropic hardening. The elastic part is the
@@ -132,6 +174,30 @@ impl VonMises {
         Ok(law)
     }
 
+    /// `ECRO_NL` for `VMIS_ISOT_NL`: the initial yield stress is R(0).
+    pub fn nonlinear(c: EcroNl) -> Result<VonMises, FemError> {
+        let (r0, _) = c.r(0.0);
+        if !(r0.is_finite() && r0 > 0.) {
+            return Err(FemError::Model(format!(
+                "ECRO_NL: the initial yield stress R(0) = R0 + RK P0^GAMMA_M must be positive and finite, got {r0}"
+            )));
+        }
+        Ok(VonMises {
+            sy: r0,
+            hardening: Hardening::NonLinear(c),
+            young: None,
+        })
+    }
+
+    /// How far q may exceed R(p) with the point kept elastic: 0, except
+    /// `VMIS_ISOT_NL`'s R(0) · RESI_INTE.
+    pub fn elastic_tolerance(&self) -> f64 {
+        match &self.hardening {
+            Hardening::NonLinear(c) => self.sy * c.resi_inte,
+            _ => 0.0,
+        }
+    }
+
     /// The elastic material of the law: the cell's, with the law's own
     /// Young's modulus if it has one.
     pub fn elastic(&self, el: &Elastic) -> Elastic {
@@ -150,6 +216,7 @@ impl VonMises {
                 let k = segment(ps, p);
                 curve_at(ps, r, *end, k, p)
             }
+            Hardening::NonLinear(c) => Ok(c.r(p)),
         }
     }
 
@@ -166,6 +233,38 @@ impl VonMises {
                     )));
                 }
                 Ok(((q - self.sy - h * p) / denom, *h))
+            }
+            Hardening::NonLinear(c) => {
+                // g(Δp) = q − 3μΔp − R(p + Δp), decreasing while
+                // 3μ + R' > 0: Newton, kept inside the bracket [lo, hi]
+                // (bisection when a step leaves it), to round-off.
+                let g = |dp: f64| {
+                    let (r, h) = c.r(p + dp);
+                    (q - 3. * mu * dp - r, -3. * mu - h)
+                };
+                let (mut lo, mut hi) = (0.0, q / (3. * mu));
+                let mut dp = 0.0;
+                for _ in 0..200 {
+                    let (v, d) = g(dp);
+                    if v > 0. {
+                        lo = dp;
+                    } else {
+                        hi = dp;
+                    }
+                    let mut next = if d < 0. { dp - v / d } else { f64::NAN };
+                    if !(next > lo && next < hi) {
+                        next = 0.5 * (lo + hi);
+                    }
+                    if (next - dp).abs() <= 1e-15 * next.abs().max(1e-300) || hi - lo <= 1e-16 * hi
+                    {
+                        let (_, h) = c.r(p + next);
+                        return Ok((next, h));
+                    }
+                    dp = next;
+                }
+                Err(FemError::Model(format!(
+                    "VMIS_ISOT_NL: the plastic increment was not found after 200 local iterations (q = {q:e}, p = {p:e})"
+                )))
             }
             Hardening::Curve { p: ps, r, end } => {
                 // g(Δp) = q − 3μΔp − R(p + Δp) decreases: walk the segments
@@ -322,7 +421,7 @@ pub fn integrate_3d(
     }
     let (s, q) = deviator(&trial);
     let (r, _) = law.yield_stress(prev.p)?;
-    if q <= r {
+    if q - r <= law.elastic_tolerance() {
         let next = PointState {
             stress: trial,
             plastic: false,

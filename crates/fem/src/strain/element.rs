@@ -171,7 +171,7 @@ fn hooke6(el: &Elastic, hyp: Hypothesis) -> Mat6 {
 
 /// The small-strain behaviour on a strain measure `eps` (engineering
 /// shears): the new state and the tangent (engineering convention).
-fn behave(
+pub(crate) fn behave(
     setup: &CellSetup,
     eps: &[f64; 6],
     prev: &PointState,

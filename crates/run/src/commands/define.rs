@@ -32,6 +32,16 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "LEMAITRE/N",
     "LEMAITRE/UN_SUR_K",
     "LEMAITRE/UN_SUR_M",
+    "ECRO_NL",
+    "ECRO_NL/R0",
+    "ECRO_NL/RH",
+    "ECRO_NL/R1",
+    "ECRO_NL/GAMMA_1",
+    "ECRO_NL/R2",
+    "ECRO_NL/GAMMA_2",
+    "ECRO_NL/RK",
+    "ECRO_NL/P0",
+    "ECRO_NL/GAMMA_M",
     "INFO",
 ]);
 
@@ -145,6 +155,36 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         None => None,
     };
+    let ecro_nl = match kw.factor("ECRO_NL").first() {
+        Some(occ) => {
+            let r0 = occ.f64("R0").ok_or_else(|| {
+                ex.kw_error(
+                    "DEFI_MATERIAU/ECRO_NL",
+                    occ,
+                    "R0",
+                    "the yield stress R0 is required",
+                )
+            })?;
+            // The catalog's defaults.
+            let get = |name: &str, default: f64| occ.f64(name).unwrap_or(default);
+            let c = aster_fem::EcroNl {
+                r0,
+                rh: get("RH", 0.0),
+                r1: get("R1", 0.0),
+                gamma_1: get("GAMMA_1", 0.0),
+                r2: get("R2", 0.0),
+                gamma_2: get("GAMMA_2", 0.0),
+                rk: get("RK", 0.0),
+                p0: get("P0", 0.0),
+                gamma_m: get("GAMMA_M", 1.0),
+                resi_inte: 1e-6,
+            };
+            aster_fem::VonMises::nonlinear(c)
+                .map_err(|e| ex.kw_error("DEFI_MATERIAU/ECRO_NL", occ, "R0", e.to_string()))?;
+            Some(c)
+        }
+        None => None,
+    };
     let m = Material {
         young,
         poisson,
@@ -155,6 +195,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         ecro_line,
         traction,
         lemaitre,
+        ecro_nl,
     };
     store_result(ex, call, Concept::Material(Rc::new(m)))
 }
@@ -306,7 +347,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                             occ,
                             "MODELISATION",
                             format!(
-                                "not supported yet: MODELISATION='{name}' on {} cells (code_aster's one-point element with hourglass stabilisation; QUAD8, HEXA20 and TETRA10 cells are supported)",
+                                "not supported yet: MODELISATION='{name}' on {} cells (code_aster's one-point element with hourglass stabilisation in 2D; QUAD8, and in 3D_SI HEXA8, HEXA20 and TETRA10 cells are supported)",
                                 ty.name()
                             ),
                         ));
@@ -360,10 +401,11 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
 /// What an under-integrated (`_SI`) modelisation puts on a continuum cell.
 enum SiElement {
     /// Reduced integration (`MEDPQS8`, `MECPQS8`, `MEAXQS8`,
-    /// `MECA_HEXS20`, `MECA_TETRS10`).
+    /// `MECA_HEXS20`, `MECA_TETRS10`), or for HEXA8 the stabilised
+    /// one-point `MECA_HEXS8`.
     Reduced,
-    /// One point with hourglass stabilisation (`MEDPQS4`, `MECPQS4`,
-    /// `MECA_HEXS8`): not reproduced.
+    /// One point with hourglass stabilisation in 2D (`MEDPQS4`,
+    /// `MECPQS4`): not reproduced.
     Stabilised,
     /// No element of the modelisation for this cell type.
     None,
@@ -378,7 +420,9 @@ fn si_element(m: Modelisation, ty: aster_mesh::CellType) -> SiElement {
         (_, T::QUAD8) if m != Modelisation::Solid3D => SiElement::Reduced,
         (Modelisation::PlaneStrain | Modelisation::PlaneStress, T::QUAD4) => SiElement::Stabilised,
         (Modelisation::Solid3D, T::HEXA20 | T::TETRA10) => SiElement::Reduced,
-        (Modelisation::Solid3D, T::HEXA8) => SiElement::Stabilised,
+        // MECA_HEXS8: one point with hourglass stabilisation (aster-fem's
+        // `hexs8`, in the non-linear operators).
+        (Modelisation::Solid3D, T::HEXA8) => SiElement::Reduced,
         _ => SiElement::None,
     }
 }

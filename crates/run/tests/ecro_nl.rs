@@ -1,0 +1,51 @@
+//! `RELATION='VMIS_ISOT_NL'` with `DEFI_MATERIAU/ECRO_NL` on the project's
+//! scene `comm/ecro_nl_bar.comm`: a bar pulled into the plastic range
+//! against the uniaxial closed form (a scalar equation solved by bisection
+//! in the command file), and the law's kinematics refused as code_aster
+//! refuses them.
+
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(comm: &str, name: &str) -> aster_run::program::Outcome {
+    let dir = std::env::temp_dir().join(format!("aster-ecronl-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join(format!("{name}.comm"));
+    std::fs::write(&file, comm).unwrap();
+    let mesh = root().join("comm/hexs8_beam.mail");
+    let case = aster_run::program::prepare(&file, Some(&mesh), &dir).unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(dir);
+    outcome
+}
+
+fn scene() -> String {
+    std::fs::read_to_string(root().join("comm/ecro_nl_bar.comm")).unwrap()
+}
+
+/// σ, p, the plasticity indicator and the plastic strains (V3 = p,
+/// V4 = −p/2) against the closed form to 1e-8.
+#[test]
+fn vmis_isot_nl_bar_matches_the_uniaxial_closed_form() {
+    let outcome = run(&scene(), "bar");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (10, 0));
+}
+
+/// code_aster's VMIS_ISOT_NL takes PETIT and GDEF_LOG only.
+#[test]
+fn vmis_isot_nl_refuses_other_kinematics() {
+    let comm = scene().replace(
+        "RELATION=\"VMIS_ISOT_NL\", TOUT=\"OUI\"",
+        "RELATION=\"VMIS_ISOT_NL\", DEFORMATION=\"PETIT_REAC\", TOUT=\"OUI\"",
+    );
+    let outcome = run(&comm, "reac");
+    let err = format!("{:?}", outcome.error.expect("PETIT_REAC refused"));
+    assert!(
+        err.contains("DEFORMATION='PETIT_REAC' with RELATION='VMIS_ISOT_NL'"),
+        "{err}"
+    );
+}
