@@ -41,10 +41,6 @@ const DYNA_KEYWORDS: &[&str] = &[
     "AMOR_RAYL_RIGI",
     "ETAT_INIT/VITE",
     "ETAT_INIT/ACCE",
-    // Columns of the convergence table code_aster prints: nothing to print
-    // here.
-    "SUIVI_DDL",
-    "SUIVI_DDL/*",
 ];
 
 /// The values DYNA_NON_LINE handles besides STAT_NON_LINE's.

@@ -217,6 +217,10 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "ARCHIVAGE/*",
     "MESURE",
     "MESURE/*",
+    // Columns of the convergence table code_aster prints (the values of
+    // chosen components at each Newton iteration): nothing to print here.
+    "SUIVI_DDL",
+    "SUIVI_DDL/*",
     // Module `observation`.
     "OBSERVATION",
     "OBSERVATION/NOM_CHAM",
