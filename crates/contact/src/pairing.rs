@@ -241,18 +241,6 @@ pub fn pair_point(
         - g.dist_mait.at_time(xm, zone.time)
         - g.dist_escl.at_time(xs, zone.time)
         - zone.structural_gap(point);
-    if std::env::var_os("TMP_PAIR_TRACE").is_some() {
-        eprintln!(
-            "PAIR {:?} xs={:?} cell={:?} near={:?} n={:?} gap={:e} master={:?}",
-            point.node(),
-            xs,
-            master_cell,
-            nearest,
-            normal,
-            gap,
-            master
-        );
-    }
     Ok(ContactPair {
         point: point.clone(),
         status: PairStatus::Paired(Pairing {
