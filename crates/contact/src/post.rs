@@ -219,9 +219,16 @@ impl ContNoeu {
 /// 0 apart or interpenetrating by at most `TOLE_INTERP`, 3 interpenetrating
 /// by more.
 fn verification_status(gap: f64, tole_interp: f64) -> f64 {
-    if gap > f64::EPSILON || gap.abs() <= tole_interp {
-        0.0
-    } else {
+    if interpenetrates(gap, tole_interp) {
         3.0
+    } else {
+        0.0
     }
+}
+
+/// Whether a verification zone's gap is an interpenetration beyond
+/// `TOLE_INTERP` (code_aster's `cfsans`, `mmveri`: gap ≤ ε and |gap| >
+/// TOLE_INTERP).
+pub(crate) fn interpenetrates(gap: f64, tole_interp: f64) -> bool {
+    !(gap > f64::EPSILON || gap.abs() <= tole_interp)
 }

@@ -14,7 +14,8 @@ use crate::geomloop::{GeomDecision, GeomLoopState};
 use crate::glissiere::Glissiere;
 use crate::integration::{integration_points_measured, Measure};
 use crate::lac::{LacOptions, LacZone};
-use crate::pairing::{nodal_points, pair_point, ContactPair, SlavePoint};
+use crate::pairing::{nodal_points, pair_point, ContactPair, PairStatus, SlavePoint};
+use crate::post::interpenetrates;
 use crate::rows::contact_row;
 use crate::surface::ResolvedZone;
 use crate::zone::{
@@ -670,6 +671,29 @@ impl ZoneContact {
     /// (`ZoneGeometry::pene_maxi`): the converged penetrations (weighted
     /// mean per slave node) must stay within the limit, where code_aster
     /// leaves the coefficient as it is.
+    /// A verification zone (`RESOLUTION='NON'`) with `STOP_INTERP='OUI'`
+    /// at a converged step: stops when slave nodes interpenetrate, counted
+    /// as code_aster's `cfsans` does (a gap ≤ ε beyond `TOLE_INTERP`, the
+    /// gaps of the step's last pairing, those `CONT` reports).
+    fn stop_on_interpenetration(&self, time: f64) -> Result<(), FemError> {
+        let g = &self.zone.geometry;
+        if !g.stop_interp {
+            return Ok(());
+        }
+        let nodes = self
+            .pairs
+            .iter()
+            .filter(|p| match &p.status {
+                PairStatus::Paired(p) => interpenetrates(p.gap, g.tole_interp),
+                PairStatus::Excluded(_) => false,
+            })
+            .count();
+        if nodes > 0 {
+            return Err(FemError::Interpenetration { time, nodes });
+        }
+        Ok(())
+    }
+
     fn check_penetration(&self, time: f64, outcomes: &[RowOutcome]) -> Result<(), FemError> {
         let Some(limit) = self.zone.geometry.pene_maxi else {
             return Ok(());
@@ -864,6 +888,7 @@ impl UnilateralSource for ZoneContact {
     fn converged(&mut self, state: &State, outcomes: &[RowOutcome]) -> Result<(), FemError> {
         self.check_penetration(state.time, outcomes)?;
         if !self.zone.geometry.resolve {
+            self.stop_on_interpenetration(state.time)?;
             self.step_pairings.push((state.time, self.pairs.clone()));
         }
         self.set_outcomes(outcomes);

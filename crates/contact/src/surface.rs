@@ -178,7 +178,26 @@ impl ResolvedZone {
                 let t = p.tangents[0];
                 let raw = match (source, cell.kind.dim(), self.space_dim) {
                     (NormalSource::VectY(v), 1, _) => cross(t, v),
-                    (NormalSource::VectY(v), _, _) => cross(t, v),
+                    // A face (code_aster's `aptgnn`, `mmnorm`): the second
+                    // tangent is VECT_Y, the first the face's normal crossed
+                    // with it, and the normal their cross product — the
+                    // face's own (outward) normal without its component
+                    // along VECT_Y, whatever the order of the face's nodes.
+                    (NormalSource::VectY(v), _, _) => {
+                        let n = scale(cross(p.tangents[0], p.tangents[1]), cell.sign);
+                        let lv = norm(v);
+                        if lv > 0.0 {
+                            let w = scale(v, 1.0 / lv);
+                            let along = dot(n, w);
+                            [
+                                n[0] - along * w[0],
+                                n[1] - along * w[1],
+                                n[2] - along * w[2],
+                            ]
+                        } else {
+                            n
+                        }
+                    }
                     (_, 1, 2) => [t[1], -t[0], 0.0],
                     (_, 1, _) => {
                         return Err(ContactError::Invalid {

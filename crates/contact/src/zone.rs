@@ -27,8 +27,10 @@ pub enum NormalSource {
     Auto,
     /// `FIXE` with `MAIT_FIXE`/`ESCL_FIXE`: this (normalised) vector.
     Fixed([f64; 3]),
-    /// `VECT_Y` with `MAIT_VECT_Y`/`ESCL_VECT_Y`: the normal is the
-    /// cell tangent crossed with this vector (structural cells in 3D).
+    /// `VECT_Y` with `MAIT_VECT_Y`/`ESCL_VECT_Y`: on a segment, the normal
+    /// is its tangent crossed with this vector (beams in 3D); on a face, the
+    /// face's normal without its component along this vector (code_aster's
+    /// `aptgnn`), whatever the order of the face's nodes.
     VectY([f64; 3]),
 }
 
@@ -116,6 +118,10 @@ pub struct ZoneGeometry {
     /// `TOLE_INTERP` (with `RESOLUTION='NON'`): interpenetration allowed
     /// before the pairing-only zone reports it.
     pub tole_interp: f64,
+    /// `STOP_INTERP='OUI'` (with `RESOLUTION='NON'`): a converged step
+    /// whose slave nodes interpenetrate by more than `tole_interp` stops
+    /// the analysis ([`aster_fem::FemError::Interpenetration`]).
+    pub stop_interp: bool,
     /// `LISSAGE='OUI'`: smoothed master normals — the outward normals
     /// averaged at the master nodes, interpolated with the shape functions
     /// inside each cell, so the normal is continuous from cell to cell.
@@ -187,6 +193,7 @@ impl ZoneGeometry {
             dist_escl: Offset::Zero,
             resolve: true,
             tole_interp: 0.0,
+            stop_interp: false,
             lissage: false,
             glissiere: false,
             contact_init: ContactInit::Interpenetre,

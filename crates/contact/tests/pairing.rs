@@ -480,3 +480,32 @@ fn a_fixed_projection_direction_moves_the_master_point() {
     );
     assert_eq!(f.normal, o.normal);
 }
+
+/// `VECT_MAIT='VECT_Y'` on a face (code_aster's `aptgnn`): the face's
+/// outward normal without its component along VECT_Y, whichever node the
+/// face starts with (an edge parallel to VECT_Y must not matter).
+#[test]
+fn vect_y_on_a_face_projects_the_face_normal() {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    for rotate in 0..4 {
+        let mut mesh = block_3d(CellType::QUAD4);
+        let face = mesh.group_ma("MAIT").unwrap().members[0];
+        mesh.cells[face.0 as usize].nodes.rotate_left(rotate);
+        for (v, expected) in [
+            ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
+            ([0.0, 2.0, 2.0], [0.0, -w, w]),
+        ] {
+            let mut g = ZoneGeometry::new("MAIT", "ESCL");
+            g.vect_mait = NormalSource::VectY(v);
+            for p in pairs(&mesh, g) {
+                let n = p.pairing().unwrap().normal;
+                for k in 0..3 {
+                    assert!(
+                        (n[k] - expected[k]).abs() < 1e-12,
+                        "rotation {rotate}, VECT_Y {v:?}: normal {n:?}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -173,13 +173,25 @@ pub enum CommandOutput {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExecError {
     pub message: String,
+    /// The id of the message code_aster raises for the same error with the
+    /// same cause (`CONTACT_93`, `MECANONLINE9_7`), when aster knows it: a
+    /// program's `except CA.AsterError as err` reads it as
+    /// `err.id_message`. `None`: the error is aster's own.
+    pub id_message: Option<&'static str>,
 }
 
 impl ExecError {
     pub fn new(message: impl Into<String>) -> ExecError {
         ExecError {
             message: message.into(),
+            id_message: None,
         }
+    }
+
+    /// The error code_aster raises as message `id`.
+    pub fn with_id(mut self, id: &'static str) -> ExecError {
+        self.id_message = Some(id);
+        self
     }
 }
 

@@ -155,6 +155,11 @@ pub struct Diagnostic {
     pub message: String,
     /// Extra lines: `help: did you mean ...`, `note: ...`.
     pub notes: Vec<String>,
+    /// An error a command raised that code_aster raises as this message id
+    /// ([`crate::ExecError::id_message`]): what `except CA.AsterError`
+    /// catches.
+    #[serde(skip)]
+    pub id_message: Option<&'static str>,
 }
 
 impl Diagnostic {
@@ -165,6 +170,7 @@ impl Diagnostic {
             span,
             message: message.into(),
             notes: Vec::new(),
+            id_message: None,
         }
     }
     pub fn warning(kind: DiagKind, span: Span, message: impl Into<String>) -> Diagnostic {

@@ -278,10 +278,7 @@ impl<'a> Interp<'a> {
     ) -> R<Flow> {
         use crate::try_import::*;
         if handlers.iter().any(catches_aster_error) {
-            return unsupported(
-                span,
-                "try/except of code_aster's errors (the program tests which error a command raises, by code_aster's message id: aster's errors do not carry code_aster's message ids)",
-            );
+            return self.exec_try_aster_error(span, body, handlers, orelse, finalbody);
         }
         if handlers.is_empty() || !handlers.iter().all(catches_only_import_error) {
             return unsupported(
@@ -308,6 +305,57 @@ impl<'a> Interp<'a> {
                 }
                 self.exec_block(&h.body)
             }
+            Err(e) => Err(e),
+        };
+        if finalbody.is_empty() {
+            return flow;
+        }
+        match self.exec_block(finalbody)? {
+            Flow::Normal => flow,
+            other => Ok(other),
+        }
+    }
+
+    /// `try: … except CA.AsterError as err: …` (every handler catching
+    /// code_aster's errors): an error a command of the body raises is
+    /// caught when aster knows the message id code_aster raises for it
+    /// ([`ExecError::id_message`]); the handler then sees `err.id_message`
+    /// and `str(err)`. Any other error stops the program as it would
+    /// without the `try`, saying that its id is not known, since the
+    /// handler's decision (which tests the id) cannot be reproduced.
+    fn exec_try_aster_error(
+        &mut self,
+        span: Span,
+        body: &[ast::Stmt],
+        handlers: &[ast::ExceptHandler],
+        orelse: &[ast::Stmt],
+        finalbody: &[ast::Stmt],
+    ) -> R<Flow> {
+        use crate::try_import::catches_aster_error;
+        if !handlers.iter().all(catches_aster_error) {
+            return unsupported(
+                span,
+                "try/except mixing code_aster's errors with other exceptions (only `except CA.AsterError as err` handlers, or only `except ImportError` around imports, are supported)",
+            );
+        }
+        let flow = match self.exec_block(body) {
+            Ok(Flow::Normal) => self.exec_block(orelse),
+            Ok(other) => Ok(other),
+            Err(Halt::Diag(d)) if d.kind == DiagKind::Exec && d.id_message.is_some() => {
+                let id = d.id_message.unwrap_or_default();
+                let h = &handlers[0];
+                if let Some(n) = &h.name {
+                    let raised = crate::value::RaisedError {
+                        id_message: id.to_string(),
+                        message: d.message.clone(),
+                    };
+                    self.set_var(&n.name, Value::Raised(Rc::new(raised)));
+                }
+                self.exec_block(&h.body)
+            }
+            Err(Halt::Diag(d)) if d.kind == DiagKind::Exec => Err(Halt::Diag(Box::new((*d).note(
+                "note: raised inside `try: … except AsterError`, which tests code_aster's message id: aster does not know the id code_aster gives this error, so the handler is not run",
+            )))),
             Err(e) => Err(e),
         };
         if finalbody.is_empty() {
@@ -1298,6 +1346,14 @@ impl<'a> Interp<'a> {
                 _ => Ok(Value::Method(Box::new(v.clone()), Rc::from(name))),
             },
             Value::Unknown => Ok(Value::Unknown),
+            Value::Raised(e) => match name {
+                "id_message" => Ok(Value::str(&e.id_message)),
+                "message" => Ok(Value::str(&e.message)),
+                _ => unsupported(
+                    span,
+                    format!("`{name}` of a caught code_aster error (`id_message` and `message` are known)"),
+                ),
+            },
             _ => Ok(Value::Method(Box::new(v), Rc::from(name))),
         }
     }
@@ -1725,7 +1781,9 @@ pub(crate) fn exec_diag(span: Span, e: ExecError) -> Diagnostic {
     } else {
         DiagKind::Exec
     };
-    Diagnostic::error(kind, span, e.message)
+    let mut d = Diagnostic::error(kind, span, e.message);
+    d.id_message = e.id_message;
+    d
 }
 
 pub(crate) fn new_formula(

@@ -159,6 +159,14 @@ pub enum Builtin {
     TestCaseObject,
 }
 
+/// An error a command raised, as `except CA.AsterError as err` binds it:
+/// `err.id_message` is code_aster's message id, `str(err)` the message.
+#[derive(Debug, PartialEq)]
+pub struct RaisedError {
+    pub id_message: String,
+    pub message: String,
+}
+
 #[derive(Clone, Debug)]
 pub enum Value {
     None,
@@ -188,6 +196,8 @@ pub enum Value {
     Module(Rc<str>),
     /// A value only known when commands run (a table cell read while checking).
     Unknown,
+    /// A caught error of a command (`except CA.AsterError as err`).
+    Raised(Rc<RaisedError>),
 }
 
 impl Value {
@@ -218,6 +228,7 @@ impl Value {
             Value::Co(_) => "CO",
             Value::Module(_) => "module",
             Value::Unknown => "run-time value",
+            Value::Raised(_) => "AsterError",
         }
     }
 
@@ -443,6 +454,7 @@ impl fmt::Display for Value {
             Value::Co(n) => write!(f, "CO('{n}')"),
             Value::Module(m) => write!(f, "<module '{m}'>"),
             Value::Unknown => write!(f, "<run-time value>"),
+            Value::Raised(e) => write!(f, "{}", e.message),
         }
     }
 }

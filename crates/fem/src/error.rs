@@ -39,6 +39,16 @@ pub enum FemError {
     /// bounds): code_aster's integration failure, which a smaller increment
     /// may avoid (step cutting applies).
     Integration(String),
+    /// A contact zone that only checks (never enforces) contact found slave
+    /// nodes interpenetrating the master surface beyond its tolerance at a
+    /// converged increment, and asks the analysis to stop there (code_aster's
+    /// `RESOLUTION='NON'` with `STOP_INTERP='OUI'`, `cfsans`). Not a failure
+    /// a smaller increment avoids: never cut.
+    Interpenetration {
+        time: f64,
+        /// How many slave nodes interpenetrate.
+        nodes: usize,
+    },
     /// An increment still failed once cut as far as `DEFI_LIST_INST/ECHEC`
     /// allows (`SUBD_NIVEAU` levels of `SUBD_PAS` pieces, or a piece below
     /// `SUBD_PAS_MINI`).
@@ -109,6 +119,10 @@ impl fmt::Display for FemError {
             }
             FemError::Source(m) | FemError::SourceLoop(m) => write!(f, "{m}"),
             FemError::Integration(m) => write!(f, "behaviour integration failed: {m}"),
+            FemError::Interpenetration { time, nodes } => write!(
+                f,
+                "contact verification at time {time}: {nodes} slave node(s) interpenetrate the master surface by more than TOLE_INTERP, and STOP_INTERP='OUI' stops the analysis there"
+            ),
             FemError::StepCutting {
                 from,
                 to,

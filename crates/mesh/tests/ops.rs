@@ -189,9 +189,29 @@ fn orie_peau_3d_faces_of_a_hexahedron() {
         bottom[2] < 0.0 && top[2] > 0.0 && front[1] < 0.0,
         "{bottom:?} {top:?} {front:?}"
     );
+    // code_aster's oriema: the corners in reverse order (N1 N2 N3 N4 →
+    // N4 N3 N2 N1), not the first node kept.
     assert_eq!(
-        m.cell(CellId(1)).nodes[0],
-        NodeId(0),
-        "the first node stays first"
+        m.cell(CellId(1)).nodes,
+        [NodeId(3), NodeId(2), NodeId(1), NodeId(0)],
+        "the corners reversed"
     );
+}
+
+#[test]
+fn orie_peau_reverses_as_code_aster_oriema() {
+    use aster_mesh::CellType;
+    // Corners reversed, each edge middle following its edge, the centre kept.
+    let cases: [(CellType, &[usize]); 5] = [
+        (CellType::TRIA3, &[2, 1, 0]),
+        (CellType::TRIA6, &[2, 1, 0, 4, 3, 5]),
+        (CellType::QUAD8, &[3, 2, 1, 0, 6, 5, 4, 7]),
+        (CellType::QUAD9, &[3, 2, 1, 0, 6, 5, 4, 7, 8]),
+        (CellType::SEG3, &[1, 0, 2]),
+    ];
+    for (ty, perm) in cases {
+        assert_eq!(ty.skin_reversal(), Some(perm), "{ty:?}");
+    }
+    // ORIE_NORM_COQUE's (iorim2) keeps the first node.
+    assert_eq!(CellType::TRIA3.reversal(), Some(&[0, 2, 1][..]));
 }

@@ -267,7 +267,9 @@ fn offset(ex: &Executor, occ: &Keywords, name: &str) -> Result<Offset, ExecError
     }
 }
 
-fn geometry(ex: &Executor, occ: &Keywords) -> Result<ZoneGeometry, ExecError> {
+/// A zone's geometry from its `ZONE` occurrence `occ` of the DEFI_CONTACT
+/// keywords `kw` (a few settings are global: `STOP_INTERP`).
+fn geometry(ex: &Executor, kw: &Keywords, occ: &Keywords) -> Result<ZoneGeometry, ExecError> {
     let master = occ
         .str("GROUP_MA_MAIT")
         .ok_or_else(|| ExecError::new("DEFI_CONTACT/ZONE: GROUP_MA_MAIT is required"))?;
@@ -302,6 +304,7 @@ fn geometry(ex: &Executor, occ: &Keywords) -> Result<ZoneGeometry, ExecError> {
     g.dist_escl = offset(ex, occ, "DIST_ESCL")?;
     g.resolve = occ.str("RESOLUTION") != Some("NON");
     g.tole_interp = occ.f64("TOLE_INTERP").unwrap_or(0.0);
+    g.stop_interp = kw.str("STOP_INTERP") == Some("OUI");
     if occ.str("TYPE_PROJECTION") == Some("FIXE") {
         if !occ.contains("DIRE_APPA") {
             return Err(ex.kw_error(
@@ -405,7 +408,7 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                     _ => DiscreteAlgo::Contrainte,
                 };
                 zones.push(Zone {
-                    geometry: geometry(ex, occ)?,
+                    geometry: geometry(ex, kw, occ)?,
                     law,
                 });
             }
@@ -486,7 +489,7 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
                     "NCOTES" => Integration::NCotes(order),
                     _ => Integration::Auto,
                 };
-                let mut geometry = geometry(ex, occ)?;
+                let mut geometry = geometry(ex, kw, occ)?;
                 if adaptive_penalty {
                     // A negative value: 1 % of the shortest master cell,
                     // resolved with the mesh (`zones`).

@@ -434,8 +434,9 @@ impl CommandSink for Executor {
     }
 
     /// Methods of concepts: `TAB.EXTR_TABLE()` (the table's text, as `print`
-    /// shows a code_aster `Table`, its `IMPR_TABLE` form) and
-    /// `mesh.getMinMaxEdgeSizes(group)` (`'TOUT'`: every cell).
+    /// shows a code_aster `Table`, its `IMPR_TABLE` form),
+    /// `mesh.getMinMaxEdgeSizes(group)` (`'TOUT'`: every cell) and
+    /// `getName()` of any concept.
     fn method(
         &mut self,
         concept: &ConceptRef,
@@ -443,6 +444,12 @@ impl CommandSink for Executor {
         args: &[aster_eval::HostValue],
     ) -> Result<aster_eval::HostValue, ExecError> {
         use aster_eval::{HostValue, Scalar};
+        // The name code_aster stores the object under, which its tables
+        // show (POST_ELEM's LIEU of a whole mesh): here the concept's name,
+        // the one aster's tables show.
+        if let ("getName", []) = (name, args) {
+            return Ok(HostValue::Scalar(Scalar::Str(concept.name.to_string())));
+        }
         if let ("EXTR_TABLE", []) = (name, args) {
             let table = self.table(concept)?;
             return Ok(HostValue::Scalar(Scalar::Str(

@@ -37,7 +37,16 @@ pub struct FemRun {
 }
 
 fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
-    ExecError::new(format!("{cmd}: {e}"))
+    with_fem_id(ExecError::new(format!("{cmd}: {e}")), &e)
+}
+
+/// The error with code_aster's message id for `e`'s cause, if any
+/// (`crate::raised`).
+fn with_fem_id(err: ExecError, e: &aster_fem::FemError) -> ExecError {
+    match crate::raised::fem_error_id(e) {
+        Some(id) => err.with_id(id),
+        None => err,
+    }
 }
 
 fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
@@ -909,12 +918,18 @@ pub fn solve(
             }
         };
         let mut raw = outcome.map_err(|e| match (&e, &setup.time_list_at) {
-            (aster_fem::FemError::StepCutting { .. }, Some(at)) => ExecError::new(format!(
-                "{cmd}: {e} (cutting set by DEFI_LIST_INST/ECHEC at {at})"
-            )),
-            (aster_fem::FemError::StepCutting { .. }, None) => ExecError::new(format!(
-                "{cmd}: {e} (code_aster's default cutting of a list of reals: give INCREMENT/LIST_INST a DEFI_LIST_INST with ECHEC to change it)"
-            )),
+            (aster_fem::FemError::StepCutting { .. }, Some(at)) => with_fem_id(
+                ExecError::new(format!(
+                    "{cmd}: {e} (cutting set by DEFI_LIST_INST/ECHEC at {at})"
+                )),
+                &e,
+            ),
+            (aster_fem::FemError::StepCutting { .. }, None) => with_fem_id(
+                ExecError::new(format!(
+                    "{cmd}: {e} (code_aster's default cutting of a list of reals: give INCREMENT/LIST_INST a DEFI_LIST_INST with ECHEC to change it)"
+                )),
+                &e,
+            ),
             _ => fem_err(cmd, e),
         })?;
         setup.archive.apply(&mut raw);

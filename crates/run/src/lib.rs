@@ -30,6 +30,7 @@ pub mod preflight;
 pub mod program;
 pub mod progress;
 pub mod pyfmt;
+mod raised;
 pub mod select;
 mod shells;
 pub mod solve;

@@ -152,12 +152,6 @@ pub const COMMAND_HINTS: &[CommandHint] = &[
         why: "couples code_aster's thermal and mechanical solves with the external ECREVISSE code (flow through the crack), which aster does not have",
         external: true,
     },
-    CommandHint {
-        command: "PRE_GIBI",
-        keyword: None,
-        why: "GIBI meshes are read by `aster mesh` but not yet run: the node or cell order code_aster takes from them is not reproduced",
-        external: false,
-    },
 ];
 
 /// The hint of a command not executed, if it has one.

@@ -41,8 +41,34 @@ impl CellType {
         }
     }
 
+    /// The node permutation `ORIE_PEAU` applies to a skin cell it turns
+    /// over (code_aster's `oriema`): the corners in reverse order
+    /// (`1 2 3 4` → `4 3 2 1`), the edge middles following their edges,
+    /// a face centre kept. Which node comes first matters beyond the
+    /// orientation: a projection that falls outside a master triangle is
+    /// brought back onto it in reference coordinates, so the edges'
+    /// reference roles decide where it lands (ssnv104i's two symmetric
+    /// contact points came out swapped with [`CellType::reversal`]).
+    /// `None` for types that have no orientation to reverse here.
+    pub fn skin_reversal(self) -> Option<&'static [usize]> {
+        Some(match self {
+            CellType::SEG2 => &[1, 0],
+            CellType::SEG3 => &[1, 0, 2],
+            CellType::SEG4 => &[1, 0, 3, 2],
+            CellType::TRIA3 => &[2, 1, 0],
+            CellType::TRIA6 => &[2, 1, 0, 4, 3, 5],
+            CellType::TRIA7 => &[2, 1, 0, 4, 3, 5, 6],
+            CellType::QUAD4 => &[3, 2, 1, 0],
+            CellType::QUAD8 => &[3, 2, 1, 0, 6, 5, 4, 7],
+            CellType::QUAD9 => &[3, 2, 1, 0, 6, 5, 4, 7, 8],
+            _ => return None,
+        })
+    }
+
     /// The node permutation that reverses a segment or face, keeping the
-    /// first node; `None` for types that have no orientation to reverse here.
+    /// first node (code_aster's `iorim1`/`iorim2`, which `ORIE_NORM_COQUE`
+    /// and `ORIE_LIGNE` use); `None` for types that have no orientation to
+    /// reverse here.
     pub fn reversal(self) -> Option<&'static [usize]> {
         Some(match self {
             CellType::SEG2 => &[1, 0],
@@ -121,7 +147,7 @@ impl Mesh {
         for id in skin {
             let cell = self.cell(id).clone();
             let name = &self.cell_names[id.0 as usize];
-            let Some(reversal) = cell.ty.reversal() else {
+            let Some(reversal) = cell.ty.skin_reversal() else {
                 return Err(MeshError::Operation(format!(
                     "ORIE_PEAU: cell `{name}` is a {}; skin cells must be segments (2D) or faces (3D)",
                     cell.ty.name()

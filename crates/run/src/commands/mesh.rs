@@ -18,7 +18,7 @@ pub fn read_mesh_file(path: &Path, format: &str) -> Result<(Mesh, Vec<String>), 
 
 /// What LIRE_MAILLAGE reads (`crate::support`).
 pub(crate) const LIRE_MAILLAGE: Support = Support {
-    values: &[Values::new("FORMAT", &["MED", "ASTER", "GMSH"]).why(GIBI_WHY)],
+    values: &[Values::new("FORMAT", &["MED", "ASTER", "GMSH", "GIBI"])],
     ..Support::keywords(&[
         "FORMAT",
         "UNITE",
@@ -75,12 +75,10 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
 /// What PRE_GMSH reads (`crate::support`).
 pub(crate) const PRE_GMSH: Support = Support::keywords(&["UNITE_GMSH", "UNITE_MAILLAGE"]);
 
-/// Why GIBI meshes are refused by the run although `aster mesh` reads them
-/// (`crate::meshio`): ssnv104i, on its GIBI mesh, gives the values of two
-/// symmetric points swapped (a 1e-6 NOOK): something of the file's order
-/// is not reproduced yet.
-pub(crate) const GIBI_WHY: &str =
-    "(GIBI meshes are read by `aster mesh` but not yet run: the node or cell order code_aster takes from them is not reproduced)";
+/// What PRE_GIBI reads (`crate::support`). The nodes, cells and groups are
+/// numbered and named as code_aster's converter does (aster-mesh
+/// `convert::gibi`); ssnv104i and ssnv128g run on it.
+pub(crate) const PRE_GIBI: Support = Support::keywords(&["UNITE_GIBI", "UNITE_MAILLAGE"]);
 
 /// What ASSE_MAILLAGE does (`crate::support`): `SUPERPOSE` only.
 pub(crate) const ASSE_MAILLAGE: Support = Support {

@@ -72,6 +72,11 @@ pub static COMMANDS: &[Command] = &[
         support: mesh::PRE_GMSH,
     },
     Command {
+        name: "PRE_GIBI",
+        run: mesh::pre_convert,
+        support: mesh::PRE_GIBI,
+    },
+    Command {
         name: "ASSE_MAILLAGE",
         run: mesh::asse_maillage,
         support: mesh::ASSE_MAILLAGE,
