@@ -43,6 +43,7 @@ use std::collections::HashMap;
 use aster_fem::{Comp, Contribution, Dof, FemError, ForceSource, LoopVerdict, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
 
+use super::cycling;
 use super::{ContactInit, ContinueFriction, FrictionAlgo, FrictionGeometry};
 use crate::error::ContactError;
 use crate::geomloop::{GeomDecision, GeomLoopState};
@@ -120,6 +121,11 @@ struct Point {
     /// Positions of the slave point and its projection at the last status
     /// update (code_aster's geometric criterion).
     last_x: Option<([f64; 3], [f64; 3])>,
+    /// The penalty the cycling treatment switched the point to for the
+    /// rest of the step (module `cycling`).
+    cycl_pena: Option<f64>,
+    /// The master nodes of the pairing at the last status update.
+    last_master: Option<Vec<NodeId>>,
 }
 
 /// Values of one point at the current iterate.
@@ -168,6 +174,8 @@ pub struct ContinuousFriction {
     resi_frot: f64,
     iter_cont_maxi: usize,
     iter_frot_maxi: usize,
+    /// code_aster's contact-side cycling treatment (module `cycling`).
+    cycling: bool,
     /// Displacement per DOF index at the start of the increment.
     u_start: Vec<f64>,
     geom: GeomLoopState,
@@ -459,6 +467,8 @@ impl ContinuousFriction {
                         threshold: fz.seuil_init,
                         gap: 0.0,
                         last_x: None,
+                        cycl_pena: None,
+                        last_master: None,
                     });
                 }
             }
@@ -515,6 +525,7 @@ impl ContinuousFriction {
             resi_frot: friction.resi_frot,
             iter_cont_maxi: def.iter_cont_maxi,
             iter_frot_maxi: friction.iter_frot_maxi,
+            cycling: friction.cycling,
             u_start: Vec::new(),
             geom: GeomLoopState::new(geom_rule),
             cont_loops: 0,
@@ -755,7 +766,10 @@ impl ContinuousFriction {
             .map(|pp| pp.master.iter().map(|m| m.1).collect())
             .unwrap_or_default();
         let vals = self.values(p, pair, state, own);
-        let rho = fz.coef_cont;
+        let (rho, pena_cont) = match p.cycl_pena {
+            Some(k) => (k, true),
+            None => (fz.coef_cont, fz.pena_cont),
+        };
         let rho_f = fz.coef_frot;
         let contact = p.contact && pair.is_some();
         let (n, tau) = match pair {
@@ -825,7 +839,7 @@ impl ContinuousFriction {
             [x[0] - s * n[0], x[1] - s * n[1], x[2] - s * n[2]]
         };
         if contact {
-            if fz.pena_cont {
+            if pena_cont {
                 for c in 0..3 {
                     fe[c] += n[c] * rho * vals.jeu;
                     fe_cont[c] += n[c] * rho * vals.jeu;
@@ -971,7 +985,7 @@ impl ContinuousFriction {
                 }
             } else {
                 phase = if contact { "NCON" } else { "SANS" };
-                let sgn = if fz.pena_cont || fz.pena_frot {
+                let sgn = if pena_cont || fz.pena_frot {
                     -1.0 / rho_f
                 } else {
                     1.0
@@ -1081,11 +1095,63 @@ impl ContinuousFriction {
                 p.pair.clone()
             };
             let vals = self.values(p, pair.as_ref(), state, own);
-            let rho = self.zones[p.zone].coef_cont;
-            let now = match &pair {
+            let rho = p.cycl_pena.unwrap_or(self.zones[p.zone].coef_cont);
+            let mut now = match &pair {
                 Some(_) => vals.lambda - rho * vals.jeu < 0.0,
                 None => false,
             };
+            let mut lambda = vals.lambda;
+            let mut jeu = vals.jeu;
+            let master: Option<Vec<NodeId>> = pair
+                .as_ref()
+                .map(|pp| pp.master.iter().map(|m| m.0).collect());
+            // code_aster's cycling treatment (`mm_cycl_algo`), driven by
+            // its Newton count (0 after the prediction).
+            let same_master = master.is_some() && master == p.last_master;
+            let flipped_now = now != p.contact;
+            if cycling::applies(
+                self.cycling,
+                same_master,
+                self.newton_iterations.saturating_sub(1),
+                flipped_now,
+            ) {
+                let newton_contact = self.reso_cont == Resolution::Newton;
+                let proj = cycling::project(
+                    cycling::PointState {
+                        contact: now,
+                        pres: vals.lambda,
+                        gap: vals.jeu,
+                    },
+                    cycling::PointState {
+                        contact: p.contact,
+                        pres: p.threshold,
+                        gap: p.gap,
+                    },
+                    newton_contact,
+                );
+                if std::env::var_os("ASTER_CONTACT_TRACE").is_some() {
+                    eprintln!(
+                        "[friction] cycling: point {i} (node {:?}) at Newton iteration {}: {:?}",
+                        p.node,
+                        self.newton_iterations.saturating_sub(1),
+                        proj
+                    );
+                }
+                now = proj.current.contact;
+                lambda = proj.current.pres;
+                jeu = proj.current.gap;
+                let fz = &self.zones[p.zone];
+                let pena = cycling::penalty(fz.pena_cont.then_some(fz.coef_cont), self.edge_min);
+                let settled = proj.current.contact == proj.previous.contact;
+                let p = &mut self.points[i];
+                p.cycl_pena = Some(pena);
+                // The statuses compared are the projected ones.
+                if !settled {
+                    changed = true;
+                }
+                p.contact = proj.previous.contact;
+            }
+            let p = &self.points[i];
             let positions = pair.as_ref().map(|pp| {
                 let mut xs = [0.0; 3];
                 for &(n, s) in &p.slave {
@@ -1117,9 +1183,10 @@ impl ContinuousFriction {
                 motion = motion.max(norm(sub(xs, ps)) + norm(sub(xm, pm)));
             }
             p.last_x = positions;
+            p.last_master = master;
             p.contact = now;
-            p.gap = vals.jeu;
-            p.threshold = vals.lambda;
+            p.gap = jeu;
+            p.threshold = lambda;
         }
         (changed, motion / self.edge_max.max(1e-300))
     }
@@ -1351,6 +1418,13 @@ impl ForceSource for ContinuousFriction {
         self.cont_loops = 0;
         self.frot_loops = 0;
         self.newton_iterations = 0;
+        // code_aster's cycling history is initialised at each step
+        // (`mminit` → `mm_cycl_init`): no penalised point, no master cell
+        // of a previous update (so no treatment at the step's first).
+        for p in &mut self.points {
+            p.cycl_pena = None;
+            p.last_master = None;
+        }
         self.own_prev = Some(own.to_vec());
         Ok(())
     }

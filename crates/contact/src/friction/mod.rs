@@ -16,6 +16,7 @@
 //! runner; the numerics know no keyword.
 
 pub mod continuous;
+pub mod cycling;
 pub mod discrete;
 
 pub use continuous::ContinuousFriction;
@@ -100,6 +101,10 @@ pub struct ContinueFriction {
     pub resi_frot: f64,
     /// `ITER_FROT_MAXI` (default 10, `POINT_FIXE`).
     pub iter_frot_maxi: usize,
+    /// code_aster's contact-side cycling treatment (`mm_cycl_algo` for
+    /// `TYPE_ADAPT` 4, 5, 6, 7, 11; the default `ADAPTATION='CYCLAGE'` is
+    /// 4): module [`cycling`].
+    pub cycling: bool,
 }
 
 impl ContinueFriction {
@@ -109,6 +114,7 @@ impl ContinueFriction {
             algo_reso_frot: Resolution::Newton,
             resi_frot: 1e-4,
             iter_frot_maxi: 10,
+            cycling: true,
         }
     }
 
