@@ -166,6 +166,23 @@ pub(crate) fn translate(
     Some(new)
 }
 
+/// code_aster 11 named the matrices A, B (C) whatever the problem;
+/// CALC_MODES keeps those names only for the general problem: (old, new)
+/// for the `TYPE_RESU` given.
+pub(crate) fn modal_matrix_names(
+    type_resu: Option<&str>,
+) -> &'static [(&'static str, &'static str)] {
+    match type_resu {
+        Some("GENERAL") => &[],
+        Some("MODE_FLAMB") => &[("MATR_A", "MATR_RIGI"), ("MATR_B", "MATR_RIGI_GEOM")],
+        _ => &[
+            ("MATR_A", "MATR_RIGI"),
+            ("MATR_B", "MATR_MASS"),
+            ("MATR_C", "MATR_AMOR"),
+        ],
+    }
+}
+
 /// `MODE_ITER_SIMULT` / `MODE_ITER_INV` → `CALC_MODES`.
 /// Returns what moved (`METHODE → SOLVEUR_MODAL/METHODE`...), for the note.
 fn modal(
@@ -175,21 +192,11 @@ fn modal(
     diags: &mut Vec<Diagnostic>,
 ) -> Vec<String> {
     let mut moved = Vec::new();
-    // code_aster 11 named the matrices A, B (C) whatever the problem;
-    // CALC_MODES keeps those names only for the general problem.
     let type_resu = given
         .iter()
         .find(|g| g.name == "TYPE_RESU")
         .map(|g| g.value.to_string());
-    let names: &[(&str, &str)] = match type_resu.as_deref() {
-        Some("GENERAL") => &[],
-        Some("MODE_FLAMB") => &[("MATR_A", "MATR_RIGI"), ("MATR_B", "MATR_RIGI_GEOM")],
-        _ => &[
-            ("MATR_A", "MATR_RIGI"),
-            ("MATR_B", "MATR_MASS"),
-            ("MATR_C", "MATR_AMOR"),
-        ],
-    };
+    let names = modal_matrix_names(type_resu.as_deref());
     for (from, to) in names {
         if let Some(g) = given.iter_mut().find(|g| g.name == *from) {
             g.name = to.to_string();

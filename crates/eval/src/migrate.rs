@@ -701,15 +701,7 @@ fn modal_edits(old: &str, call: &Call, ctx: &Context) -> Option<Vec<Edit>> {
         Some(t) => Some(literal(t.value)?),
         None => None,
     };
-    let names: &[(&str, &str)] = match type_resu {
-        Some("GENERAL") => &[],
-        Some("MODE_FLAMB") => &[("MATR_A", "MATR_RIGI"), ("MATR_B", "MATR_RIGI_GEOM")],
-        _ => &[
-            ("MATR_A", "MATR_RIGI"),
-            ("MATR_B", "MATR_MASS"),
-            ("MATR_C", "MATR_AMOR"),
-        ],
-    };
+    let names = crate::legacy_commands::modal_matrix_names(type_resu);
     for kw in call.keywords() {
         let value = ctx.text(span_of(kw.value)?);
         if let Some((_, to)) = names.iter().find(|(f, _)| *f == kw.name) {

@@ -49,18 +49,8 @@ pub enum Projection {
 
 /// The reference HEXA8 (code_aster's node order): ∂Nᵢ/∂ξ at a point.
 fn dn_ref(xi: [f64; 3]) -> [[f64; 3]; 8] {
-    const NODES: [[f64; 3]; 8] = [
-        [-1., -1., -1.],
-        [1., -1., -1.],
-        [1., 1., -1.],
-        [-1., 1., -1.],
-        [-1., -1., 1.],
-        [1., -1., 1.],
-        [1., 1., 1.],
-        [-1., 1., 1.],
-    ];
     let mut d = [[0.0; 3]; 8];
-    for (a, n) in NODES.iter().enumerate() {
+    for (a, n) in crate::refcells::HEXA8.iter().enumerate() {
         let f = [1. + n[0] * xi[0], 1. + n[1] * xi[1], 1. + n[2] * xi[2]];
         d[a] = [
             0.125 * n[0] * f[1] * f[2],

@@ -14,6 +14,19 @@ use aster_mesh::CellType;
 const H: f64 = 0.5;
 const T: f64 = 1. / 3.;
 
+/// The reference HEXA8's corners, code_aster's order (also the first eight
+/// nodes of HEXA20 and HEXA27).
+pub const HEXA8: [[f64; 3]; 8] = [
+    [-1., -1., -1.],
+    [1., -1., -1.],
+    [1., 1., -1.],
+    [-1., 1., -1.],
+    [-1., -1., 1.],
+    [1., -1., 1.],
+    [1., 1., 1.],
+    [-1., 1., 1.],
+];
+
 /// Reference coordinates of the nodes, code_aster's order. Empty for the
 /// types this module does not define.
 pub fn nodes(ty: CellType) -> Vec<[f64; 3]> {
@@ -140,15 +153,8 @@ fn pyram_corners() -> [[f64; 3]; 5] {
 }
 
 fn hexa20_nodes() -> Vec<[f64; 3]> {
-    vec![
-        [-1., -1., -1.],
-        [1., -1., -1.],
-        [1., 1., -1.],
-        [-1., 1., -1.],
-        [-1., -1., 1.],
-        [1., -1., 1.],
-        [1., 1., 1.],
-        [-1., 1., 1.],
+    let mut v = HEXA8.to_vec();
+    v.extend([
         [0., -1., -1.],
         [1., 0., -1.],
         [0., 1., -1.],
@@ -161,7 +167,8 @@ fn hexa20_nodes() -> Vec<[f64; 3]> {
         [1., 0., 1.],
         [0., 1., 1.],
         [-1., 0., 1.],
-    ]
+    ]);
+    v
 }
 
 /// 1D quadratic Lagrange function on {-1, 0, 1} of the node at `a`.

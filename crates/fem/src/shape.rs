@@ -80,16 +80,7 @@ pub fn reference_nodes(ty: CellType) -> Vec<[f64; 3]> {
             [0., 1., 0.],
             [-1., 0., 0.],
         ],
-        CellType::HEXA8 => vec![
-            [-1., -1., -1.],
-            [1., -1., -1.],
-            [1., 1., -1.],
-            [-1., 1., -1.],
-            [-1., -1., 1.],
-            [1., -1., 1.],
-            [1., 1., 1.],
-            [-1., 1., 1.],
-        ],
+        CellType::HEXA8 => refcells::HEXA8.to_vec(),
         other => refcells::nodes(other),
     }
 }
