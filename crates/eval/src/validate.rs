@@ -521,8 +521,10 @@ impl Validator<'_> {
         let refused = self.diags[level_start.min(diags_before)..]
             .iter()
             .any(|d| d.is_error() && d.kind.is_not_supported());
+        // A did-you-mean never proposes a keyword written beside it.
+        let written_here: Vec<&str> = given.iter().map(|g| g.name.as_str()).collect();
         for g in inactive {
-            self.not_active(entries, &active, g, path, level_failed);
+            self.not_active(entries, &active, g, &written_here, path, level_failed);
         }
 
         // Missing keywords and defaults, in catalog order.
@@ -661,9 +663,11 @@ impl Validator<'_> {
         entries: &[Entry],
         active: &[&Entry],
         g: &Given,
+        written: &[&str],
         path: &str,
         quiet: bool,
     ) {
+        let unwritten = |name: &&str| !written.contains(name);
         if let Some(b) = block_of(entries, &g.name) {
             if quiet {
                 return;
@@ -677,7 +681,8 @@ impl Validator<'_> {
                     aster_catalog::explain::plain_condition(b.condition)
                 ),
             );
-            if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name)) {
+            if let Some(h) = did_you_mean(&g.name, active.iter().map(|a| a.name).filter(unwritten))
+            {
                 d = d.note(h);
             }
             self.diags.push(d);
@@ -688,12 +693,13 @@ impl Validator<'_> {
             .map(|a| a.name)
             .filter(|n| *n != "reuse")
             .collect();
+        let candidates: Vec<&str> = names.iter().copied().filter(unwritten).collect();
         let mut d = Diagnostic::error(
             DiagKind::UnknownKeyword,
             g.span,
             format!("`{path}`: unknown keyword {}", g.name),
         );
-        match did_you_mean(&g.name, names.iter().copied()) {
+        match did_you_mean(&g.name, candidates.iter().copied()) {
             Some(h) => d = d.note(h),
             None => {
                 d = d.note(format!(

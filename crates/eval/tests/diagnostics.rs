@@ -100,3 +100,52 @@ fn checking_goes_on_after_an_error_without_consequences() {
     assert!(kinds.contains(&DiagKind::UnknownKeyword), "{kinds:?}");
     insta::assert_snapshot!("keep_going", text);
 }
+
+/// A did-you-mean never proposes a keyword already written in the same
+/// `_F`: with GROUP_MA_ESCL and GROUP_MA_MAIT both given, GROUP_MA_ESC gets
+/// the list of accepted keywords rather than a misleading suggestion.
+#[test]
+fn did_you_mean_skips_keywords_written_beside() {
+    let source = "MO = AFFE_MODELE(MAILLAGE=LIRE_MAILLAGE(), AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='D_PLAN'))\n\
+C = DEFI_CONTACT(MODELE=MO, ZONE=_F(GROUP_MA_MAIT='HE', GROUP_MA_ESCL='AB', GROUP_MA_ESC='X'))\n";
+    let map = CodeMap::new("t.comm", source);
+    let report = check_source(&map, false);
+    let d = report
+        .diagnostics
+        .0
+        .iter()
+        .find(|d| d.kind == DiagKind::UnknownKeyword)
+        .expect("GROUP_MA_ESC is unknown");
+    assert!(
+        d.notes.iter().all(|n| !n.starts_with("help: did you mean")),
+        "{:?}",
+        d.notes
+    );
+    assert!(
+        d.notes
+            .iter()
+            .any(|n| n.starts_with("note: keywords accepted here")),
+        "{:?}",
+        d.notes
+    );
+    // Alone, the same typo gets its suggestion.
+    let source = source.replace("GROUP_MA_ESCL='AB', ", "");
+    let map = CodeMap::new("t.comm", source);
+    let report = check_source(&map, false);
+    let d = report
+        .diagnostics
+        .0
+        .iter()
+        .find(|d| d.kind == DiagKind::UnknownKeyword)
+        .expect("GROUP_MA_ESC is unknown");
+    assert!(
+        d.notes.iter().any(|n| n.contains("`GROUP_MA_ESCL`")),
+        "{:?}",
+        d.notes
+    );
+    assert!(
+        d.notes.iter().all(|n| !n.contains("`GROUP_MA_MAIT`")),
+        "{:?}",
+        d.notes
+    );
+}
