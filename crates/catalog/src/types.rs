@@ -107,8 +107,21 @@ pub fn computed(
                 "formule"
             }
         }
-        // A partitioned mesh (maillage_p) is only built by parallel runs.
-        "lire_maillage_sdprod" => "maillage_sdaster",
+        // code_aster 17's LIRE_MAILLAGE builds a ParallelMesh (maillage_p)
+        // when a MED mesh is read with PARTITIONNEUR='PTSCOTCH' on several
+        // processes (code_aster/Commands/lire_maillage.py), whatever the
+        // catalog's sd_prod says; asking for the partitioner is asking for
+        // that run (on one process code_aster reads a plain mesh, alarm
+        // MED_18). maillage_p is a maillage_sdaster everywhere else.
+        "lire_maillage_sdprod" => {
+            if text("FORMAT").as_deref().unwrap_or("MED") == "MED"
+                && text("PARTITIONNEUR").as_deref() == Some("PTSCOTCH")
+            {
+                "maillage_p"
+            } else {
+                "maillage_sdaster"
+            }
+        }
         "affe_char_cine_prod" => {
             if has("MECA_IMPO")
                 || has("EVOL_IMPO") && type_of("EVOL_IMPO").as_deref() == Some("evol_noli")
@@ -256,6 +269,22 @@ mod tests {
             Some("evol_ther_dict")
         );
         assert_eq!(actual_result("MECA_STATIQUE", &ty), None);
+    }
+
+    #[test]
+    fn a_partitioned_med_mesh_is_a_parallel_mesh() {
+        let read = |part: Option<&str>| {
+            let value = move |k: &str| match (k, part) {
+                ("FORMAT", _) => Some(CVal::Str("MED".into())),
+                ("PARTITIONNEUR", Some(p)) => Some(CVal::Str(p.into())),
+                _ => None,
+            };
+            computed("lire_maillage_sdprod", &value, &|_| None)
+        };
+        assert_eq!(read(Some("PTSCOTCH")), "maillage_p");
+        assert_eq!(read(Some("SANS")), "maillage_sdaster");
+        assert_eq!(read(None), "maillage_sdaster");
+        assert!(is_a("maillage_p", "maillage_sdaster"));
     }
 
     #[test]

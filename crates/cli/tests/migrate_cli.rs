@@ -59,6 +59,11 @@ CH = CREA_CHAMP(TYPE_CHAM='NOEU_TEMP_R', OPERATION='AFFE', MAILLAGE=MA,
                 AFFE=_F(TOUT='OUI', NOM_CMP='TEMP', VALE=0.0))
 T = CREA_RESU(OPERATION='AFFE', TYPE_RESU='EVOL_THER', NOM_CHAM='TEMP',
               AFFE=(_F(CHAM_GD=CH, INST=0.0), _F(CHAM_GD=CH, INST=1.0)))
+KW = {}
+KW['CONCEPT'] = []
+for name in (L,):
+    KW['CONCEPT'].append(_F(NOM=name))
+DETRUIRE(INFO=1, **KW)
 L_AFFE = [_F(CHAM_GD=CH, INST=2.0)]
 T = CREA_RESU(reuse=T, RESULTAT=T, OPERATION='AFFE', TYPE_RESU='EVOL_THER',
               NOM_CHAM='TEMP', AFFE=L_AFFE)
@@ -116,7 +121,8 @@ fn unreadable_file_exits_2() {
 /// Whole-command rewrites: MODE_ITER_SIMULT/INV → CALC_MODES (keywords
 /// moved into SOLVEUR_MODAL, OPTION up), MACRO_MATR_ASSE → ASSEMBLAGE,
 /// NOM_CHAM into each CREA_RESU occurrence (also of a list the program
-/// builds), METHODE up from DEFI_LIST, one AFFE per modelisation, a real
+/// builds), DETRUIRE's CONCEPT built in a dictionary passed as `**kw`,
+/// METHODE up from DEFI_LIST, one AFFE per modelisation, a real
 /// where a function is wanted: the migrated file checks clean, with its
 /// comments, and a second migration changes nothing.
 #[test]

@@ -338,6 +338,78 @@ impl<'a> Interp<'a> {
                 "try/except mixing code_aster's errors with other exceptions (only `except CA.AsterError as err` handlers, or only `except ImportError` around imports, are supported)",
             );
         }
+        // Checking executes no command: whether one raises, and with which
+        // id, is known only when the program runs. The body is checked; an
+        // error found there may be the one the program expects (it is not
+        // reported as the file's), and what the handlers assign is a
+        // run-time value.
+        if self.keep_going {
+            let diags_before = self.diags.len();
+            let body_flow = self.exec_block(body);
+            let found = self.diags[diags_before..].iter().any(Diagnostic::is_error);
+            if found || matches!(body_flow, Err(Halt::Diag(_) | Halt::Reported)) {
+                let kept: Vec<Diagnostic> = self
+                    .diags
+                    .drain(diags_before..)
+                    .filter(|d| !d.is_error())
+                    .collect();
+                self.diags.extend(kept);
+                return needs_run_time(
+                    span,
+                    "checking `try: … except CA.AsterError` around a command with an error: the program may expect it (which error a command raises is known only when the commands run)",
+                );
+            }
+            let mut names = Vec::new();
+            for h in handlers {
+                assigned_names(&h.body, &mut names);
+            }
+            for n in names {
+                self.set_var(&n, Value::Unknown);
+            }
+            body_flow?;
+            return self
+                .exec_block(orelse)
+                .and_then(|flow| match self.exec_block(finalbody)? {
+                    Flow::Normal => Ok(flow),
+                    other => Ok(other),
+                });
+        }
+        // Checking executes no command: whether one raises, and with which
+        // id, is known only when the program runs. The body is checked; an
+        // error found there may be the one the program expects (it is not
+        // reported as the file's), and what the handlers assign is a
+        // run-time value.
+        if self.keep_going {
+            let diags_before = self.diags.len();
+            let body_flow = self.exec_block(body);
+            let found = self.diags[diags_before..].iter().any(Diagnostic::is_error);
+            if found || matches!(body_flow, Err(Halt::Diag(_) | Halt::Reported)) {
+                let kept: Vec<Diagnostic> = self
+                    .diags
+                    .drain(diags_before..)
+                    .filter(|d| !d.is_error())
+                    .collect();
+                self.diags.extend(kept);
+                return needs_run_time(
+                    span,
+                    "checking `try: … except CA.AsterError` around a command with an error: the program may expect it (which error a command raises is known only when the commands run)",
+                );
+            }
+            let mut names = Vec::new();
+            for h in handlers {
+                assigned_names(&h.body, &mut names);
+            }
+            for n in names {
+                self.set_var(&n, Value::Unknown);
+            }
+            body_flow?;
+            return self
+                .exec_block(orelse)
+                .and_then(|flow| match self.exec_block(finalbody)? {
+                    Flow::Normal => Ok(flow),
+                    other => Ok(other),
+                });
+        }
         let flow = match self.exec_block(body) {
             Ok(Flow::Normal) => self.exec_block(orelse),
             Ok(other) => Ok(other),
@@ -1836,4 +1908,28 @@ pub(crate) fn new_formula(
         context,
         map,
     })
+}
+
+/// The plain names a block assigns (`x = …`, `x += …`, in nested `if`/`for`
+/// blocks too): what a handler that may or may not run changes.
+fn assigned_names(body: &[ast::Stmt], out: &mut Vec<String>) {
+    use ast::{ExprKind, StmtKind};
+    let target = |e: &ast::Expr, out: &mut Vec<String>| {
+        if let ExprKind::Name { id } = &e.kind {
+            out.push(id.to_string());
+        }
+    };
+    for s in body {
+        match &s.kind {
+            StmtKind::Assign { targets, .. } => targets.iter().for_each(|t| target(t, out)),
+            StmtKind::AugAssign { target: t, .. } | StmtKind::AnnAssign { target: t, .. } => {
+                target(t, out)
+            }
+            StmtKind::If { body, orelse, .. } | StmtKind::For { body, orelse, .. } => {
+                assigned_names(body, out);
+                assigned_names(orelse, out);
+            }
+            _ => {}
+        }
+    }
 }

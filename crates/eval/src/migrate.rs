@@ -283,7 +283,8 @@ fn migrate_once(name: &str, source: &str) -> Result<Migration, String> {
                 .calls
                 .iter()
                 .find(|c| c.span.0 == span.0 && c.name.is_some())
-                .and_then(|c| call_edit(&d.message, c, &ctx)),
+                .and_then(|c| call_edit(&d.message, c, &ctx))
+                .or_else(|| double_star_edit(&d.message, span, &ctx)),
         };
         match edit {
             Some(e) => edits.extend(e),
@@ -643,6 +644,30 @@ fn moved_or_rewritten(
         ]);
     }
     None
+}
+
+/// `DETRUIRE(**kw)` whose dictionary holds code_aster 11's
+/// `CONCEPT=[_F(NOM=X), …]`, built by the program: the names are taken out
+/// of it as the call runs (`NOM=[occ['NOM'] for occ in kw.pop('CONCEPT')]`).
+/// The program builds that list by appending occurrences; were it one
+/// `_F`, the migrated file would fail its check rather than run wrong.
+fn double_star_edit(message: &str, span: (usize, usize), ctx: &Context) -> Option<Vec<Edit>> {
+    if !message.starts_with("`DETRUIRE/CONCEPT=_F(NOM=...)` is code_aster 11 syntax") {
+        return None;
+    }
+    let arg = ctx.calls.iter().flat_map(|c| c.args.iter()).find(|a| {
+        a.get("arg").and_then(Json::as_str) == Some("DoubleStar") && span_of(a) == Some(span)
+    })?;
+    let value = arg.get("value")?;
+    if value.get("expr").and_then(Json::as_str) != Some("Name") {
+        return None;
+    }
+    let dict = value.get("id")?.as_str()?;
+    Some(vec![Edit {
+        start: span.0,
+        end: span.1,
+        text: format!("NOM=[occ['NOM'] for occ in {dict}.pop('CONCEPT')], **{dict}"),
+    }])
 }
 
 /// Keywords of the modal solver that code_aster 11 wrote at the top level

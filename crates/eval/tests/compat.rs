@@ -300,6 +300,40 @@ except CA.AsterError as err:
     );
     assert!(report.ok(), "{text}");
     assert_eq!(report.calls.len(), 1);
+    // Checking runs no command: what the handler assigns is known only when
+    // the program runs, so an assertion on it is left to the run...
+    let (report, text) = check(
+        r#"test = CA.TestCase()
+is_ok = 0
+try:
+    L = DEFI_LIST_REEL(VALE=1.0)
+except CA.AsterError as err:
+    if err.id_message == "CONTACT_93":
+        is_ok = 1
+test.assertEqual(is_ok, 1)
+"#,
+    );
+    assert!(report.ok(), "{text}");
+    // ...and an error in the body may be the one the program expects: not
+    // the file's error, a step known only when the commands run.
+    let (report, text) = check(
+        r#"try:
+    L = DEFI_LIST_REEL(VALE=1.0, NO_SUCH=2)
+except CA.AsterError as err:
+    pass
+"#,
+    );
+    assert!(!report.ok());
+    assert!(!text.contains("unknown keyword"), "{text}");
+    assert!(text.contains("c.comm:1:1: error: not supported: checking `try: … except CA.AsterError` around a command with an error"), "{text}");
+    assert!(
+        report
+            .diagnostics
+            .0
+            .iter()
+            .all(|d| d.kind == aster_eval::DiagKind::RunTimeValue),
+        "{text}"
+    );
     // Mixed with another exception: outside the subset.
     let (report, text) = check(
         "try:
