@@ -374,42 +374,6 @@ impl<'a> Interp<'a> {
                     other => Ok(other),
                 });
         }
-        // Checking executes no command: whether one raises, and with which
-        // id, is known only when the program runs. The body is checked; an
-        // error found there may be the one the program expects (it is not
-        // reported as the file's), and what the handlers assign is a
-        // run-time value.
-        if self.keep_going {
-            let diags_before = self.diags.len();
-            let body_flow = self.exec_block(body);
-            let found = self.diags[diags_before..].iter().any(Diagnostic::is_error);
-            if found || matches!(body_flow, Err(Halt::Diag(_) | Halt::Reported)) {
-                let kept: Vec<Diagnostic> = self
-                    .diags
-                    .drain(diags_before..)
-                    .filter(|d| !d.is_error())
-                    .collect();
-                self.diags.extend(kept);
-                return needs_run_time(
-                    span,
-                    "checking `try: … except CA.AsterError` around a command with an error: the program may expect it (which error a command raises is known only when the commands run)",
-                );
-            }
-            let mut names = Vec::new();
-            for h in handlers {
-                assigned_names(&h.body, &mut names);
-            }
-            for n in names {
-                self.set_var(&n, Value::Unknown);
-            }
-            body_flow?;
-            return self
-                .exec_block(orelse)
-                .and_then(|flow| match self.exec_block(finalbody)? {
-                    Flow::Normal => Ok(flow),
-                    other => Ok(other),
-                });
-        }
         let flow = match self.exec_block(body) {
             Ok(Flow::Normal) => self.exec_block(orelse),
             Ok(other) => Ok(other),
