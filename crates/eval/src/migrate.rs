@@ -87,21 +87,7 @@ impl<'a> Call<'a> {
 
     /// The keyword argument `name` written in this call.
     fn keyword(&self, name: &str) -> Option<KwArg<'a>> {
-        self.args.iter().find_map(|a| {
-            (a.get("arg").and_then(Json::as_str) == Some("Keyword")
-                && a.get("name")
-                    .and_then(|n| n.get("name"))
-                    .and_then(Json::as_str)
-                    == Some(name))
-            .then(|| {
-                Some(KwArg {
-                    span: span_of(a)?,
-                    name: a.get("name")?.get("name")?.as_str()?,
-                    value: a.get("value")?,
-                })
-            })
-            .flatten()
-        })
+        self.keywords().into_iter().find(|k| k.name == name)
     }
 
     /// Every keyword argument written in this call, in order.
@@ -148,19 +134,31 @@ impl<'a> Context<'a> {
         self.source.get(span.0..span.1).unwrap_or("")
     }
 
+    /// The source text of each element a value writes ([`elements`]).
+    fn element_texts(&self, value: &Json) -> Option<Vec<&'a str>> {
+        elements(value)?
+            .into_iter()
+            .map(|e| span_of(e).map(|s| self.text(s)))
+            .collect()
+    }
+
     /// The `_F(...)` occurrences a factor keyword's value writes (one call,
     /// or a tuple/list of calls); `None` when it is built otherwise (a
     /// variable, a comprehension).
     fn occurrences(&self, value: &'a Json) -> Option<Vec<Call<'a>>> {
-        let items: Vec<&Json> = match value.get("expr").and_then(Json::as_str) {
-            Some("Tuple" | "List") => value.get("elts")?.as_array()?.iter().collect(),
-            _ => vec![value],
-        };
-        items
+        elements(value)?
             .into_iter()
             .map(|v| Call::of(v).filter(|c| c.name == Some("_F")))
             .collect()
     }
+}
+
+/// The elements a value writes: those of a tuple or list, else the value.
+fn elements(value: &Json) -> Option<Vec<&Json>> {
+    Some(match value.get("expr").and_then(Json::as_str) {
+        Some("Tuple" | "List") => value.get("elts")?.as_array()?.iter().collect(),
+        _ => vec![value],
+    })
 }
 
 fn span_of(v: &Json) -> Option<(usize, usize)> {
@@ -384,10 +382,7 @@ fn legacy_edit(message: &str, arg: &KwArg, ctx: &Context) -> Option<Vec<Edit>> {
         "CODE=_F(NOM=...)" => replace("CODE='OUI'".into()),
         "CONCEPT=_F(NOM=...)" => {
             // NOM of each occurrence, in order.
-            let occurrences: Vec<&Json> = match arg.value.get("expr").and_then(Json::as_str) {
-                Some("Tuple" | "List") => arg.value.get("elts")?.as_array()?.iter().collect(),
-                _ => vec![arg.value],
-            };
+            let occurrences = elements(arg.value)?;
             let mut names = Vec::new();
             for occ in occurrences {
                 let args = occ.get("args")?.as_array()?;
@@ -580,16 +575,7 @@ fn moved_or_rewritten(
                 occs_text.push(whole.to_string());
                 continue;
             };
-            let models: Vec<&str> = match m.value.get("expr").and_then(Json::as_str) {
-                Some("Tuple" | "List") => m
-                    .value
-                    .get("elts")?
-                    .as_array()?
-                    .iter()
-                    .map(|e| span_of(e).map(|s| ctx.text(s)))
-                    .collect::<Option<_>>()?,
-                _ => vec![ctx.text(span_of(m.value)?)],
-            };
+            let models = ctx.element_texts(m.value)?;
             let (a, b) = (m.span.0 - occ.span.0, m.span.1 - occ.span.0);
             for model in models {
                 occs_text.push(format!(
@@ -621,19 +607,8 @@ fn moved_or_rewritten(
                 text: "COMPORTEMENT".into(),
             }]);
         };
-        let items = |v: &Json| -> Option<Vec<&str>> {
-            Some(match v.get("expr").and_then(Json::as_str) {
-                Some("Tuple" | "List") => v
-                    .get("elts")?
-                    .as_array()?
-                    .iter()
-                    .map(|e| span_of(e).map(|s| ctx.text(s)))
-                    .collect::<Option<_>>()?,
-                _ => vec![ctx.text(span_of(v)?)],
-            })
-        };
-        let mut all = items(incr.value)?;
-        all.extend(items(arg.value)?);
+        let mut all = ctx.element_texts(incr.value)?;
+        all.extend(ctx.element_texts(arg.value)?);
         return Some(vec![
             Edit {
                 start: incr.span.0,
