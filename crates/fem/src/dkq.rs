@@ -268,7 +268,7 @@ fn gquad4(xy: &[[f64; 2]; 4]) -> [f64; 25] {
 }
 
 /// FPG4, code_aster's `RIGI` family of `MEDKQU4`.
-fn fpg4() -> Vec<GaussPoint> {
+pub(crate) fn fpg4() -> Vec<GaussPoint> {
     rigi_scheme(CellType::QUAD4)
 }
 

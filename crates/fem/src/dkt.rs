@@ -388,7 +388,7 @@ pub(crate) fn bending_dof(k: usize) -> (usize, f64) {
 }
 
 /// FPG3, code_aster's `RIGI` family of `MEDKTR3`.
-fn fpg3() -> Vec<GaussPoint> {
+pub(crate) fn fpg3() -> Vec<GaussPoint> {
     rigi_scheme(CellType::TRIA6)
 }
 

@@ -6,7 +6,7 @@ use crate::error::FemError;
 use crate::material::Hypothesis;
 use crate::model::{ElementKind, Model};
 use crate::shape;
-use aster_mesh::{CellId, NodeId};
+use aster_mesh::{CellId, CellType, NodeId};
 use std::collections::HashMap;
 use std::fmt;
 use std::sync::Arc;
@@ -188,10 +188,18 @@ impl Loads {
                         )));
                     };
                     if model.element_comps(*cell) == 6 {
-                        return Err(FemError::Model(format!(
-                            "distributed load on shell cell {}: pressures and forces on shell elements are not supported yet",
-                            model.cell_name(*cell)
-                        )));
+                        // A constant pressure on a shell facet acts along
+                        // its normal (`shell_pressure_weights`); forces and
+                        // pressures given point by point are not reproduced.
+                        let constant_pressure = matches!(item.load, Load::Pressure { .. });
+                        let facet = matches!(c.ty, CellType::TRIA3 | CellType::QUAD4);
+                        if !(constant_pressure && facet) {
+                            return Err(FemError::Model(format!(
+                                "distributed load on shell cell {}: only a constant pressure (PRES_REP) on TRIA3/QUAD4 shells is supported",
+                                model.cell_name(*cell)
+                            )));
+                        }
+                        continue;
                     }
                     let expected_dim = model.dim() - 1;
                     if c.ty.dim() as usize != expected_dim || !shape::supported(c.ty) {
@@ -307,6 +315,22 @@ impl Loads {
                         |k| [forces[k][0] * m, forces[k][1] * m, forces[k][2] * m],
                         &mut f,
                     )?;
+                }
+                Load::Pressure { cell, pressure } if model.element_comps(*cell) == 6 => {
+                    let p = pressure * item.mult.eval(t)?;
+                    let (normal, weights) = shell_pressure_weights(model.mesh(), *cell)?;
+                    let c = model.mesh().cell(*cell);
+                    for (&n, w) in c.nodes.iter().zip(weights) {
+                        let first = model.dofs().node_first(n).ok_or_else(|| {
+                            FemError::Model(format!(
+                                "pressure on shell cell {}: a node carries no element of the model",
+                                model.cell_name(*cell)
+                            ))
+                        })?;
+                        for k in 0..3 {
+                            f[first + k] -= p * w * normal[k];
+                        }
+                    }
                 }
                 Load::Pressure { cell, .. } | Load::PressureAt { cell, .. } => {
                     let m = item.mult.eval(t)?;
@@ -452,6 +476,81 @@ fn adjacent_centroids(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
 /// Integrates a traction t(x, n) over a boundary cell into `f`. In 2D the
 /// normal is (t_y, −t_x) of the tangent (node 1 → node 2); in 3D it is
 /// ∂x/∂ξ × ∂x/∂η. Callers re-orient it when they need the outward one.
+/// A constant pressure on a shell facet (code_aster's `CHAR_MECA_PRES_R`
+/// of the DKT/DKQ elements, te0032): the force −p·n on the translations
+/// of the nodes, n the facet's local z axis (`dxtpgl`: (P2−P1)×(P3−P1);
+/// `dxqpgl`: the cross product of the lines joining the mid-points of
+/// opposite edges), and no moment. Returns n and each node's weight: A/3
+/// on a triangle (`dxtfor`); on a quadrangle (`dxqfor`) the linear load of
+/// each of the four corner triangles (1,2,4), (2,3,1), (3,4,2), (4,1,3),
+/// averaged, so that a node receives 1/6 of the areas of the three corner
+/// triangles it belongs to (A/4 on a parallelogram).
+fn shell_pressure_weights(
+    mesh: &aster_mesh::Mesh,
+    cell: CellId,
+) -> Result<([f64; 3], Vec<f64>), FemError> {
+    let c = mesh.cell(cell);
+    let x: Vec<[f64; 3]> = c.nodes.iter().map(|&n| mesh.coord(n)).collect();
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let unit = |a: [f64; 3]| {
+        let l = dot(a, a).sqrt();
+        if l > 0.0 && l.is_finite() {
+            Ok([a[0] / l, a[1] / l, a[2] / l])
+        } else {
+            Err(FemError::Model(format!(
+                "pressure on degenerate shell cell {}",
+                mesh.cell_names
+                    .get(cell.0 as usize)
+                    .map(String::as_str)
+                    .unwrap_or("?")
+            )))
+        }
+    };
+    match x.len() {
+        3 => {
+            let n = cross(sub(x[1], x[0]), sub(x[2], x[0]));
+            let area = 0.5 * dot(n, n).sqrt();
+            Ok((unit(n)?, vec![area / 3.0; 3]))
+        }
+        _ => {
+            let mid = |a: usize, b: usize| {
+                [
+                    0.5 * (x[a][0] + x[b][0]),
+                    0.5 * (x[a][1] + x[b][1]),
+                    0.5 * (x[a][2] + x[b][2]),
+                ]
+            };
+            let ex = unit(sub(mid(2, 1), mid(0, 3)))?;
+            let n = unit(cross(ex, sub(mid(3, 2), mid(1, 0))))?;
+            let ey = cross(n, ex);
+            // Corner triangle areas in the facet's plane (`gquad4`).
+            let local: Vec<[f64; 2]> = x.iter().map(|p| [dot(*p, ex), dot(*p, ey)]).collect();
+            let corner = |i: usize| {
+                let (prev, here, next) = (local[(i + 3) % 4], local[i], local[(i + 1) % 4]);
+                let (a, b) = (
+                    [next[0] - here[0], next[1] - here[1]],
+                    [prev[0] - here[0], prev[1] - here[1]],
+                );
+                0.5 * (a[0] * b[1] - a[1] * b[0])
+            };
+            let t = [corner(0), corner(1), corner(2), corner(3)];
+            // Node i belongs to every corner triangle but the opposite one.
+            let w = (0..4)
+                .map(|i| (t.iter().sum::<f64>() - t[(i + 2) % 4]) / 6.0)
+                .collect();
+            Ok((n, w))
+        }
+    }
+}
+
 fn surface_load(
     model: &Model,
     cell: CellId,
@@ -580,4 +679,65 @@ fn volume_load(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod shell_pressure_tests {
+    use super::shell_pressure_weights;
+    use aster_mesh::{Cell, CellId, CellType, Mesh, NodeId};
+
+    fn mesh(points: &[[f64; 3]], ty: CellType) -> Mesh {
+        Mesh {
+            dim: 3,
+            coords: points.to_vec(),
+            node_names: (0..points.len()).map(|i| format!("N{i}")).collect(),
+            cells: vec![Cell {
+                ty,
+                nodes: (0..points.len() as u32).map(NodeId).collect(),
+            }],
+            cell_names: vec!["M1".into()],
+            ..Mesh::default()
+        }
+    }
+
+    /// A parallelogram gives A/4 per node, a triangle A/3; the normal is the
+    /// facet's local z (right-handed with the node order).
+    #[test]
+    fn parallelogram_and_triangle_weights() {
+        let q = mesh(
+            &[[0., 0., 0.], [2., 0., 0.], [3., 1., 0.], [1., 1., 0.]],
+            CellType::QUAD4,
+        );
+        let (n, w) = shell_pressure_weights(&q, CellId(0)).unwrap();
+        assert!((n[2] - 1.0).abs() < 1e-15 && n[0].abs() < 1e-15);
+        for x in &w {
+            assert!((x - 0.5).abs() < 1e-14, "{w:?}");
+        }
+        let t = mesh(&[[0., 0., 0.], [0., 0., 3.], [0., 2., 0.]], CellType::TRIA3);
+        let (n, w) = shell_pressure_weights(&t, CellId(0)).unwrap();
+        assert!((n[0] + 1.0).abs() < 1e-15, "{n:?}"); // (0,0,3)×(0,2,0) = (−6,0,0)
+        for x in &w {
+            assert!((x - 1.0).abs() < 1e-14, "{w:?}");
+        }
+    }
+
+    /// A trapezoid: each node receives a sixth of the three corner
+    /// triangles it belongs to (code_aster's dxqfor), not the bilinear
+    /// ∫N dA; the weights still sum to the area.
+    #[test]
+    fn trapezoid_weights_are_code_aster_corner_triangles() {
+        let q = mesh(
+            &[[0., 0., 0.], [4., 0., 0.], [3., 1., 0.], [1., 1., 0.]],
+            CellType::QUAD4,
+        );
+        let (_, w) = shell_pressure_weights(&q, CellId(0)).unwrap();
+        // Corner triangle areas: at node 1: 2, 2: 2, 3: 1, 4: 1.
+        let t = [2.0, 2.0, 1.0, 1.0];
+        let expect: Vec<f64> = (0..4).map(|i| (6.0 - t[(i + 2) % 4]) / 6.0).collect();
+        for (a, b) in w.iter().zip(&expect) {
+            assert!((a - b).abs() < 1e-14, "{w:?} vs {expect:?}");
+        }
+        assert!((w.iter().sum::<f64>() - 3.0).abs() < 1e-14);
+        assert!((w[0] - 5.0 / 6.0).abs() < 1e-14 && (w[2] - 2.0 / 3.0).abs() < 1e-14);
+    }
 }

@@ -181,6 +181,88 @@ pub fn efge_elga(
     Ok(out)
 }
 
+/// A level through the thickness of a shell (code_aster's sub-points of
+/// `SIGM_ELNO`/`SIEF_ELGA` on DKT cells, `POST_CHAMP/EXTR_COQUE`): layer
+/// `layer` (1-based) of `COQUE_NCOU` equal layers, at its bottom
+/// (`NIVE_COUCHE='INF'`, position 0), middle (`MOY`, ½) or top (`SUP`, 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShellLevel {
+    pub layer: u32,
+    pub position: f64,
+}
+
+/// The stresses SIXX SIYY SIZZ SIXY of the shells of `model` at one
+/// level, extrapolated to the cells' nodes (`SIGM_ELNO` of that sub-point),
+/// in the efforts' frame of each cell ([`efge_elga`]'s `direction`).
+///
+/// A DKT/DKQ facet is a homogeneous elastic plate: code_aster's
+/// stress at the height z of a Gauss point is H (ε + z κ), and with
+/// N = h H ε and M = h³/12 H κ that is N/h + 12 z M / h³ (SIZZ = 0); z is
+/// measured from the mid-surface, −h/2 at the bottom of the first layer.
+/// The Gauss values (FPG3, FPG4) are extrapolated to the nodes as code_aster's
+/// `te0004` does for each sub-point. `layers` gives a cell's `COQUE_NCOU`.
+/// The transverse shears SIXZ SIYZ are not computed.
+pub fn shell_sigm_elno(
+    model: &Model,
+    u: &[f64],
+    direction: &dyn Fn(CellId) -> [f64; 3],
+    layers: &dyn Fn(CellId) -> u32,
+    level: ShellLevel,
+) -> Result<Vec<CellValues>, FemError> {
+    let efforts = efge_elga(model, u, direction)?;
+    let mut out = Vec::with_capacity(efforts.len());
+    for cv in efforts {
+        let Some(ElementKind::Shell { section, .. }) = model
+            .elements()
+            .iter()
+            .find(|e| e.cell == cv.cell)
+            .map(|e| &e.kind)
+        else {
+            continue;
+        };
+        let n = layers(cv.cell).max(1);
+        if level.layer == 0 || level.layer > n {
+            return Err(cell_error(
+                model,
+                cv.cell,
+                format!(
+                    "layer {} asked of a shell with {n} layer(s) (COQUE_NCOU)",
+                    level.layer
+                ),
+            ));
+        }
+        let h = section.thickness;
+        let z = -0.5 * h + h * (f64::from(level.layer - 1) + level.position) / f64::from(n);
+        let gauss: Vec<Vec<f64>> = cv
+            .points
+            .iter()
+            .map(|e| {
+                let at = |k: usize| e[k] / h + 12.0 * z * e[k + 3] / (h * h * h);
+                vec![at(0), at(1), 0.0, at(2)]
+            })
+            .collect();
+        let ty = model.mesh().cell(cv.cell).ty;
+        let scheme = match ty {
+            CellType::TRIA3 => crate::dkt::fpg3(),
+            _ => crate::dkq::fpg4(),
+        };
+        let e = extrapolation(ty, &scheme);
+        let points = (0..ty.node_count())
+            .map(|node| {
+                (0..4)
+                    .map(|c| (0..gauss.len()).map(|p| e[(node, p)] * gauss[p][c]).sum())
+                    .collect()
+            })
+            .collect();
+        out.push(CellValues {
+            cell: cv.cell,
+            names: vec!["SIXX", "SIYY", "SIZZ", "SIXY"],
+            points,
+        });
+    }
+    Ok(out)
+}
+
 /// Stresses at Gauss points (SIEF_ELGA) for continuum elements, and the
 /// local forces N, VY(, VZ) of springs, for a total displacement `u`.
 pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {

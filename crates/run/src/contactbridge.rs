@@ -27,10 +27,6 @@ pub(crate) const DEFI_CONTACT: Support = Support {
     rules: Some(defi_contact_rules),
     hints: &[
         ("ZONE/SANS_NOEUD", "use SANS_GROUP_NO"),
-        (
-            "ITER_PRE_MAXI",
-            "GCP's preconditioner: its real use is not reproduced to 1e-6 yet",
-        ),
         // Implemented, but its only real case (ssna102g: 3D continuous
         // POINT_FIXE, DZ(PA4) 1.6e-5 and the clamped reaction 7.4e-4 off
         // code_aster) is not reproduced: refused until that is found.
@@ -65,6 +61,9 @@ pub(crate) const DEFI_CONTACT: Support = Support {
         "COEF_RESI",
         "RECH_LINEAIRE",
         "PRE_COND",
+        // The preconditioner's own iteration limit: like PRE_COND, it does
+        // not change the limit the iterative solve converges to.
+        "ITER_PRE_MAXI",
         "LISSAGE",
         "VERI_NORM",
         "STOP_INTERP",

@@ -1167,6 +1167,9 @@ pub fn calc_champ(
     steps: &[u32],
 ) -> Result<EvolResult, ExecError> {
     let Some(run) = result.fem.clone() else {
+        if !result.steps.is_empty() && result.tables.is_empty() {
+            return calc_champ_from_fields(ex, call, result, options, steps);
+        }
         return Err(ExecError::new(
             "CALC_CHAMP: this result was not computed by STAT_NON_LINE/MECA_STATIQUE in this run",
         ));
@@ -1259,6 +1262,119 @@ pub fn calc_champ(
                 }
             };
             step.fields.insert(opt.clone(), field);
+        }
+    }
+    Ok(out)
+}
+
+/// POST_CHAMP/EXTR_COQUE: a result holding, at each of `steps`, the
+/// fields `names` (SIGM_ELNO, SIEF_ELNO) of the shells at one level
+/// through their thickness. Each field must have been computed in `result`
+/// (CALC_CHAMP), as code_aster requires. The new result cannot compute
+/// further fields from a state (`fem: None`): CALC_CHAMP averages its ELNO
+/// fields at the nodes.
+pub fn extract_shell_level(
+    result: &EvolResult,
+    names: &[String],
+    steps: &[u32],
+    level: aster_fem::post::ShellLevel,
+) -> Result<EvolResult, ExecError> {
+    let Some(run) = result.fem.clone() else {
+        return Err(ExecError::new(
+            "POST_CHAMP: this result was not computed by STAT_NON_LINE/MECA_STATIQUE in this run",
+        ));
+    };
+    if !run.model.has_shells() {
+        return Err(ExecError::new(
+            "POST_CHAMP/EXTR_COQUE: the result's model has no shell (DKT) cells",
+        ));
+    }
+    let mut out = EvolResult {
+        typ: result.typ.clone(),
+        mesh: result.mesh,
+        steps: Vec::new(),
+        fem: None,
+        tables: Vec::new(),
+    };
+    for step in result
+        .steps
+        .iter()
+        .filter(|s| steps.contains(&s.nume_ordre))
+    {
+        let raw = run.raw.by_order(step.nume_ordre as usize).ok_or_else(|| {
+            ExecError::new(format!(
+                "POST_CHAMP: no computed state at NUME_ORDRE {}",
+                step.nume_ordre
+            ))
+        })?;
+        let mut fields = BTreeMap::new();
+        for name in names {
+            if !step.fields.contains_key(name) {
+                return Err(ExecError::new(format!(
+                    "POST_CHAMP/EXTR_COQUE: the field {name} is not in the result at NUME_ORDRE {}: compute it first (CALC_CHAMP)",
+                    step.nume_ordre
+                )));
+            }
+            let cells = crate::shells::sigm_elno_at(
+                &run.model,
+                run.cara.as_deref(),
+                &raw.displacement,
+                level,
+            )
+            .map_err(|e| fem_err("POST_CHAMP", e))?;
+            fields.insert(
+                name.clone(),
+                Field::Elem(elem_field(ElemLocation::Nodes, &cells)),
+            );
+        }
+        out.steps.push(Step {
+            nume_ordre: step.nume_ordre,
+            inst: step.inst,
+            fields,
+        });
+    }
+    Ok(out)
+}
+
+/// CALC_CHAMP on a result that holds fields but no state to compute from
+/// (POST_CHAMP's): the nodal averages of its stored ELNO stresses.
+fn calc_champ_from_fields(
+    ex: &Executor,
+    call: &CommandCall,
+    result: &EvolResult,
+    options: &[String],
+    steps: &[u32],
+) -> Result<EvolResult, ExecError> {
+    let mesh = ex.mesh_by_id(result.mesh)?;
+    let mut out = result.clone();
+    for step in out
+        .steps
+        .iter_mut()
+        .filter(|s| steps.contains(&s.nume_ordre))
+    {
+        for opt in options {
+            let source = match opt.as_str() {
+                "SIGM_NOEU" => "SIGM_ELNO",
+                "SIEF_NOEU" => "SIEF_ELNO",
+                other => {
+                    return Err(ex.unsupported(
+                        &format!("CALC_CHAMP option {other} on a result made by POST_CHAMP (only the nodal averages SIGM_NOEU, SIEF_NOEU of its fields)"),
+                        call.span,
+                    ))
+                }
+            };
+            let Some(Field::Elem(elno)) = step.fields.get(source) else {
+                return Err(ExecError::new(format!(
+                    "CALC_CHAMP: {opt} needs {source}, which the result does not hold at NUME_ORDRE {}",
+                    step.nume_ordre
+                )));
+            };
+            let Some(noeu) = elno.nodal_mean(&mesh) else {
+                return Err(ExecError::new(format!(
+                    "CALC_CHAMP: {source} is not a field at the nodes of the cells"
+                )));
+            };
+            step.fields.insert(opt.clone(), Field::Nodal(noeu));
         }
     }
     Ok(out)

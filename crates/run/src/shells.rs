@@ -3,12 +3,16 @@
 //! the keyword), and the shells' efforts `EFGE_ELGA` in the frame of
 //! `AFFE_CARA_ELEM/COQUE` (`ANGL_REP`/`VECTEUR`).
 //!
-//! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`]):
-//! refused with them are contact zones on shell cells (code_aster pairs
-//! the mid-surface, or with `DIST_COQUE='OUI'` the surface offset by half
-//! the thickness: not reproduced), behaviours other than `ELAS` in small
-//! strains, dynamics (no rotational inertia), and the fields through the
-//! thickness (`SIEF_ELGA`/`SIGM_ELNO` by layer).
+//! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`]).
+//! Contact zones on shell cells pair their mid-surfaces, as code_aster does
+//! without `DIST_COQUE` (`DIST_COQUE='OUI'`, the surface offset by half the
+//! thickness, is refused by DEFI_CONTACT's value table); a constant
+//! `PRES_REP` loads them along their normal. The stresses through the
+//! thickness are computed at one level at a time from the efforts
+//! (`sigm_elno_at`, for `POST_CHAMP/EXTR_COQUE`); CALC_CHAMP's own
+//! `SIGM_ELNO` holds the continuum cells only. Refused with shells:
+//! behaviours other than `ELAS` in small strains and dynamics (no
+//! rotational inertia).
 
 use crate::concept::{CaraElem, ModelDef, Modelisation};
 use crate::executor::Executor;
@@ -30,43 +34,10 @@ fn is_structural(model: &ModelDef, cell: CellId) -> bool {
     )
 }
 
-/// DEFI_CONTACT: a zone whose master or slave cells are shells is refused
-/// at its `GROUP_MA_MAIT`/`GROUP_MA_ESCL`.
-pub(crate) fn refuse_contact_zones(
-    ex: &Executor,
-    kw: &Keywords,
-    model: &ModelDef,
-    mesh: &Mesh,
-) -> Result<(), ExecError> {
-    if !model.has_shells() {
-        return Ok(());
-    }
-    for occ in kw.factor("ZONE") {
-        for key in ["GROUP_MA_MAIT", "GROUP_MA_ESCL"] {
-            let mut cells = Vec::new();
-            for g in occ.simple(key).iter().filter_map(|s| s.as_str()) {
-                if let Ok(c) = crate::select::group_ma(mesh, g) {
-                    cells.extend_from_slice(c);
-                }
-            }
-            if let Some(&c) = cells.iter().find(|&&c| is_shell(model, c)) {
-                let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
-                return Err(ex.unsupported(
-                    &format!(
-                        "DEFI_CONTACT/ZONE/{key} on shell cells (cell {} is DKT): contact of shell surfaces (the mid-surface, or with DIST_COQUE='OUI' the surface offset by half the thickness) is not implemented",
-                        crate::select::cell_name(mesh, c)
-                    ),
-                    span,
-                ));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// AFFE_CHAR_MECA: a distributed load (`PRES_REP`, `FORCE_FACE`) on shell
-/// cells is refused at its factor keyword (code_aster's shell pressure
-/// acts along the facet's normal on the shell itself: not reproduced).
+/// AFFE_CHAR_MECA: a distributed force (`FORCE_FACE`, `FORCE_CONTOUR`) on
+/// shell cells is refused at its factor keyword (code_aster loads shells
+/// with `FORCE_COQUE`, not reproduced; `PRES_REP` is: aster-fem's
+/// `shell_pressure_weights`).
 pub(crate) fn refuse_loads_on_shells(
     ex: &Executor,
     key: &str,
@@ -168,4 +139,32 @@ pub(crate) fn efge_elga(
     aster_fem::post::efge_elga(model, u, &|cell| {
         direction.get(&cell).copied().unwrap_or([1., 0., 0.])
     })
+}
+
+/// The stresses of the shells of `model` at one level through their
+/// thickness, at their nodes (`SIGM_ELNO` of a sub-point, what
+/// `POST_CHAMP/EXTR_COQUE` extracts), in the frame of `efge_elga`.
+pub(crate) fn sigm_elno_at(
+    model: &Model,
+    cara: Option<&CaraElem>,
+    u: &[f64],
+    level: aster_fem::post::ShellLevel,
+) -> Result<Vec<CellValues>, aster_fem::FemError> {
+    let mut direction: BTreeMap<CellId, [f64; 3]> = BTreeMap::new();
+    let mut layers: BTreeMap<CellId, u32> = BTreeMap::new();
+    if let Some(c) = cara {
+        for s in &c.shells {
+            for &cell in &s.cells {
+                direction.insert(cell, s.direction);
+                layers.insert(cell, s.layers);
+            }
+        }
+    }
+    aster_fem::post::shell_sigm_elno(
+        model,
+        u,
+        &|cell| direction.get(&cell).copied().unwrap_or([1., 0., 0.]),
+        &|cell| layers.get(&cell).copied().unwrap_or(1),
+        level,
+    )
 }

@@ -69,24 +69,17 @@ fn refused(text: &str, tag: &str, what: &[&str]) {
 }
 
 #[test]
-fn contact_on_shells_is_refused_at_the_zone() {
+fn contact_with_dist_coque_is_refused_at_the_keyword() {
     let text = strips().replace(
         "LINST = ",
         "CONT = DEFI_CONTACT(MODELE=MO, FORMULATION=\"CONTINUE\", \
-         ZONE=_F(GROUP_MA_MAIT=\"SQ\", GROUP_MA_ESCL=\"ST\"))\n\nLINST = ",
+         ZONE=_F(GROUP_MA_MAIT=\"SQ\", GROUP_MA_ESCL=\"ST\", DIST_COQUE=\"OUI\", CARA_ELEM=CARA))\n\nLINST = ",
     );
-    refused(
-        &text,
-        "contact",
-        &[
-            "DEFI_CONTACT/ZONE/GROUP_MA_MAIT on shell cells",
-            "DIST_COQUE",
-        ],
-    );
+    refused(&text, "contact", &["DEFI_CONTACT/ZONE/DIST_COQUE"]);
 }
 
 #[test]
-fn plasticity_and_pressure_on_shells_are_refused() {
+fn plasticity_and_surface_forces_on_shells_are_refused() {
     let plastic = strips()
         .replace(
             "ELAS=_F(E=2.0e11, NU=0.0)",
@@ -98,14 +91,109 @@ fn plasticity_and_pressure_on_shells_are_refused() {
         "plastic",
         &["COMPORTEMENT/RELATION other than ELAS on shell or beam cells"],
     );
-    let pressure = strips().replace(
+    let force = strips().replace(
         "FORCE_NODALE=(",
-        "PRES_REP=_F(GROUP_MA=\"SQ\", PRES=1.0),\n    FORCE_NODALE=(",
+        "FORCE_FACE=_F(GROUP_MA=\"SQ\", FZ=1.0),\n    FORCE_NODALE=(",
     );
     refused(
-        &pressure,
-        "pressure",
-        &["AFFE_CHAR_MECA/PRES_REP on shell cells"],
+        &force,
+        "force",
+        &["AFFE_CHAR_MECA/FORCE_FACE on shell cells"],
+    );
+}
+
+// The stacked strips (comm/shell_stack.comm): contact of shell
+// mid-surfaces, and the stresses of one layer level (POST_CHAMP/EXTR_COQUE,
+// SIGM_NOEU) against beam theory within 1e-9.
+
+fn stack() -> String {
+    scene::read("shell_stack.comm")
+}
+
+fn run_stack(text: &str, tag: &str) -> (usize, usize, Option<String>) {
+    scene::run_on(text, "comm/shell_stack.mail", &format!("stack-{tag}"))
+}
+
+#[test]
+fn stacked_strips_in_discrete_contact_share_the_tip_force() {
+    assert_eq!(run_stack(&stack(), "discrete"), (10, 0, None));
+}
+
+/// The strips under a pressure on the upper one instead of the tip force:
+/// code_aster's shell pressure is A/4 per node of a rectangle (no moment),
+/// so each strip is a cantilever under nodal forces 5 N (2.5 N at the
+/// tip), which DKQ represents exactly: DZ(L) = Σ F·a²·(3L − a)/(6EI) =
+/// −3.7625e-3, and at x = 0.5 MXX = 62.5, SIXX = ∓3.75e6. Discrete and
+/// continuous formulations (every slave node in contact) alike.
+fn pressed(formulation: &str) -> String {
+    let text = stack()
+        .replace(
+            "FORCE_NODALE=_F(GROUP_NO=\"TIPT\", FZ=-5.0)",
+            "PRES_REP=_F(GROUP_MA=\"ST\", PRES=-1000.0)",
+        )
+        .replace("=-1.0e-3", "=-3.7625e-3")
+        .replace("=-1.5e6", "=-3.75e6")
+        .replace("=1.5e6", "=3.75e6")
+        .replace(
+            "FORMULATION=\"DISCRETE\"",
+            &format!("FORMULATION=\"{formulation}\""),
+        );
+    assert!(text.contains("PRES_REP") && text.contains("3.7625e-3") && text.contains("=3.75e6"));
+    text
+}
+
+#[test]
+fn stacked_strips_under_pressure_in_discrete_contact() {
+    assert_eq!(
+        run_stack(&pressed("DISCRETE"), "pressed-discrete"),
+        (10, 0, None)
+    );
+}
+
+#[test]
+fn stacked_strips_under_pressure_in_continuous_contact() {
+    assert_eq!(
+        run_stack(&pressed("CONTINUE"), "pressed-continuous"),
+        (10, 0, None)
+    );
+}
+
+/// Without contact the upper strip alone carries the force: the check of
+/// the lower strip's deflection fails (the scene's checks can fail).
+#[test]
+fn without_contact_the_lower_strip_does_not_move() {
+    let text = stack().replace("    CONTACT=CONT,\n", "");
+    assert!(!text.contains("CONTACT=CONT"));
+    let (ok, nook, err) = run_stack(&text, "free");
+    assert_eq!(err, None);
+    assert!(nook >= 2 && ok + nook == 10, "{ok} OK, {nook} NOOK");
+}
+
+#[test]
+fn a_layer_beyond_coque_ncou_is_an_error_naming_the_cell() {
+    let text = stack().replace(
+        "NUME_COUCHE=1, NIVE_COUCHE=\"MOY\"",
+        "NUME_COUCHE=2, NIVE_COUCHE=\"MOY\"",
+    );
+    let (_, _, err) = run_stack(&text, "layer");
+    let err = err.expect("an error");
+    assert!(
+        err.contains("layer 2") && err.contains("COQUE_NCOU"),
+        "{err}"
+    );
+}
+
+#[test]
+fn post_champ_needs_the_field_computed_first() {
+    let text = stack().replace(
+        "RESU = CALC_CHAMP(reuse=RESU, RESULTAT=RESU, CONTRAINTE=\"SIGM_ELNO\")\n",
+        "",
+    );
+    let (_, _, err) = run_stack(&text, "nofield");
+    let err = err.expect("an error");
+    assert!(
+        err.contains("SIGM_ELNO") && err.contains("CALC_CHAMP"),
+        "{err}"
     );
 }
 

@@ -27,6 +27,9 @@ pub struct ShellCara {
     /// its efforts' frame (`ANGL_REP` α, β: (cos β cos α, cos β sin α,
     /// −sin β); `VECTEUR` as given; by default global X).
     pub direction: [f64; 3],
+    /// `COQUE_NCOU`: the layers of the stresses through the thickness
+    /// (sub-points of `SIGM_ELNO`, `POST_CHAMP/EXTR_COQUE`); default 1.
+    pub layers: u32,
 }
 
 /// The `COQUE` keywords AFFE_CARA_ELEM reads (`crate::support`).
@@ -103,6 +106,16 @@ pub(crate) fn shells(
                 -beta.sin(),
             ]
         };
+        let layers = match occ.first("COQUE_NCOU").and_then(|v| v.as_i64()) {
+            None => 1,
+            Some(n) if (1..=i64::from(u16::MAX)).contains(&n) => n as u32,
+            Some(n) => {
+                return Err(err(
+                    "COQUE_NCOU",
+                    format!("COQUE_NCOU = {n}: a number of layers must be at least 1"),
+                ))
+            }
+        };
         let cells = select::cells(occ, mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/COQUE: {e}")))?;
         if let Some(bad) = select::misfit(mesh, &cells, |c| {
@@ -120,6 +133,7 @@ pub(crate) fn shells(
                 drilling,
             },
             direction,
+            layers,
         });
     }
     Ok(out)

@@ -460,7 +460,6 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     for occ in kw.factor("PRES_REP") {
         let cells = select::cells(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CHAR_MECA/PRES_REP: {e}")))?;
-        crate::shells::refuse_loads_on_shells(ex, "PRES_REP", occ, &model, &mesh, &cells)?;
         let pressure = occ.f64("PRES").ok_or_else(|| {
             ex.kw_error(
                 "AFFE_CHAR_MECA/PRES_REP",
@@ -532,7 +531,6 @@ pub fn defi_contact(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONTACT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
-    crate::shells::refuse_contact_zones(ex, kw, &model, &*ex.mesh_by_id(model.mesh)?)?;
     let formulation = kw.str("FORMULATION").unwrap_or("DISCRETE");
     if formulation != "LIAISON_UNIL" {
         // Check the keywords now (errors at the command that has them);

@@ -192,6 +192,11 @@ pub static COMMANDS: &[Command] = &[
         support: crate::solve::CALC_CHAMP,
     },
     Command {
+        name: "POST_CHAMP",
+        run: results::post_champ,
+        support: results::POST_CHAMP,
+    },
+    Command {
         name: "CREA_CHAMP",
         run: post::crea_champ,
         support: post::CREA_CHAMP,

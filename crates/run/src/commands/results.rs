@@ -7,6 +7,12 @@
 //!   `CRITERE`), else at a new NUME_ORDRE after the largest (1 for a new
 //!   result). `reuse=` with `RESULTAT` adds to a result.
 //!
+//! - `POST_CHAMP(EXTR_COQUE=_F(NOM_CHAM, NUME_COUCHE, NIVE_COUCHE))`: a
+//!   new result whose `SIGM_ELNO`/`SIEF_ELNO` is the shells' stresses at one
+//!   level through their thickness (`crate::shells::sigm_elno_at`), at the
+//!   selected steps of a result where CALC_CHAMP computed that field;
+//!   CALC_CHAMP's `SIGM_NOEU` on it averages that field at the nodes.
+//!
 //! `RECU_TABLE` (both its `NOM_TABLE` and `NOM_PARA` forms) is in `tables`.
 
 use crate::concept::{Concept, EvolResult, Step};
@@ -120,4 +126,73 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     result.steps.sort_by_key(|s| s.nume_ordre);
     store_result(ex, call, Concept::Result(Rc::new(result)))
+}
+
+/// What POST_CHAMP reads (`crate::support`): the shells' layer extraction.
+pub(crate) const POST_CHAMP: Support = Support {
+    keywords: &[
+        "RESULTAT",
+        "TOUT_ORDRE",
+        "NUME_ORDRE",
+        "INST",
+        "LIST_INST",
+        "PRECISION",
+        "CRITERE",
+        "TOUT",
+        "EXTR_COQUE",
+        "EXTR_COQUE/NOM_CHAM",
+        "EXTR_COQUE/NUME_COUCHE",
+        "EXTR_COQUE/NIVE_COUCHE",
+    ],
+    values: &[Values::new(
+        "EXTR_COQUE/NOM_CHAM",
+        &["SIGM_ELNO", "SIEF_ELNO"],
+    )],
+    hints: &[],
+    reuse: false,
+    rules: None,
+};
+
+pub fn post_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let r = ex.required("POST_CHAMP", kw, "RESULTAT")?;
+    let result = ex.result(r)?;
+    let extr = kw.factor("EXTR_COQUE");
+    let Some(occ) = extr.first() else {
+        return Err(ex.unsupported("POST_CHAMP other than EXTR_COQUE", call.span));
+    };
+    let names: Vec<String> = occ
+        .simple("NOM_CHAM")
+        .iter()
+        .filter_map(|v| v.as_str().map(str::to_string))
+        .collect();
+    let layer = occ
+        .first("NUME_COUCHE")
+        .and_then(|v| v.as_i64())
+        .filter(|&n| n >= 1 && n <= i64::from(u32::MAX))
+        .ok_or_else(|| {
+            ex.kw_error(
+                "POST_CHAMP",
+                occ,
+                "NUME_COUCHE",
+                "a layer number (>= 1) is required",
+            )
+        })? as u32;
+    let position = match occ.str("NIVE_COUCHE") {
+        Some("INF") => 0.0,
+        Some("MOY") => 0.5,
+        Some("SUP") => 1.0,
+        _ => {
+            return Err(ex.kw_error(
+                "POST_CHAMP",
+                occ,
+                "NIVE_COUCHE",
+                "NIVE_COUCHE is one of INF, MOY, SUP",
+            ))
+        }
+    };
+    let level = aster_fem::post::ShellLevel { layer, position };
+    let steps = crate::commands::select_steps_pub(ex, "POST_CHAMP", kw, &result)?;
+    let out = crate::fembridge::extract_shell_level(&result, &names, &steps, level)?;
+    store_result(ex, call, Concept::Result(Rc::new(out)))
 }
