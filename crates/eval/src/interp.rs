@@ -1382,6 +1382,12 @@ impl<'a> Interp<'a> {
                 _ => Ok(Value::Method(Box::new(v.clone()), Rc::from(name))),
             },
             Value::Unknown => Ok(Value::Unknown),
+            // A table's text (`TAB.EXTR_TABLE()` when commands run) asked
+            // for the attributes of code_aster's Table object.
+            Value::Str(_) if ["rows", "para", "values", "get_nom_para"].contains(&name) => unsupported(
+                span,
+                format!("`.{name}` of the result of EXTR_TABLE(): code_aster's Table object (rows, columns) is not reproduced (EXTR_TABLE() gives the table's text)"),
+            ),
             Value::Raised(e) => match name {
                 "id_message" => Ok(Value::str(&e.id_message)),
                 "message" => Ok(Value::str(&e.message)),

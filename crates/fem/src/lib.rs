@@ -15,6 +15,7 @@ pub mod assembly;
 pub mod autodiff;
 pub mod beam;
 pub mod behaviour;
+pub mod coupling;
 mod diag;
 pub mod dkq;
 pub mod dkt;

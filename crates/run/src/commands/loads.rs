@@ -335,6 +335,12 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "LIAISON_GROUP/COEF_MULT_1",
         "LIAISON_GROUP/COEF_MULT_2",
         "LIAISON_GROUP/COEF_IMPO",
+        "LIAISON_ELEM",
+        "LIAISON_ELEM/OPTION",
+        "LIAISON_ELEM/GROUP_MA_1",
+        "LIAISON_ELEM/GROUP_NO_2",
+        "LIAISON_ELEM/GROUP_MA_2",
+        "LIAISON_ELEM/ANGL_MAX",
         "LIAISON_UNIF",
         "LIAISON_UNIF/GROUP_NO",
         "LIAISON_UNIF/NOEUD",
@@ -349,10 +355,10 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "LIAISON_DDL/COEF_MULT",
         "LIAISON_DDL/COEF_IMPO",
     ],
-    values: &[Values::new(
-        "DDL_IMPO/BLOCAGE",
-        &["DEPLACEMENT", "ROTATION"],
-    )],
+    values: &[
+        Values::new("DDL_IMPO/BLOCAGE", &["DEPLACEMENT", "ROTATION"]),
+        Values::new("LIAISON_ELEM/OPTION", &["3D_POU"]),
+    ],
     hints: &[],
     reuse: true,
     rules: None,
@@ -413,6 +419,10 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             (&model, &mesh, &carried),
             rhs,
         )?);
+    }
+    for occ in kw.factor("LIAISON_ELEM") {
+        load.relations
+            .extend(liaison_elem_3d_pou(ex, occ, (&model, &mesh, &carried))?);
     }
     for occ in kw.factor("LIAISON_UNIF") {
         let what = "AFFE_CHAR_MECA/LIAISON_UNIF";
@@ -874,4 +884,71 @@ mod tests {
             vec![i(4, "DY", 1.0), i(5, "DX", 2.0), i(4, "DX", 0.0)]
         );
     }
+}
+
+/// `LIAISON_ELEM(OPTION='3D_POU')`: the six relations tying the solid's
+/// face `GROUP_MA_1` to the node `GROUP_NO_2` (or the POI1 cell
+/// `GROUP_MA_2`), which must carry rotations (a `DIS_TR` or beam node):
+/// aster-fem's `coupling::solid_to_beam`, code_aster's `rapo3d`. The
+/// face's planarity check (`ANGL_MAX`) is not made.
+fn liaison_elem_3d_pou(
+    ex: &Executor,
+    occ: &Keywords,
+    (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+) -> Result<Vec<LinearRelation>, ExecError> {
+    let what = "AFFE_CHAR_MECA/LIAISON_ELEM";
+    let err = |key: &str, m: String| ex.kw_error(what, occ, key, m);
+    let mut faces = Vec::new();
+    for g in occ.simple("GROUP_MA_1").iter().filter_map(|s| s.as_str()) {
+        let cells = select::group_ma(mesh, g).map_err(|e| err("GROUP_MA_1", e.to_string()))?;
+        faces.extend_from_slice(cells);
+    }
+    if faces.is_empty() {
+        return Err(err(
+            "GROUP_MA_1",
+            "3D_POU needs the solid's face (GROUP_MA_1)".into(),
+        ));
+    }
+    let mut nodes: Vec<NodeId> = Vec::new();
+    if let Some(g) = occ.str("GROUP_NO_2") {
+        nodes.extend_from_slice(
+            select::group_no(mesh, g).map_err(|e| err("GROUP_NO_2", e.to_string()))?,
+        );
+    }
+    if let Some(g) = occ.str("GROUP_MA_2") {
+        for &c in select::group_ma(mesh, g).map_err(|e| err("GROUP_MA_2", e.to_string()))? {
+            nodes.extend_from_slice(&mesh.cell(c).nodes);
+        }
+    }
+    nodes.sort();
+    nodes.dedup();
+    let key = if occ.contains("GROUP_NO_2") {
+        "GROUP_NO_2"
+    } else {
+        "GROUP_MA_2"
+    };
+    let [node] = nodes[..] else {
+        return Err(err(
+            key,
+            format!(
+                "3D_POU ties the face to one beam node; {} nodes given (code_aster's MODELISA6_40)",
+                nodes.len()
+            ),
+        ));
+    };
+    let rows = aster_fem::coupling::solid_to_beam(mesh, &faces, node)
+        .map_err(|e| err("GROUP_MA_1", e.to_string()))?;
+    const ORDER: [&str; 6] = ["DX", "DY", "DZ", "DRX", "DRY", "DRZ"];
+    let mut out = Vec::with_capacity(rows.len());
+    for row in rows {
+        let mut terms = Vec::with_capacity(row.len());
+        for (n, k, c) in row {
+            let comp = comp_name(ORDER[k])
+                .ok_or_else(|| ExecError::new(format!("{what}: unknown component {}", ORDER[k])))?;
+            check_dof(model, mesh, carried, n, comp, what)?;
+            terms.push((n, comp, c));
+        }
+        out.push(LinearRelation { terms, rhs: 0.0 });
+    }
+    Ok(out)
 }

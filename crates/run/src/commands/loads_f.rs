@@ -103,7 +103,14 @@ fn time_function(
 }
 
 const DISPLACEMENTS: [(&str, CompName); 3] = [("DX", "DX"), ("DY", "DY"), ("DZ", "DZ")];
-const FORCES: [(&str, CompName); 3] = [("FX", "DX"), ("FY", "DY"), ("FZ", "DZ")];
+const FORCES: [(&str, CompName); 6] = [
+    ("FX", "DX"),
+    ("FY", "DY"),
+    ("FZ", "DZ"),
+    ("MX", "DRX"),
+    ("MY", "DRY"),
+    ("MZ", "DRZ"),
+];
 
 /// What AFFE_CHAR_MECA_F reads (`crate::support`).
 pub(crate) const AFFE_CHAR_MECA_F: Support = Support::keywords(&[
@@ -127,6 +134,9 @@ pub(crate) const AFFE_CHAR_MECA_F: Support = Support::keywords(&[
     "FORCE_NODALE/FX",
     "FORCE_NODALE/FY",
     "FORCE_NODALE/FZ",
+    "FORCE_NODALE/MX",
+    "FORCE_NODALE/MY",
+    "FORCE_NODALE/MZ",
     "FORCE_CONTOUR",
     "FORCE_CONTOUR/GROUP_MA",
     "FORCE_CONTOUR/MAILLE",

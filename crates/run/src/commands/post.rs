@@ -43,13 +43,27 @@ pub fn select_steps<'r>(
                 .collect(),
         ),
     };
-    if occ.contains("NUME_ORDRE") {
-        for n in occ.simple("NUME_ORDRE").iter().filter_map(|s| s.as_i64()) {
+    // LIST_ORDRE (a DEFI_LIST_ENTI) designates its numbers as NUME_ORDRE.
+    let (order_kw, orders): (&str, Vec<i64>) = match occ.concept("LIST_ORDRE") {
+        Some(l) => (
+            "LIST_ORDRE",
+            ex.real_list(l)?.iter().map(|&x| x.round() as i64).collect(),
+        ),
+        None => (
+            "NUME_ORDRE",
+            occ.simple("NUME_ORDRE")
+                .iter()
+                .filter_map(|s| s.as_i64())
+                .collect(),
+        ),
+    };
+    if occ.contains("NUME_ORDRE") || occ.contains("LIST_ORDRE") {
+        for n in orders {
             out.push(result.step_numbered(n as u32).ok_or_else(|| {
                 ex.kw_error(
                     cmd,
                     occ,
-                    "NUME_ORDRE",
+                    order_kw,
                     format!(
                         "the result has no NUME_ORDRE {n} (it has 0 to {})",
                         result.steps.len().saturating_sub(1)
@@ -702,6 +716,7 @@ pub(crate) const POST_RELEVE_T: Support = Support {
         "ACTION/INST",
         "ACTION/LIST_INST",
         "ACTION/NUME_ORDRE",
+        "ACTION/LIST_ORDRE",
         "ACTION/TOUT_ORDRE",
         "ACTION/CRITERE",
         "ACTION/PRECISION",
