@@ -42,23 +42,13 @@ pub fn solid_to_beam(
         if c.ty.dim() != 2 || !shape::supported(c.ty) {
             return Err(FemError::Model(format!(
                 "LIAISON_ELEM 3D_POU: cell {} ({}) is not a face (TRIA3, QUAD4, …) of the solid",
-                cell_name(mesh, cell),
+                mesh.cell_name(cell),
                 c.ty.name()
             )));
         }
         for gp in shape::load_scheme(c.ty) {
             let s = shape::shape(c.ty, gp.xi);
-            let mut x = [0.0; 3];
-            let mut t1 = [0.0; 3];
-            let mut t2 = [0.0; 3];
-            for (i, &n) in c.nodes.iter().enumerate() {
-                let p = mesh.coord(n);
-                for k in 0..3 {
-                    x[k] += s.n[i] * p[k];
-                    t1[k] += s.dn[i][0] * p[k];
-                    t2[k] += s.dn[i][1] * p[k];
-                }
-            }
+            let [x, t1, t2] = shape::point_and_tangents(mesh, c, &s);
             let normal = [
                 t1[1] * t2[2] - t1[2] * t2[1],
                 t1[2] * t2[0] - t1[0] * t2[2],
@@ -68,7 +58,7 @@ pub fn solid_to_beam(
             if !(jac > 0.0 && jac.is_finite()) {
                 return Err(FemError::Model(format!(
                     "LIAISON_ELEM 3D_POU: degenerate face cell {}",
-                    cell_name(mesh, cell)
+                    mesh.cell_name(cell)
                 )));
             }
             let w = gp.weight * jac;
@@ -130,13 +120,6 @@ pub fn solid_to_beam(
         }
     }
     Ok(rows)
-}
-
-fn cell_name(mesh: &Mesh, cell: CellId) -> String {
-    mesh.cell_names
-        .get(cell.0 as usize)
-        .cloned()
-        .unwrap_or_else(|| format!("#{}", cell.0 + 1))
 }
 
 #[cfg(test)]

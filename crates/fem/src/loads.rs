@@ -507,10 +507,7 @@ fn shell_pressure_weights(
         } else {
             Err(FemError::Model(format!(
                 "pressure on degenerate shell cell {}",
-                mesh.cell_names
-                    .get(cell.0 as usize)
-                    .map(String::as_str)
-                    .unwrap_or("?")
+                mesh.cell_name(cell)
             )))
         }
     };
@@ -564,17 +561,7 @@ fn surface_load(
     let axis = model.hypothesis() == Some(Hypothesis::Axisymmetric);
     for (k, gp) in scheme.iter().enumerate() {
         let s = shape::shape(c.ty, gp.xi);
-        let mut x = [0.0; 3];
-        let mut t1 = [0.0; 3];
-        let mut t2 = [0.0; 3];
-        for (i, &n) in c.nodes.iter().enumerate() {
-            let p = mesh.coord(n);
-            for k in 0..3 {
-                x[k] += s.n[i] * p[k];
-                t1[k] += s.dn[i][0] * p[k];
-                t2[k] += s.dn[i][1] * p[k];
-            }
-        }
+        let [x, t1, t2] = shape::point_and_tangents(mesh, c, &s);
         let (normal, jac) = if dim == 2 {
             let l = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
             ([t1[1] / l, -t1[0] / l, 0.], l)

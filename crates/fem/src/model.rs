@@ -445,11 +445,7 @@ impl Model {
 
     /// Name of a cell for messages.
     pub fn cell_name(&self, id: CellId) -> String {
-        self.mesh
-            .cell_names
-            .get(id.0 as usize)
-            .cloned()
-            .unwrap_or_else(|| format!("#{}", id.0 + 1))
+        self.mesh.cell_name(id)
     }
 }
 

@@ -26,6 +26,25 @@ pub struct ShapeAt {
     pub dn: Vec<[f64; 3]>,
 }
 
+/// The physical point x = Σ Nᵢ xᵢ of a cell at the shape values `s` and
+/// the tangents ∂x/∂ξ, ∂x/∂η (a segment or face's frame).
+pub fn point_and_tangents(
+    mesh: &aster_mesh::Mesh,
+    c: &aster_mesh::Cell,
+    s: &ShapeAt,
+) -> [[f64; 3]; 3] {
+    let mut out = [[0.0; 3]; 3];
+    for (i, &n) in c.nodes.iter().enumerate() {
+        let p = mesh.coord(n);
+        for k in 0..3 {
+            out[0][k] += s.n[i] * p[k];
+            out[1][k] += s.dn[i][0] * p[k];
+            out[2][k] += s.dn[i][1] * p[k];
+        }
+    }
+    out
+}
+
 /// Whether we have an isoparametric formulation for this cell type.
 pub fn supported(ty: CellType) -> bool {
     !matches!(ty, CellType::POI1 | CellType::SEG4)

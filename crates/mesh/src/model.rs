@@ -181,4 +181,12 @@ impl Mesh {
     pub fn coord(&self, id: NodeId) -> [f64; 3] {
         self.coords[id.0 as usize]
     }
+
+    /// A cell's name for messages (`#n`, 1-based, for a cell without one).
+    pub fn cell_name(&self, id: CellId) -> String {
+        self.cell_names
+            .get(id.0 as usize)
+            .cloned()
+            .unwrap_or_else(|| format!("#{}", id.0 + 1))
+    }
 }
