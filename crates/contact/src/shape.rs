@@ -212,6 +212,34 @@ impl SurfaceKind {
         }
     }
 
+    /// `xi` brought onto the border of the reference domain where it lies
+    /// within 1e-12 of it, and whether it is then inside, as code_aster's
+    /// `cfadju` (`atol` = 1e-12) before it decides a projection's status:
+    /// a point that projects onto a node shared by two cells is inside both,
+    /// whatever round-off puts it on one side or the other, so the first
+    /// cell keeps it (`apchoi`) instead of the noise choosing.
+    pub fn snap_to_border(self, xi: [f64; 2]) -> ([f64; 2], bool) {
+        const ATOL: f64 = 1e-12;
+        let snap = |v: f64, b: f64| if (v - b).abs() <= ATOL { b } else { v };
+        match self {
+            SurfaceKind::Seg2 | SurfaceKind::Seg3 => {
+                let x = snap(snap(xi[0], -1.0), 1.0);
+                ([x, xi[1]], (-1.0..=1.0).contains(&x))
+            }
+            SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
+                let x = snap(snap(xi[0], -1.0), 1.0);
+                let y = snap(snap(xi[1], -1.0), 1.0);
+                ([x, y], (-1.0..=1.0).contains(&x) && (-1.0..=1.0).contains(&y))
+            }
+            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => {
+                let x = snap(xi[0], 0.0);
+                let y = snap(xi[1], 0.0);
+                let sum = snap(x + y, 1.0);
+                ([x, y], x >= 0.0 && y >= 0.0 && sum <= 1.0)
+            }
+        }
+    }
+
     /// How far `xi` lies outside the reference domain, in reference
     /// coordinates (0 inside).
     pub fn outside_distance(self, xi: [f64; 2]) -> f64 {
