@@ -166,7 +166,8 @@ pub fn pair_point(
                 } else {
                     cell.kind.outside_distance(snapped)
                 };
-                let near_tole = (outside - g.tole_proj_ext).abs() <= 1e-12 + g.tole_proj_ext * 1e-12;
+                let near_tole =
+                    (outside - g.tole_proj_ext).abs() <= 1e-12 + g.tole_proj_ext * 1e-12;
                 let status = if inside {
                     ProjStatus::Inside
                 } else if g.tole_proj_ext < 0.0 || outside <= g.tole_proj_ext || near_tole {
