@@ -158,24 +158,15 @@ pub fn pair_point(
                 let Some(p) = projected else {
                     continue;
                 };
-                // code_aster's `cfadju`: within 1e-12 of the border is on
-                // it (inside); TOLE_PROJ_EXT compared with the same slack.
-                let (snapped, inside) = cell.kind.snap_to_border(p.xi);
-                let outside = if inside {
-                    0.0
-                } else {
-                    cell.kind.outside_distance(snapped)
-                };
-                let near_tole =
-                    (outside - g.tole_proj_ext).abs() <= 1e-12 + g.tole_proj_ext * 1e-12;
-                let status = if inside {
+                let outside = cell.kind.outside_distance(p.xi);
+                let status = if outside <= 0.0 {
                     ProjStatus::Inside
-                } else if g.tole_proj_ext < 0.0 || outside <= g.tole_proj_ext || near_tole {
+                } else if g.tole_proj_ext < 0.0 || outside <= g.tole_proj_ext {
                     ProjStatus::Tolerated
                 } else {
                     ProjStatus::Outside
                 };
-                let xi = cell.kind.clamp(snapped);
+                let xi = cell.kind.clamp(p.xi);
                 let p = crate::shape::interpolate(cell.kind, &nodes, xi);
                 let d = norm(sub(xs, p.x));
                 let better = match &chosen {

@@ -212,37 +212,6 @@ impl SurfaceKind {
         }
     }
 
-    /// `xi` brought onto the border of the reference domain where it lies
-    /// within 1e-12 of it, and whether it is then inside, as code_aster's
-    /// `cfadju` (`atol` = 1e-12) before it decides a projection's status:
-    /// a point that projects onto a node shared by two cells is inside both,
-    /// whatever round-off puts it on one side or the other, so the first
-    /// cell keeps it (`apchoi`) instead of the noise choosing.
-    pub fn snap_to_border(self, xi: [f64; 2]) -> ([f64; 2], bool) {
-        const ATOL: f64 = 1e-12;
-        let snap = |v: f64, b: f64| if (v - b).abs() <= ATOL { b } else { v };
-        match self {
-            SurfaceKind::Seg2 | SurfaceKind::Seg3 => {
-                let x = snap(snap(xi[0], -1.0), 1.0);
-                ([x, xi[1]], (-1.0..=1.0).contains(&x))
-            }
-            SurfaceKind::Quad4 | SurfaceKind::Quad8 | SurfaceKind::Quad9 => {
-                let x = snap(snap(xi[0], -1.0), 1.0);
-                let y = snap(snap(xi[1], -1.0), 1.0);
-                (
-                    [x, y],
-                    (-1.0..=1.0).contains(&x) && (-1.0..=1.0).contains(&y),
-                )
-            }
-            SurfaceKind::Tria3 | SurfaceKind::Tria6 | SurfaceKind::Tria7 => {
-                let x = snap(xi[0], 0.0);
-                let y = snap(xi[1], 0.0);
-                let sum = snap(x + y, 1.0);
-                ([x, y], x >= 0.0 && y >= 0.0 && sum <= 1.0)
-            }
-        }
-    }
-
     /// How far `xi` lies outside the reference domain, in reference
     /// coordinates (0 inside).
     pub fn outside_distance(self, xi: [f64; 2]) -> f64 {
@@ -1045,32 +1014,5 @@ mod tests {
         ];
         let b = project_mmnewt(SurfaceKind::Quad4, &quad, [1.5, 0.25, 3.0]).unwrap();
         assert!((b.xi[0] - 0.5).abs() < 1e-12 && (b.xi[1] + 0.5).abs() < 1e-12);
-    }
-
-    #[test]
-    fn projections_within_1e_12_of_a_border_are_on_it_as_cfadju() {
-        // A point projected onto the node two cells share lands, by
-        // round-off, a hair outside one of them: inside both for code_aster
-        // (`cfadju`, atol = 1e-12), so the first cell keeps it (`apchoi`).
-        let (xi, inside) = SurfaceKind::Seg2.snap_to_border([1.0 + 5e-13, 0.0]);
-        assert!(inside);
-        assert_eq!(xi[0], 1.0);
-        let (xi, inside) = SurfaceKind::Seg3.snap_to_border([-1.0 - 9e-13, 0.0]);
-        assert!(inside);
-        assert_eq!(xi[0], -1.0);
-        // Beyond the slack it is outside, by what it is.
-        let (xi, inside) = SurfaceKind::Seg2.snap_to_border([1.0 + 1e-9, 0.0]);
-        assert!(!inside);
-        assert!((SurfaceKind::Seg2.outside_distance(xi) - 1e-9).abs() < 1e-15);
-        let (xi, inside) = SurfaceKind::Quad4.snap_to_border([-1.0 - 3e-13, 1.0 + 2e-13]);
-        assert!(inside);
-        assert_eq!(xi, [-1.0, 1.0]);
-        assert!(!SurfaceKind::Quad8.snap_to_border([0.2, 1.0 + 2e-12]).1);
-        // Triangles: the two legs and the hypotenuse.
-        let (xi, inside) = SurfaceKind::Tria3.snap_to_border([-4e-13, 0.3]);
-        assert!(inside);
-        assert_eq!(xi, [0.0, 0.3]);
-        assert!(SurfaceKind::Tria6.snap_to_border([0.5 + 4e-13, 0.5]).1);
-        assert!(!SurfaceKind::Tria3.snap_to_border([0.5 + 4e-12, 0.5]).1);
     }
 }

@@ -1108,12 +1108,6 @@ impl ContinuousFriction {
             // code_aster's cycling treatment (`mm_cycl_algo`), driven by
             // its Newton count (0 after the prediction).
             let same_master = master.is_some() && master == p.last_master;
-            if std::env::var_os("ASTER_CONTACT_TRACE2").is_some() && master != p.last_master {
-                eprintln!(
-                    "[friction2] point {i} node {:?} master {:?} -> {:?} lambda {:.4e} jeu {:.4e}",
-                    p.node, p.last_master, master, vals.lambda, vals.jeu
-                );
-            }
             let flipped_now = now != p.contact;
             if cycling::applies(
                 self.cycling,
