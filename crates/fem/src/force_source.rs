@@ -103,6 +103,18 @@ pub trait ForceSource {
         format!("unknown #{}", k + 1)
     }
 
+    /// Whether the residual that decides convergence after a solve is
+    /// evaluated with the statuses and pairing that solve was built on,
+    /// i.e. before [`ForceSource::after_iteration`] updates them, as
+    /// code_aster's continuous contact does (`nmfcor` computes the contact
+    /// forces of the convergence test, `nmconv` → `nmresi` tests them, and
+    /// only then `cfmmcv` → `mmbclc` pairs again and updates the statuses;
+    /// `nmfcon` recomputes the forces for the next solve). The default
+    /// evaluates after the update.
+    fn residual_before_update(&self) -> bool {
+        false
+    }
+
     /// RESI_GLOB_RELA of the iterate just evaluated (called once per
     /// Newton iteration, after the convergence test). code_aster's
     /// discrete friction weights its tangent by it (`cffpm2`).
@@ -135,6 +147,9 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     }
     fn unknown_name(&self, k: usize, mesh: &aster_mesh::Mesh) -> String {
         (**self).unknown_name(k, mesh)
+    }
+    fn residual_before_update(&self) -> bool {
+        (**self).residual_before_update()
     }
     fn observe_residual(&mut self, resi_glob_rela: f64) {
         (**self).observe_residual(resi_glob_rela)
@@ -342,6 +357,16 @@ pub(crate) fn newton_step(
         for (kk, &r) in kept.iter().enumerate() {
             lam[r] = sol.x[nfree + nown + kk];
         }
+        // The forces of the convergence test of the sources that test
+        // before updating their statuses (code_aster's continuous contact).
+        let mut before: Vec<Option<Contribution>> = Vec::with_capacity(sources.len());
+        for (s, src) in sources.iter_mut().enumerate() {
+            before.push(if src.residual_before_update() {
+                Some(src.evaluate(&state(model, u, t), &own[s])?)
+            } else {
+                None
+            });
+        }
         // Statuses and geometry at the new iterate.
         let mut settled = true;
         let mut unsettled = Vec::new();
@@ -352,11 +377,12 @@ pub(crate) fn newton_step(
             }
             settled &= ok;
         }
-        // Residual at the new iterate (with the new statuses).
+        // Residual at the new iterate (with the new statuses, or with the
+        // solve's for the sources that test before updating).
         let (fint, contributions) = evaluate_all(model, k, dynamics, plastic, sources, own, u, t)?;
         let mut src_force = vec![0.0; nd];
-        for c in &contributions {
-            for &(i, f) in &c.forces {
+        for (c, b) in contributions.iter().zip(&before) {
+            for &(i, f) in &b.as_ref().unwrap_or(c).forces {
                 src_force[i] += f;
             }
         }

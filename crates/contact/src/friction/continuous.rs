@@ -1578,6 +1578,10 @@ impl ForceSource for ContinuousFriction {
         self.name_of_unknown(k, mesh)
     }
 
+    fn residual_before_update(&self) -> bool {
+        true
+    }
+
     fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError> {
         self.record_forces(state, own)?;
         let cn = self.cont_noeu(state, own);
