@@ -8,6 +8,8 @@
 //! - comm/dyna_impact.comm: a point mass on a rigid wall (LIAISON_UNIL),
 //!   the elastic impact of the average acceleration and the dissipation of
 //!   GAMMA > 1/2;
+//! - comm/dyna_energy.comm: ENERGIE's PARA_CALC table against the exact
+//!   works of a spring, a constant force and a reaction;
 //! - error cases: located refusals and errors;
 //! - MECA_NON_LINE on the step-cutting scene gives STAT_NON_LINE's values.
 
@@ -54,6 +56,24 @@ fn oscillator_mesh() -> PathBuf {
 fn oscillator_matches_newmark_and_hht_references() {
     let r = run_text(&scene("dyna_oscillator.comm"), &oscillator_mesh(), "osc");
     assert_eq!(r, (26, 0, None));
+}
+
+/// ENERGIE's PARA_CALC table against the exact trapezoidal works of a
+/// spring and a constant force: Newmark conserves (DISS_SCH = 0), HHT
+/// dissipates, a driven DOF's reaction works.
+#[test]
+fn energy_balance_of_the_oscillator() {
+    let r = run_text(&scene("dyna_energy.comm"), &oscillator_mesh(), "energy");
+    assert_eq!(r, (102, 0, None));
+    // The weighted equilibrium's balance is refused at ENERGIE.
+    let text = scene("dyna_energy.comm").replace(r#"MODI_EQUI="NON""#, r#"MODI_EQUI="OUI""#);
+    let (_, nook, err) = run_text(&text, &oscillator_mesh(), "energy-oui");
+    let err = err.expect("an error");
+    assert_eq!(nook, 0);
+    assert!(
+        err.contains("DYNA_NON_LINE/ENERGIE with HHT MODI_EQUI='OUI'") && err.contains("case.comm:"),
+        "{err}"
+    );
 }
 
 #[test]
