@@ -117,10 +117,15 @@ impl Default for Convergence {
 }
 
 /// An initial state (`ETAT_INIT`): total displacement per DOF index.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct InitialState {
     pub time: Option<f64>,
     pub displacement: Vec<f64>,
+    /// The behaviour cells' converged state at that displacement (an
+    /// analysis continued from its last step, [`NonLinearResult::final_state`]).
+    pub behaviour: Option<std::rc::Rc<crate::behaviour::BehaviourState>>,
+    /// The force sources' own unknowns at that state (same sources).
+    pub own_unknowns: Option<Vec<Vec<f64>>>,
 }
 
 /// One stored step of a result.
@@ -247,6 +252,9 @@ pub struct NonLinearResult {
     /// `PARA_CALC` rows: the initial state, then every converged
     /// increment, pieces of cut ones included); empty otherwise.
     pub energy: Vec<crate::energy_balance::EnergyRow>,
+    /// The time of the last step and the behaviour cells' state there
+    /// (`None` without behaviour cells), to continue the analysis from it.
+    pub final_state: Option<(f64, std::rc::Rc<crate::behaviour::BehaviourState>)>,
 }
 
 /// One increment tried by STAT_NON_LINE (a whole step or a piece of a cut
@@ -525,7 +533,14 @@ impl StaticNonLinear<'_> {
         } else {
             PlasticCells::new(model, &self.behaviours, self.newton.symmetrize)?
         };
-        if plastic.is_some() && u.iter().any(|&v| v != 0.0) {
+        let restored = match (&mut plastic, self.initial.as_ref().and_then(|i| i.behaviour.as_ref())) {
+            (Some(pc), Some(state)) => {
+                pc.restore(state)?;
+                true
+            }
+            _ => false,
+        };
+        if plastic.is_some() && !restored && u.iter().any(|&v| v != 0.0) {
             return Err(FemError::Model(
                 "an initial state (ETAT_INIT) with a plastic behaviour needs its stresses and internal variables; only a displacement was given: start from the undeformed state or use ELAS".into(),
             ));
@@ -564,6 +579,14 @@ impl StaticNonLinear<'_> {
             .iter()
             .map(|f| vec![0.0; f.unknowns()])
             .collect();
+        if let Some(o) = self.initial.as_ref().and_then(|i| i.own_unknowns.as_ref()) {
+            if o.len() != own.len() || o.iter().zip(&own).any(|(a, b)| a.len() != b.len()) {
+                return Err(FemError::Model(
+                    "the initial state's contact unknowns are not this analysis' (another contact definition)".into(),
+                ));
+            }
+            own.clone_from(o);
+        }
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
@@ -937,10 +960,16 @@ impl StaticNonLinear<'_> {
                 iterations: newton_iterations,
             });
         }
+        let final_state = plastic.as_ref().and_then(|pc| {
+            steps
+                .last()
+                .map(|st| (st.time, std::rc::Rc::new(pc.snapshot())))
+        });
         Ok(NonLinearResult {
             steps,
             attempts,
             energy: Vec::new(),
+            final_state,
         })
     }
 
