@@ -24,12 +24,12 @@
 //!   M v/(βΔt).
 
 use crate::assembly::{assemble_stiffness, restrict};
+use crate::energy_balance::{EnergyBalance, EnergyRow, StateForces};
 use crate::error::FemError;
 use crate::linalg::{self, Csc};
 use crate::loads::Loads;
 use crate::mass::{assemble_mass, assemble_rayleigh, Lumping, MassData, Rayleigh};
 use crate::model::Model;
-use crate::energy_balance::{EnergyBalance, EnergyRow, StateForces};
 use crate::nonlinear::{ConvergedForces, IncrementTerms, Motion, NonLinearResult, StaticNonLinear};
 use aster_mesh::CellId;
 use std::collections::HashMap;

@@ -533,7 +533,10 @@ impl StaticNonLinear<'_> {
         } else {
             PlasticCells::new(model, &self.behaviours, self.newton.symmetrize)?
         };
-        let restored = match (&mut plastic, self.initial.as_ref().and_then(|i| i.behaviour.as_ref())) {
+        let restored = match (
+            &mut plastic,
+            self.initial.as_ref().and_then(|i| i.behaviour.as_ref()),
+        ) {
             (Some(pc), Some(state)) => {
                 pc.restore(state)?;
                 true

@@ -826,7 +826,9 @@ fn continued_result(
     };
     if observed || !prev.tables.is_empty() {
         return Err(ex.unsupported(
-            &format!("{cmd} with reuse= and OBSERVATION or ENERGIE (their tables are not continued)"),
+            &format!(
+                "{cmd} with reuse= and OBSERVATION or ENERGIE (their tables are not continued)"
+            ),
             call.span,
         ));
     }

@@ -73,7 +73,8 @@ fn energy_balance_of_the_oscillator() {
     let err = err.expect("an error");
     assert_eq!(nook, 0);
     assert!(
-        err.contains("DYNA_NON_LINE/ENERGIE with HHT MODI_EQUI='OUI'") && err.contains("case.comm:"),
+        err.contains("DYNA_NON_LINE/ENERGIE with HHT MODI_EQUI='OUI'")
+            && err.contains("case.comm:"),
         "{err}"
     );
 }

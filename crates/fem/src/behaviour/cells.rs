@@ -232,7 +232,11 @@ impl PlasticCells {
             tangents: self.tangents.clone(),
             finite_k: self.finite_k.clone(),
             corrected: self.corrected.clone(),
-            hourglass: self.hourglass.iter().map(|h| h.as_ref().map(|h| h.0)).collect(),
+            hourglass: self
+                .hourglass
+                .iter()
+                .map(|h| h.as_ref().map(|h| h.0))
+                .collect(),
         }
     }
 
@@ -241,9 +245,18 @@ impl PlasticCells {
     pub fn restore(&mut self, s: &BehaviourState) -> Result<(), FemError> {
         let same = s.cells.len() == self.cells.len()
             && s.cells.iter().zip(&self.cells).all(|(a, c)| *a == c.cell)
-            && s.committed.iter().zip(&self.committed).all(|(a, b)| a.len() == b.len())
-            && s.u_committed.iter().zip(&self.u_committed).all(|(a, b)| a.len() == b.len())
-            && s.hourglass.iter().zip(&self.hourglass).all(|(a, b)| a.is_some() == b.is_some());
+            && s.committed
+                .iter()
+                .zip(&self.committed)
+                .all(|(a, b)| a.len() == b.len())
+            && s.u_committed
+                .iter()
+                .zip(&self.u_committed)
+                .all(|(a, b)| a.len() == b.len())
+            && s.hourglass
+                .iter()
+                .zip(&self.hourglass)
+                .all(|(a, b)| a.is_some() == b.is_some());
         if !same {
             return Err(FemError::Model(
                 "the initial state's behaviour cells are not this analysis' (another model or other COMPORTEMENT groups)".into(),
