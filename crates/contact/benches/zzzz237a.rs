@@ -64,6 +64,7 @@ fn fem_path(model: &Model, loads: &Loads, defs: &[ContactDefinition; 3]) -> f64 
     let init = InitialState {
         time: Some(0.0),
         displacement: resu0.steps[0].displacement.clone(),
+        ..Default::default()
     };
     let resu = solve(&defs[0], Some(init));
     let ta = solve(&defs[1], None);

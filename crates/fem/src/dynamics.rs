@@ -24,12 +24,13 @@
 //!   M v/(βΔt).
 
 use crate::assembly::{assemble_stiffness, restrict};
+use crate::energy_balance::{EnergyBalance, EnergyRow, StateForces};
 use crate::error::FemError;
 use crate::linalg::{self, Csc};
 use crate::loads::Loads;
 use crate::mass::{assemble_mass, assemble_rayleigh, Lumping, MassData, Rayleigh};
 use crate::model::Model;
-use crate::nonlinear::{IncrementTerms, Motion, NonLinearResult, StaticNonLinear};
+use crate::nonlinear::{ConvergedForces, IncrementTerms, Motion, NonLinearResult, StaticNonLinear};
 use aster_mesh::CellId;
 use std::collections::HashMap;
 
@@ -98,6 +99,9 @@ pub struct DynamicNonLinear<'s> {
     /// Set by [`solve`](Self::solve): the initial acceleration could not be
     /// computed (singular mass) and was taken as zero.
     pub acceleration_singular: bool,
+    /// `ENERGIE`: keep code_aster's energy balance
+    /// ([`crate::energy_balance`]) in [`NonLinearResult::energy`].
+    pub energy: bool,
 }
 
 impl<'s> DynamicNonLinear<'s> {
@@ -111,6 +115,7 @@ impl<'s> DynamicNonLinear<'s> {
             velocity: None,
             acceleration: None,
             acceleration_singular: false,
+            energy: false,
         }
     }
 
@@ -154,11 +159,35 @@ impl<'s> DynamicNonLinear<'s> {
             },
         };
         let mass_holds = mass_holds(model, loads, t0, &m)?;
-        let integrator = Newmark::new(self.scheme, m, c, u0, v0, a0, fext0, fint0, mass_holds);
+        // code_aster's first "previous" external force (`nmfini`): the
+        // initial state's M a₀ + C v₀ + f_int(u₀).
+        let balance = self.energy.then(|| {
+            let mut ext0 = m.mul(&a0);
+            if let Some(c) = &c {
+                for (e, x) in ext0.iter_mut().zip(c.mul(&v0)) {
+                    *e += x;
+                }
+            }
+            for (e, x) in ext0.iter_mut().zip(&fint0) {
+                *e += x;
+            }
+            EnergyBalance::new(t0, &u0, &v0, ext0, fint0.clone())
+        });
+        let mut integrator = Newmark::new(self.scheme, m, c, u0, v0, a0, fext0, fint0, mass_holds);
+        integrator.balance = balance;
         self.solver.dynamics = Some(Box::new(integrator));
         let out = self.solver.solve(model, loads);
+        let energy = self
+            .solver
+            .dynamics
+            .as_ref()
+            .map(|d| d.energy_rows())
+            .unwrap_or_default();
         self.solver.dynamics = None;
-        out
+        out.map(|mut r| {
+            r.energy = energy;
+            r
+        })
     }
 }
 
@@ -279,6 +308,8 @@ struct Newmark {
     v_pred: Vec<f64>,
     a_pred: Vec<f64>,
     mass_holds: bool,
+    /// `ENERGIE`'s balance.
+    balance: Option<EnergyBalance>,
 }
 
 impl Newmark {
@@ -318,6 +349,7 @@ impl Newmark {
             v_pred: vec![0.0; n],
             a_pred: vec![0.0; n],
             mass_holds,
+            balance: None,
         }
     }
 
@@ -431,5 +463,54 @@ impl IncrementTerms for Newmark {
 
     fn mass_holds(&self) -> bool {
         self.mass_holds
+    }
+
+    fn wants_balance(&self) -> bool {
+        self.balance.is_some()
+    }
+
+    /// code_aster's external forces are the loads and the reactions of the
+    /// conditions (−CNDIRI): on the dualised rows −Σ λ·row, on an
+    /// eliminated DOF what the equilibrium leaves there,
+    /// f_int + M a + C v + f_liai.
+    fn balance(&mut self, to: f64, forces: &ConvergedForces) {
+        let Some(b) = self.balance.as_mut() else {
+            return;
+        };
+        let mut external: Vec<f64> = forces
+            .loads
+            .iter()
+            .zip(forces.reactions)
+            .map(|(l, r)| l + r)
+            .collect();
+        if !forces.eliminated.is_empty() {
+            let ma = self.mass.mul(&self.a);
+            let cv = self.damping.as_ref().map(|c| c.mul(&self.v));
+            for &i in forces.eliminated {
+                external[i] = forces.internal[i]
+                    + ma[i]
+                    + cv.as_ref().map_or(0.0, |c| c[i])
+                    + forces.links[i];
+            }
+        }
+        b.record(
+            to,
+            &self.u,
+            &self.v,
+            &StateForces {
+                external: &external,
+                internal: forces.internal,
+                links: forces.links,
+            },
+            &self.mass,
+            self.damping.as_ref(),
+        );
+    }
+
+    fn energy_rows(&self) -> Vec<EnergyRow> {
+        self.balance
+            .as_ref()
+            .map(|b| b.rows.clone())
+            .unwrap_or_default()
     }
 }

@@ -182,8 +182,8 @@ pub(crate) struct ForceStep<'a> {
 
 /// The outcome of a converged step: (solves, equality multipliers,
 /// RESI_GLOB_RELA, RESI_GLOB_MAXI, RESI_GLOB_RELA per iteration, Newton
-/// iterations).
-pub(crate) type ForceOutcome = (usize, Vec<f64>, f64, f64, Vec<f64>, usize);
+/// iterations, the sources' forces per DOF index at the converged state).
+pub(crate) type ForceOutcome = (usize, Vec<f64>, f64, f64, Vec<f64>, usize, Vec<f64>);
 
 fn state<'a>(model: &'a Model, u: &'a [f64], t: f64) -> State<'a> {
     State {
@@ -457,6 +457,7 @@ pub(crate) fn newton_step(
                     resi_maxi,
                     residuals,
                     newton_iterations,
+                    src_force,
                 ));
             }
             loops += 1;

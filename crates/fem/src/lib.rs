@@ -23,6 +23,7 @@ pub mod dof;
 pub mod dynamics;
 pub mod element;
 pub mod energy;
+pub mod energy_balance;
 pub mod error;
 pub mod force_source;
 pub mod fpg;

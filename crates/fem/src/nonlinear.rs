@@ -117,10 +117,15 @@ impl Default for Convergence {
 }
 
 /// An initial state (`ETAT_INIT`): total displacement per DOF index.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct InitialState {
     pub time: Option<f64>,
     pub displacement: Vec<f64>,
+    /// The behaviour cells' converged state at that displacement (an
+    /// analysis continued from its last step, [`NonLinearResult::final_state`]).
+    pub behaviour: Option<std::rc::Rc<crate::behaviour::BehaviourState>>,
+    /// The force sources' own unknowns at that state (same sources).
+    pub own_unknowns: Option<Vec<Vec<f64>>>,
 }
 
 /// One stored step of a result.
@@ -206,6 +211,34 @@ pub trait IncrementTerms {
     /// Whether the mass holds every free DOF, so that a rigid-body mode
     /// not held by conditions is no error (an impacting body).
     fn mass_holds(&self) -> bool;
+    /// Whether the integrator keeps an energy balance (`ENERGIE`): then
+    /// [`balance`](Self::balance) is called after each converged increment.
+    fn wants_balance(&self) -> bool {
+        false
+    }
+    /// The forces of the increment just converged (after
+    /// [`converged`](Self::converged)), for the energy balance.
+    fn balance(&mut self, _to: f64, _forces: &ConvergedForces) {}
+    /// The energy balance's rows so far (empty without one).
+    fn energy_rows(&self) -> Vec<crate::energy_balance::EnergyRow> {
+        Vec::new()
+    }
+}
+
+/// The forces of a converged increment, per DOF index, for the energy
+/// balance ([`IncrementTerms::balance`]).
+pub struct ConvergedForces<'a> {
+    /// The loads at the increment's end.
+    pub loads: &'a [f64],
+    /// Internal forces (B^Tσ, springs), without inertia nor damping.
+    pub internal: &'a [f64],
+    /// Contact and unilateral forces, on the internal-force side.
+    pub links: &'a [f64],
+    /// Reactions of the dualised rows on the structure (−Σ λ·row).
+    pub reactions: &'a [f64],
+    /// DOFs eliminated by conditions (their reactions follow from the
+    /// equilibrium).
+    pub eliminated: &'a [usize],
 }
 
 /// A result: the stored steps (the first is the initial state).
@@ -215,6 +248,13 @@ pub struct NonLinearResult {
     /// Every increment tried, in order — failed ones and the pieces of cut
     /// ones included (the `INFO=2` convergence table).
     pub attempts: Vec<Attempt>,
+    /// The energy balance of a dynamic analysis with `ENERGIE` (code_aster's
+    /// `PARA_CALC` rows: the initial state, then every converged
+    /// increment, pieces of cut ones included); empty otherwise.
+    pub energy: Vec<crate::energy_balance::EnergyRow>,
+    /// The time of the last step and the behaviour cells' state there
+    /// (`None` without behaviour cells), to continue the analysis from it.
+    pub final_state: Option<(f64, std::rc::Rc<crate::behaviour::BehaviourState>)>,
 }
 
 /// One increment tried by STAT_NON_LINE (a whole step or a piece of a cut
@@ -493,7 +533,17 @@ impl StaticNonLinear<'_> {
         } else {
             PlasticCells::new(model, &self.behaviours, self.newton.symmetrize)?
         };
-        if plastic.is_some() && u.iter().any(|&v| v != 0.0) {
+        let restored = match (
+            &mut plastic,
+            self.initial.as_ref().and_then(|i| i.behaviour.as_ref()),
+        ) {
+            (Some(pc), Some(state)) => {
+                pc.restore(state)?;
+                true
+            }
+            _ => false,
+        };
+        if plastic.is_some() && !restored && u.iter().any(|&v| v != 0.0) {
             return Err(FemError::Model(
                 "an initial state (ETAT_INIT) with a plastic behaviour needs its stresses and internal variables; only a displacement was given: start from the undeformed state or use ELAS".into(),
             ));
@@ -532,6 +582,14 @@ impl StaticNonLinear<'_> {
             .iter()
             .map(|f| vec![0.0; f.unknowns()])
             .collect();
+        if let Some(o) = self.initial.as_ref().and_then(|i| i.own_unknowns.as_ref()) {
+            if o.len() != own.len() || o.iter().zip(&own).any(|(a, b)| a.len() != b.len()) {
+                return Err(FemError::Model(
+                    "the initial state's contact unknowns are not this analysis' (another contact definition)".into(),
+                ));
+            }
+            own.clone_from(o);
+        }
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
@@ -689,6 +747,8 @@ impl StaticNonLinear<'_> {
                     dynamics: self.dynamics.as_deref(),
                 };
                 let mut log = AttemptLog::default();
+                // The force sources' forces at convergence (energy balance).
+                let mut source_forces: Option<Vec<f64>> = None;
                 let attempt = if self.forces.is_empty() {
                     newton_step(
                         &ctx,
@@ -730,7 +790,8 @@ impl StaticNonLinear<'_> {
                         target,
                         &mut plastic,
                     )
-                    .map(|(solves, lam, rela, maxi, history, its)| {
+                    .map(|(solves, lam, rela, maxi, history, its, forces)| {
+                        source_forces = Some(forces);
                         (solves, (lam, Vec::new()), rela, maxi, history, its)
                     })
                 };
@@ -771,14 +832,36 @@ impl StaticNonLinear<'_> {
                             };
                             f.converged(&state, o)?;
                         }
-                        unil = Some(report_outcomes(
+                        let outcomes = report_outcomes(
                             model,
                             &mut self.sources,
                             &srcs,
                             &u,
                             target,
                             &outcome.1 .1,
-                        )?);
+                        )?;
+                        if let Some(d) = self.dynamics.as_mut().filter(|d| d.wants_balance()) {
+                            let internal = internal_forces(model, &k, &mut plastic, &u)?;
+                            let links = link_forces(&u, source_forces.take(), &srcs, &outcomes);
+                            let mut reactions = vec![0.0; u.len()];
+                            for (row, l) in eq.iter().zip(&outcome.1 .0) {
+                                for &(i, c) in &row.terms {
+                                    reactions[i] -= c * l;
+                                }
+                            }
+                            let eliminated: Vec<usize> = elim.keys().copied().collect();
+                            d.balance(
+                                target,
+                                &ConvergedForces {
+                                    loads: &fext_loads,
+                                    internal: &internal,
+                                    links: &links,
+                                    reactions: &reactions,
+                                    eliminated: &eliminated,
+                                },
+                            );
+                        }
+                        unil = Some(outcomes);
                         step = Some(outcome);
                     }
                     Err(e) => {
@@ -880,7 +963,17 @@ impl StaticNonLinear<'_> {
                 iterations: newton_iterations,
             });
         }
-        Ok(NonLinearResult { steps, attempts })
+        let final_state = plastic.as_ref().and_then(|pc| {
+            steps
+                .last()
+                .map(|st| (st.time, std::rc::Rc::new(pc.snapshot())))
+        });
+        Ok(NonLinearResult {
+            steps,
+            attempts,
+            energy: Vec::new(),
+            final_state,
+        })
     }
 
     /// Initial time and the instants to compute.
@@ -1657,6 +1750,28 @@ pub(crate) fn kept_rows(
 
 /// The outcome of every source's rows at a converged increment (time
 /// `t`, multipliers `lambdas` per source row), handed to the sources.
+/// The contact and unilateral forces at a converged state, on the
+/// internal-force side: the force sources' (friction, continuous contact)
+/// and Σ λ·row of every inequality row (its multiplier, or its penalty
+/// force).
+fn link_forces(
+    u: &[f64],
+    source_forces: Option<Vec<f64>>,
+    srcs: &[Option<SourceRows>],
+    outcomes: &[Vec<RowOutcome>],
+) -> Vec<f64> {
+    let mut links = source_forces.unwrap_or_else(|| vec![0.0; u.len()]);
+    for (sr, outs) in srcs.iter().zip(outcomes) {
+        let Some(sr) = sr else { continue };
+        for (idx, o) in sr.idx.iter().zip(outs) {
+            for &(i, c) in idx {
+                links[i] += o.multiplier * c;
+            }
+        }
+    }
+    links
+}
+
 fn report_outcomes(
     model: &Model,
     sources: &mut [Box<dyn UnilateralSource + '_>],

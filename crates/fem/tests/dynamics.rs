@@ -57,6 +57,7 @@ fn run_oscillator(scheme: Scheme, dt: f64, steps: usize, u0: f64) -> Vec<(f64, f
         initial: Some(InitialState {
             time: Some(0.0),
             displacement: u,
+            ..Default::default()
         }),
         ..Default::default()
     };

@@ -604,6 +604,7 @@ fn a_plastic_initial_state_without_internal_variables_is_refused() {
         initial: Some(InitialState {
             time: Some(0.),
             displacement: vec![1e-3; model.dofs().len()],
+            ..Default::default()
         }),
         behaviours: plastic_everywhere(&model, &ecro_line()),
         ..Default::default()

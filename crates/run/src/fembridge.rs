@@ -876,14 +876,33 @@ pub fn solve(
                         "{cmd}/ETAT_INIT: the initial result has no DEPL at {t0}"
                     )));
                 };
+                // Continuing a computation of this run from its last
+                // step: the behaviour cells' state and the contact
+                // unknowns there (same sources) come with the displacement.
+                let raw = prev.fem.as_ref().map(|f| &f.raw);
+                let behaviour = raw
+                    .and_then(|r| r.final_state.as_ref())
+                    .filter(|(t, _)| (t - t0).abs() <= 1e-6 * t0.abs().max(1e-300))
+                    .map(|(_, s)| s.clone());
+                let own_unknowns = raw
+                    .and_then(|r| r.steps.last())
+                    .filter(|st| (st.time - t0).abs() <= 1e-6 * t0.abs().max(1e-300))
+                    .map(|st| st.own_unknowns.clone())
+                    .filter(|o| {
+                        o.len() == forces.len()
+                            && o.iter().zip(&forces).all(|(a, f)| a.len() == f.unknowns())
+                    });
                 Some(InitialState {
                     time: Some(*t0),
                     displacement: displacement_from(&model, depl),
+                    behaviour,
+                    own_unknowns,
                 })
             }
             None => crate::dyna::initial_displacement(ex, setup, &model)?.map(|u0| InitialState {
                 time: None,
                 displacement: u0,
+                ..Default::default()
             }),
         };
         let mut snl = StaticNonLinear {

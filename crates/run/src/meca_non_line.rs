@@ -23,7 +23,7 @@ pub(crate) const MECA_NON_LINE: Support = Support {
     keywords: KEYWORDS,
     values: &MECA_VALUES,
     hints: &[],
-    reuse: false,
+    reuse: true,
     rules: Some(rules),
 };
 

@@ -778,6 +778,12 @@ pub(crate) fn store_solution(
         (steps, fem) = continue_steps(&prev, t0, steps, fem)?;
     }
     let mut tables = Vec::new();
+    if !fem.raw.energy.is_empty() {
+        tables.push((
+            "PARA_CALC".to_string(),
+            Rc::new(crate::table::energy_table(&fem.raw.energy)),
+        ));
+    }
     if !observations.is_empty() {
         let t = crate::observation::table(&observations, &steps, &mesh);
         tables.push(("OBSERVATION".to_string(), Rc::new(t)));
@@ -820,7 +826,9 @@ fn continued_result(
     };
     if observed || !prev.tables.is_empty() {
         return Err(ex.unsupported(
-            &format!("{cmd} with reuse= and OBSERVATION (the observation table is not continued)"),
+            &format!(
+                "{cmd} with reuse= and OBSERVATION or ENERGIE (their tables are not continued)"
+            ),
             call.span,
         ));
     }

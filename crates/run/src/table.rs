@@ -281,6 +281,43 @@ impl TableFormat {
     }
 }
 
+/// code_aster's `PARA_CALC` table of `ENERGIE` (`nonlinDSEnergyCreate`):
+/// NUME_REUSE, INST and the cumulated energies, one row per converged
+/// increment after the initial state's.
+pub fn energy_table(rows: &[aster_fem::energy_balance::EnergyRow]) -> Table {
+    let mut t = Table::new(
+        [
+            ("NUME_REUSE", ColumnType::Int),
+            ("INST", ColumnType::Real),
+            ("TRAV_EXT", ColumnType::Real),
+            ("ENER_CIN", ColumnType::Real),
+            ("ENER_TOT", ColumnType::Real),
+            ("TRAV_AMOR", ColumnType::Real),
+            ("TRAV_LIAI", ColumnType::Real),
+            ("DISS_SCH", ColumnType::Real),
+        ]
+        .into_iter()
+        .map(|(name, ty)| Column {
+            name: name.into(),
+            ty,
+        })
+        .collect(),
+    );
+    for r in rows {
+        t.push_row(vec![
+            ("NUME_REUSE", Value::Int(0)),
+            ("INST", Value::Real(r.time)),
+            ("TRAV_EXT", Value::Real(r.trav_ext)),
+            ("ENER_CIN", Value::Real(r.ener_cin)),
+            ("ENER_TOT", Value::Real(r.ener_tot)),
+            ("TRAV_AMOR", Value::Real(r.trav_amor)),
+            ("TRAV_LIAI", Value::Real(r.trav_liai)),
+            ("DISS_SCH", Value::Real(r.diss_sch)),
+        ]);
+    }
+    t
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

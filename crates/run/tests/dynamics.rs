@@ -8,6 +8,10 @@
 //! - comm/dyna_impact.comm: a point mass on a rigid wall (LIAISON_UNIL),
 //!   the elastic impact of the average acceleration and the dissipation of
 //!   GAMMA > 1/2;
+//! - comm/dyna_energy.comm: ENERGIE's PARA_CALC table against the exact
+//!   works of a spring, a constant force and a reaction;
+//! - comm/continued_plastic.comm: MECA_NON_LINE continued by reuse= from
+//!   its last plastic state gives the values of one run;
 //! - error cases: located refusals and errors;
 //! - MECA_NON_LINE on the step-cutting scene gives STAT_NON_LINE's values.
 
@@ -54,6 +58,25 @@ fn oscillator_mesh() -> PathBuf {
 fn oscillator_matches_newmark_and_hht_references() {
     let r = run_text(&scene("dyna_oscillator.comm"), &oscillator_mesh(), "osc");
     assert_eq!(r, (26, 0, None));
+}
+
+/// ENERGIE's PARA_CALC table against the exact trapezoidal works of a
+/// spring and a constant force: Newmark conserves (DISS_SCH = 0), HHT
+/// dissipates, a driven DOF's reaction works.
+#[test]
+fn energy_balance_of_the_oscillator() {
+    let r = run_text(&scene("dyna_energy.comm"), &oscillator_mesh(), "energy");
+    assert_eq!(r, (102, 0, None));
+    // The weighted equilibrium's balance is refused at ENERGIE.
+    let text = scene("dyna_energy.comm").replace(r#"MODI_EQUI="NON""#, r#"MODI_EQUI="OUI""#);
+    let (_, nook, err) = run_text(&text, &oscillator_mesh(), "energy-oui");
+    let err = err.expect("an error");
+    assert_eq!(nook, 0);
+    assert!(
+        err.contains("DYNA_NON_LINE/ENERGIE with HHT MODI_EQUI='OUI'")
+            && err.contains("case.comm:"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -197,6 +220,27 @@ fn a_massless_unheld_dof_is_a_located_singular_system() {
 
 fn cutting_mesh() -> PathBuf {
     root().join("comm/plastic3d_cutting.mail")
+}
+
+/// reuse= continues a plastic analysis from its last state (stresses,
+/// internal variables, finite-strain state): the same values as one run;
+/// from an earlier state, whose behaviour state is not kept, refused.
+#[test]
+fn meca_non_line_continues_a_plastic_result() {
+    let text = scene("continued_plastic.comm");
+    let r = run_text(&text, &cutting_mesh(), "continued");
+    assert_eq!(r, (24, 0, None));
+    let text = text.replace(
+        "ETAT_INIT=_F(EVOL_NOLI=part),",
+        "ETAT_INIT=_F(EVOL_NOLI=part, INST=0.25),",
+    );
+    let (_, nook, err) = run_text(&text, &cutting_mesh(), "continued-early");
+    let err = err.expect("an error");
+    assert_eq!(nook, 0);
+    assert!(
+        err.contains("needs its stresses and internal variables"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -66,6 +66,21 @@ impl PlasticCell {
     }
 }
 
+/// The converged state of the behaviour cells of an analysis
+/// ([`PlasticCells::snapshot`]): what continuing it needs beyond the
+/// displacement (stresses, internal variables, finite-strain and
+/// hourglass states, the tangents the next prediction uses).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BehaviourState {
+    cells: Vec<CellId>,
+    committed: Vec<Vec<GaussState>>,
+    u_committed: Vec<Vec<f64>>,
+    tangents: Vec<Vec<[[f64; 6]; 6]>>,
+    finite_k: Vec<Option<DMatrix<f64>>>,
+    corrected: Vec<bool>,
+    hourglass: Vec<Option<[f64; 72]>>,
+}
+
 /// The behaviour cells, their converged (committed) states and the trial
 /// states of the current Newton iterate.
 pub(crate) struct PlasticCells {
@@ -205,6 +220,62 @@ impl PlasticCells {
             symmetrize,
             dt: 0.0,
         }))
+    }
+
+    /// The converged state of every cell (to continue an analysis from
+    /// it: [`restore`](Self::restore)).
+    pub fn snapshot(&self) -> BehaviourState {
+        BehaviourState {
+            cells: self.cells.iter().map(|c| c.cell).collect(),
+            committed: self.committed.clone(),
+            u_committed: self.u_committed.clone(),
+            tangents: self.tangents.clone(),
+            finite_k: self.finite_k.clone(),
+            corrected: self.corrected.clone(),
+            hourglass: self
+                .hourglass
+                .iter()
+                .map(|h| h.as_ref().map(|h| h.0))
+                .collect(),
+        }
+    }
+
+    /// Starts from a converged state taken by [`snapshot`](Self::snapshot)
+    /// on the same cells and behaviours.
+    pub fn restore(&mut self, s: &BehaviourState) -> Result<(), FemError> {
+        let same = s.cells.len() == self.cells.len()
+            && s.cells.iter().zip(&self.cells).all(|(a, c)| *a == c.cell)
+            && s.committed
+                .iter()
+                .zip(&self.committed)
+                .all(|(a, b)| a.len() == b.len())
+            && s.u_committed
+                .iter()
+                .zip(&self.u_committed)
+                .all(|(a, b)| a.len() == b.len())
+            && s.hourglass
+                .iter()
+                .zip(&self.hourglass)
+                .all(|(a, b)| a.is_some() == b.is_some());
+        if !same {
+            return Err(FemError::Model(
+                "the initial state's behaviour cells are not this analysis' (another model or other COMPORTEMENT groups)".into(),
+            ));
+        }
+        self.committed.clone_from(&s.committed);
+        self.trial.clone_from(&s.committed);
+        self.u_committed.clone_from(&s.u_committed);
+        self.u_trial.clone_from(&s.u_committed);
+        self.tangents.clone_from(&s.tangents);
+        self.finite_k.clone_from(&s.finite_k);
+        self.corrected.clone_from(&s.corrected);
+        for (h, q) in self.hourglass.iter_mut().zip(&s.hourglass) {
+            if let (Some(h), Some(q)) = (h.as_mut(), q) {
+                h.0 = *q;
+                h.1 = *q;
+            }
+        }
+        Ok(())
     }
 
     /// The duration of the step about to be solved (from the last
