@@ -147,6 +147,7 @@ impl KktSolver {
         coords: Option<&[[f64; 3]]>,
         held: &dyn Fn(&[usize]) -> bool,
     ) -> Result<Option<SolveReport>, SolveFailure> {
+        let _solve = crate::newton_timing::phase(crate::newton_timing::Phase::Solve);
         let n = base.n;
         // Pinned rows: equality rows on one free DOF.
         let mut pin_of_dof: HashMap<usize, usize> = HashMap::new();
@@ -360,6 +361,8 @@ impl KktSolver {
         pinned: Vec<usize>,
         coords: Option<&[[f64; 3]]>,
     ) -> Option<Reduced> {
+        use crate::newton_timing::{phase, Phase};
+        let assembling = phase(Phase::Assembly);
         let n = base.n;
         let keff = (!penalty.is_empty()).then(|| base.with_extra(n, penalty.clone()));
         let k = keff.as_ref().unwrap_or(base);
@@ -393,6 +396,8 @@ impl KktSolver {
                 values.push(krr.values[p] * scale[krr.row_idx[p]] * scale[j]);
             }
         }
+        drop(assembling);
+        let _factorising = phase(Phase::Factorisation);
         let nr = krr.n;
         let sym = SymbolicSparseColMatRef::new_checked(nr, nr, &krr.col_ptr, None, &krr.row_idx);
         let mat = SparseColMatRef::new(sym, &values);
