@@ -30,11 +30,18 @@ pub enum Phase {
     Factorisation,
     /// Triangular solves, Schur complement of the rows, refinement.
     Solve,
+    /// The residuals of the bordered system in compensated arithmetic
+    /// (refinement's backward error; part of the linear solver).
+    Residuals,
+    /// The columns K⁻¹aᵣ of the constraint rows not yet seen with the
+    /// current factor (the Schur complement's solves; part of the linear
+    /// solver).
+    RowColumns,
     /// Contact and friction: rows, pairing, force sources' terms.
     Contact,
 }
 
-const PHASES: [(Phase, &str); 5] = [
+const PHASES: [(Phase, &str); 7] = [
     (
         Phase::Behaviour,
         "behaviour (internal forces, Gauss points)",
@@ -44,6 +51,14 @@ const PHASES: [(Phase, &str); 5] = [
     (
         Phase::Solve,
         "solve (substitutions, Schur rows, refinement)",
+    ),
+    (
+        Phase::RowColumns,
+        "solve: the rows' columns K^-1 a_r (new factor)",
+    ),
+    (
+        Phase::Residuals,
+        "solve: refinement's compensated residuals",
     ),
     (Phase::Contact, "contact and friction"),
 ];
@@ -74,7 +89,7 @@ struct State {
     /// Phases in progress, innermost last, with the time their current
     /// stretch started.
     stack: Vec<(usize, Instant, f64)>,
-    totals: [Times; 5],
+    totals: [Times; 7],
     /// Newton iterations (linear solves of the Newton loop) counted.
     iterations: usize,
     /// The whole solve, from its start.
@@ -196,7 +211,10 @@ fn report(s: &State, what: &str) -> String {
         cpu: (total.cpu - counted.cpu).max(0.0),
     };
     out.push_str(&line("other (residuals, active sets, bookkeeping)", rest));
-    let linear = s.totals[index(Phase::Factorisation)].cpu + s.totals[index(Phase::Solve)].cpu;
+    let linear = s.totals[index(Phase::Factorisation)].cpu
+        + s.totals[index(Phase::Solve)].cpu
+        + s.totals[index(Phase::RowColumns)].cpu
+        + s.totals[index(Phase::Residuals)].cpu;
     out.push_str(&format!(
         "[newton]   outside the linear solver (factorisation + solve): {:.1} % of CPU\n",
         100.0 * (1.0 - linear / total.cpu.max(1e-12))

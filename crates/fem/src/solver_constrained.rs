@@ -220,6 +220,7 @@ impl KktSolver {
             .filter(|&k| !red.columns.contains_key(&keys[k]))
             .collect();
         if !missing.is_empty() {
+            let _t = crate::newton_timing::phase(crate::newton_timing::Phase::RowColumns);
             let nr = red.full_of.len();
             let mut rhs = Mat::<f64>::zeros(nr, missing.len());
             for (col, &k) in missing.iter().enumerate() {
@@ -299,7 +300,10 @@ impl KktSolver {
         let mut x = ctx.apply(b, &d);
         let norm_b = b.iter().chain(&d).fold(0.0f64, |a, v| a.max(v.abs()));
         let berr = |x: &[f64]| -> (f64, Vec<f64>, Vec<f64>) {
-            let (ru, rd) = residual(keff, rows, b, &d, x);
+            let (ru, rd) =
+                crate::newton_timing::timed(crate::newton_timing::Phase::Residuals, || {
+                    residual(keff, rows, b, &d, x)
+                });
             let nr = ru.iter().chain(&rd).fold(0.0f64, |a, v| a.max(v.abs()));
             let nx = x.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             let den = norm_aug * nx + norm_b;
