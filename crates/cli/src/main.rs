@@ -228,6 +228,7 @@ const STACK_BYTES: usize = 64 << 20;
 fn main() -> ExitCode {
     quiet_on_closed_pipe();
     let cli = Cli::parse();
+    aster_fem::linalg::defer_thread_pool();
     let worker = std::thread::Builder::new()
         .name("aster".into())
         .stack_size(STACK_BYTES)

@@ -113,6 +113,8 @@ pub(crate) struct Interp<'a> {
     loops: Vec<(Span, &'static str)>,
     /// What failed statements left unknown while checking (`recover`).
     pub(crate) recovery: crate::recover::Recovery,
+    /// Validations shared between the two passes of `aster run` (`memo`).
+    pub(crate) memo: Option<&'a mut crate::memo::ValidationMemo>,
 }
 
 impl<'a> Interp<'a> {
@@ -135,6 +137,7 @@ impl<'a> Interp<'a> {
             steps: std::cell::Cell::new(0),
             loops: Vec::new(),
             recovery: Default::default(),
+            memo: None,
         }
     }
 

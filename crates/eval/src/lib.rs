@@ -18,6 +18,7 @@ mod interp;
 pub mod legacy;
 pub mod legacy_commands;
 pub mod limits;
+mod memo;
 pub mod migrate;
 mod recover;
 mod study;
@@ -29,6 +30,7 @@ mod value;
 pub use command::*;
 pub use diag::{DiagKind, Diagnostic, Diagnostics, Level, Severity};
 pub use formula::Formula;
+pub use memo::ValidationMemo;
 
 use aster_syntax::{ast, CodeMap};
 
@@ -91,7 +93,20 @@ pub fn run_study(
     sink: &mut dyn CommandSink,
     options: RunOptions,
 ) -> Result<RunSummary, Diagnostics> {
+    run_study_memo(map, study, sink, options, None)
+}
+
+/// [`run_study`] sharing validations with another pass over the same study
+/// ([`ValidationMemo`]: `aster run`'s static pass records, its run reuses).
+pub fn run_study_memo(
+    map: &CodeMap,
+    study: &Study,
+    sink: &mut dyn CommandSink,
+    options: RunOptions,
+    memo: Option<&mut ValidationMemo>,
+) -> Result<RunSummary, Diagnostics> {
     let mut interp = interp::Interp::new(map, sink, options.keep_going);
+    interp.memo = memo;
     interp.study.sources = study.modules.iter().map(|(n, m)| (n.clone(), *m)).collect();
     interp.study.declared = study.declared;
     let mut diags = Vec::new();

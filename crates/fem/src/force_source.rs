@@ -301,7 +301,9 @@ pub(crate) fn newton_step(
             }
             b[nfree + nown + kk] = row.rhs - au;
         }
-        let a = matrix.with_extra(n, extra);
+        let a = crate::newton_timing::timed(crate::newton_timing::Phase::Assembly, || {
+            matrix.with_extra(n, extra)
+        });
         let name = |i: usize| -> String {
             if i < nfree {
                 let dof = map.iter().position(|&m| m == i).unwrap_or(0);
@@ -343,6 +345,7 @@ pub(crate) fn newton_step(
         solves += 1;
         iteration += 1;
         newton_iterations += 1;
+        crate::newton_timing::count_iteration();
         for i in 0..nd {
             if map[i] != usize::MAX {
                 u[i] += sol.x[map[i]];
@@ -371,7 +374,9 @@ pub(crate) fn newton_step(
         let mut settled = true;
         let mut unsettled = Vec::new();
         for (s, src) in sources.iter_mut().enumerate() {
-            let ok = src.after_iteration(&state(model, u, t), &mut own[s])?;
+            let ok = crate::newton_timing::timed(crate::newton_timing::Phase::Contact, || {
+                src.after_iteration(&state(model, u, t), &mut own[s])
+            })?;
             if !ok {
                 unsettled.push(src.name());
             }
@@ -445,7 +450,11 @@ pub(crate) fn newton_step(
         if converged_resi && settled {
             let mut again = false;
             for (s, src) in sources.iter_mut().enumerate() {
-                if src.after_convergence(&state(model, u, t), &own[s])? == LoopVerdict::Again {
+                let verdict =
+                    crate::newton_timing::timed(crate::newton_timing::Phase::Contact, || {
+                        src.after_convergence(&state(model, u, t), &own[s])
+                    })?;
+                if verdict == LoopVerdict::Again {
                     again = true;
                 }
             }
@@ -504,6 +513,7 @@ fn evaluate_all(
     t: f64,
 ) -> Result<(Vec<f64>, Vec<Contribution>), FemError> {
     let fint = step_forces(model, k, dynamics, plastic, u)?;
+    let _t = crate::newton_timing::phase(crate::newton_timing::Phase::Contact);
     let mut out = Vec::with_capacity(sources.len());
     for (s, src) in sources.iter_mut().enumerate() {
         let c = src.evaluate(&state(model, u, t), &own[s])?;

@@ -34,6 +34,7 @@ pub mod loads;
 pub mod mass;
 pub mod material;
 pub mod model;
+pub mod newton_timing;
 pub mod nonlinear;
 pub mod ordering;
 mod parallel;

@@ -488,6 +488,27 @@ fn cholesky_ordered(mat: SparseColMatRef<'_, usize, f64>, order: &[usize]) -> Op
     })
 }
 
+/// Sets faer's global parallelism to rayon's thread count, explicitly, so
+/// that reading the setting does not start rayon's pool.
+///
+/// faer's default setting is `Par::rayon(0)`, "as many threads as rayon's
+/// global pool has", and every factorisation reads it
+/// (`get_global_parallelism`): the first one, however small, started the
+/// pool (two threads here, 3 % of a one-element case's CPU). With the count
+/// given, rayon's pool starts when work is first handed to it, which small
+/// systems never do; the parallelism every solve sees is the same number,
+/// so results do not change. The count is rayon's own (`RAYON_NUM_THREADS`
+/// when set, else the cores available). To be called once, before any
+/// factorisation (`aster` does it first thing).
+pub fn defer_thread_pool() {
+    let threads = std::env::var("RAYON_NUM_THREADS")
+        .ok()
+        .and_then(|s| s.parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    faer::set_global_parallelism(faer::Par::rayon(threads));
+}
+
 /// Threads available to the factorisation (faer's global setting: rayon's
 /// pool unless set otherwise).
 fn parallel_threads() -> usize {
@@ -541,6 +562,7 @@ pub fn solve_with(
     coords: Option<&[[f64; 3]]>,
 ) -> Result<SolveReport, SolveFailure> {
     let n = a.n;
+    let _solve = crate::newton_timing::phase(crate::newton_timing::Phase::Solve);
     let timing = std::env::var_os("ASTER_FEM_TIMING").is_some();
     let clock = std::time::Instant::now();
     let lap = |what: &str| {
@@ -579,6 +601,7 @@ pub fn solve_with(
             }
         }
     }
+    let factorising = crate::newton_timing::phase(crate::newton_timing::Phase::Factorisation);
     let mut factor = None;
     // Whether a Cholesky factorisation is still worth trying: not after one
     // found the matrix not positive definite.
@@ -634,6 +657,7 @@ pub fn solve_with(
             }
         }
     };
+    drop(factorising);
     let cholesky = matches!(
         factor,
         Factor::Llt(_) | Factor::LltOrdered { .. } | Factor::Split(_)

@@ -494,7 +494,10 @@ impl SourceRows {
 impl StaticNonLinear<'_> {
     /// Runs the analysis.
     pub fn solve(&mut self, model: &Model, loads: &Loads) -> Result<NonLinearResult, FemError> {
-        self.run(model, loads, false)
+        crate::newton_timing::begin_solve();
+        let r = self.run(model, loads, false);
+        crate::newton_timing::end_solve("non-linear solve");
+        r
     }
 
     /// `linear`: every instant is an independent linear solve from a zero
@@ -654,7 +657,9 @@ impl StaticNonLinear<'_> {
                         displacement: &u,
                         time: target,
                     };
-                    f.begin_increment(&state, o)?;
+                    crate::newton_timing::timed(crate::newton_timing::Phase::Contact, || {
+                        f.begin_increment(&state, o)
+                    })?;
                 }
                 if let Some(d) = self.dynamics.as_mut() {
                     // The predictor starts from the converged state (before
@@ -696,6 +701,7 @@ impl StaticNonLinear<'_> {
                             displacement: &u,
                             time: target,
                         };
+                        let _t = crate::newton_timing::phase(crate::newton_timing::Phase::Contact);
                         let rows = src.rows(&state)?;
                         let prev_active = srcs[s].as_ref().map(|r| r.active.clone());
                         srcs[s] = Some(make_rows(
@@ -1340,7 +1346,10 @@ fn newton_step(
                             extra.push((i, nfree + k, c));
                         }
                     }
-                    let a = matrix.with_extra(nfree + nk, extra);
+                    let a =
+                        crate::newton_timing::timed(crate::newton_timing::Phase::Assembly, || {
+                            matrix.with_extra(nfree + nk, extra)
+                        });
                     let symmetric = plastic.as_ref().is_none_or(|pc| pc.symmetric_tangent());
                     let spd = nk == 0 && symmetric;
                     linalg::solve_with(&a, &b, nfree, spd, Some(coords)).map_err(|f| match f {
@@ -1376,6 +1385,7 @@ fn newton_step(
                 lam_rows[r] = sol.x[nfree + k];
             }
             newton_iter += 1;
+            crate::newton_timing::count_iteration();
             // Residual at the new iterate.
             let fint = step_forces(model, k, dynamics, plastic, u)?;
             let mut reac = vec![0.0; nd];
@@ -1780,6 +1790,7 @@ fn report_outcomes(
     t: f64,
     lambdas: &[Vec<f64>],
 ) -> Result<Vec<Vec<RowOutcome>>, FemError> {
+    let _t = crate::newton_timing::phase(crate::newton_timing::Phase::Contact);
     let mut unil = Vec::with_capacity(sources.len());
     for (s, src) in sources.iter_mut().enumerate() {
         let Some(sr) = &srcs[s] else {
@@ -1857,6 +1868,7 @@ pub(crate) fn step_forces(
     plastic: &mut Option<PlasticCells>,
     u: &[f64],
 ) -> Result<Vec<f64>, FemError> {
+    let _t = crate::newton_timing::phase(crate::newton_timing::Phase::Behaviour);
     let mut fint = internal_forces(model, k, plastic, u)?;
     if let Some(d) = dynamics {
         for (f, x) in fint.iter_mut().zip(d.force(u)) {
@@ -1896,6 +1908,7 @@ pub(crate) fn choose_tangent(
     newton: NewtonOptions,
     iter: usize,
 ) -> Result<bool, FemError> {
+    let _t = crate::newton_timing::phase(crate::newton_timing::Phase::Assembly);
     let consistent = |pc: &mut PlasticCells| {
         if pc.tangent_is_elastic() {
             None
@@ -1937,6 +1950,7 @@ fn refresh_geometry_rows(
     u: &[f64],
     t: f64,
 ) -> Result<(bool, bool), FemError> {
+    let _t = crate::newton_timing::phase(crate::newton_timing::Phase::Contact);
     let mut changed = false;
     let mut restarts = false;
     for (src, slot) in sources.iter_mut().zip(srcs.iter_mut()) {

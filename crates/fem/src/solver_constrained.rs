@@ -147,6 +147,7 @@ impl KktSolver {
         coords: Option<&[[f64; 3]]>,
         held: &dyn Fn(&[usize]) -> bool,
     ) -> Result<Option<SolveReport>, SolveFailure> {
+        let _solve = crate::newton_timing::phase(crate::newton_timing::Phase::Solve);
         let n = base.n;
         // Pinned rows: equality rows on one free DOF.
         let mut pin_of_dof: HashMap<usize, usize> = HashMap::new();
@@ -219,6 +220,7 @@ impl KktSolver {
             .filter(|&k| !red.columns.contains_key(&keys[k]))
             .collect();
         if !missing.is_empty() {
+            let _t = crate::newton_timing::phase(crate::newton_timing::Phase::RowColumns);
             let nr = red.full_of.len();
             let mut rhs = Mat::<f64>::zeros(nr, missing.len());
             for (col, &k) in missing.iter().enumerate() {
@@ -298,7 +300,10 @@ impl KktSolver {
         let mut x = ctx.apply(b, &d);
         let norm_b = b.iter().chain(&d).fold(0.0f64, |a, v| a.max(v.abs()));
         let berr = |x: &[f64]| -> (f64, Vec<f64>, Vec<f64>) {
-            let (ru, rd) = residual(keff, rows, b, &d, x);
+            let (ru, rd) =
+                crate::newton_timing::timed(crate::newton_timing::Phase::Residuals, || {
+                    residual(keff, rows, b, &d, x)
+                });
             let nr = ru.iter().chain(&rd).fold(0.0f64, |a, v| a.max(v.abs()));
             let nx = x.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             let den = norm_aug * nx + norm_b;
@@ -360,6 +365,8 @@ impl KktSolver {
         pinned: Vec<usize>,
         coords: Option<&[[f64; 3]]>,
     ) -> Option<Reduced> {
+        use crate::newton_timing::{phase, Phase};
+        let assembling = phase(Phase::Assembly);
         let n = base.n;
         let keff = (!penalty.is_empty()).then(|| base.with_extra(n, penalty.clone()));
         let k = keff.as_ref().unwrap_or(base);
@@ -393,6 +400,8 @@ impl KktSolver {
                 values.push(krr.values[p] * scale[krr.row_idx[p]] * scale[j]);
             }
         }
+        drop(assembling);
+        let _factorising = phase(Phase::Factorisation);
         let nr = krr.n;
         let sym = SymbolicSparseColMatRef::new_checked(nr, nr, &krr.col_ptr, None, &krr.row_idx);
         let mat = SparseColMatRef::new(sym, &values);

@@ -54,7 +54,11 @@ pub fn run_sources(
     };
     // Everything that would be refused is refused now, before any command
     // runs (crate::preflight).
-    let pre = crate::preflight::check_study(&map, &study, &executor.options);
+    // The run validates again only the calls whose inputs differ from the
+    // static pass's (`aster_eval::ValidationMemo`).
+    let mut memo = aster_eval::ValidationMemo::recording();
+    let pre = crate::preflight::check_study_memo(&map, &study, &executor.options, Some(&mut memo));
+    memo.freeze();
     if !pre.findings.0.is_empty() {
         return Err(RunFailure {
             message: pre.render(&map),
@@ -63,7 +67,14 @@ pub fn run_sources(
     executor.read_meshes = pre.meshes;
     executor.set_codemap(Rc::new(map.clone()));
     let options = aster_eval::RunOptions { keep_going: false };
-    match aster_eval::run_study(&map, &study, executor, options) {
+    let result = aster_eval::run_study_memo(&map, &study, executor, options, Some(&mut memo));
+    if std::env::var_os("ASTER_RUN_TIMING").is_some() {
+        eprintln!(
+            "[run] validations reused from the static pass: {}, done again: {}",
+            memo.hits, memo.misses
+        );
+    }
+    match result {
         Ok(summary) => {
             for w in &summary.warnings.0 {
                 eprintln!("{}", w.headline(&map));

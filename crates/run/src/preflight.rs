@@ -321,6 +321,18 @@ pub fn check(map: &CodeMap, module: &aster_syntax::ast::Module, options: &RunOpt
 /// one interpreter (`POURSUITE` continuing with the concepts of the file
 /// before), importing its modules, as the run does.
 pub fn check_study(map: &CodeMap, study: &aster_eval::Study, options: &RunOptions) -> Preflight {
+    check_study_memo(map, study, options, None)
+}
+
+/// [`check_study`] recording each call's validation in `memo`, for the run
+/// that follows to reuse (the run then evaluates the program again but does
+/// not validate again a call whose inputs are the same).
+pub fn check_study_memo(
+    map: &CodeMap,
+    study: &aster_eval::Study,
+    options: &RunOptions,
+    memo: Option<&mut aster_eval::ValidationMemo>,
+) -> Preflight {
     let mut sink = Sink {
         options,
         findings: Vec::new(),
@@ -333,11 +345,12 @@ pub fn check_study(map: &CodeMap, study: &aster_eval::Study, options: &RunOption
         refusals: CallRefusals::default(),
         external: Vec::new(),
     };
-    let result = aster_eval::run_study(
+    let result = aster_eval::run_study_memo(
         map,
         study,
         &mut sink,
         aster_eval::RunOptions { keep_going: true },
+        memo,
     );
     let diags = match result {
         Ok(_) => Vec::new(),

@@ -125,6 +125,24 @@ pub enum Node {
 }
 
 impl Node {
+    /// About the bytes this node takes in the file: its data, alignment and
+    /// an allowance for its header, messages and attributes.
+    fn size_hint(&self) -> usize {
+        let header = |attrs: &[WAttr]| 256 + 64 * attrs.len();
+        match self {
+            Node::Group {
+                attrs, children, ..
+            } => {
+                header(attrs)
+                    + children
+                        .iter()
+                        .map(|c| 48 + c.name().len() + c.size_hint())
+                        .sum::<usize>()
+            }
+            Node::Dataset { attrs, data, .. } => header(attrs) + pad8(data.len()),
+        }
+    }
+
     pub fn group(name: &str, attrs: Vec<WAttr>, children: Vec<Node>) -> Node {
         Node::Group {
             name: name.into(),
@@ -193,7 +211,12 @@ const NODE_K: usize = 16;
 
 /// Serialise a root group (its own name is ignored) to an HDF5 file image.
 pub fn to_bytes(root: &Node) -> Vec<u8> {
-    let mut w = Writer { buf: vec![0; 96] };
+    // The file's size, about: data, padding and headers. Reserved at once,
+    // the buffer is not copied as it grows (a 191 kB result file took 15 %
+    // of a one-element case's time, most of it in reallocations).
+    let mut buf = Vec::with_capacity(96 + root.size_hint());
+    buf.resize(96, 0);
+    let mut w = Writer { buf };
     let (addr, _) = w.object(root);
     let eof = w.buf.len() as u64;
     let mut sb = Vec::with_capacity(96);
