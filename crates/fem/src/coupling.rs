@@ -78,7 +78,7 @@ pub fn solid_to_beam(
             }
         }
     }
-    if !(area > 0.0) {
+    if area.is_nan() || area <= 0.0 {
         return Err(FemError::Model(
             "LIAISON_ELEM 3D_POU: the face has no area (code_aster's MODELISA6_46)".into(),
         ));

@@ -857,35 +857,6 @@ pub(super) fn liaison_group(
     Ok(out)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_dof_given_twice_in_a_load_keeps_its_last_value() {
-        let i = |n: u32, comp: CompName, value: f64| Imposed {
-            node: NodeId(n),
-            comp,
-            value,
-        };
-        // SSNP167E: a node on the loaded arc (DX = -4.8e-19 by a function)
-        // and on the symmetry line (DX = 0).
-        let kept = last_per_dof(
-            vec![
-                i(4, "DX", -4.8e-19),
-                i(4, "DY", 1.0),
-                i(5, "DX", 2.0),
-                i(4, "DX", 0.0),
-            ],
-            |i| (i.node, i.comp),
-        );
-        assert_eq!(
-            kept,
-            vec![i(4, "DY", 1.0), i(5, "DX", 2.0), i(4, "DX", 0.0)]
-        );
-    }
-}
-
 /// `LIAISON_ELEM(OPTION='3D_POU')`: the six relations tying the solid's
 /// face `GROUP_MA_1` to the node `GROUP_NO_2` (or the POI1 cell
 /// `GROUP_MA_2`), which must carry rotations (a `DIS_TR` or beam node):
@@ -951,4 +922,33 @@ fn liaison_elem_3d_pou(
         out.push(LinearRelation { terms, rhs: 0.0 });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_dof_given_twice_in_a_load_keeps_its_last_value() {
+        let i = |n: u32, comp: CompName, value: f64| Imposed {
+            node: NodeId(n),
+            comp,
+            value,
+        };
+        // SSNP167E: a node on the loaded arc (DX = -4.8e-19 by a function)
+        // and on the symmetry line (DX = 0).
+        let kept = last_per_dof(
+            vec![
+                i(4, "DX", -4.8e-19),
+                i(4, "DY", 1.0),
+                i(5, "DX", 2.0),
+                i(4, "DX", 0.0),
+            ],
+            |i| (i.node, i.comp),
+        );
+        assert_eq!(
+            kept,
+            vec![i(4, "DY", 1.0), i(5, "DX", 2.0), i(4, "DX", 0.0)]
+        );
+    }
 }
