@@ -6,49 +6,8 @@
 mod common;
 
 use aster_fem::*;
-use aster_mesh::{CellType, NodeId};
-use common::MeshBuilder;
-
-/// One QUAD4 [0, 1]², bottom held, the top pulled up by DY = 0.01 t.
-fn square() -> (Model, Loads, NodeId) {
-    let mut mb = MeshBuilder::new(2);
-    let n: Vec<NodeId> = [[0., 0.], [1., 0.], [1., 1.], [0., 1.]]
-        .iter()
-        .enumerate()
-        .map(|(i, p)| mb.node(&format!("N{i}"), [p[0], p[1], 0.]))
-        .collect();
-    let c = mb.cell("M1", CellType::QUAD4, &n);
-    let model = Model::new(
-        mb.mesh,
-        vec![Element {
-            cell: c,
-            kind: ElementKind::Continuum {
-                hypothesis: Hypothesis::PlaneStrain,
-                material: Elastic::new(1000., 0.25).unwrap(),
-            },
-        }],
-    )
-    .unwrap();
-    let mut loads = Loads::new();
-    for &b in &n[..2] {
-        for comp in [Comp::DX, Comp::DY] {
-            loads.push(Load::Eliminated {
-                dof: Dof::new(b, comp),
-                value: 0.,
-            });
-        }
-    }
-    for &t in &n[2..] {
-        loads.add(
-            Load::Eliminated {
-                dof: Dof::new(t, Comp::DY),
-                value: 0.01,
-            },
-            Multiplier::from_fn(Ok),
-        );
-    }
-    (model, loads, n[2])
-}
+use aster_mesh::NodeId;
+use common::pulled_square as square;
 
 /// A unilateral source whose pairing only settles on small increments: the
 /// stand-in for a contact zone whose geometric loop needs a smaller step.
