@@ -1377,7 +1377,7 @@ fn calc_champ_from_fields(
                 "SIEF_NOEU" => "SIEF_ELNO",
                 other => {
                     return Err(ex.unsupported(
-                        &format!("CALC_CHAMP option {other} on a result made by POST_CHAMP (only the nodal averages SIGM_NOEU, SIEF_NOEU of its fields)"),
+                        &format!("CALC_CHAMP option {other} on a result that holds fields but no computed state (POST_CHAMP, CREA_RESU): only the nodal averages SIGM_NOEU, SIEF_NOEU of its ELNO fields"),
                         call.span,
                     ))
                 }
