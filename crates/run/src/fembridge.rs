@@ -1326,26 +1326,22 @@ pub fn extract_shell_level(
                 step.nume_ordre
             ))
         })?;
-        let mut fields = BTreeMap::new();
-        for name in names {
-            if !step.fields.contains_key(name) {
-                return Err(ExecError::new(format!(
-                    "POST_CHAMP/EXTR_COQUE: the field {name} is not in the result at NUME_ORDRE {}: compute it first (CALC_CHAMP)",
-                    step.nume_ordre
-                )));
-            }
-            let cells = crate::shells::sigm_elno_at(
-                &run.model,
-                run.cara.as_deref(),
-                &raw.displacement,
-                level,
-            )
-            .map_err(|e| fem_err("POST_CHAMP", e))?;
-            fields.insert(
-                name.clone(),
-                Field::Elem(elem_field(ElemLocation::Nodes, &cells)),
-            );
+        if let Some(name) = names.iter().find(|n| !step.fields.contains_key(*n)) {
+            return Err(ExecError::new(format!(
+                "POST_CHAMP/EXTR_COQUE: the field {name} is not in the result at NUME_ORDRE {}: compute it first (CALC_CHAMP)",
+                step.nume_ordre
+            )));
         }
+        // SIGM_ELNO and SIEF_ELNO of an elastic shell are the same stresses:
+        // computed once, stored under each name asked.
+        let cells =
+            crate::shells::sigm_elno_at(&run.model, run.cara.as_deref(), &raw.displacement, level)
+                .map_err(|e| fem_err("POST_CHAMP", e))?;
+        let field = Field::Elem(elem_field(ElemLocation::Nodes, &cells));
+        let fields: BTreeMap<String, Field> = names
+            .iter()
+            .map(|name| (name.clone(), field.clone()))
+            .collect();
         out.steps.push(Step {
             nume_ordre: step.nume_ordre,
             inst: step.inst,
