@@ -877,8 +877,7 @@ fn continue_steps(
     Ok((merged, fem))
 }
 
-/// What CALC_CHAMP reads (`crate::support`).
-pub(crate) const CALC_CHAMP: Support = Support::keywords(&[
+const CALC_CHAMP_OWN: &[&str] = &[
     "RESULTAT",
     "MODELE",
     "CHAM_MATER",
@@ -891,16 +890,19 @@ pub(crate) const CALC_CHAMP: Support = Support::keywords(&[
     "CRITERES",
     "DEFORMATION",
     "VARI_INTERNE",
-    "TOUT_ORDRE",
-    "NUME_ORDRE",
-    "INST",
-    "PRECISION",
-    "CRITERE",
     "TOUT",
     "GROUP_MA",
     "INFO",
     "TITRE",
-]);
+];
+
+/// What CALC_CHAMP reads (`crate::support`): its own keywords and the step
+/// selection ([`crate::commands::post::STEP_SELECTION`]).
+pub(crate) const CALC_CHAMP: Support =
+    Support::keywords(&crate::support::joined::<
+        _,
+        { crate::commands::post::STEP_SELECTION.len() + CALC_CHAMP_OWN.len() },
+    >(crate::commands::post::STEP_SELECTION, CALC_CHAMP_OWN));
 
 pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;

@@ -89,19 +89,12 @@ fn list_of(
     }
 }
 
-/// What RECU_FONCTION reads (`crate::support`).
-pub(crate) const RECU_FONCTION: Support = Support::keywords(&[
+const RECU_FONCTION_OWN: &[&str] = &[
     "RESULTAT",
     "NOM_CHAM",
     "NOM_CMP",
     "GROUP_NO",
     "NOEUD",
-    "TOUT_ORDRE",
-    "NUME_ORDRE",
-    "INST",
-    "LIST_INST",
-    "CRITERE",
-    "PRECISION",
     "TABLE",
     "PARA_X",
     "PARA_Y",
@@ -120,7 +113,15 @@ pub(crate) const RECU_FONCTION: Support = Support::keywords(&[
     "PROL_DROITE",
     "TITRE",
     "INFO",
-]);
+];
+
+/// What RECU_FONCTION reads (`crate::support`): its own keywords and the step
+/// selection ([`super::post::STEP_SELECTION`]).
+pub(crate) const RECU_FONCTION: Support =
+    Support::keywords(&crate::support::joined::<
+        _,
+        { super::post::STEP_SELECTION.len() + RECU_FONCTION_OWN.len() },
+    >(super::post::STEP_SELECTION, RECU_FONCTION_OWN));
 
 pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let cmd = "RECU_FONCTION";

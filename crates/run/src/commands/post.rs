@@ -14,8 +14,21 @@ use std::sync::Arc;
 /// Relative precision for matching instants (code_aster's default).
 pub const INST_PRECISION: f64 = 1e-6;
 
-/// The steps an occurrence designates (`NUME_ORDRE`, `INST`, `TOUT_ORDRE`,
-/// default: every step).
+/// The keywords [`select_steps`] reads: a command that designates steps
+/// with them declares them in its `crate::support` table through
+/// `crate::support::joined`.
+pub(crate) const STEP_SELECTION: &[&str] = &[
+    "TOUT_ORDRE",
+    "NUME_ORDRE",
+    "LIST_ORDRE",
+    "INST",
+    "LIST_INST",
+    "PRECISION",
+    "CRITERE",
+];
+
+/// The steps an occurrence designates (`NUME_ORDRE`, `LIST_ORDRE`, `INST`,
+/// `LIST_INST`, `TOUT_ORDRE`, default: every step).
 pub fn select_steps<'r>(
     ex: &Executor,
     cmd: &str,

@@ -37,8 +37,7 @@ use aster_mesh::{CellId, Mesh};
 use std::collections::HashMap;
 use std::rc::Rc;
 
-/// What POST_ELEM computes (`crate::support`).
-pub(crate) const POST_ELEM: Support = Support::keywords(&[
+const POST_ELEM_OWN: &[&str] = &[
     "ENER_POT",
     "ENER_POT/TOUT",
     "ENER_POT/GROUP_MA",
@@ -53,14 +52,16 @@ pub(crate) const POST_ELEM: Support = Support::keywords(&[
     "MODELE",
     "CHAM_MATER",
     "CARA_ELEM",
-    "TOUT_ORDRE",
-    "NUME_ORDRE",
-    "INST",
-    "LIST_INST",
-    "PRECISION",
-    "CRITERE",
     "TITRE",
-]);
+];
+
+/// What POST_ELEM computes (`crate::support`): its own keywords and the
+/// step selection ([`super::post::STEP_SELECTION`]).
+pub(crate) const POST_ELEM: Support =
+    Support::keywords(&crate::support::joined::<
+        _,
+        { super::post::STEP_SELECTION.len() + POST_ELEM_OWN.len() },
+    >(super::post::STEP_SELECTION, POST_ELEM_OWN));
 
 pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;

@@ -155,19 +155,22 @@ fn pressure_field(
     Ok(out)
 }
 
-/// What CALC_PRESSION reads (`crate::support`).
-pub(crate) const CALC_PRESSION: Support = Support::keywords(&[
+const CALC_PRESSION_OWN: &[&str] = &[
     "MAILLAGE",
     "RESULTAT",
     "GROUP_MA",
-    "INST",
-    "TOUT_ORDRE",
     "GEOMETRIE",
-    "CRITERE",
-    "PRECISION",
     "INFO",
     "MODELE",
-]);
+];
+
+/// What CALC_PRESSION reads (`crate::support`): its own keywords and the step
+/// selection ([`super::post::STEP_SELECTION`]).
+pub(crate) const CALC_PRESSION: Support =
+    Support::keywords(&crate::support::joined::<
+        _,
+        { super::post::STEP_SELECTION.len() + CALC_PRESSION_OWN.len() },
+    >(super::post::STEP_SELECTION, CALC_PRESSION_OWN));
 
 pub fn calc_pression(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
@@ -175,11 +178,8 @@ pub fn calc_pression(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let result = ex.result(r)?;
     let mesh = ex.mesh_by_id(result.mesh)?;
     let cells = select::cells(kw, &mesh, "").map_err(|e| ExecError::new(format!("{CMD}: {e}")))?;
-    let steps: Vec<u32> = if kw.contains("INST") {
-        super::select_steps_pub(ex, CMD, kw, &result)?
-    } else {
-        result.steps.iter().map(|s| s.nume_ordre).collect()
-    };
+    // Every step unless the step selection designates some.
+    let steps: Vec<u32> = super::select_steps_pub(ex, CMD, kw, &result)?;
     let deformed = kw.str("GEOMETRIE").unwrap_or("DEFORMEE") == "DEFORMEE";
     let missing: Vec<u32> = steps
         .iter()

@@ -128,22 +128,22 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     store_result(ex, call, Concept::Result(Rc::new(result)))
 }
 
-/// What POST_CHAMP reads (`crate::support`): the shells' layer extraction.
+const POST_CHAMP_OWN: &[&str] = &[
+    "RESULTAT",
+    "TOUT",
+    "EXTR_COQUE",
+    "EXTR_COQUE/NOM_CHAM",
+    "EXTR_COQUE/NUME_COUCHE",
+    "EXTR_COQUE/NIVE_COUCHE",
+];
+
+/// What POST_CHAMP reads (`crate::support`): the shells' layer extraction
+/// and the step selection ([`super::post::STEP_SELECTION`]).
 pub(crate) const POST_CHAMP: Support = Support {
-    keywords: &[
-        "RESULTAT",
-        "TOUT_ORDRE",
-        "NUME_ORDRE",
-        "INST",
-        "LIST_INST",
-        "PRECISION",
-        "CRITERE",
-        "TOUT",
-        "EXTR_COQUE",
-        "EXTR_COQUE/NOM_CHAM",
-        "EXTR_COQUE/NUME_COUCHE",
-        "EXTR_COQUE/NIVE_COUCHE",
-    ],
+    keywords: &crate::support::joined::<
+        _,
+        { super::post::STEP_SELECTION.len() + POST_CHAMP_OWN.len() },
+    >(super::post::STEP_SELECTION, POST_CHAMP_OWN),
     values: &[Values::new(
         "EXTR_COQUE/NOM_CHAM",
         &["SIGM_ELNO", "SIEF_ELNO"],
