@@ -4,8 +4,8 @@
 //! `CONT` (-1 not paired, 0 no contact, 1 contact; in a RESOLUTION='NON'
 //! zone 3 for an interpenetration beyond TOLE_INTERP), `JEU` (gap on the
 //! current geometry; in a RESOLUTION='NON' zone on the last pairing's), `RN` (normal nodal force ≥ 0), `RNX RNY RNZ` (that
-//! force along the contact normal: on the slave node in the discrete
-//! formulation, its opposite — the contact vector's sign — in the continuous one), the friction
+//! force along the contact normal, with the contact vector's sign: against
+//! the force the master exerts on the slave node, in both formulations), the friction
 //! components `GLIX GLIY GLI RTAX RTAY RTAZ RTGX RTGY RTGZ` (all 0 without
 //! friction), `RX RY RZ` (total contact force = normal force here) and `R`
 //! (its norm).
@@ -171,19 +171,17 @@ impl ContNoeu {
                         };
                         v[1] = p.gap;
                         v[2] = rn.abs();
-                        // The vector components: in the continuous formulation
-                        // code_aster reads them from the assembled contact
-                        // vector (CNELTC, on the internal-force side of the
-                        // balance), so they point against the force the master
-                        // exerts on the slave node; SSNV193A tests RZ < 0 on a
-                        // slave face pressed down onto its master.
-                        let sign = match z.law {
-                            ZoneLaw::Continue(_) => -1.0,
-                            ZoneLaw::Discrete(_) => 1.0,
-                        };
+                        // The vector components: code_aster reads them from
+                        // the contact forces on the internal-force side of
+                        // the balance (continuous: the assembled CNELTC;
+                        // discrete: Aᵀμ at the slave node's DOFs, `cfresa`),
+                        // so they point against the force the master exerts
+                        // on the slave node, in both formulations: SSNV193A
+                        // tests RZ < 0 on a slave face pressed down onto its
+                        // master, continuous (UCTCC) and discrete (UMCTCD).
                         for c in 0..3 {
-                            v[3 + c] = sign * rn * p.normal[c];
-                            v[15 + c] = sign * rn * p.normal[c];
+                            v[3 + c] = -rn * p.normal[c];
+                            v[15 + c] = -rn * p.normal[c];
                         }
                         v[18] = rn.abs();
                     }

@@ -232,8 +232,8 @@ fn axisymmetric_lags_c_is_the_pressure_when_weights_carry_the_radius() {
 
 /// CONT_NOEU of a continuous zone: code_aster (`mmmres`) reads the vector
 /// components from the assembled contact vector, so on the upper plate
-/// pressed down onto the lower one RNY = RY = −RN (a discrete zone gives +RN,
-/// see zzzz237a.rs). A frictionless continuous node in contact has CONT = 2
+/// pressed down onto the lower one RNY = RY = −RN (a discrete zone too,
+/// `cfresa` on Aᵀμ: see zzzz237a.rs; SSNV193A tests both). A frictionless continuous node in contact has CONT = 2
 /// ("sliding", `mmmres`; a discrete one 1).
 #[test]
 fn continuous_cont_noeu_components_carry_the_contact_vector_sign() {

@@ -126,6 +126,60 @@ pub struct ModelDef {
     /// Per mesh node, whether it carries the rotations DRX DRY DRZ (a
     /// node of a shell cell).
     pub rotations: Vec<bool>,
+    /// `AFFE_SOUS_STRUC`: the super cells (static substructures) the
+    /// model carries beside its elements.
+    pub substructures: Vec<Substructure>,
+}
+
+/// A super cell of a model (`AFFE_MODELE/AFFE_SOUS_STRUC`): its name and
+/// the macro element it stands for.
+#[derive(Clone, Debug)]
+pub struct Substructure {
+    pub name: String,
+    pub macro_elem: Rc<MacroElement>,
+}
+
+impl PartialEq for Substructure {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name && Rc::ptr_eq(&self.macro_elem, &other.macro_elem)
+    }
+}
+
+/// `MACR_ELEM_STAT`: a static substructure — a model's cells with their
+/// materials, the Dirichlet conditions inside it (`CHAR_MACR_ELEM`), its
+/// exterior nodes (`EXTERIEUR`) and its load cases (`CAS_CHARGE`).
+#[derive(Clone, Debug)]
+pub struct MacroElement {
+    pub model: Rc<ModelDef>,
+    pub materials: Rc<MaterialField>,
+    /// `CHAR_MACR_ELEM`: the loads whose Dirichlet conditions hold inside.
+    pub dirichlet: Vec<crate::solve::LoadRef>,
+    pub exterior: Vec<NodeId>,
+    pub cases: Vec<LoadCase>,
+}
+
+/// `MACR_ELEM_STAT/CAS_CHARGE`: a named load case of a macro element.
+#[derive(Clone, Debug)]
+pub struct LoadCase {
+    pub name: String,
+    pub loads: Vec<crate::solve::LoadRef>,
+}
+
+/// `DEFI_MAILLAGE`: super cells, each a macro element whose exterior
+/// nodes are named by `DEFI_NOEUD`.
+#[derive(Clone, Debug)]
+pub struct SuperMesh {
+    pub cells: Vec<SuperCell>,
+}
+
+/// One super cell of a [`SuperMesh`].
+#[derive(Clone, Debug)]
+pub struct SuperCell {
+    pub name: String,
+    pub macro_elem: Rc<MacroElement>,
+    /// The names of the macro element's exterior nodes in the super mesh
+    /// (in the order of [`MacroElement::exterior`]).
+    pub node_names: Vec<String>,
 }
 
 impl ModelDef {
@@ -449,6 +503,10 @@ pub enum Concept {
     /// TYPE_CHAM='NOEU_*_F', AFFE=_F(VALE_F=…))`), evaluated by
     /// `CREA_CHAMP(OPERATION='EVAL')`.
     FunctionField(Rc<NodalFunctionField>),
+    /// `MACR_ELEM_STAT`.
+    MacroElement(Rc<MacroElement>),
+    /// `DEFI_MAILLAGE`.
+    SuperMesh(Rc<SuperMesh>),
 }
 
 /// Per node, per component, a function (`NOEU_*_F`).
@@ -479,6 +537,8 @@ impl Concept {
             Concept::VectElem(_) => "elementary vectors",
             Concept::Numbering(_) => "a DOF numbering",
             Concept::FunctionField(_) => "a field of functions",
+            Concept::MacroElement(_) => "a static macro element (MACR_ELEM_STAT)",
+            Concept::SuperMesh(_) => "a super mesh (DEFI_MAILLAGE)",
         }
     }
 }

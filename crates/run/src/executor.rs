@@ -48,6 +48,9 @@ pub struct Executor {
     /// LAC patches recorded by `CREA_MAILLAGE/DECOUPE_LAC`, with the mesh
     /// they belong to (the Arc is kept so the pointer stays unique).
     pub(crate) lac_patches: Vec<(Arc<Mesh>, Arc<aster_mesh::LacPatches>)>,
+    /// Meshes assembled with super cells (`ASSE_MAILLAGE(OPERATION=
+    /// 'SOUS_STR')`), by concept id.
+    pub(crate) substructured: HashMap<u32, crate::commands::substructure::Substructured>,
     /// Meshes the static pass already read (`LIRE_MAILLAGE` takes them).
     pub(crate) read_meshes: Vec<crate::preflight::ReadMesh>,
     /// Text files this run has written on a unit: the first write of a run
@@ -77,6 +80,7 @@ impl Executor {
             codemap: None,
             finished: false,
             lac_patches: Vec::new(),
+            substructured: HashMap::new(),
             read_meshes: Vec::new(),
             written_units: Default::default(),
             journal: Default::default(),

@@ -154,6 +154,12 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "EXCIT/CHARGE",
     "EXCIT/FONC_MULT",
     "EXCIT/TYPE_CHARGE",
+    // Static substructures (`crate::commands::substructure`).
+    "SOUS_STRUC",
+    "SOUS_STRUC/CAS_CHARGE",
+    "SOUS_STRUC/TOUT",
+    "SOUS_STRUC/SUPER_MAILLE",
+    "SOUS_STRUC/FONC_MULT",
     "CONTACT",
     "COMPORTEMENT",
     "COMPORTEMENT/RELATION",
@@ -365,13 +371,21 @@ pub(crate) fn parse_setup(
 ) -> Result<SolveSetup, ExecError> {
     let cmd = call.command.as_str();
     let kw = &call.keywords;
-    let model = ex.model(ex.required(cmd, kw, "MODELE")?)?;
+    let own_model = ex.model(ex.required(cmd, kw, "MODELE")?)?;
     let materials = ex.material_field(ex.required(cmd, kw, "CHAM_MATER")?)?;
     let cara = match kw.concept("CARA_ELEM") {
         Some(c) => Some(ex.cara_elem(c)?),
         None => None,
     };
-    let excitations = parse_excitations(ex, cmd, kw)?;
+    let mut excitations = parse_excitations(ex, cmd, kw)?;
+    // Super cells: their macro elements' cells and loads join the solve.
+    let (model, materials) = crate::commands::substructure::expand(
+        ex,
+        call,
+        own_model.clone(),
+        materials,
+        &mut excitations,
+    )?;
     // STAT_NON_LINE/DYNA_NON_LINE: CONTACT=DEFI_CONTACT; MECA_NON_LINE:
     // CONTACT=_F(DEFINITION=DEFI_CONT, …) (crate::meca_non_line).
     let contact_factor = kw.factor("CONTACT");
@@ -383,6 +397,7 @@ pub(crate) fn parse_setup(
         None => None,
     };
     let behaviours = parse_behaviours(ex, cmd, kw, &model)?;
+    crate::commands::substructure::check_behaviours(ex, call, &own_model, &behaviours)?;
     crate::shells::check_solve(ex, call, &model, &behaviours)?;
     if let Some(c) = &contact {
         check_contact_with_finite_strains(ex, c, &behaviours)?;

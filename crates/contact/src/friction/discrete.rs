@@ -409,7 +409,12 @@ impl DiscreteFriction {
             let mut v = [0.0; 19];
             v[1] = st.gap;
             if st.gap < f64::EPSILON {
-                let (rn, rt) = self.slave_forces(l, &st);
+                // code_aster's `cfresu` reads the vector components from
+                // Aᵀμ and the friction forces on the internal-force side
+                // (`cfresa`, `cfresb`): against the forces on the slave.
+                let (on_slave_n, on_slave_t) = self.slave_forces(l, &st);
+                let rn = on_slave_n.map(|x| -x);
+                let rt = on_slave_t.map(|x| -x);
                 v[2] = st.lambda.abs();
                 v[3..6].copy_from_slice(&rn);
                 // GLIX, GLIY: the step's slip along the tangents.

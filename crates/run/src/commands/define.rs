@@ -258,6 +258,10 @@ pub(crate) const AFFE_MODELE: Support = Support {
         "AFFE/MAILLE",
         "AFFE/PHENOMENE",
         "AFFE/MODELISATION",
+        "AFFE_SOUS_STRUC",
+        "AFFE_SOUS_STRUC/TOUT",
+        "AFFE_SOUS_STRUC/SUPER_MAILLE",
+        "AFFE_SOUS_STRUC/PHENOMENE",
         "INFO",
         "VERI_JACOBIEN",
         "VERI_NORM_IFS",
@@ -359,7 +363,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
             cells.insert(c, modelisation);
         }
     }
-    if cells.is_empty() {
+    if cells.is_empty() && !kw.contains("AFFE_SOUS_STRUC") {
         return Err(ExecError::new(
             "AFFE_MODELE: no cell of the mesh received an element",
         ));
@@ -389,11 +393,13 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
             }
         }
     }
+    let substructures = super::substructure::affe_sous_struc(ex, call, mesh_ref.id)?;
     let model = ModelDef {
         mesh: mesh_ref.id,
         cells,
         reduced,
         rotations,
+        substructures,
     };
     store_result(ex, call, Concept::Model(Rc::new(model)))
 }

@@ -82,7 +82,7 @@ pub(crate) const PRE_GIBI: Support = Support::keywords(&["UNITE_GIBI", "UNITE_MA
 
 /// What ASSE_MAILLAGE does (`crate::support`): `SUPERPOSE` only.
 pub(crate) const ASSE_MAILLAGE: Support = Support {
-    values: &[Values::new("OPERATION", &["SUPERPOSE"])],
+    values: &[super::substructure::ASSE_OPERATIONS],
     ..Support::keywords(&["MAILLAGE_1", "MAILLAGE_2", "OPERATION"])
 };
 
@@ -129,6 +129,9 @@ pub fn pre_convert(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
 /// `SOUS_STR` are refused.
 pub fn asse_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
+    if kw.str("OPERATION") == Some("SOUS_STR") {
+        return super::substructure::asse_sous_str(ex, call);
+    }
     let a = ex.mesh(ex.required("ASSE_MAILLAGE", kw, "MAILLAGE_1")?)?;
     let b = ex.mesh(ex.required("ASSE_MAILLAGE", kw, "MAILLAGE_2")?)?;
     store_result(ex, call, Concept::Mesh(Arc::new(a.superpose(&b))))

@@ -16,6 +16,7 @@ pub(crate) mod post_elem;
 pub(crate) mod post_erreur;
 pub(crate) mod pressure;
 pub(crate) mod results;
+pub(crate) mod substructure;
 pub(crate) mod tables;
 
 use crate::executor::Executor;
@@ -80,6 +81,16 @@ pub static COMMANDS: &[Command] = &[
         name: "ASSE_MAILLAGE",
         run: mesh::asse_maillage,
         support: mesh::ASSE_MAILLAGE,
+    },
+    Command {
+        name: "MACR_ELEM_STAT",
+        run: substructure::macr_elem_stat,
+        support: substructure::MACR_ELEM_STAT,
+    },
+    Command {
+        name: "DEFI_MAILLAGE",
+        run: substructure::defi_maillage,
+        support: substructure::DEFI_MAILLAGE,
     },
     Command {
         name: "DEFI_GROUP",
