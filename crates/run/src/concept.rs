@@ -449,6 +449,8 @@ pub enum Concept {
     /// TYPE_CHAM='NOEU_*_F', AFFE=_F(VALE_F=…))`), evaluated by
     /// `CREA_CHAMP(OPERATION='EVAL')`.
     FunctionField(Rc<NodalFunctionField>),
+    /// `DEFI_FOND_FISS`: a crack front (`fond_fissure`).
+    CrackFront(Rc<crate::commands::fracture::CrackFront>),
 }
 
 /// Per node, per component, a function (`NOEU_*_F`).
@@ -479,6 +481,7 @@ impl Concept {
             Concept::VectElem(_) => "elementary vectors",
             Concept::Numbering(_) => "a DOF numbering",
             Concept::FunctionField(_) => "a field of functions",
+            Concept::CrackFront(_) => "a crack front",
         }
     }
 }
