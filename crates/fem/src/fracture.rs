@@ -37,6 +37,9 @@ pub struct PlaneCell<'a> {
     pub theta: &'a [[f64; 2]],
     pub material: Elastic,
     pub hyp: Hypothesis,
+    /// The isotropic free strain α (T − T_ref) at each node (a temperature),
+    /// `None` without one.
+    pub free_strain: Option<&'a [f64]>,
 }
 
 /// The theta vector at a node of coordinates `x` (code_aster's `gcou2d`):
@@ -80,6 +83,11 @@ pub struct KIntegrals {
 struct PointData {
     dudm: [[f64; 2]; 2],
     dtdm: [[f64; 2]; 2],
+    /// Theta at the point.
+    theta: [f64; 2],
+    /// The free strain at the point and its gradient (α ∇T).
+    eth: f64,
+    geth: [f64; 2],
     poids: f64,
     x: [f64; 2],
 }
@@ -121,6 +129,9 @@ fn points(cell: &PlaneCell) -> Result<Vec<PointData>, String> {
         ];
         let mut dudm = [[0.0; 2]; 2];
         let mut dtdm = [[0.0; 2]; 2];
+        let mut theta = [0.0; 2];
+        let mut eth = 0.0;
+        let mut geth = [0.0; 2];
         for i in 0..nno {
             // ∂N/∂x_k = Σ_l inv[k][l] ∂N/∂ξ_l
             let d = [
@@ -128,15 +139,24 @@ fn points(cell: &PlaneCell) -> Result<Vec<PointData>, String> {
                 inv[1][0] * s.dn[i][0] + inv[1][1] * s.dn[i][1],
             ];
             for j in 0..2 {
+                theta[j] += cell.theta[i][j] * s.n[i];
                 for k in 0..2 {
                     dudm[j][k] += cell.disp[i][j] * d[k];
                     dtdm[j][k] += cell.theta[i][j] * d[k];
                 }
             }
+            if let Some(fs) = cell.free_strain {
+                eth += s.n[i] * fs[i];
+                geth[0] += d[0] * fs[i];
+                geth[1] += d[1] * fs[i];
+            }
         }
         out.push(PointData {
             dudm,
             dtdm,
+            theta,
+            eth,
+            geth,
             poids: gp.weight * det.abs(),
             x,
         });
@@ -158,26 +178,37 @@ pub fn g_theta(cells: &[PlaneCell]) -> Result<f64, String> {
         if theta_is_zero(cell) {
             continue;
         }
-        let h = cell.material.hooke(cell.hyp);
+        let (e, nu) = (cell.material.e, cell.material.nu);
+        let mu = e / (2.0 * (1.0 + nu));
+        let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        let troisk = e / (1.0 - 2.0 * nu);
+        let thermal = cell.free_strain.is_some();
+        if cell
+            .free_strain
+            .is_some_and(|f| f.len() != cell.coords.len())
+        {
+            return Err("free strain: node count mismatch".into());
+        }
         for p in points(cell)? {
-            let eps = [p.dudm[0][0], p.dudm[1][1], 0.0, p.dudm[0][1] + p.dudm[1][0]];
-            let eps = if cell.hyp == Hypothesis::PlaneStress {
-                // εzz from σzz = 0, as nmelnl fills it.
-                let nu = cell.material.nu;
-                [eps[0], eps[1], -nu / (1.0 - nu) * (eps[0] + eps[1]), eps[3]]
+            let ther = p.eth;
+            // The total strain (tensor), εzz as nmelnl fills it.
+            let e33 = if cell.hyp == Hypothesis::PlaneStress {
+                -nu / (1.0 - nu) * (p.dudm[0][0] + p.dudm[1][1]) + (1.0 + nu) / (1.0 - nu) * ther
             } else {
-                eps
+                0.0
             };
-            // σ = D ε with the engineering shear (hooke's 4×4 in SIXX SIYY SIZZ SIXY).
-            let mut sig = [0.0; 4];
-            let e_in = [eps[0], eps[1], 0.0, eps[3]];
-            for a in 0..4 {
-                for b in 0..4 {
-                    sig[a] += h[(a, b)] * e_in[b];
-                }
-            }
-            let energy =
-                0.5 * (sig[0] * eps[0] + sig[1] * eps[1] + sig[2] * eps[2] + sig[3] * eps[3]);
+            let exy = 0.5 * (p.dudm[0][1] + p.dudm[1][0]);
+            // The mechanical strain ε − ε_th.
+            let em = [p.dudm[0][0] - ther, p.dudm[1][1] - ther, e33 - ther];
+            let divu = em[0] + em[1] + em[2];
+            let sig = [
+                lambda * divu + 2.0 * mu * em[0],
+                lambda * divu + 2.0 * mu * em[1],
+                lambda * divu + 2.0 * mu * em[2],
+                2.0 * mu * exy,
+            ];
+            // ½ σ : (ε − ε_th) (tensor: the shear counts twice).
+            let energy = 0.5 * (sig[0] * em[0] + sig[1] * em[1] + sig[2] * em[2]) + sig[3] * exy;
             let sr = [[sig[0], sig[3]], [sig[3], sig[1]]];
             let mut prod = 0.0;
             for i in 0..2 {
@@ -189,6 +220,11 @@ pub fn g_theta(cells: &[PlaneCell]) -> Result<f64, String> {
             }
             let divt = p.dtdm[0][0] + p.dtdm[1][1];
             g += p.poids * (prod - energy * divt);
+            if thermal {
+                // −poids (∇T·θ) ∂W/∂T, ∂W/∂T = −3k α div(u − u_th).
+                let gt = p.geth[0] * p.theta[0] + p.geth[1] * p.theta[1];
+                g += p.poids * gt * troisk * divu;
+            }
         }
     }
     Ok(g)
@@ -196,8 +232,15 @@ pub fn g_theta(cells: &[PlaneCell]) -> Result<f64, String> {
 
 /// The bilinear form of `gbilin` (plane, no thermal, no initial stress,
 /// no forces): (−div θ/2 · s1 + s2)·poids.
-fn gbilin(u: &[[f64; 2]; 2], v: &[[f64; 2]; 2], t: &[[f64; 2]; 2], c: [f64; 3], poids: f64) -> f64 {
-    let (dudm, dvdm, dtdm) = (u, v, t);
+struct Bilin {
+    c: [f64; 3],
+    th: f64,
+    /// E / (1 − 2ν).
+    troisk: f64,
+}
+
+fn gbilin(u: &[[f64; 2]; 2], v: &[[f64; 2]; 2], p: &PointData, b: &Bilin, coef: f64) -> f64 {
+    let (dudm, dvdm, dtdm, c, poids) = (u, v, &p.dtdm, b.c, p.poids);
     let vect = [
         0.5 * (dvdm[0][0] * dudm[1][1] + dudm[0][0] * dvdm[1][1]),
         0.5 * (dvdm[0][0] * dudm[0][1] + dudm[0][0] * dvdm[0][1]),
@@ -221,7 +264,19 @@ fn gbilin(u: &[[f64; 2]; 2], v: &[[f64; 2]; 2], t: &[[f64; 2]; 2], c: [f64; 3], 
     let s1 = c[0] * s11 + c[1] * s12 + c[2] * s13;
     let s2 = c[0] * s21 + c[1] * s22 + c[2] * s23;
     let divt = dtdm[0][0] + dtdm[1][1];
-    (-divt / 2.0 * s1 + s2) * poids
+    let divv = b.th * (dvdm[0][0] + dvdm[1][1]);
+    let s1th = coef * p.eth * divv * b.troisk;
+    let mut prod = 0.0;
+    for i in 0..2 {
+        for j in 0..2 {
+            prod += dvdm[i][j] * dtdm[j][i];
+        }
+    }
+    let s2th = 0.5 * b.th * coef * p.eth * prod * b.troisk;
+    let tcla = (-divt / 2.0 * (s1 - s1th) + (s2 - s2th)) * poids;
+    let gt = p.geth[0] * p.theta[0] + p.geth[1] * p.theta[1];
+    let tthe = poids * gt * divv * coef * b.troisk / 2.0;
+    tcla + tthe
 }
 
 /// The gradients (global frame) of the auxiliary fields of a unit K1 and
@@ -294,19 +349,25 @@ pub fn k_theta(cells: &[PlaneCell], tip: &CrackTip) -> Result<KIntegrals, String
         let (e, nu) = (cell.material.e, cell.material.nu);
         let c3 = e / (2.0 * (1.0 + nu));
         let mu = c3;
-        let (ka, c1, c2, coefk) = if cell.hyp == Hypothesis::PlaneStrain {
+        let (ka, c1, c2, coefk, th) = if cell.hyp == Hypothesis::PlaneStrain {
             let c1 = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
             (
                 3.0 - 4.0 * nu,
                 c1,
                 nu / (1.0 - nu) * c1,
                 e / (1.0 - nu * nu),
+                1.0,
             )
         } else {
             let c1 = e / (1.0 - nu * nu);
-            ((3.0 - nu) / (1.0 + nu), c1, nu * c1, e)
+            let th = (1.0 - 2.0 * nu) / (1.0 - nu);
+            ((3.0 - nu) / (1.0 + nu), c1, nu * c1, e, th)
         };
-        let c = [c1, c2, c3];
+        let b = Bilin {
+            c: [c1, c2, c3],
+            th,
+            troisk: e / (1.0 - 2.0 * nu),
+        };
         let (mut g, mut k1, mut k2) = (0.0, 0.0, 0.0);
         for pt in points(cell)? {
             let og = [pt.x[0] - tip.tip[0], pt.x[1] - tip.tip[1]];
@@ -315,9 +376,9 @@ pub fn k_theta(cells: &[PlaneCell], tip: &CrackTip) -> Result<KIntegrals, String
             let r = (cosi * cosi + sinu * sinu).sqrt();
             let t = sinu.atan2(cosi);
             let (du1, du2) = auxiliary(mu, ka, r, t, p);
-            g += gbilin(&pt.dudm, &pt.dudm, &pt.dtdm, c, pt.poids);
-            k1 += gbilin(&pt.dudm, &du1, &pt.dtdm, c, pt.poids);
-            k2 += gbilin(&pt.dudm, &du2, &pt.dtdm, c, pt.poids);
+            g += gbilin(&pt.dudm, &pt.dudm, &pt, &b, 2.0);
+            k1 += gbilin(&pt.dudm, &du1, &pt, &b, 1.0);
+            k2 += gbilin(&pt.dudm, &du2, &pt, &b, 1.0);
         }
         // Per cell, with the cell's own moduli (te0299's outputs, summed
         // over the cells by mesomm).

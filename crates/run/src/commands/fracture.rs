@@ -278,8 +278,15 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     for step in steps {
         let u = displacement(&result, &run, step.nume_ordre, &r.name)?;
         let disp = nodal_displacement(model, &u);
-        let cells = plane_cells(model, &nodes, &disp, &theta)
+        let mut cells = plane_cells(model, &nodes, &disp, &theta)
             .map_err(|e| ex.unsupported(&format!("CALC_G: {e}"), here))?;
+        for (cell, c) in &mut cells {
+            c.free_strain = run
+                .loads
+                .free_strain_at(*cell, step.inst)
+                .map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+        }
+        let cells: Vec<OwnedCell> = cells.into_iter().map(|(_, c)| c).collect();
         let views: Vec<PlaneCell> = cells
             .iter()
             .map(|c| PlaneCell {
@@ -289,6 +296,7 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
                 theta: &c.theta,
                 material: c.material,
                 hyp: c.hyp,
+                free_strain: c.free_strain.as_deref(),
             })
             .collect();
         let mut row = vec![
@@ -371,6 +379,7 @@ fn check_loads(
 }
 
 struct OwnedCell {
+    free_strain: Option<Vec<f64>>,
     ty: aster_mesh::CellType,
     coords: Vec<[f64; 2]>,
     disp: Vec<[f64; 2]>,
@@ -384,7 +393,7 @@ fn plane_cells(
     nodes: &[[f64; 2]],
     disp: &[[f64; 2]],
     theta: &[[f64; 2]],
-) -> Result<Vec<OwnedCell>, String> {
+) -> Result<Vec<(aster_mesh::CellId, OwnedCell)>, String> {
     let mesh = model.mesh();
     let mut out = Vec::new();
     for el in model.elements() {
@@ -414,14 +423,18 @@ fn plane_cells(
                     ));
                 }
                 let idx = |f: &[[f64; 2]]| cell.nodes.iter().map(|n| f[n.0 as usize]).collect();
-                out.push(OwnedCell {
-                    ty: cell.ty,
-                    coords: idx(nodes),
-                    disp: idx(disp),
-                    theta: idx(theta),
-                    material: *material,
-                    hyp: *hypothesis,
-                });
+                out.push((
+                    el.cell,
+                    OwnedCell {
+                        free_strain: None,
+                        ty: cell.ty,
+                        coords: idx(nodes),
+                        disp: idx(disp),
+                        theta: idx(theta),
+                        material: *material,
+                        hyp: *hypothesis,
+                    },
+                ));
             }
             ElementKind::Boundary => {}
             _ if reached => {
