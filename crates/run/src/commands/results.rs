@@ -164,9 +164,11 @@ fn eval_at(
                     "Y" => p[1],
                     "Z" => p[2],
                     "INST" => t,
-                    other => return Err(format!(
+                    other => {
+                        return Err(format!(
                         "the function of component {c} depends on {other}: X, Y, Z and INST only"
-                    )),
+                    ))
+                    }
                 };
                 args.push((name, v));
             }
