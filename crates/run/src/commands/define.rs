@@ -347,7 +347,7 @@ fn affe_varc(
 pub(crate) const AFFE_MODELE: Support = Support {
     values: &[
         Values::new("AFFE/PHENOMENE", &["MECANIQUE"]).why(
-            "(aster solves mechanics only: thermal analyses (THER_LINEAIRE, THER_NON_LINE) and the temperatures they give to AFFE_VARC are not implemented)",
+            "(aster solves mechanics only: thermal analyses (THER_LINEAIRE, THER_NON_LINE) are not implemented; a temperature given as fields (CREA_RESU TYPE_RESU='EVOL_THER', CREA_CHAMP NOEU_TEMP_R) reaches AFFE_VARC)",
         ),
         Values::listed("AFFE/MODELISATION", &Modelisation::KEYWORDS),
     ],
