@@ -27,6 +27,7 @@ pub mod energy_balance;
 pub mod error;
 pub mod force_source;
 pub mod fpg;
+pub mod fracture;
 mod held;
 pub mod hexs8;
 pub mod linalg;

@@ -83,6 +83,12 @@ pub enum Load {
     /// A force per unit volume given at each point of the cell's stiffness
     /// scheme ([`shape::rigi_scheme`]); see [`Loads::volume_points`].
     VolumeForceAt { cell: CellId, forces: Vec<[f64; 3]> },
+    /// An isotropic free strain ε_th = α (T − T_ref) on a continuum cell
+    /// (a temperature given by `AFFE_VARC`), its value at each node of the
+    /// cell, interpolated at the Gauss points with the shape functions:
+    /// the load ∫ Bᵀ D ε_th (ε_th on xx, yy, zz) and the stresses
+    /// σ = D (B u − ε_th) ([`Loads::subtract_free_strain`]).
+    FreeStrain { cell: CellId, nodal: Vec<f64> },
 }
 
 /// A load with its multiplier.
@@ -165,7 +171,9 @@ impl Loads {
                         check(*d, "linear relation (LIAISON_DDL)")?;
                     }
                 }
-                Load::VolumeForce { cell, .. } | Load::VolumeForceAt { cell, .. } => {
+                Load::VolumeForce { cell, .. }
+                | Load::VolumeForceAt { cell, .. }
+                | Load::FreeStrain { cell, .. } => {
                     let continuum = model.elements().iter().any(|e| {
                         e.cell == *cell && matches!(e.kind, ElementKind::Continuum { .. })
                     });
@@ -306,6 +314,12 @@ impl Loads {
                     let b = [force[0] * m, force[1] * m, force[2] * m];
                     volume_load(model, *cell, |_| b, &mut f)?;
                 }
+                Load::FreeStrain { cell, nodal } => {
+                    let m = item.mult.eval(t)?;
+                    if m != 0.0 {
+                        free_strain_load(model, *cell, nodal, m, &mut f)?;
+                    }
+                }
                 Load::VolumeForceAt { cell, forces } => {
                     let m = item.mult.eval(t)?;
                     point_scheme(model, *cell, forces.len(), false)?;
@@ -387,6 +401,75 @@ impl Loads {
     /// physical coordinates of the points of [`shape::skin_scheme`].
     pub fn skin_points(mesh: &aster_mesh::Mesh, cell: CellId) -> Vec<[f64; 3]> {
         shape::scheme_points(mesh, cell, &shape::skin_scheme(mesh.cell(cell).ty))
+    }
+
+    /// The free strain of a cell at time t at each node (Σ of its
+    /// [`Load::FreeStrain`] items times their multipliers), `None` when
+    /// no item acts on it.
+    pub fn free_strain_at(&self, cell: CellId, t: f64) -> Result<Option<Vec<f64>>, FemError> {
+        let mut out: Option<Vec<f64>> = None;
+        for item in &self.items {
+            if let Load::FreeStrain { cell: c, nodal } = &item.load {
+                if *c != cell {
+                    continue;
+                }
+                let m = item.mult.eval(t)?;
+                let acc = out.get_or_insert_with(|| vec![0.0; nodal.len()]);
+                for (a, v) in acc.iter_mut().zip(nodal) {
+                    *a += m * v;
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Whether any load is a free strain (a temperature).
+    pub fn has_free_strain(&self) -> bool {
+        self.items
+            .iter()
+            .any(|i| matches!(i.load, Load::FreeStrain { .. }))
+    }
+
+    /// σ = D (B u − ε_th): removes D ε_th from the stresses `D B u` of the
+    /// cells with a free strain at time t (in place; `stress` as
+    /// [`crate::post::sief_elga`] gives it).
+    pub fn subtract_free_strain(
+        &self,
+        model: &Model,
+        t: f64,
+        stress: &mut [crate::post::CellValues],
+    ) -> Result<(), FemError> {
+        if !self.has_free_strain() {
+            return Ok(());
+        }
+        for cv in stress.iter_mut() {
+            let Some(nodal) = self.free_strain_at(cv.cell, t)? else {
+                continue;
+            };
+            let Some(ElementKind::Continuum {
+                hypothesis,
+                material,
+            }) = model
+                .elements()
+                .iter()
+                .find(|e| e.cell == cv.cell)
+                .map(|e| &e.kind)
+            else {
+                continue;
+            };
+            let d = material.hooke(*hypothesis);
+            let ty = model.mesh().cell(cv.cell).ty;
+            let scheme = model.stiffness_scheme(cv.cell);
+            for (gp, point) in scheme.iter().zip(cv.points.iter_mut()) {
+                let s = shape::shape(ty, gp.xi);
+                let e: f64 = s.n.iter().zip(nodal.iter()).map(|(n, v)| n * v).sum();
+                for (a, p) in point.iter_mut().enumerate().take(d.nrows()) {
+                    let de: f64 = (0..3.min(d.ncols())).map(|b| d[(a, b)] * e).sum();
+                    *p -= de;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Where [`Load::VolumeForceAt`] takes its values: the points of the
@@ -603,6 +686,63 @@ fn surface_load(
 /// Integrates a constant body force b over a continuum cell into `f`
 /// (∫ Nᵢ b dV with the stiffness Gauss scheme; ×r in axisymmetry, as the
 /// stiffness is).
+/// ∫ Bᵀ D ε_th over a continuum cell, ε_th = m Σ Nᵢ εᵢ on xx, yy, zz.
+fn free_strain_load(
+    model: &Model,
+    cell: CellId,
+    nodal: &[f64],
+    m: f64,
+    f: &mut [f64],
+) -> Result<(), FemError> {
+    let Some(ElementKind::Continuum {
+        hypothesis,
+        material,
+    }) = model
+        .elements()
+        .iter()
+        .find(|e| e.cell == cell)
+        .map(|e| &e.kind)
+    else {
+        return Err(FemError::Model(format!(
+            "thermal strain on cell {}, which carries no continuum element",
+            model.cell_name(cell)
+        )));
+    };
+    if model.is_stabilised(cell) || model.is_reduced(cell) {
+        return Err(FemError::Model(format!(
+            "thermal strain on the under-integrated cell {} is not implemented",
+            model.cell_name(cell)
+        )));
+    }
+    let d = material.hooke(*hypothesis);
+    let ty = model.mesh().cell(cell).ty;
+    let gauss = crate::element::model_gauss(model, cell, *hypothesis)
+        .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(cell))))?;
+    let scheme = model.stiffness_scheme(cell);
+    let dofs = crate::element::element_dofs(model, cell);
+    for (gp, g) in scheme.iter().zip(gauss.iter()) {
+        let s = shape::shape(ty, gp.xi);
+        let e: f64 = m * s
+            .n
+            .iter()
+            .zip(nodal.iter())
+            .map(|(n, v)| n * v)
+            .sum::<f64>();
+        let mut sig = vec![0.0; d.nrows()];
+        for (a, sa) in sig.iter_mut().enumerate() {
+            *sa = (0..3.min(d.ncols())).map(|b| d[(a, b)] * e).sum();
+        }
+        for (j, &dof) in dofs.iter().enumerate() {
+            let mut v = 0.0;
+            for (a, sa) in sig.iter().enumerate() {
+                v += g.b[(a, j)] * sa;
+            }
+            f[dof] += g.w * v;
+        }
+    }
+    Ok(())
+}
+
 fn volume_load(
     model: &Model,
     cell: CellId,

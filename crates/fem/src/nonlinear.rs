@@ -597,6 +597,7 @@ impl StaticNonLinear<'_> {
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
             let mut stress = post::sief_elga(model, &u)?;
+            loads.subtract_free_strain(model, t0, &mut stress)?;
             let internal_variables = match &plastic {
                 Some(pc) => pc.fields(&mut stress),
                 None => Vec::new(),
@@ -944,6 +945,7 @@ impl StaticNonLinear<'_> {
                 step;
             let unil = unil.unwrap_or_default();
             let mut stress = post::sief_elga(model, &u)?;
+            loads.subtract_free_strain(model, t, &mut stress)?;
             let internal_variables = match &plastic {
                 Some(pc) => pc.fields(&mut stress),
                 None => Vec::new(),

@@ -247,6 +247,84 @@ pub struct EcroLine {
 pub struct MaterialField {
     pub mesh: u32,
     pub cells: BTreeMap<CellId, Rc<Material>>,
+    /// `AFFE_VARC(NOM_VARC='TEMP')`: the temperature of some cells.
+    pub temperature: Option<Rc<Temperature>>,
+}
+
+/// A temperature given to cells by `AFFE_VARC(NOM_VARC='TEMP', EVOL=…
+/// | CHAM_GD=…, VALE_REF=…)`: nodal temperatures at instants, linear in
+/// time between them; the thermal strain is ALPHA (T − VALE_REF).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Temperature {
+    pub cells: std::collections::BTreeSet<CellId>,
+    pub tref: f64,
+    /// (instant, temperature per mesh node — NaN where the field has none),
+    /// by increasing instant; one entry with a CHAM_GD (constant in time).
+    pub fields: Vec<(f64, Rc<Vec<f64>>)>,
+    /// Before the first and after the last instant: `PROL_GAUCHE`,
+    /// `PROL_DROITE` (`true`: CONSTANT, `false`: EXCLU).
+    pub constant_before: bool,
+    pub constant_after: bool,
+}
+
+impl Temperature {
+    /// The weight of each field at time t (linear interpolation), or why
+    /// t is outside the fields' instants.
+    pub fn weights(&self, t: f64) -> Result<Vec<f64>, String> {
+        let instants: Vec<f64> = self.fields.iter().map(|f| f.0).collect();
+        temperature_weights(&instants, self.constant_before, self.constant_after, t)
+    }
+}
+
+/// [`Temperature::weights`] from the instants alone.
+pub fn temperature_weights(
+    instants: &[f64],
+    constant_before: bool,
+    constant_after: bool,
+    t: f64,
+) -> Result<Vec<f64>, String> {
+    {
+        let n = instants.len();
+        let mut w = vec![0.0; n];
+        if n == 1 {
+            w[0] = 1.0;
+            return Ok(w);
+        }
+        let (first, last) = (instants[0], instants[n - 1]);
+        let tol = 1e-9 * first.abs().max(last.abs()).max(1.0);
+        if t < first - tol {
+            if !constant_before {
+                return Err(format!(
+                    "the temperature (AFFE_VARC/EVOL) is not defined at instant {t}, before its first instant {first} (PROL_GAUCHE='EXCLU')"
+                ));
+            }
+            w[0] = 1.0;
+            return Ok(w);
+        }
+        if t > last + tol {
+            if !constant_after {
+                return Err(format!(
+                    "the temperature (AFFE_VARC/EVOL) is not defined at instant {t}, after its last instant {last} (PROL_DROITE='EXCLU')"
+                ));
+            }
+            w[n - 1] = 1.0;
+            return Ok(w);
+        }
+        for k in 0..n - 1 {
+            let (a, b) = (instants[k], instants[k + 1]);
+            if t <= b + tol || k == n - 2 {
+                let s = if b > a {
+                    ((t - a) / (b - a)).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                };
+                w[k] = 1.0 - s;
+                w[k + 1] = s;
+                return Ok(w);
+            }
+        }
+        Ok(w)
+    }
 }
 
 /// `AFFE_CARA_ELEM/DISCRET(_2D)`: a stiffness on discrete cells.
@@ -507,6 +585,8 @@ pub enum Concept {
     MacroElement(Rc<MacroElement>),
     /// `DEFI_MAILLAGE`.
     SuperMesh(Rc<SuperMesh>),
+    /// `DEFI_FOND_FISS`: a crack front (`fond_fissure`).
+    CrackFront(Rc<crate::commands::fracture::CrackFront>),
 }
 
 /// Per node, per component, a function (`NOEU_*_F`).
@@ -539,6 +619,7 @@ impl Concept {
             Concept::FunctionField(_) => "a field of functions",
             Concept::MacroElement(_) => "a static macro element (MACR_ELEM_STAT)",
             Concept::SuperMesh(_) => "a super mesh (DEFI_MAILLAGE)",
+            Concept::CrackFront(_) => "a crack front",
         }
     }
 }

@@ -285,6 +285,13 @@ getter!(
     "a contact definition (DEFI_CONTACT)"
 );
 
+getter!(
+    crack_front,
+    CrackFront,
+    crate::commands::fracture::CrackFront,
+    "a crack front (DEFI_FOND_FISS)"
+);
+
 impl Executor {
     pub(crate) fn mesh(&self, c: &ConceptRef) -> Result<Arc<Mesh>, ExecError> {
         match self.concept(c)? {

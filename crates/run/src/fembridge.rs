@@ -703,7 +703,69 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
             }
         }
     }
+    if let Some(temp) = &setup.materials.temperature {
+        thermal_loads(&mut loads, temp, &setup.materials, mesh, model)?;
+    }
     Ok(loads)
+}
+
+/// The thermal strain α (T − T_ref) of `AFFE_VARC(NOM_VARC='TEMP')` as
+/// free-strain loads: one per stored temperature field and continuum
+/// cell, weighted in time by linear interpolation between the fields'
+/// instants (EXCLU outside them unless PROL_GAUCHE/PROL_DROITE say
+/// CONSTANT).
+fn thermal_loads(
+    loads: &mut Loads,
+    temp: &crate::concept::Temperature,
+    materials: &MaterialField,
+    mesh: &Mesh,
+    model: &Model,
+) -> Result<(), ExecError> {
+    let instants: Vec<f64> = temp.fields.iter().map(|f| f.0).collect();
+    for (k, (_, values)) in temp.fields.iter().enumerate() {
+        let (inst, before, after) = (instants.clone(), temp.constant_before, temp.constant_after);
+        let mult = aster_fem::Multiplier::from_fn(move |t| {
+            crate::concept::temperature_weights(&inst, before, after, t).map(|w| w[k])
+        });
+        for el in model.elements() {
+            if !matches!(el.kind, aster_fem::ElementKind::Continuum { .. })
+                || !temp.cells.contains(&el.cell)
+            {
+                continue;
+            }
+            let alpha = materials
+                .cells
+                .get(&el.cell)
+                .and_then(|m| m.alpha)
+                .ok_or_else(|| {
+                    ExecError::new(format!(
+                        "AFFE_VARC gives a temperature to cell {}, whose material has no ELAS/ALPHA",
+                        mesh.cell_name(el.cell)
+                    ))
+                })?;
+            let mut nodal = Vec::new();
+            for n in &mesh.cell(el.cell).nodes {
+                let t = values[n.0 as usize];
+                if t.is_nan() {
+                    return Err(ExecError::new(format!(
+                        "AFFE_VARC: the temperature field has no value at a node of cell {}",
+                        mesh.cell_name(el.cell)
+                    )));
+                }
+                nodal.push(alpha * (t - temp.tref));
+            }
+            if nodal.iter().any(|v| *v != 0.0) {
+                loads.add(
+                    Load::FreeStrain {
+                        cell: el.cell,
+                        nodal,
+                    },
+                    mult.clone(),
+                );
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A displacement vector of `model` from a stored DEPL field.
@@ -799,6 +861,12 @@ pub fn solve(
     let mut loads = build_loads(setup, &mesh, &model)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
     let plastic = !behaviours.is_elastic();
+    if loads.has_free_strain() && (plastic || setup.dynamics.is_some()) {
+        return Err(ExecError::new(format!(
+            "not supported yet: {cmd} with a temperature (AFFE_VARC) and {}: the thermal strain is implemented for linear elastic cells in small strains in MECA_STATIQUE and STAT_NON_LINE",
+            if plastic { "a non-linear behaviour or a large-strain kinematics (COMPORTEMENT)" } else { "dynamics" }
+        )));
+    }
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;
     let mut post_friction: Option<aster_contact::friction::ContinuousFriction> = None;
     let mut post_discrete: Option<aster_contact::friction::DiscreteFriction> = None;

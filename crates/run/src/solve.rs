@@ -727,7 +727,21 @@ type Instants = (Vec<f64>, Option<(Rc<EvolResult>, f64)>);
 fn instants_linear(ex: &Executor, kw: &Keywords) -> Result<Instants, ExecError> {
     if let Some(l) = kw.concept("LIST_INST") {
         let list = ex.real_list(l)?;
-        return Ok(((*list).clone(), None));
+        let mut instants = (*list).clone();
+        // INST_FIN: the instants of the list up to it (one of them).
+        if let Some(end) = kw.f64("INST_FIN") {
+            let tol = 1e-6 * end.abs().max(1e-300);
+            if !instants.iter().any(|t| (t - end).abs() <= tol) {
+                return Err(ex.kw_error(
+                    "MECA_STATIQUE",
+                    kw,
+                    "INST_FIN",
+                    format!("INST_FIN = {end} is not an instant of LIST_INST"),
+                ));
+            }
+            instants.retain(|t| *t <= end + tol);
+        }
+        return Ok((instants, None));
     }
     let t = kw.f64("INST").unwrap_or(0.0);
     Ok((vec![t], None))
@@ -750,6 +764,7 @@ pub(crate) const MECA_STATIQUE: Support = Support {
         "EXCIT/TYPE_CHARGE",
         "INST",
         "LIST_INST",
+        "INST_FIN",
         "SOLVEUR",
         "SOLVEUR/*",
         "INFO",

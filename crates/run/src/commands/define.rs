@@ -201,16 +201,35 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
 }
 
 /// What AFFE_MATERIAU reads (`crate::support`).
-pub(crate) const AFFE_MATERIAU: Support = Support::keywords(&[
-    "MAILLAGE",
-    "MODELE",
-    "AFFE",
-    "AFFE/TOUT",
-    "AFFE/GROUP_MA",
-    "AFFE/MAILLE",
-    "AFFE/MATER",
-    "INFO",
-]);
+pub(crate) const AFFE_MATERIAU: Support = Support {
+    values: &[
+        Values::new("AFFE_VARC/NOM_VARC", &["TEMP"])
+            .why("(aster's command variables: the temperature only)"),
+        Values::new("AFFE_VARC/NOM_CHAM", &["TEMP"]),
+        Values::listed("AFFE_VARC/PROL_GAUCHE", &["EXCLU", "CONSTANT"]),
+        Values::listed("AFFE_VARC/PROL_DROITE", &["EXCLU", "CONSTANT"]),
+    ],
+    ..Support::keywords(&[
+        "MAILLAGE",
+        "MODELE",
+        "AFFE",
+        "AFFE/TOUT",
+        "AFFE/GROUP_MA",
+        "AFFE/MAILLE",
+        "AFFE/MATER",
+        "INFO",
+        "AFFE_VARC",
+        "AFFE_VARC/NOM_VARC",
+        "AFFE_VARC/TOUT",
+        "AFFE_VARC/GROUP_MA",
+        "AFFE_VARC/EVOL",
+        "AFFE_VARC/CHAM_GD",
+        "AFFE_VARC/NOM_CHAM",
+        "AFFE_VARC/VALE_REF",
+        "AFFE_VARC/PROL_GAUCHE",
+        "AFFE_VARC/PROL_DROITE",
+    ])
+};
 
 pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
@@ -232,21 +251,103 @@ pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             cells.insert(c, mat.clone());
         }
     }
+    let temperature = affe_varc(ex, kw, &mesh)?;
     store_result(
         ex,
         call,
         Concept::MaterialField(Rc::new(MaterialField {
             mesh: mesh_id,
             cells,
+            temperature,
         })),
     )
+}
+
+/// `AFFE_VARC(NOM_VARC='TEMP')`: the temperature of the cells, from a
+/// result's `TEMP` fields (`EVOL`, `NOM_CHAM='TEMP'`) or one nodal field
+/// (`CHAM_GD`), with its reference `VALE_REF`.
+fn affe_varc(
+    ex: &Executor,
+    kw: &aster_eval::Keywords,
+    mesh: &aster_mesh::Mesh,
+) -> Result<Option<Rc<crate::concept::Temperature>>, ExecError> {
+    let occs = kw.factor("AFFE_VARC");
+    if occs.is_empty() {
+        return Ok(None);
+    }
+    let [occ] = occs else {
+        return Err(ExecError::new(
+            "AFFE_MATERIAU/AFFE_VARC: one occurrence (one temperature) only",
+        ));
+    };
+    let cmd = "AFFE_MATERIAU";
+    let tref = occ
+        .f64("VALE_REF")
+        .ok_or_else(|| ex.kw_error(cmd, occ, "NOM_VARC", "VALE_REF is required with TEMP"))?;
+    // Neither TOUT nor GROUP_MA: the whole mesh, as code_aster.
+    let cells: std::collections::BTreeSet<_> = if occ.contains("GROUP_MA") {
+        select::cells(occ, mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_MATERIAU/AFFE_VARC: {e}")))?
+            .into_iter()
+            .collect()
+    } else {
+        (0..mesh.cells.len() as u32)
+            .map(aster_mesh::CellId)
+            .collect()
+    };
+    let nodal = |f: &crate::field::Field, what: &str| -> Result<Rc<Vec<f64>>, ExecError> {
+        let crate::field::Field::Nodal(f) = f else {
+            return Err(ex.kw_error(
+                cmd,
+                occ,
+                what,
+                "the temperature is a nodal field (NOEU_TEMP_R)",
+            ));
+        };
+        Ok(Rc::new(
+            (0..mesh.node_count())
+                .map(|i| {
+                    f.get(aster_mesh::NodeId(i as u32), "TEMP")
+                        .unwrap_or(f64::NAN)
+                })
+                .collect(),
+        ))
+    };
+    let mut fields = Vec::new();
+    if let Some(r) = occ.concept("EVOL") {
+        let result = ex.result(r)?;
+        let name = occ.str("NOM_CHAM").unwrap_or("TEMP");
+        for step in &result.steps {
+            if let Some(f) = step.fields.get(name) {
+                fields.push((step.inst, nodal(f, "EVOL")?));
+            }
+        }
+        if fields.is_empty() {
+            return Err(ex.kw_error(
+                cmd,
+                occ,
+                "EVOL",
+                format!("`{}` holds no {name} field", r.name),
+            ));
+        }
+        fields.sort_by(|a, b| a.0.total_cmp(&b.0));
+    } else if let Some(c) = occ.concept("CHAM_GD") {
+        fields.push((0.0, nodal(&*ex.field(c)?, "CHAM_GD")?));
+    }
+    Ok(Some(Rc::new(crate::concept::Temperature {
+        cells,
+        tref,
+        fields,
+        constant_before: occ.str("PROL_GAUCHE") == Some("CONSTANT"),
+        constant_after: occ.str("PROL_DROITE") == Some("CONSTANT"),
+    })))
 }
 
 /// What AFFE_MODELE reads (`crate::support`).
 pub(crate) const AFFE_MODELE: Support = Support {
     values: &[
         Values::new("AFFE/PHENOMENE", &["MECANIQUE"]).why(
-            "(aster solves mechanics only: thermal analyses (THER_LINEAIRE, THER_NON_LINE) and the temperatures they give to AFFE_VARC are not implemented)",
+            "(aster solves mechanics only: thermal analyses (THER_LINEAIRE, THER_NON_LINE) are not implemented; a temperature given as fields (CREA_RESU TYPE_RESU='EVOL_THER', CREA_CHAMP NOEU_TEMP_R) reaches AFFE_VARC)",
         ),
         Values::listed("AFFE/MODELISATION", &Modelisation::KEYWORDS),
     ],

@@ -6,6 +6,7 @@ pub(crate) mod cara_poutre;
 pub(crate) mod crea_maillage;
 pub(crate) mod define;
 pub(crate) mod elementary;
+pub(crate) mod fracture;
 pub(crate) mod functions;
 pub(crate) mod inspect;
 pub(crate) mod loads;
@@ -326,6 +327,16 @@ pub static COMMANDS: &[Command] = &[
         name: "POST_ERREUR",
         run: post_erreur::post_erreur,
         support: post_erreur::POST_ERREUR,
+    },
+    Command {
+        name: "DEFI_FOND_FISS",
+        run: fracture::defi_fond_fiss,
+        support: fracture::DEFI_FOND_FISS,
+    },
+    Command {
+        name: "CALC_G",
+        run: fracture::calc_g,
+        support: fracture::CALC_G,
     },
     Command {
         name: "CREA_RESU",

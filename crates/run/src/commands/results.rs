@@ -42,7 +42,7 @@ pub(crate) const CREA_RESU: Support = Support {
     ],
     values: &[
         Values::new("OPERATION", &["AFFE"]),
-        Values::new("TYPE_RESU", &["EVOL_ELAS", "EVOL_NOLI"]),
+        Values::new("TYPE_RESU", &["EVOL_ELAS", "EVOL_NOLI", "EVOL_THER"]),
     ],
     hints: &[],
     reuse: true,
@@ -73,7 +73,15 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     for occ in kw.factor("AFFE") {
         let name = occ.str("NOM_CHAM").unwrap_or("DEPL").to_string();
         let field_ref = ex.required("CREA_RESU", occ, "CHAM_GD")?;
-        let field = (*ex.field(field_ref)?).clone();
+        // A field of functions (NOEU_TEMP_F) is evaluated at each instant.
+        let functions = match ex.concept(field_ref)? {
+            Concept::FunctionField(f) => Some(f.clone()),
+            _ => None,
+        };
+        let field = match &functions {
+            Some(_) => crate::field::Field::Nodal(crate::field::NodalField::new(Vec::new())),
+            None => (*ex.field(field_ref)?).clone(),
+        };
         let mesh = match occ.concept("MODELE") {
             Some(m) => ex.model(m)?.mesh,
             None => ex.field_mesh_id(field_ref)?,
@@ -104,6 +112,16 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         let precision = occ.f64("PRECISION").unwrap_or(1e-6);
         let absolute = occ.str("CRITERE") == Some("ABSOLU");
         for t in instants {
+            let field = match &functions {
+                Some(f) => {
+                    let mesh = ex.mesh_by_id(mesh)?;
+                    crate::field::Field::Nodal(
+                        eval_at(f, &mesh, t)
+                            .map_err(|e| ex.kw_error("CREA_RESU", occ, "CHAM_GD", e))?,
+                    )
+                }
+                None => field.clone(),
+            };
             let at = result.step_at(t, precision, absolute).map(|s| s.nume_ordre);
             match at {
                 Some(n) => {
@@ -126,6 +144,39 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     result.steps.sort_by_key(|s| s.nume_ordre);
     store_result(ex, call, Concept::Result(Rc::new(result)))
+}
+
+/// A field of functions evaluated at each of its nodes, at the node's
+/// coordinates (`X`, `Y`, `Z`) and instant `INST`.
+fn eval_at(
+    f: &crate::concept::NodalFunctionField,
+    mesh: &aster_mesh::Mesh,
+    t: f64,
+) -> Result<crate::field::NodalField, String> {
+    let mut out = crate::field::NodalField::new(f.components.clone());
+    for (&node, comps) in &f.values {
+        let p = mesh.coord(node);
+        for (c, func) in comps {
+            let mut args: Vec<(&str, f64)> = Vec::new();
+            for name in func.parameters() {
+                let v = match name {
+                    "X" => p[0],
+                    "Y" => p[1],
+                    "Z" => p[2],
+                    "INST" => t,
+                    other => {
+                        return Err(format!(
+                        "the function of component {c} depends on {other}: X, Y, Z and INST only"
+                    ))
+                    }
+                };
+                args.push((name, v));
+            }
+            let v = func.eval_named(&args).map_err(|e| e.to_string())?;
+            out.set(node, c, v);
+        }
+    }
+    Ok(out)
 }
 
 const POST_CHAMP_OWN: &[&str] = &[

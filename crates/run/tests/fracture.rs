@@ -1,0 +1,49 @@
+//! The project's fracture scene (comm/crack_plate.comm on
+//! comm/crack_plate.mail): G and K1 of a centre-cracked plate in plane
+//! strain and plane stress against Feddersen's formula, G independent of the theta crown,
+//! a uniform temperature that gives no K; and CALC_G refused where its
+//! load terms would be needed.
+
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(comm: &std::path::Path, tag: &str) -> aster_run::program::Outcome {
+    let out = std::env::temp_dir().join(format!("aster-fracture-{tag}-{}", std::process::id()));
+    let case = aster_run::program::prepare(comm, Some(&root().join("comm/crack_plate.mail")), &out)
+        .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(out);
+    outcome
+}
+
+#[test]
+fn centre_cracked_plate_g_and_k1() {
+    let outcome = run(&root().join("comm/crack_plate.comm"), "scene");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (44, 0));
+}
+
+#[test]
+fn a_load_inside_the_crown_is_refused() {
+    let text = std::fs::read_to_string(root().join("comm/crack_plate.comm")).unwrap();
+    // A pressure on the lip, where theta is not zero.
+    let text = text.replace(
+        "PRES_REP=_F(GROUP_MA=\"TOP\", PRES=-SIGMA)",
+        "PRES_REP=(_F(GROUP_MA=\"TOP\", PRES=-SIGMA), _F(GROUP_MA=\"LIP\", PRES=1.0))",
+    );
+    let dir = std::env::temp_dir().join(format!("aster-fracture-lip-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("lip.comm");
+    std::fs::write(&comm, text).unwrap();
+    let outcome = run(&comm, "lip");
+    let err = outcome.error.expect("refused");
+    assert!(
+        err.to_string().contains("load inside the theta crown"),
+        "{err}"
+    );
+    assert_eq!(outcome.tally.nook, 0);
+    let _ = std::fs::remove_dir_all(dir);
+}
