@@ -1,5 +1,6 @@
-//! code_aster's `Table` object (`TAB.EXTR_TABLE()`, code_aster's
-//! `Objects/table_py.py`): the table's rows as dicts, its parameters, its
+//! code_aster's `Table` object, the result of `TAB.EXTR_TABLE()`.
+//!
+//! As code_aster's `Objects/table_py.py`: the table's rows as dicts, its parameters, its
 //! columns (`t['DX']`, `t.DX`, with `.values()`), `t.values()` (a dict of
 //! columns), `len(t)`, iteration over the rows, and `print(t)` (the table's
 //! `IMPR_TABLE` text). Anything else of code_aster's class (`sort`,

@@ -906,6 +906,70 @@ mod tests {
     }
 
     #[test]
+    fn relations_holding_the_model_are_factorised_with_k() {
+        // Two chains, points 0–4 and 5–9, nothing pinned: the first held
+        // by u0 + u5 = 0.1 and u0 − u5 = 0 (multi-DOF relations, as a body
+        // hung on LIAISON_ELEM), the second tied to it by u4 − 2 u9 = 0;
+        // an inequality row (solved through S) on points 3 and 7, its
+        // active set changing while the factor stays.
+        let c = chain();
+        let mut a = vec![vec![0.0; 10]; 10];
+        for j in 0..5 {
+            for p in c.col_ptr[j]..c.col_ptr[j + 1] {
+                let i = c.row_idx[p];
+                a[i][j] = c.values[p];
+                a[i + 5][j + 5] = c.values[p];
+            }
+        }
+        let k = dense_to_csc(&a);
+        let equalities = vec![
+            (vec![(0, 1.0), (5, 1.0)], 0.1),
+            (vec![(0, 1.0), (5, -1.0)], 0.0),
+            (vec![(4, 1.0), (9, -2.0)], 0.0),
+        ];
+        let contact = (vec![(3, 1.0), (7, -1.0)], 0.02);
+        let b = vec![0.0, 1.0, -0.5, 0.25, 2.0, 0.5, 0.0, -1.0, 0.0, 0.75];
+        let mut s = KktSolver::default();
+        let held_calls = std::cell::Cell::new(0);
+        // The pins (none) do not hold the model; pins and relations do.
+        let held = |_: &[usize], relations: &[Vec<(usize, f64)>]| {
+            held_calls.set(held_calls.get() + 1);
+            !relations.is_empty()
+        };
+        for with_contact in [false, true, false] {
+            let mut data = equalities.clone();
+            if with_contact {
+                data.push(contact.clone());
+            }
+            let rows: Vec<Row> = data
+                .iter()
+                .enumerate()
+                .map(|(r, (t, d))| Row {
+                    terms: t,
+                    d: *d,
+                    equality: r < 3,
+                })
+                .collect();
+            let x = s
+                .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &held)
+                .expect("no failure")
+                .expect("applies")
+                .x;
+            let reference = bordered(&k, &data, &b);
+            for (a, r) in x.iter().zip(&reference) {
+                assert!(
+                    (a - r).abs() < 1e-12 * r.abs().max(1.0),
+                    "{x:?} vs {reference:?}"
+                );
+            }
+        }
+        // One factorisation for the three active sets; the hold asked once
+        // without and once with the relations.
+        assert_eq!(s.factorisations, 1);
+        assert_eq!(held_calls.get(), 2);
+    }
+
+    #[test]
     fn penalty_terms_enter_the_factorised_matrix() {
         let k = chain();
         let rows_data = [(vec![(0, 1.0)], 0.0)];
@@ -945,7 +1009,7 @@ mod tests {
         let mut s = KktSolver::default();
         // Nothing pinned: the chain floats, the caller's check says so.
         assert!(s
-            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|p| !p
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|p, _| !p
                 .is_empty())
             .expect("no failure")
             .is_none());
