@@ -1315,7 +1315,7 @@ fn newton_step(
                         equality: r < eq.len(),
                     })
                     .collect();
-                let held_by = |pinned: &[usize], relations: &[Vec<(usize, f64)>]| {
+                let held_by = |pinned: &[usize], relations: &solver_constrained::Relations| {
                     if mass_holds {
                         return true;
                     }

@@ -107,6 +107,9 @@ struct Reduced {
     columns: HashMap<Vec<(usize, u64)>, Vec<f64>>,
 }
 
+/// Equality rows over several free unknowns (terms in free indexing).
+pub(crate) type Relations = Vec<Vec<(usize, f64)>>;
+
 /// A symbolic Cholesky with the pattern (column pointers, row indices) it
 /// was computed for.
 type PatternSymbolic = (Vec<usize>, Vec<usize>, Arc<SymbolicCholesky<usize>>);
@@ -121,7 +124,7 @@ pub(crate) struct KktSolver {
     /// Whether the pinned DOFs (with the eliminated ones) hold the model.
     held: Vec<(Vec<usize>, bool)>,
     /// Whether the pinned DOFs and these equality rows hold it.
-    held_with_rows: Vec<(Vec<usize>, Vec<Vec<(usize, f64)>>, bool)>,
+    held_with_rows: Vec<(Vec<usize>, Relations, bool)>,
     next_id: u64,
     /// Statistics: numeric factorisations and reduced solves done.
     pub factorisations: usize,
@@ -153,7 +156,7 @@ impl KktSolver {
         rows: &[Row],
         b: &[f64],
         coords: Option<&[[f64; 3]]>,
-        held: &dyn Fn(&[usize], &[Vec<(usize, f64)>]) -> bool,
+        held: &dyn Fn(&[usize], &Relations) -> bool,
     ) -> Result<Option<SolveReport>, SolveFailure> {
         let _solve = crate::newton_timing::phase(crate::newton_timing::Phase::Solve);
         let n = base.n;
@@ -200,7 +203,7 @@ impl KktSolver {
             let is_held = match self.held.iter().find(|(p, _)| *p == pinned) {
                 Some(&(_, h)) => h,
                 None => {
-                    let h = held(&pinned, &[]);
+                    let h = held(&pinned, &Vec::new());
                     self.held.push((pinned.clone(), h));
                     h
                 }
@@ -932,7 +935,7 @@ mod tests {
         let mut s = KktSolver::default();
         let held_calls = std::cell::Cell::new(0);
         // The pins (none) do not hold the model; pins and relations do.
-        let held = |_: &[usize], relations: &[Vec<(usize, f64)>]| {
+        let held = |_: &[usize], relations: &Relations| {
             held_calls.set(held_calls.get() + 1);
             !relations.is_empty()
         };
