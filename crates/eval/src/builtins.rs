@@ -333,6 +333,9 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
                 Value::Tuple(t) => Value::Int(t.len() as i64),
                 Value::Dict(d) => Value::Int(d.borrow().entries.len() as i64),
                 Value::Unknown => Value::Unknown,
+                t @ (Value::Table(_) | Value::Column(_)) => {
+                    crate::table::len(t).unwrap_or(Value::Unknown)
+                }
                 other => {
                     return py_err(
                         span,
@@ -856,6 +859,8 @@ pub fn method(me: &mut Interp, recv: Value, m: &str, args: Vec<CallArg>, span: S
         }
     };
     match &recv {
+        Value::Table(t) => return crate::table::method(t, m, &v, span),
+        Value::Column(c) => return crate::table::column_method(c, m, &v, span),
         Value::Str(s) => {
             let s: &str = s;
             return Ok(match m {

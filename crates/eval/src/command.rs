@@ -206,6 +206,20 @@ pub enum HostValue {
     Dict(Vec<(String, HostValue)>),
     /// Only known when the commands run (the checker's answer).
     Unknown,
+    /// code_aster's `Table` object (`TAB.EXTR_TABLE()`); `None`: its
+    /// contents are known only when the commands run (the static pass).
+    Table(Option<HostTable>),
+}
+
+/// The contents of a table handed to the program (`TAB.EXTR_TABLE()`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct HostTable {
+    /// The parameters (column names), in order.
+    pub para: Vec<String>,
+    /// The rows, one cell per parameter (`HostValue::None`: empty).
+    pub rows: Vec<Vec<HostValue>>,
+    /// The table as `print` shows it (its `IMPR_TABLE` text).
+    pub text: String,
 }
 
 /// Receives the validated commands of a program, in order.

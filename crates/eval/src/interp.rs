@@ -283,6 +283,11 @@ impl<'a> Interp<'a> {
         if handlers.iter().any(catches_aster_error) {
             return self.exec_try_aster_error(span, body, handlers, orelse, finalbody);
         }
+        if let [h] = handlers {
+            if catches_any_exception(h) && h.name.is_none() {
+                return self.exec_try_any(body, h, orelse, finalbody);
+            }
+        }
         if handlers.is_empty() || !handlers.iter().all(catches_only_import_error) {
             return unsupported(
                 span,
@@ -395,6 +400,34 @@ impl<'a> Interp<'a> {
             Err(Halt::Diag(d)) if d.kind == DiagKind::Exec => Err(Halt::Diag(Box::new((*d).note(
                 "note: raised inside `try: … except AsterError`, which tests code_aster's message id: aster does not know the id code_aster gives this error, so the handler is not run",
             )))),
+            Err(e) => Err(e),
+        };
+        if finalbody.is_empty() {
+            return flow;
+        }
+        match self.exec_block(finalbody)? {
+            Flow::Normal => flow,
+            other => Ok(other),
+        }
+    }
+
+    /// `try: … except: …` (or `except Exception:`): a Python exception of
+    /// the body (`max([])`'s ValueError, a KeyError, a division by zero)
+    /// runs the handler, as Python does. What aster cannot evaluate (a
+    /// construct outside the subset, a value known only at run time) and
+    /// the errors of commands are not caught: the handler would hide that
+    /// the program was not reproduced.
+    fn exec_try_any(
+        &mut self,
+        body: &[ast::Stmt],
+        handler: &ast::ExceptHandler,
+        orelse: &[ast::Stmt],
+        finalbody: &[ast::Stmt],
+    ) -> R<Flow> {
+        let flow = match self.exec_block(body) {
+            Ok(Flow::Normal) => self.exec_block(orelse),
+            Ok(other) => Ok(other),
+            Err(Halt::Diag(d)) if d.kind == DiagKind::Python => self.exec_block(&handler.body),
             Err(e) => Err(e),
         };
         if finalbody.is_empty() {
@@ -1292,6 +1325,7 @@ impl<'a> Interp<'a> {
             Value::Tuple(t) => t.to_vec(),
             Value::Str(s) => s.chars().map(|c| Value::str(&c.to_string())).collect(),
             Value::Dict(d) => d.borrow().entries.iter().map(|e| e.key.clone()).collect(),
+            Value::Table(_) | Value::Column(_) => crate::table::iterate(v, span)?,
             Value::Unknown => {
                 return needs_run_time(
                     span,
@@ -1344,6 +1378,14 @@ impl<'a> Interp<'a> {
                 Some(v) => v.clone(),
                 None => return py_err(span, format!("KeyError: {}", k.repr())),
             },
+            (Value::Table(t), _) => crate::table::subscript(t, &k, span)?,
+            (Value::Column(c), _) => match c.table.len() {
+                None => Value::Unknown,
+                Some(n) => {
+                    let i = self.index_of(&k, n, span)?;
+                    crate::table::column_item(c, i).unwrap_or(Value::Unknown)
+                }
+            },
             (Value::Concept(c), _) => {
                 let key = match &k {
                     Value::Tuple(t) => t.iter().map(to_host).collect(),
@@ -1385,11 +1427,13 @@ impl<'a> Interp<'a> {
                 _ => Ok(Value::Method(Box::new(v.clone()), Rc::from(name))),
             },
             Value::Unknown => Ok(Value::Unknown),
-            // A table's text (`TAB.EXTR_TABLE()` when commands run) asked
-            // for the attributes of code_aster's Table object.
-            Value::Str(_) if ["rows", "para", "values", "get_nom_para"].contains(&name) => unsupported(
+            Value::Table(t) => crate::table::attribute(t, name, span),
+            Value::Column(_) if name == "values" => {
+                Ok(Value::Method(Box::new(v.clone()), Rc::from(name)))
+            }
+            Value::Column(c) => unsupported(
                 span,
-                format!("`.{name}` of the result of EXTR_TABLE(): code_aster's Table object (rows, columns) is not reproduced (EXTR_TABLE() gives the table's text)"),
+                format!("`.{}.{name}` of code_aster's Table object (a column gives its values())", c.name),
             ),
             Value::Raised(e) => match name {
                 "id_message" => Ok(Value::str(&e.id_message)),
@@ -1705,6 +1749,11 @@ impl<'a> Interp<'a> {
 
     /// `None` when the answer depends on a run-time value.
     fn compare(&mut self, op: CmpOp, l: &Value, r: &Value, span: Span) -> R<Option<bool>> {
+        if matches!(l, Value::Column(_))
+            || (matches!(r, Value::Column(_)) && !matches!(op, CmpOp::In | CmpOp::NotIn))
+        {
+            return crate::table::refuse_comparison(span);
+        }
         if matches!(l, Value::Unknown) || matches!(r, Value::Unknown) {
             return Ok(None);
         }
@@ -1817,6 +1866,7 @@ pub(crate) fn from_host(h: HostValue) -> Value {
             Value::Dict(Rc::new(std::cell::RefCell::new(out)))
         }
         HostValue::Unknown => Value::Unknown,
+        HostValue::Table(t) => Value::Table(Rc::new(crate::table::TableObj::from_host(t))),
     }
 }
 

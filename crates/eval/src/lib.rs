@@ -22,6 +22,7 @@ mod memo;
 pub mod migrate;
 mod recover;
 mod study;
+mod table;
 mod testcase;
 mod try_import;
 mod validate;

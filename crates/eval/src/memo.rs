@@ -135,7 +135,9 @@ fn hash_value(v: &Value, h: &mut impl Hasher, depth: usize) -> bool {
         | Value::Method(..)
         | Value::Module(_)
         | Value::Unknown
-        | Value::Raised(_) => false,
+        | Value::Raised(_)
+        | Value::Table(_)
+        | Value::Column(_) => false,
     }
 }
 

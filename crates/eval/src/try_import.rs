@@ -24,6 +24,15 @@ pub(crate) fn catches_only_import_error(h: &ExceptHandler) -> bool {
     h.typ.as_ref().is_some_and(is_import_error)
 }
 
+/// A bare `except:` (or `except Exception:`): catches any Python
+/// exception the body raises.
+pub(crate) fn catches_any_exception(h: &ExceptHandler) -> bool {
+    match &h.typ {
+        None => true,
+        Some(e) => matches!(&e.kind, ExprKind::Name { id } if id == "Exception"),
+    }
+}
+
 /// The handler catches code_aster's errors (`except CA.AsterError`,
 /// `except AsterError`): the program checks which error a command raises.
 pub(crate) fn catches_aster_error(h: &ExceptHandler) -> bool {

@@ -198,6 +198,10 @@ pub enum Value {
     Unknown,
     /// A caught error of a command (`except CA.AsterError as err`).
     Raised(Rc<RaisedError>),
+    /// code_aster's Table object (`TAB.EXTR_TABLE()`, see `table`).
+    Table(Rc<crate::table::TableObj>),
+    /// A column of a table (`t['DX']`, `t.DX`).
+    Column(Rc<crate::table::ColumnObj>),
 }
 
 impl Value {
@@ -229,6 +233,8 @@ impl Value {
             Value::Module(_) => "module",
             Value::Unknown => "run-time value",
             Value::Raised(_) => "AsterError",
+            Value::Table(_) => "Table",
+            Value::Column(_) => "Colonne",
         }
     }
 
@@ -245,6 +251,7 @@ impl Value {
             Value::Tuple(t) => !t.is_empty(),
             Value::Dict(d) => !d.borrow().entries.is_empty(),
             Value::Unknown => return None,
+            Value::Table(t) => return t.len().map(|n| n > 0),
             // An attribute of a concept (`contact.hasFriction`, a property
             // in code_aster): known only when the commands run.
             Value::Method(r, _) if matches!(**r, Value::Concept(_) | Value::Formula(..)) => {
@@ -455,6 +462,8 @@ impl fmt::Display for Value {
             Value::Module(m) => write!(f, "<module '{m}'>"),
             Value::Unknown => write!(f, "<run-time value>"),
             Value::Raised(e) => write!(f, "{}", e.message),
+            Value::Table(t) => write!(f, "{}", t.text),
+            Value::Column(c) => write!(f, "<column {} of a table>", c.name),
         }
     }
 }

@@ -1317,13 +1317,18 @@ fn newton_step(
                         equality: r < eq.len(),
                     })
                     .collect();
-                let held_by = |pinned: &[usize]| {
+                let held_by = |pinned: &[usize], relations: &solver_constrained::Relations| {
                     if mass_holds {
                         return true;
                     }
                     let mut ground: Vec<Vec<(usize, f64)>> =
                         elim.keys().map(|&i| vec![(i, 1.0)]).collect();
                     ground.extend(pinned.iter().map(|&f| vec![(free_dof[f], 1.0)]));
+                    ground.extend(
+                        relations
+                            .iter()
+                            .map(|t| t.iter().map(|&(f, c)| (free_dof[f], c)).collect()),
+                    );
                     held::free_dofs(model, &ground).is_empty()
                 };
                 kkt.solve(
@@ -1500,6 +1505,7 @@ fn newton_step(
                 si += 1;
                 let mut lam = vec![0.0; sr.rows.len()];
                 let length = length_scale(model, u);
+                let penetration_tol = gap_tolerance(model, u);
                 let tracked = sr.tracked.clone();
                 for r in 0..sr.rows.len() {
                     let g = match (sr.method, &tracked) {
@@ -1516,7 +1522,7 @@ fn newton_step(
                             } else if sr.active[r] {
                                 lam[r] >= -1e-10 * force_scale
                             } else {
-                                g > 1e-10 * length
+                                g > penetration_tol
                             }
                         }
                         // code_aster's status (`compute_ineq_conditions_vector`):
@@ -1844,6 +1850,29 @@ fn gap(idx: &[(usize, f64)], rhs: f64, u: &[f64]) -> f64 {
 }
 
 /// Characteristic length for gap tolerances: the mesh size plus |u|.
+/// The penetration an inactive row may show and stay inactive: 1e-10 of
+/// the largest displacement, with a floor of 1e-15 of the model's size (the
+/// round-off of gaps computed from coordinates). Relative to the
+/// displacement, not to the size: a 4 m rotor turning under a unit moment
+/// (sdnl133d) moves by 1e-9 m, and 1e-10 of its size accepted penetrations
+/// of the order of the displacements themselves — the active set then
+/// settled on states that depend on the load path. code_aster's
+/// `CONTRAINTE` algorithm tests gaps against `r8prem()` (`cfpeti`).
+fn gap_tolerance(model: &Model, u: &[f64]) -> f64 {
+    let mesh = model.mesh();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.coords {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let size = (0..3).map(|k| (hi[k] - lo[k]).max(0.)).fold(0.0, f64::max);
+    let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    (1e-10 * umax).max(1e-15 * size).max(1e-300)
+}
+
 fn length_scale(model: &Model, u: &[f64]) -> f64 {
     let mesh = model.mesh();
     let mut lo = [f64::INFINITY; 3];

@@ -88,11 +88,17 @@ struct Reduced {
     pinned: Vec<usize>,
     /// K + penalty terms, when there are penalty terms (else the caller's).
     keff: Option<Csc>,
+    /// The equality rows factorised with K_rr (free indexing), when the
+    /// pinned DOFs alone do not hold the model: the factorised matrix is
+    /// then the bordered [K_rr Aᵢᵀ; Aᵢ 0] (LU), its multipliers after the
+    /// reduced unknowns. Empty: K_rr alone.
+    inside: Vec<Vec<(usize, f64)>>,
     /// Free index → reduced index (usize::MAX when pinned).
     red_of: Vec<usize>,
     /// Reduced index → free index.
     full_of: Vec<usize>,
-    /// Symmetric scaling 1/√|Kᵢᵢ| of the reduced matrix.
+    /// Symmetric scaling of the factorised matrix: 1/√|Kᵢᵢ| for the reduced
+    /// unknowns, then one factor per inside row's multiplier.
     scale: Vec<f64>,
     factor: RFactor,
     /// ‖K_eff‖∞, for backward errors.
@@ -100,6 +106,9 @@ struct Reduced {
     /// K_rr⁻¹ aᵣ per reduced row (keyed by its terms).
     columns: HashMap<Vec<(usize, u64)>, Vec<f64>>,
 }
+
+/// Equality rows over several free unknowns (terms in free indexing).
+pub(crate) type Relations = Vec<Vec<(usize, f64)>>;
 
 /// A symbolic Cholesky with the pattern (column pointers, row indices) it
 /// was computed for.
@@ -114,6 +123,8 @@ pub(crate) struct KktSolver {
     symbolic: Option<PatternSymbolic>,
     /// Whether the pinned DOFs (with the eliminated ones) hold the model.
     held: Vec<(Vec<usize>, bool)>,
+    /// Whether the pinned DOFs and these equality rows hold it.
+    held_with_rows: Vec<(Vec<usize>, Relations, bool)>,
     next_id: u64,
     /// Statistics: numeric factorisations and reduced solves done.
     pub factorisations: usize,
@@ -145,7 +156,7 @@ impl KktSolver {
         rows: &[Row],
         b: &[f64],
         coords: Option<&[[f64; 3]]>,
-        held: &dyn Fn(&[usize]) -> bool,
+        held: &dyn Fn(&[usize], &Relations) -> bool,
     ) -> Result<Option<SolveReport>, SolveFailure> {
         let _solve = crate::newton_timing::phase(crate::newton_timing::Phase::Solve);
         let n = base.n;
@@ -169,24 +180,64 @@ impl KktSolver {
         pinned.sort_unstable();
         let mut penalty_sorted = penalty.to_vec();
         penalty_sorted.sort_unstable_by_key(|a| (a.1, a.0));
-        let current = self
-            .reduced
-            .as_ref()
-            .is_some_and(|r| r.key == key && r.pinned == pinned && r.penalty == penalty_sorted);
+        // Equality rows over several free unknowns (or one already pinned):
+        // factorised with K_rr when the pins alone do not hold the model.
+        let mut is_pinned_row = vec![false; rows.len()];
+        for p in &pinned_rows {
+            is_pinned_row[p.0] = true;
+        }
+        let general: Vec<usize> = (0..rows.len()).filter(|&r| !is_pinned_row[r]).collect();
+        let general_eq: Vec<Vec<(usize, f64)>> = general
+            .iter()
+            .filter(|&&r| rows[r].equality)
+            .map(|&r| rows[r].terms.to_vec())
+            .collect();
+        let current = self.reduced.as_ref().is_some_and(|r| {
+            r.key == key
+                && r.pinned == pinned
+                && r.penalty == penalty_sorted
+                && (r.inside.is_empty() || r.inside == general_eq)
+        });
         if !current {
             self.reduced = None;
             let is_held = match self.held.iter().find(|(p, _)| *p == pinned) {
                 Some(&(_, h)) => h,
                 None => {
-                    let h = held(&pinned);
+                    let h = held(&pinned, &Vec::new());
                     self.held.push((pinned.clone(), h));
                     h
                 }
             };
-            if !is_held {
-                return Ok(None);
-            }
-            let Some(red) = self.factorise(key, base, penalty_sorted, pinned, coords) else {
+            let inside = if is_held {
+                Vec::new()
+            } else {
+                // The model is held through multi-DOF relations (a body
+                // hung on LIAISON_ELEM, LIAISON_SOLIDE rows): K_rr is
+                // singular, the bordered matrix of those rows is not.
+                if general_eq.is_empty() {
+                    return Ok(None);
+                }
+                let known = self
+                    .held_with_rows
+                    .iter()
+                    .find(|(p, e, _)| *p == pinned && *e == general_eq)
+                    .map(|h| h.2);
+                let h = match known {
+                    Some(h) => h,
+                    None => {
+                        let h = held(&pinned, &general_eq);
+                        self.held_with_rows
+                            .push((pinned.clone(), general_eq.clone(), h));
+                        h
+                    }
+                };
+                if !h {
+                    return Ok(None);
+                }
+                general_eq.clone()
+            };
+            let Some(red) = self.factorise(key, base, penalty_sorted, pinned, inside, coords)
+            else {
                 return Ok(None);
             };
             self.factorisations += 1;
@@ -197,9 +248,6 @@ impl KktSolver {
         };
         let keff = red.keff.as_ref().unwrap_or(base);
         // General rows, reduced: terms on pinned DOFs move to the right.
-        let general: Vec<usize> = (0..rows.len())
-            .filter(|r| !pinned_rows.iter().any(|p| p.0 == *r))
-            .collect();
         let reduced_terms: Vec<Vec<(usize, f64)>> = general
             .iter()
             .map(|&r| {
@@ -211,41 +259,55 @@ impl KktSolver {
                     .collect()
             })
             .collect();
-        // K_rr⁻¹ aᵣ for the rows not seen with this factor.
-        let keys: Vec<Vec<(usize, u64)>> = reduced_terms
-            .iter()
-            .map(|t| t.iter().map(|&(i, c)| (i, c.to_bits())).collect())
-            .collect();
-        let missing: Vec<usize> = (0..keys.len())
-            .filter(|&k| !red.columns.contains_key(&keys[k]))
-            .collect();
-        if !missing.is_empty() {
-            let _t = crate::newton_timing::phase(crate::newton_timing::Phase::RowColumns);
-            let nr = red.full_of.len();
-            let mut rhs = Mat::<f64>::zeros(nr, missing.len());
-            for (col, &k) in missing.iter().enumerate() {
-                for &(j, c) in &reduced_terms[k] {
-                    rhs[(j, col)] += c;
-                }
-            }
-            red.solve_many(&mut rhs);
-            for (col, &k) in missing.iter().enumerate() {
-                let w: Vec<f64> = (0..nr).map(|j| rhs[(j, col)]).collect();
-                red.columns.insert(keys[k].clone(), w);
-            }
-        }
         // Rows whose terms all sit on pinned DOFs must hold as they are;
         // S would be singular with them.
         if reduced_terms.iter().any(|t| t.is_empty()) {
             return Ok(None);
         }
-        let m = general.len();
+        // Which general rows are factorised (their multiplier is unknown
+        // nr + k of the factor) and which go through S.
+        let bordered = !red.inside.is_empty();
+        let outside: Vec<usize> = (0..general.len())
+            .filter(|&k| !(bordered && rows[general[k]].equality))
+            .collect();
+        let inside_pos: Vec<usize> = (0..general.len())
+            .filter(|&k| bordered && rows[general[k]].equality)
+            .collect();
+        // M⁻¹ [aᵣ; 0] for the rows not seen with this factor.
+        let keys: Vec<Vec<(usize, u64)>> = outside
+            .iter()
+            .map(|&k| {
+                reduced_terms[k]
+                    .iter()
+                    .map(|&(i, c)| (i, c.to_bits()))
+                    .collect()
+            })
+            .collect();
+        let missing: Vec<usize> = (0..keys.len())
+            .filter(|&q| !red.columns.contains_key(&keys[q]))
+            .collect();
+        if !missing.is_empty() {
+            let _t = crate::newton_timing::phase(crate::newton_timing::Phase::RowColumns);
+            let nt = red.scale.len();
+            let mut rhs = Mat::<f64>::zeros(nt, missing.len());
+            for (col, &q) in missing.iter().enumerate() {
+                for &(j, c) in &reduced_terms[outside[q]] {
+                    rhs[(j, col)] += c;
+                }
+            }
+            red.solve_many(&mut rhs);
+            for (col, &q) in missing.iter().enumerate() {
+                let w: Vec<f64> = (0..nt).map(|j| rhs[(j, col)]).collect();
+                red.columns.insert(keys[q].clone(), w);
+            }
+        }
+        let m = outside.len();
         let red: &Reduced = red;
         let cols: Vec<&[f64]> = keys.iter().map(|k| red.columns[k].as_slice()).collect();
         let mut s = DMatrix::<f64>::zeros(m, m);
-        for (q, tq) in reduced_terms.iter().enumerate() {
+        for (q, &kq) in outside.iter().enumerate() {
             for (r, w) in cols.iter().enumerate() {
-                s[(q, r)] = tq.iter().map(|&(j, c)| c * w[j]).sum();
+                s[(q, r)] = reduced_terms[kq].iter().map(|&(j, c)| c * w[j]).sum();
             }
         }
         // S = A K⁻¹ Aᵀ is symmetric positive definite when the rows are
@@ -294,6 +356,8 @@ impl KktSolver {
             pinned_rows: &pinned_rows,
             general: &general,
             reduced_terms: &reduced_terms,
+            outside: &outside,
+            inside_pos: &inside_pos,
             cols: &cols,
             s_factor: s_factor.as_ref(),
         };
@@ -363,6 +427,7 @@ impl KktSolver {
         base: &Csc,
         penalty: Vec<(usize, usize, f64)>,
         pinned: Vec<usize>,
+        inside: Vec<Vec<(usize, f64)>>,
         coords: Option<&[[f64; 3]]>,
     ) -> Option<Reduced> {
         use crate::newton_timing::{phase, Phase};
@@ -382,7 +447,7 @@ impl KktSolver {
             }
         }
         let krr = crate::assembly::restrict(k, &red_of, full_of.len());
-        let scale: Vec<f64> = krr
+        let mut scale: Vec<f64> = krr
             .diagonal()
             .iter()
             .map(|d| {
@@ -394,19 +459,40 @@ impl KktSolver {
                 }
             })
             .collect();
-        let mut values = Vec::with_capacity(krr.values.len());
-        for j in 0..krr.n {
-            for p in krr.col_ptr[j]..krr.col_ptr[j + 1] {
-                values.push(krr.values[p] * scale[krr.row_idx[p]] * scale[j]);
+        let nr = krr.n;
+        // The bordered matrix of the inside rows, their multipliers scaled
+        // by the largest scaled coefficient of their row.
+        let m = if inside.is_empty() {
+            krr
+        } else {
+            let mut extra = Vec::new();
+            for (q, terms) in inside.iter().enumerate() {
+                let mut row_max = 0.0f64;
+                for &(i, c) in terms {
+                    let j = red_of[i];
+                    if j != usize::MAX {
+                        extra.push((nr + q, j, c));
+                        extra.push((j, nr + q, c));
+                        row_max = row_max.max((c * scale[j]).abs());
+                    }
+                }
+                scale.push(if row_max > 0.0 { 1.0 / row_max } else { 1.0 });
+            }
+            krr.with_extra(nr + inside.len(), extra)
+        };
+        let mut values = Vec::with_capacity(m.values.len());
+        for j in 0..m.n {
+            for p in m.col_ptr[j]..m.col_ptr[j + 1] {
+                values.push(m.values[p] * scale[m.row_idx[p]] * scale[j]);
             }
         }
         drop(assembling);
         let _factorising = phase(Phase::Factorisation);
-        let nr = krr.n;
-        let sym = SymbolicSparseColMatRef::new_checked(nr, nr, &krr.col_ptr, None, &krr.row_idx);
+        let nt = m.n;
+        let sym = SymbolicSparseColMatRef::new_checked(nt, nt, &m.col_ptr, None, &m.row_idx);
         let mat = SparseColMatRef::new(sym, &values);
-        let chol = if key.symmetric() {
-            self.cholesky(&krr, mat, &full_of, coords)
+        let chol = if key.symmetric() && inside.is_empty() {
+            self.cholesky(&m, mat, &full_of, coords)
         } else {
             None
         };
@@ -418,6 +504,7 @@ impl KktSolver {
             key,
             penalty,
             pinned,
+            inside,
             norm_inf: k.norm_inf(),
             keff,
             red_of,
@@ -549,7 +636,11 @@ struct SolveCtx<'a> {
     pinned_rows: &'a [(usize, usize, f64)],
     general: &'a [usize],
     reduced_terms: &'a [Vec<(usize, f64)>],
-    /// K_rr⁻¹ aᵣ of the general rows, in their order.
+    /// Positions in `general` of the rows solved through S, and of the
+    /// rows factorised with K_rr (in the factor's order).
+    outside: &'a [usize],
+    inside_pos: &'a [usize],
+    /// M⁻¹ [aᵣ; 0] of the `outside` rows, in their order.
     cols: &'a [&'a [f64]],
     s_factor: Option<&'a SFactor>,
 }
@@ -560,58 +651,70 @@ impl SolveCtx<'_> {
         let red = self.red;
         let n = b.len();
         let nr = red.full_of.len();
+        let nt = red.scale.len();
         let mut du = vec![0.0; n];
         for &(r, i, c) in self.pinned_rows {
             du[i] = d[r] / c;
         }
-        // Right-hand side of the reduced unknowns: b − K_rp Δu_p.
+        // A general row's right-hand side once its pinned terms moved there.
+        let rhs_of = |k: usize, du: &[f64]| -> f64 {
+            let r = self.general[k];
+            let pinned_part: f64 = self.rows[r]
+                .terms
+                .iter()
+                .filter(|(i, _)| red.red_of[*i] == usize::MAX)
+                .map(|&(i, c)| c * du[i])
+                .sum();
+            d[r] - pinned_part
+        };
+        // Right-hand side of the reduced unknowns: b − K_rp Δu_p; then the
+        // factorised rows' own.
         let kp = self.keff.mul(&du);
-        let mut y = Mat::<f64>::zeros(nr, 1);
+        let mut y = Mat::<f64>::zeros(nt, 1);
         for (j, &i) in red.full_of.iter().enumerate() {
             y[(j, 0)] = b[i] - kp[i];
         }
+        for (q, &k) in self.inside_pos.iter().enumerate() {
+            y[(nr + q, 0)] = rhs_of(k, &du);
+        }
         red.solve_many(&mut y);
-        let m = self.general.len();
-        let mut lam_general = vec![0.0; m];
+        let mut lam_general = vec![0.0; self.general.len()];
         if let Some(sf) = self.s_factor {
             let rhs = nalgebra::DVector::from_iterator(
-                m,
-                self.general.iter().zip(self.reduced_terms).map(|(&r, t)| {
-                    let pinned_part: f64 = self.rows[r]
-                        .terms
+                self.outside.len(),
+                self.outside.iter().map(|&k| {
+                    let ay: f64 = self.reduced_terms[k]
                         .iter()
-                        .filter(|(i, _)| red.red_of[*i] == usize::MAX)
-                        .map(|&(i, c)| c * du[i])
+                        .map(|&(j, c)| c * y[(j, 0)])
                         .sum();
-                    let ay: f64 = t.iter().map(|&(j, c)| c * y[(j, 0)]).sum();
-                    ay - (d[r] - pinned_part)
+                    ay - rhs_of(k, &du)
                 }),
             );
             if let Some(l) = sf.solve(&rhs) {
-                lam_general = l.iter().copied().collect();
+                for (&k, &v) in self.outside.iter().zip(l.iter()) {
+                    lam_general[k] = v;
+                }
             }
         }
-        let mut ur: Vec<f64> = (0..nr).map(|j| y[(j, 0)]).collect();
-        for (w, &l) in self.cols.iter().zip(&lam_general) {
-            for (v, wj) in ur.iter_mut().zip(w.iter()) {
+        let mut z: Vec<f64> = (0..nt).map(|j| y[(j, 0)]).collect();
+        for (w, &k) in self.cols.iter().zip(self.outside) {
+            let l = lam_general[k];
+            for (v, wj) in z.iter_mut().zip(w.iter()) {
                 *v -= wj * l;
             }
         }
+        for (q, &k) in self.inside_pos.iter().enumerate() {
+            lam_general[k] = z[nr + q];
+        }
         for (j, &i) in red.full_of.iter().enumerate() {
-            du[i] = ur[j];
+            du[i] = z[j];
         }
         // A row on one free unknown holds exactly (a support or a contact
         // row on a rigid master reads 0, not 1e-32): its value is set from
         // the row, which moves it by round-off only.
-        for (k, &r) in self.general.iter().enumerate() {
+        for &k in self.outside {
             if let [(j, c)] = self.reduced_terms[k].as_slice() {
-                let pinned_part: f64 = self.rows[r]
-                    .terms
-                    .iter()
-                    .filter(|(i, _)| red.red_of[*i] == usize::MAX)
-                    .map(|&(i, c)| c * du[i])
-                    .sum();
-                du[red.full_of[*j]] = (d[r] - pinned_part) / c;
+                du[red.full_of[*j]] = rhs_of(k, &du) / c;
             }
         }
         let mut x = du;
@@ -784,7 +887,7 @@ mod tests {
             .collect();
         let mut s = KktSolver::default();
         let x = s
-            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_| true)
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_, _| true)
             .expect("no failure")
             .expect("applies")
             .x;
@@ -797,12 +900,76 @@ mod tests {
         }
         // Same matrix: the factor and the row columns are reused.
         let again = s
-            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_| true)
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_, _| true)
             .expect("no failure")
             .expect("applies")
             .x;
         assert_eq!(s.factorisations, 1);
         assert_eq!(x, again);
+    }
+
+    #[test]
+    fn relations_holding_the_model_are_factorised_with_k() {
+        // Two chains, points 0–4 and 5–9, nothing pinned: the first held
+        // by u0 + u5 = 0.1 and u0 − u5 = 0 (multi-DOF relations, as a body
+        // hung on LIAISON_ELEM), the second tied to it by u4 − 2 u9 = 0;
+        // an inequality row (solved through S) on points 3 and 7, its
+        // active set changing while the factor stays.
+        let c = chain();
+        let mut a = vec![vec![0.0; 10]; 10];
+        for j in 0..5 {
+            for p in c.col_ptr[j]..c.col_ptr[j + 1] {
+                let i = c.row_idx[p];
+                a[i][j] = c.values[p];
+                a[i + 5][j + 5] = c.values[p];
+            }
+        }
+        let k = dense_to_csc(&a);
+        let equalities = vec![
+            (vec![(0, 1.0), (5, 1.0)], 0.1),
+            (vec![(0, 1.0), (5, -1.0)], 0.0),
+            (vec![(4, 1.0), (9, -2.0)], 0.0),
+        ];
+        let contact = (vec![(3, 1.0), (7, -1.0)], 0.02);
+        let b = vec![0.0, 1.0, -0.5, 0.25, 2.0, 0.5, 0.0, -1.0, 0.0, 0.75];
+        let mut s = KktSolver::default();
+        let held_calls = std::cell::Cell::new(0);
+        // The pins (none) do not hold the model; pins and relations do.
+        let held = |_: &[usize], relations: &Relations| {
+            held_calls.set(held_calls.get() + 1);
+            !relations.is_empty()
+        };
+        for with_contact in [false, true, false] {
+            let mut data = equalities.clone();
+            if with_contact {
+                data.push(contact.clone());
+            }
+            let rows: Vec<Row> = data
+                .iter()
+                .enumerate()
+                .map(|(r, (t, d))| Row {
+                    terms: t,
+                    d: *d,
+                    equality: r < 3,
+                })
+                .collect();
+            let x = s
+                .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &held)
+                .expect("no failure")
+                .expect("applies")
+                .x;
+            let reference = bordered(&k, &data, &b);
+            for (a, r) in x.iter().zip(&reference) {
+                assert!(
+                    (a - r).abs() < 1e-12 * r.abs().max(1.0),
+                    "{x:?} vs {reference:?}"
+                );
+            }
+        }
+        // One factorisation for the three active sets; the hold asked once
+        // without and once with the relations.
+        assert_eq!(s.factorisations, 1);
+        assert_eq!(held_calls.get(), 2);
     }
 
     #[test]
@@ -814,7 +981,15 @@ mod tests {
         let penalty = vec![(4, 4, 100.0)];
         let mut s = KktSolver::default();
         let x = s
-            .solve(MatrixKey::Elastic, &k, &penalty, &rows, &b, None, &|_| true)
+            .solve(
+                MatrixKey::Elastic,
+                &k,
+                &penalty,
+                &rows,
+                &b,
+                None,
+                &|_, _| true,
+            )
             .expect("no failure")
             .expect("applies")
             .x;
@@ -837,7 +1012,7 @@ mod tests {
         let mut s = KktSolver::default();
         // Nothing pinned: the chain floats, the caller's check says so.
         assert!(s
-            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|p| !p
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|p, _| !p
                 .is_empty())
             .expect("no failure")
             .is_none());
@@ -845,7 +1020,7 @@ mod tests {
         let twice = [(vec![(0usize, 1.0)], 0.0), (vec![(0usize, 2.0)], 0.0)];
         let rows = rows_of(&twice, true);
         assert!(s
-            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_| true)
+            .solve(MatrixKey::Elastic, &k, &[], &rows, &b, None, &|_, _| true)
             .expect("no failure")
             .is_none());
     }

@@ -463,9 +463,37 @@ impl CommandSink for Executor {
         }
         if let ("EXTR_TABLE", []) = (name, args) {
             let table = self.table(concept)?;
-            return Ok(HostValue::Scalar(Scalar::Str(
-                table.render().trim_end().to_string(),
-            )));
+            let cell = |v: &Option<crate::table::Value>| match v {
+                None => HostValue::None,
+                Some(crate::table::Value::Int(i)) => HostValue::Scalar(Scalar::Int(*i)),
+                Some(crate::table::Value::Real(r)) => HostValue::Scalar(Scalar::Real(*r)),
+                Some(crate::table::Value::Text(t)) => {
+                    HostValue::Scalar(Scalar::Str(t.trim().to_string()))
+                }
+            };
+            return Ok(HostValue::Table(Some(aster_eval::HostTable {
+                para: table.columns.iter().map(|c| c.name.clone()).collect(),
+                rows: table
+                    .rows
+                    .iter()
+                    .map(|r| {
+                        (0..table.columns.len())
+                            .map(|k| cell(r.get(k).unwrap_or(&None)))
+                            .collect()
+                    })
+                    .collect(),
+                text: table.render().trim_end().to_string(),
+            })));
+        }
+        if let ("get_nom_para", []) = (name, args) {
+            let table = self.table(concept)?;
+            return Ok(HostValue::List(
+                table
+                    .columns
+                    .iter()
+                    .map(|c| HostValue::Scalar(Scalar::Str(c.name.clone())))
+                    .collect(),
+            ));
         }
         match (self.concept(concept)?, name) {
             // A function concept called in a formula (`F(INST)`): its value,

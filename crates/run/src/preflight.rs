@@ -285,11 +285,11 @@ impl CommandSink for Sink<'_> {
         name: &str,
         args: &[HostValue],
     ) -> Result<HostValue, ExecError> {
-        // What the run gives (the table's text), so that a use the run
-        // cannot make of it (`.rows`: code_aster's Table object) is refused
-        // here, before anything is solved.
+        // A table whose contents come with the run, so that a use the run
+        // cannot make of code_aster's Table object (`t.sort()`, filters) is
+        // refused here, before anything is solved.
         if let ("EXTR_TABLE", []) = (name, args) {
-            return Ok(HostValue::Scalar(aster_eval::Scalar::Str(String::new())));
+            return Ok(HostValue::Table(None));
         }
         self.check.method(c, name, args)
     }
