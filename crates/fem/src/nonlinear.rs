@@ -344,6 +344,12 @@ pub struct StaticNonLinear<'s> {
     pub subdivision: Option<Subdivision>,
     /// Inertia and damping of a dynamic analysis (`None`: statics).
     pub dynamics: Option<Box<dyn IncrementTerms + 's>>,
+    /// Why a cut increment would not reproduce the reference (`Some`: an
+    /// increment that fails is not cut, the analysis stops with
+    /// [`FemError::CutNotReproduced`]): where the answer depends on which
+    /// increments are cut and the iterates that decide it are not exactly
+    /// code_aster's.
+    pub cut_refused: Option<String>,
 }
 
 /// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment
@@ -387,6 +393,7 @@ impl Default for StaticNonLinear<'_> {
             first_order: 0,
             behaviours: Behaviours::default(),
             subdivision: Some(Subdivision::default()),
+            cut_refused: None,
             dynamics: None,
         }
     }
@@ -887,6 +894,14 @@ impl StaticNonLinear<'_> {
                         let Some(sd) = self.subdivision.filter(|_| cuttable) else {
                             return Err(e);
                         };
+                        if let Some(reason) = &self.cut_refused {
+                            return Err(FemError::CutNotReproduced {
+                                from,
+                                to: target,
+                                reason: reason.clone(),
+                                cause: Box::new(e),
+                            });
+                        }
                         let piece = (target - from) / sd.pieces.max(2) as f64;
                         let limit = if level >= sd.max_level {
                             Some(format!("SUBD_NIVEAU = {} reached", sd.max_level))

@@ -926,6 +926,7 @@ pub fn solve(
             forces,
             behaviours: behaviours.clone(),
             subdivision: setup.subdivision,
+            cut_refused: setup.cut_refused.clone(),
             ..StaticNonLinear::default()
         };
         let outcome = match &setup.dynamics {

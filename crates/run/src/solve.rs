@@ -133,6 +133,9 @@ pub struct SolveSetup {
     pub dynamics: Option<crate::dyna::DynamicSetup>,
     /// `ARCHIVAGE`: the steps stored.
     pub archive: crate::archive::Archive,
+    /// Why a failed increment may not be cut here (aster-fem's
+    /// `StaticNonLinear::cut_refused`), with where it was decided.
+    pub cut_refused: Option<String>,
 }
 
 /// Initial fields given one by one in `ETAT_INIT` (`DEPL`, and in
@@ -523,6 +526,7 @@ pub(crate) fn parse_setup(
         initial_fields,
         dynamics: None,
         archive: parse_archive(ex, kw)?,
+        cut_refused: None,
     })
 }
 

@@ -628,6 +628,10 @@ impl ForceSource for DiscreteFriction {
         }
     }
 
+    fn again_continues_newton(&self) -> bool {
+        true
+    }
+
     fn converged(&mut self, state: &State, _own: &[f64]) -> Result<(), FemError> {
         let cn = self.cont_noeu(state);
         self.snapshots.push((state.time, cn));
