@@ -65,6 +65,38 @@ pub enum LoopVerdict {
     Again,
 }
 
+/// `DEFI_LIST_INST/ECHEC=_F(EVENEMENT='INTERPENETRATION',
+/// ACTION='ADAPT_COEF_PENA')`: after an increment converges, a penalised
+/// contact that interpenetrates by more than `pene_maxi` doubles its
+/// normal penalty (at most `coef_maxi`) and the increment is redone from
+/// the last converged state (code_aster's `nmevin`, `nmadcp`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PenaltyAdaptation {
+    /// `PENE_MAXI`: the largest penetration accepted.
+    pub pene_maxi: f64,
+    /// `COEF_MAXI`: the largest penalty.
+    pub coef_maxi: f64,
+}
+
+/// What a penalised source does with a converged increment under
+/// [`PenaltyAdaptation`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum PenaltyVerdict {
+    /// No penetration beyond `pene_maxi` (or no penalty to adapt).
+    Accepted,
+    /// The penalties were doubled: redo the increment.
+    Raised {
+        /// The largest penetration found.
+        penetration: f64,
+    },
+    /// A penalty would exceed `coef_maxi`: it is set to `coef_maxi` and the
+    /// action has failed (code_aster stops the analysis).
+    Capped {
+        /// The largest penetration found.
+        penetration: f64,
+    },
+}
+
 /// A producer of forces with its own unknowns (see the module docs).
 pub trait ForceSource {
     /// Short name used in messages.
@@ -124,6 +156,17 @@ pub trait ForceSource {
         false
     }
 
+    /// A converged increment under [`PenaltyAdaptation`]: a penalised
+    /// source whose penetration exceeds `pene_maxi` doubles its penalty.
+    /// The default (no penalty) accepts.
+    fn adapt_penalty(
+        &mut self,
+        _state: &State,
+        _adaptation: PenaltyAdaptation,
+    ) -> Result<PenaltyVerdict, FemError> {
+        Ok(PenaltyVerdict::Accepted)
+    }
+
     /// RESI_GLOB_RELA of the iterate just evaluated (called once per
     /// Newton iteration, after the convergence test). code_aster's
     /// discrete friction weights its tangent by it (`cffpm2`).
@@ -162,6 +205,13 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     }
     fn again_continues_newton(&self) -> bool {
         (**self).again_continues_newton()
+    }
+    fn adapt_penalty(
+        &mut self,
+        state: &State,
+        adaptation: PenaltyAdaptation,
+    ) -> Result<PenaltyVerdict, FemError> {
+        (**self).adapt_penalty(state, adaptation)
     }
     fn observe_residual(&mut self, resi_glob_rela: f64) {
         (**self).observe_residual(resi_glob_rela)

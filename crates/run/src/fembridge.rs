@@ -927,6 +927,7 @@ pub fn solve(
             behaviours: behaviours.clone(),
             subdivision: setup.subdivision,
             cut_refused: setup.cut_refused.clone(),
+            penalty_adaptation: setup.penalty_adaptation,
             ..StaticNonLinear::default()
         };
         let outcome = match &setup.dynamics {
