@@ -232,6 +232,23 @@ impl DiscreteFriction {
             .map(|(_, c)| c)
     }
 
+    /// CONT_NOEU of the initial state: code_aster creates the field with
+    /// zeros (`nmetcc`, not read from an initial state: `l_read_init`
+    /// false in `CreateInOutDS_M`) and only a resolution fills it
+    /// (`cfresu`), so the initial state archived carries zeros on the
+    /// slave nodes — JEU = 0 included.
+    pub fn cont_noeu_initial(&self) -> ContNoeu {
+        let mut nodes: Vec<NodeId> = self.links.iter().map(|l| l.node).collect();
+        nodes.extend(self.unpaired.iter().map(|&(_, n)| n));
+        nodes.sort_unstable();
+        nodes.dedup();
+        ContNoeu {
+            values: vec![[0.0; 19]; nodes.len()],
+            proj: vec![[0.0; 3]; nodes.len()],
+            nodes,
+        }
+    }
+
     fn describe(&self) -> String {
         let groups: Vec<String> = self
             .zones
