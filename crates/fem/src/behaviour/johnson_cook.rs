@@ -76,18 +76,18 @@ impl JohnsonCook {
 
     /// The radial return of `nmtevp` (RAPH_MECA): from the stress `sig`
     /// and state `prev` at the start of the increment, the strain
-    /// increment `deps` over `dt`, with 2μ = `two_mu` and 3K = `three_k`
-    /// (constant elastic coefficients). Returns the stress and the state.
+    /// increment `deps` over `dt`, with `moduli` = (2μ, 3K) (constant
+    /// elastic coefficients). Returns the stress and the state.
     pub fn integrate(
         &self,
-        two_mu: f64,
-        three_k: f64,
+        moduli: (f64, f64),
         sig: &[f64; 6],
         deps: &[f64; 6],
         prev: &JcState,
         dt: f64,
         temp: Option<f64>,
     ) -> ([f64; 6], JcState) {
+        let (two_mu, three_k) = moduli;
         let kron = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0];
         let depsmo = (deps[0] + deps[1] + deps[2]) / 3.0;
         let sigmo = (sig[0] + sig[1] + sig[2]) / 3.0;
@@ -180,7 +180,7 @@ mod tests {
     #[test]
     fn flow_stress_is_the_johnson_cook_product() {
         let jc = copper();
-        let (p, dp, dt) = (0.1, 0.02, 1e-3);
+        let (p, dp, dt): (f64, f64, f64) = (0.1, 0.02, 1e-3);
         let rate = dp / dt;
         let theta: f64 = (500.0 - 298.0) / (1083.0 - 298.0);
         let expected = (90.0 + 292.0 * (p + dp).powf(0.31))
@@ -220,8 +220,7 @@ mod tests {
         let mut deps = [0.0; 6];
         deps[3] = gamma / 2.0 * 2f64.sqrt();
         let (sig, st) = jc.integrate(
-            two_mu,
-            three_k,
+            (two_mu, three_k),
             &[0.0; 6],
             &deps,
             &JcState::default(),
@@ -243,8 +242,7 @@ mod tests {
             d
         };
         let (sig, st) = jc.integrate(
-            two_mu,
-            three_k,
+            (two_mu, three_k),
             &[0.0; 6],
             &small,
             &JcState::default(),
