@@ -1,6 +1,6 @@
-//! Johnson–Cook viscoplasticity (`VMIS_JOHN_COOK` with `DEFI_MATERIAU/
-//! ECRO_COOK`), as code_aster's `nmtevp` integrates it with `eccook` (the
-//! flow stress) and `nmcri9` (the scalar equation of the radial return).
+//! Johnson–Cook viscoplasticity (`VMIS_JOHN_COOK`, material `ECRO_COOK`),
+//! as code_aster's `nmtevp` integrates it with `eccook` (the flow stress)
+//! and `nmcri9` (the scalar equation of the radial return).
 //!
 //! Flow stress (`eccook`), p the cumulated plastic strain, ṗ = Δp/Δt:
 //!
