@@ -65,6 +65,15 @@ pub enum FemError {
         /// The failure of the last piece tried.
         cause: Box<FemError>,
     },
+    /// An increment failed where cutting it is known not to reproduce the
+    /// reference (`StaticNonLinear::cut_refused`): the analysis stops
+    /// instead of cutting, with the reason.
+    CutNotReproduced {
+        from: f64,
+        to: f64,
+        reason: String,
+        cause: Box<FemError>,
+    },
 }
 
 impl fmt::Display for FemError {
@@ -134,6 +143,15 @@ impl fmt::Display for FemError {
             } => write!(
                 f,
                 "the increment from t = {from} to t = {to} fails even cut {levels} time(s) in {pieces} pieces (smallest piece {smallest:e}; {limit}); last failure: {cause}"
+            ),
+            FemError::CutNotReproduced {
+                from,
+                to,
+                reason,
+                cause,
+            } => write!(
+                f,
+                "not supported yet: the increment from t = {from} to t = {to} fails ({cause}) and is not cut: {reason}"
             ),
         }
     }

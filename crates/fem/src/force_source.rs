@@ -65,6 +65,38 @@ pub enum LoopVerdict {
     Again,
 }
 
+/// `DEFI_LIST_INST/ECHEC=_F(EVENEMENT='INTERPENETRATION',
+/// ACTION='ADAPT_COEF_PENA')`: after an increment converges, a penalised
+/// contact that interpenetrates by more than `pene_maxi` doubles its
+/// normal penalty (at most `coef_maxi`) and the increment is redone from
+/// the last converged state (code_aster's `nmevin`, `nmadcp`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PenaltyAdaptation {
+    /// `PENE_MAXI`: the largest penetration accepted.
+    pub pene_maxi: f64,
+    /// `COEF_MAXI`: the largest penalty.
+    pub coef_maxi: f64,
+}
+
+/// What a penalised source does with a converged increment under
+/// [`PenaltyAdaptation`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum PenaltyVerdict {
+    /// No penetration beyond `pene_maxi` (or no penalty to adapt).
+    Accepted,
+    /// The penalties were doubled: redo the increment.
+    Raised {
+        /// The largest penetration found.
+        penetration: f64,
+    },
+    /// A penalty would exceed `coef_maxi`: it is set to `coef_maxi` and the
+    /// action has failed (code_aster stops the analysis).
+    Capped {
+        /// The largest penetration found.
+        penetration: f64,
+    },
+}
+
 /// A producer of forces with its own unknowns (see the module docs).
 pub trait ForceSource {
     /// Short name used in messages.
@@ -115,6 +147,26 @@ pub trait ForceSource {
         false
     }
 
+    /// Whether this source's [`LoopVerdict::Again`] continues Newton's
+    /// iteration (the next solve uses the matrix of the current iterate,
+    /// as code_aster's discrete geometric loop `cfconv` → `cfcgeo` inside
+    /// `nmnewt`) instead of restarting it from a prediction (the default:
+    /// the fixed-point loops of the continuous contact).
+    fn again_continues_newton(&self) -> bool {
+        false
+    }
+
+    /// A converged increment under [`PenaltyAdaptation`]: a penalised
+    /// source whose penetration exceeds `pene_maxi` doubles its penalty.
+    /// The default (no penalty) accepts.
+    fn adapt_penalty(
+        &mut self,
+        _state: &State,
+        _adaptation: PenaltyAdaptation,
+    ) -> Result<PenaltyVerdict, FemError> {
+        Ok(PenaltyVerdict::Accepted)
+    }
+
     /// RESI_GLOB_RELA of the iterate just evaluated (called once per
     /// Newton iteration, after the convergence test). code_aster's
     /// discrete friction weights its tangent by it (`cffpm2`).
@@ -150,6 +202,16 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     }
     fn residual_before_update(&self) -> bool {
         (**self).residual_before_update()
+    }
+    fn again_continues_newton(&self) -> bool {
+        (**self).again_continues_newton()
+    }
+    fn adapt_penalty(
+        &mut self,
+        state: &State,
+        adaptation: PenaltyAdaptation,
+    ) -> Result<PenaltyVerdict, FemError> {
+        (**self).adapt_penalty(state, adaptation)
     }
     fn observe_residual(&mut self, resi_glob_rela: f64) {
         (**self).observe_residual(resi_glob_rela)
@@ -232,8 +294,14 @@ pub(crate) fn newton_step(
     let mut solves = 0usize;
     let mut newton_iterations = 0usize;
     let mut loops = 0usize;
-    // Newton iterations of the current solve (restarted by a source's loop).
+    // Newton iterations of the current solve (restarted by a source's
+    // loop that restarts Newton).
     let mut iteration = 0usize;
+    // The iteration that chooses the matrix: restarted with `iteration`,
+    // except by the loops that continue Newton (discrete geometry): the
+    // next solve then uses the tangent of the current iterate, not the
+    // prediction's.
+    let mut matrix_iteration = 0usize;
     let max_iterations = ctx.iter_glob_maxi + 1;
     let mut tangent: Option<Csc> = None;
     let mut evaluated: Option<(Vec<f64>, Vec<crate::force_source::Contribution>)> = None;
@@ -244,7 +312,7 @@ pub(crate) fn newton_step(
             None => evaluate_all(model, k, dynamics, plastic, sources, own, u, t)?,
         };
         if let Some(pc) = plastic.as_mut() {
-            choose_tangent(&mut tangent, pc, model, kff, map, newton, iteration)?;
+            choose_tangent(&mut tangent, pc, model, kff, map, newton, matrix_iteration)?;
         }
         let matrix = tangent.as_ref().unwrap_or(kff);
         let rows: Vec<(Vec<(usize, f64)>, f64)> =
@@ -344,6 +412,7 @@ pub(crate) fn newton_step(
         }
         solves += 1;
         iteration += 1;
+        matrix_iteration += 1;
         newton_iterations += 1;
         crate::newton_timing::count_iteration();
         for i in 0..nd {
@@ -449,6 +518,7 @@ pub(crate) fn newton_step(
         evaluated = Some((fint, contributions));
         if converged_resi && settled {
             let mut again = false;
+            let mut restarts = false;
             for (s, src) in sources.iter_mut().enumerate() {
                 let verdict =
                     crate::newton_timing::timed(crate::newton_timing::Phase::Contact, || {
@@ -456,6 +526,7 @@ pub(crate) fn newton_step(
                     })?;
                 if verdict == LoopVerdict::Again {
                     again = true;
+                    restarts |= !src.again_continues_newton();
                 }
             }
             if !again {
@@ -482,8 +553,14 @@ pub(crate) fn newton_step(
                 )));
             }
             // A new Newton solve from the current state (code_aster
-            // restarts the iteration count for each pass of its loops).
-            iteration = 0;
+            // restarts the iteration count for each pass of its loops),
+            // or, for a loop nested in Newton (the discrete geometric
+            // loop), the next iteration: counted on, with the matrix of
+            // the current iterate (as the loop without force sources).
+            if restarts {
+                iteration = 0;
+                matrix_iteration = 0;
+            }
             evaluated = None;
             continue;
         }

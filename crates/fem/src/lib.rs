@@ -56,7 +56,9 @@ pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};
 pub use dynamics::{DynamicNonLinear, Scheme};
 pub use error::FemError;
-pub use force_source::{Contribution, ForceSource, LoopVerdict, Unknown};
+pub use force_source::{
+    Contribution, ForceSource, LoopVerdict, PenaltyAdaptation, PenaltyVerdict, Unknown,
+};
 pub use loads::{Load, LoadItem, Loads, Multiplier};
 pub use mass::{DiscreteMass, Lumping, MassData, Rayleigh};
 pub use material::{Elastic, Hypothesis};

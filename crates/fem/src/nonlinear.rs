@@ -344,6 +344,16 @@ pub struct StaticNonLinear<'s> {
     pub subdivision: Option<Subdivision>,
     /// Inertia and damping of a dynamic analysis (`None`: statics).
     pub dynamics: Option<Box<dyn IncrementTerms + 's>>,
+    /// Why a cut increment would not reproduce the reference (`Some`: an
+    /// increment that fails is not cut, the analysis stops with
+    /// [`FemError::CutNotReproduced`]): where the answer depends on which
+    /// increments are cut and the iterates that decide it are not exactly
+    /// code_aster's.
+    pub cut_refused: Option<String>,
+    /// `ECHEC/EVENEMENT='INTERPENETRATION'` with `ACTION='ADAPT_COEF_PENA'`:
+    /// each converged increment is offered to the force sources, which may
+    /// raise their penalty and have it redone ([`ForceSource::adapt_penalty`]).
+    pub penalty_adaptation: Option<crate::force_source::PenaltyAdaptation>,
 }
 
 /// `DEFI_LIST_INST/ECHEC=_F(ACTION='DECOUPE')`: a failed increment
@@ -387,6 +397,8 @@ impl Default for StaticNonLinear<'_> {
             first_order: 0,
             behaviours: Behaviours::default(),
             subdivision: Some(Subdivision::default()),
+            cut_refused: None,
+            penalty_adaptation: None,
             dynamics: None,
         }
     }
@@ -812,6 +824,47 @@ impl StaticNonLinear<'_> {
                     failure: attempt.as_ref().err().map(|e| e.to_string()),
                     cut: false,
                 });
+                // code_aster's event INTERPENETRATION (`nmevin`, on the
+                // converged increment) and its action ADAPT_COEF_PENA
+                // (`nmadcp`): the penalty doubled, the increment redone.
+                let attempt = match (attempt, self.penalty_adaptation) {
+                    (Ok(outcome), Some(adaptation)) => {
+                        let mut redo = None;
+                        for f in self.forces.iter_mut() {
+                            let state = State {
+                                mesh: model.mesh(),
+                                dofs: model.dofs(),
+                                displacement: &u,
+                                time: target,
+                            };
+                            match f.adapt_penalty(&state, adaptation)? {
+                                crate::force_source::PenaltyVerdict::Accepted => {}
+                                crate::force_source::PenaltyVerdict::Raised { penetration } => {
+                                    redo = Some(penetration);
+                                }
+                                crate::force_source::PenaltyVerdict::Capped { penetration } => {
+                                    return Err(FemError::Source(format!(
+                                        "{}: at time {target} the penetration {penetration:.3e} exceeds PENE_MAXI = {:e} with the penalty at COEF_MAXI = {:e} (DEFI_LIST_INST/ECHEC, EVENEMENT='INTERPENETRATION', ACTION='ADAPT_COEF_PENA': the action failed, as code_aster's MECANONLINE10_44)",
+                                        f.name(),
+                                        adaptation.pene_maxi,
+                                        adaptation.coef_maxi
+                                    )));
+                                }
+                            }
+                        }
+                        if let Some(penetration) = redo {
+                            crate::progress::emit(crate::progress::Event::Redo {
+                                from,
+                                to: target,
+                                penetration,
+                            });
+                            (u, srcs, own) = saved;
+                            continue;
+                        }
+                        Ok(outcome)
+                    }
+                    (a, _) => a,
+                };
                 match attempt {
                     Ok(outcome) => {
                         pending.pop();
@@ -888,6 +941,14 @@ impl StaticNonLinear<'_> {
                         let Some(sd) = self.subdivision.filter(|_| cuttable) else {
                             return Err(e);
                         };
+                        if let Some(reason) = &self.cut_refused {
+                            return Err(FemError::CutNotReproduced {
+                                from,
+                                to: target,
+                                reason: reason.clone(),
+                                cause: Box::new(e),
+                            });
+                        }
                         let piece = (target - from) / sd.pieces.max(2) as f64;
                         let limit = if level >= sd.max_level {
                             Some(format!("SUBD_NIVEAU = {} reached", sd.max_level))

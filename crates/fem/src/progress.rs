@@ -43,6 +43,14 @@ pub enum Event {
         to: f64,
         pieces: usize,
     },
+    /// The increment `from → to` converged with a penetration beyond
+    /// `PENE_MAXI`: the penalty was raised and the increment is redone
+    /// (`DEFI_LIST_INST/ECHEC`, `ACTION='ADAPT_COEF_PENA'`).
+    Redo {
+        from: f64,
+        to: f64,
+        penetration: f64,
+    },
 }
 
 /// Receives the events of a solve.

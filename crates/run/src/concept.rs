@@ -551,6 +551,8 @@ pub struct TimeList {
     pub instants: Rc<Vec<f64>>,
     /// `ECHEC/ACTION='DECOUPE'` (`None`: `ARRET`).
     pub subdivision: Option<aster_fem::Subdivision>,
+    /// `ECHEC/EVENEMENT='INTERPENETRATION'`, `ACTION='ADAPT_COEF_PENA'`.
+    pub penalty_adaptation: Option<aster_fem::PenaltyAdaptation>,
     /// Where the list was defined (`file:line:col`), for messages.
     pub location: Option<String>,
 }

@@ -344,6 +344,18 @@ impl Executor {
         })
     }
 
+    /// A DEFI_LIST_INST's `ECHEC/EVENEMENT='INTERPENETRATION'` (with
+    /// `ACTION='ADAPT_COEF_PENA'`), if any.
+    pub(crate) fn penalty_adaptation(
+        &self,
+        c: &ConceptRef,
+    ) -> Result<Option<aster_fem::PenaltyAdaptation>, ExecError> {
+        Ok(match self.concept(c)? {
+            Concept::TimeList(l) => l.penalty_adaptation,
+            _ => None,
+        })
+    }
+
     /// The program's mesh when there is exactly one (fields do not record
     /// their mesh).
     pub(crate) fn single_mesh(&self) -> Result<Arc<Mesh>, ExecError> {

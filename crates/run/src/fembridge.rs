@@ -994,6 +994,8 @@ pub fn solve(
             forces,
             behaviours: behaviours.clone(),
             subdivision: setup.subdivision,
+            cut_refused: setup.cut_refused.clone(),
+            penalty_adaptation: setup.penalty_adaptation,
             ..StaticNonLinear::default()
         };
         let outcome = match &setup.dynamics {
@@ -1106,8 +1108,14 @@ pub fn solve(
                     }
                 }
             }
-            if let Some(cn) = post_discrete.as_ref().and_then(|f| f.cont_noeu_at(s.time)) {
-                fields.insert("CONT_NOEU".to_string(), Field::Nodal(cont_noeu_field(cn)));
+            if let Some(f) = post_discrete.as_ref() {
+                // A step without a converged snapshot is the initial state:
+                // code_aster's CONT_NOEU there is zero.
+                let cn = match f.cont_noeu_at(s.time) {
+                    Some(cn) => cont_noeu_field(cn),
+                    None => cont_noeu_field(&f.cont_noeu_initial()),
+                };
+                fields.insert("CONT_NOEU".to_string(), Field::Nodal(cn));
             }
             if let Some(zones) = &mut post_zones {
                 // CONT_NOEU: the zones re-paired on the step's geometry.

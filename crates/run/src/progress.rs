@@ -131,6 +131,20 @@ impl Observer for Table {
                 ));
                 self.increment = None;
             }
+            Event::Redo {
+                from,
+                to,
+                penetration,
+            } => {
+                self.out.line(RULE);
+                self.out.line(&format!(
+                    "  increment {} -> {} redone: penetration {} beyond PENE_MAXI, penalty doubled",
+                    c_exp(*from, 0, 6),
+                    c_exp(*to, 0, 6),
+                    c_exp(*penetration, 0, 6)
+                ));
+                self.increment = None;
+            }
         }
     }
 }

@@ -133,6 +133,11 @@ pub struct SolveSetup {
     pub dynamics: Option<crate::dyna::DynamicSetup>,
     /// `ARCHIVAGE`: the steps stored.
     pub archive: crate::archive::Archive,
+    /// Why a failed increment may not be cut here (aster-fem's
+    /// `StaticNonLinear::cut_refused`), with where it was decided.
+    pub cut_refused: Option<String>,
+    /// `DEFI_LIST_INST/ECHEC/EVENEMENT='INTERPENETRATION'`.
+    pub penalty_adaptation: Option<aster_fem::PenaltyAdaptation>,
 }
 
 /// Initial fields given one by one in `ETAT_INIT` (`DEPL`, and in
@@ -435,6 +440,7 @@ pub(crate) fn parse_setup(
     }
     let mut subdivision = None;
     let mut time_list_at = None;
+    let mut penalty_adaptation = None;
     let mut initial_fields = InitialFields::default();
     let (instants, initial) = if linear {
         instants_linear(ex, kw)?
@@ -445,6 +451,25 @@ pub(crate) fn parse_setup(
         let l = ex.required(&format!("{cmd}/INCREMENT"), inc, "LIST_INST")?;
         let list = ex.real_list(l)?;
         (subdivision, time_list_at) = ex.time_stepping(l)?;
+        penalty_adaptation = ex.penalty_adaptation(l)?;
+        if penalty_adaptation.is_some() {
+            let discrete_friction = contact.as_deref().is_some_and(|c| match c {
+                ContactDef::Zones { keywords, .. } => {
+                    keywords.str("FORMULATION").unwrap_or("DISCRETE") == "DISCRETE"
+                        && keywords.str("FROTTEMENT") == Some("COULOMB")
+                }
+                _ => false,
+            });
+            if !discrete_friction {
+                return Err(ex.unsupported(
+                    &format!(
+                        "{cmd}/INCREMENT/LIST_INST with ECHEC/EVENEMENT='INTERPENETRATION'{} without a discrete penalised friction contact (FORMULATION='DISCRETE', FROTTEMENT='COULOMB'): the penalty adaptation is done for that contact only",
+                        time_list_at.as_ref().map(|l| format!(" (defined at {l})")).unwrap_or_default()
+                    ),
+                    inc.keyword("LIST_INST").map_or(call.span, |k| k.span),
+                ));
+            }
+        }
         let mut init = inc.f64("INST_INIT");
         let mut fin = inc.f64("INST_FIN");
         if let Some(n) = inc.first("NUME_INST_INIT").and_then(|s| s.as_i64()) {
@@ -538,6 +563,8 @@ pub(crate) fn parse_setup(
         initial_fields,
         dynamics: None,
         archive: parse_archive(ex, kw)?,
+        cut_refused: None,
+        penalty_adaptation,
     })
 }
 

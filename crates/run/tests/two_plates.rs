@@ -96,6 +96,32 @@ fn discrete_sliding_plates_carry_mu_times_the_normal_force() {
     assert_eq!(run_scene("two_plates_friction_discrete.comm"), (10, 0));
 }
 
+/// comm/two_plates_interpenetration.comm: DEFI_LIST_INST/ECHEC with
+/// EVENEMENT='INTERPENETRATION' and ACTION='ADAPT_COEF_PENA' doubles the
+/// soft E_N and redoes the step until the slave nodes penetrate less than
+/// PENE_MAXI = 1e-4 (JEU -3.3e-5); without the event the same scene
+/// penetrates by 2.7e-2 and its JEU checks fail.
+#[test]
+fn interpenetration_event_raises_the_penalty_until_pene_maxi() {
+    assert_eq!(run_scene("two_plates_interpenetration.comm"), (4, 0));
+    let text =
+        std::fs::read_to_string(root().join("comm/two_plates_interpenetration.comm")).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.contains("EVENEMENT=\"INTERPENETRATION\""))
+        .unwrap();
+    let dir = std::env::temp_dir().join(format!("aster-noip-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("noip.comm");
+    std::fs::write(&comm, text.replace(line, "")).unwrap();
+    let case = aster_run::program::prepare(&comm, Some(&root().join("comm/two_plates.mail")), &dir)
+        .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (0, 4));
+}
+
 /// comm/dyna_sliding_block.comm: continuous Coulomb friction under
 /// DYNA_NON_LINE (the force sources' Newton loop with the time
 /// integrator): a block pressed by 4e4 and pushed by 2.4e4 > μN slides

@@ -55,7 +55,10 @@
 //! one; RTAX… holds the friction force of a status-1 node, RTGX… that of a
 //! status-2 node.
 
-use aster_fem::{Contribution, Dof, FemError, ForceSource, LoopVerdict, State, Unknown};
+use aster_fem::{
+    Contribution, Dof, FemError, ForceSource, LoopVerdict, PenaltyAdaptation, PenaltyVerdict,
+    State, Unknown,
+};
 use aster_mesh::{Mesh, NodeId};
 use std::collections::HashMap;
 
@@ -227,6 +230,23 @@ impl DiscreteFriction {
             .rev()
             .find(|(t, _)| (t - time).abs() <= 1e-12 * time.abs().max(1.0))
             .map(|(_, c)| c)
+    }
+
+    /// CONT_NOEU of the initial state: code_aster creates the field with
+    /// zeros (`nmetcc`, not read from an initial state: `l_read_init`
+    /// false in `CreateInOutDS_M`) and only a resolution fills it
+    /// (`cfresu`), so the initial state archived carries zeros on the
+    /// slave nodes — JEU = 0 included.
+    pub fn cont_noeu_initial(&self) -> ContNoeu {
+        let mut nodes: Vec<NodeId> = self.links.iter().map(|l| l.node).collect();
+        nodes.extend(self.unpaired.iter().map(|&(_, n)| n));
+        nodes.sort_unstable();
+        nodes.dedup();
+        ContNoeu {
+            values: vec![[0.0; 19]; nodes.len()],
+            proj: vec![[0.0; 3]; nodes.len()],
+            nodes,
+        }
     }
 
     fn describe(&self) -> String {
@@ -631,6 +651,48 @@ impl ForceSource for DiscreteFriction {
                 state.time
             ))),
         }
+    }
+
+    fn again_continues_newton(&self) -> bool {
+        true
+    }
+
+    /// code_aster's `nmevin` and `nmadcp`: the event fires when a link's
+    /// final gap (`JEUITE(1)`) is a penetration beyond PENE_MAXI; every
+    /// zone's E_N is then doubled, at most COEF_MAXI (reaching it fails
+    /// the action). code_aster doubles a zone when the largest
+    /// penetration recorded so far (`EVENPE`, never reset) exceeds
+    /// PENE_MAXI, which the event itself guarantees with one zone; with
+    /// several it reads that record of the last link's zone for all.
+    fn adapt_penalty(
+        &mut self,
+        state: &State,
+        adaptation: PenaltyAdaptation,
+    ) -> Result<PenaltyVerdict, FemError> {
+        let u = state.displacement;
+        let penetration = self
+            .links
+            .iter()
+            .map(|l| self.link_state(l, u).gap)
+            .filter(|&g| g <= 0.0)
+            .fold(0.0f64, |m, g| m.max(-g));
+        if penetration <= adaptation.pene_maxi {
+            return Ok(PenaltyVerdict::Accepted);
+        }
+        let mut capped = false;
+        for z in &mut self.zones {
+            let mut e_n = 2.0 * z.e_n;
+            if e_n > adaptation.coef_maxi {
+                e_n = adaptation.coef_maxi;
+                capped = true;
+            }
+            z.e_n = e_n;
+        }
+        Ok(if capped {
+            PenaltyVerdict::Capped { penetration }
+        } else {
+            PenaltyVerdict::Raised { penetration }
+        })
     }
 
     fn converged(&mut self, state: &State, _own: &[f64]) -> Result<(), FemError> {

@@ -17,6 +17,7 @@
 //!   ([`lemaitre`]), integrated over the step's duration.
 
 mod cells;
+pub mod johnson_cook;
 pub mod lemaitre;
 pub mod simo_miehe;
 pub mod vmis;

@@ -848,8 +848,8 @@ pub(crate) const DEFI_LIST_INST: Support = Support {
     values: &[
         Values::new("METHODE", &["MANUEL"]),
         Values::new("DEFI_LIST/METHODE", &["MANUEL"]),
-        Values::new("ECHEC/EVENEMENT", &["ERREUR"]),
-        Values::new("ECHEC/ACTION", &["ARRET", "DECOUPE"]),
+        Values::new("ECHEC/EVENEMENT", &["ERREUR", "INTERPENETRATION"]),
+        Values::new("ECHEC/ACTION", &["ARRET", "DECOUPE", "ADAPT_COEF_PENA"]),
         // SUBD_METHODE='AUTO' chooses the pieces by extrapolating the
         // residuals; it is read as MANUEL's default cutting (4 pieces, 3
         // levels) bounded by its SUBD_PAS_MINI: the converged steps are
@@ -873,6 +873,10 @@ pub(crate) const DEFI_LIST_INST: Support = Support {
         "ECHEC/SUBD_PAS",
         "ECHEC/SUBD_PAS_MINI",
         "ECHEC/SUBD_NIVEAU",
+        // EVENEMENT='INTERPENETRATION' with ACTION='ADAPT_COEF_PENA': the
+        // penalty of a discrete penalised contact doubled (docs/friction.md).
+        "ECHEC/PENE_MAXI",
+        "ECHEC/COEF_MAXI",
     ])
 };
 
@@ -884,7 +888,35 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     // ECHEC is present by default (EVENEMENT='ERREUR', ACTION='DECOUPE',
     // SUBD_PAS=4, SUBD_NIVEAU=3, SUBD_PAS_MINI=0).
     let mut subdivision = Some(aster_fem::Subdivision::default());
+    let mut penalty_adaptation = None;
     for occ in kw.factor("ECHEC") {
+        if occ.str("EVENEMENT") == Some("INTERPENETRATION") {
+            // code_aster's `nmevin` (the event, on a converged increment)
+            // and `nmadcp` (its action).
+            if occ.str("ACTION") != Some("ADAPT_COEF_PENA") {
+                let span = occ.keyword("ACTION").map_or(call.span, |k| k.span);
+                return Err(ex.unsupported(
+                    &format!(
+                        "DEFI_LIST_INST/ECHEC/EVENEMENT='INTERPENETRATION' with ACTION='{}' (ADAPT_COEF_PENA only)",
+                        occ.str("ACTION").unwrap_or("")
+                    ),
+                    span,
+                ));
+            }
+            let Some(pene_maxi) = occ.f64("PENE_MAXI") else {
+                return Err(ex.kw_error(
+                    "DEFI_LIST_INST/ECHEC",
+                    occ,
+                    "EVENEMENT",
+                    "EVENEMENT='INTERPENETRATION' needs PENE_MAXI",
+                ));
+            };
+            penalty_adaptation = Some(aster_fem::PenaltyAdaptation {
+                pene_maxi,
+                coef_maxi: occ.f64("COEF_MAXI").unwrap_or(1e12),
+            });
+            continue;
+        }
         if occ.str("ACTION") == Some("ARRET") {
             subdivision = None;
             continue;
@@ -928,6 +960,7 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         Concept::TimeList(Rc::new(crate::concept::TimeList {
             instants: Rc::new(values),
             subdivision,
+            penalty_adaptation,
             location,
         })),
     )
