@@ -315,18 +315,12 @@ impl MortarLagrangian {
                 h,
             });
         }
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for z in &out {
-            for s in z.slave.iter().chain(&z.master) {
-                for &n in &s.nodes {
-                    let p = mesh.coords[n.0 as usize];
-                    for c in 0..3 {
-                        lo[c] = lo[c].min(p[c]);
-                        hi[c] = hi[c].max(p[c]);
-                    }
-                }
-            }
-        }
+        let (lo, hi) = aster_mesh::bounding_box(out.iter().flat_map(|z| {
+            z.slave
+                .iter()
+                .chain(&z.master)
+                .flat_map(|s| s.nodes.iter().map(|n| mesh.coords[n.0 as usize]))
+        }));
         let scale = norm(sub(hi, lo)).max(f64::MIN_POSITIVE);
         Ok(MortarLagrangian {
             zones: out,

@@ -732,19 +732,12 @@ impl ZoneContact {
 }
 
 fn zone_length(zone: &ResolvedZone, coords: &[[f64; 3]]) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for n in zone.master_nodes.iter().chain(&zone.slave_nodes) {
-        let p = coords[n.0 as usize];
-        for c in 0..3 {
-            lo[c] = lo[c].min(p[c]);
-            hi[c] = hi[c].max(p[c]);
-        }
-    }
-    let d: f64 = (0..3)
-        .map(|c| (hi[c] - lo[c]).max(0.0).powi(2))
-        .sum::<f64>()
-        .sqrt();
+    let d = aster_mesh::box_diagonal(aster_mesh::bounding_box(
+        zone.master_nodes
+            .iter()
+            .chain(&zone.slave_nodes)
+            .map(|n| coords[n.0 as usize]),
+    ));
     if d.is_finite() && d > 0.0 {
         d
     } else {

@@ -449,11 +449,7 @@ impl Loads {
             let Some(ElementKind::Continuum {
                 hypothesis,
                 material,
-            }) = model
-                .elements()
-                .iter()
-                .find(|e| e.cell == cv.cell)
-                .map(|e| &e.kind)
+            }) = model.element_kind(cv.cell)
             else {
                 continue;
             };
@@ -697,11 +693,7 @@ fn free_strain_load(
     let Some(ElementKind::Continuum {
         hypothesis,
         material,
-    }) = model
-        .elements()
-        .iter()
-        .find(|e| e.cell == cell)
-        .map(|e| &e.kind)
+    }) = model.element_kind(cell)
     else {
         return Err(FemError::Model(format!(
             "thermal strain on cell {}, which carries no continuum element",

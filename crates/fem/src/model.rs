@@ -429,6 +429,14 @@ impl Model {
         &self.elements
     }
 
+    /// What a cell carries (`None`: the cell is not in the model).
+    pub fn element_kind(&self, cell: CellId) -> Option<&ElementKind> {
+        self.elements
+            .iter()
+            .find(|e| e.cell == cell)
+            .map(|e| &e.kind)
+    }
+
     pub fn dofs(&self) -> &DofNumbering {
         &self.dofs
     }

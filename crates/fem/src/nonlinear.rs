@@ -1920,33 +1920,24 @@ fn gap(idx: &[(usize, f64)], rhs: f64, u: &[f64]) -> f64 {
 /// settled on states that depend on the load path. code_aster's
 /// `CONTRAINTE` algorithm tests gaps against `r8prem()` (`cfpeti`).
 fn gap_tolerance(model: &Model, u: &[f64]) -> f64 {
-    let mesh = model.mesh();
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &mesh.coords {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let size = (0..3).map(|k| (hi[k] - lo[k]).max(0.)).fold(0.0, f64::max);
-    let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    (1e-10 * umax).max(1e-15 * size).max(1e-300)
+    (1e-10 * max_abs(u))
+        .max(1e-15 * model_size(model))
+        .max(1e-300)
 }
 
 fn length_scale(model: &Model, u: &[f64]) -> f64 {
-    let mesh = model.mesh();
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &mesh.coords {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let size = (0..3).map(|k| (hi[k] - lo[k]).max(0.)).fold(0.0, f64::max);
-    let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    size.max(umax).max(1e-300)
+    model_size(model).max(max_abs(u)).max(1e-300)
+}
+
+/// The largest extent of the mesh's bounding box.
+fn model_size(model: &Model) -> f64 {
+    let (lo, hi) = aster_mesh::bounding_box(model.mesh().coords.iter().copied());
+    (0..3).map(|k| (hi[k] - lo[k]).max(0.)).fold(0.0, f64::max)
+}
+
+/// The largest displacement component.
+fn max_abs(u: &[f64]) -> f64 {
+    u.iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
 /// f_int(u): K u, plus the plastic cells' corrections (their trial states

@@ -106,14 +106,7 @@ fn split(a: &Csc, coords: &[[f64; 3]], v: &[usize], ids: &mut SetIds) -> Option<
     if v.len() <= LEAF {
         return None;
     }
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for &i in v {
-        for k in 0..3 {
-            lo[k] = lo[k].min(coords[i][k]);
-            hi[k] = hi[k].max(coords[i][k]);
-        }
-    }
+    let (lo, hi) = aster_mesh::bounding_box(v.iter().map(|&i| coords[i]));
     let axis = (0..3)
         .max_by(|&x, &y| (hi[x] - lo[x]).total_cmp(&(hi[y] - lo[y])))
         .unwrap_or(0);

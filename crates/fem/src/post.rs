@@ -212,12 +212,7 @@ pub fn shell_sigm_elno(
     let efforts = efge_elga(model, u, direction)?;
     let mut out = Vec::with_capacity(efforts.len());
     for cv in efforts {
-        let Some(ElementKind::Shell { section, .. }) = model
-            .elements()
-            .iter()
-            .find(|e| e.cell == cv.cell)
-            .map(|e| &e.kind)
-        else {
+        let Some(ElementKind::Shell { section, .. }) = model.element_kind(cv.cell) else {
             continue;
         };
         let n = layers(cv.cell).max(1);

@@ -161,6 +161,28 @@ pub struct Mesh {
     pub groups_no: Vec<Group<NodeId>>,
 }
 
+/// The axis-aligned bounding box (lowest, highest corner) of points; of no
+/// point, the empty box (+∞, −∞).
+pub fn bounding_box(points: impl IntoIterator<Item = [f64; 3]>) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// The length of a box's diagonal (0 for an empty box).
+pub fn box_diagonal((lo, hi): ([f64; 3], [f64; 3])) -> f64 {
+    (0..3)
+        .map(|k| (hi[k] - lo[k]).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
 impl Mesh {
     pub fn node_count(&self) -> usize {
         self.coords.len()

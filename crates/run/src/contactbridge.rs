@@ -638,18 +638,7 @@ fn refuse_loose_gcp(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<(), Exe
     if !gcp || kw.str("FORMULATION").unwrap_or("DISCRETE") != "DISCRETE" {
         return Ok(());
     }
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &mesh.coords {
-        for c in 0..3 {
-            lo[c] = lo[c].min(p[c]);
-            hi[c] = hi[c].max(p[c]);
-        }
-    }
-    let extent = (0..3)
-        .map(|c| (hi[c] - lo[c]).max(0.0).powi(2))
-        .sum::<f64>()
-        .sqrt();
+    let extent = aster_mesh::box_diagonal(aster_mesh::bounding_box(mesh.coords.iter().copied()));
     if resi > 1e-7 * extent {
         let span = kw.keyword("RESI_ABSO").map(|k| k.span).unwrap_or_default();
         return Err(ex.unsupported(

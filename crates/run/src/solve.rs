@@ -341,6 +341,23 @@ pub(crate) fn kinematics_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     }
 }
 
+/// A load concept (`char_meca`, `char_cine_meca`) as `at` names it.
+pub(crate) fn load_ref(
+    ex: &Executor,
+    at: &str,
+    c: &aster_eval::ConceptRef,
+) -> Result<LoadRef, ExecError> {
+    match ex.concept(c)? {
+        Concept::KinematicLoad(l) => Ok(LoadRef::Kinematic(l.clone())),
+        Concept::MechanicalLoad(l) => Ok(LoadRef::Mechanical(l.clone())),
+        other => Err(ExecError::new(format!(
+            "{at}: `{}` is {}, expected a load",
+            c.name,
+            other.kind()
+        ))),
+    }
+}
+
 fn parse_excitations(
     ex: &Executor,
     cmd: &str,
@@ -349,17 +366,7 @@ fn parse_excitations(
     let mut out = Vec::new();
     for occ in kw.factor("EXCIT") {
         let c = ex.required(&format!("{cmd}/EXCIT"), occ, "CHARGE")?;
-        let load = match ex.concept(c)? {
-            Concept::KinematicLoad(l) => LoadRef::Kinematic(l.clone()),
-            Concept::MechanicalLoad(l) => LoadRef::Mechanical(l.clone()),
-            other => {
-                return Err(ExecError::new(format!(
-                    "{cmd}/EXCIT/CHARGE: `{}` is {}, expected a load",
-                    c.name,
-                    other.kind()
-                )))
-            }
-        };
+        let load = load_ref(ex, &format!("{cmd}/EXCIT/CHARGE"), c)?;
         let multiplier = match occ.concept("FONC_MULT") {
             Some(f) => Some(ex.function(f)?),
             None => None,

@@ -72,21 +72,11 @@ fn loads_of(
     kw: &Keywords,
     name: &str,
 ) -> Result<Vec<LoadRef>, ExecError> {
-    let mut out = Vec::new();
-    for c in kw.simple(name).iter().filter_map(|s| s.as_concept()) {
-        out.push(match ex.concept(c)? {
-            Concept::KinematicLoad(l) => LoadRef::Kinematic(l.clone()),
-            Concept::MechanicalLoad(l) => LoadRef::Mechanical(l.clone()),
-            other => {
-                return Err(ExecError::new(format!(
-                    "{cmd}/{name}: `{}` is {}, expected a load",
-                    c.name,
-                    other.kind()
-                )))
-            }
-        });
-    }
-    Ok(out)
+    kw.simple(name)
+        .iter()
+        .filter_map(|s| s.as_concept())
+        .map(|c| crate::solve::load_ref(ex, &format!("{cmd}/{name}"), c))
+        .collect()
 }
 
 pub fn macr_elem_stat(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
