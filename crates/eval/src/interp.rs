@@ -315,13 +315,7 @@ impl<'a> Interp<'a> {
             }
             Err(e) => Err(e),
         };
-        if finalbody.is_empty() {
-            return flow;
-        }
-        match self.exec_block(finalbody)? {
-            Flow::Normal => flow,
-            other => Ok(other),
-        }
+        self.then_finally(flow, finalbody)
     }
 
     /// `try: … except CA.AsterError as err: …` (every handler catching
@@ -402,6 +396,12 @@ impl<'a> Interp<'a> {
             )))),
             Err(e) => Err(e),
         };
+        self.then_finally(flow, finalbody)
+    }
+
+    /// A `try` statement's `finally:` block, run after the body's flow
+    /// (a `return` or `break` in it replaces that flow, as in Python).
+    fn then_finally(&mut self, flow: R<Flow>, finalbody: &[ast::Stmt]) -> R<Flow> {
         if finalbody.is_empty() {
             return flow;
         }
@@ -430,13 +430,7 @@ impl<'a> Interp<'a> {
             Err(Halt::Diag(d)) if d.kind == DiagKind::Python => self.exec_block(&handler.body),
             Err(e) => Err(e),
         };
-        if finalbody.is_empty() {
-            return flow;
-        }
-        match self.exec_block(finalbody)? {
-            Flow::Normal => flow,
-            other => Ok(other),
-        }
+        self.then_finally(flow, finalbody)
     }
 
     fn exec_block(&mut self, body: &[ast::Stmt]) -> R<Flow> {
