@@ -159,12 +159,6 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "EXCIT/CHARGE",
     "EXCIT/FONC_MULT",
     "EXCIT/TYPE_CHARGE",
-    // Static substructures (`crate::commands::substructure`).
-    "SOUS_STRUC",
-    "SOUS_STRUC/CAS_CHARGE",
-    "SOUS_STRUC/TOUT",
-    "SOUS_STRUC/SUPER_MAILLE",
-    "SOUS_STRUC/FONC_MULT",
     "CONTACT",
     "COMPORTEMENT",
     "COMPORTEMENT/RELATION",
@@ -290,9 +284,22 @@ pub(crate) const SNL_VALUES: &[Values] = &[
     ),
 ];
 
+/// The static substructures' load cases (`crate::commands::substructure`):
+/// STAT_NON_LINE's only (DYNA_NON_LINE shares the rest of its keywords).
+const SOUS_STRUC_KEYWORDS: &[&str] = &[
+    "SOUS_STRUC",
+    "SOUS_STRUC/CAS_CHARGE",
+    "SOUS_STRUC/TOUT",
+    "SOUS_STRUC/SUPER_MAILLE",
+    "SOUS_STRUC/FONC_MULT",
+];
+
 /// What STAT_NON_LINE reads (`crate::support`).
 pub(crate) const STAT_NON_LINE: Support = Support {
-    keywords: SNL_KEYWORDS,
+    keywords: &crate::support::joined::<_, { SNL_KEYWORDS.len() + SOUS_STRUC_KEYWORDS.len() }>(
+        SNL_KEYWORDS,
+        SOUS_STRUC_KEYWORDS,
+    ),
     values: SNL_VALUES,
     hints: &[],
     reuse: true,
