@@ -128,21 +128,7 @@ pub struct ModelDef {
     pub rotations: Vec<bool>,
     /// `AFFE_SOUS_STRUC`: the super cells (static substructures) the
     /// model carries beside its elements.
-    pub substructures: Vec<Substructure>,
-}
-
-/// A super cell of a model (`AFFE_MODELE/AFFE_SOUS_STRUC`): its name and
-/// the macro element it stands for.
-#[derive(Clone, Debug)]
-pub struct Substructure {
-    pub name: String,
-    pub macro_elem: Rc<MacroElement>,
-}
-
-impl PartialEq for Substructure {
-    fn eq(&self, other: &Self) -> bool {
-        self.name == other.name && Rc::ptr_eq(&self.macro_elem, &other.macro_elem)
-    }
+    pub substructures: Vec<SuperCell>,
 }
 
 /// `MACR_ELEM_STAT`: a static substructure — a model's cells with their
@@ -180,6 +166,14 @@ pub struct SuperCell {
     /// The names of the macro element's exterior nodes in the super mesh
     /// (in the order of [`MacroElement::exterior`]).
     pub node_names: Vec<String>,
+}
+
+impl PartialEq for SuperCell {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name
+            && self.node_names == other.node_names
+            && Rc::ptr_eq(&self.macro_elem, &other.macro_elem)
+    }
 }
 
 impl ModelDef {
@@ -267,64 +261,55 @@ pub struct Temperature {
     pub constant_after: bool,
 }
 
-impl Temperature {
-    /// The weight of each field at time t (linear interpolation), or why
-    /// t is outside the fields' instants.
-    pub fn weights(&self, t: f64) -> Result<Vec<f64>, String> {
-        let instants: Vec<f64> = self.fields.iter().map(|f| f.0).collect();
-        temperature_weights(&instants, self.constant_before, self.constant_after, t)
-    }
-}
-
-/// [`Temperature::weights`] from the instants alone.
+/// The weight of each of a [`Temperature`]'s fields, given by their
+/// instants, at time t (linear interpolation), or why t is outside those
+/// instants.
 pub fn temperature_weights(
     instants: &[f64],
     constant_before: bool,
     constant_after: bool,
     t: f64,
 ) -> Result<Vec<f64>, String> {
-    {
-        let n = instants.len();
-        let mut w = vec![0.0; n];
-        if n == 1 {
-            w[0] = 1.0;
-            return Ok(w);
-        }
-        let (first, last) = (instants[0], instants[n - 1]);
-        let tol = 1e-9 * first.abs().max(last.abs()).max(1.0);
-        if t < first - tol {
-            if !constant_before {
-                return Err(format!(
-                    "the temperature (AFFE_VARC/EVOL) is not defined at instant {t}, before its first instant {first} (PROL_GAUCHE='EXCLU')"
-                ));
-            }
-            w[0] = 1.0;
-            return Ok(w);
-        }
-        if t > last + tol {
-            if !constant_after {
-                return Err(format!(
-                    "the temperature (AFFE_VARC/EVOL) is not defined at instant {t}, after its last instant {last} (PROL_DROITE='EXCLU')"
-                ));
-            }
-            w[n - 1] = 1.0;
-            return Ok(w);
-        }
-        for k in 0..n - 1 {
-            let (a, b) = (instants[k], instants[k + 1]);
-            if t <= b + tol || k == n - 2 {
-                let s = if b > a {
-                    ((t - a) / (b - a)).clamp(0.0, 1.0)
-                } else {
-                    1.0
-                };
-                w[k] = 1.0 - s;
-                w[k + 1] = s;
-                return Ok(w);
-            }
-        }
-        Ok(w)
+    let n = instants.len();
+    let mut w = vec![0.0; n];
+    if n == 1 {
+        w[0] = 1.0;
+        return Ok(w);
     }
+    let (first, last) = (instants[0], instants[n - 1]);
+    let tol = 1e-9 * first.abs().max(last.abs()).max(1.0);
+    if t < first - tol {
+        if !constant_before {
+            return Err(format!(
+                "the temperature (AFFE_VARC/EVOL) is not defined at instant {t}, before its first instant {first} (PROL_GAUCHE='EXCLU')"
+            ));
+        }
+        w[0] = 1.0;
+        return Ok(w);
+    }
+    if t > last + tol {
+        if !constant_after {
+            return Err(format!(
+                "the temperature (AFFE_VARC/EVOL) is not defined at instant {t}, after its last instant {last} (PROL_DROITE='EXCLU')"
+            ));
+        }
+        w[n - 1] = 1.0;
+        return Ok(w);
+    }
+    for k in 0..n - 1 {
+        let (a, b) = (instants[k], instants[k + 1]);
+        if t <= b + tol || k == n - 2 {
+            let s = if b > a {
+                ((t - a) / (b - a)).clamp(0.0, 1.0)
+            } else {
+                1.0
+            };
+            w[k] = 1.0 - s;
+            w[k + 1] = s;
+            return Ok(w);
+        }
+    }
+    Ok(w)
 }
 
 /// `AFFE_CARA_ELEM/DISCRET(_2D)`: a stiffness on discrete cells.

@@ -50,7 +50,7 @@ pub struct Executor {
     pub(crate) lac_patches: Vec<(Arc<Mesh>, Arc<aster_mesh::LacPatches>)>,
     /// Meshes assembled with super cells (`ASSE_MAILLAGE(OPERATION=
     /// 'SOUS_STR')`), by concept id.
-    pub(crate) substructured: HashMap<u32, crate::commands::substructure::Substructured>,
+    pub(crate) substructured: HashMap<u32, Rc<crate::concept::SuperMesh>>,
     /// Meshes the static pass already read (`LIRE_MAILLAGE` takes them).
     pub(crate) read_meshes: Vec<crate::preflight::ReadMesh>,
     /// Text files this run has written on a unit: the first write of a run
@@ -261,6 +261,18 @@ macro_rules! getter {
 }
 
 getter!(model, Model, ModelDef, "a model (AFFE_MODELE)");
+getter!(
+    macro_element,
+    MacroElement,
+    MacroElement,
+    "a static macro element (MACR_ELEM_STAT)"
+);
+getter!(
+    super_mesh,
+    SuperMesh,
+    SuperMesh,
+    "a super mesh (DEFI_MAILLAGE)"
+);
 getter!(material, Material, Material, "a material (DEFI_MATERIAU)");
 getter!(
     material_field,

@@ -36,6 +36,17 @@ pub struct FemRun {
     pub cara: Option<Rc<CaraElem>>,
 }
 
+impl FemRun {
+    /// The computed state at a NUME_ORDRE, or an error naming `cmd`.
+    pub fn state(&self, cmd: &str, nume_ordre: u32) -> Result<&aster_fem::Step, ExecError> {
+        self.raw.by_order(nume_ordre as usize).ok_or_else(|| {
+            ExecError::new(format!(
+                "{cmd}: no computed state at NUME_ORDRE {nume_ordre}"
+            ))
+        })
+    }
+}
+
 fn fem_err(cmd: &str, e: aster_fem::FemError) -> ExecError {
     with_fem_id(ExecError::new(format!("{cmd}: {e}")), &e)
 }
@@ -1275,12 +1286,7 @@ pub fn calc_champ(
         .iter_mut()
         .filter(|s| steps.contains(&s.nume_ordre))
     {
-        let raw = run.raw.by_order(step.nume_ordre as usize).ok_or_else(|| {
-            ExecError::new(format!(
-                "CALC_CHAMP: no computed state at NUME_ORDRE {}",
-                step.nume_ordre
-            ))
-        })?;
+        let raw = run.state("CALC_CHAMP", step.nume_ordre)?;
         let u = &raw.displacement;
         let model = &run.model;
         let elno = || post::elno(model, &raw.stress);
@@ -1396,12 +1402,7 @@ pub fn extract_shell_level(
         .iter()
         .filter(|s| steps.contains(&s.nume_ordre))
     {
-        let raw = run.raw.by_order(step.nume_ordre as usize).ok_or_else(|| {
-            ExecError::new(format!(
-                "POST_CHAMP: no computed state at NUME_ORDRE {}",
-                step.nume_ordre
-            ))
-        })?;
+        let raw = run.state("POST_CHAMP", step.nume_ordre)?;
         if let Some(name) = names.iter().find(|n| !step.fields.contains_key(*n)) {
             return Err(ExecError::new(format!(
                 "POST_CHAMP/EXTR_COQUE: the field {name} is not in the result at NUME_ORDRE {}: compute it first (CALC_CHAMP)",

@@ -131,11 +131,7 @@ pub fn calc_vect_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "CALC_VECT_ELEM: the stresses' result was not computed in this run",
         ));
     };
-    let step = run.raw.by_order(order as usize).ok_or_else(|| {
-        ExecError::new(format!(
-            "CALC_VECT_ELEM: no computed state at NUME_ORDRE {order}"
-        ))
-    })?;
+    let step = run.state("CALC_VECT_ELEM", order)?;
     let f = aster_fem::post::forc_noda(&run.model, &step.displacement)
         .map_err(|e| ExecError::new(format!("CALC_VECT_ELEM: {e}")))?;
     let vect = fembridge::nodal_from_dofs(&run.model, &f);

@@ -18,7 +18,7 @@
 //! nodes' displacements, which code_aster does not compute.
 
 use crate::concept::{
-    Concept, LoadCase, MacroElement, MaterialField, ModelDef, Substructure, SuperCell, SuperMesh,
+    Concept, LoadCase, MacroElement, MaterialField, ModelDef, SuperCell, SuperMesh,
 };
 use crate::executor::{result_of, store_result, Executor};
 use crate::function::Function;
@@ -57,14 +57,6 @@ pub(crate) const DEFI_MAILLAGE: Support = Support::keywords(&[
 
 /// The values of `ASSE_MAILLAGE/OPERATION` (`crate::commands::mesh`).
 pub(crate) const ASSE_OPERATIONS: Values = Values::new("OPERATION", &["SUPERPOSE", "SOUS_STR"]);
-
-/// A mesh assembled by `ASSE_MAILLAGE(OPERATION='SOUS_STR')`: the mesh
-/// (concept id) it copies and its super cells.
-#[derive(Clone, Debug)]
-pub(crate) struct Substructured {
-    pub base: u32,
-    pub supers: Rc<SuperMesh>,
-}
 
 fn loads_of(
     ex: &Executor,
@@ -181,16 +173,7 @@ pub fn defi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             ));
         }
         for (i, c) in macros.iter().enumerate() {
-            let macro_elem = match ex.concept(c)? {
-                Concept::MacroElement(m) => m.clone(),
-                other => {
-                    return Err(ExecError::new(format!(
-                        "{CMD}/DEFI_SUPER_MAILLE/MACR_ELEM: `{}` is {}, expected a static macro element (MACR_ELEM_STAT)",
-                        c.name,
-                        other.kind()
-                    )))
-                }
-            };
+            let macro_elem = ex.macro_element(c)?;
             // code_aster's default super cell name is the macro element's.
             let name = names.get(i).cloned().unwrap_or_else(|| c.name.clone());
             cells.push(SuperCell {
@@ -256,16 +239,7 @@ pub fn asse_sous_str(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let base_id = base_ref.id;
     let base = ex.mesh(base_ref)?;
     let super_ref = ex.required(CMD, kw, "MAILLAGE_2")?;
-    let supers = match ex.concept(super_ref)? {
-        Concept::SuperMesh(s) => s.clone(),
-        other => {
-            return Err(ExecError::new(format!(
-                "{CMD}/MAILLAGE_2 with OPERATION='SOUS_STR': `{}` is {}, expected a super mesh (DEFI_MAILLAGE)",
-                super_ref.name,
-                other.kind()
-            )))
-        }
-    };
+    let supers = ex.super_mesh(super_ref)?;
     for cell in &supers.cells {
         let own = cell.macro_elem.model.mesh;
         for (&n, name) in cell.macro_elem.exterior.iter().zip(&cell.node_names) {
@@ -282,13 +256,7 @@ pub fn asse_sous_str(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
     }
     let id = result_of(call)?.id;
-    ex.substructured.insert(
-        id,
-        Substructured {
-            base: base_id,
-            supers,
-        },
-    );
+    ex.substructured.insert(id, supers);
     store_result(ex, call, Concept::Mesh(Arc::new((*base).clone())))
 }
 
@@ -298,7 +266,7 @@ pub(crate) fn affe_sous_struc(
     ex: &Executor,
     call: &CommandCall,
     mesh: u32,
-) -> Result<Vec<Substructure>, ExecError> {
+) -> Result<Vec<SuperCell>, ExecError> {
     let Some(occ) = call.keywords.factor("AFFE_SOUS_STRUC").first() else {
         return Ok(Vec::new());
     };
@@ -310,32 +278,25 @@ pub(crate) fn affe_sous_struc(
             "the mesh has no super cell: assemble it with ASSE_MAILLAGE(OPERATION='SOUS_STR')",
         ));
     };
-    pick_super_cells(ex, "AFFE_MODELE/AFFE_SOUS_STRUC", occ, &s.supers.cells).map(|cells| {
-        cells
-            .into_iter()
-            .map(|c| Substructure {
-                name: c.name.clone(),
-                macro_elem: c.macro_elem.clone(),
-            })
-            .collect()
-    })
+    pick_super_cells(ex, "AFFE_MODELE/AFFE_SOUS_STRUC", occ, &s.cells)
+        .map(|cells| cells.into_iter().cloned().collect())
 }
 
 /// The super cells an occurrence designates (`TOUT='OUI'` or
 /// `SUPER_MAILLE`), an unknown name an error.
-fn pick_super_cells<'c, C: SuperName>(
+fn pick_super_cells<'c>(
     ex: &Executor,
     at: &str,
     occ: &Keywords,
-    cells: &'c [C],
-) -> Result<Vec<&'c C>, ExecError> {
+    cells: &'c [SuperCell],
+) -> Result<Vec<&'c SuperCell>, ExecError> {
     if occ.str("TOUT") == Some("OUI") {
         return Ok(cells.iter().collect());
     }
     let mut out = Vec::new();
     for name in occ.simple("SUPER_MAILLE").iter().filter_map(|s| s.as_str()) {
-        let Some(c) = cells.iter().find(|c| c.super_name() == name) else {
-            let known: Vec<&str> = cells.iter().map(|c| c.super_name()).collect();
+        let Some(c) = cells.iter().find(|c| c.name == name) else {
+            let known: Vec<&str> = cells.iter().map(|c| c.name.as_str()).collect();
             return Err(ex.kw_error(
                 at,
                 occ,
@@ -346,22 +307,6 @@ fn pick_super_cells<'c, C: SuperName>(
         out.push(c);
     }
     Ok(out)
-}
-
-trait SuperName {
-    fn super_name(&self) -> &str;
-}
-
-impl SuperName for SuperCell {
-    fn super_name(&self) -> &str {
-        &self.name
-    }
-}
-
-impl SuperName for Substructure {
-    fn super_name(&self) -> &str {
-        &self.name
-    }
 }
 
 /// A solve's model, materials and loads with its super cells expanded:
@@ -400,16 +345,10 @@ pub(crate) fn expand(
     let mut m = (*model).clone();
     let mut mat = (*materials).clone();
     m.substructures.clear();
-    let base = ex.substructured.get(&model.mesh).map(|s| s.base);
+    // ASSE_MAILLAGE checked every macro element is defined on the mesh the
+    // super mesh was assembled onto, with its node names: its cells are
+    // the model's mesh's.
     for s in &model.substructures {
-        // ASSE_MAILLAGE checked the macro element is defined on the mesh
-        // the super mesh was assembled onto: its cells are this mesh's.
-        if base != Some(s.macro_elem.model.mesh) {
-            return Err(ExecError::new(format!(
-                "{cmd}: the macro element of super cell {} is not defined on the mesh the model's mesh was assembled from (ASSE_MAILLAGE/MAILLAGE_1)",
-                s.name
-            )));
-        }
         for (&c, &md) in &s.macro_elem.model.cells {
             if m.cells.insert(c, md).is_some() {
                 let mesh = ex.mesh_by_id(model.mesh)?;
