@@ -175,7 +175,9 @@ fn decoupe_lac(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, E
     let kw = &call.keywords;
     let source = ex.required(CMD, kw, "MAILLAGE")?;
     let mesh = ex.mesh(source)?;
-    let occ = &kw.factor("DECOUPE_LAC")[0];
+    let Some(occ) = kw.factor("DECOUPE_LAC").first() else {
+        return Err(ExecError::new(format!("{CMD}: DECOUPE_LAC is required")));
+    };
     let groups: Vec<&str> = occ
         .simple("GROUP_MA_ESCL")
         .iter()

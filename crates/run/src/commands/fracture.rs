@@ -98,7 +98,9 @@ pub fn defi_fond_fiss(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     };
     let p = mesh.coord(node);
     let tip = [p[0], p[1]];
-    let sup = &kw.factor("LEVRE_SUP")[0];
+    let Some(sup) = kw.factor("LEVRE_SUP").first() else {
+        return Err(ExecError::new(format!("{cmd}: LEVRE_SUP is required")));
+    };
     let mut lip_cells = Vec::new();
     for g in sup.simple("GROUP_MA").iter().filter_map(|s| s.as_str()) {
         let cells =
@@ -185,31 +187,33 @@ fn tip_size(mesh: &Mesh, node: NodeId, dir: [f64; 2]) -> f64 {
     fracture::tip_cell_size(&edges, dir)
 }
 
-/// What CALC_G reads (`crate::support`).
+const CALC_G_OWN: &[&str] = &[
+    "RESULTAT",
+    "THETA",
+    "THETA/FISSURE",
+    "THETA/R_INF",
+    "THETA/R_SUP",
+    "OPTION",
+    "INFO",
+    "TITRE",
+];
+
+/// What CALC_G reads (`crate::support`): its own keywords and the step
+/// selection ([`super::post::STEP_SELECTION`]).
 pub(crate) const CALC_G: Support = Support {
     values: &[Values::listed("OPTION", &["G", "K"])],
-    ..Support::keywords(&[
-        "RESULTAT",
-        "THETA",
-        "THETA/FISSURE",
-        "THETA/R_INF",
-        "THETA/R_SUP",
-        "OPTION",
-        "TOUT_ORDRE",
-        "NUME_ORDRE",
-        "INST",
-        "LIST_INST",
-        "CRITERE",
-        "PRECISION",
-        "INFO",
-        "TITRE",
-    ])
+    ..Support::keywords(&crate::support::joined::<
+        _,
+        { super::post::STEP_SELECTION.len() + CALC_G_OWN.len() },
+    >(super::post::STEP_SELECTION, CALC_G_OWN))
 };
 
 pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let cmd = "CALC_G";
-    let theta_kw = &kw.factor("THETA")[0];
+    let Some(theta_kw) = kw.factor("THETA").first() else {
+        return Err(ExecError::new("CALC_G: THETA is required"));
+    };
     let front = ex.crack_front(ex.required(cmd, theta_kw, "FISSURE")?)?;
     let r = ex.required(cmd, kw, "RESULTAT")?;
     let result = ex.result(r)?;
