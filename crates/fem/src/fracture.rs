@@ -88,23 +88,31 @@ struct PointData {
     /// The free strain at the point and its gradient (α ∇T).
     eth: f64,
     geth: [f64; 2],
+    /// The hoop terms of an axisymmetric cell, u_r/r and θ_r/r (0 in the
+    /// plane).
+    u_hoop: f64,
+    t_hoop: f64,
+    /// w·|det J|, times r in axisymmetry (`nmgeom`).
     poids: f64,
     x: [f64; 2],
 }
 
-fn points(cell: &PlaneCell) -> Result<Vec<PointData>, String> {
+/// The Gauss point data of a cell (its stiffness family); `axis_ok`: AXIS
+/// cells are accepted (G), else only D_PLAN and C_PLAN ones (K).
+fn points(cell: &PlaneCell, axis_ok: bool) -> Result<Vec<PointData>, String> {
     let nno = cell.coords.len();
     if cell.disp.len() != nno || cell.theta.len() != nno {
         return Err("node count mismatch".into());
     }
-    if !matches!(cell.hyp, Hypothesis::PlaneStrain | Hypothesis::PlaneStress) {
+    let axis = cell.hyp == Hypothesis::Axisymmetric;
+    if !(matches!(cell.hyp, Hypothesis::PlaneStrain | Hypothesis::PlaneStress) || axis && axis_ok) {
         return Err(format!(
-            "{}: G and K in D_PLAN and C_PLAN only",
+            "{}: G in D_PLAN, C_PLAN and AXIS, K in D_PLAN and C_PLAN only",
             cell.hyp.aster_name()
         ));
     }
     let mut out = Vec::new();
-    for gp in shape::rigi_scheme(cell.ty) {
+    for gp in shape::stiffness_scheme(cell.ty, Some(cell.hyp)) {
         let s = shape::shape(cell.ty, gp.xi);
         if s.n.len() != nno {
             return Err(format!("{:?}: not a plane cell", cell.ty));
@@ -132,7 +140,10 @@ fn points(cell: &PlaneCell) -> Result<Vec<PointData>, String> {
         let mut theta = [0.0; 2];
         let mut eth = 0.0;
         let mut geth = [0.0; 2];
+        let (mut u_r, mut t_r) = (0.0, 0.0);
         for i in 0..nno {
+            u_r += s.n[i] * cell.disp[i][0];
+            t_r += s.n[i] * cell.theta[i][0];
             // ∂N/∂x_k = Σ_l inv[k][l] ∂N/∂ξ_l
             let d = [
                 inv[0][0] * s.dn[i][0] + inv[0][1] * s.dn[i][1],
@@ -151,13 +162,23 @@ fn points(cell: &PlaneCell) -> Result<Vec<PointData>, String> {
                 geth[1] += d[1] * fs[i];
             }
         }
+        let (u_hoop, t_hoop, r) = if axis {
+            if x[0] <= 0.0 {
+                return Err("an axisymmetric Gauss point on or left of the axis".into());
+            }
+            (u_r / x[0], t_r / x[0], x[0])
+        } else {
+            (0.0, 0.0, 1.0)
+        };
         out.push(PointData {
             dudm,
             dtdm,
             theta,
             eth,
             geth,
-            poids: gp.weight * det.abs(),
+            u_hoop,
+            t_hoop,
+            poids: gp.weight * det.abs() * r,
             x,
         });
     }
@@ -189,13 +210,17 @@ pub fn g_theta(cells: &[PlaneCell]) -> Result<f64, String> {
         {
             return Err("free strain: node count mismatch".into());
         }
-        for p in points(cell)? {
+        for p in points(cell, true)? {
             let ther = p.eth;
-            // The total strain (tensor), εzz as nmelnl fills it.
-            let e33 = if cell.hyp == Hypothesis::PlaneStress {
-                -nu / (1.0 - nu) * (p.dudm[0][0] + p.dudm[1][1]) + (1.0 + nu) / (1.0 - nu) * ther
-            } else {
-                0.0
+            // The total strain (tensor), εzz as nmelnl fills it (the hoop
+            // strain u_r/r in axisymmetry).
+            let e33 = match cell.hyp {
+                Hypothesis::PlaneStress => {
+                    -nu / (1.0 - nu) * (p.dudm[0][0] + p.dudm[1][1])
+                        + (1.0 + nu) / (1.0 - nu) * ther
+                }
+                Hypothesis::Axisymmetric => p.u_hoop,
+                _ => 0.0,
             };
             let exy = 0.5 * (p.dudm[0][1] + p.dudm[1][0]);
             // The mechanical strain ε − ε_th.
@@ -218,7 +243,9 @@ pub fn g_theta(cells: &[PlaneCell]) -> Result<f64, String> {
                     }
                 }
             }
-            let divt = p.dtdm[0][0] + p.dtdm[1][1];
+            // The hoop term σθθ (u_r/r)(θ_r/r) of te0096 (0 in the plane).
+            prod += sig[2] * p.u_hoop * p.t_hoop;
+            let divt = p.dtdm[0][0] + p.dtdm[1][1] + p.t_hoop;
             g += p.poids * (prod - energy * divt);
             if thermal {
                 // −poids (∇T·θ) ∂W/∂T, ∂W/∂T = −3k α div(u − u_th).
@@ -369,7 +396,7 @@ pub fn k_theta(cells: &[PlaneCell], tip: &CrackTip) -> Result<KIntegrals, String
             troisk: e / (1.0 - 2.0 * nu),
         };
         let (mut g, mut k1, mut k2) = (0.0, 0.0, 0.0);
-        for pt in points(cell)? {
+        for pt in points(cell, false)? {
             let og = [pt.x[0] - tip.tip[0], pt.x[1] - tip.tip[1]];
             let cosi = e1[0] * og[0] + e1[1] * og[1];
             let sinu = e2[0] * og[0] + e2[1] * og[1];

@@ -48,6 +48,7 @@ pub mod skin_norm;
 pub(crate) mod solver_constrained;
 mod split_llt;
 pub mod strain;
+pub mod thermal;
 pub mod unilateral;
 
 pub use beam::BeamSection;

@@ -6,6 +6,7 @@
 use crate::element::{element_dofs, model_gauss, shell_stiffness, spring_stiffness};
 use crate::error::FemError;
 use crate::loads::Loads;
+use crate::material::Hypothesis;
 use crate::model::{ElementKind, Model};
 use crate::shape;
 use aster_mesh::{CellId, CellType, NodeId};
@@ -306,6 +307,51 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
             // computed: their efforts are [`efge_elga`]'s.
             ElementKind::Boundary | ElementKind::Shell { .. } | ElementKind::Beam { .. } => {}
         }
+    }
+    Ok(out)
+}
+
+/// Small total strains at Gauss points (EPSI_ELGA) of the continuum
+/// elements for a total displacement `u`: ε(u) = B u, with code_aster's
+/// tensor shear components (EPXY = γxy/2). The strain of the displacement
+/// alone (thermal strains included, as code_aster's EPSI_ELGA). Plane
+/// stress (C_PLAN: εzz from the stresses) is refused.
+pub fn epsi_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
+    let mut out = Vec::with_capacity(model.elements().len());
+    for el in model.elements() {
+        let ElementKind::Continuum { hypothesis, .. } = &el.kind else {
+            continue;
+        };
+        if *hypothesis == Hypothesis::PlaneStress {
+            return Err(FemError::Model(
+                "EPSI_ELGA of plane stress (C_PLAN) elements is not computed (εzz from the stresses)"
+                    .into(),
+            ));
+        }
+        let dofs = element_dofs(model, el.cell);
+        let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
+        let g =
+            model_gauss(model, el.cell, *hypothesis).map_err(|m| cell_error(model, el.cell, m))?;
+        let points = g
+            .iter()
+            .map(|gp| {
+                let e = &gp.b * &ue;
+                // Engineering shears (after the three normal strains) halved.
+                e.iter()
+                    .enumerate()
+                    .map(|(k, v)| if k >= 3 { 0.5 * v } else { *v })
+                    .collect()
+            })
+            .collect();
+        let names: &[&'static str] = match hypothesis {
+            Hypothesis::Solid3D => &["EPXX", "EPYY", "EPZZ", "EPXY", "EPXZ", "EPYZ"],
+            _ => &["EPXX", "EPYY", "EPZZ", "EPXY"],
+        };
+        out.push(CellValues {
+            cell: el.cell,
+            names: names.to_vec(),
+            points,
+        });
     }
     Ok(out)
 }

@@ -211,4 +211,13 @@ impl Mesh {
             .cloned()
             .unwrap_or_else(|| format!("#{}", id.0 + 1))
     }
+
+    /// A node's name for messages (`N<n>`, 1-based, as code_aster names
+    /// nodes, for a node without one).
+    pub fn node_name(&self, id: NodeId) -> String {
+        self.node_names
+            .get(id.0 as usize)
+            .cloned()
+            .unwrap_or_else(|| format!("N{}", id.0 + 1))
+    }
 }

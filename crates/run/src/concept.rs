@@ -200,6 +200,9 @@ impl ModelDef {
 /// `DEFI_MATERIAU(ELAS=…)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
+    /// `ELAS` given (a material with `THER` alone has no elasticity: its
+    /// `young` and `poisson` are NaN).
+    pub elastic: bool,
     pub young: f64,
     pub poisson: f64,
     pub density: Option<f64>,
@@ -218,6 +221,8 @@ pub struct Material {
     /// `ECRO_NL=_F(R0, RH, R1, GAMMA_1, R2, GAMMA_2, RK, P0, GAMMA_M)`
     /// (for VMIS_ISOT_NL; its `resi_inte` is the COMPORTEMENT's).
     pub ecro_nl: Option<aster_fem::EcroNl>,
+    /// `THER=_F(LAMBDA, RHO_CP)`.
+    pub thermal: Option<aster_fem::thermal::Conduction>,
 }
 
 /// `LEMAITRE`: Lemaitre's viscoplastic coefficients.
@@ -574,6 +579,10 @@ pub enum Concept {
     SuperMesh(Rc<SuperMesh>),
     /// `DEFI_FOND_FISS`: a crack front (`fond_fissure`).
     CrackFront(Rc<crate::commands::fracture::CrackFront>),
+    /// `AFFE_MODELE(PHENOMENE='THERMIQUE')`.
+    ThermalModel(Rc<crate::commands::thermal::ThermalModel>),
+    /// `AFFE_CHAR_THER`.
+    ThermalLoad(Rc<crate::commands::thermal::ThermalLoad>),
 }
 
 /// Per node, per component, a function (`NOEU_*_F`).
@@ -607,6 +616,8 @@ impl Concept {
             Concept::MacroElement(_) => "a static macro element (MACR_ELEM_STAT)",
             Concept::SuperMesh(_) => "a super mesh (DEFI_MAILLAGE)",
             Concept::CrackFront(_) => "a crack front",
+            Concept::ThermalModel(_) => "a thermal model",
+            Concept::ThermalLoad(_) => "a thermal load (AFFE_CHAR_THER)",
         }
     }
 }

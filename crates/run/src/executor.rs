@@ -262,6 +262,18 @@ macro_rules! getter {
 
 getter!(model, Model, ModelDef, "a model (AFFE_MODELE)");
 getter!(
+    thermal_model,
+    ThermalModel,
+    crate::commands::thermal::ThermalModel,
+    "a thermal model (AFFE_MODELE with PHENOMENE='THERMIQUE')"
+);
+getter!(
+    thermal_load,
+    ThermalLoad,
+    crate::commands::thermal::ThermalLoad,
+    "a thermal load (AFFE_CHAR_THER)"
+);
+getter!(
     macro_element,
     MacroElement,
     MacroElement,

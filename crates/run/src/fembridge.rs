@@ -112,6 +112,12 @@ pub fn build_model(
                 crate::select::cell_name(mesh, cell)
             ))
         })?;
+        if !mat.elastic {
+            return Err(ExecError::new(format!(
+                "the material of cell {} has no ELAS (a thermal material, THER alone): a mechanical model needs E and NU",
+                crate::select::cell_name(mesh, cell)
+            )));
+        }
         Elastic::new(mat.young, mat.poisson).map_err(|e| fem_err("DEFI_MATERIAU", e))
     };
     let mut elements = Vec::with_capacity(model.cells.len());
@@ -1298,8 +1304,26 @@ pub fn calc_champ(
             }
             .map_err(|e| fem_err("CALC_CHAMP", e))
         };
+        let epsi_elga = || {
+            if run.behaviours.has_finite_strains() {
+                return Err(ex.unsupported(
+                    "CALC_CHAMP/DEFORMATION of a result computed with DEFORMATION other than PETIT (EPSI_* are the small strains here)",
+                    call.keywords.keyword("DEFORMATION").map(|k| k.span).unwrap_or(call.span),
+                ));
+            }
+            post::epsi_elga(model, u).map_err(|e| fem_err("CALC_CHAMP", e))
+        };
         for opt in options {
             let field = match opt.as_str() {
+                "EPSI_ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &epsi_elga()?)),
+                "EPSI_ELNO" => Field::Elem(elem_field(
+                    ElemLocation::Nodes,
+                    &post::elno(model, &epsi_elga()?),
+                )),
+                "EPSI_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(
+                    model,
+                    &post::elno(model, &epsi_elga()?),
+                ))),
                 "FORC_NODA" => Field::Nodal(nodal_from_dofs(model, &forc_noda()?)),
                 "REAC_NODA" => {
                     // code_aster's REAC_NODA: FORC_NODA − the applied loads.

@@ -165,10 +165,7 @@ pub fn first_node(kw: &Keywords, mesh: &Mesh) -> Result<NodeId, String> {
 }
 
 pub fn node_name(mesh: &Mesh, n: NodeId) -> String {
-    mesh.node_names
-        .get(n.0 as usize)
-        .cloned()
-        .unwrap_or_else(|| format!("N{}", n.0 + 1))
+    mesh.node_name(n)
 }
 
 /// The first of `cells` that `fits` rejects, said as `cell M12 is a QUAD4`

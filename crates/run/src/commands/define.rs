@@ -42,14 +42,77 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "ECRO_NL/RK",
     "ECRO_NL/P0",
     "ECRO_NL/GAMMA_M",
+    "THER",
+    "THER/LAMBDA",
+    "THER/RHO_CP",
     "INFO",
 ]);
 
+/// `DEFI_MATERIAU/THER`: conductivity and volumic heat capacity.
+fn ther(
+    ex: &Executor,
+    kw: &aster_eval::Keywords,
+) -> Result<Option<aster_fem::thermal::Conduction>, ExecError> {
+    let Some(occ) = kw.factor("THER").first() else {
+        return Ok(None);
+    };
+    let get = |name: &str, what: &str| -> Result<f64, ExecError> {
+        let v = occ.f64(name).ok_or_else(|| {
+            ex.kw_error(
+                "DEFI_MATERIAU/THER",
+                occ,
+                name,
+                format!("{what} is required"),
+            )
+        })?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(ex.kw_error(
+                "DEFI_MATERIAU/THER",
+                occ,
+                name,
+                format!("{name} must be positive, got {v}"),
+            ))
+        }
+    };
+    Ok(Some(aster_fem::thermal::Conduction {
+        lambda: get("LAMBDA", "the conductivity LAMBDA")?,
+        // code_aster's default: no heat capacity (stationary use).
+        rho_cp: match occ.f64("RHO_CP") {
+            Some(_) => get("RHO_CP", "RHO_CP")?,
+            None => 0.0,
+        },
+    }))
+}
+
 pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
+    let thermal = ther(ex, kw)?;
     let Some(elas) = kw.factor("ELAS").first() else {
+        let mechanical = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL"];
+        if let (Some(thermal), None) = (
+            thermal,
+            mechanical.iter().find(|k| !kw.factor(k).is_empty()),
+        ) {
+            let m = Material {
+                elastic: false,
+                young: f64::NAN,
+                poisson: f64::NAN,
+                density: None,
+                alpha: None,
+                amor_alpha: None,
+                amor_beta: None,
+                ecro_line: None,
+                traction: None,
+                lemaitre: None,
+                ecro_nl: None,
+                thermal: Some(thermal),
+            };
+            return store_result(ex, call, Concept::Material(Rc::new(m)));
+        }
         return Err(ExecError::new(
-            "DEFI_MATERIAU: ELAS is required (the only behaviour supported yet)",
+            "DEFI_MATERIAU: ELAS is required (with the plastic behaviours; THER alone makes a thermal material)",
         ));
     };
     let young = elas
@@ -186,6 +249,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         None => None,
     };
     let m = Material {
+        elastic: true,
         young,
         poisson,
         density: elas.f64("RHO"),
@@ -196,6 +260,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         traction,
         lemaitre,
         ecro_nl,
+        thermal,
     };
     store_result(ex, call, Concept::Material(Rc::new(m)))
 }
@@ -236,7 +301,10 @@ pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let mesh_id = if let Some(m) = kw.concept("MAILLAGE") {
         m.id
     } else if let Some(m) = kw.concept("MODELE") {
-        ex.model(m)?.mesh
+        match ex.thermal_model(m) {
+            Ok(t) => t.mesh,
+            Err(_) => ex.model(m)?.mesh,
+        }
     } else {
         return Err(ExecError::new("AFFE_MATERIAU: give MAILLAGE or MODELE"));
     };
@@ -346,10 +414,9 @@ fn affe_varc(
 /// What AFFE_MODELE reads (`crate::support`).
 pub(crate) const AFFE_MODELE: Support = Support {
     values: &[
-        Values::new("AFFE/PHENOMENE", &["MECANIQUE"]).why(
-            "(aster solves mechanics only: thermal analyses (THER_LINEAIRE, THER_NON_LINE) are not implemented; a temperature given as fields (CREA_RESU TYPE_RESU='EVOL_THER', CREA_CHAMP NOEU_TEMP_R) reaches AFFE_VARC)",
-        ),
-        Values::listed("AFFE/MODELISATION", &Modelisation::KEYWORDS),
+        Values::new("AFFE/PHENOMENE", &["MECANIQUE", "THERMIQUE"])
+            .why("(aster solves mechanics and linear heat conduction (THER_LINEAIRE))"),
+        Values::listed("AFFE/MODELISATION", &MODELISATIONS),
     ],
     ..Support::keywords(&[
         "MAILLAGE",
@@ -372,8 +439,34 @@ pub(crate) const AFFE_MODELE: Support = Support {
     ])
 };
 
+/// The modelisations AFFE_MODELE accepts: the mechanical ones and the
+/// thermal `PLAN` (`AXIS` and `3D` are both).
+const MODELISATIONS: [&str; 14] = {
+    let mut all = [""; 14];
+    let mut i = 0;
+    while i < Modelisation::KEYWORDS.len() {
+        all[i] = Modelisation::KEYWORDS[i];
+        i += 1;
+    }
+    all[13] = "PLAN";
+    all
+};
+
 pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
+    let thermal = kw
+        .factor("AFFE")
+        .iter()
+        .map(|occ| occ.str("PHENOMENE") == Some("THERMIQUE"))
+        .collect::<Vec<_>>();
+    if thermal.iter().any(|&t| t) {
+        if !thermal.iter().all(|&t| t) {
+            return Err(ExecError::new(
+                "AFFE_MODELE: PHENOMENE='THERMIQUE' and 'MECANIQUE' in one model: define one model per phenomenon",
+            ));
+        }
+        return super::thermal::affe_modele(ex, call);
+    }
     let mesh_ref = ex.required("AFFE_MODELE", kw, "MAILLAGE")?;
     let mesh = ex.mesh(mesh_ref)?;
     let mut cells = BTreeMap::new();

@@ -282,7 +282,8 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     for step in steps {
         let u = displacement(&result, &run, step.nume_ordre, &r.name)?;
         let disp = nodal_displacement(model, &u);
-        let mut cells = plane_cells(model, &nodes, &disp, &theta)
+        let with_k = options.iter().any(|o| o == "K");
+        let mut cells = plane_cells(model, &nodes, &disp, &theta, with_k)
             .map_err(|e| ex.unsupported(&format!("CALC_G: {e}"), here))?;
         for (cell, c) in &mut cells {
             c.free_strain = run
@@ -397,6 +398,7 @@ fn plane_cells(
     nodes: &[[f64; 2]],
     disp: &[[f64; 2]],
     theta: &[[f64; 2]],
+    with_k: bool,
 ) -> Result<Vec<(aster_mesh::CellId, OwnedCell)>, String> {
     let mesh = model.mesh();
     let mut out = Vec::new();
@@ -411,12 +413,14 @@ fn plane_cells(
                 if !reached {
                     continue;
                 }
-                if !matches!(
+                let axis = *hypothesis == aster_fem::Hypothesis::Axisymmetric;
+                if !(matches!(
                     hypothesis,
                     aster_fem::Hypothesis::PlaneStrain | aster_fem::Hypothesis::PlaneStress
-                ) {
+                ) || axis && !with_k)
+                {
                     return Err(format!(
-                        "G and K of {} cells (plane strain and plane stress only)",
+                        "OPTION='K' of {} cells (G in D_PLAN, C_PLAN and AXIS; K in D_PLAN and C_PLAN only)",
                         hypothesis.aster_name()
                     ));
                 }

@@ -19,6 +19,7 @@ pub(crate) mod pressure;
 pub(crate) mod results;
 pub(crate) mod substructure;
 pub(crate) mod tables;
+pub(crate) mod thermal;
 
 use crate::executor::Executor;
 use crate::support::Support;
@@ -107,6 +108,16 @@ pub static COMMANDS: &[Command] = &[
         name: "CREA_MAILLAGE",
         run: crea_maillage::crea_maillage,
         support: crea_maillage::CREA_MAILLAGE,
+    },
+    Command {
+        name: "AFFE_CHAR_THER",
+        run: thermal::affe_char_ther,
+        support: thermal::AFFE_CHAR_THER,
+    },
+    Command {
+        name: "THER_LINEAIRE",
+        run: thermal::ther_lineaire,
+        support: thermal::THER_LINEAIRE,
     },
     Command {
         name: "DEFI_MATERIAU",

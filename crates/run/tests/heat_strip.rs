@@ -1,0 +1,69 @@
+//! Linear heat conduction (comm/heat_strip.comm): THER_LINEAIRE on the
+//! project's QUAD8 strip, stationary (a hollow cylinder in AXIS with an
+//! imposed temperature and an exchange; a plane slab with an imposed flux
+//! and an exchange) and transient (the first mode of a slab decaying under
+//! the θ-scheme), each against its closed-form answer; then the refusals
+//! and errors a user meets.
+
+mod scene;
+
+fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
+    scene::run_on(text, "comm/heat_strip.mail", &format!("heat-{tag}"))
+}
+
+fn text() -> String {
+    scene::read("heat_strip.comm")
+}
+
+#[test]
+fn stationary_and_transient_temperatures_match_their_closed_forms() {
+    assert_eq!(run(&text(), "scene"), (14, 0, None));
+}
+
+#[test]
+fn a_thermal_material_in_a_mechanical_model_is_an_error() {
+    let t = text();
+    let cut = t.find("# 2. The slab").expect("the scene changed");
+    let mut variant = t[..cut].to_string();
+    variant.push_str(
+        "mech = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT=\"OUI\", PHENOMENE=\"MECANIQUE\", \
+         MODELISATION=\"D_PLAN\"))\n\
+         fix = AFFE_CHAR_MECA(MODELE=mech, DDL_IMPO=_F(GROUP_MA=\"LEFT\", DX=0.0, DY=0.0))\n\
+         r = MECA_STATIQUE(MODELE=mech, CHAM_MATER=mat_axis, EXCIT=_F(CHARGE=fix))\nFIN()\n",
+    );
+    let (_, nook, err) = run(&variant, "mech");
+    assert_eq!(nook, 0);
+    let err = err.expect("an error");
+    assert!(
+        err.contains("has no ELAS (a thermal material, THER alone)"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_exchange_on_volume_cells_is_located() {
+    let t = text().replace(
+        "ECHANGE=_F(GROUP_MA=\"RIGHT\", COEF_H=H, TEMP_EXT=0.0)",
+        "ECHANGE=_F(GROUP_MA=\"STRIP\", COEF_H=H, TEMP_EXT=0.0)",
+    );
+    assert!(t.contains("GROUP_MA=\"STRIP\", COEF_H"));
+    let (ok, nook, err) = run(&t, "exchange");
+    assert_eq!((ok, nook), (0, 0));
+    let err = err.expect("an error");
+    assert!(
+        err.contains(
+            "ECHANGE applies to the edges (segments) of the model, but cell Q1 is a QUAD8"
+        ),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_initial_state_from_a_result_is_refused_before_solving() {
+    let t = text().replace("ETAT_INIT=_F(CHAM_NO=t0)", "ETAT_INIT=_F(EVOL_THER=cyl)");
+    assert!(t.contains("EVOL_THER=cyl"));
+    let (ok, nook, err) = run(&t, "evol");
+    assert_eq!((ok, nook), (0, 0));
+    let err = err.expect("a refusal");
+    assert!(err.contains("THER_LINEAIRE/ETAT_INIT/EVOL_THER"), "{err}");
+}
