@@ -350,6 +350,15 @@ fn slave_normal(
     point: &SlavePoint,
     x: &[[f64; 3]],
 ) -> Result<[f64; 3], ContactError> {
+    // A point on a slave node (nodal integration) takes the node's normal,
+    // averaged over the slave cells around it, as code_aster's `cftanr`
+    // (`APPARI_NOEUD_TAU1/2`, smoothed by `aptgnn`), whichever cell the
+    // point belongs to.
+    if let [(n, w)] = point.nodes.as_slice() {
+        if *w == 1.0 {
+            return zone.nodal_normal(*n, false, x);
+        }
+    }
     match (point.cell, point.node()) {
         (Some((ci, xi)), _) => zone.cell_normal(&zone.slave[ci], xi, x, zone.geometry.vect_escl),
         (None, Some(n)) => zone.nodal_normal(n, false, x),

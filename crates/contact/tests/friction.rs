@@ -176,3 +176,56 @@ fn small_coefficients_converge_to_the_same_answer() {
     let fy = group_force(&model, &s.displacement, "CD", aster_fem::Comp::DY);
     assert!((fx.abs() - 0.3 * fy.abs()).abs() <= 1e-8 * fy.abs());
 }
+
+/// The slave's normal (`NORMALE='ESCL'`, `'MAIT_ESCL'`) on a flat
+/// interface that stays flat is the master's: a plate (4 cells) pressed on
+/// a rigid base (3 cells), frictionless, gives the master normal's answer
+/// and the applied pressure at every slave node. (On a deformable base the
+/// non-matching meshes dent the interface and the three normals differ.)
+#[test]
+fn slave_normals_on_a_flat_interface_give_the_master_normals_answer() {
+    let run = |normale: NormalChoice| {
+        let mesh = two_plates_mesh(4, 3).unwrap();
+        let (model, loads) = two_plates_shear_problem(mesh, 0.0, true).unwrap();
+        let mut def = definition(0.0, Resolution::Newton);
+        let ContactDefinition::Continue(c) = &mut def else {
+            unreachable!()
+        };
+        c.zones[0].geometry.normale = normale;
+        let mut f = ContinuousFriction::new(c, model.mesh(), Measure::Plane).unwrap();
+        let res = {
+            let mut snl = StaticNonLinear {
+                instants: vec![0.0, 1.0],
+                forces: vec![Box::new(&mut f) as Box<dyn ForceSource>],
+                ..Default::default()
+            };
+            snl.solve(&model, &loads).unwrap()
+        };
+        let s = res.last().unwrap();
+        let lags: Vec<f64> = f
+            .multipliers(&s.own_unknowns[0])
+            .iter()
+            .map(|(_, v)| v[0])
+            .collect();
+        (s.displacement.clone(), lags)
+    };
+    // σ = E × 0.1 / 1 = 2e5 in the pressed plate.
+    let (u_mait, lags_mait) = run(NormalChoice::Mait);
+    for l in lags_mait {
+        assert!((l + 2e5).abs() < 1e-6 * 2e5, "MAIT: LAGS_C = {l}");
+    }
+    let scale = u_mait.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(scale > 0.0);
+    for normale in [NormalChoice::Escl, NormalChoice::MaitEscl] {
+        let (u, lags) = run(normale);
+        for (a, b) in u.iter().zip(&u_mait) {
+            assert!(
+                (a - b).abs() <= 1e-10 * scale,
+                "{normale:?}: {a} against {b}"
+            );
+        }
+        for l in lags {
+            assert!((l + 2e5).abs() < 1e-6 * 2e5, "{normale:?}: LAGS_C = {l}");
+        }
+    }
+}

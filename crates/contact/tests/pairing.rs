@@ -142,6 +142,68 @@ fn nodal_pairing_and_slave_normal() {
     );
 }
 
+/// Continuous elements integrated at the nodes (`INTEGRATION='AUTO'`) put
+/// one point on a slave node per slave cell around it. With the slave's
+/// normal (`NORMALE='ESCL'`, `'MAIT_ESCL'`) code_aster takes the node's
+/// normal averaged over those cells (`cftanr`: `APPARI_NOEUD_TAU1/2`,
+/// smoothed by `aptgnn`) for both points, not each cell's own normal.
+#[test]
+fn points_on_a_slave_node_take_the_averaged_nodal_normal() {
+    // A slave kinked at (2, 0.3): its two cells' outward normals are
+    // (∓0.2, −1)/√1.04, their average (0, −1).
+    let mesh = plane_2d(&[[1.0, 0.5, 0.0], [2.0, 0.3, 0.0], [3.0, 0.5, 0.0]]);
+    let middle = NodeId(
+        mesh.coords
+            .iter()
+            .position(|c| *c == [2.0, 0.3, 0.0])
+            .unwrap() as u32,
+    );
+    for normale in [NormalChoice::Escl, NormalChoice::MaitEscl] {
+        let mut g = ZoneGeometry::new("MAIT", "ESCL");
+        g.normale = normale;
+        let zone = ResolvedZone::new(0, &g, &mesh).unwrap();
+        let cell_of = |ci: usize| {
+            zone.slave
+                .iter()
+                .position(|c| c.nodes.contains(&middle) && c.nodes[ci] == middle)
+                .unwrap()
+        };
+        // The point ending the first cell and the one starting the second.
+        for (ci, xi) in [(cell_of(1), [1.0, 0.0]), (cell_of(0), [-1.0, 0.0])] {
+            let point = SlavePoint {
+                zone: 0,
+                nodes: vec![(middle, 1.0)],
+                weight: 1.0,
+                cell: Some((ci, xi)),
+            };
+            let pr = pair_point(&zone, &point, &mesh.coords).unwrap();
+            let pr = pr.pairing().unwrap();
+            assert!(
+                pr.normal[0].abs() < 1e-14 && (pr.normal[1] - 1.0).abs() < 1e-14,
+                "{normale:?}, cell {ci}: {:?}",
+                pr.normal
+            );
+            assert!((pr.gap - 0.3).abs() < 1e-14, "{}", pr.gap);
+        }
+        // A point inside a cell keeps that cell's normal.
+        let inside = SlavePoint {
+            zone: 0,
+            nodes: vec![(middle, 0.5), (NodeId(middle.0 + 1), 0.5)],
+            weight: 1.0,
+            cell: Some((cell_of(0), [0.0, 0.0])),
+        };
+        let pr = pair_point(&zone, &inside, &mesh.coords).unwrap();
+        let n = pr.pairing().unwrap().normal;
+        if normale == NormalChoice::Escl {
+            let l = 1.04f64.sqrt();
+            assert!(
+                (n[0] + 0.2 / l).abs() < 1e-12 && (n[1] - 1.0 / l).abs() < 1e-12,
+                "{n:?}"
+            );
+        }
+    }
+}
+
 #[test]
 fn tole_proj_ext_and_dist_appa() {
     // Master spans x ∈ [0, 4]: a slave at x = 4.5 projects 0.5 outside the
