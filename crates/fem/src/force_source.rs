@@ -60,8 +60,11 @@ pub struct Contribution {
 pub enum LoopVerdict {
     /// The state is accepted.
     Done,
-    /// Solve again from the current state (a fixed-point loop of the source
-    /// has not converged); the Newton iteration count starts again.
+    /// Solve again (a fixed-point loop of the source has not converged):
+    /// from the start of the step, the Newton iteration count starting
+    /// again, or, for a source whose loop
+    /// [continues Newton](ForceSource::again_continues_newton), from the
+    /// current state.
     Again,
 }
 
@@ -150,8 +153,9 @@ pub trait ForceSource {
     /// Whether this source's [`LoopVerdict::Again`] continues Newton's
     /// iteration (the next solve uses the matrix of the current iterate,
     /// as code_aster's discrete geometric loop `cfconv` → `cfcgeo` inside
-    /// `nmnewt`) instead of restarting it from a prediction (the default:
-    /// the fixed-point loops of the continuous contact).
+    /// `nmnewt`) instead of restarting the step from its start with a
+    /// prediction (the default: the fixed-point loops of the continuous
+    /// contact, which code_aster restarts from DEPPLU = DEPMOI).
     fn again_continues_newton(&self) -> bool {
         false
     }
@@ -303,6 +307,11 @@ pub(crate) fn newton_step(
     // prediction's.
     let mut matrix_iteration = 0usize;
     let max_iterations = ctx.iter_glob_maxi + 1;
+    // The state the step starts from (the converged displacement with the
+    // imposed values of this step, the sources' unknowns as
+    // `begin_increment` left them): a restarting loop starts again from it.
+    let u_start = u.to_vec();
+    let own_start = own.to_vec();
     let mut tangent: Option<Csc> = None;
     let mut evaluated: Option<(Vec<f64>, Vec<crate::force_source::Contribution>)> = None;
     loop {
@@ -552,14 +561,23 @@ pub(crate) fn newton_step(
                     ctx.loops_max
                 )));
             }
-            // A new Newton solve from the current state (code_aster
-            // restarts the iteration count for each pass of its loops),
-            // or, for a loop nested in Newton (the discrete geometric
-            // loop), the next iteration: counted on, with the matrix of
-            // the current iterate (as the loop without force sources).
+            // A new Newton solve from the start of the step, or, for a
+            // loop nested in Newton (the discrete geometric loop), the next
+            // iteration: counted on, with the matrix of the current iterate
+            // (as the loop without force sources). code_aster's continuous
+            // loops (`nmnewt`: `goto 100` → `nmible`, `nmnble` →
+            // `nonlinInitDisp`: DEPPLU = DEPMOI, DEPDEL = 0, then `nmpred`)
+            // restart the whole step with the statuses and pairing of the
+            // pass; under a linear behaviour that changes nothing but
+            // round-off, under finite strains or plasticity it changes the
+            // Newton path and so the iterate accepted at RESI_GLOB_RELA.
             if restarts {
                 iteration = 0;
                 matrix_iteration = 0;
+                u.copy_from_slice(&u_start);
+                for (o, o0) in own.iter_mut().zip(&own_start) {
+                    o.copy_from_slice(o0);
+                }
             }
             evaluated = None;
             continue;

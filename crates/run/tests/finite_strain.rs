@@ -4,7 +4,8 @@
 //! to 1.5, stretch then a rigid rotation of 90 degrees, simple shear,
 //! plane stress, axisymmetric growth, a block compressed by 25 % through
 //! discrete and continuous contact — under GREEN_LAGRANGE, GDEF_LOG,
-//! SIMO_MIEHE and PETIT_REAC, every TEST_RESU against the closed-form
+//! SIMO_MIEHE and PETIT_REAC (and the continuous geometric loop cut at
+//! NB_ITER_GEOM passes), every TEST_RESU against the closed-form
 //! answer of its formulation to 1e-9.
 
 use std::path::PathBuf;
@@ -62,4 +63,49 @@ fn contact_is_paired_on_the_deformed_geometry() {
         ),
         (24, 0, None)
     );
+}
+
+/// Continuous contact with REAC_GEOM='CONTROLE' (three pairings per step,
+/// POINT_FIXE contact and geometry) under GDEF_LOG, each pass restarting
+/// the step from its start as code_aster does: the closed form of the
+/// block compressed by 25 %, LAGS_C included.
+#[test]
+fn a_geometric_loop_cut_at_nb_iter_geom_matches_the_closed_form() {
+    assert_eq!(
+        run(
+            "comm/finite_strain_contact_controle.comm",
+            "comm/plastic_block.mail",
+            "controle"
+        ),
+        (12, 0, None)
+    );
+}
+
+/// The same loop with an elasto-plastic law under finite strains is not
+/// validated (ssnv501c): refused before the run, at REAC_GEOM.
+#[test]
+fn a_geometric_loop_cut_at_nb_iter_geom_with_plasticity_is_refused() {
+    let comm = std::fs::read_to_string(root().join("comm/finite_strain_contact_controle.comm"))
+        .unwrap()
+        .replace(
+            "DEFI_MATERIAU(ELAS=_F(E=E, NU=NU))",
+            "DEFI_MATERIAU(ELAS=_F(E=E, NU=NU), ECRO_LINE=_F(D_SIGM_EPSI=100.0, SY=5.0))",
+        )
+        .replace("RELATION=\"ELAS\"", "RELATION=\"VMIS_ISOT_LINE\"");
+    let dir =
+        std::env::temp_dir().join(format!("aster-finite-controle-vmis-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("controle_vmis.comm");
+    std::fs::write(&path, comm).unwrap();
+    let case =
+        aster_run::program::prepare(&path, Some(&root().join("comm/plastic_block.mail")), &dir)
+            .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let err = format!("{:?}", outcome.error.expect("refused"));
+    assert!(
+        err.contains("REAC_GEOM='CONTROLE'") && err.contains("RELATION='VMIS_ISOT_LINE'"),
+        "{err}"
+    );
+    assert_eq!(outcome.tally.ok, 0);
 }

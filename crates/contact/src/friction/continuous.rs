@@ -1511,6 +1511,38 @@ impl ForceSource for ContinuousFriction {
     }
 
     fn after_convergence(&mut self, state: &State, own: &[f64]) -> Result<LoopVerdict, FemError> {
+        let verdict = self.loops_verdict(state, own)?;
+        if verdict == LoopVerdict::Again {
+            // A new pass restarts the step and code_aster's Newton count
+            // (`nmnewt`: `iterat = 0` at label 100), which the cycling
+            // treatment reads (`ds_contact%iteration_newton`).
+            self.newton_iterations = 0;
+        }
+        Ok(verdict)
+    }
+
+    fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
+        self.name_of_unknown(k, mesh)
+    }
+
+    fn residual_before_update(&self) -> bool {
+        true
+    }
+
+    fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError> {
+        self.record_forces(state, own)?;
+        let cn = self.cont_noeu(state, own);
+        self.snapshots.push((state.time, cn));
+        self.geom.step_converged(Self::nodal(state));
+        self.first_increment = false;
+        Ok(())
+    }
+}
+
+impl ContinuousFriction {
+    /// The contact, friction and geometric fixed-point loops after a
+    /// converged Newton (`nmtble`: `nmctcc`, `nmctcf`, `nmctgo`).
+    fn loops_verdict(&mut self, state: &State, own: &[f64]) -> Result<LoopVerdict, FemError> {
         if self.reso_cont == Resolution::PointFixe {
             let before: Vec<f64> = self.points.iter().map(|p| p.threshold).collect();
             let (changed, _) = self.update_statuses(state, own);
@@ -1572,22 +1604,5 @@ impl ForceSource for ContinuousFriction {
             }
         }
         Ok(LoopVerdict::Done)
-    }
-
-    fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
-        self.name_of_unknown(k, mesh)
-    }
-
-    fn residual_before_update(&self) -> bool {
-        true
-    }
-
-    fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError> {
-        self.record_forces(state, own)?;
-        let cn = self.cont_noeu(state, own);
-        self.snapshots.push((state.time, cn));
-        self.geom.step_converged(Self::nodal(state));
-        self.first_increment = false;
-        Ok(())
     }
 }
