@@ -80,6 +80,7 @@ pub fn continuous(kw: &Keywords) -> Result<ContinueFriction, ExecError> {
         );
     }
     f.cycling = matches!(type_adapt, 4 | 5 | 6 | 7 | 11);
+    f.adapt_coef = matches!(type_adapt, 1 | 2 | 5 | 6);
     if let Some(r) = kw.f64("RESI_FROT") {
         f.resi_frot = r;
     }
