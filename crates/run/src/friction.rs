@@ -80,6 +80,7 @@ pub fn continuous(kw: &Keywords) -> Result<ContinueFriction, ExecError> {
         );
     }
     f.cycling = matches!(type_adapt, 4 | 5 | 6 | 7 | 11);
+    f.adapt_coef = matches!(type_adapt, 1 | 2 | 5 | 6);
     if let Some(r) = kw.f64("RESI_FROT") {
         f.resi_frot = r;
     }
@@ -278,28 +279,11 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             ));
         }
         // ADAPTATION='TOUT' on an augmented frictional zone with Newton
-        // friction (code_aster's TYPE_ADAPT 5, `cazocc`): besides the
-        // cycling treatment (reproduced, `friction::cycling`) code_aster
-        // adapts COEF_CONT/COEF_FROT point by point (`mm_cycl_prop`) and
-        // replaces COEF_CONT at each step's start by an estimate from the
-        // matrix (`nmprma` → `echmat`), which are not reproduced. Measured
-        // on ssnv209a once its Newton converged (the residual of the
-        // convergence test taken before the status update, as code_aster):
-        // 2 OK, 6 NOOK, 0.06–0.17 % off code_aster's displacements.
-        if kw.str("FORMULATION") == Some("CONTINUE")
-            && occ.str("ADAPTATION") == Some("TOUT")
-            && occ.str("ALGO_CONT").unwrap_or("STANDARD") == "STANDARD"
-            && occ.str("ALGO_FROT").unwrap_or("STANDARD") == "STANDARD"
-            && kw.str("ALGO_RESO_FROT").unwrap_or("NEWTON") == "NEWTON"
-            && occ.f64("COULOMB").is_some_and(|m| m > f64::EPSILON)
-        {
-            out.push(Refusal::at(
-                "DEFI_CONTACT/ZONE/ADAPTATION='TOUT' with FROTTEMENT='COULOMB' and ALGO_RESO_FROT='NEWTON' (code_aster also adapts COEF_CONT/COEF_FROT point by point, mm_cycl_prop, and estimates COEF_CONT from the matrix at each step, echmat: not reproduced; ssnv209a ends 0.06–0.17 % off)".into(),
-                occ,
-                "ADAPTATION",
-                call.span,
-            ));
-        }
+        // friction (code_aster's TYPE_ADAPT 5, `cazocc`) is accepted: its
+        // cycling treatment (`friction::cycling`) and its adaptation of
+        // COEF_FROT (`friction::adaptation`) are reproduced; its estimate
+        // of COEF_CONT from the matrix (`nmprma` → `echmat`) only changes
+        // Newton's path (ssnv209a all-OK without it).
         // The penalised friction coefficient adapted to GLIS_MAXI
         // (code_aster's `mm_cycl_algo`) changes the converged answer.
         if occ.contains("GLIS_MAXI") && occ.str("ALGO_FROT") == Some("PENALISATION") {

@@ -43,7 +43,7 @@ use std::collections::HashMap;
 use aster_fem::{Comp, Contribution, Dof, FemError, ForceSource, LoopVerdict, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
 
-use super::cycling;
+use super::{adaptation, cycling};
 use super::{ContactInit, ContinueFriction, FrictionAlgo, FrictionGeometry};
 use crate::error::ContactError;
 use crate::geomloop::{GeomDecision, GeomLoopState};
@@ -126,6 +126,9 @@ struct Point {
     cycl_pena: Option<f64>,
     /// The master nodes of the pairing at the last status update.
     last_master: Option<Vec<NodeId>>,
+    /// The point's friction coefficient and its history in the step
+    /// (module `adaptation`).
+    fric: adaptation::History,
 }
 
 /// Values of one point at the current iterate.
@@ -176,6 +179,10 @@ pub struct ContinuousFriction {
     iter_frot_maxi: usize,
     /// code_aster's contact-side cycling treatment (module `cycling`).
     cycling: bool,
+    /// code_aster's adaptation of `COEF_FROT` (module `adaptation`) and
+    /// each zone's smallest and largest coefficient in the step.
+    adapt_coef: bool,
+    coef_ranges: Vec<adaptation::Range>,
     /// Displacement per DOF index at the start of the increment.
     u_start: Vec<f64>,
     geom: GeomLoopState,
@@ -469,6 +476,7 @@ impl ContinuousFriction {
                         last_x: None,
                         cycl_pena: None,
                         last_master: None,
+                        fric: adaptation::History::new(fz.coef_frot),
                     });
                 }
             }
@@ -526,6 +534,8 @@ impl ContinuousFriction {
             iter_cont_maxi: def.iter_cont_maxi,
             iter_frot_maxi: friction.iter_frot_maxi,
             cycling: friction.cycling,
+            adapt_coef: friction.adapt_coef,
+            coef_ranges: Vec::new(),
             u_start: Vec::new(),
             geom: GeomLoopState::new(geom_rule),
             cont_loops: 0,
@@ -770,7 +780,7 @@ impl ContinuousFriction {
             Some(k) => (k, true),
             None => (fz.coef_cont, fz.pena_cont),
         };
-        let rho_f = fz.coef_frot;
+        let rho_f = p.fric.coef;
         let contact = p.contact && pair.is_some();
         let (n, tau) = match pair {
             Some(pp) => (pp.n, pp.tau),
@@ -1084,7 +1094,7 @@ impl ContinuousFriction {
     /// whether any changed, and the largest motion of the contact points
     /// relative to the longest master edge (code_aster's Newton geometric
     /// criterion).
-    fn update_statuses(&mut self, state: &State, own: &[f64]) -> (bool, f64) {
+    fn update_statuses(&mut self, state: &State, own: &[f64]) -> Result<(bool, f64), FemError> {
         let mut changed = false;
         let mut motion: f64 = 0.0;
         for i in 0..self.points.len() {
@@ -1100,6 +1110,34 @@ impl ContinuousFriction {
                 Some(_) => vals.lambda - rho * vals.jeu < 0.0,
                 None => false,
             };
+            // code_aster's adaptation of COEF_FROT (`mm_cycl_d2`,
+            // `mm_cycl_trait`), on the evaluated statuses.
+            if let (true, true, Some(pp)) = (self.adapt_coef, self.zones[p.zone].frictional, &pair)
+            {
+                let s = dot(vals.v, pp.n);
+                let slip = [
+                    vals.v[0] - s * pp.n[0],
+                    vals.v[1] - s * pp.n[1],
+                    vals.v[2] - s * pp.n[2],
+                ];
+                let before = p.fric.coef;
+                let zone = p.zone;
+                let coef = adaptation::update(&mut self.points[i].fric, now, vals.lam_f, slip)
+                    .map_err(|_| {
+                        FemError::Source(format!(
+                            "{}: code_aster stops on an assertion here (mm_cycl_adaf: a point whose COEF_FROT is adapted as sliding reaches a clear slip) at time {}",
+                            self.describe(),
+                            state.time
+                        ))
+                    })?;
+                if let Some(r) = self.coef_ranges.get_mut(zone) {
+                    r.record(coef);
+                }
+                if coef != before && std::env::var_os("ASTER_CONTACT_TRACE").is_some() {
+                    eprintln!("[friction] point {i}: COEF_FROT adapted {before:e} -> {coef:e}");
+                }
+            }
+            let p = &self.points[i];
             let mut lambda = vals.lambda;
             let mut jeu = vals.jeu;
             let master: Option<Vec<NodeId>> = pair
@@ -1188,7 +1226,17 @@ impl ContinuousFriction {
             p.gap = jeu;
             p.threshold = lambda;
         }
-        (changed, motion / self.edge_max.max(1e-300))
+        // `mm_cycl_prop`: the zone's largest coefficient given to the others.
+        if self.adapt_coef {
+            for p in &mut self.points {
+                if let (true, Some(&r)) =
+                    (self.zones[p.zone].frictional, self.coef_ranges.get(p.zone))
+                {
+                    adaptation::propagate(&mut p.fric, r);
+                }
+            }
+        }
+        Ok((changed, motion / self.edge_max.max(1e-300)))
     }
 
     /// Node of the first own unknown of each Lagrange node, for messages.
@@ -1424,7 +1472,9 @@ impl ForceSource for ContinuousFriction {
         for p in &mut self.points {
             p.cycl_pena = None;
             p.last_master = None;
+            p.fric = adaptation::History::new(self.zones[p.zone].coef_frot);
         }
+        self.coef_ranges = vec![adaptation::Range::default(); self.zones.len()];
         self.own_prev = Some(own.to_vec());
         Ok(())
     }
@@ -1493,7 +1543,7 @@ impl ForceSource for ContinuousFriction {
         }
         let mut settled = true;
         if self.reso_cont == Resolution::Newton {
-            let (changed, motion) = self.update_statuses(state, own);
+            let (changed, motion) = self.update_statuses(state, own)?;
             settled &= !changed;
             if let FrictionGeometry::Newton { resi_geom } = self.geometry {
                 if self.newton_iterations >= 2 {
@@ -1545,7 +1595,7 @@ impl ContinuousFriction {
     fn loops_verdict(&mut self, state: &State, own: &[f64]) -> Result<LoopVerdict, FemError> {
         if self.reso_cont == Resolution::PointFixe {
             let before: Vec<f64> = self.points.iter().map(|p| p.threshold).collect();
-            let (changed, _) = self.update_statuses(state, own);
+            let (changed, _) = self.update_statuses(state, own)?;
             if changed {
                 self.cont_loops += 1;
                 if self.cont_loops >= self.iter_cont_maxi {

@@ -15,6 +15,7 @@
 //! The keywords are mapped onto the plain types of this module by the
 //! runner; the numerics know no keyword.
 
+pub mod adaptation;
 pub mod continuous;
 pub mod cycling;
 pub mod discrete;
@@ -105,6 +106,10 @@ pub struct ContinueFriction {
     /// `TYPE_ADAPT` 4, 5, 6, 7, 11; the default `ADAPTATION='CYCLAGE'` is
     /// 4): module [`cycling`].
     pub cycling: bool,
+    /// code_aster's adaptation of `COEF_FROT` point by point (`TYPE_ADAPT`
+    /// 1, 2, 5, 6: `ADAPTATION='ADAPT_COEF'` or `'TOUT'` with Newton
+    /// friction): module [`adaptation`].
+    pub adapt_coef: bool,
 }
 
 impl ContinueFriction {
@@ -115,6 +120,7 @@ impl ContinueFriction {
             resi_frot: 1e-4,
             iter_frot_maxi: 10,
             cycling: true,
+            adapt_coef: false,
         }
     }
 
