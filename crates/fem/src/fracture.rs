@@ -15,6 +15,9 @@
 //! strain, no initial stress, no loads on the cells theta reaches (the
 //! caller checks).
 
+pub mod front3d;
+pub mod post_k;
+
 use crate::material::{Elastic, Hypothesis};
 use crate::shape;
 use aster_mesh::CellType;
