@@ -20,10 +20,8 @@
 //!   cell that holds an upper-lip face (`fonno8`), and kept on that side
 //!   for the next segments;
 //! - a node's basis: the normalised sum of its segments' bases; at the two
-//!   ends, code_aster's `fonext` turns the direction along the free
-//!   surface the front ends on — aster refuses such fronts (it keeps the
-//!   segment's direction only where `fonext` finds no free face, i.e. a
-//!   front ending inside the lips);
+//!   ends the direction is turned into the free surface the front ends on
+//!   (`fonext`, see [`turn_end`]);
 //! - the size at a node (`fonno7`): the largest projection on the node's
 //!   direction of the 3D cells' edges from the node within 70° of it.
 
@@ -432,46 +430,115 @@ fn upper_side(input: &FrontInput, cells: [CellId; 2], first: NodeId) -> [f64; 3]
     ]
 }
 
-/// `fonext`: code_aster turns the direction at a front end along the
-/// free faces around it; aster refuses a front whose end has any.
-fn check_end(g: &Geometry, end: NodeId, neighbour: NodeId, normal: [f64; 3]) -> Result<(), String> {
+/// What `fonext` remembers about an end node across the cells around it.
+struct EndState {
+    /// The direction before the first change (`VDIROL`).
+    dir_old: [f64; 3],
+    /// Changed once already (`LBORD`).
+    changed: bool,
+    /// The side of the first free face's normal (`NVDIR`).
+    side: i32,
+}
+
+/// `fonext` + `xfabor`, `xnorme`, `xextre`: at a front end, the direction
+/// turned into the free faces the front ends on: for each 3D cell holding
+/// the end node, its faces holding the end but not its neighbour on the
+/// front that no other 3D cell shares (free), their outward normal n
+/// unless within 0.95 of the crack's normal (the lips); the direction
+/// becomes the sum over them of ±(normal × n), each on the side of the
+/// former direction, normalised.
+fn turn_end(g: &Geometry, end: NodeId, neighbour: NodeId, normal: [f64; 3], dir: &mut [f64; 3]) {
     let mesh = g.mesh;
+    let mut state = EndState {
+        dir_old: *dir,
+        changed: false,
+        side: 0,
+    };
     for &c in g.cells(end) {
         let cell = mesh.cell(c);
+        let nn = cell.nodes.len();
+        let mut centre = [0.0; 3];
+        for &n in &cell.nodes {
+            centre = add(centre, mesh.coord(n));
+        }
+        let centre = [
+            centre[0] / nn as f64,
+            centre[1] / nn as f64,
+            centre[2] / nn as f64,
+        ];
+        let mut normals: Vec<[f64; 3]> = Vec::new();
+        let mut seen = 0usize;
         for f in faces(cell.ty) {
             let nodes: Vec<NodeId> = f.iter().map(|&i| cell.nodes[i]).collect();
             if nodes.contains(&neighbour) || !nodes.contains(&end) {
                 continue;
             }
-            // A free face: no other 3D cell holds its first three nodes.
-            let others = g
+            let shared = g
                 .cells(nodes[0])
                 .iter()
                 .filter(|&&o| {
-                    o != c && {
-                        let on = &mesh.cell(o).nodes;
-                        on.contains(&nodes[1]) && on.contains(&nodes[2])
-                    }
+                    let on = &mesh.cell(o).nodes;
+                    on.contains(&nodes[1]) && on.contains(&nodes[2])
                 })
                 .count();
-            if others != 0 {
+            if shared != 1 {
                 continue;
             }
-            let p = [
-                mesh.coord(nodes[0]),
-                mesh.coord(nodes[1]),
-                mesh.coord(nodes[2]),
-            ];
-            let n = normalize(cross(sub(p[1], p[0]), sub(p[2], p[0])));
-            if dot(n, normal).abs() < 0.95 {
-                return Err(format!(
-                    "the front ends at node {} on a free surface: code_aster turns the crack direction there along it (fonext), which aster does not reproduce",
-                    g.name(end)
-                ));
+            let pa = mesh.coord(nodes[0]);
+            let mut n = cross(sub(mesh.coord(nodes[1]), pa), sub(mesh.coord(nodes[2]), pa));
+            if dot(n, sub(centre, pa)) > 0.0 {
+                n = [-n[0], -n[1], -n[2]];
+            }
+            seen += 1;
+            if dot(normalize(n), normal).abs() >= 0.95 {
+                continue;
+            }
+            normals.push(n);
+        }
+        if normals.is_empty() {
+            continue;
+        }
+        // xextre
+        let points = if seen >= 2 { 2 } else { 1 };
+        let mut change = true;
+        let mut vecmax = false;
+        for i in 0..points {
+            if !state.changed {
+                state.dir_old = *dir;
+            }
+            let old = state.dir_old;
+            let mut n = if points > 1 {
+                normals.get(i).copied().unwrap_or(normals[0])
+            } else {
+                normals[0]
+            };
+            if normals.len() == 1 {
+                n = normals[0];
+                let side = if dot(n, old) < 0.0 { 0 } else { 1 };
+                if !state.changed {
+                    state.side = side;
+                } else if state.side < side {
+                    vecmax = true;
+                    state.side = side;
+                } else if state.side > side {
+                    change = false;
+                }
+            }
+            if change {
+                let v = cross(normal, n);
+                let sens = if dot(v, old) < 0.0 { -1.0 } else { 1.0 };
+                let v = normalize(v);
+                let v = [sens * v[0], sens * v[1], sens * v[2]];
+                if !state.changed || vecmax {
+                    *dir = v;
+                    state.changed = true;
+                } else {
+                    *dir = add(*dir, v);
+                }
             }
         }
     }
-    Ok(())
+    *dir = normalize(*dir);
 }
 
 /// `fonno7`: the cell size at a node along its direction.
@@ -593,7 +660,6 @@ pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
     let mut normal = vec![[0.0; 3]; nn];
     let mut dir = vec![[0.0; 3]; nn];
     let mut sens = 1.0;
-    let mut prev_nor: Option<[f64; 3]> = None;
     for iseg in 0..nseg {
         let (a, b) = (nodes[iseg], nodes[iseg + 1]);
         let (lips, cells) = lip_faces(&g, a, b)?;
@@ -619,14 +685,26 @@ pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
                 vn = [-vn[0], -vn[1], -vn[2]];
             }
         }
-        let _ = prev_nor.replace(vn);
         normal[iseg] = normalize(add(normal[iseg], vn));
         dir[iseg] = normalize(add(dir[iseg], vd));
         normal[iseg + 1] = normalize(add(normal[iseg + 1], vn));
         dir[iseg + 1] = normalize(add(dir[iseg + 1], vd));
     }
-    check_end(&g, nodes[0], nodes[1], normal[0])?;
-    check_end(&g, nodes[nn - 1], nodes[nn - 2], normal[nn - 1])?;
+    // fonext, called on the first and the last segment (for a front of one
+    // segment, code_aster's call turns the first node's direction with the
+    // free faces around the last one: reproduced).
+    if nseg == 1 {
+        let (n0, mut d0) = (normal[0], dir[0]);
+        turn_end(&g, nodes[1], nodes[0], n0, &mut d0);
+        dir[0] = d0;
+    } else {
+        let (n0, mut d0) = (normal[0], dir[0]);
+        turn_end(&g, nodes[0], nodes[1], n0, &mut d0);
+        dir[0] = d0;
+        let (nl, mut dl) = (normal[nn - 1], dir[nn - 1]);
+        turn_end(&g, nodes[nn - 1], nodes[nn - 2], nl, &mut dl);
+        dir[nn - 1] = dl;
+    }
     let size: Vec<f64> = (0..nn).map(|i| node_size(&g, nodes[i], dir[i])).collect();
     // fonnof
     let sup = lip_nodes(mesh, input.lip_sup);

@@ -1,6 +1,8 @@
-//! Fracture mechanics: `DEFI_FOND_FISS` (a crack front) and `CALC_G`
-//! (G and K1, K2 by the theta method), in 2D, as code_aster computes them
-//! (aster-fem `fracture`).
+//! Fracture mechanics: `DEFI_FOND_FISS` (a crack front), `CALC_G`
+//! (G and K1, K2 by the theta method, in 2D) and `POST_K1_K2_K3` (K1, K2,
+//! K3 along a 3D front from the lips' displacement jump), as code_aster
+//! computes them (aster-fem `fracture`, `fracture::front3d`,
+//! `fracture::post_k`).
 //!
 //! - `DEFI_FOND_FISS` in 2D: the crack tip is the one node of
 //!   `FOND_FISS/GROUP_NO`; the crack direction (code_aster's `BASEFOND`)
@@ -8,15 +10,20 @@
 //!   that holds the tip to the tip (code_aster derives it from the cells
 //!   around the tip; the two agree for a crack whose lip is straight at the
 //!   tip); the cell size at the tip (`FOND.TAILLE_R`) as `fonno7`, for the
-//!   default crown R_INF = 2 h, R_SUP = 4 h. 3D fronts (`GROUP_MA`, several
-//!   nodes) are refused.
+//!   default crown R_INF = 2 h, R_SUP = 4 h.
+//! - `DEFI_FOND_FISS` in 3D: a front of SEG2 segments (`FOND_FISS/GROUP_MA`)
+//!   from `GROUP_NO_ORIG`, both lips given (`SYME='NON'`): its nodes, basis,
+//!   sizes and normal lip nodes (`fracture::front3d`).
 //! - `CALC_G(RESULTAT, THETA=_F(FISSURE, R_INF, R_SUP), OPTION='G'|'K')`:
 //!   per stored instant, a row of `NUME_ORDRE`, `INST`, `NOEUD`,
 //!   `COOR_X`, `COOR_Y` and `G` (option `G`) or `K1`, `K2`, `G_IRWIN`
 //!   (option `K`), doubled (K2 = 0) for a symmetric crack (`SYME='OUI'`).
 //!   Linear elastic plane models (`D_PLAN`, `C_PLAN`) only; loads applied
-//!   where theta is not zero, plastic results, 3D and axisymmetric models
-//!   are refused before the integral is computed.
+//!   where theta is not zero, plastic results, 3D fronts and axisymmetric
+//!   models are refused before the integral is computed.
+//! - `POST_K1_K2_K3(FOND_FISS, RESULTAT)` on a 3D front, regular mesh
+//!   (`TYPE_MAILLAGE='REGLE'`): one row per front node and instant
+//!   (`fracture::post_k`).
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
