@@ -1,4 +1,4 @@
-//! Fracture mechanics in 2D: the energy release rate G by the G-theta
+//! Fracture mechanics: in 2D, the energy release rate G by the G-theta
 //! method and the stress intensity factors K1, K2 by the interaction
 //! integral with the singular auxiliary fields, as code_aster's `CALC_G`
 //! computes them on plane elastic elements (`te0096` for option `G`,
@@ -14,6 +14,13 @@
 //! plane strain, E in plane stress. Linear elastic cells only, no thermal
 //! strain, no initial stress, no loads on the cells theta reaches (the
 //! caller checks).
+//!
+//! In 3D: the crack front DEFI_FOND_FISS builds from a meshed crack
+//! ([`front3d`]) and POST_K1_K2_K3's extrapolation of the lips' jump
+//! ([`post_k`]).
+
+pub mod front3d;
+pub mod post_k;
 
 use crate::material::{Elastic, Hypothesis};
 use crate::shape;

@@ -47,3 +47,42 @@ fn a_load_inside_the_crown_is_refused() {
     assert_eq!(outcome.tally.nook, 0);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// comm/crack_front_3d.comm: DEFI_FOND_FISS on a straight 3D front (both
+/// lips, the ends on free faces) and POST_K1_K2_K3's K1 against Feddersen's
+/// formula (linear cells: 6.4 % low), K2 = K3 = 0, G from method 1's K.
+#[test]
+fn extruded_centre_crack_post_k1_k2_k3() {
+    let comm = root().join("comm/crack_front_3d.comm");
+    let out = std::env::temp_dir().join(format!("aster-fracture-3d-{}", std::process::id()));
+    let case =
+        aster_run::program::prepare(&comm, Some(&root().join("comm/crack_front_3d.mail")), &out)
+            .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(out);
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
+}
+
+/// A front whose segments do not chain from the origin is refused before
+/// any K is computed, located at DEFI_FOND_FISS.
+#[test]
+fn a_front_not_from_its_origin_is_refused() {
+    let text = std::fs::read_to_string(root().join("comm/crack_front_3d.comm")).unwrap();
+    let text = text.replace("GROUP_NO_EXTR=\"EXTR\"", "GROUP_NO_EXTR=\"ORIG\"");
+    let dir = std::env::temp_dir().join(format!("aster-fracture-3dx-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("front.comm");
+    std::fs::write(&comm, text).unwrap();
+    let case =
+        aster_run::program::prepare(&comm, Some(&root().join("comm/crack_front_3d.mail")), &dir)
+            .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let err = outcome.error.expect("refused");
+    assert!(
+        err.to_string().contains("does not end at GROUP_NO_EXTR"),
+        "{err}"
+    );
+    assert_eq!(outcome.tally.nook, 0);
+    let _ = std::fs::remove_dir_all(dir);
+}

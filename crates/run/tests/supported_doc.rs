@@ -13,7 +13,11 @@ fn supported_md_has_a_section_per_executed_command() {
         .filter_map(|l| l.strip_prefix("## "))
         .flat_map(|h| h.split(" / "))
         .map(str::trim)
-        .filter(|w| !w.is_empty() && w.chars().all(|c| c.is_ascii_uppercase() || c == '_'))
+        .filter(|w| {
+            !w.is_empty()
+                && w.chars()
+                    .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+        })
         .collect();
     let executed: BTreeSet<&str> = aster_run::commands::COMMANDS
         .iter()

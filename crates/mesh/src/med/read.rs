@@ -286,14 +286,12 @@ impl Reader<'_> {
         let families = self.families(mesh_obj, mesh_name)?;
         let (groups_no, groups_ma, warnings) = build_groups(&families, &node_fam, &cell_fam);
 
-        // Names `N1`, `N2`… in order are code_aster's defaults written
-        // back: the node is unnamed (code_aster 17 ignores them too).
-        let node_names = node_names.filter(|names| {
-            !names
-                .iter()
-                .enumerate()
-                .all(|(i, n)| n.strip_prefix('N') == Some((i + 1).to_string().as_str()))
-        });
+        // Names `N1`, `N2`… are code_aster's numbering written back (in
+        // order, or with gaps: the numbers of a mesh renumbered since):
+        // code_aster 17 ignores them and names the nodes by their rank
+        // (ssnv166a filters POST_K1_K2_K3's rows on NOEUD='5676', a node
+        // its MED file names `N5676` among `…N11308, N11328, N11330`).
+        let node_names = node_names.filter(|names| !numbering_names(names));
         let node_names = match node_names {
             Some(n) => n,
             // code_aster 17 names an unnamed node by its number: its
@@ -559,4 +557,22 @@ fn dense(map: HashMap<i64, Vec<usize>>) -> DenseFamilies {
         groups[(num - min) as usize] = Some(ids);
     }
     DenseFamilies::Table { min, groups }
+}
+
+/// Names `N<k>` with k increasing: a numbering, not names.
+fn numbering_names(names: &[String]) -> bool {
+    let mut last = 0u64;
+    names.iter().all(|n| {
+        match n.strip_prefix('N').and_then(|d| {
+            (!d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+                .then(|| d.parse::<u64>().ok())
+                .flatten()
+        }) {
+            Some(k) if k > last => {
+                last = k;
+                true
+            }
+            _ => false,
+        }
+    })
 }

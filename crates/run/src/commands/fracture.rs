@@ -1,6 +1,8 @@
-//! Fracture mechanics: `DEFI_FOND_FISS` (a crack front) and `CALC_G`
-//! (G and K1, K2 by the theta method), in 2D, as code_aster computes them
-//! (aster-fem `fracture`).
+//! Fracture mechanics: `DEFI_FOND_FISS` (a crack front), `CALC_G`
+//! (G and K1, K2 by the theta method, in 2D) and `POST_K1_K2_K3` (K1, K2,
+//! K3 along a 3D front from the lips' displacement jump), as code_aster
+//! computes them (aster-fem `fracture`, `fracture::front3d`,
+//! `fracture::post_k`).
 //!
 //! - `DEFI_FOND_FISS` in 2D: the crack tip is the one node of
 //!   `FOND_FISS/GROUP_NO`; the crack direction (code_aster's `BASEFOND`)
@@ -8,15 +10,20 @@
 //!   that holds the tip to the tip (code_aster derives it from the cells
 //!   around the tip; the two agree for a crack whose lip is straight at the
 //!   tip); the cell size at the tip (`FOND.TAILLE_R`) as `fonno7`, for the
-//!   default crown R_INF = 2 h, R_SUP = 4 h. 3D fronts (`GROUP_MA`, several
-//!   nodes) are refused.
+//!   default crown R_INF = 2 h, R_SUP = 4 h.
+//! - `DEFI_FOND_FISS` in 3D: a front of SEG2 segments (`FOND_FISS/GROUP_MA`)
+//!   from `GROUP_NO_ORIG`, both lips given (`SYME='NON'`): its nodes, basis,
+//!   sizes and normal lip nodes (`fracture::front3d`).
 //! - `CALC_G(RESULTAT, THETA=_F(FISSURE, R_INF, R_SUP), OPTION='G'|'K')`:
 //!   per stored instant, a row of `NUME_ORDRE`, `INST`, `NOEUD`,
 //!   `COOR_X`, `COOR_Y` and `G` (option `G`) or `K1`, `K2`, `G_IRWIN`
 //!   (option `K`), doubled (K2 = 0) for a symmetric crack (`SYME='OUI'`).
 //!   Linear elastic plane models (`D_PLAN`, `C_PLAN`) only; loads applied
-//!   where theta is not zero, plastic results, 3D and axisymmetric models
-//!   are refused before the integral is computed.
+//!   where theta is not zero, plastic results, 3D fronts and axisymmetric
+//!   models are refused before the integral is computed.
+//! - `POST_K1_K2_K3(FOND_FISS, RESULTAT)` on a 3D front, regular mesh
+//!   (`TYPE_MAILLAGE='REGLE'`): one row per front node and instant
+//!   (`fracture::post_k`).
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
@@ -24,6 +31,7 @@ use crate::support::{Support, Values};
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 use aster_fem::dof::{Comp, Dof};
+use aster_fem::fracture::front3d::{define_front, Front3d, FrontInput};
 use aster_fem::fracture::{self, CrackTip, PlaneCell};
 use aster_fem::loads::Load;
 use aster_fem::{ElementKind, Model};
@@ -42,17 +50,27 @@ pub struct CrackFront {
     pub symmetric: bool,
     /// The cell size at the tip (`fonno7`).
     pub size: f64,
+    /// A 3D front (`FOND_FISS/GROUP_MA`): its nodes, bases, sizes and
+    /// normal lip nodes; the 2D fields above then hold its first node.
+    pub line: Option<Rc<Front3d>>,
 }
 
 /// What DEFI_FOND_FISS reads (`crate::support`).
 pub(crate) const DEFI_FOND_FISS: Support = Support {
-    values: &[Values::new("CONFIG_INIT", &["COLLEE"])
-        .why("(a crack open in the initial state, NORMALE): only cracks whose lips touch")],
+    values: &[
+        Values::new("CONFIG_INIT", &["COLLEE"])
+            .why("(a crack open in the initial state, NORMALE): only cracks whose lips touch"),
+        Values::new("FOND_FISS/TYPE_FOND", &["OUVERT"])
+            .why("(a closed 3D front, FERME): open fronts only"),
+    ],
     ..Support::keywords(&[
         "MAILLAGE",
         "INFO",
         "FOND_FISS",
         "FOND_FISS/GROUP_NO",
+        "FOND_FISS/GROUP_MA",
+        "FOND_FISS/GROUP_NO_ORIG",
+        "FOND_FISS/GROUP_NO_EXTR",
         "FOND_FISS/TYPE_FOND",
         "SYME",
         "LEVRE_SUP",
@@ -70,11 +88,8 @@ pub fn defi_fond_fiss(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let mesh_ref = ex.required(cmd, kw, "MAILLAGE")?;
     let mesh = ex.mesh(mesh_ref)?;
     let mesh_id = mesh_ref.id;
-    if mesh.dim != 2 {
-        return Err(ex.unsupported(
-            "DEFI_FOND_FISS of a 3D crack front (aster computes G and K in 2D only)",
-            call.span,
-        ));
+    if mesh.dim == 3 {
+        return defi_fond_fiss_3d(ex, call, &mesh, mesh_id);
     }
     let fronts = kw.factor("FOND_FISS");
     let [front] = fronts else {
@@ -149,11 +164,127 @@ pub fn defi_fond_fiss(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         tip: CrackTip { tip, dir },
         symmetric: kw.str("SYME") == Some("OUI"),
         size,
+        line: None,
     };
     store_result(ex, call, Concept::CrackFront(Rc::new(front)))
 }
 
-fn node_name(mesh: &Mesh, n: NodeId) -> String {
+/// The cells of the `GROUP_MA` groups of an occurrence.
+fn occurrence_cells(
+    ex: &Executor,
+    cmd: &str,
+    occ: &aster_eval::Keywords,
+    mesh: &Mesh,
+) -> Result<Vec<aster_mesh::CellId>, ExecError> {
+    let mut cells = Vec::new();
+    for g in occ.simple("GROUP_MA").iter().filter_map(|s| s.as_str()) {
+        let c =
+            crate::select::group_ma(mesh, g).map_err(|e| ex.kw_error(cmd, occ, "GROUP_MA", e))?;
+        cells.extend_from_slice(c);
+    }
+    Ok(cells)
+}
+
+/// The one node of a node-group keyword.
+fn one_node(
+    ex: &Executor,
+    cmd: &str,
+    occ: &aster_eval::Keywords,
+    key: &str,
+    mesh: &Mesh,
+) -> Result<Option<NodeId>, ExecError> {
+    let Some(g) = occ.str(key) else {
+        return Ok(None);
+    };
+    let nodes = crate::select::group_no(mesh, g).map_err(|e| ex.kw_error(cmd, occ, key, e))?;
+    match nodes {
+        [n] => Ok(Some(*n)),
+        _ => Err(ex.kw_error(
+            cmd,
+            occ,
+            key,
+            format!("the group `{g}` has {} nodes, one expected", nodes.len()),
+        )),
+    }
+}
+
+/// DEFI_FOND_FISS on a 3D mesh: a front of segments (`FOND_FISS/GROUP_MA`)
+/// from `GROUP_NO_ORIG`, both lips meshed (aster-fem `fracture::front3d`).
+fn defi_fond_fiss_3d(
+    ex: &mut Executor,
+    call: &CommandCall,
+    mesh: &Mesh,
+    mesh_id: u32,
+) -> Result<CommandOutput, ExecError> {
+    let kw = &call.keywords;
+    let cmd = "DEFI_FOND_FISS";
+    let fronts = kw.factor("FOND_FISS");
+    let [front] = fronts else {
+        return Err(ex.unsupported(
+            "DEFI_FOND_FISS with two FOND_FISS occurrences (one front only)",
+            call.span,
+        ));
+    };
+    if !front.contains("GROUP_MA") {
+        return Err(ex.unsupported(
+            "DEFI_FOND_FISS of a 3D front given by its nodes (GROUP_NO): aster reads a front of segments (GROUP_MA)",
+            call.span,
+        ));
+    }
+    if kw.str("SYME") == Some("OUI") {
+        return Err(ex.unsupported(
+            "DEFI_FOND_FISS of a 3D front with SYME='OUI' (both lips meshed only)",
+            call.span,
+        ));
+    }
+    let segments = occurrence_cells(ex, cmd, front, mesh)?;
+    let Some(origin) = one_node(ex, cmd, front, "GROUP_NO_ORIG", mesh)? else {
+        return Err(ex.unsupported(
+            "DEFI_FOND_FISS of a 3D front without GROUP_NO_ORIG (aster does not pick the origin itself)",
+            call.span,
+        ));
+    };
+    let end = one_node(ex, cmd, front, "GROUP_NO_EXTR", mesh)?;
+    let (Some(sup), Some(inf)) = (
+        kw.factor("LEVRE_SUP").first(),
+        kw.factor("LEVRE_INF").first(),
+    ) else {
+        return Err(ex.unsupported(
+            "DEFI_FOND_FISS of a 3D front without both lips (LEVRE_SUP, LEVRE_INF): aster builds the front's basis from them",
+            call.span,
+        ));
+    };
+    let lip_sup = occurrence_cells(ex, cmd, sup, mesh)?;
+    let lip_inf = occurrence_cells(ex, cmd, inf, mesh)?;
+    let input = FrontInput {
+        mesh,
+        segments: &segments,
+        origin,
+        end,
+        lip_sup: &lip_sup,
+        lip_inf: &lip_inf,
+        prec_norm: kw.f64("PREC_NORM").unwrap_or(0.1),
+    };
+    let line =
+        define_front(&input).map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), call.span))?;
+    let first = line.nodes[0];
+    let p = mesh.coord(first);
+    let crack = CrackFront {
+        mesh: mesh_id,
+        node: first,
+        node_name: node_name(mesh, first),
+        tip: CrackTip {
+            tip: [p[0], p[1]],
+            dir: [line.dir[0][0], line.dir[0][1]],
+        },
+        symmetric: false,
+        size: line.size[0],
+        line: Some(Rc::new(line)),
+    };
+    store_result(ex, call, Concept::CrackFront(Rc::new(crack)))
+}
+
+pub(crate) fn node_name(mesh: &Mesh, n: NodeId) -> String {
     mesh.node_names
         .get(n.0 as usize)
         .cloned()
@@ -215,6 +346,12 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
         return Err(ExecError::new("CALC_G: THETA is required"));
     };
     let front = ex.crack_front(ex.required(cmd, theta_kw, "FISSURE")?)?;
+    if front.line.is_some() {
+        return Err(ex.unsupported(
+            "CALC_G on a 3D crack front (aster computes G and K in 2D only)",
+            kw.keyword("THETA").map(|k| k.span).unwrap_or(call.span),
+        ));
+    }
     let r = ex.required(cmd, kw, "RESULTAT")?;
     let result = ex.result(r)?;
     let Some(run) = result.fem.clone() else {
@@ -491,4 +628,224 @@ fn displacement(
             "CALC_G: DEPL of `{name}` is not a nodal field"
         ))),
     }
+}
+
+const POST_K_OWN: &[&str] = &[
+    "FOND_FISS",
+    "RESULTAT",
+    "ABSC_CURV_MAXI",
+    "PREC_VIS_A_VIS",
+    "NB_NOEUD_COUPE",
+    "TYPE_MAILLAGE",
+    "INFO",
+    "TITRE",
+];
+
+/// What POST_K1_K2_K3 reads (`crate::support`): a meshed 3D crack
+/// (`FOND_FISS`) on a regular mesh, and the step selection.
+pub(crate) const POST_K1_K2_K3: Support = Support {
+    values: &[Values::new("TYPE_MAILLAGE", &["REGLE"])
+        .why("(LIBRE: the jumps read along cut lines by MACR_LIGN_COUPE): the lip nodes normal to the front only")],
+    ..Support::keywords(&crate::support::joined::<
+        _,
+        { super::post::STEP_SELECTION.len() + POST_K_OWN.len() },
+    >(super::post::STEP_SELECTION, POST_K_OWN))
+};
+
+/// `POST_K1_K2_K3(FOND_FISS, RESULTAT)` on a 3D front (aster-fem
+/// `fracture::post_k`): one row per front node with enough lip nodes and
+/// per instant, `FOND_FISS`, `NUME_FOND`, `INST`, `NUME_ORDRE`, `NOEUD`,
+/// `NUM_PT`, `ABSC_CURV`, `K1`, `ERR_K1`, `K2`, `ERR_K2`, `K3`, `ERR_K3`,
+/// `G`.
+pub fn post_k1_k2_k3(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    use aster_fem::fracture::post_k::{k_at_node, keep_lip_nodes, LipPoint};
+    let kw = &call.keywords;
+    let cmd = "POST_K1_K2_K3";
+    let front_ref = ex.required(cmd, kw, "FOND_FISS")?;
+    let front = ex.crack_front(front_ref)?;
+    let here = kw.keyword("FOND_FISS").map(|k| k.span).unwrap_or(call.span);
+    let Some(line) = front.line.clone() else {
+        return Err(ex.unsupported(
+            "POST_K1_K2_K3 on a 2D crack tip (aster computes it on 3D fronts; CALC_G gives K in 2D)",
+            here,
+        ));
+    };
+    let r = ex.required(cmd, kw, "RESULTAT")?;
+    let result = ex.result(r)?;
+    let Some(run) = result.fem.clone() else {
+        return Err(ex.unsupported(
+            "POST_K1_K2_K3 on a result not computed in this run (its model and materials are needed)",
+            kw.keyword("RESULTAT").map(|k| k.span).unwrap_or(call.span),
+        ));
+    };
+    let model = &run.model;
+    let mesh = model.mesh();
+    if ex.mesh_by_id(front.mesh)?.node_count() != mesh.node_count() {
+        return Err(ex.unsupported(
+            "POST_K1_K2_K3: the crack front and the result are not on the same mesh",
+            here,
+        ));
+    }
+    // The material at the front (code_aster's postkutil: the cells there).
+    let mut material = None;
+    for el in model.elements() {
+        let cell = mesh.cell(el.cell);
+        if !line.nodes.iter().any(|n| cell.nodes.contains(n)) {
+            continue;
+        }
+        if let ElementKind::Continuum {
+            hypothesis,
+            material: m,
+        } = &el.kind
+        {
+            if *hypothesis != aster_fem::Hypothesis::Solid3D {
+                continue;
+            }
+            match material {
+                None => material = Some(*m),
+                Some(prev) if prev != *m => {
+                    return Err(ex.unsupported(
+                        "POST_K1_K2_K3: two materials along the crack front (aster reads one)",
+                        here,
+                    ))
+                }
+                _ => {}
+            }
+        }
+    }
+    let Some(material) = material else {
+        return Err(ex.unsupported("POST_K1_K2_K3: no 3D elastic cell at the crack front", here));
+    };
+    let hmax = match kw.f64("ABSC_CURV_MAXI") {
+        Some(h) => h,
+        None => 4.0 * line.size.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    };
+    let pvv = kw.f64("PREC_VIS_A_VIS").unwrap_or(0.1);
+    // ABSC_CURV along the front (get_absfon).
+    let mut absc = vec![0.0; line.nodes.len()];
+    for i in 1..line.nodes.len() {
+        let (a, b) = (mesh.coord(line.nodes[i - 1]), mesh.coord(line.nodes[i]));
+        let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+        absc[i] = absc[i - 1] + d;
+    }
+    // The front nodes with enough lip nodes (get_noeuds_perp_regle).
+    let coords = |ns: &[NodeId]| ns.iter().map(|&n| mesh.coord(n)).collect::<Vec<_>>();
+    let mut kept = Vec::new();
+    for (i, &n) in line.nodes.iter().enumerate() {
+        let sup = &line.sup_normal[i];
+        let inf = &line.inf_normal[i];
+        if let Some((ks, ki)) = keep_lip_nodes(mesh.coord(n), &coords(sup), &coords(inf), hmax, pvv)
+        {
+            let pick = |l: &[NodeId], k: &[usize]| k.iter().map(|&j| l[j]).collect::<Vec<_>>();
+            kept.push((i, pick(sup, &ks), pick(inf, &ki)));
+        }
+    }
+    if kept.is_empty() {
+        return Err(ExecError::new(format!(
+            "{cmd}: no front node has 3 lip nodes on each lip within {hmax} (code_aster's RUPTURE0_30)"
+        )));
+    }
+    let steps = super::post::select_steps(ex, cmd, kw, &result)?;
+    let columns = vec![
+        col("FOND_FISS", ColumnType::Text(8)),
+        col("NUME_FOND", ColumnType::Int),
+        col("INST", ColumnType::Real),
+        col("NUME_ORDRE", ColumnType::Int),
+        col("NOEUD", ColumnType::Text(8)),
+        col("NUM_PT", ColumnType::Int),
+        col("ABSC_CURV", ColumnType::Real),
+        col("K1", ColumnType::Real),
+        col("ERR_K1", ColumnType::Real),
+        col("K2", ColumnType::Real),
+        col("ERR_K2", ColumnType::Real),
+        col("K3", ColumnType::Real),
+        col("ERR_K3", ColumnType::Real),
+        col("G", ColumnType::Real),
+    ];
+    let mut disps = Vec::new();
+    for step in &steps {
+        let u = displacement(&result, &run, step.nume_ordre, &r.name)?;
+        disps.push(nodal_displacement_3d(model, &u));
+    }
+    let mut rows = Vec::new();
+    for (num, (i, sup, inf)) in kept.iter().enumerate() {
+        let node = line.nodes[*i];
+        let pf = mesh.coord(node);
+        for (step, disp) in steps.iter().zip(&disps) {
+            let points = |ns: &[NodeId]| {
+                let mut v: Vec<LipPoint> = ns
+                    .iter()
+                    .map(|&n| {
+                        let p = mesh.coord(n);
+                        let d = ((p[0] - pf[0]).powi(2)
+                            + (p[1] - pf[1]).powi(2)
+                            + (p[2] - pf[2]).powi(2))
+                        .sqrt();
+                        LipPoint {
+                            r: d,
+                            u: disp[n.0 as usize],
+                        }
+                    })
+                    .collect();
+                v.sort_by(|a, b| a.r.total_cmp(&b.r));
+                v
+            };
+            let k = k_at_node(
+                &points(sup),
+                &points(inf),
+                line.normal[*i],
+                line.dir[*i],
+                material,
+            )
+            .map_err(|e| ExecError::new(format!("{cmd}: node {}: {e}", node_name(mesh, node))))?;
+            rows.push(vec![
+                ("FOND_FISS", Value::Text(front_ref.name.clone())),
+                ("NUME_FOND", Value::Int(1)),
+                ("INST", Value::Real(step.inst)),
+                ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
+                ("NOEUD", Value::Text(node_name(mesh, node))),
+                ("NUM_PT", Value::Int(num as i64 + 1)),
+                ("ABSC_CURV", Value::Real(absc[*i])),
+                ("K1", Value::Real(k.k1)),
+                ("ERR_K1", Value::Real(k.err[0])),
+                ("K2", Value::Real(k.k2)),
+                ("ERR_K2", Value::Real(k.err[1])),
+                ("K3", Value::Real(k.k3)),
+                ("ERR_K3", Value::Real(k.err[2])),
+                ("G", Value::Real(k.g)),
+            ]);
+        }
+    }
+    if steps.len() != 1 {
+        // CALC_TABLE TRI on (INST, ABSC_CURV), stable.
+        let key = |row: &Vec<(&str, Value)>, name: &str| match row.iter().find(|(n, _)| *n == name)
+        {
+            Some((_, Value::Real(x))) => *x,
+            _ => 0.0,
+        };
+        rows.sort_by(|a, b| {
+            key(a, "INST")
+                .total_cmp(&key(b, "INST"))
+                .then(key(a, "ABSC_CURV").total_cmp(&key(b, "ABSC_CURV")))
+        });
+    }
+    let mut table = Table::new(columns);
+    for row in rows {
+        table.push_row(row);
+    }
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+fn nodal_displacement_3d(model: &Model, u: &[f64]) -> Vec<[f64; 3]> {
+    let dofs = model.dofs();
+    (0..model.mesh().node_count())
+        .map(|i| {
+            let n = NodeId(i as u32);
+            [
+                dofs.value(u, Dof::new(n, Comp::DX)).unwrap_or(0.0),
+                dofs.value(u, Dof::new(n, Comp::DY)).unwrap_or(0.0),
+                dofs.value(u, Dof::new(n, Comp::DZ)).unwrap_or(0.0),
+            ]
+        })
+        .collect()
 }

@@ -350,6 +350,11 @@ pub static COMMANDS: &[Command] = &[
         support: fracture::CALC_G,
     },
     Command {
+        name: "POST_K1_K2_K3",
+        run: fracture::post_k1_k2_k3,
+        support: fracture::POST_K1_K2_K3,
+    },
+    Command {
         name: "CREA_RESU",
         run: results::crea_resu,
         support: results::CREA_RESU,
