@@ -1,6 +1,7 @@
 //! Shape functions of the contact surface cells (code_aster node order),
 //! their reference domains, and orthogonal projection onto a cell.
 
+pub(crate) use aster_mesh::vec3::{cross, dot, norm, scale, sub};
 use aster_mesh::CellType;
 
 /// A surface cell type contact can pair on: edges in 2D, faces in 3D.
@@ -415,30 +416,6 @@ pub fn face_newton_cotes(kind: SurfaceKind, order: u8) -> Option<Vec<([f64; 2], 
         }
         Some(out)
     }
-}
-
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-pub(crate) fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-pub(crate) fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
-    [a[0] * s, a[1] * s, a[2] * s]
 }
 
 /// A point interpolated on a cell: position, tangents and shape values.

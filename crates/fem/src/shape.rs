@@ -10,6 +10,7 @@
 //! differentiated automatically.
 
 use crate::{fpg, refcells};
+use aster_mesh::vec3::{cross, dot, sub};
 use aster_mesh::CellType;
 
 /// A quadrature point: reference coordinates and weight.
@@ -547,22 +548,6 @@ pub fn facet_corners(ty: CellType) -> Vec<Vec<usize>> {
 fn mean(p: &[[f64; 3]]) -> [f64; 3] {
     let n = p.len() as f64;
     std::array::from_fn(|k| p.iter().map(|q| q[k]).sum::<f64>() / n)
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@
 //! `CREA_CHAMP(OPERATION='DISC')`).
 
 use crate::shape;
+use aster_mesh::vec3::{cross, norm};
 use aster_mesh::{CellId, Mesh};
 
 /// One integration point of a skin cell.
@@ -82,18 +83,6 @@ pub fn skin_l2_squared<E>(
         reference += p.weight * e * e;
     }
     Some(Ok((diff, reference)))
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
 #[cfg(test)]

@@ -31,6 +31,7 @@ use crate::element::physical_derivatives;
 use crate::error::FemError;
 use crate::shape::{self, GaussPoint};
 use crate::{fpg, linalg};
+use aster_mesh::vec3::{cross, norm};
 use aster_mesh::{CellId, CellType, Mesh, NodeId};
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -261,18 +262,6 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
         m,
         f,
     })
-}
-
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// The free-free block of `c_m·M + c_k·K` (lower triangle, free indexing)

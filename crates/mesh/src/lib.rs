@@ -17,6 +17,7 @@ pub mod med;
 mod model;
 mod ops;
 mod summary;
+pub mod vec3;
 pub mod vtu;
 
 pub use convert::{gibi_to_mail, gmsh_to_mail, read_gibi, read_gmsh};

@@ -37,6 +37,56 @@ pub enum CellType {
 }
 
 impl CellType {
+    /// The corner pairs of the cell's edges in code_aster's order (`conare`;
+    /// the order the quadratic types number their mid-edge nodes: QUAD8
+    /// 12 23 34 41, HEXA20 12 23 34 41 15 26 37 48 56 67 78 85…); empty for
+    /// points.
+    pub fn corner_edges(self) -> &'static [[usize; 2]] {
+        use CellType::*;
+        match self {
+            SEG2 | SEG3 | SEG4 => &[[0, 1]],
+            TRIA3 | TRIA6 | TRIA7 => &[[0, 1], [1, 2], [2, 0]],
+            QUAD4 | QUAD8 | QUAD9 => &[[0, 1], [1, 2], [2, 3], [3, 0]],
+            TETRA4 | TETRA10 => &[[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]],
+            PENTA6 | PENTA15 | PENTA18 => &[
+                [0, 1],
+                [1, 2],
+                [2, 0],
+                [0, 3],
+                [1, 4],
+                [2, 5],
+                [3, 4],
+                [4, 5],
+                [5, 3],
+            ],
+            HEXA8 | HEXA20 | HEXA27 => &[
+                [0, 1],
+                [1, 2],
+                [2, 3],
+                [3, 0],
+                [0, 4],
+                [1, 5],
+                [2, 6],
+                [3, 7],
+                [4, 5],
+                [5, 6],
+                [6, 7],
+                [7, 4],
+            ],
+            PYRAM5 | PYRAM13 => &[
+                [0, 1],
+                [1, 2],
+                [2, 3],
+                [3, 0],
+                [0, 4],
+                [1, 4],
+                [2, 4],
+                [3, 4],
+            ],
+            _ => &[],
+        }
+    }
+
     pub const ALL: [CellType; 20] = [
         CellType::POI1,
         CellType::SEG2,

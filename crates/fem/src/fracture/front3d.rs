@@ -25,6 +25,7 @@
 //! - the size at a node (`fonno7`): the largest projection on the node's
 //!   direction of the 3D cells' edges from the node within 70° of it.
 
+pub(crate) use aster_mesh::vec3::{add, cross, dot, normalize, sub};
 use aster_mesh::{CellId, CellType, Mesh, NodeId};
 use std::collections::HashMap;
 
@@ -64,31 +65,6 @@ pub struct FrontInput<'a> {
     pub prec_norm: f64,
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-pub(crate) fn normalize(v: [f64; 3]) -> [f64; 3] {
-    let n = dot(v, v).sqrt();
-    if n > 0.0 {
-        [v[0] / n, v[1] / n, v[2] / n]
-    } else {
-        v
-    }
-}
-
 /// The corner faces of a 3D cell, as cycles of local node indices
 /// (code_aster's `confac`, up to the order of the faces).
 fn faces(ty: CellType) -> &'static [&'static [usize]] {
@@ -121,47 +97,13 @@ fn faces(ty: CellType) -> &'static [&'static [usize]] {
     }
 }
 
-/// The corner edges of a 3D cell (code_aster's `conare`).
+/// The corner edges of a 3D cell (code_aster's `conare`); none for the
+/// others.
 fn edges(ty: CellType) -> &'static [[usize; 2]] {
-    use CellType::*;
-    match ty {
-        TETRA4 | TETRA10 => &[[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]],
-        PYRAM5 | PYRAM13 => &[
-            [0, 1],
-            [1, 2],
-            [2, 3],
-            [3, 0],
-            [0, 4],
-            [1, 4],
-            [2, 4],
-            [3, 4],
-        ],
-        PENTA6 | PENTA15 | PENTA18 => &[
-            [0, 1],
-            [1, 2],
-            [2, 0],
-            [0, 3],
-            [1, 4],
-            [2, 5],
-            [3, 4],
-            [4, 5],
-            [5, 3],
-        ],
-        HEXA8 | HEXA20 | HEXA27 => &[
-            [0, 1],
-            [1, 2],
-            [2, 3],
-            [3, 0],
-            [0, 4],
-            [1, 5],
-            [2, 6],
-            [3, 7],
-            [4, 5],
-            [5, 6],
-            [6, 7],
-            [7, 4],
-        ],
-        _ => &[],
+    if ty.dim() == 3 {
+        ty.corner_edges()
+    } else {
+        &[]
     }
 }
 

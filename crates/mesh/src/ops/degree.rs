@@ -18,62 +18,20 @@ use crate::{Cell, CellId, CellType, Mesh, NodeId};
 use std::collections::HashMap;
 
 /// Local corner pairs of each linear type's edges, in the order its
-/// quadratic counterpart numbers the mid-edge nodes.
+/// quadratic counterpart numbers the mid-edge nodes
+/// ([`CellType::corner_edges`]).
 pub(crate) fn edges(ty: CellType) -> Option<(CellType, &'static [[usize; 2]])> {
-    Some(match ty {
-        CellType::SEG2 => (CellType::SEG3, &[[0, 1]]),
-        CellType::TRIA3 => (CellType::TRIA6, &[[0, 1], [1, 2], [2, 0]]),
-        CellType::QUAD4 => (CellType::QUAD8, &[[0, 1], [1, 2], [2, 3], [3, 0]]),
-        CellType::TETRA4 => (
-            CellType::TETRA10,
-            &[[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]],
-        ),
-        CellType::PENTA6 => (
-            CellType::PENTA15,
-            &[
-                [0, 1],
-                [1, 2],
-                [2, 0],
-                [0, 3],
-                [1, 4],
-                [2, 5],
-                [3, 4],
-                [4, 5],
-                [5, 3],
-            ],
-        ),
-        CellType::HEXA8 => (
-            CellType::HEXA20,
-            &[
-                [0, 1],
-                [1, 2],
-                [2, 3],
-                [3, 0],
-                [0, 4],
-                [1, 5],
-                [2, 6],
-                [3, 7],
-                [4, 5],
-                [5, 6],
-                [6, 7],
-                [7, 4],
-            ],
-        ),
-        CellType::PYRAM5 => (
-            CellType::PYRAM13,
-            &[
-                [0, 1],
-                [1, 2],
-                [2, 3],
-                [3, 0],
-                [0, 4],
-                [1, 4],
-                [2, 4],
-                [3, 4],
-            ],
-        ),
+    let quadratic = match ty {
+        CellType::SEG2 => CellType::SEG3,
+        CellType::TRIA3 => CellType::TRIA6,
+        CellType::QUAD4 => CellType::QUAD8,
+        CellType::TETRA4 => CellType::TETRA10,
+        CellType::PENTA6 => CellType::PENTA15,
+        CellType::HEXA8 => CellType::HEXA20,
+        CellType::PYRAM5 => CellType::PYRAM13,
         _ => return None,
-    })
+    };
+    Some((quadratic, ty.corner_edges()))
 }
 
 /// The linear type of a quadratic one (`QUAD_LINE`).

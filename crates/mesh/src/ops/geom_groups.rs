@@ -3,20 +3,9 @@
 //! filter `CRIT_NOEUD` (`SOMMET`, `MILIEU`).
 
 use crate::error::MeshError;
+use crate::vec3::{dot, norm, sub};
 use crate::{CellId, CellType, Mesh, NodeId};
 use std::collections::HashMap;
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
 
 /// Which nodes of cells `CRIT_NOEUD` keeps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

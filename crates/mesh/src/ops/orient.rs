@@ -10,6 +10,7 @@
 //! is reversed when its normal points towards the support's centroid.
 
 use crate::error::MeshError;
+use crate::vec3::{dot, sub};
 use crate::{Cell, CellId, CellType, Mesh, NodeId};
 use std::collections::HashMap;
 
@@ -83,14 +84,6 @@ impl CellType {
             _ => return None,
         })
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 impl Mesh {

@@ -11,6 +11,7 @@
 //! `ORIE_NORM_COQUE` on segments uses their normal (Δy, −Δx).
 
 use crate::error::MeshError;
+use crate::vec3::dot;
 use crate::{CellId, Mesh, NodeId};
 use std::collections::{HashMap, VecDeque};
 
@@ -21,10 +22,6 @@ pub enum Along {
     Normal,
     /// `ORIE_LIGNE`: the tangent of segments.
     Tangent,
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 impl Mesh {
