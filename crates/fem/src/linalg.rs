@@ -73,16 +73,21 @@ impl Csc {
     /// y = A x.
     pub fn mul(&self, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; self.n];
+        self.mul_add(1.0, x, &mut y);
+        y
+    }
+
+    /// y += c·A x.
+    pub fn mul_add(&self, c: f64, x: &[f64], y: &mut [f64]) {
         for j in 0..self.n {
             let xj = x[j];
             if xj == 0. {
                 continue;
             }
             for p in self.col_ptr[j]..self.col_ptr[j + 1] {
-                y[self.row_idx[p]] += self.values[p] * xj;
+                y[self.row_idx[p]] += c * self.values[p] * xj;
             }
         }
-        y
     }
 
     /// ‖A‖∞ (max row sum).

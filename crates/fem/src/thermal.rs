@@ -14,8 +14,8 @@
 //!   `RIGI` family);
 //! - imposed normal flux (`FLUX_REP`, `FLUN` q): the load ∫ q Nᵢ.
 //!
-//! Time integration is code_aster's θ-scheme (`PARM_THETA`, 0.57 by
-//! default), for Δt = tₙ₊₁ − tₙ:
+//! Time integration is code_aster's θ-scheme (`SCHEMA_TEMPS/THETA`, 0.57
+//! by default), for Δt = tₙ₊₁ − tₙ:
 //!
 //! ```text
 //! (M/Δt + θ(K + H)) Tₙ₊₁ = (M/Δt − (1−θ)(K + H)) Tₙ + F
@@ -88,7 +88,7 @@ pub struct ThermalProblem<'m> {
 /// The time discretisation of a transient computation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Transient {
-    /// `PARM_THETA`.
+    /// `SCHEMA_TEMPS/THETA`.
     pub theta: f64,
     /// The instants, the first being the initial one.
     pub instants: Vec<f64>,
@@ -162,14 +162,14 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
         }
     }
     let mut cols: Vec<Vec<u32>> = vec![Vec::new(); n];
-    let mut skin_nodes = Vec::new();
-    for (c, _) in p
+    let mut cell_unknowns = Vec::new();
+    for c in p
         .cells
         .iter()
-        .map(|(c, m)| (c, Some(m)))
-        .chain(p.skin.iter().map(|(c, _)| (c, None)))
+        .map(|(c, _)| c)
+        .chain(p.skin.iter().map(|(c, _)| c))
     {
-        skin_nodes.clear();
+        cell_unknowns.clear();
         for &node in &mesh.cell(*c).nodes {
             let u = unknown_of[node.0 as usize];
             if u == usize::MAX {
@@ -179,10 +179,10 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
                     mesh.node_name(node)
                 )));
             }
-            skin_nodes.push(u);
+            cell_unknowns.push(u);
         }
-        for &i in &skin_nodes {
-            for &j in &skin_nodes {
+        for &i in &cell_unknowns {
+            for &j in &cell_unknowns {
                 cols[j].push(i as u32);
             }
         }
@@ -265,9 +265,12 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
 }
 
 /// The free-free block of `c_m·M + c_k·K` (lower triangle, free indexing)
-/// factorised by Cholesky.
+/// factorised by Cholesky, and what the imposed temperatures give on the
+/// free rows, (c_m·M + c_k·K)·T_imposed: constant while the factor is.
 struct Factorised {
+    c_m: f64,
     llt: Llt<usize, f64>,
+    lift: Vec<f64>,
 }
 
 /// Free unknowns and the imposed values of the others.
@@ -275,8 +278,8 @@ struct Split {
     /// Unknown → free index (`usize::MAX` when imposed).
     free_of: Vec<usize>,
     n_free: usize,
-    /// Unknown → imposed value (NaN when free).
-    value: Vec<f64>,
+    /// Unknown → imposed value (0 when free).
+    imposed: Vec<f64>,
 }
 
 fn split(a: &Assembled, p: &ThermalProblem) -> Result<Split, FemError> {
@@ -297,16 +300,17 @@ fn split(a: &Assembled, p: &ThermalProblem) -> Result<Split, FemError> {
     }
     let mut free_of = vec![usize::MAX; a.n];
     let mut n_free = 0;
-    for (u, v) in value.iter().enumerate() {
+    for (u, v) in value.iter_mut().enumerate() {
         if v.is_nan() {
             free_of[u] = n_free;
             n_free += 1;
+            *v = 0.0;
         }
     }
     Ok(Split {
         free_of,
         n_free,
-        value,
+        imposed: value,
     })
 }
 
@@ -319,7 +323,6 @@ fn factorise(
     sp: &Split,
     c_m: f64,
     c_k: f64,
-    names: &dyn Fn(usize) -> String,
     symbolic_kept: &mut Symbolic,
 ) -> Result<Factorised, FemError> {
     let mut col_ptr = vec![0usize];
@@ -342,17 +345,9 @@ fn factorise(
     let n = sp.n_free;
     let symbolic = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
     let mat = SparseColMatRef::new(symbolic, &values);
-    let singular = || {
-        // The first free unknown whose column is empty or whose pivot fails
-        // is not named by faer: name the nodes held by nothing.
-        let free: Vec<String> = (0..a.n)
-            .filter(|&u| sp.free_of[u] != usize::MAX)
-            .filter(|&u| a.k.col_ptr[u + 1] == a.k.col_ptr[u])
-            .take(5)
-            .map(names)
-            .collect();
-        FemError::Singular { free_dofs: free }
-    };
+    // faer does not say which pivot failed (every unknown has its
+    // diagonal: no node is left out of the pattern to name).
+    let singular = || FemError::Singular { free_dofs: vec![] };
     let sym = match symbolic_kept {
         Some(s) => s.clone(),
         None => {
@@ -362,7 +357,10 @@ fn factorise(
         }
     };
     let llt = Llt::try_new_with_symbolic(sym, mat, Side::Lower).map_err(|_| singular())?;
-    Ok(Factorised { llt })
+    let mut lift = vec![0.0; a.n];
+    a.m.mul_add(c_m, &sp.imposed, &mut lift);
+    a.k.mul_add(c_k, &sp.imposed, &mut lift);
+    Ok(Factorised { c_m, llt, lift })
 }
 
 impl Factorised {
@@ -374,37 +372,18 @@ impl Factorised {
     }
 }
 
-/// y += c·A x over the full unknowns (A symmetric, full pattern).
-fn mul_add(a: &linalg::Csc, c: f64, x: &[f64], y: &mut [f64]) {
-    for j in 0..a.n {
-        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
-            y[a.row_idx[p]] += c * a.values[p] * x[j];
-        }
-    }
-}
-
-/// Solves (c_m M + c_k K) T = rhs for the free unknowns, the imposed ones
-/// at their value; `rhs` over all unknowns, `t` receives the full vector.
+/// Solves (c_m M + c_k K) T = rhs for the free unknowns (the factor's
+/// c_m, c_k), the imposed ones at their value; `rhs` and the result over
+/// all unknowns.
 fn solve_step(
     a: &Assembled,
     sp: &Split,
     factor: &Factorised,
-    c_m: f64,
-    c_k: f64,
     rhs: &[f64],
 ) -> Result<Vec<f64>, FemError> {
-    // Move the imposed values to the right-hand side.
-    let imposed: Vec<f64> = sp
-        .value
-        .iter()
-        .map(|v| if v.is_nan() { 0.0 } else { *v })
-        .collect();
-    let mut lifted = rhs.to_vec();
-    mul_add(&a.m, -c_m, &imposed, &mut lifted);
-    mul_add(&a.k, -c_k, &imposed, &mut lifted);
     let b: Vec<f64> = (0..a.n)
         .filter(|&u| sp.free_of[u] != usize::MAX)
-        .map(|u| lifted[u])
+        .map(|u| rhs[u] - factor.lift[u])
         .collect();
     let x = factor.solve(&b);
     if x.iter().any(|v| !v.is_finite()) {
@@ -412,7 +391,7 @@ fn solve_step(
     }
     Ok((0..a.n)
         .map(|u| match sp.free_of[u] {
-            usize::MAX => sp.value[u],
+            usize::MAX => sp.imposed[u],
             f => x[f],
         })
         .collect())
@@ -426,24 +405,12 @@ fn to_nodes(a: &Assembled, t: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-fn node_namer<'a>(p: &'a ThermalProblem, a: &'a Assembled) -> impl Fn(usize) -> String + 'a {
-    move |u| {
-        a.unknown_of
-            .iter()
-            .position(|&v| v == u)
-            .map(|n| format!("{} TEMP", p.mesh.node_name(NodeId(n as u32))))
-            .unwrap_or_default()
-    }
-}
-
 /// The stationary temperature: (K + H) T = F.
 pub fn stationary(p: &ThermalProblem) -> Result<Vec<f64>, FemError> {
     let a = assemble(p)?;
     let sp = split(&a, p)?;
-    let names = node_namer(p, &a);
-    let mut symbolic = None;
-    let factor = factorise(&a, &sp, 0.0, 1.0, &names, &mut symbolic)?;
-    let t = solve_step(&a, &sp, &factor, 0.0, 1.0, &a.f)?;
+    let factor = factorise(&a, &sp, 0.0, 1.0, &mut None)?;
+    let t = solve_step(&a, &sp, &factor, &a.f)?;
     Ok(to_nodes(&a, &t))
 }
 
@@ -452,13 +419,12 @@ pub fn stationary(p: &ThermalProblem) -> Result<Vec<f64>, FemError> {
 pub fn transient(p: &ThermalProblem, tr: &Transient) -> Result<Vec<Vec<f64>>, FemError> {
     if !(0.0..=1.0).contains(&tr.theta) || tr.theta == 0.0 {
         return Err(FemError::Model(format!(
-            "PARM_THETA = {} must be in (0, 1]",
+            "THETA = {} must be in (0, 1]",
             tr.theta
         )));
     }
     let a = assemble(p)?;
     let sp = split(&a, p)?;
-    let names = node_namer(p, &a);
     let mut symbolic = None;
     let mut t = match &tr.initial {
         Some(t0) => {
@@ -478,8 +444,8 @@ pub fn transient(p: &ThermalProblem, tr: &Transient) -> Result<Vec<Vec<f64>>, Fe
             t
         }
         None => {
-            let factor = factorise(&a, &sp, 0.0, 1.0, &names, &mut symbolic)?;
-            solve_step(&a, &sp, &factor, 0.0, 1.0, &a.f)?
+            let factor = factorise(&a, &sp, 0.0, 1.0, &mut symbolic)?;
+            solve_step(&a, &sp, &factor, &a.f)?
         }
     };
     let mut out = vec![to_nodes(&a, &t)];
@@ -499,16 +465,12 @@ pub fn transient(p: &ThermalProblem, tr: &Transient) -> Result<Vec<Vec<f64>>, Fe
         // by that Δt, a change of 1e-12 relative in the capacity term).
         let (dt, factor) = match kept.take() {
             Some((d, f)) if (d - dt).abs() <= 1e-12 * dt => (d, f),
-            _ => (
-                dt,
-                factorise(&a, &sp, 1.0 / dt, tr.theta, &names, &mut symbolic)?,
-            ),
+            _ => (dt, factorise(&a, &sp, 1.0 / dt, tr.theta, &mut symbolic)?),
         };
-        let c_m = 1.0 / dt;
         let mut rhs = a.f.clone();
-        mul_add(&a.m, c_m, &t, &mut rhs);
-        mul_add(&a.k, -(1.0 - tr.theta), &t, &mut rhs);
-        t = solve_step(&a, &sp, &factor, c_m, tr.theta, &rhs)?;
+        a.m.mul_add(factor.c_m, &t, &mut rhs);
+        a.k.mul_add(-(1.0 - tr.theta), &t, &mut rhs);
+        t = solve_step(&a, &sp, &factor, &rhs)?;
         out.push(to_nodes(&a, &t));
         kept = Some((dt, factor));
     }

@@ -30,6 +30,14 @@ impl NodalField {
         self.values.get(&node)?.get(c).copied().flatten()
     }
 
+    /// One component at every node of a mesh of `node_count` nodes (NaN
+    /// where the field lacks it).
+    pub fn per_node(&self, comp: &str, node_count: usize) -> Vec<f64> {
+        (0..node_count)
+            .map(|i| self.get(NodeId(i as u32), comp).unwrap_or(f64::NAN))
+            .collect()
+    }
+
     pub fn set(&mut self, node: NodeId, comp: &str, value: f64) {
         let c = match self.component_index(comp) {
             Some(c) => c,

@@ -372,14 +372,7 @@ fn affe_varc(
                 "the temperature is a nodal field (NOEU_TEMP_R)",
             ));
         };
-        Ok(Rc::new(
-            (0..mesh.node_count())
-                .map(|i| {
-                    f.get(aster_mesh::NodeId(i as u32), "TEMP")
-                        .unwrap_or(f64::NAN)
-                })
-                .collect(),
-        ))
+        Ok(Rc::new(f.per_node("TEMP", mesh.node_count())))
     };
     let mut fields = Vec::new();
     if let Some(r) = occ.concept("EVOL") {

@@ -293,11 +293,7 @@ pub(crate) fn ther_lineaire(
                     "the initial temperature is a nodal field (NOEU_TEMP_R)",
                 ));
             };
-            Some(
-                (0..mesh.node_count())
-                    .map(|i| f.get(NodeId(i as u32), "TEMP").unwrap_or(f64::NAN))
-                    .collect(),
-            )
+            Some(f.per_node("TEMP", mesh.node_count()))
         }
         Some(occ) if occ.contains("VALE") => {
             let v = occ.f64("VALE").unwrap_or(0.0);
