@@ -1109,10 +1109,7 @@ pub(crate) fn tied_verification_zones(
                         .collect();
                     let a = nodes.iter().find(|n| master.contains(n))?;
                     let b = nodes.iter().find(|n| *n != a && slave.contains(n))?;
-                    Some((
-                        crate::select::node_name(mesh, *a),
-                        crate::select::node_name(mesh, *b),
-                    ))
+                    Some((mesh.node_name(*a), mesh.node_name(*b)))
                 })
             });
             if let Some((a, b)) = found {

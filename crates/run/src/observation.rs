@@ -207,7 +207,7 @@ impl Observation {
                 };
                 nodes
                     .iter()
-                    .filter_map(|&n| Some((select::node_name(mesh, n), None, f.get(n, comp)?)))
+                    .filter_map(|&n| Some((mesh.node_name(n), None, f.get(n, comp)?)))
                     .collect()
             }
             Field::Elem(f) => {

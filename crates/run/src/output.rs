@@ -427,7 +427,7 @@ fn listing(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
             if nodes.as_ref().is_some_and(|s| !s.contains(node)) {
                 continue;
             }
-            *out += &format!("{:<9}", crate::select::node_name(mesh, *node));
+            *out += &format!("{:<9}", mesh.node_name(*node));
             for &c in &cols {
                 match vals.get(c).copied().flatten() {
                     Some(v) => *out += &format!(" {}", c_exp(v, w, p)),

@@ -164,10 +164,6 @@ pub fn first_node(kw: &Keywords, mesh: &Mesh) -> Result<NodeId, String> {
     single_node(kw, mesh).map(|(n, _)| n)
 }
 
-pub fn node_name(mesh: &Mesh, n: NodeId) -> String {
-    mesh.node_name(n)
-}
-
 /// The first of `cells` that `fits` rejects, said as `cell M12 is a QUAD4`
 /// (for messages "… applies to SEG2 cells, but cell M12 is a QUAD4").
 pub fn misfit(mesh: &Mesh, cells: &[CellId], fits: impl Fn(&Cell) -> bool) -> Option<String> {

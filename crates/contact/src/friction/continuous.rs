@@ -227,11 +227,11 @@ pub(super) fn tangents(dim: usize, n: [f64; 3]) -> [[f64; 3]; 2] {
     [t1, scale(t2, 1.0 / l2)]
 }
 
-fn node_name(mesh: &Mesh, n: NodeId) -> String {
-    mesh.node_names
-        .get(n.0 as usize)
-        .cloned()
-        .unwrap_or_else(|| format!("#{}", n.0 + 1))
+/// x − (x·n) n: the part of x in the tangent plane of the unit normal n
+/// (code_aster's projector `mmmtpe`/`pmat`).
+fn tangential_part(x: [f64; 3], n: [f64; 3]) -> [f64; 3] {
+    let s = dot(x, n);
+    [x[0] - s * n[0], x[1] - s * n[1], x[2] - s * n[2]]
 }
 
 fn comp_of(d: usize) -> Comp {
@@ -398,7 +398,7 @@ impl ContinuousFriction {
                             return Err(ContactError::Unsupported {
                                 feature: format!(
                                     "a slave node in a frictional and a frictionless zone (node {})",
-                                    node_name(mesh, *n)
+                                    mesh.node_name(*n)
                                 ),
                                 hint: "give both zones the same COULOMB".into(),
                             });
@@ -743,7 +743,7 @@ impl ContinuousFriction {
                 .ok_or_else(|| {
                     FemError::Model(format!(
                         "contact: node {} has no {} in the model",
-                        node_name(state.mesh, n),
+                        state.mesh.node_name(n),
                         comp_of(d).name()
                     ))
                 })
@@ -844,10 +844,7 @@ impl ContinuousFriction {
         // friction penalisation).
         let mut keep_dfe_lam = true;
         let keep_dgf_lam = false;
-        let pmat = |x: [f64; 3]| -> [f64; 3] {
-            let s = dot(x, n);
-            [x[0] - s * n[0], x[1] - s * n[1], x[2] - s * n[2]]
-        };
+        let pmat = |x: [f64; 3]| tangential_part(x, n);
         if contact {
             if pena_cont {
                 for c in 0..3 {
@@ -1114,12 +1111,7 @@ impl ContinuousFriction {
             // `mm_cycl_trait`), on the evaluated statuses.
             if let (true, true, Some(pp)) = (self.adapt_coef, self.zones[p.zone].frictional, &pair)
             {
-                let s = dot(vals.v, pp.n);
-                let slip = [
-                    vals.v[0] - s * pp.n[0],
-                    vals.v[1] - s * pp.n[1],
-                    vals.v[2] - s * pp.n[2],
-                ];
+                let slip = tangential_part(vals.v, pp.n);
                 let before = p.fric.coef;
                 let zone = p.zone;
                 let coef = adaptation::update(&mut self.points[i].fric, now, vals.lam_f, slip)
@@ -1244,7 +1236,7 @@ impl ContinuousFriction {
         for l in &self.lagr {
             if k >= l.first && k < l.first + l.comps {
                 let c = ["LAGS_C", "LAGS_F1", "LAGS_F2"][k - l.first];
-                return format!("{c} of node {}", node_name(mesh, l.node));
+                return format!("{c} of node {}", mesh.node_name(l.node));
             }
         }
         format!("unknown #{k}")

@@ -152,7 +152,7 @@ pub fn defi_fond_fiss(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             "GROUP_MA",
             format!(
                 "no segment of the upper lip ends at the crack tip `{}`: aster takes the crack direction from it",
-                node_name(&mesh, node)
+                mesh.node_name(node)
             ),
         ));
     };
@@ -160,7 +160,7 @@ pub fn defi_fond_fiss(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let front = CrackFront {
         mesh: mesh_id,
         node,
-        node_name: node_name(&mesh, node),
+        node_name: mesh.node_name(node),
         tip: CrackTip { tip, dir },
         symmetric: kw.str("SYME") == Some("OUI"),
         size,
@@ -272,7 +272,7 @@ fn defi_fond_fiss_3d(
     let crack = CrackFront {
         mesh: mesh_id,
         node: first,
-        node_name: node_name(mesh, first),
+        node_name: mesh.node_name(first),
         tip: CrackTip {
             tip: [p[0], p[1]],
             dir: [line.dir[0][0], line.dir[0][1]],
@@ -282,13 +282,6 @@ fn defi_fond_fiss_3d(
         line: Some(Rc::new(line)),
     };
     store_result(ex, call, Concept::CrackFront(Rc::new(crack)))
-}
-
-pub(crate) fn node_name(mesh: &Mesh, n: NodeId) -> String {
-    mesh.node_names
-        .get(n.0 as usize)
-        .cloned()
-        .unwrap_or_else(|| format!("N{}", n.0 + 1))
 }
 
 /// `fonno7`: the vectors from the tip along the corner edges of the 2D
@@ -505,7 +498,7 @@ fn check_loads(
             | Load::PressureAt { cell, .. }
             | Load::VolumeForceAt { cell, .. } => on_cell(*cell).then(|| mesh.cell_name(*cell)),
             Load::NodalForce { dof, .. } => nonzero(theta[dof.node.0 as usize])
-                .then(|| format!("node {}", node_name(mesh, dof.node))),
+                .then(|| format!("node {}", mesh.node_name(dof.node))),
             _ => None,
         };
         if let Some(place) = hit {
@@ -797,13 +790,13 @@ pub fn post_k1_k2_k3(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 line.dir[*i],
                 material,
             )
-            .map_err(|e| ExecError::new(format!("{cmd}: node {}: {e}", node_name(mesh, node))))?;
+            .map_err(|e| ExecError::new(format!("{cmd}: node {}: {e}", mesh.node_name(node))))?;
             rows.push(vec![
                 ("FOND_FISS", Value::Text(front_ref.name.clone())),
                 ("NUME_FOND", Value::Int(1)),
                 ("INST", Value::Real(step.inst)),
                 ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
-                ("NOEUD", Value::Text(node_name(mesh, node))),
+                ("NOEUD", Value::Text(mesh.node_name(node))),
                 ("NUM_PT", Value::Int(num as i64 + 1)),
                 ("ABSC_CURV", Value::Real(absc[*i])),
                 ("K1", Value::Real(k.k1)),

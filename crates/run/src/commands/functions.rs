@@ -220,7 +220,7 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         let v = f.get(node, cmp).ok_or_else(|| {
             ExecError::new(format!(
                 "{cmd}: {cham} has no component {cmp} at node {} (components: {})",
-                select::node_name(&mesh, node),
+                mesh.node_name(node),
                 f.components.join(", ")
             ))
         })?;

@@ -82,10 +82,10 @@ fn field_value(
             let (node, group) = select::single_node(occ, mesh)?;
             match group {
                 Some(g) => header.push(("GROUP_NO", g)),
-                None => header.push(("NOEUD", select::node_name(mesh, node))),
+                None => header.push(("NOEUD", mesh.node_name(node))),
             }
             f.get(node, cmp)
-                .ok_or_else(|| missing(format!("at node {}", select::node_name(mesh, node))))
+                .ok_or_else(|| missing(format!("at node {}", mesh.node_name(node))))
         }
         Field::Elem(f) => {
             let cell = if let Some(m) = occ.str("MAILLE") {
@@ -112,7 +112,7 @@ fn field_value(
                 let (node, group) = select::single_node(occ, mesh)?;
                 match group {
                     Some(g) => header.push(("GROUP_NO", g)),
-                    None => header.push(("NOEUD", select::node_name(mesh, node))),
+                    None => header.push(("NOEUD", mesh.node_name(node))),
                 }
                 1 + mesh
                     .cell(cell)
@@ -120,10 +120,7 @@ fn field_value(
                     .iter()
                     .position(|&n| n == node)
                     .ok_or_else(|| {
-                        format!(
-                            "node {} is not a node of the cell",
-                            select::node_name(mesh, node)
-                        )
+                        format!("node {} is not a node of the cell", mesh.node_name(node))
                     })?
             } else {
                 1

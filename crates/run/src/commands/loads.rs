@@ -28,7 +28,7 @@ pub(super) fn check_dof(
     if !carried.get(node.0 as usize).copied().unwrap_or(false) {
         return Err(ExecError::new(format!(
             "{what}: node {} is not carried by any element of the model, so it has no {comp}",
-            select::node_name(mesh, node)
+            mesh.node_name(node)
         )));
     }
     let dim = model.dim();
@@ -46,7 +46,7 @@ pub(super) fn check_dof(
     if !ok && model.has_rotations() {
         return Err(ExecError::new(format!(
             "{what}: node {} has no component {comp} (only the nodes of shell, beam and DIS_TR cells carry DRX, DRY, DRZ)",
-            select::node_name(mesh, node)
+            mesh.node_name(node)
         )));
     }
     if !ok {
@@ -713,7 +713,7 @@ fn face_dnor(
                 return Err(ExecError::new(format!(
                     "{what}: cell {} is degenerate at node {} (no normal)",
                     select::cell_name(mesh, c),
-                    select::node_name(mesh, node)
+                    mesh.node_name(node)
                 )));
             }
             let e = sum.entry(node).or_insert(([0.0; 3], 0));
@@ -730,7 +730,7 @@ fn face_dnor(
         if l < 1e-2 {
             return Err(ExecError::new(format!(
                 "{what}: the normals of the cells meeting at node {} cancel out (code_aster CHARGES2_30)",
-                select::node_name(mesh, n)
+                mesh.node_name(n)
             )));
         }
         let mut terms = Vec::new();
@@ -835,9 +835,9 @@ pub(super) fn liaison_group(
         if let Some(prev) = used.insert(n2, n1) {
             return Err(err(format!(
                 "nodes {} and {} are both paired with node {} (the pairing must be one to one)",
-                select::node_name(mesh, prev),
-                select::node_name(mesh, n1),
-                select::node_name(mesh, n2)
+                mesh.node_name(prev),
+                mesh.node_name(n1),
+                mesh.node_name(n2)
             )));
         }
         if n1 == n2 {

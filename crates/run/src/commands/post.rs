@@ -1121,7 +1121,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     row.push(("NUME_ORDRE", Value::Int(no as i64)));
                     row.push(("INST", Value::Real(t)));
                 }
-                row.push(("NOEUD", Value::Text(select::node_name(&mesh, n))));
+                row.push(("NOEUD", Value::Text(mesh.node_name(n))));
                 row.push(("ABSC_CURV", Value::Real(abscissa)));
                 row.push(("COOR_X", Value::Real(x[0])));
                 row.push(("COOR_Y", Value::Real(x[1])));

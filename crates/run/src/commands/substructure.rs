@@ -216,14 +216,7 @@ pub fn defi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .macro_elem
             .exterior
             .iter()
-            .map(|&n| {
-                indexed_name(
-                    prefix,
-                    &cell.name,
-                    &crate::select::node_name(&mesh, n),
-                    [*a, *b, *c, *d],
-                )
-            })
+            .map(|&n| indexed_name(prefix, &cell.name, &mesh.node_name(n), [*a, *b, *c, *d]))
             .collect();
     }
     store_result(ex, call, Concept::SuperMesh(Rc::new(SuperMesh { cells })))
