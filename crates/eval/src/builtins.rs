@@ -272,6 +272,13 @@ pub fn call(me: &mut Interp, name: &str, args: Vec<CallArg>, span: Span) -> R<Va
         }
         return math_call(m, &v, span);
     }
+    if name.starts_with("os.") {
+        let v = positional(&args, name, span)?;
+        if v.iter().any(|x| matches!(x, Value::Unknown)) {
+            return Ok(Value::Unknown);
+        }
+        return crate::os_module::call(name, &v, span);
+    }
     let v = positional(&args, name, span)?;
     if v.iter().any(|x| matches!(x, Value::Unknown))
         && !matches!(

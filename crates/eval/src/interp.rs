@@ -115,6 +115,8 @@ pub(crate) struct Interp<'a> {
     pub(crate) recovery: crate::recover::Recovery,
     /// Validations shared between the two passes of `aster run` (`memo`).
     pub(crate) memo: Option<&'a mut crate::memo::ValidationMemo>,
+    /// `os.environ` once read (`os_module`): assignments stay in it.
+    pub(crate) environ: Option<Value>,
 }
 
 impl<'a> Interp<'a> {
@@ -138,6 +140,7 @@ impl<'a> Interp<'a> {
             loops: Vec::new(),
             recovery: Default::default(),
             memo: None,
+            environ: None,
         }
     }
 
@@ -610,6 +613,23 @@ impl<'a> Interp<'a> {
                 match module_kind(&m) {
                     None => {
                         return Err(self.missing_module(s.span, format!("import from module `{m}`")))
+                    }
+                    Some(ModuleKind::Os) => {
+                        if *star {
+                            return unsupported(s.span, format!("`from {m} import *`"));
+                        }
+                        for a in names {
+                            let v = match crate::os_module::attr(&m, &a.name, &mut self.environ) {
+                                Some(v) => v,
+                                None => return crate::os_module::refuse(&m, &a.name, a.span),
+                            };
+                            let bind = a
+                                .asname
+                                .as_ref()
+                                .map(|i| i.name.to_string())
+                                .unwrap_or(a.name.clone());
+                            self.set_var(&bind, v);
+                        }
                     }
                     Some(ModuleKind::Re) => {
                         if *star || !names.is_empty() {
@@ -1414,6 +1434,12 @@ impl<'a> Interp<'a> {
                 }
             }
             Value::Module(m) if self.study.is_loaded(m) => self.module_attr(m, name, span),
+            Value::Module(m) if crate::os_module::is_os(m) => {
+                match crate::os_module::attr(m, name, &mut self.environ) {
+                    Some(v) => Ok(v),
+                    None => crate::os_module::refuse(m, name, span),
+                }
+            }
             Value::Module(m) => unsupported(span, format!("`{m}.{name}`")),
             Value::Complex(a, b) => match name {
                 "real" => Ok(Value::Float(*a)),
@@ -1792,6 +1818,8 @@ enum ModuleKind {
     /// `re`, `numpy`: the import is accepted; their functions are refused
     /// where used (a study that imports numpy without using it runs).
     Re,
+    /// `os`, `os.path`: environment and path arithmetic (`os_module`).
+    Os,
 }
 
 fn module_kind(m: &str) -> Option<ModuleKind> {
@@ -1800,6 +1828,9 @@ fn module_kind(m: &str) -> Option<ModuleKind> {
     }
     if m == "re" || m == "numpy" {
         return Some(ModuleKind::Re);
+    }
+    if crate::os_module::is_os(m) {
+        return Some(ModuleKind::Os);
     }
     let top = m.split('.').next().unwrap_or(m);
     match top {

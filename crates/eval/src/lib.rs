@@ -20,6 +20,7 @@ pub mod legacy_commands;
 pub mod limits;
 mod memo;
 pub mod migrate;
+mod os_module;
 mod recover;
 mod study;
 mod table;

@@ -198,3 +198,31 @@ if v > 1.0:
     assert_eq!(map.location(errs[0].span), "r.comm:5:4");
     assert_eq!(report.calls.len(), 2);
 }
+
+#[test]
+fn os_environment_and_path_arithmetic() {
+    let rec = run(r#"
+import os
+import os.path as osp
+from os.path import join as pj
+name = osp.join("dir", "sub/", "case.json")
+root = pj("rel", "/abs", "x.med")
+stem, ext = osp.splitext(osp.basename("/a/b/mesh.tar.gz"))
+os.environ["ASTER_TEST_FC"] = "gfortran"
+seen = "ASTER_TEST_FC" in os.environ
+print(name, root, stem, ext, os.environ["ASTER_TEST_FC"], seen, os.getenv("ASTER_SURELY_UNSET_ZZ", "dflt"))
+"#)
+    .unwrap();
+    assert_eq!(
+        rec.printed,
+        vec!["dir/sub/case.json /abs/x.med mesh.tar .gz gfortran True dflt"]
+    );
+    let err = match run("import os\nos.system('rm -rf /')\n") {
+        Ok(_) => panic!("os.system ran"),
+        Err(e) => e,
+    };
+    assert!(
+        err.contains("2:4") && err.contains("not supported: `os.system`"),
+        "{err}"
+    );
+}
