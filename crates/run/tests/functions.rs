@@ -6,6 +6,20 @@
 
 use std::path::PathBuf;
 
+/// The run's report, kept to be read after the run.
+#[derive(Clone, Default)]
+struct Report(std::rc::Rc<std::cell::RefCell<Vec<u8>>>);
+
+impl std::io::Write for Report {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.borrow_mut().extend_from_slice(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
@@ -19,9 +33,24 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
         &out,
     )
     .unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let report = Report::default();
+    let outcome = aster_run::program::run(&case, Box::new(report.clone()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (16, 0));
+    let report = String::from_utf8(report.0.borrow().clone()).unwrap();
+    // PILOTE: no image drawn, the text format written and said so; an
+    // interactive display writes nothing.
+    assert!(
+        report.contains("IMPR_TABLE: alarm: PILOTE='PNG': the image is not drawn"),
+        "{report}"
+    );
+    assert!(
+        report.contains("IMPR_FONCTION: alarm: PILOTE='INTERACTIF': the graph is not shown"),
+        "{report}"
+    );
+    let png = std::fs::read_to_string(out.join("table.png")).unwrap();
+    assert!(png.contains("@s0 legend \"YY\""), "{png}");
+    assert!(!out.join("shown.agr").exists());
     let agr = std::fs::read_to_string(out.join("curves.agr")).unwrap();
     assert!(agr.contains("@title \"strip\""), "{agr}");
     assert!(

@@ -724,10 +724,7 @@ GRAPHIQUE:
 
 /// What IMPR_FONCTION reads (`crate::support`).
 pub(crate) const IMPR_FONCTION: Support = Support {
-    values: &[
-        Values::new("FORMAT", &["TABLEAU", "XMGRACE", "AGRAF"]),
-        Values::new("PILOTE", &[""]).why("(images are not drawn; the .agr data file is)"),
-    ],
+    values: &[Values::new("FORMAT", &["TABLEAU", "XMGRACE", "AGRAF"])],
     ..Support::keywords(&[
         "FORMAT",
         "UNITE",
@@ -775,21 +772,55 @@ pub fn impr_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         return Ok(CommandOutput::Nothing);
     }
-    let (text, default_unit) = if format == "XMGRACE" {
-        (xmgrace(kw, &curves), 29)
-    } else {
-        (tableau(kw.str("TITRE"), &curves), 8)
-    };
-    let unit = kw
-        .first("UNITE")
-        .and_then(|s| s.as_i64())
-        .unwrap_or(default_unit);
+    if format == "XMGRACE" {
+        write_xmgrace(ex, kw, "IMPR_FONCTION", &xmgrace(kw, &curves))?;
+        return Ok(CommandOutput::Nothing);
+    }
+    let text = tableau(kw.str("TITRE"), &curves);
+    let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(8);
     if unit == 8 || unit == 6 {
         ex.write_report(&text)?;
     } else {
         ex.append_unit(unit, &text)?;
     }
     Ok(CommandOutput::Nothing)
+}
+
+/// Writes an xmgrace graph (IMPR_FONCTION, IMPR_TABLE with
+/// `FORMAT='XMGRACE'`) to `UNITE` (29 by default) as code_aster's
+/// `TraceXmgrace` does, for each `PILOTE`:
+/// - `''`: xmgrace's text format (`.agr`);
+/// - an image driver (`PNG`, `POSTSCRIPT`, `EPS`, `SVG`…): code_aster runs
+///   xmgrace's `gracebat` to draw it; aster draws no images and does what
+///   code_aster does when that filter fails (alarm `GRAPH0_9`): the unit
+///   holds the text format, and the report says so;
+/// - `INTERACTIF`/`INTERACTIF_BG`: code_aster opens xmgrace on a display
+///   and deletes the file afterwards: nothing is written, the report says
+///   the graph was not shown.
+pub(crate) fn write_xmgrace(
+    ex: &mut Executor,
+    kw: &Keywords,
+    command: &str,
+    text: &str,
+) -> Result<(), ExecError> {
+    let pilote = kw.str("PILOTE").unwrap_or("");
+    let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(29);
+    if pilote.starts_with("INTERACTIF") {
+        return ex.write_report(&format!(
+            "{command}: alarm: PILOTE='{pilote}': the graph is not shown (aster opens no display); unit {unit} is not written\n"
+        ));
+    }
+    if unit == 8 || unit == 6 {
+        ex.write_report(text)?;
+    } else {
+        ex.append_unit(unit, text)?;
+    }
+    if !pilote.is_empty() {
+        ex.write_report(&format!(
+            "{command}: alarm: PILOTE='{pilote}': the image is not drawn (aster does not run xmgrace); unit {unit} holds xmgrace's text format, as code_aster writes it when its filter fails (GRAPH0_9)\n"
+        ))?;
+    }
+    Ok(())
 }
 
 /// What DEFI_LIST_ENTI reads (`crate::support`).

@@ -1334,7 +1334,6 @@ fn drop_empty_columns(t: &mut Table) {
 pub(crate) const IMPR_TABLE: Support = Support {
     values: &[
         Values::new("FORMAT", &["TABLEAU", "AGRAF", "XMGRACE"]),
-        Values::new("PILOTE", &[""]).why("(images are not drawn; the .agr data file is)"),
         Values::new("IMPR_FONCTION", &["NON"])
             .why("(the functions named in a FONCTION column are not printed)"),
     ],
@@ -1473,12 +1472,7 @@ pub fn impr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     }
     if kw.str("FORMAT") == Some("XMGRACE") {
         let text = super::functions::xmgrace(kw, &table_curves(kw, &table)?);
-        let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(29);
-        if unit == 8 || unit == 6 {
-            ex.write_report(&text)?;
-        } else {
-            ex.append_unit(unit, &text)?;
-        }
+        super::functions::write_xmgrace(ex, kw, "IMPR_TABLE", &text)?;
         return Ok(CommandOutput::Nothing);
     }
     if let Some(title) = kw.str("TITRE") {
