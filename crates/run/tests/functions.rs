@@ -41,11 +41,11 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
     // PILOTE: no image drawn, the text format written and said so; an
     // interactive display writes nothing.
     assert!(
-        report.contains("IMPR_TABLE: alarm: PILOTE='PNG': the image is not drawn"),
+        report.contains("<A> IMPR_TABLE: PILOTE='PNG': the image is not drawn"),
         "{report}"
     );
     assert!(
-        report.contains("IMPR_FONCTION: alarm: PILOTE='INTERACTIF': the graph is not shown"),
+        report.contains("<A> IMPR_FONCTION: PILOTE='INTERACTIF': the graph is not shown"),
         "{report}"
     );
     let png = std::fs::read_to_string(out.join("table.png")).unwrap();

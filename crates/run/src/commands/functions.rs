@@ -807,7 +807,7 @@ pub(crate) fn write_xmgrace(
     let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(29);
     if pilote.starts_with("INTERACTIF") {
         return ex.write_report(&format!(
-            "{command}: alarm: PILOTE='{pilote}': the graph is not shown (aster opens no display); unit {unit} is not written\n"
+            "<A> {command}: PILOTE='{pilote}': the graph is not shown (aster opens no display); unit {unit} is not written\n"
         ));
     }
     if unit == 8 || unit == 6 {
@@ -817,7 +817,7 @@ pub(crate) fn write_xmgrace(
     }
     if !pilote.is_empty() {
         ex.write_report(&format!(
-            "{command}: alarm: PILOTE='{pilote}': the image is not drawn (aster does not run xmgrace); unit {unit} holds xmgrace's text format, as code_aster writes it when its filter fails (GRAPH0_9)\n"
+            "<A> {command}: PILOTE='{pilote}': the image is not drawn (aster does not run xmgrace); unit {unit} holds xmgrace's text format, as code_aster writes it when its filter fails (GRAPH0_9)\n"
         ))?;
     }
     Ok(())

@@ -27,6 +27,7 @@ pub(crate) const LIRE_MAILLAGE: Support = Support {
         "INFO_MED",
         "VERI_MAIL",
         "VERI_MAIL/*",
+        "PARTITIONNEUR",
     ])
 };
 
@@ -68,6 +69,14 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     };
     for w in &warnings {
         ex.write_report(&format!("<A> LIRE_MAILLAGE: {}: {w}\n", path.display()))?;
+    }
+    // code_aster 17 partitions the mesh over the MPI processes (a
+    // ParallelMesh); on one process it reads the whole mesh, with an
+    // alarm (MED_18): aster runs as that one process.
+    if let Some(p) = kw.str("PARTITIONNEUR") {
+        ex.write_report(&format!(
+            "<A> LIRE_MAILLAGE: PARTITIONNEUR='{p}': one process, the mesh is read whole (code_aster's MED_18)\n"
+        ))?;
     }
     store_result(ex, call, Concept::Mesh(mesh))
 }
