@@ -73,7 +73,8 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     // code_aster 17 partitions the mesh over the MPI processes (a
     // ParallelMesh); on one process it reads the whole mesh, with an
     // alarm (MED_18): aster runs as that one process.
-    if let Some(p) = kw.str("PARTITIONNEUR") {
+    // The catalog's default, 'SANS', reads a plain mesh everywhere.
+    if let Some(p) = kw.str("PARTITIONNEUR").filter(|p| *p != "SANS") {
         ex.write_report(&format!(
             "<A> LIRE_MAILLAGE: PARTITIONNEUR='{p}': one process, the mesh is read whole (code_aster's MED_18)\n"
         ))?;
