@@ -96,6 +96,15 @@ pub fn pair_point(
         xs = [xs[0] + w * p[0], xs[1] + w * p[1], xs[2] + w * p[2]];
     }
 
+    if xs.iter().any(|c| !c.is_finite()) {
+        return Err(ContactError::Invalid {
+            keyword: "GROUP_MA_ESCL",
+            message: format!(
+                "a slave point of group '{}' has no finite position: the previous solve diverged",
+                g.slave_group
+            ),
+        });
+    }
     // Nearest master node: DIST_APPA is measured to it, NODAL pairs on it.
     let mut nearest = None;
     let mut best = f64::INFINITY;
