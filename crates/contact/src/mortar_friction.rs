@@ -449,7 +449,8 @@ impl ForceSource for MortarFriction {
             for &k in &lk {
                 paired[k] = true;
             }
-            let lam_nodes: Vec<[f64; 2]> = lk.iter().map(|&k| [own[2 * k], own[2 * k + 1]]).collect();
+            let lam_nodes: Vec<[f64; 2]> =
+                lk.iter().map(|&k| [own[2 * k], own[2 * k + 1]]).collect();
             // Global unknowns of the local ones.
             let mut map: Vec<Option<Unknown>> = Vec::new();
             for node in &s.nodes {
@@ -567,7 +568,11 @@ impl ForceSource for MortarFriction {
         match self.base.lagr.get(k / 2) {
             Some(n) => format!(
                 "{} of node {}",
-                if k % 2 == 0 { "LAGS_C" } else { "LAGS_F1" },
+                if k.is_multiple_of(2) {
+                    "LAGS_C"
+                } else {
+                    "LAGS_F1"
+                },
                 mesh.node_name(*n)
             ),
             None => format!("unknown #{}", k + 1),

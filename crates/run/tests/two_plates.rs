@@ -159,6 +159,20 @@ fn mortar_contact_passes_the_patch_test_on_non_matching_meshes() {
     );
 }
 
+/// comm/two_plates_defi_cont_friction.comm: code_aster 17's mortar contact
+/// with friction (DEFI_CONT(FROTTEMENT='OUI'), aster_contact::
+/// mortar_friction), its multipliers the global components of the contact
+/// force (LAGS_C along X, LAGS_F1 along Y): a plate sticking under a
+/// uniform shear carries exactly the uniform state's traction (1e-6,
+/// measured ≤ 3e-14 relative, slave DX = 0 to 1e-10); dragged far, every
+/// slave node slides on Coulomb's cone (LAGS_C / LAGS_F1 = -μ, and the
+/// reactions' DX / DY = -μ, to 1e-8, measured ≤ 6e-15); TYPE_FROT='SANS'
+/// and AXIS (pressed: LAGS_C = 0, LAGS_F1 = E·0.1).
+#[test]
+fn mortar_friction_sticks_and_slides_as_coulomb_says() {
+    assert_eq!(run_scene("two_plates_defi_cont_friction.comm"), (39, 0));
+}
+
 /// comm/post_erreur.comm: POST_ERREUR(OPTION='LAGR_RELA') on the mortar
 /// patch test (LAGS_C = -1e5 on AB, length 2): against the exact pressure
 /// the REFERENCE norm is 1e5 sqrt(2) and the error 0; against -1e5 (1 + X)
