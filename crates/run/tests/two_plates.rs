@@ -215,3 +215,39 @@ fn the_mesh_file_is_the_generated_scene() {
         );
     }
 }
+
+/// DEFI_CONT zones with and without friction together (code_aster builds
+/// one FrictionNew for them, whose frictionless zones are not reproduced)
+/// are refused before solving, at the frictionless zone's FROTTEMENT.
+#[test]
+fn defi_cont_zones_with_and_without_friction_are_refused_at_frottement() {
+    let dir = std::env::temp_dir().join(format!("aster-dcfric-mixed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("mixed.comm");
+    std::fs::write(
+        &comm,
+        r#"from code_aster.MacroCommands.defi_cont import DEFI_CONT
+DEBUT(CODE="OUI")
+mesh = LIRE_MAILLAGE(FORMAT="ASTER", UNITE=20)
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
+c = DEFI_CONT(MODELE=model, ZONE=(_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", FROTTEMENT="OUI"),
+                                  _F(GROUP_MA_ESCL="CD", GROUP_MA_MAIT="GH")))
+FIN()
+"#,
+    )
+    .unwrap();
+    let case = aster_run::program::prepare(
+        &comm,
+        Some(&root().join("comm/two_plates.mail")),
+        &dir.join("out"),
+    )
+    .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let message = outcome.error.expect("refused").message;
+    assert!(message.contains("mixed.comm:6:"), "{message}");
+    assert!(
+        message.contains("zones with and without friction in one DEFI_CONT"),
+        "{message}"
+    );
+}
