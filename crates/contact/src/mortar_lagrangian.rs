@@ -82,6 +82,9 @@ pub struct MortarZoneDef {
     pub contact_init: InitialState,
     /// `COEF_MULT_APPA` when positive.
     pub dist_ratio: Option<f64>,
+    /// `FROTTEMENT='OUI'`: the zone's `TYPE_FROT` (module
+    /// [`crate::mortar_friction`]); `None`: frictionless.
+    pub friction: Option<crate::mortar_friction::FrictionLaw>,
 }
 
 impl MortarZoneDef {
@@ -94,26 +97,27 @@ impl MortarZoneDef {
             coef_cont: 100.0,
             contact_init: InitialState::Interpenetrated,
             dist_ratio: None,
+            friction: None,
         }
     }
 }
 
 #[derive(Clone, Debug)]
-struct Seg {
-    kind: SurfaceKind,
+pub(crate) struct Seg {
+    pub(crate) kind: SurfaceKind,
     /// SEG2: its two nodes; SEG3: its ends, then its middle node.
-    nodes: Vec<NodeId>,
-    sign: f64,
+    pub(crate) nodes: Vec<NodeId>,
+    pub(crate) sign: f64,
 }
 
 impl Seg {
-    fn positions(&self, x: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    pub(crate) fn positions(&self, x: &[[f64; 3]]) -> Vec<[f64; 3]> {
         self.nodes.iter().map(|n| x[n.0 as usize]).collect()
     }
 }
 
 /// Outward unit normal of a (possibly curved) segment at ξ (`apnorm`).
-fn normal_at(kind: SurfaceKind, x: &[[f64; 3]], xi: f64, sign: f64) -> Option<[f64; 3]> {
+pub(crate) fn normal_at(kind: SurfaceKind, x: &[[f64; 3]], xi: f64, sign: f64) -> Option<[f64; 3]> {
     let t = interpolate(kind, x, [xi, 0.0]).tangents[0];
     let raw = [t[1], -t[0], 0.0];
     let l = norm(raw);
@@ -121,32 +125,32 @@ fn normal_at(kind: SurfaceKind, x: &[[f64; 3]], xi: f64, sign: f64) -> Option<[f
 }
 
 #[derive(Clone, Debug)]
-struct MZone {
-    slave: Vec<Seg>,
-    master: Vec<Seg>,
-    coef: f64,
-    init: InitialState,
+pub(crate) struct MZone {
+    pub(crate) slave: Vec<Seg>,
+    pub(crate) master: Vec<Seg>,
+    pub(crate) coef: f64,
+    pub(crate) init: InitialState,
     dist_ratio: Option<f64>,
     /// Initial diameter and the FPG weights' Jacobian data of each slave cell.
-    h: Vec<f64>,
+    pub(crate) h: Vec<f64>,
 }
 
 /// A pair: slave cell, master cell, intersection in slave parametric space.
 #[derive(Clone, Copy, Debug)]
-struct Pair {
-    zone: usize,
-    slave: usize,
-    master: usize,
-    xi: [f64; 2],
+pub(crate) struct Pair {
+    pub(crate) zone: usize,
+    pub(crate) slave: usize,
+    pub(crate) master: usize,
+    pub(crate) xi: [f64; 2],
 }
 
 /// The mortar contact of a DEFI_CONT, as a fem force source.
 #[derive(Clone, Debug)]
 pub struct MortarLagrangian {
-    zones: Vec<MZone>,
-    lagr: Vec<NodeId>,
-    lagr_of: HashMap<NodeId, usize>,
-    axis: bool,
+    pub(crate) zones: Vec<MZone>,
+    pub(crate) lagr: Vec<NodeId>,
+    pub(crate) lagr_of: HashMap<NodeId, usize>,
+    pub(crate) axis: bool,
     /// No pairing has been made yet (CONTACT_INIT applies).
     first_pairing: bool,
     /// Whether the first pairing has been consumed by a Newton iteration.
@@ -159,14 +163,14 @@ pub struct MortarLagrangian {
     own_ok: bool,
     /// Length scale of the model (diagonal of the slave and master nodes'
     /// bounding box), for the gap tolerance.
-    scale: f64,
+    pub(crate) scale: f64,
 }
 
 /// The gap equations are held when their residual, per node, is below
 /// this fraction of the node's weight times the model's size.
-const GAP_TOLE: f64 = 1e-10;
+pub(crate) const GAP_TOLE: f64 = 1e-10;
 
-fn err(e: ContactError) -> FemError {
+pub(crate) fn err(e: ContactError) -> FemError {
     FemError::Source(format!("DEFI_CONT: {e}"))
 }
 
@@ -191,7 +195,7 @@ fn lerp(a: [f64; 3], b: [f64; 3], xi: f64) -> [f64; 3] {
 
 /// The parameter ξ ∈ ℝ of the point of line a–b hit by the ray p + t·v
 /// (`poinProjByVect` on a SEG2: exact in one Newton step).
-fn ray_hit(p: [f64; 3], v: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Option<f64> {
+pub(crate) fn ray_hit(p: [f64; 3], v: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Option<f64> {
     // a + s(b − a) = p + t v, s = (1 + ξ)/2.
     let e = sub(b, a);
     let det = e[0] * (-v[1]) - e[1] * (-v[0]);
@@ -347,7 +351,7 @@ impl MortarLagrangian {
     /// The pairs on positions `x` (`fastPair` + `cellInteProj`, 2D): on
     /// the cells linearised on their ends, the slave ends cast along the
     /// full slave cell's normal there.
-    fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
+    pub(crate) fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
         let mut out = Vec::new();
         for (zi, z) in self.zones.iter().enumerate() {
             for (si, s) in z.slave.iter().enumerate() {
@@ -450,7 +454,7 @@ impl MortarLagrangian {
         out
     }
 
-    fn dof(state: &State, n: NodeId, c: usize) -> Option<usize> {
+    pub(crate) fn dof(state: &State, n: NodeId, c: usize) -> Option<usize> {
         let comp = if c == 0 { Comp::DX } else { Comp::DY };
         state.dofs.index(Dof::new(n, comp))
     }

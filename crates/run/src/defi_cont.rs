@@ -4,14 +4,18 @@
 //! from them at the solve.
 //!
 //! Reproduced: `ALGO_CONT='LAGRANGIEN'` with `VARIANTE='ROBUSTE'` (the
-//! defaults), frictionless, unilateral, on 2D models (D_PLAN, C_PLAN,
-//! AXIS) whose contact cells are SEG2 or SEG3; `COEF_CONT`, `CONTACT_INIT`,
-//! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`. Refused, located:
-//! NITSCHE, PENALISATION, CLASSIQUE, BILATERAL, LISSAGE, friction,
-//! DIST_SUPP/CARA_ELEM and 3D models (docs/contact.md, "DEFI_CONT").
+//! defaults), unilateral, on 2D models (D_PLAN, C_PLAN, AXIS) whose contact
+//! cells are SEG2 or SEG3; `COEF_CONT`, `CONTACT_INIT`, `SANS_GROUP_NO`,
+//! `SANS_GROUP_MA`, `COEF_MULT_APPA`; friction (`FROTTEMENT='OUI'`,
+//! `TYPE_FROT` `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`,
+//! `aster_contact::mortar_friction`) when every zone has it. Refused,
+//! located: NITSCHE, PENALISATION, CLASSIQUE, BILATERAL, LISSAGE, zones
+//! with and without friction in one definition, DIST_SUPP/CARA_ELEM and 3D
+//! models (docs/contact.md, "DEFI_CONT").
 
 use std::rc::Rc;
 
+use aster_contact::mortar_friction::{FrictionLaw, MortarFriction};
 use aster_contact::mortar_lagrangian::{InitialState, MortarLagrangian, MortarZoneDef};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_mesh::Mesh;
@@ -41,12 +45,13 @@ pub(crate) const DEFI_CONT: Support = Support {
         "ZONE/LISSAGE",
         "ZONE/VERI_NORM",
         "ZONE/FROTTEMENT",
-        // Only present with FROTTEMENT='OUI' or ALGO_CONT='NITSCHE', both
-        // refused by their values: one refusal, at the value.
+        // FROTTEMENT='OUI' (module aster_contact::mortar_friction).
         "ZONE/TYPE_FROT",
         "ZONE/COULOMB",
         "ZONE/TRESCA",
         "ZONE/ALGO_FROT",
+        // Only present with VARIANTE='CLASSIQUE' or ALGO_CONT='NITSCHE',
+        // both refused by their values: one refusal, at the value.
         "ZONE/COEF_FROT",
         "ZONE/SYME",
     ],
@@ -57,8 +62,8 @@ pub(crate) const DEFI_CONT: Support = Support {
             .why("(the CLASSIQUE variant of the Lagrangian mortar contact)"),
         Values::new("ZONE/TYPE_CONT", &["UNILATERAL"]).why("(bilateral mortar contact)"),
         Values::new("ZONE/LISSAGE", &["NON"]).why("(smoothed normals of the mortar contact)"),
-        Values::new("ZONE/FROTTEMENT", &["NON"])
-            .why("(friction of code_aster 17's mortar contact)"),
+        Values::new("ZONE/ALGO_FROT", &["LAGRANGIEN"])
+            .why("(friction of code_aster 17's Nitsche and penalised mortar contact)"),
     ],
     hints: &[
         (
@@ -98,9 +103,33 @@ fn zones(kw: &Keywords) -> Vec<MortarZoneDef> {
             z.dist_ratio = occ.f64("COEF_MULT_APPA").filter(|r| *r > 0.0);
             z.excluded_node_groups = strings(occ, "SANS_GROUP_NO");
             z.excluded_cell_groups = strings(occ, "SANS_GROUP_MA");
+            if occ.str("FROTTEMENT") == Some("OUI") {
+                z.friction = Some(match occ.str("TYPE_FROT").unwrap_or("SANS") {
+                    "COULOMB" => FrictionLaw::Coulomb(occ.f64("COULOMB").unwrap_or(0.0)),
+                    "TRESCA" => FrictionLaw::Tresca(occ.f64("TRESCA").unwrap_or(0.0)),
+                    "ADHERENT" => FrictionLaw::Stick,
+                    _ => FrictionLaw::Without,
+                });
+            }
             z
         })
         .collect()
+}
+
+/// Whether a definition has friction (its zones all have; a mixed one is
+/// refused by DEFI_CONT).
+pub(crate) fn has_friction(zones: &[MortarZoneDef]) -> bool {
+    zones.iter().any(|z| z.friction.is_some())
+}
+
+/// The frictional force source of a definition on the model's current
+/// mesh.
+pub(crate) fn friction_source(
+    zones: &[MortarZoneDef],
+    mesh: &Mesh,
+    axis: bool,
+) -> Result<MortarFriction, ExecError> {
+    MortarFriction::new(zones, mesh, axis).map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
 /// The force source of a definition on the model's current mesh.
@@ -130,6 +159,24 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         .any(|m| *m == Modelisation::Axisymmetric);
     let mesh = ex.mesh_by_id(model.mesh)?;
     let zones = zones(kw);
+    // code_aster builds one kind of definition (FrictionNew or ContactNew)
+    // for all its zones: zones with and without friction together are not
+    // reproduced.
+    if has_friction(&zones) {
+        if let Some((occ, _)) = kw
+            .factor("ZONE")
+            .iter()
+            .zip(&zones)
+            .find(|(_, z)| z.friction.is_none())
+        {
+            return Err(ex.kw_error(
+                "DEFI_CONT/ZONE",
+                occ,
+                "FROTTEMENT",
+                "not supported yet: zones with and without friction in one DEFI_CONT (code_aster 17's mortar friction is reproduced when every zone has FROTTEMENT='OUI'; TYPE_FROT='SANS' gives no friction force)",
+            ));
+        }
+    }
     // The groups and cell kinds are checked now, located at the zone.
     for (occ, z) in kw.factor("ZONE").iter().zip(&zones) {
         if let Err(e) = MortarLagrangian::new(std::slice::from_ref(z), &mesh, axis) {

@@ -888,6 +888,7 @@ pub fn solve(
     let mut post_friction: Option<aster_contact::friction::ContinuousFriction> = None;
     let mut post_discrete: Option<aster_contact::friction::DiscreteFriction> = None;
     let mut post_mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
+    let mut post_mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
@@ -897,6 +898,7 @@ pub fn solve(
         let mut friction: Option<aster_contact::friction::ContinuousFriction> = None;
         let mut discrete: Option<aster_contact::friction::DiscreteFriction> = None;
         let mut mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
+        let mut mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
         let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
@@ -906,7 +908,12 @@ pub fn solve(
                         .cells
                         .values()
                         .any(|m| *m == crate::concept::Modelisation::Axisymmetric);
-                    mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                    if crate::defi_cont::has_friction(zones) {
+                        mortar_friction =
+                            Some(crate::defi_cont::friction_source(zones, &mesh, axis)?);
+                    } else {
+                        mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                    }
                 }
                 ContactDef::Unilateral { zones, algo, .. } => {
                     unil = Some(LiaisonUnil {
@@ -949,6 +956,9 @@ pub fn solve(
             forces.push(Box::new(f));
         }
         if let Some(f) = mortar.as_mut() {
+            forces.push(Box::new(f));
+        }
+        if let Some(f) = mortar_friction.as_mut() {
             forces.push(Box::new(f));
         }
         let initial = match &setup.initial {
@@ -1048,6 +1058,7 @@ pub fn solve(
         post_friction = friction;
         post_discrete = discrete;
         post_mortar = mortar;
+        post_mortar_friction = mortar_friction;
         raw
     };
     let steps = raw
@@ -1122,6 +1133,18 @@ pub fn solve(
                     let own = s.own_unknowns.first().map(|v| v.as_slice()).unwrap_or(&[]);
                     for (n, p) in m.multipliers(own) {
                         depl.set(n, "LAGS_C", p);
+                    }
+                }
+            }
+            if let Some(m) = &post_mortar_friction {
+                // DEFI_CONT with friction: the multipliers are the global
+                // components of the contact force (LAGS_C along x, LAGS_F1
+                // along y), DOFs of DEPL on the slave nodes.
+                if let Some(Field::Nodal(depl)) = fields.get_mut("DEPL") {
+                    let own = s.own_unknowns.first().map(|v| v.as_slice()).unwrap_or(&[]);
+                    for (n, [lx, ly]) in m.multipliers(own) {
+                        depl.set(n, "LAGS_C", lx);
+                        depl.set(n, "LAGS_F1", ly);
                     }
                 }
             }

@@ -159,6 +159,21 @@ fn mortar_contact_passes_the_patch_test_on_non_matching_meshes() {
     );
 }
 
+/// comm/two_plates_defi_cont_friction.comm: code_aster 17's mortar contact
+/// with friction (DEFI_CONT(FROTTEMENT='OUI'), aster_contact::
+/// mortar_friction), its multipliers the global components of the contact
+/// force (LAGS_C along X, LAGS_F1 along Y): a plate sticking under a
+/// uniform shear carries exactly the uniform state's traction (1e-6,
+/// measured ≤ 3e-14 relative, slave DX = 0 to 1e-10); dragged far, every
+/// slave node slides on Coulomb's cone (LAGS_C / LAGS_F1 = -μ, and the
+/// reactions' DX / DY = -μ, to 1e-8, measured ≤ 6e-15; also on SEG3
+/// cells with P2 multipliers); TYPE_FROT='SANS'
+/// and AXIS (pressed: LAGS_C = 0, LAGS_F1 = E·0.1).
+#[test]
+fn mortar_friction_sticks_and_slides_as_coulomb_says() {
+    assert_eq!(run_scene("two_plates_defi_cont_friction.comm"), (43, 0));
+}
+
 /// comm/post_erreur.comm: POST_ERREUR(OPTION='LAGR_RELA') on the mortar
 /// patch test (LAGS_C = -1e5 on AB, length 2): against the exact pressure
 /// the REFERENCE norm is 1e5 sqrt(2) and the error 0; against -1e5 (1 + X)
@@ -200,4 +215,40 @@ fn the_mesh_file_is_the_generated_scene() {
             "{g}"
         );
     }
+}
+
+/// DEFI_CONT zones with and without friction together (code_aster builds
+/// one FrictionNew for them, whose frictionless zones are not reproduced)
+/// are refused before solving, at the frictionless zone's FROTTEMENT.
+#[test]
+fn defi_cont_zones_with_and_without_friction_are_refused_at_frottement() {
+    let dir = std::env::temp_dir().join(format!("aster-dcfric-mixed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("mixed.comm");
+    std::fs::write(
+        &comm,
+        r#"from code_aster.MacroCommands.defi_cont import DEFI_CONT
+DEBUT(CODE="OUI")
+mesh = LIRE_MAILLAGE(FORMAT="ASTER", UNITE=20)
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
+c = DEFI_CONT(MODELE=model, ZONE=(_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", FROTTEMENT="OUI"),
+                                  _F(GROUP_MA_ESCL="CD", GROUP_MA_MAIT="GH")))
+FIN()
+"#,
+    )
+    .unwrap();
+    let case = aster_run::program::prepare(
+        &comm,
+        Some(&root().join("comm/two_plates.mail")),
+        &dir.join("out"),
+    )
+    .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let message = outcome.error.expect("refused").message;
+    assert!(message.contains("mixed.comm:6:"), "{message}");
+    assert!(
+        message.contains("zones with and without friction in one DEFI_CONT"),
+        "{message}"
+    );
 }

@@ -1,0 +1,658 @@
+//! Friction of code_aster 17's mortar contact (`DEFI_CONT(ZONE=_F(…,
+//! FROTTEMENT='OUI'))` with `ALGO_CONT='LAGRANGIEN'`,
+//! `VARIANTE='ROBUSTE'`, `ALGO_FROT='LAGRANGIEN'`), in 2D on SEG2 and SEG3
+//! cells, as a fem force source whose unknowns are two multipliers per
+//! slave node.
+//!
+//! As code_aster's (2025 main: `laVect` → `laVect_cf_pr`, `laElemCont`,
+//! `contact_module` (`projQpSl2Ma`, `speedEval`, `thresEval`),
+//! `contact_algebra_module` (`projRm`, `projBs`, `dPi_du`, `dv_du`),
+//! `laQuantities`, `ContactComputation::contactData`):
+//!
+//! - **Multipliers in global coordinates** (Poulios & Renard): with
+//!   friction and the ROBUSTE variant (`glob_coor` in `laElemCont`) the
+//!   slave node's unknowns `LAGS_C`, `LAGS_F1` are the x and y components
+//!   of one contact force vector λ (per unit slave length), not a pressure
+//!   and a tangential component. λ is interpolated with the slave's
+//!   functions at each integration point.
+//! - **Status**: with n the outward slave normal and g the ray-traced gap
+//!   (pairing, points, weights and gap as [`crate::mortar_lagrangian`]),
+//!   λ·n + γg ≤ 0 is contact (`Heaviside`, `TOLE_BORNE` = 0;
+//!   `CONTACT_INIT` at the first pairing as there); γ = COEF_CONT / h_F is
+//!   also the friction coefficient (`gamma_f = gamma_c`: `COEF_FROT` only
+//!   exists in the CLASSIQUE variant).
+//! - **Threshold** (`thresEval`): `COULOMB`: s = −μ [λ·n + γg]₋ on contact
+//!   points, 0 elsewhere; `TRESCA`: s = the given value at every point
+//!   (in contact or not); `ADHERENT`: 1e301 on contact points (stick);
+//!   `SANS` (code_aster's default `TYPE_FROT`): no friction force.
+//! - **Slip** (`speedEval`): v = −(x_s⁻ − x_m⁻ + g n⁻), the slave point and
+//!   its current master point on the configuration at the start of the
+//!   step, n⁻ the slave normal there: the relative motion over the step.
+//! - **Projection** (`projBs`): of λ − γv onto the disc of radius s of the
+//!   tangent line: (I − n n)(λ − γv) when its length is at most s (stick),
+//!   else s times its direction (slip); nothing when |s| ≤ `r8prem`.
+//! - **Residual** (`laVect_cf_pr`): −w λ·(v_s − v_m) on the displacements
+//!   at contact points (the whole vector λ, normal and tangential); on
+//!   each multiplier component w ([λ·n + γg]₋ n − λ + P)/γ μ; slave nodes of
+//!   no paired cell: λ = 0 (code_aster's POI1 elements).
+//! - **Tangent**: the exact derivative of that residual for the pairing of
+//!   the iterate (the intersection segments and weights held), with the
+//!   master point's motion along the master cell and the slave normal's
+//!   rotation (`dPi_du`, `dNs_du`, `dv_du`). code_aster's own matrix
+//!   (`laMatr_cf_pr`) only changes Newton's path: the converged state is the
+//!   zero of the residual above.
+
+use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
+use aster_mesh::{Mesh, NodeId};
+
+use crate::error::ContactError;
+use crate::lac_mortar::{piece_points, Family};
+use crate::mortar_lagrangian::{
+    err, normal_at, ray_hit, InitialState, MortarLagrangian, MortarZoneDef, GAP_TOLE,
+};
+use crate::shape::{dot, interpolate, norm, project_along, sub, SurfaceKind};
+use crate::source::current_positions;
+
+/// `TYPE_FROT` of a DEFI_CONT zone with `FROTTEMENT='OUI'`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FrictionLaw {
+    /// `'SANS'` (the default): friction unknowns, no friction force.
+    Without,
+    /// `'TRESCA'`: a given threshold (a force per unit length).
+    Tresca(f64),
+    /// `'COULOMB'`: the coefficient μ.
+    Coulomb(f64),
+    /// `'ADHERENT'`: no slip at contact points.
+    Stick,
+}
+
+/// code_aster's `THRES_STICK` (`contact_module.h`).
+const THRES_STICK: f64 = 10e300;
+/// code_aster's `r8prem()` (`DBL_EPSILON`).
+const R8PREM: f64 = f64::EPSILON;
+
+/// The status of an integration point: contact, and for friction whether
+/// the projection slid (its tangential part reached the threshold).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct PointStatus {
+    contact: bool,
+    slip: bool,
+}
+
+/// Dense derivatives with respect to a point's local unknowns: slave
+/// displacements (2 per node), master displacements, slave multipliers
+/// (λx, λy per node).
+type Lin = Vec<f64>;
+
+fn lin(n: usize) -> Lin {
+    vec![0.0; n]
+}
+
+fn axpy(y: &mut Lin, a: f64, x: &Lin) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi += a * xi;
+    }
+}
+
+fn comb(a: f64, x: &Lin, b: f64, y: &Lin) -> Lin {
+    x.iter().zip(y).map(|(p, q)| a * p + b * q).collect()
+}
+
+/// What one integration point contributes, on its local unknowns.
+struct PointTerms {
+    status: PointStatus,
+    /// Forces on the displacements (slave then master, 2 per node) and
+    /// their derivatives.
+    forces: Vec<(f64, Lin)>,
+    /// Equations of the multipliers (2 per slave node) and derivatives.
+    own: Vec<(f64, Lin)>,
+}
+
+/// Geometry of a point: slave and master cells on the current and the
+/// start-of-step configurations.
+struct PointGeometry<'a> {
+    s_kind: SurfaceKind,
+    sign: f64,
+    sp: &'a [[f64; 3]],
+    sprev: &'a [[f64; 3]],
+    m_kind: SurfaceKind,
+    mp: &'a [[f64; 3]],
+    mprev: &'a [[f64; 3]],
+}
+
+/// The law's data at a point.
+struct PointLaw {
+    xi: f64,
+    w: f64,
+    gamma: f64,
+    law: FrictionLaw,
+    /// `CONTACT_INIT` forcing the status (first pairing only).
+    forced: Option<bool>,
+}
+
+/// One integration point (`laElemCont` + `laVect_cf_pr`), `None` when the
+/// ray from the slave point misses the master cell's line.
+fn point_terms(
+    g: &PointGeometry,
+    p: &PointLaw,
+    lam_nodes: &[[f64; 2]],
+) -> Result<Option<PointTerms>, FemError> {
+    let ns = g.sp.len();
+    let nm = g.mp.len();
+    let nloc = 4 * ns + 2 * nm;
+    let u_s = |a: usize, e: usize| 2 * a + e;
+    let u_m = |b: usize, e: usize| 2 * ns + 2 * b + e;
+    let l_s = |a: usize, e: usize| 2 * ns + 2 * nm + 2 * a + e;
+
+    let (shs, dshs) = g.s_kind.eval([p.xi, 0.0]);
+    // Slave tangent, normal and its derivative.
+    let mut t = [0.0; 2];
+    let mut xs = [0.0; 3];
+    for a in 0..ns {
+        for c in 0..2 {
+            t[c] += dshs[a][0] * g.sp[a][c];
+            xs[c] += shs[a] * g.sp[a][c];
+        }
+    }
+    let raw = [g.sign * t[1], -g.sign * t[0]];
+    let lt = (raw[0] * raw[0] + raw[1] * raw[1]).sqrt();
+    if !(lt > 0.0 && lt.is_finite()) {
+        return Err(err(ContactError::Invalid {
+            keyword: "GROUP_MA_ESCL",
+            message: "a slave cell is degenerate (zero length)".into(),
+        }));
+    }
+    let n = [raw[0] / lt, raw[1] / lt, 0.0];
+    let mut dn = [lin(nloc), lin(nloc)];
+    for a in 0..ns {
+        // d(raw) for δu_{a,x}: sign·(0, −N'); for δu_{a,y}: sign·(N', 0).
+        for (e, draw) in [
+            (0, [0.0, -g.sign * dshs[a][0]]),
+            (1, [g.sign * dshs[a][0], 0.0]),
+        ] {
+            let proj = n[0] * draw[0] + n[1] * draw[1];
+            for c in 0..2 {
+                dn[c][u_s(a, e)] = (draw[c] - proj * n[c]) / lt;
+            }
+        }
+    }
+    // The master point along the slave normal (projQpSl2Ma).
+    let hit = if g.m_kind == SurfaceKind::Seg2 {
+        ray_hit(xs, n, g.mp[0], g.mp[1]).map(|k| interpolate(g.m_kind, g.mp, [k, 0.0]))
+    } else {
+        project_along(g.m_kind, g.mp, xs, n)
+    };
+    let Some(hit) = hit else {
+        return Ok(None);
+    };
+    let xi_m = hit.xi[0];
+    let (shm, dshm) = g.m_kind.eval([xi_m, 0.0]);
+    let xm = hit.x;
+    let tm = hit.tangents[0];
+    let gap = -dot(sub(xs, xm), n);
+    // dPi_du: [τ_m, −n] (dξ_m, dg) = δx_s − δx_m + g dn.
+    let mut r = [lin(nloc), lin(nloc)];
+    for c in 0..2 {
+        for a in 0..ns {
+            r[c][u_s(a, c)] += shs[a];
+        }
+        for b in 0..nm {
+            r[c][u_m(b, c)] -= shm[b];
+        }
+        axpy(&mut r[c], gap, &dn[c]);
+    }
+    let det = -tm[0] * n[1] + n[0] * tm[1];
+    if det.abs() <= f64::EPSILON * norm(tm) {
+        return Ok(None);
+    }
+    let dxi = comb(-n[1] / det, &r[0], n[0] / det, &r[1]);
+    let dg = comb(-tm[1] / det, &r[0], tm[0] / det, &r[1]);
+    // λ at the point.
+    let mut lam = [0.0; 2];
+    let mut dlam = [lin(nloc), lin(nloc)];
+    for a in 0..ns {
+        for c in 0..2 {
+            lam[c] += shs[a] * lam_nodes[a][c];
+            dlam[c][l_s(a, c)] = shs[a];
+        }
+    }
+    // λ·n + γ g and its negative part (projRm).
+    let lg = lam[0] * n[0] + lam[1] * n[1] + p.gamma * gap;
+    let mut dlg = comb(n[0], &dlam[0], n[1], &dlam[1]);
+    axpy(&mut dlg, lam[0], &dn[0]);
+    axpy(&mut dlg, lam[1], &dn[1]);
+    axpy(&mut dlg, p.gamma, &dg);
+    let contact = p.forced.unwrap_or(lg <= 0.0);
+    let (proj_rm, dproj_rm) = if contact && (p.forced.is_some() || lg <= 0.0) {
+        (lg, dlg.clone())
+    } else {
+        (0.0, lin(nloc))
+    };
+    // thresEval.
+    let (s, ds) = match p.law {
+        FrictionLaw::Without => (0.0, lin(nloc)),
+        FrictionLaw::Tresca(v) => (v, lin(nloc)),
+        FrictionLaw::Coulomb(mu) if contact => {
+            (-mu * proj_rm, dproj_rm.iter().map(|d| -mu * d).collect())
+        }
+        FrictionLaw::Stick if contact => (THRES_STICK, lin(nloc)),
+        _ => (0.0, lin(nloc)),
+    };
+    // speedEval and dv_du, on the start-of-step configuration.
+    let mut xs_prev = [0.0; 3];
+    for a in 0..ns {
+        for c in 0..2 {
+            xs_prev[c] += shs[a] * g.sprev[a][c];
+        }
+    }
+    let mut xm_prev = [0.0; 3];
+    let mut tm_prev = [0.0; 2];
+    for b in 0..nm {
+        for c in 0..2 {
+            xm_prev[c] += shm[b] * g.mprev[b][c];
+            tm_prev[c] += dshm[b][0] * g.mprev[b][c];
+        }
+    }
+    let n_prev = normal_at(g.s_kind, g.sprev, p.xi, g.sign).ok_or_else(|| {
+        err(ContactError::Invalid {
+            keyword: "GROUP_MA_ESCL",
+            message: "a slave cell is degenerate (zero length) at the start of the step".into(),
+        })
+    })?;
+    let v = [
+        -(xs_prev[0] - xm_prev[0] + gap * n_prev[0]),
+        -(xs_prev[1] - xm_prev[1] + gap * n_prev[1]),
+    ];
+    let dv = [
+        comb(tm_prev[0], &dxi, -n_prev[0], &dg),
+        comb(tm_prev[1], &dxi, -n_prev[1], &dg),
+    ];
+    // projBs of x = λ − γ v.
+    let x = [lam[0] - p.gamma * v[0], lam[1] - p.gamma * v[1]];
+    let dx = [
+        comb(1.0, &dlam[0], -p.gamma, &dv[0]),
+        comb(1.0, &dlam[1], -p.gamma, &dv[1]),
+    ];
+    let mut pb = [0.0; 2];
+    let mut dpb = [lin(nloc), lin(nloc)];
+    let mut slip = false;
+    if p.law != FrictionLaw::Without && s.abs() > R8PREM {
+        let xn = x[0] * n[0] + x[1] * n[1];
+        let xt = [x[0] - xn * n[0], x[1] - xn * n[1]];
+        // d(Tx) = T dx + dT x, dT x = −dn (n·x) − n (dn·x).
+        let dxn = comb(n[0], &dx[0], n[1], &dx[1]);
+        let dnx = comb(x[0], &dn[0], x[1], &dn[1]);
+        let mut dxt = [dx[0].clone(), dx[1].clone()];
+        for c in 0..2 {
+            axpy(&mut dxt[c], -n[c], &dxn);
+            axpy(&mut dxt[c], -xn, &dn[c]);
+            axpy(&mut dxt[c], -n[c], &dnx);
+        }
+        let lxt = (xt[0] * xt[0] + xt[1] * xt[1]).sqrt();
+        if lxt <= s {
+            pb = xt;
+            dpb = dxt;
+        } else {
+            slip = true;
+            let u = [xt[0] / lxt, xt[1] / lxt];
+            let udx = comb(u[0], &dxt[0], u[1], &dxt[1]);
+            for c in 0..2 {
+                pb[c] = s * u[c];
+                let mut d = comb(u[c], &ds, s / lxt, &dxt[c]);
+                axpy(&mut d, -s / lxt * u[c], &udx);
+                dpb[c] = d;
+            }
+        }
+    }
+    // Equations of the multipliers: w ([λ·n + γg]₋ n − λ + P)/γ μ.
+    let f = p.w / p.gamma;
+    let mut own = Vec::with_capacity(2 * ns);
+    for a in 0..ns {
+        for c in 0..2 {
+            let value = f * shs[a] * (proj_rm * n[c] - lam[c] + pb[c]);
+            let mut d = comb(n[c], &dproj_rm, proj_rm, &dn[c]);
+            axpy(&mut d, -1.0, &dlam[c]);
+            axpy(&mut d, 1.0, &dpb[c]);
+            d.iter_mut().for_each(|v| *v *= f * shs[a]);
+            own.push((value, d));
+        }
+    }
+    // Forces at contact points: −w λ·(v_s − v_m).
+    let mut forces = Vec::with_capacity(2 * (ns + nm));
+    for a in 0..ns {
+        for c in 0..2 {
+            if contact {
+                let d = dlam[c].iter().map(|v| -p.w * shs[a] * v).collect();
+                forces.push((-p.w * shs[a] * lam[c], d));
+            } else {
+                forces.push((0.0, lin(nloc)));
+            }
+        }
+    }
+    for b in 0..nm {
+        for c in 0..2 {
+            if contact {
+                let d = comb(p.w * shm[b], &dlam[c], p.w * lam[c] * dshm[b][0], &dxi);
+                forces.push((p.w * shm[b] * lam[c], d));
+            } else {
+                forces.push((0.0, lin(nloc)));
+            }
+        }
+    }
+    Ok(Some(PointTerms {
+        status: PointStatus { contact, slip },
+        forces,
+        own,
+    }))
+}
+
+/// The frictional mortar contact of a DEFI_CONT, as a fem force source.
+#[derive(Clone, Debug)]
+pub struct MortarFriction {
+    /// The zones, their pairing and the slave nodes (shared with the
+    /// frictionless formulation).
+    base: MortarLagrangian,
+    laws: Vec<FrictionLaw>,
+    /// Positions at the start of the step (`coor_*_prev`).
+    x_prev: Vec<[f64; 3]>,
+    first_pairing: bool,
+    statuses: Vec<PointStatus>,
+    own_ok: bool,
+}
+
+impl MortarFriction {
+    /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights);
+    /// each zone's [`MortarZoneDef::friction`] is its law (`None`: the
+    /// zone is refused — code_aster's zones of one DEFI_CONT are all with
+    /// friction or all without).
+    pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
+        let laws = zones
+            .iter()
+            .map(|z| {
+                z.friction.ok_or_else(|| ContactError::Unsupported {
+                    feature: format!(
+                        "a zone without friction ({} on {}) beside zones with friction in one DEFI_CONT",
+                        z.slave_group, z.master_group
+                    ),
+                    hint: "give every zone FROTTEMENT='OUI' (TYPE_FROT='SANS' for no friction force)".into(),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let base = MortarLagrangian::new(zones, mesh, axis)?;
+        Ok(MortarFriction {
+            base,
+            laws,
+            x_prev: mesh.coords.clone(),
+            first_pairing: true,
+            statuses: Vec::new(),
+            own_ok: false,
+        })
+    }
+
+    /// The multipliers of each slave node: (`LAGS_C`, `LAGS_F1`), the x and
+    /// y components of the contact force per unit length.
+    pub fn multipliers<'a>(
+        &'a self,
+        own: &'a [f64],
+    ) -> impl Iterator<Item = (NodeId, [f64; 2])> + 'a {
+        self.base.lagr.iter().enumerate().map(move |(k, n)| {
+            (
+                *n,
+                [
+                    own.get(2 * k).copied().unwrap_or(0.0),
+                    own.get(2 * k + 1).copied().unwrap_or(0.0),
+                ],
+            )
+        })
+    }
+}
+
+impl ForceSource for MortarFriction {
+    fn name(&self) -> String {
+        "DEFI_CONT (mortar Lagrangian contact with friction)".into()
+    }
+
+    fn unknowns(&self) -> usize {
+        2 * self.base.lagr.len()
+    }
+
+    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        self.x_prev = current_positions(state);
+        Ok(())
+    }
+
+    fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
+        let x = current_positions(state);
+        let x0 = &state.mesh.coords;
+        let base = &self.base;
+        let pairs = base.pairs(&x);
+        let nl = base.lagr.len();
+        let mut c = Contribution {
+            forces: Vec::new(),
+            own_residual: vec![0.0; 2 * nl],
+            tangent: Vec::new(),
+        };
+        let mut paired = vec![false; nl];
+        let mut weight = vec![0.0; nl];
+        let mut statuses = Vec::new();
+        for p in &pairs {
+            let z = &base.zones[p.zone];
+            let s = &z.slave[p.slave];
+            let m = &z.master[p.master];
+            let sp = s.positions(&x);
+            let mp = m.positions(&x);
+            let s0 = s.positions(x0);
+            let sprev = s.positions(&self.x_prev);
+            let mprev = m.positions(&self.x_prev);
+            let gamma = z.coef / z.h[p.slave];
+            let lk: Vec<usize> = s.nodes.iter().map(|n| base.lagr_of[n]).collect();
+            for &k in &lk {
+                paired[k] = true;
+            }
+            let lam_nodes: Vec<[f64; 2]> =
+                lk.iter().map(|&k| [own[2 * k], own[2 * k + 1]]).collect();
+            // Global unknowns of the local ones.
+            let mut map: Vec<Option<Unknown>> = Vec::new();
+            for node in &s.nodes {
+                for d in 0..2 {
+                    map.push(MortarLagrangian::dof(state, *node, d).map(Unknown::Dof));
+                }
+            }
+            for node in &m.nodes {
+                for d in 0..2 {
+                    map.push(MortarLagrangian::dof(state, *node, d).map(Unknown::Dof));
+                }
+            }
+            for &k in &lk {
+                map.push(Some(Unknown::Own(2 * k)));
+                map.push(Some(Unknown::Own(2 * k + 1)));
+            }
+            let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
+                Family::Fpg3
+            } else {
+                Family::Fpg4
+            };
+            let geometry = PointGeometry {
+                s_kind: s.kind,
+                sign: s.sign,
+                sp: &sp,
+                sprev: &sprev,
+                m_kind: m.kind,
+                mp: &mp,
+                mprev: &mprev,
+            };
+            let forced = match (self.first_pairing, z.init) {
+                (true, InitialState::No) => Some(false),
+                (true, InitialState::Yes) => Some(true),
+                _ => None,
+            };
+            for (xi, w_ref) in piece_points(2, &[[p.xi[0], 0.0], [p.xi[1], 0.0]], family) {
+                let at0 = interpolate(s.kind, &s0, xi);
+                let mut w = w_ref * norm(at0.tangents[0]);
+                if base.axis {
+                    let r = at0.x[0];
+                    w *= if r == 0.0 { 1e-7 } else { r };
+                }
+                let law = PointLaw {
+                    xi: xi[0],
+                    w,
+                    gamma,
+                    law: self.laws[p.zone],
+                    forced,
+                };
+                let Some(terms) = point_terms(&geometry, &law, &lam_nodes)? else {
+                    continue;
+                };
+                statuses.push(terms.status);
+                for (a, &k) in lk.iter().enumerate() {
+                    weight[k] += w * at0.shape[a];
+                }
+                for (i, (value, d)) in terms.forces.iter().enumerate() {
+                    let Some(Unknown::Dof(row)) = map[i] else {
+                        continue;
+                    };
+                    if *value != 0.0 {
+                        c.forces.push((row, *value));
+                    }
+                    for (j, v) in d.iter().enumerate() {
+                        if let (Some(col), true) = (map[j], *v != 0.0) {
+                            c.tangent.push((Unknown::Dof(row), col, *v));
+                        }
+                    }
+                }
+                for (i, (value, d)) in terms.own.iter().enumerate() {
+                    let row = 2 * lk[i / 2] + i % 2;
+                    c.own_residual[row] += value;
+                    for (j, v) in d.iter().enumerate() {
+                        if let (Some(col), true) = (map[j], *v != 0.0) {
+                            c.tangent.push((Unknown::Own(row), col, *v));
+                        }
+                    }
+                }
+            }
+        }
+        // Slave nodes of no paired cell: λ = 0.
+        for (k, p) in paired.iter().enumerate() {
+            if !p {
+                for r in [2 * k, 2 * k + 1] {
+                    c.own_residual[r] += -own[r];
+                    c.tangent.push((Unknown::Own(r), Unknown::Own(r), -1.0));
+                }
+            }
+        }
+        for r in 0..2 * nl {
+            c.tangent.push((Unknown::Own(r), Unknown::Own(r), 0.0));
+        }
+        self.own_ok = c
+            .own_residual
+            .iter()
+            .enumerate()
+            .all(|(r, v)| v.abs() <= GAP_TOLE * weight[r / 2].abs() * base.scale);
+        self.statuses = statuses;
+        Ok(c)
+    }
+
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
+        self.first_pairing = false;
+        let before = std::mem::take(&mut self.statuses);
+        self.evaluate(state, own)?;
+        Ok(before == self.statuses && self.own_ok)
+    }
+
+    fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {
+        self.first_pairing = false;
+        Ok(())
+    }
+
+    fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
+        match self.base.lagr.get(k / 2) {
+            Some(n) => format!(
+                "{} of node {}",
+                if k.is_multiple_of(2) {
+                    "LAGS_C"
+                } else {
+                    "LAGS_F1"
+                },
+                mesh.node_name(*n)
+            ),
+            None => format!("unknown #{}", k + 1),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tangent of a point is the derivative of its residual (central
+    /// differences on every local unknown), in stick and in slip, on a
+    /// tilted slave SEG2 over a SEG3 master.
+    #[test]
+    fn point_tangent_is_the_derivative_of_the_residual() {
+        let sp0 = vec![[0.0, 0.01, 0.0], [1.0, 0.03, 0.0]];
+        let mp0 = vec![[1.2, -0.02, 0.0], [-0.1, 0.0, 0.0], [0.55, 0.01, 0.0]];
+        let sprev = vec![[0.01, 0.02, 0.0], [1.0, 0.04, 0.0]];
+        let mprev = vec![[1.2, -0.01, 0.0], [-0.1, 0.0, 0.0], [0.55, 0.0, 0.0]];
+        let lam0 = vec![[0.8, 2.0], [0.6, 1.5]];
+        for (law, sliding) in [
+            (FrictionLaw::Coulomb(0.3), true),
+            (FrictionLaw::Coulomb(50.0), false),
+            (FrictionLaw::Tresca(0.05), true),
+        ] {
+            let terms = |z: &[f64]| {
+                let mut sp = sp0.clone();
+                let mut mp = mp0.clone();
+                let mut lam = lam0.clone();
+                for a in 0..2 {
+                    for c in 0..2 {
+                        sp[a][c] += z[2 * a + c];
+                        lam[a][c] += z[10 + 2 * a + c];
+                    }
+                }
+                for b in 0..3 {
+                    for c in 0..2 {
+                        mp[b][c] += z[4 + 2 * b + c];
+                    }
+                }
+                let g = PointGeometry {
+                    s_kind: SurfaceKind::Seg2,
+                    sign: 1.0,
+                    sp: &sp,
+                    sprev: &sprev,
+                    m_kind: SurfaceKind::Seg3,
+                    mp: &mp,
+                    mprev: &mprev,
+                };
+                let p = PointLaw {
+                    xi: 0.3,
+                    w: 0.7,
+                    gamma: 3.0,
+                    law,
+                    forced: None,
+                };
+                point_terms(&g, &p, &lam).unwrap().unwrap()
+            };
+            let z0 = vec![0.0; 14];
+            let t0 = terms(&z0);
+            assert!(t0.status.contact);
+            assert_eq!(t0.status.slip, sliding, "{law:?}");
+            let h = 1e-7;
+            for j in 0..14 {
+                let (mut zp, mut zm) = (z0.clone(), z0.clone());
+                zp[j] += h;
+                zm[j] -= h;
+                let (tp, tm) = (terms(&zp), terms(&zm));
+                for (i, (row, d)) in t0.forces.iter().chain(&t0.own).enumerate() {
+                    let vp = tp.forces.iter().chain(&tp.own).nth(i).unwrap().0;
+                    let vm = tm.forces.iter().chain(&tm.own).nth(i).unwrap().0;
+                    let fd = (vp - vm) / (2.0 * h);
+                    assert!(
+                        (fd - d[j]).abs() <= 1e-5 * (1.0 + fd.abs()),
+                        "{law:?}: row {i} ({row}) column {j}: {} against {fd}",
+                        d[j]
+                    );
+                }
+            }
+        }
+    }
+}
