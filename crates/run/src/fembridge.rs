@@ -897,16 +897,27 @@ pub fn solve(
         let mut friction: Option<aster_contact::friction::ContinuousFriction> = None;
         let mut discrete: Option<aster_contact::friction::DiscreteFriction> = None;
         let mut mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
+        // DEFI_CONT's penalised and Nitsche methods: no unknowns, no fields.
+        let mut mortar_other: Option<Box<dyn aster_fem::ForceSource>> = None;
         let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
-                ContactDef::Mortar { zones, .. } => {
+                ContactDef::Mortar { zones, algo, .. } => {
                     let axis = setup
                         .model
                         .cells
                         .values()
                         .any(|m| *m == crate::concept::Modelisation::Axisymmetric);
-                    mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                    mortar_other = crate::defi_cont::other_source(
+                        *algo,
+                        zones,
+                        &mesh,
+                        axis,
+                        &setup.materials,
+                    )?;
+                    if mortar_other.is_none() {
+                        mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                    }
                 }
                 ContactDef::Unilateral { zones, algo, .. } => {
                     unil = Some(LiaisonUnil {
@@ -950,6 +961,9 @@ pub fn solve(
         }
         if let Some(f) = mortar.as_mut() {
             forces.push(Box::new(f));
+        }
+        if let Some(f) = mortar_other.as_mut() {
+            forces.push(Box::new(f.as_mut()));
         }
         let initial = match &setup.initial {
             Some((prev, t0)) => {
