@@ -110,9 +110,18 @@ fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         .first()
         .map(|z| MortarAlgo::of(z.str("ALGO_CONT")))
         .unwrap_or_default();
+    // While FROTTEMENT='OUI' is refused by its value for every method,
+    // one refusal there (this rule speaks once friction is accepted).
+    let friction_accepted = DEFI_CONT
+        .values
+        .iter()
+        .any(|v| v.path == "ZONE/FROTTEMENT" && v.allowed.contains(&"OUI"));
     for occ in zones {
         let algo = MortarAlgo::of(occ.str("ALGO_CONT"));
-        if algo != MortarAlgo::Lagrangian && occ.str("FROTTEMENT") == Some("OUI") {
+        if friction_accepted
+            && algo != MortarAlgo::Lagrangian
+            && occ.str("FROTTEMENT") == Some("OUI")
+        {
             out.push(Refusal::at(
                 "DEFI_CONT/ZONE/FROTTEMENT='OUI' with ALGO_CONT='PENALISATION' or 'NITSCHE' (friction of code_aster 17's penalised and Nitsche mortar contact)".into(),
                 occ,
