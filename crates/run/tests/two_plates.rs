@@ -271,3 +271,23 @@ FIN()
         "located at CHAM_MATER: {err}"
     );
 }
+
+/// comm/two_plates_axis.comm on comm/two_plates_axis.mail (the two-plate
+/// mesh moved to r ∈ [0, 2]): coaxial cylinders in AXIS with free sides,
+/// penalised (the analytic interpenetration) and Nitsche (code_aster's
+/// stress without the hoop strain leaves an open gap g = 0.00297 while in
+/// contact): 24 TEST_RESU at 1e-6.
+#[test]
+fn axisymmetric_penalised_and_nitsche_mortar_contact() {
+    let out = std::env::temp_dir().join(format!("aster-axis-{}", std::process::id()));
+    let case = aster_run::program::prepare(
+        &root().join("comm/two_plates_axis.comm"),
+        Some(&root().join("comm/two_plates_axis.mail")),
+        &out,
+    )
+    .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    let _ = std::fs::remove_dir_all(out);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (24, 0));
+}
