@@ -455,12 +455,12 @@ impl ForceSource for MortarFriction {
             let mut map: Vec<Option<Unknown>> = Vec::new();
             for node in &s.nodes {
                 for d in 0..2 {
-                    map.push(MortarLagrangian::dof(state, *node, d).map(Unknown::Dof));
+                    map.push(crate::mortar_point::dof(state, *node, d).map(Unknown::Dof));
                 }
             }
             for node in &m.nodes {
                 for d in 0..2 {
-                    map.push(MortarLagrangian::dof(state, *node, d).map(Unknown::Dof));
+                    map.push(crate::mortar_point::dof(state, *node, d).map(Unknown::Dof));
                 }
             }
             for &k in &lk {

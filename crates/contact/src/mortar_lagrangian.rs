@@ -45,12 +45,11 @@
 
 use std::collections::HashMap;
 
-use aster_fem::{Comp, Contribution, Dof, FemError, ForceSource, State, Unknown};
+use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
-use crate::lac_mortar::{piece_points, Family};
-use crate::shape::{dot, interpolate, norm, project_along, sub, SurfaceKind};
+use crate::shape::{dot, interpolate, norm, sub, SurfaceKind};
 use crate::source::current_positions;
 use crate::surface::{ResolvedZone, SurfaceCell};
 use crate::zone::ZoneGeometry;
@@ -352,112 +351,112 @@ impl MortarLagrangian {
     /// the cells linearised on their ends, the slave ends cast along the
     /// full slave cell's normal there.
     pub(crate) fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
-        let mut out = Vec::new();
-        for (zi, z) in self.zones.iter().enumerate() {
-            for (si, s) in z.slave.iter().enumerate() {
-                let sp = s.positions(x);
-                let (sa, sb) = (sp[0], sp[1]);
-                let (Some(ns), Some(na), Some(nb)) = (
-                    seg_normal(sa, sb, s.sign),
-                    normal_at(s.kind, &sp, -1.0, s.sign),
-                    normal_at(s.kind, &sp, 1.0, s.sign),
-                ) else {
+        pairs_of(&self.zones, x)
+    }
+}
+
+/// The pairs of `zones` on positions `x` (see [`MortarLagrangian::pairs`]).
+pub(crate) fn pairs_of(zones: &[MZone], x: &[[f64; 3]]) -> Vec<Pair> {
+    let mut out = Vec::new();
+    for (zi, z) in zones.iter().enumerate() {
+        for (si, s) in z.slave.iter().enumerate() {
+            let sp = s.positions(x);
+            let (sa, sb) = (sp[0], sp[1]);
+            let (Some(ns), Some(na), Some(nb)) = (
+                seg_normal(sa, sb, s.sign),
+                normal_at(s.kind, &sp, -1.0, s.sign),
+                normal_at(s.kind, &sp, 1.0, s.sign),
+            ) else {
+                continue;
+            };
+            let ds = s
+                .positions(x)
+                .iter()
+                .flat_map(|p| sp.iter().map(move |q| norm(sub(*p, *q))))
+                .fold(0.0f64, f64::max);
+            for (mi, m) in z.master.iter().enumerate() {
+                let mp = m.positions(x);
+                let (ma, mb) = (mp[0], mp[1]);
+                let Some(nm) = seg_normal(ma, mb, m.sign) else {
                     continue;
                 };
-                let ds = s
-                    .positions(x)
-                    .iter()
-                    .flat_map(|p| sp.iter().map(move |q| norm(sub(*p, *q))))
-                    .fold(0.0f64, f64::max);
-                for (mi, m) in z.master.iter().enumerate() {
-                    let mp = m.positions(x);
-                    let (ma, mb) = (mp[0], mp[1]);
-                    let Some(nm) = seg_normal(ma, mb, m.sign) else {
-                        continue;
-                    };
-                    if dot(ns, nm).abs() <= PAIR_TOLE {
+                if dot(ns, nm).abs() <= PAIR_TOLE {
+                    continue;
+                }
+                if let Some(r) = z.dist_ratio {
+                    let dm = norm(sub(mb, ma));
+                    let bs = lerp(sa, sb, 0.0);
+                    let bm = lerp(ma, mb, 0.0);
+                    if norm(sub(bm, bs)) >= 2.0 * r * dm.max(ds) {
                         continue;
                     }
-                    if let Some(r) = z.dist_ratio {
-                        let dm = norm(sub(mb, ma));
-                        let bs = lerp(sa, sb, 0.0);
-                        let bm = lerp(ma, mb, 0.0);
-                        if norm(sub(bm, bs)) >= 2.0 * r * dm.max(ds) {
-                            continue;
+                }
+                // Slave ends cast along the slave normal onto the master.
+                let (Some(k1), Some(k2)) = (ray_hit(sa, na, ma, mb), ray_hit(sb, nb, ma, mb))
+                else {
+                    continue;
+                };
+                let proj = [lerp(ma, mb, k1), lerp(ma, mb, k2)];
+                // inteCellChck
+                let orig = [sa, sb];
+                let mut empty = false;
+                for i in 0..2 {
+                    let j = 1 - i;
+                    let eo = sub(orig[j], orig[i]);
+                    let ep = sub(proj[j], proj[i]);
+                    let v = sub(proj[i], orig[i]);
+                    let sig = dot(ep, eo);
+                    let a = dot(ns, v);
+                    let b = dot(nm, v);
+                    if sig < -PAIR_TOLE
+                        || (a < -PAIR_TOLE && b < -PAIR_TOLE)
+                        || (a > PAIR_TOLE && b > PAIR_TOLE)
+                    {
+                        empty = true;
+                        break;
+                    }
+                }
+                if empty {
+                    continue;
+                }
+                // addPoinInte2D
+                let ksi = [k1, k2];
+                let para = [-1.0, 1.0];
+                let mut pts = Vec::new();
+                for i in 0..2 {
+                    if ksi[i] > -1.0 - PAIR_TOLE && ksi[i] < 1.0 + PAIR_TOLE {
+                        pts.push(para[i]);
+                    }
+                }
+                let (lo, hi) = (k1.min(k2), k1.max(k2));
+                for end in [-1.0, 1.0] {
+                    if lo - PAIR_TOLE <= end && end <= hi + PAIR_TOLE {
+                        if (end - k1).abs() < PAIR_TOLE {
+                            pts.push(-1.0);
+                        } else {
+                            let t = (end - k1) / (k2 - k1);
+                            pts.push(2.0 * t - 1.0);
                         }
                     }
-                    // Slave ends cast along the slave normal onto the master.
-                    let (Some(k1), Some(k2)) = (ray_hit(sa, na, ma, mb), ray_hit(sb, nb, ma, mb))
-                    else {
-                        continue;
-                    };
-                    let proj = [lerp(ma, mb, k1), lerp(ma, mb, k2)];
-                    // inteCellChck
-                    let orig = [sa, sb];
-                    let mut empty = false;
-                    for i in 0..2 {
-                        let j = 1 - i;
-                        let eo = sub(orig[j], orig[i]);
-                        let ep = sub(proj[j], proj[i]);
-                        let v = sub(proj[i], orig[i]);
-                        let sig = dot(ep, eo);
-                        let a = dot(ns, v);
-                        let b = dot(nm, v);
-                        if sig < -PAIR_TOLE
-                            || (a < -PAIR_TOLE && b < -PAIR_TOLE)
-                            || (a > PAIR_TOLE && b > PAIR_TOLE)
-                        {
-                            empty = true;
-                            break;
-                        }
-                    }
-                    if empty {
-                        continue;
-                    }
-                    // addPoinInte2D
-                    let ksi = [k1, k2];
-                    let para = [-1.0, 1.0];
-                    let mut pts = Vec::new();
-                    for i in 0..2 {
-                        if ksi[i] > -1.0 - PAIR_TOLE && ksi[i] < 1.0 + PAIR_TOLE {
-                            pts.push(para[i]);
-                        }
-                    }
-                    let (lo, hi) = (k1.min(k2), k1.max(k2));
-                    for end in [-1.0, 1.0] {
-                        if lo - PAIR_TOLE <= end && end <= hi + PAIR_TOLE {
-                            if (end - k1).abs() < PAIR_TOLE {
-                                pts.push(-1.0);
-                            } else {
-                                let t = (end - k1) / (k2 - k1);
-                                pts.push(2.0 * t - 1.0);
-                            }
-                        }
-                    }
-                    if pts.len() < 2 {
-                        continue;
-                    }
-                    // intePoinSort (2D): the extreme points.
-                    let a = pts.iter().copied().fold(f64::INFINITY, f64::min);
-                    let b = pts.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                    if (b - a) > PAIR_TOLE {
-                        out.push(Pair {
-                            zone: zi,
-                            slave: si,
-                            master: mi,
-                            xi: [a, b],
-                        });
-                    }
+                }
+                if pts.len() < 2 {
+                    continue;
+                }
+                // intePoinSort (2D): the extreme points.
+                let a = pts.iter().copied().fold(f64::INFINITY, f64::min);
+                let b = pts.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                if (b - a) > PAIR_TOLE {
+                    out.push(Pair {
+                        zone: zi,
+                        slave: si,
+                        master: mi,
+                        xi: [a, b],
+                    });
                 }
             }
         }
-        out
     }
-
-    pub(crate) fn dof(state: &State, n: NodeId, c: usize) -> Option<usize> {
-        let comp = if c == 0 { Comp::DX } else { Comp::DY };
-        state.dofs.index(Dof::new(n, comp))
-    }
+    out
 }
 
 impl ForceSource for MortarLagrangian {
@@ -503,38 +502,11 @@ impl ForceSource for MortarLagrangian {
             for &k in &lk {
                 paired[k] = true;
             }
-            // FPG3 when both cells are linear, FPG4 otherwise (getQuadCont).
-            let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
-                Family::Fpg3
-            } else {
-                Family::Fpg4
-            };
-            for (xi, w_ref) in piece_points(2, &[[p.xi[0], 0.0], [p.xi[1], 0.0]], family) {
-                let at0 = interpolate(s.kind, &s0, xi);
-                let nsl = at0.shape.clone();
-                let mut w = w_ref * norm(at0.tangents[0]);
-                if self.axis {
-                    let r = at0.x[0];
-                    w *= if r == 0.0 { 1e-7 } else { r };
-                }
-                let ns = normal_at(s.kind, &sp, xi[0], s.sign).ok_or_else(|| {
-                    err(ContactError::Invalid {
-                        keyword: "GROUP_MA_ESCL",
-                        message: "a slave cell is degenerate (zero length)".into(),
-                    })
-                })?;
-                let xs = interpolate(s.kind, &sp, xi).x;
-                let hit = if m.kind == SurfaceKind::Seg2 {
-                    ray_hit(xs, ns, mp[0], mp[1]).map(|k| interpolate(m.kind, &mp, [k, 0.0]))
-                } else {
-                    project_along(m.kind, &mp, xs, ns)
-                };
-                let Some(hit) = hit else {
-                    continue;
-                };
-                let nm = hit.shape.clone();
-                let xm = hit.x;
-                let gap = -dot(sub(xs, xm), ns);
+            for pt in crate::mortar_point::points(s, m, p.xi, &sp, &mp, &s0, self.axis)? {
+                let nsl = &pt.initial.shape;
+                let w = pt.w;
+                let ns = pt.ns;
+                let gap = pt.gap;
                 let lam: f64 = nsl.iter().zip(&lk).map(|(f, &k)| f * own[k]).sum();
                 let lg = lam + gamma * gap;
                 // CONTACT_INIT at the first pairing, then Heaviside(−(λ + γg)).
@@ -549,21 +521,7 @@ impl ForceSource for MortarLagrangian {
                     weight[k] += w * nsl[a];
                 }
                 // Displacement DOFs of the jump v_s − v_m with their factors.
-                let mut jump: Vec<(usize, f64)> = Vec::with_capacity(12);
-                for (a, node) in s.nodes.iter().enumerate() {
-                    for d in 0..2 {
-                        if let Some(i) = Self::dof(state, *node, d) {
-                            jump.push((i, nsl[a] * ns[d]));
-                        }
-                    }
-                }
-                for (b, node) in m.nodes.iter().enumerate() {
-                    for d in 0..2 {
-                        if let Some(i) = Self::dof(state, *node, d) {
-                            jump.push((i, -nm[b] * ns[d]));
-                        }
-                    }
-                }
+                let jump = crate::mortar_point::jump(state, s, m, nsl, &pt.master.shape, ns);
                 if h {
                     // −w λ n·(v_s − v_m)
                     for &(i, f) in &jump {

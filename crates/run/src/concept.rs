@@ -492,6 +492,8 @@ pub enum ContactDef {
     Mortar {
         model: u32,
         zones: Vec<aster_contact::mortar_lagrangian::MortarZoneDef>,
+        /// `ALGO_CONT` (one for every zone).
+        algo: crate::defi_cont::MortarAlgo,
     },
 }
 

@@ -4,25 +4,31 @@
 //! from them at the solve.
 //!
 //! Reproduced: `ALGO_CONT='LAGRANGIEN'` with `VARIANTE='ROBUSTE'` (the
-//! defaults), unilateral, on 2D models (D_PLAN, C_PLAN, AXIS) whose contact
-//! cells are SEG2 or SEG3; `COEF_CONT`, `CONTACT_INIT`, `SANS_GROUP_NO`,
-//! `SANS_GROUP_MA`, `COEF_MULT_APPA`; friction (`FROTTEMENT='OUI'`,
-//! `TYPE_FROT` `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`,
+//! defaults), `'PENALISATION'` (`aster_contact::mortar_penalty`) and
+//! `'NITSCHE'` (`aster_contact::mortar_nitsche`, any `SYME`/`VARIANTE`:
+//! code_aster's residual is the same for all), frictionless, unilateral,
+//! on 2D models (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or
+//! SEG3; `COEF_CONT`, `CONTACT_INIT`, `SANS_GROUP_NO`, `SANS_GROUP_MA`,
+//! `COEF_MULT_APPA`; with the Lagrangian method, friction
+//! (`FROTTEMENT='OUI'`, `TYPE_FROT` `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`,
 //! `aster_contact::mortar_friction`) when every zone has it. Refused,
-//! located: NITSCHE, PENALISATION, CLASSIQUE, BILATERAL, LISSAGE, zones
-//! with and without friction in one definition, DIST_SUPP/CARA_ELEM and 3D
-//! models (docs/contact.md, "DEFI_CONT").
+//! located: CLASSIQUE, BILATERAL, LISSAGE, friction with PENALISATION or
+//! NITSCHE, zones with and without friction or of different ALGO_CONT in
+//! one definition, DIST_SUPP/CARA_ELEM and 3D models (docs/contact.md, "DEFI_CONT").
 
 use std::rc::Rc;
 
 use aster_contact::mortar_friction::{FrictionLaw, MortarFriction};
 use aster_contact::mortar_lagrangian::{InitialState, MortarLagrangian, MortarZoneDef};
+use aster_contact::mortar_nitsche::{MortarNitsche, NitscheMaterial};
+use aster_contact::mortar_penalty::MortarPenalty;
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
+use aster_fem::ForceSource;
 use aster_mesh::Mesh;
 
-use crate::concept::{Concept, ContactDef, Modelisation};
+use crate::concept::{Concept, ContactDef, Material, MaterialField, Modelisation};
 use crate::executor::{store_result, Executor};
-use crate::support::{Support, Values};
+use crate::support::{Refusal, Support, Values};
 
 /// What DEFI_CONT reads (`crate::support`).
 pub(crate) const DEFI_CONT: Support = Support {
@@ -45,10 +51,14 @@ pub(crate) const DEFI_CONT: Support = Support {
         "ZONE/LISSAGE",
         "ZONE/VERI_NORM",
         "ZONE/FROTTEMENT",
-        // FROTTEMENT='OUI' (module aster_contact::mortar_friction).
+        // FROTTEMENT='OUI' (module aster_contact::mortar_friction) or
+        // ALGO_CONT='NITSCHE' (SYME: every value gives code_aster's same
+        // residual, see aster_contact::mortar_nitsche).
         "ZONE/TYPE_FROT",
         "ZONE/COULOMB",
         "ZONE/TRESCA",
+        // ALGO_FROT follows ALGO_CONT in the catalog: friction with
+        // PENALISATION or NITSCHE is refused at FROTTEMENT (`rules`).
         "ZONE/ALGO_FROT",
         // Only present with VARIANTE='CLASSIQUE' or ALGO_CONT='NITSCHE',
         // both refused by their values: one refusal, at the value.
@@ -56,14 +66,10 @@ pub(crate) const DEFI_CONT: Support = Support {
         "ZONE/SYME",
     ],
     values: &[
-        Values::new("ZONE/ALGO_CONT", &["LAGRANGIEN"])
-            .why("(code_aster 17's Nitsche and penalised mortar contact)"),
-        Values::new("ZONE/VARIANTE", &["ROBUSTE"])
+        Values::new("ZONE/VARIANTE", &["ROBUSTE", "RAPIDE"])
             .why("(the CLASSIQUE variant of the Lagrangian mortar contact)"),
         Values::new("ZONE/TYPE_CONT", &["UNILATERAL"]).why("(bilateral mortar contact)"),
         Values::new("ZONE/LISSAGE", &["NON"]).why("(smoothed normals of the mortar contact)"),
-        Values::new("ZONE/ALGO_FROT", &["LAGRANGIEN"])
-            .why("(friction of code_aster 17's Nitsche and penalised mortar contact)"),
     ],
     hints: &[
         (
@@ -76,8 +82,69 @@ pub(crate) const DEFI_CONT: Support = Support {
         ),
     ],
     reuse: false,
-    rules: None,
+    rules: Some(rules),
 };
+
+/// `ALGO_CONT` of a DEFI_CONT: one for the whole definition.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum MortarAlgo {
+    /// `'LAGRANGIEN'` (the default): `LAGS_C` unknowns.
+    #[default]
+    Lagrangian,
+    /// `'PENALISATION'`.
+    Penalised,
+    /// `'NITSCHE'`.
+    Nitsche,
+}
+
+impl MortarAlgo {
+    fn of(value: Option<&str>) -> MortarAlgo {
+        match value {
+            Some("PENALISATION") => MortarAlgo::Penalised,
+            Some("NITSCHE") => MortarAlgo::Nitsche,
+            _ => MortarAlgo::Lagrangian,
+        }
+    }
+}
+
+/// What the value lists cannot say: friction is built for the Lagrangian
+/// method only, and one definition has one ALGO_CONT (each method is its
+/// own force source here).
+fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    let zones = call.keywords.factor("ZONE");
+    let first = zones
+        .first()
+        .map(|z| MortarAlgo::of(z.str("ALGO_CONT")))
+        .unwrap_or_default();
+    for occ in zones {
+        let algo = MortarAlgo::of(occ.str("ALGO_CONT"));
+        if algo != MortarAlgo::Lagrangian && occ.str("FROTTEMENT") == Some("OUI") {
+            out.push(Refusal::at(
+                "DEFI_CONT/ZONE/FROTTEMENT='OUI' with ALGO_CONT='PENALISATION' or 'NITSCHE' (friction of code_aster 17's penalised and Nitsche mortar contact)".into(),
+                occ,
+                "FROTTEMENT",
+                call.span,
+            ));
+        }
+        if algo != first {
+            out.push(Refusal::at(
+                "DEFI_CONT/ZONE/ALGO_CONT: zones of different ALGO_CONT in one DEFI_CONT (each zone here takes the first zone's method)".into(),
+                occ,
+                "ALGO_CONT",
+                call.span,
+            ));
+        }
+    }
+}
+
+/// The method of a definition's zones (the first zone's; `rules` refuses
+/// mixed ones).
+fn algo(kw: &Keywords) -> MortarAlgo {
+    kw.factor("ZONE")
+        .first()
+        .map(|z| MortarAlgo::of(z.str("ALGO_CONT")))
+        .unwrap_or_default()
+}
 
 /// The zones of a DEFI_CONT call.
 fn zones(kw: &Keywords) -> Vec<MortarZoneDef> {
@@ -132,6 +199,54 @@ pub(crate) fn friction_source(
     MortarFriction::new(zones, mesh, axis).map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
+/// The material of a Nitsche contact: code_aster takes `ELAS` E and NU
+/// of the CHAM_MATER's one material (`ContactComputation::contactData`
+/// asserts there is one), whatever the behaviour.
+pub(crate) fn nitsche_material(materials: &MaterialField) -> Result<NitscheMaterial, String> {
+    let mut distinct: Vec<&Rc<Material>> = Vec::new();
+    for m in materials.cells.values() {
+        if !distinct.iter().any(|d| Rc::ptr_eq(d, m)) {
+            distinct.push(m);
+        }
+    }
+    match distinct.as_slice() {
+        [m] if m.elastic && m.young.is_finite() && m.poisson.is_finite() => Ok(NitscheMaterial {
+            young: m.young,
+            poisson: m.poisson,
+        }),
+        [_] => Err("the material of a Nitsche contact (DEFI_CONT, ALGO_CONT='NITSCHE') has no constant ELAS E and NU: code_aster's Nitsche stress reads them".into()),
+        _ => Err(format!(
+            "{} materials in the CHAM_MATER of a Nitsche contact (DEFI_CONT, ALGO_CONT='NITSCHE'): code_aster's Nitsche stress takes ELAS E and NU of a single material",
+            distinct.len()
+        )),
+    }
+}
+
+/// The force source of a penalised or Nitsche definition (`None` for the
+/// Lagrangian method, whose source is [`source`]).
+pub(crate) fn other_source(
+    algo: MortarAlgo,
+    zones: &[MortarZoneDef],
+    mesh: &Mesh,
+    axis: bool,
+    materials: &MaterialField,
+) -> Result<Option<Box<dyn ForceSource>>, ExecError> {
+    let fail = |e: aster_contact::ContactError| ExecError::new(format!("DEFI_CONT: {e}"));
+    Ok(match algo {
+        MortarAlgo::Lagrangian => None,
+        MortarAlgo::Penalised => Some(Box::new(
+            MortarPenalty::new(zones, mesh, axis).map_err(fail)?,
+        )),
+        MortarAlgo::Nitsche => {
+            let material = nitsche_material(materials)
+                .map_err(|m| ExecError::new(format!("not supported yet: {m}")))?;
+            Some(Box::new(
+                MortarNitsche::new(zones, mesh, axis, material).map_err(fail)?,
+            ))
+        }
+    })
+}
+
 /// The force source of a definition on the model's current mesh.
 pub(crate) fn source(
     zones: &[MortarZoneDef],
@@ -145,6 +260,16 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
+    let algo = algo(kw);
+    if model.dim() != 2 && algo != MortarAlgo::Lagrangian {
+        let occ = &kw.factor("ZONE")[0];
+        return Err(ex.kw_error(
+            "DEFI_CONT/ZONE",
+            occ,
+            "ALGO_CONT",
+            "not supported yet: code_aster 17's penalised and Nitsche mortar contact in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS)",
+        ));
+    }
     if model.dim() != 2 {
         return Err(ex.kw_error(
             "DEFI_CONT",
@@ -192,9 +317,22 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             return Err(ex.kw_error("DEFI_CONT/ZONE", occ, at, e.to_string()));
         }
     }
+    // Nitsche: the volume cell under every slave face.
+    if algo == MortarAlgo::Nitsche {
+        let any = NitscheMaterial {
+            young: 1.0,
+            poisson: 0.0,
+        };
+        for (occ, z) in kw.factor("ZONE").iter().zip(&zones) {
+            if let Err(e) = MortarNitsche::new(std::slice::from_ref(z), &mesh, axis, any) {
+                return Err(ex.kw_error("DEFI_CONT/ZONE", occ, "GROUP_MA_ESCL", e.to_string()));
+            }
+        }
+    }
     let def = ContactDef::Mortar {
         model: model_ref.id,
         zones,
+        algo,
     };
     store_result(ex, call, Concept::Contact(Rc::new(def)))
 }

@@ -899,20 +899,33 @@ pub fn solve(
         let mut discrete: Option<aster_contact::friction::DiscreteFriction> = None;
         let mut mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
         let mut mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
+        // DEFI_CONT's penalised and Nitsche methods: no unknowns, no fields.
+        let mut mortar_other: Option<Box<dyn aster_fem::ForceSource>> = None;
         let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
-                ContactDef::Mortar { zones, .. } => {
+                ContactDef::Mortar { zones, algo, .. } => {
                     let axis = setup
                         .model
                         .cells
                         .values()
                         .any(|m| *m == crate::concept::Modelisation::Axisymmetric);
-                    if crate::defi_cont::has_friction(zones) {
-                        mortar_friction =
-                            Some(crate::defi_cont::friction_source(zones, &mesh, axis)?);
-                    } else {
-                        mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                    mortar_other = crate::defi_cont::other_source(
+                        *algo,
+                        zones,
+                        &mesh,
+                        axis,
+                        &setup.materials,
+                    )?;
+                    // Penalised and Nitsche are frictionless (friction is
+                    // refused with them before the run).
+                    if mortar_other.is_none() {
+                        if crate::defi_cont::has_friction(zones) {
+                            mortar_friction =
+                                Some(crate::defi_cont::friction_source(zones, &mesh, axis)?);
+                        } else {
+                            mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                        }
                     }
                 }
                 ContactDef::Unilateral { zones, algo, .. } => {
@@ -960,6 +973,9 @@ pub fn solve(
         }
         if let Some(f) = mortar_friction.as_mut() {
             forces.push(Box::new(f));
+        }
+        if let Some(f) = mortar_other.as_mut() {
+            forces.push(Box::new(f.as_mut()));
         }
         let initial = match &setup.initial {
             Some((prev, t0)) => {

@@ -151,5 +151,21 @@ const KEYWORDS: &[&str] = &[
 
 pub fn meca_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let setup = parse_setup(ex, call, false)?;
+    // The Nitsche contact reads E and NU of the CHAM_MATER's one material:
+    // refused before solving, at CHAM_MATER, when there is none.
+    if let Some(crate::concept::ContactDef::Mortar {
+        algo: crate::defi_cont::MortarAlgo::Nitsche,
+        ..
+    }) = setup.contact.as_deref()
+    {
+        if let Err(why) = crate::defi_cont::nitsche_material(&setup.materials) {
+            return Err(ex.kw_error(
+                "MECA_NON_LINE",
+                &call.keywords,
+                "CHAM_MATER",
+                format!("not supported yet: {why}"),
+            ));
+        }
+    }
     store_solution(ex, call, &setup, false)
 }

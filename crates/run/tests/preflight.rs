@@ -260,8 +260,8 @@ FIN()
 }
 
 /// DEFI_CONT (code_aster 17's mortar contact): what is not reproduced is
-/// refused at its keyword — Nitsche, a viscous law (LEMAITRE), a loose
-/// Newton tolerance — and the reproduced default and friction
+/// refused at its keyword — a viscous law (LEMAITRE), a loose Newton
+/// tolerance — and the reproduced default, Nitsche and friction
 /// (`FROTTEMENT='OUI'`, `aster_contact::mortar_friction`) pass.
 #[test]
 fn defi_cont_variants_not_reproduced_are_refused_at_their_keyword() {
@@ -285,13 +285,40 @@ FIN()
     );
     let (p, map) = pass(&src, Some("two_plates.mail"));
     let m = messages(&p, &map);
-    assert_eq!(m.len(), 3, "{m:?}");
-    assert!(
-        m[0].starts_with(
-            "case.comm:7:77: error: not supported yet: DEFI_CONT/ZONE/ALGO_CONT='NITSCHE'"
-        ),
+    assert_eq!(m.len(), 2, "{m:?}");
+    assert!(m[0].starts_with("case.comm:14:21: error: not supported yet: MECA_NON_LINE/COMPORTEMENT/RELATION='LEMAITRE' with a DEFI_CONT contact"), "{m:?}");
+    assert!(m[1].starts_with("case.comm:15:20: error: not supported yet: MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above 1e-4 with a DEFI_CONT contact"), "{m:?}");
+}
+
+/// DEFI_CONT's penalised and Nitsche methods: one definition has one
+/// ALGO_CONT (refused before anything runs, at the keyword); friction is
+/// refused once, at FROTTEMENT; every Nitsche variant is accepted.
+#[test]
+fn defi_cont_refuses_friction_and_mixed_methods_at_their_keyword() {
+    let src = format!(
+        r#"{HEAD}from code_aster.MacroCommands.defi_cont import DEFI_CONT
+c1 = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="PENALISATION", FROTTEMENT="OUI", TYPE_FROT="COULOMB", COULOMB=0.1))
+c2 = DEFI_CONT(MODELE=model, ZONE=(_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="NITSCHE"),
+                                   _F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF")))
+c3 = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="NITSCHE", SYME="NON", VARIANTE="RAPIDE"))
+FIN()
+"#
+    );
+    let (p, map) = pass(&src, Some("two_plates.mail"));
+    let m = messages(&p, &map);
+    assert_eq!(
+        m.iter()
+            .filter(|s| s.starts_with(
+                "case.comm:5:104: error: not supported yet: DEFI_CONT/ZONE/FROTTEMENT='OUI'"
+            ))
+            .count(),
+        1,
         "{m:?}"
     );
-    assert!(m[1].starts_with("case.comm:14:21: error: not supported yet: MECA_NON_LINE/COMPORTEMENT/RELATION='LEMAITRE' with a DEFI_CONT contact"), "{m:?}");
-    assert!(m[2].starts_with("case.comm:15:20: error: not supported yet: MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above 1e-4 with a DEFI_CONT contact"), "{m:?}");
+    assert!(
+        m.iter().any(|s| s.starts_with("case.comm:7:39: error: not supported yet: DEFI_CONT/ZONE/ALGO_CONT: zones of different ALGO_CONT")),
+        "{m:?}"
+    );
+    assert!(!m.iter().any(|s| s.contains(":8:")), "{m:?}");
+    assert_eq!(m.len(), 2, "{m:?}");
 }

@@ -217,6 +217,96 @@ fn the_mesh_file_is_the_generated_scene() {
     }
 }
 
+/// comm/two_plates_penalised.comm: code_aster 17's penalised mortar
+/// contact (DEFI_CONT, ALGO_CONT='PENALISATION'): the plates
+/// interpenetrate by p h / COEF_CONT under the pressure p, on QUAD4 and
+/// QUAD8 (CONTACT_INIT='OUI'), D_PLAN and C_PLAN with free sides: 28
+/// TEST_RESU against the analytic state at 1e-6 (measured 2e-14).
+#[test]
+fn penalised_mortar_contact_interpenetrates_by_pressure_over_penalty() {
+    assert_eq!(run_scene("two_plates_penalised.comm"), (28, 0));
+    assert_eq!(
+        run_scene_on_3_coordinates("two_plates_penalised.comm"),
+        (28, 0)
+    );
+}
+
+/// comm/two_plates_nitsche.comm: code_aster 17's Nitsche mortar contact
+/// (DEFI_CONT, ALGO_CONT='NITSCHE'): exact in D_PLAN (no gap, SIYY = −1e5)
+/// for the three variants and on QUAD8; in C_PLAN with ν = 0.3 the open
+/// gap code_aster's plane-strain Nitsche stress leaves (g = 0.00297): 64
+/// TEST_RESU at 1e-6 (measured 2e-14).
+#[test]
+fn nitsche_mortar_contact_is_exact_in_plane_strain_and_reproduces_c_plan() {
+    assert_eq!(run_scene("two_plates_nitsche.comm"), (64, 0));
+    assert_eq!(
+        run_scene_on_3_coordinates("two_plates_nitsche.comm"),
+        (64, 0)
+    );
+}
+
+/// A Nitsche contact whose CHAM_MATER has two materials is refused before
+/// solving, at CHAM_MATER (code_aster's Nitsche stress reads ELAS E and NU
+/// of one material).
+#[test]
+fn nitsche_with_two_materials_is_refused_at_cham_mater() {
+    let dir = std::env::temp_dir().join(format!("aster-nitsche-mat-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("case.comm");
+    std::fs::write(
+        &comm,
+        r#"from code_aster.MacroCommands.defi_cont import DEFI_CONT
+DEBUT(CODE="OUI")
+mesh = LIRE_MAILLAGE(FORMAT="ASTER", UNITE=20)
+mesh = DEFI_GROUP(reuse=mesh, MAILLAGE=mesh, CREA_GROUP_NO=_F(TOUT_GROUP_MA="OUI"))
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
+a = DEFI_MATERIAU(ELAS=_F(E=2.0e6, NU=0.0))
+b = DEFI_MATERIAU(ELAS=_F(E=3.0e6, NU=0.0))
+mater = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=(_F(GROUP_MA="UP", MATER=a), _F(GROUP_MA="LOW", MATER=b)))
+moves = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=(_F(GROUP_NO="CD", DX=0.0, DY=-0.1), _F(GROUP_NO="GH", DX=0.0, DY=0.0)))
+contact = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="NITSCHE"))
+times = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A=1.0, NOMBRE=1))
+resu = MECA_NON_LINE(MODELE=model, CHAM_MATER=mater, EXCIT=_F(CHARGE=moves),
+    CONTACT=_F(DEFINITION=contact), COMPORTEMENT=_F(RELATION="ELAS"), INCREMENT=_F(LIST_INST=times))
+FIN()
+"#,
+    )
+    .unwrap();
+    let case = aster_run::program::prepare(&comm, Some(&root().join("comm/two_plates.mail")), &dir)
+        .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let err = format!("{:?}", outcome.error.expect("refused"));
+    assert!(
+        err.contains("2 materials in the CHAM_MATER of a Nitsche contact"),
+        "{err}"
+    );
+    assert!(
+        err.contains("case.comm:12:36"),
+        "located at CHAM_MATER: {err}"
+    );
+}
+
+/// comm/two_plates_axis.comm on comm/two_plates_axis.mail (the two-plate
+/// mesh moved to r ∈ [0, 2]): coaxial cylinders in AXIS with free sides,
+/// penalised (the analytic interpenetration) and Nitsche (code_aster's
+/// stress without the hoop strain leaves an open gap g = 0.00297 while in
+/// contact): 24 TEST_RESU at 1e-6.
+#[test]
+fn axisymmetric_penalised_and_nitsche_mortar_contact() {
+    let out = std::env::temp_dir().join(format!("aster-axis-{}", std::process::id()));
+    let case = aster_run::program::prepare(
+        &root().join("comm/two_plates_axis.comm"),
+        Some(&root().join("comm/two_plates_axis.mail")),
+        &out,
+    )
+    .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    let _ = std::fs::remove_dir_all(out);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (24, 0));
+}
+
 /// DEFI_CONT zones with and without friction together (code_aster builds
 /// one FrictionNew for them, whose frictionless zones are not reproduced)
 /// are refused before solving, at the frictionless zone's FROTTEMENT.

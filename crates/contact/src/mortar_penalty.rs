@@ -1,0 +1,178 @@
+//! code_aster 17's penalised mortar contact of `DEFI_CONT`
+//! (`ALGO_CONT='PENALISATION'`, `MECA_NON_LINE`), frictionless, in 2D on
+//! SEG2 and SEG3 cells, as a fem force source without unknowns of its own
+//! (no `LAGS_C`).
+//!
+//! As code_aster's (2025 main: `te0352`, `peelem`, `peVect_ct_pr`,
+//! `laElemCont`, `laQuantities`, `ContactComputation::contactCoefficient`):
+//!
+//! - Pairing, quadrature, normals, master points and gaps are those of the
+//!   Lagrangian method (`mortar_lagrangian::pairs_of`, `mortar_point`).
+//! - **At a point**: the contact element has no multiplier (`peelem`:
+//!   `nb_lagr_c` = 0), so λ = 0 in `laElemCont` and γ = Σ N_a COEF_CONT / h_F,
+//!   interpolated with the slave's displacement functions (COEF_CONT is
+//!   given at every slave node), h_F the slave cell's initial diameter.
+//!   COEF_CONT is a stiffness per unit area times a length: the penalty is
+//!   γ = COEF_CONT/h_F. Active (H = 1) when γg ≤ 0; `CONTACT_INIT` at the
+//!   first pairing as for the Lagrangian method ('OUI': H = 1 and the
+//!   force γg whatever its sign; 'NON': H = 0).
+//! - **Residual** (`peVect_ct_pr`): −w [γg]₋ n_s·(v_s − v_m) at active
+//!   points. Slave nodes of no paired cell get nothing (POI1 elements carry
+//!   no term without multipliers).
+//! - The converged state has the interpenetration −g = p h_F / COEF_CONT
+//!   under a contact pressure p.
+//! - **Newton**: code_aster tests the residual only (pairing before every
+//!   iteration, no status criterion): the source reports its statuses
+//!   settled after every iteration. The tangent here is w γ (n·jump)⊗(n·jump)
+//!   at active points, the normal and master point frozen over an
+//!   iteration (code_aster's `peMatr_ct_pr` differentiates them too: the
+//!   path differs, the converged state does not).
+
+use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
+use aster_mesh::Mesh;
+
+use crate::error::ContactError;
+use crate::mortar_lagrangian::{pairs_of, InitialState, MZone, MortarLagrangian, MortarZoneDef};
+use crate::mortar_point::{jump, points};
+use crate::source::current_positions;
+
+/// The status and force of a point: `x` = λ + γg (here γg); code_aster's
+/// `Heaviside(−x)` and `projRm(x)`, or what `CONTACT_INIT` imposes at the
+/// first pairing (`laElemCont`, `niElemCont`).
+pub(crate) fn status(x: f64, first_pairing: bool, init: InitialState) -> (bool, f64) {
+    match (first_pairing, init) {
+        (true, InitialState::No) => (false, 0.0),
+        (true, InitialState::Yes) => (true, x),
+        _ => {
+            if -x >= 0.0 {
+                (true, x)
+            } else {
+                (false, 0.0)
+            }
+        }
+    }
+}
+
+/// γ at a point: COEF_CONT interpolated with the slave's displacement
+/// functions (`evalPoly(nb_node_slav, shape_func_sl, coef_cont)`) over h_F.
+pub(crate) fn gamma(shape: &[f64], coef: f64, hf: f64) -> f64 {
+    shape.iter().map(|n| n * coef).sum::<f64>() / hf
+}
+
+/// The penalised mortar contact of a DEFI_CONT, as a fem force source.
+#[derive(Clone, Debug)]
+pub struct MortarPenalty {
+    zones: Vec<MZone>,
+    axis: bool,
+    /// No pairing has been made yet (CONTACT_INIT applies).
+    first_pairing: bool,
+    /// The largest interpenetration −g of an active point at the last
+    /// evaluation.
+    penetration: f64,
+}
+
+impl MortarPenalty {
+    /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights);
+    /// each zone's `coef_cont` is its COEF_CONT.
+    pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
+        let geometry = MortarLagrangian::new(zones, mesh, axis)?;
+        Ok(MortarPenalty {
+            zones: geometry.zones,
+            axis,
+            first_pairing: true,
+            penetration: 0.0,
+        })
+    }
+
+    /// The largest interpenetration of an active point at the last
+    /// evaluation.
+    pub fn penetration(&self) -> f64 {
+        self.penetration
+    }
+}
+
+impl ForceSource for MortarPenalty {
+    fn name(&self) -> String {
+        "DEFI_CONT (mortar penalised contact)".into()
+    }
+
+    fn unknowns(&self) -> usize {
+        0
+    }
+
+    fn begin_increment(&mut self, _state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        Ok(())
+    }
+
+    fn evaluate(&mut self, state: &State, _own: &[f64]) -> Result<Contribution, FemError> {
+        let x = current_positions(state);
+        let x0 = &state.mesh.coords;
+        let mut c = Contribution::default();
+        let mut penetration = 0.0f64;
+        for p in pairs_of(&self.zones, &x) {
+            let z = &self.zones[p.zone];
+            let s = &z.slave[p.slave];
+            let m = &z.master[p.master];
+            let sp = s.positions(&x);
+            let mp = m.positions(&x);
+            let s0 = s.positions(x0);
+            let hf = z.h[p.slave];
+            for pt in points(s, m, p.xi, &sp, &mp, &s0, self.axis)? {
+                let g = gamma(&pt.initial.shape, z.coef, hf);
+                let (h, proj) = status(g * pt.gap, self.first_pairing, z.init);
+                if !h {
+                    continue;
+                }
+                penetration = penetration.max(-pt.gap);
+                let w = pt.w;
+                let jump = jump(state, s, m, &pt.initial.shape, &pt.master.shape, pt.ns);
+                // −w [γg]₋ n·(v_s − v_m); d/du: w γ (n·jump)(n·jump).
+                for &(i, fi) in &jump {
+                    c.forces.push((i, -w * proj * fi));
+                    for &(j, fj) in &jump {
+                        c.tangent
+                            .push((Unknown::Dof(i), Unknown::Dof(j), w * g * fi * fj));
+                    }
+                }
+            }
+        }
+        self.penetration = penetration;
+        Ok(c)
+    }
+
+    fn after_iteration(&mut self, _state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+        // The first pairing (CONTACT_INIT) was that of this iteration;
+        // code_aster's Newton tests the residual only.
+        self.first_pairing = false;
+        Ok(true)
+    }
+
+    fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {
+        self.first_pairing = false;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn status_follows_code_aster_projection_and_contact_init() {
+        assert_eq!(
+            status(-2.0, false, InitialState::Interpenetrated),
+            (true, -2.0)
+        );
+        assert_eq!(
+            status(0.0, false, InitialState::Interpenetrated),
+            (true, 0.0)
+        );
+        assert_eq!(
+            status(1.0, false, InitialState::Interpenetrated),
+            (false, 0.0)
+        );
+        assert_eq!(status(1.0, true, InitialState::Yes), (true, 1.0));
+        assert_eq!(status(-1.0, true, InitialState::No), (false, 0.0));
+        assert_eq!(status(1.0, false, InitialState::Yes), (false, 0.0));
+    }
+}

@@ -1,0 +1,132 @@
+//! One quadrature point of a mortar contact pair of `DEFI_CONT`: what
+//! code_aster 17's Lagrangian (`laVect_ct_pr`), penalised (`peVect_ct_pr`)
+//! and Nitsche (`niVect`) residuals share, computed once here for the three
+//! (`mortar_lagrangian`, `mortar_penalty`, `mortar_nitsche`).
+//!
+//! As code_aster's (2025 main):
+//!
+//! - **Quadrature** (`getQuadCont`, `lcptga`): FPG3 when both cells are
+//!   SEG2, FPG4 otherwise, on the intersection segment in the slave's
+//!   parametric space; the weight is the slave Jacobian on the **initial**
+//!   coordinates (× the initial radius in AXIS, 1e-7 on the axis).
+//! - **Projection** (`projQpSl2Ma`): n_s the outward slave normal on the
+//!   current geometry, the master point by ray tracing along n_s (exact on
+//!   a SEG2 master, `shape::project_along` — code_aster's `mmnewd` — on a
+//!   SEG3 one), the gap g = −(x_s − x_m)·n_s. A point whose ray misses the
+//!   master line is skipped.
+//! - **Jump** (`jump`): the displacement DOFs of n_s·(v_s − v_m) with
+//!   their factors.
+
+use aster_fem::{Comp, Dof, FemError, State};
+
+use crate::error::ContactError;
+use crate::lac_mortar::{piece_points, Family};
+use crate::mortar_lagrangian::{err, normal_at, ray_hit, Seg};
+use crate::shape::{dot, interpolate, norm, project_along, sub, CellPoint, SurfaceKind};
+
+/// A quadrature point of a slave/master pair.
+#[derive(Clone, Debug)]
+pub(crate) struct MortarPoint {
+    /// Weight: reference weight × initial Jacobian (× initial radius in
+    /// AXIS).
+    pub w: f64,
+    /// The slave point on the initial coordinates (its shape values are
+    /// the slave functions at the point).
+    pub initial: CellPoint,
+    /// The slave point on the current coordinates.
+    pub slave: CellPoint,
+    /// Outward unit slave normal (current).
+    pub ns: [f64; 3],
+    /// The master point hit by the ray along n_s.
+    pub master: CellPoint,
+    /// g = −(x_s − x_m)·n_s (negative when interpenetrated).
+    pub gap: f64,
+}
+
+/// The quadrature points of the pair of slave `s` and master `m` on the
+/// intersection `xi` (slave parametric space): `sp`, `mp` the cells'
+/// current node positions, `s0` the slave's initial ones.
+pub(crate) fn points(
+    s: &Seg,
+    m: &Seg,
+    xi: [f64; 2],
+    sp: &[[f64; 3]],
+    mp: &[[f64; 3]],
+    s0: &[[f64; 3]],
+    axis: bool,
+) -> Result<Vec<MortarPoint>, FemError> {
+    // FPG3 when both cells are linear, FPG4 otherwise (getQuadCont).
+    let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
+        Family::Fpg3
+    } else {
+        Family::Fpg4
+    };
+    let mut out = Vec::new();
+    for (xi, w_ref) in piece_points(2, &[[xi[0], 0.0], [xi[1], 0.0]], family) {
+        let at0 = interpolate(s.kind, s0, xi);
+        let mut w = w_ref * norm(at0.tangents[0]);
+        if axis {
+            let r = at0.x[0];
+            w *= if r == 0.0 { 1e-7 } else { r };
+        }
+        let ns = normal_at(s.kind, sp, xi[0], s.sign).ok_or_else(|| {
+            err(ContactError::Invalid {
+                keyword: "GROUP_MA_ESCL",
+                message: "a slave cell is degenerate (zero length)".into(),
+            })
+        })?;
+        let slave = interpolate(s.kind, sp, xi);
+        let hit = if m.kind == SurfaceKind::Seg2 {
+            ray_hit(slave.x, ns, mp[0], mp[1]).map(|k| interpolate(m.kind, mp, [k, 0.0]))
+        } else {
+            project_along(m.kind, mp, slave.x, ns)
+        };
+        let Some(hit) = hit else {
+            continue;
+        };
+        let gap = -dot(sub(slave.x, hit.x), ns);
+        out.push(MortarPoint {
+            w,
+            initial: at0,
+            slave,
+            ns,
+            master: hit,
+            gap,
+        });
+    }
+    Ok(out)
+}
+
+/// The displacement DOF of node `n`'s component `c` (0: DX, 1: DY).
+pub(crate) fn dof(state: &State, n: aster_mesh::NodeId, c: usize) -> Option<usize> {
+    let comp = if c == 0 { Comp::DX } else { Comp::DY };
+    state.dofs.index(Dof::new(n, comp))
+}
+
+/// The displacement DOFs of n·(v_s − v_m) at a point with their factors:
+/// N_a n_d on the slave's, −N_b n_d on the master's.
+pub(crate) fn jump(
+    state: &State,
+    s: &Seg,
+    m: &Seg,
+    slave_shape: &[f64],
+    master_shape: &[f64],
+    n: [f64; 3],
+) -> Vec<(usize, f64)> {
+    let mut jump: Vec<(usize, f64)> = Vec::with_capacity(12);
+    for (a, node) in s.nodes.iter().enumerate() {
+        for d in 0..2 {
+            if let Some(i) = dof(state, *node, d) {
+                jump.push((i, slave_shape[a] * n[d]));
+            }
+        }
+    }
+    for (b, node) in m.nodes.iter().enumerate() {
+        for d in 0..2 {
+            if let Some(i) = dof(state, *node, d) {
+                jump.push((i, -master_shape[b] * n[d]));
+            }
+        }
+    }
+    jump
+}
