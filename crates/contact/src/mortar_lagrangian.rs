@@ -50,7 +50,8 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::lac_mortar::{piece_points, Family};
-use crate::shape::{dot, interpolate, norm, project_along, sub, SurfaceKind};
+use crate::mortar_pairing3d::{self, face_normal, Face};
+use crate::shape::{cross, dot, interpolate, norm, project_along, sub, SurfaceKind};
 use crate::source::current_positions;
 use crate::surface::{ResolvedZone, SurfaceCell};
 use crate::zone::ZoneGeometry;
@@ -131,13 +132,15 @@ struct MZone {
     h: Vec<f64>,
 }
 
-/// A pair: slave cell, master cell, intersection in slave parametric space.
-#[derive(Clone, Copy, Debug)]
+/// A pair: slave cell, master cell, intersection in slave parametric space
+/// (2D: a segment `xi`; 3D: a polygon `poly`, module `mortar_pairing3d`).
+#[derive(Clone, Debug)]
 struct Pair {
     zone: usize,
     slave: usize,
     master: usize,
     xi: [f64; 2],
+    poly: Vec<[f64; 2]>,
 }
 
 /// The mortar contact of a DEFI_CONT, as a fem force source.
@@ -147,6 +150,8 @@ pub struct MortarLagrangian {
     lagr: Vec<NodeId>,
     lagr_of: HashMap<NodeId, usize>,
     axis: bool,
+    /// Space dimension of the model (2, or 3: faces, `mortar_pairing3d`).
+    dim: usize,
     /// No pairing has been made yet (CONTACT_INIT applies).
     first_pairing: bool,
     /// Whether the first pairing has been consumed by a Newton iteration.
@@ -206,24 +211,48 @@ fn ray_hit(p: [f64; 3], v: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Option<f64> {
 impl MortarLagrangian {
     /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights).
     pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
+        Self::with_dim(zones, mesh, axis, 2)
+    }
+
+    /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
+    /// (segments; `axis`: AXIS weights) or 3 (TRIA3 and QUAD4 faces).
+    pub fn with_dim(
+        zones: &[MortarZoneDef],
+        mesh: &Mesh,
+        axis: bool,
+        dim: usize,
+    ) -> Result<Self, ContactError> {
+        let dim = if dim >= 3 { 3 } else { 2 };
         let mut out = Vec::new();
         let mut lagr = Vec::new();
         let mut lagr_of = HashMap::new();
         for (i, z) in zones.iter().enumerate() {
             let geometry = ZoneGeometry::new(z.master_group.clone(), z.slave_group.clone());
-            let resolved = ResolvedZone::new_in(i, &geometry, mesh, 2)?;
+            let resolved = ResolvedZone::new_in(i, &geometry, mesh, dim)?;
             let segs =
                 |cells: &[SurfaceCell], key: &'static str| -> Result<Vec<Seg>, ContactError> {
                     cells
                         .iter()
                         .map(|c| {
-                            if !matches!(c.kind, SurfaceKind::Seg2 | SurfaceKind::Seg3) {
+                            let (ok, hint) = if dim == 3 {
+                                (
+                                    matches!(c.kind, SurfaceKind::Tria3 | SurfaceKind::Quad4),
+                                    "in 3D it is reproduced on TRIA3 and QUAD4 faces",
+                                )
+                            } else {
+                                (
+                                    matches!(c.kind, SurfaceKind::Seg2 | SurfaceKind::Seg3),
+                                    "it is reproduced on segments (2D)",
+                                )
+                            };
+                            if !ok {
                                 return Err(ContactError::Unsupported {
                                     feature: format!(
-                                        "{} cells in {key} (code_aster 17's mortar contact)",
-                                        c.kind.cell_type().name()
+                                        "{} cells in {key} (code_aster 17's mortar contact{})",
+                                        c.kind.cell_type().name(),
+                                        if dim == 3 { " in 3D" } else { "" }
                                     ),
-                                    hint: "it is reproduced on segments (2D)".into(),
+                                    hint: hint.into(),
                                 });
                             }
                             Ok(Seg {
@@ -327,6 +356,7 @@ impl MortarLagrangian {
             lagr,
             lagr_of,
             axis,
+            dim,
             first_pairing: true,
             iterations: 0,
             paired: 0,
@@ -348,6 +378,9 @@ impl MortarLagrangian {
     /// the cells linearised on their ends, the slave ends cast along the
     /// full slave cell's normal there.
     fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
+        if self.dim == 3 {
+            return self.pairs_3d(x);
+        }
         let mut out = Vec::new();
         for (zi, z) in self.zones.iter().enumerate() {
             for (si, s) in z.slave.iter().enumerate() {
@@ -442,6 +475,46 @@ impl MortarLagrangian {
                             slave: si,
                             master: mi,
                             xi: [a, b],
+                            poly: Vec::new(),
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The pairs of 3D faces on positions `x` (`mortar_pairing3d`): every
+    /// master face is tried against every slave face.
+    fn pairs_3d(&self, x: &[[f64; 3]]) -> Vec<Pair> {
+        let mut out = Vec::new();
+        for (zi, z) in self.zones.iter().enumerate() {
+            for (si, s) in z.slave.iter().enumerate() {
+                let sp = s.positions(x);
+                let slave = Face {
+                    kind: s.kind,
+                    x: &sp,
+                    sign: s.sign,
+                };
+                for (mi, m) in z.master.iter().enumerate() {
+                    let mp = m.positions(x);
+                    let master = Face {
+                        kind: m.kind,
+                        x: &mp,
+                        sign: m.sign,
+                    };
+                    if let Some(poly) = mortar_pairing3d::intersect(
+                        slave,
+                        master,
+                        mortar_pairing3d::PAIR_TOLE,
+                        z.dist_ratio,
+                    ) {
+                        out.push(Pair {
+                            zone: zi,
+                            slave: si,
+                            master: mi,
+                            xi: [0.0, 0.0],
+                            poly,
                         });
                     }
                 }
@@ -451,7 +524,11 @@ impl MortarLagrangian {
     }
 
     fn dof(state: &State, n: NodeId, c: usize) -> Option<usize> {
-        let comp = if c == 0 { Comp::DX } else { Comp::DY };
+        let comp = match c {
+            0 => Comp::DX,
+            1 => Comp::DY,
+            _ => Comp::DZ,
+        };
         state.dofs.index(Dof::new(n, comp))
     }
 }
@@ -499,28 +576,47 @@ impl ForceSource for MortarLagrangian {
             for &k in &lk {
                 paired[k] = true;
             }
-            // FPG3 when both cells are linear, FPG4 otherwise (getQuadCont).
-            let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
-                Family::Fpg3
+            // FPG3 when both cells are linear, FPG4 otherwise (getQuadCont);
+            // in 3D FPG4 or FPG7 on each triangle of the polygon.
+            let points = if self.dim == 3 {
+                let linear = |k: SurfaceKind| matches!(k, SurfaceKind::Tria3 | SurfaceKind::Quad4);
+                mortar_pairing3d::quadrature(&p.poly, linear(s.kind) && linear(m.kind))
             } else {
-                Family::Fpg4
+                let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
+                    Family::Fpg3
+                } else {
+                    Family::Fpg4
+                };
+                piece_points(2, &[[p.xi[0], 0.0], [p.xi[1], 0.0]], family)
             };
-            for (xi, w_ref) in piece_points(2, &[[p.xi[0], 0.0], [p.xi[1], 0.0]], family) {
+            for (xi, w_ref) in points {
                 let at0 = interpolate(s.kind, &s0, xi);
                 let nsl = at0.shape.clone();
-                let mut w = w_ref * norm(at0.tangents[0]);
+                let jac = if self.dim == 3 {
+                    norm(cross(at0.tangents[0], at0.tangents[1]))
+                } else {
+                    norm(at0.tangents[0])
+                };
+                let mut w = w_ref * jac;
                 if self.axis {
                     let r = at0.x[0];
                     w *= if r == 0.0 { 1e-7 } else { r };
                 }
-                let ns = normal_at(s.kind, &sp, xi[0], s.sign).ok_or_else(|| {
+                let ns = if self.dim == 3 {
+                    face_normal(s.kind, &sp, xi, s.sign)
+                } else {
+                    normal_at(s.kind, &sp, xi[0], s.sign)
+                }
+                .ok_or_else(|| {
                     err(ContactError::Invalid {
                         keyword: "GROUP_MA_ESCL",
                         message: "a slave cell is degenerate (zero length)".into(),
                     })
                 })?;
                 let xs = interpolate(s.kind, &sp, xi).x;
-                let hit = if m.kind == SurfaceKind::Seg2 {
+                let hit = if self.dim == 3 {
+                    project_along(m.kind, &mp, xs, ns)
+                } else if m.kind == SurfaceKind::Seg2 {
                     ray_hit(xs, ns, mp[0], mp[1]).map(|k| interpolate(m.kind, &mp, [k, 0.0]))
                 } else {
                     project_along(m.kind, &mp, xs, ns)
@@ -547,14 +643,14 @@ impl ForceSource for MortarLagrangian {
                 // Displacement DOFs of the jump v_s − v_m with their factors.
                 let mut jump: Vec<(usize, f64)> = Vec::with_capacity(12);
                 for (a, node) in s.nodes.iter().enumerate() {
-                    for d in 0..2 {
+                    for d in 0..self.dim {
                         if let Some(i) = Self::dof(state, *node, d) {
                             jump.push((i, nsl[a] * ns[d]));
                         }
                     }
                 }
                 for (b, node) in m.nodes.iter().enumerate() {
-                    for d in 0..2 {
+                    for d in 0..self.dim {
                         if let Some(i) = Self::dof(state, *node, d) {
                             jump.push((i, -nm[b] * ns[d]));
                         }

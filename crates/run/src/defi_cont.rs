@@ -5,10 +5,12 @@
 //!
 //! Reproduced: `ALGO_CONT='LAGRANGIEN'` with `VARIANTE='ROBUSTE'` (the
 //! defaults), frictionless, unilateral, on 2D models (D_PLAN, C_PLAN,
-//! AXIS) whose contact cells are SEG2 or SEG3; `COEF_CONT`, `CONTACT_INIT`,
-//! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`. Refused, located:
-//! NITSCHE, PENALISATION, CLASSIQUE, BILATERAL, LISSAGE, friction,
-//! DIST_SUPP/CARA_ELEM and 3D models (docs/contact.md, "DEFI_CONT").
+//! AXIS) whose contact cells are SEG2 or SEG3 and on 3D models whose
+//! contact faces are TRIA3 or QUAD4 (`aster_contact::mortar_pairing3d`);
+//! `COEF_CONT`, `CONTACT_INIT`, `SANS_GROUP_NO`, `SANS_GROUP_MA`,
+//! `COEF_MULT_APPA`. Refused, located: NITSCHE, PENALISATION, CLASSIQUE,
+//! BILATERAL, LISSAGE, friction, DIST_SUPP/CARA_ELEM and quadratic faces in
+//! 3D (docs/contact.md, "DEFI_CONT").
 
 use std::rc::Rc;
 
@@ -103,27 +105,23 @@ fn zones(kw: &Keywords) -> Vec<MortarZoneDef> {
         .collect()
 }
 
-/// The force source of a definition on the model's current mesh.
+/// The force source of a definition on the model's current mesh (`dim`:
+/// the model's space dimension).
 pub(crate) fn source(
     zones: &[MortarZoneDef],
     mesh: &Mesh,
     axis: bool,
+    dim: usize,
 ) -> Result<MortarLagrangian, ExecError> {
-    MortarLagrangian::new(zones, mesh, axis).map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+    MortarLagrangian::with_dim(zones, mesh, axis, dim)
+        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
 pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
-    if model.dim() != 2 {
-        return Err(ex.kw_error(
-            "DEFI_CONT",
-            kw,
-            "MODELE",
-            "not supported yet: code_aster 17's mortar contact in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS)",
-        ));
-    }
+    let dim = model.dim();
     let axis = model
         .cells
         .values()
@@ -132,7 +130,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let zones = zones(kw);
     // The groups and cell kinds are checked now, located at the zone.
     for (occ, z) in kw.factor("ZONE").iter().zip(&zones) {
-        if let Err(e) = MortarLagrangian::new(std::slice::from_ref(z), &mesh, axis) {
+        if let Err(e) = MortarLagrangian::with_dim(std::slice::from_ref(z), &mesh, axis, dim) {
             let at = match &e {
                 aster_contact::ContactError::UnknownGroup { keyword, .. } => keyword,
                 aster_contact::ContactError::Unsupported { feature, .. }

@@ -906,7 +906,12 @@ pub fn solve(
                         .cells
                         .values()
                         .any(|m| *m == crate::concept::Modelisation::Axisymmetric);
-                    mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                    mortar = Some(crate::defi_cont::source(
+                        zones,
+                        &mesh,
+                        axis,
+                        setup.model.dim(),
+                    )?);
                 }
                 ContactDef::Unilateral { zones, algo, .. } => {
                     unil = Some(LiaisonUnil {
