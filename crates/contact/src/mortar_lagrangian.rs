@@ -111,6 +111,26 @@ impl Seg {
     fn positions(&self, x: &[[f64; 3]]) -> Vec<[f64; 3]> {
         self.nodes.iter().map(|n| x[n.0 as usize]).collect()
     }
+
+    /// The nodes carrying a multiplier: all of a segment's (P1 on SEG2, P2
+    /// on SEG3), a face's corners (`shapeFuncLagr`: TR3 or QU4 functions).
+    fn lagr_nodes(&self) -> &[NodeId] {
+        if self.kind.dim() == 2 {
+            &self.nodes[..self.kind.corner_count()]
+        } else {
+            &self.nodes
+        }
+    }
+
+    /// The multipliers' functions at `xi` (`shapeFuncLagr`), given the
+    /// displacement's `shape` there.
+    fn lagr_shape(&self, xi: [f64; 2], shape: &[f64]) -> Vec<f64> {
+        if self.kind.dim() == 2 && self.kind.node_count() > self.kind.corner_count() {
+            crate::lac_mortar::linear_kind(self.kind).eval(xi).0
+        } else {
+            shape.to_vec()
+        }
+    }
 }
 
 /// Outward unit normal of a (possibly curved) segment at ξ (`apnorm`).
@@ -236,8 +256,15 @@ impl MortarLagrangian {
                         .map(|c| {
                             let (ok, hint) = if dim == 3 {
                                 (
-                                    matches!(c.kind, SurfaceKind::Tria3 | SurfaceKind::Quad4),
-                                    "in 3D it is reproduced on TRIA3 and QUAD4 faces",
+                                    matches!(
+                                        c.kind,
+                                        SurfaceKind::Tria3
+                                            | SurfaceKind::Quad4
+                                            | SurfaceKind::Tria6
+                                            | SurfaceKind::Quad8
+                                            | SurfaceKind::Quad9
+                                    ),
+                                    "in 3D it is reproduced on TRIA3, TRIA6, QUAD4, QUAD8 and QUAD9 faces (code_aster's pairing has no TRIA7)",
                                 )
                             } else {
                                 (
@@ -328,7 +355,7 @@ impl MortarLagrangian {
                 })
                 .collect();
             for s in &slave {
-                for &n in &s.nodes {
+                for &n in s.lagr_nodes() {
                     if let std::collections::hash_map::Entry::Vacant(e) = lagr_of.entry(n) {
                         e.insert(lagr.len());
                         lagr.push(n);
@@ -572,7 +599,7 @@ impl ForceSource for MortarLagrangian {
             let s0 = s.positions(x0);
             let hf = z.h[p.slave];
             let gamma = z.coef / hf;
-            let lk: Vec<usize> = s.nodes.iter().map(|n| self.lagr_of[n]).collect();
+            let lk: Vec<usize> = s.lagr_nodes().iter().map(|n| self.lagr_of[n]).collect();
             for &k in &lk {
                 paired[k] = true;
             }
@@ -591,7 +618,7 @@ impl ForceSource for MortarLagrangian {
             };
             for (xi, w_ref) in points {
                 let at0 = interpolate(s.kind, &s0, xi);
-                let nsl = at0.shape.clone();
+                let nsl = s.lagr_shape(xi, &at0.shape);
                 let jac = if self.dim == 3 {
                     norm(cross(at0.tangents[0], at0.tangents[1]))
                 } else {
@@ -645,7 +672,7 @@ impl ForceSource for MortarLagrangian {
                 for (a, node) in s.nodes.iter().enumerate() {
                     for d in 0..self.dim {
                         if let Some(i) = Self::dof(state, *node, d) {
-                            jump.push((i, nsl[a] * ns[d]));
+                            jump.push((i, at0.shape[a] * ns[d]));
                         }
                     }
                 }
