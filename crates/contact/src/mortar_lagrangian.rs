@@ -249,9 +249,10 @@ impl MortarLagrangian {
         for (i, z) in zones.iter().enumerate() {
             let geometry = ZoneGeometry::new(z.master_group.clone(), z.slave_group.clone());
             let resolved = ResolvedZone::new_in(i, &geometry, mesh, dim)?;
-            let segs =
-                |cells: &[SurfaceCell], key: &'static str| -> Result<Vec<Seg>, ContactError> {
-                    cells
+            let segs = |cells: &[SurfaceCell],
+                        key: &'static str|
+             -> Result<Vec<Seg>, ContactError> {
+                cells
                         .iter()
                         .map(|c| {
                             let (ok, hint) = if dim == 3 {
@@ -289,7 +290,7 @@ impl MortarLagrangian {
                             })
                         })
                         .collect()
-                };
+            };
             let master = segs(&resolved.master, "GROUP_MA_MAIT")?;
             let mut slave = segs(&resolved.slave, "GROUP_MA_ESCL")?;
             // SANS_GROUP_NO / SANS_GROUP_MA: the slave cells holding those
