@@ -1,8 +1,16 @@
 //! code_aster 17's mortar contact of `DEFI_CONT` (`MECA_NON_LINE`),
 //! `ALGO_CONT='LAGRANGIEN'`, `VARIANTE='ROBUSTE'` (Poulios & Renard's
-//! augmented Lagrangian), frictionless, in 2D on SEG2 cells, as a fem
-//! force source with the slave nodes' contact pressures (`LAGS_C`) as
-//! unknowns.
+//! augmented Lagrangian), frictionless, in 2D on SEG2/SEG3 cells and in 3D
+//! on faces, as a fem force source with the slave nodes' contact pressures
+//! (`LAGS_C`) as unknowns.
+//!
+//! In 3D (`with_dim(…, 3)`) the pairing and the polygons' quadrature are
+//! `mortar_pairing3d`'s; at a point the outward slave normal is
+//! t₁ × t₂ / |t₁ × t₂| (`apnorm`), the master point is found along it on
+//! the full master face (`mmnewd`), the weights carry the slave face's
+//! initial |t₁ × t₂| (`mmmjac`), and the multipliers are P1 on the slave
+//! faces' corners (`shapeFuncLagr`: TRIA3 or QUAD4 functions, also on
+//! TRIA6, QUAD8, QUAD9 faces).
 //!
 //! As code_aster's (2025 main: `laVect_ct_pr`, `laElemCont`,
 //! `contact_module`, `getQuadCont`, `mesh_pairing_module`):
