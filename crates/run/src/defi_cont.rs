@@ -122,6 +122,16 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let model_ref = ex.required("DEFI_CONT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
     let dim = model.dim();
+    // Shells: code_aster pairs their mid-surfaces with the thickness of
+    // ZONE/CARA_ELEM and its own shell contact elements; not reproduced.
+    if model.has_shells() {
+        return Err(ex.kw_error(
+            "DEFI_CONT",
+            kw,
+            "MODELE",
+            "not supported yet: code_aster 17's mortar contact on a model with shells (DKT): reproduced on 2D models (D_PLAN, C_PLAN, AXIS) and 3D solids",
+        ));
+    }
     let axis = model
         .cells
         .values()

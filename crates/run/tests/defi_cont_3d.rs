@@ -70,6 +70,22 @@ fn what_is_not_reproduced_in_3d_is_refused_at_its_keyword() {
         assert!(e.contains(expected) && e.contains("refused.comm:"), "{e}");
         assert_eq!(outcome.tally.ok + outcome.tally.nook, 0, "nothing ran: {e}");
     }
+    // Shells: code_aster's shell contact (thicknesses of CARA_ELEM).
+    let comm = "from code_aster.MacroCommands.defi_cont import DEFI_CONT\n\
+        DEBUT(CODE='OUI')\n\
+        mesh = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\n\
+        model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA=('ESCH', 'ESCB'), \
+        PHENOMENE='MECANIQUE', MODELISATION='DKT'))\n\
+        contact = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL='ESCH', GROUP_MA_MAIT='ESCB'))\n\
+        FIN()\n";
+    let e = run(comm, "shells", &mesh)
+        .error
+        .expect("must be refused")
+        .to_string();
+    assert!(
+        e.contains("shells (DKT)") && e.contains("shells.comm:5:"),
+        "{e}"
+    );
     // TRIA7 faces: code_aster's pairing has none (`cellSetType`).
     let comm = scene("dc3d_blocks.comm").replace(
         "quad = CREA_MAILLAGE(MAILLAGE=mesh, LINE_QUAD=_F(TOUT=\"OUI\"))",
