@@ -236,6 +236,26 @@ fn ray_hit(p: [f64; 3], v: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Option<f64> {
     Some(2.0 * s - 1.0)
 }
 
+/// Why a contact cell kind is not reproduced in dimension `dim`, if it is not.
+fn unsupported_kind(dim: usize, kind: SurfaceKind) -> Option<&'static str> {
+    if dim == 3 {
+        (!matches!(
+            kind,
+            SurfaceKind::Tria3
+                | SurfaceKind::Quad4
+                | SurfaceKind::Tria6
+                | SurfaceKind::Quad8
+                | SurfaceKind::Quad9
+        ))
+        .then_some(
+            "in 3D it is reproduced on TRIA3, TRIA6, QUAD4, QUAD8 and QUAD9 faces (code_aster's pairing has no TRIA7)",
+        )
+    } else {
+        (!matches!(kind, SurfaceKind::Seg2 | SurfaceKind::Seg3))
+            .then_some("it is reproduced on segments (2D)")
+    }
+}
+
 impl MortarLagrangian {
     /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights).
     pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
@@ -243,7 +263,8 @@ impl MortarLagrangian {
     }
 
     /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
-    /// (segments; `axis`: AXIS weights) or 3 (TRIA3 and QUAD4 faces).
+    /// (segments; `axis`: AXIS weights) or 3 (TRIA3, TRIA6, QUAD4, QUAD8 and
+    /// QUAD9 faces).
     pub fn with_dim(
         zones: &[MortarZoneDef],
         mesh: &Mesh,
@@ -257,31 +278,12 @@ impl MortarLagrangian {
         for (i, z) in zones.iter().enumerate() {
             let geometry = ZoneGeometry::new(z.master_group.clone(), z.slave_group.clone());
             let resolved = ResolvedZone::new_in(i, &geometry, mesh, dim)?;
-            let segs = |cells: &[SurfaceCell],
-                        key: &'static str|
-             -> Result<Vec<Seg>, ContactError> {
-                cells
+            let segs =
+                |cells: &[SurfaceCell], key: &'static str| -> Result<Vec<Seg>, ContactError> {
+                    cells
                         .iter()
                         .map(|c| {
-                            let (ok, hint) = if dim == 3 {
-                                (
-                                    matches!(
-                                        c.kind,
-                                        SurfaceKind::Tria3
-                                            | SurfaceKind::Quad4
-                                            | SurfaceKind::Tria6
-                                            | SurfaceKind::Quad8
-                                            | SurfaceKind::Quad9
-                                    ),
-                                    "in 3D it is reproduced on TRIA3, TRIA6, QUAD4, QUAD8 and QUAD9 faces (code_aster's pairing has no TRIA7)",
-                                )
-                            } else {
-                                (
-                                    matches!(c.kind, SurfaceKind::Seg2 | SurfaceKind::Seg3),
-                                    "it is reproduced on segments (2D)",
-                                )
-                            };
-                            if !ok {
+                            if let Some(hint) = unsupported_kind(dim, c.kind) {
                                 return Err(ContactError::Unsupported {
                                     feature: format!(
                                         "{} cells in {key} (code_aster 17's mortar contact{})",
@@ -298,7 +300,7 @@ impl MortarLagrangian {
                             })
                         })
                         .collect()
-            };
+                };
             let master = segs(&resolved.master, "GROUP_MA_MAIT")?;
             let mut slave = segs(&resolved.slave, "GROUP_MA_ESCL")?;
             // SANS_GROUP_NO / SANS_GROUP_MA: the slave cells holding those
