@@ -144,7 +144,34 @@ pub fn tria_family(family: Family) -> Vec<([f64; 2], f64)> {
                 ([t(1.0 - 2.0 * xa), t(xa)], p1),
             ]
         }
-        Family::Fpg4 | Family::Fpg9 => Vec::new(),
+        // FPG4 and FPG7 of TRIA3 (orders 3 and 5), for the mortar contact of
+        // DEFI_CONT in 3D (`getQuadCont`).
+        Family::Fpg4 => {
+            let (a, b, w) = (0.2, 0.6, 25.0 / 96.0);
+            vec![
+                ([a, a], w),
+                ([b, a], w),
+                ([a, b], w),
+                ([1.0 / 3.0, 1.0 / 3.0], -27.0 / 96.0),
+            ]
+        }
+        Family::Fpg7 => {
+            let r15 = 15f64.sqrt();
+            let p1 = (155.0 + r15) / 2400.0;
+            let p2 = (155.0 - r15) / 2400.0;
+            let a2 = (6.0 + r15) / 21.0;
+            let b2 = (6.0 - r15) / 21.0;
+            vec![
+                ([1.0 / 3.0, 1.0 / 3.0], 9.0 / 80.0),
+                ([a2, a2], p1),
+                ([1.0 - 2.0 * a2, a2], p1),
+                ([a2, 1.0 - 2.0 * a2], p1),
+                ([b2, b2], p2),
+                ([1.0 - 2.0 * b2, b2], p2),
+                ([b2, 1.0 - 2.0 * b2], p2),
+            ]
+        }
+        Family::Fpg9 => Vec::new(),
     }
 }
 
@@ -164,7 +191,7 @@ pub fn segment_family(family: Family) -> Vec<(f64, f64)> {
             let (wa, wb) = (0.652145154862546, 0.347854845137454);
             vec![(a, wa), (-a, wa), (b, wb), (-b, wb)]
         }
-        Family::Fpg6 | Family::Fpg9 => Vec::new(),
+        Family::Fpg6 | Family::Fpg7 | Family::Fpg9 => Vec::new(),
     }
 }
 
@@ -191,6 +218,7 @@ pub enum Family {
     Fpg3,
     Fpg4,
     Fpg6,
+    Fpg7,
     Fpg9,
 }
 

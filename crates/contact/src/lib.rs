@@ -26,6 +26,7 @@ pub mod lac_mortar;
 pub mod mortar_friction;
 pub mod mortar_lagrangian;
 pub mod mortar_nitsche;
+pub mod mortar_pairing3d;
 pub mod mortar_penalty;
 mod mortar_point;
 mod pairing;

@@ -1,8 +1,16 @@
 //! code_aster 17's mortar contact of `DEFI_CONT` (`MECA_NON_LINE`),
 //! `ALGO_CONT='LAGRANGIEN'`, `VARIANTE='ROBUSTE'` (Poulios & Renard's
-//! augmented Lagrangian), frictionless, in 2D on SEG2 cells, as a fem
-//! force source with the slave nodes' contact pressures (`LAGS_C`) as
-//! unknowns.
+//! augmented Lagrangian), frictionless, in 2D on SEG2/SEG3 cells and in 3D
+//! on faces, as a fem force source with the slave nodes' contact pressures
+//! (`LAGS_C`) as unknowns.
+//!
+//! In 3D (`with_dim(…, 3)`) the pairing and the polygons' quadrature are
+//! `mortar_pairing3d`'s; at a point the outward slave normal is
+//! t₁ × t₂ / |t₁ × t₂| (`apnorm`), the master point is found along it on
+//! the full master face (`mmnewd`), the weights carry the slave face's
+//! initial |t₁ × t₂| (`mmmjac`), and the multipliers are P1 on the slave
+//! faces' corners (`shapeFuncLagr`: TRIA3 or QUAD4 functions, also on
+//! TRIA6, QUAD8, QUAD9 faces).
 //!
 //! As code_aster's (2025 main: `laVect_ct_pr`, `laElemCont`,
 //! `contact_module`, `getQuadCont`, `mesh_pairing_module`):
@@ -49,6 +57,7 @@ use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
+use crate::mortar_pairing3d::{self, Face};
 use crate::shape::{dot, interpolate, norm, sub, SurfaceKind};
 use crate::source::current_positions;
 use crate::surface::{ResolvedZone, SurfaceCell};
@@ -113,6 +122,26 @@ impl Seg {
     pub(crate) fn positions(&self, x: &[[f64; 3]]) -> Vec<[f64; 3]> {
         self.nodes.iter().map(|n| x[n.0 as usize]).collect()
     }
+
+    /// The nodes carrying a multiplier: all of a segment's (P1 on SEG2, P2
+    /// on SEG3), a face's corners (`shapeFuncLagr`: TR3 or QU4 functions).
+    pub(crate) fn lagr_nodes(&self) -> &[NodeId] {
+        if self.kind.dim() == 2 {
+            &self.nodes[..self.kind.corner_count()]
+        } else {
+            &self.nodes
+        }
+    }
+
+    /// The multipliers' functions at `xi` (`shapeFuncLagr`), given the
+    /// displacement's `shape` there.
+    pub(crate) fn lagr_shape(&self, xi: [f64; 2], shape: &[f64]) -> Vec<f64> {
+        if self.kind.dim() == 2 && self.kind.node_count() > self.kind.corner_count() {
+            crate::lac_mortar::linear_kind(self.kind).eval(xi).0
+        } else {
+            shape.to_vec()
+        }
+    }
 }
 
 /// Outward unit normal of a (possibly curved) segment at ξ (`apnorm`).
@@ -134,13 +163,15 @@ pub(crate) struct MZone {
     pub(crate) h: Vec<f64>,
 }
 
-/// A pair: slave cell, master cell, intersection in slave parametric space.
-#[derive(Clone, Copy, Debug)]
+/// A pair: slave cell, master cell, intersection in slave parametric space
+/// (2D: a segment `xi`; 3D: a polygon `poly`, module `mortar_pairing3d`).
+#[derive(Clone, Debug)]
 pub(crate) struct Pair {
     pub(crate) zone: usize,
     pub(crate) slave: usize,
     pub(crate) master: usize,
     pub(crate) xi: [f64; 2],
+    pub(crate) poly: Vec<[f64; 2]>,
 }
 
 /// The mortar contact of a DEFI_CONT, as a fem force source.
@@ -150,6 +181,8 @@ pub struct MortarLagrangian {
     pub(crate) lagr: Vec<NodeId>,
     pub(crate) lagr_of: HashMap<NodeId, usize>,
     pub(crate) axis: bool,
+    /// Space dimension of the model (2, or 3: faces, `mortar_pairing3d`).
+    pub(crate) dim: usize,
     /// No pairing has been made yet (CONTACT_INIT applies).
     first_pairing: bool,
     /// Whether the first pairing has been consumed by a Newton iteration.
@@ -206,27 +239,61 @@ pub(crate) fn ray_hit(p: [f64; 3], v: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Opt
     Some(2.0 * s - 1.0)
 }
 
+/// Why a contact cell kind is not reproduced in dimension `dim`, if it is not.
+fn unsupported_kind(dim: usize, kind: SurfaceKind) -> Option<&'static str> {
+    if dim == 3 {
+        (!matches!(
+            kind,
+            SurfaceKind::Tria3
+                | SurfaceKind::Quad4
+                | SurfaceKind::Tria6
+                | SurfaceKind::Quad8
+                | SurfaceKind::Quad9
+        ))
+        .then_some(
+            "in 3D it is reproduced on TRIA3, TRIA6, QUAD4, QUAD8 and QUAD9 faces (code_aster's pairing has no TRIA7)",
+        )
+    } else {
+        (!matches!(kind, SurfaceKind::Seg2 | SurfaceKind::Seg3))
+            .then_some("it is reproduced on segments (2D)")
+    }
+}
+
 impl MortarLagrangian {
     /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights).
     pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
+        Self::with_dim(zones, mesh, axis, 2)
+    }
+
+    /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
+    /// (segments; `axis`: AXIS weights) or 3 (TRIA3, TRIA6, QUAD4, QUAD8 and
+    /// QUAD9 faces).
+    pub fn with_dim(
+        zones: &[MortarZoneDef],
+        mesh: &Mesh,
+        axis: bool,
+        dim: usize,
+    ) -> Result<Self, ContactError> {
+        let dim = if dim >= 3 { 3 } else { 2 };
         let mut out = Vec::new();
         let mut lagr = Vec::new();
         let mut lagr_of = HashMap::new();
         for (i, z) in zones.iter().enumerate() {
             let geometry = ZoneGeometry::new(z.master_group.clone(), z.slave_group.clone());
-            let resolved = ResolvedZone::new_in(i, &geometry, mesh, 2)?;
+            let resolved = ResolvedZone::new_in(i, &geometry, mesh, dim)?;
             let segs =
                 |cells: &[SurfaceCell], key: &'static str| -> Result<Vec<Seg>, ContactError> {
                     cells
                         .iter()
                         .map(|c| {
-                            if !matches!(c.kind, SurfaceKind::Seg2 | SurfaceKind::Seg3) {
+                            if let Some(hint) = unsupported_kind(dim, c.kind) {
                                 return Err(ContactError::Unsupported {
                                     feature: format!(
-                                        "{} cells in {key} (code_aster 17's mortar contact)",
-                                        c.kind.cell_type().name()
+                                        "{} cells in {key} (code_aster 17's mortar contact{})",
+                                        c.kind.cell_type().name(),
+                                        if dim == 3 { " in 3D" } else { "" }
                                     ),
-                                    hint: "it is reproduced on segments (2D)".into(),
+                                    hint: hint.into(),
                                 });
                             }
                             Ok(Seg {
@@ -302,7 +369,7 @@ impl MortarLagrangian {
                 })
                 .collect();
             for s in &slave {
-                for &n in &s.nodes {
+                for &n in s.lagr_nodes() {
                     if let std::collections::hash_map::Entry::Vacant(e) = lagr_of.entry(n) {
                         e.insert(lagr.len());
                         lagr.push(n);
@@ -330,6 +397,7 @@ impl MortarLagrangian {
             lagr,
             lagr_of,
             axis,
+            dim,
             first_pairing: true,
             iterations: 0,
             paired: 0,
@@ -351,7 +419,48 @@ impl MortarLagrangian {
     /// the cells linearised on their ends, the slave ends cast along the
     /// full slave cell's normal there.
     pub(crate) fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
+        if self.dim == 3 {
+            return self.pairs_3d(x);
+        }
         pairs_of(&self.zones, x)
+    }
+    /// The pairs of 3D faces on positions `x` (`mortar_pairing3d`): every
+    /// master face is tried against every slave face.
+    fn pairs_3d(&self, x: &[[f64; 3]]) -> Vec<Pair> {
+        let mut out = Vec::new();
+        for (zi, z) in self.zones.iter().enumerate() {
+            for (si, s) in z.slave.iter().enumerate() {
+                let sp = s.positions(x);
+                let slave = Face {
+                    kind: s.kind,
+                    x: &sp,
+                    sign: s.sign,
+                };
+                for (mi, m) in z.master.iter().enumerate() {
+                    let mp = m.positions(x);
+                    let master = Face {
+                        kind: m.kind,
+                        x: &mp,
+                        sign: m.sign,
+                    };
+                    if let Some(poly) = mortar_pairing3d::intersect(
+                        slave,
+                        master,
+                        mortar_pairing3d::PAIR_TOLE,
+                        z.dist_ratio,
+                    ) {
+                        out.push(Pair {
+                            zone: zi,
+                            slave: si,
+                            master: mi,
+                            xi: [0.0, 0.0],
+                            poly,
+                        });
+                    }
+                }
+            }
+        }
+        out
     }
 }
 
@@ -451,6 +560,7 @@ pub(crate) fn pairs_of(zones: &[MZone], x: &[[f64; 3]]) -> Vec<Pair> {
                         slave: si,
                         master: mi,
                         xi: [a, b],
+                        poly: Vec::new(),
                     });
                 }
             }
@@ -498,12 +608,18 @@ impl ForceSource for MortarLagrangian {
             let s0 = s.positions(x0);
             let hf = z.h[p.slave];
             let gamma = z.coef / hf;
-            let lk: Vec<usize> = s.nodes.iter().map(|n| self.lagr_of[n]).collect();
+            let lk: Vec<usize> = s.lagr_nodes().iter().map(|n| self.lagr_of[n]).collect();
             for &k in &lk {
                 paired[k] = true;
             }
-            for pt in crate::mortar_point::points(s, m, p.xi, &sp, &mp, &s0, self.axis)? {
-                let nsl = &pt.initial.shape;
+            let points = if self.dim == 3 {
+                crate::mortar_point::points_3d(s, m, &p.poly, &sp, &mp, &s0)?
+            } else {
+                crate::mortar_point::points(s, m, p.xi, &sp, &mp, &s0, self.axis)?
+            };
+            for pt in points {
+                // The multipliers' functions (P1 on a face's corners).
+                let nsl = &s.lagr_shape(pt.xi, &pt.initial.shape);
                 let w = pt.w;
                 let ns = pt.ns;
                 let gap = pt.gap;
@@ -521,7 +637,15 @@ impl ForceSource for MortarLagrangian {
                     weight[k] += w * nsl[a];
                 }
                 // Displacement DOFs of the jump v_s − v_m with their factors.
-                let jump = crate::mortar_point::jump(state, s, m, nsl, &pt.master.shape, ns);
+                let jump = crate::mortar_point::jump_in(
+                    state,
+                    s,
+                    m,
+                    &pt.initial.shape,
+                    &pt.master.shape,
+                    ns,
+                    self.dim,
+                );
                 if h {
                     // −w λ n·(v_s − v_m)
                     for &(i, f) in &jump {

@@ -22,11 +22,14 @@ use aster_fem::{Comp, Dof, FemError, State};
 use crate::error::ContactError;
 use crate::lac_mortar::{piece_points, Family};
 use crate::mortar_lagrangian::{err, normal_at, ray_hit, Seg};
-use crate::shape::{dot, interpolate, norm, project_along, sub, CellPoint, SurfaceKind};
+use crate::mortar_pairing3d::{self, face_normal};
+use crate::shape::{cross, dot, interpolate, norm, project_along, sub, CellPoint, SurfaceKind};
 
 /// A quadrature point of a slave/master pair.
 #[derive(Clone, Debug)]
 pub(crate) struct MortarPoint {
+    /// The point in the slave's parametric space.
+    pub xi: [f64; 2],
     /// Weight: reference weight × initial Jacobian (× initial radius in
     /// AXIS).
     pub w: f64,
@@ -86,6 +89,7 @@ pub(crate) fn points(
         };
         let gap = -dot(sub(slave.x, hit.x), ns);
         out.push(MortarPoint {
+            xi,
             w,
             initial: at0,
             slave,
@@ -97,9 +101,57 @@ pub(crate) fn points(
     Ok(out)
 }
 
-/// The displacement DOF of node `n`'s component `c` (0: DX, 1: DY).
+/// The quadrature points of the pair of slave face `s` and master face
+/// `m` (3D) on their intersection polygon `poly` (slave parametric space,
+/// `mortar_pairing3d`): FPG4 on each triangle of the polygon when both
+/// faces are linear, FPG7 otherwise; the weight carries the slave face's
+/// initial |t₁ × t₂| (`mmmjac`), the normal is t₁ × t₂ / |t₁ × t₂|
+/// (`apnorm`), the master point is found along it on the full master face
+/// (`mmnewd`).
+pub(crate) fn points_3d(
+    s: &Seg,
+    m: &Seg,
+    poly: &[[f64; 2]],
+    sp: &[[f64; 3]],
+    mp: &[[f64; 3]],
+    s0: &[[f64; 3]],
+) -> Result<Vec<MortarPoint>, FemError> {
+    let linear = |k: SurfaceKind| matches!(k, SurfaceKind::Tria3 | SurfaceKind::Quad4);
+    let mut out = Vec::new();
+    for (xi, w_ref) in mortar_pairing3d::quadrature(poly, linear(s.kind) && linear(m.kind)) {
+        let at0 = interpolate(s.kind, s0, xi);
+        let w = w_ref * norm(cross(at0.tangents[0], at0.tangents[1]));
+        let ns = face_normal(s.kind, sp, xi, s.sign).ok_or_else(|| {
+            err(ContactError::Invalid {
+                keyword: "GROUP_MA_ESCL",
+                message: "a slave cell is degenerate (zero area)".into(),
+            })
+        })?;
+        let slave = interpolate(s.kind, sp, xi);
+        let Some(hit) = project_along(m.kind, mp, slave.x, ns) else {
+            continue;
+        };
+        let gap = -dot(sub(slave.x, hit.x), ns);
+        out.push(MortarPoint {
+            xi,
+            w,
+            initial: at0,
+            slave,
+            ns,
+            master: hit,
+            gap,
+        });
+    }
+    Ok(out)
+}
+
+/// The displacement DOF of node `n`'s component `c` (0: DX, 1: DY, 2: DZ).
 pub(crate) fn dof(state: &State, n: aster_mesh::NodeId, c: usize) -> Option<usize> {
-    let comp = if c == 0 { Comp::DX } else { Comp::DY };
+    let comp = match c {
+        0 => Comp::DX,
+        1 => Comp::DY,
+        _ => Comp::DZ,
+    };
     state.dofs.index(Dof::new(n, comp))
 }
 
@@ -113,16 +165,29 @@ pub(crate) fn jump(
     master_shape: &[f64],
     n: [f64; 3],
 ) -> Vec<(usize, f64)> {
+    jump_in(state, s, m, slave_shape, master_shape, n, 2)
+}
+
+/// [`jump`] in a model of dimension `dim` (2: DX, DY; 3: DX, DY, DZ).
+pub(crate) fn jump_in(
+    state: &State,
+    s: &Seg,
+    m: &Seg,
+    slave_shape: &[f64],
+    master_shape: &[f64],
+    n: [f64; 3],
+    dim: usize,
+) -> Vec<(usize, f64)> {
     let mut jump: Vec<(usize, f64)> = Vec::with_capacity(12);
     for (a, node) in s.nodes.iter().enumerate() {
-        for d in 0..2 {
+        for d in 0..dim {
             if let Some(i) = dof(state, *node, d) {
                 jump.push((i, slave_shape[a] * n[d]));
             }
         }
     }
     for (b, node) in m.nodes.iter().enumerate() {
-        for d in 0..2 {
+        for d in 0..dim {
             if let Some(i) = dof(state, *node, d) {
                 jump.push((i, -master_shape[b] * n[d]));
             }

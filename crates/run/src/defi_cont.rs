@@ -6,15 +6,19 @@
 //! Reproduced: `ALGO_CONT='LAGRANGIEN'` with `VARIANTE='ROBUSTE'` (the
 //! defaults), `'PENALISATION'` (`aster_contact::mortar_penalty`) and
 //! `'NITSCHE'` (`aster_contact::mortar_nitsche`, any `SYME`/`VARIANTE`:
-//! code_aster's residual is the same for all), frictionless, unilateral,
-//! on 2D models (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or
-//! SEG3; `COEF_CONT`, `CONTACT_INIT`, `SANS_GROUP_NO`, `SANS_GROUP_MA`,
-//! `COEF_MULT_APPA`; with the Lagrangian method, friction
-//! (`FROTTEMENT='OUI'`, `TYPE_FROT` `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`,
-//! `aster_contact::mortar_friction`) when every zone has it. Refused,
-//! located: CLASSIQUE, BILATERAL, LISSAGE, friction with PENALISATION or
-//! NITSCHE, zones with and without friction or of different ALGO_CONT in
-//! one definition, DIST_SUPP/CARA_ELEM and 3D models (docs/contact.md, "DEFI_CONT").
+//! code_aster's residual is the same for all), unilateral, on 2D models
+//! (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or SEG3, and — the
+//! Lagrangian method, frictionless — on 3D solid models whose contact
+//! faces are TRIA3, QUAD4, TRIA6, QUAD8 or QUAD9
+//! (`aster_contact::mortar_pairing3d`); `COEF_CONT`, `CONTACT_INIT`,
+//! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`; with the Lagrangian
+//! method in 2D, friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
+//! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`)
+//! when every zone has it. Refused, located: CLASSIQUE, BILATERAL,
+//! LISSAGE, friction with PENALISATION or NITSCHE or in 3D, zones with and
+//! without friction or of different ALGO_CONT in one definition,
+//! DIST_SUPP/CARA_ELEM, penalised and Nitsche contact in 3D, models with
+//! shells (docs/contact.md, "DEFI_CONT").
 
 use std::rc::Rc;
 
@@ -247,21 +251,25 @@ pub(crate) fn other_source(
     })
 }
 
-/// The force source of a definition on the model's current mesh.
+/// The force source of a definition on the model's current mesh (`dim`:
+/// the model's space dimension).
 pub(crate) fn source(
     zones: &[MortarZoneDef],
     mesh: &Mesh,
     axis: bool,
+    dim: usize,
 ) -> Result<MortarLagrangian, ExecError> {
-    MortarLagrangian::new(zones, mesh, axis).map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+    MortarLagrangian::with_dim(zones, mesh, axis, dim)
+        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
 pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
+    let dim = model.dim();
     let algo = algo(kw);
-    if model.dim() != 2 && algo != MortarAlgo::Lagrangian {
+    if dim != 2 && algo != MortarAlgo::Lagrangian {
         let occ = &kw.factor("ZONE")[0];
         return Err(ex.kw_error(
             "DEFI_CONT/ZONE",
@@ -270,12 +278,28 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "not supported yet: code_aster 17's penalised and Nitsche mortar contact in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS)",
         ));
     }
-    if model.dim() != 2 {
+    if dim != 2 {
+        if let Some(occ) = kw
+            .factor("ZONE")
+            .iter()
+            .find(|occ| occ.str("FROTTEMENT") == Some("OUI"))
+        {
+            return Err(ex.kw_error(
+                "DEFI_CONT/ZONE",
+                occ,
+                "FROTTEMENT",
+                "not supported yet: code_aster 17's mortar friction in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS)",
+            ));
+        }
+    }
+    // Shells: code_aster pairs their mid-surfaces with the thickness of
+    // ZONE/CARA_ELEM and its own shell contact elements; not reproduced.
+    if model.has_shells() {
         return Err(ex.kw_error(
             "DEFI_CONT",
             kw,
             "MODELE",
-            "not supported yet: code_aster 17's mortar contact in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS)",
+            "not supported yet: code_aster 17's mortar contact on a model with shells (DKT): reproduced on 2D models (D_PLAN, C_PLAN, AXIS) and 3D solids",
         ));
     }
     let axis = model
@@ -304,7 +328,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     // The groups and cell kinds are checked now, located at the zone.
     for (occ, z) in kw.factor("ZONE").iter().zip(&zones) {
-        if let Err(e) = MortarLagrangian::new(std::slice::from_ref(z), &mesh, axis) {
+        if let Err(e) = MortarLagrangian::with_dim(std::slice::from_ref(z), &mesh, axis, dim) {
             let at = match &e {
                 aster_contact::ContactError::UnknownGroup { keyword, .. } => keyword,
                 aster_contact::ContactError::Unsupported { feature, .. }

@@ -924,7 +924,12 @@ pub fn solve(
                             mortar_friction =
                                 Some(crate::defi_cont::friction_source(zones, &mesh, axis)?);
                         } else {
-                            mortar = Some(crate::defi_cont::source(zones, &mesh, axis)?);
+                            mortar = Some(crate::defi_cont::source(
+                                zones,
+                                &mesh,
+                                axis,
+                                setup.model.dim(),
+                            )?);
                         }
                     }
                 }

@@ -1,0 +1,101 @@
+//! code_aster 17's mortar contact in 3D (DEFI_CONT + MECA_NON_LINE) on the
+//! project's scenes: comm/dc3d_blocks.comm (two blocks pressed by a
+//! pressure, non-matching QUAD4/QUAD4 or QUAD4/TRIA3 faces, slave on
+//! either side, linear and quadratic meshes) and comm/dc3d_tilted.comm
+//! (the same blocks turned so that no face is parallel to a coordinate
+//! plane, pressed by an imposed displacement): every TEST_RESU against the
+//! analytic state at 1e-6. And the refusals of what is not reproduced in
+//! 3D, located before anything is solved.
+
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(comm: &str, name: &str, mesh: &Path) -> aster_run::program::Outcome {
+    let dir = std::env::temp_dir().join(format!("aster-dc3d-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join(format!("{name}.comm"));
+    std::fs::write(&file, comm).unwrap();
+    let case = aster_run::program::prepare(&file, Some(mesh), &dir).unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(dir);
+    outcome
+}
+
+fn scene(name: &str) -> String {
+    std::fs::read_to_string(root().join("comm").join(name)).unwrap()
+}
+
+#[test]
+fn blocks_pass_the_patch_test_on_hexa_and_tetra_meshes() {
+    for mesh in ["dc3d_blocks.mail", "lac3d_patch.mail"] {
+        let outcome = run(
+            &scene("dc3d_blocks.comm"),
+            "blocks",
+            &root().join("comm").join(mesh),
+        );
+        assert!(outcome.error.is_none(), "{mesh}: {:?}", outcome.error);
+        // 2 meshes (linear, quadratic) × 2 slave sides × 8 values × 2
+        // (non-regression and analytic).
+        assert_eq!((outcome.tally.ok, outcome.tally.nook), (64, 0), "{mesh}");
+    }
+}
+
+#[test]
+fn a_tilted_interface_passes_the_patch_test() {
+    let outcome = run(
+        &scene("dc3d_tilted.comm"),
+        "tilted",
+        &root().join("comm/dc3d_tilted.mail"),
+    );
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (48, 0));
+}
+
+#[test]
+fn what_is_not_reproduced_in_3d_is_refused_at_its_keyword() {
+    let mesh = root().join("comm/dc3d_blocks.mail");
+    for (edit, expected) in [
+        ("ALGO_CONT=\"PENALISATION\", ", "ALGO_CONT"),
+        ("FROTTEMENT=\"OUI\", ", "FROTTEMENT"),
+    ] {
+        let comm = scene("dc3d_blocks.comm").replace(
+            "ZONE=_F(GROUP_MA_ESCL=slaves[j]",
+            &format!("ZONE=_F({edit}GROUP_MA_ESCL=slaves[j]"),
+        );
+        let outcome = run(&comm, "refused", &mesh);
+        let e = outcome.error.expect("must be refused").to_string();
+        assert!(e.contains(expected) && e.contains("refused.comm:"), "{e}");
+        assert_eq!(outcome.tally.ok + outcome.tally.nook, 0, "nothing ran: {e}");
+    }
+    // Shells: code_aster's shell contact (thicknesses of CARA_ELEM).
+    let comm = "from code_aster.MacroCommands.defi_cont import DEFI_CONT\n\
+        DEBUT(CODE='OUI')\n\
+        mesh = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\n\
+        model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA=('ESCH', 'ESCB'), \
+        PHENOMENE='MECANIQUE', MODELISATION='DKT'))\n\
+        contact = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL='ESCH', GROUP_MA_MAIT='ESCB'))\n\
+        FIN()\n";
+    let e = run(comm, "shells", &mesh)
+        .error
+        .expect("must be refused")
+        .to_string();
+    assert!(
+        e.contains("shells (DKT)") && e.contains("shells.comm:5:"),
+        "{e}"
+    );
+    // TRIA7 faces: code_aster's pairing has none (`cellSetType`).
+    let comm = scene("dc3d_blocks.comm").replace(
+        "quad = CREA_MAILLAGE(MAILLAGE=mesh, LINE_QUAD=_F(TOUT=\"OUI\"))",
+        "quad = CREA_MAILLAGE(MAILLAGE=mesh, LINE_QUAD=_F(TOUT=\"OUI\"))\n\
+         quad = CREA_MAILLAGE(MAILLAGE=quad, MODI_MAILLE=_F(TOUT=\"OUI\", OPTION=\"TRIA6_7\"))",
+    );
+    let outcome = run(&comm, "tria7", &root().join("comm/lac3d_patch.mail"));
+    let e = outcome.error.expect("must be refused").to_string();
+    assert!(
+        e.contains("TRIA7 cells in GROUP_MA_") && e.contains("tria7.comm:"),
+        "{e}"
+    );
+}
