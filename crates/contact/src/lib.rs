@@ -29,6 +29,7 @@ pub mod mortar_nitsche;
 pub mod mortar_pairing3d;
 pub mod mortar_penalty;
 mod mortar_point;
+pub mod mortar_tangent;
 mod pairing;
 mod penalty;
 pub mod quad8;

@@ -53,11 +53,12 @@
 
 use std::collections::HashMap;
 
-use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
+use aster_fem::{Comp, Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::mortar_pairing3d::{self, Face};
+use crate::mortar_tangent::{self, PointDof};
 use crate::shape::{dot, interpolate, norm, sub, SurfaceKind};
 use crate::source::current_positions;
 use crate::surface::{ResolvedZone, SurfaceCell};
@@ -189,10 +190,13 @@ pub struct MortarLagrangian {
     iterations: usize,
     /// Number of paired slave cells at the last evaluation.
     paired: usize,
-    /// The status (H) of every integration point at the last evaluation,
-    /// in pairing order, and whether its own equations held there.
-    statuses: Vec<bool>,
-    own_ok: bool,
+    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` (`None`: no geometric
+    /// criterion) and the diagonal of the mesh's bounding box it scales.
+    resi_geom: Option<f64>,
+    mesh_diagonal: f64,
+    /// The displacement of the last iterate (or of the converged state at
+    /// the start of the increment).
+    last_displacement: Vec<f64>,
     /// Length scale of the model (diagonal of the slave and master nodes'
     /// bounding box), for the gap tolerance.
     pub(crate) scale: f64,
@@ -237,6 +241,37 @@ pub(crate) fn ray_hit(p: [f64; 3], v: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Opt
     let r = sub(p, a);
     let s = (r[0] * (-v[1]) - r[1] * (-v[0])) / det;
     Some(2.0 * s - 1.0)
+}
+
+/// The DOFs of a 3D point with the tangent's derivatives of a frozen
+/// normal and master point: the jump's only (Dg = −n·(δu_s − δu_m)).
+fn frozen_dofs(
+    state: &State,
+    s: &Seg,
+    m: &Seg,
+    slave_shape: &[f64],
+    master_shape: &[f64],
+    n: [f64; 3],
+) -> Vec<PointDof> {
+    let mut out = Vec::with_capacity(3 * (s.nodes.len() + m.nodes.len()));
+    let sides = [(&s.nodes, slave_shape, 1.0), (&m.nodes, master_shape, -1.0)];
+    for (nodes, shape, sign) in sides {
+        for (a, node) in nodes.iter().enumerate() {
+            for d in 0..3 {
+                let mut jump = [0.0; 3];
+                jump[d] = sign * shape[a];
+                out.push(PointDof {
+                    dof: crate::mortar_point::dof(state, *node, d),
+                    jump,
+                    dns: [0.0; 3],
+                    dtest_m: [0.0; 3],
+                    dzeta: 0.0,
+                    dgap: -dot(n, jump),
+                });
+            }
+        }
+    }
+    out
 }
 
 /// Why a contact cell kind is not reproduced in dimension `dim`, if it is not.
@@ -401,10 +436,22 @@ impl MortarLagrangian {
             first_pairing: true,
             iterations: 0,
             paired: 0,
-            statuses: Vec::new(),
-            own_ok: false,
+            resi_geom: None,
+            mesh_diagonal: aster_mesh::box_diagonal(aster_mesh::bounding_box(
+                mesh.coords.iter().copied(),
+            )),
+            last_displacement: Vec::new(),
             scale,
         })
+    }
+
+    /// code_aster 17's geometric criterion (MECA_NON_LINE's
+    /// `CONTACT/RESI_GEOM`, `ConvergenceManager.evalGeometricResidual`):
+    /// an iterate is accepted only when the displacement increment that
+    /// led to it, max |ΔDX|, |ΔDY|, |ΔDZ| over the nodes, is at most
+    /// `resi_geom` × the diagonal of the mesh's bounding box.
+    pub fn set_resi_geom(&mut self, resi_geom: f64) {
+        self.resi_geom = Some(resi_geom);
     }
 
     /// The contact pressure of each slave node (`LAGS_C`).
@@ -578,7 +625,8 @@ impl ForceSource for MortarLagrangian {
         self.lagr.len()
     }
 
-    fn begin_increment(&mut self, _state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        self.last_displacement = state.displacement.to_vec();
         Ok(())
     }
 
@@ -592,8 +640,6 @@ impl ForceSource for MortarLagrangian {
             tangent: Vec::new(),
         };
         let mut paired = vec![false; self.lagr.len()];
-        let mut weight = vec![0.0; self.lagr.len()];
-        let mut statuses = Vec::new();
         let mut paired_cells = 0;
         let mut seen = std::collections::HashSet::new();
         for p in &pairs {
@@ -632,27 +678,58 @@ impl ForceSource for MortarLagrangian {
                     _ => -lg >= 0.0,
                 };
                 let (h, proj) = if active { (true, lg) } else { (false, 0.0) };
-                statuses.push(h);
-                for (a, &k) in lk.iter().enumerate() {
-                    weight[k] += w * nsl[a];
-                }
-                // Displacement DOFs of the jump v_s − v_m with their factors.
-                let jump = crate::mortar_point::jump_in(
-                    state,
-                    s,
-                    m,
-                    &pt.initial.shape,
-                    &pt.master.shape,
-                    ns,
-                    self.dim,
-                );
+                // The point's DOFs with the derivatives of the normal, the
+                // master point and the gap: code_aster's analytic tangent
+                // (`laMatr_ct_pr`, module `mortar_tangent`) in 2D; in 3D
+                // normals and master points frozen over an iteration.
+                let lin = if self.dim == 2 {
+                    let (_, dsl) = s.kind.eval(pt.xi);
+                    let (_, dml) = m.kind.eval(pt.master.xi);
+                    let dofs: Vec<[Option<usize>; 2]> = s
+                        .nodes
+                        .iter()
+                        .chain(&m.nodes)
+                        .map(|n| {
+                            [
+                                crate::mortar_point::dof(state, *n, 0),
+                                crate::mortar_point::dof(state, *n, 1),
+                            ]
+                        })
+                        .collect();
+                    mortar_tangent::linearise(
+                        &mortar_tangent::PointGeometry {
+                            slave_shape: &pt.initial.shape,
+                            slave_dshape: &dsl.iter().map(|d| d[0]).collect::<Vec<_>>(),
+                            master_shape: &pt.master.shape,
+                            master_dshape: &dml.iter().map(|d| d[0]).collect::<Vec<_>>(),
+                            tau_slave: pt.slave.tangents[0],
+                            normal: ns,
+                            tau_master: pt.master.tangents[0],
+                            gap,
+                        },
+                        &dofs,
+                    )
+                } else {
+                    frozen_dofs(state, s, m, &pt.initial.shape, &pt.master.shape, ns)
+                };
                 if h {
-                    // −w λ n·(v_s − v_m)
-                    for &(i, f) in &jump {
+                    // −w λ n_s·(v_s − v_m)
+                    for e in &lin {
+                        let Some(i) = e.dof else { continue };
+                        let f = dot(ns, e.jump);
                         c.forces.push((i, -w * lam * f));
                         for (a, &k) in lk.iter().enumerate() {
                             c.tangent
                                 .push((Unknown::Dof(i), Unknown::Own(k), -w * nsl[a] * f));
+                        }
+                        // −w λ (v_s − v_m)·Dn_s + w λ n_s·(∂v_m/∂ζ) Dζ
+                        let fm = dot(ns, e.dtest_m);
+                        for e2 in &lin {
+                            let Some(j) = e2.dof else { continue };
+                            let v = -w * lam * dot(e.jump, e2.dns) + w * lam * fm * e2.dzeta;
+                            if v != 0.0 {
+                                c.tangent.push((Unknown::Dof(i), Unknown::Dof(j), v));
+                            }
                         }
                     }
                 }
@@ -660,10 +737,14 @@ impl ForceSource for MortarLagrangian {
                 for (a, &ka) in lk.iter().enumerate() {
                     c.own_residual[ka] += w * (proj - lam) / gamma * nsl[a];
                     if h {
-                        // d(γ g)/du / γ = dg/du = −n·(δu_s − δu_m)
-                        for &(i, f) in &jump {
-                            c.tangent
-                                .push((Unknown::Own(ka), Unknown::Dof(i), -w * nsl[a] * f));
+                        // d(γ g)/du / γ = Dg (dPi_du)
+                        for e in &lin {
+                            let Some(j) = e.dof else { continue };
+                            c.tangent.push((
+                                Unknown::Own(ka),
+                                Unknown::Dof(j),
+                                w * nsl[a] * e.dgap,
+                            ));
                         }
                     } else {
                         for (b, &kb) in lk.iter().enumerate() {
@@ -690,25 +771,39 @@ impl ForceSource for MortarLagrangian {
             c.tangent.push((Unknown::Own(k), Unknown::Own(k), 0.0));
         }
         self.paired = paired_cells;
-        self.own_ok = c
-            .own_residual
-            .iter()
-            .zip(&weight)
-            .all(|(r, w)| r.abs() <= GAP_TOLE * w.abs() * self.scale);
-        self.statuses = statuses;
         Ok(c)
     }
 
-    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
         // The first pairing (CONTACT_INIT) was that of this iteration.
         self.iterations += 1;
         self.first_pairing = false;
-        // fem's residual test reads the displacement rows only: the
-        // iterate is accepted when the pairing and statuses it was solved
-        // with are those of the new iterate and the gap equations hold.
-        let before = std::mem::take(&mut self.statuses);
-        self.evaluate(state, own)?;
-        Ok(before == self.statuses && self.own_ok)
+        // RESI_GEOM: the increment of this solve (from the converged state
+        // for the first one: the imposed values included, as code_aster's
+        // primal increment), max over DX, DY, DZ, over the mesh diagonal.
+        let u = state.displacement;
+        let mut increment = 0.0f64;
+        for (i, v) in u.iter().enumerate() {
+            if matches!(state.dofs.dof(i).comp, Comp::DX | Comp::DY | Comp::DZ) {
+                let before = self.last_displacement.get(i).copied().unwrap_or(0.0);
+                increment = increment.max((v - before).abs());
+            }
+        }
+        self.last_displacement = u.to_vec();
+        let geometry_ok = match self.resi_geom {
+            Some(tol) if self.mesh_diagonal > 0.0 => increment / self.mesh_diagonal <= tol,
+            _ => true,
+        };
+        // code_aster 17's Newton (`NewtonSolver.solve_iteration`) pairs
+        // on the iterate, then tests the whole residual, the LAGS_C rows
+        // included ([`ForceSource::own_rows_in_residual`]): the next
+        // evaluation is that of the new pairing and statuses, and a change
+        // of them does not by itself prevent convergence.
+        Ok(geometry_ok)
+    }
+
+    fn own_rows_in_residual(&self) -> bool {
+        true
     }
 
     fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {

@@ -150,6 +150,19 @@ pub trait ForceSource {
         false
     }
 
+    /// Whether the source's own equations are rows of the residual that
+    /// decides convergence, as in code_aster 17's `MECA_NON_LINE`
+    /// (`NewtonSolver.solve_iteration` → `ConvergenceManager.evalNormResidual`:
+    /// RESI_GLOB_MAXI is the largest entry of the whole residual vector,
+    /// the `LAGS_C` rows of the contact included, and the reference of
+    /// RESI_GLOB_RELA (`getRelativeScaling`) counts them too). Such a
+    /// source's [`ForceSource::after_iteration`] usually returns `true`:
+    /// a change of status does not by itself prevent convergence there.
+    /// The default leaves the own equations to the source's own test.
+    fn own_rows_in_residual(&self) -> bool {
+        false
+    }
+
     /// Whether this source's [`LoopVerdict::Again`] continues Newton's
     /// iteration (the next solve uses the matrix of the current iterate,
     /// as code_aster's discrete geometric loop `cfconv` → `cfcgeo` inside
@@ -206,6 +219,9 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     }
     fn residual_before_update(&self) -> bool {
         (**self).residual_before_update()
+    }
+    fn own_rows_in_residual(&self) -> bool {
+        (**self).own_rows_in_residual()
     }
     fn again_continues_newton(&self) -> bool {
         (**self).again_continues_newton()
@@ -497,6 +513,17 @@ pub(crate) fn newton_step(
                 }
                 resi_maxi = resi_maxi.max(r.abs());
                 reference = reference.max((fext[i] - dyn_at(i) + reac[i] - src_force[i]).abs());
+            }
+        }
+        // The own rows of the sources whose equations are residual rows
+        // (code_aster 17's LAGS_C rows): in RESI_GLOB_MAXI and, as
+        // |f_cont| of those rows, in the reference.
+        for ((src, c), b) in sources.iter().zip(&contributions).zip(&before) {
+            if src.own_rows_in_residual() {
+                for r in &b.as_ref().unwrap_or(c).own_residual {
+                    resi_maxi = resi_maxi.max(r.abs());
+                    reference = reference.max(r.abs());
+                }
             }
         }
         if let Some(d) = dynamics {

@@ -924,12 +924,12 @@ pub fn solve(
                             mortar_friction =
                                 Some(crate::defi_cont::friction_source(zones, &mesh, axis)?);
                         } else {
-                            mortar = Some(crate::defi_cont::source(
-                                zones,
-                                &mesh,
-                                axis,
-                                setup.model.dim(),
-                            )?);
+                            let mut m =
+                                crate::defi_cont::source(zones, &mesh, axis, setup.model.dim())?;
+                            if let Some(r) = setup.contact_resi_geom {
+                                m.set_resi_geom(r);
+                            }
+                            mortar = Some(m);
                         }
                     }
                 }

@@ -138,6 +138,9 @@ pub struct SolveSetup {
     pub cut_refused: Option<String>,
     /// `DEFI_LIST_INST/ECHEC/EVENEMENT='INTERPENETRATION'`.
     pub penalty_adaptation: Option<aster_fem::PenaltyAdaptation>,
+    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` (code_aster 17's geometric
+    /// criterion of a DEFI_CONT contact; `None` elsewhere).
+    pub contact_resi_geom: Option<f64>,
 }
 
 /// Initial fields given one by one in `ETAT_INIT` (`DEPL`, and in
@@ -579,6 +582,10 @@ pub(crate) fn parse_setup(
         archive: parse_archive(ex, kw)?,
         cut_refused: None,
         penalty_adaptation,
+        // code_aster 17's default with ALGO_RESO_GEOM='NEWTON': 1e-6.
+        contact_resi_geom: contact_factor
+            .first()
+            .map(|o| o.f64("RESI_GEOM").unwrap_or(1e-6)),
     })
 }
 

@@ -1,0 +1,177 @@
+//! The linearisation of a contact point of code_aster 17's mortar contact
+//! (`DEFI_CONT`, `ALGO_CONT='LAGRANGIEN'`) in 2D, as its analytic tangent
+//! (`TYPE_MATR_TANG='ANALYTIQUE'`, the default) builds it: code_aster's
+//! `contact_algebra_module` (`jump`, `dTs_du_ns`, `dNs_du`, `dPi_du`) and
+//! `contact_module` (`evalDtestM`), used by `laMatr_ct_pr`.
+//!
+//! At a slave point ξ (fixed in the slave's parametric space) the master
+//! point ζ is found by ray tracing along the slave normal: x_m(ζ) = x_s +
+//! g n_s. Differentiating, with v the variation of the displacements,
+//!
+//! ```text
+//! τ_m Dζ[v] − Dg[v] n_s = (v_s − v_m) + g Dn_s[v]
+//! Dn_s[v] = −τ_s (Dτ_s[v]·n_s) / |τ_s|²
+//! ```
+//!
+//! (τ_s = ∂x_s/∂ξ, τ_m = ∂x_m/∂ζ, unnormalised as `apnorm` returns them),
+//! a 2 × 2 system per DOF for (Dζ, Dg). The tangent of the point then has,
+//! besides the multiplier terms, −w λ jump·Dn_s (the normal turning) and
+//! w λ n_s·(∂N_m/∂ζ) Dζ (the master point sliding) on the displacement
+//! rows, and w μ Dg (the full derivative of the gap) on the multiplier rows.
+
+use crate::shape::dot;
+
+/// One displacement DOF of a contact point (slave nodes' DX, DY first,
+/// then the master nodes'), with what the tangent needs of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointDof {
+    /// The DOF's index in the model's numbering (`None`: not numbered).
+    pub dof: Option<usize>,
+    /// The jump of the test function v_s − v_m for a unit value of this DOF.
+    pub jump: [f64; 3],
+    /// Dn_s: the derivative of the unit slave normal.
+    pub dns: [f64; 3],
+    /// ∂(v_m)/∂ζ: the derivative of the master test function along ζ
+    /// (`evalDtestM`; zero on a slave DOF).
+    pub dtest_m: [f64; 3],
+    /// Dζ: the derivative of the master point's parameter.
+    pub dzeta: f64,
+    /// Dg: the derivative of the gap g = −(x_s − x_m)·n_s.
+    pub dgap: f64,
+}
+
+/// The geometry of a paired point, on the current coordinates.
+pub struct PointGeometry<'a> {
+    /// Slave shape functions and their ∂/∂ξ at the point.
+    pub slave_shape: &'a [f64],
+    pub slave_dshape: &'a [f64],
+    /// Master shape functions and their ∂/∂ζ at the master point.
+    pub master_shape: &'a [f64],
+    pub master_dshape: &'a [f64],
+    /// τ_s = ∂x_s/∂ξ, the unit outward slave normal n_s, τ_m = ∂x_m/∂ζ.
+    pub tau_slave: [f64; 3],
+    pub normal: [f64; 3],
+    pub tau_master: [f64; 3],
+    /// The gap g.
+    pub gap: f64,
+}
+
+/// The DOFs of a point with their derivatives (`dofs`: the slave nodes'
+/// (DX, DY) then the master nodes', in the order of the shape functions).
+pub fn linearise(p: &PointGeometry, dofs: &[[Option<usize>; 2]]) -> Vec<PointDof> {
+    let ns = p.normal;
+    let ts = p.tau_slave;
+    let tm = p.tau_master;
+    let ts2 = dot(ts, ts);
+    let nsl = p.slave_shape.len();
+    let mut out = Vec::with_capacity(2 * dofs.len());
+    for (node, ids) in dofs.iter().enumerate() {
+        for (d, &dof) in ids.iter().enumerate() {
+            let mut e = PointDof {
+                dof,
+                jump: [0.0; 3],
+                dns: [0.0; 3],
+                dtest_m: [0.0; 3],
+                dzeta: 0.0,
+                dgap: 0.0,
+            };
+            if node < nsl {
+                e.jump[d] = p.slave_shape[node];
+                // dTs_du_ns then dNs_du: −τ_s (∂N_a/∂ξ n_s[d]) / |τ_s|².
+                if ts2 > 0.0 {
+                    let c = -p.slave_dshape[node] * ns[d] / ts2;
+                    e.dns = [c * ts[0], c * ts[1], c * ts[2]];
+                }
+            } else {
+                let b = node - nsl;
+                e.jump[d] = -p.master_shape[b];
+                e.dtest_m[d] = p.master_dshape[b];
+            }
+            // dPi_du: (τ_m, −n_s) (Dζ, Dg) = jump + g Dn_s.
+            let r = [e.jump[0] + p.gap * e.dns[0], e.jump[1] + p.gap * e.dns[1]];
+            let det = -tm[0] * ns[1] + ns[0] * tm[1];
+            if det.abs() > f64::EPSILON * (tm[0].abs() + tm[1].abs()) {
+                e.dzeta = (-r[0] * ns[1] + ns[0] * r[1]) / det;
+                e.dgap = (tm[0] * r[1] - tm[1] * r[0]) / det;
+            } else {
+                e.dgap = -(r[0] * ns[0] + r[1] * ns[1]);
+            }
+            out.push(e);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::{interpolate, SurfaceKind};
+
+    /// Gap and master parameter of a slave SEG2 point ξ cast along the
+    /// slave normal onto a master SEG2, by formula (for the finite
+    /// differences of the test).
+    fn gap_and_zeta(x: &[[f64; 3]; 4], xi: f64) -> (f64, f64) {
+        let s = interpolate(SurfaceKind::Seg2, &x[0..2], [xi, 0.0]);
+        let t = s.tangents[0];
+        let l = (t[0] * t[0] + t[1] * t[1]).sqrt();
+        let n = [t[1] / l, -t[0] / l, 0.0];
+        // x_a + (1 + ζ)/2 (x_b − x_a) = x_s + g n
+        let e = [(x[3][0] - x[2][0]) / 2.0, (x[3][1] - x[2][1]) / 2.0];
+        let m0 = [(x[3][0] + x[2][0]) / 2.0, (x[3][1] + x[2][1]) / 2.0];
+        let r = [s.x[0] - m0[0], s.x[1] - m0[1]];
+        // e ζ − n g = r
+        let det = e[0] * (-n[1]) + n[0] * e[1];
+        let zeta = (r[0] * (-n[1]) + n[0] * r[1]) / det;
+        let g = (e[0] * r[1] - e[1] * r[0]) / det;
+        (g, zeta)
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        // A tilted slave segment above a tilted master segment.
+        let x = [
+            [0.1, 0.3, 0.0],
+            [1.2, 0.45, 0.0],
+            [1.4, -0.1, 0.0],
+            [-0.2, 0.05, 0.0],
+        ];
+        let xi = 0.3;
+        let s = interpolate(SurfaceKind::Seg2, &x[0..2], [xi, 0.0]);
+        let t = s.tangents[0];
+        let l = (t[0] * t[0] + t[1] * t[1]).sqrt();
+        let n = [t[1] / l, -t[0] / l, 0.0];
+        let (g, zeta) = gap_and_zeta(&x, xi);
+        let (nm, dm) = SurfaceKind::Seg2.eval([zeta, 0.0]);
+        let (ns, ds) = SurfaceKind::Seg2.eval([xi, 0.0]);
+        let m = interpolate(SurfaceKind::Seg2, &x[2..4], [zeta, 0.0]);
+        let geo = PointGeometry {
+            slave_shape: &ns,
+            slave_dshape: &[ds[0][0], ds[1][0]],
+            master_shape: &nm,
+            master_dshape: &[dm[0][0], dm[1][0]],
+            tau_slave: t,
+            normal: n,
+            tau_master: m.tangents[0],
+            gap: g,
+        };
+        let ids: Vec<[Option<usize>; 2]> = (0..4).map(|k| [Some(2 * k), Some(2 * k + 1)]).collect();
+        let lin = linearise(&geo, &ids);
+        let h = 1e-7;
+        for (k, e) in lin.iter().enumerate() {
+            let mut xp = x;
+            xp[k / 2][k % 2] += h;
+            let mut xm = x;
+            xm[k / 2][k % 2] -= h;
+            let (gp, zp) = gap_and_zeta(&xp, xi);
+            let (gm, zm) = gap_and_zeta(&xm, xi);
+            let dg = (gp - gm) / (2.0 * h);
+            let dz = (zp - zm) / (2.0 * h);
+            assert!((dg - e.dgap).abs() < 1e-6, "dof {k}: Dg {} vs {dg}", e.dgap);
+            assert!(
+                (dz - e.dzeta).abs() < 1e-6,
+                "dof {k}: Dζ {} vs {dz}",
+                e.dzeta
+            );
+        }
+    }
+}
