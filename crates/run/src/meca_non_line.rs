@@ -6,8 +6,9 @@
 //! Its own keywords: `CONTACT` is a factor keyword whose `DEFINITION` is a
 //! `DEFI_CONT` (code_aster 17's mortar augmented-Lagrangian contact,
 //! `crate::defi_cont`), paired again before every Newton iteration
-//! (`ALGO_RESO_GEOM='NEWTON'`, the only value reproduced); `RESI_GEOM` is
-//! accepted (the Newton tolerance decides the converged state).
+//! (`ALGO_RESO_GEOM='NEWTON'`, the only value reproduced); `RESI_GEOM`
+//! (default 1e-6) bounds the increment that led to an accepted iterate,
+//! over the mesh's diagonal, as code_aster 17's `ConvergenceManager`.
 //! `METHODE='SNES'`/`'RASPEN'` (PETSc solvers) and `RECH_LINEAIRE` are
 //! refused; `ARCHIVAGE`, `SOLVEUR` and `INFO` are accepted as in
 //! STAT_NON_LINE.
