@@ -1,13 +1,16 @@
 //! Python's `os` and `os.path`, as far as command files use them for
 //! pure computation: `os.environ` (the process environment, read when
 //! the study first asks; assignments stay inside the study),
-//! `os.getenv`, `os.getcwd`, `os.sep`/`os.pathsep`, and the path
-//! arithmetic of `os.path` (`join`, `basename`, `dirname`, `split`,
-//! `splitext`, `exists`, `isfile`, `isdir`, `abspath`).
+//! `os.getenv`, `os.sep`/`os.pathsep`, and the path arithmetic of
+//! `os.path` (`join`, `basename`, `dirname`, `split`, `splitext`).
 //!
-//! What acts on the machine (`os.system`, `os.rename`, `os.makedirs`,
-//! `os.remove`…) is refused where it is used, located: a study's commands
-//! never run other programs or move files behind the user's back.
+//! Refused where used, located: what acts on the machine (`os.system`,
+//! `os.rename`, `os.makedirs`, `os.remove`…) — a study's commands never
+//! run other programs or move files behind the user's back — and what
+//! asks the file system (`os.path.exists`, `isfile`, `isdir`, `abspath`,
+//! `os.getcwd`): code_aster answers them in its own work directory, where
+//! the `.export`'s files are copied under their names, so the answer here
+//! (checked anywhere, run from any directory) would not be code_aster's.
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -41,17 +44,12 @@ pub(crate) fn attr(module: &str, name: &str, environ: &mut Option<Value>) -> Opt
         ("os", "sep") | ("os.path", "sep") => Some(Value::str("/")),
         ("os", "pathsep") => Some(Value::str(":")),
         ("os", "curdir") | ("os.path", "curdir") => Some(Value::str(".")),
-        ("os", "getcwd") => f("os.getcwd"),
         ("os", "getenv") => f("os.getenv"),
         ("os.path", "join") => f("os.path.join"),
         ("os.path", "basename") => f("os.path.basename"),
         ("os.path", "dirname") => f("os.path.dirname"),
         ("os.path", "split") => f("os.path.split"),
         ("os.path", "splitext") => f("os.path.splitext"),
-        ("os.path", "exists") => f("os.path.exists"),
-        ("os.path", "isfile") => f("os.path.isfile"),
-        ("os.path", "isdir") => f("os.path.isdir"),
-        ("os.path", "abspath") => f("os.path.abspath"),
         _ => None,
     }
 }
@@ -61,7 +59,7 @@ pub(crate) fn refuse<T>(module: &str, name: &str, span: Span) -> R<T> {
     unsupported(
         span,
         format!(
-            "`{module}.{name}` (of `{module}`, a command file may use environ, getenv, getcwd and the path arithmetic of os.path: join, basename, dirname, split, splitext, exists, isfile, isdir, abspath)"
+            "`{module}.{name}` (of `{module}`, a command file may use environ, getenv and the path arithmetic of os.path: join, basename, dirname, split, splitext; the file system is code_aster's work directory, not reproduced)"
         ),
     )
 }
@@ -101,7 +99,7 @@ fn splitext(p: &str) -> (String, String) {
     }
 }
 
-/// Calls `os.getcwd`, `os.getenv`, `os.path.*` with positional `args`.
+/// Calls `os.getenv`, `os.path.*` with positional `args`.
 pub(crate) fn call(name: &str, args: &[Value], span: Span) -> R<Value> {
     let one = || -> R<&str> {
         match args {
@@ -111,12 +109,6 @@ pub(crate) fn call(name: &str, args: &[Value], span: Span) -> R<Value> {
     };
     let pair = |(a, b): (String, String)| Value::tuple(vec![Value::str(&a), Value::str(&b)]);
     Ok(match name {
-        "os.getcwd" => {
-            let cwd = std::env::current_dir()
-                .map(|p| p.display().to_string())
-                .or_else(|e| py_err(span, format!("os.getcwd(): {e}")))?;
-            Value::str(&cwd)
-        }
         "os.getenv" => {
             let (key, default) = match args {
                 [k] => (text(k, name, span)?, Value::None),
@@ -150,16 +142,6 @@ pub(crate) fn call(name: &str, args: &[Value], span: Span) -> R<Value> {
         "os.path.dirname" => Value::str(&split(one()?).0),
         "os.path.split" => pair(split(one()?)),
         "os.path.splitext" => pair(splitext(one()?)),
-        "os.path.exists" => Value::Bool(std::path::Path::new(one()?).exists()),
-        "os.path.isfile" => Value::Bool(std::path::Path::new(one()?).is_file()),
-        "os.path.isdir" => Value::Bool(std::path::Path::new(one()?).is_dir()),
-        "os.path.abspath" => {
-            let p = one()?;
-            let abs = std::path::absolute(p)
-                .map(|p| p.display().to_string())
-                .or_else(|e| py_err(span, format!("os.path.abspath(): {e}")))?;
-            Value::str(&abs)
-        }
         other => return unsupported(span, format!("`{other}`")),
     })
 }

@@ -225,4 +225,13 @@ print(name, root, stem, ext, os.environ["ASTER_TEST_FC"], seen, os.getenv("ASTER
         err.contains("2:4") && err.contains("not supported: `os.system`"),
         "{err}"
     );
+    // The file system is code_aster's work directory: not asked here.
+    let err = match run("import os.path\nassert os.path.isfile('case.py')\n") {
+        Ok(_) => panic!("os.path.isfile answered"),
+        Err(e) => e,
+    };
+    assert!(
+        err.contains("2:16") && err.contains("not supported: `os.path.isfile`"),
+        "{err}"
+    );
 }
