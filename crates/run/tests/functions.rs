@@ -4,21 +4,10 @@
 //! IMPR_FONCTION's XMGRACE file on a unit named by DEFI_FICHIER, and
 //! IMPR_TABLE's.
 
+mod common;
+
+use common::Report;
 use std::path::PathBuf;
-
-/// The run's report, kept to be read after the run.
-#[derive(Clone, Default)]
-struct Report(std::rc::Rc<std::cell::RefCell<Vec<u8>>>);
-
-impl std::io::Write for Report {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.0.borrow_mut().extend_from_slice(buf);
-        Ok(buf.len())
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
-}
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -37,7 +26,7 @@ fn functions_and_tables_pass_and_the_curves_are_written() {
     let outcome = aster_run::program::run(&case, Box::new(report.clone()));
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (16, 0));
-    let report = String::from_utf8(report.0.borrow().clone()).unwrap();
+    let report = report.text();
     // PILOTE: no image drawn, the text format written and said so; an
     // interactive display writes nothing.
     assert!(

@@ -4,23 +4,13 @@
 //! project's strip (comm/strip.mail) written as MED is read with a
 //! partitioner and pulled: the exact tension answer, and the alarm.
 
+mod common;
+
+use common::Report;
 use std::path::PathBuf;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-#[derive(Clone, Default)]
-struct Report(std::rc::Rc<std::cell::RefCell<Vec<u8>>>);
-
-impl std::io::Write for Report {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.0.borrow_mut().extend_from_slice(buf);
-        Ok(buf.len())
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
 }
 
 const COMM: &str = r#"
@@ -54,7 +44,7 @@ fn a_partitioned_mesh_is_read_whole_on_one_process() {
     let case = aster_run::program::prepare(&comm, Some(&med), &out).unwrap();
     let report = Report::default();
     let outcome = aster_run::program::run(&case, Box::new(report.clone()));
-    let text = String::from_utf8(report.0.borrow().clone()).unwrap();
+    let text = report.text();
     let _ = std::fs::remove_dir_all(&dir);
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (2, 0), "{text}");

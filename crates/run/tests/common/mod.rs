@@ -102,3 +102,24 @@ impl Shared {
         String::from_utf8_lossy(&self.0.borrow()).into_owned()
     }
 }
+
+/// The run's report, kept to be read after the run.
+#[derive(Clone, Default)]
+pub struct Report(pub std::rc::Rc<std::cell::RefCell<Vec<u8>>>);
+
+impl std::io::Write for Report {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.borrow_mut().extend_from_slice(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+impl Report {
+    /// What the run wrote.
+    pub fn text(&self) -> String {
+        String::from_utf8_lossy(&self.0.borrow()).into_owned()
+    }
+}
