@@ -623,11 +623,7 @@ impl<'a> Interp<'a> {
                                 Some(v) => v,
                                 None => return crate::os_module::refuse(&m, &a.name, a.span),
                             };
-                            let bind = a
-                                .asname
-                                .as_ref()
-                                .map(|i| i.name.to_string())
-                                .unwrap_or(a.name.clone());
+                            let bind = bound_name(a);
                             self.set_var(&bind, v);
                         }
                     }
@@ -646,11 +642,7 @@ impl<'a> Interp<'a> {
                             let v = builtins::math_attr(&a.name).ok_or(()).or_else(|_| {
                                 py_err(a.span, format!("cannot import name `{}` from math", a.name))
                             })?;
-                            let bind = a
-                                .asname
-                                .as_ref()
-                                .map(|i| i.name.to_string())
-                                .unwrap_or(a.name.clone());
+                            let bind = bound_name(a);
                             self.set_var(&bind, v);
                         }
                     }
@@ -659,11 +651,7 @@ impl<'a> Interp<'a> {
                         // are already known; other names become opaque
                         // modules that say "not supported" when used.
                         for a in names {
-                            let bind = a
-                                .asname
-                                .as_ref()
-                                .map(|i| i.name.to_string())
-                                .unwrap_or(a.name.clone());
+                            let bind = bound_name(a);
                             let v = self.lookup_builtin(&a.name).unwrap_or_else(|| {
                                 Value::Module(Rc::from(format!("{m}.{}", a.name).as_str()))
                             });
@@ -1809,6 +1797,14 @@ impl<'a> Interp<'a> {
             }
         }))
     }
+}
+
+/// The name `from m import a [as b]` binds.
+fn bound_name(a: &ast::Alias) -> String {
+    a.asname
+        .as_ref()
+        .map(|i| i.name.to_string())
+        .unwrap_or_else(|| a.name.clone())
 }
 
 #[derive(Clone, Copy)]
