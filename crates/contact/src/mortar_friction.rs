@@ -46,7 +46,6 @@ use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
-use crate::lac_mortar::{piece_points, Family};
 use crate::mortar_lagrangian::{
     err, normal_at, ray_hit, InitialState, MortarLagrangian, MortarZoneDef, GAP_TOLE,
 };
@@ -467,11 +466,6 @@ impl ForceSource for MortarFriction {
                 map.push(Some(Unknown::Own(2 * k)));
                 map.push(Some(Unknown::Own(2 * k + 1)));
             }
-            let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
-                Family::Fpg3
-            } else {
-                Family::Fpg4
-            };
             let geometry = PointGeometry {
                 s_kind: s.kind,
                 sign: s.sign,
@@ -486,13 +480,7 @@ impl ForceSource for MortarFriction {
                 (true, InitialState::Yes) => Some(true),
                 _ => None,
             };
-            for (xi, w_ref) in piece_points(2, &[[p.xi[0], 0.0], [p.xi[1], 0.0]], family) {
-                let at0 = interpolate(s.kind, &s0, xi);
-                let mut w = w_ref * norm(at0.tangents[0]);
-                if base.axis {
-                    let r = at0.x[0];
-                    w *= if r == 0.0 { 1e-7 } else { r };
-                }
+            for (xi, w, at0) in crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis) {
                 let law = PointLaw {
                     xi: xi[0],
                     w,

@@ -46,6 +46,37 @@ pub(crate) struct MortarPoint {
     pub gap: f64,
 }
 
+/// The integration points of a 2D pair on the intersection `xi` (slave
+/// parametric space, `getQuadCont`, `lcptga`): FPG3 when both cells are
+/// SEG2, FPG4 otherwise; each with its weight — the reference weight times
+/// the slave Jacobian on the initial coordinates `s0` (× the initial
+/// radius in AXIS, 1e-7 on the axis) — and the slave point there on `s0`.
+pub(crate) fn quadrature_2d(
+    s: &Seg,
+    m: &Seg,
+    xi: [f64; 2],
+    s0: &[[f64; 3]],
+    axis: bool,
+) -> Vec<([f64; 2], f64, CellPoint)> {
+    let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
+        Family::Fpg3
+    } else {
+        Family::Fpg4
+    };
+    piece_points(2, &[[xi[0], 0.0], [xi[1], 0.0]], family)
+        .into_iter()
+        .map(|(xi, w_ref)| {
+            let at0 = interpolate(s.kind, s0, xi);
+            let mut w = w_ref * norm(at0.tangents[0]);
+            if axis {
+                let r = at0.x[0];
+                w *= if r == 0.0 { 1e-7 } else { r };
+            }
+            (xi, w, at0)
+        })
+        .collect()
+}
+
 /// The quadrature points of the pair of slave `s` and master `m` on the
 /// intersection `xi` (slave parametric space): `sp`, `mp` the cells'
 /// current node positions, `s0` the slave's initial ones.
@@ -58,20 +89,8 @@ pub(crate) fn points(
     s0: &[[f64; 3]],
     axis: bool,
 ) -> Result<Vec<MortarPoint>, FemError> {
-    // FPG3 when both cells are linear, FPG4 otherwise (getQuadCont).
-    let family = if s.kind == SurfaceKind::Seg2 && m.kind == SurfaceKind::Seg2 {
-        Family::Fpg3
-    } else {
-        Family::Fpg4
-    };
     let mut out = Vec::new();
-    for (xi, w_ref) in piece_points(2, &[[xi[0], 0.0], [xi[1], 0.0]], family) {
-        let at0 = interpolate(s.kind, s0, xi);
-        let mut w = w_ref * norm(at0.tangents[0]);
-        if axis {
-            let r = at0.x[0];
-            w *= if r == 0.0 { 1e-7 } else { r };
-        }
+    for (xi, w, at0) in quadrature_2d(s, m, xi, s0, axis) {
         let ns = normal_at(s.kind, sp, xi[0], s.sign).ok_or_else(|| {
             err(ContactError::Invalid {
                 keyword: "GROUP_MA_ESCL",
