@@ -285,6 +285,8 @@ pub(crate) fn newton_step(
     sources: &mut [Box<dyn ForceSource + '_>],
     own: &mut [Vec<f64>],
     u: &mut [f64],
+    start: &[f64],
+    elim: &std::collections::HashMap<usize, f64>,
     t: f64,
     plastic: &mut Option<PlasticCells>,
 ) -> Result<ForceOutcome, FemError> {
@@ -331,13 +333,40 @@ pub(crate) fn newton_step(
     let mut tangent: Option<Csc> = None;
     let mut evaluated: Option<(Vec<f64>, Vec<crate::force_source::Contribution>)> = None;
     loop {
+        // The prediction (iteration 0 of a step, or of a restart from
+        // the step's start): the internal forces are those of the state
+        // before the imposed increment, which enters as −K_T Δū
+        // (`crate::nonlinear::add_imposed_lift`), as in code_aster 17's
+        // `NewtonSolver` (the residual at the step's start, the Dirichlet
+        // increment through the Jacobian) and STAT_NON_LINE's `nmprta`.
+        // The sources are evaluated at the iterate as before.
+        let predict = plastic.is_some()
+            && evaluated.is_none()
+            && iteration == 0
+            && crate::nonlinear::imposed_moved(u, start, elim.keys().copied());
         // Internal forces and the sources' contributions at the iterate.
-        let (fint, contributions) = match evaluated.take() {
+        let (mut fint, contributions) = match evaluated.take() {
             Some(e) => e,
+            None if predict => {
+                let u0 = crate::nonlinear::before_imposed(u, start, elim.keys().copied());
+                let fint = step_forces(model, k, dynamics, plastic, &u0)?;
+                (fint, evaluate_sources(model, sources, own, u, t)?)
+            }
             None => evaluate_all(model, k, dynamics, plastic, sources, own, u, t)?,
         };
         if let Some(pc) = plastic.as_mut() {
             choose_tangent(&mut tangent, pc, model, kff, map, newton, matrix_iteration)?;
+            if predict {
+                crate::nonlinear::add_imposed_lift(
+                    k,
+                    pc,
+                    tangent.is_some(),
+                    u,
+                    start,
+                    elim.keys().copied(),
+                    &mut fint,
+                );
+            }
         }
         let matrix = tangent.as_ref().unwrap_or(kff);
         let rows: Vec<(Vec<(usize, f64)>, f64)> =
@@ -357,6 +386,7 @@ pub(crate) fn newton_step(
                 b[map[i]] = fext[i] - fint[i] - src_force[i];
             }
         }
+
         let mut extra: Vec<(usize, usize, f64)> = Vec::new();
         for (s, c) in contributions.iter().enumerate() {
             for (k, r) in c.own_residual.iter().enumerate() {
@@ -635,6 +665,17 @@ fn evaluate_all(
     t: f64,
 ) -> Result<(Vec<f64>, Vec<Contribution>), FemError> {
     let fint = step_forces(model, k, dynamics, plastic, u)?;
+    Ok((fint, evaluate_sources(model, sources, own, u, t)?))
+}
+
+/// The sources' contributions at the iterate `u`.
+fn evaluate_sources(
+    model: &Model,
+    sources: &mut [Box<dyn ForceSource + '_>],
+    own: &[Vec<f64>],
+    u: &[f64],
+    t: f64,
+) -> Result<Vec<Contribution>, FemError> {
     let _t = crate::newton_timing::phase(crate::newton_timing::Phase::Contact);
     let mut out = Vec::with_capacity(sources.len());
     for (s, src) in sources.iter_mut().enumerate() {
@@ -649,5 +690,5 @@ fn evaluate_all(
         }
         out.push(c);
     }
-    Ok((fint, out))
+    Ok(out)
 }

@@ -806,6 +806,8 @@ impl StaticNonLinear<'_> {
                         &mut self.forces,
                         &mut own,
                         &mut u,
+                        &saved.0,
+                        &elim,
                         target,
                         &mut plastic,
                     )
@@ -1303,16 +1305,14 @@ fn newton_step(
             // (DDL_IMPO) enter the same solve through their rows, so both
             // ways of imposing give the same iterates. Elastic models are
             // linear: K u is the same either way.
-            let predict = plastic.is_some() && fint_now.is_none() && newton_iter == 0 && {
-                elim.keys().any(|&i| u[i] != start[i])
-            };
+            let predict = plastic.is_some()
+                && fint_now.is_none()
+                && newton_iter == 0
+                && imposed_moved(u, start, elim.keys().copied());
             let mut fint = match fint_now.take() {
                 Some(f) => f,
                 None if predict => {
-                    let mut u0 = u.to_vec();
-                    for &i in elim.keys() {
-                        u0[i] = start[i];
-                    }
+                    let u0 = before_imposed(u, start, elim.keys().copied());
                     step_forces(model, k, dynamics, plastic, &u0)?
                 }
                 None => step_forces(model, k, dynamics, plastic, u)?,
@@ -1325,17 +1325,15 @@ fn newton_step(
                     };
                 }
                 if predict {
-                    let mut du = vec![0.0; nd];
-                    for &i in elim.keys() {
-                        du[i] = u[i] - start[i];
-                    }
-                    let mut kdu = k.mul(&du);
-                    if tangent.is_some() {
-                        pc.add_tangent_correction_times(&du, &mut kdu);
-                    }
-                    for (f, d) in fint.iter_mut().zip(&kdu) {
-                        *f += d;
-                    }
+                    add_imposed_lift(
+                        k,
+                        pc,
+                        tangent.is_some(),
+                        u,
+                        start,
+                        elim.keys().copied(),
+                        &mut fint,
+                    );
                 }
                 base = Some((u.to_vec(), fint.clone()));
             }
@@ -1944,6 +1942,56 @@ fn max_abs(u: &[f64]) -> f64 {
 /// and consistent tangents are updated on the way).
 /// The internal forces of a step's Newton loop: K u, the plastic cells
 /// and the time integrator's force (inertia, damping).
+/// Whether the step's imposed values (the eliminated DOFs of
+/// `AFFE_CHAR_CINE`) moved any DOF from where the step starts.
+pub(crate) fn imposed_moved(u: &[f64], start: &[f64], elim: impl Iterator<Item = usize>) -> bool {
+    elim.into_iter().any(|i| u[i] != start[i])
+}
+
+/// The iterate with the eliminated DOFs back at the step's start: the
+/// state where code_aster's prediction (`nmprta`, and code_aster 17's
+/// `NewtonSolver` at iteration 0) takes the residual.
+pub(crate) fn before_imposed(
+    u: &[f64],
+    start: &[f64],
+    elim: impl Iterator<Item = usize>,
+) -> Vec<f64> {
+    let mut u0 = u.to_vec();
+    for i in elim {
+        u0[i] = start[i];
+    }
+    u0
+}
+
+/// The prediction's lifting of the imposed increment: `fint += K_T Δū`
+/// where Δū is the move of the eliminated DOFs (the elastic `k`, plus the
+/// behaviours' correction when the consistent tangent is used). The
+/// increment is then spread through the body by the tangent solve instead
+/// of internal forces being computed on the kinked state where only the
+/// eliminated DOFs moved (whose neighbouring cells would yield, or invert
+/// under finite strains, in that trial state).
+pub(crate) fn add_imposed_lift(
+    k: &Csc,
+    pc: &PlasticCells,
+    consistent: bool,
+    u: &[f64],
+    start: &[f64],
+    elim: impl Iterator<Item = usize>,
+    fint: &mut [f64],
+) {
+    let mut du = vec![0.0; u.len()];
+    for i in elim {
+        du[i] = u[i] - start[i];
+    }
+    let mut kdu = k.mul(&du);
+    if consistent {
+        pc.add_tangent_correction_times(&du, &mut kdu);
+    }
+    for (f, d) in fint.iter_mut().zip(&kdu) {
+        *f += d;
+    }
+}
+
 pub(crate) fn step_forces(
     model: &Model,
     k: &Csc,

@@ -231,9 +231,11 @@ impl CallRefusals {
                 .factor("COMPORTEMENT")
                 .iter()
                 .any(|c| c.str("DEFORMATION") == Some("SIMO_MIEHE"))
-                && kw
+                && (kw
                     .concept("CONTACT")
-                    .is_some_and(|c| !self.unilateral_links.contains(&c.id));
+                    .is_some_and(|c| !self.unilateral_links.contains(&c.id))
+                    // MECA_NON_LINE: CONTACT=_F(DEFINITION=<DEFI_CONT>).
+                    || !kw.factor("CONTACT").is_empty());
             if let Some(r) = call.result.as_ref().or(call.reuse.as_ref()) {
                 if finite {
                     self.finite_strain_results.push(r.id);

@@ -6,7 +6,8 @@
 //! discrete and continuous contact — under GREEN_LAGRANGE, GDEF_LOG,
 //! SIMO_MIEHE and PETIT_REAC (and the continuous geometric loop cut at
 //! NB_ITER_GEOM passes), every TEST_RESU against the closed-form
-//! answer of its formulation to 1e-9.
+//! answer of its formulation to 1e-9; one imposed step larger than a
+//! cell (comm/big_step_column.comm) through the prediction.
 
 use std::path::PathBuf;
 
@@ -108,4 +109,22 @@ fn a_geometric_loop_cut_at_nb_iter_geom_with_plasticity_is_refused() {
         "{err}"
     );
     assert_eq!(outcome.tally.ok, 0);
+}
+
+/// One imposed step larger than a cell's height (AFFE_CHAR_CINE), under
+/// GDEF_LOG and SIMO_MIEHE, with STAT_NON_LINE and with MECA_NON_LINE and
+/// a DEFI_CONT contact: the prediction spreads the imposed increment by
+/// the tangent solve (the kinked trial state would turn the top cells
+/// inside out), and the homogeneous compression matches its closed form
+/// to 1e-9.
+#[test]
+fn one_large_imposed_step_is_predicted_through_the_tangent() {
+    assert_eq!(
+        run(
+            "comm/big_step_column.comm",
+            "comm/big_step_column.mail",
+            "bigstep"
+        ),
+        (60, 0, None)
+    );
 }

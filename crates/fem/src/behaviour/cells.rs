@@ -554,10 +554,7 @@ impl PlasticCells {
             if !self.corrected[c] {
                 continue;
             }
-            let corr = match &self.finite_k[c] {
-                Some(k) if cell.finite() => k.clone(),
-                _ => cell_tangent(cell, &self.tangents[c]) - &cell.k_el,
-            };
+            let corr = self.correction(c);
             let n = cell.dofs.len();
             for b in 0..n {
                 for a in 0..n {
@@ -569,6 +566,18 @@ impl PlasticCells {
             }
         }
         t
+    }
+
+    /// Cell `c`'s tangent correction K_T − Kₑ: the stored one of a
+    /// finite-strain cell (its tangent at the last update or prediction,
+    /// [`Self::set_finite_tangent`]), else ∫BᵀC B − Kₑ from its Gauss
+    /// points' tangents.
+    fn correction(&self, c: usize) -> DMatrix<f64> {
+        let cell = &self.cells[c];
+        match &self.finite_k[c] {
+            Some(k) if cell.finite() => k.clone(),
+            _ => cell_tangent(cell, &self.tangents[c]) - &cell.k_el,
+        }
     }
 
     /// Adds to `out` (one value per DOF of the model) the plastic cells'
@@ -585,10 +594,7 @@ impl PlasticCells {
             if de.iter().all(|&v| v == 0.0) {
                 continue;
             }
-            let corr = match &self.finite_k[c] {
-                Some(k) if cell.stabilised.is_some() => k.clone(),
-                _ => cell_tangent(cell, &self.tangents[c]) - &cell.k_el,
-            };
+            let corr = self.correction(c);
             let n = cell.dofs.len();
             for a in 0..n {
                 let v: f64 = (0..n).map(|b| corr[(a, b)] * de[b]).sum();
