@@ -41,6 +41,10 @@
 //!   rotation (`dPi_du`, `dNs_du`, `dv_du`). code_aster's own matrix
 //!   (`laMatr_cf_pr`) only changes Newton's path: the converged state is the
 //!   zero of the residual above.
+//! - **Convergence**: code_aster 17's (`NewtonSolver`, `ConvergenceManager`):
+//!   the whole residual, the multiplier rows included, and `RESI_GEOM`
+//!   (`mortar_lagrangian::GeometricCriterion`); a change of status does not
+//!   by itself prevent convergence.
 
 use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::{Mesh, NodeId};

@@ -1,7 +1,7 @@
-//! Friction of code_aster 17's penalised mortar contact (`DEFI_CONT(ZONE=_F(
-//! ALGO_CONT='PENALISATION', FROTTEMENT='OUI'))`, `ALGO_FROT='PENALISATION'`),
-//! in 2D on SEG2 and SEG3 cells, as a fem force source without unknowns of
-//! its own.
+//! Friction of code_aster 17's penalised mortar contact
+//! (`DEFI_CONT(ZONE=_F(ALGO_CONT='PENALISATION', FROTTEMENT='OUI'))`,
+//! `ALGO_FROT='PENALISATION'`), in 2D on SEG2 and SEG3 cells, as a fem
+//! force source without unknowns of its own.
 //!
 //! As code_aster's (2025 main: `te0352`, `peelem`, `peVect` →
 //! `peVect_cf_pr`, `laElemCont`, `contact_module` (`thresEval`,
