@@ -422,10 +422,7 @@ fn point_terms(
             }
         }
     }
-    Ok(Some(PointTerms {
-        forces,
-        own,
-    }))
+    Ok(Some(PointTerms { forces, own }))
 }
 
 /// The frictional mortar contact of a DEFI_CONT, as a fem force source.
