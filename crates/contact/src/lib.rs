@@ -24,6 +24,7 @@ mod integration;
 pub mod lac;
 pub mod lac_mortar;
 pub mod mortar_friction;
+pub mod mortar_friction_penalty;
 pub mod mortar_lagrangian;
 pub mod mortar_nitsche;
 pub mod mortar_pairing3d;

@@ -41,13 +41,17 @@
 //!   rotation (`dPi_du`, `dNs_du`, `dv_du`). code_aster's own matrix
 //!   (`laMatr_cf_pr`) only changes Newton's path: the converged state is the
 //!   zero of the residual above.
+//! - **Convergence**: code_aster 17's (`NewtonSolver`, `ConvergenceManager`):
+//!   the whole residual, the multiplier rows included, and `RESI_GEOM`
+//!   (`mortar_lagrangian::GeometricCriterion`); a change of status does not
+//!   by itself prevent convergence.
 
 use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::mortar_lagrangian::{
-    err, normal_at, ray_hit, InitialState, MortarLagrangian, MortarZoneDef, GAP_TOLE,
+    err, normal_at, ray_hit, InitialState, MortarLagrangian, MortarZoneDef,
 };
 use crate::shape::{dot, interpolate, norm, project_along, sub, SurfaceKind};
 use crate::source::current_positions;
@@ -73,33 +77,32 @@ const R8PREM: f64 = f64::EPSILON;
 /// The status of an integration point: contact, and for friction whether
 /// the projection slid (its tangential part reached the threshold).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct PointStatus {
-    contact: bool,
-    slip: bool,
+pub(crate) struct PointStatus {
+    pub(crate) contact: bool,
+    pub(crate) slip: bool,
 }
 
 /// Dense derivatives with respect to a point's local unknowns: slave
 /// displacements (2 per node), master displacements, slave multipliers
 /// (λx, λy per node).
-type Lin = Vec<f64>;
+pub(crate) type Lin = Vec<f64>;
 
-fn lin(n: usize) -> Lin {
+pub(crate) fn lin(n: usize) -> Lin {
     vec![0.0; n]
 }
 
-fn axpy(y: &mut Lin, a: f64, x: &Lin) {
+pub(crate) fn axpy(y: &mut Lin, a: f64, x: &Lin) {
     for (yi, xi) in y.iter_mut().zip(x) {
         *yi += a * xi;
     }
 }
 
-fn comb(a: f64, x: &Lin, b: f64, y: &Lin) -> Lin {
+pub(crate) fn comb(a: f64, x: &Lin, b: f64, y: &Lin) -> Lin {
     x.iter().zip(y).map(|(p, q)| a * p + b * q).collect()
 }
 
 /// What one integration point contributes, on its local unknowns.
 struct PointTerms {
-    status: PointStatus,
     /// Forces on the displacements (slave then master, 2 per node) and
     /// their derivatives.
     forces: Vec<(f64, Lin)>,
@@ -109,36 +112,69 @@ struct PointTerms {
 
 /// Geometry of a point: slave and master cells on the current and the
 /// start-of-step configurations.
-struct PointGeometry<'a> {
-    s_kind: SurfaceKind,
-    sign: f64,
-    sp: &'a [[f64; 3]],
-    sprev: &'a [[f64; 3]],
-    m_kind: SurfaceKind,
-    mp: &'a [[f64; 3]],
-    mprev: &'a [[f64; 3]],
+pub(crate) struct PointGeometry<'a> {
+    pub(crate) s_kind: SurfaceKind,
+    pub(crate) sign: f64,
+    pub(crate) sp: &'a [[f64; 3]],
+    pub(crate) sprev: &'a [[f64; 3]],
+    pub(crate) m_kind: SurfaceKind,
+    pub(crate) mp: &'a [[f64; 3]],
+    pub(crate) mprev: &'a [[f64; 3]],
 }
 
 /// The law's data at a point.
-struct PointLaw {
-    xi: f64,
-    w: f64,
-    gamma: f64,
-    law: FrictionLaw,
+pub(crate) struct PointLaw {
+    pub(crate) xi: f64,
+    pub(crate) w: f64,
+    pub(crate) gamma: f64,
+    pub(crate) law: FrictionLaw,
     /// `CONTACT_INIT` forcing the status (first pairing only).
-    forced: Option<bool>,
+    pub(crate) forced: Option<bool>,
 }
 
-/// One integration point (`laElemCont` + `laVect_cf_pr`), `None` when the
-/// ray from the slave point misses the master cell's line.
-fn point_terms(
+/// The quantities of code_aster's `laElemCont` at a point with friction
+/// (`projQpSl2Ma`, `projRm`, `thresEval`, `speedEval`, `projBs`), each
+/// with its derivatives on the point's local unknowns: the slave
+/// displacements (2 per node), the master's, then — with multipliers —
+/// the slave multipliers (λx, λy per node). Shared by the Lagrangian
+/// friction here and the penalised one ([`crate::mortar_friction_penalty`]).
+pub(crate) struct PointQuantities {
+    pub(crate) status: PointStatus,
+    /// Number of local unknowns.
+    pub(crate) nloc: usize,
+    /// The slave functions at the point.
+    pub(crate) shs: Vec<f64>,
+    /// The master functions and their ξ-derivatives at the master point.
+    pub(crate) shm: Vec<f64>,
+    pub(crate) dshm: Vec<f64>,
+    /// The outward slave normal and its derivatives.
+    pub(crate) n: [f64; 3],
+    pub(crate) dn: [Lin; 2],
+    /// The derivative of the master point's parameter (`dPi_du`).
+    pub(crate) dxi: Lin,
+    /// λ at the point (0 without multipliers).
+    pub(crate) lam: [f64; 2],
+    pub(crate) dlam: [Lin; 2],
+    /// `projRm`: [λ·n + γg]₋ at contact points, 0 elsewhere.
+    pub(crate) proj_rm: f64,
+    pub(crate) dproj_rm: Lin,
+    /// `projBs`: the friction force at the point.
+    pub(crate) pb: [f64; 2],
+    pub(crate) dpb: [Lin; 2],
+}
+
+/// One integration point (`laElemCont`), `None` when the ray from the
+/// slave point misses the master cell's line; `lam_nodes`: the slave
+/// nodes' multipliers (`None`: a penalised element, λ = 0 and no
+/// multiplier unknowns, code_aster's `nb_lagr_c` = 0).
+pub(crate) fn point_quantities(
     g: &PointGeometry,
     p: &PointLaw,
-    lam_nodes: &[[f64; 2]],
-) -> Result<Option<PointTerms>, FemError> {
+    lam_nodes: Option<&[[f64; 2]]>,
+) -> Result<Option<PointQuantities>, FemError> {
     let ns = g.sp.len();
     let nm = g.mp.len();
-    let nloc = 4 * ns + 2 * nm;
+    let nloc = if lam_nodes.is_some() { 4 } else { 2 } * ns + 2 * nm;
     let u_s = |a: usize, e: usize| 2 * a + e;
     let u_m = |b: usize, e: usize| 2 * ns + 2 * b + e;
     let l_s = |a: usize, e: usize| 2 * ns + 2 * nm + 2 * a + e;
@@ -209,10 +245,12 @@ fn point_terms(
     // λ at the point.
     let mut lam = [0.0; 2];
     let mut dlam = [lin(nloc), lin(nloc)];
-    for a in 0..ns {
-        for c in 0..2 {
-            lam[c] += shs[a] * lam_nodes[a][c];
-            dlam[c][l_s(a, c)] = shs[a];
+    if let Some(lam_nodes) = lam_nodes {
+        for a in 0..ns {
+            for c in 0..2 {
+                lam[c] += shs[a] * lam_nodes[a][c];
+                dlam[c][l_s(a, c)] = shs[a];
+            }
         }
     }
     // λ·n + γ g and its negative part (projRm).
@@ -303,6 +341,52 @@ fn point_terms(
             }
         }
     }
+    Ok(Some(PointQuantities {
+        status: PointStatus { contact, slip },
+        nloc,
+        shs: shs[..ns].to_vec(),
+        shm: shm[..nm].to_vec(),
+        dshm: dshm[..nm].iter().map(|d| d[0]).collect(),
+        n,
+        dn,
+        dxi,
+        lam,
+        dlam,
+        proj_rm,
+        dproj_rm,
+        pb,
+        dpb,
+    }))
+}
+
+/// One integration point of the Lagrangian friction (`laVect_cf_pr`),
+/// `None` when the ray from the slave point misses the master cell's line.
+fn point_terms(
+    g: &PointGeometry,
+    p: &PointLaw,
+    lam_nodes: &[[f64; 2]],
+) -> Result<Option<PointTerms>, FemError> {
+    let Some(q) = point_quantities(g, p, Some(lam_nodes))? else {
+        return Ok(None);
+    };
+    let PointQuantities {
+        status,
+        nloc,
+        shs,
+        shm,
+        dshm,
+        n,
+        dn,
+        dxi,
+        lam,
+        dlam,
+        proj_rm,
+        dproj_rm,
+        pb,
+        dpb,
+    } = q;
+    let (ns, nm) = (shs.len(), shm.len());
+    let contact = status.contact;
     // Equations of the multipliers: w ([λ·n + γg]₋ n − λ + P)/γ μ.
     let f = p.w / p.gamma;
     let mut own = Vec::with_capacity(2 * ns);
@@ -331,18 +415,14 @@ fn point_terms(
     for b in 0..nm {
         for c in 0..2 {
             if contact {
-                let d = comb(p.w * shm[b], &dlam[c], p.w * lam[c] * dshm[b][0], &dxi);
+                let d = comb(p.w * shm[b], &dlam[c], p.w * lam[c] * dshm[b], &dxi);
                 forces.push((p.w * shm[b] * lam[c], d));
             } else {
                 forces.push((0.0, lin(nloc)));
             }
         }
     }
-    Ok(Some(PointTerms {
-        status: PointStatus { contact, slip },
-        forces,
-        own,
-    }))
+    Ok(Some(PointTerms { forces, own }))
 }
 
 /// The frictional mortar contact of a DEFI_CONT, as a fem force source.
@@ -355,8 +435,6 @@ pub struct MortarFriction {
     /// Positions at the start of the step (`coor_*_prev`).
     x_prev: Vec<[f64; 3]>,
     first_pairing: bool,
-    statuses: Vec<PointStatus>,
-    own_ok: bool,
 }
 
 impl MortarFriction {
@@ -383,9 +461,13 @@ impl MortarFriction {
             laws,
             x_prev: mesh.coords.clone(),
             first_pairing: true,
-            statuses: Vec::new(),
-            own_ok: false,
         })
+    }
+
+    /// code_aster 17's geometric criterion (MECA_NON_LINE's
+    /// `CONTACT/RESI_GEOM`), as [`MortarLagrangian::set_resi_geom`].
+    pub fn set_resi_geom(&mut self, resi_geom: f64) {
+        self.base.set_resi_geom(resi_geom);
     }
 
     /// The multipliers of each slave node: (`LAGS_C`, `LAGS_F1`), the x and
@@ -417,6 +499,7 @@ impl ForceSource for MortarFriction {
 
     fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
         self.x_prev = current_positions(state);
+        self.base.geometric.begin_increment(state);
         Ok(())
     }
 
@@ -432,8 +515,6 @@ impl ForceSource for MortarFriction {
             tangent: Vec::new(),
         };
         let mut paired = vec![false; nl];
-        let mut weight = vec![0.0; nl];
-        let mut statuses = Vec::new();
         for p in &pairs {
             let z = &base.zones[p.zone];
             let s = &z.slave[p.slave];
@@ -480,7 +561,7 @@ impl ForceSource for MortarFriction {
                 (true, InitialState::Yes) => Some(true),
                 _ => None,
             };
-            for (xi, w, at0) in crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis) {
+            for (xi, w, _) in crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis) {
                 let law = PointLaw {
                     xi: xi[0],
                     w,
@@ -491,10 +572,6 @@ impl ForceSource for MortarFriction {
                 let Some(terms) = point_terms(&geometry, &law, &lam_nodes)? else {
                     continue;
                 };
-                statuses.push(terms.status);
-                for (a, &k) in lk.iter().enumerate() {
-                    weight[k] += w * at0.shape[a];
-                }
                 for (i, (value, d)) in terms.forces.iter().enumerate() {
                     let Some(Unknown::Dof(row)) = map[i] else {
                         continue;
@@ -531,20 +608,21 @@ impl ForceSource for MortarFriction {
         for r in 0..2 * nl {
             c.tangent.push((Unknown::Own(r), Unknown::Own(r), 0.0));
         }
-        self.own_ok = c
-            .own_residual
-            .iter()
-            .enumerate()
-            .all(|(r, v)| v.abs() <= GAP_TOLE * weight[r / 2].abs() * base.scale);
-        self.statuses = statuses;
         Ok(c)
     }
 
-    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+        // The first pairing (CONTACT_INIT) was that of this iteration.
         self.first_pairing = false;
-        let before = std::mem::take(&mut self.statuses);
-        self.evaluate(state, own)?;
-        Ok(before == self.statuses && self.own_ok)
+        // code_aster 17's acceptance, as without friction: the whole
+        // residual (the LAGS_C, LAGS_F1 rows included) and RESI_GEOM; a
+        // change of contact or stick/slip status does not by itself
+        // prevent convergence.
+        Ok(self.base.geometric.after_iteration(state))
+    }
+
+    fn own_rows_in_residual(&self) -> bool {
+        true
     }
 
     fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {
@@ -618,18 +696,22 @@ mod tests {
                     law,
                     forced: None,
                 };
-                point_terms(&g, &p, &lam).unwrap().unwrap()
+                let status = point_quantities(&g, &p, Some(&lam))
+                    .unwrap()
+                    .unwrap()
+                    .status;
+                (point_terms(&g, &p, &lam).unwrap().unwrap(), status)
             };
             let z0 = vec![0.0; 14];
-            let t0 = terms(&z0);
-            assert!(t0.status.contact);
-            assert_eq!(t0.status.slip, sliding, "{law:?}");
+            let (t0, status) = terms(&z0);
+            assert!(status.contact);
+            assert_eq!(status.slip, sliding, "{law:?}");
             let h = 1e-7;
             for j in 0..14 {
                 let (mut zp, mut zm) = (z0.clone(), z0.clone());
                 zp[j] += h;
                 zm[j] -= h;
-                let (tp, tm) = (terms(&zp), terms(&zm));
+                let (tp, tm) = (terms(&zp).0, terms(&zm).0);
                 for (i, (row, d)) in t0.forces.iter().chain(&t0.own).enumerate() {
                     let vp = tp.forces.iter().chain(&tp.own).nth(i).unwrap().0;
                     let vm = tm.forces.iter().chain(&tm.own).nth(i).unwrap().0;

@@ -190,21 +190,61 @@ pub struct MortarLagrangian {
     iterations: usize,
     /// Number of paired slave cells at the last evaluation.
     paired: usize,
-    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` (`None`: no geometric
-    /// criterion) and the diagonal of the mesh's bounding box it scales.
-    resi_geom: Option<f64>,
+    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` criterion (shared with the
+    /// frictional sources built on this one).
+    pub(crate) geometric: GeometricCriterion,
+}
+
+/// code_aster 17's geometric criterion (MECA_NON_LINE's
+/// `CONTACT/RESI_GEOM`, `ConvergenceManager.evalGeometricResidual`,
+/// checked by `isConverged` with the residual): an iterate is accepted
+/// only when the displacement increment of the solve that led to it — max
+/// |ΔDX|, |ΔDY|, |ΔDZ| over the nodes, the first one from the converged
+/// state, imposed values included — is at most `resi_geom` × the diagonal
+/// of the mesh's bounding box (`CARA_GEOM`).
+#[derive(Clone, Debug)]
+pub(crate) struct GeometricCriterion {
+    /// `RESI_GEOM` (`None`: no geometric criterion).
+    pub(crate) resi_geom: Option<f64>,
     mesh_diagonal: f64,
     /// The displacement of the last iterate (or of the converged state at
     /// the start of the increment).
     last_displacement: Vec<f64>,
-    /// Length scale of the model (diagonal of the slave and master nodes'
-    /// bounding box), for the gap tolerance.
-    pub(crate) scale: f64,
 }
 
-/// The gap equations are held when their residual, per node, is below
-/// this fraction of the node's weight times the model's size.
-pub(crate) const GAP_TOLE: f64 = 1e-10;
+impl GeometricCriterion {
+    pub(crate) fn new(mesh: &Mesh) -> Self {
+        GeometricCriterion {
+            resi_geom: None,
+            mesh_diagonal: aster_mesh::box_diagonal(aster_mesh::bounding_box(
+                mesh.coords.iter().copied(),
+            )),
+            last_displacement: Vec::new(),
+        }
+    }
+
+    /// The start of an increment: `state` is the converged state.
+    pub(crate) fn begin_increment(&mut self, state: &State) {
+        self.last_displacement = state.displacement.to_vec();
+    }
+
+    /// After a solve: whether the increment that led to `state` passes.
+    pub(crate) fn after_iteration(&mut self, state: &State) -> bool {
+        let u = state.displacement;
+        let mut increment = 0.0f64;
+        for (i, v) in u.iter().enumerate() {
+            if matches!(state.dofs.dof(i).comp, Comp::DX | Comp::DY | Comp::DZ) {
+                let before = self.last_displacement.get(i).copied().unwrap_or(0.0);
+                increment = increment.max((v - before).abs());
+            }
+        }
+        self.last_displacement = u.to_vec();
+        match self.resi_geom {
+            Some(tol) if self.mesh_diagonal > 0.0 => increment / self.mesh_diagonal <= tol,
+            _ => true,
+        }
+    }
+}
 
 pub(crate) fn err(e: ContactError) -> FemError {
     FemError::Source(format!("DEFI_CONT: {e}"))
@@ -420,13 +460,6 @@ impl MortarLagrangian {
                 h,
             });
         }
-        let (lo, hi) = aster_mesh::bounding_box(out.iter().flat_map(|z| {
-            z.slave
-                .iter()
-                .chain(&z.master)
-                .flat_map(|s| s.nodes.iter().map(|n| mesh.coords[n.0 as usize]))
-        }));
-        let scale = norm(sub(hi, lo)).max(f64::MIN_POSITIVE);
         Ok(MortarLagrangian {
             zones: out,
             lagr,
@@ -436,12 +469,7 @@ impl MortarLagrangian {
             first_pairing: true,
             iterations: 0,
             paired: 0,
-            resi_geom: None,
-            mesh_diagonal: aster_mesh::box_diagonal(aster_mesh::bounding_box(
-                mesh.coords.iter().copied(),
-            )),
-            last_displacement: Vec::new(),
-            scale,
+            geometric: GeometricCriterion::new(mesh),
         })
     }
 
@@ -451,7 +479,7 @@ impl MortarLagrangian {
     /// led to it, max |ΔDX|, |ΔDY|, |ΔDZ| over the nodes, is at most
     /// `resi_geom` × the diagonal of the mesh's bounding box.
     pub fn set_resi_geom(&mut self, resi_geom: f64) {
-        self.resi_geom = Some(resi_geom);
+        self.geometric.resi_geom = Some(resi_geom);
     }
 
     /// The contact pressure of each slave node (`LAGS_C`).
@@ -626,7 +654,7 @@ impl ForceSource for MortarLagrangian {
     }
 
     fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
-        self.last_displacement = state.displacement.to_vec();
+        self.geometric.begin_increment(state);
         Ok(())
     }
 
@@ -778,22 +806,7 @@ impl ForceSource for MortarLagrangian {
         // The first pairing (CONTACT_INIT) was that of this iteration.
         self.iterations += 1;
         self.first_pairing = false;
-        // RESI_GEOM: the increment of this solve (from the converged state
-        // for the first one: the imposed values included, as code_aster's
-        // primal increment), max over DX, DY, DZ, over the mesh diagonal.
-        let u = state.displacement;
-        let mut increment = 0.0f64;
-        for (i, v) in u.iter().enumerate() {
-            if matches!(state.dofs.dof(i).comp, Comp::DX | Comp::DY | Comp::DZ) {
-                let before = self.last_displacement.get(i).copied().unwrap_or(0.0);
-                increment = increment.max((v - before).abs());
-            }
-        }
-        self.last_displacement = u.to_vec();
-        let geometry_ok = match self.resi_geom {
-            Some(tol) if self.mesh_diagonal > 0.0 => increment / self.mesh_diagonal <= tol,
-            _ => true,
-        };
+        let geometry_ok = self.geometric.after_iteration(state);
         // code_aster 17's Newton (`NewtonSolver.solve_iteration`) pairs
         // on the iterate, then tests the whole residual, the LAGS_C rows
         // included ([`ForceSource::own_rows_in_residual`]): the next

@@ -12,10 +12,11 @@
 //! faces are TRIA3, QUAD4, TRIA6, QUAD8 or QUAD9
 //! (`aster_contact::mortar_pairing3d`); `COEF_CONT`, `CONTACT_INIT`,
 //! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`; with the Lagrangian
-//! method in 2D, friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
-//! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`)
-//! when every zone has it. Refused, located: CLASSIQUE, BILATERAL,
-//! LISSAGE, friction with PENALISATION or NITSCHE or in 3D, zones with and
+//! and penalised methods in 2D, friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
+//! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`,
+//! `aster_contact::mortar_friction_penalty`) when every zone has it.
+//! Refused, located: CLASSIQUE, BILATERAL,
+//! LISSAGE, friction with NITSCHE or in 3D, zones with and
 //! without friction or of different ALGO_CONT in one definition,
 //! DIST_SUPP/CARA_ELEM, penalised and Nitsche contact in 3D, models with
 //! shells (docs/contact.md, "DEFI_CONT").
@@ -23,6 +24,7 @@
 use std::rc::Rc;
 
 use aster_contact::mortar_friction::{FrictionLaw, MortarFriction};
+use aster_contact::mortar_friction_penalty::MortarFrictionPenalty;
 use aster_contact::mortar_lagrangian::{InitialState, MortarLagrangian, MortarZoneDef};
 use aster_contact::mortar_nitsche::{MortarNitsche, NitscheMaterial};
 use aster_contact::mortar_penalty::MortarPenalty;
@@ -61,11 +63,11 @@ pub(crate) const DEFI_CONT: Support = Support {
         "ZONE/TYPE_FROT",
         "ZONE/COULOMB",
         "ZONE/TRESCA",
-        // ALGO_FROT follows ALGO_CONT in the catalog: friction with
-        // PENALISATION or NITSCHE is refused at FROTTEMENT (`rules`).
+        // ALGO_FROT follows ALGO_CONT in the catalog (one value each):
+        // friction with NITSCHE is refused at FROTTEMENT (`rules`).
         "ZONE/ALGO_FROT",
-        // Only present with VARIANTE='CLASSIQUE' or ALGO_CONT='NITSCHE',
-        // both refused by their values: one refusal, at the value.
+        // Only present with VARIANTE='CLASSIQUE' (refused at its value):
+        // one refusal, at the value.
         "ZONE/COEF_FROT",
         "ZONE/SYME",
     ],
@@ -112,7 +114,7 @@ impl MortarAlgo {
 }
 
 /// What the value lists cannot say: friction is built for the Lagrangian
-/// method only, and one definition has one ALGO_CONT (each method is its
+/// and penalised methods only, and one definition has one ALGO_CONT (each method is its
 /// own force source here).
 fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     let zones = call.keywords.factor("ZONE");
@@ -122,9 +124,9 @@ fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         .unwrap_or_default();
     for occ in zones {
         let algo = MortarAlgo::of(occ.str("ALGO_CONT"));
-        if algo != MortarAlgo::Lagrangian && occ.str("FROTTEMENT") == Some("OUI") {
+        if algo == MortarAlgo::Nitsche && occ.str("FROTTEMENT") == Some("OUI") {
             out.push(Refusal::at(
-                "DEFI_CONT/ZONE/FROTTEMENT='OUI' with ALGO_CONT='PENALISATION' or 'NITSCHE' (friction of code_aster 17's penalised and Nitsche mortar contact)".into(),
+                "DEFI_CONT/ZONE/FROTTEMENT='OUI' with ALGO_CONT='NITSCHE' (friction of code_aster 17's Nitsche mortar contact: niVect/niMatr's friction terms)".into(),
                 occ,
                 "FROTTEMENT",
                 call.span,
@@ -228,16 +230,28 @@ pub(crate) fn nitsche_material(materials: &MaterialField) -> Result<NitscheMater
 
 /// The force source of a penalised or Nitsche definition (`None` for the
 /// Lagrangian method, whose source is [`source`]).
+///
+/// A penalised definition with friction takes MECA_NON_LINE's
+/// `CONTACT/RESI_GEOM` (`resi_geom`) as code_aster 17's geometric
+/// criterion.
 pub(crate) fn other_source(
     algo: MortarAlgo,
     zones: &[MortarZoneDef],
     mesh: &Mesh,
     axis: bool,
     materials: &MaterialField,
+    resi_geom: Option<f64>,
 ) -> Result<Option<Box<dyn ForceSource>>, ExecError> {
     let fail = |e: aster_contact::ContactError| ExecError::new(format!("DEFI_CONT: {e}"));
     Ok(match algo {
         MortarAlgo::Lagrangian => None,
+        MortarAlgo::Penalised if has_friction(zones) => {
+            let mut source = MortarFrictionPenalty::new(zones, mesh, axis).map_err(fail)?;
+            if let Some(r) = resi_geom {
+                source.set_resi_geom(r);
+            }
+            Some(Box::new(source))
+        }
         MortarAlgo::Penalised => Some(Box::new(
             MortarPenalty::new(zones, mesh, axis).map_err(fail)?,
         )),

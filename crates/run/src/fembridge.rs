@@ -916,13 +916,17 @@ pub fn solve(
                         &mesh,
                         axis,
                         &setup.materials,
+                        setup.contact_resi_geom,
                     )?;
-                    // Penalised and Nitsche are frictionless (friction is
-                    // refused with them before the run).
+                    // The Lagrangian method: with or without friction
+                    // (LAGS_C, LAGS_F1 fields).
                     if mortar_other.is_none() {
                         if crate::defi_cont::has_friction(zones) {
-                            mortar_friction =
-                                Some(crate::defi_cont::friction_source(zones, &mesh, axis)?);
+                            let mut m = crate::defi_cont::friction_source(zones, &mesh, axis)?;
+                            if let Some(r) = setup.contact_resi_geom {
+                                m.set_resi_geom(r);
+                            }
+                            mortar_friction = Some(m);
                         } else {
                             let mut m =
                                 crate::defi_cont::source(zones, &mesh, axis, setup.model.dim())?;

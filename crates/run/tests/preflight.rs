@@ -291,16 +291,19 @@ FIN()
 }
 
 /// DEFI_CONT's penalised and Nitsche methods: one definition has one
-/// ALGO_CONT (refused before anything runs, at the keyword); friction is
-/// refused once, at FROTTEMENT; every Nitsche variant is accepted.
+/// ALGO_CONT (refused before anything runs, at the keyword); Nitsche
+/// friction is refused once, at FROTTEMENT; every Nitsche variant and
+/// penalised friction (`aster_contact::mortar_friction_penalty`) are
+/// accepted.
 #[test]
-fn defi_cont_refuses_friction_and_mixed_methods_at_their_keyword() {
+fn defi_cont_refuses_nitsche_friction_and_mixed_methods_at_their_keyword() {
     let src = format!(
         r#"{HEAD}from code_aster.MacroCommands.defi_cont import DEFI_CONT
-c1 = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="PENALISATION", FROTTEMENT="OUI", TYPE_FROT="COULOMB", COULOMB=0.1))
+c1 = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="NITSCHE", FROTTEMENT="OUI", TYPE_FROT="COULOMB", COULOMB=0.1))
 c2 = DEFI_CONT(MODELE=model, ZONE=(_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="NITSCHE"),
                                    _F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF")))
 c3 = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="NITSCHE", SYME="NON", VARIANTE="RAPIDE"))
+c4 = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", ALGO_CONT="PENALISATION", FROTTEMENT="OUI", TYPE_FROT="TRESCA", TRESCA=10.0))
 FIN()
 "#
     );
@@ -309,7 +312,7 @@ FIN()
     assert_eq!(
         m.iter()
             .filter(|s| s.starts_with(
-                "case.comm:5:104: error: not supported yet: DEFI_CONT/ZONE/FROTTEMENT='OUI'"
+                "case.comm:5:99: error: not supported yet: DEFI_CONT/ZONE/FROTTEMENT='OUI' with ALGO_CONT='NITSCHE'"
             ))
             .count(),
         1,
@@ -319,7 +322,10 @@ FIN()
         m.iter().any(|s| s.starts_with("case.comm:7:39: error: not supported yet: DEFI_CONT/ZONE/ALGO_CONT: zones of different ALGO_CONT")),
         "{m:?}"
     );
-    assert!(!m.iter().any(|s| s.contains(":8:")), "{m:?}");
+    assert!(
+        !m.iter().any(|s| s.contains(":8:") || s.contains(":9:")),
+        "{m:?}"
+    );
     assert_eq!(m.len(), 2, "{m:?}");
 }
 

@@ -12,10 +12,15 @@ fn root() -> PathBuf {
 
 /// Runs a scene of comm/ on the two-plate mesh: (TEST_RESU OK, NOOK).
 fn run_scene(comm: &str) -> (usize, usize) {
+    run_scene_on(comm, "two_plates.mail")
+}
+
+/// Runs a scene of comm/ on the mesh `mail` of comm/: (TEST_RESU OK, NOOK).
+fn run_scene_on(comm: &str, mail: &str) -> (usize, usize) {
     let out = std::env::temp_dir().join(format!("aster-{comm}-{}", std::process::id()));
     let case = aster_run::program::prepare(
         &root().join("comm").join(comm),
-        Some(&root().join("comm/two_plates.mail")),
+        Some(&root().join("comm").join(mail)),
         &out,
     )
     .unwrap();
@@ -172,6 +177,24 @@ fn mortar_contact_passes_the_patch_test_on_non_matching_meshes() {
 #[test]
 fn mortar_friction_sticks_and_slides_as_coulomb_says() {
     assert_eq!(run_scene("two_plates_defi_cont_friction.comm"), (43, 0));
+}
+
+/// comm/two_plates_penalised_friction.comm on comm/two_plates_wide.mail:
+/// code_aster 17's penalised mortar friction (DEFI_CONT(ALGO_CONT=
+/// 'PENALISATION', FROTTEMENT='OUI'), aster_contact::
+/// mortar_friction_penalty): pressed, the plates interpenetrate by
+/// p h / COEF_CONT; sheared below μp each slave point sticks with the slip
+/// τ h / COEF_CONT of the step (ADHERENT beyond μp too); dragged, every
+/// point slides with the friction force μp (TRESCA: its threshold), the
+/// reactions' DX / DY = −μ; SANS slides freely: 43 TEST_RESU/TEST_TABLE
+/// entries (86 comparisons, VALE_CALC and VALE_REFE) against the uniform
+/// analytic state at 1e-6 (measured ≤ 3e-11).
+#[test]
+fn penalised_mortar_friction_sticks_with_the_step_slip_and_slides_at_mu_p() {
+    assert_eq!(
+        run_scene_on("two_plates_penalised_friction.comm", "two_plates_wide.mail"),
+        (86, 0)
+    );
 }
 
 /// comm/post_erreur.comm: POST_ERREUR(OPTION='LAGR_RELA') on the mortar
