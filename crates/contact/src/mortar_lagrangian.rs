@@ -467,48 +467,49 @@ impl MortarLagrangian {
     /// full slave cell's normal there.
     pub(crate) fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
         if self.dim == 3 {
-            return self.pairs_3d(x);
+            return pairs_3d_of(&self.zones, x);
         }
         pairs_of(&self.zones, x)
     }
-    /// The pairs of 3D faces on positions `x` (`mortar_pairing3d`): every
-    /// master face is tried against every slave face.
-    fn pairs_3d(&self, x: &[[f64; 3]]) -> Vec<Pair> {
-        let mut out = Vec::new();
-        for (zi, z) in self.zones.iter().enumerate() {
-            for (si, s) in z.slave.iter().enumerate() {
-                let sp = s.positions(x);
-                let slave = Face {
-                    kind: s.kind,
-                    x: &sp,
-                    sign: s.sign,
+}
+
+/// The pairs of 3D faces of `zones` on positions `x` (`mortar_pairing3d`):
+/// every master face is tried against every slave face.
+pub(crate) fn pairs_3d_of(zones: &[MZone], x: &[[f64; 3]]) -> Vec<Pair> {
+    let mut out = Vec::new();
+    for (zi, z) in zones.iter().enumerate() {
+        for (si, s) in z.slave.iter().enumerate() {
+            let sp = s.positions(x);
+            let slave = Face {
+                kind: s.kind,
+                x: &sp,
+                sign: s.sign,
+            };
+            for (mi, m) in z.master.iter().enumerate() {
+                let mp = m.positions(x);
+                let master = Face {
+                    kind: m.kind,
+                    x: &mp,
+                    sign: m.sign,
                 };
-                for (mi, m) in z.master.iter().enumerate() {
-                    let mp = m.positions(x);
-                    let master = Face {
-                        kind: m.kind,
-                        x: &mp,
-                        sign: m.sign,
-                    };
-                    if let Some(poly) = mortar_pairing3d::intersect(
-                        slave,
-                        master,
-                        mortar_pairing3d::PAIR_TOLE,
-                        z.dist_ratio,
-                    ) {
-                        out.push(Pair {
-                            zone: zi,
-                            slave: si,
-                            master: mi,
-                            xi: [0.0, 0.0],
-                            poly,
-                        });
-                    }
+                if let Some(poly) = mortar_pairing3d::intersect(
+                    slave,
+                    master,
+                    mortar_pairing3d::PAIR_TOLE,
+                    z.dist_ratio,
+                ) {
+                    out.push(Pair {
+                        zone: zi,
+                        slave: si,
+                        master: mi,
+                        xi: [0.0, 0.0],
+                        poly,
+                    });
                 }
             }
         }
-        out
     }
+    out
 }
 
 /// The pairs of `zones` on positions `x` (see [`MortarLagrangian::pairs`]).
