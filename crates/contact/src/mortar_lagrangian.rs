@@ -190,16 +190,62 @@ pub struct MortarLagrangian {
     iterations: usize,
     /// Number of paired slave cells at the last evaluation.
     paired: usize,
-    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` (`None`: no geometric
-    /// criterion) and the diagonal of the mesh's bounding box it scales.
-    resi_geom: Option<f64>,
-    mesh_diagonal: f64,
-    /// The displacement of the last iterate (or of the converged state at
-    /// the start of the increment).
-    last_displacement: Vec<f64>,
+    /// MECA_NON_LINE's `CONTACT/RESI_GEOM`.
+    resi_geom: ResiGeom,
     /// Length scale of the model (diagonal of the slave and master nodes'
     /// bounding box), for the gap tolerance.
     pub(crate) scale: f64,
+}
+
+/// code_aster 17's geometric criterion (MECA_NON_LINE's `CONTACT/RESI_GEOM`,
+/// `ConvergenceManager.evalGeometricResidual`), whatever `ALGO_CONT`: an
+/// iterate is accepted only when the displacement increment of the solve
+/// that led to it (from the converged state for the first one: the imposed
+/// values included, as code_aster's primal increment), max |ΔDX|, |ΔDY|,
+/// |ΔDZ| over the nodes, is at most `tol` × the diagonal of the mesh's
+/// bounding box.
+#[derive(Clone, Debug)]
+pub(crate) struct ResiGeom {
+    /// `None`: no geometric criterion.
+    pub(crate) tol: Option<f64>,
+    diagonal: f64,
+    /// The displacement of the last iterate (or of the converged state at
+    /// the start of the increment).
+    last: Vec<f64>,
+}
+
+impl ResiGeom {
+    pub(crate) fn new(mesh: &Mesh) -> Self {
+        ResiGeom {
+            tol: None,
+            diagonal: aster_mesh::box_diagonal(aster_mesh::bounding_box(
+                mesh.coords.iter().copied(),
+            )),
+            last: Vec::new(),
+        }
+    }
+
+    /// At the start of an increment: the converged state.
+    pub(crate) fn begin(&mut self, state: &State) {
+        self.last = state.displacement.to_vec();
+    }
+
+    /// After a solve: whether its increment passes the criterion.
+    pub(crate) fn accept(&mut self, state: &State) -> bool {
+        let u = state.displacement;
+        let mut increment = 0.0f64;
+        for (i, v) in u.iter().enumerate() {
+            if matches!(state.dofs.dof(i).comp, Comp::DX | Comp::DY | Comp::DZ) {
+                let before = self.last.get(i).copied().unwrap_or(0.0);
+                increment = increment.max((v - before).abs());
+            }
+        }
+        self.last = u.to_vec();
+        match self.tol {
+            Some(tol) if self.diagonal > 0.0 => increment / self.diagonal <= tol,
+            _ => true,
+        }
+    }
 }
 
 /// The gap equations are held when their residual, per node, is below
@@ -436,11 +482,7 @@ impl MortarLagrangian {
             first_pairing: true,
             iterations: 0,
             paired: 0,
-            resi_geom: None,
-            mesh_diagonal: aster_mesh::box_diagonal(aster_mesh::bounding_box(
-                mesh.coords.iter().copied(),
-            )),
-            last_displacement: Vec::new(),
+            resi_geom: ResiGeom::new(mesh),
             scale,
         })
     }
@@ -451,7 +493,7 @@ impl MortarLagrangian {
     /// led to it, max |ΔDX|, |ΔDY|, |ΔDZ| over the nodes, is at most
     /// `resi_geom` × the diagonal of the mesh's bounding box.
     pub fn set_resi_geom(&mut self, resi_geom: f64) {
-        self.resi_geom = Some(resi_geom);
+        self.resi_geom.tol = Some(resi_geom);
     }
 
     /// The contact pressure of each slave node (`LAGS_C`).
@@ -627,7 +669,7 @@ impl ForceSource for MortarLagrangian {
     }
 
     fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
-        self.last_displacement = state.displacement.to_vec();
+        self.resi_geom.begin(state);
         Ok(())
     }
 
@@ -779,22 +821,7 @@ impl ForceSource for MortarLagrangian {
         // The first pairing (CONTACT_INIT) was that of this iteration.
         self.iterations += 1;
         self.first_pairing = false;
-        // RESI_GEOM: the increment of this solve (from the converged state
-        // for the first one: the imposed values included, as code_aster's
-        // primal increment), max over DX, DY, DZ, over the mesh diagonal.
-        let u = state.displacement;
-        let mut increment = 0.0f64;
-        for (i, v) in u.iter().enumerate() {
-            if matches!(state.dofs.dof(i).comp, Comp::DX | Comp::DY | Comp::DZ) {
-                let before = self.last_displacement.get(i).copied().unwrap_or(0.0);
-                increment = increment.max((v - before).abs());
-            }
-        }
-        self.last_displacement = u.to_vec();
-        let geometry_ok = match self.resi_geom {
-            Some(tol) if self.mesh_diagonal > 0.0 => increment / self.mesh_diagonal <= tol,
-            _ => true,
-        };
+        let geometry_ok = self.resi_geom.accept(state);
         // code_aster 17's Newton (`NewtonSolver.solve_iteration`) pairs
         // on the iterate, then tests the whole residual, the LAGS_C rows
         // included ([`ForceSource::own_rows_in_residual`]): the next

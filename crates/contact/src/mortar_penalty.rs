@@ -30,9 +30,10 @@
 //!   no term without multipliers).
 //! - The converged state has the interpenetration −g = p h_F / COEF_CONT
 //!   under a contact pressure p.
-//! - **Newton**: code_aster tests the residual only (pairing before every
-//!   iteration, no status criterion): the source reports its statuses
-//!   settled after every iteration. The tangent here is w γ (n·jump)⊗(n·jump)
+//! - **Newton**: code_aster tests the residual (pairing before every
+//!   iteration, no status criterion) and, with MECA_NON_LINE's
+//!   `CONTACT/RESI_GEOM`, the displacement increment (`ResiGeom`, as for
+//!   the Lagrangian method). The tangent here is w γ (n·jump)⊗(n·jump)
 //!   at active points, the normal and master point frozen over an
 //!   iteration (code_aster's `peMatr_ct_pr` differentiates them too: the
 //!   path differs, the converged state does not).
@@ -42,7 +43,7 @@ use aster_mesh::Mesh;
 
 use crate::error::ContactError;
 use crate::mortar_lagrangian::{
-    pairs_3d_of, pairs_of, InitialState, MZone, MortarLagrangian, MortarZoneDef,
+    pairs_3d_of, pairs_of, InitialState, MZone, MortarLagrangian, MortarZoneDef, ResiGeom,
 };
 use crate::mortar_point::{dof, jump, points, points_3d};
 use crate::mortar_tangent::{linearise_3d, FaceGeometry};
@@ -84,6 +85,8 @@ pub struct MortarPenalty {
     penetration: f64,
     /// Space dimension of the model (2: segments; 3: faces).
     dim: usize,
+    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` ([`MortarPenalty::set_resi_geom`]).
+    resi_geom: ResiGeom,
 }
 
 impl MortarPenalty {
@@ -109,7 +112,15 @@ impl MortarPenalty {
             first_pairing: true,
             penetration: 0.0,
             dim: geometry.dim,
+            resi_geom: ResiGeom::new(mesh),
         })
+    }
+
+    /// code_aster 17's geometric criterion, applied whatever `ALGO_CONT`
+    /// (MECA_NON_LINE's `CONTACT/RESI_GEOM`, as
+    /// [`MortarLagrangian::set_resi_geom`]).
+    pub fn set_resi_geom(&mut self, resi_geom: f64) {
+        self.resi_geom.tol = Some(resi_geom);
     }
 
     /// The largest interpenetration of an active point at the last
@@ -197,7 +208,8 @@ impl ForceSource for MortarPenalty {
         0
     }
 
-    fn begin_increment(&mut self, _state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        self.resi_geom.begin(state);
         Ok(())
     }
 
@@ -240,11 +252,12 @@ impl ForceSource for MortarPenalty {
         Ok(c)
     }
 
-    fn after_iteration(&mut self, _state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
         // The first pairing (CONTACT_INIT) was that of this iteration;
-        // code_aster's Newton tests the residual only.
+        // code_aster's Newton tests the residual (no status criterion) and,
+        // with RESI_GEOM, the increment.
         self.first_pairing = false;
-        Ok(true)
+        Ok(self.resi_geom.accept(state))
     }
 
     fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {

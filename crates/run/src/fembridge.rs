@@ -915,7 +915,9 @@ pub fn solve(
                         zones,
                         &mesh,
                         axis,
+                        setup.model.dim(),
                         &setup.materials,
+                        setup.contact_resi_geom,
                     )?;
                     // Penalised and Nitsche are frictionless (friction is
                     // refused with them before the run).
