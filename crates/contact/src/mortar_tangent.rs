@@ -1,8 +1,9 @@
 //! The linearisation of a contact point of code_aster 17's mortar contact
-//! (`DEFI_CONT`, `ALGO_CONT='LAGRANGIEN'`) in 2D, as its analytic tangent
-//! (`TYPE_MATR_TANG='ANALYTIQUE'`, the default) builds it: code_aster's
-//! `contact_algebra_module` (`jump`, `dTs_du_ns`, `dNs_du`, `dPi_du`) and
-//! `contact_module` (`evalDtestM`), used by `laMatr_ct_pr`.
+//! (`DEFI_CONT`) as its analytic tangent (`TYPE_MATR_TANG='ANALYTIQUE'`, the
+//! default) builds it, in 2D (the Lagrangian method) and on faces in 3D
+//! (the penalised method): code_aster's `contact_algebra_module` (`jump`,
+//! `dTs_du_ns`, `dNs_du`, `dPi_du`) and `contact_module` (`evalDtestM`),
+//! used by `laMatr_ct_pr` and `peMatr_ct_pr`.
 //!
 //! At a slave point ξ (fixed in the slave's parametric space) the master
 //! point ζ is found by ray tracing along the slave normal: x_m(ζ) = x_s +
