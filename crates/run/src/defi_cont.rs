@@ -230,8 +230,7 @@ pub(crate) fn nitsche_material(materials: &MaterialField) -> Result<NitscheMater
 /// The force source of a penalised or Nitsche definition (`None` for the
 /// Lagrangian method, whose source is [`source`]); `dim`: the model's
 /// space dimension (Nitsche is 2D only, refused in 3D by [`defi_cont`]);
-/// `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM` (applied to the
-/// penalised method; the Nitsche source does not apply it yet).
+/// `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM`.
 pub(crate) fn other_source(
     algo: MortarAlgo,
     zones: &[MortarZoneDef],
@@ -254,9 +253,11 @@ pub(crate) fn other_source(
         MortarAlgo::Nitsche => {
             let material = nitsche_material(materials)
                 .map_err(|m| ExecError::new(format!("not supported yet: {m}")))?;
-            Some(Box::new(
-                MortarNitsche::new(zones, mesh, axis, material).map_err(fail)?,
-            ))
+            let mut m = MortarNitsche::new(zones, mesh, axis, material).map_err(fail)?;
+            if let Some(r) = resi_geom {
+                m.set_resi_geom(r);
+            }
+            Some(Box::new(m))
         }
     })
 }
