@@ -499,7 +499,7 @@ impl ForceSource for MortarFriction {
 
     fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
         self.x_prev = current_positions(state);
-        self.base.geometric.begin_increment(state);
+        self.base.resi_geom.begin(state);
         Ok(())
     }
 
@@ -618,7 +618,7 @@ impl ForceSource for MortarFriction {
         // residual (the LAGS_C, LAGS_F1 rows included) and RESI_GEOM; a
         // change of contact or stick/slip status does not by itself
         // prevent convergence.
-        Ok(self.base.geometric.after_iteration(state))
+        Ok(self.base.resi_geom.accept(state))
     }
 
     fn own_rows_in_residual(&self) -> bool {

@@ -144,7 +144,7 @@ impl ForceSource for MortarFrictionPenalty {
 
     fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
         self.x_prev = current_positions(state);
-        self.base.geometric.begin_increment(state);
+        self.base.resi_geom.begin(state);
         Ok(())
     }
 
@@ -216,7 +216,7 @@ impl ForceSource for MortarFrictionPenalty {
         // The first pairing (CONTACT_INIT) was that of this iteration;
         // code_aster 17's Newton tests the residual and RESI_GEOM.
         self.first_pairing = false;
-        Ok(self.base.geometric.after_iteration(state))
+        Ok(self.base.resi_geom.accept(state))
     }
 
     fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {

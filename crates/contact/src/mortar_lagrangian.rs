@@ -190,57 +190,57 @@ pub struct MortarLagrangian {
     iterations: usize,
     /// Number of paired slave cells at the last evaluation.
     paired: usize,
-    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` criterion (shared with the
-    /// frictional sources built on this one).
-    pub(crate) geometric: GeometricCriterion,
+    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` (shared with the frictional
+    /// sources built on this one).
+    pub(crate) resi_geom: ResiGeom,
 }
 
-/// code_aster 17's geometric criterion (MECA_NON_LINE's
-/// `CONTACT/RESI_GEOM`, `ConvergenceManager.evalGeometricResidual`,
-/// checked by `isConverged` with the residual): an iterate is accepted
-/// only when the displacement increment of the solve that led to it — max
-/// |ΔDX|, |ΔDY|, |ΔDZ| over the nodes, the first one from the converged
-/// state, imposed values included — is at most `resi_geom` × the diagonal
-/// of the mesh's bounding box (`CARA_GEOM`).
+/// code_aster 17's geometric criterion (MECA_NON_LINE's `CONTACT/RESI_GEOM`,
+/// `ConvergenceManager.evalGeometricResidual`), whatever `ALGO_CONT`: an
+/// iterate is accepted only when the displacement increment of the solve
+/// that led to it (from the converged state for the first one: the imposed
+/// values included, as code_aster's primal increment), max |ΔDX|, |ΔDY|,
+/// |ΔDZ| over the nodes, is at most `tol` × the diagonal of the mesh's
+/// bounding box.
 #[derive(Clone, Debug)]
-pub(crate) struct GeometricCriterion {
-    /// `RESI_GEOM` (`None`: no geometric criterion).
-    pub(crate) resi_geom: Option<f64>,
-    mesh_diagonal: f64,
+pub(crate) struct ResiGeom {
+    /// `None`: no geometric criterion.
+    pub(crate) tol: Option<f64>,
+    diagonal: f64,
     /// The displacement of the last iterate (or of the converged state at
     /// the start of the increment).
-    last_displacement: Vec<f64>,
+    last: Vec<f64>,
 }
 
-impl GeometricCriterion {
+impl ResiGeom {
     pub(crate) fn new(mesh: &Mesh) -> Self {
-        GeometricCriterion {
-            resi_geom: None,
-            mesh_diagonal: aster_mesh::box_diagonal(aster_mesh::bounding_box(
+        ResiGeom {
+            tol: None,
+            diagonal: aster_mesh::box_diagonal(aster_mesh::bounding_box(
                 mesh.coords.iter().copied(),
             )),
-            last_displacement: Vec::new(),
+            last: Vec::new(),
         }
     }
 
-    /// The start of an increment: `state` is the converged state.
-    pub(crate) fn begin_increment(&mut self, state: &State) {
-        self.last_displacement = state.displacement.to_vec();
+    /// At the start of an increment: the converged state.
+    pub(crate) fn begin(&mut self, state: &State) {
+        self.last = state.displacement.to_vec();
     }
 
-    /// After a solve: whether the increment that led to `state` passes.
-    pub(crate) fn after_iteration(&mut self, state: &State) -> bool {
+    /// After a solve: whether its increment passes the criterion.
+    pub(crate) fn accept(&mut self, state: &State) -> bool {
         let u = state.displacement;
         let mut increment = 0.0f64;
         for (i, v) in u.iter().enumerate() {
             if matches!(state.dofs.dof(i).comp, Comp::DX | Comp::DY | Comp::DZ) {
-                let before = self.last_displacement.get(i).copied().unwrap_or(0.0);
+                let before = self.last.get(i).copied().unwrap_or(0.0);
                 increment = increment.max((v - before).abs());
             }
         }
-        self.last_displacement = u.to_vec();
-        match self.resi_geom {
-            Some(tol) if self.mesh_diagonal > 0.0 => increment / self.mesh_diagonal <= tol,
+        self.last = u.to_vec();
+        match self.tol {
+            Some(tol) if self.diagonal > 0.0 => increment / self.diagonal <= tol,
             _ => true,
         }
     }
@@ -469,7 +469,7 @@ impl MortarLagrangian {
             first_pairing: true,
             iterations: 0,
             paired: 0,
-            geometric: GeometricCriterion::new(mesh),
+            resi_geom: ResiGeom::new(mesh),
         })
     }
 
@@ -479,7 +479,7 @@ impl MortarLagrangian {
     /// led to it, max |ΔDX|, |ΔDY|, |ΔDZ| over the nodes, is at most
     /// `resi_geom` × the diagonal of the mesh's bounding box.
     pub fn set_resi_geom(&mut self, resi_geom: f64) {
-        self.geometric.resi_geom = Some(resi_geom);
+        self.resi_geom.tol = Some(resi_geom);
     }
 
     /// The contact pressure of each slave node (`LAGS_C`).
@@ -495,48 +495,49 @@ impl MortarLagrangian {
     /// full slave cell's normal there.
     pub(crate) fn pairs(&self, x: &[[f64; 3]]) -> Vec<Pair> {
         if self.dim == 3 {
-            return self.pairs_3d(x);
+            return pairs_3d_of(&self.zones, x);
         }
         pairs_of(&self.zones, x)
     }
-    /// The pairs of 3D faces on positions `x` (`mortar_pairing3d`): every
-    /// master face is tried against every slave face.
-    fn pairs_3d(&self, x: &[[f64; 3]]) -> Vec<Pair> {
-        let mut out = Vec::new();
-        for (zi, z) in self.zones.iter().enumerate() {
-            for (si, s) in z.slave.iter().enumerate() {
-                let sp = s.positions(x);
-                let slave = Face {
-                    kind: s.kind,
-                    x: &sp,
-                    sign: s.sign,
+}
+
+/// The pairs of 3D faces of `zones` on positions `x` (`mortar_pairing3d`):
+/// every master face is tried against every slave face.
+pub(crate) fn pairs_3d_of(zones: &[MZone], x: &[[f64; 3]]) -> Vec<Pair> {
+    let mut out = Vec::new();
+    for (zi, z) in zones.iter().enumerate() {
+        for (si, s) in z.slave.iter().enumerate() {
+            let sp = s.positions(x);
+            let slave = Face {
+                kind: s.kind,
+                x: &sp,
+                sign: s.sign,
+            };
+            for (mi, m) in z.master.iter().enumerate() {
+                let mp = m.positions(x);
+                let master = Face {
+                    kind: m.kind,
+                    x: &mp,
+                    sign: m.sign,
                 };
-                for (mi, m) in z.master.iter().enumerate() {
-                    let mp = m.positions(x);
-                    let master = Face {
-                        kind: m.kind,
-                        x: &mp,
-                        sign: m.sign,
-                    };
-                    if let Some(poly) = mortar_pairing3d::intersect(
-                        slave,
-                        master,
-                        mortar_pairing3d::PAIR_TOLE,
-                        z.dist_ratio,
-                    ) {
-                        out.push(Pair {
-                            zone: zi,
-                            slave: si,
-                            master: mi,
-                            xi: [0.0, 0.0],
-                            poly,
-                        });
-                    }
+                if let Some(poly) = mortar_pairing3d::intersect(
+                    slave,
+                    master,
+                    mortar_pairing3d::PAIR_TOLE,
+                    z.dist_ratio,
+                ) {
+                    out.push(Pair {
+                        zone: zi,
+                        slave: si,
+                        master: mi,
+                        xi: [0.0, 0.0],
+                        poly,
+                    });
                 }
             }
         }
-        out
     }
+    out
 }
 
 /// The pairs of `zones` on positions `x` (see [`MortarLagrangian::pairs`]).
@@ -654,7 +655,7 @@ impl ForceSource for MortarLagrangian {
     }
 
     fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
-        self.geometric.begin_increment(state);
+        self.resi_geom.begin(state);
         Ok(())
     }
 
@@ -806,7 +807,7 @@ impl ForceSource for MortarLagrangian {
         // The first pairing (CONTACT_INIT) was that of this iteration.
         self.iterations += 1;
         self.first_pairing = false;
-        let geometry_ok = self.geometric.after_iteration(state);
+        let geometry_ok = self.resi_geom.accept(state);
         // code_aster 17's Newton (`NewtonSolver.solve_iteration`) pairs
         // on the iterate, then tests the whole residual, the LAGS_C rows
         // included ([`ForceSource::own_rows_in_residual`]): the next

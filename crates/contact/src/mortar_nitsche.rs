@@ -32,7 +32,9 @@
 //!   because code_aster's `dStress_n_du` is zero (and the face part of
 //!   `dStress_nn_du` is commented out): `SYME='OUI'`, `VARIANTE='ROBUSTE'`
 //!   and `'RAPIDE'` give the same residual, hence the same solution.
-//! - **Newton**: the residual only (no status criterion). The tangent
+//! - **Newton**: the residual (no status criterion) and, with
+//!   MECA_NON_LINE's `CONTACT/RESI_GEOM`, the displacement increment
+//!   (`ResiGeom`, as for the other methods). The tangent
 //!   here is w Dg⊗(γ Dg + Dσ_nn) at active points, with the exact
 //!   derivative of σ_nn with respect to the volume cell's displacements
 //!   (code_aster's matrix lacks it and converges linearly), normals and
@@ -44,7 +46,9 @@ use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::{CellType, Mesh, NodeId};
 
 use crate::error::ContactError;
-use crate::mortar_lagrangian::{normal_at, pairs_of, MZone, MortarLagrangian, MortarZoneDef, Seg};
+use crate::mortar_lagrangian::{
+    normal_at, pairs_of, MZone, MortarLagrangian, MortarZoneDef, ResiGeom, Seg,
+};
 use crate::mortar_penalty::{gamma, status};
 use crate::mortar_point::{dof, points, MortarPoint};
 use crate::shape::dot;
@@ -77,6 +81,8 @@ pub struct MortarNitsche {
     axis: bool,
     /// No pairing has been made yet (CONTACT_INIT applies).
     first_pairing: bool,
+    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` ([`MortarNitsche::set_resi_geom`]).
+    resi_geom: ResiGeom,
 }
 
 /// The cells that hold every node of `nodes`.
@@ -174,7 +180,15 @@ impl MortarNitsche {
             mu: 0.5 * e / (1.0 + nu),
             axis,
             first_pairing: true,
+            resi_geom: ResiGeom::new(mesh),
         })
+    }
+
+    /// code_aster 17's geometric criterion, applied whatever `ALGO_CONT`
+    /// (MECA_NON_LINE's `CONTACT/RESI_GEOM`, as
+    /// [`MortarLagrangian::set_resi_geom`]).
+    pub fn set_resi_geom(&mut self, resi_geom: f64) {
+        self.resi_geom.tol = Some(resi_geom);
     }
 
     /// σ (xx, yy, xy) at each node of a slave face.
@@ -301,7 +315,8 @@ impl ForceSource for MortarNitsche {
         0
     }
 
-    fn begin_increment(&mut self, _state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        self.resi_geom.begin(state);
         Ok(())
     }
 
@@ -385,9 +400,9 @@ impl ForceSource for MortarNitsche {
         Ok(c)
     }
 
-    fn after_iteration(&mut self, _state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
         self.first_pairing = false;
-        Ok(true)
+        Ok(self.resi_geom.accept(state))
     }
 
     fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {

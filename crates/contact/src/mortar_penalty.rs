@@ -1,7 +1,16 @@
 //! code_aster 17's penalised mortar contact of `DEFI_CONT`
 //! (`ALGO_CONT='PENALISATION'`, `MECA_NON_LINE`), frictionless, in 2D on
-//! SEG2 and SEG3 cells, as a fem force source without unknowns of its own
-//! (no `LAGS_C`).
+//! SEG2 and SEG3 cells and in 3D on TRIA3, TRIA6, QUAD4, QUAD8 and QUAD9
+//! faces, as a fem force source without unknowns of its own (no `LAGS_C`).
+//!
+//! In 3D (`with_dim(…, 3)`) the pairing, the polygons' quadrature, the
+//! normals and master points are those of the 3D Lagrangian method
+//! (`mortar_lagrangian::pairs_3d_of`, `mortar_point::points_3d`), and the
+//! tangent is `peMatr_ct_pr`'s, the exact derivative of the residual for
+//! the iterate's pairing (intersections and weights held):
+//! −w γ Dg (n_s·jump) − w [γg]₋ jump·Dn_s + w [γg]₋ n_s·(∂v_m/∂ζ_α) Dζ_α,
+//! the slave normal turning and the master point sliding
+//! (`mortar_tangent::linearise_3d`).
 //!
 //! As code_aster's (2025 main: `te0352`, `peelem`, `peVect_ct_pr`,
 //! `laElemCont`, `laQuantities`, `ContactComputation::contactCoefficient`):
@@ -21,9 +30,10 @@
 //!   no term without multipliers).
 //! - The converged state has the interpenetration −g = p h_F / COEF_CONT
 //!   under a contact pressure p.
-//! - **Newton**: code_aster tests the residual only (pairing before every
-//!   iteration, no status criterion): the source reports its statuses
-//!   settled after every iteration. The tangent here is w γ (n·jump)⊗(n·jump)
+//! - **Newton**: code_aster tests the residual (pairing before every
+//!   iteration, no status criterion) and, with MECA_NON_LINE's
+//!   `CONTACT/RESI_GEOM`, the displacement increment (`ResiGeom`, as for
+//!   the Lagrangian method). The tangent here is w γ (n·jump)⊗(n·jump)
 //!   at active points, the normal and master point frozen over an
 //!   iteration (code_aster's `peMatr_ct_pr` differentiates them too: the
 //!   path differs, the converged state does not).
@@ -32,8 +42,12 @@ use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::Mesh;
 
 use crate::error::ContactError;
-use crate::mortar_lagrangian::{pairs_of, InitialState, MZone, MortarLagrangian, MortarZoneDef};
-use crate::mortar_point::{jump, points};
+use crate::mortar_lagrangian::{
+    pairs_3d_of, pairs_of, InitialState, MZone, MortarLagrangian, MortarZoneDef, ResiGeom,
+};
+use crate::mortar_point::{dof, jump, points, points_3d};
+use crate::mortar_tangent::{linearise_3d, FaceGeometry};
+use crate::shape::dot;
 use crate::source::current_positions;
 
 /// The status and force of a point: `x` = λ + γg (here γg); code_aster's
@@ -69,25 +83,119 @@ pub struct MortarPenalty {
     /// The largest interpenetration −g of an active point at the last
     /// evaluation.
     penetration: f64,
+    /// Space dimension of the model (2: segments; 3: faces).
+    dim: usize,
+    /// MECA_NON_LINE's `CONTACT/RESI_GEOM` ([`MortarPenalty::set_resi_geom`]).
+    resi_geom: ResiGeom,
 }
 
 impl MortarPenalty {
     /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights);
     /// each zone's `coef_cont` is its COEF_CONT.
     pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
-        let geometry = MortarLagrangian::new(zones, mesh, axis)?;
+        Self::with_dim(zones, mesh, axis, 2)
+    }
+
+    /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
+    /// (segments; `axis`: AXIS weights) or 3 (TRIA3, TRIA6, QUAD4, QUAD8
+    /// and QUAD9 faces, as [`MortarLagrangian::with_dim`]).
+    pub fn with_dim(
+        zones: &[MortarZoneDef],
+        mesh: &Mesh,
+        axis: bool,
+        dim: usize,
+    ) -> Result<Self, ContactError> {
+        let geometry = MortarLagrangian::with_dim(zones, mesh, axis, dim)?;
         Ok(MortarPenalty {
             zones: geometry.zones,
             axis,
             first_pairing: true,
             penetration: 0.0,
+            dim: geometry.dim,
+            resi_geom: ResiGeom::new(mesh),
         })
+    }
+
+    /// code_aster 17's geometric criterion, applied whatever `ALGO_CONT`
+    /// (MECA_NON_LINE's `CONTACT/RESI_GEOM`, as
+    /// [`MortarLagrangian::set_resi_geom`]).
+    pub fn set_resi_geom(&mut self, resi_geom: f64) {
+        self.resi_geom.tol = Some(resi_geom);
     }
 
     /// The largest interpenetration of an active point at the last
     /// evaluation.
     pub fn penetration(&self) -> f64 {
         self.penetration
+    }
+}
+
+impl MortarPenalty {
+    /// The residual and tangent in 3D (`peVect_ct_pr`, `peMatr_ct_pr` on
+    /// faces).
+    fn evaluate_3d(&mut self, state: &State) -> Result<Contribution, FemError> {
+        let x = current_positions(state);
+        let x0 = &state.mesh.coords;
+        let mut c = Contribution::default();
+        let mut penetration = 0.0f64;
+        for p in pairs_3d_of(&self.zones, &x) {
+            let z = &self.zones[p.zone];
+            let s = &z.slave[p.slave];
+            let m = &z.master[p.master];
+            let sp = s.positions(&x);
+            let mp = m.positions(&x);
+            let s0 = s.positions(x0);
+            let hf = z.h[p.slave];
+            let dofs: Vec<[Option<usize>; 3]> = s
+                .nodes
+                .iter()
+                .chain(&m.nodes)
+                .map(|n| [dof(state, *n, 0), dof(state, *n, 1), dof(state, *n, 2)])
+                .collect();
+            for pt in points_3d(s, m, &p.poly, &sp, &mp, &s0)? {
+                let g = gamma(&pt.initial.shape, z.coef, hf);
+                let (h, proj) = status(g * pt.gap, self.first_pairing, z.init);
+                if !h {
+                    continue;
+                }
+                penetration = penetration.max(-pt.gap);
+                let w = pt.w;
+                let ns = pt.ns;
+                let (_, sd) = s.kind.eval(pt.xi);
+                let (_, md) = m.kind.eval(pt.master.xi);
+                let lin = linearise_3d(
+                    &FaceGeometry {
+                        slave_shape: &pt.initial.shape,
+                        slave_dshape: &sd,
+                        master_shape: &pt.master.shape,
+                        master_dshape: &md,
+                        tau_slave: pt.slave.tangents,
+                        normal: ns,
+                        tau_master: pt.master.tangents,
+                        gap: pt.gap,
+                    },
+                    &dofs,
+                );
+                // −w [γg]₋ n_s·(v_s − v_m); its derivative (peMatr_ct_pr):
+                // −w γ Dg (n·jump) − w [γg]₋ jump·Dn_s + w [γg]₋ n·∂v_m/∂ζ_α Dζ_α.
+                for e in &lin {
+                    let Some(i) = e.dof else { continue };
+                    let fi = dot(ns, e.jump);
+                    c.forces.push((i, -w * proj * fi));
+                    let fm = [dot(ns, e.dtest_m[0]), dot(ns, e.dtest_m[1])];
+                    for e2 in &lin {
+                        let Some(j) = e2.dof else { continue };
+                        let v = -w * g * fi * e2.dgap - w * proj * dot(e.jump, e2.dns)
+                            + w * proj * (fm[0] * e2.dzeta[0] + fm[1] * e2.dzeta[1]);
+                        if v != 0.0 {
+                            c.tangent.push((Unknown::Dof(i), Unknown::Dof(j), v));
+                        }
+                    }
+                }
+            }
+        }
+        self.penetration = penetration;
+        Ok(c)
     }
 }
 
@@ -100,11 +208,15 @@ impl ForceSource for MortarPenalty {
         0
     }
 
-    fn begin_increment(&mut self, _state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        self.resi_geom.begin(state);
         Ok(())
     }
 
     fn evaluate(&mut self, state: &State, _own: &[f64]) -> Result<Contribution, FemError> {
+        if self.dim == 3 {
+            return self.evaluate_3d(state);
+        }
         let x = current_positions(state);
         let x0 = &state.mesh.coords;
         let mut c = Contribution::default();
@@ -140,11 +252,12 @@ impl ForceSource for MortarPenalty {
         Ok(c)
     }
 
-    fn after_iteration(&mut self, _state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
         // The first pairing (CONTACT_INIT) was that of this iteration;
-        // code_aster's Newton tests the residual only.
+        // code_aster's Newton tests the residual (no status criterion) and,
+        // with RESI_GEOM, the increment.
         self.first_pairing = false;
-        Ok(true)
+        Ok(self.resi_geom.accept(state))
     }
 
     fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {

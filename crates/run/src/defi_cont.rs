@@ -8,8 +8,8 @@
 //! `'NITSCHE'` (`aster_contact::mortar_nitsche`, any `SYME`/`VARIANTE`:
 //! code_aster's residual is the same for all), unilateral, on 2D models
 //! (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or SEG3, and — the
-//! Lagrangian method, frictionless — on 3D solid models whose contact
-//! faces are TRIA3, QUAD4, TRIA6, QUAD8 or QUAD9
+//! Lagrangian and penalised methods, frictionless — on 3D solid models
+//! whose contact faces are TRIA3, QUAD4, TRIA6, QUAD8 or QUAD9
 //! (`aster_contact::mortar_pairing3d`); `COEF_CONT`, `CONTACT_INIT`,
 //! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`; with the Lagrangian
 //! and penalised methods in 2D, friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
@@ -18,8 +18,9 @@
 //! Refused, located: CLASSIQUE, BILATERAL,
 //! LISSAGE, friction with NITSCHE or in 3D, zones with and
 //! without friction or of different ALGO_CONT in one definition,
-//! DIST_SUPP/CARA_ELEM, penalised and Nitsche contact in 3D, models with
-//! shells (docs/contact.md, "DEFI_CONT").
+//! DIST_SUPP/CARA_ELEM, Nitsche contact in 3D (code_aster 2025 has no 3D
+//! Nitsche contact element), models with shells (docs/contact.md,
+//! "DEFI_CONT").
 
 use std::rc::Rc;
 
@@ -229,16 +230,16 @@ pub(crate) fn nitsche_material(materials: &MaterialField) -> Result<NitscheMater
 }
 
 /// The force source of a penalised or Nitsche definition (`None` for the
-/// Lagrangian method, whose source is [`source`]).
-///
-/// A penalised definition with friction takes MECA_NON_LINE's
-/// `CONTACT/RESI_GEOM` (`resi_geom`) as code_aster 17's geometric
-/// criterion.
+/// Lagrangian method, whose source is [`source`]); `dim`: the model's
+/// space dimension (Nitsche is 2D only, refused in 3D by [`defi_cont`];
+/// friction is 2D only); `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM`,
+/// code_aster 17's geometric criterion.
 pub(crate) fn other_source(
     algo: MortarAlgo,
     zones: &[MortarZoneDef],
     mesh: &Mesh,
     axis: bool,
+    dim: usize,
     materials: &MaterialField,
     resi_geom: Option<f64>,
 ) -> Result<Option<Box<dyn ForceSource>>, ExecError> {
@@ -252,15 +253,21 @@ pub(crate) fn other_source(
             }
             Some(Box::new(source))
         }
-        MortarAlgo::Penalised => Some(Box::new(
-            MortarPenalty::new(zones, mesh, axis).map_err(fail)?,
-        )),
+        MortarAlgo::Penalised => {
+            let mut m = MortarPenalty::with_dim(zones, mesh, axis, dim).map_err(fail)?;
+            if let Some(r) = resi_geom {
+                m.set_resi_geom(r);
+            }
+            Some(Box::new(m))
+        }
         MortarAlgo::Nitsche => {
             let material = nitsche_material(materials)
                 .map_err(|m| ExecError::new(format!("not supported yet: {m}")))?;
-            Some(Box::new(
-                MortarNitsche::new(zones, mesh, axis, material).map_err(fail)?,
-            ))
+            let mut m = MortarNitsche::new(zones, mesh, axis, material).map_err(fail)?;
+            if let Some(r) = resi_geom {
+                m.set_resi_geom(r);
+            }
+            Some(Box::new(m))
         }
     })
 }
@@ -283,13 +290,17 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let model = ex.model(model_ref)?;
     let dim = model.dim();
     let algo = algo(kw);
-    if dim != 2 && algo != MortarAlgo::Lagrangian {
+    // code_aster 2025 has no 3D Nitsche contact element: its list of
+    // Nitsche contact cells (`contCellNits`, bibcxx/Contact/ContactPairing.h)
+    // and `niElem` know the 2D volume cells only, so its MECA_NON_LINE stops
+    // on an assertion (`getContCellIndx` finds no cell) at the first pairing.
+    if dim != 2 && algo == MortarAlgo::Nitsche {
         let occ = &kw.factor("ZONE")[0];
         return Err(ex.kw_error(
             "DEFI_CONT/ZONE",
             occ,
             "ALGO_CONT",
-            "not supported yet: code_aster 17's penalised and Nitsche mortar contact in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS)",
+            "not supported: ALGO_CONT='NITSCHE' in 3D has no contact element in code_aster 17 (its Nitsche cells, `contCellNits` and `niElem`, are the 2D ones: TRIA3, TRIA6, QUAD4, QUAD8, QUAD9 with SEG2/SEG3 masters; MECA_NON_LINE stops on an assertion at the pairing); reproduced on 2D models (D_PLAN, C_PLAN, AXIS)",
         ));
     }
     if dim != 2 {

@@ -915,6 +915,7 @@ pub fn solve(
                         zones,
                         &mesh,
                         axis,
+                        setup.model.dim(),
                         &setup.materials,
                         setup.contact_resi_geom,
                     )?;
