@@ -889,8 +889,7 @@ pub fn solve(
     let mut post_discrete: Option<aster_contact::friction::DiscreteFriction> = None;
     let mut post_mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
     let mut post_mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
-    let mut post_mortar_classique: Option<aster_contact::mortar_classique::MortarClassique> =
-        None;
+    let mut post_mortar_classique: Option<aster_contact::mortar_classique::MortarClassique> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
@@ -901,8 +900,7 @@ pub fn solve(
         let mut discrete: Option<aster_contact::friction::DiscreteFriction> = None;
         let mut mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
         let mut mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
-        let mut mortar_classique: Option<aster_contact::mortar_classique::MortarClassique> =
-            None;
+        let mut mortar_classique: Option<aster_contact::mortar_classique::MortarClassique> = None;
         // DEFI_CONT's penalised and Nitsche methods: no unknowns, no fields.
         let mut mortar_other: Option<Box<dyn aster_fem::ForceSource>> = None;
         let mut unil: Option<LiaisonUnil> = None;
