@@ -558,7 +558,11 @@ impl ForceSource for MortarClassique {
         match self.base.lagr.get(k / per) {
             Some(n) => format!(
                 "{} of node {}",
-                if k % per == 0 { "LAGS_C" } else { "LAGS_F1" },
+                if k.is_multiple_of(per) {
+                    "LAGS_C"
+                } else {
+                    "LAGS_F1"
+                },
                 mesh.node_name(*n)
             ),
             None => format!("unknown #{}", k + 1),
