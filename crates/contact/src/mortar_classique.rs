@@ -299,7 +299,7 @@ fn point_residual(
                 tm_prev[e] = tm_prev[e] + dnmf[b] * c.mprev[b][e];
             }
         }
-        let v = [0, 1].map(|e| -(xm_prev[e] * -1.0 + xs_prev[e] + gap * n_prev[e]));
+        let v = [0, 1].map(|e| -(cst(xs_prev[e]) - xm_prev[e] + gap * n_prev[e]));
         // projBs of λ n + τ λ_f − γ_f v.
         let x = [0, 1].map(|e| lam_c * n[e] + tau[e] * lam_f - v[e] * f.gamma_f);
         let mut proj = [cst(0.0); 2];
@@ -456,7 +456,11 @@ impl ForceSource for MortarClassique {
                 paired[k] = true;
             }
             let lam_c: Vec<f64> = lk.iter().map(|&k| own[per * k]).collect();
-            let lam_f: Vec<f64> = lk.iter().map(|&k| own[per * k + per - 1]).collect();
+            let lam_f: Vec<f64> = if per == 2 {
+                lk.iter().map(|&k| own[2 * k + 1]).collect()
+            } else {
+                Vec::new()
+            };
             // Global unknowns of the local ones.
             let mut map: Vec<Option<Unknown>> = Vec::new();
             for node in s.nodes.iter().chain(&m.nodes) {
@@ -464,7 +468,6 @@ impl ForceSource for MortarClassique {
                     map.push(crate::mortar_point::dof(state, *node, d).map(Unknown::Dof));
                 }
             }
-            let ndisp = map.len();
             map.extend(lk.iter().map(|&k| Some(Unknown::Own(per * k))));
             if per == 2 {
                 map.extend(lk.iter().map(|&k| Some(Unknown::Own(2 * k + 1))));
@@ -517,7 +520,6 @@ impl ForceSource for MortarClassique {
                         }
                         None => continue,
                     };
-                    debug_assert!(i >= ndisp || matches!(row, Unknown::Dof(_)));
                     for (j, col) in map.iter().enumerate() {
                         if let (Some(col), true) = (col, r.d[j] != 0.0) {
                             c.tangent.push((row, *col, r.d[j]));
