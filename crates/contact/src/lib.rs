@@ -23,6 +23,7 @@ mod glissiere;
 mod integration;
 pub mod lac;
 pub mod lac_mortar;
+pub mod mortar_classique;
 pub mod mortar_friction;
 pub mod mortar_friction_penalty;
 pub mod mortar_lagrangian;

@@ -70,9 +70,9 @@ pub enum FrictionLaw {
 }
 
 /// code_aster's `THRES_STICK` (`contact_module.h`).
-const THRES_STICK: f64 = 10e300;
+pub(crate) const THRES_STICK: f64 = 10e300;
 /// code_aster's `r8prem()` (`DBL_EPSILON`).
-const R8PREM: f64 = f64::EPSILON;
+pub(crate) const R8PREM: f64 = f64::EPSILON;
 
 /// The status of an integration point: contact, and for friction whether
 /// the projection slid (its tangential part reached the threshold).

@@ -94,6 +94,10 @@ pub struct MortarZoneDef {
     /// `FROTTEMENT='OUI'`: the zone's `TYPE_FROT` (module
     /// [`crate::mortar_friction`]); `None`: frictionless.
     pub friction: Option<crate::mortar_friction::FrictionLaw>,
+    /// `COEF_FROT` (default 100): the friction coefficient of the
+    /// CLASSIQUE variant ([`crate::mortar_classique`]); ROBUSTE uses
+    /// `COEF_CONT` for both.
+    pub coef_frot: f64,
 }
 
 impl MortarZoneDef {
@@ -107,6 +111,7 @@ impl MortarZoneDef {
             contact_init: InitialState::Interpenetrated,
             dist_ratio: None,
             friction: None,
+            coef_frot: 100.0,
         }
     }
 }
@@ -185,7 +190,7 @@ pub struct MortarLagrangian {
     /// Space dimension of the model (2, or 3: faces, `mortar_pairing3d`).
     pub(crate) dim: usize,
     /// No pairing has been made yet (CONTACT_INIT applies).
-    first_pairing: bool,
+    pub(crate) first_pairing: bool,
     /// Whether the first pairing has been consumed by a Newton iteration.
     iterations: usize,
     /// Number of paired slave cells at the last evaluation.

@@ -154,6 +154,16 @@ impl SurfaceKind {
         }
     }
 
+    /// ∂²N/∂ξ² of a segment's shape functions at any ξ (code_aster's
+    /// `mmdond`: 0 on SEG2, constant on SEG3); `None` for a face.
+    pub fn segment_second_derivatives(self) -> Option<Vec<f64>> {
+        match self {
+            SurfaceKind::Seg2 => Some(vec![0.0, 0.0]),
+            SurfaceKind::Seg3 => Some(vec![1.0, 1.0, -2.0]),
+            _ => None,
+        }
+    }
+
     /// Number of corner nodes (numbered first, as in code_aster).
     pub fn corner_count(self) -> usize {
         match self {

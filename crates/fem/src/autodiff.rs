@@ -1,29 +1,47 @@
-//! A forward-mode dual number with three partial derivatives, so each
-//! reference element's shape functions are written once (as code_aster
-//! states them) and their derivatives follow exactly, instead of being
-//! derived by hand for every node of every family.
+//! A forward-mode dual number: a value and its N partial derivatives, so
+//! each reference element's shape functions are written once (as
+//! code_aster states them) and their derivatives follow exactly, instead
+//! of being derived by hand for every node of every family ([`Ad`], three
+//! reference coordinates), and a contact point's residual gives its exact
+//! tangent (`aster_contact::mortar_classique`, one derivative per local
+//! unknown).
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// A value and its gradient with respect to the reference coordinates.
+/// A value and its gradient with respect to N variables.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Ad {
+pub struct Dual<const N: usize> {
     pub v: f64,
-    pub d: [f64; 3],
+    pub d: [f64; N],
 }
 
-impl Ad {
-    pub const fn constant(v: f64) -> Ad {
-        Ad { v, d: [0.; 3] }
+/// A value and its gradient with respect to the reference coordinates.
+pub type Ad = Dual<3>;
+
+impl<const N: usize> Dual<N> {
+    pub const fn constant(v: f64) -> Self {
+        Dual { v, d: [0.; N] }
     }
 
-    /// The k-th coordinate (∂/∂ξₖ = 1) at value `v`.
-    pub fn variable(v: f64, k: usize) -> Ad {
-        let mut d = [0.; 3];
+    /// The k-th variable (∂/∂xₖ = 1) at value `v`.
+    pub fn variable(v: f64, k: usize) -> Self {
+        let mut d = [0.; N];
         d[k] = 1.;
-        Ad { v, d }
+        Dual { v, d }
     }
 
+    /// √x, with (√x)' = x' / (2√x).
+    pub fn sqrt(self) -> Self {
+        let s = self.v.sqrt();
+        let f = 0.5 / s;
+        Dual {
+            v: s,
+            d: std::array::from_fn(|k| self.d[k] * f),
+        }
+    }
+}
+
+impl Dual<3> {
     /// The three reference coordinates of a point as variables.
     pub fn point(xi: [f64; 3]) -> [Ad; 3] {
         [
@@ -34,109 +52,112 @@ impl Ad {
     }
 }
 
-impl Add for Ad {
-    type Output = Ad;
-    fn add(self, o: Ad) -> Ad {
-        Ad {
+impl<const N: usize> Add for Dual<N> {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Dual {
             v: self.v + o.v,
-            d: [self.d[0] + o.d[0], self.d[1] + o.d[1], self.d[2] + o.d[2]],
+            d: std::array::from_fn(|k| self.d[k] + o.d[k]),
         }
     }
 }
 
-impl Sub for Ad {
-    type Output = Ad;
-    fn sub(self, o: Ad) -> Ad {
-        self + (-o)
+impl<const N: usize> Sub for Dual<N> {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        Dual {
+            v: self.v - o.v,
+            d: std::array::from_fn(|k| self.d[k] - o.d[k]),
+        }
     }
 }
 
-impl Neg for Ad {
-    type Output = Ad;
-    fn neg(self) -> Ad {
-        Ad {
+impl<const N: usize> Neg for Dual<N> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Dual {
             v: -self.v,
-            d: [-self.d[0], -self.d[1], -self.d[2]],
+            d: std::array::from_fn(|k| -self.d[k]),
         }
     }
 }
 
-impl Mul for Ad {
-    type Output = Ad;
+impl<const N: usize> Mul for Dual<N> {
+    type Output = Self;
     // The product rule: (fg)' = f'g + fg'.
     #[allow(clippy::suspicious_arithmetic_impl)]
-    fn mul(self, o: Ad) -> Ad {
-        Ad {
+    fn mul(self, o: Self) -> Self {
+        Dual {
             v: self.v * o.v,
             d: std::array::from_fn(|k| self.d[k] * o.v + self.v * o.d[k]),
         }
     }
 }
 
-impl Div for Ad {
-    type Output = Ad;
+impl<const N: usize> Div for Dual<N> {
+    type Output = Self;
     // The quotient rule: (f/g)' = (f'g − fg')/g².
     #[allow(clippy::suspicious_arithmetic_impl)]
-    fn div(self, o: Ad) -> Ad {
+    fn div(self, o: Self) -> Self {
         let inv = 1. / o.v;
-        Ad {
+        Dual {
             v: self.v * inv,
             d: std::array::from_fn(|k| (self.d[k] * o.v - self.v * o.d[k]) * inv * inv),
         }
     }
 }
 
-impl Add<f64> for Ad {
-    type Output = Ad;
-    fn add(self, c: f64) -> Ad {
-        Ad {
+impl<const N: usize> Add<f64> for Dual<N> {
+    type Output = Self;
+    fn add(self, c: f64) -> Self {
+        Dual {
             v: self.v + c,
             d: self.d,
         }
     }
 }
 
-impl Sub<f64> for Ad {
-    type Output = Ad;
-    fn sub(self, c: f64) -> Ad {
+impl<const N: usize> Sub<f64> for Dual<N> {
+    type Output = Self;
+    fn sub(self, c: f64) -> Self {
         self + (-c)
     }
 }
 
-impl Mul<f64> for Ad {
-    type Output = Ad;
-    fn mul(self, c: f64) -> Ad {
-        Ad {
+impl<const N: usize> Mul<f64> for Dual<N> {
+    type Output = Self;
+    fn mul(self, c: f64) -> Self {
+        Dual {
             v: self.v * c,
-            d: [self.d[0] * c, self.d[1] * c, self.d[2] * c],
+            d: std::array::from_fn(|k| self.d[k] * c),
         }
     }
 }
 
-impl Div<f64> for Ad {
-    type Output = Ad;
-    fn div(self, c: f64) -> Ad {
+impl<const N: usize> Div<f64> for Dual<N> {
+    type Output = Self;
+    fn div(self, c: f64) -> Self {
         self * (1. / c)
     }
 }
 
-impl Add<Ad> for f64 {
-    type Output = Ad;
-    fn add(self, a: Ad) -> Ad {
+impl<const N: usize> Add<Dual<N>> for f64 {
+    type Output = Dual<N>;
+    fn add(self, a: Dual<N>) -> Dual<N> {
         a + self
     }
 }
 
-impl Sub<Ad> for f64 {
-    type Output = Ad;
-    fn sub(self, a: Ad) -> Ad {
+impl<const N: usize> Sub<Dual<N>> for f64 {
+    type Output = Dual<N>;
+    fn sub(self, a: Dual<N>) -> Dual<N> {
         (-a) + self
     }
 }
 
-impl Mul<Ad> for f64 {
-    type Output = Ad;
-    fn mul(self, a: Ad) -> Ad {
+impl<const N: usize> Mul<Dual<N>> for f64 {
+    type Output = Dual<N>;
+    fn mul(self, a: Dual<N>) -> Dual<N> {
         a * self
     }
 }
@@ -155,5 +176,15 @@ mod tests {
         // ∂/∂y = x / (1-x) = -2
         assert!((f.d[1] + 2.).abs() < 1e-14);
         assert_eq!(f.d[2], 0.);
+    }
+
+    #[test]
+    fn square_root_rule() {
+        let x = Dual::<2>::variable(4., 1);
+        let r = (x * x + 9.).sqrt(); // √(x² + 9) = 5 at x = 4
+        assert_eq!(r.v, 5.);
+        // ∂/∂x = x / √(x² + 9) = 4/5
+        assert!((r.d[1] - 0.8).abs() < 1e-15);
+        assert_eq!(r.d[0], 0.);
     }
 }

@@ -4,7 +4,8 @@
 //! from them at the solve.
 //!
 //! Reproduced: `ALGO_CONT='LAGRANGIEN'` with `VARIANTE='ROBUSTE'` (the
-//! defaults), `'PENALISATION'` (`aster_contact::mortar_penalty`) and
+//! defaults) or `'CLASSIQUE'` (2D, `aster_contact::mortar_classique`, with
+//! `COEF_FROT`), `'PENALISATION'` (`aster_contact::mortar_penalty`) and
 //! `'NITSCHE'` (`aster_contact::mortar_nitsche`, any `SYME`/`VARIANTE`:
 //! code_aster's residual is the same for all), unilateral, on 2D models
 //! (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or SEG3, and — the
@@ -14,16 +15,18 @@
 //! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`; with the Lagrangian
 //! and penalised methods in 2D, friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
 //! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`,
-//! `aster_contact::mortar_friction_penalty`) when every zone has it.
-//! Refused, located: CLASSIQUE, BILATERAL,
-//! LISSAGE, friction with NITSCHE or in 3D, zones with and
-//! without friction or of different ALGO_CONT in one definition,
-//! DIST_SUPP/CARA_ELEM, Nitsche contact in 3D (code_aster 2025 has no 3D
-//! Nitsche contact element), models with shells (docs/contact.md,
-//! "DEFI_CONT").
+//! `aster_contact::mortar_friction_penalty`) when every zone has it; the
+//! CLASSIQUE variant in 2D, with or without friction
+//! (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE in 3D,
+//! BILATERAL, LISSAGE, friction with NITSCHE or in 3D, zones with and
+//! without friction or of different ALGO_CONT or VARIANTE in one
+//! definition, DIST_SUPP/CARA_ELEM, Nitsche contact in 3D (code_aster 2025
+//! has no 3D Nitsche contact element), models with shells
+//! (docs/contact.md, "DEFI_CONT").
 
 use std::rc::Rc;
 
+use aster_contact::mortar_classique::MortarClassique;
 use aster_contact::mortar_friction::{FrictionLaw, MortarFriction};
 use aster_contact::mortar_friction_penalty::MortarFrictionPenalty;
 use aster_contact::mortar_lagrangian::{InitialState, MortarLagrangian, MortarZoneDef};
@@ -67,14 +70,12 @@ pub(crate) const DEFI_CONT: Support = Support {
         // ALGO_FROT follows ALGO_CONT in the catalog (one value each):
         // friction with NITSCHE is refused at FROTTEMENT (`rules`).
         "ZONE/ALGO_FROT",
-        // Only present with VARIANTE='CLASSIQUE' (refused at its value):
-        // one refusal, at the value.
+        // VARIANTE='CLASSIQUE' with friction (aster_contact::mortar_classique).
         "ZONE/COEF_FROT",
         "ZONE/SYME",
     ],
     values: &[
-        Values::new("ZONE/VARIANTE", &["ROBUSTE", "RAPIDE"])
-            .why("(the CLASSIQUE variant of the Lagrangian mortar contact)"),
+        Values::new("ZONE/VARIANTE", &["ROBUSTE", "RAPIDE", "CLASSIQUE"]),
         Values::new("ZONE/TYPE_CONT", &["UNILATERAL"]).why("(bilateral mortar contact)"),
         Values::new("ZONE/LISSAGE", &["NON"]).why("(smoothed normals of the mortar contact)"),
     ],
@@ -95,9 +96,13 @@ pub(crate) const DEFI_CONT: Support = Support {
 /// `ALGO_CONT` of a DEFI_CONT: one for the whole definition.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum MortarAlgo {
-    /// `'LAGRANGIEN'` (the default): `LAGS_C` unknowns.
+    /// `'LAGRANGIEN'` (the default) with `VARIANTE='ROBUSTE'`: `LAGS_C`
+    /// unknowns.
     #[default]
     Lagrangian,
+    /// `'LAGRANGIEN'` with `VARIANTE='CLASSIQUE'`
+    /// (`aster_contact::mortar_classique`).
+    Classique,
     /// `'PENALISATION'`.
     Penalised,
     /// `'NITSCHE'`.
@@ -105,12 +110,19 @@ pub enum MortarAlgo {
 }
 
 impl MortarAlgo {
-    fn of(value: Option<&str>) -> MortarAlgo {
-        match value {
-            Some("PENALISATION") => MortarAlgo::Penalised,
-            Some("NITSCHE") => MortarAlgo::Nitsche,
+    /// The method of a ZONE occurrence: its ALGO_CONT, and VARIANTE for
+    /// the Lagrangian one.
+    fn of(occ: &Keywords) -> MortarAlgo {
+        match (occ.str("ALGO_CONT"), occ.str("VARIANTE")) {
+            (Some("PENALISATION"), _) => MortarAlgo::Penalised,
+            (Some("NITSCHE"), _) => MortarAlgo::Nitsche,
+            (_, Some("CLASSIQUE")) => MortarAlgo::Classique,
             _ => MortarAlgo::Lagrangian,
         }
+    }
+
+    fn is_lagrangian(self) -> bool {
+        matches!(self, MortarAlgo::Lagrangian | MortarAlgo::Classique)
     }
 }
 
@@ -119,12 +131,9 @@ impl MortarAlgo {
 /// own force source here).
 fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     let zones = call.keywords.factor("ZONE");
-    let first = zones
-        .first()
-        .map(|z| MortarAlgo::of(z.str("ALGO_CONT")))
-        .unwrap_or_default();
+    let first = zones.first().map(MortarAlgo::of).unwrap_or_default();
     for occ in zones {
-        let algo = MortarAlgo::of(occ.str("ALGO_CONT"));
+        let algo = MortarAlgo::of(occ);
         if algo == MortarAlgo::Nitsche && occ.str("FROTTEMENT") == Some("OUI") {
             out.push(Refusal::at(
                 "DEFI_CONT/ZONE/FROTTEMENT='OUI' with ALGO_CONT='NITSCHE' (friction of code_aster 17's Nitsche mortar contact: niVect/niMatr's friction terms)".into(),
@@ -133,7 +142,14 @@ fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
                 call.span,
             ));
         }
-        if algo != first {
+        if algo != first && algo.is_lagrangian() && first.is_lagrangian() {
+            out.push(Refusal::at(
+                "DEFI_CONT/ZONE/VARIANTE: zones of different VARIANTE in one DEFI_CONT (each zone here takes the first zone's variant)".into(),
+                occ,
+                "VARIANTE",
+                call.span,
+            ));
+        } else if algo != first {
             out.push(Refusal::at(
                 "DEFI_CONT/ZONE/ALGO_CONT: zones of different ALGO_CONT in one DEFI_CONT (each zone here takes the first zone's method)".into(),
                 occ,
@@ -149,7 +165,7 @@ fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
 fn algo(kw: &Keywords) -> MortarAlgo {
     kw.factor("ZONE")
         .first()
-        .map(|z| MortarAlgo::of(z.str("ALGO_CONT")))
+        .map(MortarAlgo::of)
         .unwrap_or_default()
 }
 
@@ -177,6 +193,7 @@ fn zones(kw: &Keywords) -> Vec<MortarZoneDef> {
             z.dist_ratio = occ.f64("COEF_MULT_APPA").filter(|r| *r > 0.0);
             z.excluded_node_groups = strings(occ, "SANS_GROUP_NO");
             z.excluded_cell_groups = strings(occ, "SANS_GROUP_MA");
+            z.coef_frot = occ.f64("COEF_FROT").unwrap_or(100.0);
             if occ.str("FROTTEMENT") == Some("OUI") {
                 z.friction = Some(match occ.str("TYPE_FROT").unwrap_or("SANS") {
                     "COULOMB" => FrictionLaw::Coulomb(occ.f64("COULOMB").unwrap_or(0.0)),
@@ -245,7 +262,7 @@ pub(crate) fn other_source(
 ) -> Result<Option<Box<dyn ForceSource>>, ExecError> {
     let fail = |e: aster_contact::ContactError| ExecError::new(format!("DEFI_CONT: {e}"));
     Ok(match algo {
-        MortarAlgo::Lagrangian => None,
+        MortarAlgo::Lagrangian | MortarAlgo::Classique => None,
         MortarAlgo::Penalised if has_friction(zones) => {
             let mut source = MortarFrictionPenalty::new(zones, mesh, axis).map_err(fail)?;
             if let Some(r) = resi_geom {
@@ -284,12 +301,31 @@ pub(crate) fn source(
         .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
+/// The force source of a CLASSIQUE definition (2D) on the model's current
+/// mesh, frictionless or with friction.
+pub(crate) fn classique_source(
+    zones: &[MortarZoneDef],
+    mesh: &Mesh,
+    axis: bool,
+) -> Result<MortarClassique, ExecError> {
+    MortarClassique::new(zones, mesh, axis).map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+}
+
 pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let model_ref = ex.required("DEFI_CONT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
     let dim = model.dim();
     let algo = algo(kw);
+    if dim != 2 && algo == MortarAlgo::Classique {
+        let occ = &kw.factor("ZONE")[0];
+        return Err(ex.kw_error(
+            "DEFI_CONT/ZONE",
+            occ,
+            "VARIANTE",
+            "not supported yet: code_aster 17's CLASSIQUE mortar contact in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS; VARIANTE='ROBUSTE' is reproduced in 3D)",
+        ));
+    }
     // code_aster 2025 has no 3D Nitsche contact element: its list of
     // Nitsche contact cells (`contCellNits`, bibcxx/Contact/ContactPairing.h)
     // and `niElem` know the 2D volume cells only, so its MECA_NON_LINE stops

@@ -889,6 +889,7 @@ pub fn solve(
     let mut post_discrete: Option<aster_contact::friction::DiscreteFriction> = None;
     let mut post_mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
     let mut post_mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
+    let mut post_mortar_classique: Option<aster_contact::mortar_classique::MortarClassique> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
@@ -899,6 +900,7 @@ pub fn solve(
         let mut discrete: Option<aster_contact::friction::DiscreteFriction> = None;
         let mut mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
         let mut mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
+        let mut mortar_classique: Option<aster_contact::mortar_classique::MortarClassique> = None;
         // DEFI_CONT's penalised and Nitsche methods: no unknowns, no fields.
         let mut mortar_other: Option<Box<dyn aster_fem::ForceSource>> = None;
         let mut unil: Option<LiaisonUnil> = None;
@@ -919,9 +921,15 @@ pub fn solve(
                         &setup.materials,
                         setup.contact_resi_geom,
                     )?;
-                    // The Lagrangian method: with or without friction
-                    // (LAGS_C, LAGS_F1 fields).
-                    if mortar_other.is_none() {
+                    // The Lagrangian method (ROBUSTE/RAPIDE or CLASSIQUE):
+                    // with or without friction (LAGS_C, LAGS_F1 fields).
+                    if *algo == crate::defi_cont::MortarAlgo::Classique {
+                        let mut m = crate::defi_cont::classique_source(zones, &mesh, axis)?;
+                        if let Some(r) = setup.contact_resi_geom {
+                            m.set_resi_geom(r);
+                        }
+                        mortar_classique = Some(m);
+                    } else if mortar_other.is_none() {
                         if crate::defi_cont::has_friction(zones) {
                             let mut m = crate::defi_cont::friction_source(zones, &mesh, axis)?;
                             if let Some(r) = setup.contact_resi_geom {
@@ -982,6 +990,9 @@ pub fn solve(
             forces.push(Box::new(f));
         }
         if let Some(f) = mortar_friction.as_mut() {
+            forces.push(Box::new(f));
+        }
+        if let Some(f) = mortar_classique.as_mut() {
             forces.push(Box::new(f));
         }
         if let Some(f) = mortar_other.as_mut() {
@@ -1085,6 +1096,7 @@ pub fn solve(
         post_discrete = discrete;
         post_mortar = mortar;
         post_mortar_friction = mortar_friction;
+        post_mortar_classique = mortar_classique;
         raw
     };
     let steps = raw
@@ -1171,6 +1183,21 @@ pub fn solve(
                     for (n, [lx, ly]) in m.multipliers(own) {
                         depl.set(n, "LAGS_C", lx);
                         depl.set(n, "LAGS_F1", ly);
+                    }
+                }
+            }
+            if let Some(m) = &post_mortar_classique {
+                // DEFI_CONT, VARIANTE='CLASSIQUE': the contact pressure
+                // (LAGS_C) and, with friction, the tangential multiplier
+                // along the slave tangent (LAGS_F1), DOFs of DEPL on the
+                // slave nodes.
+                if let Some(Field::Nodal(depl)) = fields.get_mut("DEPL") {
+                    let own = s.own_unknowns.first().map(|v| v.as_slice()).unwrap_or(&[]);
+                    for (n, [lc, lf]) in m.multipliers(own) {
+                        depl.set(n, "LAGS_C", lc);
+                        if m.has_friction() {
+                            depl.set(n, "LAGS_F1", lf);
+                        }
                     }
                 }
             }

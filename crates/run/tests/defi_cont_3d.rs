@@ -97,6 +97,7 @@ fn what_is_not_reproduced_in_3d_is_refused_at_its_keyword() {
             "ALGO_CONT=\"PENALISATION\", FROTTEMENT=\"OUI\", ",
             "FROTTEMENT",
         ),
+        ("VARIANTE=\"CLASSIQUE\", ", "VARIANTE"),
     ] {
         let comm = scene("dc3d_blocks.comm").replace(
             "ZONE=_F(GROUP_MA_ESCL=slaves[j]",

@@ -197,6 +197,27 @@ fn penalised_mortar_friction_sticks_with_the_step_slip_and_slides_at_mu_p() {
     );
 }
 
+/// comm/two_plates_classique.comm: code_aster 17's mortar contact in its
+/// CLASSIQUE variant (DEFI_CONT(VARIANTE='CLASSIQUE'), aster_contact::
+/// mortar_classique), local multipliers (LAGS_C the pressure, LAGS_F1 along
+/// the unnormalised slave tangent): frictionless, the patch test on
+/// non-matching meshes (LAGS_C = -1e5, DY = -0.05, also on SEG3 cells with
+/// P2 multipliers; measured ≤ 3e-12 relative); a plate sticking under a
+/// uniform shear carries the uniform state's traction (LAGS_C = -2e5,
+/// LAGS_F1 = -6 tau_xy, slave DX = 0 to 1e-10); dragged far, the reactions'
+/// DX / DY = -mu (measured 5e-13) and, on a slave that cannot stretch,
+/// every node on the cone (LAGS_F1 / LAGS_C = mu / |tau|, TRESCA:
+/// |tau| LAGS_F1 = -threshold; measured ≤ 6e-14). 42 TEST_RESU/TEST_TABLE,
+/// also on the mesh written with three coordinates.
+#[test]
+fn classique_mortar_contact_sticks_and_slides_on_its_local_multipliers() {
+    assert_eq!(run_scene("two_plates_classique.comm"), (42, 0));
+    assert_eq!(
+        run_scene_on_3_coordinates("two_plates_classique.comm"),
+        (42, 0)
+    );
+}
+
 /// comm/post_erreur.comm: POST_ERREUR(OPTION='LAGR_RELA') on the mortar
 /// patch test (LAGS_C = -1e5 on AB, length 2): against the exact pressure
 /// the REFERENCE norm is 1e5 sqrt(2) and the error 0; against -1e5 (1 + X)
