@@ -174,8 +174,7 @@ fn settle(
                     None if prol => row.push(0.0),
                     None => {
                         let kw = &call.keywords;
-                        let span = kw
-                            .keyword("PROL_ZERO")
+                        let span = written(kw, "PROL_ZERO")
                             .or(kw.keyword("TYPE_CHAM"))
                             .map(|k| k.span)
                             .unwrap_or(call.span);
@@ -199,6 +198,11 @@ fn settle(
         components,
         values: out,
     })
+}
+
+/// A keyword the user wrote (not a catalog default).
+fn written<'k>(kw: &'k Keywords, name: &str) -> Option<&'k aster_eval::Keyword> {
+    kw.keyword(name).filter(|k| !k.defaulted)
 }
 
 /// `PROL_ZERO='OUI'`.
@@ -641,12 +645,13 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         _ => {}
     }
     if op == "AFFE" && ty == "ELGA_NEUT_F" && !prol_zero(kw) {
-        out.push(Refusal::at(
-            "CREA_CHAMP/TYPE_CHAM='ELGA_NEUT_F' without PROL_ZERO='OUI' (code_aster stops on the components X1…X30 and the cells no occurrence gives a function)".into(),
-            kw,
-            "PROL_ZERO",
-            kw.keyword("TYPE_CHAM").map(|k| k.span).unwrap_or(call.span),
-        ));
+        out.push(Refusal {
+            what: "CREA_CHAMP/TYPE_CHAM='ELGA_NEUT_F' without PROL_ZERO='OUI' (code_aster stops on the components X1…X30 and the cells no occurrence gives a function)".into(),
+            span: written(kw, "PROL_ZERO")
+                .or(kw.keyword("TYPE_CHAM"))
+                .map(|k| k.span)
+                .unwrap_or(call.span),
+        });
     }
     if el && matches!(op, "AFFE" | "ASSE") {
         for occ in kw.factor(op) {
