@@ -31,6 +31,12 @@
 //! of reals, and stops for a field of functions: both are refused here
 //! (a NaN is not a result).
 //!
+//! aster's 3D models carry no edge elements (AFFE_MODELE leaves segments
+//! out), so their fields lack the points code_aster's `MECA_ARETE2/3` give
+//! the segments of a 3D model: no norm counts them (they have no
+//! `NORME_L2`), a `TEST_RESU/CHAM_ELEM` of such a cell or a `TYPE_TEST`
+//! over the whole field would.
+//!
 //! Refused: cells of other modelisations (discrete, beams, shells) and the
 //! under-integrated ones (`_SI`), other quantities and locations (`ELNO`,
 //! `ELEM`, `CART`), `ASSE` from fields that are not `ELGA`.
