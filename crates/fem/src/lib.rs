@@ -22,6 +22,7 @@ pub mod dkt;
 pub mod dof;
 pub mod dynamics;
 pub mod element;
+pub mod elga;
 pub mod energy;
 pub mod energy_balance;
 pub mod error;

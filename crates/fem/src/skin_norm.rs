@@ -1,64 +1,28 @@
 //! L2 norms over skin cells (edges of plane models, faces of 3D ones) on
-//! code_aster's skin Gauss family ([`shape::skin_scheme`]: SEG2 FPG2, SEG3
+//! code_aster's skin Gauss family ([`crate::shape::skin_scheme`]: SEG2 FPG2, SEG3
 //! FPG4, TRIA3 FPG3, QUAD4 FPG4…), as code_aster's `NORME_L2` (`te0563`)
 //! integrates an `ELGA` field with the weights of `COOR_ELGA` (the Gauss
 //! weight times the cell's length or area jacobian). The nodal values are
 //! interpolated at the points by the cell's shape functions (code_aster's
 //! `CREA_CHAMP(OPERATION='DISC')`).
 
-use crate::shape;
-use aster_mesh::vec3::{cross, norm};
+use crate::elga;
 use aster_mesh::{CellId, Mesh};
 
-/// One integration point of a skin cell.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SkinPoint {
-    /// Physical coordinates (undeformed mesh).
-    pub x: [f64; 3],
-    /// The Gauss weight times the jacobian |∂x/∂ξ| (segments) or
-    /// |∂x/∂ξ × ∂x/∂η| (faces).
-    pub weight: f64,
-    /// The cell's shape functions at the point, in its node order.
-    pub shape: Vec<f64>,
-}
+/// One integration point of a skin cell: [`crate::elga::ElgaPoint`]
+/// (physical coordinates, the Gauss weight times the jacobian
+/// |∂x/∂ξ| (segments) or |∂x/∂ξ × ∂x/∂η| (faces), the shape functions).
+pub type SkinPoint = crate::elga::ElgaPoint;
 
 /// The integration points of a skin cell (a segment or a face), or `None`
 /// for a cell that is not one (points, volumes) or has no skin family.
 pub fn skin_points(mesh: &Mesh, cell: CellId) -> Option<Vec<SkinPoint>> {
     let c = mesh.cell(cell);
-    let dim = c.ty.dim();
-    if !(1..=2).contains(&dim) || !shape::supported(c.ty) {
+    if !(1..=2).contains(&c.ty.dim()) {
         return None;
     }
-    let scheme = shape::skin_scheme(c.ty);
-    if scheme.is_empty() {
-        return None;
-    }
-    let mut out = Vec::with_capacity(scheme.len());
-    for gp in &scheme {
-        let s = shape::shape(c.ty, gp.xi);
-        let mut x = [0.0; 3];
-        let mut t = [[0.0; 3]; 2];
-        for (i, &n) in c.nodes.iter().enumerate() {
-            let p = mesh.coord(n);
-            for k in 0..3 {
-                x[k] += s.n[i] * p[k];
-                t[0][k] += s.dn[i][0] * p[k];
-                t[1][k] += s.dn[i][1] * p[k];
-            }
-        }
-        let jac = if dim == 1 {
-            norm(t[0])
-        } else {
-            norm(cross(t[0], t[1]))
-        };
-        out.push(SkinPoint {
-            x,
-            weight: gp.weight * jac,
-            shape: s.n,
-        });
-    }
-    Some(out)
+    let scheme = elga::family(c.ty, elga::CellRole::Skin, false)?;
+    Some(elga::points(mesh, cell, &scheme, false))
 }
 
 /// ∫ (Σᵢ Nᵢ vᵢ − e(x))² and ∫ e(x)² over one skin cell: the squared L2

@@ -575,6 +575,10 @@ pub enum Concept {
     /// TYPE_CHAM='NOEU_*_F', AFFE=_F(VALE_F=…))`), evaluated by
     /// `CREA_CHAMP(OPERATION='EVAL')`.
     FunctionField(Rc<NodalFunctionField>),
+    /// A field of functions at Gauss points (`CREA_CHAMP(OPERATION='AFFE',
+    /// TYPE_CHAM='ELGA_NEUT_F')`), evaluated by `CREA_CHAMP(OPERATION=
+    /// 'EVAL')` on an `ELGA` field of parameters.
+    GaussFunctionField(Rc<GaussFunctionField>),
     /// `MACR_ELEM_STAT`.
     MacroElement(Rc<MacroElement>),
     /// `DEFI_MAILLAGE`.
@@ -592,6 +596,17 @@ pub enum Concept {
 pub struct NodalFunctionField {
     pub components: Vec<String>,
     pub values: BTreeMap<NodeId, BTreeMap<String, Rc<Function>>>,
+}
+
+/// Per cell of a model, per component, a function shared by the cell's
+/// Gauss points (`ELGA_NEUT_F`): `None` is code_aster's zero function
+/// `&FOZERO` (`PROL_ZERO='OUI'` where no `AFFE` occurrence gave one).
+#[derive(Clone, Debug, Default)]
+pub struct GaussFunctionField {
+    pub components: Vec<String>,
+    /// Per cell: the number of Gauss points, and one function per
+    /// component (in the order of `components`).
+    pub values: BTreeMap<CellId, (usize, Vec<Option<Rc<Function>>>)>,
 }
 
 impl Concept {
@@ -615,6 +630,7 @@ impl Concept {
             Concept::VectElem(_) => "elementary vectors",
             Concept::Numbering(_) => "a DOF numbering",
             Concept::FunctionField(_) => "a field of functions",
+            Concept::GaussFunctionField(_) => "a field of functions at Gauss points",
             Concept::MacroElement(_) => "a static macro element (MACR_ELEM_STAT)",
             Concept::SuperMesh(_) => "a super mesh (DEFI_MAILLAGE)",
             Concept::CrackFront(_) => "a crack front",

@@ -39,6 +39,9 @@ pub struct Executor {
     /// The mesh (id) a field made by CREA_CHAMP lives on, when the command
     /// tells it (MAILLAGE, MODELE, or the fields it was made from).
     pub(crate) field_meshes: HashMap<u32, u32>,
+    /// The quantity of a field made by CREA_CHAMP (its `TYPE_CHAM` without
+    /// the location: `DEPL_R`, `NEUT_R`…), by concept id.
+    pub(crate) field_quantity: HashMap<u32, String>,
     pub(crate) options: RunOptions,
     out: Box<dyn Write>,
     pub tally: Tally,
@@ -74,6 +77,7 @@ impl Executor {
             objects: HashMap::new(),
             field_origin: HashMap::new(),
             field_meshes: HashMap::new(),
+            field_quantity: HashMap::new(),
             options,
             out,
             tally: Tally::default(),

@@ -66,7 +66,10 @@ pub enum ElemLocation {
     Cell,
 }
 
-/// A field on cells: per cell, per point, one value per component.
+/// A field on cells: per cell, per point, one value per component. A NaN
+/// marks a component the cell's element does not carry (an `ELGA_DEPL_R`
+/// field has DX DY on a plane model's faces, DX DY DZ on its edges): it is
+/// no value, for reading ([`ElemField::get`]) as for reductions.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ElemField {
     pub location: ElemLocation,
@@ -114,6 +117,7 @@ impl ElemField {
             .get(point.checked_sub(1)?)?
             .get(c)
             .copied()
+            .filter(|v| !v.is_nan())
     }
 }
 
@@ -157,6 +161,7 @@ impl Field {
                             .enumerate()
                             .filter(move |(i, _)| comp.is_none() || Some(*i) == idx)
                             .map(|(_, x)| *x)
+                            .filter(|x| !x.is_nan())
                     })
                     .collect()
             }

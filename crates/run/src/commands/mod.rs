@@ -3,6 +3,7 @@
 
 pub(crate) mod cara_coque;
 pub(crate) mod cara_poutre;
+pub(crate) mod crea_champ_elga;
 pub(crate) mod crea_maillage;
 pub(crate) mod define;
 pub(crate) mod elementary;

@@ -145,8 +145,19 @@ pub fn step_field<'s>(
 }
 
 /// What CREA_CHAMP reads (`crate::support`).
-pub(crate) const CREA_CHAMP: Support = Support::keywords(&[
+pub(crate) const CREA_CHAMP: Support = Support {
+    values: &[Values::listed(
+        "OPERATION",
+        &["EXTR", "COMB", "ASSE", "AFFE", "EVAL", "NORMALE", "DISC"],
+    )],
+    rules: Some(super::crea_champ_elga::rules),
+    ..Support::keywords(CREA_CHAMP_KEYWORDS)
+};
+
+const CREA_CHAMP_KEYWORDS: &[&str] = &[
     "TYPE_CHAM",
+    "PROL_ZERO",
+    "CHAM_GD",
     "OPERATION",
     "GROUP_MA",
     "MAILLE",
@@ -183,7 +194,7 @@ pub(crate) const CREA_CHAMP: Support = Support::keywords(&[
     "ASSE/NOM_CMP_RESU",
     "CHAM_F",
     "CHAM_PARA",
-]);
+];
 
 pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
@@ -196,7 +207,17 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         Some(m) => ex.field_meshes.insert(id, m),
         None => ex.field_meshes.remove(&id),
     };
-    if op == "AFFE" && kw.str("TYPE_CHAM").is_some_and(|t| t.ends_with("_F")) {
+    let ty = kw.str("TYPE_CHAM").unwrap_or("");
+    match ty.get(5..) {
+        Some(q) => ex.field_quantity.insert(id, q.to_string()),
+        None => ex.field_quantity.remove(&id),
+    };
+    let gauss = ty.starts_with("ELGA_");
+    if op == "AFFE" && ty.ends_with("_F") {
+        if gauss {
+            let f = super::crea_champ_elga::affe_functions(ex, call)?;
+            return store_result(ex, call, Concept::GaussFunctionField(Rc::new(f)));
+        }
         let f = crea_champ_affe_functions(ex, call)?;
         return store_result(ex, call, Concept::FunctionField(Rc::new(f)));
     }
@@ -213,7 +234,18 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             }
             Field::Nodal(f)
         }
-        "EVAL" => Field::Nodal(crea_champ_eval(ex, call)?),
+        "EVAL" => {
+            let f_ref = ex.required("CREA_CHAMP", kw, "CHAM_F")?;
+            match ex.concept(f_ref)? {
+                Concept::GaussFunctionField(f) => {
+                    let f = f.clone();
+                    Field::Elem(super::crea_champ_elga::eval(ex, call, &f)?)
+                }
+                _ => Field::Nodal(crea_champ_eval(ex, call)?),
+            }
+        }
+        "DISC" => Field::Elem(super::crea_champ_elga::disc(ex, call)?),
+        "ASSE" if gauss => Field::Elem(super::crea_champ_elga::asse(ex, call)?),
         "EXTR" => {
             let r = ex.required("CREA_CHAMP", kw, "RESULTAT")?;
             let result = ex.result(r)?;

@@ -24,12 +24,15 @@
 //!   no row). Same columns as `ENER_POT`. Densities from `CHAM_MATER`
 //!   when given, else those of the computation; discrete masses refused.
 //!
-//! Every other quantity (MASS_INER, NORME, INTEGRALE, MINMAX, TRAV_EXT…)
-//! is refused with its location.
+//! - `NORME` (`penorm`, option `NORME_L2`) of a field (`CHAM_GD`, `MODELE`):
+//!   see [`norme`].
+//!
+//! Every other quantity (MASS_INER, INTEGRALE, MINMAX, TRAV_EXT…) is
+//! refused with its location.
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
-use crate::support::Support;
+use crate::support::{Support, Values};
 use crate::table::{Column, ColumnType, Table, Value};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_fem::Model;
@@ -53,20 +56,34 @@ const POST_ELEM_OWN: &[&str] = &[
     "CHAM_MATER",
     "CARA_ELEM",
     "TITRE",
+    "NORME",
+    "NORME/TOUT",
+    "NORME/GROUP_MA",
+    "NORME/TYPE_MAILLE",
+    "NORME/TYPE_NORM",
+    "NORME/CHAM_GD",
+    "NORME/MODELE",
+    "NORME/COEF_MULT",
 ];
 
 /// What POST_ELEM computes (`crate::support`): its own keywords and the
 /// step selection ([`super::post::STEP_SELECTION`]).
-pub(crate) const POST_ELEM: Support =
-    Support::keywords(&crate::support::joined::<
+pub(crate) const POST_ELEM: Support = Support {
+    values: &[Values::new("NORME/TYPE_NORM", &["L2"])
+        .why("(the Frobenius norm is not reproduced): the L2 norm only")],
+    ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + POST_ELEM_OWN.len() },
-    >(super::post::STEP_SELECTION, POST_ELEM_OWN));
+    >(super::post::STEP_SELECTION, POST_ELEM_OWN))
+};
 
 pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     if kw.contains("ENER_CIN") {
         return ener_cin(ex, call);
+    }
+    if kw.contains("NORME") {
+        return norme(ex, call);
     }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
@@ -245,6 +262,180 @@ fn ener_cin(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exec
             ]);
         }
     }
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+/// `POST_ELEM/NORME` of a field (`CHAM_GD`, `MODELE`), code_aster's
+/// `penorm`: the field at the Gauss points of the `NORME_L2` option (the
+/// `RIGI` family, crate::commands::crea_champ_elga; a nodal field
+/// interpolated there, a value it lacks 0) on the model's cells of `TOUT`
+/// or `GROUP_MA` (of dimension `TYPE_MAILLE`), and √(Σ weight · Σ_c coef_c
+/// v_c²) (aster-fem `elga::weighted_square_sum`, `COOR_ELGA` weights).
+/// The coefficients follow the field's quantity (`calc_norm_coef`): DEPL
+/// DX DY DZ; TEMP; FLUX FLUX FLUY FLUZ; SIEF and EPSI the diagonal 1, the
+/// shears 2; NEUT_R `COEF_MULT` by component (none: 0). A field of another
+/// quantity gives no row (as code_aster). 3D edge cells carry no norm.
+fn norme(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let cmd = "POST_ELEM/NORME";
+    let kw = &call.keywords;
+    let occ = kw
+        .factor("NORME")
+        .first()
+        .ok_or_else(|| ExecError::new(format!("{cmd}: no occurrence")))?;
+    let f = ex.required(cmd, occ, "CHAM_GD")?;
+    let model = ex.model(ex.required(cmd, occ, "MODELE")?)?;
+    let mesh = ex.model_mesh(&model)?;
+    let at = occ.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
+    let layout = super::crea_champ_elga::layout(ex, &model, &mesh, at)?;
+    let mut table = Table::new(vec![
+        col("CHAM_GD", ColumnType::Text(8)),
+        col("GROUP_MA", ColumnType::Text(24)),
+        col("TYPE_MAIL", ColumnType::Text(8)),
+        col("TYPE_NORM", ColumnType::Text(8)),
+        col("VALE_NORM", ColumnType::Real),
+    ]);
+    let Some(quantity) = ex.field_quantity.get(&f.id).cloned() else {
+        return Err(ex.unsupported(
+            "POST_ELEM/NORME of a field not made by CREA_CHAMP (its quantity, which sets the norm's components, is not known here)",
+            occ.keyword("CHAM_GD").map(|k| k.span).unwrap_or(call.span),
+        ));
+    };
+    let coef_mult: Vec<f64> = occ
+        .simple("COEF_MULT")
+        .iter()
+        .filter_map(|s| s.as_f64())
+        .collect();
+    if !coef_mult.is_empty() && !quantity.starts_with("NEUT_R") {
+        // code_aster's POSTELEM_2.
+        return Err(ex.kw_error(
+            cmd,
+            occ,
+            "COEF_MULT",
+            format!("COEF_MULT is for NEUT_R fields, not {quantity}"),
+        ));
+    }
+    let q4 = quantity.get(..4).unwrap_or("");
+    let normed = quantity.ends_with("_R")
+        && (matches!(q4, "DEPL" | "EPSI" | "TEMP" | "FLUX" | "SIEF") || quantity == "NEUT_R");
+    if !normed {
+        return store_result(ex, call, Concept::Table(Rc::new(table)));
+    }
+    let field = ex.field(f)?;
+    let comps = field.components().to_vec();
+    // Per component of the field, its coefficient.
+    let coef: Vec<f64> = match q4 {
+        "NEUT" => {
+            // By position among the field's components: a cham_no holds
+            // those it has, a cham_elem all of X1…X30 (here: by X index).
+            let mut order: Vec<usize> = (0..comps.len()).collect();
+            let index = |c: &str| c.strip_prefix('X').and_then(|n| n.parse::<usize>().ok());
+            order.sort_by_key(|&i| index(&comps[i]).unwrap_or(usize::MAX));
+            let mut out = vec![0.0; comps.len()];
+            for (pos, &i) in order.iter().enumerate() {
+                let k = match &*field {
+                    crate::field::Field::Nodal(_) => Some(pos),
+                    crate::field::Field::Elem(_) => index(&comps[i]).map(|x| x - 1),
+                };
+                out[i] = k.and_then(|k| coef_mult.get(k)).copied().unwrap_or(0.0);
+            }
+            out
+        }
+        _ => comps
+            .iter()
+            .map(|c| match c.as_str() {
+                "DX" | "DY" | "DZ" if q4 == "DEPL" => 1.0,
+                "TEMP" if q4 == "TEMP" => 1.0,
+                "FLUX" | "FLUY" | "FLUZ" if q4 == "FLUX" => 1.0,
+                "EPXX" | "EPYY" | "EPZZ" if q4 == "EPSI" => 1.0,
+                "EPXY" | "EPXZ" | "EPYZ" if q4 == "EPSI" => 2.0,
+                "SIXX" | "SIYY" | "SIZZ" if q4 == "SIEF" => 1.0,
+                "SIXY" | "SIXZ" | "SIYZ" if q4 == "SIEF" => 2.0,
+                _ => 0.0,
+            })
+            .collect(),
+    };
+    // The cells: the model's, of TOUT or the groups, of TYPE_MAILLE's
+    // dimension; edges of a 3D model have no NORME_L2.
+    let mut cells: Vec<CellId> = if occ.contains("TOUT") {
+        model.cells.keys().copied().collect()
+    } else {
+        crate::select::cells(occ, &mesh, "")
+            .map_err(|e| ex.kw_error(cmd, occ, "GROUP_MA", e))?
+            .into_iter()
+            .filter(|c| model.cells.contains_key(c))
+            .collect()
+    };
+    let type_maille = occ.str("TYPE_MAILLE");
+    if let Some(t) = type_maille {
+        let dim = if t == "2D" { 2 } else { 3 };
+        cells.retain(|&c| mesh.cell(c).ty.dim() as usize == dim);
+        if cells.is_empty() {
+            // code_aster's PREPOST2_6.
+            return Err(ex.kw_error(cmd, occ, "TYPE_MAILLE", "no cell of that dimension"));
+        }
+    }
+    cells.retain(|c| {
+        layout
+            .cells
+            .get(c)
+            .is_some_and(|g| g.role != aster_fem::elga::CellRole::Edge)
+    });
+    let values: std::collections::BTreeMap<CellId, Vec<Vec<f64>>> = match &*field {
+        crate::field::Field::Nodal(n) => {
+            super::crea_champ_elga::nodal_at_points(n, &mesh, &layout, &cells)
+        }
+        crate::field::Field::Elem(e) => {
+            if e.location != crate::field::ElemLocation::Gauss {
+                return Err(ex.unsupported(
+                    "POST_ELEM/NORME of an element field not at Gauss points (ELNO, ELEM)",
+                    occ.keyword("CHAM_GD").map(|k| k.span).unwrap_or(call.span),
+                ));
+            }
+            let mut out = std::collections::BTreeMap::new();
+            for c in &cells {
+                let Some(points) = e.values.get(c) else {
+                    continue;
+                };
+                let n = layout.cells[c].points.len();
+                if points.len() != n {
+                    return Err(ExecError::new(format!(
+                        "{cmd}: cell {} has {} points in the field and {n} in the model's NORME_L2 family",
+                        crate::select::cell_name(&mesh, *c),
+                        points.len()
+                    )));
+                }
+                let zeroed = points
+                    .iter()
+                    .map(|p| {
+                        p.iter()
+                            .map(|v| if v.is_nan() { 0.0 } else { *v })
+                            .collect()
+                    })
+                    .collect();
+                out.insert(*c, zeroed);
+            }
+            out
+        }
+    };
+    let mut sum = 0.0;
+    for (c, v) in &values {
+        sum += aster_fem::elga::weighted_square_sum(&layout.cells[c].points, v, &coef);
+    }
+    let group = if occ.contains("TOUT") {
+        "-".to_string()
+    } else {
+        occ.str("GROUP_MA").unwrap_or("-").to_string()
+    };
+    table.push_row(vec![
+        ("CHAM_GD", Value::Text(f.name.clone())),
+        ("GROUP_MA", Value::Text(group)),
+        (
+            "TYPE_MAIL",
+            Value::Text(type_maille.unwrap_or("-").to_string()),
+        ),
+        ("TYPE_NORM", Value::Text("L2".into())),
+        ("VALE_NORM", Value::Real(sum.sqrt())),
+    ]);
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
