@@ -606,8 +606,12 @@ pub struct GaussFunctionField {
     pub components: Vec<String>,
     /// Per cell: the number of Gauss points, and one function per
     /// component (in the order of `components`).
-    pub values: BTreeMap<CellId, (usize, Vec<Option<Rc<Function>>>)>,
+    pub values: BTreeMap<CellId, GaussFunctions>,
 }
+
+/// A cell's entry of a [`GaussFunctionField`]: its number of Gauss points
+/// and one function per component (`None`: the zero function).
+pub type GaussFunctions = (usize, Vec<Option<Rc<Function>>>);
 
 impl Concept {
     /// What it is, for messages.
