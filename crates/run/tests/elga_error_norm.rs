@@ -141,3 +141,45 @@ fn other_discretisations_and_norms_are_refused_where_written() {
         "{error}"
     );
 }
+
+/// A TYPE_TEST over a Gauss-point field made by CREA_CHAMP on a mesh with
+/// volumes and segments (comm/crack_front_3d.mail: HEXA8 and the SEG2
+/// front) is refused at TYPE_TEST: code_aster's edge elements give the
+/// segments Gauss points aster's models leave out.
+#[test]
+fn a_type_test_over_a_3d_field_with_edges_is_refused() {
+    let dir = temp("edges");
+    std::fs::write(
+        dir.join("case.comm"),
+        r#"DEBUT()
+mesh = LIRE_MAILLAGE(FORMAT="ASTER", UNITE=20)
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="3D"))
+xn = CREA_CHAMP(OPERATION="EXTR", TYPE_CHAM="NOEU_GEOM_R", NOM_CHAM="GEOMETRIE", MAILLAGE=mesh)
+xg = CREA_CHAMP(OPERATION="DISC", TYPE_CHAM="ELGA_GEOM_R", PROL_ZERO="OUI", CHAM_GD=xn, MODELE=model)
+TEST_RESU(CHAM_ELEM=_F(CHAM_GD=xg, NOM_CMP="X", TYPE_TEST="MAX", VALE_CALC=10.0))
+FIN()
+"#,
+    )
+    .unwrap();
+    std::fs::copy(
+        root().join("comm/crack_front_3d.mail"),
+        dir.join("crack_front_3d.mail"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("case.export"),
+        "F comm case.comm D 1\nF mail crack_front_3d.mail D 20\n",
+    )
+    .unwrap();
+    let (outcome, report) = run(&dir.join("case.export"), &dir.join("out"));
+    let _ = std::fs::remove_dir_all(&dir);
+    let error = outcome
+        .error
+        .unwrap_or_else(|| panic!("not refused\n{report}"))
+        .message;
+    assert!(
+        error.contains("not supported yet: TEST_RESU/CHAM_ELEM/TYPE_TEST over a Gauss-point field made by CREA_CHAMP on a mesh with volumes and segments")
+            && error.contains("case.comm:6:49"),
+        "{error}"
+    );
+}

@@ -34,8 +34,10 @@
 //! aster's 3D models carry no edge elements (AFFE_MODELE leaves segments
 //! out), so their fields lack the points code_aster's `MECA_ARETE2/3` give
 //! the segments of a 3D model: no norm counts them (they have no
-//! `NORME_L2`), a `TEST_RESU/CHAM_ELEM` of such a cell or a `TYPE_TEST`
-//! over the whole field would.
+//! `NORME_L2`), a `TEST_RESU/CHAM_ELEM` of such a cell would (an error:
+//! the cell has no value) or a `TYPE_TEST` over the whole field (refused
+//! at `TYPE_TEST` on a mesh with volumes and segments,
+//! `commands::inspect`).
 //!
 //! Refused: cells of other modelisations (discrete, beams, shells) and the
 //! under-integrated ones (`_SI`), other quantities and locations (`ELNO`,

@@ -374,6 +374,9 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             let c = ex.required(&format!("TEST_RESU/{factor}"), occ, "CHAM_GD")?;
             let field = ex.field(c)?;
             let mesh = ex.field_mesh(c)?;
+            if factor == "CHAM_ELEM" && occ.contains("TYPE_TEST") {
+                edge_points_guard(ex, occ, c, &field, &mesh)?;
+            }
             let mut header: Vec<(&str, String)> = vec![(label, c.name.clone())];
             let value = field_value(occ, &field, &mesh, &mut header)
                 .map_err(|e| ExecError::new(format!("TEST_RESU/{factor}: {e}")))?;
@@ -381,6 +384,32 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         }
     }
     Ok(CommandOutput::Nothing)
+}
+
+/// A `TYPE_TEST` over a Gauss-point field built by CREA_CHAMP (not
+/// extracted from a result) on a mesh with volumes and segments: code_aster
+/// gives the segments of a 3D model edge elements (`MECA_ARETE2/3`) whose
+/// Gauss points such a field carries, aster's models leave them out
+/// (`commands::crea_champ_elga`), so the extreme or sum over the field may
+/// differ: refused at `TYPE_TEST`.
+fn edge_points_guard(
+    ex: &Executor,
+    occ: &Keywords,
+    c: &aster_eval::ConceptRef,
+    field: &Field,
+    mesh: &Mesh,
+) -> Result<(), ExecError> {
+    let gauss = matches!(field, Field::Elem(f) if f.location == ElemLocation::Gauss);
+    let built = !ex.field_origin.contains_key(&c.id);
+    let has = |d: u8| mesh.cells.iter().any(|cell| cell.ty.dim() == d);
+    if gauss && built && has(3) && has(1) {
+        let span = occ.keyword("TYPE_TEST").map(|k| k.span).unwrap_or_default();
+        return Err(ex.unsupported(
+            "TEST_RESU/CHAM_ELEM/TYPE_TEST over a Gauss-point field made by CREA_CHAMP on a mesh with volumes and segments (code_aster's edge elements MECA_ARETE2/3 give the segments Gauss points that aster's models do not have: test a cell with GROUP_MA/MAILLE and POINT)",
+            span,
+        ));
+    }
+    Ok(())
 }
 
 /// Rows of a table kept by `FILTRE` occurrences.
