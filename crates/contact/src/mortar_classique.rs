@@ -53,7 +53,7 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::mortar_friction::{FrictionLaw, R8PREM, THRES_STICK};
-use crate::mortar_lagrangian::{err, normal_at, InitialState, MortarLagrangian, MortarZoneDef};
+use crate::mortar_lagrangian::{err, normal_at, MortarLagrangian, MortarZoneDef};
 use crate::shape::SurfaceKind;
 use crate::source::current_positions;
 
@@ -481,11 +481,7 @@ impl ForceSource for MortarClassique {
                 mp: &mp,
                 mprev: &mprev,
             };
-            let forced = match (base.first_pairing, z.init) {
-                (true, InitialState::No) => Some(false),
-                (true, InitialState::Yes) => Some(true),
-                _ => None,
-            };
+            let forced = z.init.forced(base.first_pairing);
             for pt in crate::mortar_point::points(s, m, p.xi, &sp, &mp, &s0, base.axis)? {
                 let lagr_shape = s.lagr_shape(pt.xi, &pt.initial.shape);
                 let data = PointData {
@@ -557,18 +553,7 @@ impl ForceSource for MortarClassique {
 
     fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
         let per = self.per_node();
-        match self.base.lagr.get(k / per) {
-            Some(n) => format!(
-                "{} of node {}",
-                if k.is_multiple_of(per) {
-                    "LAGS_C"
-                } else {
-                    "LAGS_F1"
-                },
-                mesh.node_name(*n)
-            ),
-            None => format!("unknown #{}", k + 1),
-        }
+        crate::mortar_friction::friction_unknown_name(&self.base.lagr, per, k, mesh)
     }
 }
 

@@ -50,9 +50,7 @@ use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
-use crate::mortar_lagrangian::{
-    err, normal_at, ray_hit, InitialState, MortarLagrangian, MortarZoneDef,
-};
+use crate::mortar_lagrangian::{err, normal_at, ray_hit, MortarLagrangian, MortarZoneDef};
 use crate::shape::{dot, interpolate, norm, project_along, sub, SurfaceKind};
 use crate::source::current_positions;
 
@@ -425,6 +423,42 @@ fn point_terms(
     Ok(Some(PointTerms { forces, own }))
 }
 
+/// Each zone's friction law ([`MortarZoneDef::friction`]); a zone without
+/// one is refused: code_aster's zones of one DEFI_CONT are all with
+/// friction or all without.
+pub(crate) fn zone_laws(zones: &[MortarZoneDef]) -> Result<Vec<FrictionLaw>, ContactError> {
+    zones
+        .iter()
+        .map(|z| {
+            z.friction.ok_or_else(|| ContactError::Unsupported {
+                feature: format!(
+                    "a zone without friction ({} on {}) beside zones with friction in one DEFI_CONT",
+                    z.slave_group, z.master_group
+                ),
+                hint: "give every zone FROTTEMENT='OUI' (TYPE_FROT='SANS' for no friction force)"
+                    .into(),
+            })
+        })
+        .collect()
+}
+
+/// The name of own unknown `k` of a frictional source with `per` unknowns
+/// per slave node (`LAGS_C`, then `LAGS_F1` when `per` is 2).
+pub(crate) fn friction_unknown_name(lagr: &[NodeId], per: usize, k: usize, mesh: &Mesh) -> String {
+    match lagr.get(k / per) {
+        Some(n) => format!(
+            "{} of node {}",
+            if k.is_multiple_of(per) {
+                "LAGS_C"
+            } else {
+                "LAGS_F1"
+            },
+            mesh.node_name(*n)
+        ),
+        None => format!("unknown #{}", k + 1),
+    }
+}
+
 /// The frictional mortar contact of a DEFI_CONT, as a fem force source.
 #[derive(Clone, Debug)]
 pub struct MortarFriction {
@@ -443,18 +477,7 @@ impl MortarFriction {
     /// zone is refused — code_aster's zones of one DEFI_CONT are all with
     /// friction or all without).
     pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
-        let laws = zones
-            .iter()
-            .map(|z| {
-                z.friction.ok_or_else(|| ContactError::Unsupported {
-                    feature: format!(
-                        "a zone without friction ({} on {}) beside zones with friction in one DEFI_CONT",
-                        z.slave_group, z.master_group
-                    ),
-                    hint: "give every zone FROTTEMENT='OUI' (TYPE_FROT='SANS' for no friction force)".into(),
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let laws = zone_laws(zones)?;
         let base = MortarLagrangian::new(zones, mesh, axis)?;
         Ok(MortarFriction {
             base,
@@ -556,11 +579,7 @@ impl ForceSource for MortarFriction {
                 mp: &mp,
                 mprev: &mprev,
             };
-            let forced = match (self.first_pairing, z.init) {
-                (true, InitialState::No) => Some(false),
-                (true, InitialState::Yes) => Some(true),
-                _ => None,
-            };
+            let forced = z.init.forced(self.first_pairing);
             for (xi, w, _) in crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis) {
                 let law = PointLaw {
                     xi: xi[0],
@@ -631,18 +650,7 @@ impl ForceSource for MortarFriction {
     }
 
     fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
-        match self.base.lagr.get(k / 2) {
-            Some(n) => format!(
-                "{} of node {}",
-                if k.is_multiple_of(2) {
-                    "LAGS_C"
-                } else {
-                    "LAGS_F1"
-                },
-                mesh.node_name(*n)
-            ),
-            None => format!("unknown #{}", k + 1),
-        }
+        friction_unknown_name(&self.base.lagr, 2, k, mesh)
     }
 }
 

@@ -43,7 +43,7 @@ use crate::error::ContactError;
 use crate::mortar_friction::{
     axpy, comb, lin, point_quantities, FrictionLaw, Lin, PointGeometry, PointLaw,
 };
-use crate::mortar_lagrangian::{InitialState, MortarLagrangian, MortarZoneDef};
+use crate::mortar_lagrangian::{MortarLagrangian, MortarZoneDef};
 use crate::mortar_penalty::gamma;
 use crate::source::current_positions;
 
@@ -106,18 +106,7 @@ impl MortarFrictionPenalty {
     /// each zone's `coef_cont` is its COEF_CONT and its
     /// [`MortarZoneDef::friction`] its law (every zone has one).
     pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
-        let laws = zones
-            .iter()
-            .map(|z| {
-                z.friction.ok_or_else(|| ContactError::Unsupported {
-                    feature: format!(
-                        "a zone without friction ({} on {}) beside zones with friction in one DEFI_CONT",
-                        z.slave_group, z.master_group
-                    ),
-                    hint: "give every zone FROTTEMENT='OUI' (TYPE_FROT='SANS' for no friction force)".into(),
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let laws = crate::mortar_friction::zone_laws(zones)?;
         Ok(MortarFrictionPenalty {
             base: MortarLagrangian::new(zones, mesh, axis)?,
             laws,
@@ -178,11 +167,7 @@ impl ForceSource for MortarFrictionPenalty {
                 mp: &mp,
                 mprev: &mprev,
             };
-            let forced = match (self.first_pairing, z.init) {
-                (true, InitialState::No) => Some(false),
-                (true, InitialState::Yes) => Some(true),
-                _ => None,
-            };
+            let forced = z.init.forced(self.first_pairing);
             for (xi, w, at0) in crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis) {
                 let law = PointLaw {
                     xi: xi[0],

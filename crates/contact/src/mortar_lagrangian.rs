@@ -79,6 +79,19 @@ pub enum InitialState {
     Yes,
 }
 
+impl InitialState {
+    /// The status `CONTACT_INIT` imposes on a point at the first pairing
+    /// (`None`: the status follows the point's own test, as after the
+    /// first pairing).
+    pub(crate) fn forced(self, first_pairing: bool) -> Option<bool> {
+        match (first_pairing, self) {
+            (true, InitialState::No) => Some(false),
+            (true, InitialState::Yes) => Some(true),
+            _ => None,
+        }
+    }
+}
+
 /// One zone of a mortar Lagrangian definition.
 #[derive(Clone, Debug)]
 pub struct MortarZoneDef {
@@ -706,11 +719,7 @@ impl ForceSource for MortarLagrangian {
                 let lam: f64 = nsl.iter().zip(&lk).map(|(f, &k)| f * own[k]).sum();
                 let lg = lam + gamma * gap;
                 // CONTACT_INIT at the first pairing, then Heaviside(−(λ + γg)).
-                let active = match (self.first_pairing, z.init) {
-                    (true, InitialState::No) => false,
-                    (true, InitialState::Yes) => true,
-                    _ => -lg >= 0.0,
-                };
+                let active = z.init.forced(self.first_pairing).unwrap_or(-lg >= 0.0);
                 let (h, proj) = if active { (true, lg) } else { (false, 0.0) };
                 // The point's DOFs with the derivatives of the normal, the
                 // master point and the gap: code_aster's analytic tangent
