@@ -302,30 +302,7 @@ pub(crate) fn affe_functions(
         BTreeMap::new();
     let mut present = Vec::new();
     for occ in kw.factor("AFFE") {
-        let cmps: Vec<String> = occ
-            .simple("NOM_CMP")
-            .iter()
-            .filter_map(|s| s.as_str().map(str::to_string))
-            .collect();
-        let mut functions = Vec::new();
-        for s in occ.simple("VALE_F") {
-            let Some(c) = s.as_concept() else {
-                return Err(ex.kw_error(cmd, occ, "VALE_F", "a function is required"));
-            };
-            functions.push(ex.function(c)?);
-        }
-        if cmps.len() != functions.len() {
-            return Err(ex.kw_error(
-                cmd,
-                occ,
-                "VALE_F",
-                format!(
-                    "{} functions for {} components in NOM_CMP: give one per component",
-                    functions.len(),
-                    cmps.len()
-                ),
-            ));
-        }
+        let (cmps, functions) = super::post::affe_functions(ex, cmd, occ)?;
         if let Some(bad) = cmps.iter().find(|c| !Quantity::Neut.catalog().contains(c)) {
             return Err(ex.kw_error(
                 cmd,

@@ -526,30 +526,7 @@ fn crea_champ_affe_functions(
     };
     let mut field = NodalFunctionField::default();
     for occ in kw.factor("AFFE") {
-        let cmps: Vec<&str> = occ
-            .simple("NOM_CMP")
-            .iter()
-            .filter_map(|s| s.as_str())
-            .collect();
-        let mut functions = Vec::new();
-        for s in occ.simple("VALE_F") {
-            let Some(c) = s.as_concept() else {
-                return Err(ex.kw_error(cmd, occ, "VALE_F", "a function is required"));
-            };
-            functions.push(ex.function(c)?);
-        }
-        if cmps.len() != functions.len() {
-            return Err(ex.kw_error(
-                cmd,
-                occ,
-                "VALE_F",
-                format!(
-                    "{} functions for {} components in NOM_CMP: give one per component",
-                    functions.len(),
-                    cmps.len()
-                ),
-            ));
-        }
+        let (cmps, functions) = affe_functions(ex, cmd, occ)?;
         let nodes =
             select::nodes(occ, &mesh, "").map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
         for c in &cmps {
@@ -565,6 +542,40 @@ fn crea_champ_affe_functions(
         }
     }
     Ok(field)
+}
+
+/// An `AFFE` occurrence of a field of functions: its `NOM_CMP` and one
+/// `VALE_F` function per component.
+pub(crate) fn affe_functions(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+) -> Result<(Vec<String>, Vec<Rc<crate::function::Function>>), ExecError> {
+    let cmps: Vec<String> = occ
+        .simple("NOM_CMP")
+        .iter()
+        .filter_map(|s| s.as_str().map(str::to_string))
+        .collect();
+    let mut functions = Vec::new();
+    for s in occ.simple("VALE_F") {
+        let Some(c) = s.as_concept() else {
+            return Err(ex.kw_error(cmd, occ, "VALE_F", "a function is required"));
+        };
+        functions.push(ex.function(c)?);
+    }
+    if cmps.len() != functions.len() {
+        return Err(ex.kw_error(
+            cmd,
+            occ,
+            "VALE_F",
+            format!(
+                "{} functions for {} components in NOM_CMP: give one per component",
+                functions.len(),
+                cmps.len()
+            ),
+        ));
+    }
+    Ok((cmps, functions))
 }
 
 /// `CREA_CHAMP(OPERATION='EVAL')`: each function of `CHAM_F` evaluated at
