@@ -87,17 +87,34 @@ impl ResolvedZone {
             nodal.then_some(&mut slave_points),
         )?;
 
-        if let Some(radius) = &geometry.beam_radius {
-            if let Some(c) = slave.iter().find(|c| !radius.contains_key(&c.id)) {
+        // code_aster's CONTACT3_32 (no circular beam section) and
+        // CONTACT3_39 (no shell thickness) on a slave cell.
+        let offsets = [
+            (
+                &geometry.beam_radius,
+                "DIST_POUTRE",
+                "a circular beam section (SECTION='CERCLE')",
+                "CONTACT3_32",
+            ),
+            (
+                &geometry.shell_half_thickness,
+                "DIST_COQUE",
+                "a shell thickness (COQUE/EPAIS)",
+                "CONTACT3_39",
+            ),
+        ];
+        for (offset, keyword, what, id) in offsets {
+            let Some(offset) = offset else { continue };
+            if let Some(c) = slave.iter().find(|c| !offset.contains_key(&c.id)) {
                 let name = mesh
                     .cell_names
                     .get(c.id.0 as usize)
                     .cloned()
                     .unwrap_or_else(|| format!("#{}", c.id.0 + 1));
                 return Err(ContactError::Invalid {
-                    keyword: "DIST_POUTRE",
+                    keyword,
                     message: format!(
-                        "slave cell {name} has no circular beam section (SECTION='CERCLE') in the zone's CARA_ELEM: DIST_POUTRE needs one (code_aster's CONTACT3_32)"
+                        "slave cell {name} has no {what} in the zone's CARA_ELEM: {keyword} needs one (code_aster's {id})"
                     ),
                 });
             }
@@ -227,19 +244,22 @@ impl ResolvedZone {
         }
     }
 
-    /// The structural offset of a slave point (`DIST_POUTRE`): the radius
-    /// of its slave cell, or at a node the mean over the slave cells
-    /// around it (code_aster's `cfdist`, `cfdism`); 0 without it.
+    /// The structural offset of a slave point (`DIST_POUTRE`, `DIST_COQUE`):
+    /// the radius of its slave beam cell plus half the thickness of its
+    /// slave shell cell, or at a node the mean over the slave cells around
+    /// it (code_aster's `cfdist`, `cfdism`); 0 without them.
     pub fn structural_gap(&self, point: &crate::pairing::SlavePoint) -> f64 {
-        let Some(radius) = &self.geometry.beam_radius else {
+        let g = &self.geometry;
+        if g.beam_radius.is_none() && g.shell_half_thickness.is_none() {
             return 0.0;
-        };
+        }
         let of = |ci: usize| {
-            self.slave
-                .get(ci)
-                .and_then(|c| radius.get(&c.id))
-                .copied()
-                .unwrap_or(0.0)
+            self.slave.get(ci).map_or(0.0, |c| {
+                [&g.beam_radius, &g.shell_half_thickness]
+                    .iter()
+                    .filter_map(|m| m.as_ref().and_then(|m| m.get(&c.id)))
+                    .sum::<f64>()
+            })
         };
         match (point.cell, point.node()) {
             (Some((ci, _)), _) => of(ci),

@@ -160,6 +160,11 @@ pub struct ZoneGeometry {
     /// `cfdist`; at a node, the mean over its slave cells, `cfdism`).
     /// `None`: no such offset.
     pub beam_radius: Option<std::collections::BTreeMap<aster_mesh::CellId, f64>>,
+    /// `DIST_COQUE='OUI'`: half the thickness of each slave shell cell
+    /// (`CARA_ELEM`, `EPAIS`/2), added to the gap as the beams' radii are
+    /// (code_aster's `cacoco`, `cfdist`: the slave side only, summed with
+    /// `DIST_POUTRE`'s). `None`: no such offset.
+    pub shell_half_thickness: Option<std::collections::BTreeMap<aster_mesh::CellId, f64>>,
 }
 
 /// `CONTACT_INIT` of a continuous zone.
@@ -201,6 +206,7 @@ impl ZoneGeometry {
             dire_appa: None,
             pene_maxi: None,
             beam_radius: None,
+            shell_half_thickness: None,
         }
     }
 

@@ -22,7 +22,7 @@ pub(crate) const DEFI_CONTACT: Support = Support {
         // FIXE: projection along DIRE_APPA (code_aster's `mmnewd`).
         Values::new("ZONE/TYPE_PROJECTION", &["ORTHOGONALE", "FIXE"]),
         Values::new("ZONE/DIST_POUTRE", &["NON", "OUI"]),
-        Values::new("ZONE/DIST_COQUE", &["NON"]),
+        Values::new("ZONE/DIST_COQUE", &["NON", "OUI"]),
     ],
     rules: Some(defi_contact_rules),
     hints: &[
@@ -353,6 +353,24 @@ fn geometry(ex: &Executor, kw: &Keywords, occ: &Keywords) -> Result<ZoneGeometry
         }
         g.beam_radius = Some(radius);
     }
+    if occ.str("DIST_COQUE") == Some("OUI") {
+        let Some(c) = occ.concept("CARA_ELEM") else {
+            return Err(ex.kw_error(
+                "DEFI_CONTACT/ZONE",
+                occ,
+                "DIST_COQUE",
+                "DIST_COQUE='OUI' needs the shells' CARA_ELEM",
+            ));
+        };
+        let cara = ex.cara_elem(c)?;
+        let mut half = std::collections::BTreeMap::new();
+        for s in &cara.shells {
+            for &cell in &s.cells {
+                half.insert(cell, 0.5 * s.section.thickness);
+            }
+        }
+        g.shell_half_thickness = Some(half);
+    }
     Ok(g)
 }
 
@@ -381,16 +399,18 @@ fn geom_loop(kw: &Keywords) -> GeomLoop {
 pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, ExecError> {
     let friction = kw.str("FROTTEMENT") == Some("COULOMB");
     if friction {
-        if let Some(k) = kw
-            .factor("ZONE")
-            .iter()
-            .find(|o| o.str("DIST_POUTRE") == Some("OUI"))
-            .and_then(|o| o.keyword("DIST_POUTRE"))
-        {
-            return Err(ex.unsupported(
-                "DEFI_CONTACT/ZONE/DIST_POUTRE='OUI' with FROTTEMENT='COULOMB' (the beams' radii are added to the frictionless gap only)",
-                k.span,
-            ));
+        for key in ["DIST_POUTRE", "DIST_COQUE"] {
+            if let Some(k) = kw
+                .factor("ZONE")
+                .iter()
+                .find(|o| o.str(key) == Some("OUI"))
+                .and_then(|o| o.keyword(key))
+            {
+                return Err(ex.unsupported(
+                    &format!("DEFI_CONTACT/ZONE/{key}='OUI' with FROTTEMENT='COULOMB' (the beams' radii and the shells' half thicknesses are added to the frictionless gap only)"),
+                    k.span,
+                ));
+            }
         }
     }
     let frottement = Frottement::Sans;

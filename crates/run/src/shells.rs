@@ -5,8 +5,8 @@
 //!
 //! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`]).
 //! Contact zones on shell cells pair their mid-surfaces, as code_aster does
-//! without `DIST_COQUE` (`DIST_COQUE='OUI'`, the surface offset by half the
-//! thickness, is refused by DEFI_CONTACT's value table); a constant
+//! (`DIST_COQUE='OUI'` subtracts half the slave shell's thickness from the
+//! gap: `crate::contactbridge`, aster-contact's `structural_gap`); a constant
 //! `PRES_REP` loads them along their normal. The stresses through the
 //! thickness are computed at one level at a time from the efforts
 //! (`sigm_elno_at`, for `POST_CHAMP/EXTR_COQUE`); CALC_CHAMP's own

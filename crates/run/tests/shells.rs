@@ -68,14 +68,19 @@ fn refused(text: &str, tag: &str, what: &[&str]) {
     }
 }
 
+/// The shells' half thickness is added to the frictionless gap only.
 #[test]
-fn contact_with_dist_coque_is_refused_at_the_keyword() {
+fn friction_with_dist_coque_is_refused_at_the_keyword() {
     let text = strips().replace(
         "LINST = ",
-        "CONT = DEFI_CONTACT(MODELE=MO, FORMULATION=\"CONTINUE\", \
-         ZONE=_F(GROUP_MA_MAIT=\"SQ\", GROUP_MA_ESCL=\"ST\", DIST_COQUE=\"OUI\", CARA_ELEM=CARA))\n\nLINST = ",
+        "CONT = DEFI_CONTACT(MODELE=MO, FORMULATION=\"CONTINUE\", FROTTEMENT=\"COULOMB\", \
+         ZONE=_F(GROUP_MA_MAIT=\"SQ\", GROUP_MA_ESCL=\"ST\", COULOMB=0.1, DIST_COQUE=\"OUI\", CARA_ELEM=CARA))\n\nLINST = ",
     );
-    refused(&text, "contact", &["DEFI_CONTACT/ZONE/DIST_COQUE"]);
+    refused(
+        &text,
+        "contact",
+        &["DEFI_CONTACT/ZONE/DIST_COQUE='OUI' with FROTTEMENT='COULOMB'"],
+    );
 }
 
 #[test]
@@ -206,4 +211,70 @@ fn a_shell_without_section_is_an_error_naming_its_cell() {
     let (_, _, err) = run(&text, "nosection");
     let err = err.expect("an error");
     assert!(err.contains("cell MT1") && err.contains("COQUE"), "{err}");
+}
+
+// DIST_COQUE (code_aster's cacoco/cfdist): the strips of
+// comm/shell_offset.mail are one thickness h apart; DIST_MAIT = h/2 and the
+// slave shell's half thickness (DIST_COQUE='OUI') close that gap, so the
+// stacked strips' answers hold unchanged (beam theory within 1e-9), in the
+// discrete and continuous formulations.
+
+fn offset(text: &str, dist_coque: bool) -> String {
+    let coque = if dist_coque {
+        ", CARA_ELEM=CARA, DIST_COQUE=\"OUI\""
+    } else {
+        ""
+    };
+    let out = text
+        .replace(
+            "CONT = DEFI_CONTACT(",
+            "FH = DEFI_CONSTANTE(VALE=0.005)\n\nCONT = DEFI_CONTACT(",
+        )
+        .replace(
+            "SANS_GROUP_NO=\"CLT\")",
+            &format!("SANS_GROUP_NO=\"CLT\", DIST_MAIT=FH{coque})"),
+        );
+    assert!(out.contains("DIST_MAIT=FH"));
+    out
+}
+
+fn run_offset(text: &str, tag: &str) -> (usize, usize, Option<String>) {
+    scene::run_on(text, "comm/shell_offset.mail", &format!("offset-{tag}"))
+}
+
+#[test]
+fn dist_coque_closes_the_gap_of_shells_one_thickness_apart_discrete() {
+    assert_eq!(
+        run_offset(&offset(&stack(), true), "discrete"),
+        (10, 0, None)
+    );
+    assert_eq!(
+        run_offset(&offset(&pressed("DISCRETE"), true), "pressed-discrete"),
+        (10, 0, None)
+    );
+}
+
+#[test]
+fn dist_coque_closes_the_gap_of_shells_one_thickness_apart_continuous() {
+    assert_eq!(
+        run_offset(&offset(&pressed("CONTINUE"), true), "pressed-continuous"),
+        (10, 0, None)
+    );
+}
+
+/// DIST_MAIT alone leaves half a thickness open: the upper strip deflects
+/// alone (its tip by 2e-3 < h/2) and the lower one's checks fail.
+#[test]
+fn without_dist_coque_the_strips_stay_apart() {
+    for formulation in ["DISCRETE", "CONTINUE"] {
+        let (ok, nook, err) = run_offset(
+            &offset(&pressed(formulation), false),
+            &format!("apart-{formulation}"),
+        );
+        assert_eq!(err, None);
+        assert!(
+            nook >= 2 && ok + nook == 10,
+            "{formulation}: {ok} OK, {nook} NOOK"
+        );
+    }
 }

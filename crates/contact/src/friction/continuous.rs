@@ -622,8 +622,11 @@ impl ContinuousFriction {
                         let t1 = scale(t, 1.0 / l);
                         tau = [t1, cross(t1, n)];
                     }
+                    // code_aster's cfdist: DIST_MAIT + DIST_ESCL + the
+                    // structural offset (DIST_POUTRE, DIST_COQUE).
                     let jeusup = z.geometry.dist_mait.at_time(pp.master_x, time)
-                        + z.geometry.dist_escl.at_time(pp.slave_x, time);
+                        + z.geometry.dist_escl.at_time(pp.slave_x, time)
+                        + z.structural_gap(&sp);
                     p.pair = Some(PointPair {
                         master: pp.master,
                         n,
