@@ -29,7 +29,7 @@ pub use lac3d::{DecoupeHexa, LinearCells, ReferenceCells};
 pub use mail::{mail_string, parse_mail, read_mail, write_mail};
 pub use med::{med_bytes, read_med, read_med_named, read_med_steps, write_med, MedInfo};
 pub use model::*;
-pub use ops::{Along, CentreNodes, DegreeReport, NodeKind, OrientReport, Restriction};
+pub use ops::{Along, CentreNodes, CrackFront, DegreeReport, NodeKind, OrientReport, Restriction};
 pub use summary::{CellCounts, MeshSummary};
 pub use vtu::{write_vtu, write_vtu_series};
 

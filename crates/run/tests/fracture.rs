@@ -86,3 +86,53 @@ fn a_front_not_from_its_origin_is_refused() {
     assert_eq!(outcome.tally.nook, 0);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+fn quarter(text: &str, tag: &str) -> aster_run::program::Outcome {
+    let dir = std::env::temp_dir().join(format!("aster-quarter-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("quarter.comm");
+    std::fs::write(&comm, text).unwrap();
+    let case =
+        aster_run::program::prepare(&comm, Some(&root().join("comm/quarter_points.mail")), &dir)
+            .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(dir);
+    outcome
+}
+
+fn quarter_scene() -> String {
+    std::fs::read_to_string(root().join("comm/quarter_points.comm")).unwrap()
+}
+
+/// comm/quarter_points.comm: MODI_MAILLE/NOEUD_QUART moves the mid-edge
+/// nodes leaving the tip to the quarter points (code_aster's momaba), and
+/// the moved cells still pass the patch test within 1e-9.
+#[test]
+fn noeud_quart_moves_the_mid_nodes_next_to_the_tip() {
+    let outcome = quarter(&quarter_scene(), "scene");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (22, 0));
+    // Without the modification the quarter-point checks fail.
+    let scene = quarter_scene();
+    let start = scene.find("mesh = MODI_MAILLAGE(").unwrap();
+    let end = start + scene[start..].find("\n)\n").unwrap() + 3;
+    let text = format!("{}{}", &scene[..start], &scene[end..]);
+    assert!(!text.contains("MODI_MAILLAGE("));
+    let outcome = quarter(&text, "unmoved");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert!(outcome.tally.nook >= 6, "{:?}", outcome.tally);
+}
+
+/// A plane mesh's crack tip is a node: GROUP_MA_FOND is code_aster's
+/// ALGORITH6_16 error, named at the command.
+#[test]
+fn noeud_quart_by_cells_on_a_plane_mesh_is_an_error() {
+    let text = quarter_scene().replace("GROUP_NO_FOND=\"TIP\"", "GROUP_MA_FOND=\"BOTTOM\"");
+    let outcome = quarter(&text, "cells2d");
+    let err = outcome.error.expect("an error").to_string();
+    assert!(
+        err.contains("ALGORITH6_16") && err.contains("GROUP_NO_FOND"),
+        "{err}"
+    );
+    assert_eq!(outcome.tally.ok + outcome.tally.nook, 0);
+}

@@ -413,7 +413,10 @@ fn put_group<T>(groups: &mut Vec<Group<T>>, name: &str, members: Vec<T>) {
 
 /// What MODI_MAILLAGE reads (`crate::support`).
 pub(crate) const MODI_MAILLAGE: Support = Support {
-    values: &[Values::new("DEFORME/OPTION", &["TRAN"])],
+    values: &[
+        Values::new("DEFORME/OPTION", &["TRAN"]),
+        Values::new("MODI_MAILLE/OPTION", &["NOEUD_QUART"]),
+    ],
     ..Support::keywords(&[
         "MAILLAGE",
         "INFO",
@@ -437,12 +440,20 @@ pub(crate) const MODI_MAILLAGE: Support = Support {
         "DEFORME/DEPL",
         "DEFORME/ALEA",
         "ECHELLE",
+        "MODI_MAILLE",
+        "MODI_MAILLE/OPTION",
+        "MODI_MAILLE/GROUP_MA_FOND",
+        "MODI_MAILLE/GROUP_NO_FOND",
     ])
 };
 
 pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
+    // code_aster's op0154 order: MODI_MAILLE before DEFORME.
+    for occ in kw.factor("MODI_MAILLE") {
+        quarter_points(&mut mesh, occ)?;
+    }
     for occ in kw.factor("DEFORME") {
         // ALEA: code_aster's pseudo-random move of every node.
         if let Some(alea) = occ.f64("ALEA") {
@@ -534,6 +545,37 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     crate::meshio::orient_skin(&mut mesh, &groups)
         .map_err(|e| ExecError::new(format!("MODI_MAILLAGE/ORIE_PEAU: {e}")))?;
     store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
+}
+
+/// `MODI_MAILLE=_F(OPTION='NOEUD_QUART', GROUP_MA_FOND | GROUP_NO_FOND)`:
+/// Barsoum's quarter-point cells at a crack front (aster-mesh's
+/// `move_to_quarter_points`, code_aster's `momaba`). The cells are read
+/// first when both are given, as code_aster does.
+fn quarter_points(mesh: &mut Mesh, occ: &aster_eval::Keywords) -> Result<(), ExecError> {
+    let what = "MODI_MAILLAGE/MODI_MAILLE";
+    let mut done = false;
+    if let Some(g) = occ.str("GROUP_MA_FOND") {
+        let cells = select::group_ma(mesh, g)
+            .map_err(|e| ExecError::new(format!("{what}/GROUP_MA_FOND: {e}")))?
+            .to_vec();
+        mesh.move_to_quarter_points(aster_mesh::CrackFront::Cells(&cells))
+            .map_err(|e| ExecError::new(e.to_string()))?;
+        done = true;
+    }
+    if let Some(g) = occ.str("GROUP_NO_FOND") {
+        let nodes = select::group_no(mesh, g)
+            .map_err(|e| ExecError::new(format!("{what}/GROUP_NO_FOND: {e}")))?
+            .to_vec();
+        mesh.move_to_quarter_points(aster_mesh::CrackFront::Nodes(&nodes))
+            .map_err(|e| ExecError::new(e.to_string()))?;
+        done = true;
+    }
+    if !done {
+        return Err(ExecError::new(format!(
+            "{what}: GROUP_MA_FOND or GROUP_NO_FOND is needed"
+        )));
+    }
+    Ok(())
 }
 
 /// A point given by `POINT` (2 or 3 coordinates), `NOEUD_CENTRE` or
