@@ -982,9 +982,6 @@ impl StaticNonLinear<'_> {
                         (u, srcs, own) = saved;
                         pending.pop();
                         let pieces = sd.pieces.max(2);
-                        if std::env::var_os("ASTER_DEBUG_CUT").is_some() {
-                            eprintln!("DEBUG cut cause: {e}");
-                        }
                         crate::progress::emit(crate::progress::Event::Cut {
                             from,
                             to: target,

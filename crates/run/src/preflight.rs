@@ -181,7 +181,7 @@ impl CallRefusals {
     /// `TYPE_CHARGE='SUIV'`, refused, would follow the body), as aster
     /// computes them: under GREEN_LAGRANGE they reproduce manufactured
     /// solutions to round-off (comm/largeload_quad8.comm,
-    /// comm/largeload_hexa20.comm). With a `DEFI_CONTACT` contact under
+    /// comm/largeload_blocks.comm). With a `DEFI_CONTACT` contact under
     /// large strains, however, the two real cases are off by more than
     /// code_aster's tolerance: ssnp150a (DISCRETE, D_PLAN QUAD8) SOMM_ABS
     /// of the error 4.0413e-5 against code_aster's 4.0389e-5 (6e-4
@@ -236,10 +236,10 @@ impl CallRefusals {
                 None
             }
             "STAT_NON_LINE" | "DYNA_NON_LINE" => {
-                let large = kw.factor("COMPORTEMENT").iter().any(|c| {
-                    c.str("DEFORMATION")
-                        .is_some_and(|d| !["PETIT"].contains(&d))
-                });
+                let large = kw
+                    .factor("COMPORTEMENT")
+                    .iter()
+                    .any(|c| c.str("DEFORMATION").is_some_and(|d| d != "PETIT"));
                 let contact = kw.concept("CONTACT")?;
                 if !large || !self.defi_contact.contains(&contact.id) {
                     return None;
