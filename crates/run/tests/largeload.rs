@@ -5,7 +5,8 @@
 //! comm/largeload_quad8.comm (plane strain, exact in the QUAD8 space: to
 //! round-off) and comm/largeload_blocks.export (a HEXA20 base under a cube,
 //! DEFI_CONT mortar contact, MECA_NON_LINE: the error decreasing with the
-//! mesh); and the refusal, before solving, of what does not reproduce
+//! mesh), comm/largeload_chain.export (cont006c's chain: ASSE_MAILLAGE,
+//! L2 error norms, convergence rates); and the refusal, before solving, of what does not reproduce
 //! code_aster (DEFI_CONTACT with these loads under large strains).
 
 use aster_run::preflight;
@@ -73,6 +74,16 @@ fn a_base_under_a_cube_with_mortar_contact_converges_to_the_analytic_field() {
     let (outcome, report) = run(&root().join("comm/largeload_blocks.export"), None, "blocks");
     assert!(outcome.error.is_none(), "{:?}\n{report}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (24, 0), "{report}");
+}
+
+#[test]
+fn the_chain_of_cont006c_converges_at_the_expected_rates() {
+    // ASSE_MAILLAGE of a HEXA20 base and HEXA8 cubes, MECA_NON_LINE +
+    // DEFI_CONT + GREEN_LAGRANGE, L2 error norms at the Gauss points and
+    // their rates (TEST_TABLE).
+    let (outcome, report) = run(&root().join("comm/largeload_chain.export"), None, "chain");
+    assert!(outcome.error.is_none(), "{:?}\n{report}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (4, 0), "{report}");
 }
 
 #[test]
