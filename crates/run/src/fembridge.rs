@@ -436,38 +436,6 @@ fn function_multiplier(
     }))
 }
 
-/// Distributed loads given by functions of the coordinates are validated
-/// under small strains only: with large strains the real cases that use
-/// them (ssnp150a, ssnv219a) do not reproduce code_aster yet, so the
-/// combination is refused.
-fn refuse_coordinate_loads_in_large_strains(setup: &SolveSetup) -> Result<(), ExecError> {
-    let large = setup
-        .behaviours
-        .iter()
-        .any(|b| b.kinematics != aster_fem::Kinematics::Small);
-    if !large {
-        return Ok(());
-    }
-    let coordinate_loads = setup.excitations.iter().any(|e| match &e.load {
-        LoadRef::Mechanical(l) => {
-            l.boundary_fn.iter().any(|b| match b {
-                BoundaryFn::Force { force, .. } => force.iter().flatten().any(of_coordinates),
-                BoundaryFn::Pressure { pressure, .. } => of_coordinates(pressure),
-            }) || l
-                .volume
-                .iter()
-                .any(|v| v.functions.iter().flatten().any(of_coordinates))
-        }
-        LoadRef::Kinematic(_) => false,
-    });
-    if coordinate_loads {
-        return Err(ExecError::new(
-            "not supported yet: COMPORTEMENT/DEFORMATION other than PETIT with distributed loads given by functions of the coordinates (AFFE_CHAR_MECA_F FORCE_CONTOUR, FORCE_FACE, FORCE_INTERNE, PRES_REP): not validated under large strains",
-        ));
-    }
-    Ok(())
-}
-
 /// A load function of the coordinates (and then not of the time: checked
 /// when the load is defined), evaluated at the Gauss points of each cell.
 fn of_coordinates(f: &LoadFunction) -> bool {
@@ -873,7 +841,6 @@ pub fn solve(
         "STAT_NON_LINE"
     };
     let mesh = ex.model_mesh(&setup.model)?;
-    refuse_coordinate_loads_in_large_strains(setup)?;
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
     let mut loads = build_loads(setup, &mesh, &model)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;

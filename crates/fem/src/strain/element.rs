@@ -439,7 +439,13 @@ fn total_lagrangian(
         } else {
             f.determinant()
         };
-        if j.is_nan() || j <= 0.0 {
+        // code_aster's GREEN_LAGRANGE (nmgrla) never fails on det F: the
+        // Saint-Venant–Kirchhoff energy is defined for any F, and pk2sig
+        // divides by J whatever its sign. An iterate that goes through an
+        // inverted element (a large prediction) carries on there as it
+        // does; only J = 0 (no Cauchy stress) stops the integration.
+        let tolerated = setup.kinematics == Kinematics::GreenLagrange && j != 0.0;
+        if j.is_nan() || (j <= 0.0 && !tolerated) {
             return Err(FemError::Integration(format!(
                 "the element is inverted (det F = {j:.3e})"
             )));
