@@ -333,45 +333,50 @@ fn geometry(ex: &Executor, kw: &Keywords, occ: &Keywords) -> Result<ZoneGeometry
         _ => ContactInit::Interpenetre,
     };
     g.dist_maxi = occ.f64("DIST_MAXI");
-    if occ.str("DIST_POUTRE") == Some("OUI") {
-        let Some(c) = occ.concept("CARA_ELEM") else {
-            return Err(ex.kw_error(
-                "DEFI_CONTACT/ZONE",
-                occ,
-                "DIST_POUTRE",
-                "DIST_POUTRE='OUI' needs the beams' CARA_ELEM",
-            ));
-        };
-        let cara = ex.cara_elem(c)?;
-        let mut radius = std::collections::BTreeMap::new();
-        for b in &cara.beams {
-            if let Some(r) = b.radius {
-                for &cell in &b.cells {
-                    radius.insert(cell, r);
-                }
-            }
-        }
-        g.beam_radius = Some(radius);
-    }
-    if occ.str("DIST_COQUE") == Some("OUI") {
-        let Some(c) = occ.concept("CARA_ELEM") else {
-            return Err(ex.kw_error(
-                "DEFI_CONTACT/ZONE",
-                occ,
-                "DIST_COQUE",
-                "DIST_COQUE='OUI' needs the shells' CARA_ELEM",
-            ));
-        };
-        let cara = ex.cara_elem(c)?;
-        let mut half = std::collections::BTreeMap::new();
-        for s in &cara.shells {
-            for &cell in &s.cells {
-                half.insert(cell, 0.5 * s.section.thickness);
-            }
-        }
-        g.shell_half_thickness = Some(half);
-    }
+    g.beam_radius = structural_offsets(ex, occ, "DIST_POUTRE", "beams'", |cara| {
+        cara.beams
+            .iter()
+            .filter_map(|b| b.radius.map(|r| (&b.cells, r)))
+            .collect()
+    })?;
+    g.shell_half_thickness = structural_offsets(ex, occ, "DIST_COQUE", "shells'", |cara| {
+        cara.shells
+            .iter()
+            .map(|s| (&s.cells, 0.5 * s.section.thickness))
+            .collect()
+    })?;
     Ok(g)
+}
+
+/// `DIST_POUTRE='OUI'` / `DIST_COQUE='OUI'`: the offset of each slave
+/// cell read from the zone's `CARA_ELEM` (`per_cells`: the cells of each
+/// section and its offset); `None` when the keyword is not `'OUI'`.
+fn structural_offsets(
+    ex: &Executor,
+    occ: &Keywords,
+    key: &str,
+    whose: &str,
+    per_cells: impl Fn(&crate::concept::CaraElem) -> Vec<(&Vec<aster_mesh::CellId>, f64)>,
+) -> Result<Option<std::collections::BTreeMap<aster_mesh::CellId, f64>>, ExecError> {
+    if occ.str(key) != Some("OUI") {
+        return Ok(None);
+    }
+    let Some(c) = occ.concept("CARA_ELEM") else {
+        return Err(ex.kw_error(
+            "DEFI_CONTACT/ZONE",
+            occ,
+            key,
+            format!("{key}='OUI' needs the {whose} CARA_ELEM"),
+        ));
+    };
+    let cara = ex.cara_elem(c)?;
+    let mut offsets = std::collections::BTreeMap::new();
+    for (cells, offset) in per_cells(&cara) {
+        for &cell in cells {
+            offsets.insert(cell, offset);
+        }
+    }
+    Ok(Some(offsets))
 }
 
 fn geom_loop(kw: &Keywords) -> GeomLoop {
