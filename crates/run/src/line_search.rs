@@ -8,10 +8,13 @@
 //! condition (code_aster forbids the line search with the continuous
 //! contact, MECANONLINE3_91; with the discrete contact and LIAISON_UNIL it
 //! searches on the residual without the contact correction `nmcoun`
-//! applies after it, not reproduced; MECA_NON_LINE's DEFI_CONT line search
-//! is not implemented); `MIXTE` with a tangent not reassembled at every
+//! applies after it, not reproduced; MECA_NON_LINE with a DEFI_CONT: code_aster
+//! 17 keeps the pairing of the iteration's start for the search's trial
+//! residuals, aster's mortar sources pair again on each geometry they
+//! evaluate); `MIXTE` with a tangent not reassembled at every
 //! iteration (code_aster then keeps the internal forces of the last ρ
-//! tried with the displacement of the best one).
+//! tried with the displacement of the best one); DYNA_NON_LINE with HHT
+//! (validated with NEWMARK only).
 
 use crate::support::{Refusal, Values};
 use aster_eval::CommandCall;
@@ -78,9 +81,23 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             ));
         }
     }
+    if call.command == "DYNA_NON_LINE" {
+        for st in kw.factor("SCHEMA_TEMPS") {
+            if let Some(schema @ ("HHT" | "HHT_COMPLET")) = st.str("SCHEMA") {
+                out.push(Refusal::at(
+                    format!(
+                        "DYNA_NON_LINE/RECH_LINEAIRE with SCHEMA_TEMPS/SCHEMA='{schema}' (the line search is validated with NEWMARK only: the weighting of HHT's internal forces in the searched residual is not)"
+                    ),
+                    kw,
+                    "RECH_LINEAIRE",
+                    call.span,
+                ));
+            }
+        }
+    }
     if !kw.factor("CONTACT").is_empty() || kw.concept("CONTACT").is_some() {
         let why = if call.command == "MECA_NON_LINE" {
-            "the line search on code_aster 17's DEFI_CONT residual is not implemented"
+            "code_aster 17 evaluates the search's residuals with the pairing of the iteration's start, aster's DEFI_CONT contact pairs again on every geometry it evaluates (the trial residuals differ once the contact slides), not reproduced"
         } else {
             "code_aster forbids it with the continuous contact (MECANONLINE3_91) and, with the discrete contact or LIAISON_UNIL, searches on the residual without the contact correction applied after it (nmdepl → nmcoun), not reproduced"
         };
