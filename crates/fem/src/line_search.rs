@@ -353,7 +353,7 @@ mod tests {
         assert!((out.rho - 5.0).abs() < 1e-14);
         // An ascent direction is refused.
         assert!(matches!(
-            p.search::<()>(1.0, |r| Ok(r)),
+            p.search::<()>(1.0, Ok),
             Err(LineSearchError::Ascent { .. })
         ));
     }

@@ -26,7 +26,7 @@ pub(crate) const VALUES: Values = Values::new("RECH_LINEAIRE/METHODE", &["CORDE"
 
 /// The search of `call`'s `RECH_LINEAIRE` (`None` when absent).
 pub(crate) fn parse(call: &CommandCall) -> Option<LineSearch> {
-    let occ = call.keywords.factor("RECH_LINEAIRE").into_iter().next()?;
+    let occ = call.keywords.factor("RECH_LINEAIRE").first()?;
     let d = LineSearch::default();
     let method = match occ.str("METHODE") {
         Some("MIXTE") => LineSearchMethod::Mixte,
@@ -59,11 +59,11 @@ pub(crate) fn parse(call: &CommandCall) -> Option<LineSearch> {
 /// The refusals that need the keywords only.
 pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     let kw = &call.keywords;
-    let Some(occ) = kw.factor("RECH_LINEAIRE").into_iter().next() else {
+    let Some(occ) = kw.factor("RECH_LINEAIRE").first() else {
         return;
     };
     if occ.str("METHODE") == Some("MIXTE") {
-        let newton = kw.factor("NEWTON").into_iter().next();
+        let newton = kw.factor("NEWTON").first();
         let reac_iter = newton
             .and_then(|n| n.first("REAC_ITER"))
             .and_then(|s| s.as_i64())
