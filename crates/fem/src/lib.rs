@@ -32,6 +32,7 @@ pub mod fracture;
 mod held;
 pub mod hexs8;
 pub mod linalg;
+pub mod line_search;
 pub mod loads;
 pub mod mass;
 pub mod material;
@@ -61,6 +62,7 @@ pub use error::FemError;
 pub use force_source::{
     Contribution, ForceSource, LoopVerdict, PenaltyAdaptation, PenaltyVerdict, Unknown,
 };
+pub use line_search::{LineSearch, LineSearchMethod, Rule as LineSearchRule};
 pub use loads::{Load, LoadItem, Loads, Multiplier};
 pub use mass::{DiscreteMass, Lumping, MassData, Rayleigh};
 pub use material::{Elastic, Hypothesis};

@@ -78,6 +78,9 @@ pub struct NewtonOptions {
     /// `MATR_RIGI_SYME='OUI'`: a non-symmetric tangent (SIMO_MIEHE) is
     /// replaced by its symmetric part (K + Kᵀ)/2.
     pub symmetrize: bool,
+    /// `RECH_LINEAIRE`: a line search along each Newton correction after
+    /// the prediction ([`crate::line_search`]).
+    pub line_search: Option<crate::line_search::LineSearch>,
 }
 
 impl Default for NewtonOptions {
@@ -87,6 +90,7 @@ impl Default for NewtonOptions {
             reac_iter: 1,
             matrix: MatrixKind::Tangente,
             symmetrize: false,
+            line_search: None,
         }
     }
 }
@@ -1211,6 +1215,9 @@ fn newton_step(
     // The Newton iteration the last pairing started at (for traces).
     let mut pairing_start = 0usize;
     let mut base: Option<(Vec<f64>, Vec<f64>)> = None;
+    // The multipliers of the last solve (the line search moves them by ρ
+    // times their increment).
+    let mut prev_lam: Option<Vec<f64>> = None;
     {
         let nd = u.len();
         let mut history: Vec<Vec<Vec<bool>>> = Vec::new();
@@ -1440,16 +1447,47 @@ fn newton_step(
             for i in 0..nd {
                 if map[i] != usize::MAX {
                     delta[i] = sol.x[map[i]];
-                    u[i] += delta[i];
                 }
-            }
-            for sr in srcs.iter_mut().flatten() {
-                sr.advance_penalty_gaps(&delta);
             }
             let mut lam_rows = vec![0.0; m_rows];
             for (k, &r) in kept.iter().enumerate() {
                 lam_rows[r] = sol.x[nfree + k];
             }
+            // RECH_LINEAIRE after the prediction (code_aster's `nmdepl`:
+            // not at iteration 0): the correction scaled by ρ, the
+            // multipliers moved by ρ times their increment as code_aster's
+            // DEPPLU (its Lagrange unknowns are in the increment).
+            let searched = match newton.line_search {
+                Some(ls) if newton_iter > 0 && !linear => {
+                    if srcs.iter().any(|s| s.is_some()) {
+                        return Err(FemError::Model(
+                            "RECH_LINEAIRE with unilateral conditions or discrete contact is not supported".into(),
+                        ));
+                    }
+                    let rho = line_search(
+                        &ls, model, k, dynamics, plastic, map, fext, &b, &delta, u, t, trace,
+                    )?;
+                    if let Some(prev) = prev_lam.as_ref().filter(|p| p.len() == m_rows) {
+                        for (l, p) in lam_rows.iter_mut().zip(prev) {
+                            *l = p + rho * (*l - p);
+                        }
+                    }
+                    Some(rho)
+                }
+                _ => None,
+            };
+            if let Some(rho) = searched {
+                for d in delta.iter_mut() {
+                    *d *= rho;
+                }
+            }
+            for i in 0..nd {
+                u[i] += delta[i];
+            }
+            for sr in srcs.iter_mut().flatten() {
+                sr.advance_penalty_gaps(&delta);
+            }
+            prev_lam = Some(lam_rows.clone());
             newton_iter += 1;
             crate::newton_timing::count_iteration();
             // Residual at the new iterate.
@@ -1774,6 +1812,70 @@ fn newton_step(
             }
         }
     }
+}
+
+/// RECH_LINEAIRE on the correction `delta` from `u` (unchanged on
+/// return; the behaviour cells are left at the last ρ tried): f(ρ) =
+/// Δ · (f_int(u + ρΔ) − f_ext) on the free DOFs, code_aster's `nmrecz`.
+/// The reactions of the dualised conditions drop out: after the
+/// prediction their rows hold, A Δ = 0, so Δ · Aᵀλ and Δλ · (A u − d)
+/// vanish. Under a time scheme the inertia and damping forces stay those
+/// of `u` (code_aster's `cnfext` holds them and is not recomputed by
+/// `nmrelp`). f(0) is the residual `b` of the solve.
+#[allow(clippy::too_many_arguments)]
+fn line_search(
+    ls: &crate::line_search::LineSearch,
+    model: &Model,
+    k: &Csc,
+    dynamics: Option<&dyn IncrementTerms>,
+    plastic: &mut Option<PlasticCells>,
+    map: &[usize],
+    fext: &[f64],
+    b: &[f64],
+    delta: &[f64],
+    u: &[f64],
+    t: f64,
+    trace: bool,
+) -> Result<f64, FemError> {
+    let free: Vec<usize> = (0..u.len()).filter(|&i| map[i] != usize::MAX).collect();
+    let f0: f64 = -free.iter().map(|&i| delta[i] * b[map[i]]).sum::<f64>();
+    let dyn0 = dynamics.map(|d| d.force(u));
+    let mut trial = u.to_vec();
+    let outcome = ls.search(f0, |rho| {
+        for &i in &free {
+            trial[i] = u[i] + rho * delta[i];
+        }
+        let mut f = step_forces(model, k, dynamics, plastic, &trial)?;
+        if let (Some(d), Some(f0)) = (dynamics, dyn0.as_ref()) {
+            for ((f, now), then) in f.iter_mut().zip(d.force(&trial)).zip(f0) {
+                *f += then - now;
+            }
+        }
+        Ok::<f64, FemError>(free.iter().map(|&i| delta[i] * (f[i] - fext[i])).sum())
+    });
+    let outcome = match outcome {
+        Ok(o) => o,
+        Err(crate::line_search::LineSearchError::Evaluation(e)) => return Err(e),
+        Err(crate::line_search::LineSearchError::Ascent { f0 }) => {
+            return Err(FemError::Model(format!(
+                "RECH_LINEAIRE METHODE='MIXTE' at time {t}: the Newton correction is not a descent direction (f(0) = {f0:.6e} > 0); code_aster then searches along the opposite direction and applies the opposite step, not reproduced"
+            )))
+        }
+    };
+    if trace {
+        eprintln!(
+            "[newton] line search: f(0) {f0:.6e}, rho {} |f| {:.6e} after {} iterations{}",
+            outcome.rho,
+            outcome.f,
+            outcome.iterations,
+            if outcome.converged {
+                ""
+            } else {
+                " (not converged)"
+            }
+        );
+    }
+    Ok(outcome.rho)
 }
 
 /// The rows to dualise among `rows` (the first `n_eq` are equalities, the

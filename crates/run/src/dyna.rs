@@ -8,9 +8,7 @@
 use crate::concept::ContactDef;
 use crate::executor::Executor;
 use crate::field::Field;
-use crate::solve::{
-    kinematics_rules, parse_setup, store_solution, SolveSetup, SNL_KEYWORDS, SNL_VALUES,
-};
+use crate::solve::{parse_setup, snl_rules, store_solution, SolveSetup, SNL_KEYWORDS, SNL_VALUES};
 use crate::support::{joined, Refusal, Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 use aster_fem::{
@@ -77,7 +75,7 @@ pub(crate) const DYNA_NON_LINE: Support = Support {
 /// STAT_NON_LINE's rules, the finite-strain kinematics not validated in
 /// dynamics and a mass shift (`COEF_MASS_SHIFT`) refused.
 fn dyna_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
-    kinematics_rules(call, out);
+    snl_rules(call, out);
     // PETIT_REAC (SDNL111D) and SIMO_MIEHE (SDNV103E/K) are validated in
     // dynamics, every TEST_RESU OK; the total-Lagrangian kinematics are
     // not: with GDEF_LOG lifted, ssnp165b/d (continuous Coulomb contact

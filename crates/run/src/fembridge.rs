@@ -1014,6 +1014,7 @@ pub fn solve(
                 matrix: setup.newton.matrix,
                 prediction: setup.newton.prediction,
                 symmetrize: setup.newton.symmetrize,
+                line_search: setup.newton.line_search,
             },
             convergence: Convergence {
                 resi_glob_rela: setup.newton.resi_glob_rela,

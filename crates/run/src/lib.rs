@@ -21,6 +21,7 @@ pub mod field;
 mod friction;
 pub mod function;
 pub mod journal;
+mod line_search;
 pub mod list;
 pub mod meca_non_line;
 mod meshio;

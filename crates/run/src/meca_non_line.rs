@@ -9,12 +9,13 @@
 //! (`ALGO_RESO_GEOM='NEWTON'`, the only value reproduced); `RESI_GEOM`
 //! (default 1e-6) bounds the increment that led to an accepted iterate,
 //! over the mesh's diagonal, as code_aster 17's `ConvergenceManager`.
-//! `METHODE='SNES'`/`'RASPEN'` (PETSc solvers) and `RECH_LINEAIRE` are
-//! refused; `ARCHIVAGE`, `SOLVEUR` and `INFO` are accepted as in
-//! STAT_NON_LINE.
+//! `METHODE='SNES'`/`'RASPEN'` (PETSc solvers) are refused;
+//! `RECH_LINEAIRE` is code_aster 17's Python line search
+//! (`crate::line_search`), without a DEFI_CONT contact; `ARCHIVAGE`,
+//! `SOLVEUR` and `INFO` are accepted as in STAT_NON_LINE.
 
 use crate::executor::Executor;
-use crate::solve::{kinematics_rules, parse_setup, store_solution, SNL_VALUES};
+use crate::solve::{parse_setup, snl_rules, store_solution, SNL_VALUES};
 use crate::support::{Refusal, Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
 
@@ -43,7 +44,7 @@ const DEFI_CONT_RESI_GLOB_RELA_MAX: f64 = 1e-4;
 const DEFI_CONT_RELATIONS: &[&str] = &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC", "VMIS_ISOT_NL"];
 
 fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
-    kinematics_rules(call, out);
+    snl_rules(call, out);
     let kw = &call.keywords;
     if kw.factor("CONTACT").is_empty() {
         return;
@@ -141,6 +142,14 @@ const KEYWORDS: &[&str] = &[
     "CONVERGENCE/ITER_GLOB_MAXI",
     "CONVERGENCE/ITER_GLOB_ELAS",
     "CONVERGENCE/ARRET",
+    // Module `line_search`.
+    "RECH_LINEAIRE",
+    "RECH_LINEAIRE/METHODE",
+    "RECH_LINEAIRE/RESI_LINE_RELA",
+    "RECH_LINEAIRE/ITER_LINE_MAXI",
+    "RECH_LINEAIRE/RHO_MIN",
+    "RECH_LINEAIRE/RHO_MAX",
+    "RECH_LINEAIRE/RHO_EXCL",
     "SOLVEUR",
     "SOLVEUR/*",
     "ETAT_INIT",

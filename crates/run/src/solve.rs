@@ -88,6 +88,8 @@ pub struct NewtonSettings {
     pub at_least_one: bool,
     /// `MATR_RIGI_SYME='OUI'`.
     pub symmetrize: bool,
+    /// `RECH_LINEAIRE` (`crate::line_search`).
+    pub line_search: Option<aster_fem::LineSearch>,
 }
 
 impl Default for NewtonSettings {
@@ -101,6 +103,7 @@ impl Default for NewtonSettings {
             prediction: aster_fem::Prediction::Tangente,
             at_least_one: false,
             symmetrize: false,
+            line_search: None,
         }
     }
 }
@@ -206,6 +209,14 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "CONVERGENCE/ARRET",
     // 'AU_MOINS_UN': one of RESI_GLOB_RELA/MAXI met is enough.
     "CONVERGENCE/VERIF",
+    // Module `line_search`.
+    "RECH_LINEAIRE",
+    "RECH_LINEAIRE/METHODE",
+    "RECH_LINEAIRE/RESI_LINE_RELA",
+    "RECH_LINEAIRE/ITER_LINE_MAXI",
+    "RECH_LINEAIRE/RHO_MIN",
+    "RECH_LINEAIRE/RHO_MAX",
+    "RECH_LINEAIRE/RHO_EXCL",
     "SOLVEUR",
     "SOLVEUR/*",
     "ETAT_INIT",
@@ -255,6 +266,7 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
 /// The values STAT_NON_LINE handles (also DYNA_NON_LINE's).
 pub(crate) const SNL_VALUES: &[Values] = &[
     Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"]),
+    crate::line_search::VALUES,
     // NEWTON_KRYLOV is Newton with inexact iterative linear solves: with
     // the direct solver here it is Newton.
     Values::new("METHODE", &["NEWTON", "NEWTON_KRYLOV"]),
@@ -306,8 +318,15 @@ pub(crate) const STAT_NON_LINE: Support = Support {
     values: SNL_VALUES,
     hints: &[],
     reuse: true,
-    rules: Some(kinematics_rules),
+    rules: Some(snl_rules),
 };
+
+/// The rules STAT_NON_LINE, DYNA_NON_LINE and MECA_NON_LINE share: the
+/// kinematics and `RECH_LINEAIRE` (`crate::line_search`).
+pub(crate) fn snl_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    kinematics_rules(call, out);
+    crate::line_search::rules(call, out);
+}
 
 /// The DEFORMATION a relation cannot take: GROT_GDEP on continuum
 /// elements is code_aster's hyperelastic kinematics (with ELAS it is Saint
@@ -455,6 +474,7 @@ pub(crate) fn parse_setup(
         }
         newton.symmetrize = nw.str("MATR_RIGI_SYME") == Some("OUI");
     }
+    newton.line_search = crate::line_search::parse(call);
     let mut subdivision = None;
     let mut time_list_at = None;
     let mut penalty_adaptation = None;

@@ -1,0 +1,111 @@
+//! `RECH_LINEAIRE` of STAT_NON_LINE, DYNA_NON_LINE and MECA_NON_LINE: the
+//! keywords → [`aster_fem::LineSearch`] (the search itself is
+//! `aster_fem::line_search`), and what is refused before solving.
+//!
+//! STAT_NON_LINE and DYNA_NON_LINE follow code_aster's Fortran (`nmrelp`),
+//! MECA_NON_LINE its Python `SecantLineSearch`. Refused: `METHODE='PILOTAGE'`
+//! (needs PILOTAGE, the continuation method); any contact or unilateral
+//! condition (code_aster forbids the line search with the continuous
+//! contact, MECANONLINE3_91; with the discrete contact and LIAISON_UNIL it
+//! searches on the residual without the contact correction `nmcoun`
+//! applies after it, not reproduced; MECA_NON_LINE with a DEFI_CONT: code_aster
+//! 17 keeps the pairing of the iteration's start for the search's trial
+//! residuals, aster's mortar sources pair again on each geometry they
+//! evaluate); `MIXTE` with a tangent not reassembled at every
+//! iteration (code_aster then keeps the internal forces of the last ρ
+//! tried with the displacement of the best one); DYNA_NON_LINE with HHT
+//! (validated with NEWMARK only).
+
+use crate::support::{Refusal, Values};
+use aster_eval::CommandCall;
+use aster_fem::{LineSearch, LineSearchMethod, LineSearchRule};
+
+/// The methods reproduced.
+pub(crate) const VALUES: Values = Values::new("RECH_LINEAIRE/METHODE", &["CORDE", "MIXTE"])
+    .why("(METHODE='PILOTAGE' needs PILOTAGE, the continuation method)");
+
+/// The search of `call`'s `RECH_LINEAIRE` (`None` when absent).
+pub(crate) fn parse(call: &CommandCall) -> Option<LineSearch> {
+    let occ = call.keywords.factor("RECH_LINEAIRE").first()?;
+    let d = LineSearch::default();
+    let method = match occ.str("METHODE") {
+        Some("MIXTE") => LineSearchMethod::Mixte,
+        _ => LineSearchMethod::Corde,
+    };
+    let rule = if call.command == "MECA_NON_LINE" {
+        LineSearchRule::Python
+    } else {
+        LineSearchRule::Fortran
+    };
+    let iter_line_maxi = occ
+        .first("ITER_LINE_MAXI")
+        .and_then(|s| s.as_i64())
+        .map_or(d.iter_line_maxi, |n| n.max(0) as usize);
+    // MECA_NON_LINE: `isEnabled()` is ITER_LINE_MAXI > 0.
+    if rule == LineSearchRule::Python && iter_line_maxi == 0 {
+        return None;
+    }
+    Some(LineSearch {
+        method,
+        resi_line_rela: occ.f64("RESI_LINE_RELA").unwrap_or(d.resi_line_rela),
+        iter_line_maxi,
+        rho_min: occ.f64("RHO_MIN").unwrap_or(d.rho_min),
+        rho_max: occ.f64("RHO_MAX").unwrap_or(d.rho_max),
+        rho_excl: occ.f64("RHO_EXCL").unwrap_or(d.rho_excl),
+        rule,
+    })
+}
+
+/// The refusals that need the keywords only.
+pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
+    let kw = &call.keywords;
+    let Some(occ) = kw.factor("RECH_LINEAIRE").first() else {
+        return;
+    };
+    if occ.str("METHODE") == Some("MIXTE") {
+        let newton = kw.factor("NEWTON").first();
+        let reac_iter = newton
+            .and_then(|n| n.first("REAC_ITER"))
+            .and_then(|s| s.as_i64())
+            .unwrap_or(1);
+        let elastic = newton.and_then(|n| n.str("MATRICE")) == Some("ELASTIQUE");
+        if call.command != "MECA_NON_LINE" && (reac_iter != 1 || elastic) {
+            out.push(Refusal::at(
+                format!(
+                    "{}/RECH_LINEAIRE/METHODE='MIXTE' with a tangent not reassembled at every iteration (NEWTON/REAC_ITER other than 1 or MATRICE='ELASTIQUE'): code_aster's nmrelp then keeps the internal forces of the last ρ tried with the displacement of the best one, not reproduced",
+                    call.command
+                ),
+                occ,
+                "METHODE",
+                call.span,
+            ));
+        }
+    }
+    if call.command == "DYNA_NON_LINE" {
+        for st in kw.factor("SCHEMA_TEMPS") {
+            if let Some(schema @ ("HHT" | "HHT_COMPLET")) = st.str("SCHEMA") {
+                out.push(Refusal::at(
+                    format!(
+                        "DYNA_NON_LINE/RECH_LINEAIRE with SCHEMA_TEMPS/SCHEMA='{schema}' (the line search is validated with NEWMARK only: the weighting of HHT's internal forces in the searched residual is not)"
+                    ),
+                    kw,
+                    "RECH_LINEAIRE",
+                    call.span,
+                ));
+            }
+        }
+    }
+    if !kw.factor("CONTACT").is_empty() || kw.concept("CONTACT").is_some() {
+        let why = if call.command == "MECA_NON_LINE" {
+            "code_aster 17 evaluates the search's residuals with the pairing of the iteration's start, aster's DEFI_CONT contact pairs again on every geometry it evaluates (the trial residuals differ once the contact slides), not reproduced"
+        } else {
+            "code_aster forbids it with the continuous contact (MECANONLINE3_91) and, with the discrete contact or LIAISON_UNIL, searches on the residual without the contact correction applied after it (nmdepl → nmcoun), not reproduced"
+        };
+        out.push(Refusal::at(
+            format!("{}/RECH_LINEAIRE with CONTACT: {why}", call.command),
+            kw,
+            "RECH_LINEAIRE",
+            call.span,
+        ));
+    }
+}
