@@ -9,6 +9,7 @@ mod orient_along;
 mod perturb;
 mod points;
 mod rebuild;
+mod refine;
 mod restrict;
 mod superpose;
 #[cfg(test)]
