@@ -23,6 +23,7 @@ pub mod function;
 pub mod journal;
 pub mod list;
 pub mod meca_non_line;
+pub mod mesh_methods;
 mod meshio;
 mod observation;
 pub mod output;
