@@ -75,33 +75,14 @@ pub fn make(mesh: &Mesh, name: &str, args: &[(&'static str, HostValue)]) -> Resu
         "refine" => {
             let ntimes = match arg("ntimes") {
                 // code_aster's loop over the levels runs no time for n ≤ 0.
-                Some(HostValue::Scalar(Scalar::Int(n))) => (*n).max(0) as usize,
+                Some(HostValue::Scalar(Scalar::Int(n))) => *n,
                 other => {
                     return Err(ExecError::new(format!(
                         "refine(): ntimes takes an integer, not {other:?}"
                     )))
                 }
             };
-            let per_level = mesh
-                .cells
-                .iter()
-                .map(|c| match c.ty.dim() {
-                    0 => 1usize,
-                    1 => 2,
-                    2 => 4,
-                    _ => 10,
-                })
-                .max()
-                .unwrap_or(1);
-            let bound = (0..ntimes).try_fold(mesh.cells.len(), |n, _| n.checked_mul(per_level));
-            if bound.is_none_or(|n| n > MAX_REFINED_CELLS) {
-                return Err(ExecError::new(format!(
-                    "refine({ntimes}) of a mesh of {} cells would make more than {MAX_REFINED_CELLS} cells",
-                    mesh.cells.len()
-                )));
-            }
-            mesh.refine(ntimes)
-                .map_err(|e| ExecError::new(format!("not supported: {e}")))
+            refined(mesh, ntimes)
         }
         "convertToLinear" => Ok(mesh.convert_to_linear()),
         "convertToQuadratic" => mesh
@@ -174,4 +155,32 @@ pub fn non_linear_cell(mesh: &Mesh) -> Option<String> {
             )
         })
     })
+}
+
+/// `mesh.refine(ntimes)` and `CREA_MAILLAGE/RAFFINEMENT/NIVEAU`: the mesh
+/// refined `ntimes` times (code_aster's loop over the levels runs no time
+/// for ntimes ≤ 0), refused when it would make more than
+/// [`MAX_REFINED_CELLS`] cells or when a cell is not linear.
+pub fn refined(mesh: &Mesh, ntimes: i64) -> Result<Mesh, ExecError> {
+    let ntimes = ntimes.max(0) as usize;
+    let per_level = mesh
+        .cells
+        .iter()
+        .map(|c| match c.ty.dim() {
+            0 => 1usize,
+            1 => 2,
+            2 => 4,
+            _ => 10,
+        })
+        .max()
+        .unwrap_or(1);
+    let bound = (0..ntimes).try_fold(mesh.cells.len(), |n, _| n.checked_mul(per_level));
+    if bound.is_none_or(|n| n > MAX_REFINED_CELLS) {
+        return Err(ExecError::new(format!(
+            "not supported: refining {ntimes} times a mesh of {} cells would make more than {MAX_REFINED_CELLS} cells",
+            mesh.cells.len()
+        )));
+    }
+    mesh.refine(ntimes)
+        .map_err(|e| ExecError::new(format!("not supported: {e}")))
 }

@@ -109,6 +109,32 @@ impl Sink<'_> {
         }
     }
 
+    /// `CREA_MAILLAGE/RAFFINEMENT` of a mesh with a cell that is not
+    /// linear is refused at `RAFFINEMENT` (as `mesh.refine()`); the result
+    /// of a refinement is linear.
+    fn refine_linear_only(&mut self, call: &CommandCall) {
+        let kw = &call.keywords;
+        if call.command != "CREA_MAILLAGE" {
+            return;
+        }
+        let Some(raff) = kw.keyword("RAFFINEMENT").filter(|k| !k.defaulted) else {
+            return;
+        };
+        let known = kw
+            .concept("MAILLAGE")
+            .and_then(|m| self.linear_meshes.get(&m.id).cloned());
+        match (known, call.result.as_ref()) {
+            (Some(Some(cell)), _) => {
+                let what = format!("CREA_MAILLAGE/RAFFINEMENT of a mesh whose {cell}: aster refines meshes of linear cells (POI1, SEG2, TRIA3, QUAD4, TETRA4, HEXA8, PENTA6, PYRAM5)");
+                self.refuse(what, raff.span);
+            }
+            (Some(None), Some(r)) => {
+                self.linear_meshes.insert(r.id, None);
+            }
+            _ => {}
+        }
+    }
+
     /// Reads the mesh of a LIRE_MAILLAGE call (once per file): the mesh,
     /// if the pass could read it.
     fn read_mesh_file(&mut self, call: &CommandCall) -> Option<Arc<Mesh>> {
@@ -296,6 +322,7 @@ impl CommandSink for Sink<'_> {
             let mut these = self.findings.split_off(before);
             self.external.append(&mut these);
         }
+        self.refine_linear_only(call);
         if call.command == "LIRE_MAILLAGE" && command.is_some() {
             self.read_mesh(call);
         } else if produces_mesh(call) && !MESH_COMMANDS.contains(&call.command.as_str()) {
