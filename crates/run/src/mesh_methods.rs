@@ -62,7 +62,11 @@ pub fn refusal(concept: &str, typ: &str, name: &str) -> String {
 pub const MAX_REFINED_CELLS: usize = 20_000_000;
 
 /// The mesh a concept-making mesh method gives.
-pub fn make(mesh: &Mesh, name: &str, args: &[(&'static str, HostValue)]) -> Result<Mesh, ExecError> {
+pub fn make(
+    mesh: &Mesh,
+    name: &str,
+    args: &[(&'static str, HostValue)],
+) -> Result<Mesh, ExecError> {
     let arg = |p: &str| args.iter().find(|(n, _)| *n == p).map(|(_, v)| v);
     if let Some(info) = arg("info") {
         if !matches!(info, HostValue::Scalar(Scalar::Int(1 | 2))) {
@@ -135,9 +139,9 @@ pub fn query(mesh: &Mesh, name: &str, args: &[HostValue]) -> Option<Result<HostV
                 }
             }
         }
-        ("getNumberOfNodes" | "getNumberOfCells", _) => Err(ExecError::new(format!(
-            "{name}() takes no argument"
-        ))),
+        ("getNumberOfNodes" | "getNumberOfCells", _) => {
+            Err(ExecError::new(format!("{name}() takes no argument")))
+        }
         _ => return None,
     })
 }
@@ -147,7 +151,11 @@ pub fn query(mesh: &Mesh, name: &str, args: &[HostValue]) -> Option<Result<HostV
 pub fn non_linear_cell(mesh: &Mesh) -> Option<String> {
     use aster_mesh::CellType::*;
     mesh.cells.iter().enumerate().find_map(|(i, c)| {
-        (!matches!(c.ty, POI1 | SEG2 | TRIA3 | QUAD4 | TETRA4 | HEXA8 | PENTA6 | PYRAM5)).then(|| {
+        (!matches!(
+            c.ty,
+            POI1 | SEG2 | TRIA3 | QUAD4 | TETRA4 | HEXA8 | PENTA6 | PYRAM5
+        ))
+        .then(|| {
             format!(
                 "cell {} is a {}",
                 mesh.cell_name(aster_mesh::CellId(i as u32)),

@@ -89,7 +89,10 @@ FIN()
     let linear = src.replace("mesh.refine()", "mesh.convertToLinear().refine()");
     let (p, map) = pass(&linear, "quad8_punch.mail");
     assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
-    let again = src.replace("mesh.refine()", "mesh.convertToLinear().convertToQuadratic().refine()");
+    let again = src.replace(
+        "mesh.refine()",
+        "mesh.convertToLinear().convertToQuadratic().refine()",
+    );
     let (p, map) = pass(&again, "quad8_punch.mail");
     assert_eq!(p.findings.0.len(), 1, "{:?}", messages(&p, &map));
     // CREA_MAILLAGE/RAFFINEMENT (what refine() runs in code_aster) too.
@@ -109,13 +112,26 @@ FIN()
 #[test]
 fn method_arguments_are_bound_as_python_binds_them() {
     for (call, expected) in [
-        ("mesh.refine(1, 1, 1)", "refine() takes at most 2 positional argument(s)"),
-        ("mesh.refine(level=2)", "refine() got an unexpected keyword argument 'level'"),
-        ("mesh.refine(2, ntimes=2)", "refine() got multiple values for argument 'ntimes'"),
+        (
+            "mesh.refine(1, 1, 1)",
+            "refine() takes at most 2 positional argument(s)",
+        ),
+        (
+            "mesh.refine(level=2)",
+            "refine() got an unexpected keyword argument 'level'",
+        ),
+        (
+            "mesh.refine(2, ntimes=2)",
+            "refine() got multiple values for argument 'ntimes'",
+        ),
     ] {
-        let src = format!("DEBUT()\nmesh = LIRE_MAILLAGE(FORMAT=\"ASTER\")\nfine = {call}\nFIN()\n");
+        let src =
+            format!("DEBUT()\nmesh = LIRE_MAILLAGE(FORMAT=\"ASTER\")\nfine = {call}\nFIN()\n");
         let (p, map) = pass(&src, "refine_plate.mail");
         let got = messages(&p, &map);
-        assert!(got.len() == 1 && got[0].contains(expected), "{call}: {got:?}");
+        assert!(
+            got.len() == 1 && got[0].contains(expected),
+            "{call}: {got:?}"
+        );
     }
 }

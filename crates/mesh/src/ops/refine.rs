@@ -552,8 +552,11 @@ impl Mmesh {
             .groups_no
             .iter()
             .filter_map(|g| {
-                let members: Vec<NodeId> =
-                    g.members.iter().filter_map(|n| new_id[n.0 as usize]).collect();
+                let members: Vec<NodeId> = g
+                    .members
+                    .iter()
+                    .filter_map(|n| new_id[n.0 as usize])
+                    .collect();
                 (!members.is_empty()).then(|| Group {
                     name: g.name.clone(),
                     members,
@@ -657,7 +660,8 @@ mod tests {
             .iter()
             .map(|c| {
                 let p: Vec<[f64; 3]> = c.nodes.iter().map(|n| m.coord(*n)).collect();
-                let d = |a: usize, b: usize| [p[b][0] - p[a][0], p[b][1] - p[a][1], p[b][2] - p[a][2]];
+                let d =
+                    |a: usize, b: usize| [p[b][0] - p[a][0], p[b][1] - p[a][1], p[b][2] - p[a][2]];
                 let det = |u: [f64; 3], v: [f64; 3], w: [f64; 3]| {
                     u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
                         + u[2] * (v[0] * w[1] - v[1] * w[0])
@@ -678,7 +682,12 @@ mod tests {
     fn tetra_refined_twice_keeps_volume_orientation_and_counts() {
         let m = unit(
             CellType::TETRA4,
-            vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+            ],
             3,
         );
         for (n, nodes) in [(1, 10), (2, 35)] {
@@ -719,7 +728,10 @@ mod tests {
             .iter()
             .map(|c| c.nodes.iter().map(|n| n.0 + 1).collect())
             .collect();
-        assert_eq!(nodes, vec![vec![1, 4, 6], vec![2, 5, 4], vec![3, 6, 5], vec![4, 5, 6]]);
+        assert_eq!(
+            nodes,
+            vec![vec![1, 4, 6], vec![2, 5, 4], vec![3, 6, 5], vec![4, 5, 6]]
+        );
         assert!((measure(&r) - 0.5).abs() < 1e-15);
     }
 
