@@ -222,6 +222,50 @@ pub struct HostTable {
     pub text: String,
 }
 
+/// A method of a concept that makes a new concept, as code_aster 17's
+/// Python objects have them (`mesh = mesh.refine(2)`): the receiver's type,
+/// the parameters with their defaults (in order, for positional arguments)
+/// and the type of the concept made.
+#[derive(Debug)]
+pub struct MakingMethod {
+    pub receiver: &'static str,
+    pub name: &'static str,
+    pub params: &'static [(&'static str, i64)],
+    pub result: &'static str,
+}
+
+/// The concept-making methods the evaluator knows (code_aster 17's
+/// `Mesh.refine(ntimes=1, info=1)`, `Mesh.convertToLinear(info=1)`,
+/// `Mesh.convertToQuadratic(info=1)`); the sink says whether it runs them
+/// ([`CommandSink::make`]).
+pub const MAKING_METHODS: &[MakingMethod] = &[
+    MakingMethod {
+        receiver: "maillage_sdaster",
+        name: "refine",
+        params: &[("ntimes", 1), ("info", 1)],
+        result: "maillage_sdaster",
+    },
+    MakingMethod {
+        receiver: "maillage_sdaster",
+        name: "convertToLinear",
+        params: &[("info", 1)],
+        result: "maillage_sdaster",
+    },
+    MakingMethod {
+        receiver: "maillage_sdaster",
+        name: "convertToQuadratic",
+        params: &[("info", 1)],
+        result: "maillage_sdaster",
+    },
+];
+
+/// The concept-making method `name` of a concept of type `typ`.
+pub fn making_method(typ: &str, name: &str) -> Option<&'static MakingMethod> {
+    MAKING_METHODS
+        .iter()
+        .find(|m| m.receiver == typ && m.name == name)
+}
+
 /// Receives the validated commands of a program, in order.
 ///
 /// Only `execute` is required; the other methods have defaults that say
@@ -237,6 +281,24 @@ pub trait CommandSink {
         args: &[HostValue],
     ) -> Result<HostValue, ExecError> {
         let _ = args;
+        Err(ExecError::new(format!(
+            "not supported: method {name}() of concept {} ({})",
+            concept.name, concept.typ
+        )))
+    }
+
+    /// A method that makes a new concept ([`MAKING_METHODS`]:
+    /// `mesh.refine(2)`), its arguments bound to the method's parameters
+    /// (defaults filled in); `result` is the new concept (its id given by
+    /// the evaluator).
+    fn make(
+        &mut self,
+        concept: &ConceptRef,
+        name: &str,
+        args: &[(&'static str, HostValue)],
+        result: &ConceptRef,
+    ) -> Result<(), ExecError> {
+        let _ = (args, result);
         Err(ExecError::new(format!(
             "not supported: method {name}() of concept {} ({})",
             concept.name, concept.typ

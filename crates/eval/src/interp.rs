@@ -1598,6 +1598,10 @@ impl<'a> Interp<'a> {
                 crate::testcase::call(self, &m, args, span)
             }
             Value::Func(uf) => self.call_user(&uf, args, span),
+            Value::Method(recv, m) if making_of(&recv, &m).is_some() => match *recv {
+                Value::Concept(c) => self.call_making(&c, &m, args, span, target),
+                recv => builtins::method(self, recv, &m, args, span),
+            },
             Value::Method(recv, m) => {
                 let v = builtins::method(self, *recv, &m, args, span)?;
                 self.charge_value(&v, span, "this call")?;
@@ -1630,6 +1634,78 @@ impl<'a> Interp<'a> {
                 span,
                 format!("'{}' object is not callable", other.type_name()),
             ),
+        }
+    }
+
+    /// A concept-making method (`mesh.refine(2)`, [`MAKING_METHODS`]): the
+    /// arguments bound to its parameters as Python binds them, a new concept
+    /// (named after the assignment's target), made by the sink.
+    fn call_making(
+        &mut self,
+        c: &ConceptRef,
+        m: &str,
+        args: Vec<CallArg>,
+        span: Span,
+        target: Option<&str>,
+    ) -> R<Value> {
+        let Some(how) = making_method(&c.typ, m) else {
+            return py_err(span, format!("'{}' object has no attribute '{m}'", c.typ));
+        };
+        let mut bound: Vec<(&'static str, Option<HostValue>)> =
+            how.params.iter().map(|(n, _)| (*n, None)).collect();
+        let mut positional = 0;
+        for a in &args {
+            let slot = match &a.name {
+                None => {
+                    positional += 1;
+                    match bound.get_mut(positional - 1) {
+                        Some(slot) => slot,
+                        None => {
+                            return py_err(
+                                a.span,
+                                format!(
+                                    "{m}() takes at most {} positional argument(s)",
+                                    how.params.len()
+                                ),
+                            )
+                        }
+                    }
+                }
+                Some((n, at)) => match bound.iter_mut().find(|(p, _)| p == n) {
+                    Some(slot) => slot,
+                    None => {
+                        return py_err(
+                            *at,
+                            format!("{m}() got an unexpected keyword argument '{n}'"),
+                        )
+                    }
+                },
+            };
+            if slot.1.is_some() {
+                return py_err(
+                    a.span,
+                    format!("{m}() got multiple values for argument '{}'", slot.0),
+                );
+            }
+            slot.1 = Some(to_host(&a.value));
+        }
+        let bound: Vec<(&'static str, HostValue)> = bound
+            .into_iter()
+            .zip(how.params)
+            .map(|((n, v), (_, d))| (n, v.unwrap_or(HostValue::Scalar(Scalar::Int(*d)))))
+            .collect();
+        let id = self.next_id;
+        self.next_id += 1;
+        let result = ConceptRef {
+            name: target
+                .map(str::to_string)
+                .unwrap_or_else(|| format!("_{m}_{id}")),
+            id,
+            typ: how.result.to_string(),
+        };
+        match self.sink.make(c, how.name, &bound, &result) {
+            Ok(()) => Ok(Value::Concept(result)),
+            Err(e) => Err(exec_diag(span, e).into()),
         }
     }
 
@@ -1831,6 +1907,14 @@ fn module_kind(m: &str) -> Option<ModuleKind> {
     let top = m.split('.').next().unwrap_or(m);
     match top {
         "code_aster" | "Accas" | "Cata" => Some(ModuleKind::NoOp),
+        _ => None,
+    }
+}
+
+/// The concept-making method `m` of a receiver ([`MAKING_METHODS`]).
+fn making_of(recv: &Value, m: &str) -> Option<&'static MakingMethod> {
+    match recv {
+        Value::Concept(c) => making_method(&c.typ, m),
         _ => None,
     }
 }

@@ -164,6 +164,15 @@ impl CommandSink for CheckSink {
     fn method(&mut self, _: &ConceptRef, _: &str, _: &[HostValue]) -> Result<HostValue, ExecError> {
         Ok(HostValue::Unknown)
     }
+    fn make(
+        &mut self,
+        _: &ConceptRef,
+        _: &str,
+        _: &[(&'static str, HostValue)],
+        _: &ConceptRef,
+    ) -> Result<(), ExecError> {
+        Ok(())
+    }
     fn index(&mut self, _: &ConceptRef, _: &[HostValue]) -> Result<HostValue, ExecError> {
         Ok(HostValue::Unknown)
     }

@@ -147,6 +147,15 @@ impl CommandSink for Sink {
     ) -> Result<HostValue, ExecError> {
         self.check.method(c, name, args)
     }
+    fn make(
+        &mut self,
+        c: &ConceptRef,
+        name: &str,
+        args: &[(&'static str, HostValue)],
+        result: &ConceptRef,
+    ) -> Result<(), ExecError> {
+        self.check.make(c, name, args, result)
+    }
     fn index(&mut self, c: &ConceptRef, key: &[HostValue]) -> Result<HostValue, ExecError> {
         self.check.index(c, key)
     }

@@ -486,8 +486,9 @@ impl CommandSink for Executor {
 
     /// Methods of concepts: `TAB.EXTR_TABLE()` (the table's text, as `print`
     /// shows a code_aster `Table`, its `IMPR_TABLE` form),
-    /// `mesh.getMinMaxEdgeSizes(group)` (`'TOUT'`: every cell) and
-    /// `getName()` of any concept.
+    /// `mesh.getMinMaxEdgeSizes(group)` (`'TOUT'`: every cell), the mesh's
+    /// counts ([`crate::mesh_methods::query`]) and `getName()` of any
+    /// concept; the list is [`crate::mesh_methods::METHODS`].
     fn method(
         &mut self,
         concept: &ConceptRef,
@@ -539,6 +540,15 @@ impl CommandSink for Executor {
             // A function concept called in a formula (`F(INST)`): its value,
             // the arguments taken in the order of its parameters.
             (Concept::Function(f), "__call__") => call_function(f, &concept.name, args),
+            (Concept::Mesh(mesh), "getNumberOfNodes" | "getNumberOfCells" | "getCells") => {
+                crate::mesh_methods::query(mesh, name, args).unwrap_or_else(|| {
+                    Err(ExecError::new(crate::mesh_methods::refusal(
+                        &concept.name,
+                        &concept.typ,
+                        name,
+                    )))
+                })
+            }
             (Concept::Mesh(mesh), "getMinMaxEdgeSizes") => {
                 let cells: Vec<aster_mesh::CellId> = match args {
                     [] => (0..mesh.cells.len() as u32)
@@ -565,11 +575,36 @@ impl CommandSink for Executor {
                     HostValue::Scalar(Scalar::Real(hi)),
                 ]))
             }
-            _ => Err(ExecError::new(format!(
-                "not supported: method {name}() of concept {} ({})",
-                concept.name, concept.typ
+            _ => Err(ExecError::new(crate::mesh_methods::refusal(
+                &concept.name,
+                &concept.typ,
+                name,
             ))),
         }
+    }
+
+    /// The mesh methods that make a mesh (`mesh.refine(2)`,
+    /// `convertToLinear()`, `convertToQuadratic()`: [`crate::mesh_methods`]).
+    fn make(
+        &mut self,
+        concept: &ConceptRef,
+        name: &str,
+        args: &[(&'static str, aster_eval::HostValue)],
+        result: &ConceptRef,
+    ) -> Result<(), ExecError> {
+        let mesh = match self.concept(concept)? {
+            Concept::Mesh(mesh) => mesh.clone(),
+            _ => {
+                return Err(ExecError::new(crate::mesh_methods::refusal(
+                    &concept.name,
+                    &concept.typ,
+                    name,
+                )))
+            }
+        };
+        let made = crate::mesh_methods::make(&mesh, name, args)?;
+        self.insert(result, Concept::Mesh(Arc::new(made)));
+        Ok(())
     }
 
     fn index(

@@ -24,6 +24,7 @@ pub mod journal;
 mod line_search;
 pub mod list;
 pub mod meca_non_line;
+pub mod mesh_methods;
 mod meshio;
 mod observation;
 pub mod output;

@@ -82,6 +82,11 @@ struct Sink<'o> {
     /// A mesh the pass cannot follow is made: no group check.
     unknown_mesh: bool,
     refusals: CallRefusals,
+    /// Meshes whose cells the pass knows, by concept id: the first cell
+    /// that is not linear, if any (`LIRE_MAILLAGE` results and what
+    /// `refine`, `convertToLinear`, `convertToQuadratic` make of them), for
+    /// `refine()` and `convertToQuadratic()`, which take linear cells only.
+    linear_meshes: std::collections::HashMap<u32, Option<String>>,
     /// Refusals of commands that run an external program
     /// ([`crate::support::CommandHint::external`]): reported first.
     external: Vec<Diagnostic>,
@@ -97,11 +102,47 @@ impl Sink<'_> {
     }
 
     fn read_mesh(&mut self, call: &CommandCall) {
+        let read = self.read_mesh_file(call);
+        if let (Some(r), Some(mesh)) = (call.result.as_ref(), read) {
+            self.linear_meshes
+                .insert(r.id, crate::mesh_methods::non_linear_cell(&mesh));
+        }
+    }
+
+    /// `CREA_MAILLAGE/RAFFINEMENT` of a mesh with a cell that is not
+    /// linear is refused at `RAFFINEMENT` (as `mesh.refine()`); the result
+    /// of a refinement is linear.
+    fn refine_linear_only(&mut self, call: &CommandCall) {
+        let kw = &call.keywords;
+        if call.command != "CREA_MAILLAGE" {
+            return;
+        }
+        let Some(raff) = kw.keyword("RAFFINEMENT").filter(|k| !k.defaulted) else {
+            return;
+        };
+        let known = kw
+            .concept("MAILLAGE")
+            .and_then(|m| self.linear_meshes.get(&m.id).cloned());
+        match (known, call.result.as_ref()) {
+            (Some(Some(cell)), _) => {
+                let what = format!("CREA_MAILLAGE/RAFFINEMENT of a mesh whose {cell}: aster refines meshes of linear cells (POI1, SEG2, TRIA3, QUAD4, TETRA4, HEXA8, PENTA6, PYRAM5)");
+                self.refuse(what, raff.span);
+            }
+            (Some(None), Some(r)) => {
+                self.linear_meshes.insert(r.id, None);
+            }
+            _ => {}
+        }
+    }
+
+    /// Reads the mesh of a LIRE_MAILLAGE call (once per file): the mesh,
+    /// if the pass could read it.
+    fn read_mesh_file(&mut self, call: &CommandCall) -> Option<Arc<Mesh>> {
         let kw = &call.keywords;
         let format = kw.str("FORMAT").unwrap_or("MED").to_string();
         if !["MED", "ASTER", "GMSH", "GIBI"].contains(&format.as_str()) {
             self.unknown_mesh = true;
-            return;
+            return None;
         }
         let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(20);
         let Some(path) = u32::try_from(unit)
@@ -110,24 +151,31 @@ impl Sink<'_> {
         else {
             // The run says which unit has no file.
             self.unknown_mesh = true;
-            return;
+            return None;
         };
-        if self
+        if let Some(k) = self
             .meshes
             .iter()
-            .any(|m| &m.path == path && m.format == format)
+            .position(|m| &m.path == path && m.format == format)
         {
-            return;
+            return Some(self.meshes[k].mesh.clone());
         }
         match crate::meshio::read(path, &format) {
-            Ok((mesh, warnings)) => self.meshes.push(ReadMesh {
-                path: path.clone(),
-                format,
-                mesh: Arc::new(mesh),
-                warnings,
-            }),
+            Ok((mesh, warnings)) => {
+                let mesh = Arc::new(mesh);
+                self.meshes.push(ReadMesh {
+                    path: path.clone(),
+                    format,
+                    mesh: mesh.clone(),
+                    warnings,
+                });
+                Some(mesh)
+            }
             // The run reports the reading error at the command.
-            Err(_) => self.unknown_mesh = true,
+            Err(_) => {
+                self.unknown_mesh = true;
+                None
+            }
         }
     }
 }
@@ -371,6 +419,7 @@ impl CommandSink for Sink<'_> {
             let mut these = self.findings.split_off(before);
             self.external.append(&mut these);
         }
+        self.refine_linear_only(call);
         if call.command == "LIRE_MAILLAGE" && command.is_some() {
             self.read_mesh(call);
         } else if produces_mesh(call) && !MESH_COMMANDS.contains(&call.command.as_str()) {
@@ -387,10 +436,47 @@ impl CommandSink for Sink<'_> {
         // A table whose contents come with the run, so that a use the run
         // cannot make of code_aster's Table object (`t.sort()`, filters) is
         // refused here, before anything is solved.
+        if !crate::mesh_methods::runs(&c.typ, name) {
+            return Err(ExecError::new(crate::mesh_methods::refusal(
+                &c.name, &c.typ, name,
+            )));
+        }
         if let ("EXTR_TABLE", []) = (name, args) {
             return Ok(HostValue::Table(None));
         }
         self.check.method(c, name, args)
+    }
+    /// A mesh method making a mesh (`mesh.refine(2)`): its groups are the
+    /// input's (refine, convertToQuadratic) or fewer (convertToLinear drops
+    /// the node groups left empty), so the group check goes on.
+    fn make(
+        &mut self,
+        c: &ConceptRef,
+        name: &str,
+        args: &[(&'static str, HostValue)],
+        result: &ConceptRef,
+    ) -> Result<(), ExecError> {
+        if !crate::mesh_methods::runs(&c.typ, name) {
+            return Err(ExecError::new(crate::mesh_methods::refusal(
+                &c.name, &c.typ, name,
+            )));
+        }
+        let known = self.linear_meshes.get(&c.id).cloned();
+        if let (Some(Some(cell)), "refine" | "convertToQuadratic") = (&known, name) {
+            return Err(ExecError::new(format!(
+                "not supported: {name}() of mesh {}: {cell}; aster takes meshes of linear cells (POI1, SEG2, TRIA3, QUAD4, TETRA4, HEXA8, PENTA6, PYRAM5) — convertToLinear() first",
+                c.name
+            )));
+        }
+        let made = match (known, name) {
+            (Some(_), "refine" | "convertToLinear") => Some(None),
+            (Some(_), _) => Some(Some("its cells are quadratic".to_string())),
+            (None, _) => None,
+        };
+        if let Some(made) = made {
+            self.linear_meshes.insert(result.id, made);
+        }
+        self.check.make(c, name, args, result)
     }
     fn index(&mut self, c: &ConceptRef, key: &[HostValue]) -> Result<HostValue, ExecError> {
         self.check.index(c, key)
@@ -442,6 +528,7 @@ pub fn check_study_memo(
         meshes: Vec::new(),
         unknown_mesh: false,
         refusals: CallRefusals::default(),
+        linear_meshes: Default::default(),
         external: Vec::new(),
     };
     let result = aster_eval::run_study_memo(

@@ -218,6 +218,12 @@ impl Mesh {
     /// `QUAD_LINE`: the selected quadratic cells become linear; nodes no
     /// cell uses any more are removed (from node groups too).
     pub fn quad_to_line(&mut self, selected: &[CellId]) -> DegreeReport {
+        self.linearise(selected, vec![false; self.node_count()])
+    }
+
+    /// The selected quadratic cells made linear; the nodes no cell uses any
+    /// more are removed, but those `keep` says.
+    pub(crate) fn linearise(&mut self, selected: &[CellId], keep: Vec<bool>) -> DegreeReport {
         let mut report = DegreeReport::default();
         for &c in selected {
             let cell = &mut self.cells[c.0 as usize];
@@ -227,7 +233,12 @@ impl Mesh {
                 report.cells += 1;
             }
         }
-        let used = self.used_nodes();
+        let used: Vec<bool> = self
+            .used_nodes()
+            .into_iter()
+            .zip(keep)
+            .map(|(u, k)| u || k)
+            .collect();
         report.nodes_removed = used.iter().filter(|u| !**u).count();
         self.retain_nodes(&used);
         report

@@ -10,6 +10,7 @@ mod perturb;
 mod points;
 mod quarter_points;
 mod rebuild;
+mod refine;
 mod restrict;
 mod superpose;
 #[cfg(test)]

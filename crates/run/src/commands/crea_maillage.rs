@@ -11,8 +11,9 @@ use std::sync::Arc;
 const CMD: &str = "CREA_MAILLAGE";
 
 /// The operations (factor keywords) this implementation executes.
-const OPERATIONS: [&str; 7] = [
+const OPERATIONS: [&str; 8] = [
     "RESTREINT",
+    "RAFFINEMENT",
     "LINE_QUAD",
     "QUAD_LINE",
     "HEXA20_27",
@@ -31,6 +32,9 @@ pub(crate) const CREA_MAILLAGE: Support = Support::keywords(&[
     "RESTREINT/GROUP_NO",
     "RESTREINT/TOUT_GROUP_MA",
     "RESTREINT/TOUT_GROUP_NO",
+    "RAFFINEMENT",
+    "RAFFINEMENT/TOUT",
+    "RAFFINEMENT/NIVEAU",
     "LINE_QUAD",
     "LINE_QUAD/TOUT",
     "LINE_QUAD/GROUP_MA",
@@ -117,6 +121,14 @@ pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     all_groups_no: occ.str("TOUT_GROUP_NO") == Some("OUI"),
                 })
                 .map_err(|e| err(e.to_string()))?;
+        }
+        // `Mesh.refine(n)` is this (code_aster's `cmraff`).
+        "RAFFINEMENT" => {
+            let level = kw.factor(op)[0]
+                .first("NIVEAU")
+                .and_then(|s| s.as_i64())
+                .unwrap_or(1);
+            mesh = crate::mesh_methods::refined(&mesh, level).map_err(|e| err(e.message))?;
         }
         "LINE_QUAD" => {
             let cells = cells_of(&kw.factor(op)[0], &mesh)?;
