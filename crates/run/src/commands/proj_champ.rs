@@ -30,6 +30,9 @@ const KEYWORDS: &[&str] = &[
     "ALARME",
     "PROL_VALE",
     "INFO",
+    "TITRE",
+    "TRANSF_GEOM_1",
+    "TRANSF_GEOM_2",
     "NOM_CHAM",
     "TOUT_CHAM",
     "VIS_A_VIS",
@@ -42,6 +45,8 @@ const KEYWORDS: &[&str] = &[
     "VIS_A_VIS/GROUP_NO_2",
     "VIS_A_VIS/NOEUD_2",
     "VIS_A_VIS/CAS_FIGURE",
+    "VIS_A_VIS/TRANSF_GEOM_1",
+    "VIS_A_VIS/TRANSF_GEOM_2",
 ];
 
 /// What PROJ_CHAMP reads (`crate::support`).
@@ -179,6 +184,50 @@ fn occurrence_cells(
     Ok(out)
 }
 
+/// `pjeftg`: the mesh with its coordinates mapped by `TRANSF_GEOM_<n>` of
+/// `kw` (2 or 3 functions of X, Y, Z; 2 only in the 2D case, z then 0).
+/// The mesh itself without the keyword.
+fn transformed(
+    ex: &Executor,
+    kw: &Keywords,
+    n: u8,
+    mesh: &Arc<Mesh>,
+    case: Case,
+) -> Result<Arc<Mesh>, ExecError> {
+    let name = format!("TRANSF_GEOM_{n}");
+    let funcs: Vec<_> = kw
+        .simple(&name)
+        .iter()
+        .filter_map(|s| s.as_concept())
+        .map(|c| ex.function(c))
+        .collect::<Result<_, _>>()?;
+    if funcs.is_empty() {
+        return Ok(mesh.clone());
+    }
+    if funcs.len() == 2 && case != Case::Plane {
+        return Err(ex
+            .kw_error(
+                "PROJ_CHAMP",
+                kw,
+                &name,
+                format!("2 functions are for the 2D case only, here {}", case.name()),
+            )
+            .with_id("PROJECTION4_4"));
+    }
+    let mut out = (**mesh).clone();
+    for c in out.coords.iter_mut() {
+        let args = [("X", c[0]), ("Y", c[1]), ("Z", c[2])];
+        let mut v = [0.0; 3];
+        for (k, f) in funcs.iter().enumerate() {
+            v[k] = f
+                .eval_named(&args)
+                .map_err(|e| ex.kw_error("PROJ_CHAMP", kw, &name, e.to_string()))?;
+        }
+        *c = v;
+    }
+    Ok(Arc::new(out))
+}
+
 fn parse_case(s: &str) -> Option<Case> {
     match s {
         "2D" => Some(Case::Plane),
@@ -241,9 +290,23 @@ fn correspondence(
             return Err(ExecError::new("PROJ_CHAMP: no node of mesh 2 to project onto")
                 .with_id("PROJECTION4_54"));
         }
-        corr.add(&one.mesh, &cells1, &two.mesh, &nodes2, case)
+        let m1 = transformed(ex, kw, 1, &one.mesh, case)?;
+        let m2 = transformed(ex, kw, 2, &two.mesh, case)?;
+        corr.add(&m1, &cells1, &m2, &nodes2, case)
             .map_err(proj_err)?;
         return Ok(corr);
+    }
+    for n in ["TRANSF_GEOM_1", "TRANSF_GEOM_2"] {
+        if kw.contains(n) {
+            return Err(ex
+                .kw_error(
+                    "PROJ_CHAMP",
+                    kw,
+                    n,
+                    "with VIS_A_VIS, give the transformation in each occurrence",
+                )
+                .with_id("PROJECTION4_3"));
+        }
     }
     for occ in occurrences {
         let cells1: Vec<CellId> = occurrence_cells(ex, occ, &one.mesh, 1)?
@@ -292,7 +355,11 @@ fn correspondence(
                 .with_id("PROJECTION4_54"));
         }
         let case1 = case_or_refuse(ex, occ, "GROUP_MA_1", occ.str("CAS_FIGURE"), &one.mesh, &cells1)?;
-        corr.add(&one.mesh, &cells1, &two.mesh, &nodes2, case1)
+        // pjeftg: mesh 1 moved in its own case, mesh 2 in that of its cells.
+        let case2 = case_of(&two.mesh, &cells2).unwrap_or(case1);
+        let m1 = transformed(ex, occ, 1, &one.mesh, case1)?;
+        let m2 = transformed(ex, occ, 2, &two.mesh, case2)?;
+        corr.add(&m1, &cells1, &m2, &nodes2, case1)
             .map_err(proj_err)?;
     }
     Ok(corr)
