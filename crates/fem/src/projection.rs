@@ -312,7 +312,12 @@ impl Correspondence {
 
     /// pj3dap: the first tetrahedron containing p, else the nearest (within
     /// DISTANCE_MAX when given).
-    fn locate3d(&self, mesh: &Mesh, simplices: &[Simplex], p: [f64; 3]) -> Option<(usize, [f64; 4])> {
+    fn locate3d(
+        &self,
+        mesh: &Mesh,
+        simplices: &[Simplex],
+        p: [f64; 3],
+    ) -> Option<(usize, [f64; 4])> {
         for (i, s) in simplices.iter().enumerate() {
             if let Some(b) = inside_tetra(mesh, &s.nodes, p) {
                 return Some((i, b));
@@ -331,7 +336,12 @@ impl Correspondence {
     }
 
     /// pj2dap: the first triangle containing p (in x, y), else the nearest.
-    fn locate2d(&self, mesh: &Mesh, simplices: &[Simplex], p: [f64; 3]) -> Option<(usize, [f64; 4])> {
+    fn locate2d(
+        &self,
+        mesh: &Mesh,
+        simplices: &[Simplex],
+        p: [f64; 3],
+    ) -> Option<(usize, [f64; 4])> {
         for (i, s) in simplices.iter().enumerate() {
             if let Some(b) = inside_triangle2d(mesh, &s.nodes, p) {
                 return Some((i, b));

@@ -156,7 +156,11 @@ fn written_on(
             for (n, vals) in &f.values {
                 let i = n.0 as usize;
                 let selected = sel.is_none_or(|(nodes, _)| nodes.get(i).copied().unwrap_or(false));
-                if selected && cols.iter().any(|&c| vals.get(c).copied().flatten().is_some()) {
+                if selected
+                    && cols
+                        .iter()
+                        .any(|&c| vals.get(c).copied().flatten().is_some())
+                {
                     if let Some(m) = mask.get_mut(i) {
                         *m = true;
                     }
@@ -307,7 +311,10 @@ fn impr_resu_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             let allowed = match format {
                 "RESULTAT" => key != "TYPE_CHAM",
                 "GMSH" => key == "NOM_CMP" || key == "TYPE_CHAM",
-                "MED" => matches!(key, "NOM_CMP" | "GROUP_NO" | "NOEUD" | "GROUP_MA" | "MAILLE"),
+                "MED" => matches!(
+                    key,
+                    "NOM_CMP" | "GROUP_NO" | "NOEUD" | "GROUP_MA" | "MAILLE"
+                ),
                 _ => false,
             };
             if !allowed && occ.keyword(key).is_some_and(|k| !k.defaulted) {
@@ -381,7 +388,8 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             }
             // DEFI_GROUP(reuse=) makes a new mesh concept with the same nodes.
             Some((first, _))
-                if Arc::ptr_eq(first, m) || (first.coords == m.coords && first.cells == m.cells) =>
+                if Arc::ptr_eq(first, m)
+                    || (first.coords == m.coords && first.cells == m.cells) =>
             {
                 Ok(())
             }

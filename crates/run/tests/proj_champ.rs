@@ -57,7 +57,10 @@ fn refused(name: &str, edits: &[(&str, &str)]) -> String {
 
 /// A dataset of a MED file as integers.
 fn ints(file: &aster_mesh::hdf5::H5File, path: &str) -> Vec<i64> {
-    let obj = file.get(path).unwrap().unwrap_or_else(|| panic!("no {path}"));
+    let obj = file
+        .get(path)
+        .unwrap()
+        .unwrap_or_else(|| panic!("no {path}"));
     file.read(&obj).unwrap().to_i64().unwrap()
 }
 
@@ -106,7 +109,11 @@ fn projections_in_2d_and_med_profiles() {
         } else {
             0.0
         };
-        assert!((p.values[i] - expected).abs() < 1e-12, "node {i}: {}", p.values[i]);
+        assert!(
+            (p.values[i] - expected).abs() < 1e-12,
+            "node {i}: {}",
+            p.values[i]
+        );
     }
     let depl: Vec<_> = steps
         .iter()
@@ -144,16 +151,25 @@ fn a_node_left_without_value_is_not_tested() {
     // says instead of printing a number.
     let error = refused(
         "dmax",
-        &[(", DISTANCE_MAX=0.1, PROL_ZERO=\"OUI\")", ", DISTANCE_MAX=0.1)")],
+        &[(
+            ", DISTANCE_MAX=0.1, PROL_ZERO=\"OUI\")",
+            ", DISTANCE_MAX=0.1)",
+        )],
     );
-    assert!(error.contains("the field has no component X1 at node N17"), "{error}");
+    assert!(
+        error.contains("the field has no component X1 at node N17"),
+        "{error}"
+    );
 }
 
 #[test]
 fn unsupported_methods_and_unknown_groups_are_refused_where_written() {
     let error = refused(
         "ecla",
-        &[("PROJ_CHAMP(METHODE=\"AUTO\"", "PROJ_CHAMP(METHODE=\"ECLA_PG\"")],
+        &[(
+            "PROJ_CHAMP(METHODE=\"AUTO\"",
+            "PROJ_CHAMP(METHODE=\"ECLA_PG\"",
+        )],
     );
     assert!(
         error.contains("not supported yet: PROJ_CHAMP/METHODE='ECLA_PG'")
@@ -167,7 +183,10 @@ fn unsupported_methods_and_unknown_groups_are_refused_where_written() {
     assert!(error.contains("SURFACE"), "{error}");
     let error = refused(
         "segments",
-        &[("VIS_A_VIS=_F(GROUP_MA_1=\"SURF\"", "VIS_A_VIS=_F(CAS_FIGURE=\"1.5D\", GROUP_MA_1=\"SURF\"")],
+        &[(
+            "VIS_A_VIS=_F(GROUP_MA_1=\"SURF\"",
+            "VIS_A_VIS=_F(CAS_FIGURE=\"1.5D\", GROUP_MA_1=\"SURF\"",
+        )],
     );
     assert!(
         error.contains("not supported yet: PROJ_CHAMP/VIS_A_VIS/CAS_FIGURE='1.5D'"),
@@ -182,7 +201,9 @@ fn unsupported_methods_and_unknown_groups_are_refused_where_written() {
         )],
     );
     assert!(
-        error.contains("not supported yet: IMPR_RESU/FORMAT='MED' with fields of several meshes in one file"),
+        error.contains(
+            "not supported yet: IMPR_RESU/FORMAT='MED' with fields of several meshes in one file"
+        ),
         "{error}"
     );
 }

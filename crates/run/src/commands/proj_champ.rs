@@ -176,7 +176,8 @@ fn occurrence_cells(
     }
     let cell_kw = format!("MAILLE_{n}");
     for m in occ.simple(&cell_kw).iter().filter_map(|s| s.as_str()) {
-        let c = crate::select::cell_named(mesh, m).map_err(|e| ex.kw_error(cmd, occ, &cell_kw, e))?;
+        let c =
+            crate::select::cell_named(mesh, m).map_err(|e| ex.kw_error(cmd, occ, &cell_kw, e))?;
         if seen.insert(c) {
             out.push(c);
         }
@@ -281,14 +282,23 @@ fn correspondence(
             .map(CellId)
             .filter(|&c| one.has(c))
             .collect();
-        let case = case_or_refuse(ex, kw, "CAS_FIGURE", kw.str("CAS_FIGURE"), &one.mesh, &cells1)?;
+        let case = case_or_refuse(
+            ex,
+            kw,
+            "CAS_FIGURE",
+            kw.str("CAS_FIGURE"),
+            &one.mesh,
+            &cells1,
+        )?;
         let nodes2: Vec<NodeId> = (0..two.mesh.node_count() as u32)
             .map(NodeId)
             .filter(|n| used2[n.0 as usize])
             .collect();
         if nodes2.is_empty() {
-            return Err(ExecError::new("PROJ_CHAMP: no node of mesh 2 to project onto")
-                .with_id("PROJECTION4_54"));
+            return Err(
+                ExecError::new("PROJ_CHAMP: no node of mesh 2 to project onto")
+                    .with_id("PROJECTION4_54"),
+            );
         }
         let m1 = transformed(ex, kw, 1, &one.mesh, case)?;
         let m2 = transformed(ex, kw, 2, &two.mesh, case)?;
@@ -354,7 +364,14 @@ fn correspondence(
                 )
                 .with_id("PROJECTION4_54"));
         }
-        let case1 = case_or_refuse(ex, occ, "GROUP_MA_1", occ.str("CAS_FIGURE"), &one.mesh, &cells1)?;
+        let case1 = case_or_refuse(
+            ex,
+            occ,
+            "GROUP_MA_1",
+            occ.str("CAS_FIGURE"),
+            &one.mesh,
+            &cells1,
+        )?;
         // pjeftg: mesh 1 moved in its own case, mesh 2 in that of its cells.
         let case2 = case_of(&two.mesh, &cells2).unwrap_or(case1);
         let m1 = transformed(ex, occ, 1, &one.mesh, case1)?;
@@ -398,7 +415,9 @@ fn project_field(
 fn refuse_element_field(ex: &Executor, kw: &Keywords, name: &str, what: &str) -> ExecError {
     let span = kw.keyword(name).map(|k| k.span).unwrap_or_default();
     ex.unsupported(
-        &format!("PROJ_CHAMP of an element field ({what}: METHODE='ECLA_PG'/'COLLOCATION' on cham_elem)"),
+        &format!(
+            "PROJ_CHAMP of an element field ({what}: METHODE='ECLA_PG'/'COLLOCATION' on cham_elem)"
+        ),
         span,
     )
 }
@@ -460,7 +479,11 @@ pub fn proj_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         for (name, f) in &s.fields {
             let wanted = names.is_empty() || names.contains(&name.as_str());
             if wanted && !matches!(f, Field::Nodal(_)) {
-                let at = if names.is_empty() { "RESULTAT" } else { "NOM_CHAM" };
+                let at = if names.is_empty() {
+                    "RESULTAT"
+                } else {
+                    "NOM_CHAM"
+                };
                 return Err(refuse_element_field(ex, kw, at, name));
             }
         }
