@@ -319,10 +319,10 @@ fn correspondence(
         }
     }
     for occ in occurrences {
-        let cells1: Vec<CellId> = occurrence_cells(ex, occ, &one.mesh, 1)?
-            .into_iter()
-            .filter(|&c| one.has(c))
-            .collect();
+        // pjefca takes the case from the occurrence's cells; pjxxut then
+        // keeps those of the model.
+        let named1 = occurrence_cells(ex, occ, &one.mesh, 1)?;
+        let cells1: Vec<CellId> = named1.iter().copied().filter(|&c| one.has(c)).collect();
         let cells2 = occurrence_cells(ex, occ, &two.mesh, 2)?;
         // The nodes of mesh 2: those of the GROUP_MA_2 cells of their own
         // dimension (pjxxu2), and GROUP_NO_2/NOEUD_2.
@@ -370,7 +370,7 @@ fn correspondence(
             "GROUP_MA_1",
             occ.str("CAS_FIGURE"),
             &one.mesh,
-            &cells1,
+            &named1,
         )?;
         // pjeftg: mesh 1 moved in its own case, mesh 2 in that of its cells.
         let case2 = case_of(&two.mesh, &cells2).unwrap_or(case1);
