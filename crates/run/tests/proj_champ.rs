@@ -145,6 +145,57 @@ fn projections_in_3d_and_on_faces() {
     let _ = std::fs::remove_dir_all(out);
 }
 
+/// The 2D scene with its command file edited, run: the outcome and report.
+fn edited(name: &str, edits: &[(&str, &str)]) -> (aster_run::program::Outcome, String) {
+    let dir = temp(name);
+    let mut text = std::fs::read_to_string(root().join("comm/proj_champ_2d.comm")).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    std::fs::write(dir.join("case.comm"), text).unwrap();
+    for mesh in ["proj_quad8.mail", "proj_quad4.mail"] {
+        std::fs::copy(root().join("comm").join(mesh), dir.join(mesh)).unwrap();
+    }
+    std::fs::write(
+        dir.join("case.export"),
+        "F comm case.comm D 1\nF mail proj_quad8.mail D 20\nF mail proj_quad4.mail D 21\n",
+    )
+    .unwrap();
+    let out = run(&dir.join("case.export"), &dir.join("out"));
+    let _ = std::fs::remove_dir_all(&dir);
+    out
+}
+
+#[test]
+fn models_select_cells_and_nodes() {
+    // MODELE_1 on every cell of A: the same values.
+    let (outcome, report) = edited(
+        "modele1",
+        &[(
+            "P = PROJ_CHAMP(METHODE=\"AUTO\", CHAM_GD=F, MAILLAGE_1=A, MAILLAGE_2=B)",
+            "MA = AFFE_MODELE(MAILLAGE=A, AFFE=_F(TOUT=\"OUI\", PHENOMENE=\"MECANIQUE\", MODELISATION=\"D_PLAN\"))\n\
+             P = PROJ_CHAMP(METHODE=\"AUTO\", CHAM_GD=F, MODELE_1=MA, MAILLAGE_2=B)",
+        )],
+    );
+    assert!(outcome.error.is_none(), "{:?}\n{report}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (34, 0), "{report}");
+    // MODELE_2 on B's cells: NOUT, in no cell of the model, gets no value.
+    let (outcome, _) = edited(
+        "modele2",
+        &[(
+            "P = PROJ_CHAMP(METHODE=\"AUTO\", CHAM_GD=F, MAILLAGE_1=A, MAILLAGE_2=B)",
+            "MB = AFFE_MODELE(MAILLAGE=B, AFFE=_F(TOUT=\"OUI\", PHENOMENE=\"MECANIQUE\", MODELISATION=\"D_PLAN\"))\n\
+             P = PROJ_CHAMP(METHODE=\"AUTO\", CHAM_GD=F, MAILLAGE_1=A, MODELE_2=MB)",
+        )],
+    );
+    let error = outcome.error.expect("NOUT has no value").message;
+    assert!(
+        error.contains("the field has no component X1 at node N17"),
+        "{error}"
+    );
+}
+
 #[test]
 fn a_node_left_without_value_is_not_tested() {
     // DISTANCE_MAX without PROL_ZERO: NOUT has no value, which TEST_RESU
