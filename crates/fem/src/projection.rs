@@ -907,6 +907,52 @@ mod tests {
     }
 
     #[test]
+    fn later_occurrences_override_except_far_nodes_asked_before() {
+        // Two unit cubes 3 apart; node 0 inside the first, node 1 beside
+        // the second.
+        let cube = |x0: f64| -> Vec<[f64; 3]> {
+            crate::refcells::HEXA8
+                .iter()
+                .map(|r| [x0 + (r[0] + 1.) / 2., (r[1] + 1.) / 2., (r[2] + 1.) / 2.])
+                .collect()
+        };
+        let mut coords = cube(0.0);
+        coords.extend(cube(3.0));
+        let m1 = mesh(
+            coords,
+            vec![
+                (CellType::HEXA8, (0..8).collect()),
+                (CellType::HEXA8, (8..16).collect()),
+            ],
+        );
+        let target = mesh(
+            vec![[0.5, 0.5, 0.5], [2.5, 0.5, 0.5]],
+            vec![(CellType::POI1, vec![0])],
+        );
+        let mut c = Correspondence::new(&target, Options::default());
+        c.add(&m1, &[CellId(0)], &target, &[NodeId(0)], Case::Volume)
+            .unwrap();
+        assert_eq!(c.links[0].as_ref().unwrap().cell, CellId(0));
+        // Occurrence 2 on the second cube: node 0, asked before and 250 %
+        // outside, stays with occurrence 1; node 1 (new) is taken, far.
+        c.add(
+            &m1,
+            &[CellId(1)],
+            &target,
+            &[NodeId(0), NodeId(1)],
+            Case::Volume,
+        )
+        .unwrap();
+        assert_eq!(c.links[0].as_ref().unwrap().cell, CellId(0));
+        assert_eq!(c.links[1].as_ref().unwrap().cell, CellId(1));
+        assert_eq!(c.far.len(), 1);
+        // A third occurrence on the first cube takes node 0 again (inside).
+        c.add(&m1, &[CellId(0)], &target, &[NodeId(0)], Case::Volume)
+            .unwrap();
+        assert_eq!(c.links[0].as_ref().unwrap().cell, CellId(0));
+    }
+
+    #[test]
     fn missing_values_follow_cnsprj() {
         let link = Link {
             cell: CellId(0),
