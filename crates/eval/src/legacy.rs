@@ -115,12 +115,6 @@ pub const DROPPED: &[(&str, &str, &str, &str)] = &[
         "the database is always saved in the same format",
     ),
     ("FIN", "*", "PROC0", "no longer exists"),
-    (
-        "PROJ_CHAMP",
-        "*",
-        "PROL_ZERO",
-        "values outside the source mesh are now always zero",
-    ),
     ("AFFE_MODELE", "*", "VERIF", "the model is always verified"),
     (
         "NUME_DDL",
@@ -297,6 +291,9 @@ pub(crate) fn transform_level(
     if cmd == "SECH_NON_LINE" && factor.is_empty() {
         sech_non_line(path, given, diags);
     }
+    if cmd == "PROJ_CHAMP" && factor.is_empty() {
+        proj_champ_prol_zero(path, given, diags);
+    }
     if cmd == "LIRE_FONCTION" && factor.is_empty() && !known("SEPAR") {
         lire_fonction_separ(path, given, diags);
     }
@@ -415,6 +412,34 @@ fn sech_non_line(path: &str, given: &mut [Given], diags: &mut Vec<Diagnostic>) {
             );
             rename_inside(&g.value, "STATIONNAIRE", "STAT");
         }
+    }
+}
+
+/// `PROJ_CHAMP(PROL_ZERO=...)`, translated by code_aster 17's
+/// `compat_syntax`: 'OUI' becomes `PROL_VALE=0.0` (every node of the target
+/// mesh without a projected value gets 0), 'NON' (the default) is dropped.
+fn proj_champ_prol_zero(path: &str, given: &mut Vec<Given>, diags: &mut Vec<Diagnostic>) {
+    let Some(i) = given.iter().position(|g| g.name == "PROL_ZERO") else {
+        return;
+    };
+    let g = given.remove(i);
+    if g.value.to_string() == "OUI" && !given.iter().any(|g| g.name == "PROL_VALE") {
+        warn(
+            diags,
+            &g,
+            format!("`{path}/PROL_ZERO='OUI'` is compatibility syntax: now PROL_VALE=0.0"),
+        );
+        given.push(Given {
+            name: "PROL_VALE".into(),
+            span: g.span,
+            value: Value::Float(0.0),
+        });
+    } else {
+        warn(
+            diags,
+            &g,
+            format!("`{path}/PROL_ZERO` is compatibility syntax: 'NON' is the default"),
+        );
     }
 }
 

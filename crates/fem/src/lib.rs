@@ -43,6 +43,7 @@ pub mod ordering;
 mod parallel;
 pub mod post;
 pub mod progress;
+pub mod projection;
 pub mod refcells;
 pub mod scenes;
 pub mod shape;

@@ -107,20 +107,97 @@ fn selected_fields<'r>(
         .collect())
 }
 
-fn result_steps(
-    ex: &Executor,
-    occ: &Keywords,
-    result: &EvolResult,
-) -> Result<Vec<ResultStep>, ExecError> {
+/// The nodes and cells a `RESU` occurrence restricts the MED fields to
+/// (`irtopo`): the nodes of `GROUP_NO`/`NOEUD` and of the cells of
+/// `GROUP_MA`/`MAILLE`; the cells of `GROUP_MA`/`MAILLE` (`None`: every
+/// cell, as with `GROUP_NO` only). `None` without these keywords.
+type Selection = (Vec<bool>, Option<Vec<bool>>);
+
+fn selection(occ: &Keywords, mesh: &Mesh) -> Result<Option<Selection>, ExecError> {
+    if !["GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"]
+        .iter()
+        .any(|k| occ.contains(k))
+    {
+        return Ok(None);
+    }
+    let err = |e: String| ExecError::new(format!("IMPR_RESU/RESU: {e}"));
+    let mut nodes = vec![false; mesh.node_count()];
+    for n in crate::select::nodes(occ, mesh, "").map_err(err)? {
+        nodes[n.0 as usize] = true;
+    }
+    let cells = if occ.contains("GROUP_MA") || occ.contains("MAILLE") {
+        let mut cells = vec![false; mesh.cells.len()];
+        for c in crate::select::cells(occ, mesh, "").map_err(err)? {
+            cells[c.0 as usize] = true;
+        }
+        Some(cells)
+    } else {
+        None
+    };
+    Ok(Some((nodes, cells)))
+}
+
+/// The entities code_aster writes a field on in MED (`ircmpn`, `ircmpe`):
+/// a nodal field on the selected nodes that carry one of the written
+/// components (`wanted`, all when empty); an element field, when cells are
+/// selected, on those that carry it. `None`: every entity.
+fn written_on(
+    f: &Field,
+    wanted: &[&str],
+    mesh: &Mesh,
+    sel: Option<&Selection>,
+) -> Option<Vec<bool>> {
+    match f {
+        Field::Nodal(f) => {
+            let cols: Vec<usize> = (0..f.components.len())
+                .filter(|&c| wanted.is_empty() || wanted.contains(&f.components[c].as_str()))
+                .collect();
+            let mut mask = vec![false; mesh.node_count()];
+            for (n, vals) in &f.values {
+                let i = n.0 as usize;
+                let selected = sel.is_none_or(|(nodes, _)| nodes.get(i).copied().unwrap_or(false));
+                if selected
+                    && cols
+                        .iter()
+                        .any(|&c| vals.get(c).copied().flatten().is_some())
+                {
+                    if let Some(m) = mask.get_mut(i) {
+                        *m = true;
+                    }
+                }
+            }
+            Some(mask)
+        }
+        Field::Elem(f) => {
+            let cells = sel?.1.as_ref()?;
+            let mut mask = vec![false; mesh.cells.len()];
+            for (c, pts) in &f.values {
+                let i = c.0 as usize;
+                if !pts.is_empty() && cells.get(i).copied().unwrap_or(false) {
+                    mask[i] = true;
+                }
+            }
+            Some(mask)
+        }
+    }
+}
+
+/// The MED steps of a `RESU/RESULTAT` occurrence, with the entities each
+/// field is written on (parallel to each step's fields).
+type StepsOn = Vec<(ResultStep, Vec<Option<Vec<bool>>>)>;
+
+fn result_steps(ex: &Executor, occ: &Keywords, result: &EvolResult) -> Result<StepsOn, ExecError> {
     let mesh = ex.mesh_by_id(result.mesh)?;
     let wanted: Vec<&str> = occ
         .simple("NOM_CMP")
         .iter()
         .filter_map(|v| v.as_str())
         .collect();
+    let sel = selection(occ, &mesh)?;
     let mut out = Vec::new();
     for (s, selected) in selected_fields(ex, occ, result)? {
         let mut fields = Vec::new();
+        let mut masks = Vec::new();
         for (name, f) in selected {
             // Fields without components (VARI_ELGA of ELAS) have nothing to write.
             if f.components().is_empty() {
@@ -130,15 +207,21 @@ fn result_steps(
             // NOM_CMP (FORMAT='MED'): only these components are written; a
             // field with none of them is left out, as code_aster does.
             match only_components(field, &wanted) {
-                Some(field) => fields.push(field),
+                Some(field) => {
+                    fields.push(field);
+                    masks.push(written_on(f, &wanted, &mesh, sel.as_ref()));
+                }
                 None => continue,
             }
         }
-        out.push(ResultStep {
-            nume_ordre: s.nume_ordre as i32,
-            inst: s.inst,
-            fields,
-        });
+        out.push((
+            ResultStep {
+                nume_ordre: s.nume_ordre as i32,
+                inst: s.inst,
+                fields,
+            },
+            masks,
+        ));
     }
     Ok(out)
 }
@@ -228,7 +311,10 @@ fn impr_resu_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             let allowed = match format {
                 "RESULTAT" => key != "TYPE_CHAM",
                 "GMSH" => key == "NOM_CMP" || key == "TYPE_CHAM",
-                "MED" => key == "NOM_CMP",
+                "MED" => matches!(
+                    key,
+                    "NOM_CMP" | "GROUP_NO" | "NOEUD" | "GROUP_MA" | "MAILLE"
+                ),
                 _ => false,
             };
             if !allowed && occ.keyword(key).is_some_and(|k| !k.defaulted) {
@@ -291,26 +377,50 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     let mut mesh: Option<(Arc<Mesh>, String)> = None;
     let mut steps: Vec<ResultStep> = Vec::new();
+    // The entities each written field covers (MED profiles).
+    let mut entities = aster_mesh::Entities::new();
+    // One MED file holds one mesh here: the mesh of every occurrence.
+    let mut same_mesh = |m: &Arc<Mesh>, name: &str, at: &Keywords, key: &str| {
+        match &mesh {
+            None => {
+                mesh = Some((m.clone(), name.to_string()));
+                Ok(())
+            }
+            // DEFI_GROUP(reuse=) makes a new mesh concept with the same nodes.
+            Some((first, _))
+                if Arc::ptr_eq(first, m)
+                    || (first.coords == m.coords && first.cells == m.cells) =>
+            {
+                Ok(())
+            }
+            Some(_) => Err(ex.unsupported(
+                "IMPR_RESU/FORMAT='MED' with fields of several meshes in one file",
+                at.keyword(key).map(|k| k.span).unwrap_or(call.span),
+            )),
+        }
+    };
     for occ in kw.factor("RESU") {
         if let Some(m) = occ.concept("MAILLAGE") {
-            mesh = Some((ex.mesh(m)?, m.name.clone()));
+            same_mesh(&ex.mesh(m)?, &m.name, occ, "MAILLAGE")?;
         }
         if let Some(r) = occ.concept("RESULTAT") {
             let result = ex.result(r)?;
-            if mesh.is_none() {
-                mesh = Some((ex.mesh_by_id(result.mesh)?, r.name.clone()));
-            }
-            let mut s = result_steps(ex, occ, &result)?;
+            same_mesh(&ex.mesh_by_id(result.mesh)?, &r.name, occ, "RESULTAT")?;
+            let s = result_steps(ex, occ, &result)?;
             // Several results in one file: prefix field names with the result's.
-            for st in &mut s {
-                for f in &mut st.fields {
+            for (mut st, masks) in s {
+                for (f, mask) in st.fields.iter_mut().zip(masks) {
                     f.name = format!("{}{}", r.name, f.name);
+                    if let Some(mask) = mask {
+                        entities.insert((st.nume_ordre, f.name.clone()), mask);
+                    }
                 }
+                steps.push(st);
             }
-            steps.extend(s);
         }
         if let Some(c) = occ.concept("CHAM_GD") {
-            let m = ex.single_mesh()?;
+            let m = ex.field_mesh(c)?;
+            same_mesh(&m, &c.name, occ, "CHAM_GD")?;
             let f = ex.field(c)?;
             let field = to_mesh_field(&c.name, &f, &m);
             let cmps: Vec<&str> = occ
@@ -318,15 +428,16 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 .iter()
                 .filter_map(|c| c.as_str())
                 .collect();
+            let sel = selection(occ, &m)?;
+            if let Some(mask) = written_on(&f, &cmps, &m, sel.as_ref()) {
+                entities.insert((0, c.name.clone()), mask);
+            }
             let fields = only_components(field, &cmps).into_iter().collect();
             steps.push(ResultStep {
                 nume_ordre: 0,
                 inst: 0.0,
                 fields,
             });
-            if mesh.is_none() {
-                mesh = Some((m, c.name.clone()));
-            }
         }
     }
     let Some((mesh, name)) = mesh else {
@@ -344,7 +455,7 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                     None => merged.push(s),
                 }
             }
-            aster_mesh::write_med(&path, &mesh, &name, &merged)
+            aster_mesh::write_med_on(&path, &mesh, &name, &merged, &entities)
                 .map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
         }
         _ => {

@@ -7,4 +7,4 @@ mod write;
 
 pub use fields::read_med_steps;
 pub use read::{read_med, read_med_bytes, read_med_named, MedInfo};
-pub use write::{med_bytes, write_med};
+pub use write::{med_bytes, med_bytes_on, write_med, write_med_on, Entities};

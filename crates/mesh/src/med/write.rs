@@ -8,7 +8,9 @@
 //!   (the "no step" computation step) / `NOE/{COO,FAM[,NOM]}`, `MAI/<type>/{NOD,FAM[,NOM]}`;
 //! - `FAS/<mesh>/{FAMILLE_ZERO, NOEUD/FAM_<n>_…, ELEME/FAM_-<n>_…}`;
 //! - `CHA/<field>` {MAI, NCO, NOM, TYP, UNI, UNT} / `<dt><it>` {NDT, NOR, PDT, RDT, ROR}
-//!   / `NOE` or `MAI.<type>` / `MED_NO_PROFILE_INTERNAL` {GAU, NBR, NGA} / `CO`.
+//!   / `NOE` or `MAI.<type>` {PFL} / `MED_NO_PROFILE_INTERNAL` or the profile {GAU, NBR, NGA} / `CO`;
+//! - `PROFILS/PROFIL__<n>` {NBR} / `PFL`: the entities (1-based) a field
+//!   written on some entities only covers ([`write_med_on`]).
 //!
 //! Families: one family per distinct combination of groups. Families
 //! 1…G (and −1…−G) come first, each naming one group and holding no
@@ -36,7 +38,28 @@ pub fn write_med(
     mesh_name: &str,
     steps: &[ResultStep],
 ) -> Result<(), MeshError> {
-    let bytes = med_bytes(mesh, mesh_name, steps)?;
+    write_med_on(path, mesh, mesh_name, steps, &Entities::new())
+}
+
+/// The entities each field is written on, by (NUME_ORDRE, field name):
+/// `true` for a node (nodal fields) or cell (cell and Gauss-point fields)
+/// written. A field not listed is written on every entity.
+pub type Entities = HashMap<(i32, String), Vec<bool>>;
+
+/// [`write_med`] with fields written on some entities only, through MED
+/// profiles as code_aster's `IMPR_RESU` writes them (`ircmpn`/`ircmpf`):
+/// a field on fewer entities than the support has gets a profile
+/// `PROFIL__00000001`, `PROFIL__00000002`… (1-based entity numbers, per
+/// cell type for cells), an identical list reusing the profile already
+/// written; a field on no entity of a cell type is not written there.
+pub fn write_med_on(
+    path: &Path,
+    mesh: &Mesh,
+    mesh_name: &str,
+    steps: &[ResultStep],
+    entities: &Entities,
+) -> Result<(), MeshError> {
+    let bytes = med_bytes_on(mesh, mesh_name, steps, entities)?;
     std::fs::write(path, bytes).map_err(|e| MeshError::Write {
         path: path.to_path_buf(),
         message: e.to_string(),
@@ -45,6 +68,16 @@ pub fn write_med(
 
 /// The MED file image of a mesh and fields.
 pub fn med_bytes(mesh: &Mesh, mesh_name: &str, steps: &[ResultStep]) -> Result<Vec<u8>, MeshError> {
+    med_bytes_on(mesh, mesh_name, steps, &Entities::new())
+}
+
+/// [`med_bytes`] with the entities of [`write_med_on`].
+pub fn med_bytes_on(
+    mesh: &Mesh,
+    mesh_name: &str,
+    steps: &[ResultStep],
+    entities: &Entities,
+) -> Result<Vec<u8>, MeshError> {
     if mesh_name.is_empty() || mesh_name.len() > 64 {
         return Err(MeshError::Operation(format!(
             "MED mesh name `{mesh_name}` must have 1 to 64 characters"
@@ -233,11 +266,28 @@ pub fn med_bytes(mesh: &Mesh, mesh_name: &str, steps: &[ResultStep]) -> Result<V
         Node::group("FAS", vec![], vec![fas_mesh]),
     ];
     if !steps.is_empty() {
+        let mut profiles = Vec::new();
         root.push(Node::group(
             "CHA",
             vec![],
-            fields(mesh, mesh_name, &by_type, steps)?,
+            fields(mesh, mesh_name, &by_type, steps, entities, &mut profiles)?,
         ));
+        if !profiles.is_empty() {
+            root.push(Node::group(
+                "PROFILS",
+                vec![],
+                profiles
+                    .iter()
+                    .map(|(name, ids)| {
+                        Node::group(
+                            name,
+                            vec![WAttr::int("NBR", ids.len() as i32)],
+                            vec![Node::i32s("PFL", vec![], ids)],
+                        )
+                    })
+                    .collect(),
+            ));
+        }
     }
     Ok(to_bytes(&Node::group("", vec![], root)))
 }
@@ -299,11 +349,24 @@ fn families<'a>(
     (numbers, fams)
 }
 
+/// The profile of a list of 1-based entity numbers: an identical one
+/// already written, else a new `PROFIL__<8 digits>` (`ircmpf`).
+fn profile_name(profiles: &mut Vec<(String, Vec<i32>)>, ids: Vec<i32>) -> String {
+    if let Some((name, _)) = profiles.iter().find(|(_, p)| *p == ids) {
+        return name.clone();
+    }
+    let name = format!("PROFIL__{:08}", profiles.len() + 1);
+    profiles.push((name.clone(), ids));
+    name
+}
+
 fn fields(
     mesh: &Mesh,
     mesh_name: &str,
     by_type: &[(CellType, Vec<usize>)],
     steps: &[ResultStep],
+    entities: &Entities,
+    profiles: &mut Vec<(String, Vec<i32>)>,
 ) -> Result<Vec<Node>, MeshError> {
     // Field name → its steps.
     let mut order: Vec<&str> = Vec::new();
@@ -338,6 +401,8 @@ fn fields(
                     WAttr::int("NGA", 1),
                 ]
             };
+            let written = entities.get(&(s.nume_ordre, name.to_string()));
+            let kept = |e: usize| written.is_none_or(|w| w.get(e).copied().unwrap_or(false));
             // Values "no interlace": component after component.
             let no_interlace = |values: &[f64], entities: &mut dyn Iterator<Item = usize>| {
                 let ids: Vec<usize> = entities.collect();
@@ -349,16 +414,28 @@ fn fields(
             };
             match f.location {
                 FieldLocation::Nodes => {
-                    let (count, co) = no_interlace(&f.values, &mut (0..mesh.node_count()));
-                    supports.push(Node::group(
-                        "NOE",
-                        vec![WAttr::string("GAU", ""), WAttr::string("PFL", NO_PROFILE)],
-                        vec![Node::group(
-                            NO_PROFILE,
-                            profile_attrs(count),
-                            vec![Node::f64s("CO", vec![], &co)],
-                        )],
-                    ));
+                    let (count, co) =
+                        no_interlace(&f.values, &mut (0..mesh.node_count()).filter(|&e| kept(e)));
+                    if count > 0 {
+                        let pfl = if count == mesh.node_count() {
+                            NO_PROFILE.to_string()
+                        } else {
+                            let ids = (0..mesh.node_count())
+                                .filter(|&e| kept(e))
+                                .map(|e| e as i32 + 1)
+                                .collect();
+                            profile_name(profiles, ids)
+                        };
+                        supports.push(Node::group(
+                            "NOE",
+                            vec![WAttr::string("GAU", ""), WAttr::string("PFL", &pfl)],
+                            vec![Node::group(
+                                &pfl,
+                                profile_attrs(count),
+                                vec![Node::f64s("CO", vec![], &co)],
+                            )],
+                        ));
+                    }
                 }
                 _ => {
                     let values = f.cell_values().unwrap_or_default();
@@ -369,12 +446,24 @@ fn fields(
                                 continue;
                             }
                         }
-                        let (count, co) = no_interlace(&values, &mut cells.iter().copied());
+                        let local: Vec<usize> =
+                            (0..cells.len()).filter(|&i| kept(cells[i])).collect();
+                        if local.is_empty() {
+                            continue;
+                        }
+                        let (count, co) =
+                            no_interlace(&values, &mut local.iter().map(|&i| cells[i]));
+                        let pfl = if count == cells.len() {
+                            NO_PROFILE.to_string()
+                        } else {
+                            let ids = local.iter().map(|&i| i as i32 + 1).collect();
+                            profile_name(profiles, ids)
+                        };
                         supports.push(Node::group(
                             &format!("MAI.{}", med_name(*ty)),
-                            vec![WAttr::string("GAU", ""), WAttr::string("PFL", NO_PROFILE)],
+                            vec![WAttr::string("GAU", ""), WAttr::string("PFL", &pfl)],
                             vec![Node::group(
-                                NO_PROFILE,
+                                &pfl,
                                 profile_attrs(count),
                                 vec![Node::f64s("CO", vec![], &co)],
                             )],

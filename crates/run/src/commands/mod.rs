@@ -17,6 +17,7 @@ pub(crate) mod post;
 pub(crate) mod post_elem;
 pub(crate) mod post_erreur;
 pub(crate) mod pressure;
+pub(crate) mod proj_champ;
 pub(crate) mod results;
 pub(crate) mod substructure;
 pub(crate) mod tables;
@@ -229,6 +230,11 @@ pub static COMMANDS: &[Command] = &[
         name: "POST_RELEVE_T",
         run: post::post_releve_t,
         support: post::POST_RELEVE_T,
+    },
+    Command {
+        name: "PROJ_CHAMP",
+        run: proj_champ::proj_champ,
+        support: proj_champ::PROJ_CHAMP,
     },
     Command {
         name: "IMPR_TABLE",
