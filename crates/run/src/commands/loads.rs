@@ -354,9 +354,21 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "LIAISON_DDL/DDL",
         "LIAISON_DDL/COEF_MULT",
         "LIAISON_DDL/COEF_IMPO",
+        "LIAISON_MAIL",
+        "LIAISON_MAIL/GROUP_MA_MAIT",
+        "LIAISON_MAIL/GROUP_MA_ESCL",
+        "LIAISON_MAIL/GROUP_NO_ESCL",
+        "LIAISON_MAIL/DISTANCE_MAX",
+        "LIAISON_MAIL/DISTANCE_ALARME",
+        "LIAISON_MAIL/TYPE_RACCORD",
+        "LIAISON_MAIL/ELIM_MULT",
+        "LIAISON_MAIL/DDL",
     ],
     values: &[
         Values::new("DDL_IMPO/BLOCAGE", &["DEPLACEMENT", "ROTATION"]),
+        // LIAISON_MAIL: solids only (crate::commands::liaison_mail).
+        Values::new("LIAISON_MAIL/TYPE_RACCORD", &["MASSIF"]),
+        Values::new("LIAISON_MAIL/DDL", &["DX", "DY", "DZ"]),
         Values::new("LIAISON_ELEM/OPTION", &["3D_POU"]),
     ],
     hints: &[],
@@ -534,6 +546,12 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         let rhs = occ.f64("COEF_IMPO").unwrap_or(0.0);
         load.relations.push(LinearRelation { terms, rhs });
     }
+    load.relations.extend(super::liaison_mail::relations(
+        kw.factor("LIAISON_MAIL"),
+        &model,
+        &mesh,
+        &carried,
+    )?);
     store_result(ex, call, Concept::MechanicalLoad(Rc::new(load)))
 }
 

@@ -10,6 +10,7 @@ pub(crate) mod elementary;
 pub(crate) mod fracture;
 pub(crate) mod functions;
 pub(crate) mod inspect;
+pub(crate) mod liaison_mail;
 pub(crate) mod loads;
 pub(crate) mod loads_f;
 pub(crate) mod mesh;
