@@ -4,54 +4,20 @@
 //! interpolation error of X**2 on QUAD4 and HEXA8 cells as code_aster's
 //! Gauss points integrate it; and the located refusals around them.
 
-use std::path::{Path, PathBuf};
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod scene;
 
-fn temp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-elga-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// Runs a case; returns the outcome and the report text.
-fn run(case: &Path, out: &Path) -> (aster_run::program::Outcome, String) {
-    let prepared = aster_run::program::prepare(case, None, out).unwrap();
-    std::fs::create_dir_all(out).unwrap();
-    let report = out.join("report.txt");
-    let file = std::fs::File::create(&report).unwrap();
-    let outcome = aster_run::program::run(&prepared, Box::new(file));
-    let text = std::fs::read_to_string(&report).unwrap_or_default();
-    (outcome, text)
-}
+use scene::{root, run_case as run, temp};
 
 /// The scene with its command file edited (`from` → `to`, each present),
 /// run in a directory of its own: the error message.
 fn refused(name: &str, edits: &[(&str, &str)]) -> String {
-    let dir = temp(name);
-    let mut text = std::fs::read_to_string(root().join("comm/elga_error_norm.comm")).unwrap();
-    for (from, to) in edits {
-        assert!(text.contains(from), "{from}");
-        text = text.replacen(from, to, 1);
-    }
-    std::fs::write(dir.join("case.comm"), text).unwrap();
-    for mesh in ["elga_square.mail", "elga_block.mail"] {
-        std::fs::copy(root().join("comm").join(mesh), dir.join(mesh)).unwrap();
-    }
-    std::fs::write(
-        dir.join("case.export"),
-        "F comm case.comm D 1\nF mail elga_square.mail D 20\nF mail elga_block.mail D 21\n",
+    scene::refused_export(
+        "elga_error_norm.comm",
+        &["elga_square.mail", "elga_block.mail"],
+        edits,
+        &format!("elga-{name}"),
     )
-    .unwrap();
-    let (outcome, report) = run(&dir.join("case.export"), &dir.join("out"));
-    let _ = std::fs::remove_dir_all(&dir);
-    outcome
-        .error
-        .unwrap_or_else(|| panic!("{name}: not refused\n{report}"))
-        .message
 }
 
 #[test]

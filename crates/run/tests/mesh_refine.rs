@@ -8,21 +8,10 @@
 use aster_run::preflight::{self, Preflight};
 use aster_run::RunOptions;
 use aster_syntax::CodeMap;
-use std::path::{Path, PathBuf};
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod scene;
 
-fn run(case: &Path, out: &Path) -> (aster_run::program::Outcome, String) {
-    let prepared = aster_run::program::prepare(case, None, out).unwrap();
-    std::fs::create_dir_all(out).unwrap();
-    let report = out.join("report.txt");
-    let file = std::fs::File::create(&report).unwrap();
-    let outcome = aster_run::program::run(&prepared, Box::new(file));
-    let text = std::fs::read_to_string(&report).unwrap_or_default();
-    (outcome, text)
-}
+use scene::{root, run_case as run};
 
 #[test]
 fn refined_meshes_counts_exact_solutions_and_convergence() {

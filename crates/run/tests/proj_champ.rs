@@ -6,53 +6,20 @@
 //! results projected at several instants, the MED profiles read back, and
 //! the located refusals.
 
-use std::path::{Path, PathBuf};
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod scene;
 
-fn temp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-proj-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use scene::{root, run_case as run, temp};
 
-fn run(case: &Path, out: &Path) -> (aster_run::program::Outcome, String) {
-    let prepared = aster_run::program::prepare(case, None, out).unwrap();
-    std::fs::create_dir_all(out).unwrap();
-    let report = out.join("report.txt");
-    let file = std::fs::File::create(&report).unwrap();
-    let outcome = aster_run::program::run(&prepared, Box::new(file));
-    let text = std::fs::read_to_string(&report).unwrap_or_default();
-    (outcome, text)
-}
-
-/// The 2D scene with its command file edited (`from` → `to`, each
-/// present): the error it stops on.
+/// The scene with its command file edited (`from` → `to`, each present),
+/// run in a directory of its own: the error message.
 fn refused(name: &str, edits: &[(&str, &str)]) -> String {
-    let dir = temp(name);
-    let mut text = std::fs::read_to_string(root().join("comm/proj_champ_2d.comm")).unwrap();
-    for (from, to) in edits {
-        assert!(text.contains(from), "{from}");
-        text = text.replacen(from, to, 1);
-    }
-    std::fs::write(dir.join("case.comm"), text).unwrap();
-    for mesh in ["proj_quad8.mail", "proj_quad4.mail"] {
-        std::fs::copy(root().join("comm").join(mesh), dir.join(mesh)).unwrap();
-    }
-    std::fs::write(
-        dir.join("case.export"),
-        "F comm case.comm D 1\nF mail proj_quad8.mail D 20\nF mail proj_quad4.mail D 21\n",
+    scene::refused_export(
+        "proj_champ_2d.comm",
+        &["proj_quad8.mail", "proj_quad4.mail"],
+        edits,
+        &format!("proj-{name}"),
     )
-    .unwrap();
-    let (outcome, report) = run(&dir.join("case.export"), &dir.join("out"));
-    let _ = std::fs::remove_dir_all(&dir);
-    outcome
-        .error
-        .unwrap_or_else(|| panic!("{name}: not refused\n{report}"))
-        .message
 }
 
 /// A dataset of a MED file as integers.
