@@ -149,3 +149,36 @@ fn whole_commands_and_moved_keywords_are_rebuilt() {
     assert_eq!((code, diff.as_str()), (0, ""));
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// PROJ_CHAMP/PROL_ZERO, translated by code_aster 17's compat_syntax:
+/// 'OUI' becomes PROL_VALE=0.0, 'NON' (the default) goes; the migrated
+/// file checks clean.
+#[test]
+fn proj_champ_prol_zero_becomes_prol_vale() {
+    let d = std::env::temp_dir().join(format!("aster-migrate-{}-prolzero", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let p = d.join("study.comm");
+    std::fs::write(
+        &p,
+        "DEBUT(CODE='OUI')\n\
+         MA = LIRE_MAILLAGE(FORMAT='MED')\n\
+         MB = LIRE_MAILLAGE(FORMAT='MED', UNITE=21)\n\
+         CH = CREA_CHAMP(TYPE_CHAM='NOEU_TEMP_R', OPERATION='AFFE', MAILLAGE=MA,\n\
+                         AFFE=_F(TOUT='OUI', NOM_CMP='TEMP', VALE=1.0))\n\
+         P1 = PROJ_CHAMP(CHAM_GD=CH, MAILLAGE_1=MA, MAILLAGE_2=MB, PROL_ZERO='OUI')\n\
+         P2 = PROJ_CHAMP(CHAM_GD=CH, MAILLAGE_1=MA, MAILLAGE_2=MB, PROL_ZERO='NON')\n\
+         FIN()\n",
+    )
+    .unwrap();
+    let path = p.to_str().unwrap();
+    let (code, _, err) = aster(&["migrate", "--write", path]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&p).unwrap();
+    assert!(text.contains("MAILLAGE_2=MB, PROL_VALE=0.0)"), "{text}");
+    assert!(!text.contains("PROL_ZERO"), "{text}");
+    let (code, out, err) = aster(&["check", "--format", "json", path]);
+    assert_eq!(code, 0, "{out}{err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(v["diagnostics"], serde_json::json!([]), "{text}\n{out}");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -10,6 +10,7 @@
 //! | --- | --- |
 //! | `` `P/OLD` is legacy syntax: now NEW `` | the keyword renamed |
 //! | `` `P/NAME` no longer exists and is ignored `` | the argument removed |
+//! | `` `PROJ_CHAMP/PROL_ZERO='OUI'` is compatibility syntax `` | `PROL_VALE=0.0` (`'NON'`: removed) |
 //! | `` `P/KW`: legacy value 'OLD' is now 'NEW' `` | the string replaced |
 //! | `DEBUT/CODE=_F(...)` | `CODE='OUI'` |
 //! | `DETRUIRE/CONCEPT=_F(NOM=X)` | `NOM=X` |
@@ -365,6 +366,15 @@ fn legacy_edit(message: &str, arg: &KwArg, ctx: &Context) -> Option<Vec<Edit>> {
         return None;
     }
     if subj == arg.name && message.contains(" no longer exists and is ignored") {
+        return Some(vec![removal(source, start, end)]);
+    }
+    // PROJ_CHAMP/PROL_ZERO (code_aster 17's compat_syntax): 'OUI' is
+    // PROL_VALE=0.0, 'NON' the default.
+    if arg.name == "PROL_ZERO" && message.contains("is compatibility syntax: now PROL_VALE=0.0") {
+        return replace("PROL_VALE=0.0".into());
+    }
+    if arg.name == "PROL_ZERO" && message.contains("is compatibility syntax: 'NON' is the default")
+    {
         return Some(vec![removal(source, start, end)]);
     }
     if let Some((_, values)) = message.split_once(": legacy value '") {

@@ -4,7 +4,6 @@
 //! interpolation error of X**2 on QUAD4 and HEXA8 cells as code_aster's
 //! Gauss points integrate it; and the located refusals around them.
 
-
 mod scene;
 
 use scene::{root, run_case as run, temp};

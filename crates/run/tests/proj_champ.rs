@@ -6,7 +6,6 @@
 //! results projected at several instants, the MED profiles read back, and
 //! the located refusals.
 
-
 mod scene;
 
 use scene::{root, run_case as run, temp};
