@@ -136,6 +136,12 @@ pub struct Correspondence {
     dala: f64,
 }
 
+/// Whether a point is in a simplex: its barycentric coordinates if so.
+type InsideTest = fn(&Mesh, &[NodeId; 4], [f64; 3]) -> Option<[f64; 4]>;
+
+/// The nearest point of a simplex: its barycentrics and squared distance.
+type NearestPoint = fn(&Mesh, &[NodeId; 4], [f64; 3]) -> ([f64; 4], f64);
+
 /// A sub-simplex of a cell: its vertices (cell-local indices) and its cell.
 struct Simplex {
     cell: CellId,
@@ -318,21 +324,7 @@ impl Correspondence {
         simplices: &[Simplex],
         p: [f64; 3],
     ) -> Option<(usize, [f64; 4])> {
-        for (i, s) in simplices.iter().enumerate() {
-            if let Some(b) = inside_tetra(mesh, &s.nodes, p) {
-                return Some((i, b));
-            }
-        }
-        let mut dmin = if self.l_dmax { self.dmax } else { f64::MAX };
-        let mut best = None;
-        for (i, s) in simplices.iter().enumerate() {
-            let (b, d2) = nearest_tetra(mesh, &s.nodes, p);
-            if d2.sqrt() < dmin {
-                dmin = d2.sqrt();
-                best = Some((i, b));
-            }
-        }
-        best
+        self.locate(mesh, simplices, p, inside_tetra, nearest_tetra)
     }
 
     /// pj2dap: the first triangle containing p (in x, y), else the nearest.
@@ -342,15 +334,29 @@ impl Correspondence {
         simplices: &[Simplex],
         p: [f64; 3],
     ) -> Option<(usize, [f64; 4])> {
+        self.locate(mesh, simplices, p, inside_triangle2d, nearest_triangle2d)
+    }
+
+    /// The first simplex containing p (`inside`), else the nearest one
+    /// (`nearest`: barycentrics and squared distance), within DISTANCE_MAX
+    /// when given: pj3dap's and pj2dap's common search.
+    fn locate(
+        &self,
+        mesh: &Mesh,
+        simplices: &[Simplex],
+        p: [f64; 3],
+        inside: InsideTest,
+        nearest: NearestPoint,
+    ) -> Option<(usize, [f64; 4])> {
         for (i, s) in simplices.iter().enumerate() {
-            if let Some(b) = inside_triangle2d(mesh, &s.nodes, p) {
+            if let Some(b) = inside(mesh, &s.nodes, p) {
                 return Some((i, b));
             }
         }
         let mut dmin = if self.l_dmax { self.dmax } else { f64::MAX };
         let mut best = None;
         for (i, s) in simplices.iter().enumerate() {
-            let (b, d2) = nearest_triangle2d(mesh, &s.nodes, p);
+            let (b, d2) = nearest(mesh, &s.nodes, p);
             if d2.sqrt() < dmin {
                 dmin = d2.sqrt();
                 best = Some((i, b));
