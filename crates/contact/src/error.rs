@@ -45,6 +45,9 @@ pub enum ContactError {
     Solver(String),
     /// The contact rows are redundant: the Schur complement is singular.
     SingularContact { point: usize },
+    /// No slave face of a Nitsche zone lies on a volume cell (code_aster's
+    /// `MeshPairing::buildSlaveCellsVolu` map is empty: CONTACT1_3).
+    SlaveWithoutVolume { zone: usize },
 }
 
 impl fmt::Display for ContactError {
@@ -102,6 +105,10 @@ impl fmt::Display for ContactError {
                 f,
                 "contact point {point} is redundant with other active points (singular contact matrix); \
                  remove duplicated slave nodes with SANS_GROUP_NO or use ALGO_CONT='PENALISATION'"
+            ),
+            ContactError::SlaveWithoutVolume { zone } => write!(
+                f,
+                "GROUP_MA_ESCL: no slave cell of zone {zone} lies on a volume cell (its nodes are held by the cell itself only, or it is inserted inside the volume): the Nitsche method needs the cell under each contact cell; either the volume cells under the skin are missing or the skin group is inside a volume"
             ),
         }
     }

@@ -12,7 +12,8 @@
 //!   Lagrangian method (`mortar_lagrangian::pairs_of`, `mortar_point`).
 //! - **The slave volume cell**: the cell other than the face itself that
 //!   holds every node of a slave face (code_aster keeps it when exactly
-//!   two cells do; otherwise `CONTACT1_3`).
+//!   two cells do; a zone none of whose slave cells has one stops with
+//!   `CONTACT1_3`, as code_aster).
 //! - **Stress** (`evalStressNodes`, `evalStress`): at each node of the
 //!   slave face, σ = 2μ ε + λ tr(ε) I with ε the symmetric gradient of the
 //!   volume cell's total displacement on its initial coordinates and
@@ -152,6 +153,16 @@ impl MortarNitsche {
         }
         let mut volumes = Vec::new();
         for (zi, z) in geometry.zones.iter().enumerate() {
+            // code_aster maps a slave cell to the other cell when exactly
+            // two cells hold its nodes, and stops (CONTACT1_3) only when
+            // the map of the zone is empty.
+            if !z
+                .slave
+                .iter()
+                .any(|s| holders(&cells_of_node, &s.nodes).len() == 2)
+            {
+                return Err(ContactError::SlaveWithoutVolume { zone: zi + 1 });
+            }
             let mut vz = Vec::new();
             for s in &z.slave {
                 vz.push(volume_of(mesh, &cells_of_node, s).ok_or_else(|| {
@@ -163,7 +174,7 @@ impl MortarNitsche {
                     ContactError::Invalid {
                         keyword: "GROUP_MA_ESCL",
                         message: format!(
-                            "the slave face of nodes {} of zone {} has no single QUAD4, QUAD8, QUAD9, TRIA3 or TRIA6 cell under it: the Nitsche method takes the stress of that cell (code_aster's CONTACT1_3)",
+                            "the slave face of nodes {} of zone {} has no single QUAD4, QUAD8, QUAD9, TRIA3 or TRIA6 cell under it: the Nitsche method takes the stress of that cell",
                             names.join(", "),
                             zi + 1
                         ),

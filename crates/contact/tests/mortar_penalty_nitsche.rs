@@ -14,8 +14,9 @@ use aster_contact::mortar_lagrangian::{InitialState, MortarZoneDef};
 use aster_contact::mortar_nitsche::{MortarNitsche, NitscheMaterial};
 use aster_contact::mortar_penalty::MortarPenalty;
 use aster_contact::scenes::{two_plates_mesh, two_plates_shear_problem};
+use aster_contact::ContactError;
 use aster_fem::{Comp, Dof, ForceSource, StaticNonLinear};
-use aster_mesh::{Cell, CellType, Mesh, NodeId};
+use aster_mesh::{Cell, CellId, CellType, Group, Mesh, NodeId};
 
 /// DY of the upper plate's bottom-left node A and the lower plate's
 /// top-left node E at t = 1.
@@ -106,7 +107,8 @@ fn nitsche_plates_meet_exactly_whatever_the_coefficient() {
 fn nitsche_needs_one_volume_cell_under_each_slave_face() {
     let mut mesh = two_plates_mesh(3, 2).unwrap();
     // A second segment on the first slave face: three cells hold its
-    // nodes, code_aster finds no volume cell for it (CONTACT1_3).
+    // nodes, code_aster finds no volume cell for it (its map skips the
+    // face; only a zone with no face mapped stops with CONTACT1_3).
     let ab = mesh.group_ma("AB").unwrap().members[0];
     let copy = Cell {
         ty: CellType::SEG2,
@@ -121,6 +123,19 @@ fn nitsche_needs_one_volume_cell_under_each_slave_face() {
     let err = MortarNitsche::new(&[MortarZoneDef::new("EF", "AB")], &mesh, false, material)
         .unwrap_err()
         .to_string();
-    assert!(err.contains("CONTACT1_3"), "{err}");
+    assert!(err.contains("has no single QUAD4"), "{err}");
     assert!(MortarPenalty::new(&[MortarZoneDef::new("EF", "AB")], &mesh, false).is_ok());
+    // The copy itself as the slave: no face of the zone has one volume
+    // cell (CONTACT1_3).
+    let dup = mesh.cells.len() - 1;
+    mesh.groups_ma.push(Group {
+        name: "DUPS".into(),
+        members: vec![CellId(dup as u32)],
+    });
+    let err = MortarNitsche::new(&[MortarZoneDef::new("EF", "DUPS")], &mesh, false, material)
+        .unwrap_err();
+    assert!(
+        matches!(err, ContactError::SlaveWithoutVolume { zone: 1 }),
+        "{err}"
+    );
 }

@@ -408,9 +408,19 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             young: 1.0,
             poisson: 0.0,
         };
-        for (occ, z) in kw.factor("ZONE").iter().zip(&zones) {
-            if let Err(e) = MortarNitsche::new(std::slice::from_ref(z), &mesh, axis, any) {
-                return Err(ex.kw_error("DEFI_CONT/ZONE", occ, "GROUP_MA_ESCL", e.to_string()));
+        for (i, (occ, z)) in kw.factor("ZONE").iter().zip(&zones).enumerate() {
+            match MortarNitsche::new(std::slice::from_ref(z), &mesh, axis, any) {
+                Ok(_) => {}
+                Err(aster_contact::ContactError::SlaveWithoutVolume { .. }) => {
+                    // The zone alone was checked: name it by its occurrence.
+                    let e = aster_contact::ContactError::SlaveWithoutVolume { zone: i + 1 };
+                    return Err(ex
+                        .kw_error("DEFI_CONT/ZONE", occ, "GROUP_MA_ESCL", e.to_string())
+                        .with_id("CONTACT1_3"));
+                }
+                Err(e) => {
+                    return Err(ex.kw_error("DEFI_CONT/ZONE", occ, "GROUP_MA_ESCL", e.to_string()))
+                }
             }
         }
     }

@@ -3,7 +3,8 @@
 //! `err.id_message` — CONTACT_93 when a checked contact zone with
 //! STOP_INTERP='OUI' interpenetrates, MECANONLINE9_7 when Newton runs out
 //! of iterations with no step cutting left — and an error whose id aster
-//! does not know is not caught: it stops the run, saying so.
+//! does not know is not caught: it stops the run, saying so. CONTACT1_3
+//! when a Nitsche slave skin has no volume cell under it.
 
 use std::path::{Path, PathBuf};
 
@@ -28,6 +29,20 @@ fn the_handlers_see_code_aster_message_ids() {
     );
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (4, 0));
+}
+
+/// comm/nitsche_no_volume.comm: DEFI_CONT stops with CONTACT1_3 on a
+/// Nitsche slave skin with no volume cell under it (cells of its own, or
+/// inside the volume), and accepts the skin of a volume.
+#[test]
+fn a_nitsche_skin_without_volume_raises_contact1_3() {
+    let outcome = run(
+        &root().join("comm/nitsche_no_volume.comm"),
+        &root().join("comm/nitsche_no_volume.mail"),
+        "nitsche",
+    );
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (5, 0));
 }
 
 #[test]
