@@ -100,11 +100,11 @@ impl Formula {
         self.eval_in(&ordered, sink)
     }
 
-    pub(crate) fn call(&self, args: &[Value]) -> Result<Value, String> {
-        self.call_in(args, &mut NoCommands)
-    }
-
-    fn call_in(&self, args: &[Value], sink: &mut dyn CommandSink) -> Result<Value, String> {
+    pub(crate) fn call_in(
+        &self,
+        args: &[Value],
+        sink: &mut dyn CommandSink,
+    ) -> Result<Value, String> {
         if args.len() != self.params.len() {
             return Err(format!(
                 "formula `{}` takes {} parameter(s) ({}), {} given",

@@ -1618,7 +1618,11 @@ impl<'a> Interp<'a> {
                     }
                     vals.push(a.value);
                 }
-                formula.call(&vals).or_else(|m| py_err(span, m))
+                // The function concepts it calls (`F(INST)`, a nappe
+                // `N(AMOR, FREQ)`) are answered by this program's sink.
+                formula
+                    .call_in(&vals, &mut *self.sink)
+                    .or_else(|m| py_err(span, m))
             }
             Value::Unknown => Ok(Value::Unknown),
             // A function concept is callable: `F(0.5)` evaluates it.

@@ -274,6 +274,9 @@ fn offset(ex: &Executor, occ: &Keywords, name: &str) -> Result<Offset, ExecError
         Function::Formula { .. } => Err(ExecError::new(format!(
             "not supported yet: DEFI_CONTACT/ZONE/{name} given by a FORMULE"
         ))),
+        Function::Nappe(_) => Err(ExecError::new(format!(
+            "DEFI_CONTACT/ZONE/{name}: a nappe (DEFI_NAPPE) is a function of two parameters; a function of one coordinate or of INST is expected"
+        ))),
     }
 }
 

@@ -379,6 +379,10 @@ fn multiplier(
                     })
             }))
         }
+        Function::Nappe(n) => Err(ExecError::new(format!(
+            "FONC_MULT: a nappe (DEFI_NAPPE) is a function of two parameters ({}, {}); a function of INST is expected",
+            n.parameter, n.parameter_fonc
+        ))),
     }
 }
 

@@ -1,5 +1,6 @@
-//! Real functions of one parameter: `DEFI_FONCTION` (tabulated, with
-//! interpolation and extension rules), `DEFI_CONSTANTE`, and `FORMULE`.
+//! Real functions: `DEFI_FONCTION` (tabulated, with interpolation and
+//! extension rules), `DEFI_CONSTANTE`, `FORMULE`, and `DEFI_NAPPE`'s
+//! functions of two parameters ([`Nappe`]).
 
 use std::fmt;
 
@@ -274,6 +275,127 @@ pub enum Function {
         parameters: Vec<String>,
         eval: std::rc::Rc<FormulaFn>,
     },
+    /// `DEFI_NAPPE`: a function of two parameters.
+    Nappe(Nappe),
+}
+
+/// `DEFI_NAPPE`: one function of `parameter_fonc` per value of
+/// `parameter`, evaluated as code_aster's `t_nappe.__call__`
+/// (`code_aster/Objects/function_py.py`): the two functions around the
+/// first parameter's value, each at the second, interpolated between
+/// (`INTERPOL`) or prolonged beyond the ends (`PROL_GAUCHE`,
+/// `PROL_DROITE`); within 1e-6 of an interval's length of a tabulated
+/// parameter, that parameter's function.
+#[derive(Clone, Debug)]
+pub struct Nappe {
+    /// `NOM_PARA`.
+    pub parameter: String,
+    /// `NOM_PARA_FONC`, or the functions' own parameter.
+    pub parameter_fonc: String,
+    /// `PARA`, increasing.
+    pub para: Vec<f64>,
+    /// The function of each `PARA` value.
+    pub functions: Vec<Function>,
+    pub scale_x: Scale,
+    pub scale_y: Scale,
+    pub left: Extension,
+    pub right: Extension,
+}
+
+/// code_aster's `interp` (function_py.py): between (x1, y1) and (x2, y2),
+/// the end value within `tol` × the interval of an end.
+fn interp_pair(
+    (sx, sy): (Scale, Scale),
+    val: f64,
+    (x1, x2): (f64, f64),
+    (y1, y2): (f64, f64),
+) -> Result<f64, FunctionError> {
+    let tol = 1.0e-6;
+    if (val - x1).abs() < tol * (x2 - x1).abs() {
+        return Ok(y1);
+    }
+    if (val - x2).abs() < tol * (x2 - x1).abs() {
+        return Ok(y2);
+    }
+    if sx == Scale::Log && (x1 <= 0.0 || x2 <= 0.0 || val <= 0.0) {
+        return Err(FunctionError::LogOfNonPositive {
+            axis: "parameter",
+            value: x1.min(x2).min(val),
+        });
+    }
+    if sy == Scale::Log && (y1 <= 0.0 || y2 <= 0.0) {
+        return Err(FunctionError::LogOfNonPositive {
+            axis: "value",
+            value: y1.min(y2),
+        });
+    }
+    let t = (sx.forward(val) - sx.forward(x1)) / (sx.forward(x2) - sx.forward(x1));
+    Ok(sy.backward(sy.forward(y1) + t * (sy.forward(y2) - sy.forward(y1))))
+}
+
+impl Nappe {
+    /// The value at `p` (`NOM_PARA`) and `x` (`NOM_PARA_FONC`).
+    pub fn eval(&self, p: f64, x: f64) -> Result<f64, FunctionError> {
+        let n = self.para.len();
+        let tol = 1.0e-6;
+        let out = |side: &'static str| FunctionError::OutOfRange {
+            parameter: self.parameter.clone(),
+            at: p,
+            min: self.para[0],
+            max: self.para[n - 1],
+            side,
+        };
+        let f = |i: usize| self.functions[i].eval(x);
+        let scales = (self.scale_x, self.scale_y);
+        if n == 1 {
+            let p0 = self.para[0];
+            let prolonged = |e: Extension| matches!(e, Extension::Constant | Extension::Linear);
+            return if (p - p0).abs() <= tol * p0.abs()
+                || (p > p0 && prolonged(self.right))
+                || (p < p0 && prolonged(self.left))
+            {
+                f(0)
+            } else {
+                Err(out(if p > p0 { "DROITE" } else { "GAUCHE" }))
+            };
+        }
+        if p.is_nan() {
+            return Err(FunctionError::Formula(format!(
+                "the nappe of {} is evaluated at NaN",
+                self.parameter
+            )));
+        }
+        // numpy's searchsorted (side='left').
+        let i = self.para.partition_point(|v| *v < p);
+        if i == 0 {
+            let (p0, p1) = (self.para[0], self.para[1]);
+            if ((p - p0) / (p1 - p0)).abs() <= tol {
+                return f(0);
+            }
+            return match self.left {
+                Extension::Excluded => Err(out("GAUCHE")),
+                Extension::Constant => f(0),
+                Extension::Linear => interp_pair(scales, p, (p0, p1), (f(0)?, f(1)?)),
+            };
+        }
+        if i == n {
+            let (pn, pm) = (self.para[n - 1], self.para[n - 2]);
+            if ((p - pn) / (pn - pm)).abs() <= tol {
+                return f(n - 1);
+            }
+            return match self.right {
+                Extension::Excluded => Err(out("DROITE")),
+                Extension::Constant => f(n - 1),
+                Extension::Linear => interp_pair(scales, p, (pn, pm), (f(n - 1)?, f(n - 2)?)),
+            };
+        }
+        interp_pair(
+            scales,
+            p,
+            (self.para[i - 1], self.para[i]),
+            (f(i - 1)?, f(i)?),
+        )
+    }
 }
 
 impl fmt::Debug for Function {
@@ -284,6 +406,11 @@ impl fmt::Debug for Function {
             }
             Function::Tabulated(t) => write!(f, "{t:?}"),
             Function::Formula { parameters, .. } => write!(f, "Formula({parameters:?})"),
+            Function::Nappe(n) => write!(
+                f,
+                "Nappe({}, {}: {:?})",
+                n.parameter, n.parameter_fonc, n.para
+            ),
         }
     }
 }
@@ -299,6 +426,10 @@ impl Function {
                 let args: Vec<(String, f64)> = parameters.iter().map(|p| (p.clone(), x)).collect();
                 eval(&args).map_err(FunctionError::Formula)
             }
+            Function::Nappe(n) => Err(FunctionError::Formula(format!(
+                "a nappe is a function of two parameters ({}, {}): one value given",
+                n.parameter, n.parameter_fonc
+            ))),
         }
     }
 }
@@ -310,6 +441,7 @@ impl Function {
             Function::Constant { .. } => Vec::new(),
             Function::Tabulated(t) => vec![t.parameter.as_str()],
             Function::Formula { parameters, .. } => parameters.iter().map(String::as_str).collect(),
+            Function::Nappe(n) => vec![n.parameter.as_str(), n.parameter_fonc.as_str()],
         }
     }
 
@@ -339,6 +471,7 @@ impl Function {
                     .collect::<Result<_, _>>()?;
                 eval(&named).map_err(FunctionError::Formula)
             }
+            Function::Nappe(n) => n.eval(value_of(&n.parameter)?, value_of(&n.parameter_fonc)?),
         }
     }
 }
@@ -411,6 +544,61 @@ mod tests {
             Tabulated::from_pairs("X", &[0.0, 1.0, 0.0, 2.0]),
             Err(FunctionError::NotIncreasing { .. })
         ));
+    }
+
+    /// A nappe of AMOR with a function of FREQ per value: f_a(x) = a x.
+    fn nappe(left: Extension, right: Extension) -> Nappe {
+        let line = |a: f64| {
+            Function::Tabulated(Tabulated::from_pairs("FREQ", &[0.0, 0.0, 10.0, 10.0 * a]).unwrap())
+        };
+        Nappe {
+            parameter: "AMOR".into(),
+            parameter_fonc: "FREQ".into(),
+            para: vec![1.0, 2.0, 4.0],
+            functions: vec![line(1.0), line(2.0), line(4.0)],
+            scale_x: Scale::Linear,
+            scale_y: Scale::Linear,
+            left,
+            right,
+        }
+    }
+
+    #[test]
+    fn nappe_interpolates_between_its_functions() {
+        let n = nappe(Extension::Excluded, Extension::Excluded);
+        // f_a(x) = a x, linear in a between the tabulated values.
+        assert_eq!(n.eval(2.0, 5.0).unwrap(), 10.0);
+        assert!((n.eval(3.0, 5.0).unwrap() - 15.0).abs() < 1e-12);
+        assert!((n.eval(1.5, 2.0).unwrap() - 3.0).abs() < 1e-12);
+        // within 1e-6 of the interval of an end: that end's function.
+        assert_eq!(n.eval(1.0 - 1e-7, 5.0).unwrap(), 5.0);
+        let err = n.eval(0.5, 5.0).unwrap_err().to_string();
+        assert!(
+            err.contains("AMOR=0.5") && err.contains("PROL_GAUCHE"),
+            "{err}"
+        );
+        assert!(n
+            .eval(5.0, 5.0)
+            .unwrap_err()
+            .to_string()
+            .contains("PROL_DROITE"));
+        let m = nappe(Extension::Constant, Extension::Linear);
+        assert_eq!(m.eval(0.5, 5.0).unwrap(), 5.0);
+        // prolonged along the last interval: 5 x at AMOR = 5.
+        assert!((m.eval(5.0, 5.0).unwrap() - 25.0).abs() < 1e-12);
+        let f = Function::Nappe(m);
+        assert_eq!(f.parameters(), vec!["AMOR", "FREQ"]);
+        assert!((f.eval_named(&[("FREQ", 2.0), ("AMOR", 3.0)]).unwrap() - 6.0).abs() < 1e-12);
+        assert!(f.eval(1.0).is_err());
+    }
+
+    #[test]
+    fn nappe_log_interpolation_between_functions() {
+        let mut n = nappe(Extension::Excluded, Extension::Excluded);
+        n.scale_x = Scale::Log;
+        n.scale_y = Scale::Log;
+        // log-log between (1, 5) and (2, 10) at FREQ = 5: y = 5 a.
+        assert!((n.eval(1.5, 5.0).unwrap() - 7.5).abs() < 1e-12);
     }
 
     #[test]

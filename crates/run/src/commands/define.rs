@@ -867,6 +867,199 @@ pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     store_result(ex, call, Concept::Function(Rc::new(Function::Tabulated(f))))
 }
 
+/// What DEFI_NAPPE reads (`crate::support`).
+pub(crate) const DEFI_NAPPE: Support = Support::keywords(&[
+    "NOM_PARA",
+    "NOM_RESU",
+    "PARA",
+    "FONCTION",
+    "NOM_PARA_FONC",
+    "DEFI_FONCTION",
+    "DEFI_FONCTION/VALE",
+    "DEFI_FONCTION/INTERPOL",
+    "DEFI_FONCTION/PROL_DROITE",
+    "DEFI_FONCTION/PROL_GAUCHE",
+    "INTERPOL",
+    "PROL_DROITE",
+    "PROL_GAUCHE",
+    "INFO",
+    "VERIF",
+    "TITRE",
+]);
+
+/// `INTERPOL` (one value: both axes) of a keyword set.
+fn scales(ex: &Executor, cmd: &str, kw: &Keywords) -> Result<(Scale, Scale), ExecError> {
+    let names: Vec<&str> = kw
+        .simple("INTERPOL")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    let scale = |name: &str| {
+        Scale::from_keyword(name).ok_or_else(|| {
+            ex.kw_error(
+                cmd,
+                kw,
+                "INTERPOL",
+                format!("unknown interpolation `{name}` (LIN, LOG)"),
+            )
+        })
+    };
+    Ok(match names.as_slice() {
+        [] => (Scale::Linear, Scale::Linear),
+        [one] => (scale(one)?, scale(one)?),
+        [x, y, ..] => (scale(x)?, scale(y)?),
+    })
+}
+
+/// `PROL_GAUCHE`, `PROL_DROITE` of a keyword set (default EXCLU).
+fn extensions(
+    ex: &Executor,
+    cmd: &str,
+    kw: &Keywords,
+) -> Result<(Extension, Extension), ExecError> {
+    let side = |key: &str| match kw.str(key) {
+        None => Ok(Extension::Excluded),
+        Some(v) => Extension::from_keyword(v).ok_or_else(|| {
+            ex.kw_error(
+                cmd,
+                kw,
+                key,
+                format!("unknown extension `{v}` (EXCLU, CONSTANT, LINEAIRE)"),
+            )
+        }),
+    };
+    Ok((side("PROL_GAUCHE")?, side("PROL_DROITE")?))
+}
+
+/// DEFI_NAPPE (code_aster's op0004): a function of `NOM_PARA` and
+/// `NOM_PARA_FONC`, one function of the second per `PARA` value, given
+/// as `FONCTION` (DEFI_FONCTION or DEFI_CONSTANTE concepts, their
+/// parameter the second one) or as `DEFI_FONCTION` occurrences (`VALE`,
+/// its abscissae sorted as code_aster does). `VERIF='CROISSANT'`: `PARA`
+/// must increase strictly; otherwise the values are sorted, each with its
+/// function (`ordonn`).
+pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    use crate::function::Nappe;
+    const CMD: &str = "DEFI_NAPPE";
+    let kw = &call.keywords;
+    let para = reals(kw, "PARA");
+    let mut functions: Vec<Function> = Vec::new();
+    let parameter_fonc;
+    if kw.contains("FONCTION") {
+        let mut own: Option<String> = None;
+        for s in kw.simple("FONCTION") {
+            let c = s
+                .as_concept()
+                .ok_or_else(|| ex.kw_error(CMD, kw, "FONCTION", "functions are required"))?;
+            let f = ex.function(c)?;
+            match &*f {
+                Function::Tabulated(t) => {
+                    if own.as_ref().is_some_and(|p| *p != t.parameter) {
+                        return Err(ex.kw_error(
+                            CMD,
+                            kw,
+                            "FONCTION",
+                            format!(
+                                "the functions must share their parameter: {} is a function of {}, the first of {}",
+                                c.name,
+                                t.parameter,
+                                own.unwrap_or_default()
+                            ),
+                        ));
+                    }
+                    own = Some(t.parameter.clone());
+                }
+                Function::Constant { .. } => {}
+                _ => {
+                    return Err(ex.kw_error(
+                        CMD,
+                        kw,
+                        "FONCTION",
+                        format!(
+                            "{} is not a tabulated function (DEFI_FONCTION, DEFI_CONSTANTE)",
+                            c.name
+                        ),
+                    ))
+                }
+            }
+            functions.push((*f).clone());
+        }
+        parameter_fonc = own.unwrap_or_else(|| "TOUTPARA".to_string());
+    } else {
+        parameter_fonc = kw.str("NOM_PARA_FONC").unwrap_or("TOUTPARA").to_string();
+        for occ in kw.factor("DEFI_FONCTION") {
+            let vale = reals(occ, "VALE");
+            if vale.len() % 2 != 0 {
+                return Err(ex.kw_error(
+                    CMD,
+                    occ,
+                    "VALE",
+                    format!(
+                        "VALE must hold (abscissa, value) pairs, but it has {} numbers",
+                        vale.len()
+                    ),
+                ));
+            }
+            // code_aster sorts a function's points by abscissa (uttrif).
+            let mut points: Vec<(f64, f64)> = vale.chunks(2).map(|p| (p[0], p[1])).collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let (xs, ys): (Vec<f64>, Vec<f64>) = points.into_iter().unzip();
+            let mut t = Tabulated::new(&parameter_fonc, xs, ys)
+                .map_err(|e| ex.kw_error(CMD, occ, "VALE", e.to_string()))?;
+            (t.scale_x, t.scale_y) = scales(ex, CMD, occ)?;
+            (t.left, t.right) = extensions(ex, CMD, occ)?;
+            functions.push(Function::Tabulated(t));
+        }
+    }
+    if para.len() != functions.len() || para.is_empty() {
+        return Err(ex.kw_error(
+            CMD,
+            kw,
+            "PARA",
+            format!(
+                "{} parameter values for {} functions (UTILITAI8_3: one function per value)",
+                para.len(),
+                functions.len()
+            ),
+        ));
+    }
+    let mut pairs: Vec<(f64, Function)> = para.into_iter().zip(functions).collect();
+    if kw.str("VERIF") == Some("CROISSANT") {
+        if pairs.windows(2).any(|w| !(w[0].0 < w[1].0)) {
+            return Err(ex.kw_error(
+                CMD,
+                kw,
+                "PARA",
+                "PARA must increase strictly (VERIF='CROISSANT', UTILITAI2_72)",
+            ));
+        }
+    } else {
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    if pairs.windows(2).any(|w| w[0].0 == w[1].0) {
+        return Err(ex.kw_error(
+            CMD,
+            kw,
+            "PARA",
+            "two functions for the same parameter value",
+        ));
+    }
+    let (scale_x, scale_y) = scales(ex, CMD, kw)?;
+    let (left, right) = extensions(ex, CMD, kw)?;
+    let (para, functions) = pairs.into_iter().unzip();
+    let nappe = Nappe {
+        parameter: kw.str("NOM_PARA").unwrap_or("TOUTPARA").to_string(),
+        parameter_fonc,
+        para,
+        functions,
+        scale_x,
+        scale_y,
+        left,
+        right,
+    };
+    store_result(ex, call, Concept::Function(Rc::new(Function::Nappe(nappe))))
+}
+
 /// What DEFI_CONSTANTE reads (`crate::support`).
 pub(crate) const DEFI_CONSTANTE: Support = Support::keywords(&["VALE", "NOM_RESU", "TITRE"]);
 

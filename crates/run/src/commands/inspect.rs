@@ -609,13 +609,52 @@ pub fn test_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .iter()
             .filter_map(|s| s.as_f64())
             .collect();
+        // A nappe: NOM_PARA names both parameters, in any order (code_aster
+        // puts the values back in the nappe's order).
+        if let crate::function::Function::Nappe(n) = &*f {
+            let names: Vec<&str> = occ
+                .simple("NOM_PARA")
+                .iter()
+                .filter_map(|s| s.as_str())
+                .collect();
+            let value_of = |p: &str| {
+                names
+                    .iter()
+                    .position(|n| *n == p)
+                    .and_then(|i| paras.get(i).copied())
+            };
+            let (Some(p), Some(x), 2, 2) = (
+                value_of(&n.parameter),
+                value_of(&n.parameter_fonc),
+                names.len(),
+                paras.len(),
+            ) else {
+                return Err(ex.kw_error(
+                    cmd,
+                    occ,
+                    "VALE_PARA",
+                    format!(
+                        "`{}` is a nappe of {} and {}: give NOM_PARA=('{}', '{}') and the two values in VALE_PARA",
+                        f_ref.name, n.parameter, n.parameter_fonc, n.parameter, n.parameter_fonc
+                    ),
+                ));
+            };
+            let value = n.eval(p, x).map_err(|e| {
+                ExecError::new(format!("{cmd}: `{}` at ({p}, {x}): {e}", f_ref.name))
+            })?;
+            let header: Vec<(&str, String)> = vec![
+                ("FONCTION", f_ref.name.clone()),
+                ("NOM_PARA", names.join(", ")),
+                (
+                    "VALE_PARA",
+                    format!("{}, {}", py_repr(paras[0]), py_repr(paras[1])),
+                ),
+            ];
+            run_checks(ex, &header, occ, value)?;
+            continue;
+        }
         let [x] = paras.as_slice() else {
-            return Err(ex.kw_error(
-                cmd,
-                occ,
-                "VALE_PARA",
-                "one abscissa is needed (functions of two parameters are not supported yet)",
-            ));
+            return Err(ex.kw_error(cmd, occ, "VALE_PARA", "one abscissa is needed"));
         };
         let value = f
             .eval(*x)

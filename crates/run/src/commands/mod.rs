@@ -148,6 +148,11 @@ pub static COMMANDS: &[Command] = &[
         support: define::DEFI_FONCTION,
     },
     Command {
+        name: "DEFI_NAPPE",
+        run: define::defi_nappe,
+        support: define::DEFI_NAPPE,
+    },
+    Command {
         name: "DEFI_CONSTANTE",
         run: define::defi_constante,
         support: define::DEFI_CONSTANTE,
