@@ -50,6 +50,10 @@
 //!   here freezes them (normals, master points) over an iteration — the
 //!   converged state is the same, code_aster's analytic tangent only
 //!   changes the path.
+//! - MECA_NON_LINE's line search (`ForceSource::evaluate_on_pairing`):
+//!   the trial residuals keep the pairs, normals and master points of the
+//!   iteration's start, the gaps on the trial positions
+//!   (`mortar_point::on_current`), as code_aster 17 does not pair again.
 
 use std::collections::HashMap;
 

@@ -37,6 +37,10 @@
 //!   at active points, the normal and master point frozen over an
 //!   iteration (code_aster's `peMatr_ct_pr` differentiates them too: the
 //!   path differs, the converged state does not).
+//! - **Line search** (MECA_NON_LINE's `RECH_LINEAIRE`,
+//!   `ForceSource::evaluate_on_pairing`): the trial residuals on the pairs,
+//!   normals and master points of the iteration's start, the gaps on the
+//!   trial positions (`mortar_point::on_current`).
 
 use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::Mesh;

@@ -24,6 +24,13 @@
 //! settled. A source may then ask for another Newton solve
 //! ([`ForceSource::after_convergence`]: code_aster's fixed-point loops on
 //! the contact statuses, the friction threshold or the geometry).
+//!
+//! With `NewtonOptions::line_search` (MECA_NON_LINE's `RECH_LINEAIRE`),
+//! each correction after the prediction is scaled by the ρ of
+//! [`crate::line_search`] on the projected residual of the whole system,
+//! the sources evaluated on the pairing of the iteration's start
+//! ([`ForceSource::evaluate_on_pairing`]), as code_aster 17's
+//! `SecantLineSearch`.
 
 use crate::behaviour::PlasticCells;
 use crate::error::FemError;
