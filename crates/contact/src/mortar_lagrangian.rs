@@ -50,6 +50,10 @@
 //!   here freezes them (normals, master points) over an iteration — the
 //!   converged state is the same, code_aster's analytic tangent only
 //!   changes the path.
+//! - MECA_NON_LINE's line search (`ForceSource::evaluate_on_pairing`):
+//!   the trial residuals keep the pairs, normals and master points of the
+//!   iteration's start, the gaps on the trial positions
+//!   (`mortar_point::on_current`), as code_aster 17 does not pair again.
 
 use std::collections::HashMap;
 
@@ -663,24 +667,30 @@ pub(crate) fn pairs_of(zones: &[MZone], x: &[[f64; 3]]) -> Vec<Pair> {
     out
 }
 
-impl ForceSource for MortarLagrangian {
-    fn name(&self) -> String {
-        "DEFI_CONT (mortar Lagrangian contact)".into()
-    }
-
-    fn unknowns(&self) -> usize {
-        self.lagr.len()
-    }
-
-    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
-        self.resi_geom.begin(state);
-        Ok(())
-    }
-
-    fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
+impl MortarLagrangian {
+    /// The residual and tangent at `state` (code_aster's `laVect_ct_pr`,
+    /// `laMatr_ct_pr`), paired on `pairing`'s positions when given (a
+    /// trial of MECA_NON_LINE's line search: the pairs, slave normals and
+    /// master points of the iteration's start, `mortar_point::on_current`),
+    /// else on the current ones. The tangent of a trial is not meaningful
+    /// (the line search uses the residual only).
+    fn contribution(
+        &mut self,
+        pairing: Option<&State>,
+        state: &State,
+        own: &[f64],
+    ) -> Result<Contribution, FemError> {
         let x = current_positions(state);
         let x0 = &state.mesh.coords;
-        let pairs = self.pairs(&x);
+        let xp_owned;
+        let xp: &[[f64; 3]] = match pairing {
+            Some(p) => {
+                xp_owned = current_positions(p);
+                &xp_owned
+            }
+            None => &x,
+        };
+        let pairs = self.pairs(xp);
         let mut c = Contribution {
             forces: Vec::new(),
             own_residual: vec![0.0; self.lagr.len()],
@@ -696,8 +706,8 @@ impl ForceSource for MortarLagrangian {
             if seen.insert((p.zone, p.slave)) {
                 paired_cells += 1;
             }
-            let sp = s.positions(&x);
-            let mp = m.positions(&x);
+            let sp = s.positions(xp);
+            let mp = m.positions(xp);
             let s0 = s.positions(x0);
             let hf = z.h[p.slave];
             let gamma = z.coef / hf;
@@ -709,6 +719,17 @@ impl ForceSource for MortarLagrangian {
                 crate::mortar_point::points_3d(s, m, &p.poly, &sp, &mp, &s0)?
             } else {
                 crate::mortar_point::points(s, m, p.xi, &sp, &mp, &s0, self.axis)?
+            };
+            // A trial of the line search: normals and master points of the
+            // pairing configuration, gaps on the current positions.
+            let points: Vec<_> = if pairing.is_some() {
+                let (sc, mc) = (s.positions(&x), m.positions(&x));
+                points
+                    .into_iter()
+                    .map(|pt| crate::mortar_point::on_current(pt, s, m, &sc, &mc))
+                    .collect()
+            } else {
+                points
             };
             for pt in points {
                 // The multipliers' functions (P1 on a face's corners).
@@ -813,8 +834,38 @@ impl ForceSource for MortarLagrangian {
         for k in 0..self.lagr.len() {
             c.tangent.push((Unknown::Own(k), Unknown::Own(k), 0.0));
         }
-        self.paired = paired_cells;
+        if pairing.is_none() {
+            self.paired = paired_cells;
+        }
         Ok(c)
+    }
+}
+
+impl ForceSource for MortarLagrangian {
+    fn name(&self) -> String {
+        "DEFI_CONT (mortar Lagrangian contact)".into()
+    }
+
+    fn unknowns(&self) -> usize {
+        self.lagr.len()
+    }
+
+    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        self.resi_geom.begin(state);
+        Ok(())
+    }
+
+    fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
+        self.contribution(None, state, own)
+    }
+
+    fn evaluate_on_pairing(
+        &mut self,
+        pairing: &State,
+        state: &State,
+        own: &[f64],
+    ) -> Result<Contribution, FemError> {
+        self.contribution(Some(pairing), state, own)
     }
 
     fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {

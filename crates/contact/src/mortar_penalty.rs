@@ -37,6 +37,10 @@
 //!   at active points, the normal and master point frozen over an
 //!   iteration (code_aster's `peMatr_ct_pr` differentiates them too: the
 //!   path differs, the converged state does not).
+//! - **Line search** (MECA_NON_LINE's `RECH_LINEAIRE`,
+//!   `ForceSource::evaluate_on_pairing`): the trial residuals on the pairs,
+//!   normals and master points of the iteration's start, the gaps on the
+//!   trial positions (`mortar_point::on_current`).
 
 use aster_fem::{Contribution, FemError, ForceSource, State, Unknown};
 use aster_mesh::Mesh;
@@ -45,7 +49,7 @@ use crate::error::ContactError;
 use crate::mortar_lagrangian::{
     pairs_3d_of, pairs_of, InitialState, MZone, MortarLagrangian, MortarZoneDef, ResiGeom,
 };
-use crate::mortar_point::{dof, jump, points, points_3d};
+use crate::mortar_point::{dof, jump, on_current, points, points_3d};
 use crate::mortar_tangent::{linearise_3d, FaceGeometry};
 use crate::shape::dot;
 use crate::source::current_positions;
@@ -133,17 +137,24 @@ impl MortarPenalty {
 impl MortarPenalty {
     /// The residual and tangent in 3D (`peVect_ct_pr`, `peMatr_ct_pr` on
     /// faces).
-    fn evaluate_3d(&mut self, state: &State) -> Result<Contribution, FemError> {
+    fn evaluate_3d(
+        &mut self,
+        pairing: Option<&State>,
+        state: &State,
+    ) -> Result<Contribution, FemError> {
         let x = current_positions(state);
+        let xp = pairing.map(current_positions);
+        let xp: &[[f64; 3]] = xp.as_deref().unwrap_or(&x);
         let x0 = &state.mesh.coords;
         let mut c = Contribution::default();
         let mut penetration = 0.0f64;
-        for p in pairs_3d_of(&self.zones, &x) {
+        for p in pairs_3d_of(&self.zones, xp) {
             let z = &self.zones[p.zone];
             let s = &z.slave[p.slave];
             let m = &z.master[p.master];
-            let sp = s.positions(&x);
-            let mp = m.positions(&x);
+            let sp = s.positions(xp);
+            let mp = m.positions(xp);
+            let (sc, mc) = (s.positions(&x), m.positions(&x));
             let s0 = s.positions(x0);
             let hf = z.h[p.slave];
             let dofs: Vec<[Option<usize>; 3]> = s
@@ -153,6 +164,10 @@ impl MortarPenalty {
                 .map(|n| [dof(state, *n, 0), dof(state, *n, 1), dof(state, *n, 2)])
                 .collect();
             for pt in points_3d(s, m, &p.poly, &sp, &mp, &s0)? {
+                let pt = match pairing {
+                    Some(_) => on_current(pt, s, m, &sc, &mc),
+                    None => pt,
+                };
                 let g = gamma(&pt.initial.shape, z.coef, hf);
                 let (h, proj) = status(g * pt.gap, self.first_pairing, z.init);
                 if !h {
@@ -194,7 +209,65 @@ impl MortarPenalty {
                 }
             }
         }
-        self.penetration = penetration;
+        if pairing.is_none() {
+            self.penetration = penetration;
+        }
+        Ok(c)
+    }
+
+    /// The residual and tangent at `state`, paired on `pairing`'s
+    /// positions when given (a trial of MECA_NON_LINE's line search: the
+    /// pairs, slave normals and master points of the iteration's start,
+    /// `mortar_point::on_current`), else on the current ones.
+    fn contribution(
+        &mut self,
+        pairing: Option<&State>,
+        state: &State,
+    ) -> Result<Contribution, FemError> {
+        if self.dim == 3 {
+            return self.evaluate_3d(pairing, state);
+        }
+        let x = current_positions(state);
+        let xp = pairing.map(current_positions);
+        let xp: &[[f64; 3]] = xp.as_deref().unwrap_or(&x);
+        let x0 = &state.mesh.coords;
+        let mut c = Contribution::default();
+        let mut penetration = 0.0f64;
+        for p in pairs_of(&self.zones, xp) {
+            let z = &self.zones[p.zone];
+            let s = &z.slave[p.slave];
+            let m = &z.master[p.master];
+            let sp = s.positions(xp);
+            let mp = m.positions(xp);
+            let (sc, mc) = (s.positions(&x), m.positions(&x));
+            let s0 = s.positions(x0);
+            let hf = z.h[p.slave];
+            for pt in points(s, m, p.xi, &sp, &mp, &s0, self.axis)? {
+                let pt = match pairing {
+                    Some(_) => on_current(pt, s, m, &sc, &mc),
+                    None => pt,
+                };
+                let g = gamma(&pt.initial.shape, z.coef, hf);
+                let (h, proj) = status(g * pt.gap, self.first_pairing, z.init);
+                if !h {
+                    continue;
+                }
+                penetration = penetration.max(-pt.gap);
+                let w = pt.w;
+                let jump = jump(state, s, m, &pt.initial.shape, &pt.master.shape, pt.ns);
+                // −w [γg]₋ n·(v_s − v_m); d/du: w γ (n·jump)(n·jump).
+                for &(i, fi) in &jump {
+                    c.forces.push((i, -w * proj * fi));
+                    for &(j, fj) in &jump {
+                        c.tangent
+                            .push((Unknown::Dof(i), Unknown::Dof(j), w * g * fi * fj));
+                    }
+                }
+            }
+        }
+        if pairing.is_none() {
+            self.penetration = penetration;
+        }
         Ok(c)
     }
 }
@@ -214,42 +287,16 @@ impl ForceSource for MortarPenalty {
     }
 
     fn evaluate(&mut self, state: &State, _own: &[f64]) -> Result<Contribution, FemError> {
-        if self.dim == 3 {
-            return self.evaluate_3d(state);
-        }
-        let x = current_positions(state);
-        let x0 = &state.mesh.coords;
-        let mut c = Contribution::default();
-        let mut penetration = 0.0f64;
-        for p in pairs_of(&self.zones, &x) {
-            let z = &self.zones[p.zone];
-            let s = &z.slave[p.slave];
-            let m = &z.master[p.master];
-            let sp = s.positions(&x);
-            let mp = m.positions(&x);
-            let s0 = s.positions(x0);
-            let hf = z.h[p.slave];
-            for pt in points(s, m, p.xi, &sp, &mp, &s0, self.axis)? {
-                let g = gamma(&pt.initial.shape, z.coef, hf);
-                let (h, proj) = status(g * pt.gap, self.first_pairing, z.init);
-                if !h {
-                    continue;
-                }
-                penetration = penetration.max(-pt.gap);
-                let w = pt.w;
-                let jump = jump(state, s, m, &pt.initial.shape, &pt.master.shape, pt.ns);
-                // −w [γg]₋ n·(v_s − v_m); d/du: w γ (n·jump)(n·jump).
-                for &(i, fi) in &jump {
-                    c.forces.push((i, -w * proj * fi));
-                    for &(j, fj) in &jump {
-                        c.tangent
-                            .push((Unknown::Dof(i), Unknown::Dof(j), w * g * fi * fj));
-                    }
-                }
-            }
-        }
-        self.penetration = penetration;
-        Ok(c)
+        self.contribution(None, state)
+    }
+
+    fn evaluate_on_pairing(
+        &mut self,
+        pairing: &State,
+        state: &State,
+        _own: &[f64],
+    ) -> Result<Contribution, FemError> {
+        self.contribution(Some(pairing), state)
     }
 
     fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {

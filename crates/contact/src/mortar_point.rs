@@ -16,6 +16,12 @@
 //!   master line is skipped.
 //! - **Jump** (`jump`): the displacement DOFs of n_s·(v_s − v_m) with
 //!   their factors.
+//! - **Pairing configuration** (`on_current`): code_aster's `projQpSl2Ma`
+//!   takes n_s and the master point on the coordinates of the last pairing
+//!   (`coor_slav_pair`, `coor_mast_pair`: the iterate at the start of the
+//!   Newton iteration) and only the gap on the current ones. Within an
+//!   iteration the two coincide; in MECA_NON_LINE's line search the trial
+//!   residuals at u + ρΔ keep the pairing, normals and master points of u.
 
 use aster_fem::{Comp, Dof, FemError, State};
 
@@ -162,6 +168,25 @@ pub(crate) fn points_3d(
         });
     }
     Ok(out)
+}
+
+/// A point found on the pairing configuration (its intersection, normal
+/// and master parametric point) carried to the current node positions
+/// `sp` (slave) and `mp` (master): the slave and master points are moved
+/// with their cells, n_s is kept, and the gap is −(x_s − x_m)·n_s on the
+/// current positions (`projQpSl2Ma`: `gapEval` on `coor_*_curr` with the
+/// pairing's `norm_slav` and `coor_qp_ma`).
+pub(crate) fn on_current(
+    mut pt: MortarPoint,
+    s: &Seg,
+    m: &Seg,
+    sp: &[[f64; 3]],
+    mp: &[[f64; 3]],
+) -> MortarPoint {
+    pt.slave = interpolate(s.kind, sp, pt.xi);
+    pt.master = interpolate(m.kind, mp, pt.master.xi);
+    pt.gap = -dot(sub(pt.slave.x, pt.master.x), pt.ns);
+    pt
 }
 
 /// The displacement DOF of node `n`'s component `c` (0: DX, 1: DY, 2: DZ).

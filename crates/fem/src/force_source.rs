@@ -24,6 +24,13 @@
 //! settled. A source may then ask for another Newton solve
 //! ([`ForceSource::after_convergence`]: code_aster's fixed-point loops on
 //! the contact statuses, the friction threshold or the geometry).
+//!
+//! With `NewtonOptions::line_search` (MECA_NON_LINE's `RECH_LINEAIRE`),
+//! each correction after the prediction is scaled by the ρ of
+//! [`crate::line_search`] on the projected residual of the whole system,
+//! the sources evaluated on the pairing of the iteration's start
+//! ([`ForceSource::evaluate_on_pairing`]), as code_aster 17's
+//! `SecantLineSearch`.
 
 use crate::behaviour::PlasticCells;
 use crate::error::FemError;
@@ -116,6 +123,25 @@ pub trait ForceSource {
     /// Forces, own equations and tangent at the current iterate.
     fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError>;
 
+    /// Forces and own equations at `state` on the pairing of `pairing`
+    /// (the iterate at the start of the Newton iteration): a trial of
+    /// MECA_NON_LINE's line search (`RECH_LINEAIRE`), which code_aster 17
+    /// evaluates without pairing again (`SecantLineSearch.compute_f` →
+    /// `getResidual`, the contact elements reading the pairing
+    /// coordinates). Only the forces and `own_residual` are used. The
+    /// default refuses: the source has no such evaluation.
+    fn evaluate_on_pairing(
+        &mut self,
+        _pairing: &State,
+        _state: &State,
+        _own: &[f64],
+    ) -> Result<Contribution, FemError> {
+        Err(FemError::Model(format!(
+            "RECH_LINEAIRE with {}: its residual on the pairing of the iteration's start is not written",
+            self.name()
+        )))
+    }
+
     /// After a Newton solve: update the statuses and the geometry the next
     /// evaluation uses; `true` when they did not change and the source's
     /// own criteria hold (the iterate may be accepted). The source may
@@ -204,6 +230,14 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     }
     fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
         (**self).evaluate(state, own)
+    }
+    fn evaluate_on_pairing(
+        &mut self,
+        pairing: &State,
+        state: &State,
+        own: &[f64],
+    ) -> Result<Contribution, FemError> {
+        (**self).evaluate_on_pairing(pairing, state, own)
     }
     fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
         (**self).after_iteration(state, own)
@@ -331,6 +365,8 @@ pub(crate) fn newton_step(
     let u_start = u.to_vec();
     let own_start = own.to_vec();
     let mut tangent: Option<Csc> = None;
+    // The equality multipliers of the last iterate (line search).
+    let mut prev_lam: Option<Vec<f64>> = None;
     let mut evaluated: Option<(Vec<f64>, Vec<crate::force_source::Contribution>)> = None;
     loop {
         // The prediction (iteration 0 of a step, or of a restart from
@@ -465,6 +501,32 @@ pub(crate) fn newton_step(
                 name(imax)
             );
         }
+        // RECH_LINEAIRE after a correction (not after the prediction:
+        // code_aster 17's `isPrediction`, iteration 0), the trial
+        // residuals on the pairing of the iteration's start.
+        let rho = match newton.line_search {
+            Some(ls) if iteration > 0 => {
+                if dynamics.is_some() {
+                    return Err(FemError::Model(
+                        "RECH_LINEAIRE with force sources under a time scheme is not supported"
+                            .into(),
+                    ));
+                }
+                let trial = Trial {
+                    model,
+                    k,
+                    map,
+                    nfree,
+                    offsets: &offsets,
+                    fext,
+                    x: &sol.x,
+                    b: &b,
+                    t,
+                };
+                line_search(&ls, &trial, sources, own, u, plastic, trace)?
+            }
+            _ => 1.0,
+        };
         solves += 1;
         iteration += 1;
         matrix_iteration += 1;
@@ -472,18 +534,25 @@ pub(crate) fn newton_step(
         crate::newton_timing::count_iteration();
         for i in 0..nd {
             if map[i] != usize::MAX {
-                u[i] += sol.x[map[i]];
+                u[i] += rho * sol.x[map[i]];
             }
         }
         for (s, o) in own.iter_mut().enumerate() {
             for (k, v) in o.iter_mut().enumerate() {
-                *v += sol.x[nfree + offsets[s] + k];
+                *v += rho * sol.x[nfree + offsets[s] + k];
             }
         }
+        // The equality multipliers: code_aster's are unknowns of the
+        // increment, moved by ρ times their correction.
         let mut lam = vec![0.0; eq.len()];
         for (kk, &r) in kept.iter().enumerate() {
-            lam[r] = sol.x[nfree + nown + kk];
+            let full = sol.x[nfree + nown + kk];
+            lam[r] = match prev_lam.as_ref() {
+                Some(p) if rho != 1.0 => p[r] + rho * (full - p[r]),
+                _ => full,
+            };
         }
+        prev_lam = Some(lam.clone());
         // The forces of the convergence test of the sources that test
         // before updating their statuses (code_aster's continuous contact).
         let mut before: Vec<Option<Contribution>> = Vec::with_capacity(sources.len());
@@ -649,6 +718,116 @@ pub(crate) fn newton_step(
             });
         }
     }
+}
+
+/// What a line-search trial needs from the Newton iteration: the solve's
+/// solution `x` and right-hand side `b` (−R at the iterate) in the
+/// system's numbering (free DOFs, then the sources' unknowns at
+/// `offsets`).
+struct Trial<'a> {
+    model: &'a Model,
+    k: &'a Csc,
+    map: &'a [usize],
+    nfree: usize,
+    offsets: &'a [usize],
+    fext: &'a [f64],
+    x: &'a [f64],
+    b: &'a [f64],
+    t: f64,
+}
+
+/// RECH_LINEAIRE with force sources (MECA_NON_LINE with a DEFI_CONT,
+/// code_aster 17's `SecantLineSearch`): ρ of the ONE search
+/// ([`crate::line_search`]) on
+///
+/// ```text
+/// f(ρ) = Δu · (f_int + f_src − f_ext)(u + ρΔu, y + ρΔy) + Δy · g(u + ρΔu, y + ρΔy)
+/// ```
+///
+/// (`compute_f`: −R·Δ over the whole increment, the sources' unknowns —
+/// `LAGS_C` — and their equations included), each source evaluated on the
+/// pairing of `u` ([`ForceSource::evaluate_on_pairing`]: code_aster pairs
+/// once per iteration, before the search). The equality rows drop out
+/// (after the prediction A Δu = 0). f(0) = −Δ·b. `u`, `own` are unchanged
+/// on return; the behaviour cells are left at the last ρ tried (the
+/// iterate's internal forces are computed again after the step).
+fn line_search(
+    ls: &crate::line_search::LineSearch,
+    tr: &Trial,
+    sources: &mut [Box<dyn ForceSource + '_>],
+    own: &[Vec<f64>],
+    u: &[f64],
+    plastic: &mut Option<PlasticCells>,
+    trace: bool,
+) -> Result<f64, FemError> {
+    let nd = u.len();
+    let free: Vec<usize> = (0..nd).filter(|&i| tr.map[i] != usize::MAX).collect();
+    let nown: usize = own.iter().map(|o| o.len()).sum();
+    let own_rows = tr.nfree..tr.nfree + nown;
+    let f0: f64 = -free
+        .iter()
+        .map(|&i| tr.x[tr.map[i]] * tr.b[tr.map[i]])
+        .sum::<f64>()
+        - own_rows.clone().map(|r| tr.x[r] * tr.b[r]).sum::<f64>();
+    let mut trial_u = u.to_vec();
+    let mut trial_own = own.to_vec();
+    let outcome = ls.search(f0, |rho| {
+        for &i in &free {
+            trial_u[i] = u[i] + rho * tr.x[tr.map[i]];
+        }
+        for (s, o) in trial_own.iter_mut().enumerate() {
+            for (k, v) in o.iter_mut().enumerate() {
+                *v = own[s][k] + rho * tr.x[tr.nfree + tr.offsets[s] + k];
+            }
+        }
+        let fint = step_forces(tr.model, tr.k, None, plastic, &trial_u)?;
+        let mut src = vec![0.0; nd];
+        let mut f = 0.0;
+        for (s, source) in sources.iter_mut().enumerate() {
+            let c = crate::newton_timing::timed(crate::newton_timing::Phase::Contact, || {
+                source.evaluate_on_pairing(
+                    &state(tr.model, u, tr.t),
+                    &state(tr.model, &trial_u, tr.t),
+                    &trial_own[s],
+                )
+            })?;
+            for &(i, v) in &c.forces {
+                src[i] += v;
+            }
+            for (k, r) in c.own_residual.iter().enumerate() {
+                f += tr.x[tr.nfree + tr.offsets[s] + k] * r;
+            }
+        }
+        f += free
+            .iter()
+            .map(|&i| tr.x[tr.map[i]] * (fint[i] + src[i] - tr.fext[i]))
+            .sum::<f64>();
+        Ok::<f64, FemError>(f)
+    });
+    let outcome = match outcome {
+        Ok(o) => o,
+        Err(crate::line_search::LineSearchError::Evaluation(e)) => return Err(e),
+        Err(crate::line_search::LineSearchError::Ascent { f0 }) => {
+            return Err(FemError::Model(format!(
+                "RECH_LINEAIRE METHODE='MIXTE' at time {}: the Newton correction is not a descent direction (f(0) = {f0:.6e} > 0); code_aster then searches along the opposite direction and applies the opposite step, not reproduced",
+                tr.t
+            )))
+        }
+    };
+    if trace {
+        eprintln!(
+            "[newton/sources] line search: f(0) {f0:.6e}, rho {} |f| {:.6e} after {} iterations{}",
+            outcome.rho,
+            outcome.f,
+            outcome.iterations,
+            if outcome.converged {
+                ""
+            } else {
+                " (not converged)"
+            }
+        );
+    }
+    Ok(outcome.rho)
 }
 
 /// Internal forces (with the time integrator's) and every source's

@@ -8,10 +8,11 @@
 //! condition (code_aster forbids the line search with the continuous
 //! contact, MECANONLINE3_91; with the discrete contact and LIAISON_UNIL it
 //! searches on the residual without the contact correction `nmcoun`
-//! applies after it, not reproduced; MECA_NON_LINE with a DEFI_CONT: code_aster
-//! 17 keeps the pairing of the iteration's start for the search's trial
-//! residuals, aster's mortar sources pair again on each geometry they
-//! evaluate); `MIXTE` with a tangent not reassembled at every
+//! applies after it, not reproduced; MECA_NON_LINE with a DEFI_CONT with
+//! friction, `VARIANTE='CLASSIQUE'` or `NITSCHE`, [`with_defi_cont`]: the
+//! trial residuals on the pairing of the iteration's start, as code_aster
+//! 17 evaluates them, are written for the frictionless Lagrangian and
+//! penalised methods only); `MIXTE` with a tangent not reassembled at every
 //! iteration (code_aster then keeps the internal forces of the last ρ
 //! tried with the displacement of the best one); DYNA_NON_LINE with HHT
 //! (validated with NEWMARK only).
@@ -56,6 +57,26 @@ pub(crate) fn parse(call: &CommandCall) -> Option<LineSearch> {
     })
 }
 
+/// Whether MECA_NON_LINE's line search is reproduced with a DEFI_CONT of
+/// method `algo` and `zones` (code_aster 17 evaluates the search's trial
+/// residuals on the pairing of the iteration's start, `ForceSource::
+/// evaluate_on_pairing`): the frictionless Lagrangian (`ROBUSTE`) and
+/// penalised methods, in 2D and 3D; else the reason.
+pub(crate) fn with_defi_cont(
+    algo: crate::defi_cont::MortarAlgo,
+    zones: &[aster_contact::mortar_lagrangian::MortarZoneDef],
+) -> Result<(), String> {
+    use crate::defi_cont::MortarAlgo;
+    if crate::defi_cont::has_friction(zones) {
+        return Err("RECH_LINEAIRE with a DEFI_CONT with friction (FROTTEMENT='OUI'): the friction residual on the pairing of the iteration's start (code_aster 17's line search does not pair again) is not written".into());
+    }
+    match algo {
+        MortarAlgo::Lagrangian | MortarAlgo::Penalised => Ok(()),
+        MortarAlgo::Classique => Err("RECH_LINEAIRE with a DEFI_CONT of VARIANTE='CLASSIQUE': its residual on the pairing of the iteration's start (code_aster 17's line search does not pair again) is not written".into()),
+        MortarAlgo::Nitsche => Err("RECH_LINEAIRE with a DEFI_CONT of ALGO_CONT='NITSCHE': its residual on the pairing of the iteration's start (code_aster 17's line search does not pair again) is not written".into()),
+    }
+}
+
 /// The refusals that need the keywords only.
 pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     let kw = &call.keywords;
@@ -95,12 +116,12 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             }
         }
     }
-    if !kw.factor("CONTACT").is_empty() || kw.concept("CONTACT").is_some() {
-        let why = if call.command == "MECA_NON_LINE" {
-            "code_aster 17 evaluates the search's residuals with the pairing of the iteration's start, aster's DEFI_CONT contact pairs again on every geometry it evaluates (the trial residuals differ once the contact slides), not reproduced"
-        } else {
-            "code_aster forbids it with the continuous contact (MECANONLINE3_91) and, with the discrete contact or LIAISON_UNIL, searches on the residual without the contact correction applied after it (nmdepl → nmcoun), not reproduced"
-        };
+    // MECA_NON_LINE with a DEFI_CONT: decided on the definition when the
+    // command runs, before solving (`with_defi_cont`).
+    if call.command != "MECA_NON_LINE"
+        && (!kw.factor("CONTACT").is_empty() || kw.concept("CONTACT").is_some())
+    {
+        let why = "code_aster forbids it with the continuous contact (MECANONLINE3_91) and, with the discrete contact or LIAISON_UNIL, searches on the residual without the contact correction applied after it (nmdepl → nmcoun), not reproduced";
         out.push(Refusal::at(
             format!("{}/RECH_LINEAIRE with CONTACT: {why}", call.command),
             kw,

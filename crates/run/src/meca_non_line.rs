@@ -11,7 +11,8 @@
 //! over the mesh's diagonal, as code_aster 17's `ConvergenceManager`.
 //! `METHODE='SNES'`/`'RASPEN'` (PETSc solvers) are refused;
 //! `RECH_LINEAIRE` is code_aster 17's Python line search
-//! (`crate::line_search`), without a DEFI_CONT contact; `ARCHIVAGE`,
+//! (`crate::line_search`), with a frictionless Lagrangian (ROBUSTE) or
+//! penalised DEFI_CONT on the pairing of the iteration's start; `ARCHIVAGE`,
 //! `SOLVEUR` and `INFO` are accepted as in STAT_NON_LINE.
 
 use crate::executor::Executor;
@@ -166,6 +167,21 @@ const KEYWORDS: &[&str] = &[
 
 pub fn meca_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let setup = parse_setup(ex, call, false)?;
+    // RECH_LINEAIRE with a DEFI_CONT: the trial residuals on the pairing of
+    // the iteration's start are written for the frictionless Lagrangian
+    // (ROBUSTE) and penalised methods.
+    if let (Some(_), Some(crate::concept::ContactDef::Mortar { zones, algo, .. })) =
+        (setup.newton.line_search, setup.contact.as_deref())
+    {
+        if let Err(why) = crate::line_search::with_defi_cont(*algo, zones) {
+            return Err(ex.kw_error(
+                "MECA_NON_LINE",
+                &call.keywords,
+                "RECH_LINEAIRE",
+                format!("not supported yet: {why}"),
+            ));
+        }
+    }
     // The Nitsche contact reads E and NU of the CHAM_MATER's one material:
     // refused before solving, at CHAM_MATER, when there is none.
     if let Some(crate::concept::ContactDef::Mortar {

@@ -102,20 +102,56 @@ fn line_search_with_hht_is_refused() {
     );
 }
 
-/// MECA_NON_LINE with a DEFI_CONT: code_aster 17 keeps the iteration's
-/// pairing for the trial residuals, aster's mortar sources pair again.
+/// MECA_NON_LINE with a DEFI_CONT: the line search's trial residuals on
+/// the pairing of the iteration's start (frictionless Lagrangian and
+/// penalised methods, `tests/lsdefi.rs`); the plastic plate of
+/// comm/plastic_plate_defi_cont.comm (2D, VMIS_ISOT_NL) keeps its 30
+/// analytic checks with it.
 #[test]
-fn meca_non_line_line_search_with_defi_cont_is_refused() {
+fn meca_non_line_line_search_with_defi_cont_matches_the_closed_form() {
     let comm = std::fs::read_to_string(root().join("comm/plastic_plate_defi_cont.comm"))
         .unwrap()
         .replace(
             "resu = MECA_NON_LINE(",
             "resu = MECA_NON_LINE(\n    RECH_LINEAIRE=_F(),",
         );
-    refused_on(
-        &comm,
-        "defi_cont",
-        "MECA_NON_LINE/RECH_LINEAIRE with CONTACT",
-        "comm/plastic_plate.mail",
-    );
+    let outcome = run_on(&comm, "defi_cont", "comm/plastic_plate.mail");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (30, 0));
+}
+
+/// With a DEFI_CONT whose residual on a frozen pairing is not written
+/// (friction, VARIANTE='CLASSIQUE', NITSCHE): refused at RECH_LINEAIRE.
+#[test]
+fn meca_non_line_line_search_with_other_defi_cont_methods_is_refused() {
+    let scene = std::fs::read_to_string(root().join("comm/plastic_plate_defi_cont.comm"))
+        .unwrap()
+        .replace(
+            "resu = MECA_NON_LINE(",
+            "resu = MECA_NON_LINE(\n    RECH_LINEAIRE=_F(),",
+        );
+    for (zone, name, expected) in [
+        (
+            r#"GROUP_MA_MAIT="EF", FROTTEMENT="OUI", TYPE_FROT="COULOMB", COULOMB=0.3"#,
+            "friction",
+            "RECH_LINEAIRE with a DEFI_CONT with friction",
+        ),
+        (
+            r#"GROUP_MA_MAIT="EF", VARIANTE="CLASSIQUE""#,
+            "classique",
+            "VARIANTE='CLASSIQUE'",
+        ),
+        (
+            r#"GROUP_MA_MAIT="EF", ALGO_CONT="NITSCHE""#,
+            "nitsche",
+            "ALGO_CONT='NITSCHE'",
+        ),
+    ] {
+        let comm = scene.replace(r#"GROUP_MA_MAIT="EF""#, zone);
+        let outcome = run_on(&comm, name, "comm/plastic_plate.mail");
+        let err = format!("{:?}", outcome.error.expect("refused"));
+        assert!(err.contains(expected), "{err}");
+        assert!(err.contains("MECA_NON_LINE/RECH_LINEAIRE"), "{err}");
+        assert_eq!(outcome.tally.ok, 0, "refused before the run");
+    }
 }
