@@ -6,7 +6,11 @@
 //! of 1e7 and more (and Lagrange rows of arbitrary units) harmless. Systems
 //! without multipliers use a sparse Cholesky factorisation, falling back to
 //! LU with partial pivoting; systems with multipliers (symmetric indefinite)
-//! use LU. The residual is checked and refined after the solve.
+//! use LU. The residual is checked and refined after the solve. An LU
+//! answer of a system with multipliers whose residual exceeds the
+//! right-hand side (an unsymmetric generalised-Newton friction matrix the
+//! symmetric scaling leaves hopelessly conditioned) is replaced by a solve
+//! equilibrated by rows, then columns.
 
 use crate::error::FemError;
 use faer::linalg::solvers::Solve;
@@ -713,7 +717,7 @@ pub fn solve_with(
     // factorised again; the better answer in the original system is kept.
     if !cholesky && n_primal < n {
         let nr = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if !(nr <= norm_b) {
+        if nr > norm_b || nr.is_nan() {
             if let Some(y) = solve_two_sided(a, b) {
                 let (be2, _) = berr(&y);
                 let r2 = a.mul(&y);
