@@ -6,7 +6,11 @@
 //! of 1e7 and more (and Lagrange rows of arbitrary units) harmless. Systems
 //! without multipliers use a sparse Cholesky factorisation, falling back to
 //! LU with partial pivoting; systems with multipliers (symmetric indefinite)
-//! use LU. The residual is checked and refined after the solve.
+//! use LU. The residual is checked and refined after the solve. An LU
+//! answer of a system with multipliers whose residual exceeds the
+//! right-hand side (an unsymmetric generalised-Newton friction matrix the
+//! symmetric scaling leaves hopelessly conditioned) is replaced by a solve
+//! equilibrated by rows, then columns.
 
 use crate::error::FemError;
 use faer::linalg::solvers::Solve;
@@ -705,6 +709,29 @@ pub fn solve_with(
         }
     }
     lap("refinement");
+    // An unsymmetric system with multipliers (continuous friction in
+    // slip) can be so badly scaled by the symmetric equilibration that the
+    // LU returns garbage whose backward error still looks small because x
+    // itself is huge: a residual above the right-hand side gives it away.
+    // Then the system is equilibrated by rows and then by columns and
+    // factorised again; the better answer in the original system is kept.
+    if !cholesky && n_primal < n {
+        let nr = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if nr > norm_b || nr.is_nan() {
+            if let Some(y) = solve_two_sided(a, b) {
+                let (be2, _) = berr(&y);
+                let r2 = a.mul(&y);
+                let nr2 = b
+                    .iter()
+                    .zip(&r2)
+                    .fold(0.0f64, |m, (bi, ai)| m.max((bi - ai).abs()));
+                if y.iter().all(|v| v.is_finite()) && nr2 < nr {
+                    x = y;
+                    be = be2;
+                }
+            }
+        }
+    }
     if x.iter().any(|v| !v.is_finite()) {
         return Err(SolveFailure::Singular { index: None });
     }
@@ -716,6 +743,72 @@ pub fn solve_with(
         backward_error: be,
         cholesky,
     })
+}
+
+/// Solves `a x = b` after a two-sided equilibration: every row scaled by
+/// the inverse of its largest coefficient, then every column likewise; LU
+/// with partial pivoting, refined in the original system (three passes at
+/// most). `None` when the factorisation fails.
+fn solve_two_sided(a: &Csc, b: &[f64]) -> Option<Vec<f64>> {
+    let n = a.n;
+    let mut row = vec![0.0f64; n];
+    for j in 0..n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            let i = a.row_idx[p];
+            row[i] = row[i].max(a.values[p].abs());
+        }
+    }
+    let row: Vec<f64> = row
+        .iter()
+        .map(|&m| if m > 0. && m.is_finite() { 1. / m } else { 1. })
+        .collect();
+    let mut col = vec![1.0f64; n];
+    for (j, c) in col.iter_mut().enumerate() {
+        let m = (a.col_ptr[j]..a.col_ptr[j + 1])
+            .map(|p| (a.values[p] * row[a.row_idx[p]]).abs())
+            .fold(0.0f64, f64::max);
+        if m > 0. && m.is_finite() {
+            *c = 1. / m;
+        }
+    }
+    let mut values = Vec::with_capacity(a.values.len());
+    for j in 0..n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            values.push(a.values[p] * row[a.row_idx[p]] * col[j]);
+        }
+    }
+    let scaled = Scaled {
+        n,
+        col_ptr: a.col_ptr.clone(),
+        row_idx: a.row_idx.clone(),
+        values,
+    };
+    let factor = Factor::Lu(Box::new(symbolic_cache::lu(scaled.as_ref()).ok()?));
+    let solve = |r: &[f64]| -> Vec<f64> {
+        let rs: Vec<f64> = r.iter().zip(&row).map(|(v, s)| v * s).collect();
+        let y = factor.solve(&rs);
+        y.iter().zip(&col).map(|(v, s)| v * s).collect()
+    };
+    let resid = |x: &[f64]| -> (f64, Vec<f64>) {
+        let ax = a.mul(x);
+        let r: Vec<f64> = b.iter().zip(&ax).map(|(bi, ai)| bi - ai).collect();
+        (r.iter().fold(0.0f64, |m, v| m.max(v.abs())), r)
+    };
+    let mut x = solve(b);
+    let (mut nr, mut r) = resid(&x);
+    for _ in 0..3 {
+        let dx = solve(&r);
+        let cand: Vec<f64> = x.iter().zip(&dx).map(|(u, v)| u + v).collect();
+        let (nr2, r2) = resid(&cand);
+        if nr2 < nr {
+            x = cand;
+            nr = nr2;
+            r = r2;
+        } else {
+            break;
+        }
+    }
+    Some(x)
 }
 
 /// Convenience: maps a failure to a [`FemError`] given a namer for unknowns.
@@ -757,6 +850,28 @@ pub(crate) fn dense_to_csc(a: &[Vec<f64>]) -> Csc {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn two_sided_equilibration_solves_a_wildly_row_scaled_unsymmetric_system() {
+        // An unsymmetric saddle-point system (a sliding friction row
+        // couples the unknowns one way only) with rows of 1e-12 to 1e14:
+        // the answer is x* to the refinement's accuracy.
+        let a = vec![
+            vec![4e14, -1e14, 3e13, 1e14],
+            vec![-2e-3, 5e-3, 0., 0.],
+            vec![7e5, 0., 2e6, 1e6],
+            vec![1e-12, 0., 0., 0.],
+        ];
+        let xs = [1.5, -2.0, 0.25, 3.0];
+        let b: Vec<f64> = a
+            .iter()
+            .map(|r| r.iter().zip(&xs).map(|(u, v)| u * v).sum())
+            .collect();
+        let x = solve_two_sided(&dense_to_csc(&a), &b).expect("factorised");
+        for (u, v) in x.iter().zip(&xs) {
+            assert!((u - v).abs() <= 1e-10 * v.abs(), "{x:?}");
+        }
+    }
 
     #[test]
     fn solves_an_indefinite_kkt_system_with_wild_scales() {
