@@ -370,7 +370,10 @@ FIN()
     );
     let (p, map) = pass(&src, Some("two_plates.mail"));
     let m = messages(&p, &map);
-    let forces: Vec<&String> = m.iter().filter(|s| s.contains("CALC_CHAMP/FORCE")).collect();
+    let forces: Vec<&String> = m
+        .iter()
+        .filter(|s| s.contains("CALC_CHAMP/FORCE"))
+        .collect();
     assert_eq!(forces.len(), 2, "{m:?}");
     assert!(forces[0].starts_with("case.comm:13:37: error: not supported yet: CALC_CHAMP/FORCE='REAC_NODA' of a result computed with DEFORMATION='SIMO_MIEHE' and the discrete contact"), "{m:?}");
     assert!(forces[1].starts_with("case.comm:17:37: error: not supported yet: CALC_CHAMP/FORCE='FORC_NODA' of a result computed with DEFORMATION='SIMO_MIEHE' and the discrete contact"), "{m:?}");
