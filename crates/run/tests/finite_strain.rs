@@ -7,7 +7,8 @@
 //! SIMO_MIEHE and PETIT_REAC (and the continuous geometric loop cut at
 //! NB_ITER_GEOM passes), every TEST_RESU against the closed-form
 //! answer of its formulation to 1e-9; one imposed step larger than a
-//! cell (comm/big_step_column.comm) through the prediction.
+//! cell (comm/big_step_column.comm) through the prediction; nodal forces
+//! of SIMO_MIEHE with contact (comm/simo_miehe_contact_forces.comm).
 
 use std::path::PathBuf;
 
@@ -126,5 +127,22 @@ fn one_large_imposed_step_is_predicted_through_the_tangent() {
             "bigstep"
         ),
         (60, 0, None)
+    );
+}
+
+/// CALC_CHAMP FORC_NODA and REAC_NODA of a SIMO_MIEHE result with the
+/// continuous contact (code_aster's te0008 on X + u with the stored Cauchy
+/// stress): the block compressed by 25 % through contact, every resultant
+/// (punch top, block top, the punch's contact face) the closed form
+/// τ_zz / l of Simo–Miehe's uniaxial compression to 1e-8.
+#[test]
+fn simo_miehe_nodal_forces_with_contact_match_the_closed_form() {
+    assert_eq!(
+        run(
+            "comm/simo_miehe_contact_forces.comm",
+            "comm/plastic_block.mail",
+            "sm-forces"
+        ),
+        (14, 0, None)
     );
 }

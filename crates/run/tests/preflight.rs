@@ -329,34 +329,54 @@ FIN()
     assert_eq!(m.len(), 2, "{m:?}");
 }
 
-/// Nodal forces of a finite-strain (SIMO_MIEHE) result with contact are
-/// refused at CALC_CHAMP/FORCE whichever operator computed it: STAT_NON_LINE
-/// (`CONTACT=<DEFI_CONTACT>`) or MECA_NON_LINE (`CONTACT=_F(DEFINITION=<DEFI_CONT>)`);
-/// without contact they are accepted.
+/// Nodal forces of a finite-strain (SIMO_MIEHE) result with the discrete
+/// contact (DEFI_CONTACT, FORMULATION='DISCRETE' or left to its default)
+/// are refused at CALC_CHAMP/FORCE (REAC_NODA and FORC_NODA); with the
+/// continuous contact, DEFI_CONT (MECA_NON_LINE) or without contact they
+/// are accepted (validated on ssnp153a).
 #[test]
-fn finite_strain_contact_forces_are_refused_for_both_operators() {
+fn finite_strain_discrete_contact_forces_are_refused() {
     let src = format!(
         r#"{HEAD}from code_aster.MacroCommands.defi_cont import DEFI_CONT
 mat = DEFI_MATERIAU(ELAS=_F(E=1.0e5, NU=0.3), ECRO_LINE=_F(D_SIGM_EPSI=1.0e4, SY=1.0e10))
 chmat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", MATER=mat))
-c = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB"))
+d = DEFI_CONTACT(MODELE=model, ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB"))
 bc = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=_F(GROUP_NO="E", DX=0.0, DY=0.0))
 times = DEFI_LIST_REEL(VALE=(0.0, 1.0))
-r = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
-    CONTACT=_F(DEFINITION=c), COMPORTEMENT=_F(RELATION="VMIS_ISOT_LINE", DEFORMATION="SIMO_MIEHE"),
-    INCREMENT=_F(LIST_INST=times))
-r = CALC_CHAMP(reuse=r, RESULTAT=r, FORCE="REAC_NODA")
-s = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
+r = STAT_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc), CONTACT=d,
     COMPORTEMENT=_F(RELATION="VMIS_ISOT_LINE", DEFORMATION="SIMO_MIEHE"),
     INCREMENT=_F(LIST_INST=times))
-s = CALC_CHAMP(reuse=s, RESULTAT=s, FORCE="REAC_NODA")
+r = CALC_CHAMP(reuse=r, RESULTAT=r, FORCE="REAC_NODA")
+s = STAT_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc), CONTACT=d,
+    COMPORTEMENT=_F(RELATION="VMIS_ISOT_LINE", DEFORMATION="SIMO_MIEHE"),
+    INCREMENT=_F(LIST_INST=times))
+s = CALC_CHAMP(reuse=s, RESULTAT=s, FORCE="FORC_NODA")
+c = DEFI_CONT(MODELE=model, ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB"))
+t = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
+    CONTACT=_F(DEFINITION=c), COMPORTEMENT=_F(RELATION="VMIS_ISOT_LINE", DEFORMATION="SIMO_MIEHE"),
+    INCREMENT=_F(LIST_INST=times))
+t = CALC_CHAMP(reuse=t, RESULTAT=t, FORCE="REAC_NODA")
+k = DEFI_CONTACT(MODELE=model, FORMULATION="CONTINUE", ZONE=_F(GROUP_MA_MAIT="EF", GROUP_MA_ESCL="AB"))
+u = STAT_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc), CONTACT=k,
+    COMPORTEMENT=_F(RELATION="VMIS_ISOT_LINE", DEFORMATION="SIMO_MIEHE"),
+    INCREMENT=_F(LIST_INST=times))
+u = CALC_CHAMP(reuse=u, RESULTAT=u, FORCE="REAC_NODA")
+v = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
+    COMPORTEMENT=_F(RELATION="VMIS_ISOT_LINE", DEFORMATION="SIMO_MIEHE"),
+    INCREMENT=_F(LIST_INST=times))
+v = CALC_CHAMP(reuse=v, RESULTAT=v, FORCE="REAC_NODA")
 FIN()
 "#
     );
     let (p, map) = pass(&src, Some("two_plates.mail"));
     let m = messages(&p, &map);
-    assert_eq!(m.len(), 1, "{m:?}");
-    assert!(m[0].starts_with("case.comm:13:37: error: not supported yet: CALC_CHAMP/FORCE='REAC_NODA' of a result computed with DEFORMATION='SIMO_MIEHE' and contact"), "{m:?}");
+    let forces: Vec<&String> = m
+        .iter()
+        .filter(|s| s.contains("CALC_CHAMP/FORCE"))
+        .collect();
+    assert_eq!(forces.len(), 2, "{m:?}");
+    assert!(forces[0].starts_with("case.comm:13:37: error: not supported yet: CALC_CHAMP/FORCE='REAC_NODA' of a result computed with DEFORMATION='SIMO_MIEHE' and the discrete contact"), "{m:?}");
+    assert!(forces[1].starts_with("case.comm:17:37: error: not supported yet: CALC_CHAMP/FORCE='FORC_NODA' of a result computed with DEFORMATION='SIMO_MIEHE' and the discrete contact"), "{m:?}");
 }
 
 /// The quarter-point front of MODI_MAILLE/GROUP_MA_FOND (SEG3 cells, as
