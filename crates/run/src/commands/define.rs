@@ -830,40 +830,7 @@ pub fn defi_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     }
     .map_err(|e| ex.kw_error("DEFI_FONCTION", kw, "VALE", e.to_string()))?;
     f.result = kw.str("NOM_RESU").map(str::to_string);
-    let interp: Vec<&str> = kw
-        .simple("INTERPOL")
-        .iter()
-        .filter_map(|s| s.as_str())
-        .collect();
-    let scale = |name: &str| -> Result<Scale, ExecError> {
-        Scale::from_keyword(name).ok_or_else(|| {
-            let span = kw.keyword("INTERPOL").map(|k| k.span).unwrap_or_default();
-            ex.unsupported(&format!("DEFI_FONCTION/INTERPOL='{name}'"), span)
-        })
-    };
-    match interp.as_slice() {
-        [] => {}
-        [one] => {
-            f.scale_x = scale(one)?;
-            f.scale_y = f.scale_x;
-        }
-        [x, y, ..] => {
-            f.scale_x = scale(x)?;
-            f.scale_y = scale(y)?;
-        }
-    }
-    for (key, slot) in [("PROL_GAUCHE", &mut f.left), ("PROL_DROITE", &mut f.right)] {
-        if let Some(v) = kw.str(key) {
-            *slot = Extension::from_keyword(v).ok_or_else(|| {
-                ex.kw_error(
-                    "DEFI_FONCTION",
-                    kw,
-                    key,
-                    format!("unknown extension `{v}` (EXCLU, CONSTANT, LINEAIRE)"),
-                )
-            })?;
-        }
-    }
+    super::functions::apply_options(ex, "DEFI_FONCTION", kw, &mut f)?;
     store_result(ex, call, Concept::Function(Rc::new(Function::Tabulated(f))))
 }
 
@@ -886,50 +853,6 @@ pub(crate) const DEFI_NAPPE: Support = Support::keywords(&[
     "VERIF",
     "TITRE",
 ]);
-
-/// `INTERPOL` (one value: both axes) of a keyword set.
-fn scales(ex: &Executor, cmd: &str, kw: &Keywords) -> Result<(Scale, Scale), ExecError> {
-    let names: Vec<&str> = kw
-        .simple("INTERPOL")
-        .iter()
-        .filter_map(|s| s.as_str())
-        .collect();
-    let scale = |name: &str| {
-        Scale::from_keyword(name).ok_or_else(|| {
-            ex.kw_error(
-                cmd,
-                kw,
-                "INTERPOL",
-                format!("unknown interpolation `{name}` (LIN, LOG)"),
-            )
-        })
-    };
-    Ok(match names.as_slice() {
-        [] => (Scale::Linear, Scale::Linear),
-        [one] => (scale(one)?, scale(one)?),
-        [x, y, ..] => (scale(x)?, scale(y)?),
-    })
-}
-
-/// `PROL_GAUCHE`, `PROL_DROITE` of a keyword set (default EXCLU).
-fn extensions(
-    ex: &Executor,
-    cmd: &str,
-    kw: &Keywords,
-) -> Result<(Extension, Extension), ExecError> {
-    let side = |key: &str| match kw.str(key) {
-        None => Ok(Extension::Excluded),
-        Some(v) => Extension::from_keyword(v).ok_or_else(|| {
-            ex.kw_error(
-                cmd,
-                kw,
-                key,
-                format!("unknown extension `{v}` (EXCLU, CONSTANT, LINEAIRE)"),
-            )
-        }),
-    };
-    Ok((side("PROL_GAUCHE")?, side("PROL_DROITE")?))
-}
 
 /// DEFI_NAPPE (code_aster's op0004): a function of `NOM_PARA` and
 /// `NOM_PARA_FONC`, one function of the second per `PARA` value, given
@@ -1006,8 +929,7 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             let (xs, ys): (Vec<f64>, Vec<f64>) = points.into_iter().unzip();
             let mut t = Tabulated::new(&parameter_fonc, xs, ys)
                 .map_err(|e| ex.kw_error(CMD, occ, "VALE", e.to_string()))?;
-            (t.scale_x, t.scale_y) = scales(ex, CMD, occ)?;
-            (t.left, t.right) = extensions(ex, CMD, occ)?;
+            super::functions::apply_options(ex, CMD, occ, &mut t)?;
             functions.push(Function::Tabulated(t));
         }
     }
@@ -1044,8 +966,17 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             "two functions for the same parameter value",
         ));
     }
-    let (scale_x, scale_y) = scales(ex, CMD, kw)?;
-    let (left, right) = extensions(ex, CMD, kw)?;
+    let (scale_x, scale_y, left, right) = super::functions::options(
+        ex,
+        CMD,
+        kw,
+        (
+            Scale::Linear,
+            Scale::Linear,
+            Extension::Excluded,
+            Extension::Excluded,
+        ),
+    )?;
     let (para, functions) = pairs.into_iter().unzip();
     let nappe = Nappe {
         parameter: kw.str("NOM_PARA").unwrap_or("TOUTPARA").to_string(),

@@ -19,18 +19,29 @@ fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
     kw.simple(name).iter().filter_map(|s| s.as_f64()).collect()
 }
 
-/// `PROL_GAUCHE`, `PROL_DROITE`, `INTERPOL` of the command (defaults: the
-/// function's own, i.e. `EXCLU` and `LIN` for a new one).
-fn apply_options(
+/// The interpolation and extensions of a function: (x scale, y scale,
+/// left, right).
+pub(crate) type Options = (Scale, Scale, Extension, Extension);
+
+/// `INTERPOL` (one value: both axes), `PROL_GAUCHE`, `PROL_DROITE` of the
+/// keywords `kw`, each absent one left as in `current`.
+pub(crate) fn options(
     ex: &Executor,
     cmd: &str,
     kw: &Keywords,
-    f: &mut Tabulated,
-) -> Result<(), ExecError> {
-    for (key, slot) in [("PROL_GAUCHE", &mut f.left), ("PROL_DROITE", &mut f.right)] {
+    current: Options,
+) -> Result<Options, ExecError> {
+    let (mut sx, mut sy, mut left, mut right) = current;
+    for (key, slot) in [("PROL_GAUCHE", &mut left), ("PROL_DROITE", &mut right)] {
         if let Some(v) = kw.str(key) {
-            *slot = Extension::from_keyword(v)
-                .ok_or_else(|| ex.kw_error(cmd, kw, key, format!("unknown extension `{v}`")))?;
+            *slot = Extension::from_keyword(v).ok_or_else(|| {
+                ex.kw_error(
+                    cmd,
+                    kw,
+                    key,
+                    format!("unknown extension `{v}` (EXCLU, CONSTANT, LINEAIRE)"),
+                )
+            })?;
         }
     }
     let interp: Vec<&str> = kw
@@ -47,14 +58,27 @@ fn apply_options(
     match interp.as_slice() {
         [] => {}
         [one] => {
-            f.scale_x = scale(one)?;
-            f.scale_y = f.scale_x;
+            sx = scale(one)?;
+            sy = sx;
         }
         [x, y, ..] => {
-            f.scale_x = scale(x)?;
-            f.scale_y = scale(y)?;
+            sx = scale(x)?;
+            sy = scale(y)?;
         }
     }
+    Ok((sx, sy, left, right))
+}
+
+/// `PROL_GAUCHE`, `PROL_DROITE`, `INTERPOL` of the command (defaults: the
+/// function's own, i.e. `EXCLU` and `LIN` for a new one).
+pub(crate) fn apply_options(
+    ex: &Executor,
+    cmd: &str,
+    kw: &Keywords,
+    f: &mut Tabulated,
+) -> Result<(), ExecError> {
+    (f.scale_x, f.scale_y, f.left, f.right) =
+        options(ex, cmd, kw, (f.scale_x, f.scale_y, f.left, f.right))?;
     Ok(())
 }
 
