@@ -102,6 +102,23 @@ pub struct LineSearchOutcome {
     pub last: f64,
 }
 
+impl LineSearchOutcome {
+    /// The `ASTER_FEM_TRACE` line of a search from f(0) = `f0`.
+    pub fn trace(&self, f0: f64) -> String {
+        format!(
+            "line search: f(0) {f0:.6e}, rho {} |f| {:.6e} after {} iterations{}",
+            self.rho,
+            self.f,
+            self.iterations,
+            if self.converged {
+                ""
+            } else {
+                " (not converged)"
+            }
+        )
+    }
+}
+
 /// Why a search cannot be reproduced, or the first evaluation's failure.
 #[derive(Debug)]
 pub enum LineSearchError<E> {

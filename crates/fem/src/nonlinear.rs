@@ -1863,17 +1863,7 @@ fn line_search(
         }
     };
     if trace {
-        eprintln!(
-            "[newton] line search: f(0) {f0:.6e}, rho {} |f| {:.6e} after {} iterations{}",
-            outcome.rho,
-            outcome.f,
-            outcome.iterations,
-            if outcome.converged {
-                ""
-            } else {
-                " (not converged)"
-            }
-        );
+        eprintln!("[newton] {}", outcome.trace(f0));
     }
     Ok(outcome.rho)
 }
