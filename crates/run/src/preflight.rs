@@ -204,10 +204,6 @@ pub struct CallRefusals {
     coordinate_loads: Vec<u32>,
     /// `DEFI_CONTACT` definitions, by concept id.
     defi_contact: Vec<u32>,
-    /// Cell groups given as `MODI_MAILLAGE/MODI_MAILLE/GROUP_MA_FOND` of
-    /// a `NOEUD_QUART` modification: SEG3 (or POI1) front cells, as code_aster
-    /// requires them (ALGORITH6_17).
-    quarter_point_fronts: Vec<String>,
 }
 
 impl CallRefusals {
@@ -223,42 +219,7 @@ impl CallRefusals {
         out.extend(self.follow_finite_strains(call));
         out.extend(self.follow_continuous_friction(call));
         out.extend(self.follow_coordinate_loads(call));
-        out.extend(self.follow_quarter_point_fronts(call));
         out
-    }
-
-    /// A crack front of quarter-point cells (`MODI_MAILLE/NOEUD_QUART` by
-    /// `GROUP_MA_FOND`, which code_aster accepts of SEG3 or POI1 cells only,
-    /// on 3D meshes) given to `DEFI_FOND_FISS/FOND_FISS/GROUP_MA` is a
-    /// quadratic 3D front, which DEFI_FOND_FISS does not build (SEG2
-    /// fronts only): refused there before the solve instead of after it
-    /// (ssnv166b).
-    fn follow_quarter_point_fronts(&mut self, call: &CommandCall) -> Option<(String, Span)> {
-        let kw = &call.keywords;
-        match call.command.as_str() {
-            "MODI_MAILLAGE" => {
-                for occ in kw.factor("MODI_MAILLE") {
-                    if let Some(g) = occ.str("GROUP_MA_FOND") {
-                        self.quarter_point_fronts.push(g.to_string());
-                    }
-                }
-                None
-            }
-            "DEFI_FOND_FISS" => kw.factor("FOND_FISS").iter().find_map(|occ| {
-                let g = occ
-                    .simple("GROUP_MA")
-                    .iter()
-                    .filter_map(|s| s.as_str())
-                    .find(|g| self.quarter_point_fronts.iter().any(|f| f == g))?
-                    .to_string();
-                let span = occ.keyword("GROUP_MA").map(|k| k.span).unwrap_or(call.span);
-                Some((
-                    format!("DEFI_FOND_FISS/FOND_FISS/GROUP_MA='{g}': a crack front of quadratic (SEG3) cells, the quarter-point front of MODI_MAILLAGE/MODI_MAILLE/GROUP_MA_FOND (aster builds linear SEG2 3D fronts only)"),
-                    span,
-                ))
-            }),
-            _ => None,
-        }
     }
 
     /// Distributed loads given by functions of the coordinates are dead

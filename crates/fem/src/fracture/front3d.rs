@@ -147,20 +147,46 @@ impl<'a> Geometry<'a> {
     }
 }
 
-/// `fonmai`: the front's nodes in order from the origin.
-fn order_front(input: &FrontInput) -> Result<Vec<NodeId>, String> {
+/// `fonmai2` + `ornofd`: the front's nodes in order from the origin; on a
+/// front of SEG3 cells (`quadratic`), each cell's middle node (its third)
+/// between its two ends.
+fn order_front(input: &FrontInput) -> Result<(Vec<NodeId>, bool), String> {
     let mesh = input.mesh;
-    let mut segs: Vec<[NodeId; 2]> = Vec::new();
+    // code_aster reads the type of the first cell (`typm`) for all of them.
+    let quadratic = match input.segments.first().map(|&c| mesh.cell(c).ty) {
+        Some(CellType::SEG3) => true,
+        Some(CellType::SEG2) | None => false,
+        Some(ty) => {
+            return Err(format!(
+                "the front cell {} is a {}: aster builds fronts of SEG2 or SEG3 cells",
+                mesh.cell_name(input.segments[0]),
+                ty.name()
+            ))
+        }
+    };
+    let want = if quadratic {
+        CellType::SEG3
+    } else {
+        CellType::SEG2
+    };
+    // (end, end, middle)
+    let mut segs: Vec<[NodeId; 3]> = Vec::new();
     for &c in input.segments {
         let cell = mesh.cell(c);
-        if cell.ty != CellType::SEG2 {
+        if cell.ty != want {
             return Err(format!(
-                "the front cell {} is a {}: aster builds linear (SEG2) 3D fronts only",
+                "the front cell {} is a {}, the first one a {}: aster builds fronts of one cell type",
                 mesh.cell_name(c),
-                cell.ty.name()
+                cell.ty.name(),
+                want.name()
             ));
         }
-        segs.push([cell.nodes[0], cell.nodes[1]]);
+        let mid = if quadratic {
+            cell.nodes[2]
+        } else {
+            cell.nodes[0]
+        };
+        segs.push([cell.nodes[0], cell.nodes[1], mid]);
     }
     let mut used = vec![false; segs.len()];
     let mut nodes = vec![input.origin];
@@ -170,15 +196,18 @@ fn order_front(input: &FrontInput) -> Result<Vec<NodeId>, String> {
             if used[i] {
                 None
             } else if s[0] == cur {
-                Some((i, s[1]))
+                Some((i, s[1], s[2]))
             } else if s[1] == cur {
-                Some((i, s[0]))
+                Some((i, s[0], s[2]))
             } else {
                 None
             }
         });
-        let Some((i, n)) = next else { break };
+        let Some((i, n, mid)) = next else { break };
         used[i] = true;
+        if quadratic {
+            nodes.push(mid);
+        }
         nodes.push(n);
         cur = n;
     }
@@ -198,7 +227,7 @@ fn order_front(input: &FrontInput) -> Result<Vec<NodeId>, String> {
             );
         }
     }
-    Ok(nodes)
+    Ok((nodes, quadratic))
 }
 
 /// The lip faces at a segment [a, b] and the two lip cells (`fonno1`…`fonno4`):
@@ -207,6 +236,7 @@ fn lip_faces(
     g: &Geometry,
     a: NodeId,
     b: NodeId,
+    shared_min: usize,
 ) -> Result<(Vec<Vec<NodeId>>, [CellId; 2]), String> {
     let mesh = g.mesh;
     let fan: Vec<CellId> = g
@@ -222,7 +252,9 @@ fn lip_faces(
             .map(|n| ny.iter().filter(|m| *m == n).count())
             .sum::<usize>()
     };
-    // fonno2: the cells with a single face neighbour in the fan.
+    // fonno2: the cells with a single face neighbour in the fan (sharing
+    // at least `shared_min` nodes: `nbmax`, 3 on a linear front, 6 on a
+    // quadratic one, whose cells share their 3 edge nodes).
     let mut ends = Vec::new();
     for &p in &fan {
         let np = mesh.cell(p).nodes.len();
@@ -230,7 +262,7 @@ fn lip_faces(
             .iter()
             .filter(|&&q| {
                 let s = shared(p, q);
-                (s != np && s >= 3) || fan.len() == 1
+                (s != np && s >= shared_min) || fan.len() == 1
             })
             .count();
         if count == 1 {
@@ -596,15 +628,20 @@ fn normal_line(
 pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
     let mesh = input.mesh;
     let g = Geometry::new(mesh);
-    let nodes = order_front(input)?;
+    let (nodes, quadratic) = order_front(input)?;
     let nn = nodes.len();
-    let nseg = nn - 1;
+    // fonnor2: a segment spans `step` nodes (its middle node between on a
+    // quadratic front); the cells around it share `nbmax` nodes with a
+    // face neighbour.
+    let (step, nbmax) = if quadratic { (2, 6) } else { (1, 3) };
+    let nseg = (nn - 1) / step;
     let mut normal = vec![[0.0; 3]; nn];
     let mut dir = vec![[0.0; 3]; nn];
     let mut sens = 1.0;
     for iseg in 0..nseg {
-        let (a, b) = (nodes[iseg], nodes[iseg + 1]);
-        let (lips, cells) = lip_faces(&g, a, b)?;
+        let (ia, ib) = (step * iseg, step * (iseg + 1));
+        let (a, b) = (nodes[ia], nodes[ib]);
+        let (lips, cells) = lip_faces(&g, a, b, nbmax)?;
         let (d1, n1) = face_basis(mesh, &lips[0], a, b);
         let (d2, n2) = face_basis(mesh, &lips[1], a, b);
         // fonno6, SYME='NON': the two lips' directions agree within 5°.
@@ -627,27 +664,42 @@ pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
                 vn = [-vn[0], -vn[1], -vn[2]];
             }
         }
-        normal[iseg] = normalize(add(normal[iseg], vn));
-        dir[iseg] = normalize(add(dir[iseg], vd));
-        normal[iseg + 1] = normalize(add(normal[iseg + 1], vn));
-        dir[iseg + 1] = normalize(add(dir[iseg + 1], vd));
+        normal[ia] = normalize(add(normal[ia], vn));
+        dir[ia] = normalize(add(dir[ia], vd));
+        normal[ib] = normalize(add(normal[ib], vn));
+        dir[ib] = normalize(add(dir[ib], vd));
+        if quadratic {
+            // The middle node takes the segment's basis.
+            normal[ia + 1] = vn;
+            dir[ia + 1] = vd;
+        }
     }
     // fonext, called on the first and the last segment (for a front of one
     // segment, code_aster's call turns the first node's direction with the
     // free faces around the last one: reproduced).
     if nseg == 1 {
         let (n0, mut d0) = (normal[0], dir[0]);
-        turn_end(&g, nodes[1], nodes[0], n0, &mut d0);
+        turn_end(&g, nodes[nn - 1], nodes[0], n0, &mut d0);
         dir[0] = d0;
     } else {
         let (n0, mut d0) = (normal[0], dir[0]);
-        turn_end(&g, nodes[0], nodes[1], n0, &mut d0);
+        turn_end(&g, nodes[0], nodes[step], n0, &mut d0);
         dir[0] = d0;
         let (nl, mut dl) = (normal[nn - 1], dir[nn - 1]);
-        turn_end(&g, nodes[nn - 1], nodes[nn - 2], nl, &mut dl);
+        turn_end(&g, nodes[nn - 1], nodes[nn - 1 - step], nl, &mut dl);
         dir[nn - 1] = dl;
     }
-    let size: Vec<f64> = (0..nn).map(|i| node_size(&g, nodes[i], dir[i])).collect();
+    // fonno7 at the segments' ends; a middle node's size is the mean of
+    // its two ends' (fonnor2).
+    let mut size = vec![0.0; nn];
+    for i in (0..nn).step_by(step) {
+        size[i] = node_size(&g, nodes[i], dir[i]);
+    }
+    if quadratic {
+        for i in (1..nn).step_by(2) {
+            size[i] = (size[i + 1] + size[i - 1]) / 2.0;
+        }
+    }
     // fonnof
     let sup = lip_nodes(mesh, input.lip_sup);
     let inf = lip_nodes(mesh, input.lip_inf);
@@ -684,4 +736,69 @@ pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
         sup_normal,
         inf_normal,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use aster_mesh::Cell;
+
+    /// A line of 7 nodes along x (node k at x = k) and the given segments.
+    fn line(cells: &[(CellType, &[u32])]) -> Mesh {
+        Mesh {
+            dim: 3,
+            coords: (0..7).map(|k| [k as f64, 0.0, 0.0]).collect(),
+            node_names: (1..=7).map(|k| format!("N{k}")).collect(),
+            cells: cells
+                .iter()
+                .map(|(ty, n)| Cell {
+                    ty: *ty,
+                    nodes: n.iter().map(|&i| NodeId(i)).collect(),
+                })
+                .collect(),
+            cell_names: (1..=cells.len()).map(|k| format!("M{k}")).collect(),
+            ..Mesh::default()
+        }
+    }
+
+    fn order(mesh: &Mesh, origin: u32, end: Option<u32>) -> Result<(Vec<u32>, bool), String> {
+        let segments: Vec<CellId> = (0..mesh.cells.len() as u32).map(CellId).collect();
+        let input = FrontInput {
+            mesh,
+            segments: &segments,
+            origin: NodeId(origin),
+            end: end.map(NodeId),
+            lip_sup: &[],
+            lip_inf: &[],
+            prec_norm: 0.1,
+        };
+        order_front(&input).map(|(n, q)| (n.iter().map(|x| x.0).collect(), q))
+    }
+
+    /// ornofd on SEG3 cells: the ends walked from the origin whatever the
+    /// cells' order and orientation, each cell's middle node (its third)
+    /// between them.
+    #[test]
+    fn a_quadratic_front_is_ordered_with_its_middle_nodes() {
+        use CellType::SEG3;
+        let mesh = line(&[(SEG3, &[4, 6, 5]), (SEG3, &[0, 2, 1]), (SEG3, &[4, 2, 3])]);
+        assert_eq!(
+            order(&mesh, 0, Some(6)),
+            Ok((vec![0, 1, 2, 3, 4, 5, 6], true))
+        );
+        assert_eq!(order(&mesh, 6, None), Ok((vec![6, 5, 4, 3, 2, 1, 0], true)));
+        assert!(order(&mesh, 0, Some(4)).is_err());
+    }
+
+    /// code_aster reads the first cell's type for the whole front: SEG2
+    /// and SEG3 cells together are refused.
+    #[test]
+    fn a_front_of_two_cell_types_is_refused() {
+        use CellType::{SEG2, SEG3};
+        let mesh = line(&[(SEG3, &[0, 2, 1]), (SEG2, &[2, 3])]);
+        let e = order(&mesh, 0, None).unwrap_err();
+        assert!(e.contains("M2") && e.contains("SEG2"), "{e}");
+        let mesh = line(&[(SEG2, &[0, 1]), (SEG2, &[2, 1])]);
+        assert_eq!(order(&mesh, 0, None), Ok((vec![0, 1, 2], false)));
+    }
 }
