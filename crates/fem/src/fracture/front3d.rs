@@ -1,12 +1,18 @@
 //! A 3D crack front as code_aster's `DEFI_FOND_FISS` builds it from a
-//! meshed crack (`op0055`): the front's nodes in order (`fonmai`), the
+//! meshed crack (`op0060`): the front's nodes in order (`fonmai`), the
 //! local basis at each node (`BASEFOND`: `fonnor` with `fonno1`…`fonno8`),
 //! the cell size at each node (`FOND.TAILLE_R`, `fonno7`) and the lip
 //! nodes in the plane normal to the front at each node (`SUPNORM.NOEU`,
 //! `INFNORM.NOEU`: `fonnof`, `cgnop0`, `oreino`), which `POST_K1_K2_K3`
 //! reads on a regular ("REGLE") mesh.
 //!
-//! Linear fronts (`SEG2`) with lips on both sides (`SYME='NON'`) only:
+//! Fronts of `SEG2` or `SEG3` cells with lips on both sides (`SYME='NON'`)
+//! only. On a `SEG3` front (`fonnor2`'s `QUADRATIQUE`) each cell's middle
+//! node lies between its ends in the node list, the segments below run
+//! between the cells' ends, fan cells are face neighbours when they share
+//! 6 nodes (3 on a linear front), a middle node takes its segment's basis
+//! and the mean of its ends' sizes.
+//!
 //!
 //! - each front segment [a, b]: the 3D cells holding a and b (the fan
 //!   around the segment); the two cells of the fan with a single face
