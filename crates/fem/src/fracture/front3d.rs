@@ -807,4 +807,83 @@ mod tests {
         let mesh = line(&[(SEG2, &[0, 1]), (SEG2, &[2, 1])]);
         assert_eq!(order(&mesh, 0, None), Ok((vec![0, 1, 2], false)));
     }
+
+    fn front_of(mesh: &Mesh) -> Front3d {
+        let cells = |g: &str| {
+            mesh.group_ma(g)
+                .map(|g| g.members.clone())
+                .unwrap_or_default()
+        };
+        let node = |g: &str| mesh.group_no(g).map(|g| g.members[0]).unwrap();
+        let (front, sup, inf) = (cells("FRONT"), cells("LIP_SUP"), cells("LIP_INF"));
+        define_front(&FrontInput {
+            mesh,
+            segments: &front,
+            origin: node("ORIG"),
+            end: Some(node("EXTR")),
+            lip_sup: &sup,
+            lip_inf: &inf,
+            prec_norm: 0.1,
+        })
+        .unwrap()
+    }
+
+    fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+        (0..3).all(|k| (a[k] - b[k]).abs() < 1e-12)
+    }
+
+    /// comm/crack_front_3d.mail (a straight front of 2 SEG2 along z in the
+    /// crack plane y = 0, propagating along x) and the same made quadratic
+    /// (LINE_QUAD): the quadratic front interleaves the middle nodes, its
+    /// ends have the linear front's bases and sizes, a middle node the
+    /// segment's basis and the mean of its ends' sizes; every node has its
+    /// normal lip lines, the ends' holding the linear ones' nodes in order
+    /// with the middle nodes between.
+    #[test]
+    fn a_quadratic_front_keeps_the_linear_ones_bases_and_sizes() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../comm/crack_front_3d.mail"
+        );
+        let lin = aster_mesh::read_mesh(std::path::Path::new(path)).unwrap();
+        let mut quad = lin.clone();
+        let all: Vec<CellId> = (0..quad.cells.len() as u32).map(CellId).collect();
+        quad.line_to_quad(&all);
+        let (fl, fq) = (front_of(&lin), front_of(&quad));
+        assert_eq!(fl.nodes.len(), 3);
+        assert_eq!(fq.nodes.len(), 5);
+        for i in 0..3 {
+            assert_eq!(fq.nodes[2 * i], fl.nodes[i]);
+            assert!(close(fq.normal[2 * i], fl.normal[i]), "{i}");
+            assert!(close(fq.dir[2 * i], fl.dir[i]), "{i}");
+            assert_eq!(fq.size[2 * i], fl.size[i]);
+            for l in [&fl.sup_normal[i], &fl.inf_normal[i]] {
+                assert!(l.len() >= 3);
+            }
+            for (ll, lq) in [
+                (&fl.sup_normal[i], &fq.sup_normal[2 * i]),
+                (&fl.inf_normal[i], &fq.inf_normal[2 * i]),
+            ] {
+                // The linear mesh's nodes of the quadratic line (20 nodes
+                // at most) are the linear line's first ones, in order.
+                let corner: Vec<NodeId> = lq
+                    .iter()
+                    .copied()
+                    .filter(|n| (n.0 as usize) < lin.node_count())
+                    .collect();
+                assert_eq!(lq.len(), 20, "{i}");
+                assert!(corner.len() >= 10 && ll.starts_with(&corner), "{i}");
+            }
+        }
+        for m in [1, 3] {
+            let p = quad.coord(fq.nodes[m]);
+            let mid =
+                |k: usize| (quad.coord(fq.nodes[m - 1])[k] + quad.coord(fq.nodes[m + 1])[k]) / 2.0;
+            assert!((0..3).all(|k| (p[k] - mid(k)).abs() < 1e-12));
+            assert!(close(fq.normal[m], [0.0, 1.0, 0.0]), "{:?}", fq.normal[m]);
+            assert!(close(fq.dir[m], [1.0, 0.0, 0.0]), "{:?}", fq.dir[m]);
+            assert_eq!(fq.size[m], (fq.size[m - 1] + fq.size[m + 1]) / 2.0);
+            assert!(fq.sup_normal[m].len() >= 3 && fq.inf_normal[m].len() >= 3);
+        }
+    }
 }
