@@ -204,6 +204,9 @@ pub struct CallRefusals {
     coordinate_loads: Vec<u32>,
     /// `DEFI_CONTACT` definitions, by concept id.
     defi_contact: Vec<u32>,
+    /// `DEFI_FOND_FISS` fronts of cells (`FOND_FISS/GROUP_MA`, which
+    /// code_aster reads on 3D meshes only: RUPTURE1_8), by concept id.
+    fronts_3d: Vec<u32>,
 }
 
 impl CallRefusals {
@@ -219,7 +222,46 @@ impl CallRefusals {
         out.extend(self.follow_finite_strains(call));
         out.extend(self.follow_continuous_friction(call));
         out.extend(self.follow_coordinate_loads(call));
+        out.extend(self.follow_fronts_3d(call));
         out
+    }
+
+    /// A crack front of cells (`DEFI_FOND_FISS/FOND_FISS/GROUP_MA`) is a
+    /// 3D front (code_aster reads cells on 3D meshes only), on which
+    /// CALC_G would compute G and K along the front (theta fields
+    /// discretised by LINEAIRE or LEGENDRE): not reproduced, refused at
+    /// `CALC_G/THETA/FISSURE` before the solve (ssnv166c's default
+    /// discretisation) instead of when CALC_G runs.
+    fn follow_fronts_3d(&mut self, call: &CommandCall) -> Option<(String, Span)> {
+        let kw = &call.keywords;
+        match call.command.as_str() {
+            "DEFI_FOND_FISS" => {
+                let cells = kw
+                    .factor("FOND_FISS")
+                    .iter()
+                    .any(|occ| occ.contains("GROUP_MA"));
+                if let (true, Some(r)) = (cells, call.result.as_ref()) {
+                    self.fronts_3d.push(r.id);
+                }
+                None
+            }
+            "CALC_G" => {
+                let theta = kw.factor("THETA").first()?;
+                let front = theta.concept("FISSURE")?;
+                if !self.fronts_3d.contains(&front.id) {
+                    return None;
+                }
+                let span = theta
+                    .keyword("FISSURE")
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
+                Some((
+                    format!("CALC_G/THETA/FISSURE: the 3D crack front `{}` (DEFI_FOND_FISS/FOND_FISS/GROUP_MA): G and K along a 3D front (code_aster's theta fields discretised by LINEAIRE or LEGENDRE and their 3D elementary terms) are not computed; aster's CALC_G computes them at a 2D crack tip only", front.name),
+                    span,
+                ))
+            }
+            _ => None,
+        }
     }
 
     /// Distributed loads given by functions of the coordinates are dead
