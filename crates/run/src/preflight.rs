@@ -204,10 +204,9 @@ pub struct CallRefusals {
     coordinate_loads: Vec<u32>,
     /// `DEFI_CONTACT` definitions, by concept id.
     defi_contact: Vec<u32>,
-    /// Cell groups given as `MODI_MAILLAGE/MODI_MAILLE/GROUP_MA_FOND` of
-    /// a `NOEUD_QUART` modification: SEG3 (or POI1) front cells, as code_aster
-    /// requires them (ALGORITH6_17).
-    quarter_point_fronts: Vec<String>,
+    /// `DEFI_FOND_FISS` fronts of cells (`FOND_FISS/GROUP_MA`, which
+    /// code_aster reads on 3D meshes only: RUPTURE1_8), by concept id.
+    fronts_3d: Vec<u32>,
 }
 
 impl CallRefusals {
@@ -223,40 +222,44 @@ impl CallRefusals {
         out.extend(self.follow_finite_strains(call));
         out.extend(self.follow_continuous_friction(call));
         out.extend(self.follow_coordinate_loads(call));
-        out.extend(self.follow_quarter_point_fronts(call));
+        out.extend(self.follow_fronts_3d(call));
         out
     }
 
-    /// A crack front of quarter-point cells (`MODI_MAILLE/NOEUD_QUART` by
-    /// `GROUP_MA_FOND`, which code_aster accepts of SEG3 or POI1 cells only,
-    /// on 3D meshes) given to `DEFI_FOND_FISS/FOND_FISS/GROUP_MA` is a
-    /// quadratic 3D front, which DEFI_FOND_FISS does not build (SEG2
-    /// fronts only): refused there before the solve instead of after it
-    /// (ssnv166b).
-    fn follow_quarter_point_fronts(&mut self, call: &CommandCall) -> Option<(String, Span)> {
+    /// A crack front of cells (`DEFI_FOND_FISS/FOND_FISS/GROUP_MA`) is a
+    /// 3D front (code_aster reads cells on 3D meshes only), on which
+    /// CALC_G would compute G and K along the front (theta fields
+    /// discretised by LINEAIRE or LEGENDRE): not reproduced, refused at
+    /// `CALC_G/THETA/FISSURE` before the solve (ssnv166c's default
+    /// discretisation) instead of when CALC_G runs.
+    fn follow_fronts_3d(&mut self, call: &CommandCall) -> Option<(String, Span)> {
         let kw = &call.keywords;
         match call.command.as_str() {
-            "MODI_MAILLAGE" => {
-                for occ in kw.factor("MODI_MAILLE") {
-                    if let Some(g) = occ.str("GROUP_MA_FOND") {
-                        self.quarter_point_fronts.push(g.to_string());
-                    }
+            "DEFI_FOND_FISS" => {
+                let cells = kw
+                    .factor("FOND_FISS")
+                    .iter()
+                    .any(|occ| occ.contains("GROUP_MA"));
+                if let (true, Some(r)) = (cells, call.result.as_ref()) {
+                    self.fronts_3d.push(r.id);
                 }
                 None
             }
-            "DEFI_FOND_FISS" => kw.factor("FOND_FISS").iter().find_map(|occ| {
-                let g = occ
-                    .simple("GROUP_MA")
-                    .iter()
-                    .filter_map(|s| s.as_str())
-                    .find(|g| self.quarter_point_fronts.iter().any(|f| f == g))?
-                    .to_string();
-                let span = occ.keyword("GROUP_MA").map(|k| k.span).unwrap_or(call.span);
+            "CALC_G" => {
+                let theta = kw.factor("THETA").first()?;
+                let front = theta.concept("FISSURE")?;
+                if !self.fronts_3d.contains(&front.id) {
+                    return None;
+                }
+                let span = theta
+                    .keyword("FISSURE")
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
                 Some((
-                    format!("DEFI_FOND_FISS/FOND_FISS/GROUP_MA='{g}': a crack front of quadratic (SEG3) cells, the quarter-point front of MODI_MAILLAGE/MODI_MAILLE/GROUP_MA_FOND (aster builds linear SEG2 3D fronts only)"),
+                    format!("CALC_G/THETA/FISSURE: the 3D crack front `{}` (DEFI_FOND_FISS/FOND_FISS/GROUP_MA): G and K along a 3D front (code_aster's theta fields discretised by LINEAIRE or LEGENDRE and their 3D elementary terms) are not computed; aster's CALC_G computes them at a 2D crack tip only", front.name),
                     span,
                 ))
-            }),
+            }
             _ => None,
         }
     }

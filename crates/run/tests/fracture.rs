@@ -136,3 +136,37 @@ fn noeud_quart_by_cells_on_a_plane_mesh_is_an_error() {
     );
     assert_eq!(outcome.tally.ok + outcome.tally.nook, 0);
 }
+
+/// comm/crack_front_quad.comm: the plate of comm/crack_front_3d.comm made
+/// quadratic (LINE_QUAD) with quarter-point cells at its SEG3 front: the
+/// rows are the cells' ends in order with their abscissa, K1 1.3 % above
+/// Feddersen's value, K2 = K3 = 0.
+#[test]
+fn quadratic_front_post_k1_k2_k3() {
+    let comm = root().join("comm/crack_front_quad.comm");
+    let out = std::env::temp_dir().join(format!("aster-crackquad-{}", std::process::id()));
+    let case =
+        aster_run::program::prepare(&comm, Some(&root().join("comm/crack_front_3d.mail")), &out)
+            .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&out);
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (29, 0));
+    // Without the quarter points the jump is not singular: K1 falls out
+    // of the analytic tolerance.
+    let text = std::fs::read_to_string(&comm).unwrap();
+    let start = text.find("mesh = MODI_MAILLAGE(").unwrap();
+    let end = start + text[start..].find("\n)\n").unwrap() + 3;
+    let plain = format!("{}{}", &text[..start], &text[end..]);
+    let dir = std::env::temp_dir().join(format!("aster-crackquad-plain-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("plain.comm");
+    std::fs::write(&file, plain).unwrap();
+    let case =
+        aster_run::program::prepare(&file, Some(&root().join("comm/crack_front_3d.mail")), &dir)
+            .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert!(outcome.tally.nook >= 3, "{:?}", outcome.tally);
+}

@@ -381,23 +381,42 @@ FIN()
 
 /// The quarter-point front of MODI_MAILLE/GROUP_MA_FOND (SEG3 cells, as
 /// code_aster requires) given to DEFI_FOND_FISS is a quadratic 3D front,
-/// refused at its GROUP_MA before any solve; a front named by nodes is not.
+/// which DEFI_FOND_FISS builds (`fracture::front3d`): not refused.
 #[test]
-fn a_quarter_point_front_is_refused_at_defi_fond_fiss() {
+fn a_quarter_point_front_is_not_refused_at_defi_fond_fiss() {
     let src = format!(
         "{HEAD}mesh = MODI_MAILLAGE(reuse=mesh, MAILLAGE=mesh, MODI_MAILLE=_F(OPTION=\"NOEUD_QUART\", GROUP_MA_FOND=\"FRONT\"))\n\
          fiss = DEFI_FOND_FISS(MAILLAGE=mesh, SYME=\"NON\", FOND_FISS=_F(GROUP_MA=\"FRONT\"), LEVRE_SUP=_F(GROUP_MA=\"LIP\"), LEVRE_INF=_F(GROUP_MA=\"LIP2\"))\nFIN()\n"
     );
     let (p, map) = pass(&src, None);
+    assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
+}
+
+/// CALC_G on a front of cells (DEFI_FOND_FISS/FOND_FISS/GROUP_MA, a 3D
+/// front) is refused at THETA/FISSURE before any solve; on a crack tip
+/// given by its node (GROUP_NO) it is not.
+#[test]
+fn calc_g_on_a_3d_front_is_refused_at_fissure() {
+    let src = format!(
+        "{HEAD}steel = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3))\n\
+         mat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT=\"OUI\", MATER=steel))\n\
+         load = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=_F(TOUT=\"OUI\", DX=0.0))\n\
+         resu = MECA_STATIQUE(MODELE=model, CHAM_MATER=mat, EXCIT=_F(CHARGE=load))\n\
+         fiss = DEFI_FOND_FISS(MAILLAGE=mesh, SYME=\"NON\", FOND_FISS=_F(GROUP_MA=\"FRONT\"), LEVRE_SUP=_F(GROUP_MA=\"LIP\"), LEVRE_INF=_F(GROUP_MA=\"LIP2\"))\n\
+         g = CALC_G(RESULTAT=resu, OPTION=\"K\", THETA=_F(FISSURE=fiss, R_INF=1.0, R_SUP=2.0))\nFIN()\n"
+    );
+    let (p, map) = pass(&src, None);
     let m = messages(&p, &map);
     assert_eq!(m.len(), 1, "{m:?}");
     assert!(
-        m[0].contains("case.comm:5:")
-            && m[0].contains("FOND_FISS/GROUP_MA='FRONT'")
-            && m[0].contains("SEG3"),
+        m[0].contains("case.comm:9:")
+            && m[0].contains("CALC_G/THETA/FISSURE: the 3D crack front `fiss`"),
         "{m:?}"
     );
-    let other = src.replace("GROUP_MA=\"FRONT\"), LEVRE", "GROUP_MA=\"OTHER\"), LEVRE");
-    let (p, map) = pass(&other, None);
+    let tip = src.replace(
+        "FOND_FISS=_F(GROUP_MA=\"FRONT\")",
+        "FOND_FISS=_F(GROUP_NO=\"TIP\")",
+    );
+    let (p, map) = pass(&tip, None);
     assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
 }

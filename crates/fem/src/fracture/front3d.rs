@@ -1,12 +1,18 @@
 //! A 3D crack front as code_aster's `DEFI_FOND_FISS` builds it from a
-//! meshed crack (`op0055`): the front's nodes in order (`fonmai`), the
+//! meshed crack (`op0060`): the front's nodes in order (`fonmai`), the
 //! local basis at each node (`BASEFOND`: `fonnor` with `fonno1`…`fonno8`),
 //! the cell size at each node (`FOND.TAILLE_R`, `fonno7`) and the lip
 //! nodes in the plane normal to the front at each node (`SUPNORM.NOEU`,
 //! `INFNORM.NOEU`: `fonnof`, `cgnop0`, `oreino`), which `POST_K1_K2_K3`
 //! reads on a regular ("REGLE") mesh.
 //!
-//! Linear fronts (`SEG2`) with lips on both sides (`SYME='NON'`) only:
+//! Fronts of `SEG2` or `SEG3` cells with lips on both sides (`SYME='NON'`)
+//! only. On a `SEG3` front (`fonnor2`'s `QUADRATIQUE`) each cell's middle
+//! node lies between its ends in the node list, the segments below run
+//! between the cells' ends, fan cells are face neighbours when they share
+//! 6 nodes (3 on a linear front), a middle node takes its segment's basis
+//! and the mean of its ends' sizes.
+//!
 //!
 //! - each front segment [a, b]: the 3D cells holding a and b (the fan
 //!   around the segment); the two cells of the fan with a single face
@@ -147,20 +153,46 @@ impl<'a> Geometry<'a> {
     }
 }
 
-/// `fonmai`: the front's nodes in order from the origin.
-fn order_front(input: &FrontInput) -> Result<Vec<NodeId>, String> {
+/// `fonmai2` + `ornofd`: the front's nodes in order from the origin; on a
+/// front of SEG3 cells (`quadratic`), each cell's middle node (its third)
+/// between its two ends.
+fn order_front(input: &FrontInput) -> Result<(Vec<NodeId>, bool), String> {
     let mesh = input.mesh;
-    let mut segs: Vec<[NodeId; 2]> = Vec::new();
+    // code_aster reads the type of the first cell (`typm`) for all of them.
+    let quadratic = match input.segments.first().map(|&c| mesh.cell(c).ty) {
+        Some(CellType::SEG3) => true,
+        Some(CellType::SEG2) | None => false,
+        Some(ty) => {
+            return Err(format!(
+                "the front cell {} is a {}: aster builds fronts of SEG2 or SEG3 cells",
+                mesh.cell_name(input.segments[0]),
+                ty.name()
+            ))
+        }
+    };
+    let want = if quadratic {
+        CellType::SEG3
+    } else {
+        CellType::SEG2
+    };
+    // (end, end, middle)
+    let mut segs: Vec<[NodeId; 3]> = Vec::new();
     for &c in input.segments {
         let cell = mesh.cell(c);
-        if cell.ty != CellType::SEG2 {
+        if cell.ty != want {
             return Err(format!(
-                "the front cell {} is a {}: aster builds linear (SEG2) 3D fronts only",
+                "the front cell {} is a {}, the first one a {}: aster builds fronts of one cell type",
                 mesh.cell_name(c),
-                cell.ty.name()
+                cell.ty.name(),
+                want.name()
             ));
         }
-        segs.push([cell.nodes[0], cell.nodes[1]]);
+        let mid = if quadratic {
+            cell.nodes[2]
+        } else {
+            cell.nodes[0]
+        };
+        segs.push([cell.nodes[0], cell.nodes[1], mid]);
     }
     let mut used = vec![false; segs.len()];
     let mut nodes = vec![input.origin];
@@ -170,15 +202,18 @@ fn order_front(input: &FrontInput) -> Result<Vec<NodeId>, String> {
             if used[i] {
                 None
             } else if s[0] == cur {
-                Some((i, s[1]))
+                Some((i, s[1], s[2]))
             } else if s[1] == cur {
-                Some((i, s[0]))
+                Some((i, s[0], s[2]))
             } else {
                 None
             }
         });
-        let Some((i, n)) = next else { break };
+        let Some((i, n, mid)) = next else { break };
         used[i] = true;
+        if quadratic {
+            nodes.push(mid);
+        }
         nodes.push(n);
         cur = n;
     }
@@ -198,7 +233,7 @@ fn order_front(input: &FrontInput) -> Result<Vec<NodeId>, String> {
             );
         }
     }
-    Ok(nodes)
+    Ok((nodes, quadratic))
 }
 
 /// The lip faces at a segment [a, b] and the two lip cells (`fonno1`…`fonno4`):
@@ -207,6 +242,7 @@ fn lip_faces(
     g: &Geometry,
     a: NodeId,
     b: NodeId,
+    shared_min: usize,
 ) -> Result<(Vec<Vec<NodeId>>, [CellId; 2]), String> {
     let mesh = g.mesh;
     let fan: Vec<CellId> = g
@@ -222,7 +258,9 @@ fn lip_faces(
             .map(|n| ny.iter().filter(|m| *m == n).count())
             .sum::<usize>()
     };
-    // fonno2: the cells with a single face neighbour in the fan.
+    // fonno2: the cells with a single face neighbour in the fan (sharing
+    // at least `shared_min` nodes: `nbmax`, 3 on a linear front, 6 on a
+    // quadratic one, whose cells share their 3 edge nodes).
     let mut ends = Vec::new();
     for &p in &fan {
         let np = mesh.cell(p).nodes.len();
@@ -230,7 +268,7 @@ fn lip_faces(
             .iter()
             .filter(|&&q| {
                 let s = shared(p, q);
-                (s != np && s >= 3) || fan.len() == 1
+                (s != np && s >= shared_min) || fan.len() == 1
             })
             .count();
         if count == 1 {
@@ -596,15 +634,20 @@ fn normal_line(
 pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
     let mesh = input.mesh;
     let g = Geometry::new(mesh);
-    let nodes = order_front(input)?;
+    let (nodes, quadratic) = order_front(input)?;
     let nn = nodes.len();
-    let nseg = nn - 1;
+    // fonnor2: a segment spans `step` nodes (its middle node between on a
+    // quadratic front); the cells around it share `nbmax` nodes with a
+    // face neighbour.
+    let (step, nbmax) = if quadratic { (2, 6) } else { (1, 3) };
+    let nseg = (nn - 1) / step;
     let mut normal = vec![[0.0; 3]; nn];
     let mut dir = vec![[0.0; 3]; nn];
     let mut sens = 1.0;
     for iseg in 0..nseg {
-        let (a, b) = (nodes[iseg], nodes[iseg + 1]);
-        let (lips, cells) = lip_faces(&g, a, b)?;
+        let (ia, ib) = (step * iseg, step * (iseg + 1));
+        let (a, b) = (nodes[ia], nodes[ib]);
+        let (lips, cells) = lip_faces(&g, a, b, nbmax)?;
         let (d1, n1) = face_basis(mesh, &lips[0], a, b);
         let (d2, n2) = face_basis(mesh, &lips[1], a, b);
         // fonno6, SYME='NON': the two lips' directions agree within 5°.
@@ -627,27 +670,42 @@ pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
                 vn = [-vn[0], -vn[1], -vn[2]];
             }
         }
-        normal[iseg] = normalize(add(normal[iseg], vn));
-        dir[iseg] = normalize(add(dir[iseg], vd));
-        normal[iseg + 1] = normalize(add(normal[iseg + 1], vn));
-        dir[iseg + 1] = normalize(add(dir[iseg + 1], vd));
+        normal[ia] = normalize(add(normal[ia], vn));
+        dir[ia] = normalize(add(dir[ia], vd));
+        normal[ib] = normalize(add(normal[ib], vn));
+        dir[ib] = normalize(add(dir[ib], vd));
+        if quadratic {
+            // The middle node takes the segment's basis.
+            normal[ia + 1] = vn;
+            dir[ia + 1] = vd;
+        }
     }
     // fonext, called on the first and the last segment (for a front of one
     // segment, code_aster's call turns the first node's direction with the
     // free faces around the last one: reproduced).
     if nseg == 1 {
         let (n0, mut d0) = (normal[0], dir[0]);
-        turn_end(&g, nodes[1], nodes[0], n0, &mut d0);
+        turn_end(&g, nodes[nn - 1], nodes[0], n0, &mut d0);
         dir[0] = d0;
     } else {
         let (n0, mut d0) = (normal[0], dir[0]);
-        turn_end(&g, nodes[0], nodes[1], n0, &mut d0);
+        turn_end(&g, nodes[0], nodes[step], n0, &mut d0);
         dir[0] = d0;
         let (nl, mut dl) = (normal[nn - 1], dir[nn - 1]);
-        turn_end(&g, nodes[nn - 1], nodes[nn - 2], nl, &mut dl);
+        turn_end(&g, nodes[nn - 1], nodes[nn - 1 - step], nl, &mut dl);
         dir[nn - 1] = dl;
     }
-    let size: Vec<f64> = (0..nn).map(|i| node_size(&g, nodes[i], dir[i])).collect();
+    // fonno7 at the segments' ends; a middle node's size is the mean of
+    // its two ends' (fonnor2).
+    let mut size = vec![0.0; nn];
+    for i in (0..nn).step_by(step) {
+        size[i] = node_size(&g, nodes[i], dir[i]);
+    }
+    if quadratic {
+        for i in (1..nn).step_by(2) {
+            size[i] = (size[i + 1] + size[i - 1]) / 2.0;
+        }
+    }
     // fonnof
     let sup = lip_nodes(mesh, input.lip_sup);
     let inf = lip_nodes(mesh, input.lip_inf);
@@ -684,4 +742,148 @@ pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
         sup_normal,
         inf_normal,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use aster_mesh::Cell;
+
+    /// A line of 7 nodes along x (node k at x = k) and the given segments.
+    fn line(cells: &[(CellType, &[u32])]) -> Mesh {
+        Mesh {
+            dim: 3,
+            coords: (0..7).map(|k| [k as f64, 0.0, 0.0]).collect(),
+            node_names: (1..=7).map(|k| format!("N{k}")).collect(),
+            cells: cells
+                .iter()
+                .map(|(ty, n)| Cell {
+                    ty: *ty,
+                    nodes: n.iter().map(|&i| NodeId(i)).collect(),
+                })
+                .collect(),
+            cell_names: (1..=cells.len()).map(|k| format!("M{k}")).collect(),
+            ..Mesh::default()
+        }
+    }
+
+    fn order(mesh: &Mesh, origin: u32, end: Option<u32>) -> Result<(Vec<u32>, bool), String> {
+        let segments: Vec<CellId> = (0..mesh.cells.len() as u32).map(CellId).collect();
+        let input = FrontInput {
+            mesh,
+            segments: &segments,
+            origin: NodeId(origin),
+            end: end.map(NodeId),
+            lip_sup: &[],
+            lip_inf: &[],
+            prec_norm: 0.1,
+        };
+        order_front(&input).map(|(n, q)| (n.iter().map(|x| x.0).collect(), q))
+    }
+
+    /// ornofd on SEG3 cells: the ends walked from the origin whatever the
+    /// cells' order and orientation, each cell's middle node (its third)
+    /// between them.
+    #[test]
+    fn a_quadratic_front_is_ordered_with_its_middle_nodes() {
+        use CellType::SEG3;
+        let mesh = line(&[(SEG3, &[4, 6, 5]), (SEG3, &[0, 2, 1]), (SEG3, &[4, 2, 3])]);
+        assert_eq!(
+            order(&mesh, 0, Some(6)),
+            Ok((vec![0, 1, 2, 3, 4, 5, 6], true))
+        );
+        assert_eq!(order(&mesh, 6, None), Ok((vec![6, 5, 4, 3, 2, 1, 0], true)));
+        assert!(order(&mesh, 0, Some(4)).is_err());
+    }
+
+    /// code_aster reads the first cell's type for the whole front: SEG2
+    /// and SEG3 cells together are refused.
+    #[test]
+    fn a_front_of_two_cell_types_is_refused() {
+        use CellType::{SEG2, SEG3};
+        let mesh = line(&[(SEG3, &[0, 2, 1]), (SEG2, &[2, 3])]);
+        let e = order(&mesh, 0, None).unwrap_err();
+        assert!(e.contains("M2") && e.contains("SEG2"), "{e}");
+        let mesh = line(&[(SEG2, &[0, 1]), (SEG2, &[2, 1])]);
+        assert_eq!(order(&mesh, 0, None), Ok((vec![0, 1, 2], false)));
+    }
+
+    fn front_of(mesh: &Mesh) -> Front3d {
+        let cells = |g: &str| {
+            mesh.group_ma(g)
+                .map(|g| g.members.clone())
+                .unwrap_or_default()
+        };
+        let node = |g: &str| mesh.group_no(g).map(|g| g.members[0]).unwrap();
+        let (front, sup, inf) = (cells("FRONT"), cells("LIP_SUP"), cells("LIP_INF"));
+        define_front(&FrontInput {
+            mesh,
+            segments: &front,
+            origin: node("ORIG"),
+            end: Some(node("EXTR")),
+            lip_sup: &sup,
+            lip_inf: &inf,
+            prec_norm: 0.1,
+        })
+        .unwrap()
+    }
+
+    fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+        (0..3).all(|k| (a[k] - b[k]).abs() < 1e-12)
+    }
+
+    /// comm/crack_front_3d.mail (a straight front of 2 SEG2 along z in the
+    /// crack plane y = 0, propagating along x) and the same made quadratic
+    /// (LINE_QUAD): the quadratic front interleaves the middle nodes, its
+    /// ends have the linear front's bases and sizes, a middle node the
+    /// segment's basis and the mean of its ends' sizes; every node has its
+    /// normal lip lines, the ends' holding the linear ones' nodes in order
+    /// with the middle nodes between.
+    #[test]
+    fn a_quadratic_front_keeps_the_linear_ones_bases_and_sizes() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../comm/crack_front_3d.mail"
+        );
+        let lin = aster_mesh::read_mesh(std::path::Path::new(path)).unwrap();
+        let mut quad = lin.clone();
+        let all: Vec<CellId> = (0..quad.cells.len() as u32).map(CellId).collect();
+        quad.line_to_quad(&all);
+        let (fl, fq) = (front_of(&lin), front_of(&quad));
+        assert_eq!(fl.nodes.len(), 3);
+        assert_eq!(fq.nodes.len(), 5);
+        for i in 0..3 {
+            assert_eq!(fq.nodes[2 * i], fl.nodes[i]);
+            assert!(close(fq.normal[2 * i], fl.normal[i]), "{i}");
+            assert!(close(fq.dir[2 * i], fl.dir[i]), "{i}");
+            assert_eq!(fq.size[2 * i], fl.size[i]);
+            for l in [&fl.sup_normal[i], &fl.inf_normal[i]] {
+                assert!(l.len() >= 3);
+            }
+            for (ll, lq) in [
+                (&fl.sup_normal[i], &fq.sup_normal[2 * i]),
+                (&fl.inf_normal[i], &fq.inf_normal[2 * i]),
+            ] {
+                // The linear mesh's nodes of the quadratic line (20 nodes
+                // at most) are the linear line's first ones, in order.
+                let corner: Vec<NodeId> = lq
+                    .iter()
+                    .copied()
+                    .filter(|n| (n.0 as usize) < lin.node_count())
+                    .collect();
+                assert_eq!(lq.len(), 20, "{i}");
+                assert!(corner.len() >= 10 && ll.starts_with(&corner), "{i}");
+            }
+        }
+        for m in [1, 3] {
+            let p = quad.coord(fq.nodes[m]);
+            let mid =
+                |k: usize| (quad.coord(fq.nodes[m - 1])[k] + quad.coord(fq.nodes[m + 1])[k]) / 2.0;
+            assert!((0..3).all(|k| (p[k] - mid(k)).abs() < 1e-12));
+            assert!(close(fq.normal[m], [0.0, 1.0, 0.0]), "{:?}", fq.normal[m]);
+            assert!(close(fq.dir[m], [1.0, 0.0, 0.0]), "{:?}", fq.dir[m]);
+            assert_eq!(fq.size[m], (fq.size[m - 1] + fq.size[m + 1]) / 2.0);
+            assert!(fq.sup_normal[m].len() >= 3 && fq.inf_normal[m].len() >= 3);
+        }
+    }
 }

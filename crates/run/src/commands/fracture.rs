@@ -11,9 +11,10 @@
 //!   around the tip; the two agree for a crack whose lip is straight at the
 //!   tip); the cell size at the tip (`FOND.TAILLE_R`) as `fonno7`, for the
 //!   default crown R_INF = 2 h, R_SUP = 4 h.
-//! - `DEFI_FOND_FISS` in 3D: a front of SEG2 segments (`FOND_FISS/GROUP_MA`)
-//!   from `GROUP_NO_ORIG`, both lips given (`SYME='NON'`): its nodes, basis,
-//!   sizes and normal lip nodes (`fracture::front3d`).
+//! - `DEFI_FOND_FISS` in 3D: a front of SEG2 or SEG3 segments
+//!   (`FOND_FISS/GROUP_MA`) from `GROUP_NO_ORIG`, both lips given
+//!   (`SYME='NON'`): its nodes, basis, sizes and normal lip nodes
+//!   (`fracture::front3d`).
 //! - `CALC_G(RESULTAT, THETA=_F(FISSURE, R_INF, R_SUP), OPTION='G'|'K')`:
 //!   per stored instant, a row of `NUME_ORDRE`, `INST`, `NOEUD`,
 //!   `COOR_X`, `COOR_Y` and `G` (option `G`) or `K1`, `K2`, `G_IRWIN`
@@ -23,7 +24,8 @@
 //!   models are refused before the integral is computed.
 //! - `POST_K1_K2_K3(FOND_FISS, RESULTAT)` on a 3D front, regular mesh
 //!   (`TYPE_MAILLAGE='REGLE'`): one row per front node and instant
-//!   (`fracture::post_k`).
+//!   (`fracture::post_k`), every other front node on a mesh with quadratic
+//!   cells.
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
@@ -322,10 +324,18 @@ const CALC_G_OWN: &[&str] = &[
     "TITRE",
 ];
 
+/// Why the keywords of G and K along a 3D front are refused.
+const CALC_G_3D: &str = "the discretisation of G and K along a 3D crack front (LINEAIRE or LEGENDRE): aster's CALC_G computes G and K at a 2D crack tip only (code_aster's 3D theta fields and their elementary terms are not reproduced)";
+
 /// What CALC_G reads (`crate::support`): its own keywords and the step
 /// selection ([`super::post::STEP_SELECTION`]).
 pub(crate) const CALC_G: Support = Support {
     values: &[Values::listed("OPTION", &["G", "K"])],
+    hints: &[
+        ("THETA/DISCRETISATION", CALC_G_3D),
+        ("THETA/NB_POINT_FOND", CALC_G_3D),
+        ("THETA/DEGRE", CALC_G_3D),
+    ],
     ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + CALC_G_OWN.len() },
@@ -721,10 +731,18 @@ pub fn post_k1_k2_k3(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
         absc[i] = absc[i - 1] + d;
     }
+    // The front nodes computed (get_noeud_a_calculer): on a mesh with a
+    // quadratic cell (code_aster's `Mesh.isQuadratic`), every other one
+    // from the first (the ends of a quadratic front's cells).
+    let quadratic = mesh
+        .cells
+        .iter()
+        .any(|c| c.nodes.len() > aster_fem::shape::corner_count(c.ty));
+    let every = if quadratic { 2 } else { 1 };
     // The front nodes with enough lip nodes (get_noeuds_perp_regle).
     let coords = |ns: &[NodeId]| ns.iter().map(|&n| mesh.coord(n)).collect::<Vec<_>>();
     let mut kept = Vec::new();
-    for (i, &n) in line.nodes.iter().enumerate() {
+    for (i, &n) in line.nodes.iter().enumerate().step_by(every) {
         let sup = &line.sup_normal[i];
         let inf = &line.inf_normal[i];
         if let Some((ks, ki)) = keep_lip_nodes(mesh.coord(n), &coords(sup), &coords(inf), hmax, pvv)
