@@ -912,7 +912,7 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         parameter_fonc = kw.str("NOM_PARA_FONC").unwrap_or("TOUTPARA").to_string();
         for occ in kw.factor("DEFI_FONCTION") {
             let vale = reals(occ, "VALE");
-            if vale.len() % 2 != 0 {
+            if !vale.len().is_multiple_of(2) {
                 return Err(ex.kw_error(
                     CMD,
                     occ,
@@ -947,7 +947,10 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     }
     let mut pairs: Vec<(f64, Function)> = para.into_iter().zip(functions).collect();
     if kw.str("VERIF") == Some("CROISSANT") {
-        if pairs.windows(2).any(|w| !(w[0].0 < w[1].0)) {
+        if pairs
+            .windows(2)
+            .any(|w| w[0].0.partial_cmp(&w[1].0) != Some(std::cmp::Ordering::Less))
+        {
             return Err(ex.kw_error(
                 CMD,
                 kw,
