@@ -719,12 +719,8 @@ pub fn solve_with(
         let nr = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if nr > norm_b || nr.is_nan() {
             if let Some(y) = solve_two_sided(a, b) {
-                let (be2, _) = berr(&y);
-                let r2 = a.mul(&y);
-                let nr2 = b
-                    .iter()
-                    .zip(&r2)
-                    .fold(0.0f64, |m, (bi, ai)| m.max((bi - ai).abs()));
+                let (be2, r2) = berr(&y);
+                let nr2 = r2.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 if y.iter().all(|v| v.is_finite()) && nr2 < nr {
                     x = y;
                     be = be2;
