@@ -73,6 +73,12 @@ const REFINEMENT_STEPS: usize = 4;
 /// geometric nested dissection when coordinates are given.
 const ND_THRESHOLD: usize = 20_000;
 
+/// Most entries Σ |aᵣ|² the augmented Lagrangian may add (a row over k
+/// unknowns adds a k × k clique; ssnv166b adds a few million): beyond it,
+/// rows over tens of thousands of unknowns, the bordered matrix keeps the
+/// LU rather than build cliques of that size.
+const AUGMENTED_MAX_TERMS: usize = 25_000_000;
+
 enum RFactor {
     Llt {
         symbolic: Arc<SymbolicCholesky<usize>>,
@@ -477,7 +483,15 @@ impl KktSolver {
         // instead of an LU, whose column ordering and pivoting a row over a
         // whole face (LIAISON_ELEM 3D_POU) ruin: 45 s against ~2 s for the
         // 60,000 unknowns of ssnv166b.
-        let augmented = key.symmetric() && !inside.is_empty();
+        let augmented_terms: usize = inside.iter().map(|t| t.len() * t.len()).sum();
+        let augmented =
+            key.symmetric() && !inside.is_empty() && augmented_terms <= AUGMENTED_MAX_TERMS;
+        if augmented && std::env::var_os("ASTER_FEM_TIMING").is_some() {
+            eprintln!(
+                "[fem] augmented Lagrangian of {} relations: {augmented_terms} terms",
+                inside.len()
+            );
+        }
         let (krr, weights) = if augmented {
             augment(&krr, &inside, &red_of)
         } else {
