@@ -21,7 +21,13 @@
 //!   whole analysis;
 //! - the other rows (inequality rows, multi-DOF relations: a few hundred at
 //!   most) enter through S = A K_rr⁻¹ Aᵀ, a small dense matrix, with the
-//!   columns K_rr⁻¹ aᵣ cached per row for the current factor.
+//!   columns K_rr⁻¹ aᵣ cached per row for the current factor;
+//! - when only the multi-DOF equality rows hold the model (a body hung on
+//!   LIAISON_ELEM 3D_POU), they are factorised with K_rr: augmented by
+//!   their Lagrangian terms Σ wᵣ aᵣaᵣᵀ (exact: zero where the rows hold)
+//!   and factorised as LDLᵀ without pivoting, each multiplier after its
+//!   row's anchor ([`augmented_ldlt_order`]); an unsymmetric matrix takes
+//!   the bordered LU of K_rr and those rows.
 //!
 //! When that structure does not apply (the pinned DOFs do not hold the
 //! model, a DOF pinned twice, S singular, a factorisation failure) the
