@@ -26,7 +26,7 @@
 //!   LIAISON_ELEM 3D_POU), they are factorised with K_rr: augmented by
 //!   their Lagrangian terms Σ wᵣ aᵣaᵣᵀ (exact: zero where the rows hold)
 //!   and factorised as LDLᵀ without pivoting, each multiplier after its
-//!   row's anchor ([`augmented_ldlt_order`]); an unsymmetric matrix takes
+//!   row's anchor (`augmented_ldlt_order`); an unsymmetric matrix takes
 //!   the bordered LU of K_rr and those rows.
 //!
 //! When that structure does not apply (the pinned DOFs do not hold the
