@@ -80,7 +80,7 @@ const REFINEMENT_STEPS: usize = 4;
 const ND_THRESHOLD: usize = 20_000;
 
 /// Most entries Σ |aᵣ|² the augmented Lagrangian may add (a row over k
-/// unknowns adds a k × k clique; ssnv166b adds a few million): beyond it,
+/// unknowns adds a k × k clique; ssnv166b adds 2.0 M): beyond it,
 /// rows over tens of thousands of unknowns, the bordered matrix keeps the
 /// LU rather than build cliques of that size.
 const AUGMENTED_MAX_TERMS: usize = 25_000_000;
