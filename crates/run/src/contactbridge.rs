@@ -749,8 +749,9 @@ pub fn has_friction(kw: &Keywords) -> bool {
 /// others keep the node-row formulation (`aster_contact::ZoneContact`),
 /// which reproduces code_aster only where a node's points share one status.
 pub fn contact_elements(mesh: &Mesh, kw: &Keywords) -> bool {
-    // The element is validated on 3D quadrangular faces only (see
-    // `refuse_friction_on_triangles`): triangles keep the row zones.
+    // Frictionless zones on 3D triangular faces keep the row zones (the
+    // frictionless cases were measured so); frictional ones take the
+    // elements on every face (ssnp503i, TRIA3, all-OK).
     let triangles = |occ: &Keywords| {
         mesh.dim >= 3
             && ["GROUP_MA_MAIT", "GROUP_MA_ESCL"].iter().any(|k| {
@@ -849,7 +850,6 @@ pub fn friction_source(
             "DEFI_CONTACT: discrete friction is refused at DEFI_CONTACT".to_string(),
         ));
     };
-    refuse_friction_on_triangles(mesh, c)?;
     let measure = if is_axis(ex, kw)? {
         Measure::Axisymmetric
     } else {
@@ -858,38 +858,6 @@ pub fn friction_source(
     let dim = problem_dim(ex, mesh, kw)?;
     aster_contact::friction::ContinuousFriction::new_in(c, mesh, measure, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))
-}
-
-/// Continuous friction in 3D is validated on quadrangular contact faces
-/// only: on triangular ones (ssnp503i, PENTA6 volumes with TRIA3 faces)
-/// the multipliers differ from code_aster's by up to 2e-5 while the same
-/// study on HEXA8/QUAD4 (ssnp503g) agrees. Refused before the solve.
-fn refuse_friction_on_triangles(
-    mesh: &Mesh,
-    def: &aster_contact::ContinueDefinition,
-) -> Result<(), ExecError> {
-    if mesh.dim < 3 {
-        return Ok(());
-    }
-    for z in &def.zones {
-        for g in [&z.geometry.slave_group, &z.geometry.master_group] {
-            let Some(group) = mesh.group_ma(g) else {
-                continue;
-            };
-            if let Some(&c) = group
-                .members
-                .iter()
-                .find(|c| mesh.cell(**c).ty.name().starts_with("TRIA"))
-            {
-                return Err(ExecError::new(format!(
-                    "not supported yet: DEFI_CONTACT/FROTTEMENT='COULOMB' with FORMULATION='CONTINUE' on triangular faces in 3D (group {g}, cell {} is a {}): continuous friction is validated on quadrangles only (the friction issue)",
-                    crate::select::cell_name(mesh, c),
-                    mesh.cell(c).ty.name()
-                )));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Continuous contact with links that never open (`GLISSIERE='OUI'`) on an

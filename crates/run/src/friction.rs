@@ -227,17 +227,25 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
     }
     if kw.str("FORMULATION") == Some("CONTINUE") {
         newton_friction_rules(call, out);
-        let zones = kw.factor("ZONE");
-        let frictional = |o: &Keywords| o.f64("COULOMB").is_some_and(|m| m > f64::EPSILON);
-        if zones.iter().any(&frictional) {
-            // Frictionless zones beside frictional ones: code_aster gives
-            // them contact-only elements, as we do, but the one real case
-            // (ssna102f) is 1.07e-6 off at a 1e-6 tolerance; not traced.
-            for occ in zones.iter().filter(|o| !frictional(o)) {
+        // A zone with COULOMB = 0 (≤ r8prem) beside frictional ones is
+        // frictionless in code_aster: `cazocc` sets its ALGO_FROT to 0, so
+        // FROTTEMENT_ZONE is false, its slave cells get contact-only
+        // elements (`mmprel`: CONT_SL_2D/3D) and `mmmbca` evaluates no
+        // friction status there — what `friction::continuous` does with
+        // μ = 0 (one LAGS_C unknown per slave node). ssna102f all-OK.
+        //
+        // The frictional elements integrate at the slave nodes ('AUTO') or
+        // at code_aster's Gauss points (`mmgaus`, ssnp156b all-OK); its
+        // Simpson and Newton–Cotes points are not placed on the cells.
+        for occ in kw.factor("ZONE") {
+            let rule = occ.str("INTEGRATION").unwrap_or("AUTO");
+            if occ.f64("COULOMB").is_some_and(|m| m > f64::EPSILON)
+                && matches!(rule, "SIMPSON" | "NCOTES")
+            {
                 out.push(Refusal::at(
-                    "DEFI_CONTACT/ZONE/COULOMB=0 beside frictional zones (mixed frictionless and frictional zones are not validated)".into(),
+                    format!("DEFI_CONTACT/ZONE/INTEGRATION='{rule}' with FROTTEMENT='COULOMB' (code_aster's Simpson and Newton–Cotes points of the contact elements are not placed; 'AUTO' and 'GAUSS' are reproduced)"),
                     occ,
-                    "COULOMB",
+                    "INTEGRATION",
                     call.span,
                 ));
             }
@@ -285,14 +293,30 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         // COEF_FROT (`friction::adaptation`) are reproduced; its estimate
         // of COEF_CONT from the matrix (`nmprma` → `echmat`) only changes
         // Newton's path (ssnv209a all-OK without it).
-        // The penalised friction coefficient adapted to GLIS_MAXI
-        // (code_aster's `mm_cycl_algo`) changes the converged answer.
-        if occ.contains("GLIS_MAXI") && occ.str("ALGO_FROT") == Some("PENALISATION") {
+        // Penalised friction beside augmented contact: code_aster's
+        // `mm_cycl_algo` replaces, at every status update of a point in
+        // contact whose slip exceeds 1e-6 × GLIS_MAXI (default 0.1 ×
+        // arete_min, `mmmbca`), the point's COEF_PENA_FROT by
+        // 10 × arete_max / arete_min / GLIS_MAXI, whatever ADAPTATION —
+        // the penalised answer depends on it. Not reproduced; its one real
+        // case (ssnv128p) also tests code_aster's contact statistics
+        // (RECU_TABLE NOM_TABLE='STAT': Count_Cont_NCont of its Newton
+        // path).
+        if kw.str("FORMULATION") == Some("CONTINUE")
+            && occ.str("ALGO_FROT") == Some("PENALISATION")
+            && occ.str("ALGO_CONT").unwrap_or("STANDARD") == "STANDARD"
+            && occ.f64("COULOMB").is_some_and(|m| m > f64::EPSILON)
+        {
+            let at = if occ.contains("GLIS_MAXI") {
+                "GLIS_MAXI"
+            } else {
+                "ALGO_FROT"
+            };
             out.push(Refusal::at(
-                "DEFI_CONTACT/ZONE/GLIS_MAXI (the penalised friction coefficient adapted to a slip)"
+                "DEFI_CONTACT/ZONE/ALGO_FROT='PENALISATION' with ALGO_CONT='STANDARD' in the continuous formulation (code_aster's mm_cycl_algo replaces COEF_PENA_FROT by 10 × arete_max / arete_min / GLIS_MAXI at each point in contact that slips by more than 1e-6 × GLIS_MAXI; this adaptation of the penalised friction is not reproduced)"
                     .into(),
                 occ,
-                "GLIS_MAXI",
+                at,
                 call.span,
             ));
         }
@@ -413,6 +437,27 @@ fn continuous_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         }
     }
     for occ in kw.factor("ZONE") {
+        // code_aster stops on excluded nodes without the nodal
+        // integration ('AUTO'): `cazocc`, CONTACT_97.
+        if kw.str("FORMULATION") == Some("CONTINUE")
+            && occ.str("INTEGRATION").unwrap_or("AUTO") != "AUTO"
+        {
+            for key in [
+                "SANS_GROUP_NO",
+                "SANS_NOEUD",
+                "SANS_GROUP_NO_FR",
+                "SANS_NOEUD_FR",
+            ] {
+                if occ.contains(key) {
+                    out.push(Refusal::at(
+                        format!("DEFI_CONTACT/ZONE/{key} with INTEGRATION='{}' (code_aster refuses excluded nodes without the nodal integration 'AUTO': cazocc, message CONTACT_97)", occ.str("INTEGRATION").unwrap_or_default()),
+                        occ,
+                        key,
+                        call.span,
+                    ));
+                }
+            }
+        }
         // Augmented (STANDARD) zones with ADAPTATION='ADAPT_COEF'/'TOUT'
         // and the fixed-point contact loop: code_aster's status treatment
         // (`mmmbca` → `mm_cycl_algo`, `mm_cycl_prop`) changes COEF_CONT

@@ -326,13 +326,19 @@ impl ContinuousFriction {
         let dim = if space_dim >= 3 { 3 } else { 2 };
         let mut zones = Vec::new();
         for (i, (z, f)) in def.zones.iter().zip(&friction.zones).enumerate() {
-            // Frictionless zones also take code_aster's Gauss rule (points
-            // inside the cells, no node of their own).
-            let gauss_ok = matches!(z.law.integration, Integration::Gauss(_)) && !f.frictional();
-            if z.law.integration != Integration::Auto && !gauss_ok {
+            // code_aster's Gauss rule (`mmgaus`, ORDRE_INT) places points
+            // inside the cells, with no node of their own: the multipliers
+            // are interpolated there as at any point. code_aster refuses
+            // excluded nodes with it (`cazocc`, CONTACT_97), as
+            // `run::friction` does before the solve.
+            if matches!(
+                z.law.integration,
+                Integration::Simpson(_) | Integration::NCotes(_)
+            ) {
                 return Err(ContactError::Unsupported {
-                    feature: "INTEGRATION other than 'AUTO' with FROTTEMENT='COULOMB'".into(),
-                    hint: "the frictional contact elements integrate at the slave nodes (code_aster's default 'AUTO')".into(),
+                    feature: "INTEGRATION='SIMPSON' or 'NCOTES' with code_aster's contact elements"
+                        .into(),
+                    hint: "the elements integrate at the slave nodes ('AUTO') or at code_aster's Gauss points ('GAUSS')".into(),
                 });
             }
             let (coef_cont, pena_cont) = match z.law.algo {
