@@ -358,7 +358,10 @@ pub(crate) fn newton_step(
     // next solve then uses the tangent of the current iterate, not the
     // prediction's.
     let mut matrix_iteration = 0usize;
-    let max_iterations = ctx.iter_glob_maxi + 1;
+    // At most ITER_GLOB_MAXI residual checks, the prediction's included
+    // (code_aster's `nmconv`: the step fails at iterat + 1 ≥ ITER_GLOB_MAXI,
+    // iterat = 0 the prediction; `crate::nonlinear`).
+    let max_iterations = ctx.iter_glob_maxi.max(1);
     // The state the step starts from (the converged displacement with the
     // imposed values of this step, the sources' unknowns as
     // `begin_increment` left them): a restarting loop starts again from it.

@@ -511,17 +511,17 @@ fn shear_block_at(
 #[test]
 fn a_failed_plastic_increment_is_cut_into_four() {
     let newton = NewtonOptions::default();
-    // One big increment with 4 iterations allowed: Newton fails…
-    let err = shear_block_at(&[0., 1.25], newton, 1e-8, 4, None)
+    // One big increment with 5 residual checks allowed: Newton fails…
+    let err = shear_block_at(&[0., 1.25], newton, 1e-8, 5, None)
         .map(|_| ())
         .unwrap_err();
     assert!(matches!(err, FemError::NoConvergence { .. }), "{err}");
     // …and succeeds cut in pieces (the harder quarters cut again), as
     // the four quarter instants given explicitly (cut the same way).
     let sd = Some(Subdivision::default());
-    let cut = shear_block_at(&[0., 1.25], newton, 1e-8, 4, sd).unwrap();
+    let cut = shear_block_at(&[0., 1.25], newton, 1e-8, 5, sd).unwrap();
     let quarters = [0., 0.3125, 0.625, 0.9375, 1.25];
-    let listed = shear_block_at(&quarters, newton, 1e-8, 4, sd).unwrap();
+    let listed = shear_block_at(&quarters, newton, 1e-8, 5, sd).unwrap();
     assert_eq!(cut.steps.len(), 2, "only the asked instants are stored");
     let (a, b) = (cut.last().unwrap(), listed.last().unwrap());
     assert_eq!(a.time, 1.25);

@@ -63,7 +63,7 @@ fn cutting_too_shallow_is_a_located_error() {
             ECHEC,
             "ECHEC=_F(ACTION=\"DECOUPE\", SUBD_PAS=4, SUBD_NIVEAU=1),",
         ),
-        ("ITER_GLOB_MAXI=4", "ITER_GLOB_MAXI=2"),
+        ("ITER_GLOB_MAXI=5", "ITER_GLOB_MAXI=3"),
     ]);
     let (_, _, err) = run(&text, "shallow");
     let err = err.expect("an error");
