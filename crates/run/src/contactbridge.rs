@@ -16,8 +16,8 @@ use aster_mesh::Mesh;
 /// The loosest `CONVERGENCE/RESI_GLOB_MAXI` accepted with a LAC contact
 /// (`ALGO_CONT='LAC'`): aster solves LAC's converged state, code_aster's
 /// answer is where its Newton stops. The LAC cases run at 1e-6 are all OK;
-/// ssnp165e (0.5) is 2e-7 to 4e-6 off at t = 0.4 and 0.6 (refused by
-/// `crate::preflight`).
+/// ssnp165e (0.5) is up to 6e-6 off at t = 0.4 and 0.6, 5 NOOK of 12
+/// (refused by `crate::preflight`).
 pub(crate) const LAC_RESI_GLOB_MAXI_MAX: f64 = 1e-3;
 
 /// The loosest `CONVERGENCE/RESI_GLOB_RELA` accepted with a LAC contact
