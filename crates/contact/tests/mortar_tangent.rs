@@ -4,7 +4,9 @@
 //! residual: checked by central finite differences on a tilted slave
 //! segment whose whole length is paired with a longer master segment (so
 //! the integration domain does not move), with every point active, then
-//! with every point inactive.
+//! with every point inactive. And where an open point switches status the
+//! residual itself jumps (by w λ on the displacement rows), as
+//! code_aster's: what leaves cont012a without a root.
 
 use std::path::Path;
 
@@ -128,4 +130,81 @@ fn the_tangent_of_active_points_is_the_derivative_of_the_residual() {
 #[test]
 fn the_tangent_of_inactive_points_is_the_derivative_of_the_residual() {
     check(500.0);
+}
+
+/// code_aster's ROBUSTE residual (`laVect_ct_pr`) is discontinuous where an
+/// open point (g > 0) switches status: the displacement rows carry
+/// −w λ n·(v_s − v_m) at active points only, and the switch happens at
+/// λ + γg = 0, i.e. at λ = −γg ≠ 0, so the slave force jumps by w λ; the
+/// multiplier rows, w([λ + γg]₋ − λ)/γ μ, stay continuous. This is what
+/// stops cont012a (a point of the sheet, open by 0.47 mm, switching with
+/// w λ ≈ 145 N: Newton cycles, no root; docs/contact.md, DEFI_CONT).
+/// Slave segment open by 0.05 to 0.1 over the master, a uniform multiplier
+/// λ swept from −4 to −10: each of the three points closes at its own
+/// λ* = −γ g (g along the slave normal, γ = COEF_CONT / h_F), and there the
+/// slave's total force jumps by w λ*.
+#[test]
+fn the_residual_jumps_by_w_lambda_where_an_open_point_switches() {
+    let mesh = aster_mesh::parse_mail(MESH, Path::new("t.mail")).unwrap();
+    let dofs = DofNumbering::new(&[Comp::DX, Comp::DY], &[true; 8]);
+    let mut m = MortarLagrangian::new(&[MortarZoneDef::new("MAIT", "ESCL")], &mesh, false).unwrap();
+    let zero = State {
+        mesh: &mesh,
+        dofs: &dofs,
+        displacement: &[0.0; 16],
+        time: 0.0,
+    };
+    m.after_iteration(&zero, &mut [0.0; 2]).unwrap();
+    let u = [0.0; 16];
+    // Slave nodes N5, N6: DOFs 8..12; their multipliers: rows 16, 17.
+    let at = |m: &mut MortarLagrangian, lam: f64| {
+        let (r, _) = residual(m, &mesh, &dofs, &u, &[lam, lam]);
+        ([r[8] + r[10], r[9] + r[11]], [r[16], r[17]])
+    };
+    let step = 2e-5;
+    let (mut jumps, mut worst_own) = (Vec::new(), 0.0f64);
+    let mut prev = at(&mut m, -4.0);
+    let mut lam = -4.0;
+    while lam > -10.0 {
+        let next_lam = lam - step;
+        let next = at(&mut m, next_lam);
+        let df = ((next.0[0] - prev.0[0]).powi(2) + (next.0[1] - prev.0[1]).powi(2)).sqrt();
+        let dl = (next.1[0] - prev.1[0])
+            .abs()
+            .max((next.1[1] - prev.1[1]).abs());
+        worst_own = worst_own.max(dl);
+        if df > 1e-2 {
+            jumps.push((0.5 * (lam + next_lam), df));
+        }
+        prev = next;
+        lam = next_lam;
+    }
+    // The slave segment N5 (0, 0.05) – N6 (1, 0.1): FPG3 points at
+    // (1 ± √0.6)/2 and 1/2 of its length, weights 5/9, 8/9, 5/9 × L/2.
+    let len = (1.0f64 + 0.05 * 0.05).sqrt();
+    let gamma = 100.0 / len;
+    let cos = 1.0 / len;
+    let r = 0.6f64.sqrt();
+    let points = [
+        (0.5 * (1.0 - r), 5.0 / 9.0),
+        (0.5, 8.0 / 9.0),
+        (0.5 * (1.0 + r), 5.0 / 9.0),
+    ];
+    assert_eq!(jumps.len(), points.len(), "{jumps:?}");
+    for ((lam_star, df), (s, w)) in jumps.iter().zip(points) {
+        // Gap along the slave normal, cast to the line y = 0.
+        let g = (0.05 + 0.05 * s) / cos;
+        assert!(
+            (lam_star + gamma * g).abs() < 2.0 * step,
+            "switch at λ = {lam_star}, −γg = {}",
+            -gamma * g
+        );
+        let expected = w * 0.5 * len * lam_star.abs();
+        assert!(
+            (df - expected).abs() < 1e-3 * expected,
+            "jump {df} against w|λ*| = {expected}"
+        );
+    }
+    // The multiplier rows move by O(step) only.
+    assert!(worst_own < 1e-3, "{worst_own}");
 }

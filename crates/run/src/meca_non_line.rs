@@ -36,7 +36,15 @@ pub(crate) const MECA_NON_LINE: Support = Support {
 /// 1e-9; the cases at code_aster's default 1e-6 match to 1e-6 or better.
 /// The likeliest cause, not shown, is a partly converged iterate of
 /// code_aster's at that tolerance (as ssnv128r with continuous friction).
-const DEFI_CONT_RESI_GLOB_RELA_MAX: f64 = 1e-4;
+/// cont012a (4e-5 from t = 0.3): past t ≈ 0.4989 its residual has no root
+/// on the branch followed — ROBUSTE's displacement term −w λ n·(v_s − v_m)
+/// exists at active points only, and one point of the sheet switches where
+/// λ + γg = 0 with g ≠ 0, a jump of w λ ≈ 145 N — and Newton cycles between
+/// the two statuses (RESI_GLOB_RELA 1.2e-3 ↔ 1.1e-3; with RECH_LINEAIRE the
+/// best iterate is 4.2e-5, at t = 0.49898): what code_aster accepts there
+/// is an iterate within its 4e-5 of that discontinuity, which hangs on its
+/// own Newton path and is not reproduced.
+const DEFI_CONT_RESI_GLOB_RELA_MAX: f64 = 1e-5;
 
 /// The behaviours accepted with a DEFI_CONT contact: the rate-independent
 /// laws (the contact is a force source whatever the law: their answer
@@ -79,7 +87,7 @@ fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         {
             out.push(Refusal::at(
                 format!(
-                    "MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above {DEFI_CONT_RESI_GLOB_RELA_MAX:e} with a DEFI_CONT contact (code_aster's answer at so loose a tolerance is not reproduced: cont008a, 3e-3, ends 1.2e-4 off while the converged solution does not move; see docs/contact.md, DEFI_CONT)"
+                    "MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above {DEFI_CONT_RESI_GLOB_RELA_MAX:e} with a DEFI_CONT contact (code_aster's answer at so loose a tolerance is the iterate its Newton accepts, not reproduced: cont008a, 3e-3, ends 1.2e-4 off while the converged solution does not move; cont012a, 4e-5, reaches a status switch of the sheet where the residual jumps by w λ and has no root, and code_aster accepts an iterate within 4e-5 of it that aster's Newton does not find; see docs/contact.md, DEFI_CONT)"
                 ),
                 conv,
                 "RESI_GLOB_RELA",

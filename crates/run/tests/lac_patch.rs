@@ -120,3 +120,38 @@ FIN()
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (8, 0));
 }
+
+/// A LAC solve stopped at a loose Newton tolerance is refused before the
+/// solve, at the keyword: code_aster's answer is then where its LAC Newton
+/// stops (ssnp165e, RESI_GLOB_MAXI = 0.5), aster's the converged state.
+/// The same scene at RESI_GLOB_MAXI = 1e-6 runs and passes its checks.
+#[test]
+fn lac_with_a_loose_newton_tolerance_is_refused_before_the_solve() {
+    let with = |conv: &str| {
+        variant(|c| {
+            c.replace(
+                "        INCREMENT=_F(LIST_INST=times),\n    )",
+                &format!("        INCREMENT=_F(LIST_INST=times),\n        CONVERGENCE=_F({conv}),\n    )"),
+            )
+        })
+    };
+    for (conv, name) in [
+        ("RESI_GLOB_MAXI=0.5", "RESI_GLOB_MAXI"),
+        ("RESI_GLOB_RELA=1e-3", "RESI_GLOB_RELA"),
+    ] {
+        let comm = with(conv);
+        assert!(comm.contains(conv));
+        let outcome = run(&comm, "loose");
+        let e = outcome.error.expect("must be refused").to_string();
+        assert!(
+            e.contains(&format!("STAT_NON_LINE/CONVERGENCE/{name}=")),
+            "{e}"
+        );
+        assert!(e.contains("with a LAC contact"), "{e}");
+        assert!(e.contains("loose.comm:"), "{e}");
+        assert_eq!((outcome.tally.ok, outcome.tally.nook), (0, 0));
+    }
+    let outcome = run(&with("RESI_GLOB_MAXI=1e-6"), "tight");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert!(outcome.tally.ok > 0 && outcome.tally.nook == 0);
+}

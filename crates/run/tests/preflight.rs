@@ -282,14 +282,22 @@ r = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
     CONVERGENCE=_F(RESI_GLOB_RELA=1.0e-3))
 s = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
     CONTACT=_F(DEFINITION=ok), COMPORTEMENT=_F(RELATION="ELAS"), INCREMENT=_F(LIST_INST=times))
+t = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
+    CONTACT=_F(DEFINITION=ok), COMPORTEMENT=_F(RELATION="ELAS"), INCREMENT=_F(LIST_INST=times),
+    CONVERGENCE=_F(RESI_GLOB_RELA=4.0e-5))
+u = MECA_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=bc),
+    CONTACT=_F(DEFINITION=ok), COMPORTEMENT=_F(RELATION="ELAS"), INCREMENT=_F(LIST_INST=times),
+    CONVERGENCE=_F(RESI_GLOB_RELA=1.0e-5))
 FIN()
 "#
     );
     let (p, map) = pass(&src, Some("two_plates.mail"));
     let m = messages(&p, &map);
-    assert_eq!(m.len(), 2, "{m:?}");
+    assert_eq!(m.len(), 3, "{m:?}");
     assert!(m[0].starts_with("case.comm:14:21: error: not supported yet: MECA_NON_LINE/COMPORTEMENT/RELATION='LEMAITRE' with a DEFI_CONT contact"), "{m:?}");
-    assert!(m[1].starts_with("case.comm:15:20: error: not supported yet: MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above 1e-4 with a DEFI_CONT contact"), "{m:?}");
+    assert!(m[1].starts_with("case.comm:15:20: error: not supported yet: MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above 1e-5 with a DEFI_CONT contact"), "{m:?}");
+    // cont012a's 4e-5 (t = 0.3 to 0.75) is refused; 1e-5 is accepted.
+    assert!(m[2].starts_with("case.comm:20:20: error: not supported yet: MECA_NON_LINE/CONVERGENCE/RESI_GLOB_RELA above 1e-5"), "{m:?}");
 }
 
 /// DEFI_CONT's penalised and Nitsche methods: one definition has one
