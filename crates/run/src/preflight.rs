@@ -372,27 +372,11 @@ impl CallRefusals {
     /// The LAC cases run at 1e-6 (ssnp170*, ssnp173a/b, ssnv104k–n) are
     /// all OK.
     fn follow_lac_tolerance(&mut self, call: &CommandCall) -> Option<(String, Span)> {
-        let kw = &call.keywords;
-        if call.command == "DEFI_CONTACT" {
-            if kw
-                .factor("ZONE")
+        let occ = convergence_with_tracked_contact(&mut self.lac_contacts, call, |kw| {
+            kw.factor("ZONE")
                 .iter()
                 .any(|z| z.str("ALGO_CONT") == Some("LAC"))
-            {
-                if let Some(r) = call.result.as_ref() {
-                    self.lac_contacts.push(r.id);
-                }
-            }
-            return None;
-        }
-        if !["STAT_NON_LINE", "DYNA_NON_LINE", "MECA_NON_LINE"].contains(&call.command.as_str()) {
-            return None;
-        }
-        let contact = kw.concept("CONTACT")?;
-        if !self.lac_contacts.contains(&contact.id) {
-            return None;
-        }
-        let occ = kw.factor("CONVERGENCE").first()?;
+        })?;
         let limits = [
             (
                 "RESI_GLOB_MAXI",
@@ -423,24 +407,11 @@ impl CallRefusals {
     /// answer, unchanged down to 1e-9, is 1.4–3.1 % from code_aster's
     /// (and 1.6–4.6 % from the external reference, code_aster's 3.5–7.9 %).
     fn follow_continuous_friction(&mut self, call: &CommandCall) -> Option<(String, Span)> {
-        let kw = &call.keywords;
-        if call.command == "DEFI_CONTACT" {
-            if crate::friction::is_continuous_frictional(kw) {
-                if let Some(r) = call.result.as_ref() {
-                    self.continuous_friction.push(r.id);
-                }
-            }
-            return None;
-        }
-        if !["STAT_NON_LINE", "DYNA_NON_LINE", "MECA_NON_LINE"].contains(&call.command.as_str()) {
-            return None;
-        }
-        let contact = kw.concept("CONTACT")?;
-        if !self.continuous_friction.contains(&contact.id) {
-            return None;
-        }
-        let conv = kw.factor("CONVERGENCE");
-        let occ = conv.first()?;
+        let occ = convergence_with_tracked_contact(
+            &mut self.continuous_friction,
+            call,
+            crate::friction::is_continuous_frictional,
+        )?;
         let rela = occ.f64("RESI_GLOB_RELA")?;
         let max = crate::friction::CONTINUOUS_FRICTION_RESI_GLOB_RELA_MAX;
         if rela <= max {
@@ -730,6 +701,34 @@ fn group_findings(calls: &[CommandCall], meshes: &[ReadMesh]) -> Vec<Diagnostic>
         });
     }
     out
+}
+
+/// What the contact-tolerance rules share: a `DEFI_CONTACT` whose keywords
+/// satisfy `is_kind` is remembered in `ids`; a non-linear solve
+/// (STAT_NON_LINE, DYNA_NON_LINE, MECA_NON_LINE) whose `CONTACT` is one of
+/// them gives its first `CONVERGENCE` occurrence.
+fn convergence_with_tracked_contact<'a>(
+    ids: &mut Vec<u32>,
+    call: &'a CommandCall,
+    is_kind: impl Fn(&Keywords) -> bool,
+) -> Option<&'a Keywords> {
+    let kw = &call.keywords;
+    if call.command == "DEFI_CONTACT" {
+        if is_kind(kw) {
+            if let Some(r) = call.result.as_ref() {
+                ids.push(r.id);
+            }
+        }
+        return None;
+    }
+    if !["STAT_NON_LINE", "DYNA_NON_LINE", "MECA_NON_LINE"].contains(&call.command.as_str()) {
+        return None;
+    }
+    let contact = kw.concept("CONTACT")?;
+    if !ids.contains(&contact.id) {
+        return None;
+    }
+    kw.factor("CONVERGENCE").first()
 }
 
 /// A visitor of simple keywords: path, name, values, span.
