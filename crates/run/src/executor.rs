@@ -171,6 +171,12 @@ impl Executor {
         self.names.insert(c.id, c.name.clone());
     }
 
+    /// Forgets a concept (a macro's temporaries).
+    pub(crate) fn remove(&mut self, id: u32) {
+        self.store.remove(&id);
+        self.names.remove(&id);
+    }
+
     /// Every result the program holds now, by creation order, with its name.
     pub(crate) fn results(&self) -> Vec<(u32, &str, Rc<EvolResult>)> {
         let mut out: Vec<(u32, &str, Rc<EvolResult>)> = self

@@ -108,6 +108,17 @@ impl Table {
         self.rows.push(row);
     }
 
+    /// Keeps the columns at `keep`, in that order.
+    pub fn keep_columns(&mut self, keep: &[usize]) {
+        self.columns = keep.iter().map(|&c| self.columns[c].clone()).collect();
+        for row in &mut self.rows {
+            *row = keep
+                .iter()
+                .map(|&c| row.get(c).cloned().flatten())
+                .collect();
+        }
+    }
+
     pub fn value(&self, row: usize, column: &str) -> Option<&Value> {
         let c = self.column_index(column)?;
         self.rows.get(row)?.get(c)?.as_ref()

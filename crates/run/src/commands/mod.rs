@@ -13,6 +13,7 @@ pub(crate) mod inspect;
 pub(crate) mod liaison_mail;
 pub(crate) mod loads;
 pub(crate) mod loads_f;
+pub(crate) mod macr_lign_coupe;
 pub(crate) mod mesh;
 pub(crate) mod post;
 pub(crate) mod post_elem;
@@ -236,6 +237,11 @@ pub static COMMANDS: &[Command] = &[
         name: "POST_RELEVE_T",
         run: post::post_releve_t,
         support: post::POST_RELEVE_T,
+    },
+    Command {
+        name: "MACR_LIGN_COUPE",
+        run: macr_lign_coupe::macr_lign_coupe,
+        support: macr_lign_coupe::MACR_LIGN_COUPE,
     },
     Command {
         name: "PROJ_CHAMP",

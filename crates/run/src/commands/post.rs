@@ -738,7 +738,7 @@ fn frame_components(f: &NodalField, frame: impl Fn(NodeId) -> Option<Frame>) -> 
     out
 }
 
-fn table_title(name: &str) -> Vec<String> {
+pub(crate) fn table_title(name: &str) -> Vec<String> {
     vec![
         format!(
             "ASTER {} CONCEPT {name} CALCULE PAR aster DE TYPE",

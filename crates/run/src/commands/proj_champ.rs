@@ -385,7 +385,7 @@ fn correspondence(
 /// A nodal field of mesh 1 projected on mesh 2 (`cnsprj`, then `cnscno`
 /// with `PROL_VALE`: every node of mesh 2 gets the value for each component
 /// it lacks).
-fn project_field(
+pub(crate) fn project_field(
     f: &NodalField,
     corr: &Correspondence,
     node_count2: usize,

@@ -140,16 +140,6 @@ fn column(table: &Table, name: &str, what: &str) -> Result<usize, ExecError> {
     })
 }
 
-fn keep_columns(table: &mut Table, keep: &[usize]) {
-    table.columns = keep.iter().map(|&c| table.columns[c].clone()).collect();
-    for row in &mut table.rows {
-        *row = keep
-            .iter()
-            .map(|&c| row.get(c).cloned().flatten())
-            .collect();
-    }
-}
-
 /// What CALC_TABLE reads (`crate::support`).
 pub(crate) const CALC_TABLE: Support = Support::keywords(&[
     "TABLE",
@@ -186,7 +176,7 @@ pub fn calc_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                     .iter()
                     .map(|n| column(&table, n, "EXTR"))
                     .collect::<Result<Vec<_>, _>>()?;
-                keep_columns(&mut table, &keep);
+                table.keep_columns(&keep);
             }
             "SUPPRIME" => {
                 let drop = names
@@ -196,7 +186,7 @@ pub fn calc_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 let keep: Vec<usize> = (0..table.columns.len())
                     .filter(|c| !drop.contains(c))
                     .collect();
-                keep_columns(&mut table, &keep);
+                table.keep_columns(&keep);
             }
             "RENOMME" => {
                 let [old, new] = names.as_slice() else {
