@@ -84,9 +84,15 @@ fn stick_zone_matches_cattaneo_mindlin_within_five_percent() {
         let c = half_width(nodes, |s| s == 1.0);
         // Hertz: a = √(4PR/(πE*)), E* of two equal bodies.
         let hertz = (4.0 * p * RADIUS / (std::f64::consts::PI * e_star)).sqrt();
-        assert!((a - hertz).abs() < 0.05 * hertz, "a {a} against Hertz {hertz}");
+        assert!(
+            (a - hertz).abs() < 0.05 * hertz,
+            "a {a} against Hertz {hertz}"
+        );
         let ratio = q / (MU * p);
-        assert!(ratio < 0.7, "Q/(μP) = {ratio}: must stay below 1 with margin");
+        assert!(
+            ratio < 0.7,
+            "Q/(μP) = {ratio}: must stay below 1 with margin"
+        );
         let theory = (1.0 - ratio).sqrt();
         let measured = c / a;
         assert!(
