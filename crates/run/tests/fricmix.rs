@@ -110,3 +110,15 @@ fn what_is_not_reproduced_is_refused_at_its_keyword() {
         assert_eq!(outcome.tally.ok + outcome.tally.nook, 0, "{e}");
     }
 }
+
+/// comm/fricmix_blocks_discrete.comm: the same blocks with the DISCRETE
+/// formulation, contact and friction penalised: the frictional block
+/// slides with a tangential force of μN to 1e-8 (measured 7e-12) and sticks
+/// below it (code_aster's discrete CONT numbering: 2 stick, 1 slip).
+#[test]
+fn discrete_penalised_blocks_stick_then_slide_at_mu_n_in_3d() {
+    let text = std::fs::read_to_string(root().join("comm/fricmix_blocks_discrete.comm")).unwrap();
+    let outcome = run(&text, "discrete");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
+}
