@@ -6,16 +6,17 @@
 //!   released — the condition is the equality g = 0 on the normal gap;
 //! - continuous zones (`mmopti`, `mmglis`, `mm_cycl_algo`): a point is
 //!   linked from the start with `CONTACT_INIT='OUI'`, or with
-//!   `'INTERPENETRE'` when its initial gap is at most `epsint` =
-//!   1e-6 × the shortest edge of the mesh (`armin`); afterwards every point
-//!   found in contact when the contact loop has converged is linked for
-//!   good.
+//!   `'INTERPENETRE'` when its initial gap is at most 1e-6 ×
+//!   `CONTACT_INIT_DIST` (`mmopti`): `DIST_MAXI`, or without it the
+//!   shortest edge of the zone's own slave and master cells (`contSetInit`,
+//!   [`crate::ResolvedZone::contact_init_threshold`]); afterwards every
+//!   point found in contact when the contact loop has converged is linked
+//!   for good.
 //!
 //! Here the continuous rows are per slave node (the weighted gap of the
 //! node's integration points), so a node is linked: from the start as
-//! `CONTACT_INIT` says (its weighted mean gap against `epsint`, or
-//! `DIST_MAXI` when given), then once its row is active at a converged
-//! step. code_aster links at each convergence of its contact loop, also
+//! `CONTACT_INIT` says (its weighted mean gap against that threshold),
+//! then once its row is active at a converged step. code_aster links at each convergence of its contact loop, also
 //! inside a step; here it happens at the end of each converged increment.
 //! A linked row is an [`InequalityRow::bilateral`] row of fem's solver: an
 //! equality whose multiplier may take either sign.
@@ -23,7 +24,7 @@
 use std::collections::BTreeSet;
 
 use aster_fem::{InequalityRow, RowOutcome};
-use aster_mesh::{CellId, Mesh, NodeId};
+use aster_mesh::NodeId;
 
 use crate::zone::ContactInit;
 
@@ -35,8 +36,6 @@ pub(crate) struct Glissiere {
     /// Discrete zone: every row is linked.
     all: bool,
     init: ContactInit,
-    /// `CONTACT_INIT='INTERPENETRE'` threshold on the initial gap.
-    threshold: Option<f64>,
     /// Continuous zone: the linked slave nodes.
     linked: BTreeSet<NodeId>,
     /// Whether the initial links were made (first pairing).
@@ -44,12 +43,11 @@ pub(crate) struct Glissiere {
 }
 
 impl Glissiere {
-    pub(crate) fn new(on: bool, discrete: bool, init: ContactInit, dist_maxi: Option<f64>) -> Self {
+    pub(crate) fn new(on: bool, discrete: bool, init: ContactInit) -> Self {
         Glissiere {
             on,
             all: on && discrete,
             init,
-            threshold: dist_maxi,
             linked: BTreeSet::new(),
             started: false,
         }
@@ -60,19 +58,14 @@ impl Glissiere {
     }
 
     /// At the first pairing of a continuous zone: the nodes linked from the
-    /// start, given each node's weighted mean gap.
-    pub(crate) fn start(&mut self, mesh: &Mesh, gaps: &[(NodeId, f64)]) {
+    /// start, given each node's weighted mean gap and the zone's
+    /// `CONTACT_INIT='INTERPENETRE'` threshold `eps`
+    /// ([`crate::ResolvedZone::contact_init_threshold`]).
+    pub(crate) fn start(&mut self, eps: f64, gaps: &[(NodeId, f64)]) {
         if !self.on || self.all || self.started {
             return;
         }
         self.started = true;
-        let eps = self.threshold.unwrap_or_else(|| {
-            let all: Vec<CellId> = (0..mesh.cells.len() as u32).map(CellId).collect();
-            1e-6 * mesh
-                .edge_length_range(&all)
-                .map(|(lo, _)| lo)
-                .unwrap_or(0.0)
-        });
         for &(n, g) in gaps {
             let link = match self.init {
                 ContactInit::Oui => true,
@@ -121,5 +114,41 @@ impl Glissiere {
                 self.linked.insert(n);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn linked(init: ContactInit, eps: f64) -> Vec<u32> {
+        let mut g = Glissiere::new(true, false, init);
+        let gaps: Vec<(NodeId, f64)> = [-1e-3, 0.0, 4e-7, 6e-7, 1e-3]
+            .iter()
+            .enumerate()
+            .map(|(i, &d)| (NodeId(i as u32), d))
+            .collect();
+        g.start(eps, &gaps);
+        // A second start (a later pairing) changes nothing.
+        g.start(1.0, &gaps);
+        g.linked.iter().map(|n| n.0).collect()
+    }
+
+    #[test]
+    fn initial_links_follow_mmopti() {
+        // INTERPENETRE: gap ≤ eps (here 5e-7, 1e-6 × an edge of 0.5).
+        assert_eq!(linked(ContactInit::Interpenetre, 5e-7), vec![0, 1, 2]);
+        assert_eq!(linked(ContactInit::Oui, 5e-7), vec![0, 1, 2, 3, 4]);
+        assert!(linked(ContactInit::Non, 5e-7).is_empty());
+    }
+
+    #[test]
+    fn discrete_or_off_zones_keep_no_initial_list() {
+        let mut off = Glissiere::new(false, false, ContactInit::Oui);
+        off.start(1.0, &[(NodeId(0), 0.0)]);
+        assert!(off.linked.is_empty() && !off.links(Some(NodeId(0))));
+        let mut discrete = Glissiere::new(true, true, ContactInit::Non);
+        discrete.start(1.0, &[(NodeId(0), 1.0)]);
+        assert!(discrete.links(Some(NodeId(0))) && discrete.links(None));
     }
 }

@@ -154,7 +154,6 @@ impl ZoneContact {
             g.glissiere,
             matches!(law, ZoneLaw::Discrete(_)),
             g.contact_init,
-            g.dist_maxi,
         );
         ZoneContact {
             glissiere,
@@ -470,7 +469,8 @@ impl ZoneContact {
                 .filter(|(_, a)| a.0 > 0.0)
                 .map(|(j, a)| (*j, a.3 / a.0))
                 .collect();
-            self.glissiere.start(mesh, &gaps);
+            let eps = self.zone.contact_init_threshold(mesh);
+            self.glissiere.start(eps, &gaps);
         }
         let mut rows = Vec::new();
         for (j, (weight, terms, rhs, _)) in acc {

@@ -47,6 +47,35 @@ pub struct ResolvedZone {
 }
 
 impl ResolvedZone {
+    /// code_aster's `CONTACT_INIT='INTERPENETRE'` threshold of a continuous
+    /// zone: a point starts in contact when its signed initial gap is at
+    /// most this. `cazocc` stores `DIST_MAXI` (−1 when absent),
+    /// `contSetInit` (at DEFI_CONTACT) replaces a negative value by the
+    /// shortest edge of the zone's own slave and master cells on the
+    /// initial coordinates (`compMinMaxEdges` on their list; 0 when they
+    /// have none), and `mmopti` compares the gap with 1e-6 × that value.
+    pub fn contact_init_threshold(&self, mesh: &Mesh) -> f64 {
+        1e-6 * self.contact_init_distance(mesh)
+    }
+
+    /// The distance `CONTACT_INIT_DIST` of the zone (see
+    /// [`Self::contact_init_threshold`]): `DIST_MAXI`, or the shortest edge
+    /// of the zone's slave and master cells.
+    pub fn contact_init_distance(&self, mesh: &Mesh) -> f64 {
+        match self.geometry.dist_maxi {
+            Some(d) if d >= 0.0 => d,
+            _ => {
+                let cells: Vec<CellId> = self
+                    .slave
+                    .iter()
+                    .chain(&self.master)
+                    .map(|c| c.id)
+                    .collect();
+                mesh.edge_length_range(&cells).map_or(0.0, |(lo, _)| lo)
+            }
+        }
+    }
+
     /// A zone of a problem whose dimension is the mesh's (3 when its nodes
     /// have three coordinates).
     pub fn new(index: usize, geometry: &ZoneGeometry, mesh: &Mesh) -> Result<Self, ContactError> {

@@ -71,6 +71,10 @@ struct FZone {
     frictional: bool,
     seuil_init: f64,
     contact_init: ContactInit,
+    /// `CONTACT_INIT='INTERPENETRE'`: a point starts in contact when its
+    /// initial gap is at most this (`mmopti`: 1e-6 × `DIST_MAXI` or the
+    /// shortest edge of the zone's cells, `contSetInit`).
+    init_threshold: f64,
     dire_excl: Option<[f64; 3]>,
 }
 
@@ -358,7 +362,9 @@ impl ContinuousFriction {
             let mut geometry = z.geometry.clone();
             geometry.lissage = z.geometry.lissage;
             let zone = ResolvedZone::new_in(i, &geometry, mesh, dim)?;
+            let init_threshold = zone.contact_init_threshold(mesh);
             zones.push(FZone {
+                init_threshold,
                 zone,
                 coef_cont,
                 pena_cont,
@@ -1361,10 +1367,10 @@ impl ContinuousFriction {
 
     /// The contact statuses of the first step (`CONTACT_INIT`, `mmopti`).
     fn initial_statuses(&mut self, state: &State) {
-        let eps = 1e-6 * self.edge_min;
         for i in 0..self.points.len() {
             let p = &self.points[i];
             let init = self.zones[p.zone].contact_init;
+            let eps = self.zones[p.zone].init_threshold;
             let now = match (&p.pair, p.sans || p.unpaired) {
                 (Some(pp), false) => match init {
                     ContactInit::Non => false,
