@@ -72,6 +72,8 @@ struct FZone {
     seuil_init: f64,
     contact_init: ContactInit,
     dire_excl: Option<[f64; 3]>,
+    /// `GLIS_MAXI` (penalised friction beside augmented contact).
+    glis_maxi: f64,
 }
 
 /// The pairing of a point: the master point and the local basis.
@@ -129,6 +131,10 @@ struct Point {
     /// The point's friction coefficient and its history in the step
     /// (module `adaptation`).
     fric: adaptation::History,
+    /// The coefficient the element reads when it differs from the
+    /// history's (`mmchml_c` at Newton iteration 1 builds its field before
+    /// it rewrites the penalised-friction coefficients).
+    coef_elem: Option<f64>,
 }
 
 /// Values of one point at the current iterate.
@@ -369,6 +375,7 @@ impl ContinuousFriction {
                 seuil_init: -f.seuil_init.unwrap_or(0.0).abs(),
                 contact_init: f.contact_init,
                 dire_excl: f.dire_excl_frot,
+                glis_maxi: f.glis_maxi,
             });
         }
         // The friction-excluded nodes of each zone.
@@ -483,6 +490,7 @@ impl ContinuousFriction {
                         cycl_pena: None,
                         last_master: None,
                         fric: adaptation::History::new(fz.coef_frot),
+                        coef_elem: None,
                     });
                 }
             }
@@ -789,7 +797,7 @@ impl ContinuousFriction {
             Some(k) => (k, true),
             None => (fz.coef_cont, fz.pena_cont),
         };
-        let rho_f = p.fric.coef;
+        let rho_f = p.coef_elem.unwrap_or(p.fric.coef);
         let contact = p.contact && pair.is_some();
         let (n, tau) = match pair {
             Some(pp) => (pp.n, pp.tau),
@@ -1190,6 +1198,31 @@ impl ContinuousFriction {
                 }
                 p.contact = proj.previous.contact;
             }
+            // Penalised friction beside augmented contact: the point's
+            // coefficient after its update (`mm_cycl_algo`, last block).
+            let fz = &self.zones[self.points[i].zone];
+            if let (true, false, true, Some(pp)) =
+                (fz.pena_frot, fz.pena_cont, fz.frictional, &pair)
+            {
+                let slip = tangential_part(vals.v, pp.n);
+                let p = &mut self.points[i];
+                let before = p.fric.coef;
+                p.fric.coef = adaptation::pena_frot_update(
+                    before,
+                    now,
+                    slip,
+                    fz.glis_maxi,
+                    self.edge_min,
+                    self.edge_max,
+                );
+                if p.fric.coef != before && std::env::var_os("ASTER_CONTACT_TRACE").is_some() {
+                    eprintln!(
+                        "[friction] point {i}: COEF_PENA_FROT {before:e} -> {:e} (slip {:e})",
+                        p.fric.coef,
+                        norm(slip)
+                    );
+                }
+            }
             let p = &self.points[i];
             let positions = pair.as_ref().map(|pp| {
                 let mut xs = [0.0; 3];
@@ -1235,6 +1268,23 @@ impl ContinuousFriction {
                 {
                     adaptation::propagate(&mut p.fric, r);
                 }
+            }
+        }
+        // `mmchml_c` after the update: at code_aster's Newton iteration 1
+        // (ours counts solves, so 2) the field keeps each penalised-friction
+        // point's coefficient and the history takes 1e-3 ×
+        // `estimated_coefficient` × `arete_min` / `GLIS_MAXI`.
+        let first = self.newton_iterations == 2;
+        for p in &mut self.points {
+            p.coef_elem = None;
+            let fz = &self.zones[p.zone];
+            if first && fz.pena_frot && !fz.pena_cont && fz.frictional {
+                p.coef_elem = Some(p.fric.coef);
+                p.fric.coef = adaptation::pena_frot_first_iteration(
+                    adaptation::ESTIMATED_COEFFICIENT,
+                    self.edge_min,
+                    fz.glis_maxi,
+                );
             }
         }
         Ok((changed, motion / self.edge_max.max(1e-300)))
@@ -1474,6 +1524,7 @@ impl ForceSource for ContinuousFriction {
             p.cycl_pena = None;
             p.last_master = None;
             p.fric = adaptation::History::new(self.zones[p.zone].coef_frot);
+            p.coef_elem = None;
         }
         self.coef_ranges = vec![adaptation::Range::default(); self.zones.len()];
         self.own_prev = Some(own.to_vec());
