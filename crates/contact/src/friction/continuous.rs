@@ -1306,14 +1306,30 @@ impl ContinuousFriction {
         let mut nodes = Vec::new();
         let mut values: Vec<[f64; 19]> = Vec::new();
         let mut index: HashMap<NodeId, usize> = HashMap::new();
+        // PROJ_X/Y(/Z): the master point of each paired slave node on the
+        // current geometry (`mmmres` → `mcopco`, whatever the status; PROJ_Z
+        // only in 3D); NaN where not written.
+        let mut proj: Vec<[f64; 3]> = Vec::new();
         for p in &self.points {
             let Some(node) = p.node else { continue };
             let fz = &self.zones[p.zone];
             let mut v = [0.0; 19];
+            let mut xm = [f64::NAN; 3];
             if p.unpaired {
                 v[0] = -1.0;
             }
             v[1] = -p.gap;
+            if let Some(pp) = &p.pair {
+                for c in 0..self.dim {
+                    xm[c] = 0.0;
+                }
+                for &(n, sh) in &pp.master {
+                    let x = state.current_coord(n);
+                    for c in 0..self.dim {
+                        xm[c] += sh * x[c];
+                    }
+                }
+            }
             if p.contact && !p.sans && !p.unpaired {
                 v[0] = 1.0;
                 let rn = self.forces_cont.get(&node).copied().unwrap_or([0.0; 3]);
@@ -1363,18 +1379,22 @@ impl ContinuousFriction {
             }
             v[18] = (v[15] * v[15] + v[16] * v[16] + v[17] * v[17]).sqrt();
             match index.get(&node) {
-                Some(&k) => values[k] = v,
+                Some(&k) => {
+                    values[k] = v;
+                    proj[k] = xm;
+                }
                 None => {
                     index.insert(node, nodes.len());
                     nodes.push(node);
                     values.push(v);
+                    proj.push(xm);
                 }
             }
         }
         ContNoeu {
             nodes,
             values,
-            proj: Vec::new(),
+            proj,
         }
     }
 
