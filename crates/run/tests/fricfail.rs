@@ -106,7 +106,10 @@ fn penalised_friction_beside_augmented_contact_slides_with_mu() {
         ("COEF_CONT=1.0,", "COEF_CONT=100.0,"),
     ];
     let mut text = scene::read("two_plates_friction_adapt.comm");
-    for (from, to) in edits.iter().chain(&[("ADAPTATION=\"ADAPT_COEF\"", "ADAPTATION=\"TOUT\"")]) {
+    for (from, to) in edits
+        .iter()
+        .chain(&[("ADAPTATION=\"ADAPT_COEF\"", "ADAPTATION=\"TOUT\"")])
+    {
         assert!(text.contains(from), "{from}");
         text = text.replacen(from, to, 1);
     }
@@ -125,5 +128,8 @@ fn penalised_friction_beside_augmented_contact_slides_with_mu() {
         ],
         "fricfail-pena-frot-cyclage",
     );
-    assert!(msg.contains("ALGO_FROT='PENALISATION' with ALGO_CONT='STANDARD'"), "{msg}");
+    assert!(
+        msg.contains("ALGO_FROT='PENALISATION' with ALGO_CONT='STANDARD'"),
+        "{msg}"
+    );
 }

@@ -25,6 +25,9 @@ const NO_PROFILE: &str = "MED_NO_PROFILE_INTERNAL";
 /// A step read with the nodes each of its nodal fields covers.
 pub type StepCovered = (ResultStep, Vec<Option<Vec<bool>>>);
 
+/// A field read with the nodes it covers (nodal fields).
+type FieldCovered = (Field, Option<Vec<bool>>);
+
 /// The steps of the fields stored on mesh `mesh_name` (read as `mesh`),
 /// by increasing NUME_ORDRE, each with its fields in file order. Fields on
 /// another mesh of the file are left out.
@@ -96,6 +99,7 @@ impl FieldReader<'_> {
             return Ok(Vec::new());
         };
         // NUME_ORDRE → (INST, fields).
+        #[allow(clippy::type_complexity)]
         let mut steps: BTreeMap<i64, (f64, Vec<Field>, Vec<Option<Vec<bool>>>)> = BTreeMap::new();
         for (name, addr) in self.file.links(&cha)? {
             let fobj = self.file.object_at(addr)?;
@@ -199,7 +203,7 @@ impl FieldReader<'_> {
         name: &str,
         components: &[String],
         step: &Object,
-    ) -> Result<Option<(Field, Option<Vec<bool>>)>, Failure> {
+    ) -> Result<Option<FieldCovered>, Failure> {
         let nc = components.len();
         let mut covered: Option<Vec<bool>> = None;
         let mesh = self.mesh;
