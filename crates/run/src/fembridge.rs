@@ -1122,7 +1122,7 @@ pub fn solve(
                     }
                 }
                 if let Some(cn) = f.cont_noeu_at(s.time) {
-                    fields.insert("CONT_NOEU".to_string(), Field::Nodal(cont_noeu_field(&cn)));
+                    fields.insert("CONT_NOEU".to_string(), Field::Nodal(cont_noeu_field(cn)));
                 }
             }
             if let Some(m) = &post_mortar {
