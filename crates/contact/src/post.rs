@@ -34,7 +34,8 @@ pub struct ContNoeu {
     /// `values[k][c]`: node `nodes[k]`, component `CONT_NOEU_COMPONENTS[c]`.
     pub values: Vec<[f64; 19]>,
     /// `proj[k]`: PROJ_X, PROJ_Y, PROJ_Z of node `nodes[k]`, when the
-    /// formulation writes them (discrete friction); empty otherwise.
+    /// formulation writes them (discrete friction; continuous friction at
+    /// its paired nodes, NaN where a component is not written); empty otherwise.
     pub proj: Vec<[f64; 3]>,
 }
 
@@ -52,7 +53,7 @@ impl ContNoeu {
             .iter()
             .position(|c| *c == component)
         {
-            return self.proj.get(k).map(|p| p[c]);
+            return self.proj.get(k).map(|p| p[c]).filter(|v| v.is_finite());
         }
         Some(self.values[k][Self::component(component)?])
     }

@@ -28,8 +28,8 @@ pub use lac::{decoupe_lac, decoupe_lac_with, LacOptions, LacPatch, LacPatches, L
 pub use lac3d::{DecoupeHexa, LinearCells, ReferenceCells};
 pub use mail::{mail_string, parse_mail, read_mail, write_mail};
 pub use med::{
-    med_bytes, med_bytes_on, read_med, read_med_named, read_med_steps, write_med, write_med_on,
-    Entities, MedInfo,
+    med_bytes, med_bytes_on, read_med, read_med_named, read_med_steps, read_med_steps_covered,
+    write_med, write_med_on, Entities, MedInfo,
 };
 pub use model::*;
 pub use ops::{Along, CentreNodes, CrackFront, DegreeReport, NodeKind, OrientReport, Restriction};

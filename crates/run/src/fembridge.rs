@@ -1122,18 +1122,7 @@ pub fn solve(
                     }
                 }
                 if let Some(cn) = f.cont_noeu_at(s.time) {
-                    let mut nf = NodalField::new(
-                        aster_contact::CONT_NOEU_COMPONENTS
-                            .iter()
-                            .map(|c| c.to_string())
-                            .collect(),
-                    );
-                    for (n, vals) in cn.nodes.iter().zip(&cn.values) {
-                        for (c, v) in aster_contact::CONT_NOEU_COMPONENTS.iter().zip(vals) {
-                            nf.set(*n, c, *v);
-                        }
-                    }
-                    fields.insert("CONT_NOEU".to_string(), Field::Nodal(nf));
+                    fields.insert("CONT_NOEU".to_string(), Field::Nodal(cont_noeu_field(cn)));
                 }
             }
             if let Some(m) = &post_mortar {
@@ -1255,8 +1244,11 @@ fn cont_noeu_field(cn: &aster_contact::ContNoeu) -> NodalField {
             nf.set(*n, c, *v);
         }
         if let Some(p) = cn.proj.get(k) {
+            // A component the formulation does not write there is NaN.
             for (c, v) in aster_contact::CONT_NOEU_PROJ_COMPONENTS.iter().zip(p) {
-                nf.set(*n, c, *v);
+                if v.is_finite() {
+                    nf.set(*n, c, *v);
+                }
             }
         }
     }

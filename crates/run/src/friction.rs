@@ -37,6 +37,9 @@ pub fn continuous(kw: &Keywords) -> Result<ContinueFriction, ExecError> {
                 coef_frot: occ.f64("COEF_FROT").unwrap_or(100.0),
             },
         };
+        if let Some(g) = occ.f64("GLIS_MAXI") {
+            z.glis_maxi = g;
+        }
         z.seuil_init = occ.f64("SEUIL_INIT");
         z.contact_init = match occ.str("CONTACT_INIT").unwrap_or("INTERPENETRE") {
             "OUI" => ContactInit::Oui,
@@ -251,14 +254,46 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             }
         }
     }
+    // code_aster's TYPE_ADAPT of the definition (the last zone's, `cazocc`)
+    // and whether `contMatrModi` then estimates the coefficients from the
+    // prediction matrix (`EXIS_ADAP`: 1, 2, 3, 5, 6, 7; `echmat`, not
+    // reproduced).
+    let newton_fr = kw.str("ALGO_RESO_FROT").unwrap_or("NEWTON") == "NEWTON";
+    let zone_type = |occ: &Keywords| {
+        cycling_type(
+            occ.str("ADAPTATION").unwrap_or("CYCLAGE"),
+            newton_fr,
+            occ.str("ALGO_CONT") == Some("PENALISATION"),
+            occ.str("ALGO_FROT") == Some("PENALISATION"),
+        )
+    };
+    let exis_adap = kw
+        .factor("ZONE")
+        .last()
+        .is_some_and(|o| matches!(zone_type(o), 1 | 2 | 3 | 5 | 6 | 7));
+    let newton_cont = kw.str("ALGO_RESO_CONT").unwrap_or("NEWTON") == "NEWTON";
     for occ in kw.factor("ZONE") {
+        // Penalised friction beside augmented contact, reproduced where
+        // code_aster neither treats cycling nor adapts from the matrix:
+        // TYPE_ADAPT 12 ('TOUT' with Newton friction) or 0 ('NON'), with
+        // Newton contact (the status update that `mmbclc` follows with
+        // `mmchml`), the definition without `EXIS_ADAP`.
+        let pena_frot_reproduced = kw.str("FORMULATION") == Some("CONTINUE")
+            && occ.str("ALGO_FROT") == Some("PENALISATION")
+            && occ.str("ALGO_CONT").unwrap_or("STANDARD") == "STANDARD"
+            && matches!(zone_type(occ), 0 | 12)
+            && newton_cont
+            && !exis_adap;
         // A penalised zone with ADAPTATION='ADAPT_COEF'/'TOUT': code_aster
         // replaces COEF_PENA_CONT/COEF_PENA_FROT by coefficients adapted
         // to PENE_MAXI/GLIS_MAXI (`cazocc`, iadapt 2/3/7): the converged
         // answer depends on them.
         let penalised = occ.str("ALGO_CONT") == Some("PENALISATION")
             || occ.str("ALGO_FROT") == Some("PENALISATION");
-        if penalised && matches!(occ.str("ADAPTATION"), Some("ADAPT_COEF" | "TOUT")) {
+        if penalised
+            && !pena_frot_reproduced
+            && matches!(occ.str("ADAPTATION"), Some("ADAPT_COEF" | "TOUT"))
+        {
             out.push(Refusal::at(
                 format!(
                     "DEFI_CONTACT/ZONE/ADAPTATION='{}' with penalisation (penalty coefficients adapted to PENE_MAXI/GLIS_MAXI)",
@@ -306,14 +341,19 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
             && occ.str("ALGO_FROT") == Some("PENALISATION")
             && occ.str("ALGO_CONT").unwrap_or("STANDARD") == "STANDARD"
             && occ.f64("COULOMB").is_some_and(|m| m > f64::EPSILON)
+            && !pena_frot_reproduced
         {
-            let at = if occ.contains("GLIS_MAXI") {
+            let at = if occ.keyword("ADAPTATION").is_some_and(|k| !k.defaulted) {
+                "ADAPTATION"
+            } else if !newton_cont {
+                "ALGO_FROT"
+            } else if occ.contains("GLIS_MAXI") {
                 "GLIS_MAXI"
             } else {
                 "ALGO_FROT"
             };
             out.push(Refusal::at(
-                "DEFI_CONTACT/ZONE/ALGO_FROT='PENALISATION' with ALGO_CONT='STANDARD' in the continuous formulation (code_aster's mm_cycl_algo replaces COEF_PENA_FROT by 10 × arete_max / arete_min / GLIS_MAXI at each point in contact that slips by more than 1e-6 × GLIS_MAXI; this adaptation of the penalised friction is not reproduced)"
+                "DEFI_CONTACT/ZONE/ALGO_FROT='PENALISATION' with ALGO_CONT='STANDARD' in the continuous formulation, except with ADAPTATION='TOUT' (Newton friction) or 'NON' and ALGO_RESO_CONT='NEWTON' (code_aster's adaptation of COEF_PENA_FROT, mm_cycl_algo and mmchml_c, is reproduced there; beside its cycling treatment, its estimate from the matrix or the fixed-point contact loop it is not)"
                     .into(),
                 occ,
                 at,

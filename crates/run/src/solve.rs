@@ -892,6 +892,15 @@ pub(crate) fn store_solution(
         let t = crate::observation::table(&observations, &steps, &mesh);
         tables.push(("OBSERVATION".to_string(), Rc::new(t)));
     }
+    if call
+        .keywords
+        .factor("MESURE")
+        .first()
+        .is_some_and(|o| o.str("TABLE") == Some("OUI"))
+    {
+        let counted = setup.contact.as_deref().is_some_and(contact_counted);
+        tables.push(("STAT".to_string(), Rc::new(stat_table(&steps, counted))));
+    }
     let evol = EvolResult {
         typ: if linear { "evol_elas" } else { "evol_noli" }.into(),
         mesh: mesh_id,
@@ -1029,4 +1038,72 @@ pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     let steps: Vec<u32> = crate::commands::select_steps_pub(ex, "CALC_CHAMP", kw, &result)?;
     let updated = crate::fembridge::calc_champ(ex, call, &result, &options, &steps)?;
     store_result(ex, call, Concept::Result(Rc::new(updated)))
+}
+
+/// Whether code_aster counts a definition's contact points per node from
+/// CONT_NOEU (`cfmxre` → `mmmcpt`): the continuous formulation (not LAC)
+/// integrated at the slave nodes.
+fn contact_counted(def: &ContactDef) -> bool {
+    let ContactDef::Zones { keywords, .. } = def else {
+        return false;
+    };
+    keywords.str("FORMULATION") == Some("CONTINUE")
+        && keywords.factor("ZONE").iter().all(|o| {
+            o.str("ALGO_CONT") != Some("LAC")
+                && matches!(o.str("INTEGRATION").unwrap_or("AUTO"), "AUTO" | "NOEUD")
+        })
+}
+
+/// `MESURE=_F(TABLE='OUI')`: code_aster's table 'STAT', one row per
+/// stored step, with its contact counts when `counted` (`mmmcpt`: the slave
+/// nodes whose CONT_NOEU CONT is ≥ 1, in contact, `Count_Cont_NCont`, and
+/// = 1, sticking, `Count_Cont_NFric`). Its timers and iteration counts are
+/// not kept, so a test of them finds no column.
+pub(crate) fn stat_table(steps: &[Step], counted: bool) -> crate::table::Table {
+    use crate::table::{Column, ColumnType, Table, Value};
+    let mut columns = vec![
+        Column {
+            name: "NUME_ORDRE".into(),
+            ty: ColumnType::Int,
+        },
+        Column {
+            name: "INST".into(),
+            ty: ColumnType::Real,
+        },
+    ];
+    if counted {
+        for name in ["Count_Cont_NCont", "Count_Cont_NFric"] {
+            columns.push(Column {
+                name: name.into(),
+                ty: ColumnType::Int,
+            });
+        }
+    }
+    let mut t = Table::new(columns);
+    for s in steps.iter().filter(|s| s.nume_ordre > 0) {
+        let mut row = vec![
+            ("NUME_ORDRE", Value::Int(s.nume_ordre as i64)),
+            ("INST", Value::Real(s.inst)),
+        ];
+        if counted {
+            let (mut cont, mut stick) = (0_i64, 0_i64);
+            if let Some(crate::field::Field::Nodal(f)) = s.fields.get("CONT_NOEU") {
+                if let Some(k) = f.component_index("CONT") {
+                    for v in f.values.values() {
+                        let c = v.get(k).copied().flatten().unwrap_or(0.0).round();
+                        if c >= 1.0 {
+                            cont += 1;
+                            if c == 1.0 {
+                                stick += 1;
+                            }
+                        }
+                    }
+                }
+            }
+            row.push(("Count_Cont_NCont", Value::Int(cont)));
+            row.push(("Count_Cont_NFric", Value::Int(stick)));
+        }
+        t.push_row(row);
+    }
+    t
 }

@@ -88,3 +88,48 @@ fn penalised_zone_beside_a_sliding_zone_is_refused_before_the_solve() {
         "{msg}"
     );
 }
+
+/// The same plates with penalised friction beside augmented contact
+/// (ssnv128p's U3M settings: ALGO_FROT='PENALISATION', GLIS_MAXI,
+/// ADAPTATION='TOUT'): code_aster's coefficient 10 × arete_max / arete_min
+/// / GLIS_MAXI at the slipping points in contact (`mm_cycl_algo`). With
+/// GLIS_MAXI = 1e-6 the regularised law slides: the friction resultant is
+/// μ = 0.3 times the normal one. Under the cycling treatment
+/// (ADAPTATION='CYCLAGE') the same zone is refused before the solve.
+#[test]
+fn penalised_friction_beside_augmented_contact_slides_with_mu() {
+    let edits = [
+        (
+            "ALGO_FROT=\"STANDARD\",\n        COEF_FROT=1.0,",
+            "ALGO_FROT=\"PENALISATION\",\n        GLIS_MAXI=1.0e-6,",
+        ),
+        ("COEF_CONT=1.0,", "COEF_CONT=100.0,"),
+    ];
+    let mut text = scene::read("two_plates_friction_adapt.comm");
+    for (from, to) in edits
+        .iter()
+        .chain(&[("ADAPTATION=\"ADAPT_COEF\"", "ADAPTATION=\"TOUT\"")])
+    {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    let (ok, nook, err) = scene::run_on(&text, "comm/two_plates.mail", "fricfail-pena-frot");
+    assert_eq!((ok, nook, err), (8, 0, None));
+    // With CYCLAGE the catalog asks COEF_PENA_FROT and has no GLIS_MAXI.
+    let msg = scene::refused_export(
+        "two_plates_friction_adapt.comm",
+        &["two_plates.mail"],
+        &[
+            (
+                "ALGO_FROT=\"STANDARD\",\n        COEF_FROT=1.0,",
+                "ALGO_FROT=\"PENALISATION\",\n        COEF_PENA_FROT=1.0e6,",
+            ),
+            ("ADAPTATION=\"ADAPT_COEF\"", "ADAPTATION=\"CYCLAGE\""),
+        ],
+        "fricfail-pena-frot-cyclage",
+    );
+    assert!(
+        msg.contains("ALGO_FROT='PENALISATION' with ALGO_CONT='STANDARD'"),
+        "{msg}"
+    );
+}

@@ -244,6 +244,49 @@ pub fn propagate(h: &mut History, range: Range) {
     }
 }
 
+/// Penalised friction beside augmented contact (`ALGO_FROT='PENALISATION'`,
+/// `ALGO_CONT='STANDARD'`): the coefficient code_aster gives a point at a
+/// status update (`mm_cycl_algo`, its last block, whatever `TYPE_ADAPT`):
+/// a point in contact (its status after the update) whose tangential slip
+/// of the step exceeds 1e-6 × `GLIS_MAXI` takes
+/// 10 × `arete_max` / `arete_min` / `GLIS_MAXI`; any other keeps `coef`.
+/// `glis_maxi` is `mmmbca`'s (the zone's, 0.1 × `arete_min` when ≤ r8prem).
+pub fn pena_frot_update(
+    coef: f64,
+    in_contact: bool,
+    slip: [f64; 3],
+    glis_maxi: f64,
+    edge_min: f64,
+    edge_max: f64,
+) -> f64 {
+    let glis_maxi = if glis_maxi <= f64::EPSILON {
+        0.1 * edge_min
+    } else {
+        glis_maxi
+    };
+    let norm = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
+    if in_contact && norm > 1e-6 * glis_maxi {
+        10.0 * edge_max / edge_min / glis_maxi
+    } else {
+        coef
+    }
+}
+
+/// code_aster's `estimated_coefficient` when no zone adapts its
+/// coefficients from the matrix (`nonlinDSContactCreate`; `contMatrModi`
+/// replaces it only with `EXIS_ADAP`, `TYPE_ADAPT` 1, 2, 3, 5, 6 or 7).
+pub const ESTIMATED_COEFFICIENT: f64 = 100.0;
+
+/// The coefficient every point of a penalised-friction zone beside
+/// augmented contact takes when code_aster builds its contact field at
+/// Newton iteration 1 (`mmchml_c`: 1e-3 × `estimated_coefficient` ×
+/// `arete_min` / `GLIS_MAXI`, the zone's value unguarded). The field built
+/// then still carries the point's previous coefficient: the new one is
+/// read from the next status update on.
+pub fn pena_frot_first_iteration(estimated: f64, edge_min: f64, glis_maxi: f64) -> f64 {
+    1e-3 * estimated * edge_min / glis_maxi
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -318,5 +361,31 @@ mod tests {
         let mut open = History::new(1.0);
         propagate(&mut open, range);
         assert_eq!(open.coef, 1.0);
+    }
+    #[test]
+    fn a_slipping_point_in_contact_takes_the_edge_ratio_over_glis_maxi() {
+        // Edges 0.01 to 0.04, GLIS_MAXI 1e-4: 10 × 4 / 1e-4 = 4e5.
+        let (amin, amax, gm) = (0.01, 0.04, 1e-4);
+        let points = [
+            // (in contact, slip) → coefficient after the update
+            (true, [2e-10, 0.0, 0.0], 4e5),
+            (true, [0.0, -3e-5, 0.0], 4e5),
+            // Slip of exactly 1e-6 × GLIS_MAXI: kept.
+            (true, [1e-10, 0.0, 0.0], 1e7),
+            (false, [1e-3, 0.0, 0.0], 1e7),
+        ];
+        for (contact, slip, want) in points {
+            let c = pena_frot_update(1e7, contact, slip, gm, amin, amax);
+            assert!((c - want).abs() <= 1e-9 * want, "{contact} {slip:?}: {c}");
+        }
+        // GLIS_MAXI zero: 0.1 × arete_min (1e-3) instead, threshold 1e-9.
+        let c = pena_frot_update(1e7, true, [2e-9, 0.0, 0.0], 0.0, amin, amax);
+        assert!((c - 4e4).abs() < 1e-6);
+        assert_eq!(
+            pena_frot_update(1e7, true, [5e-10, 0.0, 0.0], 0.0, amin, amax),
+            1e7
+        );
+        // At Newton iteration 1: 1e-3 × 100 × 0.01 / 1e-4 = 10.
+        assert!((pena_frot_first_iteration(ESTIMATED_COEFFICIENT, amin, gm) - 10.0).abs() < 1e-12);
     }
 }

@@ -76,6 +76,8 @@ struct FZone {
     /// shortest edge of the zone's cells, `contSetInit`).
     init_threshold: f64,
     dire_excl: Option<[f64; 3]>,
+    /// `GLIS_MAXI` (penalised friction beside augmented contact).
+    glis_maxi: f64,
 }
 
 /// The pairing of a point: the master point and the local basis.
@@ -133,6 +135,10 @@ struct Point {
     /// The point's friction coefficient and its history in the step
     /// (module `adaptation`).
     fric: adaptation::History,
+    /// The coefficient the element reads when it differs from the
+    /// history's (`mmchml_c` at Newton iteration 1 builds its field before
+    /// it rewrites the penalised-friction coefficients).
+    coef_elem: Option<f64>,
 }
 
 /// Values of one point at the current iterate.
@@ -375,6 +381,7 @@ impl ContinuousFriction {
                 seuil_init: -f.seuil_init.unwrap_or(0.0).abs(),
                 contact_init: f.contact_init,
                 dire_excl: f.dire_excl_frot,
+                glis_maxi: f.glis_maxi,
             });
         }
         // The friction-excluded nodes of each zone.
@@ -489,6 +496,7 @@ impl ContinuousFriction {
                         cycl_pena: None,
                         last_master: None,
                         fric: adaptation::History::new(fz.coef_frot),
+                        coef_elem: None,
                     });
                 }
             }
@@ -795,7 +803,7 @@ impl ContinuousFriction {
             Some(k) => (k, true),
             None => (fz.coef_cont, fz.pena_cont),
         };
-        let rho_f = p.fric.coef;
+        let rho_f = p.coef_elem.unwrap_or(p.fric.coef);
         let contact = p.contact && pair.is_some();
         let (n, tau) = match pair {
             Some(pp) => (pp.n, pp.tau),
@@ -1196,6 +1204,31 @@ impl ContinuousFriction {
                 }
                 p.contact = proj.previous.contact;
             }
+            // Penalised friction beside augmented contact: the point's
+            // coefficient after its update (`mm_cycl_algo`, last block).
+            let fz = &self.zones[self.points[i].zone];
+            if let (true, false, true, Some(pp)) =
+                (fz.pena_frot, fz.pena_cont, fz.frictional, &pair)
+            {
+                let slip = tangential_part(vals.v, pp.n);
+                let p = &mut self.points[i];
+                let before = p.fric.coef;
+                p.fric.coef = adaptation::pena_frot_update(
+                    before,
+                    now,
+                    slip,
+                    fz.glis_maxi,
+                    self.edge_min,
+                    self.edge_max,
+                );
+                if p.fric.coef != before && std::env::var_os("ASTER_CONTACT_TRACE").is_some() {
+                    eprintln!(
+                        "[friction] point {i}: COEF_PENA_FROT {before:e} -> {:e} (slip {:e})",
+                        p.fric.coef,
+                        norm(slip)
+                    );
+                }
+            }
             let p = &self.points[i];
             let positions = pair.as_ref().map(|pp| {
                 let mut xs = [0.0; 3];
@@ -1243,6 +1276,23 @@ impl ContinuousFriction {
                 }
             }
         }
+        // `mmchml_c` after the update: at code_aster's Newton iteration 1
+        // (ours counts solves, so 2) the field keeps each penalised-friction
+        // point's coefficient and the history takes 1e-3 ×
+        // `estimated_coefficient` × `arete_min` / `GLIS_MAXI`.
+        let first = self.newton_iterations == 2;
+        for p in &mut self.points {
+            p.coef_elem = None;
+            let fz = &self.zones[p.zone];
+            if first && fz.pena_frot && !fz.pena_cont && fz.frictional {
+                p.coef_elem = Some(p.fric.coef);
+                p.fric.coef = adaptation::pena_frot_first_iteration(
+                    adaptation::ESTIMATED_COEFFICIENT,
+                    self.edge_min,
+                    fz.glis_maxi,
+                );
+            }
+        }
         Ok((changed, motion / self.edge_max.max(1e-300)))
     }
 
@@ -1262,14 +1312,30 @@ impl ContinuousFriction {
         let mut nodes = Vec::new();
         let mut values: Vec<[f64; 19]> = Vec::new();
         let mut index: HashMap<NodeId, usize> = HashMap::new();
+        // PROJ_X/Y(/Z): the master point of each paired slave node on the
+        // current geometry (`mmmres` → `mcopco`, whatever the status; PROJ_Z
+        // only in 3D); NaN where not written.
+        let mut proj: Vec<[f64; 3]> = Vec::new();
         for p in &self.points {
             let Some(node) = p.node else { continue };
             let fz = &self.zones[p.zone];
             let mut v = [0.0; 19];
+            let mut xm = [f64::NAN; 3];
             if p.unpaired {
                 v[0] = -1.0;
             }
             v[1] = -p.gap;
+            if let Some(pp) = &p.pair {
+                for c in 0..self.dim {
+                    xm[c] = 0.0;
+                }
+                for &(n, sh) in &pp.master {
+                    let x = state.current_coord(n);
+                    for c in 0..self.dim {
+                        xm[c] += sh * x[c];
+                    }
+                }
+            }
             if p.contact && !p.sans && !p.unpaired {
                 v[0] = 1.0;
                 let rn = self.forces_cont.get(&node).copied().unwrap_or([0.0; 3]);
@@ -1319,18 +1385,22 @@ impl ContinuousFriction {
             }
             v[18] = (v[15] * v[15] + v[16] * v[16] + v[17] * v[17]).sqrt();
             match index.get(&node) {
-                Some(&k) => values[k] = v,
+                Some(&k) => {
+                    values[k] = v;
+                    proj[k] = xm;
+                }
                 None => {
                     index.insert(node, nodes.len());
                     nodes.push(node);
                     values.push(v);
+                    proj.push(xm);
                 }
             }
         }
         ContNoeu {
             nodes,
             values,
-            proj: Vec::new(),
+            proj,
         }
     }
 
@@ -1480,6 +1550,7 @@ impl ForceSource for ContinuousFriction {
             p.cycl_pena = None;
             p.last_master = None;
             p.fric = adaptation::History::new(self.zones[p.zone].coef_frot);
+            p.coef_elem = None;
         }
         self.coef_ranges = vec![adaptation::Range::default(); self.zones.len()];
         self.own_prev = Some(own.to_vec());

@@ -66,6 +66,11 @@ pub struct ContinueZoneFriction {
     /// `DIRE_EXCL_FROT` (3D): only the friction component along this
     /// direction (projected on the tangent plane) is excluded.
     pub dire_excl_frot: Option<[f64; 3]>,
+    /// `GLIS_MAXI` of a penalised-friction zone (code_aster's `cazocc`
+    /// keeps 1e3 when it is not given): the slip its coefficient is
+    /// adapted to beside augmented contact (`mm_cycl_algo`, `mmchml_c`;
+    /// [`adaptation::pena_frot_update`]).
+    pub glis_maxi: f64,
 }
 
 impl ContinueZoneFriction {
@@ -79,6 +84,7 @@ impl ContinueZoneFriction {
             contact_init: ContactInit::Interpenetre,
             excluded_node_groups: Vec::new(),
             dire_excl_frot: None,
+            glis_maxi: 1e3,
         }
     }
 

@@ -22,6 +22,12 @@ use std::path::Path;
 
 const NO_PROFILE: &str = "MED_NO_PROFILE_INTERNAL";
 
+/// A step read with the nodes each of its nodal fields covers.
+pub type StepCovered = (ResultStep, Vec<Option<Vec<bool>>>);
+
+/// A field read with the nodes it covers (nodal fields).
+type FieldCovered = (Field, Option<Vec<bool>>);
+
 /// The steps of the fields stored on mesh `mesh_name` (read as `mesh`),
 /// by increasing NUME_ORDRE, each with its fields in file order. Fields on
 /// another mesh of the file are left out.
@@ -30,6 +36,20 @@ pub fn read_med_steps(
     mesh: &Mesh,
     mesh_name: &str,
 ) -> Result<Vec<ResultStep>, MeshError> {
+    Ok(read_med_steps_covered(path, mesh, mesh_name)?
+        .into_iter()
+        .map(|(s, _)| s)
+        .collect())
+}
+
+/// [`read_med_steps`] with, for each field of a step (in the same order),
+/// the nodes a nodal field has values at (its profiles; `None` for a field
+/// on cells).
+pub fn read_med_steps_covered(
+    path: &Path,
+    mesh: &Mesh,
+    mesh_name: &str,
+) -> Result<Vec<StepCovered>, MeshError> {
     let data = std::fs::read(path).map_err(|e| MeshError::Io {
         path: path.to_path_buf(),
         message: e.to_string(),
@@ -74,12 +94,13 @@ impl FieldReader<'_> {
         Ok(self.file.attribute(obj, name)?.and_then(|a| a.as_i64()))
     }
 
-    fn steps(&self, mesh_name: &str) -> Result<Vec<ResultStep>, Failure> {
+    fn steps(&self, mesh_name: &str) -> Result<Vec<StepCovered>, Failure> {
         let Some(cha) = self.file.get("CHA")? else {
             return Ok(Vec::new());
         };
         // NUME_ORDRE → (INST, fields).
-        let mut steps: BTreeMap<i64, (f64, Vec<Field>)> = BTreeMap::new();
+        #[allow(clippy::type_complexity)]
+        let mut steps: BTreeMap<i64, (f64, Vec<Field>, Vec<Option<Vec<bool>>>)> = BTreeMap::new();
         for (name, addr) in self.file.links(&cha)? {
             let fobj = self.file.object_at(addr)?;
             if self.string(&fobj, "MAI")?.is_some_and(|m| m != mesh_name) {
@@ -109,18 +130,24 @@ impl FieldReader<'_> {
                     .attribute(&sobj, "PDT")?
                     .and_then(|a| a.as_f64())
                     .unwrap_or(0.0);
-                if let Some(field) = self.field(&name, &components, &sobj)? {
-                    let entry = steps.entry(nume).or_insert((inst, Vec::new()));
+                if let Some((field, covered)) = self.field(&name, &components, &sobj)? {
+                    let entry = steps.entry(nume).or_insert((inst, Vec::new(), Vec::new()));
                     entry.1.push(field);
+                    entry.2.push(covered);
                 }
             }
         }
         Ok(steps
             .into_iter()
-            .map(|(nume, (inst, fields))| ResultStep {
-                nume_ordre: nume as i32,
-                inst,
-                fields,
+            .map(|(nume, (inst, fields, covered))| {
+                (
+                    ResultStep {
+                        nume_ordre: nume as i32,
+                        inst,
+                        fields,
+                    },
+                    covered,
+                )
             })
             .collect())
     }
@@ -176,8 +203,9 @@ impl FieldReader<'_> {
         name: &str,
         components: &[String],
         step: &Object,
-    ) -> Result<Option<Field>, Failure> {
+    ) -> Result<Option<FieldCovered>, Failure> {
         let nc = components.len();
+        let mut covered: Option<Vec<bool>> = None;
         let mesh = self.mesh;
         let bad = |what: &str, got: usize, want: usize| {
             Failure::Med(format!(
@@ -197,6 +225,10 @@ impl FieldReader<'_> {
                     return Err(bad("nodes", co.len(), ids.len() * nc));
                 }
                 let values = nodal.get_or_insert_with(|| vec![0.0; mesh.node_count() * nc]);
+                let seen = covered.get_or_insert_with(|| vec![false; mesh.node_count()]);
+                for &n in &ids {
+                    seen[n] = true;
+                }
                 for c in 0..nc {
                     for (k, &n) in ids.iter().enumerate() {
                         values[n * nc + c] = co[c * ids.len() + k];
@@ -229,6 +261,7 @@ impl FieldReader<'_> {
                 per_cell[cell] = set;
             }
         }
+        let nodes = nodal.is_some();
         let field = if let Some(values) = nodal {
             Field {
                 name: name.to_string(),
@@ -255,6 +288,6 @@ impl FieldReader<'_> {
                 values: per_cell.concat(),
             }
         };
-        Ok(Some(field))
+        Ok(Some((field, covered.filter(|_| nodes))))
     }
 }

@@ -11,6 +11,7 @@ pub(crate) mod fracture;
 pub(crate) mod functions;
 pub(crate) mod inspect;
 pub(crate) mod liaison_mail;
+pub(crate) mod lire_resu;
 pub(crate) mod loads;
 pub(crate) mod loads_f;
 pub(crate) mod macr_lign_coupe;
@@ -337,6 +338,11 @@ pub static COMMANDS: &[Command] = &[
         name: "CALC_TABLE",
         run: tables::calc_table,
         support: tables::CALC_TABLE,
+    },
+    Command {
+        name: "LIRE_RESU",
+        run: lire_resu::lire_resu,
+        support: lire_resu::LIRE_RESU,
     },
     Command {
         name: "RECU_TABLE",

@@ -290,7 +290,7 @@ fn compare(a: &Option<Value>, b: &Option<Value>) -> std::cmp::Ordering {
 pub(crate) const RECU_TABLE: Support = Support {
     values: &[crate::support::Values::listed(
         "NOM_TABLE",
-        &["OBSERVATION", "PARA_CALC"],
+        &["OBSERVATION", "PARA_CALC", "STAT"],
     )],
     ..Support::keywords(&["CO", "NOM_TABLE", "NOM_PARA", "TITRE"])
 };
