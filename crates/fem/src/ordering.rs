@@ -117,7 +117,7 @@ fn split(a: &Csc, coords: &[[f64; 3]], v: &[usize], ids: &mut SetIds) -> Option<
     let mut work = v.to_vec();
     let mut best: Option<Split> = None;
     for axis in axes {
-        if !(hi[axis] > lo[axis]) {
+        if hi[axis].partial_cmp(&lo[axis]) != Some(std::cmp::Ordering::Greater) {
             continue;
         }
         if let Some(s) = split_on(a, coords, &mut work, axis, ids) {
