@@ -692,6 +692,18 @@ impl KktSolver {
                 ),
             }
             .ok()?;
+            if std::env::var_os("ASTER_FEM_TIMING").is_some() {
+                eprintln!(
+                    "[fem] reduced Cholesky factor ({}): {} unknowns, {} non-zeros",
+                    if order.is_some() {
+                        "nested dissection"
+                    } else {
+                        "AMD"
+                    },
+                    nr,
+                    symbolic.len_val()
+                );
+            }
             self.symbolic = Some((krr.col_ptr.clone(), krr.row_idx.clone(), Arc::new(symbolic)));
         }
         let symbolic = self.symbolic.as_ref()?.2.clone();
