@@ -1,5 +1,6 @@
 //! MACR_LIGN_COUPE: a result's values along cut lines, as code_aster 17's
-//! macro (`macr_lign_coupe_ops.py`) computes them, step by step:
+//! macro (`macr_lign_coupe_ops.py`) computes them: the lines' mesh,
+//! PROJ_CHAMP onto it, POST_RELEVE_T along it. Step by step:
 //!
 //! 1. a mesh of SEG2 cells is written in ASTER text format
 //!    (`crea_mail_lig_coup`: `NB_POINTS` nodes evenly spaced from
