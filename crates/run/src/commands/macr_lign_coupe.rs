@@ -781,22 +781,19 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
     }
 
     // 2. The projection (PROJ_CHAMP by collocation on the line's nodes).
-    let positive = |k: &str| -> Vec<f64> {
+    // The macro's rule: the smallest value given (a zero counts as not
+    // given, Python's truthiness), else 0.
+    let smallest_given = |k: &str| -> f64 {
         lines
             .iter()
             .filter_map(|o| o.f64(k))
             .filter(|&d| d != 0.0)
-            .collect()
+            .reduce(f64::min)
+            .unwrap_or(0.0)
     };
-    let dmax = positive("DISTANCE_MAX")
-        .into_iter()
-        .fold(None, |m: Option<f64>, d| Some(m.map_or(d, |m| m.min(d))));
-    let dala = positive("DISTANCE_ALARME")
-        .into_iter()
-        .fold(None, |m: Option<f64>, d| Some(m.map_or(d, |m| m.min(d))));
     let options = Options {
-        distance_max: Some(dmax.unwrap_or(0.0)),
-        distance_alarme: Some(dala.unwrap_or(0.0)),
+        distance_max: Some(smallest_given("DISTANCE_MAX")),
+        distance_alarme: Some(smallest_given("DISTANCE_ALARME")),
     };
     let case = case_of(&mesh, &cells1)
         .ok_or_else(|| ex.kw_error(CMD, kw, "RESULTAT", "the model has no cell to project from"))?;
