@@ -16,8 +16,9 @@
 //! Here the continuous rows are per slave node (the weighted gap of the
 //! node's integration points), so a node is linked: from the start as
 //! `CONTACT_INIT` says (its weighted mean gap against that threshold),
-//! then once its row is active at a converged step. code_aster links at each convergence of its contact loop, also
-//! inside a step; here it happens at the end of each converged increment.
+//! then once its row is active at a converged step. code_aster links at
+//! each convergence of its contact loop, also inside a step; here it
+//! happens at the end of each converged increment.
 //! A linked row is an [`InequalityRow::bilateral`] row of fem's solver: an
 //! equality whose multiplier may take either sign.
 
