@@ -5,6 +5,6 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 cd "$root"
 cargo build --release -p aster-cli
-for spec in comm/study-hertz.toml comm/study-zzzz237.toml; do
+for spec in comm/study-hertz.toml comm/study-zzzz237.toml comm/study-friction.toml; do
     target/release/aster study "$spec" --out docs/study
 done

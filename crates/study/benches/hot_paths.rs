@@ -106,6 +106,7 @@ fn contact_runs(c: &mut Criterion) {
                 refine,
                 stiffness_ratio: 1.0,
                 steps: 1,
+                coulomb: 0.0,
             };
             g.bench_function(method.label(), |b| {
                 cpu_iter(b, || scene.run(&point).is_ok())

@@ -31,6 +31,7 @@ fn main() {
         refine,
         stiffness_ratio: 1.0,
         steps: 1,
+        coulomb: 0.0,
     };
     aster_study::clock::run_sequentially();
     let start = aster_study::clock::cpu_now();

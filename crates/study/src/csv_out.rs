@@ -5,7 +5,7 @@ use crate::error::StudyError;
 use std::path::Path;
 
 /// The CSV's columns, in order.
-pub const COLUMNS: [&str; 33] = [
+pub const COLUMNS: [&str; 34] = [
     "run",
     "scene",
     "method",
@@ -15,6 +15,7 @@ pub const COLUMNS: [&str; 33] = [
     "h",
     "stiffness_ratio",
     "steps",
+    "coulomb",
     "status",
     "failure",
     "reason",
@@ -75,6 +76,7 @@ fn row(scene: &str, r: &RunRecord) -> Vec<String> {
         opt(m.map(|m| m.h)),
         p.stiffness_ratio.to_string(),
         p.steps.to_string(),
+        p.coulomb.to_string(),
         r.status.name().to_string(),
         opt(r.kind.map(|k| k.name())),
         r.reason.clone().unwrap_or_default(),

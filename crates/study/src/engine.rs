@@ -6,7 +6,7 @@ use crate::memory;
 use crate::method::Method;
 use crate::outcome::{Failure, FailureKind, Measures, Status};
 use crate::scene::Scene;
-use crate::spec::{Point, Reference, StudySpec};
+use crate::spec::{Point, Reference, Setting, StudySpec};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -207,9 +207,7 @@ fn resolve_errors(spec: &StudySpec, records: &mut [RunRecord]) {
                     r.measures
                         .as_ref()
                         .and_then(|m| m.own_reference)
-                        .or_else(|| {
-                            finest_value(records, first, r.point.stiffness_ratio, r.point.steps)
-                        })
+                        .or_else(|| finest_value(records, first, r.point.setting()))
                 })
                 .collect()
         }
@@ -240,15 +238,14 @@ fn resolve_errors(spec: &StudySpec, records: &mut [RunRecord]) {
 }
 
 /// The value of the converged run of `method` on the finest mesh for this
-/// stiffness ratio and step count.
-fn finest_value(records: &[RunRecord], method: Method, ratio: f64, steps: u32) -> Option<f64> {
+/// setting (stiffness ratio, step count, friction coefficient).
+fn finest_value(records: &[RunRecord], method: Method, setting: Setting) -> Option<f64> {
     records
         .iter()
         .filter(|r| {
             r.status == Status::Converged
                 && r.point.method == method
-                && r.point.stiffness_ratio == ratio
-                && r.point.steps == steps
+                && r.point.setting() == setting
         })
         .max_by_key(|r| r.point.refine)
         .and_then(|r| r.measures.as_ref().map(|m| m.value))

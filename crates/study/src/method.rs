@@ -23,10 +23,20 @@ pub enum MethodFamily {
     LiaisonUnil,
     /// `FORMULATION='LIAISON_UNIL', ALGO_CONT='PENALISATION'` with `COEF_PENA`.
     LiaisonUnilPenalisation,
+    /// `FORMULATION='DISCRETE', FROTTEMENT='COULOMB'`: `ALGO_CONT` and
+    /// `ALGO_FROT` `'PENALISATION'` (code_aster's only discrete friction),
+    /// the tangential penalty `E_T` swept (`E_N` is the scene's).
+    DiscreteFrictionPenalisation,
+    /// `FORMULATION='CONTINUE', FROTTEMENT='COULOMB'`, `ALGO_FROT=
+    /// 'STANDARD'` (augmented Lagrangian) with `COEF_FROT`.
+    ContinuousFrictionStandard,
+    /// `FORMULATION='CONTINUE', FROTTEMENT='COULOMB'`, `ALGO_FROT=
+    /// 'PENALISATION'` with `COEF_PENA_FROT`.
+    ContinuousFrictionPenalisation,
 }
 
 impl MethodFamily {
-    pub const ALL: [MethodFamily; 7] = [
+    pub const ALL: [MethodFamily; 10] = [
         MethodFamily::DiscreteContrainte,
         MethodFamily::DiscretePenalisation,
         MethodFamily::DiscreteGcp,
@@ -34,6 +44,9 @@ impl MethodFamily {
         MethodFamily::ContinuousPenalisation,
         MethodFamily::LiaisonUnil,
         MethodFamily::LiaisonUnilPenalisation,
+        MethodFamily::DiscreteFrictionPenalisation,
+        MethodFamily::ContinuousFrictionStandard,
+        MethodFamily::ContinuousFrictionPenalisation,
     ];
 
     /// The code_aster spelling, e.g. `DISCRETE/PENALISATION`.
@@ -46,6 +59,9 @@ impl MethodFamily {
             MethodFamily::ContinuousPenalisation => "CONTINUE/PENALISATION",
             MethodFamily::LiaisonUnil => "LIAISON_UNIL/CONTRAINTE",
             MethodFamily::LiaisonUnilPenalisation => "LIAISON_UNIL/PENALISATION",
+            MethodFamily::DiscreteFrictionPenalisation => "DISCRETE/COULOMB PENALISATION",
+            MethodFamily::ContinuousFrictionStandard => "CONTINUE/COULOMB STANDARD",
+            MethodFamily::ContinuousFrictionPenalisation => "CONTINUE/COULOMB PENALISATION",
         }
     }
 
@@ -59,6 +75,9 @@ impl MethodFamily {
             MethodFamily::ContinuousPenalisation => "continuous-penalisation",
             MethodFamily::LiaisonUnil => "liaison-unil",
             MethodFamily::LiaisonUnilPenalisation => "liaison-unil-penalisation",
+            MethodFamily::DiscreteFrictionPenalisation => "discrete-friction-penalisation",
+            MethodFamily::ContinuousFrictionStandard => "continuous-friction-standard",
+            MethodFamily::ContinuousFrictionPenalisation => "continuous-friction-penalisation",
         }
     }
 
@@ -69,6 +88,9 @@ impl MethodFamily {
             MethodFamily::ContinuousStandard => Some("COEF_CONT"),
             MethodFamily::ContinuousPenalisation => Some("COEF_PENA_CONT"),
             MethodFamily::LiaisonUnilPenalisation => Some("COEF_PENA"),
+            MethodFamily::DiscreteFrictionPenalisation => Some("E_T"),
+            MethodFamily::ContinuousFrictionStandard => Some("COEF_FROT"),
+            MethodFamily::ContinuousFrictionPenalisation => Some("COEF_PENA_FROT"),
             _ => None,
         }
     }
@@ -76,9 +98,11 @@ impl MethodFamily {
     /// code_aster's default coefficient (used when a spec gives none).
     pub fn default_coefficient(self) -> Option<f64> {
         match self {
-            MethodFamily::ContinuousStandard => Some(100.0),
-            // No default in code_aster: E_N, COEF_PENA_CONT and COEF_PENA
-            // are mandatory.
+            MethodFamily::ContinuousStandard | MethodFamily::ContinuousFrictionStandard => {
+                Some(100.0)
+            }
+            // No default in code_aster: E_N, E_T, COEF_PENA_CONT,
+            // COEF_PENA_FROT and COEF_PENA are mandatory.
             _ => None,
         }
     }
@@ -91,6 +115,20 @@ impl MethodFamily {
             MethodFamily::DiscretePenalisation
                 | MethodFamily::ContinuousPenalisation
                 | MethodFamily::LiaisonUnilPenalisation
+                // code_aster's discrete friction penalises the normal
+                // contact too (ALGO_CONT='PENALISATION').
+                | MethodFamily::DiscreteFrictionPenalisation
+        )
+    }
+
+    /// Whether the method carries Coulomb friction (`FROTTEMENT='COULOMB'`):
+    /// it runs on frictional scenes only, and they on it only.
+    pub fn is_frictional(self) -> bool {
+        matches!(
+            self,
+            MethodFamily::DiscreteFrictionPenalisation
+                | MethodFamily::ContinuousFrictionStandard
+                | MethodFamily::ContinuousFrictionPenalisation
         )
     }
 

@@ -20,7 +20,7 @@ pub trait Scene {
 }
 
 /// Names of the built-in scenes.
-pub const BUILTIN: [&str; 3] = ["zzzz237", "hertz", "fake"];
+pub const BUILTIN: [&str; 4] = ["zzzz237", "hertz", "friction", "fake"];
 
 /// Builds a built-in scene from its name and fixed parameters.
 pub fn builtin_scene(
@@ -31,6 +31,7 @@ pub fn builtin_scene(
         "fake" => Ok(Box::new(scenes::fake::FakeScene::from_params(params)?)),
         "zzzz237" => Ok(Box::new(scenes::zzzz237::TwoBlocks::from_params(params)?)),
         "hertz" => Ok(Box::new(scenes::hertz::Hertz::from_params(params)?)),
+        "friction" => Ok(Box::new(scenes::friction::Friction::from_params(params)?)),
         _ => Err(StudyError::UnknownScene {
             name: name.to_string(),
             known: BUILTIN.to_vec(),

@@ -15,6 +15,7 @@
 //! refine = [1, 2, 4, 8]          # mesh refinement levels
 //! stiffness_ratio = [1.0]
 //! steps = [1]                    # number of load steps
+//! coulomb = [0.0]                # friction coefficients μ (frictional scenes)
 //!
 //! [[methods]]
 //! kind = "discrete-contrainte"
@@ -25,7 +26,7 @@
 //! ```
 
 use crate::error::StudyError;
-use crate::method::{Method, MethodFamily};
+use crate::method::{short_number, Method, MethodFamily};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -77,6 +78,13 @@ struct RawSweep {
     stiffness_ratio: Vec<f64>,
     #[serde(default = "one_u32")]
     steps: Vec<u32>,
+    /// Friction coefficients μ (`COULOMB`); only frictional methods use it.
+    #[serde(default = "zero_f64")]
+    coulomb: Vec<f64>,
+}
+
+fn zero_f64() -> Vec<f64> {
+    vec![0.0]
 }
 
 fn one_f64() -> Vec<f64> {
@@ -111,6 +119,52 @@ pub struct StudySpec {
     pub refine: Vec<u32>,
     pub stiffness_ratio: Vec<f64>,
     pub steps: Vec<u32>,
+    /// Friction coefficients μ swept (`[0.0]` for frictionless studies).
+    pub coulomb: Vec<f64>,
+}
+
+/// The physical setting of a run apart from its method and mesh: what a
+/// reference, a convergence series and a row of the stability map share.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Setting {
+    /// Stiffness of the second body over the first one's.
+    pub stiffness_ratio: f64,
+    /// Number of load steps.
+    pub steps: u32,
+    /// Friction coefficient μ (`COULOMB`), 0 without friction.
+    pub coulomb: f64,
+}
+
+impl Setting {
+    /// A short label naming only what the study sweeps (`ratio 1e3, 4
+    /// steps, μ 0.3`), or `all` when it sweeps none of them.
+    pub fn label(&self, spec: &StudySpec) -> String {
+        let mut parts = Vec::new();
+        if spec.stiffness_ratio.len() > 1 {
+            parts.push(format!("ratio {}", short_number(self.stiffness_ratio)));
+        }
+        if spec.steps.len() > 1 {
+            parts.push(format!("{} steps", self.steps));
+        }
+        if spec.coulomb.len() > 1 {
+            parts.push(format!("μ {}", short_number(self.coulomb)));
+        }
+        if parts.is_empty() {
+            "all".into()
+        } else {
+            parts.join(", ")
+        }
+    }
+
+    /// Every field, for tables: `ratio 1, 1 steps, μ 0`.
+    pub fn full_label(&self) -> String {
+        format!(
+            "ratio {}, {} steps, μ {}",
+            short_number(self.stiffness_ratio),
+            self.steps,
+            short_number(self.coulomb)
+        )
+    }
 }
 
 /// One run of the sweep.
@@ -126,6 +180,18 @@ pub struct Point {
     pub stiffness_ratio: f64,
     /// Number of load steps.
     pub steps: u32,
+    /// Friction coefficient μ (`COULOMB`).
+    pub coulomb: f64,
+}
+
+impl Point {
+    pub fn setting(&self) -> Setting {
+        Setting {
+            stiffness_ratio: self.stiffness_ratio,
+            steps: self.steps,
+            coulomb: self.coulomb,
+        }
+    }
 }
 
 impl StudySpec {
@@ -179,6 +245,15 @@ impl StudySpec {
         if raw.sweep.steps.is_empty() || raw.sweep.steps.contains(&0) {
             return Err("sweep.steps must list step counts ≥ 1".into());
         }
+        if raw.sweep.coulomb.is_empty()
+            || raw
+                .sweep
+                .coulomb
+                .iter()
+                .any(|m| !(m.is_finite() && *m >= 0.0))
+        {
+            return Err("sweep.coulomb must list friction coefficients ≥ 0".into());
+        }
         let mut methods = Vec::new();
         for (i, m) in raw.methods.iter().enumerate() {
             let coefs: Vec<Option<f64>> = if m.coefficients.is_empty() {
@@ -194,6 +269,29 @@ impl StudySpec {
                 methods.push(method);
             }
         }
+        let frictional = methods
+            .iter()
+            .filter(|m| m.family().is_frictional())
+            .count();
+        if frictional > 0 && frictional < methods.len() {
+            return Err(
+                "methods mix frictional (`*-friction-*`) and frictionless kinds: a study compares \
+                 one or the other"
+                    .into(),
+            );
+        }
+        if frictional > 0 && raw.sweep.coulomb.contains(&0.0) {
+            return Err(
+                "sweep.coulomb: frictional methods need friction coefficients μ > 0".into(),
+            );
+        }
+        if frictional == 0 && raw.sweep.coulomb.iter().any(|&m| m != 0.0) {
+            return Err(
+                "sweep.coulomb is for frictional methods (`*-friction-*` kinds); these methods \
+                 are frictionless"
+                    .into(),
+            );
+        }
         Ok(StudySpec {
             name: raw.name,
             scene: raw.scene,
@@ -206,25 +304,44 @@ impl StudySpec {
             refine: raw.sweep.refine,
             stiffness_ratio: raw.sweep.stiffness_ratio,
             steps: raw.sweep.steps,
+            coulomb: raw.sweep.coulomb,
         })
     }
 
-    /// Every point of the sweep: methods × refine × stiffness ratio × steps,
-    /// coarse meshes first so that a study interrupted early has every method.
+    /// Every setting of the sweep: stiffness ratio × steps × μ, in the
+    /// order of the spec's lists.
+    pub fn settings(&self) -> Vec<Setting> {
+        let mut out = Vec::new();
+        for &stiffness_ratio in &self.stiffness_ratio {
+            for &steps in &self.steps {
+                for &coulomb in &self.coulomb {
+                    out.push(Setting {
+                        stiffness_ratio,
+                        steps,
+                        coulomb,
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// Every point of the sweep: methods × refine × settings, coarse
+    /// meshes first so that a study interrupted early has every method.
     pub fn points(&self) -> Vec<Point> {
         let mut points = Vec::new();
+        let settings = self.settings();
         for &refine in &self.refine {
-            for &stiffness_ratio in &self.stiffness_ratio {
-                for &steps in &self.steps {
-                    for &method in &self.methods {
-                        points.push(Point {
-                            index: points.len(),
-                            method,
-                            refine,
-                            stiffness_ratio,
-                            steps,
-                        });
-                    }
+            for s in &settings {
+                for &method in &self.methods {
+                    points.push(Point {
+                        index: points.len(),
+                        method,
+                        refine,
+                        stiffness_ratio: s.stiffness_ratio,
+                        steps: s.steps,
+                        coulomb: s.coulomb,
+                    });
                 }
             }
         }
@@ -269,6 +386,44 @@ coefficients = [1e3, 1e6]
         let e = StudySpec::from_toml(&SPEC.replace("discrete-contrainte", "discrete-contact"))
             .unwrap_err();
         assert!(e.contains("discrete-contact") && e.contains("line"), "{e}");
+    }
+
+    #[test]
+    fn friction_coefficients_are_a_sweep_axis_of_frictional_studies() {
+        let text = r#"
+name = "f"
+scene = "friction"
+reference = "analytic"
+[sweep]
+refine = [2]
+steps = [1, 4]
+coulomb = [0.1, 0.3]
+[[methods]]
+kind = "discrete-friction-penalisation"
+coefficients = [1e5, 1e7]
+[[methods]]
+kind = "continuous-friction-standard"
+"#;
+        let spec = StudySpec::from_toml(text).unwrap();
+        assert_eq!(spec.methods.len(), 3);
+        assert_eq!(spec.methods[2].coefficient(), Some(100.0));
+        assert_eq!(spec.settings().len(), 4);
+        let points = spec.points();
+        assert_eq!(points.len(), 3 * 4);
+        assert_eq!(points[3].coulomb, 0.3);
+        assert_eq!(points[3].setting().label(&spec), "1 steps, μ 0.3");
+        let e = StudySpec::from_toml(&text.replace("[0.1, 0.3]", "[0.0, 0.3]")).unwrap_err();
+        assert!(e.contains("μ > 0"), "{e}");
+        let e = StudySpec::from_toml(&format!(
+            "{text}[[methods]]\nkind = \"discrete-contrainte\"\n"
+        ))
+        .unwrap_err();
+        assert!(e.contains("mix"), "{e}");
+        let e =
+            StudySpec::from_toml(&SPEC.replace("[sweep]", "[sweep]\ncoulomb = [0.2]")).unwrap_err();
+        assert!(e.contains("frictionless"), "{e}");
+        let e = StudySpec::from_toml(&text.replace("[0.1, 0.3]", "[-1.0]")).unwrap_err();
+        assert!(e.contains("≥ 0"), "{e}");
     }
 
     #[test]

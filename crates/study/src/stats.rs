@@ -4,6 +4,7 @@
 use crate::engine::{RunRecord, StudyResult};
 use crate::method::Method;
 use crate::outcome::Status;
+use crate::spec::Setting;
 
 /// Least-squares slope of log(y) against log(x) over points with x, y > 0;
 /// `None` with fewer than two distinct x.
@@ -83,44 +84,37 @@ pub fn fastest_per_method(result: &StudyResult, target: f64) -> Vec<(Method, Opt
         .collect()
 }
 
-/// Convergence in mesh size of one method at one (ratio, steps): the
-/// (h, error) points and their fitted slope.
+/// Convergence in mesh size of one method at one setting: the (h, error)
+/// points and their fitted slope.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Convergence {
     pub method: Method,
-    pub stiffness_ratio: f64,
-    pub steps: u32,
+    pub setting: Setting,
     pub points: Vec<(f64, f64)>,
     pub slope: Option<f64>,
 }
 
-/// One convergence series per (method, ratio, steps) with at least two
+/// One convergence series per (method, setting) with at least two
 /// plotted points of distinct h.
 pub fn convergence_series(result: &StudyResult) -> Vec<Convergence> {
     let mut out = Vec::new();
+    let settings = result.spec.settings();
     for &method in &result.spec.methods {
-        for &ratio in &result.spec.stiffness_ratio {
-            for &steps in &result.spec.steps {
-                let mut points: Vec<(f64, f64)> = plotted(result)
-                    .filter(|r| {
-                        r.point.method == method
-                            && r.point.stiffness_ratio == ratio
-                            && r.point.steps == steps
-                    })
-                    .filter_map(|r| Some((r.measures.as_ref()?.h, r.error?)))
-                    .collect();
-                points.sort_by(|a, b| a.0.total_cmp(&b.0));
-                points.dedup_by(|a, b| a.0 == b.0);
-                if points.len() >= 2 {
-                    let slope = loglog_slope(&points);
-                    out.push(Convergence {
-                        method,
-                        stiffness_ratio: ratio,
-                        steps,
-                        points,
-                        slope,
-                    });
-                }
+        for &setting in &settings {
+            let mut points: Vec<(f64, f64)> = plotted(result)
+                .filter(|r| r.point.method == method && r.point.setting() == setting)
+                .filter_map(|r| Some((r.measures.as_ref()?.h, r.error?)))
+                .collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            points.dedup_by(|a, b| a.0 == b.0);
+            if points.len() >= 2 {
+                let slope = loglog_slope(&points);
+                out.push(Convergence {
+                    method,
+                    setting,
+                    points,
+                    slope,
+                });
             }
         }
     }

@@ -17,7 +17,7 @@ pub fn markdown(result: &StudyResult) -> String {
     let reference = match spec.reference {
         Reference::Analytic => "the analytic value".to_string(),
         Reference::Finest => format!(
-            "the finest converged run of {} (same stiffness ratio and steps)",
+            "the finest converged run of {} (same stiffness ratio, steps and μ)",
             spec.methods.first().map(|m| m.label()).unwrap_or_default()
         ),
     };
@@ -48,11 +48,10 @@ pub fn markdown(result: &StudyResult) -> String {
         Some(r) => {
             let _ = write!(
                 s,
-                "**{}** (refine {}, ratio {}, {} steps): {:.4} s, error {:.3}%",
+                "**{}** (refine {}, {}): {:.4} s, error {:.3}%",
                 r.point.method.label(),
                 r.point.refine,
-                short_number(r.point.stiffness_ratio),
-                r.point.steps,
+                r.point.setting().full_label(),
                 r.seconds(),
                 100.0 * r.error.unwrap_or(f64::NAN)
             );
@@ -83,11 +82,10 @@ pub fn markdown(result: &StudyResult) -> String {
             Some(r) => {
                 let _ = writeln!(
                     s,
-                    "| {} | refine {}, ratio {}, {} steps | {:.4} | {:.3}% | {} |",
+                    "| {} | refine {}, {} | {:.4} | {:.3}% | {} |",
                     m.label(),
                     r.point.refine,
-                    short_number(r.point.stiffness_ratio),
-                    r.point.steps,
+                    r.point.setting().full_label(),
                     r.seconds(),
                     100.0 * r.error.unwrap_or(f64::NAN),
                     r.outside_solver_fraction()
@@ -106,16 +104,17 @@ pub fn markdown(result: &StudyResult) -> String {
         let _ = writeln!(s, "\n## Convergence in mesh size\n");
         let _ = writeln!(
             s,
-            "| method | ratio | steps | slope of log(error)/log(h) | finest error |"
+            "| method | ratio | steps | μ | slope of log(error)/log(h) | finest error |"
         );
-        let _ = writeln!(s, "| --- | --- | --- | --- | --- |");
+        let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- |");
         for c in conv {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {:.3e} |",
+                "| {} | {} | {} | {} | {} | {:.3e} |",
                 c.method.label(),
-                short_number(c.stiffness_ratio),
-                c.steps,
+                short_number(c.setting.stiffness_ratio),
+                c.setting.steps,
+                short_number(c.setting.coulomb),
                 c.slope
                     .map(|x| format!("{x:.2}"))
                     .unwrap_or_else(|| "—".into()),
@@ -137,18 +136,19 @@ pub fn markdown(result: &StudyResult) -> String {
     if !failures.is_empty() {
         let _ = writeln!(
             s,
-            "| run | method | refine | ratio | steps | status | reason |"
+            "| run | method | refine | ratio | steps | μ | status | reason |"
         );
-        let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- | --- |");
+        let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- | --- | --- |");
         for r in failures {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} ({}) | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} ({}) | {} |",
                 r.point.index,
                 r.point.method.label(),
                 r.point.refine,
                 short_number(r.point.stiffness_ratio),
                 r.point.steps,
+                short_number(r.point.coulomb),
                 r.status,
                 r.kind.map(|k| k.name()).unwrap_or(""),
                 r.reason.as_deref().unwrap_or("").replace('|', "\\|")

@@ -164,3 +164,63 @@ kind = "liaison-unil"
         assert!(r.error.unwrap() < 1e-6);
     }
 }
+
+/// The stick/slip scene: sliding, ΣFX/ΣFY is μ exactly for the augmented
+/// and penalised continuous friction; a soft discrete E_T leaves the block
+/// stuck elastically below μ (a converged, wrong answer); frictionless
+/// methods and μ = 0 are not available on it.
+#[test]
+fn friction_scene_slides_at_mu_and_flags_a_soft_tangential_penalty() {
+    let result = run(r#"
+name = "friction-test"
+scene = "friction"
+reference = "analytic"
+tolerance = 1e-3
+[scene_params]
+iter_glob_maxi = 50
+coef_matr_frot = 0.5
+[sweep]
+refine = [2, 4]
+coulomb = [0.3]
+[[methods]]
+kind = "continuous-friction-standard"
+[[methods]]
+kind = "continuous-friction-penalisation"
+coefficients = [1e5]
+[[methods]]
+kind = "discrete-friction-penalisation"
+coefficients = [1e3, 1e9]
+"#);
+    for r in &result.records {
+        let label = r.point.method.label();
+        let m = r.measures.as_ref().expect("every run measures");
+        // Sliding is checked by the analytic reference μ = 0.3.
+        assert_eq!(m.reference, Some(0.3), "{label}");
+        if label.ends_with("E_T=1000") {
+            // E_T·slip stays below μ·N: the block sticks elastically.
+            assert_eq!(r.status, Status::Wrong, "{label}: {r:?}");
+            assert_eq!(r.kind, Some(FailureKind::Inaccurate));
+            assert!(m.value < 0.1, "{label}: ratio {}", m.value);
+        } else {
+            assert_eq!(r.status, Status::Converged, "{label}: {r:?}");
+            // Continuous: converged to round-off; discrete: Newton stops at
+            // RESI_GLOB_RELA = 1e-6 on its linear convergence.
+            assert!(r.error.unwrap() < 1e-6, "{label}: error {:?}", r.error);
+            assert!(m.penetration.unwrap() < 1e-3, "{label}");
+        }
+    }
+    // The spec refuses frictionless methods beside frictional ones; alone,
+    // a frictionless method on the friction scene is not available.
+    let frictionless = run(r#"
+name = "friction-frictionless"
+scene = "friction"
+reference = "analytic"
+[sweep]
+refine = [2]
+[[methods]]
+kind = "discrete-contrainte"
+"#);
+    let r = &frictionless.records[0];
+    assert_eq!(r.status, Status::Unsupported, "{r:?}");
+    assert!(r.reason.as_deref().unwrap().contains("frictional methods"));
+}

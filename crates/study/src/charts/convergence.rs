@@ -2,7 +2,6 @@
 
 use super::{draw_empty, family_color, log_bounds, sci, series_legend, Chart};
 use crate::engine::StudyResult;
-use crate::method::short_number;
 use crate::stats;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -42,8 +41,7 @@ impl Chart for ConvergenceChart<'_> {
             .y_label_formatter(&sci)
             .draw()
             .map_err(|e| e.to_string())?;
-        let several_ratios = r.spec.stiffness_ratio.len() > 1;
-        let several_steps = r.spec.steps.len() > 1;
+        let several_settings = r.spec.settings().len() > 1;
         for (i, c) in series.iter().enumerate() {
             // Family colour, lightened along the family's coefficients.
             let base = family_color(c.method.family());
@@ -53,11 +51,8 @@ impl Chart for ConvergenceChart<'_> {
                 .count();
             let color = base.mix(1.0 - 0.12 * (k % 6) as f64);
             let mut label = c.method.label();
-            if several_ratios {
-                label.push_str(&format!(", ratio {}", short_number(c.stiffness_ratio)));
-            }
-            if several_steps {
-                label.push_str(&format!(", {} steps", c.steps));
+            if several_settings {
+                label.push_str(&format!(", {}", c.setting.label(&r.spec)));
             }
             if let Some(s) = c.slope {
                 label.push_str(&format!(": slope {s:.2}"));

@@ -126,6 +126,9 @@ fn family_color(f: MethodFamily) -> RGBColor {
         MethodFamily::ContinuousPenalisation => RGBColor(214, 39, 40),
         MethodFamily::LiaisonUnil => RGBColor(140, 86, 75),
         MethodFamily::LiaisonUnilPenalisation => RGBColor(227, 119, 194),
+        MethodFamily::DiscreteFrictionPenalisation => RGBColor(188, 189, 34),
+        MethodFamily::ContinuousFrictionStandard => RGBColor(23, 190, 207),
+        MethodFamily::ContinuousFrictionPenalisation => RGBColor(127, 127, 127),
     }
 }
 

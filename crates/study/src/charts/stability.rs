@@ -78,23 +78,9 @@ impl Chart for StabilityMap<'_> {
         let cols = if fams.len() > 1 { 2 } else { 1 };
         let rows = fams.len().div_ceil(cols);
         let panels = rest.split_evenly((rows, cols));
-        // y categories: (stiffness ratio, steps) pairs.
-        let ys: Vec<(f64, u32)> = r
-            .spec
-            .stiffness_ratio
-            .iter()
-            .flat_map(|&k| r.spec.steps.iter().map(move |&n| (k, n)))
-            .collect();
-        let y_labels: Vec<String> = ys
-            .iter()
-            .map(|(k, n)| {
-                if r.spec.steps.len() > 1 {
-                    format!("ratio {} / {n} st.", short_number(*k))
-                } else {
-                    format!("ratio {}", short_number(*k))
-                }
-            })
-            .collect();
+        // y categories: the settings (stiffness ratio, steps, μ).
+        let ys = r.spec.settings();
+        let y_labels: Vec<String> = ys.iter().map(|s| s.label(&r.spec)).collect();
         for (family, panel) in fams.iter().zip(panels.iter()) {
             let xs: Vec<Option<f64>> = r
                 .spec
@@ -144,15 +130,14 @@ impl Chart for StabilityMap<'_> {
                     .map_err(|e| e.to_string())?;
             }
             for (i, coef) in xs.iter().enumerate() {
-                for (j, (ratio, steps)) in ys.iter().enumerate() {
+                for (j, setting) in ys.iter().enumerate() {
                     let cell: Vec<&RunRecord> = r
                         .records
                         .iter()
                         .filter(|x| {
                             x.point.method.family() == *family
                                 && x.point.method.coefficient() == *coef
-                                && x.point.stiffness_ratio == *ratio
-                                && x.point.steps == *steps
+                                && x.point.setting() == *setting
                         })
                         .collect();
                     let Some((fine, ok)) = finest(&cell) else {

@@ -89,6 +89,14 @@ pub fn definition(
                 "LIAISON_UNIL is not DEFI_CONTACT contact: give its rows with `unilateral`",
             ))
         }
+        MethodFamily::DiscreteFrictionPenalisation
+        | MethodFamily::ContinuousFrictionStandard
+        | MethodFamily::ContinuousFrictionPenalisation => {
+            return Err(Failure::new(
+                FailureKind::Unsupported,
+                "a frictional method runs on a frictional scene (`friction`), not on a frictionless linear one",
+            ))
+        }
     };
     def.map_err(contact_failure)
 }

@@ -2,5 +2,6 @@
 
 pub mod driver;
 pub mod fake;
+pub mod friction;
 pub mod hertz;
 pub mod zzzz237;
