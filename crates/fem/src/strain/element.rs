@@ -573,32 +573,52 @@ fn simo_miehe_point(
     let t = |i: usize, j: usize| tau[super::log::MANDEL[i][j]];
     let w = pg.w0;
     let nn = pg.dn.len();
+    // gr tabulated once per point (the tangent's inner loops read it
+    // nn² · ndu⁴ times); the sums below keep their order, so the tangent
+    // is bit for bit the same.
+    let g_tab: Vec<[[f64; 3]; 3]> = (0..nn)
+        .map(|a| {
+            let mut m = [[0.0; 3]; 3];
+            for (i, row) in m.iter_mut().enumerate().take(ndu) {
+                for (j, v) in row.iter_mut().enumerate().take(ndu) {
+                    *v = gr(a, i, j);
+                }
+            }
+            m
+        })
+        .collect();
     if correction {
         for a in 0..nn {
             for i in 0..ndu {
-                let v: f64 = (0..ndu).map(|j| t(i, j) * gr(a, i, j)).sum();
+                let v: f64 = (0..ndu).map(|j| t(i, j) * g_tab[a][i][j]).sum();
                 fe[dof(a, i)] += w * v;
             }
         }
     }
-    for a in 0..nn {
+    let mut t_tab = [[0.0; 3]; 3];
+    for (i, row) in t_tab.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v = t(i, j);
+        }
+    }
+    for (a, ga) in g_tab.iter().enumerate() {
         for ia in 0..ndu {
             let row = dof(a, ia);
-            for b in 0..nn {
+            for (b, gb) in g_tab.iter().enumerate() {
                 for ib in 0..ndu {
                     let mut v = 0.0;
                     for ja in 0..ndu {
-                        let g = gr(a, ia, ja);
+                        let g = ga[ia][ja];
                         if g == 0.0 {
                             continue;
                         }
-                        let ija = super::log::MANDEL[ia][ja];
+                        let d = &out.dtau[super::log::MANDEL[ia][ja]][ib];
                         for jb in 0..ndu {
-                            v += g * out.dtau[ija][ib][jb] * gr(b, ib, jb);
+                            v += g * d[jb] * gb[ib][jb];
                         }
                     }
                     for jb in 0..ndu {
-                        v -= gr(a, ia, ib) * gr(b, ib, jb) * t(ia, jb);
+                        v -= ga[ia][ib] * gb[ib][jb] * t_tab[ia][jb];
                     }
                     ke[(row, dof(b, ib))] += w * v;
                 }
