@@ -283,6 +283,8 @@ impl Scene for Friction {
         instants.extend((1..=p.steps).map(|i| 1.0 + i as f64 / p.steps as f64));
         let result = {
             let mut snl = StaticNonLinear {
+                init_time: instants.first().copied(),
+                final_time: instants.last().copied(),
                 instants,
                 convergence: Convergence {
                     iter_glob_maxi: self.iter_glob_maxi,
