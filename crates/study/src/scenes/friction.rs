@@ -314,24 +314,17 @@ impl Scene for Friction {
             .mesh()
             .group_no("AB")
             .ok_or_else(|| other("generated mesh lacks node group AB".into()))?;
-        let dy = |node| {
+        let displacement = |node, comp| {
             model
                 .dofs()
-                .index(Dof::new(node, Comp::DY))
-                .map(|i| last.displacement[i])
-                .unwrap_or(0.0)
-        };
-        let dx = |node| {
-            model
-                .dofs()
-                .index(Dof::new(node, Comp::DX))
+                .index(Dof::new(node, comp))
                 .map(|i| last.displacement[i])
                 .unwrap_or(0.0)
         };
         let penetration = base
             .members
             .iter()
-            .map(|&nd| (-dy(nd)).max(0.0))
+            .map(|&nd| (-displacement(nd, Comp::DY)).max(0.0))
             .fold(0.0, f64::max);
         if penetration > self.max_penetration {
             return Err(Failure::new(
@@ -342,7 +335,12 @@ impl Scene for Friction {
                 ),
             ));
         }
-        let slip = base.members.iter().map(|&nd| dx(nd)).sum::<f64>() / base.members.len() as f64;
+        let slip = base
+            .members
+            .iter()
+            .map(|&nd| displacement(nd, Comp::DX))
+            .sum::<f64>()
+            / base.members.len() as f64;
         let ratio = (fx / fy).abs();
         // Past three times the uniform-shear threshold the whole interface
         // slides (measured: at 1.7 times, μ = 0.6, the corners still stick
