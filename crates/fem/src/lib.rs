@@ -14,6 +14,7 @@
 pub mod assembly;
 pub mod autodiff;
 pub mod beam;
+pub mod cohesive;
 pub mod behaviour;
 pub mod coupling;
 mod diag;
@@ -31,6 +32,7 @@ pub mod fpg;
 pub mod fracture;
 mod held;
 pub mod hexs8;
+pub mod joint;
 pub mod linalg;
 pub mod line_search;
 pub mod loads;
