@@ -18,6 +18,20 @@
 //! `Σ_g (L/2) Bᵀ (∂σ/∂δ) B` (`L` the length of face 1-2; plane, per unit
 //! thickness). The traction σ (`SIGN`, `SITX`) comes from a cohesive law
 //! ([`crate::cohesive`]).
+//!
+//! [`JointCells`] puts a set of joint cells into the non-linear solver as a
+//! force source without unknowns of its own ([`crate::ForceSource`]): at
+//! each Newton iterate the law is integrated from the jump at the start of
+//! the increment and its increment (code_aster's `FULL_MECA`), the
+//! internal variables are kept at the start of the increment and committed
+//! once it has converged.
+
+use crate::cohesive::{CohesiveLaw, Phase};
+use crate::dof::{Comp, Dof};
+use crate::error::FemError;
+use crate::force_source::{Contribution, ForceSource, Unknown};
+use crate::unilateral::State;
+use aster_mesh::{CellId, NodeId};
 
 /// The two Gauss points' weights of node 1 (code_aster's `coef`).
 pub fn gauss_coefficients() -> [f64; 2] {
@@ -92,6 +106,148 @@ pub fn tangent(geom: &[[f64; 2]; 4], d: &[[[f64; 2]; 2]; 2]) -> [[f64; 8]; 8] {
         }
     }
     k
+}
+
+/// One joint cell of a [`JointCells`] source.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointCell {
+    pub cell: CellId,
+    /// Its four nodes, oriented as `ORIE_FISSURE` leaves them.
+    pub nodes: [NodeId; 4],
+    /// Their coordinates (x, y).
+    pub geom: [[f64; 2]; 4],
+    pub law: CohesiveLaw,
+}
+
+/// The state of one joint cell at its two Gauss points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointPoints {
+    /// (`SIGN`, `SITX`) per Gauss point.
+    pub traction: [[f64; 2]; 2],
+    /// The internal variables per Gauss point (the law's order).
+    pub vari: [Vec<f64>; 2],
+}
+
+/// Joint cells as a force source (see the module docs).
+#[derive(Clone, Debug)]
+pub struct JointCells {
+    cells: Vec<JointCell>,
+    committed: Vec<JointPoints>,
+    trial: Vec<JointPoints>,
+    /// Element displacements at the start of the increment.
+    start: Vec<[f64; 8]>,
+    /// The converged states, one entry per converged increment (time,
+    /// per cell).
+    history: Vec<(f64, Vec<JointPoints>)>,
+}
+
+impl JointCells {
+    pub fn new(cells: Vec<JointCell>) -> JointCells {
+        let zero: Vec<JointPoints> = cells
+            .iter()
+            .map(|c| JointPoints {
+                traction: [[0.0; 2]; 2],
+                vari: [vec![0.0; c.law.n_vari()], vec![0.0; c.law.n_vari()]],
+            })
+            .collect();
+        JointCells {
+            start: vec![[0.0; 8]; cells.len()],
+            committed: zero.clone(),
+            trial: zero,
+            cells,
+            history: Vec::new(),
+        }
+    }
+
+    pub fn cells(&self) -> &[JointCell] {
+        &self.cells
+    }
+
+    /// The converged states, one per converged increment.
+    pub fn history(&self) -> &[(f64, Vec<JointPoints>)] {
+        &self.history
+    }
+
+    fn dofs(&self, state: &State, c: &JointCell) -> Result<[usize; 8], FemError> {
+        let mut out = [0usize; 8];
+        for (a, n) in c.nodes.iter().enumerate() {
+            for (k, comp) in [Comp::DX, Comp::DY].into_iter().enumerate() {
+                out[2 * a + k] = state.dofs.index(Dof::new(*n, comp)).ok_or_else(|| {
+                    FemError::Model(format!(
+                        "joint cell {}: node {} has no {:?} in the model",
+                        state.mesh.cell_name(c.cell),
+                        state.mesh.node_names.get(n.0 as usize).cloned().unwrap_or_default(),
+                        comp
+                    ))
+                })?;
+            }
+        }
+        Ok(out)
+    }
+}
+
+impl ForceSource for JointCells {
+    fn name(&self) -> String {
+        "joint elements (PLAN_JOINT)".into()
+    }
+
+    fn unknowns(&self) -> usize {
+        0
+    }
+
+    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+        for k in 0..self.cells.len() {
+            let dofs = self.dofs(state, &self.cells[k])?;
+            self.start[k] = dofs.map(|i| state.displacement[i]);
+        }
+        Ok(())
+    }
+
+    fn evaluate(&mut self, state: &State, _own: &[f64]) -> Result<Contribution, FemError> {
+        let mut out = Contribution::default();
+        for k in 0..self.cells.len() {
+            let c = &self.cells[k];
+            let dofs = self.dofs(state, c)?;
+            let u = dofs.map(|i| state.displacement[i]);
+            let du: [f64; 8] = std::array::from_fn(|i| u[i] - self.start[k][i]);
+            let jm = jumps(&c.geom, &self.start[k]);
+            let dj = jumps(&c.geom, &du);
+            let mut traction = [[0.0; 2]; 2];
+            let mut d = [[[0.0; 2]; 2]; 2];
+            let mut vari: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
+            for g in 0..2 {
+                let r = c
+                    .law
+                    .integrate(Phase::Correction, jm[g], dj[g], &self.committed[k].vari[g]);
+                traction[g] = r.traction.unwrap_or([0.0; 2]);
+                vari[g] = r.vari.unwrap_or_default();
+                d[g] = r.tangent;
+            }
+            let f = forces(&c.geom, &traction);
+            let kt = tangent(&c.geom, &d);
+            for i in 0..8 {
+                out.forces.push((dofs[i], f[i]));
+                for j in 0..8 {
+                    if kt[i][j] != 0.0 {
+                        out.tangent
+                            .push((Unknown::Dof(dofs[i]), Unknown::Dof(dofs[j]), kt[i][j]));
+                    }
+                }
+            }
+            self.trial[k] = JointPoints { traction, vari };
+        }
+        Ok(out)
+    }
+
+    fn after_iteration(&mut self, _state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+        Ok(true)
+    }
+
+    fn converged(&mut self, state: &State, _own: &[f64]) -> Result<(), FemError> {
+        self.committed = self.trial.clone();
+        self.history.push((state.time, self.committed.clone()));
+        Ok(())
+    }
 }
 
 #[cfg(test)]
