@@ -113,8 +113,8 @@ impl CohesiveLaw {
             ],
             CohesiveLaw::Turon(_) => &[
                 "SAUT_MAX", "VARSEUIL", "VARIENDO", "INDIDISS", "INDIENDO", "SAUT_N", "SAUT_T1",
-                "SAUT_T2", "SAUTEQUI", "SAUTTANG", "PCENERDI", "ENERDISS", "MIXITE_S",
-                "MIXITE_G", "SAUTINIT", "SAUTRUPT",
+                "SAUT_T2", "SAUTEQUI", "SAUTTANG", "PCENERDI", "ENERDISS", "MIXITE_S", "MIXITE_G",
+                "SAUTINIT", "SAUTRUPT",
             ],
         }
     }
@@ -436,8 +436,10 @@ mod tests {
                     let h = delta * 1e-6;
                     let mut dj2 = dj;
                     dj2[mode] += h;
-                    let t2 = law.integrate(Phase::Correction, jm, dj2, &vim).traction.unwrap()
-                        [mode];
+                    let t2 = law
+                        .integrate(Phase::Correction, jm, dj2, &vim)
+                        .traction
+                        .unwrap()[mode];
                     let fd = (t2 - t) / h;
                     assert!(
                         (out.tangent[mode][mode] - fd).abs() <= 1e-4 * fd.abs(),
@@ -518,8 +520,10 @@ mod tests {
                     let h = delta * 1e-7;
                     let mut dj2 = dj;
                     dj2[mode] += h;
-                    let t2 = law.integrate(Phase::Correction, jm, dj2, &vim).traction.unwrap()
-                        [mode];
+                    let t2 = law
+                        .integrate(Phase::Correction, jm, dj2, &vim)
+                        .traction
+                        .unwrap()[mode];
                     let fd = (t2 - t) / h;
                     assert!(
                         (out.tangent[mode][mode] - fd).abs() <= 1e-4 * fd.abs(),

@@ -176,7 +176,12 @@ impl JointCells {
                     FemError::Model(format!(
                         "joint cell {}: node {} has no {:?} in the model",
                         state.mesh.cell_name(c.cell),
-                        state.mesh.node_names.get(n.0 as usize).cloned().unwrap_or_default(),
+                        state
+                            .mesh
+                            .node_names
+                            .get(n.0 as usize)
+                            .cloned()
+                            .unwrap_or_default(),
                         comp
                     ))
                 })?;
@@ -216,9 +221,9 @@ impl ForceSource for JointCells {
             let mut d = [[[0.0; 2]; 2]; 2];
             let mut vari: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
             for g in 0..2 {
-                let r = c
-                    .law
-                    .integrate(Phase::Correction, jm[g], dj[g], &self.committed[k].vari[g]);
+                let r =
+                    c.law
+                        .integrate(Phase::Correction, jm[g], dj[g], &self.committed[k].vari[g]);
                 traction[g] = r.traction.unwrap_or([0.0; 2]);
                 vari[g] = r.vari.unwrap_or_default();
                 d[g] = r.tangent;
@@ -277,8 +282,14 @@ mod tests {
         let f = forces(&GEOM, &[[5.0, 0.0], [5.0, 0.0]]);
         // Normal traction 5 on a face of length 2: 10 in all, 5 per node,
         // pulling the faces together (upper face down, lower face up).
-        assert!((f[1] + 5.0).abs() < 1e-12 && (f[3] + 5.0).abs() < 1e-12, "{f:?}");
-        assert!((f[5] - 5.0).abs() < 1e-12 && (f[7] - 5.0).abs() < 1e-12, "{f:?}");
+        assert!(
+            (f[1] + 5.0).abs() < 1e-12 && (f[3] + 5.0).abs() < 1e-12,
+            "{f:?}"
+        );
+        assert!(
+            (f[5] - 5.0).abs() < 1e-12 && (f[7] - 5.0).abs() < 1e-12,
+            "{f:?}"
+        );
     }
 
     #[test]

@@ -14,8 +14,8 @@
 pub mod assembly;
 pub mod autodiff;
 pub mod beam;
-pub mod cohesive;
 pub mod behaviour;
+pub mod cohesive;
 pub mod coupling;
 mod diag;
 pub mod dkq;

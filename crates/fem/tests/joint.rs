@@ -99,7 +99,10 @@ fn check(law: CohesiveLaw, mode: usize, closed: impl Fn(f64) -> f64, jump_max: f
                 "mode {mode}, δ = {delta}: traction {v}, closed form {expected}"
             );
         }
-        assert!(other <= 1e-6 * scale, "mode {mode}: the other traction {other}");
+        assert!(
+            other <= 1e-6 * scale,
+            "mode {mode}: the other traction {other}"
+        );
     }
 }
 

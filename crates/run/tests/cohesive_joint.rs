@@ -17,7 +17,10 @@ fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
 
 #[test]
 fn the_joint_follows_its_laws_closed_forms_in_both_modes() {
-    assert_eq!(run(&scene::read("cohesive_joint.comm"), "all"), (24, 0, None));
+    assert_eq!(
+        run(&scene::read("cohesive_joint.comm"), "all"),
+        (24, 0, None)
+    );
 }
 
 #[test]

@@ -303,9 +303,8 @@ fn rupt_frag(
             None => Ok(None),
         }
     };
-    let gc = positive("GC")?.ok_or_else(|| {
-        ex.kw_error("DEFI_MATERIAU/RUPT_FRAG", occ, "GC", "GC is required")
-    })?;
+    let gc = positive("GC")?
+        .ok_or_else(|| ex.kw_error("DEFI_MATERIAU/RUPT_FRAG", occ, "GC", "GC is required"))?;
     Ok(Some(crate::concept::RuptFrag {
         gc,
         sigm_c: positive("SIGM_C")?,

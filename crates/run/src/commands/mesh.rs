@@ -461,8 +461,14 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .iter()
             .filter_map(|s| s.as_str())
             .collect();
-        mesh.orient_crack(&groups)
-            .map_err(|e| ex.kw_error("MODI_MAILLAGE/ORIE_FISSURE", occ, "GROUP_MA", &e.to_string()))?;
+        mesh.orient_crack(&groups).map_err(|e| {
+            ex.kw_error(
+                "MODI_MAILLAGE/ORIE_FISSURE",
+                occ,
+                "GROUP_MA",
+                &e.to_string(),
+            )
+        })?;
     }
     for occ in kw.factor("MODI_MAILLE") {
         quarter_points(&mut mesh, occ)?;
