@@ -462,12 +462,7 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             .filter_map(|s| s.as_str())
             .collect();
         mesh.orient_crack(&groups).map_err(|e| {
-            ex.kw_error(
-                "MODI_MAILLAGE/ORIE_FISSURE",
-                occ,
-                "GROUP_MA",
-                &e.to_string(),
-            )
+            ex.kw_error("MODI_MAILLAGE/ORIE_FISSURE", occ, "GROUP_MA", e.to_string())
         })?;
     }
     for occ in kw.factor("MODI_MAILLE") {
