@@ -32,7 +32,9 @@ pub use med::{
     write_med, write_med_on, Entities, MedInfo,
 };
 pub use model::*;
-pub use ops::{Along, CentreNodes, CrackFront, DegreeReport, NodeKind, OrientReport, Restriction};
+pub use ops::{
+    Along, CentreNodes, CrackFront, CrackReport, DegreeReport, NodeKind, OrientReport, Restriction,
+};
 pub use summary::{CellCounts, MeshSummary};
 pub use vtu::{write_vtu, write_vtu_series};
 

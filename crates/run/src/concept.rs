@@ -37,6 +37,9 @@ pub enum Modelisation {
     /// `DKT`: thin-shell facets (DKT on TRIA3, DKQ on QUAD4) with the
     /// rotations DRX DRY DRZ on their nodes.
     Dkt,
+    /// `PLAN_JOINT`: plane joint elements on QUAD4 (`MFPLQU4`,
+    /// `aster_fem::joint`) with a cohesive law.
+    PlaneJoint,
 }
 
 impl Modelisation {
@@ -51,6 +54,7 @@ impl Modelisation {
             "DIS_TR" => Modelisation::DiscreteRot3D,
             "POU_D_E" => Modelisation::BeamEuler,
             "DKT" => Modelisation::Dkt,
+            "PLAN_JOINT" => Modelisation::PlaneJoint,
             _ => return None,
         })
     }
@@ -69,7 +73,7 @@ impl Modelisation {
         }
     }
 
-    pub const KEYWORDS: [&'static str; 13] = [
+    pub const KEYWORDS: [&'static str; 14] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -83,6 +87,7 @@ impl Modelisation {
         "DKT",
         "DIS_TR",
         "POU_D_E",
+        "PLAN_JOINT",
     ];
 
     /// Space dimension of the displacement.
@@ -223,6 +228,22 @@ pub struct Material {
     pub ecro_nl: Option<aster_fem::EcroNl>,
     /// `THER=_F(LAMBDA, RHO_CP)`.
     pub thermal: Option<aster_fem::thermal::Conduction>,
+    /// `RUPT_FRAG=_F(GC, SIGM_C, PENA_ADHERENCE, PENA_CONTACT)` (for
+    /// `CZM_LIN_REG`).
+    pub rupt_frag: Option<RuptFrag>,
+    /// `RUPT_TURON=_F(…)` (for `CZM_TURON`).
+    pub rupt_turon: Option<aster_fem::cohesive::Turon>,
+}
+
+/// `RUPT_FRAG`: the cohesive parameters of `CZM_LIN_REG` as given
+/// (`SIGM_C` and `PENA_ADHERENCE` are optional in the catalog, required by
+/// the law).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RuptFrag {
+    pub gc: f64,
+    pub sigm_c: Option<f64>,
+    pub pena_adherence: Option<f64>,
+    pub pena_contact: f64,
 }
 
 /// `LEMAITRE`: Lemaitre's viscoplastic coefficients.

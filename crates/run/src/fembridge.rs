@@ -34,6 +34,43 @@ pub struct FemRun {
     pub mass: Option<aster_fem::MassData>,
     /// The element characteristics (the shells' frames of `EFGE_ELGA`).
     pub cara: Option<Rc<CaraElem>>,
+    /// The joint cells (`PLAN_JOINT`) with their converged states: their
+    /// forces are not in the model's elements (`FORC_NODA`, `REAC_NODA`
+    /// add them).
+    pub joints: Option<aster_fem::joint::JointCells>,
+}
+
+impl FemRun {
+    /// The joint cells' nodal forces (`nmfifi`) at the converged step of
+    /// time `t`, added to `forces` (indexed like the model's DOFs); none
+    /// at a time without a converged joint state (the initial state).
+    fn add_joint_forces(&self, t: f64, forces: &mut [f64]) -> Result<(), ExecError> {
+        let Some(j) = &self.joints else {
+            return Ok(());
+        };
+        let Some((_, points)) = j
+            .history()
+            .iter()
+            .rev()
+            .find(|(ti, _)| (ti - t).abs() <= 1e-12 * t.abs().max(1.0))
+        else {
+            return Ok(());
+        };
+        for (c, p) in j.cells().iter().zip(points) {
+            let f = aster_fem::joint::forces(&c.geom, &p.traction);
+            for (a, n) in c.nodes.iter().enumerate() {
+                for (k, comp) in [Comp::DX, Comp::DY].into_iter().enumerate() {
+                    let i = self
+                        .model
+                        .dofs()
+                        .index(aster_fem::Dof::new(*n, comp))
+                        .ok_or_else(|| ExecError::new("joint node without DOF"))?;
+                    forces[i] += f[2 * a + k];
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 impl FemRun {
@@ -70,7 +107,8 @@ fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
         | Modelisation::Discrete3D
         | Modelisation::DiscreteRot3D
         | Modelisation::BeamEuler
-        | Modelisation::Dkt => None,
+        | Modelisation::Dkt
+        | Modelisation::PlaneJoint => None,
     }
 }
 
@@ -155,6 +193,16 @@ pub fn build_model(
             });
             continue;
         }
+        if m == Modelisation::PlaneJoint {
+            // No stiffness of its own in K: its forces and tangent come
+            // from the joint force source (`joint_source`); its nodes get
+            // their DOFs.
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Boundary,
+            });
+            continue;
+        }
         let rotational = m == Modelisation::DiscreteRot3D;
         if let Some(d) = springs.get(&cell) {
             if rotational != (d.values.len() == 6) {
@@ -234,6 +282,16 @@ pub fn build_behaviours(
             if occ.relation == Relation::Elas {
                 out.assign_with(cell, None, occ.kinematics);
                 continue;
+            }
+            if matches!(occ.relation, Relation::CzmLinReg | Relation::CzmTuron) {
+                if occ.cells.is_none() {
+                    continue; // TOUT='OUI': the joint cells take it
+                }
+                return Err(ExecError::new(format!(
+                    "STAT_NON_LINE/COMPORTEMENT: RELATION='{}' is a law of the joint elements (MODELISATION='PLAN_JOINT'); cell {} carries a continuum element",
+                    occ.relation.keyword(),
+                    crate::select::cell_name(mesh, cell)
+                )));
             }
             let Some(mat) = materials.cells.get(&cell) else {
                 continue; // reported by build_model
@@ -324,7 +382,7 @@ fn plastic_law(
             let c = mat.ecro_nl.ok_or_else(|| missing("ECRO_NL=_F(R0, ...)"))?;
             aster_fem::VonMises::nonlinear(aster_fem::EcroNl { resi_inte, ..c })
         }
-        Relation::Elas | Relation::Lemaitre => {
+        Relation::Elas | Relation::Lemaitre | Relation::CzmLinReg | Relation::CzmTuron => {
             return Err(ExecError::new(format!(
                 "{} has no von Mises law",
                 relation.keyword()
@@ -332,6 +390,86 @@ fn plastic_law(
         }
     };
     law.map_err(|e| fem_err("DEFI_MATERIAU", e))
+}
+
+/// The joint cells of the model (`PLAN_JOINT`) as a force source, each
+/// with the cohesive law of its last `COMPORTEMENT` occurrence
+/// (`CZM_LIN_REG` from the material's `RUPT_FRAG`, `CZM_TURON` from its
+/// `RUPT_TURON`); `None` without joint cells.
+pub fn joint_source(
+    mesh: &Mesh,
+    model: &ModelDef,
+    occurrences: &[BehaviourOcc],
+    materials: &MaterialField,
+) -> Result<Option<aster_fem::joint::JointCells>, ExecError> {
+    use aster_fem::cohesive::{CohesiveLaw, LinReg};
+    let at = "STAT_NON_LINE/COMPORTEMENT";
+    let mut cells = Vec::new();
+    for (&cell, &m) in &model.cells {
+        if m != Modelisation::PlaneJoint {
+            continue;
+        }
+        let name = crate::select::cell_name(mesh, cell);
+        let relation = occurrences
+            .iter()
+            .rev()
+            .find(|o| o.cells.as_ref().is_none_or(|c| c.contains(&cell)))
+            .map(|o| o.relation)
+            .unwrap_or(Relation::Elas);
+        let mat = materials.cells.get(&cell).ok_or_else(|| {
+            ExecError::new(format!(
+                "joint cell {name} has no material: assign one with AFFE_MATERIAU"
+            ))
+        })?;
+        let law = match relation {
+            Relation::CzmLinReg => {
+                let r = mat.rupt_frag.ok_or_else(|| {
+                    ExecError::new(format!(
+                        "{at}: RELATION='CZM_LIN_REG' on joint cell {name} needs RUPT_FRAG=_F(GC, SIGM_C, PENA_ADHERENCE) in its material's DEFI_MATERIAU"
+                    ))
+                })?;
+                let (Some(sigma_c), Some(pena_adherence)) = (r.sigm_c, r.pena_adherence) else {
+                    return Err(ExecError::new(format!(
+                        "{at}: RELATION='CZM_LIN_REG' on joint cell {name} needs SIGM_C and PENA_ADHERENCE in its material's RUPT_FRAG"
+                    )));
+                };
+                CohesiveLaw::LinReg(LinReg {
+                    gc: r.gc,
+                    sigma_c,
+                    pena_adherence,
+                    pena_contact: r.pena_contact,
+                })
+            }
+            Relation::CzmTuron => CohesiveLaw::Turon(mat.rupt_turon.ok_or_else(|| {
+                ExecError::new(format!(
+                    "{at}: RELATION='CZM_TURON' on joint cell {name} needs RUPT_TURON=_F(…) in its material's DEFI_MATERIAU"
+                ))
+            })?),
+            other => {
+                return Err(ExecError::new(format!(
+                    "{at}: joint cell {name} (PLAN_JOINT) has RELATION='{}': aster runs its joint elements with CZM_LIN_REG or CZM_TURON",
+                    other.keyword()
+                )))
+            }
+        };
+        let c = mesh.cell(cell);
+        let nodes: [NodeId; 4] = c
+            .nodes
+            .as_slice()
+            .try_into()
+            .map_err(|_| ExecError::new(format!("joint cell {name} is not a QUAD4")))?;
+        let geom = nodes.map(|n| {
+            let x = mesh.coord(n);
+            [x[0], x[1]]
+        });
+        cells.push(aster_fem::joint::JointCell {
+            cell,
+            nodes,
+            geom,
+            law,
+        });
+    }
+    Ok((!cells.is_empty()).then(|| aster_fem::joint::JointCells::new(cells)))
 }
 
 fn comp(name: &str) -> Result<Comp, ExecError> {
@@ -845,6 +983,17 @@ pub fn solve(
         "STAT_NON_LINE"
     };
     let mesh = ex.model_mesh(&setup.model)?;
+    if linear
+        && setup
+            .model
+            .cells
+            .values()
+            .any(|m| *m == Modelisation::PlaneJoint)
+    {
+        return Err(ExecError::new(format!(
+            "{cmd}: the model has joint elements (PLAN_JOINT), which aster computes with their cohesive law in STAT_NON_LINE only"
+        )));
+    }
     let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
     let mut loads = build_loads(setup, &mesh, &model)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
@@ -861,6 +1010,7 @@ pub fn solve(
     let mut post_mortar: Option<aster_contact::mortar_lagrangian::MortarLagrangian> = None;
     let mut post_mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
     let mut post_mortar_classique: Option<aster_contact::mortar_classique::MortarClassique> = None;
+    let mut post_joints: Option<aster_fem::joint::JointCells> = None;
     let raw = if linear {
         aster_fem::meca_statique(&model, &loads, &setup.instants).map_err(|e| fem_err(cmd, e))?
     } else {
@@ -943,6 +1093,14 @@ pub fn solve(
                 }
             }
         }
+        let mut joints = joint_source(&mesh, &setup.model, &setup.behaviours, &setup.materials)?;
+        if joints.is_some() && (setup.initial.is_some() || setup.initial_fields.depl.is_some()) {
+            // The joints' internal variables of the earlier result are not
+            // carried over: continuing would restart them undamaged.
+            return Err(ExecError::new(format!(
+                "{cmd}/ETAT_INIT: not supported yet with joint elements (PLAN_JOINT): their internal variables are not carried from the initial state"
+            )));
+        }
         let mut sources: Vec<Box<dyn UnilateralSource + '_>> = Vec::new();
         if let Some(u) = unil {
             sources.push(Box::new(u));
@@ -968,6 +1126,9 @@ pub fn solve(
         }
         if let Some(f) = mortar_other.as_mut() {
             forces.push(Box::new(f.as_mut()));
+        }
+        if let Some(j) = joints.as_mut() {
+            forces.push(Box::new(j));
         }
         let initial = match &setup.initial {
             Some((prev, t0)) => {
@@ -1069,6 +1230,7 @@ pub fn solve(
         post_mortar = mortar;
         post_mortar_friction = mortar_friction;
         post_mortar_classique = mortar_classique;
+        post_joints = joints;
         raw
     };
     let steps = raw
@@ -1219,6 +1381,7 @@ pub fn solve(
             behaviours,
             mass: crate::dyna::mass_data(&mesh, setup).ok().map(|(m, _)| m),
             cara: setup.cara.clone(),
+            joints: post_joints,
         }),
     ))
 }
@@ -1337,12 +1500,14 @@ pub fn calc_champ(
         let model = &run.model;
         let elno = || post::elno(model, &raw.stress);
         let forc_noda = || {
-            if run.plastic {
+            let mut f = if run.plastic {
                 aster_fem::behaviour::forc_noda_deformed(model, u, &raw.stress, &run.behaviours)
             } else {
                 post::forc_noda(model, u)
             }
-            .map_err(|e| fem_err("CALC_CHAMP", e))
+            .map_err(|e| fem_err("CALC_CHAMP", e))?;
+            run.add_joint_forces(raw.time, &mut f)?;
+            Ok::<_, ExecError>(f)
         };
         let epsi_elga = || {
             if run.behaviours.has_finite_strains() {

@@ -36,6 +36,10 @@ pub enum Relation {
     Lemaitre,
     /// Von Mises, non-linear isotropic hardening (material's ECRO_NL).
     VmisIsotNl,
+    /// Cohesive law of the joint elements (material's RUPT_FRAG).
+    CzmLinReg,
+    /// Turon's cohesive law of the joint elements (material's RUPT_TURON).
+    CzmTuron,
 }
 
 impl Relation {
@@ -46,6 +50,8 @@ impl Relation {
             Relation::VmisIsotTrac => "VMIS_ISOT_TRAC",
             Relation::Lemaitre => "LEMAITRE",
             Relation::VmisIsotNl => "VMIS_ISOT_NL",
+            Relation::CzmLinReg => "CZM_LIN_REG",
+            Relation::CzmTuron => "CZM_TURON",
         }
     }
 }
@@ -284,6 +290,8 @@ pub(crate) const SNL_VALUES: &[Values] = &[
             "VMIS_ISOT_TRAC",
             "VMIS_ISOT_NL",
             "LEMAITRE",
+            "CZM_LIN_REG",
+            "CZM_TURON",
         ],
     ),
     Values::listed(
@@ -666,11 +674,13 @@ fn parse_behaviours(
             "VMIS_ISOT_TRAC" => Relation::VmisIsotTrac,
             "LEMAITRE" => Relation::Lemaitre,
             "VMIS_ISOT_NL" => Relation::VmisIsotNl,
+            "CZM_LIN_REG" => Relation::CzmLinReg,
+            "CZM_TURON" => Relation::CzmTuron,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, LEMAITRE)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, LEMAITRE, CZM_LIN_REG, CZM_TURON)"
                     ),
                     span,
                 ));

@@ -45,6 +45,20 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "THER",
     "THER/LAMBDA",
     "THER/RHO_CP",
+    "RUPT_FRAG",
+    "RUPT_FRAG/GC",
+    "RUPT_FRAG/SIGM_C",
+    "RUPT_FRAG/PENA_ADHERENCE",
+    "RUPT_FRAG/PENA_CONTACT",
+    "RUPT_TURON",
+    "RUPT_TURON/K",
+    "RUPT_TURON/SIGM_C_N",
+    "RUPT_TURON/SIGM_C_T",
+    "RUPT_TURON/GC_N",
+    "RUPT_TURON/GC_T",
+    "RUPT_TURON/C_RUPT",
+    "RUPT_TURON/ETA_BK",
+    "RUPT_TURON/CRIT_INIT",
     "INFO",
 ]);
 
@@ -108,6 +122,8 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 lemaitre: None,
                 ecro_nl: None,
                 thermal: Some(thermal),
+                rupt_frag: None,
+                rupt_turon: None,
             };
             return store_result(ex, call, Concept::Material(Rc::new(m)));
         }
@@ -261,8 +277,87 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         lemaitre,
         ecro_nl,
         thermal,
+        rupt_frag: rupt_frag(ex, kw)?,
+        rupt_turon: rupt_turon(ex, kw)?,
     };
     store_result(ex, call, Concept::Material(Rc::new(m)))
+}
+
+/// `DEFI_MATERIAU/RUPT_FRAG` (`CZM_LIN_REG`'s parameters).
+fn rupt_frag(
+    ex: &Executor,
+    kw: &aster_eval::Keywords,
+) -> Result<Option<crate::concept::RuptFrag>, ExecError> {
+    let Some(occ) = kw.factor("RUPT_FRAG").first() else {
+        return Ok(None);
+    };
+    let positive = |name: &str| -> Result<Option<f64>, ExecError> {
+        match occ.f64(name) {
+            Some(v) if v > 0.0 => Ok(Some(v)),
+            Some(v) => Err(ex.kw_error(
+                "DEFI_MATERIAU/RUPT_FRAG",
+                occ,
+                name,
+                format!("{name} must be positive, got {v}"),
+            )),
+            None => Ok(None),
+        }
+    };
+    let gc = positive("GC")?
+        .ok_or_else(|| ex.kw_error("DEFI_MATERIAU/RUPT_FRAG", occ, "GC", "GC is required"))?;
+    Ok(Some(crate::concept::RuptFrag {
+        gc,
+        sigm_c: positive("SIGM_C")?,
+        pena_adherence: positive("PENA_ADHERENCE")?,
+        pena_contact: occ.f64("PENA_CONTACT").unwrap_or(1.0),
+    }))
+}
+
+/// `DEFI_MATERIAU/RUPT_TURON` (`CZM_TURON`'s parameters; code_aster's
+/// `lcejtu` stops on a non-positive K, SIGM_C_N, SIGM_C_T, GC_N or GC_T,
+/// `COMPOR4_74`).
+fn rupt_turon(
+    ex: &Executor,
+    kw: &aster_eval::Keywords,
+) -> Result<Option<aster_fem::cohesive::Turon>, ExecError> {
+    let Some(occ) = kw.factor("RUPT_TURON").first() else {
+        return Ok(None);
+    };
+    let what = "DEFI_MATERIAU/RUPT_TURON";
+    let get = |name: &str| -> Result<f64, ExecError> {
+        occ.f64(name)
+            .ok_or_else(|| ex.kw_error(what, occ, name, format!("{name} is required")))
+    };
+    let positive = |name: &str| -> Result<f64, ExecError> {
+        let v = get(name)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(ex.kw_error(what, occ, name, format!("{name} must be positive, got {v}")))
+        }
+    };
+    let criterion = match occ.str("CRIT_INIT") {
+        Some("TURON") => aster_fem::cohesive::TuronCriterion::Turon,
+        Some("YE") => aster_fem::cohesive::TuronCriterion::Ye,
+        _ => {
+            return Err(ex.kw_error(
+                what,
+                occ,
+                "CRIT_INIT",
+                "CRIT_INIT='TURON' or 'YE' is required",
+            ))
+        }
+    };
+    Ok(Some(aster_fem::cohesive::Turon {
+        k: positive("K")?,
+        sigma_c_n: positive("SIGM_C_N")?,
+        sigma_c_t: positive("SIGM_C_T")?,
+        gc_n: positive("GC_N")?,
+        gc_t: positive("GC_T")?,
+        c_rupt: occ.f64("C_RUPT").unwrap_or(1e-3),
+        eta_bk: get("ETA_BK")?,
+        criterion,
+    }))
 }
 
 /// What AFFE_MATERIAU reads (`crate::support`).
@@ -434,14 +529,14 @@ pub(crate) const AFFE_MODELE: Support = Support {
 
 /// The modelisations AFFE_MODELE accepts: the mechanical ones and the
 /// thermal `PLAN` (`AXIS` and `3D` are both).
-const MODELISATIONS: [&str; 14] = {
-    let mut all = [""; 14];
+const MODELISATIONS: [&str; 15] = {
+    let mut all = [""; 15];
     let mut i = 0;
     while i < Modelisation::KEYWORDS.len() {
         all[i] = Modelisation::KEYWORDS[i];
         i += 1;
     }
-    all[13] = "PLAN";
+    all[14] = "PLAN";
     all
 };
 
@@ -517,6 +612,22 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                         ty,
                         aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4
                     )
+                }
+                // code_aster's MFPLQU4 (QUAD4) and MFPLQU8 (QUAD8); the
+                // latter's element (te0206-family) is not reproduced.
+                Modelisation::PlaneJoint => {
+                    if ty == aster_mesh::CellType::QUAD8 {
+                        return Err(ex.kw_error(
+                            "AFFE_MODELE",
+                            occ,
+                            "MODELISATION",
+                            format!(
+                                "not supported yet: MODELISATION='PLAN_JOINT' on QUAD8 cell {} (code_aster's MFPLQU8); the QUAD4 joint (MFPLQU4) is",
+                                crate::select::cell_name(&mesh, c)
+                            ),
+                        ));
+                    }
+                    ty == aster_mesh::CellType::QUAD4
                 }
                 _ => (1..=2).contains(&ty.dim()),
             };

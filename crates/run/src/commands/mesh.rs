@@ -425,6 +425,8 @@ pub(crate) const MODI_MAILLAGE: Support = Support {
         "ORIE_PEAU/GROUP_MA_INTERNE",
         "ORIE_PEAU_2D",
         "ORIE_PEAU_2D/GROUP_MA",
+        "ORIE_FISSURE",
+        "ORIE_FISSURE/GROUP_MA",
         "ORIE_NORM_COQUE",
         "ORIE_NORM_COQUE/GROUP_MA",
         "ORIE_NORM_COQUE/VECT_NORM",
@@ -450,7 +452,19 @@ pub(crate) const MODI_MAILLAGE: Support = Support {
 pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let mut mesh = mesh_to_modify(ex, call)?;
     let kw = &call.keywords;
-    // code_aster's op0154 order: MODI_MAILLE before DEFORME.
+    // code_aster's op0154 order: ORIE_FISSURE, MODI_MAILLE, DEFORME.
+    for occ in kw.factor("ORIE_FISSURE") {
+        // conori reads the groups of the first occurrence only (`getvem`
+        // with iocc=1); ORIE_FISSURE is not repeatable in the catalog.
+        let groups: Vec<&str> = occ
+            .simple("GROUP_MA")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        mesh.orient_crack(&groups).map_err(|e| {
+            ex.kw_error("MODI_MAILLAGE/ORIE_FISSURE", occ, "GROUP_MA", e.to_string())
+        })?;
+    }
     for occ in kw.factor("MODI_MAILLE") {
         quarter_points(&mut mesh, occ)?;
     }
