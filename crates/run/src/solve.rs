@@ -36,6 +36,9 @@ pub enum Relation {
     Lemaitre,
     /// Von Mises, non-linear isotropic hardening (material's ECRO_NL).
     VmisIsotNl,
+    /// Von Mises, Johnson–Cook rate-dependent hardening (material's
+    /// ECRO_COOK), code_aster's `nmtevp`.
+    VmisJohnCook,
 }
 
 impl Relation {
@@ -46,6 +49,7 @@ impl Relation {
             Relation::VmisIsotTrac => "VMIS_ISOT_TRAC",
             Relation::Lemaitre => "LEMAITRE",
             Relation::VmisIsotNl => "VMIS_ISOT_NL",
+            Relation::VmisJohnCook => "VMIS_JOHN_COOK",
         }
     }
 }
@@ -283,6 +287,7 @@ pub(crate) const SNL_VALUES: &[Values] = &[
             "VMIS_ISOT_LINE",
             "VMIS_ISOT_TRAC",
             "VMIS_ISOT_NL",
+            "VMIS_JOHN_COOK",
             "LEMAITRE",
         ],
     ),
@@ -666,11 +671,12 @@ fn parse_behaviours(
             "VMIS_ISOT_TRAC" => Relation::VmisIsotTrac,
             "LEMAITRE" => Relation::Lemaitre,
             "VMIS_ISOT_NL" => Relation::VmisIsotNl,
+            "VMIS_JOHN_COOK" => Relation::VmisJohnCook,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, LEMAITRE)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, LEMAITRE)"
                     ),
                     span,
                 ));
@@ -699,6 +705,30 @@ fn parse_behaviours(
             return Err(refuse(
                 "with RELATION='VMIS_ISOT_NL' (code_aster's law takes PETIT and GDEF_LOG only)",
             ));
+        }
+        // code_aster's catalogue of VMIS_JOHN_COOK: PETIT, PETIT_REAC,
+        // GROT_GDEP and GDEF_LOG; GROT_GDEP with a plastic law is not
+        // done here.
+        if relation == Relation::VmisJohnCook
+            && !matches!(
+                kinematics,
+                Kinematics::Small | Kinematics::SmallUpdated | Kinematics::Logarithmic
+            )
+        {
+            return Err(refuse(
+                "with RELATION='VMIS_JOHN_COOK' (supported: PETIT, PETIT_REAC and GDEF_LOG)",
+            ));
+        }
+        if relation == Relation::VmisJohnCook {
+            // nmtevp through zerofr: BRENT (the catalogue's default) is
+            // reproduced, DEKKER and SECANTE are not.
+            if let Some(a) = occ.str("ALGO_INTE").filter(|a| *a != "BRENT") {
+                let span = occ.keyword("ALGO_INTE").map(|k| k.span).unwrap_or_default();
+                return Err(ex.unsupported(
+                    &format!("{at}/ALGO_INTE='{a}' with RELATION='VMIS_JOHN_COOK' (code_aster's zerofr is reproduced with BRENT only)"),
+                    span,
+                ));
+            }
         }
         let named = ["TOUT", "GROUP_MA", "MAILLE"]
             .iter()

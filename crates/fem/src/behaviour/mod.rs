@@ -25,6 +25,7 @@ pub mod vmis;
 pub use crate::strain::{GaussState, Kinematics};
 pub(crate) use cells::PlasticCells;
 pub use cells::{forc_noda_deformed, forc_noda_from_stress, BehaviourState};
+pub use johnson_cook::JohnsonCook;
 pub use lemaitre::Lemaitre;
 pub use vmis::{CurveEnd, EcroNl, Hardening, PointState, VonMises};
 
