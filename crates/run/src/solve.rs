@@ -179,7 +179,9 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     // Local (Gauss-point) integration settings: the radial return of the
     // von Mises laws is exact, so they change nothing; LEMAITRE's scalar
     // equation uses RESI_INTE_RELA, ITER_INTE_MAXI and its θ-scheme
-    // PARM_THETA (refused with the other relations but at its default 1).
+    // PARM_THETA (refused with the other relations but at its default 1);
+    // VMIS_JOHN_COOK's search stops at RESI_INTE within ITER_INTE_MAXI
+    // (ALGO_INTE='BRENT' only).
     "COMPORTEMENT/PARM_THETA",
     "COMPORTEMENT/RESI_INTE_RELA",
     "COMPORTEMENT/RESI_INTE",

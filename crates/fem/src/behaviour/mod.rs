@@ -15,6 +15,9 @@
 //! - `SIMO_MIEHE`: multiplicative von Mises plasticity ([`simo_miehe`]);
 //! - `LEMAITRE` (small strains): viscoplasticity without threshold
 //!   ([`lemaitre`]), integrated over the step's duration.
+//! - `VMIS_JOHN_COOK`: von Mises with Johnson–Cook rate-dependent
+//!   hardening ([`johnson_cook`], `Hardening::JohnsonCook`), over the
+//!   step's duration, in PETIT, PETIT_REAC or GDEF_LOG.
 
 mod cells;
 pub mod johnson_cook;

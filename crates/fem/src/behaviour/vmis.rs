@@ -187,7 +187,8 @@ impl VonMises {
                 "ECRO_COOK: the initial yield stress A + B·(1e-9)^N_PUIS must be positive and finite, got {r0}"
             )));
         }
-        if !(c.epsp0 > 0.0) || c.iter_maxi == 0 || !(c.resi_inte > 0.0) {
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !positive(c.epsp0) || c.iter_maxi == 0 || !positive(c.resi_inte) {
             return Err(FemError::Model(format!(
                 "ECRO_COOK: EPSP0 = {}, RESI_INTE = {} and ITER_INTE_MAXI = {} must be positive",
                 c.epsp0, c.resi_inte, c.iter_maxi
