@@ -360,7 +360,7 @@ fn check_patch(hyp: Hypothesis, x0: f64, gradient: [[f64; 2]; 2], strain: [f64; 
         let mut yielded = false;
         for (k, &s) in scales.iter().enumerate().skip(1) {
             let eps: Vec<f64> = strain.iter().map(|e| e * s).collect();
-            state = integrate(&law, &steel(), hyp, &eps, &state, false)
+            state = integrate(&law, &steel(), hyp, &eps, &state, false, 0.0)
                 .unwrap()
                 .0;
             yielded |= state.plastic;

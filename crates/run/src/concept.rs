@@ -226,6 +226,10 @@ pub struct Material {
     /// `ECRO_NL=_F(R0, RH, R1, GAMMA_1, R2, GAMMA_2, RK, P0, GAMMA_M)`
     /// (for VMIS_ISOT_NL; its `resi_inte` is the COMPORTEMENT's).
     pub ecro_nl: Option<aster_fem::EcroNl>,
+    /// `ECRO_COOK=_F(A, B, N_PUIS, C, EPSP0, M_PUIS, TROOM, TMELT)` (for
+    /// VMIS_JOHN_COOK; its `resi_inte` and `iter_maxi` are the
+    /// COMPORTEMENT's).
+    pub ecro_cook: Option<aster_fem::JohnsonCook>,
     /// `THER=_F(LAMBDA, RHO_CP)`.
     pub thermal: Option<aster_fem::thermal::Conduction>,
     /// `RUPT_FRAG=_F(GC, SIGM_C, PENA_ADHERENCE, PENA_CONTACT)` (for

@@ -68,7 +68,7 @@ pub(crate) const DYNA_NON_LINE: Support = Support {
     keywords: &DYNA_ALL_KEYWORDS,
     values: &DYNA_ALL_VALUES,
     hints: &[],
-    reuse: false,
+    reuse: true,
     rules: Some(dyna_rules),
 };
 
@@ -91,7 +91,7 @@ fn dyna_rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         if let Some(d @ ("GREEN_LAGRANGE" | "GROT_GDEP" | "GDEF_LOG")) = occ.str("DEFORMATION") {
             out.push(Refusal::at(
                 format!(
-                    "DYNA_NON_LINE/COMPORTEMENT/DEFORMATION='{d}' (total-Lagrangian finite strains in dynamics are not validated against code_aster: PETIT, PETIT_REAC and SIMO_MIEHE only; the real GDEF_LOG cases, with a continuous contact under large sliding, end 1e-3 to 2.5e-2 off or stop in its geometric loop as their static twin does, docs/fem.md)"
+                    "DYNA_NON_LINE/COMPORTEMENT/DEFORMATION='{d}' (total-Lagrangian finite strains in dynamics are not validated against code_aster: PETIT, PETIT_REAC and SIMO_MIEHE only; the real GDEF_LOG cases, with a continuous contact under large sliding, end 1e-3 to 2.5e-2 off or stop in its geometric loop as their static twin does; SDNV103G (HEXA20 3D_SI, discrete penalised Coulomb contact, HHT) with it lifted ends 2 OK / 1 NOOK, its slave node B1 off the wall by 3.6e-2 at t = 2.5e-7 where code_aster's JEU is 0 — the same with PETIT_REAC or VMIS_ISOT_LINE, cause not found; docs/fem.md)"
                 ),
                 occ,
                 "DEFORMATION",

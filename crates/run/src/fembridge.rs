@@ -264,9 +264,35 @@ pub fn build_behaviours(
         .filter(|e| matches!(e.kind, ElementKind::Continuum { .. }))
         .map(|e| e.cell)
         .collect();
+    let plane_stress: std::collections::BTreeSet<aster_mesh::CellId> = model
+        .elements()
+        .iter()
+        .filter(|e| {
+            matches!(
+                e.kind,
+                ElementKind::Continuum {
+                    hypothesis: Hypothesis::PlaneStress,
+                    ..
+                }
+            )
+        })
+        .map(|e| e.cell)
+        .collect();
+    // The occurrence each cell ends with: a later occurrence replaces an
+    // earlier one, whose law (and material requirement, e.g. ECRO_COOK
+    // for VMIS_JOHN_COOK on TOUT='OUI' before a GROUP_MA with another
+    // relation) then does not apply to that cell, as in code_aster.
+    let mut last: std::collections::HashMap<aster_mesh::CellId, usize> =
+        std::collections::HashMap::new();
+    for (k, occ) in occurrences.iter().enumerate() {
+        match &occ.cells {
+            None => last.extend(continuum.iter().map(|&c| (c, k))),
+            Some(c) => last.extend(c.iter().filter(|c| continuum.contains(c)).map(|&c| (c, k))),
+        }
+    }
     // One law per (material, relation), shared by its cells.
     let mut laws: Vec<(*const Material, Relation, Arc<aster_fem::VonMises>)> = Vec::new();
-    for occ in occurrences {
+    for (k, occ) in occurrences.iter().enumerate() {
         // LEMAITRE: one law per material for this occurrence (its local
         // integration settings are the occurrence's).
         let mut viscous: Vec<(*const Material, Arc<aster_fem::Lemaitre>)> = Vec::new();
@@ -278,7 +304,7 @@ pub fn build_behaviours(
                 .filter(|c| continuum.contains(c))
                 .collect(),
         };
-        for cell in cells {
+        for cell in cells.into_iter().filter(|c| last.get(c) == Some(&k)) {
             if occ.relation == Relation::Elas {
                 out.assign_with(cell, None, occ.kinematics);
                 continue;
@@ -323,17 +349,26 @@ pub fn build_behaviours(
                 out.assign_viscous(cell, law);
                 continue;
             }
+            if occ.relation == Relation::VmisJohnCook {
+                // nmtevp's thermal softening reads TEMP (AFFE_VARC), not
+                // passed to the law here; its catalogue has no C_PLAN.
+                if materials.temperature.is_some() {
+                    return Err(ExecError::new(
+                        "not supported yet: COMPORTEMENT/RELATION='VMIS_JOHN_COOK' with a temperature (AFFE_VARC): the thermal softening (1 − θ^M_PUIS) is not passed to the law",
+                    ));
+                }
+                if plane_stress.contains(&cell) {
+                    return Err(ExecError::new(format!(
+                        "COMPORTEMENT/RELATION='VMIS_JOHN_COOK' on C_PLAN cell {}: code_aster's law has no plane-stress version (3D, AXIS, D_PLAN)",
+                        crate::select::cell_name(mesh, cell)
+                    )));
+                }
+            }
             let key = (Rc::as_ptr(mat), occ.relation);
             let law = match laws.iter().find(|l| (l.0, l.1) == key) {
                 Some(l) => l.2.clone(),
                 None => {
-                    let law = Arc::new(plastic_law(
-                        mesh,
-                        cell,
-                        mat,
-                        occ.relation,
-                        occ.local.resi_inte,
-                    )?);
+                    let law = Arc::new(plastic_law(mesh, cell, mat, occ.relation, &occ.local)?);
                     laws.push((key.0, key.1, law.clone()));
                     law
                 }
@@ -349,8 +384,9 @@ fn plastic_law(
     cell: aster_mesh::CellId,
     mat: &Material,
     relation: Relation,
-    resi_inte: f64,
+    local: &crate::solve::LocalIntegration,
 ) -> Result<aster_fem::VonMises, ExecError> {
+    let resi_inte = local.resi_inte;
     let missing = |what: &str| {
         ExecError::new(format!(
             "STAT_NON_LINE/COMPORTEMENT: RELATION='{}' on cell {} needs {what} in its material's DEFI_MATERIAU",
@@ -381,6 +417,16 @@ fn plastic_law(
         Relation::VmisIsotNl => {
             let c = mat.ecro_nl.ok_or_else(|| missing("ECRO_NL=_F(R0, ...)"))?;
             aster_fem::VonMises::nonlinear(aster_fem::EcroNl { resi_inte, ..c })
+        }
+        Relation::VmisJohnCook => {
+            let c = mat
+                .ecro_cook
+                .ok_or_else(|| missing("ECRO_COOK=_F(A, B, N_PUIS, ...)"))?;
+            aster_fem::VonMises::johnson_cook(aster_fem::JohnsonCook {
+                resi_inte,
+                iter_maxi: local.iter_inte_maxi,
+                ..c
+            })
         }
         Relation::Elas | Relation::Lemaitre | Relation::CzmLinReg | Relation::CzmTuron => {
             return Err(ExecError::new(format!(

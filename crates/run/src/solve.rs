@@ -40,6 +40,9 @@ pub enum Relation {
     CzmLinReg,
     /// Turon's cohesive law of the joint elements (material's RUPT_TURON).
     CzmTuron,
+    /// Von Mises, Johnson–Cook rate-dependent hardening (material's
+    /// ECRO_COOK), code_aster's `nmtevp`.
+    VmisJohnCook,
 }
 
 impl Relation {
@@ -52,6 +55,7 @@ impl Relation {
             Relation::VmisIsotNl => "VMIS_ISOT_NL",
             Relation::CzmLinReg => "CZM_LIN_REG",
             Relation::CzmTuron => "CZM_TURON",
+            Relation::VmisJohnCook => "VMIS_JOHN_COOK",
         }
     }
 }
@@ -181,7 +185,9 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     // Local (Gauss-point) integration settings: the radial return of the
     // von Mises laws is exact, so they change nothing; LEMAITRE's scalar
     // equation uses RESI_INTE_RELA, ITER_INTE_MAXI and its θ-scheme
-    // PARM_THETA (refused with the other relations but at its default 1).
+    // PARM_THETA (refused with the other relations but at its default 1);
+    // VMIS_JOHN_COOK's search stops at RESI_INTE within ITER_INTE_MAXI
+    // (ALGO_INTE='BRENT' only).
     "COMPORTEMENT/PARM_THETA",
     "COMPORTEMENT/RESI_INTE_RELA",
     "COMPORTEMENT/RESI_INTE",
@@ -289,6 +295,7 @@ pub(crate) const SNL_VALUES: &[Values] = &[
             "VMIS_ISOT_LINE",
             "VMIS_ISOT_TRAC",
             "VMIS_ISOT_NL",
+            "VMIS_JOHN_COOK",
             "LEMAITRE",
             "CZM_LIN_REG",
             "CZM_TURON",
@@ -676,11 +683,12 @@ fn parse_behaviours(
             "VMIS_ISOT_NL" => Relation::VmisIsotNl,
             "CZM_LIN_REG" => Relation::CzmLinReg,
             "CZM_TURON" => Relation::CzmTuron,
+            "VMIS_JOHN_COOK" => Relation::VmisJohnCook,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, LEMAITRE, CZM_LIN_REG, CZM_TURON)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, LEMAITRE, CZM_LIN_REG, CZM_TURON)"
                     ),
                     span,
                 ));
@@ -709,6 +717,30 @@ fn parse_behaviours(
             return Err(refuse(
                 "with RELATION='VMIS_ISOT_NL' (code_aster's law takes PETIT and GDEF_LOG only)",
             ));
+        }
+        // code_aster's catalogue of VMIS_JOHN_COOK: PETIT, PETIT_REAC,
+        // GROT_GDEP and GDEF_LOG; GROT_GDEP with a plastic law is not
+        // done here.
+        if relation == Relation::VmisJohnCook
+            && !matches!(
+                kinematics,
+                Kinematics::Small | Kinematics::SmallUpdated | Kinematics::Logarithmic
+            )
+        {
+            return Err(refuse(
+                "with RELATION='VMIS_JOHN_COOK' (supported: PETIT, PETIT_REAC and GDEF_LOG)",
+            ));
+        }
+        if relation == Relation::VmisJohnCook {
+            // nmtevp through zerofr: BRENT (the catalogue's default) is
+            // reproduced, DEKKER and SECANTE are not.
+            if let Some(a) = occ.str("ALGO_INTE").filter(|a| *a != "BRENT") {
+                let span = occ.keyword("ALGO_INTE").map(|k| k.span).unwrap_or_default();
+                return Err(ex.unsupported(
+                    &format!("{at}/ALGO_INTE='{a}' with RELATION='VMIS_JOHN_COOK' (code_aster's zerofr is reproduced with BRENT only)"),
+                    span,
+                ));
+            }
         }
         let named = ["TOUT", "GROUP_MA", "MAILLE"]
             .iter()

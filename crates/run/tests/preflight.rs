@@ -42,7 +42,7 @@ fn a_supported_program_has_no_finding() {
 #[test]
 fn every_refusal_is_found_at_its_keyword() {
     let src = format!(
-        "{HEAD}m = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3), ECRO_COOK=_F(A=1.0, B=1.0, N_PUIS=1.0))
+        "{HEAD}m = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3), ECRO_PUIS=_F(SY=1.0, A_PUIS=1.0, N_PUIS=1.0))
 t = DEFI_LIST_REEL(VALE=(0.0, 1.0))
 x = MACR_ADAP_MAIL(ADAPTATION='RAFFINEMENT_UNIFORME', MAILLAGE_N=mesh, MAILLAGE_NP1=CO('m2'))
 FIN()
@@ -55,7 +55,7 @@ FIN()
             // A command running an external program is the real blocker:
             // reported first, at its keyword.
             "case.comm:6:20: error: not supported yet: MACR_ADAP_MAIL/ADAPTATION='RAFFINEMENT_UNIFORME' (mesh adaptation runs the external HOMARD tool, which aster does not have)",
-            "case.comm:4:43: error: not supported yet: DEFI_MATERIAU/ECRO_COOK",
+            "case.comm:4:43: error: not supported yet: DEFI_MATERIAU/ECRO_PUIS",
         ]
     );
 }
@@ -115,7 +115,7 @@ fn the_pass_stops_without_finding_at_a_run_time_value() {
     let src = format!(
         "{HEAD}t = CREA_TABLE(LISTE=_F(PARA='X', LISTE_R=(1.0,)))
 if t['X', 1] > 0.0:
-    m = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3), ECRO_COOK=_F(A=1.0, B=1.0, N_PUIS=1.0))
+    m = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3), ECRO_PUIS=_F(SY=1.0, A_PUIS=1.0, N_PUIS=1.0))
 FIN()
 "
     );

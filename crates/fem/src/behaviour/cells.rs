@@ -49,8 +49,9 @@ struct PlasticCell {
 }
 
 impl PlasticCell {
-    fn setup(&self) -> CellSetup<'_> {
+    fn setup(&self, dt: f64) -> CellSetup<'_> {
         CellSetup {
+            dt,
             hyp: self.hypothesis,
             elastic: &self.elastic,
             law: self.law.as_deref(),
@@ -334,7 +335,7 @@ impl PlasticCells {
                 continue;
             }
             let out = fs::compute(
-                &cell.setup(),
+                &cell.setup(self.dt),
                 &self.u_committed[c],
                 &ue,
                 &self.committed[c],
@@ -397,9 +398,16 @@ impl PlasticCells {
                     *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
                 }
                 let prev = &self.committed[c][g].law;
-                let (state, tangent) =
-                    integrate(law, &cell.elastic, cell.hypothesis, &eps[..n], prev, false)
-                        .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                let (state, tangent) = integrate(
+                    law,
+                    &cell.elastic,
+                    cell.hypothesis,
+                    &eps[..n],
+                    prev,
+                    false,
+                    self.dt,
+                )
+                .map_err(|e| at_cell(model, cell.cell, g, e))?;
                 virgin &= !state.plastic && state.p == 0.0;
                 self.trial[c][g] = GaussState {
                     law: state,
@@ -443,7 +451,7 @@ impl PlasticCells {
                 continue;
             }
             let out = fs::compute(
-                &cell.setup(),
+                &cell.setup(self.dt),
                 &self.u_committed[c],
                 &self.u_committed[c],
                 &self.committed[c],
@@ -502,6 +510,7 @@ impl PlasticCells {
                     &eps[..cell.hypothesis.ncomp()],
                     &state,
                     true,
+                    self.dt,
                 )
                 .map_err(|e| at_cell(model, cell.cell, g, e))?;
                 self.tangents[c][g] = tangent;
@@ -660,6 +669,7 @@ impl PlasticCells {
             law: cell.law.as_deref(),
             kinematics: cell.kinematics,
             geoms: &[],
+            dt: self.dt,
         };
         let (law, tangent) = fs::behave(&setup, &eps, &prev.law, phase)?;
         let d = to_sqrt2(&tangent);
@@ -736,6 +746,12 @@ fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
                     _ => e,
                 });
             }
+        }
+        // VMIS_JOHN_COOK (nmtevp): EPSPEQ, INDIPLAS (iterations of the
+        // last search), DEPSPEQ, DINSTM, DDISSM.
+        Some(law) if matches!(law.hardening, super::Hardening::JohnsonCook(_)) => {
+            v.push(s.law.p);
+            v.extend(s.law.rate);
         }
         Some(_) => v.extend(s.law.vari()),
         None if cell.viscous.is_some() => v.extend(s.law.vari()),

@@ -1,6 +1,7 @@
 //! Johnson–Cook viscoplasticity (`VMIS_JOHN_COOK`, material `ECRO_COOK`),
-//! as code_aster's `nmtevp` integrates it with `eccook` (the flow stress)
-//! and `nmcri9` (the scalar equation of the radial return).
+//! as code_aster's `nmtevp` integrates it with `eccook` (the flow stress),
+//! `nmcri9` (the scalar equation of the radial return) and `zerofr`
+//! (`encadr` then Brent's `zerofb`, `ALGO_INTE='BRENT'`).
 //!
 //! Flow stress (`eccook`), p the cumulated plastic strain, ṗ = Δp/Δt:
 //!
@@ -9,19 +10,19 @@
 //!
 //! with p below p₀ = 1e-9 read as p₀ (the hardening's slope is infinite at
 //! 0 when N < 1) and the rate factor left out there. code_aster's elastic
-//! test uses the *previous* increment's rate (its VARI 3 and 4: Δp and Δt)
-//! and temperature; the return then solves R(pₙ + Δp, Δp/Δt) + 3μΔp =
-//! σ_eq^trial for Δp. code_aster brackets the root by halving from the
-//! elastic guess and finishes with `zerofr` (secant) to RESI_INTE_RELA × R:
-//! its Δp is within that tolerance of the root this module solves to
-//! round-off (bracketed Newton), so stresses agree to about RESI_INTE_RELA
-//! (1e-6 by default).
+//! test uses the *previous* increment's values (`eccook` at pₙ + Δpₙ₋₁,
+//! rate Δpₙ₋₁/Δtₙ₋₁: its VARI 1, 3 and 4); the return then solves
+//! f(Δp) = R(pₙ + Δp, Δp/Δt) + 3μΔp − σ_eq^trial = 0 as `nmtevp` does
+//! ([`JohnsonCook::plastic_increment`]): from the guess Δp₀ = (σ_eq^trial
+//! − R_test)/3μ, halved until f < 0, then `zerofr` on [0, Δp_max] stopped
+//! at |f| < RESI_INTE × R(pₙ + Δp₀, Δp₀/Δt) within ITER_INTE_MAXI
+//! iterations — the same iterates, so the same Δp, as code_aster.
 //!
-//! Vectors are code_aster's: six components xx, yy, zz, √2·xy, √2·xz, √2·yz
-//! (3D). Not wired to `COMPORTEMENT` yet: `run` refuses `VMIS_JOHN_COOK`
-//! (its only contact case, sdnv103g, also needs GDEF_LOG in dynamics).
+//! The stress update, VARI and tangent are in `vmis` (the radial return
+//! shared with the other von Mises laws, `Hardening::JohnsonCook`).
 
-/// `ECRO_COOK`: A, B, N_PUIS, C, EPSP0, M_PUIS, TROOM, TMELT.
+/// `ECRO_COOK`: A, B, N_PUIS, C, EPSP0, M_PUIS, TROOM, TMELT, with the
+/// COMPORTEMENT's RESI_INTE and ITER_INTE_MAXI.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JohnsonCook {
     pub a: f64,
@@ -32,17 +33,19 @@ pub struct JohnsonCook {
     pub epsp0: f64,
     /// `M_PUIS`, `TROOM`, `TMELT`; `None`: no thermal softening.
     pub thermal: Option<(f64, f64, f64)>,
+    /// `RESI_INTE` (code_aster's crit(3)): the return stops at |f| below
+    /// it times the flow stress of the first guess.
+    pub resi_inte: f64,
+    /// `ITER_INTE_MAXI` (crit(1)).
+    pub iter_maxi: usize,
 }
 
-/// The internal variables of a Gauss point (code_aster's VARI 1–4: p,
-/// plastic indicator — the number of iterations of the return —, Δp and
-/// Δt of the last increment).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct JcState {
-    pub p: f64,
-    pub plastic: bool,
+/// The solved plastic increment: Δp and `nmtevp`'s VARI 2 (the
+/// iterations of the search, INDIPLAS).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlasticIncrement {
     pub dp: f64,
-    pub dt: f64,
+    pub iterations: usize,
 }
 
 impl JohnsonCook {
@@ -59,7 +62,8 @@ impl JohnsonCook {
         let p = pm + dp;
         let mut r = self.a + self.b * p.powf(self.n);
         let mut rprim = self.n * self.b * p.powf(self.n - 1.0);
-        if dt > 0.0 && dp / dt > self.epsp0 {
+        // dp/dt > ε̇₀ is false for 0/0 (the first increment), as in Fortran.
+        if dp / dt > self.epsp0 {
             let l = (dp / dt / self.epsp0).ln();
             rprim += self.c * (rprim * l + r / dp);
             r *= 1.0 + self.c * l;
@@ -74,91 +78,166 @@ impl JohnsonCook {
         (r, rprim)
     }
 
-    /// The radial return of `nmtevp` (RAPH_MECA): from the stress `sig`
-    /// and state `prev` at the start of the increment, the strain
-    /// increment `deps` over `dt`, with `moduli` = (2μ, 3K) (constant
-    /// elastic coefficients). Returns the stress and the state.
-    pub fn integrate(
+    /// `nmtevp`'s plastic branch: Δp from the trial equivalent stress
+    /// `sieleq`, the flow stress of the elastic test `r_test`, 3μ, pₙ and
+    /// the step's Δt. `Err` when `zerofr` fails (code_aster's iret = 1:
+    /// the integration fails and the step is cut).
+    pub fn plastic_increment(
         &self,
-        moduli: (f64, f64),
-        sig: &[f64; 6],
-        deps: &[f64; 6],
-        prev: &JcState,
+        sieleq: f64,
+        r_test: f64,
+        three_mu: f64,
+        pm: f64,
         dt: f64,
         temp: Option<f64>,
-    ) -> ([f64; 6], JcState) {
-        let (two_mu, three_k) = moduli;
-        let kron = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0];
-        let depsmo = (deps[0] + deps[1] + deps[2]) / 3.0;
-        let sigmo = (sig[0] + sig[1] + sig[2]) / 3.0;
-        let mut sigel = [0.0; 6];
-        let mut sdev = [0.0; 6];
-        for k in 0..6 {
-            sdev[k] = sig[k] - sigmo * kron[k];
-            sigel[k] = sdev[k] + two_mu * (deps[k] - depsmo * kron[k]);
-        }
-        let sieleq = (1.5 * sigel.iter().map(|v| v * v).sum::<f64>()).sqrt();
-        // The elastic test with the previous increment's rate.
-        let (rp, _) = self.flow_stress(prev.p, prev.dp, prev.dt, temp);
-        let sigpmo = sigmo + three_k * depsmo;
-        if sieleq - rp <= 0.0 {
-            let mut out = [0.0; 6];
-            for k in 0..6 {
-                out[k] = sigel[k] + sigpmo * kron[k];
+    ) -> Result<PlasticIncrement, String> {
+        let f = |dp: f64| self.flow_stress(pm, dp, dt, temp).0 + three_mu * dp - sieleq;
+        let dp0 = (sieleq - r_test) / three_mu;
+        let (sigy, _) = self.flow_stress(pm, dp0, dt, temp);
+        let precr = self.resi_inte * sigy;
+        let niter = self.iter_maxi;
+        let mut fmax = sigy;
+        let mut dpmax = dp0;
+        let found = |dp, iterations| Ok(PlasticIncrement { dp, iterations });
+        if fmax.abs() <= precr {
+            return found(dpmax, 1);
+        } else if fmax > 0.0 {
+            for i in 1..=niter {
+                dpmax /= 2.0;
+                fmax = f(dpmax);
+                if fmax.abs() <= precr {
+                    return found(dpmax, i);
+                } else if fmax < 0.0 {
+                    dpmax *= 2.0;
+                    break;
+                }
             }
-            return (
-                out,
-                JcState {
-                    p: prev.p,
-                    plastic: false,
-                    dp: 0.0,
-                    dt,
-                },
-            );
-        }
-        // nmcri9: f(Δp) = R(pₙ + Δp, Δp/Δt) + 3μΔp − σ_eq^trial, increasing
-        // in Δp, f(0) < 0 < f(σ_eq^trial / 3μ).
-        let f = |dp: f64| {
-            let (r, rprim) = self.flow_stress(prev.p, dp, dt, temp);
-            (r + 1.5 * two_mu * dp - sieleq, rprim + 1.5 * two_mu)
-        };
-        let (mut lo, mut hi) = (0.0f64, sieleq / (1.5 * two_mu));
-        let mut dp = 0.5 * (lo + hi);
-        for _ in 0..200 {
-            let (v, d) = f(dp);
-            if v > 0.0 {
-                hi = dp;
-            } else {
-                lo = dp;
+        } else {
+            for i in 1..=niter {
+                fmax = f(dpmax);
+                if fmax.abs() <= precr {
+                    return found(dpmax, i);
+                } else if fmax > 0.0 {
+                    break;
+                }
+                dpmax *= 2.0;
             }
-            let newton = dp - v / d;
-            let next = if d > 0.0 && newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
-            if (next - dp).abs() <= 1e-15 * dp.abs().max(1e-300) || hi - lo <= 1e-16 * hi {
-                dp = next;
-                break;
-            }
-            dp = next;
         }
-        let (r, _) = self.flow_stress(prev.p, dp, dt, temp);
-        let scale = r / (r + 1.5 * two_mu * dp);
-        let mut out = [0.0; 6];
-        for k in 0..6 {
-            out[k] = sigel[k] * scale + sigpmo * kron[k];
-        }
-        (
-            out,
-            JcState {
-                p: prev.p + dp,
-                plastic: true,
-                dp,
-                dt,
-            },
-        )
+        // zerofr(2, 'BRENT', ...): encadr with a factor 10, then zerofb.
+        let (a, b) = encadr(&f, 0.0, dpmax, niter, 10.0).ok_or_else(|| {
+            format!("VMIS_JOHN_COOK: the plastic increment could not be bracketed in {niter} iterations (ITER_INTE_MAXI; σ_eq trial = {sieleq:e}, p = {pm:e})")
+        })?;
+        zerofb(&f, a, b, precr, niter)
+            .map(|(dp, iterations)| PlasticIncrement { dp, iterations })
+            .ok_or_else(|| {
+                format!("VMIS_JOHN_COOK: Brent's search of the plastic increment did not reach RESI_INTE in {niter} iterations (ITER_INTE_MAXI; σ_eq trial = {sieleq:e}, p = {pm:e})")
+            })
     }
+}
+
+/// code_aster's `encadr`: widens [x1, x2] by `xmult` on the side of the
+/// smaller |f| until f changes sign, at most `niter` times.
+fn encadr(
+    f: &dyn Fn(f64) -> f64,
+    x1: f64,
+    x2: f64,
+    niter: usize,
+    xmult: f64,
+) -> Option<(f64, f64)> {
+    let (mut x1, mut x2) = (x1, x2);
+    if x1 == x2 {
+        return None;
+    }
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..niter {
+        if f1 * f2 < 0.0 {
+            return Some((x1, x2));
+        }
+        if f1.abs() < f2.abs() {
+            x1 += xmult * (x1 - x2);
+            f1 = f(x1);
+        } else {
+            x2 += xmult * (x2 - x1);
+            f2 = f(x2);
+        }
+    }
+    None
+}
+
+/// code_aster's `zerofb` (Brent): the root of `f` in [x1, x2] to |f| <
+/// `tol` (or the bracket at round-off), with the iteration it stopped at.
+fn zerofb(
+    f: &dyn Fn(f64) -> f64,
+    x1: f64,
+    x2: f64,
+    tol: f64,
+    itmax: usize,
+) -> Option<(f64, usize)> {
+    let eps = f64::EPSILON;
+    let (mut a, mut b) = (x1, x2);
+    let (mut fa, mut fb) = (f(a), f(b));
+    if (fa > 0.0 && fb > 0.0) || (fa < 0.0 && fb < 0.0) {
+        return None;
+    }
+    let (mut c, mut fc) = (b, fb);
+    let (mut d, mut e) = (0.0f64, 0.0f64);
+    for iter in 1..=itmax {
+        if (fb > 0.0 && fc > 0.0) || (fb < 0.0 && fc < 0.0) {
+            c = a;
+            fc = fa;
+            d = b - a;
+            e = d;
+        }
+        if fc.abs() < fb.abs() {
+            a = b;
+            b = c;
+            c = a;
+            fa = fb;
+            fb = fc;
+            fc = fa;
+        }
+        let tol1 = 2.0 * eps * b.abs();
+        let xm = 0.5 * (c - b);
+        if xm.abs() <= tol1 || fb.abs() < tol {
+            return Some((b, iter));
+        }
+        if e.abs() >= tol1 && fa.abs() > fb.abs() {
+            let s = fb / fa;
+            let (mut p, mut q);
+            if a == c {
+                p = 2.0 * xm * s;
+                q = 1.0 - s;
+            } else {
+                q = fa / fc;
+                let r = fb / fc;
+                p = s * (2.0 * xm * q * (q - r) - (b - a) * (r - 1.0));
+                q = (q - 1.0) * (r - 1.0) * (s - 1.0);
+            }
+            if p > 0.0 {
+                q = -q;
+            }
+            p = p.abs();
+            if 2.0 * p < (3.0 * xm * q - (tol1 * q).abs()).min((e * q).abs()) {
+                e = d;
+                d = p / q;
+            } else {
+                d = xm;
+                e = d;
+            }
+        } else {
+            d = xm;
+            e = d;
+        }
+        a = b;
+        fa = fb;
+        if d.abs() > tol1 {
+            b += d;
+        } else {
+            b += tol1.copysign(xm);
+        }
+        fb = f(b);
+    }
+    None
 }
 
 #[cfg(test)]
@@ -174,6 +253,8 @@ mod tests {
             c: 0.025,
             epsp0: 1.0,
             thermal: Some((1.09, 298.0, 1083.0)),
+            resi_inte: 1e-6,
+            iter_maxi: 30,
         }
     }
 
@@ -194,62 +275,65 @@ mod tests {
             - jc.flow_stress(p, dp - h, dt, Some(500.0)).0)
             / (2.0 * h);
         assert!((rprim - fd).abs() <= 1e-6 * fd.abs(), "{rprim} {fd}");
-        // Below ε̇₀ no rate factor; at or below p₀ = 1e-9, R(p₀).
+        // Below ε̇₀ no rate factor; at or below p₀ = 1e-9, R(p₀); the
+        // first increment (Δp = Δt = 0) has no rate factor either.
         let slow = jc.flow_stress(0.1, 1e-6, 1.0, None).0;
         assert!((slow - (90.0 + 292.0 * (0.1f64 + 1e-6).powf(0.31))).abs() < 1e-12);
         let zero = jc.flow_stress(0.0, 0.0, 1.0, None).0;
         assert!((zero - (90.0 + 292.0 * 1e-9f64.powf(0.31))).abs() < 1e-12);
+        let first = jc.flow_stress(0.1, 0.0, 0.0, None).0;
+        assert!((first - (90.0 + 292.0 * 0.1f64.powf(0.31))).abs() < 1e-12);
     }
 
-    /// One increment of uniaxial-stress-like deviatoric loading by hand:
-    /// a pure shear strain increment γ (Mandel component √2·ε_xy = γ/√2)
-    /// gives σ_eq^trial = √3 μ γ; the return's Δp solves
-    /// R(Δp, Δp/Δt) + 3μΔp = σ_eq^trial, and the shear stress is
-    /// σ_eq/√3 with σ_eq = R(Δp).
+    /// The scalar return: Δp solves R(pₙ + Δp, Δp/Δt) + 3μΔp = σ_eq to
+    /// code_aster's stop, |f| < RESI_INTE · R(Δp₀), and lies within that
+    /// residual over 3μ of the root found by bisection to round-off.
     #[test]
-    fn radial_return_in_shear_matches_the_scalar_equation() {
-        let jc = JohnsonCook {
-            thermal: None,
-            ..copper()
-        };
-        let (e, nu) = (117.0e3, 0.35);
-        let two_mu = e / (1.0 + nu);
-        let three_k = e / (1.0 - 2.0 * nu);
-        let gamma = 0.02;
-        let dt = 1e-4;
-        let mut deps = [0.0; 6];
-        deps[3] = gamma / 2.0 * 2f64.sqrt();
-        let (sig, st) = jc.integrate(
-            (two_mu, three_k),
-            &[0.0; 6],
-            &deps,
-            &JcState::default(),
-            dt,
-            None,
-        );
-        assert!(st.plastic);
-        let mu = two_mu / 2.0;
-        let trial = 3f64.sqrt() * mu * gamma;
-        let (r, _) = jc.flow_stress(0.0, st.dp, dt, None);
-        assert!((r + 3.0 * mu * st.dp - trial).abs() <= 1e-10 * trial);
-        let tau = sig[3] / 2f64.sqrt();
-        assert!((tau - r / 3f64.sqrt()).abs() <= 1e-10 * r, "{tau} {r}");
-        assert!(sig[0].abs() < 1e-9 && sig[1].abs() < 1e-9 && sig[2].abs() < 1e-9);
-        // An elastic increment: below the yield stress of the previous rate.
-        let small = {
-            let mut d = [0.0; 6];
-            d[3] = 1e-5;
-            d
-        };
-        let (sig, st) = jc.integrate(
-            (two_mu, three_k),
-            &[0.0; 6],
-            &small,
-            &JcState::default(),
-            dt,
-            None,
-        );
-        assert!(!st.plastic);
-        assert!((sig[3] - two_mu * 1e-5).abs() < 1e-12);
+    fn plastic_increment_solves_the_scalar_equation_to_resi_inte() {
+        let jc = copper();
+        let three_mu = 1.5 * 117.0e3 / 1.35;
+        for &(pm, dt, sieleq) in &[
+            (0.0, 5e-8, 400.0),
+            (0.05, 5e-8, 1200.0),
+            (0.3, 1e-3, 500.0),
+            (0.0, 1.0, 100.0),
+        ] {
+            let r_test = jc.flow_stress(pm, 0.0, 0.0, None).0;
+            let inc = jc
+                .plastic_increment(sieleq, r_test, three_mu, pm, dt, None)
+                .unwrap();
+            let f = |dp: f64| jc.flow_stress(pm, dp, dt, None).0 + three_mu * dp - sieleq;
+            let dp0 = (sieleq - r_test) / three_mu;
+            let precr = 1e-6 * jc.flow_stress(pm, dp0, dt, None).0;
+            assert!(
+                f(inc.dp).abs() <= precr,
+                "{pm} {dt} {sieleq}: f = {}",
+                f(inc.dp)
+            );
+            assert!(inc.iterations >= 1);
+            let (mut lo, mut hi) = (0.0, sieleq / three_mu);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if f(mid) > 0.0 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            assert!((inc.dp - lo).abs() <= precr / three_mu, "{} {lo}", inc.dp);
+        }
+    }
+
+    /// Brent's search (zerofb) on a cubic: the root to the tolerance, and
+    /// None without a sign change.
+    #[test]
+    fn zerofb_finds_a_bracketed_root() {
+        let f = |x: f64| x * x * x - 2.0;
+        let (x, it) = zerofb(&f, 0.0, 3.0, 1e-12, 100).unwrap();
+        assert!((x - 2f64.cbrt()).abs() < 1e-12, "{x}");
+        assert!(it < 20);
+        assert!(zerofb(&f, 2.0, 3.0, 1e-12, 100).is_none());
+        let (a, b) = encadr(&f, 0.0, 0.5, 10, 10.0).unwrap();
+        assert!(f(a) * f(b) < 0.0);
     }
 }

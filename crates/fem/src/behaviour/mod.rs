@@ -15,6 +15,9 @@
 //! - `SIMO_MIEHE`: multiplicative von Mises plasticity ([`simo_miehe`]);
 //! - `LEMAITRE` (small strains): viscoplasticity without threshold
 //!   ([`lemaitre`]), integrated over the step's duration.
+//! - `VMIS_JOHN_COOK`: von Mises with Johnson–Cook rate-dependent
+//!   hardening ([`johnson_cook`], `Hardening::JohnsonCook`), over the
+//!   step's duration, in PETIT, PETIT_REAC or GDEF_LOG.
 
 mod cells;
 pub mod johnson_cook;
@@ -25,6 +28,7 @@ pub mod vmis;
 pub use crate::strain::{GaussState, Kinematics};
 pub(crate) use cells::PlasticCells;
 pub use cells::{forc_noda_deformed, forc_noda_from_stress, BehaviourState};
+pub use johnson_cook::JohnsonCook;
 pub use lemaitre::Lemaitre;
 pub use vmis::{CurveEnd, EcroNl, Hardening, PointState, VonMises};
 

@@ -6,6 +6,7 @@
 //! engineering shears (γ = 2ε), stresses tensor components, so the matrix
 //! D with σ = D ε has Dᵢⱼ = Cᵢⱼₖₗ — the convention of [`Elastic::hooke`].
 
+use super::johnson_cook::JohnsonCook;
 use crate::error::FemError;
 use crate::material::{Elastic, Hypothesis};
 
@@ -36,6 +37,9 @@ pub enum Hardening {
     /// R2 (1 − e^(−γ₂p)) + RK (p + P0)^γₘ (code_aster's `f_ecro` of
     /// `vmis_isot_nl_module`).
     NonLinear(EcroNl),
+    /// `ECRO_COOK` (`VMIS_JOHN_COOK`): rate-dependent, integrated over the
+    /// step's duration by code_aster's `nmtevp` ([`super::johnson_cook`]).
+    JohnsonCook(JohnsonCook),
 }
 
 /// The coefficients of `DEFI_MATERIAU/ECRO_NL` and the local tolerance of
@@ -174,6 +178,29 @@ impl VonMises {
         Ok(law)
     }
 
+    /// `ECRO_COOK` for `VMIS_JOHN_COOK`: the initial yield stress is
+    /// `eccook`'s R(p₀) = A + B p₀ᴺ, p₀ = 1e-9.
+    pub fn johnson_cook(c: JohnsonCook) -> Result<VonMises, FemError> {
+        let (r0, _) = c.flow_stress(0.0, 0.0, 0.0, None);
+        if !(r0.is_finite() && r0 > 0.) {
+            return Err(FemError::Model(format!(
+                "ECRO_COOK: the initial yield stress A + B·(1e-9)^N_PUIS must be positive and finite, got {r0}"
+            )));
+        }
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !positive(c.epsp0) || c.iter_maxi == 0 || !positive(c.resi_inte) {
+            return Err(FemError::Model(format!(
+                "ECRO_COOK: EPSP0 = {}, RESI_INTE = {} and ITER_INTE_MAXI = {} must be positive",
+                c.epsp0, c.resi_inte, c.iter_maxi
+            )));
+        }
+        Ok(VonMises {
+            sy: r0,
+            hardening: Hardening::JohnsonCook(c),
+            young: None,
+        })
+    }
+
     /// `ECRO_NL` for `VMIS_ISOT_NL`: the initial yield stress is R(0).
     pub fn nonlinear(c: EcroNl) -> Result<VonMises, FemError> {
         let (r0, _) = c.r(0.0);
@@ -217,6 +244,8 @@ impl VonMises {
                 curve_at(ps, r, *end, k, p)
             }
             Hardening::NonLinear(c) => Ok(c.r(p)),
+            // Without its rate: the flow stress at p reached slowly.
+            Hardening::JohnsonCook(c) => Ok(c.flow_stress(p, 0.0, 0.0, None)),
         }
     }
 
@@ -266,6 +295,9 @@ impl VonMises {
                     "VMIS_ISOT_NL: the plastic increment was not found after 200 local iterations (q = {q:e}, p = {p:e})"
                 )))
             }
+            Hardening::JohnsonCook(_) => Err(FemError::Model(
+                "VMIS_JOHN_COOK is rate-dependent: its return needs the step's duration (integrate_3d), not this rate-free one".into(),
+            )),
             Hardening::Curve { p: ps, r, end } => {
                 // g(Δp) = q − 3μΔp − R(p + Δp) decreases: walk the segments
                 // from p's until the root falls inside one.
@@ -338,6 +370,11 @@ pub struct PointState {
     pub plastic: bool,
     /// Total εzz (C_PLAN only, where it is not a kinematic unknown).
     pub eps_zz: f64,
+    /// `VMIS_JOHN_COOK`'s VARI 2–5 (`nmtevp`): INDIPLAS (the iterations
+    /// of the last plastic search, 0 when elastic), DEPSPEQ (the last
+    /// increment's Δp), DINSTM (its Δt) and DDISSM (the dissipated power
+    /// 0.9 σ_eq Δp/Δt). Zero for the other laws.
+    pub rate: [f64; 4],
 }
 
 impl PointState {
@@ -408,7 +445,11 @@ pub fn integrate_3d(
     el: &Elastic,
     eps: &[f64; 6],
     prev: &PointState,
+    dt: f64,
 ) -> Result<(PointState, Mat6), FemError> {
+    if let Hardening::JohnsonCook(jc) = &law.hardening {
+        return johnson_cook_3d(jc, el, eps, prev, dt);
+    }
     let d = elastic_3d(el);
     let (_, mu) = lame(el);
     let mut ee = [0.0; 6];
@@ -437,6 +478,7 @@ pub fn integrate_3d(
         p: prev.p + dp,
         plastic: true,
         eps_zz: prev.eps_zz,
+        rate: prev.rate,
     };
     for i in 0..6 {
         next.stress[i] -= ratio * s[i];
@@ -460,10 +502,126 @@ pub fn prediction_tangent_3d(
     if !state.plastic {
         return Ok(elastic_3d(el));
     }
+    if let Hardening::JohnsonCook(jc) = &law.hardening {
+        // nmtevp's RIGI_MECA_TANG: Δp = 0, σ_eq of the converged deviator
+        // for R, R' of the elastic test (at pₙ + Δpₙ₋₁, its rate).
+        let (s, q) = deviator(&state.stress);
+        let (_, rprim) = jc.flow_stress(state.p, state.rate[1], state.rate[2], None);
+        return Ok(johnson_cook_tangent(el, &s, q, 0.0, rprim, true));
+    }
     let (_, mu) = lame(el);
     let (s, q) = deviator(&state.stress);
     let (_, h) = law.yield_stress(state.p)?;
     Ok(tangent_3d(el, 1., 1. / (1. + h / (3. * mu)), &s, q))
+}
+
+/// `nmtevp` (RAPH_MECA/FULL_MECA) in the total-strain form of this
+/// module: the trial 2μ dev(ε − εₚ) equals code_aster's incremental
+/// sigel = dev σₙ + 2μ dev Δε (constant elasticity, no thermal strain).
+/// The elastic test takes the previous increment's flow stress
+/// (`eccook` at pₙ + Δpₙ₋₁ and rate Δpₙ₋₁/Δtₙ₋₁), the plastic increment is
+/// [`JohnsonCook::plastic_increment`], the deviator is scaled by
+/// R/(R + 3μΔp) and the plastic strain takes what it leaves.
+fn johnson_cook_3d(
+    jc: &JohnsonCook,
+    el: &Elastic,
+    eps: &[f64; 6],
+    prev: &PointState,
+    dt: f64,
+) -> Result<(PointState, Mat6), FemError> {
+    let d = elastic_3d(el);
+    let (_, mu) = lame(el);
+    let mut ee = [0.0; 6];
+    for i in 0..6 {
+        ee[i] = eps[i] - prev.plastic_strain[i];
+    }
+    let mut trial = [0.0; 6];
+    for i in 0..6 {
+        trial[i] = (0..6).map(|j| d[i][j] * ee[j]).sum();
+    }
+    let mean = (trial[0] + trial[1] + trial[2]) / 3.;
+    let (s, q) = deviator(&trial);
+    let (r_test, _) = jc.flow_stress(prev.p, prev.rate[1], prev.rate[2], None);
+    if q - r_test <= 0.0 {
+        let next = PointState {
+            stress: trial,
+            plastic: false,
+            rate: [0.0, 0.0, dt, 0.0],
+            ..*prev
+        };
+        return Ok((next, d));
+    }
+    let inc = jc
+        .plastic_increment(q, r_test, 3. * mu, prev.p, dt, None)
+        .map_err(FemError::Integration)?;
+    let dp = inc.dp;
+    let (r, rprim) = jc.flow_stress(prev.p, dp, dt, None);
+    let scale = r / (r + 3. * mu * dp);
+    let mut next = PointState {
+        stress: trial,
+        plastic_strain: prev.plastic_strain,
+        p: prev.p + dp,
+        plastic: inc.iterations > 0,
+        eps_zz: prev.eps_zz,
+        rate: [inc.iterations as f64, dp, dt, 0.0],
+    };
+    let mut sdev = [0.0; 6];
+    for i in 0..6 {
+        sdev[i] = s[i] * scale;
+        next.stress[i] = sdev[i] + if i < 3 { mean } else { 0.0 };
+        // 2μ Δεₚ = (1 − scale) s, engineering shears doubled.
+        let f = if i < 3 { 1.0 } else { 2.0 };
+        next.plastic_strain[i] += f * (1. - scale) * s[i] / (2. * mu);
+    }
+    let seq = q * scale;
+    next.rate[3] = 0.9 * seq * dp / dt;
+    // sigeps = s : Δe, with 2μ Δe = s_trial − dev σₙ.
+    let (sm, _) = deviator(&prev.stress);
+    let sigeps: f64 = (0..6)
+        .map(|i| {
+            let w = if i < 3 { 1.0 } else { 2.0 };
+            w * sdev[i] * (s[i] - sm[i]) / (2. * mu)
+        })
+        .sum();
+    let tangent = johnson_cook_tangent(el, &sdev, r, dp, rprim, sigeps >= 0.0);
+    Ok((next, tangent))
+}
+
+/// `nmtevp`'s tangent (DSIDEP) in this module's convention (tensor
+/// stresses, engineering strains): with a = 1 + 3μΔp/R,
+/// (3K/3 − 2μ/3a) 1⊗1 + 2μ/a I + coef s⊗s, coef = −(3μ)²/(3μ + R')/R²
+/// · (1 − Δp R'/R)/a when `plastic` (the plastic branch with s : Δe ≥ 0),
+/// else Hooke's.
+fn johnson_cook_tangent(
+    el: &Elastic,
+    s: &[f64; 6],
+    r: f64,
+    dp: f64,
+    rprim: f64,
+    plastic: bool,
+) -> Mat6 {
+    let (lambda, mu) = lame(el);
+    let three_k = 3. * lambda + 2. * mu;
+    let mut c = [[0.0; 6]; 6];
+    let mut a = 1.0;
+    if plastic {
+        a = 1. + 3. * mu * dp / r;
+        let coef = -(3. * mu).powi(2) / (3. * mu + rprim) / (r * r) * (1. - dp * rprim / r) / a;
+        for i in 0..6 {
+            for j in 0..6 {
+                c[i][j] = coef * s[i] * s[j];
+            }
+        }
+    }
+    for row in c.iter_mut().take(3) {
+        for v in row.iter_mut().take(3) {
+            *v += three_k / 3. - 2. * mu / (3. * a);
+        }
+    }
+    for (i, row) in c.iter_mut().enumerate() {
+        row[i] += if i < 3 { 2. * mu / a } else { mu / a };
+    }
+    c
 }
 
 /// Most local iterations on εzz in plane stress.
@@ -480,6 +638,7 @@ pub fn integrate(
     eps: &[f64],
     prev: &PointState,
     prediction: bool,
+    dt: f64,
 ) -> Result<(PointState, Mat6), FemError> {
     let el = &law.elastic(el);
     let mut e6 = [0.0; 6];
@@ -489,7 +648,7 @@ pub fn integrate(
         if prediction {
             return Ok((*prev, prediction_tangent_3d(law, el, prev)?));
         }
-        return integrate_3d(law, el, &e6, prev);
+        return integrate_3d(law, el, &e6, prev, dt);
     }
     // Plane stress: find εzz with σzz = 0 by Newton on the 3D law.
     let (mut state, mut c);
@@ -500,7 +659,7 @@ pub fn integrate(
         e6[2] = prev.eps_zz;
         let mut k = 0;
         loop {
-            (state, c) = integrate_3d(law, el, &e6, prev)?;
+            (state, c) = integrate_3d(law, el, &e6, prev, dt)?;
             // The stress scale of the point: its stresses, or E times its
             // strains (not the yield stress, which may be 1e15 for an
             // elastic use of the law).
@@ -541,6 +700,82 @@ mod tests {
         Elastic::new(200e3, 0.3).unwrap()
     }
 
+    fn johnson_cook_law() -> VonMises {
+        VonMises::johnson_cook(JohnsonCook {
+            a: 200.0,
+            b: 500.0,
+            n: 0.3,
+            c: 0.025,
+            epsp0: 1e-3,
+            thermal: None,
+            resi_inte: 1e-13,
+            iter_maxi: 100,
+        })
+        .unwrap()
+    }
+
+    /// VMIS_JOHN_COOK: nmtevp's tangent (rate term in R' included) against
+    /// centred differences of the return, from a plastic state, on a
+    /// general 3D strain increment; the stress is on the flow surface
+    /// R(pₙ + Δp, Δp/Δt) and the plastic flow isochoric.
+    #[test]
+    fn johnson_cook_return_and_tangent() {
+        let law = johnson_cook_law();
+        let el = steel();
+        let dt = 1e-3;
+        let (first, _) = integrate_3d(
+            &law,
+            &el,
+            &[3e-3, -1e-3, -1e-3, 1e-3, 0.0, 0.0],
+            &PointState::default(),
+            dt,
+        )
+        .unwrap();
+        assert!(first.plastic && first.rate[0] >= 1.0);
+        let eps = [5e-3, -1.5e-3, -1e-3, 2e-3, 5e-4, -3e-4];
+        let (st, c) = integrate_3d(&law, &el, &eps, &first, dt).unwrap();
+        assert!(st.plastic);
+        let dp = st.rate[1];
+        assert!((st.p - first.p - dp).abs() <= 1e-15);
+        let Hardening::JohnsonCook(jc) = &law.hardening else {
+            unreachable!()
+        };
+        let (r, _) = jc.flow_stress(first.p, dp, dt, None);
+        let (_, q) = deviator(&st.stress);
+        assert!((q - r).abs() <= 1e-9 * r, "q = {q}, R = {r}");
+        assert_eq!(st.rate[2], dt);
+        assert!((st.rate[3] - 0.9 * q * dp / dt).abs() <= 1e-12 * st.rate[3]);
+        let tr = st.plastic_strain[0] + st.plastic_strain[1] + st.plastic_strain[2];
+        assert!(tr.abs() < 1e-15);
+        let h = 1e-8;
+        for j in 0..6 {
+            let (mut ep, mut em) = (eps, eps);
+            ep[j] += h;
+            em[j] -= h;
+            let sp = integrate_3d(&law, &el, &ep, &first, dt).unwrap().0.stress;
+            let sm = integrate_3d(&law, &el, &em, &first, dt).unwrap().0.stress;
+            for i in 0..6 {
+                let fd = (sp[i] - sm[i]) / (2.0 * h);
+                assert!(
+                    (c[i][j] - fd).abs() <= 1e-5 * 2e5,
+                    "C[{i}][{j}] = {} vs {fd}",
+                    c[i][j]
+                );
+            }
+        }
+        // Unloading from there is elastic: Hooke's tangent, VARI 2 = 0.
+        let (un, cu) = integrate_3d(
+            &law,
+            &el,
+            &[4e-3, -1.5e-3, -1e-3, 2e-3, 5e-4, -3e-4],
+            &st,
+            dt,
+        )
+        .unwrap();
+        assert!(!un.plastic && un.rate == [0.0, 0.0, dt, 0.0] && un.p == st.p);
+        assert_eq!(cu, elastic_3d(&el));
+    }
+
     /// The consistent tangent against centred finite differences of the
     /// stress, on a plastic increment with shear.
     fn check_tangent(law: &VonMises, hyp: Hypothesis) {
@@ -563,7 +798,7 @@ mod tests {
             -3e-4,
         ];
         let eps = &eps[..hyp.ncomp()];
-        let (st, c) = integrate(law, &el, hyp, eps, &prev, false).unwrap();
+        let (st, c) = integrate(law, &el, hyp, eps, &prev, false, 0.0).unwrap();
         assert!(st.plastic && st.p > prev.p);
         let h = 1e-9;
         for j in 0..hyp.ncomp() {
@@ -574,11 +809,11 @@ mod tests {
             let mut em = eps.to_vec();
             ep[j] += h;
             em[j] -= h;
-            let sp = integrate(law, &el, hyp, &ep, &prev, false)
+            let sp = integrate(law, &el, hyp, &ep, &prev, false, 0.0)
                 .unwrap()
                 .0
                 .stress;
-            let sm = integrate(law, &el, hyp, &em, &prev, false)
+            let sm = integrate(law, &el, hyp, &em, &prev, false, 0.0)
                 .unwrap()
                 .0
                 .stress;
@@ -633,6 +868,7 @@ mod tests {
                 &steel(),
                 &[eps, 0., 0., 0., 0., 0.],
                 &PointState::default(),
+                0.0,
             )
             .unwrap();
             let (_, q) = deviator(&st.stress);

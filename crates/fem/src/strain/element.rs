@@ -94,6 +94,8 @@ pub(crate) struct CellSetup<'a> {
     pub law: Option<&'a VonMises>,
     pub kinematics: Kinematics,
     pub geoms: &'a [PointGeom],
+    /// The step's duration (the rate-dependent laws').
+    pub dt: f64,
 }
 
 /// Internal forces (empty in prediction), tangent and new states of a cell.
@@ -197,10 +199,10 @@ pub(crate) fn behave(
             Ok((state, d))
         }
         (Some(law), Phase::Correction) => {
-            vmis::integrate(law, setup.elastic, hyp, &eps[..n], prev, false)
+            vmis::integrate(law, setup.elastic, hyp, &eps[..n], prev, false, setup.dt)
         }
         (Some(law), Phase::Prediction { elastic: false }) => {
-            vmis::integrate(law, setup.elastic, hyp, &eps[..n], prev, true)
+            vmis::integrate(law, setup.elastic, hyp, &eps[..n], prev, true, setup.dt)
         }
     }
 }
@@ -890,6 +892,7 @@ mod tests {
                         law,
                         kinematics: kin,
                         geoms: &g,
+                        dt: 0.0,
                     };
                     let nd = g[0].dn.len() * hyp.dim();
                     // A converged first step, then the increment tested

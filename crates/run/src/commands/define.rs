@@ -42,6 +42,15 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "ECRO_NL/RK",
     "ECRO_NL/P0",
     "ECRO_NL/GAMMA_M",
+    "ECRO_COOK",
+    "ECRO_COOK/A",
+    "ECRO_COOK/B",
+    "ECRO_COOK/C",
+    "ECRO_COOK/N_PUIS",
+    "ECRO_COOK/M_PUIS",
+    "ECRO_COOK/EPSP0",
+    "ECRO_COOK/TROOM",
+    "ECRO_COOK/TMELT",
     "THER",
     "THER/LAMBDA",
     "THER/RHO_CP",
@@ -104,7 +113,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let kw = &call.keywords;
     let thermal = ther(ex, kw)?;
     let Some(elas) = kw.factor("ELAS").first() else {
-        let mechanical = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL"];
+        let mechanical = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL", "ECRO_COOK"];
         if let (Some(thermal), None) = (
             thermal,
             mechanical.iter().find(|k| !kw.factor(k).is_empty()),
@@ -121,6 +130,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 traction: None,
                 lemaitre: None,
                 ecro_nl: None,
+                ecro_cook: None,
                 thermal: Some(thermal),
                 rupt_frag: None,
                 rupt_turon: None,
@@ -264,6 +274,43 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         None => None,
     };
+    let ecro_cook = match kw.factor("ECRO_COOK").first() {
+        Some(occ) => {
+            let req = |name: &str| {
+                occ.f64(name).ok_or_else(|| {
+                    ex.kw_error(
+                        "DEFI_MATERIAU/ECRO_COOK",
+                        occ,
+                        name,
+                        format!("{name} is required"),
+                    )
+                })
+            };
+            // nmtevp's defaults: without C, no rate term (C = 0, EPSP0 =
+            // 1); without M_PUIS, no thermal softening.
+            let c = aster_fem::JohnsonCook {
+                a: req("A")?,
+                b: req("B")?,
+                n: req("N_PUIS")?,
+                c: occ.f64("C").unwrap_or(0.0),
+                epsp0: if occ.f64("C").is_some() {
+                    occ.f64("EPSP0").unwrap_or(1.0)
+                } else {
+                    1.0
+                },
+                thermal: match (occ.f64("M_PUIS"), occ.f64("TROOM"), occ.f64("TMELT")) {
+                    (Some(m), Some(troom), Some(tmelt)) => Some((m, troom, tmelt)),
+                    _ => None,
+                },
+                resi_inte: 1e-6,
+                iter_maxi: 20,
+            };
+            aster_fem::VonMises::johnson_cook(c)
+                .map_err(|e| ex.kw_error("DEFI_MATERIAU/ECRO_COOK", occ, "A", e.to_string()))?;
+            Some(c)
+        }
+        None => None,
+    };
     let m = Material {
         elastic: true,
         young,
@@ -276,6 +323,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         traction,
         lemaitre,
         ecro_nl,
+        ecro_cook,
         thermal,
         rupt_frag: rupt_frag(ex, kw)?,
         rupt_turon: rupt_turon(ex, kw)?,

@@ -1,0 +1,61 @@
+//! `RELATION='VMIS_JOHN_COOK'` with `DEFI_MATERIAU/ECRO_COOK` on the
+//! project's scene `comm/johnson_cook_bar.comm`: a bar pulled at two strain
+//! rates then unloaded, in PETIT and GDEF_LOG, against the uniaxial
+//! recurrence of code_aster's `nmtevp` (solved by bisection in the command
+//! file), and the settings code_aster's law does not take refused.
+
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(comm: &str, name: &str) -> aster_run::program::Outcome {
+    let dir = std::env::temp_dir().join(format!("aster-jc-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join(format!("{name}.comm"));
+    std::fs::write(&file, comm).unwrap();
+    let mesh = root().join("comm/hexs8_beam.mail");
+    let case = aster_run::program::prepare(&file, Some(&mesh), &dir).unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(dir);
+    outcome
+}
+
+fn scene() -> String {
+    std::fs::read_to_string(root().join("comm/johnson_cook_bar.comm")).unwrap()
+}
+
+/// σ (SIXX, and T in GDEF_LOG), p, Δp, Δt, the dissipated power and the
+/// elastic unloading's indicator against the closed form to 1e-8.
+#[test]
+fn johnson_cook_bar_matches_the_uniaxial_recurrence() {
+    let outcome = run(&scene(), "bar");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (68, 0));
+}
+
+/// SIMO_MIEHE is not in the law's catalogue; DEKKER and SECANTE (zerofr's
+/// other methods) are not reproduced.
+#[test]
+fn johnson_cook_refuses_what_is_not_reproduced() {
+    let comm = scene().replace(
+        "RELATION=\"VMIS_JOHN_COOK\", ALGO_INTE=\"BRENT\"",
+        "RELATION=\"VMIS_JOHN_COOK\", DEFORMATION=\"SIMO_MIEHE\"",
+    );
+    let err = format!("{:?}", run(&comm, "sm").error.expect("SIMO_MIEHE refused"));
+    assert!(
+        err.contains("DEFORMATION='SIMO_MIEHE' with RELATION='VMIS_JOHN_COOK'"),
+        "{err}"
+    );
+    let comm = scene().replace("ALGO_INTE=\"BRENT\"", "ALGO_INTE=\"SECANTE\"");
+    let err = format!("{:?}", run(&comm, "sec").error.expect("SECANTE refused"));
+    assert!(err.contains("ALGO_INTE='SECANTE'"), "{err}");
+    // Without ECRO_COOK in the material: named.
+    let comm = scene().replace(
+        ", ECRO_COOK=_F(A=A, B=B, N_PUIS=N, C=C, EPSP0=EPSP0)",
+        ", ECRO_LINE=_F(SY=A, D_SIGM_EPSI=1000.0)",
+    );
+    let err = format!("{:?}", run(&comm, "mat").error.expect("ECRO_COOK missing"));
+    assert!(err.contains("needs ECRO_COOK"), "{err}");
+}
