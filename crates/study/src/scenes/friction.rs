@@ -256,11 +256,9 @@ impl Scene for Friction {
 
     fn run(&self, p: &Point) -> Result<Measures, Failure> {
         let other = |m: String| Failure::new(FailureKind::Other, m);
-        if !p.method.family().is_frictional() {
-            // Checked before anything is built: the message names the
-            // families the scene runs.
-            self.definition(p)?;
-        }
+        // First, before anything is built: a frictionless method is
+        // refused there, with the families the scene runs.
+        let def = self.definition(p)?;
         if p.coulomb <= 0.0 {
             return Err(Failure::new(
                 FailureKind::Unsupported,
@@ -277,7 +275,6 @@ impl Scene for Friction {
         let mesh = two_plates_mesh(n, n + 1).map_err(|e| other(e.to_string()))?;
         let (model, loads) = two_plates_shear_problem(widened(mesh, self.shear)?, self.shear, true)
             .map_err(|e| other(e.to_string()))?;
-        let def = self.definition(p)?;
         let mut friction = source(&def, &model)?;
         let mut instants = vec![0.0, 1.0];
         instants.extend((1..=p.steps).map(|i| 1.0 + i as f64 / p.steps as f64));
