@@ -406,6 +406,19 @@ fn elastic_3d(el: &Elastic) -> Mat6 {
 }
 
 /// Deviator of a stress and its von Mises norm q = √(3/2 s:s).
+/// The elastic trial stress D (ε − εᵖ) of a 3D point.
+fn elastic_trial(d: &Mat6, eps: &[f64; 6], plastic: &[f64; 6]) -> [f64; 6] {
+    let mut ee = [0.0; 6];
+    for i in 0..6 {
+        ee[i] = eps[i] - plastic[i];
+    }
+    let mut trial = [0.0; 6];
+    for i in 0..6 {
+        trial[i] = (0..6).map(|j| d[i][j] * ee[j]).sum();
+    }
+    trial
+}
+
 fn deviator(s: &[f64; 6]) -> ([f64; 6], f64) {
     let m = (s[0] + s[1] + s[2]) / 3.;
     let d = [s[0] - m, s[1] - m, s[2] - m, s[3], s[4], s[5]];
@@ -452,14 +465,7 @@ pub fn integrate_3d(
     }
     let d = elastic_3d(el);
     let (_, mu) = lame(el);
-    let mut ee = [0.0; 6];
-    for i in 0..6 {
-        ee[i] = eps[i] - prev.plastic_strain[i];
-    }
-    let mut trial = [0.0; 6];
-    for i in 0..6 {
-        trial[i] = (0..6).map(|j| d[i][j] * ee[j]).sum();
-    }
+    let trial = elastic_trial(&d, eps, &prev.plastic_strain);
     let (s, q) = deviator(&trial);
     let (r, _) = law.yield_stress(prev.p)?;
     if q - r <= law.elastic_tolerance() {
@@ -531,14 +537,7 @@ fn johnson_cook_3d(
 ) -> Result<(PointState, Mat6), FemError> {
     let d = elastic_3d(el);
     let (_, mu) = lame(el);
-    let mut ee = [0.0; 6];
-    for i in 0..6 {
-        ee[i] = eps[i] - prev.plastic_strain[i];
-    }
-    let mut trial = [0.0; 6];
-    for i in 0..6 {
-        trial[i] = (0..6).map(|j| d[i][j] * ee[j]).sum();
-    }
+    let trial = elastic_trial(&d, eps, &prev.plastic_strain);
     let mean = (trial[0] + trial[1] + trial[2]) / 3.;
     let (s, q) = deviator(&trial);
     let (r_test, _) = jc.flow_stress(prev.p, prev.rate[1], prev.rate[2], None);
