@@ -649,7 +649,7 @@ impl StaticNonLinear<'_> {
         let mut srcs: Vec<Option<SourceRows>> = (0..self.sources.len()).map(|_| None).collect();
         let mut checked_held = false;
         let mut t_prev = t0;
-        for (step_no, &t) in times.iter().enumerate() {
+        for &t in times.iter() {
             if linear {
                 u.iter_mut().for_each(|v| *v = 0.0);
             }
@@ -659,8 +659,7 @@ impl StaticNonLinear<'_> {
             // instants still to reach, the next on top, with their level.
             let mut pending: Vec<(f64, usize)> = vec![(t, 0)];
             let mut from = t_prev;
-            let mut step = None;
-            let mut unil: Option<Vec<Vec<RowOutcome>>> = None;
+            let mut converged = false;
             while let Some(&(target, level)) = pending.last() {
                 let saved = (u.clone(), srcs.clone(), own.clone());
                 if let Some(pc) = plastic.as_mut() {
@@ -928,8 +927,46 @@ impl StaticNonLinear<'_> {
                                 },
                             );
                         }
-                        unil = Some(outcomes);
-                        step = Some(outcome);
+                        // Every converged increment is a step of the
+                        // result, the pieces of a cut one too: code_aster
+                        // inserts them in its list of instants and archives
+                        // them (`dinuar`), so they shift the NUME_ORDRE of
+                        // the steps after them.
+                        let (
+                            iterations,
+                            lambdas,
+                            resi_rela,
+                            resi_maxi,
+                            residual_history,
+                            newton_iterations,
+                        ) = outcome;
+                        let mut stress = post::sief_elga(model, &u)?;
+                        loads.subtract_free_strain(model, target, &mut stress)?;
+                        let internal_variables = match &plastic {
+                            Some(pc) => pc.fields(&mut stress),
+                            None => Vec::new(),
+                        };
+                        steps.push(Step {
+                            nume_ordre: self.first_order + steps.len(),
+                            time: target,
+                            displacement: u.clone(),
+                            stress,
+                            internal_variables,
+                            multipliers: lambdas.0,
+                            unilateral: outcomes,
+                            iterations,
+                            newton_iterations,
+                            resi_glob_rela: resi_rela,
+                            resi_glob_maxi: resi_maxi,
+                            residual_history,
+                            motion: self.dynamics.as_ref().map(|d| d.motion()),
+                            own_unknowns: own.clone(),
+                        });
+                        crate::progress::emit(crate::progress::Event::Converged {
+                            time: target,
+                            iterations: newton_iterations,
+                        });
+                        converged = true;
                     }
                     Err(e) => {
                         // DEFI_LIST_INST/ECHEC (EVENEMENT='ERREUR'): a
@@ -1004,40 +1041,11 @@ impl StaticNonLinear<'_> {
                 }
             }
             t_prev = t;
-            let Some(step) = step else {
+            if !converged {
                 return Err(FemError::Model(format!(
                     "no increment computed to time {t}"
                 )));
-            };
-            let (iterations, lambdas, resi_rela, resi_maxi, residual_history, newton_iterations) =
-                step;
-            let unil = unil.unwrap_or_default();
-            let mut stress = post::sief_elga(model, &u)?;
-            loads.subtract_free_strain(model, t, &mut stress)?;
-            let internal_variables = match &plastic {
-                Some(pc) => pc.fields(&mut stress),
-                None => Vec::new(),
-            };
-            steps.push(Step {
-                nume_ordre: self.first_order + step_no + usize::from(!linear),
-                time: t,
-                displacement: u.clone(),
-                stress,
-                internal_variables,
-                multipliers: lambdas.0,
-                unilateral: unil,
-                iterations,
-                newton_iterations,
-                resi_glob_rela: resi_rela,
-                resi_glob_maxi: resi_maxi,
-                residual_history,
-                motion: self.dynamics.as_ref().map(|d| d.motion()),
-                own_unknowns: own.clone(),
-            });
-            crate::progress::emit(crate::progress::Event::Converged {
-                time: t,
-                iterations: newton_iterations,
-            });
+            }
         }
         let final_state = plastic.as_ref().and_then(|pc| {
             steps
@@ -1228,6 +1236,10 @@ fn newton_step(
         let mut history: Vec<Vec<Vec<bool>>> = Vec::new();
         let mut newton_iter = 0usize;
         let mut set_changes = 0usize;
+        // code_aster's count of contact loops (`mmbouc 'Cont'`) of a
+        // source whose contact loop is outside Newton (POINT_FIXE): the
+        // status evaluations at a converged Newton since the last pairing.
+        let mut contact_loops = 0usize;
         // Geometric re-pairings of the increment (progress reports).
         let mut pairings = 0usize;
         let name = |i: usize| -> String {
@@ -1598,6 +1610,9 @@ fn newton_step(
             // A source whose contact loop is outside Newton (POINT_FIXE)
             // starts Newton's count again when its active set changes.
             let mut restart = false;
+            // A status of a source with its contact loop outside Newton
+            // changed (its rows or its augmented points).
+            let mut loop_status_changed = false;
             for (s_no, sr) in srcs.iter_mut().enumerate() {
                 let Some(sr) = sr else {
                     src_lam.push(Vec::new());
@@ -1639,6 +1654,7 @@ fn newton_step(
                     if now != sr.active[r] {
                         changed = true;
                         restart |= sr.outer.status_restarts;
+                        loop_status_changed |= sr.outer.status_restarts;
                         if !now {
                             let score = match sr.method {
                                 UnilateralMethod::ActiveSet => lam[r] / force_scale,
@@ -1661,9 +1677,27 @@ fn newton_step(
                     if now != a.on {
                         a.on = now;
                         changed = true;
+                        loop_status_changed |= sr.outer.status_restarts;
                     }
                 }
                 src_lam.push(lam);
+            }
+            // code_aster's flip rule for a contact loop outside Newton
+            // (ALGO_RESO_CONT='POINT_FIXE'): see [`flip_ends_contact_loop`].
+            // The new statuses are kept for what follows.
+            if changed && loop_status_changed && converged_resi {
+                contact_loops += 1;
+                let loops = srcs
+                    .iter()
+                    .flatten()
+                    .zip(&src_lam)
+                    .filter(|(sr, _)| sr.outer.status_restarts)
+                    .map(|(_, lam)| lam.as_slice());
+                if flip_ends_contact_loop(contact_loops, loops) {
+                    changed = false;
+                }
+            } else if converged_resi && !changed {
+                contact_loops += 1;
             }
             // Releasing every row in tension at once may leave the model
             // unheld (a body resting on its supports): then release only the
@@ -1744,6 +1778,7 @@ fn newton_step(
                     }
                 }
                 if changed {
+                    contact_loops = 0;
                     pairing_start = outer;
                     pairings += 1;
                     // New rows: the active sets seen with the previous
@@ -1817,6 +1852,33 @@ fn newton_step(
             }
         }
     }
+}
+
+/// code_aster's flip rule (`nmctcc` with `mm_cycl_flip` and
+/// `mm_cycl_d4`) for a contact loop outside Newton
+/// (ALGO_RESO_CONT='POINT_FIXE' of the continuous formulation): from the
+/// second loop on (`loop_cont_count` ≥ 2), a loop whose statuses changed
+/// is declared converged when some point's pressure is near zero
+/// (|λ| ≤ 1e-3 × the shortest edge; an inactive point's is 0: that is the
+/// test here) and `resi_pressure` < 1e-4 × `cont_pressure`. code_aster
+/// measures `resi_pressure`, each point's change of pressure, against
+/// 1e12 × the number of points × the longest edge, so the second test
+/// holds whenever some pressure is non-zero (`cont_pressure`, the mean
+/// pressure of the points in contact, is then positive). `pressures`: the
+/// multipliers of each such source's rows after the solve.
+fn flip_ends_contact_loop<'a>(
+    contact_loops: usize,
+    pressures: impl Iterator<Item = &'a [f64]>,
+) -> bool {
+    if contact_loops < 2 {
+        return false;
+    }
+    let (mut near_zero, mut some_pressure) = (false, false);
+    for lam in pressures {
+        near_zero |= lam.contains(&0.0);
+        some_pressure |= lam.iter().any(|&l| l != 0.0);
+    }
+    near_zero && some_pressure
 }
 
 /// RECH_LINEAIRE on the correction `delta` from `u` (unchanged on
@@ -2275,4 +2337,32 @@ fn make_rows(
         aug,
         tracked: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::flip_ends_contact_loop;
+
+    #[test]
+    fn the_flip_rule_ends_a_contact_loop_from_its_second_pass_only() {
+        // A point out of contact (λ = 0) beside one pressed: from the
+        // second loop on, a change of statuses ends the loop.
+        let zone = [0.0, 3.5, 0.0];
+        assert!(!flip_ends_contact_loop(1, [&zone[..]].into_iter()));
+        assert!(flip_ends_contact_loop(2, [&zone[..]].into_iter()));
+        assert!(flip_ends_contact_loop(7, [&zone[..]].into_iter()));
+        // Every point pressed: no point near zero, the loop goes on.
+        let pressed = [1.0, 3.5, 2.0];
+        assert!(!flip_ends_contact_loop(3, [&pressed[..]].into_iter()));
+        // No pressure at all (code_aster's cont_pressure = 0): goes on.
+        let open = [0.0, 0.0];
+        assert!(!flip_ends_contact_loop(3, [&open[..]].into_iter()));
+        // Over the zones: one open, one pressed.
+        assert!(flip_ends_contact_loop(
+            2,
+            [&open[..], &pressed[..]].into_iter()
+        ));
+        // No source with its contact loop outside Newton.
+        assert!(!flip_ends_contact_loop(5, std::iter::empty()));
+    }
 }

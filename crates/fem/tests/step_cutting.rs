@@ -84,22 +84,32 @@ fn an_elastic_increment_that_fails_whole_converges_cut_in_four() {
     let err = whole.map(|_| ()).unwrap_err();
     assert!(matches!(err, FemError::ActiveSet { .. }), "{err}");
     // …cut in four (code_aster's default SUBD_PAS = 4) each piece of 0.25
-    // settles; only the asked instants are stored, the sources hear of
-    // every converged piece.
+    // settles; every piece is a step of the result, numbered in order
+    // (code_aster inserts them in its list of instants and archives them,
+    // `dinuar`), and the sources hear of every converged piece.
     let (cut, pieces) = solve(&[0., 1.], 0.3, Some(Subdivision::default()));
     let cut = cut.expect("converges once cut");
     assert_eq!(
         cut.steps.iter().map(|s| s.time).collect::<Vec<_>>(),
-        vec![0., 1.]
+        vec![0., 0.25, 0.5, 0.75, 1.]
+    );
+    assert_eq!(
+        cut.steps.iter().map(|s| s.nume_ordre).collect::<Vec<_>>(),
+        vec![0, 1, 2, 3, 4]
     );
     assert_eq!(pieces, vec![0.25, 0.5, 0.75, 1.0]);
-    // Linear elasticity: the same state as the quarters listed.
+    // Linear elasticity: step by step the same states as the quarters
+    // listed.
     let (listed, _) = solve(&[0., 0.25, 0.5, 0.75, 1.], 0.3, None);
     let listed = listed.expect("quarters converge");
-    let (a, b) = (cut.last().unwrap(), listed.last().unwrap());
-    for (x, y) in a.displacement.iter().zip(&b.displacement) {
-        assert!((x - y).abs() <= 1e-14, "{x} vs {y}");
+    assert_eq!(cut.steps.len(), listed.steps.len());
+    for (a, b) in cut.steps.iter().zip(&listed.steps) {
+        assert_eq!((a.time, a.nume_ordre), (b.time, b.nume_ordre));
+        for (x, y) in a.displacement.iter().zip(&b.displacement) {
+            assert!((x - y).abs() <= 1e-14, "{x} vs {y}");
+        }
     }
+    let a = cut.last().unwrap();
     assert!((a.displacement.iter().fold(0.0f64, |m, v| m.max(v.abs())) - 0.01).abs() < 1e-15);
 }
 

@@ -455,9 +455,6 @@ pub(crate) fn parse_setup(
     let behaviours = parse_behaviours(ex, cmd, kw, &model)?;
     crate::commands::substructure::check_behaviours(ex, call, &own_model, &behaviours)?;
     crate::shells::check_solve(ex, call, &model, &behaviours)?;
-    if let Some(c) = &contact {
-        check_contact_with_finite_strains(ex, c, &behaviours)?;
-    }
     let mut newton = NewtonSettings::default();
     if let Some(conv) = kw.factor("CONVERGENCE").first() {
         let rela = conv.f64("RESI_GLOB_RELA");
@@ -786,54 +783,6 @@ fn parse_behaviours(
         });
     }
     Ok(out)
-}
-
-/// Continuous contact with a geometric loop cut at `NB_ITER_GEOM` passes
-/// (`ALGO_RESO_GEOM='POINT_FIXE'`, `REAC_GEOM='CONTROLE'`) under finite
-/// strains with an elasto-plastic law is refused. The loop itself is
-/// code_aster's under finite strains too: each pass restarts the step from
-/// its start (docs/contact.md, "Fixed-point passes restart the step"), and
-/// with `ELAS` ssnv505d/e match code_aster to 5e-10. With
-/// `VMIS_ISOT_TRAC`/`VMIS_ISOT_LINE` under `SIMO_MIEHE` (ssnv501c, two
-/// zones) the analysis runs to its end (it diverged at t = 0.73 while the
-/// cycling treatment counted code_aster's Newton iterations from the
-/// step's start instead of the pass's) but its DY values are 4–23 % off
-/// code_aster's: not located.
-fn check_contact_with_finite_strains(
-    ex: &Executor,
-    contact: &ContactDef,
-    behaviours: &[BehaviourOcc],
-) -> Result<(), ExecError> {
-    let ContactDef::Zones { keywords, .. } = contact else {
-        return Ok(());
-    };
-    let Some(finite) = behaviours
-        .iter()
-        .find(|b| b.kinematics != aster_fem::Kinematics::Small && b.relation != Relation::Elas)
-    else {
-        return Ok(());
-    };
-    let continuous = keywords.str("FORMULATION") == Some("CONTINUE");
-    let lac = keywords
-        .factor("ZONE")
-        .iter()
-        .any(|z| z.str("ALGO_CONT") == Some("LAC"));
-    let fixed_point = keywords.str("ALGO_RESO_GEOM").unwrap_or("POINT_FIXE") == "POINT_FIXE";
-    if continuous && !lac && fixed_point && keywords.str("REAC_GEOM") == Some("CONTROLE") {
-        let span = keywords
-            .keyword("REAC_GEOM")
-            .map(|k| k.span)
-            .unwrap_or_default();
-        return Err(ex.unsupported(
-            &format!(
-                "DEFI_CONTACT/REAC_GEOM='CONTROLE' with FORMULATION='CONTINUE' and ALGO_RESO_GEOM='POINT_FIXE' under DEFORMATION='{}' with RELATION='{}' (validated with ELAS only: with an elasto-plastic law under finite strains ssnv501c runs to its end 4 to 23 % off code_aster's displacements, not located)",
-                finite.kinematics.aster_name(),
-                finite.relation.keyword()
-            ),
-            span,
-        ));
-    }
-    Ok(())
 }
 
 /// MECA_STATIQUE: one step at INST (default 0), or the instants of LIST_INST.

@@ -42,6 +42,15 @@ fn the_cut_increment_passes_the_checks_of_the_listed_pieces() {
         "times = DEFI_LIST_REEL(VALE=(0.0, 0.25, 0.5, 0.75, 1.0))",
     )]);
     assert_eq!(run(&listed, "listed"), (3, 0, None));
+    // Every piece of the cut increment is archived, as code_aster does
+    // (`dinuar`): t = 1 is the fourth step after the initial state in both.
+    for (text, tag) in [(scene(), "cut-nume"), (listed, "listed-nume")] {
+        let by_number = text.replace("INST=1.0, RESULTAT=resu", "NUME_ORDRE=4, RESULTAT=resu");
+        assert_ne!(by_number, text);
+        assert_eq!(run(&by_number, tag), (3, 0, None));
+        let past_the_end = text.replace("INST=1.0, RESULTAT=resu", "NUME_ORDRE=5, RESULTAT=resu");
+        assert!(run(&past_the_end, &format!("{tag}-5")).2.is_some());
+    }
 }
 
 #[test]
