@@ -82,6 +82,32 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "INFO",
 ]);
 
+/// The blocks of the plastic and viscoplastic laws (isotropic, on ELAS).
+const PLASTIC_BLOCKS: [&str; 5] = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL", "ECRO_COOK"];
+
+/// A material without `ELAS` (its E and NU NaN), no law, conduction
+/// `thermal`: what a thermal or orthotropic material starts from.
+fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> Material {
+    Material {
+        elastic: false,
+        young: f64::NAN,
+        poisson: f64::NAN,
+        density: None,
+        alpha: None,
+        amor_alpha: None,
+        amor_beta: None,
+        ecro_line: None,
+        traction: None,
+        lemaitre: None,
+        ecro_nl: None,
+        ecro_cook: None,
+        thermal,
+        rupt_frag: None,
+        rupt_turon: None,
+        orthotropic: None,
+    }
+}
+
 /// `DEFI_MATERIAU/ELAS_ORTH`: the orthotropic moduli (in the material
 /// frame, the cells' `AFFE_CARA_ELEM/MASSIF` one given at the model) and
 /// the density. The optional moduli code_aster's elements still read
@@ -96,10 +122,7 @@ fn elas_orth(
         return Ok(None);
     };
     let at = "DEFI_MATERIAU/ELAS_ORTH";
-    if let Some(k) = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL", "ECRO_COOK"]
-        .iter()
-        .find(|k| !kw.factor(k).is_empty())
-    {
+    if let Some(k) = PLASTIC_BLOCKS.iter().find(|k| !kw.factor(k).is_empty()) {
         let span = kw.keyword(k).map(|k| k.span).unwrap_or_default();
         return Err(ex.unsupported(
             &format!("DEFI_MATERIAU/{k} with ELAS_ORTH (the plastic laws here are isotropic)"),
@@ -171,48 +194,20 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     if let (Some((o, density)), None) = (orthotropic, kw.factor("ELAS").first()) {
         let m = Material {
             elastic: true,
-            young: f64::NAN,
-            poisson: f64::NAN,
             density,
-            alpha: None,
-            amor_alpha: None,
-            amor_beta: None,
-            ecro_line: None,
-            traction: None,
-            lemaitre: None,
-            ecro_nl: None,
-            ecro_cook: None,
-            thermal,
             rupt_frag: rupt_frag(ex, kw)?,
             rupt_turon: rupt_turon(ex, kw)?,
             orthotropic: Some(o),
+            ..without_elas(thermal)
         };
         return store_result(ex, call, Concept::Material(Rc::new(m)));
     }
     let Some(elas) = kw.factor("ELAS").first() else {
-        let mechanical = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL", "ECRO_COOK"];
         if let (Some(thermal), None) = (
             thermal,
-            mechanical.iter().find(|k| !kw.factor(k).is_empty()),
+            PLASTIC_BLOCKS.iter().find(|k| !kw.factor(k).is_empty()),
         ) {
-            let m = Material {
-                elastic: false,
-                young: f64::NAN,
-                poisson: f64::NAN,
-                density: None,
-                alpha: None,
-                amor_alpha: None,
-                amor_beta: None,
-                ecro_line: None,
-                traction: None,
-                lemaitre: None,
-                ecro_nl: None,
-                ecro_cook: None,
-                thermal: Some(thermal),
-                rupt_frag: None,
-                rupt_turon: None,
-                orthotropic: None,
-            };
+            let m = without_elas(Some(thermal));
             return store_result(ex, call, Concept::Material(Rc::new(m)));
         }
         return Err(ExecError::new(
