@@ -228,7 +228,7 @@ mod tests {
     use super::*;
 
     fn steel() -> Elastic {
-        Elastic { e: 2e11, nu: 0.3 }
+        Elastic::new(2e11, 0.3).unwrap()
     }
 
     #[test]

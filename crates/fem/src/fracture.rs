@@ -198,6 +198,15 @@ fn theta_is_zero(cell: &PlaneCell) -> bool {
         .all(|t| t[0].abs() + t[1].abs() < f64::EPSILON)
 }
 
+/// The theta method's closed forms are the isotropic law's.
+fn isotropic(material: &crate::material::Elastic) -> Result<(), String> {
+    if material.is_isotropic() {
+        Ok(())
+    } else {
+        Err("the energy release rate of an orthotropic material (ELAS_ORTH) is not computed: the theta method here is the isotropic law's".into())
+    }
+}
+
 /// G by the theta method on linear elastic cells (`te0096`, elastic,
 /// small strains): Σ w det J (σᵢₖ ∂uᵢ/∂xₘ ∂θₘ/∂xₖ − W div θ).
 pub fn g_theta(cells: &[PlaneCell]) -> Result<f64, String> {
@@ -206,6 +215,7 @@ pub fn g_theta(cells: &[PlaneCell]) -> Result<f64, String> {
         if theta_is_zero(cell) {
             continue;
         }
+        isotropic(&cell.material)?;
         let (e, nu) = (cell.material.e, cell.material.nu);
         let mu = e / (2.0 * (1.0 + nu));
         let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
@@ -380,6 +390,7 @@ pub fn k_theta(cells: &[PlaneCell], tip: &CrackTip) -> Result<KIntegrals, String
         if theta_is_zero(cell) {
             continue;
         }
+        isotropic(&cell.material)?;
         let (e, nu) = (cell.material.e, cell.material.nu);
         let c3 = e / (2.0 * (1.0 + nu));
         let mu = c3;

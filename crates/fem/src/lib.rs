@@ -42,6 +42,7 @@ pub mod model;
 pub mod newton_timing;
 pub mod nonlinear;
 pub mod ordering;
+pub mod orthotropic;
 mod parallel;
 pub mod post;
 pub mod progress;

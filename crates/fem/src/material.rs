@@ -1,4 +1,5 @@
-//! Isotropic linear elasticity and the modelling hypotheses.
+//! Linear elasticity (isotropic, or orthotropic through
+//! [`crate::orthotropic`]) and the modelling hypotheses.
 
 use crate::error::FemError;
 use nalgebra::DMatrix;
@@ -53,11 +54,15 @@ impl Hypothesis {
     }
 }
 
-/// Isotropic linear elastic material (`DEFI_MATERIAU(ELAS=_F(E, NU))`).
+/// Linear elastic material: isotropic (`DEFI_MATERIAU(ELAS=_F(E, NU))`)
+/// or orthotropic (`ELAS_ORTH`, in its frame): then `e` and `nu` are NaN
+/// (the isotropic laws and elements built on them refuse such a material
+/// before solving: [`Elastic::is_isotropic`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Elastic {
     pub e: f64,
     pub nu: f64,
+    pub orthotropic: Option<crate::orthotropic::Orthotropic>,
 }
 
 impl Elastic {
@@ -72,14 +77,37 @@ impl Elastic {
                 "Poisson's ratio NU must lie in (-1, 0.5), got {nu}"
             )));
         }
-        Ok(Elastic { e, nu })
+        Ok(Elastic {
+            e,
+            nu,
+            orthotropic: None,
+        })
+    }
+
+    /// An orthotropic material (checked by
+    /// [`crate::orthotropic::Orthotropic::validate`]).
+    pub fn orthotropic(o: crate::orthotropic::Orthotropic) -> Result<Elastic, FemError> {
+        Ok(Elastic {
+            e: f64::NAN,
+            nu: f64::NAN,
+            orthotropic: Some(o.validate()?),
+        })
+    }
+
+    /// Whether the material is isotropic (E, NU).
+    pub fn is_isotropic(&self) -> bool {
+        self.orthotropic.is_none()
     }
 
     /// Hooke's matrix in Voigt notation (engineering shear strains) for the
     /// hypothesis: 4×4 on (xx, yy, zz, xy) in 2D, 6×6 on
     /// (xx, yy, zz, xy, xz, yz) in 3D. In plane stress the zz row and column
     /// are zero (σzz = 0, εzz is not a kinematic unknown).
+    /// An orthotropic material's is turned from its frame to the global axes.
     pub fn hooke(&self, hyp: Hypothesis) -> DMatrix<f64> {
+        if let Some(o) = &self.orthotropic {
+            return o.hooke(hyp);
+        }
         let (e, nu) = (self.e, self.nu);
         let mu = e / (2. * (1. + nu));
         let lambda = e * nu / ((1. + nu) * (1. - 2. * nu));

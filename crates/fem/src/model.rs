@@ -225,6 +225,14 @@ impl Model {
                     }
                 }
                 ElementKind::Boundary => {}
+                ElementKind::Shell { material, .. } | ElementKind::Beam { material, .. }
+                    if !material.is_isotropic() =>
+                {
+                    return Err(FemError::Model(format!(
+                        "cell {} is a shell or beam element with an orthotropic material (ELAS_ORTH): their sections are the isotropic law's",
+                        cell_name(el.cell)
+                    )));
+                }
                 ElementKind::Shell { section, .. } => {
                     if !matches!(cell.ty, CellType::TRIA3 | CellType::QUAD4) {
                         return Err(FemError::Model(format!(

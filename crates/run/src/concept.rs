@@ -202,7 +202,7 @@ impl ModelDef {
     }
 }
 
-/// `DEFI_MATERIAU(ELAS=…)`.
+/// `DEFI_MATERIAU(ELAS=…)` or `DEFI_MATERIAU(ELAS_ORTH=…)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// `ELAS` given (a material with `THER` alone has no elasticity: its
@@ -237,6 +237,10 @@ pub struct Material {
     pub rupt_frag: Option<RuptFrag>,
     /// `RUPT_TURON=_F(…)` (for `CZM_TURON`).
     pub rupt_turon: Option<aster_fem::cohesive::Turon>,
+    /// `ELAS_ORTH=_F(…)` in place of `ELAS` (then `young` and `poisson`
+    /// are NaN); its frame (`angles`) is the cells' AFFE_CARA_ELEM/MASSIF
+    /// one, set by the model.
+    pub orthotropic: Option<aster_fem::orthotropic::Orthotropic>,
 }
 
 /// `RUPT_FRAG`: the cohesive parameters of `CZM_LIN_REG` as given
@@ -375,6 +379,9 @@ pub struct CaraElem {
     pub masses: Vec<DiscreteMassDef>,
     /// `POUTRE`: the beams' sections.
     pub beams: Vec<crate::commands::cara_poutre::BeamCara>,
+    /// `MASSIF`: the material frames of continuum cells (orthotropic
+    /// materials).
+    pub massif: Vec<crate::commands::cara_massif::MassifFrame>,
 }
 
 /// An imposed component value on a node.

@@ -143,6 +143,16 @@ pub fn build_model(
             }
         }
     }
+    // AFFE_CARA_ELEM/MASSIF: the material frames (a later occurrence
+    // replaces an earlier one; the global frame elsewhere).
+    let mut frames: BTreeMap<aster_mesh::CellId, [f64; 3]> = BTreeMap::new();
+    if let Some(c) = cara {
+        for f in &c.massif {
+            for &cell in &f.cells {
+                frames.insert(cell, f.angles);
+            }
+        }
+    }
     let material_of = |cell: aster_mesh::CellId| -> Result<Elastic, ExecError> {
         let mat = materials.cells.get(&cell).ok_or_else(|| {
             ExecError::new(format!(
@@ -155,6 +165,16 @@ pub fn build_model(
                 "the material of cell {} has no ELAS (a thermal material, THER alone): a mechanical model needs E and NU",
                 crate::select::cell_name(mesh, cell)
             )));
+        }
+        if let Some(o) = mat.orthotropic {
+            let angles = frames.get(&cell).copied().unwrap_or([0.0; 3]);
+            return Elastic::orthotropic(aster_fem::orthotropic::Orthotropic { angles, ..o })
+                .map_err(|e| {
+                    ExecError::new(format!(
+                        "DEFI_MATERIAU: the material of cell {}: {e}",
+                        crate::select::cell_name(mesh, cell)
+                    ))
+                });
         }
         Elastic::new(mat.young, mat.poisson).map_err(|e| fem_err("DEFI_MATERIAU", e))
     };
@@ -305,6 +325,21 @@ pub fn build_behaviours(
                 .collect(),
         };
         for cell in cells.into_iter().filter(|c| last.get(c) == Some(&k)) {
+            let orthotropic = materials
+                .cells
+                .get(&cell)
+                .is_some_and(|m| m.orthotropic.is_some());
+            if orthotropic
+                && (occ.relation != Relation::Elas
+                    || occ.kinematics != aster_fem::Kinematics::Small)
+            {
+                return Err(ExecError::new(format!(
+                    "not supported yet: COMPORTEMENT RELATION='{}' DEFORMATION='{}' on cell {}, whose material is orthotropic (ELAS_ORTH): it is elastic in small strains only here (RELATION='ELAS', DEFORMATION='PETIT'); the other laws and kinematics are isotropic",
+                    occ.relation.keyword(),
+                    occ.kinematics.aster_name(),
+                    crate::select::cell_name(mesh, cell)
+                )));
+            }
             if occ.relation == Relation::Elas {
                 out.assign_with(cell, None, occ.kinematics);
                 continue;

@@ -134,6 +134,12 @@ impl PlasticCells {
             else {
                 continue;
             };
+            if !material.is_isotropic() {
+                return Err(FemError::Model(format!(
+                    "cell {}: an orthotropic material (ELAS_ORTH) is elastic in small strains only; its behaviours and large-strain kinematics are the isotropic law's here",
+                    model.cell_name(el.cell)
+                )));
+            }
             let gauss = model_gauss(model, el.cell, *hypothesis).map_err(|m| {
                 FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
             })?;

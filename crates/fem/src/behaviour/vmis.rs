@@ -229,7 +229,7 @@ impl VonMises {
     /// Young's modulus if it has one.
     pub fn elastic(&self, el: &Elastic) -> Elastic {
         match self.young {
-            Some(e) => Elastic { e, nu: el.nu },
+            Some(e) => Elastic { e, ..*el },
             None => *el,
         }
     }

@@ -10,7 +10,7 @@ use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use std::collections::BTreeMap;
 use std::rc::Rc;
 
-fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
+pub(super) fn reals(kw: &Keywords, name: &str) -> Vec<f64> {
     kw.simple(name).iter().filter_map(|s| s.as_f64()).collect()
 }
 
@@ -68,8 +68,86 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "RUPT_TURON/C_RUPT",
     "RUPT_TURON/ETA_BK",
     "RUPT_TURON/CRIT_INIT",
+    "ELAS_ORTH",
+    "ELAS_ORTH/E_L",
+    "ELAS_ORTH/E_T",
+    "ELAS_ORTH/E_N",
+    "ELAS_ORTH/NU_LT",
+    "ELAS_ORTH/NU_LN",
+    "ELAS_ORTH/NU_TN",
+    "ELAS_ORTH/G_LT",
+    "ELAS_ORTH/G_LN",
+    "ELAS_ORTH/G_TN",
+    "ELAS_ORTH/RHO",
     "INFO",
 ]);
+
+/// The blocks of the plastic and viscoplastic laws (isotropic, on ELAS).
+const PLASTIC_BLOCKS: [&str; 5] = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL", "ECRO_COOK"];
+
+/// A material without `ELAS` (its E and NU NaN), no law, conduction
+/// `thermal`: what a thermal or orthotropic material starts from.
+fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> Material {
+    Material {
+        elastic: false,
+        young: f64::NAN,
+        poisson: f64::NAN,
+        density: None,
+        alpha: None,
+        amor_alpha: None,
+        amor_beta: None,
+        ecro_line: None,
+        traction: None,
+        lemaitre: None,
+        ecro_nl: None,
+        ecro_cook: None,
+        thermal,
+        rupt_frag: None,
+        rupt_turon: None,
+        orthotropic: None,
+    }
+}
+
+/// `DEFI_MATERIAU/ELAS_ORTH`: the orthotropic moduli (in the material
+/// frame, the cells' `AFFE_CARA_ELEM/MASSIF` one given at the model) and
+/// the density. The optional moduli code_aster's elements still read
+/// (E_N, NU_LN, NU_TN, G_LN, G_TN) are NaN when absent: the model refuses
+/// them, naming the missing one. The plastic laws of this crate are
+/// isotropic: with ELAS_ORTH they are refused.
+fn elas_orth(
+    ex: &Executor,
+    kw: &Keywords,
+) -> Result<Option<(aster_fem::orthotropic::Orthotropic, Option<f64>)>, ExecError> {
+    let Some(occ) = kw.factor("ELAS_ORTH").first() else {
+        return Ok(None);
+    };
+    let at = "DEFI_MATERIAU/ELAS_ORTH";
+    if let Some(k) = PLASTIC_BLOCKS.iter().find(|k| !kw.factor(k).is_empty()) {
+        let span = kw.keyword(k).map(|k| k.span).unwrap_or_default();
+        return Err(ex.unsupported(
+            &format!("DEFI_MATERIAU/{k} with ELAS_ORTH (the plastic laws here are isotropic)"),
+            span,
+        ));
+    }
+    let req = |name: &str| {
+        occ.f64(name)
+            .ok_or_else(|| ex.kw_error(at, occ, name, format!("{name} is required")))
+    };
+    let opt = |name: &str| occ.f64(name).unwrap_or(f64::NAN);
+    let o = aster_fem::orthotropic::Orthotropic {
+        e_l: req("E_L")?,
+        e_t: req("E_T")?,
+        e_n: opt("E_N"),
+        g_lt: req("G_LT")?,
+        g_ln: opt("G_LN"),
+        g_tn: opt("G_TN"),
+        nu_lt: req("NU_LT")?,
+        nu_ln: opt("NU_LN"),
+        nu_tn: opt("NU_TN"),
+        angles: [0.0; 3],
+    };
+    Ok(Some((o, occ.f64("RHO"))))
+}
 
 /// `DEFI_MATERIAU/THER`: conductivity and volumic heat capacity.
 fn ther(
@@ -112,29 +190,24 @@ fn ther(
 pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let thermal = ther(ex, kw)?;
+    let orthotropic = elas_orth(ex, kw)?;
+    if let (Some((o, density)), None) = (orthotropic, kw.factor("ELAS").first()) {
+        let m = Material {
+            elastic: true,
+            density,
+            rupt_frag: rupt_frag(ex, kw)?,
+            rupt_turon: rupt_turon(ex, kw)?,
+            orthotropic: Some(o),
+            ..without_elas(thermal)
+        };
+        return store_result(ex, call, Concept::Material(Rc::new(m)));
+    }
     let Some(elas) = kw.factor("ELAS").first() else {
-        let mechanical = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL", "ECRO_COOK"];
         if let (Some(thermal), None) = (
             thermal,
-            mechanical.iter().find(|k| !kw.factor(k).is_empty()),
+            PLASTIC_BLOCKS.iter().find(|k| !kw.factor(k).is_empty()),
         ) {
-            let m = Material {
-                elastic: false,
-                young: f64::NAN,
-                poisson: f64::NAN,
-                density: None,
-                alpha: None,
-                amor_alpha: None,
-                amor_beta: None,
-                ecro_line: None,
-                traction: None,
-                lemaitre: None,
-                ecro_nl: None,
-                ecro_cook: None,
-                thermal: Some(thermal),
-                rupt_frag: None,
-                rupt_turon: None,
-            };
+            let m = without_elas(Some(thermal));
             return store_result(ex, call, Concept::Material(Rc::new(m)));
         }
         return Err(ExecError::new(
@@ -327,6 +400,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         thermal,
         rupt_frag: rupt_frag(ex, kw)?,
         rupt_turon: rupt_turon(ex, kw)?,
+        orthotropic: None,
     };
     store_result(ex, call, Concept::Material(Rc::new(m)))
 }
@@ -800,7 +874,8 @@ const CARA_DISCRET: [&str; 16] = [
 ];
 
 /// What AFFE_CARA_ELEM reads (`crate::support`): DISCRET(_2D) here, COQUE
-/// in [`super::cara_coque`].
+/// in [`super::cara_coque`], POUTRE in [`super::cara_poutre`], MASSIF in
+/// [`super::cara_massif`].
 pub(crate) const AFFE_CARA_ELEM: Support = Support {
     values: &[
         Values::listed(
@@ -819,9 +894,12 @@ pub(crate) const AFFE_CARA_ELEM: Support = Support {
         super::cara_poutre::VALUES[1],
         super::cara_poutre::VALUES[2],
     ],
-    ..Support::keywords(&crate::support::joined::<_, 34>(
-        &crate::support::joined::<_, 25>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
-        &super::cara_poutre::KEYWORDS,
+    ..Support::keywords(&crate::support::joined::<_, 39>(
+        &crate::support::joined::<_, 34>(
+            &crate::support::joined::<_, 25>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
+            &super::cara_poutre::KEYWORDS,
+        ),
+        &super::cara_massif::KEYWORDS,
     ))
 };
 
@@ -834,6 +912,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let mut masses = Vec::new();
     let shells = super::cara_coque::shells(ex, kw, &mesh)?;
     let beams = super::cara_poutre::beams(ex, kw, &mesh)?;
+    let massif = super::cara_massif::frames(ex, kw, &mesh)?;
     for f in ["DISCRET", "DISCRET_2D"] {
         for occ in kw.factor(f) {
             let cara = occ.str("CARA").unwrap_or_default().to_string();
@@ -895,6 +974,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             masses,
             shells,
             beams,
+            massif,
         })),
     )
 }

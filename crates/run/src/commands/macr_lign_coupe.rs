@@ -319,13 +319,7 @@ fn node_group_of_cells(mesh: &mut Mesh, name: &str, new_name: &str) {
 /// code_aster's `matrot`: the rotation from the global frame to the one of
 /// nautical angles (degrees) α, β, γ; rows are the local axes.
 fn matrot(angles: [f64; 3]) -> [[f64; 3]; 3] {
-    let [a, b, g] = angles.map(|d| d * std::f64::consts::PI / 180.0);
-    let (ca, sa, cb, sb, cg, sg) = (a.cos(), a.sin(), b.cos(), b.sin(), g.cos(), g.sin());
-    [
-        [cb * ca, cb * sa, -sb],
-        [sg * sb * ca - cg * sa, cg * ca + sg * sb * sa, sg * cb],
-        [sg * sa + cg * sb * ca, cg * sb * sa - ca * sg, cg * cb],
-    ]
+    aster_fem::orthotropic::matrot(angles.map(|d| d * std::f64::consts::PI / 180.0))
 }
 
 /// The nautical angles of a SEGMENT's local frame (`crea_resu_local`):
