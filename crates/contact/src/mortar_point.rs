@@ -126,6 +126,26 @@ pub(crate) fn points(
     Ok(out)
 }
 
+/// The integration points of a 3D pair on its polygon `poly` (slave
+/// parametric space): FPG4 per triangle when both faces are linear, FPG7
+/// otherwise, each weight times the slave face's initial |t₁ × t₂| on `s0`
+/// (`mmmjac`).
+pub(crate) fn quadrature_3d(
+    s: &Seg,
+    m: &Seg,
+    poly: &[[f64; 2]],
+    s0: &[[f64; 3]],
+) -> Vec<([f64; 2], f64)> {
+    let linear = |k: SurfaceKind| matches!(k, SurfaceKind::Tria3 | SurfaceKind::Quad4);
+    mortar_pairing3d::quadrature(poly, linear(s.kind) && linear(m.kind))
+        .into_iter()
+        .map(|(xi, w_ref)| {
+            let at0 = interpolate(s.kind, s0, xi);
+            (xi, w_ref * norm(cross(at0.tangents[0], at0.tangents[1])))
+        })
+        .collect()
+}
+
 /// The quadrature points of the pair of slave face `s` and master face
 /// `m` (3D) on their intersection polygon `poly` (slave parametric space,
 /// `mortar_pairing3d`): FPG4 on each triangle of the polygon when both
@@ -141,11 +161,9 @@ pub(crate) fn points_3d(
     mp: &[[f64; 3]],
     s0: &[[f64; 3]],
 ) -> Result<Vec<MortarPoint>, FemError> {
-    let linear = |k: SurfaceKind| matches!(k, SurfaceKind::Tria3 | SurfaceKind::Quad4);
     let mut out = Vec::new();
-    for (xi, w_ref) in mortar_pairing3d::quadrature(poly, linear(s.kind) && linear(m.kind)) {
+    for (xi, w) in quadrature_3d(s, m, poly, s0) {
         let at0 = interpolate(s.kind, s0, xi);
-        let w = w_ref * norm(cross(at0.tangents[0], at0.tangents[1]));
         let ns = face_normal(s.kind, sp, xi, s.sign).ok_or_else(|| {
             err(ContactError::Invalid {
                 keyword: "GROUP_MA_ESCL",

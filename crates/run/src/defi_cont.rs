@@ -219,8 +219,10 @@ pub(crate) fn friction_source(
     zones: &[MortarZoneDef],
     mesh: &Mesh,
     axis: bool,
+    dim: usize,
 ) -> Result<MortarFriction, ExecError> {
-    MortarFriction::new(zones, mesh, axis).map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+    MortarFriction::with_dim(zones, mesh, axis, dim)
+        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
 /// The material of a Nitsche contact: code_aster takes `ELAS` E and NU
@@ -339,7 +341,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "not supported: ALGO_CONT='NITSCHE' in 3D has no contact element in code_aster 17 (its Nitsche cells, `contCellNits` and `niElem`, are the 2D ones: TRIA3, TRIA6, QUAD4, QUAD8, QUAD9 with SEG2/SEG3 masters; MECA_NON_LINE stops on an assertion at the pairing); reproduced on 2D models (D_PLAN, C_PLAN, AXIS)",
         ));
     }
-    if dim != 2 {
+    if dim != 2 && algo == MortarAlgo::Penalised {
         if let Some(occ) = kw
             .factor("ZONE")
             .iter()
@@ -349,7 +351,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 "DEFI_CONT/ZONE",
                 occ,
                 "FROTTEMENT",
-                "not supported yet: code_aster 17's mortar friction in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS)",
+                "not supported yet: code_aster 17's penalised mortar friction in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS; the Lagrangian friction, ALGO_CONT='LAGRANGIEN', is reproduced in 3D)",
             ));
         }
     }

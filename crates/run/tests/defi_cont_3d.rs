@@ -8,7 +8,8 @@
 //! on the same blocks and tilted blocks (comm/dc3d_penalised.comm,
 //! comm/dc3d_tilted_penalised.comm: the interpenetration p h_F / COEF_CONT,
 //! also under GREEN_LAGRANGE). And the refusals of what is not reproduced
-//! in 3D, located before anything is solved.
+//! in 3D, located before anything is solved. And the Lagrangian friction
+//! on faces (comm/dc3d_friction.comm).
 
 use std::path::{Path, PathBuf};
 
@@ -115,6 +116,23 @@ fn a_tilted_penalised_interface_interpenetrates_by_the_analytic_amount() {
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (48, 0));
 }
 
+/// comm/dc3d_friction.comm: a block pressed on a wider clamped block with
+/// Coulomb friction (ALGO_CONT='LAGRANGIEN', LAGS_C, LAGS_F1, LAGS_F2 the
+/// global components of the contact force): under a uniform shear below
+/// μ p it sticks, the exact uniform state (multipliers (−τ, 0, p), the
+/// slave nodes still); dragged far, every slave node is on the cone
+/// LAGS_C = −μ LAGS_F2 and the reactions' DX/DZ = −μ, to 1e-8.
+#[test]
+fn a_block_sticks_below_mu_p_and_slides_at_mu_p_in_3d() {
+    let outcome = run(
+        &scene("dc3d_friction.comm"),
+        "friction",
+        &root().join("comm/dc3d_friction.mail"),
+    );
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (38, 0));
+}
+
 #[test]
 fn what_is_not_reproduced_in_3d_is_refused_at_its_keyword() {
     let mesh = root().join("comm/dc3d_blocks.mail");
@@ -124,10 +142,11 @@ fn what_is_not_reproduced_in_3d_is_refused_at_its_keyword() {
             "ALGO_CONT=\"NITSCHE\", ",
             "no contact element in code_aster 17",
         ),
-        ("FROTTEMENT=\"OUI\", ", "FROTTEMENT"),
+        // The penalised friction is reproduced in 2D only (the
+        // Lagrangian one in 3D too: `dc3d_friction.comm`).
         (
             "ALGO_CONT=\"PENALISATION\", FROTTEMENT=\"OUI\", ",
-            "FROTTEMENT",
+            "penalised mortar friction in 3D",
         ),
         ("VARIANTE=\"CLASSIQUE\", ", "VARIANTE"),
     ] {
