@@ -403,6 +403,17 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             };
             return Err(ex.kw_error("DEFI_CONT/ZONE", occ, at, e.to_string()));
         }
+        // Friction in 3D: the faces it is reproduced on.
+        if dim == 3 && z.friction.is_some() {
+            if let Err(e) = MortarFriction::with_dim(std::slice::from_ref(z), &mesh, axis, dim) {
+                let at = if e.to_string().contains("GROUP_MA_MAIT") {
+                    "GROUP_MA_MAIT"
+                } else {
+                    "GROUP_MA_ESCL"
+                };
+                return Err(ex.kw_error("DEFI_CONT/ZONE", occ, at, e.to_string()));
+            }
+        }
     }
     // Nitsche: the volume cell under every slave face.
     if algo == MortarAlgo::Nitsche {

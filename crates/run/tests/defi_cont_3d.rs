@@ -131,6 +131,25 @@ fn a_block_sticks_below_mu_p_and_slides_at_mu_p_in_3d() {
     );
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (38, 0));
+    // On quadratic faces (the mesh made quadratic) the sliding does not
+    // converge: refused at the zone, before anything is solved.
+    let comm = scene("dc3d_friction.comm").replace(
+        "mesh = LIRE_MAILLAGE(FORMAT=\"ASTER\", UNITE=20)",
+        "mesh = LIRE_MAILLAGE(FORMAT=\"ASTER\", UNITE=20)\n\
+         mesh = CREA_MAILLAGE(MAILLAGE=mesh, LINE_QUAD=_F(TOUT=\"OUI\"))",
+    );
+    let outcome = run(
+        &comm,
+        "friction_quad",
+        &root().join("comm/dc3d_friction.mail"),
+    );
+    let e = outcome.error.expect("must be refused").to_string();
+    assert!(
+        e.contains("quadratic faces (Quad8) of GROUP_MA_ESCL AB")
+            && e.contains("friction_quad.comm:"),
+        "{e}"
+    );
+    assert_eq!(outcome.tally.ok + outcome.tally.nook, 0, "nothing ran: {e}");
 }
 
 #[test]
