@@ -63,7 +63,7 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::mortar_pairing3d::{self, Face};
-use crate::mortar_tangent::{self, FaceDof, FaceGeometry};
+use crate::mortar_tangent::{self, FaceDof};
 use crate::shape::{dot, interpolate, norm, sub, SurfaceKind};
 use crate::source::current_positions;
 use crate::surface::{ResolvedZone, SurfaceCell};
@@ -716,9 +716,9 @@ impl MortarLagrangian {
                 // master point and the gap: code_aster's analytic tangent
                 // (`laMatr_ct_pr`, module `mortar_tangent`), on segments
                 // (2D) or faces (3D).
-                let (_, dsl) = s.kind.eval(pt.xi);
-                let (_, dml) = m.kind.eval(pt.master.xi);
                 let lin: Vec<FaceDof> = if self.dim == 2 {
+                    let (_, dsl) = s.kind.eval(pt.xi);
+                    let (_, dml) = m.kind.eval(pt.master.xi);
                     let dofs: Vec<[Option<usize>; 2]> = s
                         .nodes
                         .iter()
@@ -747,25 +747,7 @@ impl MortarLagrangian {
                     .map(FaceDof::from)
                     .collect()
                 } else {
-                    let dofs: Vec<[Option<usize>; 3]> = s
-                        .nodes
-                        .iter()
-                        .chain(&m.nodes)
-                        .map(|n| [0, 1, 2].map(|d| crate::mortar_point::dof(state, *n, d)))
-                        .collect();
-                    mortar_tangent::linearise_3d(
-                        &FaceGeometry {
-                            slave_shape: &pt.initial.shape,
-                            slave_dshape: &dsl,
-                            master_shape: &pt.master.shape,
-                            master_dshape: &dml,
-                            tau_slave: pt.slave.tangents,
-                            normal: ns,
-                            tau_master: pt.master.tangents,
-                            gap,
-                        },
-                        &dofs,
-                    )
+                    pt.linearise_3d(s, m, &crate::mortar_point::face_dofs(state, s, m))
                 };
                 if h {
                     // −w λ n_s·(v_s − v_m)

@@ -52,6 +52,44 @@ pub(crate) struct MortarPoint {
     pub gap: f64,
 }
 
+impl MortarPoint {
+    /// The point's DOFs on faces (`dofs`: the slave nodes' (DX, DY, DZ),
+    /// then the master's) with the derivatives of code_aster's analytic
+    /// tangent (`dNs_du`, `dPi_du`: [`crate::mortar_tangent::linearise_3d`]).
+    pub(crate) fn linearise_3d(
+        &self,
+        s: &Seg,
+        m: &Seg,
+        dofs: &[[Option<usize>; 3]],
+    ) -> Vec<crate::mortar_tangent::FaceDof> {
+        let (_, sd) = s.kind.eval(self.xi);
+        let (_, md) = m.kind.eval(self.master.xi);
+        crate::mortar_tangent::linearise_3d(
+            &crate::mortar_tangent::FaceGeometry {
+                slave_shape: &self.initial.shape,
+                slave_dshape: &sd,
+                master_shape: &self.master.shape,
+                master_dshape: &md,
+                tau_slave: self.slave.tangents,
+                normal: self.ns,
+                tau_master: self.master.tangents,
+                gap: self.gap,
+            },
+            dofs,
+        )
+    }
+}
+
+/// The displacement DOFs (DX, DY, DZ) of a 3D pair's nodes, slave then
+/// master, as [`MortarPoint::linearise_3d`] takes them.
+pub(crate) fn face_dofs(state: &State, s: &Seg, m: &Seg) -> Vec<[Option<usize>; 3]> {
+    s.nodes
+        .iter()
+        .chain(&m.nodes)
+        .map(|n| [0, 1, 2].map(|d| dof(state, *n, d)))
+        .collect()
+}
+
 /// The integration points of a 2D pair on the intersection `xi` (slave
 /// parametric space, `getQuadCont`, `lcptga`): FPG3 when both cells are
 /// SEG2, FPG4 otherwise; each with its weight — the reference weight times

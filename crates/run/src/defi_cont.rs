@@ -18,7 +18,8 @@
 //! `aster_contact::mortar_friction_penalty`) when every zone has it; the
 //! CLASSIQUE variant in 2D, with or without friction
 //! (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE in 3D,
-//! BILATERAL, LISSAGE, friction with NITSCHE or in 3D, zones with and
+//! BILATERAL, LISSAGE, friction with NITSCHE, penalised friction or
+//! friction on quadratic faces in 3D, zones with and
 //! without friction or of different ALGO_CONT or VARIANTE in one
 //! definition, DIST_SUPP/CARA_ELEM, Nitsche contact in 3D (code_aster 2025
 //! has no 3D Nitsche contact element), models with shells
@@ -251,7 +252,7 @@ pub(crate) fn nitsche_material(materials: &MaterialField) -> Result<NitscheMater
 /// The force source of a penalised or Nitsche definition (`None` for the
 /// Lagrangian method, whose source is [`source`]); `dim`: the model's
 /// space dimension (Nitsche is 2D only, refused in 3D by [`defi_cont`];
-/// friction is 2D only); `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM`,
+/// the penalised friction is 2D only); `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM`,
 /// code_aster 17's geometric criterion.
 pub(crate) fn other_source(
     algo: MortarAlgo,
