@@ -81,7 +81,7 @@ fn point_forces(g: &PointGeometry, p: &PointLaw) -> Result<Option<Vec<(f64, Lin)
         for c in 0..2 {
             forces[2 * ns + 2 * b + c] = (
                 p.w * q.shm[b] * f[c],
-                comb(p.w * q.shm[b], &df[c], p.w * f[c] * q.dshm[b], &q.dxi),
+                comb(p.w * q.shm[b], &df[c], p.w * f[c] * q.dshm[b][0], &q.dxi[0]),
             );
         }
     }
@@ -159,6 +159,7 @@ impl ForceSource for MortarFrictionPenalty {
                 .map(|(node, d)| crate::mortar_point::dof(state, node, d))
                 .collect();
             let geometry = PointGeometry {
+                dim: 2,
                 s_kind: s.kind,
                 sign: s.sign,
                 sp: &sp,
@@ -170,7 +171,7 @@ impl ForceSource for MortarFrictionPenalty {
             let forced = z.init.forced(self.first_pairing);
             for (xi, w, at0) in crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis) {
                 let law = PointLaw {
-                    xi: xi[0],
+                    xi,
                     w,
                     gamma: gamma(&at0.shape, z.coef, z.h[p.slave]),
                     law: self.laws[p.zone],
@@ -246,6 +247,7 @@ mod tests {
                     }
                 }
                 let g = PointGeometry {
+                    dim: 2,
                     s_kind: SurfaceKind::Seg2,
                     sign: 1.0,
                     sp: &sp,
@@ -255,7 +257,7 @@ mod tests {
                     mprev: &mprev,
                 };
                 let p = PointLaw {
-                    xi: 0.3,
+                    xi: [0.3, 0.0],
                     w: 0.7,
                     gamma: 3.0,
                     law,
@@ -298,6 +300,7 @@ mod tests {
             let sp = vec![[-1.0, -0.01, 0.0], [1.0, -0.01, 0.0]];
             let sprev = vec![[-1.0 - dx, -0.01, 0.0], [1.0 - dx, -0.01, 0.0]];
             let g = PointGeometry {
+                dim: 2,
                 s_kind: SurfaceKind::Seg2,
                 sign: 1.0,
                 sp: &sp,
@@ -307,7 +310,7 @@ mod tests {
                 mprev: &mp,
             };
             let p = PointLaw {
-                xi: 0.0,
+                xi: [0.0, 0.0],
                 w: 1.0,
                 gamma: gam,
                 law: FrictionLaw::Coulomb(mu),

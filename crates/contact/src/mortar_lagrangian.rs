@@ -47,9 +47,10 @@
 //!   follows λ + γg.
 //! - `ALGO_RESO_GEOM='NEWTON'`: the pairing and normals are those of the
 //!   iterate (code_aster pairs before every Newton iteration); the tangent
-//!   here freezes them (normals, master points) over an iteration — the
-//!   converged state is the same, code_aster's analytic tangent only
-//!   changes the path.
+//!   is code_aster's analytic one (`laMatr_ct_pr`): the slave normal
+//!   turning, the master point sliding and the full derivative of the gap
+//!   (`mortar_tangent::linearise` on segments, `linearise_3d` on faces),
+//!   the intersections held (code_aster ignores their motion too).
 //! - MECA_NON_LINE's line search (`ForceSource::evaluate_on_pairing`):
 //!   the trial residuals keep the pairs, normals and master points of the
 //!   iteration's start, the gaps on the trial positions
@@ -62,7 +63,7 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::mortar_pairing3d::{self, Face};
-use crate::mortar_tangent::{self, PointDof};
+use crate::mortar_tangent::{self, FaceDof};
 use crate::shape::{dot, interpolate, norm, sub, SurfaceKind};
 use crate::source::current_positions;
 use crate::surface::{ResolvedZone, SurfaceCell};
@@ -303,37 +304,6 @@ pub(crate) fn ray_hit(p: [f64; 3], v: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Opt
     let r = sub(p, a);
     let s = (r[0] * (-v[1]) - r[1] * (-v[0])) / det;
     Some(2.0 * s - 1.0)
-}
-
-/// The DOFs of a 3D point with the tangent's derivatives of a frozen
-/// normal and master point: the jump's only (Dg = −n·(δu_s − δu_m)).
-fn frozen_dofs(
-    state: &State,
-    s: &Seg,
-    m: &Seg,
-    slave_shape: &[f64],
-    master_shape: &[f64],
-    n: [f64; 3],
-) -> Vec<PointDof> {
-    let mut out = Vec::with_capacity(3 * (s.nodes.len() + m.nodes.len()));
-    let sides = [(&s.nodes, slave_shape, 1.0), (&m.nodes, master_shape, -1.0)];
-    for (nodes, shape, sign) in sides {
-        for (a, node) in nodes.iter().enumerate() {
-            for d in 0..3 {
-                let mut jump = [0.0; 3];
-                jump[d] = sign * shape[a];
-                out.push(PointDof {
-                    dof: crate::mortar_point::dof(state, *node, d),
-                    jump,
-                    dns: [0.0; 3],
-                    dtest_m: [0.0; 3],
-                    dzeta: 0.0,
-                    dgap: -dot(n, jump),
-                });
-            }
-        }
-    }
-    out
 }
 
 /// Why a contact cell kind is not reproduced in dimension `dim`, if it is not.
@@ -744,9 +714,9 @@ impl MortarLagrangian {
                 let (h, proj) = if active { (true, lg) } else { (false, 0.0) };
                 // The point's DOFs with the derivatives of the normal, the
                 // master point and the gap: code_aster's analytic tangent
-                // (`laMatr_ct_pr`, module `mortar_tangent`) in 2D; in 3D
-                // normals and master points frozen over an iteration.
-                let lin = if self.dim == 2 {
+                // (`laMatr_ct_pr`, module `mortar_tangent`), on segments
+                // (2D) or faces (3D).
+                let lin: Vec<FaceDof> = if self.dim == 2 {
                     let (_, dsl) = s.kind.eval(pt.xi);
                     let (_, dml) = m.kind.eval(pt.master.xi);
                     let dofs: Vec<[Option<usize>; 2]> = s
@@ -773,8 +743,11 @@ impl MortarLagrangian {
                         },
                         &dofs,
                     )
+                    .into_iter()
+                    .map(FaceDof::from)
+                    .collect()
                 } else {
-                    frozen_dofs(state, s, m, &pt.initial.shape, &pt.master.shape, ns)
+                    pt.linearise_3d(s, m, &crate::mortar_point::face_dofs(state, s, m))
                 };
                 if h {
                     // −w λ n_s·(v_s − v_m)
@@ -786,11 +759,12 @@ impl MortarLagrangian {
                             c.tangent
                                 .push((Unknown::Dof(i), Unknown::Own(k), -w * nsl[a] * f));
                         }
-                        // −w λ (v_s − v_m)·Dn_s + w λ n_s·(∂v_m/∂ζ) Dζ
-                        let fm = dot(ns, e.dtest_m);
+                        // −w λ (v_s − v_m)·Dn_s + w λ n_s·(∂v_m/∂ζ_α) Dζ_α
+                        let fm = [dot(ns, e.dtest_m[0]), dot(ns, e.dtest_m[1])];
                         for e2 in &lin {
                             let Some(j) = e2.dof else { continue };
-                            let v = -w * lam * dot(e.jump, e2.dns) + w * lam * fm * e2.dzeta;
+                            let v = -w * lam * dot(e.jump, e2.dns)
+                                + w * lam * (fm[0] * e2.dzeta[0] + fm[1] * e2.dzeta[1]);
                             if v != 0.0 {
                                 c.tangent.push((Unknown::Dof(i), Unknown::Dof(j), v));
                             }

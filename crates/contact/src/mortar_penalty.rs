@@ -49,8 +49,7 @@ use crate::error::ContactError;
 use crate::mortar_lagrangian::{
     pairs_3d_of, pairs_of, InitialState, MZone, MortarLagrangian, MortarZoneDef, ResiGeom,
 };
-use crate::mortar_point::{dof, jump, on_current, points, points_3d};
-use crate::mortar_tangent::{linearise_3d, FaceGeometry};
+use crate::mortar_point::{jump, on_current, points, points_3d};
 use crate::shape::dot;
 use crate::source::current_positions;
 
@@ -157,12 +156,7 @@ impl MortarPenalty {
             let (sc, mc) = (s.positions(&x), m.positions(&x));
             let s0 = s.positions(x0);
             let hf = z.h[p.slave];
-            let dofs: Vec<[Option<usize>; 3]> = s
-                .nodes
-                .iter()
-                .chain(&m.nodes)
-                .map(|n| [dof(state, *n, 0), dof(state, *n, 1), dof(state, *n, 2)])
-                .collect();
+            let dofs = crate::mortar_point::face_dofs(state, s, m);
             for pt in points_3d(s, m, &p.poly, &sp, &mp, &s0)? {
                 let pt = match pairing {
                     Some(_) => on_current(pt, s, m, &sc, &mc),
@@ -176,21 +170,7 @@ impl MortarPenalty {
                 penetration = penetration.max(-pt.gap);
                 let w = pt.w;
                 let ns = pt.ns;
-                let (_, sd) = s.kind.eval(pt.xi);
-                let (_, md) = m.kind.eval(pt.master.xi);
-                let lin = linearise_3d(
-                    &FaceGeometry {
-                        slave_shape: &pt.initial.shape,
-                        slave_dshape: &sd,
-                        master_shape: &pt.master.shape,
-                        master_dshape: &md,
-                        tau_slave: pt.slave.tangents,
-                        normal: ns,
-                        tau_master: pt.master.tangents,
-                        gap: pt.gap,
-                    },
-                    &dofs,
-                );
+                let lin = pt.linearise_3d(s, m, &dofs);
                 // −w [γg]₋ n_s·(v_s − v_m); its derivative (peMatr_ct_pr):
                 // −w γ Dg (n·jump) − w [γg]₋ jump·Dn_s + w [γg]₋ n·∂v_m/∂ζ_α Dζ_α.
                 for e in &lin {

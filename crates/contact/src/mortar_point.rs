@@ -52,6 +52,44 @@ pub(crate) struct MortarPoint {
     pub gap: f64,
 }
 
+impl MortarPoint {
+    /// The point's DOFs on faces (`dofs`: the slave nodes' (DX, DY, DZ),
+    /// then the master's) with the derivatives of code_aster's analytic
+    /// tangent (`dNs_du`, `dPi_du`: [`crate::mortar_tangent::linearise_3d`]).
+    pub(crate) fn linearise_3d(
+        &self,
+        s: &Seg,
+        m: &Seg,
+        dofs: &[[Option<usize>; 3]],
+    ) -> Vec<crate::mortar_tangent::FaceDof> {
+        let (_, sd) = s.kind.eval(self.xi);
+        let (_, md) = m.kind.eval(self.master.xi);
+        crate::mortar_tangent::linearise_3d(
+            &crate::mortar_tangent::FaceGeometry {
+                slave_shape: &self.initial.shape,
+                slave_dshape: &sd,
+                master_shape: &self.master.shape,
+                master_dshape: &md,
+                tau_slave: self.slave.tangents,
+                normal: self.ns,
+                tau_master: self.master.tangents,
+                gap: self.gap,
+            },
+            dofs,
+        )
+    }
+}
+
+/// The displacement DOFs (DX, DY, DZ) of a 3D pair's nodes, slave then
+/// master, as [`MortarPoint::linearise_3d`] takes them.
+pub(crate) fn face_dofs(state: &State, s: &Seg, m: &Seg) -> Vec<[Option<usize>; 3]> {
+    s.nodes
+        .iter()
+        .chain(&m.nodes)
+        .map(|n| [0, 1, 2].map(|d| dof(state, *n, d)))
+        .collect()
+}
+
 /// The integration points of a 2D pair on the intersection `xi` (slave
 /// parametric space, `getQuadCont`, `lcptga`): FPG3 when both cells are
 /// SEG2, FPG4 otherwise; each with its weight — the reference weight times
@@ -126,6 +164,26 @@ pub(crate) fn points(
     Ok(out)
 }
 
+/// The integration points of a 3D pair on its polygon `poly` (slave
+/// parametric space): FPG4 per triangle when both faces are linear, FPG7
+/// otherwise, each weight times the slave face's initial |t₁ × t₂| on `s0`
+/// (`mmmjac`).
+pub(crate) fn quadrature_3d(
+    s: &Seg,
+    m: &Seg,
+    poly: &[[f64; 2]],
+    s0: &[[f64; 3]],
+) -> Vec<([f64; 2], f64)> {
+    let linear = |k: SurfaceKind| matches!(k, SurfaceKind::Tria3 | SurfaceKind::Quad4);
+    mortar_pairing3d::quadrature(poly, linear(s.kind) && linear(m.kind))
+        .into_iter()
+        .map(|(xi, w_ref)| {
+            let at0 = interpolate(s.kind, s0, xi);
+            (xi, w_ref * norm(cross(at0.tangents[0], at0.tangents[1])))
+        })
+        .collect()
+}
+
 /// The quadrature points of the pair of slave face `s` and master face
 /// `m` (3D) on their intersection polygon `poly` (slave parametric space,
 /// `mortar_pairing3d`): FPG4 on each triangle of the polygon when both
@@ -141,11 +199,9 @@ pub(crate) fn points_3d(
     mp: &[[f64; 3]],
     s0: &[[f64; 3]],
 ) -> Result<Vec<MortarPoint>, FemError> {
-    let linear = |k: SurfaceKind| matches!(k, SurfaceKind::Tria3 | SurfaceKind::Quad4);
     let mut out = Vec::new();
-    for (xi, w_ref) in mortar_pairing3d::quadrature(poly, linear(s.kind) && linear(m.kind)) {
+    for (xi, w) in quadrature_3d(s, m, poly, s0) {
         let at0 = interpolate(s.kind, s0, xi);
-        let w = w_ref * norm(cross(at0.tangents[0], at0.tangents[1]));
         let ns = face_normal(s.kind, sp, xi, s.sign).ok_or_else(|| {
             err(ContactError::Invalid {
                 keyword: "GROUP_MA_ESCL",

@@ -1,7 +1,7 @@
 //! The linearisation of a contact point of code_aster 17's mortar contact
 //! (`DEFI_CONT`) as its analytic tangent (`TYPE_MATR_TANG='ANALYTIQUE'`, the
-//! default) builds it, in 2D (the Lagrangian method) and on faces in 3D
-//! (the penalised method): code_aster's `contact_algebra_module` (`jump`,
+//! default) builds it, in 2D and on faces in 3D (the Lagrangian and the
+//! 3D penalised methods): code_aster's `contact_algebra_module` (`jump`,
 //! `dTs_du_ns`, `dNs_du`, `dPi_du`) and `contact_module` (`evalDtestM`),
 //! used by `laMatr_ct_pr` and `peMatr_ct_pr`.
 //!
@@ -127,6 +127,21 @@ pub struct FaceDof {
     pub dzeta: [f64; 2],
     /// Dg: the derivative of the gap g = −(x_s − x_m)·n_s.
     pub dgap: f64,
+}
+
+impl From<PointDof> for FaceDof {
+    /// A segment's point as a face's with one tangent (the second
+    /// parameter's derivatives zero).
+    fn from(e: PointDof) -> Self {
+        FaceDof {
+            dof: e.dof,
+            jump: e.jump,
+            dns: e.dns,
+            dtest_m: [e.dtest_m, [0.0; 3]],
+            dzeta: [e.dzeta, 0.0],
+            dgap: e.dgap,
+        }
+    }
 }
 
 /// The geometry of a paired point on faces, on the current coordinates.

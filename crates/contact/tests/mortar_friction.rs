@@ -26,7 +26,9 @@ fn multipliers(n_up: usize, n_low: usize, law: FrictionLaw) -> Vec<[f64; 2]> {
         snl.solve(&model, &loads).unwrap()
     };
     let s = res.last().unwrap();
-    m.multipliers(&s.own_unknowns[0]).map(|(_, l)| l).collect()
+    m.multipliers(&s.own_unknowns[0])
+        .map(|(_, l)| [l[0], l[1]])
+        .collect()
 }
 
 #[test]

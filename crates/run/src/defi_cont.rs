@@ -18,7 +18,8 @@
 //! `aster_contact::mortar_friction_penalty`) when every zone has it; the
 //! CLASSIQUE variant in 2D, with or without friction
 //! (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE in 3D,
-//! BILATERAL, LISSAGE, friction with NITSCHE or in 3D, zones with and
+//! BILATERAL, LISSAGE, friction with NITSCHE, penalised friction or
+//! friction on quadratic faces in 3D, zones with and
 //! without friction or of different ALGO_CONT or VARIANTE in one
 //! definition, DIST_SUPP/CARA_ELEM, Nitsche contact in 3D (code_aster 2025
 //! has no 3D Nitsche contact element), models with shells
@@ -219,8 +220,10 @@ pub(crate) fn friction_source(
     zones: &[MortarZoneDef],
     mesh: &Mesh,
     axis: bool,
+    dim: usize,
 ) -> Result<MortarFriction, ExecError> {
-    MortarFriction::new(zones, mesh, axis).map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+    MortarFriction::with_dim(zones, mesh, axis, dim)
+        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
 /// The material of a Nitsche contact: code_aster takes `ELAS` E and NU
@@ -249,7 +252,7 @@ pub(crate) fn nitsche_material(materials: &MaterialField) -> Result<NitscheMater
 /// The force source of a penalised or Nitsche definition (`None` for the
 /// Lagrangian method, whose source is [`source`]); `dim`: the model's
 /// space dimension (Nitsche is 2D only, refused in 3D by [`defi_cont`];
-/// friction is 2D only); `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM`,
+/// the penalised friction is 2D only); `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM`,
 /// code_aster 17's geometric criterion.
 pub(crate) fn other_source(
     algo: MortarAlgo,
@@ -339,7 +342,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "not supported: ALGO_CONT='NITSCHE' in 3D has no contact element in code_aster 17 (its Nitsche cells, `contCellNits` and `niElem`, are the 2D ones: TRIA3, TRIA6, QUAD4, QUAD8, QUAD9 with SEG2/SEG3 masters; MECA_NON_LINE stops on an assertion at the pairing); reproduced on 2D models (D_PLAN, C_PLAN, AXIS)",
         ));
     }
-    if dim != 2 {
+    if dim != 2 && algo == MortarAlgo::Penalised {
         if let Some(occ) = kw
             .factor("ZONE")
             .iter()
@@ -349,7 +352,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 "DEFI_CONT/ZONE",
                 occ,
                 "FROTTEMENT",
-                "not supported yet: code_aster 17's mortar friction in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS)",
+                "not supported yet: code_aster 17's penalised mortar friction in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS; the Lagrangian friction, ALGO_CONT='LAGRANGIEN', is reproduced in 3D)",
             ));
         }
     }
@@ -400,6 +403,17 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 _ => "GROUP_MA_ESCL",
             };
             return Err(ex.kw_error("DEFI_CONT/ZONE", occ, at, e.to_string()));
+        }
+        // Friction in 3D: the faces it is reproduced on.
+        if dim == 3 && z.friction.is_some() {
+            if let Err(e) = MortarFriction::with_dim(std::slice::from_ref(z), &mesh, axis, dim) {
+                let at = if e.to_string().contains("GROUP_MA_MAIT") {
+                    "GROUP_MA_MAIT"
+                } else {
+                    "GROUP_MA_ESCL"
+                };
+                return Err(ex.kw_error("DEFI_CONT/ZONE", occ, at, e.to_string()));
+            }
         }
     }
     // Nitsche: the volume cell under every slave face.

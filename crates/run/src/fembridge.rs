@@ -1133,7 +1133,12 @@ pub fn solve(
                         mortar_classique = Some(m);
                     } else if mortar_other.is_none() {
                         if crate::defi_cont::has_friction(zones) {
-                            let mut m = crate::defi_cont::friction_source(zones, &mesh, axis)?;
+                            let mut m = crate::defi_cont::friction_source(
+                                zones,
+                                &mesh,
+                                axis,
+                                setup.model.dim(),
+                            )?;
                             if let Some(r) = setup.contact_resi_geom {
                                 m.set_resi_geom(r);
                             }
@@ -1381,12 +1386,16 @@ pub fn solve(
             if let Some(m) = &post_mortar_friction {
                 // DEFI_CONT with friction: the multipliers are the global
                 // components of the contact force (LAGS_C along x, LAGS_F1
-                // along y), DOFs of DEPL on the slave nodes.
+                // along y, LAGS_F2 along z in 3D), DOFs of DEPL on the
+                // slave nodes.
                 if let Some(Field::Nodal(depl)) = fields.get_mut("DEPL") {
                     let own = s.own_unknowns.first().map(|v| v.as_slice()).unwrap_or(&[]);
-                    for (n, [lx, ly]) in m.multipliers(own) {
+                    for (n, [lx, ly, lz]) in m.multipliers(own) {
                         depl.set(n, "LAGS_C", lx);
                         depl.set(n, "LAGS_F1", ly);
+                        if m.dim() == 3 {
+                            depl.set(n, "LAGS_F2", lz);
+                        }
                     }
                 }
             }
