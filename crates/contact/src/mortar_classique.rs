@@ -374,7 +374,7 @@ impl MortarClassique {
             None
         };
         Ok(MortarClassique {
-            base: MortarLagrangian::new(zones, mesh, axis)?,
+            base: MortarLagrangian::new(zones, mesh, axis, 2)?,
             friction,
             x_prev: mesh.coords.clone(),
         })

@@ -1,7 +1,7 @@
 //! Friction of code_aster 17's mortar contact (`DEFI_CONT(ZONE=_F(…,
 //! FROTTEMENT='OUI'))` with `ALGO_CONT='LAGRANGIEN'`,
 //! `VARIANTE='ROBUSTE'`, `ALGO_FROT='LAGRANGIEN'`), in 2D on SEG2 and SEG3
-//! cells and in 3D on TRIA3 and QUAD4 faces (`with_dim`), as a fem force
+//! cells and in 3D on TRIA3 and QUAD4 faces (`new(…, 3)`), as a fem force
 //! source whose unknowns are two (2D) or three (3D: `LAGS_F2`, on the
 //! faces' corners) multipliers per slave node. On faces the normal is
 //! t₁ × t₂ / |t₁ × t₂|, the master point moves along both of its
@@ -571,25 +571,20 @@ pub struct MortarFriction {
 }
 
 impl MortarFriction {
-    /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights);
-    /// each zone's [`MortarZoneDef::friction`] is its law (`None`: the
-    /// zone is refused — code_aster's zones of one DEFI_CONT are all with
-    /// friction or all without).
-    pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
-        Self::with_dim(zones, mesh, axis, 2)
-    }
-
     /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
-    /// (segments) or 3 (faces, as [`MortarLagrangian::with_dim`]; the
-    /// multipliers `LAGS_C`, `LAGS_F1`, `LAGS_F2` on the faces' corners).
-    pub fn with_dim(
+    /// (segments) or 3 (faces, as [`MortarLagrangian::new`]; the
+    /// multipliers `LAGS_C`, `LAGS_F1`, `LAGS_F2` on the faces' corners;
+    /// `axis`: AXIS weights). Each zone's [`MortarZoneDef::friction`] is its
+    /// law (`None`: the zone is refused — code_aster's zones of one
+    /// DEFI_CONT are all with friction or all without).
+    pub fn new(
         zones: &[MortarZoneDef],
         mesh: &Mesh,
         axis: bool,
         dim: usize,
     ) -> Result<Self, ContactError> {
         let laws = zone_laws(zones)?;
-        let base = MortarLagrangian::with_dim(zones, mesh, axis, dim)?;
+        let base = MortarLagrangian::new(zones, mesh, axis, dim)?;
         // On quadratic faces the sliding scene (comm/dc3d_friction.comm on
         // its mesh made quadratic) does not converge: not verified.
         if base.dim == 3 {
@@ -811,6 +806,33 @@ impl ForceSource for MortarFriction {
 mod tests {
     use super::*;
 
+    /// Every derivative of `t0` (the terms at `z0`) against central
+    /// differences of `terms` on each local unknown.
+    fn assert_tangent_is_the_derivative(
+        t0: &PointTerms,
+        z0: &[f64],
+        terms: impl Fn(&[f64]) -> PointTerms,
+        what: &str,
+    ) {
+        let h = 1e-7;
+        for j in 0..z0.len() {
+            let (mut zp, mut zm) = (z0.to_vec(), z0.to_vec());
+            zp[j] += h;
+            zm[j] -= h;
+            let (tp, tm) = (terms(&zp), terms(&zm));
+            for (i, (row, d)) in t0.forces.iter().chain(&t0.own).enumerate() {
+                let vp = tp.forces.iter().chain(&tp.own).nth(i).unwrap().0;
+                let vm = tm.forces.iter().chain(&tm.own).nth(i).unwrap().0;
+                let fd = (vp - vm) / (2.0 * h);
+                assert!(
+                    (fd - d[j]).abs() <= 1e-5 * (1.0 + fd.abs()),
+                    "{what}: row {i} ({row}) column {j}: {} against {fd}",
+                    d[j]
+                );
+            }
+        }
+    }
+
     /// The tangent of a point is the derivative of its residual (central
     /// differences on every local unknown), in stick and in slip, on a
     /// tilted slave SEG2 over a SEG3 master.
@@ -868,23 +890,7 @@ mod tests {
             let (t0, status) = terms(&z0);
             assert!(status.contact);
             assert_eq!(status.slip, sliding, "{law:?}");
-            let h = 1e-7;
-            for j in 0..14 {
-                let (mut zp, mut zm) = (z0.clone(), z0.clone());
-                zp[j] += h;
-                zm[j] -= h;
-                let (tp, tm) = (terms(&zp).0, terms(&zm).0);
-                for (i, (row, d)) in t0.forces.iter().chain(&t0.own).enumerate() {
-                    let vp = tp.forces.iter().chain(&tp.own).nth(i).unwrap().0;
-                    let vm = tm.forces.iter().chain(&tm.own).nth(i).unwrap().0;
-                    let fd = (vp - vm) / (2.0 * h);
-                    assert!(
-                        (fd - d[j]).abs() <= 1e-5 * (1.0 + fd.abs()),
-                        "{law:?}: row {i} ({row}) column {j}: {} against {fd}",
-                        d[j]
-                    );
-                }
-            }
+            assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{law:?}"));
         }
     }
     /// The same on faces (3D): a tilted, warped slave QUAD4 over a curved
@@ -966,23 +972,7 @@ mod tests {
             assert!(n[2] < -0.99, "the slave normal points down: {n:?}");
             assert!(status.contact, "{law:?}");
             assert_eq!(status.slip, sliding, "{law:?}");
-            let h = 1e-7;
-            for j in 0..nloc {
-                let (mut zp, mut zm) = (z0.clone(), z0.clone());
-                zp[j] += h;
-                zm[j] -= h;
-                let (tp, tm) = (terms(&zp).0, terms(&zm).0);
-                for (i, (row, d)) in t0.forces.iter().chain(&t0.own).enumerate() {
-                    let vp = tp.forces.iter().chain(&tp.own).nth(i).unwrap().0;
-                    let vm = tm.forces.iter().chain(&tm.own).nth(i).unwrap().0;
-                    let fd = (vp - vm) / (2.0 * h);
-                    assert!(
-                        (fd - d[j]).abs() <= 1e-5 * (1.0 + fd.abs()),
-                        "{law:?}: row {i} ({row}) column {j}: {} against {fd}",
-                        d[j]
-                    );
-                }
-            }
+            assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{law:?}"));
         }
     }
 }

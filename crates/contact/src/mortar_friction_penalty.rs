@@ -108,7 +108,7 @@ impl MortarFrictionPenalty {
     pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
         let laws = crate::mortar_friction::zone_laws(zones)?;
         Ok(MortarFrictionPenalty {
-            base: MortarLagrangian::new(zones, mesh, axis)?,
+            base: MortarLagrangian::new(zones, mesh, axis, 2)?,
             laws,
             x_prev: mesh.coords.clone(),
             first_pairing: true,

@@ -4,7 +4,7 @@
 //! on faces, as a fem force source with the slave nodes' contact pressures
 //! (`LAGS_C`) as unknowns.
 //!
-//! In 3D (`with_dim(…, 3)`) the pairing and the polygons' quadrature are
+//! In 3D (`new(…, 3)`) the pairing and the polygons' quadrature are
 //! `mortar_pairing3d`'s; at a point the outward slave normal is
 //! t₁ × t₂ / |t₁ × t₂| (`apnorm`), the master point is found along it on
 //! the full master face (`mmnewd`), the weights carry the slave face's
@@ -327,15 +327,10 @@ fn unsupported_kind(dim: usize, kind: SurfaceKind) -> Option<&'static str> {
 }
 
 impl MortarLagrangian {
-    /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights).
-    pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
-        Self::with_dim(zones, mesh, axis, 2)
-    }
-
     /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
     /// (segments; `axis`: AXIS weights) or 3 (TRIA3, TRIA6, QUAD4, QUAD8 and
     /// QUAD9 faces).
-    pub fn with_dim(
+    pub fn new(
         zones: &[MortarZoneDef],
         mesh: &Mesh,
         axis: bool,

@@ -144,7 +144,7 @@ impl MortarNitsche {
         axis: bool,
         material: NitscheMaterial,
     ) -> Result<Self, ContactError> {
-        let geometry = MortarLagrangian::new(zones, mesh, axis)?;
+        let geometry = MortarLagrangian::new(zones, mesh, axis, 2)?;
         let mut cells_of_node: HashMap<NodeId, Vec<usize>> = HashMap::new();
         for (i, c) in mesh.cells.iter().enumerate() {
             for n in &c.nodes {

@@ -3,7 +3,7 @@
 //! SEG2 and SEG3 cells and in 3D on TRIA3, TRIA6, QUAD4, QUAD8 and QUAD9
 //! faces, as a fem force source without unknowns of its own (no `LAGS_C`).
 //!
-//! In 3D (`with_dim(…, 3)`) the pairing, the polygons' quadrature, the
+//! In 3D (`new(…, 3)`) the pairing, the polygons' quadrature, the
 //! normals and master points are those of the 3D Lagrangian method
 //! (`mortar_lagrangian::pairs_3d_of`, `mortar_point::points_3d`), and the
 //! tangent is `peMatr_ct_pr`'s, the exact derivative of the residual for
@@ -93,22 +93,17 @@ pub struct MortarPenalty {
 }
 
 impl MortarPenalty {
-    /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights);
-    /// each zone's `coef_cont` is its COEF_CONT.
-    pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
-        Self::with_dim(zones, mesh, axis, 2)
-    }
-
     /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
     /// (segments; `axis`: AXIS weights) or 3 (TRIA3, TRIA6, QUAD4, QUAD8
-    /// and QUAD9 faces, as [`MortarLagrangian::with_dim`]).
-    pub fn with_dim(
+    /// and QUAD9 faces, as [`MortarLagrangian::new`]); each zone's
+    /// `coef_cont` is its COEF_CONT.
+    pub fn new(
         zones: &[MortarZoneDef],
         mesh: &Mesh,
         axis: bool,
         dim: usize,
     ) -> Result<Self, ContactError> {
-        let geometry = MortarLagrangian::with_dim(zones, mesh, axis, dim)?;
+        let geometry = MortarLagrangian::new(zones, mesh, axis, dim)?;
         Ok(MortarPenalty {
             zones: geometry.zones,
             axis,

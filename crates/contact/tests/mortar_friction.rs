@@ -16,7 +16,7 @@ fn multipliers(n_up: usize, n_low: usize, law: FrictionLaw) -> Vec<[f64; 2]> {
     let (model, loads) = two_plates_shear_problem(mesh, 0.1, true).unwrap();
     let mut zone = MortarZoneDef::new("EF", "AB");
     zone.friction = Some(law);
-    let mut m = MortarFriction::new(&[zone], model.mesh(), false).unwrap();
+    let mut m = MortarFriction::new(&[zone], model.mesh(), false, 2).unwrap();
     let res = {
         let mut snl = StaticNonLinear {
             instants: vec![0.0, 1.0, 1.25, 1.5, 1.75, 2.0],

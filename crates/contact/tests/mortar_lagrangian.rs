@@ -15,7 +15,7 @@ fn pressures(n_up: usize, n_low: usize, init: InitialState, coef: f64) -> Vec<f6
     let mut zone = MortarZoneDef::new("EF", "AB");
     zone.contact_init = init;
     zone.coef_cont = coef;
-    let mut m = MortarLagrangian::new(&[zone], model.mesh(), false).unwrap();
+    let mut m = MortarLagrangian::new(&[zone], model.mesh(), false, 2).unwrap();
     let res = {
         let mut snl = StaticNonLinear {
             instants: vec![0.0, 0.5, 1.0],

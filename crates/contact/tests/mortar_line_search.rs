@@ -111,7 +111,7 @@ fn same(a: &Contribution, b: &Contribution) {
 fn lagrangian_trial_keeps_the_pairing_normal_and_master_points() {
     let sc = scene();
     let mut m =
-        MortarLagrangian::new(&[MortarZoneDef::new("MAIT", "ESCL")], &sc.mesh, false).unwrap();
+        MortarLagrangian::new(&[MortarZoneDef::new("MAIT", "ESCL")], &sc.mesh, false, 2).unwrap();
     // Past the first pairing (CONTACT_INIT): the status follows λ + γg.
     m.after_iteration(&sc.state(&sc.rest), &mut [0.0; 2])
         .unwrap();
@@ -164,7 +164,7 @@ fn penalised_trial_keeps_the_pairing_normal_and_master_points() {
     let sc = scene();
     let mut zone = MortarZoneDef::new("MAIT", "ESCL");
     zone.coef_cont = 1000.0;
-    let mut m = MortarPenalty::new(&[zone], &sc.mesh, false).unwrap();
+    let mut m = MortarPenalty::new(&[zone], &sc.mesh, false, 2).unwrap();
     m.after_iteration(&sc.state(&sc.rest), &mut []).unwrap();
     let frozen = m
         .evaluate_on_pairing(&sc.state(&sc.rest), &sc.state(&sc.trial), &[])

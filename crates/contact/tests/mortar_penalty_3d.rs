@@ -86,7 +86,7 @@ fn check(mesh: Mesh, what: &str) {
     let dofs = DofNumbering::new(&[Comp::DX, Comp::DY, Comp::DZ], &vec![true; nodes]);
     let mut zone = MortarZoneDef::new("MAIT", "ESCL");
     zone.coef_cont = 1e3;
-    let mut m = MortarPenalty::with_dim(&[zone], &mesh, false, 3).unwrap();
+    let mut m = MortarPenalty::new(&[zone], &mesh, false, 3).unwrap();
     let n = 3 * nodes;
     // Past the first pairing (CONTACT_INIT).
     m.after_iteration(

@@ -50,7 +50,7 @@ fn interface(
 }
 
 fn penalised(zones: &[MortarZoneDef], mesh: &Mesh) -> Box<dyn ForceSource> {
-    Box::new(MortarPenalty::new(zones, mesh, false).unwrap())
+    Box::new(MortarPenalty::new(zones, mesh, false, 2).unwrap())
 }
 
 fn nitsche(zones: &[MortarZoneDef], mesh: &Mesh) -> Box<dyn ForceSource> {
@@ -124,7 +124,7 @@ fn nitsche_needs_one_volume_cell_under_each_slave_face() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("has no single QUAD4"), "{err}");
-    assert!(MortarPenalty::new(&[MortarZoneDef::new("EF", "AB")], &mesh, false).is_ok());
+    assert!(MortarPenalty::new(&[MortarZoneDef::new("EF", "AB")], &mesh, false, 2).is_ok());
     // The copy itself as the slave: no face of the zone has one volume
     // cell (CONTACT1_3).
     let dup = mesh.cells.len() - 1;

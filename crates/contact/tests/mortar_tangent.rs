@@ -85,7 +85,8 @@ fn residual(
 fn check(lam: f64) {
     let mesh = aster_mesh::parse_mail(MESH, Path::new("t.mail")).unwrap();
     let dofs = DofNumbering::new(&[Comp::DX, Comp::DY], &[true; 8]);
-    let mut m = MortarLagrangian::new(&[MortarZoneDef::new("MAIT", "ESCL")], &mesh, false).unwrap();
+    let mut m =
+        MortarLagrangian::new(&[MortarZoneDef::new("MAIT", "ESCL")], &mesh, false, 2).unwrap();
     // Past the first pairing (CONTACT_INIT): the status follows λ + γg.
     m.after_iteration(
         &State {
@@ -154,7 +155,8 @@ fn the_tangent_of_inactive_points_is_the_derivative_of_the_residual() {
 fn the_residual_jumps_by_w_lambda_where_an_open_point_switches() {
     let mesh = aster_mesh::parse_mail(MESH, Path::new("t.mail")).unwrap();
     let dofs = DofNumbering::new(&[Comp::DX, Comp::DY], &[true; 8]);
-    let mut m = MortarLagrangian::new(&[MortarZoneDef::new("MAIT", "ESCL")], &mesh, false).unwrap();
+    let mut m =
+        MortarLagrangian::new(&[MortarZoneDef::new("MAIT", "ESCL")], &mesh, false, 2).unwrap();
     let zero = State {
         mesh: &mesh,
         dofs: &dofs,
@@ -261,7 +263,7 @@ fn check_3d(mesh: &Mesh, lam: f64, what: &str) -> f64 {
     let nodes = mesh.coords.len();
     let dofs = DofNumbering::new(&[Comp::DX, Comp::DY, Comp::DZ], &vec![true; nodes]);
     let mut m =
-        MortarLagrangian::with_dim(&[MortarZoneDef::new("MAIT", "ESCL")], mesh, false, 3).unwrap();
+        MortarLagrangian::new(&[MortarZoneDef::new("MAIT", "ESCL")], mesh, false, 3).unwrap();
     let nd = 3 * nodes;
     let no = m.unknowns();
     assert_eq!(no, 4, "{what}: LAGS_C on the slave face's corners");

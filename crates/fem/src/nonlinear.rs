@@ -613,12 +613,7 @@ impl StaticNonLinear<'_> {
 
         let mut steps = Vec::with_capacity(times.len() + 1);
         if !linear {
-            let mut stress = post::sief_elga(model, &u)?;
-            loads.subtract_free_strain(model, t0, &mut stress)?;
-            let internal_variables = match &plastic {
-                Some(pc) => pc.fields(&mut stress),
-                None => Vec::new(),
-            };
+            let (stress, internal_variables) = step_fields(model, loads, plastic.as_ref(), &u, t0)?;
             steps.push(Step {
                 nume_ordre: self.first_order,
                 time: t0,
@@ -940,12 +935,8 @@ impl StaticNonLinear<'_> {
                             residual_history,
                             newton_iterations,
                         ) = outcome;
-                        let mut stress = post::sief_elga(model, &u)?;
-                        loads.subtract_free_strain(model, target, &mut stress)?;
-                        let internal_variables = match &plastic {
-                            Some(pc) => pc.fields(&mut stress),
-                            None => Vec::new(),
-                        };
+                        let (stress, internal_variables) =
+                            step_fields(model, loads, plastic.as_ref(), &u, target)?;
                         steps.push(Step {
                             nume_ordre: self.first_order + steps.len(),
                             time: target,
@@ -1041,11 +1032,9 @@ impl StaticNonLinear<'_> {
                 }
             }
             t_prev = t;
-            if !converged {
-                return Err(FemError::Model(format!(
-                    "no increment computed to time {t}"
-                )));
-            }
+            // The pending loop only empties on a converged piece reaching t
+            // (a failure returns or pushes its pieces).
+            debug_assert!(converged, "no increment computed to time {t}");
         }
         let final_state = plastic.as_ref().and_then(|pc| {
             steps
@@ -2337,6 +2326,25 @@ fn make_rows(
         aug,
         tracked: None,
     })
+}
+
+/// The fields stored with a step: SIEF_ELGA (the free strain's stress
+/// taken off) and, with a plastic behaviour, VARI_ELGA — the same for the
+/// initial state and every converged increment.
+fn step_fields(
+    model: &Model,
+    loads: &Loads,
+    plastic: Option<&PlasticCells>,
+    u: &[f64],
+    t: f64,
+) -> Result<(Vec<CellValues>, Vec<CellValues>), FemError> {
+    let mut stress = post::sief_elga(model, u)?;
+    loads.subtract_free_strain(model, t, &mut stress)?;
+    let internal_variables = match plastic {
+        Some(pc) => pc.fields(&mut stress),
+        None => Vec::new(),
+    };
+    Ok((stress, internal_variables))
 }
 
 #[cfg(test)]

@@ -222,7 +222,7 @@ pub(crate) fn friction_source(
     axis: bool,
     dim: usize,
 ) -> Result<MortarFriction, ExecError> {
-    MortarFriction::with_dim(zones, mesh, axis, dim)
+    MortarFriction::new(zones, mesh, axis, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
@@ -274,7 +274,7 @@ pub(crate) fn other_source(
             Some(Box::new(source))
         }
         MortarAlgo::Penalised => {
-            let mut m = MortarPenalty::with_dim(zones, mesh, axis, dim).map_err(fail)?;
+            let mut m = MortarPenalty::new(zones, mesh, axis, dim).map_err(fail)?;
             if let Some(r) = resi_geom {
                 m.set_resi_geom(r);
             }
@@ -300,7 +300,7 @@ pub(crate) fn source(
     axis: bool,
     dim: usize,
 ) -> Result<MortarLagrangian, ExecError> {
-    MortarLagrangian::with_dim(zones, mesh, axis, dim)
+    MortarLagrangian::new(zones, mesh, axis, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
@@ -392,7 +392,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     // The groups and cell kinds are checked now, located at the zone.
     for (occ, z) in kw.factor("ZONE").iter().zip(&zones) {
-        if let Err(e) = MortarLagrangian::with_dim(std::slice::from_ref(z), &mesh, axis, dim) {
+        if let Err(e) = MortarLagrangian::new(std::slice::from_ref(z), &mesh, axis, dim) {
             let at = match &e {
                 aster_contact::ContactError::UnknownGroup { keyword, .. } => keyword,
                 aster_contact::ContactError::Unsupported { feature, .. }
@@ -406,7 +406,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         }
         // Friction in 3D: the faces it is reproduced on.
         if dim == 3 && z.friction.is_some() {
-            if let Err(e) = MortarFriction::with_dim(std::slice::from_ref(z), &mesh, axis, dim) {
+            if let Err(e) = MortarFriction::new(std::slice::from_ref(z), &mesh, axis, dim) {
                 let at = if e.to_string().contains("GROUP_MA_MAIT") {
                     "GROUP_MA_MAIT"
                 } else {
