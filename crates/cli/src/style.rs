@@ -129,14 +129,20 @@ impl Listing<anstream::Stdout> {
 }
 
 impl<W: Write> Listing<W> {
+    /// Writes the complete lines received so far in one piece (stdout is
+    /// line-buffered: one `write` for them all rather than one per line),
+    /// keeping the unfinished last line.
     fn emit_lines(&mut self) -> std::io::Result<()> {
-        while let Some(p) = self.pending.iter().position(|&b| b == b'\n') {
-            let line: Vec<u8> = self.pending.drain(..=p).collect();
-            let text = String::from_utf8_lossy(&line[..line.len() - 1]);
-            self.inner.write_all(listing_line(&text).as_bytes())?;
-            self.inner.write_all(b"\n")?;
+        let Some(end) = self.pending.iter().rposition(|&b| b == b'\n') else {
+            return Ok(());
+        };
+        let mut out = String::with_capacity(end + 1);
+        for line in self.pending[..end].split(|&b| b == b'\n') {
+            out.push_str(&listing_line(&String::from_utf8_lossy(line)));
+            out.push('\n');
         }
-        Ok(())
+        self.pending.drain(..=end);
+        self.inner.write_all(out.as_bytes())
     }
 }
 
