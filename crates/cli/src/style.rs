@@ -244,4 +244,40 @@ mod tests {
         );
         assert!(text.contains(&paint(ERROR, "NOOK")), "{text:?}");
     }
+
+    /// The writes the listing makes to its stream.
+    struct Writes(Vec<Vec<u8>>);
+
+    impl Write for Writes {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.0.push(buf.to_vec());
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn the_listing_passes_a_chunk_of_lines_in_one_write() {
+        let mut l = Listing {
+            inner: Writes(Vec::new()),
+            pending: Vec::new(),
+        };
+        let _ = l.write_all(b"a\n\nNOOK b\nc");
+        assert_eq!(l.inner.0.len(), 1, "{:?}", l.inner.0);
+        assert_eq!(
+            strip(&String::from_utf8_lossy(&l.inner.0[0])),
+            "a\n\nNOOK b\n"
+        );
+        let _ = l.write_all(b"d\n");
+        let _ = l.flush();
+        let writes: Vec<String> = l
+            .inner
+            .0
+            .iter()
+            .map(|w| strip(&String::from_utf8_lossy(w)))
+            .collect();
+        assert_eq!(writes, ["a\n\nNOOK b\n", "cd\n"]);
+    }
 }
