@@ -217,18 +217,26 @@ enum Command {
     },
 }
 
-/// The stack of the thread that runs a command. Every recursive pass of the
-/// syntax and the evaluator is bounded (`aster_syntax::limits`,
-/// `aster_eval::limits`) to fit in a main thread's usual 8 MB with a 2x
-/// margin (measured: the deepest evaluation the limits allow takes under
-/// 4 MB in the `ci` profile); the command runs on a thread with more, so
-/// that the margin holds for any build profile.
+/// The stack of the thread that runs a command in an unoptimised build.
+/// Every recursive pass of the syntax and the evaluator is bounded
+/// (`aster_syntax::limits`, `aster_eval::limits`) to fit in a main thread's
+/// usual 8 MB with a 2x margin (measured: the deepest evaluation the limits
+/// allow takes under 4 MB in the `ci` profile); a debug build's frames are
+/// several times larger, so there the command runs on a thread with more.
 const STACK_BYTES: usize = 64 << 20;
 
 fn main() -> ExitCode {
     quiet_on_closed_pipe();
     let cli = Cli::parse();
     aster_fem::linalg::defer_thread_pool();
+    // Optimised builds run the command on the main thread: a second thread
+    // costs more than its start (measured, docs/performance.md): glibc
+    // gives it its own malloc arena, grown and trimmed a page at a time
+    // (one `mprotect` and one page fault each, ~250 for zzzz237a), and on
+    // a busy machine the main thread waits for it to be scheduled.
+    if !cfg!(debug_assertions) {
+        return ExitCode::from(run(cli));
+    }
     let worker = std::thread::Builder::new()
         .name("aster".into())
         .stack_size(STACK_BYTES)

@@ -129,14 +129,20 @@ impl Listing<anstream::Stdout> {
 }
 
 impl<W: Write> Listing<W> {
+    /// Writes the complete lines received so far in one piece (stdout is
+    /// line-buffered: one `write` for them all rather than one per line),
+    /// keeping the unfinished last line.
     fn emit_lines(&mut self) -> std::io::Result<()> {
-        while let Some(p) = self.pending.iter().position(|&b| b == b'\n') {
-            let line: Vec<u8> = self.pending.drain(..=p).collect();
-            let text = String::from_utf8_lossy(&line[..line.len() - 1]);
-            self.inner.write_all(listing_line(&text).as_bytes())?;
-            self.inner.write_all(b"\n")?;
+        let Some(end) = self.pending.iter().rposition(|&b| b == b'\n') else {
+            return Ok(());
+        };
+        let mut out = String::with_capacity(end + 1);
+        for line in self.pending[..end].split(|&b| b == b'\n') {
+            out.push_str(&listing_line(&String::from_utf8_lossy(line)));
+            out.push('\n');
         }
-        Ok(())
+        self.pending.drain(..=end);
+        self.inner.write_all(out.as_bytes())
     }
 }
 
@@ -237,5 +243,41 @@ mod tests {
             "{text:?}"
         );
         assert!(text.contains(&paint(ERROR, "NOOK")), "{text:?}");
+    }
+
+    /// The writes the listing makes to its stream.
+    struct Writes(Vec<Vec<u8>>);
+
+    impl Write for Writes {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.0.push(buf.to_vec());
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn the_listing_passes_a_chunk_of_lines_in_one_write() {
+        let mut l = Listing {
+            inner: Writes(Vec::new()),
+            pending: Vec::new(),
+        };
+        let _ = l.write_all(b"a\n\nNOOK b\nc");
+        assert_eq!(l.inner.0.len(), 1, "{:?}", l.inner.0);
+        assert_eq!(
+            strip(&String::from_utf8_lossy(&l.inner.0[0])),
+            "a\n\nNOOK b\n"
+        );
+        let _ = l.write_all(b"d\n");
+        let _ = l.flush();
+        let writes: Vec<String> = l
+            .inner
+            .0
+            .iter()
+            .map(|w| strip(&String::from_utf8_lossy(w)))
+            .collect();
+        assert_eq!(writes, ["a\n\nNOOK b\n", "cd\n"]);
     }
 }

@@ -116,6 +116,12 @@ impl Executor {
             .map_err(|e| ExecError::new(format!("cannot write the report: {e}")))
     }
 
+    /// Writes out what the report still holds (a last line without its
+    /// newline); errors are the report's own, as at its drop.
+    pub(crate) fn flush_report(&mut self) {
+        let _ = self.out.flush();
+    }
+
     /// `file:line:col` of a span, when the source is known.
     pub(crate) fn location(&self, span: Span) -> Option<String> {
         self.codemap.as_ref().map(|cm| cm.location(span))

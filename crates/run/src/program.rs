@@ -30,6 +30,10 @@ pub struct Case {
     /// the run ends (`aster run --vtu DIR`).
     pub vtu_dir: Option<PathBuf>,
     pub options: RunOptions,
+    /// The process ends with the run (`aster run`): the executor's concepts
+    /// (meshes, results, fields) are left to the operating system instead
+    /// of being freed one allocation at a time (docs/performance.md).
+    pub exit_after: bool,
 }
 
 impl Case {
@@ -153,6 +157,7 @@ pub fn prepare(case: &Path, mesh: Option<&Path>, out_dir: &Path) -> Result<Case,
         progress_stderr: false,
         vtu_dir: None,
         options,
+        exit_after: false,
     })
 }
 
@@ -263,11 +268,16 @@ pub fn run(case: &Case, report: Box<dyn Write>) -> Outcome {
         tail.push_str(&format!("{}\n", executor.tally.summary()));
         let _ = f.write_all(tail.as_bytes());
     }
-    Outcome {
+    let outcome = Outcome {
         tally: executor.tally,
         error,
-        journal: executor.journal,
+        journal: std::mem::take(&mut executor.journal),
+    };
+    executor.flush_report();
+    if case.exit_after {
+        std::mem::forget(executor);
     }
+    outcome
 }
 
 /// A report written to several places.

@@ -40,11 +40,16 @@ impl Progress {
         let Ok(mut out) = out.try_borrow_mut() else {
             return;
         };
+        // One `write` per line (stderr and the file are unbuffered:
+        // `writeln!` would make two).
+        let mut line = String::with_capacity(text.len() + 1);
+        line.push_str(text);
+        line.push('\n');
         if out.stderr {
-            let _ = writeln!(std::io::stderr(), "{text}");
+            let _ = std::io::stderr().write_all(line.as_bytes());
         }
         if let Some(f) = out.mess.as_mut() {
-            let _ = writeln!(f, "{text}");
+            let _ = f.write_all(line.as_bytes());
         }
     }
 
@@ -104,6 +109,10 @@ struct Table {
 
 impl Observer for Table {
     fn event(&mut self, event: &Event) {
+        // Nothing to format when the progress goes nowhere (`-q`).
+        if !self.out.is_on() {
+            return;
+        }
         match event {
             Event::Iteration(it) => {
                 if self.increment != Some(it.time) {

@@ -60,6 +60,7 @@ pub fn run(
     };
     prepared.progress_stderr = !quiet;
     prepared.vtu_dir = vtu.map(Path::to_path_buf);
+    prepared.exit_after = true;
     let outcome = aster_run::program::run(&prepared, Box::new(crate::style::Listing::stdout()));
     if let Some(e) = &outcome.error {
         // Errors of the program carry `file:line:col: error:` already.
