@@ -38,6 +38,7 @@ use crate::linalg::{self, Csc, SolveFailure};
 use crate::loads::EqualityRow;
 use crate::model::Model;
 use crate::nonlinear::{choose_tangent, kept_rows, step_forces, IncrementTerms, NewtonOptions};
+use crate::solver_constrained::{self, KktSolver};
 use crate::unilateral::State;
 
 /// An unknown of the system a source contributes to.
@@ -114,6 +115,16 @@ pub trait ForceSource {
 
     /// Number of own unknowns (constant over the analysis).
     fn unknowns(&self) -> usize;
+
+    /// Whether the tangent [`Contribution::tangent`] is symmetric (a
+    /// cohesive joint's Bᵀ D B with a symmetric D; not friction). A step
+    /// whose sources have no unknowns of their own and symmetric tangents
+    /// is solved as the Newton loop without sources solves it (pinned
+    /// rows, Schur complement, sparse Cholesky on a kept symbolic
+    /// analysis) instead of the bordered LU. Default: not symmetric.
+    fn symmetric_tangent(&self) -> bool {
+        false
+    }
 
     /// Start of an increment from the last converged state `state` (at
     /// the new time, before its imposed values are applied). The source may
@@ -225,6 +236,9 @@ impl<T: ForceSource + ?Sized> ForceSource for &mut T {
     fn unknowns(&self) -> usize {
         (**self).unknowns()
     }
+    fn symmetric_tangent(&self) -> bool {
+        (**self).symmetric_tangent()
+    }
     fn begin_increment(&mut self, state: &State, own: &mut [f64]) -> Result<(), FemError> {
         (**self).begin_increment(state, own)
     }
@@ -294,6 +308,12 @@ pub(crate) struct ForceStep<'a> {
     /// not the sources' forces (code_aster weights its continuous contact
     /// forces too: aster-run refuses that combination).
     pub dynamics: Option<&'a dyn IncrementTerms>,
+    /// Coordinates of the free unknowns (the fill-reducing ordering).
+    pub coords: &'a [[f64; 3]],
+    /// The DOF index of each free unknown.
+    pub free_dof: &'a [usize],
+    /// The time integrator's mass holds the model.
+    pub mass_holds: bool,
 }
 
 /// The outcome of a converged step: (solves, equality multipliers,
@@ -323,6 +343,7 @@ pub(crate) fn newton_step(
     elim: &std::collections::HashMap<usize, f64>,
     t: f64,
     plastic: &mut Option<PlasticCells>,
+    kkt: &mut KktSolver,
 ) -> Result<ForceOutcome, FemError> {
     let ForceStep {
         model,
@@ -333,6 +354,9 @@ pub(crate) fn newton_step(
         kdiag_max,
         newton,
         dynamics,
+        coords,
+        free_dof,
+        mass_holds,
         ..
     } = *ctx;
     let nd = u.len();
@@ -453,19 +477,52 @@ pub(crate) fn newton_step(
         }
         for (kk, &r) in kept.iter().enumerate() {
             let row = &eq[r];
-            let mut au = 0.0;
-            for &(i, c) in &row.terms {
-                au += c * u[i];
-                if map[i] != usize::MAX {
-                    extra.push((nfree + nown + kk, map[i], c));
-                    extra.push((map[i], nfree + nown + kk, c));
-                }
-            }
+            let au: f64 = row.terms.iter().map(|&(i, c)| c * u[i]).sum();
             b[nfree + nown + kk] = row.rhs - au;
         }
-        let a = crate::newton_timing::timed(crate::newton_timing::Phase::Assembly, || {
-            matrix.with_extra(n, extra)
-        });
+        let free_rows: Vec<Vec<(usize, f64)>> = kept
+            .iter()
+            .map(|&r| {
+                eq[r]
+                    .terms
+                    .iter()
+                    .filter(|(i, _)| map[*i] != usize::MAX)
+                    .map(|&(i, c)| (map[i], c))
+                    .collect()
+            })
+            .collect();
+        // Sources without unknowns of their own and with symmetric
+        // tangents (cohesive joints) on a symmetric matrix: the solve of
+        // the Newton loop without sources (pinned rows out, the relations
+        // through their Schur complement, Cholesky on a kept symbolic
+        // analysis with a nested dissection), not the bordered LU.
+        let symmetric = nown == 0
+            && sources.iter().all(|s| s.symmetric_tangent())
+            && plastic.as_ref().is_none_or(|pc| pc.symmetric_tangent());
+        let reduced = if symmetric {
+            let keff = crate::newton_timing::timed(crate::newton_timing::Phase::Assembly, || {
+                matrix.with_extra(nfree, extra.clone())
+            });
+            let key = kkt.new_tangent(true);
+            let krows: Vec<solver_constrained::Row> = free_rows
+                .iter()
+                .enumerate()
+                .map(|(kk, terms)| solver_constrained::Row {
+                    terms,
+                    d: b[nfree + kk],
+                    equality: true,
+                })
+                .collect();
+            let held_by = |pinned: &[usize], relations: &solver_constrained::Relations| {
+                mass_holds
+                    || crate::nonlinear::held_by_rows(model, elim, free_dof, pinned, relations)
+            };
+            kkt.solve(key, &keff, &[], &krows, &b[..nfree], Some(coords), &held_by)
+                .ok()
+                .flatten()
+        } else {
+            None
+        };
         let name = |i: usize| -> String {
             if i < nfree {
                 let dof = map.iter().position(|&m| m == i).unwrap_or(0);
@@ -481,12 +538,27 @@ pub(crate) fn newton_step(
                 format!("Lagrange multiplier #{}", i - nfree - nown + 1)
             }
         };
-        let sol = linalg::solve_with(&a, &b, nfree, false, None).map_err(|f| match f {
-            SolveFailure::Singular { index } => FemError::Singular {
-                free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
-            },
-            other => linalg::failure_to_error(other, name),
-        })?;
+        let sol = match reduced {
+            Some(sol) => sol,
+            None => {
+                let mut extra = extra;
+                for (kk, terms) in free_rows.iter().enumerate() {
+                    for &(i, c) in terms {
+                        extra.push((nfree + nown + kk, i, c));
+                        extra.push((i, nfree + nown + kk, c));
+                    }
+                }
+                let a = crate::newton_timing::timed(crate::newton_timing::Phase::Assembly, || {
+                    matrix.with_extra(n, extra)
+                });
+                linalg::solve_with(&a, &b, nfree, false, None).map_err(|f| match f {
+                    SolveFailure::Singular { index } => FemError::Singular {
+                        free_dofs: index.map(|i| vec![name(i)]).unwrap_or_default(),
+                    },
+                    other => linalg::failure_to_error(other, name),
+                })?
+            }
+        };
         if trace {
             let (imax, vmax) = sol
                 .x

@@ -200,6 +200,12 @@ impl ForceSource for JointCells {
         0
     }
 
+    /// Bᵀ D B at each Gauss point, D the cohesive laws' tangent, which is
+    /// symmetric for every law of [`crate::cohesive`].
+    fn symmetric_tangent(&self) -> bool {
+        true
+    }
+
     fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
         for k in 0..self.cells.len() {
             let dofs = self.dofs(state, &self.cells[k])?;
@@ -230,13 +236,15 @@ impl ForceSource for JointCells {
             }
             let f = forces(&c.geom, &traction);
             let kt = tangent(&c.geom, &d);
+            // The whole 8 × 8 block, zeros included: the matrix keeps one
+            // pattern while the law's tangent gains and loses terms
+            // (damage starting, a closed joint), so the solver's symbolic
+            // analysis is made once.
             for i in 0..8 {
                 out.forces.push((dofs[i], f[i]));
                 for j in 0..8 {
-                    if kt[i][j] != 0.0 {
-                        out.tangent
-                            .push((Unknown::Dof(dofs[i]), Unknown::Dof(dofs[j]), kt[i][j]));
-                    }
+                    out.tangent
+                        .push((Unknown::Dof(dofs[i]), Unknown::Dof(dofs[j]), kt[i][j]));
                 }
             }
             self.trial[k] = JointPoints { traction, vari };

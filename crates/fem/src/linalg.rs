@@ -341,6 +341,42 @@ mod symbolic_cache {
         (ucp, uri)
     }
 
+    /// `m` written on a kept pattern (`cp`, `ri`) so that a symbolic
+    /// analysis of that pattern serves it: on the kept pattern itself when
+    /// it contains `m`'s (the missing entries explicit zeros), else on the
+    /// union of both when that is at most [`UNION_SLACK`] times `m`'s
+    /// size, else `m` as it is. The policy of [`lu`], for the callers that
+    /// keep their own symbolic factorisations (`crate::solver_constrained`).
+    pub(crate) fn on_kept_pattern(cp: &[usize], ri: &[usize], m: super::Csc) -> super::Csc {
+        if cp.len() != m.n + 1 {
+            return m;
+        }
+        let n = m.n;
+        let sym = SymbolicSparseColMatRef::new_checked(n, n, &m.col_ptr, None, &m.row_idx);
+        let mat = SparseColMatRef::new(sym, &m.values);
+        if let Some(values) = scatter(cp, ri, mat) {
+            return super::Csc {
+                n,
+                col_ptr: cp.to_vec(),
+                row_idx: ri.to_vec(),
+                values,
+            };
+        }
+        let (ucp, uri) = union(cp, ri, sym);
+        if (uri.len() as f64) > UNION_SLACK * m.row_idx.len() as f64 {
+            return m;
+        }
+        match scatter(&ucp, &uri, mat) {
+            Some(values) => super::Csc {
+                n,
+                col_ptr: ucp,
+                row_idx: uri,
+                values,
+            },
+            None => m,
+        }
+    }
+
     /// Sparse LU with partial pivoting (`SparseColMatRef::sp_lu`), on the
     /// kept pattern when `mat`'s fits in it.
     pub(super) fn lu(mat: SparseColMatRef<'_, usize, f64>) -> Result<Lu<usize, f64>, LuError> {
@@ -425,6 +461,8 @@ mod symbolic_cache {
         Llt::try_new_with_symbolic(symbolic, mat, Side::Lower).ok()
     }
 }
+
+pub(crate) use symbolic_cache::on_kept_pattern;
 
 /// Solves A x = b. `n_primal` is the number of leading displacement unknowns
 /// (the rest are multipliers); `spd_hint` says the matrix should be

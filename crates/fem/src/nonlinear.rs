@@ -797,6 +797,9 @@ impl StaticNonLinear<'_> {
                         iter_glob_maxi: self.convergence.iter_glob_maxi,
                         loops_max: self.active_set_max_iter,
                         dynamics: self.dynamics.as_deref(),
+                        coords: &free_coords,
+                        free_dof: &free_dof,
+                        mass_holds,
                     };
                     force_source::newton_step(
                         &fctx,
@@ -809,6 +812,7 @@ impl StaticNonLinear<'_> {
                         &elim,
                         target,
                         &mut plastic,
+                        &mut kkt,
                     )
                     .map(|(solves, lam, rela, maxi, history, its, forces)| {
                         source_forces = Some(forces);
@@ -1130,6 +1134,27 @@ struct LoadHistory {
     last_resi_maxi: Option<f64>,
 }
 
+/// Whether the eliminated DOFs `elim`, the `pinned` free unknowns and the
+/// equality `relations` (terms over free unknowns; `free_dof` gives each
+/// one's DOF) hold the model: what [`KktSolver::solve`] asks before it
+/// factorises the stiffness without the pinned unknowns.
+pub(crate) fn held_by_rows(
+    model: &Model,
+    elim: &std::collections::HashMap<usize, f64>,
+    free_dof: &[usize],
+    pinned: &[usize],
+    relations: &solver_constrained::Relations,
+) -> bool {
+    let mut ground: Vec<Vec<(usize, f64)>> = elim.keys().map(|&i| vec![(i, 1.0)]).collect();
+    ground.extend(pinned.iter().map(|&f| vec![(free_dof[f], 1.0)]));
+    ground.extend(
+        relations
+            .iter()
+            .map(|t| t.iter().map(|&(f, c)| (free_dof[f], c)).collect()),
+    );
+    held::free_dofs(model, &ground).is_empty()
+}
+
 /// Systems without constraint rows of at least this many unknowns keep the
 /// bordered path ([`linalg::solve_with`]), whose nested-dissection
 /// Cholesky is split over two threads.
@@ -1390,18 +1415,7 @@ fn newton_step(
                     })
                     .collect();
                 let held_by = |pinned: &[usize], relations: &solver_constrained::Relations| {
-                    if mass_holds {
-                        return true;
-                    }
-                    let mut ground: Vec<Vec<(usize, f64)>> =
-                        elim.keys().map(|&i| vec![(i, 1.0)]).collect();
-                    ground.extend(pinned.iter().map(|&f| vec![(free_dof[f], 1.0)]));
-                    ground.extend(
-                        relations
-                            .iter()
-                            .map(|t| t.iter().map(|&(f, c)| (free_dof[f], c)).collect()),
-                    );
-                    held::free_dofs(model, &ground).is_empty()
+                    mass_holds || held_by_rows(model, elim, free_dof, pinned, relations)
                 };
                 kkt.solve(
                     tangent_key,
