@@ -528,7 +528,12 @@ fn cholesky_ordered(mat: SparseColMatRef<'_, usize, f64>, order: &[usize]) -> Op
     if std::env::var_os("ASTER_FEM_TIMING").is_some() {
         eprintln!("[fem] Cholesky factor: {} non-zeros", symbolic.len_val());
     }
-    numeric_llt(&symbolic, mat, &mut values, faer::get_global_parallelism())?;
+    numeric_llt(
+        &symbolic,
+        mat,
+        &mut values,
+        factor_parallelism(symbolic.len_val()),
+    )?;
     Some(Factor::LltOrdered {
         symbolic: Box::new(symbolic),
         values,
@@ -554,6 +559,28 @@ pub fn defer_thread_pool() {
         .filter(|&n| n > 0)
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     faer::set_global_parallelism(faer::Par::rayon(threads));
+}
+
+/// Below this many non-zeros in the factor a numeric factorisation runs on
+/// one thread: the threads' synchronisation costs more than they save.
+/// Measured on the 2-core machine (one case at a time, wall / user +
+/// system): ssnv110e's 2D factor of 1.25 M non-zeros (24,915 unknowns)
+/// 27.7 s / 29.2 s with two threads against 18.1 s / 18.1 s with one;
+/// ssnv166b's 3D factor of 123 M non-zeros gains from two (29.5 s wall
+/// against 34.8 s). On ssnv506d (9,700 unknowns) too the threads cost more
+/// CPU than they saved (the former rule: 20,000 unknowns).
+const PARALLEL_MIN_FACTOR_NONZEROS: usize = 5_000_000;
+
+/// The parallelism of a numeric factorisation whose factor has
+/// `factor_nonzeros` values (and of the solves with it): faer's global
+/// setting for large factors,
+/// one thread below [`PARALLEL_MIN_FACTOR_NONZEROS`].
+pub(crate) fn factor_parallelism(factor_nonzeros: usize) -> faer::Par {
+    if factor_nonzeros < PARALLEL_MIN_FACTOR_NONZEROS {
+        faer::Par::Seq
+    } else {
+        faer::get_global_parallelism()
+    }
 }
 
 /// Threads available to the factorisation (faer's global setting: rayon's

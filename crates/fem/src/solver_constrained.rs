@@ -635,7 +635,7 @@ impl KktSolver {
         }
         let symbolic = self.symbolic.as_ref()?.2.clone();
         let mut values = vec![0.0; symbolic.len_val()];
-        let par = parallelism(m.n);
+        let par = crate::linalg::factor_parallelism(symbolic.len_val());
         let mut mem = faer::dyn_stack::MemBuffer::try_new(
             symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
         )
@@ -715,15 +715,15 @@ impl KktSolver {
         }
         let symbolic = self.symbolic.as_ref()?.2.clone();
         let mut values = vec![0.0; symbolic.len_val()];
-        crate::linalg::numeric_llt(&symbolic, mat, &mut values, parallelism(krr.n))?;
+        crate::linalg::numeric_llt(
+            &symbolic,
+            mat,
+            &mut values,
+            crate::linalg::factor_parallelism(symbolic.len_val()),
+        )?;
         Some(RFactor::Llt { symbolic, values })
     }
 }
-
-/// Below this many unknowns the factorisation and solves run on one
-/// thread: on ssnv506d (9,700 unknowns) the threads' synchronisation cost
-/// more CPU than they saved.
-const PARALLEL_MIN: usize = 20_000;
 
 /// From this many unknowns the Cholesky and LDLᵀ factors are supernodal
 /// whatever faer's flop heuristic says: on a 2D mesh (ssnv110e, 24,915
@@ -742,14 +742,6 @@ fn symbolic_params(n: usize) -> faer::sparse::linalg::cholesky::CholeskySymbolic
             SupernodalThreshold::AUTO
         },
         ..Default::default()
-    }
-}
-
-fn parallelism(n: usize) -> faer::Par {
-    if n < PARALLEL_MIN {
-        faer::Par::Seq
-    } else {
-        faer::get_global_parallelism()
     }
 }
 
@@ -892,7 +884,7 @@ impl Reduced {
         }
         match &self.factor {
             RFactor::Llt { symbolic, values } => {
-                let par = parallelism(nr);
+                let par = crate::linalg::factor_parallelism(values.len());
                 let mut mem = faer::dyn_stack::MemBuffer::new(
                     symbolic.solve_in_place_scratch::<f64>(nc, par),
                 );
@@ -905,7 +897,7 @@ impl Reduced {
                     );
             }
             RFactor::Ldlt { symbolic, values } => {
-                let par = parallelism(nr);
+                let par = crate::linalg::factor_parallelism(values.len());
                 let mut mem = faer::dyn_stack::MemBuffer::new(
                     symbolic.solve_in_place_scratch::<f64>(nc, par),
                 );
