@@ -317,11 +317,23 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
 /// alone (thermal strains included, as code_aster's EPSI_ELGA). Plane
 /// stress (C_PLAN: εzz from the stresses) is refused.
 pub fn epsi_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
+    epsi_elga_on(model, u, |_| true)
+}
+
+/// [`epsi_elga`] on the cells `keep` accepts only.
+pub fn epsi_elga_on(
+    model: &Model,
+    u: &[f64],
+    keep: impl Fn(CellId) -> bool,
+) -> Result<Vec<CellValues>, FemError> {
     let mut out = Vec::with_capacity(model.elements().len());
     for el in model.elements() {
         let ElementKind::Continuum { hypothesis, .. } = &el.kind else {
             continue;
         };
+        if !keep(el.cell) {
+            continue;
+        }
         if *hypothesis == Hypothesis::PlaneStress {
             return Err(FemError::Model(
                 "EPSI_ELGA of plane stress (C_PLAN) elements is not computed (εzz from the stresses)"

@@ -534,7 +534,7 @@ pub enum ContactDef {
 pub struct Step {
     pub nume_ordre: u32,
     pub inst: f64,
-    pub fields: BTreeMap<String, Field>,
+    pub fields: crate::field::StepFields,
 }
 
 /// `evol_noli` / `evol_elas`.

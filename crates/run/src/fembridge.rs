@@ -1012,24 +1012,38 @@ fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
             }
         }
     }
+    // Where each component sits in a cell's own list, found once per
+    // distinct list (cells of one kind share it).
+    let mut index: Vec<(&[&str], Vec<Option<usize>>)> = Vec::new();
     let mut values = BTreeMap::new();
     for cv in cells {
-        let pts: Vec<Vec<f64>> = cv
-            .points
-            .iter()
-            .map(|p| {
-                components
+        let names: &[&str] = &cv.names;
+        let k = match index.iter().position(|(n, _)| *n == names) {
+            Some(k) => k,
+            None => {
+                let map = components
                     .iter()
-                    .map(|c| {
-                        cv.names
-                            .iter()
-                            .position(|n| n == c)
-                            .map(|i| p[i])
-                            .unwrap_or(f64::NAN)
-                    })
-                    .collect()
-            })
-            .collect();
+                    .map(|c| names.iter().position(|n| n == c))
+                    .collect();
+                index.push((names, map));
+                index.len() - 1
+            }
+        };
+        let map = &index[k].1;
+        let pts: Vec<Vec<f64>> = if names.len() == components.len()
+            && map.iter().enumerate().all(|(i, m)| *m == Some(i))
+        {
+            cv.points.clone()
+        } else {
+            cv.points
+                .iter()
+                .map(|p| {
+                    map.iter()
+                        .map(|m| m.map(|i| p[i]).unwrap_or(f64::NAN))
+                        .collect()
+                })
+                .collect()
+        };
         values.insert(cv.cell, pts);
     }
     ElemField {
@@ -1323,7 +1337,7 @@ pub fn solve(
         .steps
         .iter()
         .map(|s| -> Result<Step, ExecError> {
-            let mut fields = BTreeMap::new();
+            let mut fields = crate::field::StepFields::new();
             fields.insert(
                 "DEPL".to_string(),
                 Field::Nodal(nodal_from_dofs(&model, &s.displacement)),
@@ -1563,13 +1577,15 @@ fn convergence_report(raw: &NonLinearResult) -> String {
     out
 }
 
-/// CALC_CHAMP options on stored steps.
+/// CALC_CHAMP options on stored steps; with `only`, the element options on
+/// those cells and the nodal averages over them (`GROUP_MA`, `MAILLE`).
 pub fn calc_champ(
     ex: &mut Executor,
     call: &CommandCall,
     result: &EvolResult,
     options: &[String],
     steps: &[u32],
+    only: Option<&std::collections::BTreeSet<aster_mesh::CellId>>,
 ) -> Result<EvolResult, ExecError> {
     let Some(run) = result.fem.clone() else {
         if !result.steps.is_empty() && result.tables.is_empty() {
@@ -1579,6 +1595,23 @@ pub fn calc_champ(
             "CALC_CHAMP: this result was not computed by STAT_NON_LINE/MECA_STATIQUE in this run",
         ));
     };
+    let keep = |c: aster_mesh::CellId| only.is_none_or(|s| s.contains(&c));
+    fn on<'a>(
+        only: Option<&std::collections::BTreeSet<aster_mesh::CellId>>,
+        cells: &'a [CellValues],
+    ) -> std::borrow::Cow<'a, [CellValues]> {
+        match only {
+            None => std::borrow::Cow::Borrowed(cells),
+            Some(s) => std::borrow::Cow::Owned(
+                cells
+                    .iter()
+                    .filter(|cv| s.contains(&cv.cell))
+                    .cloned()
+                    .collect(),
+            ),
+        }
+    }
+    let restrict = |cells| on(only, cells);
     let mut out = result.clone();
     for step in out
         .steps
@@ -1588,7 +1621,7 @@ pub fn calc_champ(
         let raw = run.state("CALC_CHAMP", step.nume_ordre)?;
         let u = &raw.displacement;
         let model = &run.model;
-        let elno = || post::elno(model, &raw.stress);
+        let elno = || post::elno(model, &restrict(&raw.stress));
         let forc_noda = || {
             let mut f = if run.plastic {
                 aster_fem::behaviour::forc_noda_deformed(model, u, &raw.stress, &run.behaviours)
@@ -1606,7 +1639,7 @@ pub fn calc_champ(
                     call.keywords.keyword("DEFORMATION").map(|k| k.span).unwrap_or(call.span),
                 ));
             }
-            post::epsi_elga(model, u).map_err(|e| fem_err("CALC_CHAMP", e))
+            post::epsi_elga_on(model, u, keep).map_err(|e| fem_err("CALC_CHAMP", e))
         };
         for opt in options {
             let field = match opt.as_str() {
@@ -1651,15 +1684,15 @@ pub fn calc_champ(
                 // Internal variables (none for ELAS: fields without components).
                 "VARI_ELNO" => Field::Elem(elem_field(
                     ElemLocation::Nodes,
-                    &post::elno(model, &raw.internal_variables),
+                    &post::elno(model, &restrict(&raw.internal_variables)),
                 )),
                 "VARI_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(
                     model,
-                    &post::elno(model, &raw.internal_variables),
+                    &post::elno(model, &restrict(&raw.internal_variables)),
                 ))),
                 "SIEQ_ELGA" => Field::Elem(elem_field(
                     ElemLocation::Gauss,
-                    &post::sieq_field(&raw.stress),
+                    &post::sieq_field(&restrict(&raw.stress)),
                 )),
                 "SIEQ_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &post::sieq_field(&elno())))
@@ -1722,7 +1755,7 @@ pub fn extract_shell_level(
         .filter(|s| steps.contains(&s.nume_ordre))
     {
         let raw = run.state("POST_CHAMP", step.nume_ordre)?;
-        if let Some(name) = names.iter().find(|n| !step.fields.contains_key(*n)) {
+        if let Some(name) = names.iter().find(|n| !step.fields.contains_key(n)) {
             return Err(ExecError::new(format!(
                 "POST_CHAMP/EXTR_COQUE: the field {name} is not in the result at NUME_ORDRE {}: compute it first (CALC_CHAMP)",
                 step.nume_ordre
@@ -1734,7 +1767,7 @@ pub fn extract_shell_level(
             crate::shells::sigm_elno_at(&run.model, run.cara.as_deref(), &raw.displacement, level)
                 .map_err(|e| fem_err("POST_CHAMP", e))?;
         let field = Field::Elem(elem_field(ElemLocation::Nodes, &cells));
-        let fields: BTreeMap<String, Field> = names
+        let fields: crate::field::StepFields = names
             .iter()
             .map(|name| (name.clone(), field.clone()))
             .collect();

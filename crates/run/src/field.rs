@@ -4,6 +4,7 @@
 
 use aster_mesh::{CellId, NodeId};
 use std::collections::BTreeMap;
+use std::rc::Rc;
 
 /// A field on nodes: for each node that carries it, one value per
 /// component (`None` when that node lacks the component).
@@ -166,6 +167,76 @@ impl Field {
                     .collect()
             }
         }
+    }
+}
+
+/// The fields of one stored step, by name (`DEPL`, `SIEF_ELGA`…). Each
+/// field is shared (`Rc`): a result copied to add fields (`CALC_CHAMP`
+/// with `reuse=`, a `STAT_NON_LINE` continuing a result) copies pointers,
+/// not values, and a field is copied only when it is changed
+/// ([`StepFields::get_mut`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StepFields(BTreeMap<String, Rc<Field>>);
+
+impl StepFields {
+    pub fn new() -> StepFields {
+        StepFields::default()
+    }
+
+    pub fn get(&self, name: &str) -> Option<&Field> {
+        self.0.get(name).map(|f| &**f)
+    }
+
+    /// The field to change: copied first if another result shares it.
+    pub fn get_mut(&mut self, name: &str) -> Option<&mut Field> {
+        self.0.get_mut(name).map(Rc::make_mut)
+    }
+
+    pub fn insert(&mut self, name: String, field: Field) {
+        self.0.insert(name, Rc::new(field));
+    }
+
+    pub fn contains_key(&self, name: &str) -> bool {
+        self.0.contains_key(name)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    pub fn keys(&self) -> impl Iterator<Item = &String> {
+        self.0.keys()
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = (&String, &Field)> {
+        self.0.iter().map(|(k, f)| (k, &**f))
+    }
+
+    pub fn iter_mut(&mut self) -> impl Iterator<Item = (&String, &mut Field)> {
+        self.0.iter_mut().map(|(k, f)| (k, Rc::make_mut(f)))
+    }
+
+    pub fn values_mut(&mut self) -> impl Iterator<Item = &mut Field> {
+        self.0.values_mut().map(Rc::make_mut)
+    }
+}
+
+impl FromIterator<(String, Field)> for StepFields {
+    fn from_iter<I: IntoIterator<Item = (String, Field)>>(iter: I) -> StepFields {
+        StepFields(iter.into_iter().map(|(k, f)| (k, Rc::new(f))).collect())
+    }
+}
+
+impl Extend<(String, Field)> for StepFields {
+    fn extend<I: IntoIterator<Item = (String, Field)>>(&mut self, iter: I) {
+        self.0
+            .extend(iter.into_iter().map(|(k, f)| (k, Rc::new(f))));
+    }
+}
+
+impl<const N: usize> From<[(String, Field); N]> for StepFields {
+    fn from(a: [(String, Field); N]) -> StepFields {
+        a.into_iter().collect()
     }
 }
 

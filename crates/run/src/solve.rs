@@ -1002,11 +1002,37 @@ const CALC_CHAMP_OWN: &[&str] = &[
 
 /// What CALC_CHAMP reads (`crate::support`): its own keywords and the step
 /// selection ([`crate::commands::post::STEP_SELECTION`]).
-pub(crate) const CALC_CHAMP: Support =
-    Support::keywords(&crate::support::joined::<
+pub(crate) const CALC_CHAMP: Support = Support {
+    rules: Some(calc_champ_rules),
+    ..Support::keywords(&crate::support::joined::<
         _,
         { crate::commands::post::STEP_SELECTION.len() + CALC_CHAMP_OWN.len() },
-    >(crate::commands::post::STEP_SELECTION, CALC_CHAMP_OWN));
+    >(crate::commands::post::STEP_SELECTION, CALC_CHAMP_OWN))
+};
+
+/// `GROUP_MA`/`MAILLE` restrict the element options and the nodal averages
+/// to those cells; the nodal forces of some cells only are not computed.
+fn calc_champ_rules(call: &CommandCall, out: &mut Vec<crate::support::Refusal>) {
+    let kw = &call.keywords;
+    let Some(key) = ["GROUP_MA", "MAILLE"]
+        .into_iter()
+        .find(|k| kw.keyword(k).is_some_and(|k| !k.defaulted))
+    else {
+        return;
+    };
+    for opt in kw.simple("FORCE").iter().filter_map(|s| s.as_str()) {
+        if matches!(opt, "FORC_NODA" | "REAC_NODA") {
+            out.push(crate::support::Refusal::at(
+                format!(
+                    "CALC_CHAMP/{key} with FORCE='{opt}' (the nodal forces of some cells only)"
+                ),
+                kw,
+                key,
+                call.span,
+            ));
+        }
+    }
+}
 
 pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
@@ -1027,7 +1053,23 @@ pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         );
     }
     let steps: Vec<u32> = crate::commands::select_steps_pub(ex, "CALC_CHAMP", kw, &result)?;
-    let updated = crate::fembridge::calc_champ(ex, call, &result, &options, &steps)?;
+    // GROUP_MA / MAILLE: the element options on those cells only, the
+    // nodal averages (`*_NOEU`) over them, as code_aster computes them
+    // (FORC_NODA/REAC_NODA with them are refused: `calc_champ_rules`).
+    let only: Option<std::collections::BTreeSet<aster_mesh::CellId>> = if kw.str("TOUT")
+        == Some("OUI")
+        || ["GROUP_MA", "MAILLE"]
+            .iter()
+            .all(|k| kw.keyword(k).is_none())
+    {
+        None
+    } else {
+        let mesh = ex.mesh_by_id(result.mesh)?;
+        let cells = crate::select::cells(kw, &mesh, "")
+            .map_err(|m| ExecError::new(format!("CALC_CHAMP: {m}")))?;
+        Some(cells.into_iter().collect())
+    };
+    let updated = crate::fembridge::calc_champ(ex, call, &result, &options, &steps, only.as_ref())?;
     store_result(ex, call, Concept::Result(Rc::new(updated)))
 }
 

@@ -120,7 +120,7 @@ pub fn lire_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             let step = out.entry(s.nume_ordre).or_insert_with(|| Step {
                 nume_ordre: s.nume_ordre.max(0) as u32,
                 inst: s.inst,
-                fields: BTreeMap::new(),
+                fields: Default::default(),
             });
             step.fields.insert(nom_cham.to_string(), Field::Nodal(nf));
         }

@@ -851,7 +851,9 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
                 let members = crate::select::group_no(&line, &from)
                     .unwrap_or(&[])
                     .to_vec();
-                let first = &projected_steps[0].fields[&nom_cham];
+                let Some(first) = projected_steps[0].fields.get(&nom_cham) else {
+                    continue;
+                };
                 let Field::Nodal(f) = first else {
                     continue;
                 };

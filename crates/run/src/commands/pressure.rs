@@ -193,7 +193,14 @@ pub fn calc_pression(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let mut out: EvolResult = if missing.is_empty() {
         (*result).clone()
     } else {
-        crate::fembridge::calc_champ(ex, call, &result, &["SIEF_NOEU".to_string()], &missing)?
+        crate::fembridge::calc_champ(
+            ex,
+            call,
+            &result,
+            &["SIEF_NOEU".to_string()],
+            &missing,
+            None,
+        )?
     };
     for step in out
         .steps
@@ -237,7 +244,7 @@ mod tests {
         let step = Step {
             nume_ordre: 1,
             inst: 1.0,
-            fields: BTreeMap::from([("SIEF_NOEU".to_string(), Field::Nodal(sigma))]),
+            fields: [("SIEF_NOEU".to_string(), Field::Nodal(sigma))].into(),
         };
         let f = pressure_field(&mesh, &[CellId(0)], &step, false).unwrap();
         let h = 0.5 / 2f64.sqrt();

@@ -476,7 +476,7 @@ pub fn proj_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     }
     // Every field to project must be nodal (checked before any work).
     for s in &steps {
-        for (name, f) in &s.fields {
+        for (name, f) in s.fields.iter() {
             let wanted = names.is_empty() || names.contains(&name.as_str());
             if wanted && !matches!(f, Field::Nodal(_)) {
                 let at = if names.is_empty() {
@@ -489,7 +489,7 @@ pub fn proj_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         }
     }
     for n in &names {
-        if !steps.iter().any(|s| s.fields.contains_key(*n)) {
+        if !steps.iter().any(|s| s.fields.contains_key(n)) {
             return Err(ex.kw_error(
                 "PROJ_CHAMP",
                 kw,

@@ -19,7 +19,6 @@ use crate::concept::{Concept, EvolResult, Step};
 use crate::executor::{store_result, Executor};
 use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError};
-use std::collections::BTreeMap;
 use std::rc::Rc;
 
 /// What CREA_RESU builds (`crate::support`).
@@ -131,7 +130,7 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 }
                 None => {
                     let n = result.steps.iter().map(|s| s.nume_ordre).max().unwrap_or(0) + 1;
-                    let mut fields = BTreeMap::new();
+                    let mut fields = crate::field::StepFields::new();
                     fields.insert(name.clone(), field.clone());
                     result.steps.push(Step {
                         nume_ordre: n,

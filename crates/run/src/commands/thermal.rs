@@ -14,7 +14,7 @@ use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
 use aster_fem::thermal::{SkinLoad, ThermalHypothesis, ThermalProblem, Transient};
 use aster_mesh::{CellId, NodeId};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::rc::Rc;
 
 /// A thermal model: its cells and their geometry.
@@ -344,7 +344,7 @@ pub(crate) fn ther_lineaire(
             Step {
                 nume_ordre: i as u32,
                 inst,
-                fields: BTreeMap::from([("TEMP".to_string(), Field::Nodal(field))]),
+                fields: [("TEMP".to_string(), Field::Nodal(field))].into(),
             }
         })
         .collect();
