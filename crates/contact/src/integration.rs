@@ -349,6 +349,23 @@ pub(crate) fn gauss(kind: SurfaceKind, order: u8) -> Vec<([f64; 2], f64)> {
     }
 }
 
+/// code_aster's own `SIMPSON` / `NCOTES` rule of `ORDRE_INT` on a cell of
+/// `kind` (`mmgaus`), reference coordinates and weights: segments the
+/// composite Simpson / closed Newton–Cotes rule, faces their code_aster
+/// grids ([`crate::shape::face_simpson`], [`crate::shape::face_newton_cotes`]).
+/// `None` for the other rules. Unlike [`integration_points_measured`], no
+/// Gauss substitution on quadratic faces: the contact elements interpolate
+/// the pressure with every node's function, as code_aster's.
+pub(crate) fn closed_rule(kind: SurfaceKind, rule: Integration) -> Option<Vec<([f64; 2], f64)>> {
+    match (rule, kind.dim()) {
+        (Integration::Simpson(o), 1) => Some(simpson(o.max(1))),
+        (Integration::NCotes(o), 1) => Some(newton_cotes(o.clamp(1, 8))),
+        (Integration::Simpson(o), _) => crate::shape::face_simpson(kind, o),
+        (Integration::NCotes(o), _) => crate::shape::face_newton_cotes(kind, o),
+        _ => None,
+    }
+}
+
 /// Composite Simpson rule on [-1, 1] with `2m` sub-intervals.
 fn simpson(m: u8) -> Vec<([f64; 2], f64)> {
     let k = 2 * m as usize;
