@@ -443,6 +443,28 @@ mod tests {
     }
 
     #[test]
+    fn closed_rules_keep_code_asters_points_on_quadratic_faces() {
+        // QUAD8, ORDRE_INT=4: code_aster's 9 × 9 Simpson grid (`mmgaus`),
+        // not the Gauss points the node rows substitute there.
+        let q = closed_rule(SurfaceKind::Quad8, Integration::Simpson(4)).unwrap();
+        assert_eq!(q.len(), 81);
+        assert!(q.iter().any(|(p, _)| *p == [-1.0, -1.0]));
+        assert!(q.iter().any(|(p, _)| *p == [0.25, -0.75]));
+        assert!((integrate(&q, |_, _| 1.0) - 4.0).abs() < 1e-14);
+        // Corner weight 1/(9·16), centre-of-subcell weight 16/(9·16).
+        let w = |p: [f64; 2]| q.iter().find(|(x, _)| *x == p).unwrap().1;
+        assert!((w([-1.0, -1.0]) - 1.0 / 144.0).abs() < 1e-16);
+        assert!((w([-0.75, -0.75]) - 16.0 / 144.0).abs() < 1e-16);
+        let t = closed_rule(SurfaceKind::Tria6, Integration::NCotes(2)).unwrap();
+        assert_eq!(t.len(), 6);
+        assert!((integrate(&t, |x, y| x * y) - 1.0 / 24.0).abs() < 1e-14);
+        let s = closed_rule(SurfaceKind::Seg3, Integration::Simpson(2)).unwrap();
+        assert_eq!(s.len(), 5);
+        assert!(closed_rule(SurfaceKind::Quad8, Integration::Gauss(3)).is_none());
+        assert!(closed_rule(SurfaceKind::Quad8, Integration::Auto).is_none());
+    }
+
+    #[test]
     fn gauss_rules_are_exact_to_their_order() {
         for o in 1..=6u8 {
             let r = gauss(SurfaceKind::Seg2, o);
