@@ -349,6 +349,23 @@ pub(crate) fn gauss(kind: SurfaceKind, order: u8) -> Vec<([f64; 2], f64)> {
     }
 }
 
+/// code_aster's own `SIMPSON` / `NCOTES` rule of `ORDRE_INT` on a cell of
+/// `kind` (`mmgaus`), reference coordinates and weights: segments the
+/// composite Simpson / closed Newton–Cotes rule, faces their code_aster
+/// grids ([`crate::shape::face_simpson`], [`crate::shape::face_newton_cotes`]).
+/// `None` for the other rules. Unlike [`integration_points_measured`], no
+/// Gauss substitution on quadratic faces: the contact elements interpolate
+/// the pressure with every node's function, as code_aster's.
+pub(crate) fn closed_rule(kind: SurfaceKind, rule: Integration) -> Option<Vec<([f64; 2], f64)>> {
+    match (rule, kind.dim()) {
+        (Integration::Simpson(o), 1) => Some(simpson(o.max(1))),
+        (Integration::NCotes(o), 1) => Some(newton_cotes(o.clamp(1, 8))),
+        (Integration::Simpson(o), _) => crate::shape::face_simpson(kind, o),
+        (Integration::NCotes(o), _) => crate::shape::face_newton_cotes(kind, o),
+        _ => None,
+    }
+}
+
 /// Composite Simpson rule on [-1, 1] with `2m` sub-intervals.
 fn simpson(m: u8) -> Vec<([f64; 2], f64)> {
     let k = 2 * m as usize;
@@ -423,6 +440,28 @@ mod tests {
 
     fn integrate(rule: &[([f64; 2], f64)], f: impl Fn(f64, f64) -> f64) -> f64 {
         rule.iter().map(|(p, w)| w * f(p[0], p[1])).sum()
+    }
+
+    #[test]
+    fn closed_rules_keep_code_asters_points_on_quadratic_faces() {
+        // QUAD8, ORDRE_INT=4: code_aster's 9 × 9 Simpson grid (`mmgaus`),
+        // not the Gauss points the node rows substitute there.
+        let q = closed_rule(SurfaceKind::Quad8, Integration::Simpson(4)).unwrap();
+        assert_eq!(q.len(), 81);
+        assert!(q.iter().any(|(p, _)| *p == [-1.0, -1.0]));
+        assert!(q.iter().any(|(p, _)| *p == [0.25, -0.75]));
+        assert!((integrate(&q, |_, _| 1.0) - 4.0).abs() < 1e-14);
+        // Corner weight 1/(9·16), centre-of-subcell weight 16/(9·16).
+        let w = |p: [f64; 2]| q.iter().find(|(x, _)| *x == p).unwrap().1;
+        assert!((w([-1.0, -1.0]) - 1.0 / 144.0).abs() < 1e-16);
+        assert!((w([-0.75, -0.75]) - 16.0 / 144.0).abs() < 1e-16);
+        let t = closed_rule(SurfaceKind::Tria6, Integration::NCotes(2)).unwrap();
+        assert_eq!(t.len(), 6);
+        assert!((integrate(&t, |x, y| x * y) - 1.0 / 24.0).abs() < 1e-14);
+        let s = closed_rule(SurfaceKind::Seg3, Integration::Simpson(2)).unwrap();
+        assert_eq!(s.len(), 5);
+        assert!(closed_rule(SurfaceKind::Quad8, Integration::Gauss(3)).is_none());
+        assert!(closed_rule(SurfaceKind::Quad8, Integration::Auto).is_none());
     }
 
     #[test]

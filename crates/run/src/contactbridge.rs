@@ -613,7 +613,7 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
     let def = definition(ex, kw)?;
     refuse_loose_gcp(ex, mesh, kw)?;
     let dim = problem_dim(ex, mesh, kw)?;
-    refuse_smoothing_on_quadratic_3d(ex, mesh, kw, &def, dim)?;
+    refuse_rows_on_quadratic_3d(ex, mesh, kw, dim)?;
     refuse_axisymmetric_sliding_links(ex, kw, &def)?;
     let mut zones = ZoneContact::build_all_in(&def, mesh, dim)
         .map_err(|e| ExecError::new(format!("DEFI_CONTACT: {e}")))?;
@@ -629,40 +629,51 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
     Ok(zones)
 }
 
-/// Continuous contact with smoothed normals (`LISSAGE='OUI'`) on quadratic
-/// faces in 3D is not reproduced to code_aster's digits: ssnp167g/h
-/// (HEXA20 with QUAD8 contact faces) end 1e-5 to 5e-3 off code_aster's
-/// values while the same study on HEXA8/QUAD4 (ssnp167e) agrees. Refused
-/// before the solve, at LISSAGE.
-fn refuse_smoothing_on_quadratic_3d(
+/// Continuous contact on quadratic quadrangular slave faces in 3D (QUAD8,
+/// QUAD9) outside code_aster's contact elements ([`contact_elements`]):
+/// the node-row formulation interpolates the contact pressure on the
+/// corners only (`SurfaceKind::linear_pressure`, Gauss points in place of
+/// SIMPSON/NCOTES), where code_aster's `LAGS_C` lives on every node of the
+/// face with the face's own functions. It agrees where the pressure is
+/// uniform, not otherwise: ssnp167g/h (HEXA20, QUAD8, SIMPSON) solved on
+/// the rows end 1e-5 to 5e-3 off code_aster, on the elements within 1e-9.
+/// Refused before the solve, at the zone's GROUP_MA_ESCL. TRIA6/TRIA7
+/// faces (3D triangles stay on the rows) are not refused: the real cases
+/// on them (ssnp121 e/f/r, uniform pressure) agree, and no case measures a
+/// varying one. Zones that only verify (`RESOLUTION='NON'`) enforce no
+/// pressure and run.
+fn refuse_rows_on_quadratic_3d(
     ex: &Executor,
     mesh: &Mesh,
     kw: &Keywords,
-    def: &ContactDefinition,
     dim: usize,
 ) -> Result<(), ExecError> {
-    let ContactDefinition::Continue(c) = def else {
-        return Ok(());
-    };
-    if dim < 3 || kw.str("LISSAGE") != Some("OUI") {
+    if dim < 3 || kw.str("FORMULATION") != Some("CONTINUE") {
         return Ok(());
     }
-    for z in &c.zones {
-        for g in [&z.geometry.slave_group, &z.geometry.master_group] {
+    for occ in kw.factor("ZONE") {
+        // LAC has its own discretisation (module `lac`).
+        if occ.str("RESOLUTION") == Some("NON") || occ.str("ALGO_CONT") == Some("LAC") {
+            continue;
+        }
+        for g in occ
+            .simple("GROUP_MA_ESCL")
+            .iter()
+            .filter_map(|v| v.as_str())
+        {
             let Some(group) = mesh.group_ma(g) else {
                 continue;
             };
-            let quadratic = |c: &&aster_mesh::CellId| {
-                matches!(
-                    mesh.cell(**c).ty.name(),
-                    "QUAD8" | "QUAD9" | "TRIA6" | "TRIA7"
-                )
-            };
+            let quadratic =
+                |c: &&aster_mesh::CellId| matches!(mesh.cell(**c).ty.name(), "QUAD8" | "QUAD9");
             if let Some(&cell) = group.members.iter().find(quadratic) {
-                let span = kw.keyword("LISSAGE").map(|k| k.span).unwrap_or_default();
+                let span = occ
+                    .keyword("GROUP_MA_ESCL")
+                    .map(|k| k.span)
+                    .unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "DEFI_CONTACT/LISSAGE='OUI' with FORMULATION='CONTINUE' on quadratic faces in 3D (group {g}, cell {} is a {}): smoothed normals on quadratic 3D faces are not reproduced to 1e-6 (ssnp167g/h end 1e-5 to 5e-3 off code_aster; linear faces agree)",
+                        "DEFI_CONTACT/FORMULATION='CONTINUE' on QUAD8/QUAD9 slave faces in 3D (group {g}, cell {} is a {}) with triangles, GLISSIERE='OUI', an adaptive penalty or SANS_GROUP_NO with points off the nodes: these zones are solved with one row per slave node and the pressure on the face corners, where code_aster's LAGS_C lives on every node (ssnp167g/h solved so end 1e-5 to 5e-3 off code_aster)",
                         crate::select::cell_name(mesh, cell),
                         mesh.cell(cell).ty.name()
                     ),
@@ -760,7 +771,9 @@ pub fn has_friction(kw: &Keywords) -> bool {
 /// points out of contact entering their nodes' equations by −∫ λ Nⱼ / ρ,
 /// the geometry re-paired inside Newton with `ALGO_RESO_GEOM='NEWTON'`).
 /// Every zone `STANDARD` or `PENALISATION` (LAC has its own module),
-/// integrated at the nodes (`AUTO`) or by code_aster's Gauss rule, resolved
+/// integrated at the nodes (`AUTO`) or by code_aster's Gauss, Simpson or
+/// Newton–Cotes rule (`mmgaus`; on quadratic faces the pressure then has
+/// every node's function, as `LAGS_C`: ssnp167g/h all-OK), resolved
 /// (a `RESOLUTION='NON'` verification zone needs the row zones). The
 /// others keep the node-row formulation (`aster_contact::ZoneContact`),
 /// which reproduces code_aster only where a node's points share one status.
@@ -788,9 +801,10 @@ pub fn contact_elements(mesh: &Mesh, kw: &Keywords) -> bool {
             occ.str("ALGO_CONT").unwrap_or("STANDARD") != "LAC"
                 && match occ.str("INTEGRATION").unwrap_or("AUTO") {
                     "AUTO" => true,
-                    // Gauss points carry no node: SANS_GROUP_NO would need
-                    // code_aster's exclusion of points, not reproduced.
-                    "GAUSS" => occ.keyword("SANS_GROUP_NO").is_none(),
+                    // Gauss, Simpson and Newton–Cotes points carry no
+                    // node: SANS_GROUP_NO would need code_aster's exclusion
+                    // of points, not reproduced.
+                    "GAUSS" | "SIMPSON" | "NCOTES" => occ.keyword("SANS_GROUP_NO").is_none(),
                     _ => false,
                 }
                 && occ.str("RESOLUTION") != Some("NON")

@@ -238,15 +238,17 @@ pub(crate) fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
         // μ = 0 (one LAGS_C unknown per slave node). ssna102f all-OK.
         //
         // The frictional elements integrate at the slave nodes ('AUTO') or
-        // at code_aster's Gauss points (`mmgaus`, ssnp156b all-OK); its
-        // Simpson and Newton–Cotes points are not placed on the cells.
+        // at code_aster's Gauss points (`mmgaus`, ssnp156b all-OK). Its
+        // Simpson and Newton–Cotes points are placed (the frictionless
+        // elements use them: ssnp167, ssnp121), but no real case checks
+        // them with friction.
         for occ in kw.factor("ZONE") {
             let rule = occ.str("INTEGRATION").unwrap_or("AUTO");
             if occ.f64("COULOMB").is_some_and(|m| m > f64::EPSILON)
                 && matches!(rule, "SIMPSON" | "NCOTES")
             {
                 out.push(Refusal::at(
-                    format!("DEFI_CONTACT/ZONE/INTEGRATION='{rule}' with FROTTEMENT='COULOMB' (code_aster's Simpson and Newton–Cotes points of the contact elements are not placed; 'AUTO' and 'GAUSS' are reproduced)"),
+                    format!("DEFI_CONTACT/ZONE/INTEGRATION='{rule}' with FROTTEMENT='COULOMB' (the frictional contact elements on code_aster's Simpson and Newton–Cotes points are not checked against code_aster: no case; 'AUTO' and 'GAUSS' are reproduced)"),
                     occ,
                     "INTEGRATION",
                     call.span,

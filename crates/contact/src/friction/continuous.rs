@@ -336,21 +336,11 @@ impl ContinuousFriction {
         let dim = if space_dim >= 3 { 3 } else { 2 };
         let mut zones = Vec::new();
         for (i, (z, f)) in def.zones.iter().zip(&friction.zones).enumerate() {
-            // code_aster's Gauss rule (`mmgaus`, ORDRE_INT) places points
-            // inside the cells, with no node of their own: the multipliers
-            // are interpolated there as at any point. code_aster refuses
-            // excluded nodes with it (`cazocc`, CONTACT_97), as
+            // code_aster's Gauss, Simpson and Newton–Cotes rules (`mmgaus`,
+            // ORDRE_INT) place points with no node of their own: the
+            // multipliers are interpolated there as at any point. code_aster
+            // refuses excluded nodes with them (`cazocc`, CONTACT_97), as
             // `run::friction` does before the solve.
-            if matches!(
-                z.law.integration,
-                Integration::Simpson(_) | Integration::NCotes(_)
-            ) {
-                return Err(ContactError::Unsupported {
-                    feature: "INTEGRATION='SIMPSON' or 'NCOTES' with code_aster's contact elements"
-                        .into(),
-                    hint: "the elements integrate at the slave nodes ('AUTO') or at code_aster's Gauss points ('GAUSS')".into(),
-                });
-            }
             let (coef_cont, pena_cont) = match z.law.algo {
                 ContinueAlgo::Standard { coef_cont } => (coef_cont, false),
                 ContinueAlgo::Penalisation { coef_pena_cont } => (coef_pena_cont, true),
@@ -449,7 +439,14 @@ impl ContinuousFriction {
                         .into_iter()
                         .map(|(xi, w)| (xi, w, None))
                         .collect(),
-                    _ => auto_points(cell.kind),
+                    r @ (Integration::Simpson(_) | Integration::NCotes(_)) => {
+                        crate::integration::closed_rule(cell.kind, r)
+                            .unwrap_or_default()
+                            .into_iter()
+                            .map(|(xi, w)| (xi, w, None))
+                            .collect()
+                    }
+                    Integration::Auto => auto_points(cell.kind),
                 };
                 for (xi, w, on) in rule {
                     let (shape, _) = cell.kind.eval(xi);
