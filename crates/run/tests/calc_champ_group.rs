@@ -2,26 +2,14 @@
 //! project's scene `comm/calc_champ_group.comm` (a bar of two materials in
 //! series, the strain of each part in closed form).
 
-use std::path::PathBuf;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod common;
 
 fn run(comm: &str, name: &str) -> aster_run::program::Outcome {
-    let dir = std::env::temp_dir().join(format!("aster-ccgroup-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join(format!("{name}.comm"));
-    std::fs::write(&file, comm).unwrap();
-    let mesh = root().join("comm/hexs8_beam.mail");
-    let case = aster_run::program::prepare(&file, Some(&mesh), &dir).unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(dir);
-    outcome
+    common::run_text(comm, name, "hexs8_beam.mail")
 }
 
 fn scene() -> String {
-    std::fs::read_to_string(root().join("comm/calc_champ_group.comm")).unwrap()
+    common::scene("calc_champ_group.comm")
 }
 
 /// EPSI_ELGA on the stiff half only: its largest and smallest EPXX are

@@ -4,26 +4,14 @@
 //! recurrence of code_aster's `nmtevp` (solved by bisection in the command
 //! file), and the settings code_aster's law does not take refused.
 
-use std::path::PathBuf;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+mod common;
 
 fn run(comm: &str, name: &str) -> aster_run::program::Outcome {
-    let dir = std::env::temp_dir().join(format!("aster-jc-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join(format!("{name}.comm"));
-    std::fs::write(&file, comm).unwrap();
-    let mesh = root().join("comm/hexs8_beam.mail");
-    let case = aster_run::program::prepare(&file, Some(&mesh), &dir).unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(dir);
-    outcome
+    common::run_text(comm, name, "hexs8_beam.mail")
 }
 
 fn scene() -> String {
-    std::fs::read_to_string(root().join("comm/johnson_cook_bar.comm")).unwrap()
+    common::scene("johnson_cook_bar.comm")
 }
 
 /// σ (SIXX, and T in GDEF_LOG), p, Δp, Δt, the dissipated power and the
