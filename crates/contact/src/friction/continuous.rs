@@ -1394,6 +1394,20 @@ impl ContinuousFriction {
                 }
             }
         }
+        // code_aster's CONT_NOEU holds every slave node, zero where no
+        // contact point is that node (`cfmxr0`; `mmmres` writes the points
+        // that are nodes only, `mmnumn`: AUTO/NOEUD integration), so with
+        // GAUSS, SIMPSON or NCOTES points it is zero at every node.
+        for fz in &self.zones {
+            for &n in &fz.zone.slave_nodes {
+                if let std::collections::hash_map::Entry::Vacant(e) = index.entry(n) {
+                    e.insert(nodes.len());
+                    nodes.push(n);
+                    values.push([0.0; 19]);
+                    proj.push([f64::NAN; 3]);
+                }
+            }
+        }
         ContNoeu {
             nodes,
             values,
