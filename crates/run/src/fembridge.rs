@@ -1589,7 +1589,7 @@ pub fn calc_champ(
 ) -> Result<EvolResult, ExecError> {
     let Some(run) = result.fem.clone() else {
         if !result.steps.is_empty() && result.tables.is_empty() {
-            return calc_champ_from_fields(ex, call, result, options, steps);
+            return calc_champ_from_fields(ex, call, result, options, steps, only);
         }
         return Err(ExecError::new(
             "CALC_CHAMP: this result was not computed by STAT_NON_LINE/MECA_STATIQUE in this run",
@@ -1788,6 +1788,7 @@ fn calc_champ_from_fields(
     result: &EvolResult,
     options: &[String],
     steps: &[u32],
+    only: Option<&std::collections::BTreeSet<aster_mesh::CellId>>,
 ) -> Result<EvolResult, ExecError> {
     let mesh = ex.mesh_by_id(result.mesh)?;
     let mut out = result.clone();
@@ -1812,6 +1813,15 @@ fn calc_champ_from_fields(
                     "CALC_CHAMP: {opt} needs {source}, which the result does not hold at NUME_ORDRE {}",
                     step.nume_ordre
                 )));
+            };
+            // GROUP_MA / MAILLE: the average over those cells only.
+            let on_cells;
+            let elno = match only {
+                None => elno,
+                Some(cells) => {
+                    on_cells = elno.on_cells(|c| cells.contains(&c));
+                    &on_cells
+                }
             };
             let Some(noeu) = elno.nodal_mean(&mesh) else {
                 return Err(ExecError::new(format!(

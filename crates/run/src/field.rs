@@ -110,6 +110,20 @@ impl ElemField {
         Some(out)
     }
 
+    /// The field on the cells `keep` accepts only.
+    pub fn on_cells(&self, keep: impl Fn(CellId) -> bool) -> ElemField {
+        ElemField {
+            location: self.location,
+            components: self.components.clone(),
+            values: self
+                .values
+                .iter()
+                .filter(|(c, _)| keep(**c))
+                .map(|(c, v)| (*c, v.clone()))
+                .collect(),
+        }
+    }
+
     /// The value at a point (1-based, as `POINT=` counts) of a cell.
     pub fn get(&self, cell: CellId, point: usize, comp: &str) -> Option<f64> {
         let c = self.component_index(comp)?;

@@ -278,3 +278,25 @@ fn without_dist_coque_the_strips_stay_apart() {
         );
     }
 }
+
+/// SIGM_NOEU of a POST_CHAMP result with GROUP_MA: the average over those
+/// cells only. On the bottom strip (SB) the checks at its mid node hold;
+/// on the top one (ST) that node has no value and the check stops.
+#[test]
+fn sigm_noeu_of_a_layer_on_a_group_averages_its_cells_only() {
+    let text = |g: &str| {
+        stack().replace(
+            "INF = CALC_CHAMP(reuse=INF, RESULTAT=INF, CONTRAINTE=\"SIGM_NOEU\")",
+            &format!(
+                "INF = CALC_CHAMP(reuse=INF, RESULTAT=INF, GROUP_MA=\"{g}\", CONTRAINTE=\"SIGM_NOEU\")"
+            ),
+        )
+    };
+    assert_eq!(run_stack(&text("SB"), "group-sb"), (10, 0, None));
+    let (_, _, err) = run_stack(&text("ST"), "group-st");
+    assert!(
+        err.as_deref()
+            .is_some_and(|e| e.contains("no component SIXX at node")),
+        "{err:?}"
+    );
+}

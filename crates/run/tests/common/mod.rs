@@ -123,27 +123,3 @@ impl Report {
         String::from_utf8_lossy(&self.0.borrow()).into_owned()
     }
 }
-
-/// The repository's root (scenes live in `comm/`).
-pub fn root() -> std::path::PathBuf {
-    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Runs a command file's text (written to a scratch directory as
-/// `<name>.comm`) on the mesh `comm/<mesh>`, its outputs discarded.
-pub fn run_text(comm: &str, name: &str, mesh: &str) -> aster_run::program::Outcome {
-    let dir = std::env::temp_dir().join(format!("aster-scene-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join(format!("{name}.comm"));
-    std::fs::write(&file, comm).unwrap();
-    let mesh = root().join("comm").join(mesh);
-    let case = aster_run::program::prepare(&file, Some(&mesh), &dir).unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(dir);
-    outcome
-}
-
-/// The text of the scene `comm/<file>`.
-pub fn scene(file: &str) -> String {
-    std::fs::read_to_string(root().join("comm").join(file)).unwrap()
-}
