@@ -199,7 +199,7 @@ enum Factor {
     Llt(faer::sparse::linalg::solvers::Llt<usize, f64>),
     /// Cholesky split at the top separator, halves on two threads.
     Split(Box<crate::split_llt::SplitLlt>),
-    Lu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
+    Lu(Box<symbolic_cache::KeptLu>),
 }
 
 impl Factor {
@@ -247,18 +247,109 @@ impl Factor {
 ///   factors; the ordering computed on a larger pattern may differ, which
 ///   changes the solution by rounding only.
 mod symbolic_cache {
-    use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
+    use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
     use faer::sparse::linalg::LuError;
     use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-    use faer::Side;
+    use faer::{MatMut, Side};
     use std::cell::RefCell;
+    use std::sync::Arc;
 
     /// A pattern (column pointers, row indices) and its symbolic factor.
     type Kept<S> = Option<(Vec<usize>, Vec<usize>, S)>;
 
     thread_local! {
-        static LU: RefCell<Kept<SymbolicLu<usize>>> = const { RefCell::new(None) };
+        static LU: RefCell<Kept<Arc<SymbolicLu<usize>>>> = const { RefCell::new(None) };
         static LLT: RefCell<Kept<SymbolicLlt<usize>>> = const { RefCell::new(None) };
+        /// The numeric LU factor of the last factorisation, once dropped,
+        /// and the factorisation's workspace: the next factorisation
+        /// writes into their memory (faer grows them as needed) instead of
+        /// allocating — and page-faulting — tens of MB afresh at every
+        /// Newton iteration.
+        static NUMERIC_LU: RefCell<Option<PooledLu>> = const { RefCell::new(None) };
+        static LU_SCRATCH: RefCell<Option<MemBuffer>> = const { RefCell::new(None) };
+    }
+
+    /// A numeric factor kept for the next factorisation of the same
+    /// analysis (faer sizes some of its arrays by the analysis and never
+    /// shrinks them: another analysis starts from a new factor).
+    type PooledLu = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
+
+    /// A numeric LU factor and its symbolic analysis; its memory goes back
+    /// to this thread's pool when it is dropped.
+    pub(crate) struct KeptLu {
+        symbolic: Arc<SymbolicLu<usize>>,
+        numeric: Option<NumericLu<usize, f64>>,
+        par: faer::Par,
+    }
+
+    impl KeptLu {
+        /// Solves A X = B in place (`rhs` holds B, then X).
+        pub(crate) fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+            let Some(numeric) = &self.numeric else {
+                return;
+            };
+            let mut mem = MemBuffer::new(
+                self.symbolic
+                    .solve_in_place_scratch::<f64>(rhs.ncols(), self.par),
+            );
+            LuRef::new_unchecked(&self.symbolic, numeric).solve_in_place_with_conj(
+                faer::Conj::No,
+                rhs,
+                self.par,
+                MemStack::new(&mut mem),
+            );
+        }
+    }
+
+    impl Drop for KeptLu {
+        fn drop(&mut self) {
+            if let Some(n) = self.numeric.take() {
+                let pooled = (self.symbolic.clone(), n);
+                NUMERIC_LU.with(|k| *k.borrow_mut() = Some(pooled));
+            }
+        }
+    }
+
+    /// The numeric factorisation of `mat` (written on the symbolic
+    /// analysis' pattern) into the pooled factor and workspace.
+    fn factorize(
+        symbolic: Arc<SymbolicLu<usize>>,
+        mat: SparseColMatRef<'_, usize, f64>,
+    ) -> Result<KeptLu, LuError> {
+        let par = super::factor_parallelism(mat.compute_nnz());
+        let mut numeric = NUMERIC_LU
+            .with(|k| k.borrow_mut().take())
+            .filter(|(kept, _)| Arc::ptr_eq(kept, &symbolic))
+            .map_or_else(NumericLu::new, |(_, n)| n);
+        let req = symbolic.factorize_numeric_lu_scratch::<f64>(par, Default::default());
+        let mut scratch = LU_SCRATCH
+            .with(|k| k.borrow_mut().take())
+            .filter(|b| b.len() >= req.unaligned_bytes_required());
+        let buffer = match &mut scratch {
+            Some(b) => b,
+            None => scratch.insert(
+                MemBuffer::try_new(req)
+                    .map_err(|_| LuError::Generic(faer::sparse::FaerError::OutOfMemory))?,
+            ),
+        };
+        let done = symbolic
+            .factorize_numeric_lu(
+                &mut numeric,
+                mat,
+                par,
+                MemStack::new(buffer),
+                Default::default(),
+            )
+            .map(|_| ());
+        LU_SCRATCH.with(|k| *k.borrow_mut() = scratch);
+        done?;
+        Ok(KeptLu {
+            symbolic,
+            numeric: Some(numeric),
+            par,
+        })
     }
 
     /// How much larger than the new pattern a kept union may be.
@@ -379,7 +470,7 @@ mod symbolic_cache {
 
     /// Sparse LU with partial pivoting (`SparseColMatRef::sp_lu`), on the
     /// kept pattern when `mat`'s fits in it.
-    pub(super) fn lu(mat: SparseColMatRef<'_, usize, f64>) -> Result<Lu<usize, f64>, LuError> {
+    pub(super) fn lu(mat: SparseColMatRef<'_, usize, f64>) -> Result<KeptLu, LuError> {
         let sym = mat.symbolic();
         let n = sym.ncols();
         let kept = LU.with(|k| k.borrow_mut().take());
@@ -415,19 +506,21 @@ mod symbolic_cache {
                     }
                 };
                 let pattern = SymbolicSparseColMatRef::new_checked(n, n, &cp, None, &ri);
-                let symbolic = SymbolicLu::try_new(pattern)?;
+                let symbolic = Arc::new(factorize_symbolic_lu(pattern, Default::default())?);
                 let values = match scatter(&cp, &ri, mat) {
                     Some(v) => v,
                     // Unreachable: the pattern contains mat's; factorise
                     // mat alone rather than fail.
-                    None => return mat.sp_lu(),
+                    None => {
+                        let own = Arc::new(factorize_symbolic_lu(sym, Default::default())?);
+                        return factorize(own, mat);
+                    }
                 };
                 (cp, ri, symbolic, values)
             }
         };
         let pattern = SymbolicSparseColMatRef::new_checked(n, n, &cp, None, &ri);
-        let lu =
-            Lu::try_new_with_symbolic(symbolic.clone(), SparseColMatRef::new(pattern, &values));
+        let lu = factorize(symbolic.clone(), SparseColMatRef::new(pattern, &values));
         LU.with(|k| *k.borrow_mut() = Some((cp, ri, symbolic)));
         lu
     }
@@ -998,14 +1091,24 @@ mod tests {
         dense[r][r] = 1.0;
         released = dense_to_csc(&dense);
         let (moved, bm) = chain_with_holds(n, &[0, 4]);
-        for (a, b) in [
-            (&a0, &b0),
-            (&a0, &b0),
-            (&released, &b0),
-            (&moved, &bm),
-            (&a0, &b0),
+        // The numeric factor's memory is pooled per analysis: the same
+        // analysis with other values, then smaller and larger systems,
+        // then the first again, must each be solved as afresh.
+        let mut stiffer = a0.clone();
+        stiffer.values.iter_mut().for_each(|v| *v *= 3.0);
+        let (small, bs) = chain_with_holds(3, &[0]);
+        let (large, bl) = chain_with_holds(9, &[1, 5]);
+        for (a, b, primal) in [
+            (&a0, &b0, n),
+            (&a0, &b0, n),
+            (&stiffer, &b0, n),
+            (&released, &b0, n),
+            (&moved, &bm, n),
+            (&small, &bs, 3),
+            (&large, &bl, 9),
+            (&a0, &b0, n),
         ] {
-            let r = solve(a, b, n, false).expect("solvable");
+            let r = solve(a, b, primal, false).expect("solvable");
             assert!(!r.cholesky);
             let fresh = {
                 let s =

@@ -279,41 +279,32 @@ fn add_total_lagrangian(
             fe[p] += w * (0..nc).map(|k| v[k] * s[k]).sum::<f64>();
         }
     }
-    // D def(b, j), then def(a, i)ᵀ · it.
-    let ddef: Vec<[f64; 6]> = def
-        .iter()
-        .map(|v| {
-            let mut o = [0.0; 6];
-            for k in 0..nc {
-                o[k] = (0..nc).map(|l| d[k][l] * v[l]).sum();
-            }
-            o
-        })
-        .collect();
-    for a in 0..nn {
-        for b in 0..nn {
-            let (da, db) = (pg.dn[a], pg.dn[b]);
-            let mut geo = da[0] * db[0] * s[0]
-                + da[1] * db[1] * s[1]
-                + (da[0] * db[1] + da[1] * db[0]) * r2 * s[3];
+    // The material part w·Bᵀ D B as one matrix product (faster than the
+    // entry-by-entry sums on the 81 DOFs of a HEXA27): Bᵀ is nd × nc, D B
+    // is nc × nd.
+    let nd = nn * dim;
+    let bt = DMatrix::from_fn(nd, nc, |p, k| def[p][k]);
+    let db = DMatrix::from_fn(nc, nd, |k, q| (0..nc).map(|l| d[k][l] * def[q][l]).sum());
+    ke.gemm(w, &bt, &db, 1.0);
+    // The geometric part: (∇N_a · S ∇N_b) on each displacement component.
+    for b in 0..nn {
+        let db_ = pg.dn[b];
+        for a in 0..nn {
+            let da = pg.dn[a];
+            let mut geo = da[0] * db_[0] * s[0]
+                + da[1] * db_[1] * s[1]
+                + (da[0] * db_[1] + da[1] * db_[0]) * r2 * s[3];
             if dim == 3 {
-                geo += da[2] * db[2] * s[2]
-                    + (da[0] * db[2] + da[2] * db[0]) * r2 * s[4]
-                    + (da[1] * db[2] + da[2] * db[1]) * r2 * s[5];
+                geo += da[2] * db_[2] * s[2]
+                    + (da[0] * db_[2] + da[2] * db_[0]) * r2 * s[4]
+                    + (da[1] * db_[2] + da[2] * db_[1]) * r2 * s[5];
             }
             for i in 0..dim {
-                for j in 0..dim {
-                    let p = dim * a + i;
-                    let q = dim * b + j;
-                    let mut v: f64 = (0..nc).map(|k| def[p][k] * ddef[q][k]).sum();
-                    if i == j {
-                        v += geo;
-                        if hyp == Hypothesis::Axisymmetric && i == 0 {
-                            v += pg.n[a] * pg.n[b] / (pg.r * pg.r) * s[2];
-                        }
-                    }
-                    ke[(p, q)] += w * v;
+                let mut v = geo;
+                if hyp == Hypothesis::Axisymmetric && i == 0 {
+                    v += pg.n[a] * pg.n[b] / (pg.r * pg.r) * s[2];
                 }
+                ke[(dim * a + i, dim * b + i)] += w * v;
             }
         }
     }
