@@ -211,10 +211,21 @@ impl LogStrain {
         (theta, xi, dd2(l[0], l[1], l[2]))
     }
 
-    /// Mᵢⱼ = gᵢ⊗gⱼ + gⱼ⊗gᵢ (components a, b).
-    fn m(&self, a: usize, b: usize, i: usize, j: usize) -> f64 {
+    /// Mᵢⱼ = gᵢ⊗gⱼ + gⱼ⊗gᵢ, component (a, b) of each Mandel pair
+    /// [`PAIRS`]`[r]`: `table[r][i][j]`, tabulated once for the sums of
+    /// [`LogStrain::p`] and [`LogStrain::t_l`] (the same products as
+    /// evaluating them in the loops).
+    fn m_table(&self) -> [[[f64; 3]; 3]; 6] {
         let g = &self.gn;
-        g[(a, i)] * g[(b, j)] + g[(a, j)] * g[(b, i)]
+        let mut out = [[[0.0; 3]; 3]; 6];
+        for (r, &(a, b)) in PAIRS.iter().enumerate() {
+            for i in 0..3 {
+                for j in 0..3 {
+                    out[r][i][j] = g[(a, i)] * g[(b, j)] + g[(a, j)] * g[(b, i)];
+                }
+            }
+        }
+        out
     }
 
     /// P = ∂ε/∂E in Mandel notation (rows: ε, columns: E), code_aster's
@@ -222,16 +233,17 @@ impl LogStrain {
     pub fn p(&self) -> Mat6 {
         let (theta, _, _) = self.coefficients();
         let g = &self.gn;
+        let mt = self.m_table();
         let mut p = [[0.0; 6]; 6];
         for (r, &(k, l)) in PAIRS.iter().enumerate() {
-            for (c, &(a, b)) in PAIRS.iter().enumerate() {
+            for (c, m) in mt.iter().enumerate() {
                 let mut v = 0.0;
                 for i in 0..3 {
                     // di/2 · gₖⁱ gₗⁱ Mᵢᵢ with di = 1/λᵢ = 2 f'(λᵢ).
-                    v += theta[i][i] * g[(k, i)] * g[(l, i)] * self.m(a, b, i, i);
+                    v += theta[i][i] * g[(k, i)] * g[(l, i)] * m[i][i];
                     for j in 0..3 {
                         if i != j {
-                            v += theta[i][j] * g[(k, i)] * g[(l, j)] * self.m(a, b, i, j);
+                            v += theta[i][j] * g[(k, i)] * g[(l, j)] * m[i][j];
                         }
                     }
                 }
@@ -250,41 +262,27 @@ impl LogStrain {
         // ζᵢⱼ = gᵢ · T gⱼ.
         let zeta = g.transpose() * t33 * g;
         // feta(i)/4 = f''(λᵢ) = −1/(2λᵢ²).
-        let fpp: Vec<f64> = self.lamb.iter().map(|l| -0.5 / (l * l)).collect();
+        let fpp: [f64; 3] = self.lamb.map(|l| -0.5 / (l * l));
+        let zeta: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| zeta[(i, j)]));
+        let mt = self.m_table();
         let mut out = [[0.0; 6]; 6];
-        for (r, &(a, b)) in PAIRS.iter().enumerate() {
-            for (c, &(cc, d)) in PAIRS.iter().enumerate() {
+        for (r, mr) in mt.iter().enumerate() {
+            for (c, mc) in mt.iter().enumerate() {
                 let mut v = 0.0;
                 for i in 0..3 {
-                    v += fpp[i] * zeta[(i, i)] * self.m(a, b, i, i) * self.m(cc, d, i, i);
+                    v += fpp[i] * zeta[i][i] * mr[i][i] * mc[i][i];
                     for j in 0..3 {
                         if j == i {
                             continue;
                         }
                         for k in 0..3 {
                             if k != i && k != j {
-                                v += 2.0
-                                    * eta
-                                    * zeta[(i, j)]
-                                    * self.m(a, b, i, k)
-                                    * self.m(cc, d, j, k);
+                                v += 2.0 * eta * zeta[i][j] * mr[i][k] * mc[j][k];
                             }
                         }
-                        v += 2.0
-                            * xi[i][j]
-                            * zeta[(i, j)]
-                            * self.m(a, b, i, j)
-                            * self.m(cc, d, j, j);
-                        v += 2.0
-                            * xi[i][j]
-                            * zeta[(i, j)]
-                            * self.m(a, b, j, j)
-                            * self.m(cc, d, i, j);
-                        v += 2.0
-                            * xi[i][j]
-                            * zeta[(j, j)]
-                            * self.m(a, b, i, j)
-                            * self.m(cc, d, i, j);
+                        v += 2.0 * xi[i][j] * zeta[i][j] * mr[i][j] * mc[j][j];
+                        v += 2.0 * xi[i][j] * zeta[i][j] * mr[j][j] * mc[i][j];
+                        v += 2.0 * xi[i][j] * zeta[j][j] * mr[i][j] * mc[i][j];
                     }
                 }
                 out[r][c] = v * mandel_factor(r) * mandel_factor(c);
