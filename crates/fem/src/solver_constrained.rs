@@ -75,6 +75,13 @@ pub(crate) struct Row<'a> {
 /// Most passes of iterative refinement per solve.
 const REFINEMENT_STEPS: usize = 4;
 
+/// A refinement pass whose correction is at most this relative to the
+/// solution (in the displacements or in the multipliers) is the last: it
+/// is applied without computing the residual again. Measured on sdnl133d
+/// (199 rows, 6 pinned): the first correction is 5e-13 relative, the
+/// second 7e-17 — below the rounding of the values it corrects.
+const REFINED: f64 = 1e-12;
+
 /// Below this many reduced unknowns the factorisation uses AMD; above it, a
 /// geometric nested dissection when coordinates are given.
 const ND_THRESHOLD: usize = 20_000;
@@ -434,12 +441,17 @@ impl KktSolver {
             }
             last_step = step;
             let cand: Vec<f64> = x.iter().zip(&dx).map(|(a, b)| a + b).collect();
+            if step <= REFINED {
+                // A correction this small leaves an error of about its
+                // size times cond·ε: nothing the next pass would change
+                // beyond the last bits. Take it and stop (the backward
+                // error kept is the previous iterate's, an upper bound).
+                x = cand;
+                break;
+            }
             let (be2, ru2, rd2) = berr(&cand);
             x = cand;
             (be, ru, rd) = (be2, ru2, rd2);
-            if step <= 1e-15 {
-                break;
-            }
         }
         self.solves += 1;
         if x.iter().any(|v| !v.is_finite()) || be > MAX_BACKWARD_ERROR {
