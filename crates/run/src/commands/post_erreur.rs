@@ -100,7 +100,7 @@ pub fn post_erreur(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 .nodes
                 .iter()
                 .map(|n| {
-                    lags.and_then(|i| field.values.get(n).and_then(|v| v[i]))
+                    lags.and_then(|i| field.get_at(*n, i))
                         .unwrap_or(0.0)
                 })
                 .collect();
