@@ -1,7 +1,10 @@
 //! Fields as the runner stores them: nodal fields (`cham_no`: DEPL,
 //! FORC_NODA…) and element fields (`cham_elem`: SIEF_ELGA at Gauss points,
-//! SIGM_ELNO at cell nodes…), each held flat: one `Vec<f64>` of values per
-//! field (rows of components), not a vector per node, cell or point.
+//! SIGM_ELNO at cell nodes…).
+//!
+//! Each field is held flat: its components, one `Vec<f64>` of values
+//! (a row of components per node or per point) and an index of its nodes
+//! or cells, not a vector per node, cell or point.
 
 use aster_mesh::{CellId, NodeId};
 use std::collections::BTreeMap;
@@ -345,11 +348,7 @@ impl ElemField {
 
     /// Sets the points of `cell` (each point's values in the order of the
     /// components; missing ones NaN, extra ones dropped).
-    pub fn insert<P: AsRef<[f64]>>(
-        &mut self,
-        cell: CellId,
-        points: impl IntoIterator<Item = P>,
-    ) {
+    pub fn insert<P: AsRef<[f64]>>(&mut self, cell: CellId, points: impl IntoIterator<Item = P>) {
         let n = self.components.len();
         let mut block = Vec::new();
         for p in points {
@@ -381,10 +380,7 @@ impl ElemField {
 
     /// The points of `cell`; `None` when the field does not cover it.
     pub fn cell(&self, cell: CellId) -> Option<Points<'_>> {
-        self.cells
-            .binary_search(&cell)
-            .ok()
-            .map(|i| self.points(i))
+        self.cells.binary_search(&cell).ok().map(|i| self.points(i))
     }
 
     fn points(&self, i: usize) -> Points<'_> {
@@ -587,5 +583,83 @@ mod tests {
         assert_eq!(f.get(NodeId(1), "DY"), Some(4.0));
         let all = Field::Nodal(f).all_values(Some("DY"));
         assert_eq!(all, vec![4.0, -2.0]);
+    }
+
+    #[test]
+    fn nodal_absent_is_not_nan_and_sparse_nodes_keep_order() {
+        let mut f = NodalField::new(vec!["DX".into(), "DY".into()]);
+        // Far nodes first: the field lists its nodes instead of a dense row
+        // per node up to the largest.
+        f.set(NodeId(50_000), "DX", 1.0);
+        f.set(NodeId(20_000), "DY", f64::NAN);
+        f.set(NodeId(30_000), "DX", 3.0);
+        f.set_at(NodeId(30_000), 0, None);
+        assert_eq!(f.get(NodeId(50_000), "DY"), None);
+        assert!(f.get(NodeId(20_000), "DY").is_some_and(f64::is_nan));
+        assert_eq!(f.get(NodeId(20_000), "DX"), None);
+        // A node whose components are all absent does not carry the field.
+        assert!(f.node(NodeId(30_000)).is_none());
+        let nodes: Vec<NodeId> = f.nodes().collect();
+        assert_eq!(nodes, vec![NodeId(20_000), NodeId(50_000)]);
+        assert_eq!(f.values.len(), 3 * 2);
+        // A NaN value counts as a value, an absent component does not.
+        assert_eq!(Field::Nodal(f.clone()).all_values(Some("DY")).len(), 1);
+        let mut g = f.clone();
+        assert_ne!(f, g, "a NaN value is not equal to itself");
+        g.set(NodeId(20_000), "DY", 0.0);
+        f.set(NodeId(20_000), "DY", 0.0);
+        assert_eq!(f, g);
+    }
+
+    #[test]
+    fn nodal_dense_rows_in_any_order() {
+        let mut f = NodalField::new(vec!["TEMP".into()]);
+        for n in [3, 0, 2] {
+            f.set(NodeId(n), "TEMP", n as f64);
+        }
+        assert!(f.nodes.is_none(), "rows are node numbers");
+        let got: Vec<(NodeId, Option<f64>)> = f.iter().map(|(n, v)| (n, v.get(0))).collect();
+        assert_eq!(
+            got,
+            vec![
+                (NodeId(0), Some(0.0)),
+                (NodeId(2), Some(2.0)),
+                (NodeId(3), Some(3.0))
+            ]
+        );
+        // A new component keeps the values of the others.
+        f.set(NodeId(2), "FLUX", -1.0);
+        assert_eq!(f.get(NodeId(3), "TEMP"), Some(3.0));
+        assert_eq!(f.get(NodeId(3), "FLUX"), None);
+        assert_eq!(f.get(NodeId(2), "FLUX"), Some(-1.0));
+        assert_eq!(f.per_node("FLUX", 3)[2], -1.0);
+    }
+
+    #[test]
+    fn elem_cells_in_any_order_and_replaced() {
+        let comps = vec!["SIXX".to_string(), "SIYY".to_string()];
+        let mut f = ElemField::new(ElemLocation::Gauss, comps);
+        f.insert(CellId(5), [[1.0, 2.0], [3.0, 4.0]]);
+        f.insert(CellId(1), [vec![5.0]]);
+        f.insert(CellId(3), [[6.0, 7.0], [8.0, 9.0], [10.0, 11.0]]);
+        // Replaced by fewer points: the cells after it move.
+        f.insert(CellId(3), [[12.0, 13.0]]);
+        assert_eq!(f.cells(), &[CellId(1), CellId(3), CellId(5)]);
+        assert_eq!(f.get(CellId(5), 2, "SIYY"), Some(4.0));
+        assert_eq!(f.get(CellId(3), 1, "SIXX"), Some(12.0));
+        assert_eq!(f.get(CellId(3), 2, "SIXX"), None);
+        // A short point is completed with NaN: no value.
+        assert_eq!(f.get(CellId(1), 1, "SIYY"), None);
+        assert_eq!(f.cell(CellId(5)).map(|p| p.len()), Some(2));
+        assert_eq!(
+            Field::Elem(f.clone()).all_values(None),
+            vec![5.0, 12.0, 13.0, 1.0, 2.0, 3.0, 4.0]
+        );
+        let kept = f.on_cells(|c| c != CellId(3));
+        assert_eq!(kept.cells(), &[CellId(1), CellId(5)]);
+        assert_eq!(
+            kept.cell(CellId(5)).map(|p| p[1].to_vec()),
+            Some(vec![3.0, 4.0])
+        );
     }
 }

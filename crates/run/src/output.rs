@@ -154,11 +154,7 @@ fn written_on(
             for (n, vals) in f.iter() {
                 let i = n.0 as usize;
                 let selected = sel.is_none_or(|(nodes, _)| nodes.get(i).copied().unwrap_or(false));
-                if selected
-                    && cols
-                        .iter()
-                        .any(|&c| vals.get(c).is_some())
-                {
+                if selected && cols.iter().any(|&c| vals.get(c).is_some()) {
                     if let Some(m) = mask.get_mut(i) {
                         *m = true;
                     }

@@ -860,9 +860,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
                     };
                 let kept: Vec<NodeId> = members
                     .into_iter()
-                    .filter(|n| {
-                        wanted.iter().any(|&i| f.get_at(*n, i).is_some())
-                    })
+                    .filter(|n| wanted.iter().any(|&i| f.get_at(*n, i).is_some()))
                     .collect();
                 if kept.is_empty() {
                     let span = occ

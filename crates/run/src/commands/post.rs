@@ -1112,10 +1112,8 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     .iter()
                     .filter_map(|c| {
                         let i = f.component_index(c)?;
-                        let vals: Vec<Option<f64>> = nodes
-                            .iter()
-                            .map(|n| f.get_at(*n, i))
-                            .collect();
+                        let vals: Vec<Option<f64>> =
+                            nodes.iter().map(|n| f.get_at(*n, i)).collect();
                         Some((c.clone(), path_moments(&absc, &vals)))
                     })
                     .collect();
@@ -1253,10 +1251,7 @@ fn arith_mean_rows(
                     ),
                 ));
             };
-            let sum: f64 = nodes
-                .iter()
-                .filter_map(|n| f.get_at(*n, i))
-                .sum();
+            let sum: f64 = nodes.iter().filter_map(|n| f.get_at(*n, i)).sum();
             let mean = sum / nodes.len() as f64;
             let mut row: Vec<(&str, Value)> = vec![("INTITULE", Value::Text(title.to_string()))];
             if let Some(g) = &chamgd {
