@@ -264,7 +264,7 @@ pub(crate) fn disc(ex: &Executor, call: &CommandCall) -> Result<ElemField, ExecE
         ));
     };
     let (_, mesh, layout) = model_layout(ex, call)?;
-    let components = stored_components(q, &src.components());
+    let components = stored_components(q, src.components());
     let mut values = Building::new();
     for (&cell, gc) in &layout.cells {
         let nodes = &mesh.cell(cell).nodes;
