@@ -1019,7 +1019,8 @@ fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
     let mut index: Vec<(&[&str], Vec<Option<usize>>)> = Vec::new();
     let mut order: Vec<&CellValues> = cells.iter().collect();
     order.sort_by_key(|cv| cv.cell);
-    let mut field = ElemField::new(location, components);
+    let points = cells.iter().map(|cv| cv.points.len()).sum();
+    let mut field = ElemField::with_capacity(location, components, cells.len(), points);
     for cv in order {
         let names: &[&str] = &cv.names;
         let k = match index.iter().position(|(n, _)| *n == names) {

@@ -325,16 +325,18 @@ impl ElemField {
         }
     }
 
-    /// A field of the given cells and their points, in any cell order.
-    pub fn from_cells<P: AsRef<[f64]>>(
+    /// An empty field with room for `cells` cells of `points` points in
+    /// all (a field grown by doubling would hold up to twice its values).
+    pub fn with_capacity(
         location: ElemLocation,
         components: Vec<String>,
-        cells: impl IntoIterator<Item = (CellId, impl IntoIterator<Item = P>)>,
+        cells: usize,
+        points: usize,
     ) -> ElemField {
         let mut f = ElemField::new(location, components);
-        for (cell, points) in cells {
-            f.insert(cell, points);
-        }
+        f.cells.reserve_exact(cells);
+        f.starts.reserve_exact(cells);
+        f.values.reserve_exact(points * f.components.len());
         f
     }
 
