@@ -1052,26 +1052,23 @@ fn lac_setup(
 /// `CONT_ELEM` (LAC zones): per slave cell, the values of its patch.
 pub fn cont_elem(zones: &[ZoneContact]) -> Option<crate::field::Field> {
     use crate::field::{ElemField, ElemLocation, Field};
-    let mut values = std::collections::BTreeMap::new();
+    let mut field = ElemField::new(
+        ElemLocation::Cell,
+        aster_contact::lac::CONT_ELEM_COMPONENTS
+            .iter()
+            .map(|c| c.to_string())
+            .collect(),
+    );
     let mut any = false;
     for z in zones {
         if let Some(cells) = z.cont_elem() {
             any = true;
             for (c, v) in cells {
-                values.insert(c, vec![v.to_vec()]);
+                field.insert(c, [v.to_vec()]);
             }
         }
     }
-    any.then(|| {
-        Field::Elem(ElemField {
-            location: ElemLocation::Cell,
-            components: aster_contact::lac::CONT_ELEM_COMPONENTS
-                .iter()
-                .map(|c| c.to_string())
-                .collect(),
-            values,
-        })
-    })
+    any.then_some(Field::Elem(field))
 }
 
 /// Verification zones (`RESOLUTION='NON'`) whose master and slave surfaces

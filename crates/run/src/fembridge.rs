@@ -994,8 +994,10 @@ pub fn nodal_from_dofs(model: &Model, values: &[f64]) -> NodalField {
         .iter()
         .map(|c| c.name().to_string())
         .collect();
-    let mut f = NodalField::new(comps);
-    for (i, d) in model.dofs().dofs().iter().enumerate() {
+    let dofs = model.dofs().dofs();
+    let node_count = dofs.iter().map(|d| d.node.0 as usize + 1).max();
+    let mut f = NodalField::with_node_count(comps, node_count.unwrap_or(0));
+    for (i, d) in dofs.iter().enumerate() {
         f.set(d.node, d.comp.name(), values[i]);
     }
     f
@@ -1015,13 +1017,17 @@ fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
     // Where each component sits in a cell's own list, found once per
     // distinct list (cells of one kind share it).
     let mut index: Vec<(&[&str], Vec<Option<usize>>)> = Vec::new();
-    let mut values = BTreeMap::new();
-    for cv in cells {
+    let mut order: Vec<&CellValues> = cells.iter().collect();
+    order.sort_by_key(|cv| cv.cell);
+    let points = cells.iter().map(|cv| cv.points.len()).sum();
+    let mut field = ElemField::with_capacity(location, components, cells.len(), points);
+    for cv in order {
         let names: &[&str] = &cv.names;
         let k = match index.iter().position(|(n, _)| *n == names) {
             Some(k) => k,
             None => {
-                let map = components
+                let map = field
+                    .components()
                     .iter()
                     .map(|c| names.iter().position(|n| n == c))
                     .collect();
@@ -1030,27 +1036,22 @@ fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
             }
         };
         let map = &index[k].1;
-        let pts: Vec<Vec<f64>> = if names.len() == components.len()
+        if names.len() == field.components().len()
             && map.iter().enumerate().all(|(i, m)| *m == Some(i))
         {
-            cv.points.clone()
+            field.insert(cv.cell, &cv.points);
         } else {
-            cv.points
-                .iter()
-                .map(|p| {
+            field.insert(
+                cv.cell,
+                cv.points.iter().map(|p| {
                     map.iter()
                         .map(|m| m.map(|i| p[i]).unwrap_or(f64::NAN))
-                        .collect()
-                })
-                .collect()
-        };
-        values.insert(cv.cell, pts);
+                        .collect::<Vec<f64>>()
+                }),
+            );
+        }
     }
-    ElemField {
-        location,
-        components,
-        values,
-    }
+    field
 }
 
 fn nodal_from_values(v: &NodalValues) -> NodalField {

@@ -201,7 +201,7 @@ impl Observation {
         match field {
             Field::Nodal(f) => {
                 let nodes: Vec<NodeId> = if self.nodes.is_empty() {
-                    f.values.keys().copied().collect()
+                    f.nodes().collect()
                 } else {
                     self.nodes.clone()
                 };
@@ -212,7 +212,7 @@ impl Observation {
             }
             Field::Elem(f) => {
                 let cells: Vec<CellId> = if self.cells.is_empty() {
-                    f.values.keys().copied().collect()
+                    f.cells().to_vec()
                 } else {
                     self.cells.clone()
                 };
@@ -221,7 +221,7 @@ impl Observation {
                 };
                 let mut out = Vec::new();
                 for cell in cells {
-                    let Some(pts) = f.values.get(&cell) else {
+                    let Some(pts) = f.cell(cell) else {
                         continue;
                     };
                     let name = select::cell_name(mesh, cell);

@@ -15,28 +15,28 @@ use std::sync::Arc;
 pub(crate) fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mesh::Field {
     match field {
         Field::Nodal(f) => {
-            let nc = f.components.len();
+            let nc = f.components().len();
             let mut values = vec![0.0; mesh.node_count() * nc];
-            for (n, vals) in &f.values {
+            for (n, vals) in f.iter() {
                 for (c, v) in vals.iter().enumerate() {
                     values[n.0 as usize * nc + c] = v.unwrap_or(0.0);
                 }
             }
             aster_mesh::Field {
                 name: name.to_string(),
-                components: f.components.clone(),
+                components: f.components().to_vec(),
                 location: FieldLocation::Nodes,
                 values,
             }
         }
         Field::Elem(f) => {
-            let nc = f.components.len();
+            let nc = f.components().len();
             let clean = |v: f64| if v.is_finite() { v } else { 0.0 };
             match f.location {
                 ElemLocation::Cell => {
                     let mut values = vec![0.0; mesh.cells.len() * nc];
-                    for (c, pts) in &f.values {
-                        if let Some(p) = pts.first() {
+                    for (c, pts) in f.iter() {
+                        if let Some(p) = pts.get(0) {
                             for (k, v) in p.iter().enumerate() {
                                 values[c.0 as usize * nc + k] = clean(*v);
                             }
@@ -44,7 +44,7 @@ pub(crate) fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mes
                     }
                     aster_mesh::Field {
                         name: name.to_string(),
-                        components: f.components.clone(),
+                        components: f.components().to_vec(),
                         location: FieldLocation::Cells,
                         values,
                     }
@@ -53,16 +53,14 @@ pub(crate) fn to_mesh_field(name: &str, field: &Field, mesh: &Mesh) -> aster_mes
                     let mut points = vec![0u32; mesh.cells.len()];
                     let mut values = Vec::new();
                     for (i, slot) in points.iter_mut().enumerate() {
-                        if let Some(pts) = f.values.get(&aster_mesh::CellId(i as u32)) {
+                        if let Some(pts) = f.cell(aster_mesh::CellId(i as u32)) {
                             *slot = pts.len() as u32;
-                            for p in pts {
-                                values.extend(p.iter().map(|v| clean(*v)));
-                            }
+                            values.extend(pts.flat().iter().map(|v| clean(*v)));
                         }
                     }
                     aster_mesh::Field {
                         name: name.to_string(),
-                        components: f.components.clone(),
+                        components: f.components().to_vec(),
                         location: FieldLocation::GaussPoints {
                             points_per_cell: points,
                         },
@@ -149,18 +147,14 @@ fn written_on(
 ) -> Option<Vec<bool>> {
     match f {
         Field::Nodal(f) => {
-            let cols: Vec<usize> = (0..f.components.len())
-                .filter(|&c| wanted.is_empty() || wanted.contains(&f.components[c].as_str()))
+            let cols: Vec<usize> = (0..f.components().len())
+                .filter(|&c| wanted.is_empty() || wanted.contains(&f.components()[c].as_str()))
                 .collect();
             let mut mask = vec![false; mesh.node_count()];
-            for (n, vals) in &f.values {
+            for (n, vals) in f.iter() {
                 let i = n.0 as usize;
                 let selected = sel.is_none_or(|(nodes, _)| nodes.get(i).copied().unwrap_or(false));
-                if selected
-                    && cols
-                        .iter()
-                        .any(|&c| vals.get(c).copied().flatten().is_some())
-                {
+                if selected && cols.iter().any(|&c| vals.get(c).is_some()) {
                     if let Some(m) = mask.get_mut(i) {
                         *m = true;
                     }
@@ -171,7 +165,7 @@ fn written_on(
         Field::Elem(f) => {
             let cells = sel?.1.as_ref()?;
             let mut mask = vec![false; mesh.cells.len()];
-            for (c, pts) in &f.values {
+            for (c, pts) in f.iter() {
                 let i = c.0 as usize;
                 if !pts.is_empty() && cells.get(i).copied().unwrap_or(false) {
                     mask[i] = true;
@@ -512,8 +506,8 @@ fn listing(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
             .iter()
             .filter_map(|s| s.as_str())
             .collect();
-        let cols: Vec<usize> = (0..f.components.len())
-            .filter(|i| wanted.is_empty() || wanted.contains(&f.components[*i].as_str()))
+        let cols: Vec<usize> = (0..f.components().len())
+            .filter(|i| wanted.is_empty() || wanted.contains(&f.components()[*i].as_str()))
             .collect();
         let selected = ["GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"]
             .iter()
@@ -531,16 +525,16 @@ fn listing(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
         let (w, p) = real_format(occ.str("FORMAT_R").unwrap_or("1PE21.14")).unwrap_or((21, 14));
         *out += &format!("{:<9}", "NOEUD");
         for &c in &cols {
-            *out += &format!(" {:>w$}", f.components[c]);
+            *out += &format!(" {:>w$}", f.components()[c]);
         }
         *out += "\n";
-        for (node, vals) in &f.values {
-            if nodes.as_ref().is_some_and(|s| !s.contains(node)) {
+        for (node, vals) in f.iter() {
+            if nodes.as_ref().is_some_and(|s| !s.contains(&node)) {
                 continue;
             }
-            *out += &format!("{:<9}", mesh.node_name(*node));
+            *out += &format!("{:<9}", mesh.node_name(node));
             for &c in &cols {
-                match vals.get(c).copied().flatten() {
+                match vals.get(c) {
                     Some(v) => *out += &format!(" {}", c_exp(v, w, p)),
                     None => *out += &format!(" {:>w$}", "-"),
                 }
@@ -630,14 +624,13 @@ fn gmsh(ex: &Executor, kw: &Keywords) -> Result<String, ExecError> {
         for (s, fields) in selected_fields(ex, occ, &result)? {
             for (name, f) in fields {
                 let Field::Nodal(f) = f else { continue };
-                for (c, comp) in f.components.iter().enumerate() {
+                for (c, comp) in f.components().iter().enumerate() {
                     if !cmps.is_empty() && !cmps.contains(&comp.as_str()) {
                         continue;
                     }
                     let values: Vec<(u32, f64)> = f
-                        .values
                         .iter()
-                        .filter_map(|(n, v)| v.get(c).copied().flatten().map(|v| (n.0 + 1, v)))
+                        .filter_map(|(n, v)| v.get(c).map(|v| (n.0 + 1, v)))
                         .collect();
                     views += &format!(
                         "$NodeData\n1\n\"{}_{}_{}\"\n1\n{}\n3\n{}\n1\n{}\n",

@@ -1122,8 +1122,8 @@ pub(crate) fn stat_table(steps: &[Step], counted: bool) -> crate::table::Table {
             let (mut cont, mut stick) = (0_i64, 0_i64);
             if let Some(crate::field::Field::Nodal(f)) = s.fields.get("CONT_NOEU") {
                 if let Some(k) = f.component_index("CONT") {
-                    for v in f.values.values() {
-                        let c = v.get(k).copied().flatten().unwrap_or(0.0).round();
+                    for (_, v) in f.iter() {
+                        let c = v.get(k).unwrap_or(0.0).round();
                         if c >= 1.0 {
                             cont += 1;
                             if c == 1.0 {

@@ -171,7 +171,7 @@ fn settle(
     mesh: &Mesh,
 ) -> Result<ElemField, ExecError> {
     let prol = prol_zero(&call.keywords);
-    let mut out = BTreeMap::new();
+    let mut out = ElemField::new(ElemLocation::Gauss, components.clone());
     for (cell, points) in values {
         let mut settled = Vec::with_capacity(points.len());
         for p in points {
@@ -201,11 +201,7 @@ fn settle(
         }
         out.insert(cell, settled);
     }
-    Ok(ElemField {
-        location: ElemLocation::Gauss,
-        components,
-        values: out,
-    })
+    Ok(out)
 }
 
 /// A keyword the user wrote (not a catalog default).
@@ -268,7 +264,7 @@ pub(crate) fn disc(ex: &Executor, call: &CommandCall) -> Result<ElemField, ExecE
         ));
     };
     let (_, mesh, layout) = model_layout(ex, call)?;
-    let components = stored_components(q, &src.components);
+    let components = stored_components(q, src.components());
     let mut values = Building::new();
     for (&cell, gc) in &layout.cells {
         let nodes = &mesh.cell(cell).nodes;
@@ -364,14 +360,14 @@ pub(crate) fn eval(
         }
         params.push(f);
     }
-    let mut values = BTreeMap::new();
+    let mut values = ElemField::new(ElemLocation::Gauss, functions.components.clone());
     for (&cell, (npts, funcs)) in &functions.values {
         let mut rows = Vec::with_capacity(*npts);
         for p in 0..*npts {
             let mut args: Vec<(&str, f64)> = Vec::new();
             for f in &params {
                 let Field::Elem(e) = &**f else { continue };
-                let Some(points) = e.values.get(&cell) else {
+                let Some(points) = e.cell(cell) else {
                     continue;
                 };
                 if points.len() != *npts {
@@ -386,7 +382,7 @@ pub(crate) fn eval(
                         ),
                     ));
                 }
-                for (name, &v) in e.components.iter().zip(&points[p]) {
+                for (name, &v) in e.components().iter().zip(&points[p]) {
                     if v.is_nan() {
                         continue;
                     }
@@ -415,11 +411,7 @@ pub(crate) fn eval(
         }
         values.insert(cell, rows);
     }
-    Ok(ElemField {
-        location: ElemLocation::Gauss,
-        components: functions.components.clone(),
-        values,
-    })
+    Ok(values)
 }
 
 /// `OPERATION='ASSE'` of `ELGA` fields onto the model's Gauss points.
@@ -451,7 +443,7 @@ pub(crate) fn asse(ex: &Executor, call: &CommandCall) -> Result<ElemField, ExecE
             .iter()
             .filter_map(|s| s.as_str().map(str::to_string))
             .collect();
-        if let Some(bad) = cmps.iter().find(|c| !src.components.contains(c)) {
+        if let Some(bad) = cmps.iter().find(|c| !src.components().contains(c)) {
             // code_aster's UTILITAI_43.
             return Err(ex.kw_error(
                 cmd,
@@ -459,7 +451,7 @@ pub(crate) fn asse(ex: &Executor, call: &CommandCall) -> Result<ElemField, ExecE
                 "NOM_CMP",
                 format!(
                     "the field has no component {bad} (components: {})",
-                    src.components.join(", ")
+                    src.components().join(", ")
                 ),
             ));
         }
@@ -483,7 +475,7 @@ pub(crate) fn asse(ex: &Executor, call: &CommandCall) -> Result<ElemField, ExecE
         let coef = occ.f64("COEF_R").unwrap_or(1.0);
         let cumul = occ.str("CUMUL") == Some("OUI");
         let taken: Vec<(usize, String)> = src
-            .components
+            .components()
             .iter()
             .enumerate()
             .filter_map(|(i, c)| {
@@ -495,7 +487,7 @@ pub(crate) fn asse(ex: &Executor, call: &CommandCall) -> Result<ElemField, ExecE
             })
             .collect();
         for cell in cells {
-            let Some(points) = src.values.get(&cell) else {
+            let Some(points) = src.cell(cell) else {
                 continue;
             };
             let slot = acc.entry(cell).or_default();
@@ -584,8 +576,8 @@ pub(crate) fn nodal_at_points(
             continue;
         };
         let nodes = &mesh.cell(*cell).nodes;
-        let mut rows = vec![vec![0.0; src.components.len()]; gc.points.len()];
-        for (ci, comp) in src.components.iter().enumerate() {
+        let mut rows = vec![vec![0.0; src.components().len()]; gc.points.len()];
+        for (ci, comp) in src.components().iter().enumerate() {
             let nodal: Option<Vec<f64>> = nodes.iter().map(|&n| src.get(n, comp)).collect();
             let Some(nodal) = nodal else { continue };
             for (row, point) in rows.iter_mut().zip(&gc.points) {

@@ -241,12 +241,12 @@ pub fn asse_vecteur(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutp
         match &mut sum {
             None => sum = Some((**v).clone()),
             Some(acc) => {
-                for (node, vals) in &v.values {
+                for (node, vals) in v.iter() {
                     for (i, x) in vals.iter().enumerate() {
                         if let Some(x) = x {
-                            let name = &v.components[i];
-                            let cur = acc.get(*node, name).unwrap_or(0.0);
-                            acc.set(*node, name, cur + x);
+                            let name = &v.components()[i];
+                            let cur = acc.get(node, name).unwrap_or(0.0);
+                            acc.set(node, name, cur + x);
                         }
                     }
                 }

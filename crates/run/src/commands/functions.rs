@@ -245,7 +245,7 @@ pub fn recu_fonction(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             ExecError::new(format!(
                 "{cmd}: {cham} has no component {cmp} at node {} (components: {})",
                 mesh.node_name(node),
-                f.components.join(", ")
+                f.components().join(", ")
             ))
         })?;
         xs.push(s.inst);

@@ -103,7 +103,7 @@ pub fn lire_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             }
             found = true;
             let nc = f.components.len();
-            let mut nf = NodalField::new(f.components.clone());
+            let mut nf = NodalField::with_node_count(f.components.clone(), mesh.node_count());
             for n in 0..mesh.node_count() {
                 let on = covered
                     .get(k)
@@ -112,10 +112,8 @@ pub fn lire_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 if !on && !prol_zero {
                     continue;
                 }
-                let vals = (0..nc)
-                    .map(|c| Some(if on { f.values[n * nc + c] } else { 0.0 }))
-                    .collect();
-                nf.values.insert(NodeId(n as u32), vals);
+                let vals = (0..nc).map(|c| Some(if on { f.values[n * nc + c] } else { 0.0 }));
+                nf.insert(NodeId(n as u32), vals);
             }
             let step = out.entry(s.nume_ordre).or_insert_with(|| Step {
                 nume_ordre: s.nume_ordre.max(0) as u32,

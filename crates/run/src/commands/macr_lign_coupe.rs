@@ -475,15 +475,11 @@ fn rotated(
     let idx = |c: &str| f.component_index(c);
     let vectors = [["DX", "DY", "DZ"], ["FLUX", "FLUY", "FLUZ"]];
     let tensor = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"].map(idx);
-    for (&node, vals) in out.values.iter_mut() {
+    for (node, orig) in f.iter() {
         let Some(p) = frame(node) else {
             continue;
         };
-        let orig = vals.clone();
-        let get = |i: Option<usize>| {
-            i.and_then(|i| orig.get(i).copied().flatten())
-                .unwrap_or(0.0)
-        };
+        let get = |i: Option<usize>| i.and_then(|i| orig.get(i)).unwrap_or(0.0);
         for names in &vectors {
             let ids = names.map(idx);
             if ids[0].is_none() || ids[1].is_none() {
@@ -492,7 +488,7 @@ fn rotated(
             let u = ids.map(get);
             for (r, id) in ids.iter().enumerate().take(dim) {
                 if let Some(i) = id {
-                    vals[*i] = Some((0..dim).map(|k| p[r][k] * u[k]).sum());
+                    out.set_at(node, *i, Some((0..dim).map(|k| p[r][k] * u[k]).sum()));
                 }
             }
         }
@@ -513,7 +509,7 @@ fn rotated(
             for (slot, (a, b)) in tensor.iter().zip(new) {
                 if let Some(i) = slot {
                     if a < n && b < n {
-                        vals[*i] = Some(rot(a, b));
+                        out.set_at(node, *i, Some(rot(a, b)));
                     }
                 }
             }
@@ -860,17 +856,11 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
                 let wanted: Vec<usize> =
                     match occ.simple("NOM_CMP").first().and_then(|s| s.as_str()) {
                         Some(c) => f.component_index(c).into_iter().collect(),
-                        None => (0..f.components.len()).collect(),
+                        None => (0..f.components().len()).collect(),
                     };
                 let kept: Vec<NodeId> = members
                     .into_iter()
-                    .filter(|n| {
-                        f.values.get(n).is_some_and(|v| {
-                            wanted
-                                .iter()
-                                .any(|&i| v.get(i).copied().flatten().is_some())
-                        })
-                    })
+                    .filter(|n| wanted.iter().any(|&i| f.get_at(*n, i).is_some()))
                     .collect();
                 if kept.is_empty() {
                     let span = occ
@@ -1158,7 +1148,7 @@ FINSF\nSEG2\nM1 N1 N2\nM2 N2 N3\nFINSF\nGROUP_MA\n  LICOU1\n  M1\n  M2\n\nFINSF\
                 .map(String::from)
                 .to_vec(),
         );
-        f.values.insert(
+        f.insert(
             NodeId(0),
             vec![
                 Some(1.0),
@@ -1171,7 +1161,7 @@ FINSF\nSEG2\nM1 N1 N2\nM2 N2 N3\nFINSF\nGROUP_MA\n  LICOU1\n  M1\n  M2\n\nFINSF\
         );
         let p = matrot([90.0, 0.0, 0.0]);
         let r = rotated(&f, |_| Some(p), 2);
-        let v = &r.values[&NodeId(0)];
+        let v: Vec<Option<f64>> = r.node(NodeId(0)).unwrap().iter().collect();
         // x' = y: the global x vector has components (0, -1) in the turned frame.
         assert!(v[0].unwrap().abs() < 1e-15 && (v[1].unwrap() + 1.0).abs() < 1e-15);
         // σ = e_x ⊗ e_x becomes e_y' ⊗ e_y'; σzz stays.

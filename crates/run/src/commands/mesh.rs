@@ -485,7 +485,7 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 "a nodal displacement field is required",
             ));
         };
-        for node in f.values.keys() {
+        for node in f.nodes() {
             let Some(x) = mesh.coords.get_mut(node.0 as usize) else {
                 return Err(ExecError::new(format!(
                     "MODI_MAILLAGE/DEFORME: field `{}` has node #{} which the mesh does not have",
@@ -494,7 +494,7 @@ pub fn modi_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 )));
             };
             for (k, c) in ["DX", "DY", "DZ"].iter().enumerate() {
-                x[k] += f.get(*node, c).unwrap_or(0.0);
+                x[k] += f.get(node, c).unwrap_or(0.0);
             }
         }
     }

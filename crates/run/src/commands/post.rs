@@ -272,12 +272,12 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 let Field::Nodal(f) = &*ex.field(c)? else {
                     return Err(ex.unsupported("CREA_CHAMP/COMB of element fields", call.span));
                 };
-                let acc = acc.get_or_insert_with(|| NodalField::new(f.components.clone()));
-                for (node, vals) in &f.values {
+                let acc = acc.get_or_insert_with(|| NodalField::new(f.components().to_vec()));
+                for (node, vals) in f.iter() {
                     for (i, v) in vals.iter().enumerate() {
                         if let Some(v) = v {
-                            let cur = acc.get(*node, &f.components[i]).unwrap_or(0.0);
-                            acc.set(*node, &f.components[i], cur + coef * v);
+                            let cur = acc.get(node, &f.components()[i]).unwrap_or(0.0);
+                            acc.set(node, &f.components()[i], cur + coef * v);
                         }
                     }
                 }
@@ -342,25 +342,25 @@ pub fn crea_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 let coef = occ.f64("COEF_R").unwrap_or(1.0);
                 let cumul = occ.str("CUMUL") == Some("OUI");
                 let acc = acc.get_or_insert_with(|| NodalField::new(Vec::new()));
-                for (node, vals) in &f.values {
+                for (node, vals) in f.iter() {
                     if let Some(sel) = &mesh_nodes {
-                        if !sel.contains(node) {
+                        if !sel.contains(&node) {
                             continue;
                         }
                     }
                     for (i, v) in vals.iter().enumerate() {
-                        let name = &f.components[i];
+                        let name = &f.components()[i];
                         if !cmps.is_empty() && !cmps.contains(name) {
                             continue;
                         }
                         if let Some(v) = v {
                             let out = target(name);
                             let base = if cumul {
-                                acc.get(*node, &out).unwrap_or(0.0)
+                                acc.get(node, &out).unwrap_or(0.0)
                             } else {
                                 0.0
                             };
-                            acc.set(*node, &out, base + coef * v);
+                            acc.set(node, &out, base + coef * v);
                         }
                     }
                 }
@@ -702,19 +702,15 @@ fn frame_components(f: &NodalField, frame: impl Fn(NodeId) -> Option<Frame>) -> 
     let idx = |c: &str| f.component_index(c);
     let vector = (idx("DX"), idx("DY"));
     let tensor = ["SIXX", "SIYY", "SIXY", "SIXZ", "SIYZ"].map(idx);
-    for (&node, vals) in out.values.iter_mut() {
+    for (node, orig) in f.iter() {
         let Some((v1, v2)) = frame(node) else {
             continue;
         };
-        let orig = f.values.get(&node).cloned().unwrap_or_default();
-        let get = |i: Option<usize>| {
-            i.and_then(|i| orig.get(i).copied().flatten())
-                .unwrap_or(0.0)
-        };
+        let get = |i: Option<usize>| i.and_then(|i| orig.get(i)).unwrap_or(0.0);
         if let (Some(ix), Some(iy)) = vector {
             let u = [get(Some(ix)), get(Some(iy))];
-            vals[ix] = Some(v1[0] * u[0] + v1[1] * u[1]);
-            vals[iy] = Some(v2[0] * u[0] + v2[1] * u[1]);
+            out.set_at(node, ix, Some(v1[0] * u[0] + v1[1] * u[1]));
+            out.set_at(node, iy, Some(v2[0] * u[0] + v2[1] * u[1]));
         }
         if tensor[0].is_some() && tensor[1].is_some() {
             let [sxx, syy, sxy, sxz, syz] = tensor.map(get);
@@ -730,7 +726,7 @@ fn frame_components(f: &NodalField, frame: impl Fn(NodeId) -> Option<Frame>) -> 
             ];
             for (i, v) in tensor.iter().zip(rotated) {
                 if let Some(i) = i {
-                    vals[*i] = Some(v);
+                    out.set_at(node, *i, Some(v));
                 }
             }
         }
@@ -1033,7 +1029,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     if f.component_index(c).is_none() {
                         return Err(ExecError::new(format!(
                             "POST_RELEVE_T/ACTION/RESULTANTE: the field has no component {c} (it has {})",
-                            f.components.join(", ")
+                            f.components().join(", ")
                         )));
                     }
                     let sum: f64 = nodes.iter().filter_map(|&n| f.get(n, c)).sum();
@@ -1077,7 +1073,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 f
             };
             let cmps: Vec<String> = if occ.str("TOUT_CMP") == Some("OUI") {
-                f.components.clone()
+                f.components().to_vec()
             } else {
                 let wanted: Vec<String> = occ
                     .simple("NOM_CMP")
@@ -1088,7 +1084,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     if f.component_index(c).is_none() {
                         return Err(ExecError::new(format!(
                             "POST_RELEVE_T/ACTION/NOM_CMP: the field has no component {c} (it has {})",
-                            f.components.join(", ")
+                            f.components().join(", ")
                         )));
                     }
                 }
@@ -1116,10 +1112,8 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     .iter()
                     .filter_map(|c| {
                         let i = f.component_index(c)?;
-                        let vals: Vec<Option<f64>> = nodes
-                            .iter()
-                            .map(|n| f.values.get(n).and_then(|v| v[i]))
-                            .collect();
+                        let vals: Vec<Option<f64>> =
+                            nodes.iter().map(|n| f.get_at(*n, i)).collect();
                         Some((c.clone(), path_moments(&absc, &vals)))
                     })
                     .collect();
@@ -1149,7 +1143,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             }
             for (&n, &abscissa) in nodes.iter().zip(&absc) {
                 // Nodes without the field (outside the model) give no row.
-                let Some(vals) = f.values.get(&n) else {
+                let Some(vals) = f.node(n) else {
                     continue;
                 };
                 let x = mesh.coord(n);
@@ -1174,7 +1168,7 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 let mut cells: Vec<(String, f64)> = Vec::new();
                 for c in &cmps {
                     if let Some(i) = f.component_index(c) {
-                        if let Some(v) = vals[i] {
+                        if let Some(v) = vals.get(i) {
                             cells.push((c.clone(), v));
                         }
                     }
@@ -1243,7 +1237,7 @@ fn arith_mean_rows(
                 .filter_map(|s| s.as_str().map(str::to_string))
                 .collect()
         } else {
-            f.components.clone()
+            f.components().to_vec()
         };
         for c in &cmps {
             let Some(i) = f.component_index(c) else {
@@ -1253,14 +1247,11 @@ fn arith_mean_rows(
                     "NOM_CMP",
                     format!(
                         "the field has no component {c} (it has {})",
-                        f.components.join(", ")
+                        f.components().join(", ")
                     ),
                 ));
             };
-            let sum: f64 = nodes
-                .iter()
-                .filter_map(|n| f.values.get(n).and_then(|v| v[i]))
-                .sum();
+            let sum: f64 = nodes.iter().filter_map(|n| f.get_at(*n, i)).sum();
             let mean = sum / nodes.len() as f64;
             let mut row: Vec<(&str, Value)> = vec![("INTITULE", Value::Text(title.to_string()))];
             if let Some(g) = &chamgd {

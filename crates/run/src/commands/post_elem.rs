@@ -393,7 +393,7 @@ fn norme(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecErr
             }
             let mut out = std::collections::BTreeMap::new();
             for c in &cells {
-                let Some(points) = e.values.get(c) else {
+                let Some(points) = e.cell(*c) else {
                     continue;
                 };
                 let n = layout.cells[c].points.len();

@@ -99,10 +99,7 @@ pub fn post_erreur(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
             let v: Vec<f64> = c
                 .nodes
                 .iter()
-                .map(|n| {
-                    lags.and_then(|i| field.values.get(n).and_then(|v| v[i]))
-                        .unwrap_or(0.0)
-                })
+                .map(|n| lags.and_then(|i| field.get_at(*n, i)).unwrap_or(0.0))
                 .collect();
             let dim = model.dim();
             let out = aster_fem::skin_norm::skin_l2_squared(&mesh, cell, &v, |x| match &exact {

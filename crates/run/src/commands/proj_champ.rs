@@ -391,13 +391,13 @@ pub(crate) fn project_field(
     node_count2: usize,
     prol: Option<f64>,
 ) -> NodalField {
-    let mut out = NodalField::new(f.components.clone());
-    let nc = f.components.len();
+    let mut out = NodalField::new(f.components().to_vec());
+    let nc = f.components().len();
     for i in 0..node_count2 {
         let mut vals = vec![None; nc];
         if let Some(link) = &corr.links[i] {
             for (c, v) in vals.iter_mut().enumerate() {
-                *v = interpolate(link, |n| f.values.get(&n).and_then(|v| v[c]));
+                *v = interpolate(link, |n| f.get_at(n, c));
             }
         }
         if let Some(p) = prol {
@@ -406,7 +406,7 @@ pub(crate) fn project_field(
             }
         }
         if vals.iter().any(|v| v.is_some()) {
-            out.values.insert(NodeId(i as u32), vals);
+            out.insert(NodeId(i as u32), vals);
         }
     }
     out
