@@ -653,6 +653,92 @@ pub fn stiffness(
     Ok(kg)
 }
 
+/// The local unknowns of `vdxnlr` (`trndgl`): the translations as they
+/// are, each node's rotation θ as (t₁·θ, t₂·θ); 42 values.
+fn local_unknowns(frames: &[[V3; 3]; NB2], u: &[f64; NDDL]) -> [f64; NDDLE] {
+    let mut l = [0.; NDDLE];
+    let dot = |t: V3, o: usize| t[0] * u[o] + t[1] * u[o + 1] + t[2] * u[o + 2];
+    for n in 0..NB1 {
+        l[5 * n..5 * n + 3].copy_from_slice(&u[6 * n..6 * n + 3]);
+        l[5 * n + 3] = dot(frames[n][0], 6 * n + 3);
+        l[5 * n + 4] = dot(frames[n][1], 6 * n + 3);
+    }
+    l[5 * NB1] = dot(frames[NB1][0], 6 * NB1);
+    l[5 * NB1 + 1] = dot(frames[NB1][1], 6 * NB1);
+    l
+}
+
+/// The stresses of `SIEF_ELGA` from the global displacements `u` (51
+/// values, the order of [`stiffness`]): SIXX SIYY SIZZ SIXY SIXZ SIYZ in
+/// each point's local frame (`vectgt`: t₁ along ∂x/∂ξ₁), SIZZ = 0, in
+/// code_aster's order — normal point (FPG9COQ) major, then layer, then
+/// the layer's bottom, middle and top (`vdxnlr`'s `k1`).
+pub fn stresses(
+    xyz: &[V3; NB1],
+    material: &Elastic,
+    section: &Coque3dSection,
+    u: &[f64; NDDL],
+) -> Result<Vec<[f64; 6]>, String> {
+    let r = RefQuad9::new();
+    let frames = nodal_frames(xyz, &r)?;
+    let ul = local_unknowns(&frames, u);
+    let (e, nu, kappa) = (material.e, material.nu, section.shear_factor);
+    let c = e / (1. - nu * nu);
+    let g = e / (1. + nu) / 2.;
+    let ops = operators(xyz, &frames, section, &r);
+    let npge = 3 * section.layers.max(1) as usize;
+    let mut out = vec![[0.; 6]; ops.len()];
+    for (o, (b, _)) in ops.iter().enumerate() {
+        let eps: Vec<f64> = b
+            .iter()
+            .map(|row| row.iter().zip(&ul).map(|(x, y)| x * y).sum())
+            .collect();
+        let (lp, q) = (o / NPGSN, o % NPGSN);
+        out[q * npge + lp] = [
+            c * (eps[0] + nu * eps[1]),
+            c * (nu * eps[0] + eps[1]),
+            0.,
+            g * eps[2],
+            kappa * g * eps[3],
+            kappa * g * eps[4],
+        ];
+    }
+    Ok(out)
+}
+
+/// The load of a pressure on the mid-surface (`te0403` → `fpres`,
+/// `CHAR_MECA_PRES_R`): `pres` at the eight edge nodes, acting against
+/// each node's normal n (a positive pressure pushes along −n), interpolated
+/// with the QUAD8 functions at the FPG9COQ points, times |a₁×a₂| there;
+/// forces on the translations only (the nodal moments are zero, and
+/// `fpres`'s correction by `kijkm1` reads a part of the reference data no
+/// routine writes: zero). 51 values, the order of [`stiffness`].
+pub fn pressure_load(xyz: &[V3; NB1], pres: &[f64; NB1]) -> Result<Vec<f64>, String> {
+    let r = RefQuad9::new();
+    let frames = nodal_frames(xyz, &r)?;
+    let mut f = vec![0.; NDDL];
+    for q in 0..NPGSN {
+        let s = &r.g8n[q];
+        let mut a1 = [0.; 3];
+        let mut a2 = [0.; 3];
+        let mut chg = [0.; 3];
+        for k in 0..3 {
+            for j in 0..NB1 {
+                a1[k] += s.d1[j] * xyz[j][k];
+                a2[k] += s.d2[j] * xyz[j][k];
+                chg[k] += -pres[j] * frames[j][2][k] * s.f[j];
+            }
+        }
+        let rnormc = norm(cross(a1, a2));
+        for i in 0..NB1 {
+            for k in 0..3 {
+                f[6 * i + k] += r.wn[q] * chg[k] * s.f[i] * rnormc;
+            }
+        }
+    }
+    Ok(f)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -333,3 +333,118 @@ fn simply_supported_plate_under_pressure_converges_to_kirchhoff() {
     let soft = (plate_centre_deflection(8, false) - exact) / exact;
     assert!(soft > 5e-3 && soft < 2e-2, "{soft}");
 }
+
+#[test]
+fn pressure_load_sums_to_pressure_times_area_along_the_normal() {
+    let r = tilted();
+    let xyz = distorted(&r);
+    let f = coque3d::pressure_load(&xyz, &[2.5; 8]).unwrap();
+    // The sum is −p·∫|a₁×a₂| along n (the cell is flat: every nodal
+    // normal is n), checked against a fine rule.
+    let mut total = Vector3::zeros();
+    for n in 0..8 {
+        total += Vector3::new(f[6 * n], f[6 * n + 1], f[6 * n + 2]);
+        for c in 3..6 {
+            assert_eq!(f[6 * n + c], 0.);
+        }
+    }
+    let normal = r * Vector3::z();
+    assert!(total.cross(&normal).norm() <= 1e-12 * total.norm());
+    let area = -total.dot(&normal) / 2.5;
+    // The area of the flat QUAD8: a 400×400 midpoint sum of det J (a
+    // polynomial of degree ≤ 3 per direction, which FPG9COQ integrates
+    // exactly; the midpoint sum is within ~1e-6).
+    let xy: Vec<[f64; 2]> = xyz
+        .iter()
+        .map(|p| {
+            let l = r.transpose() * Vector3::from(*p);
+            [l[0], l[1]]
+        })
+        .collect();
+    let nm = 400;
+    let mut fine = 0.;
+    for i in 0..nm {
+        for j in 0..nm {
+            let (x, y) = (
+                -1. + (2 * i + 1) as f64 / nm as f64,
+                -1. + (2 * j + 1) as f64 / nm as f64,
+            );
+            let d = qu8_derivatives(x, y);
+            let (mut j11, mut j12, mut j21, mut j22) = (0., 0., 0., 0.);
+            for n in 0..8 {
+                j11 += d[0][n] * xy[n][0];
+                j12 += d[0][n] * xy[n][1];
+                j21 += d[1][n] * xy[n][0];
+                j22 += d[1][n] * xy[n][1];
+            }
+            fine += (j11 * j22 - j12 * j21) * (2. / nm as f64).powi(2);
+        }
+    }
+    assert!((area - fine).abs() <= 1e-5 * fine, "{area} vs {fine}");
+}
+
+fn qu8_derivatives(x: f64, y: f64) -> [[f64; 8]; 2] {
+    [
+        [
+            -0.25 * (1. - y) * (-2. * x - y),
+            0.25 * (1. - y) * (2. * x - y),
+            0.25 * (1. + y) * (2. * x + y),
+            -0.25 * (1. + y) * (-2. * x + y),
+            -x * (1. - y),
+            (1. - y * y) / 2.,
+            -x * (1. + y),
+            -(1. - y * y) / 2.,
+        ],
+        [
+            -0.25 * (1. - x) * (-2. * y - x),
+            -0.25 * (1. + x) * (-2. * y + x),
+            0.25 * (1. + x) * (2. * y + x),
+            0.25 * (1. - x) * (2. * y - x),
+            -(1. - x * x) / 2.,
+            -y * (1. + x),
+            (1. - x * x) / 2.,
+            -y * (1. - x),
+        ],
+    ]
+}
+
+#[test]
+fn layer_stresses_of_the_strip_are_beam_theory() {
+    // End moment M about local y (u = z·θ: the bottom shortens): σxx =
+    // −6M/(b·h²), 0, +6M/(b·h²) at the bottom, middle and top of every
+    // point; end tension: σxx = N/(b·h) everywhere.
+    let (b, h, m, n) = (0.5, 0.05, 1e3, 1e6);
+    let r = tilted();
+    let mat = Elastic::new(2e11, 0.).unwrap();
+    let sec = Coque3dSection::new(h);
+    for (case, want) in [
+        (0, [-6. * m / (b * h * h), 0., 6. * m / (b * h * h)]),
+        (1, [n / (b * h); 3]),
+    ] {
+        let (g, u, _) = strip_tip(|f, node, w| {
+            if case == 0 {
+                add(f, node, 3, &r, [0., m * w, 0.])
+            } else {
+                add(f, node, 0, &r, [n * w, 0., 0.])
+            }
+        });
+        for c in &g.cells {
+            let xyz: [[f64; 3]; 8] = std::array::from_fn(|a| g.nodes[c[a]]);
+            let d = Grid::dofs(c);
+            let ue: [f64; NDDL] = std::array::from_fn(|a| u[d[a]]);
+            let s = coque3d::stresses(&xyz, &mat, &sec, &ue).unwrap();
+            assert_eq!(s.len(), 27);
+            let scale = want.iter().map(|v: &f64| v.abs()).fold(0., f64::max);
+            for (i, sig) in s.iter().enumerate() {
+                let w = want[i % 3];
+                assert!(
+                    (sig[0] - w).abs() <= 1e-7 * scale,
+                    "{case} {i}: {sig:?} vs {w}"
+                );
+                for k in 1..6 {
+                    assert!(sig[k].abs() <= 1e-7 * scale, "{case} {i}: {sig:?}");
+                }
+            }
+        }
+    }
+}
