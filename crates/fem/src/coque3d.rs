@@ -739,6 +739,156 @@ pub fn pressure_load(xyz: &[V3; NB1], pres: &[f64; NB1]) -> Result<Vec<f64>, Str
     Ok(f)
 }
 
+/// `coqrep` then `vdrepe`: the cosine and sine of the user's x axis (the
+/// projection of `direction` on the plane of `frame`) in `frame`'s
+/// (t₁, t₂), normalised as code_aster does (twice, each time `s` with the
+/// already normalised `c`).
+fn user_angle(frame: &[V3; 3], direction: V3) -> Result<(f64, f64), String> {
+    let n = frame[2];
+    let dot = |a: V3, b: V3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let ps = dot(direction, n);
+    let pj = [0, 1, 2].map(|k| direction[k] - ps * n[k]);
+    let norm_pj = norm(pj);
+    if norm_pj <= f64::EPSILON {
+        return Err(
+            "a COQUE_3D cell whose reference direction (ANGL_REP/VECTEUR) is normal to it at a node: the stresses' frame is undefined".into(),
+        );
+    }
+    let pj = pj.map(|v| v / norm_pj);
+    let (mut c, mut s) = (dot(pj, frame[0]), dot(pj, frame[1]));
+    for _ in 0..2 {
+        c /= (c * c + s * s).sqrt();
+        s /= (c * c + s * s).sqrt();
+    }
+    Ok((c, s))
+}
+
+/// `mamagi`: the least-squares extrapolation (12×27, row-major) from the
+/// 27 points of a layer (bottom, middle, top × FPG9COQ) to its 12 nodal
+/// values (bottom, middle, top × the four corners), bilinear in (ξ₁, ξ₂)
+/// and quadratic through the layer.
+fn extrapolation() -> Vec<f64> {
+    let b = (3f64 / 5.).sqrt();
+    let normal = [
+        (-b, -b),
+        (0., -b),
+        (b, -b),
+        (b, 0.),
+        (b, b),
+        (0., b),
+        (-b, b),
+        (-b, 0.),
+        (0., 0.),
+    ];
+    let psi3 = [-1., 0., 1.];
+    let (at, bt3, ct) = ([0.5, -1., 0.5], [-0.5, 0., 0.5], [0., 1., 0.]);
+    let (ca, cb, cc, cd) = (
+        [0.25, 0.25, 0.25, 0.25],
+        [-0.25, 0.25, 0.25, -0.25],
+        [-0.25, -0.25, 0.25, 0.25],
+        [0.25, -0.25, 0.25, -0.25],
+    );
+    let mut bt = [[0.; 27]; 12];
+    for (integ, &x3) in psi3.iter().enumerate() {
+        for (q, &(x1, x2)) in normal.iter().enumerate() {
+            let ig = 9 * integ + q;
+            for intef in 0..3 {
+                for ifon in 0..4 {
+                    bt[4 * intef + ifon][ig] = (at[intef] * x3 * x3 + bt3[intef] * x3 + ct[intef])
+                        * (ca[ifon] + cb[ifon] * x1 + cc[ifon] * x2 + cd[ifon] * x1 * x2);
+                }
+            }
+        }
+    }
+    let btb = nalgebra::DMatrix::from_fn(12, 12, |i, j| (0..27).map(|k| bt[i][k] * bt[j][k]).sum());
+    let rhs = nalgebra::DMatrix::from_fn(12, 27, |i, k| bt[i][k]);
+    // BᵀB is the Gram matrix of 12 independent functions on 27 points:
+    // positive definite.
+    let x = btb
+        .lu()
+        .solve(&rhs)
+        .unwrap_or_else(|| nalgebra::DMatrix::zeros(12, 27));
+    (0..12 * 27).map(|o| x[(o / 27, o % 27)]).collect()
+}
+
+/// `SIGM_ELNO` (`te0040` → `elno_coq3d`): at each of the nine nodes, for
+/// each layer its bottom, middle and top (`COQUE_NCOU`·3 sub-points),
+/// SIXX SIYY SIZZ SIXY SIXZ SIYZ in the user's frame of the node (x the
+/// projection of `direction` — `ANGL_REP`/`VECTEUR`, by default global X
+/// — on the node's plane (t₁, t₂), `coqrep`/`vdrepe`/`vdsiro`). The
+/// layer's 27 point values are extrapolated by least squares to the four
+/// corners (`mamagi`), the mid-side nodes take the mean of their two
+/// corners, the centre the mean of the four. code_aster stores
+/// `SIEF_ELGA` turned into the user's frame of the first reduced point and
+/// turns it back before extrapolating (`cosiro` 'IU' then 'UI' with the
+/// same 2×2 rotation): the identity up to round-off, not repeated here.
+pub fn sigm_elno(
+    xyz: &[V3; NB1],
+    material: &Elastic,
+    section: &Coque3dSection,
+    u: &[f64; NDDL],
+    direction: V3,
+) -> Result<Vec<Vec<[f64; 6]>>, String> {
+    let r = RefQuad9::new();
+    let frames = nodal_frames(xyz, &r)?;
+    let gauss = stresses(xyz, material, section, u)?;
+    let nbcou = section.layers.max(1) as usize;
+    let npge = 3 * nbcou;
+    let matr = extrapolation();
+    let mut out = vec![vec![[0.; 6]; npge]; NB2];
+    for icou in 0..nbcou {
+        // matpg of the layer: (inte, intsn) → code_aster's point order.
+        let layer = |j: usize, ic: usize| {
+            let (inte, q) = (j / NPGSN, j % NPGSN);
+            gauss[q * npge + 3 * icou + inte][ic]
+        };
+        for lvl in 0..3 {
+            let mut node = [[0.; 6]; NB2];
+            for (corner, vals) in node.iter_mut().take(4).enumerate() {
+                let i = 4 * lvl + corner;
+                for (ic, v) in vals.iter_mut().enumerate() {
+                    *v = (0..27).map(|j| matr[27 * i + j] * layer(j, ic)).sum();
+                }
+            }
+            for ic in 0..6 {
+                node[4][ic] = (node[0][ic] + node[1][ic]) / 2.;
+                node[5][ic] = (node[1][ic] + node[2][ic]) / 2.;
+                node[6][ic] = (node[2][ic] + node[3][ic]) / 2.;
+                node[7][ic] = (node[3][ic] + node[0][ic]) / 2.;
+                node[8][ic] = (node[0][ic] + node[1][ic] + node[2][ic] + node[3][ic]) / 4.;
+            }
+            for (n, t) in node.iter().enumerate() {
+                let (c, s) = user_angle(&frames[n], direction)?;
+                // Mᵀ·σ·M with M = [c −s; s c] (`vdsiro` 'IU').
+                let (xx, yy, xy) = (t[0], t[1], t[3]);
+                let m = [[c, -s], [s, c]];
+                let a = [[xx, xy], [xy, yy]];
+                let mut res = [[0.; 2]; 2];
+                for i in 0..2 {
+                    for j in 0..2 {
+                        let mut v = 0.;
+                        for k in 0..2 {
+                            for l in 0..2 {
+                                v += m[k][i] * a[k][l] * m[l][j];
+                            }
+                        }
+                        res[i][j] = v;
+                    }
+                }
+                out[n][3 * icou + lvl] = [
+                    res[0][0],
+                    res[1][1],
+                    t[2],
+                    res[0][1],
+                    t[4] * m[0][0] + t[5] * m[1][0],
+                    t[4] * m[0][1] + t[5] * m[1][1],
+                ];
+            }
+        }
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

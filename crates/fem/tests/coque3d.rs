@@ -448,3 +448,41 @@ fn layer_stresses_of_the_strip_are_beam_theory() {
         }
     }
 }
+
+#[test]
+fn nodal_layer_stresses_of_the_strip_in_the_user_frame() {
+    // End moment on the strip: SIGM_ELNO at every node, bottom/middle/top
+    // = −6M/(bh²), 0, +6M/(bh²) along the strip's axis. With the user's x
+    // along the strip (its projection of `direction`), SIXX carries it;
+    // with the user's x across the strip, SIYY does.
+    let (b, h, m) = (0.5, 0.05, 1e3);
+    let r = tilted();
+    let mat = Elastic::new(2e11, 0.).unwrap();
+    let sec = Coque3dSection::new(h);
+    let (g, u, _) = strip_tip(|f, node, w| add(f, node, 3, &r, [0., m * w, 0.]));
+    let s0 = 6. * m / (b * h * h);
+    let along = r * Vector3::new(1., 0., 0.3);
+    let across = r * Vector3::new(0., 1., -0.2);
+    for (dir, k) in [(along, 0), (across, 1)] {
+        for c in &g.cells {
+            let xyz: [[f64; 3]; 8] = std::array::from_fn(|a| g.nodes[c[a]]);
+            let d = Grid::dofs(c);
+            let ue: [f64; NDDL] = std::array::from_fn(|a| u[d[a]]);
+            let s = coque3d::sigm_elno(&xyz, &mat, &sec, &ue, [dir[0], dir[1], dir[2]]).unwrap();
+            assert_eq!(s.len(), 9);
+            for node in &s {
+                assert_eq!(node.len(), 3);
+                for (lvl, want) in [-s0, 0., s0].iter().enumerate() {
+                    for comp in 0..6 {
+                        let w = if comp == k { *want } else { 0. };
+                        assert!(
+                            (node[lvl][comp] - w).abs() <= 1e-7 * s0,
+                            "{k} {lvl} {comp}: {:?}",
+                            node[lvl]
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
