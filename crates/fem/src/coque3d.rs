@@ -185,23 +185,28 @@ const NODES9: [(f64, f64); 9] = [
     (0., 0.),
 ];
 
+/// `FPG9COQ` (`elraga`): 3×3 Gauss, corners and mid-sides in turn round
+/// the square, the centre last.
+fn fpg9coq() -> [(f64, f64); 9] {
+    let b = (3f64 / 5.).sqrt();
+    [
+        (-b, -b),
+        (0., -b),
+        (b, -b),
+        (b, 0.),
+        (b, b),
+        (0., b),
+        (-b, b),
+        (-b, 0.),
+        (0., 0.),
+    ]
+}
+
 impl RefQuad9 {
     fn new() -> RefQuad9 {
         let a = (1f64 / 3.).sqrt();
         let reduced = [(-a, -a), (a, -a), (a, a), (-a, a)];
-        let b = (3f64 / 5.).sqrt();
-        // FPG9COQ: corners and mid-sides in turn round the square.
-        let normal = [
-            (-b, -b),
-            (0., -b),
-            (b, -b),
-            (b, 0.),
-            (b, b),
-            (0., b),
-            (-b, b),
-            (-b, 0.),
-            (0., 0.),
-        ];
+        let normal = fpg9coq();
         let (c, m, z) = (25. / 81., 40. / 81., 64. / 81.);
         let aa = 0.577350269189626;
         RefQuad9 {
@@ -323,54 +328,38 @@ fn point_frame(
 /// components (∂uₖ/∂xⱼ, k-major).
 fn hfmss(t: &[V3; 3], shear: bool) -> ([[f64; 9]; 3], [[f64; 9]; 2]) {
     let (t1, t2, t3) = (t[0], t[1], t[2]);
-    let hfm = [
+    // Products of two axes on the six symmetric components (xx, yy, zz,
+    // xy, xz, yz): aᵢaⱼ for one axis, the symmetrised 2·aᵢbⱼ for two
+    // (multiplications by 2 and the sums' order are exact: code_aster's
+    // values bit for bit).
+    let square = |a: V3| {
         [
-            t1[0] * t1[0],
-            t1[1] * t1[1],
-            t1[2] * t1[2],
-            t1[0] * t1[1],
-            t1[0] * t1[2],
-            t1[1] * t1[2],
-        ],
+            a[0] * a[0],
+            a[1] * a[1],
+            a[2] * a[2],
+            a[0] * a[1],
+            a[0] * a[2],
+            a[1] * a[2],
+        ]
+    };
+    let mixed = |a: V3, b: V3| {
         [
-            t2[0] * t2[0],
-            t2[1] * t2[1],
-            t2[2] * t2[2],
-            t2[0] * t2[1],
-            t2[0] * t2[2],
-            t2[1] * t2[2],
-        ],
-        [
-            2. * t1[0] * t2[0],
-            2. * t1[1] * t2[1],
-            2. * t1[2] * t2[2],
-            t2[0] * t1[1] + t1[0] * t2[1],
-            t2[0] * t1[2] + t1[0] * t2[2],
-            t2[1] * t1[2] + t1[1] * t2[2],
-        ],
-    ];
+            2. * a[0] * b[0],
+            2. * a[1] * b[1],
+            2. * a[2] * b[2],
+            b[0] * a[1] + a[0] * b[1],
+            b[0] * a[2] + a[0] * b[2],
+            b[1] * a[2] + a[1] * b[2],
+        ]
+    };
+    let hfm = [square(t1), square(t2), mixed(t1, t2)];
     // (xx, xy, xz, yx, yy, yz, zx, zy, zz) ← (1, 4, 5, 4, 2, 6, 5, 6, 3)
     const MAP: [usize; 9] = [0, 3, 4, 3, 1, 5, 4, 5, 2];
     let sym = |row: &[f64; 6]| MAP.map(|k| row[k]);
     let hm = [sym(&hfm[0]), sym(&hfm[1]), sym(&hfm[2])];
     let mut hs = [[0.; 9]; 2];
     if shear {
-        let s1 = [
-            2. * t1[0] * t3[0],
-            2. * t1[1] * t3[1],
-            2. * t1[2] * t3[2],
-            t3[1] * t1[0] + t3[0] * t1[1],
-            t1[0] * t3[2] + t3[0] * t1[2],
-            t3[2] * t1[1] + t1[2] * t3[1],
-        ];
-        let s2 = [
-            2. * t2[0] * t3[0],
-            2. * t2[1] * t3[1],
-            2. * t3[2] * t2[2],
-            t2[0] * t3[1] + t3[0] * t2[1],
-            t2[0] * t3[2] + t3[0] * t2[2],
-            t2[1] * t3[2] + t2[2] * t3[1],
-        ];
+        let (s1, s2) = (mixed(t1, t3), mixed(t2, t3));
         hs = [sym(&s1), sym(&s2)];
     }
     (hm, hs)
@@ -623,33 +612,11 @@ pub fn stiffness(
             p[(6 * NB1 + a) * NDDL + 6 * NB1 + b] = frames[NB1][a][b];
         }
     }
-    // Pᵀ·K·P
-    let mut kp = vec![0.; NDDL * NDDL];
-    for i in 0..NDDL {
-        for j in 0..NDDL {
-            let mut s = 0.;
-            for k in 0..NDDL {
-                let pkj = p[k * NDDL + j];
-                if pkj != 0. {
-                    s += kl[i * NDDL + k] * pkj;
-                }
-            }
-            kp[i * NDDL + j] = s;
-        }
-    }
-    let mut kg = vec![0.; NDDL * NDDL];
-    for i in 0..NDDL {
-        for j in 0..NDDL {
-            let mut s = 0.;
-            for k in 0..NDDL {
-                let pki = p[k * NDDL + i];
-                if pki != 0. {
-                    s += pki * kp[k * NDDL + j];
-                }
-            }
-            kg[i * NDDL + j] = s;
-        }
-    }
+    // Pᵀ·K·P (the products skip nothing but exact zeros: `tranlg`'s sums)
+    let p = nalgebra::DMatrix::from_row_slice(NDDL, NDDL, &p);
+    let kl = nalgebra::DMatrix::from_row_slice(NDDL, NDDL, &kl);
+    let kg = p.transpose() * kl * p;
+    let kg: Vec<f64> = kg.transpose().iter().copied().collect();
     Ok(kg)
 }
 
@@ -768,18 +735,7 @@ fn user_angle(frame: &[V3; 3], direction: V3) -> Result<(f64, f64), String> {
 /// values (bottom, middle, top × the four corners), bilinear in (ξ₁, ξ₂)
 /// and quadratic through the layer.
 fn extrapolation() -> Vec<f64> {
-    let b = (3f64 / 5.).sqrt();
-    let normal = [
-        (-b, -b),
-        (0., -b),
-        (b, -b),
-        (b, 0.),
-        (b, b),
-        (0., b),
-        (-b, b),
-        (-b, 0.),
-        (0., 0.),
-    ];
+    let normal = fpg9coq();
     let psi3 = [-1., 0., 1.];
     let (at, bt3, ct) = ([0.5, -1., 0.5], [-0.5, 0., 0.5], [0., 1., 0.]);
     let (ca, cb, cc, cd) = (

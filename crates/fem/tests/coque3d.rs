@@ -6,6 +6,8 @@
 //! geometry rotated in space.
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
 use aster_fem::coque3d::{self, Coque3dSection, NDDL};
 use aster_fem::Elastic;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
@@ -99,18 +101,7 @@ impl Grid {
     }
 }
 
-fn solve(k: &DMatrix<f64>, f: &DVector<f64>, fixed: &[usize]) -> DVector<f64> {
-    let n = k.nrows();
-    let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
-    let kr = DMatrix::from_fn(free.len(), free.len(), |a, b| k[(free[a], free[b])]);
-    let fr = DVector::from_fn(free.len(), |a, _| f[free[a]]);
-    let ur = kr.lu().solve(&fr).expect("non-singular");
-    let mut u = DVector::zeros(n);
-    for (a, &i) in free.iter().enumerate() {
-        u[i] = ur[a];
-    }
-    u
-}
+use common::solve_held as solve;
 
 fn add(f: &mut DVector<f64>, n: usize, c0: usize, r: &Matrix3<f64>, v: [f64; 3]) {
     let g = r * Vector3::from(v);
