@@ -34,9 +34,14 @@
 //! - local → global (`tranlg`): the rotation triple of each node turned by
 //!   its frame (t₁, t₂, n).
 //!
-//! Numerics only: the runner maps the keywords (a central node carrying
-//! rotations only is not part of its DOF numbering yet, so
-//! `MODELISATION='COQUE_3D'` is still refused there).
+//! Also: `SIEF_ELGA` by layer ([`stresses`]), `SIGM_ELNO` in the user's
+//! frame ([`sigm_elno`], `elno_coq3d`) and the pressure load
+//! ([`pressure_load`], `fpres`). docs/fem.md lists the routines and the
+//! measurements.
+//!
+//! Numerics only: no keyword is read here. The runner does not use this
+//! element yet (a central node carrying rotations only is not part of its
+//! DOF numbering), so `MODELISATION='COQUE_3D'` is still refused there.
 
 use crate::material::Elastic;
 
