@@ -878,4 +878,27 @@ mod tests {
         let s: f64 = r.extra.iter().map(|e| e.iter().sum::<f64>()).sum();
         assert!((s - 9.).abs() < 1e-12, "{s}");
     }
+
+    #[test]
+    fn extrapolation_is_exact_on_its_own_space() {
+        // f = (1 + 2ξ₁ − ξ₂ + 0.5ξ₁ξ₂)·(3 − ζ + 2ζ²): bilinear in the plane,
+        // quadratic through the layer, found again at the 4 corners × 3
+        // levels from its 27 point values (mamagi's least squares).
+        let f = |x: f64, y: f64, z: f64| (1. + 2. * x - y + 0.5 * x * y) * (3. - z + 2. * z * z);
+        let matr = extrapolation();
+        let pts = fpg9coq();
+        let corners = [(-1., -1.), (1., -1.), (1., 1.), (-1., 1.)];
+        for (lvl, z) in [-1., 0., 1.].into_iter().enumerate() {
+            for (c, &(x, y)) in corners.iter().enumerate() {
+                let i = 4 * lvl + c;
+                let got: f64 = (0..27)
+                    .map(|j| {
+                        let (zj, (xj, yj)) = ([-1., 0., 1.][j / 9], pts[j % 9]);
+                        matr[27 * i + j] * f(xj, yj, zj)
+                    })
+                    .sum();
+                assert!((got - f(x, y, z)).abs() < 1e-12, "{lvl} {c}: {got}");
+            }
+        }
+    }
 }
