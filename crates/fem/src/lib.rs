@@ -16,6 +16,7 @@ pub mod autodiff;
 pub mod beam;
 pub mod behaviour;
 pub mod cohesive;
+pub mod coque3d;
 pub mod coupling;
 mod diag;
 pub mod dkq;

@@ -8,6 +8,8 @@
 //! arbitrarily in space.
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
 use aster_fem::dkq::{self, Quad};
 use aster_fem::dkt::{self, Facet, ShellSection};
 use aster_fem::Elastic;
@@ -138,16 +140,7 @@ impl Plate {
 
     /// Solves K u = f with the DOFs of `fixed` set to zero.
     fn solve(&self, k: &DMatrix<f64>, f: &DVector<f64>, fixed: &[usize]) -> DVector<f64> {
-        let n = k.nrows();
-        let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
-        let kr = DMatrix::from_fn(free.len(), free.len(), |a, b| k[(free[a], free[b])]);
-        let fr = DVector::from_fn(free.len(), |a, _| f[free[a]]);
-        let ur = kr.lu().solve(&fr).expect("non-singular");
-        let mut u = DVector::zeros(n);
-        for (a, &i) in free.iter().enumerate() {
-            u[i] = ur[a];
-        }
-        u
+        common::solve_held(k, f, fixed)
     }
 }
 

@@ -82,3 +82,22 @@ pub fn pulled_square() -> (aster_fem::Model, aster_fem::Loads, NodeId) {
     }
     (model, loads, n[2])
 }
+
+/// The dense solution of K·u = f with the DOFs `fixed` held at zero (their
+/// rows and columns removed; zero in the result).
+pub fn solve_held(
+    k: &nalgebra::DMatrix<f64>,
+    f: &nalgebra::DVector<f64>,
+    fixed: &[usize],
+) -> nalgebra::DVector<f64> {
+    let n = k.nrows();
+    let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
+    let kr = nalgebra::DMatrix::from_fn(free.len(), free.len(), |a, b| k[(free[a], free[b])]);
+    let fr = nalgebra::DVector::from_fn(free.len(), |a, _| f[free[a]]);
+    let ur = kr.lu().solve(&fr).expect("non-singular");
+    let mut u = nalgebra::DVector::zeros(n);
+    for (a, &i) in free.iter().enumerate() {
+        u[i] = ur[a];
+    }
+    u
+}
