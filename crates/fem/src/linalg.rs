@@ -280,21 +280,18 @@ mod symbolic_cache {
     /// to this thread's pool when it is dropped.
     pub(crate) struct KeptLu {
         symbolic: Arc<SymbolicLu<usize>>,
-        numeric: Option<NumericLu<usize, f64>>,
+        numeric: NumericLu<usize, f64>,
         par: faer::Par,
     }
 
     impl KeptLu {
         /// Solves A X = B in place (`rhs` holds B, then X).
         pub(crate) fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
-            let Some(numeric) = &self.numeric else {
-                return;
-            };
             let mut mem = MemBuffer::new(
                 self.symbolic
                     .solve_in_place_scratch::<f64>(rhs.ncols(), self.par),
             );
-            LuRef::new_unchecked(&self.symbolic, numeric).solve_in_place_with_conj(
+            LuRef::new_unchecked(&self.symbolic, &self.numeric).solve_in_place_with_conj(
                 faer::Conj::No,
                 rhs,
                 self.par,
@@ -305,10 +302,8 @@ mod symbolic_cache {
 
     impl Drop for KeptLu {
         fn drop(&mut self) {
-            if let Some(n) = self.numeric.take() {
-                let pooled = (self.symbolic.clone(), n);
-                NUMERIC_LU.with(|k| *k.borrow_mut() = Some(pooled));
-            }
+            let pooled = (self.symbolic.clone(), std::mem::take(&mut self.numeric));
+            NUMERIC_LU.with(|k| *k.borrow_mut() = Some(pooled));
         }
     }
 
@@ -347,7 +342,7 @@ mod symbolic_cache {
         done?;
         Ok(KeptLu {
             symbolic,
-            numeric: Some(numeric),
+            numeric,
             par,
         })
     }
