@@ -481,7 +481,7 @@ impl ForceSource for MortarClassique {
                 mp: &mp,
                 mprev: &mprev,
             };
-            let forced = z.init.forced(base.first_pairing);
+            let forced = z.forced(base.first_pairing);
             for pt in crate::mortar_point::points(s, m, p.xi, &sp, &mp, &s0, base.axis)? {
                 let lagr_shape = s.lagr_shape(pt.xi, &pt.initial.shape);
                 let data = PointData {

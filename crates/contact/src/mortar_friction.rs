@@ -526,6 +526,35 @@ fn point_terms(
     Ok(Some(PointTerms { forces, own }))
 }
 
+/// Friction in 3D is reproduced on TRIA3 and QUAD4 faces: on quadratic
+/// faces the sliding scene (comm/dc3d_friction.comm on its mesh made
+/// quadratic) does not converge, not verified.
+pub(crate) fn linear_faces_only(
+    base: &MortarLagrangian,
+    zones: &[MortarZoneDef],
+) -> Result<(), ContactError> {
+    for (z, def) in base.zones.iter().zip(zones) {
+        for (cells, group, which) in [
+            (&z.slave, &def.slave_group, "GROUP_MA_ESCL"),
+            (&z.master, &def.master_group, "GROUP_MA_MAIT"),
+        ] {
+            if let Some(c) = cells
+                .iter()
+                .find(|c| c.kind.node_count() > c.kind.corner_count())
+            {
+                return Err(ContactError::Unsupported {
+                    feature: format!(
+                        "DEFI_CONT friction on the quadratic faces ({:?}) of {which} {group} in 3D",
+                        c.kind
+                    ),
+                    hint: "reproduced on TRIA3 and QUAD4 faces (on quadratic faces the sliding of the project's scene does not converge)".into(),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Each zone's friction law ([`MortarZoneDef::friction`]); a zone without
 /// one is refused: code_aster's zones of one DEFI_CONT are all with
 /// friction or all without.
@@ -585,28 +614,8 @@ impl MortarFriction {
     ) -> Result<Self, ContactError> {
         let laws = zone_laws(zones)?;
         let base = MortarLagrangian::new(zones, mesh, axis, dim)?;
-        // On quadratic faces the sliding scene (comm/dc3d_friction.comm on
-        // its mesh made quadratic) does not converge: not verified.
         if base.dim == 3 {
-            for (z, def) in base.zones.iter().zip(zones) {
-                for (cells, group, which) in [
-                    (&z.slave, &def.slave_group, "GROUP_MA_ESCL"),
-                    (&z.master, &def.master_group, "GROUP_MA_MAIT"),
-                ] {
-                    if let Some(c) = cells
-                        .iter()
-                        .find(|c| c.kind.node_count() > c.kind.corner_count())
-                    {
-                        return Err(ContactError::Unsupported {
-                            feature: format!(
-                                "DEFI_CONT friction on the quadratic faces ({:?}) of {which} {group} in 3D",
-                                c.kind
-                            ),
-                            hint: "reproduced on TRIA3 and QUAD4 faces (on quadratic faces the sliding of the project's scene does not converge)".into(),
-                        });
-                    }
-                }
-            }
+            linear_faces_only(&base, zones)?;
         }
         Ok(MortarFriction {
             base,
@@ -719,7 +728,7 @@ impl ForceSource for MortarFriction {
                 mp: &mp,
                 mprev: &mprev,
             };
-            let forced = z.init.forced(self.first_pairing);
+            let forced = z.forced(self.first_pairing);
             let points: Vec<([f64; 2], f64)> = if d == 3 {
                 crate::mortar_point::quadrature_3d(s, m, &p.poly, &s0)
             } else {

@@ -1,7 +1,8 @@
 //! Friction of code_aster 17's penalised mortar contact
 //! (`DEFI_CONT(ZONE=_F(ALGO_CONT='PENALISATION', FROTTEMENT='OUI'))`,
-//! `ALGO_FROT='PENALISATION'`), in 2D on SEG2 and SEG3 cells, as a fem
-//! force source without unknowns of its own.
+//! `ALGO_FROT='PENALISATION'`), in 2D on SEG2 and SEG3 cells and in 3D on
+//! TRIA3 and QUAD4 faces (as the Lagrangian friction), as a fem force
+//! source without unknowns of its own.
 //!
 //! As code_aster's (2025 main: `te0352`, `peelem`, `peVect` →
 //! `peVect_cf_pr`, `laElemCont`, `contact_module` (`thresEval`,
@@ -48,41 +49,44 @@ use crate::mortar_penalty::gamma;
 use crate::source::current_positions;
 
 /// The forces of one point on its local unknowns (slave displacements,
-/// then the master's, 2 per node), with their derivatives.
+/// then the master's, `dim` per node), with their derivatives.
 fn point_forces(g: &PointGeometry, p: &PointLaw) -> Result<Option<Vec<(f64, Lin)>>, FemError> {
     let Some(q) = point_quantities(g, p, None)? else {
         return Ok(None);
     };
+    let d = g.dim;
     let (ns, nm) = (q.shs.len(), q.shm.len());
-    let mut forces = vec![(0.0, lin(q.nloc)); 2 * (ns + nm)];
+    let mut forces = vec![(0.0, lin(q.nloc)); d * (ns + nm)];
     if !q.status.contact {
         return Ok(Some(forces));
     }
     // f = projRm n + P and its derivative.
-    let mut f = [0.0; 2];
-    let mut df = [lin(q.nloc), lin(q.nloc)];
-    for c in 0..2 {
+    let mut f = [0.0; 3];
+    let mut df = [lin(q.nloc), lin(q.nloc), lin(q.nloc)];
+    for c in 0..d {
         f[c] = q.proj_rm * q.n[c] + q.pb[c];
-        let mut d = comb(q.n[c], &q.dproj_rm, q.proj_rm, &q.dn[c]);
-        axpy(&mut d, 1.0, &q.dpb[c]);
-        df[c] = d;
+        let mut dc = comb(q.n[c], &q.dproj_rm, q.proj_rm, &q.dn[c]);
+        axpy(&mut dc, 1.0, &q.dpb[c]);
+        df[c] = dc;
     }
     // −w f·(v_s − v_m): −w N_a f on the slave, +w N_b(ξ_m) f on the master
-    // (whose functions move with ξ_m).
+    // (whose functions move with ξ_m: one parameter on a segment, two on a
+    // face).
     for a in 0..ns {
-        for c in 0..2 {
-            forces[2 * a + c] = (
+        for c in 0..d {
+            forces[d * a + c] = (
                 -p.w * q.shs[a] * f[c],
                 df[c].iter().map(|v| -p.w * q.shs[a] * v).collect(),
             );
         }
     }
     for b in 0..nm {
-        for c in 0..2 {
-            forces[2 * ns + 2 * b + c] = (
-                p.w * q.shm[b] * f[c],
-                comb(p.w * q.shm[b], &df[c], p.w * f[c] * q.dshm[b][0], &q.dxi[0]),
-            );
+        for c in 0..d {
+            let mut dc = comb(p.w * q.shm[b], &df[c], p.w * f[c] * q.dshm[b][0], &q.dxi[0]);
+            if d == 3 {
+                axpy(&mut dc, p.w * f[c] * q.dshm[b][1], &q.dxi[1]);
+            }
+            forces[d * ns + d * b + c] = (p.w * q.shm[b] * f[c], dc);
         }
     }
     Ok(Some(forces))
@@ -102,13 +106,24 @@ pub struct MortarFrictionPenalty {
 }
 
 impl MortarFrictionPenalty {
-    /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights);
+    /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
+    /// (segments; `axis`: AXIS weights) or 3 (TRIA3 and QUAD4 faces, as the
+    /// Lagrangian friction, [`crate::mortar_friction::MortarFriction::new`]);
     /// each zone's `coef_cont` is its COEF_CONT and its
     /// [`MortarZoneDef::friction`] its law (every zone has one).
-    pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
+    pub fn new(
+        zones: &[MortarZoneDef],
+        mesh: &Mesh,
+        axis: bool,
+        dim: usize,
+    ) -> Result<Self, ContactError> {
         let laws = crate::mortar_friction::zone_laws(zones)?;
+        let base = MortarLagrangian::new(zones, mesh, axis, dim)?;
+        if dim == 3 {
+            crate::mortar_friction::linear_faces_only(&base, zones)?;
+        }
         Ok(MortarFrictionPenalty {
-            base: MortarLagrangian::new(zones, mesh, axis, 2)?,
+            base,
             laws,
             x_prev: mesh.coords.clone(),
             first_pairing: true,
@@ -141,6 +156,7 @@ impl ForceSource for MortarFrictionPenalty {
         let x = current_positions(state);
         let x0 = &state.mesh.coords;
         let base = &self.base;
+        let d = base.dim;
         let mut c = Contribution::default();
         for p in base.pairs(&x) {
             let z = &base.zones[p.zone];
@@ -155,11 +171,11 @@ impl ForceSource for MortarFrictionPenalty {
                 .nodes
                 .iter()
                 .chain(&m.nodes)
-                .flat_map(|node| (0..2).map(move |d| (*node, d)))
-                .map(|(node, d)| crate::mortar_point::dof(state, node, d))
+                .flat_map(|node| (0..d).map(move |e| (*node, e)))
+                .map(|(node, e)| crate::mortar_point::dof(state, node, e))
                 .collect();
             let geometry = PointGeometry {
-                dim: 2,
+                dim: d,
                 s_kind: s.kind,
                 sign: s.sign,
                 sp: &sp,
@@ -168,12 +184,25 @@ impl ForceSource for MortarFrictionPenalty {
                 mp: &mp,
                 mprev: &mprev,
             };
-            let forced = z.init.forced(self.first_pairing);
-            for (xi, w, at0) in crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis) {
+            let forced = z.forced(self.first_pairing);
+            // The points and the slave functions there (initial
+            // configuration), for γ = Σ N_a COEF_CONT / h_F.
+            let points: Vec<([f64; 2], f64, Vec<f64>)> = if d == 3 {
+                crate::mortar_point::quadrature_3d(s, m, &p.poly, &s0)
+                    .into_iter()
+                    .map(|(xi, w)| (xi, w, s.kind.eval(xi).0))
+                    .collect()
+            } else {
+                crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis)
+                    .into_iter()
+                    .map(|(xi, w, at0)| (xi, w, at0.shape))
+                    .collect()
+            };
+            for (xi, w, shape) in points {
                 let law = PointLaw {
                     xi,
                     w,
-                    gamma: gamma(&at0.shape, z.coef, z.h[p.slave]),
+                    gamma: gamma(&shape, z.coef, z.h[p.slave]),
                     law: self.laws[p.zone],
                     forced,
                 };

@@ -107,6 +107,10 @@ pub struct MortarZoneDef {
     /// `COEF_CONT` (default 100).
     pub coef_cont: f64,
     pub contact_init: InitialState,
+    /// `TYPE_CONT='BILATERAL'`: every paired point active at every
+    /// iteration, whatever the sign of λ + γg (`laElemCont`, `niElemCont`:
+    /// H = 1, projRm = λ + γg); `CONTACT_INIT` then plays no part.
+    pub bilateral: bool,
     /// `COEF_MULT_APPA` when positive.
     pub dist_ratio: Option<f64>,
     /// `FROTTEMENT='OUI'`: the zone's `TYPE_FROT` (module
@@ -127,6 +131,7 @@ impl MortarZoneDef {
             excluded_cell_groups: Vec::new(),
             coef_cont: 100.0,
             contact_init: InitialState::Interpenetrated,
+            bilateral: false,
             dist_ratio: None,
             friction: None,
             coef_frot: 100.0,
@@ -182,9 +187,24 @@ pub(crate) struct MZone {
     pub(crate) master: Vec<Seg>,
     pub(crate) coef: f64,
     pub(crate) init: InitialState,
+    /// `TYPE_CONT='BILATERAL'` ([`MortarZoneDef::bilateral`]).
+    pub(crate) bilateral: bool,
     dist_ratio: Option<f64>,
     /// Initial diameter and the FPG weights' Jacobian data of each slave cell.
     pub(crate) h: Vec<f64>,
+}
+
+impl MZone {
+    /// The status imposed on every point of the zone: always active when
+    /// bilateral, else what `CONTACT_INIT` imposes at the first pairing
+    /// (`None`: the point's own test, Heaviside(−(λ + γg))).
+    pub(crate) fn forced(&self, first_pairing: bool) -> Option<bool> {
+        if self.bilateral {
+            Some(true)
+        } else {
+            self.init.forced(first_pairing)
+        }
+    }
 }
 
 /// A pair: slave cell, master cell, intersection in slave parametric space
@@ -443,6 +463,7 @@ impl MortarLagrangian {
                 master,
                 coef: z.coef_cont,
                 init: z.contact_init,
+                bilateral: z.bilateral,
                 dist_ratio: z.dist_ratio.filter(|r| *r > 0.0),
                 h,
             });
@@ -705,7 +726,7 @@ impl MortarLagrangian {
                 let lam: f64 = nsl.iter().zip(&lk).map(|(f, &k)| f * own[k]).sum();
                 let lg = lam + gamma * gap;
                 // CONTACT_INIT at the first pairing, then Heaviside(−(λ + γg)).
-                let active = z.init.forced(self.first_pairing).unwrap_or(-lg >= 0.0);
+                let active = z.forced(self.first_pairing).unwrap_or(-lg >= 0.0);
                 let (h, proj) = if active { (true, lg) } else { (false, 0.0) };
                 // The point's DOFs with the derivatives of the normal, the
                 // master point and the gap: code_aster's analytic tangent

@@ -368,7 +368,7 @@ impl ForceSource for MortarNitsche {
                 ];
                 let snn = sn[0] * ns[0] + sn[1] * ns[1];
                 let gam = gamma(shape, z.coef, hf);
-                let (h, proj) = status(snn + gam * pt.gap, self.first_pairing, z.init);
+                let (h, proj) = status(snn + gam * pt.gap, z.forced(self.first_pairing));
                 if !h {
                     continue;
                 }

@@ -47,20 +47,21 @@ use aster_mesh::Mesh;
 
 use crate::error::ContactError;
 use crate::mortar_lagrangian::{
-    pairs_3d_of, pairs_of, InitialState, MZone, MortarLagrangian, MortarZoneDef, ResiGeom,
+    pairs_3d_of, pairs_of, MZone, MortarLagrangian, MortarZoneDef, ResiGeom,
 };
 use crate::mortar_point::{jump, on_current, points, points_3d};
 use crate::shape::dot;
 use crate::source::current_positions;
 
 /// The status and force of a point: `x` = λ + γg (here γg); code_aster's
-/// `Heaviside(−x)` and `projRm(x)`, or what `CONTACT_INIT` imposes at the
-/// first pairing (`laElemCont`, `niElemCont`).
-pub(crate) fn status(x: f64, first_pairing: bool, init: InitialState) -> (bool, f64) {
-    match (first_pairing, init) {
-        (true, InitialState::No) => (false, 0.0),
-        (true, InitialState::Yes) => (true, x),
-        _ => {
+/// `Heaviside(−x)` and `projRm(x)`, or the status `forced` on the zone
+/// ([`MZone::forced`]: `CONTACT_INIT` at the first pairing, always active
+/// when bilateral; `laElemCont`, `niElemCont`).
+pub(crate) fn status(x: f64, forced: Option<bool>) -> (bool, f64) {
+    match forced {
+        Some(false) => (false, 0.0),
+        Some(true) => (true, x),
+        None => {
             if -x >= 0.0 {
                 (true, x)
             } else {
@@ -158,7 +159,7 @@ impl MortarPenalty {
                     None => pt,
                 };
                 let g = gamma(&pt.initial.shape, z.coef, hf);
-                let (h, proj) = status(g * pt.gap, self.first_pairing, z.init);
+                let (h, proj) = status(g * pt.gap, z.forced(self.first_pairing));
                 if !h {
                     continue;
                 }
@@ -223,7 +224,7 @@ impl MortarPenalty {
                     None => pt,
                 };
                 let g = gamma(&pt.initial.shape, z.coef, hf);
-                let (h, proj) = status(g * pt.gap, self.first_pairing, z.init);
+                let (h, proj) = status(g * pt.gap, z.forced(self.first_pairing));
                 if !h {
                     continue;
                 }
@@ -291,23 +292,18 @@ impl ForceSource for MortarPenalty {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mortar_lagrangian::InitialState;
 
     #[test]
     fn status_follows_code_aster_projection_and_contact_init() {
-        assert_eq!(
-            status(-2.0, false, InitialState::Interpenetrated),
-            (true, -2.0)
-        );
-        assert_eq!(
-            status(0.0, false, InitialState::Interpenetrated),
-            (true, 0.0)
-        );
-        assert_eq!(
-            status(1.0, false, InitialState::Interpenetrated),
-            (false, 0.0)
-        );
-        assert_eq!(status(1.0, true, InitialState::Yes), (true, 1.0));
-        assert_eq!(status(-1.0, true, InitialState::No), (false, 0.0));
-        assert_eq!(status(1.0, false, InitialState::Yes), (false, 0.0));
+        let st = |x: f64, first: bool, init: InitialState| status(x, init.forced(first));
+        assert_eq!(st(-2.0, false, InitialState::Interpenetrated), (true, -2.0));
+        assert_eq!(st(0.0, false, InitialState::Interpenetrated), (true, 0.0));
+        assert_eq!(st(1.0, false, InitialState::Interpenetrated), (false, 0.0));
+        assert_eq!(st(1.0, true, InitialState::Yes), (true, 1.0));
+        assert_eq!(st(-1.0, true, InitialState::No), (false, 0.0));
+        assert_eq!(st(1.0, false, InitialState::Yes), (false, 0.0));
+        // TYPE_CONT='BILATERAL': active whatever the sign, projRm = x.
+        assert_eq!(status(1.0, Some(true)), (true, 1.0));
     }
 }

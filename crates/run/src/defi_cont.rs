@@ -12,16 +12,20 @@
 //! Lagrangian and penalised methods, frictionless — on 3D solid models
 //! whose contact faces are TRIA3, QUAD4, TRIA6, QUAD8 or QUAD9
 //! (`aster_contact::mortar_pairing3d`); `COEF_CONT`, `CONTACT_INIT`,
-//! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`; with the Lagrangian
-//! and penalised methods in 2D, friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
+//! `SANS_GROUP_NO`, `SANS_GROUP_MA`, `COEF_MULT_APPA`, `TYPE_CONT`
+//! (`BILATERAL`: every paired point active, frictionless), `DIST_SUPP` and
+//! `CARA_ELEM` (`DIST_POUTRE`, `DIST_COQUE`: stored by code_aster 17 and
+//! used by none of its computations, so without effect); with the Lagrangian
+//! and penalised methods in 2D and on 3D solids (TRIA3, QUAD4 faces),
+//! friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
 //! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`,
 //! `aster_contact::mortar_friction_penalty`) when every zone has it; the
 //! CLASSIQUE variant in 2D, with or without friction
 //! (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE in 3D,
-//! BILATERAL, LISSAGE, friction with NITSCHE, penalised friction or
-//! friction on quadratic faces in 3D, zones with and
+//! BILATERAL with friction, LISSAGE, friction with NITSCHE, friction on
+//! quadratic faces in 3D, zones with and
 //! without friction or of different ALGO_CONT or VARIANTE in one
-//! definition, DIST_SUPP/CARA_ELEM, Nitsche contact in 3D (code_aster 2025
+//! definition, Nitsche contact in 3D (code_aster 2025
 //! has no 3D Nitsche contact element), models with shells
 //! (docs/contact.md, "DEFI_CONT").
 
@@ -74,22 +78,21 @@ pub(crate) const DEFI_CONT: Support = Support {
         // VARIANTE='CLASSIQUE' with friction (aster_contact::mortar_classique).
         "ZONE/COEF_FROT",
         "ZONE/SYME",
+        // Stored by code_aster 17's DEFI_CONT (`defi_cont_ops`:
+        // PairingParameter.setDistanceFunction, setElementaryCharacteristics,
+        // hasBeamDistance, hasShellDistance) and read by none of its
+        // pairing or elementary computations (bibcxx/Contact,
+        // bibfor/cont_elem): accepted, no effect, as there.
+        "ZONE/DIST_SUPP",
+        "ZONE/CARA_ELEM",
+        "ZONE/DIST_POUTRE",
+        "ZONE/DIST_COQUE",
     ],
     values: &[
         Values::new("ZONE/VARIANTE", &["ROBUSTE", "RAPIDE", "CLASSIQUE"]),
-        Values::new("ZONE/TYPE_CONT", &["UNILATERAL"]).why("(bilateral mortar contact)"),
-        Values::new("ZONE/LISSAGE", &["NON"]).why("(smoothed normals of the mortar contact)"),
+        Values::new("ZONE/LISSAGE", &["NON"]).why("(smoothed normals of the mortar contact: code_aster 17 stops on an assertion at the pairing, ContactPairing::compute, whenever a zone asks for them)"),
     ],
-    hints: &[
-        (
-            "ZONE/DIST_SUPP",
-            "an added distance of code_aster 17's mortar contact",
-        ),
-        (
-            "ZONE/CARA_ELEM",
-            "beam and shell thicknesses in code_aster 17's mortar contact",
-        ),
-    ],
+    hints: &[],
     reuse: false,
     rules: Some(rules),
 };
@@ -143,6 +146,14 @@ fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
                 call.span,
             ));
         }
+        if occ.str("TYPE_CONT") == Some("BILATERAL") && occ.str("FROTTEMENT") == Some("OUI") {
+            out.push(Refusal::at(
+                "DEFI_CONT/ZONE/TYPE_CONT='BILATERAL' with FROTTEMENT='OUI' (code_aster's friction threshold −μ·projRm(λ + γg) turns negative where a bilateral zone is in tension: not validated)".into(),
+                occ,
+                "TYPE_CONT",
+                call.span,
+            ));
+        }
         if algo != first && algo.is_lagrangian() && first.is_lagrangian() {
             out.push(Refusal::at(
                 "DEFI_CONT/ZONE/VARIANTE: zones of different VARIANTE in one DEFI_CONT (each zone here takes the first zone's variant)".into(),
@@ -191,6 +202,7 @@ fn zones(kw: &Keywords) -> Vec<MortarZoneDef> {
                 "NON" => InitialState::No,
                 _ => InitialState::Interpenetrated,
             };
+            z.bilateral = occ.str("TYPE_CONT") == Some("BILATERAL");
             z.dist_ratio = occ.f64("COEF_MULT_APPA").filter(|r| *r > 0.0);
             z.excluded_node_groups = strings(occ, "SANS_GROUP_NO");
             z.excluded_cell_groups = strings(occ, "SANS_GROUP_MA");
@@ -251,8 +263,8 @@ pub(crate) fn nitsche_material(materials: &MaterialField) -> Result<NitscheMater
 
 /// The force source of a penalised or Nitsche definition (`None` for the
 /// Lagrangian method, whose source is [`source`]); `dim`: the model's
-/// space dimension (Nitsche is 2D only, refused in 3D by [`defi_cont`];
-/// the penalised friction is 2D only); `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM`,
+/// space dimension (Nitsche is 2D only, refused in 3D by [`defi_cont`]);
+/// `resi_geom`: MECA_NON_LINE's `CONTACT/RESI_GEOM`,
 /// code_aster 17's geometric criterion.
 pub(crate) fn other_source(
     algo: MortarAlgo,
@@ -267,7 +279,7 @@ pub(crate) fn other_source(
     Ok(match algo {
         MortarAlgo::Lagrangian | MortarAlgo::Classique => None,
         MortarAlgo::Penalised if has_friction(zones) => {
-            let mut source = MortarFrictionPenalty::new(zones, mesh, axis).map_err(fail)?;
+            let mut source = MortarFrictionPenalty::new(zones, mesh, axis, dim).map_err(fail)?;
             if let Some(r) = resi_geom {
                 source.set_resi_geom(r);
             }
@@ -341,20 +353,6 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "ALGO_CONT",
             "not supported: ALGO_CONT='NITSCHE' in 3D has no contact element in code_aster 17 (its Nitsche cells, `contCellNits` and `niElem`, are the 2D ones: TRIA3, TRIA6, QUAD4, QUAD8, QUAD9 with SEG2/SEG3 masters; MECA_NON_LINE stops on an assertion at the pairing); reproduced on 2D models (D_PLAN, C_PLAN, AXIS)",
         ));
-    }
-    if dim != 2 && algo == MortarAlgo::Penalised {
-        if let Some(occ) = kw
-            .factor("ZONE")
-            .iter()
-            .find(|occ| occ.str("FROTTEMENT") == Some("OUI"))
-        {
-            return Err(ex.kw_error(
-                "DEFI_CONT/ZONE",
-                occ,
-                "FROTTEMENT",
-                "not supported yet: code_aster 17's penalised mortar friction in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS; the Lagrangian friction, ALGO_CONT='LAGRANGIEN', is reproduced in 3D)",
-            ));
-        }
     }
     // Shells: code_aster pairs their mid-surfaces with the thickness of
     // ZONE/CARA_ELEM and its own shell contact elements; not reproduced.

@@ -8,8 +8,9 @@
 //! on the same blocks and tilted blocks (comm/dc3d_penalised.comm,
 //! comm/dc3d_tilted_penalised.comm: the interpenetration p h_F / COEF_CONT,
 //! also under GREEN_LAGRANGE). And the refusals of what is not reproduced
-//! in 3D, located before anything is solved. And the Lagrangian friction
-//! on faces (comm/dc3d_friction.comm).
+//! in 3D, located before anything is solved. And the Lagrangian and
+//! penalised friction on faces (comm/dc3d_friction.comm,
+//! comm/dc3d_penalised_friction.comm).
 
 use std::path::{Path, PathBuf};
 
@@ -152,6 +153,38 @@ fn a_block_sticks_below_mu_p_and_slides_at_mu_p_in_3d() {
     assert_eq!(outcome.tally.ok + outcome.tally.nook, 0, "nothing ran: {e}");
 }
 
+/// comm/dc3d_penalised_friction.comm: the same block with the penalised
+/// friction (no multipliers: p = γ(−g), the friction force γ times the
+/// step's slip up to μp): pressed, the slave face sinks by p/γ; under a
+/// uniform shear below μp it slips by τ/γ in the step; dragged with the
+/// sides loaded by μp, every point slides (DX = 0.1 − μp/G, the reactions'
+/// DX/DZ = −μ), each the exact uniform state, at 1e-6 (measured ≤ 1e-12).
+/// On quadratic faces refused at the zone, as the Lagrangian friction.
+#[test]
+fn a_penalised_block_sticks_and_slides_in_3d() {
+    let mesh = root().join("comm/dc3d_friction.mail");
+    let outcome = run(
+        &scene("dc3d_penalised_friction.comm"),
+        "pena_friction",
+        &mesh,
+    );
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (24, 0));
+    let comm = scene("dc3d_penalised_friction.comm").replace(
+        "mesh = LIRE_MAILLAGE(FORMAT=\"ASTER\", UNITE=20)",
+        "mesh = LIRE_MAILLAGE(FORMAT=\"ASTER\", UNITE=20)\n\
+         mesh = CREA_MAILLAGE(MAILLAGE=mesh, LINE_QUAD=_F(TOUT=\"OUI\"))",
+    );
+    let outcome = run(&comm, "pena_friction_quad", &mesh);
+    let e = outcome.error.expect("must be refused").to_string();
+    assert!(
+        e.contains("quadratic faces (Quad8) of GROUP_MA_ESCL AB")
+            && e.contains("pena_friction_quad.comm:"),
+        "{e}"
+    );
+    assert_eq!(outcome.tally.ok + outcome.tally.nook, 0, "nothing ran: {e}");
+}
+
 #[test]
 fn what_is_not_reproduced_in_3d_is_refused_at_its_keyword() {
     let mesh = root().join("comm/dc3d_blocks.mail");
@@ -160,12 +193,6 @@ fn what_is_not_reproduced_in_3d_is_refused_at_its_keyword() {
         (
             "ALGO_CONT=\"NITSCHE\", ",
             "no contact element in code_aster 17",
-        ),
-        // The penalised friction is reproduced in 2D only (the
-        // Lagrangian one in 3D too: `dc3d_friction.comm`).
-        (
-            "ALGO_CONT=\"PENALISATION\", FROTTEMENT=\"OUI\", ",
-            "penalised mortar friction in 3D",
         ),
         ("VARIANTE=\"CLASSIQUE\", ", "VARIANTE"),
     ] {

@@ -164,6 +164,17 @@ fn mortar_contact_passes_the_patch_test_on_non_matching_meshes() {
     );
 }
 
+/// comm/two_plates_bilateral.comm: DEFI_CONT(ZONE/TYPE_CONT='BILATERAL')
+/// keeps every paired point active whatever the sign of λ + γg
+/// (code_aster's laElemCont/niElemCont: H = 1), so the plates pushed then
+/// pulled stay tied: the Lagrangian LAGS_C changes sign (−1e5, +5e4,
+/// +2e5), the penalised gap opens by p/γ under tension, Nitsche gives the
+/// exact state; every value at 1e-6 (measured ≤ 7e-13).
+#[test]
+fn bilateral_mortar_contact_holds_in_tension() {
+    assert_eq!(run_scene("two_plates_bilateral.comm"), (32, 0));
+}
+
 /// comm/two_plates_defi_cont_friction.comm: code_aster 17's mortar contact
 /// with friction (DEFI_CONT(FROTTEMENT='OUI'), aster_contact::
 /// mortar_friction), its multipliers the global components of the contact
