@@ -64,6 +64,58 @@ fn extruded_centre_crack_post_k1_k2_k3() {
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
 }
 
+fn calcg_scene(text: &str, tag: &str) -> aster_run::program::Outcome {
+    let dir = std::env::temp_dir().join(format!("aster-calcg3d-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("calcg.comm");
+    std::fs::write(&comm, text).unwrap();
+    let case = aster_run::program::prepare(
+        &comm,
+        Some(&root().join("comm/crack_front_calcg.mail")),
+        &dir,
+    )
+    .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(dir);
+    outcome
+}
+
+/// comm/crack_front_calcg.comm: CALC_G OPTION='K' along a straight 3D
+/// front (5 nodes, DISCRETISATION='LINEAIRE'): K1 within 0.05 % of
+/// Feddersen's formula at the ends and the middle, K2 = K3 = 0, G_IRWIN.
+#[test]
+fn extruded_centre_crack_calc_g_k() {
+    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg.comm")).unwrap();
+    let outcome = calcg_scene(&text, "k");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
+}
+
+/// G along a 3D front (OPTION='G') and the Legendre theta fields are
+/// refused before the solve, located at their keywords.
+#[test]
+fn calc_g_3d_refusals() {
+    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg.comm")).unwrap();
+    for (from, to, expected) in [
+        (
+            "OPTION=\"K\",",
+            "OPTION=\"G\",",
+            "CALC_G/OPTION: G along the 3D crack front",
+        ),
+        (
+            "DISCRETISATION=\"LINEAIRE\"",
+            "DISCRETISATION=\"LEGENDRE\"",
+            "LEGENDRE",
+        ),
+    ] {
+        assert!(text.contains(from));
+        let outcome = calcg_scene(&text.replace(from, to), "refused");
+        let err = outcome.error.expect("refused");
+        assert!(err.to_string().contains(expected), "{err}");
+        assert_eq!((outcome.tally.ok, outcome.tally.nook), (0, 0));
+    }
+}
+
 /// A front whose segments do not chain from the origin is refused before
 /// any K is computed, located at DEFI_FOND_FISS.
 #[test]
