@@ -64,29 +64,13 @@ fn extruded_centre_crack_post_k1_k2_k3() {
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
 }
 
-fn calcg_scene(text: &str, tag: &str) -> aster_run::program::Outcome {
-    let dir = std::env::temp_dir().join(format!("aster-calcg3d-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let comm = dir.join("calcg.comm");
-    std::fs::write(&comm, text).unwrap();
-    let case = aster_run::program::prepare(
-        &comm,
-        Some(&root().join("comm/crack_front_calcg.mail")),
-        &dir,
-    )
-    .unwrap();
-    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
-    let _ = std::fs::remove_dir_all(dir);
-    outcome
-}
-
 /// comm/crack_front_calcg.comm: CALC_G OPTION='K' along a straight 3D
 /// front (5 nodes, DISCRETISATION='LINEAIRE'): K1 within 0.05 % of
 /// Feddersen's formula at the ends and the middle, K2 = K3 = 0, G_IRWIN.
 #[test]
 fn extruded_centre_crack_calc_g_k() {
     let text = std::fs::read_to_string(root().join("comm/crack_front_calcg.comm")).unwrap();
-    let outcome = calcg_scene(&text, "k");
+    let outcome = run_text(&text, "comm/crack_front_calcg.mail", "calcg-k");
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
 }
@@ -109,7 +93,11 @@ fn calc_g_3d_refusals() {
         ),
     ] {
         assert!(text.contains(from));
-        let outcome = calcg_scene(&text.replace(from, to), "refused");
+        let outcome = run_text(
+            &text.replace(from, to),
+            "comm/crack_front_calcg.mail",
+            "calcg-refused",
+        );
         let err = outcome.error.expect("refused");
         assert!(err.to_string().contains(expected), "{err}");
         assert_eq!((outcome.tally.ok, outcome.tally.nook), (0, 0));
@@ -139,17 +127,20 @@ fn a_front_not_from_its_origin_is_refused() {
     let _ = std::fs::remove_dir_all(dir);
 }
 
-fn quarter(text: &str, tag: &str) -> aster_run::program::Outcome {
-    let dir = std::env::temp_dir().join(format!("aster-quarter-{tag}-{}", std::process::id()));
+/// Runs a command text on a mesh of comm/ in a directory of its own.
+fn run_text(text: &str, mesh: &str, tag: &str) -> aster_run::program::Outcome {
+    let dir = std::env::temp_dir().join(format!("aster-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let comm = dir.join("quarter.comm");
+    let comm = dir.join("case.comm");
     std::fs::write(&comm, text).unwrap();
-    let case =
-        aster_run::program::prepare(&comm, Some(&root().join("comm/quarter_points.mail")), &dir)
-            .unwrap();
+    let case = aster_run::program::prepare(&comm, Some(&root().join(mesh)), &dir).unwrap();
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     let _ = std::fs::remove_dir_all(dir);
     outcome
+}
+
+fn quarter(text: &str, tag: &str) -> aster_run::program::Outcome {
+    run_text(text, "comm/quarter_points.mail", &format!("quarter-{tag}"))
 }
 
 fn quarter_scene() -> String {
