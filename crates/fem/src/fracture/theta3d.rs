@@ -161,6 +161,7 @@ pub struct KTheta {
 
 /// A Gauss point's data, independent of the theta field.
 struct Point {
+    ff: Vec<f64>,
     dfdi: Vec<[f64; 3]>,
     poids: f64,
     dudm: [[f64; 3]; 3],
@@ -441,6 +442,7 @@ fn cell_data(mesh: &Mesh, cells: &[SolidCell], nodal: &NodalData) -> Result<Vec<
             let t = sinu.atan2(cosi);
             let aux = chauxi(mu, ka, r, t, &invp, &courb);
             points.push(Point {
+                ff,
                 dfdi,
                 poids: gp.weight * det.abs(),
                 dudm,
@@ -470,6 +472,36 @@ fn hat(sno: f64, [s0, s1, s2]: [f64; 3]) -> f64 {
     }
 }
 
+/// ∇θ at a Gauss point of a cell; `None` skips the cell.
+type ThetaGradient<'a> = dyn Fn(&CellData, &Point) -> Option<[[f64; 3]; 3]> + 'a;
+
+/// The interaction integrals of one theta field over the cells.
+fn integrate(data: &[CellData], dtdm: &ThetaGradient) -> KTheta {
+    let mut o = KTheta::default();
+    for cd in data {
+        let mut k = [0.0; 3];
+        let mut skipped = false;
+        for p in &cd.points {
+            let Some(t) = dtdm(cd, p) else {
+                skipped = true;
+                break;
+            };
+            for (m, km) in k.iter_mut().enumerate() {
+                *km += gbil3d(&p.dudm, &p.aux[m], &t, cd.c, p.poids);
+            }
+        }
+        if skipped {
+            continue;
+        }
+        let coeffs = [cd.coeff_k1k2, cd.coeff_k1k2, cd.coeff_k3];
+        for m in 0..3 {
+            o.k[m] += k[m] * coeffs[m];
+            o.g[m] += k[m] * coeffs[m].sqrt();
+        }
+    }
+    o
+}
+
 /// The values of the theta fields, one per front node (`LINEAIRE`, an
 /// open front), before the smoothing.
 pub fn k_theta_fields(
@@ -480,54 +512,141 @@ pub fn k_theta_fields(
 ) -> Result<Vec<KTheta>, String> {
     let data = cell_data(mesh, cells, nodal)?;
     let n = absfon.len();
-    let mut out = vec![KTheta::default(); n];
-    for (i, o) in out.iter_mut().enumerate() {
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
         let lag = [
             absfon[i.saturating_sub(1)],
             absfon[i],
             absfon[(i + 1).min(n - 1)],
         ];
-        for cd in &data {
+        let dtdm = |cd: &CellData, p: &Point| {
             // te0222: a cell none of whose nodes lies in [s0, s2).
             if !cd
                 .nodes
                 .iter()
                 .any(|&m| nodal.bases[m].absc >= lag[0] && nodal.bases[m].absc < lag[2])
             {
-                continue;
+                return None;
             }
-            // The nodal theta of this field.
-            let th: Vec<[f64; 3]> = cd
-                .nodes
-                .iter()
-                .map(|&m| {
-                    let b = &nodal.bases[m];
-                    let w = hat(b.absc, lag) * nodal.theta0[m];
-                    [w * b.dir[0], w * b.dir[1], w * b.dir[2]]
-                })
-                .collect();
-            let mut k = [0.0; 3];
-            for p in &cd.points {
-                let mut dtdm = [[0.0; 3]; 3];
-                for (a, t) in th.iter().enumerate() {
-                    for j in 0..3 {
-                        for kk in 0..3 {
-                            dtdm[j][kk] += p.dfdi[a][kk] * t[j];
-                        }
+            let mut t = [[0.0; 3]; 3];
+            for (a, &m) in cd.nodes.iter().enumerate() {
+                let b = &nodal.bases[m];
+                let w = hat(b.absc, lag) * nodal.theta0[m];
+                for j in 0..3 {
+                    for k in 0..3 {
+                        t[j][k] += p.dfdi[a][k] * (w * b.dir[j]);
                     }
                 }
-                for (m, km) in k.iter_mut().enumerate() {
-                    *km += gbil3d(&p.dudm, &p.aux[m], &dtdm, cd.c, p.poids);
-                }
             }
-            let coeffs = [cd.coeff_k1k2, cd.coeff_k1k2, cd.coeff_k3];
-            for m in 0..3 {
-                o.k[m] += k[m] * coeffs[m];
-                o.g[m] += k[m] * coeffs[m].sqrt();
-            }
-        }
+            Some(t)
+        };
+        out.push(integrate(&data, &dtdm));
     }
     Ok(out)
+}
+
+/// The normalised Legendre polynomial of degree `d` on [0, l] and its
+/// derivative at `s` (`plegen`, `dplegen`: degree 7 at most).
+pub fn legendre(d: usize, s: f64, l: f64) -> Option<(f64, f64)> {
+    let x = 2.0 * s / l - 1.0;
+    let (p, dp) = match d {
+        0 => (1.0, 0.0),
+        1 => (x, 1.0),
+        2 => ((3.0 * x * x - 1.0) / 2.0, 3.0 * x),
+        3 => (
+            x * (5.0 * x * x - 3.0) / 2.0,
+            (15.0 * x.powi(2) - 3.0) / 2.0,
+        ),
+        4 => (
+            (35.0 * x.powi(4) - 30.0 * x * x + 3.0) / 8.0,
+            (35.0 * x.powi(3) - 15.0 * x) / 2.0,
+        ),
+        5 => (
+            x * (63.0 * x.powi(4) - 70.0 * x * x + 15.0) / 8.0,
+            15.0 * (21.0 * x.powi(4) - 14.0 * x.powi(2) + 1.0) / 8.0,
+        ),
+        6 => (
+            (231.0 * x.powi(6) - 315.0 * x.powi(4) + 105.0 * x * x - 5.0) / 16.0,
+            21.0 * (33.0 * x.powi(5) - 30.0 * x.powi(3) + 5.0 * x) / 8.0,
+        ),
+        7 => (
+            x * (429.0 * x.powi(6) - 693.0 * x.powi(4) + 315.0 * x * x - 35.0) / 16.0,
+            7.0 * (429.0 * x.powi(6) - 495.0 * x.powi(4) + 135.0 * x.powi(2) - 5.0) / 16.0,
+        ),
+        _ => return None,
+    };
+    let coef = ((2 * d + 1) as f64 / l).sqrt();
+    Some((coef * p, 2.0 / l * coef * dp))
+}
+
+/// The values of the Legendre theta fields of degrees 0 to `degree`
+/// (`DISCRETISATION='LEGENDRE'`): at a Gauss point θ = P_d(s)·theta0·dir,
+/// s, theta0 and dir interpolated from the nodes (`thetapdg`), on a front
+/// of length `l`.
+pub fn k_theta_legendre(
+    mesh: &Mesh,
+    cells: &[SolidCell],
+    nodal: &NodalData,
+    l: f64,
+    degree: usize,
+) -> Result<Vec<KTheta>, String> {
+    if degree > 7 {
+        return Err(format!(
+            "DEGRE = {degree}: code_aster's Legendre polynomials stop at 7"
+        ));
+    }
+    let data = cell_data(mesh, cells, nodal)?;
+    let mut out = Vec::with_capacity(degree + 1);
+    for d in 0..=degree {
+        let dtdm = |cd: &CellData, p: &Point| {
+            let (mut th0, mut s, mut t) = (0.0, 0.0, [0.0; 3]);
+            let (mut gth0, mut gs, mut gt) = ([0.0; 3], [0.0; 3], [[0.0; 3]; 3]);
+            for (a, &m) in cd.nodes.iter().enumerate() {
+                let b = &nodal.bases[m];
+                th0 += p.ff[a] * nodal.theta0[m];
+                s += p.ff[a] * b.absc;
+                for j in 0..3 {
+                    t[j] += p.ff[a] * b.dir[j];
+                }
+                for k in 0..3 {
+                    gth0[k] += p.dfdi[a][k] * nodal.theta0[m];
+                    gs[k] += p.dfdi[a][k] * b.absc;
+                    for j in 0..3 {
+                        gt[j][k] += p.dfdi[a][k] * b.dir[j];
+                    }
+                }
+            }
+            let (gam, dgam) = legendre(d, s, l)?;
+            let mut r = [[0.0; 3]; 3];
+            for i in 0..3 {
+                for j in 0..3 {
+                    r[i][j] = t[i] * (dgam * th0 * gs[j] + gam * gth0[j]) + gam * th0 * gt[i][j];
+                }
+            }
+            Some(r)
+        };
+        out.push(integrate(&data, &dtdm));
+    }
+    Ok(out)
+}
+
+/// The nodal values from the Legendre fields' (`glegen`): at front node i,
+/// Σ_d value_d · P_d(s_i).
+pub fn legendre_nodal(absfon: &[f64], l: f64, fields: &[KTheta]) -> Result<Vec<KTheta>, String> {
+    absfon
+        .iter()
+        .map(|&s| {
+            let mut o = KTheta::default();
+            for (d, f) in fields.iter().enumerate() {
+                let (p, _) = legendre(d, s, l).ok_or("a Legendre degree above 7")?;
+                for m in 0..3 {
+                    o.k[m] += f.k[m] * p;
+                    o.g[m] += f.g[m] * p;
+                }
+            }
+            Ok(o)
+        })
+        .collect()
 }
 
 /// The nodal values along an open linear front from the theta fields'
@@ -626,6 +745,38 @@ mod tests {
         for o in &out {
             assert!((o.k[0] - 2.0).abs() < 1e-12, "{o:?}");
         }
+    }
+
+    /// plegen's polynomials are orthonormal on [0, l] (Simpson on a fine
+    /// grid) and dplegen's derivatives match finite differences.
+    #[test]
+    fn legendre_orthonormal() {
+        let l = 2.5;
+        let n = 2000;
+        for d in 0..=7 {
+            for e in 0..=7 {
+                let mut sum = 0.0;
+                for i in 0..=n {
+                    let s = l * i as f64 / n as f64;
+                    let w = if i == 0 || i == n {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    sum += w * legendre(d, s, l).unwrap().0 * legendre(e, s, l).unwrap().0;
+                }
+                sum *= l / n as f64 / 3.0;
+                let expected = if d == e { 1.0 } else { 0.0 };
+                assert!((sum - expected).abs() < 1e-8, "{d} {e} {sum}");
+            }
+            let (s, h) = (0.7, 1e-6);
+            let fd =
+                (legendre(d, s + h, l).unwrap().0 - legendre(d, s - h, l).unwrap().0) / (2.0 * h);
+            assert!((fd - legendre(d, s, l).unwrap().1).abs() < 1e-6, "{d}");
+        }
+        assert!(legendre(8, 0.0, l).is_none());
     }
 
     /// The auxiliary mode-I field ahead of a straight front: ∂u_x/∂x =

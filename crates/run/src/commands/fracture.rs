@@ -320,26 +320,23 @@ const CALC_G_OWN: &[&str] = &[
     "THETA/R_INF",
     "THETA/R_SUP",
     "THETA/DISCRETISATION",
+    "THETA/DEGRE",
     "OPTION",
     "INFO",
     "TITRE",
 ];
 
 /// Why the keywords of G and K along a 3D front are refused.
-const CALC_G_3D: &str = "G and K along a 3D crack front at NB_POINT_FOND points or with Legendre polynomials (DEGRE): aster's CALC_G computes them with one theta field per front node (DISCRETISATION='LINEAIRE') only";
+const CALC_G_3D: &str = "K along a 3D crack front at NB_POINT_FOND points (theta fields on a coarser front, `create_npf`): aster's CALC_G computes it with one theta field per front node or with Legendre polynomials";
 
 /// What CALC_G reads (`crate::support`): its own keywords and the step
 /// selection ([`super::post::STEP_SELECTION`]).
 pub(crate) const CALC_G: Support = Support {
     values: &[
         Values::listed("OPTION", &["G", "K"]),
-        Values::new("THETA/DISCRETISATION", &["LINEAIRE"])
-            .why("(LEGENDRE: the Legendre theta fields along a 3D front are not reproduced)"),
+        Values::listed("THETA/DISCRETISATION", &["LINEAIRE", "LEGENDRE"]),
     ],
-    hints: &[
-        ("THETA/NB_POINT_FOND", CALC_G_3D),
-        ("THETA/DEGRE", CALC_G_3D),
-    ],
+    hints: &[("THETA/NB_POINT_FOND", CALC_G_3D)],
     ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + CALC_G_OWN.len() },
@@ -496,8 +493,8 @@ fn calc_g_3d(
     line: &Front3d,
 ) -> Result<CommandOutput, ExecError> {
     use aster_fem::fracture::theta3d::{
-        front_abscissa, k_theta_fields, node_bases, smooth_linear, theta0, Front, NodalData,
-        SolidCell,
+        front_abscissa, k_theta_fields, k_theta_legendre, legendre_nodal, node_bases,
+        smooth_linear, theta0, Front, NodalData, SolidCell,
     };
     let kw = &call.keywords;
     let cmd = "CALC_G";
@@ -509,11 +506,25 @@ fn calc_g_3d(
             kw.keyword("OPTION").map(|k| k.span).unwrap_or(call.span),
         ));
     }
-    if theta_kw.str("DISCRETISATION").unwrap_or("LINEAIRE") != "LINEAIRE" {
-        return Err(ex.unsupported(
-            "CALC_G: DISCRETISATION='LEGENDRE' on a 3D front (the Legendre theta fields are not reproduced; LINEAIRE only)",
-            theta_here,
-        ));
+    // DISCRETISATION='LEGENDRE': the degree (code_aster's default 5).
+    let legendre = match theta_kw.str("DISCRETISATION") {
+        Some("LEGENDRE") => Some(
+            theta_kw
+                .first("DEGRE")
+                .and_then(|v| v.as_i64())
+                .unwrap_or(5),
+        ),
+        _ => None,
+    };
+    if let Some(d) = legendre {
+        if !(0..=7).contains(&d) {
+            return Err(ex.kw_error(
+                cmd,
+                theta_kw,
+                "DEGRE",
+                format!("DEGRE = {d}: code_aster's Legendre polynomials are of degree 0 to 7"),
+            ));
+        }
     }
     let r = ex.required(cmd, kw, "RESULTAT")?;
     let result = ex.result(r)?;
@@ -546,7 +557,7 @@ fn calc_g_3d(
             here,
         ));
     }
-    if line.nodes.len() == 3 {
+    if line.nodes.len() == 3 && legendre.is_none() {
         return Err(ex.unsupported(
             "CALC_G on a front of 3 nodes (code_aster's end correction of the theta fields reads the abscissa before the first node)",
             theta_here,
@@ -662,10 +673,19 @@ fn calc_g_3d(
             theta0: &th0,
             disp: &disp,
         };
-        let fields = k_theta_fields(mesh, &cells, &nodal, &absfon)
-            .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
-        let k = smooth_linear(&absfon, &fields)
-            .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), theta_here))?;
+        let k = match legendre {
+            None => {
+                let fields = k_theta_fields(mesh, &cells, &nodal, &absfon)
+                    .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
+                smooth_linear(&absfon, &fields)
+            }
+            Some(d) => {
+                let fields = k_theta_legendre(mesh, &cells, &nodal, lonfis, d as usize)
+                    .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
+                legendre_nodal(&absfon, lonfis, &fields)
+            }
+        }
+        .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), theta_here))?;
         for (i, (&node, ki)) in line.nodes.iter().zip(&k).enumerate() {
             let p = coords[i];
             table.push_row(vec![
