@@ -21,6 +21,7 @@
 
 pub mod front3d;
 pub mod post_k;
+pub mod theta3d;
 
 use crate::material::{Elastic, Hypothesis};
 use crate::shape;

@@ -232,10 +232,10 @@ impl CallRefusals {
 
     /// A crack front of cells (`DEFI_FOND_FISS/FOND_FISS/GROUP_MA`) is a
     /// 3D front (code_aster reads cells on 3D meshes only), on which
-    /// CALC_G would compute G and K along the front (theta fields
-    /// discretised by LINEAIRE or LEGENDRE): not reproduced, refused at
-    /// `CALC_G/THETA/FISSURE` before the solve (ssnv166c's default
-    /// discretisation) instead of when CALC_G runs.
+    /// CALC_G computes K1, K2, K3 and G_IRWIN (`OPTION='K'`, aster-fem
+    /// `fracture::theta3d`); its `OPTION='G'` along the front is not
+    /// reproduced: refused at `CALC_G/OPTION` before the solve instead of
+    /// when CALC_G runs.
     fn follow_fronts_3d(&mut self, call: &CommandCall) -> Option<(String, Span)> {
         let kw = &call.keywords;
         match call.command.as_str() {
@@ -255,12 +255,17 @@ impl CallRefusals {
                 if !self.fronts_3d.contains(&front.id) {
                     return None;
                 }
-                let span = theta
-                    .keyword("FISSURE")
-                    .map(|k| k.span)
-                    .unwrap_or(call.span);
+                let with_g = kw
+                    .simple("OPTION")
+                    .iter()
+                    .filter_map(|s| s.as_str())
+                    .any(|o| o != "K");
+                if !with_g {
+                    return None;
+                }
+                let span = kw.keyword("OPTION").map(|k| k.span).unwrap_or(call.span);
                 Some((
-                    format!("CALC_G/THETA/FISSURE: the 3D crack front `{}` (DEFI_FOND_FISS/FOND_FISS/GROUP_MA): G and K along a 3D front (code_aster's theta fields discretised by LINEAIRE or LEGENDRE and their 3D elementary terms) are not computed; aster's CALC_G computes them at a 2D crack tip only", front.name),
+                    format!("CALC_G/OPTION: G along the 3D crack front `{}` (DEFI_FOND_FISS/FOND_FISS/GROUP_MA): aster computes K1, K2, K3 and G_IRWIN along a 3D front (OPTION='K'); te0222's energy term G is not reproduced there", front.name),
                     span,
                 ))
             }

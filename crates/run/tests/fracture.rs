@@ -64,6 +64,47 @@ fn extruded_centre_crack_post_k1_k2_k3() {
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
 }
 
+/// comm/crack_front_calcg.comm: CALC_G OPTION='K' along a straight 3D
+/// front (5 nodes, DISCRETISATION='LINEAIRE'): K1 within 0.05 % of
+/// Feddersen's formula at the ends and the middle, K2 = K3 = 0, G_IRWIN;
+/// the Legendre fields (DEGRE=2) give the same K1 at the middle.
+#[test]
+fn extruded_centre_crack_calc_g_k() {
+    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg.comm")).unwrap();
+    let outcome = run_text(&text, "comm/crack_front_calcg.mail", "calcg-k");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (22, 0));
+}
+
+/// G along a 3D front (OPTION='G') and K at NB_POINT_FOND points are
+/// refused before the solve, located at their keywords.
+#[test]
+fn calc_g_3d_refusals() {
+    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg.comm")).unwrap();
+    for (from, to, expected) in [
+        (
+            "OPTION=\"K\",",
+            "OPTION=\"G\",",
+            "CALC_G/OPTION: G along the 3D crack front",
+        ),
+        (
+            "DISCRETISATION=\"LINEAIRE\"",
+            "DISCRETISATION=\"LINEAIRE\", NB_POINT_FOND=3",
+            "NB_POINT_FOND",
+        ),
+    ] {
+        assert!(text.contains(from));
+        let outcome = run_text(
+            &text.replace(from, to),
+            "comm/crack_front_calcg.mail",
+            "calcg-refused",
+        );
+        let err = outcome.error.expect("refused");
+        assert!(err.to_string().contains(expected), "{err}");
+        assert_eq!((outcome.tally.ok, outcome.tally.nook), (0, 0));
+    }
+}
+
 /// A front whose segments do not chain from the origin is refused before
 /// any K is computed, located at DEFI_FOND_FISS.
 #[test]
@@ -87,17 +128,20 @@ fn a_front_not_from_its_origin_is_refused() {
     let _ = std::fs::remove_dir_all(dir);
 }
 
-fn quarter(text: &str, tag: &str) -> aster_run::program::Outcome {
-    let dir = std::env::temp_dir().join(format!("aster-quarter-{tag}-{}", std::process::id()));
+/// Runs a command text on a mesh of comm/ in a directory of its own.
+fn run_text(text: &str, mesh: &str, tag: &str) -> aster_run::program::Outcome {
+    let dir = std::env::temp_dir().join(format!("aster-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let comm = dir.join("quarter.comm");
+    let comm = dir.join("case.comm");
     std::fs::write(&comm, text).unwrap();
-    let case =
-        aster_run::program::prepare(&comm, Some(&root().join("comm/quarter_points.mail")), &dir)
-            .unwrap();
+    let case = aster_run::program::prepare(&comm, Some(&root().join(mesh)), &dir).unwrap();
     let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
     let _ = std::fs::remove_dir_all(dir);
     outcome
+}
+
+fn quarter(text: &str, tag: &str) -> aster_run::program::Outcome {
+    run_text(text, "comm/quarter_points.mail", &format!("quarter-{tag}"))
 }
 
 fn quarter_scene() -> String {

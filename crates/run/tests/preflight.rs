@@ -402,27 +402,31 @@ fn a_quarter_point_front_is_not_refused_at_defi_fond_fiss() {
     assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
 }
 
-/// CALC_G on a front of cells (DEFI_FOND_FISS/FOND_FISS/GROUP_MA, a 3D
-/// front) is refused at THETA/FISSURE before any solve; on a crack tip
-/// given by its node (GROUP_NO) it is not.
+/// CALC_G OPTION='G' on a front of cells (DEFI_FOND_FISS/FOND_FISS/
+/// GROUP_MA, a 3D front) is refused at OPTION before any solve; OPTION='K'
+/// there (computed along the front) and OPTION='G' at a crack tip given by
+/// its node (GROUP_NO) are not.
 #[test]
-fn calc_g_on_a_3d_front_is_refused_at_fissure() {
+fn calc_g_option_g_on_a_3d_front_is_refused_at_option() {
     let src = format!(
         "{HEAD}steel = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3))\n\
          mat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT=\"OUI\", MATER=steel))\n\
          load = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=_F(TOUT=\"OUI\", DX=0.0))\n\
          resu = MECA_STATIQUE(MODELE=model, CHAM_MATER=mat, EXCIT=_F(CHARGE=load))\n\
          fiss = DEFI_FOND_FISS(MAILLAGE=mesh, SYME=\"NON\", FOND_FISS=_F(GROUP_MA=\"FRONT\"), LEVRE_SUP=_F(GROUP_MA=\"LIP\"), LEVRE_INF=_F(GROUP_MA=\"LIP2\"))\n\
-         g = CALC_G(RESULTAT=resu, OPTION=\"K\", THETA=_F(FISSURE=fiss, R_INF=1.0, R_SUP=2.0))\nFIN()\n"
+         g = CALC_G(RESULTAT=resu, OPTION=\"G\", THETA=_F(FISSURE=fiss, R_INF=1.0, R_SUP=2.0))\nFIN()\n"
     );
     let (p, map) = pass(&src, None);
     let m = messages(&p, &map);
     assert_eq!(m.len(), 1, "{m:?}");
     assert!(
         m[0].contains("case.comm:9:")
-            && m[0].contains("CALC_G/THETA/FISSURE: the 3D crack front `fiss`"),
+            && m[0].contains("CALC_G/OPTION: G along the 3D crack front `fiss`"),
         "{m:?}"
     );
+    let k = src.replace("OPTION=\"G\"", "OPTION=\"K\"");
+    let (p, map) = pass(&k, None);
+    assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
     let tip = src.replace(
         "FOND_FISS=_F(GROUP_MA=\"FRONT\")",
         "FOND_FISS=_F(GROUP_NO=\"TIP\")",

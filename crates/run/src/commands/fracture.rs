@@ -319,23 +319,24 @@ const CALC_G_OWN: &[&str] = &[
     "THETA/FISSURE",
     "THETA/R_INF",
     "THETA/R_SUP",
+    "THETA/DISCRETISATION",
+    "THETA/DEGRE",
     "OPTION",
     "INFO",
     "TITRE",
 ];
 
 /// Why the keywords of G and K along a 3D front are refused.
-const CALC_G_3D: &str = "the discretisation of G and K along a 3D crack front (LINEAIRE or LEGENDRE): aster's CALC_G computes G and K at a 2D crack tip only (code_aster's 3D theta fields and their elementary terms are not reproduced)";
+const CALC_G_3D: &str = "K along a 3D crack front at NB_POINT_FOND points (theta fields on a coarser front, `create_npf`): aster's CALC_G computes it with one theta field per front node or with Legendre polynomials";
 
 /// What CALC_G reads (`crate::support`): its own keywords and the step
 /// selection ([`super::post::STEP_SELECTION`]).
 pub(crate) const CALC_G: Support = Support {
-    values: &[Values::listed("OPTION", &["G", "K"])],
-    hints: &[
-        ("THETA/DISCRETISATION", CALC_G_3D),
-        ("THETA/NB_POINT_FOND", CALC_G_3D),
-        ("THETA/DEGRE", CALC_G_3D),
+    values: &[
+        Values::listed("OPTION", &["G", "K"]),
+        Values::listed("THETA/DISCRETISATION", &["LINEAIRE", "LEGENDRE"]),
     ],
+    hints: &[("THETA/NB_POINT_FOND", CALC_G_3D)],
     ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + CALC_G_OWN.len() },
@@ -349,11 +350,8 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
         return Err(ExecError::new("CALC_G: THETA is required"));
     };
     let front = ex.crack_front(ex.required(cmd, theta_kw, "FISSURE")?)?;
-    if front.line.is_some() {
-        return Err(ex.unsupported(
-            "CALC_G on a 3D crack front (aster computes G and K in 2D only)",
-            kw.keyword("THETA").map(|k| k.span).unwrap_or(call.span),
-        ));
+    if let Some(line) = front.line.clone() {
+        return calc_g_3d(ex, call, theta_kw, &line);
     }
     let r = ex.required(cmd, kw, "RESULTAT")?;
     let result = ex.result(r)?;
@@ -378,30 +376,13 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
             here,
         ));
     }
-    let (r_inf, r_sup) = match (theta_kw.f64("R_INF"), theta_kw.f64("R_SUP")) {
-        (Some(a), Some(b)) => {
-            if a < 0.0 || a >= b {
-                return Err(ex.kw_error(
-                    cmd,
-                    theta_kw,
-                    "R_INF",
-                    format!("R_INF = {a} and R_SUP = {b}: give 0 ≤ R_INF < R_SUP"),
-                ));
-            }
-            (a, b)
-        }
-        _ => (2.0 * front.size, 4.0 * front.size),
-    };
+    let (r_inf, r_sup) = crown(ex, theta_kw, front.size)?;
     let mesh = model.mesh();
     let nodes: Vec<[f64; 2]> = mesh.coords.iter().map(|p| [p[0], p[1]]).collect();
     let mut theta = fracture::theta_field(&front.tip, &nodes, r_inf, r_sup);
     theta[front.node.0 as usize] = front.tip.dir;
-    check_loads(ex, &run, &theta, here)?;
-    let options: Vec<String> = kw
-        .simple("OPTION")
-        .iter()
-        .filter_map(|s| s.as_str().map(str::to_string))
-        .collect();
+    check_loads(ex, &run, &|n: NodeId| nonzero(theta[n.0 as usize]), here)?;
+    let options = options(kw);
     let steps = super::post::select_steps(ex, cmd, kw, &result)?;
     let mut columns = vec![
         col("NUME_ORDRE", ColumnType::Int),
@@ -473,6 +454,264 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
+/// The theta crown (`THETA/R_INF`, `R_SUP`), by default 2 h and 4 h of
+/// the cell size `h` at the front (code_aster's largest `FOND.TAILLE_R`).
+fn crown(ex: &Executor, theta_kw: &aster_eval::Keywords, h: f64) -> Result<(f64, f64), ExecError> {
+    match (theta_kw.f64("R_INF"), theta_kw.f64("R_SUP")) {
+        (Some(a), Some(b)) => {
+            if a < 0.0 || a >= b {
+                return Err(ex.kw_error(
+                    "CALC_G",
+                    theta_kw,
+                    "R_INF",
+                    format!("R_INF = {a} and R_SUP = {b}: give 0 ≤ R_INF < R_SUP"),
+                ));
+            }
+            Ok((a, b))
+        }
+        _ => Ok((2.0 * h, 4.0 * h)),
+    }
+}
+
+/// The options of CALC_G, in the order given.
+fn options(kw: &aster_eval::Keywords) -> Vec<String> {
+    kw.simple("OPTION")
+        .iter()
+        .filter_map(|s| s.as_str().map(str::to_string))
+        .collect()
+}
+
+/// CALC_G on a 3D front (aster-fem `fracture::theta3d`): OPTION='K' with
+/// one theta field per front node (`DISCRETISATION='LINEAIRE'`), a row per
+/// front node and step: `NUME_ORDRE`, `INST`, `NOEUD`, `NUM_PT`, `COOR_X`,
+/// `COOR_Y`, `COOR_Z`, `ABSC_CURV`, `ABSC_CURV_NORM`, `COMPORTEMENT`, `K1`,
+/// `K2`, `K3`, `G_IRWIN` (code_aster 17's `cgTable`).
+fn calc_g_3d(
+    ex: &mut Executor,
+    call: &CommandCall,
+    theta_kw: &aster_eval::Keywords,
+    line: &Front3d,
+) -> Result<CommandOutput, ExecError> {
+    use aster_fem::fracture::theta3d::{
+        front_abscissa, k_theta_fields, k_theta_legendre, legendre_nodal, node_bases,
+        smooth_linear, theta0, Front, NodalData, SolidCell,
+    };
+    let kw = &call.keywords;
+    let cmd = "CALC_G";
+    let theta_here = kw.keyword("THETA").map(|k| k.span).unwrap_or(call.span);
+    let opts = options(kw);
+    if opts.iter().any(|o| o != "K") {
+        return Err(ex.unsupported(
+            "CALC_G OPTION='G' on a 3D crack front (K1, K2, K3 and G_IRWIN by OPTION='K' only: te0222's energy term along a front is not reproduced)",
+            kw.keyword("OPTION").map(|k| k.span).unwrap_or(call.span),
+        ));
+    }
+    // DISCRETISATION='LEGENDRE': the degree (code_aster's default 5).
+    let legendre = match theta_kw.str("DISCRETISATION") {
+        Some("LEGENDRE") => Some(
+            theta_kw
+                .first("DEGRE")
+                .and_then(|v| v.as_i64())
+                .unwrap_or(5),
+        ),
+        _ => None,
+    };
+    if let Some(d) = legendre {
+        if !(0..=7).contains(&d) {
+            return Err(ex.kw_error(
+                cmd,
+                theta_kw,
+                "DEGRE",
+                format!("DEGRE = {d}: code_aster's Legendre polynomials are of degree 0 to 7"),
+            ));
+        }
+    }
+    let r = ex.required(cmd, kw, "RESULTAT")?;
+    let result = ex.result(r)?;
+    let here = kw.keyword("RESULTAT").map(|k| k.span).unwrap_or(call.span);
+    let Some(run) = result.fem.clone() else {
+        return Err(ex.unsupported(
+            "CALC_G on a result not computed in this run (its model and materials are needed)",
+            here,
+        ));
+    };
+    if run.plastic {
+        return Err(ex.unsupported(
+            "CALC_G on a result with plastic cells (aster computes K of linear elastic results only)",
+            here,
+        ));
+    }
+    let model = &run.model;
+    let mesh = model.mesh();
+    if mesh.dim != 3
+        || mesh.node_count()
+            < line
+                .nodes
+                .iter()
+                .map(|n| n.0 as usize + 1)
+                .max()
+                .unwrap_or(0)
+    {
+        return Err(ex.unsupported(
+            "CALC_G: the crack front and the result are not on the same 3D mesh",
+            here,
+        ));
+    }
+    if line.nodes.len() == 3 && legendre.is_none() {
+        return Err(ex.unsupported(
+            "CALC_G on a front of 3 nodes (code_aster's end correction of the theta fields reads the abscissa before the first node)",
+            theta_here,
+        ));
+    }
+    let hmax = line.size.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let (r_inf, r_sup) = crown(ex, theta_kw, hmax)?;
+    let coords: Vec<[f64; 3]> = line.nodes.iter().map(|&n| mesh.coord(n)).collect();
+    let absfon = front_abscissa(&coords);
+    let lonfis = absfon.last().copied().unwrap_or(0.0);
+    let front = Front {
+        coords: &coords,
+        normal: &line.normal,
+        dir: &line.dir,
+        absc: &absfon,
+    };
+    let bases = node_bases(&front, &mesh.coords);
+    let th0: Vec<f64> = mesh
+        .coords
+        .iter()
+        .zip(&bases)
+        .map(|(&x, b)| theta0(b, x, r_inf, r_sup))
+        .collect();
+    let reached = |n: NodeId| th0[n.0 as usize] >= f64::EPSILON;
+    check_loads(ex, &run, &reached, here)?;
+    let mut cells = Vec::new();
+    for el in model.elements() {
+        let cell = mesh.cell(el.cell);
+        let hit = cell.nodes.iter().any(|&n| reached(n));
+        match &el.kind {
+            ElementKind::Continuum {
+                hypothesis,
+                material,
+            } if *hypothesis == aster_fem::Hypothesis::Solid3D => {
+                if !hit {
+                    continue;
+                }
+                if model.is_reduced(el.cell) || model.is_stabilised(el.cell) {
+                    return Err(ex.unsupported(
+                        &format!(
+                            "CALC_G: cell {} is under-integrated (K with the full stiffness family only)",
+                            mesh.cell_name(el.cell)
+                        ),
+                        here,
+                    ));
+                }
+                if cell.nodes.len() != aster_fem::shape::corner_count(cell.ty) {
+                    return Err(ex.unsupported(
+                        &format!(
+                            "CALC_G on the quadratic cell {} (a linear mesh only: the middle nodes' theta fields and the hat smoothing of a SEG3 front are not reproduced)",
+                            mesh.cell_name(el.cell)
+                        ),
+                        here,
+                    ));
+                }
+                cells.push(SolidCell {
+                    cell: el.cell,
+                    material: *material,
+                });
+            }
+            // Skin cells without loads and discrete springs have no term.
+            ElementKind::Boundary | ElementKind::Spring { .. } => {}
+            _ if hit => {
+                return Err(ex.unsupported(
+                    &format!(
+                        "CALC_G: theta reaches cell {}, not a 3D continuum cell",
+                        mesh.cell_name(el.cell)
+                    ),
+                    here,
+                ))
+            }
+            _ => {}
+        }
+    }
+    let steps = super::post::select_steps(ex, cmd, kw, &result)?;
+    for step in &steps {
+        for c in &cells {
+            if run
+                .loads
+                .free_strain_at(c.cell, step.inst)
+                .map_err(|e| ExecError::new(format!("{cmd}: {e}")))?
+                .is_some()
+            {
+                return Err(ex.unsupported(
+                    &format!(
+                        "CALC_G on a 3D front with a thermal strain on cell {} (te0222's thermal terms are not reproduced)",
+                        mesh.cell_name(c.cell)
+                    ),
+                    here,
+                ));
+            }
+        }
+    }
+    let mut columns = vec![
+        col("NUME_ORDRE", ColumnType::Int),
+        col("INST", ColumnType::Real),
+        col("NOEUD", ColumnType::Text(8)),
+        col("NUM_PT", ColumnType::Int),
+    ];
+    for c in ["COOR_X", "COOR_Y", "COOR_Z", "ABSC_CURV", "ABSC_CURV_NORM"] {
+        columns.push(col(c, ColumnType::Real));
+    }
+    columns.push(col("COMPORTEMENT", ColumnType::Text(8)));
+    for c in ["K1", "K2", "K3", "G_IRWIN"] {
+        columns.push(col(c, ColumnType::Real));
+    }
+    let mut table = Table::new(columns);
+    for step in steps {
+        let u = displacement(&result, &run, step.nume_ordre, &r.name)?;
+        let disp = nodal_displacement_3d(model, &u);
+        let nodal = NodalData {
+            bases: &bases,
+            theta0: &th0,
+            disp: &disp,
+        };
+        let k = match legendre {
+            None => {
+                let fields = k_theta_fields(mesh, &cells, &nodal, &absfon)
+                    .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
+                smooth_linear(&absfon, &fields)
+            }
+            Some(d) => {
+                let fields = k_theta_legendre(mesh, &cells, &nodal, lonfis, d as usize)
+                    .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
+                legendre_nodal(&absfon, lonfis, &fields)
+            }
+        }
+        .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), theta_here))?;
+        for (i, (&node, ki)) in line.nodes.iter().zip(&k).enumerate() {
+            let p = coords[i];
+            table.push_row(vec![
+                ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
+                ("INST", Value::Real(step.inst)),
+                ("NOEUD", Value::Text(mesh.node_name(node))),
+                ("NUM_PT", Value::Int(i as i64 + 1)),
+                ("COOR_X", Value::Real(p[0])),
+                ("COOR_Y", Value::Real(p[1])),
+                ("COOR_Z", Value::Real(p[2])),
+                ("ABSC_CURV", Value::Real(absfon[i])),
+                ("ABSC_CURV_NORM", Value::Real(absfon[i] / lonfis)),
+                ("COMPORTEMENT", Value::Text("ELAS".into())),
+                ("K1", Value::Real(ki.k[0])),
+                ("K2", Value::Real(ki.k[1])),
+                ("K3", Value::Real(ki.k[2])),
+                (
+                    "G_IRWIN",
+                    Value::Real(ki.g[0] * ki.g[0] + ki.g[1] * ki.g[1] + ki.g[2] * ki.g[2]),
+                ),
+            ]);
+        }
+    }
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
 fn col(name: &str, ty: ColumnType) -> Column {
     Column {
         name: name.to_string(),
@@ -484,21 +723,17 @@ fn nonzero(t: [f64; 2]) -> bool {
     t[0].abs() + t[1].abs() >= f64::EPSILON
 }
 
-/// Loads where theta is not zero enter code_aster's G (`te0096`'s force
-/// terms, `te0282` on edges) and are not computed here: refused.
+/// Loads where theta is not zero enter code_aster's G and K (`te0096`,
+/// `te0222`'s force terms, `te0282` on edges) and are not computed here:
+/// refused. `reached`: whether theta is not zero at a node.
 fn check_loads(
     ex: &Executor,
     run: &crate::fembridge::FemRun,
-    theta: &[[f64; 2]],
+    reached: &dyn Fn(NodeId) -> bool,
     here: aster_syntax::Span,
 ) -> Result<(), ExecError> {
     let mesh = run.model.mesh();
-    let on_cell = |c: aster_mesh::CellId| {
-        mesh.cell(c)
-            .nodes
-            .iter()
-            .any(|n| nonzero(theta[n.0 as usize]))
-    };
+    let on_cell = |c: aster_mesh::CellId| mesh.cell(c).nodes.iter().any(|&n| reached(n));
     for item in &run.loads.items {
         let hit = match &item.load {
             Load::SurfaceForce { cell, .. }
@@ -507,8 +742,9 @@ fn check_loads(
             | Load::SurfaceForceAt { cell, .. }
             | Load::PressureAt { cell, .. }
             | Load::VolumeForceAt { cell, .. } => on_cell(*cell).then(|| mesh.cell_name(*cell)),
-            Load::NodalForce { dof, .. } => nonzero(theta[dof.node.0 as usize])
-                .then(|| format!("node {}", mesh.node_name(dof.node))),
+            Load::NodalForce { dof, .. } => {
+                reached(dof.node).then(|| format!("node {}", mesh.node_name(dof.node)))
+            }
             _ => None,
         };
         if let Some(place) = hit {

@@ -1,0 +1,797 @@
+//! K1, K2, K3 along a 3D crack front by the G-theta interaction integral,
+//! as code_aster 17's `CALC_G(OPTION='K', THETA=_F(DISCRETISATION=
+//! 'LINEAIRE'))` computes them (`op0027`: `cgComputeFactors`,
+//! `cgComputeMatrix`, `cgComputeGtheta`, `cgDiscrField`; the elementary
+//! term `te0222` with `thetapdg`, `coor_cyl`, `chauxi`, `gbil3d`; the
+//! curvature `xcourb`/`te0398`; the smoothing `gmatc3`/`gsyste`).
+//!
+//! - Every mesh node gets the local basis of its nearest point on the front
+//!   polyline (`fonbas2`, [`node_bases`]): the projection point, the
+//!   front's direction and normal linearly interpolated between the
+//!   segment's ends (not normalised), and the projection's curvilinear
+//!   abscissa.
+//! - theta0 at a node (`cgComputeFactors`, [`theta0`]): 1 closer to its
+//!   projection than `r_inf`, 0 beyond `r_sup`, linear in between (1e-6
+//!   tolerance on the crown's ends).
+//! - One theta field per front node i (`LINEAIRE`): at a node,
+//!   hat_i(abscissa)·theta0·dir, the hat linear between the front nodes
+//!   i−1, i, i+1 (`thetapdg`); a cell is skipped when no node's theta0
+//!   reaches 2.2e-16 or no node's abscissa lies in [s_{i−1}, s_{i+1})
+//!   (`te0222`).
+//! - At each Gauss point of the stiffness family: the crack's local frame
+//!   from the basis interpolated at the point (`coor_cyl`: e1 the
+//!   direction, e2 the normal, normalised, e3 = e1 × e2), the polar
+//!   coordinates (r, φ) of the point in it, the gradients of the three
+//!   auxiliary asymptotic fields of unit K1, K2, K3 in the global frame,
+//!   plus uₖ ∂e_k/∂x (`chauxi`, the curvature term: the gradient of the
+//!   nodal bases at the cell's *first* Gauss point, as `te0222` reads it
+//!   for every point); the bilinear form `gbil3d` between u and each
+//!   auxiliary field (elastic, no thermal strain, no initial stress, no
+//!   volume force). Per cell the sums times E/(1−ν²) (K1, K2) or 2μ (K3)
+//!   and, for G_IRWIN, times √(E/(1−ν²)) and √(2μ).
+//! - Per component, the values of the theta fields (the ends replaced by
+//!   the neighbour's times an abscissa ratio, `cgComputeGtheta`) are the
+//!   front's mass matrix (`gmatc3`, SEG2) times the nodal values: solved by
+//!   the normal equations MᵀM k = Mᵀ kθ (`gsyste`).
+
+use crate::element::physical_derivatives;
+use crate::material::Elastic;
+use crate::shape;
+use aster_mesh::vec3::{cross, dot, sub};
+use aster_mesh::{CellId, Mesh};
+
+/// code_aster's `r8prem()`.
+const R8PREM: f64 = f64::EPSILON;
+
+/// The curvilinear abscissa of the front's nodes (`fonfis2`).
+pub fn front_abscissa(coords: &[[f64; 3]]) -> Vec<f64> {
+    let mut s = vec![0.0; coords.len()];
+    for i in 1..coords.len() {
+        let d = sub(coords[i], coords[i - 1]);
+        s[i] = s[i - 1] + dot(d, d).sqrt();
+    }
+    s
+}
+
+/// A crack front as CALC_G reads it: its nodes' coordinates, unit normals
+/// and directions (`BASEFOND`) and abscissae.
+pub struct Front<'a> {
+    pub coords: &'a [[f64; 3]],
+    pub normal: &'a [[f64; 3]],
+    pub dir: &'a [[f64; 3]],
+    pub absc: &'a [f64],
+}
+
+/// The local basis of a mesh node (`BASLOC`, `ABSCUR`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeBasis {
+    /// The nearest point of the front.
+    pub proj: [f64; 3],
+    /// The direction and the normal interpolated there (not normalised).
+    pub dir: [f64; 3],
+    pub normal: [f64; 3],
+    /// The abscissa of the projection.
+    pub absc: f64,
+}
+
+/// The local basis of every node (`fonbas2`, a linear front).
+pub fn node_bases(front: &Front, nodes: &[[f64; 3]]) -> Vec<NodeBasis> {
+    let eps = 1e-12;
+    let nseg = front.coords.len().saturating_sub(1);
+    nodes
+        .iter()
+        .map(|&m| {
+            let mut dmin = f64::MAX;
+            let (mut sn, mut ia, mut proj) = (0.0, 0, front.coords[0]);
+            for iseg in 0..nseg {
+                let (a, b) = (front.coords[iseg], front.coords[iseg + 1]);
+                let ab = sub(b, a);
+                let am = sub(m, a);
+                let mut s = dot(ab, am) / dot(ab, ab);
+                if s - 1.0 >= eps {
+                    s = 1.0;
+                }
+                if s <= eps {
+                    s = 0.0;
+                }
+                let n = [s * ab[0] + a[0], s * ab[1] + a[1], s * ab[2] + a[2]];
+                let nm = sub(m, n);
+                let d = dot(nm, nm).sqrt();
+                if d < dmin * (1.0 - R8PREM * 1e4) {
+                    dmin = d;
+                    sn = s;
+                    ia = iseg;
+                    proj = n;
+                }
+            }
+            let ib = (ia + 1).min(front.coords.len() - 1);
+            let lerp = |va: [f64; 3], vb: [f64; 3]| {
+                [
+                    sn * vb[0] + (1.0 - sn) * va[0],
+                    sn * vb[1] + (1.0 - sn) * va[1],
+                    sn * vb[2] + (1.0 - sn) * va[2],
+                ]
+            };
+            NodeBasis {
+                proj,
+                dir: lerp(front.dir[ia], front.dir[ib]),
+                normal: lerp(front.normal[ia], front.normal[ib]),
+                absc: (1.0 - sn) * front.absc[ia] + sn * front.absc[ib],
+            }
+        })
+        .collect()
+}
+
+/// theta0 at a node of coordinates `x` (`cgComputeFactors`).
+pub fn theta0(basis: &NodeBasis, x: [f64; 3], r_inf: f64, r_sup: f64) -> f64 {
+    let eps = 1e-6;
+    let d = sub(basis.proj, x);
+    let d = dot(d, d).sqrt();
+    let alpha = (d - r_inf) / (r_sup - r_inf);
+    if alpha.abs() <= eps || alpha < 0.0 {
+        1.0
+    } else if (alpha - 1.0).abs() <= eps || alpha - 1.0 > 0.0 {
+        0.0
+    } else {
+        1.0 - alpha
+    }
+}
+
+/// A 3D continuum cell of the model.
+pub struct SolidCell {
+    pub cell: CellId,
+    pub material: Elastic,
+}
+
+/// What the integral reads at the mesh's nodes.
+pub struct NodalData<'a> {
+    pub bases: &'a [NodeBasis],
+    pub theta0: &'a [f64],
+    /// The displacement.
+    pub disp: &'a [[f64; 3]],
+}
+
+/// The seven values of one theta field, summed over the cells (`te0222`'s
+/// outputs 2 to 7): K1, K2, K3 and their G_IRWIN factors.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct KTheta {
+    pub k: [f64; 3],
+    pub g: [f64; 3],
+}
+
+/// A Gauss point's data, independent of the theta field.
+struct Point {
+    ff: Vec<f64>,
+    dfdi: Vec<[f64; 3]>,
+    poids: f64,
+    dudm: [[f64; 3]; 3],
+    /// The auxiliary fields' gradients (K1, K2, K3).
+    aux: [[[f64; 3]; 3]; 3],
+}
+
+struct CellData {
+    nodes: Vec<usize>,
+    points: Vec<Point>,
+    c: [f64; 3],
+    coeff_k1k2: f64,
+    coeff_k3: f64,
+}
+
+fn normalized(v: [f64; 3]) -> [f64; 3] {
+    let n = dot(v, v);
+    if n != 0.0 {
+        let n = n.sqrt();
+        [v[0] / n, v[1] / n, v[2] / n]
+    } else {
+        v
+    }
+}
+
+/// The gradients of the auxiliary displacement fields of unit K1, K2, K3
+/// (`chauxi`, no curvature radius): `invp` has the local frame's vectors
+/// as rows, `courb[k][a][j]` = ∂(e_k)_a/∂x_j.
+fn chauxi(
+    mu: f64,
+    ka: f64,
+    r: f64,
+    t: f64,
+    invp: &[[f64; 3]; 3],
+    courb: &[[[f64; 3]; 3]; 3],
+) -> [[[f64; 3]; 3]; 3] {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let cr1 = 1.0 / (4.0 * mu * (two_pi * r).sqrt());
+    let cr2 = (r / two_pi).sqrt() / (2.0 * mu);
+    let (h, c, s) = (t * 0.5, t.cos(), t.sin());
+    let u1l = [cr2 * (h.cos() * (ka - c)), cr2 * (h.sin() * (ka - c)), 0.0];
+    let du1dpo = [
+        [
+            cr1 * (h.cos() * (ka - c)),
+            cr2 * (-0.5 * h.sin() * (ka - c) + h.cos() * s),
+        ],
+        [
+            cr1 * (h.sin() * (ka - c)),
+            cr2 * (0.5 * h.cos() * (ka - c) + h.sin() * s),
+        ],
+        [0.0, 0.0],
+    ];
+    let u2l = [
+        cr2 * h.sin() * (ka + 2.0 + c),
+        cr2 * h.cos() * (2.0 - ka - c),
+        0.0,
+    ];
+    let du2dpo = [
+        [
+            cr1 * (h.sin() * (ka + 2.0 + c)),
+            cr2 * (0.5 * h.cos() * (ka + 2.0 + c) - h.sin() * s),
+        ],
+        [
+            cr1 * h.cos() * (2.0 - ka - c),
+            cr2 * (-0.5 * h.sin() * (2.0 - ka - c) + h.cos() * s),
+        ],
+        [0.0, 0.0],
+    ];
+    let u3l = [0.0, 0.0, 4.0 * cr2 * h.sin()];
+    let du3dpo = [
+        [0.0, 0.0],
+        [0.0, 0.0],
+        [4.0 * cr1 * h.sin(), 2.0 * cr2 * h.cos()],
+    ];
+    let global = |ul: [f64; 3], dpo: [[f64; 2]; 3]| {
+        let mut dl = [[0.0; 3]; 3];
+        for i in 0..3 {
+            dl[i][0] = c * dpo[i][0] - s / r * dpo[i][1];
+            dl[i][1] = s * dpo[i][0] + c / r * dpo[i][1];
+        }
+        let mut dm = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                for k in 0..3 {
+                    for l in 0..3 {
+                        dm[i][j] += dl[k][l] * invp[l][j] * invp[k][i];
+                    }
+                    dm[i][j] += ul[k] * courb[k][i][j];
+                }
+            }
+        }
+        dm
+    };
+    [
+        global(u1l, du1dpo),
+        global(u2l, du2dpo),
+        global(u3l, du3dpo),
+    ]
+}
+
+/// `gbil3d`'s elastic part (coef 1, no thermal strain, no initial stress,
+/// no volume force, static): (s2 − s1 div θ / 2)·poids.
+fn gbil3d(u: &[[f64; 3]; 3], v: &[[f64; 3]; 3], t: &[[f64; 3]; 3], c: [f64; 3], poids: f64) -> f64 {
+    // 1-based accessors as in the Fortran.
+    let du = |i: usize, j: usize| u[i - 1][j - 1];
+    let dv = |i: usize, j: usize| v[i - 1][j - 1];
+    let dt = |i: usize, j: usize| t[i - 1][j - 1];
+    let h = |a: (usize, usize), b: (usize, usize)| {
+        0.5 * (dv(a.0, a.1) * du(b.0, b.1) + du(a.0, a.1) * dv(b.0, b.1))
+    };
+    let mut vect = [0.0; 34];
+    let pairs: [((usize, usize), (usize, usize)); 33] = [
+        ((1, 1), (2, 2)),
+        ((1, 1), (1, 2)),
+        ((1, 1), (2, 1)),
+        ((2, 2), (1, 2)),
+        ((2, 2), (2, 1)),
+        ((1, 2), (2, 1)),
+        ((3, 3), (3, 1)),
+        ((1, 1), (1, 3)),
+        ((3, 3), (3, 2)),
+        ((2, 2), (2, 3)),
+        ((1, 1), (3, 3)),
+        ((2, 2), (3, 3)),
+        ((3, 3), (1, 2)),
+        ((3, 3), (2, 1)),
+        ((1, 1), (3, 1)),
+        ((2, 2), (3, 1)),
+        ((1, 1), (3, 2)),
+        ((2, 2), (3, 2)),
+        ((1, 1), (2, 3)),
+        ((3, 3), (2, 3)),
+        ((2, 2), (1, 3)),
+        ((3, 3), (1, 3)),
+        ((1, 3), (3, 1)),
+        ((2, 3), (3, 2)),
+        ((2, 3), (3, 1)),
+        ((3, 2), (3, 1)),
+        ((1, 3), (3, 2)),
+        ((1, 2), (1, 3)),
+        ((2, 1), (1, 3)),
+        ((1, 2), (3, 1)),
+        ((2, 1), (2, 3)),
+        ((2, 1), (3, 2)),
+        ((2, 3), (1, 2)),
+    ];
+    for (k, (a, b)) in pairs.iter().enumerate() {
+        vect[k + 1] = h(*a, *b);
+    }
+    let s11 = du(1, 1) * dv(1, 1) + du(2, 2) * dv(2, 2) + du(3, 3) * dv(3, 3);
+    let s12 = du(1, 1) * dv(2, 2)
+        + du(2, 2) * dv(1, 1)
+        + du(1, 1) * dv(3, 3)
+        + du(3, 3) * dv(1, 1)
+        + du(2, 2) * dv(3, 3)
+        + du(3, 3) * dv(2, 2);
+    let s13 = (du(1, 2) + du(2, 1)) * (dv(1, 2) + dv(2, 1))
+        + (du(2, 3) + du(3, 2)) * (dv(2, 3) + dv(3, 2))
+        + (du(3, 1) + du(1, 3)) * (dv(3, 1) + dv(1, 3));
+    let s21 = du(1, 1) * dv(1, 1) * dt(1, 1)
+        + du(2, 2) * dv(2, 2) * dt(2, 2)
+        + du(3, 3) * dv(3, 3) * dt(3, 3)
+        + vect[5] * dt(1, 2)
+        + vect[2] * dt(2, 1)
+        + vect[7] * dt(1, 3)
+        + vect[8] * dt(3, 1)
+        + vect[9] * dt(2, 3)
+        + vect[10] * dt(3, 2);
+    let s22 = vect[1] * (dt(1, 1) + dt(2, 2))
+        + vect[11] * (dt(1, 1) + dt(3, 3))
+        + vect[12] * (dt(2, 2) + dt(3, 3))
+        + (vect[3] + vect[14]) * dt(1, 2)
+        + (vect[4] + vect[13]) * dt(2, 1)
+        + (vect[15] + vect[16]) * dt(1, 3)
+        + (vect[17] + vect[18]) * dt(2, 3)
+        + (vect[19] + vect[20]) * dt(3, 2)
+        + (vect[21] + vect[22]) * dt(3, 1);
+    let s23 = (vect[6] + du(2, 1) * dv(2, 1)) * dt(1, 1)
+        + (vect[23] + du(3, 1) * dv(3, 1)) * dt(1, 1)
+        + (vect[6] + du(1, 2) * dv(1, 2)) * dt(2, 2)
+        + (vect[24] + du(3, 2) * dv(3, 2)) * dt(2, 2)
+        + (vect[24] + du(2, 3) * dv(2, 3)) * dt(3, 3)
+        + (vect[23] + du(1, 3) * dv(1, 3)) * dt(3, 3)
+        + (vect[2] + vect[3]) * dt(1, 2)
+        + (vect[25] + vect[26]) * dt(1, 2)
+        + (vect[4] + vect[5]) * dt(2, 1)
+        + (vect[26] + vect[27]) * dt(2, 1)
+        + (vect[28] + vect[29]) * dt(3, 2)
+        + (vect[9] + vect[20]) * dt(3, 2)
+        + (vect[10] + vect[18]) * dt(2, 3)
+        + (vect[28] + vect[30]) * dt(2, 3)
+        + (vect[8] + vect[15]) * dt(1, 3)
+        + (vect[31] + vect[32]) * dt(1, 3)
+        + (vect[31] + vect[33]) * dt(3, 1)
+        + (vect[22] + vect[7]) * dt(3, 1);
+    let s1 = c[0] * s11 + c[1] * s12 + c[2] * s13;
+    let s2 = c[0] * s21 + c[1] * s22 + c[2] * s23;
+    let divt = dt(1, 1) + dt(2, 2) + dt(3, 3);
+    (s2 - 0.5 * s1 * divt) * poids
+}
+
+/// The Gauss data of the cells theta0 reaches.
+fn cell_data(mesh: &Mesh, cells: &[SolidCell], nodal: &NodalData) -> Result<Vec<CellData>, String> {
+    let mut out = Vec::new();
+    for sc in cells {
+        let cell = mesh.cell(sc.cell);
+        let nodes: Vec<usize> = cell.nodes.iter().map(|n| n.0 as usize).collect();
+        if nodes.iter().all(|&n| nodal.theta0[n] < R8PREM) {
+            continue;
+        }
+        let name = || mesh.cell_name(sc.cell);
+        if !sc.material.is_isotropic() {
+            return Err(format!(
+                "cell {}: K of an orthotropic material (the auxiliary fields are the isotropic law's)",
+                name()
+            ));
+        }
+        let (e, nu) = (sc.material.e, sc.material.nu);
+        let mu = e / (2.0 * (1.0 + nu));
+        let lambda = nu * e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        let ka = 3.0 - 4.0 * nu;
+        let scheme = shape::rigi_scheme(cell.ty);
+        if scheme.is_empty() || cell.ty.dim() != 3 {
+            return Err(format!("cell {}: not a 3D continuum cell", name()));
+        }
+        // The nodal frames of `xcourb`: e1 the direction, e2 the normal
+        // (normalised), e3 = e1 × e2.
+        let frames: Vec<[[f64; 3]; 3]> = nodes
+            .iter()
+            .map(|&n| {
+                let b = &nodal.bases[n];
+                let e1 = normalized(b.dir);
+                let e2 = normalized(b.normal);
+                [e1, e2, cross(e1, e2)]
+            })
+            .collect();
+        let mut courb = [[[0.0; 3]; 3]; 3];
+        let mut points = Vec::with_capacity(scheme.len());
+        for (kp, gp) in scheme.iter().enumerate() {
+            let (ff, dfdi, det, x) = physical_derivatives(mesh, sc.cell, 3, gp)
+                .map_err(|e| format!("cell {}: {e}", name()))?;
+            if kp == 0 {
+                for k in 0..3 {
+                    for a in 0..3 {
+                        for j in 0..3 {
+                            courb[k][a][j] =
+                                (0..nodes.len()).map(|i| frames[i][k][a] * dfdi[i][j]).sum();
+                        }
+                    }
+                }
+            }
+            let mut dudm = [[0.0; 3]; 3];
+            let (mut pf, mut dir, mut nor) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+            for (i, &n) in nodes.iter().enumerate() {
+                let u = nodal.disp[n];
+                let b = &nodal.bases[n];
+                for j in 0..3 {
+                    for k in 0..3 {
+                        dudm[j][k] += u[j] * dfdi[i][k];
+                    }
+                    pf[j] += b.proj[j] * ff[i];
+                    dir[j] += b.dir[j] * ff[i];
+                    nor[j] += b.normal[j] * ff[i];
+                }
+            }
+            // xbasgl, xcoocy.
+            let e1 = normalized(dir);
+            let e2 = normalized(nor);
+            let e3 = normalized(cross(e1, e2));
+            let invp = [e1, e2, e3];
+            let og = sub(x, pf);
+            let cosi = dot(e1, og);
+            let sinu = dot(e2, og);
+            let r = (cosi * cosi + sinu * sinu).sqrt();
+            if r < 1e-12 {
+                return Err(format!("cell {}: a Gauss point on the crack front", name()));
+            }
+            let t = sinu.atan2(cosi);
+            let aux = chauxi(mu, ka, r, t, &invp, &courb);
+            points.push(Point {
+                ff,
+                dfdi,
+                poids: gp.weight * det.abs(),
+                dudm,
+                aux,
+            });
+        }
+        out.push(CellData {
+            nodes,
+            points,
+            c: [lambda + 2.0 * mu, lambda, mu],
+            coeff_k1k2: e / (1.0 - nu * nu),
+            coeff_k3: 2.0 * mu,
+        });
+    }
+    Ok(out)
+}
+
+/// The hat of the theta field whose window is [s0, s1, s2] at abscissa
+/// `sno` (`thetapdg`, an open front).
+fn hat(sno: f64, [s0, s1, s2]: [f64; 3]) -> f64 {
+    if sno >= s0 && sno <= s1 && s0 != s1 {
+        (sno - s0) / (s1 - s0)
+    } else if sno >= s1 && sno <= s2 {
+        1.0 - (sno - s1) / (s2 - s1)
+    } else {
+        0.0
+    }
+}
+
+/// ∇θ at a Gauss point of a cell; `None` skips the cell.
+type ThetaGradient<'a> = dyn Fn(&CellData, &Point) -> Option<[[f64; 3]; 3]> + 'a;
+
+/// The interaction integrals of one theta field over the cells.
+fn integrate(data: &[CellData], dtdm: &ThetaGradient) -> KTheta {
+    let mut o = KTheta::default();
+    for cd in data {
+        let mut k = [0.0; 3];
+        let mut skipped = false;
+        for p in &cd.points {
+            let Some(t) = dtdm(cd, p) else {
+                skipped = true;
+                break;
+            };
+            for (m, km) in k.iter_mut().enumerate() {
+                *km += gbil3d(&p.dudm, &p.aux[m], &t, cd.c, p.poids);
+            }
+        }
+        if skipped {
+            continue;
+        }
+        let coeffs = [cd.coeff_k1k2, cd.coeff_k1k2, cd.coeff_k3];
+        for m in 0..3 {
+            o.k[m] += k[m] * coeffs[m];
+            o.g[m] += k[m] * coeffs[m].sqrt();
+        }
+    }
+    o
+}
+
+/// The values of the theta fields, one per front node (`LINEAIRE`, an
+/// open front), before the smoothing.
+pub fn k_theta_fields(
+    mesh: &Mesh,
+    cells: &[SolidCell],
+    nodal: &NodalData,
+    absfon: &[f64],
+) -> Result<Vec<KTheta>, String> {
+    let data = cell_data(mesh, cells, nodal)?;
+    let n = absfon.len();
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let lag = [
+            absfon[i.saturating_sub(1)],
+            absfon[i],
+            absfon[(i + 1).min(n - 1)],
+        ];
+        let dtdm = |cd: &CellData, p: &Point| {
+            // te0222: a cell none of whose nodes lies in [s0, s2).
+            if !cd
+                .nodes
+                .iter()
+                .any(|&m| nodal.bases[m].absc >= lag[0] && nodal.bases[m].absc < lag[2])
+            {
+                return None;
+            }
+            let mut t = [[0.0; 3]; 3];
+            for (a, &m) in cd.nodes.iter().enumerate() {
+                let b = &nodal.bases[m];
+                let w = hat(b.absc, lag) * nodal.theta0[m];
+                for j in 0..3 {
+                    for k in 0..3 {
+                        t[j][k] += p.dfdi[a][k] * (w * b.dir[j]);
+                    }
+                }
+            }
+            Some(t)
+        };
+        out.push(integrate(&data, &dtdm));
+    }
+    Ok(out)
+}
+
+/// The normalised Legendre polynomial of degree `d` on [0, l] and its
+/// derivative at `s` (`plegen`, `dplegen`: degree 7 at most).
+pub fn legendre(d: usize, s: f64, l: f64) -> Option<(f64, f64)> {
+    let x = 2.0 * s / l - 1.0;
+    let (p, dp) = match d {
+        0 => (1.0, 0.0),
+        1 => (x, 1.0),
+        2 => ((3.0 * x * x - 1.0) / 2.0, 3.0 * x),
+        3 => (
+            x * (5.0 * x * x - 3.0) / 2.0,
+            (15.0 * x.powi(2) - 3.0) / 2.0,
+        ),
+        4 => (
+            (35.0 * x.powi(4) - 30.0 * x * x + 3.0) / 8.0,
+            (35.0 * x.powi(3) - 15.0 * x) / 2.0,
+        ),
+        5 => (
+            x * (63.0 * x.powi(4) - 70.0 * x * x + 15.0) / 8.0,
+            15.0 * (21.0 * x.powi(4) - 14.0 * x.powi(2) + 1.0) / 8.0,
+        ),
+        6 => (
+            (231.0 * x.powi(6) - 315.0 * x.powi(4) + 105.0 * x * x - 5.0) / 16.0,
+            21.0 * (33.0 * x.powi(5) - 30.0 * x.powi(3) + 5.0 * x) / 8.0,
+        ),
+        7 => (
+            x * (429.0 * x.powi(6) - 693.0 * x.powi(4) + 315.0 * x * x - 35.0) / 16.0,
+            7.0 * (429.0 * x.powi(6) - 495.0 * x.powi(4) + 135.0 * x.powi(2) - 5.0) / 16.0,
+        ),
+        _ => return None,
+    };
+    let coef = ((2 * d + 1) as f64 / l).sqrt();
+    Some((coef * p, 2.0 / l * coef * dp))
+}
+
+/// The values of the Legendre theta fields of degrees 0 to `degree`
+/// (`DISCRETISATION='LEGENDRE'`): at a Gauss point θ = P_d(s)·theta0·dir,
+/// s, theta0 and dir interpolated from the nodes (`thetapdg`), on a front
+/// of length `l`.
+pub fn k_theta_legendre(
+    mesh: &Mesh,
+    cells: &[SolidCell],
+    nodal: &NodalData,
+    l: f64,
+    degree: usize,
+) -> Result<Vec<KTheta>, String> {
+    if degree > 7 {
+        return Err(format!(
+            "DEGRE = {degree}: code_aster's Legendre polynomials stop at 7"
+        ));
+    }
+    let data = cell_data(mesh, cells, nodal)?;
+    let mut out = Vec::with_capacity(degree + 1);
+    for d in 0..=degree {
+        let dtdm = |cd: &CellData, p: &Point| {
+            let (mut th0, mut s, mut t) = (0.0, 0.0, [0.0; 3]);
+            let (mut gth0, mut gs, mut gt) = ([0.0; 3], [0.0; 3], [[0.0; 3]; 3]);
+            for (a, &m) in cd.nodes.iter().enumerate() {
+                let b = &nodal.bases[m];
+                th0 += p.ff[a] * nodal.theta0[m];
+                s += p.ff[a] * b.absc;
+                for j in 0..3 {
+                    t[j] += p.ff[a] * b.dir[j];
+                }
+                for k in 0..3 {
+                    gth0[k] += p.dfdi[a][k] * nodal.theta0[m];
+                    gs[k] += p.dfdi[a][k] * b.absc;
+                    for j in 0..3 {
+                        gt[j][k] += p.dfdi[a][k] * b.dir[j];
+                    }
+                }
+            }
+            let (gam, dgam) = legendre(d, s, l)?;
+            let mut r = [[0.0; 3]; 3];
+            for i in 0..3 {
+                for j in 0..3 {
+                    r[i][j] = t[i] * (dgam * th0 * gs[j] + gam * gth0[j]) + gam * th0 * gt[i][j];
+                }
+            }
+            Some(r)
+        };
+        out.push(integrate(&data, &dtdm));
+    }
+    Ok(out)
+}
+
+/// The nodal values from the Legendre fields' (`glegen`): at front node i,
+/// Σ_d value_d · P_d(s_i).
+pub fn legendre_nodal(absfon: &[f64], l: f64, fields: &[KTheta]) -> Result<Vec<KTheta>, String> {
+    absfon
+        .iter()
+        .map(|&s| {
+            let mut o = KTheta::default();
+            for (d, f) in fields.iter().enumerate() {
+                let (p, _) = legendre(d, s, l).ok_or("a Legendre degree above 7")?;
+                for m in 0..3 {
+                    o.k[m] += f.k[m] * p;
+                    o.g[m] += f.g[m] * p;
+                }
+            }
+            Ok(o)
+        })
+        .collect()
+}
+
+/// The nodal values along an open linear front from the theta fields'
+/// (`cgComputeGtheta`'s end corrections, `gmatc3`, `gsyste`).
+pub fn smooth_linear(absfon: &[f64], fields: &[KTheta]) -> Result<Vec<KTheta>, String> {
+    let n = absfon.len();
+    if fields.len() != n || n < 2 {
+        return Err("one theta field per front node, two nodes at least".into());
+    }
+    if n == 3 {
+        return Err(
+            "a front of 3 nodes: code_aster's end correction reads the abscissa before the first node"
+                .into(),
+        );
+    }
+    let mut f: Vec<[f64; 6]> = fields
+        .iter()
+        .map(|k| [k.k[0], k.k[1], k.k[2], k.g[0], k.g[1], k.g[2]])
+        .collect();
+    if n != 2 {
+        let (s1, s2, s3) = (absfon[0], absfon[1], absfon[2]);
+        let (sn2, sn1, sn) = (absfon[n - 4], absfon[n - 3], absfon[n - 2]);
+        let first = f[1].map(|v| v * (s2 - s1) / (s3 - s1));
+        let last = f[n - 2].map(|v| v * (sn - sn1) / (sn - sn2));
+        f[0] = first;
+        f[n - 1] = last;
+    }
+    // The mass matrix of the front's segments.
+    let mut m = nalgebra::DMatrix::<f64>::zeros(n, n);
+    for s in 0..n - 1 {
+        let l = absfon[s + 1] - absfon[s];
+        m[(s, s)] += l / 3.0;
+        m[(s + 1, s + 1)] += l / 3.0;
+        m[(s, s + 1)] += l / 6.0;
+        m[(s + 1, s)] += l / 6.0;
+    }
+    let mtm = m.transpose() * &m;
+    let lu = mtm.lu();
+    let mut out = vec![KTheta::default(); n];
+    for c in 0..6 {
+        let rhs = m.transpose() * nalgebra::DVector::from_iterator(n, f.iter().map(|v| v[c]));
+        let x = lu.solve(&rhs).ok_or(
+            "the front's smoothing system is singular (two front nodes at the same abscissa)",
+        )?;
+        for (i, o) in out.iter_mut().enumerate() {
+            if c < 3 {
+                o.k[c] = x[i];
+            } else {
+                o.g[c - 3] = x[i];
+            }
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn abscissa_and_projection() {
+        let coords = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, 3.0]];
+        let s = front_abscissa(&coords);
+        assert_eq!(s, vec![0.0, 1.0, 3.0]);
+        let normal = [[0.0, 1.0, 0.0]; 3];
+        let dir = [[1.0, 0.0, 0.0]; 3];
+        let front = Front {
+            coords: &coords,
+            normal: &normal,
+            dir: &dir,
+            absc: &s,
+        };
+        let b = node_bases(&front, &[[2.0, 0.5, 2.0], [1.0, 0.0, 5.0]]);
+        assert_eq!(b[0].proj, [0.0, 0.0, 2.0]);
+        assert!((b[0].absc - 2.0).abs() < 1e-15);
+        // Beyond the end: clamped to the last node.
+        assert_eq!(b[1].proj, [0.0, 0.0, 3.0]);
+        assert_eq!(b[1].absc, 3.0);
+        let t = theta0(&b[0], [2.0, 0.5, 2.0], 1.0, 3.0);
+        assert!((t - (1.0 - ((4.25f64).sqrt() - 1.0) / 2.0)).abs() < 1e-15);
+    }
+
+    /// The smoothing of a constant field on a uniform front gives it back
+    /// at the inner nodes (M 1 = row sums; the ends get half of their
+    /// neighbour's value before the solve).
+    #[test]
+    fn smoothing_constant() {
+        let absfon: Vec<f64> = (0..6).map(|i| i as f64 * 0.5).collect();
+        // Theta-field values of a constant K = 2: M·[2…] = row sums × 2.
+        let mut fields = vec![KTheta::default(); 6];
+        for (i, f) in fields.iter_mut().enumerate() {
+            let w = if i == 0 || i == 5 { 0.25 } else { 0.5 };
+            f.k = [2.0 * w, 0.0, 0.0];
+        }
+        let out = smooth_linear(&absfon, &fields).unwrap();
+        for o in &out {
+            assert!((o.k[0] - 2.0).abs() < 1e-12, "{o:?}");
+        }
+    }
+
+    /// plegen's polynomials are orthonormal on [0, l] (Simpson on a fine
+    /// grid) and dplegen's derivatives match finite differences.
+    #[test]
+    fn legendre_orthonormal() {
+        let l = 2.5;
+        let n = 2000;
+        for d in 0..=7 {
+            for e in 0..=7 {
+                let mut sum = 0.0;
+                for i in 0..=n {
+                    let s = l * i as f64 / n as f64;
+                    let w = if i == 0 || i == n {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    sum += w * legendre(d, s, l).unwrap().0 * legendre(e, s, l).unwrap().0;
+                }
+                sum *= l / n as f64 / 3.0;
+                let expected = if d == e { 1.0 } else { 0.0 };
+                assert!((sum - expected).abs() < 1e-8, "{d} {e} {sum}");
+            }
+            let (s, h) = (0.7, 1e-6);
+            let fd =
+                (legendre(d, s + h, l).unwrap().0 - legendre(d, s - h, l).unwrap().0) / (2.0 * h);
+            assert!((fd - legendre(d, s, l).unwrap().1).abs() < 1e-6, "{d}");
+        }
+        assert!(legendre(8, 0.0, l).is_none());
+    }
+
+    /// The auxiliary mode-I field ahead of a straight front: ∂u_x/∂x =
+    /// (κ−1)/(4μ√(2πr)) at φ = 0.
+    #[test]
+    fn auxiliary_mode_one_ahead() {
+        let (mu, ka) = (1.5, 1.8);
+        let invp = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let courb = [[[0.0; 3]; 3]; 3];
+        let r = 0.2;
+        let aux = chauxi(mu, ka, r, 0.0, &invp, &courb);
+        let expected = (ka - 1.0) / (4.0 * mu * (2.0 * std::f64::consts::PI * r).sqrt());
+        assert!((aux[0][0][0] - expected).abs() < 1e-14);
+        // Mode III: u_z = 4 cr2 sin(φ/2): ∂u_z/∂y at φ = 0 is 2 cr2 / r.
+        let cr2 = (r / (2.0 * std::f64::consts::PI)).sqrt() / (2.0 * mu);
+        assert!((aux[2][2][1] - 2.0 * cr2 / r).abs() < 1e-14);
+    }
+}
