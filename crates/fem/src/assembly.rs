@@ -219,7 +219,10 @@ fn scatter_columns(
                     |m| FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell))),
                 )?
             }
-            ElementKind::Spring { .. } | ElementKind::Shell { .. } | ElementKind::Beam { .. } => {
+            ElementKind::Spring { .. }
+            | ElementKind::Shell { .. }
+            | ElementKind::Beam { .. }
+            | ElementKind::Coque3d { .. } => {
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;
                 };

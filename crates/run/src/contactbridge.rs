@@ -610,7 +610,8 @@ fn problem_dim(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<usize, ExecE
 
 /// The zones of a definition resolved on the mesh (row sources).
 pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContact>, ExecError> {
-    let def = definition(ex, kw)?;
+    let mut def = definition(ex, kw)?;
+    coque3d_faces(ex, kw, &mut def)?;
     refuse_loose_gcp(ex, mesh, kw)?;
     let dim = problem_dim(ex, mesh, kw)?;
     refuse_rows_on_quadratic_3d(ex, mesh, kw, dim)?;
@@ -627,6 +628,35 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
     resolve_pene_maxi(mesh, &mut zones);
     lac_setup(ex, mesh, kw, &mut zones)?;
     Ok(zones)
+}
+
+/// The COQUE_3D cells of the definition's model: discrete contact sees
+/// them through their edge nodes (`ZoneGeometry::coque3d_cells`, code_aster's
+/// `cflecq`); the continuous formulations refuse them, as code_aster does
+/// (`CONTACT_94`, in `dfc_read_cont`/`dfc_read_lac`).
+fn coque3d_faces(
+    ex: &Executor,
+    kw: &Keywords,
+    def: &mut ContactDefinition,
+) -> Result<(), ExecError> {
+    let Some(model) = kw.concept("MODELE").map(|c| ex.model(c)).transpose()? else {
+        return Ok(());
+    };
+    let cells = model.coque3d_cells();
+    if cells.is_empty() {
+        return Ok(());
+    }
+    match def {
+        ContactDefinition::Discrete(d) => {
+            for z in &mut d.zones {
+                z.geometry.coque3d_cells = cells.clone();
+            }
+            Ok(())
+        }
+        ContactDefinition::Continue(_) => Err(ExecError::new(
+            "DEFI_CONTACT: a contact surface of COQUE_3D cells in a continuous or LAC formulation: code_aster refuses it (CONTACT_94: the centre nodes of QUAD9/TRIA7 shells); use FORMULATION='DISCRETE'",
+        )),
+    }
 }
 
 /// Continuous contact on quadratic quadrangular slave faces in 3D (QUAD8,

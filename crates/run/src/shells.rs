@@ -23,14 +23,17 @@ use aster_mesh::{CellId, Mesh};
 use std::collections::BTreeMap;
 
 fn is_shell(model: &ModelDef, cell: CellId) -> bool {
-    model.cells.get(&cell) == Some(&Modelisation::Dkt)
+    matches!(
+        model.cells.get(&cell),
+        Some(Modelisation::Dkt | Modelisation::Coque3d)
+    )
 }
 
 /// A shell or a beam: a linear elastic structural element here.
 fn is_structural(model: &ModelDef, cell: CellId) -> bool {
     matches!(
         model.cells.get(&cell),
-        Some(Modelisation::Dkt | Modelisation::BeamEuler)
+        Some(Modelisation::Dkt | Modelisation::Coque3d | Modelisation::BeamEuler)
     )
 }
 
