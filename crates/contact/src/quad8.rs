@@ -195,6 +195,21 @@ mod tests {
         );
     }
 
+    /// COQUE_3D QUAD9 faces seen as QUAD8 (`centre_dropped`) keep their
+    /// middles: code_aster's `cfleqa` counts none on a QUAD9.
+    #[test]
+    fn coque3d_faces_keep_their_middles() {
+        let mut z = zone(DiscreteAlgo::Contrainte, vec![]);
+        for c in z.zone.slave.iter_mut().chain(z.zone.master.iter_mut()) {
+            c.centre_dropped = true;
+        }
+        let mut zones = vec![z];
+        assert!(middle_links(&zones).is_empty());
+        remove_middle_nodes(&mut zones);
+        assert_eq!(zones[0].zone.slave_nodes.len(), 8);
+        assert_eq!(zones[0].zone.master_nodes.len(), 8);
+    }
+
     #[test]
     fn penalisation_and_verification_keep_the_middles() {
         let mut zones = vec![zone(DiscreteAlgo::Penalisation { e_n: 1e6 }, vec![])];

@@ -139,6 +139,16 @@ pub(crate) fn efge_elga(
             }
         }
     }
+    if let Some(e) = model
+        .elements()
+        .iter()
+        .find(|e| matches!(e.kind, aster_fem::ElementKind::Coque3d { .. }))
+    {
+        return Err(aster_fem::FemError::Model(format!(
+            "cell {}: EFGE_ELGA of COQUE_3D cells is not computed here (only their stresses by layer, SIGM_ELNO through POST_CHAMP/EXTR_COQUE)",
+            model.cell_name(e.cell)
+        )));
+    }
     aster_fem::post::efge_elga(model, u, &|cell| {
         direction.get(&cell).copied().unwrap_or([1., 0., 0.])
     })
