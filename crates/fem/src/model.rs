@@ -277,11 +277,12 @@ impl Model {
                         )));
                     }
                     let s = section;
-                    if !(s.thickness > 0. && s.thickness.is_finite())
-                        || !(s.drilling > 0. && s.drilling.is_finite())
-                        || !(s.shear_factor > 0. && s.shear_factor.is_finite())
-                        || s.layers == 0
-                    {
+                    let positive = |v: f64| v > 0. && v.is_finite();
+                    let valid = positive(s.thickness)
+                        && positive(s.drilling)
+                        && positive(s.shear_factor)
+                        && s.layers > 0;
+                    if !valid {
                         return Err(FemError::Model(format!(
                             "COQUE_3D on cell {}: thickness {}, COEF_RIGI_DRZ {}, A_CIS {} and {} layer(s): each must be positive",
                             cell_name(el.cell),

@@ -1,9 +1,11 @@
-//! Shell elements (`MODELISATION='DKT'`) in the solvers and CALC_CHAMP:
-//! what a model with shells can run, refused where it cannot (located at
-//! the keyword), and the shells' efforts `EFGE_ELGA` in the frame of
-//! `AFFE_CARA_ELEM/COQUE` (`ANGL_REP`/`VECTEUR`).
+//! Shell elements (`MODELISATION='DKT'`, `'COQUE_3D'`) in the solvers and
+//! CALC_CHAMP: what a model with shells can run, refused where it cannot
+//! (located at the keyword), and the shells' efforts `EFGE_ELGA` in the
+//! frame of `AFFE_CARA_ELEM/COQUE` (`ANGL_REP`/`VECTEUR`).
 //!
-//! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`]).
+//! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`])
+//! and COQUE_3D QUAD9 cells ([`aster_fem::ElementKind::Coque3d`], whose
+//! stresses by layer come from `aster_fem::coque3d::sigm_elno`).
 //! Contact zones on shell cells pair their mid-surfaces, as code_aster does
 //! (`DIST_COQUE='OUI'` subtracts half the slave shell's thickness from the
 //! gap: `crate::contactbridge`, aster-contact's `structural_gap`); a constant
