@@ -133,11 +133,7 @@ mod tests {
         };
         assert_eq!(m.quad4_to_tria3(&[CellId(0)]).unwrap(), 1);
         assert_eq!(m.cells.len(), 6);
-        let nodes: Vec<Vec<u32>> = m
-            .cells
-            .iter()
-            .map(|c| c.nodes.iter().map(|n| n.0 + 1).collect())
-            .collect();
+        let nodes = crate::ops::testmesh::one_based(&m);
         assert_eq!(
             nodes,
             vec![
