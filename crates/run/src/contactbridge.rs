@@ -594,6 +594,7 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
             .iter_mut()
             .for_each(|z| z.geometry.lissage = lissage),
     }
+    coque3d_faces(ex, kw, &mut def)?;
     Ok(def)
 }
 
@@ -610,8 +611,7 @@ fn problem_dim(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<usize, ExecE
 
 /// The zones of a definition resolved on the mesh (row sources).
 pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContact>, ExecError> {
-    let mut def = definition(ex, kw)?;
-    coque3d_faces(ex, kw, &mut def)?;
+    let def = definition(ex, kw)?;
     refuse_loose_gcp(ex, mesh, kw)?;
     let dim = problem_dim(ex, mesh, kw)?;
     refuse_rows_on_quadratic_3d(ex, mesh, kw, dim)?;

@@ -76,3 +76,28 @@ fn efge_elga_of_coque3d_is_an_error() {
     let err = err.expect("an error");
     assert!(err.contains("EFGE_ELGA of COQUE_3D"), "{err}");
 }
+
+/// Continuous contact on a model with COQUE_3D cells is code_aster's
+/// error CONTACT_94 (the centres of QUAD9 shells): an error, not a run.
+#[test]
+fn continuous_contact_with_coque3d_is_code_asters_error() {
+    let t = strip()
+        .replacen(
+            "LINST = DEFI_LIST_REEL(",
+            "MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_MA=(\
+             _F(NOM=\"C1\", MAILLE=\"M1\"), _F(NOM=\"C8\", MAILLE=\"M8\")))\n\
+             CONT = DEFI_CONTACT(MODELE=MO, FORMULATION=\"CONTINUE\", \
+             ZONE=_F(GROUP_MA_MAIT=\"C1\", GROUP_MA_ESCL=\"C8\"))\n\nLINST = DEFI_LIST_REEL(",
+            1,
+        )
+        .replacen(
+            "EXCIT=(_F(CHARGE=CLAMP), _F(CHARGE=TIP)),",
+            "EXCIT=(_F(CHARGE=CLAMP), _F(CHARGE=TIP)),\n    CONTACT=CONT,",
+            1,
+        );
+    assert!(t.contains("CONTACT=CONT"));
+    let (ok, nook, err) = run(&t, "continue");
+    assert_eq!((ok, nook), (0, 0));
+    let err = err.expect("an error");
+    assert!(err.contains("CONTACT_94"), "{err}");
+}
