@@ -49,6 +49,12 @@ fn applies(zones: &[ZoneContact]) -> bool {
     discrete && zones.iter().any(|z| z.zone.geometry.resolve)
 }
 
+/// A QUAD8 cell (not a COQUE_3D QUAD9 seen as one: `cfleqa` counts no
+/// middle node on a QUAD9).
+fn is_quad8(c: &crate::surface::SurfaceCell) -> bool {
+    c.kind == SurfaceKind::Quad8 && !c.centre_dropped
+}
+
 /// The (middle, corner, corner) triples of the QUAD8 cells of the resolved
 /// zones, in code_aster's order (`liexco`: zone, master then slave
 /// surface, cell, edge).
@@ -56,7 +62,7 @@ fn triples(zones: &[ZoneContact]) -> Vec<MiddleLink> {
     let mut out = Vec::new();
     for z in zones.iter().filter(|z| z.zone.geometry.resolve) {
         for cells in [&z.zone.master, &z.zone.slave] {
-            for c in cells.iter().filter(|c| c.kind == SurfaceKind::Quad8) {
+            for c in cells.iter().filter(|c| is_quad8(c)) {
                 for k in 0..4 {
                     out.push(MiddleLink {
                         middle: c.nodes[4 + k],
@@ -114,7 +120,7 @@ pub(crate) fn remove_middle_nodes(zones: &mut [ZoneContact]) {
             .slave
             .iter()
             .chain(&z.zone.master)
-            .filter(|c| c.kind == SurfaceKind::Quad8)
+            .filter(|c| is_quad8(c))
             .flat_map(|c| c.nodes[4..8].iter().copied())
             .collect();
         z.zone.slave_nodes.retain(|n| !middles.contains(n));
@@ -136,6 +142,7 @@ mod tests {
             kind: SurfaceKind::Quad8,
             nodes: (first..first + 8).map(NodeId).collect(),
             sign: 1.0,
+            centre_dropped: false,
         }
     }
 
@@ -186,6 +193,21 @@ mod tests {
             zones[0].zone.master_nodes,
             (8..12).map(NodeId).collect::<Vec<_>>()
         );
+    }
+
+    /// COQUE_3D QUAD9 faces seen as QUAD8 (`centre_dropped`) keep their
+    /// middles: code_aster's `cfleqa` counts none on a QUAD9.
+    #[test]
+    fn coque3d_faces_keep_their_middles() {
+        let mut z = zone(DiscreteAlgo::Contrainte, vec![]);
+        for c in z.zone.slave.iter_mut().chain(z.zone.master.iter_mut()) {
+            c.centre_dropped = true;
+        }
+        let mut zones = vec![z];
+        assert!(middle_links(&zones).is_empty());
+        remove_middle_nodes(&mut zones);
+        assert_eq!(zones[0].zone.slave_nodes.len(), 8);
+        assert_eq!(zones[0].zone.master_nodes.len(), 8);
     }
 
     #[test]

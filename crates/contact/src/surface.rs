@@ -21,6 +21,10 @@ pub struct SurfaceCell {
     /// cell that holds the surface cell (+1 if there is none: then the mesh
     /// orientation, as `MODI_MAILLAGE(ORIE_PEAU=…)` leaves it, is trusted).
     pub sign: f64,
+    /// A COQUE_3D QUAD9 seen through its eight edge nodes
+    /// ([`crate::zone::ZoneGeometry::coque3d_cells`]): a `Quad8` kind that
+    /// is not a QUAD8 cell.
+    pub centre_dropped: bool,
 }
 
 /// A zone whose groups are resolved to cells and nodes.
@@ -101,6 +105,7 @@ impl ResolvedZone {
         let mut slave_points = Vec::new();
         let master = surface_cells(
             mesh,
+            geometry,
             &geometry.master_group,
             "GROUP_MA_MAIT",
             space_dim,
@@ -109,6 +114,7 @@ impl ResolvedZone {
         )?;
         let slave = surface_cells(
             mesh,
+            geometry,
             &geometry.slave_group,
             "GROUP_MA_ESCL",
             space_dim,
@@ -402,6 +408,7 @@ impl ParentIndex {
 
 fn surface_cells(
     mesh: &Mesh,
+    geometry: &ZoneGeometry,
     group: &str,
     keyword: &'static str,
     space_dim: usize,
@@ -442,7 +449,14 @@ fn surface_cells(
                 continue;
             }
         }
-        let kind = SurfaceKind::of(cell.ty)
+        let centre_dropped =
+            cell.ty == aster_mesh::CellType::QUAD9 && geometry.coque3d_cells.contains(&id);
+        let ty = if centre_dropped {
+            aster_mesh::CellType::QUAD8
+        } else {
+            cell.ty
+        };
+        let kind = SurfaceKind::of(ty)
             .filter(|k| k.dim() + 1 == space_dim || (space_dim == 3 && k.dim() == 1))
             .ok_or(ContactError::BadCell {
                 keyword,
@@ -466,6 +480,7 @@ fn surface_cells(
             kind,
             nodes,
             sign,
+            centre_dropped,
         });
     }
     Ok(out)

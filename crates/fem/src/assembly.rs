@@ -219,7 +219,10 @@ fn scatter_columns(
                     |m| FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell))),
                 )?
             }
-            ElementKind::Spring { .. } | ElementKind::Shell { .. } | ElementKind::Beam { .. } => {
+            ElementKind::Spring { .. }
+            | ElementKind::Shell { .. }
+            | ElementKind::Beam { .. }
+            | ElementKind::Coque3d { .. } => {
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;
                 };
@@ -569,5 +572,95 @@ mod tests {
         assert_eq!(&solid[12..15], &[first4, first4 + 1, first4 + 2]);
         assert_eq!(crate::element::element_dofs(&model, CellId(1)).len(), 24);
         check_model_against_dense(model);
+    }
+
+    /// Two COQUE_3D QUAD9 cells side by side: the centre nodes carry DRX
+    /// DRY DRZ alone, each element finds its 51 DOFs (the centre's three
+    /// last), and the assembly is the dense sum of `coque3d::stiffness`.
+    #[test]
+    fn coque3d_centres_carry_rotations_only() {
+        // Nodes 0..15: a 5 × 3 grid (x = 0, 0.5, …, 2; y = 0, 0.5, 1),
+        // slightly warped; cells [0, 2] × [0, 1] and [1, 2] × [0, 1].
+        let mut coords = Vec::new();
+        for j in 0..3 {
+            for i in 0..5 {
+                let (x, y) = (0.5 * i as f64, 0.5 * j as f64);
+                coords.push([x, y, 0.02 * x * y]);
+            }
+        }
+        let id = |i: u32, j: u32| 5 * j + i;
+        let quad9 = |i: u32| {
+            vec![
+                id(i, 0),
+                id(i + 2, 0),
+                id(i + 2, 2),
+                id(i, 2),
+                id(i + 1, 0),
+                id(i + 2, 1),
+                id(i + 1, 2),
+                id(i, 1),
+                id(i + 1, 1),
+            ]
+        };
+        let m = mesh(
+            3,
+            coords,
+            vec![(CellType::QUAD9, quad9(0)), (CellType::QUAD9, quad9(2))],
+        );
+        let material = Elastic::new(2e5, 0.3).unwrap();
+        let kind = ElementKind::Coque3d {
+            material,
+            section: crate::coque3d::Coque3dSection::new(0.05),
+        };
+        let elements = |kinds: [ElementKind; 2]| {
+            kinds
+                .into_iter()
+                .enumerate()
+                .map(|(c, kind)| Element {
+                    cell: CellId(c as u32),
+                    kind,
+                })
+                .collect::<Vec<_>>()
+        };
+        let model = Model::new(m.clone(), elements([kind.clone(), kind.clone()])).unwrap();
+        let dofs = model.dofs();
+        assert_eq!(dofs.len(), 13 * 6 + 2 * 3);
+        use crate::dof::Comp;
+        for centre in [id(1, 1), id(3, 1)] {
+            assert_eq!(
+                dofs.node_comps(NodeId(centre)),
+                &[Comp::DRX, Comp::DRY, Comp::DRZ]
+            );
+            assert_eq!(
+                dofs.index(crate::dof::Dof::new(NodeId(centre), Comp::DX)),
+                None
+            );
+        }
+        assert!(model.is_coque3d(CellId(1)));
+        let e = crate::element::element_dofs(&model, CellId(0));
+        assert_eq!(e.len(), crate::coque3d::NDDL);
+        let c = dofs.node_first(NodeId(id(1, 1))).unwrap();
+        assert_eq!(&e[48..], &[c, c + 1, c + 2]);
+        check_model_against_dense(model);
+        // A centre used by another element is refused.
+        let mut m2 = m.clone();
+        m2.cells.push(aster_mesh::Cell {
+            ty: CellType::POI1,
+            nodes: vec![NodeId(id(1, 1))],
+        });
+        m2.cell_names.push("P1".into());
+        let mut els = elements([kind.clone(), kind]);
+        els.push(Element {
+            cell: CellId(2),
+            kind: ElementKind::Spring {
+                stiffness: vec![1.0; 6],
+                frame: crate::model::Frame::Global,
+            },
+        });
+        let err = Model::new(m2, els).unwrap_err();
+        assert!(
+            format!("{err}").contains("centre node of COQUE_3D cell M1"),
+            "{err}"
+        );
     }
 }

@@ -39,9 +39,10 @@
 //! ([`pressure_load`], `fpres`). docs/fem.md lists the routines and the
 //! measurements.
 //!
-//! Numerics only: no keyword is read here. The runner does not use this
-//! element yet (a central node carrying rotations only is not part of its
-//! DOF numbering), so `MODELISATION='COQUE_3D'` is still refused there.
+//! Numerics only: no keyword is read here. The model carries it as
+//! [`crate::ElementKind::Coque3d`] (the central node numbered with its
+//! three rotations alone); the runner wires `MODELISATION='COQUE_3D'` on
+//! QUAD9 cells to it.
 
 use crate::material::Elastic;
 

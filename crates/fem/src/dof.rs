@@ -81,9 +81,12 @@ impl fmt::Display for Dof {
 
 /// The numbering of the displacement unknowns: only nodes carried by an
 /// element of the model get DOFs. Each numbered node has its own component
-/// set, which always begins with the model's translations (DX DY in plane
+/// set, which begins with the model's translations (DX DY in plane
 /// problems, DX DY DZ in 3D): the nodes of continuum elements have only
 /// those, the nodes of shell elements the rotations DRX DRY DRZ after them.
+/// The one exception is the centre node of a COQUE_3D cell, which carries
+/// DRX DRY DRZ alone (code_aster's `MEC3QU9H`): code that reads a node's
+/// translations by position checks [`DofNumbering::node_comps`].
 /// Numbering is node-major, so the DOFs of a node are contiguous and an
 /// element that uses the first `k` components of its nodes finds them at
 /// `node_first(n)..node_first(n) + k`.
@@ -110,8 +113,10 @@ impl DofNumbering {
     }
 
     /// Numbers, on each node with `set[node] = Some(s)`, the components
-    /// `sets[s]`, in node order. Every set must begin with `sets[0]` (the
-    /// translations), so that an element using only those finds them first.
+    /// `sets[s]`, in node order. Every set begins with `sets[0]` (the
+    /// translations), so that an element using only those finds them first
+    /// — except a set of rotations alone (COQUE_3D centres), which only
+    /// the element owning the node uses.
     pub fn per_node(sets: Vec<Vec<Comp>>, set: &[Option<u8>]) -> DofNumbering {
         let mut node_first = vec![NONE; set.len()];
         let mut node_set = vec![0u8; set.len()];

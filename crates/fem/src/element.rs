@@ -33,7 +33,13 @@ pub fn element_dofs_into(model: &Model, cell: CellId, v: &mut Vec<usize>) {
     for &n in nodes {
         // Every node of a model element is numbered (Model::new).
         let first = model.dofs().node_first(n).unwrap_or(0);
-        v.extend(first..first + ncomp);
+        // A COQUE_3D centre carries its three rotations alone.
+        let k = if ncomp == 6 {
+            model.dofs().node_comps(n).len().min(6)
+        } else {
+            ncomp
+        };
+        v.extend(first..first + k);
     }
 }
 
@@ -289,7 +295,35 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
                 .map(Some)
                 .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
         }
+        ElementKind::Coque3d { material, section } => {
+            coque3d_stiffness(model.mesh(), el.cell, material, section)
+                .map(Some)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+        }
     }
+}
+
+/// The eight edge nodes of a COQUE_3D QUAD9 cell (its geometry; the
+/// centre's position plays no part).
+pub fn coque3d_coords(mesh: &Mesh, cell: CellId) -> Result<[[f64; 3]; 8], String> {
+    let c = mesh.cell(cell);
+    if c.ty != CellType::QUAD9 {
+        return Err(format!("no COQUE_3D element on a {}", c.ty.name()));
+    }
+    Ok(std::array::from_fn(|i| mesh.coord(c.nodes[i])))
+}
+
+/// The global stiffness of a COQUE_3D cell (51×51: DX…DRZ of the eight
+/// edge nodes, then DRX DRY DRZ of the centre).
+pub fn coque3d_stiffness(
+    mesh: &Mesh,
+    cell: CellId,
+    material: &Elastic,
+    section: &crate::coque3d::Coque3dSection,
+) -> Result<DMatrix<f64>, String> {
+    let k = crate::coque3d::stiffness(&coque3d_coords(mesh, cell)?, material, section)?;
+    let n = crate::coque3d::NDDL;
+    Ok(DMatrix::from_row_slice(n, n, &k))
 }
 
 /// The global stiffness of a beam (`POU_D_E` on SEG2), node-major DX DY

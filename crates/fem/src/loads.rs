@@ -200,10 +200,11 @@ impl Loads {
                         // its normal (`shell_pressure_weights`); forces and
                         // pressures given point by point are not reproduced.
                         let constant_pressure = matches!(item.load, Load::Pressure { .. });
-                        let facet = matches!(c.ty, CellType::TRIA3 | CellType::QUAD4);
+                        let facet = matches!(c.ty, CellType::TRIA3 | CellType::QUAD4)
+                            || model.is_coque3d(*cell);
                         if !(constant_pressure && facet) {
                             return Err(FemError::Model(format!(
-                                "distributed load on shell cell {}: only a constant pressure (PRES_REP) on TRIA3/QUAD4 shells is supported",
+                                "distributed load on shell cell {}: only a constant pressure (PRES_REP) on TRIA3/QUAD4 (DKT) and QUAD9 (COQUE_3D) shells is supported",
                                 model.cell_name(*cell)
                             )));
                         }
@@ -329,6 +330,23 @@ impl Loads {
                         |k| [forces[k][0] * m, forces[k][1] * m, forces[k][2] * m],
                         &mut f,
                     )?;
+                }
+                Load::Pressure { cell, pressure } if model.is_coque3d(*cell) => {
+                    // COQUE_3D (`te0403`): the pressure along each node's
+                    // normal, on the translations of the edge nodes.
+                    let p = pressure * item.mult.eval(t)?;
+                    let err = |m: String| {
+                        FemError::Model(format!(
+                            "pressure on COQUE_3D cell {}: {m}",
+                            model.cell_name(*cell)
+                        ))
+                    };
+                    let xyz = crate::element::coque3d_coords(model.mesh(), *cell).map_err(err)?;
+                    let fe = crate::coque3d::pressure_load(&xyz, &[p; 8]).map_err(err)?;
+                    let dofs = crate::element::element_dofs(model, *cell);
+                    for (&i, v) in dofs.iter().zip(fe) {
+                        f[i] += v;
+                    }
                 }
                 Load::Pressure { cell, pressure } if model.element_comps(*cell) == 6 => {
                     let p = pressure * item.mult.eval(t)?;

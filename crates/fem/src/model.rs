@@ -49,13 +49,22 @@ pub enum ElementKind {
         material: Elastic,
         section: crate::beam::BeamSection,
     },
+    /// code_aster's `COQUE_3D` on QUAD9 ([`crate::coque3d`]), linear
+    /// elastic: its eight edge nodes carry DX DY DZ DRX DRY DRZ, its centre
+    /// node DRX DRY DRZ only. 3D models only.
+    Coque3d {
+        material: Elastic,
+        section: crate::coque3d::Coque3dSection,
+    },
 }
 
 impl ElementKind {
     /// Whether the element's nodes carry the rotations DRX DRY DRZ.
     pub fn has_rotations(&self) -> bool {
         match self {
-            ElementKind::Shell { .. } | ElementKind::Beam { .. } => true,
+            ElementKind::Shell { .. } | ElementKind::Beam { .. } | ElementKind::Coque3d { .. } => {
+                true
+            }
             ElementKind::Spring { stiffness, .. } => stiffness.len() == 6,
             _ => false,
         }
@@ -225,7 +234,9 @@ impl Model {
                     }
                 }
                 ElementKind::Boundary => {}
-                ElementKind::Shell { material, .. } | ElementKind::Beam { material, .. }
+                ElementKind::Shell { material, .. }
+                | ElementKind::Beam { material, .. }
+                | ElementKind::Coque3d { material, .. }
                     if !material.is_isotropic() =>
                 {
                     return Err(FemError::Model(format!(
@@ -253,6 +264,32 @@ impl Model {
                             "shell on cell {} has drilling coefficient (COEF_RIGI_DRZ) {}: only code_aster's positive drilling spring is implemented",
                             cell_name(el.cell),
                             section.drilling
+                        )));
+                    }
+                    shell = true;
+                }
+                ElementKind::Coque3d { section, .. } => {
+                    if cell.ty != CellType::QUAD9 {
+                        return Err(FemError::Model(format!(
+                            "cell {} is a {}: the COQUE_3D element exists here on QUAD9 cells only",
+                            cell_name(el.cell),
+                            cell.ty.name()
+                        )));
+                    }
+                    let s = section;
+                    let positive = |v: f64| v > 0. && v.is_finite();
+                    let valid = positive(s.thickness)
+                        && positive(s.drilling)
+                        && positive(s.shear_factor)
+                        && s.layers > 0;
+                    if !valid {
+                        return Err(FemError::Model(format!(
+                            "COQUE_3D on cell {}: thickness {}, COEF_RIGI_DRZ {}, A_CIS {} and {} layer(s): each must be positive",
+                            cell_name(el.cell),
+                            s.thickness,
+                            s.drilling,
+                            s.shear_factor,
+                            s.layers
                         )));
                     }
                     shell = true;
@@ -305,22 +342,45 @@ impl Model {
             )));
         }
         // Component set per node: 0 the translations, 1 with the rotations
-        // of the shells' nodes.
+        // of the shells' nodes, 2 the rotations alone (the centre of a
+        // COQUE_3D cell, which no other element may use).
         let mut set: Vec<Option<u8>> = vec![None; mesh.coords.len()];
         let mut shells = std::collections::BTreeSet::new();
+        let mut centres = Vec::new();
         for el in &elements {
             let rot = el.kind.has_rotations();
             if rot {
                 shells.insert(el.cell);
             }
-            for n in &mesh.cells[el.cell.0 as usize].nodes {
+            let nodes = &mesh.cells[el.cell.0 as usize].nodes;
+            let edge = match el.kind {
+                ElementKind::Coque3d { .. } => {
+                    centres.push((nodes[nodes.len() - 1], el.cell));
+                    &nodes[..nodes.len() - 1]
+                }
+                _ => &nodes[..],
+            };
+            for n in edge {
                 let s = &mut set[n.0 as usize];
                 *s = Some(s.unwrap_or(0).max(rot as u8));
             }
         }
+        for &(n, cell) in &centres {
+            let s = &mut set[n.0 as usize];
+            if s.is_some_and(|s| s != 2) {
+                return Err(FemError::Model(format!(
+                    "the centre node of COQUE_3D cell {} is also a node of another element: it carries the rotations alone here",
+                    cell_name(cell)
+                )));
+            }
+            *s = Some(2);
+        }
         let mut sets = vec![Comp::translations(dim).to_vec()];
         if shell {
             sets.push(Comp::ALL.to_vec());
+        }
+        if !centres.is_empty() {
+            sets.push(vec![Comp::DRX, Comp::DRY, Comp::DRZ]);
         }
         let dofs = DofNumbering::per_node(sets, &set);
         Ok(Model {
@@ -378,11 +438,20 @@ impl Model {
         }
     }
 
-    /// Whether the model has shell elements (`DKT`).
+    /// Whether `cell` carries a COQUE_3D element (the only element with
+    /// rotations on a QUAD9 cell).
+    pub fn is_coque3d(&self, cell: CellId) -> bool {
+        self.shells.contains(&cell) && self.mesh.cell(cell).ty == CellType::QUAD9
+    }
+
+    /// Whether the model has shell elements (`DKT`, `COQUE_3D`).
     pub fn has_shells(&self) -> bool {
-        self.elements
-            .iter()
-            .any(|e| matches!(e.kind, ElementKind::Shell { .. }))
+        self.elements.iter().any(|e| {
+            matches!(
+                e.kind,
+                ElementKind::Shell { .. } | ElementKind::Coque3d { .. }
+            )
+        })
     }
 
     /// Whether the model has beams (`POU_D_E`).

@@ -256,6 +256,48 @@ pub fn shell_sigm_elno(
             points,
         });
     }
+    out.extend(coque3d_sigm_elno_at(model, u, direction, level)?);
+    Ok(out)
+}
+
+/// `SIGM_ELNO` of the COQUE_3D cells at one sub-point (layer `layer`,
+/// level INF/MOY/SUP: sub-point 3·(layer − 1) + level of
+/// [`crate::coque3d::sigm_elno`]), SIXX SIYY SIZZ SIXY SIXZ SIYZ at the
+/// nine nodes in the user's frame (`direction`).
+fn coque3d_sigm_elno_at(
+    model: &Model,
+    u: &[f64],
+    direction: &dyn Fn(CellId) -> [f64; 3],
+    level: ShellLevel,
+) -> Result<Vec<CellValues>, FemError> {
+    let mut out = Vec::new();
+    for el in model.elements() {
+        let ElementKind::Coque3d { material, section } = &el.kind else {
+            continue;
+        };
+        let err = |m: String| cell_error(model, el.cell, m);
+        if level.layer == 0 || level.layer > section.layers {
+            return Err(err(format!(
+                "layer {} asked of a shell with {} layer(s) (COQUE_NCOU)",
+                level.layer, section.layers
+            )));
+        }
+        let lvl = (level.position * 2.).round().clamp(0., 2.) as usize;
+        let sub = 3 * (level.layer as usize - 1) + lvl;
+        let xyz = crate::element::coque3d_coords(model.mesh(), el.cell).map_err(err)?;
+        let dofs = element_dofs(model, el.cell);
+        let mut ue = [0.; crate::coque3d::NDDL];
+        for (a, &i) in dofs.iter().enumerate() {
+            ue[a] = u[i];
+        }
+        let nodes = crate::coque3d::sigm_elno(&xyz, material, section, &ue, direction(el.cell))
+            .map_err(err)?;
+        out.push(CellValues {
+            cell: el.cell,
+            names: vec!["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"],
+            points: nodes.iter().map(|n| n[sub].to_vec()).collect(),
+        });
+    }
     Ok(out)
 }
 
@@ -305,7 +347,10 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
             }
             // Shells' stresses are by layer (code_aster's sub-points), not
             // computed: their efforts are [`efge_elga`]'s.
-            ElementKind::Boundary | ElementKind::Shell { .. } | ElementKind::Beam { .. } => {}
+            ElementKind::Boundary
+            | ElementKind::Shell { .. }
+            | ElementKind::Beam { .. }
+            | ElementKind::Coque3d { .. } => {}
         }
     }
     Ok(out)
@@ -402,6 +447,11 @@ pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
             }
             ElementKind::Beam { material, section } => {
                 crate::element::beam_stiffness(model.mesh(), el.cell, material, section)
+                    .map_err(|m| cell_error(model, el.cell, m))?
+                    * ue
+            }
+            ElementKind::Coque3d { material, section } => {
+                crate::element::coque3d_stiffness(model.mesh(), el.cell, material, section)
                     .map_err(|m| cell_error(model, el.cell, m))?
                     * ue
             }

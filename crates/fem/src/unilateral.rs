@@ -120,7 +120,7 @@ impl State<'_> {
     pub fn node_displacement(&self, node: NodeId) -> [f64; 3] {
         let mut u = [0.0; 3];
         if let Some(first) = self.dofs.node_first(node) {
-            for (k, c) in self.dofs.comps().iter().enumerate() {
+            for (k, c) in self.dofs.node_comps(node).iter().enumerate() {
                 let slot = match c {
                     crate::dof::Comp::DX => 0,
                     crate::dof::Comp::DY => 1,

@@ -37,6 +37,10 @@ pub enum Modelisation {
     /// `DKT`: thin-shell facets (DKT on TRIA3, DKQ on QUAD4) with the
     /// rotations DRX DRY DRZ on their nodes.
     Dkt,
+    /// `COQUE_3D`: code_aster's degenerated-solid shell on QUAD9
+    /// (`MEC3QU9H`, `aster_fem::coque3d`); its centre node carries the
+    /// rotations alone.
+    Coque3d,
     /// `PLAN_JOINT`: plane joint elements on QUAD4 (`MFPLQU4`,
     /// `aster_fem::joint`) with a cohesive law.
     PlaneJoint,
@@ -54,6 +58,7 @@ impl Modelisation {
             "DIS_TR" => Modelisation::DiscreteRot3D,
             "POU_D_E" => Modelisation::BeamEuler,
             "DKT" => Modelisation::Dkt,
+            "COQUE_3D" => Modelisation::Coque3d,
             "PLAN_JOINT" => Modelisation::PlaneJoint,
             _ => return None,
         })
@@ -73,7 +78,7 @@ impl Modelisation {
         }
     }
 
-    pub const KEYWORDS: [&'static str; 14] = [
+    pub const KEYWORDS: [&'static str; 15] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -88,6 +93,7 @@ impl Modelisation {
         "DIS_TR",
         "POU_D_E",
         "PLAN_JOINT",
+        "COQUE_3D",
     ];
 
     /// Space dimension of the displacement.
@@ -97,7 +103,8 @@ impl Modelisation {
             | Modelisation::Discrete3D
             | Modelisation::DiscreteRot3D
             | Modelisation::BeamEuler
-            | Modelisation::Dkt => 3,
+            | Modelisation::Dkt
+            | Modelisation::Coque3d => 3,
             _ => 2,
         }
     }
@@ -113,7 +120,10 @@ impl Modelisation {
     pub fn has_rotations(self) -> bool {
         matches!(
             self,
-            Modelisation::Dkt | Modelisation::DiscreteRot3D | Modelisation::BeamEuler
+            Modelisation::Dkt
+                | Modelisation::Coque3d
+                | Modelisation::DiscreteRot3D
+                | Modelisation::BeamEuler
         )
     }
 }
@@ -182,9 +192,20 @@ impl PartialEq for SuperCell {
 }
 
 impl ModelDef {
-    /// Whether the model has shell elements (`DKT`).
+    /// Whether the model has shell elements (`DKT`, `COQUE_3D`).
     pub fn has_shells(&self) -> bool {
-        self.cells.values().any(|&m| m == Modelisation::Dkt)
+        self.cells
+            .values()
+            .any(|&m| matches!(m, Modelisation::Dkt | Modelisation::Coque3d))
+    }
+
+    /// The cells carrying `COQUE_3D`.
+    pub fn coque3d_cells(&self) -> std::collections::BTreeSet<CellId> {
+        self.cells
+            .iter()
+            .filter(|(_, &m)| m == Modelisation::Coque3d)
+            .map(|(&c, _)| c)
+            .collect()
     }
 
     /// Whether some nodes carry rotations (`DKT`, `POU_D_E`, `DIS_TR`).

@@ -594,6 +594,7 @@ pub fn definition(ex: &Executor, kw: &Keywords) -> Result<ContactDefinition, Exe
             .iter_mut()
             .for_each(|z| z.geometry.lissage = lissage),
     }
+    coque3d_faces(ex, kw, &mut def)?;
     Ok(def)
 }
 
@@ -627,6 +628,35 @@ pub fn zones(ex: &Executor, mesh: &Mesh, kw: &Keywords) -> Result<Vec<ZoneContac
     resolve_pene_maxi(mesh, &mut zones);
     lac_setup(ex, mesh, kw, &mut zones)?;
     Ok(zones)
+}
+
+/// The COQUE_3D cells of the definition's model: discrete contact sees
+/// them through their edge nodes (`ZoneGeometry::coque3d_cells`, code_aster's
+/// `cflecq`); the continuous formulations refuse them, as code_aster does
+/// (`CONTACT_94`, in `dfc_read_cont`/`dfc_read_lac`).
+fn coque3d_faces(
+    ex: &Executor,
+    kw: &Keywords,
+    def: &mut ContactDefinition,
+) -> Result<(), ExecError> {
+    let Some(model) = kw.concept("MODELE").map(|c| ex.model(c)).transpose()? else {
+        return Ok(());
+    };
+    let cells = model.coque3d_cells();
+    if cells.is_empty() {
+        return Ok(());
+    }
+    match def {
+        ContactDefinition::Discrete(d) => {
+            for z in &mut d.zones {
+                z.geometry.coque3d_cells = cells.clone();
+            }
+            Ok(())
+        }
+        ContactDefinition::Continue(_) => Err(ExecError::new(
+            "DEFI_CONTACT: a contact surface of COQUE_3D cells in a continuous or LAC formulation: code_aster refuses it (CONTACT_94: the centre nodes of QUAD9/TRIA7 shells); use FORMULATION='DISCRETE'",
+        )),
+    }
 }
 
 /// Continuous contact on quadratic quadrangular slave faces in 3D (QUAD8,

@@ -361,7 +361,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "DEFI_CONT",
             kw,
             "MODELE",
-            "not supported yet: code_aster 17's mortar contact on a model with shells (DKT): reproduced on 2D models (D_PLAN, C_PLAN, AXIS) and 3D solids",
+            "not supported yet: code_aster 17's mortar contact on a model with shells (DKT, COQUE_3D): reproduced on 2D models (D_PLAN, C_PLAN, AXIS) and 3D solids",
         ));
     }
     let axis = model

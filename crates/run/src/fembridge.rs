@@ -108,6 +108,7 @@ fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
         | Modelisation::DiscreteRot3D
         | Modelisation::BeamEuler
         | Modelisation::Dkt
+        | Modelisation::Coque3d
         | Modelisation::PlaneJoint => None,
     }
 }
@@ -128,10 +129,13 @@ pub fn build_model(
         }
     }
     let mut shells: BTreeMap<aster_mesh::CellId, aster_fem::ShellSection> = BTreeMap::new();
+    let mut coque3d: BTreeMap<aster_mesh::CellId, aster_fem::coque3d::Coque3dSection> =
+        BTreeMap::new();
     if let Some(c) = cara {
         for s in &c.shells {
             for &cell in &s.cells {
                 shells.insert(cell, s.section);
+                coque3d.insert(cell, s.coque3d_section());
             }
         }
     }
@@ -191,6 +195,22 @@ pub fn build_model(
             elements.push(Element {
                 cell,
                 kind: ElementKind::Shell {
+                    material: material_of(cell)?,
+                    section,
+                },
+            });
+            continue;
+        }
+        if m == Modelisation::Coque3d {
+            let section = coque3d.get(&cell).copied().ok_or_else(|| {
+                ExecError::new(format!(
+                    "cell {} carries a COQUE_3D shell element but no section: give AFFE_CARA_ELEM/COQUE with EPAIS (and CARA_ELEM to the solver)",
+                    crate::select::cell_name(mesh, cell)
+                ))
+            })?;
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Coque3d {
                     material: material_of(cell)?,
                     section,
                 },

@@ -1,9 +1,11 @@
-//! Shell elements (`MODELISATION='DKT'`) in the solvers and CALC_CHAMP:
-//! what a model with shells can run, refused where it cannot (located at
-//! the keyword), and the shells' efforts `EFGE_ELGA` in the frame of
-//! `AFFE_CARA_ELEM/COQUE` (`ANGL_REP`/`VECTEUR`).
+//! Shell elements (`MODELISATION='DKT'`, `'COQUE_3D'`) in the solvers and
+//! CALC_CHAMP: what a model with shells can run, refused where it cannot
+//! (located at the keyword), and the shells' efforts `EFGE_ELGA` in the
+//! frame of `AFFE_CARA_ELEM/COQUE` (`ANGL_REP`/`VECTEUR`).
 //!
-//! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`]).
+//! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`])
+//! and COQUE_3D QUAD9 cells ([`aster_fem::ElementKind::Coque3d`], whose
+//! stresses by layer come from `aster_fem::coque3d::sigm_elno`).
 //! Contact zones on shell cells pair their mid-surfaces, as code_aster does
 //! (`DIST_COQUE='OUI'` subtracts half the slave shell's thickness from the
 //! gap: `crate::contactbridge`, aster-contact's `structural_gap`); a constant
@@ -23,14 +25,17 @@ use aster_mesh::{CellId, Mesh};
 use std::collections::BTreeMap;
 
 fn is_shell(model: &ModelDef, cell: CellId) -> bool {
-    model.cells.get(&cell) == Some(&Modelisation::Dkt)
+    matches!(
+        model.cells.get(&cell),
+        Some(Modelisation::Dkt | Modelisation::Coque3d)
+    )
 }
 
 /// A shell or a beam: a linear elastic structural element here.
 fn is_structural(model: &ModelDef, cell: CellId) -> bool {
     matches!(
         model.cells.get(&cell),
-        Some(Modelisation::Dkt | Modelisation::BeamEuler)
+        Some(Modelisation::Dkt | Modelisation::Coque3d | Modelisation::BeamEuler)
     )
 }
 
@@ -135,6 +140,16 @@ pub(crate) fn efge_elga(
                 direction.insert(cell, s.direction);
             }
         }
+    }
+    if let Some(e) = model
+        .elements()
+        .iter()
+        .find(|e| matches!(e.kind, aster_fem::ElementKind::Coque3d { .. }))
+    {
+        return Err(aster_fem::FemError::Model(format!(
+            "cell {}: EFGE_ELGA of COQUE_3D cells is not computed here (only their stresses by layer, SIGM_ELNO through POST_CHAMP/EXTR_COQUE)",
+            model.cell_name(e.cell)
+        )));
     }
     aster_fem::post::efge_elga(model, u, &|cell| {
         direction.get(&cell).copied().unwrap_or([1., 0., 0.])

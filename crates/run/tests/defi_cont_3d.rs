@@ -218,7 +218,7 @@ fn what_is_not_reproduced_in_3d_is_refused_at_its_keyword() {
         .expect("must be refused")
         .to_string();
     assert!(
-        e.contains("shells (DKT)") && e.contains("shells.comm:5:"),
+        e.contains("shells (DKT, COQUE_3D)") && e.contains("shells.comm:5:"),
         "{e}"
     );
     // TRIA7 faces: code_aster's pairing has none (`cellSetType`).

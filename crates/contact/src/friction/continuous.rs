@@ -723,7 +723,7 @@ impl ContinuousFriction {
     fn start_displacement(&self, state: &State, n: NodeId) -> [f64; 3] {
         let mut u = [0.0; 3];
         if let Some(first) = state.dofs.node_first(n) {
-            for (k, c) in state.dofs.comps().iter().enumerate() {
+            for (k, c) in state.dofs.node_comps(n).iter().enumerate() {
                 let slot = match c {
                     Comp::DX => 0,
                     Comp::DY => 1,

@@ -1,5 +1,6 @@
 //! `CREA_MAILLAGE(CREA_POI1=…)`: point cells on nodes, and
-//! `MODI_MAILLE(OPTION='QUAD_TRIA3')`: quadrangles cut into triangles.
+//! `MODI_MAILLE(OPTION='QUAD_TRIA3')`: quadrangles (QUAD4, QUAD8, QUAD9)
+//! cut into triangles.
 
 use crate::ops::rebuild::Namer;
 use crate::{Cell, CellId, CellType, Mesh, NodeId};
@@ -33,43 +34,49 @@ impl Mesh {
     }
 
     /// `QUAD_TRIA3`: each selected QUAD4 (1 2 3 4) becomes the TRIA3s
-    /// (1 2 3) and (3 4 1), in place (code_aster's cutting table); the
+    /// (1 2 3) and (3 4 1), each QUAD8 or QUAD9 the six TRIA3s (1 5 8)
+    /// (5 2 6) (6 3 7) (7 4 8) (5 7 8) (5 6 7) of its edge nodes (a QUAD9's
+    /// centre is left in no cell, as code_aster's `irgmtb` table does: "as a
+    /// QUAD8, DX DY DZ being unknown on node 9 in COQUE_3D"), in place; the
     /// other cells are kept. The pieces get fresh names and belong to the
-    /// groups of their quadrangle. Returns how many quadrangles were cut;
-    /// a selected QUAD8/QUAD9 is an error (code_aster cuts it into six
-    /// triangles, which is not done here).
+    /// groups of their quadrangle. Returns how many quadrangles were cut.
     pub fn quad4_to_tria3(&mut self, selected: &[CellId]) -> Result<usize, crate::MeshError> {
         let mut cut = vec![false; self.cells.len()];
         for &c in selected {
-            match self.cell(c).ty {
-                CellType::QUAD4 => cut[c.0 as usize] = true,
-                CellType::QUAD8 | CellType::QUAD9 => {
-                    return Err(crate::MeshError::Operation(format!(
-                        "MODI_MAILLE/QUAD_TRIA3: cell {} is a {}; only QUAD4 cells are cut into triangles here",
-                        self.cell_names[c.0 as usize],
-                        self.cell(c).ty.name()
-                    )))
-                }
-                _ => {}
+            if matches!(
+                self.cell(c).ty,
+                CellType::QUAD4 | CellType::QUAD8 | CellType::QUAD9
+            ) {
+                cut[c.0 as usize] = true;
             }
         }
         let count = cut.iter().filter(|c| **c).count();
+        // code_aster's `irgmtb` tables (1-based node numbers).
+        const QUAD4: [[usize; 3]; 2] = [[1, 2, 3], [3, 4, 1]];
+        const QUAD8: [[usize; 3]; 6] = [
+            [1, 5, 8],
+            [5, 2, 6],
+            [6, 3, 7],
+            [7, 4, 8],
+            [5, 7, 8],
+            [5, 6, 7],
+        ];
         self.rewrite_cells(|id, cell| {
-            if cut[id.0 as usize] {
-                let n = &cell.nodes;
-                vec![
-                    Cell {
-                        ty: CellType::TRIA3,
-                        nodes: vec![n[0], n[1], n[2]],
-                    },
-                    Cell {
-                        ty: CellType::TRIA3,
-                        nodes: vec![n[2], n[3], n[0]],
-                    },
-                ]
-            } else {
-                vec![cell.clone()]
+            if !cut[id.0 as usize] {
+                return vec![cell.clone()];
             }
+            let table: &[[usize; 3]] = if cell.ty == CellType::QUAD4 {
+                &QUAD4
+            } else {
+                &QUAD8
+            };
+            table
+                .iter()
+                .map(|t| Cell {
+                    ty: CellType::TRIA3,
+                    nodes: t.iter().map(|&k| cell.nodes[k - 1]).collect(),
+                })
+                .collect()
         });
         Ok(count)
     }
@@ -108,5 +115,36 @@ mod tests {
         );
         assert_eq!(m.group_ma("EDGE").unwrap().members, vec![CellId(3)]);
         assert_eq!(m.cell_names[3], "M3");
+    }
+
+    /// A QUAD9 becomes code_aster's six TRIA3 of its edge nodes.
+    #[test]
+    fn quad9_is_cut_into_six_triangles_of_its_edge_nodes() {
+        let mut m = Mesh {
+            dim: 2,
+            node_names: (1..=9).map(|i| format!("N{i}")).collect(),
+            cell_names: vec!["Q".into()],
+            coords: vec![[0.0; 3]; 9],
+            cells: vec![Cell {
+                ty: CellType::QUAD9,
+                nodes: (0..9).map(NodeId).collect(),
+            }],
+            ..Mesh::default()
+        };
+        assert_eq!(m.quad4_to_tria3(&[CellId(0)]).unwrap(), 1);
+        assert_eq!(m.cells.len(), 6);
+        let nodes = crate::ops::testmesh::one_based(&m);
+        assert_eq!(
+            nodes,
+            vec![
+                vec![1, 5, 8],
+                vec![5, 2, 6],
+                vec![6, 3, 7],
+                vec![7, 4, 8],
+                vec![5, 7, 8],
+                vec![5, 6, 7]
+            ]
+        );
+        assert!(m.cells.iter().all(|c| c.ty == CellType::TRIA3));
     }
 }

@@ -723,11 +723,7 @@ mod tests {
         assert_eq!(r.coords[4], [0.5, 0.5, 0.0]);
         assert_eq!(r.coords[5], [0.0, 0.5, 0.0]);
         assert_eq!(r.coords.len(), 6);
-        let nodes: Vec<Vec<u32>> = r
-            .cells
-            .iter()
-            .map(|c| c.nodes.iter().map(|n| n.0 + 1).collect())
-            .collect();
+        let nodes = crate::ops::testmesh::one_based(&r);
         assert_eq!(
             nodes,
             vec![vec![1, 4, 6], vec![2, 5, 4], vec![3, 6, 5], vec![4, 5, 6]]

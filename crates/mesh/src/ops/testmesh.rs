@@ -70,3 +70,11 @@ pub(crate) fn two_quads() -> Mesh {
         ],
     }
 }
+
+/// The cells' node numbers, 1-based (code_aster's tables), for assertions.
+pub(crate) fn one_based(m: &Mesh) -> Vec<Vec<u32>> {
+    m.cells
+        .iter()
+        .map(|c| c.nodes.iter().map(|n| n.0 + 1).collect())
+        .collect()
+}

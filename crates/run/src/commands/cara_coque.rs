@@ -1,5 +1,6 @@
-//! `AFFE_CARA_ELEM/COQUE`: the sections of the thin-shell (`DKT`) cells —
-//! thickness `EPAIS`, drilling coefficient `COEF_RIGI_DRZ` — and the
+//! `AFFE_CARA_ELEM/COQUE`: the sections of the shell cells (`DKT`,
+//! `COQUE_3D`) — thickness `EPAIS`, drilling coefficient `COEF_RIGI_DRZ`,
+//! COQUE_3D's `A_CIS` and `COQUE_NCOU` — and the
 //! reference direction of their efforts (`ANGL_REP` or `VECTEUR`: the x
 //! axis of the user's frame is its projection on each facet, code_aster's
 //! `coqrep`).
@@ -10,7 +11,8 @@
 //! bending), `INER_ROTA`, `MODI_METRIQUE='OUI'` (COQUE_3D only).
 //! `COQUE_NCOU` (the layers of the stresses through the thickness) and
 //! `A_CIS` (the shear coefficient of DST/Q4G) do not change a DKT's
-//! stiffness: accepted.
+//! stiffness: accepted; a COQUE_3D integrates its stiffness layer by
+//! layer and uses `A_CIS` for its transverse shears.
 
 use crate::executor::Executor;
 use crate::select;
@@ -29,7 +31,23 @@ pub struct ShellCara {
     pub direction: [f64; 3],
     /// `COQUE_NCOU`: the layers of the stresses through the thickness
     /// (sub-points of `SIGM_ELNO`, `POST_CHAMP/EXTR_COQUE`); default 1.
+    /// COQUE_3D also integrates its stiffness layer by layer.
     pub layers: u32,
+    /// `A_CIS`: the transverse shear factor of COQUE_3D (code_aster's
+    /// default `0.8333333`); a DKT's stiffness does not use it.
+    pub shear_factor: f64,
+}
+
+impl ShellCara {
+    /// The section of a COQUE_3D cell of this occurrence.
+    pub fn coque3d_section(&self) -> aster_fem::coque3d::Coque3dSection {
+        aster_fem::coque3d::Coque3dSection {
+            thickness: self.section.thickness,
+            drilling: self.section.drilling,
+            shear_factor: self.shear_factor,
+            layers: self.layers,
+        }
+    }
 }
 
 /// The `COQUE` keywords AFFE_CARA_ELEM reads (`crate::support`).
@@ -119,11 +137,25 @@ pub(crate) fn shells(
         let cells = select::cells(occ, mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/COQUE: {e}")))?;
         if let Some(bad) = select::misfit(mesh, &cells, |c| {
-            matches!(c.ty, CellType::TRIA3 | CellType::QUAD4)
+            matches!(
+                c.ty,
+                CellType::TRIA3 | CellType::QUAD4 | CellType::QUAD9 | CellType::TRIA7
+            )
         }) {
             return Err(err(
                 "GROUP_MA",
-                format!("COQUE applies to the DKT cells (TRIA3, QUAD4), but {bad}"),
+                format!(
+                    "COQUE applies to the DKT cells (TRIA3, QUAD4) and the COQUE_3D cells (QUAD9, TRIA7), but {bad}"
+                ),
+            ));
+        }
+        let shear_factor = occ
+            .f64("A_CIS")
+            .unwrap_or(aster_fem::coque3d::DEFAULT_SHEAR_FACTOR);
+        if !(shear_factor > 0. && shear_factor.is_finite()) {
+            return Err(err(
+                "A_CIS",
+                format!("A_CIS = {shear_factor}: a shear factor must be positive"),
             ));
         }
         out.push(ShellCara {
@@ -134,6 +166,7 @@ pub(crate) fn shells(
             },
             direction,
             layers,
+            shear_factor,
         });
     }
     Ok(out)

@@ -651,14 +651,14 @@ pub(crate) const AFFE_MODELE: Support = Support {
 
 /// The modelisations AFFE_MODELE accepts: the mechanical ones and the
 /// thermal `PLAN` (`AXIS` and `3D` are both).
-const MODELISATIONS: [&str; 15] = {
-    let mut all = [""; 15];
+const MODELISATIONS: [&str; 16] = {
+    let mut all = [""; 16];
     let mut i = 0;
     while i < Modelisation::KEYWORDS.len() {
         all[i] = Modelisation::KEYWORDS[i];
         i += 1;
     }
-    all[14] = "PLAN";
+    all[15] = "PLAN";
     all
 };
 
@@ -734,6 +734,22 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                         ty,
                         aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4
                     )
+                }
+                // code_aster's MEC3QU9H (QUAD9) and MEC3TR7H (TRIA7); the
+                // latter is not reproduced yet.
+                Modelisation::Coque3d => {
+                    if ty == aster_mesh::CellType::TRIA7 {
+                        return Err(ex.kw_error(
+                            "AFFE_MODELE",
+                            occ,
+                            "MODELISATION",
+                            format!(
+                                "not supported yet: MODELISATION='COQUE_3D' on TRIA7 cell {} (code_aster's MEC3TR7H); the QUAD9 element (MEC3QU9H) is",
+                                crate::select::cell_name(&mesh, c)
+                            ),
+                        ));
+                    }
+                    ty == aster_mesh::CellType::QUAD9
                 }
                 // code_aster's MFPLQU4 (QUAD4) and MFPLQU8 (QUAD8); the
                 // latter's element (te0206-family) is not reproduced.
