@@ -356,77 +356,59 @@ impl PlasticCells {
             self.u_trial[c] = ue;
             self.set_finite_tangent(c, out.k);
         }
-        for (c, cell) in self.cells.iter().enumerate() {
-            if cell.finite() {
-                continue;
+        self.update_small_strain(model, u, fint)
+    }
+
+    /// The small-strain cells' part of [`Self::update`]: each cell's
+    /// points integrated from its committed states (trial states, tangents,
+    /// whether it is corrected), on two threads when the cells hold many
+    /// Gauss points; the corrections ∫Bᵀσ − Kₑuₑ are then added to `fint`
+    /// in cell order on this thread, so the sums are those of one thread.
+    fn update_small_strain(
+        &mut self,
+        model: &Model,
+        u: &[f64],
+        fint: &mut [f64],
+    ) -> Result<(), FemError> {
+        let points: usize = self
+            .cells
+            .iter()
+            .filter(|c| !c.finite() && (c.law.is_some() || c.viscous.is_some()))
+            .map(|c| c.gauss.len())
+            .sum();
+        let n = self.cells.len();
+        let dt = self.dt;
+        let cells = &self.cells;
+        let committed = &self.committed;
+        let corrections = if points >= PARALLEL_POINTS && n >= 2 {
+            let mid = n / 2;
+            let (t1, t2) = self.trial.split_at_mut(mid);
+            let (k1, k2) = self.tangents.split_at_mut(mid);
+            let (c1, c2) = self.corrected.split_at_mut(mid);
+            let (r1, r2) = crate::parallel::join(
+                || integrate_small_cells(model, cells, committed, 0, u, dt, t1, k1, c1),
+                || integrate_small_cells(model, cells, committed, mid, u, dt, t2, k2, c2),
+            );
+            let mut r1 = r1?;
+            r1.extend(r2?);
+            r1
+        } else {
+            integrate_small_cells(
+                model,
+                cells,
+                committed,
+                0,
+                u,
+                dt,
+                &mut self.trial,
+                &mut self.tangents,
+                &mut self.corrected,
+            )?
+        };
+        for (c, fe) in corrections {
+            for (a, &i) in self.cells[c].dofs.iter().enumerate() {
+                fint[i] += fe[a];
             }
-            let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
-            if let Some(visc) = cell.viscous.as_deref() {
-                let n = cell.hypothesis.ncomp();
-                for (g, gp) in cell.gauss.iter().enumerate() {
-                    let mut eps = [0.0; 6];
-                    for (k, e) in eps.iter_mut().enumerate().take(n) {
-                        *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
-                    }
-                    let prev = &self.committed[c][g].law;
-                    let (state, tangent) = lemaitre::integrate(
-                        visc,
-                        &cell.elastic,
-                        cell.hypothesis,
-                        &eps[..n],
-                        prev,
-                        self.dt,
-                        false,
-                    )
-                    .map_err(|e| at_cell(model, cell.cell, g, e))?;
-                    self.trial[c][g] = GaussState {
-                        law: state,
-                        cauchy: state.stress,
-                        extra: [0.0; 6],
-                    };
-                    self.tangents[c][g] = tangent;
-                }
-                self.corrected[c] = true;
-                add_stress_correction(cell, &self.trial[c], &ue, fint);
-                continue;
-            }
-            let Some(law) = cell.law.as_deref() else {
-                continue;
-            };
-            // A cell whose points all stay elastic without plastic strain
-            // has σ = D ε and tangent D: its corrections vanish (most cells
-            // around a local plastic zone).
-            let mut virgin = law.elastic(&cell.elastic) == cell.elastic;
-            let n = cell.hypothesis.ncomp();
-            for (g, gp) in cell.gauss.iter().enumerate() {
-                let mut eps = [0.0; 6];
-                for (k, e) in eps.iter_mut().enumerate().take(n) {
-                    *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
-                }
-                let prev = &self.committed[c][g].law;
-                let (state, tangent) = integrate(
-                    law,
-                    &cell.elastic,
-                    cell.hypothesis,
-                    &eps[..n],
-                    prev,
-                    false,
-                    self.dt,
-                )
-                .map_err(|e| at_cell(model, cell.cell, g, e))?;
-                virgin &= !state.plastic && state.p == 0.0;
-                self.trial[c][g] = GaussState {
-                    law: state,
-                    cauchy: state.stress,
-                    extra: [0.0; 6],
-                };
-                self.tangents[c][g] = tangent;
-            }
-            self.corrected[c] = !virgin;
-            if virgin {
-                continue;
-            }
-            add_stress_correction(cell, &self.trial[c], &ue, fint);
         }
         Ok(())
     }
@@ -782,9 +764,9 @@ fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
     v
 }
 
-/// Adds ∫Bᵀσ − Kₑuₑ of a small-strain cell (its points' trial stresses)
-/// to `fint`.
-fn add_stress_correction(cell: &PlasticCell, trial: &[GaussState], ue: &[f64], fint: &mut [f64]) {
+/// ∫Bᵀσ − Kₑuₑ of a small-strain cell (its points' trial stresses), one
+/// value per cell DOF.
+fn stress_correction(cell: &PlasticCell, trial: &[GaussState], ue: &[f64]) -> Vec<f64> {
     let n = cell.hypothesis.ncomp();
     let mut fe = vec![0.0; ue.len()];
     for (a, f) in fe.iter_mut().enumerate() {
@@ -797,9 +779,107 @@ fn add_stress_correction(cell: &PlasticCell, trial: &[GaussState], ue: &[f64], f
             *f += gp.w * (0..n).map(|k| gp.b[(k, a)] * sigma[k]).sum::<f64>();
         }
     }
-    for (a, &i) in cell.dofs.iter().enumerate() {
-        fint[i] += fe[a];
+    fe
+}
+
+/// Number of Gauss points of small-strain behaviour cells from which their
+/// integration runs on two threads (below it a thread costs more than it
+/// saves).
+const PARALLEL_POINTS: usize = 4096;
+
+/// Integrates the small-strain cells `first..first + trial.len()` of
+/// `cells` at the element displacements of `u` from their committed
+/// states: writes their trial states, tangents and whether each is
+/// corrected, and gives the corrections ∫Bᵀσ − Kₑuₑ of the corrected
+/// cells (cell index, one value per cell DOF), in cell order.
+#[allow(clippy::too_many_arguments)]
+fn integrate_small_cells(
+    model: &Model,
+    cells: &[PlasticCell],
+    committed: &[Vec<GaussState>],
+    first: usize,
+    u: &[f64],
+    dt: f64,
+    trial: &mut [Vec<GaussState>],
+    tangents: &mut [Vec<[[f64; 6]; 6]>],
+    corrected: &mut [bool],
+) -> Result<Vec<(usize, Vec<f64>)>, FemError> {
+    let mut out = Vec::new();
+    for (j, trial) in trial.iter_mut().enumerate() {
+        let c = first + j;
+        let cell = &cells[c];
+        if cell.finite() {
+            continue;
+        }
+        let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
+        if let Some(visc) = cell.viscous.as_deref() {
+            let n = cell.hypothesis.ncomp();
+            for (g, gp) in cell.gauss.iter().enumerate() {
+                let mut eps = [0.0; 6];
+                for (k, e) in eps.iter_mut().enumerate().take(n) {
+                    *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
+                }
+                let prev = &committed[c][g].law;
+                let (state, tangent) = lemaitre::integrate(
+                    visc,
+                    &cell.elastic,
+                    cell.hypothesis,
+                    &eps[..n],
+                    prev,
+                    dt,
+                    false,
+                )
+                .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                trial[g] = GaussState {
+                    law: state,
+                    cauchy: state.stress,
+                    extra: [0.0; 6],
+                };
+                tangents[j][g] = tangent;
+            }
+            corrected[j] = true;
+            out.push((c, stress_correction(cell, trial, &ue)));
+            continue;
+        }
+        let Some(law) = cell.law.as_deref() else {
+            continue;
+        };
+        // A cell whose points all stay elastic without plastic strain
+        // has σ = D ε and tangent D: its corrections vanish (most cells
+        // around a local plastic zone).
+        let mut virgin = law.elastic(&cell.elastic) == cell.elastic;
+        let n = cell.hypothesis.ncomp();
+        for (g, gp) in cell.gauss.iter().enumerate() {
+            let mut eps = [0.0; 6];
+            for (k, e) in eps.iter_mut().enumerate().take(n) {
+                *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
+            }
+            let prev = &committed[c][g].law;
+            let (state, tangent) = integrate(
+                law,
+                &cell.elastic,
+                cell.hypothesis,
+                &eps[..n],
+                prev,
+                false,
+                dt,
+            )
+            .map_err(|e| at_cell(model, cell.cell, g, e))?;
+            virgin &= !state.plastic && state.p == 0.0;
+            trial[g] = GaussState {
+                law: state,
+                cauchy: state.stress,
+                extra: [0.0; 6],
+            };
+            tangents[j][g] = tangent;
+        }
+        corrected[j] = !virgin;
+        if virgin {
+            continue;
+        }
+        out.push((c, stress_correction(cell, trial, &ue)));
     }
+    Ok(out)
 }
 
 /// ∫BᵀC B of a cell for the tangents C of its points: the points' wCB
