@@ -354,8 +354,11 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             "not supported: ALGO_CONT='NITSCHE' in 3D has no contact element in code_aster 17 (its Nitsche cells, `contCellNits` and `niElem`, are the 2D ones: TRIA3, TRIA6, QUAD4, QUAD8, QUAD9 with SEG2/SEG3 masters; MECA_NON_LINE stops on an assertion at the pairing); reproduced on 2D models (D_PLAN, C_PLAN, AXIS)",
         ));
     }
-    // Shells: code_aster pairs their mid-surfaces with the thickness of
-    // ZONE/CARA_ELEM and its own shell contact elements; not reproduced.
+    // Shells: code_aster 17's mortar contact cells (`contCellLagr`,
+    // `contCellPena`: geometric pairs such as QUAD4/QUAD4) would act on
+    // their mid-surfaces' DX DY DZ, the thickness of ZONE/CARA_ELEM being
+    // stored and never read (`defi_cont_ops`, `PairingParameter`); not
+    // validated here.
     if model.has_shells() {
         return Err(ex.kw_error(
             "DEFI_CONT",
