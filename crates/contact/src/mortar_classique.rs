@@ -1,8 +1,15 @@
 //! code_aster 17's mortar contact of `DEFI_CONT` with
 //! `ALGO_CONT='LAGRANGIEN'`, `VARIANTE='CLASSIQUE'` (the classical
 //! augmented Lagrangian), frictionless and with friction, in 2D on SEG2 and
-//! SEG3 cells, as a fem force source whose unknowns are the slave nodes'
-//! `LAGS_C` (and `LAGS_F1` with friction).
+//! SEG3 cells, and frictionless in 3D on faces, as a fem force source
+//! whose unknowns are the slave nodes' `LAGS_C` (and `LAGS_F1` with
+//! friction).
+//!
+//! In 3D (`FacePair`) the residual is `laVect_ct_std`'s on the 3D
+//! pairing's polygons (Dg from `mortar_tangent::linearise_3d`) and the
+//! matrix code_aster's own one-sided differences of it (`laMatr_diff`,
+//! the only `TYPE_MATR_TANG` of CLASSIQUE), so that Newton follows its
+//! path; the 2D items below keep their exact dual-number tangent.
 //!
 //! Pairing, integration points, weights, normals, ray tracing, γ_c =
 //! COEF_CONT / h_F, `CONTACT_INIT`, the POI1 treatment of unpaired slave
@@ -53,7 +60,7 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::mortar_friction::{FrictionLaw, R8PREM, THRES_STICK};
-use crate::mortar_lagrangian::{err, normal_at, MortarLagrangian, MortarZoneDef};
+use crate::mortar_lagrangian::{err, normal_at, MortarLagrangian, MortarZoneDef, Seg};
 use crate::shape::SurfaceKind;
 use crate::source::current_positions;
 
@@ -348,11 +355,22 @@ pub struct MortarClassique {
 }
 
 impl MortarClassique {
-    /// The contact of `zones` on `mesh` (a 2D model; `axis`: AXIS weights):
-    /// frictionless when no zone has [`MortarZoneDef::friction`], with
-    /// friction when all have (code_aster's zones of one DEFI_CONT are all
+    /// The contact of `zones` on `mesh` (`dim` 2, `axis`: AXIS weights, or
+    /// 3: faces, frictionless only): frictionless when no zone has
+    /// [`MortarZoneDef::friction`], with friction when all have (code_aster's zones of one DEFI_CONT are all
     /// with friction or all without).
-    pub fn new(zones: &[MortarZoneDef], mesh: &Mesh, axis: bool) -> Result<Self, ContactError> {
+    pub fn new(
+        zones: &[MortarZoneDef],
+        mesh: &Mesh,
+        axis: bool,
+        dim: usize,
+    ) -> Result<Self, ContactError> {
+        if dim == 3 && zones.iter().any(|z| z.friction.is_some()) {
+            return Err(ContactError::Unsupported {
+                feature: "friction with VARIANTE='CLASSIQUE' in 3D".into(),
+                hint: "CLASSIQUE friction is reproduced on 2D models (D_PLAN, C_PLAN, AXIS); VARIANTE='ROBUSTE' has friction in 3D".into(),
+            });
+        }
         let friction = if zones.iter().any(|z| z.friction.is_some()) {
             Some(
                 zones
@@ -374,7 +392,7 @@ impl MortarClassique {
             None
         };
         Ok(MortarClassique {
-            base: MortarLagrangian::new(zones, mesh, axis, 2)?,
+            base: MortarLagrangian::new(zones, mesh, axis, dim)?,
             friction,
             x_prev: mesh.coords.clone(),
         })
@@ -414,6 +432,189 @@ impl MortarClassique {
     }
 }
 
+/// A 3D slave/master pair of the CLASSIQUE variant, frictionless: what
+/// its residual needs besides the current positions and multipliers
+/// (`laVect_ct_std` on faces).
+struct FacePair<'a> {
+    s: &'a Seg,
+    m: &'a Seg,
+    /// The intersection polygon (slave parametric space), held.
+    poly: &'a [[f64; 2]],
+    /// The slave face's initial positions (weights, `LAGS_C` functions).
+    s0: &'a [[f64; 3]],
+    gamma_c: f64,
+    forced: Option<bool>,
+}
+
+impl FacePair<'_> {
+    /// The pair's residual on its local unknowns — the slave nodes' DX,
+    /// DY, DZ, the master nodes', then the slave corners' `LAGS_C` —
+    /// at slave positions `sp`, master positions `mp` and multipliers
+    /// `lam` (`laVect_ct_std`): w [λ + γ_c g]₋ Dg at active points,
+    /// w ([λ + γ_c g]₋ − λ)/γ_c μ on the multipliers; the master point
+    /// found afresh by ray tracing.
+    fn residual(
+        &self,
+        sp: &[[f64; 3]],
+        mp: &[[f64; 3]],
+        lam: &[f64],
+    ) -> Result<Vec<f64>, FemError> {
+        let ndisp = 3 * (sp.len() + mp.len());
+        let mut r = vec![0.0; ndisp + lam.len()];
+        // Dg does not depend on which global DOFs the nodes carry.
+        let local: Vec<[Option<usize>; 3]> = vec![[None; 3]; sp.len() + mp.len()];
+        for pt in crate::mortar_point::points_3d(self.s, self.m, self.poly, sp, mp, self.s0)? {
+            let nsl = self.s.lagr_shape(pt.xi, &pt.initial.shape);
+            let lam_p: f64 = nsl.iter().zip(lam).map(|(f, l)| f * l).sum();
+            let lg = lam_p + self.gamma_c * pt.gap;
+            // CONTACT_INIT at the first pairing, then Heaviside(−(λ + γg)).
+            let active = self.forced.unwrap_or(-lg >= 0.0);
+            let proj = if active { lg } else { 0.0 };
+            if active {
+                for (j, e) in pt.linearise_3d(self.s, self.m, &local).iter().enumerate() {
+                    r[j] += pt.w * proj * e.dgap;
+                }
+            }
+            for (a, f) in nsl.iter().enumerate() {
+                r[ndisp + a] += pt.w * (proj - lam_p) / self.gamma_c * f;
+            }
+        }
+        Ok(r)
+    }
+
+    /// code_aster's matrix of the variant (`laMatr_diff`, order 1: the
+    /// catalog allows only `TYPE_MATR_TANG='PERTURBATION'` with
+    /// CLASSIQUE): one-sided differences of [`FacePair::residual`] with
+    /// ε = 1e-6 h_F, a slave DOF pushed by ε n_d (n the slave normal at
+    /// the pair's first quadrature point) when |n_d| > ε, else by ε, a
+    /// master DOF pulled the same way, a multiplier scaled by (1 − ε) when
+    /// |λ| > ε, else set to −ε. Column j: ∂r/∂(local unknown j), `r0` the
+    /// residual at the unperturbed state.
+    fn jacobian(
+        &self,
+        sp: &[[f64; 3]],
+        mp: &[[f64; 3]],
+        lam: &[f64],
+        r0: &[f64],
+        hf: f64,
+    ) -> Result<Vec<Vec<f64>>, FemError> {
+        let eps = 1e-6 * hf;
+        let n = crate::mortar_point::quadrature_3d(self.s, self.m, self.poly, self.s0)
+            .first()
+            .and_then(|(xi, _)| {
+                crate::mortar_pairing3d::face_normal(self.s.kind, sp, *xi, self.s.sign)
+            })
+            .unwrap_or([0.0; 3]);
+        let step = |d: usize| if n[d].abs() > eps { eps * n[d] } else { eps };
+        let column = |r: Vec<f64>, delta: f64| -> Vec<f64> {
+            r.iter().zip(r0).map(|(p, q)| (p - q) / delta).collect()
+        };
+        let mut cols = Vec::with_capacity(r0.len());
+        let mut x = sp.to_vec();
+        for a in 0..sp.len() {
+            for d in 0..3 {
+                let saved = x[a][d];
+                x[a][d] = saved + step(d);
+                let delta = x[a][d] - saved;
+                cols.push(column(self.residual(&x, mp, lam)?, delta));
+                x[a][d] = saved;
+            }
+        }
+        let mut y = mp.to_vec();
+        for b in 0..mp.len() {
+            for d in 0..3 {
+                let saved = y[b][d];
+                y[b][d] = saved - step(d);
+                let delta = y[b][d] - saved;
+                cols.push(column(self.residual(sp, &y, lam)?, delta));
+                y[b][d] = saved;
+            }
+        }
+        let mut l = lam.to_vec();
+        for k in 0..lam.len() {
+            let saved = l[k];
+            l[k] = if saved.abs() > eps {
+                saved * (1.0 - eps)
+            } else {
+                -eps
+            };
+            let delta = l[k] - saved;
+            cols.push(column(self.residual(sp, mp, &l)?, delta));
+            l[k] = saved;
+        }
+        Ok(cols)
+    }
+}
+
+impl MortarClassique {
+    /// The residual and code_aster's finite-difference matrix on faces
+    /// (3D, frictionless: `laVect_ct_std`, `laMatr_diff`).
+    fn evaluate_3d(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
+        let x = current_positions(state);
+        let x0 = &state.mesh.coords;
+        let base = &self.base;
+        let nl = base.lagr.len();
+        let mut c = Contribution {
+            forces: Vec::new(),
+            own_residual: vec![0.0; nl],
+            tangent: Vec::new(),
+        };
+        let mut paired = vec![false; nl];
+        for p in &base.pairs(&x) {
+            let z = &base.zones[p.zone];
+            let s = &z.slave[p.slave];
+            let m = &z.master[p.master];
+            let (sp, mp, s0) = (s.positions(&x), m.positions(&x), s.positions(x0));
+            let hf = z.h[p.slave];
+            let lk: Vec<usize> = s.lagr_nodes().iter().map(|n| base.lagr_of[n]).collect();
+            for &k in &lk {
+                paired[k] = true;
+            }
+            let lam: Vec<f64> = lk.iter().map(|&k| own[k]).collect();
+            let pair = FacePair {
+                s,
+                m,
+                poly: &p.poly,
+                s0: &s0,
+                gamma_c: z.coef / hf,
+                forced: z.forced(base.first_pairing),
+            };
+            let r0 = pair.residual(&sp, &mp, &lam)?;
+            let cols = pair.jacobian(&sp, &mp, &lam, &r0, hf)?;
+            let map: Vec<Option<Unknown>> = crate::mortar_point::face_dofs(state, s, m)
+                .into_iter()
+                .flatten()
+                .map(|d| d.map(Unknown::Dof))
+                .chain(lk.iter().map(|&k| Some(Unknown::Own(k))))
+                .collect();
+            for (i, row) in map.iter().enumerate() {
+                let Some(row) = *row else { continue };
+                match row {
+                    Unknown::Dof(d) if r0[i] != 0.0 => c.forces.push((d, r0[i])),
+                    Unknown::Dof(_) => {}
+                    Unknown::Own(k) => c.own_residual[k] += r0[i],
+                }
+                for (j, col) in map.iter().enumerate() {
+                    if let (Some(col), true) = (col, cols[j][i] != 0.0) {
+                        c.tangent.push((row, *col, cols[j][i]));
+                    }
+                }
+            }
+        }
+        // Slave nodes of no paired cell: their multipliers are 0.
+        for (k, p) in paired.iter().enumerate() {
+            if !p {
+                c.own_residual[k] += -own[k];
+                c.tangent.push((Unknown::Own(k), Unknown::Own(k), -1.0));
+            }
+        }
+        for k in 0..nl {
+            c.tangent.push((Unknown::Own(k), Unknown::Own(k), 0.0));
+        }
+        Ok(c)
+    }
+}
+
 impl ForceSource for MortarClassique {
     fn name(&self) -> String {
         "DEFI_CONT (mortar Lagrangian contact, CLASSIQUE)".into()
@@ -429,6 +630,9 @@ impl ForceSource for MortarClassique {
     }
 
     fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
+        if self.base.dim == 3 {
+            return self.evaluate_3d(state, own);
+        }
         let x = current_positions(state);
         let x0 = &state.mesh.coords;
         let base = &self.base;
@@ -691,6 +895,134 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+    }
+
+    /// A warped QUAD4 slave face above a curved QUAD8 master face, the
+    /// polygon the whole slave square: the 3D residual is the gradient
+    /// of the augmented Lagrangian Σ w ([λ + γg]₋² − λ²)/(2γ) (central
+    /// differences, the master point found afresh by ray tracing), and
+    /// code_aster's one-sided matrix (`laMatr_diff`) is its derivative to
+    /// the differences' accuracy.
+    #[test]
+    fn face_residual_is_the_gradient_of_the_augmented_lagrangian() {
+        let s = Seg {
+            kind: SurfaceKind::Quad4,
+            nodes: (0..4).map(NodeId).collect(),
+            sign: -1.0,
+        };
+        let m = Seg {
+            kind: SurfaceKind::Quad8,
+            nodes: (4..12).map(NodeId).collect(),
+            sign: 1.0,
+        };
+        let s0 = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let sp = vec![
+            [0.01, 0.0, 0.012],
+            [1.0, 0.02, -0.004],
+            [1.02, 1.0, 0.03],
+            [0.0, 0.99, 0.0],
+        ];
+        let mp: Vec<[f64; 3]> = SurfaceKind::Quad8
+            .node_coords()
+            .iter()
+            .map(|q| {
+                let (x, y) = (0.5 + q[0], 0.5 + 0.9 * q[1]);
+                [
+                    x,
+                    y,
+                    -0.02 * (x - 0.4) * (x - 0.4) - 0.01 * y * y + 0.01 * x * y,
+                ]
+            })
+            .collect();
+        let poly = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+        let pair = FacePair {
+            s: &s,
+            m: &m,
+            poly: &poly,
+            s0: &s0,
+            gamma_c: 30.0,
+            forced: None,
+        };
+        // Two corners pressed, two nearly free: active and inactive points.
+        let lam = [-0.9, -0.5, 0.2, -0.05];
+        let functional = |sp: &[[f64; 3]], mp: &[[f64; 3]], lam: &[f64]| -> f64 {
+            let mut l = 0.0;
+            for pt in crate::mortar_point::points_3d(&s, &m, &poly, sp, mp, &s0).unwrap() {
+                let (shape, _) = SurfaceKind::Quad4.eval(pt.xi);
+                let lp: f64 = shape.iter().zip(lam).map(|(f, v)| f * v).sum();
+                let x = (lp + pair.gamma_c * pt.gap).min(0.0);
+                l += pt.w * (x * x - lp * lp) / (2.0 * pair.gamma_c);
+            }
+            l
+        };
+        let r = pair.residual(&sp, &mp, &lam).unwrap();
+        assert_eq!(r.len(), 12 + 24 + 4);
+        let unknown = |z: &[f64]| {
+            let mut a = sp.clone();
+            let mut b = mp.clone();
+            let mut c = lam.to_vec();
+            for (j, v) in z.iter().enumerate() {
+                match j {
+                    0..=11 => a[j / 3][j % 3] += v,
+                    12..=35 => b[(j - 12) / 3][(j - 12) % 3] += v,
+                    _ => c[j - 36] += v,
+                }
+            }
+            (a, b, c)
+        };
+        let h = 1e-6;
+        let (mut active, mut inactive) = (false, false);
+        for pt in crate::mortar_point::points_3d(&s, &m, &poly, &sp, &mp, &s0).unwrap() {
+            let (shape, _) = SurfaceKind::Quad4.eval(pt.xi);
+            let lp: f64 = shape.iter().zip(&lam).map(|(f, v)| f * v).sum();
+            if lp + pair.gamma_c * pt.gap <= 0.0 {
+                active = true;
+            } else {
+                inactive = true;
+            }
+        }
+        assert!(active && inactive, "both statuses are exercised");
+        for j in 0..r.len() {
+            let mut zp = vec![0.0; r.len()];
+            let mut zm = vec![0.0; r.len()];
+            zp[j] = h;
+            zm[j] = -h;
+            let (a, b, c) = unknown(&zp);
+            let lp = functional(&a, &b, &c);
+            let (a, b, c) = unknown(&zm);
+            let lm = functional(&a, &b, &c);
+            let fd = (lp - lm) / (2.0 * h);
+            assert!(
+                (fd - r[j]).abs() <= 1e-7 * (1.0 + fd.abs()),
+                "row {j}: {} against {fd}",
+                r[j]
+            );
+        }
+        let cols = pair.jacobian(&sp, &mp, &lam, &r, 1.0).unwrap();
+        assert_eq!(cols.len(), r.len());
+        for (j, col) in cols.iter().enumerate() {
+            let mut zp = vec![0.0; r.len()];
+            let mut zm = vec![0.0; r.len()];
+            zp[j] = h;
+            zm[j] = -h;
+            let (a, b, c) = unknown(&zp);
+            let rp = pair.residual(&a, &b, &c).unwrap();
+            let (a, b, c) = unknown(&zm);
+            let rm = pair.residual(&a, &b, &c).unwrap();
+            for i in 0..r.len() {
+                let fd = (rp[i] - rm[i]) / (2.0 * h);
+                assert!(
+                    (fd - col[i]).abs() <= 1e-4 * (1.0 + fd.abs()),
+                    "({i}, {j}): {} against {fd}",
+                    col[i]
+                );
             }
         }
     }

@@ -4,8 +4,8 @@
 //! from them at the solve.
 //!
 //! Reproduced: `ALGO_CONT='LAGRANGIEN'` with `VARIANTE='ROBUSTE'` (the
-//! defaults) or `'CLASSIQUE'` (2D, `aster_contact::mortar_classique`, with
-//! `COEF_FROT`), `'PENALISATION'` (`aster_contact::mortar_penalty`) and
+//! defaults) or `'CLASSIQUE'` (`aster_contact::mortar_classique`: 2D, with
+//! `COEF_FROT`; 3D frictionless), `'PENALISATION'` (`aster_contact::mortar_penalty`) and
 //! `'NITSCHE'` (`aster_contact::mortar_nitsche`, any `SYME`/`VARIANTE`:
 //! code_aster's residual is the same for all), unilateral, on 2D models
 //! (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or SEG3, and — the
@@ -20,8 +20,9 @@
 //! friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
 //! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`,
 //! `aster_contact::mortar_friction_penalty`) when every zone has it; the
-//! CLASSIQUE variant in 2D, with or without friction
-//! (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE in 3D,
+//! CLASSIQUE variant in 2D, with or without friction, and frictionless in
+//! 3D (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE
+//! friction in 3D,
 //! BILATERAL with friction, LISSAGE, friction with NITSCHE, friction on
 //! quadratic faces in 3D, zones with and
 //! without friction or of different ALGO_CONT or VARIANTE in one
@@ -316,14 +317,17 @@ pub(crate) fn source(
         .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
-/// The force source of a CLASSIQUE definition (2D) on the model's current
-/// mesh, frictionless or with friction.
+/// The force source of a CLASSIQUE definition on the model's current
+/// mesh (`dim`: the model's space dimension): frictionless or with
+/// friction in 2D, frictionless in 3D.
 pub(crate) fn classique_source(
     zones: &[MortarZoneDef],
     mesh: &Mesh,
     axis: bool,
+    dim: usize,
 ) -> Result<MortarClassique, ExecError> {
-    MortarClassique::new(zones, mesh, axis).map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+    MortarClassique::new(zones, mesh, axis, dim)
+        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
 }
 
 pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
@@ -333,13 +337,18 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let dim = model.dim();
     let algo = algo(kw);
     if dim != 2 && algo == MortarAlgo::Classique {
-        let occ = &kw.factor("ZONE")[0];
-        return Err(ex.kw_error(
-            "DEFI_CONT/ZONE",
-            occ,
-            "VARIANTE",
-            "not supported yet: code_aster 17's CLASSIQUE mortar contact in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS; VARIANTE='ROBUSTE' is reproduced in 3D)",
-        ));
+        if let Some(occ) = kw
+            .factor("ZONE")
+            .iter()
+            .find(|o| o.str("FROTTEMENT") == Some("OUI"))
+        {
+            return Err(ex.kw_error(
+                "DEFI_CONT/ZONE",
+                occ,
+                "FROTTEMENT",
+                "not supported yet: friction of code_aster 17's CLASSIQUE mortar contact in 3D (reproduced on 2D models: D_PLAN, C_PLAN, AXIS; frictionless CLASSIQUE and ROBUSTE with friction are reproduced in 3D)",
+            ));
+        }
     }
     // code_aster 2025 has no 3D Nitsche contact element: its list of
     // Nitsche contact cells (`contCellNits`, bibcxx/Contact/ContactPairing.h)

@@ -1161,7 +1161,12 @@ pub fn solve(
                     // The Lagrangian method (ROBUSTE/RAPIDE or CLASSIQUE):
                     // with or without friction (LAGS_C, LAGS_F1 fields).
                     if *algo == crate::defi_cont::MortarAlgo::Classique {
-                        let mut m = crate::defi_cont::classique_source(zones, &mesh, axis)?;
+                        let mut m = crate::defi_cont::classique_source(
+                            zones,
+                            &mesh,
+                            axis,
+                            setup.model.dim(),
+                        )?;
                         if let Some(r) = setup.contact_resi_geom {
                             m.set_resi_geom(r);
                         }
