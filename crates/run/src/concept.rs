@@ -545,8 +545,9 @@ pub enum ContactDef {
     Mortar {
         model: u32,
         zones: Vec<aster_contact::mortar_lagrangian::MortarZoneDef>,
-        /// `ALGO_CONT` (one for every zone).
-        algo: crate::defi_cont::MortarAlgo,
+        /// Each zone's `ALGO_CONT` (and `VARIANTE`): one force source per
+        /// method (`defi_cont::groups`).
+        algos: Vec<crate::defi_cont::MortarAlgo>,
     },
 }
 

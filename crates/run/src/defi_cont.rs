@@ -8,7 +8,9 @@
 //! `COEF_FROT`; 3D frictionless), `'PENALISATION'` (`aster_contact::mortar_penalty`) and
 //! `'NITSCHE'` (`aster_contact::mortar_nitsche`, any `SYME`/`VARIANTE`:
 //! code_aster's residual is the same for all), unilateral, on 2D models
-//! (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or SEG3, and — the
+//! (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or SEG3, zones of
+//! different methods side by side (one force source per method,
+//! [`groups`]; their slave surfaces disjoint), and — the
 //! Lagrangian and penalised methods, frictionless — on 3D solid models
 //! whose contact faces are TRIA3, QUAD4, TRIA6, QUAD8 or QUAD9
 //! (`aster_contact::mortar_pairing3d`); `COEF_CONT`, `CONTACT_INIT`,
@@ -24,9 +26,8 @@
 //! 3D (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE
 //! friction in 3D,
 //! BILATERAL with friction, LISSAGE, friction with NITSCHE, friction on
-//! quadratic faces in 3D, zones with and
-//! without friction or of different ALGO_CONT or VARIANTE in one
-//! definition, Nitsche contact in 3D (code_aster 2025
+//! quadratic faces in 3D, zones of one method with and
+//! without friction, Nitsche contact in 3D (code_aster 2025
 //! has no 3D Nitsche contact element), models with shells
 //! (docs/contact.md, "DEFI_CONT").
 
@@ -125,19 +126,12 @@ impl MortarAlgo {
             _ => MortarAlgo::Lagrangian,
         }
     }
-
-    fn is_lagrangian(self) -> bool {
-        matches!(self, MortarAlgo::Lagrangian | MortarAlgo::Classique)
-    }
 }
 
 /// What the value lists cannot say: friction is built for the Lagrangian
-/// and penalised methods only, and one definition has one ALGO_CONT (each method is its
-/// own force source here).
+/// and penalised methods only.
 fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
-    let zones = call.keywords.factor("ZONE");
-    let first = zones.first().map(MortarAlgo::of).unwrap_or_default();
-    for occ in zones {
+    for occ in call.keywords.factor("ZONE") {
         let algo = MortarAlgo::of(occ);
         if algo == MortarAlgo::Nitsche && occ.str("FROTTEMENT") == Some("OUI") {
             out.push(Refusal::at(
@@ -155,31 +149,31 @@ fn rules(call: &CommandCall, out: &mut Vec<Refusal>) {
                 call.span,
             ));
         }
-        if algo != first && algo.is_lagrangian() && first.is_lagrangian() {
-            out.push(Refusal::at(
-                "DEFI_CONT/ZONE/VARIANTE: zones of different VARIANTE in one DEFI_CONT (each zone here takes the first zone's variant)".into(),
-                occ,
-                "VARIANTE",
-                call.span,
-            ));
-        } else if algo != first {
-            out.push(Refusal::at(
-                "DEFI_CONT/ZONE/ALGO_CONT: zones of different ALGO_CONT in one DEFI_CONT (each zone here takes the first zone's method)".into(),
-                occ,
-                "ALGO_CONT",
-                call.span,
-            ));
-        }
     }
 }
 
-/// The method of a definition's zones (the first zone's; `rules` refuses
-/// mixed ones).
-fn algo(kw: &Keywords) -> MortarAlgo {
-    kw.factor("ZONE")
-        .first()
-        .map(MortarAlgo::of)
-        .unwrap_or_default()
+/// The method of each zone of a definition: code_aster 17 gives every
+/// zone its own `ContactParameter` (`defi_cont_ops`), each zone's contact
+/// cells computing with their zone's algorithm.
+fn algos(kw: &Keywords) -> Vec<MortarAlgo> {
+    kw.factor("ZONE").iter().map(MortarAlgo::of).collect()
+}
+
+/// The zones of a definition grouped by method, in the order the methods
+/// first appear: one force source per method (the zones of a group keep
+/// their relative order).
+pub(crate) fn groups(
+    zones: &[MortarZoneDef],
+    algos: &[MortarAlgo],
+) -> Vec<(MortarAlgo, Vec<MortarZoneDef>)> {
+    let mut out: Vec<(MortarAlgo, Vec<MortarZoneDef>)> = Vec::new();
+    for (z, &a) in zones.iter().zip(algos) {
+        match out.iter_mut().find(|(b, _)| *b == a) {
+            Some((_, g)) => g.push(z.clone()),
+            None => out.push((a, vec![z.clone()])),
+        }
+    }
+    out
 }
 
 /// The zones of a DEFI_CONT call.
@@ -335,13 +329,12 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let model_ref = ex.required("DEFI_CONT", kw, "MODELE")?;
     let model = ex.model(model_ref)?;
     let dim = model.dim();
-    let algo = algo(kw);
-    if dim != 2 && algo == MortarAlgo::Classique {
-        if let Some(occ) = kw
-            .factor("ZONE")
-            .iter()
-            .find(|o| o.str("FROTTEMENT") == Some("OUI"))
-        {
+    let algos = algos(kw);
+    let occs = kw.factor("ZONE");
+    if dim != 2 {
+        if let Some(occ) = occs.iter().zip(&algos).find_map(|(o, a)| {
+            (*a == MortarAlgo::Classique && o.str("FROTTEMENT") == Some("OUI")).then_some(o)
+        }) {
             return Err(ex.kw_error(
                 "DEFI_CONT/ZONE",
                 occ,
@@ -354,8 +347,12 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     // Nitsche contact cells (`contCellNits`, bibcxx/Contact/ContactPairing.h)
     // and `niElem` know the 2D volume cells only, so its MECA_NON_LINE stops
     // on an assertion (`getContCellIndx` finds no cell) at the first pairing.
-    if dim != 2 && algo == MortarAlgo::Nitsche {
-        let occ = &kw.factor("ZONE")[0];
+    if let (true, Some(occ)) = (
+        dim != 2,
+        occs.iter()
+            .zip(&algos)
+            .find_map(|(o, a)| (*a == MortarAlgo::Nitsche).then_some(o)),
+    ) {
         return Err(ex.kw_error(
             "DEFI_CONT/ZONE",
             occ,
@@ -383,21 +380,49 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let mesh = ex.mesh_by_id(model.mesh)?;
     let zones = zones(kw);
     // code_aster builds one kind of definition (FrictionNew or ContactNew)
-    // for all its zones: zones with and without friction together are not
-    // reproduced.
-    if has_friction(&zones) {
-        if let Some((occ, _)) = kw
-            .factor("ZONE")
-            .iter()
-            .zip(&zones)
-            .find(|(_, z)| z.friction.is_none())
-        {
+    // for all its zones: zones of one method with and without friction
+    // together are not reproduced.
+    for (i, occ) in occs.iter().enumerate() {
+        let mixed = zones[i].friction.is_none()
+            && zones
+                .iter()
+                .zip(&algos)
+                .any(|(z, a)| *a == algos[i] && z.friction.is_some());
+        if mixed {
             return Err(ex.kw_error(
                 "DEFI_CONT/ZONE",
                 occ,
                 "FROTTEMENT",
                 "not supported yet: zones with and without friction in one DEFI_CONT (code_aster 17's mortar friction is reproduced when every zone has FROTTEMENT='OUI'; TYPE_FROT='SANS' gives no friction force)",
             ));
+        }
+    }
+    // Zones of different methods are solved by one force source each: a
+    // slave node in two of them would carry two contact conditions.
+    let slave_nodes = |z: &MortarZoneDef| -> std::collections::BTreeSet<u32> {
+        mesh.group_ma(&z.slave_group)
+            .map(|g| {
+                g.members
+                    .iter()
+                    .flat_map(|c| mesh.cell(*c).nodes.iter().map(|n| n.0))
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    for i in 0..zones.len() {
+        for j in 0..i {
+            if algos[i] != algos[j] && !slave_nodes(&zones[i]).is_disjoint(&slave_nodes(&zones[j]))
+            {
+                return Err(ex.kw_error(
+                    "DEFI_CONT/ZONE",
+                    &occs[i],
+                    "GROUP_MA_ESCL",
+                    format!(
+                        "not supported yet: the slave surface {} shares nodes with {} of zone {} whose ALGO_CONT or VARIANTE differs (zones of different methods are reproduced on disjoint slave surfaces)",
+                        zones[i].slave_group, zones[j].slave_group, j + 1
+                    ),
+                ));
+            }
         }
     }
     // The groups and cell kinds are checked now, located at the zone.
@@ -427,12 +452,17 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         }
     }
     // Nitsche: the volume cell under every slave face.
-    if algo == MortarAlgo::Nitsche {
+    if algos.contains(&MortarAlgo::Nitsche) {
         let any = NitscheMaterial {
             young: 1.0,
             poisson: 0.0,
         };
-        for (i, (occ, z)) in kw.factor("ZONE").iter().zip(&zones).enumerate() {
+        for (i, (occ, z)) in occs
+            .iter()
+            .zip(&zones)
+            .enumerate()
+            .filter(|(i, _)| algos[*i] == MortarAlgo::Nitsche)
+        {
             match MortarNitsche::new(std::slice::from_ref(z), &mesh, axis, any) {
                 Ok(_) => {}
                 Err(aster_contact::ContactError::SlaveWithoutVolume { .. }) => {
@@ -451,7 +481,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     let def = ContactDef::Mortar {
         model: model_ref.id,
         zones,
-        algo,
+        algos,
     };
     store_result(ex, call, Concept::Contact(Rc::new(def)))
 }

@@ -1139,40 +1139,47 @@ pub fn solve(
         let mut mortar_friction: Option<aster_contact::mortar_friction::MortarFriction> = None;
         let mut mortar_classique: Option<aster_contact::mortar_classique::MortarClassique> = None;
         // DEFI_CONT's penalised and Nitsche methods: no unknowns, no fields.
-        let mut mortar_other: Option<Box<dyn aster_fem::ForceSource>> = None;
+        let mut mortar_other: Vec<Box<dyn aster_fem::ForceSource>> = Vec::new();
         let mut unil: Option<LiaisonUnil> = None;
         if let Some(c) = &setup.contact {
             match &**c {
-                ContactDef::Mortar { zones, algo, .. } => {
+                ContactDef::Mortar { zones, algos, .. } => {
                     let axis = setup
                         .model
                         .cells
                         .values()
                         .any(|m| *m == crate::concept::Modelisation::Axisymmetric);
-                    mortar_other = crate::defi_cont::other_source(
-                        *algo,
-                        zones,
-                        &mesh,
-                        axis,
-                        setup.model.dim(),
-                        &setup.materials,
-                        setup.contact_resi_geom,
-                    )?;
-                    // The Lagrangian method (ROBUSTE/RAPIDE or CLASSIQUE):
-                    // with or without friction (LAGS_C, LAGS_F1 fields).
-                    if *algo == crate::defi_cont::MortarAlgo::Classique {
-                        let mut m = crate::defi_cont::classique_source(
+                    // One force source per method (DEFI_CONT keeps the
+                    // slave surfaces of different methods disjoint).
+                    for (algo, zones) in crate::defi_cont::groups(zones, algos) {
+                        let zones = &zones;
+                        if let Some(s) = crate::defi_cont::other_source(
+                            algo,
                             zones,
                             &mesh,
                             axis,
                             setup.model.dim(),
-                        )?;
-                        if let Some(r) = setup.contact_resi_geom {
-                            m.set_resi_geom(r);
+                            &setup.materials,
+                            setup.contact_resi_geom,
+                        )? {
+                            mortar_other.push(s);
+                            continue;
                         }
-                        mortar_classique = Some(m);
-                    } else if mortar_other.is_none() {
-                        if crate::defi_cont::has_friction(zones) {
+                        // The Lagrangian method (ROBUSTE/RAPIDE or
+                        // CLASSIQUE): with or without friction (LAGS_C,
+                        // LAGS_F1 fields).
+                        if algo == crate::defi_cont::MortarAlgo::Classique {
+                            let mut m = crate::defi_cont::classique_source(
+                                zones,
+                                &mesh,
+                                axis,
+                                setup.model.dim(),
+                            )?;
+                            if let Some(r) = setup.contact_resi_geom {
+                                m.set_resi_geom(r);
+                            }
+                            mortar_classique = Some(m);
+                        } else if crate::defi_cont::has_friction(zones) {
                             let mut m = crate::defi_cont::friction_source(
                                 zones,
                                 &mesh,
@@ -1250,7 +1257,7 @@ pub fn solve(
         if let Some(f) = mortar_classique.as_mut() {
             forces.push(Box::new(f));
         }
-        if let Some(f) = mortar_other.as_mut() {
+        for f in mortar_other.iter_mut() {
             forces.push(Box::new(f.as_mut()));
         }
         if let Some(j) = joints.as_mut() {

@@ -178,25 +178,28 @@ pub fn meca_non_line(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     // RECH_LINEAIRE with a DEFI_CONT: the trial residuals on the pairing of
     // the iteration's start are written for the frictionless Lagrangian
     // (ROBUSTE) and penalised methods.
-    if let (Some(_), Some(crate::concept::ContactDef::Mortar { zones, algo, .. })) =
+    if let (Some(_), Some(crate::concept::ContactDef::Mortar { zones, algos, .. })) =
         (setup.newton.line_search, setup.contact.as_deref())
     {
-        if let Err(why) = crate::line_search::with_defi_cont(*algo, zones) {
-            return Err(ex.kw_error(
-                "MECA_NON_LINE",
-                &call.keywords,
-                "RECH_LINEAIRE",
-                format!("not supported yet: {why}"),
-            ));
+        for (algo, group) in crate::defi_cont::groups(zones, algos) {
+            if let Err(why) = crate::line_search::with_defi_cont(algo, &group) {
+                return Err(ex.kw_error(
+                    "MECA_NON_LINE",
+                    &call.keywords,
+                    "RECH_LINEAIRE",
+                    format!("not supported yet: {why}"),
+                ));
+            }
         }
     }
     // The Nitsche contact reads E and NU of the CHAM_MATER's one material:
     // refused before solving, at CHAM_MATER, when there is none.
-    if let Some(crate::concept::ContactDef::Mortar {
-        algo: crate::defi_cont::MortarAlgo::Nitsche,
-        ..
-    }) = setup.contact.as_deref()
-    {
+    let nitsche = matches!(
+        setup.contact.as_deref(),
+        Some(crate::concept::ContactDef::Mortar { algos, .. })
+            if algos.contains(&crate::defi_cont::MortarAlgo::Nitsche)
+    );
+    if nitsche {
         if let Err(why) = crate::defi_cont::nitsche_material(&setup.materials) {
             return Err(ex.kw_error(
                 "MECA_NON_LINE",
