@@ -21,9 +21,9 @@ pub struct SurfaceCell {
     /// cell that holds the surface cell (+1 if there is none: then the mesh
     /// orientation, as `MODI_MAILLAGE(ORIE_PEAU=…)` leaves it, is trusted).
     pub sign: f64,
-    /// A COQUE_3D QUAD9 seen through its eight edge nodes
-    /// ([`crate::zone::ZoneGeometry::coque3d_cells`]): a `Quad8` kind that
-    /// is not a QUAD8 cell.
+    /// A COQUE_3D QUAD9 or TRIA7 seen through its edge nodes
+    /// ([`crate::zone::ZoneGeometry::coque3d_cells`]): a `Quad8` (`Tria6`)
+    /// kind that is not a QUAD8 (TRIA6) cell.
     pub centre_dropped: bool,
 }
 
@@ -449,12 +449,14 @@ fn surface_cells(
                 continue;
             }
         }
-        let centre_dropped =
-            cell.ty == aster_mesh::CellType::QUAD9 && geometry.coque3d_cells.contains(&id);
-        let ty = if centre_dropped {
-            aster_mesh::CellType::QUAD8
-        } else {
-            cell.ty
+        let centre_dropped = matches!(
+            cell.ty,
+            aster_mesh::CellType::QUAD9 | aster_mesh::CellType::TRIA7
+        ) && geometry.coque3d_cells.contains(&id);
+        let ty = match cell.ty {
+            aster_mesh::CellType::QUAD9 if centre_dropped => aster_mesh::CellType::QUAD8,
+            aster_mesh::CellType::TRIA7 if centre_dropped => aster_mesh::CellType::TRIA6,
+            ty => ty,
         };
         let kind = SurfaceKind::of(ty)
             .filter(|k| k.dim() + 1 == space_dim || (space_dim == 3 && k.dim() == 1))
