@@ -1,7 +1,8 @@
-//! code_aster's `COQUE_3D` shell on QUAD9 (`MEC3QU9H`): a degenerated
-//! solid with a quadratic mid-surface, six DOFs (DX DY DZ DRX DRY DRZ) on
-//! the eight edge nodes and three rotations (DRX DRY DRZ) on the central
-//! node, 51 DOFs in all.
+//! code_aster's `COQUE_3D` shell on QUAD9 (`MEC3QU9H`) and TRIA7
+//! (`MEC3TR7H`): a degenerated solid with a quadratic mid-surface, six DOFs
+//! (DX DY DZ DRX DRY DRZ) on the edge nodes and three rotations (DRX DRY
+//! DRZ) on the central node, 51 DOFs in all on a QUAD9, 39 on a TRIA7
+//! ([`Coque3dCell`]).
 //!
 //! Transcribed from code_aster's small-strain path of `te0414`
 //! (`vdxnlr`, the routine `STAT_NON_LINE` calls for `RELATION='ELAS'`,
@@ -11,9 +12,13 @@
 //!   FPG4 (±1/√3) and the normal rule `FPG9COQ` (3×3 Gauss, code_aster's
 //!   point order), the bilinear extrapolation from the four reduced points
 //!   to the nine normal ones (with code_aster's literal
-//!   `0.577350269189626`);
-//! - nodal frames (`vectan`): at each of the nine nodes, the covariant
-//!   vectors a₁, a₂ of the QUAD8 geometry, the unit normal n = a₁×a₂/|·|,
+//!   `0.577350269189626`); on the TRIA7 (jni080's triangle branch), TRIA6
+//!   functions for the geometry and the translations, TRIA7 functions for
+//!   the rotations, FPG3 and FPG7, the linear extrapolation written with
+//!   the literals 0.166666666666667 and 0.666666666666667, the centre node
+//!   at 0.333333333333333;
+//! - nodal frames (`vectan`): at each node, the covariant vectors a₁, a₂
+//!   of the QUAD8 (TRIA6) geometry, the unit normal n = a₁×a₂/|·|,
 //!   t₁ = a₁/|a₁|, t₂ = n×t₁; the local rotations of a node are (t₁·θ,
 //!   t₂·θ), the normal rotation n·θ only feeds the drilling spring;
 //! - through the thickness: `COQUE_NCOU` layers of thickness h/n, each
@@ -30,7 +35,7 @@
 //!   (1−ν)/2] and the transverse shears κ·E/(2(1+ν)) (κ = `A_CIS`,
 //!   code_aster's default `0.8333333`);
 //! - drilling (`matrkb`): `COEF_RIGI_DRZ · min` of the local rotation
-//!   diagonal over the nine nodes, on each normal rotation;
+//!   diagonal over all the nodes, on each normal rotation;
 //! - local → global (`tranlg`): the rotation triple of each node turned by
 //!   its frame (t₁, t₂, n).
 //!
@@ -42,7 +47,7 @@
 //! Numerics only: no keyword is read here. The model carries it as
 //! [`crate::ElementKind::Coque3d`] (the central node numbered with its
 //! three rotations alone); the runner wires `MODELISATION='COQUE_3D'` on
-//! QUAD9 cells to it.
+//! QUAD9 and TRIA7 cells to it.
 
 use crate::material::Elastic;
 
