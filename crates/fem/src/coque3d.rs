@@ -208,87 +208,32 @@ fn qu9(x: f64, y: f64) -> Shape {
     s
 }
 
-/// The TRIA6 functions as `jni080` writes them (node 1 at (0, 0), 2 at
-/// (1, 0), 3 at (0, 1), then the mid-sides 1–2, 2–3, 3–1).
-fn tr6(xi1: f64, xi2: f64) -> Shape {
-    let l = 1. - xi1 - xi2;
-    Shape {
-        f: [
-            l * (2. * l - 1.),
-            xi1 * (2. * xi1 - 1.),
-            xi2 * (2. * xi2 - 1.),
-            4. * xi1 * l,
-            4. * xi1 * xi2,
-            4. * xi2 * l,
-            0.,
-            0.,
-            0.,
-        ],
-        d1: [
-            -4. * l + 1.,
-            4. * xi1 - 1.,
-            0.,
-            4. * l - 4. * xi1,
-            4. * xi2,
-            -4. * xi2,
-            0.,
-            0.,
-            0.,
-        ],
-        d2: [
-            -4. * l + 1.,
-            0.,
-            4. * xi2 - 1.,
-            -4. * xi1,
-            4. * xi1,
-            4. * l - 4. * xi2,
-            0.,
-            0.,
-            0.,
-        ],
+/// The TRIA6 (`jni080`'s geometry functions) or TRIA7 (its rotation
+/// functions: the TRIA6 ones corrected by the centre's bubble
+/// 27·ξ₁ξ₂(1 − ξ₁ − ξ₂)) at (ξ₁, ξ₂), code_aster's node order (1 at
+/// (0, 0), 2 at (1, 0), 3 at (0, 1), the mid-sides 1–2, 2–3, 3–1, the
+/// centre): [`crate::shape::shape`]'s, which are `jni080`'s polynomials.
+fn triangle(ty: aster_mesh::CellType, xi1: f64, xi2: f64) -> Shape {
+    let at = crate::shape::shape(ty, [xi1, xi2, 0.]);
+    let mut s = Shape {
+        f: [0.; 9],
+        d1: [0.; 9],
+        d2: [0.; 9],
+    };
+    for (k, (&n, dn)) in at.n.iter().zip(&at.dn).enumerate().take(9) {
+        s.f[k] = n;
+        s.d1[k] = dn[0];
+        s.d2[k] = dn[1];
     }
+    s
 }
 
-/// The TRIA7 functions as `jni080` writes them (the TRIA6 ones corrected
-/// by the bubble 27·ξ₁ξ₂(1 − ξ₁ − ξ₂) of the centre, node 7).
+fn tr6(xi1: f64, xi2: f64) -> Shape {
+    triangle(aster_mesh::CellType::TRIA6, xi1, xi2)
+}
+
 fn tr7(xi1: f64, xi2: f64) -> Shape {
-    let l = 1. - xi1 - xi2;
-    let b = xi1 * xi2 * l;
-    Shape {
-        f: [
-            l * (2. * l - 1.) + 3. * b,
-            xi1 * (2. * xi1 - 1.) + 3. * b,
-            xi2 * (2. * xi2 - 1.) + 3. * b,
-            4. * xi1 * l - 12. * b,
-            4. * xi1 * xi2 - 12. * b,
-            4. * xi2 * l - 12. * b,
-            27. * b,
-            0.,
-            0.,
-        ],
-        d1: [
-            -4. * l + 1. + 3. * xi2 * l - 3. * xi1 * xi2,
-            4. * xi1 - 1. + 3. * xi2 * l - 3. * xi1 * xi2,
-            3. * xi2 * l - 3. * xi1 * xi2,
-            4. * l - 4. * xi1 - 12. * xi2 * l + 12. * xi1 * xi2,
-            4. * xi2 - 12. * xi2 * l + 12. * xi1 * xi2,
-            -4. * xi2 - 12. * xi2 * l + 12. * xi1 * xi2,
-            27. * xi2 * l - 27. * xi1 * xi2,
-            0.,
-            0.,
-        ],
-        d2: [
-            -4. * l + 1. + 3. * xi1 * l - 3. * xi1 * xi2,
-            3. * xi1 * l - 3. * xi1 * xi2,
-            4. * xi2 - 1. + 3. * xi1 * l - 3. * xi1 * xi2,
-            -4. * xi1 - 12. * xi1 * l + 12. * xi1 * xi2,
-            4. * xi1 - 12. * xi1 * l + 12. * xi1 * xi2,
-            4. * l - 4. * xi2 - 12. * xi1 * l + 12. * xi1 * xi2,
-            27. * xi1 * l - 27. * xi1 * xi2,
-            0.,
-            0.,
-        ],
-    }
+    triangle(aster_mesh::CellType::TRIA7, xi1, xi2)
 }
 
 /// The reference data of `MEC3QU9H` / `MEC3TR7H` (`jni080`).
@@ -358,27 +303,18 @@ fn fpg9coq() -> [(f64, f64); 9] {
     ]
 }
 
-/// `FPG7` of the triangle (`elraga`): the centre, then two orbits of
-/// three points, with their weights.
-fn fpg7() -> ([(f64, f64); 7], [f64; 7]) {
-    let rac15 = 15f64.sqrt();
-    let p1 = (155. + rac15) / 2400.;
-    let p2 = (155. - rac15) / 2400.;
-    let a2 = (6. + rac15) / 21.;
-    let b2 = (6. - rac15) / 21.;
-    (
-        [
-            (1. / 3., 1. / 3.),
-            (a2, a2),
-            (1. - 2. * a2, a2),
-            (a2, 1. - 2. * a2),
-            (b2, b2),
-            (1. - 2. * b2, b2),
-            (b2, 1. - 2. * b2),
-        ],
-        [9. / 80., p1, p1, p1, p2, p2, p2],
-    )
+/// `FPG7` of the triangle (`elraga`: the centre, then two orbits of
+/// three points), with its weights.
+fn fpg7() -> (Vec<(f64, f64)>, Vec<f64>) {
+    crate::fpg::tria_fpg7()
+        .iter()
+        .map(|p| ((p.xi[0], p.xi[1]), p.weight))
+        .unzip()
 }
+
+/// The functions of one cell family: geometry (QUAD8, TRIA6), rotations
+/// (QUAD9, TRIA7).
+type ShapeFn = fn(f64, f64) -> Shape;
 
 impl RefElement {
     fn new(cell: Coque3dCell) -> RefElement {
@@ -386,56 +322,58 @@ impl RefElement {
             Coque3dCell::Quad9 => {
                 let a = (1f64 / 3.).sqrt();
                 let reduced = [(-a, -a), (a, -a), (a, a), (-a, a)];
-                let normal = fpg9coq();
                 let (c, m, z) = (25. / 81., 40. / 81., 64. / 81.);
                 let aa = 0.577350269189626;
-                RefElement {
-                    cell,
-                    nb1: 8,
-                    nb2: 9,
-                    normal: normal.to_vec(),
-                    wn: vec![c, m, c, m, c, m, c, m, z],
-                    gr: reduced.iter().map(|&(x, y)| qu8(x, y)).collect(),
-                    gn: normal.iter().map(|&(x, y)| qu8(x, y)).collect(),
-                    rr: reduced.iter().map(|&(x, y)| qu9(x, y)).collect(),
-                    rn: normal.iter().map(|&(x, y)| qu9(x, y)).collect(),
-                    gnodes: NODES9.iter().map(|&(x, y)| qu8(x, y)).collect(),
-                    extra: normal
-                        .iter()
-                        .map(|&(x, y)| {
-                            vec![
-                                0.75 * (aa - x) * (aa - y),
-                                0.75 * (aa + x) * (aa - y),
-                                0.75 * (aa + x) * (aa + y),
-                                0.75 * (aa - x) * (aa + y),
-                            ]
-                        })
-                        .collect(),
-                }
+                let extra = |x: f64, y: f64| {
+                    vec![
+                        0.75 * (aa - x) * (aa - y),
+                        0.75 * (aa + x) * (aa - y),
+                        0.75 * (aa + x) * (aa + y),
+                        0.75 * (aa - x) * (aa + y),
+                    ]
+                };
+                let normal = fpg9coq().to_vec();
+                let wn = vec![c, m, c, m, c, m, c, m, z];
+                let shapes: (ShapeFn, ShapeFn) = (qu8, qu9);
+                RefElement::of(cell, &reduced, (normal, wn), &NODES9, shapes, extra)
             }
             Coque3dCell::Tria7 => {
                 // FPG3 (`elraga`: un/6, deux/3).
                 let reduced = [(1. / 6., 1. / 6.), (2. / 3., 1. / 6.), (1. / 6., 2. / 3.)];
-                let (normal, wn) = fpg7();
                 // jni080's linear extrapolation from FPG3, its literals.
                 let (a, b) = (0.166666666666667, 0.666666666666667);
-                RefElement {
-                    cell,
-                    nb1: 6,
-                    nb2: 7,
-                    normal: normal.to_vec(),
-                    wn: wn.to_vec(),
-                    gr: reduced.iter().map(|&(x, y)| tr6(x, y)).collect(),
-                    gn: normal.iter().map(|&(x, y)| tr6(x, y)).collect(),
-                    rr: reduced.iter().map(|&(x, y)| tr7(x, y)).collect(),
-                    rn: normal.iter().map(|&(x, y)| tr7(x, y)).collect(),
-                    gnodes: NODES7.iter().map(|&(x, y)| tr6(x, y)).collect(),
-                    extra: normal
-                        .iter()
-                        .map(|&(x, y)| vec![2. * (-(x - b) - (y - a)), 2. * (x - a), 2. * (y - a)])
-                        .collect(),
-                }
+                let extra =
+                    |x: f64, y: f64| vec![2. * (-(x - b) - (y - a)), 2. * (x - a), 2. * (y - a)];
+                let shapes: (ShapeFn, ShapeFn) = (tr6, tr7);
+                RefElement::of(cell, &reduced, fpg7(), &NODES7, shapes, extra)
             }
+        }
+    }
+
+    /// The reference data from the reduced points, the normal points and
+    /// their weights, the nodes, the geometry and rotation functions and
+    /// the extrapolation from the reduced to a normal point.
+    fn of(
+        cell: Coque3dCell,
+        reduced: &[(f64, f64)],
+        (normal, wn): (Vec<(f64, f64)>, Vec<f64>),
+        nodes: &[(f64, f64)],
+        (geometry, rotation): (ShapeFn, ShapeFn),
+        extra: impl Fn(f64, f64) -> Vec<f64>,
+    ) -> RefElement {
+        let at = |f: ShapeFn, pts: &[(f64, f64)]| pts.iter().map(|&(x, y)| f(x, y)).collect();
+        RefElement {
+            cell,
+            nb1: cell.edge_nodes(),
+            nb2: cell.nodes(),
+            wn,
+            gr: at(geometry, reduced),
+            gn: at(geometry, &normal),
+            rr: at(rotation, reduced),
+            rn: at(rotation, &normal),
+            gnodes: at(geometry, nodes),
+            extra: normal.iter().map(|&(x, y)| extra(x, y)).collect(),
+            normal,
         }
     }
 
