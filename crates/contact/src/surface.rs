@@ -21,9 +21,9 @@ pub struct SurfaceCell {
     /// cell that holds the surface cell (+1 if there is none: then the mesh
     /// orientation, as `MODI_MAILLAGE(ORIE_PEAU=…)` leaves it, is trusted).
     pub sign: f64,
-    /// A COQUE_3D QUAD9 seen through its eight edge nodes
-    /// ([`crate::zone::ZoneGeometry::coque3d_cells`]): a `Quad8` kind that
-    /// is not a QUAD8 cell.
+    /// A COQUE_3D QUAD9 or TRIA7 seen through its edge nodes
+    /// ([`crate::zone::ZoneGeometry::coque3d_cells`]): a `Quad8` (`Tria6`)
+    /// kind that is not a QUAD8 (TRIA6) cell.
     pub centre_dropped: bool,
 }
 
@@ -449,12 +449,14 @@ fn surface_cells(
                 continue;
             }
         }
-        let centre_dropped =
-            cell.ty == aster_mesh::CellType::QUAD9 && geometry.coque3d_cells.contains(&id);
-        let ty = if centre_dropped {
-            aster_mesh::CellType::QUAD8
-        } else {
-            cell.ty
+        let centre_dropped = matches!(
+            cell.ty,
+            aster_mesh::CellType::QUAD9 | aster_mesh::CellType::TRIA7
+        ) && geometry.coque3d_cells.contains(&id);
+        let ty = match cell.ty {
+            aster_mesh::CellType::QUAD9 if centre_dropped => aster_mesh::CellType::QUAD8,
+            aster_mesh::CellType::TRIA7 if centre_dropped => aster_mesh::CellType::TRIA6,
+            ty => ty,
         };
         let kind = SurfaceKind::of(ty)
             .filter(|k| k.dim() + 1 == space_dim || (space_dim == 3 && k.dim() == 1))
@@ -518,5 +520,70 @@ fn orientation(
         1.0
     } else {
         -1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use aster_mesh::{Cell, CellType, Group};
+
+    /// Two coincident flat TRIA7 (nodes 0–6 and 7–13, each centre last).
+    fn two_tria7() -> Mesh {
+        let tri = [
+            [0., 0.],
+            [1., 0.],
+            [0., 1.],
+            [0.5, 0.],
+            [0.5, 0.5],
+            [0., 0.5],
+            [1. / 3., 1. / 3.],
+        ];
+        let coords: Vec<[f64; 3]> = (0..2)
+            .flat_map(|_| tri.iter().map(|p| [p[0], p[1], 0.]))
+            .collect();
+        let cell = |o: u32| Cell {
+            ty: CellType::TRIA7,
+            nodes: (o..o + 7).map(NodeId).collect(),
+        };
+        Mesh {
+            dim: 3,
+            node_names: (1..=14).map(|i| format!("N{i}")).collect(),
+            cell_names: vec!["M1".into(), "M2".into()],
+            coords,
+            cells: vec![cell(0), cell(7)],
+            groups_ma: vec![
+                Group {
+                    name: "M".into(),
+                    members: vec![CellId(0)],
+                },
+                Group {
+                    name: "S".into(),
+                    members: vec![CellId(1)],
+                },
+            ],
+            groups_no: vec![],
+        }
+    }
+
+    /// code_aster's `cflecq` drops the centre of a COQUE_3D TRIA7 from the
+    /// contact nodes and `mmtypm` sees the face as a TR6; a TRIA7 of
+    /// another element keeps its seven nodes.
+    #[test]
+    fn coque3d_tria7_faces_are_seen_as_tria6() {
+        let mesh = two_tria7();
+        let mut g = ZoneGeometry::new("M", "S");
+        let plain = ResolvedZone::new(0, &g, &mesh).unwrap();
+        assert_eq!(plain.master[0].kind, SurfaceKind::Tria7);
+        assert_eq!(plain.slave_nodes.len(), 7);
+        g.coque3d_cells = [CellId(0), CellId(1)].into_iter().collect();
+        let z = ResolvedZone::new(0, &g, &mesh).unwrap();
+        for c in z.master.iter().chain(&z.slave) {
+            assert_eq!(c.kind, SurfaceKind::Tria6);
+            assert!(c.centre_dropped);
+            assert_eq!(c.nodes.len(), 6);
+        }
+        assert_eq!(z.master_nodes, (0..6).map(NodeId).collect::<Vec<_>>());
+        assert_eq!(z.slave_nodes, (7..13).map(NodeId).collect::<Vec<_>>());
     }
 }

@@ -165,12 +165,12 @@ pub struct ZoneGeometry {
     /// (code_aster's `cacoco`, `cfdist`: the slave side only, summed with
     /// `DIST_POUTRE`'s). `None`: no such offset.
     pub shell_half_thickness: Option<std::collections::BTreeMap<aster_mesh::CellId, f64>>,
-    /// The QUAD9 cells carrying code_aster's `COQUE_3D`: their centre node
-    /// (rotations only) is no contact node (`cflecq`), and contact sees
-    /// the face through its eight other nodes, as a QUAD8 (`mmtypm`:
-    /// geometry, projection and the master coefficients of `cfreli` with
-    /// the QU8 functions), without the QUAD8 middle-node treatment
-    /// (`cfleqa` counts no middle node on a QUAD9).
+    /// The QUAD9 and TRIA7 cells carrying code_aster's `COQUE_3D`: their
+    /// centre node (rotations only) is no contact node (`cflecq`), and
+    /// contact sees the face through its other nodes, as a QUAD8 / TRIA6
+    /// (`mmtypm`: geometry, projection and the master coefficients of
+    /// `cfreli` with the QU8 / TR6 functions), without the QUAD8
+    /// middle-node treatment (`cfleqa` counts no middle node on a QUAD9).
     pub coque3d_cells: std::collections::BTreeSet<aster_mesh::CellId>,
 }
 

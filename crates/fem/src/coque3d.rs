@@ -1,7 +1,8 @@
-//! code_aster's `COQUE_3D` shell on QUAD9 (`MEC3QU9H`): a degenerated
-//! solid with a quadratic mid-surface, six DOFs (DX DY DZ DRX DRY DRZ) on
-//! the eight edge nodes and three rotations (DRX DRY DRZ) on the central
-//! node, 51 DOFs in all.
+//! code_aster's `COQUE_3D` shell on QUAD9 (`MEC3QU9H`) and TRIA7
+//! (`MEC3TR7H`): a degenerated solid with a quadratic mid-surface, six DOFs
+//! (DX DY DZ DRX DRY DRZ) on the edge nodes and three rotations (DRX DRY
+//! DRZ) on the central node, 51 DOFs in all on a QUAD9, 39 on a TRIA7
+//! ([`Coque3dCell`]).
 //!
 //! Transcribed from code_aster's small-strain path of `te0414`
 //! (`vdxnlr`, the routine `STAT_NON_LINE` calls for `RELATION='ELAS'`,
@@ -11,9 +12,13 @@
 //!   FPG4 (±1/√3) and the normal rule `FPG9COQ` (3×3 Gauss, code_aster's
 //!   point order), the bilinear extrapolation from the four reduced points
 //!   to the nine normal ones (with code_aster's literal
-//!   `0.577350269189626`);
-//! - nodal frames (`vectan`): at each of the nine nodes, the covariant
-//!   vectors a₁, a₂ of the QUAD8 geometry, the unit normal n = a₁×a₂/|·|,
+//!   `0.577350269189626`); on the TRIA7 (jni080's triangle branch), TRIA6
+//!   functions for the geometry and the translations, TRIA7 functions for
+//!   the rotations, FPG3 and FPG7, the linear extrapolation written with
+//!   the literals 0.166666666666667 and 0.666666666666667, the centre node
+//!   at 0.333333333333333;
+//! - nodal frames (`vectan`): at each node, the covariant vectors a₁, a₂
+//!   of the QUAD8 (TRIA6) geometry, the unit normal n = a₁×a₂/|·|,
 //!   t₁ = a₁/|a₁|, t₂ = n×t₁; the local rotations of a node are (t₁·θ,
 //!   t₂·θ), the normal rotation n·θ only feeds the drilling spring;
 //! - through the thickness: `COQUE_NCOU` layers of thickness h/n, each
@@ -30,7 +35,7 @@
 //!   (1−ν)/2] and the transverse shears κ·E/(2(1+ν)) (κ = `A_CIS`,
 //!   code_aster's default `0.8333333`);
 //! - drilling (`matrkb`): `COEF_RIGI_DRZ · min` of the local rotation
-//!   diagonal over the nine nodes, on each normal rotation;
+//!   diagonal over all the nodes, on each normal rotation;
 //! - local → global (`tranlg`): the rotation triple of each node turned by
 //!   its frame (t₁, t₂, n).
 //!
@@ -42,7 +47,7 @@
 //! Numerics only: no keyword is read here. The model carries it as
 //! [`crate::ElementKind::Coque3d`] (the central node numbered with its
 //! three rotations alone); the runner wires `MODELISATION='COQUE_3D'` on
-//! QUAD9 cells to it.
+//! QUAD9 and TRIA7 cells to it.
 
 use crate::material::Elastic;
 
@@ -74,28 +79,68 @@ impl Coque3dSection {
     }
 }
 
-/// Edge nodes (QUAD8 part).
-const NB1: usize = 8;
-/// All nodes (QUAD9).
-const NB2: usize = 9;
-/// Reduced points (FPG4).
-const NPGSR: usize = 4;
-/// Normal points (FPG9COQ).
-const NPGSN: usize = 9;
-/// Local DOFs before the drilling ones: 5 per edge node, 2 at the centre.
-const NDDLE: usize = 5 * NB1 + 2;
-/// Global DOFs: 6 per edge node, 3 at the centre.
-pub const NDDL: usize = 6 * NB1 + 3;
-
-/// Values and derivatives of shape functions at one point.
-#[derive(Clone, Copy)]
-struct Shape<const N: usize> {
-    f: [f64; N],
-    d1: [f64; N],
-    d2: [f64; N],
+/// The two cells of `COQUE_3D`: code_aster's `MEC3QU9H` (QUAD9) and
+/// `MEC3TR7H` (TRIA7).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coque3dCell {
+    /// QUAD9: QUAD8 geometry, QUAD9 rotations, FPG4 / FPG9COQ.
+    Quad9,
+    /// TRIA7: TRIA6 geometry, TRIA7 rotations, FPG3 / FPG7.
+    Tria7,
 }
 
-fn qu8(x: f64, y: f64) -> Shape<8> {
+impl Coque3dCell {
+    /// The cell whose geometry has `n` edge nodes (8: QUAD9, 6: TRIA7).
+    pub fn of_edge_nodes(n: usize) -> Result<Coque3dCell, String> {
+        match n {
+            8 => Ok(Coque3dCell::Quad9),
+            6 => Ok(Coque3dCell::Tria7),
+            _ => Err(format!(
+                "a COQUE_3D cell has 8 (QUAD9) or 6 (TRIA7) edge nodes, not {n}"
+            )),
+        }
+    }
+
+    /// Edge nodes (`nb1`: the QUAD8 / TRIA6 part).
+    pub const fn edge_nodes(self) -> usize {
+        match self {
+            Coque3dCell::Quad9 => 8,
+            Coque3dCell::Tria7 => 6,
+        }
+    }
+
+    /// All nodes (`nb2`), the centre last.
+    pub const fn nodes(self) -> usize {
+        self.edge_nodes() + 1
+    }
+
+    /// Global DOFs: 6 per edge node, 3 at the centre.
+    pub const fn dofs(self) -> usize {
+        6 * self.edge_nodes() + 3
+    }
+
+    /// Corners (`nso`).
+    const fn corners(self) -> usize {
+        match self {
+            Coque3dCell::Quad9 => 4,
+            Coque3dCell::Tria7 => 3,
+        }
+    }
+}
+
+/// Global DOFs of a QUAD9: 6 per edge node, 3 at the centre.
+pub const NDDL: usize = Coque3dCell::Quad9.dofs();
+
+/// Values and derivatives of shape functions at one point (at most nine
+/// functions; the unused ones stay zero).
+#[derive(Clone, Copy)]
+struct Shape {
+    f: [f64; 9],
+    d1: [f64; 9],
+    d2: [f64; 9],
+}
+
+fn qu8(x: f64, y: f64) -> Shape {
     let (un, uns4, undemi, deux) = (1., 0.25, 0.5, 2.);
     Shape {
         f: [
@@ -107,6 +152,7 @@ fn qu8(x: f64, y: f64) -> Shape<8> {
             undemi * (un - y * y) * (un + x),
             undemi * (un - x * x) * (un + y),
             undemi * (un - y * y) * (un - x),
+            0.,
         ],
         d1: [
             -uns4 * (un - y) * (-deux * x - y),
@@ -117,6 +163,7 @@ fn qu8(x: f64, y: f64) -> Shape<8> {
             (un - y * y) * undemi,
             -deux * x * (un + y) * undemi,
             -(un - y * y) * undemi,
+            0.,
         ],
         d2: [
             -uns4 * (un - x) * (-deux * y - x),
@@ -127,11 +174,12 @@ fn qu8(x: f64, y: f64) -> Shape<8> {
             -deux * y * (un + x) * undemi,
             (un - x * x) * undemi,
             -deux * y * (un - x) * undemi,
+            0.,
         ],
     }
 }
 
-fn qu9(x: f64, y: f64) -> Shape<9> {
+fn qu9(x: f64, y: f64) -> Shape {
     let al = |t: f64| [t * (t - 1.) / 2., 1. - t * t, t * (t + 1.) / 2.];
     let dal = |t: f64| [t - 0.5, -2. * t, t + 0.5];
     // (ξ index, η index) of each node: 0 ↔ −1, 1 ↔ 0, 2 ↔ +1.
@@ -160,22 +208,57 @@ fn qu9(x: f64, y: f64) -> Shape<9> {
     s
 }
 
-/// The reference data of `MEC3QU9H` (`jni080`).
-struct RefQuad9 {
-    /// Weights of FPG9COQ.
-    wn: [f64; NPGSN],
-    /// QUAD8 at the reduced points (geometry, translations).
-    g8r: [Shape<8>; NPGSR],
-    /// QUAD8 at the normal points.
-    g8n: [Shape<8>; NPGSN],
-    /// QUAD9 at the reduced points (rotations).
-    r9r: [Shape<9>; NPGSR],
-    /// QUAD9 at the normal points.
-    r9n: [Shape<9>; NPGSN],
-    /// QUAD8 at the nine nodes (the nodal frames).
-    g8nodes: [Shape<8>; NB2],
+/// The TRIA6 (`jni080`'s geometry functions) or TRIA7 (its rotation
+/// functions: the TRIA6 ones corrected by the centre's bubble
+/// 27·ξ₁ξ₂(1 − ξ₁ − ξ₂)) at (ξ₁, ξ₂), code_aster's node order (1 at
+/// (0, 0), 2 at (1, 0), 3 at (0, 1), the mid-sides 1–2, 2–3, 3–1, the
+/// centre): [`crate::shape::shape`]'s, which are `jni080`'s polynomials.
+fn triangle(ty: aster_mesh::CellType, xi1: f64, xi2: f64) -> Shape {
+    let at = crate::shape::shape(ty, [xi1, xi2, 0.]);
+    let mut s = Shape {
+        f: [0.; 9],
+        d1: [0.; 9],
+        d2: [0.; 9],
+    };
+    for (k, (&n, dn)) in at.n.iter().zip(&at.dn).enumerate().take(9) {
+        s.f[k] = n;
+        s.d1[k] = dn[0];
+        s.d2[k] = dn[1];
+    }
+    s
+}
+
+fn tr6(xi1: f64, xi2: f64) -> Shape {
+    triangle(aster_mesh::CellType::TRIA6, xi1, xi2)
+}
+
+fn tr7(xi1: f64, xi2: f64) -> Shape {
+    triangle(aster_mesh::CellType::TRIA7, xi1, xi2)
+}
+
+/// The reference data of `MEC3QU9H` / `MEC3TR7H` (`jni080`).
+struct RefElement {
+    cell: Coque3dCell,
+    /// Edge nodes (`nb1`).
+    nb1: usize,
+    /// All nodes (`nb2`).
+    nb2: usize,
+    /// The normal points (FPG9COQ, FPG7).
+    normal: Vec<(f64, f64)>,
+    /// Weights of the normal points.
+    wn: Vec<f64>,
+    /// Geometry functions (QUAD8, TRIA6) at the reduced points.
+    gr: Vec<Shape>,
+    /// Geometry functions at the normal points.
+    gn: Vec<Shape>,
+    /// Rotation functions (QUAD9, TRIA7) at the reduced points.
+    rr: Vec<Shape>,
+    /// Rotation functions at the normal points.
+    rn: Vec<Shape>,
+    /// Geometry functions at the nodes (the nodal frames).
+    gnodes: Vec<Shape>,
     /// Extrapolation from the reduced to the normal points.
-    extra: [[f64; NPGSR]; NPGSN],
+    extra: Vec<Vec<f64>>,
 }
 
 /// The nine nodes of the reference QUAD9, code_aster's order.
@@ -189,6 +272,18 @@ const NODES9: [(f64, f64); 9] = [
     (0., 1.),
     (-1., 0.),
     (0., 0.),
+];
+
+/// The seven nodes of the reference TRIA7 as `jni080` writes them (its
+/// literal 0.333333333333333 for the centre).
+const NODES7: [(f64, f64); 7] = [
+    (0., 0.),
+    (1., 0.),
+    (0., 1.),
+    (0.5, 0.),
+    (0.5, 0.5),
+    (0., 0.5),
+    (0.333333333333333, 0.333333333333333),
 ];
 
 /// `FPG9COQ` (`elraga`): 3×3 Gauss, corners and mid-sides in turn round
@@ -208,29 +303,99 @@ fn fpg9coq() -> [(f64, f64); 9] {
     ]
 }
 
-impl RefQuad9 {
-    fn new() -> RefQuad9 {
-        let a = (1f64 / 3.).sqrt();
-        let reduced = [(-a, -a), (a, -a), (a, a), (-a, a)];
-        let normal = fpg9coq();
-        let (c, m, z) = (25. / 81., 40. / 81., 64. / 81.);
-        let aa = 0.577350269189626;
-        RefQuad9 {
-            wn: [c, m, c, m, c, m, c, m, z],
-            g8r: reduced.map(|(x, y)| qu8(x, y)),
-            g8n: normal.map(|(x, y)| qu8(x, y)),
-            r9r: reduced.map(|(x, y)| qu9(x, y)),
-            r9n: normal.map(|(x, y)| qu9(x, y)),
-            g8nodes: NODES9.map(|(x, y)| qu8(x, y)),
-            extra: normal.map(|(x, y)| {
-                [
-                    0.75 * (aa - x) * (aa - y),
-                    0.75 * (aa + x) * (aa - y),
-                    0.75 * (aa + x) * (aa + y),
-                    0.75 * (aa - x) * (aa + y),
-                ]
-            }),
+/// `FPG7` of the triangle (`elraga`: the centre, then two orbits of
+/// three points), with its weights.
+fn fpg7() -> (Vec<(f64, f64)>, Vec<f64>) {
+    crate::fpg::tria_fpg7()
+        .iter()
+        .map(|p| ((p.xi[0], p.xi[1]), p.weight))
+        .unzip()
+}
+
+/// The functions of one cell family: geometry (QUAD8, TRIA6), rotations
+/// (QUAD9, TRIA7).
+type ShapeFn = fn(f64, f64) -> Shape;
+
+impl RefElement {
+    fn new(cell: Coque3dCell) -> RefElement {
+        match cell {
+            Coque3dCell::Quad9 => {
+                let a = (1f64 / 3.).sqrt();
+                let reduced = [(-a, -a), (a, -a), (a, a), (-a, a)];
+                let (c, m, z) = (25. / 81., 40. / 81., 64. / 81.);
+                let aa = 0.577350269189626;
+                let extra = |x: f64, y: f64| {
+                    vec![
+                        0.75 * (aa - x) * (aa - y),
+                        0.75 * (aa + x) * (aa - y),
+                        0.75 * (aa + x) * (aa + y),
+                        0.75 * (aa - x) * (aa + y),
+                    ]
+                };
+                let normal = fpg9coq().to_vec();
+                let wn = vec![c, m, c, m, c, m, c, m, z];
+                let shapes: (ShapeFn, ShapeFn) = (qu8, qu9);
+                RefElement::of(cell, &reduced, (normal, wn), &NODES9, shapes, extra)
+            }
+            Coque3dCell::Tria7 => {
+                // FPG3 (`elraga`: un/6, deux/3).
+                let reduced = [(1. / 6., 1. / 6.), (2. / 3., 1. / 6.), (1. / 6., 2. / 3.)];
+                // jni080's linear extrapolation from FPG3, its literals.
+                let (a, b) = (0.166666666666667, 0.666666666666667);
+                let extra =
+                    |x: f64, y: f64| vec![2. * (-(x - b) - (y - a)), 2. * (x - a), 2. * (y - a)];
+                let shapes: (ShapeFn, ShapeFn) = (tr6, tr7);
+                RefElement::of(cell, &reduced, fpg7(), &NODES7, shapes, extra)
+            }
         }
+    }
+
+    /// The reference data from the reduced points, the normal points and
+    /// their weights, the nodes, the geometry and rotation functions and
+    /// the extrapolation from the reduced to a normal point.
+    fn of(
+        cell: Coque3dCell,
+        reduced: &[(f64, f64)],
+        (normal, wn): (Vec<(f64, f64)>, Vec<f64>),
+        nodes: &[(f64, f64)],
+        (geometry, rotation): (ShapeFn, ShapeFn),
+        extra: impl Fn(f64, f64) -> Vec<f64>,
+    ) -> RefElement {
+        let at = |f: ShapeFn, pts: &[(f64, f64)]| pts.iter().map(|&(x, y)| f(x, y)).collect();
+        RefElement {
+            cell,
+            nb1: cell.edge_nodes(),
+            nb2: cell.nodes(),
+            wn,
+            gr: at(geometry, reduced),
+            gn: at(geometry, &normal),
+            rr: at(rotation, reduced),
+            rn: at(rotation, &normal),
+            gnodes: at(geometry, nodes),
+            extra: normal.iter().map(|&(x, y)| extra(x, y)).collect(),
+            normal,
+        }
+    }
+
+    /// Reduced points (`npgsr`).
+    fn npgsr(&self) -> usize {
+        self.gr.len()
+    }
+
+    /// Normal points (`npgsn`).
+    fn npgsn(&self) -> usize {
+        self.gn.len()
+    }
+
+    /// Local DOFs before the drilling ones: 5 per edge node, 2 at the
+    /// centre (`nddle`).
+    fn nddle(&self) -> usize {
+        5 * self.nb1 + 2
+    }
+
+    /// Global DOFs.
+    fn nddl(&self) -> usize {
+        6 * self.nb1 + 3
     }
 }
 
@@ -249,14 +414,14 @@ fn norm(a: V3) -> f64 {
 }
 
 /// The frame of each of the nine nodes (`vectan`): rows t₁, t₂, n.
-fn nodal_frames(xyz: &[V3; NB1], r: &RefQuad9) -> Result<[[V3; 3]; NB2], String> {
-    let mut frames = [[[0.; 3]; 3]; NB2];
+fn nodal_frames(xyz: &[V3], r: &RefElement) -> Result<Vec<[V3; 3]>, String> {
+    let mut frames = vec![[[0.; 3]; 3]; r.nb2];
     for (i, fr) in frames.iter_mut().enumerate() {
-        let s = &r.g8nodes[i];
+        let s = &r.gnodes[i];
         let mut a1 = [0.; 3];
         let mut a2 = [0.; 3];
         for k in 0..3 {
-            for j in 0..NB1 {
+            for j in 0..r.nb1 {
                 a1[k] += s.d1[j] * xyz[j][k];
                 a2[k] += s.d2[j] * xyz[j][k];
             }
@@ -265,7 +430,7 @@ fn nodal_frames(xyz: &[V3; NB1], r: &RefQuad9) -> Result<[[V3; 3]; NB2], String>
         let (rn, r1) = (norm(n), norm(a1));
         if !(rn > 0. && r1 > 0.) {
             return Err(format!(
-                "a COQUE_3D quadrangle is degenerate at its node {} (zero covariant vector): nodes {xyz:?}",
+                "a COQUE_3D cell is degenerate at its node {} (zero covariant vector): nodes {xyz:?}",
                 i + 1
             ));
         }
@@ -281,9 +446,9 @@ fn nodal_frames(xyz: &[V3; NB1], r: &RefQuad9) -> Result<[[V3; 3]; NB2], String>
 /// the interpolated, non-normalised normal), the inverse Jacobian and its
 /// determinant.
 fn point_frame(
-    s: &Shape<8>,
-    xyz: &[V3; NB1],
-    normals: &[V3; NB2],
+    s: &Shape,
+    xyz: &[V3],
+    normals: &[V3],
     ksi3s2: f64,
     epais: f64,
 ) -> ([V3; 3], [[f64; 3]; 3], f64) {
@@ -291,7 +456,7 @@ fn point_frame(
     let mut g1 = [0.; 3];
     let mut g2 = [0.; 3];
     for k in 0..3 {
-        for j in 0..NB1 {
+        for j in 0..xyz.len() {
             t3[k] += s.f[j] * normals[j][k];
             let x = xyz[j][k] + ksi3s2 * epais * normals[j][k];
             g1[k] += s.d1[j] * x;
@@ -393,15 +558,16 @@ fn times_jinv<const R: usize>(h: &[[f64; 9]; R], jm1: &[[f64; 3]; 3]) -> [[f64; 
 /// `dnsdsf` columns 4, 5 of each node and the two central columns): row
 /// 3·k + d is ∂uₖ/∂(ξ₁, ξ₂, ξ₃)[d].
 fn rotation_columns(
-    s9: &Shape<9>,
-    frames: &[[V3; 3]; NB2],
+    s9: &Shape,
+    frames: &[[V3; 3]],
     ksi3s2: f64,
     epais: f64,
 ) -> Vec<([f64; 9], usize)> {
-    let mut cols = Vec::with_capacity(2 * NB2);
-    for j in 0..NB2 {
-        let (t1, t2) = (frames[j][0], frames[j][1]);
-        let base = if j < NB1 { 5 * j + 3 } else { 5 * NB1 };
+    let nb1 = frames.len() - 1;
+    let mut cols = Vec::with_capacity(2 * frames.len());
+    for (j, frame) in frames.iter().enumerate() {
+        let (t1, t2) = (frame[0], frame[1]);
+        let base = if j < nb1 { 5 * j + 3 } else { 5 * nb1 };
         let mut ca = [0.; 9];
         let mut cb = [0.; 9];
         for k in 0..3 {
@@ -418,20 +584,22 @@ fn rotation_columns(
     cols
 }
 
-/// The 5×42 strain operator at every (layer point, normal point), with
-/// its weight: `btdmsr` on the reduced points, `btdfn` on the normal ones,
-/// combined by `btdmsn` (IND=1).
+/// The 5×`nddle` strain operator (5×42 on a QUAD9, 5×32 on a TRIA7) at
+/// every (layer point, normal point), with its weight: `btdmsr` on the
+/// reduced points, `btdfn` on the normal ones, combined by `btdmsn`
+/// (IND=1).
 fn operators(
-    xyz: &[V3; NB1],
-    frames: &[[V3; 3]; NB2],
+    xyz: &[V3],
+    frames: &[[V3; 3]],
     section: &Coque3dSection,
-    r: &RefQuad9,
-) -> Vec<(Vec<[f64; NDDLE]>, f64)> {
-    let normals = frames.map(|f| f[2]);
+    r: &RefElement,
+) -> Vec<(Vec<Vec<f64>>, f64)> {
+    let normals: Vec<V3> = frames.iter().map(|f| f[2]).collect();
     let nbcou = section.layers.max(1) as usize;
     let hic = section.thickness / nbcou as f64;
     let zmin = -section.thickness / 2.;
-    let mut out = Vec::with_capacity(nbcou * 3 * NPGSN);
+    let (nddle, npgsr) = (r.nddle(), r.npgsr());
+    let mut out = Vec::with_capacity(nbcou * 3 * r.npgsn());
     for icou in 0..nbcou {
         for inte in 0..3 {
             let (zic, coef) = match inte {
@@ -441,15 +609,15 @@ fn operators(
             };
             let ksi3s2 = zic / hic;
             // Reduced points: membrane (translations only) and shear rows.
-            let mut btdm = [[[0.; NDDLE]; 3]; NPGSR];
-            let mut btds = [[[0.; NDDLE]; 2]; NPGSR];
-            for p in 0..NPGSR {
-                let s8 = &r.g8r[p];
+            let mut btdm = vec![[vec![0.; nddle], vec![0.; nddle], vec![0.; nddle]]; npgsr];
+            let mut btds = vec![[vec![0.; nddle], vec![0.; nddle]]; npgsr];
+            for p in 0..npgsr {
+                let s8 = &r.gr[p];
                 let (t, jm1, _) = point_frame(s8, xyz, &normals, ksi3s2, hic);
                 let (hm, hs) = hfmss(&t, true);
                 let hm = times_jinv(&hm, &jm1);
                 let hs = times_jinv(&hs, &jm1);
-                for jb in 0..NB1 {
+                for jb in 0..r.nb1 {
                     for k in 0..3 {
                         let col = 5 * jb + k;
                         // ∂uₖ/∂ξ₁, ∂uₖ/∂ξ₂ at rows 3k, 3k+1.
@@ -463,31 +631,31 @@ fn operators(
                         }
                     }
                 }
-                for (c, col) in rotation_columns(&r.r9r[p], frames, ksi3s2, hic) {
+                for (c, col) in rotation_columns(&r.rr[p], frames, ksi3s2, hic) {
                     for i in 0..2 {
                         btds[p][i][col] = (0..9).map(|k| hs[i][k] * c[k]).sum();
                     }
                 }
             }
             // Normal points: bending rows and the extrapolated rest.
-            for q in 0..NPGSN {
-                let (t, jm1, det) = point_frame(&r.g8n[q], xyz, &normals, ksi3s2, hic);
+            for q in 0..r.npgsn() {
+                let (t, jm1, det) = point_frame(&r.gn[q], xyz, &normals, ksi3s2, hic);
                 let (hf, _) = hfmss(&t, false);
                 let hf = times_jinv(&hf, &jm1);
                 let wgt = coef * (r.wn[q] * det);
-                let mut btdf = [[0.; NDDLE]; 3];
-                for (c, col) in rotation_columns(&r.r9n[q], frames, ksi3s2, hic) {
+                let mut btdf = [vec![0.; nddle], vec![0.; nddle], vec![0.; nddle]];
+                for (c, col) in rotation_columns(&r.rn[q], frames, ksi3s2, hic) {
                     for (i, row) in btdf.iter_mut().enumerate() {
                         row[col] = (0..9).map(|k| hf[i][k] * c[k]).sum();
                     }
                 }
                 let e = &r.extra[q];
-                let mut b = vec![[0.; NDDLE]; 5];
-                for j in 0..NDDLE {
+                let mut b = vec![vec![0.; nddle]; 5];
+                for j in 0..nddle {
                     for i in 0..2 {
                         let mut m = 0.;
                         let mut s = 0.;
-                        for k in 0..NPGSR {
+                        for k in 0..npgsr {
                             m += e[k] * btdm[k][i][j];
                             s += e[k] * btds[k][i][j];
                         }
@@ -495,7 +663,7 @@ fn operators(
                         b[i + 3][j] = s;
                     }
                     let mut m = 0.;
-                    for k in 0..NPGSR {
+                    for k in 0..npgsr {
                         m += e[k] * btdm[k][2][j];
                     }
                     b[2][j] = m + btdf[2][j];
@@ -523,22 +691,24 @@ fn dtild(material: &Elastic, kappa: f64) -> [[f64; 5]; 5] {
     d
 }
 
-/// The element's stiffness in its local rotation frames, 51×51 (`matrkb`
-/// on `vdxnlr`'s `ktild`), and the drilling coefficient.
+/// The element's stiffness in its local rotation frames, `nddl`² (51×51
+/// on a QUAD9, 39×39 on a TRIA7: `matrkb` on `vdxnlr`'s `ktild`), and the
+/// drilling coefficient.
 fn local_stiffness(
-    xyz: &[V3; NB1],
-    frames: &[[V3; 3]; NB2],
+    xyz: &[V3],
+    frames: &[[V3; 3]],
     material: &Elastic,
     section: &Coque3dSection,
-    r: &RefQuad9,
+    r: &RefElement,
 ) -> (Vec<f64>, f64) {
     let d = dtild(material, section.shear_factor);
-    let mut kt = vec![0.; NDDLE * NDDLE];
+    let (nb1, nddle, nddl) = (r.nb1, r.nddle(), r.nddl());
+    let mut kt = vec![0.; nddle * nddle];
     for (b, wgt) in operators(xyz, frames, section, r) {
         // wmatcb = (wgt·D)·B
-        let mut db = vec![[0.; NDDLE]; 5];
+        let mut db = vec![vec![0.; nddle]; 5];
         for i in 0..5 {
-            for j in 0..NDDLE {
+            for j in 0..nddle {
                 let mut s = 0.;
                 for k in 0..5 {
                     s += d[i][k] * wgt * b[k][j];
@@ -546,51 +716,57 @@ fn local_stiffness(
                 db[i][j] = s;
             }
         }
-        for i in 0..NDDLE {
-            for j in 0..NDDLE {
+        for i in 0..nddle {
+            for j in 0..nddle {
                 let mut s = 0.;
                 for k in 0..5 {
                     s += b[k][i] * db[k][j];
                 }
-                kt[i * NDDLE + j] += s;
+                kt[i * nddle + j] += s;
             }
         }
     }
     // matrkb: 5 per edge node (+ a drilling row), 2 (+1) at the centre.
     let mut xmin = 1. / f64::EPSILON;
-    for n in 0..NB2 {
-        let r0 = if n < NB1 { 5 * n + 3 } else { 5 * NB1 };
+    for n in 0..r.nb2 {
+        let r0 = if n < nb1 { 5 * n + 3 } else { 5 * nb1 };
         for a in 0..2 {
-            xmin = xmin.min(kt[(r0 + a) * NDDLE + r0 + a]);
+            xmin = xmin.min(kt[(r0 + a) * nddle + r0 + a]);
         }
     }
     let coef = section.drilling * xmin;
     let local_of = |i: usize| {
-        if i < 5 * NB1 {
+        if i < 5 * nb1 {
             6 * (i / 5) + i % 5
         } else {
-            6 * NB1 + (i - 5 * NB1)
+            6 * nb1 + (i - 5 * nb1)
         }
     };
-    let mut k = vec![0.; NDDL * NDDL];
-    for i in 0..NDDLE {
-        for j in 0..NDDLE {
-            k[local_of(i) * NDDL + local_of(j)] = kt[i * NDDLE + j];
+    let mut k = vec![0.; nddl * nddl];
+    for i in 0..nddle {
+        for j in 0..nddle {
+            k[local_of(i) * nddl + local_of(j)] = kt[i * nddle + j];
         }
     }
-    for n in 0..NB1 {
-        k[(6 * n + 5) * NDDL + 6 * n + 5] = coef;
+    for n in 0..nb1 {
+        k[(6 * n + 5) * nddl + 6 * n + 5] = coef;
     }
-    k[(NDDL - 1) * NDDL + NDDL - 1] = coef;
+    k[(nddl - 1) * nddl + nddl - 1] = coef;
     (k, coef)
 }
 
-/// The global stiffness of a COQUE_3D QUAD9, row-major 51×51, DOFs
-/// node-major: DX DY DZ DRX DRY DRZ of nodes 1–8, then DRX DRY DRZ of the
-/// central node. `xyz` are the eight edge nodes (the central node's
-/// position plays no part: code_aster's geometry is the QUAD8's).
+/// The reference data of the cell whose edge nodes are `xyz`.
+fn reference(xyz: &[V3]) -> Result<RefElement, String> {
+    Ok(RefElement::new(Coque3dCell::of_edge_nodes(xyz.len())?))
+}
+
+/// The global stiffness of a COQUE_3D cell, row-major `nddl`² (51×51 on
+/// a QUAD9, 39×39 on a TRIA7), DOFs node-major: DX DY DZ DRX DRY DRZ of
+/// the edge nodes, then DRX DRY DRZ of the central node. `xyz` are the
+/// edge nodes (8 for a QUAD9, 6 for a TRIA7; the central node's position
+/// plays no part: code_aster's geometry is the QUAD8's / TRIA6's).
 pub fn stiffness(
-    xyz: &[V3; NB1],
+    xyz: &[V3],
     material: &Elastic,
     section: &Coque3dSection,
 ) -> Result<Vec<f64>, String> {
@@ -600,59 +776,76 @@ pub fn stiffness(
             section.drilling
         ));
     }
-    let r = RefQuad9::new();
+    let r = reference(xyz)?;
     let frames = nodal_frames(xyz, &r)?;
     let (kl, _) = local_stiffness(xyz, &frames, material, section, &r);
+    let (nb1, nddl) = (r.nb1, r.nddl());
     // P: global → local (rotation triples turned by each node's frame).
-    let mut p = vec![0.; NDDL * NDDL];
-    for n in 0..NB1 {
+    let mut p = vec![0.; nddl * nddl];
+    for n in 0..nb1 {
         for a in 0..3 {
-            p[(6 * n + a) * NDDL + 6 * n + a] = 1.;
+            p[(6 * n + a) * nddl + 6 * n + a] = 1.;
             for b in 0..3 {
-                p[(6 * n + 3 + a) * NDDL + 6 * n + 3 + b] = frames[n][a][b];
+                p[(6 * n + 3 + a) * nddl + 6 * n + 3 + b] = frames[n][a][b];
             }
         }
     }
     for a in 0..3 {
         for b in 0..3 {
-            p[(6 * NB1 + a) * NDDL + 6 * NB1 + b] = frames[NB1][a][b];
+            p[(6 * nb1 + a) * nddl + 6 * nb1 + b] = frames[nb1][a][b];
         }
     }
     // Pᵀ·K·P (the products skip nothing but exact zeros: `tranlg`'s sums)
-    let p = nalgebra::DMatrix::from_row_slice(NDDL, NDDL, &p);
-    let kl = nalgebra::DMatrix::from_row_slice(NDDL, NDDL, &kl);
+    let p = nalgebra::DMatrix::from_row_slice(nddl, nddl, &p);
+    let kl = nalgebra::DMatrix::from_row_slice(nddl, nddl, &kl);
     let kg = p.transpose() * kl * p;
     let kg: Vec<f64> = kg.transpose().iter().copied().collect();
     Ok(kg)
 }
 
 /// The local unknowns of `vdxnlr` (`trndgl`): the translations as they
-/// are, each node's rotation θ as (t₁·θ, t₂·θ); 42 values.
-fn local_unknowns(frames: &[[V3; 3]; NB2], u: &[f64; NDDL]) -> [f64; NDDLE] {
-    let mut l = [0.; NDDLE];
+/// are, each node's rotation θ as (t₁·θ, t₂·θ); `nddle` values.
+fn local_unknowns(frames: &[[V3; 3]], u: &[f64]) -> Vec<f64> {
+    let nb1 = frames.len() - 1;
+    let mut l = vec![0.; 5 * nb1 + 2];
     let dot = |t: V3, o: usize| t[0] * u[o] + t[1] * u[o + 1] + t[2] * u[o + 2];
-    for n in 0..NB1 {
+    for n in 0..nb1 {
         l[5 * n..5 * n + 3].copy_from_slice(&u[6 * n..6 * n + 3]);
         l[5 * n + 3] = dot(frames[n][0], 6 * n + 3);
         l[5 * n + 4] = dot(frames[n][1], 6 * n + 3);
     }
-    l[5 * NB1] = dot(frames[NB1][0], 6 * NB1);
-    l[5 * NB1 + 1] = dot(frames[NB1][1], 6 * NB1);
+    l[5 * nb1] = dot(frames[nb1][0], 6 * nb1);
+    l[5 * nb1 + 1] = dot(frames[nb1][1], 6 * nb1);
     l
 }
 
-/// The stresses of `SIEF_ELGA` from the global displacements `u` (51
-/// values, the order of [`stiffness`]): SIXX SIYY SIZZ SIXY SIXZ SIYZ in
-/// each point's local frame (`vectgt`: t₁ along ∂x/∂ξ₁), SIZZ = 0, in
-/// code_aster's order — normal point (FPG9COQ) major, then layer, then
-/// the layer's bottom, middle and top (`vdxnlr`'s `k1`).
+/// Checks that `u` has the cell's `nddl` values.
+fn check_dofs(r: &RefElement, u: &[f64]) -> Result<(), String> {
+    if u.len() == r.nddl() {
+        Ok(())
+    } else {
+        Err(format!(
+            "a COQUE_3D {:?} cell has {} DOFs, {} values given",
+            r.cell,
+            r.nddl(),
+            u.len()
+        ))
+    }
+}
+
+/// The stresses of `SIEF_ELGA` from the global displacements `u` (the
+/// order of [`stiffness`]): SIXX SIYY SIZZ SIXY SIXZ SIYZ in each point's
+/// local frame (`vectgt`: t₁ along ∂x/∂ξ₁), SIZZ = 0, in code_aster's
+/// order — normal point (FPG9COQ, FPG7) major, then layer, then the
+/// layer's bottom, middle and top (`vdxnlr`'s `k1`).
 pub fn stresses(
-    xyz: &[V3; NB1],
+    xyz: &[V3],
     material: &Elastic,
     section: &Coque3dSection,
-    u: &[f64; NDDL],
+    u: &[f64],
 ) -> Result<Vec<[f64; 6]>, String> {
-    let r = RefQuad9::new();
+    let r = reference(xyz)?;
+    check_dofs(&r, u)?;
     let frames = nodal_frames(xyz, &r)?;
     let ul = local_unknowns(&frames, u);
     let (e, nu, kappa) = (material.e, material.nu, section.shear_factor);
@@ -660,13 +853,14 @@ pub fn stresses(
     let g = e / (1. + nu) / 2.;
     let ops = operators(xyz, &frames, section, &r);
     let npge = 3 * section.layers.max(1) as usize;
+    let npgsn = r.npgsn();
     let mut out = vec![[0.; 6]; ops.len()];
     for (o, (b, _)) in ops.iter().enumerate() {
         let eps: Vec<f64> = b
             .iter()
             .map(|row| row.iter().zip(&ul).map(|(x, y)| x * y).sum())
             .collect();
-        let (lp, q) = (o / NPGSN, o % NPGSN);
+        let (lp, q) = (o / npgsn, o % npgsn);
         out[q * npge + lp] = [
             c * (eps[0] + nu * eps[1]),
             c * (nu * eps[0] + eps[1]),
@@ -680,30 +874,38 @@ pub fn stresses(
 }
 
 /// The load of a pressure on the mid-surface (`te0403` → `fpres`,
-/// `CHAR_MECA_PRES_R`): `pres` at the eight edge nodes, acting against
-/// each node's normal n (a positive pressure pushes along −n), interpolated
-/// with the QUAD8 functions at the FPG9COQ points, times |a₁×a₂| there;
-/// forces on the translations only (the nodal moments are zero, and
-/// `fpres`'s correction by `kijkm1` reads a part of the reference data no
-/// routine writes: zero). 51 values, the order of [`stiffness`].
-pub fn pressure_load(xyz: &[V3; NB1], pres: &[f64; NB1]) -> Result<Vec<f64>, String> {
-    let r = RefQuad9::new();
+/// `CHAR_MECA_PRES_R`): `pres` at the edge nodes, acting against each
+/// node's normal n (a positive pressure pushes along −n), interpolated
+/// with the QUAD8 / TRIA6 functions at the normal points (FPG9COQ, FPG7),
+/// times |a₁×a₂| there; forces on the translations only (the nodal
+/// moments are zero, and `fpres`'s correction by `kijkm1` reads a part of
+/// the reference data no routine writes: zero). `nddl` values, the order
+/// of [`stiffness`].
+pub fn pressure_load(xyz: &[V3], pres: &[f64]) -> Result<Vec<f64>, String> {
+    let r = reference(xyz)?;
+    if pres.len() != r.nb1 {
+        return Err(format!(
+            "a COQUE_3D pressure needs {} nodal values, {} given",
+            r.nb1,
+            pres.len()
+        ));
+    }
     let frames = nodal_frames(xyz, &r)?;
-    let mut f = vec![0.; NDDL];
-    for q in 0..NPGSN {
-        let s = &r.g8n[q];
+    let mut f = vec![0.; r.nddl()];
+    for q in 0..r.npgsn() {
+        let s = &r.gn[q];
         let mut a1 = [0.; 3];
         let mut a2 = [0.; 3];
         let mut chg = [0.; 3];
         for k in 0..3 {
-            for j in 0..NB1 {
+            for j in 0..r.nb1 {
                 a1[k] += s.d1[j] * xyz[j][k];
                 a2[k] += s.d2[j] * xyz[j][k];
                 chg[k] += -pres[j] * frames[j][2][k] * s.f[j];
             }
         }
         let rnormc = norm(cross(a1, a2));
-        for i in 0..NB1 {
+        for i in 0..r.nb1 {
             for k in 0..3 {
                 f[6 * i + k] += r.wn[q] * chg[k] * s.f[i] * rnormc;
             }
@@ -736,88 +938,111 @@ fn user_angle(frame: &[V3; 3], direction: V3) -> Result<(f64, f64), String> {
     Ok((c, s))
 }
 
-/// `mamagi`: the least-squares extrapolation (12×27, row-major) from the
-/// 27 points of a layer (bottom, middle, top × FPG9COQ) to its 12 nodal
-/// values (bottom, middle, top × the four corners), bilinear in (ξ₁, ξ₂)
-/// and quadratic through the layer.
-fn extrapolation() -> Vec<f64> {
-    let normal = fpg9coq();
+/// `mamagi`: the least-squares extrapolation (3·nso × 3·npgsn, row-major)
+/// from the points of a layer (bottom, middle, top × the normal points)
+/// to its nodal values (bottom, middle, top × the corners), bilinear in
+/// (ξ₁, ξ₂) on the QUAD9 (12×27), linear on the TRIA7 (9×21), quadratic
+/// through the layer.
+fn extrapolation(r: &RefElement) -> Vec<f64> {
     let psi3 = [-1., 0., 1.];
     let (at, bt3, ct) = ([0.5, -1., 0.5], [-0.5, 0., 0.5], [0., 1., 0.]);
-    let (ca, cb, cc, cd) = (
-        [0.25, 0.25, 0.25, 0.25],
-        [-0.25, 0.25, 0.25, -0.25],
-        [-0.25, -0.25, 0.25, 0.25],
-        [0.25, -0.25, 0.25, -0.25],
-    );
-    let mut bt = [[0.; 27]; 12];
+    // coefa..coefd of each corner function.
+    let coefs: &[[f64; 4]] = match r.cell {
+        Coque3dCell::Quad9 => &[
+            [0.25, -0.25, -0.25, 0.25],
+            [0.25, 0.25, -0.25, -0.25],
+            [0.25, 0.25, 0.25, 0.25],
+            [0.25, -0.25, 0.25, -0.25],
+        ],
+        Coque3dCell::Tria7 => &[[1., -1., -1., 0.], [0., 1., 0., 0.], [0., 0., 1., 0.]],
+    };
+    let nso = coefs.len();
+    let npgsn = r.normal.len();
+    let (nrow, ncol) = (3 * nso, 3 * npgsn);
+    let mut bt = vec![vec![0.; ncol]; nrow];
     for (integ, &x3) in psi3.iter().enumerate() {
-        for (q, &(x1, x2)) in normal.iter().enumerate() {
-            let ig = 9 * integ + q;
+        for (q, &(x1, x2)) in r.normal.iter().enumerate() {
+            let ig = npgsn * integ + q;
             for intef in 0..3 {
-                for ifon in 0..4 {
-                    bt[4 * intef + ifon][ig] = (at[intef] * x3 * x3 + bt3[intef] * x3 + ct[intef])
-                        * (ca[ifon] + cb[ifon] * x1 + cc[ifon] * x2 + cd[ifon] * x1 * x2);
+                for (ifon, c) in coefs.iter().enumerate() {
+                    bt[nso * intef + ifon][ig] =
+                        (at[intef] * x3 * x3 + bt3[intef] * x3 + ct[intef])
+                            * (c[0] + c[1] * x1 + c[2] * x2 + c[3] * x1 * x2);
                 }
             }
         }
     }
-    let btb = nalgebra::DMatrix::from_fn(12, 12, |i, j| (0..27).map(|k| bt[i][k] * bt[j][k]).sum());
-    let rhs = nalgebra::DMatrix::from_fn(12, 27, |i, k| bt[i][k]);
-    // BᵀB is the Gram matrix of 12 independent functions on 27 points:
+    let btb = nalgebra::DMatrix::from_fn(nrow, nrow, |i, j| {
+        (0..ncol).map(|k| bt[i][k] * bt[j][k]).sum()
+    });
+    let rhs = nalgebra::DMatrix::from_fn(nrow, ncol, |i, k| bt[i][k]);
+    // BᵀB is the Gram matrix of independent functions on more points:
     // positive definite.
     let x = btb
         .lu()
         .solve(&rhs)
-        .unwrap_or_else(|| nalgebra::DMatrix::zeros(12, 27));
-    (0..12 * 27).map(|o| x[(o / 27, o % 27)]).collect()
+        .unwrap_or_else(|| nalgebra::DMatrix::zeros(nrow, ncol));
+    (0..nrow * ncol).map(|o| x[(o / ncol, o % ncol)]).collect()
 }
 
-/// `SIGM_ELNO` (`te0040` → `elno_coq3d`): at each of the nine nodes, for
-/// each layer its bottom, middle and top (`COQUE_NCOU`·3 sub-points),
-/// SIXX SIYY SIZZ SIXY SIXZ SIYZ in the user's frame of the node (x the
-/// projection of `direction` — `ANGL_REP`/`VECTEUR`, by default global X
-/// — on the node's plane (t₁, t₂), `coqrep`/`vdrepe`/`vdsiro`). The
-/// layer's 27 point values are extrapolated by least squares to the four
-/// corners (`mamagi`), the mid-side nodes take the mean of their two
-/// corners, the centre the mean of the four. code_aster stores
-/// `SIEF_ELGA` turned into the user's frame of the first reduced point and
-/// turns it back before extrapolating (`cosiro` 'IU' then 'UI' with the
-/// same 2×2 rotation): the identity up to round-off, not repeated here.
+/// `SIGM_ELNO` (`te0040` → `elno_coq3d`): at each node (nine on a QUAD9,
+/// seven on a TRIA7), for each layer its bottom, middle and top
+/// (`COQUE_NCOU`·3 sub-points), SIXX SIYY SIZZ SIXY SIXZ SIYZ in the
+/// user's frame of the node (x the projection of `direction` —
+/// `ANGL_REP`/`VECTEUR`, by default global X — on the node's plane (t₁,
+/// t₂), `coqrep`/`vdrepe`/`vdsiro`). The layer's point values are
+/// extrapolated by least squares to the corners (`mamagi`), the mid-side
+/// nodes take the mean of their two corners, the centre the mean of the
+/// corners. code_aster stores `SIEF_ELGA` turned into the user's frame of
+/// the first reduced point and turns it back before extrapolating
+/// (`cosiro` 'IU' then 'UI' with the same 2×2 rotation): the identity up
+/// to round-off, not repeated here.
 pub fn sigm_elno(
-    xyz: &[V3; NB1],
+    xyz: &[V3],
     material: &Elastic,
     section: &Coque3dSection,
-    u: &[f64; NDDL],
+    u: &[f64],
     direction: V3,
 ) -> Result<Vec<Vec<[f64; 6]>>, String> {
-    let r = RefQuad9::new();
+    let r = reference(xyz)?;
     let frames = nodal_frames(xyz, &r)?;
     let gauss = stresses(xyz, material, section, u)?;
     let nbcou = section.layers.max(1) as usize;
     let npge = 3 * nbcou;
-    let matr = extrapolation();
-    let mut out = vec![vec![[0.; 6]; npge]; NB2];
+    let matr = extrapolation(&r);
+    let (nso, npgsn) = (r.cell.corners(), r.npgsn());
+    let ncol = 3 * npgsn;
+    let mut out = vec![vec![[0.; 6]; npge]; r.nb2];
     for icou in 0..nbcou {
         // matpg of the layer: (inte, intsn) → code_aster's point order.
         let layer = |j: usize, ic: usize| {
-            let (inte, q) = (j / NPGSN, j % NPGSN);
+            let (inte, q) = (j / npgsn, j % npgsn);
             gauss[q * npge + 3 * icou + inte][ic]
         };
         for lvl in 0..3 {
-            let mut node = [[0.; 6]; NB2];
-            for (corner, vals) in node.iter_mut().take(4).enumerate() {
-                let i = 4 * lvl + corner;
+            let mut node = vec![[0.; 6]; r.nb2];
+            for (corner, vals) in node.iter_mut().take(nso).enumerate() {
+                let i = nso * lvl + corner;
                 for (ic, v) in vals.iter_mut().enumerate() {
-                    *v = (0..27).map(|j| matr[27 * i + j] * layer(j, ic)).sum();
+                    *v = (0..ncol).map(|j| matr[ncol * i + j] * layer(j, ic)).sum();
                 }
             }
             for ic in 0..6 {
-                node[4][ic] = (node[0][ic] + node[1][ic]) / 2.;
-                node[5][ic] = (node[1][ic] + node[2][ic]) / 2.;
-                node[6][ic] = (node[2][ic] + node[3][ic]) / 2.;
-                node[7][ic] = (node[3][ic] + node[0][ic]) / 2.;
-                node[8][ic] = (node[0][ic] + node[1][ic] + node[2][ic] + node[3][ic]) / 4.;
+                match r.cell {
+                    Coque3dCell::Quad9 => {
+                        node[4][ic] = (node[0][ic] + node[1][ic]) / 2.;
+                        node[5][ic] = (node[1][ic] + node[2][ic]) / 2.;
+                        node[6][ic] = (node[2][ic] + node[3][ic]) / 2.;
+                        node[7][ic] = (node[3][ic] + node[0][ic]) / 2.;
+                        node[8][ic] = (node[0][ic] + node[1][ic] + node[2][ic] + node[3][ic]) / 4.;
+                    }
+                    Coque3dCell::Tria7 => {
+                        node[3][ic] = (node[0][ic] + node[1][ic]) / 2.;
+                        node[4][ic] = (node[1][ic] + node[2][ic]) / 2.;
+                        node[5][ic] = (node[2][ic] + node[0][ic]) / 2.;
+                        node[6][ic] = (node[0][ic] + node[1][ic] + node[2][ic]) / 3.;
+                    }
+                }
             }
             for (n, t) in node.iter().enumerate() {
                 let (c, s) = user_angle(&frames[n], direction)?;
@@ -875,7 +1100,7 @@ mod tests {
             assert!((s8.d2.iter().sum::<f64>()).abs() < 1e-15);
         }
         // The extrapolation reproduces the reduced values at the reduced points.
-        let r = RefQuad9::new();
+        let r = RefElement::new(Coque3dCell::Quad9);
         let s: f64 = r.extra.iter().map(|e| e.iter().sum::<f64>()).sum();
         assert!((s - 9.).abs() < 1e-12, "{s}");
     }
@@ -886,7 +1111,7 @@ mod tests {
         // quadratic through the layer, found again at the 4 corners × 3
         // levels from its 27 point values (mamagi's least squares).
         let f = |x: f64, y: f64, z: f64| (1. + 2. * x - y + 0.5 * x * y) * (3. - z + 2. * z * z);
-        let matr = extrapolation();
+        let matr = extrapolation(&RefElement::new(Coque3dCell::Quad9));
         let pts = fpg9coq();
         let corners = [(-1., -1.), (1., -1.), (1., 1.), (-1., 1.)];
         for (lvl, z) in [-1., 0., 1.].into_iter().enumerate() {
@@ -899,6 +1124,76 @@ mod tests {
                     })
                     .sum();
                 assert!((got - f(x, y, z)).abs() < 1e-12, "{lvl} {c}: {got}");
+            }
+        }
+    }
+
+    #[test]
+    fn triangle_functions_interpolate_at_code_aster_nodes() {
+        for (n, &(x, y)) in NODES7.iter().enumerate() {
+            // The centre's literal 0.333333333333333 is 1/3 to 3e-16.
+            let s7 = tr7(x, y);
+            for m in 0..7 {
+                let want = if m == n { 1. } else { 0. };
+                assert!((s7.f[m] - want).abs() < 1e-14, "{n} {m} {}", s7.f[m]);
+            }
+            if n < 6 {
+                let s6 = tr6(x, y);
+                for m in 0..6 {
+                    let want = if m == n { 1. } else { 0. };
+                    assert!((s6.f[m] - want).abs() < 1e-15);
+                }
+            }
+        }
+        // Derivatives against central differences; the sums vanish.
+        let (x, y, h) = (0.21, 0.37, 1e-6);
+        for sh in [tr6, tr7] {
+            let (s, sx, sy) = (sh(x, y), sh(x + h, y), sh(x, y + h));
+            let (mx, my) = (sh(x - h, y), sh(x, y - h));
+            for m in 0..7 {
+                assert!((s.d1[m] - (sx.f[m] - mx.f[m]) / (2. * h)).abs() < 1e-8);
+                assert!((s.d2[m] - (sy.f[m] - my.f[m]) / (2. * h)).abs() < 1e-8);
+            }
+            assert!(s.d1.iter().sum::<f64>().abs() < 1e-14);
+            assert!((s.f.iter().sum::<f64>() - 1.).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn triangle_rules_and_extrapolation() {
+        // FPG7 integrates degree 5 exactly: ∫ x⁵ = 5!/7! = 1/42 on the
+        // reference triangle, ∫ x²y² = 2!2!/6! = 1/180.
+        let (pts, w) = fpg7();
+        let int = |f: &dyn Fn(f64, f64) -> f64| -> f64 {
+            pts.iter().zip(&w).map(|(&(x, y), w)| w * f(x, y)).sum()
+        };
+        assert!((int(&|_, _| 1.) - 0.5).abs() < 1e-15);
+        assert!((int(&|x, _| x.powi(5)) - 1. / 42.).abs() < 1e-15);
+        assert!((int(&|x, y| x * x * y * y) - 1. / 180.).abs() < 1e-15);
+        // The FPG3 → FPG7 extrapolation is linear and exact on linear
+        // fields (to the 1e-15 of jni080's literals).
+        let r = RefElement::new(Coque3dCell::Tria7);
+        let red = [(1. / 6., 1. / 6.), (2. / 3., 1. / 6.), (1. / 6., 2. / 3.)];
+        let f = |x: f64, y: f64| 2. - 3. * x + 5. * y;
+        for (q, &(x, y)) in r.normal.iter().enumerate() {
+            let got: f64 = (0..3).map(|k| r.extra[q][k] * f(red[k].0, red[k].1)).sum();
+            assert!((got - f(x, y)).abs() < 1e-13, "{q}: {got}");
+        }
+        // mamagi: linear in the plane × quadratic through the layer, found
+        // at the 3 corners × 3 levels from its 21 point values.
+        let g = |x: f64, y: f64, z: f64| (1. + 2. * x - y) * (3. - z + 2. * z * z);
+        let matr = extrapolation(&r);
+        let corners = [(0., 0.), (1., 0.), (0., 1.)];
+        for (lvl, z) in [-1., 0., 1.].into_iter().enumerate() {
+            for (c, &(x, y)) in corners.iter().enumerate() {
+                let i = 3 * lvl + c;
+                let got: f64 = (0..21)
+                    .map(|j| {
+                        let (zj, (xj, yj)) = ([-1., 0., 1.][j / 7], r.normal[j % 7]);
+                        matr[21 * i + j] * g(xj, yj, zj)
+                    })
+                    .sum();
+                assert!((got - g(x, y, z)).abs() < 1e-12, "{lvl} {c}: {got}");
             }
         }
     }

@@ -303,26 +303,30 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
     }
 }
 
-/// The eight edge nodes of a COQUE_3D QUAD9 cell (its geometry; the
-/// centre's position plays no part).
-pub fn coque3d_coords(mesh: &Mesh, cell: CellId) -> Result<[[f64; 3]; 8], String> {
+/// The edge nodes of a COQUE_3D cell (its geometry: eight on a QUAD9,
+/// six on a TRIA7; the centre's position plays no part).
+pub fn coque3d_coords(mesh: &Mesh, cell: CellId) -> Result<Vec<[f64; 3]>, String> {
     let c = mesh.cell(cell);
-    if c.ty != CellType::QUAD9 {
+    if !matches!(c.ty, CellType::QUAD9 | CellType::TRIA7) {
         return Err(format!("no COQUE_3D element on a {}", c.ty.name()));
     }
-    Ok(std::array::from_fn(|i| mesh.coord(c.nodes[i])))
+    Ok(c.nodes[..c.nodes.len() - 1]
+        .iter()
+        .map(|&n| mesh.coord(n))
+        .collect())
 }
 
-/// The global stiffness of a COQUE_3D cell (51×51: DX…DRZ of the eight
-/// edge nodes, then DRX DRY DRZ of the centre).
+/// The global stiffness of a COQUE_3D cell (DX…DRZ of the edge nodes,
+/// then DRX DRY DRZ of the centre: 51×51 on a QUAD9, 39×39 on a TRIA7).
 pub fn coque3d_stiffness(
     mesh: &Mesh,
     cell: CellId,
     material: &Elastic,
     section: &crate::coque3d::Coque3dSection,
 ) -> Result<DMatrix<f64>, String> {
-    let k = crate::coque3d::stiffness(&coque3d_coords(mesh, cell)?, material, section)?;
-    let n = crate::coque3d::NDDL;
+    let xyz = coque3d_coords(mesh, cell)?;
+    let k = crate::coque3d::stiffness(&xyz, material, section)?;
+    let n = 6 * xyz.len() + 3;
     Ok(DMatrix::from_row_slice(n, n, &k))
 }
 

@@ -62,6 +62,14 @@ pub fn tria_fpg6() -> Vec<GaussPoint> {
         .collect()
 }
 
+/// Triangle FPG7 (Hammer's 7 points) as points of a face (ξ, η).
+pub fn tria_fpg7() -> Vec<GaussPoint> {
+    hammer7()
+        .into_iter()
+        .map(|p| gp(p[0], p[1], 0., p[2]))
+        .collect()
+}
+
 /// Hammer's 7-point triangle rule (degree 5), code_aster's order, as
 /// (first, second, weight) triangle coordinates.
 fn hammer7() -> Vec<[f64; 3]> {

@@ -204,7 +204,7 @@ impl Loads {
                             || model.is_coque3d(*cell);
                         if !(constant_pressure && facet) {
                             return Err(FemError::Model(format!(
-                                "distributed load on shell cell {}: only a constant pressure (PRES_REP) on TRIA3/QUAD4 (DKT) and QUAD9 (COQUE_3D) shells is supported",
+                                "distributed load on shell cell {}: only a constant pressure (PRES_REP) on TRIA3/QUAD4 (DKT) and QUAD9/TRIA7 (COQUE_3D) shells is supported",
                                 model.cell_name(*cell)
                             )));
                         }
@@ -342,7 +342,8 @@ impl Loads {
                         ))
                     };
                     let xyz = crate::element::coque3d_coords(model.mesh(), *cell).map_err(err)?;
-                    let fe = crate::coque3d::pressure_load(&xyz, &[p; 8]).map_err(err)?;
+                    let fe =
+                        crate::coque3d::pressure_load(&xyz, &vec![p; xyz.len()]).map_err(err)?;
                     let dofs = crate::element::element_dofs(model, *cell);
                     for (&i, v) in dofs.iter().zip(fe) {
                         f[i] += v;

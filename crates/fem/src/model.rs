@@ -49,9 +49,9 @@ pub enum ElementKind {
         material: Elastic,
         section: crate::beam::BeamSection,
     },
-    /// code_aster's `COQUE_3D` on QUAD9 ([`crate::coque3d`]), linear
-    /// elastic: its eight edge nodes carry DX DY DZ DRX DRY DRZ, its centre
-    /// node DRX DRY DRZ only. 3D models only.
+    /// code_aster's `COQUE_3D` on QUAD9 or TRIA7 ([`crate::coque3d`]),
+    /// linear elastic: its edge nodes (eight, six) carry DX DY DZ DRX DRY
+    /// DRZ, its centre node DRX DRY DRZ only. 3D models only.
     Coque3d {
         material: Elastic,
         section: crate::coque3d::Coque3dSection,
@@ -269,9 +269,9 @@ impl Model {
                     shell = true;
                 }
                 ElementKind::Coque3d { section, .. } => {
-                    if cell.ty != CellType::QUAD9 {
+                    if !matches!(cell.ty, CellType::QUAD9 | CellType::TRIA7) {
                         return Err(FemError::Model(format!(
-                            "cell {} is a {}: the COQUE_3D element exists here on QUAD9 cells only",
+                            "cell {} is a {}: the COQUE_3D element exists on QUAD9 and TRIA7 cells only",
                             cell_name(el.cell),
                             cell.ty.name()
                         )));
@@ -439,9 +439,10 @@ impl Model {
     }
 
     /// Whether `cell` carries a COQUE_3D element (the only element with
-    /// rotations on a QUAD9 cell).
+    /// rotations on a QUAD9 or TRIA7 cell).
     pub fn is_coque3d(&self, cell: CellId) -> bool {
-        self.shells.contains(&cell) && self.mesh.cell(cell).ty == CellType::QUAD9
+        self.shells.contains(&cell)
+            && matches!(self.mesh.cell(cell).ty, CellType::QUAD9 | CellType::TRIA7)
     }
 
     /// Whether the model has shell elements (`DKT`, `COQUE_3D`).

@@ -263,7 +263,7 @@ pub fn shell_sigm_elno(
 /// `SIGM_ELNO` of the COQUE_3D cells at one sub-point (layer `layer`,
 /// level INF/MOY/SUP: sub-point 3·(layer − 1) + level of
 /// [`crate::coque3d::sigm_elno`]), SIXX SIYY SIZZ SIXY SIXZ SIYZ at the
-/// nine nodes in the user's frame (`direction`).
+/// nodes (nine, seven) in the user's frame (`direction`).
 fn coque3d_sigm_elno_at(
     model: &Model,
     u: &[f64],
@@ -286,10 +286,7 @@ fn coque3d_sigm_elno_at(
         let sub = 3 * (level.layer as usize - 1) + lvl;
         let xyz = crate::element::coque3d_coords(model.mesh(), el.cell).map_err(err)?;
         let dofs = element_dofs(model, el.cell);
-        let mut ue = [0.; crate::coque3d::NDDL];
-        for (a, &i) in dofs.iter().enumerate() {
-            ue[a] = u[i];
-        }
+        let ue: Vec<f64> = dofs.iter().map(|&i| u[i]).collect();
         let nodes = crate::coque3d::sigm_elno(&xyz, material, section, &ue, direction(el.cell))
             .map_err(err)?;
         out.push(CellValues {

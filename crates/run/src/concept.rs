@@ -37,8 +37,8 @@ pub enum Modelisation {
     /// `DKT`: thin-shell facets (DKT on TRIA3, DKQ on QUAD4) with the
     /// rotations DRX DRY DRZ on their nodes.
     Dkt,
-    /// `COQUE_3D`: code_aster's degenerated-solid shell on QUAD9
-    /// (`MEC3QU9H`, `aster_fem::coque3d`); its centre node carries the
+    /// `COQUE_3D`: code_aster's degenerated-solid shell on QUAD9 and TRIA7
+    /// (`MEC3QU9H`, `MEC3TR7H`, `aster_fem::coque3d`); its centre node carries the
     /// rotations alone.
     Coque3d,
     /// `PLAN_JOINT`: plane joint elements on QUAD4 (`MFPLQU4`,

@@ -4,7 +4,7 @@
 //! frame of `AFFE_CARA_ELEM/COQUE` (`ANGL_REP`/`VECTEUR`).
 //!
 //! The shells are linear elastic facets ([`aster_fem::ElementKind::Shell`])
-//! and COQUE_3D QUAD9 cells ([`aster_fem::ElementKind::Coque3d`], whose
+//! and COQUE_3D QUAD9 / TRIA7 cells ([`aster_fem::ElementKind::Coque3d`], whose
 //! stresses by layer come from `aster_fem::coque3d::sigm_elno`).
 //! Contact zones on shell cells pair their mid-surfaces, as code_aster does
 //! (`DIST_COQUE='OUI'` subtracts half the slave shell's thickness from the

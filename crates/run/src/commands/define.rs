@@ -735,21 +735,12 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                         aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4
                     )
                 }
-                // code_aster's MEC3QU9H (QUAD9) and MEC3TR7H (TRIA7); the
-                // latter is not reproduced yet.
+                // code_aster's MEC3QU9H (QUAD9) and MEC3TR7H (TRIA7).
                 Modelisation::Coque3d => {
-                    if ty == aster_mesh::CellType::TRIA7 {
-                        return Err(ex.kw_error(
-                            "AFFE_MODELE",
-                            occ,
-                            "MODELISATION",
-                            format!(
-                                "not supported yet: MODELISATION='COQUE_3D' on TRIA7 cell {} (code_aster's MEC3TR7H); the QUAD9 element (MEC3QU9H) is",
-                                crate::select::cell_name(&mesh, c)
-                            ),
-                        ));
-                    }
-                    ty == aster_mesh::CellType::QUAD9
+                    matches!(
+                        ty,
+                        aster_mesh::CellType::QUAD9 | aster_mesh::CellType::TRIA7
+                    )
                 }
                 // code_aster's MFPLQU4 (QUAD4) and MFPLQU8 (QUAD8); the
                 // latter's element (te0206-family) is not reproduced.
