@@ -19,13 +19,12 @@
 //! and penalised methods in 2D and on 3D solids (TRIA3, QUAD4 faces),
 //! friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
 //! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`,
-//! `aster_contact::mortar_friction_penalty`) when every zone has it; the
-//! CLASSIQUE variant in 2D, with or without friction
+//! `aster_contact::mortar_friction_penalty`), its zones with or without
+//! it; the CLASSIQUE variant in 2D, with or without friction
 //! (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE in 3D,
 //! BILATERAL with friction, LISSAGE, friction with NITSCHE, friction on
-//! quadratic faces in 3D, zones with and
-//! without friction or of different ALGO_CONT or VARIANTE in one
-//! definition, Nitsche contact in 3D (code_aster 2025
+//! quadratic faces in 3D, zones with and without friction with CLASSIQUE,
+//! zones of different ALGO_CONT or VARIANTE in one definition, Nitsche contact in 3D (code_aster 2025
 //! has no 3D Nitsche contact element), models with shells
 //! (docs/contact.md, "DEFI_CONT").
 
@@ -220,8 +219,8 @@ fn zones(kw: &Keywords) -> Vec<MortarZoneDef> {
         .collect()
 }
 
-/// Whether a definition has friction (its zones all have; a mixed one is
-/// refused by DEFI_CONT).
+/// Whether a definition has friction (one of its zones has: code_aster's
+/// `_hasFriction` builds a FrictionNew).
 pub(crate) fn has_friction(zones: &[MortarZoneDef]) -> bool {
     zones.iter().any(|z| z.friction.is_some())
 }
@@ -373,10 +372,13 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         .any(|m| *m == Modelisation::Axisymmetric);
     let mesh = ex.mesh_by_id(model.mesh)?;
     let zones = zones(kw);
-    // code_aster builds one kind of definition (FrictionNew or ContactNew)
-    // for all its zones: zones with and without friction together are not
-    // reproduced.
-    if has_friction(&zones) {
+    // Zones with and without friction in one definition: code_aster
+    // builds one FrictionNew whose frictionless zones have frictionless
+    // elements (CONT_LAG_SL_*: LAGS_C a pressure, no LAGS_F*; the
+    // penalised elements with l_fric false), reproduced by the frictional
+    // sources (`aster_contact::mortar_friction::split_zones`); the
+    // CLASSIQUE variant's mixed zones are not.
+    if has_friction(&zones) && algo == MortarAlgo::Classique {
         if let Some((occ, _)) = kw
             .factor("ZONE")
             .iter()
@@ -387,7 +389,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 "DEFI_CONT/ZONE",
                 occ,
                 "FROTTEMENT",
-                "not supported yet: zones with and without friction in one DEFI_CONT (code_aster 17's mortar friction is reproduced when every zone has FROTTEMENT='OUI'; TYPE_FROT='SANS' gives no friction force)",
+                "not supported yet: zones with and without friction in one DEFI_CONT with VARIANTE='CLASSIQUE' (reproduced with the ROBUSTE variant and the penalised method; with CLASSIQUE when every zone has FROTTEMENT='OUI')",
             ));
         }
     }
