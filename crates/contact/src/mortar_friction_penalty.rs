@@ -111,8 +111,8 @@ pub struct MortarFrictionPenalty {
 
 impl MortarFrictionPenalty {
     /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
-    /// (segments; `axis`: AXIS weights) or 3 (TRIA3 and QUAD4 faces, as the
-    /// Lagrangian friction, [`crate::mortar_friction::MortarFriction::new`]);
+    /// (segments; `axis`: AXIS weights) or 3 (TRIA3, TRIA6, QUAD4, QUAD8 and
+    /// QUAD9 faces, as [`MortarLagrangian::new`]);
     /// each zone's `coef_cont` is its COEF_CONT and its
     /// [`MortarZoneDef::friction`] its law (`None`: a frictionless zone,
     /// [`MortarPenalty`]'s formulation, as code_aster's `peVect_ct_pr`).
@@ -123,10 +123,10 @@ impl MortarFrictionPenalty {
         dim: usize,
     ) -> Result<Self, ContactError> {
         let (with, laws, without) = crate::mortar_friction::split_zones(zones);
+        // On faces of any kind in 3D: quadratic ones (QUAD8, TRIA6, QUAD9)
+        // as the frictionless pairing; the penalised friction slides there
+        // (comm/dc3d_penalised_friction.comm on its mesh made quadratic).
         let base = MortarLagrangian::new(&with, mesh, axis, dim)?;
-        if dim == 3 {
-            crate::mortar_friction::linear_faces_only(&base, &with)?;
-        }
         let frictionless = if without.is_empty() {
             None
         } else {

@@ -16,14 +16,15 @@
 //! (`BILATERAL`: every paired point active, frictionless), `DIST_SUPP` and
 //! `CARA_ELEM` (`DIST_POUTRE`, `DIST_COQUE`: stored by code_aster 17 and
 //! used by none of its computations, so without effect); with the Lagrangian
-//! and penalised methods in 2D and on 3D solids (TRIA3, QUAD4 faces),
+//! and penalised methods in 2D and on 3D solids (the Lagrangian on TRIA3,
+//! QUAD4 faces; the penalised on every face kind),
 //! friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
 //! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`,
 //! `aster_contact::mortar_friction_penalty`), its zones with or without
 //! it; the CLASSIQUE variant in 2D, with or without friction
 //! (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE in 3D,
-//! BILATERAL with friction, LISSAGE, friction with NITSCHE, friction on
-//! quadratic faces in 3D, zones with and without friction with CLASSIQUE,
+//! BILATERAL with friction, LISSAGE, friction with NITSCHE, the Lagrangian
+//! friction on quadratic faces in 3D, zones with and without friction with CLASSIQUE,
 //! zones of different ALGO_CONT or VARIANTE in one definition, Nitsche contact in 3D (code_aster 2025
 //! has no 3D Nitsche contact element), models with shells
 //! (docs/contact.md, "DEFI_CONT").
@@ -407,8 +408,9 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             };
             return Err(ex.kw_error("DEFI_CONT/ZONE", occ, at, e.to_string()));
         }
-        // Friction in 3D: the faces it is reproduced on.
-        if dim == 3 && z.friction.is_some() {
+        // The Lagrangian friction in 3D: the faces it is reproduced on
+        // (the penalised one takes every face kind of the pairing).
+        if dim == 3 && z.friction.is_some() && algo.is_lagrangian() {
             if let Err(e) = MortarFriction::new(std::slice::from_ref(z), &mesh, axis, dim) {
                 let at = if e.to_string().contains("GROUP_MA_MAIT") {
                     "GROUP_MA_MAIT"
