@@ -1012,18 +1012,12 @@ mod tests {
             assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{law:?}"));
         }
     }
-    /// The same on faces (3D): a tilted, warped slave QUAD4 over a curved
-    /// master QUAD8, in stick and in slip (the slip with both tangential
-    /// components), with the normal's rotation and the master point's
-    /// motion along both parameters.
-    #[test]
-    fn point_tangent_on_faces_is_the_derivative_of_the_residual() {
-        let sp0: Vec<[f64; 3]> = vec![
-            [0.0, 0.0, 0.01],
-            [0.0, 1.0, 0.03],
-            [1.05, 1.0, 0.02],
-            [1.0, 0.05, -0.01],
-        ];
+    /// The point tangent of a slave face `sk` at `sp0` (multipliers on its
+    /// 4 corners) over a curved master QUAD8 against central differences,
+    /// in stick and in slip (the slip with both tangential components),
+    /// with the normal's rotation and the master point's motion along both
+    /// parameters.
+    fn check_face_tangent(sk: SurfaceKind, sp0: Vec<[f64; 3]>) {
         let mk = SurfaceKind::Quad8;
         let mp0: Vec<[f64; 3]> = mk
             .node_coords()
@@ -1044,91 +1038,7 @@ mod tests {
             [1.2, 0.2, 1.8],
             [0.6, 0.8, 1.7],
         ];
-        let (ns, nm) = (4, mp0.len());
-        let nloc = 3 * (ns + nm + ns);
-        for (law, sliding) in [
-            (FrictionLaw::Coulomb(0.3), true),
-            (FrictionLaw::Coulomb(50.0), false),
-            (FrictionLaw::Tresca(0.05), true),
-        ] {
-            let terms = |z: &[f64]| {
-                let mut sp = sp0.clone();
-                let mut mp = mp0.clone();
-                let mut lam = lam0.clone();
-                for a in 0..ns {
-                    for c in 0..3 {
-                        sp[a][c] += z[3 * a + c];
-                        lam[a][c] += z[3 * (ns + nm) + 3 * a + c];
-                    }
-                }
-                for b in 0..nm {
-                    for c in 0..3 {
-                        mp[b][c] += z[3 * ns + 3 * b + c];
-                    }
-                }
-                let g = PointGeometry {
-                    dim: 3,
-                    s_kind: SurfaceKind::Quad4,
-                    sign: 1.0,
-                    sp: &sp,
-                    sprev: &sprev,
-                    m_kind: mk,
-                    mp: &mp,
-                    mprev: &mprev,
-                };
-                let p = PointLaw {
-                    xi: [0.3, -0.2],
-                    w: 0.7,
-                    gamma: 3.0,
-                    law,
-                    forced: None,
-                };
-                let q = point_quantities(&g, &p, Some(&lam)).unwrap().unwrap();
-                (point_terms(&g, &p, &lam).unwrap().unwrap(), q.status, q.n)
-            };
-            let z0 = vec![0.0; nloc];
-            let (t0, status, n) = terms(&z0);
-            assert!(n[2] < -0.99, "the slave normal points down: {n:?}");
-            assert!(status.contact, "{law:?}");
-            assert_eq!(status.slip, sliding, "{law:?}");
-            assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{law:?}"));
-        }
-    }
-    /// The same on a curved, warped slave QUAD8 face (corner multipliers,
-    /// code_aster's `shapeFuncLagr`) over a curved master QUAD8.
-    #[test]
-    fn point_tangent_on_quadratic_slave_faces_is_the_derivative_of_the_residual() {
-        let sk = SurfaceKind::Quad8;
-        let sp0: Vec<[f64; 3]> = sk
-            .node_coords()
-            .into_iter()
-            .map(|[u, v]| {
-                let (x, y) = (0.5 + 0.5 * v + 0.02 * u * v, 0.5 + 0.5 * u);
-                [x, y, 0.01 + 0.01 * x - 0.02 * y + 0.005 * v * v]
-            })
-            .collect();
-        let mk = SurfaceKind::Quad8;
-        let mp0: Vec<[f64; 3]> = mk
-            .node_coords()
-            .into_iter()
-            .map(|[u, v]| {
-                let (x, y) = (0.5 + 1.2 * u, 0.5 + 1.1 * v);
-                [x, y, -0.02 + 0.01 * x - 0.005 * y + 0.01 * u * u]
-            })
-            .collect();
-        let sprev: Vec<[f64; 3]> = sp0
-            .iter()
-            .map(|p| [p[0] - 0.02, p[1] - 0.01, p[2] + 0.01])
-            .collect();
-        let mprev: Vec<[f64; 3]> = mp0.iter().map(|p| [p[0], p[1], p[2] + 0.001]).collect();
-        let lam0: Vec<[f64; 3]> = vec![
-            [1.0, 0.6, 2.0],
-            [0.8, 0.4, 1.5],
-            [1.2, 0.2, 1.8],
-            [0.6, 0.8, 1.7],
-        ];
-        let (ns, nm) = (sp0.len(), mp0.len());
-        let nl = 4;
+        let (ns, nm, nl) = (sp0.len(), mp0.len(), lam0.len());
         let nloc = 3 * (ns + nm + nl);
         for (law, sliding) in [
             (FrictionLaw::Coulomb(0.3), true),
@@ -1144,14 +1054,14 @@ mod tests {
                         sp[a][c] += z[3 * a + c];
                     }
                 }
-                for a in 0..nl {
-                    for c in 0..3 {
-                        lam[a][c] += z[3 * (ns + nm) + 3 * a + c];
-                    }
-                }
                 for b in 0..nm {
                     for c in 0..3 {
                         mp[b][c] += z[3 * ns + 3 * b + c];
+                    }
+                }
+                for a in 0..nl {
+                    for c in 0..3 {
+                        lam[a][c] += z[3 * (ns + nm) + 3 * a + c];
                     }
                 }
                 let g = PointGeometry {
@@ -1177,9 +1087,37 @@ mod tests {
             let z0 = vec![0.0; nloc];
             let (t0, status, n) = terms(&z0);
             assert!(n[2] < -0.99, "the slave normal points down: {n:?}");
-            assert!(status.contact, "{law:?}");
-            assert_eq!(status.slip, sliding, "{law:?}");
-            assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{law:?}"));
+            assert!(status.contact, "{sk:?} {law:?}");
+            assert_eq!(status.slip, sliding, "{sk:?} {law:?}");
+            assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{sk:?} {law:?}"));
         }
+    }
+
+    /// The same on faces (3D): a tilted, warped slave QUAD4.
+    #[test]
+    fn point_tangent_on_faces_is_the_derivative_of_the_residual() {
+        let sp0: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.01],
+            [0.0, 1.0, 0.03],
+            [1.05, 1.0, 0.02],
+            [1.0, 0.05, -0.01],
+        ];
+        check_face_tangent(SurfaceKind::Quad4, sp0);
+    }
+
+    /// The same on a curved, warped slave QUAD8 face (multipliers on its
+    /// corners only, code_aster's `shapeFuncLagr`).
+    #[test]
+    fn point_tangent_on_quadratic_slave_faces_is_the_derivative_of_the_residual() {
+        let sk = SurfaceKind::Quad8;
+        let sp0: Vec<[f64; 3]> = sk
+            .node_coords()
+            .into_iter()
+            .map(|[u, v]| {
+                let (x, y) = (0.5 + 0.5 * v + 0.02 * u * v, 0.5 + 0.5 * u);
+                [x, y, 0.01 + 0.01 * x - 0.02 * y + 0.005 * v * v]
+            })
+            .collect();
+        check_face_tangent(sk, sp0);
     }
 }
