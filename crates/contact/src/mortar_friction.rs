@@ -526,9 +526,11 @@ fn point_terms(
     Ok(Some(PointTerms { forces, own }))
 }
 
-/// Friction in 3D is reproduced on TRIA3 and QUAD4 faces: on quadratic
-/// faces the sliding scene (comm/dc3d_friction.comm on its mesh made
-/// quadratic) does not converge, not verified.
+/// The Lagrangian friction in 3D is reproduced on TRIA3 and QUAD4 faces:
+/// on quadratic faces the sliding scenes (comm/dc3d_friction.comm,
+/// comm/dc3d_penalised_friction.comm's loading, on their mesh made
+/// quadratic) stall in a two-iteration cycle (docs/contact.md); the
+/// penalised friction is reproduced there.
 pub(crate) fn linear_faces_only(
     base: &MortarLagrangian,
     zones: &[MortarZoneDef],
@@ -547,7 +549,7 @@ pub(crate) fn linear_faces_only(
                         "DEFI_CONT friction on the quadratic faces ({:?}) of {which} {group} in 3D",
                         c.kind
                     ),
-                    hint: "reproduced on TRIA3 and QUAD4 faces (on quadratic faces the sliding of the project's scene does not converge)".into(),
+                    hint: "the Lagrangian friction is reproduced on TRIA3 and QUAD4 faces (on quadratic faces the project's sliding scenes stall in a two-iteration cycle); the penalised friction (ALGO_CONT='PENALISATION') is reproduced on quadratic faces".into(),
                 });
             }
         }
@@ -555,23 +557,77 @@ pub(crate) fn linear_faces_only(
     Ok(())
 }
 
-/// Each zone's friction law ([`MortarZoneDef::friction`]); a zone without
-/// one is refused: code_aster's zones of one DEFI_CONT are all with
-/// friction or all without.
-pub(crate) fn zone_laws(zones: &[MortarZoneDef]) -> Result<Vec<FrictionLaw>, ContactError> {
-    zones
+/// The frictional zones, their laws, the frictionless zones ([`split_zones`]).
+pub(crate) type SplitZones = (Vec<MortarZoneDef>, Vec<FrictionLaw>, Vec<MortarZoneDef>);
+
+/// The zones of a definition with friction, split as code_aster 17 builds
+/// them (`ContactNew::build`, `ContactPairing::createVirtualElemForContact`,
+/// `ContactComputation::contactData`): a zone's elements are chosen by its
+/// own `FROTTEMENT` (`FRIC_LAG_SL_*` with `LAGS_C`, `LAGS_F1`(, `LAGS_F2`)
+/// or `CONT_LAG_SL_*` with `LAGS_C` only; the penalised elements are the
+/// same for both) and its element data carry its own `l_fric`
+/// (`zr(jcont+30)`), so a frictionless zone of a `FrictionNew` is computed
+/// by the frictionless formulation (`laVect_ct_pr`, `peVect_ct_pr`; its
+/// `LAGS_C` a pressure). Returns the frictional zones with their laws,
+/// then the frictionless ones.
+pub(crate) fn split_zones(zones: &[MortarZoneDef]) -> SplitZones {
+    let mut with = Vec::new();
+    let mut laws = Vec::new();
+    let mut without = Vec::new();
+    for z in zones {
+        match z.friction {
+            Some(law) => {
+                with.push(z.clone());
+                laws.push(law);
+            }
+            None => without.push(z.clone()),
+        }
+    }
+    (with, laws, without)
+}
+
+/// code_aster's `CONTACT1_1` (`ContactNew::build`): zones sharing slave
+/// nodes stop the definition; checked here between the frictional and the
+/// frictionless zones of one definition, computed by two sources.
+pub(crate) fn disjoint_slaves(
+    with: &MortarLagrangian,
+    without: &MortarLagrangian,
+) -> Result<(), ContactError> {
+    let shared = without
+        .zones
         .iter()
-        .map(|z| {
-            z.friction.ok_or_else(|| ContactError::Unsupported {
-                feature: format!(
-                    "a zone without friction ({} on {}) beside zones with friction in one DEFI_CONT",
-                    z.slave_group, z.master_group
-                ),
-                hint: "give every zone FROTTEMENT='OUI' (TYPE_FROT='SANS' for no friction force)"
-                    .into(),
-            })
-        })
-        .collect()
+        .flat_map(|z| &z.slave)
+        .flat_map(|s| &s.nodes)
+        .any(|n| {
+            with.zones
+                .iter()
+                .flat_map(|z| &z.slave)
+                .any(|s| s.nodes.contains(n))
+        });
+    if shared {
+        return Err(ContactError::Invalid {
+            keyword: "GROUP_MA_ESCL",
+            message: "a zone with friction and a zone without share slave nodes (code_aster stops with CONTACT1_1: the slave nodes of the zones of one DEFI_CONT must be distinct)".into(),
+        });
+    }
+    Ok(())
+}
+
+/// Adds `other` (a source whose own unknowns follow this one's, from
+/// `offset`) to `c`.
+pub(crate) fn append_contribution(c: &mut Contribution, other: Contribution, offset: usize) {
+    let shift = |u: Unknown| match u {
+        Unknown::Own(k) => Unknown::Own(k + offset),
+        dof => dof,
+    };
+    c.forces.extend(other.forces);
+    c.own_residual.extend(other.own_residual);
+    c.tangent.extend(
+        other
+            .tangent
+            .into_iter()
+            .map(|(r, col, v)| (shift(r), shift(col), v)),
+    );
 }
 
 /// The name of own unknown `k` of a frictional source with `per` unknowns
@@ -594,6 +650,10 @@ pub struct MortarFriction {
     /// frictionless formulation).
     base: MortarLagrangian,
     laws: Vec<FrictionLaw>,
+    /// The zones without friction beside them ([`split_zones`]): the
+    /// frictionless formulation, their `LAGS_C` pressures numbered after
+    /// the frictional multipliers.
+    frictionless: Option<MortarLagrangian>,
     /// Positions at the start of the step (`coor_*_prev`).
     x_prev: Vec<[f64; 3]>,
     first_pairing: bool,
@@ -604,31 +664,57 @@ impl MortarFriction {
     /// (segments) or 3 (faces, as [`MortarLagrangian::new`]; the
     /// multipliers `LAGS_C`, `LAGS_F1`, `LAGS_F2` on the faces' corners;
     /// `axis`: AXIS weights). Each zone's [`MortarZoneDef::friction`] is its
-    /// law (`None`: the zone is refused — code_aster's zones of one
-    /// DEFI_CONT are all with friction or all without).
+    /// law; a zone without one is frictionless, as code_aster computes it
+    /// ([`split_zones`]: `LAGS_C` its pressure, no `LAGS_F*`).
     pub fn new(
         zones: &[MortarZoneDef],
         mesh: &Mesh,
         axis: bool,
         dim: usize,
     ) -> Result<Self, ContactError> {
-        let laws = zone_laws(zones)?;
-        let base = MortarLagrangian::new(zones, mesh, axis, dim)?;
+        let (with, laws, without) = split_zones(zones);
+        let base = MortarLagrangian::new(&with, mesh, axis, dim)?;
         if base.dim == 3 {
-            linear_faces_only(&base, zones)?;
+            linear_faces_only(&base, &with)?;
         }
+        let frictionless = if without.is_empty() {
+            None
+        } else {
+            let m = MortarLagrangian::new(&without, mesh, axis, dim)?;
+            disjoint_slaves(&base, &m)?;
+            Some(m)
+        };
         Ok(MortarFriction {
             base,
             laws,
+            frictionless,
             x_prev: mesh.coords.clone(),
             first_pairing: true,
         })
+    }
+
+    /// The number of multipliers of the frictional zones (the frictionless
+    /// zones' `LAGS_C` follow).
+    fn frictional_unknowns(&self) -> usize {
+        self.base.dim * self.base.lagr.len()
+    }
+
+    /// The contact pressure (`LAGS_C`) of each slave node of the zones
+    /// without friction.
+    pub fn pressures<'a>(&'a self, own: &'a [f64]) -> impl Iterator<Item = (NodeId, f64)> + 'a {
+        let rest = own.get(self.frictional_unknowns()..).unwrap_or(&[]);
+        self.frictionless
+            .iter()
+            .flat_map(move |m| m.multipliers(rest))
     }
 
     /// code_aster 17's geometric criterion (MECA_NON_LINE's
     /// `CONTACT/RESI_GEOM`), as [`MortarLagrangian::set_resi_geom`].
     pub fn set_resi_geom(&mut self, resi_geom: f64) {
         self.base.set_resi_geom(resi_geom);
+        if let Some(m) = self.frictionless.as_mut() {
+            m.set_resi_geom(resi_geom);
+        }
     }
 
     /// Space dimension of the model (2 or 3): the multipliers per slave node.
@@ -636,7 +722,7 @@ impl MortarFriction {
         self.base.dim
     }
 
-    /// The multipliers of each slave node: (`LAGS_C`, `LAGS_F1`, `LAGS_F2`),
+    /// The multipliers of each slave node of the frictional zones: (`LAGS_C`, `LAGS_F1`, `LAGS_F2`),
     /// the x, y (and z in 3D, else 0) components of the contact force per
     /// unit length or area.
     pub fn multipliers<'a>(
@@ -660,12 +746,16 @@ impl ForceSource for MortarFriction {
     }
 
     fn unknowns(&self) -> usize {
-        self.base.dim * self.base.lagr.len()
+        self.frictional_unknowns() + self.frictionless.as_ref().map_or(0, |m| m.unknowns())
     }
 
-    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+    fn begin_increment(&mut self, state: &State, own: &mut [f64]) -> Result<(), FemError> {
         self.x_prev = current_positions(state);
         self.base.resi_geom.begin(state);
+        let off = self.frictional_unknowns();
+        if let Some(m) = self.frictionless.as_mut() {
+            m.begin_increment(state, &mut own[off..])?;
+        }
         Ok(())
     }
 
@@ -784,30 +874,50 @@ impl ForceSource for MortarFriction {
         for r in 0..d * nl {
             c.tangent.push((Unknown::Own(r), Unknown::Own(r), 0.0));
         }
+        // The zones without friction: the frictionless formulation.
+        let off = d * nl;
+        if let Some(m) = self.frictionless.as_mut() {
+            let other = m.evaluate(state, &own[off..])?;
+            append_contribution(&mut c, other, off);
+        }
         Ok(c)
     }
 
-    fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
         // The first pairing (CONTACT_INIT) was that of this iteration.
         self.first_pairing = false;
         // code_aster 17's acceptance, as without friction: the whole
         // residual (the LAGS_C, LAGS_F1 rows included) and RESI_GEOM; a
         // change of contact or stick/slip status does not by itself
         // prevent convergence.
-        Ok(self.base.resi_geom.accept(state))
+        let accepted = self.base.resi_geom.accept(state);
+        let off = self.frictional_unknowns();
+        match self.frictionless.as_mut() {
+            // The same criterion on the same state: both record it.
+            Some(m) => Ok(m.after_iteration(state, &mut own[off..])? && accepted),
+            None => Ok(accepted),
+        }
     }
 
     fn own_rows_in_residual(&self) -> bool {
         true
     }
 
-    fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {
+    fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError> {
         self.first_pairing = false;
+        let off = self.frictional_unknowns();
+        if let Some(m) = self.frictionless.as_mut() {
+            m.converged(state, &own[off..])?;
+        }
         Ok(())
     }
 
     fn unknown_name(&self, k: usize, mesh: &Mesh) -> String {
-        friction_unknown_name(&self.base.lagr, self.base.dim, k, mesh)
+        let off = self.frictional_unknowns();
+        match self.frictionless.as_ref() {
+            Some(m) if k >= off => m.unknown_name(k - off, mesh),
+            _ => friction_unknown_name(&self.base.lagr, self.base.dim, k, mesh),
+        }
     }
 }
 
@@ -902,18 +1012,12 @@ mod tests {
             assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{law:?}"));
         }
     }
-    /// The same on faces (3D): a tilted, warped slave QUAD4 over a curved
-    /// master QUAD8, in stick and in slip (the slip with both tangential
-    /// components), with the normal's rotation and the master point's
-    /// motion along both parameters.
-    #[test]
-    fn point_tangent_on_faces_is_the_derivative_of_the_residual() {
-        let sp0: Vec<[f64; 3]> = vec![
-            [0.0, 0.0, 0.01],
-            [0.0, 1.0, 0.03],
-            [1.05, 1.0, 0.02],
-            [1.0, 0.05, -0.01],
-        ];
+    /// The point tangent of a slave face `sk` at `sp0` (multipliers on its
+    /// 4 corners) over a curved master QUAD8 against central differences,
+    /// in stick and in slip (the slip with both tangential components),
+    /// with the normal's rotation and the master point's motion along both
+    /// parameters.
+    fn check_face_tangent(sk: SurfaceKind, sp0: Vec<[f64; 3]>) {
         let mk = SurfaceKind::Quad8;
         let mp0: Vec<[f64; 3]> = mk
             .node_coords()
@@ -934,8 +1038,8 @@ mod tests {
             [1.2, 0.2, 1.8],
             [0.6, 0.8, 1.7],
         ];
-        let (ns, nm) = (4, mp0.len());
-        let nloc = 3 * (ns + nm + ns);
+        let (ns, nm, nl) = (sp0.len(), mp0.len(), lam0.len());
+        let nloc = 3 * (ns + nm + nl);
         for (law, sliding) in [
             (FrictionLaw::Coulomb(0.3), true),
             (FrictionLaw::Coulomb(50.0), false),
@@ -948,7 +1052,6 @@ mod tests {
                 for a in 0..ns {
                     for c in 0..3 {
                         sp[a][c] += z[3 * a + c];
-                        lam[a][c] += z[3 * (ns + nm) + 3 * a + c];
                     }
                 }
                 for b in 0..nm {
@@ -956,9 +1059,14 @@ mod tests {
                         mp[b][c] += z[3 * ns + 3 * b + c];
                     }
                 }
+                for a in 0..nl {
+                    for c in 0..3 {
+                        lam[a][c] += z[3 * (ns + nm) + 3 * a + c];
+                    }
+                }
                 let g = PointGeometry {
                     dim: 3,
-                    s_kind: SurfaceKind::Quad4,
+                    s_kind: sk,
                     sign: 1.0,
                     sp: &sp,
                     sprev: &sprev,
@@ -979,9 +1087,37 @@ mod tests {
             let z0 = vec![0.0; nloc];
             let (t0, status, n) = terms(&z0);
             assert!(n[2] < -0.99, "the slave normal points down: {n:?}");
-            assert!(status.contact, "{law:?}");
-            assert_eq!(status.slip, sliding, "{law:?}");
-            assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{law:?}"));
+            assert!(status.contact, "{sk:?} {law:?}");
+            assert_eq!(status.slip, sliding, "{sk:?} {law:?}");
+            assert_tangent_is_the_derivative(&t0, &z0, |z| terms(z).0, &format!("{sk:?} {law:?}"));
         }
+    }
+
+    /// The same on faces (3D): a tilted, warped slave QUAD4.
+    #[test]
+    fn point_tangent_on_faces_is_the_derivative_of_the_residual() {
+        let sp0: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.01],
+            [0.0, 1.0, 0.03],
+            [1.05, 1.0, 0.02],
+            [1.0, 0.05, -0.01],
+        ];
+        check_face_tangent(SurfaceKind::Quad4, sp0);
+    }
+
+    /// The same on a curved, warped slave QUAD8 face (multipliers on its
+    /// corners only, code_aster's `shapeFuncLagr`).
+    #[test]
+    fn point_tangent_on_quadratic_slave_faces_is_the_derivative_of_the_residual() {
+        let sk = SurfaceKind::Quad8;
+        let sp0: Vec<[f64; 3]> = sk
+            .node_coords()
+            .into_iter()
+            .map(|[u, v]| {
+                let (x, y) = (0.5 + 0.5 * v + 0.02 * u * v, 0.5 + 0.5 * u);
+                [x, y, 0.01 + 0.01 * x - 0.02 * y + 0.005 * v * v]
+            })
+            .collect();
+        check_face_tangent(sk, sp0);
     }
 }

@@ -45,7 +45,7 @@ use crate::mortar_friction::{
     axpy, comb, lin, point_quantities, FrictionLaw, Lin, PointGeometry, PointLaw,
 };
 use crate::mortar_lagrangian::{MortarLagrangian, MortarZoneDef};
-use crate::mortar_penalty::gamma;
+use crate::mortar_penalty::{gamma, MortarPenalty};
 use crate::source::current_positions;
 
 /// The forces of one point on its local unknowns (slave displacements,
@@ -99,6 +99,10 @@ pub struct MortarFrictionPenalty {
     /// The zones and their pairing (shared with the Lagrangian method).
     base: MortarLagrangian,
     laws: Vec<FrictionLaw>,
+    /// The zones without friction beside them
+    /// ([`crate::mortar_friction::split_zones`]): code_aster's
+    /// `peVect_ct_pr`.
+    frictionless: Option<MortarPenalty>,
     /// Positions at the start of the step (`coor_*_prev`).
     x_prev: Vec<[f64; 3]>,
     /// No pairing has been made yet (CONTACT_INIT applies).
@@ -107,24 +111,33 @@ pub struct MortarFrictionPenalty {
 
 impl MortarFrictionPenalty {
     /// The contact of `zones` on `mesh` for a model of dimension `dim`: 2
-    /// (segments; `axis`: AXIS weights) or 3 (TRIA3 and QUAD4 faces, as the
-    /// Lagrangian friction, [`crate::mortar_friction::MortarFriction::new`]);
+    /// (segments; `axis`: AXIS weights) or 3 (TRIA3, TRIA6, QUAD4, QUAD8 and
+    /// QUAD9 faces, as [`MortarLagrangian::new`]);
     /// each zone's `coef_cont` is its COEF_CONT and its
-    /// [`MortarZoneDef::friction`] its law (every zone has one).
+    /// [`MortarZoneDef::friction`] its law (`None`: a frictionless zone,
+    /// [`MortarPenalty`]'s formulation, as code_aster's `peVect_ct_pr`).
     pub fn new(
         zones: &[MortarZoneDef],
         mesh: &Mesh,
         axis: bool,
         dim: usize,
     ) -> Result<Self, ContactError> {
-        let laws = crate::mortar_friction::zone_laws(zones)?;
-        let base = MortarLagrangian::new(zones, mesh, axis, dim)?;
-        if dim == 3 {
-            crate::mortar_friction::linear_faces_only(&base, zones)?;
-        }
+        let (with, laws, without) = crate::mortar_friction::split_zones(zones);
+        // On faces of any kind in 3D: quadratic ones (QUAD8, TRIA6, QUAD9)
+        // as the frictionless pairing; the penalised friction slides there
+        // (comm/dc3d_penalised_friction.comm on its mesh made quadratic).
+        let base = MortarLagrangian::new(&with, mesh, axis, dim)?;
+        let frictionless = if without.is_empty() {
+            None
+        } else {
+            let geometry = MortarLagrangian::new(&without, mesh, axis, dim)?;
+            crate::mortar_friction::disjoint_slaves(&base, &geometry)?;
+            Some(MortarPenalty::new(&without, mesh, axis, dim)?)
+        };
         Ok(MortarFrictionPenalty {
             base,
             laws,
+            frictionless,
             x_prev: mesh.coords.clone(),
             first_pairing: true,
         })
@@ -134,6 +147,9 @@ impl MortarFrictionPenalty {
     /// `CONTACT/RESI_GEOM`), as [`MortarLagrangian::set_resi_geom`].
     pub fn set_resi_geom(&mut self, resi_geom: f64) {
         self.base.set_resi_geom(resi_geom);
+        if let Some(m) = self.frictionless.as_mut() {
+            m.set_resi_geom(resi_geom);
+        }
     }
 }
 
@@ -146,13 +162,16 @@ impl ForceSource for MortarFrictionPenalty {
         0
     }
 
-    fn begin_increment(&mut self, state: &State, _own: &mut [f64]) -> Result<(), FemError> {
+    fn begin_increment(&mut self, state: &State, own: &mut [f64]) -> Result<(), FemError> {
         self.x_prev = current_positions(state);
         self.base.resi_geom.begin(state);
+        if let Some(m) = self.frictionless.as_mut() {
+            m.begin_increment(state, own)?;
+        }
         Ok(())
     }
 
-    fn evaluate(&mut self, state: &State, _own: &[f64]) -> Result<Contribution, FemError> {
+    fn evaluate(&mut self, state: &State, own: &[f64]) -> Result<Contribution, FemError> {
         let x = current_positions(state);
         let x0 = &state.mesh.coords;
         let base = &self.base;
@@ -224,18 +243,31 @@ impl ForceSource for MortarFrictionPenalty {
                 }
             }
         }
+        // The zones without friction: the frictionless formulation.
+        if let Some(m) = self.frictionless.as_mut() {
+            let other = m.evaluate(state, own)?;
+            crate::mortar_friction::append_contribution(&mut c, other, 0);
+        }
         Ok(c)
     }
 
-    fn after_iteration(&mut self, state: &State, _own: &mut [f64]) -> Result<bool, FemError> {
+    fn after_iteration(&mut self, state: &State, own: &mut [f64]) -> Result<bool, FemError> {
         // The first pairing (CONTACT_INIT) was that of this iteration;
         // code_aster 17's Newton tests the residual and RESI_GEOM.
         self.first_pairing = false;
-        Ok(self.base.resi_geom.accept(state))
+        let accepted = self.base.resi_geom.accept(state);
+        match self.frictionless.as_mut() {
+            // The same criterion on the same state: both record it.
+            Some(m) => Ok(m.after_iteration(state, own)? && accepted),
+            None => Ok(accepted),
+        }
     }
 
-    fn converged(&mut self, _state: &State, _own: &[f64]) -> Result<(), FemError> {
+    fn converged(&mut self, state: &State, own: &[f64]) -> Result<(), FemError> {
         self.first_pairing = false;
+        if let Some(m) = self.frictionless.as_mut() {
+            m.converged(state, own)?;
+        }
         Ok(())
     }
 }

@@ -55,3 +55,30 @@ fn tresca_slides_at_its_threshold_and_sans_carries_no_tangential_force() {
         );
     }
 }
+
+/// Zones with and without friction in one definition: the frictional
+/// zone's slave nodes carry `LAGS_C`, `LAGS_F1` (global components), the
+/// frictionless zone's `LAGS_C` only (code_aster's `CONT_LAG_SL_2D`
+/// elements beside `FRIC_LAG_SL_2D` ones), numbered after them; zones
+/// sharing slave nodes stop as code_aster's CONTACT1_1.
+#[test]
+fn a_frictionless_zone_beside_a_frictional_one_has_pressures_only() {
+    let mesh = two_plates_mesh(6, 5).unwrap();
+    let mut with = MortarZoneDef::new("EF", "AB");
+    with.friction = Some(FrictionLaw::Coulomb(0.3));
+    let without = MortarZoneDef::new("GH", "CD");
+    let m = MortarFriction::new(&[with.clone(), without], &mesh, false, 2).unwrap();
+    assert_eq!(m.unknowns(), 2 * 7 + 7);
+    assert!(m.unknown_name(0, &mesh).starts_with("LAGS_C of node"));
+    assert!(m.unknown_name(1, &mesh).starts_with("LAGS_F1 of node"));
+    for k in 14..21 {
+        assert!(m.unknown_name(k, &mesh).starts_with("LAGS_C of node"));
+    }
+    let own: Vec<f64> = (0..21).map(|k| k as f64).collect();
+    let p: Vec<f64> = m.pressures(&own).map(|(_, p)| p).collect();
+    assert_eq!(p, (14..21).map(|k| k as f64).collect::<Vec<_>>());
+    assert_eq!(m.multipliers(&own).count(), 7);
+    let shared = MortarZoneDef::new("GH", "AB");
+    let e = MortarFriction::new(&[with, shared], &mesh, false, 2).unwrap_err();
+    assert!(e.to_string().contains("CONTACT1_1"), "{e}");
+}

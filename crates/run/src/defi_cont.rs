@@ -18,16 +18,17 @@
 //! (`BILATERAL`: every paired point active, frictionless), `DIST_SUPP` and
 //! `CARA_ELEM` (`DIST_POUTRE`, `DIST_COQUE`: stored by code_aster 17 and
 //! used by none of its computations, so without effect); with the Lagrangian
-//! and penalised methods in 2D and on 3D solids (TRIA3, QUAD4 faces),
+//! and penalised methods in 2D and on 3D solids (the Lagrangian on TRIA3,
+//! QUAD4 faces; the penalised on every face kind),
 //! friction (`FROTTEMENT='OUI'`, `TYPE_FROT`
 //! `SANS`/`COULOMB`/`TRESCA`/`ADHERENT`, `aster_contact::mortar_friction`,
-//! `aster_contact::mortar_friction_penalty`) when every zone has it; the
-//! CLASSIQUE variant in 2D, with or without friction, and frictionless in
-//! 3D (`aster_contact::mortar_classique`). Refused, located: CLASSIQUE
-//! friction in 3D,
-//! BILATERAL with friction, LISSAGE, friction with NITSCHE, friction on
-//! quadratic faces in 3D, zones of one method with and
-//! without friction, Nitsche contact in 3D (code_aster 2025
+//! `aster_contact::mortar_friction_penalty`), its zones with or without
+//! it; the CLASSIQUE variant in 2D, with or without friction, and
+//! frictionless in 3D (`aster_contact::mortar_classique`). Refused,
+//! located: CLASSIQUE friction in 3D, BILATERAL with friction, LISSAGE,
+//! friction with NITSCHE, the Lagrangian friction on quadratic faces in
+//! 3D, zones with and without friction with CLASSIQUE, slave surfaces
+//! shared by zones of different methods, Nitsche contact in 3D (code_aster 2025
 //! has no 3D Nitsche contact element), models with shells
 //! (docs/contact.md, "DEFI_CONT").
 
@@ -126,6 +127,10 @@ impl MortarAlgo {
             _ => MortarAlgo::Lagrangian,
         }
     }
+
+    fn is_lagrangian(self) -> bool {
+        matches!(self, MortarAlgo::Lagrangian | MortarAlgo::Classique)
+    }
 }
 
 /// What the value lists cannot say: friction is built for the Lagrangian
@@ -215,8 +220,8 @@ fn zones(kw: &Keywords) -> Vec<MortarZoneDef> {
         .collect()
 }
 
-/// Whether a definition has friction (its zones all have; a mixed one is
-/// refused by DEFI_CONT).
+/// Whether a definition has friction (one of its zones has: code_aster's
+/// `_hasFriction` builds a FrictionNew).
 pub(crate) fn has_friction(zones: &[MortarZoneDef]) -> bool {
     zones.iter().any(|z| z.friction.is_some())
 }
@@ -379,21 +384,23 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         .any(|m| *m == Modelisation::Axisymmetric);
     let mesh = ex.mesh_by_id(model.mesh)?;
     let zones = zones(kw);
-    // code_aster builds one kind of definition (FrictionNew or ContactNew)
-    // for all its zones: zones of one method with and without friction
-    // together are not reproduced.
+    // Zones with and without friction in one definition: code_aster
+    // builds one FrictionNew whose frictionless zones have frictionless
+    // elements (CONT_LAG_SL_*: LAGS_C a pressure, no LAGS_F*; the
+    // penalised elements with l_fric false), reproduced by the frictional
+    // sources (`aster_contact::mortar_friction::split_zones`); the
+    // CLASSIQUE variant's mixed zones are not.
+    let classique_friction = zones
+        .iter()
+        .zip(&algos)
+        .any(|(z, a)| *a == MortarAlgo::Classique && z.friction.is_some());
     for (i, occ) in occs.iter().enumerate() {
-        let mixed = zones[i].friction.is_none()
-            && zones
-                .iter()
-                .zip(&algos)
-                .any(|(z, a)| *a == algos[i] && z.friction.is_some());
-        if mixed {
+        if classique_friction && algos[i] == MortarAlgo::Classique && zones[i].friction.is_none() {
             return Err(ex.kw_error(
                 "DEFI_CONT/ZONE",
                 occ,
                 "FROTTEMENT",
-                "not supported yet: zones with and without friction in one DEFI_CONT (code_aster 17's mortar friction is reproduced when every zone has FROTTEMENT='OUI'; TYPE_FROT='SANS' gives no friction force)",
+                "not supported yet: zones with and without friction in one DEFI_CONT with VARIANTE='CLASSIQUE' (reproduced with the ROBUSTE variant and the penalised method; with CLASSIQUE when every zone has FROTTEMENT='OUI')",
             ));
         }
     }
@@ -426,7 +433,7 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         }
     }
     // The groups and cell kinds are checked now, located at the zone.
-    for (occ, z) in kw.factor("ZONE").iter().zip(&zones) {
+    for ((occ, z), algo) in occs.iter().zip(&zones).zip(&algos) {
         if let Err(e) = MortarLagrangian::new(std::slice::from_ref(z), &mesh, axis, dim) {
             let at = match &e {
                 aster_contact::ContactError::UnknownGroup { keyword, .. } => keyword,
@@ -439,8 +446,9 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             };
             return Err(ex.kw_error("DEFI_CONT/ZONE", occ, at, e.to_string()));
         }
-        // Friction in 3D: the faces it is reproduced on.
-        if dim == 3 && z.friction.is_some() {
+        // The Lagrangian friction in 3D: the faces it is reproduced on
+        // (the penalised one takes every face kind of the pairing).
+        if dim == 3 && z.friction.is_some() && algo.is_lagrangian() {
             if let Err(e) = MortarFriction::new(std::slice::from_ref(z), &mesh, axis, dim) {
                 let at = if e.to_string().contains("GROUP_MA_MAIT") {
                     "GROUP_MA_MAIT"

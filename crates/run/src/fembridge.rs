@@ -1444,6 +1444,11 @@ pub fn solve(
                             depl.set(n, "LAGS_F2", lz);
                         }
                     }
+                    // Zones without friction beside them: code_aster's
+                    // frictionless elements, LAGS_C the pressure only.
+                    for (n, p) in m.pressures(own) {
+                        depl.set(n, "LAGS_C", p);
+                    }
                 }
             }
             if let Some(m) = &post_mortar_classique {

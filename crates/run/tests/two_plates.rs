@@ -362,11 +362,24 @@ fn axisymmetric_penalised_and_nitsche_mortar_contact() {
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (24, 0));
 }
 
-/// DEFI_CONT zones with and without friction together (code_aster builds
-/// one FrictionNew for them, whose frictionless zones are not reproduced)
-/// are refused before solving, at the frictionless zone's FROTTEMENT.
+/// comm/two_blocks_mixed.comm: zones with and without friction in one
+/// DEFI_CONT, each computed as code_aster computes it (the frictional zone's
+/// global multipliers LAGS_C, LAGS_F1; the frictionless zone's pressure
+/// LAGS_C only): a block sticking under a uniform shear beside a block
+/// pressed then dragged without friction, Lagrangian and penalised, 94
+/// checks at 1e-6 against the analytic states.
 #[test]
-fn defi_cont_zones_with_and_without_friction_are_refused_at_frottement() {
+fn defi_cont_zones_with_and_without_friction_are_each_their_own_formulation() {
+    assert_eq!(
+        run_scene_on("two_blocks_mixed.comm", "two_blocks_mixed.mail"),
+        (94, 0)
+    );
+}
+
+/// With VARIANTE='CLASSIQUE' such zones stay refused before solving, at the
+/// frictionless zone's FROTTEMENT.
+#[test]
+fn classique_zones_with_and_without_friction_are_refused_at_frottement() {
     let dir = std::env::temp_dir().join(format!("aster-dcfric-mixed-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let comm = dir.join("mixed.comm");
@@ -376,15 +389,15 @@ fn defi_cont_zones_with_and_without_friction_are_refused_at_frottement() {
 DEBUT(CODE="OUI")
 mesh = LIRE_MAILLAGE(FORMAT="ASTER", UNITE=20)
 model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
-c = DEFI_CONT(MODELE=model, ZONE=(_F(GROUP_MA_ESCL="AB", GROUP_MA_MAIT="EF", FROTTEMENT="OUI"),
-                                  _F(GROUP_MA_ESCL="CD", GROUP_MA_MAIT="GH")))
+c = DEFI_CONT(MODELE=model, ZONE=(_F(GROUP_MA_ESCL="ABA", GROUP_MA_MAIT="EFA", FROTTEMENT="OUI", VARIANTE="CLASSIQUE"),
+                                  _F(GROUP_MA_ESCL="ABB", GROUP_MA_MAIT="EFB", VARIANTE="CLASSIQUE")))
 FIN()
 "#,
     )
     .unwrap();
     let case = aster_run::program::prepare(
         &comm,
-        Some(&root().join("comm/two_plates.mail")),
+        Some(&root().join("comm/two_blocks_mixed.mail")),
         &dir.join("out"),
     )
     .unwrap();
@@ -393,7 +406,8 @@ FIN()
     let message = outcome.error.expect("refused").message;
     assert!(message.contains("mixed.comm:6:"), "{message}");
     assert!(
-        message.contains("zones with and without friction in one DEFI_CONT"),
+        message
+            .contains("zones with and without friction in one DEFI_CONT with VARIANTE='CLASSIQUE'"),
         "{message}"
     );
 }
