@@ -819,15 +819,7 @@ impl ForceSource for MortarFriction {
                 mprev: &mprev,
             };
             let forced = z.forced(self.first_pairing);
-            let points: Vec<([f64; 2], f64)> = if d == 3 {
-                crate::mortar_point::quadrature_3d(s, m, &p.poly, &s0)
-            } else {
-                crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis)
-                    .into_iter()
-                    .map(|(xi, w, _)| (xi, w))
-                    .collect()
-            };
-            for (xi, w) in points {
+            for (xi, w) in crate::mortar_point::quadrature(s, m, p, &s0, d, base.axis) {
                 let law = PointLaw {
                     xi,
                     w,

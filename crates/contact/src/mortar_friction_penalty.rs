@@ -204,20 +204,10 @@ impl ForceSource for MortarFrictionPenalty {
                 mprev: &mprev,
             };
             let forced = z.forced(self.first_pairing);
-            // The points and the slave functions there (initial
-            // configuration), for γ = Σ N_a COEF_CONT / h_F.
-            let points: Vec<([f64; 2], f64, Vec<f64>)> = if d == 3 {
-                crate::mortar_point::quadrature_3d(s, m, &p.poly, &s0)
-                    .into_iter()
-                    .map(|(xi, w)| (xi, w, s.kind.eval(xi).0))
-                    .collect()
-            } else {
-                crate::mortar_point::quadrature_2d(s, m, p.xi, &s0, base.axis)
-                    .into_iter()
-                    .map(|(xi, w, at0)| (xi, w, at0.shape))
-                    .collect()
-            };
-            for (xi, w, shape) in points {
+            for (xi, w) in crate::mortar_point::quadrature(s, m, &p, &s0, d, base.axis) {
+                // The slave functions at the point, for γ = Σ N_a
+                // COEF_CONT / h_F.
+                let shape = s.kind.eval(xi).0;
                 let law = PointLaw {
                     xi,
                     w,

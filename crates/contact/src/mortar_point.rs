@@ -164,6 +164,28 @@ pub(crate) fn points(
     Ok(out)
 }
 
+/// The integration points of the pair `p` of slave `s` and master `m`, in
+/// the slave's parametric space with their weights: on its intersection
+/// segment in 2D ([`quadrature_2d`]), on its polygon in 3D
+/// ([`quadrature_3d`]).
+pub(crate) fn quadrature(
+    s: &Seg,
+    m: &Seg,
+    p: &crate::mortar_lagrangian::Pair,
+    s0: &[[f64; 3]],
+    dim: usize,
+    axis: bool,
+) -> Vec<([f64; 2], f64)> {
+    if dim == 3 {
+        quadrature_3d(s, m, &p.poly, s0)
+    } else {
+        quadrature_2d(s, m, p.xi, s0, axis)
+            .into_iter()
+            .map(|(xi, w, _)| (xi, w))
+            .collect()
+    }
+}
+
 /// The integration points of a 3D pair on its polygon `poly` (slave
 /// parametric space): FPG4 per triangle when both faces are linear, FPG7
 /// otherwise, each weight times the slave face's initial |t₁ × t₂| on `s0`

@@ -233,9 +233,14 @@ pub(crate) fn friction_source(
     mesh: &Mesh,
     axis: bool,
     dim: usize,
+    resi_geom: Option<f64>,
 ) -> Result<MortarFriction, ExecError> {
-    MortarFriction::new(zones, mesh, axis, dim)
-        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+    let mut m = MortarFriction::new(zones, mesh, axis, dim)
+        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))?;
+    if let Some(r) = resi_geom {
+        m.set_resi_geom(r);
+    }
+    Ok(m)
 }
 
 /// The material of a Nitsche contact: code_aster takes `ELAS` E and NU
@@ -311,9 +316,14 @@ pub(crate) fn source(
     mesh: &Mesh,
     axis: bool,
     dim: usize,
+    resi_geom: Option<f64>,
 ) -> Result<MortarLagrangian, ExecError> {
-    MortarLagrangian::new(zones, mesh, axis, dim)
-        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+    let mut m = MortarLagrangian::new(zones, mesh, axis, dim)
+        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))?;
+    if let Some(r) = resi_geom {
+        m.set_resi_geom(r);
+    }
+    Ok(m)
 }
 
 /// The force source of a CLASSIQUE definition on the model's current
@@ -324,9 +334,14 @@ pub(crate) fn classique_source(
     mesh: &Mesh,
     axis: bool,
     dim: usize,
+    resi_geom: Option<f64>,
 ) -> Result<MortarClassique, ExecError> {
-    MortarClassique::new(zones, mesh, axis, dim)
-        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))
+    let mut m = MortarClassique::new(zones, mesh, axis, dim)
+        .map_err(|e| ExecError::new(format!("DEFI_CONT: {e}")))?;
+    if let Some(r) = resi_geom {
+        m.set_resi_geom(r);
+    }
+    Ok(m)
 }
 
 pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {

@@ -1168,35 +1168,17 @@ pub fn solve(
                         // The Lagrangian method (ROBUSTE/RAPIDE or
                         // CLASSIQUE): with or without friction (LAGS_C,
                         // LAGS_F1 fields).
+                        let (dim, resi) = (setup.model.dim(), setup.contact_resi_geom);
                         if algo == crate::defi_cont::MortarAlgo::Classique {
-                            let mut m = crate::defi_cont::classique_source(
-                                zones,
-                                &mesh,
-                                axis,
-                                setup.model.dim(),
-                            )?;
-                            if let Some(r) = setup.contact_resi_geom {
-                                m.set_resi_geom(r);
-                            }
-                            mortar_classique = Some(m);
+                            mortar_classique = Some(crate::defi_cont::classique_source(
+                                zones, &mesh, axis, dim, resi,
+                            )?);
                         } else if crate::defi_cont::has_friction(zones) {
-                            let mut m = crate::defi_cont::friction_source(
-                                zones,
-                                &mesh,
-                                axis,
-                                setup.model.dim(),
-                            )?;
-                            if let Some(r) = setup.contact_resi_geom {
-                                m.set_resi_geom(r);
-                            }
-                            mortar_friction = Some(m);
+                            mortar_friction = Some(crate::defi_cont::friction_source(
+                                zones, &mesh, axis, dim, resi,
+                            )?);
                         } else {
-                            let mut m =
-                                crate::defi_cont::source(zones, &mesh, axis, setup.model.dim())?;
-                            if let Some(r) = setup.contact_resi_geom {
-                                m.set_resi_geom(r);
-                            }
-                            mortar = Some(m);
+                            mortar = Some(crate::defi_cont::source(zones, &mesh, axis, dim, resi)?);
                         }
                     }
                 }
