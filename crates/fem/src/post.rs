@@ -298,6 +298,40 @@ fn coque3d_sigm_elno_at(
     Ok(out)
 }
 
+/// The efforts NXX NYY NXY MXX MYY MXY QX QY of the COQUE_3D cells of
+/// `model` in the user's frame (`direction`): at the normal Gauss points
+/// (`EFGE_ELGA`, [`crate::coque3d::efge_elga`]) or, with `at_nodes`, at
+/// the nodes (`EFGE_ELNO` of a non-linear result,
+/// [`crate::coque3d::efge_elno`]).
+pub fn coque3d_efge(
+    model: &Model,
+    u: &[f64],
+    direction: &dyn Fn(CellId) -> [f64; 3],
+    at_nodes: bool,
+) -> Result<Vec<CellValues>, FemError> {
+    let mut out = Vec::new();
+    for el in model.elements() {
+        let ElementKind::Coque3d { material, section } = &el.kind else {
+            continue;
+        };
+        let err = |m: String| cell_error(model, el.cell, m);
+        let xyz = crate::element::coque3d_coords(model.mesh(), el.cell).map_err(err)?;
+        let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
+        let efforts = if at_nodes {
+            crate::coque3d::efge_elno(&xyz, material, section, &ue, direction(el.cell))
+        } else {
+            crate::coque3d::efge_elga(&xyz, material, section, &ue, direction(el.cell))
+        }
+        .map_err(err)?;
+        out.push(CellValues {
+            cell: el.cell,
+            names: EFGE_TRIA.to_vec(),
+            points: efforts.iter().map(|e| e.to_vec()).collect(),
+        });
+    }
+    Ok(out)
+}
+
 /// Stresses at Gauss points (SIEF_ELGA) for continuum elements, and the
 /// local forces N, VY(, VZ) of springs, for a total displacement `u`.
 pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
