@@ -94,7 +94,9 @@ fn efge_elno_of_coque3d_on_meca_statique_is_refused() {
     assert_eq!((ok, nook), (0, 0));
     let err = err.expect("an error");
     assert!(
-        err.contains("not supported yet") && err.contains("EFGE_ELNO") && err.contains("MECA_STATIQUE"),
+        err.contains("not supported yet")
+            && err.contains("EFGE_ELNO")
+            && err.contains("MECA_STATIQUE"),
         "{err}"
     );
 }
