@@ -1046,34 +1046,127 @@ pub fn sigm_elno(
             }
             for (n, t) in node.iter().enumerate() {
                 let (c, s) = user_angle(&frames[n], direction)?;
-                // Mᵀ·σ·M with M = [c −s; s c] (`vdsiro` 'IU').
-                let (xx, yy, xy) = (t[0], t[1], t[3]);
-                let m = [[c, -s], [s, c]];
-                let a = [[xx, xy], [xy, yy]];
-                let mut res = [[0.; 2]; 2];
-                for i in 0..2 {
-                    for j in 0..2 {
-                        let mut v = 0.;
-                        for k in 0..2 {
-                            for l in 0..2 {
-                                v += m[k][i] * a[k][l] * m[l][j];
-                            }
-                        }
-                        res[i][j] = v;
-                    }
-                }
-                out[n][3 * icou + lvl] = [
-                    res[0][0],
-                    res[1][1],
-                    t[2],
-                    res[0][1],
-                    t[4] * m[0][0] + t[5] * m[1][0],
-                    t[4] * m[0][1] + t[5] * m[1][1],
-                ];
+                let (xx, yy, xy) = turn_plane(t[0], t[1], t[3], c, s);
+                let (xz, yz) = turn_shear(t[4], t[5], c, s);
+                out[n][3 * icou + lvl] = [xx, yy, t[2], xy, xz, yz];
             }
         }
     }
     Ok(out)
+}
+
+/// The efforts of a layer's three levels (bottom, middle, top: SIXX SIYY
+/// SIZZ SIXY SIXZ SIYZ) integrated through the thicknesses `hic` of the
+/// layers whose bottoms are at `zic` from the mid-surface, with Simpson's
+/// weights `w` (times `hic`): NXX NYY NXY MXX MYY MXY QX QY, M = ∫ σ z dz
+/// (z along the normal, from −h/2 at the bottom).
+fn through_thickness(
+    section: &Coque3dSection,
+    w: [f64; 3],
+    level: &dyn Fn(usize, usize) -> [f64; 6],
+) -> [f64; 8] {
+    let nbcou = section.layers.max(1) as usize;
+    let hic = section.thickness / nbcou as f64;
+    let mut e = [0.; 8];
+    for icou in 0..nbcou {
+        let zic = -section.thickness / 2. + icou as f64 * hic;
+        for (lvl, wl) in w.iter().enumerate() {
+            let s = level(icou, lvl);
+            let (c, z) = (wl * hic, zic + lvl as f64 * hic / 2.);
+            for (k, ic) in [0, 1, 3].into_iter().enumerate() {
+                e[k] += c * s[ic];
+                e[k + 3] += c * z * s[ic];
+            }
+            e[6] += c * s[4];
+            e[7] += c * s[5];
+        }
+    }
+    e
+}
+
+/// `EFGE_ELGA` (`te0451`): at each normal point (FPG9COQ, FPG7: the
+/// points of `SIEF_ELGA`), the stresses of [`stresses`] integrated
+/// through the layers (Simpson: h/6, 4h/6, h/6 per layer), NXX NYY NXY
+/// MXX MYY MXY QX QY, in the frame code_aster stores `SIEF_ELGA` in: the
+/// user's frame (`direction`) of the first reduced point (`cosiro` 'IU'
+/// with `vdrepe`'s `matevg(·, ·, 1)` for every point, `vdsiro`), the same
+/// rotation for all the points of the cell.
+pub fn efge_elga(
+    xyz: &[V3],
+    material: &Elastic,
+    section: &Coque3dSection,
+    u: &[f64],
+    direction: V3,
+) -> Result<Vec<[f64; 8]>, String> {
+    let r = reference(xyz)?;
+    let frames = nodal_frames(xyz, &r)?;
+    let normals: Vec<V3> = frames.iter().map(|f| f[2]).collect();
+    // `vdxrep`: vectgt at the first reduced point on the mid-surface.
+    let (t, _, _) = point_frame(&r.gr[0], xyz, &normals, 0., section.thickness);
+    let (c, s) = user_angle(&t, direction)?;
+    let gauss = stresses(xyz, material, section, u)?;
+    let npge = 3 * section.layers.max(1) as usize;
+    let w = [1. / 6., 4. / 6., 1. / 6.];
+    Ok((0..r.npgsn())
+        .map(|q| {
+            let e = through_thickness(section, w, &|icou, lvl| gauss[q * npge + 3 * icou + lvl]);
+            to_user(&e, c, s)
+        })
+        .collect())
+}
+
+/// `EFGE_ELNO` of a non-linear result (`te0185` → `ef0415` →
+/// `efcoq3d`): per layer, the three levels of [`sigm_elno`] at each node
+/// (least-squares extrapolation to the corners, mid-side nodes and centre
+/// the means of the corners, in the node's user frame) integrated by
+/// `vdefgn` (Simpson with its literals 0.33333333333333 and
+/// 1.33333333333333 times half the layer's thickness). code_aster
+/// averages the corners' efforts in the element's frame and then turns
+/// each node's (`vdefro`): the same, the rotation being linear.
+pub fn efge_elno(
+    xyz: &[V3],
+    material: &Elastic,
+    section: &Coque3dSection,
+    u: &[f64],
+    direction: V3,
+) -> Result<Vec<[f64; 8]>, String> {
+    let nodes = sigm_elno(xyz, material, section, u, direction)?;
+    let (w1, w2) = (0.33333333333333 / 2., 1.33333333333333 / 2.);
+    Ok(nodes
+        .iter()
+        .map(|n| through_thickness(section, [w1, w2, w1], &|icou, lvl| n[3 * icou + lvl]))
+        .collect())
+}
+
+/// Mᵀ·T·M of the in-plane tensor (xx, yy, xy) with M = [c −s; s c]
+/// (`vdsiro`/`vdefro` 'IU', `utbtab`).
+fn turn_plane(xx: f64, yy: f64, xy: f64, c: f64, s: f64) -> (f64, f64, f64) {
+    let m = [[c, -s], [s, c]];
+    let a = [[xx, xy], [xy, yy]];
+    let at = |i: usize, j: usize| -> f64 {
+        let mut v = 0.;
+        for k in 0..2 {
+            for l in 0..2 {
+                v += m[k][i] * a[k][l] * m[l][j];
+            }
+        }
+        v
+    };
+    (at(0, 0), at(1, 1), at(0, 1))
+}
+
+/// (q₁, q₂)·M with M = [c −s; s c] (the transverse shears of `vdsiro`,
+/// `vdefro`).
+fn turn_shear(q1: f64, q2: f64, c: f64, s: f64) -> (f64, f64) {
+    (q1 * c + q2 * s, -q1 * s + q2 * c)
+}
+
+/// NXX NYY NXY MXX MYY MXY QX QY turned into the user's frame (c, s).
+fn to_user(e: &[f64; 8], c: f64, s: f64) -> [f64; 8] {
+    let (nxx, nyy, nxy) = turn_plane(e[0], e[1], e[2], c, s);
+    let (mxx, myy, mxy) = turn_plane(e[3], e[4], e[5], c, s);
+    let (qx, qy) = turn_shear(e[6], e[7], c, s);
+    [nxx, nyy, nxy, mxx, myy, mxy, qx, qy]
 }
 
 #[cfg(test)]

@@ -455,6 +455,13 @@ impl Model {
         })
     }
 
+    /// Whether the model has COQUE_3D elements.
+    pub fn has_coque3d(&self) -> bool {
+        self.elements
+            .iter()
+            .any(|e| matches!(e.kind, ElementKind::Coque3d { .. }))
+    }
+
     /// Whether the model has beams (`POU_D_E`).
     pub fn has_beams(&self) -> bool {
         self.elements

@@ -270,32 +270,78 @@ fn coque3d_sigm_elno_at(
     direction: &dyn Fn(CellId) -> [f64; 3],
     level: ShellLevel,
 ) -> Result<Vec<CellValues>, FemError> {
+    coque3d_cells(model, u, &|cell, material, section, xyz, ue| {
+        if level.layer == 0 || level.layer > section.layers {
+            return Err(format!(
+                "layer {} asked of a shell with {} layer(s) (COQUE_NCOU)",
+                level.layer, section.layers
+            ));
+        }
+        let lvl = (level.position * 2.).round().clamp(0., 2.) as usize;
+        let sub = 3 * (level.layer as usize - 1) + lvl;
+        let nodes = crate::coque3d::sigm_elno(xyz, material, section, ue, direction(cell))?;
+        Ok((
+            vec!["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"],
+            nodes.iter().map(|n| n[sub].to_vec()).collect(),
+        ))
+    })
+}
+
+/// One [`CellValues`] per COQUE_3D cell of `model`: `f` of the cell, its
+/// material, section, coordinates and displacements (from `u`) gives the
+/// component names and the values; its error is located at the cell.
+#[allow(clippy::type_complexity)]
+fn coque3d_cells(
+    model: &Model,
+    u: &[f64],
+    f: &dyn Fn(
+        CellId,
+        &crate::Elastic,
+        &crate::coque3d::Coque3dSection,
+        &[[f64; 3]],
+        &[f64],
+    ) -> Result<(Vec<&'static str>, Vec<Vec<f64>>), String>,
+) -> Result<Vec<CellValues>, FemError> {
     let mut out = Vec::new();
     for el in model.elements() {
         let ElementKind::Coque3d { material, section } = &el.kind else {
             continue;
         };
         let err = |m: String| cell_error(model, el.cell, m);
-        if level.layer == 0 || level.layer > section.layers {
-            return Err(err(format!(
-                "layer {} asked of a shell with {} layer(s) (COQUE_NCOU)",
-                level.layer, section.layers
-            )));
-        }
-        let lvl = (level.position * 2.).round().clamp(0., 2.) as usize;
-        let sub = 3 * (level.layer as usize - 1) + lvl;
         let xyz = crate::element::coque3d_coords(model.mesh(), el.cell).map_err(err)?;
-        let dofs = element_dofs(model, el.cell);
-        let ue: Vec<f64> = dofs.iter().map(|&i| u[i]).collect();
-        let nodes = crate::coque3d::sigm_elno(&xyz, material, section, &ue, direction(el.cell))
-            .map_err(err)?;
+        let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
+        let (names, points) = f(el.cell, material, section, &xyz, &ue).map_err(err)?;
         out.push(CellValues {
             cell: el.cell,
-            names: vec!["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"],
-            points: nodes.iter().map(|n| n[sub].to_vec()).collect(),
+            names,
+            points,
         });
     }
     Ok(out)
+}
+
+/// The efforts NXX NYY NXY MXX MYY MXY QX QY of the COQUE_3D cells of
+/// `model` in the user's frame (`direction`): at the normal Gauss points
+/// (`EFGE_ELGA`, [`crate::coque3d::efge_elga`]) or, with `at_nodes`, at
+/// the nodes (`EFGE_ELNO` of a non-linear result,
+/// [`crate::coque3d::efge_elno`]).
+pub fn coque3d_efge(
+    model: &Model,
+    u: &[f64],
+    direction: &dyn Fn(CellId) -> [f64; 3],
+    at_nodes: bool,
+) -> Result<Vec<CellValues>, FemError> {
+    coque3d_cells(model, u, &|cell, material, section, xyz, ue| {
+        let efforts = if at_nodes {
+            crate::coque3d::efge_elno(xyz, material, section, ue, direction(cell))
+        } else {
+            crate::coque3d::efge_elga(xyz, material, section, ue, direction(cell))
+        }?;
+        Ok((
+            EFGE_TRIA.to_vec(),
+            efforts.iter().map(|e| e.to_vec()).collect(),
+        ))
+    })
 }
 
 /// Stresses at Gauss points (SIEF_ELGA) for continuum elements, and the

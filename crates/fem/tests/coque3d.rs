@@ -666,3 +666,52 @@ fn nodal_layer_stresses_of_the_strip_in_the_user_frame() {
         }
     }
 }
+
+#[test]
+fn efforts_of_the_strip_are_the_beams_resultants() {
+    // End moment M and tension N on the tilted strip: EFGE_ELGA at every
+    // normal point and EFGE_ELNO at every node are NXX = N/b, MXX = M/b
+    // along the strip (NYY, MYY with the user's x across it), the rest 0,
+    // with one layer and with three (Simpson per layer is exact through the
+    // thickness of this linear stress).
+    let (b, h, m, n) = (0.5, 0.05, 1e3, 1e6);
+    let r = tilted();
+    let mat = Elastic::new(2e11, 0.).unwrap();
+    let along = r * Vector3::new(1., 0., 0.3);
+    let across = r * Vector3::new(0., 1., -0.2);
+    for tria in [false, true] {
+        let (g, u, _) = strip_tip(tria, |f, node, w| {
+            add(f, node, 3, &r, [0., m * w, 0.]);
+            add(f, node, 0, &r, [n * w, 0., 0.]);
+        });
+        for layers in [1, 3] {
+            let sec = Coque3dSection {
+                layers,
+                ..Coque3dSection::new(h)
+            };
+            for (dir, k) in [(along, 0), (across, 1)] {
+                let mut want = [0.; 8];
+                want[k] = n / b;
+                want[3 + k] = m / b;
+                let dir = [dir[0], dir[1], dir[2]];
+                for c in &g.cells {
+                    let ue: Vec<f64> = Grid::dofs(c).iter().map(|&i| u[i]).collect();
+                    let xyz = g.xyz(c);
+                    let elga = coque3d::efge_elga(&xyz, &mat, &sec, &ue, dir).unwrap();
+                    let elno = coque3d::efge_elno(&xyz, &mat, &sec, &ue, dir).unwrap();
+                    assert_eq!(elga.len(), if tria { 7 } else { 9 });
+                    assert_eq!(elno.len(), c.len());
+                    for e in elga.iter().chain(&elno) {
+                        for comp in 0..8 {
+                            let scale = if comp < 3 { n / b } else { m / b };
+                            assert!(
+                                (e[comp] - want[comp]).abs() <= 1e-8 * scale,
+                                "{tria} {layers} {k} {comp}: {e:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

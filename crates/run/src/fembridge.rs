@@ -1661,6 +1661,25 @@ pub fn calc_champ(
             }
             post::epsi_elga_on(model, u, keep).map_err(|e| fem_err("CALC_CHAMP", e))
         };
+        // EFGE_ELNO of the beams and of the COQUE_3D cells (code_aster's
+        // path for a non-linear result: MECA_STATIQUE's, `ef0410`, extrapolates
+        // the reduced points' stresses instead, not reproduced).
+        let efge_elno = || {
+            let mut v = post::beam_efge_elno(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?;
+            if model.has_coque3d() {
+                if result.typ == "evol_elas" {
+                    return Err(ex.unsupported(
+                        "CALC_CHAMP/CONTRAINTE='EFGE_ELNO' of COQUE_3D cells on a MECA_STATIQUE result (code_aster's linear path ef0410 extrapolates the stresses of the reduced points with vdefge; only STAT_NON_LINE's, ef0415, is reproduced)",
+                        call.keywords.keyword("CONTRAINTE").map(|k| k.span).unwrap_or(call.span),
+                    ));
+                }
+                v.extend(
+                    crate::shells::coque3d_efge_elno(model, run.cara.as_deref(), u)
+                        .map_err(|e| fem_err("CALC_CHAMP", e))?,
+                );
+            }
+            Ok::<_, ExecError>(on(only, &v).into_owned())
+        };
         for opt in options {
             let field = match opt.as_str() {
                 "EPSI_ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &epsi_elga()?)),
@@ -1690,10 +1709,12 @@ pub fn calc_champ(
                     &crate::shells::efge_elga(model, run.cara.as_deref(), u)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 )),
-                "EFGE_ELNO" if model.has_beams() => Field::Elem(elem_field(
-                    ElemLocation::Nodes,
-                    &post::beam_efge_elno(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?,
-                )),
+                "EFGE_ELNO" if model.has_beams() || model.has_coque3d() => {
+                    Field::Elem(elem_field(ElemLocation::Nodes, &efge_elno()?))
+                }
+                "EFGE_NOEU" if model.has_beams() || model.has_coque3d() => {
+                    Field::Nodal(nodal_from_values(&post::noeu(model, &efge_elno()?)))
+                }
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))
                 }

@@ -125,14 +125,9 @@ pub(crate) fn check_solve(
     Ok(())
 }
 
-/// `EFGE_ELGA` of the shells of `model`: NXX NYY NXY MXX MYY MXY (QX QY on
-/// triangles) at the Gauss points, in the frame of each cell's
-/// `AFFE_CARA_ELEM/COQUE` (global X projected on the facet by default).
-pub(crate) fn efge_elga(
-    model: &Model,
-    cara: Option<&CaraElem>,
-    u: &[f64],
-) -> Result<Vec<CellValues>, aster_fem::FemError> {
+/// The reference direction of each shell cell (`ANGL_REP`/`VECTEUR` of
+/// `AFFE_CARA_ELEM/COQUE`; global X when absent).
+fn directions(cara: Option<&CaraElem>) -> impl Fn(CellId) -> [f64; 3] {
     let mut direction: BTreeMap<CellId, [f64; 3]> = BTreeMap::new();
     if let Some(c) = cara {
         for s in &c.shells {
@@ -141,19 +136,33 @@ pub(crate) fn efge_elga(
             }
         }
     }
-    if let Some(e) = model
-        .elements()
-        .iter()
-        .find(|e| matches!(e.kind, aster_fem::ElementKind::Coque3d { .. }))
-    {
-        return Err(aster_fem::FemError::Model(format!(
-            "cell {}: EFGE_ELGA of COQUE_3D cells is not computed here (only their stresses by layer, SIGM_ELNO through POST_CHAMP/EXTR_COQUE)",
-            model.cell_name(e.cell)
-        )));
-    }
-    aster_fem::post::efge_elga(model, u, &|cell| {
-        direction.get(&cell).copied().unwrap_or([1., 0., 0.])
-    })
+    move |cell| direction.get(&cell).copied().unwrap_or([1., 0., 0.])
+}
+
+/// `EFGE_ELGA` of the shells of `model`: NXX NYY NXY MXX MYY MXY (QX QY on
+/// triangles and COQUE_3D cells) at the Gauss points, in the frame of each
+/// cell's `AFFE_CARA_ELEM/COQUE` (global X projected on the facet by
+/// default; on a COQUE_3D cell, on its plane at the first reduced point,
+/// as code_aster stores its `SIEF_ELGA`).
+pub(crate) fn efge_elga(
+    model: &Model,
+    cara: Option<&CaraElem>,
+    u: &[f64],
+) -> Result<Vec<CellValues>, aster_fem::FemError> {
+    let direction = directions(cara);
+    let mut out = aster_fem::post::efge_elga(model, u, &direction)?;
+    out.extend(aster_fem::post::coque3d_efge(model, u, &direction, false)?);
+    Ok(out)
+}
+
+/// `EFGE_ELNO` of the COQUE_3D cells of `model` (code_aster's path for a
+/// non-linear result, `ef0415`), at their nodes in each node's user frame.
+pub(crate) fn coque3d_efge_elno(
+    model: &Model,
+    cara: Option<&CaraElem>,
+    u: &[f64],
+) -> Result<Vec<CellValues>, aster_fem::FemError> {
+    aster_fem::post::coque3d_efge(model, u, &directions(cara), true)
 }
 
 /// The stresses of the shells of `model` at one level through their
@@ -165,12 +174,10 @@ pub(crate) fn sigm_elno_at(
     u: &[f64],
     level: aster_fem::post::ShellLevel,
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
-    let mut direction: BTreeMap<CellId, [f64; 3]> = BTreeMap::new();
     let mut layers: BTreeMap<CellId, u32> = BTreeMap::new();
     if let Some(c) = cara {
         for s in &c.shells {
             for &cell in &s.cells {
-                direction.insert(cell, s.direction);
                 layers.insert(cell, s.layers);
             }
         }
@@ -178,7 +185,7 @@ pub(crate) fn sigm_elno_at(
     aster_fem::post::shell_sigm_elno(
         model,
         u,
-        &|cell| direction.get(&cell).copied().unwrap_or([1., 0., 0.]),
+        &directions(cara),
         &|cell| layers.get(&cell).copied().unwrap_or(1),
         level,
     )

@@ -4,8 +4,11 @@
 //! end tension against beam theory (ν = 0: tip deflection and rotation,
 //! stretch, mid-span deflection within 1e-9; the bottom and top stresses of
 //! POST_CHAMP/EXTR_COQUE averaged by SIGM_NOEU within 1e-7), and a
-//! PRES_REP whose clamp reaction equals p·L·b within 1e-9; the same strip
-//! of TRIA7 cells (`MEC3TR7H`, comm/coque3d_strip_tria7.comm).
+//! PRES_REP whose clamp reaction equals p·L·b within 1e-9; the efforts
+//! EFGE_ELGA, EFGE_ELNO, EFGE_NOEU under the end moment and tension (NXX =
+//! N/b, MXX = M/b) and an end shear force (QX = V/b, MXX = −V(L − x)/b)
+//! within 1e-9; the same strip of TRIA7 cells (`MEC3TR7H`,
+//! comm/coque3d_strip_tria7.comm).
 
 mod scene;
 
@@ -19,7 +22,7 @@ fn strip() -> String {
 
 #[test]
 fn coque3d_strip_matches_beam_theory_and_statics() {
-    assert_eq!(run(&strip(), "strip"), (18, 0, None));
+    assert_eq!(run(&strip(), "strip"), (46, 0, None));
 }
 
 /// The same strip meshed with TRIA7 (comm/coque3d_strip_tria7.comm on
@@ -32,7 +35,7 @@ fn coque3d_strip_matches_beam_theory_and_statics() {
 fn coque3d_tria7_strip_matches_beam_theory_and_statics() {
     let text = scene::read("coque3d_strip_tria7.comm");
     let got = scene::run_on(&text, "comm/coque3d_strip_tria7.mail", "coque3d-tria7");
-    assert_eq!(got, (18, 0, None));
+    assert_eq!(got, (46, 0, None));
 }
 
 /// Two layers (COQUE_NCOU=2): the bottom of the second layer is the
@@ -60,7 +63,8 @@ fn the_bottom_of_the_second_of_two_layers_is_the_mid_surface() {
         1,
     );
     assert!(t.contains("COQUE_NCOU=2") && t.contains("VALE_CALC=4.0e7"));
-    assert_eq!(run(&t, "layers"), (18, 0, None));
+    // The efforts (EFGE_*) integrate the two layers to the same N and M.
+    assert_eq!(run(&t, "layers"), (46, 0, None));
     // A third layer does not exist.
     let t = t.replacen(
         "NUME_COUCHE=2, NIVE_COUCHE=\"INF\"",
@@ -75,20 +79,26 @@ fn the_bottom_of_the_second_of_two_layers_is_the_mid_surface() {
     );
 }
 
-/// The efforts EFGE_ELGA of a COQUE_3D are not computed: an error at
-/// CALC_CHAMP naming the cell, not an empty field.
+/// EFGE_ELNO of COQUE_3D cells on a MECA_STATIQUE result takes
+/// code_aster's linear path (`ef0410`: the reduced points' stresses
+/// extrapolated by `vdefge`), not reproduced: refused at CONTRAINTE.
 #[test]
-fn efge_elga_of_coque3d_is_an_error() {
+fn efge_elno_of_coque3d_on_meca_statique_is_refused() {
     let t = strip().replacen(
-        "RESU = CALC_CHAMP(reuse=RESU, RESULTAT=RESU, CONTRAINTE=\"SIGM_ELNO\")",
-        "RESU = CALC_CHAMP(reuse=RESU, RESULTAT=RESU, CONTRAINTE=(\"SIGM_ELNO\", \"EFGE_ELGA\"))",
+        "RESV = STAT_NON_LINE(\n    MODELE=MO,\n    CHAM_MATER=MAT,\n    CARA_ELEM=CARA,\n    EXCIT=(_F(CHARGE=CLAMP), _F(CHARGE=SHEAR)),\n    COMPORTEMENT=_F(RELATION=\"ELAS\", TOUT=\"OUI\"),\n    INCREMENT=_F(LIST_INST=LINST),\n)",
+        "RESV = MECA_STATIQUE(MODELE=MO, CHAM_MATER=MAT, CARA_ELEM=CARA, EXCIT=(_F(CHARGE=CLAMP), _F(CHARGE=SHEAR)))",
         1,
     );
-    assert!(t.contains("EFGE_ELGA"));
-    let (ok, nook, err) = run(&t, "efge");
+    assert!(t.contains("RESV = MECA_STATIQUE"));
+    let (ok, nook, err) = run(&t, "efge-linear");
     assert_eq!((ok, nook), (0, 0));
     let err = err.expect("an error");
-    assert!(err.contains("EFGE_ELGA of COQUE_3D"), "{err}");
+    assert!(
+        err.contains("not supported yet")
+            && err.contains("EFGE_ELNO")
+            && err.contains("MECA_STATIQUE"),
+        "{err}"
+    );
 }
 
 /// Continuous contact on a model with COQUE_3D cells is code_aster's
