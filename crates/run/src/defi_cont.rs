@@ -10,7 +10,7 @@
 //! code_aster's residual is the same for all), unilateral, on 2D models
 //! (D_PLAN, C_PLAN, AXIS) whose contact cells are SEG2 or SEG3, zones of
 //! different methods side by side (one force source per method,
-//! [`groups`]; their slave surfaces disjoint), and — the
+//! [`groups`]), and — the
 //! Lagrangian and penalised methods, frictionless — on 3D solid models
 //! whose contact faces are TRIA3, QUAD4, TRIA6, QUAD8 or QUAD9
 //! (`aster_contact::mortar_pairing3d`); `COEF_CONT`, `CONTACT_INIT`,
@@ -27,10 +27,10 @@
 //! frictionless in 3D (`aster_contact::mortar_classique`). Refused,
 //! located: CLASSIQUE friction in 3D, BILATERAL with friction, LISSAGE,
 //! friction with NITSCHE, the Lagrangian friction on quadratic faces in
-//! 3D, zones with and without friction with CLASSIQUE, slave surfaces
-//! shared by zones of different methods, Nitsche contact in 3D (code_aster 2025
-//! has no 3D Nitsche contact element), models with shells
-//! (docs/contact.md, "DEFI_CONT").
+//! 3D, zones with and without friction with CLASSIQUE, Nitsche contact in
+//! 3D (code_aster 2025 has no 3D Nitsche contact element), models with
+//! shells (docs/contact.md, "DEFI_CONT"); zones sharing slave nodes stop
+//! as code_aster's CONTACT1_1.
 
 use std::rc::Rc;
 
@@ -419,32 +419,34 @@ pub fn defi_cont(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             ));
         }
     }
-    // Zones of different methods are solved by one force source each: a
-    // slave node in two of them would carry two contact conditions.
-    let slave_nodes = |z: &MortarZoneDef| -> std::collections::BTreeSet<u32> {
-        mesh.group_ma(&z.slave_group)
-            .map(|g| {
-                g.members
-                    .iter()
-                    .flat_map(|c| mesh.cell(*c).nodes.iter().map(|n| n.0))
-                    .collect()
-            })
-            .unwrap_or_default()
-    };
+    // code_aster stops a definition whose zones share slave nodes, whatever
+    // their methods (`ContactNew::build`, CONTACT1_1).
+    let slave_nodes: Vec<std::collections::BTreeSet<u32>> = zones
+        .iter()
+        .map(|z| {
+            mesh.group_ma(&z.slave_group)
+                .map(|g| {
+                    g.members
+                        .iter()
+                        .flat_map(|c| mesh.cell(*c).nodes.iter().map(|n| n.0))
+                        .collect()
+                })
+                .unwrap_or_default()
+        })
+        .collect();
     for i in 0..zones.len() {
-        for j in 0..i {
-            if algos[i] != algos[j] && !slave_nodes(&zones[i]).is_disjoint(&slave_nodes(&zones[j]))
-            {
-                return Err(ex.kw_error(
+        if let Some(j) = (0..i).find(|&j| !slave_nodes[i].is_disjoint(&slave_nodes[j])) {
+            return Err(ex
+                .kw_error(
                     "DEFI_CONT/ZONE",
                     &occs[i],
                     "GROUP_MA_ESCL",
                     format!(
-                        "not supported yet: the slave surface {} shares nodes with {} of zone {} whose ALGO_CONT or VARIANTE differs (zones of different methods are reproduced on disjoint slave surfaces)",
+                        "the slave surface {} shares nodes with {} of zone {}: the slave nodes of the zones of one DEFI_CONT must be distinct (code_aster stops, ContactNew::build)",
                         zones[i].slave_group, zones[j].slave_group, j + 1
                     ),
-                ));
-            }
+                )
+                .with_id("CONTACT1_1"));
         }
     }
     // The groups and cell kinds are checked now, located at the zone.

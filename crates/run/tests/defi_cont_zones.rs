@@ -3,8 +3,8 @@
 //! plates stacked on non-matching meshes, one interface Lagrangian and the
 //! other penalised, then swapped — every TEST_RESU against the analytic
 //! state (LAGS_C = −p on the Lagrangian zone, the penalised one
-//! interpenetrating by p h_F / COEF_CONT) at 1e-6; and slave surfaces
-//! shared by zones of different methods refused at the zone.
+//! interpenetrating by p h_F / COEF_CONT) at 1e-6; and zones sharing slave
+//! nodes stopped at the zone as code_aster's CONTACT1_1.
 
 use std::path::PathBuf;
 
@@ -41,8 +41,10 @@ fn a_lagrangian_and_a_penalised_zone_in_one_definition() {
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (30, 0));
 }
 
+/// code_aster stops a definition whose zones share slave nodes, whatever
+/// their methods (`ContactNew::build`, CONTACT1_1).
 #[test]
-fn zones_of_different_methods_on_one_slave_surface_are_refused() {
+fn zones_sharing_slave_nodes_stop_as_code_aster() {
     let comm = scene().replacen(
         r#"_F(GROUP_MA_ESCL="C_BOT", GROUP_MA_MAIT="B_TOP", ALGO_CONT="PENALISATION""#,
         r#"_F(GROUP_MA_ESCL="B_BOT", GROUP_MA_MAIT="A_TOP", ALGO_CONT="PENALISATION""#,
@@ -56,4 +58,9 @@ fn zones_of_different_methods_on_one_slave_surface_are_refused() {
         "{e}"
     );
     assert_eq!(outcome.tally.ok + outcome.tally.nook, 0, "nothing ran: {e}");
+    // The same with one method for both zones.
+    let same = comm.replacen(r#", ALGO_CONT="PENALISATION", COEF_CONT=1.0e3"#, "", 1);
+    assert_ne!(same, comm);
+    let e = run(&same, "same").error.expect("must stop").to_string();
+    assert!(e.contains("shares nodes with B_BOT of zone 1"), "{e}");
 }
