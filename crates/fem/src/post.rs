@@ -321,21 +321,22 @@ fn coque3d_cells(
 }
 
 /// The efforts NXX NYY NXY MXX MYY MXY QX QY of the COQUE_3D cells of
-/// `model` in the user's frame (`direction`): at the normal Gauss points
-/// (`EFGE_ELGA`, [`crate::coque3d::efge_elga`]) or, with `at_nodes`, at
-/// the nodes (`EFGE_ELNO` of a non-linear result,
-/// [`crate::coque3d::efge_elno`]).
+/// `model` in the user's frame (`direction`), where and as `at` says
+/// (`EFGE_ELGA` at the normal Gauss points, `EFGE_ELNO` of a non-linear or
+/// a linear result: [`crate::coque3d::Coque3dEfge`]).
 pub fn coque3d_efge(
     model: &Model,
     u: &[f64],
     direction: &dyn Fn(CellId) -> [f64; 3],
-    at_nodes: bool,
+    at: crate::coque3d::Coque3dEfge,
 ) -> Result<Vec<CellValues>, FemError> {
+    use crate::coque3d::{self as c3, Coque3dEfge};
     coque3d_cells(model, u, &|cell, material, section, xyz, ue| {
-        let efforts = if at_nodes {
-            crate::coque3d::efge_elno(xyz, material, section, ue, direction(cell))
-        } else {
-            crate::coque3d::efge_elga(xyz, material, section, ue, direction(cell))
+        let d = direction(cell);
+        let efforts = match at {
+            Coque3dEfge::Gauss => c3::efge_elga(xyz, material, section, ue, d),
+            Coque3dEfge::NodesNonLinear => c3::efge_elno(xyz, material, section, ue, d),
+            Coque3dEfge::NodesLinear => c3::efge_elno_linear(xyz, material, section, ue, d),
         }?;
         Ok((
             EFGE_TRIA.to_vec(),

@@ -1662,19 +1662,15 @@ pub fn calc_champ(
             post::epsi_elga_on(model, u, keep).map_err(|e| fem_err("CALC_CHAMP", e))
         };
         // EFGE_ELNO of the beams and of the COQUE_3D cells (code_aster's
-        // path for a non-linear result: MECA_STATIQUE's, `ef0410`, extrapolates
-        // the reduced points' stresses instead, not reproduced).
+        // path for a MECA_STATIQUE result, `ef0410`, extrapolates the
+        // reduced points' stresses; a non-linear one's, `ef0415`, the
+        // layers' nodal stresses).
         let efge_elno = || {
             let mut v = post::beam_efge_elno(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?;
             if model.has_coque3d() {
-                if result.typ == "evol_elas" {
-                    return Err(ex.unsupported(
-                        "CALC_CHAMP/CONTRAINTE='EFGE_ELNO' of COQUE_3D cells on a MECA_STATIQUE result (code_aster's linear path ef0410 extrapolates the stresses of the reduced points with vdefge; only STAT_NON_LINE's, ef0415, is reproduced)",
-                        call.keywords.keyword("CONTRAINTE").map(|k| k.span).unwrap_or(call.span),
-                    ));
-                }
+                let linear = result.typ == "evol_elas";
                 v.extend(
-                    crate::shells::coque3d_efge_elno(model, run.cara.as_deref(), u)
+                    crate::shells::coque3d_efge_elno(model, run.cara.as_deref(), u, linear)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 );
             }

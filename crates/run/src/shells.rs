@@ -20,6 +20,7 @@ use crate::concept::{CaraElem, ModelDef, Modelisation};
 use crate::executor::Executor;
 use crate::solve::{BehaviourOcc, Relation};
 use aster_eval::{CommandCall, ExecError, Keywords};
+use aster_fem::coque3d::Coque3dEfge;
 use aster_fem::{CellValues, Kinematics, Model};
 use aster_mesh::{CellId, Mesh};
 use std::collections::BTreeMap;
@@ -151,18 +152,30 @@ pub(crate) fn efge_elga(
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
     let direction = directions(cara);
     let mut out = aster_fem::post::efge_elga(model, u, &direction)?;
-    out.extend(aster_fem::post::coque3d_efge(model, u, &direction, false)?);
+    out.extend(aster_fem::post::coque3d_efge(
+        model,
+        u,
+        &direction,
+        Coque3dEfge::Gauss,
+    )?);
     Ok(out)
 }
 
-/// `EFGE_ELNO` of the COQUE_3D cells of `model` (code_aster's path for a
-/// non-linear result, `ef0415`), at their nodes in each node's user frame.
+/// `EFGE_ELNO` of the COQUE_3D cells of `model` at their nodes in each
+/// node's user frame, by code_aster's path for a linear (`MECA_STATIQUE`:
+/// `ef0410`) or a non-linear result (`ef0415`).
 pub(crate) fn coque3d_efge_elno(
     model: &Model,
     cara: Option<&CaraElem>,
     u: &[f64],
+    linear: bool,
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
-    aster_fem::post::coque3d_efge(model, u, &directions(cara), true)
+    let at = if linear {
+        Coque3dEfge::NodesLinear
+    } else {
+        Coque3dEfge::NodesNonLinear
+    };
+    aster_fem::post::coque3d_efge(model, u, &directions(cara), at)
 }
 
 /// The stresses of the shells of `model` at one level through their
