@@ -1145,18 +1145,6 @@ pub fn efge_elno(
         .collect())
 }
 
-/// Where and by which of code_aster's paths the efforts of a COQUE_3D
-/// cell are computed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Coque3dEfge {
-    /// `EFGE_ELGA` at the normal points ([`efge_elga`]).
-    Gauss,
-    /// `EFGE_ELNO` of a non-linear result (`ef0415`, [`efge_elno`]).
-    NodesNonLinear,
-    /// `EFGE_ELNO` of a linear result (`ef0410`, [`efge_elno_linear`]).
-    NodesLinear,
-}
-
 /// `EFGE_ELNO` of a linear result (`te0185` → `ef0410` → `vdxsig`,
 /// `vdefge`, `vdefro`): the whole thickness as one layer whatever
 /// `COQUE_NCOU`, the strains at the reduced points (2×2 Gauss on a QUAD9,

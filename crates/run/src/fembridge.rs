@@ -1661,16 +1661,15 @@ pub fn calc_champ(
             }
             post::epsi_elga_on(model, u, keep).map_err(|e| fem_err("CALC_CHAMP", e))
         };
-        // EFGE_ELNO of the beams and of the COQUE_3D cells (code_aster's
-        // path for a MECA_STATIQUE result, `ef0410`, extrapolates the
-        // reduced points' stresses; a non-linear one's, `ef0415`, the
-        // layers' nodal stresses).
+        // EFGE_ELNO of the beams and of the shells, by code_aster's path
+        // for a MECA_STATIQUE result (`ef0033`, `ef0410`) or a non-linear
+        // one (`ef0031`, `ef0415`).
         let efge_elno = || {
             let mut v = post::beam_efge_elno(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?;
-            if model.has_coque3d() {
+            if model.has_shells() {
                 let linear = result.typ == "evol_elas";
                 v.extend(
-                    crate::shells::coque3d_efge_elno(model, run.cara.as_deref(), u, linear)
+                    crate::shells::efge_elno(model, run.cara.as_deref(), u, linear)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 );
             }
@@ -1705,10 +1704,10 @@ pub fn calc_champ(
                     &crate::shells::efge_elga(model, run.cara.as_deref(), u)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 )),
-                "EFGE_ELNO" if model.has_beams() || model.has_coque3d() => {
+                "EFGE_ELNO" if model.has_beams() || model.has_shells() => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &efge_elno()?))
                 }
-                "EFGE_NOEU" if model.has_beams() || model.has_coque3d() => {
+                "EFGE_NOEU" if model.has_beams() || model.has_shells() => {
                     Field::Nodal(nodal_from_values(&post::noeu(model, &efge_elno()?)))
                 }
                 "SIEF_ELNO" | "SIGM_ELNO" => {

@@ -20,7 +20,7 @@ use crate::concept::{CaraElem, ModelDef, Modelisation};
 use crate::executor::Executor;
 use crate::solve::{BehaviourOcc, Relation};
 use aster_eval::{CommandCall, ExecError, Keywords};
-use aster_fem::coque3d::Coque3dEfge;
+use aster_fem::post::EffortsAt;
 use aster_fem::{CellValues, Kinematics, Model};
 use aster_mesh::{CellId, Mesh};
 use std::collections::BTreeMap;
@@ -140,8 +140,8 @@ fn directions(cara: Option<&CaraElem>) -> impl Fn(CellId) -> [f64; 3] {
     move |cell| direction.get(&cell).copied().unwrap_or([1., 0., 0.])
 }
 
-/// `EFGE_ELGA` of the shells of `model`: NXX NYY NXY MXX MYY MXY (QX QY on
-/// triangles and COQUE_3D cells) at the Gauss points, in the frame of each
+/// `EFGE_ELGA` of the shells of `model`: NXX NYY NXY MXX MYY MXY QX QY at
+/// the Gauss points, in the frame of each
 /// cell's `AFFE_CARA_ELEM/COQUE` (global X projected on the facet by
 /// default; on a COQUE_3D cell, on its plane at the first reduced point,
 /// as code_aster stores its `SIEF_ELGA`).
@@ -156,26 +156,30 @@ pub(crate) fn efge_elga(
         model,
         u,
         &direction,
-        Coque3dEfge::Gauss,
+        EffortsAt::Gauss,
     )?);
     Ok(out)
 }
 
-/// `EFGE_ELNO` of the COQUE_3D cells of `model` at their nodes in each
-/// node's user frame, by code_aster's path for a linear (`MECA_STATIQUE`:
-/// `ef0410`) or a non-linear result (`ef0415`).
-pub(crate) fn coque3d_efge_elno(
+/// `EFGE_ELNO` of the shells of `model` (DKT/DKQ facets and COQUE_3D
+/// cells) at their nodes, in the user's frame of each cell (each node's on
+/// a COQUE_3D), by code_aster's path for a linear (`MECA_STATIQUE`) or a
+/// non-linear result ([`EffortsAt`]).
+pub(crate) fn efge_elno(
     model: &Model,
     cara: Option<&CaraElem>,
     u: &[f64],
     linear: bool,
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
     let at = if linear {
-        Coque3dEfge::NodesLinear
+        EffortsAt::NodesLinear
     } else {
-        Coque3dEfge::NodesNonLinear
+        EffortsAt::NodesNonLinear
     };
-    aster_fem::post::coque3d_efge(model, u, &directions(cara), at)
+    let direction = directions(cara);
+    let mut out = aster_fem::post::shell_efforts(model, u, &direction, at)?;
+    out.extend(aster_fem::post::coque3d_efge(model, u, &direction, at)?);
+    Ok(out)
 }
 
 /// The stresses of the shells of `model` at one level through their
