@@ -1074,6 +1074,41 @@ fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
     field
 }
 
+/// The nodal mean of element-node values whose cells carry different
+/// component sets (beams' N VY VZ MT MFY MFZ beside shells' NXX … QY):
+/// each family of cells averaged on its own, a node getting the
+/// components of every family that reaches it, as code_aster's `*_NOEU`
+/// of a model mixing such elements.
+fn nodal_by_families(model: &aster_fem::Model, elno: &[CellValues]) -> NodalField {
+    let mut families: Vec<&[&'static str]> = Vec::new();
+    for cv in elno {
+        if !families.contains(&cv.names.as_slice()) {
+            families.push(&cv.names);
+        }
+    }
+    let mut names: Vec<String> = Vec::new();
+    for f in &families {
+        for n in f.iter() {
+            if !names.iter().any(|m| m == n) {
+                names.push(n.to_string());
+            }
+        }
+    }
+    let mut out = NodalField::new(names);
+    for f in &families {
+        let part: Vec<CellValues> = elno.iter().filter(|cv| cv.names == *f).cloned().collect();
+        let v = post::noeu(model, &part);
+        for (n, vals) in v.values.iter().enumerate() {
+            if let Some(vals) = vals {
+                for (c, x) in v.names.iter().zip(vals) {
+                    out.set(NodeId(n as u32), c, *x);
+                }
+            }
+        }
+    }
+    out
+}
+
 fn nodal_from_values(v: &NodalValues) -> NodalField {
     let mut f = NodalField::new(v.names.iter().map(|s| s.to_string()).collect());
     for (n, vals) in v.values.iter().enumerate() {
@@ -1708,7 +1743,7 @@ pub fn calc_champ(
                     Field::Elem(elem_field(ElemLocation::Nodes, &efge_elno()?))
                 }
                 "EFGE_NOEU" if model.has_beams() || model.has_shells() => {
-                    Field::Nodal(nodal_from_values(&post::noeu(model, &efge_elno()?)))
+                    Field::Nodal(nodal_by_families(model, &efge_elno()?))
                 }
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))

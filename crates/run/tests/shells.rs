@@ -302,3 +302,30 @@ fn sigm_noeu_of_a_layer_on_a_group_averages_its_cells_only() {
         "{err:?}"
     );
 }
+
+/// A POU_D_E beam hung at the DKQ strip's tip (cell MB1 of the mesh,
+/// unloaded, so the strips are unchanged): EFGE_NOEU averages the beam's
+/// family (N VY VZ MT MFY MFZ) and the shells' (NXX … QY) each on its own,
+/// the tip node carrying both — the shell's NXX = N/b and the free beam's
+/// N = 0 — as code_aster's nodal field of a mixed model.
+#[test]
+fn efge_noeu_of_beams_beside_shells_keeps_both_families() {
+    let text = strips()
+        .replacen(
+            "AFFE=_F(GROUP_MA=(\"SQ\", \"ST\"), PHENOMENE=\"MECANIQUE\", MODELISATION=\"DKT\")",
+            "AFFE=(_F(GROUP_MA=(\"SQ\", \"ST\"), PHENOMENE=\"MECANIQUE\", MODELISATION=\"DKT\"), _F(GROUP_MA=\"BM\", PHENOMENE=\"MECANIQUE\", MODELISATION=\"POU_D_E\"))",
+            1,
+        )
+        .replacen(
+            "COQUE=_F(GROUP_MA=(\"SQ\", \"ST\"), EPAIS=0.01))",
+            "COQUE=_F(GROUP_MA=(\"SQ\", \"ST\"), EPAIS=0.01), POUTRE=_F(GROUP_MA=\"BM\", SECTION=\"CERCLE\", CARA=\"R\", VALE=0.01))",
+            1,
+        )
+        .replacen(
+            "    )\n)\n\nFIN()",
+            "        _F(NUME_ORDRE=1, RESULTAT=RESU, NOM_CHAM=\"EFGE_NOEU\", GROUP_NO=\"AQ\", NOM_CMP=\"NXX\", VALE_CALC=1.0e4, VALE_REFE=1.0e4, REFERENCE=\"ANALYTIQUE\", PRECISION=1.0e-9),\n        _F(NUME_ORDRE=1, RESULTAT=RESU, NOM_CHAM=\"EFGE_NOEU\", GROUP_NO=\"AQ\", NOM_CMP=\"N\", VALE_CALC=0.0, VALE_REFE=0.0, REFERENCE=\"ANALYTIQUE\", CRITERE=\"ABSOLU\", ORDRE_GRANDEUR=1.0e4, PRECISION=1.0e-9),\n    )\n)\n\nFIN()",
+            1,
+        );
+    assert!(text.contains("POU_D_E") && text.contains("NOM_CMP=\"N\""));
+    assert_eq!(run(&text, "mixed-noeu"), (58, 0, None));
+}
