@@ -20,6 +20,7 @@
 //!   `EFGE_ELGA`: NXX NYY NXY MXX MYY MXY) in the facet's frame; the
 //!   transverse shears (`dkqtxy`) are not computed yet.
 
+use crate::dkt::Generalised;
 use crate::dkt::{bending_dof, membrane_dof, section_matrices, ShellSection};
 use crate::material::Elastic;
 use crate::shape::{rigi_scheme, GaussPoint};
@@ -472,17 +473,19 @@ pub fn efforts(
     u: &[f64; 24],
 ) -> Result<Vec<QuadEfforts>, String> {
     let points: Vec<[f64; 2]> = fpg4().iter().map(|g| [g.xi[0], g.xi[1]]).collect();
-    efforts_at(xyz, material, section, u, &points)
+    generalised_at(xyz, material, section, u, &points, Generalised::Efforts)
 }
 
-/// Generalised efforts at the reference points `points` (ξ, η)
-/// (`dkqedg`; at [`NODES`] it is `EFGE_ELNO` of a linear result).
-pub fn efforts_at(
+/// Generalised efforts or strains (`what`) at the reference points
+/// `points` (ξ, η) (`dkqedg`; at [`NODES`] it is `EFGE_ELNO` of a linear
+/// result and `DEGE_ELNO`).
+pub fn generalised_at(
     xyz: &[[f64; 3]; 4],
     material: &Elastic,
     section: &ShellSection,
     u: &[f64; 24],
     points: &[[f64; 2]],
+    what: Generalised,
 ) -> Result<Vec<QuadEfforts>, String> {
     let quad = Quad::new(xyz)?;
     let ul = rotation(&quad) * SMatrix::<f64, 24, 1>::from_column_slice(u);
@@ -501,24 +504,11 @@ pub fn efforts_at(
             let (_, vj) = quad.jacobian(qsi, eta);
             let bm = Quad::bm(qsi, eta, &vj);
             let bf = quad.bf(qsi, eta, &vj);
-            let eps: Vec<f64> = (0..3)
-                .map(|i| (0..8).map(|j| bm[i][j] * um[j]).sum())
-                .collect();
-            let kappa: Vec<f64> = (0..3)
-                .map(|i| (0..12).map(|j| bf[i][j] * ub[j]).sum())
-                .collect();
-            let mut e = [0.; 8];
-            for i in 0..3 {
-                for j in 0..3 {
-                    e[i] += dm[i][j] * eps[j];
-                    e[3 + i] += df[i][j] * kappa[j];
-                }
-            }
+            let eps: [f64; 3] = std::array::from_fn(|i| (0..8).map(|j| bm[i][j] * um[j]).sum());
+            let kappa: [f64; 3] = std::array::from_fn(|i| (0..12).map(|j| bf[i][j] * ub[j]).sum());
             let bc = quad.shear(&df, qsi, eta, &vj);
-            for i in 0..2 {
-                e[6 + i] = (0..12).map(|j| bc[i][j] * ub[j]).sum();
-            }
-            e
+            let q: [f64; 2] = std::array::from_fn(|i| (0..12).map(|j| bc[i][j] * ub[j]).sum());
+            what.at_point(material, section, (&dm, &df), eps, kappa, q)
         })
         .collect())
 }

@@ -490,19 +490,21 @@ pub fn efforts(
     u: &[f64; 18],
 ) -> Result<Vec<Efforts>, String> {
     let points: Vec<[f64; 2]> = fpg3().iter().map(|g| [g.xi[0], g.xi[1]]).collect();
-    efforts_at(xyz, material, section, u, &points)
+    generalised_at(xyz, material, section, u, &points, Generalised::Efforts)
 }
 
-/// Generalised efforts at the reference points `points` (ξ, η), in the
-/// facet's frame (`dktedg`: the membrane and transverse shear are
-/// constant, the moments follow the curvature at each point; at
-/// [`NODES`] it is `EFGE_ELNO` of a linear result).
-pub fn efforts_at(
+/// Generalised efforts or strains (`what`) at the reference points
+/// `points` (ξ, η), in the facet's frame (`dktedg`: the membrane and
+/// transverse shear are constant, the moments follow the curvature at each
+/// point; at [`NODES`] it is `EFGE_ELNO` of a linear result and
+/// `DEGE_ELNO`).
+pub fn generalised_at(
     xyz: &[[f64; 3]; 3],
     material: &Elastic,
     section: &ShellSection,
     u: &[f64; 18],
     points: &[[f64; 2]],
+    what: Generalised,
 ) -> Result<Vec<Efforts>, String> {
     let facet = Facet::new(xyz)?;
     let ul = rotation(&facet) * SMatrix::<f64, 18, 1>::from_column_slice(u);
@@ -518,24 +520,66 @@ pub fn efforts_at(
     let eps: Vec<f64> = (0..3)
         .map(|i| (0..6).map(|j| bm[i][j] * um[j]).sum())
         .collect();
-    let n: Vec<f64> = (0..3)
-        .map(|i| (0..3).map(|j| dm[i][j] * eps[j]).sum())
-        .collect();
+    let eps = [eps[0], eps[1], eps[2]];
     let bc = facet.shear(&df);
-    let q: Vec<f64> = (0..2)
-        .map(|i| (0..9).map(|j| bc[i][j] * ub[j]).sum())
-        .collect();
+    let q: [f64; 2] = std::array::from_fn(|i| (0..9).map(|j| bc[i][j] * ub[j]).sum());
     Ok(points
         .iter()
         .map(|g| {
             let bf = facet.bf(g[0], g[1]);
-            let kappa: Vec<f64> = (0..3)
-                .map(|i| (0..9).map(|j| bf[i][j] * ub[j]).sum())
-                .collect();
-            let m: Vec<f64> = (0..3)
-                .map(|i| (0..3).map(|j| df[i][j] * kappa[j]).sum())
-                .collect();
-            [n[0], n[1], n[2], m[0], m[1], m[2], q[0], q[1]]
+            let kappa: [f64; 3] = std::array::from_fn(|i| (0..9).map(|j| bf[i][j] * ub[j]).sum());
+            what.at_point(material, section, (&dm, &df), eps, kappa, q)
         })
         .collect())
+}
+
+/// What [`generalised_at`] gives at a point of a Kirchhoff facet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Generalised {
+    /// `EFGE`: NXX NYY NXY MXX MYY MXY QX QY (N = Dm·ε, M = Df·κ, Q the
+    /// moments' derivatives).
+    Efforts,
+    /// `DEGE` (`dktedg`/`dkqedg` with a `DEGE_*` option): EXX EYY EXY KXX
+    /// KYY KXY GAX GAY — the membrane strains and curvatures with their
+    /// shear halved (tensor components), and GA = Dc⁻¹·Q/2, Dc = 5/6·G·h
+    /// (`dxmate`'s shear stiffness, the shear a Kirchhoff plate's moments
+    /// imply).
+    Strains,
+}
+
+impl Generalised {
+    /// The point's values from its membrane strains `eps`, curvatures
+    /// `kappa` (engineering shears) and transverse shear forces `q`.
+    pub(crate) fn at_point(
+        self,
+        material: &Elastic,
+        section: &ShellSection,
+        (dm, df): (&[[f64; 3]; 3], &[[f64; 3]; 3]),
+        eps: [f64; 3],
+        kappa: [f64; 3],
+        q: [f64; 2],
+    ) -> Efforts {
+        match self {
+            Generalised::Efforts => {
+                let n: [f64; 3] = std::array::from_fn(|i| (0..3).map(|j| dm[i][j] * eps[j]).sum());
+                let m: [f64; 3] =
+                    std::array::from_fn(|i| (0..3).map(|j| df[i][j] * kappa[j]).sum());
+                [n[0], n[1], n[2], m[0], m[1], m[2], q[0], q[1]]
+            }
+            Generalised::Strains => {
+                let g = material.e / 2. / (1. + material.nu);
+                let dci = 1. / (g * (5. / 6.) * section.thickness);
+                [
+                    eps[0],
+                    eps[1],
+                    eps[2] / 2.,
+                    kappa[0],
+                    kappa[1],
+                    kappa[2] / 2.,
+                    dci * q[0] / 2.,
+                    dci * q[1] / 2.,
+                ]
+            }
+        }
+    }
 }

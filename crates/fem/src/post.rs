@@ -67,6 +67,9 @@ fn cell_error(model: &Model, cell: CellId, m: String) -> FemError {
 /// membrane forces, moments and transverse shears.
 const EFGE_NAMES: [&str; 8] = ["NXX", "NYY", "NXY", "MXX", "MYY", "MXY", "QX", "QY"];
 
+/// The components of the shells' generalised strains (`DEGE_*`).
+const DEGE_NAMES: [&str; 8] = ["EXX", "EYY", "EXY", "KXX", "KYY", "KXY", "GAX", "GAY"];
+
 /// `EFGE_ELNO` of the beams (`POU_D_E`): N VY VZ MT MFY MFZ at their two
 /// nodes, in each beam's local frame ([`crate::beam::efforts`]).
 pub fn beam_efge_elno(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
@@ -126,6 +129,38 @@ pub fn shell_efforts(
     direction: &dyn Fn(CellId) -> [f64; 3],
     at: EffortsAt,
 ) -> Result<Vec<CellValues>, FemError> {
+    shell_generalised(model, u, direction, at, crate::dkt::Generalised::Efforts)
+}
+
+/// The generalised strains EXX EYY EXY KXX KYY KXY GAX GAY of the DKT/DKQ
+/// shells of `model` (`te0033`, `DEGE_ELGA` at the Gauss points, or with
+/// `at_nodes` `DEGE_ELNO` evaluated at the nodes), in the user's frame of
+/// each facet as [`efge_elga`]'s efforts.
+pub fn shell_strains(
+    model: &Model,
+    u: &[f64],
+    direction: &dyn Fn(CellId) -> [f64; 3],
+    at_nodes: bool,
+) -> Result<Vec<CellValues>, FemError> {
+    let at = if at_nodes {
+        EffortsAt::NodesLinear
+    } else {
+        EffortsAt::Gauss
+    };
+    shell_generalised(model, u, direction, at, crate::dkt::Generalised::Strains)
+}
+
+fn shell_generalised(
+    model: &Model,
+    u: &[f64],
+    direction: &dyn Fn(CellId) -> [f64; 3],
+    at: EffortsAt,
+    what: crate::dkt::Generalised,
+) -> Result<Vec<CellValues>, FemError> {
+    let names: &[&str] = match what {
+        crate::dkt::Generalised::Efforts => &EFGE_NAMES,
+        crate::dkt::Generalised::Strains => &DEGE_NAMES,
+    };
     let mut out = Vec::new();
     for el in model.elements() {
         let ElementKind::Shell { material, section } = &el.kind else {
@@ -134,7 +169,7 @@ pub fn shell_efforts(
         let dofs = element_dofs(model, el.cell);
         let c = model.mesh().cell(el.cell);
         let err = |m: String| cell_error(model, el.cell, m);
-        let (pgl, efforts, names): (_, Vec<[f64; 8]>, &[&str]) = match c.ty {
+        let (pgl, efforts): (_, Vec<[f64; 8]>) = match c.ty {
             CellType::TRIA3 => {
                 let xyz = [0, 1, 2].map(|i| model.mesh().coord(c.nodes[i]));
                 let mut ue = [0.0; 18];
@@ -142,14 +177,16 @@ pub fn shell_efforts(
                     ue[a] = u[i];
                 }
                 let facet = crate::dkt::Facet::new(&xyz).map_err(err)?;
-                let e = match at {
-                    EffortsAt::NodesLinear => {
-                        crate::dkt::efforts_at(&xyz, material, section, &ue, &crate::dkt::NODES)
-                    }
-                    _ => crate::dkt::efforts(&xyz, material, section, &ue),
-                }
-                .map_err(err)?;
-                (facet.pgl, e, &EFGE_NAMES[..])
+                let points: Vec<[f64; 2]> = match at {
+                    EffortsAt::NodesLinear => crate::dkt::NODES.to_vec(),
+                    _ => crate::dkt::fpg3()
+                        .iter()
+                        .map(|g| [g.xi[0], g.xi[1]])
+                        .collect(),
+                };
+                let e = crate::dkt::generalised_at(&xyz, material, section, &ue, &points, what)
+                    .map_err(err)?;
+                (facet.pgl, e)
             }
             CellType::QUAD4 => {
                 let xyz = [0, 1, 2, 3].map(|i| model.mesh().coord(c.nodes[i]));
@@ -158,14 +195,16 @@ pub fn shell_efforts(
                     ue[a] = u[i];
                 }
                 let quad = crate::dkq::Quad::new(&xyz).map_err(err)?;
-                let e = match at {
-                    EffortsAt::NodesLinear => {
-                        crate::dkq::efforts_at(&xyz, material, section, &ue, &crate::dkq::NODES)
-                    }
-                    _ => crate::dkq::efforts(&xyz, material, section, &ue),
-                }
-                .map_err(err)?;
-                (quad.pgl, e, &EFGE_NAMES[..])
+                let points: Vec<[f64; 2]> = match at {
+                    EffortsAt::NodesLinear => crate::dkq::NODES.to_vec(),
+                    _ => crate::dkq::fpg4()
+                        .iter()
+                        .map(|g| [g.xi[0], g.xi[1]])
+                        .collect(),
+                };
+                let e = crate::dkq::generalised_at(&xyz, material, section, &ue, &points, what)
+                    .map_err(err)?;
+                (quad.pgl, e)
             }
             _ => continue,
         };

@@ -1734,6 +1734,22 @@ pub fn calc_champ(
                     }
                     Field::Nodal(nodal_from_dofs(model, &r))
                 }
+                "DEGE_ELGA" | "DEGE_ELNO" | "DEGE_NOEU" => {
+                    if model.has_beams() || model.has_coque3d() || !model.has_shells() {
+                        return Err(ex.unsupported(
+                            &format!("CALC_CHAMP/DEFORMATION='{opt}' on a model whose elements are not DKT/DKQ shells (the generalised strains of beams and COQUE_3D are not computed)"),
+                            call.keywords.keyword("DEFORMATION").map(|k| k.span).unwrap_or(call.span),
+                        ));
+                    }
+                    let v = crate::shells::dege(model, run.cara.as_deref(), u, opt != "DEGE_ELGA")
+                        .map_err(|e| fem_err("CALC_CHAMP", e))?;
+                    let v = on(only, &v).into_owned();
+                    match opt.as_str() {
+                        "DEGE_ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &v)),
+                        "DEGE_ELNO" => Field::Elem(elem_field(ElemLocation::Nodes, &v)),
+                        _ => Field::Nodal(nodal_by_families(model, &v)),
+                    }
+                }
                 "EFGE_ELGA" if model.has_shells() => Field::Elem(elem_field(
                     ElemLocation::Gauss,
                     &crate::shells::efge_elga(model, run.cara.as_deref(), u)

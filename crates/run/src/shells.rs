@@ -161,6 +161,18 @@ pub(crate) fn efge_elga(
     Ok(out)
 }
 
+/// `DEGE_ELGA` (at the Gauss points) or `DEGE_ELNO` (`at_nodes`) of the
+/// DKT/DKQ shells of `model`: EXX EYY EXY KXX KYY KXY GAX GAY in the user's
+/// frame of each facet (`te0033`).
+pub(crate) fn dege(
+    model: &Model,
+    cara: Option<&CaraElem>,
+    u: &[f64],
+    at_nodes: bool,
+) -> Result<Vec<CellValues>, aster_fem::FemError> {
+    aster_fem::post::shell_strains(model, u, &directions(cara), at_nodes)
+}
+
 /// `EFGE_ELNO` of the shells of `model` (DKT/DKQ facets and COQUE_3D
 /// cells) at their nodes, in the user's frame of each cell (each node's on
 /// a COQUE_3D), by code_aster's path for a linear (`MECA_STATIQUE`) or a
