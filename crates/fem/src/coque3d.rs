@@ -840,6 +840,23 @@ fn check_dofs(r: &RefElement, u: &[f64]) -> Result<(), String> {
     }
 }
 
+/// `vdesga`/`matrc` for `ELAS`: the stresses SIXX SIYY SIZZ SIXY SIXZ SIYZ
+/// (SIZZ = 0) of the five strains of the operator (engineering shears), the
+/// transverse shears weighted by `A_CIS` (`kappa`).
+fn layer_stress(material: &Elastic, kappa: f64, eps: &[f64]) -> [f64; 6] {
+    let (e, nu) = (material.e, material.nu);
+    let c = e / (1. - nu * nu);
+    let g = e / (1. + nu) / 2.;
+    [
+        c * (eps[0] + nu * eps[1]),
+        c * (nu * eps[0] + eps[1]),
+        0.,
+        g * eps[2],
+        kappa * g * eps[3],
+        kappa * g * eps[4],
+    ]
+}
+
 /// The stresses of `SIEF_ELGA` from the global displacements `u` (the
 /// order of [`stiffness`]): SIXX SIYY SIZZ SIXY SIXZ SIYZ in each point's
 /// local frame (`vectgt`: t₁ along ∂x/∂ξ₁), SIZZ = 0, in code_aster's
@@ -855,9 +872,7 @@ pub fn stresses(
     check_dofs(&r, u)?;
     let frames = nodal_frames(xyz, &r)?;
     let ul = local_unknowns(&frames, u);
-    let (e, nu, kappa) = (material.e, material.nu, section.shear_factor);
-    let c = e / (1. - nu * nu);
-    let g = e / (1. + nu) / 2.;
+    let kappa = section.shear_factor;
     let ops = operators(xyz, &frames, section, &r);
     let npge = 3 * section.layers.max(1) as usize;
     let npgsn = r.npgsn();
@@ -868,14 +883,7 @@ pub fn stresses(
             .map(|row| row.iter().zip(&ul).map(|(x, y)| x * y).sum())
             .collect();
         let (lp, q) = (o / npgsn, o % npgsn);
-        out[q * npge + lp] = [
-            c * (eps[0] + nu * eps[1]),
-            c * (nu * eps[0] + eps[1]),
-            0.,
-            g * eps[2],
-            kappa * g * eps[3],
-            kappa * g * eps[4],
-        ];
+        out[q * npge + lp] = layer_stress(material, kappa, &eps);
     }
     Ok(out)
 }
@@ -1168,9 +1176,7 @@ pub fn efge_elno_linear(
     let frames = nodal_frames(xyz, &r)?;
     let normals: Vec<V3> = frames.iter().map(|f| f[2]).collect();
     let ul = local_unknowns(&frames, u);
-    let (e, nu, kappa) = (material.e, material.nu, section.shear_factor);
-    let c = e / (1. - nu * nu);
-    let g = e / (1. + nu) / 2.;
+    let kappa = section.shear_factor;
     let h = section.thickness;
     let (nb1, nddle, npgsr) = (r.nb1, r.nddle(), r.npgsr());
     // sig[level][p]: SIXX SIYY SIZZ SIXY SIXZ SIYZ in the point's frame.
@@ -1209,14 +1215,7 @@ pub fn efge_elno_linear(
                 .iter()
                 .map(|row| row.iter().zip(&ul).map(|(x, y)| x * y).sum())
                 .collect();
-            sig[lvl][p] = [
-                c * (eps[0] + nu * eps[1]),
-                c * (nu * eps[0] + eps[1]),
-                0.,
-                g * eps[2],
-                kappa * g * eps[3],
-                kappa * g * eps[4],
-            ];
+            sig[lvl][p] = layer_stress(material, kappa, &eps);
         }
     }
     // vdefge: Simpson over the thickness at each reduced point.
