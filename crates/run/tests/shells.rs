@@ -107,6 +107,29 @@ fn plasticity_and_surface_forces_on_shells_are_refused() {
     );
 }
 
+/// The shells' mass is not implemented: DYNA_NON_LINE names a shell cell
+/// and its element at MODELE (beams and DIS_TR run: tests/dynamics.rs).
+#[test]
+fn dynamics_of_shells_is_refused_at_the_model() {
+    let dyna = strips()
+        .replace("ELAS=_F(E=2.0e11, NU=0.0)", "ELAS=_F(E=2.0e11, NU=0.0, RHO=7800.0)")
+        .replace(
+            "INCREMENT=_F(LIST_INST=LINST),",
+            "INCREMENT=_F(LIST_INST=LINST),\n    SCHEMA_TEMPS=_F(SCHEMA=\"NEWMARK\", FORMULATION=\"DEPLACEMENT\"),",
+        )
+        .replace("RESU = STAT_NON_LINE(", "RESU = DYNA_NON_LINE(");
+    assert!(dyna.contains("DYNA_NON_LINE(") && dyna.contains("SCHEMA_TEMPS"));
+    refused(
+        &dyna,
+        "dyna",
+        &[
+            "DYNA_NON_LINE on a model with shells",
+            "is DKT",
+            "case.comm:44:5",
+        ],
+    );
+}
+
 // The stacked strips (comm/shell_stack.comm): contact of shell
 // mid-surfaces, and the stresses of one layer level (POST_CHAMP/EXTR_COQUE,
 // SIGM_NOEU) against beam theory within 1e-9.
