@@ -17,7 +17,9 @@
 //!   ([`DiscreteMass::segment_with_inertia`]) and `M_T_N`/`M_T_L`/`M_TR_N`/
 //!   `M_TR_L` (a full symmetric matrix over the cell's DOFs, given as
 //!   code_aster's upper triangle by columns).
-//! - Shells (DKT, COQUE_3D): no mass yet (an error naming the cell).
+//! - DKT triangles: code_aster's `dktmas` ([`crate::dkt::local_mass`]),
+//!   consistent only; DKT quadrangles and COQUE_3D: no mass yet (an error
+//!   naming the cell).
 //! - Rayleigh damping (`ELAS/AMOR_ALPHA`, `AMOR_BETA`): C = Σ αₑ Kₑ + βₑ Mₑ
 //!   per cell, with the elastic stiffness (`AMOR_RAYL_RIGI='ELASTIQUE'`).
 //!
@@ -248,9 +250,11 @@ impl DiscreteMass {
 
 /// The mass of one element of density `rho` over its DOFs (node-major):
 /// continuum cells ([`continuum_mass`], lumped by [`lump`]), POU_D_E beams
-/// ([`crate::beam::mass`], code_aster's `ptma01`); `None` for the elements
-/// without a mass of their own (springs carry the discrete masses,
-/// boundary cells nothing). The shells' masses are not implemented.
+/// ([`crate::beam::mass`], code_aster's `ptma01`), DKT triangles
+/// ([`crate::dkt::mass`], `dktmas`, consistent only); `None` for the
+/// elements without a mass of their own (springs carry the discrete
+/// masses, boundary cells nothing). DKT quadrangles and COQUE_3D: an
+/// error naming the cell.
 pub fn element_mass(
     model: &Model,
     el: &Element,
@@ -271,9 +275,19 @@ pub fn element_mass(
             .and_then(|xyz| crate::beam::mass(&xyz, rho, section, lumped))
             .map(Some)
             .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))),
+        ElementKind::Shell { section, .. }
+            if !lumped && model.mesh().cell(el.cell).ty == aster_mesh::CellType::TRIA3 =>
+        {
+            let c = model.mesh().cell(el.cell);
+            let xyz = [0, 1, 2].map(|i| model.mesh().coord(c.nodes[i]));
+            crate::dkt::mass(&xyz, rho, section)
+                .map(Some)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+        }
         ElementKind::Shell { .. } | ElementKind::Coque3d { .. } => Err(FemError::Model(format!(
-            "cell {} is a shell (DKT, COQUE_3D): the mass of shell elements is not implemented",
-            model.cell_name(el.cell)
+            "cell {} is a shell: the {}mass of DKT on QUAD4 (dkqmas) and of COQUE_3D is not implemented (the consistent mass of DKT on TRIA3 is)",
+            model.cell_name(el.cell),
+            if lumped { "lumped " } else { "" }
         ))),
         ElementKind::Spring { .. } | ElementKind::Boundary => Ok(None),
     }
@@ -659,5 +673,74 @@ mod tests {
         let g = assemble_mass(&model, &data, Lumping::Consistent).unwrap();
         let v = [1., 0., 0., 0., 0., 1., 1., 0., 0., 0., 0., 1.];
         assert!((kinetic_energy(&g, &v) - 0.5 * 2. * (2. + 0.3)).abs() < 1e-14);
+    }
+
+    #[test]
+    fn dkt_triangle_mass_moves_rigidly_as_code_aster_s() {
+        let xyz = [[0.2, -0.1, 0.3], [1.4, 0.3, -0.2], [0.5, 1.1, 0.6]];
+        let (h, rho) = (0.02, 2700.0);
+        let kind = ElementKind::Shell {
+            material: Elastic::new(7e10, 0.3).unwrap(),
+            section: crate::dkt::ShellSection::new(h),
+        };
+        let model = structural(CellType::TRIA3, xyz.to_vec(), kind);
+        let facet = crate::dkt::Facet::new(&xyz).unwrap();
+        let sec = crate::dkt::ShellSection::new(h);
+        let loc = crate::dkt::local_mass(&facet, rho, &sec);
+        let m = element_mass(&model, &model.elements()[0], rho, Lumping::Consistent)
+            .unwrap()
+            .unwrap();
+        let e1 = [
+            xyz[1][0] - xyz[0][0],
+            xyz[1][1] - xyz[0][1],
+            xyz[1][2] - xyz[0][2],
+        ];
+        let e2 = [
+            xyz[2][0] - xyz[0][0],
+            xyz[2][1] - xyz[0][1],
+            xyz[2][2] - xyz[0][2],
+        ];
+        let n = cross(e1, e2);
+        let area = 0.5 * dot(n, n).sqrt();
+        // Translations: ρhA.
+        let v0 = [0.3, -0.7, 0.2];
+        let e = quad(&m, &rigid(&xyz, v0, [0.; 3]));
+        assert!((e - rho * h * area * dot(v0, v0)).abs() < 1e-12 * e);
+        // A rotation about the origin: ρh ∫|ω×x|² dA (the cubic w of a
+        // linear field is that field; the mid-edge rule is exact on the
+        // quadratic), no rotary inertia (no INER_ROTA); the drilling term
+        // on each node's rotation about the normal.
+        let w = [0.4, -1.3, 0.8];
+        let f = |x: [f64; 3]| {
+            let r = cross(w, x);
+            dot(r, r)
+        };
+        let mid = |a: usize, b: usize| [0, 1, 2].map(|k| 0.5 * (xyz[a][k] + xyz[b][k]));
+        let wn = (0..3).map(|k| facet.pgl[(2, k)] * w[k]).sum::<f64>();
+        let exact = rho * h * area / 3. * (f(mid(0, 1)) + f(mid(1, 2)) + f(mid(2, 0)))
+            + 3. * loc[(5, 5)] * wn * wn;
+        let e = quad(&m, &rigid(&xyz, [0.; 3], w));
+        assert!((e - exact).abs() < 1e-10 * exact, "{e} vs {exact}");
+        // The drilling term: COEF_RIGI_DRZ × the least bending-rotation
+        // diagonal, on DRZ of the facet's frame.
+        let least = [3, 4, 9, 10, 15, 16]
+            .iter()
+            .map(|&i| loc[(i, i)])
+            .fold(f64::INFINITY, f64::min);
+        assert!((loc[(5, 5)] - 1e-5 * least).abs() < 1e-20 && loc[(5, 5)] > 0.);
+        // DKT on QUAD4: not implemented, an error naming the cell.
+        let kind = ElementKind::Shell {
+            material: Elastic::new(7e10, 0.3).unwrap(),
+            section: sec,
+        };
+        let quad4 = structural(
+            CellType::QUAD4,
+            vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]],
+            kind,
+        );
+        let err = element_mass(&quad4, &quad4.elements()[0], rho, Lumping::Consistent)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("M1") && err.contains("QUAD4"), "{err}");
     }
 }

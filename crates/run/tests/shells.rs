@@ -107,8 +107,9 @@ fn plasticity_and_surface_forces_on_shells_are_refused() {
     );
 }
 
-/// The shells' mass is not implemented: DYNA_NON_LINE names a shell cell
-/// and its element at MODELE (beams and DIS_TR run: tests/dynamics.rs).
+/// The mass of DKT quadrangles is not implemented: DYNA_NON_LINE names the
+/// cell and its element at MODELE (DKT triangles, beams and DIS_TR run:
+/// tests/dynamics.rs).
 #[test]
 fn dynamics_of_shells_is_refused_at_the_model() {
     let dyna = strips()
