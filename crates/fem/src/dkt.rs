@@ -430,22 +430,28 @@ pub fn local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection
             }
         }
     }
+    add_bending(&flex, section.drilling, &mut k);
+    k
+}
+
+/// `dxtloc`'s bending part: the 9×9 `flex` on (w, βx, βy) of each node
+/// added to the 18×18 matrix ([`bending_dof`]), and the drilling term
+/// `drilling` × the least bending-rotation diagonal set on each DRZ.
+fn add_bending(flex: &[[f64; 9]; 9], drilling: f64, out: &mut Matrix18) {
     for a in 0..9 {
         let (ia, sa) = bending_dof(a);
         for b in 0..9 {
             let (ib, sb) = bending_dof(b);
-            k[(ia, ib)] += sa * sb * flex[a][b];
+            out[(ia, ib)] += sa * sb * flex[a][b];
         }
     }
     let rotation_min = [1, 2, 4, 5, 7, 8]
         .iter()
         .map(|&i| flex[i][i])
         .fold(f64::INFINITY, f64::min);
-    let drill = section.drilling * rotation_min;
     for n in 0..3 {
-        k[(6 * n + 5, 6 * n + 5)] = drill;
+        out[(6 * n + 5, 6 * n + 5)] = drilling * rotation_min;
     }
-    k
 }
 
 /// The 18×18 global→local rotation: `pgl` on every translation and
@@ -538,20 +544,7 @@ pub fn local_mass(facet: &Facet, rho: f64, section: &ShellSection) -> Matrix18 {
             }
         }
     }
-    for a in 0..9 {
-        let (ia, sa) = bending_dof(a);
-        for b in 0..9 {
-            let (ib, sb) = bending_dof(b);
-            m[(ia, ib)] += sa * sb * flex[a][b];
-        }
-    }
-    let rotation_min = [1, 2, 4, 5, 7, 8]
-        .iter()
-        .map(|&i| flex[i][i])
-        .fold(f64::INFINITY, f64::min);
-    for n in 0..3 {
-        m[(6 * n + 5, 6 * n + 5)] = section.drilling * rotation_min;
-    }
+    add_bending(&flex, section.drilling, &mut m);
     m
 }
 

@@ -429,27 +429,11 @@ mod tests {
     use aster_mesh::{CellType, Mesh};
 
     fn one_cell(ty: CellType, coords: Vec<[f64; 3]>, hyp: Hypothesis) -> Model {
-        let n = coords.len();
-        let mut mesh = Mesh {
-            dim: if hyp == Hypothesis::Solid3D { 3 } else { 2 },
-            node_names: (0..n).map(|i| format!("N{i}")).collect(),
-            coords,
-            ..Mesh::default()
+        let kind = ElementKind::Continuum {
+            hypothesis: hyp,
+            material: Elastic::new(1.0, 0.3).unwrap(),
         };
-        let nodes: Vec<_> = (0..n).map(|i| aster_mesh::NodeId(i as u32)).collect();
-        mesh.cells.push(aster_mesh::Cell { ty, nodes });
-        mesh.cell_names.push("M1".into());
-        Model::new(
-            mesh,
-            vec![Element {
-                cell: CellId(0),
-                kind: ElementKind::Continuum {
-                    hypothesis: hyp,
-                    material: Elastic::new(1.0, 0.3).unwrap(),
-                },
-            }],
-        )
-        .unwrap()
+        single(ty, coords, hyp.dim().max(2) as u8, kind)
     }
 
     fn total(m: &DMatrix<f64>, dim: usize) -> f64 {
@@ -506,11 +490,11 @@ mod tests {
         assert!((w - 1. / 6.).abs() < 1e-15);
     }
 
-    /// A 3D model of one cell with `kind` on nodes `coords`.
-    fn structural(ty: CellType, coords: Vec<[f64; 3]>, kind: ElementKind) -> Model {
+    /// A model of one cell with `kind` on nodes `coords`, in `dim` dimensions.
+    fn single(ty: CellType, coords: Vec<[f64; 3]>, dim: u8, kind: ElementKind) -> Model {
         let n = coords.len();
         let mut mesh = Mesh {
-            dim: 3,
+            dim,
             node_names: (0..n).map(|i| format!("N{i}")).collect(),
             coords,
             ..Mesh::default()
@@ -528,22 +512,16 @@ mod tests {
         .unwrap()
     }
 
+    fn structural(ty: CellType, coords: Vec<[f64; 3]>, kind: ElementKind) -> Model {
+        single(ty, coords, 3, kind)
+    }
+
     fn quad(m: &DMatrix<f64>, v: &[f64]) -> f64 {
         let v = nalgebra::DVector::from_column_slice(v);
         (v.transpose() * m * &v)[(0, 0)]
     }
 
-    fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    }
-
-    fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-    }
+    use aster_mesh::vec3::{cross, dot};
 
     /// Velocities of a rigid motion (v0 + ω × x, ω) at the nodes.
     fn rigid(coords: &[[f64; 3]], v0: [f64; 3], w: [f64; 3]) -> Vec<f64> {
