@@ -259,6 +259,9 @@ struct RefElement {
     gnodes: Vec<Shape>,
     /// Extrapolation from the reduced to the normal points.
     extra: Vec<Vec<f64>>,
+    /// Extrapolation from the reduced points to the edge nodes (`jni080`'s
+    /// `fcesnd` 'LI' at the nodes, `.DESR` from 1452: `vdefge`).
+    extra_nodes: Vec<Vec<f64>>,
 }
 
 /// The nine nodes of the reference QUAD9, code_aster's order.
@@ -373,6 +376,10 @@ impl RefElement {
             rn: at(rotation, &normal),
             gnodes: at(geometry, nodes),
             extra: normal.iter().map(|&(x, y)| extra(x, y)).collect(),
+            extra_nodes: nodes[..cell.edge_nodes()]
+                .iter()
+                .map(|&(x, y)| extra(x, y))
+                .collect(),
             normal,
         }
     }
@@ -1136,6 +1143,129 @@ pub fn efge_elno(
         .iter()
         .map(|n| through_thickness(section, [w1, w2, w1], &|icou, lvl| n[3 * icou + lvl]))
         .collect())
+}
+
+/// `EFGE_ELNO` of a linear result (`te0185` → `ef0410` → `vdxsig`,
+/// `vdefge`, `vdefro`): the whole thickness as one layer whatever
+/// `COQUE_NCOU`, the strains at the reduced points (2×2 Gauss on a QUAD9,
+/// FPG3 on a TRIA7) at its bottom, middle and top (ξ₃/2 = −½, 0, ½), every
+/// row of the operator taken there (`btdmsn` with IND=0: membrane,
+/// bending and shear all at the reduced point), integrated by Simpson
+/// with `vdefge`'s literals (0.33333333333333, 1.33333333333333 times
+/// h/2), extrapolated to the edge nodes by the reduced points' linear
+/// functions (`fcesnd` 'LI'), the centre the mean of the mid-side nodes
+/// (QUAD9) or of the corners (TRIA7), each node turned into its user
+/// frame (`vdefro`).
+pub fn efge_elno_linear(
+    xyz: &[V3],
+    material: &Elastic,
+    section: &Coque3dSection,
+    u: &[f64],
+    direction: V3,
+) -> Result<Vec<[f64; 8]>, String> {
+    let r = reference(xyz)?;
+    check_dofs(&r, u)?;
+    let frames = nodal_frames(xyz, &r)?;
+    let normals: Vec<V3> = frames.iter().map(|f| f[2]).collect();
+    let ul = local_unknowns(&frames, u);
+    let (e, nu, kappa) = (material.e, material.nu, section.shear_factor);
+    let c = e / (1. - nu * nu);
+    let g = e / (1. + nu) / 2.;
+    let h = section.thickness;
+    let (nb1, nddle, npgsr) = (r.nb1, r.nddle(), r.npgsr());
+    // sig[level][p]: SIXX SIYY SIZZ SIXY SIXZ SIYZ in the point's frame.
+    let mut sig = [
+        vec![[0.; 6]; npgsr],
+        vec![[0.; 6]; npgsr],
+        vec![[0.; 6]; npgsr],
+    ];
+    for (lvl, ksi3s2) in [-0.5, 0., 0.5].into_iter().enumerate() {
+        for p in 0..npgsr {
+            let s8 = &r.gr[p];
+            let (t, jm1, _) = point_frame(s8, xyz, &normals, ksi3s2, h);
+            let (hm, hs) = hfmss(&t, true);
+            let (hm, hs) = (times_jinv(&hm, &jm1), times_jinv(&hs, &jm1));
+            let mut b = vec![vec![0.; nddle]; 5];
+            for jb in 0..nb1 {
+                for k in 0..3 {
+                    let col = 5 * jb + k;
+                    for i in 0..3 {
+                        b[i][col] = hm[i][3 * k] * s8.d1[jb] + hm[i][3 * k + 1] * s8.d2[jb];
+                    }
+                    for i in 0..2 {
+                        b[3 + i][col] = hs[i][3 * k] * s8.d1[jb] + hs[i][3 * k + 1] * s8.d2[jb];
+                    }
+                }
+            }
+            for (cl, col) in rotation_columns(&r.rr[p], &frames, ksi3s2, h) {
+                for i in 0..3 {
+                    b[i][col] = (0..9).map(|k| hm[i][k] * cl[k]).sum();
+                }
+                for i in 0..2 {
+                    b[3 + i][col] = (0..9).map(|k| hs[i][k] * cl[k]).sum();
+                }
+            }
+            let eps: Vec<f64> = b
+                .iter()
+                .map(|row| row.iter().zip(&ul).map(|(x, y)| x * y).sum())
+                .collect();
+            sig[lvl][p] = [
+                c * (eps[0] + nu * eps[1]),
+                c * (nu * eps[0] + eps[1]),
+                0.,
+                g * eps[2],
+                kappa * g * eps[3],
+                kappa * g * eps[4],
+            ];
+        }
+    }
+    // vdefge: Simpson over the thickness at each reduced point.
+    let demiep = h / 2.;
+    let w = [0.33333333333333, 1.33333333333333, 0.33333333333333];
+    let z = [-h / 2., -h / 2. + demiep, -h / 2. + 2. * demiep];
+    let at_point: Vec<[f64; 8]> = (0..npgsr)
+        .map(|p| {
+            let int = |ic: usize, zw: bool| {
+                demiep
+                    * (0..3)
+                        .map(|l| w[l] * if zw { z[l] } else { 1. } * sig[l][p][ic])
+                        .sum::<f64>()
+            };
+            [
+                int(0, false),
+                int(1, false),
+                int(3, false),
+                int(0, true),
+                int(1, true),
+                int(3, true),
+                int(4, false),
+                int(5, false),
+            ]
+        })
+        .collect();
+    let mut nodes = vec![[0.; 8]; r.nb2];
+    for (node, f) in nodes.iter_mut().zip(&r.extra_nodes) {
+        for (p, e) in at_point.iter().enumerate() {
+            for k in 0..8 {
+                node[k] += e[k] * f[p];
+            }
+        }
+    }
+    let (from, count) = match r.cell {
+        Coque3dCell::Quad9 => (4, 4),
+        Coque3dCell::Tria7 => (0, 3),
+    };
+    for k in 0..8 {
+        nodes[r.nb2 - 1][k] = (from..from + count).map(|n| nodes[n][k]).sum::<f64>() / count as f64;
+    }
+    nodes
+        .iter()
+        .zip(&frames)
+        .map(|(e, frame)| {
+            let (c, s) = user_angle(frame, direction)?;
+            Ok(to_user(e, c, s))
+        })
+        .collect()
 }
 
 /// Mᵀ·T·M of the in-plane tensor (xx, yy, xy) with M = [c −s; s c]

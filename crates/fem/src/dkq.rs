@@ -29,8 +29,8 @@ use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
 /// 24×24 element matrix, node-major (DX DY DZ DRX DRY DRZ of node 1, …).
 pub type Matrix24 = SMatrix<f64, 24, 24>;
 
-/// Membrane efforts and moments at one point: NXX NYY NXY MXX MYY MXY.
-pub type QuadEfforts = [f64; 6];
+/// Generalised efforts at one point: NXX NYY NXY MXX MYY MXY QX QY.
+pub type QuadEfforts = [f64; 8];
 
 /// The quadrangular facet: frame, local node coordinates and `gquad4`'s
 /// edge data.
@@ -223,6 +223,103 @@ impl Quad {
         }
         bf
     }
+
+    /// Transverse shear operator at (ξ, η) (`dsxhft` then `dkqtxy`):
+    /// (QX, QY) from the bending unknowns (w βx βy per node), the moments'
+    /// derivatives of the DKQ field.
+    fn shear(&self, df: &[[f64; 3]; 3], qsi: f64, eta: f64, vj: &[f64; 4]) -> [[f64; 12]; 2] {
+        let hft2 = crate::dkt::hft2(df, *vj);
+        let c = &self.c;
+        let (peta, meta, pqsi, mqsi) = (1. + eta, 1. - eta, 1. + qsi, 1. - qsi);
+        // codi = (c4 c5 c6 c7 s4 s5 s6 s7) = c[12..20], lcot = c[8..12].
+        let mut cl = [0.; 4];
+        let mut sl = [0.; 4];
+        let mut cs = [0.; 4];
+        let mut cu = [0.; 4];
+        let mut su = [0.; 4];
+        for i in 0..4 {
+            let (co, si, l) = (c[12 + i], c[16 + i], c[8 + i]);
+            cl[i] = 1.5 * co / l;
+            sl[i] = 1.5 * si / l;
+            cs[i] = 0.75 * co * si;
+            cu[i] = 0.75 * co * co;
+            su[i] = 0.75 * si * si;
+        }
+        let row = |l: &[f64; 4], u: &[f64; 4], v: &[f64; 4]| -> [[f64; 12]; 3] {
+            [
+                [
+                    -meta * l[0],
+                    meta * u[0],
+                    meta * v[0],
+                    meta * l[0],
+                    meta * u[0],
+                    meta * v[0],
+                    -peta * l[2],
+                    peta * u[2],
+                    peta * v[2],
+                    peta * l[2],
+                    peta * u[2],
+                    peta * v[2],
+                ],
+                [
+                    mqsi * l[3],
+                    mqsi * u[3],
+                    mqsi * v[3],
+                    -pqsi * l[1],
+                    pqsi * u[1],
+                    pqsi * v[1],
+                    pqsi * l[1],
+                    pqsi * u[1],
+                    pqsi * v[1],
+                    -mqsi * l[3],
+                    mqsi * u[3],
+                    mqsi * v[3],
+                ],
+                [0.; 12],
+            ]
+        };
+        // Rows 1, 2 (x) and 4, 5 (y) of `tkq`; rows 3 and 6 below.
+        let rx = row(&cl, &cu, &cs);
+        let ry = row(&sl, &cs, &su);
+        let r3 = [
+            qsi * cl[0] - eta * cl[3],
+            -qsi * cu[0] - eta * cu[3] + 0.25,
+            -qsi * cs[0] - eta * cs[3],
+            -qsi * cl[0] - eta * cl[1],
+            -qsi * cu[0] + eta * cu[1] - 0.25,
+            -qsi * cs[0] + eta * cs[1],
+            -qsi * cl[2] + eta * cl[1],
+            qsi * cu[2] + eta * cu[1] + 0.25,
+            qsi * cs[2] + eta * cs[1],
+            qsi * cl[2] + eta * cl[3],
+            qsi * cu[2] - eta * cu[3] - 0.25,
+            qsi * cs[2] - eta * cs[3],
+        ];
+        let r6 = [
+            qsi * sl[0] - eta * sl[3],
+            -qsi * cs[0] - eta * cs[3],
+            -qsi * su[0] - eta * su[3] + 0.25,
+            -qsi * sl[0] - eta * sl[1],
+            -qsi * cs[0] + eta * cs[1],
+            -qsi * su[0] + eta * su[1] - 0.25,
+            -qsi * sl[2] + eta * sl[1],
+            qsi * cs[2] + eta * cs[1],
+            qsi * su[2] + eta * su[1] + 0.25,
+            qsi * sl[2] + eta * sl[3],
+            qsi * cs[2] - eta * cs[3],
+            qsi * su[2] - eta * su[3] - 0.25,
+        ];
+        let tkq = [rx[0], rx[1], r3, ry[0], ry[1], r6];
+        let mut bc = [[0.; 12]; 2];
+        for i in 0..2 {
+            for j in 0..12 {
+                for (k, t) in tkq.iter().enumerate() {
+                    bc[i][j] += hft2[i][k] * t[j];
+                }
+            }
+        }
+        bc
+    }
 }
 
 /// `gquad4`: edge vectors, lengths, cosines and sines, and areas, from the
@@ -360,14 +457,32 @@ pub fn stiffness(
     Ok(DMatrix::from_column_slice(24, 24, k.as_slice()))
 }
 
-/// Membrane efforts and moments at the FPG4 points from the global
+/// The nodes of the reference square, code_aster's `NOEU` family of
+/// `MEDKQU4` (where `dkqedg` evaluates `EFGE_ELNO` of a linear result).
+pub const NODES: [[f64; 2]; 4] = [[-1., -1.], [1., -1.], [1., 1.], [-1., 1.]];
+
+/// Generalised efforts at the FPG4 points from the global
 /// displacements `u` (24 values, node-major), in the facet's frame
-/// (`dkqedg`, `EFGE_ELGA` without QX QY).
+/// (`dkqedg`, `EFGE_ELGA`: the transverse shears from the moments'
+/// derivatives, `dkqtxy`).
 pub fn efforts(
     xyz: &[[f64; 3]; 4],
     material: &Elastic,
     section: &ShellSection,
     u: &[f64; 24],
+) -> Result<Vec<QuadEfforts>, String> {
+    let points: Vec<[f64; 2]> = fpg4().iter().map(|g| [g.xi[0], g.xi[1]]).collect();
+    efforts_at(xyz, material, section, u, &points)
+}
+
+/// Generalised efforts at the reference points `points` (ξ, η)
+/// (`dkqedg`; at [`NODES`] it is `EFGE_ELNO` of a linear result).
+pub fn efforts_at(
+    xyz: &[[f64; 3]; 4],
+    material: &Elastic,
+    section: &ShellSection,
+    u: &[f64; 24],
+    points: &[[f64; 2]],
 ) -> Result<Vec<QuadEfforts>, String> {
     let quad = Quad::new(xyz)?;
     let ul = rotation(&quad) * SMatrix::<f64, 24, 1>::from_column_slice(u);
@@ -379,10 +494,10 @@ pub fn efforts(
             s * ul[i]
         })
         .collect();
-    Ok(fpg4()
+    Ok(points
         .iter()
         .map(|g| {
-            let (qsi, eta) = (g.xi[0], g.xi[1]);
+            let (qsi, eta) = (g[0], g[1]);
             let (_, vj) = quad.jacobian(qsi, eta);
             let bm = Quad::bm(qsi, eta, &vj);
             let bf = quad.bf(qsi, eta, &vj);
@@ -392,12 +507,16 @@ pub fn efforts(
             let kappa: Vec<f64> = (0..3)
                 .map(|i| (0..12).map(|j| bf[i][j] * ub[j]).sum())
                 .collect();
-            let mut e = [0.; 6];
+            let mut e = [0.; 8];
             for i in 0..3 {
                 for j in 0..3 {
                     e[i] += dm[i][j] * eps[j];
                     e[3 + i] += df[i][j] * kappa[j];
                 }
+            }
+            let bc = quad.shear(&df, qsi, eta, &vj);
+            for i in 0..2 {
+                e[6 + i] = (0..12).map(|j| bc[i][j] * ub[j]).sum();
             }
             e
         })

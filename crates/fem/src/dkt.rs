@@ -192,39 +192,7 @@ impl Facet {
     /// the bending unknowns, constant over the facet.
     fn shear(&self, df: &[[f64; 3]; 3]) -> [[f64; 9]; 2] {
         let c = &self.c;
-        let (vj11, vj12, vj21, vj22) = (c[8], c[9], c[10], c[11]);
-        let hf = [
-            [
-                df[0][0],
-                df[2][2],
-                2. * df[0][2],
-                df[0][2],
-                df[1][2],
-                df[0][1] + df[2][2],
-            ],
-            [
-                df[0][2],
-                df[1][2],
-                df[0][1] + df[2][2],
-                df[2][2],
-                df[1][1],
-                2. * df[1][2],
-            ],
-        ];
-        let t2 = [
-            [vj11 * vj11, vj12 * vj12, 2. * vj11 * vj12],
-            [vj21 * vj21, vj22 * vj22, 2. * vj21 * vj22],
-            [vj11 * vj21, vj12 * vj22, vj11 * vj22 + vj12 * vj21],
-        ];
-        let mut hft2 = [[0.; 6]; 2];
-        for r in 0..2 {
-            for j in 0..3 {
-                for k in 0..3 {
-                    hft2[r][j] += hf[r][k] * t2[k][j];
-                    hft2[r][j + 3] += hf[r][k + 3] * t2[k][j];
-                }
-            }
-        }
+        let hft2 = hft2(df, [c[8], c[9], c[10], c[11]]);
         // codi = (c4 c5 c6 s4 s5 s6), lcot = (l4 l5 l6).
         let mut cl = [0.; 3];
         let mut sl = [0.; 3];
@@ -317,6 +285,47 @@ impl Facet {
         }
         bc
     }
+}
+
+/// `dsxhft`: the product H_F·T₂ of the moments' derivatives operator by
+/// the second derivatives' change of variables, for the transverse shears
+/// of the Kirchhoff plates (DKT `dkttxy`, DKQ `dkqtxy`), from the bending
+/// elasticity `df` and the inverse Jacobian (vj11 vj12 vj21 vj22).
+pub(crate) fn hft2(df: &[[f64; 3]; 3], vj: [f64; 4]) -> [[f64; 6]; 2] {
+    let [vj11, vj12, vj21, vj22] = vj;
+    let hf = [
+        [
+            df[0][0],
+            df[2][2],
+            2. * df[0][2],
+            df[0][2],
+            df[1][2],
+            df[0][1] + df[2][2],
+        ],
+        [
+            df[0][2],
+            df[1][2],
+            df[0][1] + df[2][2],
+            df[2][2],
+            df[1][1],
+            2. * df[1][2],
+        ],
+    ];
+    let t2 = [
+        [vj11 * vj11, vj12 * vj12, 2. * vj11 * vj12],
+        [vj21 * vj21, vj22 * vj22, 2. * vj21 * vj22],
+        [vj11 * vj21, vj12 * vj22, vj11 * vj22 + vj12 * vj21],
+    ];
+    let mut hft2 = [[0.; 6]; 2];
+    for r in 0..2 {
+        for j in 0..3 {
+            for k in 0..3 {
+                hft2[r][j] += hf[r][k] * t2[k][j];
+                hft2[r][j + 3] += hf[r][k + 3] * t2[k][j];
+            }
+        }
+    }
+    hft2
 }
 
 /// `gtria3`: edge vectors, twice the area, the inverse Jacobian and the
@@ -557,6 +566,10 @@ pub fn mass(xyz: &[[f64; 3]; 3], rho: f64, section: &ShellSection) -> Result<DMa
     Ok(DMatrix::from_column_slice(18, 18, m.as_slice()))
 }
 
+/// The nodes of the reference triangle, code_aster's `NOEU` family of
+/// `MEDKTR3` (where `dktedg` evaluates `EFGE_ELNO` of a linear result).
+pub const NODES: [[f64; 2]; 3] = [[0., 0.], [1., 0.], [0., 1.]];
+
 /// Generalised efforts at the FPG3 points from the global displacements
 /// `u` (18 values, node-major DX DY DZ DRX DRY DRZ), in the facet's frame
 /// (`dktedg`, `EFGE_ELGA`).
@@ -565,6 +578,21 @@ pub fn efforts(
     material: &Elastic,
     section: &ShellSection,
     u: &[f64; 18],
+) -> Result<Vec<Efforts>, String> {
+    let points: Vec<[f64; 2]> = fpg3().iter().map(|g| [g.xi[0], g.xi[1]]).collect();
+    efforts_at(xyz, material, section, u, &points)
+}
+
+/// Generalised efforts at the reference points `points` (ξ, η), in the
+/// facet's frame (`dktedg`: the membrane and transverse shear are
+/// constant, the moments follow the curvature at each point; at
+/// [`NODES`] it is `EFGE_ELNO` of a linear result).
+pub fn efforts_at(
+    xyz: &[[f64; 3]; 3],
+    material: &Elastic,
+    section: &ShellSection,
+    u: &[f64; 18],
+    points: &[[f64; 2]],
 ) -> Result<Vec<Efforts>, String> {
     let facet = Facet::new(xyz)?;
     let ul = rotation(&facet) * SMatrix::<f64, 18, 1>::from_column_slice(u);
@@ -587,10 +615,10 @@ pub fn efforts(
     let q: Vec<f64> = (0..2)
         .map(|i| (0..9).map(|j| bc[i][j] * ub[j]).sum())
         .collect();
-    Ok(fpg3()
+    Ok(points
         .iter()
         .map(|g| {
-            let bf = facet.bf(g.xi[0], g.xi[1]);
+            let bf = facet.bf(g[0], g[1]);
             let kappa: Vec<f64> = (0..3)
                 .map(|i| (0..9).map(|j| bf[i][j] * ub[j]).sum())
                 .collect();

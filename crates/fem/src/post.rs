@@ -65,7 +65,7 @@ fn cell_error(model: &Model, cell: CellId, m: String) -> FemError {
 
 /// code_aster's `EFGE` components of a DKT triangle (`MEDKTR3`): the
 /// membrane forces, moments and transverse shears.
-const EFGE_TRIA: [&str; 8] = ["NXX", "NYY", "NXY", "MXX", "MYY", "MXY", "QX", "QY"];
+const EFGE_NAMES: [&str; 8] = ["NXX", "NYY", "NXY", "MXX", "MYY", "MXY", "QX", "QY"];
 
 /// `EFGE_ELNO` of the beams (`POU_D_E`): N VY VZ MT MFY MFZ at their two
 /// nodes, in each beam's local frame ([`crate::beam::efforts`]).
@@ -88,18 +88,43 @@ pub fn beam_efge_elno(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemEr
     Ok(out)
 }
 
+/// Where, and by which of code_aster's paths, the efforts (`EFGE`) of
+/// shells are computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EffortsAt {
+    /// `EFGE_ELGA`, at the Gauss points.
+    Gauss,
+    /// `EFGE_ELNO` of a non-linear result (`STAT_NON_LINE`, code_aster's
+    /// `PNONLIN` = 1): DKT/DKQ `ef0031` (the Gauss points' efforts
+    /// extrapolated to the nodes, `ppgan2`), COQUE_3D `ef0415`.
+    NodesNonLinear,
+    /// `EFGE_ELNO` of a linear result (`MECA_STATIQUE`): DKT/DKQ `ef0033`
+    /// (`dxefgv`: the efforts evaluated at the nodes), COQUE_3D `ef0410`.
+    NodesLinear,
+}
+
 /// Generalised efforts at the Gauss points (`EFGE_ELGA`) of the shell
 /// elements, in the user's frame of each facet: its x axis is the
 /// projection on the facet of the global direction `direction(cell)`
 /// (code_aster's `ANGL_REP`/`VECTEUR`, by default global X; `coqrep`), its
-/// z axis the facet's normal. NXX NYY NXY MXX MYY MXY, and QX QY on
-/// triangles (the quadrangle's shears are not computed here). A direction
+/// z axis the facet's normal. NXX NYY NXY MXX MYY MXY QX QY. A direction
 /// normal to a facet is an error naming the cell (code_aster's
 /// `PLATE1_40`).
 pub fn efge_elga(
     model: &Model,
     u: &[f64],
     direction: &dyn Fn(CellId) -> [f64; 3],
+) -> Result<Vec<CellValues>, FemError> {
+    shell_efforts(model, u, direction, EffortsAt::Gauss)
+}
+
+/// The efforts of the DKT/DKQ shells of `model` as [`efge_elga`], where
+/// and as `at` says (`EFGE_ELNO`: at the cells' nodes).
+pub fn shell_efforts(
+    model: &Model,
+    u: &[f64],
+    direction: &dyn Fn(CellId) -> [f64; 3],
+    at: EffortsAt,
 ) -> Result<Vec<CellValues>, FemError> {
     let mut out = Vec::new();
     for el in model.elements() {
@@ -117,8 +142,14 @@ pub fn efge_elga(
                     ue[a] = u[i];
                 }
                 let facet = crate::dkt::Facet::new(&xyz).map_err(err)?;
-                let e = crate::dkt::efforts(&xyz, material, section, &ue).map_err(err)?;
-                (facet.pgl, e, &EFGE_TRIA[..])
+                let e = match at {
+                    EffortsAt::NodesLinear => {
+                        crate::dkt::efforts_at(&xyz, material, section, &ue, &crate::dkt::NODES)
+                    }
+                    _ => crate::dkt::efforts(&xyz, material, section, &ue),
+                }
+                .map_err(err)?;
+                (facet.pgl, e, &EFGE_NAMES[..])
             }
             CellType::QUAD4 => {
                 let xyz = [0, 1, 2, 3].map(|i| model.mesh().coord(c.nodes[i]));
@@ -127,12 +158,14 @@ pub fn efge_elga(
                     ue[a] = u[i];
                 }
                 let quad = crate::dkq::Quad::new(&xyz).map_err(err)?;
-                let e = crate::dkq::efforts(&xyz, material, section, &ue).map_err(err)?;
-                let e = e
-                    .into_iter()
-                    .map(|x| [x[0], x[1], x[2], x[3], x[4], x[5], 0., 0.])
-                    .collect();
-                (quad.pgl, e, &EFGE_TRIA[..6])
+                let e = match at {
+                    EffortsAt::NodesLinear => {
+                        crate::dkq::efforts_at(&xyz, material, section, &ue, &crate::dkq::NODES)
+                    }
+                    _ => crate::dkq::efforts(&xyz, material, section, &ue),
+                }
+                .map_err(err)?;
+                (quad.pgl, e, &EFGE_NAMES[..])
             }
             _ => continue,
         };
@@ -172,7 +205,26 @@ pub fn efge_elga(
                 let (qx, qy) = (cs * e[6] + sn * e[7], -sn * e[6] + cs * e[7]);
                 [nxx, nyy, nxy, mxx, myy, mxy, qx, qy][..names.len()].to_vec()
             })
-            .collect();
+            .collect::<Vec<Vec<f64>>>();
+        // ef0031: the Gauss points' efforts carried to the nodes by the
+        // RIGI family's extrapolation (FPG3, FPG4: `ppgan2`); the frame is
+        // the cell's, so turning and extrapolating commute.
+        let points = if at == EffortsAt::NodesNonLinear {
+            let scheme = match c.ty {
+                CellType::TRIA3 => crate::dkt::fpg3(),
+                _ => crate::dkq::fpg4(),
+            };
+            let e = extrapolation(c.ty, &scheme);
+            (0..e.nrows())
+                .map(|n| {
+                    (0..names.len())
+                        .map(|k| (0..points.len()).map(|p| e[(n, p)] * points[p][k]).sum())
+                        .collect()
+                })
+                .collect()
+        } else {
+            points
+        };
         out.push(CellValues {
             cell: el.cell,
             names: names.to_vec(),
@@ -321,24 +373,25 @@ fn coque3d_cells(
 }
 
 /// The efforts NXX NYY NXY MXX MYY MXY QX QY of the COQUE_3D cells of
-/// `model` in the user's frame (`direction`): at the normal Gauss points
-/// (`EFGE_ELGA`, [`crate::coque3d::efge_elga`]) or, with `at_nodes`, at
-/// the nodes (`EFGE_ELNO` of a non-linear result,
-/// [`crate::coque3d::efge_elno`]).
+/// `model` in the user's frame (`direction`), where and as `at` says
+/// (`EFGE_ELGA` at the normal Gauss points, `EFGE_ELNO` of a non-linear or
+/// a linear result: [`EffortsAt`]).
 pub fn coque3d_efge(
     model: &Model,
     u: &[f64],
     direction: &dyn Fn(CellId) -> [f64; 3],
-    at_nodes: bool,
+    at: EffortsAt,
 ) -> Result<Vec<CellValues>, FemError> {
+    use crate::coque3d as c3;
     coque3d_cells(model, u, &|cell, material, section, xyz, ue| {
-        let efforts = if at_nodes {
-            crate::coque3d::efge_elno(xyz, material, section, ue, direction(cell))
-        } else {
-            crate::coque3d::efge_elga(xyz, material, section, ue, direction(cell))
+        let d = direction(cell);
+        let efforts = match at {
+            EffortsAt::Gauss => c3::efge_elga(xyz, material, section, ue, d),
+            EffortsAt::NodesNonLinear => c3::efge_elno(xyz, material, section, ue, d),
+            EffortsAt::NodesLinear => c3::efge_elno_linear(xyz, material, section, ue, d),
         }?;
         Ok((
-            EFGE_TRIA.to_vec(),
+            EFGE_NAMES.to_vec(),
             efforts.iter().map(|e| e.to_vec()).collect(),
         ))
     })

@@ -673,7 +673,8 @@ fn efforts_of_the_strip_are_the_beams_resultants() {
     // normal point and EFGE_ELNO at every node are NXX = N/b, MXX = M/b
     // along the strip (NYY, MYY with the user's x across it), the rest 0,
     // with one layer and with three (Simpson per layer is exact through the
-    // thickness of this linear stress).
+    // thickness of this linear stress); so is MECA_STATIQUE's EFGE_ELNO
+    // (`ef0410`, from the reduced points, the layers ignored).
     let (b, h, m, n) = (0.5, 0.05, 1e3, 1e6);
     let r = tilted();
     let mat = Elastic::new(2e11, 0.).unwrap();
@@ -699,9 +700,11 @@ fn efforts_of_the_strip_are_the_beams_resultants() {
                     let xyz = g.xyz(c);
                     let elga = coque3d::efge_elga(&xyz, &mat, &sec, &ue, dir).unwrap();
                     let elno = coque3d::efge_elno(&xyz, &mat, &sec, &ue, dir).unwrap();
+                    let linear = coque3d::efge_elno_linear(&xyz, &mat, &sec, &ue, dir).unwrap();
                     assert_eq!(elga.len(), if tria { 7 } else { 9 });
                     assert_eq!(elno.len(), c.len());
-                    for e in elga.iter().chain(&elno) {
+                    assert_eq!(linear.len(), c.len());
+                    for e in elga.iter().chain(&elno).chain(&linear) {
                         for comp in 0..8 {
                             let scale = if comp < 3 { n / b } else { m / b };
                             assert!(

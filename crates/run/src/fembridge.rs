@@ -1074,6 +1074,41 @@ fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
     field
 }
 
+/// The nodal mean of element-node values whose cells carry different
+/// component sets (beams' N VY VZ MT MFY MFZ beside shells' NXX … QY):
+/// each family of cells averaged on its own, a node getting the
+/// components of every family that reaches it, as code_aster's `*_NOEU`
+/// of a model mixing such elements.
+fn nodal_by_families(model: &aster_fem::Model, elno: &[CellValues]) -> NodalField {
+    let mut families: Vec<&[&'static str]> = Vec::new();
+    for cv in elno {
+        if !families.contains(&cv.names.as_slice()) {
+            families.push(&cv.names);
+        }
+    }
+    let mut names: Vec<String> = Vec::new();
+    for f in &families {
+        for n in f.iter() {
+            if !names.iter().any(|m| m == n) {
+                names.push(n.to_string());
+            }
+        }
+    }
+    let mut out = NodalField::new(names);
+    for f in &families {
+        let part: Vec<CellValues> = elno.iter().filter(|cv| cv.names == *f).cloned().collect();
+        let v = post::noeu(model, &part);
+        for (n, vals) in v.values.iter().enumerate() {
+            if let Some(vals) = vals {
+                for (c, x) in v.names.iter().zip(vals) {
+                    out.set(NodeId(n as u32), c, *x);
+                }
+            }
+        }
+    }
+    out
+}
+
 fn nodal_from_values(v: &NodalValues) -> NodalField {
     let mut f = NodalField::new(v.names.iter().map(|s| s.to_string()).collect());
     for (n, vals) in v.values.iter().enumerate() {
@@ -1661,20 +1696,15 @@ pub fn calc_champ(
             }
             post::epsi_elga_on(model, u, keep).map_err(|e| fem_err("CALC_CHAMP", e))
         };
-        // EFGE_ELNO of the beams and of the COQUE_3D cells (code_aster's
-        // path for a non-linear result: MECA_STATIQUE's, `ef0410`, extrapolates
-        // the reduced points' stresses instead, not reproduced).
+        // EFGE_ELNO of the beams and of the shells, by code_aster's path
+        // for a MECA_STATIQUE result (`ef0033`, `ef0410`) or a non-linear
+        // one (`ef0031`, `ef0415`).
         let efge_elno = || {
             let mut v = post::beam_efge_elno(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?;
-            if model.has_coque3d() {
-                if result.typ == "evol_elas" {
-                    return Err(ex.unsupported(
-                        "CALC_CHAMP/CONTRAINTE='EFGE_ELNO' of COQUE_3D cells on a MECA_STATIQUE result (code_aster's linear path ef0410 extrapolates the stresses of the reduced points with vdefge; only STAT_NON_LINE's, ef0415, is reproduced)",
-                        call.keywords.keyword("CONTRAINTE").map(|k| k.span).unwrap_or(call.span),
-                    ));
-                }
+            if model.has_shells() {
+                let linear = result.typ == "evol_elas";
                 v.extend(
-                    crate::shells::coque3d_efge_elno(model, run.cara.as_deref(), u)
+                    crate::shells::efge_elno(model, run.cara.as_deref(), u, linear)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 );
             }
@@ -1709,11 +1739,11 @@ pub fn calc_champ(
                     &crate::shells::efge_elga(model, run.cara.as_deref(), u)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 )),
-                "EFGE_ELNO" if model.has_beams() || model.has_coque3d() => {
+                "EFGE_ELNO" if model.has_beams() || model.has_shells() => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &efge_elno()?))
                 }
-                "EFGE_NOEU" if model.has_beams() || model.has_coque3d() => {
-                    Field::Nodal(nodal_from_values(&post::noeu(model, &efge_elno()?)))
+                "EFGE_NOEU" if model.has_beams() || model.has_shells() => {
+                    Field::Nodal(nodal_by_families(model, &efge_elno()?))
                 }
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))

@@ -20,6 +20,7 @@ use crate::concept::{CaraElem, ModelDef, Modelisation};
 use crate::executor::Executor;
 use crate::solve::{BehaviourOcc, Relation};
 use aster_eval::{CommandCall, ExecError, Keywords};
+use aster_fem::post::EffortsAt;
 use aster_fem::{CellValues, Kinematics, Model};
 use aster_mesh::{CellId, Mesh};
 use std::collections::BTreeMap;
@@ -157,8 +158,8 @@ fn directions(cara: Option<&CaraElem>) -> impl Fn(CellId) -> [f64; 3] {
     move |cell| direction.get(&cell).copied().unwrap_or([1., 0., 0.])
 }
 
-/// `EFGE_ELGA` of the shells of `model`: NXX NYY NXY MXX MYY MXY (QX QY on
-/// triangles and COQUE_3D cells) at the Gauss points, in the frame of each
+/// `EFGE_ELGA` of the shells of `model`: NXX NYY NXY MXX MYY MXY QX QY at
+/// the Gauss points, in the frame of each
 /// cell's `AFFE_CARA_ELEM/COQUE` (global X projected on the facet by
 /// default; on a COQUE_3D cell, on its plane at the first reduced point,
 /// as code_aster stores its `SIEF_ELGA`).
@@ -169,18 +170,34 @@ pub(crate) fn efge_elga(
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
     let direction = directions(cara);
     let mut out = aster_fem::post::efge_elga(model, u, &direction)?;
-    out.extend(aster_fem::post::coque3d_efge(model, u, &direction, false)?);
+    out.extend(aster_fem::post::coque3d_efge(
+        model,
+        u,
+        &direction,
+        EffortsAt::Gauss,
+    )?);
     Ok(out)
 }
 
-/// `EFGE_ELNO` of the COQUE_3D cells of `model` (code_aster's path for a
-/// non-linear result, `ef0415`), at their nodes in each node's user frame.
-pub(crate) fn coque3d_efge_elno(
+/// `EFGE_ELNO` of the shells of `model` (DKT/DKQ facets and COQUE_3D
+/// cells) at their nodes, in the user's frame of each cell (each node's on
+/// a COQUE_3D), by code_aster's path for a linear (`MECA_STATIQUE`) or a
+/// non-linear result ([`EffortsAt`]).
+pub(crate) fn efge_elno(
     model: &Model,
     cara: Option<&CaraElem>,
     u: &[f64],
+    linear: bool,
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
-    aster_fem::post::coque3d_efge(model, u, &directions(cara), true)
+    let at = if linear {
+        EffortsAt::NodesLinear
+    } else {
+        EffortsAt::NodesNonLinear
+    };
+    let direction = directions(cara);
+    let mut out = aster_fem::post::shell_efforts(model, u, &direction, at)?;
+    out.extend(aster_fem::post::coque3d_efge(model, u, &direction, at)?);
+    Ok(out)
 }
 
 /// The stresses of the shells of `model` at one level through their

@@ -2,8 +2,10 @@
 //! two cantilever strips of thin shells — 10 DKQ quadrangles in the plane
 //! z = 0 under a tip force and a tension, 20 DKT triangles in the plane
 //! y = 1 under a tip moment and a tension — against beam theory (ν = 0):
-//! tip deflections and rotations, membrane stretch, and EFGE_ELGA moments
-//! and membrane forces in the default frame, all within 1e-9. What the
+//! tip deflections and rotations, membrane stretch, and EFGE_ELGA moments,
+//! membrane forces and the DKQ's transverse shear in the default frame;
+//! EFGE_ELNO by STAT_NON_LINE's path (the Gauss points extrapolated) and
+//! MECA_STATIQUE's (evaluated at the nodes), EFGE_NOEU; all within 1e-9. What the
 //! shells cannot run yet is refused at its keyword.
 
 mod scene;
@@ -18,7 +20,7 @@ fn strips() -> String {
 
 #[test]
 fn cantilever_strips_of_dkt_and_dkq_match_beam_theory() {
-    assert_eq!(run(&strips(), "strips"), (20, 0, None));
+    assert_eq!(run(&strips(), "strips"), (54, 0, None));
 }
 
 /// MECA_STATIQUE solves the same linear system.
@@ -32,7 +34,7 @@ fn meca_statique_gives_the_same_strips() {
         )
         .replace("INCREMENT=_F(LIST_INST=LINST),", "LIST_INST=LINST,");
     assert!(text.contains("MECA_STATIQUE") && !text.contains("INCREMENT"));
-    assert_eq!(run(&text, "meca"), (20, 0, None));
+    assert_eq!(run(&text, "meca"), (54, 0, None));
 }
 
 /// `BLOCAGE=('DEPLACEMENT', 'ROTATION')` blocks the six components of the
@@ -44,7 +46,7 @@ fn blocage_rotation_blocks_the_shells_rotations() {
         "BLOCAGE=(\"DEPLACEMENT\", \"ROTATION\")",
     );
     assert!(text.contains("BLOCAGE"));
-    assert_eq!(run(&text, "blocage"), (20, 0, None));
+    assert_eq!(run(&text, "blocage"), (54, 0, None));
 }
 
 /// Without the clamp's rotations the strips are mechanisms: the singular
@@ -120,13 +122,21 @@ fn dynamics_of_shells_is_refused_at_the_model() {
         )
         .replace("RESU = STAT_NON_LINE(", "RESU = DYNA_NON_LINE(");
     assert!(dyna.contains("DYNA_NON_LINE(") && dyna.contains("SCHEMA_TEMPS"));
+    // Located at the MODELE keyword of DYNA_NON_LINE.
+    let lines: Vec<&str> = dyna.lines().collect();
+    let call = lines
+        .iter()
+        .position(|l| l.contains("DYNA_NON_LINE("))
+        .unwrap();
+    assert!(lines[call + 1].trim_start().starts_with("MODELE="));
+    let at = format!("case.comm:{}:5", call + 2);
     refused(
         &dyna,
         "dyna",
         &[
-            "DYNA_NON_LINE on a model with shells",
-            "is DKT",
-            "case.comm:44:5",
+            "DYNA_NON_LINE on a model with shells without a mass",
+            "is DKT on a QUAD4",
+            &at,
         ],
     );
 }
@@ -323,4 +333,31 @@ fn sigm_noeu_of_a_layer_on_a_group_averages_its_cells_only() {
             .is_some_and(|e| e.contains("no component SIXX at node")),
         "{err:?}"
     );
+}
+
+/// A POU_D_E beam hung at the DKQ strip's tip (cell MB1 of the mesh,
+/// unloaded, so the strips are unchanged): EFGE_NOEU averages the beam's
+/// family (N VY VZ MT MFY MFZ) and the shells' (NXX … QY) each on its own,
+/// the tip node carrying both — the shell's NXX = N/b and the free beam's
+/// N = 0 — as code_aster's nodal field of a mixed model.
+#[test]
+fn efge_noeu_of_beams_beside_shells_keeps_both_families() {
+    let text = strips()
+        .replacen(
+            "AFFE=_F(GROUP_MA=(\"SQ\", \"ST\"), PHENOMENE=\"MECANIQUE\", MODELISATION=\"DKT\")",
+            "AFFE=(_F(GROUP_MA=(\"SQ\", \"ST\"), PHENOMENE=\"MECANIQUE\", MODELISATION=\"DKT\"), _F(GROUP_MA=\"BM\", PHENOMENE=\"MECANIQUE\", MODELISATION=\"POU_D_E\"))",
+            1,
+        )
+        .replacen(
+            "COQUE=_F(GROUP_MA=(\"SQ\", \"ST\"), EPAIS=0.01))",
+            "COQUE=_F(GROUP_MA=(\"SQ\", \"ST\"), EPAIS=0.01), POUTRE=_F(GROUP_MA=\"BM\", SECTION=\"CERCLE\", CARA=\"R\", VALE=0.01))",
+            1,
+        )
+        .replacen(
+            "    )\n)\n\nFIN()",
+            "        _F(NUME_ORDRE=1, RESULTAT=RESU, NOM_CHAM=\"EFGE_NOEU\", GROUP_NO=\"AQ\", NOM_CMP=\"NXX\", VALE_CALC=1.0e4, VALE_REFE=1.0e4, REFERENCE=\"ANALYTIQUE\", PRECISION=1.0e-9),\n        _F(NUME_ORDRE=1, RESULTAT=RESU, NOM_CHAM=\"EFGE_NOEU\", GROUP_NO=\"AQ\", NOM_CMP=\"N\", VALE_CALC=0.0, VALE_REFE=0.0, REFERENCE=\"ANALYTIQUE\", CRITERE=\"ABSOLU\", ORDRE_GRANDEUR=1.0e4, PRECISION=1.0e-9),\n    )\n)\n\nFIN()",
+            1,
+        );
+    assert!(text.contains("POU_D_E") && text.contains("NOM_CMP=\"N\""));
+    assert_eq!(run(&text, "mixed-noeu"), (58, 0, None));
 }
