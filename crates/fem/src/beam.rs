@@ -14,6 +14,16 @@
 //!   4EI/L, 2EI/L in the planes (x, y) with Iz and (x, z) with Iy
 //!   (the sign of the coupling of w and θy is negative, as `ptka01` writes
 //!   it);
+//! - the mass (`MASS_MECA`, `te0141` → `pomass` → `ptma01` with
+//!   `kanl = 1`): for POU_D_E `ptma01` sets the shear coefficients and
+//!   with them the bending second moments to zero, so the consistent mass
+//!   has **no rotary inertia of bending**: ρAL/3, ρAL/6 on the axial DOFs,
+//!   the cubic Hermite blocks ρAL·(13/35, 11L/210, 9/70, −13L/420, L²/105,
+//!   −L²/140) in both bending planes, and the torsion inertia of the polar
+//!   moment Iy + Iz (not Jx): ρ(Iy+Iz)L/3, ρ(Iy+Iz)L/6;
+//! - the lumped mass (`MASS_MECA_DIAG`, `kanl = 0`): ρAL/2 on each
+//!   translation, ρ(Iy+Iz)L/2 on each torsion, ρAL³/105 + 2ρIyL/15 on θy
+//!   and ρAL³/105 + 2ρIzL/15 on θz (here the second moments do count);
 //! - the generalised efforts at the nodes (`EFGE_ELNO`): f = K_local·u_local,
 //!   reported as −f at node 1 and +f at node 2 (N VY VZ MT MFY MFZ), the
 //!   efforts the part beyond each node exerts, as code_aster's `pouex7`.
@@ -168,6 +178,81 @@ pub fn local_stiffness(material: &Elastic, s: &BeamSection, len: f64) -> DMatrix
     set(3, 9, -gj);
     set(9, 9, gj);
     k
+}
+
+/// The 12×12 local mass (`ptma01` for POU_D_E, constant section, no
+/// offset), DOFs per node u v w θx θy θz: consistent (`lumped = false`,
+/// `MASS_MECA`) or diagonal (`MASS_MECA_DIAG`).
+pub fn local_mass(rho: f64, s: &BeamSection, len: f64, lumped: bool) -> DMatrix<f64> {
+    let l = len;
+    let zcont = rho * s.area * l;
+    let mut m = DMatrix::zeros(12, 12);
+    if lumped {
+        let half = zcont / 2.;
+        let torsion = rho * l * (s.iy + s.iz) / 2.;
+        let c = zcont * l * l / 105.;
+        for node in 0..2 {
+            let o = 6 * node;
+            for k in 0..3 {
+                m[(o + k, o + k)] = half;
+            }
+            m[(o + 3, o + 3)] = torsion;
+            m[(o + 4, o + 4)] = c + rho * 2. * s.iy * l / 15.;
+            m[(o + 5, o + 5)] = c + rho * 2. * s.iz * l / 15.;
+        }
+        return m;
+    }
+    let mut set = |i: usize, j: usize, v: f64| {
+        m[(i, j)] = v;
+        m[(j, i)] = v;
+    };
+    set(0, 0, zcont / 3.);
+    set(0, 6, zcont / 6.);
+    set(6, 6, zcont / 3.);
+    let (a, b, c, d) = (13. / 35., 11. * l / 210., 9. / 70., 13. * l / 420.);
+    let (e, f) = (l * l / 105., l * l / 140.);
+    // Plane (x, y): v, θz.
+    set(1, 1, zcont * a);
+    set(1, 5, zcont * b);
+    set(1, 7, zcont * c);
+    set(1, 11, -zcont * d);
+    set(5, 5, zcont * e);
+    set(5, 7, zcont * d);
+    set(5, 11, -zcont * f);
+    set(7, 7, zcont * a);
+    set(7, 11, -zcont * b);
+    set(11, 11, zcont * e);
+    // Plane (x, z): w, θy (the coupling signs of the stiffness).
+    set(2, 2, zcont * a);
+    set(2, 4, -zcont * b);
+    set(2, 8, zcont * c);
+    set(2, 10, zcont * d);
+    set(4, 4, zcont * e);
+    set(4, 8, -zcont * d);
+    set(4, 10, -zcont * f);
+    set(8, 8, zcont * a);
+    set(8, 10, zcont * b);
+    set(10, 10, zcont * e);
+    // Torsion: the polar moment Iy + Iz.
+    let t = rho * l * (s.iy + s.iz) / 3.;
+    set(3, 3, t);
+    set(3, 9, t / 2.);
+    set(9, 9, t);
+    m
+}
+
+/// The global mass of a beam of density `rho`, node-major DX DY DZ DRX
+/// DRY DRZ ([`local_mass`] turned by the beam's frame).
+pub fn mass(
+    xyz: &[[f64; 3]; 2],
+    rho: f64,
+    section: &BeamSection,
+    lumped: bool,
+) -> Result<DMatrix<f64>, String> {
+    section.check()?;
+    let (pgl, len) = frame(xyz[0], xyz[1])?;
+    let r = rotation(&pgl);
+    Ok(r.transpose() * local_mass(rho, section, len, lumped) * r)
 }
 
 /// The 12×12 global→local rotation: `pgl` on each 3-block.

@@ -14,6 +14,10 @@
 //!   code_aster's fictitious spring `COEF_RIGI_DRZ · min(bending rotation
 //!   diagonal)` on each node (`dxtloc`, `CARA_ELEM/COQUE/COEF_RIGI_DRZ`,
 //!   default 1e-5);
+//! - the mass (`dktmas`, [`local_mass`]): the membrane's consistent
+//!   linear-triangle mass, ρh ∫ w·w with the cubic w of `dktniw` at FPG3,
+//!   no rotary inertia (code_aster's default without `INER_ROTA`), the
+//!   drilling term as the stiffness';
 //! - generalised efforts at the Gauss points (`dktedg`, option
 //!   `EFGE_ELGA`): N = Dm·Bm·u, M = Df·Bf·β, and the transverse shears
 //!   (QX, QY) from the moments' derivatives (`dsxhft`, `dkttxy`), in the
@@ -435,22 +439,28 @@ pub fn local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection
             }
         }
     }
+    add_bending(&flex, section.drilling, &mut k);
+    k
+}
+
+/// `dxtloc`'s bending part: the 9×9 `flex` on (w, βx, βy) of each node
+/// added to the 18×18 matrix ([`bending_dof`]), and the drilling term
+/// `drilling` × the least bending-rotation diagonal set on each DRZ.
+fn add_bending(flex: &[[f64; 9]; 9], drilling: f64, out: &mut Matrix18) {
     for a in 0..9 {
         let (ia, sa) = bending_dof(a);
         for b in 0..9 {
             let (ib, sb) = bending_dof(b);
-            k[(ia, ib)] += sa * sb * flex[a][b];
+            out[(ia, ib)] += sa * sb * flex[a][b];
         }
     }
     let rotation_min = [1, 2, 4, 5, 7, 8]
         .iter()
         .map(|&i| flex[i][i])
         .fold(f64::INFINITY, f64::min);
-    let drill = section.drilling * rotation_min;
     for n in 0..3 {
-        k[(6 * n + 5, 6 * n + 5)] = drill;
+        out[(6 * n + 5, 6 * n + 5)] = drilling * rotation_min;
     }
-    k
 }
 
 /// The 18×18 global→local rotation: `pgl` on every translation and
@@ -474,6 +484,86 @@ pub fn stiffness(
     let r = rotation(&facet);
     let k = r.transpose() * local_stiffness(&facet, material, section) * r;
     Ok(DMatrix::from_column_slice(18, 18, k.as_slice()))
+}
+
+/// `dktniw`: the DKT's cubic interpolation of w on the bending unknowns
+/// (w₁ βx₁ βy₁ …) at (ξ, η).
+fn wkt(c: &[f64; 21], qsi: f64, eta: f64) -> [f64; 9] {
+    let (x4, x6, y4, y6) = (c[0], c[2], c[3], c[5]);
+    let lbd = 1. - qsi - eta;
+    let qel = qsi * eta * lbd;
+    let n = [
+        lbd * lbd * (3. - 2. * lbd) + qel * 2.,
+        lbd * lbd * qsi + qel / 2.,
+        lbd * lbd * eta + qel / 2.,
+        qsi * qsi * (3. - 2. * qsi) + qel * 2.,
+        qsi * qsi * (-1. + qsi) - qel,
+        qsi * qsi * eta + qel / 2.,
+        eta * eta * (3. - 2. * eta) + qel * 2.,
+        eta * eta * qsi + qel / 2.,
+        eta * eta * (-1. + eta) - qel,
+    ];
+    [
+        n[0],
+        -x4 * n[1] + x6 * n[2],
+        -y4 * n[1] + y6 * n[2],
+        n[3],
+        -x4 * n[4] + x6 * n[5],
+        -y4 * n[4] + y6 * n[5],
+        n[6],
+        -x4 * n[7] + x6 * n[8],
+        -y4 * n[7] + y6 * n[8],
+    ]
+}
+
+/// The mass in the facet's frame (`dktmas` then `dxtloc`, option
+/// `MASS_MECA`), DOFs node-major DX DY DZ DRX DRY DRZ along the local axes:
+/// - membrane: the linear triangle's consistent mass ρh·A/6 (diagonal),
+///   ρh·A/12 (off it) on each in-plane translation;
+/// - bending: ρh ∫ w·w with the DKT's cubic w ([`wkt`], `dktniw`) on
+///   (w, βx, βy), integrated with the stiffness' FPG3 as code_aster does
+///   (not exactly: w·w is of degree 6). No rotary inertia: code_aster adds
+///   ρh³/12 ∫ β·β only with `COQUE/INER_ROTA='OUI'` or an offset, neither
+///   of which is reproduced;
+/// - the drilling DRZ: `COEF_RIGI_DRZ` × the least diagonal term of the
+///   bending rotations, as for the stiffness (`dxtloc`).
+pub fn local_mass(facet: &Facet, rho: f64, section: &ShellSection) -> Matrix18 {
+    let roe = rho * section.thickness;
+    let area = facet.area();
+    let mut m = Matrix18::zeros();
+    for a in 0..6 {
+        for b in 0..6 {
+            if a % 2 == b % 2 {
+                let v = if a == b {
+                    area * roe / 6.
+                } else {
+                    area * roe / 12.
+                };
+                m[(membrane_dof(a), membrane_dof(b))] = v;
+            }
+        }
+    }
+    let mut flex = [[0.; 9]; 9];
+    for g in fpg3() {
+        let w = wkt(&facet.c, g.xi[0], g.xi[1]);
+        let wgt = g.weight * facet.c[6] * roe;
+        for a in 0..9 {
+            for b in 0..9 {
+                flex[a][b] += w[a] * w[b] * wgt;
+            }
+        }
+    }
+    add_bending(&flex, section.drilling, &mut m);
+    m
+}
+
+/// Global mass of a DKT triangle of density `rho` ([`local_mass`] turned
+/// by the facet's frame; 18×18, node-major DX DY DZ DRX DRY DRZ).
+pub fn mass(xyz: &[[f64; 3]; 3], rho: f64, section: &ShellSection) -> Result<DMatrix<f64>, String> {
+    let facet = Facet::new(xyz)?;
+    let r = rotation(&facet);
+    let m = r.transpose() * local_mass(&facet, rho, section) * r;
+    Ok(DMatrix::from_column_slice(18, 18, m.as_slice()))
 }
 
 /// The nodes of the reference triangle, code_aster's `NOEU` family of

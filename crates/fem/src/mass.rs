@@ -8,9 +8,18 @@
 //!   the consistent matrix scaled by the cell's mass over the trace of
 //!   one component's block (the diagonal keeps the cell's total mass and
 //!   the consistent matrix's proportions; HRZ lumping).
+//! - POU_D_E beams: code_aster's `ptma01` ([`crate::beam::local_mass`]:
+//!   no rotary inertia of bending, torsion with Iy + Iz), its diagonal
+//!   variant when lumped.
 //! - Discrete cells: `M_T_D_N` (a mass on each translation of a POI1
-//!   node) and `M_T_N`/`M_T_L` (a full symmetric matrix over the cell's
-//!   translations, given as code_aster's upper triangle by columns).
+//!   node), `M_TR_D_N` (mass, inertia tensor and offset of a `DIS_TR` POI1,
+//!   [`DiscreteMass::node_with_inertia`]), `M_TR_D_L`
+//!   ([`DiscreteMass::segment_with_inertia`]) and `M_T_N`/`M_T_L`/`M_TR_N`/
+//!   `M_TR_L` (a full symmetric matrix over the cell's DOFs, given as
+//!   code_aster's upper triangle by columns).
+//! - DKT triangles: code_aster's `dktmas` ([`crate::dkt::local_mass`]),
+//!   consistent only; DKT quadrangles and COQUE_3D: no mass yet (an error
+//!   naming the cell).
 //! - Rayleigh damping (`ELAS/AMOR_ALPHA`, `AMOR_BETA`): C = Σ αₑ Kₑ + βₑ Mₑ
 //!   per cell, with the elastic stiffness (`AMOR_RAYL_RIGI='ELASTIQUE'`).
 //!
@@ -18,11 +27,13 @@
 //! so that K + c·M is a sum of value arrays.
 
 use crate::assembly::stiffness_pattern;
-use crate::element::{element_dofs_into, element_stiffness, physical_derivatives, spring_rotation};
+use crate::element::{
+    beam_coords, element_dofs_into, element_stiffness, physical_derivatives, spring_rotation,
+};
 use crate::error::FemError;
 use crate::linalg::Csc;
 use crate::material::Hypothesis;
-use crate::model::{ElementKind, Frame, Model};
+use crate::model::{Element, ElementKind, Frame, Model};
 use crate::shape;
 use aster_mesh::CellId;
 use nalgebra::DMatrix;
@@ -121,28 +132,44 @@ pub fn lump(m: &DMatrix<f64>, dim: usize) -> DMatrix<f64> {
     DMatrix::from_diagonal(&(m.diagonal() * alpha))
 }
 
-/// The mass matrix of one discrete cell over its translations (global
-/// frame), or an error naming the cell when the values do not fit it.
+/// The mass matrix of one discrete cell over its DOFs (global frame), or
+/// an error naming the cell when the values do not fit it.
 fn discrete_mass(model: &Model, d: &DiscreteMass) -> Result<(CellId, DMatrix<f64>), FemError> {
     let dim = model.dim();
+    let cell = d.cell();
+    if !model.elements().iter().any(|e| e.cell == cell) {
+        return Err(FemError::Model(format!(
+            "a discrete mass on cell {}, which carries no element of the model",
+            model.cell_name(cell)
+        )));
+    }
+    let nn = model.mesh().cell(cell).nodes.len();
+    let mut dofs = Vec::new();
+    element_dofs_into(model, cell, &mut dofs);
+    let n = dofs.len();
     match d {
-        DiscreteMass::Node { cell, mass } => {
-            let nn = model.mesh().cell(*cell).nodes.len();
+        DiscreteMass::Node { mass, .. } => {
             if nn != 1 {
                 return Err(FemError::Model(format!(
                     "a node mass (M_T_D_N) on cell {}, which has {nn} nodes: it needs a POI1",
-                    model.cell_name(*cell)
+                    model.cell_name(cell)
                 )));
             }
-            Ok((*cell, DMatrix::identity(dim, dim) * *mass))
+            if n != dim {
+                // code_aster stops too (te0041, DISCRETS_25): the mass's
+                // type must be the element's.
+                return Err(FemError::Model(format!(
+                    "a translational node mass (M_T_D_N) on cell {}, whose element has {n} DOFs (DIS_TR): give it M_TR_D_N",
+                    model.cell_name(cell)
+                )));
+            }
+            Ok((cell, DMatrix::identity(dim, dim) * *mass))
         }
-        DiscreteMass::Matrix { cell, upper, frame } => {
-            let nn = model.mesh().cell(*cell).nodes.len();
-            let n = nn * dim;
+        DiscreteMass::Matrix { upper, frame, .. } => {
             if upper.len() != n * (n + 1) / 2 {
                 return Err(FemError::Model(format!(
-                    "the mass matrix of cell {} has {} values; its {n} translations need {}",
-                    model.cell_name(*cell),
+                    "the mass matrix of cell {} has {} values; its element's {n} DOFs need {} (M_T_* for DIS_T, M_TR_* for DIS_TR)",
+                    model.cell_name(cell),
                     upper.len(),
                     n * (n + 1) / 2
                 )));
@@ -156,13 +183,113 @@ fn discrete_mass(model: &Model, d: &DiscreteMass) -> Result<(CellId, DMatrix<f64
                     k += 1;
                 }
             }
-            let r = spring_rotation(model.mesh(), *cell, dim, *frame);
+            // The frame turns each block of `dim` components (translations,
+            // then rotations, node by node: code_aster's `utpslg`).
+            let r = spring_rotation(model.mesh(), cell, dim, *frame);
             let mut t = DMatrix::zeros(n, n);
-            for b in 0..nn {
+            for b in 0..n / dim {
                 t.view_mut((b * dim, b * dim), (dim, dim)).copy_from(&r);
             }
-            Ok((*cell, t.transpose() * m * t))
+            Ok((cell, t.transpose() * m * t))
         }
+    }
+}
+
+impl DiscreteMass {
+    /// The cell the mass is on.
+    pub fn cell(&self) -> CellId {
+        match self {
+            DiscreteMass::Node { cell, .. } | DiscreteMass::Matrix { cell, .. } => *cell,
+        }
+    }
+
+    /// `M_TR_D_N` on a POI1 of `DIS_TR`: `v` = (m, Ixx, Iyy, Izz, Ixy,
+    /// Iyz, Ixz, ex, ey, ez), the mass, its inertia tensor about its
+    /// centre and the centre's offset from the node. The 6×6 matrix is
+    /// code_aster's (`afdi3d`): m on the translations, the coupling m·e×
+    /// between translations and rotations, the inertia moved to the node
+    /// by Huygens (Ixx + m(ey² + ez²)…, Ixy − m·ex·ey…; the products as
+    /// given, code_aster adds them without a sign change).
+    pub fn node_with_inertia(cell: CellId, v: &[f64; 10]) -> DiscreteMass {
+        let m = v[0];
+        let (ex, ey, ez) = (v[7], v[8], v[9]);
+        let mut upper = vec![0.0; 21];
+        upper[0] = m;
+        upper[2] = m;
+        upper[5] = m;
+        upper[7] = -m * ez;
+        upper[8] = m * ey;
+        upper[10] = m * ez;
+        upper[12] = -m * ex;
+        upper[15] = -m * ey;
+        upper[16] = m * ex;
+        upper[9] = v[1] + m * (ez * ez + ey * ey);
+        upper[14] = v[2] + m * (ex * ex + ez * ez);
+        upper[20] = v[3] + m * (ey * ey + ex * ex);
+        upper[13] = v[4] - m * ex * ey;
+        upper[19] = v[5] - m * ey * ez;
+        upper[18] = v[6] - m * ex * ez;
+        DiscreteMass::Matrix {
+            cell,
+            upper,
+            frame: Frame::Global,
+        }
+    }
+
+    /// `M_TR_D_L` on a SEG2 of `DIS_TR`: `v` = (m, Ixx, Iyy, Izz), the
+    /// same mass and inertia at each of the two nodes (`afdi3d`: the
+    /// diagonal of the 12×12 matrix, nothing split), in `frame`.
+    pub fn segment_with_inertia(cell: CellId, v: &[f64; 4], frame: Frame) -> DiscreteMass {
+        let mut upper = vec![0.0; 78];
+        for j in 0..12 {
+            upper[j * (j + 1) / 2 + j] = if j % 6 < 3 { v[0] } else { v[1 + j % 6 - 3] };
+        }
+        DiscreteMass::Matrix { cell, upper, frame }
+    }
+}
+
+/// The mass of one element of density `rho` over its DOFs (node-major):
+/// continuum cells ([`continuum_mass`], lumped by [`lump`]), POU_D_E beams
+/// ([`crate::beam::mass`], code_aster's `ptma01`), DKT triangles
+/// ([`crate::dkt::mass`], `dktmas`, consistent only); `None` for the
+/// elements without a mass of their own (springs carry the discrete
+/// masses, boundary cells nothing). DKT quadrangles and COQUE_3D: an
+/// error naming the cell.
+pub fn element_mass(
+    model: &Model,
+    el: &Element,
+    rho: f64,
+    lumping: Lumping,
+) -> Result<Option<DMatrix<f64>>, FemError> {
+    let lumped = lumping == Lumping::Diagonal;
+    match &el.kind {
+        ElementKind::Continuum { hypothesis, .. } => {
+            let m = continuum_mass(model, el.cell, *hypothesis, rho)?;
+            Ok(Some(if lumped {
+                lump(&m, hypothesis.dim())
+            } else {
+                m
+            }))
+        }
+        ElementKind::Beam { section, .. } => beam_coords(model.mesh(), el.cell)
+            .and_then(|xyz| crate::beam::mass(&xyz, rho, section, lumped))
+            .map(Some)
+            .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))),
+        ElementKind::Shell { section, .. }
+            if !lumped && model.mesh().cell(el.cell).ty == aster_mesh::CellType::TRIA3 =>
+        {
+            let c = model.mesh().cell(el.cell);
+            let xyz = [0, 1, 2].map(|i| model.mesh().coord(c.nodes[i]));
+            crate::dkt::mass(&xyz, rho, section)
+                .map(Some)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+        }
+        ElementKind::Shell { .. } | ElementKind::Coque3d { .. } => Err(FemError::Model(format!(
+            "cell {} is a shell: the {}mass of DKT on QUAD4 (dkqmas) and of COQUE_3D is not implemented (the consistent mass of DKT on TRIA3 is)",
+            model.cell_name(el.cell),
+            if lumped { "lumped " } else { "" }
+        ))),
+        ElementKind::Spring { .. } | ElementKind::Boundary => Ok(None),
     }
 }
 
@@ -186,29 +313,18 @@ pub fn assemble_mass(model: &Model, data: &MassData, lumping: Lumping) -> Result
     let mut out = stiffness_pattern(model);
     let mut dofs = Vec::new();
     for el in model.elements() {
-        let ElementKind::Continuum { hypothesis, .. } = &el.kind else {
-            continue;
-        };
         let Some(&rho) = data.density.get(&el.cell) else {
             continue;
         };
         if rho == 0.0 {
             continue;
         }
-        let mut m = continuum_mass(model, el.cell, *hypothesis, rho)?;
-        if lumping == Lumping::Diagonal {
-            m = lump(&m, hypothesis.dim());
+        if let Some(m) = element_mass(model, el, rho, lumping)? {
+            scatter(model, &mut out, el.cell, &m, &mut dofs);
         }
-        scatter(model, &mut out, el.cell, &m, &mut dofs);
     }
     for d in &data.discrete {
         let (cell, mut m) = discrete_mass(model, d)?;
-        if !model.elements().iter().any(|e| e.cell == cell) {
-            return Err(FemError::Model(format!(
-                "a discrete mass on cell {}, which carries no element of the model",
-                model.cell_name(cell)
-            )));
-        }
         if lumping == Lumping::Diagonal {
             m = DMatrix::from_diagonal(&m.diagonal());
         }
@@ -236,9 +352,11 @@ pub fn assemble_rayleigh(
         let Some(r) = coefficients.get(&el.cell) else {
             continue;
         };
-        let ElementKind::Continuum { hypothesis, .. } = &el.kind else {
+        // Discrete elements damp through their own A_* characteristics
+        // (code_aster's te0041), not through a material's Rayleigh terms.
+        if matches!(el.kind, ElementKind::Spring { .. } | ElementKind::Boundary) {
             continue;
-        };
+        }
         let mut c = DMatrix::zeros(0, 0);
         if r.alpha != 0.0 {
             if let Some(k) = element_stiffness(model, index)? {
@@ -248,8 +366,10 @@ pub fn assemble_rayleigh(
         if r.beta != 0.0 {
             let rho = data.density.get(&el.cell).copied().unwrap_or(0.0);
             if rho != 0.0 {
-                let m = continuum_mass(model, el.cell, *hypothesis, rho)? * r.beta;
-                c = if c.is_empty() { m } else { c + m };
+                if let Some(m) = element_mass(model, el, rho, Lumping::Consistent)? {
+                    let m = m * r.beta;
+                    c = if c.is_empty() { m } else { c + m };
+                }
             }
         }
         if !c.is_empty() {
@@ -269,8 +389,9 @@ pub fn kinetic_energy(mass: &Csc, velocity: &[f64]) -> f64 {
         .sum::<f64>()
 }
 
-/// The kinetic energy ½ vₑᵀ Mₑ vₑ of every continuum cell with a density
-/// (code_aster's `ECIN_ELEM`, consistent mass), in element order: what
+/// The kinetic energy ½ vₑᵀ Mₑ vₑ of every continuum or beam cell with a
+/// density (code_aster's `ECIN_ELEM`, consistent mass: `te0151` takes the
+/// beams' `pomass` as `MASS_MECA` does), in element order: what
 /// `POST_ELEM/ENER_CIN` sums over the cells it is asked for.
 pub fn kinetic_energy_by_cell(
     model: &Model,
@@ -280,13 +401,12 @@ pub fn kinetic_energy_by_cell(
     let mut out = Vec::new();
     let mut dofs = Vec::new();
     for el in model.elements() {
-        let ElementKind::Continuum { hypothesis, .. } = &el.kind else {
-            continue;
-        };
         let Some(&rho) = data.density.get(&el.cell) else {
             continue;
         };
-        let m = continuum_mass(model, el.cell, *hypothesis, rho)?;
+        let Some(m) = element_mass(model, el, rho, Lumping::Consistent)? else {
+            continue;
+        };
         dofs.clear();
         element_dofs_into(model, el.cell, &mut dofs);
         let v: Vec<f64> = dofs.iter().map(|&i| velocity[i]).collect();
@@ -309,27 +429,11 @@ mod tests {
     use aster_mesh::{CellType, Mesh};
 
     fn one_cell(ty: CellType, coords: Vec<[f64; 3]>, hyp: Hypothesis) -> Model {
-        let n = coords.len();
-        let mut mesh = Mesh {
-            dim: if hyp == Hypothesis::Solid3D { 3 } else { 2 },
-            node_names: (0..n).map(|i| format!("N{i}")).collect(),
-            coords,
-            ..Mesh::default()
+        let kind = ElementKind::Continuum {
+            hypothesis: hyp,
+            material: Elastic::new(1.0, 0.3).unwrap(),
         };
-        let nodes: Vec<_> = (0..n).map(|i| aster_mesh::NodeId(i as u32)).collect();
-        mesh.cells.push(aster_mesh::Cell { ty, nodes });
-        mesh.cell_names.push("M1".into());
-        Model::new(
-            mesh,
-            vec![Element {
-                cell: CellId(0),
-                kind: ElementKind::Continuum {
-                    hypothesis: hyp,
-                    material: Elastic::new(1.0, 0.3).unwrap(),
-                },
-            }],
-        )
-        .unwrap()
+        single(ty, coords, hyp.dim().max(2) as u8, kind)
     }
 
     fn total(m: &DMatrix<f64>, dim: usize) -> f64 {
@@ -384,5 +488,237 @@ mod tests {
         // TETRA10's FPG15 weights sum to the reference volume 1/6.
         let w: f64 = crate::fpg::tetra15().iter().map(|g| g.weight).sum();
         assert!((w - 1. / 6.).abs() < 1e-15);
+    }
+
+    /// A model of one cell with `kind` on nodes `coords`, in `dim` dimensions.
+    fn single(ty: CellType, coords: Vec<[f64; 3]>, dim: u8, kind: ElementKind) -> Model {
+        let n = coords.len();
+        let mut mesh = Mesh {
+            dim,
+            node_names: (0..n).map(|i| format!("N{i}")).collect(),
+            coords,
+            ..Mesh::default()
+        };
+        let nodes: Vec<_> = (0..n).map(|i| aster_mesh::NodeId(i as u32)).collect();
+        mesh.cells.push(aster_mesh::Cell { ty, nodes });
+        mesh.cell_names.push("M1".into());
+        Model::new(
+            mesh,
+            vec![Element {
+                cell: CellId(0),
+                kind,
+            }],
+        )
+        .unwrap()
+    }
+
+    fn structural(ty: CellType, coords: Vec<[f64; 3]>, kind: ElementKind) -> Model {
+        single(ty, coords, 3, kind)
+    }
+
+    fn quad(m: &DMatrix<f64>, v: &[f64]) -> f64 {
+        let v = nalgebra::DVector::from_column_slice(v);
+        (v.transpose() * m * &v)[(0, 0)]
+    }
+
+    use aster_mesh::vec3::{cross, dot};
+
+    /// Velocities of a rigid motion (v0 + ω × x, ω) at the nodes.
+    fn rigid(coords: &[[f64; 3]], v0: [f64; 3], w: [f64; 3]) -> Vec<f64> {
+        let mut v = Vec::new();
+        for &x in coords {
+            let r = cross(w, x);
+            v.extend([v0[0] + r[0], v0[1] + r[1], v0[2] + r[2], w[0], w[1], w[2]]);
+        }
+        v
+    }
+
+    #[test]
+    fn beam_mass_moves_rigidly_as_code_aster_s() {
+        let s = crate::beam::BeamSection::rectangle(0.1, 0.05, None);
+        let (a, b) = ([0.3, -0.2, 0.5], [1.9, 0.7, -0.4]);
+        let kind = ElementKind::Beam {
+            material: Elastic::new(2e11, 0.3).unwrap(),
+            section: s,
+        };
+        let model = structural(CellType::SEG2, vec![a, b], kind);
+        let rho = 7800.0;
+        let el = &model.elements()[0];
+        let m = element_mass(&model, el, rho, Lumping::Consistent)
+            .unwrap()
+            .unwrap();
+        let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let l = dot(d, d).sqrt();
+        // A translation carries the mass ρAL.
+        for v0 in [[1., 0., 0.], [0.3, -0.7, 0.2]] {
+            let v = rigid(&[a, b], v0, [0.; 3]);
+            let e = quad(&m, &v);
+            assert!((e - rho * s.area * l * dot(v0, v0)).abs() < 1e-10 * e);
+        }
+        // A rotation ω about the origin: the centre line's ρA∫|ω×x|² ds
+        // (Simpson is exact on the quadratic) plus the torsion inertia
+        // ρ(Iy+Iz)L(ω·x̂)², and no rotary inertia of bending (ptma01 for
+        // POU_D_E).
+        let w = [0.4, -1.3, 0.8];
+        let f = |t: f64| {
+            let x = [a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]];
+            let r = cross(w, x);
+            dot(r, r)
+        };
+        let line = l * (f(0.) + 4. * f(0.5) + f(1.)) / 6.;
+        let axial = dot(w, d) / l;
+        let exact = rho * s.area * line + rho * (s.iy + s.iz) * l * axial * axial;
+        let e = quad(&m, &rigid(&[a, b], [0.; 3], w));
+        assert!((e - exact).abs() < 1e-10 * exact, "{e} vs {exact}");
+        // Lumped: the same translational mass, ρ(Iy+Iz)L on the torsion.
+        let d2 = element_mass(&model, el, rho, Lumping::Diagonal)
+            .unwrap()
+            .unwrap();
+        let v = rigid(&[a, b], [0.3, -0.7, 0.2], [0.; 3]);
+        assert!((quad(&d2, &v) - quad(&m, &v)).abs() < 1e-10 * quad(&m, &v));
+        let loc = crate::beam::local_mass(rho, &s, l, true);
+        assert!((loc[(3, 3)] + loc[(9, 9)] - rho * (s.iy + s.iz) * l).abs() < 1e-9);
+        assert!(
+            (loc[(4, 4)] - rho * s.area * l.powi(3) / 105. - 2. * rho * s.iy * l / 15.).abs()
+                < 1e-9
+        );
+        // The assembled matrix is the element's.
+        let data = MassData {
+            density: HashMap::from([(CellId(0), rho)]),
+            discrete: vec![],
+        };
+        let g = assemble_mass(&model, &data, Lumping::Consistent).unwrap();
+        let v = rigid(&[a, b], [0.1, 0.2, 0.3], w);
+        assert!((2. * kinetic_energy(&g, &v) - quad(&m, &v)).abs() < 1e-9 * quad(&m, &v));
+        let by_cell = kinetic_energy_by_cell(&model, &data, &v).unwrap();
+        assert!((by_cell[0].1 - kinetic_energy(&g, &v)).abs() < 1e-9 * by_cell[0].1);
+    }
+
+    #[test]
+    fn rotational_node_mass_is_a_rigid_body_s() {
+        // M_TR_D_N: m, Ixx, Iyy, Izz, Ixy, Iyz, Ixz, ex, ey, ez.
+        let vals = [3.0, 0.7, 0.9, 1.1, 0.05, -0.08, 0.03, 0.2, -0.4, 0.6];
+        let kind = ElementKind::Spring {
+            stiffness: vec![0.0; 6],
+            frame: Frame::Global,
+        };
+        let x = [1.0, 2.0, 3.0];
+        let model = structural(CellType::POI1, vec![x], kind);
+        let data = MassData {
+            density: HashMap::new(),
+            discrete: vec![DiscreteMass::node_with_inertia(CellId(0), &vals)],
+        };
+        let g = assemble_mass(&model, &data, Lumping::Consistent).unwrap();
+        // ½ (m |v + ω×e|² + ω·I·ω): the body's centre is at node + e.
+        let (v, w) = ([0.3, -0.5, 0.9], [1.2, -0.4, 0.7]);
+        let e = [vals[7], vals[8], vals[9]];
+        let vc = {
+            let r = cross(w, e);
+            [v[0] + r[0], v[1] + r[1], v[2] + r[2]]
+        };
+        let i = [
+            [vals[1], vals[4], vals[6]],
+            [vals[4], vals[2], vals[5]],
+            [vals[6], vals[5], vals[3]],
+        ];
+        let iw = [dot(i[0], w), dot(i[1], w), dot(i[2], w)];
+        let exact = 0.5 * (vals[0] * dot(vc, vc) + dot(w, iw));
+        let got = kinetic_energy(&g, &[v[0], v[1], v[2], w[0], w[1], w[2]]);
+        assert!((got - exact).abs() < 1e-12 * exact, "{got} vs {exact}");
+        // A translational M_T_D_N on this DIS_TR cell stops, as code_aster.
+        let bad = MassData {
+            density: HashMap::new(),
+            discrete: vec![DiscreteMass::Node {
+                cell: CellId(0),
+                mass: 1.0,
+            }],
+        };
+        assert!(assemble_mass(&model, &bad, Lumping::Consistent).is_err());
+        // M_TR_D_L: the mass and inertias at each node of the segment.
+        let kind = ElementKind::Spring {
+            stiffness: vec![0.0; 6],
+            frame: Frame::Global,
+        };
+        let model = structural(CellType::SEG2, vec![[0.; 3], [1., 0., 0.]], kind);
+        let data = MassData {
+            density: HashMap::new(),
+            discrete: vec![DiscreteMass::segment_with_inertia(
+                CellId(0),
+                &[2.0, 0.1, 0.2, 0.3],
+                Frame::Local,
+            )],
+        };
+        let g = assemble_mass(&model, &data, Lumping::Consistent).unwrap();
+        let v = [1., 0., 0., 0., 0., 1., 1., 0., 0., 0., 0., 1.];
+        assert!((kinetic_energy(&g, &v) - 0.5 * 2. * (2. + 0.3)).abs() < 1e-14);
+    }
+
+    #[test]
+    fn dkt_triangle_mass_moves_rigidly_as_code_aster_s() {
+        let xyz = [[0.2, -0.1, 0.3], [1.4, 0.3, -0.2], [0.5, 1.1, 0.6]];
+        let (h, rho) = (0.02, 2700.0);
+        let kind = ElementKind::Shell {
+            material: Elastic::new(7e10, 0.3).unwrap(),
+            section: crate::dkt::ShellSection::new(h),
+        };
+        let model = structural(CellType::TRIA3, xyz.to_vec(), kind);
+        let facet = crate::dkt::Facet::new(&xyz).unwrap();
+        let sec = crate::dkt::ShellSection::new(h);
+        let loc = crate::dkt::local_mass(&facet, rho, &sec);
+        let m = element_mass(&model, &model.elements()[0], rho, Lumping::Consistent)
+            .unwrap()
+            .unwrap();
+        let e1 = [
+            xyz[1][0] - xyz[0][0],
+            xyz[1][1] - xyz[0][1],
+            xyz[1][2] - xyz[0][2],
+        ];
+        let e2 = [
+            xyz[2][0] - xyz[0][0],
+            xyz[2][1] - xyz[0][1],
+            xyz[2][2] - xyz[0][2],
+        ];
+        let n = cross(e1, e2);
+        let area = 0.5 * dot(n, n).sqrt();
+        // Translations: ρhA.
+        let v0 = [0.3, -0.7, 0.2];
+        let e = quad(&m, &rigid(&xyz, v0, [0.; 3]));
+        assert!((e - rho * h * area * dot(v0, v0)).abs() < 1e-12 * e);
+        // A rotation about the origin: ρh ∫|ω×x|² dA (the cubic w of a
+        // linear field is that field; the mid-edge rule is exact on the
+        // quadratic), no rotary inertia (no INER_ROTA); the drilling term
+        // on each node's rotation about the normal.
+        let w = [0.4, -1.3, 0.8];
+        let f = |x: [f64; 3]| {
+            let r = cross(w, x);
+            dot(r, r)
+        };
+        let mid = |a: usize, b: usize| [0, 1, 2].map(|k| 0.5 * (xyz[a][k] + xyz[b][k]));
+        let wn = (0..3).map(|k| facet.pgl[(2, k)] * w[k]).sum::<f64>();
+        let exact = rho * h * area / 3. * (f(mid(0, 1)) + f(mid(1, 2)) + f(mid(2, 0)))
+            + 3. * loc[(5, 5)] * wn * wn;
+        let e = quad(&m, &rigid(&xyz, [0.; 3], w));
+        assert!((e - exact).abs() < 1e-10 * exact, "{e} vs {exact}");
+        // The drilling term: COEF_RIGI_DRZ × the least bending-rotation
+        // diagonal, on DRZ of the facet's frame.
+        let least = [3, 4, 9, 10, 15, 16]
+            .iter()
+            .map(|&i| loc[(i, i)])
+            .fold(f64::INFINITY, f64::min);
+        assert!((loc[(5, 5)] - 1e-5 * least).abs() < 1e-20 && loc[(5, 5)] > 0.);
+        // DKT on QUAD4: not implemented, an error naming the cell.
+        let kind = ElementKind::Shell {
+            material: Elastic::new(7e10, 0.3).unwrap(),
+            section: sec,
+        };
+        let quad4 = structural(
+            CellType::QUAD4,
+            vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]],
+            kind,
+        );
+        let err = element_mass(&quad4, &quad4.elements()[0], rho, Lumping::Consistent)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("M1") && err.contains("QUAD4"), "{err}");
     }
 }

@@ -291,21 +291,26 @@ pub(crate) fn mass_data(
                         crate::select::cell_name(mesh, cell)
                     )));
                 }
-                data.discrete.push(match m.cara.as_str() {
-                    "M_TR_D_N" => {
-                        return Err(ExecError::new(format!(
-                            "DYNA_NON_LINE: the rotational mass M_TR_D_N on cell {} is not implemented (translational masses M_T_D_N, M_T_N, M_T_L are)",
-                            crate::select::cell_name(mesh, cell)
-                        )))
+                let frame = if m.local { Frame::Local } else { Frame::Global };
+                data.discrete.push(match (m.cara.as_str(), m.values.len()) {
+                    ("M_TR_D_N", 10) => {
+                        let mut v = [0.0; 10];
+                        v.copy_from_slice(&m.values);
+                        DiscreteMass::node_with_inertia(cell, &v)
                     }
-                    "M_T_D_N" => DiscreteMass::Node {
+                    ("M_TR_D_L", 4) => {
+                        let mut v = [0.0; 4];
+                        v.copy_from_slice(&m.values);
+                        DiscreteMass::segment_with_inertia(cell, &v, frame)
+                    }
+                    ("M_T_D_N", 1) => DiscreteMass::Node {
                         cell,
                         mass: m.values[0],
                     },
                     _ => DiscreteMass::Matrix {
                         cell,
                         upper: m.values.clone(),
-                        frame: if m.local { Frame::Local } else { Frame::Global },
+                        frame,
                     },
                 });
             }

@@ -13,8 +13,8 @@
 //! thickness are computed at one level at a time from the efforts
 //! (`sigm_elno_at`, for `POST_CHAMP/EXTR_COQUE`); CALC_CHAMP's own
 //! `SIGM_ELNO` holds the continuum cells only. Refused with shells:
-//! behaviours other than `ELAS` in small strains and dynamics (no
-//! rotational inertia).
+//! behaviours other than `ELAS` in small strains and dynamics on DKT
+//! quadrangles and COQUE_3D (no mass yet; DKT triangles have theirs).
 
 use crate::concept::{CaraElem, ModelDef, Modelisation};
 use crate::executor::Executor;
@@ -71,8 +71,9 @@ pub(crate) fn refuse_loads_on_shells(
 
 /// STAT_NON_LINE, MECA_STATIQUE, DYNA_NON_LINE: with shells or beams,
 /// only `ELAS` in small strains (`COMPORTEMENT` occurrences covering shell
-/// or beam cells), and no dynamics with any element carrying rotations
-/// (shells, beams, `DIS_TR`: no rotational inertia).
+/// or beam cells), and no dynamics with DKT quadrangles or COQUE_3D (their
+/// mass is not implemented; DKT triangles, beams and `DIS_TR` have theirs,
+/// aster-fem's `mass`).
 pub(crate) fn check_solve(
     ex: &Executor,
     call: &CommandCall,
@@ -85,11 +86,28 @@ pub(crate) fn check_solve(
     let cmd = call.command.as_str();
     let kw = &call.keywords;
     if cmd == "DYNA_NON_LINE" {
-        let span = kw.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
-        return Err(ex.unsupported(
-            "DYNA_NON_LINE on a model with rotations (DKT shells, POU_D_E beams or DIS_TR discrete elements): their mass and rotational inertia are not implemented",
-            span,
-        ));
+        let mesh = ex.mesh_by_id(model.mesh)?;
+        // DKT triangles have their mass (aster-fem's `dkt::local_mass`).
+        let without_mass = |(&c, m): &(&CellId, &Modelisation)| match m {
+            Modelisation::Dkt => mesh.cell(c).ty != aster_mesh::CellType::TRIA3,
+            Modelisation::Coque3d => true,
+            _ => false,
+        };
+        if let Some((&cell, m)) = model.cells.iter().find(without_mass) {
+            let span = kw.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
+            return Err(ex.unsupported(
+                &format!(
+                    "DYNA_NON_LINE on a model with shells without a mass (cell {} is {}): the mass of DKT quadrangles (dkqmas) and of COQUE_3D (te0406) is not implemented (DKT triangles, POU_D_E beams and DIS_TR discrete masses are)",
+                    crate::select::cell_name(&mesh, cell),
+                    if *m == Modelisation::Dkt {
+                        "DKT on a QUAD4"
+                    } else {
+                        "COQUE_3D"
+                    }
+                ),
+                span,
+            ));
+        }
     }
     let occurrences = kw.factor("COMPORTEMENT");
     for (k, b) in behaviours.iter().enumerate() {

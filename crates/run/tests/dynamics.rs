@@ -10,6 +10,12 @@
 //!   GAMMA > 1/2;
 //! - comm/dyna_energy.comm: ENERGIE's PARA_CALC table against the exact
 //!   works of a spring, a constant force and a reaction;
+//! - comm/beam_vibration.comm: a POU_D_E cantilever launched in its
+//!   first Euler–Bernoulli mode (tip against the trapezoidal rule's
+//!   rotation of that mode, the energy conserved) and a DIS_TR mass with
+//!   rotational inertia (M_TR_D_N) on springs, exact;
+//! - comm/dkt_vibration.comm: a strip of DKT triangles in its first
+//!   mode (code_aster's `dktmas`), within its measured discretisation;
 //! - comm/continued_plastic.comm: MECA_NON_LINE continued by reuse= from
 //!   its last plastic state gives the values of one run;
 //! - error cases: located refusals and errors;
@@ -52,6 +58,49 @@ fn edited(name: &str, pairs: &[(&str, &str)]) -> String {
 
 fn oscillator_mesh() -> PathBuf {
     root().join("comm/dyna_oscillator.mail")
+}
+
+/// A POU_D_E cantilever in its first mode and a DIS_TR point mass with
+/// rotational inertia (code_aster's `ptma01` and `afdi3d` masses).
+#[test]
+fn beam_and_rotational_mass_vibrate_at_their_frequencies() {
+    let mesh = root().join("comm/beam_vibration.mail");
+    let r = run_text(&scene("beam_vibration.comm"), &mesh, "beam");
+    assert_eq!(r, (44, 0, None));
+    // Without the beam's mass the tip no longer follows the mode: the
+    // Euler–Bernoulli period holds only with ρ on the beam.
+    let light = edited(
+        "beam_vibration.comm",
+        &[(
+            "MAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT=\"OUI\", MATER=STEEL))",
+            "LIGHT = DEFI_MATERIAU(ELAS=_F(E=E, NU=0.3, RHO=RHO / 2.0))\n\
+             MAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT=\"OUI\", MATER=LIGHT))",
+        )],
+    );
+    let (ok, nook, err) = run_text(&light, &mesh, "beam-light");
+    assert!(
+        err.is_none() && nook >= 10 && ok + nook == 44,
+        "{ok} {nook} {err:?}"
+    );
+    // A translational mass on a DIS_TR cell stops, as code_aster's te0041.
+    let wrong = edited(
+        "beam_vibration.comm",
+        &[(
+            "CARA=\"M_TR_D_N\",\n            VALE=(MASS, INER, INER, INER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),",
+            "CARA=\"M_T_D_N\",\n            VALE=MASS,",
+        )],
+    );
+    let (_, _, err) = run_text(&wrong, &mesh, "beam-wrong");
+    let err = err.expect("an error");
+    assert!(err.contains("M_T_D_N") && err.contains("R1"), "{err}");
+}
+
+/// A strip of DKT triangles launched in its first beam mode.
+#[test]
+fn dkt_strip_vibrates_at_its_beam_frequency() {
+    let mesh = root().join("comm/dkt_strips.mail");
+    let r = run_text(&scene("dkt_vibration.comm"), &mesh, "dkt");
+    assert_eq!(r, (26, 0, None));
 }
 
 #[test]

@@ -889,7 +889,7 @@ pub(crate) const AFFE_CARA_ELEM: Support = Support {
             "DISCRET/CARA",
             &[
                 "K_T_D_L", "K_T_D_N", "M_T_D_N", "M_T_N", "M_T_L", "K_TR_D_L", "K_TR_D_N",
-                "M_TR_D_N",
+                "M_TR_D_N", "M_TR_D_L", "M_TR_N", "M_TR_L",
             ],
         ),
         Values::listed(
@@ -933,7 +933,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
                 let span = occ.keyword("CARA").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N, M_T_D_N, M_T_N, M_T_L; in DISCRET also K_TR_D_L, K_TR_D_N, M_TR_D_N)"
+                        "AFFE_CARA_ELEM/{f}/CARA='{cara}' (supported: K_T_D_L, K_T_D_N, M_T_D_N, M_T_N, M_T_L; in DISCRET also K_TR_D_L, K_TR_D_N, M_TR_D_N, M_TR_D_L, M_TR_N, M_TR_L)"
                     ),
                     span,
                 ));
@@ -986,9 +986,9 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     )
 }
 
-/// A translational mass of `DISCRET(_2D)` (`M_T_D_N` on POI1, `M_T_N` on
-/// POI1, `M_T_L` on SEG2; symmetric, upper triangle by columns), or `None`
-/// for another `CARA`.
+/// A mass of `DISCRET(_2D)` (`M_T_D_N`, `M_TR_D_N`, `M_T_N`, `M_TR_N` on
+/// POI1, `M_T_L`, `M_TR_D_L`, `M_TR_L` on SEG2; symmetric, upper triangle
+/// by columns), or `None` for another `CARA`.
 fn discrete_mass(
     ex: &Executor,
     factor: &str,
@@ -1003,6 +1003,10 @@ fn discrete_mass(
         "M_T_L" => (2, 2 * dim * (2 * dim + 1) / 2),
         // m, Ixx, Iyy, Izz, Ixy, Iyz, Ixz, ex, ey, ez.
         "M_TR_D_N" if dim == 3 => (1, 10),
+        // m, Ixx, Iyy, Izz at each node.
+        "M_TR_D_L" if dim == 3 => (2, 4),
+        "M_TR_N" if dim == 3 => (1, 21),
+        "M_TR_L" if dim == 3 => (2, 78),
         _ => return Ok(None),
     };
     let at = format!("AFFE_CARA_ELEM/{factor}");
