@@ -76,22 +76,42 @@ fn extruded_centre_crack_calc_g_k() {
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (22, 0));
 }
 
-/// G along a 3D front (OPTION='G') and K at NB_POINT_FOND points are
-/// refused before the solve, located at their keywords.
+/// comm/crack_front_calcg_g.comm: CALC_G OPTION='G' along a straight 3D
+/// front on HEXA8 cells: G 0.9 % below Irwin's value of Feddersen's K1,
+/// the interaction integral's G_IRWIN within 1 % of it at the same
+/// points; Legendre fields and NB_POINT_FOND on the front's nodes agree.
+#[test]
+fn extruded_centre_crack_calc_g_g_linear() {
+    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg_g.comm")).unwrap();
+    let outcome = run_text(&text, "comm/crack_front_calcg.mail", "calcg-g");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (46, 0));
+}
+
+/// comm/crack_front_calcg_quad.comm: the same plate in HEXA20 (a SEG3
+/// front of 9 nodes): G and K at every node with the middle nodes' theta
+/// fields and the SEG3 smoothing, the Irwin relation within 0.4 %.
+#[test]
+fn extruded_centre_crack_calc_g_quadratic() {
+    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg_quad.comm")).unwrap();
+    let outcome = run_text(&text, "comm/crack_front_calcg.mail", "calcg-quad");
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (58, 0));
+}
+
+/// NB_POINT_FOND with Legendre fields (the catalog's condition; code_aster's
+/// RUPTURE1_73) and a linear front of 3 points (the end correction reads
+/// before the first) are refused before any value is printed.
 #[test]
 fn calc_g_3d_refusals() {
-    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg.comm")).unwrap();
+    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg_g.comm")).unwrap();
     for (from, to, expected) in [
         (
-            "OPTION=\"K\",",
-            "OPTION=\"G\",",
-            "CALC_G/OPTION: G along the 3D crack front",
+            "DISCRETISATION=\"LEGENDRE\", DEGRE=0",
+            "DISCRETISATION=\"LEGENDRE\", DEGRE=0, NB_POINT_FOND=3",
+            "it applies only when (DISCRETISATION='LINEAIRE')",
         ),
-        (
-            "DISCRETISATION=\"LINEAIRE\"",
-            "DISCRETISATION=\"LINEAIRE\", NB_POINT_FOND=3",
-            "NB_POINT_FOND",
-        ),
+        ("NB_POINT_FOND=5", "NB_POINT_FOND=3", "a front of 3 points"),
     ] {
         assert!(text.contains(from));
         let outcome = run_text(
@@ -101,7 +121,7 @@ fn calc_g_3d_refusals() {
         );
         let err = outcome.error.expect("refused");
         assert!(err.to_string().contains(expected), "{err}");
-        assert_eq!((outcome.tally.ok, outcome.tally.nook), (0, 0));
+        assert_eq!(outcome.tally.nook, 0);
     }
 }
 

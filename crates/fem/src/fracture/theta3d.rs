@@ -942,6 +942,106 @@ mod tests {
         }
     }
 
+    /// On a quadratic front (`milieu`) a hat sampled at the nodes of
+    /// quadratic cells is, along the front, the SEG3 shape function of its
+    /// node: the theta-field values of a constant K are K times their
+    /// integrals (L/6 at a cell's end, 2L/3 at its middle). The ends'
+    /// correction (a quarter of the middle's: L/6 again), the SEG3 system
+    /// and `hatSmooth` give K back at every node, on unequal cells too.
+    #[test]
+    fn quadratic_smoothing_constant() {
+        // Three SEG3 cells of lengths 0.2, 0.4, 0.2: 7 nodes.
+        let absfon = [0.0, 0.1, 0.2, 0.4, 0.6, 0.7, 0.8];
+        let mut fields = vec![KTheta::default(); 7];
+        for c in 0..3 {
+            let l = absfon[2 * c + 2] - absfon[2 * c];
+            for (node, w) in [
+                (2 * c, l / 6.0),
+                (2 * c + 1, 2.0 * l / 3.0),
+                (2 * c + 2, l / 6.0),
+            ] {
+                fields[node].gth += 3.0 * w;
+                fields[node].k[0] += 2.0 * w;
+            }
+        }
+        // The ends' own values are replaced.
+        fields[0].gth = 100.0;
+        fields[6].k[0] = -7.0;
+        let out = smooth_linear(&absfon, &fields, true).unwrap();
+        for o in &out {
+            assert!((o.gth - 3.0).abs() < 1e-12, "{o:?}");
+            assert!((o.k[0] - 2.0).abs() < 1e-12, "{o:?}");
+        }
+        // An even number of nodes cannot be SEG3 cells.
+        assert!(smooth_linear(&absfon[..6], &fields[..6], true).is_err());
+    }
+
+    /// hatSmooth on a linear field along equal cells keeps it (the weights
+    /// are 1 and the means of neighbours are exact), the middle nodes
+    /// becoming their ends' mean.
+    #[test]
+    fn hat_smoothing_keeps_a_linear_field() {
+        let absfon = [0.0, 0.5, 1.0, 1.5, 2.0];
+        let mut v = [1.0, 7.0, 3.0, -2.0, 5.0];
+        hat_smooth(&absfon, &mut v);
+        // Corners: (2·1 + 7)/3, (7 + 3 − 2)/3, (−2 + 2·5)/3.
+        let c = [3.0, 8.0 / 3.0, 8.0 / 3.0];
+        assert!((v[0] - c[0]).abs() < 1e-15);
+        assert!((v[2] - c[1]).abs() < 1e-15);
+        assert!((v[4] - c[2]).abs() < 1e-15);
+        assert!((v[1] - (c[0] + c[1]) / 2.0).abs() < 1e-15);
+        assert!((v[3] - (c[1] + c[2]) / 2.0).abs() < 1e-15);
+    }
+
+    /// create_npf: points at equal abscissae along a bent front, the
+    /// coordinates and bases interpolated on the segment holding them.
+    #[test]
+    fn nb_point_fond_points() {
+        let coords = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+        let absc = front_abscissa(&coords);
+        let normal = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let dir = [[1.0, 0.0, 0.0]; 3];
+        let front = Front {
+            coords: &coords,
+            normal: &normal,
+            dir: &dir,
+            absc: &absc,
+            quadratic: false,
+        };
+        let v = virtual_front(&front, 5).unwrap();
+        assert_eq!(v.absc, vec![0.0, 0.5, 1.0, 1.5, 2.0]);
+        assert_eq!(v.coords[1], [0.0, 0.0, 0.5]);
+        // s = 1 lies on the second segment (the first node beyond it).
+        assert_eq!(v.coords[2], [0.0, 0.0, 1.0]);
+        assert_eq!(v.coords[3], [0.0, 0.5, 1.0]);
+        assert_eq!(v.normal[3], [0.0, 0.5, 0.5]);
+        assert_eq!(v.coords[4], coords[2]);
+        assert!(virtual_front(&front, 1).is_err());
+    }
+
+    /// fonbas2 on a quadratic front projects on the segments between the
+    /// cells' ends: a middle node off the chord changes nothing.
+    #[test]
+    fn quadratic_front_projects_on_the_chords() {
+        let coords = [[0.0, 0.0, 0.0], [0.3, 0.0, 1.0], [0.0, 0.0, 2.0]];
+        let absc = front_abscissa(&coords);
+        let normal = [[0.0, 1.0, 0.0]; 3];
+        let dir = [[1.0, 0.0, 0.0]; 3];
+        let mut front = Front {
+            coords: &coords,
+            normal: &normal,
+            dir: &dir,
+            absc: &absc,
+            quadratic: true,
+        };
+        let b = node_bases(&front, &[[1.0, 0.0, 1.0]]);
+        assert_eq!(b[0].proj, [0.0, 0.0, 1.0]);
+        assert!((b[0].absc - absc[2] / 2.0).abs() < 1e-15);
+        front.quadratic = false;
+        let b = node_bases(&front, &[[1.0, 0.0, 1.0]]);
+        assert_eq!(b[0].proj, [0.3, 0.0, 1.0]);
+    }
+
     /// plegen's polynomials are orthonormal on [0, l] (Simpson on a fine
     /// grid) and dplegen's derivatives match finite differences.
     #[test]

@@ -532,28 +532,19 @@ fn calc_g_3d(
     }
     // NB_POINT_FOND (`create_npf`): theta fields on a front of that many
     // points at equal abscissae; 0 is code_aster's default (the front's
-    // nodes).
-    let npf =
-        match theta_kw.first("NB_POINT_FOND").and_then(|v| v.as_i64()) {
-            None | Some(0) => None,
-            Some(n) if legendre.is_some() => return Err(ex.kw_error(
+    // nodes). The catalog allows it with DISCRETISATION='LINEAIRE' only.
+    let npf = match theta_kw.first("NB_POINT_FOND").and_then(|v| v.as_i64()) {
+        None | Some(0) => None,
+        Some(n) if n < 2 => {
+            return Err(ex.kw_error(
                 cmd,
                 theta_kw,
                 "NB_POINT_FOND",
-                format!(
-                    "NB_POINT_FOND = {n} with DISCRETISATION='LEGENDRE' (code_aster's RUPTURE1_73)"
-                ),
-            )),
-            Some(n) if n < 2 => {
-                return Err(ex.kw_error(
-                    cmd,
-                    theta_kw,
-                    "NB_POINT_FOND",
-                    format!("NB_POINT_FOND = {n}: two points at least"),
-                ))
-            }
-            Some(n) => Some(n as usize),
-        };
+                format!("NB_POINT_FOND = {n}: two points at least"),
+            ))
+        }
+        Some(n) => Some(n as usize),
+    };
     let r = ex.required(cmd, kw, "RESULTAT")?;
     let result = ex.result(r)?;
     let here = kw.keyword("RESULTAT").map(|k| k.span).unwrap_or(call.span);
