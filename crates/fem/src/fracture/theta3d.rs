@@ -1,9 +1,11 @@
-//! K1, K2, K3 along a 3D crack front by the G-theta interaction integral,
-//! as code_aster 17's `CALC_G(OPTION='K', THETA=_F(DISCRETISATION=
-//! 'LINEAIRE'))` computes them (`op0027`: `cgComputeFactors`,
-//! `cgComputeMatrix`, `cgComputeGtheta`, `cgDiscrField`; the elementary
-//! term `te0222` with `thetapdg`, `coor_cyl`, `chauxi`, `gbil3d`; the
-//! curvature `xcourb`/`te0398`; the smoothing `gmatc3`/`gsyste`).
+//! G and K1, K2, K3 along a 3D crack front by the G-theta method (G its
+//! energy term, K the interaction integral), as code_aster 17's
+//! `CALC_G(OPTION='G'/'K', THETA=_F(DISCRETISATION='LINEAIRE'|'LEGENDRE',
+//! NB_POINT_FOND))` computes them (`op0027`: `cgComputeFactors`,
+//! `cgComputeMatrix`, `cgComputeGtheta`, `cgDiscrField`, `create_npf`;
+//! the elementary term `te0222` with `thetapdg`, `coor_cyl`, `chauxi`,
+//! `gbil3d`; the curvature `xcourb`/`te0398`; the smoothing
+//! `gmatc3`/`gsyste`/`hatSmooth`, SEG3 on quadratic lips).
 //!
 //! - Every mesh node gets the local basis of its nearest point on the front
 //!   polyline (`fonbas2`, [`node_bases`]): the projection point, the
@@ -29,10 +31,16 @@
 //!   auxiliary field (elastic, no thermal strain, no initial stress, no
 //!   volume force). Per cell the sums times E/(1−ν²) (K1, K2) or 2μ (K3)
 //!   and, for G_IRWIN, times √(E/(1−ν²)) and √(2μ).
+//! - G per theta field: Σ poids (σ_ik ∂u_i/∂x_m ∂θ_m/∂x_k − W div θ)
+//!   (`te0222`'s `tcla`, linear elastic, no load).
 //! - Per component, the values of the theta fields (the ends replaced by
-//!   the neighbour's times an abscissa ratio, `cgComputeGtheta`) are the
-//!   front's mass matrix (`gmatc3`, SEG2) times the nodal values: solved by
-//!   the normal equations MᵀM k = Mᵀ kθ (`gsyste`).
+//!   the neighbour's times an abscissa ratio, or / 4 on quadratic lips,
+//!   `cgComputeGtheta`) are the front's mass matrix (`gmatc3`, SEG2 or
+//!   SEG3) times the nodal values: solved by the normal equations
+//!   MᵀM k = Mᵀ kθ (`gsyste`), then smoothed by the SEG3 cells' hats on
+//!   quadratic lips (`hatSmooth`).
+//! - `NB_POINT_FOND` ([`virtual_front`]): the theta fields of points at
+//!   equal abscissae, the auxiliary fields' frame staying the crack's.
 
 use crate::element::physical_derivatives;
 use crate::material::Elastic;
