@@ -534,8 +534,198 @@ fn hat(sno: f64, [s0, s1, s2]: [f64; 3]) -> f64 {
     }
 }
 
-/// ∇θ at a Gauss point of a cell; `None` skips the cell.
-type ThetaGradient<'a> = dyn Fn(&CellData, &Point) -> Option<[[f64; 3]; 3]> + 'a;
+/// ∇θ and θ at a Gauss point of a cell of nodes `nodes`, from the shape
+/// functions and their derivatives there; `None` skips the cell.
+type ThetaGradient<'a> =
+    dyn Fn(&[usize], &[f64], &[[f64; 3]]) -> Option<([[f64; 3]; 3], [f64; 3])> + 'a;
+
+/// A face load where theta is not zero (`PRES_REP`, `FORCE_FACE` with
+/// real values, its multiplier applied): code_aster's `te0147` on the
+/// skin elements.
+pub struct FaceLoad {
+    pub cell: CellId,
+    pub pressure: f64,
+    pub force: [f64; 3],
+}
+
+/// A face's Gauss data for `te0147`.
+struct FaceData {
+    nodes: Vec<usize>,
+    /// ff, derivatives along (i1, i2) (third column 0), weight, u.
+    points: Vec<(Vec<f64>, Vec<[f64; 3]>, f64, [f64; 3])>,
+    i1: [f64; 3],
+    i2: [f64; 3],
+    /// The traction f − p a3 (a3 the face's normal from its first three
+    /// nodes, turned outwards as aster's PRES_REP).
+    traction: [f64; 3],
+}
+
+fn face_data(
+    mesh: &Mesh,
+    cells: &[SolidCell],
+    faces: &[FaceLoad],
+    nodal: &NodalData,
+) -> Result<Vec<FaceData>, String> {
+    let mut out = Vec::new();
+    for fl in faces {
+        let cell = mesh.cell(fl.cell);
+        let nodes: Vec<usize> = cell.nodes.iter().map(|n| n.0 as usize).collect();
+        if nodes.iter().all(|&n| nodal.theta0[n] < R8PREM) {
+            continue;
+        }
+        let name = || mesh.cell_name(fl.cell);
+        if cell.ty.dim() != 2 || nodes.len() < 3 {
+            return Err(format!(
+                "cell {}: a face load on a cell that is no face",
+                name()
+            ));
+        }
+        let x: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        // te0147's frame: a1 = x2 − x1, a2 = x3 − x1, a3 = a1 × a2,
+        // i2 = a3 × a1.
+        let a1 = sub(x[1], x[0]);
+        let a2 = sub(x[2], x[0]);
+        let mut a3 = cross(a1, a2);
+        let i2 = normalized(cross(a3, a1));
+        let i1 = normalized(a1);
+        a3 = normalized(a3);
+        // aster's PRES_REP pushes along the outward normal of the volume
+        // cell the face bounds: a3 turned so (code_aster's node order
+        // gives the same on an oriented skin).
+        let corners = crate::shape::corner_count(cell.ty);
+        let owner = cells.iter().find(|sc| {
+            let c = mesh.cell(sc.cell);
+            cell.nodes[..corners].iter().all(|n| c.nodes.contains(n))
+        });
+        if let Some(sc) = owner {
+            let c = mesh.cell(sc.cell);
+            let k = c.nodes.len() as f64;
+            let mut ctr = [0.0; 3];
+            for n in &c.nodes {
+                let p = mesh.coord(*n);
+                for j in 0..3 {
+                    ctr[j] += p[j] / k;
+                }
+            }
+            if dot(sub(x[0], ctr), a3) < 0.0 {
+                a3 = [-a3[0], -a3[1], -a3[2]];
+            }
+        }
+        let traction = [
+            fl.force[0] - fl.pressure * a3[0],
+            fl.force[1] - fl.pressure * a3[1],
+            fl.force[2] - fl.pressure * a3[2],
+        ];
+        // The nodes in the plane (i1, i2) from node 1 (dfdm2d's coor).
+        let local: Vec<[f64; 2]> = x
+            .iter()
+            .map(|&p| {
+                let d = sub(p, x[0]);
+                [dot(d, i1), dot(d, i2)]
+            })
+            .collect();
+        let mut points = Vec::new();
+        for gp in crate::shape::skin_scheme(cell.ty) {
+            let sh = crate::shape::shape(cell.ty, gp.xi);
+            let (ff, dff) = (sh.n, sh.dn);
+            // dfdm2d: the Jacobian of (ξ, η) → the plane coordinates.
+            let mut j = [[0.0; 2]; 2];
+            for (a, p) in local.iter().enumerate() {
+                for r in 0..2 {
+                    for c in 0..2 {
+                        j[r][c] += dff[a][r] * p[c];
+                    }
+                }
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            if det.abs() < 1e-300 {
+                return Err(format!("cell {}: a degenerate face", name()));
+            }
+            let dfdi: Vec<[f64; 3]> = dff
+                .iter()
+                .map(|d| {
+                    [
+                        (j[1][1] * d[0] - j[0][1] * d[1]) / det,
+                        (-j[1][0] * d[0] + j[0][0] * d[1]) / det,
+                        0.0,
+                    ]
+                })
+                .collect();
+            let mut u = [0.0; 3];
+            for (a, &n) in nodes.iter().enumerate() {
+                for k in 0..3 {
+                    u[k] += ff[a] * nodal.disp[n][k];
+                }
+            }
+            points.push((ff, dfdi, gp.weight * det.abs(), u));
+        }
+        out.push(FaceData {
+            nodes,
+            points,
+            i1,
+            i2,
+            traction,
+        });
+    }
+    Ok(out)
+}
+
+/// The faces' data, refused with K (te0147's K terms, from the auxiliary
+/// displacements `deffk` and the lips' level sets, are not reproduced).
+fn face_loads(
+    mesh: &Mesh,
+    cells: &[SolidCell],
+    faces: &[FaceLoad],
+    nodal: &NodalData,
+    wanted: Wanted,
+) -> Result<Vec<FaceData>, String> {
+    let data = face_data(mesh, cells, faces, nodal)?;
+    if wanted.k {
+        if !data.is_empty() {
+            let cell = faces
+                .iter()
+                .find(|fl| {
+                    mesh.cell(fl.cell)
+                        .nodes
+                        .iter()
+                        .any(|n| nodal.theta0[n.0 as usize] >= R8PREM)
+                })
+                .map(|fl| mesh.cell_name(fl.cell))
+                .unwrap_or_default();
+            return Err(format!(
+                "K with a load on the face {cell} inside the theta crown (te0147's terms of K are not reproduced; OPTION='G' computes its term)"
+            ));
+        }
+    }
+    Ok(data)
+}
+
+/// te0147's G term of the face loads for one theta field (real loads:
+/// no gradient of the load): Σ poids (t·u) div_s θ, div_s θ the surface
+/// divergence ∂(θ·i1)/∂s1 + ∂(θ·i2)/∂s2.
+fn integrate_faces(faces: &[FaceData], theta: &ThetaGradient) -> f64 {
+    let mut g = 0.0;
+    for fd in faces {
+        let mut tcla = 0.0;
+        let mut skipped = false;
+        for (ff, dfdi, poids, u) in &fd.points {
+            let Some((t, _)) = theta(&fd.nodes, ff, dfdi) else {
+                skipped = true;
+                break;
+            };
+            let dth1d1: f64 = (0..3).map(|j| t[j][0] * fd.i1[j]).sum();
+            let dth2d2: f64 = (0..3).map(|j| t[j][1] * fd.i2[j]).sum();
+            let divt = dth1d1 + dth2d2;
+            for j in 0..3 {
+                tcla += poids * (fd.traction[j] * divt) * u[j];
+            }
+        }
+        if !skipped {
+            g += tcla;
+        }
+    }
+    g
+}
 
 /// G (`tcla`: Σ poids (σ_ik ∂u_i/∂x_m ∂θ_m/∂x_k − W div θ)) and the
 /// interaction integrals of one theta field over the cells.
@@ -546,7 +736,7 @@ fn integrate(data: &[CellData], dtdm: &ThetaGradient, wanted: Wanted) -> KTheta 
         let mut tcla = 0.0;
         let mut skipped = false;
         for p in &cd.points {
-            let Some(t) = dtdm(cd, p) else {
+            let Some((t, _)) = dtdm(&cd.nodes, &p.ff, &p.dfdi) else {
                 skipped = true;
                 break;
             };
@@ -586,11 +776,13 @@ fn integrate(data: &[CellData], dtdm: &ThetaGradient, wanted: Wanted) -> KTheta 
 pub fn k_theta_fields(
     mesh: &Mesh,
     cells: &[SolidCell],
+    faces: &[FaceLoad],
     nodal: &NodalData,
     absfon: &[f64],
     wanted: Wanted,
 ) -> Result<Vec<KTheta>, String> {
     let data = cell_data(mesh, cells, nodal, wanted.k)?;
+    let face_data = face_loads(mesh, cells, faces, nodal, wanted)?;
     let n = absfon.len();
     let mut out = Vec::with_capacity(n);
     for i in 0..n {
@@ -599,28 +791,30 @@ pub fn k_theta_fields(
             absfon[i],
             absfon[(i + 1).min(n - 1)],
         ];
-        let dtdm = |cd: &CellData, p: &Point| {
-            // te0222: a cell none of whose nodes lies in [s0, s2).
-            if !cd
-                .nodes
+        let dtdm = |nodes: &[usize], ff: &[f64], dfdi: &[[f64; 3]]| {
+            // te0222, te0147: a cell none of whose nodes lies in [s0, s2).
+            if !nodes
                 .iter()
                 .any(|&m| nodal.theta[m].absc >= lag[0] && nodal.theta[m].absc < lag[2])
             {
                 return None;
             }
-            let mut t = [[0.0; 3]; 3];
-            for (a, &m) in cd.nodes.iter().enumerate() {
+            let (mut t, mut th) = ([[0.0; 3]; 3], [0.0; 3]);
+            for (a, &m) in nodes.iter().enumerate() {
                 let b = &nodal.theta[m];
                 let w = hat(b.absc, lag) * nodal.theta0[m];
                 for j in 0..3 {
+                    th[j] += ff[a] * (w * b.dir[j]);
                     for k in 0..3 {
-                        t[j][k] += p.dfdi[a][k] * (w * b.dir[j]);
+                        t[j][k] += dfdi[a][k] * (w * b.dir[j]);
                     }
                 }
             }
-            Some(t)
+            Some((t, th))
         };
-        out.push(integrate(&data, &dtdm, wanted));
+        let mut v = integrate(&data, &dtdm, wanted);
+        v.gth += integrate_faces(&face_data, &dtdm);
+        out.push(v);
     }
     Ok(out)
 }
@@ -666,6 +860,7 @@ pub fn legendre(d: usize, s: f64, l: f64) -> Option<(f64, f64)> {
 pub fn k_theta_legendre(
     mesh: &Mesh,
     cells: &[SolidCell],
+    faces: &[FaceLoad],
     nodal: &NodalData,
     l: f64,
     degree: usize,
@@ -677,23 +872,24 @@ pub fn k_theta_legendre(
         ));
     }
     let data = cell_data(mesh, cells, nodal, wanted.k)?;
+    let face_data = face_loads(mesh, cells, faces, nodal, wanted)?;
     let mut out = Vec::with_capacity(degree + 1);
     for d in 0..=degree {
-        let dtdm = |cd: &CellData, p: &Point| {
+        let dtdm = |nodes: &[usize], ff: &[f64], dfdi: &[[f64; 3]]| {
             let (mut th0, mut s, mut t) = (0.0, 0.0, [0.0; 3]);
             let (mut gth0, mut gs, mut gt) = ([0.0; 3], [0.0; 3], [[0.0; 3]; 3]);
-            for (a, &m) in cd.nodes.iter().enumerate() {
+            for (a, &m) in nodes.iter().enumerate() {
                 let b = &nodal.theta[m];
-                th0 += p.ff[a] * nodal.theta0[m];
-                s += p.ff[a] * b.absc;
+                th0 += ff[a] * nodal.theta0[m];
+                s += ff[a] * b.absc;
                 for j in 0..3 {
-                    t[j] += p.ff[a] * b.dir[j];
+                    t[j] += ff[a] * b.dir[j];
                 }
                 for k in 0..3 {
-                    gth0[k] += p.dfdi[a][k] * nodal.theta0[m];
-                    gs[k] += p.dfdi[a][k] * b.absc;
+                    gth0[k] += dfdi[a][k] * nodal.theta0[m];
+                    gs[k] += dfdi[a][k] * b.absc;
                     for j in 0..3 {
-                        gt[j][k] += p.dfdi[a][k] * b.dir[j];
+                        gt[j][k] += dfdi[a][k] * b.dir[j];
                     }
                 }
             }
@@ -704,9 +900,11 @@ pub fn k_theta_legendre(
                     r[i][j] = t[i] * (dgam * th0 * gs[j] + gam * gth0[j]) + gam * th0 * gt[i][j];
                 }
             }
-            Some(r)
+            Some((r, t.map(|v| gam * th0 * v)))
         };
-        out.push(integrate(&data, &dtdm, wanted));
+        let mut v = integrate(&data, &dtdm, wanted);
+        v.gth += integrate_faces(&face_data, &dtdm);
+        out.push(v);
     }
     Ok(out)
 }
@@ -747,7 +945,7 @@ pub fn smooth_linear(
     if fields.len() != n || n < 2 {
         return Err("one theta field per front node, two nodes at least".into());
     }
-    if milieu && n % 2 == 0 {
+    if milieu && n.is_multiple_of(2) {
         return Err("quadratic lips along a front of an even number of nodes".into());
     }
     if n == 3 && !milieu {

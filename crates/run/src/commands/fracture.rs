@@ -497,7 +497,8 @@ fn calc_g_3d(
 ) -> Result<CommandOutput, ExecError> {
     use aster_fem::fracture::theta3d::{
         front_abscissa, k_theta_fields, k_theta_legendre, legendre_nodal, node_bases,
-        smooth_linear, theta0, virtual_front, Front, KTheta, NodalData, SolidCell, Wanted,
+        smooth_linear, theta0, virtual_front, FaceLoad, Front, KTheta, NodalData, SolidCell,
+        Wanted,
     };
     let kw = &call.keywords;
     let cmd = "CALC_G";
@@ -649,7 +650,15 @@ fn calc_g_3d(
         .map(|(&x, b)| theta0(b, x, r_inf, r_sup))
         .collect();
     let reached = |n: NodeId| th0[n.0 as usize] >= f64::EPSILON;
-    check_loads(ex, &run, &reached, here)?;
+    // A pressure or a face force of real values on a face (te0147's term
+    // of G) is computed; any other load theta reaches is refused.
+    let on_face = |l: &Load| match l {
+        Load::Pressure { cell, .. } | Load::SurfaceForce { cell, .. } => {
+            mesh.cell(*cell).ty.dim() == 2 && !model.is_coque3d(*cell)
+        }
+        _ => false,
+    };
+    check_loads_but(ex, &run, &reached, &on_face, here)?;
     let mut cells = Vec::new();
     for el in model.elements() {
         let cell = mesh.cell(el.cell);
@@ -743,15 +752,36 @@ fn calc_g_3d(
             theta0: &th0,
             disp: &disp,
         };
+        let mut faces = Vec::new();
+        for item in &run.loads.items {
+            let (cell, pressure, force) = match &item.load {
+                l @ Load::Pressure { cell, pressure } if on_face(l) => (*cell, *pressure, [0.0; 3]),
+                l @ Load::SurfaceForce { cell, force } if on_face(l) => (*cell, 0.0, *force),
+                _ => continue,
+            };
+            if !mesh.cell(cell).nodes.iter().any(|&n| reached(n)) {
+                continue;
+            }
+            let m = item
+                .mult
+                .eval(step.inst)
+                .map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+            faces.push(FaceLoad {
+                cell,
+                pressure: pressure * m,
+                force: force.map(|f| f * m),
+            });
+        }
         let values: Vec<KTheta> = match legendre {
             None => {
-                let fields = k_theta_fields(mesh, &cells, &nodal, &absfon, wanted)
+                let fields = k_theta_fields(mesh, &cells, &faces, &nodal, &absfon, wanted)
                     .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
                 smooth_linear(&absfon, &fields, milieu)
             }
             Some(d) => {
-                let fields = k_theta_legendre(mesh, &cells, &nodal, lonfis, d as usize, wanted)
-                    .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
+                let fields =
+                    k_theta_legendre(mesh, &cells, &faces, &nodal, lonfis, d as usize, wanted)
+                        .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
                 legendre_nodal(&absfon, lonfis, &fields)
             }
         }
@@ -814,9 +844,23 @@ fn check_loads(
     reached: &dyn Fn(NodeId) -> bool,
     here: aster_syntax::Span,
 ) -> Result<(), ExecError> {
+    check_loads_but(ex, run, reached, &|_| false, here)
+}
+
+/// [`check_loads`] but for the loads `computed` (their term of G is).
+fn check_loads_but(
+    ex: &Executor,
+    run: &crate::fembridge::FemRun,
+    reached: &dyn Fn(NodeId) -> bool,
+    computed: &dyn Fn(&Load) -> bool,
+    here: aster_syntax::Span,
+) -> Result<(), ExecError> {
     let mesh = run.model.mesh();
     let on_cell = |c: aster_mesh::CellId| mesh.cell(c).nodes.iter().any(|&n| reached(n));
     for item in &run.loads.items {
+        if computed(&item.load) {
+            continue;
+        }
         let hit = match &item.load {
             Load::SurfaceForce { cell, .. }
             | Load::Pressure { cell, .. }
