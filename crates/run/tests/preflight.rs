@@ -421,10 +421,17 @@ fn calc_g_options_on_a_3d_front_pass_before_the_run() {
     for option in ["OPTION=\"G\"", "OPTION=\"K\"", "OPTION=(\"G\", \"K\")"] {
         let text = src.replace("OPTION=\"G\"", option);
         let (p, map) = pass(&text, None);
-        assert!(p.findings.0.is_empty(), "{option}: {:?}", messages(&p, &map));
+        assert!(
+            p.findings.0.is_empty(),
+            "{option}: {:?}",
+            messages(&p, &map)
+        );
     }
     let (p, map) = pass(&src.replace("OPTION=\"G\"", "OPTION=\"KJ\""), None);
     let m = messages(&p, &map);
     assert_eq!(m.len(), 1, "{m:?}");
-    assert!(m[0].contains("case.comm:9:") && m[0].contains("KJ"), "{m:?}");
+    assert!(
+        m[0].contains("case.comm:9:") && m[0].contains("KJ"),
+        "{m:?}"
+    );
 }

@@ -548,11 +548,14 @@ pub struct FaceLoad {
     pub force: [f64; 3],
 }
 
+/// A Gauss point of a face: ff, the derivatives along (i1, i2) (third
+/// column 0), the weight, u.
+type FacePoint = (Vec<f64>, Vec<[f64; 3]>, f64, [f64; 3]);
+
 /// A face's Gauss data for `te0147`.
 struct FaceData {
     nodes: Vec<usize>,
-    /// ff, derivatives along (i1, i2) (third column 0), weight, u.
-    points: Vec<(Vec<f64>, Vec<[f64; 3]>, f64, [f64; 3])>,
+    points: Vec<FacePoint>,
     i1: [f64; 3],
     i2: [f64; 3],
     /// The traction f − p a3 (a3 the face's normal from its first three
@@ -680,22 +683,20 @@ fn face_loads(
     wanted: Wanted,
 ) -> Result<Vec<FaceData>, String> {
     let data = face_data(mesh, cells, faces, nodal)?;
-    if wanted.k {
-        if !data.is_empty() {
-            let cell = faces
-                .iter()
-                .find(|fl| {
-                    mesh.cell(fl.cell)
-                        .nodes
-                        .iter()
-                        .any(|n| nodal.theta0[n.0 as usize] >= R8PREM)
-                })
-                .map(|fl| mesh.cell_name(fl.cell))
-                .unwrap_or_default();
-            return Err(format!(
-                "K with a load on the face {cell} inside the theta crown (te0147's terms of K are not reproduced; OPTION='G' computes its term)"
-            ));
-        }
+    if wanted.k && !data.is_empty() {
+        let cell = faces
+            .iter()
+            .find(|fl| {
+                mesh.cell(fl.cell)
+                    .nodes
+                    .iter()
+                    .any(|n| nodal.theta0[n.0 as usize] >= R8PREM)
+            })
+            .map(|fl| mesh.cell_name(fl.cell))
+            .unwrap_or_default();
+        return Err(format!(
+            "K with a load on the face {cell} inside the theta crown (te0147's terms of K are not reproduced; OPTION='G' computes its term)"
+        ));
     }
     Ok(data)
 }
