@@ -70,10 +70,7 @@ fn extruded_centre_crack_post_k1_k2_k3() {
 /// the Legendre fields (DEGRE=2) give the same K1 at the middle.
 #[test]
 fn extruded_centre_crack_calc_g_k() {
-    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg.comm")).unwrap();
-    let outcome = run_text(&text, "comm/crack_front_calcg.mail", "calcg-k");
-    assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (22, 0));
+    assert_eq!(calcg_scene("crack_front_calcg", "calcg-k"), (22, 0));
 }
 
 /// comm/crack_front_calcg_g.comm: CALC_G OPTION='G' along a straight 3D
@@ -84,10 +81,7 @@ fn extruded_centre_crack_calc_g_k() {
 /// (superposition) through te0147's face term.
 #[test]
 fn extruded_centre_crack_calc_g_g_linear() {
-    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg_g.comm")).unwrap();
-    let outcome = run_text(&text, "comm/crack_front_calcg.mail", "calcg-g");
-    assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (50, 0));
+    assert_eq!(calcg_scene("crack_front_calcg_g", "calcg-g"), (50, 0));
 }
 
 /// comm/crack_front_calcg_quad.comm: the same plate in HEXA20 (a SEG3
@@ -95,10 +89,7 @@ fn extruded_centre_crack_calc_g_g_linear() {
 /// fields and the SEG3 smoothing, the Irwin relation within 0.4 %.
 #[test]
 fn extruded_centre_crack_calc_g_quadratic() {
-    let text = std::fs::read_to_string(root().join("comm/crack_front_calcg_quad.comm")).unwrap();
-    let outcome = run_text(&text, "comm/crack_front_calcg.mail", "calcg-quad");
-    assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (62, 0));
+    assert_eq!(calcg_scene("crack_front_calcg_quad", "calcg-quad"), (62, 0));
 }
 
 /// NB_POINT_FOND with Legendre fields (the catalog's condition; code_aster's
@@ -155,6 +146,15 @@ fn a_front_not_from_its_origin_is_refused() {
     );
     assert_eq!(outcome.tally.nook, 0);
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Runs comm/NAME.comm on comm/crack_front_calcg.mail: its (OK, NOOK)
+/// tally, the run without error.
+fn calcg_scene(name: &str, tag: &str) -> (usize, usize) {
+    let text = std::fs::read_to_string(root().join(format!("comm/{name}.comm"))).unwrap();
+    let outcome = run_text(&text, "comm/crack_front_calcg.mail", tag);
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    (outcome.tally.ok, outcome.tally.nook)
 }
 
 /// Runs a command text on a mesh of comm/ in a directory of its own.

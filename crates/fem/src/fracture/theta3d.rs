@@ -399,6 +399,16 @@ fn gbil3d(u: &[[f64; 3]; 3], v: &[[f64; 3]; 3], t: &[[f64; 3]; 3], c: [f64; 3], 
     (s2 - 0.5 * s1 * divt) * poids
 }
 
+/// A cell's node indices, `None` when theta0 is below `r8prem` at all of
+/// them (te0222 and te0147 skip it).
+fn reached_nodes(cell: &aster_mesh::Cell, nodal: &NodalData) -> Option<Vec<usize>> {
+    let nodes: Vec<usize> = cell.nodes.iter().map(|n| n.0 as usize).collect();
+    nodes
+        .iter()
+        .any(|&n| nodal.theta0[n] >= R8PREM)
+        .then_some(nodes)
+}
+
 /// The Gauss data of the cells theta0 reaches.
 fn cell_data(
     mesh: &Mesh,
@@ -409,10 +419,9 @@ fn cell_data(
     let mut out = Vec::new();
     for sc in cells {
         let cell = mesh.cell(sc.cell);
-        let nodes: Vec<usize> = cell.nodes.iter().map(|n| n.0 as usize).collect();
-        if nodes.iter().all(|&n| nodal.theta0[n] < R8PREM) {
+        let Some(nodes) = reached_nodes(cell, nodal) else {
             continue;
-        }
+        };
         let name = || mesh.cell_name(sc.cell);
         if !sc.material.is_isotropic() {
             return Err(format!(
@@ -572,10 +581,9 @@ fn face_data(
     let mut out = Vec::new();
     for fl in faces {
         let cell = mesh.cell(fl.cell);
-        let nodes: Vec<usize> = cell.nodes.iter().map(|n| n.0 as usize).collect();
-        if nodes.iter().all(|&n| nodal.theta0[n] < R8PREM) {
+        let Some(nodes) = reached_nodes(cell, nodal) else {
             continue;
-        }
+        };
         let name = || mesh.cell_name(fl.cell);
         if cell.ty.dim() != 2 || nodes.len() < 3 {
             return Err(format!(
