@@ -204,9 +204,6 @@ pub struct CallRefusals {
     coordinate_loads: Vec<u32>,
     /// `DEFI_CONTACT` definitions, by concept id.
     defi_contact: Vec<u32>,
-    /// `DEFI_FOND_FISS` fronts of cells (`FOND_FISS/GROUP_MA`, which
-    /// code_aster reads on 3D meshes only: RUPTURE1_8), by concept id.
-    fronts_3d: Vec<u32>,
     /// `DEFI_CONTACT` definitions with a zone `ALGO_CONT='LAC'`, by
     /// concept id.
     lac_contacts: Vec<u32>,
@@ -225,52 +222,8 @@ impl CallRefusals {
         out.extend(self.follow_finite_strains(call));
         out.extend(self.follow_continuous_friction(call));
         out.extend(self.follow_coordinate_loads(call));
-        out.extend(self.follow_fronts_3d(call));
         out.extend(self.follow_lac_tolerance(call));
         out
-    }
-
-    /// A crack front of cells (`DEFI_FOND_FISS/FOND_FISS/GROUP_MA`) is a
-    /// 3D front (code_aster reads cells on 3D meshes only), on which
-    /// CALC_G computes K1, K2, K3 and G_IRWIN (`OPTION='K'`, aster-fem
-    /// `fracture::theta3d`); its `OPTION='G'` along the front is not
-    /// reproduced: refused at `CALC_G/OPTION` before the solve instead of
-    /// when CALC_G runs.
-    fn follow_fronts_3d(&mut self, call: &CommandCall) -> Option<(String, Span)> {
-        let kw = &call.keywords;
-        match call.command.as_str() {
-            "DEFI_FOND_FISS" => {
-                let cells = kw
-                    .factor("FOND_FISS")
-                    .iter()
-                    .any(|occ| occ.contains("GROUP_MA"));
-                if let (true, Some(r)) = (cells, call.result.as_ref()) {
-                    self.fronts_3d.push(r.id);
-                }
-                None
-            }
-            "CALC_G" => {
-                let theta = kw.factor("THETA").first()?;
-                let front = theta.concept("FISSURE")?;
-                if !self.fronts_3d.contains(&front.id) {
-                    return None;
-                }
-                let with_g = kw
-                    .simple("OPTION")
-                    .iter()
-                    .filter_map(|s| s.as_str())
-                    .any(|o| o != "K");
-                if !with_g {
-                    return None;
-                }
-                let span = kw.keyword("OPTION").map(|k| k.span).unwrap_or(call.span);
-                Some((
-                    format!("CALC_G/OPTION: G along the 3D crack front `{}` (DEFI_FOND_FISS/FOND_FISS/GROUP_MA): aster computes K1, K2, K3 and G_IRWIN along a 3D front (OPTION='K'); te0222's energy term G is not reproduced there", front.name),
-                    span,
-                ))
-            }
-            _ => None,
-        }
     }
 
     /// Distributed loads given by functions of the coordinates are dead

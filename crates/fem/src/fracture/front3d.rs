@@ -53,6 +53,11 @@ pub struct Front3d {
     pub sup_normal: Vec<Vec<NodeId>>,
     /// The same on the lower lip (`INFNORM.NOEU`).
     pub inf_normal: Vec<Vec<NodeId>>,
+    /// A front of SEG3 cells (each cell's middle node between its ends).
+    pub quadratic: bool,
+    /// The first upper-lip cell is quadratic (`LEVRESUP.MAIL`, which
+    /// CALC_G reads as its `milieu`: theta fields at the middle nodes).
+    pub quadratic_lips: bool,
 }
 
 /// What the front is built from.
@@ -734,6 +739,10 @@ pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
         }
         sup_normal[i] = normal_line(mesh, &sup, nodes[i], tangent, prec);
     }
+    let quadratic_lips = input.lip_sup.first().is_some_and(|&c| {
+        let cell = mesh.cell(c);
+        cell.nodes.len() != crate::shape::corner_count(cell.ty)
+    });
     Ok(Front3d {
         nodes,
         normal,
@@ -741,6 +750,8 @@ pub fn define_front(input: &FrontInput) -> Result<Front3d, String> {
         size,
         sup_normal,
         inf_normal,
+        quadratic,
+        quadratic_lips,
     })
 }
 

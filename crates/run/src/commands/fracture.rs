@@ -321,13 +321,11 @@ const CALC_G_OWN: &[&str] = &[
     "THETA/R_SUP",
     "THETA/DISCRETISATION",
     "THETA/DEGRE",
+    "THETA/NB_POINT_FOND",
     "OPTION",
     "INFO",
     "TITRE",
 ];
-
-/// Why the keywords of G and K along a 3D front are refused.
-const CALC_G_3D: &str = "K along a 3D crack front at NB_POINT_FOND points (theta fields on a coarser front, `create_npf`): aster's CALC_G computes it with one theta field per front node or with Legendre polynomials";
 
 /// What CALC_G reads (`crate::support`): its own keywords and the step
 /// selection ([`super::post::STEP_SELECTION`]).
@@ -336,7 +334,6 @@ pub(crate) const CALC_G: Support = Support {
         Values::listed("OPTION", &["G", "K"]),
         Values::listed("THETA/DISCRETISATION", &["LINEAIRE", "LEGENDRE"]),
     ],
-    hints: &[("THETA/NB_POINT_FOND", CALC_G_3D)],
     ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + CALC_G_OWN.len() },
@@ -352,6 +349,12 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
     let front = ex.crack_front(ex.required(cmd, theta_kw, "FISSURE")?)?;
     if let Some(line) = front.line.clone() {
         return calc_g_3d(ex, call, theta_kw, &line);
+    }
+    if let Some(k) = theta_kw.keyword("NB_POINT_FOND") {
+        return Err(ex.unsupported(
+            "CALC_G THETA/NB_POINT_FOND on a 2D crack tip (points along a 3D front only)",
+            k.span,
+        ));
     }
     let r = ex.required(cmd, kw, "RESULTAT")?;
     let result = ex.result(r)?;
@@ -494,18 +497,20 @@ fn calc_g_3d(
 ) -> Result<CommandOutput, ExecError> {
     use aster_fem::fracture::theta3d::{
         front_abscissa, k_theta_fields, k_theta_legendre, legendre_nodal, node_bases,
-        smooth_linear, theta0, Front, NodalData, SolidCell,
+        smooth_linear, theta0, virtual_front, FaceLoad, Front, KTheta, NodalData, SolidCell,
+        Wanted,
     };
     let kw = &call.keywords;
     let cmd = "CALC_G";
     let theta_here = kw.keyword("THETA").map(|k| k.span).unwrap_or(call.span);
-    let opts = options(kw);
-    if opts.iter().any(|o| o != "K") {
-        return Err(ex.unsupported(
-            "CALC_G OPTION='G' on a 3D crack front (K1, K2, K3 and G_IRWIN by OPTION='K' only: te0222's energy term along a front is not reproduced)",
-            kw.keyword("OPTION").map(|k| k.span).unwrap_or(call.span),
-        ));
-    }
+    // The options in the order given, once each (code_aster computes and
+    // writes them in that order).
+    let mut opts = options(kw);
+    opts.dedup();
+    let wanted = Wanted {
+        g: opts.iter().any(|o| o == "G"),
+        k: opts.iter().any(|o| o == "K"),
+    };
     // DISCRETISATION='LEGENDRE': the degree (code_aster's default 5).
     let legendre = match theta_kw.str("DISCRETISATION") {
         Some("LEGENDRE") => Some(
@@ -526,6 +531,21 @@ fn calc_g_3d(
             ));
         }
     }
+    // NB_POINT_FOND (`create_npf`): theta fields on a front of that many
+    // points at equal abscissae; 0 is code_aster's default (the front's
+    // nodes). The catalog allows it with DISCRETISATION='LINEAIRE' only.
+    let npf = match theta_kw.first("NB_POINT_FOND").and_then(|v| v.as_i64()) {
+        None | Some(0) => None,
+        Some(n) if n < 2 => {
+            return Err(ex.kw_error(
+                cmd,
+                theta_kw,
+                "NB_POINT_FOND",
+                format!("NB_POINT_FOND = {n}: two points at least"),
+            ))
+        }
+        Some(n) => Some(n as usize),
+    };
     let r = ex.required(cmd, kw, "RESULTAT")?;
     let result = ex.result(r)?;
     let here = kw.keyword("RESULTAT").map(|k| k.span).unwrap_or(call.span);
@@ -557,9 +577,19 @@ fn calc_g_3d(
             here,
         ));
     }
-    if line.nodes.len() == 3 && legendre.is_none() {
+    // code_aster's `milieu`: quadratic lips give the middle nodes theta
+    // fields of their own (SEG3 smoothing), unless NB_POINT_FOND.
+    let milieu = line.quadratic_lips && npf.is_none() && legendre.is_none();
+    if milieu && !line.quadratic {
         return Err(ex.unsupported(
-            "CALC_G on a front of 3 nodes (code_aster's end correction of the theta fields reads the abscissa before the first node)",
+            "CALC_G on a front of SEG2 cells between quadratic lips (code_aster's SEG3 smoothing reads a middle node per segment)",
+            theta_here,
+        ));
+    }
+    let nnof = npf.unwrap_or(line.nodes.len());
+    if nnof == 3 && legendre.is_none() && !milieu {
+        return Err(ex.unsupported(
+            "CALC_G on a front of 3 points (code_aster's end correction of the theta fields reads the abscissa before the first point)",
             theta_here,
         ));
     }
@@ -573,16 +603,62 @@ fn calc_g_3d(
         normal: &line.normal,
         dir: &line.dir,
         absc: &absfon,
+        quadratic: line.quadratic,
     };
     let bases = node_bases(&front, &mesh.coords);
+    // The points of the table and the bases theta is built from: the
+    // front's nodes, or the NB_POINT_FOND points (named XXXXXXXX between
+    // the ends, as code_aster).
+    let virt = npf
+        .map(|n| virtual_front(&front, n))
+        .transpose()
+        .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), theta_here))?;
+    let (points, names, absfon, theta_bases) = match &virt {
+        Some(v) => {
+            let vf = Front {
+                coords: &v.coords,
+                normal: &v.normal,
+                dir: &v.dir,
+                absc: &v.absc,
+                quadratic: false,
+            };
+            let names: Vec<Option<NodeId>> = (0..v.coords.len())
+                .map(|i| match i {
+                    0 => Some(line.nodes[0]),
+                    i if i + 1 == v.coords.len() => line.nodes.last().copied(),
+                    _ => None,
+                })
+                .collect();
+            (
+                v.coords.clone(),
+                names,
+                v.absc.clone(),
+                node_bases(&vf, &mesh.coords),
+            )
+        }
+        None => (
+            coords.clone(),
+            line.nodes.iter().map(|&n| Some(n)).collect(),
+            absfon.clone(),
+            bases.clone(),
+        ),
+    };
     let th0: Vec<f64> = mesh
         .coords
         .iter()
-        .zip(&bases)
+        .zip(&theta_bases)
         .map(|(&x, b)| theta0(b, x, r_inf, r_sup))
         .collect();
     let reached = |n: NodeId| th0[n.0 as usize] >= f64::EPSILON;
-    check_loads(ex, &run, &reached, here)?;
+    // A pressure or a face force of real values on a face (te0147's term
+    // of G) is computed; any other load theta reaches is refused.
+    let on_face = |l: &Load| match l {
+        Load::Pressure { cell, .. } | Load::SurfaceForce { cell, .. } => {
+            mesh.cell(*cell).ty.dim() == 2 && !model.is_coque3d(*cell)
+        }
+        _ => false,
+    };
+    check_loads_but(ex, &run, &reached, &on_face, here)?;
     let mut cells = Vec::new();
     for el in model.elements() {
         let cell = mesh.cell(el.cell);
@@ -599,15 +675,6 @@ fn calc_g_3d(
                     return Err(ex.unsupported(
                         &format!(
                             "CALC_G: cell {} is under-integrated (K with the full stiffness family only)",
-                            mesh.cell_name(el.cell)
-                        ),
-                        here,
-                    ));
-                }
-                if cell.nodes.len() != aster_fem::shape::corner_count(cell.ty) {
-                    return Err(ex.unsupported(
-                        &format!(
-                            "CALC_G on the quadratic cell {} (a linear mesh only: the middle nodes' theta fields and the hat smoothing of a SEG3 front are not reproduced)",
                             mesh.cell_name(el.cell)
                         ),
                         here,
@@ -661,52 +728,97 @@ fn calc_g_3d(
         columns.push(col(c, ColumnType::Real));
     }
     columns.push(col("COMPORTEMENT", ColumnType::Text(8)));
-    for c in ["K1", "K2", "K3", "G_IRWIN"] {
-        columns.push(col(c, ColumnType::Real));
+    for o in &opts {
+        let names: &[&str] = if o == "G" {
+            &["G"]
+        } else {
+            &["K1", "K2", "K3", "G_IRWIN"]
+        };
+        for c in names {
+            columns.push(col(c, ColumnType::Real));
+        }
     }
+    // cgComporNodes: a result without a behaviour map (MECA_STATIQUE) is
+    // ELAS at every point; otherwise the NB_POINT_FOND points between the
+    // ends are XXXXXXXX (aster's results are elastic).
+    let behaviour_map = result.typ != "evol_elas";
     let mut table = Table::new(columns);
     for step in steps {
         let u = displacement(&result, &run, step.nume_ordre, &r.name)?;
         let disp = nodal_displacement_3d(model, &u);
         let nodal = NodalData {
             bases: &bases,
+            theta: &theta_bases,
             theta0: &th0,
             disp: &disp,
         };
-        let k = match legendre {
+        let mut faces = Vec::new();
+        for item in &run.loads.items {
+            let (cell, pressure, force) = match &item.load {
+                l @ Load::Pressure { cell, pressure } if on_face(l) => (*cell, *pressure, [0.0; 3]),
+                l @ Load::SurfaceForce { cell, force } if on_face(l) => (*cell, 0.0, *force),
+                _ => continue,
+            };
+            if !mesh.cell(cell).nodes.iter().any(|&n| reached(n)) {
+                continue;
+            }
+            let m = item
+                .mult
+                .eval(step.inst)
+                .map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
+            faces.push(FaceLoad {
+                cell,
+                pressure: pressure * m,
+                force: force.map(|f| f * m),
+            });
+        }
+        let values: Vec<KTheta> = match legendre {
             None => {
-                let fields = k_theta_fields(mesh, &cells, &nodal, &absfon)
+                let fields = k_theta_fields(mesh, &cells, &faces, &nodal, &absfon, wanted)
                     .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
-                smooth_linear(&absfon, &fields)
+                smooth_linear(&absfon, &fields, milieu)
             }
             Some(d) => {
-                let fields = k_theta_legendre(mesh, &cells, &nodal, lonfis, d as usize)
-                    .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
+                let fields =
+                    k_theta_legendre(mesh, &cells, &faces, &nodal, lonfis, d as usize, wanted)
+                        .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), here))?;
                 legendre_nodal(&absfon, lonfis, &fields)
             }
         }
         .map_err(|e| ex.unsupported(&format!("{cmd}: {e}"), theta_here))?;
-        for (i, (&node, ki)) in line.nodes.iter().zip(&k).enumerate() {
-            let p = coords[i];
-            table.push_row(vec![
+        for (i, ki) in values.iter().enumerate() {
+            let p = points[i];
+            let (name, behaviour) = match names[i] {
+                Some(n) => (mesh.node_name(n), "ELAS"),
+                None if behaviour_map => ("XXXXXXXX".to_string(), "XXXXXXXX"),
+                None => ("XXXXXXXX".to_string(), "ELAS"),
+            };
+            let mut row = vec![
                 ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
                 ("INST", Value::Real(step.inst)),
-                ("NOEUD", Value::Text(mesh.node_name(node))),
+                ("NOEUD", Value::Text(name)),
                 ("NUM_PT", Value::Int(i as i64 + 1)),
                 ("COOR_X", Value::Real(p[0])),
                 ("COOR_Y", Value::Real(p[1])),
                 ("COOR_Z", Value::Real(p[2])),
                 ("ABSC_CURV", Value::Real(absfon[i])),
                 ("ABSC_CURV_NORM", Value::Real(absfon[i] / lonfis)),
-                ("COMPORTEMENT", Value::Text("ELAS".into())),
-                ("K1", Value::Real(ki.k[0])),
-                ("K2", Value::Real(ki.k[1])),
-                ("K3", Value::Real(ki.k[2])),
-                (
-                    "G_IRWIN",
-                    Value::Real(ki.g[0] * ki.g[0] + ki.g[1] * ki.g[1] + ki.g[2] * ki.g[2]),
-                ),
-            ]);
+                ("COMPORTEMENT", Value::Text(behaviour.into())),
+            ];
+            for o in &opts {
+                if o == "G" {
+                    row.push(("G", Value::Real(ki.gth)));
+                } else {
+                    row.push(("K1", Value::Real(ki.k[0])));
+                    row.push(("K2", Value::Real(ki.k[1])));
+                    row.push(("K3", Value::Real(ki.k[2])));
+                    row.push((
+                        "G_IRWIN",
+                        Value::Real(ki.g[0] * ki.g[0] + ki.g[1] * ki.g[1] + ki.g[2] * ki.g[2]),
+                    ));
+                }
+            }
+            table.push_row(row);
         }
     }
     store_result(ex, call, Concept::Table(Rc::new(table)))
@@ -732,9 +844,23 @@ fn check_loads(
     reached: &dyn Fn(NodeId) -> bool,
     here: aster_syntax::Span,
 ) -> Result<(), ExecError> {
+    check_loads_but(ex, run, reached, &|_| false, here)
+}
+
+/// [`check_loads`] but for the loads `computed` (their term of G is).
+fn check_loads_but(
+    ex: &Executor,
+    run: &crate::fembridge::FemRun,
+    reached: &dyn Fn(NodeId) -> bool,
+    computed: &dyn Fn(&Load) -> bool,
+    here: aster_syntax::Span,
+) -> Result<(), ExecError> {
     let mesh = run.model.mesh();
     let on_cell = |c: aster_mesh::CellId| mesh.cell(c).nodes.iter().any(|&n| reached(n));
     for item in &run.loads.items {
+        if computed(&item.load) {
+            continue;
+        }
         let hit = match &item.load {
             Load::SurfaceForce { cell, .. }
             | Load::Pressure { cell, .. }
