@@ -27,8 +27,11 @@
 //! - `NORME` (`penorm`, option `NORME_L2`) of a field (`CHAM_GD`, `MODELE`):
 //!   see [`norme`].
 //!
-//! Every other quantity (MASS_INER, INTEGRALE, MINMAX, TRAV_EXT…) is
-//! refused with its location.
+//! - `INTEGRALE` (`peeint`/`peecal`/`chpond`) of a result's field: see
+//!   [`integrale`].
+//!
+//! Every other quantity (MASS_INER, MINMAX, TRAV_EXT…) is refused with its
+//! location.
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
@@ -64,6 +67,12 @@ const POST_ELEM_OWN: &[&str] = &[
     "NORME/CHAM_GD",
     "NORME/MODELE",
     "NORME/COEF_MULT",
+    "INTEGRALE",
+    "INTEGRALE/TOUT",
+    "INTEGRALE/GROUP_MA",
+    "INTEGRALE/NOM_CHAM",
+    "INTEGRALE/NOM_CMP",
+    "INTEGRALE/TYPE_MAILLE",
 ];
 
 /// What POST_ELEM computes (`crate::support`): its own keywords and the
@@ -84,6 +93,9 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     if kw.contains("NORME") {
         return norme(ex, call);
+    }
+    if kw.contains("INTEGRALE") {
+        return integrale(ex, call);
     }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
@@ -436,6 +448,242 @@ fn norme(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecErr
         ("TYPE_NORM", Value::Text("L2".into())),
         ("VALE_NORM", Value::Real(sum.sqrt())),
     ]);
+    store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+/// `POST_ELEM/INTEGRALE` of a result's field (code_aster's `peeint` →
+/// `peecal`, the weights of `chpond`): for each occurrence, each selected
+/// step and each place (`TOUT`, each `GROUP_MA`, then their union
+/// `UNION_GROUP_MA` when there are several), over the model's cells of the
+/// place (of dimension `TYPE_MAILLE` when given) and for each `NOM_CMP`:
+/// INTE = Σ v·w and VOL = Σ w over the points that carry the component,
+/// MOYE = INTE/VOL. The weights: at Gauss points (`ELGA`) `COOR_ELGA`'s
+/// w·|J| (·r on an axisymmetric model); at nodes (`ELNO`, and a nodal field
+/// which code_aster first spreads to its cells' nodes) the cell's measure
+/// (Σ of those weights) over its number of nodes — a cell's mean of nodal
+/// values, not a quadrature. Columns: NOM_CHAM, NUME_ORDRE, INST, VOL, the
+/// place's (`TOUT` or `GROUP_MA`), INTE_<cmp>… then MOYE_<cmp>….
+fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    let cmd = "POST_ELEM/INTEGRALE";
+    let kw = &call.keywords;
+    let Some(r) = kw.concept("RESULTAT") else {
+        return Err(ex.unsupported(
+            "POST_ELEM/INTEGRALE of a field (CHAM_GD): give RESULTAT",
+            kw.keyword("CHAM_GD").map(|k| k.span).unwrap_or(call.span),
+        ));
+    };
+    let result = ex.result(r)?;
+    let steps = super::post::select_steps(ex, "POST_ELEM", kw, &result)?;
+    let (model, _) = result_model(ex, kw, r, &result)?;
+    let mesh = model.mesh_arc().clone();
+    let axis = model.hypothesis() == Some(aster_fem::Hypothesis::Axisymmetric);
+    let mut table = Table::new(vec![
+        col("NOM_CHAM", ColumnType::Text(16)),
+        col("NUME_ORDRE", ColumnType::Int),
+        col("INST", ColumnType::Real),
+        col("VOL", ColumnType::Real),
+    ]);
+    for occ in kw.factor("INTEGRALE") {
+        let at = |k: &str| occ.keyword(k).map(|k| k.span).unwrap_or(call.span);
+        let Some(nom_cham) = occ.str("NOM_CHAM").map(str::to_string) else {
+            // code_aster's POSTELEM_4.
+            return Err(ExecError::new(format!(
+                "{cmd}: NOM_CHAM is needed with RESULTAT"
+            )));
+        };
+        if matches!(nom_cham.as_str(), "FORC_NODA" | "REAC_NODA") {
+            // code_aster's POSTELEM_5.
+            return Err(ex.kw_error(
+                cmd,
+                occ,
+                "NOM_CHAM",
+                "FORC_NODA and REAC_NODA cannot be integrated",
+            ));
+        }
+        let cmps: Vec<String> = occ
+            .simple("NOM_CMP")
+            .iter()
+            .filter_map(|s| s.as_str().map(str::to_string))
+            .collect();
+        if cmps.is_empty() {
+            return Err(ex.unsupported(
+                "POST_ELEM/INTEGRALE without NOM_CMP (NOM_VARI: internal variables by name)",
+                at("INTEGRALE"),
+            ));
+        }
+        // The occurrence's cells (the reduced model of `exlim1`).
+        let dim_filter = occ.str("TYPE_MAILLE").map(|t| match t {
+            "1D" => 1,
+            "2D" => 2,
+            _ => 3,
+        });
+        let keep = |c: &CellId| {
+            model.element_kind(*c).is_some()
+                && dim_filter.is_none_or(|d| mesh.cell(*c).ty.dim() as usize == d)
+        };
+        let mut places: Vec<(&str, String, Vec<CellId>)> = Vec::new();
+        if occ.contains("TOUT") {
+            let cells: Vec<CellId> = model
+                .elements()
+                .iter()
+                .map(|e| e.cell)
+                .filter(keep)
+                .collect();
+            places.push(("TOUT", "TOUT".into(), cells));
+        }
+        let groups: Vec<String> = occ
+            .simple("GROUP_MA")
+            .iter()
+            .filter_map(|s| s.as_str().map(str::to_string))
+            .collect();
+        let mut union: std::collections::BTreeSet<CellId> = Default::default();
+        for g in &groups {
+            let cells = crate::select::group_ma(&mesh, g)
+                .map_err(|e| ex.kw_error(cmd, occ, "GROUP_MA", e))?;
+            let cells: Vec<CellId> = cells.iter().copied().filter(keep).collect();
+            union.extend(cells.iter().copied());
+            places.push(("GROUP_MA", g.clone(), cells));
+        }
+        if groups.len() > 1 {
+            places.push((
+                "GROUP_MA",
+                "UNION_GROUP_MA".into(),
+                union.into_iter().collect(),
+            ));
+        }
+        if dim_filter.is_some() && places.iter().all(|p| p.2.is_empty()) {
+            // code_aster's PREPOST2_8.
+            return Err(ex.kw_error(cmd, occ, "TYPE_MAILLE", "no cell of that dimension"));
+        }
+        // The points and weights of every cell used (COOR_ELGA).
+        let mut weights: HashMap<CellId, Vec<f64>> = HashMap::new();
+        for (_, _, cells) in &places {
+            for &c in cells {
+                if weights.contains_key(&c) {
+                    continue;
+                }
+                let ty = mesh.cell(c).ty;
+                let scheme = match model.element_kind(c) {
+                    Some(aster_fem::ElementKind::Continuum { .. }) => model.stiffness_scheme(c),
+                    Some(aster_fem::ElementKind::Boundary) => {
+                        let role = aster_fem::elga::CellRole::of(ty.dim() as usize, model.dim());
+                        match role.and_then(|r| aster_fem::elga::family(ty, r, axis)) {
+                            Some(s) => s,
+                            None => continue,
+                        }
+                    }
+                    _ => {
+                        return Err(ex.unsupported(
+                            &format!(
+                                "POST_ELEM/INTEGRALE over cell {} (a structural or discrete element): continuum and skin cells only",
+                                crate::select::cell_name(&mesh, c)
+                            ),
+                            at("INTEGRALE"),
+                        ))
+                    }
+                };
+                let w = aster_fem::elga::points(&mesh, c, &scheme, axis)
+                    .iter()
+                    .map(|p| p.weight)
+                    .collect();
+                weights.insert(c, w);
+            }
+        }
+        for step in &steps {
+            let field = super::post::step_field(step, &nom_cham, &r.name)?;
+            let mut row_values: Vec<(String, f64, f64)> = Vec::new();
+            for (lieu, name, cells) in &places {
+                let mut vol0 = 0.0;
+                row_values.clear();
+                for (k, cmp) in cmps.iter().enumerate() {
+                    let (mut val, mut vol, mut count) = (0.0, 0.0, 0usize);
+                    for c in cells {
+                        let Some(w) = weights.get(c) else { continue };
+                        let measure: f64 = w.iter().sum();
+                        match field {
+                            crate::field::Field::Nodal(n) => {
+                                let nodes = &mesh.cell(*c).nodes;
+                                for node in nodes.iter() {
+                                    if let Some(v) = n.get(*node, cmp).filter(|v| !v.is_nan()) {
+                                        val += v * measure / nodes.len() as f64;
+                                        vol += measure / nodes.len() as f64;
+                                        count += 1;
+                                    }
+                                }
+                            }
+                            crate::field::Field::Elem(e) => {
+                                let Some(ic) = e.components().iter().position(|x| x == cmp) else {
+                                    continue;
+                                };
+                                let Some(points) = e.cell(*c) else { continue };
+                                let gauss = e.location == crate::field::ElemLocation::Gauss;
+                                if gauss && points.len() != w.len() {
+                                    return Err(ExecError::new(format!(
+                                        "{cmd}: cell {} has {} points in {nom_cham} and {} in its element's family",
+                                        crate::select::cell_name(&mesh, *c),
+                                        points.len(),
+                                        w.len()
+                                    )));
+                                }
+                                for (p, vals) in points.iter().enumerate() {
+                                    let v = vals[ic];
+                                    if v.is_nan() {
+                                        continue;
+                                    }
+                                    let wt = if gauss {
+                                        w[p]
+                                    } else {
+                                        measure / points.len() as f64
+                                    };
+                                    val += v * wt;
+                                    vol += wt;
+                                    count += 1;
+                                }
+                            }
+                        }
+                    }
+                    if count == 0 && !cells.is_empty() {
+                        // code_aster's UTILITAI7_12.
+                        return Err(ex.kw_error(
+                            cmd,
+                            occ,
+                            "NOM_CMP",
+                            format!(
+                                "field {nom_cham} has no component {cmp} on the cells of {name}"
+                            ),
+                        ));
+                    }
+                    if k == 0 {
+                        vol0 = vol;
+                    }
+                    row_values.push((cmp.clone(), val, vol));
+                }
+                // `peecal`'s order: the place, the INTE_ then the MOYE_.
+                table.ensure_column(lieu, ColumnType::Text(16));
+                for prefix in ["INTE_", "MOYE_"] {
+                    for (cmp, _, _) in &row_values {
+                        table.ensure_column(&format!("{prefix}{cmp}"), ColumnType::Real);
+                    }
+                }
+                let names: Vec<(String, String)> = row_values
+                    .iter()
+                    .map(|(c, _, _)| (format!("INTE_{c}"), format!("MOYE_{c}")))
+                    .collect();
+                let mut row: Vec<(&str, Value)> = vec![
+                    ("NOM_CHAM", Value::Text(nom_cham.clone())),
+                    ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
+                    ("INST", Value::Real(step.inst)),
+                    ("VOL", Value::Real(vol0)),
+                    (lieu, Value::Text(name.clone())),
+                ];
+                for ((inte, moye), (_, val, vol)) in names.iter().zip(&row_values) {
+                    row.push((inte.as_str(), Value::Real(*val)));
+                    row.push((moye.as_str(), Value::Real(val / vol)));
+                }
+                table.push_row(row);
+            }
+        }
+    }
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
