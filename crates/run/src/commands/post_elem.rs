@@ -80,11 +80,29 @@ const POST_ELEM_OWN: &[&str] = &[
 pub(crate) const POST_ELEM: Support = Support {
     values: &[Values::new("NORME/TYPE_NORM", &["L2"])
         .why("(the Frobenius norm is not reproduced): the L2 norm only")],
+    rules: Some(post_elem_rules),
     ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + POST_ELEM_OWN.len() },
     >(super::post::STEP_SELECTION, POST_ELEM_OWN))
 };
+
+/// `INTEGRALE` of a field (`CHAM_GD`) is refused before the run
+/// (`NOM_VARI` is not among the keywords read: refused as such).
+fn post_elem_rules(call: &CommandCall, out: &mut Vec<crate::support::Refusal>) {
+    let kw = &call.keywords;
+    if !kw.contains("INTEGRALE") {
+        return;
+    }
+    if kw.contains("CHAM_GD") {
+        out.push(crate::support::Refusal::at(
+            "POST_ELEM/INTEGRALE of a field (CHAM_GD): give RESULTAT".into(),
+            kw,
+            "CHAM_GD",
+            call.span,
+        ));
+    }
+}
 
 pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
