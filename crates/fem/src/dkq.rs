@@ -365,6 +365,12 @@ fn gquad4(xy: &[[f64; 2]; 4]) -> [f64; 25] {
     ]
 }
 
+/// The (ξ, η) of the RIGI family's points (FPG4), where the efforts are
+/// computed on a STAT_NON_LINE result.
+pub(crate) fn rigi_points() -> Vec<[f64; 2]> {
+    fpg4().iter().map(|g| [g.xi[0], g.xi[1]]).collect()
+}
+
 /// FPG4, code_aster's `RIGI` family of `MEDKQU4`.
 pub(crate) fn fpg4() -> Vec<GaussPoint> {
     rigi_scheme(CellType::QUAD4)
@@ -458,6 +464,122 @@ pub fn stiffness(
     Ok(DMatrix::from_column_slice(24, 24, k.as_slice()))
 }
 
+/// `dkqniw`: the DKQ's interpolation of w on the bending unknowns
+/// (w₁ βx₁ βy₁ …) at (ξ, η), from `gquad4`'s edge vectors.
+fn wkq(c: &[f64; 25], qsi: f64, eta: f64) -> [f64; 12] {
+    let (x5, x6, x7, x8) = (c[0], c[1], c[2], c[3]);
+    let (y5, y6, y7, y8) = (c[4], c[5], c[6], c[7]);
+    let (peta, meta, pqsi, mqsi) = (1. + eta, 1. - eta, 1. + qsi, 1. - qsi);
+    let (etac, qsic) = (1. - eta * eta, 1. - qsi * qsi);
+    let n = [
+        mqsi * meta / 8. * (qsic + etac - qsi - eta),
+        mqsi * meta / 8. * qsic,
+        mqsi * meta / 8. * etac,
+        pqsi * meta / 8. * (qsic + etac + qsi - eta),
+        -pqsi * meta / 8. * qsic,
+        pqsi * meta / 8. * etac,
+        pqsi * peta / 8. * (qsic + etac + qsi + eta),
+        -pqsi * peta / 8. * qsic,
+        -pqsi * peta / 8. * etac,
+        mqsi * peta / 8. * (qsic + etac - qsi + eta),
+        mqsi * peta / 8. * qsic,
+        -mqsi * peta / 8. * etac,
+    ];
+    [
+        n[0],
+        (-x5 * n[1] + x8 * n[2]) / 2.,
+        (-y5 * n[1] + y8 * n[2]) / 2.,
+        n[3],
+        (-x5 * n[4] - x6 * n[5]) / 2.,
+        (-y5 * n[4] - y6 * n[5]) / 2.,
+        n[6],
+        (x7 * n[7] - x6 * n[8]) / 2.,
+        (y7 * n[7] - y6 * n[8]) / 2.,
+        n[9],
+        (x7 * n[10] + x8 * n[11]) / 2.,
+        (y7 * n[10] + y8 * n[11]) / 2.,
+    ]
+}
+
+/// The mass in the facet's frame (`dkqmas` then `dxqloc`, option
+/// `MASS_MECA`), DOFs node-major DX DY DZ DRX DRY DRZ along the local axes:
+/// - membrane: ρh·A/9 × (1 on a node, ½ between neighbouring nodes, ¼
+///   between opposite ones) on each in-plane translation — `dkqmas`'s
+///   literal pattern, the bilinear consistent mass of a parallelogram
+///   (not of a general quadrangle: code_aster uses it for every shape);
+/// - bending: ρh ∫ w·w with the DKQ's w ([`wkq`], `dkqniw`) on
+///   (w, βx, βy), integrated with the stiffness' FPG4 as code_aster does.
+///   No rotary inertia (code_aster adds ρh³/12 ∫ β·β only with
+///   `COQUE/INER_ROTA='OUI'` or an offset, neither reproduced);
+/// - the drilling DRZ: `COEF_RIGI_DRZ` × the least diagonal term of the
+///   bending rotations, as for the stiffness (`dxqloc`).
+pub fn local_mass(quad: &Quad, rho: f64, section: &ShellSection) -> Matrix24 {
+    let roe = rho * section.thickness;
+    let coefm = quad.c[20] * roe / 9.;
+    let mut m = Matrix24::zeros();
+    for a in 0..8 {
+        for b in 0..8 {
+            if a % 2 == b % 2 {
+                let factor = match (a / 2usize).abs_diff(b / 2) {
+                    0 => 1.,
+                    2 => 0.25,
+                    _ => 0.5,
+                };
+                m[(membrane_dof(a), membrane_dof(b))] = coefm * factor;
+            }
+        }
+    }
+    let mut flex = [[0.; 12]; 12];
+    for g in fpg4() {
+        let (qsi, eta) = (g.xi[0], g.xi[1]);
+        let w = wkq(&quad.c, qsi, eta);
+        let wgt = g.weight * quad.jacobian(qsi, eta).0 * roe;
+        for a in 0..12 {
+            for b in 0..12 {
+                flex[a][b] += w[a] * w[b] * wgt;
+            }
+        }
+    }
+    for a in 0..12 {
+        let (ia, sa) = bending_dof(a);
+        for b in 0..12 {
+            let (ib, sb) = bending_dof(b);
+            m[(ia, ib)] += sa * sb * flex[a][b];
+        }
+    }
+    let rotation_min = [1, 2, 4, 5, 7, 8, 10, 11]
+        .iter()
+        .map(|&i| flex[i][i])
+        .fold(f64::INFINITY, f64::min);
+    for n in 0..4 {
+        m[(6 * n + 5, 6 * n + 5)] = section.drilling * rotation_min;
+    }
+    m
+}
+
+/// Global mass of a DKQ quadrangle of density `rho` ([`local_mass`] turned
+/// by the facet's frame; 24×24, node-major DX DY DZ DRX DRY DRZ), and the
+/// facet's mass ρh·A (`dialum`'s weight when lumped).
+pub fn mass(
+    xyz: &[[f64; 3]; 4],
+    rho: f64,
+    section: &ShellSection,
+) -> Result<(DMatrix<f64>, f64), String> {
+    if section.drilling < 0. {
+        return Err(format!(
+            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation for DKQ, which is not reproduced",
+            section.drilling
+        ));
+    }
+    let quad = Quad::new(xyz)?;
+    let r = rotation(&quad);
+    let m = r.transpose() * local_mass(&quad, rho, section) * r;
+    Ok((
+        DMatrix::from_column_slice(24, 24, m.as_slice()),
+        quad.c[20] * rho * section.thickness,
+    ))
+}
+
 /// The nodes of the reference square, code_aster's `NOEU` family of
 /// `MEDKQU4` (where `dkqedg` evaluates `EFGE_ELNO` of a linear result).
 pub const NODES: [[f64; 2]; 4] = [[-1., -1.], [1., -1.], [1., 1.], [-1., 1.]];
@@ -472,7 +594,7 @@ pub fn efforts(
     section: &ShellSection,
     u: &[f64; 24],
 ) -> Result<Vec<QuadEfforts>, String> {
-    let points: Vec<[f64; 2]> = fpg4().iter().map(|g| [g.xi[0], g.xi[1]]).collect();
+    let points = rigi_points();
     generalised_at(xyz, material, section, u, &points, Generalised::Efforts)
 }
 

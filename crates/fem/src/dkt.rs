@@ -400,6 +400,12 @@ pub(crate) fn bending_dof(k: usize) -> (usize, f64) {
     }
 }
 
+/// The (ξ, η) of the RIGI family's points (FPG3), where the efforts are
+/// computed on a STAT_NON_LINE result.
+pub(crate) fn rigi_points() -> Vec<[f64; 2]> {
+    fpg3().iter().map(|g| [g.xi[0], g.xi[1]]).collect()
+}
+
 /// FPG3, code_aster's `RIGI` family of `MEDKTR3`.
 pub(crate) fn fpg3() -> Vec<GaussPoint> {
     rigi_scheme(CellType::TRIA6)
@@ -558,12 +564,20 @@ pub fn local_mass(facet: &Facet, rho: f64, section: &ShellSection) -> Matrix18 {
 }
 
 /// Global mass of a DKT triangle of density `rho` ([`local_mass`] turned
-/// by the facet's frame; 18×18, node-major DX DY DZ DRX DRY DRZ).
-pub fn mass(xyz: &[[f64; 3]; 3], rho: f64, section: &ShellSection) -> Result<DMatrix<f64>, String> {
+/// by the facet's frame; 18×18, node-major DX DY DZ DRX DRY DRZ), and the
+/// facet's mass ρh·A (`dialum`'s weight when lumped).
+pub fn mass(
+    xyz: &[[f64; 3]; 3],
+    rho: f64,
+    section: &ShellSection,
+) -> Result<(DMatrix<f64>, f64), String> {
     let facet = Facet::new(xyz)?;
     let r = rotation(&facet);
     let m = r.transpose() * local_mass(&facet, rho, section) * r;
-    Ok(DMatrix::from_column_slice(18, 18, m.as_slice()))
+    Ok((
+        DMatrix::from_column_slice(18, 18, m.as_slice()),
+        facet.area() * rho * section.thickness,
+    ))
 }
 
 /// The nodes of the reference triangle, code_aster's `NOEU` family of
@@ -579,7 +593,7 @@ pub fn efforts(
     section: &ShellSection,
     u: &[f64; 18],
 ) -> Result<Vec<Efforts>, String> {
-    let points: Vec<[f64; 2]> = fpg3().iter().map(|g| [g.xi[0], g.xi[1]]).collect();
+    let points = rigi_points();
     generalised_at(xyz, material, section, u, &points, Generalised::Efforts)
 }
 

@@ -17,9 +17,10 @@
 //!   ([`DiscreteMass::segment_with_inertia`]) and `M_T_N`/`M_T_L`/`M_TR_N`/
 //!   `M_TR_L` (a full symmetric matrix over the cell's DOFs, given as
 //!   code_aster's upper triangle by columns).
-//! - DKT triangles: code_aster's `dktmas` ([`crate::dkt::local_mass`]),
-//!   consistent only; DKT quadrangles and COQUE_3D: no mass yet (an error
-//!   naming the cell).
+//! - DKT shells: code_aster's `dktmas` on triangles
+//!   ([`crate::dkt::local_mass`]) and `dkqmas` on quadrangles
+//!   ([`crate::dkq::local_mass`]), lumped by `dialum` ([`lump_shell`]);
+//!   COQUE_3D: no mass yet (an error naming the cell).
 //! - Rayleigh damping (`ELAS/AMOR_ALPHA`, `AMOR_BETA`): C = Σ αₑ Kₑ + βₑ Mₑ
 //!   per cell, with the elastic stiffness (`AMOR_RAYL_RIGI='ELASTIQUE'`).
 //!
@@ -134,6 +135,40 @@ pub fn lump(m: &DMatrix<f64>, dim: usize) -> DMatrix<f64> {
 
 /// The mass matrix of one discrete cell over its DOFs (global frame), or
 /// an error naming the cell when the values do not fit it.
+/// code_aster's `dialum` (`MASS_MECA_DIAG` of the DKT shells): the
+/// diagonal of the global consistent matrix `m` (six DOFs a node) scaled so
+/// that each translation's terms sum to the facet's mass `weight`; each
+/// rotation's terms by the factor of the translation of the same axis
+/// (DRX by DX's…); a zero diagonal term becomes 1e-5 × DX's factor × the
+/// least non-zero diagonal term. Off-diagonal terms are dropped.
+pub fn lump_shell(m: &DMatrix<f64>, weight: f64) -> DMatrix<f64> {
+    let n = m.nrows();
+    let nodes = n / 6;
+    let mut sums = [0.0; 3];
+    for k in 0..nodes {
+        for (d, s) in sums.iter_mut().enumerate() {
+            *s += m[(6 * k + d, 6 * k + d)];
+        }
+    }
+    let alpha = sums.map(|s| weight / s);
+    let mut out = DMatrix::zeros(n, n);
+    let mut least = m[(0, 0)];
+    let mut zeros = Vec::new();
+    for i in 0..n {
+        let d = m[(i, i)];
+        if d == 0.0 {
+            zeros.push(i);
+        } else {
+            least = least.min(d);
+            out[(i, i)] = alpha[(i % 6) % 3] * d;
+        }
+    }
+    for i in zeros {
+        out[(i, i)] = 1e-5 * alpha[0] * least;
+    }
+    out
+}
+
 fn discrete_mass(model: &Model, d: &DiscreteMass) -> Result<(CellId, DMatrix<f64>), FemError> {
     let dim = model.dim();
     let cell = d.cell();
@@ -250,11 +285,11 @@ impl DiscreteMass {
 
 /// The mass of one element of density `rho` over its DOFs (node-major):
 /// continuum cells ([`continuum_mass`], lumped by [`lump`]), POU_D_E beams
-/// ([`crate::beam::mass`], code_aster's `ptma01`), DKT triangles
-/// ([`crate::dkt::mass`], `dktmas`, consistent only); `None` for the
-/// elements without a mass of their own (springs carry the discrete
-/// masses, boundary cells nothing). DKT quadrangles and COQUE_3D: an
-/// error naming the cell.
+/// ([`crate::beam::mass`], code_aster's `ptma01`), DKT shells
+/// ([`crate::dkt::mass`], `dktmas`; [`crate::dkq::mass`], `dkqmas`; lumped
+/// by [`lump_shell`], `dialum`); `None` for the elements without a mass of
+/// their own (springs carry the discrete masses, boundary cells nothing).
+/// COQUE_3D: an error naming the cell.
 pub fn element_mass(
     model: &Model,
     el: &Element,
@@ -275,17 +310,19 @@ pub fn element_mass(
             .and_then(|xyz| crate::beam::mass(&xyz, rho, section, lumped))
             .map(Some)
             .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))),
-        ElementKind::Shell { section, .. }
-            if !lumped && model.mesh().cell(el.cell).ty == aster_mesh::CellType::TRIA3 =>
-        {
+        ElementKind::Shell { section, .. } => {
             let c = model.mesh().cell(el.cell);
-            let xyz = [0, 1, 2].map(|i| model.mesh().coord(c.nodes[i]));
-            crate::dkt::mass(&xyz, rho, section)
-                .map(Some)
-                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+            let coord = |i: usize| model.mesh().coord(c.nodes[i]);
+            let built = match c.ty {
+                aster_mesh::CellType::TRIA3 => crate::dkt::mass(&[0, 1, 2].map(coord), rho, section),
+                _ => crate::dkq::mass(&[0, 1, 2, 3].map(coord), rho, section),
+            };
+            let (m, weight) = built
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))?;
+            Ok(Some(if lumped { lump_shell(&m, weight) } else { m }))
         }
-        ElementKind::Shell { .. } | ElementKind::Coque3d { .. } => Err(FemError::Model(format!(
-            "cell {} is a shell: the {}mass of DKT on QUAD4 (dkqmas) and of COQUE_3D is not implemented (the consistent mass of DKT on TRIA3 is)",
+        ElementKind::Coque3d { .. } => Err(FemError::Model(format!(
+            "cell {} is a COQUE_3D shell: its {}mass is not implemented (that of DKT on TRIA3 and QUAD4 is)",
             model.cell_name(el.cell),
             if lumped { "lumped " } else { "" }
         ))),
@@ -706,19 +743,70 @@ mod tests {
             .map(|&i| loc[(i, i)])
             .fold(f64::INFINITY, f64::min);
         assert!((loc[(5, 5)] - 1e-5 * least).abs() < 1e-20 && loc[(5, 5)] > 0.);
-        // DKT on QUAD4: not implemented, an error naming the cell.
+    }
+
+    #[test]
+    fn dkq_quadrangle_mass_moves_rigidly_as_code_aster_s() {
+        // A planar parallelogram turned in space: its Jacobian is constant,
+        // the membrane's literal pattern is the bilinear consistent mass and
+        // FPG4 integrates the squares of linear fields exactly.
+        let (o, a, b) = ([0.2, -0.1, 0.3], [1.1, 0.4, -0.2], [-0.3, 0.8, 0.5]);
+        let p = |s: f64, t: f64| [0, 1, 2].map(|k| o[k] + s * a[k] + t * b[k]);
+        let xyz = [p(0., 0.), p(1., 0.), p(1., 1.), p(0., 1.)];
+        let (h, rho) = (0.02, 2700.0);
+        let sec = crate::dkt::ShellSection::new(h);
         let kind = ElementKind::Shell {
             material: Elastic::new(7e10, 0.3).unwrap(),
             section: sec,
         };
-        let quad4 = structural(
-            CellType::QUAD4,
-            vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]],
-            kind,
+        let model = structural(CellType::QUAD4, xyz.to_vec(), kind);
+        let facet = crate::dkq::Quad::new(&xyz).unwrap();
+        let loc = crate::dkq::local_mass(&facet, rho, &sec);
+        let m = element_mass(&model, &model.elements()[0], rho, Lumping::Consistent)
+            .unwrap()
+            .unwrap();
+        let n = cross(a, b);
+        let area = dot(n, n).sqrt();
+        // Translations: ρhA.
+        let v0 = [0.3, -0.7, 0.2];
+        let e = quad(&m, &rigid(&xyz, v0, [0.; 3]));
+        assert!((e - rho * h * area * dot(v0, v0)).abs() < 1e-12 * e);
+        // A rotation about the origin: ρh ∫|ω×x|² dA (2 × 2 Gauss points
+        // on the parallelogram: exact), no rotary inertia, and the drilling
+        // term on each node's rotation about the normal.
+        let w = [0.4, -1.3, 0.8];
+        let g = 0.5 / 3f64.sqrt();
+        let mut integral = 0.;
+        for s in [0.5 - g, 0.5 + g] {
+            for t in [0.5 - g, 0.5 + g] {
+                let r = cross(w, p(s, t));
+                integral += dot(r, r) * area / 4.;
+            }
+        }
+        let wn = (0..3).map(|k| facet.pgl[(2, k)] * w[k]).sum::<f64>();
+        let exact = rho * h * integral + 4. * loc[(5, 5)] * wn * wn;
+        let e = quad(&m, &rigid(&xyz, [0.; 3], w));
+        assert!((e - exact).abs() < 1e-10 * exact, "{e} vs {exact}");
+        let least = [3, 4, 9, 10, 15, 16, 21, 22]
+            .iter()
+            .map(|&i| loc[(i, i)])
+            .fold(f64::INFINITY, f64::min);
+        assert!((loc[(5, 5)] - 1e-5 * least).abs() < 1e-20 && loc[(5, 5)] > 0.);
+        // Lumped (dialum): diagonal, each translation's terms summing to
+        // ρhA, the rotations scaled by the same factors.
+        let d = element_mass(&model, &model.elements()[0], rho, Lumping::Diagonal)
+            .unwrap()
+            .unwrap();
+        for axis in 0..3 {
+            let sum: f64 = (0..4).map(|k| d[(6 * k + axis, 6 * k + axis)]).sum();
+            assert!((sum - rho * h * area).abs() < 1e-12 * sum, "{axis}: {sum}");
+            let alpha = d[(axis, axis)] / m[(axis, axis)];
+            let r = 3 + axis;
+            assert!((d[(r, r)] - alpha * m[(r, r)]).abs() <= 1e-12 * d[(r, r)]);
+        }
+        assert_eq!(
+            (d.clone() - DMatrix::from_diagonal(&d.diagonal())).norm(),
+            0.
         );
-        let err = element_mass(&quad4, &quad4.elements()[0], rho, Lumping::Consistent)
-            .unwrap_err()
-            .to_string();
-        assert!(err.contains("M1") && err.contains("QUAD4"), "{err}");
     }
 }

@@ -63,8 +63,8 @@ fn cell_error(model: &Model, cell: CellId, m: String) -> FemError {
     FemError::Model(format!("cell {} is {m}", model.cell_name(cell)))
 }
 
-/// code_aster's `EFGE` components of a DKT triangle (`MEDKTR3`): the
-/// membrane forces, moments and transverse shears.
+/// code_aster's `EFGE` components of the DKT and DKQ plates (`MEDKTR3`,
+/// `MEDKQU4`): the membrane forces, moments and transverse shears.
 const EFGE_NAMES: [&str; 8] = ["NXX", "NYY", "NXY", "MXX", "MYY", "MXY", "QX", "QY"];
 
 /// The components of the shells' generalised strains (`DEGE_*`).
@@ -179,10 +179,7 @@ fn shell_generalised(
                 let facet = crate::dkt::Facet::new(&xyz).map_err(err)?;
                 let points: Vec<[f64; 2]> = match at {
                     EffortsAt::NodesLinear => crate::dkt::NODES.to_vec(),
-                    _ => crate::dkt::fpg3()
-                        .iter()
-                        .map(|g| [g.xi[0], g.xi[1]])
-                        .collect(),
+                    _ => crate::dkt::rigi_points(),
                 };
                 let e = crate::dkt::generalised_at(&xyz, material, section, &ue, &points, what)
                     .map_err(err)?;
@@ -197,10 +194,7 @@ fn shell_generalised(
                 let quad = crate::dkq::Quad::new(&xyz).map_err(err)?;
                 let points: Vec<[f64; 2]> = match at {
                     EffortsAt::NodesLinear => crate::dkq::NODES.to_vec(),
-                    _ => crate::dkq::fpg4()
-                        .iter()
-                        .map(|g| [g.xi[0], g.xi[1]])
-                        .collect(),
+                    _ => crate::dkq::rigi_points(),
                 };
                 let e = crate::dkq::generalised_at(&xyz, material, section, &ue, &points, what)
                     .map_err(err)?;
@@ -242,7 +236,7 @@ fn shell_generalised(
                 let (nxx, nyy, nxy) = rot(e[0], e[1], e[2]);
                 let (mxx, myy, mxy) = rot(e[3], e[4], e[5]);
                 let (qx, qy) = (cs * e[6] + sn * e[7], -sn * e[6] + cs * e[7]);
-                [nxx, nyy, nxy, mxx, myy, mxy, qx, qy][..names.len()].to_vec()
+                vec![nxx, nyy, nxy, mxx, myy, mxy, qx, qy]
             })
             .collect::<Vec<Vec<f64>>>();
         // ef0031: the Gauss points' efforts carried to the nodes by the

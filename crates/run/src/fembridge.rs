@@ -1097,28 +1097,26 @@ fn nodal_by_families(model: &aster_fem::Model, elno: &[CellValues]) -> NodalFiel
     let mut out = NodalField::new(names);
     for f in &families {
         let part: Vec<CellValues> = elno.iter().filter(|cv| cv.names == *f).cloned().collect();
-        let v = post::noeu(model, &part);
-        for (n, vals) in v.values.iter().enumerate() {
-            if let Some(vals) = vals {
-                for (c, x) in v.names.iter().zip(vals) {
-                    out.set(NodeId(n as u32), c, *x);
-                }
-            }
-        }
+        write_nodal(&mut out, &post::noeu(model, &part));
     }
     out
 }
 
 fn nodal_from_values(v: &NodalValues) -> NodalField {
     let mut f = NodalField::new(v.names.iter().map(|s| s.to_string()).collect());
+    write_nodal(&mut f, v);
+    f
+}
+
+/// Writes every node's values of `v` into `out` (components by name).
+fn write_nodal(out: &mut NodalField, v: &NodalValues) {
     for (n, vals) in v.values.iter().enumerate() {
         if let Some(vals) = vals {
             for (c, x) in v.names.iter().zip(vals) {
-                f.set(NodeId(n as u32), c, *x);
+                out.set(NodeId(n as u32), c, *x);
             }
         }
     }
-    f
 }
 
 pub fn solve(

@@ -71,9 +71,9 @@ pub(crate) fn refuse_loads_on_shells(
 
 /// STAT_NON_LINE, MECA_STATIQUE, DYNA_NON_LINE: with shells or beams,
 /// only `ELAS` in small strains (`COMPORTEMENT` occurrences covering shell
-/// or beam cells), and no dynamics with DKT quadrangles or COQUE_3D (their
-/// mass is not implemented; DKT triangles, beams and `DIS_TR` have theirs,
-/// aster-fem's `mass`).
+/// or beam cells), and no dynamics with COQUE_3D (its mass is not
+/// implemented; DKT shells, beams and `DIS_TR` have theirs, aster-fem's
+/// `mass`).
 pub(crate) fn check_solve(
     ex: &Executor,
     call: &CommandCall,
@@ -87,23 +87,18 @@ pub(crate) fn check_solve(
     let kw = &call.keywords;
     if cmd == "DYNA_NON_LINE" {
         let mesh = ex.mesh_by_id(model.mesh)?;
-        // DKT triangles have their mass (aster-fem's `dkt::local_mass`).
-        let without_mass = |(&c, m): &(&CellId, &Modelisation)| match m {
-            Modelisation::Dkt => mesh.cell(c).ty != aster_mesh::CellType::TRIA3,
-            Modelisation::Coque3d => true,
-            _ => false,
-        };
-        if let Some((&cell, m)) = model.cells.iter().find(without_mass) {
+        // DKT triangles and quadrangles have their mass (aster-fem's
+        // `dkt::local_mass`, `dkq::local_mass`).
+        if let Some((&cell, _)) = model
+            .cells
+            .iter()
+            .find(|(_, m)| **m == Modelisation::Coque3d)
+        {
             let span = kw.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
             return Err(ex.unsupported(
                 &format!(
-                    "DYNA_NON_LINE on a model with shells without a mass (cell {} is {}): the mass of DKT quadrangles (dkqmas) and of COQUE_3D (te0406) is not implemented (DKT triangles, POU_D_E beams and DIS_TR discrete masses are)",
+                    "DYNA_NON_LINE on a model with COQUE_3D shells (cell {}): their mass (te0406) is not implemented (DKT triangles and quadrangles, POU_D_E beams and DIS_TR discrete masses have theirs)",
                     crate::select::cell_name(&mesh, cell),
-                    if *m == Modelisation::Dkt {
-                        "DKT on a QUAD4"
-                    } else {
-                        "COQUE_3D"
-                    }
                 ),
                 span,
             ));

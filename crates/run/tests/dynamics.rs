@@ -14,8 +14,9 @@
 //!   first Euler–Bernoulli mode (tip against the trapezoidal rule's
 //!   rotation of that mode, the energy conserved) and a DIS_TR mass with
 //!   rotational inertia (M_TR_D_N) on springs, exact;
-//! - comm/dkt_vibration.comm: a strip of DKT triangles in its first
-//!   mode (code_aster's `dktmas`), within its measured discretisation;
+//! - comm/dkt_vibration.comm, comm/dkq_vibration.comm: strips of DKT
+//!   triangles and quadrangles in their first mode (code_aster's `dktmas`,
+//!   `dkqmas`), within their measured discretisation;
 //! - comm/continued_plastic.comm: MECA_NON_LINE continued by reuse= from
 //!   its last plastic state gives the values of one run;
 //! - error cases: located refusals and errors;
@@ -100,6 +101,14 @@ fn beam_and_rotational_mass_vibrate_at_their_frequencies() {
 fn dkt_strip_vibrates_at_its_beam_frequency() {
     let mesh = root().join("comm/dkt_strips.mail");
     let r = run_text(&scene("dkt_vibration.comm"), &mesh, "dkt");
+    assert_eq!(r, (26, 0, None));
+}
+
+/// The same on a strip of DKT quadrangles (DKQ, `dkqmas`).
+#[test]
+fn dkq_strip_vibrates_at_its_beam_frequency() {
+    let mesh = root().join("comm/dkt_strips.mail");
+    let r = run_text(&scene("dkq_vibration.comm"), &mesh, "dkq");
     assert_eq!(r, (26, 0, None));
 }
 

@@ -109,38 +109,6 @@ fn plasticity_and_surface_forces_on_shells_are_refused() {
     );
 }
 
-/// The mass of DKT quadrangles is not implemented: DYNA_NON_LINE names the
-/// cell and its element at MODELE (DKT triangles, beams and DIS_TR run:
-/// tests/dynamics.rs).
-#[test]
-fn dynamics_of_shells_is_refused_at_the_model() {
-    let dyna = strips()
-        .replace("ELAS=_F(E=2.0e11, NU=0.0)", "ELAS=_F(E=2.0e11, NU=0.0, RHO=7800.0)")
-        .replace(
-            "INCREMENT=_F(LIST_INST=LINST),",
-            "INCREMENT=_F(LIST_INST=LINST),\n    SCHEMA_TEMPS=_F(SCHEMA=\"NEWMARK\", FORMULATION=\"DEPLACEMENT\"),",
-        )
-        .replace("RESU = STAT_NON_LINE(", "RESU = DYNA_NON_LINE(");
-    assert!(dyna.contains("DYNA_NON_LINE(") && dyna.contains("SCHEMA_TEMPS"));
-    // Located at the MODELE keyword of DYNA_NON_LINE.
-    let lines: Vec<&str> = dyna.lines().collect();
-    let call = lines
-        .iter()
-        .position(|l| l.contains("DYNA_NON_LINE("))
-        .unwrap();
-    assert!(lines[call + 1].trim_start().starts_with("MODELE="));
-    let at = format!("case.comm:{}:5", call + 2);
-    refused(
-        &dyna,
-        "dyna",
-        &[
-            "DYNA_NON_LINE on a model with shells without a mass",
-            "is DKT on a QUAD4",
-            &at,
-        ],
-    );
-}
-
 // The stacked strips (comm/shell_stack.comm): contact of shell
 // mid-surfaces, and the stresses of one layer level (POST_CHAMP/EXTR_COQUE,
 // SIGM_NOEU) against beam theory within 1e-9.
