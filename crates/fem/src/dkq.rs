@@ -501,6 +501,40 @@ fn wkq(c: &[f64; 25], qsi: f64, eta: f64) -> [f64; 12] {
     ]
 }
 
+/// `dkqnib`: the DKQ's interpolation of the rotations (βx, βy) on the
+/// bending unknowns (w₁ βx₁ βy₁ …) at (ξ, η).
+fn nib_q(c: &[f64; 25], qsi: f64, eta: f64) -> ([f64; 12], [f64; 12]) {
+    let l = [c[8], c[9], c[10], c[11]];
+    let co = [c[12], c[13], c[14], c[15]];
+    let si = [c[16], c[17], c[18], c[19]];
+    let n = [
+        0.25 * (1. - qsi) * (1. - eta),
+        0.25 * (1. + qsi) * (1. - eta),
+        0.25 * (1. + qsi) * (1. + eta),
+        0.25 * (1. - qsi) * (1. + eta),
+    ];
+    // The mid-side functions of sides 5 (1–2), 6 (2–3), 7 (3–4), 8 (4–1).
+    let p = [
+        0.5 * (1. - qsi * qsi) * (1. - eta),
+        0.5 * (1. - eta * eta) * (1. + qsi),
+        0.5 * (1. - qsi * qsi) * (1. + eta),
+        0.5 * (1. - eta * eta) * (1. - qsi),
+    ];
+    let mut nfx = [0.; 12];
+    let mut nfy = [0.; 12];
+    for k in 0..4 {
+        // Node k + 1 lies between side k (after it) and side k − 1 (before).
+        let (a, b) = (k, (k + 3) % 4);
+        nfx[3 * k] = 1.5 * (p[a] * co[a] / l[a] - p[b] * co[b] / l[b]);
+        nfx[3 * k + 1] = n[k] - 0.75 * (p[a] * co[a] * co[a] + p[b] * co[b] * co[b]);
+        nfx[3 * k + 2] = -0.75 * (p[a] * co[a] * si[a] + p[b] * co[b] * si[b]);
+        nfy[3 * k] = 1.5 * (p[a] * si[a] / l[a] - p[b] * si[b] / l[b]);
+        nfy[3 * k + 1] = nfx[3 * k + 2];
+        nfy[3 * k + 2] = n[k] - 0.75 * (p[a] * si[a] * si[a] + p[b] * si[b] * si[b]);
+    }
+    (nfx, nfy)
+}
+
 /// The mass in the facet's frame (`dkqmas` then `dxqloc`, option
 /// `MASS_MECA`), DOFs node-major DX DY DZ DRX DRY DRZ along the local axes:
 /// - membrane: ρh·A/9 × (1 on a node, ½ between neighbouring nodes, ¼
@@ -508,9 +542,9 @@ fn wkq(c: &[f64; 25], qsi: f64, eta: f64) -> [f64; 12] {
 ///   literal pattern, the bilinear consistent mass of a parallelogram
 ///   (not of a general quadrangle: code_aster uses it for every shape);
 /// - bending: ρh ∫ w·w with the DKQ's w ([`wkq`], `dkqniw`) on
-///   (w, βx, βy), integrated with the stiffness' FPG4 as code_aster does.
-///   No rotary inertia (code_aster adds ρh³/12 ∫ β·β only with
-///   `COQUE/INER_ROTA='OUI'` or an offset, neither reproduced);
+///   (w, βx, βy), integrated with the stiffness' FPG4 as code_aster does,
+///   plus the rotary inertia ρh³/12 ∫ β·β ([`nib_q`], `dkqnib`) when
+///   `COQUE/INER_ROTA='OUI'`;
 /// - the drilling DRZ: `COEF_RIGI_DRZ` × the least diagonal term of the
 ///   bending rotations, as for the stiffness (`dxqloc`).
 pub fn local_mass(quad: &Quad, rho: f64, section: &ShellSection) -> Matrix24 {
@@ -529,14 +563,18 @@ pub fn local_mass(quad: &Quad, rho: f64, section: &ShellSection) -> Matrix24 {
             }
         }
     }
+    let rof = section.rotary_density(rho);
     let mut flex = [[0.; 12]; 12];
     for g in fpg4() {
         let (qsi, eta) = (g.xi[0], g.xi[1]);
         let w = wkq(&quad.c, qsi, eta);
-        let wgt = g.weight * quad.jacobian(qsi, eta).0 * roe;
+        let det = quad.jacobian(qsi, eta).0;
+        let wgt = g.weight * det * roe;
+        let (nfx, nfy) = nib_q(&quad.c, qsi, eta);
+        let wgtf = g.weight * det * rof;
         for a in 0..12 {
             for b in 0..12 {
-                flex[a][b] += w[a] * w[b] * wgt;
+                flex[a][b] += w[a] * w[b] * wgt + (nfx[a] * nfx[b] + nfy[a] * nfy[b]) * wgtf;
             }
         }
     }

@@ -46,14 +46,28 @@ pub struct ShellSection {
     pub thickness: f64,
     /// `COEF_RIGI_DRZ` (code_aster's default 1e-5).
     pub drilling: f64,
+    /// `INER_ROTA='OUI'`: the mass has the rotary inertia ρh³/12 ∫ β·β
+    /// (`dktnib`, `dkqnib`); the stiffness does not depend on it.
+    pub rotary_inertia: bool,
 }
 
 impl ShellSection {
-    /// A section of thickness `h` with code_aster's default drilling coefficient.
+    /// A section of thickness `h` with code_aster's default drilling
+    /// coefficient, without rotary inertia.
     pub fn new(thickness: f64) -> ShellSection {
         ShellSection {
             thickness,
             drilling: 1e-5,
+            rotary_inertia: false,
+        }
+    }
+
+    /// ρh³/12 when the rotary inertia is asked for (`dktmas`'s `rof`), else 0.
+    pub(crate) fn rotary_density(&self, rho: f64) -> f64 {
+        if self.rotary_inertia {
+            rho * self.thickness.powi(3) / 12.
+        } else {
+            0.
         }
     }
 }
@@ -522,15 +536,51 @@ fn wkt(c: &[f64; 21], qsi: f64, eta: f64) -> [f64; 9] {
     ]
 }
 
+/// `dktnib`: the DKT's interpolation of the rotations (βx, βy) on the
+/// bending unknowns (w₁ βx₁ βy₁ …) at (ξ, η).
+fn nib_t(c: &[f64; 21], qsi: f64, eta: f64) -> ([f64; 9], [f64; 9]) {
+    let (l4, l5, l6) = (c[12], c[13], c[14]);
+    let (c4, c5, c6) = (c[15], c[16], c[17]);
+    let (s4, s5, s6) = (c[18], c[19], c[20]);
+    let (n1, n2, n3) = (1. - qsi - eta, qsi, eta);
+    let p4 = 4. * qsi * (1. - qsi - eta);
+    let p5 = 4. * qsi * eta;
+    let p6 = 4. * eta * (1. - qsi - eta);
+    let nfx = [
+        1.5 * (p4 * c4 / l4 - p6 * c6 / l6),
+        n1 - 0.75 * (p4 * c4 * c4 + p6 * c6 * c6),
+        -0.75 * (p4 * c4 * s4 + p6 * c6 * s6),
+        1.5 * (p5 * c5 / l5 - p4 * c4 / l4),
+        n2 - 0.75 * (p5 * c5 * c5 + p4 * c4 * c4),
+        -0.75 * (p5 * c5 * s5 + p4 * c4 * s4),
+        1.5 * (p6 * c6 / l6 - p5 * c5 / l5),
+        n3 - 0.75 * (p6 * c6 * c6 + p5 * c5 * c5),
+        -0.75 * (p6 * c6 * s6 + p5 * c5 * s5),
+    ];
+    let nfy = [
+        1.5 * (p4 * s4 / l4 - p6 * s6 / l6),
+        nfx[2],
+        n1 - 0.75 * (p4 * s4 * s4 + p6 * s6 * s6),
+        1.5 * (p5 * s5 / l5 - p4 * s4 / l4),
+        nfx[5],
+        n2 - 0.75 * (p5 * s5 * s5 + p4 * s4 * s4),
+        1.5 * (p6 * s6 / l6 - p5 * s5 / l5),
+        nfx[8],
+        n3 - 0.75 * (p6 * s6 * s6 + p5 * s5 * s5),
+    ];
+    (nfx, nfy)
+}
+
 /// The mass in the facet's frame (`dktmas` then `dxtloc`, option
 /// `MASS_MECA`), DOFs node-major DX DY DZ DRX DRY DRZ along the local axes:
 /// - membrane: the linear triangle's consistent mass ρh·A/6 (diagonal),
 ///   ρh·A/12 (off it) on each in-plane translation;
 /// - bending: ρh ∫ w·w with the DKT's cubic w ([`wkt`], `dktniw`) on
 ///   (w, βx, βy), integrated with the stiffness' FPG3 as code_aster does
-///   (not exactly: w·w is of degree 6). No rotary inertia: code_aster adds
-///   ρh³/12 ∫ β·β only with `COQUE/INER_ROTA='OUI'` or an offset, neither
-///   of which is reproduced;
+///   (not exactly: w·w is of degree 6), plus the rotary inertia
+///   ρh³/12 ∫ β·β with the DKT's rotations ([`nib_t`], `dktnib`) when
+///   `COQUE/INER_ROTA='OUI'` (code_aster's default: none; an offset, which
+///   would add it too, is not reproduced);
 /// - the drilling DRZ: `COEF_RIGI_DRZ` × the least diagonal term of the
 ///   bending rotations, as for the stiffness (`dxtloc`).
 pub fn local_mass(facet: &Facet, rho: f64, section: &ShellSection) -> Matrix18 {
@@ -549,13 +599,16 @@ pub fn local_mass(facet: &Facet, rho: f64, section: &ShellSection) -> Matrix18 {
             }
         }
     }
+    let rof = section.rotary_density(rho);
     let mut flex = [[0.; 9]; 9];
     for g in fpg3() {
         let w = wkt(&facet.c, g.xi[0], g.xi[1]);
         let wgt = g.weight * facet.c[6] * roe;
+        let (nfx, nfy) = nib_t(&facet.c, g.xi[0], g.xi[1]);
+        let wgtf = g.weight * facet.c[6] * rof;
         for a in 0..9 {
             for b in 0..9 {
-                flex[a][b] += w[a] * w[b] * wgt;
+                flex[a][b] += w[a] * w[b] * wgt + (nfx[a] * nfx[b] + nfy[a] * nfy[b]) * wgtf;
             }
         }
     }

@@ -743,6 +743,57 @@ mod tests {
             .map(|&i| loc[(i, i)])
             .fold(f64::INFINITY, f64::min);
         assert!((loc[(5, 5)] - 1e-5 * least).abs() < 1e-20 && loc[(5, 5)] > 0.);
+        rotary_inertia_adds_rho_h3_over_12(&model, &xyz, w, area, rho, h);
+    }
+
+    /// With `INER_ROTA='OUI'` a rigid rotation ω gains ρh³/12 · A · |ω in
+    /// the plane|² (the DKT/DKQ rotations of a rigid motion are constant:
+    /// `dktnib`/`dkqnib` reproduce them, the rule is exact).
+    #[allow(clippy::too_many_arguments)]
+    fn rotary_inertia_adds_rho_h3_over_12(
+        model: &Model,
+        xyz: &[[f64; 3]],
+        w: [f64; 3],
+        area: f64,
+        rho: f64,
+        h: f64,
+    ) {
+        // With a negligible drilling spring (it follows the bending
+        // diagonal, which the rotary inertia changes).
+        let ty = model.mesh().cell(model.elements()[0].cell).ty;
+        let mass = |rotary_inertia: bool| {
+            let section = crate::dkt::ShellSection {
+                drilling: 1e-20,
+                rotary_inertia,
+                ..crate::dkt::ShellSection::new(h)
+            };
+            let kind = ElementKind::Shell {
+                material: Elastic::new(7e10, 0.3).unwrap(),
+                section,
+            };
+            let one = structural(ty, xyz.to_vec(), kind);
+            element_mass(&one, &one.elements()[0], rho, Lumping::Consistent)
+                .unwrap()
+                .unwrap()
+        };
+        let (m, without) = (mass(true), mass(false));
+        let without = &without;
+        let e1 = [0, 1, 2].map(|k| xyz[1][k] - xyz[0][k]);
+        let e2 = [0, 1, 2].map(|k| xyz[2][k] - xyz[0][k]);
+        let n = cross(e1, e2);
+        let n = n.map(|x| x / dot(n, n).sqrt());
+        let wn = dot(w, n);
+        let in_plane = dot(w, w) - wn * wn;
+        let v = rigid(xyz, [0.; 3], w);
+        let gained = quad(&m, &v) - quad(without, &v);
+        let exact = rho * h.powi(3) / 12. * area * in_plane;
+        assert!(
+            (gained - exact).abs() < 1e-10 * exact,
+            "{gained} vs {exact}"
+        );
+        // Translations are unchanged.
+        let t = rigid(xyz, [0.3, -0.7, 0.2], [0.; 3]);
+        assert!((quad(&m, &t) - quad(without, &t)).abs() < 1e-12 * quad(&m, &t));
     }
 
     #[test]
@@ -792,6 +843,7 @@ mod tests {
             .map(|&i| loc[(i, i)])
             .fold(f64::INFINITY, f64::min);
         assert!((loc[(5, 5)] - 1e-5 * least).abs() < 1e-20 && loc[(5, 5)] > 0.);
+        rotary_inertia_adds_rho_h3_over_12(&model, &xyz, w, area, rho, h);
         // Lumped (dialum): diagonal, each translation's terms summing to
         // ρhA, the rotations scaled by the same factors.
         let d = element_mass(&model, &model.elements()[0], rho, Lumping::Diagonal)

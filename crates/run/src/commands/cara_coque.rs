@@ -8,7 +8,9 @@
 //! Read here, handed to aster-fem as [`aster_fem::ShellSection`] and a
 //! direction per cell. Not reproduced, so refused by the support table:
 //! `EPAIS_FO`, `EXCENTREMENT(_FO)` (an offset couples membrane and
-//! bending), `INER_ROTA`, `MODI_METRIQUE='OUI'` (COQUE_3D only).
+//! bending), `MODI_METRIQUE='OUI'` (COQUE_3D only). `INER_ROTA='OUI'`
+//! adds the rotary inertia ρh³/12 to the DKT masses (`dktmas`, `dkqmas`)
+//! and changes no stiffness (COQUE_3D has no mass here: no effect).
 //! `COQUE_NCOU` (the layers of the stresses through the thickness) and
 //! `A_CIS` (the shear coefficient of DST/Q4G) do not change a DKT's
 //! stiffness: accepted; a COQUE_3D integrates its stiffness layer by
@@ -51,7 +53,7 @@ impl ShellCara {
 }
 
 /// The `COQUE` keywords AFFE_CARA_ELEM reads (`crate::support`).
-pub(crate) const KEYWORDS: [&str; 9] = [
+pub(crate) const KEYWORDS: [&str; 10] = [
     "COQUE",
     "COQUE/GROUP_MA",
     "COQUE/EPAIS",
@@ -61,6 +63,7 @@ pub(crate) const KEYWORDS: [&str; 9] = [
     "COQUE/VECTEUR",
     "COQUE/A_CIS",
     "COQUE/MODI_METRIQUE",
+    "COQUE/INER_ROTA",
 ];
 
 /// `MODI_METRIQUE='OUI'` is COQUE_3D's.
@@ -163,6 +166,9 @@ pub(crate) fn shells(
             section: ShellSection {
                 thickness,
                 drilling,
+                // INER_ROTA='OUI' (its only value): the rotary inertia of
+                // the DKT masses (`dktmas`, `dkqmas`); no effect on stiffness.
+                rotary_inertia: occ.str("INER_ROTA") == Some("OUI"),
             },
             direction,
             layers,

@@ -901,9 +901,9 @@ pub(crate) const AFFE_CARA_ELEM: Support = Support {
         super::cara_poutre::VALUES[1],
         super::cara_poutre::VALUES[2],
     ],
-    ..Support::keywords(&crate::support::joined::<_, 39>(
-        &crate::support::joined::<_, 34>(
-            &crate::support::joined::<_, 25>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
+    ..Support::keywords(&crate::support::joined::<_, 40>(
+        &crate::support::joined::<_, 35>(
+            &crate::support::joined::<_, 26>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
             &super::cara_poutre::KEYWORDS,
         ),
         &super::cara_massif::KEYWORDS,
