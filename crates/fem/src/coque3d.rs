@@ -810,6 +810,77 @@ pub fn stiffness(
     Ok(kg)
 }
 
+/// The global mass of a COQUE_3D cell of density `rho` (code_aster's
+/// `te0406`, option `MASS_MECA`), row-major `nddl`², the DOFs of
+/// [`stiffness`]: ρ ∫ Nᵀ N over two points through the thickness
+/// (ξ₃ = ±1/√3) and the normal points, N (`matrn`) the displacement
+/// u = Σ Nⱼ uⱼ + h ξ₃/2 Σ Rⱼ θⱼ × nⱼ (serendipity functions on the
+/// translations, QUAD9/TRIA7 ones on the rotations, nⱼ the nodal normals),
+/// weighted by the 3D Jacobian at that level (`jacbm1`); then the drilling
+/// term `COEF_RIGI_DRZ` × the least in-plane rotational diagonal (each
+/// node's rotation block turned to its frame t₁, t₂, n) added as that
+/// value times n nᵀ on every node's rotations.
+pub fn mass(xyz: &[V3], rho: f64, section: &Coque3dSection) -> Result<Vec<f64>, String> {
+    if section.drilling < 0. || section.drilling.is_nan() {
+        return Err(format!(
+            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation, which is not reproduced for COQUE_3D",
+            section.drilling
+        ));
+    }
+    let r = reference(xyz)?;
+    let frames = nodal_frames(xyz, &r)?;
+    let normals: Vec<V3> = frames.iter().map(|f| f[2]).collect();
+    let (nb1, nddl, h) = (r.nb1, r.nddl(), section.thickness);
+    let mut mas = nalgebra::DMatrix::<f64>::zeros(nddl, nddl);
+    let mut matn = nalgebra::DMatrix::<f64>::zeros(3, nddl);
+    for level in [-1. / 3f64.sqrt(), 1. / 3f64.sqrt()] {
+        let ksi3s2 = level / 2.;
+        for q in 0..r.npgsn() {
+            let (_, _, det) = point_frame(&r.gn[q], xyz, &normals[..nb1], ksi3s2, h);
+            matn.fill(0.);
+            for (jn, n) in normals.iter().enumerate() {
+                // antisy(n): n × θ.
+                let anti = [[0., -n[2], n[1]], [n[2], 0., -n[0]], [-n[1], n[0], 0.]];
+                let c = -h * ksi3s2 * r.rn[q].f[jn];
+                let rot = if jn < nb1 {
+                    for k in 0..3 {
+                        matn[(k, 6 * jn + k)] = r.gn[q].f[jn];
+                    }
+                    6 * jn + 3
+                } else {
+                    6 * nb1
+                };
+                for i in 0..3 {
+                    for j in 0..3 {
+                        matn[(i, rot + j)] = c * anti[i][j];
+                    }
+                }
+            }
+            mas += matn.transpose() * &matn * (rho * r.wn[q] * det);
+        }
+    }
+    let block = |n: usize| if n < nb1 { 6 * n + 3 } else { 6 * nb1 };
+    let mut xmin = f64::INFINITY;
+    for (n, fr) in frames.iter().enumerate() {
+        let b = block(n);
+        let masrg = mas.fixed_view::<3, 3>(b, b).into_owned();
+        for t in &fr[..2] {
+            let t = nalgebra::Vector3::from(*t);
+            xmin = xmin.min((t.transpose() * masrg * t)[(0, 0)]);
+        }
+    }
+    let mnn = section.drilling * xmin;
+    for (n, fr) in frames.iter().enumerate() {
+        let (b, v) = (block(n), fr[2]);
+        for i in 0..3 {
+            for j in 0..3 {
+                mas[(b + i, b + j)] += mnn * v[i] * v[j];
+            }
+        }
+    }
+    Ok(mas.transpose().iter().copied().collect())
+}
+
 /// The local unknowns of `vdxnlr` (`trndgl`): the translations as they
 /// are, each node's rotation θ as (t₁·θ, t₂·θ); `nddle` values.
 fn local_unknowns(frames: &[[V3; 3]], u: &[f64]) -> Vec<f64> {

@@ -321,11 +321,20 @@ pub fn element_mass(
                 .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))?;
             Ok(Some(if lumped { lump_shell(&m, weight) } else { m }))
         }
-        ElementKind::Coque3d { .. } => Err(FemError::Model(format!(
-            "cell {} is a COQUE_3D shell: its {}mass is not implemented (that of DKT on TRIA3 and QUAD4 is)",
+        ElementKind::Coque3d { .. } if lumped => Err(FemError::Model(format!(
+            "cell {} is a COQUE_3D shell: its lumped mass is not implemented (its consistent one, te0406, is)",
             model.cell_name(el.cell),
-            if lumped { "lumped " } else { "" }
         ))),
+        ElementKind::Coque3d { section, .. } => {
+            crate::element::coque3d_coords(model.mesh(), el.cell)
+                .and_then(|xyz| {
+                    let n = 6 * xyz.len() + 3;
+                    crate::coque3d::mass(&xyz, rho, section)
+                        .map(|m| DMatrix::from_row_slice(n, n, &m))
+                })
+                .map(Some)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+        }
         ElementKind::Spring { .. } | ElementKind::Boundary => Ok(None),
     }
 }
@@ -794,6 +803,69 @@ mod tests {
         // Translations are unchanged.
         let t = rigid(xyz, [0.3, -0.7, 0.2], [0.; 3]);
         assert!((quad(&m, &t) - quad(without, &t)).abs() < 1e-12 * quad(&m, &t));
+    }
+
+    #[test]
+    fn coque3d_mass_moves_rigidly_as_code_aster_s() {
+        // A flat rectangle a × b turned in space, meshed by one QUAD9:
+        // the serendipity translations and 3 × 3 normal points integrate
+        // a rigid motion's square exactly, the two points through the
+        // thickness the rotary term ρh³/12 |ω × n|².
+        let (o, e1, e2) = ([0.2, -0.1, 0.3], [0.8, 0.6, 0.0], [0.0, 0.0, 1.0]);
+        let (a, b) = (1.5, 0.7);
+        let p = |s: f64, t: f64| [0, 1, 2].map(|k| o[k] + s * a * e1[k] + t * b * e2[k]);
+        let ref9 = [
+            (0., 0.),
+            (1., 0.),
+            (1., 1.),
+            (0., 1.),
+            (0.5, 0.),
+            (1., 0.5),
+            (0.5, 1.),
+            (0., 0.5),
+            (0.5, 0.5),
+        ];
+        let xyz: Vec<[f64; 3]> = ref9.iter().map(|&(s, t)| p(s, t)).collect();
+        let (h, rho) = (0.05, 7800.0);
+        let kind = ElementKind::Coque3d {
+            material: Elastic::new(2e11, 0.3).unwrap(),
+            section: crate::coque3d::Coque3dSection::new(h),
+        };
+        let model = structural(CellType::QUAD9, xyz.clone(), kind);
+        let m = element_mass(&model, &model.elements()[0], rho, Lumping::Consistent)
+            .unwrap()
+            .unwrap();
+        let area = a * b;
+        let v0 = [0.3, -0.7, 0.2];
+        // The central node carries rotations only.
+        let rigid9 = |v0: [f64; 3], w: [f64; 3]| {
+            let mut v = rigid(&xyz[..8], v0, w);
+            v.extend(w);
+            v
+        };
+        let e = quad(&m, &rigid9(v0, [0.; 3]));
+        assert!((e - rho * h * area * dot(v0, v0)).abs() < 1e-12 * e, "{e}");
+        // An in-plane ω (no drilling): ρh ∫|ω×x|² dA + ρh³/12 A |ω×n|².
+        let n = cross(e1, e2);
+        let w = [0, 1, 2].map(|k| 0.4 * e1[k] - 1.3 * e2[k]);
+        let g = 0.5 * (0.6f64).sqrt();
+        let (wg, w0) = (5. / 18., 8. / 18.);
+        let mut integral = 0.;
+        for (s, ws) in [(0.5 - g, wg), (0.5, w0), (0.5 + g, wg)] {
+            for (t, wt) in [(0.5 - g, wg), (0.5, w0), (0.5 + g, wg)] {
+                let r = cross(w, p(s, t));
+                integral += dot(r, r) * area * ws * wt;
+            }
+        }
+        let wn = cross(w, n);
+        let exact = rho * h * integral + rho * h.powi(3) / 12. * area * dot(wn, wn);
+        let e = quad(&m, &rigid9([0.; 3], w));
+        assert!((e - exact).abs() < 1e-10 * exact, "{e} vs {exact}");
+        // Lumped: not implemented, an error naming the cell.
+        let err = element_mass(&model, &model.elements()[0], rho, Lumping::Diagonal)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("M1") && err.contains("lumped"), "{err}");
     }
 
     #[test]

@@ -71,9 +71,8 @@ pub(crate) fn refuse_loads_on_shells(
 
 /// STAT_NON_LINE, MECA_STATIQUE, DYNA_NON_LINE: with shells or beams,
 /// only `ELAS` in small strains (`COMPORTEMENT` occurrences covering shell
-/// or beam cells), and no dynamics with COQUE_3D (its mass is not
-/// implemented; DKT shells, beams and `DIS_TR` have theirs, aster-fem's
-/// `mass`).
+/// or beam cells) (every structural element has its mass in dynamics,
+/// aster-fem's `mass`).
 pub(crate) fn check_solve(
     ex: &Executor,
     call: &CommandCall,
@@ -85,25 +84,6 @@ pub(crate) fn check_solve(
     }
     let cmd = call.command.as_str();
     let kw = &call.keywords;
-    if cmd == "DYNA_NON_LINE" {
-        let mesh = ex.mesh_by_id(model.mesh)?;
-        // DKT triangles and quadrangles have their mass (aster-fem's
-        // `dkt::local_mass`, `dkq::local_mass`).
-        if let Some((&cell, _)) = model
-            .cells
-            .iter()
-            .find(|(_, m)| **m == Modelisation::Coque3d)
-        {
-            let span = kw.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
-            return Err(ex.unsupported(
-                &format!(
-                    "DYNA_NON_LINE on a model with COQUE_3D shells (cell {}): their mass (te0406) is not implemented (DKT triangles and quadrangles, POU_D_E beams and DIS_TR discrete masses have theirs)",
-                    crate::select::cell_name(&mesh, cell),
-                ),
-                span,
-            ));
-        }
-    }
     let occurrences = kw.factor("COMPORTEMENT");
     for (k, b) in behaviours.iter().enumerate() {
         let on_shell = match &b.cells {
