@@ -305,6 +305,65 @@ pub fn efforts(
     Ok(out)
 }
 
+/// Generalised strains at the two nodes of a POU_D_E beam, in its local
+/// frame (code_aster's `DEGE_ELNO`, `te0158`): `jpd1ff`'s operator (φy =
+/// φz = 0) at the three Gauss points ξ = −√0.6, 0, √0.6 of the RIGI family,
+/// then the quadratic through them evaluated at the nodes (ξ = ∓1, i.e.
+/// ∓√(5/3) in the points' scale). EPXX = du/dx, GAXY = GAXZ = 0 (no
+/// shear strain in Euler–Bernoulli's kinematics), GAT = dθx/dx, KY =
+/// dθy/dx, KZ = dθz/dx.
+pub fn generalised_strains(xyz: &[[f64; 3]; 2], ue: &[f64]) -> Result<[[f64; 6]; 2], String> {
+    if ue.len() != 12 {
+        return Err(format!("a beam has 12 DOFs, got {}", ue.len()));
+    }
+    let (pgl, len) = frame(xyz[0], xyz[1])?;
+    let ul = rotation(&pgl) * DVector::from_column_slice(ue);
+    let a = 0.5 * len;
+    let s = 0.6f64.sqrt();
+    let mut dege = [[0.; 6]; 3];
+    for (kp, k) in [-s, 0., s].into_iter().enumerate() {
+        // jpd1ff with dy = dz = 1 (0-based columns).
+        let mut b = [[0.; 12]; 6];
+        b[0][0] = -0.5 / a;
+        b[0][6] = 0.5 / a;
+        b[1][1] = (3. * k * k - 3.) / (4. * a) - 3. * (k * k - 1.) / (4. * a);
+        b[1][5] = (3. * k * k - 2. * k - 1.) / 4. - (3. * (k * k - 1.) + 2. * (1. - k)) / 4.;
+        b[1][7] = -b[1][1];
+        b[1][11] = (3. * k * k + 2. * k - 1.) / 4. - (3. * (k * k - 1.) + 2. * (1. + k)) / 4.;
+        b[2][2] = b[1][1];
+        b[2][4] = -b[1][5];
+        b[2][8] = -b[2][2];
+        b[2][10] = -b[1][11];
+        b[3][3] = -0.5 / a;
+        b[3][9] = 0.5 / a;
+        b[4][2] = -(6. * k) / (4. * a * a);
+        b[4][4] = (6. * k - 2.) / (4. * a);
+        b[4][8] = -b[4][2];
+        b[4][10] = (6. * k + 2.) / (4. * a);
+        b[5][1] = (6. * k) / (4. * a * a);
+        b[5][5] = (6. * k - 2.) / (4. * a);
+        b[5][7] = -b[5][1];
+        b[5][11] = (6. * k + 2.) / (4. * a);
+        for (i, row) in b.iter().enumerate() {
+            dege[kp][i] = (0..12).map(|j| row[j] * ul[j]).sum();
+        }
+    }
+    let mut out = [[0.; 6]; 2];
+    for (node, ksi) in [-(5f64 / 3.).sqrt(), (5f64 / 3.).sqrt()]
+        .into_iter()
+        .enumerate()
+    {
+        let l = [ksi * (ksi - 1.) / 2., 1. - ksi * ksi, ksi * (ksi + 1.) / 2.];
+        for i in 0..6 {
+            out[node][i] = (0..3).map(|kp| dege[kp][i] * l[kp]).sum();
+        }
+    }
+    Ok(out)
+}
+
+/// Names of the components of [`generalised_strains`] (`DEGE_ELNO`).
+pub const STRAIN_NAMES: [&str; 6] = ["EPXX", "GAXY", "GAXZ", "GAT", "KY", "KZ"];
+
 /// Names of the components of [`efforts`].
 pub const EFFORT_NAMES: [&str; 6] = ["N", "VY", "VZ", "MT", "MFY", "MFZ"];
 

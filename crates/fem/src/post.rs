@@ -91,6 +91,27 @@ pub fn beam_efge_elno(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemEr
     Ok(out)
 }
 
+/// `DEGE_ELNO` of the beams (`POU_D_E`): EPXX GAXY GAXZ GAT KY KZ at their
+/// two nodes, in each beam's local frame ([`crate::beam::generalised_strains`]).
+pub fn beam_dege_elno(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
+    let mut out = Vec::new();
+    for el in model.elements() {
+        if !matches!(el.kind, ElementKind::Beam { .. }) {
+            continue;
+        }
+        let err = |m: String| cell_error(model, el.cell, m);
+        let xyz = crate::element::beam_coords(model.mesh(), el.cell).map_err(err)?;
+        let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
+        let e = crate::beam::generalised_strains(&xyz, &ue).map_err(err)?;
+        out.push(CellValues {
+            cell: el.cell,
+            names: crate::beam::STRAIN_NAMES.to_vec(),
+            points: e.iter().map(|p| p.to_vec()).collect(),
+        });
+    }
+    Ok(out)
+}
+
 /// Where, and by which of code_aster's paths, the efforts (`EFGE`) of
 /// shells are computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1733,14 +1733,33 @@ pub fn calc_champ(
                     Field::Nodal(nodal_from_dofs(model, &r))
                 }
                 "DEGE_ELGA" | "DEGE_ELNO" | "DEGE_NOEU" => {
-                    if model.has_beams() || model.has_coque3d() || !model.has_shells() {
+                    // DKT/DKQ shells (te0033) and, at the nodes, POU_D_E
+                    // beams (te0158: code_aster's beams have no DEGE_ELGA).
+                    let gauss = opt == "DEGE_ELGA";
+                    let why = if gauss && model.has_beams() {
+                        Some(format!("CALC_CHAMP/DEFORMATION='{opt}' on a model with POU_D_E beams (code_aster's beams have DEGE_ELNO only, te0158: ask for DEGE_ELNO or DEGE_NOEU)"))
+                    } else if model.has_coque3d() || !(model.has_shells() || model.has_beams()) {
+                        Some(format!("CALC_CHAMP/DEFORMATION='{opt}' on a model whose elements are not DKT/DKQ shells or POU_D_E beams (the generalised strains of COQUE_3D and of the other elements are not computed)"))
+                    } else {
+                        None
+                    };
+                    if let Some(why) = why {
                         return Err(ex.unsupported(
-                            &format!("CALC_CHAMP/DEFORMATION='{opt}' on a model whose elements are not DKT/DKQ shells (the generalised strains of beams and COQUE_3D are not computed)"),
-                            call.keywords.keyword("DEFORMATION").map(|k| k.span).unwrap_or(call.span),
+                            &why,
+                            call.keywords
+                                .keyword("DEFORMATION")
+                                .map(|k| k.span)
+                                .unwrap_or(call.span),
                         ));
                     }
-                    let v = crate::shells::dege(model, run.cara.as_deref(), u, opt != "DEGE_ELGA")
-                        .map_err(|e| fem_err("CALC_CHAMP", e))?;
+                    let mut v =
+                        post::beam_dege_elno(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?;
+                    if model.has_shells() {
+                        v.extend(
+                            crate::shells::dege(model, run.cara.as_deref(), u, !gauss)
+                                .map_err(|e| fem_err("CALC_CHAMP", e))?,
+                        );
+                    }
                     let v = on(only, &v).into_owned();
                     match opt.as_str() {
                         "DEGE_ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &v)),
