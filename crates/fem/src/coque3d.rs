@@ -763,6 +763,18 @@ fn local_stiffness(
 }
 
 /// The reference data of the cell whose edge nodes are `xyz`.
+/// code_aster's alternative drilling formulation (a negative
+/// `COEF_RIGI_DRZ`) is not reproduced for COQUE_3D: an error.
+fn check_drilling(section: &Coque3dSection) -> Result<(), String> {
+    if section.drilling < 0. || section.drilling.is_nan() {
+        return Err(format!(
+            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation, which is not reproduced for COQUE_3D",
+            section.drilling
+        ));
+    }
+    Ok(())
+}
+
 fn reference(xyz: &[V3]) -> Result<RefElement, String> {
     Ok(RefElement::new(Coque3dCell::of_edge_nodes(xyz.len())?))
 }
@@ -777,12 +789,7 @@ pub fn stiffness(
     material: &Elastic,
     section: &Coque3dSection,
 ) -> Result<Vec<f64>, String> {
-    if section.drilling < 0. || section.drilling.is_nan() {
-        return Err(format!(
-            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation, which is not reproduced for COQUE_3D",
-            section.drilling
-        ));
-    }
+    check_drilling(section)?;
     let r = reference(xyz)?;
     let frames = nodal_frames(xyz, &r)?;
     let (kl, _) = local_stiffness(xyz, &frames, material, section, &r);
@@ -821,12 +828,7 @@ pub fn stiffness(
 /// node's rotation block turned to its frame t₁, t₂, n) added as that
 /// value times n nᵀ on every node's rotations.
 pub fn mass(xyz: &[V3], rho: f64, section: &Coque3dSection) -> Result<Vec<f64>, String> {
-    if section.drilling < 0. || section.drilling.is_nan() {
-        return Err(format!(
-            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation, which is not reproduced for COQUE_3D",
-            section.drilling
-        ));
-    }
+    check_drilling(section)?;
     let r = reference(xyz)?;
     let frames = nodal_frames(xyz, &r)?;
     let normals: Vec<V3> = frames.iter().map(|f| f[2]).collect();

@@ -21,7 +21,7 @@
 //!   transverse shears (`dkqtxy`) are not computed yet.
 
 use crate::dkt::Generalised;
-use crate::dkt::{bending_dof, membrane_dof, section_matrices, ShellSection};
+use crate::dkt::{add_bending, bending_dof, membrane_dof, section_matrices, ShellSection};
 use crate::material::Elastic;
 use crate::shape::{rigi_scheme, GaussPoint};
 use aster_mesh::CellType;
@@ -417,21 +417,7 @@ pub fn local_stiffness(quad: &Quad, material: &Elastic, section: &ShellSection) 
             k[(membrane_dof(a), membrane_dof(b))] += memb[a][b];
         }
     }
-    for a in 0..12 {
-        let (ia, sa) = bending_dof(a);
-        for b in 0..12 {
-            let (ib, sb) = bending_dof(b);
-            k[(ia, ib)] += sa * sb * flex[a][b];
-        }
-    }
-    let rotation_min = [1, 2, 4, 5, 7, 8, 10, 11]
-        .iter()
-        .map(|&i| flex[i][i])
-        .fold(f64::INFINITY, f64::min);
-    let drill = section.drilling * rotation_min;
-    for n in 0..4 {
-        k[(6 * n + 5, 6 * n + 5)] = drill;
-    }
+    add_bending(&flex, section.drilling, &mut k);
     k
 }
 
@@ -445,6 +431,18 @@ pub fn rotation(quad: &Quad) -> Matrix24 {
     r
 }
 
+/// code_aster's alternative drilling formulation of the DKQ (a negative
+/// `COEF_RIGI_DRZ`) is not reproduced: an error.
+fn check_drilling(section: &ShellSection) -> Result<(), String> {
+    if section.drilling < 0. {
+        return Err(format!(
+            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation for DKQ, which is not reproduced",
+            section.drilling
+        ));
+    }
+    Ok(())
+}
+
 /// Global stiffness of a DKQ quadrangle with nodes at `xyz` (24×24,
 /// node-major DX DY DZ DRX DRY DRZ).
 pub fn stiffness(
@@ -452,12 +450,7 @@ pub fn stiffness(
     material: &Elastic,
     section: &ShellSection,
 ) -> Result<DMatrix<f64>, String> {
-    if section.drilling < 0. {
-        return Err(format!(
-            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation for DKQ, which is not reproduced",
-            section.drilling
-        ));
-    }
+    check_drilling(section)?;
     let quad = Quad::new(xyz)?;
     let r = rotation(&quad);
     let k = r.transpose() * local_stiffness(&quad, material, section) * r;
@@ -578,20 +571,7 @@ pub fn local_mass(quad: &Quad, rho: f64, section: &ShellSection) -> Matrix24 {
             }
         }
     }
-    for a in 0..12 {
-        let (ia, sa) = bending_dof(a);
-        for b in 0..12 {
-            let (ib, sb) = bending_dof(b);
-            m[(ia, ib)] += sa * sb * flex[a][b];
-        }
-    }
-    let rotation_min = [1, 2, 4, 5, 7, 8, 10, 11]
-        .iter()
-        .map(|&i| flex[i][i])
-        .fold(f64::INFINITY, f64::min);
-    for n in 0..4 {
-        m[(6 * n + 5, 6 * n + 5)] = section.drilling * rotation_min;
-    }
+    add_bending(&flex, section.drilling, &mut m);
     m
 }
 
@@ -603,12 +583,7 @@ pub fn mass(
     rho: f64,
     section: &ShellSection,
 ) -> Result<(DMatrix<f64>, f64), String> {
-    if section.drilling < 0. {
-        return Err(format!(
-            "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation for DKQ, which is not reproduced",
-            section.drilling
-        ));
-    }
+    check_drilling(section)?;
     let quad = Quad::new(xyz)?;
     let r = rotation(&quad);
     let m = r.transpose() * local_mass(&quad, rho, section) * r;

@@ -463,22 +463,27 @@ pub fn local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection
     k
 }
 
-/// `dxtloc`'s bending part: the 9×9 `flex` on (w, βx, βy) of each node
-/// added to the 18×18 matrix ([`bending_dof`]), and the drilling term
-/// `drilling` × the least bending-rotation diagonal set on each DRZ.
-fn add_bending(flex: &[[f64; 9]; 9], drilling: f64, out: &mut Matrix18) {
-    for a in 0..9 {
+/// Adds the bending block `flex` (on the unknowns w βx βy of each node,
+/// [`bending_dof`]) and the drilling terms (`COEF_RIGI_DRZ` × the least
+/// diagonal term of the bending rotations, on each node's DRZ: `dxtloc`,
+/// `dxqloc`) to the local matrix `out` of a DKT (3 nodes) or DKQ (4).
+pub(crate) fn add_bending<const B: usize, const D: usize>(
+    flex: &[[f64; B]; B],
+    drilling: f64,
+    out: &mut SMatrix<f64, D, D>,
+) {
+    for a in 0..B {
         let (ia, sa) = bending_dof(a);
-        for b in 0..9 {
+        for b in 0..B {
             let (ib, sb) = bending_dof(b);
             out[(ia, ib)] += sa * sb * flex[a][b];
         }
     }
-    let rotation_min = [1, 2, 4, 5, 7, 8]
-        .iter()
-        .map(|&i| flex[i][i])
+    let rotation_min = (0..B)
+        .filter(|i| i % 3 != 0)
+        .map(|i| flex[i][i])
         .fold(f64::INFINITY, f64::min);
-    for n in 0..3 {
+    for n in 0..B / 3 {
         out[(6 * n + 5, 6 * n + 5)] = drilling * rotation_min;
     }
 }
