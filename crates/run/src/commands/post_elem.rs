@@ -30,7 +30,13 @@
 //! - `INTEGRALE` (`peeint`/`peecal`/`chpond`) of a result's field: see
 //!   [`integrale`].
 //!
-//! Every other quantity (MASS_INER, MINMAX, TRAV_EXT…) is refused with its
+//! - `TRAV_EXT` (`pewext`): the work of the external forces of a result,
+//!   from its `DEPL` and `FORC_NODA`: see [`trav_ext`].
+//!
+//! - `MINMAX` (`pemima`): the extrema of components of a field and where
+//!   they are reached: see [`minmax`].
+//!
+//! Every other quantity (MASS_INER, ENER_TOTALE…) is refused with its
 //! location.
 
 use crate::concept::{Concept, EvolResult};
@@ -42,6 +48,9 @@ use aster_fem::Model;
 use aster_mesh::{CellId, Mesh};
 use std::collections::HashMap;
 use std::rc::Rc;
+
+mod minmax;
+mod trav_ext;
 
 const POST_ELEM_OWN: &[&str] = &[
     "ENER_POT",
@@ -73,6 +82,22 @@ const POST_ELEM_OWN: &[&str] = &[
     "INTEGRALE/NOM_CHAM",
     "INTEGRALE/NOM_CMP",
     "INTEGRALE/TYPE_MAILLE",
+    "TRAV_EXT",
+    "MINMAX",
+    "MINMAX/TOUT",
+    "MINMAX/GROUP_MA",
+    "MINMAX/RESULTAT",
+    "MINMAX/NOM_CHAM",
+    "MINMAX/CHAM_GD",
+    "MINMAX/MODELE",
+    "MINMAX/NOM_CMP",
+    "MINMAX/CRITERE",
+    "MINMAX/PRECISION",
+    "MINMAX/TOUT_ORDRE",
+    "MINMAX/NUME_ORDRE",
+    "MINMAX/LIST_ORDRE",
+    "MINMAX/INST",
+    "MINMAX/LIST_INST",
 ];
 
 /// What POST_ELEM computes (`crate::support`): its own keywords and the
@@ -114,6 +139,12 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     if kw.contains("INTEGRALE") {
         return integrale(ex, call);
+    }
+    if kw.contains("TRAV_EXT") {
+        return trav_ext::trav_ext(ex, call);
+    }
+    if kw.contains("MINMAX") {
+        return minmax::minmax(ex, call);
     }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
