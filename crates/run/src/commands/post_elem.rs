@@ -49,6 +49,7 @@ use aster_mesh::{CellId, Mesh};
 use std::collections::HashMap;
 use std::rc::Rc;
 
+mod integrale_field;
 mod minmax;
 mod trav_ext;
 
@@ -105,29 +106,11 @@ const POST_ELEM_OWN: &[&str] = &[
 pub(crate) const POST_ELEM: Support = Support {
     values: &[Values::new("NORME/TYPE_NORM", &["L2"])
         .why("(the Frobenius norm is not reproduced): the L2 norm only")],
-    rules: Some(post_elem_rules),
     ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + POST_ELEM_OWN.len() },
     >(super::post::STEP_SELECTION, POST_ELEM_OWN))
 };
-
-/// `INTEGRALE` of a field (`CHAM_GD`) is refused before the run
-/// (`NOM_VARI` is not among the keywords read: refused as such).
-fn post_elem_rules(call: &CommandCall, out: &mut Vec<crate::support::Refusal>) {
-    let kw = &call.keywords;
-    if !kw.contains("INTEGRALE") {
-        return;
-    }
-    if kw.contains("CHAM_GD") {
-        out.push(crate::support::Refusal::at(
-            "POST_ELEM/INTEGRALE of a field (CHAM_GD): give RESULTAT".into(),
-            kw,
-            "CHAM_GD",
-            call.span,
-        ));
-    }
-}
 
 pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
@@ -515,30 +498,21 @@ fn norme(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecErr
 fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let cmd = "POST_ELEM/INTEGRALE";
     let kw = &call.keywords;
-    let Some(r) = kw.concept("RESULTAT") else {
-        return Err(ex.unsupported(
-            "POST_ELEM/INTEGRALE of a field (CHAM_GD): give RESULTAT",
-            kw.keyword("CHAM_GD").map(|k| k.span).unwrap_or(call.span),
-        ));
-    };
-    let result = ex.result(r)?;
-    let steps = super::post::select_steps(ex, "POST_ELEM", kw, &result)?;
-    let (model, _) = result_model(ex, kw, r, &result)?;
-    let mesh = model.mesh_arc().clone();
-    let axis = model.hypothesis() == Some(aster_fem::Hypothesis::Axisymmetric);
-    let mut table = Table::new(vec![
-        col("NOM_CHAM", ColumnType::Text(16)),
-        col("NUME_ORDRE", ColumnType::Int),
-        col("INST", ColumnType::Real),
-        col("VOL", ColumnType::Real),
-    ]);
+    let (source, mesh, axis) = integrale_field::source(ex, call)?;
+    let mut table = integrale_field::table(&source);
     for occ in kw.factor("INTEGRALE") {
         let at = |k: &str| occ.keyword(k).map(|k| k.span).unwrap_or(call.span);
-        let Some(nom_cham) = occ.str("NOM_CHAM").map(str::to_string) else {
-            // code_aster's POSTELEM_4.
-            return Err(ExecError::new(format!(
-                "{cmd}: NOM_CHAM is needed with RESULTAT"
-            )));
+        let nom_cham = match &source {
+            integrale_field::Source::Field(name, ..) => name.clone(),
+            integrale_field::Source::Result(..) => match occ.str("NOM_CHAM") {
+                Some(n) => n.to_string(),
+                // code_aster's POSTELEM_4.
+                None => {
+                    return Err(ExecError::new(format!(
+                        "{cmd}: NOM_CHAM is needed with RESULTAT"
+                    )))
+                }
+            },
         };
         if matches!(nom_cham.as_str(), "FORC_NODA" | "REAC_NODA") {
             // code_aster's POSTELEM_5.
@@ -567,17 +541,11 @@ fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exe
             _ => 3,
         });
         let keep = |c: &CellId| {
-            model.element_kind(*c).is_some()
-                && dim_filter.is_none_or(|d| mesh.cell(*c).ty.dim() as usize == d)
+            source.in_model(*c) && dim_filter.is_none_or(|d| mesh.cell(*c).ty.dim() as usize == d)
         };
         let mut places: Vec<(&str, String, Vec<CellId>)> = Vec::new();
         if occ.contains("TOUT") {
-            let cells: Vec<CellId> = model
-                .elements()
-                .iter()
-                .map(|e| e.cell)
-                .filter(keep)
-                .collect();
+            let cells: Vec<CellId> = source.model_cells().into_iter().filter(keep).collect();
             places.push(("TOUT", "TOUT".into(), cells));
         }
         let groups: Vec<String> = occ
@@ -611,35 +579,13 @@ fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exe
                 if weights.contains_key(&c) {
                     continue;
                 }
-                let ty = mesh.cell(c).ty;
-                let scheme = match model.element_kind(c) {
-                    Some(aster_fem::ElementKind::Continuum { .. }) => model.stiffness_scheme(c),
-                    Some(aster_fem::ElementKind::Boundary) => {
-                        let role = aster_fem::elga::CellRole::of(ty.dim() as usize, model.dim());
-                        match role.and_then(|r| aster_fem::elga::family(ty, r, axis)) {
-                            Some(s) => s,
-                            None => continue,
-                        }
-                    }
-                    _ => {
-                        return Err(ex.unsupported(
-                            &format!(
-                                "POST_ELEM/INTEGRALE over cell {} (a structural or discrete element): continuum and skin cells only",
-                                crate::select::cell_name(&mesh, c)
-                            ),
-                            at("INTEGRALE"),
-                        ))
-                    }
+                let Some(w) = source.weights(ex, c, axis, at("INTEGRALE"))? else {
+                    continue;
                 };
-                let w = aster_fem::elga::points(&mesh, c, &scheme, axis)
-                    .iter()
-                    .map(|p| p.weight)
-                    .collect();
                 weights.insert(c, w);
             }
         }
-        for step in &steps {
-            let field = super::post::step_field(step, &nom_cham, &r.name)?;
+        for (step, field) in source.fields(&nom_cham)? {
             let mut row_values: Vec<(String, f64, f64)> = Vec::new();
             for (lieu, name, cells) in &places {
                 let mut vol0 = 0.0;
@@ -718,13 +664,16 @@ fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exe
                     .iter()
                     .map(|(c, _, _)| (format!("INTE_{c}"), format!("MOYE_{c}")))
                     .collect();
-                let mut row: Vec<(&str, Value)> = vec![
-                    ("NOM_CHAM", Value::Text(nom_cham.clone())),
-                    ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
-                    ("INST", Value::Real(step.inst)),
-                    ("VOL", Value::Real(vol0)),
-                    (lieu, Value::Text(name.clone())),
-                ];
+                let mut row: Vec<(&str, Value)> = match step {
+                    Some((order, inst)) => vec![
+                        ("NOM_CHAM", Value::Text(nom_cham.clone())),
+                        ("NUME_ORDRE", Value::Int(order as i64)),
+                        ("INST", Value::Real(inst)),
+                    ],
+                    None => vec![("CHAM_GD", Value::Text(nom_cham.clone()))],
+                };
+                row.push(("VOL", Value::Real(vol0)));
+                row.push((lieu, Value::Text(name.clone())));
                 for ((inte, moye), (_, val, vol)) in names.iter().zip(&row_values) {
                     row.push((inte.as_str(), Value::Real(*val)));
                     row.push((moye.as_str(), Value::Real(val / vol)));
