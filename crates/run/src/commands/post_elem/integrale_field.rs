@@ -21,6 +21,9 @@ use aster_syntax::Span;
 use std::rc::Rc;
 use std::sync::Arc;
 
+/// A field to integrate and its (NUME_ORDRE, INST) in a result.
+pub(super) type StepField<'s> = (Option<(u32, f64)>, &'s Field);
+
 /// The fields integrated.
 pub(super) enum Source {
     /// A result's name, the result, the NUME_ORDRE selected and its model.
@@ -150,10 +153,7 @@ impl Source {
 
     /// The fields of an occurrence's rows: a result's `nom_cham` at each
     /// step selected (with its NUME_ORDRE and INST), or the one field.
-    pub(super) fn fields(
-        &self,
-        nom_cham: &str,
-    ) -> Result<Vec<(Option<(u32, f64)>, &Field)>, ExecError> {
+    pub(super) fn fields(&self, nom_cham: &str) -> Result<Vec<StepField<'_>>, ExecError> {
         match self {
             Source::Field(_, f, ..) => Ok(vec![(None, &**f)]),
             Source::Result(name, result, orders, _) => orders

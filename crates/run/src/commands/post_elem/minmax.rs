@@ -120,15 +120,12 @@ pub(super) fn minmax(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                     };
                     match field {
                         Field::Nodal(n) => {
-                            let nodes = match cells {
-                                None => None,
-                                Some(cells) => Some(
-                                    cells
-                                        .iter()
-                                        .flat_map(|c| mesh.cell(*c).nodes.iter().map(|n| n.0))
-                                        .collect::<BTreeSet<u32>>(),
-                                ),
-                            };
+                            let nodes = cells.as_ref().map(|cells| {
+                                cells
+                                    .iter()
+                                    .flat_map(|c| mesh.cell(*c).nodes.iter().map(|n| n.0))
+                                    .collect::<BTreeSet<u32>>()
+                            });
                             let values = n.iter().filter_map(|(node, v)| {
                                 let keep = nodes.as_ref().is_none_or(|s| s.contains(&node.0));
                                 keep.then(|| v.get(ic).map(|x| ((node.0, 0), x)))?
@@ -236,15 +233,14 @@ enum Source {
     Result(String, Rc<crate::concept::EvolResult>, Vec<u32>),
 }
 
+/// A row's place: its column (`TOUT` or `GROUP_MA`), its name, its cells
+/// (`None`: the whole mesh).
+type Place = (&'static str, String, Option<Vec<CellId>>);
+
 /// The rows of an occurrence: `TOUT` (all: `None`), each group of
 /// `GROUP_MA` the mesh has and that is not empty, then their union when
 /// the occurrence names several groups.
-fn places(
-    ex: &Executor,
-    cmd: &str,
-    occ: &Keywords,
-    mesh: &Mesh,
-) -> Result<Vec<(&'static str, String, Option<Vec<CellId>>)>, ExecError> {
+fn places(ex: &Executor, cmd: &str, occ: &Keywords, mesh: &Mesh) -> Result<Vec<Place>, ExecError> {
     let mut out = Vec::new();
     if occ.contains("TOUT") {
         out.push(("TOUT", "TOUT".to_string(), None));

@@ -74,9 +74,12 @@ pub(super) fn trav_ext(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
     store_result(ex, call, Concept::Table(Rc::new(table)))
 }
 
+/// A node's number (0-based) and its DX…DRZ values.
+type NodeWork = (u32, [Option<f64>; 6]);
+
 /// A nodal field's DX…DRZ values, by node (ascending) then component of
 /// [`WORK_COMPONENTS`]; `None` where the node lacks the component.
-fn work_vector(field: &NodalField) -> Vec<(u32, [Option<f64>; 6])> {
+fn work_vector(field: &NodalField) -> Vec<NodeWork> {
     let index: Vec<Option<usize>> = WORK_COMPONENTS
         .iter()
         .map(|c| field.component_index(c))
@@ -97,18 +100,14 @@ fn work_vector(field: &NodalField) -> Vec<(u32, [Option<f64>; 6])> {
 /// and the accumulated work.
 #[derive(Default)]
 struct ExternalWork {
-    previous: Option<(Vec<(u32, [Option<f64>; 6])>, Vec<(u32, [Option<f64>; 6])>)>,
+    previous: Option<(Vec<NodeWork>, Vec<NodeWork>)>,
     real: f64,
 }
 
 impl ExternalWork {
     /// Adds a step; returns (`TRAV_ELAS`, `TRAV_REEL`) of it, or the node
     /// and component where one field has a value and the other not.
-    fn add(
-        &mut self,
-        u: &[(u32, [Option<f64>; 6])],
-        f: &[(u32, [Option<f64>; 6])],
-    ) -> Result<(f64, f64), (u32, &'static str)> {
+    fn add(&mut self, u: &[NodeWork], f: &[NodeWork]) -> Result<(f64, f64), (u32, &'static str)> {
         let f1u1 = dot(u, f)?;
         match &self.previous {
             None => self.real = 0.0,
@@ -126,10 +125,7 @@ impl ExternalWork {
 
 /// `cnsdot`: Σ aᵢ bᵢ over the values both carry; a value in one and not
 /// in the other is an error (its node and component).
-fn dot(
-    a: &[(u32, [Option<f64>; 6])],
-    b: &[(u32, [Option<f64>; 6])],
-) -> Result<f64, (u32, &'static str)> {
+fn dot(a: &[NodeWork], b: &[NodeWork]) -> Result<f64, (u32, &'static str)> {
     let mut sum = 0.0;
     let (mut i, mut j) = (0, 0);
     let missing = |node: u32, v: &[Option<f64>; 6]| {
@@ -172,7 +168,7 @@ fn dot(
 mod tests {
     use super::*;
 
-    fn one(node: u32, x: f64) -> (u32, [Option<f64>; 6]) {
+    fn one(node: u32, x: f64) -> NodeWork {
         (node, [Some(x), None, None, None, None, None])
     }
 
