@@ -27,7 +27,8 @@
 //! - `NORME` (`penorm`, option `NORME_L2`) of a field (`CHAM_GD`, `MODELE`):
 //!   see [`norme`].
 //!
-//! - `INTEGRALE` (`peeint`/`peecal`/`chpond`) of a result's field: see
+//! - `INTEGRALE` (`peeint`/`peecal`/`chpond`) of a result's field or of a
+//!   field (`CHAM_GD`, `MODELE`; the sources in `integrale_field`): see
 //!   [`integrale`].
 //!
 //! - `TRAV_EXT` (`pewext`): the work of the external forces of a result,
@@ -36,8 +37,8 @@
 //! - `MINMAX` (`pemima`): the extrema of components of a field and where
 //!   they are reached: see [`minmax`].
 //!
-//! Every other quantity (MASS_INER, ENER_TOTALE…) is refused with its
-//! location.
+//! Every other quantity (MASS_INER, ENER_TOTALE, INTEGRALE/NOM_VARI…) is
+//! refused with its location.
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
@@ -494,7 +495,8 @@ fn norme(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecErr
 /// which code_aster first spreads to its cells' nodes) the cell's measure
 /// (Σ of those weights) over its number of nodes — a cell's mean of nodal
 /// values, not a quadrature. Columns: NOM_CHAM, NUME_ORDRE, INST, VOL, the
-/// place's (`TOUT` or `GROUP_MA`), INTE_<cmp>… then MOYE_<cmp>….
+/// place's (`TOUT` or `GROUP_MA`), INTE_<cmp>… then MOYE_<cmp>…; of a field
+/// (`CHAM_GD`), one row per place: CHAM_GD, VOL, the place's, INTE_, MOYE_.
 fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let cmd = "POST_ELEM/INTEGRALE";
     let kw = &call.keywords;
