@@ -15,6 +15,10 @@
 //!   `MEMBRANE`, `FLEXION`, `CISAILLE`, `COUPL_MF` (the last four are for
 //!   plates: 0 for continuum cells). Elastic results only: there it is the
 //!   same ½ σ:D⁻¹:σ = ½ ε:D:ε as `ENER_POT`.
+//! - `ENER_TOTALE` (`peingl`, `te0491`) of a result: the same energy for
+//!   elastic results (code_aster adds the plastic work of VMIS_ISOT cells
+//!   and integrates other behaviours over the steps: plastic results are
+//!   refused), columns `NUME_ORDRE`, `INST`, `LIEU`, `ENTITE`, `TOTALE`.
 //!
 //! - `ENER_CIN` (`peecin`, option `ECIN_ELEM`): the kinetic energy
 //!   ½ vₑᵀ Mₑ vₑ of each continuum cell with the consistent mass
@@ -37,7 +41,7 @@
 //! - `MINMAX` (`pemima`): the extrema of components of a field and where
 //!   they are reached: see [`minmax`].
 //!
-//! Every other quantity (MASS_INER, ENER_TOTALE, INTEGRALE/NOM_VARI…) is
+//! Every other quantity (MASS_INER, ENER_DISS, INTEGRALE/NOM_VARI…) is
 //! refused with its location.
 
 use crate::concept::{Concept, EvolResult};
@@ -61,6 +65,9 @@ const POST_ELEM_OWN: &[&str] = &[
     "ENER_ELAS",
     "ENER_ELAS/TOUT",
     "ENER_ELAS/GROUP_MA",
+    "ENER_TOTALE",
+    "ENER_TOTALE/TOUT",
+    "ENER_TOTALE/GROUP_MA",
     "ENER_CIN",
     "ENER_CIN/TOUT",
     "ENER_CIN/GROUP_MA",
@@ -132,9 +139,16 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
+    } else if kw.contains("ENER_TOTALE") {
+        // `peingl`'s ENER_TOTALE of an elastic result: its elastic energy
+        // (`te0491`: enelas + eplast, eplast = 0 under ELAS), columns up to
+        // TOTALE; code_aster requires RESULTAT.
+        ex.required("POST_ELEM/ENER_TOTALE", kw, "RESULTAT")?;
+        ("ENER_TOTALE", false)
     } else {
         ("ENER_POT", false)
     };
+    let totale = factor == "ENER_TOTALE";
     let places = places(ex, kw, factor)?;
     let table = if let Some(r) = kw.concept("RESULTAT") {
         let result = ex.result(r)?;
@@ -160,7 +174,7 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             for c in ["MEMBRANE", "FLEXION", "CISAILLE", "COUPL_MF"] {
                 columns.push(col(c, ColumnType::Real));
             }
-        } else {
+        } else if !totale {
             columns.push(col("POUR_CENT", ColumnType::Real));
         }
         let mut table = Table::new(columns);
@@ -180,7 +194,7 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                     for c in ["MEMBRANE", "FLEXION", "CISAILLE", "COUPL_MF"] {
                         row.push((c, Value::Real(0.0)));
                     }
-                } else {
+                } else if !totale {
                     row.push(("POUR_CENT", Value::Real(percent)));
                 }
                 table.push_row(row);
