@@ -1,8 +1,9 @@
 //! POST_ELEM/INTEGRALE (comm/post_elem_integrale.comm on
 //! comm/elga_block.mail, written for the project): a Gauss-point field and
 //! a nodal field integrated over the whole model, groups, their union and
-//! a face, against the closed forms of an imposed linear displacement; and
-//! the located refusals around it.
+//! a face, and the nodal field given as a field (CHAM_GD), against the
+//! closed forms of an imposed linear displacement; and the located errors
+//! and refusals around it.
 
 mod scene;
 
@@ -16,13 +17,13 @@ fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
 
 #[test]
 fn integrals_and_means_match_the_imposed_field() {
-    assert_eq!(run(&scene_text(), "scene"), (20, 0, None));
+    assert_eq!(run(&scene_text(), "scene"), (24, 0, None));
 }
 
 /// A component the field does not have is code_aster's UTILITAI7_12, named
-/// at NOM_CMP; a field given by CHAM_GD is refused at its keyword.
+/// at NOM_CMP; NOM_VARI is refused at its keyword.
 #[test]
-fn a_missing_component_and_a_field_are_located() {
+fn a_missing_component_and_nom_vari_are_located() {
     let t = scene_text().replacen(
         "NOM_CMP=\"DZ\", TYPE_MAILLE=\"2D\"",
         "NOM_CMP=\"TEMP\", TYPE_MAILLE=\"2D\"",
@@ -35,16 +36,13 @@ fn a_missing_component_and_a_field_are_located() {
         err.contains("NOM_CMP") && err.contains("no component TEMP"),
         "{err}"
     );
-    let t = scene_text().replacen(
-        "TINT = POST_ELEM(\n    RESULTAT=RESU,",
-        "U = CREA_CHAMP(OPERATION=\"EXTR\", TYPE_CHAM=\"NOEU_DEPL_R\", RESULTAT=RESU, NOM_CHAM=\"DEPL\", NUME_ORDRE=1)\n\nTINT = POST_ELEM(\n    CHAM_GD=U,\n    MODELE=MO,",
-        1,
-    );
-    assert!(t.contains("CHAM_GD=U"));
-    let (_, _, err) = run(&t, "field");
+    // NOM_VARI (internal variables by name) is not read: refused.
+    let t = scene_text().replacen("NOM_CMP=(\"SIZZ\", \"SIXX\")", "NOM_VARI=\"EPSEQ\"", 1);
+    assert!(t.contains("NOM_VARI"));
+    let (_, _, err) = run(&t, "vari");
     let err = err.expect("a refusal");
     assert!(
-        err.contains("not supported yet") && err.contains("CHAM_GD"),
+        err.contains("not supported yet") && err.contains("NOM_VARI"),
         "{err}"
     );
 }

@@ -15,6 +15,10 @@
 //!   `MEMBRANE`, `FLEXION`, `CISAILLE`, `COUPL_MF` (the last four are for
 //!   plates: 0 for continuum cells). Elastic results only: there it is the
 //!   same ½ σ:D⁻¹:σ = ½ ε:D:ε as `ENER_POT`.
+//! - `ENER_TOTALE` (`peingl`, `te0491`) of a result: the same energy for
+//!   elastic results (code_aster adds the plastic work of VMIS_ISOT cells
+//!   and integrates other behaviours over the steps: plastic results are
+//!   refused), columns `NUME_ORDRE`, `INST`, `LIEU`, `ENTITE`, `TOTALE`.
 //!
 //! - `ENER_CIN` (`peecin`, option `ECIN_ELEM`): the kinetic energy
 //!   ½ vₑᵀ Mₑ vₑ of each continuum cell with the consistent mass
@@ -27,11 +31,18 @@
 //! - `NORME` (`penorm`, option `NORME_L2`) of a field (`CHAM_GD`, `MODELE`):
 //!   see [`norme`].
 //!
-//! - `INTEGRALE` (`peeint`/`peecal`/`chpond`) of a result's field: see
+//! - `INTEGRALE` (`peeint`/`peecal`/`chpond`) of a result's field or of a
+//!   field (`CHAM_GD`, `MODELE`; the sources in `integrale_field`): see
 //!   [`integrale`].
 //!
-//! Every other quantity (MASS_INER, MINMAX, TRAV_EXT…) is refused with its
-//! location.
+//! - `TRAV_EXT` (`pewext`): the work of the external forces of a result,
+//!   from its `DEPL` and `FORC_NODA`: see [`trav_ext`].
+//!
+//! - `MINMAX` (`pemima`): the extrema of components of a field and where
+//!   they are reached: see [`minmax`].
+//!
+//! Every other quantity (MASS_INER, ENER_DISS, INTEGRALE/NOM_VARI…) is
+//! refused with its location.
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
@@ -43,6 +54,10 @@ use aster_mesh::{CellId, Mesh};
 use std::collections::HashMap;
 use std::rc::Rc;
 
+mod integrale_field;
+mod minmax;
+mod trav_ext;
+
 const POST_ELEM_OWN: &[&str] = &[
     "ENER_POT",
     "ENER_POT/TOUT",
@@ -50,6 +65,9 @@ const POST_ELEM_OWN: &[&str] = &[
     "ENER_ELAS",
     "ENER_ELAS/TOUT",
     "ENER_ELAS/GROUP_MA",
+    "ENER_TOTALE",
+    "ENER_TOTALE/TOUT",
+    "ENER_TOTALE/GROUP_MA",
     "ENER_CIN",
     "ENER_CIN/TOUT",
     "ENER_CIN/GROUP_MA",
@@ -73,6 +91,22 @@ const POST_ELEM_OWN: &[&str] = &[
     "INTEGRALE/NOM_CHAM",
     "INTEGRALE/NOM_CMP",
     "INTEGRALE/TYPE_MAILLE",
+    "TRAV_EXT",
+    "MINMAX",
+    "MINMAX/TOUT",
+    "MINMAX/GROUP_MA",
+    "MINMAX/RESULTAT",
+    "MINMAX/NOM_CHAM",
+    "MINMAX/CHAM_GD",
+    "MINMAX/MODELE",
+    "MINMAX/NOM_CMP",
+    "MINMAX/CRITERE",
+    "MINMAX/PRECISION",
+    "MINMAX/TOUT_ORDRE",
+    "MINMAX/NUME_ORDRE",
+    "MINMAX/LIST_ORDRE",
+    "MINMAX/INST",
+    "MINMAX/LIST_INST",
 ];
 
 /// What POST_ELEM computes (`crate::support`): its own keywords and the
@@ -80,29 +114,11 @@ const POST_ELEM_OWN: &[&str] = &[
 pub(crate) const POST_ELEM: Support = Support {
     values: &[Values::new("NORME/TYPE_NORM", &["L2"])
         .why("(the Frobenius norm is not reproduced): the L2 norm only")],
-    rules: Some(post_elem_rules),
     ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + POST_ELEM_OWN.len() },
     >(super::post::STEP_SELECTION, POST_ELEM_OWN))
 };
-
-/// `INTEGRALE` of a field (`CHAM_GD`) is refused before the run
-/// (`NOM_VARI` is not among the keywords read: refused as such).
-fn post_elem_rules(call: &CommandCall, out: &mut Vec<crate::support::Refusal>) {
-    let kw = &call.keywords;
-    if !kw.contains("INTEGRALE") {
-        return;
-    }
-    if kw.contains("CHAM_GD") {
-        out.push(crate::support::Refusal::at(
-            "POST_ELEM/INTEGRALE of a field (CHAM_GD): give RESULTAT".into(),
-            kw,
-            "CHAM_GD",
-            call.span,
-        ));
-    }
-}
 
 pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
@@ -115,11 +131,24 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     if kw.contains("INTEGRALE") {
         return integrale(ex, call);
     }
+    if kw.contains("TRAV_EXT") {
+        return trav_ext::trav_ext(ex, call);
+    }
+    if kw.contains("MINMAX") {
+        return minmax::minmax(ex, call);
+    }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
+    } else if kw.contains("ENER_TOTALE") {
+        // `peingl`'s ENER_TOTALE of an elastic result: its elastic energy
+        // (`te0491`: enelas + eplast, eplast = 0 under ELAS), columns up to
+        // TOTALE; code_aster requires RESULTAT.
+        ex.required("POST_ELEM/ENER_TOTALE", kw, "RESULTAT")?;
+        ("ENER_TOTALE", false)
     } else {
         ("ENER_POT", false)
     };
+    let totale = factor == "ENER_TOTALE";
     let places = places(ex, kw, factor)?;
     let table = if let Some(r) = kw.concept("RESULTAT") {
         let result = ex.result(r)?;
@@ -145,7 +174,7 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             for c in ["MEMBRANE", "FLEXION", "CISAILLE", "COUPL_MF"] {
                 columns.push(col(c, ColumnType::Real));
             }
-        } else {
+        } else if !totale {
             columns.push(col("POUR_CENT", ColumnType::Real));
         }
         let mut table = Table::new(columns);
@@ -165,7 +194,7 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                     for c in ["MEMBRANE", "FLEXION", "CISAILLE", "COUPL_MF"] {
                         row.push((c, Value::Real(0.0)));
                     }
-                } else {
+                } else if !totale {
                     row.push(("POUR_CENT", Value::Real(percent)));
                 }
                 table.push_row(row);
@@ -480,34 +509,26 @@ fn norme(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecErr
 /// which code_aster first spreads to its cells' nodes) the cell's measure
 /// (Σ of those weights) over its number of nodes — a cell's mean of nodal
 /// values, not a quadrature. Columns: NOM_CHAM, NUME_ORDRE, INST, VOL, the
-/// place's (`TOUT` or `GROUP_MA`), INTE_<cmp>… then MOYE_<cmp>….
+/// place's (`TOUT` or `GROUP_MA`), INTE_<cmp>… then MOYE_<cmp>…; of a field
+/// (`CHAM_GD`), one row per place: CHAM_GD, VOL, the place's, INTE_, MOYE_.
 fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let cmd = "POST_ELEM/INTEGRALE";
     let kw = &call.keywords;
-    let Some(r) = kw.concept("RESULTAT") else {
-        return Err(ex.unsupported(
-            "POST_ELEM/INTEGRALE of a field (CHAM_GD): give RESULTAT",
-            kw.keyword("CHAM_GD").map(|k| k.span).unwrap_or(call.span),
-        ));
-    };
-    let result = ex.result(r)?;
-    let steps = super::post::select_steps(ex, "POST_ELEM", kw, &result)?;
-    let (model, _) = result_model(ex, kw, r, &result)?;
-    let mesh = model.mesh_arc().clone();
-    let axis = model.hypothesis() == Some(aster_fem::Hypothesis::Axisymmetric);
-    let mut table = Table::new(vec![
-        col("NOM_CHAM", ColumnType::Text(16)),
-        col("NUME_ORDRE", ColumnType::Int),
-        col("INST", ColumnType::Real),
-        col("VOL", ColumnType::Real),
-    ]);
+    let (source, mesh, axis) = integrale_field::source(ex, call)?;
+    let mut table = integrale_field::table(&source);
     for occ in kw.factor("INTEGRALE") {
         let at = |k: &str| occ.keyword(k).map(|k| k.span).unwrap_or(call.span);
-        let Some(nom_cham) = occ.str("NOM_CHAM").map(str::to_string) else {
-            // code_aster's POSTELEM_4.
-            return Err(ExecError::new(format!(
-                "{cmd}: NOM_CHAM is needed with RESULTAT"
-            )));
+        let nom_cham = match &source {
+            integrale_field::Source::Field(name, ..) => name.clone(),
+            integrale_field::Source::Result(..) => match occ.str("NOM_CHAM") {
+                Some(n) => n.to_string(),
+                // code_aster's POSTELEM_4.
+                None => {
+                    return Err(ExecError::new(format!(
+                        "{cmd}: NOM_CHAM is needed with RESULTAT"
+                    )))
+                }
+            },
         };
         if matches!(nom_cham.as_str(), "FORC_NODA" | "REAC_NODA") {
             // code_aster's POSTELEM_5.
@@ -536,17 +557,11 @@ fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exe
             _ => 3,
         });
         let keep = |c: &CellId| {
-            model.element_kind(*c).is_some()
-                && dim_filter.is_none_or(|d| mesh.cell(*c).ty.dim() as usize == d)
+            source.in_model(*c) && dim_filter.is_none_or(|d| mesh.cell(*c).ty.dim() as usize == d)
         };
         let mut places: Vec<(&str, String, Vec<CellId>)> = Vec::new();
         if occ.contains("TOUT") {
-            let cells: Vec<CellId> = model
-                .elements()
-                .iter()
-                .map(|e| e.cell)
-                .filter(keep)
-                .collect();
+            let cells: Vec<CellId> = source.model_cells().into_iter().filter(keep).collect();
             places.push(("TOUT", "TOUT".into(), cells));
         }
         let groups: Vec<String> = occ
@@ -580,35 +595,13 @@ fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exe
                 if weights.contains_key(&c) {
                     continue;
                 }
-                let ty = mesh.cell(c).ty;
-                let scheme = match model.element_kind(c) {
-                    Some(aster_fem::ElementKind::Continuum { .. }) => model.stiffness_scheme(c),
-                    Some(aster_fem::ElementKind::Boundary) => {
-                        let role = aster_fem::elga::CellRole::of(ty.dim() as usize, model.dim());
-                        match role.and_then(|r| aster_fem::elga::family(ty, r, axis)) {
-                            Some(s) => s,
-                            None => continue,
-                        }
-                    }
-                    _ => {
-                        return Err(ex.unsupported(
-                            &format!(
-                                "POST_ELEM/INTEGRALE over cell {} (a structural or discrete element): continuum and skin cells only",
-                                crate::select::cell_name(&mesh, c)
-                            ),
-                            at("INTEGRALE"),
-                        ))
-                    }
+                let Some(w) = source.weights(ex, c, axis, at("INTEGRALE"))? else {
+                    continue;
                 };
-                let w = aster_fem::elga::points(&mesh, c, &scheme, axis)
-                    .iter()
-                    .map(|p| p.weight)
-                    .collect();
                 weights.insert(c, w);
             }
         }
-        for step in &steps {
-            let field = super::post::step_field(step, &nom_cham, &r.name)?;
+        for (step, field) in source.fields(&nom_cham)? {
             let mut row_values: Vec<(String, f64, f64)> = Vec::new();
             for (lieu, name, cells) in &places {
                 let mut vol0 = 0.0;
@@ -687,13 +680,16 @@ fn integrale(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exe
                     .iter()
                     .map(|(c, _, _)| (format!("INTE_{c}"), format!("MOYE_{c}")))
                     .collect();
-                let mut row: Vec<(&str, Value)> = vec![
-                    ("NOM_CHAM", Value::Text(nom_cham.clone())),
-                    ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
-                    ("INST", Value::Real(step.inst)),
-                    ("VOL", Value::Real(vol0)),
-                    (lieu, Value::Text(name.clone())),
-                ];
+                let mut row: Vec<(&str, Value)> = match step {
+                    Some((order, inst)) => vec![
+                        ("NOM_CHAM", Value::Text(nom_cham.clone())),
+                        ("NUME_ORDRE", Value::Int(order as i64)),
+                        ("INST", Value::Real(inst)),
+                    ],
+                    None => vec![("CHAM_GD", Value::Text(nom_cham.clone()))],
+                };
+                row.push(("VOL", Value::Real(vol0)));
+                row.push((lieu, Value::Text(name.clone())));
                 for ((inte, moye), (_, val, vol)) in names.iter().zip(&row_values) {
                     row.push((inte.as_str(), Value::Real(*val)));
                     row.push((moye.as_str(), Value::Real(val / vol)));
