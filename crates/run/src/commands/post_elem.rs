@@ -30,8 +30,10 @@
 //! - `INTEGRALE` (`peeint`/`peecal`/`chpond`) of a result's field: see
 //!   [`integrale`].
 //!
-//! Every other quantity (MASS_INER, MINMAX, TRAV_EXT…) is refused with its
-//! location.
+//! - `MASS_INER` (`pemain`/`pemica`): mass, centre of gravity and inertia,
+//!   see [`mass_iner`].
+//!
+//! Every other quantity (MINMAX, TRAV_EXT…) is refused with its location.
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
@@ -42,6 +44,8 @@ use aster_fem::Model;
 use aster_mesh::{CellId, Mesh};
 use std::collections::HashMap;
 use std::rc::Rc;
+
+mod mass_iner;
 
 const POST_ELEM_OWN: &[&str] = &[
     "ENER_POT",
@@ -73,13 +77,22 @@ const POST_ELEM_OWN: &[&str] = &[
     "INTEGRALE/NOM_CHAM",
     "INTEGRALE/NOM_CMP",
     "INTEGRALE/TYPE_MAILLE",
+    "MASS_INER",
+    "MASS_INER/TOUT",
+    "MASS_INER/GROUP_MA",
+    "MASS_INER/ORIG_INER",
+    "GEOMETRIE",
 ];
 
 /// What POST_ELEM computes (`crate::support`): its own keywords and the
 /// step selection ([`super::post::STEP_SELECTION`]).
 pub(crate) const POST_ELEM: Support = Support {
-    values: &[Values::new("NORME/TYPE_NORM", &["L2"])
-        .why("(the Frobenius norm is not reproduced): the L2 norm only")],
+    values: &[
+        Values::new("NORME/TYPE_NORM", &["L2"])
+            .why("(the Frobenius norm is not reproduced): the L2 norm only"),
+        Values::new("GEOMETRIE", &["INITIALE"])
+            .why("(the deformed geometry is not reproduced): the mesh's own"),
+    ],
     rules: Some(post_elem_rules),
     ..Support::keywords(&crate::support::joined::<
         _,
@@ -114,6 +127,9 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     if kw.contains("INTEGRALE") {
         return integrale(ex, call);
+    }
+    if kw.contains("MASS_INER") {
+        return mass_iner::mass_iner(ex, call);
     }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
