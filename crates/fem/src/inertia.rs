@@ -17,6 +17,8 @@
 //!   axis, which the table calls Z: m = 2π ρ ∫ r dA, g = (0, 0, ȳ),
 //!   Iz = 2π ρ ∫ r·r² dA, Ix = Iy = 2π ρ ∫ r y² dA + Iz/2 − m ȳ², no
 //!   products.
+//! - POU_D_E beams (`te0038`, constant section): see [`beam`] (its
+//!   products carry the opposite sign of the continuum's, as code_aster's).
 //! - A discrete mass `M_T_D_N` (`te0045`, `MECA_DIS_T_N`,
 //!   `MECA_2D_DIS_T_N`): m at the node, no inertia of its own.
 //!
@@ -100,10 +102,24 @@ pub fn cell_inertias(
                 };
                 out.insert(el.cell, c);
             }
+            ElementKind::Beam { section, .. } => {
+                let Some(&rho) = data.density.get(&el.cell) else {
+                    return Err(FemError::Model(format!(
+                        "cell {} has no density (ELAS/RHO): its mass cannot be computed",
+                        model.cell_name(el.cell)
+                    )));
+                };
+                let c = crate::element::beam_coords(mesh, el.cell)
+                    .and_then(|[a, b]| beam(a, b, rho, section))
+                    .map_err(|m| {
+                        FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))
+                    })?;
+                out.insert(el.cell, c);
+            }
             ElementKind::Boundary | ElementKind::Spring { .. } => {}
-            ElementKind::Shell { .. } | ElementKind::Beam { .. } | ElementKind::Coque3d { .. } => {
+            ElementKind::Shell { .. } | ElementKind::Coque3d { .. } => {
                 return Err(FemError::Model(format!(
-                    "cell {} is a beam or shell element: its MASS_INER is not computed (continuum cells and M_T_D_N discrete masses only)",
+                    "cell {} is a shell element: its MASS_INER is not computed (continuum cells, POU_D_E beams and M_T_D_N discrete masses only)",
                     model.cell_name(el.cell)
                 )));
             }
@@ -172,6 +188,33 @@ pub fn solid(points: &[elga::ElgaPoint], rho: f64) -> CellInertia {
             yz * rho - m * g[1] * g[2],
         ],
     }
+}
+
+/// `te0038` on a straight beam of constant section (`POU_D_E`, section
+/// type 0) from `a` to `b`: m = ρ A L at the middle, the local tensor
+/// diag(ρ (Iy + Iz) L, ρ L (Iy + A L²/12), ρ L (Iz + A L²/12)) taken to
+/// the global frame (`utpslg`: Pᵀ J P). Its off-diagonal terms are stored
+/// as they come out, the tensor's (−∫ρ x y), where the continuum cells
+/// store +∫ρ x y: code_aster's sign, kept.
+pub fn beam(
+    a: [f64; 3],
+    b: [f64; 3],
+    rho: f64,
+    section: &crate::beam::BeamSection,
+) -> Result<CellInertia, String> {
+    let (p, len) = crate::beam::frame(a, b)?;
+    let l2 = len * len;
+    let local = [
+        rho * (section.iy + section.iz) * len,
+        rho * len * (section.iy + section.area * l2 / 12.0),
+        rho * len * (section.iz + section.area * l2 / 12.0),
+    ];
+    let g = |i: usize, j: usize| (0..3).map(|k| p[k][i] * local[k] * p[k][j]).sum::<f64>();
+    Ok(CellInertia {
+        mass: rho * section.area * len,
+        centre: [0, 1, 2].map(|k| (a[k] + b[k]) / 2.0),
+        inertia: [g(0, 0), g(1, 1), g(2, 2), g(1, 0), g(2, 0), g(2, 1)],
+    })
 }
 
 /// `te0285` on the points of a 2D cell's `MASS` family (the weights times

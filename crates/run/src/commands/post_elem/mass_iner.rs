@@ -5,9 +5,9 @@
 //! union `UNION_GROUP_MA` when an occurrence names several; a group the
 //! mesh lacks or an empty one gives no row, as code_aster's warnings
 //! UTILITAI3_46/47). The numbers come from aster-fem's
-//! [`aster_fem::inertia`]: continuum cells with the densities of
-//! `CHAM_MATER` (or of the computation of `RESULTAT`), `M_T_D_N` discrete
-//! masses of `CARA_ELEM`.
+//! [`aster_fem::inertia`]: continuum cells and POU_D_E beams with the
+//! densities of `CHAM_MATER` (or of the computation of `RESULTAT`),
+//! `M_T_D_N` discrete masses of `CARA_ELEM`.
 //!
 //! Columns, as `pemain`'s: `LIEU` (K24), `ENTITE` (K8), `MASSE`, `CDG_X`,
 //! `CDG_Y`, `CDG_Z`, `IX_G`, `IY_G`, `IZ_G`, `IXY_G`, `IXZ_G`, `IYZ_G`,
@@ -17,7 +17,7 @@
 //! `IYZ_P`. Every dimension has every column (a 2D model's `CDG_Z`, `IXZ_G`,
 //! `IYZ_G` are 0). A `RESULTAT` only names the model, material and
 //! characteristics (code_aster's `medomp`): no `NUME_ORDRE` column.
-//! `GEOMETRIE='DEFORMEE'` is refused.
+//! `GEOMETRIE='DEFORMEE'`, shells and other discrete masses are refused.
 
 use super::{col, model_from_keywords, result_model, ModelRef};
 use crate::concept::Concept;
@@ -104,13 +104,12 @@ pub(super) fn mass_iner(ex: &mut Executor, call: &CommandCall) -> Result<Command
     };
     // What aster-fem does not compute is refused before anything else.
     for el in model.elements() {
-        if let aster_fem::ElementKind::Shell { .. }
-        | aster_fem::ElementKind::Beam { .. }
-        | aster_fem::ElementKind::Coque3d { .. } = el.kind
+        if let aster_fem::ElementKind::Shell { .. } | aster_fem::ElementKind::Coque3d { .. } =
+            el.kind
         {
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd} of a beam or shell element (cell {}: te0038, dxiner, te0417 not reproduced): continuum cells and M_T_D_N discrete masses only",
+                    "{cmd} of a shell element (cell {}: dxiner, te0417 not reproduced): continuum cells, POU_D_E beams and M_T_D_N discrete masses only",
                     model.cell_name(el.cell)
                 ),
                 span("MASS_INER"),
