@@ -19,8 +19,8 @@
 //!   products.
 //! - POU_D_E beams (`te0038`, constant section): see [`beam`] (its
 //!   products carry the opposite sign of the continuum's, as code_aster's).
-//! - A discrete mass `M_T_D_N` (`te0045`, `MECA_DIS_T_N`,
-//!   `MECA_2D_DIS_T_N`): m at the node, no inertia of its own.
+//! - Discrete masses of POI1 nodes in the global frame (`te0045`):
+//!   see [`discrete`].
 //!
 //! The sum over a set of cells ([`sum`], `pemica`): M = Σ m, G = Σ m g / M
 //! (when |M| > 1e-6), I_G = Σ (I + m (d·d 1 − d⊗d)) with d = g − G (the
@@ -69,9 +69,10 @@ pub struct MassInertia {
 /// The contribution of every cell of the model that has one (code_aster's
 /// option `MASS_INER` on the model's elements): continuum cells with the
 /// density of `data` (a continuum cell without one is an error, as
-/// code_aster's `rcvalb`), the discrete masses `M_T_D_N` of `data`.
-/// Boundary cells and springs without mass contribute nothing; shells,
-/// beams and the other discrete masses are errors naming the cell.
+/// code_aster's `rcvalb`), POU_D_E beams ([`beam`]), the discrete masses
+/// of POI1 nodes of `data` ([`discrete`]). Boundary cells and springs
+/// without mass contribute nothing; shells and the other discrete masses
+/// are errors naming the cell.
 pub fn cell_inertias(
     model: &Model,
     data: &MassData,
@@ -119,38 +120,70 @@ pub fn cell_inertias(
             ElementKind::Boundary | ElementKind::Spring { .. } => {}
             ElementKind::Shell { .. } | ElementKind::Coque3d { .. } => {
                 return Err(FemError::Model(format!(
-                    "cell {} is a shell element: its MASS_INER is not computed (continuum cells, POU_D_E beams and M_T_D_N discrete masses only)",
+                    "cell {} is a shell element: its MASS_INER is not computed (continuum cells, POU_D_E beams and discrete masses of nodes only)",
                     model.cell_name(el.cell)
                 )));
             }
         }
     }
     for d in &data.discrete {
-        match d {
-            DiscreteMass::Node { cell, mass } => {
-                let node = mesh.cell(*cell).nodes[0];
-                let mut centre = mesh.coord(node);
-                if model.dim() == 2 {
-                    centre[2] = 0.0;
-                }
-                out.insert(
-                    *cell,
-                    CellInertia {
-                        mass: *mass,
-                        centre,
-                        inertia: [0.0; 6],
-                    },
-                );
-            }
-            other => {
-                return Err(FemError::Model(format!(
-                    "cell {}: a discrete mass other than M_T_D_N (a matrix, M_TR_D_N, M_TR_D_L): its MASS_INER is not computed",
-                    model.cell_name(other.cell())
-                )));
-            }
-        }
+        let Some(c) = discrete(model, d) else {
+            return Err(FemError::Model(format!(
+                "cell {}: a discrete mass on a segment, in a local frame or on a 2D_DIS_TR node: its MASS_INER is not computed",
+                model.cell_name(d.cell())
+            )));
+        };
+        out.insert(d.cell(), c);
     }
     Ok(out)
+}
+
+/// `te0045` on a discrete mass of a POI1 node in the global frame
+/// (`MECA_DIS_T_N`, `MECA_DIS_TR_N`, `MECA_2D_DIS_T_N`): the mass is the
+/// translation block's Σ of terms over the dimension (m for `M_T_D_N`),
+/// at the node (z = 0 in 2D); a `DIS_TR` node's inertia is its matrix's
+/// rotation block ((4,4), (5,5), (6,6), (4,5), (4,6), (5,6)), the point
+/// mass's offset included. `None`: a segment, a local frame, a 2D node
+/// with rotation (code_aster's `MECA_2D_DIS_TR_N` writes its inertia in
+/// the CDG_Z slot: not reproduced).
+pub fn discrete(model: &Model, d: &DiscreteMass) -> Option<CellInertia> {
+    let mesh = model.mesh();
+    let cell = mesh.cell(d.cell());
+    if cell.nodes.len() != 1 {
+        return None;
+    }
+    let mut centre = mesh.coord(cell.nodes[0]);
+    if model.dim() == 2 {
+        centre[2] = 0.0;
+    }
+    let (mass, inertia) = match d {
+        DiscreteMass::Node { mass, .. } => (*mass, [0.0; 6]),
+        DiscreteMass::Matrix {
+            upper,
+            frame: crate::model::Frame::Global,
+            ..
+        } => match (model.dim(), upper.len()) {
+            (3, 6 | 21) => {
+                let m = (upper[..6].iter().sum::<f64>() + upper[1] + upper[3] + upper[4]) / 3.0;
+                let i = if upper.len() == 21 {
+                    [
+                        upper[9], upper[14], upper[20], upper[13], upper[18], upper[19],
+                    ]
+                } else {
+                    [0.0; 6]
+                };
+                (m, i)
+            }
+            (2, 3) => ((upper.iter().sum::<f64>() + upper[1]) / 2.0, [0.0; 6]),
+            _ => return None,
+        },
+        DiscreteMass::Matrix { .. } => return None,
+    };
+    Some(CellInertia {
+        mass,
+        centre,
+        inertia,
+    })
 }
 
 /// `te0065` on the points of a 3D cell's family.

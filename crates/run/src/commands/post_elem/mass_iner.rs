@@ -7,7 +7,7 @@
 //! UTILITAI3_46/47). The numbers come from aster-fem's
 //! [`aster_fem::inertia`]: continuum cells and POU_D_E beams with the
 //! densities of `CHAM_MATER` (or of the computation of `RESULTAT`),
-//! `M_T_D_N` discrete masses of `CARA_ELEM`.
+//! the discrete masses of POI1 nodes of `CARA_ELEM` (global frame).
 //!
 //! Columns, as `pemain`'s: `LIEU` (K24), `ENTITE` (K8), `MASSE`, `CDG_X`,
 //! `CDG_Y`, `CDG_Z`, `IX_G`, `IY_G`, `IZ_G`, `IXY_G`, `IXZ_G`, `IYZ_G`,
@@ -109,7 +109,7 @@ pub(super) fn mass_iner(ex: &mut Executor, call: &CommandCall) -> Result<Command
         {
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd} of a shell element (cell {}: dxiner, te0417 not reproduced): continuum cells, POU_D_E beams and M_T_D_N discrete masses only",
+                    "{cmd} of a shell element (cell {}: dxiner, te0417 not reproduced): continuum cells, POU_D_E beams and discrete masses of nodes only",
                     model.cell_name(el.cell)
                 ),
                 span("MASS_INER"),
@@ -119,11 +119,11 @@ pub(super) fn mass_iner(ex: &mut Executor, call: &CommandCall) -> Result<Command
     if let Some(d) = mass
         .discrete
         .iter()
-        .find(|d| !matches!(d, aster_fem::mass::DiscreteMass::Node { .. }))
+        .find(|d| inertia::discrete(&model, d).is_none())
     {
         return Err(ex.unsupported(
             &format!(
-                "{cmd} of a discrete mass other than M_T_D_N (cell {}: M_TR_D_N, M_TR_D_L, M_T_N… of te0045 not reproduced)",
+                "{cmd} of a discrete mass on a segment (M_T_D_L, M_TR_D_L, M_T_L…), in a local frame (REPERE='LOCAL') or on a 2D_DIS_TR node (cell {}: not reproduced from te0045)",
                 model.cell_name(d.cell())
             ),
             span("CARA_ELEM"),
