@@ -33,6 +33,7 @@ pub mod fpg;
 pub mod fracture;
 mod held;
 pub mod hexs8;
+pub mod inertia;
 pub mod joint;
 pub mod linalg;
 pub mod line_search;

@@ -282,41 +282,53 @@ pub(crate) fn mass_data(
         }
     }
     if let Some(cara) = &setup.cara {
-        for m in &cara.masses {
-            for &cell in &m.cells {
-                if !setup.model.cells.contains_key(&cell) {
-                    return Err(ExecError::new(format!(
-                        "AFFE_CARA_ELEM: a mass ({}) on cell {}, which is not in the model",
-                        m.cara,
-                        crate::select::cell_name(mesh, cell)
-                    )));
-                }
-                let frame = if m.local { Frame::Local } else { Frame::Global };
-                data.discrete.push(match (m.cara.as_str(), m.values.len()) {
-                    ("M_TR_D_N", 10) => {
-                        let mut v = [0.0; 10];
-                        v.copy_from_slice(&m.values);
-                        DiscreteMass::node_with_inertia(cell, &v)
-                    }
-                    ("M_TR_D_L", 4) => {
-                        let mut v = [0.0; 4];
-                        v.copy_from_slice(&m.values);
-                        DiscreteMass::segment_with_inertia(cell, &v, frame)
-                    }
-                    ("M_T_D_N", 1) => DiscreteMass::Node {
-                        cell,
-                        mass: m.values[0],
-                    },
-                    _ => DiscreteMass::Matrix {
-                        cell,
-                        upper: m.values.clone(),
-                        frame,
-                    },
-                });
-            }
-        }
+        data.discrete = discrete_masses(mesh, &setup.model, cara)?;
     }
     Ok((data, rayleigh))
+}
+
+/// The discrete masses of `AFFE_CARA_ELEM` (`M_T_D_N`, `M_TR_D_N`,
+/// `M_TR_D_L`, the matrices `M_T_N`…) on the cells of a model.
+pub(crate) fn discrete_masses(
+    mesh: &Mesh,
+    model: &crate::concept::ModelDef,
+    cara: &crate::concept::CaraElem,
+) -> Result<Vec<DiscreteMass>, ExecError> {
+    let mut out = Vec::new();
+    for m in &cara.masses {
+        for &cell in &m.cells {
+            if !model.cells.contains_key(&cell) {
+                return Err(ExecError::new(format!(
+                    "AFFE_CARA_ELEM: a mass ({}) on cell {}, which is not in the model",
+                    m.cara,
+                    crate::select::cell_name(mesh, cell)
+                )));
+            }
+            let frame = if m.local { Frame::Local } else { Frame::Global };
+            out.push(match (m.cara.as_str(), m.values.len()) {
+                ("M_TR_D_N", 10) => {
+                    let mut v = [0.0; 10];
+                    v.copy_from_slice(&m.values);
+                    DiscreteMass::node_with_inertia(cell, &v)
+                }
+                ("M_TR_D_L", 4) => {
+                    let mut v = [0.0; 4];
+                    v.copy_from_slice(&m.values);
+                    DiscreteMass::segment_with_inertia(cell, &v, frame)
+                }
+                ("M_T_D_N", 1) => DiscreteMass::Node {
+                    cell,
+                    mass: m.values[0],
+                },
+                _ => DiscreteMass::Matrix {
+                    cell,
+                    upper: m.values.clone(),
+                    frame,
+                },
+            });
+        }
+    }
+    Ok(out)
 }
 
 /// A vector per DOF index of `model` from a nodal field (components the

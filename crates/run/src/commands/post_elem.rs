@@ -41,8 +41,11 @@
 //! - `MINMAX` (`pemima`): the extrema of components of a field and where
 //!   they are reached: see [`minmax`].
 //!
-//! Every other quantity (MASS_INER, ENER_DISS, INTEGRALE/NOM_VARI…) is
-//! refused with its location.
+//! - `MASS_INER` (`pemain`/`pemica`): mass, centre of gravity and inertia,
+//!   see [`mass_iner`].
+//!
+//! Every other quantity (ENER_DISS, INTEGRALE/NOM_VARI…) is refused with
+//! its location.
 
 use crate::concept::{Concept, EvolResult};
 use crate::executor::{store_result, Executor};
@@ -55,6 +58,7 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 mod integrale_field;
+mod mass_iner;
 mod minmax;
 mod trav_ext;
 
@@ -107,13 +111,22 @@ const POST_ELEM_OWN: &[&str] = &[
     "MINMAX/LIST_ORDRE",
     "MINMAX/INST",
     "MINMAX/LIST_INST",
+    "MASS_INER",
+    "MASS_INER/TOUT",
+    "MASS_INER/GROUP_MA",
+    "MASS_INER/ORIG_INER",
+    "GEOMETRIE",
 ];
 
 /// What POST_ELEM computes (`crate::support`): its own keywords and the
 /// step selection ([`super::post::STEP_SELECTION`]).
 pub(crate) const POST_ELEM: Support = Support {
-    values: &[Values::new("NORME/TYPE_NORM", &["L2"])
-        .why("(the Frobenius norm is not reproduced): the L2 norm only")],
+    values: &[
+        Values::new("NORME/TYPE_NORM", &["L2"])
+            .why("(the Frobenius norm is not reproduced): the L2 norm only"),
+        Values::new("GEOMETRIE", &["INITIALE"])
+            .why("(the deformed geometry is not reproduced): the mesh's own"),
+    ],
     ..Support::keywords(&crate::support::joined::<
         _,
         { super::post::STEP_SELECTION.len() + POST_ELEM_OWN.len() },
@@ -136,6 +149,9 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     if kw.contains("MINMAX") {
         return minmax::minmax(ex, call);
+    }
+    if kw.contains("MASS_INER") {
+        return mass_iner::mass_iner(ex, call);
     }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
