@@ -118,9 +118,21 @@ pub fn cell_inertias(
                 out.insert(el.cell, c);
             }
             ElementKind::Boundary | ElementKind::Spring { .. } => {}
-            ElementKind::Shell { .. } | ElementKind::Coque3d { .. } => {
+            ElementKind::Shell { section, .. } => {
+                let Some(&rho) = data.density.get(&el.cell) else {
+                    return Err(FemError::Model(format!(
+                        "cell {} has no density (ELAS/RHO): its mass cannot be computed",
+                        model.cell_name(el.cell)
+                    )));
+                };
+                let c = shell(mesh, el.cell, rho, section.thickness).map_err(|m| {
+                    FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))
+                })?;
+                out.insert(el.cell, c);
+            }
+            ElementKind::Coque3d { .. } => {
                 return Err(FemError::Model(format!(
-                    "cell {} is a shell element: its MASS_INER is not computed (continuum cells, POU_D_E beams and discrete masses of nodes only)",
+                    "cell {} is a COQUE_3D shell: its MASS_INER (te0417) is not computed (continuum cells, DKT shells, POU_D_E beams and discrete masses of nodes only)",
                     model.cell_name(el.cell)
                 )));
             }
@@ -247,6 +259,98 @@ pub fn beam(
         mass: rho * section.area * len,
         centre: [0, 1, 2].map(|k| (a[k] + b[k]) / 2.0),
         inertia: [g(0, 0), g(1, 1), g(2, 2), g(1, 0), g(2, 0), g(2, 1)],
+    })
+}
+
+/// `dxiner` (`te0031`, option `MASS_INER` of the DKT shells) on a TRIA3 or
+/// QUAD4 facet of thickness `h`: the area A, first and second moments of
+/// the facet integrated on its `MASS` family (FPG3, FPG4: exact on these
+/// linear and bilinear cells), m = ρhA at the centroid, the inertia about
+/// it in the facet's frame (`dxtpgl`/`dxqpgl`: local x, y in the plane)
+/// ρh (∫y² + A h²/12 − A ȳ², ∫x² + A h²/12 − A x̄², ∫(x² + y²) − A(x̄² + ȳ²),
+/// products −∫xy + A x̄ȳ) taken to the global frame (`utpslg`: Pᵀ J P);
+/// the products stored +∫ρ x y as the continuum cells'.
+pub fn shell(
+    mesh: &aster_mesh::Mesh,
+    cell: CellId,
+    rho: f64,
+    h: f64,
+) -> Result<CellInertia, String> {
+    let c = mesh.cell(cell);
+    let xyz: Vec<[f64; 3]> = c.nodes.iter().map(|&n| mesh.coord(n)).collect();
+    let (pgl, points): (nalgebra::Matrix3<f64>, Vec<([f64; 2], f64)>) = match xyz.len() {
+        3 => {
+            let f = crate::dkt::Facet::new(&[xyz[0], xyz[1], xyz[2]])?;
+            let pts = shape::mass_scheme(aster_mesh::CellType::TRIA3)
+                .iter()
+                .map(|g| ([g.xi[0], g.xi[1]], g.weight))
+                .collect();
+            (f.pgl, pts)
+        }
+        4 => {
+            let q = crate::dkq::Quad::new(&[xyz[0], xyz[1], xyz[2], xyz[3]])?;
+            let pts = shape::mass_scheme(aster_mesh::CellType::QUAD4)
+                .iter()
+                .map(|g| ([g.xi[0], g.xi[1]], g.weight))
+                .collect();
+            (q.pgl, pts)
+        }
+        n => return Err(format!("a DKT facet has 3 or 4 nodes, not {n}")),
+    };
+    let local = |x: &[f64; 3]| -> [f64; 3] {
+        [0, 1, 2].map(|r| (0..3).map(|k| pgl[(r, k)] * x[k]).sum::<f64>())
+    };
+    let (mut area, mut g, mut l) = (0.0, [0.0; 3], [0.0; 2]);
+    let (mut axx, mut ayy, mut axy) = (0.0, 0.0, 0.0);
+    for (xi, w) in points {
+        let [x, t1, t2] =
+            shape::point_and_tangents(mesh, c, &shape::shape(c.ty, [xi[0], xi[1], 0.0]));
+        let n = aster_mesh::vec3::cross(t1, t2);
+        let sigau = w * aster_mesh::vec3::dot(n, n).sqrt();
+        let xl = local(&x);
+        area += sigau;
+        for k in 0..3 {
+            g[k] += x[k] * sigau;
+        }
+        l[0] += xl[0] * sigau;
+        l[1] += xl[1] * sigau;
+        axx += xl[0] * xl[0] * sigau;
+        ayy += xl[1] * xl[1] * sigau;
+        axy += xl[0] * xl[1] * sigau;
+    }
+    if area.abs() < f64::EPSILON {
+        return Err("a shell facet of zero area (code_aster's ELEMENTS_48)".into());
+    }
+    let g = g.map(|v| v / area);
+    let (xl, yl) = (l[0] / area, l[1] / area);
+    let roep = rho * h;
+    let igxx = ayy + area * h * h / 12. - area * yl * yl;
+    let igyy = axx + area * h * h / 12. - area * xl * xl;
+    let igxy = axy - area * xl * yl;
+    let igzz = axx + ayy - area * (xl * xl + yl * yl);
+    let j = nalgebra::Matrix3::new(
+        roep * igxx,
+        -roep * igxy,
+        0.,
+        -roep * igxy,
+        roep * igyy,
+        0.,
+        0.,
+        0.,
+        roep * igzz,
+    );
+    let gj = pgl.transpose() * j * pgl;
+    Ok(CellInertia {
+        mass: roep * area,
+        centre: g,
+        inertia: [
+            gj[(0, 0)],
+            gj[(1, 1)],
+            gj[(2, 2)],
+            -gj[(0, 1)],
+            -gj[(0, 2)],
+            -gj[(1, 2)],
+        ],
     })
 }
 

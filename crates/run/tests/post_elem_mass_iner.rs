@@ -3,7 +3,8 @@
 //! comm/mass_iner_2d.mail, written for the project): mass, centre of
 //! gravity, inertia about it and about ORIG_INER, principal inertias and
 //! the angles of a tilted block, against closed forms; 3D, a point mass,
-//! a POU_D_E beam, D_PLAN and AXIS; and the located refusals around it.
+//! a POU_D_E beam, D_PLAN and AXIS, DKT shells (comm/mass_iner_shells.comm
+//! on comm/dkt_strips.mail); and the located refusals around it.
 
 mod scene;
 
@@ -25,6 +26,17 @@ fn a_block_a_point_mass_a_tilted_block_and_a_beam_match_the_closed_forms() {
 fn plane_and_axisymmetric_rectangles_match_the_closed_forms() {
     let text = scene::read("mass_iner_2d.comm");
     assert_eq!(run("mass_iner_2d", &text, "2d"), (64, 0, None));
+}
+
+/// DKT shells (dxiner) on comm/dkt_strips.mail: two plates of QUAD4 and
+/// TRIA3 in perpendicular planes, each m/12 (d₂² + d₃², …) about its
+/// centre with the thickness along its normal, and their sum by Huygens
+/// (comm/mass_iner_shells.comm).
+#[test]
+fn dkt_strips_match_the_closed_forms_of_plates() {
+    let text = scene::read("mass_iner_shells.comm");
+    let got = scene::run_on(&text, "comm/dkt_strips.mail", "mass-iner-shells");
+    assert_eq!(got, (60, 0, None));
 }
 
 /// The deformed geometry is refused at GEOMETRIE; a material without RHO
