@@ -883,6 +883,58 @@ pub fn mass(xyz: &[V3], rho: f64, section: &Coque3dSection) -> Result<Vec<f64>, 
     Ok(mas.transpose().iter().copied().collect())
 }
 
+/// The mass, centre of gravity and inertia about it (`[Ixx, Iyy, Izz, Ixy,
+/// Ixz, Iyz]`, products +∫ρ x y) of a COQUE_3D cell (code_aster's
+/// `te0417`, option `MASS_INER`): on the normal points, the mid-surface
+/// point x and the interpolated nodal normal n (not normalised), weights
+/// w |a₁ × a₂| (`vectci`); volume Σ h w, first moments Σ h w x, second
+/// moments Σ w (h xᵢxⱼ + h³/12 nᵢnⱼ).
+pub fn mass_inertia(xyz: &[V3], rho: f64, h: f64) -> Result<(f64, V3, [f64; 6]), String> {
+    let r = reference(xyz)?;
+    let frames = nodal_frames(xyz, &r)?;
+    let mut volume = 0.;
+    let mut first = [0.; 3];
+    let mut second = [[0.; 3]; 3];
+    for q in 0..r.npgsn() {
+        let s = &r.gn[q];
+        let (mut a1, mut a2, mut x, mut n) = ([0.; 3], [0.; 3], [0.; 3], [0.; 3]);
+        for k in 0..3 {
+            for j in 0..r.nb1 {
+                a1[k] += s.d1[j] * xyz[j][k];
+                a2[k] += s.d2[j] * xyz[j][k];
+                x[k] += s.f[j] * xyz[j][k];
+                n[k] += s.f[j] * frames[j][2][k];
+            }
+        }
+        let wgt = r.wn[q] * norm(cross(a1, a2));
+        volume += h * wgt;
+        for k in 0..3 {
+            first[k] += h * wgt * x[k];
+            for l in 0..3 {
+                second[k][l] += h * wgt * x[k] * x[l] + h.powi(3) / 12. * wgt * n[k] * n[l];
+            }
+        }
+    }
+    if volume.is_nan() || volume <= 0. {
+        return Err("a COQUE_3D cell of zero area".into());
+    }
+    let m = rho * volume;
+    let g = first.map(|v| v / volume);
+    let ii = |k: usize| rho * second[k][k];
+    Ok((
+        m,
+        g,
+        [
+            ii(1) + ii(2) - m * (g[1] * g[1] + g[2] * g[2]),
+            ii(0) + ii(2) - m * (g[0] * g[0] + g[2] * g[2]),
+            ii(0) + ii(1) - m * (g[0] * g[0] + g[1] * g[1]),
+            rho * second[0][1] - m * g[0] * g[1],
+            rho * second[0][2] - m * g[0] * g[2],
+            rho * second[1][2] - m * g[1] * g[2],
+        ],
+    ))
+}
+
 /// The local unknowns of `vdxnlr` (`trndgl`): the translations as they
 /// are, each node's rotation θ as (t₁·θ, t₂·θ); `nddle` values.
 fn local_unknowns(frames: &[[V3; 3]], u: &[f64]) -> Vec<f64> {

@@ -130,11 +130,26 @@ pub fn cell_inertias(
                 })?;
                 out.insert(el.cell, c);
             }
-            ElementKind::Coque3d { .. } => {
-                return Err(FemError::Model(format!(
-                    "cell {} is a COQUE_3D shell: its MASS_INER (te0417) is not computed (continuum cells, DKT shells, POU_D_E beams and discrete masses of nodes only)",
-                    model.cell_name(el.cell)
-                )));
+            ElementKind::Coque3d { section, .. } => {
+                let Some(&rho) = data.density.get(&el.cell) else {
+                    return Err(FemError::Model(format!(
+                        "cell {} has no density (ELAS/RHO): its mass cannot be computed",
+                        model.cell_name(el.cell)
+                    )));
+                };
+                let (mass, centre, inertia) = crate::element::coque3d_coords(mesh, el.cell)
+                    .and_then(|xyz| crate::coque3d::mass_inertia(&xyz, rho, section.thickness))
+                    .map_err(|m| {
+                        FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))
+                    })?;
+                out.insert(
+                    el.cell,
+                    CellInertia {
+                        mass,
+                        centre,
+                        inertia,
+                    },
+                );
             }
         }
     }

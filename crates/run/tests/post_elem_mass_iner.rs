@@ -4,7 +4,8 @@
 //! gravity, inertia about it and about ORIG_INER, principal inertias and
 //! the angles of a tilted block, against closed forms; 3D, a point mass,
 //! a POU_D_E beam, D_PLAN and AXIS, DKT shells (comm/mass_iner_shells.comm
-//! on comm/dkt_strips.mail); and the located refusals around it.
+//! on comm/dkt_strips.mail), COQUE_3D (comm/mass_iner_coque3d.comm); and
+//! the located refusals around it.
 
 mod scene;
 
@@ -37,6 +38,15 @@ fn dkt_strips_match_the_closed_forms_of_plates() {
     let text = scene::read("mass_iner_shells.comm");
     let got = scene::run_on(&text, "comm/dkt_strips.mail", "mass-iner-shells");
     assert_eq!(got, (60, 0, None));
+}
+
+/// COQUE_3D (te0417) on comm/coque3d_strip.mail: the strip and one cell
+/// of it, each a plate's closed form (comm/mass_iner_coque3d.comm).
+#[test]
+fn a_coque3d_strip_matches_the_closed_forms_of_plates() {
+    let text = scene::read("mass_iner_coque3d.comm");
+    let got = scene::run_on(&text, "comm/coque3d_strip.mail", "mass-iner-coque3d");
+    assert_eq!(got, (40, 0, None));
 }
 
 /// The deformed geometry is refused at GEOMETRIE; a material without RHO

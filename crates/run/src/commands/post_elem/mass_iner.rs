@@ -17,8 +17,9 @@
 //! `IYZ_P`. Every dimension has every column (a 2D model's `CDG_Z`, `IXZ_G`,
 //! `IYZ_G` are 0). A `RESULTAT` only names the model, material and
 //! characteristics (code_aster's `medomp`): no `NUME_ORDRE` column.
-//! `GEOMETRIE='DEFORMEE'`, COQUE_3D and other discrete masses are refused;
-//! DKT shells by `dxiner` (aster-fem's `inertia::shell`).
+//! `GEOMETRIE='DEFORMEE'` and other discrete masses are refused; DKT
+//! shells by `dxiner` (aster-fem's `inertia::shell`), COQUE_3D by `te0417`
+//! (`coque3d::mass_inertia`).
 
 use super::{col, model_from_keywords, result_model, ModelRef};
 use crate::concept::Concept;
@@ -104,17 +105,6 @@ pub(super) fn mass_iner(ex: &mut Executor, call: &CommandCall) -> Result<Command
         (Rc::new(model), name, mass)
     };
     // What aster-fem does not compute is refused before anything else.
-    for el in model.elements() {
-        if let aster_fem::ElementKind::Coque3d { .. } = el.kind {
-            return Err(ex.unsupported(
-                &format!(
-                    "{cmd} of a COQUE_3D shell (cell {}: te0417 not reproduced): continuum cells, DKT shells, POU_D_E beams and discrete masses of nodes only",
-                    model.cell_name(el.cell)
-                ),
-                span("MASS_INER"),
-            ));
-        }
-    }
     if let Some(d) = mass
         .discrete
         .iter()
