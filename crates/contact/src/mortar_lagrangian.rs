@@ -63,7 +63,7 @@ use aster_mesh::{Mesh, NodeId};
 
 use crate::error::ContactError;
 use crate::mortar_pairing3d::{self, Face};
-use crate::mortar_tangent::{self, FaceDof};
+use crate::mortar_tangent::FaceDof;
 use crate::shape::{dot, interpolate, norm, sub, SurfaceKind};
 use crate::source::current_positions;
 use crate::surface::{ResolvedZone, SurfaceCell};
@@ -733,35 +733,7 @@ impl MortarLagrangian {
                 // (`laMatr_ct_pr`, module `mortar_tangent`), on segments
                 // (2D) or faces (3D).
                 let lin: Vec<FaceDof> = if self.dim == 2 {
-                    let (_, dsl) = s.kind.eval(pt.xi);
-                    let (_, dml) = m.kind.eval(pt.master.xi);
-                    let dofs: Vec<[Option<usize>; 2]> = s
-                        .nodes
-                        .iter()
-                        .chain(&m.nodes)
-                        .map(|n| {
-                            [
-                                crate::mortar_point::dof(state, *n, 0),
-                                crate::mortar_point::dof(state, *n, 1),
-                            ]
-                        })
-                        .collect();
-                    mortar_tangent::linearise(
-                        &mortar_tangent::PointGeometry {
-                            slave_shape: &pt.initial.shape,
-                            slave_dshape: &dsl.iter().map(|d| d[0]).collect::<Vec<_>>(),
-                            master_shape: &pt.master.shape,
-                            master_dshape: &dml.iter().map(|d| d[0]).collect::<Vec<_>>(),
-                            tau_slave: pt.slave.tangents[0],
-                            normal: ns,
-                            tau_master: pt.master.tangents[0],
-                            gap,
-                        },
-                        &dofs,
-                    )
-                    .into_iter()
-                    .map(FaceDof::from)
-                    .collect()
+                    pt.linearise_2d(s, m, state)
                 } else {
                     pt.linearise_3d(s, m, &crate::mortar_point::face_dofs(state, s, m))
                 };

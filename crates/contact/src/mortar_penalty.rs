@@ -5,12 +5,12 @@
 //!
 //! In 3D (`new(…, 3)`) the pairing, the polygons' quadrature, the
 //! normals and master points are those of the 3D Lagrangian method
-//! (`mortar_lagrangian::pairs_3d_of`, `mortar_point::points_3d`), and the
-//! tangent is `peMatr_ct_pr`'s, the exact derivative of the residual for
-//! the iterate's pairing (intersections and weights held):
+//! (`mortar_lagrangian::pairs_3d_of`, `mortar_point::points_3d`). In 2D and
+//! 3D alike the tangent is `peMatr_ct_pr`'s, the exact derivative of the
+//! residual for the iterate's pairing (intersections and weights held):
 //! −w γ Dg (n_s·jump) − w [γg]₋ jump·Dn_s + w [γg]₋ n_s·(∂v_m/∂ζ_α) Dζ_α,
 //! the slave normal turning and the master point sliding
-//! (`mortar_tangent::linearise_3d`).
+//! (`mortar_tangent::linearise` on segments, `linearise_3d` on faces).
 //!
 //! As code_aster's (2025 main: `te0352`, `peelem`, `peVect_ct_pr`,
 //! `laElemCont`, `laQuantities`, `ContactComputation::contactCoefficient`):
@@ -33,10 +33,8 @@
 //! - **Newton**: code_aster tests the residual (pairing before every
 //!   iteration, no status criterion) and, with MECA_NON_LINE's
 //!   `CONTACT/RESI_GEOM`, the displacement increment (`ResiGeom`, as for
-//!   the Lagrangian method). The tangent here is w γ (n·jump)⊗(n·jump)
-//!   at active points, the normal and master point frozen over an
-//!   iteration (code_aster's `peMatr_ct_pr` differentiates them too: the
-//!   path differs, the converged state does not).
+//!   the Lagrangian method), with code_aster's tangent above: the same
+//!   Newton path, quadratic once the pairing settles.
 //! - **Line search** (MECA_NON_LINE's `RECH_LINEAIRE`,
 //!   `ForceSource::evaluate_on_pairing`): the trial residuals on the pairs,
 //!   normals and master points of the iteration's start, the gaps on the
@@ -47,9 +45,9 @@ use aster_mesh::Mesh;
 
 use crate::error::ContactError;
 use crate::mortar_lagrangian::{
-    pairs_3d_of, pairs_of, MZone, MortarLagrangian, MortarZoneDef, ResiGeom,
+    pairs_3d_of, pairs_of, MZone, MortarLagrangian, MortarZoneDef, Pair, ResiGeom,
 };
-use crate::mortar_point::{jump, on_current, points, points_3d};
+use crate::mortar_point::{on_current, points, points_3d, MortarPoint};
 use crate::shape::dot;
 use crate::source::current_positions;
 
@@ -130,9 +128,39 @@ impl MortarPenalty {
 }
 
 impl MortarPenalty {
-    /// The residual and tangent in 3D (`peVect_ct_pr`, `peMatr_ct_pr` on
-    /// faces).
-    fn evaluate_3d(
+    /// The quadrature points of every pair of the zones, paired on the
+    /// positions `xp` (segments in 2D, faces in 3D).
+    fn paired_points(
+        &self,
+        xp: &[[f64; 3]],
+        x0: &[[f64; 3]],
+    ) -> Result<Vec<(Pair, Vec<MortarPoint>)>, FemError> {
+        let pairs = if self.dim == 3 {
+            pairs_3d_of(&self.zones, xp)
+        } else {
+            pairs_of(&self.zones, xp)
+        };
+        let mut out = Vec::with_capacity(pairs.len());
+        for p in pairs {
+            let z = &self.zones[p.zone];
+            let (s, m) = (&z.slave[p.slave], &z.master[p.master]);
+            let (sp, mp, s0) = (s.positions(xp), m.positions(xp), s.positions(x0));
+            let points = if self.dim == 3 {
+                points_3d(s, m, &p.poly, &sp, &mp, &s0)?
+            } else {
+                points(s, m, p.xi, &sp, &mp, &s0, self.axis)?
+            };
+            out.push((p, points));
+        }
+        Ok(out)
+    }
+
+    /// The residual and tangent at `state` (`peVect_ct_pr`, `peMatr_ct_pr`
+    /// on segments and faces), paired on `pairing`'s positions when given
+    /// (a trial of MECA_NON_LINE's line search: the pairs, slave normals
+    /// and master points of the iteration's start,
+    /// `mortar_point::on_current`), else on the current ones.
+    fn contribution(
         &mut self,
         pairing: Option<&State>,
         state: &State,
@@ -140,20 +168,15 @@ impl MortarPenalty {
         let x = current_positions(state);
         let xp = pairing.map(current_positions);
         let xp: &[[f64; 3]] = xp.as_deref().unwrap_or(&x);
-        let x0 = &state.mesh.coords;
         let mut c = Contribution::default();
         let mut penetration = 0.0f64;
-        for p in pairs_3d_of(&self.zones, xp) {
+        for (p, pair_points) in self.paired_points(xp, &state.mesh.coords)? {
             let z = &self.zones[p.zone];
-            let s = &z.slave[p.slave];
-            let m = &z.master[p.master];
-            let sp = s.positions(xp);
-            let mp = m.positions(xp);
+            let (s, m) = (&z.slave[p.slave], &z.master[p.master]);
             let (sc, mc) = (s.positions(&x), m.positions(&x));
-            let s0 = s.positions(x0);
             let hf = z.h[p.slave];
-            let dofs = crate::mortar_point::face_dofs(state, s, m);
-            for pt in points_3d(s, m, &p.poly, &sp, &mp, &s0)? {
+            let dofs = (self.dim == 3).then(|| crate::mortar_point::face_dofs(state, s, m));
+            for pt in pair_points {
                 let pt = match pairing {
                     Some(_) => on_current(pt, s, m, &sc, &mc),
                     None => pt,
@@ -166,7 +189,10 @@ impl MortarPenalty {
                 penetration = penetration.max(-pt.gap);
                 let w = pt.w;
                 let ns = pt.ns;
-                let lin = pt.linearise_3d(s, m, &dofs);
+                let lin = match &dofs {
+                    Some(dofs) => pt.linearise_3d(s, m, dofs),
+                    None => pt.linearise_2d(s, m, state),
+                };
                 // −w [γg]₋ n_s·(v_s − v_m); its derivative (peMatr_ct_pr):
                 // −w γ Dg (n·jump) − w [γg]₋ jump·Dn_s + w [γg]₋ n·∂v_m/∂ζ_α Dζ_α.
                 for e in &lin {
@@ -181,62 +207,6 @@ impl MortarPenalty {
                         if v != 0.0 {
                             c.tangent.push((Unknown::Dof(i), Unknown::Dof(j), v));
                         }
-                    }
-                }
-            }
-        }
-        if pairing.is_none() {
-            self.penetration = penetration;
-        }
-        Ok(c)
-    }
-
-    /// The residual and tangent at `state`, paired on `pairing`'s
-    /// positions when given (a trial of MECA_NON_LINE's line search: the
-    /// pairs, slave normals and master points of the iteration's start,
-    /// `mortar_point::on_current`), else on the current ones.
-    fn contribution(
-        &mut self,
-        pairing: Option<&State>,
-        state: &State,
-    ) -> Result<Contribution, FemError> {
-        if self.dim == 3 {
-            return self.evaluate_3d(pairing, state);
-        }
-        let x = current_positions(state);
-        let xp = pairing.map(current_positions);
-        let xp: &[[f64; 3]] = xp.as_deref().unwrap_or(&x);
-        let x0 = &state.mesh.coords;
-        let mut c = Contribution::default();
-        let mut penetration = 0.0f64;
-        for p in pairs_of(&self.zones, xp) {
-            let z = &self.zones[p.zone];
-            let s = &z.slave[p.slave];
-            let m = &z.master[p.master];
-            let sp = s.positions(xp);
-            let mp = m.positions(xp);
-            let (sc, mc) = (s.positions(&x), m.positions(&x));
-            let s0 = s.positions(x0);
-            let hf = z.h[p.slave];
-            for pt in points(s, m, p.xi, &sp, &mp, &s0, self.axis)? {
-                let pt = match pairing {
-                    Some(_) => on_current(pt, s, m, &sc, &mc),
-                    None => pt,
-                };
-                let g = gamma(&pt.initial.shape, z.coef, hf);
-                let (h, proj) = status(g * pt.gap, z.forced(self.first_pairing));
-                if !h {
-                    continue;
-                }
-                penetration = penetration.max(-pt.gap);
-                let w = pt.w;
-                let jump = jump(state, s, m, &pt.initial.shape, &pt.master.shape, pt.ns);
-                // −w [γg]₋ n·(v_s − v_m); d/du: w γ (n·jump)(n·jump).
-                for &(i, fi) in &jump {
-                    c.forces.push((i, -w * proj * fi));
-                    for &(j, fj) in &jump {
-                        c.tangent
-                            .push((Unknown::Dof(i), Unknown::Dof(j), w * g * fi * fj));
                     }
                 }
             }

@@ -80,6 +80,44 @@ impl MortarPoint {
     }
 }
 
+impl MortarPoint {
+    /// The point's DOFs on segments (DX, DY of the slave nodes, then the
+    /// master's) with the derivatives of code_aster's analytic tangent in
+    /// 2D (`dNs_du`, `dPi_du`: [`crate::mortar_tangent::linearise`]), as
+    /// faces' DOFs (one tangent direction).
+    pub(crate) fn linearise_2d(
+        &self,
+        s: &Seg,
+        m: &Seg,
+        state: &State,
+    ) -> Vec<crate::mortar_tangent::FaceDof> {
+        let (_, sd) = s.kind.eval(self.xi);
+        let (_, md) = m.kind.eval(self.master.xi);
+        let dofs: Vec<[Option<usize>; 2]> = s
+            .nodes
+            .iter()
+            .chain(&m.nodes)
+            .map(|n| [dof(state, *n, 0), dof(state, *n, 1)])
+            .collect();
+        crate::mortar_tangent::linearise(
+            &crate::mortar_tangent::PointGeometry {
+                slave_shape: &self.initial.shape,
+                slave_dshape: &sd.iter().map(|d| d[0]).collect::<Vec<_>>(),
+                master_shape: &self.master.shape,
+                master_dshape: &md.iter().map(|d| d[0]).collect::<Vec<_>>(),
+                tau_slave: self.slave.tangents[0],
+                normal: self.ns,
+                tau_master: self.master.tangents[0],
+                gap: self.gap,
+            },
+            &dofs,
+        )
+        .into_iter()
+        .map(crate::mortar_tangent::FaceDof::from)
+        .collect()
+    }
+}
+
 /// The displacement DOFs (DX, DY, DZ) of a 3D pair's nodes, slave then
 /// master, as [`MortarPoint::linearise_3d`] takes them.
 pub(crate) fn face_dofs(state: &State, s: &Seg, m: &Seg) -> Vec<[Option<usize>; 3]> {
@@ -275,45 +313,4 @@ pub(crate) fn dof(state: &State, n: aster_mesh::NodeId, c: usize) -> Option<usiz
         _ => Comp::DZ,
     };
     state.dofs.index(Dof::new(n, comp))
-}
-
-/// The displacement DOFs of n·(v_s − v_m) at a point with their factors:
-/// N_a n_d on the slave's, −N_b n_d on the master's.
-pub(crate) fn jump(
-    state: &State,
-    s: &Seg,
-    m: &Seg,
-    slave_shape: &[f64],
-    master_shape: &[f64],
-    n: [f64; 3],
-) -> Vec<(usize, f64)> {
-    jump_in(state, s, m, slave_shape, master_shape, n, 2)
-}
-
-/// [`jump`] in a model of dimension `dim` (2: DX, DY; 3: DX, DY, DZ).
-pub(crate) fn jump_in(
-    state: &State,
-    s: &Seg,
-    m: &Seg,
-    slave_shape: &[f64],
-    master_shape: &[f64],
-    n: [f64; 3],
-    dim: usize,
-) -> Vec<(usize, f64)> {
-    let mut jump: Vec<(usize, f64)> = Vec::with_capacity(12);
-    for (a, node) in s.nodes.iter().enumerate() {
-        for d in 0..dim {
-            if let Some(i) = dof(state, *node, d) {
-                jump.push((i, slave_shape[a] * n[d]));
-            }
-        }
-    }
-    for (b, node) in m.nodes.iter().enumerate() {
-        for d in 0..dim {
-            if let Some(i) = dof(state, *node, d) {
-                jump.push((i, -master_shape[b] * n[d]));
-            }
-        }
-    }
-    jump
 }

@@ -1,10 +1,12 @@
-//! The tangent of code_aster 17's penalised mortar contact in 3D (DEFI_CONT,
+//! The tangent of code_aster 17's penalised mortar contact (DEFI_CONT,
 //! `ALGO_CONT='PENALISATION'`, `peMatr_ct_pr`: the penalty on the full
 //! derivative of the gap, the slave normal turning, the master point
 //! sliding) is the derivative of its residual: checked by central finite
-//! differences on a small tilted slave face (QUAD4, then QUAD8 and QUAD9
-//! with their middle nodes moved off the plane) whose whole area is paired
-//! with one larger master face (so the integration polygon does not move),
+//! differences in 3D on a small tilted slave face (QUAD4, then QUAD8 and
+//! QUAD9 with their middle nodes moved off the plane) whose whole area is
+//! paired with one larger master face (so the integration polygon does not
+//! move), and in 2D (D_PLAN and AXIS) on a tilted slave segment (SEG2, then
+//! SEG3 with its middle node moved off the line) over a longer master,
 //! every point interpenetrating.
 
 use std::path::Path;
@@ -82,12 +84,22 @@ fn residual(
 }
 
 fn check(mesh: Mesh, what: &str) {
+    check_in(mesh, what, 3, false)
+}
+
+/// [`check`] in a model of dimension `dim` (2: DX, DY; `axis`: AXIS weights).
+fn check_in(mesh: Mesh, what: &str, dim: usize, axis: bool) {
     let nodes = mesh.coords.len();
-    let dofs = DofNumbering::new(&[Comp::DX, Comp::DY, Comp::DZ], &vec![true; nodes]);
+    let comps: &[Comp] = if dim == 3 {
+        &[Comp::DX, Comp::DY, Comp::DZ]
+    } else {
+        &[Comp::DX, Comp::DY]
+    };
+    let dofs = DofNumbering::new(comps, &vec![true; nodes]);
     let mut zone = MortarZoneDef::new("MAIT", "ESCL");
     zone.coef_cont = 1e3;
-    let mut m = MortarPenalty::new(&[zone], &mesh, false, 3).unwrap();
-    let n = 3 * nodes;
+    let mut m = MortarPenalty::new(&[zone], &mesh, axis, dim).unwrap();
+    let n = dim * nodes;
     // Past the first pairing (CONTACT_INIT).
     m.after_iteration(
         &State {
@@ -168,4 +180,62 @@ fn the_tangent_on_quad9_faces_is_the_derivative_of_the_residual() {
     mesh.add_centre_nodes(&all, CentreNodes::Hexa20To27);
     bend(&mut mesh);
     check(mesh, "QUAD9");
+}
+
+/// A lower plate whose top edge y = 0 (MAIT) spans [1, 6] and an upper one
+/// whose bottom edge (ESCL), over [2, 3], dips slightly below it and is
+/// tilted (x > 0: also an AXIS section).
+const MESH_2D: &str = "COOR_2D
+N1 1.0 -1.0
+N2 6.0 -1.0
+N3 6.0 0.0
+N4 1.0 0.0
+N5 2.0 -0.03
+N6 3.0 -0.01
+N7 3.1 1.0
+N8 2.05 0.9
+FINSF
+QUAD4
+M1 N1 N2 N3 N4
+M2 N5 N6 N7 N8
+FINSF
+SEG2
+M3 N3 N4
+M4 N5 N6
+FINSF
+GROUP_MA NOM=MAIT
+M3
+FINSF
+GROUP_MA NOM=ESCL
+M4
+FINSF
+FIN
+";
+
+fn base_2d() -> Mesh {
+    aster_mesh::parse_mail(MESH_2D, Path::new("t.mail")).unwrap()
+}
+
+/// The 2D mesh made quadratic, every middle node moved off its edge.
+fn quadratic_2d() -> Mesh {
+    let mut mesh = base_2d();
+    let all: Vec<CellId> = (0..mesh.cells.len() as u32).map(CellId).collect();
+    mesh.line_to_quad(&all);
+    for (k, p) in mesh.coords.iter_mut().enumerate().skip(8) {
+        p[0] += 0.01 * (k as f64 * 1.3).sin();
+        p[1] += 0.012 * (k as f64 * 0.7).cos();
+    }
+    mesh
+}
+
+#[test]
+fn the_tangent_on_seg2_edges_is_the_derivative_of_the_residual() {
+    check_in(base_2d(), "SEG2", 2, false);
+    check_in(base_2d(), "SEG2 AXIS", 2, true);
+}
+
+#[test]
+fn the_tangent_on_seg3_edges_is_the_derivative_of_the_residual() {
+    check_in(quadratic_2d(), "SEG3", 2, false);
+    check_in(quadratic_2d(), "SEG3 AXIS", 2, true);
 }
