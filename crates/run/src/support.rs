@@ -197,10 +197,44 @@ pub fn check_call(support: Option<&Support>, call: &CommandCall) -> Vec<Refusal>
         });
     }
     check_level(cmd, support, &call.keywords, "", &mut out);
+    check_iterative_solver(cmd, &call.keywords, &mut out);
     if let Some(rules) = support.rules {
         rules(call, &mut out);
     }
     out
+}
+
+/// Fewer iterations than this for code_aster's iterative solvers
+/// (`SOLVEUR/METHODE='GCPC'` or `'PETSC'`, `NMAX_ITER`) are refused.
+pub const SOLVEUR_NMAX_ITER_MIN: i64 = 10;
+
+/// `SOLVEUR/NMAX_ITER` of an iterative method (GCPC, PETSC), whatever the
+/// command: aster solves every system directly, so it reproduces code_aster
+/// only when code_aster's iterations converge. With the limits real studies
+/// give (20 to 1000, or 0: code_aster's own choice) they do; with a handful
+/// code_aster may stop with its solver's error (erreu11a: `NMAX_ITER=1`,
+/// DYNA_NON_LINE must fail with MECANONLINE9_12), which a direct solve
+/// would not raise: refused at the keyword.
+fn check_iterative_solver(cmd: &str, kws: &Keywords, out: &mut Vec<Refusal>) {
+    for occ in kws.factor("SOLVEUR") {
+        let Some(method @ ("GCPC" | "PETSC")) = occ.str("METHODE") else {
+            continue;
+        };
+        let Some(kw) = occ.keyword("NMAX_ITER").filter(|k| !k.defaulted) else {
+            continue;
+        };
+        let Some(n) = occ.f64("NMAX_ITER") else {
+            continue;
+        };
+        if n >= 1.0 && n < SOLVEUR_NMAX_ITER_MIN as f64 {
+            out.push(Refusal {
+                what: format!(
+                    "{cmd}/SOLVEUR/NMAX_ITER={n} with METHODE='{method}' (code_aster's iterative solver stops after {n} iteration(s) and may fail where aster's direct solve does not: a limit of {SOLVEUR_NMAX_ITER_MIN} or more, or 0, is accepted)"
+                ),
+                span: kw.span,
+            });
+        }
+    }
 }
 
 fn check_level(cmd: &str, s: &Support, kws: &Keywords, prefix: &str, out: &mut Vec<Refusal>) {

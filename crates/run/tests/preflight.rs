@@ -435,3 +435,39 @@ fn calc_g_options_on_a_3d_front_pass_before_the_run() {
         "{m:?}"
     );
 }
+
+#[test]
+fn an_iterative_solver_stopped_after_a_few_iterations_is_refused_at_nmax_iter() {
+    let solve = |solveur: &str| {
+        format!(
+            "{HEAD}steel = DEFI_MATERIAU(ELAS=_F(E=2.0e5, NU=0.3))
+mat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT='OUI', MATER=steel))
+fix = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=_F(TOUT='OUI', DX=0.0, DY=0.0))
+res = MECA_STATIQUE(MODELE=model, CHAM_MATER=mat, EXCIT=_F(CHARGE=fix),
+    SOLVEUR=_F({solveur}))
+FIN()
+"
+        )
+    };
+    let (p, map) = pass(
+        &solve("METHODE='GCPC', PRE_COND='LDLT_SP', NMAX_ITER=1"),
+        Some("zzzz237.mail"),
+    );
+    assert_eq!(
+        messages(&p, &map),
+        vec![
+            "case.comm:8:52: error: not supported yet: MECA_STATIQUE/SOLVEUR/NMAX_ITER=1 with METHODE='GCPC' (code_aster's iterative solver stops after 1 iteration(s) and may fail where aster's direct solve does not: a limit of 10 or more, or 0, is accepted)"
+        ]
+    );
+    // The limits real studies give, code_aster's own choice (0) and direct
+    // methods are accepted.
+    for ok in [
+        "METHODE='GCPC', NMAX_ITER=200",
+        "METHODE='PETSC', NMAX_ITER=0",
+        "METHODE='PETSC'",
+        "METHODE='MUMPS'",
+    ] {
+        let (p, map) = pass(&solve(ok), Some("zzzz237.mail"));
+        assert!(p.findings.0.is_empty(), "{ok}: {:?}", messages(&p, &map));
+    }
+}
