@@ -459,12 +459,23 @@ FIN()
             "case.comm:8:52: error: not supported yet: MECA_STATIQUE/SOLVEUR/NMAX_ITER=1 with METHODE='GCPC' (code_aster's iterative solver stops after 1 iteration(s) and may fail where aster's direct solve does not: a limit of 10 or more, or 0, is accepted)"
         ]
     );
+    let (p, map) = pass(
+        &solve("METHODE='PETSC', PRE_COND='JACOBI', RESI_RELA=1e-9"),
+        Some("zzzz237.mail"),
+    );
+    assert_eq!(
+        messages(&p, &map),
+        vec![
+            "case.comm:8:33: error: not supported yet: MECA_STATIQUE/SOLVEUR/PRE_COND='JACOBI' with METHODE='PETSC' (code_aster's Krylov iterate, stopped at RESI_RELA with so weak a preconditioner, is off the exact solution aster's direct solve gives by up to the condition number times RESI_RELA)"
+        ]
+    );
     // The limits real studies give, code_aster's own choice (0) and direct
     // methods are accepted.
     for ok in [
         "METHODE='GCPC', NMAX_ITER=200",
         "METHODE='PETSC', NMAX_ITER=0",
         "METHODE='PETSC'",
+        "METHODE='PETSC', PRE_COND='LDLT_SP', RESI_RELA=1e-8",
         "METHODE='MUMPS'",
     ] {
         let (p, map) = pass(&solve(ok), Some("zzzz237.mail"));
