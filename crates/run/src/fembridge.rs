@@ -1694,6 +1694,31 @@ pub fn calc_champ(
             }
             post::epsi_elga_on(model, u, keep).map_err(|e| fem_err("CALC_CHAMP", e))
         };
+        // EPSG_* (Green–Lagrange) and EPSL_* (logarithmic): kinematic
+        // measures of the step's total displacement, whatever the
+        // behaviour's DEFORMATION (code_aster's te0025/te0087 → epsvmc).
+        let finite_elga = |measure: aster_fem::strain::StrainMeasure| {
+            aster_fem::strain::finite_strain_elga_on(
+                model,
+                u,
+                measure,
+                run.loads.has_free_strain(),
+                keep,
+            )
+            .map_err(|e| match e {
+                // A crushed cell: the case's error, not a limit of aster.
+                aster_fem::FemError::Integration(m) => {
+                    ex.kw_error("CALC_CHAMP", &call.keywords, "DEFORMATION", m)
+                }
+                e => ex.unsupported(
+                    &format!("CALC_CHAMP/DEFORMATION: {e}"),
+                    call.keywords
+                        .keyword("DEFORMATION")
+                        .map(|k| k.span)
+                        .unwrap_or(call.span),
+                ),
+            })
+        };
         // EFGE_ELNO of the beams and of the shells, by code_aster's path
         // for a MECA_STATIQUE result (`ef0033`, `ef0410`) or a non-linear
         // one (`ef0031`, `ef0415`).
@@ -1719,6 +1744,25 @@ pub fn calc_champ(
                     model,
                     &post::elno(model, &epsi_elga()?),
                 ))),
+                "EPSG_ELGA" | "EPSG_ELNO" | "EPSG_NOEU" | "EPSL_ELGA" | "EPSL_ELNO"
+                | "EPSL_NOEU" => {
+                    let measure = if opt.starts_with("EPSG") {
+                        aster_fem::strain::StrainMeasure::GreenLagrange
+                    } else {
+                        aster_fem::strain::StrainMeasure::Logarithmic
+                    };
+                    let elga = finite_elga(measure)?;
+                    match &opt[5..] {
+                        "ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &elga)),
+                        "ELNO" => {
+                            Field::Elem(elem_field(ElemLocation::Nodes, &post::elno(model, &elga)))
+                        }
+                        _ => Field::Nodal(nodal_from_values(&post::noeu(
+                            model,
+                            &post::elno(model, &elga),
+                        ))),
+                    }
+                }
                 "FORC_NODA" => Field::Nodal(nodal_from_dofs(model, &forc_noda()?)),
                 "REAC_NODA" => {
                     // code_aster's REAC_NODA: FORC_NODA − the applied loads.

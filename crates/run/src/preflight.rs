@@ -207,6 +207,20 @@ pub struct CallRefusals {
     /// `DEFI_CONTACT` definitions with a zone `ALGO_CONT='LAC'`, by
     /// concept id.
     lac_contacts: Vec<u32>,
+    /// The C_PLAN strain measures' trail ([`Self::follow_plane_stress_strains`]).
+    plane_stress: PlaneStressTrail,
+}
+
+/// What leads to a C_PLAN result whose EPSL/EPSG aster does not compute:
+/// models with C_PLAN cells, orthotropic materials, material fields with
+/// an orthotropic material or a command variable (AFFE_VARC), and the
+/// results computed with both, by concept id.
+#[derive(Debug, Default)]
+struct PlaneStressTrail {
+    models: Vec<u32>,
+    orthotropic: Vec<u32>,
+    fields: Vec<u32>,
+    results: Vec<u32>,
 }
 
 impl CallRefusals {
@@ -223,7 +237,80 @@ impl CallRefusals {
         out.extend(self.follow_continuous_friction(call));
         out.extend(self.follow_coordinate_loads(call));
         out.extend(self.follow_lac_tolerance(call));
+        out.extend(self.follow_plane_stress_strains(call));
         out
+    }
+
+    /// CALC_CHAMP's EPSL_* and EPSG_* on C_PLAN cells: code_aster's
+    /// `epsvmc` replaces EPZZ there by −(d₃₁(ε₁ − εᵗʰ₁) + d₃₂(ε₂ − εᵗʰ₂) +
+    /// 2 d₃₄(ε₄ − εᵗʰ₄))/d₃₃ + εᵗʰ₃ on the plane-strain Hooke matrix;
+    /// aster computes the isotropic case without thermal strain
+    /// (`aster_fem::strain::fields`), so a result of a C_PLAN model with an
+    /// orthotropic material (ELAS_ORTH) or a command variable (AFFE_VARC)
+    /// is refused at the DEFORMATION keyword, before the solve.
+    fn follow_plane_stress_strains(&mut self, call: &CommandCall) -> Option<(String, Span)> {
+        let kw = &call.keywords;
+        let id = call.result.as_ref().or(call.reuse.as_ref()).map(|r| r.id);
+        let t = &mut self.plane_stress;
+        match call.command.as_str() {
+            "AFFE_MODELE" => {
+                let cplan = kw.factor("AFFE").iter().any(|o| {
+                    o.simple("MODELISATION")
+                        .iter()
+                        .filter_map(|s| s.as_str())
+                        .any(|m| m.starts_with("C_PLAN"))
+                });
+                if cplan {
+                    t.models.extend(id);
+                }
+            }
+            "DEFI_MATERIAU"
+                if ["ELAS_ORTH", "ELAS_ORTH_FO"]
+                    .iter()
+                    .any(|k| !kw.factor(k).is_empty()) =>
+            {
+                t.orthotropic.extend(id);
+            }
+            "AFFE_MATERIAU" => {
+                let ortho = kw.factor("AFFE").iter().any(|o| {
+                    o.simple("MATER")
+                        .iter()
+                        .filter_map(|s| s.as_concept())
+                        .any(|c| t.orthotropic.contains(&c.id))
+                });
+                if ortho || !kw.factor("AFFE_VARC").is_empty() {
+                    t.fields.extend(id);
+                }
+            }
+            "STAT_NON_LINE" | "MECA_STATIQUE" | "MECA_NON_LINE" | "DYNA_NON_LINE" => {
+                let on =
+                    |k: &str, list: &[u32]| kw.concept(k).is_some_and(|c| list.contains(&c.id));
+                if on("MODELE", &t.models) && on("CHAM_MATER", &t.fields) {
+                    t.results.extend(id);
+                }
+            }
+            "CALC_CHAMP" => {
+                let r = kw.concept("RESULTAT")?;
+                if !t.results.contains(&r.id) {
+                    return None;
+                }
+                let opt = kw
+                    .simple("DEFORMATION")
+                    .iter()
+                    .filter_map(|s| s.as_str())
+                    .find(|o| o.starts_with("EPSL_") || o.starts_with("EPSG_"))?;
+                let span = kw
+                    .keyword("DEFORMATION")
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
+                return Some((
+                    format!("CALC_CHAMP/DEFORMATION='{opt}' of a C_PLAN model with an orthotropic material or a command variable (AFFE_VARC): code_aster's EPZZ there comes from the plane-strain Hooke matrix and the thermal strains (epsvmc), computed for an isotropic material without thermal strain only"),
+                    span,
+                ));
+            }
+            _ => {}
+        }
+        None
     }
 
     /// Distributed loads given by functions of the coordinates are dead

@@ -145,3 +145,64 @@ fn simo_miehe_nodal_forces_with_contact_match_the_closed_form() {
         (14, 0, None)
     );
 }
+
+/// CALC_CHAMP's finite-strain measures (EPSL_*, EPSG_* at Gauss points,
+/// cell nodes and nodes) of a GDEF_LOG stretch to 2 and of a simple shear
+/// imposed in small strains: 200 TEST_RESU against the closed forms to
+/// 1e-6 (comm/epsl_epsg_3d.comm).
+#[test]
+fn epsl_and_epsg_match_the_closed_forms() {
+    assert_eq!(
+        run("comm/epsl_epsg_3d.comm", "comm/epsl_epsg_3d.mail", "epsl"),
+        (200, 0, None)
+    );
+}
+
+/// The same measures in 2D (comm/epsl_epsg_2d.comm): D_PLAN, C_PLAN
+/// (code_aster's EPZZ = −ν/(1 − ν)(EPXX + EPYY)) and AXIS (the hoop
+/// stretch 1 + u_r/r), 288 TEST_RESU against the closed forms to 1e-6.
+#[test]
+fn epsl_and_epsg_in_plane_strain_plane_stress_and_axis() {
+    assert_eq!(
+        run("comm/epsl_epsg_2d.comm", "comm/epsl_epsg_2d.mail", "epsl2d"),
+        (288, 0, None)
+    );
+}
+
+/// C_PLAN cells with a command variable (here a temperature): code_aster's
+/// EPZZ there takes the thermal strains, not reproduced; refused at
+/// DEFORMATION by the static pass, before the solve, no value printed.
+#[test]
+fn epsl_of_heated_plane_stress_cells_is_refused_before_the_solve() {
+    let dir = std::env::temp_dir().join(format!("aster-epsl-cplan-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("cplan.comm");
+    std::fs::write(
+        &comm,
+        r#"DEBUT(CODE="OUI")
+mesh = LIRE_MAILLAGE(FORMAT="ASTER", UNITE=20)
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA="PLANE", PHENOMENE="MECANIQUE", MODELISATION="C_PLAN"))
+steel = DEFI_MATERIAU(ELAS=_F(E=1000.0, NU=0.3, ALPHA=1.0e-5))
+hot = CREA_CHAMP(OPERATION="AFFE", TYPE_CHAM="NOEU_TEMP_R", MAILLAGE=mesh, AFFE=_F(TOUT="OUI", NOM_CMP="TEMP", VALE=120.0))
+mater = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", MATER=steel), AFFE_VARC=_F(NOM_VARC="TEMP", TOUT="OUI", CHAM_GD=hot, VALE_REF=20.0))
+load = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=(_F(GROUP_NO="PMID", DX=0.0, DY=0.0), _F(GROUP_NO="PCORNER", DY=0.0)))
+res = MECA_STATIQUE(MODELE=model, CHAM_MATER=mater, EXCIT=_F(CHARGE=load))
+res = CALC_CHAMP(reuse=res, RESULTAT=res, DEFORMATION=("EPSI_ELGA", "EPSG_NOEU"))
+FIN()
+"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let case =
+        aster_run::program::prepare(&comm, Some(&root().join("comm/epsl_epsg_2d.mail")), &out)
+            .unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let err = format!("{:?}", outcome.error.expect("refused"));
+    assert!(
+        err.contains("EPSG_NOEU") && err.contains("AFFE_VARC") && err.contains(":9:"),
+        "{err}"
+    );
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (0, 0));
+}

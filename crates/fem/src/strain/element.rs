@@ -105,8 +105,27 @@ pub(crate) struct CellResult {
     pub states: Vec<GaussState>,
 }
 
+/// H = ∇u at a point, the displacement gradient on the initial geometry
+/// (AXIS: H₃₃ = u_r/r; D_PLAN and C_PLAN: H₃₃ = 0).
+pub(crate) fn displacement_gradient(pg: &PointGeom, hyp: Hypothesis, ue: &[f64]) -> Matrix3<f64> {
+    let dim = hyp.dim();
+    let mut h = Matrix3::zeros();
+    for (a, d) in pg.dn.iter().enumerate() {
+        for i in 0..dim {
+            for j in 0..dim {
+                h[(i, j)] += d[j] * ue[dim * a + i];
+            }
+        }
+    }
+    if hyp == Hypothesis::Axisymmetric {
+        let ur: f64 = pg.n.iter().enumerate().map(|(a, n)| n * ue[dim * a]).sum();
+        h[(2, 2)] = ur / pg.r;
+    }
+    h
+}
+
 /// F = I + ∇ᵤ at a point (AXIS: F₃₃ = 1 + u_r/r).
-fn gradient(pg: &PointGeom, hyp: Hypothesis, ue: &[f64]) -> Matrix3<f64> {
+pub(crate) fn gradient(pg: &PointGeom, hyp: Hypothesis, ue: &[f64]) -> Matrix3<f64> {
     let dim = hyp.dim();
     let mut f = Matrix3::identity();
     for (a, d) in pg.dn.iter().enumerate() {

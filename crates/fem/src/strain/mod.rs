@@ -15,9 +15,11 @@
 //! (`behaviour::simo_miehe`).
 
 pub(crate) mod element;
+pub mod fields;
 pub mod log;
 
 pub use element::GaussState;
+pub use fields::{finite_strain_elga_on, StrainMeasure};
 
 /// How strains follow the displacement (`COMPORTEMENT/DEFORMATION`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
