@@ -20,10 +20,12 @@ fn refined_meshes_counts_exact_solutions_and_convergence() {
     let _ = std::fs::remove_dir_all(&out);
     let (outcome, report) = run(&root().join("comm/mesh_refine.export"), &out);
     assert!(outcome.error.is_none(), "{:?}\n{report}", outcome.error);
-    // 62 checks, each against VALE_CALC and the closed form: 46 counts,
-    // 2 nodal values and 1 zero error of the linear field, 2 x (5 values
-    // and 1 zero error) of the uniform stress, 1 convergence slope.
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (124, 0), "{report}");
+    // 73 checks, each against VALE_CALC and the closed form: 46 + 4
+    // counts, 2 nodal values and 1 zero error of the linear field, 3 x (5
+    // values and 1 zero error) of the uniform stress (HEXA8 refined once
+    // and twice, HEXA20 refined once), 1 zero error of the quadratic field
+    // on refined QUAD8/TRIA6 cells, 1 convergence slope.
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (146, 0), "{report}");
     assert!(report.contains("L2 errors [0.1367"), "{report}");
     let _ = std::fs::remove_dir_all(out);
 }
