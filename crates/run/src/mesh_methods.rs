@@ -146,8 +146,8 @@ pub fn query(mesh: &Mesh, name: &str, args: &[HostValue]) -> Option<Result<HostV
     })
 }
 
-/// The first cell of a mesh that `refine()` and `convertToQuadratic()` do
-/// not take (a cell that is not linear), described.
+/// The first cell of a mesh that `convertToQuadratic()` does not take (a
+/// cell that is not linear), described.
 pub fn non_linear_cell(mesh: &Mesh) -> Option<String> {
     use aster_mesh::CellType::*;
     mesh.cells.iter().enumerate().find_map(|(i, c)| {
@@ -165,10 +165,29 @@ pub fn non_linear_cell(mesh: &Mesh) -> Option<String> {
     })
 }
 
+/// What `refine()` and `CREA_MAILLAGE/RAFFINEMENT` know of a mesh's cells,
+/// for the static pass: the first cell that is not linear (which
+/// `convertToQuadratic()` refuses) and why `refine()` would refuse the mesh
+/// (a SEG4 or PYRAM13 cell, a PYRAM5 beside quadratic cells).
+#[derive(Clone, Debug, Default)]
+pub struct MeshCells {
+    pub non_linear: Option<String>,
+    pub unrefinable: Option<String>,
+}
+
+impl MeshCells {
+    pub fn of(mesh: &Mesh) -> MeshCells {
+        MeshCells {
+            non_linear: non_linear_cell(mesh),
+            unrefinable: mesh.refine_refusal(),
+        }
+    }
+}
+
 /// `mesh.refine(ntimes)` and `CREA_MAILLAGE/RAFFINEMENT/NIVEAU`: the mesh
 /// refined `ntimes` times (code_aster's loop over the levels runs no time
 /// for ntimes ≤ 0), refused when it would make more than
-/// [`MAX_REFINED_CELLS`] cells or when a cell is not linear.
+/// [`MAX_REFINED_CELLS`] cells or when `Mesh::refine` does not take a cell.
 pub fn refined(mesh: &Mesh, ntimes: i64) -> Result<Mesh, ExecError> {
     let ntimes = ntimes.max(0) as usize;
     let per_level = mesh

@@ -82,11 +82,11 @@ struct Sink<'o> {
     /// A mesh the pass cannot follow is made: no group check.
     unknown_mesh: bool,
     refusals: CallRefusals,
-    /// Meshes whose cells the pass knows, by concept id: the first cell
-    /// that is not linear, if any (`LIRE_MAILLAGE` results and what
-    /// `refine`, `convertToLinear`, `convertToQuadratic` make of them), for
-    /// `refine()` and `convertToQuadratic()`, which take linear cells only.
-    linear_meshes: std::collections::HashMap<u32, Option<String>>,
+    /// Meshes whose cells the pass knows, by concept id (`LIRE_MAILLAGE`
+    /// results and what `refine`, `RAFFINEMENT`, `convertToLinear`,
+    /// `convertToQuadratic` make of them), for `refine()` (and
+    /// `RAFFINEMENT`) and `convertToQuadratic()`, which take some cells only.
+    linear_meshes: std::collections::HashMap<u32, crate::mesh_methods::MeshCells>,
     /// Refusals of commands that run an external program
     /// ([`crate::support::CommandHint::external`]): reported first.
     external: Vec<Diagnostic>,
@@ -105,14 +105,14 @@ impl Sink<'_> {
         let read = self.read_mesh_file(call);
         if let (Some(r), Some(mesh)) = (call.result.as_ref(), read) {
             self.linear_meshes
-                .insert(r.id, crate::mesh_methods::non_linear_cell(&mesh));
+                .insert(r.id, crate::mesh_methods::MeshCells::of(&mesh));
         }
     }
 
-    /// `CREA_MAILLAGE/RAFFINEMENT` of a mesh with a cell that is not
-    /// linear is refused at `RAFFINEMENT` (as `mesh.refine()`); the result
-    /// of a refinement is linear.
-    fn refine_linear_only(&mut self, call: &CommandCall) {
+    /// `CREA_MAILLAGE/RAFFINEMENT` of a mesh with a cell `refine` does not
+    /// take is refused at `RAFFINEMENT` (as `mesh.refine()`); the result of
+    /// a refinement has the input's types.
+    fn refine_supported(&mut self, call: &CommandCall) {
         let kw = &call.keywords;
         if call.command != "CREA_MAILLAGE" {
             return;
@@ -124,12 +124,12 @@ impl Sink<'_> {
             .concept("MAILLAGE")
             .and_then(|m| self.linear_meshes.get(&m.id).cloned());
         match (known, call.result.as_ref()) {
-            (Some(Some(cell)), _) => {
-                let what = format!("CREA_MAILLAGE/RAFFINEMENT of a mesh whose {cell}: aster refines meshes of linear cells (POI1, SEG2, TRIA3, QUAD4, TETRA4, HEXA8, PENTA6, PYRAM5)");
-                self.refuse(what, raff.span);
+            (Some(cells), _) if cells.unrefinable.is_some() => {
+                let why = cells.unrefinable.unwrap_or_default();
+                self.refuse(format!("CREA_MAILLAGE/RAFFINEMENT: {why}"), raff.span);
             }
-            (Some(None), Some(r)) => {
-                self.linear_meshes.insert(r.id, None);
+            (Some(cells), Some(r)) => {
+                self.linear_meshes.insert(r.id, cells);
             }
             _ => {}
         }
@@ -547,7 +547,7 @@ impl CommandSink for Sink<'_> {
             let mut these = self.findings.split_off(before);
             self.external.append(&mut these);
         }
-        self.refine_linear_only(call);
+        self.refine_supported(call);
         if call.command == "LIRE_MAILLAGE" && command.is_some() {
             self.read_mesh(call);
         } else if produces_mesh(call) && !MESH_COMMANDS.contains(&call.command.as_str()) {
@@ -590,15 +590,31 @@ impl CommandSink for Sink<'_> {
             )));
         }
         let known = self.linear_meshes.get(&c.id).cloned();
-        if let (Some(Some(cell)), "refine" | "convertToQuadratic") = (&known, name) {
-            return Err(ExecError::new(format!(
-                "not supported: {name}() of mesh {}: {cell}; aster takes meshes of linear cells (POI1, SEG2, TRIA3, QUAD4, TETRA4, HEXA8, PENTA6, PYRAM5) — convertToLinear() first",
-                c.name
-            )));
+        let refusal = match (&known, name) {
+            (Some(cells), "refine") => cells.unrefinable.as_ref().map(|why| {
+                format!("not supported: refine() of mesh {}: {why}", c.name)
+            }),
+            (Some(cells), "convertToQuadratic") => cells.non_linear.as_ref().map(|cell| {
+                format!(
+                    "not supported: convertToQuadratic() of mesh {}: {cell}; aster takes meshes of linear cells (POI1, SEG2, TRIA3, QUAD4, TETRA4, HEXA8, PENTA6, PYRAM5) — convertToLinear() first",
+                    c.name
+                )
+            }),
+            _ => None,
+        };
+        if let Some(refusal) = refusal {
+            return Err(ExecError::new(refusal));
         }
+        // refine keeps the types; convertToLinear makes every cell linear;
+        // convertToQuadratic makes them quadratic (a PYRAM13 that refine
+        // refuses is then found when it runs).
         let made = match (known, name) {
-            (Some(_), "refine" | "convertToLinear") => Some(None),
-            (Some(_), _) => Some(Some("its cells are quadratic".to_string())),
+            (Some(cells), "refine") => Some(cells),
+            (Some(_), "convertToLinear") => Some(Default::default()),
+            (Some(_), _) => Some(crate::mesh_methods::MeshCells {
+                non_linear: Some("its cells are quadratic".to_string()),
+                unrefinable: None,
+            }),
             (None, _) => None,
         };
         if let Some(made) = made {

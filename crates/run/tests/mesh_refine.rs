@@ -3,7 +3,8 @@
 //! `convertToLinear()` against closed-form counts, exact linear and
 //! uniform-stress solutions on refined meshes and the h**2 convergence of
 //! an L2 error; and the static pass refusing, located, every method call
-//! aster does not run and a refinement of quadratic cells.
+//! aster does not run and a refinement of cells code_aster cannot refine
+//! (a quadratic pyramid).
 
 use aster_run::preflight::{self, Preflight};
 use aster_run::RunOptions;
@@ -19,10 +20,12 @@ fn refined_meshes_counts_exact_solutions_and_convergence() {
     let _ = std::fs::remove_dir_all(&out);
     let (outcome, report) = run(&root().join("comm/mesh_refine.export"), &out);
     assert!(outcome.error.is_none(), "{:?}\n{report}", outcome.error);
-    // 62 checks, each against VALE_CALC and the closed form: 46 counts,
-    // 2 nodal values and 1 zero error of the linear field, 2 x (5 values
-    // and 1 zero error) of the uniform stress, 1 convergence slope.
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (124, 0), "{report}");
+    // 73 checks, each against VALE_CALC and the closed form: 46 + 4
+    // counts, 2 nodal values and 1 zero error of the linear field, 3 x (5
+    // values and 1 zero error) of the uniform stress (HEXA8 refined once
+    // and twice, HEXA20 refined once), 1 zero error of the quadratic field
+    // on refined QUAD8/TRIA6 cells, 1 convergence slope.
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (146, 0), "{report}");
     assert!(report.contains("L2 errors [0.1367"), "{report}");
     let _ = std::fs::remove_dir_all(out);
 }
@@ -60,42 +63,92 @@ FIN()
 }
 
 #[test]
-fn refining_quadratic_cells_is_refused_at_the_call() {
+fn quadratic_cells_are_refined_and_what_refine_cannot_place_is_refused() {
     let src = r#"DEBUT()
 mesh = LIRE_MAILLAGE(FORMAT="ASTER")
 mesh = mesh.refine()
 FIN()
 "#;
+    // QUAD8 (and SEG3) cells are refined, kept quadratic.
     let (p, map) = pass(src, "quad8_punch.mail");
+    assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
+    // convertToQuadratic still takes linear cells only.
+    let again = src.replace("mesh.refine()", "mesh.convertToQuadratic()");
+    let (p, map) = pass(&again, "quad8_punch.mail");
     let got = messages(&p, &map);
-    assert_eq!(got.len(), 1, "{got:?}");
     assert!(
-        got[0].starts_with("case.comm:3:8: error: not supported: refine() of mesh mesh: cell ")
+        got.len() == 1
+            && got[0].starts_with(
+                "case.comm:3:8: error: not supported: convertToQuadratic() of mesh mesh: cell "
+            )
             && got[0].contains("convertToLinear() first"),
         "{got:?}"
     );
-    // Made linear first, it is refined; made quadratic again, it is not.
-    let linear = src.replace("mesh.refine()", "mesh.convertToLinear().refine()");
-    let (p, map) = pass(&linear, "quad8_punch.mail");
-    assert!(p.findings.0.is_empty(), "{:?}", messages(&p, &map));
-    let again = src.replace(
-        "mesh.refine()",
-        "mesh.convertToLinear().convertToQuadratic().refine()",
+    // A quadratic pyramid: code_aster cannot place its sub-pyramids' nodes.
+    let dir = std::env::temp_dir().join(format!("aster-refine-pyram-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let mut mail = String::from("COOR_3D\n");
+    let corners = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.5, 0.5, 1.0],
+    ];
+    let edges = [
+        [0, 1],
+        [1, 2],
+        [2, 3],
+        [3, 0],
+        [0, 4],
+        [1, 4],
+        [2, 4],
+        [3, 4],
+    ];
+    let mut pts: Vec<[f64; 3]> = corners.to_vec();
+    for [a, b] in edges {
+        pts.push([0, 1, 2].map(|k| 0.5 * (corners[a][k] + corners[b][k])));
+    }
+    for (i, p) in pts.iter().enumerate() {
+        mail += &format!("N{} {} {} {}\n", i + 1, p[0], p[1], p[2]);
+    }
+    mail += "FINSF\nPYRAM13\nP1";
+    for i in 1..=13 {
+        mail += &format!(" N{i}");
+    }
+    mail += "\nFINSF\nFIN\n";
+    let path = dir.join("pyram13.mail");
+    std::fs::write(&path, mail).expect("the mesh is written");
+    let map = CodeMap::new("case.comm".to_string(), src);
+    let module = aster_syntax::parse_module(src).expect("the scene parses");
+    let mut options = RunOptions::default();
+    options.units.insert(20, path);
+    let p = preflight::check(&map, &module, &options);
+    let got = messages(&p, &map);
+    assert!(
+        got.len() == 1
+            && got[0].starts_with(
+                "case.comm:3:8: error: not supported: refine() of mesh mesh: cell P1 is a PYRAM13: aster refines "
+            ),
+        "{got:?}"
     );
-    let (p, map) = pass(&again, "quad8_punch.mail");
-    assert_eq!(p.findings.0.len(), 1, "{:?}", messages(&p, &map));
     // CREA_MAILLAGE/RAFFINEMENT (what refine() runs in code_aster) too.
     let command = src.replace(
         "mesh.refine()",
         "CREA_MAILLAGE(MAILLAGE=mesh, RAFFINEMENT=_F(NIVEAU=1))",
     );
-    let (p, map) = pass(&command, "quad8_punch.mail");
+    let module = aster_syntax::parse_module(&command).expect("the scene parses");
+    let map = CodeMap::new("case.comm".to_string(), &command);
+    let p = preflight::check(&map, &module, &options);
     let got = messages(&p, &map);
     assert!(
         got.len() == 1
-            && got[0].starts_with("case.comm:3:37: error: not supported yet: CREA_MAILLAGE/RAFFINEMENT of a mesh whose cell "),
+            && got[0].starts_with(
+                "case.comm:3:37: error: not supported yet: CREA_MAILLAGE/RAFFINEMENT: cell P1 is a PYRAM13"
+            ),
         "{got:?}"
     );
+    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
