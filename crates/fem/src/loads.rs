@@ -388,20 +388,18 @@ impl Loads {
                         .copied()
                         .collect();
                     key.sort();
-                    let inside = adj.get(&key).copied();
+                    // One orientation for the whole face: outward from the
+                    // volume cell it bounds (code_aster asks the mesh for
+                    // outward faces, ORIE_PEAU and VERI_NORM).
+                    let flip = adj
+                        .get(&key)
+                        .is_some_and(|inside| points_inward(model.mesh(), *cell, *inside));
                     surface_load(
                         model,
                         *cell,
                         &scheme,
-                        |k, x, n| {
-                            let p = values[k];
-                            let mut n = *n;
-                            if let Some(ctr) = inside {
-                                let d: f64 = (0..3).map(|k| (x[k] - ctr[k]) * n[k]).sum();
-                                if d < 0. {
-                                    n = [-n[0], -n[1], -n[2]];
-                                }
-                            }
+                        |k, _, n| {
+                            let p = if flip { -values[k] } else { values[k] };
                             [-p * n[0], -p * n[1], -p * n[2]]
                         },
                         &mut f,
@@ -555,20 +553,58 @@ fn adjacent_centroids(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
         }
         let c = mesh.cell(el.cell);
         let nc = shape::corner_count(c.ty);
-        let mut ctr = [0.0; 3];
-        for &n in &c.nodes[..nc] {
-            let p = mesh.coord(n);
-            for k in 0..3 {
-                ctr[k] += p[k] / nc as f64;
-            }
-        }
         for f in shape::facet_corners(c.ty) {
+            // The centroid of the cell's corners off the face: on the
+            // inner side whatever the cell's curvature or thickness (the
+            // corners' centroid of a thin curved cell can lie beyond the
+            // face's own points).
+            let mut ctr = [0.0; 3];
+            let off: Vec<NodeId> = (0..nc)
+                .filter(|i| !f.contains(i))
+                .map(|i| c.nodes[i])
+                .collect();
+            for &n in &off {
+                let p = mesh.coord(n);
+                for k in 0..3 {
+                    ctr[k] += p[k] / off.len() as f64;
+                }
+            }
             let mut key: Vec<NodeId> = f.iter().map(|&i| c.nodes[i]).collect();
             key.sort();
             map.insert(key, ctr);
         }
     }
     map
+}
+
+/// Whether the normal of boundary cell `cell` (∂x/∂ξ × ∂x/∂η in 3D, the
+/// tangent turned in 2D, as [`surface_load`] takes it), at its parametric
+/// centre, points towards `inside` (a point inside the volume it bounds).
+fn points_inward(mesh: &aster_mesh::Mesh, cell: CellId, inside: [f64; 3]) -> bool {
+    let c = mesh.cell(cell);
+    let refs = shape::reference_nodes(c.ty);
+    let nc = shape::corner_count(c.ty).min(refs.len());
+    if nc == 0 {
+        return false;
+    }
+    let mut xi = [0.0; 3];
+    for r in &refs[..nc] {
+        for k in 0..3 {
+            xi[k] += r[k] / nc as f64;
+        }
+    }
+    let s = shape::shape(c.ty, xi);
+    let [x, t1, t2] = shape::point_and_tangents(mesh, c, &s);
+    let n = if c.ty.dim() == 1 {
+        [t1[1], -t1[0], 0.]
+    } else {
+        [
+            t1[1] * t2[2] - t1[2] * t2[1],
+            t1[2] * t2[0] - t1[0] * t2[2],
+            t1[0] * t2[1] - t1[1] * t2[0],
+        ]
+    };
+    (0..3).map(|k| (inside[k] - x[k]) * n[k]).sum::<f64>() > 0.0
 }
 
 /// Integrates a traction t(x, n) over a boundary cell into `f`. In 2D the

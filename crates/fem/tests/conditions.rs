@@ -679,3 +679,91 @@ fn loads_given_point_by_point_integrate_their_values() {
     let err = meca_statique(&m, &loads, &[0.]).unwrap_err().to_string();
     assert!(err.contains("given at 3 points"), "{err}");
 }
+
+/// A pressure on the concave inner face of a thin curved HEXA20 (a sector
+/// of a tube: r ∈ [0.975, 1], θ ∈ [0°, 15°], z ∈ [0, 0.25]) pushes the tube
+/// outward with the resultant p h r_i (sin θ₁, 1 − cos θ₁), whichever way
+/// the QUAD8 face is numbered. The corners' centroid of so thin and curved
+/// a cell lies beyond some points of the face, so the outward side is
+/// decided once per face, from the cell's corners off the face (ssls114g:
+/// a tube under internal pressure got a ninth of its load, some Gauss
+/// points pushing inward).
+#[test]
+fn pressure_on_the_inner_face_of_a_thin_curved_hexa20_pushes_outward() {
+    let (ri, ro, h, t1) = (0.975f64, 1.0f64, 0.25f64, 15f64.to_radians());
+    for reversed in [false, true] {
+        let mut mb = MeshBuilder::new(3);
+        let at = |r: f64, th: f64, z: f64| [r * th.cos(), r * th.sin(), z];
+        let rm = 0.5 * (ri + ro);
+        let tm = 0.5 * t1;
+        let pts = [
+            at(ri, 0., 0.),
+            at(ro, 0., 0.),
+            at(ro, t1, 0.),
+            at(ri, t1, 0.),
+            at(ri, 0., h),
+            at(ro, 0., h),
+            at(ro, t1, h),
+            at(ri, t1, h),
+            at(rm, 0., 0.),
+            at(ro, tm, 0.),
+            at(rm, t1, 0.),
+            at(ri, tm, 0.),
+            at(ri, 0., h / 2.),
+            at(ro, 0., h / 2.),
+            at(ro, t1, h / 2.),
+            at(ri, t1, h / 2.),
+            at(rm, 0., h),
+            at(ro, tm, h),
+            at(rm, t1, h),
+            at(ri, tm, h),
+        ];
+        let n: Vec<NodeId> = pts
+            .iter()
+            .enumerate()
+            .map(|(i, p)| mb.node(&format!("N{}", i + 1), *p))
+            .collect();
+        let hexa = mb.cell("H", CellType::HEXA20, &n);
+        // The inner face r = ri: corners 1 5 8 4, middles 13 20 16 12.
+        let face = if reversed {
+            [0, 3, 7, 4, 11, 15, 19, 12]
+        } else {
+            [0, 4, 7, 3, 12, 19, 15, 11]
+        };
+        let f: Vec<NodeId> = face.iter().map(|&i| n[i]).collect();
+        let q = mb.cell("F", CellType::QUAD8, &f);
+        let m = Model::new(
+            mb.mesh,
+            vec![Element {
+                cell: hexa,
+                kind: ElementKind::Continuum {
+                    hypothesis: Hypothesis::Solid3D,
+                    material: Elastic::new(2e11, 0.3).unwrap(),
+                },
+            }],
+        )
+        .unwrap();
+        let mut loads = Loads::new();
+        loads.add(
+            Load::Pressure {
+                cell: q,
+                pressure: 10.,
+            },
+            Multiplier::constant(1.),
+        );
+        let fv = loads.external_forces(&m, 1.0).unwrap();
+        let mut total = [0.0; 3];
+        for &node in &n {
+            for (k, c) in [Comp::DX, Comp::DY, Comp::DZ].into_iter().enumerate() {
+                total[k] += fv[idx(&m, node, c)];
+            }
+        }
+        let want = [10. * h * ri * t1.sin(), 10. * h * ri * (1. - t1.cos()), 0.];
+        for k in 0..3 {
+            assert!(
+                (total[k] - want[k]).abs() < 1e-5 * 10. * h * ri,
+                "reversed {reversed}: resultant {total:?}, want {want:?}"
+            );
+        }
+    }
+}
