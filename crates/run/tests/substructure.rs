@@ -81,3 +81,22 @@ fn renamed_exterior_nodes_are_refused() {
     assert!(e.contains("exterior node S1N5"), "{e}");
     assert_eq!((ok, nook), (0, 0));
 }
+
+#[test]
+fn a_heated_macro_element_is_refused() {
+    // code_aster condenses the thermal strains of AFFE_VARC into the load
+    // cases (zzzz104a); aster's load cases hold their CHARGE only.
+    let t = text().replacen(
+        "MAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT=\"OUI\", MATER=STEEL))",
+        "HOT = CREA_CHAMP(OPERATION=\"AFFE\", TYPE_CHAM=\"NOEU_TEMP_R\", MAILLAGE=MA, AFFE=_F(TOUT=\"OUI\", NOM_CMP=\"TEMP\", VALE=50.0))
+MAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT=\"OUI\", MATER=STEEL), AFFE_VARC=_F(TOUT=\"OUI\", NOM_VARC=\"TEMP\", CHAM_GD=HOT, VALE_REF=0.0))",
+        1,
+    );
+    let (ok, nook, error) = run(&t, "heated");
+    let e = error.expect("refused");
+    assert!(
+        e.contains("a macro element whose CHAM_MATER gives its cells a temperature"),
+        "{e}"
+    );
+    assert_eq!((ok, nook), (0, 0));
+}

@@ -82,6 +82,19 @@ pub fn macr_elem_stat(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let model = ex.model(ex.required(&format!("{CMD}/DEFINITION"), def, "MODELE")?)?;
     let materials =
         ex.material_field(ex.required(&format!("{CMD}/DEFINITION"), def, "CHAM_MATER")?)?;
+    // code_aster condenses the thermal strains of the material field's
+    // AFFE_VARC into the load cases (zzzz104a: the macro element's half of
+    // a heated beam); here a load case holds its CHARGE only.
+    if let Some(t) = &materials.temperature {
+        if model.cells.keys().any(|c| t.cells.contains(c)) {
+            return Err(ex.kw_error(
+                CMD,
+                def,
+                "CHAM_MATER",
+                "not supported yet: a macro element whose CHAM_MATER gives its cells a temperature (AFFE_VARC): the thermal strains condensed into its load cases are not computed".to_string(),
+            ));
+        }
+    }
     let dirichlet = loads_of(ex, CMD, def, "CHAR_MACR_ELEM")?;
     let mesh = ex.mesh_by_id(model.mesh)?;
     let mut exterior = Vec::new();
