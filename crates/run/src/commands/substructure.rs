@@ -91,7 +91,7 @@ pub fn macr_elem_stat(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
                 CMD,
                 def,
                 "CHAM_MATER",
-                "not supported yet: a macro element whose CHAM_MATER gives its cells a temperature (AFFE_VARC): the thermal strains condensed into its load cases are not computed".to_string(),
+                "not supported yet: a macro element whose CHAM_MATER gives its cells a temperature (AFFE_VARC): the thermal strains condensed into its load cases are not computed",
             ));
         }
     }
