@@ -717,6 +717,7 @@ impl MortarLagrangian {
             } else {
                 points
             };
+            let dofs = crate::mortar_point::PairDofs::of(state, s, m, self.dim);
             for pt in points {
                 // The multipliers' functions (P1 on a face's corners).
                 let nsl = &s.lagr_shape(pt.xi, &pt.initial.shape);
@@ -732,11 +733,7 @@ impl MortarLagrangian {
                 // master point and the gap: code_aster's analytic tangent
                 // (`laMatr_ct_pr`, module `mortar_tangent`), on segments
                 // (2D) or faces (3D).
-                let lin: Vec<FaceDof> = if self.dim == 2 {
-                    pt.linearise_2d(s, m, state)
-                } else {
-                    pt.linearise_3d(s, m, &crate::mortar_point::face_dofs(state, s, m))
-                };
+                let lin: Vec<FaceDof> = pt.linearise(s, m, &dofs);
                 if h {
                     // −w λ n_s·(v_s − v_m)
                     for e in &lin {

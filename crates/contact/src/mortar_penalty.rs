@@ -47,7 +47,7 @@ use crate::error::ContactError;
 use crate::mortar_lagrangian::{
     pairs_3d_of, pairs_of, MZone, MortarLagrangian, MortarZoneDef, Pair, ResiGeom,
 };
-use crate::mortar_point::{on_current, points, points_3d, MortarPoint};
+use crate::mortar_point::{on_current, points, points_3d, MortarPoint, PairDofs};
 use crate::shape::dot;
 use crate::source::current_positions;
 
@@ -175,7 +175,7 @@ impl MortarPenalty {
             let (s, m) = (&z.slave[p.slave], &z.master[p.master]);
             let (sc, mc) = (s.positions(&x), m.positions(&x));
             let hf = z.h[p.slave];
-            let dofs = (self.dim == 3).then(|| crate::mortar_point::face_dofs(state, s, m));
+            let dofs = PairDofs::of(state, s, m, self.dim);
             for pt in pair_points {
                 let pt = match pairing {
                     Some(_) => on_current(pt, s, m, &sc, &mc),
@@ -189,10 +189,7 @@ impl MortarPenalty {
                 penetration = penetration.max(-pt.gap);
                 let w = pt.w;
                 let ns = pt.ns;
-                let lin = match &dofs {
-                    Some(dofs) => pt.linearise_3d(s, m, dofs),
-                    None => pt.linearise_2d(s, m, state),
-                };
+                let lin = pt.linearise(s, m, &dofs);
                 // −w [γg]₋ n_s·(v_s − v_m); its derivative (peMatr_ct_pr):
                 // −w γ Dg (n·jump) − w [γg]₋ jump·Dn_s + w [γg]₋ n·∂v_m/∂ζ_α Dζ_α.
                 for e in &lin {

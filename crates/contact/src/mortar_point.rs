@@ -81,24 +81,22 @@ impl MortarPoint {
 }
 
 impl MortarPoint {
-    /// The point's DOFs on segments (DX, DY of the slave nodes, then the
-    /// master's) with the derivatives of code_aster's analytic tangent in
-    /// 2D (`dNs_du`, `dPi_du`: [`crate::mortar_tangent::linearise`]), as
-    /// faces' DOFs (one tangent direction).
-    pub(crate) fn linearise_2d(
+    /// The point's DOFs with the derivatives of code_aster's analytic
+    /// tangent (`dNs_du`, `dPi_du`), on segments (2D,
+    /// [`crate::mortar_tangent::linearise`], one tangent direction) or on
+    /// faces ([`MortarPoint::linearise_3d`]).
+    pub(crate) fn linearise(
         &self,
         s: &Seg,
         m: &Seg,
-        state: &State,
+        dofs: &PairDofs,
     ) -> Vec<crate::mortar_tangent::FaceDof> {
+        let dofs = match dofs {
+            PairDofs::Faces(dofs) => return self.linearise_3d(s, m, dofs),
+            PairDofs::Segments(dofs) => dofs,
+        };
         let (_, sd) = s.kind.eval(self.xi);
         let (_, md) = m.kind.eval(self.master.xi);
-        let dofs: Vec<[Option<usize>; 2]> = s
-            .nodes
-            .iter()
-            .chain(&m.nodes)
-            .map(|n| [dof(state, *n, 0), dof(state, *n, 1)])
-            .collect();
         crate::mortar_tangent::linearise(
             &crate::mortar_tangent::PointGeometry {
                 slave_shape: &self.initial.shape,
@@ -110,11 +108,36 @@ impl MortarPoint {
                 tau_master: self.master.tangents[0],
                 gap: self.gap,
             },
-            &dofs,
+            dofs,
         )
         .into_iter()
         .map(crate::mortar_tangent::FaceDof::from)
         .collect()
+    }
+}
+
+/// The displacement DOFs of a pair's nodes, slave then master, as
+/// [`MortarPoint::linearise`] takes them: DX, DY on segments (2D), DX, DY,
+/// DZ on faces (3D).
+pub(crate) enum PairDofs {
+    Segments(Vec<[Option<usize>; 2]>),
+    Faces(Vec<[Option<usize>; 3]>),
+}
+
+impl PairDofs {
+    /// The DOFs of the pair `s`, `m` in a model of dimension `dim`.
+    pub(crate) fn of(state: &State, s: &Seg, m: &Seg, dim: usize) -> PairDofs {
+        if dim == 3 {
+            PairDofs::Faces(face_dofs(state, s, m))
+        } else {
+            PairDofs::Segments(
+                s.nodes
+                    .iter()
+                    .chain(&m.nodes)
+                    .map(|n| [dof(state, *n, 0), dof(state, *n, 1)])
+                    .collect(),
+            )
+        }
     }
 }
 

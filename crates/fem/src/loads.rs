@@ -379,7 +379,7 @@ impl Loads {
                         }
                         _ => unreachable!("matched above"),
                     };
-                    let adj = faces.get_or_insert_with(|| adjacent_centroids(model));
+                    let adj = faces.get_or_insert_with(|| inner_points(model));
                     let c = model.mesh().cell(*cell);
                     let mut key: Vec<NodeId> = c
                         .nodes
@@ -542,9 +542,10 @@ fn index(model: &Model, dof: Dof) -> Result<usize, FemError> {
     })
 }
 
-/// Boundary facets of continuum elements (sorted corner nodes) → centroid of
-/// the element they bound, to orient pressure normals outward.
-fn adjacent_centroids(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
+/// Boundary facets of continuum elements (sorted corner nodes) → a point
+/// inside the element they bound (the centroid of its corners off the
+/// facet), to orient pressure normals outward ([`points_inward`]).
+fn inner_points(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
     let mesh = model.mesh();
     let mut map = HashMap::new();
     for el in model.elements() {
@@ -595,7 +596,15 @@ fn points_inward(mesh: &aster_mesh::Mesh, cell: CellId, inside: [f64; 3]) -> boo
     }
     let s = shape::shape(c.ty, xi);
     let [x, t1, t2] = shape::point_and_tangents(mesh, c, &s);
-    let n = if c.ty.dim() == 1 {
+    let n = boundary_normal(c.ty.dim() as usize + 1, t1, t2);
+    (0..3).map(|k| (inside[k] - x[k]) * n[k]).sum::<f64>() > 0.0
+}
+
+/// The (unnormalised) normal of a boundary cell from its tangents at a
+/// point, in a model of dimension `dim`: (t_y, −t_x) of the tangent in 2D,
+/// ∂x/∂ξ × ∂x/∂η in 3D.
+fn boundary_normal(dim: usize, t1: [f64; 3], t2: [f64; 3]) -> [f64; 3] {
+    if dim == 2 {
         [t1[1], -t1[0], 0.]
     } else {
         [
@@ -603,8 +612,7 @@ fn points_inward(mesh: &aster_mesh::Mesh, cell: CellId, inside: [f64; 3]) -> boo
             t1[2] * t2[0] - t1[0] * t2[2],
             t1[0] * t2[1] - t1[1] * t2[0],
         ]
-    };
-    (0..3).map(|k| (inside[k] - x[k]) * n[k]).sum::<f64>() > 0.0
+    }
 }
 
 /// Integrates a traction t(x, n) over a boundary cell into `f`. In 2D the
@@ -696,18 +704,9 @@ fn surface_load(
     for (k, gp) in scheme.iter().enumerate() {
         let s = shape::shape(c.ty, gp.xi);
         let [x, t1, t2] = shape::point_and_tangents(mesh, c, &s);
-        let (normal, jac) = if dim == 2 {
-            let l = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
-            ([t1[1] / l, -t1[0] / l, 0.], l)
-        } else {
-            let n = [
-                t1[1] * t2[2] - t1[2] * t2[1],
-                t1[2] * t2[0] - t1[0] * t2[2],
-                t1[0] * t2[1] - t1[1] * t2[0],
-            ];
-            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-            ([n[0] / l, n[1] / l, n[2] / l], l)
-        };
+        let n = boundary_normal(dim, t1, t2);
+        let jac = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let normal = [n[0] / jac, n[1] / jac, n[2] / jac];
         if jac.is_nan() || jac <= 0. {
             return Err(FemError::Model(format!(
                 "distributed load on degenerate cell {}",

@@ -95,18 +95,8 @@ FIN()
         [0.0, 1.0, 0.0],
         [0.5, 0.5, 1.0],
     ];
-    let edges = [
-        [0, 1],
-        [1, 2],
-        [2, 3],
-        [3, 0],
-        [0, 4],
-        [1, 4],
-        [2, 4],
-        [3, 4],
-    ];
     let mut pts: Vec<[f64; 3]> = corners.to_vec();
-    for [a, b] in edges {
+    for &[a, b] in aster_mesh::CellType::PYRAM13.corner_edges() {
         pts.push([0, 1, 2].map(|k| 0.5 * (corners[a][k] + corners[b][k])));
     }
     for (i, p) in pts.iter().enumerate() {

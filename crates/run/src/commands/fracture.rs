@@ -402,6 +402,21 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
             columns.push(col(c, ColumnType::Real));
         }
     }
+    // G doubled for SYME='OUI' (K below). AXIS: the integral is per radian;
+    // code_aster 17 divides it by the front's radius (`cgComputeGtheta`:
+    // "Cas axis, on normalise par 1/R", R the first coordinate of the front
+    // point in BASLOC).
+    let mut factor = if front.symmetric { 2.0 } else { 1.0 };
+    if model.hypothesis() == Some(aster_fem::Hypothesis::Axisymmetric) {
+        let r = front.tip.tip[0];
+        if r.abs() < f64::EPSILON {
+            return Err(ex.unsupported(
+                "CALC_G on an AXIS model with the crack tip on the axis (code_aster divides G by the tip's radius, here 0)",
+                here,
+            ));
+        }
+        factor /= r;
+    }
     let mut table = Table::new(columns);
     for step in steps {
         let u = displacement(&result, &run, step.nume_ordre, &r.name)?;
@@ -435,23 +450,6 @@ pub fn calc_g(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Ex
             ("COOR_X", Value::Real(front.tip.tip[0])),
             ("COOR_Y", Value::Real(front.tip.tip[1])),
         ];
-        let mut factor = if front.symmetric { 2.0 } else { 1.0 };
-        // AXIS: the integral is per radian; code_aster 17 divides it by the
-        // front's radius (`cgComputeGtheta`: "Cas axis, on normalise par
-        // 1/R", R the first coordinate of the front point in BASLOC).
-        if views
-            .iter()
-            .any(|c| c.hyp == aster_fem::Hypothesis::Axisymmetric)
-        {
-            let r = front.tip.tip[0];
-            if r.abs() < f64::EPSILON {
-                return Err(ex.unsupported(
-                    "CALC_G on an AXIS model with the crack tip on the axis (code_aster divides G by the tip's radius, here 0)",
-                    here,
-                ));
-            }
-            factor /= r;
-        }
         if options.iter().any(|o| o == "G") {
             let g = fracture::g_theta(&views).map_err(|e| ExecError::new(format!("{cmd}: {e}")))?;
             row.push(("G", Value::Real(factor * g)));
