@@ -246,22 +246,27 @@ impl Mesh {
 
     /// Adds face (and volume) centre nodes to the selected cells of the
     /// types `op` converts.
+    ///
+    /// `QUAD8_9`/`TRIA6_7` (`MODI_MAILLE`, code_aster's `cmmoma`): one new
+    /// node per selected cell, in the order of the selection. `HEXA20_27` and
+    /// `PENTA15_18` (`cm2027`/`cm1518`, `crea_maillage_module`): a face
+    /// shared by cells gets one centre, and the new nodes are numbered in
+    /// the order code_aster creates them — every cell of the mesh visited
+    /// by type (QUAD8 and TRIA6 cells, then HEXA20, PENTA15… volumes),
+    /// each volume's faces in the order HEXA27/PENTA18 number them and then
+    /// its centre — keeping those the selected cells use (tplv304a's
+    /// `NOEUD='N137'`).
     pub fn add_centre_nodes(&mut self, selected: &[CellId], op: CentreNodes) -> DegreeReport {
         let mut namer = Namer::new(&self.node_names, "N");
-        let mut centres: HashMap<Vec<NodeId>, NodeId> = HashMap::new();
         let mut report = DegreeReport::default();
         let before = self.node_count();
-        // Volumes first so that a QUAD8 face shares its volume's centre.
-        let mut order: Vec<CellId> = selected
+        let converted: Vec<CellId> = selected
             .iter()
             .copied()
             .filter(|c| op.converts(self.cell(*c).ty))
             .collect();
-        order.sort_by_key(|c| std::cmp::Reverse(self.cell(*c).ty.dim()));
-        for c in order {
-            let cell = self.cell(c).clone();
-            let mut nodes = cell.nodes.clone();
-            let faces: Vec<(Vec<NodeId>, Vec<NodeId>)> = match cell.ty {
+        let faces_of = |cell: &Cell| -> Vec<(Vec<NodeId>, Vec<NodeId>)> {
+            match cell.ty {
                 CellType::TRIA6 => vec![(cell.nodes[..3].to_vec(), cell.nodes[3..6].to_vec())],
                 ty => quad_faces(ty)
                     .iter()
@@ -272,28 +277,71 @@ impl Mesh {
                         )
                     })
                     .collect(),
+            }
+        };
+        // The centres the converted cells need.
+        let mut needed: HashMap<Vec<NodeId>, Option<NodeId>> = HashMap::new();
+        let mut volume_centre: HashMap<CellId, NodeId> = HashMap::new();
+        for &c in &converted {
+            for (corners, _) in faces_of(self.cell(c)) {
+                needed.insert(key(&corners), None);
+            }
+        }
+        let merged = matches!(op, CentreNodes::Hexa20To27 | CentreNodes::Penta15To18);
+        if merged {
+            let selected_set: std::collections::HashSet<CellId> =
+                converted.iter().copied().collect();
+            // code_aster's reading order of the cell types (init_mesh).
+            let rank = |ty: CellType| match ty {
+                CellType::TRIA6 | CellType::QUAD8 => 0,
+                CellType::PENTA18
+                | CellType::HEXA20
+                | CellType::PENTA15
+                | CellType::PYRAM13
+                | CellType::TETRA10 => 1,
+                _ => 2,
             };
-            for (corners, mids) in faces {
-                let k = key(&corners);
-                let n = match centres.get(&k) {
-                    Some(&n) => n,
-                    None => {
+            let mut order: Vec<CellId> = (0..self.cells.len() as u32)
+                .map(CellId)
+                .filter(|c| rank(self.cell(*c).ty) < 2)
+                .collect();
+            order.sort_by_key(|c| rank(self.cell(*c).ty));
+            for c in order {
+                let cell = self.cell(c).clone();
+                for (corners, mids) in faces_of(&cell) {
+                    if let Some(slot @ None) = needed.get_mut(&key(&corners)) {
                         let x = face_centre(self, &corners, &mids);
-                        let n = self.push_node(&mut namer, x);
-                        centres.insert(k, n);
-                        n
+                        *slot = Some(self.push_node(&mut namer, x));
+                    }
+                }
+                if cell.ty == CellType::HEXA20 && selected_set.contains(&c) {
+                    // Serendipity HEXA20 at ξ=η=ζ=0: corners −¼, mid-edges ¼.
+                    let terms: Vec<(NodeId, f64)> = (0..20)
+                        .map(|i| (cell.nodes[i], if i < 8 { -0.25 } else { 0.25 }))
+                        .collect();
+                    let x = combine(self, &terms);
+                    volume_centre.insert(c, self.push_node(&mut namer, x));
+                }
+            }
+        }
+        for &c in &converted {
+            let cell = self.cell(c).clone();
+            let mut nodes = cell.nodes.clone();
+            for (corners, mids) in faces_of(&cell) {
+                let n = match needed.get(&key(&corners)).copied().flatten() {
+                    Some(n) if merged => n,
+                    _ => {
+                        let x = face_centre(self, &corners, &mids);
+                        self.push_node(&mut namer, x)
                     }
                 };
                 nodes.push(n);
             }
             let ty = match cell.ty {
                 CellType::HEXA20 => {
-                    // Serendipity HEXA20 at ξ=η=ζ=0: corners −¼, mid-edges ¼.
-                    let terms: Vec<(NodeId, f64)> = (0..20)
-                        .map(|i| (cell.nodes[i], if i < 8 { -0.25 } else { 0.25 }))
-                        .collect();
-                    let x = combine(self, &terms);
-                    nodes.push(self.push_node(&mut namer, x));
+                    if let Some(&n) = volume_centre.get(&c) {
+                        nodes.push(n);
+                    }
                     CellType::HEXA27
                 }
                 CellType::PENTA15 => CellType::PENTA18,
@@ -405,6 +453,56 @@ mod tests {
         assert_eq!(m.coord(c.nodes[21]), [0.5, 0.0, 0.5]);
         assert_eq!(m.coord(c.nodes[25]), [0.5, 0.5, 1.0]);
         assert_eq!(m.coord(c.nodes[26]), [0.5, 0.5, 0.5]);
+    }
+
+    #[test]
+    fn hexa20_27_numbers_its_new_nodes_in_code_asters_order() {
+        // Two HEXA20 stacked along z and a QUAD8 skin cell on the top face:
+        // code_aster (crea_maillage_module) visits the QUAD8 cells first,
+        // then each volume's faces in HEXA27 order and its centre.
+        let mut m = Mesh {
+            dim: 3,
+            ..Mesh::default()
+        };
+        for z in [0., 1., 2.] {
+            for (x, y) in [(0., 0.), (1., 0.), (1., 1.), (0., 1.)] {
+                m.coords.push([x, y, z]);
+                m.node_names.push(format!("N{}", m.coords.len()));
+            }
+        }
+        for base in [0u32, 4] {
+            m.cells.push(Cell {
+                ty: CellType::HEXA8,
+                nodes: (base..base + 8).map(NodeId).collect(),
+            });
+            m.cell_names.push(format!("M{}", m.cells.len()));
+        }
+        m.line_to_quad(&[CellId(0), CellId(1)]);
+        let top = m.cells[1].nodes.clone();
+        m.cells.push(Cell {
+            ty: CellType::QUAD8,
+            nodes: [4, 5, 6, 7, 16, 17, 18, 19]
+                .iter()
+                .map(|&i| top[i])
+                .collect(),
+        });
+        m.cell_names.push("M3".into());
+        let before = m.node_count();
+        let r = m.add_centre_nodes(&all(&m), CentreNodes::Hexa20To27);
+        assert_eq!((r.cells, r.nodes_added), (3, 13));
+        let at = |k: usize| m.coord(NodeId((before + k) as u32));
+        // The QUAD8 skin cell's centre first, then the lower hexahedron's
+        // six faces and centre, then the upper one's four new sides and
+        // centre (its bottom and top faces already have theirs).
+        assert_eq!(at(0), [0.5, 0.5, 2.0]);
+        assert_eq!(at(1), [0.5, 0.5, 0.0]);
+        assert_eq!(at(6), [0.5, 0.5, 1.0]);
+        assert_eq!(at(7), [0.5, 0.5, 0.5]);
+        assert_eq!(at(12), [0.5, 0.5, 1.5]);
+        assert_eq!(m.node_names[before], format!("N{}", before + 1));
+        // Shared faces share their centre.
+        assert_eq!(m.cells[2].nodes[8], m.cells[1].nodes[25]);
+        assert_eq!(m.cells[0].nodes[25], m.cells[1].nodes[20]);
     }
 
     #[test]

@@ -331,6 +331,10 @@ pub(crate) fn ther_lineaire(
             .map(|&i| (i, t.clone()))
             .collect()
     };
+    // code_aster's storage (ther_lineaire_ops: `first_index`): a transient
+    // result numbers its initial state 0, a stationary one stores its first
+    // instant at 1 (tplp01a: `NUME_ORDRE=1` of a list of one instant).
+    let first = u32::from(!transient);
     let steps = steps
         .into_iter()
         .enumerate()
@@ -342,7 +346,7 @@ pub(crate) fn ther_lineaire(
                 }
             }
             Step {
-                nume_ordre: i as u32,
+                nume_ordre: first + i as u32,
                 inst,
                 fields: [("TEMP".to_string(), Field::Nodal(field))].into(),
             }
