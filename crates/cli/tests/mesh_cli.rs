@@ -98,3 +98,33 @@ fn seed_mesh_summary() {
         r#"{"nodes":10,"cells":{"SEG2":10,"QUAD4":2},"groups_ma":["AB","BC","CD","DA","ABCD","K1","K2","EF","FG","GH","HE","EFGH"],"groups_no":["A","B","C","D","R1","R2","E","F","G","H"]}"#
     );
 }
+
+/// An I-DEAS universal file (comm/ideas_bar.unv) as code_aster's PRE_IDEAS
+/// converts it: the summary and the INFO_MAILLAGE-like report.
+#[test]
+fn ideas_universal_file_summary() {
+    let unv = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../comm/ideas_bar.unv");
+    let (code, out, err) = aster(&["mesh", unv.to_str().unwrap(), "--json"]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    insta::assert_snapshot!("ideas_bar_json", out);
+    let (code, out, _) = aster(&["mesh", unv.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    insta::assert_snapshot!("ideas_bar_report", out);
+}
+
+/// A malformed universal file: a located error, exit 2.
+#[test]
+fn ideas_errors_are_located() {
+    let p = dir().join("bad.unv");
+    std::fs::write(
+        &p,
+        "    -1\n  2411\n         1         1         1        11\n   1.0D+00   oops\n    -1\n",
+    )
+    .unwrap();
+    let (code, _, err) = aster(&["mesh", p.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("bad.unv:4:1: expected a coordinate in columns 1–25, found `1.0D+00oops`"),
+        "{err}"
+    );
+}

@@ -76,6 +76,7 @@ pub fn read_mesh_as(path: &Path, format: Option<MeshFormat>) -> Result<Mesh, Mes
         Some(MeshFormat::Mail) => read_mail(path),
         Some(MeshFormat::Gmsh) => crate::read_gmsh(path),
         Some(MeshFormat::Gibi) => crate::read_gibi(path),
+        Some(MeshFormat::Ideas) => crate::read_ideas(path),
         None => crate::read_mesh(path),
     }
 }
@@ -86,6 +87,9 @@ impl MeshFormat {
         match s.to_ascii_uppercase().as_str() {
             "MED" => Some(MeshFormat::Med),
             "ASTER" => Some(MeshFormat::Mail),
+            "GMSH" => Some(MeshFormat::Gmsh),
+            "GIBI" => Some(MeshFormat::Gibi),
+            "IDEAS" => Some(MeshFormat::Ideas),
             _ => None,
         }
     }
@@ -123,6 +127,8 @@ mod tests {
     fn format_keywords() {
         assert_eq!(MeshFormat::from_keyword("med"), Some(MeshFormat::Med));
         assert_eq!(MeshFormat::from_keyword("ASTER"), Some(MeshFormat::Mail));
-        assert_eq!(MeshFormat::from_keyword("GMSH"), None);
+        assert_eq!(MeshFormat::from_keyword("GMSH"), Some(MeshFormat::Gmsh));
+        assert_eq!(MeshFormat::from_keyword("IDEAS"), Some(MeshFormat::Ideas));
+        assert_eq!(MeshFormat::from_keyword("CASTEM"), None);
     }
 }

@@ -20,7 +20,9 @@ mod summary;
 pub mod vec3;
 pub mod vtu;
 
-pub use convert::{gibi_to_mail, gmsh_to_mail, read_gibi, read_gmsh};
+pub use convert::{
+    gibi_to_mail, gmsh_to_mail, ideas_to_mail, read_gibi, read_gmsh, read_ideas, read_ideas_with,
+};
 pub use error::{suggest, GroupKind, MeshError};
 pub use export::{read_export, read_mesh_as, unit_path, ExportFile};
 pub use field::{Field, FieldLocation, ResultStep};
@@ -33,7 +35,8 @@ pub use med::{
 };
 pub use model::*;
 pub use ops::{
-    Along, CentreNodes, CrackFront, CrackReport, DegreeReport, NodeKind, OrientReport, Restriction,
+    Along, CellFilter, CentreNodes, CrackFront, CrackReport, DegreeReport, NodeKind, OrientReport,
+    Restriction,
 };
 pub use summary::{CellCounts, MeshSummary};
 pub use vtu::{write_vtu, write_vtu_series};
@@ -51,6 +54,9 @@ pub enum MeshFormat {
     Gmsh,
     /// GIBI / Cast3M `.mgib` (read as code_aster's `PRE_GIBI` converts it).
     Gibi,
+    /// I-DEAS universal file `.unv` (read as code_aster's `PRE_IDEAS`
+    /// converts it).
+    Ideas,
 }
 
 /// Tell a mesh file's format: by the HDF5 signature first, then by extension.
@@ -77,6 +83,16 @@ pub fn detect_format(path: &Path) -> Result<MeshFormat, MeshError> {
     if first_word == "ENREGISTREMENT" {
         return Ok(MeshFormat::Gibi);
     }
+    // I-DEAS: a first line `    -1`, then a dataset number.
+    let mut first_lines = start.lines().filter(|l| !l.trim().is_empty());
+    if first_lines.next().map(str::trim) == Some("-1")
+        && first_lines
+            .next()
+            .and_then(|l| l.split_whitespace().next())
+            .is_some_and(|w| w.parse::<u32>().is_ok())
+    {
+        return Ok(MeshFormat::Ideas);
+    }
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -85,6 +101,7 @@ pub fn detect_format(path: &Path) -> Result<MeshFormat, MeshError> {
         Some("med" | "mmed" | "rmed") => Ok(MeshFormat::Med),
         Some("msh") => Ok(MeshFormat::Gmsh),
         Some("mgib" | "gibi") => Ok(MeshFormat::Gibi),
+        Some("unv" | "msup") => Ok(MeshFormat::Ideas),
         Some("mail" | "txt") => Ok(MeshFormat::Mail),
         _ => {
             let text = std::fs::read(path).map_err(io)?;
@@ -112,12 +129,13 @@ pub fn read_mesh_noted(path: &Path) -> Result<(Mesh, Vec<String>), MeshError> {
     }
 }
 
-/// Read a mesh file, MED or ASTER, telling the format from the content or extension.
+/// Read a mesh file (MED, ASTER, GMSH, GIBI or I-DEAS), telling the format from the content or extension.
 pub fn read_mesh(path: &Path) -> Result<Mesh, MeshError> {
     match detect_format(path)? {
         MeshFormat::Med => read_med(path),
         MeshFormat::Mail => read_mail(path),
         MeshFormat::Gmsh => read_gmsh(path),
         MeshFormat::Gibi => read_gibi(path),
+        MeshFormat::Ideas => read_ideas(path),
     }
 }

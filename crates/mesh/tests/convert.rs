@@ -81,3 +81,47 @@ fn gibi_level_3_with_an_indirection() {
         "N1"
     );
 }
+
+/// comm/ideas_bar.unv (made by comm/ideas_bar.py) as PRE_IDEAS converts it.
+#[test]
+fn ideas_as_pre_ideas_converts_it() {
+    let m = read_mesh(&comm("ideas_bar.unv")).unwrap();
+    assert_eq!(m.dim, 3);
+    // Every node, in file order, named from its label 10 + 3 k.
+    assert_eq!(m.node_count(), 32);
+    assert_eq!(m.node_names[0], "N10");
+    assert_eq!(m.node_names[31], "N103");
+    // Cells by graphic code (SEG3 is code 35, last), file order within.
+    assert_eq!(m.cell_names, ["M20", "M5", "M9", "M21"]);
+    let types: Vec<CellType> = m.cells.iter().map(|c| c.ty).collect();
+    assert_eq!(
+        types,
+        [
+            CellType::QUAD8,
+            CellType::HEXA20,
+            CellType::HEXA20,
+            CellType::SEG3
+        ]
+    );
+    // The SEG3's third node is its middle; the HEXA20's 9th the middle of
+    // its edge 1-2; the QUAD8's 5th the middle of its edge 1-2.
+    for (cell, a, b, mid) in [(3usize, 0usize, 1usize, 2usize), (1, 0, 1, 8), (0, 0, 1, 4)] {
+        let n = &m.cells[cell].nodes;
+        let (pa, pb, pm) = (m.coord(n[a]), m.coord(n[b]), m.coord(n[mid]));
+        for d in 0..3 {
+            assert_eq!(pm[d], (pa[d] + pb[d]) / 2.0, "cell {cell}");
+        }
+    }
+    // Names: 8 characters, cut at a point, PERMANENT groups by number.
+    let groups: Vec<&str> = m.groups_ma.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(groups, ["END", "SOFT", "GRMA7", "EDGE"]);
+    let groups: Vec<&str> = m.groups_no.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(groups, ["LEFTSIDE", "BOTTOM", "BACK", "MID", "END"]);
+    assert_eq!(names_of_group(&m, "GRMA7"), ["M9"]);
+    assert!(m
+        .group_no("MID")
+        .unwrap()
+        .members
+        .iter()
+        .all(|&n| m.coord(n)[0] == 1.0));
+}

@@ -2,7 +2,7 @@
 //! or an error.
 
 use aster_mesh::med::read_med_bytes;
-use aster_mesh::{med_bytes, parse_mail};
+use aster_mesh::{ideas_to_mail, med_bytes, parse_mail};
 use proptest::prelude::*;
 use std::path::Path;
 
@@ -33,8 +33,52 @@ fn word() -> impl Strategy<Value = String> {
     ]
 }
 
+/// The project's I-DEAS universal file (comm/ideas_bar.unv).
+const UNV: &str = include_str!("../../../comm/ideas_bar.unv");
+
+/// Lines an I-DEAS file is made of, to build plausible-looking garbage.
+fn unv_line() -> impl Strategy<Value = String> {
+    prop_oneof![
+        Just("    -1".to_string()),
+        Just("  2411".to_string()),
+        Just("  2412".to_string()),
+        Just("  2467".to_string()),
+        Just("  2420".to_string()),
+        Just("   752".to_string()),
+        "( *-?[0-9]{1,10}){1,8}",
+        "( *-?[0-9]\\.[0-9]{1,16}D[+-][0-9]{2}){1,3}",
+        "[ -~]{0,20}",
+    ]
+}
+
+/// The I-DEAS converter then the ASTER reader, as LIRE_MAILLAGE does.
+fn read_unv(text: &str) {
+    if let Ok(mail) = ideas_to_mail(text, Path::new("fuzz.unv"), true) {
+        let _ = parse_mail(&mail, Path::new("fuzz.unv"));
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn ideas_reader_never_panics_on_mutations(pos in 0usize..UNV.len(), len in 0usize..40, insert in "[ -~\n]{0,12}") {
+        let mut text = UNV.to_string();
+        let start = pos.min(text.len());
+        let end = (start + len).min(text.len());
+        text.replace_range(start..end, &insert);
+        read_unv(&text);
+    }
+
+    #[test]
+    fn ideas_reader_never_panics_on_line_soup(lines in prop::collection::vec(unv_line(), 0..60)) {
+        read_unv(&lines.join("\n"));
+    }
+
+    #[test]
+    fn ideas_reader_never_panics_on_arbitrary_text(text in "\\PC{0,300}") {
+        read_unv(&text);
+    }
 
     #[test]
     fn mail_reader_never_panics_on_word_soup(words in prop::collection::vec(word(), 0..60)) {
@@ -89,6 +133,15 @@ proptest! {
 
 #[test]
 fn valid_input_of_the_fuzzers_reads() {
+    let unv = parse_mail(
+        &ideas_to_mail(UNV, Path::new("v.unv"), true).unwrap(),
+        Path::new("v.unv"),
+    )
+    .unwrap();
+    // With CREA_GROUP_COUL='OUI': COUL_11 (nodes) and COUL_7 (cells) too.
+    assert_eq!((unv.node_count(), unv.cells.len()), (32, 4));
+    assert_eq!(unv.group_no("COUL_11").unwrap().members.len(), 32);
+    assert_eq!(unv.group_ma("COUL_7").unwrap().members.len(), 4);
     let m = parse_mail(VALID, Path::new("v.mail")).unwrap();
     assert_eq!(
         (

@@ -139,8 +139,8 @@ impl Sink<'_> {
     /// if the pass could read it.
     fn read_mesh_file(&mut self, call: &CommandCall) -> Option<Arc<Mesh>> {
         let kw = &call.keywords;
-        let format = kw.str("FORMAT").unwrap_or("MED").to_string();
-        if !["MED", "ASTER", "GMSH", "GIBI"].contains(&format.as_str()) {
+        let (format, colour, key) = crate::meshio::requested(kw);
+        if !["MED", "ASTER", "GMSH", "GIBI", "IDEAS"].contains(&format.as_str()) {
             self.unknown_mesh = true;
             return None;
         }
@@ -156,16 +156,16 @@ impl Sink<'_> {
         if let Some(k) = self
             .meshes
             .iter()
-            .position(|m| &m.path == path && m.format == format)
+            .position(|m| &m.path == path && m.format == key)
         {
             return Some(self.meshes[k].mesh.clone());
         }
-        match crate::meshio::read(path, &format) {
+        match crate::meshio::read(path, &format, colour) {
             Ok((mesh, warnings)) => {
                 let mesh = Arc::new(mesh);
                 self.meshes.push(ReadMesh {
                     path: path.clone(),
-                    format,
+                    format: key,
                     mesh: mesh.clone(),
                     warnings,
                 });

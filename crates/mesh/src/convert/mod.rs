@@ -1,7 +1,8 @@
-//! Meshes of other tools as code_aster reads them: `PRE_GMSH` and
-//! `PRE_GIBI` convert a GMSH (`.msh`) or GIBI/Cast3M (`.mgib`) file into an
-//! ASTER text mesh, which `LIRE_MAILLAGE(FORMAT='ASTER')` then reads
-//! (`LIRE_MAILLAGE(FORMAT='GMSH'|'GIBI')` does both). The converters here
+//! Meshes of other tools as code_aster reads them: `PRE_GMSH`, `PRE_GIBI`
+//! and `PRE_IDEAS` convert a GMSH (`.msh`), GIBI/Cast3M (`.mgib`) or I-DEAS
+//! universal (`.unv`) file into an ASTER text mesh, which
+//! `LIRE_MAILLAGE(FORMAT='ASTER')` then reads
+//! (`LIRE_MAILLAGE(FORMAT='GMSH'|'GIBI'|'IDEAS')` does both). The converters here
 //! write the same ASTER text code_aster's Fortran writes — the same node and
 //! cell names, cell order, groups and the coordinates rounded to 15
 //! significant digits by its `1PE21.14` format — so the mesh read back is
@@ -9,6 +10,7 @@
 
 pub mod gibi;
 pub mod gmsh;
+pub mod ideas;
 
 use crate::error::MeshError;
 use crate::Mesh;
@@ -17,6 +19,7 @@ use std::path::{Path, PathBuf};
 
 pub use gibi::{gibi_to_mail, read_gibi};
 pub use gmsh::{gmsh_to_mail, read_gmsh};
+pub use ideas::{ideas_to_mail, read_ideas, read_ideas_with};
 
 /// Reads a text file (Latin-1 when not UTF-8).
 fn read_text(path: &Path) -> Result<String, MeshError> {

@@ -333,3 +333,82 @@ fn combine(
         })
         .collect())
 }
+
+/// `DEFI_GROUP/CREA_GROUP_MA/TYPE_MAILLE`: which cells a new group keeps
+/// (code_aster's `cgmftm`, `utflm2`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CellFilter {
+    /// `'1D'`, `'2D'`, `'3D'`: cells of this topological dimension.
+    Dim(u8),
+    /// A cell type name (`'QUAD4'`…): cells of this type.
+    Type(crate::CellType),
+}
+
+impl CellFilter {
+    /// The filter `TYPE_MAILLE` names; `None` for `'TOUT'` (no filter) or
+    /// a name that is neither a dimension nor a cell type.
+    pub fn from_keyword(value: &str) -> Option<CellFilter> {
+        match value {
+            "0D" => Some(CellFilter::Dim(0)),
+            "1D" => Some(CellFilter::Dim(1)),
+            "2D" => Some(CellFilter::Dim(2)),
+            "3D" => Some(CellFilter::Dim(3)),
+            other => crate::CellType::from_name(other).map(CellFilter::Type),
+        }
+    }
+
+    fn keeps(self, ty: crate::CellType) -> bool {
+        match self {
+            CellFilter::Dim(d) => ty.dim() == d,
+            CellFilter::Type(t) => ty == t,
+        }
+    }
+}
+
+impl Mesh {
+    /// The cells of `cells` the filter keeps, in the given order. When it
+    /// keeps none, code_aster's `cgmftm` leaves the list as it was (the
+    /// group is then made of every given cell, after the alarm
+    /// `SOUSTRUC_36` saying it is empty): `None` says so, and the caller
+    /// keeps `cells`.
+    pub fn filter_cells(&self, cells: &[CellId], filter: CellFilter) -> Option<Vec<CellId>> {
+        let kept: Vec<CellId> = cells
+            .iter()
+            .copied()
+            .filter(|&c| filter.keeps(self.cell(c).ty))
+            .collect();
+        (!kept.is_empty()).then_some(kept)
+    }
+}
+
+#[cfg(test)]
+mod filter_tests {
+    use super::CellFilter;
+    use crate::ops::testmesh::two_quads;
+    use crate::{CellId, CellType};
+
+    #[test]
+    fn type_maille_keeps_a_dimension_or_a_type() {
+        let m = two_quads();
+        let all = [CellId(2), CellId(0), CellId(1)];
+        assert_eq!(
+            m.filter_cells(&all, CellFilter::from_keyword("2D").unwrap()),
+            Some(vec![CellId(0), CellId(1)])
+        );
+        assert_eq!(
+            m.filter_cells(&all, CellFilter::from_keyword("1D").unwrap()),
+            Some(vec![CellId(2)])
+        );
+        assert_eq!(
+            m.filter_cells(&all, CellFilter::Type(CellType::QUAD4)),
+            Some(vec![CellId(0), CellId(1)])
+        );
+        // Nothing kept: code_aster keeps the unfiltered list.
+        assert_eq!(m.filter_cells(&all, CellFilter::Dim(3)), None);
+        assert_eq!(CellFilter::from_keyword("TOUT"), None);
+        assert_eq!(
+            CellFilter::from_keyword("SEG3"),
+            Some(CellFilter::Type(CellType::SEG3))
+        );
+    }
+}

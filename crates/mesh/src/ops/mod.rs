@@ -1,6 +1,7 @@
 //! Mesh operations the commands need: `DEFI_GROUP`, `MODI_MAILLAGE`,
 //! `CREA_MAILLAGE`.
 
+mod copy_cells;
 mod degree;
 mod geom_groups;
 mod groups;
@@ -20,6 +21,7 @@ mod testmesh;
 pub(crate) use degree::edges;
 pub use degree::{CentreNodes, DegreeReport};
 pub use geom_groups::NodeKind;
+pub use groups::CellFilter;
 pub use orient::OrientReport;
 pub use orient_along::Along;
 pub use orient_crack::CrackReport;

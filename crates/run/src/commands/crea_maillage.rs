@@ -11,7 +11,7 @@ use std::sync::Arc;
 const CMD: &str = "CREA_MAILLAGE";
 
 /// The operations (factor keywords) this implementation executes.
-const OPERATIONS: [&str; 8] = [
+const OPERATIONS: [&str; 9] = [
     "RESTREINT",
     "RAFFINEMENT",
     "LINE_QUAD",
@@ -19,6 +19,7 @@ const OPERATIONS: [&str; 8] = [
     "HEXA20_27",
     "PENTA15_18",
     "CREA_POI1",
+    "CREA_MAILLE",
     "MODI_MAILLE",
 ];
 
@@ -63,6 +64,10 @@ pub(crate) const CREA_MAILLAGE: Support = Support::keywords(&[
     "CREA_POI1/GROUP_MA",
     "CREA_POI1/GROUP_NO",
     "CREA_POI1/NOEUD",
+    "CREA_MAILLE",
+    "CREA_MAILLE/NOM",
+    "CREA_MAILLE/TOUT",
+    "CREA_MAILLE/GROUP_MA",
     "MODI_MAILLE",
     "MODI_MAILLE/TOUT",
     "MODI_MAILLE/GROUP_MA",
@@ -151,6 +156,17 @@ pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             for occ in kw.factor(op) {
                 let nodes = select::nodes(occ, &mesh, "").map_err(err)?;
                 mesh.add_point_cells(&nodes, occ.str("NOM_GROUP_MA"));
+            }
+        }
+        // Copies of cells on the same nodes (aster-mesh `Mesh::copy_cells`).
+        "CREA_MAILLE" => {
+            for occ in kw.factor(op) {
+                let cells = cells_of(occ, &mesh)?;
+                let Some(name) = occ.str("NOM") else {
+                    return Err(ex.kw_error(CMD, occ, "NOM", "CREA_MAILLE needs NOM"));
+                };
+                mesh.copy_cells(&cells, name)
+                    .map_err(|e| ex.kw_error(CMD, occ, "NOM", e.to_string()))?;
             }
         }
         _ => {

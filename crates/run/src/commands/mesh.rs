@@ -1,4 +1,4 @@
-//! LIRE_MAILLAGE, PRE_GMSH, PRE_GIBI, ASSE_MAILLAGE, DEFI_GROUP, MODI_MAILLAGE.
+//! LIRE_MAILLAGE, PRE_GMSH, PRE_GIBI, PRE_IDEAS, ASSE_MAILLAGE, DEFI_GROUP, MODI_MAILLAGE.
 
 use crate::concept::Concept;
 use crate::executor::{store_result, Executor};
@@ -12,15 +12,23 @@ use std::sync::Arc;
 
 /// Reads a mesh file in the format the command asks for, with the
 /// reader's warnings.
-pub fn read_mesh_file(path: &Path, format: &str) -> Result<(Mesh, Vec<String>), String> {
-    crate::meshio::read(path, format)
+pub fn read_mesh_file(
+    path: &Path,
+    format: &str,
+    colour_groups: bool,
+) -> Result<(Mesh, Vec<String>), String> {
+    crate::meshio::read(path, format, colour_groups)
 }
 
 /// What LIRE_MAILLAGE reads (`crate::support`).
 pub(crate) const LIRE_MAILLAGE: Support = Support {
-    values: &[Values::new("FORMAT", &["MED", "ASTER", "GMSH", "GIBI"])],
+    values: &[Values::new(
+        "FORMAT",
+        &["MED", "ASTER", "GMSH", "GIBI", "IDEAS"],
+    )],
     ..Support::keywords(&[
         "FORMAT",
+        "CREA_GROUP_COUL",
         "UNITE",
         "NOM_MED",
         "INFO",
@@ -33,7 +41,8 @@ pub(crate) const LIRE_MAILLAGE: Support = Support {
 
 pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
-    let format = kw.str("FORMAT").unwrap_or("MED");
+    let (format, colour, key) = crate::meshio::requested(kw);
+    let format = format.as_str();
     // code_aster's default unit is 20 whatever the format.
     let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(20);
     let path = ex.input_path(unit as u32).map(Path::to_path_buf).ok_or_else(|| {
@@ -43,6 +52,7 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 "MED" => "mmed",
                 "GMSH" => "msh",
                 "GIBI" => "mgib",
+                "IDEAS" => "msup",
                 _ => "mail",
             }
         ))
@@ -50,12 +60,12 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     let read = ex
         .read_meshes
         .iter()
-        .find(|m| m.path == path && m.format == format)
+        .find(|m| m.path == path && m.format == key)
         .map(|m| (m.mesh.clone(), m.warnings.clone()));
     let (mesh, warnings) = match read {
         Some(m) => m,
         None => {
-            let (mesh, warnings) = read_mesh_file(&path, format).map_err(|e| {
+            let (mesh, warnings) = read_mesh_file(&path, format, colour).map_err(|e| {
                 // Reader errors mostly start with the file (and its line): not twice.
                 let file = path.display().to_string();
                 if e.starts_with(&file) {
@@ -96,17 +106,23 @@ pub(crate) const ASSE_MAILLAGE: Support = Support {
     ..Support::keywords(&["MAILLAGE_1", "MAILLAGE_2", "OPERATION"])
 };
 
-/// `PRE_GMSH` / `PRE_GIBI`: converts the GMSH (`UNITE_GMSH`, default 19)
-/// or GIBI (`UNITE_GIBI`, default 19) file into an ASTER text mesh written
+/// What PRE_IDEAS reads (`crate::support`): aster-mesh `convert::ideas`.
+pub(crate) const PRE_IDEAS: Support =
+    Support::keywords(&["UNITE_IDEAS", "UNITE_MAILLAGE", "CREA_GROUP_COUL"]);
+
+/// `PRE_GMSH` / `PRE_GIBI` / `PRE_IDEAS`: converts the GMSH (`UNITE_GMSH`,
+/// default 19), GIBI (`UNITE_GIBI`, default 19) or I-DEAS (`UNITE_IDEAS`,
+/// default 19) file into an ASTER text mesh written
 /// on `UNITE_MAILLAGE` (default 20, `fort.20` in the output directory),
 /// which a later `LIRE_MAILLAGE(FORMAT='ASTER')` reads.
 pub fn pre_convert(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    let (format, source_kw) = if call.command == "PRE_GMSH" {
-        ("GMSH", "UNITE_GMSH")
-    } else {
-        ("GIBI", "UNITE_GIBI")
+    let (format, source_kw) = match call.command.as_str() {
+        "PRE_GMSH" => ("GMSH", "UNITE_GMSH"),
+        "PRE_IDEAS" => ("IDEAS", "UNITE_IDEAS"),
+        _ => ("GIBI", "UNITE_GIBI"),
     };
     let kw = &call.keywords;
+    let colour = kw.str("CREA_GROUP_COUL") == Some("OUI");
     let source = kw.first(source_kw).and_then(|s| s.as_i64()).unwrap_or(19);
     let target = kw
         .first("UNITE_MAILLAGE")
@@ -119,10 +135,14 @@ pub fn pre_convert(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
             ExecError::new(format!(
                 "{}: no file for unit {source} (a .export line `F {} mesh-file D {source}`)",
                 call.command,
-                if format == "GMSH" { "msh" } else { "mgib" }
+                match format {
+                    "GMSH" => "msh",
+                    "IDEAS" => "msup",
+                    _ => "mgib",
+                }
             ))
         })?;
-    let text = crate::meshio::convert(&path, format)
+    let text = crate::meshio::convert(&path, format, colour)
         .map_err(|e| ExecError::new(format!("{}: {e}", call.command)))?;
     let out = ex.output_path(target);
     // The unit's file is written anew (not appended to).
@@ -199,6 +219,7 @@ pub(crate) const DEFI_GROUP: Support = Support::keywords(&[
     "CREA_GROUP_MA/GROUP_NO_CENTRE",
     "CREA_GROUP_MA/RAYON",
     "CREA_GROUP_MA/CRIT_NOEUD",
+    "CREA_GROUP_MA/TYPE_MAILLE",
     "DETR_GROUP_NO",
     "DETR_GROUP_NO/NOM",
     "DETR_GROUP_MA",
@@ -227,6 +248,7 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             return Err(ex.kw_error("DEFI_GROUP", occ, "NOM", "CREA_GROUP_MA needs NOM"));
         };
         if set_operation(&mut mesh, occ, name, false)? {
+            filter_by_type(ex, &mut mesh, occ, name)?;
             continue;
         }
         // With OPTION and no selection, every cell is a candidate.
@@ -291,6 +313,7 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             }
         }
         put_group(&mut mesh.groups_ma, name, cells);
+        filter_by_type(ex, &mut mesh, occ, name)?;
     }
     for occ in kw.factor("CREA_GROUP_NO") {
         if let Some(option) = occ.str("OPTION") {
@@ -367,6 +390,43 @@ pub fn defi_group(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         put_group(&mut mesh.groups_no, name, nodes);
     }
     store_result(ex, call, Concept::Mesh(Arc::new(mesh)))
+}
+
+/// `CREA_GROUP_MA/TYPE_MAILLE`: the group just made keeps the cells of
+/// one dimension (`'1D'`, `'2D'`, `'3D'`) or one type (code_aster's
+/// `cgmftm`, applied after every way of selecting, `OPTION` and
+/// `UNION`/`INTERSEC`/`DIFFE` included). When the filter keeps no cell,
+/// code_aster keeps the group unfiltered (its alarm `SOUSTRUC_36` says the
+/// group is empty, then `addGrpMa` creates it with the unfiltered list):
+/// aster does the same and writes the alarm in the report.
+fn filter_by_type(
+    ex: &mut Executor,
+    mesh: &mut Mesh,
+    occ: &aster_eval::Keywords,
+    name: &str,
+) -> Result<(), ExecError> {
+    let Some(value) = occ.str("TYPE_MAILLE").filter(|v| *v != "TOUT") else {
+        return Ok(());
+    };
+    let Some(filter) = aster_mesh::CellFilter::from_keyword(value) else {
+        return Err(ex.kw_error(
+            "DEFI_GROUP",
+            occ,
+            "TYPE_MAILLE",
+            format!("TYPE_MAILLE='{value}' is neither a dimension (1D, 2D, 3D) nor a cell type"),
+        ));
+    };
+    let Some(group) = mesh.groups_ma.iter().position(|g| g.name == name) else {
+        return Ok(());
+    };
+    match mesh.filter_cells(&mesh.groups_ma[group].members, filter) {
+        Some(kept) => mesh.groups_ma[group].members = kept,
+        None => ex.write_report(&format!(
+            "<A> DEFI_GROUP/CREA_GROUP_MA: no cell of group `{name}` is of TYPE_MAILLE='{value}': the group keeps its {} cells unfiltered, as code_aster does (SOUSTRUC_36)\n",
+            mesh.groups_ma[group].members.len()
+        ))?,
+    }
+    Ok(())
 }
 
 /// `UNION`/`INTERSEC`/`DIFFE` of groups (aster-mesh); false when the

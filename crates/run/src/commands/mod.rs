@@ -86,6 +86,11 @@ pub static COMMANDS: &[Command] = &[
         support: mesh::PRE_GIBI,
     },
     Command {
+        name: "PRE_IDEAS",
+        run: mesh::pre_convert,
+        support: mesh::PRE_IDEAS,
+    },
+    Command {
         name: "ASSE_MAILLAGE",
         run: mesh::asse_maillage,
         support: mesh::ASSE_MAILLAGE,
