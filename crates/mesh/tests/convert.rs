@@ -39,15 +39,15 @@ fn gmsh_22_as_pre_gmsh_converts_it() {
             CellType::POI1
         ]
     );
-    // Groups GM<physical> in the order the physicals first appear; the
-    // physical names of $PhysicalNames are not read (code_aster skips to $Nodes).
+    // Groups named by $PhysicalNames, in their order (code_aster 17's
+    // pregms/gmlelt for 2.x files).
     let groups: Vec<&str> = m.groups_ma.iter().map(|g| g.name.as_str()).collect();
-    assert_eq!(groups, ["GM5", "GM1", "GM2", "GM10", "GM11"]);
-    assert_eq!(names_of_group(&m, "GM10"), ["M4"]);
+    assert_eq!(groups, ["corner", "left", "right", "half1", "half2"]);
+    assert_eq!(names_of_group(&m, "half1"), ["M4"]);
     // A physical group of one point cell is also a node group.
     assert_eq!(m.groups_no.len(), 1);
     assert_eq!(
-        m.node_names[m.group_no("GM5").unwrap().members[0].0 as usize],
+        m.node_names[m.group_no("corner").unwrap().members[0].0 as usize],
         "N1"
     );
 }

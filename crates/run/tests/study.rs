@@ -50,7 +50,7 @@ fn two_files_a_module_and_a_gmsh_mesh() {
         "{report}"
     );
     assert!(
-        report.contains("GM11                     GROUP_MA  1.09890E-01  5.00000E+01"),
+        report.contains("half2                    GROUP_MA  1.09890E-01  5.00000E+01"),
         "{report}"
     );
     // `F resu study.resu R 8`: the report is also written there, with the summary.

@@ -2,8 +2,8 @@
 //! `gmlneu`, `gmlelt`, `gmeneu`, `gmeelt`, `inigms`).
 //!
 //! - Versions: 1.0 (`$NOD`/`$ELM`, real test files) and 2.x (`$MeshFormat`,
-//!   `$Nodes`/`$Elements`; sections before `$Nodes`, `$PhysicalNames`
-//!   included, are skipped), ASCII. 4.x is read too (code_aster 15 cannot:
+//!   `$Nodes`/`$Elements`; sections before `$Nodes` but `$PhysicalNames`
+//!   are skipped), ASCII. 4.x is read too (code_aster 15 cannot:
 //!   the same naming rules are applied, see below); binary files are refused.
 //! - Nodes: `N<tag>`, in file order; only the nodes some cell uses are kept.
 //! - Cells: `M<tag>`, written type by type in the order of GMSH's element
@@ -14,7 +14,13 @@
 //!   numbering.
 //! - Groups: `GM<physical>` for each physical tag, in the order it first
 //!   appears, its cells in file order; a physical group of a single point
-//!   cell is also the node group `GM<physical>`. Physical tag 0 (no group)
+//!   cell is also the node group `GM<physical>`. A 2.x file with
+//!   `$PhysicalNames` (code_aster 17's `pregms` reads them): one group per
+//!   name, in their order, named by the name's first 8 characters, of the
+//!   cells (file order) one of whose tags — physical or elementary, as
+//!   `gmlelt` compares them all — is the name's tag and whose dimension is
+//!   the name's; a tag without a name makes no group (4.x files are read
+//!   the same way, with their entities' physical tags). Physical tag 0 (no group)
 //!   makes no group (code_aster's reader leaves it undefined).
 //! - 4.x: a cell's physical tags are those of its entity (`$Entities`); a
 //!   cell is in each of them; groups in the order they first appear among
@@ -129,6 +135,9 @@ struct Element {
     ty: usize,
     /// Physical tags (one in 1.0/2.x; 0 = none).
     physicals: Vec<i64>,
+    /// Every tag of a 2.x line (physical, elementary, partitions…): what
+    /// code_aster matches against the `$PhysicalNames` tags.
+    tags: Vec<i64>,
     nodes: Vec<i64>,
     line: usize,
 }
@@ -137,6 +146,8 @@ struct Element {
 struct Parsed {
     nodes: Vec<(i64, [f64; 3], usize)>,
     elements: Vec<Element>,
+    /// 2.x `$PhysicalNames` (dimension, tag, name), in file order.
+    names: Option<Vec<(usize, i64, String)>>,
 }
 
 /// Reads a GMSH file as `LIRE_MAILLAGE(FORMAT='GMSH')` does.
@@ -209,7 +220,50 @@ fn expect_marker(lines: &mut Lines<'_>, markers: &[&str]) -> Result<(), MeshErro
     }
 }
 
+/// The `$PhysicalNames` section of a 2.x file (`pregms`): `dim tag "name"`
+/// lines; code_aster keeps a name's first 8 characters (a `K8`).
+fn physical_names(lines: &mut Lines<'_>) -> Result<Vec<(usize, i64, String)>, MeshError> {
+    let nb = count(lines, "the number of physical names")?;
+    let mut out = Vec::with_capacity(nb.min(1 << 16));
+    for _ in 0..nb {
+        let (n, l) = lines.next("a physical name (dimension tag \"name\")")?;
+        let w = need(lines, n, l, 3, "a physical name (dimension tag \"name\")")?;
+        let dim = int(lines, n, w[0], "a dimension")?;
+        let dim = usize::try_from(dim)
+            .ok()
+            .filter(|d| *d <= 3)
+            .ok_or_else(|| lines.error(n, w[0].0, format!("dimension {dim} is not 0 to 3")))?;
+        let tag = int(lines, n, w[1], "a physical tag")?;
+        // Fortran's list-directed read: a quoted string, or one word.
+        // The third word is a slice of the line: the rest starts there.
+        let rest = &l[w[2].1.as_ptr() as usize - l.as_ptr() as usize..];
+        let raw = match rest.strip_prefix('"') {
+            Some(r) => r.split('"').next().unwrap_or(""),
+            None => rest.split_whitespace().next().unwrap_or(""),
+        };
+        let name: String = raw.chars().take(8).collect();
+        let name = name.trim_end().to_string();
+        if name.is_empty() {
+            return Err(lines.error(n, w[2].0, "a physical group needs a name".to_string()));
+        }
+        out.push((dim, tag, name));
+    }
+    expect_marker(lines, &["$EndPhysicalNames"])?;
+    Ok(out)
+}
+
+/// The dimension of a GMSH element type 1–19 (`dime` of `gmlelt`).
+fn type_dim(ty: usize) -> usize {
+    match ty {
+        15 => 0,
+        1 | 8 => 1,
+        2 | 3 | 9 | 10 | 16 => 2,
+        _ => 3,
+    }
+}
+
 fn parse(lines: &mut Lines<'_>) -> Result<Parsed, MeshError> {
+    let mut names = None;
     let (n, first) = lines.next("`$NOD` or `$MeshFormat`")?;
     let head = first.split_whitespace().next().unwrap_or("");
     let version = if head.starts_with("$NOD") {
@@ -241,11 +295,15 @@ fn parse(lines: &mut Lines<'_>) -> Result<Parsed, MeshError> {
         if v >= 4.0 {
             return parse_v4(lines, v);
         }
-        // Skip to $Nodes ($PhysicalNames… are not read by code_aster).
+        // Skip to $Nodes, reading $PhysicalNames on the way (`pregms`).
         loop {
             let (_, l) = lines.next("`$Nodes`")?;
-            if l.trim_start().starts_with("$Nodes") {
+            let l = l.trim_start();
+            if l.starts_with("$Nodes") {
                 break;
+            }
+            if l.starts_with("$PhysicalNames") {
+                names = Some(physical_names(lines)?);
             }
         }
         2
@@ -289,6 +347,7 @@ fn parse(lines: &mut Lines<'_>) -> Result<Parsed, MeshError> {
         let w = need(lines, n, l, 3, "an element")?;
         let tag = int(lines, n, w[0], "an element number")?;
         let ty = element_type(lines, n, w[1])?;
+        let mut tags = Vec::new();
         let (physicals, first, count) = if version == 1 {
             // number type reg-phys reg-elem number-of-nodes nodes…
             let w = need(
@@ -325,6 +384,9 @@ fn parse(lines: &mut Lines<'_>) -> Result<Parsed, MeshError> {
             } else {
                 0
             };
+            for &word in &w[3..3 + nt] {
+                tags.push(int(lines, n, word, "a tag")?);
+            }
             (vec![phys], 3 + nt, NBNO[ty - 1])
         };
         let w = need(
@@ -342,12 +404,17 @@ fn parse(lines: &mut Lines<'_>) -> Result<Parsed, MeshError> {
             tag,
             ty,
             physicals,
+            tags,
             nodes,
             line: n,
         });
     }
     expect_marker(lines, &["$ENDELM", "$EndElements"])?;
-    Ok(Parsed { nodes, elements })
+    Ok(Parsed {
+        nodes,
+        elements,
+        names,
+    })
 }
 
 fn element_type(lines: &Lines<'_>, n: usize, w: (usize, &str)) -> Result<usize, MeshError> {
@@ -370,8 +437,11 @@ fn parse_v4(lines: &mut Lines<'_>, version: f64) -> Result<Parsed, MeshError> {
     let mut nodes = Vec::new();
     let mut elements = Vec::new();
     let mut seen_elements = false;
+    let mut names = None;
     while let Some((n, l)) = lines.try_next() {
         match l.trim() {
+            // Read as for 2.x (code_aster reads no 4.x file: the same rules).
+            "$PhysicalNames" => names = Some(physical_names(lines)?),
             "$Entities" => {
                 let (hn, h) = lines.next("the entity counts")?;
                 let w = need(
@@ -489,6 +559,7 @@ fn parse_v4(lines: &mut Lines<'_>, version: f64) -> Result<Parsed, MeshError> {
                             tag,
                             ty,
                             physicals: phys.clone(),
+                            tags: phys.clone(),
                             nodes: ns,
                             line: en,
                         });
@@ -523,7 +594,11 @@ fn parse_v4(lines: &mut Lines<'_>, version: f64) -> Result<Parsed, MeshError> {
             "no `$Elements` section".to_string(),
         ));
     }
-    Ok(Parsed { nodes, elements })
+    Ok(Parsed {
+        nodes,
+        elements,
+        names,
+    })
 }
 
 /// The ASTER text, as `gmeneu` and `gmeelt` write it.
@@ -596,8 +671,37 @@ fn write(p: &Parsed, lines: &Lines<'_>) -> Result<String, MeshError> {
             text.cells(NOMAIL[t], cells);
         }
     }
-    for (phys, members, elements) in &groups {
-        let name = format!("GM{phys}");
+    if let Some(names) = &p.names {
+        // 2.x with `$PhysicalNames` (`gmlelt`, `gmeelt`): one group per
+        // name, in their order, of the cells (in file order) one of whose
+        // tags is the name's and whose dimension is the name's; a tag
+        // without a name makes no group.
+        groups = names
+            .iter()
+            .map(|(dim, tag, _)| {
+                let ks: Vec<usize> = p
+                    .elements
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, e)| type_dim(e.ty) == *dim && e.tags.contains(tag))
+                    .map(|(k, _)| k)
+                    .collect();
+                let members = ks
+                    .iter()
+                    .map(|&k| format!("M{}", p.elements[k].tag))
+                    .collect();
+                (*tag, members, ks)
+            })
+            .collect();
+    }
+    for (i, (phys, members, elements)) in groups.iter().enumerate() {
+        if members.is_empty() {
+            continue;
+        }
+        let name = match &p.names {
+            Some(names) => names[i].2.clone(),
+            None => format!("GM{phys}"),
+        };
         text.group("GROUP_MA", &name, members);
         // A group of one point cell is also a node group.
         if let [k] = elements.as_slice() {
@@ -654,7 +758,42 @@ mod tests {
         let m = mesh(text).unwrap();
         assert_eq!(m.node_count(), 8);
         assert_eq!(m.cells[0].ty, crate::CellType::QUAD8);
-        assert_eq!(m.groups_ma[0].name, "GM5");
+        // $PhysicalNames name the group (pregms reads them for 2.x).
+        assert_eq!(m.groups_ma[0].name, "skin");
+        // Without them, the physical tag names it.
+        let bare = text.replace("$PhysicalNames\n1\n2 5 \"skin\"\n$EndPhysicalNames\n", "");
+        assert!(!bare.contains("PhysicalNames"));
+        assert_eq!(mesh(&bare).unwrap().groups_ma[0].name, "GM5");
+    }
+
+    #[test]
+    fn version_2_physical_names_as_gmlelt_matches_them() {
+        // code_aster keeps 8 characters of a name, takes a cell into a named
+        // group when one of its tags (physical or elementary) is the name's
+        // and its dimension is the name's, in the order of $PhysicalNames;
+        // a physical tag without a name makes no group; a named point
+        // alone is also a node group.
+        let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n4\n\
+            1 3 \"bottom_edge_long\"\n2 7 \"plate\"\n2 3 \"face3\"\n0 9 \"P\"\n$EndPhysicalNames\n\
+            $Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n\
+            $Elements\n4\n1 3 2 7 3 1 2 3 4\n2 1 2 3 1 1 2\n3 1 2 8 3 3 4\n4 15 2 9 9 2\n$EndElements\n";
+        let m = mesh(text).unwrap();
+        let names: Vec<&str> = m.groups_ma.iter().map(|g| g.name.as_str()).collect();
+        assert_eq!(names, ["bottom_e", "plate", "face3", "P"]);
+        let cells = |g: &str| -> Vec<String> {
+            let g = m.groups_ma.iter().find(|x| x.name == g).unwrap();
+            g.members
+                .iter()
+                .map(|c| m.cell_names[c.0 as usize].clone())
+                .collect()
+        };
+        // Segment 3 (physical 8, elementary 3) is in the dimension-1 group
+        // of tag 3; the quad (elementary 3) is in the dimension-2 one.
+        assert_eq!(cells("bottom_e"), ["M2", "M3"]);
+        assert_eq!(cells("face3"), ["M1"]);
+        assert_eq!(cells("P"), ["M4"]);
+        assert_eq!(m.groups_no.len(), 1);
+        assert_eq!(m.groups_no[0].name, "P");
     }
 
     #[test]

@@ -137,20 +137,32 @@ pub(crate) fn shells(
                 ))
             }
         };
-        let cells = select::cells(occ, mesh, "")
+        let given = select::cells(occ, mesh, "")
             .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/COQUE: {e}")))?;
-        if let Some(bad) = select::misfit(mesh, &cells, |c| {
+        // code_aster's COQUE is a field on the given cells that only shell
+        // elements read: the others of the group (the SEG2 edges of a
+        // `TOUT` group, ssnv115b) are left out; a group without any shell
+        // cell is an error.
+        let is_shell = |ty: CellType| {
             matches!(
-                c.ty,
+                ty,
                 CellType::TRIA3 | CellType::QUAD4 | CellType::QUAD9 | CellType::TRIA7
             )
-        }) {
-            return Err(err(
-                "GROUP_MA",
-                format!(
-                    "COQUE applies to the DKT cells (TRIA3, QUAD4) and the COQUE_3D cells (QUAD9, TRIA7), but {bad}"
-                ),
-            ));
+        };
+        let cells: Vec<CellId> = given
+            .iter()
+            .copied()
+            .filter(|&c| is_shell(mesh.cell(c).ty))
+            .collect();
+        if cells.is_empty() {
+            if let Some(bad) = select::misfit(mesh, &given, |c| is_shell(c.ty)) {
+                return Err(err(
+                    "GROUP_MA",
+                    format!(
+                        "COQUE applies to the DKT cells (TRIA3, QUAD4) and the COQUE_3D cells (QUAD9, TRIA7), but none is given: {bad}"
+                    ),
+                ));
+            }
         }
         let shear_factor = occ
             .f64("A_CIS")
