@@ -348,3 +348,24 @@ fn efge_noeu_of_beams_beside_shells_keeps_both_families() {
         "{err}"
     );
 }
+
+/// COQUE is a field that only the shell elements read: the SEG2 of its
+/// group is left out (ssnv115b gives `TOUT`, edges included); a group
+/// without any shell cell is an error.
+#[test]
+fn coque_leaves_out_the_cells_that_are_not_shells() {
+    let with_edge = strips().replace(
+        "COQUE=_F(GROUP_MA=(\"SQ\", \"ST\"), EPAIS=0.01)",
+        "COQUE=_F(GROUP_MA=(\"SQ\", \"ST\", \"BM\"), EPAIS=0.01)",
+    );
+    assert!(with_edge.contains("\"BM\"), EPAIS"));
+    assert_eq!(run(&with_edge, "coque-edge"), (72, 0, None));
+    let only_edge = strips().replace(
+        "COQUE=_F(GROUP_MA=(\"SQ\", \"ST\"), EPAIS=0.01)",
+        "COQUE=_F(GROUP_MA=\"BM\", EPAIS=0.01)",
+    );
+    let (_, nook, err) = run(&only_edge, "coque-only-edge");
+    assert_eq!(nook, 0);
+    let err = err.expect("an error");
+    assert!(err.contains("but none is given: cell"), "{err}");
+}
