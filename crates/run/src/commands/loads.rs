@@ -363,6 +363,30 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "LIAISON_MAIL/TYPE_RACCORD",
         "LIAISON_MAIL/ELIM_MULT",
         "LIAISON_MAIL/DDL",
+        "PESANTEUR",
+        "PESANTEUR/GROUP_MA",
+        "PESANTEUR/GRAVITE",
+        "PESANTEUR/DIRECTION",
+        "FORCE_ARETE",
+        "FORCE_ARETE/GROUP_MA",
+        "FORCE_ARETE/FX",
+        "FORCE_ARETE/FY",
+        "FORCE_ARETE/FZ",
+        "FORCE_ARETE/MX",
+        "FORCE_ARETE/MY",
+        "FORCE_ARETE/MZ",
+        "LIAISON_OBLIQUE",
+        "LIAISON_OBLIQUE/GROUP_NO",
+        "LIAISON_OBLIQUE/GROUP_MA",
+        "LIAISON_OBLIQUE/SANS_GROUP_NO",
+        "LIAISON_OBLIQUE/SANS_GROUP_MA",
+        "LIAISON_OBLIQUE/ANGL_NAUT",
+        "LIAISON_OBLIQUE/DX",
+        "LIAISON_OBLIQUE/DY",
+        "LIAISON_OBLIQUE/DZ",
+        "LIAISON_OBLIQUE/DRX",
+        "LIAISON_OBLIQUE/DRY",
+        "LIAISON_OBLIQUE/DRZ",
     ],
     values: &[
         Values::new("DDL_IMPO/BLOCAGE", &["DEPLACEMENT", "ROTATION"]),
@@ -455,6 +479,34 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
                 });
             }
         }
+    }
+    let ctx = (&*model, &*mesh, carried.as_slice());
+    for occ in kw.factor("PESANTEUR") {
+        load.gravity
+            .push(super::loads_more::pesanteur(ex, kw, occ, (&model, &mesh))?);
+    }
+    for occ in kw.factor("FORCE_ARETE") {
+        load.edges
+            .push(super::loads_more::force_arete(ex, occ, ctx)?);
+    }
+    for occ in kw.factor("LIAISON_OBLIQUE") {
+        let what = "AFFE_CHAR_MECA/LIAISON_OBLIQUE";
+        let mut given = Vec::new();
+        for key in ["DX", "DY", "DZ", "DRX", "DRY", "DRZ"] {
+            if let Some(s) = occ.first(key) {
+                let v = s.as_f64().ok_or_else(|| {
+                    ex.kw_error(
+                        what,
+                        occ,
+                        key,
+                        "a real value is required (functions need AFFE_CHAR_MECA_F)",
+                    )
+                })?;
+                given.push((key, v));
+            }
+        }
+        let rows = super::loads_more::liaison_oblique(ex, what, occ, ctx, &given)?;
+        load.relations.extend(rows.into_iter().map(|(_, r)| r));
     }
     load.nodal_forces = imposed_values(
         ex,
