@@ -89,6 +89,12 @@ pub enum Load {
     /// segment's stiffness scheme (code_aster's te0469, te0034, te0418).
     /// Moments need the rotations of shell nodes.
     EdgeForce { cell: CellId, force: [f64; 6] },
+    /// A force per unit area on a DKT/DKQ facet (`PESANTEUR` on shells:
+    /// ρ h g d), global components, on the translations of its nodes with
+    /// the weights of a constant pressure (code_aster's te0032 → dxtfor,
+    /// dxqfor: A/3 per node of a triangle, a sixth of the three corner
+    /// triangles of a quadrangle's node; no moment).
+    ShellForce { cell: CellId, force: [f64; 3] },
     /// An isotropic free strain ε_th = α (T − T_ref) on a continuum cell
     /// (a temperature given by `AFFE_VARC`), its value at each node of the
     /// cell, interpolated at the Gauss points with the shape functions:
@@ -191,6 +197,14 @@ impl Loads {
                     }
                 }
                 Load::EdgeForce { cell, force } => edge_check(model, *cell, force)?,
+                Load::ShellForce { cell, .. } => {
+                    if !matches!(model.element_kind(*cell), Some(ElementKind::Shell { .. })) {
+                        return Err(FemError::Model(format!(
+                            "shell force (PESANTEUR) on cell {}, which carries no DKT/DKQ shell element",
+                            model.cell_name(*cell)
+                        )));
+                    }
+                }
                 Load::SurfaceForce { cell, .. }
                 | Load::Pressure { cell, .. }
                 | Load::SurfaceForceAt { cell, .. }
@@ -321,6 +335,22 @@ impl Loads {
                     let m = item.mult.eval(t)?;
                     if m != 0.0 {
                         edge_load(model, *cell, &force.map(|v| v * m), &mut f)?;
+                    }
+                }
+                Load::ShellForce { cell, force } => {
+                    let m = item.mult.eval(t)?;
+                    let (_, weights) = shell_pressure_weights(model.mesh(), *cell)?;
+                    let c = model.mesh().cell(*cell);
+                    for (&n, w) in c.nodes.iter().zip(weights) {
+                        let first = model.dofs().node_first(n).ok_or_else(|| {
+                            FemError::Model(format!(
+                                "shell force on cell {}: a node carries no element of the model",
+                                model.cell_name(*cell)
+                            ))
+                        })?;
+                        for k in 0..3 {
+                            f[first + k] += m * w * force[k];
+                        }
                     }
                 }
                 Load::VolumeForce { cell, force } => {

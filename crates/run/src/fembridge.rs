@@ -973,10 +973,14 @@ fn gravity_loads(
 ) -> Result<(), ExecError> {
     for g in gravity {
         for &cell in &g.cells {
-            let Some(aster_fem::ElementKind::Continuum { hypothesis, .. }) =
-                model.element_kind(cell)
-            else {
-                continue;
+            let (hypothesis, thickness) = match model.element_kind(cell) {
+                Some(aster_fem::ElementKind::Continuum { hypothesis, .. }) => {
+                    (Some(*hypothesis), None)
+                }
+                Some(aster_fem::ElementKind::Shell { section, .. }) => {
+                    (None, Some(section.thickness))
+                }
+                _ => continue,
             };
             let rho = setup
                 .materials
@@ -990,8 +994,14 @@ fn gravity_loads(
                         g.at
                     ))
                 })?;
+            if let Some(h) = thickness {
+                // te0032: ρ h g d per unit area of the facet (dxroep).
+                let force = g.acceleration.map(|a| rho * h * a);
+                loads.add(Load::ShellForce { cell, force }, m.clone());
+                continue;
+            }
             let mut force = g.acceleration.map(|a| rho * a);
-            if *hypothesis == aster_fem::Hypothesis::Axisymmetric {
+            if hypothesis == Some(aster_fem::Hypothesis::Axisymmetric) {
                 force[0] = 0.0;
                 force[2] = 0.0;
             }

@@ -38,8 +38,8 @@ fn gravity_in_d_plan_c_plan_and_axis() {
 }
 
 #[test]
-fn forces_and_moments_on_the_edge_of_a_dkt_strip() {
-    assert_eq!(scene("edge_strip.comm", "edge_strip.mail"), (10, 0));
+fn forces_and_moments_on_the_edge_of_a_dkt_strip_and_its_weight() {
+    assert_eq!(scene("edge_strip.comm", "edge_strip.mail"), (12, 0));
 }
 
 #[test]
@@ -80,22 +80,22 @@ FIN()
 }
 
 #[test]
-fn gravity_on_shells_and_a_zero_direction_are_refused() {
+fn gravity_on_beams_and_a_zero_direction_are_refused() {
     let err = refused(
         r#"DEBUT()
 mesh = LIRE_MAILLAGE(FORMAT="ASTER")
-model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA="STRIP", PHENOMENE="MECANIQUE", MODELISATION="DKT"))
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA="END", PHENOMENE="MECANIQUE", MODELISATION="POU_D_E"))
 weight = AFFE_CHAR_MECA(MODELE=model, PESANTEUR=_F(GRAVITE=10.0, DIRECTION=(0.0, 0.0, -1.0)))
 FIN()
 "#,
         "edge_strip.mail",
-        "shell",
+        "beam",
     );
     assert!(
-        err.contains("not supported yet: AFFE_CHAR_MECA/PESANTEUR on cell Q1, a shell"),
+        err.contains("not supported yet: AFFE_CHAR_MECA/PESANTEUR on cell S1, a POU_D_E beam"),
         "{err}"
     );
-    assert!(err.contains("shell.comm:4:"), "{err}");
+    assert!(err.contains("beam.comm:4:"), "{err}");
     let err = refused(
         r#"DEBUT()
 mesh = LIRE_MAILLAGE(FORMAT="ASTER")

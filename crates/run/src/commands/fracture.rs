@@ -882,7 +882,8 @@ fn check_loads_but(
             | Load::SurfaceForceAt { cell, .. }
             | Load::PressureAt { cell, .. }
             | Load::VolumeForceAt { cell, .. }
-            | Load::EdgeForce { cell, .. } => on_cell(*cell).then(|| mesh.cell_name(*cell)),
+            | Load::EdgeForce { cell, .. }
+            | Load::ShellForce { cell, .. } => on_cell(*cell).then(|| mesh.cell_name(*cell)),
             Load::NodalForce { dof, .. } => {
                 reached(dof.node).then(|| format!("node {}", mesh.node_name(dof.node)))
             }

@@ -7,12 +7,13 @@
 //!   cells of GROUP_MA, every cell without it; te0015 (3D) and te0085
 //!   (D_PLAN, C_PLAN, AXIS) integrate ρ g dᵢ Nᵢ with the RIGI family, ρ the
 //!   ELAS RHO of the cell (`rcvalb`, which stops when it is missing), and
-//!   in AXIS only the axial component g d_y, times r. aster turns it into
-//!   a volume force per continuum cell at the solve, when the material
-//!   field is known (`fembridge`). Beams, shells, discrete and joint
-//!   elements, which code_aster loads with their own per-length or
-//!   per-area mass (te0150-style options of CHAR_MECA_PESA_R), are
-//!   refused at the keyword.
+//!   in AXIS only the axial component g d_y, times r. On DKT/DKQ shells
+//!   te0032 loads ρ h g d per unit area (dxroep) on the translations,
+//!   weighted as a constant pressure (dxtfor, dxqfor). aster turns it into
+//!   a volume force per continuum cell, or a shell force per facet, at the
+//!   solve, when the material field and the thicknesses are known
+//!   (`fembridge`). POU_D_E beams (te0150), COQUE_3D shells, discrete and
+//!   joint elements are refused at the keyword.
 //! - `FORCE_ARETE=_F(GROUP_MA, FX…MZ)`: force and moment per unit length
 //!   on the segments of a 3D model (solid edges: te0469, DKT edges:
 //!   te0034, COQUE_3D edges: te0418), ∫ Nᵢ f dl; moments on the nodes
@@ -75,7 +76,7 @@ pub(super) fn pesanteur(
         };
         let structural = match m {
             Modelisation::BeamEuler => Some("POU_D_E beam (a mass per length ρA)"),
-            Modelisation::Dkt | Modelisation::Coque3d => Some("shell (a mass per area ρh)"),
+            Modelisation::Coque3d => Some("COQUE_3D shell (te0406's mass per area)"),
             Modelisation::Discrete2D | Modelisation::Discrete3D | Modelisation::DiscreteRot3D => {
                 Some("discrete element (its CARA_ELEM mass)")
             }
@@ -85,14 +86,20 @@ pub(super) fn pesanteur(
         if let Some(kind) = structural {
             return Err(ex.unsupported(
                 &format!(
-                    "{what} on cell {}, a {kind}: gravity is applied to continuum cells (3D, D_PLAN, C_PLAN, AXIS) only",
+                    "{what} on cell {}, a {kind}: gravity is applied to continuum cells (3D, D_PLAN, C_PLAN, AXIS) and DKT shells only",
                     select::cell_name(mesh, c)
                 ),
                 span,
             ));
         }
     }
-    let cells = super::loads::continuum_cells(model, mesh, selected);
+    let shells: Vec<_> = selected
+        .iter()
+        .copied()
+        .filter(|c| model.cells.get(c) == Some(&Modelisation::Dkt))
+        .collect();
+    let mut cells = super::loads::continuum_cells(model, mesh, selected);
+    cells.extend(shells);
     let at = kw
         .keyword("PESANTEUR")
         .and_then(|k| ex.location(k.span))
