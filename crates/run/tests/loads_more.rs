@@ -162,3 +162,37 @@ FIN()
     );
     assert!(err.contains("oblx.comm:5:"), "{err}");
 }
+
+#[test]
+fn a_relation_given_by_two_occurrences_is_kept_once() {
+    // Two LIAISON_GROUP occurrences tying the same pair (as two sections
+    // sharing a line do): code_aster's ordlrl keeps the relation once;
+    // twice, the system was singular.
+    let dir = std::env::temp_dir().join(format!("aster-loads-more-dup-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join("dup.comm");
+    std::fs::write(
+        &comm,
+        r#"DEBUT()
+mesh = LIRE_MAILLAGE(FORMAT="ASTER")
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
+steel = DEFI_MATERIAU(ELAS=_F(E=1.0e7, NU=0.0, RHO=8000.0))
+mater = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", MATER=steel))
+tie = _F(GROUP_NO_1="MID", GROUP_NO_2="A", DDL_1="DX", DDL_2="DX", COEF_MULT_1=1.0, COEF_MULT_2=-1.0, COEF_IMPO=0.0)
+held = AFFE_CHAR_MECA(MODELE=model, DDL_IMPO=(_F(GROUP_MA="BASE", DY=0.0), _F(GROUP_NO="A", DX=0.0)),
+                      LIAISON_GROUP=(tie, tie))
+weight = AFFE_CHAR_MECA(MODELE=model, PESANTEUR=_F(GRAVITE=10.0, DIRECTION=(0.0, 1.0, 0.0)))
+res = MECA_STATIQUE(MODELE=model, CHAM_MATER=mater, EXCIT=(_F(CHARGE=held), _F(CHARGE=weight)))
+TEST_RESU(RESU=_F(NUME_ORDRE=1, RESULTAT=res, NOM_CHAM="DEPL", GROUP_NO="TIP", NOM_CMP="DY",
+                  VALE_CALC=0.4, VALE_REFE=0.4, REFERENCE="ANALYTIQUE", PRECISION=1.0e-3))
+FIN()
+"#,
+    )
+    .unwrap();
+    // QUAD4 with nu = 0: the nodal values of a bar under its own weight
+    // are exact (1D linear elements with the consistent load).
+    let outcome = run(&comm, "gravity_strip.mail", "dup");
+    let _ = std::fs::remove_dir_all(dir);
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (2, 0));
+}
