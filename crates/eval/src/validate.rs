@@ -942,19 +942,22 @@ impl Validator<'_> {
                 }
             }
             Value::Complex(a, b) => has(&ValueType::Complex).then_some(Scalar::Complex(*a, *b)),
-            Value::Str(s) => types
-                .iter()
-                .any(|t| {
+            Value::Str(s) => {
+                let name = types.iter().any(|t| {
                     matches!(
                         t,
-                        ValueType::Text
-                            | ValueType::GroupMa
-                            | ValueType::GroupNo
-                            | ValueType::Cell
-                            | ValueType::Node
+                        ValueType::GroupMa | ValueType::GroupNo | ValueType::Cell | ValueType::Node
                     )
-                })
-                .then(|| Scalar::Str(s.to_string())),
+                });
+                if name {
+                    // Names of the mesh are fixed-length Fortran strings in
+                    // code_aster: trailing blanks are not part of the name
+                    // (`GROUP_MA='POUTRE    '` is the group POUTRE).
+                    Some(Scalar::Str(s.trim_end_matches(' ').to_string()))
+                } else {
+                    has(&ValueType::Text).then(|| Scalar::Str(s.to_string()))
+                }
+            }
             Value::Concept(c) | Value::Formula(c, _) => {
                 let ok = c.typ == types::UNKNOWN
                     || types.iter().any(|t| match t {

@@ -235,3 +235,25 @@ print(name, root, stem, ext, os.environ["ASTER_TEST_FC"], seen, os.getenv("ASTER
         "{err}"
     );
 }
+
+#[test]
+fn trailing_blanks_of_mesh_names_are_not_part_of_them() {
+    // code_aster's names are fixed-length Fortran strings: `'POUTRE    '`
+    // names the group POUTRE (sdll127b); leading blanks and text keywords
+    // are kept as written.
+    let rec = run(r#"
+MA = LIRE_MAILLAGE(FORMAT="MED")
+MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(GROUP_MA=("POUTRE    ", " B"), PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
+G = DEFI_GROUP(MAILLAGE=MA, CREA_GROUP_NO=_F(GROUP_MA="C  ", NOM="N1  "))
+"#)
+    .unwrap();
+    let affe = &rec.calls[1].keywords.factor("AFFE")[0];
+    let groups: Vec<&str> = affe
+        .simple("GROUP_MA")
+        .iter()
+        .filter_map(Scalar::as_str)
+        .collect();
+    assert_eq!(groups, vec!["POUTRE", " B"]);
+    let crea = &rec.calls[2].keywords.factor("CREA_GROUP_NO")[0];
+    assert_eq!(crea.str("GROUP_MA"), Some("C"));
+}

@@ -8,9 +8,15 @@
 //! - `VALE_CALC` is the non-regression value, checked with `TOLE_MACHINE`
 //!   (default 1e-6), relative unless `CRITERE='ABSOLU'`;
 //! - `VALE_REFE` (with `REFERENCE`) is checked with `PRECISION` (default 1e-3);
-//! - when `VALE_CALC` is (almost) zero a relative test means nothing:
-//!   with `ORDRE_GRANDEUR` it becomes absolute with tolerance
-//!   TOLE_MACHINE × ORDRE_GRANDEUR, without it the test is skipped;
+//! - when `VALE_CALC` is zero (below 1e-16) the check needs
+//!   `ORDRE_GRANDEUR`: without it the check is skipped (`SKIP`) whatever
+//!   `CRITERE`; with it an absolute check has the tolerance
+//!   TOLE_MACHINE × ORDRE_GRANDEUR and a relative one passes only on an
+//!   exact zero (code_aster's `tresu_ordgrd` and `TestResult.showResult`);
+//!   `ORDRE_GRANDEUR` is not read for a non-zero `VALE_CALC`;
+//! - of several expected values, the one compared is the last that is
+//!   closer to the computed value than the first (code_aster's
+//!   `tresu_print` loop, which never lowers its running minimum);
 //! - legacy `VALE=` (code_aster ≤ 11) is checked with `PRECISION` (default
 //!   1e-3) against `REFERENCE` (default `NON_REGRESSION`).
 
@@ -67,12 +73,23 @@ impl Comparison {
         };
         // VALE_ABS='OUI': code_aster's tresu_print takes the absolute value
         // of the reference too.
-        let expected = self
+        let values: Vec<f64> = self
             .expected
             .iter()
             .map(|v| if self.absolute_value { v.abs() } else { *v })
-            .min_by(|a, b| (a - computed).abs().total_cmp(&(b - computed).abs()))
-            .unwrap_or(f64::NAN);
+            .collect();
+        // code_aster's `tresu_print`: the last value closer than the first.
+        let expected = match values.split_first() {
+            Some((first, rest)) => {
+                let d0 = (first - computed).abs();
+                rest.iter()
+                    .rev()
+                    .find(|v| (*v - computed).abs() < d0)
+                    .copied()
+                    .unwrap_or(*first)
+            }
+            None => f64::NAN,
+        };
         if self.skip {
             return Judged {
                 verdict: Verdict::Skip,
@@ -151,10 +168,14 @@ pub fn comparisons(kw: &Keywords) -> Result<Vec<Comparison>, String> {
         let tole = first_real(kw, "TOLE_MACHINE").unwrap_or(1e-6);
         let zero = calc[0].abs() < ZERO_VALUE;
         let order = first_real(kw, "ORDRE_GRANDEUR");
-        let (rel, order, skip) = match (relative, zero, order) {
-            (true, true, Some(o)) => (false, o, false),
-            (true, true, None) => (true, 1.0, true),
-            (r, _, o) => (r, o.unwrap_or(1.0), false),
+        // code_aster's `tresu_ordgrd`: ORDRE_GRANDEUR is read only when
+        // VALE_CALC is zero, and without it the check is skipped whatever
+        // CRITERE; the criterion itself is kept (a relative test of a zero
+        // value then passes only on an exact zero, as `showResult`).
+        let (order, skip) = match (zero, order) {
+            (true, Some(o)) => (o, false),
+            (true, None) => (1.0, true),
+            (false, _) => (1.0, false),
         };
         // Without a reference value, the line carries the REFERENCE kind.
         let kind = if refe.is_empty() {
@@ -167,7 +188,7 @@ pub fn comparisons(kw: &Keywords) -> Result<Vec<Comparison>, String> {
             legend: legend.clone(),
             expected: calc,
             tolerance: tole,
-            relative: rel,
+            relative,
             order,
             skip,
             absolute_value,
@@ -265,7 +286,7 @@ pub fn render(c: &Comparison, j: &Judged, labels: bool) -> String {
         }
     };
     let mut out = String::new();
-    if c.order != 1.0 && !c.relative {
+    if c.order != 1.0 {
         out.push_str(&format!(
             "{}\n",
             format!(
@@ -425,9 +446,65 @@ mod tests {
             ("ORDRE_GRANDEUR", Scalar::Real(1e3)),
         ]);
         let c = &comparisons(&k).unwrap()[0];
-        assert!(!c.relative);
-        assert_eq!(c.judge(5e-4).verdict, Verdict::Ok);
-        assert_eq!(c.judge(2e-3).verdict, Verdict::Nook);
+        // The criterion stays relative: only an exact zero passes
+        // (code_aster's TestResult.showResult, tolerance × 0).
+        assert!(c.relative);
+        assert_eq!(c.judge(0.0).verdict, Verdict::Ok);
+        assert_eq!(c.judge(5e-4).verdict, Verdict::Nook);
+        let k = kw(vec![
+            ("VALE_CALC", Scalar::Real(0.0)),
+            ("ORDRE_GRANDEUR", Scalar::Real(1e3)),
+            ("CRITERE", Scalar::Str("ABSOLU".into())),
+        ]);
+        let cs = comparisons(&k).unwrap();
+        assert_eq!(cs[0].judge(5e-4).verdict, Verdict::Ok);
+        assert_eq!(cs[0].judge(2e-3).verdict, Verdict::Nook);
+        let (text, _) = check_block(&fields(), &cs, 5e-4);
+        insta::assert_snapshot!(text);
+    }
+
+    #[test]
+    fn zero_absolute_without_order_of_magnitude_is_skipped() {
+        // code_aster's tresu_ordgrd: whatever CRITERE (zzzz285a).
+        let k = kw(vec![
+            ("VALE_CALC", Scalar::Real(0.0)),
+            ("CRITERE", Scalar::Str("ABSOLU".into())),
+        ]);
+        let cs = comparisons(&k).unwrap();
+        assert!(cs[0].skip);
+        assert_eq!(cs[0].judge(6.3e-3).verdict, Verdict::Skip);
+        let (text, _) = check_block(&fields(), &cs, 6.3e-3);
+        insta::assert_snapshot!(text);
+        // ORDRE_GRANDEUR is read only for a zero VALE_CALC: a non-zero one
+        // is checked at TOLE_MACHINE itself.
+        let k = kw(vec![
+            ("VALE_CALC", Scalar::Real(1.0)),
+            ("CRITERE", Scalar::Str("ABSOLU".into())),
+            ("ORDRE_GRANDEUR", Scalar::Real(1e3)),
+        ]);
+        let c = &comparisons(&k).unwrap()[0];
+        assert_eq!(c.order, 1.0);
+        assert_eq!(c.judge(1.0 + 5e-7).verdict, Verdict::Ok);
+        assert_eq!(c.judge(1.0 + 5e-4).verdict, Verdict::Nook);
+    }
+
+    #[test]
+    fn of_several_values_the_last_closer_than_the_first_is_compared() {
+        // code_aster's tresu_print never lowers its running minimum: with
+        // 1, 2, 3 expected and 2.9 computed, 3 (the last value closer than
+        // 1) is compared; with 2.4 computed, 3 again although 2 is closer.
+        let mut k = kw(vec![("VALE_CALC", Scalar::Real(1.0))]);
+        k.entries[0].value = KwValue::Simple(vec![
+            Scalar::Real(1.0),
+            Scalar::Real(2.0),
+            Scalar::Real(3.0),
+        ]);
+        let c = &comparisons(&k).unwrap()[0];
+        assert_eq!(c.judge(2.9).expected, 3.0);
+        assert_eq!(c.judge(2.4).expected, 3.0);
+        assert_eq!(c.judge(1.2).expected, 1.0);
+        assert_eq!(c.judge(1.6).expected, 2.0);
+        assert_eq!(c.judge(1.4).expected, 1.0);
     }
 
     #[test]

@@ -67,3 +67,17 @@ fn an_initial_state_from_a_result_is_refused_before_solving() {
     let err = err.expect("a refusal");
     assert!(err.contains("THER_LINEAIRE/ETAT_INIT/EVOL_THER"), "{err}");
 }
+
+#[test]
+fn a_zero_heat_capacity_is_the_stationary_default_and_a_negative_one_is_refused() {
+    // RHO_CP=0.0 written out is code_aster's default (hsnv100f): the
+    // stationary cylinder gives the same temperatures.
+    let t = text().replace("RHO_CP=4.0e6", "RHO_CP=0.0");
+    assert!(t.contains("RHO_CP=0.0"));
+    assert_eq!(run(&t, "rhocp0"), (14, 0, None));
+    let t = text().replace("RHO_CP=4.0e6", "RHO_CP=-1.0");
+    let (_, nook, err) = run(&t, "rhocp-neg");
+    assert_eq!(nook, 0);
+    let err = err.expect("an error");
+    assert!(err.contains("RHO_CP must be positive, got -1"), "{err}");
+}

@@ -179,10 +179,11 @@ fn ther(
     };
     Ok(Some(aster_fem::thermal::Conduction {
         lambda: get("LAMBDA", "the conductivity LAMBDA")?,
-        // code_aster's default: no heat capacity (stationary use).
+        // code_aster's default: no heat capacity (stationary use); an
+        // explicit 0 means the same (hsnv100f), a negative one is refused.
         rho_cp: match occ.f64("RHO_CP") {
+            Some(0.0) | None => 0.0,
             Some(_) => get("RHO_CP", "RHO_CP")?,
-            None => 0.0,
         },
     }))
 }
