@@ -76,7 +76,7 @@ pub(super) fn pesanteur(
         };
         let structural = match m {
             Modelisation::BeamEuler => Some("POU_D_E beam (a mass per length ρA)"),
-            Modelisation::Coque3d => Some("COQUE_3D shell (te0406's mass per area)"),
+            Modelisation::Coque3d => Some("COQUE_3D shell (te0403's mass per area)"),
             Modelisation::Discrete2D | Modelisation::Discrete3D | Modelisation::DiscreteRot3D => {
                 Some("discrete element (its CARA_ELEM mass)")
             }
