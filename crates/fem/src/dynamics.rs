@@ -145,7 +145,7 @@ impl<'s> DynamicNonLinear<'s> {
             }
         }
         let k = assemble_stiffness(model)?;
-        let fint0 = k.mul(&u0);
+        let fint0 = self.initial_internal_forces(model, &k, &u0)?;
         let fext0 = loads.external_forces(model, t0)?;
         let v0 = self.velocity.clone().unwrap_or_else(|| vec![0.0; nd]);
         let a0 = match &self.acceleration {
@@ -188,6 +188,37 @@ impl<'s> DynamicNonLinear<'s> {
             r.energy = energy;
             r
         })
+    }
+}
+
+impl DynamicNonLinear<'_> {
+    /// f_int(u₀): K u₀, corrected by the behaviour cells of the initial
+    /// state when it carries them (a plastic state continued from an
+    /// earlier solve: its stresses are not K u₀, and an initial
+    /// acceleration from K u₀ would set an equilibrium state moving).
+    fn initial_internal_forces(
+        &self,
+        model: &Model,
+        k: &Csc,
+        u0: &[f64],
+    ) -> Result<Vec<f64>, FemError> {
+        let state = self
+            .solver
+            .initial
+            .as_ref()
+            .and_then(|i| i.behaviour.as_ref());
+        let Some(state) = state else {
+            return Ok(k.mul(u0));
+        };
+        let mut plastic = crate::behaviour::PlasticCells::new(
+            model,
+            &self.solver.behaviours,
+            self.solver.newton.symmetrize,
+        )?;
+        if let Some(pc) = plastic.as_mut() {
+            pc.restore(state)?;
+        }
+        crate::nonlinear::internal_forces(model, k, &mut plastic, u0)
     }
 }
 

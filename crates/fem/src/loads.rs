@@ -83,6 +83,18 @@ pub enum Load {
     /// A force per unit volume given at each point of the cell's stiffness
     /// scheme ([`shape::rigi_scheme`]); see [`Loads::volume_points`].
     VolumeForceAt { cell: CellId, forces: Vec<[f64; 3]> },
+    /// Force and moment per unit length on an edge (`FORCE_ARETE`): a
+    /// SEG2/SEG3 cell of a 3D model, bordering solids or shells; global
+    /// components FX FY FZ MX MY MZ, integrated as ∫ Nᵢ f dl with the
+    /// segment's stiffness scheme (code_aster's te0469, te0034, te0418).
+    /// Moments need the rotations of shell nodes.
+    EdgeForce { cell: CellId, force: [f64; 6] },
+    /// A force per unit area on a DKT/DKQ facet (`PESANTEUR` on shells:
+    /// ρ h g d), global components, on the translations of its nodes with
+    /// the weights of a constant pressure (code_aster's te0032 → dxtfor,
+    /// dxqfor: A/3 per node of a triangle, a sixth of the three corner
+    /// triangles of a quadrangle's node; no moment).
+    ShellForce { cell: CellId, force: [f64; 3] },
     /// An isotropic free strain ε_th = α (T − T_ref) on a continuum cell
     /// (a temperature given by `AFFE_VARC`), its value at each node of the
     /// cell, interpolated at the Gauss points with the shape functions:
@@ -180,6 +192,15 @@ impl Loads {
                     if !continuum {
                         return Err(FemError::Model(format!(
                             "volume force (FORCE_INTERNE) on cell {}, which carries no continuum element of the model",
+                            model.cell_name(*cell)
+                        )));
+                    }
+                }
+                Load::EdgeForce { cell, force } => edge_check(model, *cell, force)?,
+                Load::ShellForce { cell, .. } => {
+                    if !matches!(model.element_kind(*cell), Some(ElementKind::Shell { .. })) {
+                        return Err(FemError::Model(format!(
+                            "shell force (PESANTEUR) on cell {}, which carries no DKT/DKQ shell element",
                             model.cell_name(*cell)
                         )));
                     }
@@ -309,6 +330,28 @@ impl Loads {
                         |k, _, _| [forces[k][0] * m, forces[k][1] * m, forces[k][2] * m],
                         &mut f,
                     )?;
+                }
+                Load::EdgeForce { cell, force } => {
+                    let m = item.mult.eval(t)?;
+                    if m != 0.0 {
+                        edge_load(model, *cell, &force.map(|v| v * m), &mut f)?;
+                    }
+                }
+                Load::ShellForce { cell, force } => {
+                    let m = item.mult.eval(t)?;
+                    let (_, weights) = shell_pressure_weights(model.mesh(), *cell)?;
+                    let c = model.mesh().cell(*cell);
+                    for (&n, w) in c.nodes.iter().zip(weights) {
+                        let first = model.dofs().node_first(n).ok_or_else(|| {
+                            FemError::Model(format!(
+                                "shell force on cell {}: a node carries no element of the model",
+                                model.cell_name(*cell)
+                            ))
+                        })?;
+                        for k in 0..3 {
+                            f[first + k] += m * w * force[k];
+                        }
+                    }
                 }
                 Load::VolumeForce { cell, force } => {
                     let m = item.mult.eval(t)?;
@@ -727,6 +770,80 @@ fn surface_load(
             })?;
             for k in 0..dim {
                 f[first + k] += w * s.n[i] * tr[k];
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The DOF of each component an edge force gives (zero components skipped):
+/// checks that the cell is a segment of a 3D model whose nodes carry them.
+fn edge_dofs(
+    model: &Model,
+    cell: CellId,
+    force: &[f64; 6],
+) -> Result<Vec<Vec<(usize, usize)>>, FemError> {
+    let mesh = model.mesh();
+    let Some(c) = mesh.cells.get(cell.0 as usize) else {
+        return Err(FemError::Model(format!(
+            "edge force on cell #{} which the mesh does not have",
+            cell.0 + 1
+        )));
+    };
+    if !matches!(c.ty, CellType::SEG2 | CellType::SEG3) || model.dim() != 3 {
+        return Err(FemError::Model(format!(
+            "edge force (FORCE_ARETE) on cell {} ({}): expected a segment (SEG2, SEG3) of a 3D model",
+            model.cell_name(cell),
+            c.ty.name()
+        )));
+    }
+    let mut out = Vec::with_capacity(c.nodes.len());
+    for &n in &c.nodes {
+        let mut dofs = Vec::new();
+        for (k, comp) in crate::dof::Comp::ALL.iter().enumerate() {
+            if force[k] == 0.0 {
+                continue;
+            }
+            let i = model.dofs().index(Dof::new(n, *comp)).ok_or_else(|| {
+                FemError::Model(format!(
+                    "edge force (FORCE_ARETE) on cell {}: node {} has no {} (moments need the rotations of shell nodes; every node must carry an element of the model)",
+                    model.cell_name(cell),
+                    mesh.node_names.get(n.0 as usize).map(String::as_str).unwrap_or("?"),
+                    comp.name()
+                ))
+            })?;
+            dofs.push((k, i));
+        }
+        out.push(dofs);
+    }
+    Ok(out)
+}
+
+fn edge_check(model: &Model, cell: CellId, force: &[f64; 6]) -> Result<(), FemError> {
+    edge_dofs(model, cell, force).map(|_| ())
+}
+
+/// ∫ Nᵢ f dl over a segment with its stiffness scheme (2 points on SEG2,
+/// 3 on SEG3: code_aster's RIGI family of te0469/te0418; te0034's
+/// f·L/2 on a plate's SEG2 is the same), f constant along it.
+fn edge_load(model: &Model, cell: CellId, force: &[f64; 6], f: &mut [f64]) -> Result<(), FemError> {
+    let dofs = edge_dofs(model, cell, force)?;
+    let mesh = model.mesh();
+    let c = mesh.cell(cell);
+    for gp in shape::rigi_scheme(c.ty) {
+        let s = shape::shape(c.ty, gp.xi);
+        let [_, t, _] = shape::point_and_tangents(mesh, c, &s);
+        let jac = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+        if !(jac > 0.0 && jac.is_finite()) {
+            return Err(FemError::Model(format!(
+                "edge force on degenerate cell {}",
+                model.cell_name(cell)
+            )));
+        }
+        let w = gp.weight * jac;
+        for (i, node_dofs) in dofs.iter().enumerate() {
+            for &(k, idx) in node_dofs {
+                f[idx] += w * s.n[i] * force[k];
             }
         }
     }

@@ -476,6 +476,30 @@ pub struct VolumeForce {
     pub functions: [Option<LoadFunction>; 3],
 }
 
+/// `PESANTEUR`: gravity, the force ρ·g·d per unit volume (per unit area
+/// in 2D, ×r in AXIS where only its axial component acts: code_aster's
+/// te0085) on continuum cells, ρ the `ELAS/RHO` of each cell's material
+/// at the solve (code_aster's te0015/te0085 read it with `rcvalb`, which
+/// stops when it is missing).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Gravity {
+    pub cells: Vec<CellId>,
+    /// g·d/|d| (GRAVITE times the unit DIRECTION).
+    pub acceleration: [f64; 3],
+    /// `file:line:col` of the `PESANTEUR` keyword, for the solve's
+    /// messages (a cell without RHO).
+    pub at: String,
+}
+
+/// `FORCE_ARETE`: force and moment per unit length (FX FY FZ MX MY MZ) on
+/// segments of a 3D model; `AFFE_CHAR_MECA_F`: functions of `INST`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EdgeForce {
+    pub cells: Vec<CellId>,
+    pub force: [f64; 6],
+    pub functions: [Option<LoadFunction>; 6],
+}
+
 /// `AFFE_CHAR_CINE(MECA_IMPO=…)`: eliminated imposed values
 /// (`AFFE_CHAR_CINE_F`: `imposed_fn`).
 #[derive(Clone, Debug, PartialEq)]
@@ -495,6 +519,10 @@ pub struct MechanicalLoad {
     pub boundary: Vec<BoundaryLoad>,
     /// `FORCE_INTERNE`: force per unit volume on continuum cells.
     pub volume: Vec<VolumeForce>,
+    /// `PESANTEUR`.
+    pub gravity: Vec<Gravity>,
+    /// `FORCE_ARETE` (constant or, `AFFE_CHAR_MECA_F`, functions of INST).
+    pub edges: Vec<EdgeForce>,
     /// `AFFE_CHAR_MECA_F`: the same loads given by functions.
     pub imposed_fn: Vec<ImposedFn>,
     pub nodal_forces_fn: Vec<ImposedFn>,

@@ -794,6 +794,29 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
                         }
                     }
                 }
+                gravity_loads(&mut loads, &l.gravity, &m, setup, model)?;
+                for e in &l.edges {
+                    if e.functions.iter().all(Option::is_none) {
+                        for &cell in &e.cells {
+                            loads.add(
+                                Load::EdgeForce {
+                                    cell,
+                                    force: e.force,
+                                },
+                                m.clone(),
+                            );
+                        }
+                    }
+                    for (k, f) in e.functions.iter().enumerate() {
+                        let Some(f) = f else { continue };
+                        let mut unit = [0.0; 6];
+                        unit[k] = 1.0;
+                        let mk = function_multiplier(f, [0.0; 3], &m, &setup.instants, &cuts)?;
+                        for &cell in &e.cells {
+                            loads.add(Load::EdgeForce { cell, force: unit }, mk.clone());
+                        }
+                    }
+                }
                 for i in &l.imposed_fn {
                     loads.add(
                         Load::Imposed {
@@ -935,6 +958,59 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
         thermal_loads(&mut loads, temp, &setup.materials, mesh, model)?;
     }
     Ok(loads)
+}
+
+/// `PESANTEUR` as volume forces ρ g d on its continuum cells, ρ the
+/// ELAS/RHO of each cell's material (an error located at the keyword when
+/// it has none, as code_aster's `rcvalb` stops); in AXIS only the axial
+/// component acts (te0085 loads DY alone, times r as every AXIS load).
+fn gravity_loads(
+    loads: &mut Loads,
+    gravity: &[crate::concept::Gravity],
+    m: &aster_fem::Multiplier,
+    setup: &SolveSetup,
+    model: &Model,
+) -> Result<(), ExecError> {
+    for g in gravity {
+        for &cell in &g.cells {
+            let (hypothesis, thickness) = match model.element_kind(cell) {
+                Some(aster_fem::ElementKind::Continuum { hypothesis, .. }) => {
+                    (Some(*hypothesis), None)
+                }
+                Some(aster_fem::ElementKind::Shell { section, .. }) => {
+                    (None, Some(section.thickness))
+                }
+                _ => continue,
+            };
+            let rho = setup
+                .materials
+                .cells
+                .get(&cell)
+                .and_then(|mat| mat.density)
+                .ok_or_else(|| {
+                    ExecError::new(format!(
+                        "AFFE_CHAR_MECA/PESANTEUR: the material of cell {} has no ELAS/RHO, which gravity needs (code_aster stops in rcvalb) ({})",
+                        model.cell_name(cell),
+                        g.at
+                    ))
+                })?;
+            if let Some(h) = thickness {
+                // te0032: ρ h g d per unit area of the facet (dxroep).
+                let force = g.acceleration.map(|a| rho * h * a);
+                loads.add(Load::ShellForce { cell, force }, m.clone());
+                continue;
+            }
+            let mut force = g.acceleration.map(|a| rho * a);
+            if hypothesis == Some(aster_fem::Hypothesis::Axisymmetric) {
+                force[0] = 0.0;
+                force[2] = 0.0;
+            }
+            if force.iter().any(|f| *f != 0.0) {
+                loads.add(Load::VolumeForce { cell, force }, m.clone());
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The thermal strain α (T − T_ref) of `AFFE_VARC(NOM_VARC='TEMP')` as

@@ -728,8 +728,8 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 // code_aster's MECA_POU_D_E: SEG2.
                 Modelisation::BeamEuler => ty == aster_mesh::CellType::SEG2,
                 Modelisation::Solid3D => ty.dim() >= 2,
-                // code_aster's DKT elements: MEDKTR3, MEDKQU4 (its edge
-                // elements for FORCE_ARETE are not reproduced).
+                // code_aster's DKT elements: MEDKTR3, MEDKQU4 (FORCE_ARETE
+                // loads the edges' nodes directly: loads_more).
                 Modelisation::Dkt => {
                     matches!(
                         ty,

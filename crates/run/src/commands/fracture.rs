@@ -881,7 +881,9 @@ fn check_loads_but(
             | Load::VolumeForce { cell, .. }
             | Load::SurfaceForceAt { cell, .. }
             | Load::PressureAt { cell, .. }
-            | Load::VolumeForceAt { cell, .. } => on_cell(*cell).then(|| mesh.cell_name(*cell)),
+            | Load::VolumeForceAt { cell, .. }
+            | Load::EdgeForce { cell, .. }
+            | Load::ShellForce { cell, .. } => on_cell(*cell).then(|| mesh.cell_name(*cell)),
             Load::NodalForce { dof, .. } => {
                 reached(dof.node).then(|| format!("node {}", mesh.node_name(dof.node)))
             }

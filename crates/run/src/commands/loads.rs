@@ -160,6 +160,67 @@ pub(crate) fn last_per_dof<T>(items: Vec<T>, key: impl Fn(&T) -> (NodeId, CompNa
         .collect()
 }
 
+/// code_aster's `ordlrl` on the relations of one keyword (`aflrch` calls
+/// it on each keyword's list): of relations with two or more terms on the
+/// same DOFs with proportional coefficients (within 1e4·ε of the largest),
+/// only the last is kept, whatever their right-hand sides. A node on two
+/// occurrences of LIAISON_GROUP (sections sharing a line) gets its
+/// relation once, not twice (a singular system).
+pub(crate) fn drop_redundant(relations: Vec<LinearRelation>) -> Vec<LinearRelation> {
+    let eps = 1.0e4 * f64::EPSILON;
+    let order = |c: CompName| COMPS.iter().position(|x| *x == c).unwrap_or(usize::MAX);
+    let sorted: Vec<Vec<(NodeId, usize, f64)>> = relations
+        .iter()
+        .map(|r| {
+            let mut t: Vec<_> = r.terms.iter().map(|&(n, c, a)| (n, order(c), a)).collect();
+            t.sort_by_key(|&(n, c, _)| (n, c));
+            t
+        })
+        .collect();
+    let mut by_dofs: std::collections::HashMap<Vec<(NodeId, usize)>, Vec<usize>> =
+        Default::default();
+    for (k, t) in sorted.iter().enumerate() {
+        if t.len() >= 2 {
+            by_dofs
+                .entry(t.iter().map(|&(n, c, _)| (n, c)).collect())
+                .or_default()
+                .push(k);
+        }
+    }
+    let mut dropped = vec![false; relations.len()];
+    for same in by_dofs.values() {
+        for (i, &k1) in same.iter().enumerate() {
+            let t1 = &sorted[k1];
+            let (imax, amax) = t1
+                .iter()
+                .enumerate()
+                .map(|(i, t)| (i, t.2.abs()))
+                .fold((0, 0.0), |m, x| if x.1 > m.1 { x } else { m });
+            if amax == 0.0 {
+                continue;
+            }
+            // Every earlier relation proportional to this one goes.
+            for &k2 in &same[..i] {
+                let t2 = &sorted[k2];
+                let ratio = t2[imax].2 / t1[imax].2;
+                if t1
+                    .iter()
+                    .zip(t2)
+                    .all(|(a, b)| (b.2 - ratio * a.2).abs() <= eps * amax)
+                {
+                    dropped[k2] = true;
+                }
+            }
+        }
+    }
+    relations
+        .into_iter()
+        .zip(dropped)
+        .filter(|(_, d)| !d)
+        .map(|(r, _)| r)
+        .collect()
+}
+
 /// The imposed values of one occurrence, appended to `out`.
 fn imposed_in(
     ex: &Executor,
@@ -363,6 +424,30 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "LIAISON_MAIL/TYPE_RACCORD",
         "LIAISON_MAIL/ELIM_MULT",
         "LIAISON_MAIL/DDL",
+        "PESANTEUR",
+        "PESANTEUR/GROUP_MA",
+        "PESANTEUR/GRAVITE",
+        "PESANTEUR/DIRECTION",
+        "FORCE_ARETE",
+        "FORCE_ARETE/GROUP_MA",
+        "FORCE_ARETE/FX",
+        "FORCE_ARETE/FY",
+        "FORCE_ARETE/FZ",
+        "FORCE_ARETE/MX",
+        "FORCE_ARETE/MY",
+        "FORCE_ARETE/MZ",
+        "LIAISON_OBLIQUE",
+        "LIAISON_OBLIQUE/GROUP_NO",
+        "LIAISON_OBLIQUE/GROUP_MA",
+        "LIAISON_OBLIQUE/SANS_GROUP_NO",
+        "LIAISON_OBLIQUE/SANS_GROUP_MA",
+        "LIAISON_OBLIQUE/ANGL_NAUT",
+        "LIAISON_OBLIQUE/DX",
+        "LIAISON_OBLIQUE/DY",
+        "LIAISON_OBLIQUE/DZ",
+        "LIAISON_OBLIQUE/DRX",
+        "LIAISON_OBLIQUE/DRY",
+        "LIAISON_OBLIQUE/DRZ",
     ],
     values: &[
         Values::new("DDL_IMPO/BLOCAGE", &["DEPLACEMENT", "ROTATION"]),
@@ -422,9 +507,10 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
                 .extend(face_dnor(ex, occ, (&model, &mesh, &carried))?);
         }
     }
+    let mut grouped = Vec::new();
     for occ in kw.factor("LIAISON_GROUP") {
         let rhs = occ.f64("COEF_IMPO").unwrap_or(0.0);
-        load.relations.extend(liaison_group(
+        grouped.extend(liaison_group(
             ex,
             "AFFE_CHAR_MECA/LIAISON_GROUP",
             occ,
@@ -432,6 +518,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             rhs,
         )?);
     }
+    load.relations.extend(drop_redundant(grouped));
     for occ in kw.factor("LIAISON_ELEM") {
         load.relations
             .extend(liaison_elem_3d_pou(ex, occ, (&model, &mesh, &carried))?);
@@ -456,6 +543,36 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             }
         }
     }
+    let ctx = (&*model, &*mesh, carried.as_slice());
+    for occ in kw.factor("PESANTEUR") {
+        load.gravity
+            .push(super::loads_more::pesanteur(ex, kw, occ, (&model, &mesh))?);
+    }
+    for occ in kw.factor("FORCE_ARETE") {
+        load.edges
+            .push(super::loads_more::force_arete(ex, occ, ctx)?);
+    }
+    let mut oblique = Vec::new();
+    for occ in kw.factor("LIAISON_OBLIQUE") {
+        let what = "AFFE_CHAR_MECA/LIAISON_OBLIQUE";
+        let mut given = Vec::new();
+        for key in ["DX", "DY", "DZ", "DRX", "DRY", "DRZ"] {
+            if let Some(s) = occ.first(key) {
+                let v = s.as_f64().ok_or_else(|| {
+                    ex.kw_error(
+                        what,
+                        occ,
+                        key,
+                        "a real value is required (functions need AFFE_CHAR_MECA_F)",
+                    )
+                })?;
+                given.push((key, v));
+            }
+        }
+        let rows = super::loads_more::liaison_oblique(ex, what, occ, ctx, &given)?;
+        oblique.extend(rows.into_iter().map(|(_, r)| r));
+    }
+    load.relations.extend(drop_redundant(oblique));
     load.nodal_forces = imposed_values(
         ex,
         kw.factor("FORCE_NODALE"),
@@ -945,6 +1062,33 @@ fn liaison_elem_3d_pou(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn proportional_relations_of_a_keyword_are_kept_once_the_last() {
+        let r = |terms: Vec<(u32, CompName, f64)>, rhs: f64| LinearRelation {
+            terms: terms
+                .into_iter()
+                .map(|(n, c, a)| (NodeId(n), c, a))
+                .collect(),
+            rhs,
+        };
+        let kept = drop_redundant(vec![
+            r(vec![(1, "DX", 1.0), (2, "DX", -1.0)], 0.0),
+            r(vec![(3, "DY", 1.0), (4, "DY", -1.0)], 0.0),
+            // The first, written the other way round and doubled.
+            r(vec![(2, "DX", 2.0), (1, "DX", -2.0)], 5.0),
+            // Same DOFs, not proportional: kept.
+            r(vec![(3, "DY", 1.0), (4, "DY", 1.0)], 0.0),
+        ]);
+        assert_eq!(
+            kept,
+            vec![
+                r(vec![(3, "DY", 1.0), (4, "DY", -1.0)], 0.0),
+                r(vec![(2, "DX", 2.0), (1, "DX", -2.0)], 5.0),
+                r(vec![(3, "DY", 1.0), (4, "DY", 1.0)], 0.0),
+            ]
+        );
+    }
 
     #[test]
     fn a_dof_given_twice_in_a_load_keeps_its_last_value() {

@@ -171,7 +171,49 @@ pub(crate) const AFFE_CHAR_MECA_F: Support = Support::keywords(&[
     "LIAISON_GROUP/COEF_MULT_1",
     "LIAISON_GROUP/COEF_MULT_2",
     "LIAISON_GROUP/COEF_IMPO",
+    "FORCE_ARETE",
+    "FORCE_ARETE/GROUP_MA",
+    "FORCE_ARETE/FX",
+    "FORCE_ARETE/FY",
+    "FORCE_ARETE/FZ",
+    "FORCE_ARETE/MX",
+    "FORCE_ARETE/MY",
+    "FORCE_ARETE/MZ",
+    "LIAISON_OBLIQUE",
+    "LIAISON_OBLIQUE/GROUP_NO",
+    "LIAISON_OBLIQUE/GROUP_MA",
+    "LIAISON_OBLIQUE/SANS_GROUP_NO",
+    "LIAISON_OBLIQUE/SANS_GROUP_MA",
+    "LIAISON_OBLIQUE/ANGL_NAUT",
+    "LIAISON_OBLIQUE/DX",
+    "LIAISON_OBLIQUE/DY",
+    "LIAISON_OBLIQUE/DZ",
+    "LIAISON_OBLIQUE/DRX",
+    "LIAISON_OBLIQUE/DRY",
+    "LIAISON_OBLIQUE/DRZ",
 ]);
+
+/// A function of `INST` only (edge forces and relations: aster does not
+/// evaluate them at points), refused at the keyword otherwise.
+fn inst_function(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    key: &str,
+) -> Result<Option<LoadFunction>, ExecError> {
+    let f = function_at(ex, cmd, occ, key)?;
+    if let Some(p) = f
+        .as_ref()
+        .and_then(|f| f.0.parameters().into_iter().find(|p| *p != "INST"))
+    {
+        let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
+        return Err(ex.unsupported(
+            &format!("{cmd}/{key} as a function of {p} (only functions of INST)"),
+            span,
+        ));
+    }
+    Ok(f)
+}
 
 pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let cmd = "AFFE_CHAR_MECA_F";
@@ -254,6 +296,38 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
                 relation,
                 function: function.clone(),
             }));
+    }
+    for occ in kw.factor("FORCE_ARETE") {
+        let what = "AFFE_CHAR_MECA_F/FORCE_ARETE";
+        let mut functions: [Option<LoadFunction>; 6] = Default::default();
+        for (k, (key, _)) in super::loads_more::EDGE_COMPS.iter().enumerate() {
+            functions[k] = inst_function(ex, what, occ, key)?;
+        }
+        let given = std::array::from_fn(|k| functions[k].is_some());
+        let cells = super::loads_more::edge_cells(ex, what, occ, ctx, given)?;
+        load.edges.push(EdgeForce {
+            cells,
+            force: [0.0; 6],
+            functions,
+        });
+    }
+    for occ in kw.factor("LIAISON_OBLIQUE") {
+        let what = "AFFE_CHAR_MECA_F/LIAISON_OBLIQUE";
+        let mut given = Vec::new();
+        let mut functions = std::collections::HashMap::new();
+        for key in ["DX", "DY", "DZ", "DRX", "DRY", "DRZ"] {
+            if let Some(f) = inst_function(ex, what, occ, key)? {
+                given.push((key, 1.0));
+                functions.insert(key, f);
+            }
+        }
+        for (key, relation) in super::loads_more::liaison_oblique(ex, what, occ, ctx, &given)? {
+            let function = functions
+                .get(key.as_str())
+                .cloned()
+                .ok_or_else(|| ExecError::new(format!("{what}: no function for {key}")))?;
+            load.relations_fn.push(RelationFn { relation, function });
+        }
     }
     store_result(ex, call, Concept::MechanicalLoad(Rc::new(load)))
 }

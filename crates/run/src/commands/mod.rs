@@ -15,6 +15,7 @@ pub(crate) mod liaison_mail;
 pub(crate) mod lire_resu;
 pub(crate) mod loads;
 pub(crate) mod loads_f;
+pub(crate) mod loads_more;
 pub(crate) mod macr_lign_coupe;
 pub(crate) mod mesh;
 pub(crate) mod post;

@@ -1,0 +1,271 @@
+//! PESANTEUR, FORCE_ARETE and LIAISON_OBLIQUE of AFFE_CHAR_MECA (and the
+//! last two of AFFE_CHAR_MECA_F): the keywords read into a
+//! [`MechanicalLoad`]'s gravity, edge forces and linear relations.
+//!
+//! - `PESANTEUR=_F(GRAVITE=g, DIRECTION=d, GROUP_MA)`: code_aster's
+//!   `cbpesa` keeps g and d/|d| (CHARGES2_53 when |d| is zero) on the
+//!   cells of GROUP_MA, every cell without it; te0015 (3D) and te0085
+//!   (D_PLAN, C_PLAN, AXIS) integrate ρ g dᵢ Nᵢ with the RIGI family, ρ the
+//!   ELAS RHO of the cell (`rcvalb`, which stops when it is missing), and
+//!   in AXIS only the axial component g d_y, times r. On DKT/DKQ shells
+//!   te0032 loads ρ h g d per unit area (dxroep) on the translations,
+//!   weighted as a constant pressure (dxtfor, dxqfor). aster turns it into
+//!   a volume force per continuum cell, or a shell force per facet, at the
+//!   solve, when the material field and the thicknesses are known
+//!   (`fembridge`). POU_D_E beams (te0150), COQUE_3D shells, discrete and
+//!   joint elements are refused at the keyword.
+//! - `FORCE_ARETE=_F(GROUP_MA, FX…MZ)`: force and moment per unit length
+//!   on the segments of a 3D model (solid edges: te0469, DKT edges:
+//!   te0034, COQUE_3D edges: te0418), ∫ Nᵢ f dl; moments on the nodes
+//!   that carry rotations only.
+//! - `LIAISON_OBLIQUE=_F(ANGL_NAUT, DX…DRZ)`: code_aster's `caliob`: the
+//!   rotation of the nautical angles (`matrot`, degrees), and per node and
+//!   component given one relation Σₖ R[i][k] uₖ = value over the
+//!   translations (DX) or rotations (DRX) of the model's dimension, i the
+//!   component's axis of the oblique frame.
+
+use super::loads::check_dof;
+use crate::concept::*;
+use crate::executor::Executor;
+use crate::select;
+use aster_eval::{ExecError, Keywords};
+use aster_mesh::{CellType, Mesh};
+
+/// `PESANTEUR` (one occurrence): the gravity on the continuum cells of
+/// its GROUP_MA (every cell of the model without it).
+pub(super) fn pesanteur(
+    ex: &Executor,
+    kw: &Keywords,
+    occ: &Keywords,
+    (model, mesh): (&ModelDef, &Mesh),
+) -> Result<Gravity, ExecError> {
+    let what = "AFFE_CHAR_MECA/PESANTEUR";
+    let g = occ
+        .f64("GRAVITE")
+        .ok_or_else(|| ex.kw_error(what, occ, "GRAVITE", "a real value is required"))?;
+    let d: Vec<f64> = occ
+        .simple("DIRECTION")
+        .iter()
+        .filter_map(|s| s.as_f64())
+        .collect();
+    let [dx, dy, dz] = d[..] else {
+        return Err(ex.kw_error(what, occ, "DIRECTION", "three real values are required"));
+    };
+    let norm = (dx * dx + dy * dy + dz * dz).sqrt();
+    if !(norm > f64::MIN_POSITIVE && norm.is_finite()) {
+        return Err(ex.kw_error(
+            what,
+            occ,
+            "DIRECTION",
+            "the direction is zero (code_aster CHARGES2_53)",
+        ));
+    }
+    let selected = if occ.contains("GROUP_MA") {
+        select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?
+    } else {
+        model.cells.keys().copied().collect()
+    };
+    let span = occ
+        .keyword("GROUP_MA")
+        .or_else(|| kw.keyword("PESANTEUR"))
+        .map(|k| k.span)
+        .unwrap_or_default();
+    for &c in &selected {
+        let Some(m) = model.cells.get(&c) else {
+            continue;
+        };
+        let structural = match m {
+            Modelisation::BeamEuler => Some("POU_D_E beam (a mass per length ρA)"),
+            Modelisation::Coque3d => Some("COQUE_3D shell (te0403's mass per area)"),
+            Modelisation::Discrete2D | Modelisation::Discrete3D | Modelisation::DiscreteRot3D => {
+                Some("discrete element (its CARA_ELEM mass)")
+            }
+            Modelisation::PlaneJoint => Some("joint element"),
+            _ => None,
+        };
+        if let Some(kind) = structural {
+            return Err(ex.unsupported(
+                &format!(
+                    "{what} on cell {}, a {kind}: gravity is applied to continuum cells (3D, D_PLAN, C_PLAN, AXIS) and DKT shells only",
+                    select::cell_name(mesh, c)
+                ),
+                span,
+            ));
+        }
+    }
+    let shells: Vec<_> = selected
+        .iter()
+        .copied()
+        .filter(|c| model.cells.get(c) == Some(&Modelisation::Dkt))
+        .collect();
+    let mut cells = super::loads::continuum_cells(model, mesh, selected);
+    cells.extend(shells);
+    let at = kw
+        .keyword("PESANTEUR")
+        .and_then(|k| ex.location(k.span))
+        .unwrap_or_else(|| "PESANTEUR".into());
+    Ok(Gravity {
+        cells,
+        acceleration: [g * dx / norm, g * dy / norm, g * dz / norm],
+        at,
+    })
+}
+
+/// The components of FORCE_ARETE and the DOFs they load.
+pub(super) const EDGE_COMPS: [(&str, CompName); 6] = [
+    ("FX", "DX"),
+    ("FY", "DY"),
+    ("FZ", "DZ"),
+    ("MX", "DRX"),
+    ("MY", "DRY"),
+    ("MZ", "DRZ"),
+];
+
+/// The segments of a `FORCE_ARETE` occurrence, checked: SEG2/SEG3 cells of
+/// a 3D model whose nodes carry the components given (`given[k]`).
+pub(super) fn edge_cells(
+    ex: &Executor,
+    what: &str,
+    occ: &Keywords,
+    (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+    given: [bool; 6],
+) -> Result<Vec<aster_mesh::CellId>, ExecError> {
+    let cells = select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    if cells.is_empty() {
+        return Err(ex.kw_error(
+            what,
+            occ,
+            "GROUP_MA",
+            "give the edges (GROUP_MA of SEG2/SEG3 cells)",
+        ));
+    }
+    if model.dim() != 3 {
+        return Err(ex.kw_error(
+            what,
+            occ,
+            "GROUP_MA",
+            "FORCE_ARETE loads the edges of a 3D model (FORCE_CONTOUR in 2D)",
+        ));
+    }
+    for &c in &cells {
+        let cell = mesh.cell(c);
+        if !matches!(cell.ty, CellType::SEG2 | CellType::SEG3) {
+            return Err(ex.kw_error(
+                what,
+                occ,
+                "GROUP_MA",
+                format!(
+                    "cell {} is a {}; FORCE_ARETE needs segments (SEG2, SEG3)",
+                    select::cell_name(mesh, c),
+                    cell.ty.name()
+                ),
+            ));
+        }
+        for &n in &cell.nodes {
+            for (k, (_, comp)) in EDGE_COMPS.iter().enumerate() {
+                if given[k] {
+                    check_dof(model, mesh, carried, n, comp, what)?;
+                }
+            }
+        }
+    }
+    Ok(cells)
+}
+
+/// `AFFE_CHAR_MECA/FORCE_ARETE` (one occurrence).
+pub(super) fn force_arete(
+    ex: &Executor,
+    occ: &Keywords,
+    ctx: (&ModelDef, &Mesh, &[bool]),
+) -> Result<EdgeForce, ExecError> {
+    let what = "AFFE_CHAR_MECA/FORCE_ARETE";
+    let mut force = [0.0; 6];
+    for (k, (key, _)) in EDGE_COMPS.iter().enumerate() {
+        if let Some(s) = occ.first(key) {
+            force[k] = s.as_f64().ok_or_else(|| {
+                ex.kw_error(
+                    what,
+                    occ,
+                    key,
+                    "a real value is required (functions need AFFE_CHAR_MECA_F)",
+                )
+            })?;
+        }
+    }
+    let given = force.map(|v| v != 0.0);
+    let cells = edge_cells(ex, what, occ, ctx, given)?;
+    Ok(EdgeForce {
+        cells,
+        force,
+        functions: Default::default(),
+    })
+}
+
+/// The rows of the rotation of `ANGL_NAUT` (degrees; missing angles 0):
+/// the oblique frame's axes in global coordinates (code_aster's `matrot`).
+fn oblique_frame(ex: &Executor, what: &str, occ: &Keywords) -> Result<[[f64; 3]; 3], ExecError> {
+    let angles: Vec<f64> = occ
+        .simple("ANGL_NAUT")
+        .iter()
+        .filter_map(|s| s.as_f64())
+        .collect();
+    if angles.is_empty() || angles.len() > 3 {
+        return Err(ex.kw_error(what, occ, "ANGL_NAUT", "one to three angles (degrees)"));
+    }
+    let mut a = [0.0; 3];
+    for (k, v) in angles.iter().enumerate() {
+        a[k] = v.to_radians();
+    }
+    Ok(aster_fem::orthotropic::matrot(a))
+}
+
+/// One `LIAISON_OBLIQUE` occurrence: for each component given (its key
+/// and value — the value of AFFE_CHAR_MECA, or 1 for AFFE_CHAR_MECA_F,
+/// whose function then scales the right-hand side), one relation per node.
+pub(super) fn liaison_oblique(
+    ex: &Executor,
+    what: &str,
+    occ: &Keywords,
+    (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
+    components: &[(&str, f64)],
+) -> Result<Vec<(String, LinearRelation)>, ExecError> {
+    let frame = oblique_frame(ex, what, occ)?;
+    let nodes =
+        select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    let dim = model.dim();
+    let mut out = Vec::new();
+    for &(key, value) in components {
+        let (axis, comps): (usize, [CompName; 3]) = match key {
+            "DX" => (0, ["DX", "DY", "DZ"]),
+            "DY" => (1, ["DX", "DY", "DZ"]),
+            "DZ" => (2, ["DX", "DY", "DZ"]),
+            "DRX" => (0, ["DRX", "DRY", "DRZ"]),
+            "DRY" => (1, ["DRX", "DRY", "DRZ"]),
+            "DRZ" => (2, ["DRX", "DRY", "DRZ"]),
+            _ => continue,
+        };
+        let direction = frame[axis];
+        for &n in &nodes {
+            let mut terms = Vec::new();
+            for (k, &comp) in comps.iter().enumerate().take(dim) {
+                if direction[k] == 0.0 {
+                    continue;
+                }
+                check_dof(model, mesh, carried, n, comp, what)?;
+                terms.push((n, comp, direction[k]));
+            }
+            if terms.is_empty() {
+                return Err(ex.kw_error(
+                    what,
+                    occ,
+                    "ANGL_NAUT",
+                    format!(
+                        "the oblique axis of {key} has no component in the {dim}D model's plane"
+                    ),
+                ));
+            }
+            out.push((key.to_string(), LinearRelation { terms, rhs: value }));
+        }
+    }
+    Ok(out)
+}
