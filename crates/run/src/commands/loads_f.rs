@@ -103,14 +103,9 @@ fn time_function(
 }
 
 const DISPLACEMENTS: [(&str, CompName); 3] = [("DX", "DX"), ("DY", "DY"), ("DZ", "DZ")];
-const FORCES: [(&str, CompName); 6] = [
-    ("FX", "DX"),
-    ("FY", "DY"),
-    ("FZ", "DZ"),
-    ("MX", "DRX"),
-    ("MY", "DRY"),
-    ("MZ", "DRZ"),
-];
+/// The force components and the DOFs they load (FORCE_NODALE's and
+/// FORCE_ARETE's).
+const FORCES: [(&str, CompName); 6] = super::loads_more::EDGE_COMPS;
 
 /// What AFFE_CHAR_MECA_F reads (`crate::support`).
 pub(crate) const AFFE_CHAR_MECA_F: Support = Support::keywords(&[
