@@ -3,6 +3,8 @@
 //! oblique_block.comm) against their analytic values, and the refusals,
 //! located at the keyword.
 
+mod scene;
+
 use std::path::{Path, PathBuf};
 
 fn root() -> PathBuf {
@@ -195,4 +197,37 @@ FIN()
     let _ = std::fs::remove_dir_all(dir);
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (2, 0));
+}
+
+/// FORCE_ARETE on the edge of a COQUE_3D plate is refused at its GROUP_MA
+/// (code_aster's te0418 is not reproduced: ssls119c/f ended 3.4e-4 off).
+#[test]
+fn an_edge_force_on_coque3d_cells_is_refused_at_its_group() {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../comm/coque3d_strip.comm"),
+    )
+    .expect("the coque3d scene");
+    let cut = text.find("FIN()").expect("the scene ends with FIN");
+    let mut variant = text[..cut].to_string();
+    variant.push_str(
+        "edge_load = AFFE_CHAR_MECA(MODELE=MO, FORCE_ARETE=_F(GROUP_MA=\"EDGE_FORCE\", FZ=1.0))\nFIN()\n",
+    );
+    // The strip's mesh with its free end x = 4 as a SEG3 cell.
+    let mesh = scene::read("coque3d_strip.mail").replacen(
+        "GROUP_MA\n  STRIP",
+        "SEG3\n  E1 N16_0 N16_2 N16_1\nFINSF\nGROUP_MA\n  EDGE_FORCE\n  E1\nFINSF\nGROUP_MA\n  STRIP",
+        1,
+    );
+    assert!(mesh.contains("EDGE_FORCE"));
+    let dir = scene::temp("coque3d-edge-mesh");
+    let path = dir.join("strip_edge.mail");
+    std::fs::write(&path, mesh).unwrap();
+    let (_, nook, err) = scene::run_on(&variant, path.to_str().unwrap(), "coque3d-edge");
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(nook, 0);
+    let err = err.expect("an error");
+    assert!(
+        err.contains("FORCE_ARETE on the edges of COQUE_3D cells") && err.contains("case.comm:"),
+        "{err}"
+    );
 }

@@ -16,8 +16,9 @@
 //!   joint elements are refused at the keyword.
 //! - `FORCE_ARETE=_F(GROUP_MA, FX…MZ)`: force and moment per unit length
 //!   on the segments of a 3D model (solid edges: te0469, DKT edges:
-//!   te0034, COQUE_3D edges: te0418), ∫ Nᵢ f dl; moments on the nodes
-//!   that carry rotations only.
+//!   te0034), ∫ Nᵢ f dl; moments on the nodes that carry rotations only.
+//!   The edges of COQUE_3D cells (te0418) are refused: ssls119c/f ended
+//!   3.4e-4 off code_aster's deflection.
 //! - `LIAISON_OBLIQUE=_F(ANGL_NAUT, DX…DRZ)`: code_aster's `caliob`: the
 //!   rotation of the nautical angles (`matrot`, degrees), and per node and
 //!   component given one relation Σₖ R[i][k] uₖ = value over the
@@ -147,8 +148,22 @@ pub(super) fn edge_cells(
             "FORCE_ARETE loads the edges of a 3D model (FORCE_CONTOUR in 2D)",
         ));
     }
+    // Edges of COQUE_3D cells: te0418 is not reproduced (ssls119c/f, QUAD9
+    // plates under an edge force, end 3.4e-4 off code_aster's deflection).
+    let coque3d_nodes: std::collections::HashSet<aster_mesh::NodeId> = model
+        .cells
+        .iter()
+        .filter(|(_, m)| **m == Modelisation::Coque3d)
+        .flat_map(|(c, _)| mesh.cell(*c).nodes.iter().copied())
+        .collect();
     for &c in &cells {
         let cell = mesh.cell(c);
+        if cell.nodes.iter().any(|n| coque3d_nodes.contains(n)) {
+            return Err(ex.unsupported(
+                "AFFE_CHAR_MECA/FORCE_ARETE on the edges of COQUE_3D cells (code_aster's te0418 is not reproduced: ssls119c/f end 3.4e-4 off its deflection; DKT and 3D edges are)",
+                occ.keyword("GROUP_MA").map(|k| k.span).unwrap_or_default(),
+            ));
+        }
         if !matches!(cell.ty, CellType::SEG2 | CellType::SEG3) {
             return Err(ex.kw_error(
                 what,
