@@ -221,6 +221,28 @@ pub(crate) fn drop_redundant(relations: Vec<LinearRelation>) -> Vec<LinearRelati
         .collect()
 }
 
+/// The real value of `key` in `occ`, if given; a function there (which
+/// AFFE_CHAR_MECA_F takes) is an error at the keyword.
+pub(super) fn real_value(
+    ex: &Executor,
+    what: &str,
+    occ: &Keywords,
+    key: &str,
+) -> Result<Option<f64>, ExecError> {
+    occ.first(key)
+        .map(|s| {
+            s.as_f64().ok_or_else(|| {
+                ex.kw_error(
+                    what,
+                    occ,
+                    key,
+                    "a real value is required (functions need AFFE_CHAR_MECA_F)",
+                )
+            })
+        })
+        .transpose()
+}
+
 /// The imposed values of one occurrence, appended to `out`.
 fn imposed_in(
     ex: &Executor,
@@ -233,15 +255,7 @@ fn imposed_in(
     let nodes =
         select::nodes_without(occ, mesh).map_err(|e| ExecError::new(format!("{what}: {e}")))?;
     for &c in comps {
-        if let Some(s) = occ.first(c) {
-            let v = s.as_f64().ok_or_else(|| {
-                ex.kw_error(
-                    what,
-                    occ,
-                    c,
-                    "a real value is required (functions need AFFE_CHAR_MECA_F)",
-                )
-            })?;
+        if let Some(v) = real_value(ex, what, occ, c)? {
             let name: &'static str = match c {
                 "DX" => "DX",
                 "DY" => "DY",
@@ -557,15 +571,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         let what = "AFFE_CHAR_MECA/LIAISON_OBLIQUE";
         let mut given = Vec::new();
         for key in ["DX", "DY", "DZ", "DRX", "DRY", "DRZ"] {
-            if let Some(s) = occ.first(key) {
-                let v = s.as_f64().ok_or_else(|| {
-                    ex.kw_error(
-                        what,
-                        occ,
-                        key,
-                        "a real value is required (functions need AFFE_CHAR_MECA_F)",
-                    )
-                })?;
+            if let Some(v) = real_value(ex, what, occ, key)? {
                 given.push((key, v));
             }
         }

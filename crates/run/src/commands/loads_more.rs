@@ -25,7 +25,7 @@
 //!   translations (DX) or rotations (DRX) of the model's dimension, i the
 //!   component's axis of the oblique frame.
 
-use super::loads::check_dof;
+use super::loads::{check_dof, real_value};
 use crate::concept::*;
 use crate::executor::Executor;
 use crate::select;
@@ -196,15 +196,8 @@ pub(super) fn force_arete(
     let what = "AFFE_CHAR_MECA/FORCE_ARETE";
     let mut force = [0.0; 6];
     for (k, (key, _)) in EDGE_COMPS.iter().enumerate() {
-        if let Some(s) = occ.first(key) {
-            force[k] = s.as_f64().ok_or_else(|| {
-                ex.kw_error(
-                    what,
-                    occ,
-                    key,
-                    "a real value is required (functions need AFFE_CHAR_MECA_F)",
-                )
-            })?;
+        if let Some(v) = real_value(ex, what, occ, key)? {
+            force[k] = v;
         }
     }
     let given = force.map(|v| v != 0.0);
