@@ -614,8 +614,7 @@ fn write(p: &Parsed, lines: &Lines<'_>) -> Result<String, MeshError> {
     // Cells by code_aster type block (GMSH type order), connectivity remapped.
     let mut blocks: Vec<Vec<(String, Vec<String>)>> = vec![Vec::new(); 19];
     let mut cell_names = HashSet::new();
-    let mut groups: Vec<(i64, Vec<String>, Vec<usize>)> = Vec::new();
-    for (k, e) in p.elements.iter().enumerate() {
+    for e in &p.elements {
         let name = numbered('M', e.tag, lines, e.line, 1)?;
         if !cell_names.insert(e.tag) {
             return Err(lines.error(e.line, 1, format!("element {} is defined twice", e.tag)));
@@ -637,26 +636,7 @@ fn write(p: &Parsed, lines: &Lines<'_>) -> Result<String, MeshError> {
             used[i] = true;
             nodes.push(numbered('N', tag, lines, e.line, 1)?);
         }
-        blocks[e.ty - 1].push((name.clone(), nodes));
-        for &phys in &e.physicals {
-            if phys == 0 {
-                continue;
-            }
-            if phys >= 1_000_000 {
-                return Err(lines.error(
-                    e.line,
-                    1,
-                    format!("physical group {phys}: code_aster names groups GM1 to GM999999"),
-                ));
-            }
-            match groups.iter_mut().find(|g| g.0 == phys) {
-                Some(g) => {
-                    g.1.push(name.clone());
-                    g.2.push(k);
-                }
-                None => groups.push((phys, vec![name.clone()], vec![k])),
-            }
-        }
+        blocks[e.ty - 1].push((name, nodes));
     }
     let mut text = MailText::new("AUTEUR=INTERFACE_GMSH");
     let mut kept = Vec::new();
@@ -671,38 +651,12 @@ fn write(p: &Parsed, lines: &Lines<'_>) -> Result<String, MeshError> {
             text.cells(NOMAIL[t], cells);
         }
     }
-    if let Some(names) = &p.names {
-        // 2.x with `$PhysicalNames` (`gmlelt`, `gmeelt`): one group per
-        // name, in their order, of the cells (in file order) one of whose
-        // tags is the name's and whose dimension is the name's; a tag
-        // without a name makes no group.
-        groups = names
+    for (name, elements) in groups(p, lines)? {
+        let members: Vec<String> = elements
             .iter()
-            .map(|(dim, tag, _)| {
-                let ks: Vec<usize> = p
-                    .elements
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, e)| type_dim(e.ty) == *dim && e.tags.contains(tag))
-                    .map(|(k, _)| k)
-                    .collect();
-                let members = ks
-                    .iter()
-                    .map(|&k| format!("M{}", p.elements[k].tag))
-                    .collect();
-                (*tag, members, ks)
-            })
+            .map(|&k| format!("M{}", p.elements[k].tag))
             .collect();
-    }
-    for (i, (phys, members, elements)) in groups.iter().enumerate() {
-        if members.is_empty() {
-            continue;
-        }
-        let name = match &p.names {
-            Some(names) => names[i].2.clone(),
-            None => format!("GM{phys}"),
-        };
-        text.group("GROUP_MA", &name, members);
+        text.group("GROUP_MA", &name, &members);
         // A group of one point cell is also a node group.
         if let [k] = elements.as_slice() {
             let e = &p.elements[*k];
@@ -712,6 +666,54 @@ fn write(p: &Parsed, lines: &Lines<'_>) -> Result<String, MeshError> {
         }
     }
     Ok(text.finish())
+}
+
+/// The cell groups of a parsed file, each a name and its elements (indices
+/// into `p.elements`, in file order); empty groups are left out.
+/// - 2.x with `$PhysicalNames` (`gmlelt`, `gmeelt`): one group per name, in
+///   their order, of the cells one of whose tags is the name's and whose
+///   dimension is the name's; a tag without a name makes no group.
+/// - Otherwise `GM<physical>` for each physical tag, in the order it first
+///   appears.
+fn groups(p: &Parsed, lines: &Lines<'_>) -> Result<Vec<(String, Vec<usize>)>, MeshError> {
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    if let Some(names) = &p.names {
+        for (dim, tag, name) in names {
+            let ks: Vec<usize> = p
+                .elements
+                .iter()
+                .enumerate()
+                .filter(|(_, e)| type_dim(e.ty) == *dim && e.tags.contains(tag))
+                .map(|(k, _)| k)
+                .collect();
+            groups.push((name.clone(), ks));
+        }
+    } else {
+        let mut tags: Vec<i64> = Vec::new();
+        for (k, e) in p.elements.iter().enumerate() {
+            for &phys in &e.physicals {
+                if phys == 0 {
+                    continue;
+                }
+                if phys >= 1_000_000 {
+                    return Err(lines.error(
+                        e.line,
+                        1,
+                        format!("physical group {phys}: code_aster names groups GM1 to GM999999"),
+                    ));
+                }
+                match tags.iter().position(|&t| t == phys) {
+                    Some(g) => groups[g].1.push(k),
+                    None => {
+                        tags.push(phys);
+                        groups.push((format!("GM{phys}"), vec![k]));
+                    }
+                }
+            }
+        }
+    }
+    groups.retain(|(_, ks)| !ks.is_empty());
+    Ok(groups)
 }
 
 #[cfg(test)]
