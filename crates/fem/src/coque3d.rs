@@ -41,7 +41,7 @@
 //!
 //! Also: `SIEF_ELGA` by layer ([`stresses`]), `SIGM_ELNO` in the user's
 //! frame ([`sigm_elno`], `elno_coq3d`) and the pressure load
-//! ([`pressure_load`], `fpres`). docs/fem.md lists the routines and the
+//! ([`pressure_load`], `fpres`; [`surface_load`], `fsurf`). docs/fem.md lists the routines and the
 //! measurements.
 //!
 //! Numerics only: no keyword is read here. The model carries it as
@@ -1015,12 +1015,9 @@ pub fn stresses(
 
 /// The load of a pressure on the mid-surface (`te0403` → `fpres`,
 /// `CHAR_MECA_PRES_R`): `pres` at the edge nodes, acting against each
-/// node's normal n (a positive pressure pushes along −n), interpolated
-/// with the QUAD8 / TRIA6 functions at the normal points (FPG9COQ, FPG7),
-/// times |a₁×a₂| there; forces on the translations only (the nodal
-/// moments are zero, and `fpres`'s correction by `kijkm1` reads a part of
-/// the reference data no routine writes: zero). `nddl` values, the order
-/// of [`stiffness`].
+/// node's normal n (a positive pressure pushes along −n): the force
+/// −pᵢ nᵢ at each node, integrated as [`surface_load`]. `nddl` values, the
+/// order of [`stiffness`].
 pub fn pressure_load(xyz: &[V3], pres: &[f64]) -> Result<Vec<f64>, String> {
     let r = reference(xyz)?;
     if pres.len() != r.nb1 {
@@ -1031,6 +1028,39 @@ pub fn pressure_load(xyz: &[V3], pres: &[f64]) -> Result<Vec<f64>, String> {
         ));
     }
     let frames = nodal_frames(xyz, &r)?;
+    let forces: Vec<V3> = (0..r.nb1)
+        .map(|j| frames[j][2].map(|n| -pres[j] * n))
+        .collect();
+    surface_load(xyz, &forces)
+}
+
+/// The normal at each edge node of a COQUE_3D cell (`vectan`'s `vectn`),
+/// the direction a pressure acts against ([`pressure_load`]).
+pub fn node_normals(xyz: &[V3]) -> Result<Vec<V3>, String> {
+    let r = reference(xyz)?;
+    Ok(nodal_frames(xyz, &r)?
+        .iter()
+        .take(r.nb1)
+        .map(|f| f[2])
+        .collect())
+}
+
+/// The load of a force per unit area on the mid-surface (`te0403` →
+/// `fsurf`, `CHAR_MECA_FRCO3D` with global components; `fpres` is the
+/// same with −p n): `forces` (global) at the edge nodes, interpolated
+/// with the QUAD8 / TRIA6 functions at the normal points (FPG9COQ, FPG7),
+/// times |a₁×a₂| there, on the translations only (`forsrg`'s correction
+/// by `kijkm1` reads a part of the reference data no routine writes:
+/// zero). `nddl` values, the order of [`stiffness`].
+pub fn surface_load(xyz: &[V3], forces: &[V3]) -> Result<Vec<f64>, String> {
+    let r = reference(xyz)?;
+    if forces.len() != r.nb1 {
+        return Err(format!(
+            "a COQUE_3D surface load needs {} nodal values, {} given",
+            r.nb1,
+            forces.len()
+        ));
+    }
     let mut f = vec![0.; r.nddl()];
     for q in 0..r.npgsn() {
         let s = &r.gn[q];
@@ -1041,7 +1071,7 @@ pub fn pressure_load(xyz: &[V3], pres: &[f64]) -> Result<Vec<f64>, String> {
             for j in 0..r.nb1 {
                 a1[k] += s.d1[j] * xyz[j][k];
                 a2[k] += s.d2[j] * xyz[j][k];
-                chg[k] += -pres[j] * frames[j][2][k] * s.f[j];
+                chg[k] += forces[j][k] * s.f[j];
             }
         }
         let rnormc = norm(cross(a1, a2));

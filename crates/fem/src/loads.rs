@@ -89,12 +89,24 @@ pub enum Load {
     /// segment's stiffness scheme (code_aster's te0469, te0034, te0418).
     /// Moments need the rotations of shell nodes.
     EdgeForce { cell: CellId, force: [f64; 6] },
-    /// A force per unit area on a DKT/DKQ facet (`PESANTEUR` on shells:
-    /// ρ h g d), global components, on the translations of its nodes with
-    /// the weights of a constant pressure (code_aster's te0032 → dxtfor,
-    /// dxqfor: A/3 per node of a triangle, a sixth of the three corner
-    /// triangles of a quadrangle's node; no moment).
-    ShellForce { cell: CellId, force: [f64; 3] },
+    /// A force and moment per unit area on a shell cell (`FORCE_COQUE`
+    /// with global components or a pressure, `PESANTEUR` on shells:
+    /// ρ h g d): the value at each node of the cell (global FX FY FZ MX MY
+    /// MZ, then a pressure p adding −p n to the force, n the facet's normal
+    /// on a DKT, the node's on a COQUE_3D), acting in the plane at `offset` from the mid-surface along the
+    /// facet's normal n (`PLAN`: the moment offset·n × F added, te0032).
+    /// DKT/DKQ (te0032 → dxtfor, dxqfor; [`shell_nodal_load`]): a
+    /// triangle's node receives its value × A/3, a quadrangle's node half
+    /// the sum, over the three corner triangles it belongs to, of
+    /// (its value/6 + the two others'/12) × the triangle's area.
+    /// COQUE_3D (te0403 → fsurf): the forces interpolated at the normal
+    /// points ([`crate::coque3d::surface_load`]); moments and offsets are
+    /// errors there.
+    ShellForce {
+        cell: CellId,
+        nodal: Vec<[f64; 7]>,
+        offset: f64,
+    },
     /// An isotropic free strain ε_th = α (T − T_ref) on a continuum cell
     /// (a temperature given by `AFFE_VARC`), its value at each node of the
     /// cell, interpolated at the Gauss points with the shape functions:
@@ -197,10 +209,33 @@ impl Loads {
                     }
                 }
                 Load::EdgeForce { cell, force } => edge_check(model, *cell, force)?,
-                Load::ShellForce { cell, .. } => {
-                    if !matches!(model.element_kind(*cell), Some(ElementKind::Shell { .. })) {
+                Load::ShellForce {
+                    cell,
+                    nodal,
+                    offset,
+                } => {
+                    let n = model
+                        .mesh()
+                        .cells
+                        .get(cell.0 as usize)
+                        .map(|c| c.nodes.len());
+                    let coque3d = model.is_coque3d(*cell);
+                    let what = if coque3d {
+                        (nodal.iter().any(|v| v[3..6].iter().any(|m| *m != 0.0)) || *offset != 0.0)
+                            .then_some(
+                            "a COQUE_3D cell takes forces only (no moment, no PLAN offset: te0403)",
+                        )
+                    } else if !matches!(model.element_kind(*cell), Some(ElementKind::Shell { .. }))
+                    {
+                        Some("the cell carries no DKT/DKQ or COQUE_3D shell element")
+                    } else {
+                        None
+                    };
+                    let what = what.or((n != Some(nodal.len()))
+                        .then_some("one value per node of the cell is needed"));
+                    if let Some(what) = what {
                         return Err(FemError::Model(format!(
-                            "shell force (PESANTEUR) on cell {}, which carries no DKT/DKQ shell element",
+                            "shell force on cell {}: {what}",
                             model.cell_name(*cell)
                         )));
                     }
@@ -337,21 +372,17 @@ impl Loads {
                         edge_load(model, *cell, &force.map(|v| v * m), &mut f)?;
                     }
                 }
-                Load::ShellForce { cell, force } => {
+                Load::ShellForce {
+                    cell,
+                    nodal,
+                    offset,
+                } => {
                     let m = item.mult.eval(t)?;
-                    let (_, weights) = shell_pressure_weights(model.mesh(), *cell)?;
-                    let c = model.mesh().cell(*cell);
-                    for (&n, w) in c.nodes.iter().zip(weights) {
-                        let first = model.dofs().node_first(n).ok_or_else(|| {
-                            FemError::Model(format!(
-                                "shell force on cell {}: a node carries no element of the model",
-                                model.cell_name(*cell)
-                            ))
-                        })?;
-                        for k in 0..3 {
-                            f[first + k] += m * w * force[k];
-                        }
+                    if m == 0.0 {
+                        continue;
                     }
+                    let scaled: Vec<[f64; 7]> = nodal.iter().map(|v| v.map(|x| x * m)).collect();
+                    shell_load(model, *cell, &scaled, *offset, &mut f)?;
                 }
                 Load::VolumeForce { cell, force } => {
                     let m = item.mult.eval(t)?;
@@ -374,39 +405,14 @@ impl Loads {
                         &mut f,
                     )?;
                 }
-                Load::Pressure { cell, pressure } if model.is_coque3d(*cell) => {
-                    // COQUE_3D (`te0403`): the pressure along each node's
-                    // normal, on the translations of the edge nodes.
-                    let p = pressure * item.mult.eval(t)?;
-                    let err = |m: String| {
-                        FemError::Model(format!(
-                            "pressure on COQUE_3D cell {}: {m}",
-                            model.cell_name(*cell)
-                        ))
-                    };
-                    let xyz = crate::element::coque3d_coords(model.mesh(), *cell).map_err(err)?;
-                    let fe =
-                        crate::coque3d::pressure_load(&xyz, &vec![p; xyz.len()]).map_err(err)?;
-                    let dofs = crate::element::element_dofs(model, *cell);
-                    for (&i, v) in dofs.iter().zip(fe) {
-                        f[i] += v;
-                    }
-                }
                 Load::Pressure { cell, pressure } if model.element_comps(*cell) == 6 => {
+                    // A pressure on a shell: −p n at each node, n the
+                    // facet's normal (DKT, te0032) or each node's
+                    // (COQUE_3D, te0403 → fpres).
                     let p = pressure * item.mult.eval(t)?;
-                    let (normal, weights) = shell_pressure_weights(model.mesh(), *cell)?;
-                    let c = model.mesh().cell(*cell);
-                    for (&n, w) in c.nodes.iter().zip(weights) {
-                        let first = model.dofs().node_first(n).ok_or_else(|| {
-                            FemError::Model(format!(
-                                "pressure on shell cell {}: a node carries no element of the model",
-                                model.cell_name(*cell)
-                            ))
-                        })?;
-                        for k in 0..3 {
-                            f[first + k] -= p * w * normal[k];
-                        }
-                    }
+                    let n = model.mesh().cell(*cell).nodes.len();
+                    let nodal = vec![[0., 0., 0., 0., 0., 0., p]; n];
+                    shell_load(model, *cell, &nodal, 0.0, &mut f)?;
                 }
                 Load::Pressure { cell, .. } | Load::PressureAt { cell, .. } => {
                     let m = item.mult.eval(t)?;
@@ -658,22 +664,124 @@ fn boundary_normal(dim: usize, t1: [f64; 3], t2: [f64; 3]) -> [f64; 3] {
     }
 }
 
-/// Integrates a traction t(x, n) over a boundary cell into `f`. In 2D the
-/// normal is (t_y, −t_x) of the tangent (node 1 → node 2); in 3D it is
-/// ∂x/∂ξ × ∂x/∂η. Callers re-orient it when they need the outward one.
-/// A constant pressure on a shell facet (code_aster's `CHAR_MECA_PRES_R`
-/// of the DKT/DKQ elements, te0032): the force −p·n on the translations
-/// of the nodes, n the facet's local z axis (`dxtpgl`: (P2−P1)×(P3−P1);
-/// `dxqpgl`: the cross product of the lines joining the mid-points of
-/// opposite edges), and no moment. Returns n and each node's weight: A/3
-/// on a triangle (`dxtfor`); on a quadrangle (`dxqfor`) the linear load of
-/// each of the four corner triangles (1,2,4), (2,3,1), (3,4,2), (4,1,3),
-/// averaged, so that a node receives 1/6 of the areas of the three corner
-/// triangles it belongs to (A/4 on a parallelogram).
-fn shell_pressure_weights(
-    mesh: &aster_mesh::Mesh,
+/// Adds a shell load (force, moment and pressure per unit area at each
+/// node of the cell, global components) to `f`: see [`Load::ShellForce`].
+fn shell_load(
+    model: &Model,
     cell: CellId,
-) -> Result<([f64; 3], Vec<f64>), FemError> {
+    nodal: &[[f64; 7]],
+    offset: f64,
+    f: &mut [f64],
+) -> Result<(), FemError> {
+    if model.is_coque3d(cell) {
+        let err = |m: String| {
+            FemError::Model(format!(
+                "load on COQUE_3D cell {}: {m}",
+                model.cell_name(cell)
+            ))
+        };
+        let xyz = crate::element::coque3d_coords(model.mesh(), cell).map_err(err)?;
+        let normals = crate::coque3d::node_normals(&xyz).map_err(err)?;
+        // The edge nodes (the centre, last, takes no surface load).
+        let forces: Vec<[f64; 3]> = nodal
+            .iter()
+            .zip(&normals)
+            .map(|(v, n)| [0, 1, 2].map(|k| v[k] - v[6] * n[k]))
+            .collect();
+        let fe = crate::coque3d::surface_load(&xyz, &forces).map_err(err)?;
+        let dofs = crate::element::element_dofs(model, cell);
+        for (&i, v) in dofs.iter().zip(fe) {
+            f[i] += v;
+        }
+        return Ok(());
+    }
+    let (n, facet) = shell_facet(model.mesh(), cell)?;
+    let values: Vec<[f64; 6]> = nodal
+        .iter()
+        .map(|v| {
+            let force = [0, 1, 2].map(|k| v[k] - v[6] * n[k]);
+            // te0032's PLAN: the moment d (e_z × F) in the facet's frame.
+            let nf = [
+                n[1] * force[2] - n[2] * force[1],
+                n[2] * force[0] - n[0] * force[2],
+                n[0] * force[1] - n[1] * force[0],
+            ];
+            let [a, b, c] = force;
+            [
+                a,
+                b,
+                c,
+                v[3] + offset * nf[0],
+                v[4] + offset * nf[1],
+                v[5] + offset * nf[2],
+            ]
+        })
+        .collect();
+    let c = model.mesh().cell(cell);
+    for (&node, v) in c.nodes.iter().zip(shell_nodal_load(&facet, &values)) {
+        let first = model.dofs().node_first(node).ok_or_else(|| {
+            FemError::Model(format!(
+                "load on shell cell {}: a node carries no element of the model",
+                model.cell_name(cell)
+            ))
+        })?;
+        for (k, x) in v.iter().enumerate() {
+            f[first + k] += x;
+        }
+    }
+    Ok(())
+}
+
+/// A DKT/DKQ facet's areas as its loads use them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Facet {
+    /// A triangle's area (`gtria3`).
+    Triangle(f64),
+    /// A quadrangle's corner triangles (i, i+1, i−1), their areas in the
+    /// facet's plane (`gquad4`'s `airetr`).
+    Quadrangle([f64; 4]),
+}
+
+impl Facet {
+    #[cfg(test)]
+    fn nodes(&self) -> usize {
+        match self {
+            Facet::Triangle(_) => 3,
+            Facet::Quadrangle(_) => 4,
+        }
+    }
+}
+
+/// The nodal loads of values per unit area given at the nodes of a
+/// DKT/DKQ facet (code_aster's dxtfor, dxqfor; the same in any frame, the
+/// rule being linear and the same for every component): a triangle's node
+/// gets its value × A/3; a quadrangle's node half the sum, over the corner
+/// triangles it belongs to, of (its value/6 + the two others'/12) × the
+/// triangle's area (a constant value: a sixth of those three areas).
+fn shell_nodal_load(facet: &Facet, values: &[[f64; 6]]) -> Vec<[f64; 6]> {
+    match facet {
+        Facet::Triangle(area) => values.iter().map(|v| v.map(|x| x * area / 3.0)).collect(),
+        Facet::Quadrangle(areas) => {
+            let mut out = vec![[0.0; 6]; 4];
+            for (t, a) in areas.iter().enumerate() {
+                let tri = [t, (t + 1) % 4, (t + 3) % 4];
+                for &j in &tri {
+                    for k in 0..6 {
+                        let others: f64 =
+                            tri.iter().filter(|&&o| o != j).map(|&o| values[o][k]).sum();
+                        out[j][k] += 0.5 * a * (values[j][k] / 6.0 + others / 12.0);
+                    }
+                }
+            }
+            out
+        }
+    }
+}
+
+/// A DKT/DKQ facet's normal (its local z axis: `dxtpgl`: (P2−P1)×(P3−P1);
+/// `dxqpgl`: the cross product of the lines joining the mid-points of
+/// opposite edges) and areas.
+fn shell_facet(mesh: &aster_mesh::Mesh, cell: CellId) -> Result<([f64; 3], Facet), FemError> {
     let c = mesh.cell(cell);
     let x: Vec<[f64; 3]> = c.nodes.iter().map(|&n| mesh.coord(n)).collect();
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
@@ -691,7 +799,7 @@ fn shell_pressure_weights(
             Ok([a[0] / l, a[1] / l, a[2] / l])
         } else {
             Err(FemError::Model(format!(
-                "pressure on degenerate shell cell {}",
+                "load on degenerate shell cell {}",
                 mesh.cell_name(cell)
             )))
         }
@@ -700,9 +808,9 @@ fn shell_pressure_weights(
         3 => {
             let n = cross(sub(x[1], x[0]), sub(x[2], x[0]));
             let area = 0.5 * dot(n, n).sqrt();
-            Ok((unit(n)?, vec![area / 3.0; 3]))
+            Ok((unit(n)?, Facet::Triangle(area)))
         }
-        _ => {
+        4 => {
             let mid = |a: usize, b: usize| {
                 [
                     0.5 * (x[a][0] + x[b][0]),
@@ -723,16 +831,21 @@ fn shell_pressure_weights(
                 );
                 0.5 * (a[0] * b[1] - a[1] * b[0])
             };
-            let t = [corner(0), corner(1), corner(2), corner(3)];
-            // Node i belongs to every corner triangle but the opposite one.
-            let w = (0..4)
-                .map(|i| (t.iter().sum::<f64>() - t[(i + 2) % 4]) / 6.0)
-                .collect();
-            Ok((n, w))
+            Ok((
+                n,
+                Facet::Quadrangle([corner(0), corner(1), corner(2), corner(3)]),
+            ))
         }
+        k => Err(FemError::Model(format!(
+            "load on shell cell {}: a DKT facet has 3 or 4 nodes, not {k}",
+            mesh.cell_name(cell)
+        ))),
     }
 }
 
+/// Integrates a traction t(x, n) over a boundary cell into `f`. In 2D the
+/// normal is (t_y, −t_x) of the tangent (node 1 → node 2); in 3D it is
+/// ∂x/∂ξ × ∂x/∂η. Callers re-orient it when they need the outward one.
 fn surface_load(
     model: &Model,
     cell: CellId,
@@ -972,9 +1085,22 @@ fn volume_load(
 }
 
 #[cfg(test)]
-mod shell_pressure_tests {
-    use super::shell_pressure_weights;
+mod shell_load_tests {
+    use super::{shell_facet, shell_nodal_load};
     use aster_mesh::{Cell, CellId, CellType, Mesh, NodeId};
+
+    /// The nodal weights of a constant unit value and the facet's normal.
+    fn weights(m: &Mesh) -> ([f64; 3], Vec<f64>) {
+        let (n, facet) = shell_facet(m, CellId(0)).unwrap();
+        let ones = vec![[1.0; 6]; facet.nodes()];
+        (
+            n,
+            shell_nodal_load(&facet, &ones)
+                .iter()
+                .map(|v| v[0])
+                .collect(),
+        )
+    }
 
     fn mesh(points: &[[f64; 3]], ty: CellType) -> Mesh {
         Mesh {
@@ -998,13 +1124,13 @@ mod shell_pressure_tests {
             &[[0., 0., 0.], [2., 0., 0.], [3., 1., 0.], [1., 1., 0.]],
             CellType::QUAD4,
         );
-        let (n, w) = shell_pressure_weights(&q, CellId(0)).unwrap();
+        let (n, w) = weights(&q);
         assert!((n[2] - 1.0).abs() < 1e-15 && n[0].abs() < 1e-15);
         for x in &w {
             assert!((x - 0.5).abs() < 1e-14, "{w:?}");
         }
         let t = mesh(&[[0., 0., 0.], [0., 0., 3.], [0., 2., 0.]], CellType::TRIA3);
-        let (n, w) = shell_pressure_weights(&t, CellId(0)).unwrap();
+        let (n, w) = weights(&t);
         assert!((n[0] + 1.0).abs() < 1e-15, "{n:?}"); // (0,0,3)×(0,2,0) = (−6,0,0)
         for x in &w {
             assert!((x - 1.0).abs() < 1e-14, "{w:?}");
@@ -1020,7 +1146,7 @@ mod shell_pressure_tests {
             &[[0., 0., 0.], [4., 0., 0.], [3., 1., 0.], [1., 1., 0.]],
             CellType::QUAD4,
         );
-        let (_, w) = shell_pressure_weights(&q, CellId(0)).unwrap();
+        let (_, w) = weights(&q);
         // Corner triangle areas: at node 1: 2, 2: 2, 3: 1, 4: 1.
         let t = [2.0, 2.0, 1.0, 1.0];
         let expect: Vec<f64> = (0..4).map(|i| (6.0 - t[(i + 2) % 4]) / 6.0).collect();
@@ -1029,5 +1155,40 @@ mod shell_pressure_tests {
         }
         assert!((w.iter().sum::<f64>() - 3.0).abs() < 1e-14);
         assert!((w[0] - 5.0 / 6.0).abs() < 1e-14 && (w[2] - 2.0 / 3.0).abs() < 1e-14);
+    }
+}
+
+#[cfg(test)]
+mod shell_nodal_tests {
+    use super::{shell_nodal_load, Facet};
+
+    /// dxqfor with values varying over the nodes: each corner triangle
+    /// (i, i+1, i−1) gives its node (f_i/6 + (f_j + f_k)/12)·A, halved;
+    /// the total is the mean over the four triangles of A·(f_i+f_j+f_k)/3
+    /// summed, i.e. half of Σ_t A_t·mean_t.
+    #[test]
+    fn quadrangle_of_varying_values_follows_dxqfor() {
+        let areas = [2.0, 2.0, 1.0, 1.0];
+        let f = [1.0, 2.0, 3.0, 4.0];
+        let values: Vec<[f64; 6]> = f.iter().map(|&x| [x, 0., 0., 0., 0., 0.]).collect();
+        let out = shell_nodal_load(&Facet::Quadrangle(areas), &values);
+        // Node 1 (index 0) is in triangles 0 (0,1,3), 1 (1,2,0), 3 (3,0,2).
+        let node0 = 0.5
+            * (areas[0] * (f[0] / 6.0 + (f[1] + f[3]) / 12.0)
+                + areas[1] * (f[0] / 6.0 + (f[1] + f[2]) / 12.0)
+                + areas[3] * (f[0] / 6.0 + (f[3] + f[2]) / 12.0));
+        assert!((out[0][0] - node0).abs() < 1e-14, "{out:?}");
+        let total: f64 = out.iter().map(|v| v[0]).sum();
+        let expect: f64 = 0.5
+            * (0..4)
+                .map(|t| areas[t] * (f[t] + f[(t + 1) % 4] + f[(t + 3) % 4]) / 3.0)
+                .sum::<f64>();
+        assert!((total - expect).abs() < 1e-13, "{total} vs {expect}");
+        // A triangle: each node its own value × A/3, no mixing (dxtfor).
+        let tri = shell_nodal_load(&Facet::Triangle(3.0), &values[..3]);
+        assert_eq!(
+            tri.iter().map(|v| v[0]).collect::<Vec<_>>(),
+            vec![1.0, 2.0, 3.0]
+        );
     }
 }

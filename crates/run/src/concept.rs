@@ -500,6 +500,22 @@ pub struct EdgeForce {
     pub functions: [Option<LoadFunction>; 6],
 }
 
+/// `FORCE_COQUE`: a force and moment per unit area on shell cells (DKT,
+/// COQUE_3D): global FX FY FZ MX MY MZ, then a pressure PRES acting
+/// along −n, each a constant (`values`) or, `AFFE_CHAR_MECA_F`, a function
+/// of `INST` or of the coordinates (evaluated at the cell's nodes, as
+/// te0032/te0403 do). A cell of several occurrences keeps the last one's
+/// (code_aster's load map, `nocart`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShellForce {
+    pub cells: Vec<CellId>,
+    pub values: [f64; 7],
+    pub functions: [Option<LoadFunction>; 7],
+    /// `PLAN`: the plane the load acts in, in half thicknesses from the
+    /// mid-surface (INF −1, SUP +1, MOY and MAIL 0: no EXCENTREMENT).
+    pub plane: f64,
+}
+
 /// `AFFE_CHAR_CINE(MECA_IMPO=…)`: eliminated imposed values
 /// (`AFFE_CHAR_CINE_F`: `imposed_fn`).
 #[derive(Clone, Debug, PartialEq)]
@@ -523,6 +539,8 @@ pub struct MechanicalLoad {
     pub gravity: Vec<Gravity>,
     /// `FORCE_ARETE` (constant or, `AFFE_CHAR_MECA_F`, functions of INST).
     pub edges: Vec<EdgeForce>,
+    /// `FORCE_COQUE` (constant or, `AFFE_CHAR_MECA_F`, functions).
+    pub shells: Vec<ShellForce>,
     /// `AFFE_CHAR_MECA_F`: the same loads given by functions.
     pub imposed_fn: Vec<ImposedFn>,
     pub nodal_forces_fn: Vec<ImposedFn>,

@@ -817,6 +817,9 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
                         }
                     }
                 }
+                for sh in &l.shells {
+                    shell_loads(&mut loads, sh, &m, setup, model, &cuts)?;
+                }
                 for i in &l.imposed_fn {
                     loads.add(
                         Load::Imposed {
@@ -996,8 +999,17 @@ fn gravity_loads(
                 })?;
             if let Some(h) = thickness {
                 // te0032: ρ h g d per unit area of the facet (dxroep).
-                let force = g.acceleration.map(|a| rho * h * a);
-                loads.add(Load::ShellForce { cell, force }, m.clone());
+                let [x, y, z] = g.acceleration.map(|a| rho * h * a);
+                let nodal =
+                    vec![[x, y, z, 0.0, 0.0, 0.0, 0.0]; model.mesh().cell(cell).nodes.len()];
+                loads.add(
+                    Load::ShellForce {
+                        cell,
+                        nodal,
+                        offset: 0.0,
+                    },
+                    m.clone(),
+                );
                 continue;
             }
             let mut force = g.acceleration.map(|a| rho * a);
@@ -1007,6 +1019,77 @@ fn gravity_loads(
             }
             if force.iter().any(|f| *f != 0.0) {
                 loads.add(Load::VolumeForce { cell, force }, m.clone());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `FORCE_COQUE` as shell forces per cell: the constant values at every
+/// node, each function of the coordinates at the cell's nodes (te0032,
+/// te0403 evaluate them there), each function of `INST` as a multiplier;
+/// PLAN's offset from a DKT's thickness (COQUE_3D: none, te0403).
+fn shell_loads(
+    loads: &mut Loads,
+    sh: &crate::concept::ShellForce,
+    m: &aster_fem::Multiplier,
+    setup: &SolveSetup,
+    model: &Model,
+    cuts: &[f64],
+) -> Result<(), ExecError> {
+    let mesh = model.mesh();
+    for &cell in &sh.cells {
+        let offset = match model.element_kind(cell) {
+            Some(aster_fem::ElementKind::Shell { section, .. }) => {
+                sh.plane * section.thickness / 2.0
+            }
+            _ => 0.0,
+        };
+        let nodes = &mesh.cell(cell).nodes;
+        if sh.values.iter().any(|v| *v != 0.0) {
+            let nodal = vec![sh.values; nodes.len()];
+            loads.add(
+                Load::ShellForce {
+                    cell,
+                    nodal,
+                    offset,
+                },
+                m.clone(),
+            );
+        }
+        for (k, f) in sh.functions.iter().enumerate() {
+            let Some(f) = f else { continue };
+            if of_coordinates(f) {
+                let points: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coord(n)).collect();
+                let nodal = point_values(f, &points)?
+                    .into_iter()
+                    .map(|v| {
+                        let mut x = [0.0; 7];
+                        x[k] = v;
+                        x
+                    })
+                    .collect();
+                loads.add(
+                    Load::ShellForce {
+                        cell,
+                        nodal,
+                        offset,
+                    },
+                    m.clone(),
+                );
+            } else {
+                let mut unit = [0.0; 7];
+                unit[k] = 1.0;
+                let mk = function_multiplier(f, [0.0; 3], m, &setup.instants, cuts)?;
+                let nodal = vec![unit; nodes.len()];
+                loads.add(
+                    Load::ShellForce {
+                        cell,
+                        nodal,
+                        offset,
+                    },
+                    mk,
+                );
             }
         }
     }

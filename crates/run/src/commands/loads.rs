@@ -442,6 +442,17 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "PESANTEUR/GROUP_MA",
         "PESANTEUR/GRAVITE",
         "PESANTEUR/DIRECTION",
+        "FORCE_COQUE",
+        "FORCE_COQUE/TOUT",
+        "FORCE_COQUE/GROUP_MA",
+        "FORCE_COQUE/FX",
+        "FORCE_COQUE/FY",
+        "FORCE_COQUE/FZ",
+        "FORCE_COQUE/MX",
+        "FORCE_COQUE/MY",
+        "FORCE_COQUE/MZ",
+        "FORCE_COQUE/PRES",
+        "FORCE_COQUE/PLAN",
         "FORCE_ARETE",
         "FORCE_ARETE/GROUP_MA",
         "FORCE_ARETE/FX",
@@ -566,6 +577,23 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
         load.edges
             .push(super::loads_more::force_arete(ex, occ, ctx)?);
     }
+    for occ in kw.factor("FORCE_COQUE") {
+        let what = "AFFE_CHAR_MECA/FORCE_COQUE";
+        let mut values = [0.0; 7];
+        for (v, key) in values.iter_mut().zip(super::loads_more::SHELL_COMPS) {
+            *v = real_value(ex, what, occ, key)?.unwrap_or(0.0);
+        }
+        let shell = super::loads_more::force_coque(
+            ex,
+            what,
+            occ,
+            (&model, &mesh),
+            values,
+            Default::default(),
+        )?;
+        load.shells.push(shell);
+    }
+    load.shells = super::loads_more::last_per_cell(std::mem::take(&mut load.shells));
     let mut oblique = Vec::new();
     for occ in kw.factor("LIAISON_OBLIQUE") {
         let what = "AFFE_CHAR_MECA/LIAISON_OBLIQUE";

@@ -166,6 +166,17 @@ pub(crate) const AFFE_CHAR_MECA_F: Support = Support::keywords(&[
     "LIAISON_GROUP/COEF_MULT_1",
     "LIAISON_GROUP/COEF_MULT_2",
     "LIAISON_GROUP/COEF_IMPO",
+    "FORCE_COQUE",
+    "FORCE_COQUE/TOUT",
+    "FORCE_COQUE/GROUP_MA",
+    "FORCE_COQUE/FX",
+    "FORCE_COQUE/FY",
+    "FORCE_COQUE/FZ",
+    "FORCE_COQUE/MX",
+    "FORCE_COQUE/MY",
+    "FORCE_COQUE/MZ",
+    "FORCE_COQUE/PRES",
+    "FORCE_COQUE/PLAN",
     "FORCE_ARETE",
     "FORCE_ARETE/GROUP_MA",
     "FORCE_ARETE/FX",
@@ -306,6 +317,17 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
             functions,
         });
     }
+    for occ in kw.factor("FORCE_COQUE") {
+        let what = "AFFE_CHAR_MECA_F/FORCE_COQUE";
+        let mut functions: [Option<LoadFunction>; 7] = Default::default();
+        for (f, key) in functions.iter_mut().zip(super::loads_more::SHELL_COMPS) {
+            *f = time_function(ex, what, occ, key)?;
+        }
+        let shell =
+            super::loads_more::force_coque(ex, what, occ, (&model, &mesh), [0.0; 7], functions)?;
+        load.shells.push(shell);
+    }
+    load.shells = super::loads_more::last_per_cell(std::mem::take(&mut load.shells));
     for occ in kw.factor("LIAISON_OBLIQUE") {
         let what = "AFFE_CHAR_MECA_F/LIAISON_OBLIQUE";
         let mut given = Vec::new();

@@ -19,6 +19,15 @@
 //!   te0034), ∫ Nᵢ f dl; moments on the nodes that carry rotations only.
 //!   The edges of COQUE_3D cells (te0418) are refused: ssls119c/f ended
 //!   3.4e-4 off code_aster's deflection.
+//! - `FORCE_COQUE=_F(TOUT/GROUP_MA, FX…MZ | PRES, PLAN)`: force and
+//!   moment per unit area on the shell cells of the selection (the others
+//!   take none: code_aster computes it on the elements that have the
+//!   option), global components or a pressure along −n; DKT/DKQ te0032
+//!   (dxtfor, dxqfor: the nodal values weighted by the facet's areas;
+//!   PLAN INF/SUP add the moment ±h/2 n × F), COQUE_3D te0403 (fsurf:
+//!   interpolated at the normal points; PLAN has no effect there, moments
+//!   are refused: `forsrg` is not reproduced). The local components
+//!   F1 F2 F3 MF1 MF2 are refused.
 //! - `LIAISON_OBLIQUE=_F(ANGL_NAUT, DX…DRZ)`: code_aster's `caliob`: the
 //!   rotation of the nautical angles (`matrot`, degrees), and per node and
 //!   component given one relation Σₖ R[i][k] uₖ = value over the
@@ -110,6 +119,87 @@ pub(super) fn pesanteur(
         acceleration: [g * dx / norm, g * dy / norm, g * dz / norm],
         at,
     })
+}
+
+/// The components of FORCE_COQUE, in [`ShellForce`]'s order.
+pub(super) const SHELL_COMPS: [&str; 7] = ["FX", "FY", "FZ", "MX", "MY", "MZ", "PRES"];
+
+/// A `FORCE_COQUE` occurrence whose components `read` gives (a constant
+/// or a function each): its shell cells and PLAN, checked.
+pub(super) fn force_coque(
+    ex: &Executor,
+    what: &str,
+    occ: &Keywords,
+    (model, mesh): (&ModelDef, &Mesh),
+    values: [f64; 7],
+    functions: [Option<crate::concept::LoadFunction>; 7],
+) -> Result<ShellForce, ExecError> {
+    let selected =
+        select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+    let cells: Vec<_> = selected
+        .into_iter()
+        .filter(|c| {
+            matches!(
+                model.cells.get(c),
+                Some(Modelisation::Dkt | Modelisation::Coque3d)
+            )
+        })
+        .collect();
+    let at = if occ.contains("TOUT") {
+        "TOUT"
+    } else {
+        "GROUP_MA"
+    };
+    if cells.is_empty() {
+        return Err(ex.kw_error(
+            what,
+            occ,
+            at,
+            "the selection has no shell cell (DKT, COQUE_3D): FORCE_COQUE loads shells only",
+        ));
+    }
+    let moment = (3..6).find(|&k| values[k] != 0.0 || functions[k].is_some());
+    if let Some(k) = moment {
+        if let Some(&c) = cells
+            .iter()
+            .find(|c| model.cells.get(c) == Some(&Modelisation::Coque3d))
+        {
+            let span = occ
+                .keyword(SHELL_COMPS[k])
+                .map(|k| k.span)
+                .unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!(
+                    "{what}/{} on COQUE_3D cell {} (te0403's moments per unit area, forsrg, are not reproduced; forces and pressures are)",
+                    SHELL_COMPS[k],
+                    select::cell_name(mesh, c)
+                ),
+                span,
+            ));
+        }
+    }
+    let plane = match occ.str("PLAN").unwrap_or("MAIL") {
+        "INF" => -1.0,
+        "SUP" => 1.0,
+        _ => 0.0,
+    };
+    Ok(ShellForce {
+        cells,
+        values,
+        functions,
+        plane,
+    })
+}
+
+/// A cell of several FORCE_COQUE occurrences keeps the last one's
+/// (code_aster's load map: the last zone given for a cell holds).
+pub(super) fn last_per_cell(mut shells: Vec<ShellForce>) -> Vec<ShellForce> {
+    let mut seen = std::collections::HashSet::new();
+    for s in shells.iter_mut().rev() {
+        s.cells.retain(|c| seen.insert(*c));
+    }
+    shells.retain(|s| !s.cells.is_empty());
+    shells
 }
 
 /// The components of FORCE_ARETE and the DOFs they load.
