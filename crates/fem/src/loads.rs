@@ -253,7 +253,7 @@ impl Loads {
                     };
                     if model.element_comps(*cell) == 6 {
                         // A constant pressure on a shell facet acts along
-                        // its normal (`shell_pressure_weights`); forces and
+                        // its normal (`shell_load`); forces and
                         // pressures given point by point are not reproduced.
                         let constant_pressure = matches!(item.load, Load::Pressure { .. });
                         let facet = matches!(c.ty, CellType::TRIA3 | CellType::QUAD4)

@@ -514,6 +514,10 @@ pub struct ShellForce {
     /// `PLAN`: the plane the load acts in, in half thicknesses from the
     /// mid-surface (INF −1, SUP +1, MOY and MAIL 0: no EXCENTREMENT).
     pub plane: f64,
+    /// The sign of the pressure slot: 1 for `PRES`, −1 when the local
+    /// normal force `F3` was given there (te0032 and fsurf take F3 along
+    /// the normal n, PRES along −n).
+    pub normal_sign: f64,
 }
 
 /// `AFFE_CHAR_CINE(MECA_IMPO=…)`: eliminated imposed values

@@ -1046,8 +1046,10 @@ fn shell_loads(
             _ => 0.0,
         };
         let nodes = &mesh.cell(cell).nodes;
-        if sh.values.iter().any(|v| *v != 0.0) {
-            let nodal = vec![sh.values; nodes.len()];
+        let mut values = sh.values;
+        values[6] *= sh.normal_sign;
+        if values.iter().any(|v| *v != 0.0) {
+            let nodal = vec![values; nodes.len()];
             loads.add(
                 Load::ShellForce {
                     cell,
@@ -1065,7 +1067,7 @@ fn shell_loads(
                     .into_iter()
                     .map(|v| {
                         let mut x = [0.0; 7];
-                        x[k] = v;
+                        x[k] = if k == 6 { v * sh.normal_sign } else { v };
                         x
                     })
                     .collect();
@@ -1079,7 +1081,7 @@ fn shell_loads(
                 );
             } else {
                 let mut unit = [0.0; 7];
-                unit[k] = 1.0;
+                unit[k] = if k == 6 { sh.normal_sign } else { 1.0 };
                 let mk = function_multiplier(f, [0.0; 3], m, &setup.instants, cuts)?;
                 let nodal = vec![unit; nodes.len()];
                 loads.add(

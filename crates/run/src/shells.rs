@@ -42,8 +42,7 @@ fn is_structural(model: &ModelDef, cell: CellId) -> bool {
 
 /// AFFE_CHAR_MECA: a distributed force (`FORCE_FACE`, `FORCE_CONTOUR`) on
 /// shell cells is refused at its factor keyword (code_aster loads shells
-/// with `FORCE_COQUE`, not reproduced; `PRES_REP` is: aster-fem's
-/// `shell_pressure_weights`).
+/// with `FORCE_COQUE` or `PRES_REP`: aster-fem's `Load::ShellForce`).
 pub(crate) fn refuse_loads_on_shells(
     ex: &Executor,
     key: &str,

@@ -45,6 +45,43 @@ fn forces_and_moments_on_the_edge_of_a_dkt_strip_and_its_weight() {
 }
 
 #[test]
+fn force_coque_on_a_dkt_strip_global_normal_plane_and_functions() {
+    // 11 values x 2 (NON_REGRESSION, ANALYTIQUE).
+    assert_eq!(scene("shell_force_strip.comm", "edge_strip.mail"), (22, 0));
+}
+
+#[test]
+fn force_coque_off_shells_or_in_the_local_frame_is_refused() {
+    let err = refused(
+        r#"DEBUT()
+mesh = LIRE_MAILLAGE(FORMAT="ASTER")
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
+load = AFFE_CHAR_MECA(MODELE=model, FORCE_COQUE=_F(TOUT="OUI", PRES=1.0))
+FIN()
+"#,
+        "gravity_strip.mail",
+        "noshell",
+    );
+    assert!(err.contains("the selection has no shell cell"), "{err}");
+    assert!(err.contains("noshell.comm:4:"), "{err}");
+    let err = refused(
+        r#"DEBUT()
+mesh = LIRE_MAILLAGE(FORMAT="ASTER")
+model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA="STRIP", PHENOMENE="MECANIQUE", MODELISATION="DKT"))
+load = AFFE_CHAR_MECA(MODELE=model, FORCE_COQUE=_F(TOUT="OUI", F1=1.0))
+FIN()
+"#,
+        "edge_strip.mail",
+        "local",
+    );
+    assert!(
+        err.contains("not supported yet: AFFE_CHAR_MECA/FORCE_COQUE/F1"),
+        "{err}"
+    );
+    assert!(err.contains("local.comm:4:"), "{err}");
+}
+
+#[test]
 fn a_block_sliding_on_an_inclined_support() {
     assert_eq!(scene("oblique_block.comm", "oblique_block.mail"), (16, 0));
 }

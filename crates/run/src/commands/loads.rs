@@ -452,6 +452,7 @@ pub(crate) const AFFE_CHAR_MECA: Support = Support {
         "FORCE_COQUE/MY",
         "FORCE_COQUE/MZ",
         "FORCE_COQUE/PRES",
+        "FORCE_COQUE/F3",
         "FORCE_COQUE/PLAN",
         "FORCE_ARETE",
         "FORCE_ARETE/GROUP_MA",
@@ -579,8 +580,9 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     }
     for occ in kw.factor("FORCE_COQUE") {
         let what = "AFFE_CHAR_MECA/FORCE_COQUE";
+        let (keys, sign) = super::loads_more::shell_comps(occ);
         let mut values = [0.0; 7];
-        for (v, key) in values.iter_mut().zip(super::loads_more::SHELL_COMPS) {
+        for (v, key) in values.iter_mut().zip(keys) {
             *v = real_value(ex, what, occ, key)?.unwrap_or(0.0);
         }
         let shell = super::loads_more::force_coque(
@@ -590,6 +592,7 @@ pub fn affe_char_meca(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             (&model, &mesh),
             values,
             Default::default(),
+            sign,
         )?;
         load.shells.push(shell);
     }

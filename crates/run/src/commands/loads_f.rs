@@ -176,6 +176,7 @@ pub(crate) const AFFE_CHAR_MECA_F: Support = Support::keywords(&[
     "FORCE_COQUE/MY",
     "FORCE_COQUE/MZ",
     "FORCE_COQUE/PRES",
+    "FORCE_COQUE/F3",
     "FORCE_COQUE/PLAN",
     "FORCE_ARETE",
     "FORCE_ARETE/GROUP_MA",
@@ -319,12 +320,20 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
     }
     for occ in kw.factor("FORCE_COQUE") {
         let what = "AFFE_CHAR_MECA_F/FORCE_COQUE";
+        let (keys, sign) = super::loads_more::shell_comps(occ);
         let mut functions: [Option<LoadFunction>; 7] = Default::default();
-        for (f, key) in functions.iter_mut().zip(super::loads_more::SHELL_COMPS) {
+        for (f, key) in functions.iter_mut().zip(keys) {
             *f = time_function(ex, what, occ, key)?;
         }
-        let shell =
-            super::loads_more::force_coque(ex, what, occ, (&model, &mesh), [0.0; 7], functions)?;
+        let shell = super::loads_more::force_coque(
+            ex,
+            what,
+            occ,
+            (&model, &mesh),
+            [0.0; 7],
+            functions,
+            sign,
+        )?;
         load.shells.push(shell);
     }
     load.shells = super::loads_more::last_per_cell(std::mem::take(&mut load.shells));

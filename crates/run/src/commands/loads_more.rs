@@ -26,8 +26,9 @@
 //!   (dxtfor, dxqfor: the nodal values weighted by the facet's areas;
 //!   PLAN INF/SUP add the moment ±h/2 n × F), COQUE_3D te0403 (fsurf:
 //!   interpolated at the normal points; PLAN has no effect there, moments
-//!   are refused: `forsrg` is not reproduced). The local components
-//!   F1 F2 F3 MF1 MF2 are refused.
+//!   are refused: `forsrg` is not reproduced). The local normal force F3
+//!   is −PRES (both elements read it along n); the local F1 F2 MF1 MF2
+//!   are refused.
 //! - `LIAISON_OBLIQUE=_F(ANGL_NAUT, DX…DRZ)`: code_aster's `caliob`: the
 //!   rotation of the nautical angles (`matrot`, degrees), and per node and
 //!   component given one relation Σₖ R[i][k] uₖ = value over the
@@ -121,8 +122,21 @@ pub(super) fn pesanteur(
     })
 }
 
-/// The components of FORCE_COQUE, in [`ShellForce`]'s order.
+/// The components of FORCE_COQUE, in [`ShellForce`]'s order; the last
+/// slot holds PRES, or F3 (its opposite: the local normal force) when
+/// given ([`shell_comps`]).
 pub(super) const SHELL_COMPS: [&str; 7] = ["FX", "FY", "FZ", "MX", "MY", "MZ", "PRES"];
+
+/// The keyword of each slot of a FORCE_COQUE occurrence and the sign of
+/// the last: PRES (1), or F3 (−1) when the occurrence gives it.
+pub(super) fn shell_comps(occ: &Keywords) -> ([&'static str; 7], f64) {
+    let mut keys = SHELL_COMPS;
+    if occ.contains("F3") {
+        keys[6] = "F3";
+        return (keys, -1.0);
+    }
+    (keys, 1.0)
+}
 
 /// A `FORCE_COQUE` occurrence whose components `read` gives (a constant
 /// or a function each): its shell cells and PLAN, checked.
@@ -133,6 +147,7 @@ pub(super) fn force_coque(
     (model, mesh): (&ModelDef, &Mesh),
     values: [f64; 7],
     functions: [Option<crate::concept::LoadFunction>; 7],
+    normal_sign: f64,
 ) -> Result<ShellForce, ExecError> {
     let selected =
         select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
@@ -188,6 +203,7 @@ pub(super) fn force_coque(
         values,
         functions,
         plane,
+        normal_sign,
     })
 }
 
