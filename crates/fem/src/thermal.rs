@@ -82,7 +82,18 @@ pub struct ThermalProblem<'m> {
     pub cells: Vec<(CellId, Conduction)>,
     pub skin: Vec<(CellId, SkinLoad)>,
     /// Imposed temperatures (`TEMP_IMPO`).
-    pub imposed: Vec<(NodeId, f64)>,
+    pub imposed: Vec<(NodeId, Imposed)>,
+}
+
+/// An imposed temperature (`TEMP_IMPO`; dualised in code_aster, so the
+/// node takes exactly its value at each instant).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Imposed {
+    Constant(f64),
+    /// Its value at each instant of the computation (a function of time
+    /// evaluated by the caller): [`Transient::instants`], or the instants
+    /// [`stationary`] is asked for.
+    PerInstant(Vec<f64>),
 }
 
 /// The time discretisation of a transient computation.
@@ -265,26 +276,46 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
 }
 
 /// The free-free block of `c_m·M + c_k·K` (lower triangle, free indexing)
-/// factorised by Cholesky, and what the imposed temperatures give on the
-/// free rows, (c_m·M + c_k·K)·T_imposed: constant while the factor is.
+/// factorised by Cholesky.
 struct Factorised {
     c_m: f64,
+    c_k: f64,
     llt: Llt<usize, f64>,
-    lift: Vec<f64>,
 }
 
-/// Free unknowns and the imposed values of the others.
-struct Split {
+/// Free unknowns and the imposed temperatures of the others.
+struct Split<'p> {
     /// Unknown → free index (`usize::MAX` when imposed).
     free_of: Vec<usize>,
     n_free: usize,
-    /// Unknown → imposed value (0 when free).
-    imposed: Vec<f64>,
+    /// The imposed unknowns and their temperatures.
+    imposed: Vec<(usize, &'p Imposed)>,
 }
 
-fn split(a: &Assembled, p: &ThermalProblem) -> Result<Split, FemError> {
+impl Split<'_> {
+    /// Unknown → imposed value at instant `k` (0 when free).
+    fn values_at(&self, n: usize, k: usize) -> Result<Vec<f64>, FemError> {
+        let mut v = vec![0.0; n];
+        for &(u, imp) in &self.imposed {
+            v[u] = match imp {
+                Imposed::Constant(t) => *t,
+                Imposed::PerInstant(ts) => *ts.get(k).ok_or_else(|| {
+                    FemError::Model(format!(
+                        "an imposed temperature has {} values, none for instant #{k}",
+                        ts.len()
+                    ))
+                })?,
+            };
+        }
+        Ok(v)
+    }
+}
+
+fn split<'p>(a: &Assembled, p: &'p ThermalProblem) -> Result<Split<'p>, FemError> {
     let mut value = vec![f64::NAN; a.n];
-    for &(node, t) in &p.imposed {
+    let mut imposed = Vec::with_capacity(p.imposed.len());
+    for (node, t) in &p.imposed {
+        let node = *node;
         let u = a
             .unknown_of
             .get(node.0 as usize)
@@ -296,7 +327,8 @@ fn split(a: &Assembled, p: &ThermalProblem) -> Result<Split, FemError> {
                 p.mesh.node_name(node)
             )));
         }
-        value[u] = t;
+        value[u] = 0.0;
+        imposed.push((u, t));
     }
     let mut free_of = vec![usize::MAX; a.n];
     let mut n_free = 0;
@@ -310,7 +342,7 @@ fn split(a: &Assembled, p: &ThermalProblem) -> Result<Split, FemError> {
     Ok(Split {
         free_of,
         n_free,
-        imposed: value,
+        imposed,
     })
 }
 
@@ -357,10 +389,7 @@ fn factorise(
         }
     };
     let llt = Llt::try_new_with_symbolic(sym, mat, Side::Lower).map_err(|_| singular())?;
-    let mut lift = vec![0.0; a.n];
-    a.m.mul_add(c_m, &sp.imposed, &mut lift);
-    a.k.mul_add(c_k, &sp.imposed, &mut lift);
-    Ok(Factorised { c_m, llt, lift })
+    Ok(Factorised { c_m, c_k, llt })
 }
 
 impl Factorised {
@@ -373,17 +402,22 @@ impl Factorised {
 }
 
 /// Solves (c_m M + c_k K) T = rhs for the free unknowns (the factor's
-/// c_m, c_k), the imposed ones at their value; `rhs` and the result over
-/// all unknowns.
+/// c_m, c_k), the imposed ones at their value (`imposed`, over all
+/// unknowns, 0 on the free ones); `rhs` and the result over all unknowns.
 fn solve_step(
     a: &Assembled,
     sp: &Split,
     factor: &Factorised,
     rhs: &[f64],
+    imposed: &[f64],
 ) -> Result<Vec<f64>, FemError> {
+    // What the imposed temperatures give on the free rows.
+    let mut lift = vec![0.0; a.n];
+    a.m.mul_add(factor.c_m, imposed, &mut lift);
+    a.k.mul_add(factor.c_k, imposed, &mut lift);
     let b: Vec<f64> = (0..a.n)
         .filter(|&u| sp.free_of[u] != usize::MAX)
-        .map(|u| rhs[u] - factor.lift[u])
+        .map(|u| rhs[u] - lift[u])
         .collect();
     let x = factor.solve(&b);
     if x.iter().any(|v| !v.is_finite()) {
@@ -391,7 +425,7 @@ fn solve_step(
     }
     Ok((0..a.n)
         .map(|u| match sp.free_of[u] {
-            usize::MAX => sp.imposed[u],
+            usize::MAX => imposed[u],
             f => x[f],
         })
         .collect())
@@ -405,13 +439,19 @@ fn to_nodes(a: &Assembled, t: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// The stationary temperature: (K + H) T = F.
-pub fn stationary(p: &ThermalProblem) -> Result<Vec<f64>, FemError> {
+/// The stationary temperature (K + H) T = F at each of `instants`
+/// instants (the imposed temperatures [`Imposed::PerInstant`] give one
+/// value per instant; the other loads are constant).
+pub fn stationary(p: &ThermalProblem, instants: usize) -> Result<Vec<Vec<f64>>, FemError> {
     let a = assemble(p)?;
     let sp = split(&a, p)?;
     let factor = factorise(&a, &sp, 0.0, 1.0, &mut None)?;
-    let t = solve_step(&a, &sp, &factor, &a.f)?;
-    Ok(to_nodes(&a, &t))
+    (0..instants)
+        .map(|k| {
+            let t = solve_step(&a, &sp, &factor, &a.f, &sp.values_at(a.n, k)?)?;
+            Ok(to_nodes(&a, &t))
+        })
+        .collect()
 }
 
 /// The transient temperature at every instant of `tr` (per mesh node, NaN
@@ -445,12 +485,12 @@ pub fn transient(p: &ThermalProblem, tr: &Transient) -> Result<Vec<Vec<f64>>, Fe
         }
         None => {
             let factor = factorise(&a, &sp, 0.0, 1.0, &mut symbolic)?;
-            solve_step(&a, &sp, &factor, &a.f)?
+            solve_step(&a, &sp, &factor, &a.f, &sp.values_at(a.n, 0)?)?
         }
     };
     let mut out = vec![to_nodes(&a, &t)];
     let mut kept: Option<(f64, Factorised)> = None;
-    for w in tr.instants.windows(2) {
+    for (k, w) in tr.instants.windows(2).enumerate() {
         let dt = w[1] - w[0];
         if dt <= 0.0 || !dt.is_finite() {
             return Err(FemError::Model(format!(
@@ -470,7 +510,7 @@ pub fn transient(p: &ThermalProblem, tr: &Transient) -> Result<Vec<Vec<f64>>, Fe
         let mut rhs = a.f.clone();
         a.m.mul_add(factor.c_m, &t, &mut rhs);
         a.k.mul_add(-(1.0 - tr.theta), &t, &mut rhs);
-        t = solve_step(&a, &sp, &factor, &rhs)?;
+        t = solve_step(&a, &sp, &factor, &rhs, &sp.values_at(a.n, k + 1)?)?;
         out.push(to_nodes(&a, &t));
         kept = Some((dt, factor));
     }

@@ -287,7 +287,7 @@ getter!(
     thermal_load,
     ThermalLoad,
     crate::commands::thermal::ThermalLoad,
-    "a thermal load (AFFE_CHAR_THER)"
+    "a thermal load (AFFE_CHAR_THER, AFFE_CHAR_THER_F)"
 );
 getter!(
     macro_element,

@@ -2,8 +2,10 @@
 //! project's QUAD8 strip, stationary (a hollow cylinder in AXIS with an
 //! imposed temperature and an exchange; a plane slab with an imposed flux
 //! and an exchange) and transient (the first mode of a slab decaying under
-//! the θ-scheme), each against its closed-form answer; then the refusals
-//! and errors a user meets.
+//! the θ-scheme), each against its closed-form answer; imposed
+//! temperatures given by functions of INST and X (AFFE_CHAR_THER_F), scaled
+//! by FONC_MULT, and constant functions for a flux and an exchange; then
+//! the refusals and errors a user meets.
 
 mod scene;
 
@@ -17,7 +19,35 @@ fn text() -> String {
 
 #[test]
 fn stationary_and_transient_temperatures_match_their_closed_forms() {
-    assert_eq!(run(&text(), "scene"), (14, 0, None));
+    assert_eq!(run(&text(), "scene"), (22, 0, None));
+}
+
+#[test]
+fn fluxes_varying_in_space_or_scaled_in_time_are_refused_at_their_keyword() {
+    let t = text().replace(
+        "FLUX_REP=_F(GROUP_MA=\"LEFT\", FLUN=q_f)",
+        "FLUX_REP=_F(GROUP_MA=\"LEFT\", FLUN=t_right)",
+    );
+    assert!(t.contains("FLUN=t_right"));
+    let (_, nook, err) = run(&t, "flux-x");
+    assert_eq!(nook, 0);
+    let err = err.expect("a refusal");
+    assert!(
+        err.contains("not supported yet: AFFE_CHAR_THER_F/FLUX_REP/FLUN as a function of X"),
+        "{err}"
+    );
+    let t = text().replace(
+        "EXCIT=_F(CHARGE=bc_flux_f)",
+        "EXCIT=_F(CHARGE=bc_flux_f, FONC_MULT=scale)",
+    );
+    assert!(t.contains("FONC_MULT=scale)"));
+    let (_, nook, err) = run(&t, "flux-mult");
+    assert_eq!(nook, 0);
+    let err = err.expect("a refusal");
+    assert!(
+        err.contains("THER_LINEAIRE/EXCIT/FONC_MULT on a load with FLUX_REP or ECHANGE"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -74,7 +104,7 @@ fn a_zero_heat_capacity_is_the_stationary_default_and_a_negative_one_is_refused(
     // stationary cylinder gives the same temperatures.
     let t = text().replace("RHO_CP=4.0e6", "RHO_CP=0.0");
     assert!(t.contains("RHO_CP=0.0"));
-    assert_eq!(run(&t, "rhocp0"), (14, 0, None));
+    assert_eq!(run(&t, "rhocp0"), (22, 0, None));
     let t = text().replace("RHO_CP=4.0e6", "RHO_CP=-1.0");
     let (_, nook, err) = run(&t, "rhocp-neg");
     assert_eq!(nook, 0);

@@ -19,7 +19,7 @@ use aster_mesh::Mesh;
 use std::rc::Rc;
 
 /// The function a keyword names (`DX=f`), or an error saying what to give.
-fn function_at(
+pub(super) fn function_at(
     ex: &Executor,
     cmd: &str,
     occ: &Keywords,

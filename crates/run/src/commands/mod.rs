@@ -127,6 +127,11 @@ pub static COMMANDS: &[Command] = &[
         support: thermal::AFFE_CHAR_THER,
     },
     Command {
+        name: "AFFE_CHAR_THER_F",
+        run: thermal::affe_char_ther_f,
+        support: thermal::AFFE_CHAR_THER_F,
+    },
+    Command {
         name: "THER_LINEAIRE",
         run: thermal::ther_lineaire,
         support: thermal::THER_LINEAIRE,

@@ -1,5 +1,8 @@
 //! Linear heat conduction: `AFFE_MODELE(PHENOMENE='THERMIQUE')`,
-//! `AFFE_CHAR_THER` and `THER_LINEAIRE` (numerics in `aster_fem::thermal`).
+//! `AFFE_CHAR_THER`, `AFFE_CHAR_THER_F` (`TEMP_IMPO` given by functions of
+//! `INST` and the coordinates, evaluated at each node and instant: the
+//! dualised temperature is exactly that value) and `THER_LINEAIRE`
+//! (numerics in `aster_fem::thermal`).
 //!
 //! The result is an `EVOL_THER` holding the nodal field `TEMP` at every
 //! instant (numbered from 0, the initial state), which `TEST_RESU`,
@@ -12,7 +15,7 @@ use crate::field::{Field, NodalField};
 use crate::select;
 use crate::support::{Support, Values};
 use aster_eval::{CommandCall, CommandOutput, ExecError, Keywords};
-use aster_fem::thermal::{SkinLoad, ThermalHypothesis, ThermalProblem, Transient};
+use aster_fem::thermal::{Imposed, SkinLoad, ThermalHypothesis, ThermalProblem, Transient};
 use aster_mesh::{CellId, NodeId};
 use std::collections::BTreeSet;
 use std::rc::Rc;
@@ -30,7 +33,49 @@ pub struct ThermalModel {
 pub struct ThermalLoad {
     pub mesh: u32,
     pub skin: Vec<(CellId, SkinLoad)>,
-    pub imposed: Vec<(NodeId, f64)>,
+    pub imposed: Vec<(NodeId, TempImpo)>,
+}
+
+/// A `TEMP_IMPO` temperature: a real (`AFFE_CHAR_THER`) or a function of
+/// `INST` and the coordinates, here the node's (`AFFE_CHAR_THER_F`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum TempImpo {
+    Constant(f64),
+    Function(crate::concept::LoadFunction, [f64; 3]),
+}
+
+impl TempImpo {
+    /// The temperature at each instant (`Imposed` for the solver), times
+    /// `EXCIT/FONC_MULT`'s f(INST) when given.
+    fn at(
+        &self,
+        instants: &[f64],
+        mult: Option<&crate::concept::LoadFunction>,
+    ) -> Result<Imposed, ExecError> {
+        if let (TempImpo::Constant(t), None) = (self, mult) {
+            return Ok(Imposed::Constant(*t));
+        }
+        let eval = |f: &crate::concept::LoadFunction, t: f64, [x, y, z]: [f64; 3]| {
+            f.0.eval_named(&[("INST", t), ("X", x), ("Y", y), ("Z", z)])
+                .map_err(|e| {
+                    ExecError::new(format!("TEMP_IMPO at ({x}, {y}, {z}), INST = {t}: {e}"))
+                })
+        };
+        let values = instants
+            .iter()
+            .map(|&t| {
+                let v = match self {
+                    TempImpo::Constant(v) => *v,
+                    TempImpo::Function(f, xyz) => eval(f, t, *xyz)?,
+                };
+                match mult {
+                    Some(m) => Ok(v * eval(m, t, [0.0; 3])?),
+                    None => Ok(v),
+                }
+            })
+            .collect::<Result<_, ExecError>>()?;
+        Ok(Imposed::PerInstant(values))
+    }
 }
 
 /// The thermal modelisations (`AFFE_MODELE/AFFE/MODELISATION` with
@@ -129,6 +174,40 @@ pub(crate) const AFFE_CHAR_THER: Support = Support::keywords(&[
     "INFO",
 ]);
 
+/// The skin cells (segments in 2D, faces in 3D) of a boundary condition's
+/// occurrence, or an error at its GROUP_MA.
+fn skin_cells(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    what: &str,
+    model: &ThermalModel,
+    mesh: &aster_mesh::Mesh,
+) -> Result<Vec<CellId>, ExecError> {
+    let cells =
+        select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{cmd}/{what}: {e}")))?;
+    let dim = match model.hypothesis {
+        ThermalHypothesis::Solid => 2,
+        _ => 1,
+    };
+    if let Some(bad) = select::misfit(mesh, &cells, |c| c.ty.dim() == dim) {
+        return Err(ex.kw_error(
+            cmd,
+            occ,
+            "GROUP_MA",
+            format!(
+                "{what} applies to the {} of the model, but {bad}",
+                if dim == 1 {
+                    "edges (segments)"
+                } else {
+                    "faces"
+                }
+            ),
+        ));
+    }
+    Ok(cells)
+}
+
 pub(crate) fn affe_char_ther(
     ex: &mut Executor,
     call: &CommandCall,
@@ -141,30 +220,7 @@ pub(crate) fn affe_char_ther(
         mesh: model.mesh,
         ..Default::default()
     };
-    let skin_cells = |occ: &Keywords, what: &str| -> Result<Vec<CellId>, ExecError> {
-        let cells = select::cells(occ, &mesh, "")
-            .map_err(|e| ExecError::new(format!("{cmd}/{what}: {e}")))?;
-        let dim = match model.hypothesis {
-            ThermalHypothesis::Solid => 2,
-            _ => 1,
-        };
-        if let Some(bad) = select::misfit(&mesh, &cells, |c| c.ty.dim() == dim) {
-            return Err(ex.kw_error(
-                cmd,
-                occ,
-                "GROUP_MA",
-                format!(
-                    "{what} applies to the {} of the model, but {bad}",
-                    if dim == 1 {
-                        "edges (segments)"
-                    } else {
-                        "faces"
-                    }
-                ),
-            ));
-        }
-        Ok(cells)
-    };
+    let skin_cells = |occ: &Keywords, what: &str| skin_cells(ex, cmd, occ, what, &model, &mesh);
     let required = |occ: &Keywords, name: &str, what: &str| -> Result<f64, ExecError> {
         occ.f64(name)
             .ok_or_else(|| ex.kw_error(cmd, occ, name, format!("{what} is required")))
@@ -186,7 +242,90 @@ pub(crate) fn affe_char_ther(
         let t = required(occ, "TEMP", "the temperature TEMP")?;
         let nodes = select::nodes(occ, &mesh, "")
             .map_err(|e| ExecError::new(format!("{cmd}/TEMP_IMPO: {e}")))?;
-        load.imposed.extend(nodes.into_iter().map(|n| (n, t)));
+        load.imposed
+            .extend(nodes.into_iter().map(|n| (n, TempImpo::Constant(t))));
+    }
+    store_result(ex, call, Concept::ThermalLoad(Rc::new(load)))
+}
+
+/// What AFFE_CHAR_THER_F reads (`crate::support`): `TEMP_IMPO`, and
+/// `FLUX_REP`/`ECHANGE` given by constant functions (`DEFI_CONSTANTE`);
+/// fluxes and exchanges varying in time or space are refused at their
+/// keyword.
+pub(crate) const AFFE_CHAR_THER_F: Support = Support::keywords(&[
+    "MODELE",
+    "ECHANGE",
+    "ECHANGE/GROUP_MA",
+    "ECHANGE/MAILLE",
+    "ECHANGE/TOUT",
+    "ECHANGE/COEF_H",
+    "ECHANGE/TEMP_EXT",
+    "FLUX_REP",
+    "FLUX_REP/GROUP_MA",
+    "FLUX_REP/MAILLE",
+    "FLUX_REP/TOUT",
+    "FLUX_REP/FLUN",
+    "TEMP_IMPO",
+    "TEMP_IMPO/GROUP_NO",
+    "TEMP_IMPO/NOEUD",
+    "TEMP_IMPO/GROUP_MA",
+    "TEMP_IMPO/MAILLE",
+    "TEMP_IMPO/TOUT",
+    "TEMP_IMPO/TEMP",
+    "INFO",
+]);
+
+pub(crate) fn affe_char_ther_f(
+    ex: &mut Executor,
+    call: &CommandCall,
+) -> Result<CommandOutput, ExecError> {
+    let cmd = "AFFE_CHAR_THER_F";
+    let kw = &call.keywords;
+    let model = ex.thermal_model(ex.required(cmd, kw, "MODELE")?)?;
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let mut load = ThermalLoad {
+        mesh: model.mesh,
+        ..Default::default()
+    };
+    // A function of nothing (DEFI_CONSTANTE) is its value.
+    let constant = |occ: &Keywords, key: &str, what: &str| -> Result<f64, ExecError> {
+        let f = super::loads_f::function_at(ex, what, occ, key)?
+            .ok_or_else(|| ex.kw_error(what, occ, key, format!("a function {key} is required")))?;
+        if let Some(p) = f.0.parameters().first() {
+            let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!("{what}/{key} as a function of {p} (fluxes and exchanges varying in time or space; constant functions are taken)"),
+                span,
+            ));
+        }
+        f.0.eval_named(&[])
+            .map_err(|e| ex.kw_error(what, occ, key, e.to_string()))
+    };
+    for occ in kw.factor("ECHANGE") {
+        let what = "AFFE_CHAR_THER_F/ECHANGE";
+        let h = constant(occ, "COEF_H", what)?;
+        let t_ext = constant(occ, "TEMP_EXT", what)?;
+        for c in skin_cells(ex, cmd, occ, "ECHANGE", &model, &mesh)? {
+            load.skin.push((c, SkinLoad::Exchange { h, t_ext }));
+        }
+    }
+    for occ in kw.factor("FLUX_REP") {
+        let what = "AFFE_CHAR_THER_F/FLUX_REP";
+        let q = constant(occ, "FLUN", what)?;
+        for c in skin_cells(ex, cmd, occ, "FLUX_REP", &model, &mesh)? {
+            load.skin.push((c, SkinLoad::NormalFlux { q }));
+        }
+    }
+    for occ in kw.factor("TEMP_IMPO") {
+        let what = "AFFE_CHAR_THER_F/TEMP_IMPO";
+        let f = super::loads_f::function_at(ex, what, occ, "TEMP")?
+            .ok_or_else(|| ex.kw_error(what, occ, "TEMP", "a function TEMP is required"))?;
+        let nodes =
+            select::nodes(occ, &mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
+        for n in nodes {
+            load.imposed
+                .push((n, TempImpo::Function(f.clone(), mesh.coord(n))));
+        }
     }
     store_result(ex, call, Concept::ThermalLoad(Rc::new(load)))
 }
@@ -199,6 +338,7 @@ pub(crate) const THER_LINEAIRE: Support = Support {
         "CHAM_MATER",
         "EXCIT",
         "EXCIT/CHARGE",
+        "EXCIT/FONC_MULT",
         "EXCIT/TYPE_CHARGE",
         "TYPE_CALCUL",
         "ETAT_INIT",
@@ -265,20 +405,28 @@ pub(crate) fn ther_lineaire(
                 "the load is defined on another mesh than the model",
             ));
         }
+        // FONC_MULT scales the imposed temperatures at each instant; a
+        // load with fluxes or exchanges would need the θ-weighted load of
+        // each step: refused.
+        let mult = super::loads_f::function_at(ex, cmd, occ, "FONC_MULT")?;
+        if mult.is_some() && !load.skin.is_empty() {
+            let span = occ.keyword("FONC_MULT").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!("{cmd}/EXCIT/FONC_MULT on a load with FLUX_REP or ECHANGE (only imposed temperatures are scaled in time here)"),
+                span,
+            ));
+        }
         skin.extend(load.skin.iter().copied());
-        imposed.extend(load.imposed.iter().copied());
+        imposed.extend(
+            load.imposed
+                .iter()
+                .map(|(n, t)| (*n, t.clone(), mult.clone())),
+        );
     }
-    let problem = ThermalProblem {
-        mesh: &mesh,
-        hypothesis: model.hypothesis,
-        cells,
-        skin,
-        imposed,
-    };
     // TYPE_CALCUL='TRAN' (the default): from ETAT_INIT (STAT='OUI': the
     // stationary state at the first instant), the θ-scheme over the
-    // instants; 'STAT': the stationary state at every instant (the loads
-    // are constant in time here, so it is one field).
+    // instants; 'STAT': the stationary state at every instant (only the
+    // imposed temperatures vary in time here).
     let transient = kw.str("TYPE_CALCUL") != Some("STAT");
     let init = kw.factor("ETAT_INIT");
     let init = init.first();
@@ -306,10 +454,29 @@ pub(crate) fn ther_lineaire(
         return Err(ex.kw_error(cmd, kw, "INCREMENT", "INCREMENT is required"));
     };
     let list = ex.real_list(ex.required(cmd, inc, "LIST_INST")?)?;
-    let steps: Vec<(f64, Vec<f64>)> = if transient {
-        let instants =
-            crate::list::select_instants(&list, inc.f64("INST_INIT"), inc.f64("INST_FIN"))
-                .map_err(|e| ex.kw_error(cmd, inc, "LIST_INST", e))?;
+    let instants: Vec<f64> = if transient {
+        crate::list::select_instants(&list, inc.f64("INST_INIT"), inc.f64("INST_FIN"))
+            .map_err(|e| ex.kw_error(cmd, inc, "LIST_INST", e))?
+    } else {
+        let lo = inc.f64("INST_INIT").unwrap_or(f64::NEG_INFINITY);
+        let hi = inc.f64("INST_FIN").unwrap_or(f64::INFINITY);
+        list.iter()
+            .copied()
+            .filter(|&i| i >= lo - 1e-6 * lo.abs() && i <= hi + 1e-6 * hi.abs())
+            .collect()
+    };
+    let imposed = imposed
+        .into_iter()
+        .map(|(n, t, mult)| Ok((n, t.at(&instants, mult.as_ref())?)))
+        .collect::<Result<Vec<_>, ExecError>>()?;
+    let problem = ThermalProblem {
+        mesh: &mesh,
+        hypothesis: model.hypothesis,
+        cells,
+        skin,
+        imposed,
+    };
+    let temps = if transient {
         let theta = kw
             .factor("SCHEMA_TEMPS")
             .first()
@@ -320,17 +487,11 @@ pub(crate) fn ther_lineaire(
             instants: instants.clone(),
             initial,
         };
-        let temps = aster_fem::thermal::transient(&problem, &tr).map_err(fem_err)?;
-        instants.into_iter().zip(temps).collect()
+        aster_fem::thermal::transient(&problem, &tr).map_err(fem_err)?
     } else {
-        let lo = inc.f64("INST_INIT").unwrap_or(f64::NEG_INFINITY);
-        let hi = inc.f64("INST_FIN").unwrap_or(f64::INFINITY);
-        let t = aster_fem::thermal::stationary(&problem).map_err(fem_err)?;
-        list.iter()
-            .filter(|&&i| i >= lo - 1e-6 * lo.abs() && i <= hi + 1e-6 * hi.abs())
-            .map(|&i| (i, t.clone()))
-            .collect()
+        aster_fem::thermal::stationary(&problem, instants.len()).map_err(fem_err)?
     };
+    let steps: Vec<(f64, Vec<f64>)> = instants.into_iter().zip(temps).collect();
     // code_aster's storage (ther_lineaire_ops: `first_index`): a transient
     // result numbers its initial state 0, a stationary one stores its first
     // instant at 1 (tplp01a: `NUME_ORDRE=1` of a list of one instant).
