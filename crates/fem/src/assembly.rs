@@ -222,6 +222,7 @@ fn scatter_columns(
             ElementKind::Spring { .. }
             | ElementKind::Shell { .. }
             | ElementKind::Beam { .. }
+            | ElementKind::Bar { .. }
             | ElementKind::Coque3d { .. } => {
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;

@@ -295,6 +295,11 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
                 .map(Some)
                 .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
         }
+        ElementKind::Bar { material, area } => {
+            bar_stiffness(model.mesh(), el.cell, material, *area)
+                .map(Some)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+        }
         ElementKind::Coque3d { material, section } => {
             coque3d_stiffness(model.mesh(), el.cell, material, section)
                 .map(Some)
@@ -341,7 +346,17 @@ pub fn beam_stiffness(
     crate::beam::stiffness(&beam_coords(mesh, cell)?, material, section)
 }
 
-/// The two node coordinates of a beam cell.
+/// The global stiffness of a bar (`BARRE` on SEG2), node-major DX DY DZ.
+pub fn bar_stiffness(
+    mesh: &Mesh,
+    cell: CellId,
+    material: &Elastic,
+    area: f64,
+) -> Result<DMatrix<f64>, String> {
+    crate::bar::stiffness(&beam_coords(mesh, cell)?, material, area)
+}
+
+/// The two node coordinates of a beam (or bar) cell.
 pub fn beam_coords(mesh: &Mesh, cell: CellId) -> Result<[[f64; 3]; 2], String> {
     let c = mesh.cell(cell);
     if c.ty != CellType::SEG2 {

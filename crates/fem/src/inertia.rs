@@ -118,6 +118,12 @@ pub fn cell_inertias(
                 out.insert(el.cell, c);
             }
             ElementKind::Boundary | ElementKind::Spring { .. } => {}
+            ElementKind::Bar { .. } => {
+                return Err(FemError::Model(format!(
+                    "cell {} is a BARRE bar: its MASS_INER contribution is not reproduced",
+                    model.cell_name(el.cell)
+                )))
+            }
             ElementKind::Shell { section, .. } => {
                 let Some(&rho) = data.density.get(&el.cell) else {
                     return Err(FemError::Model(format!(

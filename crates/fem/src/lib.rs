@@ -13,6 +13,7 @@
 
 pub mod assembly;
 pub mod autodiff;
+pub mod bar;
 pub mod beam;
 pub mod behaviour;
 pub mod cohesive;

@@ -306,8 +306,12 @@ pub fn element_mass(
                 m
             }))
         }
-        ElementKind::Beam { section, .. } => beam_coords(model.mesh(), el.cell)
-            .and_then(|xyz| crate::beam::mass(&xyz, rho, section, lumped))
+        ElementKind::Beam { material, section } => beam_coords(model.mesh(), el.cell)
+            .and_then(|xyz| crate::beam::mass(&xyz, rho, material, section, lumped))
+            .map(Some)
+            .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))),
+        ElementKind::Bar { area, .. } => beam_coords(model.mesh(), el.cell)
+            .and_then(|xyz| crate::bar::mass(&xyz, rho, *area, lumped))
             .map(Some)
             .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))),
         ElementKind::Shell { section, .. } => {
@@ -622,7 +626,7 @@ mod tests {
             .unwrap();
         let v = rigid(&[a, b], [0.3, -0.7, 0.2], [0.; 3]);
         assert!((quad(&d2, &v) - quad(&m, &v)).abs() < 1e-10 * quad(&m, &v));
-        let loc = crate::beam::local_mass(rho, &s, l, true);
+        let loc = crate::beam::local_mass(rho, &Elastic::new(2e11, 0.3).unwrap(), &s, l, true);
         assert!((loc[(3, 3)] + loc[(9, 9)] - rho * (s.iy + s.iz) * l).abs() < 1e-9);
         assert!(
             (loc[(4, 4)] - rho * s.area * l.powi(3) / 105. - 2. * rho * s.iy * l / 15.).abs()

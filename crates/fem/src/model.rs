@@ -42,13 +42,16 @@ pub enum ElementKind {
         material: Elastic,
         section: crate::dkt::ShellSection,
     },
-    /// An Euler–Bernoulli beam on SEG2 (`POU_D_E`: [`crate::beam`]),
-    /// linear elastic; its nodes get the rotations DRX DRY DRZ. 3D models
-    /// only.
+    /// A straight beam on SEG2 ([`crate::beam`]): Euler–Bernoulli
+    /// (`POU_D_E`, `section.shear` None) or Timoshenko (`POU_D_T`), linear
+    /// elastic; its nodes get the rotations DRX DRY DRZ. 3D models only.
     Beam {
         material: Elastic,
         section: crate::beam::BeamSection,
     },
+    /// A truss on SEG2 (`BARRE`: [`crate::bar`]), linear elastic, of
+    /// cross-section `area`; its nodes carry DX DY DZ. 3D models only.
+    Bar { material: Elastic, area: f64 },
     /// code_aster's `COQUE_3D` on QUAD9 or TRIA7 ([`crate::coque3d`]),
     /// linear elastic: its edge nodes (eight, six) carry DX DY DZ DRX DRY
     /// DRZ, its centre node DRX DRY DRZ only. 3D models only.
@@ -112,6 +115,7 @@ impl Model {
         let mut hypothesis: Option<Hypothesis> = None;
         let mut spring_dim: Option<usize> = None;
         let mut shell = false;
+        let mut truss = false;
         let cell_name = |id: CellId| {
             mesh.cell_names
                 .get(id.0 as usize)
@@ -236,6 +240,7 @@ impl Model {
                 ElementKind::Boundary => {}
                 ElementKind::Shell { material, .. }
                 | ElementKind::Beam { material, .. }
+                | ElementKind::Bar { material, .. }
                 | ElementKind::Coque3d { material, .. }
                     if !material.is_isotropic() =>
                 {
@@ -307,6 +312,19 @@ impl Model {
                     })?;
                     shell = true;
                 }
+                ElementKind::Bar { area, .. } => {
+                    if cell.ty != CellType::SEG2 {
+                        return Err(FemError::Model(format!(
+                            "cell {} is a {}: the BARRE element exists on SEG2 cells only",
+                            cell_name(el.cell),
+                            cell.ty.name()
+                        )));
+                    }
+                    crate::bar::check_area(*area).map_err(|m| {
+                        FemError::Model(format!("bar on cell {}: {m}", cell_name(el.cell)))
+                    })?;
+                    truss = true;
+                }
             }
             if let ElementKind::Continuum { .. } = el.kind {
                 if !shape::supported(cell.ty) {
@@ -329,13 +347,18 @@ impl Model {
             (Some(h), _) => h.dim(),
             (None, Some(d)) => d,
             (None, None) => {
-                if mesh.dim >= 3 || shell {
+                if mesh.dim >= 3 || shell || truss {
                     3
                 } else {
                     2
                 }
             }
         };
+        if truss && dim != 3 {
+            return Err(FemError::Model(format!(
+                "BARRE elements in a {dim}D model: the 3D truss needs a 3D model (2D_BARRE is not reproduced)"
+            )));
+        }
         if shell && dim != 3 {
             return Err(FemError::Model(format!(
                 "elements with rotations (DKT, POU_D_E, DIS_TR) in a {dim}D model: they need a 3D model"
@@ -462,11 +485,18 @@ impl Model {
             .any(|e| matches!(e.kind, ElementKind::Coque3d { .. }))
     }
 
-    /// Whether the model has beams (`POU_D_E`).
+    /// Whether the model has beams (`POU_D_E`, `POU_D_T`).
     pub fn has_beams(&self) -> bool {
         self.elements
             .iter()
             .any(|e| matches!(e.kind, ElementKind::Beam { .. }))
+    }
+
+    /// Whether the model has bars (`BARRE`).
+    pub fn has_bars(&self) -> bool {
+        self.elements
+            .iter()
+            .any(|e| matches!(e.kind, ElementKind::Bar { .. }))
     }
 
     /// Whether some nodes carry rotations (shells, beams, `DIS_TR`).

@@ -70,18 +70,31 @@ const EFGE_NAMES: [&str; 8] = ["NXX", "NYY", "NXY", "MXX", "MYY", "MXY", "QX", "
 /// The components of the shells' generalised strains (`DEGE_*`).
 const DEGE_NAMES: [&str; 8] = ["EXX", "EYY", "EXY", "KXX", "KYY", "KXY", "GAX", "GAY"];
 
-/// `EFGE_ELNO` of the beams (`POU_D_E`): N VY VZ MT MFY MFZ at their two
-/// nodes, in each beam's local frame ([`crate::beam::efforts`]).
+/// `EFGE_ELNO` of the beams (`POU_D_E`, `POU_D_T`): N VY VZ MT MFY MFZ at their two
+/// nodes (the bars, `BARRE`: N alone), in each beam's local frame ([`crate::beam::efforts`]).
 pub fn beam_efge_elno(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
     let mut out = Vec::new();
     for el in model.elements() {
-        let ElementKind::Beam { material, section } = &el.kind else {
-            continue;
-        };
         let err = |m: String| cell_error(model, el.cell, m);
-        let xyz = crate::element::beam_coords(model.mesh(), el.cell).map_err(err)?;
-        let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
-        let e = crate::beam::efforts(&xyz, material, section, &ue).map_err(err)?;
+        let e = match &el.kind {
+            ElementKind::Beam { material, section } => {
+                let xyz = crate::element::beam_coords(model.mesh(), el.cell).map_err(err)?;
+                let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
+                crate::beam::efforts(&xyz, material, section, &ue).map_err(err)?
+            }
+            ElementKind::Bar { material, area } => {
+                let xyz = crate::element::beam_coords(model.mesh(), el.cell).map_err(err)?;
+                let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
+                let n = crate::bar::normal_force(&xyz, material, *area, &ue).map_err(err)?;
+                out.push(CellValues {
+                    cell: el.cell,
+                    names: vec!["N"],
+                    points: vec![vec![n], vec![n]],
+                });
+                continue;
+            }
+            _ => continue,
+        };
         out.push(CellValues {
             cell: el.cell,
             names: crate::beam::EFFORT_NAMES.to_vec(),
@@ -91,18 +104,18 @@ pub fn beam_efge_elno(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemEr
     Ok(out)
 }
 
-/// `DEGE_ELNO` of the beams (`POU_D_E`): EPXX GAXY GAXZ GAT KY KZ at their
+/// `DEGE_ELNO` of the beams (`POU_D_E`, `POU_D_T`): EPXX GAXY GAXZ GAT KY KZ at their
 /// two nodes, in each beam's local frame ([`crate::beam::generalised_strains`]).
 pub fn beam_dege_elno(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
     let mut out = Vec::new();
     for el in model.elements() {
-        if !matches!(el.kind, ElementKind::Beam { .. }) {
+        let ElementKind::Beam { material, section } = &el.kind else {
             continue;
-        }
+        };
         let err = |m: String| cell_error(model, el.cell, m);
         let xyz = crate::element::beam_coords(model.mesh(), el.cell).map_err(err)?;
         let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
-        let e = crate::beam::generalised_strains(&xyz, &ue).map_err(err)?;
+        let e = crate::beam::generalised_strains(&xyz, material, section, &ue).map_err(err)?;
         out.push(CellValues {
             cell: el.cell,
             names: crate::beam::STRAIN_NAMES.to_vec(),
@@ -500,6 +513,7 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
             ElementKind::Boundary
             | ElementKind::Shell { .. }
             | ElementKind::Beam { .. }
+            | ElementKind::Bar { .. }
             | ElementKind::Coque3d { .. } => {}
         }
     }
@@ -597,6 +611,11 @@ pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
             }
             ElementKind::Beam { material, section } => {
                 crate::element::beam_stiffness(model.mesh(), el.cell, material, section)
+                    .map_err(|m| cell_error(model, el.cell, m))?
+                    * ue
+            }
+            ElementKind::Bar { material, area } => {
+                crate::element::bar_stiffness(model.mesh(), el.cell, material, *area)
                     .map_err(|m| cell_error(model, el.cell, m))?
                     * ue
             }

@@ -34,6 +34,12 @@ pub enum Modelisation {
     DiscreteRot3D,
     /// `POU_D_E`: Euler–Bernoulli beams on SEG2, with the rotations.
     BeamEuler,
+    /// `POU_D_T`: Timoshenko beams on SEG2 (`MECA_POU_D_T`: the shear
+    /// coefficients AY, AZ of the section), with the rotations.
+    BeamTimoshenko,
+    /// `BARRE`: trusses on SEG2 (`MECA_BARRE`, the area of
+    /// `AFFE_CARA_ELEM/BARRE`), DX DY DZ.
+    Bar,
     /// `DKT`: thin-shell facets (DKT on TRIA3, DKQ on QUAD4) with the
     /// rotations DRX DRY DRZ on their nodes.
     Dkt,
@@ -57,6 +63,8 @@ impl Modelisation {
             "DIS_T" => Modelisation::Discrete3D,
             "DIS_TR" => Modelisation::DiscreteRot3D,
             "POU_D_E" => Modelisation::BeamEuler,
+            "POU_D_T" => Modelisation::BeamTimoshenko,
+            "BARRE" => Modelisation::Bar,
             "DKT" => Modelisation::Dkt,
             "COQUE_3D" => Modelisation::Coque3d,
             "PLAN_JOINT" => Modelisation::PlaneJoint,
@@ -78,7 +86,7 @@ impl Modelisation {
         }
     }
 
-    pub const KEYWORDS: [&'static str; 15] = [
+    pub const KEYWORDS: [&'static str; 17] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -92,6 +100,8 @@ impl Modelisation {
         "DKT",
         "DIS_TR",
         "POU_D_E",
+        "POU_D_T",
+        "BARRE",
         "PLAN_JOINT",
         "COQUE_3D",
     ];
@@ -103,6 +113,8 @@ impl Modelisation {
             | Modelisation::Discrete3D
             | Modelisation::DiscreteRot3D
             | Modelisation::BeamEuler
+            | Modelisation::BeamTimoshenko
+            | Modelisation::Bar
             | Modelisation::Dkt
             | Modelisation::Coque3d => 3,
             _ => 2,
@@ -124,7 +136,13 @@ impl Modelisation {
                 | Modelisation::Coque3d
                 | Modelisation::DiscreteRot3D
                 | Modelisation::BeamEuler
+                | Modelisation::BeamTimoshenko
         )
+    }
+
+    /// Whether it is a straight beam on SEG2 (`POU_D_E`, `POU_D_T`).
+    pub fn is_beam(self) -> bool {
+        matches!(self, Modelisation::BeamEuler | Modelisation::BeamTimoshenko)
     }
 }
 
@@ -213,9 +231,9 @@ impl ModelDef {
         self.rotations.iter().any(|&r| r)
     }
 
-    /// Whether the model has beams (`POU_D_E`).
+    /// Whether the model has beams (`POU_D_E`, `POU_D_T`).
     pub fn has_beams(&self) -> bool {
-        self.cells.values().any(|&m| m == Modelisation::BeamEuler)
+        self.cells.values().any(|&m| m.is_beam())
     }
 
     pub fn dim(&self) -> usize {
@@ -400,6 +418,8 @@ pub struct CaraElem {
     pub masses: Vec<DiscreteMassDef>,
     /// `POUTRE`: the beams' sections.
     pub beams: Vec<crate::commands::cara_poutre::BeamCara>,
+    /// `BARRE`: the bars' areas.
+    pub bars: Vec<crate::commands::cara_poutre::BarCara>,
     /// `MASSIF`: the material frames of continuum cells (orthotropic
     /// materials).
     pub massif: Vec<crate::commands::cara_massif::MassifFrame>,

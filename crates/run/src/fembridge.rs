@@ -107,6 +107,8 @@ fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
         | Modelisation::Discrete3D
         | Modelisation::DiscreteRot3D
         | Modelisation::BeamEuler
+        | Modelisation::BeamTimoshenko
+        | Modelisation::Bar
         | Modelisation::Dkt
         | Modelisation::Coque3d
         | Modelisation::PlaneJoint => None,
@@ -144,6 +146,14 @@ pub fn build_model(
         for b in &c.beams {
             for &cell in &b.cells {
                 beams.insert(cell, b.section);
+            }
+        }
+    }
+    let mut bars: BTreeMap<aster_mesh::CellId, f64> = BTreeMap::new();
+    if let Some(c) = cara {
+        for b in &c.bars {
+            for &cell in &b.cells {
+                bars.insert(cell, b.area);
             }
         }
     }
@@ -217,18 +227,51 @@ pub fn build_model(
             });
             continue;
         }
-        if m == Modelisation::BeamEuler {
+        if m.is_beam() {
+            let name = if m == Modelisation::BeamEuler {
+                "POU_D_E"
+            } else {
+                "POU_D_T"
+            };
             let section = beams.get(&cell).copied().ok_or_else(|| {
                 ExecError::new(format!(
-                    "cell {} carries a POU_D_E beam element but no section: give AFFE_CARA_ELEM/POUTRE (and CARA_ELEM to the solver)",
+                    "cell {} carries a {name} beam element but no section: give AFFE_CARA_ELEM/POUTRE (and CARA_ELEM to the solver)",
                     crate::select::cell_name(mesh, cell)
                 ))
             })?;
+            // POU_D_E: no shear strain (code_aster's `porigi`/`pomass` set
+            // AY = AZ = 0); POU_D_T: the section's AY, AZ.
+            let section = if m == Modelisation::BeamEuler {
+                section.euler()
+            } else if section.shear.is_none() {
+                return Err(ExecError::new(format!(
+                    "cell {} carries a POU_D_T beam element but its SECTION='GENERALE' gives no shear coefficients: give AFFE_CARA_ELEM/POUTRE/CARA 'AY' and 'AZ' (code_aster has no default for them)",
+                    crate::select::cell_name(mesh, cell)
+                )));
+            } else {
+                section
+            };
             elements.push(Element {
                 cell,
                 kind: ElementKind::Beam {
                     material: material_of(cell)?,
                     section,
+                },
+            });
+            continue;
+        }
+        if m == Modelisation::Bar {
+            let area = bars.get(&cell).copied().ok_or_else(|| {
+                ExecError::new(format!(
+                    "cell {} carries a BARRE element but no section: give AFFE_CARA_ELEM/BARRE (and CARA_ELEM to the solver)",
+                    crate::select::cell_name(mesh, cell)
+                ))
+            })?;
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Bar {
+                    material: material_of(cell)?,
+                    area,
                 },
             });
             continue;
@@ -1117,9 +1160,30 @@ fn thermal_loads(
             crate::concept::temperature_weights(&inst, before, after, t).map(|w| w[k])
         });
         for el in model.elements() {
-            if !matches!(el.kind, aster_fem::ElementKind::Continuum { .. })
-                || !temp.cells.contains(&el.cell)
-            {
+            if !temp.cells.contains(&el.cell) {
+                continue;
+            }
+            // Beams and bars expand too in code_aster (te0150, te0155):
+            // not reproduced, refused rather than ignored.
+            if matches!(
+                el.kind,
+                aster_fem::ElementKind::Beam { .. } | aster_fem::ElementKind::Bar { .. }
+            ) {
+                let alpha = materials.cells.get(&el.cell).and_then(|m| m.alpha);
+                let heated = mesh
+                    .cell(el.cell)
+                    .nodes
+                    .iter()
+                    .any(|n| values[n.0 as usize] != temp.tref);
+                if alpha.is_some_and(|a| a != 0.) && heated {
+                    return Err(ExecError::new(format!(
+                        "not supported yet: AFFE_MATERIAU/AFFE_VARC NOM_VARC='TEMP' on cell {}, a beam or bar (POU_D_E, POU_D_T, BARRE): their thermal strain is not reproduced",
+                        mesh.cell_name(el.cell)
+                    )));
+                }
+                continue;
+            }
+            if !matches!(el.kind, aster_fem::ElementKind::Continuum { .. }) {
                 continue;
             }
             let alpha = materials
@@ -1977,10 +2041,10 @@ pub fn calc_champ(
                     &crate::shells::efge_elga(model, run.cara.as_deref(), u)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 )),
-                "EFGE_ELNO" if model.has_beams() || model.has_shells() => {
+                "EFGE_ELNO" if model.has_beams() || model.has_bars() || model.has_shells() => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &efge_elno()?))
                 }
-                "EFGE_NOEU" if model.has_beams() || model.has_shells() => {
+                "EFGE_NOEU" if model.has_beams() || model.has_bars() || model.has_shells() => {
                     Field::Nodal(nodal_by_families(model, &efge_elno()?))
                 }
                 "SIEF_ELNO" | "SIGM_ELNO" => {

@@ -36,7 +36,13 @@ fn is_shell(model: &ModelDef, cell: CellId) -> bool {
 fn is_structural(model: &ModelDef, cell: CellId) -> bool {
     matches!(
         model.cells.get(&cell),
-        Some(Modelisation::Dkt | Modelisation::Coque3d | Modelisation::BeamEuler)
+        Some(
+            Modelisation::Dkt
+                | Modelisation::Coque3d
+                | Modelisation::BeamEuler
+                | Modelisation::BeamTimoshenko
+                | Modelisation::Bar
+        )
     )
 }
 
@@ -78,7 +84,7 @@ pub(crate) fn check_solve(
     model: &ModelDef,
     behaviours: &[BehaviourOcc],
 ) -> Result<(), ExecError> {
-    if !model.has_rotations() {
+    if !model.cells.keys().any(|&c| is_structural(model, c)) {
         return Ok(());
     }
     let cmd = call.command.as_str();
@@ -101,7 +107,7 @@ pub(crate) fn check_solve(
         if b.relation != Relation::Elas {
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell or beam cells (DKT, POU_D_E): they are linear elastic here"
+                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell, beam or bar cells (DKT, POU_D_E, POU_D_T, BARRE): they are linear elastic here"
                 ),
                 at("RELATION"),
             ));
@@ -109,7 +115,7 @@ pub(crate) fn check_solve(
         if b.kinematics != Kinematics::Small {
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd}/COMPORTEMENT/DEFORMATION other than PETIT on shell or beam cells (DKT, POU_D_E): they are in small strains here"
+                    "{cmd}/COMPORTEMENT/DEFORMATION other than PETIT on shell, beam or bar cells (DKT, POU_D_E, POU_D_T, BARRE): they are in small strains here"
                 ),
                 at("DEFORMATION"),
             ));

@@ -1,16 +1,25 @@
-//! `AFFE_CARA_ELEM/POUTRE`: the sections of the beam (`POU_D_E`) cells,
-//! A, IY, IZ, JX as code_aster's `affgen` computes them.
+//! `AFFE_CARA_ELEM/POUTRE`: the sections of the beam (`POU_D_E`,
+//! `POU_D_T`) cells, A, IY, IZ, JX and the shear coefficients AY, AZ as
+//! code_aster's `affgen` computes them (`coecis`'s tables for the tubes and
+//! the hollow rectangles, 1.2 for a solid rectangle).
 //!
 //! - `SECTION='CERCLE'`: `R` and `EP` (a tube; `EP` absent: solid);
 //! - `SECTION='RECTANGLE'`: `HY`/`HZ` or `H` (square), `EPY`/`EPZ` or `EP`
 //!   (hollow; absent: solid);
-//! - `SECTION='GENERALE'`: `A`, `IY`, `IZ`, `JX` given (the other
-//!   characteristics — shear areas, offsets, warping — do not enter an
-//!   Euler–Bernoulli beam without offset; a non-zero `EY`/`EZ` is refused);
+//! - `SECTION='GENERALE'`: `A`, `IY`, `IZ`, `JX` given, `AY`/`AZ` for a
+//!   Timoshenko beam (the other characteristics — warping, radii of the
+//!   stresses — do not enter these elements; a non-zero `EY`/`EZ` is
+//!   refused);
 //! - `VARI_SECT='HOMOTHETIQUE'` is accepted when both ends are equal (a
 //!   constant section); a varying section is refused at `VARI_SECT`.
 //!
-//! Read here, handed to aster-fem as [`aster_fem::BeamSection`].
+//! `AFFE_CARA_ELEM/BARRE`: the cross-section area A of the truss (`BARRE`)
+//! cells, from `SECTION='GENERALE'` (`A`), `'CERCLE'` (`R`, `EP`) or
+//! `'RECTANGLE'` (`HY`/`HZ` or `H`, `EPY`/`EPZ` or `EP`), the areas of the
+//! beams' sections.
+//!
+//! Read here, handed to aster-fem as [`aster_fem::BeamSection`] and the
+//! bars' areas.
 
 use crate::executor::Executor;
 use crate::select;
@@ -28,8 +37,20 @@ pub struct BeamCara {
     pub radius: Option<f64>,
 }
 
-/// The `POUTRE` keywords AFFE_CARA_ELEM reads (`crate::support`).
-pub(crate) const KEYWORDS: [&str; 9] = [
+/// One `BARRE` occurrence resolved on the mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BarCara {
+    pub cells: Vec<CellId>,
+    pub area: f64,
+}
+
+/// The `POUTRE` and `BARRE` keywords AFFE_CARA_ELEM reads (`crate::support`).
+pub(crate) const KEYWORDS: [&str; 14] = [
+    "BARRE",
+    "BARRE/GROUP_MA",
+    "BARRE/SECTION",
+    "BARRE/CARA",
+    "BARRE/VALE",
     "POUTRE",
     "POUTRE/GROUP_MA",
     "POUTRE/SECTION",
@@ -42,7 +63,8 @@ pub(crate) const KEYWORDS: [&str; 9] = [
 ];
 
 /// The sections reproduced; `MODI_METRIQUE='OUI'` is the pipes'.
-pub(crate) const VALUES: [crate::support::Values; 3] = [
+pub(crate) const VALUES: [crate::support::Values; 4] = [
+    crate::support::Values::listed("BARRE/SECTION", &["CERCLE", "RECTANGLE", "GENERALE"]),
     crate::support::Values::listed("POUTRE/SECTION", &["CERCLE", "RECTANGLE", "GENERALE"]),
     crate::support::Values::listed("POUTRE/VARI_SECT", &["CONSTANT", "HOMOTHETIQUE"]),
     crate::support::Values::new("POUTRE/MODI_METRIQUE", &["NON"]),
@@ -108,7 +130,10 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
                     ));
                 }
                 radius = Some(r);
-                BeamSection::circle(r, ep)
+                BeamSection {
+                    shear: Some(BeamSection::circle_shear(r, ep)),
+                    ..BeamSection::circle(r, ep)
+                }
             }
             "RECTANGLE" => {
                 if homothetic {
@@ -138,7 +163,12 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
                 if !(hy > 0. && hz > 0.) {
                     return Err(err("VALE", format!("RECTANGLE with HY = {hy}, HZ = {hz}")));
                 }
-                BeamSection::rectangle(hy, hz, walls)
+                let shear =
+                    BeamSection::rectangle_shear(hy, hz, walls).map_err(|m| err("VALE", m))?;
+                BeamSection {
+                    shear: Some(shear),
+                    ..BeamSection::rectangle(hy, hz, walls)
+                }
             }
             _ => {
                 if homothetic {
@@ -165,7 +195,20 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
                         "SECTION='GENERALE' needs A, IY, IZ and JX".into(),
                     ));
                 };
-                BeamSection { area, iy, iz, jx }
+                // AY, AZ: a Timoshenko beam's shear coefficients (no
+                // default in code_aster's `affdef`: a POU_D_T cell without
+                // them is refused when the model is built).
+                let shear = match (get("AY"), get("AZ")) {
+                    (Some(ay), Some(az)) => Some([ay, az]),
+                    _ => None,
+                };
+                BeamSection {
+                    area,
+                    iy,
+                    iz,
+                    jx,
+                    shear,
+                }
             }
         };
         section.check().map_err(|m| err("VALE", m))?;
@@ -182,6 +225,93 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
             section,
             radius,
         });
+    }
+    Ok(out)
+}
+
+/// The `BARRE` occurrences of an AFFE_CARA_ELEM call: the area of each
+/// (code_aster's `aceaba`: `A` given, or the area of the circle or
+/// rectangle, as the beams' sections compute it).
+pub(crate) fn bars(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<BarCara>, ExecError> {
+    let mut out = Vec::new();
+    for occ in kw.factor("BARRE") {
+        let err = |key: &str, m: String| ex.kw_error("AFFE_CARA_ELEM", occ, key, m);
+        let names: Vec<&str> = occ
+            .simple("CARA")
+            .iter()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let values: Vec<f64> = occ
+            .simple("VALE")
+            .iter()
+            .filter_map(|s| s.as_f64())
+            .collect();
+        if names.len() != values.len() {
+            return Err(err(
+                "VALE",
+                format!(
+                    "BARRE gives {} characteristics (CARA) and {} values (VALE)",
+                    names.len(),
+                    values.len()
+                ),
+            ));
+        }
+        let get = |n: &str| names.iter().position(|&c| c == n).map(|k| values[k]);
+        let area = match occ.str("SECTION").unwrap_or("GENERALE") {
+            "CERCLE" => {
+                let Some(r) = get("R") else {
+                    return Err(err("CARA", "SECTION='CERCLE' needs R".into()));
+                };
+                let ep = get("EP").unwrap_or(r);
+                if !(r > 0. && ep > 0. && ep <= r) {
+                    return Err(err(
+                        "VALE",
+                        format!("CERCLE with R = {r}, EP = {ep}: needs 0 < EP ≤ R"),
+                    ));
+                }
+                BeamSection::circle(r, ep).area
+            }
+            "RECTANGLE" => {
+                let h = get("H");
+                let (Some(hy), Some(hz)) = (get("HY").or(h), get("HZ").or(h)) else {
+                    return Err(err(
+                        "CARA",
+                        "SECTION='RECTANGLE' needs HY and HZ, or H".into(),
+                    ));
+                };
+                let ep = get("EP");
+                let walls = match (get("EPY").or(ep), get("EPZ").or(ep)) {
+                    (None, None) => None,
+                    (Some(a), Some(b)) => Some((a, b)),
+                    _ => {
+                        return Err(err(
+                            "CARA",
+                            "a hollow RECTANGLE needs both EPY and EPZ, or EP".into(),
+                        ))
+                    }
+                };
+                if !(hy > 0. && hz > 0.) {
+                    return Err(err("VALE", format!("RECTANGLE with HY = {hy}, HZ = {hz}")));
+                }
+                BeamSection::rectangle(hy, hz, walls).area
+            }
+            _ => {
+                let Some(a) = get("A") else {
+                    return Err(err("CARA", "SECTION='GENERALE' needs A".into()));
+                };
+                a
+            }
+        };
+        aster_fem::bar::check_area(area).map_err(|m| err("VALE", m))?;
+        let cells = select::cells(occ, mesh, "")
+            .map_err(|e| ExecError::new(format!("AFFE_CARA_ELEM/BARRE: {e}")))?;
+        if let Some(bad) = select::misfit(mesh, &cells, |c| c.ty == CellType::SEG2) {
+            return Err(err(
+                "GROUP_MA",
+                format!("BARRE applies to the truss cells (SEG2), but {bad}"),
+            ));
+        }
+        out.push(BarCara { cells, area });
     }
     Ok(out)
 }

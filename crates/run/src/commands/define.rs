@@ -652,14 +652,14 @@ pub(crate) const AFFE_MODELE: Support = Support {
 
 /// The modelisations AFFE_MODELE accepts: the mechanical ones and the
 /// thermal `PLAN` (`AXIS` and `3D` are both).
-const MODELISATIONS: [&str; 16] = {
-    let mut all = [""; 16];
+const MODELISATIONS: [&str; 18] = {
+    let mut all = [""; 18];
     let mut i = 0;
     while i < Modelisation::KEYWORDS.len() {
         all[i] = Modelisation::KEYWORDS[i];
         i += 1;
     }
-    all[15] = "PLAN";
+    all[17] = "PLAN";
     all
 };
 
@@ -725,8 +725,10 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 Modelisation::Discrete2D
                 | Modelisation::Discrete3D
                 | Modelisation::DiscreteRot3D => ty.dim() <= 1,
-                // code_aster's MECA_POU_D_E: SEG2.
-                Modelisation::BeamEuler => ty == aster_mesh::CellType::SEG2,
+                // code_aster's MECA_POU_D_E, MECA_POU_D_T, MECA_BARRE: SEG2.
+                Modelisation::BeamEuler | Modelisation::BeamTimoshenko | Modelisation::Bar => {
+                    ty == aster_mesh::CellType::SEG2
+                }
                 Modelisation::Solid3D => ty.dim() >= 2,
                 // code_aster's DKT elements: MEDKTR3, MEDKQU4 (FORCE_ARETE
                 // loads the edges' nodes directly: loads_more).
@@ -901,9 +903,10 @@ pub(crate) const AFFE_CARA_ELEM: Support = Support {
         super::cara_poutre::VALUES[0],
         super::cara_poutre::VALUES[1],
         super::cara_poutre::VALUES[2],
+        super::cara_poutre::VALUES[3],
     ],
-    ..Support::keywords(&crate::support::joined::<_, 40>(
-        &crate::support::joined::<_, 35>(
+    ..Support::keywords(&crate::support::joined::<_, 45>(
+        &crate::support::joined::<_, 40>(
             &crate::support::joined::<_, 26>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
             &super::cara_poutre::KEYWORDS,
         ),
@@ -920,6 +923,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let mut masses = Vec::new();
     let shells = super::cara_coque::shells(ex, kw, &mesh)?;
     let beams = super::cara_poutre::beams(ex, kw, &mesh)?;
+    let bars = super::cara_poutre::bars(ex, kw, &mesh)?;
     let massif = super::cara_massif::frames(ex, kw, &mesh)?;
     for f in ["DISCRET", "DISCRET_2D"] {
         for occ in kw.factor(f) {
@@ -982,6 +986,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             masses,
             shells,
             beams,
+            bars,
             massif,
         })),
     )

@@ -87,6 +87,8 @@ pub(super) fn pesanteur(
         };
         let structural = match m {
             Modelisation::BeamEuler => Some("POU_D_E beam (a mass per length ρA)"),
+            Modelisation::BeamTimoshenko => Some("POU_D_T beam (a mass per length ρA)"),
+            Modelisation::Bar => Some("BARRE bar (a mass per length ρA)"),
             Modelisation::Coque3d => Some("COQUE_3D shell (te0403's mass per area)"),
             Modelisation::Discrete2D | Modelisation::Discrete3D | Modelisation::DiscreteRot3D => {
                 Some("discrete element (its CARA_ELEM mass)")
