@@ -65,6 +65,27 @@ pub struct Coque3dSection {
     pub shear_factor: f64,
     /// `COQUE_NCOU`.
     pub layers: u32,
+    /// The rule through the thickness of the stiffness ([`ThicknessRule`]).
+    pub rule: ThicknessRule,
+}
+
+/// The rule through the thickness of the COQUE_3D stiffness: code_aster
+/// computes `RIGI_MECA` (`MECA_STATIQUE`: `te0401` → `vdxrig`) and the
+/// tangent matrix of `STAT_NON_LINE` (`te0414` → `vdxnlr`) with two
+/// different rules. On a flat cell both are exact (the integrand is a
+/// polynomial of degree 2 in ξ₃); on a curved one the Jacobian varies
+/// through the thickness and they differ (ssls114a's TRIA7 cylinder: 2.6e-5
+/// on the displacements).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ThicknessRule {
+    /// `vdxnlr`: `COQUE_NCOU` layers, each with Simpson's three points
+    /// (weights 1/3, 4/3, 1/3), the layer's thickness in the Jacobian.
+    #[default]
+    Simpson,
+    /// `vdxrig`: two Gauss points ξ₃ = ±0.577350269189626 (code_aster's
+    /// literal), weights 1, over the whole thickness (the layers play no
+    /// part).
+    Gauss2,
 }
 
 impl Coque3dSection {
@@ -75,6 +96,7 @@ impl Coque3dSection {
             drilling: 1e-5,
             shear_factor: DEFAULT_SHEAR_FACTOR,
             layers: 1,
+            rule: ThicknessRule::Simpson,
         }
     }
 }
@@ -594,27 +616,40 @@ fn rotation_columns(
 /// The 5×`nddle` strain operator (5×42 on a QUAD9, 5×32 on a TRIA7) at
 /// every (layer point, normal point), with its weight: `btdmsr` on the
 /// reduced points, `btdfn` on the normal ones, combined by `btdmsn`
-/// (IND=1).
+/// (IND=1); through the thickness by `rule` ([`ThicknessRule`]).
 fn operators(
     xyz: &[V3],
     frames: &[[V3; 3]],
     section: &Coque3dSection,
     r: &RefElement,
+    rule: ThicknessRule,
 ) -> Vec<(Vec<Vec<f64>>, f64)> {
     let normals: Vec<V3> = frames.iter().map(|f| f[2]).collect();
-    let nbcou = section.layers.max(1) as usize;
+    let gauss2 = rule == ThicknessRule::Gauss2;
+    // vdxrig: one "layer", the whole thickness.
+    let nbcou = if gauss2 {
+        1
+    } else {
+        section.layers.max(1) as usize
+    };
     let hic = section.thickness / nbcou as f64;
     let zmin = -section.thickness / 2.;
     let (nddle, npgsr) = (r.nddle(), r.npgsr());
-    let mut out = Vec::with_capacity(nbcou * 3 * r.npgsn());
+    let npge = if gauss2 { 2 } else { 3 };
+    let mut out = Vec::with_capacity(nbcou * npge * r.npgsn());
     for icou in 0..nbcou {
-        for inte in 0..3 {
-            let (zic, coef) = match inte {
-                0 => (zmin + icou as f64 * hic, 1. / 3.),
-                1 => (zmin + hic / 2. + icou as f64 * hic, 4. / 3.),
-                _ => (zmin + hic + icou as f64 * hic, 1. / 3.),
+        for inte in 0..npge {
+            let (ksi3s2, coef) = if gauss2 {
+                // vdxrig's epsval, weight 1.
+                ([-0.577350269189626, 0.577350269189626][inte] / 2., 1.)
+            } else {
+                let (zic, coef) = match inte {
+                    0 => (zmin + icou as f64 * hic, 1. / 3.),
+                    1 => (zmin + hic / 2. + icou as f64 * hic, 4. / 3.),
+                    _ => (zmin + hic + icou as f64 * hic, 1. / 3.),
+                };
+                (zic / hic, coef)
             };
-            let ksi3s2 = zic / hic;
             // Reduced points: membrane (translations only) and shear rows.
             let mut btdm = vec![[vec![0.; nddle], vec![0.; nddle], vec![0.; nddle]]; npgsr];
             let mut btds = vec![[vec![0.; nddle], vec![0.; nddle]]; npgsr];
@@ -711,7 +746,7 @@ fn local_stiffness(
     let d = dtild(material, section.shear_factor);
     let (nb1, nddle, nddl) = (r.nb1, r.nddle(), r.nddl());
     let mut kt = vec![0.; nddle * nddle];
-    for (b, wgt) in operators(xyz, frames, section, r) {
+    for (b, wgt) in operators(xyz, frames, section, r, section.rule) {
         // wmatcb = (wgt·D)·B
         let mut db = vec![vec![0.; nddle]; 5];
         for i in 0..5 {
@@ -998,7 +1033,7 @@ pub fn stresses(
     let frames = nodal_frames(xyz, &r)?;
     let ul = local_unknowns(&frames, u);
     let kappa = section.shear_factor;
-    let ops = operators(xyz, &frames, section, &r);
+    let ops = operators(xyz, &frames, section, &r, ThicknessRule::Simpson);
     let npge = 3 * section.layers.max(1) as usize;
     let npgsn = r.npgsn();
     let mut out = vec![[0.; 6]; ops.len()];
@@ -1108,6 +1143,45 @@ fn user_angle(frame: &[V3; 3], direction: V3) -> Result<(f64, f64), String> {
     Ok((c, s))
 }
 
+/// The factor of code_aster's round trip of `SIEF_ELGA` through the
+/// user's frame (`postcoq3d` stores it turned 'IU', `te0040`'s `cosiro`
+/// turns it back 'UI' before `elno_coq3d`, both with the 2×2 matrix
+/// [c −s; s c] of the first reduced point, `vdrepe`): that matrix comes
+/// from `vectgt`'s frame at the point (ξ₃ = 0), whose t₃ is the
+/// interpolated normal, not normalised, and t₂ = t₃×t₁ — not unit on a
+/// curved cell. `coqrep` projects the direction with that t₃, takes
+/// c = p·t₁, s = p·t₂ and normalises (c, s) twice as `user_angle` does,
+/// which leaves c² + s² = λ ≠ 1; the round trip multiplies the in-plane
+/// stresses by λ² and the transverse shears by λ. λ = 1 on a flat cell
+/// and where the direction projects onto t₁ (s = 0).
+fn round_trip_scale(
+    xyz: &[V3],
+    r: &RefElement,
+    frames: &[[V3; 3]],
+    direction: V3,
+) -> Result<f64, String> {
+    let normals: Vec<V3> = frames.iter().map(|f| f[2]).collect();
+    // vectgt(0, …, ksi3s2 = 0, intsr = 1): epais plays no part at ξ₃ = 0.
+    let (t, _, _) = point_frame(&r.gr[0], xyz, &normals, 0., 1.);
+    let dot = |a: V3, b: V3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let ps = dot(direction, t[2]);
+    let pj = [0, 1, 2].map(|k| direction[k] - ps * t[2][k]);
+    let norm_pj = norm(pj);
+    if norm_pj <= f64::EPSILON {
+        return Err(
+            "a COQUE_3D cell whose reference direction (ANGL_REP/VECTEUR) is normal to it at its first reduced point: the stresses' frame is undefined".into(),
+        );
+    }
+    let pj = pj.map(|v| v / norm_pj);
+    let (mut c, mut s) = (dot(pj, t[0]), dot(pj, t[1]));
+    // coqrep's normalisation, then vdrepe's: each `s` with the new `c`.
+    for _ in 0..2 {
+        c /= (c * c + s * s).sqrt();
+        s /= (c * c + s * s).sqrt();
+    }
+    Ok(c * c + s * s)
+}
+
 /// `mamagi`: the least-squares extrapolation (3·nso × 3·npgsn, row-major)
 /// from the points of a layer (bottom, middle, top × the normal points)
 /// to its nodal values (bottom, middle, top × the corners), bilinear in
@@ -1165,8 +1239,9 @@ fn extrapolation(r: &RefElement) -> Vec<f64> {
 /// nodes take the mean of their two corners, the centre the mean of the
 /// corners. code_aster stores `SIEF_ELGA` turned into the user's frame of
 /// the first reduced point and turns it back before extrapolating
-/// (`cosiro` 'IU' then 'UI' with the same 2×2 rotation): the identity up
-/// to round-off, not repeated here.
+/// (`cosiro` 'IU' then 'UI' with the same 2×2 matrix): not the identity
+/// on a curved cell ([`round_trip_scale`]), whose factor λ this applies
+/// (λ² on SIXX SIYY SIXY, λ on SIXZ SIYZ).
 pub fn sigm_elno(
     xyz: &[V3],
     material: &Elastic,
@@ -1176,6 +1251,7 @@ pub fn sigm_elno(
 ) -> Result<Vec<Vec<[f64; 6]>>, String> {
     let r = reference(xyz)?;
     let frames = nodal_frames(xyz, &r)?;
+    let lambda = round_trip_scale(xyz, &r, &frames, direction)?;
     let gauss = stresses(xyz, material, section, u)?;
     let nbcou = section.layers.max(1) as usize;
     let npge = 3 * nbcou;
@@ -1218,7 +1294,9 @@ pub fn sigm_elno(
                 let (c, s) = user_angle(&frames[n], direction)?;
                 let (xx, yy, xy) = turn_plane(t[0], t[1], t[3], c, s);
                 let (xz, yz) = turn_shear(t[4], t[5], c, s);
-                out[n][3 * icou + lvl] = [xx, yy, t[2], xy, xz, yz];
+                let l2 = lambda * lambda;
+                out[n][3 * icou + lvl] =
+                    [l2 * xx, l2 * yy, t[2], l2 * xy, lambda * xz, lambda * yz];
             }
         }
     }
@@ -1456,6 +1534,50 @@ fn to_user(e: &[f64; 8], c: f64, s: f64) -> [f64; 8] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// code_aster's round trip of SIEF_ELGA through the user's frame
+    /// (`cosiro` 'IU' then 'UI' with `vectgt`'s frame, whose t₂ = t₃×t₁ is
+    /// not unit where the interpolated normal t₃ is not): the identity on a
+    /// flat cell and where the direction projects onto t₁, a factor
+    /// λ = c² + s² ≠ 1 on a curved cell otherwise.
+    #[test]
+    fn round_trip_scale_is_one_on_flat_cells_only() {
+        let flat: Vec<V3> = [
+            [0., 0., 0.],
+            [2.1, 0.2, 0.],
+            [0.4, 1.9, 0.],
+            [1.1, 0.2, 0.],
+            [1.2, 1.1, 0.],
+            [0.1, 0.9, 0.],
+        ]
+        .to_vec();
+        // A cylinder (radius 1, axis z) patch, mid-sides on the cylinder.
+        let on = |t: f64, z: f64| [t.cos(), t.sin(), z];
+        let curved: Vec<V3> = vec![
+            on(0., 0.),
+            on(0.5, 0.),
+            on(0., 0.5),
+            on(0.25, 0.),
+            on(0.25, 0.25),
+            on(0., 0.25),
+        ];
+        let r = RefElement::new(Coque3dCell::Tria7);
+        let scale = |xyz: &[V3], d: V3| {
+            let frames = nodal_frames(xyz, &r).unwrap();
+            round_trip_scale(xyz, &r, &frames, d).unwrap()
+        };
+        for d in [[1., 0., 0.], [0.3, 0.8, 0.2], [0., 1., 0.]] {
+            assert!((scale(&flat, d) - 1.).abs() < 1e-15);
+        }
+        // Along z the direction is t₂'s (s only, c = 0): one normalisation
+        // brings s to 1. Obliquely, λ ≠ 1.
+        assert!((scale(&curved, [0., 0., 1.]) - 1.).abs() < 1e-15);
+        let lambda = scale(&curved, [0., 0.6, 0.8]);
+        assert!(
+            (lambda - 1.).abs() > 1e-6 && (lambda - 1.).abs() < 1e-2,
+            "{lambda}"
+        );
+    }
 
     #[test]
     fn shape_functions_are_partitions_of_unity_at_code_aster_nodes() {

@@ -102,6 +102,19 @@ pub struct Model {
 }
 
 impl Model {
+    /// Sets the rule through the thickness of every COQUE_3D cell's
+    /// stiffness: `MECA_STATIQUE` takes code_aster's `RIGI_MECA`
+    /// (`vdxrig`, [`crate::coque3d::ThicknessRule::Gauss2`]), the
+    /// non-linear commands its tangent matrix (`vdxnlr`, `Simpson`, the
+    /// default).
+    pub fn set_coque3d_rule(&mut self, rule: crate::coque3d::ThicknessRule) {
+        for el in &mut self.elements {
+            if let ElementKind::Coque3d { section, .. } = &mut el.kind {
+                section.rule = rule;
+            }
+        }
+    }
+
     /// Builds a model and numbers its DOFs. Errors name the offending cell.
     ///
     /// As code_aster's AFFE_MODELE: a later element on the same cell

@@ -718,3 +718,79 @@ fn efforts_of_the_strip_are_the_beams_resultants() {
         }
     }
 }
+
+/// A TRIA7 cut from a cylinder of radius `radius` (axis z) and tilted:
+/// corners at (θ, z) = (0, 0), (0.5, 0), (0, 0.5), the mid-side nodes on
+/// the cylinder (off the straight midpoints of the chords).
+fn curved_tria(radius: f64, r: &Matrix3<f64>) -> Vec<[f64; 3]> {
+    let tz: [[f64; 2]; 6] = [
+        [0., 0.],
+        [0.5, 0.],
+        [0., 0.5],
+        [0.25, 0.],
+        [0.25, 0.25],
+        [0., 0.25],
+    ];
+    tz.iter()
+        .map(|&[t, z]| {
+            let p = r * Vector3::new(radius * t.cos(), radius * t.sin(), z);
+            [p[0], p[1], p[2]]
+        })
+        .collect()
+}
+
+fn stiffness_with(
+    xyz: &[[f64; 3]],
+    h: f64,
+    layers: u32,
+    rule: coque3d::ThicknessRule,
+) -> DVector<f64> {
+    let mat = Elastic::new(2e11, 0.3).unwrap();
+    let sec = Coque3dSection {
+        layers,
+        rule,
+        ..Coque3dSection::new(h)
+    };
+    DVector::from_vec(coque3d::stiffness(xyz, &mat, &sec).unwrap())
+}
+
+/// MECA_STATIQUE's rule (`vdxrig`: two Gauss points through the
+/// thickness) against the non-linear commands' (`vdxnlr`: Simpson). On a
+/// flat cell both integrate the (quadratic in ξ₃) integrand exactly; on a
+/// curved one the Jacobian varies through the thickness, and the error
+/// terms of the two rules on [−1, 1] are E_S = −f⁗/90 and E_G = +f⁗/135:
+/// against the integral (Simpson on 64 layers), K_G − K ≈ −2/3 (K_S − K).
+#[test]
+fn tria7_thickness_rules_of_meca_statique_and_stat_non_line() {
+    use coque3d::ThicknessRule::{Gauss2, Simpson};
+    let r = tilted();
+    let h = 0.2;
+    let flat = distorted_tria(&r);
+    let (s, g) = (
+        stiffness_with(&flat, h, 1, Simpson),
+        stiffness_with(&flat, h, 1, Gauss2),
+    );
+    assert!(
+        (&s - &g).amax() < 1e-9 * s.amax(),
+        "flat: {}",
+        (&s - &g).amax() / s.amax()
+    );
+    // vdxrig ignores COQUE_NCOU.
+    let g3 = stiffness_with(&flat, h, 3, Gauss2);
+    assert!((&g3 - &g).amax() < 1e-12 * g.amax());
+
+    let curved = curved_tria(1., &r);
+    let exact = stiffness_with(&curved, h, 64, Simpson);
+    let ds = stiffness_with(&curved, h, 1, Simpson) - &exact;
+    let dg = stiffness_with(&curved, h, 1, Gauss2) - &exact;
+    // The rules differ well above round-off on the curved cell …
+    assert!(
+        ds.amax() > 1e-7 * exact.amax(),
+        "{}",
+        ds.amax() / exact.amax()
+    );
+    // … by their error terms' ratio.
+    let ratio = dg.dot(&ds) / ds.dot(&ds);
+    assert!((ratio + 2. / 3.).abs() < 0.01, "ratio {ratio}");
+    assert!((&dg + &ds * (2. / 3.)).norm() < 0.01 * ds.norm());
+}

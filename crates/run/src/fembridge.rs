@@ -1368,7 +1368,12 @@ pub fn solve(
             "{cmd}: the model has joint elements (PLAN_JOINT), which aster computes with their cohesive law in STAT_NON_LINE only"
         )));
     }
-    let model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
+    let mut model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
+    if linear {
+        // code_aster's RIGI_MECA of COQUE_3D (te0401 → vdxrig): two Gauss
+        // points through the thickness, not vdxnlr's Simpson.
+        model.set_coque3d_rule(aster_fem::coque3d::ThicknessRule::Gauss2);
+    }
     let mut loads = build_loads(setup, &mesh, &model)?;
     let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
     let plastic = !behaviours.is_elastic();

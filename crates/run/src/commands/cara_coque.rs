@@ -48,6 +48,7 @@ impl ShellCara {
             drilling: self.section.drilling,
             shear_factor: self.shear_factor,
             layers: self.layers,
+            rule: aster_fem::coque3d::ThicknessRule::Simpson,
         }
     }
 }
