@@ -290,6 +290,15 @@ impl Material {
         Ok(self.alpha.map(|a| a * (temp - tref)))
     }
 
+    /// RHO, or why this cell's ELAS_FO did not resolve (the message,
+    /// located at the keyword).
+    pub fn resolved_density(&self) -> Result<Option<f64>, String> {
+        match &self.unresolved {
+            Some(why) => Err(why.clone()),
+            None => Ok(self.density),
+        }
+    }
+
     /// Whether the thermal strain is linear in the temperature (a constant
     /// ALPHA).
     pub fn linear_thermal_strain(&self) -> bool {
