@@ -280,6 +280,48 @@ pub struct Material {
     /// are NaN); its frame (`angles`) is the cells' AFFE_CARA_ELEM/MASSIF
     /// one, set by the model.
     pub orthotropic: Option<aster_fem::orthotropic::Orthotropic>,
+    /// `ELAS_FO=_F(…)` in place of `ELAS`: the functions, resolved per cell
+    /// by AFFE_MATERIAU ([`crate::elas_fo`]); `young`, `poisson`,
+    /// `density` and `alpha` hold their values when they are constants.
+    pub elas_fo: Option<Rc<crate::elas_fo::ElasFo>>,
+    /// ELAS_FO's ALPHA when it is not a constant: code_aster's α converted
+    /// to the reference temperature (`alfint`), a function of TEMP; the
+    /// thermal strain is α(T) (T − T_ref) ([`Material::thermal_strain`]).
+    pub alpha_fo: Option<LoadFunction>,
+    /// Why this cell's ELAS_FO has no constant E, NU (and RHO): set by
+    /// AFFE_MATERIAU, raised (with the keyword's location) when a
+    /// mechanical computation needs the material.
+    pub unresolved: Option<String>,
+}
+
+impl Material {
+    /// The thermal strain at temperature `temp` for the reference `tref`:
+    /// ALPHA (T − T_ref), with ELAS_FO's α(T) converted as code_aster's
+    /// `alfint` does; `None` without ALPHA.
+    pub fn thermal_strain(&self, temp: f64, tref: f64) -> Result<Option<f64>, String> {
+        if let Some(f) = &self.alpha_fo {
+            let a =
+                f.0.eval_named(&[("TEMP", temp)])
+                    .map_err(|e| format!("ELAS_FO/ALPHA at TEMP={temp}: {e}"))?;
+            return Ok(Some(a * (temp - tref)));
+        }
+        Ok(self.alpha.map(|a| a * (temp - tref)))
+    }
+
+    /// RHO, or why this cell's ELAS_FO did not resolve (the message,
+    /// located at the keyword).
+    pub fn resolved_density(&self) -> Result<Option<f64>, String> {
+        match &self.unresolved {
+            Some(why) => Err(why.clone()),
+            None => Ok(self.density),
+        }
+    }
+
+    /// Whether the thermal strain is linear in the temperature (a constant
+    /// ALPHA).
+    pub fn linear_thermal_strain(&self) -> bool {
+        self.alpha_fo.is_none()
+    }
 }
 
 /// `RUPT_FRAG`: the cohesive parameters of `CZM_LIN_REG` as given

@@ -270,7 +270,7 @@ pub(crate) fn mass_data(
         let Some(mat) = setup.materials.cells.get(&cell) else {
             continue;
         };
-        if let Some(rho) = mat.density {
+        if let Some(rho) = mat.resolved_density().map_err(ExecError::new)? {
             data.density.insert(cell, rho);
         }
         let r = Rayleigh {

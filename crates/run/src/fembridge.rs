@@ -180,6 +180,9 @@ pub fn build_model(
                 crate::select::cell_name(mesh, cell)
             )));
         }
+        if let Some(why) = &mat.unresolved {
+            return Err(ExecError::new(why.clone()));
+        }
         if let Some(o) = mat.orthotropic {
             let angles = frames.get(&cell).copied().unwrap_or([0.0; 3]);
             return Elastic::orthotropic(aster_fem::orthotropic::Orthotropic { angles, ..o })
@@ -1001,7 +1004,14 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
         }
     }
     if let Some(temp) = &setup.materials.temperature {
-        thermal_loads(&mut loads, temp, &setup.materials, mesh, model)?;
+        thermal_loads(
+            &mut loads,
+            temp,
+            &setup.materials,
+            mesh,
+            model,
+            &setup.instants,
+        )?;
     }
     Ok(loads)
 }
@@ -1142,60 +1152,100 @@ fn shell_loads(
 }
 
 /// The thermal strain α (T − T_ref) of `AFFE_VARC(NOM_VARC='TEMP')` as
-/// free-strain loads: one per stored temperature field and continuum
-/// cell, weighted in time by linear interpolation between the fields'
-/// instants (EXCLU outside them unless PROL_GAUCHE/PROL_DROITE say
-/// CONSTANT).
+/// free-strain loads: one per instant ("knot") and continuum cell,
+/// weighted in time by linear interpolation between the knots (EXCLU
+/// outside them unless PROL_GAUCHE/PROL_DROITE say CONSTANT). The knots
+/// are the field's instants; when a cell's ALPHA is a function of the
+/// temperature (ELAS_FO), the strain is not linear in time between them,
+/// and the computed instants are knots too, so that the strain there is
+/// the one of the temperature there, as code_aster computes it.
 fn thermal_loads(
     loads: &mut Loads,
     temp: &crate::concept::Temperature,
     materials: &MaterialField,
     mesh: &Mesh,
     model: &Model,
+    computed: &[f64],
 ) -> Result<(), ExecError> {
     let instants: Vec<f64> = temp.fields.iter().map(|f| f.0).collect();
-    for (k, (_, values)) in temp.fields.iter().enumerate() {
-        let (inst, before, after) = (instants.clone(), temp.constant_before, temp.constant_after);
-        let mult = aster_fem::Multiplier::from_fn(move |t| {
-            crate::concept::temperature_weights(&inst, before, after, t).map(|w| w[k])
-        });
-        for el in model.elements() {
-            if !temp.cells.contains(&el.cell) {
-                continue;
-            }
-            // Beams and bars expand too in code_aster (te0150, te0155):
-            // not reproduced, refused rather than ignored.
-            if matches!(
+    // Beams and bars expand too in code_aster (te0150, te0155): not
+    // reproduced, refused rather than ignored.
+    for el in model.elements() {
+        if !temp.cells.contains(&el.cell)
+            || !matches!(
                 el.kind,
                 aster_fem::ElementKind::Beam { .. } | aster_fem::ElementKind::Bar { .. }
-            ) {
-                let alpha = materials.cells.get(&el.cell).and_then(|m| m.alpha);
-                let heated = mesh
-                    .cell(el.cell)
-                    .nodes
-                    .iter()
-                    .any(|n| values[n.0 as usize] != temp.tref);
-                if alpha.is_some_and(|a| a != 0.) && heated {
-                    return Err(ExecError::new(format!(
-                        "not supported yet: AFFE_MATERIAU/AFFE_VARC NOM_VARC='TEMP' on cell {}, a beam or bar (POU_D_E, POU_D_T, BARRE): their thermal strain is not reproduced",
-                        mesh.cell_name(el.cell)
-                    )));
-                }
-                continue;
-            }
-            if !matches!(el.kind, aster_fem::ElementKind::Continuum { .. }) {
-                continue;
-            }
-            let alpha = materials
+            )
+        {
+            continue;
+        }
+        let expands = materials
+            .cells
+            .get(&el.cell)
+            .is_some_and(|m| m.alpha.is_some_and(|a| a != 0.) || m.alpha_fo.is_some());
+        let heated = temp.fields.iter().any(|(_, values)| {
+            mesh.cell(el.cell)
+                .nodes
+                .iter()
+                .any(|n| values[n.0 as usize] != temp.tref)
+        });
+        if expands && heated {
+            return Err(ExecError::new(format!(
+                "not supported yet: AFFE_MATERIAU/AFFE_VARC NOM_VARC='TEMP' on cell {}, a beam or bar (POU_D_E, POU_D_T, BARRE): their thermal strain is not reproduced",
+                mesh.cell_name(el.cell)
+            )));
+        }
+    }
+    let heated = |el: &&aster_fem::Element| {
+        matches!(el.kind, aster_fem::ElementKind::Continuum { .. }) && temp.cells.contains(&el.cell)
+    };
+    let nonlinear = instants.len() > 1
+        && model.elements().iter().filter(heated).any(|el| {
+            materials
                 .cells
                 .get(&el.cell)
-                .and_then(|m| m.alpha)
-                .ok_or_else(|| {
-                    ExecError::new(format!(
-                        "AFFE_VARC gives a temperature to cell {}, whose material has no ELAS/ALPHA",
-                        mesh.cell_name(el.cell)
-                    ))
-                })?;
+                .is_some_and(|m| !m.linear_thermal_strain())
+        });
+    let (before, after) = (temp.constant_before, temp.constant_after);
+    // Each knot with its nodal temperatures.
+    let mut knots: Vec<(f64, Rc<Vec<f64>>)> = temp.fields.clone();
+    if nonlinear {
+        for &t in computed {
+            let tol = 1e-12 * t.abs().max(1.0);
+            if knots.iter().any(|(k, _)| (k - t).abs() <= tol) {
+                continue;
+            }
+            let Ok(w) = crate::concept::temperature_weights(&instants, before, after, t) else {
+                continue;
+            };
+            let n = temp.fields[0].1.len();
+            let mut values = vec![0.0; n];
+            for (wk, (_, f)) in w.iter().zip(&temp.fields) {
+                if *wk != 0.0 {
+                    for (v, x) in values.iter_mut().zip(f.iter()) {
+                        *v += wk * x;
+                    }
+                }
+            }
+            knots.push((t, Rc::new(values)));
+        }
+        knots.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    let times: Vec<f64> = knots.iter().map(|k| k.0).collect();
+    for (k, (_, values)) in knots.iter().enumerate() {
+        let times = times.clone();
+        let mult = aster_fem::Multiplier::from_fn(move |t| {
+            crate::concept::temperature_weights(&times, before, after, t).map(|w| w[k])
+        });
+        for el in model.elements().iter().filter(heated) {
+            let mat = materials.cells.get(&el.cell);
+            if mat.is_none_or(|m| m.alpha.is_none() && m.alpha_fo.is_none()) {
+                return Err(ExecError::new(format!(
+                    "AFFE_VARC gives a temperature to cell {}, whose material has no ELAS/ALPHA",
+                    mesh.cell_name(el.cell)
+                )));
+            }
+            let Some(mat) = mat else { continue };
             let mut nodal = Vec::new();
             for n in &mesh.cell(el.cell).nodes {
                 let t = values[n.0 as usize];
@@ -1205,7 +1255,16 @@ fn thermal_loads(
                         mesh.cell_name(el.cell)
                     )));
                 }
-                nodal.push(alpha * (t - temp.tref));
+                let eps = mat
+                    .thermal_strain(t, temp.tref)
+                    .map_err(|e| {
+                        ExecError::new(format!(
+                            "DEFI_MATERIAU: the material of cell {}: {e}",
+                            mesh.cell_name(el.cell)
+                        ))
+                    })?
+                    .unwrap_or(0.0);
+                nodal.push(eps);
             }
             if nodal.iter().any(|v| *v != 0.0) {
                 loads.add(

@@ -174,6 +174,13 @@ impl Tabulated {
         })
     }
 
+    /// The same function (abscissae, interpolation, prolongations) with
+    /// other values, one per abscissa.
+    pub fn with_values(&self, ys: Vec<f64>) -> Tabulated {
+        debug_assert_eq!(ys.len(), self.xs.len());
+        Tabulated { ys, ..self.clone() }
+    }
+
     pub fn abscissae(&self) -> &[f64] {
         &self.xs
     }

@@ -13,6 +13,7 @@ pub mod concept;
 mod contactbridge;
 pub mod defi_cont;
 pub mod dyna;
+pub mod elas_fo;
 mod evaluate;
 pub mod executor;
 pub mod export;

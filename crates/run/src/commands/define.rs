@@ -79,6 +79,22 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "ELAS_ORTH/G_LN",
     "ELAS_ORTH/G_TN",
     "ELAS_ORTH/RHO",
+    "ELAS_FO",
+    "ELAS_FO/E",
+    "ELAS_FO/NU",
+    "ELAS_FO/RHO",
+    "ELAS_FO/ALPHA",
+    "ELAS_FO/TEMP_DEF_ALPHA",
+    "ELAS_FO/PRECISION",
+    "ELAS_FO/AMOR_ALPHA",
+    "ELAS_FO/AMOR_BETA",
+    // The drying and endogenous shrinkages K_DESSIC (SECH − SECH_REF) and
+    // B_ENDOGE HYDR: zero, since aster's only command variable is the
+    // temperature (AFFE_VARC refuses SECH and HYDR).
+    "ELAS_FO/K_DESSIC",
+    "ELAS_FO/B_ENDOGE",
+    "ELAS/K_DESSIC",
+    "ELAS/B_ENDOGE",
     "INFO",
 ]);
 
@@ -105,6 +121,9 @@ fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> Material {
         rupt_frag: None,
         rupt_turon: None,
         orthotropic: None,
+        elas_fo: None,
+        alpha_fo: None,
+        unresolved: None,
     }
 }
 
@@ -203,7 +222,12 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         };
         return store_result(ex, call, Concept::Material(Rc::new(m)));
     }
-    let Some(elas) = kw.factor("ELAS").first() else {
+    let elas_fo = match kw.factor("ELAS_FO").first() {
+        Some(occ) => Some(elas_fo(ex, occ)?),
+        None => None,
+    };
+    let elas = kw.factor("ELAS").first();
+    if elas.is_none() && elas_fo.is_none() {
         if let (Some(thermal), None) = (
             thermal,
             PLASTIC_BLOCKS.iter().find(|k| !kw.factor(k).is_empty()),
@@ -212,36 +236,68 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             return store_result(ex, call, Concept::Material(Rc::new(m)));
         }
         return Err(ExecError::new(
-            "DEFI_MATERIAU: ELAS is required (with the plastic behaviours; THER alone makes a thermal material)",
+            "DEFI_MATERIAU: ELAS (or ELAS_FO) is required (with the plastic behaviours; THER alone makes a thermal material)",
         ));
+    }
+    // ELAS, or ELAS_FO's values when its functions are constants (NaN
+    // and None otherwise: AFFE_MATERIAU resolves them per cell).
+    let (young, poisson, density, alpha, amor_alpha, amor_beta) = match (elas, &elas_fo) {
+        (Some(elas), _) => {
+            let young = elas.f64("E").ok_or_else(|| {
+                ex.kw_error("DEFI_MATERIAU", elas, "E", "Young's modulus E is required")
+            })?;
+            let poisson = elas.f64("NU").ok_or_else(|| {
+                ex.kw_error(
+                    "DEFI_MATERIAU",
+                    elas,
+                    "NU",
+                    "Poisson's ratio NU is required",
+                )
+            })?;
+            if young <= 0.0 {
+                return Err(ex.kw_error(
+                    "DEFI_MATERIAU",
+                    elas,
+                    "E",
+                    format!("E must be positive, got {young}"),
+                ));
+            }
+            if !(-1.0 < poisson && poisson < 0.5) {
+                return Err(ex.kw_error(
+                    "DEFI_MATERIAU",
+                    elas,
+                    "NU",
+                    format!("NU must be in (-1, 0.5), got {poisson}"),
+                ));
+            }
+            (
+                young,
+                poisson,
+                elas.f64("RHO"),
+                elas.f64("ALPHA"),
+                elas.f64("AMOR_ALPHA"),
+                elas.f64("AMOR_BETA"),
+            )
+        }
+        (None, Some(fo)) => {
+            let c = |a: Option<&crate::elas_fo::FoArg>| {
+                a.and_then(|a| crate::elas_fo::constant(&a.function.0))
+            };
+            (
+                c(Some(&fo.e)).unwrap_or(f64::NAN),
+                c(Some(&fo.nu)).unwrap_or(f64::NAN),
+                c(fo.rho.as_ref()),
+                c(fo.alpha.as_ref()),
+                c(fo.amor_alpha.as_ref()),
+                c(fo.amor_beta.as_ref()),
+            )
+        }
+        (None, None) => {
+            return Err(ExecError::new(
+                "DEFI_MATERIAU: ELAS (or ELAS_FO) is required",
+            ))
+        }
     };
-    let young = elas
-        .f64("E")
-        .ok_or_else(|| ex.kw_error("DEFI_MATERIAU", elas, "E", "Young's modulus E is required"))?;
-    let poisson = elas.f64("NU").ok_or_else(|| {
-        ex.kw_error(
-            "DEFI_MATERIAU",
-            elas,
-            "NU",
-            "Poisson's ratio NU is required",
-        )
-    })?;
-    if young <= 0.0 {
-        return Err(ex.kw_error(
-            "DEFI_MATERIAU",
-            elas,
-            "E",
-            format!("E must be positive, got {young}"),
-        ));
-    }
-    if !(-1.0 < poisson && poisson < 0.5) {
-        return Err(ex.kw_error(
-            "DEFI_MATERIAU",
-            elas,
-            "NU",
-            format!("NU must be in (-1, 0.5), got {poisson}"),
-        ));
-    }
     let ecro_line = match kw.factor("ECRO_LINE").first() {
         Some(occ) => {
             let get = |name: &str, what: &str| {
@@ -258,9 +314,13 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             let sy = get("SY", "the yield stress SY")?;
             // Checked here so the error points at the keyword (fem checks
             // again when it builds the law).
-            aster_fem::VonMises::linear(young, sy, d_sigm_epsi).map_err(|e| {
-                ex.kw_error("DEFI_MATERIAU/ECRO_LINE", occ, "D_SIGM_EPSI", e.to_string())
-            })?;
+            // (E resolved per cell from ELAS_FO: checked when the law is
+            // built.)
+            if young.is_finite() {
+                aster_fem::VonMises::linear(young, sy, d_sigm_epsi).map_err(|e| {
+                    ex.kw_error("DEFI_MATERIAU/ECRO_LINE", occ, "D_SIGM_EPSI", e.to_string())
+                })?;
+            }
             Some(EcroLine { d_sigm_epsi, sy })
         }
         None => None,
@@ -269,6 +329,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         Some(occ) => {
             let f = ex.required("DEFI_MATERIAU/TRACTION", occ, "SIGM")?;
             match &*ex.function(f)? {
+                Function::Tabulated(t) if !young.is_finite() => Some(t.clone()),
                 Function::Tabulated(t) => {
                     aster_fem::VonMises::traction(
                         young,
@@ -389,10 +450,10 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         elastic: true,
         young,
         poisson,
-        density: elas.f64("RHO"),
-        alpha: elas.f64("ALPHA"),
-        amor_alpha: elas.f64("AMOR_ALPHA"),
-        amor_beta: elas.f64("AMOR_BETA"),
+        density,
+        alpha,
+        amor_alpha,
+        amor_beta,
         ecro_line,
         traction,
         lemaitre,
@@ -402,8 +463,53 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         rupt_frag: rupt_frag(ex, kw)?,
         rupt_turon: rupt_turon(ex, kw)?,
         orthotropic: None,
+        elas_fo: elas_fo.map(Rc::new),
+        alpha_fo: None,
+        unresolved: None,
     };
     store_result(ex, call, Concept::Material(Rc::new(m)))
+}
+
+/// `DEFI_MATERIAU/ELAS_FO`: the functions, checked where they are constant
+/// (E > 0, −1 < NU < 0.5); the others are resolved per cell by
+/// AFFE_MATERIAU ([`crate::elas_fo`]).
+fn elas_fo(ex: &Executor, occ: &Keywords) -> Result<crate::elas_fo::ElasFo, ExecError> {
+    let cmd = "DEFI_MATERIAU/ELAS_FO";
+    let arg = |name: &'static str| -> Result<Option<crate::elas_fo::FoArg>, ExecError> {
+        let Some(c) = occ.concept(name) else {
+            return Ok(None);
+        };
+        let function = ex.function(c)?;
+        let span = occ.keyword(name).map(|k| k.span).unwrap_or_default();
+        Ok(Some(crate::elas_fo::FoArg {
+            keyword: name,
+            name: c.name.clone(),
+            function: LoadFunction(function),
+            span,
+        }))
+    };
+    let e = arg("E")?.ok_or_else(|| ex.kw_error(cmd, occ, "E", "E is required"))?;
+    let nu = arg("NU")?.ok_or_else(|| ex.kw_error(cmd, occ, "NU", "NU is required"))?;
+    if let Some(v) = crate::elas_fo::constant(&e.function.0) {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(ex.kw_error(cmd, occ, "E", format!("E must be positive, got {v}")));
+        }
+    }
+    if let Some(v) = crate::elas_fo::constant(&nu.function.0) {
+        if !(-1.0 < v && v < 0.5) {
+            return Err(ex.kw_error(cmd, occ, "NU", format!("NU must be in (-1, 0.5), got {v}")));
+        }
+    }
+    Ok(crate::elas_fo::ElasFo {
+        e,
+        nu,
+        rho: arg("RHO")?,
+        alpha: arg("ALPHA")?,
+        amor_alpha: arg("AMOR_ALPHA")?,
+        amor_beta: arg("AMOR_BETA")?,
+        temp_def_alpha: occ.f64("TEMP_DEF_ALPHA"),
+        precision: occ.f64("PRECISION").unwrap_or(1.0),
+    })
 }
 
 /// `DEFI_MATERIAU/RUPT_FRAG` (`CZM_LIN_REG`'s parameters).
@@ -538,6 +644,8 @@ pub fn affe_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
     }
     let temperature = affe_varc(ex, kw, &mesh)?;
+    let locate = |span| ex.location(span).unwrap_or_else(|| "DEFI_MATERIAU".into());
+    let cells = crate::elas_fo::resolve_cells(&mesh, cells, temperature.as_deref(), &locate);
     store_result(
         ex,
         call,

@@ -275,7 +275,11 @@ fn ener_cin(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exec
             let materials = ex.material_field(m)?;
             let mut data = aster_fem::MassData::default();
             for el in model.elements() {
-                if let Some(rho) = materials.cells.get(&el.cell).and_then(|m| m.density) {
+                let rho = match materials.cells.get(&el.cell) {
+                    Some(m) => m.resolved_density().map_err(ExecError::new)?,
+                    None => None,
+                };
+                if let Some(rho) = rho {
                     data.density.insert(el.cell, rho);
                 }
             }

@@ -215,7 +215,11 @@ fn mass_data(
     if let Some(m) = kw.concept("CHAM_MATER") {
         let materials = ex.material_field(m)?;
         for el in model.elements() {
-            if let Some(rho) = materials.cells.get(&el.cell).and_then(|m| m.density) {
+            let rho = match materials.cells.get(&el.cell) {
+                Some(m) => m.resolved_density().map_err(ExecError::new)?,
+                None => None,
+            };
+            if let Some(rho) = rho {
                 data.density.insert(el.cell, rho);
             }
         }

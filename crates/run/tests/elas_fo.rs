@@ -1,0 +1,145 @@
+//! `DEFI_MATERIAU/ELAS_FO` (comm/elas_fo_bar.comm): a bar with E(T) and
+//! α(T) under a uniform temperature, free and clamped, in MECA_STATIQUE and
+//! STAT_NON_LINE, and heated in time through an EVOL_THER, against the
+//! closed forms with code_aster's conversion of α to the reference
+//! temperature (alfint); then what is refused, located at the keyword.
+
+mod scene;
+
+const MESH: &str = "comm/dyna_bar.mail";
+
+fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
+    scene::run_on(text, MESH, &format!("elasfo-{tag}"))
+}
+
+fn text() -> String {
+    scene::read("elas_fo_bar.comm")
+}
+
+/// `text()` with `from` replaced by `to` (which must be there).
+fn edited(from: &str, to: &str) -> String {
+    let t = text();
+    assert!(t.contains(from), "the scene changed: {from}");
+    t.replacen(from, to, 1)
+}
+
+#[test]
+fn bar_with_temperature_dependent_constants_matches_the_closed_forms() {
+    assert_eq!(run(&text(), "scene"), (16, 0, None));
+}
+
+/// Without the computed instants as knots of the thermal strain, the
+/// strain at t = 0.5 would be the mean of those at 0 and 1 (α' is not
+/// constant): a wrong stress, which the scene's check would catch. Here
+/// the same check with the mean as reference must fail (NOOK).
+#[test]
+fn the_strain_between_two_thermal_fields_is_that_of_the_interpolated_temperature() {
+    let t = edited(
+        "VALE_CALC=-150.0 * eps_th(110.0), VALE_REFE=-150.0 * eps_th(110.0)",
+        "VALE_CALC=-150.0 * 0.5 * eps_th(200.0), VALE_REFE=-150.0 * 0.5 * eps_th(200.0)",
+    );
+    let (ok, nook, err) = run(&t, "mean");
+    assert_eq!(err, None);
+    assert_eq!((ok, nook), (14, 2));
+}
+
+#[test]
+fn a_young_modulus_varying_over_a_cell_is_refused_at_the_keyword() {
+    // E a function of X: it varies within each cell, where code_aster
+    // evaluates it at each Gauss point.
+    let t = edited(
+        "E_T = DEFI_FONCTION(NOM_PARA=\"TEMP\"",
+        "E_T = DEFI_FONCTION(NOM_PARA=\"X\"",
+    );
+    let (ok, nook, err) = run(&t, "x");
+    assert_eq!((ok, nook), (0, 0));
+    let err = err.expect("refused");
+    assert!(err.contains("DEFI_MATERIAU/ELAS_FO/E"), "{err}");
+    assert!(err.contains("takes values from"), "{err}");
+    assert!(err.contains("case.comm:64:34"), "{err}");
+}
+
+#[test]
+fn a_young_modulus_varying_in_time_is_refused() {
+    // E(T) with the temperature of the EVOL_THER: E changes between the
+    // instants (code_aster rescales the stress by E+/E-).
+    let t = edited(
+        "AFFE=_F(GROUP_MA=\"BAR\", MATER=steel_c)",
+        "AFFE=_F(GROUP_MA=\"BAR\", MATER=steel)",
+    );
+    let (ok, _, err) = run(&t, "time");
+    assert_eq!(ok, 12, "the first two parts run");
+    let err = err.expect("refused");
+    assert!(err.contains("constant in time"), "{err}");
+}
+
+#[test]
+fn a_function_of_the_temperature_without_a_temperature_is_an_error() {
+    let t = edited(
+        "    AFFE_VARC=_F(NOM_VARC=\"TEMP\", TOUT=\"OUI\", CHAM_GD=hot, VALE_REF=TREF),\n",
+        "",
+    );
+    let (ok, nook, err) = run(&t, "notemp");
+    assert_eq!((ok, nook), (0, 0));
+    let err = err.expect("an error");
+    assert!(err.contains("is a function of TEMP and cell"), "{err}");
+    assert!(err.contains("has no temperature"), "{err}");
+}
+
+#[test]
+fn a_function_of_a_variable_aster_does_not_supply_is_refused() {
+    let t = edited(
+        "NU_C = DEFI_CONSTANTE(VALE=0.3)",
+        "NU_C = DEFI_FONCTION(NOM_PARA=\"NEUT1\", VALE=(0.0, 0.3, 1.0, 0.3))",
+    );
+    let (_, nook, err) = run(&t, "neut1");
+    assert_eq!(nook, 0);
+    let err = err.expect("refused");
+    assert!(err.contains("DEFI_MATERIAU/ELAS_FO/NU"), "{err}");
+    assert!(err.contains("a function of NEUT1"), "{err}");
+}
+
+#[test]
+fn alpha_as_a_formula_with_temp_def_alpha_is_an_error_as_in_code_aster() {
+    let t = edited(
+        "steel = DEFI_MATERIAU(ELAS_FO=_F(E=E_T, NU=NU_C, ALPHA=ALPHA_T,",
+        "ALPHA_F = FORMULE(NOM_PARA=\"TEMP\", VALE=\"1.0e-5 + 1.0e-8 * TEMP\")\n\
+         steel = DEFI_MATERIAU(ELAS_FO=_F(E=E_T, NU=NU_C, ALPHA=ALPHA_F,",
+    );
+    let (_, nook, err) = run(&t, "formula");
+    assert_eq!(nook, 0);
+    let err = err.expect("an error");
+    assert!(err.contains("MATERIAL1_1"), "{err}");
+}
+
+/// Constant functions (DEFI_CONSTANTE) are ELAS: the same clamped stress
+/// with E = 150 given either way.
+#[test]
+fn constant_functions_are_the_elastic_constants() {
+    let t = edited(
+        "steel = DEFI_MATERIAU(ELAS_FO=_F(E=E_T,",
+        "steel = DEFI_MATERIAU(ELAS_FO=_F(E=E_C,",
+    )
+    .replace("young(120.0) * eps_th", "150.0 * eps_th");
+    assert_eq!(run(&t, "const"), (16, 0, None));
+}
+
+/// α(T) on a cell whose temperature varies over it: code_aster takes
+/// α(T)(T − T_ref) at the Gauss points, aster's thermal strain is nodal;
+/// refused at ALPHA before the solve.
+#[test]
+fn alpha_of_a_temperature_not_uniform_over_a_cell_is_refused() {
+    let t = edited(
+        "AFFE=_F(TOUT=\"OUI\", NOM_CMP=\"TEMP\", VALE=120.0)\n)",
+        "AFFE=(_F(TOUT=\"OUI\", NOM_CMP=\"TEMP\", VALE=120.0), _F(GROUP_NO=\"TIP\", NOM_CMP=\"TEMP\", VALE=130.0))\n)",
+    )
+    .replace(
+        "steel = DEFI_MATERIAU(ELAS_FO=_F(E=E_T,",
+        "steel = DEFI_MATERIAU(ELAS_FO=_F(E=E_C,",
+    );
+    let (ok, nook, err) = run(&t, "gradient");
+    assert_eq!((ok, nook), (0, 0));
+    let err = err.expect("refused");
+    assert!(err.contains("DEFI_MATERIAU/ELAS_FO/ALPHA"), "{err}");
+    assert!(err.contains("not uniform"), "{err}");
+}
