@@ -1,8 +1,9 @@
 //! Linear heat conduction: `AFFE_MODELE(PHENOMENE='THERMIQUE')`,
-//! `AFFE_CHAR_THER`, `AFFE_CHAR_THER_F` (`TEMP_IMPO` given by functions of
-//! `INST` and the coordinates, evaluated at each node and instant: the
-//! dualised temperature is exactly that value) and `THER_LINEAIRE`
-//! (numerics in `aster_fem::thermal`).
+//! `AFFE_CHAR_THER(_F)` and `THER_LINEAIRE` (numerics in `aster_fem::thermal`).
+//!
+//! `AFFE_CHAR_THER_F/TEMP_IMPO` gives functions of `INST` and the
+//! coordinates, evaluated at each node and instant (code_aster dualises
+//! it: the node takes exactly that value).
 //!
 //! The result is an `EVOL_THER` holding the nodal field `TEMP` at every
 //! instant (numbered from 0, the initial state), which `TEST_RESU`,
