@@ -374,6 +374,9 @@ pub struct Temperature {
     /// `PROL_DROITE` (`true`: CONSTANT, `false`: EXCLU).
     pub constant_before: bool,
     pub constant_after: bool,
+    /// `file:line:col` of the `AFFE_VARC` keyword, for the solve's
+    /// refusals (a temperature on beams).
+    pub at: String,
 }
 
 /// The weight of each of a [`Temperature`]'s fields, given by their

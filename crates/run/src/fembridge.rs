@@ -1191,8 +1191,9 @@ fn thermal_loads(
         });
         if expands && heated {
             return Err(ExecError::new(format!(
-                "not supported yet: AFFE_MATERIAU/AFFE_VARC NOM_VARC='TEMP' on cell {}, a beam or bar (POU_D_E, POU_D_T, BARRE): their thermal strain is not reproduced",
-                mesh.cell_name(el.cell)
+                "not supported yet: AFFE_MATERIAU/AFFE_VARC NOM_VARC='TEMP' on cell {}, a beam or bar (POU_D_E, POU_D_T, BARRE): their thermal strain is not reproduced ({})",
+                mesh.cell_name(el.cell),
+                temp.at
             )));
         }
     }

@@ -94,6 +94,11 @@ fn a_temperature_on_the_bars_is_refused() {
         err.contains("not supported yet") && err.contains("TEMP") && err.contains("BARRE"),
         "{err}"
     );
+    // Located at the AFFE_VARC keyword of AFFE_MATERIAU.
+    assert!(
+        err.contains(".comm:") && err.contains("their thermal strain is not reproduced ("),
+        "{err}"
+    );
 }
 
 #[test]

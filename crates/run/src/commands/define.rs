@@ -727,6 +727,10 @@ fn affe_varc(
         fields,
         constant_before: occ.str("PROL_GAUCHE") == Some("CONSTANT"),
         constant_after: occ.str("PROL_DROITE") == Some("CONSTANT"),
+        at: kw
+            .keyword("AFFE_VARC")
+            .and_then(|k| ex.location(k.span))
+            .unwrap_or_else(|| "AFFE_VARC".into()),
     })))
 }
 
