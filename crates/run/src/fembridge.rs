@@ -1612,7 +1612,14 @@ pub fn solve(
             raw,
             plastic,
             behaviours,
-            mass: crate::dyna::mass_data(&mesh, setup).ok().map(|(m, _)| m),
+            mass: crate::dyna::mass_data(
+                &mesh,
+                &setup.model,
+                &setup.materials,
+                setup.cara.as_deref(),
+            )
+            .ok()
+            .map(|(m, _)| m),
             cara: setup.cara.clone(),
             joints: post_joints,
         }),
@@ -1972,6 +1979,7 @@ pub fn extract_shell_level(
         steps: Vec::new(),
         fem: None,
         tables: Vec::new(),
+        modal: None,
     };
     for step in result
         .steps
