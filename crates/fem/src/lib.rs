@@ -41,6 +41,7 @@ pub mod line_search;
 pub mod loads;
 pub mod mass;
 pub mod material;
+pub mod modal;
 pub mod model;
 pub mod newton_timing;
 pub mod nonlinear;

@@ -684,6 +684,20 @@ pub struct EvolResult {
     pub fem: Option<Rc<crate::fembridge::FemRun>>,
     /// Tables the computation made (`OBSERVATION`), for `RECU_TABLE`.
     pub tables: Vec<(String, Rc<crate::table::Table>)>,
+    /// A `mode_meca` (CALC_MODES): the modes' parameters.
+    pub modal: Option<Rc<ModalInfo>>,
+}
+
+/// The parameters of the modes of a `mode_meca`, per NUME_ORDRE
+/// (`NUME_MODE`, `FREQ`, `OMEGA2`, `MASS_GENE`, …), the modes whose
+/// components code_aster's rules do not determine (why), every eigenvalue
+/// of the problem and its matrices (for NORM_MODE).
+#[derive(Clone, Debug, Default)]
+pub struct ModalInfo {
+    pub params: BTreeMap<u32, BTreeMap<String, f64>>,
+    pub undetermined: BTreeMap<u32, String>,
+    pub lambdas: Vec<f64>,
+    pub problem: Option<Rc<crate::commands::modal::Problem>>,
 }
 
 impl EvolResult {
@@ -740,6 +754,10 @@ pub enum Concept {
     VectElem(Rc<crate::field::NodalField>),
     /// `NUME_DDL`: the numbering of a model's DOFs (the model's id).
     Numbering(u32),
+    /// `CALC_MATR_ELEM`: elementary matrices (kept as their recipe).
+    MatrElem(Rc<crate::commands::modal::MatrElem>),
+    /// `ASSE_MATRICE`, `ASSEMBLAGE/MATR_ASSE`: an assembled matrix.
+    MatrAsse(Rc<crate::commands::modal::MatrAsse>),
     /// A nodal field of functions (`CREA_CHAMP(OPERATION='AFFE',
     /// TYPE_CHAM='NOEU_*_F', AFFE=_F(VALE_F=…))`), evaluated by
     /// `CREA_CHAMP(OPERATION='EVAL')`.
@@ -802,6 +820,8 @@ impl Concept {
             Concept::Field(_) => "a field",
             Concept::VectElem(_) => "elementary vectors",
             Concept::Numbering(_) => "a DOF numbering",
+            Concept::MatrElem(_) => "elementary matrices (CALC_MATR_ELEM)",
+            Concept::MatrAsse(_) => "an assembled matrix",
             Concept::FunctionField(_) => "a field of functions",
             Concept::GaussFunctionField(_) => "a field of functions at Gauss points",
             Concept::MacroElement(_) => "a static macro element (MACR_ELEM_STAT)",

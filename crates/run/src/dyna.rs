@@ -262,12 +262,14 @@ fn parse_dynamics(ex: &Executor, call: &CommandCall) -> Result<DynamicSetup, Exe
 /// the Rayleigh coefficients.
 pub(crate) fn mass_data(
     mesh: &Mesh,
-    setup: &SolveSetup,
+    model: &crate::concept::ModelDef,
+    materials: &crate::concept::MaterialField,
+    cara: Option<&crate::concept::CaraElem>,
 ) -> Result<(MassData, HashMap<aster_mesh::CellId, Rayleigh>), ExecError> {
     let mut data = MassData::default();
     let mut rayleigh = HashMap::new();
-    for (&cell, _) in setup.model.cells.iter() {
-        let Some(mat) = setup.materials.cells.get(&cell) else {
+    for (&cell, _) in model.cells.iter() {
+        let Some(mat) = materials.cells.get(&cell) else {
             continue;
         };
         if let Some(rho) = mat.resolved_density().map_err(ExecError::new)? {
@@ -281,8 +283,8 @@ pub(crate) fn mass_data(
             rayleigh.insert(cell, r);
         }
     }
-    if let Some(cara) = &setup.cara {
-        data.discrete = discrete_masses(mesh, &setup.model, cara)?;
+    if let Some(cara) = cara {
+        data.discrete = discrete_masses(mesh, model, cara)?;
     }
     Ok((data, rayleigh))
 }
@@ -362,7 +364,7 @@ pub(crate) fn solve(
     solver: StaticNonLinear<'_>,
 ) -> Result<Result<NonLinearResult, aster_fem::FemError>, ExecError> {
     let cmd = "DYNA_NON_LINE";
-    let (data, rayleigh) = mass_data(mesh, setup)?;
+    let (data, rayleigh) = mass_data(mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
     let mut dyna = DynamicNonLinear::new(solver, dynamics.scheme, data);
     dyna.lumping = dynamics.lumping;
     dyna.rayleigh = rayleigh;

@@ -1826,7 +1826,14 @@ pub fn solve(
             raw,
             plastic,
             behaviours,
-            mass: crate::dyna::mass_data(&mesh, setup).ok().map(|(m, _)| m),
+            mass: crate::dyna::mass_data(
+                &mesh,
+                &setup.model,
+                &setup.materials,
+                setup.cara.as_deref(),
+            )
+            .ok()
+            .map(|(m, _)| m),
             cara: setup.cara.clone(),
             joints: post_joints,
         }),
@@ -2186,6 +2193,7 @@ pub fn extract_shell_level(
         steps: Vec::new(),
         fem: None,
         tables: Vec::new(),
+        modal: None,
     };
     for step in result
         .steps

@@ -898,6 +898,7 @@ pub(crate) fn store_solution(
         steps,
         fem: Some(fem),
         tables,
+        modal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }

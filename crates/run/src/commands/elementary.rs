@@ -208,9 +208,17 @@ pub fn extr_table(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
 }
 
 /// What NUME_DDL reads (`crate::support`).
-pub(crate) const NUME_DDL: Support = Support::keywords(&["MODELE", "CHARGE", "INFO"]);
+pub(crate) const NUME_DDL: Support =
+    Support::keywords(&["MODELE", "CHARGE", "MATR_RIGI", "INFO", "METHODE", "RENUM"]);
 
 pub fn nume_ddl(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    // MATR_RIGI: the numbering of the matrices' model (aster numbers the
+    // DOFs of a model one way; the conditions are eliminated, not
+    // numbered).
+    if let Some(r) = call.keywords.concept("MATR_RIGI") {
+        let id = super::modal::numbering_of(ex, r)?;
+        return store_result(ex, call, Concept::Numbering(id));
+    }
     let m = ex.required("NUME_DDL", &call.keywords, "MODELE")?;
     ex.model(m)?;
     let id = m.id;

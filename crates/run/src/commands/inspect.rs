@@ -169,12 +169,35 @@ fn run_checks(
 /// keywords and the comparison keywords (`VALE_CALC`, `PRECISION`…).
 pub(crate) const TEST_RESU: Support = Support {
     // ITER_GLOB: the Newton iterations of the converged increment.
-    values: &[Values::new("RESU/PARA", &["INST", "ITER_GLOB"])],
+    values: &[Values::new(
+        "RESU/PARA",
+        &[
+            "INST",
+            "ITER_GLOB",
+            "NUME_MODE",
+            "FREQ",
+            "OMEGA2",
+            "MASS_GENE",
+            "RIGI_GENE",
+            "AMOR_GENE",
+            "AMOR_REDUIT",
+            "FACT_PARTICI_DX",
+            "FACT_PARTICI_DY",
+            "FACT_PARTICI_DZ",
+            "MASS_EFFE_DX",
+            "MASS_EFFE_DY",
+            "MASS_EFFE_DZ",
+            "MASS_EFFE_UN_DX",
+            "MASS_EFFE_UN_DY",
+            "MASS_EFFE_UN_DZ",
+        ],
+    )],
     ..Support::keywords(&[
         "INFO",
         "RESU",
         "RESU/RESULTAT",
         "RESU/NUME_ORDRE",
+        "RESU/NUME_MODE",
         "RESU/INST",
         "RESU/NOM_CHAM",
         "RESU/PARA",
@@ -351,6 +374,20 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                     })?;
                     raw.newton_iterations as f64
                 }
+                other if result.modal.is_some() => {
+                    let info = result.modal.as_ref().expect("checked");
+                    let v = info
+                        .params
+                        .get(&step.nume_ordre)
+                        .and_then(|p| p.get(other))
+                        .copied();
+                    v.ok_or_else(|| {
+                        ex.unsupported(
+                            &format!("TEST_RESU/RESU/PARA='{other}' of a mode_meca (aster computes NUME_MODE, FREQ, OMEGA2, MASS_GENE, RIGI_GENE, AMOR_GENE, AMOR_REDUIT, FACT_PARTICI_D*, MASS_EFFE_D*, MASS_EFFE_UN_D*)"),
+                            occ.keyword("PARA").map(|k| k.span).unwrap_or(call.span),
+                        )
+                    })?
+                }
                 other => {
                     return Err(ex.unsupported(
                         &format!("TEST_RESU/RESU/PARA='{other}'"),
@@ -363,6 +400,19 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
                 .str("NOM_CHAM")
                 .ok_or_else(|| ExecError::new("TEST_RESU/RESU: give NOM_CHAM or PARA"))?;
             header.push(("NOM_CHAM", name.to_string()));
+            if let Some(why) = result
+                .modal
+                .as_ref()
+                .and_then(|m| m.undetermined.get(&step.nume_ordre))
+            {
+                return Err(ex.unsupported(
+                    &format!(
+                        "TEST_RESU/RESU/NOM_CHAM on mode {} of `{}`: {why}",
+                        step.nume_ordre, r.name
+                    ),
+                    occ.keyword("NOM_CHAM").map(|k| k.span).unwrap_or(call.span),
+                ));
+            }
             let field = step_field(step, name, &r.name)?;
             field_value(occ, field, &mesh, &mut header)
                 .map_err(|e| ExecError::new(format!("TEST_RESU/RESU: {e}")))?

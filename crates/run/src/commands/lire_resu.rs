@@ -143,6 +143,7 @@ pub fn lire_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         steps: out.into_values().collect(),
         fem: None,
         tables: Vec::new(),
+        modal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }

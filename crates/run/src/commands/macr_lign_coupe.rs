@@ -595,6 +595,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
             steps: vec![step],
             fem: None,
             tables: Vec::new(),
+            modal: None,
         });
         (result, nom.to_string(), c.name.clone())
     } else {
@@ -968,6 +969,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
                 steps,
                 fem: None,
                 tables: Vec::new(),
+                modal: None,
             })),
         );
         // The action, each keyword at the span of the user's one.

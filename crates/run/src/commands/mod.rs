@@ -18,6 +18,7 @@ pub(crate) mod loads_f;
 pub(crate) mod loads_more;
 pub(crate) mod macr_lign_coupe;
 pub(crate) mod mesh;
+pub(crate) mod modal;
 pub(crate) mod post;
 pub(crate) mod post_elem;
 pub(crate) mod post_erreur;
@@ -305,6 +306,31 @@ pub static COMMANDS: &[Command] = &[
         name: "NUME_DDL",
         run: elementary::nume_ddl,
         support: elementary::NUME_DDL,
+    },
+    Command {
+        name: "CALC_MATR_ELEM",
+        run: modal::calc_matr_elem,
+        support: modal::CALC_MATR_ELEM,
+    },
+    Command {
+        name: "ASSE_MATRICE",
+        run: modal::asse_matrice,
+        support: modal::ASSE_MATRICE,
+    },
+    Command {
+        name: "ASSEMBLAGE",
+        run: modal::assemblage,
+        support: modal::ASSEMBLAGE,
+    },
+    Command {
+        name: "CALC_MODES",
+        run: modal::calc_modes,
+        support: modal::CALC_MODES,
+    },
+    Command {
+        name: "NORM_MODE",
+        run: modal::norm_mode,
+        support: modal::NORM_MODE,
     },
     Command {
         name: "ASSE_VECTEUR",

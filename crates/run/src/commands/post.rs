@@ -70,7 +70,24 @@ pub fn select_steps<'r>(
                 .collect(),
         ),
     };
-    if occ.contains("NUME_ORDRE") || occ.contains("LIST_ORDRE") {
+    if let (Some(info), true) = (&result.modal, occ.contains("NUME_MODE")) {
+        // A mode_meca's NUME_MODE (the mode's rank in the spectrum).
+        for n in occ.simple("NUME_MODE").iter().filter_map(|s| s.as_i64()) {
+            let order = info
+                .params
+                .iter()
+                .find(|(_, p)| p.get("NUME_MODE") == Some(&(n as f64)))
+                .map(|(o, _)| *o);
+            out.push(order.and_then(|o| result.step_numbered(o)).ok_or_else(|| {
+                ex.kw_error(
+                    cmd,
+                    occ,
+                    "NUME_MODE",
+                    format!("the modes have no NUME_MODE {n}"),
+                )
+            })?);
+        }
+    } else if occ.contains("NUME_ORDRE") || occ.contains("LIST_ORDRE") {
         for n in orders {
             out.push(result.step_numbered(n as u32).ok_or_else(|| {
                 ex.kw_error(

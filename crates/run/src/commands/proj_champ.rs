@@ -525,6 +525,7 @@ pub fn proj_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         steps: out_steps,
         fem: None,
         tables: Vec::new(),
+        modal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(projected)))
 }

@@ -67,6 +67,7 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             steps: Vec::new(),
             fem: None,
             tables: Vec::new(),
+            modal: None,
         },
     };
     for occ in kw.factor("AFFE") {

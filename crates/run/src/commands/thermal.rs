@@ -520,6 +520,7 @@ pub(crate) fn ther_lineaire(
         steps,
         fem: None,
         tables: Vec::new(),
+        modal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(result)))
 }
