@@ -70,31 +70,44 @@ pub(crate) const VALUES: [crate::support::Values; 4] = [
     crate::support::Values::new("POUTRE/MODI_METRIQUE", &["NON"]),
 ];
 
+/// The `CARA` names and `VALE` values of a `POUTRE` or `BARRE`
+/// occurrence, one to one (an error at `VALE` otherwise).
+fn cara_vale<'k>(
+    ex: &Executor,
+    occ: &'k Keywords,
+    factor: &str,
+) -> Result<(Vec<&'k str>, Vec<f64>), ExecError> {
+    let names: Vec<&str> = occ
+        .simple("CARA")
+        .iter()
+        .filter_map(|s| s.as_str())
+        .collect();
+    let values: Vec<f64> = occ
+        .simple("VALE")
+        .iter()
+        .filter_map(|s| s.as_f64())
+        .collect();
+    if names.len() != values.len() {
+        return Err(ex.kw_error(
+            "AFFE_CARA_ELEM",
+            occ,
+            "VALE",
+            format!(
+                "{factor} gives {} characteristics (CARA) and {} values (VALE)",
+                names.len(),
+                values.len()
+            ),
+        ));
+    }
+    Ok((names, values))
+}
+
 /// The `POUTRE` occurrences of an AFFE_CARA_ELEM call.
 pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<BeamCara>, ExecError> {
     let mut out = Vec::new();
     for occ in kw.factor("POUTRE") {
         let err = |key: &str, m: String| ex.kw_error("AFFE_CARA_ELEM", occ, key, m);
-        let names: Vec<&str> = occ
-            .simple("CARA")
-            .iter()
-            .filter_map(|s| s.as_str())
-            .collect();
-        let values: Vec<f64> = occ
-            .simple("VALE")
-            .iter()
-            .filter_map(|s| s.as_f64())
-            .collect();
-        if names.len() != values.len() {
-            return Err(err(
-                "VALE",
-                format!(
-                    "POUTRE gives {} characteristics (CARA) and {} values (VALE)",
-                    names.len(),
-                    values.len()
-                ),
-            ));
-        }
+        let (names, values) = cara_vale(ex, occ, "POUTRE")?;
         let get = |n: &str| names.iter().position(|&c| c == n).map(|k| values[k]);
         let section_kind = occ.str("SECTION").unwrap_or("GENERALE");
         let homothetic = occ.str("VARI_SECT") == Some("HOMOTHETIQUE");
@@ -236,26 +249,7 @@ pub(crate) fn bars(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<BarC
     let mut out = Vec::new();
     for occ in kw.factor("BARRE") {
         let err = |key: &str, m: String| ex.kw_error("AFFE_CARA_ELEM", occ, key, m);
-        let names: Vec<&str> = occ
-            .simple("CARA")
-            .iter()
-            .filter_map(|s| s.as_str())
-            .collect();
-        let values: Vec<f64> = occ
-            .simple("VALE")
-            .iter()
-            .filter_map(|s| s.as_f64())
-            .collect();
-        if names.len() != values.len() {
-            return Err(err(
-                "VALE",
-                format!(
-                    "BARRE gives {} characteristics (CARA) and {} values (VALE)",
-                    names.len(),
-                    values.len()
-                ),
-            ));
-        }
+        let (names, values) = cara_vale(ex, occ, "BARRE")?;
         let get = |n: &str| names.iter().position(|&c| c == n).map(|k| values[k]);
         let area = match occ.str("SECTION").unwrap_or("GENERALE") {
             "CERCLE" => {
