@@ -102,6 +102,36 @@ fn cara_vale<'k>(
     Ok((names, values))
 }
 
+/// HY, HZ and the walls (EPY, EPZ) of a RECTANGLE section.
+type RectangleDims = (f64, f64, Option<(f64, f64)>);
+
+/// A RECTANGLE section's HY, HZ (or H) and walls EPY, EPZ (or EP; none:
+/// solid) from its `CARA` values, or the keyword and message of what is
+/// missing or wrong.
+fn rectangle_dims(
+    get: &dyn Fn(&str) -> Option<f64>,
+) -> Result<RectangleDims, (&'static str, String)> {
+    let h = get("H");
+    let (Some(hy), Some(hz)) = (get("HY").or(h), get("HZ").or(h)) else {
+        return Err(("CARA", "SECTION='RECTANGLE' needs HY and HZ, or H".into()));
+    };
+    let ep = get("EP");
+    let walls = match (get("EPY").or(ep), get("EPZ").or(ep)) {
+        (None, None) => None,
+        (Some(a), Some(b)) => Some((a, b)),
+        _ => {
+            return Err((
+                "CARA",
+                "a hollow RECTANGLE needs both EPY and EPZ, or EP".into(),
+            ))
+        }
+    };
+    if !(hy > 0. && hz > 0.) {
+        return Err(("VALE", format!("RECTANGLE with HY = {hy}, HZ = {hz}")));
+    }
+    Ok((hy, hz, walls))
+}
+
 /// The `POUTRE` occurrences of an AFFE_CARA_ELEM call.
 pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<BeamCara>, ExecError> {
     let mut out = Vec::new();
@@ -155,27 +185,7 @@ pub(crate) fn beams(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<Bea
                         occ.keyword("VARI_SECT").map(|k| k.span).unwrap_or_default(),
                     ));
                 }
-                let h = get("H");
-                let (Some(hy), Some(hz)) = (get("HY").or(h), get("HZ").or(h)) else {
-                    return Err(err(
-                        "CARA",
-                        "SECTION='RECTANGLE' needs HY and HZ, or H".into(),
-                    ));
-                };
-                let ep = get("EP");
-                let walls = match (get("EPY").or(ep), get("EPZ").or(ep)) {
-                    (None, None) => None,
-                    (Some(a), Some(b)) => Some((a, b)),
-                    _ => {
-                        return Err(err(
-                            "CARA",
-                            "a hollow RECTANGLE needs both EPY and EPZ, or EP".into(),
-                        ))
-                    }
-                };
-                if !(hy > 0. && hz > 0.) {
-                    return Err(err("VALE", format!("RECTANGLE with HY = {hy}, HZ = {hz}")));
-                }
+                let (hy, hz, walls) = rectangle_dims(&get).map_err(|(k, m)| err(k, m))?;
                 let shear =
                     BeamSection::rectangle_shear(hy, hz, walls).map_err(|m| err("VALE", m))?;
                 BeamSection {
@@ -266,27 +276,7 @@ pub(crate) fn bars(ex: &Executor, kw: &Keywords, mesh: &Mesh) -> Result<Vec<BarC
                 BeamSection::circle(r, ep).area
             }
             "RECTANGLE" => {
-                let h = get("H");
-                let (Some(hy), Some(hz)) = (get("HY").or(h), get("HZ").or(h)) else {
-                    return Err(err(
-                        "CARA",
-                        "SECTION='RECTANGLE' needs HY and HZ, or H".into(),
-                    ));
-                };
-                let ep = get("EP");
-                let walls = match (get("EPY").or(ep), get("EPZ").or(ep)) {
-                    (None, None) => None,
-                    (Some(a), Some(b)) => Some((a, b)),
-                    _ => {
-                        return Err(err(
-                            "CARA",
-                            "a hollow RECTANGLE needs both EPY and EPZ, or EP".into(),
-                        ))
-                    }
-                };
-                if !(hy > 0. && hz > 0.) {
-                    return Err(err("VALE", format!("RECTANGLE with HY = {hy}, HZ = {hz}")));
-                }
+                let (hy, hz, walls) = rectangle_dims(&get).map_err(|(k, m)| err(k, m))?;
                 BeamSection::rectangle(hy, hz, walls).area
             }
             _ => {
