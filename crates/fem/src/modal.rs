@@ -215,6 +215,21 @@ fn expand(t: &Reduction, z: impl Fn(usize) -> f64) -> Vec<f64> {
         .collect()
 }
 
+/// A mode from a vector of the full space: scaled to uᵀMu = 1, its
+/// eigenvalue the Rayleigh quotient uᵀKu; `None` when uᵀMu ≤ 0.
+fn mass_normalised(k: &Csc, m: &Csc, mut u: Vec<f64>) -> Option<Mode> {
+    let mass = dot(&u, &m.mul(&u));
+    if mass <= 0.0 {
+        return None;
+    }
+    let f = 1.0 / mass.sqrt();
+    u.iter_mut().for_each(|x| *x *= f);
+    Some(Mode {
+        lambda: dot(&u, &k.mul(&u)),
+        vector: u,
+    })
+}
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
@@ -364,19 +379,7 @@ pub fn modes(
             y[(r, 0)] = sh.y[(r, col)];
         }
         lt.as_ref().solve_upper_triangular_in_place(y.as_mut());
-        let mut u = expand(&t, |r| y[(r, 0)]);
-        let um = m.mul(&u);
-        let mass = dot(&u, &um);
-        if mass <= 0.0 {
-            continue;
-        }
-        let f = 1.0 / mass.sqrt();
-        u.iter_mut().for_each(|v| *v *= f);
-        let ku = k.mul(&u);
-        out.push(Mode {
-            lambda: dot(&u, &ku),
-            vector: u,
-        });
+        out.extend(mass_normalised(k, m, expand(&t, |r| y[(r, 0)])));
     }
     out.sort_by(|a, b| a.lambda.total_cmp(&b.lambda));
     Ok(out)
@@ -643,18 +646,7 @@ pub fn lowest_modes(
     }
     let mut modes = Vec::with_capacity(found.len());
     for (_, z) in found {
-        let mut u = expand(&t, |r| z[r]);
-        let mass = dot(&u, &m.mul(&u));
-        if mass <= 0.0 {
-            continue;
-        }
-        let f = 1.0 / mass.sqrt();
-        u.iter_mut().for_each(|x| *x *= f);
-        let ku = k.mul(&u);
-        modes.push(Mode {
-            lambda: dot(&u, &ku),
-            vector: u,
-        });
+        modes.extend(mass_normalised(k, m, expand(&t, |r| z[r])));
     }
     modes.sort_by(|a, b| a.lambda.total_cmp(&b.lambda));
     Ok(modes)
