@@ -18,9 +18,13 @@
 //! - `VMIS_JOHN_COOK`: von Mises with Johnson–Cook rate-dependent
 //!   hardening ([`johnson_cook`], `Hardening::JohnsonCook`), over the
 //!   step's duration, in PETIT, PETIT_REAC or GDEF_LOG.
+//! - `VMIS_CINE_LINE`: von Mises with linear kinematic (Prager) hardening
+//!   ([`kinematic`], `Hardening::Kinematic`), VARI the back stress and
+//!   the plasticity indicator.
 
 mod cells;
 pub mod johnson_cook;
+pub mod kinematic;
 pub mod lemaitre;
 pub mod simo_miehe;
 pub mod vmis;
