@@ -50,6 +50,90 @@ pub fn potential_energy_by_cell(model: &Model, u: &[f64]) -> Result<Vec<(CellId,
     Ok(out)
 }
 
+/// code_aster's `ENEL_ELGA` in small strains (`enelpg`, `PETIT`): the
+/// elastic energy density ½ σ : D⁻¹ : σ at each point of a stress field
+/// (SIEF_ELGA), component `TOTALE`, with the isotropic compliance of the
+/// cell's material (εᵢᵢ = ((1+ν)σᵢᵢ − ν tr σ)/E, γᵢⱼ = σᵢⱼ/G). Cells that
+/// are not continuum elements are skipped; an orthotropic material is
+/// refused.
+pub fn elastic_energy_density(
+    model: &Model,
+    stress: &[crate::post::CellValues],
+) -> Result<Vec<crate::post::CellValues>, FemError> {
+    let mut out = Vec::with_capacity(stress.len());
+    for cv in stress {
+        let Some(crate::model::ElementKind::Continuum { material, .. }) =
+            model.element_kind(cv.cell)
+        else {
+            continue;
+        };
+        if !material.is_isotropic() {
+            return Err(FemError::Model(format!(
+                "cell {}: the elastic energy of an orthotropic material (ELAS_ORTH) is not computed",
+                model.cell_name(cv.cell)
+            )));
+        }
+        let (e, nu) = (material.e, material.nu);
+        let g = e / (2.0 * (1.0 + nu));
+        let points = (0..cv.points.len())
+            .map(|p| {
+                let s = |n: &str| cv.get(p, n).unwrap_or(0.0);
+                let d = [s("SIXX"), s("SIYY"), s("SIZZ")];
+                let tr = d[0] + d[1] + d[2];
+                let normal: f64 = d.iter().map(|&x| x * ((1.0 + nu) * x - nu * tr) / e).sum();
+                let shear: f64 = ["SIXY", "SIXZ", "SIYZ"]
+                    .iter()
+                    .map(|n| s(n) * s(n) / g)
+                    .sum();
+                vec![0.5 * (normal + shear)]
+            })
+            .collect();
+        out.push(crate::post::CellValues {
+            cell: cv.cell,
+            names: vec!["TOTALE"],
+            points,
+        });
+    }
+    Ok(out)
+}
+
+/// The integral over each cell of a field at the points of its stiffness
+/// family (code_aster's `_ELEM` options from their `_ELGA` densities, e.g.
+/// `ENEL_ELEM`): Σ value × weight (AXIS: per radian, weight × r), one
+/// point per cell with the field's components.
+pub fn cell_integrals(
+    model: &Model,
+    density: &[crate::post::CellValues],
+) -> Result<Vec<crate::post::CellValues>, FemError> {
+    let axis = model.hypothesis() == Some(crate::material::Hypothesis::Axisymmetric);
+    let mesh = model.mesh();
+    let mut out = Vec::with_capacity(density.len());
+    for cv in density {
+        let scheme = model.stiffness_scheme(cv.cell);
+        let points = crate::elga::points(mesh, cv.cell, &scheme, axis);
+        if points.len() != cv.points.len() {
+            return Err(FemError::Model(format!(
+                "cell {}: {} values for {} integration points",
+                model.cell_name(cv.cell),
+                cv.points.len(),
+                points.len()
+            )));
+        }
+        let mut sum = vec![0.0; cv.names.len()];
+        for (p, v) in points.iter().zip(&cv.points) {
+            for (acc, x) in sum.iter_mut().zip(v) {
+                *acc += p.weight * x;
+            }
+        }
+        out.push(crate::post::CellValues {
+            cell: cv.cell,
+            names: cv.names.clone(),
+            points: vec![sum],
+        });
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -78,6 +162,36 @@ mod tests {
         assert!((total - exact).abs() < 1e-12 * exact, "{total} vs {exact}");
         for (_, ec) in &by_cell {
             assert!((ec - exact / 9.0).abs() < 1e-12 * exact);
+        }
+    }
+
+    /// A general displacement (not uniform): the density ½ σ:D⁻¹:σ of the
+    /// element stresses, integrated over each cell, is ½ uₑᵀ Kₑ uₑ (same
+    /// Gauss family) — ENEL_ELEM of an elastic result.
+    #[test]
+    fn integrated_energy_density_is_half_u_k_u() {
+        let (model, _) = crate::scenes::quad4_grid(3).unwrap();
+        let mut u = vec![0.0; model.dofs().len()];
+        for (k, v) in u.iter_mut().enumerate() {
+            let d = model.dofs().dof(k);
+            let x = model.mesh().coord(d.node);
+            *v = 1e-3
+                * (x[0] * x[1] + 0.3 * x[1] * x[1] - 0.2 * x[0])
+                * if d.comp == crate::Comp::DX { 1.0 } else { -0.7 };
+        }
+        let stress = crate::post::sief_elga(&model, &u).unwrap();
+        let density = elastic_energy_density(&model, &stress).unwrap();
+        assert_eq!(density[0].names, vec!["TOTALE"]);
+        let elem = cell_integrals(&model, &density).unwrap();
+        let reference = potential_energy_by_cell(&model, &u).unwrap();
+        assert_eq!(elem.len(), reference.len());
+        for (got, (cell, want)) in elem.iter().zip(&reference) {
+            assert_eq!(got.cell, *cell);
+            assert!(
+                (got.points[0][0] - want).abs() < 1e-10 * want.abs().max(1e-30),
+                "{} vs {want}",
+                got.points[0][0]
+            );
         }
     }
 }

@@ -577,6 +577,74 @@ pub fn epsi_elga_on(
     Ok(out)
 }
 
+/// code_aster's `EPSP_ELGA` in small strains: the inelastic strain
+/// ε − D⁻¹σ at each point (tensor shears, EPXY = γxy/2), from the total
+/// strains `eps` ([`epsi_elga`]) and the stresses at the same points, with
+/// the isotropic compliance of the cell's material. It holds the thermal
+/// strain too: the caller subtracts it or refuses a result that has one.
+pub fn inelastic_strain_elga(
+    model: &Model,
+    eps: &[CellValues],
+    stress: &[CellValues],
+) -> Result<Vec<CellValues>, FemError> {
+    let mut out = Vec::with_capacity(eps.len());
+    for ev in eps {
+        let Some(ElementKind::Continuum { material, .. }) = model.element_kind(ev.cell) else {
+            continue;
+        };
+        if !material.is_isotropic() {
+            return Err(FemError::Model(format!(
+                "cell {}: EPSP of an orthotropic material (ELAS_ORTH) is not computed",
+                model.cell_name(ev.cell)
+            )));
+        }
+        let Some(sv) = stress.iter().find(|s| s.cell == ev.cell) else {
+            return Err(cell_error(
+                model,
+                ev.cell,
+                "no stress to compute EPSP from".into(),
+            ));
+        };
+        if sv.points.len() != ev.points.len() {
+            return Err(cell_error(
+                model,
+                ev.cell,
+                format!(
+                    "{} strain points for {} stress points",
+                    ev.points.len(),
+                    sv.points.len()
+                ),
+            ));
+        }
+        let (e, nu) = (material.e, material.nu);
+        let points = (0..ev.points.len())
+            .map(|p| {
+                let s = |n: &str| sv.get(p, n).unwrap_or(0.0);
+                let tr = s("SIXX") + s("SIYY") + s("SIZZ");
+                ev.names
+                    .iter()
+                    .zip(&ev.points[p])
+                    .map(|(name, total)| {
+                        let sig = format!("SI{}", &name[2..]);
+                        let elastic = if name[2..3] == name[3..4] {
+                            ((1.0 + nu) * s(&sig) - nu * tr) / e
+                        } else {
+                            (1.0 + nu) * s(&sig) / e
+                        };
+                        total - elastic
+                    })
+                    .collect()
+            })
+            .collect();
+        out.push(CellValues {
+            cell: ev.cell,
+            names: ev.names.clone(),
+            points,
+        });
+    }
+    Ok(out)
+}
+
 /// Nodal internal forces (FORC_NODA): Σ ∫ Bᵀσ over continuum elements plus
 /// spring forces, per DOF index of the model. In AXIS they are per radian.
 pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {

@@ -1035,6 +1035,7 @@ const CALC_CHAMP_OWN: &[&str] = &[
     "CRITERES",
     "DEFORMATION",
     "VARI_INTERNE",
+    "ENERGIE",
     "TOUT",
     "GROUP_MA",
     "INFO",
@@ -1045,6 +1046,12 @@ const CALC_CHAMP_OWN: &[&str] = &[
 /// selection ([`crate::commands::post::STEP_SELECTION`]).
 pub(crate) const CALC_CHAMP: Support = Support {
     rules: Some(calc_champ_rules),
+    // The elastic energy (`enelpg`, PETIT); ETOT_* (the work of the
+    // stresses over the history), EPOT_ELEM/ECIN_ELEM and the others not.
+    values: &[Values::listed(
+        "ENERGIE",
+        &["ENEL_ELGA", "ENEL_ELNO", "ENEL_ELEM"],
+    )],
     ..Support::keywords(&crate::support::joined::<
         _,
         { crate::commands::post::STEP_SELECTION.len() + CALC_CHAMP_OWN.len() },
@@ -1086,6 +1093,7 @@ pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         "CRITERES",
         "DEFORMATION",
         "VARI_INTERNE",
+        "ENERGIE",
     ] {
         options.extend(
             kw.simple(key)

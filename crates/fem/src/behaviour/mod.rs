@@ -128,6 +128,11 @@ impl Behaviours {
             .unwrap_or_default()
     }
 
+    /// Whether a cell follows a viscoplastic law (`LEMAITRE`).
+    pub fn has_viscous(&self) -> bool {
+        self.by_cell.values().any(|b| b.viscous.is_some())
+    }
+
     /// Whether some cell has a finite-strain kinematics.
     pub fn has_finite_strains(&self) -> bool {
         self.by_cell
