@@ -50,15 +50,15 @@ pub(crate) const MACRO_ELAS_MULT: Support = Support {
     hints: &[
         (
             "CAS_CHARGE/MODE_FOURIER",
-            "(Fourier modes need the AXIS_FOURIER modelisation, which aster does not have)",
+            "Fourier modes need the AXIS_FOURIER modelisation, which aster does not have",
         ),
         (
             "CAS_CHARGE/VECT_ASSE",
-            "(an assembled right-hand side as a load case: give the loads as CHAR_MECA)",
+            "an assembled right-hand side as a load case: give the loads as CHAR_MECA",
         ),
         (
             "LIAISON_DISCRET",
-            "(discrete-contact conditions as load cases: give CHAR_MECA_GLOBAL)",
+            "discrete-contact conditions as load cases: give CHAR_MECA_GLOBAL",
         ),
     ],
     reuse: true,
