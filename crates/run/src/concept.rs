@@ -686,6 +686,9 @@ pub struct EvolResult {
     pub tables: Vec<(String, Rc<crate::table::Table>)>,
     /// A `mode_meca` (CALC_MODES): the modes' parameters.
     pub modal: Option<Rc<ModalInfo>>,
+    /// A `mult_elas` (MACRO_ELAS_MULT): its load cases, named by NOM_CAS,
+    /// the i-th stored at NUME_ORDRE i + 1.
+    pub cases: Option<Rc<crate::commands::elas_mult::LoadCases>>,
 }
 
 /// The parameters of the modes of a `mode_meca`, per NUME_ORDRE
@@ -716,6 +719,17 @@ impl EvolResult {
 
     pub fn step_numbered(&self, nume_ordre: u32) -> Option<&Step> {
         self.steps.iter().find(|s| s.nume_ordre == nume_ordre)
+    }
+
+    /// The NUME_ORDRE of a `mult_elas`'s load case `NOM_CAS` (`None`: not
+    /// a `mult_elas`, or no such case).
+    pub fn case_named(&self, nom_cas: &str) -> Option<u32> {
+        self.cases.as_ref()?.order_of(nom_cas)
+    }
+
+    /// The `NOM_CAS` of a `mult_elas`'s step.
+    pub fn case_name(&self, nume_ordre: u32) -> Option<&str> {
+        self.cases.as_ref()?.name_of(nume_ordre)
     }
 }
 

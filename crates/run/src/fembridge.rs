@@ -2028,7 +2028,7 @@ pub fn calc_champ(
         let efge_elno = || {
             let mut v = post::beam_efge_elno(model, u).map_err(|e| fem_err("CALC_CHAMP", e))?;
             if model.has_shells() {
-                let linear = result.typ == "evol_elas";
+                let linear = matches!(result.typ.as_str(), "evol_elas" | "mult_elas");
                 v.extend(
                     crate::shells::efge_elno(model, run.cara.as_deref(), u, linear)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
@@ -2125,6 +2125,10 @@ pub fn calc_champ(
                 "EFGE_NOEU" if model.has_beams() || model.has_bars() || model.has_shells() => {
                     Field::Nodal(nodal_by_families(model, &efge_elno()?))
                 }
+                // The stresses at the Gauss points as the solve computed
+                // them (a MACRO_ELAS_MULT case with OPTION='SANS' has none
+                // stored).
+                "SIEF_ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &restrict(&raw.stress))),
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))
                 }
@@ -2256,6 +2260,7 @@ pub fn extract_shell_level(
         fem: None,
         tables: Vec::new(),
         modal: None,
+        cases: None,
     };
     for step in result
         .steps

@@ -530,6 +530,12 @@ impl StepFields {
         self.0.contains_key(name)
     }
 
+    /// Forgets a field (a MACRO_ELAS_MULT case with `OPTION='SANS'` stores
+    /// no stresses).
+    pub fn remove(&mut self, name: &str) {
+        self.0.remove(name);
+    }
+
     pub fn is_empty(&self) -> bool {
         self.0.is_empty()
     }

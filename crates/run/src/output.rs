@@ -271,6 +271,7 @@ pub(crate) const IMPR_RESU: Support = Support {
         "RESU/TOUT",
         "RESU/TOUT_ORDRE",
         "RESU/NUME_ORDRE",
+        "RESU/NOM_CAS",
         "RESU/INST",
         "RESU/PRECISION",
         "RESU/CRITERE",

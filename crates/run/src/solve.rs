@@ -918,6 +918,7 @@ pub(crate) fn store_solution(
         fem: Some(fem),
         tables,
         modal: None,
+        cases: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }

@@ -219,7 +219,6 @@ impl Reader<'_> {
             }
         }
         let node_fam = self.int_dataset(&noe, "FAM", n_nodes)?;
-        let node_names = self.names(&noe, n_nodes)?;
 
         let mut cells = Vec::new();
         let mut cell_fam: Vec<i64> = Vec::new();
@@ -286,19 +285,14 @@ impl Reader<'_> {
         let families = self.families(mesh_obj, mesh_name)?;
         let (groups_no, groups_ma, warnings) = build_groups(&families, &node_fam, &cell_fam);
 
-        // Names `N1`, `N2`… are code_aster's numbering written back (in
-        // order, or with gaps: the numbers of a mesh renumbered since):
-        // code_aster 17 ignores them and names the nodes by their rank
-        // (ssnv166a filters POST_K1_K2_K3's rows on NOEUD='5676', a node
-        // its MED file names `N5676` among `…N11308, N11328, N11330`).
-        let node_names = node_names.filter(|names| !numbering_names(names));
-        let node_names = match node_names {
-            Some(n) => n,
-            // code_aster 17 names an unnamed node by its number: its
-            // tables print `783` (ssnv127f filters POST_RELEVE_T rows on
-            // NOEUD='783'); `N783` still finds it (`aster_run::select`).
-            None => (1..=n_nodes).map(|i| i.to_string()).collect(),
-        };
+        // code_aster 17 reads no node name from a MED file (its MED
+        // reader never fills `.NOMNOE`; `BaseMesh::getNodeName` gives the
+        // node's rank): its tables print `783` (ssnv127f filters
+        // POST_RELEVE_T rows on NOEUD='783'), also where the file names the
+        // nodes — `N5676` (ssnv166a) or `O`, `A`, `N3`… (ssls100b filters
+        // NOEUD='1' for the node it names `O`). `N783` still finds node 783
+        // (`aster_run::select`).
+        let node_names = (1..=n_nodes).map(|i| i.to_string()).collect();
         let cell_names = cell_names
             .into_iter()
             .enumerate()
@@ -557,22 +551,4 @@ fn dense(map: HashMap<i64, Vec<usize>>) -> DenseFamilies {
         groups[(num - min) as usize] = Some(ids);
     }
     DenseFamilies::Table { min, groups }
-}
-
-/// Names `N<k>` with k increasing: a numbering, not names.
-fn numbering_names(names: &[String]) -> bool {
-    let mut last = 0u64;
-    names.iter().all(|n| {
-        match n.strip_prefix('N').and_then(|d| {
-            (!d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
-                .then(|| d.parse::<u64>().ok())
-                .flatten()
-        }) {
-            Some(k) if k > last => {
-                last = k;
-                true
-            }
-            _ => false,
-        }
-    })
 }

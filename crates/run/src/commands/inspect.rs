@@ -197,6 +197,7 @@ pub(crate) const TEST_RESU: Support = Support {
         "RESU",
         "RESU/RESULTAT",
         "RESU/NUME_ORDRE",
+        "RESU/NOM_CAS",
         "RESU/NUME_MODE",
         "RESU/INST",
         "RESU/NOM_CHAM",
@@ -305,7 +306,7 @@ pub fn test_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         let result = ex.result(r)?;
         let mesh = ex.mesh_by_id(result.mesh)?;
         let steps = match (occ.f64("INST"), occ.contains("NUME_ORDRE")) {
-            (Some(t), false) => {
+            (Some(t), false) if result.cases.is_none() => {
                 // code_aster (trprec, tresu_tole): the instant is matched
                 // with TOLE_MACHINE's second value (default 1e-6) and the
                 // second CRITERE (the only one when one is given);

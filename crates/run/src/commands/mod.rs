@@ -7,6 +7,7 @@ pub(crate) mod cara_poutre;
 pub(crate) mod crea_champ_elga;
 pub(crate) mod crea_maillage;
 pub(crate) mod define;
+pub(crate) mod elas_mult;
 pub(crate) mod elementary;
 pub(crate) mod fracture;
 pub(crate) mod functions;
@@ -231,6 +232,11 @@ pub static COMMANDS: &[Command] = &[
         name: "MECA_STATIQUE",
         run: crate::solve::meca_statique,
         support: crate::solve::MECA_STATIQUE,
+    },
+    Command {
+        name: "MACRO_ELAS_MULT",
+        run: elas_mult::macro_elas_mult,
+        support: elas_mult::MACRO_ELAS_MULT,
     },
     Command {
         name: "CALC_CHAMP",

@@ -8,6 +8,7 @@ use crate::support::{Refusal, Support, Values};
 use crate::table::{Column, ColumnType, Table, TableFormat, Value};
 use aster_eval::{CommandCall, CommandOutput, ConceptRef, ExecError, Keywords};
 use aster_mesh::NodeId;
+use std::collections::BTreeMap;
 use std::rc::Rc;
 use std::sync::Arc;
 
@@ -20,6 +21,8 @@ pub const INST_PRECISION: f64 = 1e-6;
 pub(crate) const STEP_SELECTION: &[&str] = &[
     "TOUT_ORDRE",
     "NUME_ORDRE",
+    // A mult_elas's load case (MACRO_ELAS_MULT).
+    "NOM_CAS",
     "LIST_ORDRE",
     "INST",
     "LIST_INST",
@@ -70,7 +73,35 @@ pub fn select_steps<'r>(
                 .collect(),
         ),
     };
-    if let (Some(info), true) = (&result.modal, occ.contains("NUME_MODE")) {
+    if result.cases.is_some() && (occ.contains("INST") || occ.contains("LIST_INST")) {
+        // code_aster's mult_elas has no INST parameter.
+        return Err(ex.kw_error(
+            cmd,
+            occ,
+            inst_kw,
+            "the result is a MACRO_ELAS_MULT's (mult_elas): its steps are named by NOM_CAS or NUME_ORDRE, it has no instant",
+        ));
+    }
+    if occ.contains("NOM_CAS") {
+        for name in occ.simple("NOM_CAS").iter().filter_map(|s| s.as_str()) {
+            let order = result
+                .case_named(name)
+                .and_then(|o| result.step_numbered(o));
+            out.push(order.ok_or_else(|| {
+                let known: Vec<String> = result
+                    .cases
+                    .iter()
+                    .flat_map(|c| c.cases.iter().map(|k| format!("'{}'", k.name)))
+                    .collect();
+                let msg = if result.cases.is_some() {
+                    format!("the result has no load case '{name}' (its NOM_CAS: {})", known.join(", "))
+                } else {
+                    format!("'{name}': the result is not a MACRO_ELAS_MULT's (mult_elas), it has no NOM_CAS")
+                };
+                ex.kw_error(cmd, occ, "NOM_CAS", msg)
+            })?);
+        }
+    } else if let (Some(info), true) = (&result.modal, occ.contains("NUME_MODE")) {
         // A mode_meca's NUME_MODE (the mode's rank in the spectrum).
         for n in occ.simple("NUME_MODE").iter().filter_map(|s| s.as_i64()) {
             let order = info
@@ -182,6 +213,7 @@ const CREA_CHAMP_KEYWORDS: &[&str] = &[
     "NOM_CHAM",
     "INST",
     "NUME_ORDRE",
+    "NOM_CAS",
     "PRECISION",
     "CRITERE",
     "INFO",
@@ -785,6 +817,7 @@ pub(crate) const POST_RELEVE_T: Support = Support {
         "ACTION/INST",
         "ACTION/LIST_INST",
         "ACTION/NUME_ORDRE",
+        "ACTION/NOM_CAS",
         "ACTION/LIST_ORDRE",
         "ACTION/TOUT_ORDRE",
         "ACTION/CRITERE",
@@ -910,6 +943,8 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         },
     ]);
     table.title = table_title(&name);
+    // The load cases of the mult_elas results read (`name_load_cases`).
+    let mut cases: BTreeMap<(String, u32), String> = BTreeMap::new();
     for occ in kw.factor("ACTION") {
         let ops: Vec<&str> = occ
             .simple("OPERATION")
@@ -950,6 +985,9 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             for step in steps {
                 if any && !step.fields.contains_key(field_name) {
                     continue;
+                }
+                if let Some(name) = result.case_name(step.nume_ordre) {
+                    cases.insert((r.name.clone(), step.nume_ordre), name.to_string());
                 }
                 let f = step_field(step, field_name, &r.name)?.clone();
                 sources.push((
@@ -1200,9 +1238,46 @@ pub fn post_releve_t(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             }
         }
     }
+    name_load_cases(&mut table, &cases);
     // Columns nobody filled (RESU for a CHAM_GD…) are dropped, as code_aster does.
     drop_empty_columns(&mut table);
     store_result(ex, call, Concept::Table(Rc::new(table)))
+}
+
+/// The rows of a `mult_elas` (MACRO_ELAS_MULT) result: `NOM_CAS` after
+/// `NUME_ORDRE` instead of `INST` (code_aster's `rvpara`: such a result
+/// has no instant). `cases` maps (RESU, NUME_ORDRE) to the case's name.
+fn name_load_cases(table: &mut Table, cases: &BTreeMap<(String, u32), String>) {
+    if cases.is_empty() {
+        return;
+    }
+    let (Some(resu), Some(order)) = (table.column_index("RESU"), table.column_index("NUME_ORDRE"))
+    else {
+        return;
+    };
+    let inst = table.column_index("INST");
+    table.columns.insert(
+        order + 1,
+        Column {
+            name: "NOM_CAS".into(),
+            ty: ColumnType::Text(16),
+        },
+    );
+    for row in &mut table.rows {
+        let key = match (row.get(resu), row.get(order)) {
+            (Some(Some(Value::Text(r))), Some(Some(Value::Int(n)))) => Some((r.clone(), *n as u32)),
+            _ => None,
+        };
+        let name = key.and_then(|k| cases.get(&k)).cloned();
+        if name.is_some() {
+            if let Some(cell) = inst.and_then(|i| row.get_mut(i)) {
+                *cell = None;
+            }
+        }
+        if row.len() > order {
+            row.insert(order + 1, name.map(Value::Text));
+        }
+    }
 }
 
 /// `OPERATION='MOYENNE_ARITH'` (code_aster's `rvmoye` and `prmono`): per

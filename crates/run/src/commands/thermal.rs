@@ -521,6 +521,7 @@ pub(crate) fn ther_lineaire(
         fem: None,
         tables: Vec::new(),
         modal: None,
+        cases: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(result)))
 }
