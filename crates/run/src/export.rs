@@ -89,10 +89,13 @@ impl Export {
     }
 
     /// The Python modules of the study (`F nom module.py D 0`), in order.
+    /// Other `nom` files (a `.med`, a Fortran or MFront source, a `.json`)
+    /// are data the study opens by name, not modules.
     pub fn modules(&self) -> Vec<&Path> {
         self.files
             .iter()
             .filter(|f| f.kind == "nom" && f.data)
+            .filter(|f| f.path.extension().is_some_and(|e| e == "py"))
             .map(|f| f.path.as_path())
             .collect()
     }
@@ -148,7 +151,7 @@ mod tests {
 
     #[test]
     fn several_command_files_and_modules() {
-        let text = "# ssnv219x\nF comm s.comm D 1\nF comm s.com1 D 1\nF nom m.py D 0\nF mmed s.mmed D 20\nF resu s.resu R 8\n";
+        let text = "# ssnv219x\nF comm s.comm D 1\nF comm s.com1 D 1\nF nom m.py D 0\nF nom s.med D 0\nF nom u.f D 0\nF mmed s.mmed D 20\nF resu s.resu R 8\n";
         let e = Export::parse(text, Path::new("/c")).unwrap();
         assert_eq!(
             e.comm_files(),

@@ -541,6 +541,12 @@ fn plastic_law(
             // code_aster reads Young's modulus from the curve (σ₁/ε₁).
             aster_fem::VonMises::traction_curve(t.abscissae(), t.values(), end)
         }
+        Relation::VmisCineLine => {
+            let e = mat
+                .ecro_line
+                .ok_or_else(|| missing("ECRO_LINE=_F(D_SIGM_EPSI, SY)"))?;
+            aster_fem::VonMises::kinematic(mat.young, e.sy, e.d_sigm_epsi)
+        }
         Relation::VmisIsotNl => {
             let c = mat.ecro_nl.ok_or_else(|| missing("ECRO_NL=_F(R0, ...)"))?;
             aster_fem::VonMises::nonlinear(aster_fem::EcroNl { resi_inte, ..c })

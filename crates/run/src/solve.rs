@@ -43,6 +43,9 @@ pub enum Relation {
     /// Von Mises, Johnson–Cook rate-dependent hardening (material's
     /// ECRO_COOK), code_aster's `nmtevp`.
     VmisJohnCook,
+    /// Von Mises, linear kinematic hardening (material's ECRO_LINE),
+    /// code_aster's `nmcine`.
+    VmisCineLine,
 }
 
 impl Relation {
@@ -56,6 +59,7 @@ impl Relation {
             Relation::CzmLinReg => "CZM_LIN_REG",
             Relation::CzmTuron => "CZM_TURON",
             Relation::VmisJohnCook => "VMIS_JOHN_COOK",
+            Relation::VmisCineLine => "VMIS_CINE_LINE",
         }
     }
 }
@@ -296,6 +300,7 @@ pub(crate) const SNL_VALUES: &[Values] = &[
             "VMIS_ISOT_TRAC",
             "VMIS_ISOT_NL",
             "VMIS_JOHN_COOK",
+            "VMIS_CINE_LINE",
             "LEMAITRE",
             "CZM_LIN_REG",
             "CZM_TURON",
@@ -681,11 +686,12 @@ fn parse_behaviours(
             "CZM_LIN_REG" => Relation::CzmLinReg,
             "CZM_TURON" => Relation::CzmTuron,
             "VMIS_JOHN_COOK" => Relation::VmisJohnCook,
+            "VMIS_CINE_LINE" => Relation::VmisCineLine,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, LEMAITRE, CZM_LIN_REG, CZM_TURON)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, VMIS_CINE_LINE, LEMAITRE, CZM_LIN_REG, CZM_TURON)"
                     ),
                     span,
                 ));
@@ -726,6 +732,19 @@ fn parse_behaviours(
         {
             return Err(refuse(
                 "with RELATION='VMIS_JOHN_COOK' (supported: PETIT, PETIT_REAC and GDEF_LOG)",
+            ));
+        }
+        // code_aster's catalogue of VMIS_CINE_LINE: PETIT, PETIT_REAC,
+        // GROT_GDEP and GDEF_LOG; GROT_GDEP with a plastic law is not
+        // done here.
+        if relation == Relation::VmisCineLine
+            && !matches!(
+                kinematics,
+                Kinematics::Small | Kinematics::SmallUpdated | Kinematics::Logarithmic
+            )
+        {
+            return Err(refuse(
+                "with RELATION='VMIS_CINE_LINE' (supported: PETIT, PETIT_REAC and GDEF_LOG)",
             ));
         }
         if relation == Relation::VmisJohnCook {
@@ -950,9 +969,12 @@ fn continued_result(
 /// those of `prev` up to the initial state (at `t0`, NUME_ORDRE k₀; later
 /// ones are dropped), then the new ones numbered from k₀ + 1. The new
 /// run's own copy of the initial state is not stored. The computation kept
-/// for CALC_CHAMP is the new one, renumbered the same way: a step before
-/// k₀ is not in it, so a field asked there is an error, never another
-/// step's values.
+/// for CALC_CHAMP is the new one, renumbered the same way, with the
+/// previous computation's states before k₀ in front when both describe
+/// the same problem (same DOF numbering, behaviours and loads: a field at
+/// an earlier step is then computed as the first run would have); when
+/// they differ a step before k₀ is not in it, so a field asked there is
+/// an error, never another step's values.
 fn continue_steps(
     prev: &EvolResult,
     t0: f64,
@@ -979,7 +1001,25 @@ fn continue_steps(
     for s in &mut run.raw.steps {
         s.nume_ordre = s.nume_ordre - first as usize + k0 as usize;
     }
+    if let Some(before) = prev.fem.as_deref().filter(|p| same_problem(p, run)) {
+        let earlier = before
+            .raw
+            .steps
+            .iter()
+            .filter(|s| s.nume_ordre < k0 as usize)
+            .cloned();
+        run.raw.steps.splice(0..0, earlier);
+    }
     Ok((merged, fem))
+}
+
+/// Whether two computations describe the same problem, so that the states
+/// of one are read with the other's model, behaviours and loads.
+fn same_problem(a: &crate::fembridge::FemRun, b: &crate::fembridge::FemRun) -> bool {
+    a.model.dofs() == b.model.dofs()
+        && a.behaviours == b.behaviours
+        && a.plastic == b.plastic
+        && format!("{:?}", a.loads) == format!("{:?}", b.loads)
 }
 
 const CALC_CHAMP_OWN: &[&str] = &[

@@ -76,10 +76,25 @@ fn a_reuse_without_its_own_initial_state_is_refused() {
 }
 
 #[test]
-fn fields_of_the_steps_before_the_continuation_are_not_recomputed() {
-    // The computation kept with the continued result is the second one:
-    // CALC_CHAMP at a step of the first is an error, never other values.
-    let (ok, nook, error) = run(&all_steps(CONTINUATION), "before");
+fn fields_of_the_steps_before_the_continuation_come_from_the_first_run() {
+    // The same problem continued: CALC_CHAMP on every step of the
+    // continued result computes the first run's steps from its states, and
+    // every check passes as in one go.
+    assert_eq!(run(&all_steps(CONTINUATION), "before"), (14, 0, None));
+}
+
+#[test]
+fn fields_of_the_steps_before_a_different_continuation_are_not_recomputed() {
+    // The continuation lists its loads in another order: not the same
+    // problem as far as the stored states go, so CALC_CHAMP at a step of
+    // the first run is an error, never values computed with the other
+    // run's loads.
+    let other = CONTINUATION.replace(
+        "EXCIT=(_F(CHARGE=push, FONC_MULT=ramp), _F(CHARGE=anchors)),",
+        "EXCIT=(_F(CHARGE=anchors), _F(CHARGE=push, FONC_MULT=ramp)),",
+    );
+    assert_ne!(other, CONTINUATION);
+    let (ok, nook, error) = run(&all_steps(&other), "different");
     let e = error.expect("an error");
     assert!(
         e.contains("CALC_CHAMP: no computed state at NUME_ORDRE 0"),

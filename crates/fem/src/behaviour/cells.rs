@@ -882,6 +882,10 @@ fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
             v.push(s.law.p);
             v.extend(s.law.rate);
         }
+        // VMIS_CINE_LINE (nmcine): XCINXX … XCINYZ, INDIPLAS.
+        Some(law) if matches!(law.hardening, super::Hardening::Kinematic { .. }) => {
+            v.extend(super::kinematic::vari(&s.law, cell.hypothesis.ncomp()));
+        }
         Some(_) => v.extend(s.law.vari()),
         None if cell.viscous.is_some() => v.extend(s.law.vari()),
         None if cell.kinematics == Kinematics::Logarithmic => v.push(0.0),

@@ -18,12 +18,16 @@
 //! - `VMIS_JOHN_COOK`: von Mises with Johnson–Cook rate-dependent
 //!   hardening ([`johnson_cook`], `Hardening::JohnsonCook`), over the
 //!   step's duration, in PETIT, PETIT_REAC or GDEF_LOG.
+//! - `VMIS_CINE_LINE`: von Mises with linear kinematic (Prager) hardening
+//!   ([`kinematic`], `Hardening::Kinematic`), VARI the back stress and
+//!   the plasticity indicator.
 //! - parameters that follow the temperature (`ELAS_FO`, `ECRO_LINE_FO`)
 //!   at each Gauss point and instant, ELAS and `VMIS_ISOT_*` in small
 //!   strains ([`thermo`]), the thermal strain in the behaviour.
 
 mod cells;
 pub mod johnson_cook;
+pub mod kinematic;
 pub mod lemaitre;
 pub mod simo_miehe;
 pub mod thermo;

@@ -141,7 +141,10 @@ pub fn integrate(
             // with 3μ' = μ tr b̄ₑᵗʳ.
             let (d, h) = match &law.hardening {
                 Hardening::Linear { h } => (seuil / (h + mu * trbetr), *h),
-                Hardening::Curve { .. } | Hardening::NonLinear(_) | Hardening::JohnsonCook(_) => {
+                Hardening::Curve { .. }
+                | Hardening::NonLinear(_)
+                | Hardening::JohnsonCook(_)
+                | Hardening::Kinematic { .. } => {
                     law.return_increment(mu * eqbetr, pm, mu * trbetr / 3.0)?
                 }
             };

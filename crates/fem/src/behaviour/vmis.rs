@@ -40,6 +40,10 @@ pub enum Hardening {
     /// `ECRO_COOK` (`VMIS_JOHN_COOK`): rate-dependent, integrated over the
     /// step's duration by code_aster's `nmtevp` ([`super::johnson_cook`]).
     JohnsonCook(JohnsonCook),
+    /// `ECRO_LINE` read by `VMIS_CINE_LINE`: no isotropic hardening
+    /// (R = SY), a linear kinematic one with Prager's constant `c`
+    /// ([`super::kinematic`]).
+    Kinematic { c: f64 },
 }
 
 /// The coefficients of `DEFI_MATERIAU/ECRO_NL` and the local tolerance of
@@ -112,6 +116,28 @@ impl VonMises {
             sy,
             hardening: Hardening::Linear {
                 h: e * et / (e - et),
+            },
+            young: None,
+        })
+    }
+
+    /// `ECRO_LINE=_F(D_SIGM_EPSI=et, SY=sy)` read by `VMIS_CINE_LINE`:
+    /// linear kinematic hardening with Prager's constant C = 2/3 · H,
+    /// H = E·ET / (E − ET) (`nmcine`).
+    pub fn kinematic(e: f64, sy: f64, et: f64) -> Result<VonMises, FemError> {
+        if !(et.is_finite() && et > 0.) {
+            return Err(FemError::Model(format!(
+                "VMIS_CINE_LINE: D_SIGM_EPSI = {et} must be positive (code_aster's nmcine stops on a non-positive slope)"
+            )));
+        }
+        let isotropic = VonMises::linear(e, sy, et)?;
+        let Hardening::Linear { h } = isotropic.hardening else {
+            return Err(FemError::Model("ECRO_LINE: not a linear hardening".into()));
+        };
+        Ok(VonMises {
+            sy,
+            hardening: Hardening::Kinematic {
+                c: super::kinematic::prager(h),
             },
             young: None,
         })
@@ -244,6 +270,8 @@ impl VonMises {
                 curve_at(ps, r, *end, k, p)
             }
             Hardening::NonLinear(c) => Ok(c.r(p)),
+            // The isotropic part of a kinematic hardening: none.
+            Hardening::Kinematic { .. } => Ok((self.sy, 0.0)),
             // Without its rate: the flow stress at p reached slowly.
             Hardening::JohnsonCook(c) => Ok(c.flow_stress(p, 0.0, 0.0, None)),
         }
@@ -297,6 +325,9 @@ impl VonMises {
             }
             Hardening::JohnsonCook(_) => Err(FemError::Model(
                 "VMIS_JOHN_COOK is rate-dependent: its return needs the step's duration (integrate_3d), not this rate-free one".into(),
+            )),
+            Hardening::Kinematic { .. } => Err(FemError::Model(
+                "VMIS_CINE_LINE returns on the shifted deviator s − X (integrate_3d), not on q alone".into(),
             )),
             Hardening::Curve { p: ps, r, end } => {
                 // g(Δp) = q − 3μΔp − R(p + Δp) decreases: walk the segments
@@ -375,6 +406,9 @@ pub struct PointState {
     /// increment's Δp), DINSTM (its Δt) and DDISSM (the dissipated power
     /// 0.9 σ_eq Δp/Δt). Zero for the other laws.
     pub rate: [f64; 4],
+    /// `VMIS_CINE_LINE`'s back stress X (xx, yy, zz, xy, xz, yz, tensor
+    /// components); zero for the other laws.
+    pub back: [f64; 6],
 }
 
 impl PointState {
@@ -387,13 +421,13 @@ impl PointState {
 /// A 6×6 matrix.
 pub type Mat6 = [[f64; 6]; 6];
 
-fn lame(el: &Elastic) -> (f64, f64) {
+pub(super) fn lame(el: &Elastic) -> (f64, f64) {
     let mu = el.e / (2. * (1. + el.nu));
     let lambda = el.e * el.nu / ((1. + el.nu) * (1. - 2. * el.nu));
     (lambda, mu)
 }
 
-fn elastic_3d(el: &Elastic) -> Mat6 {
+pub(super) fn elastic_3d(el: &Elastic) -> Mat6 {
     let (lambda, mu) = lame(el);
     let mut d = [[0.0; 6]; 6];
     for i in 0..3 {
@@ -407,7 +441,7 @@ fn elastic_3d(el: &Elastic) -> Mat6 {
 
 /// Deviator of a stress and its von Mises norm q = √(3/2 s:s).
 /// The elastic trial stress D (ε − εᵖ) of a 3D point.
-fn elastic_trial(d: &Mat6, eps: &[f64; 6], plastic: &[f64; 6]) -> [f64; 6] {
+pub(super) fn elastic_trial(d: &Mat6, eps: &[f64; 6], plastic: &[f64; 6]) -> [f64; 6] {
     let mut ee = [0.0; 6];
     for i in 0..6 {
         ee[i] = eps[i] - plastic[i];
@@ -419,7 +453,7 @@ fn elastic_trial(d: &Mat6, eps: &[f64; 6], plastic: &[f64; 6]) -> [f64; 6] {
     trial
 }
 
-fn deviator(s: &[f64; 6]) -> ([f64; 6], f64) {
+pub(super) fn deviator(s: &[f64; 6]) -> ([f64; 6], f64) {
     let m = (s[0] + s[1] + s[2]) / 3.;
     let d = [s[0] - m, s[1] - m, s[2] - m, s[3], s[4], s[5]];
     let ss =
@@ -429,7 +463,7 @@ fn deviator(s: &[f64; 6]) -> ([f64; 6], f64) {
 
 /// K 1⊗1 + 2μθ I_dev − 3μθ̄ (s⊗s)/q²: the tangent of the return (θ = 1,
 /// θ̄ = 0 is Hooke's matrix).
-fn tangent_3d(el: &Elastic, theta: f64, theta_bar: f64, s: &[f64; 6], q: f64) -> Mat6 {
+pub(super) fn tangent_3d(el: &Elastic, theta: f64, theta_bar: f64, s: &[f64; 6], q: f64) -> Mat6 {
     let (lambda, mu) = lame(el);
     let k = lambda + 2. * mu / 3.;
     let mut c = [[0.0; 6]; 6];
@@ -463,6 +497,9 @@ pub fn integrate_3d(
     if let Hardening::JohnsonCook(jc) = &law.hardening {
         return johnson_cook_3d(jc, el, eps, prev, dt);
     }
+    if let Hardening::Kinematic { c } = law.hardening {
+        return super::kinematic::integrate_3d(law.sy, c, el, eps, prev);
+    }
     let d = elastic_3d(el);
     let (_, mu) = lame(el);
     let trial = elastic_trial(&d, eps, &prev.plastic_strain);
@@ -483,8 +520,7 @@ pub fn integrate_3d(
         plastic_strain: prev.plastic_strain,
         p: prev.p + dp,
         plastic: true,
-        eps_zz: prev.eps_zz,
-        rate: prev.rate,
+        ..*prev
     };
     for i in 0..6 {
         next.stress[i] -= ratio * s[i];
@@ -507,6 +543,9 @@ pub fn prediction_tangent_3d(
 ) -> Result<Mat6, FemError> {
     if !state.plastic {
         return Ok(elastic_3d(el));
+    }
+    if let Hardening::Kinematic { c } = law.hardening {
+        return Ok(super::kinematic::prediction_tangent_3d(c, el, state));
     }
     if let Hardening::JohnsonCook(jc) = &law.hardening {
         // nmtevp's RIGI_MECA_TANG: Δp = 0, σ_eq of the converged deviator
@@ -561,8 +600,8 @@ fn johnson_cook_3d(
         plastic_strain: prev.plastic_strain,
         p: prev.p + dp,
         plastic: inc.iterations > 0,
-        eps_zz: prev.eps_zz,
         rate: [inc.iterations as f64, dp, dt, 0.0],
+        ..*prev
     };
     let mut sdev = [0.0; 6];
     for i in 0..6 {
