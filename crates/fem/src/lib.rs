@@ -62,7 +62,10 @@ pub mod thermal;
 pub mod unilateral;
 
 pub use beam::BeamSection;
-pub use behaviour::{Behaviours, CurveEnd, EcroNl, JohnsonCook, Lemaitre, VonMises};
+pub use behaviour::{
+    Behaviours, CurveEnd, EcroNl, JohnsonCook, Lemaitre, NodalHistory, TempFn, ThermoHardening,
+    ThermoMaterial, VonMises,
+};
 pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};
 pub use dynamics::{DynamicNonLinear, Scheme};

@@ -659,6 +659,7 @@ impl StaticNonLinear<'_> {
                 let saved = (u.clone(), srcs.clone(), own.clone());
                 if let Some(pc) = plastic.as_mut() {
                     pc.set_step(target - from);
+                    pc.set_instants(from, target)?;
                 }
                 // Force sources start the increment from the last converged
                 // state (before the new imposed values).

@@ -255,8 +255,13 @@ pub struct Material {
     /// (× mass), used by DYNA_NON_LINE.
     pub amor_alpha: Option<f64>,
     pub amor_beta: Option<f64>,
-    /// `ECRO_LINE=_F(D_SIGM_EPSI, SY)` (for VMIS_ISOT_LINE).
+    /// `ECRO_LINE=_F(D_SIGM_EPSI, SY)` (for VMIS_ISOT_LINE); also
+    /// `ECRO_LINE_FO`'s values when both its functions are constants.
     pub ecro_line: Option<EcroLine>,
+    /// `ECRO_LINE_FO=_F(D_SIGM_EPSI, SY)`: functions of TEMP, evaluated at
+    /// each Gauss point and instant in STAT_NON_LINE
+    /// ([`crate::thermo_mat`]).
+    pub ecro_line_fo: Option<Rc<EcroLineFo>>,
     /// `TRACTION=_F(SIGM=σ(EPSI))` (for VMIS_ISOT_TRAC): a tabulated
     /// function.
     pub traction: Option<crate::function::Tabulated>,
@@ -349,6 +354,13 @@ pub struct LemaitreCoefs {
 pub struct EcroLine {
     pub d_sigm_epsi: f64,
     pub sy: f64,
+}
+
+/// `ECRO_LINE_FO=_F(D_SIGM_EPSI, SY)`: the functions as given.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EcroLineFo {
+    pub d_sigm_epsi: crate::elas_fo::FoArg,
+    pub sy: crate::elas_fo::FoArg,
 }
 
 /// `AFFE_MATERIAU`: the material of each cell.

@@ -342,8 +342,14 @@ pub fn build_behaviours(
     model: &Model,
     occurrences: &[BehaviourOcc],
     materials: &MaterialField,
+    thermo: Option<&crate::thermo_mat::Prepared>,
 ) -> Result<aster_fem::Behaviours, ExecError> {
     let mut out = aster_fem::Behaviours::elastic();
+    if let Some(t) = thermo {
+        if let Some(h) = &t.history {
+            out.set_temperature(h.clone());
+        }
+    }
     let continuum: std::collections::BTreeSet<aster_mesh::CellId> = model
         .elements()
         .iter()
@@ -391,6 +397,10 @@ pub fn build_behaviours(
                 .collect(),
         };
         for cell in cells.into_iter().filter(|c| last.get(c) == Some(&k)) {
+            if let Some(m) = thermo.and_then(|t| t.cells.get(&cell)) {
+                out.assign_thermo(cell, m.clone());
+                continue;
+            }
             let orthotropic = materials
                 .cells
                 .get(&cell)
@@ -477,6 +487,14 @@ pub fn build_behaviours(
             out.assign_with(cell, Some(law), occ.kinematics);
         }
     }
+    // Temperature-dependent cells no occurrence names (ELAS by default).
+    if let Some(t) = thermo {
+        for (&cell, m) in &t.cells {
+            if !last.contains_key(&cell) {
+                out.assign_thermo(cell, m.clone());
+            }
+        }
+    }
     Ok(out)
 }
 
@@ -497,6 +515,14 @@ fn plastic_law(
     };
     let law = match relation {
         Relation::VmisIsotLine => {
+            if let (None, Some(fo)) = (&mat.ecro_line, &mat.ecro_line_fo) {
+                return Err(ExecError::new(format!(
+                    "not supported yet: DEFI_MATERIAU/ECRO_LINE_FO: `{}` or `{}` is a function of TEMP and cell {} has no temperature in STAT_NON_LINE (AFFE_MATERIAU/AFFE_VARC)",
+                    fo.d_sigm_epsi.name,
+                    fo.sy.name,
+                    crate::select::cell_name(mesh, cell)
+                )));
+            }
             let e = mat
                 .ecro_line
                 .ok_or_else(|| missing("ECRO_LINE=_F(D_SIGM_EPSI, SY)"))?;
@@ -1434,6 +1460,32 @@ pub fn solve(
             "{cmd}: the model has joint elements (PLAN_JOINT), which aster computes with their cohesive law in STAT_NON_LINE only"
         )));
     }
+    // Parameters at each Gauss point's temperature (ELAS_FO varying,
+    // ECRO_LINE_FO, plastic cells under AFFE_VARC): STAT_NON_LINE only.
+    let thermo = if linear {
+        None
+    } else {
+        let locate = |span| ex.location(span).unwrap_or_else(|| "DEFI_MATERIAU".into());
+        crate::thermo_mat::prepare(
+            &mesh,
+            &setup.model,
+            &setup.behaviours,
+            &setup.materials,
+            setup.dynamics.is_some(),
+            &locate,
+        )?
+    };
+    let thermo_setup;
+    let setup = match &thermo {
+        Some(t) => {
+            thermo_setup = SolveSetup {
+                materials: t.materials.clone(),
+                ..setup.clone()
+            };
+            &thermo_setup
+        }
+        None => setup,
+    };
     let mut model = build_model(&mesh, &setup.model, &setup.materials, setup.cara.as_deref())?;
     if linear {
         // code_aster's RIGI_MECA of COQUE_3D (te0401 → vdxrig): two Gauss
@@ -1441,12 +1493,22 @@ pub fn solve(
         model.set_coque3d_rule(aster_fem::coque3d::ThicknessRule::Gauss2);
     }
     let mut loads = build_loads(setup, &mesh, &model)?;
-    let behaviours = build_behaviours(&mesh, &model, &setup.behaviours, &setup.materials)?;
+    let behaviours = build_behaviours(
+        &mesh,
+        &model,
+        &setup.behaviours,
+        &setup.materials,
+        thermo.as_ref(),
+    )?;
+    // A plastic cell under a temperature is a temperature-dependent one
+    // (its thermal strain in its behaviour): the loads' thermal strains
+    // are those of elastic cells, except with finite strains.
     let plastic = !behaviours.is_elastic();
-    if loads.has_free_strain() && (plastic || setup.dynamics.is_some()) {
+    let finite = behaviours.has_finite_strains();
+    if loads.has_free_strain() && (finite || setup.dynamics.is_some()) {
         return Err(ExecError::new(format!(
             "not supported yet: {cmd} with a temperature (AFFE_VARC) and {}: the thermal strain is implemented for linear elastic cells in small strains in MECA_STATIQUE and STAT_NON_LINE",
-            if plastic { "a non-linear behaviour or a large-strain kinematics (COMPORTEMENT)" } else { "dynamics" }
+            if finite { "a non-linear behaviour or a large-strain kinematics (COMPORTEMENT)" } else { "dynamics" }
         )));
     }
     let mut post_zones: Option<Vec<aster_contact::ZoneContact>> = None;

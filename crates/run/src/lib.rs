@@ -41,6 +41,7 @@ pub mod support;
 pub mod table;
 pub mod table_read;
 pub mod test_resu;
+pub mod thermo_mat;
 pub mod unil;
 mod vtu_export;
 

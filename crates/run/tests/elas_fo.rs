@@ -59,18 +59,26 @@ fn a_young_modulus_varying_over_a_cell_is_refused_at_the_keyword() {
     assert!(err.contains("case.comm:64:34"), "{err}");
 }
 
+/// E(T) with the temperature of the EVOL_THER: E changes between the
+/// instants; STAT_NON_LINE evaluates it at each Gauss point and instant
+/// (code_aster's nmelas: the stress rescaled by E⁺/E⁻, the same as E⁺ times
+/// the elastic strain), so the clamped bar's stress is −E(T) ε_th(T).
 #[test]
-fn a_young_modulus_varying_in_time_is_refused() {
-    // E(T) with the temperature of the EVOL_THER: E changes between the
-    // instants (code_aster rescales the stress by E+/E-).
-    let t = edited(
-        "AFFE=_F(GROUP_MA=\"BAR\", MATER=steel_c)",
-        "AFFE=_F(GROUP_MA=\"BAR\", MATER=steel)",
+fn a_young_modulus_varying_in_time_follows_the_temperature() {
+    let mut t = edited(
+        "    AFFE=_F(GROUP_MA=\"BAR\", MATER=steel_c),\n    AFFE_VARC=_F(NOM_VARC=\"TEMP\", TOUT=\"OUI\", EVOL=history",
+        "    AFFE=_F(GROUP_MA=\"BAR\", MATER=steel),\n    AFFE_VARC=_F(NOM_VARC=\"TEMP\", TOUT=\"OUI\", EVOL=history",
     );
-    let (ok, _, err) = run(&t, "time");
-    assert_eq!(ok, 12, "the first two parts run");
-    let err = err.expect("refused");
-    assert!(err.contains("constant in time"), "{err}");
+    // With the constant E's references the two ramp checks fail…
+    let (ok, nook, err) = run(&t, "time-wrong");
+    assert_eq!((ok, nook, err), (12, 4, None));
+    // …and hold with E(T).
+    for temp in ["110.0", "200.0"] {
+        let from = format!("-150.0 * eps_th({temp})");
+        assert!(t.contains(&from));
+        t = t.replace(&from, &format!("-young({temp}) * eps_th({temp})"));
+    }
+    assert_eq!(run(&t, "time"), (16, 0, None));
 }
 
 #[test]

@@ -10,8 +10,9 @@
 //! carries them: its forces depend on the geometry.
 
 use super::lemaitre::{self, Lemaitre};
-use super::vmis::{integrate, VonMises};
-use super::{Behaviours, GaussState, Kinematics};
+use super::thermo::{self, ThermoMaterial};
+use super::vmis::{integrate, PointState, VonMises};
+use super::{Behaviours, GaussState, Kinematics, NodalHistory};
 use crate::element::{continuum_stiffness, element_dofs, model_gauss, spring_stiffness, GaussData};
 use crate::error::FemError;
 use crate::linalg::Csc;
@@ -36,6 +37,13 @@ struct PlasticCell {
     law: Option<Arc<VonMises>>,
     /// `LEMAITRE` (small strains), in place of `law`.
     viscous: Option<Arc<Lemaitre>>,
+    /// Parameters at each point's temperature ([`thermo`]), small
+    /// strains: `law` is then only the kind of its internal variables.
+    thermo: Option<Arc<ThermoMaterial>>,
+    /// The cell's mesh nodes and the shape functions at its points (the
+    /// temperature at a point, [`thermo`] cells only).
+    nodes: Vec<usize>,
+    shape_n: Vec<Vec<f64>>,
     kinematics: Kinematics,
     dofs: Vec<usize>,
     gauss: Vec<GaussData>,
@@ -80,6 +88,7 @@ pub struct BehaviourState {
     finite_k: Vec<Option<DMatrix<f64>>>,
     corrected: Vec<bool>,
     hourglass: Vec<Option<[f64; 72]>>,
+    thermal_start: Option<Vec<Vec<f64>>>,
 }
 
 /// The behaviour cells, their converged (committed) states and the trial
@@ -111,6 +120,13 @@ pub(crate) struct PlasticCells {
     positions: Option<(usize, Vec<Vec<usize>>)>,
     /// The duration of the current step (the viscous laws').
     dt: f64,
+    /// The nodal temperatures of the [`thermo`] cells, the temperature at
+    /// each of their points at the end of the current step, and the
+    /// thermal strain at each point at the first instant of the analysis
+    /// (`None` until the first step sets it).
+    temperature: Option<Arc<NodalHistory>>,
+    temps: Vec<Vec<f64>>,
+    thermal_start: Option<Vec<Vec<f64>>>,
 }
 
 impl PlasticCells {
@@ -169,12 +185,39 @@ impl PlasticCells {
             } else {
                 None
             };
+            let (nodes, shape_n) = if behaviour.thermo.is_some() {
+                if model.is_stabilised(el.cell) || model.is_reduced(el.cell) {
+                    return Err(FemError::Model(format!(
+                        "cell {}: a temperature-dependent material on an under-integrated cell is not implemented",
+                        model.cell_name(el.cell)
+                    )));
+                }
+                let ty = model.mesh().cell(el.cell).ty;
+                let nodes = model
+                    .mesh()
+                    .cell(el.cell)
+                    .nodes
+                    .iter()
+                    .map(|n| n.0 as usize)
+                    .collect();
+                let shape_n = model
+                    .stiffness_scheme(el.cell)
+                    .iter()
+                    .map(|gp| crate::shape::shape(ty, gp.xi).n.to_vec())
+                    .collect();
+                (nodes, shape_n)
+            } else {
+                (Vec::new(), Vec::new())
+            };
             cells.push(PlasticCell {
                 cell: el.cell,
                 hypothesis: *hypothesis,
                 elastic: *material,
                 law: behaviour.law,
                 viscous: behaviour.viscous,
+                thermo: behaviour.thermo,
+                nodes,
+                shape_n,
                 kinematics: behaviour.kinematics,
                 dofs,
                 gauss,
@@ -199,6 +242,12 @@ impl PlasticCells {
             .map(|c| c.stabilised.map(|_| Box::new(([0.0; 72], [0.0; 72]))))
             .collect();
         let corrected = vec![false; cells.len()];
+        let cells_len = cells.len();
+        if cells.iter().any(|c| c.thermo.is_some()) && behaviours.temperature().is_none() {
+            return Err(FemError::Model(
+                "temperature-dependent materials without a temperature history".into(),
+            ));
+        }
         let tangents = committed
             .iter()
             .map(|c| vec![[[0.0; 6]; 6]; c.len()])
@@ -226,6 +275,9 @@ impl PlasticCells {
             hourglass,
             symmetrize,
             dt: 0.0,
+            temps: vec![Vec::new(); cells_len],
+            temperature: behaviours.temperature().cloned(),
+            thermal_start: None,
         }))
     }
 
@@ -239,6 +291,7 @@ impl PlasticCells {
             tangents: self.tangents.clone(),
             finite_k: self.finite_k.clone(),
             corrected: self.corrected.clone(),
+            thermal_start: self.thermal_start.clone(),
             hourglass: self
                 .hourglass
                 .iter()
@@ -276,6 +329,9 @@ impl PlasticCells {
         self.tangents.clone_from(&s.tangents);
         self.finite_k.clone_from(&s.finite_k);
         self.corrected.clone_from(&s.corrected);
+        if s.thermal_start.is_some() {
+            self.thermal_start.clone_from(&s.thermal_start);
+        }
         for (h, q) in self.hourglass.iter_mut().zip(&s.hourglass) {
             if let (Some(h), Some(q)) = (h.as_mut(), q) {
                 h.0 = *q;
@@ -289,6 +345,50 @@ impl PlasticCells {
     /// converged instant to the target; a cut step's own).
     pub fn set_step(&mut self, dt: f64) {
         self.dt = dt;
+    }
+
+    /// The instants of the step about to be solved, for the
+    /// temperature-dependent cells: the temperature at each of their
+    /// points at `target` and, at the first step of the analysis (not
+    /// continued from a state), the thermal strain at `from`, which the
+    /// thermal strain is counted from ([`thermo`]).
+    pub fn set_instants(&mut self, from: f64, target: f64) -> Result<(), FemError> {
+        let Some(history) = self.temperature.clone() else {
+            return Ok(());
+        };
+        let at_points = |cell: &PlasticCell, nodal: &[f64]| -> Vec<f64> {
+            cell.shape_n
+                .iter()
+                .map(|n| n.iter().zip(&cell.nodes).map(|(w, &k)| w * nodal[k]).sum())
+                .collect()
+        };
+        if self.thermal_start.is_none() {
+            let nodal = history.at(from)?;
+            let mut start = Vec::with_capacity(self.cells.len());
+            for cell in &self.cells {
+                let mut v = Vec::new();
+                if let Some(m) = &cell.thermo {
+                    for t in at_points(cell, &nodal) {
+                        v.push(m.thermal_strain(t)?);
+                    }
+                }
+                start.push(v);
+            }
+            self.thermal_start = Some(start);
+        }
+        let nodal = history.at(target)?;
+        for (c, cell) in self.cells.iter().enumerate() {
+            if cell.thermo.is_some() {
+                self.temps[c] = at_points(cell, &nodal);
+                if self.temps[c].iter().any(|t| t.is_nan()) {
+                    return Err(FemError::Model(format!(
+                        "the temperature field has no value at a node of cell {}",
+                        cell.cell.0
+                    )));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Whether some cell has a finite-strain kinematics.
@@ -373,21 +473,27 @@ impl PlasticCells {
         let points: usize = self
             .cells
             .iter()
-            .filter(|c| !c.finite() && (c.law.is_some() || c.viscous.is_some()))
+            .filter(|c| {
+                !c.finite() && (c.law.is_some() || c.viscous.is_some() || c.thermo.is_some())
+            })
             .map(|c| c.gauss.len())
             .sum();
         let n = self.cells.len();
         let dt = self.dt;
         let cells = &self.cells;
         let committed = &self.committed;
+        let thermal = Thermal {
+            temps: &self.temps,
+            start: self.thermal_start.as_deref(),
+        };
         let corrections = if points >= PARALLEL_POINTS && n >= 2 {
             let mid = n / 2;
             let (t1, t2) = self.trial.split_at_mut(mid);
             let (k1, k2) = self.tangents.split_at_mut(mid);
             let (c1, c2) = self.corrected.split_at_mut(mid);
             let (r1, r2) = crate::parallel::join(
-                || integrate_small_cells(model, cells, committed, 0, u, dt, t1, k1, c1),
-                || integrate_small_cells(model, cells, committed, mid, u, dt, t2, k2, c2),
+                || integrate_small_cells(model, cells, committed, &thermal, 0, u, dt, t1, k1, c1),
+                || integrate_small_cells(model, cells, committed, &thermal, mid, u, dt, t2, k2, c2),
             );
             let mut r1 = r1?;
             r1.extend(r2?);
@@ -397,6 +503,7 @@ impl PlasticCells {
                 model,
                 cells,
                 committed,
+                &thermal,
                 0,
                 u,
                 dt,
@@ -470,6 +577,40 @@ impl PlasticCells {
                         &eps[..cell.hypothesis.ncomp()],
                         &state,
                         self.dt,
+                        true,
+                    )
+                    .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                    self.tangents[c][g] = tangent;
+                }
+                continue;
+            }
+            if let Some(mat) = cell.thermo.as_deref() {
+                // The tangent at the committed state with the parameters
+                // at the step's end (nmisot's RIGI_MECA_TANG reads '+').
+                self.corrected[c] = true;
+                let thermal = Thermal {
+                    temps: &self.temps,
+                    start: self.thermal_start.as_deref(),
+                };
+                for g in 0..cell.gauss.len() {
+                    let state = self.committed[c][g].law;
+                    let (temp, th0) = thermal.at(c, g)?;
+                    let eps = [0.0; 6];
+                    let prev = if elastic {
+                        PointState {
+                            plastic: false,
+                            ..state
+                        }
+                    } else {
+                        state
+                    };
+                    let (_, tangent) = thermo::integrate_point(
+                        mat,
+                        cell.hypothesis,
+                        &eps[..cell.hypothesis.ncomp()],
+                        temp,
+                        th0,
+                        &prev,
                         true,
                     )
                     .map_err(|e| at_cell(model, cell.cell, g, e))?;
@@ -786,6 +927,31 @@ fn stress_correction(cell: &PlasticCell, trial: &[GaussState], ue: &[f64]) -> Ve
     fe
 }
 
+/// The temperatures of the [`thermo`] cells' points at the end of the
+/// step and their thermal strains at the first instant.
+struct Thermal<'a> {
+    temps: &'a [Vec<f64>],
+    start: Option<&'a [Vec<f64>]>,
+}
+
+impl Thermal<'_> {
+    fn at(&self, c: usize, g: usize) -> Result<(f64, f64), FemError> {
+        let t = self.temps.get(c).and_then(|v| v.get(g)).copied();
+        let s = self
+            .start
+            .and_then(|s| s.get(c))
+            .and_then(|v| v.get(g))
+            .copied();
+        match (t, s) {
+            (Some(t), Some(s)) => Ok((t, s)),
+            _ => Err(FemError::Model(
+                "a temperature-dependent cell integrated before its step's temperatures were set"
+                    .into(),
+            )),
+        }
+    }
+}
+
 /// Number of Gauss points of small-strain behaviour cells from which their
 /// integration runs on two threads (below it a thread costs more than it
 /// saves).
@@ -801,6 +967,7 @@ fn integrate_small_cells(
     model: &Model,
     cells: &[PlasticCell],
     committed: &[Vec<GaussState>],
+    thermal: &Thermal,
     first: usize,
     u: &[f64],
     dt: f64,
@@ -816,6 +983,35 @@ fn integrate_small_cells(
             continue;
         }
         let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
+        if let Some(mat) = cell.thermo.as_deref() {
+            let n = cell.hypothesis.ncomp();
+            for (g, gp) in cell.gauss.iter().enumerate() {
+                let mut eps = [0.0; 6];
+                for (k, e) in eps.iter_mut().enumerate().take(n) {
+                    *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
+                }
+                let (temp, th0) = thermal.at(c, g)?;
+                let (state, tangent) = thermo::integrate_point(
+                    mat,
+                    cell.hypothesis,
+                    &eps[..n],
+                    temp,
+                    th0,
+                    &committed[c][g].law,
+                    false,
+                )
+                .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                trial[g] = GaussState {
+                    law: state,
+                    cauchy: state.stress,
+                    extra: [0.0; 6],
+                };
+                tangents[j][g] = tangent;
+            }
+            corrected[j] = true;
+            out.push((c, stress_correction(cell, trial, &ue)));
+            continue;
+        }
         if let Some(visc) = cell.viscous.as_deref() {
             let n = cell.hypothesis.ncomp();
             for (g, gp) in cell.gauss.iter().enumerate() {

@@ -21,12 +21,16 @@
 //! - `VMIS_CINE_LINE`: von Mises with linear kinematic (Prager) hardening
 //!   ([`kinematic`], `Hardening::Kinematic`), VARI the back stress and
 //!   the plasticity indicator.
+//! - parameters that follow the temperature (`ELAS_FO`, `ECRO_LINE_FO`)
+//!   at each Gauss point and instant, ELAS and `VMIS_ISOT_*` in small
+//!   strains ([`thermo`]), the thermal strain in the behaviour.
 
 mod cells;
 pub mod johnson_cook;
 pub mod kinematic;
 pub mod lemaitre;
 pub mod simo_miehe;
+pub mod thermo;
 pub mod vmis;
 
 pub use crate::strain::{GaussState, Kinematics};
@@ -34,8 +38,10 @@ pub(crate) use cells::PlasticCells;
 pub use cells::{forc_noda_deformed, forc_noda_from_stress, BehaviourState};
 pub use johnson_cook::JohnsonCook;
 pub use lemaitre::Lemaitre;
+pub use thermo::{TempFn, ThermoHardening, ThermoMaterial};
 pub use vmis::{CurveEnd, EcroNl, Hardening, PointState, VonMises};
 
+use crate::error::FemError;
 use crate::model::{ElementKind, Model};
 use aster_mesh::CellId;
 use std::collections::BTreeMap;
@@ -48,6 +54,62 @@ pub struct CellBehaviour {
     pub kinematics: Kinematics,
     /// A viscoplastic law (`LEMAITRE`, small strains) in place of `law`.
     pub viscous: Option<Arc<Lemaitre>>,
+    /// Parameters that follow the temperature ([`thermo`]), small strains:
+    /// in place of `law` (ELAS or a `VMIS_ISOT_*` law at each point's
+    /// temperature).
+    pub thermo: Option<Arc<ThermoMaterial>>,
+}
+
+/// Nodal temperatures over time (`AFFE_VARC`): knots (instant, value per
+/// mesh node), linear between them, constant or excluded outside.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NodalHistory {
+    pub knots: Vec<(f64, Arc<Vec<f64>>)>,
+    pub constant_before: bool,
+    pub constant_after: bool,
+}
+
+impl NodalHistory {
+    /// The temperature of every mesh node at time `t`.
+    pub fn at(&self, t: f64) -> Result<Vec<f64>, FemError> {
+        let k = &self.knots;
+        let Some(first) = k.first() else {
+            return Err(FemError::Model(
+                "a temperature history without values".into(),
+            ));
+        };
+        let last = &k[k.len() - 1];
+        let tol = |x: f64| 1e-12 * x.abs().max(1.0);
+        if t < first.0 - tol(first.0) {
+            if !self.constant_before {
+                return Err(FemError::Model(format!(
+                    "the temperature is asked at {t}, before its first instant {} (PROL_GAUCHE='EXCLU')",
+                    first.0
+                )));
+            }
+            return Ok(first.1.to_vec());
+        }
+        if t > last.0 + tol(last.0) {
+            if !self.constant_after {
+                return Err(FemError::Model(format!(
+                    "the temperature is asked at {t}, after its last instant {} (PROL_DROITE='EXCLU')",
+                    last.0
+                )));
+            }
+            return Ok(last.1.to_vec());
+        }
+        if let Some((_, v)) = k.iter().find(|(x, _)| (x - t).abs() <= tol(*x)) {
+            return Ok(v.to_vec());
+        }
+        let j = k.partition_point(|(x, _)| *x <= t).clamp(1, k.len() - 1);
+        let (t0, a) = (&k[j - 1].0, &k[j - 1].1);
+        let (t1, b) = (&k[j].0, &k[j].1);
+        let w = (t - t0) / (t1 - t0);
+        Ok(a.iter()
+            .zip(b.iter())
+            .map(|(x, y)| x + w * (y - x))
+            .collect())
+    }
 }
 
 /// Which cells follow a plastic law or a finite-strain kinematics
@@ -56,6 +118,8 @@ pub struct CellBehaviour {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Behaviours {
     by_cell: BTreeMap<CellId, CellBehaviour>,
+    /// The nodal temperatures the [`thermo`] cells read.
+    temperature: Option<Arc<NodalHistory>>,
 }
 
 impl Behaviours {
@@ -87,6 +151,7 @@ impl Behaviours {
                     law,
                     kinematics,
                     viscous: None,
+                    thermo: None,
                 },
             );
         }
@@ -100,8 +165,39 @@ impl Behaviours {
                 law: None,
                 kinematics: Kinematics::Small,
                 viscous: Some(law),
+                thermo: None,
             },
         );
+    }
+
+    /// Gives `cell` a temperature-dependent material in small strains
+    /// (ELAS or `VMIS_ISOT_*` at each point's temperature, [`thermo`]).
+    pub fn assign_thermo(&mut self, cell: CellId, material: Arc<ThermoMaterial>) {
+        self.by_cell.insert(
+            cell,
+            CellBehaviour {
+                law: material.reference_law().map(Arc::new),
+                kinematics: Kinematics::Small,
+                viscous: None,
+                thermo: Some(material),
+            },
+        );
+    }
+
+    /// The nodal temperatures over time the temperature-dependent cells
+    /// read.
+    pub fn set_temperature(&mut self, history: Arc<NodalHistory>) {
+        self.temperature = Some(history);
+    }
+
+    /// The temperature history of the temperature-dependent cells.
+    pub(crate) fn temperature(&self) -> Option<&Arc<NodalHistory>> {
+        self.temperature.as_ref()
+    }
+
+    /// Whether some cell has a temperature-dependent material.
+    pub fn has_thermo(&self) -> bool {
+        self.by_cell.values().any(|b| b.thermo.is_some())
     }
 
     /// Makes `cell` elastic in small strains again (a later
@@ -154,6 +250,7 @@ impl Behaviours {
             law: None,
             kinematics: Kinematics::Small,
             viscous: None,
+            thermo: None,
         };
         model
             .elements()

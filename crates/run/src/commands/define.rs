@@ -26,6 +26,9 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "ECRO_LINE",
     "ECRO_LINE/D_SIGM_EPSI",
     "ECRO_LINE/SY",
+    "ECRO_LINE_FO",
+    "ECRO_LINE_FO/D_SIGM_EPSI",
+    "ECRO_LINE_FO/SY",
     "TRACTION",
     "TRACTION/SIGM",
     "LEMAITRE",
@@ -99,7 +102,14 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
 ]);
 
 /// The blocks of the plastic and viscoplastic laws (isotropic, on ELAS).
-const PLASTIC_BLOCKS: [&str; 5] = ["ECRO_LINE", "TRACTION", "LEMAITRE", "ECRO_NL", "ECRO_COOK"];
+const PLASTIC_BLOCKS: [&str; 6] = [
+    "ECRO_LINE",
+    "ECRO_LINE_FO",
+    "TRACTION",
+    "LEMAITRE",
+    "ECRO_NL",
+    "ECRO_COOK",
+];
 
 /// A material without `ELAS` (its E and NU NaN), no law, conduction
 /// `thermal`: what a thermal or orthotropic material starts from.
@@ -113,6 +123,7 @@ fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> Material {
         amor_alpha: None,
         amor_beta: None,
         ecro_line: None,
+        ecro_line_fo: None,
         traction: None,
         lemaitre: None,
         ecro_nl: None,
@@ -325,6 +336,21 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         }
         None => None,
     };
+    let ecro_line_fo = match kw.factor("ECRO_LINE_FO").first() {
+        Some(occ) => Some(Rc::new(ecro_line_fo(ex, occ)?)),
+        None => None,
+    };
+    // Constant functions are an ECRO_LINE.
+    let ecro_line = match (&ecro_line, &ecro_line_fo) {
+        (None, Some(fo)) => match (
+            crate::elas_fo::constant(&fo.d_sigm_epsi.function.0),
+            crate::elas_fo::constant(&fo.sy.function.0),
+        ) {
+            (Some(d_sigm_epsi), Some(sy)) => Some(EcroLine { d_sigm_epsi, sy }),
+            _ => None,
+        },
+        _ => ecro_line,
+    };
     let traction = match kw.factor("TRACTION").first() {
         Some(occ) => {
             let f = ex.required("DEFI_MATERIAU/TRACTION", occ, "SIGM")?;
@@ -455,6 +481,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         amor_alpha,
         amor_beta,
         ecro_line,
+        ecro_line_fo,
         traction,
         lemaitre,
         ecro_nl,
@@ -509,6 +536,32 @@ fn elas_fo(ex: &Executor, occ: &Keywords) -> Result<crate::elas_fo::ElasFo, Exec
         amor_beta: arg("AMOR_BETA")?,
         temp_def_alpha: occ.f64("TEMP_DEF_ALPHA"),
         precision: occ.f64("PRECISION").unwrap_or(1.0),
+    })
+}
+
+/// `DEFI_MATERIAU/ECRO_LINE_FO`: the slope after yield and the yield
+/// stress as functions (of TEMP), evaluated in STAT_NON_LINE at each Gauss
+/// point and instant ([`crate::thermo_mat`]).
+fn ecro_line_fo(ex: &Executor, occ: &Keywords) -> Result<EcroLineFo, ExecError> {
+    let cmd = "DEFI_MATERIAU/ECRO_LINE_FO";
+    let arg = |name: &'static str| -> Result<crate::elas_fo::FoArg, ExecError> {
+        let c = ex.required(cmd, occ, name)?;
+        let function = ex.function(c)?;
+        let span = occ.keyword(name).map(|k| k.span).unwrap_or_default();
+        Ok(crate::elas_fo::FoArg {
+            keyword: if name == "SY" {
+                "ECRO_LINE_FO/SY"
+            } else {
+                "ECRO_LINE_FO/D_SIGM_EPSI"
+            },
+            name: c.name.clone(),
+            function: LoadFunction(function),
+            span,
+        })
+    };
+    Ok(EcroLineFo {
+        d_sigm_epsi: arg("D_SIGM_EPSI")?,
+        sy: arg("SY")?,
     })
 }
 
