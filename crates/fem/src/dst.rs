@@ -374,6 +374,10 @@ fn dsqdis(quad: &Quad, df: &[[f64; 3]; 3], dci: &[[f64; 2]; 2]) -> Result<[[f64;
     }))
 }
 
+/// The Jacobian's determinant and inverse at a point, and the curvature
+/// (3×12) and shear force (2×12) operators there.
+type QuadOperators = (f64, [f64; 4], [[f64; 12]; 3], [[f64; 12]; 2]);
+
 /// The DSQ quadrangle's curvature (3×12) and shear force (2×12)
 /// operators at (ξ, η), and the Jacobian's determinant there.
 fn quad_operators(
@@ -382,7 +386,7 @@ fn quad_operators(
     an: &[[f64; 12]; 4],
     qsi: f64,
     eta: f64,
-) -> (f64, [f64; 4], [[f64; 12]; 3], [[f64; 12]; 2]) {
+) -> QuadOperators {
     let (det, vj) = quad.jacobian(qsi, eta);
     let bf = condense(&bfb_q(qsi, eta, &vj), &bfa_q(&quad.c, qsi, eta, &vj), an);
     let (bcb, bca) = dsqcis(&quad.c, df, qsi, eta, &vj);
