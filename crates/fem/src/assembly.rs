@@ -552,6 +552,7 @@ mod tests {
                     kind: ElementKind::Shell {
                         material,
                         section: crate::dkt::ShellSection::new(0.05),
+                        theory: crate::plate::PlateTheory::Dkt,
                     },
                 },
             ],

@@ -39,8 +39,8 @@ pub type QuadEfforts = [f64; 8];
 pub struct Quad {
     /// Rows are the local axes x, y, z in global coordinates (`pgl`).
     pub pgl: Matrix3<f64>,
-    xy: [[f64; 2]; 4],
-    c: [f64; 25],
+    pub(crate) xy: [[f64; 2]; 4],
+    pub(crate) c: [f64; 25],
     warping: f64,
 }
 
@@ -98,7 +98,7 @@ impl Quad {
 
     /// `jquad4`: Jacobian determinant and inverse (vj11 vj12 vj21 vj22) at
     /// (ξ, η).
-    fn jacobian(&self, qsi: f64, eta: f64) -> (f64, [f64; 4]) {
+    pub(crate) fn jacobian(&self, qsi: f64, eta: f64) -> (f64, [f64; 4]) {
         let xy = &self.xy;
         let d = |a: usize, b: usize, k: usize| xy[a][k] - xy[b][k];
         let (x21, x32, x43, x14) = (d(1, 0, 0), d(2, 1, 0), d(3, 2, 0), d(0, 3, 0));
@@ -112,7 +112,7 @@ impl Quad {
     }
 
     /// Membrane strain operator (`dxqbm`) on (u₁ v₁ … u₄ v₄).
-    fn bm(qsi: f64, eta: f64, vj: &[f64; 4]) -> [[f64; 8]; 3] {
+    pub(crate) fn bm(qsi: f64, eta: f64, vj: &[f64; 4]) -> [[f64; 8]; 3] {
         let [vj11, vj12, vj21, vj22] = *vj;
         let peta = (1. + eta) / 4.;
         let meta = (1. - eta) / 4.;
@@ -380,14 +380,12 @@ pub(crate) fn fpg4() -> Vec<GaussPoint> {
 /// node-major DX DY DZ DRX DRY DRZ along the local axes.
 pub fn local_stiffness(quad: &Quad, material: &Elastic, section: &ShellSection) -> Matrix24 {
     let (dm, df) = section_matrices(material, section);
-    let mut memb = [[0.; 8]; 8];
     let mut flex = [[0.; 12]; 12];
     for g in fpg4() {
         let (qsi, eta) = (g.xi[0], g.xi[1]);
         let (det, vj) = quad.jacobian(qsi, eta);
         let w = g.weight * det;
         let bf = quad.bf(qsi, eta, &vj);
-        let bm = Quad::bm(qsi, eta, &vj);
         for a in 0..12 {
             for b in 0..12 {
                 let mut v = 0.;
@@ -399,17 +397,22 @@ pub fn local_stiffness(quad: &Quad, material: &Elastic, section: &ShellSection) 
                 flex[a][b] += w * v;
             }
         }
-        for a in 0..8 {
-            for b in 0..8 {
-                let mut v = 0.;
-                for i in 0..3 {
-                    for j in 0..3 {
-                        v += bm[i][a] * dm[i][j] * bm[j][b];
-                    }
-                }
-                memb[a][b] += w * v;
-            }
-        }
+    }
+    let mut k = membrane_stiffness(quad, &dm);
+    add_bending(&flex, section.drilling, &mut k);
+    k
+}
+
+/// The bilinear membrane (`dxqbm` on FPG4, Σ w·det·Bmᵀ·Dm·Bm) on the
+/// in-plane translations of a local 24×24 matrix: the membrane part of
+/// every plate quadrangle (DKQ, DSQ, Q4G).
+pub(crate) fn membrane_stiffness(quad: &Quad, dm: &[[f64; 3]; 3]) -> Matrix24 {
+    let mut memb = [[0.; 8]; 8];
+    for g in fpg4() {
+        let (qsi, eta) = (g.xi[0], g.xi[1]);
+        let (det, vj) = quad.jacobian(qsi, eta);
+        let bm = Quad::bm(qsi, eta, &vj);
+        crate::dkt::add_btdb(&bm, dm, g.weight * det, &mut memb);
     }
     let mut k = Matrix24::zeros();
     for a in 0..8 {
@@ -417,7 +420,6 @@ pub fn local_stiffness(quad: &Quad, material: &Elastic, section: &ShellSection) 
             k[(membrane_dof(a), membrane_dof(b))] += memb[a][b];
         }
     }
-    add_bending(&flex, section.drilling, &mut k);
     k
 }
 
@@ -433,7 +435,7 @@ pub fn rotation(quad: &Quad) -> Matrix24 {
 
 /// code_aster's alternative drilling formulation of the DKQ (a negative
 /// `COEF_RIGI_DRZ`) is not reproduced: an error.
-fn check_drilling(section: &ShellSection) -> Result<(), String> {
+pub(crate) fn check_drilling(section: &ShellSection) -> Result<(), String> {
     if section.drilling < 0. {
         return Err(format!(
             "COEF_RIGI_DRZ = {} < 0 selects code_aster's alternative drilling formulation for DKQ, which is not reproduced",
@@ -459,25 +461,10 @@ pub fn stiffness(
 
 /// `dkqniw`: the DKQ's interpolation of w on the bending unknowns
 /// (w₁ βx₁ βy₁ …) at (ξ, η), from `gquad4`'s edge vectors.
-fn wkq(c: &[f64; 25], qsi: f64, eta: f64) -> [f64; 12] {
+pub(crate) fn wkq(c: &[f64; 25], qsi: f64, eta: f64) -> [f64; 12] {
     let (x5, x6, x7, x8) = (c[0], c[1], c[2], c[3]);
     let (y5, y6, y7, y8) = (c[4], c[5], c[6], c[7]);
-    let (peta, meta, pqsi, mqsi) = (1. + eta, 1. - eta, 1. + qsi, 1. - qsi);
-    let (etac, qsic) = (1. - eta * eta, 1. - qsi * qsi);
-    let n = [
-        mqsi * meta / 8. * (qsic + etac - qsi - eta),
-        mqsi * meta / 8. * qsic,
-        mqsi * meta / 8. * etac,
-        pqsi * meta / 8. * (qsic + etac + qsi - eta),
-        -pqsi * meta / 8. * qsic,
-        pqsi * meta / 8. * etac,
-        pqsi * peta / 8. * (qsic + etac + qsi + eta),
-        -pqsi * peta / 8. * qsic,
-        -pqsi * peta / 8. * etac,
-        mqsi * peta / 8. * (qsic + etac - qsi + eta),
-        mqsi * peta / 8. * qsic,
-        -mqsi * peta / 8. * etac,
-    ];
+    let n = wkq_n(qsi, eta);
     [
         n[0],
         (-x5 * n[1] + x8 * n[2]) / 2.,
@@ -491,6 +478,27 @@ fn wkq(c: &[f64; 25], qsi: f64, eta: f64) -> [f64; 12] {
         n[9],
         (x7 * n[10] + x8 * n[11]) / 2.,
         (y7 * n[10] + y8 * n[11]) / 2.,
+    ]
+}
+
+/// `dkqniw`'s twelve functions N₁ … N₁₂ at (ξ, η) (also `dsqniw`'s and
+/// `q4gniw`'s).
+pub(crate) fn wkq_n(qsi: f64, eta: f64) -> [f64; 12] {
+    let (peta, meta, pqsi, mqsi) = (1. + eta, 1. - eta, 1. + qsi, 1. - qsi);
+    let (etac, qsic) = (1. - eta * eta, 1. - qsi * qsi);
+    [
+        mqsi * meta / 8. * (qsic + etac - qsi - eta),
+        mqsi * meta / 8. * qsic,
+        mqsi * meta / 8. * etac,
+        pqsi * meta / 8. * (qsic + etac + qsi - eta),
+        -pqsi * meta / 8. * qsic,
+        pqsi * meta / 8. * etac,
+        pqsi * peta / 8. * (qsic + etac + qsi + eta),
+        -pqsi * peta / 8. * qsic,
+        -pqsi * peta / 8. * etac,
+        mqsi * peta / 8. * (qsic + etac - qsi + eta),
+        mqsi * peta / 8. * qsic,
+        -mqsi * peta / 8. * etac,
     ]
 }
 
@@ -542,20 +550,7 @@ fn nib_q(c: &[f64; 25], qsi: f64, eta: f64) -> ([f64; 12], [f64; 12]) {
 ///   bending rotations, as for the stiffness (`dxqloc`).
 pub fn local_mass(quad: &Quad, rho: f64, section: &ShellSection) -> Matrix24 {
     let roe = rho * section.thickness;
-    let coefm = quad.c[20] * roe / 9.;
-    let mut m = Matrix24::zeros();
-    for a in 0..8 {
-        for b in 0..8 {
-            if a % 2 == b % 2 {
-                let factor = match (a / 2usize).abs_diff(b / 2) {
-                    0 => 1.,
-                    2 => 0.25,
-                    _ => 0.5,
-                };
-                m[(membrane_dof(a), membrane_dof(b))] = coefm * factor;
-            }
-        }
-    }
+    let mut m = membrane_mass(quad, roe);
     let rof = section.rotary_density(rho);
     let mut flex = [[0.; 12]; 12];
     for g in fpg4() {
@@ -572,6 +567,28 @@ pub fn local_mass(quad: &Quad, rho: f64, section: &ShellSection) -> Matrix24 {
         }
     }
     add_bending(&flex, section.drilling, &mut m);
+    m
+}
+
+/// `dkqmas`'s membrane mass ρh·A/9 × (1 on a node, ½ between
+/// neighbouring nodes, ¼ between opposite ones) on each in-plane
+/// translation of a local 24×24 matrix (also `dsqmas`'s and `q4gmas`'s;
+/// `roe` = ρh).
+pub(crate) fn membrane_mass(quad: &Quad, roe: f64) -> Matrix24 {
+    let coefm = quad.c[20] * roe / 9.;
+    let mut m = Matrix24::zeros();
+    for a in 0..8 {
+        for b in 0..8 {
+            if a % 2 == b % 2 {
+                let factor = match (a / 2usize).abs_diff(b / 2) {
+                    0 => 1.,
+                    2 => 0.25,
+                    _ => 0.5,
+                };
+                m[(membrane_dof(a), membrane_dof(b))] = coefm * factor;
+            }
+        }
+    }
     m
 }
 

@@ -85,7 +85,7 @@ pub struct Facet {
     /// Rows are the local axes x, y, z in global coordinates (`pgl`).
     pub pgl: Matrix3<f64>,
     /// `gtria3`'s 21 values (1-based in the Fortran, 0-based here).
-    c: [f64; 21],
+    pub(crate) c: [f64; 21],
 }
 
 impl Facet {
@@ -125,7 +125,7 @@ impl Facet {
 
     /// Membrane strain operator (`dxtbm`) on (u₁ v₁ u₂ v₂ u₃ v₃):
     /// (εxx, εyy, 2εxy).
-    fn bm(&self) -> [[f64; 6]; 3] {
+    pub(crate) fn bm(&self) -> [[f64; 6]; 3] {
         let (j11, j12, j21, j22) = (self.c[8], self.c[9], self.c[10], self.c[11]);
         [
             [-j11 - j12, 0., j11, 0., j12, 0.],
@@ -429,20 +429,7 @@ pub(crate) fn fpg3() -> Vec<GaussPoint> {
 /// node-major DX DY DZ DRX DRY DRZ along the local axes.
 pub fn local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection) -> Matrix18 {
     let (dm, df) = section_matrices(material, section);
-    let mut k = Matrix18::zeros();
-    let bm = facet.bm();
-    let area = facet.area();
-    for a in 0..6 {
-        for b in 0..6 {
-            let mut v = 0.;
-            for i in 0..3 {
-                for j in 0..3 {
-                    v += bm[i][a] * dm[i][j] * bm[j][b];
-                }
-            }
-            k[(membrane_dof(a), membrane_dof(b))] += area * v;
-        }
-    }
+    let mut k = membrane_stiffness(facet, &dm);
     let mut flex = [[0.; 9]; 9];
     for g in fpg3() {
         let w = g.weight * facet.c[6];
@@ -461,6 +448,63 @@ pub fn local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection
     }
     add_bending(&flex, section.drilling, &mut k);
     k
+}
+
+/// The constant-strain membrane (`dxtbm`, area · Bmᵀ·Dm·Bm) on the
+/// in-plane translations of a local 18×18 matrix: the membrane part of
+/// every plate triangle (DKT, DST, Q4G's T3G).
+pub(crate) fn membrane_stiffness(facet: &Facet, dm: &[[f64; 3]; 3]) -> Matrix18 {
+    let mut k = Matrix18::zeros();
+    let bm = facet.bm();
+    let area = facet.area();
+    for a in 0..6 {
+        for b in 0..6 {
+            let mut v = 0.;
+            for i in 0..3 {
+                for j in 0..3 {
+                    v += bm[i][a] * dm[i][j] * bm[j][b];
+                }
+            }
+            k[(membrane_dof(a), membrane_dof(b))] += area * v;
+        }
+    }
+    k
+}
+
+/// Adds `w`·Bᵀ·D·B to `out` (`utbtab`), for an operator `b` of `R` rows
+/// on `N` unknowns.
+pub(crate) fn add_btdb<const R: usize, const N: usize>(
+    b: &[[f64; N]; R],
+    d: &[[f64; R]; R],
+    w: f64,
+    out: &mut [[f64; N]; N],
+) {
+    let mut db = [[0.; N]; R];
+    for i in 0..R {
+        for j in 0..N {
+            db[i][j] = (0..R).map(|k| d[i][k] * b[k][j]).sum();
+        }
+    }
+    for a in 0..N {
+        for c in 0..N {
+            out[a][c] += w * (0..R).map(|i| b[i][a] * db[i][c]).sum::<f64>();
+        }
+    }
+}
+
+/// The bending unknowns (w₁ βx₁ βy₁ …, [`bending_dof`]) and the in-plane
+/// translations (u₁ v₁ …, [`membrane_dof`]) of a facet of `NN` nodes from
+/// its local displacements `ul` (6 per node).
+pub(crate) fn split_unknowns(ul: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let nn = ul.len() / 6;
+    let um = (0..2 * nn).map(|k| ul[membrane_dof(k)]).collect();
+    let ub = (0..3 * nn)
+        .map(|k| {
+            let (i, s) = bending_dof(k);
+            s * ul[i]
+        })
+        .collect();
+    (um, ub)
 }
 
 /// Adds the bending block `flex` (on the unknowns w βx βy of each node,
@@ -513,21 +557,9 @@ pub fn stiffness(
 
 /// `dktniw`: the DKT's cubic interpolation of w on the bending unknowns
 /// (w₁ βx₁ βy₁ …) at (ξ, η).
-fn wkt(c: &[f64; 21], qsi: f64, eta: f64) -> [f64; 9] {
+pub(crate) fn wkt(c: &[f64; 21], qsi: f64, eta: f64) -> [f64; 9] {
     let (x4, x6, y4, y6) = (c[0], c[2], c[3], c[5]);
-    let lbd = 1. - qsi - eta;
-    let qel = qsi * eta * lbd;
-    let n = [
-        lbd * lbd * (3. - 2. * lbd) + qel * 2.,
-        lbd * lbd * qsi + qel / 2.,
-        lbd * lbd * eta + qel / 2.,
-        qsi * qsi * (3. - 2. * qsi) + qel * 2.,
-        qsi * qsi * (-1. + qsi) - qel,
-        qsi * qsi * eta + qel / 2.,
-        eta * eta * (3. - 2. * eta) + qel * 2.,
-        eta * eta * qsi + qel / 2.,
-        eta * eta * (-1. + eta) - qel,
-    ];
+    let n = wkt_n(qsi, eta);
     [
         n[0],
         -x4 * n[1] + x6 * n[2],
@@ -538,6 +570,23 @@ fn wkt(c: &[f64; 21], qsi: f64, eta: f64) -> [f64; 9] {
         n[6],
         -x4 * n[7] + x6 * n[8],
         -y4 * n[7] + y6 * n[8],
+    ]
+}
+
+/// `dktniw`'s nine cubic functions N₁ … N₉ at (ξ, η) (also `dstniw`'s).
+pub(crate) fn wkt_n(qsi: f64, eta: f64) -> [f64; 9] {
+    let lbd = 1. - qsi - eta;
+    let qel = qsi * eta * lbd;
+    [
+        lbd * lbd * (3. - 2. * lbd) + qel * 2.,
+        lbd * lbd * qsi + qel / 2.,
+        lbd * lbd * eta + qel / 2.,
+        qsi * qsi * (3. - 2. * qsi) + qel * 2.,
+        qsi * qsi * (-1. + qsi) - qel,
+        qsi * qsi * eta + qel / 2.,
+        eta * eta * (3. - 2. * eta) + qel * 2.,
+        eta * eta * qsi + qel / 2.,
+        eta * eta * (-1. + eta) - qel,
     ]
 }
 
@@ -589,24 +638,22 @@ fn nib_t(c: &[f64; 21], qsi: f64, eta: f64) -> ([f64; 9], [f64; 9]) {
 /// - the drilling DRZ: `COEF_RIGI_DRZ` × the least diagonal term of the
 ///   bending rotations, as for the stiffness (`dxtloc`).
 pub fn local_mass(facet: &Facet, rho: f64, section: &ShellSection) -> Matrix18 {
+    local_mass_on(facet, rho, section, &fpg3())
+}
+
+/// [`local_mass`] integrated on `scheme`: `dktmas` reads the element's
+/// RIGI family, FPG3 on the DKT, FPG1 on Q4G's triangle (`MET3TR3`).
+pub(crate) fn local_mass_on(
+    facet: &Facet,
+    rho: f64,
+    section: &ShellSection,
+    scheme: &[GaussPoint],
+) -> Matrix18 {
     let roe = rho * section.thickness;
-    let area = facet.area();
-    let mut m = Matrix18::zeros();
-    for a in 0..6 {
-        for b in 0..6 {
-            if a % 2 == b % 2 {
-                let v = if a == b {
-                    area * roe / 6.
-                } else {
-                    area * roe / 12.
-                };
-                m[(membrane_dof(a), membrane_dof(b))] = v;
-            }
-        }
-    }
+    let mut m = membrane_mass(facet, roe);
     let rof = section.rotary_density(rho);
     let mut flex = [[0.; 9]; 9];
-    for g in fpg3() {
+    for g in scheme {
         let w = wkt(&facet.c, g.xi[0], g.xi[1]);
         let wgt = g.weight * facet.c[6] * roe;
         let (nfx, nfy) = nib_t(&facet.c, g.xi[0], g.xi[1]);
@@ -621,6 +668,27 @@ pub fn local_mass(facet: &Facet, rho: f64, section: &ShellSection) -> Matrix18 {
     m
 }
 
+/// The linear triangle's consistent membrane mass ρh·A/6 (diagonal),
+/// ρh·A/12 (off it) on each in-plane translation of a local 18×18 matrix
+/// (`dktmas`, `dstmas`; `roe` = ρh).
+pub(crate) fn membrane_mass(facet: &Facet, roe: f64) -> Matrix18 {
+    let area = facet.area();
+    let mut m = Matrix18::zeros();
+    for a in 0..6 {
+        for b in 0..6 {
+            if a % 2 == b % 2 {
+                let v = if a == b {
+                    area * roe / 6.
+                } else {
+                    area * roe / 12.
+                };
+                m[(membrane_dof(a), membrane_dof(b))] = v;
+            }
+        }
+    }
+    m
+}
+
 /// Global mass of a DKT triangle of density `rho` ([`local_mass`] turned
 /// by the facet's frame; 18×18, node-major DX DY DZ DRX DRY DRZ), and the
 /// facet's mass ρh·A (`dialum`'s weight when lumped).
@@ -629,9 +697,19 @@ pub fn mass(
     rho: f64,
     section: &ShellSection,
 ) -> Result<(DMatrix<f64>, f64), String> {
+    mass_on(xyz, rho, section, &fpg3())
+}
+
+/// [`mass`] integrated on `scheme` ([`local_mass_on`]).
+pub(crate) fn mass_on(
+    xyz: &[[f64; 3]; 3],
+    rho: f64,
+    section: &ShellSection,
+    scheme: &[GaussPoint],
+) -> Result<(DMatrix<f64>, f64), String> {
     let facet = Facet::new(xyz)?;
     let r = rotation(&facet);
-    let m = r.transpose() * local_mass(&facet, rho, section) * r;
+    let m = r.transpose() * local_mass_on(&facet, rho, section, scheme) * r;
     Ok((
         DMatrix::from_column_slice(18, 18, m.as_slice()),
         facet.area() * rho * section.thickness,

@@ -285,11 +285,13 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
             spring_stiffness(model.mesh(), el.cell, stiffness, *frame).0,
         )),
         ElementKind::Boundary => Ok(None),
-        ElementKind::Shell { material, section } => {
-            shell_stiffness(model.mesh(), el.cell, material, section)
-                .map(Some)
-                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
-        }
+        ElementKind::Shell {
+            material,
+            section,
+            theory,
+        } => shell_stiffness(model.mesh(), el.cell, material, section, *theory)
+            .map(Some)
+            .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))),
         ElementKind::Beam { material, section } => {
             beam_stiffness(model.mesh(), el.cell, material, section)
                 .map(Some)
@@ -365,23 +367,21 @@ pub fn beam_coords(mesh: &Mesh, cell: CellId) -> Result<[[f64; 3]; 2], String> {
     Ok([mesh.coord(c.nodes[0]), mesh.coord(c.nodes[1])])
 }
 
-/// The global stiffness of a shell facet (DKT on TRIA3, DKQ on QUAD4),
-/// node-major DX DY DZ DRX DRY DRZ.
+/// The global stiffness of a plate facet of the family `theory` (on
+/// TRIA3 or QUAD4, [`crate::plate::stiffness`]), node-major DX DY DZ DRX
+/// DRY DRZ.
 pub fn shell_stiffness(
     mesh: &Mesh,
     cell: CellId,
     material: &Elastic,
     section: &crate::dkt::ShellSection,
+    theory: crate::plate::PlateTheory,
 ) -> Result<DMatrix<f64>, String> {
     let c = mesh.cell(cell);
     match c.ty {
-        CellType::TRIA3 => {
-            let xyz = [0, 1, 2].map(|i| mesh.coord(c.nodes[i]));
-            crate::dkt::stiffness(&xyz, material, section)
-        }
-        CellType::QUAD4 => {
-            let xyz = [0, 1, 2, 3].map(|i| mesh.coord(c.nodes[i]));
-            crate::dkq::stiffness(&xyz, material, section)
+        CellType::TRIA3 | CellType::QUAD4 => {
+            let xyz: Vec<[f64; 3]> = c.nodes.iter().map(|&n| mesh.coord(n)).collect();
+            crate::plate::stiffness(theory, &xyz, material, section)
         }
         ty => Err(format!("no shell element on a {}", ty.name())),
     }

@@ -23,6 +23,7 @@ mod diag;
 pub mod dkq;
 pub mod dkt;
 pub mod dof;
+pub mod dst;
 pub mod dynamics;
 pub mod element;
 pub mod elga;
@@ -48,9 +49,11 @@ pub mod nonlinear;
 pub mod ordering;
 pub mod orthotropic;
 mod parallel;
+pub mod plate;
 pub mod post;
 pub mod progress;
 pub mod projection;
+pub mod q4g;
 pub mod refcells;
 pub mod scenes;
 pub mod shape;
@@ -82,6 +85,7 @@ pub use nonlinear::{
     meca_statique, Attempt, Convergence, IncrementTerms, InitialState, MatrixKind, Motion,
     NewtonOptions, NonLinearResult, Prediction, StaticNonLinear, Step, Subdivision,
 };
+pub use plate::PlateTheory;
 pub use post::{CellValues, NodalValues};
 pub use strain::Kinematics;
 pub use unilateral::{

@@ -314,13 +314,14 @@ pub fn element_mass(
             .and_then(|xyz| crate::bar::mass(&xyz, rho, *area, lumped))
             .map(Some)
             .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))),
-        ElementKind::Shell { section, .. } => {
+        ElementKind::Shell {
+            material,
+            section,
+            theory,
+        } => {
             let c = model.mesh().cell(el.cell);
-            let coord = |i: usize| model.mesh().coord(c.nodes[i]);
-            let built = match c.ty {
-                aster_mesh::CellType::TRIA3 => crate::dkt::mass(&[0, 1, 2].map(coord), rho, section),
-                _ => crate::dkq::mass(&[0, 1, 2, 3].map(coord), rho, section),
-            };
+            let xyz: Vec<[f64; 3]> = c.nodes.iter().map(|&n| model.mesh().coord(n)).collect();
+            let built = crate::plate::mass(*theory, &xyz, material, rho, section);
             let (m, weight) = built
                 .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))?;
             Ok(Some(if lumped { lump_shell(&m, weight) } else { m }))
@@ -710,6 +711,7 @@ mod tests {
         let kind = ElementKind::Shell {
             material: Elastic::new(7e10, 0.3).unwrap(),
             section: crate::dkt::ShellSection::new(h),
+            theory: crate::plate::PlateTheory::Dkt,
         };
         let model = structural(CellType::TRIA3, xyz.to_vec(), kind);
         let facet = crate::dkt::Facet::new(&xyz).unwrap();
@@ -783,6 +785,7 @@ mod tests {
             let kind = ElementKind::Shell {
                 material: Elastic::new(7e10, 0.3).unwrap(),
                 section,
+                theory: crate::plate::PlateTheory::Dkt,
             };
             let one = structural(ty, xyz.to_vec(), kind);
             element_mass(&one, &one.elements()[0], rho, Lumping::Consistent)
@@ -885,6 +888,7 @@ mod tests {
         let kind = ElementKind::Shell {
             material: Elastic::new(7e10, 0.3).unwrap(),
             section: sec,
+            theory: crate::plate::PlateTheory::Dkt,
         };
         let model = structural(CellType::QUAD4, xyz.to_vec(), kind);
         let facet = crate::dkq::Quad::new(&xyz).unwrap();

@@ -35,12 +35,15 @@ pub enum ElementKind {
     /// A cell of the model that carries no stiffness (e.g. a boundary SEG2
     /// of a D_PLAN model, used by edge loads); its nodes get DOFs.
     Boundary,
-    /// A thin-shell facet (`DKT`: [`crate::dkt`] on TRIA3, [`crate::dkq`]
-    /// on QUAD4), linear elastic; its nodes get the rotations DRX DRY DRZ
-    /// beside the translations. 3D models only.
+    /// A plate facet on TRIA3 or QUAD4, linear elastic, of the family
+    /// `theory` ([`crate::plate`]: `DKT` — [`crate::dkt`], [`crate::dkq`]
+    /// —, `DST` — [`crate::dst`] — or `Q4G` — [`crate::q4g`]); its nodes
+    /// get the rotations DRX DRY DRZ beside the translations. 3D models
+    /// only.
     Shell {
         material: Elastic,
         section: crate::dkt::ShellSection,
+        theory: crate::plate::PlateTheory,
     },
     /// A straight beam on SEG2 ([`crate::beam`]): Euler–Bernoulli
     /// (`POU_D_E`, `section.shear` None) or Timoshenko (`POU_D_T`), linear
@@ -262,12 +265,15 @@ impl Model {
                         cell_name(el.cell)
                     )));
                 }
-                ElementKind::Shell { section, .. } => {
+                ElementKind::Shell {
+                    section, theory, ..
+                } => {
                     if !matches!(cell.ty, CellType::TRIA3 | CellType::QUAD4) {
                         return Err(FemError::Model(format!(
-                            "cell {} is a {}: the DKT shell element exists on TRIA3 and QUAD4 cells only",
+                            "cell {} is a {}: the {} shell element exists on TRIA3 and QUAD4 cells only",
                             cell_name(el.cell),
-                            cell.ty.name()
+                            cell.ty.name(),
+                            theory.name()
                         )));
                     }
                     if !(section.thickness > 0. && section.thickness.is_finite()) {

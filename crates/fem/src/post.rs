@@ -197,45 +197,32 @@ fn shell_generalised(
     };
     let mut out = Vec::new();
     for el in model.elements() {
-        let ElementKind::Shell { material, section } = &el.kind else {
+        let ElementKind::Shell {
+            material,
+            section,
+            theory,
+        } = &el.kind
+        else {
             continue;
         };
         let dofs = element_dofs(model, el.cell);
         let c = model.mesh().cell(el.cell);
+        if !matches!(c.ty, CellType::TRIA3 | CellType::QUAD4) {
+            continue;
+        }
         let err = |m: String| cell_error(model, el.cell, m);
-        let (pgl, efforts): (_, Vec<[f64; 8]>) = match c.ty {
-            CellType::TRIA3 => {
-                let xyz = [0, 1, 2].map(|i| model.mesh().coord(c.nodes[i]));
-                let mut ue = [0.0; 18];
-                for (a, &i) in dofs.iter().enumerate() {
-                    ue[a] = u[i];
-                }
-                let facet = crate::dkt::Facet::new(&xyz).map_err(err)?;
-                let points: Vec<[f64; 2]> = match at {
-                    EffortsAt::NodesLinear => crate::dkt::NODES.to_vec(),
-                    _ => crate::dkt::rigi_points(),
-                };
-                let e = crate::dkt::generalised_at(&xyz, material, section, &ue, &points, what)
-                    .map_err(err)?;
-                (facet.pgl, e)
-            }
-            CellType::QUAD4 => {
-                let xyz = [0, 1, 2, 3].map(|i| model.mesh().coord(c.nodes[i]));
-                let mut ue = [0.0; 24];
-                for (a, &i) in dofs.iter().enumerate() {
-                    ue[a] = u[i];
-                }
-                let quad = crate::dkq::Quad::new(&xyz).map_err(err)?;
-                let points: Vec<[f64; 2]> = match at {
-                    EffortsAt::NodesLinear => crate::dkq::NODES.to_vec(),
-                    _ => crate::dkq::rigi_points(),
-                };
-                let e = crate::dkq::generalised_at(&xyz, material, section, &ue, &points, what)
-                    .map_err(err)?;
-                (quad.pgl, e)
-            }
-            _ => continue,
+        let xyz: Vec<[f64; 3]> = c.nodes.iter().map(|&n| model.mesh().coord(n)).collect();
+        let ue: Vec<f64> = dofs.iter().map(|&i| u[i]).collect();
+        let points: Vec<[f64; 2]> = match at {
+            EffortsAt::NodesLinear => crate::plate::nodes(c.ty),
+            _ => crate::plate::rigi_scheme(*theory, c.ty)
+                .iter()
+                .map(|g| [g.xi[0], g.xi[1]])
+                .collect(),
         };
+        let (pgl, efforts) =
+            crate::plate::generalised_at(*theory, &xyz, material, section, &ue, &points, what)
+                .map_err(err)?;
         // Rotation of the in-plane tensors from pgl's (x, y) to the user's
         // axes (`coqrep`): c, s are the cosine and sine of the user's x
         // axis in pgl.
@@ -277,10 +264,7 @@ fn shell_generalised(
         // RIGI family's extrapolation (FPG3, FPG4: `ppgan2`); the frame is
         // the cell's, so turning and extrapolating commute.
         let points = if at == EffortsAt::NodesNonLinear {
-            let scheme = match c.ty {
-                CellType::TRIA3 => crate::dkt::fpg3(),
-                _ => crate::dkq::fpg4(),
-            };
+            let scheme = crate::plate::rigi_scheme(*theory, c.ty);
             let e = extrapolation(c.ty, &scheme);
             (0..e.nrows())
                 .map(|n| {
@@ -319,9 +303,12 @@ pub struct ShellLevel {
 /// stress at the height z of a Gauss point is H (ε + z κ), and with
 /// N = h H ε and M = h³/12 H κ that is N/h + 12 z M / h³ (SIZZ = 0); z is
 /// measured from the mid-surface, −h/2 at the bottom of the first layer.
-/// The Gauss values (FPG3, FPG4) are extrapolated to the nodes as code_aster's
-/// `te0004` does for each sub-point. `layers` gives a cell's `COQUE_NCOU`.
-/// The transverse shears SIXZ SIYZ are not computed.
+/// The Gauss values (FPG3, FPG4; FPG1 on Q4G's triangle) are extrapolated
+/// to the nodes as code_aster's `te0004` does for each sub-point. `layers`
+/// gives a cell's `COQUE_NCOU`. The plates with a transverse shear strain
+/// (DST, Q4G) add SIXZ SIYZ, `dstsie`'s parabola through the thickness
+/// (`d1i` with z from −h/2 to h/2): 3/(2h)·(1 − 4z²/h²)·(QX, QY); the DKT
+/// facets have none here.
 pub fn shell_sigm_elno(
     model: &Model,
     u: &[f64],
@@ -332,9 +319,13 @@ pub fn shell_sigm_elno(
     let efforts = efge_elga(model, u, direction)?;
     let mut out = Vec::with_capacity(efforts.len());
     for cv in efforts {
-        let Some(ElementKind::Shell { section, .. }) = model.element_kind(cv.cell) else {
+        let Some(ElementKind::Shell {
+            section, theory, ..
+        }) = model.element_kind(cv.cell)
+        else {
             continue;
         };
+        let shear = theory.has_shear_strain();
         let n = layers(cv.cell).max(1);
         if level.layer == 0 || level.layer > n {
             return Err(cell_error(
@@ -348,30 +339,34 @@ pub fn shell_sigm_elno(
         }
         let h = section.thickness;
         let z = -0.5 * h + h * (f64::from(level.layer - 1) + level.position) / f64::from(n);
+        let parabola = 1.5 / h * (1.0 - 4.0 * z * z / (h * h));
         let gauss: Vec<Vec<f64>> = cv
             .points
             .iter()
             .map(|e| {
                 let at = |k: usize| e[k] / h + 12.0 * z * e[k + 3] / (h * h * h);
-                vec![at(0), at(1), 0.0, at(2)]
+                let mut s = vec![at(0), at(1), 0.0, at(2)];
+                if shear {
+                    s.extend([parabola * e[6], parabola * e[7]]);
+                }
+                s
             })
             .collect();
         let ty = model.mesh().cell(cv.cell).ty;
-        let scheme = match ty {
-            CellType::TRIA3 => crate::dkt::fpg3(),
-            _ => crate::dkq::fpg4(),
-        };
+        let scheme = crate::plate::rigi_scheme(*theory, ty);
         let e = extrapolation(ty, &scheme);
+        let ncomp = if shear { 6 } else { 4 };
         let points = (0..ty.node_count())
             .map(|node| {
-                (0..4)
+                (0..ncomp)
                     .map(|c| (0..gauss.len()).map(|p| e[(node, p)] * gauss[p][c]).sum())
                     .collect()
             })
             .collect();
+        let names = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
         out.push(CellValues {
             cell: cv.cell,
-            names: vec!["SIXX", "SIYY", "SIZZ", "SIXY"],
+            names: names[..ncomp].to_vec(),
             points,
         });
     }
@@ -672,8 +667,12 @@ pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
                 let (k, _) = spring_stiffness(model.mesh(), el.cell, stiffness, *frame);
                 k * ue
             }
-            ElementKind::Shell { material, section } => {
-                shell_stiffness(model.mesh(), el.cell, material, section)
+            ElementKind::Shell {
+                material,
+                section,
+                theory,
+            } => {
+                shell_stiffness(model.mesh(), el.cell, material, section, *theory)
                     .map_err(|m| cell_error(model, el.cell, m))?
                     * ue
             }

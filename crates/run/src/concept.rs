@@ -40,9 +40,10 @@ pub enum Modelisation {
     /// `BARRE`: trusses on SEG2 (`MECA_BARRE`, the area of
     /// `AFFE_CARA_ELEM/BARRE`), DX DY DZ.
     Bar,
-    /// `DKT`: thin-shell facets (DKT on TRIA3, DKQ on QUAD4) with the
-    /// rotations DRX DRY DRZ on their nodes.
-    Dkt,
+    /// `DKT`, `DST`, `Q4G`: plate facets on TRIA3 and QUAD4 (DKT/DKQ,
+    /// DST/DSQ, T3G/Q4G: `aster_fem::plate`) with the rotations DRX DRY
+    /// DRZ on their nodes.
+    Plate(aster_fem::PlateTheory),
     /// `COQUE_3D`: code_aster's degenerated-solid shell on QUAD9 and TRIA7
     /// (`MEC3QU9H`, `MEC3TR7H`, `aster_fem::coque3d`); its centre node carries the
     /// rotations alone.
@@ -65,7 +66,9 @@ impl Modelisation {
             "POU_D_E" => Modelisation::BeamEuler,
             "POU_D_T" => Modelisation::BeamTimoshenko,
             "BARRE" => Modelisation::Bar,
-            "DKT" => Modelisation::Dkt,
+            "DKT" => Modelisation::Plate(aster_fem::PlateTheory::Dkt),
+            "DST" => Modelisation::Plate(aster_fem::PlateTheory::Dst),
+            "Q4G" => Modelisation::Plate(aster_fem::PlateTheory::Q4g),
             "COQUE_3D" => Modelisation::Coque3d,
             "PLAN_JOINT" => Modelisation::PlaneJoint,
             _ => return None,
@@ -86,7 +89,7 @@ impl Modelisation {
         }
     }
 
-    pub const KEYWORDS: [&'static str; 17] = [
+    pub const KEYWORDS: [&'static str; 19] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -98,6 +101,8 @@ impl Modelisation {
         "AXIS_SI",
         "3D_SI",
         "DKT",
+        "DST",
+        "Q4G",
         "DIS_TR",
         "POU_D_E",
         "POU_D_T",
@@ -115,7 +120,7 @@ impl Modelisation {
             | Modelisation::BeamEuler
             | Modelisation::BeamTimoshenko
             | Modelisation::Bar
-            | Modelisation::Dkt
+            | Modelisation::Plate(_)
             | Modelisation::Coque3d => 3,
             _ => 2,
         }
@@ -132,7 +137,7 @@ impl Modelisation {
     pub fn has_rotations(self) -> bool {
         matches!(
             self,
-            Modelisation::Dkt
+            Modelisation::Plate(_)
                 | Modelisation::Coque3d
                 | Modelisation::DiscreteRot3D
                 | Modelisation::BeamEuler
@@ -210,11 +215,11 @@ impl PartialEq for SuperCell {
 }
 
 impl ModelDef {
-    /// Whether the model has shell elements (`DKT`, `COQUE_3D`).
+    /// Whether the model has shell elements (`DKT`, `DST`, `Q4G`, `COQUE_3D`).
     pub fn has_shells(&self) -> bool {
         self.cells
             .values()
-            .any(|&m| matches!(m, Modelisation::Dkt | Modelisation::Coque3d))
+            .any(|&m| matches!(m, Modelisation::Plate(_) | Modelisation::Coque3d))
     }
 
     /// The cells carrying `COQUE_3D`.

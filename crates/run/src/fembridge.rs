@@ -109,7 +109,7 @@ fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
         | Modelisation::BeamEuler
         | Modelisation::BeamTimoshenko
         | Modelisation::Bar
-        | Modelisation::Dkt
+        | Modelisation::Plate(_)
         | Modelisation::Coque3d
         | Modelisation::PlaneJoint => None,
     }
@@ -198,11 +198,12 @@ pub fn build_model(
     let mut elements = Vec::with_capacity(model.cells.len());
     for (&cell, &m) in &model.cells {
         let ty = mesh.cell(cell).ty;
-        if m == Modelisation::Dkt {
+        if let Modelisation::Plate(theory) = m {
             let section = shells.get(&cell).copied().ok_or_else(|| {
                 ExecError::new(format!(
-                    "cell {} carries a DKT shell element but no section: give AFFE_CARA_ELEM/COQUE with EPAIS (and CARA_ELEM to the solver)",
-                    crate::select::cell_name(mesh, cell)
+                    "cell {} carries a {} shell element but no section: give AFFE_CARA_ELEM/COQUE with EPAIS (and CARA_ELEM to the solver)",
+                    crate::select::cell_name(mesh, cell),
+                    theory.name()
                 ))
             })?;
             elements.push(Element {
@@ -210,6 +211,7 @@ pub fn build_model(
                 kind: ElementKind::Shell {
                     material: material_of(cell)?,
                     section,
+                    theory,
                 },
             });
             continue;

@@ -28,7 +28,7 @@ use std::collections::BTreeMap;
 fn is_shell(model: &ModelDef, cell: CellId) -> bool {
     matches!(
         model.cells.get(&cell),
-        Some(Modelisation::Dkt | Modelisation::Coque3d)
+        Some(Modelisation::Plate(_) | Modelisation::Coque3d)
     )
 }
 
@@ -37,7 +37,7 @@ fn is_structural(model: &ModelDef, cell: CellId) -> bool {
     matches!(
         model.cells.get(&cell),
         Some(
-            Modelisation::Dkt
+            Modelisation::Plate(_)
                 | Modelisation::Coque3d
                 | Modelisation::BeamEuler
                 | Modelisation::BeamTimoshenko
@@ -89,6 +89,25 @@ pub(crate) fn check_solve(
     }
     let cmd = call.command.as_str();
     let kw = &call.keywords;
+    // code_aster's DST and Q4G elements (MEDSTR3, MEDSQU4, MET3TR3,
+    // MEQ4QU4) have no RAPH_MECA / FULL_MECA (`te=-1` in their catalogue):
+    // only the linear solver runs them.
+    if cmd != "MECA_STATIQUE" {
+        if let Some(Modelisation::Plate(theory)) = model
+            .cells
+            .values()
+            .find(|m| matches!(m, Modelisation::Plate(t) if t.has_shear_strain()))
+        {
+            let at = kw.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
+            let name = theory.name();
+            return Err(ex.unsupported(
+                &format!(
+                    "{cmd} on a model with MODELISATION='{name}': code_aster's {name} plates have no non-linear options (RAPH_MECA, FULL_MECA); MECA_STATIQUE and the modal commands run them"
+                ),
+                at,
+            ));
+        }
+    }
     let occurrences = kw.factor("COMPORTEMENT");
     for (k, b) in behaviours.iter().enumerate() {
         let on_shell = match &b.cells {

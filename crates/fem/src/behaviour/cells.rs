@@ -1175,11 +1175,19 @@ pub fn forc_noda_deformed(
                 k * ue
             }
             // Linear elastic facets: K u.
-            ElementKind::Shell { material, section } => {
-                let k = crate::element::shell_stiffness(model.mesh(), el.cell, material, section)
-                    .map_err(|m| {
-                    FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))
-                })?;
+            ElementKind::Shell {
+                material,
+                section,
+                theory,
+            } => {
+                let k = crate::element::shell_stiffness(
+                    model.mesh(),
+                    el.cell,
+                    material,
+                    section,
+                    *theory,
+                )
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))?;
                 let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
                 k * ue
             }

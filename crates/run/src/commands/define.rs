@@ -817,14 +817,14 @@ pub(crate) const AFFE_MODELE: Support = Support {
 
 /// The modelisations AFFE_MODELE accepts: the mechanical ones and the
 /// thermal `PLAN` (`AXIS` and `3D` are both).
-const MODELISATIONS: [&str; 18] = {
-    let mut all = [""; 18];
+const MODELISATIONS: [&str; Modelisation::KEYWORDS.len() + 1] = {
+    let mut all = [""; Modelisation::KEYWORDS.len() + 1];
     let mut i = 0;
     while i < Modelisation::KEYWORDS.len() {
         all[i] = Modelisation::KEYWORDS[i];
         i += 1;
     }
-    all[17] = "PLAN";
+    all[Modelisation::KEYWORDS.len()] = "PLAN";
     all
 };
 
@@ -895,9 +895,10 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                     ty == aster_mesh::CellType::SEG2
                 }
                 Modelisation::Solid3D => ty.dim() >= 2,
-                // code_aster's DKT elements: MEDKTR3, MEDKQU4 (FORCE_ARETE
-                // loads the edges' nodes directly: loads_more).
-                Modelisation::Dkt => {
+                // code_aster's plate elements: MEDKTR3, MEDKQU4 (DKT),
+                // MEDSTR3, MEDSQU4 (DST), MET3TR3, MEQ4QU4 (Q4G)
+                // (FORCE_ARETE loads the edges' nodes directly: loads_more).
+                Modelisation::Plate(_) => {
                     matches!(
                         ty,
                         aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4

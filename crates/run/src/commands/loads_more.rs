@@ -109,7 +109,7 @@ pub(super) fn pesanteur(
     let shells: Vec<_> = selected
         .iter()
         .copied()
-        .filter(|c| model.cells.get(c) == Some(&Modelisation::Dkt))
+        .filter(|c| matches!(model.cells.get(c), Some(Modelisation::Plate(_))))
         .collect();
     let mut cells = super::loads::continuum_cells(model, mesh, selected);
     cells.extend(shells);
@@ -158,7 +158,7 @@ pub(super) fn force_coque(
         .filter(|c| {
             matches!(
                 model.cells.get(c),
-                Some(Modelisation::Dkt | Modelisation::Coque3d)
+                Some(Modelisation::Plate(_) | Modelisation::Coque3d)
             )
         })
         .collect();
