@@ -90,11 +90,11 @@ fn kinematics_a_relation_cannot_take_are_refused_with_the_reason() {
 
 #[test]
 fn an_unknown_relation_lists_the_supported_ones() {
-    let text = edited("RELATION=\"VMIS_ISOT_LINE\"", "RELATION=\"VMIS_CINE_LINE\"");
+    let text = edited("RELATION=\"VMIS_ISOT_LINE\"", "RELATION=\"VMIS_ECMI_LINE\"");
     let (_, _, err) = run(&text, "cine");
     let err = err.expect("an error");
     assert!(
-        err.contains("RELATION='VMIS_CINE_LINE'")
+        err.contains("RELATION='VMIS_ECMI_LINE'")
             && err.contains("ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC"),
         "{err}"
     );
