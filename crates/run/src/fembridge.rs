@@ -2194,6 +2194,7 @@ pub fn extract_shell_level(
         fem: None,
         tables: Vec::new(),
         modal: None,
+        thermal: None,
     };
     for step in result
         .steps

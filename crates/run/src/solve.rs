@@ -623,7 +623,10 @@ pub(crate) fn parse_setup(
 
 /// `ARCHIVAGE`: `LIST_INST`/`INST` (with `PRECISION`, `CRITERE`) or
 /// `PAS_ARCH`.
-fn parse_archive(ex: &Executor, kw: &Keywords) -> Result<crate::archive::Archive, ExecError> {
+pub(crate) fn parse_archive(
+    ex: &Executor,
+    kw: &Keywords,
+) -> Result<crate::archive::Archive, ExecError> {
     let mut archive = crate::archive::Archive::default();
     let Some(occ) = kw.factor("ARCHIVAGE").first() else {
         return Ok(archive);
@@ -899,6 +902,7 @@ pub(crate) fn store_solution(
         fem: Some(fem),
         tables,
         modal: None,
+        thermal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }
@@ -995,6 +999,7 @@ const CALC_CHAMP_OWN: &[&str] = &[
     "CRITERES",
     "DEFORMATION",
     "VARI_INTERNE",
+    "THERMIQUE",
     "TOUT",
     "GROUP_MA",
     "INFO",
@@ -1005,6 +1010,10 @@ const CALC_CHAMP_OWN: &[&str] = &[
 /// selection ([`crate::commands::post::STEP_SELECTION`]).
 pub(crate) const CALC_CHAMP: Support = Support {
     rules: Some(calc_champ_rules),
+    values: &[crate::support::Values::new(
+        "THERMIQUE",
+        &["FLUX_ELGA", "FLUX_ELNO", "FLUX_NOEU"],
+    )],
     ..Support::keywords(&crate::support::joined::<
         _,
         { crate::commands::post::STEP_SELECTION.len() + CALC_CHAMP_OWN.len() },
@@ -1070,6 +1079,24 @@ pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             .map_err(|m| ExecError::new(format!("CALC_CHAMP: {m}")))?;
         Some(cells.into_iter().collect())
     };
+    let thermique: Vec<String> = kw
+        .simple("THERMIQUE")
+        .iter()
+        .filter_map(|s| s.as_str().map(str::to_string))
+        .collect();
+    let mut result = result;
+    if !thermique.is_empty() {
+        result = Rc::new(crate::commands::thermal_nl::calc_champ_thermique(
+            ex,
+            &result,
+            &thermique,
+            &steps,
+            only.as_ref(),
+        )?);
+        if options.is_empty() {
+            return store_result(ex, call, Concept::Result(result));
+        }
+    }
     let updated = crate::fembridge::calc_champ(ex, call, &result, &options, &steps, only.as_ref())?;
     store_result(ex, call, Concept::Result(Rc::new(updated)))
 }

@@ -144,6 +144,7 @@ pub fn lire_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         fem: None,
         tables: Vec::new(),
         modal: None,
+        thermal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }

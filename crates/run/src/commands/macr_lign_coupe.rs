@@ -596,6 +596,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
             fem: None,
             tables: Vec::new(),
             modal: None,
+            thermal: None,
         });
         (result, nom.to_string(), c.name.clone())
     } else {
@@ -970,6 +971,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
                 fem: None,
                 tables: Vec::new(),
                 modal: None,
+                thermal: None,
             })),
         );
         // The action, each keyword at the span of the user's one.

@@ -839,6 +839,7 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         fem: None,
         tables: Vec::new(),
         modal: Some(Rc::new(info)),
+        thermal: None,
     };
     let name = result_of(call)?.name.clone();
     let mut report = format!(

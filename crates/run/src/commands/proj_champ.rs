@@ -526,6 +526,7 @@ pub fn proj_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         fem: None,
         tables: Vec::new(),
         modal: None,
+        thermal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(projected)))
 }

@@ -68,6 +68,7 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             fem: None,
             tables: Vec::new(),
             modal: None,
+            thermal: None,
         },
     };
     for occ in kw.factor("AFFE") {
