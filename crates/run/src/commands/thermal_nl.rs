@@ -142,13 +142,15 @@ impl NlLoads for Loads {
     }
 }
 
+/// q times FONC_MULT at the instant.
+type Scale<'a> = dyn Fn(f64, &Option<LoadFunction>) -> Result<f64, FemError> + 'a;
+
+/// The cells' conductions: (cell, material index) and the materials.
+type Conductions = (Vec<(CellId, usize)>, Vec<NlConduction>);
+
 /// A normal flux times FONC_MULT (exchanges with FONC_MULT are refused
 /// before).
-fn scaled(
-    l: SkinLoad,
-    m: &Option<LoadFunction>,
-    scale: &dyn Fn(f64, &Option<LoadFunction>) -> Result<f64, FemError>,
-) -> Result<SkinLoad, FemError> {
+fn scaled(l: SkinLoad, m: &Option<LoadFunction>, scale: &Scale) -> Result<SkinLoad, FemError> {
     Ok(match l {
         SkinLoad::NormalFlux { q } => SkinLoad::NormalFlux { q: scale(q, m)? },
         e => e,
@@ -374,7 +376,7 @@ pub(crate) fn conductions(
     model: &ThermalModel,
     mater: &crate::concept::MaterialField,
     nonlinear: bool,
-) -> Result<(Vec<(CellId, usize)>, Vec<NlConduction>), ExecError> {
+) -> Result<Conductions, ExecError> {
     use aster_fem::thermal_nl::Curve;
     let mesh = ex.mesh_by_id(model.mesh)?;
     let mut cells = Vec::with_capacity(model.cells.len());
@@ -507,8 +509,8 @@ pub(crate) fn calc_champ_thermique(
                 for ((c, _), pts) in problem.cells.iter().zip(&elno) {
                     for (node, p) in mesh.cell(*c).nodes.iter().zip(pts) {
                         let s = &mut sum[node.0 as usize];
-                        for k in 0..3 {
-                            s.0[k] += p[k];
+                        for (acc, v) in s.0.iter_mut().zip(p) {
+                            *acc += v;
                         }
                         s.1 += 1;
                     }
