@@ -95,12 +95,6 @@ pub const DROPPED: &[(&str, &str, &str, &str)] = &[
         "ITER_INTE_PAS",
         "not used by code_aster 17",
     ),
-    (
-        "THER_NON_LINE",
-        "NEWTON",
-        "ITER_LINE_MAXI",
-        "the line search is gone from thermal Newton",
-    ),
     ("DEBUT", "DEBUG", "HIST_ETAPE", "no longer exists"),
     (
         "DETRUIRE",
@@ -271,6 +265,33 @@ pub(crate) fn transform_level(
             d.insert(Value::str("THETA"), g.value.clone(), g.span);
             g.name = "SCHEMA_TEMPS".into();
             g.value = Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(d)));
+        }
+        // NEWTON=_F(ITER_LINE_MAXI, RESI_LINE_RELA) → RECH_LINEAIRE=_F(…)
+        // (THER_NON_LINE's compat_syntax: the line search keeps working).
+        if cmd == "THER_NON_LINE" && !given.iter().any(|g| g.name == "RECH_LINEAIRE") {
+            let mut moved = crate::value::Dict::default();
+            let mut span = None;
+            if let Some(g) = given.iter().find(|g| g.name == "NEWTON") {
+                if let Value::Dict(d) = &g.value {
+                    let mut d = d.borrow_mut();
+                    for key in ["ITER_LINE_MAXI", "RESI_LINE_RELA"] {
+                        if let Some(v) = d.remove(&Value::str(key)) {
+                            moved.insert(Value::str(key), v, g.span);
+                            span = Some(g.span);
+                        }
+                    }
+                }
+            }
+            if let Some(span) = span {
+                if let Some(g) = given.iter().find(|g| g.name == "NEWTON") {
+                    warn(diags, g, format!("`{path}/NEWTON/ITER_LINE_MAXI` is legacy syntax: now RECH_LINEAIRE=_F(ITER_LINE_MAXI=...)"));
+                }
+                given.push(Given {
+                    name: "RECH_LINEAIRE".into(),
+                    span,
+                    value: Value::Dict(std::rc::Rc::new(std::cell::RefCell::new(moved))),
+                });
+            }
         }
         let stat = given
             .iter()

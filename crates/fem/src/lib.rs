@@ -62,6 +62,7 @@ pub(crate) mod solver_constrained;
 mod split_llt;
 pub mod strain;
 pub mod thermal;
+pub mod thermal_nl;
 pub mod unilateral;
 
 pub use beam::BeamSection;

@@ -733,7 +733,7 @@ fn linear_type(ty: CellType) -> CellType {
 /// nodes get the mean of their corners). More points than corners (QUAD8/9,
 /// TETRA10, HEXA20/27, PENTA15/18, PYRAM13): least-squares fit with the
 /// linear cell's functions, evaluated at the corners, mid-nodes as means.
-fn extrapolation(ty: CellType, scheme: &[shape::GaussPoint]) -> DMatrix<f64> {
+pub fn extrapolation(ty: CellType, scheme: &[shape::GaussPoint]) -> DMatrix<f64> {
     let np = scheme.len();
     let nodes = shape::reference_nodes(ty);
     let nn = nodes.len();

@@ -21,7 +21,9 @@
 //! (M/Δt + θ(K + H)) Tₙ₊₁ = (M/Δt − (1−θ)(K + H)) Tₙ + F
 //! ```
 //!
-//! with F the loads (constant in time here: θF + (1−θ)F = F). The
+//! with F = θF(tₙ₊₁) + (1−θ)F(tₙ) the loads (code_aster's
+//! `ther_lineaire_ops._computeRhs`; only the normal fluxes of
+//! [`ThermalProblem::varying_flux`] vary in time here). The
 //! stationary problem (the initial state when `ETAT_INIT` is absent or
 //! `STATIONNAIRE='OUI'`) is (K + H) T = F. Imposed temperatures
 //! (`TEMP_IMPO`) are eliminated. The system matrix is symmetric positive
@@ -49,7 +51,7 @@ pub enum ThermalHypothesis {
 }
 
 impl ThermalHypothesis {
-    fn dim(self) -> usize {
+    pub(crate) fn dim(self) -> usize {
         match self {
             ThermalHypothesis::Solid => 3,
             _ => 2,
@@ -83,6 +85,10 @@ pub struct ThermalProblem<'m> {
     pub skin: Vec<(CellId, SkinLoad)>,
     /// Imposed temperatures (`TEMP_IMPO`).
     pub imposed: Vec<(NodeId, Imposed)>,
+    /// Normal fluxes varying in time (`FLUX_REP` given by a function of
+    /// `INST`, or scaled by `EXCIT/FONC_MULT`): q at each instant of the
+    /// computation, as [`Imposed::PerInstant`].
+    pub varying_flux: Vec<(CellId, Vec<f64>)>,
 }
 
 /// An imposed temperature (`TEMP_IMPO`; dualised in code_aster, so the
@@ -109,7 +115,7 @@ pub struct Transient {
 }
 
 /// code_aster's `RIGI`/`MASS` family of a thermal cell (they coincide).
-fn volume_scheme(ty: CellType) -> Option<Vec<GaussPoint>> {
+pub(crate) fn volume_scheme(ty: CellType) -> Option<Vec<GaussPoint>> {
     Some(match ty {
         CellType::TRIA3 | CellType::TRIA6 | CellType::QUAD4 | CellType::QUAD8 => {
             shape::mass_scheme(ty)
@@ -128,7 +134,7 @@ fn volume_scheme(ty: CellType) -> Option<Vec<GaussPoint>> {
 
 /// The family of a skin cell: segments FPG4 (`THPLSE2`, `THAXSE3`…),
 /// faces their `RIGI` family.
-fn skin_scheme(ty: CellType) -> Option<Vec<GaussPoint>> {
+pub(crate) fn skin_scheme(ty: CellType) -> Option<Vec<GaussPoint>> {
     match ty {
         CellType::SEG2 | CellType::SEG3 => Some(shape::skin_scheme(CellType::SEG3)),
         CellType::TRIA3 | CellType::TRIA6 | CellType::QUAD4 | CellType::QUAD8 | CellType::QUAD9 => {
@@ -273,6 +279,54 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
         m,
         f,
     })
+}
+
+/// The loads F(tₖ) at instant `k`: the constant ones and the normal
+/// fluxes of that instant.
+fn loads_at(p: &ThermalProblem, a: &Assembled, k: usize) -> Result<Vec<f64>, FemError> {
+    let mut f = a.f.clone();
+    let axis = p.hypothesis == ThermalHypothesis::Axisymmetric;
+    for (cell, qs) in &p.varying_flux {
+        let q = *qs.get(k).ok_or_else(|| {
+            FemError::Model(format!(
+                "a varying flux has {} values, none for instant #{k}",
+                qs.len()
+            ))
+        })?;
+        let c = p.mesh.cell(*cell);
+        let scheme = skin_scheme(c.ty).ok_or_else(|| {
+            FemError::Model(format!(
+                "cell {} is a {:?}: no thermal boundary element for it",
+                p.mesh.cell_name(*cell),
+                c.ty
+            ))
+        })?;
+        for gp in &scheme {
+            let s = shape::shape(c.ty, gp.xi);
+            let [x, t1, t2] = shape::point_and_tangents(p.mesh, c, &s);
+            let measure = if c.ty.dim() == 1 {
+                norm(t1)
+            } else {
+                norm(cross(t1, t2))
+            };
+            let mut w = gp.weight * measure;
+            if axis {
+                w *= x[0];
+            }
+            for (i, node) in c.nodes.iter().enumerate() {
+                let u = a.unknown_of[node.0 as usize];
+                if u == usize::MAX {
+                    return Err(FemError::Model(format!(
+                        "cell {} carries a thermal load but node {} is in no cell of the thermal model",
+                        p.mesh.cell_name(*cell),
+                        p.mesh.node_name(*node)
+                    )));
+                }
+                f[u] += w * q * s.n[i];
+            }
+        }
+    }
+    Ok(f)
 }
 
 /// The free-free block of `c_m·M + c_k·K` (lower triangle, free indexing)
@@ -448,7 +502,8 @@ pub fn stationary(p: &ThermalProblem, instants: usize) -> Result<Vec<Vec<f64>>, 
     let factor = factorise(&a, &sp, 0.0, 1.0, &mut None)?;
     (0..instants)
         .map(|k| {
-            let t = solve_step(&a, &sp, &factor, &a.f, &sp.values_at(a.n, k)?)?;
+            let f = loads_at(p, &a, k)?;
+            let t = solve_step(&a, &sp, &factor, &f, &sp.values_at(a.n, k)?)?;
             Ok(to_nodes(&a, &t))
         })
         .collect()
@@ -485,7 +540,13 @@ pub fn transient(p: &ThermalProblem, tr: &Transient) -> Result<Vec<Vec<f64>>, Fe
         }
         None => {
             let factor = factorise(&a, &sp, 0.0, 1.0, &mut symbolic)?;
-            solve_step(&a, &sp, &factor, &a.f, &sp.values_at(a.n, 0)?)?
+            solve_step(
+                &a,
+                &sp,
+                &factor,
+                &loads_at(p, &a, 0)?,
+                &sp.values_at(a.n, 0)?,
+            )?
         }
     };
     let mut out = vec![to_nodes(&a, &t)];
@@ -507,7 +568,10 @@ pub fn transient(p: &ThermalProblem, tr: &Transient) -> Result<Vec<Vec<f64>>, Fe
             Some((d, f)) if (d - dt).abs() <= 1e-12 * dt => (d, f),
             _ => (dt, factorise(&a, &sp, 1.0 / dt, tr.theta, &mut symbolic)?),
         };
-        let mut rhs = a.f.clone();
+        let (f0, f1) = (loads_at(p, &a, k)?, loads_at(p, &a, k + 1)?);
+        let mut rhs: Vec<f64> = (0..a.n)
+            .map(|i| tr.theta * f1[i] + (1.0 - tr.theta) * f0[i])
+            .collect();
         a.m.mul_add(factor.c_m, &t, &mut rhs);
         a.k.mul_add(-(1.0 - tr.theta), &t, &mut rhs);
         t = solve_step(&a, &sp, &factor, &rhs, &sp.values_at(a.n, k + 1)?)?;

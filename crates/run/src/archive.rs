@@ -19,7 +19,9 @@ pub struct Archive {
 }
 
 impl Archive {
-    fn keeps(&self, index: usize, time: f64) -> bool {
+    /// Whether the step of index `index` (in the time list) at `time` is
+    /// stored (the first and last are, whatever this says).
+    pub fn keeps(&self, index: usize, time: f64) -> bool {
         if let Some((list, precision, absolute)) = &self.instants {
             return list.iter().any(|&t| {
                 let d = (t - time).abs();

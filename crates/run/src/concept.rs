@@ -281,6 +281,9 @@ pub struct Material {
     pub ecro_cook: Option<aster_fem::JohnsonCook>,
     /// `THER=_F(LAMBDA, RHO_CP)`.
     pub thermal: Option<aster_fem::thermal::Conduction>,
+    /// `THER_NL=_F(LAMBDA, BETA | RHO_CP)`: λ(T) and the enthalpy β(T)
+    /// (from ρCp(T) as code_aster's `create_enthalpy` makes it).
+    pub thermal_nl: Option<Rc<aster_fem::thermal_nl::NlConduction>>,
     /// `RUPT_FRAG=_F(GC, SIGM_C, PENA_ADHERENCE, PENA_CONTACT)` (for
     /// `CZM_LIN_REG`).
     pub rupt_frag: Option<RuptFrag>,
@@ -706,6 +709,8 @@ pub struct EvolResult {
     /// A `mult_elas` (MACRO_ELAS_MULT): its load cases, named by NOM_CAS,
     /// the i-th stored at NUME_ORDRE i + 1.
     pub cases: Option<Rc<crate::commands::elas_mult::LoadCases>>,
+    /// An `evol_ther`: what its fluxes need (`CALC_CHAMP/THERMIQUE`).
+    pub thermal: Option<Rc<crate::commands::thermal_nl::ThermalRun>>,
 }
 
 /// The parameters of the modes of a `mode_meca`, per NUME_ORDRE

@@ -2325,6 +2325,7 @@ pub fn extract_shell_level(
         tables: Vec::new(),
         modal: None,
         cases: None,
+        thermal: None,
     };
     for step in result
         .steps

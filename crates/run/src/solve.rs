@@ -628,7 +628,10 @@ pub(crate) fn parse_setup(
 
 /// `ARCHIVAGE`: `LIST_INST`/`INST` (with `PRECISION`, `CRITERE`) or
 /// `PAS_ARCH`.
-fn parse_archive(ex: &Executor, kw: &Keywords) -> Result<crate::archive::Archive, ExecError> {
+pub(crate) fn parse_archive(
+    ex: &Executor,
+    kw: &Keywords,
+) -> Result<crate::archive::Archive, ExecError> {
     let mut archive = crate::archive::Archive::default();
     let Some(occ) = kw.factor("ARCHIVAGE").first() else {
         return Ok(archive);
@@ -919,6 +922,7 @@ pub(crate) fn store_solution(
         tables,
         modal: None,
         cases: None,
+        thermal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }
@@ -1037,6 +1041,7 @@ const CALC_CHAMP_OWN: &[&str] = &[
     "DEFORMATION",
     "VARI_INTERNE",
     "ENERGIE",
+    "THERMIQUE",
     "TOUT",
     "GROUP_MA",
     "INFO",
@@ -1049,10 +1054,10 @@ pub(crate) const CALC_CHAMP: Support = Support {
     rules: Some(calc_champ_rules),
     // The elastic energy (`enelpg`, PETIT); ETOT_* (the work of the
     // stresses over the history), EPOT_ELEM/ECIN_ELEM and the others not.
-    values: &[Values::listed(
-        "ENERGIE",
-        &["ENEL_ELGA", "ENEL_ELNO", "ENEL_ELEM"],
-    )],
+    values: &[
+        Values::listed("ENERGIE", &["ENEL_ELGA", "ENEL_ELNO", "ENEL_ELEM"]),
+        Values::new("THERMIQUE", &["FLUX_ELGA", "FLUX_ELNO", "FLUX_NOEU"]),
+    ],
     ..Support::keywords(&crate::support::joined::<
         _,
         { crate::commands::post::STEP_SELECTION.len() + CALC_CHAMP_OWN.len() },
@@ -1119,6 +1124,24 @@ pub fn calc_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             .map_err(|m| ExecError::new(format!("CALC_CHAMP: {m}")))?;
         Some(cells.into_iter().collect())
     };
+    let thermique: Vec<String> = kw
+        .simple("THERMIQUE")
+        .iter()
+        .filter_map(|s| s.as_str().map(str::to_string))
+        .collect();
+    let mut result = result;
+    if !thermique.is_empty() {
+        result = Rc::new(crate::commands::thermal_nl::calc_champ_thermique(
+            ex,
+            &result,
+            &thermique,
+            &steps,
+            only.as_ref(),
+        )?);
+        if options.is_empty() {
+            return store_result(ex, call, Concept::Result(result));
+        }
+    }
     let updated = crate::fembridge::calc_champ(ex, call, &result, &options, &steps, only.as_ref())?;
     store_result(ex, call, Concept::Result(Rc::new(updated)))
 }

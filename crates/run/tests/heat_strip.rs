@@ -23,7 +23,7 @@ fn stationary_and_transient_temperatures_match_their_closed_forms() {
 }
 
 #[test]
-fn fluxes_varying_in_space_or_scaled_in_time_are_refused_at_their_keyword() {
+fn fluxes_varying_in_space_and_exchanges_scaled_in_time_are_refused_at_their_keyword() {
     let t = text().replace(
         "FLUX_REP=_F(GROUP_MA=\"LEFT\", FLUN=q_f)",
         "FLUX_REP=_F(GROUP_MA=\"LEFT\", FLUN=t_right)",
@@ -45,7 +45,7 @@ fn fluxes_varying_in_space_or_scaled_in_time_are_refused_at_their_keyword() {
     assert_eq!(nook, 0);
     let err = err.expect("a refusal");
     assert!(
-        err.contains("THER_LINEAIRE/EXCIT/FONC_MULT on a load with FLUX_REP or ECHANGE"),
+        err.contains("THER_LINEAIRE/EXCIT: an ECHANGE varying in time"),
         "{err}"
     );
 }

@@ -57,6 +57,10 @@ pub(crate) const DEFI_MATERIAU: Support = Support::keywords(&[
     "THER",
     "THER/LAMBDA",
     "THER/RHO_CP",
+    "THER_NL",
+    "THER_NL/LAMBDA",
+    "THER_NL/BETA",
+    "THER_NL/RHO_CP",
     "RUPT_FRAG",
     "RUPT_FRAG/GC",
     "RUPT_FRAG/SIGM_C",
@@ -129,6 +133,7 @@ fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> Material {
         ecro_nl: None,
         ecro_cook: None,
         thermal,
+        thermal_nl: None,
         rupt_frag: None,
         rupt_turon: None,
         orthotropic: None,
@@ -218,9 +223,78 @@ fn ther(
     }))
 }
 
+/// A `THER_NL` function of the temperature as `rcfode` reads it: a
+/// `DEFI_CONSTANTE` or a `DEFI_FONCTION` of `TEMP` (linear between its
+/// points, its prolongations).
+fn ther_nl_curve(
+    ex: &Executor,
+    occ: &Keywords,
+    key: &str,
+) -> Result<Option<aster_fem::thermal_nl::Curve>, ExecError> {
+    use aster_fem::thermal_nl::{Curve, CurveEnd};
+    let at = "DEFI_MATERIAU/THER_NL";
+    let Some(c) = occ.first(key).and_then(|s| s.as_concept()) else {
+        return Ok(None);
+    };
+    let end = |e: Extension| match e {
+        Extension::Excluded => CurveEnd::Excluded,
+        Extension::Constant => CurveEnd::Constant,
+        Extension::Linear => CurveEnd::Linear,
+    };
+    match &*ex.function(c)? {
+        Function::Constant { value, .. } => Ok(Some(Curve::Constant(*value))),
+        Function::Tabulated(t) if t.parameter == "TEMP" && t.abscissae().len() >= 2 => {
+            Curve::table(
+                t.abscissae().to_vec(),
+                t.values().to_vec(),
+                end(t.left),
+                end(t.right),
+            )
+            .map(Some)
+            .map_err(|e| ex.kw_error(at, occ, key, e))
+        }
+        _ => Err(ex.kw_error(
+            at,
+            occ,
+            key,
+            format!(
+                "`{}` must be a DEFI_CONSTANTE or a DEFI_FONCTION of TEMP with two points at least",
+                c.name
+            ),
+        )),
+    }
+}
+
+/// `DEFI_MATERIAU/THER_NL`: λ(T) and the enthalpy β(T), given (`BETA`) or
+/// integrated from `RHO_CP` as code_aster does.
+fn ther_nl(
+    ex: &Executor,
+    kw: &Keywords,
+) -> Result<Option<Rc<aster_fem::thermal_nl::NlConduction>>, ExecError> {
+    use aster_fem::thermal_nl::{Curve, NlConduction};
+    let Some(occ) = kw.factor("THER_NL").first() else {
+        return Ok(None);
+    };
+    let at = "DEFI_MATERIAU/THER_NL";
+    let lambda = ther_nl_curve(ex, occ, "LAMBDA")?
+        .ok_or_else(|| ex.kw_error(at, occ, "LAMBDA", "the conductivity LAMBDA is required"))?;
+    let beta = match (
+        ther_nl_curve(ex, occ, "BETA")?,
+        ther_nl_curve(ex, occ, "RHO_CP")?,
+    ) {
+        (Some(b), _) => b,
+        (None, Some(rho_cp)) => Curve::enthalpy_of(&rho_cp),
+        (None, None) => {
+            return Err(ex.kw_error(at, occ, "LAMBDA", "BETA or RHO_CP is required with THER_NL"))
+        }
+    };
+    Ok(Some(Rc::new(NlConduction { lambda, beta })))
+}
+
 pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let thermal = ther(ex, kw)?;
+    let thermal_nl = ther_nl(ex, kw)?;
     let orthotropic = elas_orth(ex, kw)?;
     if let (Some((o, density)), None) = (orthotropic, kw.factor("ELAS").first()) {
         let m = Material {
@@ -229,6 +303,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
             rupt_frag: rupt_frag(ex, kw)?,
             rupt_turon: rupt_turon(ex, kw)?,
             orthotropic: Some(o),
+            thermal_nl,
             ..without_elas(thermal)
         };
         return store_result(ex, call, Concept::Material(Rc::new(m)));
@@ -239,11 +314,14 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
     };
     let elas = kw.factor("ELAS").first();
     if elas.is_none() && elas_fo.is_none() {
-        if let (Some(thermal), None) = (
-            thermal,
+        if let (true, None) = (
+            thermal.is_some() || thermal_nl.is_some(),
             PLASTIC_BLOCKS.iter().find(|k| !kw.factor(k).is_empty()),
         ) {
-            let m = without_elas(Some(thermal));
+            let m = Material {
+                thermal_nl,
+                ..without_elas(thermal)
+            };
             return store_result(ex, call, Concept::Material(Rc::new(m)));
         }
         return Err(ExecError::new(
@@ -487,6 +565,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         ecro_nl,
         ecro_cook,
         thermal,
+        thermal_nl,
         rupt_frag: rupt_frag(ex, kw)?,
         rupt_turon: rupt_turon(ex, kw)?,
         orthotropic: None,

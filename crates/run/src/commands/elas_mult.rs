@@ -350,6 +350,7 @@ pub fn macro_elas_mult(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
         fem: Some(fem),
         tables: Vec::new(),
         modal: None,
+        thermal: None,
         cases: Some(Rc::new(LoadCases {
             model: setup.model.clone(),
             materials: setup.materials.clone(),

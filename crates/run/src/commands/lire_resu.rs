@@ -145,6 +145,7 @@ pub fn lire_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         tables: Vec::new(),
         modal: None,
         cases: None,
+        thermal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(evol)))
 }

@@ -597,6 +597,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
             tables: Vec::new(),
             modal: None,
             cases: None,
+            thermal: None,
         });
         (result, nom.to_string(), c.name.clone())
     } else {
@@ -972,6 +973,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
                 tables: Vec::new(),
                 modal: None,
                 cases: None,
+                thermal: None,
             })),
         );
         // The action, each keyword at the span of the user's one.

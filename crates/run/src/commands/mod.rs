@@ -29,6 +29,7 @@ pub(crate) mod results;
 pub(crate) mod substructure;
 pub(crate) mod tables;
 pub(crate) mod thermal;
+pub(crate) mod thermal_nl;
 
 use crate::executor::Executor;
 use crate::support::Support;
@@ -137,6 +138,11 @@ pub static COMMANDS: &[Command] = &[
         name: "THER_LINEAIRE",
         run: thermal::ther_lineaire,
         support: thermal::THER_LINEAIRE,
+    },
+    Command {
+        name: "THER_NON_LINE",
+        run: thermal_nl::ther_non_line,
+        support: thermal_nl::THER_NON_LINE,
     },
     Command {
         name: "DEFI_MATERIAU",

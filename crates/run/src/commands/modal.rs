@@ -840,6 +840,7 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         tables: Vec::new(),
         modal: Some(Rc::new(info)),
         cases: None,
+        thermal: None,
     };
     let name = result_of(call)?.name.clone();
     let mut report = format!(

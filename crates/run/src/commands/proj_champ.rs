@@ -527,6 +527,7 @@ pub fn proj_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         tables: Vec::new(),
         modal: None,
         cases: None,
+        thermal: None,
     };
     store_result(ex, call, Concept::Result(Rc::new(projected)))
 }

@@ -69,6 +69,7 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             tables: Vec::new(),
             modal: None,
             cases: None,
+            thermal: None,
         },
     };
     for occ in kw.factor("AFFE") {

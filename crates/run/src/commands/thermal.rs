@@ -34,7 +34,39 @@ pub struct ThermalModel {
 pub struct ThermalLoad {
     pub mesh: u32,
     pub skin: Vec<(CellId, SkinLoad)>,
+    /// `AFFE_CHAR_THER_F` fluxes and exchanges given by functions of
+    /// `INST` (evaluated at each instant).
+    pub skin_f: Vec<(CellId, SkinLoadF)>,
     pub imposed: Vec<(NodeId, TempImpo)>,
+}
+
+/// A boundary condition whose values are functions of `INST`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SkinLoadF {
+    Exchange {
+        h: crate::concept::LoadFunction,
+        t_ext: crate::concept::LoadFunction,
+    },
+    NormalFlux {
+        q: crate::concept::LoadFunction,
+    },
+}
+
+impl SkinLoadF {
+    /// Its values at instant `t`.
+    pub fn at(&self, t: f64) -> Result<SkinLoad, ExecError> {
+        let eval = |f: &crate::concept::LoadFunction| {
+            f.0.eval_named(&[("INST", t)])
+                .map_err(|e| ExecError::new(format!("a thermal load at INST = {t}: {e}")))
+        };
+        Ok(match self {
+            SkinLoadF::Exchange { h, t_ext } => SkinLoad::Exchange {
+                h: eval(h)?,
+                t_ext: eval(t_ext)?,
+            },
+            SkinLoadF::NormalFlux { q } => SkinLoad::NormalFlux { q: eval(q)? },
+        })
+    }
 }
 
 /// A `TEMP_IMPO` temperature: a real (`AFFE_CHAR_THER`) or a function of
@@ -48,7 +80,7 @@ pub enum TempImpo {
 impl TempImpo {
     /// The temperature at each instant (`Imposed` for the solver), times
     /// `EXCIT/FONC_MULT`'s f(INST) when given.
-    fn at(
+    pub(crate) fn at(
         &self,
         instants: &[f64],
         mult: Option<&crate::concept::LoadFunction>,
@@ -76,6 +108,39 @@ impl TempImpo {
             })
             .collect::<Result<_, ExecError>>()?;
         Ok(Imposed::PerInstant(values))
+    }
+}
+
+/// A normal flux varying in time in THER_LINEAIRE: a constant q times
+/// `FONC_MULT`, or a function of `INST` (times `FONC_MULT` when given).
+enum Varying {
+    Scaled(f64, crate::concept::LoadFunction),
+    Function(
+        crate::concept::LoadFunction,
+        Option<crate::concept::LoadFunction>,
+    ),
+}
+
+impl Varying {
+    /// q at each instant.
+    fn at(&self, instants: &[f64]) -> Result<Vec<f64>, ExecError> {
+        let eval = |f: &crate::concept::LoadFunction, t: f64| {
+            f.0.eval_named(&[("INST", t), ("X", 0.0), ("Y", 0.0), ("Z", 0.0)])
+                .map_err(|e| ExecError::new(format!("FLUX_REP at INST = {t}: {e}")))
+        };
+        instants
+            .iter()
+            .map(|&t| match self {
+                Varying::Scaled(q, m) => Ok(q * eval(m, t)?),
+                Varying::Function(f, m) => {
+                    let q = eval(f, t)?;
+                    match m {
+                        Some(m) => Ok(q * eval(m, t)?),
+                        None => Ok(q),
+                    }
+                }
+            })
+            .collect()
     }
 }
 
@@ -250,9 +315,9 @@ pub(crate) fn affe_char_ther(
 }
 
 /// What AFFE_CHAR_THER_F reads (`crate::support`): `TEMP_IMPO`, and
-/// `FLUX_REP`/`ECHANGE` given by constant functions (`DEFI_CONSTANTE`);
-/// fluxes and exchanges varying in time or space are refused at their
-/// keyword.
+/// `FLUX_REP`/`ECHANGE` given by constant functions (`DEFI_CONSTANTE`) or
+/// functions of `INST`; fluxes and exchanges varying in space are refused
+/// at their keyword.
 pub(crate) const AFFE_CHAR_THER_F: Support = Support::keywords(&[
     "MODELE",
     "ECHANGE",
@@ -288,33 +353,72 @@ pub(crate) fn affe_char_ther_f(
         mesh: model.mesh,
         ..Default::default()
     };
-    // A function of nothing (DEFI_CONSTANTE) is its value.
-    let constant = |occ: &Keywords, key: &str, what: &str| -> Result<f64, ExecError> {
+    // A function of nothing (DEFI_CONSTANTE) is its value; a function of
+    // INST is evaluated at each instant by the solver.
+    let function = |occ: &Keywords, key: &str, what: &str| -> Result<Option<f64>, ExecError> {
         let f = super::loads_f::function_at(ex, what, occ, key)?
             .ok_or_else(|| ex.kw_error(what, occ, key, format!("a function {key} is required")))?;
-        if let Some(p) = f.0.parameters().first() {
+        if let Some(p) = f.0.parameters().into_iter().find(|p| *p != "INST") {
             let span = occ.keyword(key).map(|k| k.span).unwrap_or_default();
             return Err(ex.unsupported(
-                &format!("{what}/{key} as a function of {p} (fluxes and exchanges varying in time or space; constant functions are taken)"),
+                &format!("{what}/{key} as a function of {p} (fluxes and exchanges varying in space; functions of INST are taken)"),
                 span,
             ));
         }
-        f.0.eval_named(&[])
-            .map_err(|e| ex.kw_error(what, occ, key, e.to_string()))
+        if f.0.parameters().is_empty() {
+            return f
+                .0
+                .eval_named(&[])
+                .map(Some)
+                .map_err(|e| ex.kw_error(what, occ, key, e.to_string()));
+        }
+        Ok(None)
+    };
+    let func = |occ: &Keywords,
+                key: &str,
+                what: &str|
+     -> Result<crate::concept::LoadFunction, ExecError> {
+        super::loads_f::function_at(ex, what, occ, key)?
+            .ok_or_else(|| ex.kw_error(what, occ, key, format!("a function {key} is required")))
     };
     for occ in kw.factor("ECHANGE") {
         let what = "AFFE_CHAR_THER_F/ECHANGE";
-        let h = constant(occ, "COEF_H", what)?;
-        let t_ext = constant(occ, "TEMP_EXT", what)?;
-        for c in skin_cells(ex, cmd, occ, "ECHANGE", &model, &mesh)? {
-            load.skin.push((c, SkinLoad::Exchange { h, t_ext }));
+        let cells = skin_cells(ex, cmd, occ, "ECHANGE", &model, &mesh)?;
+        match (
+            function(occ, "COEF_H", what)?,
+            function(occ, "TEMP_EXT", what)?,
+        ) {
+            (Some(h), Some(t_ext)) => {
+                for c in cells {
+                    load.skin.push((c, SkinLoad::Exchange { h, t_ext }));
+                }
+            }
+            _ => {
+                let l = SkinLoadF::Exchange {
+                    h: func(occ, "COEF_H", what)?,
+                    t_ext: func(occ, "TEMP_EXT", what)?,
+                };
+                load.skin_f
+                    .extend(cells.into_iter().map(|c| (c, l.clone())));
+            }
         }
     }
     for occ in kw.factor("FLUX_REP") {
         let what = "AFFE_CHAR_THER_F/FLUX_REP";
-        let q = constant(occ, "FLUN", what)?;
-        for c in skin_cells(ex, cmd, occ, "FLUX_REP", &model, &mesh)? {
-            load.skin.push((c, SkinLoad::NormalFlux { q }));
+        let cells = skin_cells(ex, cmd, occ, "FLUX_REP", &model, &mesh)?;
+        match function(occ, "FLUN", what)? {
+            Some(q) => {
+                for c in cells {
+                    load.skin.push((c, SkinLoad::NormalFlux { q }));
+                }
+            }
+            None => {
+                let l = SkinLoadF::NormalFlux {
+                    q: func(occ, "FLUN", what)?,
+                };
+                load.skin_f
+                    .extend(cells.into_iter().map(|c| (c, l.clone())));
+            }
         }
     }
     for occ in kw.factor("TEMP_IMPO") {
@@ -396,6 +500,7 @@ pub(crate) fn ther_lineaire(
     }
     let mut skin = Vec::new();
     let mut imposed = Vec::new();
+    let mut varying = Vec::new();
     for occ in kw.factor("EXCIT") {
         let load = ex.thermal_load(ex.required(cmd, occ, "CHARGE")?)?;
         if load.mesh != model.mesh {
@@ -406,18 +511,46 @@ pub(crate) fn ther_lineaire(
                 "the load is defined on another mesh than the model",
             ));
         }
-        // FONC_MULT scales the imposed temperatures at each instant; a
-        // load with fluxes or exchanges would need the θ-weighted load of
-        // each step: refused.
+        // FONC_MULT scales the imposed temperatures and the normal fluxes
+        // at each instant; an exchange varying in time would change the
+        // matrix at each step: refused.
         let mult = super::loads_f::function_at(ex, cmd, occ, "FONC_MULT")?;
-        if mult.is_some() && !load.skin.is_empty() {
-            let span = occ.keyword("FONC_MULT").map(|k| k.span).unwrap_or_default();
+        let varying_exchange = load
+            .skin_f
+            .iter()
+            .any(|(_, l)| matches!(l, SkinLoadF::Exchange { .. }))
+            || (mult.is_some()
+                && load
+                    .skin
+                    .iter()
+                    .any(|(_, l)| matches!(l, SkinLoad::Exchange { .. })));
+        if varying_exchange {
+            let span = occ
+                .keyword(if mult.is_some() {
+                    "FONC_MULT"
+                } else {
+                    "CHARGE"
+                })
+                .map(|k| k.span)
+                .unwrap_or_default();
             return Err(ex.unsupported(
-                &format!("{cmd}/EXCIT/FONC_MULT on a load with FLUX_REP or ECHANGE (only imposed temperatures are scaled in time here)"),
+                &format!("{cmd}/EXCIT: an ECHANGE varying in time (a function of INST or FONC_MULT; THER_NON_LINE takes it)"),
                 span,
             ));
         }
-        skin.extend(load.skin.iter().copied());
+        for (c, l) in &load.skin {
+            match (l, &mult) {
+                (SkinLoad::NormalFlux { q }, Some(m)) => {
+                    varying.push((*c, Varying::Scaled(*q, m.clone())));
+                }
+                _ => skin.push((*c, *l)),
+            }
+        }
+        for (c, l) in &load.skin_f {
+            if let SkinLoadF::NormalFlux { q } = l {
+                varying.push((*c, Varying::Function(q.clone(), mult.clone())));
+            }
+        }
         imposed.extend(
             load.imposed
                 .iter()
@@ -470,12 +603,17 @@ pub(crate) fn ther_lineaire(
         .into_iter()
         .map(|(n, t, mult)| Ok((n, t.at(&instants, mult.as_ref())?)))
         .collect::<Result<Vec<_>, ExecError>>()?;
+    let varying_flux = varying
+        .into_iter()
+        .map(|(c, v)| Ok((c, v.at(&instants)?)))
+        .collect::<Result<Vec<_>, ExecError>>()?;
     let problem = ThermalProblem {
         mesh: &mesh,
         hypothesis: model.hypothesis,
         cells,
         skin,
         imposed,
+        varying_flux,
     };
     let temps = if transient {
         let theta = kw
@@ -491,6 +629,15 @@ pub(crate) fn ther_lineaire(
         aster_fem::thermal::transient(&problem, &tr).map_err(fem_err)?
     } else {
         aster_fem::thermal::stationary(&problem, instants.len()).map_err(fem_err)?
+    };
+    let thermal = {
+        let (cells, materials) =
+            super::thermal_nl::conductions(ex, cmd, kw, &model, &mater, false)?;
+        Some(Rc::new(super::thermal_nl::ThermalRun {
+            model: model.clone(),
+            cells,
+            materials,
+        }))
     };
     let steps: Vec<(f64, Vec<f64>)> = instants.into_iter().zip(temps).collect();
     // code_aster's storage (ther_lineaire_ops: `first_index`): a transient
@@ -522,6 +669,7 @@ pub(crate) fn ther_lineaire(
         tables: Vec::new(),
         modal: None,
         cases: None,
+        thermal,
     };
     store_result(ex, call, Concept::Result(Rc::new(result)))
 }
