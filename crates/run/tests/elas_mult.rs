@@ -152,7 +152,10 @@ fn fourier_modes_are_refused_before_the_run() {
         err.contains("MACRO_ELAS_MULT/CAS_CHARGE/MODE_FOURIER"),
         "{err}"
     );
-    assert!(err.contains("(Fourier modes need the AXIS_FOURIER modelisation"), "{err}");
+    assert!(
+        err.contains("(Fourier modes need the AXIS_FOURIER modelisation"),
+        "{err}"
+    );
     assert!(!err.contains("(("), "{err}");
     assert!(err.contains("fourier.comm:11:"), "{err}");
 }
