@@ -182,3 +182,42 @@ fn proj_champ_prol_zero_becomes_prol_vale() {
     assert_eq!(v["diagnostics"], serde_json::json!([]), "{text}\n{out}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// THER_NON_LINE's line search of code_aster 15 (`NEWTON/ITER_LINE_MAXI`,
+/// `RESI_LINE_RELA`), moved by code_aster 17's compat_syntax into
+/// RECH_LINEAIRE: the migrated file has it there and checks clean.
+#[test]
+fn ther_non_line_line_search_moves_to_rech_lineaire() {
+    let d = std::env::temp_dir().join(format!("aster-migrate-{}-rechlin", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let p = d.join("study.comm");
+    std::fs::write(
+        &p,
+        "DEBUT(CODE='OUI')\n\
+         MA = LIRE_MAILLAGE(FORMAT='MED')\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='THERMIQUE', MODELISATION='PLAN'))\n\
+         MAT = DEFI_MATERIAU(THER_NL=_F(LAMBDA=DEFI_CONSTANTE(VALE=1.0), BETA=DEFI_CONSTANTE(VALE=1.0)))\n\
+         CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=MAT))\n\
+         CH = AFFE_CHAR_THER(MODELE=MO, TEMP_IMPO=_F(TOUT='OUI', TEMP=1.0))\n\
+         L = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A=1.0, NOMBRE=2))\n\
+         T = THER_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=CH),\n\
+                           ETAT_INIT=_F(VALE=0.0), INCREMENT=_F(LIST_INST=L),\n\
+                           NEWTON=_F(ITER_LINE_MAXI=2, RESI_LINE_RELA=0.01, REAC_ITER=1))\n\
+         FIN()\n",
+    )
+    .unwrap();
+    let path = p.to_str().unwrap();
+    let (code, _, err) = aster(&["migrate", "--write", path]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&p).unwrap();
+    assert!(
+        text.contains("RECH_LINEAIRE=_F(ITER_LINE_MAXI=2, RESI_LINE_RELA=0.01), NEWTON=_F("),
+        "{text}"
+    );
+    assert!(text.contains("REAC_ITER=1"), "{text}");
+    let (code, out, err) = aster(&["check", "--format", "json", path]);
+    assert_eq!(code, 0, "{out}{err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(v["diagnostics"], serde_json::json!([]), "{text}\n{out}");
+    let _ = std::fs::remove_dir_all(&d);
+}

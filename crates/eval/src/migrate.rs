@@ -17,6 +17,7 @@
 //! | `ORIE_PEAU_2D/3D=_F(GROUP_MA=...)` | `ORIE_PEAU=_F(GROUP_MA_PEAU=...)` |
 //! | `PARM_THETA=x` | `SCHEMA_TEMPS=_F(SCHEMA='THETA', THETA=x)` |
 //! | `LIAISON='ENCASTRE'` | `BLOCAGE=('DEPLACEMENT', 'ROTATION')` |
+//! | `THER_NON_LINE/NEWTON/ITER_LINE_MAXI`, `RESI_LINE_RELA` | `RECH_LINEAIRE=_F(ITER_LINE_MAXI=..., RESI_LINE_RELA=...)` |
 //!
 //! and the structures code_aster 17 rebuilt, from the same legacy mapping
 //! (docs/legacy.md has the table): a command replaced by another with its
@@ -525,6 +526,32 @@ fn moved_or_rewritten(
                 }
             }
         }
+        return Some(edits);
+    }
+    // THER_NON_LINE(NEWTON=_F(ITER_LINE_MAXI=n, RESI_LINE_RELA=r, ...)) →
+    // RECH_LINEAIRE=_F(ITER_LINE_MAXI=n, RESI_LINE_RELA=r), NEWTON=_F(...)
+    // (code_aster's compat_syntax of THER_NON_LINE).
+    if arg.name == "NEWTON"
+        && subj == "ITER_LINE_MAXI"
+        && message.contains("now RECH_LINEAIRE=_F(ITER_LINE_MAXI=...)")
+    {
+        let mut moved = Vec::new();
+        let mut edits = Vec::new();
+        for occ in ctx.occurrences(arg.value)? {
+            for kw in occ.keywords() {
+                if matches!(kw.name, "ITER_LINE_MAXI" | "RESI_LINE_RELA") {
+                    moved.push(ctx.text(kw.span).to_string());
+                    edits.push(removal(source, kw.span.0, kw.span.1));
+                }
+            }
+        }
+        if moved.is_empty() {
+            return None;
+        }
+        edits.push(insert(
+            start,
+            format!("RECH_LINEAIRE=_F({}), ", moved.join(", ")),
+        ));
         return Some(edits);
     }
     // TITRE=('a', 'b') → TITRE='a b'.
