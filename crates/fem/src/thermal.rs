@@ -163,14 +163,17 @@ struct Assembled {
     f: Vec<f64>,
 }
 
-fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
-    let mesh = p.mesh;
-    let dim = p.hypothesis.dim();
-    let axis = p.hypothesis == ThermalHypothesis::Axisymmetric;
+/// The thermal unknowns: one per node of `cells`, numbered in the order
+/// the nodes first appear; `usize::MAX` for the other nodes of the mesh.
+/// Returns that map (indexed by node) and the number of unknowns.
+pub(crate) fn number_unknowns(
+    mesh: &Mesh,
+    cells: impl Iterator<Item = CellId>,
+) -> (Vec<usize>, usize) {
     let mut unknown_of = vec![usize::MAX; mesh.node_count()];
     let mut n = 0;
-    for (c, _) in &p.cells {
-        for &node in &mesh.cell(*c).nodes {
+    for c in cells {
+        for &node in &mesh.cell(c).nodes {
             let u = &mut unknown_of[node.0 as usize];
             if *u == usize::MAX {
                 *u = n;
@@ -178,6 +181,14 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
             }
         }
     }
+    (unknown_of, n)
+}
+
+fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
+    let mesh = p.mesh;
+    let dim = p.hypothesis.dim();
+    let axis = p.hypothesis == ThermalHypothesis::Axisymmetric;
+    let (unknown_of, n) = number_unknowns(mesh, p.cells.iter().map(|(c, _)| *c));
     let mut cols: Vec<Vec<u32>> = vec![Vec::new(); n];
     let mut cell_unknowns = Vec::new();
     for c in p

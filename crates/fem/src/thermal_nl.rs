@@ -283,17 +283,7 @@ fn model<'p>(p: &'p NlProblem<'p>) -> Result<Model<'p>, FemError> {
     let mesh = p.mesh;
     let dim = p.hypothesis.dim();
     let axis = p.hypothesis == ThermalHypothesis::Axisymmetric;
-    let mut unknown_of = vec![usize::MAX; mesh.node_count()];
-    let mut n = 0;
-    for (c, _) in &p.cells {
-        for &node in &mesh.cell(*c).nodes {
-            let u = &mut unknown_of[node.0 as usize];
-            if *u == usize::MAX {
-                *u = n;
-                n += 1;
-            }
-        }
-    }
+    let (unknown_of, n) = crate::thermal::number_unknowns(mesh, p.cells.iter().map(|(c, _)| *c));
     let dofs_of = |c: CellId| -> Result<Vec<usize>, FemError> {
         mesh.cell(c)
             .nodes
