@@ -18,6 +18,18 @@ pub struct GaussData {
     pub x: [f64; 3],
 }
 
+impl GaussData {
+    /// The first `n` strain components B·uₑ at the point (engineering
+    /// shear), the rest zero.
+    pub fn strain(&self, ue: &[f64], n: usize) -> [f64; 6] {
+        let mut eps = [0.0; 6];
+        for (k, e) in eps.iter_mut().enumerate().take(n) {
+            *e = (0..ue.len()).map(|a| self.b[(k, a)] * ue[a]).sum();
+        }
+        eps
+    }
+}
+
 /// DOF indices of an element's nodes (node-major: the first
 /// [`Model::element_comps`] components of each node).
 pub fn element_dofs(model: &Model, cell: CellId) -> Vec<usize> {

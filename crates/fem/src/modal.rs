@@ -184,9 +184,9 @@ fn reduction(n: usize, constraints: &[Vec<(usize, f64)>]) -> Result<Reduction, F
     Ok(Reduction { rows, nr })
 }
 
-/// TᵀAT, dense.
-fn reduce(a: &Csc, t: &Reduction) -> Mat<f64> {
-    let mut out = Mat::<f64>::zeros(t.nr, t.nr);
+/// Calls `f(row, column, value)` for every term of TᵀAT (repeated
+/// positions are to be summed).
+fn for_each_reduced(a: &Csc, t: &Reduction, mut f: impl FnMut(usize, usize, f64)) {
     for j in 0..a.n {
         let tj = &t.rows[j];
         if tj.is_empty() {
@@ -197,14 +197,19 @@ fn reduce(a: &Csc, t: &Reduction) -> Mat<f64> {
             if v == 0.0 {
                 continue;
             }
-            let ti = &t.rows[a.row_idx[p]];
-            for &(ri, ci) in ti {
+            for &(ri, ci) in &t.rows[a.row_idx[p]] {
                 for &(rj, cj) in tj {
-                    out[(ri, rj)] += ci * v * cj;
+                    f(ri, rj, ci * v * cj);
                 }
             }
         }
     }
+}
+
+/// TᵀAT, dense.
+fn reduce(a: &Csc, t: &Reduction) -> Mat<f64> {
+    let mut out = Mat::<f64>::zeros(t.nr, t.nr);
+    for_each_reduced(a, t, |r, c, v| out[(r, c)] += v);
     out
 }
 
@@ -394,23 +399,7 @@ pub fn unknowns(n: usize, constraints: &[Vec<(usize, f64)>]) -> Result<usize, Fe
 /// full TᵀBT (the M-products of the Lanczos vectors).
 fn reduce_sparse(a: &Csc, t: &Reduction) -> Csc {
     let mut trip: Vec<(usize, usize, f64)> = Vec::new();
-    for j in 0..a.n {
-        let tj = &t.rows[j];
-        if tj.is_empty() {
-            continue;
-        }
-        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
-            let v = a.values[p];
-            if v == 0.0 {
-                continue;
-            }
-            for &(ri, ci) in &t.rows[a.row_idx[p]] {
-                for &(rj, cj) in tj {
-                    trip.push((rj, ri, ci * v * cj));
-                }
-            }
-        }
-    }
+    for_each_reduced(a, t, |ri, rj, v| trip.push((rj, ri, v)));
     trip.sort_unstable_by_key(|&(c, r, _)| (c, r));
     let mut col_ptr = vec![0usize; t.nr + 1];
     let mut row_idx = Vec::with_capacity(trip.len());

@@ -220,21 +220,8 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
     let mut f = vec![0.0; n];
     for (cell, mat) in &p.cells {
         let c = mesh.cell(*cell);
-        let scheme = volume_scheme(c.ty).ok_or_else(|| {
-            FemError::Model(format!(
-                "cell {} is a {:?}: no thermal element for it",
-                mesh.cell_name(*cell),
-                c.ty
-            ))
-        })?;
         let dofs: Vec<usize> = c.nodes.iter().map(|n| unknown_of[n.0 as usize]).collect();
-        for gp in &scheme {
-            let (nv, dn, det, x) = physical_derivatives(mesh, *cell, dim, gp)
-                .map_err(|e| FemError::Model(format!("cell {} is {e}", mesh.cell_name(*cell))))?;
-            let mut w = gp.weight * det.abs();
-            if axis {
-                w *= x[0];
-            }
+        for (nv, dn, w) in volume_points(mesh, *cell, dim, axis)? {
             for (a, &i) in dofs.iter().enumerate() {
                 for (b, &j) in dofs.iter().enumerate() {
                     let grad: f64 = (0..dim).map(|d| dn[a][d] * dn[b][d]).sum();
@@ -246,38 +233,20 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
     }
     for (cell, load) in &p.skin {
         let c = mesh.cell(*cell);
-        let scheme = skin_scheme(c.ty).ok_or_else(|| {
-            FemError::Model(format!(
-                "cell {} is a {:?}: no thermal boundary element for it",
-                mesh.cell_name(*cell),
-                c.ty
-            ))
-        })?;
         let dofs: Vec<usize> = c.nodes.iter().map(|n| unknown_of[n.0 as usize]).collect();
-        for gp in &scheme {
-            let s = shape::shape(c.ty, gp.xi);
-            let [x, t1, t2] = shape::point_and_tangents(mesh, c, &s);
-            let measure = if c.ty.dim() == 1 {
-                norm(t1)
-            } else {
-                norm(cross(t1, t2))
-            };
-            let mut w = gp.weight * measure;
-            if axis {
-                w *= x[0];
-            }
+        for (n, w) in skin_points(mesh, *cell, axis)? {
             match *load {
                 SkinLoad::Exchange { h, t_ext } => {
                     for (a, &i) in dofs.iter().enumerate() {
-                        f[i] += w * h * t_ext * s.n[a];
+                        f[i] += w * h * t_ext * n[a];
                         for (b, &j) in dofs.iter().enumerate() {
-                            k.add(i, j, w * h * s.n[a] * s.n[b]);
+                            k.add(i, j, w * h * n[a] * n[b]);
                         }
                     }
                 }
                 SkinLoad::NormalFlux { q } => {
                     for (a, &i) in dofs.iter().enumerate() {
-                        f[i] += w * q * s.n[a];
+                        f[i] += w * q * n[a];
                     }
                 }
             }
@@ -290,6 +259,72 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
         m,
         f,
     })
+}
+
+/// Per Gauss point of a volume cell of a thermal model: the shape
+/// functions, their physical gradients and the weight (times r in
+/// axisymmetry).
+pub(crate) type VolumePoint = (Vec<f64>, Vec<[f64; 3]>, f64);
+
+/// The Gauss points of a volume cell of a thermal model.
+pub(crate) fn volume_points(
+    mesh: &Mesh,
+    cell: CellId,
+    dim: usize,
+    axis: bool,
+) -> Result<Vec<VolumePoint>, FemError> {
+    let c = mesh.cell(cell);
+    let scheme = volume_scheme(c.ty).ok_or_else(|| {
+        FemError::Model(format!(
+            "cell {} is a {:?}: no thermal element for it",
+            mesh.cell_name(cell),
+            c.ty
+        ))
+    })?;
+    let mut points = Vec::with_capacity(scheme.len());
+    for gp in &scheme {
+        let (nv, dn, det, x) = physical_derivatives(mesh, cell, dim, gp)
+            .map_err(|e| FemError::Model(format!("cell {} is {e}", mesh.cell_name(cell))))?;
+        let mut w = gp.weight * det.abs();
+        if axis {
+            w *= x[0];
+        }
+        points.push((nv, dn, w));
+    }
+    Ok(points)
+}
+
+/// The Gauss points of a skin cell (edge or face) of a thermal model: the
+/// shape functions and the weight (times r in axisymmetry).
+pub(crate) fn skin_points(
+    mesh: &Mesh,
+    cell: CellId,
+    axis: bool,
+) -> Result<Vec<(Vec<f64>, f64)>, FemError> {
+    let c = mesh.cell(cell);
+    let scheme = skin_scheme(c.ty).ok_or_else(|| {
+        FemError::Model(format!(
+            "cell {} is a {:?}: no thermal boundary element for it",
+            mesh.cell_name(cell),
+            c.ty
+        ))
+    })?;
+    let mut points = Vec::with_capacity(scheme.len());
+    for gp in &scheme {
+        let s = shape::shape(c.ty, gp.xi);
+        let [x, t1, t2] = shape::point_and_tangents(mesh, c, &s);
+        let measure = if c.ty.dim() == 1 {
+            norm(t1)
+        } else {
+            norm(cross(t1, t2))
+        };
+        let mut w = gp.weight * measure;
+        if axis {
+            w *= x[0];
+        }
+        points.push((s.n, w));
+    }
+    Ok(points)
 }
 
 /// The loads F(tₖ) at instant `k`: the constant ones and the normal
@@ -305,25 +340,7 @@ fn loads_at(p: &ThermalProblem, a: &Assembled, k: usize) -> Result<Vec<f64>, Fem
             ))
         })?;
         let c = p.mesh.cell(*cell);
-        let scheme = skin_scheme(c.ty).ok_or_else(|| {
-            FemError::Model(format!(
-                "cell {} is a {:?}: no thermal boundary element for it",
-                p.mesh.cell_name(*cell),
-                c.ty
-            ))
-        })?;
-        for gp in &scheme {
-            let s = shape::shape(c.ty, gp.xi);
-            let [x, t1, t2] = shape::point_and_tangents(p.mesh, c, &s);
-            let measure = if c.ty.dim() == 1 {
-                norm(t1)
-            } else {
-                norm(cross(t1, t2))
-            };
-            let mut w = gp.weight * measure;
-            if axis {
-                w *= x[0];
-            }
+        for (n, w) in skin_points(p.mesh, *cell, axis)? {
             for (i, node) in c.nodes.iter().enumerate() {
                 let u = a.unknown_of[node.0 as usize];
                 if u == usize::MAX {
@@ -333,7 +350,7 @@ fn loads_at(p: &ThermalProblem, a: &Assembled, k: usize) -> Result<Vec<f64>, Fem
                         p.mesh.node_name(*node)
                     )));
                 }
-                f[u] += w * q * s.n[i];
+                f[u] += w * q * n[i];
             }
         }
     }

@@ -38,12 +38,11 @@
 //! 0 of a step when `REAC_INCR` asks (every step by default) and again
 //! every `REAC_ITER` iterations (0, the default: never within a step).
 
-use crate::element::physical_derivatives;
 use crate::error::FemError;
 use crate::linalg;
-use crate::shape;
-use crate::thermal::{skin_scheme, volume_scheme, SkinLoad, ThermalHypothesis};
-use aster_mesh::vec3::{cross, norm};
+use crate::thermal::{
+    skin_points, volume_points, volume_scheme, SkinLoad, ThermalHypothesis, VolumePoint,
+};
 use aster_mesh::{CellId, Mesh, NodeId};
 
 /// code_aster's zero of the Celsius scale in Kelvin (`r8t0`).
@@ -253,7 +252,7 @@ pub struct NlSettings {
 struct CellGauss {
     dofs: Vec<usize>,
     mat: usize,
-    points: Vec<(Vec<f64>, Vec<[f64; 3]>, f64)>,
+    points: Vec<VolumePoint>,
 }
 
 /// Per skin cell: its unknowns and, per Gauss point, N and the weight.
@@ -300,59 +299,18 @@ fn model<'p>(p: &'p NlProblem<'p>) -> Result<Model<'p>, FemError> {
     };
     let mut cells = Vec::with_capacity(p.cells.len());
     for &(cell, mat) in &p.cells {
-        let c = mesh.cell(cell);
-        let scheme = volume_scheme(c.ty).ok_or_else(|| {
-            FemError::Model(format!(
-                "cell {} is a {:?}: no thermal element for it",
-                mesh.cell_name(cell),
-                c.ty
-            ))
-        })?;
-        let mut points = Vec::with_capacity(scheme.len());
-        for gp in &scheme {
-            let (nv, dn, det, x) = physical_derivatives(mesh, cell, dim, gp)
-                .map_err(|e| FemError::Model(format!("cell {} is {e}", mesh.cell_name(cell))))?;
-            let mut w = gp.weight * det.abs();
-            if axis {
-                w *= x[0];
-            }
-            points.push((nv, dn, w));
-        }
         cells.push(CellGauss {
             dofs: dofs_of(cell)?,
             mat,
-            points,
+            points: volume_points(mesh, cell, dim, axis)?,
         });
     }
     let mut skin = Vec::with_capacity(p.skin.len());
     for &cell in &p.skin {
-        let c = mesh.cell(cell);
-        let scheme = skin_scheme(c.ty).ok_or_else(|| {
-            FemError::Model(format!(
-                "cell {} is a {:?}: no thermal boundary element for it",
-                mesh.cell_name(cell),
-                c.ty
-            ))
-        })?;
-        let mut points = Vec::with_capacity(scheme.len());
-        for gp in &scheme {
-            let s = shape::shape(c.ty, gp.xi);
-            let [x, t1, t2] = shape::point_and_tangents(mesh, c, &s);
-            let measure = if c.ty.dim() == 1 {
-                norm(t1)
-            } else {
-                norm(cross(t1, t2))
-            };
-            let mut w = gp.weight * measure;
-            if axis {
-                w *= x[0];
-            }
-            points.push((s.n, w));
-        }
         skin.push(SkinGauss {
             cell,
             dofs: dofs_of(cell)?,
-            points,
+            points: skin_points(mesh, cell, axis)?,
         });
     }
     let mut cols: Vec<Vec<u32>> = vec![Vec::new(); n];

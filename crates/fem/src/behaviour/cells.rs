@@ -986,10 +986,7 @@ fn integrate_small_cells(
         if let Some(mat) = cell.thermo.as_deref() {
             let n = cell.hypothesis.ncomp();
             for (g, gp) in cell.gauss.iter().enumerate() {
-                let mut eps = [0.0; 6];
-                for (k, e) in eps.iter_mut().enumerate().take(n) {
-                    *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
-                }
+                let eps = gp.strain(&ue, n);
                 let (temp, th0) = thermal.at(c, g)?;
                 let (state, tangent) = thermo::integrate_point(
                     mat,
@@ -1015,10 +1012,7 @@ fn integrate_small_cells(
         if let Some(visc) = cell.viscous.as_deref() {
             let n = cell.hypothesis.ncomp();
             for (g, gp) in cell.gauss.iter().enumerate() {
-                let mut eps = [0.0; 6];
-                for (k, e) in eps.iter_mut().enumerate().take(n) {
-                    *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
-                }
+                let eps = gp.strain(&ue, n);
                 let prev = &committed[c][g].law;
                 let (state, tangent) = lemaitre::integrate(
                     visc,
@@ -1050,10 +1044,7 @@ fn integrate_small_cells(
         let mut virgin = law.elastic(&cell.elastic) == cell.elastic;
         let n = cell.hypothesis.ncomp();
         for (g, gp) in cell.gauss.iter().enumerate() {
-            let mut eps = [0.0; 6];
-            for (k, e) in eps.iter_mut().enumerate().take(n) {
-                *e = (0..ue.len()).map(|a| gp.b[(k, a)] * ue[a]).sum();
-            }
+            let eps = gp.strain(&ue, n);
             let prev = &committed[c][g].law;
             let (state, tangent) = integrate(
                 law,

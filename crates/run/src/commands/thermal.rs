@@ -10,7 +10,7 @@
 //! `CREA_CHAMP(OPERATION='EXTR')` and `AFFE_MATERIAU/AFFE_VARC` read as
 //! any other result.
 
-use crate::concept::{Concept, EvolResult, Step};
+use crate::concept::{Concept, EvolResult, LoadFunction, Step};
 use crate::executor::{store_result, Executor};
 use crate::field::{Field, NodalField};
 use crate::select;
@@ -436,6 +436,31 @@ pub(crate) fn affe_char_ther_f(
 }
 
 /// What THER_LINEAIRE reads (`crate::support`).
+/// The thermal loads of a command's `EXCIT` occurrences, each with its
+/// occurrence and its `FONC_MULT`, checked to lie on the model's mesh.
+pub(crate) fn excit_loads<'k>(
+    ex: &Executor,
+    cmd: &str,
+    kw: &'k Keywords,
+    model: &ThermalModel,
+) -> Result<Vec<(&'k Keywords, Rc<ThermalLoad>, Option<LoadFunction>)>, ExecError> {
+    let mut out = Vec::new();
+    for occ in kw.factor("EXCIT") {
+        let load = ex.thermal_load(ex.required(cmd, occ, "CHARGE")?)?;
+        if load.mesh != model.mesh {
+            return Err(ex.kw_error(
+                cmd,
+                occ,
+                "CHARGE",
+                "the load is defined on another mesh than the model",
+            ));
+        }
+        let mult = super::loads_f::function_at(ex, cmd, occ, "FONC_MULT")?;
+        out.push((occ, load, mult));
+    }
+    Ok(out)
+}
+
 pub(crate) const THER_LINEAIRE: Support = Support {
     values: &[Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"])],
     ..Support::keywords(&[
@@ -501,20 +526,10 @@ pub(crate) fn ther_lineaire(
     let mut skin = Vec::new();
     let mut imposed = Vec::new();
     let mut varying = Vec::new();
-    for occ in kw.factor("EXCIT") {
-        let load = ex.thermal_load(ex.required(cmd, occ, "CHARGE")?)?;
-        if load.mesh != model.mesh {
-            return Err(ex.kw_error(
-                cmd,
-                occ,
-                "CHARGE",
-                "the load is defined on another mesh than the model",
-            ));
-        }
+    for (occ, load, mult) in excit_loads(ex, cmd, kw, &model)? {
         // FONC_MULT scales the imposed temperatures and the normal fluxes
         // at each instant; an exchange varying in time would change the
         // matrix at each step: refused.
-        let mult = super::loads_f::function_at(ex, cmd, occ, "FONC_MULT")?;
         let varying_exchange = load
             .skin_f
             .iter()

@@ -172,17 +172,7 @@ pub(crate) fn ther_non_line(
     let mut skin_f = Vec::new();
     let mut imposed: Vec<(NodeId, TempImpo, Option<LoadFunction>)> = Vec::new();
     let mut skin_cells = BTreeSet::new();
-    for occ in kw.factor("EXCIT") {
-        let load = ex.thermal_load(ex.required(cmd, occ, "CHARGE")?)?;
-        if load.mesh != model.mesh {
-            return Err(ex.kw_error(
-                cmd,
-                occ,
-                "CHARGE",
-                "the load is defined on another mesh than the model",
-            ));
-        }
-        let mult = super::loads_f::function_at(ex, cmd, occ, "FONC_MULT")?;
+    for (occ, load, mult) in super::thermal::excit_loads(ex, cmd, kw, &model)? {
         let exchange = load
             .skin
             .iter()
