@@ -89,6 +89,10 @@ pub struct ThermalProblem<'m> {
     /// `INST`, or scaled by `EXCIT/FONC_MULT`): q at each instant of the
     /// computation, as [`Imposed::PerInstant`].
     pub varying_flux: Vec<(CellId, Vec<f64>)>,
+    /// Constant volume heat sources (`SOURCE/SOUR`, W/m³) per conducting
+    /// cell, integrated on the cell's `RIGI` family as code_aster's
+    /// `te0080` does.
+    pub sources: Vec<(CellId, f64)>,
 }
 
 /// An imposed temperature (`TEMP_IMPO`; dualised in code_aster, so the
@@ -228,6 +232,21 @@ fn assemble(p: &ThermalProblem) -> Result<Assembled, FemError> {
                     k.add(i, j, w * mat.lambda * grad);
                     m.add(i, j, w * mat.rho_cp * nv[a] * nv[b]);
                 }
+            }
+        }
+    }
+    for (cell, q) in &p.sources {
+        let c = mesh.cell(*cell);
+        let dofs: Vec<usize> = c.nodes.iter().map(|n| unknown_of[n.0 as usize]).collect();
+        if dofs.contains(&usize::MAX) {
+            return Err(FemError::Model(format!(
+                "cell {} carries a heat source but is not a conducting cell of the model",
+                mesh.cell_name(*cell)
+            )));
+        }
+        for (nv, _, w) in volume_points(mesh, *cell, dim, axis)? {
+            for (a, &i) in dofs.iter().enumerate() {
+                f[i] += w * q * nv[a];
             }
         }
     }

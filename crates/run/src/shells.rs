@@ -91,8 +91,8 @@ pub(crate) fn check_solve(
     let kw = &call.keywords;
     // code_aster's DST and Q4G elements (MEDSTR3, MEDSQU4, MET3TR3,
     // MEQ4QU4) have no RAPH_MECA / FULL_MECA (`te=-1` in their catalogue):
-    // only the linear solver runs them.
-    if cmd != "MECA_STATIQUE" {
+    // only the linear solvers (MECA_STATIQUE, MACRO_ELAS_MULT) run them.
+    if !matches!(cmd, "MECA_STATIQUE" | "MACRO_ELAS_MULT") {
         if let Some(Modelisation::Plate(theory)) = model
             .cells
             .values()
@@ -102,7 +102,7 @@ pub(crate) fn check_solve(
             let name = theory.name();
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd} on a model with MODELISATION='{name}': code_aster's {name} plates have no non-linear options (RAPH_MECA, FULL_MECA); MECA_STATIQUE and the modal commands run them"
+                    "{cmd} on a model with MODELISATION='{name}': code_aster's {name} plates have no non-linear options (RAPH_MECA, FULL_MECA); MECA_STATIQUE, MACRO_ELAS_MULT and the modal commands run them"
                 ),
                 at,
             ));

@@ -111,3 +111,57 @@ fn a_zero_heat_capacity_is_the_stationary_default_and_a_negative_one_is_refused(
     let err = err.expect("an error");
     assert!(err.contains("RHO_CP must be positive, got -1"), "{err}");
 }
+
+fn source_scene() -> String {
+    scene::read("heat_source.comm")
+}
+
+/// comm/heat_source.comm: a volume source in a slab (exact quadratic
+/// profile), a hollow cylinder (closed form, 1e-5) and the slab's
+/// transient reaching its stationary profile.
+#[test]
+fn a_volume_source_gives_the_closed_form_temperatures() {
+    assert_eq!(run(&source_scene(), "source"), (6, 0, None));
+}
+
+/// A source scaled by FONC_MULT, or in THER_NON_LINE, is refused at its
+/// keyword rather than ignored.
+#[test]
+fn a_source_with_fonc_mult_or_in_ther_non_line_is_refused() {
+    let t = source_scene().replacen(
+        "EXCIT=_F(CHARGE=heat_plane),\n    TYPE_CALCUL",
+        "EXCIT=_F(CHARGE=heat_plane, FONC_MULT=DEFI_CONSTANTE(VALE=2.0)),\n    TYPE_CALCUL",
+        1,
+    );
+    assert!(t.contains("FONC_MULT"), "the edit applies");
+    let (_, nook, err) = run(&t, "source-mult");
+    assert_eq!(nook, 0);
+    let err = err.expect("a refusal");
+    assert!(
+        err.contains("not supported yet: THER_LINEAIRE/EXCIT/FONC_MULT on a load with SOURCE"),
+        "{err}"
+    );
+    // The slab alone, with a THER_NL material, in THER_NON_LINE.
+    let full = source_scene();
+    let head = &full[..full
+        .find("slab = THER_LINEAIRE(")
+        .expect("the scene changed")];
+    let t = format!(
+        "{}\nwarming = THER_NON_LINE(MODELE=plane, CHAM_MATER=mat, \
+         EXCIT=_F(CHARGE=heat_plane), ETAT_INIT=_F(VALE=0.0), \
+         INCREMENT=_F(LIST_INST=DEFI_LIST_REEL(VALE=(0.0, 1.0))))\nFIN()\n",
+        head.replacen(
+            "THER=_F(LAMBDA=LAMBDA, RHO_CP=1.0e4)",
+            "THER_NL=_F(LAMBDA=DEFI_CONSTANTE(VALE=LAMBDA), RHO_CP=DEFI_CONSTANTE(VALE=1.0e4))",
+            1,
+        )
+    );
+    assert!(t.contains("THER_NL="), "the edit applies");
+    let (_, nook, err) = run(&t, "source-nl");
+    assert_eq!(nook, 0);
+    let err = err.expect("a refusal");
+    assert!(
+        err.contains("THER_NON_LINE with a SOURCE in the load"),
+        "{err}"
+    );
+}

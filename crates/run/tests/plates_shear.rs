@@ -68,3 +68,16 @@ fn an_offset_is_refused() {
     let err = err.expect("refused");
     assert!(err.contains("EXCENTREMENT"), "{err}");
 }
+
+/// MACRO_ELAS_MULT is linear like MECA_STATIQUE: the strips computed as
+/// one load case of a mult_elas give the same 30 checks.
+#[test]
+fn macro_elas_mult_runs_the_shear_plates_as_meca_statique() {
+    let t = strips().replacen(
+        "RESU = MECA_STATIQUE(\n    MODELE=MO,\n    CHAM_MATER=MAT,\n    CARA_ELEM=CARA,\n    EXCIT=(_F(CHARGE=CLAMP), _F(CHARGE=TIP)),\n)",
+        "RESU = MACRO_ELAS_MULT(\n    MODELE=MO,\n    CHAM_MATER=MAT,\n    CARA_ELEM=CARA,\n    CHAR_MECA_GLOBAL=CLAMP,\n    CAS_CHARGE=_F(NOM_CAS=\"TIP\", CHAR_MECA=TIP),\n)",
+        1,
+    );
+    assert!(t.contains("MACRO_ELAS_MULT("), "the edit applies");
+    assert_eq!(run(&t, "mult"), (30, 0, None));
+}

@@ -38,6 +38,9 @@ pub struct ThermalLoad {
     /// `INST` (evaluated at each instant).
     pub skin_f: Vec<(CellId, SkinLoadF)>,
     pub imposed: Vec<(NodeId, TempImpo)>,
+    /// `SOURCE/SOUR`: a constant volume heat source (W/m³) per cell of
+    /// the model.
+    pub sources: Vec<(CellId, f64)>,
 }
 
 /// A boundary condition whose values are functions of `INST`.
@@ -237,6 +240,11 @@ pub(crate) const AFFE_CHAR_THER: Support = Support::keywords(&[
     "FLUX_REP/MAILLE",
     "FLUX_REP/TOUT",
     "FLUX_REP/FLUN",
+    "SOURCE",
+    "SOURCE/GROUP_MA",
+    "SOURCE/MAILLE",
+    "SOURCE/TOUT",
+    "SOURCE/SOUR",
     "INFO",
 ]);
 
@@ -303,6 +311,19 @@ pub(crate) fn affe_char_ther(
         for c in skin_cells(occ, "FLUX_REP")? {
             load.skin.push((c, SkinLoad::NormalFlux { q }));
         }
+    }
+    for occ in kw.factor("SOURCE") {
+        let q = required(occ, "SOUR", "the heat source SOUR")?;
+        let cells = select::cells(occ, &mesh, "")
+            .map_err(|e| ExecError::new(format!("{cmd}/SOURCE: {e}")))?;
+        // code_aster's CHAR_THER_SOUR_R (te0080) exists on the model's
+        // conducting cells only: the others of the group take nothing.
+        load.sources.extend(
+            cells
+                .into_iter()
+                .filter(|c| model.cells.contains(c))
+                .map(|c| (c, q)),
+        );
     }
     for occ in kw.factor("TEMP_IMPO") {
         let t = required(occ, "TEMP", "the temperature TEMP")?;
@@ -435,7 +456,6 @@ pub(crate) fn affe_char_ther_f(
     store_result(ex, call, Concept::ThermalLoad(Rc::new(load)))
 }
 
-/// What THER_LINEAIRE reads (`crate::support`).
 /// The thermal loads of a command's `EXCIT` occurrences, each with its
 /// occurrence and its `FONC_MULT`, checked to lie on the model's mesh.
 pub(crate) fn excit_loads<'k>(
@@ -461,6 +481,7 @@ pub(crate) fn excit_loads<'k>(
     Ok(out)
 }
 
+/// What THER_LINEAIRE reads (`crate::support`).
 pub(crate) const THER_LINEAIRE: Support = Support {
     values: &[Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"])],
     ..Support::keywords(&[
@@ -526,7 +547,16 @@ pub(crate) fn ther_lineaire(
     let mut skin = Vec::new();
     let mut imposed = Vec::new();
     let mut varying = Vec::new();
+    let mut sources = Vec::new();
     for (occ, load, mult) in excit_loads(ex, cmd, kw, &model)? {
+        if mult.is_some() && !load.sources.is_empty() {
+            let span = occ.keyword("FONC_MULT").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!("{cmd}/EXCIT/FONC_MULT on a load with SOURCE"),
+                span,
+            ));
+        }
+        sources.extend(load.sources.iter().copied());
         // FONC_MULT scales the imposed temperatures and the normal fluxes
         // at each instant; an exchange varying in time would change the
         // matrix at each step: refused.
@@ -629,6 +659,7 @@ pub(crate) fn ther_lineaire(
         skin,
         imposed,
         varying_flux,
+        sources,
     };
     let temps = if transient {
         let theta = kw

@@ -173,6 +173,13 @@ pub(crate) fn ther_non_line(
     let mut imposed: Vec<(NodeId, TempImpo, Option<LoadFunction>)> = Vec::new();
     let mut skin_cells = BTreeSet::new();
     for (occ, load, mult) in super::thermal::excit_loads(ex, cmd, kw, &model)? {
+        if !load.sources.is_empty() {
+            let span = occ.keyword("CHARGE").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!("{cmd} with a SOURCE in the load (THER_LINEAIRE takes it)"),
+                span,
+            ));
+        }
         let exchange = load
             .skin
             .iter()
