@@ -67,8 +67,8 @@ pub mod unilateral;
 
 pub use beam::BeamSection;
 pub use behaviour::{
-    Behaviours, CurveEnd, EcroNl, JohnsonCook, Lemaitre, NodalHistory, TempFn, ThermoHardening,
-    ThermoMaterial, VonMises,
+    Behaviours, CurveEnd, EcroNl, JohnsonCook, Lemaitre, LocalSearch, NodalHistory, TempFn,
+    ThermoHardening, ThermoMaterial, VonMises,
 };
 pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};

@@ -519,7 +519,8 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
 /// elements for a total displacement `u`: ε(u) = B u, with code_aster's
 /// tensor shear components (EPXY = γxy/2). The strain of the displacement
 /// alone (thermal strains included, as code_aster's EPSI_ELGA). Plane
-/// stress (C_PLAN: εzz from the stresses) is refused.
+/// stress (C_PLAN): εzz from σzz = 0 with the elastic matrix, as
+/// code_aster's `epsvmc`, without thermal strain.
 pub fn epsi_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> {
     epsi_elga_on(model, u, |_| true)
 }
@@ -532,18 +533,32 @@ pub fn epsi_elga_on(
 ) -> Result<Vec<CellValues>, FemError> {
     let mut out = Vec::with_capacity(model.elements().len());
     for el in model.elements() {
-        let ElementKind::Continuum { hypothesis, .. } = &el.kind else {
+        let ElementKind::Continuum {
+            hypothesis,
+            material,
+        } = &el.kind
+        else {
             continue;
         };
         if !keep(el.cell) {
             continue;
         }
-        if *hypothesis == Hypothesis::PlaneStress {
-            return Err(FemError::Model(
-                "EPSI_ELGA of plane stress (C_PLAN) elements is not computed (εzz from the stresses)"
-                    .into(),
-            ));
-        }
+        // Plane stress: code_aster's `epsvmc` completes εzz from σzz = 0
+        // with the *elastic* matrix whatever the behaviour,
+        // εzz = −(D₃₁εxx + D₃₂εyy + 2D₃₄εxy)/D₃₃ = −ν/(1−ν)(εxx + εyy)
+        // for an isotropic material (the thermal strain is the caller's
+        // to refuse).
+        let plane_stress_nu = match (hypothesis, material) {
+            (Hypothesis::PlaneStress, m) if !m.is_isotropic() => {
+                return Err(cell_error(
+                    model,
+                    el.cell,
+                    "EPSI_ELGA of plane stress (C_PLAN) cells of an orthotropic material is not computed".into(),
+                ));
+            }
+            (Hypothesis::PlaneStress, m) => Some(m.nu),
+            _ => None,
+        };
         let dofs = element_dofs(model, el.cell);
         let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
         let g =
@@ -553,10 +568,15 @@ pub fn epsi_elga_on(
             .map(|gp| {
                 let e = &gp.b * &ue;
                 // Engineering shears (after the three normal strains) halved.
-                e.iter()
+                let mut v: Vec<f64> = e
+                    .iter()
                     .enumerate()
                     .map(|(k, v)| if k >= 3 { 0.5 * v } else { *v })
-                    .collect()
+                    .collect();
+                if let Some(nu) = plane_stress_nu {
+                    v[2] = -nu / (1.0 - nu) * (v[0] + v[1]);
+                }
+                v
             })
             .collect();
         let names: &[&'static str] = match hypothesis {

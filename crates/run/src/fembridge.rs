@@ -570,7 +570,13 @@ fn plastic_law(
             )))
         }
     };
-    law.map_err(|e| fem_err("DEFI_MATERIAU", e))
+    law.map(|l| {
+        l.with_search(aster_fem::LocalSearch {
+            resi_inte,
+            iter_maxi: local.iter_inte_maxi,
+        })
+    })
+    .map_err(|e| fem_err("DEFI_MATERIAU", e))
 }
 
 /// The joint cells of the model (`PLAN_JOINT`) as a force source, each
@@ -2052,7 +2058,27 @@ pub fn calc_champ(
             run.add_joint_forces(raw.time, &mut f)?;
             Ok::<_, ExecError>(f)
         };
+        let thermal = run
+            .loads
+            .items
+            .iter()
+            .any(|i| matches!(i.load, aster_fem::Load::FreeStrain { .. }));
+        let plane_stress = model.elements().iter().any(|el| {
+            matches!(
+                el.kind,
+                aster_fem::ElementKind::Continuum {
+                    hypothesis: aster_fem::Hypothesis::PlaneStress,
+                    ..
+                }
+            ) && keep(el.cell)
+        });
         let epsi_elga = || {
+            if plane_stress && thermal {
+                return Err(ex.unsupported(
+                    "CALC_CHAMP/DEFORMATION of plane stress (C_PLAN) cells with a thermal strain (code_aster's εzz then holds the thermal strain: not done)",
+                    call.keywords.keyword("DEFORMATION").map(|k| k.span).unwrap_or(call.span),
+                ));
+            }
             if run.behaviours.has_finite_strains() {
                 return Err(ex.unsupported(
                     "CALC_CHAMP/DEFORMATION of a result computed with DEFORMATION other than PETIT (EPSI_* are the small strains here)",
@@ -2216,11 +2242,12 @@ pub fn calc_champ(
                 "EPSP_ELGA" | "EPSP_ELNO" => {
                     // ε − D⁻¹σ: the plastic strain where there is no
                     // thermal strain (a temperature's is refused).
-                    let thermal = run
-                        .loads
-                        .items
-                        .iter()
-                        .any(|i| matches!(i.load, aster_fem::Load::FreeStrain { .. }));
+                    if plane_stress {
+                        return Err(ex.unsupported(
+                            "CALC_CHAMP/DEFORMATION='EPSP_*' of plane stress (C_PLAN) cells (code_aster's te0334 is not reproduced)",
+                            call.keywords.keyword("DEFORMATION").map(|k| k.span).unwrap_or(call.span),
+                        ));
+                    }
                     // LEMAITRE: code_aster's answer is the iterate its
                     // Newton accepts (RESI_GLOB_RELA) and ε − D⁻¹σ, a small
                     // difference, magnifies the gap to aster's: ssnp02a

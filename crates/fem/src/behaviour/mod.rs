@@ -39,7 +39,7 @@ pub use cells::{forc_noda_deformed, forc_noda_from_stress, BehaviourState};
 pub use johnson_cook::JohnsonCook;
 pub use lemaitre::Lemaitre;
 pub use thermo::{TempFn, ThermoHardening, ThermoMaterial};
-pub use vmis::{CurveEnd, EcroNl, Hardening, PointState, VonMises};
+pub use vmis::{CurveEnd, EcroNl, Hardening, LocalSearch, PointState, VonMises};
 
 use crate::error::FemError;
 use crate::model::{ElementKind, Model};

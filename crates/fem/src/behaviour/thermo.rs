@@ -154,6 +154,7 @@ impl ThermoMaterial {
                 sy: f64::INFINITY,
                 hardening: Hardening::Linear { h: 0.0 },
                 young: None,
+                search: Default::default(),
             }),
         }
     }

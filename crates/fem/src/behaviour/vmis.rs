@@ -95,9 +95,34 @@ pub struct VonMises {
     /// carries its own, σ₁/ε₁ of its first point (code_aster's `rctrac`,
     /// used by `nmisot` and `lcpima` in place of ELAS/E).
     pub young: Option<f64>,
+    /// `COMPORTEMENT/RESI_INTE`, `ITER_INTE_MAXI`: the local scalar search
+    /// of `nmisot` in plane stress (C_PLAN), [`plane_stress_nmisot`].
+    pub search: LocalSearch,
+}
+
+/// The tolerance and the iteration limit of a behaviour's local search
+/// (code_aster's `RESI_INTE`, default 1e-6, and `ITER_INTE_MAXI`, 20).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalSearch {
+    pub resi_inte: f64,
+    pub iter_maxi: usize,
+}
+
+impl Default for LocalSearch {
+    fn default() -> Self {
+        LocalSearch {
+            resi_inte: 1e-6,
+            iter_maxi: 20,
+        }
+    }
 }
 
 impl VonMises {
+    /// The law with the local search of a `COMPORTEMENT` occurrence.
+    pub fn with_search(self, search: LocalSearch) -> VonMises {
+        VonMises { search, ..self }
+    }
+
     /// `ECRO_LINE=_F(D_SIGM_EPSI=et, SY=sy)` with Young's modulus `e`: the
     /// tangent modulus ET of the uniaxial curve gives the hardening modulus
     /// H = E·ET / (E − ET) (code_aster's reading).
@@ -118,6 +143,7 @@ impl VonMises {
                 h: e * et / (e - et),
             },
             young: None,
+            search: LocalSearch::default(),
         })
     }
 
@@ -140,6 +166,7 @@ impl VonMises {
                 c: super::kinematic::prager(h),
             },
             young: None,
+            search: LocalSearch::default(),
         })
     }
 
@@ -180,6 +207,7 @@ impl VonMises {
             sy,
             hardening: Hardening::Curve { p, r, end },
             young: None,
+            search: LocalSearch::default(),
         })
     }
 
@@ -224,6 +252,7 @@ impl VonMises {
             sy: r0,
             hardening: Hardening::JohnsonCook(c),
             young: None,
+            search: LocalSearch::default(),
         })
     }
 
@@ -239,6 +268,7 @@ impl VonMises {
             sy: r0,
             hardening: Hardening::NonLinear(c),
             young: None,
+            search: LocalSearch::default(),
         })
     }
 
@@ -688,6 +718,15 @@ pub fn integrate(
         }
         return integrate_3d(law, el, &e6, prev, dt);
     }
+    // Isotropic hardening in plane stress: code_aster's own algorithm.
+    if !prediction
+        && matches!(
+            law.hardening,
+            Hardening::Linear { .. } | Hardening::Curve { .. }
+        )
+    {
+        return plane_stress_nmisot(law, el, &e6, prev);
+    }
     // Plane stress: find εzz with σzz = 0 by Newton on the 3D law.
     let (mut state, mut c);
     if prediction {
@@ -721,13 +760,236 @@ pub fn integrate(
         state.stress[2] = 0.0;
         state.eps_zz = e6[2];
     }
+    Ok((state, condense(&c)))
+}
+
+/// code_aster's `nmisot` in plane stress (C_PLAN) for VMIS_ISOT_LINE and
+/// VMIS_ISOT_TRAC, reproduced step by step rather than solving σzz = 0
+/// exactly: εzz takes the elastic increment −ν/(1−ν)(Δεxx + Δεyy), then a
+/// plastic increment Δp solves the scalar equation `nmcri1`
+/// 3μΔp − √(3/2 G(Δp)) + R(p + Δp) = 0 by Dekker's method (`zerofo`,
+/// tolerance RESI_INTE·SY, ITER_INTE_MAXI iterations, from 0 and the 3D
+/// return), and εzz gets dx(Δp) = 3(1−2ν) sᵉzz Δp / (EΔp + 2(1−ν)R). The
+/// stresses then leave a σzz of the order of the tolerance, as
+/// code_aster's. `e6` holds the in-plane strains (εzz ignored); the
+/// tangent is `nmisot`'s FULL_MECA one, condensed on σzz.
+fn plane_stress_nmisot(
+    law: &VonMises,
+    el: &Elastic,
+    e6: &[f64; 6],
+    prev: &PointState,
+) -> Result<(PointState, Mat6), FemError> {
+    let (e, nu) = (el.e, el.nu);
+    let d = elastic_3d(el);
+    let (_, mu) = lame(el);
+    let k = e / (3. * (1. - 2. * nu));
+    // The previous total strain: elastic (D⁻¹σ) plus plastic.
+    let sp = &prev.stress;
+    let prev_xx = (sp[0] - nu * (sp[1] + sp[2])) / e + prev.plastic_strain[0];
+    let prev_yy = (sp[1] - nu * (sp[0] + sp[2])) / e + prev.plastic_strain[1];
+    let mut eps = *e6;
+    eps[2] = prev.eps_zz - nu / (1. - nu) * ((e6[0] - prev_xx) + (e6[1] - prev_yy));
+    let trial = elastic_trial(&d, &eps, &prev.plastic_strain);
+    let (st, q) = deviator(&trial);
+    let pm = prev.p;
+    let (rpm, _) = law.yield_stress(pm)?;
+    let sieleq = if (q - rpm).abs() <= f64::EPSILON * rpm {
+        rpm
+    } else {
+        q
+    };
+    let finish = |stress: [f64; 6], eps: [f64; 6], p: f64, plastic: bool| {
+        // εp = ε − D⁻¹σ keeps the total form consistent with code_aster's
+        // incremental one (σ⁻ + DΔε) at the next step.
+        let tr = stress[0] + stress[1] + stress[2];
+        let mut plastic_strain = [0.0; 6];
+        for i in 0..3 {
+            plastic_strain[i] = eps[i] - ((1. + nu) * stress[i] - nu * tr) / e;
+        }
+        for i in 3..6 {
+            plastic_strain[i] = eps[i] - stress[i] / mu;
+        }
+        PointState {
+            stress,
+            plastic_strain,
+            p,
+            plastic,
+            eps_zz: eps[2],
+            ..*prev
+        }
+    };
+    if sieleq - rpm <= 0. {
+        let state = finish(trial, eps, pm, false);
+        return Ok((state, condense(&d)));
+    }
+    // The scalar equation nmcri1 and dx(Δp).
+    let search = law.search;
+    let rp_of = |dp: f64| law.yield_stress(pm + dp).map(|(r, _)| r);
+    let dx_of =
+        |dp: f64, rp: f64| 3. * (1. - 2. * nu) * st[2] * dp / (e * dp + 2. * (1. - nu) * rp);
+    let f = |dp: f64| -> Result<f64, FemError> {
+        let rp = rp_of(dp)?;
+        let dx = dx_of(dp, rp);
+        let g = (st[0] - 2. * mu / 3. * dx).powi(2)
+            + (st[1] - 2. * mu / 3. * dx).powi(2)
+            + (st[2] + 4. * mu / 3. * dx).powi(2)
+            + 2. * st[3].powi(2)
+            + 2. * st[4].powi(2)
+            + 2. * st[5].powi(2);
+        Ok(3. * mu * dp - (1.5 * g).sqrt() + rp)
+    };
+    let (dp0, _) = law.return_increment(sieleq, pm, mu)?;
+    let dp = dekker(
+        f,
+        0.0,
+        dp0,
+        search.resi_inte.abs() * law.sy,
+        search.iter_maxi,
+    )?;
+    let rp = rp_of(dp)?;
+    let dx = dx_of(dp, rp);
+    let mut eps_new = eps;
+    eps_new[2] += dx;
+    let mut sdv = st;
+    sdv[0] -= 2. * mu / 3. * dx;
+    sdv[1] -= 2. * mu / 3. * dx;
+    sdv[2] += 4. * mu / 3. * dx;
+    let scale = rp / (rp + 3. * mu * dp);
+    let mean = (trial[0] + trial[1] + trial[2]) / 3. + k * dx;
+    let mut stress = [0.0; 6];
+    for i in 0..6 {
+        sdv[i] *= scale;
+        stress[i] = sdv[i] + if i < 3 { mean } else { 0.0 };
+    }
+    // nmisot's FULL_MECA tangent (tensor components here; code_aster's
+    // √2 shears give the same matrix in engineering strains): plastic
+    // when the increment loads (Σ s:Δe ≥ 0), with R' at p⁻ for a curve
+    // (rcfonc at VIM(1)) and H for a line.
+    let prev_eps = {
+        let tr = sp[0] + sp[1] + sp[2];
+        let mut v = [0.0; 6];
+        for i in 0..3 {
+            v[i] = ((1. + nu) * sp[i] - nu * tr) / e + prev.plastic_strain[i];
+        }
+        for i in 3..6 {
+            v[i] = sp[i] / mu + prev.plastic_strain[i];
+        }
+        v[2] = prev.eps_zz;
+        v
+    };
+    let deps: Vec<f64> = (0..6).map(|i| eps_new[i] - prev_eps[i]).collect();
+    let dmean = (deps[0] + deps[1] + deps[2]) / 3.;
+    let sigeps: f64 = (0..3).map(|i| sdv[i] * (deps[i] - dmean)).sum::<f64>()
+        + (3..6).map(|i| sdv[i] * deps[i]).sum::<f64>();
+    let rprim = match &law.hardening {
+        Hardening::Linear { h } => *h,
+        _ => law.yield_stress(pm)?.1,
+    };
+    let mut c = [[0.0; 6]; 6];
+    let mut a = 1.0;
+    if sigeps >= 0. {
+        if rp <= 1e-15 {
+            return Err(FemError::Model(
+                "VMIS_ISOT: a zero flow stress in the tangent (nmisot)".into(),
+            ));
+        }
+        a = 1. + 3. * mu * dp / rp;
+        let coef = -(3. * mu).powi(2) / (3. * mu + rprim) / rp.powi(2) * (1. - dp * rprim / rp) / a;
+        for i in 0..6 {
+            for j in 0..6 {
+                c[i][j] = coef * sdv[i] * sdv[j];
+            }
+        }
+    }
+    for row in c.iter_mut().take(3) {
+        for v in row.iter_mut().take(3) {
+            *v += k - 2. * mu / (3. * a);
+        }
+    }
+    for (i, row) in c.iter_mut().enumerate() {
+        // Engineering shears: the shear diagonal is μ/a, not 2μ/a.
+        row[i] += if i < 3 { 2. * mu / a } else { mu / a };
+    }
+    let state = finish(stress, eps_new, pm + dp, true);
+    Ok((state, condense(&c)))
+}
+
+/// The in-plane tangent of a 3D one under σzz = 0 (static condensation;
+/// zz row and column zero).
+fn condense(c: &Mat6) -> Mat6 {
     let mut cond = [[0.0; 6]; 6];
     for a in [0usize, 1, 3] {
         for b in [0usize, 1, 3] {
             cond[a][b] = c[a][b] - c[a][2] * c[2][b] / c[2][2];
         }
     }
-    Ok((state, cond))
+    cond
+}
+
+/// code_aster's `zerofo` (`zerofr` with 'DEKKER'): the root of an
+/// increasing f from x0 (f(x0) < 0) and a first guess `xap`, secants kept
+/// in the bracket once it exists, |f| < `tol` to stop, at most `itmax`
+/// evaluations after the first.
+fn dekker(
+    f: impl Fn(f64) -> Result<f64, FemError>,
+    x0: f64,
+    xap: f64,
+    tol: f64,
+    itmax: usize,
+) -> Result<f64, FemError> {
+    let fail = || {
+        FemError::Model(format!(
+            "VMIS_ISOT in C_PLAN: the plastic increment was not found within ITER_INTE_MAXI = {itmax} iterations at RESI_INTE (nmisot's Dekker search); raise ITER_INTE_MAXI or cut the step"
+        ))
+    };
+    let mut n = 1usize;
+    let (mut x, mut fx) = (x0, f(x0)?);
+    if fx.abs() < tol {
+        return Ok(0.0);
+    }
+    let (mut y, mut fy) = (xap, f(xap)?);
+    loop {
+        if fy > 0. {
+            let (mut a, mut b) = (x, y);
+            loop {
+                if fx == fy {
+                    return Err(fail());
+                }
+                let mut z = y - (y - x) * fy / (fy - fx);
+                if (z - a) * (z - b) > 0. {
+                    z = (a + b) / 2.;
+                }
+                n += 1;
+                let fz = f(z)?;
+                if fz.abs() < tol {
+                    return Ok(z);
+                }
+                if n > itmax {
+                    return Err(fail());
+                }
+                if fz < 0. {
+                    a = z;
+                } else {
+                    b = z;
+                }
+                (x, fx, y, fy) = (y, fy, z, fz);
+            }
+        }
+        if fy < fx || fx == fy {
+            return Err(fail());
+        }
+        let z = y - (y - x) * fy / (fy - fx);
+        n += 1;
+        (x, fx) = (y, fy);
+        y = z;
+        fy = f(z)?;
+        if fy.abs() < tol {
+            return Ok(z);
+        }
+        if n > itmax {
+            return Err(fail());
+        }
+    }
 }
 
 #[cfg(test)]
@@ -736,6 +998,87 @@ mod tests {
 
     fn steel() -> Elastic {
         Elastic::new(200e3, 0.3).unwrap()
+    }
+
+    /// nmisot's plane-stress search: with a tight RESI_INTE the state is
+    /// the exact plane-stress return (σzz = 0, on the yield surface); with
+    /// code_aster's default 1e-6 it stays within RESI_INTE·SY of it, σzz
+    /// included, and the Dekker search fails, located, when ITER_INTE_MAXI
+    /// is too small.
+    #[test]
+    fn plane_stress_nmisot_reaches_the_plane_stress_return_within_resi_inte() {
+        let el = steel();
+        let law = VonMises::linear(el.e, 300.0, 20e3).unwrap();
+        let eps = [3e-3, -0.5e-3, 0.0, 2e-3];
+        let prev = PointState::default();
+        let tight = law.clone().with_search(LocalSearch {
+            resi_inte: 1e-14,
+            iter_maxi: 100,
+        });
+        let (s, _) = integrate(
+            &tight,
+            &el,
+            Hypothesis::PlaneStress,
+            &eps,
+            &prev,
+            false,
+            0.0,
+        )
+        .unwrap();
+        assert!(s.plastic);
+        assert!(s.stress[2].abs() < 1e-9, "σzz = {}", s.stress[2]);
+        let (_, q) = deviator(&s.stress);
+        let (r, _) = law.yield_stress(s.p).unwrap();
+        assert!((q - r).abs() < 1e-9 * r, "q = {q}, R = {r}");
+        let (d, _) =
+            integrate(&law, &el, Hypothesis::PlaneStress, &eps, &prev, false, 0.0).unwrap();
+        for i in 0..4 {
+            assert!((d.stress[i] - s.stress[i]).abs() < 1e-5 * 300.0, "{i}");
+        }
+        let few = law.clone().with_search(LocalSearch {
+            resi_inte: 1e-14,
+            iter_maxi: 1,
+        });
+        let err = integrate(&few, &el, Hypothesis::PlaneStress, &eps, &prev, false, 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("ITER_INTE_MAXI = 1"), "{err}");
+    }
+
+    /// The condensed FULL_MECA tangent of the plane-stress search against
+    /// centred differences of the stresses (tight search).
+    #[test]
+    fn plane_stress_nmisot_tangent_matches_differences() {
+        let el = steel();
+        let law = VonMises::linear(el.e, 300.0, 20e3)
+            .unwrap()
+            .with_search(LocalSearch {
+                resi_inte: 1e-15,
+                iter_maxi: 200,
+            });
+        let prev = PointState::default();
+        let eps = [3e-3, -0.5e-3, 0.0, 2e-3];
+        let (_, c) =
+            integrate(&law, &el, Hypothesis::PlaneStress, &eps, &prev, false, 0.0).unwrap();
+        let h = 1e-8;
+        for j in [0usize, 1, 3] {
+            let mut ep = eps;
+            let mut em = eps;
+            ep[j] += h;
+            em[j] -= h;
+            let (sp, _) =
+                integrate(&law, &el, Hypothesis::PlaneStress, &ep, &prev, false, 0.0).unwrap();
+            let (sm, _) =
+                integrate(&law, &el, Hypothesis::PlaneStress, &em, &prev, false, 0.0).unwrap();
+            for i in [0usize, 1, 3] {
+                let fd = (sp.stress[i] - sm.stress[i]) / (2. * h);
+                assert!(
+                    (fd - c[i][j]).abs() < 1e-4 * el.e,
+                    "C[{i}][{j}] = {} vs {fd}",
+                    c[i][j]
+                );
+            }
+        }
     }
 
     fn johnson_cook_law() -> VonMises {
