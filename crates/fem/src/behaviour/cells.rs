@@ -817,12 +817,7 @@ impl PlasticCells {
     /// committed state on the strain whose volumetric part is the
     /// swelling's; in `prediction`, the tangent at the committed state
     /// (RIGI_MECA_TANG), the forces and states then unused.
-    fn mixed(
-        &self,
-        c: usize,
-        ue: &[f64],
-        prediction: bool,
-    ) -> Result<MixedOut, FemError> {
+    fn mixed(&self, c: usize, ue: &[f64], prediction: bool) -> Result<MixedOut, FemError> {
         let cell = &self.cells[c];
         let Some(m) = cell.mixed.as_deref() else {
             return Err(FemError::Model("not a mixed cell".into()));
