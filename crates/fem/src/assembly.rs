@@ -182,10 +182,30 @@ fn scatter_columns(
         }
         dofs.clear();
         element_dofs_into(model, el.cell, &mut dofs);
+        let mixed = model.is_mixed(el.cell);
+        if mixed {
+            // The displacement, pressure and swelling unknowns.
+            dofs.clear();
+            dofs.extend(crate::mixed_upg::mixed_dofs(model, el.cell));
+        }
         if !dofs.iter().any(|j| cols.contains(j)) {
             continue;
         }
         let ndof = match &el.kind {
+            // Mixed incompressible cells (`*_INCO_UPG`): their own matrix.
+            ElementKind::Continuum {
+                hypothesis,
+                material,
+            } if mixed => {
+                let m =
+                    crate::mixed_upg::MixedCell::new(model, el.cell, *hypothesis).map_err(|m| {
+                        FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
+                    })?;
+                copy_dense(
+                    &m.elastic_matrix(material, model.mixed_rigi_meca()),
+                    &mut buf,
+                )
+            }
             // Under-integrated (`_SI`) cells: the general element path.
             ElementKind::Continuum { .. } if model.is_reduced(el.cell) => {
                 let Some(ke) = element_stiffness(model, idx)? else {

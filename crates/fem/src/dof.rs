@@ -13,6 +13,11 @@ pub enum Comp {
     DRX,
     DRY,
     DRZ,
+    /// The pressure unknown of code_aster's mixed incompressible elements
+    /// (`*_INCO_UPG`, [`crate::mixed_upg`]): the mean stress, at vertices.
+    PRES,
+    /// The swelling (volume change) unknown of the same elements.
+    GONF,
 }
 
 impl Comp {
@@ -33,11 +38,17 @@ impl Comp {
             Comp::DRX => "DRX",
             Comp::DRY => "DRY",
             Comp::DRZ => "DRZ",
+            Comp::PRES => "PRES",
+            Comp::GONF => "GONF",
         }
     }
 
     pub fn from_name(name: &str) -> Option<Comp> {
-        Comp::ALL.into_iter().find(|c| c.name() == name)
+        match name {
+            "PRES" => Some(Comp::PRES),
+            "GONF" => Some(Comp::GONF),
+            _ => Comp::ALL.into_iter().find(|c| c.name() == name),
+        }
     }
 
     /// Translation components of a space of dimension `dim` (2 → DX DY).
@@ -204,8 +215,36 @@ impl DofNumbering {
         self.node_first(node).is_some()
     }
 
-    /// Whether some node carries more than the translations (rotations).
+    /// Whether some node carries rotations.
     pub fn has_rotations(&self) -> bool {
-        self.sets.len() > 1
+        self.sets.iter().any(|s| s.contains(&Comp::DRX))
+    }
+
+    /// Whether some node carries the pressure and swelling unknowns of
+    /// the mixed elements ([`crate::mixed_upg`]).
+    pub fn has_mixed(&self) -> bool {
+        self.sets.iter().any(|s| s.contains(&Comp::PRES))
+    }
+
+    /// The same numbering with `extra` appended to the components of the
+    /// nodes `extended` marks (which carry the translations alone).
+    pub fn extended(&self, extended: &[bool], extra: &[Comp]) -> DofNumbering {
+        let mut sets = self.sets.clone();
+        let mut with = self.comps.clone();
+        with.extend_from_slice(extra);
+        let added = sets.len() as u8;
+        sets.push(with);
+        let set: Vec<Option<u8>> = (0..self.node_first.len())
+            .map(|n| {
+                if self.node_first[n] == NONE {
+                    None
+                } else if extended.get(n).copied().unwrap_or(false) {
+                    Some(added)
+                } else {
+                    Some(self.node_set[n])
+                }
+            })
+            .collect();
+        DofNumbering::per_node(sets, &set)
     }
 }

@@ -288,6 +288,13 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
             hypothesis,
             material,
         } => {
+            if model.is_mixed(el.cell) {
+                return Err(crate::mixed_upg::refused(
+                    model,
+                    el.cell,
+                    "this computation",
+                ));
+            }
             let g = model_gauss(model, el.cell, *hypothesis).map_err(|m| {
                 FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
             })?;

@@ -42,6 +42,7 @@ pub mod line_search;
 pub mod loads;
 pub mod mass;
 pub mod material;
+pub mod mixed_upg;
 pub mod modal;
 pub mod model;
 pub mod newton_timing;

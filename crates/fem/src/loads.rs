@@ -550,7 +550,7 @@ impl Loads {
 /// The points a volume load is integrated on: [`shape::rigi_scheme`], the
 /// reduced family of an `_SI` cell.
 fn volume_scheme(model: &Model, cell: CellId) -> Vec<shape::GaussPoint> {
-    if model.is_reduced(cell) {
+    if model.is_reduced(cell) || model.is_mixed(cell) {
         model.stiffness_scheme(cell)
     } else {
         shape::rigi_scheme(model.mesh().cell(cell).ty)

@@ -102,6 +102,13 @@ pub struct Model {
     /// Cells carrying an element with rotations (shell, beam, `DIS_TR`):
     /// they use six components per node.
     shells: std::collections::BTreeSet<CellId>,
+    /// Cells of code_aster's mixed incompressible elements (`*_INCO_UPG`,
+    /// [`crate::mixed_upg`]): displacement, pressure and swelling.
+    mixed: std::collections::BTreeSet<CellId>,
+    /// The mixed cells' linear matrix is code_aster's `RIGI_MECA`
+    /// (`te0592` → `nirmtd`, MECA_STATIQUE) rather than the tangent of
+    /// `nifipd` ([`crate::mixed_upg`]: their shear terms differ).
+    mixed_rigi_meca: bool,
 }
 
 impl Model {
@@ -434,6 +441,8 @@ impl Model {
             reduced: Default::default(),
             stabilised: Default::default(),
             shells,
+            mixed: Default::default(),
+            mixed_rigi_meca: false,
         })
     }
 
@@ -467,6 +476,70 @@ impl Model {
             self.reduced.insert(cell);
         }
         Ok(self)
+    }
+
+    /// Makes `cells` code_aster's mixed displacement–pressure–swelling
+    /// elements of `*_INCO_UPG` ([`crate::mixed_upg`]): their vertex nodes
+    /// get the unknowns PRES and GONF after the translations. Each cell
+    /// must carry a plane-strain, axisymmetric or 3D continuum element on
+    /// a cell type that has such an element (TRIA6, QUAD8; HEXA20,
+    /// PENTA15, TETRA10).
+    pub fn with_mixed(
+        mut self,
+        cells: impl IntoIterator<Item = CellId>,
+    ) -> Result<Model, FemError> {
+        let mut vertices = vec![false; self.mesh.node_count()];
+        for cell in cells {
+            let hyp = match self.element_kind(cell) {
+                Some(ElementKind::Continuum { hypothesis, .. }) => Some(*hypothesis),
+                _ => None,
+            };
+            let ty = self.mesh.cell(cell).ty;
+            let ok = hyp.is_some_and(|h| crate::mixed_upg::has_element(ty, h));
+            if !ok || self.reduced.contains(&cell) || self.stabilised.contains(&cell) {
+                return Err(FemError::Model(format!(
+                    "cell {} is a {}: the mixed incompressible elements (_INCO_UPG) exist for TRIA6 and QUAD8 cells in D_PLAN and AXIS, HEXA20, PENTA15 and TETRA10 cells in 3D",
+                    self.cell_name(cell),
+                    ty.name()
+                )));
+            }
+            let nodes = &self.mesh.cell(cell).nodes;
+            for n in &nodes[..shape::corner_count(ty)] {
+                if self.dofs.node_comps(*n).len() != self.dim {
+                    return Err(FemError::Model(format!(
+                        "cell {}: a vertex of a mixed incompressible element also carries rotations",
+                        self.cell_name(cell)
+                    )));
+                }
+                vertices[n.0 as usize] = true;
+            }
+            self.mixed.insert(cell);
+        }
+        if !self.mixed.is_empty() {
+            self.dofs = self.dofs.extended(&vertices, &[Comp::PRES, Comp::GONF]);
+        }
+        Ok(self)
+    }
+
+    /// Makes the mixed cells' linear matrix code_aster's `RIGI_MECA`
+    /// (MECA_STATIQUE: `nirmtd`, [`crate::mixed_upg::MixedCell::elastic_matrix`]).
+    pub fn set_mixed_rigi_meca(&mut self, on: bool) {
+        self.mixed_rigi_meca = on;
+    }
+
+    /// Whether the mixed cells' linear matrix is `RIGI_MECA`'s.
+    pub fn mixed_rigi_meca(&self) -> bool {
+        self.mixed_rigi_meca
+    }
+
+    /// Whether a cell is a mixed incompressible element ([`Model::with_mixed`]).
+    pub fn is_mixed(&self, cell: CellId) -> bool {
+        self.mixed.contains(&cell)
+    }
+
+    /// Whether the model has mixed incompressible elements.
+    pub fn has_mixed(&self) -> bool {
+        !self.mixed.is_empty()
     }
 
     /// How many components per node the element on `cell` uses: the
@@ -543,6 +616,11 @@ impl Model {
     /// an `_SI` cell, else [`shape::stiffness_scheme`].
     pub fn stiffness_scheme(&self, cell: CellId) -> Vec<shape::GaussPoint> {
         let ty = self.mesh.cell(cell).ty;
+        if self.mixed.contains(&cell) {
+            if let Some(h) = self.hypothesis {
+                return crate::mixed_upg::scheme(ty, h);
+            }
+        }
         if self.reduced.contains(&cell) {
             if let Some(s) = shape::reduced_scheme(ty) {
                 return s;

@@ -471,6 +471,17 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
                 hypothesis,
                 material,
             } => {
+                if model.is_mixed(el.cell) {
+                    let m = crate::mixed_upg::MixedCell::new(model, el.cell, *hypothesis)
+                        .map_err(|m| cell_error(model, el.cell, m))?;
+                    let ue: Vec<f64> = m.dofs.iter().map(|&i| u[i]).collect();
+                    out.push(CellValues {
+                        cell: el.cell,
+                        names: crate::mixed_upg::stress_names(*hypothesis),
+                        points: m.elastic_stress(material, &ue),
+                    });
+                    continue;
+                }
                 let g = model_gauss(model, el.cell, *hypothesis)
                     .map_err(|m| cell_error(model, el.cell, m))?;
                 let d = material.hooke(*hypothesis);
@@ -531,6 +542,7 @@ pub fn epsi_elga_on(
     u: &[f64],
     keep: impl Fn(CellId) -> bool,
 ) -> Result<Vec<CellValues>, FemError> {
+    crate::mixed_upg::refuse_mixed(model, "EPSI_ELGA")?;
     let mut out = Vec::with_capacity(model.elements().len());
     for el in model.elements() {
         let ElementKind::Continuum {
@@ -664,6 +676,7 @@ pub fn inelastic_strain_elga(
 /// spring forces, per DOF index of the model. In AXIS they are per radian.
 pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
     refuse_stabilised(model, "nodal forces (FORC_NODA, REAC_NODA)")?;
+    crate::mixed_upg::refuse_mixed(model, "FORC_NODA/REAC_NODA")?;
     let mut f = vec![0.0; model.dofs().len()];
     for el in model.elements() {
         let dofs = element_dofs(model, el.cell);

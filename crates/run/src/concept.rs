@@ -80,6 +80,9 @@ impl Modelisation {
     /// `AXIS_SI`, `3D_SI`: the same modelisation, its QUAD8, HEXA20 and
     /// TETRA10 cells integrated with a reduced family).
     pub fn from_keyword_si(value: &str) -> Option<(Modelisation, bool)> {
+        if let Some(base @ ("D_PLAN" | "AXIS" | "3D")) = value.strip_suffix("_INCO_UPG") {
+            return Modelisation::from_keyword(base).map(|m| (m, false));
+        }
         match value.strip_suffix("_SI") {
             Some(base @ ("D_PLAN" | "C_PLAN" | "AXIS" | "3D")) => {
                 Modelisation::from_keyword(base).map(|m| (m, true))
@@ -89,7 +92,15 @@ impl Modelisation {
         }
     }
 
-    pub const KEYWORDS: [&'static str; 19] = [
+    /// Whether a `MODELISATION` value is one of code_aster's mixed
+    /// incompressible ones (`D_PLAN_INCO_UPG`, `AXIS_INCO_UPG`,
+    /// `3D_INCO_UPG`: displacement, pressure `PRES` and swelling `GONF`,
+    /// aster-fem's `mixed_upg`).
+    pub fn is_mixed_keyword(value: &str) -> bool {
+        matches!(value, "D_PLAN_INCO_UPG" | "AXIS_INCO_UPG" | "3D_INCO_UPG")
+    }
+
+    pub const KEYWORDS: [&'static str; 22] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -109,6 +120,9 @@ impl Modelisation {
         "BARRE",
         "PLAN_JOINT",
         "COQUE_3D",
+        "D_PLAN_INCO_UPG",
+        "AXIS_INCO_UPG",
+        "3D_INCO_UPG",
     ];
 
     /// Space dimension of the displacement.
@@ -161,6 +175,10 @@ pub struct ModelDef {
     /// Cells of an under-integrated modelisation (`_SI`): QUAD8, HEXA20,
     /// TETRA10 integrated with code_aster's reduced stiffness family.
     pub reduced: std::collections::BTreeSet<CellId>,
+    /// Cells of a mixed incompressible modelisation (`*_INCO_UPG`): TRIA6,
+    /// QUAD8 (2D), HEXA20, PENTA15, TETRA10 (3D) with the unknowns PRES
+    /// and GONF at their vertices.
+    pub mixed: std::collections::BTreeSet<CellId>,
     /// Per mesh node, whether it carries the rotations DRX DRY DRZ (a
     /// node of a shell cell).
     pub rotations: Vec<bool>,

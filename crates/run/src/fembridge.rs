@@ -97,7 +97,7 @@ fn with_fem_id(err: ExecError, e: &aster_fem::FemError) -> ExecError {
     }
 }
 
-fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
+pub(crate) fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
     match m {
         Modelisation::PlaneStrain => Some(Hypothesis::PlaneStrain),
         Modelisation::PlaneStress => Some(Hypothesis::PlaneStress),
@@ -333,6 +333,7 @@ pub fn build_model(
     }
     Model::new(mesh.clone(), elements)
         .and_then(|m| m.with_reduced_integration(model.reduced.iter().copied()))
+        .and_then(|m| m.with_mixed(model.mixed.iter().copied()))
         .map_err(|e| fem_err("AFFE_MODELE", e))
 }
 
@@ -1499,6 +1500,8 @@ pub fn solve(
         // code_aster's RIGI_MECA of COQUE_3D (te0401 → vdxrig): two Gauss
         // points through the thickness, not vdxnlr's Simpson.
         model.set_coque3d_rule(aster_fem::coque3d::ThicknessRule::Gauss2);
+        // code_aster's RIGI_MECA of the mixed elements (te0592 → nirmtd).
+        model.set_mixed_rigi_meca(true);
     }
     let mut loads = build_loads(setup, &mesh, &model)?;
     let behaviours = build_behaviours(

@@ -17,6 +17,7 @@ use crate::element::{continuum_stiffness, element_dofs, model_gauss, spring_stif
 use crate::error::FemError;
 use crate::linalg::Csc;
 use crate::material::{Elastic, Hypothesis};
+use crate::mixed_upg::MixedCell;
 use crate::model::{ElementKind, Model};
 use crate::post::CellValues;
 use crate::strain::element::{self as fs, CellSetup, Phase, PointGeom};
@@ -24,6 +25,9 @@ use aster_mesh::CellId;
 use nalgebra::{DMatrix, DVector};
 use std::collections::HashMap;
 use std::sync::Arc;
+
+/// A mixed cell's forces, tangent and trial states ([`PlasticCells::mixed`]).
+type MixedOut = (Vec<f64>, DMatrix<f64>, Vec<GaussState>);
 
 /// The 72 generalised hourglass stresses of a stabilised HEXA8, converged
 /// and trial.
@@ -54,6 +58,10 @@ struct PlasticCell {
     /// code_aster's stabilised one-point HEXA8 of `3D_SI`
     /// ([`crate::hexs8`]): its initial node coordinates.
     stabilised: Option<[[f64; 3]; 8]>,
+    /// code_aster's mixed incompressible element (`*_INCO_UPG`,
+    /// [`crate::mixed_upg`]): its data; `dofs` and `k_el` are then its
+    /// displacement, pressure and swelling unknowns and its elastic matrix.
+    mixed: Option<Box<MixedCell>>,
 }
 
 impl PlasticCell {
@@ -71,7 +79,7 @@ impl PlasticCell {
     /// Whether the cell computes its own forces and tangent (a
     /// finite-strain kinematics, or the stabilised HEXA8).
     fn finite(&self) -> bool {
-        self.kinematics != Kinematics::Small || self.stabilised.is_some()
+        self.kinematics != Kinematics::Small || self.stabilised.is_some() || self.mixed.is_some()
     }
 }
 
@@ -179,7 +187,33 @@ impl PlasticCells {
             } else {
                 fs::point_geoms(&gauss, *hypothesis)
             };
-            let dofs = element_dofs(model, el.cell);
+            let mut dofs = element_dofs(model, el.cell);
+            let mut k_el = k_el;
+            let mixed = if model.is_mixed(el.cell) {
+                let refuse = |what: &str| {
+                    Err(FemError::Model(format!(
+                        "cell {}: {what} on a mixed incompressible element (_INCO_UPG) is not implemented (small strains with ELAS and the VMIS_ISOT_*/VMIS_CINE_LINE laws are)",
+                        model.cell_name(el.cell)
+                    )))
+                };
+                if behaviour.kinematics != Kinematics::Small {
+                    return refuse("a large-strain kinematics (DEFORMATION other than PETIT)");
+                }
+                if behaviour.viscous.is_some() {
+                    return refuse("LEMAITRE");
+                }
+                if behaviour.thermo.is_some() {
+                    return refuse("a temperature-dependent material");
+                }
+                let m = MixedCell::new(model, el.cell, *hypothesis).map_err(|m| {
+                    FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
+                })?;
+                k_el = m.elastic_matrix(material, false);
+                dofs.clone_from(&m.dofs);
+                Some(Box::new(m))
+            } else {
+                None
+            };
             let stabilised = if model.is_stabilised(el.cell) {
                 stabilised_setup(model, el.cell, &behaviour)?
             } else {
@@ -224,6 +258,7 @@ impl PlasticCells {
                 geoms,
                 k_el,
                 stabilised,
+                mixed,
             });
         }
         let committed: Vec<Vec<GaussState>> = cells
@@ -427,6 +462,20 @@ impl PlasticCells {
             }
             let cell = &self.cells[c];
             let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
+            if cell.mixed.is_some() {
+                let (f, k, states) = self
+                    .mixed(c, &ue, false)
+                    .map_err(|e| at_cell_finite(model, self.cells[c].cell, e))?;
+                let cell = &self.cells[c];
+                let ku = &cell.k_el * DVector::from_column_slice(&ue);
+                for (a, &i) in cell.dofs.iter().enumerate() {
+                    fint[i] += f[a] - ku[a];
+                }
+                self.trial[c] = states;
+                self.u_trial[c] = ue;
+                self.set_finite_tangent(c, k);
+                continue;
+            }
             if cell.stabilised.is_some() {
                 let (f, k) = self
                     .stabilised(c, &ue, Phase::Correction)
@@ -537,6 +586,19 @@ impl PlasticCells {
                 continue;
             }
             let cell = &self.cells[c];
+            if cell.mixed.is_some() {
+                let ue = self.u_committed[c].clone();
+                let (_, k, _) = self
+                    .mixed(c, &ue, true)
+                    .map_err(|e| at_cell_finite(model, self.cells[c].cell, e))?;
+                if elastic {
+                    let k_el = self.cells[c].k_el.clone();
+                    self.set_finite_tangent(c, k_el);
+                } else {
+                    self.set_finite_tangent(c, k);
+                }
+                continue;
+            }
             if cell.stabilised.is_some() {
                 let ue = self.u_committed[c].clone();
                 let (_, k) = self
@@ -750,6 +812,65 @@ impl PlasticCells {
         self.u_committed.clone_from(&self.u_trial);
     }
 
+    /// Forces, tangent and trial states of mixed cell `c` at its unknowns
+    /// `ue` (`nifipd`): its law integrated at each point from the
+    /// committed state on the strain whose volumetric part is the
+    /// swelling's; in `prediction`, the tangent at the committed state
+    /// (RIGI_MECA_TANG), the forces and states then unused.
+    fn mixed(&self, c: usize, ue: &[f64], prediction: bool) -> Result<MixedOut, FemError> {
+        let cell = &self.cells[c];
+        let Some(m) = cell.mixed.as_deref() else {
+            return Err(FemError::Model("not a mixed cell".into()));
+        };
+        let n = cell.hypothesis.ncomp();
+        let nd = cell.dofs.len();
+        let mut f = vec![0.0; nd];
+        let mut k = DMatrix::zeros(nd, nd);
+        let mut states = Vec::with_capacity(m.gauss.len());
+        for g in 0..m.gauss.len() {
+            let prev = &self.committed[c][g].law;
+            let eps = m.strain(g, ue);
+            let (state, tangent) = match cell.law.as_deref() {
+                Some(law) => integrate(
+                    law,
+                    &cell.elastic,
+                    cell.hypothesis,
+                    &eps[..n],
+                    prev,
+                    prediction,
+                    self.dt,
+                )
+                .map_err(|e| FemError::Model(format!("at Gauss point {}: {e}", g + 1)))?,
+                None => {
+                    // ELAS: σ = D ε̃.
+                    let d = cell.elastic.hooke(cell.hypothesis);
+                    let mut c6 = [[0.0; 6]; 6];
+                    let mut stress = [0.0; 6];
+                    for i in 0..n {
+                        for j in 0..n {
+                            c6[i][j] = d[(i, j)];
+                            stress[i] += d[(i, j)] * eps[j];
+                        }
+                    }
+                    (PointState { stress, ..*prev }, c6)
+                }
+            };
+            m.add_tangent(g, &tangent, &mut k);
+            if !prediction {
+                m.add_forces(g, &state.stress, ue, &mut f);
+            }
+            let (cauchy, sip) = m.stress(g, &state.stress, ue);
+            let mut extra = [0.0; 6];
+            extra[0] = sip;
+            states.push(GaussState {
+                law: state,
+                cauchy,
+                extra,
+            });
+        }
+        Ok((f, k, states))
+    }
+
     /// Forces (empty in prediction) and tangent of stabilised HEXA8 cell
     /// `c` at the element displacement `ue` (`nmas3d`); in correction, its
     /// trial state and hourglass stresses.
@@ -836,7 +957,17 @@ impl PlasticCells {
         for (cell, states) in self.cells.iter().zip(&self.committed) {
             let n = cell.hypothesis.ncomp();
             if let Some(&k) = at.get(&cell.cell) {
-                stress[k].points = states.iter().map(|s| s.cauchy[..n].to_vec()).collect();
+                stress[k].points = states
+                    .iter()
+                    .map(|s| {
+                        let mut v = s.cauchy[..n].to_vec();
+                        if cell.mixed.is_some() {
+                            // SIEF_ELGA's SIP (tr σ/3 − p).
+                            v.push(s.extra[0]);
+                        }
+                        v
+                    })
+                    .collect();
             }
             let points: Vec<Vec<f64>> =
                 states.iter().map(|s| internal_variables(cell, s)).collect();
@@ -1132,6 +1263,9 @@ pub fn forc_noda_deformed(
     stress: &[CellValues],
     behaviours: &Behaviours,
 ) -> Result<Vec<f64>, FemError> {
+    // code_aster's FORC_NODA of the mixed cells (te0591) has pressure and
+    // swelling rows: not reproduced.
+    crate::mixed_upg::refuse_mixed(model, "FORC_NODA/REAC_NODA")?;
     crate::post::refuse_stabilised(model, "nodal forces (FORC_NODA, REAC_NODA)")?;
     let at: HashMap<CellId, &CellValues> = stress.iter().map(|cv| (cv.cell, cv)).collect();
     let mut f = vec![0.0; model.dofs().len()];

@@ -241,7 +241,7 @@ impl Behaviours {
     /// (code_aster applies COMPORTEMENT to the model's cells only: boundary
     /// and discrete cells have no such behaviour).
     pub(crate) fn elements(&self, model: &Model) -> Vec<(usize, CellBehaviour)> {
-        if self.by_cell.is_empty() && !model.has_stabilised() {
+        if self.by_cell.is_empty() && !model.has_stabilised() && !model.has_mixed() {
             return Vec::new();
         }
         // The stabilised HEXA8 cells are always computed here, ELAS
@@ -260,6 +260,10 @@ impl Behaviours {
             .filter_map(|(k, el)| match self.by_cell.get(&el.cell) {
                 Some(b) => Some((k, b.clone())),
                 None if model.is_stabilised(el.cell) => Some((k, elastic.clone())),
+                // So are the mixed cells (`crate::mixed_upg`): their
+                // SIEF_ELGA in STAT_NON_LINE is `nifipd`'s, from the
+                // strain with the swelling's volume change.
+                None if model.is_mixed(el.cell) => Some((k, elastic.clone())),
                 None => None,
             })
             .collect()

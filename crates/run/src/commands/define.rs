@@ -926,6 +926,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     let mesh = ex.mesh(mesh_ref)?;
     let mut cells = BTreeMap::new();
     let mut reduced = std::collections::BTreeSet::new();
+    let mut mixed = std::collections::BTreeSet::new();
     // Where MODELISATION='3D' is first written, to name it when no volume
     // cell receives it.
     let mut solid3d_at = None;
@@ -1012,7 +1013,21 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 continue;
             }
             let continuum = ty.dim() as usize == modelisation.dim();
-            if under_integrated && continuum {
+            let inco = Modelisation::is_mixed_keyword(name);
+            if inco && continuum {
+                let has = crate::fembridge::hypothesis(modelisation)
+                    .is_some_and(|h| aster_fem::mixed_upg::has_element(ty, h));
+                // No element of the modelisation (a TRIA3, QUAD4, HEXA8…):
+                // the cell keeps an earlier occurrence's, as code_aster.
+                if !has {
+                    continue;
+                }
+                mixed.insert(c);
+                reduced.remove(&c);
+            } else if continuum {
+                mixed.remove(&c);
+            }
+            if under_integrated && continuum && !inco {
                 match si_element(modelisation, ty) {
                     SiElement::Reduced => {
                         reduced.insert(c);
@@ -1073,6 +1088,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
         mesh: mesh_ref.id,
         cells,
         reduced,
+        mixed,
         rotations,
         substructures,
     };

@@ -913,6 +913,7 @@ fn rigid_rotations_check(
                     Comp::DRX => w[0],
                     Comp::DRY => w[1],
                     Comp::DRZ => w[2],
+                    Comp::PRES | Comp::GONF => 0.0,
                 }
             })
             .collect();

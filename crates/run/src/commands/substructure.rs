@@ -367,6 +367,9 @@ pub(crate) fn expand(
             if s.macro_elem.model.reduced.contains(&c) {
                 m.reduced.insert(c);
             }
+            if s.macro_elem.model.mixed.contains(&c) {
+                m.mixed.insert(c);
+            }
             if let Some(x) = s.macro_elem.materials.cells.get(&c) {
                 mat.cells.insert(c, x.clone());
             }
