@@ -973,7 +973,6 @@ impl EdgeRule {
     }
 }
 
-
 fn edge_check(model: &Model, cell: CellId, force: &[f64; 6]) -> Result<(), FemError> {
     edge_dofs(model, cell, force).map(|_| ())
 }
@@ -1262,7 +1261,11 @@ mod edge_rule_tests {
         assert!((s[2].xi[0] - 0.861_136_311_594_053).abs() < 1e-14);
         assert!((s[0].weight - 0.652_145_154_862_546).abs() < 1e-14);
         for k in 0..=7 {
-            let exact = if k % 2 == 0 { 2.0 / (k as f64 + 1.0) } else { 0.0 };
+            let exact = if k % 2 == 0 {
+                2.0 / (k as f64 + 1.0)
+            } else {
+                0.0
+            };
             let got = integral(EdgeRule::Gauss4, |x| x.powi(k));
             assert!((got - exact).abs() < 1e-14, "degree {k}: {got} vs {exact}");
         }

@@ -250,7 +250,9 @@ fn forces_and_moments_on_the_edge_of_a_coque3d_strip() {
 #[test]
 fn an_edge_force_on_a_seg2_of_coque3d_cells_is_refused_at_its_group() {
     let text = scene::read("coque3d_edge.comm");
-    let cut = text.find("RESE = MECA_STATIQUE").expect("the scene's first solve");
+    let cut = text
+        .find("RESE = MECA_STATIQUE")
+        .expect("the scene's first solve");
     let mut variant = text[..cut].to_string();
     variant.push_str(
         "bad = AFFE_CHAR_MECA(MODELE=MO, FORCE_ARETE=_F(GROUP_MA=\"EDGE\", FZ=1.0))\nFIN()\n",
