@@ -79,7 +79,7 @@ pub use force_source::{
     Contribution, ForceSource, LoopVerdict, PenaltyAdaptation, PenaltyVerdict, Unknown,
 };
 pub use line_search::{LineSearch, LineSearchMethod, Rule as LineSearchRule};
-pub use loads::{Load, LoadItem, Loads, Multiplier};
+pub use loads::{EdgeRule, Load, LoadItem, Loads, Multiplier};
 pub use mass::{DiscreteMass, Lumping, MassData, Rayleigh};
 pub use material::{Elastic, Hypothesis};
 pub use model::{Element, ElementKind, Frame, Model};

@@ -86,9 +86,14 @@ pub enum Load {
     /// Force and moment per unit length on an edge (`FORCE_ARETE`): a
     /// SEG2/SEG3 cell of a 3D model, bordering solids or shells; global
     /// components FX FY FZ MX MY MZ, integrated as ∫ Nᵢ f dl with the
-    /// segment's stiffness scheme (code_aster's te0469, te0034, te0418).
-    /// Moments need the rotations of shell nodes.
-    EdgeForce { cell: CellId, force: [f64; 6] },
+    /// Gauss family of the element code_aster puts on the segment
+    /// ([`EdgeRule`]: te0469, te0034, te0418). Moments need the rotations
+    /// of shell nodes.
+    EdgeForce {
+        cell: CellId,
+        force: [f64; 6],
+        rule: EdgeRule,
+    },
     /// A force and moment per unit area on a shell cell (`FORCE_COQUE`
     /// with global components or a pressure, `PESANTEUR` on shells:
     /// ρ h g d): the value at each node of the cell (global FX FY FZ MX MY
@@ -208,7 +213,7 @@ impl Loads {
                         )));
                     }
                 }
-                Load::EdgeForce { cell, force } => edge_check(model, *cell, force)?,
+                Load::EdgeForce { cell, force, .. } => edge_check(model, *cell, force)?,
                 Load::ShellForce {
                     cell,
                     nodal,
@@ -366,10 +371,10 @@ impl Loads {
                         &mut f,
                     )?;
                 }
-                Load::EdgeForce { cell, force } => {
+                Load::EdgeForce { cell, force, rule } => {
                     let m = item.mult.eval(t)?;
                     if m != 0.0 {
-                        edge_load(model, *cell, &force.map(|v| v * m), &mut f)?;
+                        edge_load(model, *cell, &force.map(|v| v * m), *rule, &mut f)?;
                     }
                 }
                 Load::ShellForce {
@@ -932,18 +937,59 @@ fn edge_dofs(
     Ok(out)
 }
 
+/// The Gauss family an edge load (`FORCE_ARETE`) is integrated with: the
+/// `RIGI` family of the element code_aster puts on the segment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeRule {
+    /// The segment's own stiffness family, 2 points on SEG2 and 3 on SEG3:
+    /// `MECA_ARETE2`/`MECA_ARETE3` on the edges of solids (te0469) and
+    /// `MEBODKT` on those of DKT/DST/Q4G plates (te0034, whose f·L/2 per
+    /// node is the same on a straight SEG2).
+    Segment,
+    /// `MEBOCQ3`, the SEG3 edge of COQUE_3D cells (te0418): `FPG4`, Gauss
+    /// with 4 points (±√(3/7 ∓ 2/7·√(6/5)), weights (18 ± √30)/36), in
+    /// `elraga`'s order.
+    Gauss4,
+}
+
+impl EdgeRule {
+    /// The points and weights on the reference segment [−1, 1].
+    pub fn scheme(self, ty: CellType) -> Vec<shape::GaussPoint> {
+        match self {
+            EdgeRule::Segment => shape::rigi_scheme(ty),
+            EdgeRule::Gauss4 => {
+                let a = (3.0 / 7.0 - 2.0 / 7.0 * (6.0f64 / 5.0).sqrt()).sqrt();
+                let b = (3.0 / 7.0 + 2.0 / 7.0 * (6.0f64 / 5.0).sqrt()).sqrt();
+                let (wa, wb) = ((18.0 + 30f64.sqrt()) / 36.0, (18.0 - 30f64.sqrt()) / 36.0);
+                [(a, wa), (-a, wa), (b, wb), (-b, wb)]
+                    .into_iter()
+                    .map(|(x, weight)| shape::GaussPoint {
+                        xi: [x, 0.0, 0.0],
+                        weight,
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
 fn edge_check(model: &Model, cell: CellId, force: &[f64; 6]) -> Result<(), FemError> {
     edge_dofs(model, cell, force).map(|_| ())
 }
 
-/// ∫ Nᵢ f dl over a segment with its stiffness scheme (2 points on SEG2,
-/// 3 on SEG3: code_aster's RIGI family of te0469/te0418; te0034's
-/// f·L/2 on a plate's SEG2 is the same), f constant along it.
-fn edge_load(model: &Model, cell: CellId, force: &[f64; 6], f: &mut [f64]) -> Result<(), FemError> {
+/// ∫ Nᵢ f dl over a segment with the Gauss family of its edge element
+/// ([`EdgeRule`]), f constant along it.
+fn edge_load(
+    model: &Model,
+    cell: CellId,
+    force: &[f64; 6],
+    rule: EdgeRule,
+    f: &mut [f64],
+) -> Result<(), FemError> {
     let dofs = edge_dofs(model, cell, force)?;
     let mesh = model.mesh();
     let c = mesh.cell(cell);
-    for gp in shape::rigi_scheme(c.ty) {
+    for gp in rule.scheme(c.ty) {
         let s = shape::shape(c.ty, gp.xi);
         let [_, t, _] = shape::point_and_tangents(mesh, c, &s);
         let jac = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
@@ -1190,5 +1236,42 @@ mod shell_nodal_tests {
             tri.iter().map(|v| v[0]).collect::<Vec<_>>(),
             vec![1.0, 2.0, 3.0]
         );
+    }
+}
+
+#[cfg(test)]
+mod edge_rule_tests {
+    use super::EdgeRule;
+    use aster_mesh::CellType;
+
+    fn integral(rule: EdgeRule, p: impl Fn(f64) -> f64) -> f64 {
+        rule.scheme(CellType::SEG3)
+            .iter()
+            .map(|g| g.weight * p(g.xi[0]))
+            .sum()
+    }
+
+    /// te0418's FPG4 (elraga): 4 points, ±0.3399810… and ±0.8611363…,
+    /// exact up to degree 7 where the SEG3's own FPG3 stops at 5.
+    #[test]
+    fn gauss4_is_code_aster_fpg4_and_exact_to_degree_7() {
+        let s = EdgeRule::Gauss4.scheme(CellType::SEG3);
+        assert_eq!(s.len(), 4);
+        assert!((s[0].xi[0] - 0.339_981_043_584_856).abs() < 1e-14);
+        assert!((s[2].xi[0] - 0.861_136_311_594_053).abs() < 1e-14);
+        assert!((s[0].weight - 0.652_145_154_862_546).abs() < 1e-14);
+        for k in 0..=7 {
+            let exact = if k % 2 == 0 {
+                2.0 / (k as f64 + 1.0)
+            } else {
+                0.0
+            };
+            let got = integral(EdgeRule::Gauss4, |x| x.powi(k));
+            assert!((got - exact).abs() < 1e-14, "degree {k}: {got} vs {exact}");
+        }
+        // x^6 tells the two families apart.
+        let fpg3 = integral(EdgeRule::Segment, |x| x.powi(6));
+        assert!((fpg3 - 2.0 / 7.0).abs() > 1e-3, "{fpg3}");
+        assert_eq!(EdgeRule::Segment.scheme(CellType::SEG2).len(), 2);
     }
 }

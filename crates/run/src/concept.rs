@@ -595,10 +595,12 @@ pub struct Gravity {
 }
 
 /// `FORCE_ARETE`: force and moment per unit length (FX FY FZ MX MY MZ) on
-/// segments of a 3D model; `AFFE_CHAR_MECA_F`: functions of `INST`.
+/// segments of a 3D model; `AFFE_CHAR_MECA_F`: functions of `INST`. Each
+/// segment with the Gauss family of the element code_aster puts on it
+/// (COQUE_3D edges: te0418's FPG4).
 #[derive(Clone, Debug, PartialEq)]
 pub struct EdgeForce {
-    pub cells: Vec<CellId>,
+    pub cells: Vec<(CellId, aster_fem::EdgeRule)>,
     pub force: [f64; 6],
     pub functions: [Option<LoadFunction>; 6],
 }

@@ -884,11 +884,12 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
                 gravity_loads(&mut loads, &l.gravity, &m, setup, model)?;
                 for e in &l.edges {
                     if e.functions.iter().all(Option::is_none) {
-                        for &cell in &e.cells {
+                        for &(cell, rule) in &e.cells {
                             loads.add(
                                 Load::EdgeForce {
                                     cell,
                                     force: e.force,
+                                    rule,
                                 },
                                 m.clone(),
                             );
@@ -899,8 +900,15 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
                         let mut unit = [0.0; 6];
                         unit[k] = 1.0;
                         let mk = function_multiplier(f, [0.0; 3], &m, &setup.instants, &cuts)?;
-                        for &cell in &e.cells {
-                            loads.add(Load::EdgeForce { cell, force: unit }, mk.clone());
+                        for &(cell, rule) in &e.cells {
+                            loads.add(
+                                Load::EdgeForce {
+                                    cell,
+                                    force: unit,
+                                    rule,
+                                },
+                                mk.clone(),
+                            );
                         }
                     }
                 }

@@ -1,6 +1,6 @@
 //! PESANTEUR, FORCE_ARETE and LIAISON_OBLIQUE: the project's scenes
 //! (comm/gravity_column.comm, gravity_strip.comm, edge_strip.comm,
-//! oblique_block.comm) against their analytic values, and the refusals,
+//! coque3d_edge.comm, oblique_block.comm) against their analytic values, and the refusals,
 //! located at the keyword.
 
 mod scene;
@@ -236,35 +236,45 @@ FIN()
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (2, 0));
 }
 
-/// FORCE_ARETE on the edge of a COQUE_3D plate is refused at its GROUP_MA
-/// (code_aster's te0418 is not reproduced: ssls119c/f ended 3.4e-4 off).
+/// FORCE_ARETE on the SEG3 edge of COQUE_3D cells (te0418, FPG4): forces
+/// and moments per unit length, AFFE_CHAR_MECA_F of INST, against beam
+/// theory and statics (comm/coque3d_edge.comm: 12 values x 2).
 #[test]
-fn an_edge_force_on_coque3d_cells_is_refused_at_its_group() {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../comm/coque3d_strip.comm"),
-    )
-    .expect("the coque3d scene");
-    let cut = text.find("FIN()").expect("the scene ends with FIN");
+fn forces_and_moments_on_the_edge_of_a_coque3d_strip() {
+    assert_eq!(scene("coque3d_edge.comm", "coque3d_edge.mail"), (24, 0));
+}
+
+/// A SEG2 on the nodes of COQUE_3D cells gets no element in code_aster
+/// (MEBOCQ3 is the SEG3 edge only): refused at its GROUP_MA, before
+/// solving.
+#[test]
+fn an_edge_force_on_a_seg2_of_coque3d_cells_is_refused_at_its_group() {
+    let text = scene::read("coque3d_edge.comm");
+    let cut = text
+        .find("RESE = MECA_STATIQUE")
+        .expect("the scene's first solve");
     let mut variant = text[..cut].to_string();
     variant.push_str(
-        "edge_load = AFFE_CHAR_MECA(MODELE=MO, FORCE_ARETE=_F(GROUP_MA=\"EDGE_FORCE\", FZ=1.0))\nFIN()\n",
+        "bad = AFFE_CHAR_MECA(MODELE=MO, FORCE_ARETE=_F(GROUP_MA=\"EDGE\", FZ=1.0))\nFIN()\n",
     );
-    // The strip's mesh with its free end x = 4 as a SEG3 cell.
-    let mesh = scene::read("coque3d_strip.mail").replacen(
-        "GROUP_MA\n  STRIP",
-        "SEG3\n  E1 N16_0 N16_2 N16_1\nFINSF\nGROUP_MA\n  EDGE_FORCE\n  E1\nFINSF\nGROUP_MA\n  STRIP",
+    // The free end as a SEG2 cell.
+    let mesh = scene::read("coque3d_edge.mail").replacen(
+        "SEG3\n  E1 N16_0 N16_2 N16_1",
+        "SEG2\n  E1 N16_0 N16_2",
         1,
     );
-    assert!(mesh.contains("EDGE_FORCE"));
-    let dir = scene::temp("coque3d-edge-mesh");
+    assert!(mesh.contains("SEG2\n  E1"));
+    let dir = scene::temp("coque3d-edge-seg2");
     let path = dir.join("strip_edge.mail");
     std::fs::write(&path, mesh).unwrap();
-    let (_, nook, err) = scene::run_on(&variant, path.to_str().unwrap(), "coque3d-edge");
+    let (ok, nook, err) = scene::run_on(&variant, path.to_str().unwrap(), "coque3d-edge-seg2");
     let _ = std::fs::remove_dir_all(&dir);
-    assert_eq!(nook, 0);
+    assert_eq!((ok, nook), (0, 0));
     let err = err.expect("an error");
     assert!(
-        err.contains("FORCE_ARETE on the edges of COQUE_3D cells") && err.contains("case.comm:"),
+        err.contains("SEG2 on the nodes of COQUE_3D cells")
+            && err.contains("MEBOCQ3")
+            && err.contains("case.comm:"),
         "{err}"
     );
 }

@@ -16,9 +16,10 @@
 //!   joint elements are refused at the keyword.
 //! - `FORCE_ARETE=_F(GROUP_MA, FX…MZ)`: force and moment per unit length
 //!   on the segments of a 3D model (solid edges: te0469, DKT edges:
-//!   te0034), ∫ Nᵢ f dl; moments on the nodes that carry rotations only.
-//!   The edges of COQUE_3D cells (te0418) are refused: ssls119c/f ended
-//!   3.4e-4 off code_aster's deflection.
+//!   te0034, the segment's RIGI family; COQUE_3D edges: te0418, FPG4 on
+//!   their SEG3, a SEG2 there refused as code_aster has no element for
+//!   it), ∫ Nᵢ f dl in global components; moments on the nodes that carry
+//!   rotations only.
 //! - `FORCE_COQUE=_F(TOUT/GROUP_MA, FX…MZ | PRES, PLAN)`: force and
 //!   moment per unit area on the shell cells of the selection (the others
 //!   take none: code_aster computes it on the elements that have the
@@ -40,6 +41,7 @@ use crate::concept::*;
 use crate::executor::Executor;
 use crate::select;
 use aster_eval::{ExecError, Keywords};
+use aster_fem::EdgeRule;
 use aster_mesh::{CellType, Mesh};
 
 /// `PESANTEUR` (one occurrence): the gravity on the continuum cells of
@@ -231,14 +233,18 @@ pub(super) const EDGE_COMPS: [(&str, CompName); 6] = [
 ];
 
 /// The segments of a `FORCE_ARETE` occurrence, checked: SEG2/SEG3 cells of
-/// a 3D model whose nodes carry the components given (`given[k]`).
+/// a 3D model whose nodes carry the components given (`given[k]`), each
+/// with the Gauss family of the element code_aster puts on it: a segment
+/// on the nodes of COQUE_3D cells is their SEG3 edge `MEBOCQ3` (te0418,
+/// FPG4; code_aster's COQUE_3D has no SEG2 element), the others the
+/// edges of solids or plates (te0469, te0034: the segment's RIGI family).
 pub(super) fn edge_cells(
     ex: &Executor,
     what: &str,
     occ: &Keywords,
     (model, mesh, carried): (&ModelDef, &Mesh, &[bool]),
     given: [bool; 6],
-) -> Result<Vec<aster_mesh::CellId>, ExecError> {
+) -> Result<Vec<(aster_mesh::CellId, EdgeRule)>, ExecError> {
     let cells = select::cells(occ, mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
     if cells.is_empty() {
         return Err(ex.kw_error(
@@ -256,22 +262,15 @@ pub(super) fn edge_cells(
             "FORCE_ARETE loads the edges of a 3D model (FORCE_CONTOUR in 2D)",
         ));
     }
-    // Edges of COQUE_3D cells: te0418 is not reproduced (ssls119c/f, QUAD9
-    // plates under an edge force, end 3.4e-4 off code_aster's deflection).
     let coque3d_nodes: std::collections::HashSet<aster_mesh::NodeId> = model
         .cells
         .iter()
         .filter(|(_, m)| **m == Modelisation::Coque3d)
         .flat_map(|(c, _)| mesh.cell(*c).nodes.iter().copied())
         .collect();
+    let mut out = Vec::with_capacity(cells.len());
     for &c in &cells {
         let cell = mesh.cell(c);
-        if cell.nodes.iter().any(|n| coque3d_nodes.contains(n)) {
-            return Err(ex.unsupported(
-                "AFFE_CHAR_MECA/FORCE_ARETE on the edges of COQUE_3D cells (code_aster's te0418 is not reproduced: ssls119c/f end 3.4e-4 off its deflection; DKT and 3D edges are)",
-                occ.keyword("GROUP_MA").map(|k| k.span).unwrap_or_default(),
-            ));
-        }
         if !matches!(cell.ty, CellType::SEG2 | CellType::SEG3) {
             return Err(ex.kw_error(
                 what,
@@ -284,6 +283,22 @@ pub(super) fn edge_cells(
                 ),
             ));
         }
+        let rule = if cell.nodes.iter().any(|n| coque3d_nodes.contains(n)) {
+            if cell.ty != CellType::SEG3 {
+                return Err(ex.kw_error(
+                    what,
+                    occ,
+                    "GROUP_MA",
+                    format!(
+                        "cell {} is a SEG2 on the nodes of COQUE_3D cells; their edges are SEG3 cells (code_aster's MEBOCQ3)",
+                        select::cell_name(mesh, c)
+                    ),
+                ));
+            }
+            EdgeRule::Gauss4
+        } else {
+            EdgeRule::Segment
+        };
         for &n in &cell.nodes {
             for (k, (_, comp)) in EDGE_COMPS.iter().enumerate() {
                 if given[k] {
@@ -291,8 +306,9 @@ pub(super) fn edge_cells(
                 }
             }
         }
+        out.push((c, rule));
     }
-    Ok(cells)
+    Ok(out)
 }
 
 /// `AFFE_CHAR_MECA/FORCE_ARETE` (one occurrence).

@@ -20,6 +20,7 @@ pub(crate) mod loads_more;
 pub(crate) mod macr_lign_coupe;
 pub(crate) mod mesh;
 pub(crate) mod modal;
+pub(crate) mod modi_repere;
 pub(crate) mod post;
 pub(crate) mod post_elem;
 pub(crate) mod post_erreur;
@@ -268,6 +269,11 @@ pub static COMMANDS: &[Command] = &[
         name: "MACR_LIGN_COUPE",
         run: macr_lign_coupe::macr_lign_coupe,
         support: macr_lign_coupe::MACR_LIGN_COUPE,
+    },
+    Command {
+        name: "MODI_REPERE",
+        run: modi_repere::modi_repere,
+        support: modi_repere::MODI_REPERE,
     },
     Command {
         name: "PROJ_CHAMP",
