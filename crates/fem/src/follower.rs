@@ -89,6 +89,9 @@ impl FollowerPressures {
         model: &Model,
         items: Vec<(CellId, FollowerValue, Multiplier)>,
     ) -> Result<FollowerPressures, FemError> {
+        if items.is_empty() {
+            return Ok(FollowerPressures::default());
+        }
         if model.hypothesis() == Some(Hypothesis::Axisymmetric) {
             return Err(FemError::Model(
                 "a follower pressure on an axisymmetric model (the hoop term of code_aster's nmpr2d is not implemented)".into(),
