@@ -599,7 +599,7 @@ fn index(model: &Model, dof: Dof) -> Result<usize, FemError> {
 /// Boundary facets of continuum elements (sorted corner nodes) → a point
 /// inside the element they bound (the centroid of its corners off the
 /// facet), to orient pressure normals outward ([`points_inward`]).
-fn inner_points(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
+pub(crate) fn inner_points(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
     let mesh = model.mesh();
     let mut map = HashMap::new();
     for el in model.elements() {
@@ -635,7 +635,7 @@ fn inner_points(model: &Model) -> HashMap<Vec<NodeId>, [f64; 3]> {
 /// Whether the normal of boundary cell `cell` (∂x/∂ξ × ∂x/∂η in 3D, the
 /// tangent turned in 2D, as [`surface_load`] takes it), at its parametric
 /// centre, points towards `inside` (a point inside the volume it bounds).
-fn points_inward(mesh: &aster_mesh::Mesh, cell: CellId, inside: [f64; 3]) -> bool {
+pub(crate) fn points_inward(mesh: &aster_mesh::Mesh, cell: CellId, inside: [f64; 3]) -> bool {
     let c = mesh.cell(cell);
     let refs = shape::reference_nodes(c.ty);
     let nc = shape::corner_count(c.ty).min(refs.len());

@@ -23,6 +23,10 @@ use std::sync::Arc;
 pub struct FemRun {
     pub model: Model,
     pub loads: Loads,
+    /// The follower pressures (`TYPE_CHARGE='SUIV'`): external forces of
+    /// the deformed configuration, which `REAC_NODA` subtracts as
+    /// code_aster's `ccfnrn` (`vecgme` at the step's displacement).
+    pub follower: aster_fem::follower::FollowerPressures,
     pub raw: NonLinearResult,
     /// Some cells were plastic or in finite strains: their stresses are not
     /// D B u, so nodal forces come from the stored SIEF_ELGA (on the
@@ -827,10 +831,108 @@ fn cut_instants(instants: &[f64], subdivision: Option<aster_fem::Subdivision>) -
         .collect()
 }
 
-fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, ExecError> {
+/// The follower pressures of the `TYPE_CHARGE='SUIV'` excitations
+/// (`PRES_REP` only: `crate::solve::check_charge_type`), each with its
+/// excitation's multiplier; a pressure function of one coordinate is
+/// evaluated at each point of the current (`XF`, `YF`, `ZF`) or initial
+/// (`X`, `Y`, `Z`) geometry, one of `INST` scales the multiplier.
+fn follower_loads(
+    setup: &SolveSetup,
+    model: &Model,
+) -> Result<aster_fem::follower::FollowerPressures, ExecError> {
+    use aster_fem::follower::{FollowerPressures, FollowerValue};
+    let cuts = cut_instants(&setup.instants, setup.subdivision);
+    let mut items = Vec::new();
+    for exc in &setup.excitations {
+        if exc.kind != crate::solve::ChargeType::Suiv {
+            continue;
+        }
+        let LoadRef::Mechanical(l) = &exc.load else {
+            continue;
+        };
+        let m = multiplier(&exc.multiplier, &setup.instants, &cuts)?;
+        for b in &l.boundary {
+            if let BoundaryLoad::Pressure { cells, pressure } = b {
+                for &cell in cells {
+                    items.push((cell, FollowerValue::Constant(*pressure), m.clone()));
+                }
+            }
+        }
+        for b in &l.boundary_fn {
+            let BoundaryFn::Pressure { cells, pressure } = b else {
+                continue;
+            };
+            // evalPressure: the function at each point with X, Y, Z, XF,
+            // YF, ZF and INST.
+            let f = pressure.0.clone();
+            let value = FollowerValue::At(Rc::new(move |x0: [f64; 3], x: [f64; 3], t: f64| {
+                f.eval_named(&[
+                    ("X", x0[0]),
+                    ("Y", x0[1]),
+                    ("Z", x0[2]),
+                    ("XF", x[0]),
+                    ("YF", x[1]),
+                    ("ZF", x[2]),
+                    ("INST", t),
+                ])
+                .map_err(|e| e.to_string())
+            }));
+            let mk = m.clone();
+            for &cell in cells {
+                items.push((cell, value.clone(), mk.clone()));
+            }
+        }
+    }
+    FollowerPressures::new(model, items)
+        .map_err(|e| fem_err("STAT_NON_LINE/EXCIT/TYPE_CHARGE='SUIV'", e))
+}
+
+/// The load items of the `TYPE_CHARGE='DIDI'` excitations (ranges of
+/// `Loads::items`, in the order [`build_loads`] adds them).
+type DidiItems = Vec<std::ops::Range<usize>>;
+
+/// code_aster's differential Dirichlet conditions (`nmdidi`, `vecdid`):
+/// the dualised conditions (and the eliminated ones, `vecdid_cine`) of a
+/// `TYPE_CHARGE='DIDI'` load hold on u − u₀, u₀ the displacement of the
+/// initial state (`ETAT_INIT`; zero without one): Σ cᵢ uᵢ = d·f(t) +
+/// Σ cᵢ u₀ᵢ, the shift not scaled by the multiplier.
+fn shift_didi(loads: &mut Loads, didi: &DidiItems, model: &Model, u0: Option<&[f64]>) {
+    let Some(u0) = u0 else { return };
+    let at = |dof: Dof| model.dofs().index(dof).map_or(0.0, |i| u0[i]);
+    for range in didi {
+        for item in &mut loads.items[range.clone()] {
+            let (shift, value) = match &mut item.load {
+                Load::Imposed { dof, value } | Load::Eliminated { dof, value } => (at(*dof), value),
+                Load::Relation { terms, rhs } => {
+                    (terms.iter().map(|(d, c)| c * at(*d)).sum::<f64>(), rhs)
+                }
+                _ => continue,
+            };
+            if shift == 0.0 {
+                continue;
+            }
+            let (d, m) = (*value, item.mult.clone());
+            *value = 1.0;
+            item.mult =
+                Multiplier::from_fn(move |t| Ok(d * m.eval(t).map_err(|e| e.to_string())? + shift));
+        }
+    }
+}
+
+fn build_loads(
+    setup: &SolveSetup,
+    mesh: &Mesh,
+    model: &Model,
+) -> Result<(Loads, DidiItems), ExecError> {
     let cuts = cut_instants(&setup.instants, setup.subdivision);
     let mut loads = Loads::new();
+    let mut didi = DidiItems::new();
     for exc in &setup.excitations {
+        if exc.kind == crate::solve::ChargeType::Suiv {
+            // `follower_loads`.
+            continue;
+        }
+        let first_item = loads.items.len();
         let m = multiplier(&exc.multiplier, &setup.instants, &cuts)?;
         match &exc.load {
             LoadRef::Kinematic(k) => {
@@ -955,6 +1057,19 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
                                 }
                             }
                         }
+                        BoundaryFn::Pressure { pressure, .. }
+                            if pressure
+                                .0
+                                .parameters()
+                                .iter()
+                                .any(|p| ["XF", "YF", "ZF"].contains(p))
+                                || (of_coordinates(pressure)
+                                    && pressure.0.parameters().contains(&"INST")) =>
+                        {
+                            return Err(ExecError::new(
+                                "not supported yet: a PRES_REP function of the current coordinates (XF, YF, ZF), or of both INST and the coordinates, in a load that is not TYPE_CHARGE='SUIV' (code_aster evaluates a dead pressure with XF = YF = ZF = 0; a dead distributed load takes functions of INST or of the coordinates here)".to_string(),
+                            ));
+                        }
                         BoundaryFn::Pressure { cells, pressure } if of_coordinates(pressure) => {
                             for &cell in cells {
                                 let points = Loads::skin_points(mesh, cell);
@@ -1051,6 +1166,9 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
                 }
             }
         }
+        if exc.kind == crate::solve::ChargeType::Didi {
+            didi.push(first_item..loads.items.len());
+        }
     }
     if let Some(temp) = &setup.materials.temperature {
         thermal_loads(
@@ -1062,7 +1180,7 @@ fn build_loads(setup: &SolveSetup, mesh: &Mesh, model: &Model) -> Result<Loads, 
             &setup.instants,
         )?;
     }
-    Ok(loads)
+    Ok((loads, didi))
 }
 
 /// `PESANTEUR` as volume forces ρ g d on its continuum cells, ρ the
@@ -1511,7 +1629,8 @@ pub fn solve(
         // code_aster's RIGI_MECA of the mixed elements (te0592 → nirmtd).
         model.set_mixed_rigi_meca(true);
     }
-    let mut loads = build_loads(setup, &mesh, &model)?;
+    let (mut loads, didi) = build_loads(setup, &mesh, &model)?;
+    let follower = follower_loads(setup, &model)?;
     let behaviours = build_behaviours(
         &mesh,
         &model,
@@ -1655,6 +1774,11 @@ pub fn solve(
         if let Some(j) = joints.as_mut() {
             forces.push(Box::new(j));
         }
+        if !follower.is_empty() {
+            forces.push(Box::new(aster_fem::follower::FollowerSource {
+                loads: &follower,
+            }));
+        }
         let initial = match &setup.initial {
             Some((prev, t0)) => {
                 let step = prev
@@ -1694,6 +1818,12 @@ pub fn solve(
                 ..Default::default()
             }),
         };
+        shift_didi(
+            &mut loads,
+            &didi,
+            &model,
+            initial.as_ref().map(|i| i.displacement.as_slice()),
+        );
         let mut snl = StaticNonLinear {
             instants: setup.instants.clone(),
             init_time: setup.instants.first().copied(),
@@ -1910,6 +2040,7 @@ pub fn solve(
         Rc::new(FemRun {
             model,
             loads,
+            follower,
             raw,
             plastic,
             behaviours,
@@ -2177,6 +2308,15 @@ pub fn calc_champ(
                         .map_err(|e| fem_err("CALC_CHAMP", e))?;
                     for (a, b) in r.iter_mut().zip(fext) {
                         *a -= b;
+                    }
+                    if !run.follower.is_empty() {
+                        let ff = run
+                            .follower
+                            .evaluate(model.mesh(), model.dofs(), u, raw.time, None)
+                            .map_err(|e| fem_err("CALC_CHAMP", e))?;
+                        for (a, b) in r.iter_mut().zip(ff) {
+                            *a -= b;
+                        }
                     }
                     Field::Nodal(nodal_from_dofs(model, &r))
                 }

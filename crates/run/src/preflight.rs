@@ -317,7 +317,7 @@ impl CallRefusals {
     /// loads in code_aster whatever the kinematics (te0094/te0017/te0305/
     /// te0018: the function is evaluated at the Gauss points of the
     /// initial geometry `PGEOMER` and integrated on it; only
-    /// `TYPE_CHARGE='SUIV'`, refused, would follow the body), as aster
+    /// `TYPE_CHARGE='SUIV'`, on pressures alone here, follows the body), as aster
     /// computes them: under GREEN_LAGRANGE they reproduce manufactured
     /// solutions to round-off (comm/largeload_quad8.comm,
     /// comm/largeload_blocks.comm). With a `DEFI_CONTACT` contact under

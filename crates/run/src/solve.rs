@@ -22,6 +22,22 @@ pub enum LoadRef {
 pub struct Excitation {
     pub load: LoadRef,
     pub multiplier: Option<Rc<Function>>,
+    /// `TYPE_CHARGE` (STAT_NON_LINE: `SUIV`, `DIDI`).
+    pub kind: ChargeType,
+}
+
+/// `EXCIT/TYPE_CHARGE`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ChargeType {
+    /// `FIXE_CSTE`: a dead load, imposed values as given.
+    #[default]
+    FixeCste,
+    /// `SUIV`: the pressures follow the current configuration
+    /// (`aster_fem::follower`).
+    Suiv,
+    /// `DIDI`: the dualised imposed values are relative to the
+    /// displacement of the initial state (code_aster's `nmdidi`, `vecdid`).
+    Didi,
 }
 
 /// `COMPORTEMENT/RELATION`, as far as supported.
@@ -279,9 +295,26 @@ pub(crate) const SNL_KEYWORDS: &[&str] = &[
     "OBSERVATION/SOUS_POINT",
 ];
 
-/// The values STAT_NON_LINE handles (also DYNA_NON_LINE's).
-pub(crate) const SNL_VALUES: &[Values] = &[
-    Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"]),
+/// The values DYNA_NON_LINE and MECA_NON_LINE handle (STAT_NON_LINE's
+/// but the follower and differential loads).
+pub(crate) const SNL_VALUES: &[Values] =
+    &crate::support::joined::<_, { SNL_COMMON_VALUES.len() + 1 }>(
+        &[Values::new("EXCIT/TYPE_CHARGE", &["FIXE_CSTE"])],
+        SNL_COMMON_VALUES,
+    );
+
+/// The values STAT_NON_LINE handles: `TYPE_CHARGE='SUIV'` on pressures
+/// (`aster_fem::follower`) and `'DIDI'` besides the common ones.
+const STAT_VALUES: &[Values] = &crate::support::joined::<_, { SNL_COMMON_VALUES.len() + 1 }>(
+    &[Values::new(
+        "EXCIT/TYPE_CHARGE",
+        &["FIXE_CSTE", "SUIV", "DIDI"],
+    )],
+    SNL_COMMON_VALUES,
+);
+
+/// The values STAT_NON_LINE, DYNA_NON_LINE and MECA_NON_LINE share.
+const SNL_COMMON_VALUES: &[Values] = &[
     crate::line_search::VALUES,
     // NEWTON_KRYLOV is Newton with inexact iterative linear solves: with
     // the direct solver here it is Newton.
@@ -335,7 +368,7 @@ pub(crate) const STAT_NON_LINE: Support = Support {
         SNL_KEYWORDS,
         SOUS_STRUC_KEYWORDS,
     ),
-    values: SNL_VALUES,
+    values: STAT_VALUES,
     hints: &[],
     reuse: true,
     rules: Some(snl_rules),
@@ -420,9 +453,114 @@ fn parse_excitations(
             Some(f) => Some(ex.function(f)?),
             None => None,
         };
-        out.push(Excitation { load, multiplier });
+        let kind = match occ.str("TYPE_CHARGE") {
+            Some("SUIV") => ChargeType::Suiv,
+            Some("DIDI") => ChargeType::Didi,
+            _ => ChargeType::FixeCste,
+        };
+        if kind != ChargeType::FixeCste {
+            check_charge_type(ex, cmd, occ, &load, kind)?;
+        }
+        if kind != ChargeType::Suiv {
+            check_dead_pressures(ex, cmd, occ, &load)?;
+        }
+        out.push(Excitation {
+            load,
+            multiplier,
+            kind,
+        });
     }
     Ok(out)
+}
+
+/// A dead load's pressures (`PRES_REP` of AFFE_CHAR_MECA_F) take
+/// functions of INST or of the initial coordinates, not of both, nor of
+/// the current coordinates `XF`, `YF`, `ZF`, which only a follower load
+/// knows (code_aster evaluates them as 0 in a dead load).
+fn check_dead_pressures(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    load: &LoadRef,
+) -> Result<(), ExecError> {
+    let LoadRef::Mechanical(l) = load else {
+        return Ok(());
+    };
+    for b in &l.boundary_fn {
+        let crate::concept::BoundaryFn::Pressure { pressure, .. } = b else {
+            continue;
+        };
+        let params = pressure.0.parameters();
+        let current = params.iter().any(|p| ["XF", "YF", "ZF"].contains(p));
+        let both = params.contains(&"INST") && params.iter().any(|p| ["X", "Y", "Z"].contains(p));
+        if current || both {
+            let span = occ.keyword("CHARGE").map(|k| k.span).unwrap_or_default();
+            return Err(ex.unsupported(
+                &format!(
+                    "{cmd}/EXCIT/CHARGE: a PRES_REP function of {} in a load that is not TYPE_CHARGE='SUIV' (a dead distributed load takes functions of INST or of X, Y, Z; XF, YF, ZF are the current coordinates of a follower load)",
+                    if current { "the current coordinates XF, YF, ZF" } else { "both INST and the coordinates" }
+                ),
+                span,
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// What `TYPE_CHARGE='SUIV'`/`'DIDI'` is executed on: STAT_NON_LINE
+/// only; a follower load made of pressures (`PRES_REP`) alone, constant
+/// or functions of INST and of the initial (`X`, `Y`, `Z`) or current
+/// (`XF`, `YF`, `ZF`) coordinates.
+fn check_charge_type(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    load: &LoadRef,
+    kind: ChargeType,
+) -> Result<(), ExecError> {
+    let value = if kind == ChargeType::Suiv {
+        "SUIV"
+    } else {
+        "DIDI"
+    };
+    let refuse = |why: &str| {
+        let span = occ
+            .keyword("TYPE_CHARGE")
+            .map(|k| k.span)
+            .unwrap_or_default();
+        Err(ex.unsupported(&format!("{cmd}/EXCIT/TYPE_CHARGE='{value}' {why}"), span))
+    };
+    if cmd != "STAT_NON_LINE" {
+        return refuse("outside STAT_NON_LINE (implemented for STAT_NON_LINE only)");
+    }
+    if kind == ChargeType::Didi {
+        return Ok(());
+    }
+    let LoadRef::Mechanical(l) = load else {
+        return refuse(
+            "on an AFFE_CHAR_CINE load (code_aster refuses it: a follower load is a force)",
+        );
+    };
+    let others = !l.imposed.is_empty()
+        || !l.relations.is_empty()
+        || !l.nodal_forces.is_empty()
+        || !l.volume.is_empty()
+        || !l.gravity.is_empty()
+        || !l.edges.is_empty()
+        || !l.shells.is_empty()
+        || !l.imposed_fn.is_empty()
+        || !l.nodal_forces_fn.is_empty()
+        || !l.relations_fn.is_empty()
+        || l.boundary
+            .iter()
+            .any(|b| !matches!(b, crate::concept::BoundaryLoad::Pressure { .. }))
+        || l.boundary_fn
+            .iter()
+            .any(|b| !matches!(b, crate::concept::BoundaryFn::Pressure { .. }));
+    if others {
+        return refuse("on a load with other things than PRES_REP (the follower load is implemented for pressures on continuum faces and edges: FORCE_COQUE, FORCE_FACE, PESANTEUR… are not)");
+    }
+    Ok(())
 }
 
 pub(crate) fn parse_setup(

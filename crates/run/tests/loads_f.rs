@@ -36,19 +36,25 @@ mesh = LIRE_MAILLAGE(FORMAT="ASTER")
 model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA=("PLATE", "RIGHT"), PHENOMENE="MECANIQUE", MODELISATION="C_PLAN"))
 p = FORMULE(NOM_PARA=("X", "INST"), VALE="10.0 * X * INST")
 load = AFFE_CHAR_MECA_F(MODELE=model, PRES_REP=_F(GROUP_MA="RIGHT", PRES=p))
+mat = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3))
+chmat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", MATER=mat))
+times = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A=1.0, NOMBRE=1))
+resu = STAT_NON_LINE(MODELE=model, CHAM_MATER=chmat, EXCIT=_F(CHARGE=load), COMPORTEMENT=_F(RELATION="ELAS"), INCREMENT=_F(LIST_INST=times))
 FIN()
 "#,
     )
     .unwrap();
+    // Defined, it may serve a follower load (TYPE_CHARGE='SUIV' evaluates
+    // it at each point and time); a dead load refuses it where it is used.
     let outcome = run(&comm, "pres");
     let err = outcome.error.expect("refused").message;
     assert!(
         err.contains(
-            "not supported yet: AFFE_CHAR_MECA_F/PRES_REP/PRES as a function of both INST and X"
+            "not supported yet: STAT_NON_LINE/EXCIT/CHARGE: a PRES_REP function of both INST and the coordinates"
         ),
         "{err}"
     );
-    assert!(err.contains("pres_x.comm:5:"), "{err}");
+    assert!(err.contains("pres_x.comm:9:"), "{err}");
     let _ = std::fs::remove_dir_all(dir);
 }
 

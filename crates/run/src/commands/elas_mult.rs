@@ -309,6 +309,7 @@ pub fn macro_elas_mult(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
         .map(|l| Excitation {
             load: LoadRef::Mechanical(l.clone()),
             multiplier: None,
+            kind: Default::default(),
         })
         .collect();
     for (i, case) in cases.iter().enumerate() {
@@ -316,6 +317,7 @@ pub fn macro_elas_mult(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
             setup.excitations.push(Excitation {
                 load: LoadRef::Mechanical(l.clone()),
                 multiplier: Some(case_selector(i + 1)),
+                kind: Default::default(),
             });
         }
     }

@@ -25,6 +25,20 @@ pub(super) fn function_at(
     occ: &Keywords,
     key: &str,
 ) -> Result<Option<LoadFunction>, ExecError> {
+    function_of(ex, cmd, occ, key, &[])
+}
+
+/// [`function_at`], the parameters `extra` allowed besides INST, X, Y, Z
+/// (a pressure may depend on the current coordinates XF, YF, ZF, which
+/// only a follower load, `TYPE_CHARGE='SUIV'`, knows:
+/// `evalPressureSetFuncPara`).
+fn function_of(
+    ex: &Executor,
+    cmd: &str,
+    occ: &Keywords,
+    key: &str,
+    extra: &[&str],
+) -> Result<Option<LoadFunction>, ExecError> {
     let Some(s) = occ.first(key) else {
         return Ok(None);
     };
@@ -38,7 +52,7 @@ pub(super) fn function_at(
     })?;
     let f = ex.function(c)?;
     for p in f.parameters() {
-        if !["INST", "X", "Y", "Z"].contains(&p) {
+        if !["INST", "X", "Y", "Z"].contains(&p) && !extra.contains(&p) {
             return Err(ex.kw_error(
                 cmd,
                 occ,
@@ -277,7 +291,10 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
         let what = "AFFE_CHAR_MECA_F/PRES_REP";
         let cells =
             select::cells(occ, &mesh, "").map_err(|e| ExecError::new(format!("{what}: {e}")))?;
-        let pressure = time_function(ex, what, occ, "PRES")?
+        // A function of both INST and the coordinates is refused where a
+        // dead load uses it (`fembridge::build_loads`): a follower load
+        // evaluates it at each point and time.
+        let pressure = function_of(ex, what, occ, "PRES", &["XF", "YF", "ZF"])?
             .ok_or_else(|| ex.kw_error(what, occ, "PRES", "a pressure function is required"))?;
         load.boundary_fn
             .push(BoundaryFn::Pressure { cells, pressure });

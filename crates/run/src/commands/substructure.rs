@@ -405,6 +405,7 @@ pub(crate) fn expand(
                 excitations.push(Excitation {
                     load: l.clone(),
                     multiplier: multiplier.clone(),
+                    kind: Default::default(),
                 });
             }
             used.push((s.name.clone(), lc.loads.clone()));
@@ -428,6 +429,7 @@ pub(crate) fn expand(
                 excitations.push(Excitation {
                     load: d.clone(),
                     multiplier: Some(zero.clone()),
+                    kind: Default::default(),
                 });
             }
         }
