@@ -411,10 +411,12 @@ fn layered_sigm_elno(
 ) -> Result<CellValues, FemError> {
     let plies = layered.laminate.layers.len();
     let ply = level.layer as usize;
-    let at = match level.position {
-        p if p == 0.0 => -1,
-        p if p == 1.0 => 1,
-        _ => 0,
+    let at = if level.position <= 0.0 {
+        -1
+    } else if level.position >= 1.0 {
+        1
+    } else {
+        0
     };
     let data = (ply >= 1)
         .then(|| layered.ply_level(ply - 1, at))
