@@ -78,10 +78,10 @@ fn one_ply_is_the_homogeneous_plate() {
         [a * nu, a, 0.],
         [0., 0., a * (1. - nu) / 2.],
     ];
-    for i in 0..3 {
-        for j in 0..3 {
-            assert!((l.dm[i][j] - expect[i][j]).abs() < 1e-9 * a, "A{i}{j}");
-            let dij = expect[i][j] * h * h / 12.;
+    for (i, row) in expect.iter().enumerate() {
+        for (j, &e) in row.iter().enumerate() {
+            assert!((l.dm[i][j] - e).abs() < 1e-9 * a, "A{i}{j}");
+            let dij = e * h * h / 12.;
             assert!((l.df[i][j] - dij).abs() < 1e-9 * a * h * h, "D{i}{j}");
         }
     }
