@@ -40,7 +40,7 @@ use aster_mesh::CellType;
 use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
 
 /// Thin-shell section of `CARA_ELEM/COQUE`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ShellSection {
     /// `EPAIS`.
     pub thickness: f64,
@@ -49,6 +49,10 @@ pub struct ShellSection {
     /// `INER_ROTA='OUI'`: the mass has the rotary inertia ρh³/12 ∫ β·β
     /// (`dktnib`, `dkqnib`); the stiffness does not depend on it.
     pub rotary_inertia: bool,
+    /// A stack of plies (`DEFI_COMPOSITE`) in this facet's frame: its
+    /// matrices replace the homogeneous isotropic ones of the material
+    /// ([`crate::laminate`]); `thickness` is then the stack's.
+    pub layered: Option<std::sync::Arc<crate::laminate::LayeredSection>>,
 }
 
 impl ShellSection {
@@ -59,6 +63,7 @@ impl ShellSection {
             thickness,
             drilling: 1e-5,
             rotary_inertia: false,
+            layered: None,
         }
     }
 
@@ -207,6 +212,36 @@ impl Facet {
     fn shear(&self, df: &[[f64; 3]; 3]) -> [[f64; 9]; 2] {
         let c = &self.c;
         let hft2 = hft2(df, [c[8], c[9], c[10], c[11]]);
+        let tkt = self.tkt();
+        let mut bc = [[0.; 9]; 2];
+        for i in 0..2 {
+            for j in 0..9 {
+                for k in 0..6 {
+                    bc[i][j] += hft2[i][k] * tkt[k][j];
+                }
+            }
+        }
+        bc
+    }
+
+    /// The moments' derivatives λ (`dsxhlt` then `dktlxy`) from the
+    /// bending unknowns `ub`, constant over the facet: what the shear
+    /// stresses by ply of a layered section add (`dktsie`).
+    pub(crate) fn moment_derivatives(&self, df: &[[f64; 3]; 3], ub: &[f64]) -> [f64; 4] {
+        let c = &self.c;
+        let hlt2 = crate::laminate::dsxhlt(df, [c[8], c[9], c[10], c[11]]);
+        let tkt = self.tkt();
+        std::array::from_fn(|i| {
+            (0..9)
+                .map(|j| (0..6).map(|k| hlt2[i][k] * tkt[k][j]).sum::<f64>() * ub[j])
+                .sum()
+        })
+    }
+
+    /// `dkttxy`'s and `dktlxy`'s TKT: the third derivatives of w on the
+    /// bending unknowns.
+    fn tkt(&self) -> [[f64; 9]; 6] {
+        let c = &self.c;
         // codi = (c4 c5 c6 s4 s5 s6), lcot = (l4 l5 l6).
         let mut cl = [0.; 3];
         let mut sl = [0.; 3];
@@ -289,15 +324,7 @@ impl Facet {
                 su[2] - su[1],
             ],
         ];
-        let mut bc = [[0.; 9]; 2];
-        for i in 0..2 {
-            for j in 0..9 {
-                for k in 0..6 {
-                    bc[i][j] += hft2[i][k] * tkt[k][j];
-                }
-            }
-        }
-        bc
+        tkt
     }
 }
 
@@ -385,6 +412,9 @@ pub(crate) fn section_matrices(
     material: &Elastic,
     section: &ShellSection,
 ) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
+    if let Some(l) = &section.layered {
+        return (l.dm, l.df);
+    }
     let (e, nu, h) = (material.e, material.nu, section.thickness);
     let a = e * h / (1. - nu * nu);
     let dm = [
@@ -807,8 +837,7 @@ impl Generalised {
                 [n[0], n[1], n[2], m[0], m[1], m[2], q[0], q[1]]
             }
             Generalised::Strains => {
-                let g = material.e / 2. / (1. + material.nu);
-                let dci = 1. / (g * (5. / 6.) * section.thickness);
+                let dci = crate::dst::shear_compliance(material, section);
                 [
                     eps[0],
                     eps[1],
@@ -816,10 +845,25 @@ impl Generalised {
                     kappa[0],
                     kappa[1],
                     kappa[2] / 2.,
-                    dci * q[0] / 2.,
-                    dci * q[1] / 2.,
+                    (dci[0][0] * q[0] + dci[0][1] * q[1]) / 2.,
+                    (dci[1][0] * q[0] + dci[1][1] * q[1]) / 2.,
                 ]
             }
         }
     }
+}
+
+/// The moments' derivatives λ of a DKT triangle at `xyz` (constant),
+/// for the shear stresses by ply of a layered section (`dktsie`).
+pub(crate) fn moment_derivatives(
+    xyz: &[[f64; 3]; 3],
+    material: &Elastic,
+    section: &ShellSection,
+    u: &[f64],
+) -> Result<[f64; 4], String> {
+    let facet = Facet::new(xyz)?;
+    let ul = rotation(&facet) * SMatrix::<f64, 18, 1>::from_column_slice(u);
+    let (_, df) = section_matrices(material, section);
+    let (_, ub) = split_unknowns(ul.as_slice());
+    Ok(facet.moment_derivatives(&df, &ub))
 }

@@ -39,8 +39,12 @@ use crate::material::Elastic;
 use nalgebra::{Matrix3, Matrix4};
 
 /// The shear compliance Dc⁻¹ (`dxmate`'s `dci`) of a homogeneous
-/// isotropic section: 1/(5/6·G·h) on the diagonal.
+/// isotropic section: 1/(5/6·G·h) on the diagonal; a layered one's
+/// ([`crate::laminate`]).
 pub(crate) fn shear_compliance(material: &Elastic, section: &ShellSection) -> [[f64; 2]; 2] {
+    if let Some(l) = &section.layered {
+        return l.dci;
+    }
     let g = material.e / 2. / (1. + material.nu);
     let c = 1. / (g * (5. / 6.) * section.thickness);
     [[c, 0.], [0., c]]
@@ -700,4 +704,115 @@ pub fn mass(
         }
         _ => Err(format!("no DST element on a cell of {} nodes", xyz.len())),
     }
+}
+
+/// `hlt2·ta` on the side unknowns α (`an`·u) and `hlt2·tb` on the nodal
+/// unknowns: the 4 derivatives λ of the moments (`dstlxy`, `dsqlxy`).
+fn lambda_of<const S: usize, const N: usize>(
+    hlt2: &[[f64; 6]; 4],
+    ta: &[[f64; S]; 6],
+    tb: &[[f64; N]; 6],
+    an: &[[f64; N]; S],
+    ub: &[f64],
+) -> [f64; 4] {
+    std::array::from_fn(|i| {
+        (0..N)
+            .map(|j| {
+                let blb: f64 = (0..6).map(|k| hlt2[i][k] * tb[k][j]).sum();
+                let bln: f64 = (0..S)
+                    .map(|l| (0..6).map(|k| hlt2[i][k] * ta[k][l]).sum::<f64>() * an[l][j])
+                    .sum();
+                (blb + bln) * ub[j]
+            })
+            .sum()
+    })
+}
+
+/// The moments' derivatives λ at `points` (ξ, η) of a DST triangle
+/// (`dsxhlt` + `dstlxy`: constant on the cell) or a DSQ quadrangle
+/// (`dsxhlt` at the point + `dsqlxy`), with the facet's shear forces
+/// (QX, QY) there: what the shear stresses by ply of a layered section
+/// add to the d1i·Q of a homogeneous one (`dstsie`, `dsqsie`).
+pub(crate) fn moment_derivatives(
+    xyz: &[[f64; 3]],
+    material: &Elastic,
+    section: &ShellSection,
+    u: &[f64],
+    points: &[[f64; 2]],
+) -> Result<Vec<[f64; 4]>, String> {
+    let (_, df) = section_matrices(material, section);
+    let dci = shear_compliance(material, section);
+    match xyz {
+        [a, b, c] => {
+            let facet = Facet::new(&[*a, *b, *c])?;
+            let ul =
+                crate::dkt::rotation(&facet) * nalgebra::SVector::<f64, 18>::from_column_slice(u);
+            let (_, ub) = split_unknowns(ul.as_slice());
+            let shear = dstcis(&facet.c, &df, &dci)?;
+            let k = &facet.c;
+            let hlt2 = crate::laminate::dsxhlt(&df, [k[8], k[9], k[10], k[11]]);
+            let (co, si) = ([k[15], k[16], k[17]], [k[18], k[19], k[20]]);
+            let mut ta = [[0.; 3]; 6];
+            ta[0][0] = -8. * co[0];
+            ta[1][2] = -8. * co[2];
+            ta[2][0] = -4. * co[0];
+            ta[2][1] = 4. * co[1];
+            ta[2][2] = -4. * co[2];
+            ta[3][0] = -8. * si[0];
+            ta[4][2] = -8. * si[2];
+            ta[5][0] = -4. * si[0];
+            ta[5][1] = 4. * si[1];
+            ta[5][2] = -4. * si[2];
+            let lambda = lambda_of(&hlt2, &ta, &[[0.; 9]; 6], &shear.an, &ub);
+            Ok(vec![lambda; points.len()])
+        }
+        [a, b, c, d] => {
+            let quad = Quad::new(&[*a, *b, *c, *d])?;
+            let ul =
+                crate::dkq::rotation(&quad) * nalgebra::SVector::<f64, 24>::from_column_slice(u);
+            let (_, ub) = split_unknowns(ul.as_slice());
+            let an = dsqdis(&quad, &df, &dci)?;
+            let k = &quad.c;
+            let (co, si) = ([k[12], k[13], k[14], k[15]], [k[16], k[17], k[18], k[19]]);
+            Ok(points
+                .iter()
+                .map(|p| {
+                    let (qsi, eta) = (p[0], p[1]);
+                    let (_, vj) = quad.jacobian(qsi, eta);
+                    let hlt2 = crate::laminate::dsxhlt(&df, vj);
+                    let (peta, meta, pqsi, mqsi) = (1. + eta, 1. - eta, 1. + qsi, 1. - qsi);
+                    let mut ta = [[0.; 4]; 6];
+                    ta[0][0] = -meta * co[0];
+                    ta[0][2] = -peta * co[2];
+                    ta[1][1] = -pqsi * co[1];
+                    ta[1][3] = -mqsi * co[3];
+                    ta[2][0] = qsi * co[0];
+                    ta[2][1] = -eta * co[1];
+                    ta[2][2] = -qsi * co[2];
+                    ta[2][3] = eta * co[3];
+                    ta[3][0] = -meta * si[0];
+                    ta[3][2] = -peta * si[2];
+                    ta[4][1] = -pqsi * si[1];
+                    ta[4][3] = -mqsi * si[3];
+                    ta[5][0] = qsi * si[0];
+                    ta[5][1] = -eta * si[1];
+                    ta[5][2] = -qsi * si[2];
+                    ta[5][3] = eta * si[3];
+                    lambda_of(&hlt2, &ta, &quad_tb(), &an, &ub)
+                })
+                .collect())
+        }
+        _ => Err(format!("no DST element on a cell of {} nodes", xyz.len())),
+    }
+}
+
+/// `dsqlxy`'s and `q4glxy`'s `tb`: the nodal rotations' part of the
+/// curvature derivatives on a quadrangle.
+pub(crate) fn quad_tb() -> [[f64; 12]; 6] {
+    let mut tb = [[0.; 12]; 6];
+    for (j, v) in [(1, 0.25), (4, -0.25), (7, 0.25), (10, -0.25)] {
+        tb[2][j] = v;
+        tb[5][j + 1] = v;
+    }
+    tb
 }

@@ -38,6 +38,7 @@ mod held;
 pub mod hexs8;
 pub mod inertia;
 pub mod joint;
+pub mod laminate;
 pub mod linalg;
 pub mod line_search;
 pub mod loads;

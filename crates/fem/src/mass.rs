@@ -887,7 +887,7 @@ mod tests {
         let sec = crate::dkt::ShellSection::new(h);
         let kind = ElementKind::Shell {
             material: Elastic::new(7e10, 0.3).unwrap(),
-            section: sec,
+            section: sec.clone(),
             theory: crate::plate::PlateTheory::Dkt,
         };
         let model = structural(CellType::QUAD4, xyz.to_vec(), kind);

@@ -1571,7 +1571,15 @@ fn newton_step(
             let converged_resi = if linear {
                 // MECA_STATIQUE: the solve is the answer (its accuracy is
                 // checked by the solver); a residual against a load that is
-                // zero up to round-off means nothing.
+                // zero up to round-off means nothing. A solve that leaves
+                // the equilibrium unmet (redundant conditions whose
+                // reactions blow up, ssls503c) is not an answer.
+                let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                if reference > 0. && resi_rela > 1e-6 && resi_maxi > 1e-6 * kdiag_max * umax {
+                    return Err(FemError::Model(format!(
+                        "the linear solve leaves the equilibrium unmet (RESI_GLOB_RELA = {resi_rela:.3e}, RESI_GLOB_MAXI = {resi_maxi:.3e}): the stiffness with its kinematic conditions is singular or the conditions are redundant"
+                    )));
+                }
                 true
             } else if swapped {
                 resi_maxi <= loads_seen.last_resi_maxi.unwrap_or(0.0)

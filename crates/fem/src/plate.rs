@@ -51,6 +51,36 @@ fn check_nodes(theory: PlateTheory, xyz: &[[f64; 3]]) -> Result<(), String> {
     }
 }
 
+/// The frame `pgl` (rows x, y, z) of a facet with nodes at `xyz` (3 or 4):
+/// `dxtpgl` on a triangle, `dxqpgl` on a quadrangle.
+pub fn frame(xyz: &[[f64; 3]]) -> Result<Matrix3<f64>, String> {
+    match xyz {
+        [a, b, c] => Ok(crate::dkt::Facet::new(&[*a, *b, *c])?.pgl),
+        [a, b, c, d] => Ok(crate::dkq::Quad::new(&[*a, *b, *c, *d])?.pgl),
+        _ => Err("a plate facet has 3 or 4 nodes".into()),
+    }
+}
+
+/// The section of a facet at `xyz` made of the plies of `laminate`
+/// ([`crate::laminate`]), whose reference direction is `direction`
+/// (`ANGL_REP`/`VECTEUR`): `base` with the stack's matrices in the facet's
+/// frame and its total thickness.
+pub fn layered_section(
+    xyz: &[[f64; 3]],
+    base: &ShellSection,
+    laminate: std::sync::Arc<crate::laminate::Laminate>,
+    direction: [f64; 3],
+) -> Result<ShellSection, String> {
+    let pgl = frame(xyz)?;
+    let thickness = laminate.thickness;
+    let layered = crate::laminate::LayeredSection::new(laminate, &pgl, direction)?;
+    Ok(ShellSection {
+        thickness,
+        layered: Some(std::sync::Arc::new(layered)),
+        ..base.clone()
+    })
+}
+
 /// The global stiffness (node-major DX DY DZ DRX DRY DRZ) of a facet with
 /// nodes at `xyz` (3 or 4).
 pub fn stiffness(

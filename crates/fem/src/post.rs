@@ -320,11 +320,24 @@ pub fn shell_sigm_elno(
     let mut out = Vec::with_capacity(efforts.len());
     for cv in efforts {
         let Some(ElementKind::Shell {
-            section, theory, ..
+            material,
+            section,
+            theory,
         }) = model.element_kind(cv.cell)
         else {
             continue;
         };
+        if let Some(layered) = &section.layered {
+            out.push(layered_sigm_elno(
+                model,
+                cv.cell,
+                u,
+                (material, section, *theory),
+                layered,
+                level,
+            )?);
+            continue;
+        }
         let shear = theory.has_shear_strain();
         let n = layers(cv.cell).max(1);
         if level.layer == 0 || level.layer > n {
@@ -372,6 +385,156 @@ pub fn shell_sigm_elno(
     }
     out.extend(coque3d_sigm_elno_at(model, u, direction, level)?);
     Ok(out)
+}
+
+/// The stresses SIXX SIYY SIZZ SIXY of a layered facet ([`crate::laminate`])
+/// at one level of one of its plies, at its nodes, in its efforts' frame:
+/// `dktsie`/`dstsie` with `dxdmul` — the ply's stiffness in the facet's
+/// frame times the strain ε + z κ at the level's height z, at the RIGI
+/// points, turned to the user's frame and extrapolated to the nodes as the
+/// homogeneous plate's. The transverse shears by ply SIXZ SIYZ are
+/// `dxdmul`'s d1i·Q + d2i·λ with the moments' derivatives λ
+/// ([`crate::dst::moment_derivatives`] on the DST and DSQ facets, `dktlxy`
+/// on the DKT triangle, `q4glxy` on the Q4γ quadrangle, none on the T3γ
+/// triangle: `t3gsie`'s d1i·Q); the DKQ plies give none here.
+fn layered_sigm_elno(
+    model: &Model,
+    cell: CellId,
+    u: &[f64],
+    (material, section, theory): (
+        &crate::material::Elastic,
+        &crate::dkt::ShellSection,
+        crate::plate::PlateTheory,
+    ),
+    layered: &crate::laminate::LayeredSection,
+    level: ShellLevel,
+) -> Result<CellValues, FemError> {
+    let plies = layered.laminate.layers.len();
+    let ply = level.layer as usize;
+    let at = if level.position <= 0.0 {
+        -1
+    } else if level.position >= 1.0 {
+        1
+    } else {
+        0
+    };
+    let data = (ply >= 1)
+        .then(|| layered.ply_level(ply - 1, at))
+        .flatten()
+        .ok_or_else(|| {
+            cell_error(
+                model,
+                cell,
+                format!("layer {ply} asked of a composite of {plies} layer(s) (DEFI_COMPOSITE)"),
+            )
+        })?;
+    let c = model.mesh().cell(cell);
+    let xyz: Vec<[f64; 3]> = c.nodes.iter().map(|&n| model.mesh().coord(n)).collect();
+    let dofs = element_dofs(model, cell);
+    let ue: Vec<f64> = dofs.iter().map(|&i| u[i]).collect();
+    let scheme = crate::plate::rigi_scheme(theory, c.ty);
+    let points: Vec<[f64; 2]> = scheme.iter().map(|g| [g.xi[0], g.xi[1]]).collect();
+    let (_, strains) = crate::plate::generalised_at(
+        theory,
+        &xyz,
+        material,
+        section,
+        &ue,
+        &points,
+        crate::dkt::Generalised::Strains,
+    )
+    .map_err(|m| cell_error(model, cell, m))?;
+    // The transverse shears by ply: d1i·Q + d2i·λ (DST, DSQ, the DKT
+    // triangle, the Q4γ quadrangle).
+    use crate::plate::PlateTheory;
+    let lambda: Option<Vec<[f64; 4]>> = match (theory, xyz.as_slice()) {
+        (PlateTheory::Dst, _) => Some(
+            crate::dst::moment_derivatives(&xyz, material, section, &ue, &points)
+                .map_err(|m| cell_error(model, cell, m))?,
+        ),
+        (PlateTheory::Dkt, [a, b, c]) => {
+            let l = crate::dkt::moment_derivatives(&[*a, *b, *c], material, section, &ue)
+                .map_err(|m| cell_error(model, cell, m))?;
+            Some(vec![l; points.len()])
+        }
+        // `t3gsie`: d1i·Q alone.
+        (PlateTheory::Q4g, [_, _, _]) => Some(vec![[0.0; 4]; points.len()]),
+        (PlateTheory::Q4g, [a, b, c, d]) => Some(
+            crate::q4g::moment_derivatives(&[*a, *b, *c, *d], material, section, &ue, &points)
+                .map_err(|m| cell_error(model, cell, m))?,
+        ),
+        _ => None,
+    };
+    let shear = match lambda {
+        Some(lambda) => {
+            let (_, efforts) = crate::plate::generalised_at(
+                theory,
+                &xyz,
+                material,
+                section,
+                &ue,
+                &points,
+                crate::dkt::Generalised::Efforts,
+            )
+            .map_err(|m| cell_error(model, cell, m))?;
+            Some(
+                efforts
+                    .iter()
+                    .zip(&lambda)
+                    .map(|(e, l)| {
+                        let v = [e[6], e[7]];
+                        let t: [f64; 2] = std::array::from_fn(|i| {
+                            (0..2).map(|j| data.d1i[i][j] * v[j]).sum::<f64>()
+                                + (0..4).map(|j| data.d2i[i][j] * l[j]).sum::<f64>()
+                        });
+                        t
+                    })
+                    .collect::<Vec<_>>(),
+            )
+        }
+        _ => None,
+    };
+    let (cs, sn) = layered.cos_sin;
+    let gauss: Vec<Vec<f64>> = strains
+        .iter()
+        .enumerate()
+        .map(|(p, g)| {
+            let eps = [
+                g[0] + data.z * g[3],
+                g[1] + data.z * g[4],
+                2. * (g[2] + data.z * g[5]),
+            ];
+            let sig: [f64; 3] =
+                std::array::from_fn(|i| (0..3).map(|j| data.h[i][j] * eps[j]).sum());
+            let (xx, yy, xy) = (sig[0], sig[1], sig[2]);
+            let mut v = vec![
+                cs * cs * xx + sn * sn * yy + 2. * cs * sn * xy,
+                sn * sn * xx + cs * cs * yy - 2. * cs * sn * xy,
+                0.0,
+                -cs * sn * xx + cs * sn * yy + (cs * cs - sn * sn) * xy,
+            ];
+            if let Some(t) = &shear {
+                let [qx, qy] = t[p];
+                v.extend([cs * qx + sn * qy, -sn * qx + cs * qy]);
+            }
+            v
+        })
+        .collect();
+    let ncomp = if shear.is_some() { 6 } else { 4 };
+    let e = extrapolation(c.ty, &scheme);
+    let nodes = (0..c.ty.node_count())
+        .map(|node| {
+            (0..ncomp)
+                .map(|k| (0..gauss.len()).map(|p| e[(node, p)] * gauss[p][k]).sum())
+                .collect()
+        })
+        .collect();
+    let names = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
+    Ok(CellValues {
+        cell,
+        names: names[..ncomp].to_vec(),
+        points: nodes,
+    })
 }
 
 /// `SIGM_ELNO` of the COQUE_3D cells at one sub-point (layer `layer`,

@@ -32,6 +32,9 @@ use nalgebra::Matrix3;
 
 /// The shear stiffness Dc = 5/6·G·h·I (`dxmate`'s `dc`).
 fn shear_stiffness(material: &Elastic, section: &ShellSection) -> [[f64; 2]; 2] {
+    if let Some(l) = &section.layered {
+        return l.dc;
+    }
     let c = 1. / shear_compliance(material, section)[0][0];
     [[c, 0.], [0., c]]
 }
@@ -287,4 +290,33 @@ pub fn quad_mass(
         nalgebra::DMatrix::from_column_slice(24, 24, m.as_slice()),
         quad.c[20] * rho * section.thickness,
     ))
+}
+
+/// The moments' derivatives λ at `points` of a Q4γ quadrangle (`dsxhlt`
+/// at the point, `q4glxy`: the nodal rotations' part only), for the shear
+/// stresses by ply of a layered section (`q4gsie`).
+pub(crate) fn moment_derivatives(
+    xyz: &[[f64; 3]; 4],
+    material: &Elastic,
+    section: &ShellSection,
+    u: &[f64],
+    points: &[[f64; 2]],
+) -> Result<Vec<[f64; 4]>, String> {
+    let (_, df) = section_matrices(material, section);
+    let quad = Quad::new(xyz)?;
+    let ul = crate::dkq::rotation(&quad) * nalgebra::SVector::<f64, 24>::from_column_slice(u);
+    let (_, ub) = split_unknowns(ul.as_slice());
+    let tb = crate::dst::quad_tb();
+    Ok(points
+        .iter()
+        .map(|p| {
+            let (_, vj) = quad.jacobian(p[0], p[1]);
+            let hlt2 = crate::laminate::dsxhlt(&df, vj);
+            std::array::from_fn(|i| {
+                (0..12)
+                    .map(|j| (0..6).map(|k| hlt2[i][k] * tb[k][j]).sum::<f64>() * ub[j])
+                    .sum()
+            })
+        })
+        .collect())
 }

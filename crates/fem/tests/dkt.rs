@@ -174,6 +174,7 @@ fn rigid_motions_are_stress_free() {
         thickness: 0.02,
         drilling: 0.,
         rotary_inertia: false,
+        layered: None,
     };
     let xyz = [[0.1, 0.2, -0.3], [1.3, 0.4, 0.2], [0.5, 1.1, 0.6]];
     let k = dkt::stiffness(&xyz, &mat, &sec).unwrap();
@@ -208,6 +209,7 @@ fn rigid_motions_are_stress_free() {
             thickness: 0.02,
             drilling,
             rotary_inertia: false,
+            layered: None,
         };
         let k = dkt::stiffness(&xyz, &mat, &sec).unwrap();
         let eig = k.symmetric_eigen().eigenvalues;
@@ -228,6 +230,7 @@ fn drilling_spring_is_code_aster_fraction_of_the_bending_rotations() {
             thickness: 0.1,
             drilling: 0.,
             rotary_inertia: false,
+            layered: None,
         },
     )
     .unwrap();
@@ -563,6 +566,7 @@ fn quadrangle_rigid_motions_are_stress_free() {
             thickness: 0.02,
             drilling,
             rotary_inertia: false,
+            layered: None,
         };
         let k = dkq::stiffness(&xyz, &mat, &sec).unwrap();
         assert!((&k - k.transpose()).amax() < 1e-12 * scale);
@@ -672,6 +676,7 @@ fn quadrangle_errors_and_warping() {
         thickness: 0.1,
         drilling: -1e-5,
         rotary_inertia: false,
+        layered: None,
     };
     let err = dkq::stiffness(&flat, &mat, &negative).unwrap_err();
     assert!(err.contains("COEF_RIGI_DRZ"), "{err}");

@@ -63,7 +63,7 @@ fn stiffness_is_symmetric_and_rigid_motions_are_free() {
     // free.
     let free = ShellSection {
         drilling: 0.,
-        ..sec
+        ..sec.clone()
     };
     for theory in THEORIES {
         for local in cells() {

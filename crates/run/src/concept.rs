@@ -311,6 +311,10 @@ pub struct Material {
     /// are NaN); its frame (`angles`) is the cells' AFFE_CARA_ELEM/MASSIF
     /// one, set by the model.
     pub orthotropic: Option<aster_fem::orthotropic::Orthotropic>,
+    /// `DEFI_COMPOSITE`: a stack of `ELAS_ORTH` plies, homogenised
+    /// (code_aster's `ELAS_COQMU`), for the plate cells only (then `young`
+    /// and `poisson` are NaN; `density` is the stack's).
+    pub composite: Option<std::sync::Arc<aster_fem::laminate::Laminate>>,
     /// `ELAS_FO=_F(…)` in place of `ELAS`: the functions, resolved per cell
     /// by AFFE_MATERIAU ([`crate::elas_fo`]); `young`, `poisson`,
     /// `density` and `alpha` hold their values when they are constants.

@@ -140,7 +140,7 @@ pub fn build_model(
     if let Some(c) = cara {
         for s in &c.shells {
             for &cell in &s.cells {
-                shells.insert(cell, s.section);
+                shells.insert(cell, s.section.clone());
                 coque3d.insert(cell, s.coque3d_section());
             }
         }
@@ -187,6 +187,12 @@ pub fn build_model(
         if let Some(why) = &mat.unresolved {
             return Err(ExecError::new(why.clone()));
         }
+        if mat.composite.is_some() {
+            return Err(ExecError::new(format!(
+                "the material of cell {} is a DEFI_COMPOSITE: it applies to the plate cells (DKT, DST, Q4G) only",
+                crate::select::cell_name(mesh, cell)
+            )));
+        }
         if let Some(o) = mat.orthotropic {
             let angles = frames.get(&cell).copied().unwrap_or([0.0; 3]);
             return Elastic::orthotropic(aster_fem::orthotropic::Orthotropic { angles, ..o })
@@ -203,17 +209,22 @@ pub fn build_model(
     for (&cell, &m) in &model.cells {
         let ty = mesh.cell(cell).ty;
         if let Modelisation::Plate(theory) = m {
-            let section = shells.get(&cell).copied().ok_or_else(|| {
+            let section = shells.get(&cell).cloned().ok_or_else(|| {
                 ExecError::new(format!(
                     "cell {} carries a {} shell element but no section: give AFFE_CARA_ELEM/COQUE with EPAIS (and CARA_ELEM to the solver)",
                     crate::select::cell_name(mesh, cell),
                     theory.name()
                 ))
             })?;
+            let (material, section) =
+                match crate::commands::composite::layered(mesh, cell, materials, cara, &section)? {
+                    Some(layered) => layered,
+                    None => (material_of(cell)?, section),
+                };
             elements.push(Element {
                 cell,
                 kind: ElementKind::Shell {
-                    material: material_of(cell)?,
+                    material,
                     section,
                     theory,
                 },

@@ -82,6 +82,7 @@ pub(crate) fn shells(
     mesh: &Mesh,
 ) -> Result<Vec<ShellCara>, ExecError> {
     let mut out = Vec::new();
+    let mut empty: Option<ExecError> = None;
     for occ in kw.factor("COQUE") {
         let err = |key: &str, m: String| ex.kw_error("AFFE_CARA_ELEM", occ, key, m);
         let Some(thickness) = occ.f64("EPAIS") else {
@@ -157,12 +158,16 @@ pub(crate) fn shells(
             .collect();
         if cells.is_empty() {
             if let Some(bad) = select::misfit(mesh, &given, |c| is_shell(c.ty)) {
-                return Err(err(
+                // An occurrence on edges only beside ones on shells reads
+                // nothing (ssls504a gives EPAIS on its SEG2 sides too); on
+                // its own it is an error.
+                empty.get_or_insert(err(
                     "GROUP_MA",
                     format!(
                         "COQUE applies to the DKT cells (TRIA3, QUAD4) and the COQUE_3D cells (QUAD9, TRIA7), but none is given: {bad}"
                     ),
                 ));
+                continue;
             }
         }
         let shear_factor = occ
@@ -182,11 +187,15 @@ pub(crate) fn shells(
                 // INER_ROTA='OUI' (its only value): the rotary inertia of
                 // the DKT masses (`dktmas`, `dkqmas`); no effect on stiffness.
                 rotary_inertia: occ.str("INER_ROTA") == Some("OUI"),
+                layered: None,
             },
             direction,
             layers,
             shear_factor,
         });
     }
-    Ok(out)
+    match empty {
+        Some(e) if out.iter().all(|s| s.cells.is_empty()) => Err(e),
+        _ => Ok(out),
+    }
 }

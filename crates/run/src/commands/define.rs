@@ -117,7 +117,7 @@ const PLASTIC_BLOCKS: [&str; 6] = [
 
 /// A material without `ELAS` (its E and NU NaN), no law, conduction
 /// `thermal`: what a thermal or orthotropic material starts from.
-fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> Material {
+pub(crate) fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> Material {
     Material {
         elastic: false,
         young: f64::NAN,
@@ -137,6 +137,7 @@ fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> Material {
         rupt_frag: None,
         rupt_turon: None,
         orthotropic: None,
+        composite: None,
         elas_fo: None,
         alpha_fo: None,
         unresolved: None,
@@ -569,6 +570,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         rupt_frag: rupt_frag(ex, kw)?,
         rupt_turon: rupt_turon(ex, kw)?,
         orthotropic: None,
+        composite: None,
         elas_fo: elas_fo.map(Rc::new),
         alpha_fo: None,
         unresolved: None,

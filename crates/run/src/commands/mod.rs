@@ -4,6 +4,7 @@
 pub(crate) mod cara_coque;
 pub(crate) mod cara_massif;
 pub(crate) mod cara_poutre;
+pub(crate) mod composite;
 pub(crate) mod crea_champ_elga;
 pub(crate) mod crea_maillage;
 pub(crate) mod define;
@@ -149,6 +150,11 @@ pub static COMMANDS: &[Command] = &[
         name: "DEFI_MATERIAU",
         run: define::defi_materiau,
         support: define::DEFI_MATERIAU,
+    },
+    Command {
+        name: "DEFI_COMPOSITE",
+        run: composite::defi_composite,
+        support: composite::DEFI_COMPOSITE,
     },
     Command {
         name: "AFFE_MATERIAU",

@@ -456,6 +456,9 @@ pub(crate) fn affe_char_ther_f(
     store_result(ex, call, Concept::ThermalLoad(Rc::new(load)))
 }
 
+/// One `EXCIT` occurrence: the occurrence, its load and its `FONC_MULT`.
+pub(crate) type ExcitLoad<'k> = (&'k Keywords, Rc<ThermalLoad>, Option<LoadFunction>);
+
 /// The thermal loads of a command's `EXCIT` occurrences, each with its
 /// occurrence and its `FONC_MULT`, checked to lie on the model's mesh.
 pub(crate) fn excit_loads<'k>(
@@ -463,7 +466,7 @@ pub(crate) fn excit_loads<'k>(
     cmd: &str,
     kw: &'k Keywords,
     model: &ThermalModel,
-) -> Result<Vec<(&'k Keywords, Rc<ThermalLoad>, Option<LoadFunction>)>, ExecError> {
+) -> Result<Vec<ExcitLoad<'k>>, ExecError> {
     let mut out = Vec::new();
     for occ in kw.factor("EXCIT") {
         let load = ex.thermal_load(ex.required(cmd, occ, "CHARGE")?)?;
