@@ -107,14 +107,8 @@ struct TriaShear {
     an: [[f64; 9]; 3],
 }
 
-fn dstcis(c: &[f64; 21], df: &[[f64; 3]; 3], dci: &[[f64; 2]; 2]) -> Result<TriaShear, String> {
-    let hft2 = hft2(df, [c[8], c[9], c[10], c[11]]);
-    let (co, si, l) = (
-        [c[15], c[16], c[17]],
-        [c[18], c[19], c[20]],
-        [c[12], c[13], c[14]],
-    );
-    let (x, y) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]]);
+/// `dstcis`'s TA matrix from the sides' cosines and sines.
+fn dst_ta(co: &[f64; 3], si: &[f64; 3]) -> [[f64; 3]; 6] {
     let mut ta = [[0.; 3]; 6];
     ta[0][0] = -8. * co[0];
     ta[1][2] = -8. * co[2];
@@ -126,6 +120,18 @@ fn dstcis(c: &[f64; 21], df: &[[f64; 3]; 3], dci: &[[f64; 2]; 2]) -> Result<Tria
     ta[5][0] = -4. * si[0];
     ta[5][1] = 4. * si[1];
     ta[5][2] = -4. * si[2];
+    ta
+}
+
+fn dstcis(c: &[f64; 21], df: &[[f64; 3]; 3], dci: &[[f64; 2]; 2]) -> Result<TriaShear, String> {
+    let hft2 = hft2(df, [c[8], c[9], c[10], c[11]]);
+    let (co, si, l) = (
+        [c[15], c[16], c[17]],
+        [c[18], c[19], c[20]],
+        [c[12], c[13], c[14]],
+    );
+    let (x, y) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]]);
+    let ta = dst_ta(&co, &si);
     let mut bca = [[0.; 3]; 2];
     for i in 0..2 {
         for j in 0..3 {
@@ -752,17 +758,7 @@ pub(crate) fn moment_derivatives(
             let k = &facet.c;
             let hlt2 = crate::laminate::dsxhlt(&df, [k[8], k[9], k[10], k[11]]);
             let (co, si) = ([k[15], k[16], k[17]], [k[18], k[19], k[20]]);
-            let mut ta = [[0.; 3]; 6];
-            ta[0][0] = -8. * co[0];
-            ta[1][2] = -8. * co[2];
-            ta[2][0] = -4. * co[0];
-            ta[2][1] = 4. * co[1];
-            ta[2][2] = -4. * co[2];
-            ta[3][0] = -8. * si[0];
-            ta[4][2] = -8. * si[2];
-            ta[5][0] = -4. * si[0];
-            ta[5][1] = 4. * si[1];
-            ta[5][2] = -4. * si[2];
+            let ta = dst_ta(&co, &si);
             let lambda = lambda_of(&hlt2, &ta, &[[0.; 9]; 6], &shear.an, &ub);
             Ok(vec![lambda; points.len()])
         }
