@@ -151,3 +151,21 @@ fn alpha_of_a_temperature_not_uniform_over_a_cell_is_refused() {
     assert!(err.contains("DEFI_MATERIAU/ELAS_FO/ALPHA"), "{err}");
     assert!(err.contains("not uniform"), "{err}");
 }
+
+/// POST_ELEM's energies of a result with a thermal strain are refused at
+/// the command (code_aster's are those of ε − εth, not ½uᵀKu).
+#[test]
+fn post_elem_energy_of_a_thermal_result_is_refused() {
+    let t = edited(
+        "free = MECA_STATIQUE(MODELE=model, CHAM_MATER=mater, EXCIT=_F(CHARGE=free_bc))",
+        "free = MECA_STATIQUE(MODELE=model, CHAM_MATER=mater, EXCIT=_F(CHARGE=free_bc))\n\
+         epot = POST_ELEM(ENER_POT=_F(TOUT=\"OUI\"), RESULTAT=free)",
+    );
+    let (_, nook, err) = run(&t, "epot");
+    assert_eq!(nook, 0);
+    let err = err.expect("a refusal");
+    assert!(
+        err.contains("not supported yet: POST_ELEM energies of a result with a thermal strain"),
+        "{err}"
+    );
+}
