@@ -109,6 +109,10 @@ pub struct Model {
     /// (`te0592` → `nirmtd`, MECA_STATIQUE) rather than the tangent of
     /// `nifipd` ([`crate::mixed_upg`]: their shear terms differ).
     mixed_rigi_meca: bool,
+    /// Segments of a 3D model given a continuum modelisation: code_aster's
+    /// edge elements (`MECA_ARETE2`/`3`), which carry no stiffness here but
+    /// belong to the model for post-processing over cells (`POST_ELEM`).
+    edges: std::collections::BTreeSet<CellId>,
 }
 
 impl Model {
@@ -439,6 +443,7 @@ impl Model {
             dim,
             hypothesis,
             reduced: Default::default(),
+            edges: Default::default(),
             stabilised: Default::default(),
             shells,
             mixed: Default::default(),
@@ -474,6 +479,24 @@ impl Model {
                 )));
             }
             self.reduced.insert(cell);
+        }
+        Ok(self)
+    }
+
+    /// Declares edge cells ([`Model::is_edge`]): segments of a 3D model
+    /// that carry code_aster's `MECA_ARETE*` (no stiffness, no unknowns of
+    /// their own). Cells that are not segments of a 3D model are refused.
+    pub fn with_edges(mut self, cells: impl IntoIterator<Item = CellId>) -> Result<Model, FemError> {
+        for cell in cells {
+            let ty = self.mesh.cell(cell).ty;
+            if self.dim != 3 || ty.dim() != 1 || !shape::supported(ty) {
+                return Err(FemError::Model(format!(
+                    "cell {} is a {}: edge elements are segments of a 3D model",
+                    self.cell_name(cell),
+                    ty.name()
+                )));
+            }
+            self.edges.insert(cell);
         }
         Ok(self)
     }
@@ -605,6 +628,17 @@ impl Model {
     /// Whether the model has stabilised one-point HEXA8 cells.
     pub fn has_stabilised(&self) -> bool {
         !self.stabilised.is_empty()
+    }
+
+    /// Whether a cell is an edge cell of a 3D model (a segment given a 3D
+    /// modelisation: code_aster's `MECA_ARETE*`, no stiffness).
+    pub fn is_edge(&self, cell: CellId) -> bool {
+        self.edges.contains(&cell)
+    }
+
+    /// The edge cells ([`Model::is_edge`]).
+    pub fn edge_cells(&self) -> impl Iterator<Item = CellId> + '_ {
+        self.edges.iter().copied()
     }
 
     /// Whether a cell is under-integrated ([`Model::with_reduced_integration`]).

@@ -179,6 +179,10 @@ pub struct ModelDef {
     /// QUAD8 (2D), HEXA20, PENTA15, TETRA10 (3D) with the unknowns PRES
     /// and GONF at their vertices.
     pub mixed: std::collections::BTreeSet<CellId>,
+    /// Segments given MODELISATION='3D': code_aster's edge elements
+    /// (`MECA_ARETE2`/`3`), without stiffness, which `POST_ELEM` integrates
+    /// over; not in `cells`.
+    pub edges: std::collections::BTreeSet<CellId>,
     /// Per mesh node, whether it carries the rotations DRX DRY DRZ (a
     /// node of a shell cell).
     pub rotations: Vec<bool>,

@@ -349,6 +349,7 @@ pub fn build_model(
     Model::new(mesh.clone(), elements)
         .and_then(|m| m.with_reduced_integration(model.reduced.iter().copied()))
         .and_then(|m| m.with_mixed(model.mixed.iter().copied()))
+        .and_then(|m| m.with_edges(model.edges.iter().copied()))
         .map_err(|e| fem_err("AFFE_MODELE", e))
 }
 

@@ -17,7 +17,7 @@ fn run(text: &str, tag: &str) -> (usize, usize, Option<String>) {
 
 #[test]
 fn integrals_and_means_match_the_imposed_field() {
-    assert_eq!(run(&scene_text(), "scene"), (24, 0, None));
+    assert_eq!(run(&scene_text(), "scene"), (28, 0, None));
 }
 
 /// A component the field does not have is code_aster's UTILITAI7_12, named

@@ -929,6 +929,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
     let mut cells = BTreeMap::new();
     let mut reduced = std::collections::BTreeSet::new();
     let mut mixed = std::collections::BTreeSet::new();
+    let mut edges = std::collections::BTreeSet::new();
     // Where MODELISATION='3D' is first written, to name it when no volume
     // cell receives it.
     let mut solid3d_at = None;
@@ -1011,6 +1012,11 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                 }
                 _ => (1..=2).contains(&ty.dim()),
             };
+            if modelisation == Modelisation::Solid3D && ty.dim() == 1 {
+                edges.insert(c);
+            } else if fits {
+                edges.remove(&c);
+            }
             if !fits {
                 continue;
             }
@@ -1091,6 +1097,7 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
         cells,
         reduced,
         mixed,
+        edges,
         rotations,
         substructures,
     };

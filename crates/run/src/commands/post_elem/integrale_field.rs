@@ -90,7 +90,7 @@ impl Source {
     /// Whether the model has an element on cell `c`.
     pub(super) fn in_model(&self, c: CellId) -> bool {
         match self {
-            Source::Result(.., model) => model.element_kind(c).is_some(),
+            Source::Result(.., model) => model.element_kind(c).is_some() || model.is_edge(c),
             Source::Field(_, _, model, _) => model.cells.contains_key(&c),
         }
     }
@@ -98,7 +98,11 @@ impl Source {
     /// The model's cells (`TOUT`).
     pub(super) fn model_cells(&self) -> Vec<CellId> {
         match self {
-            Source::Result(.., model) => model.elements().iter().map(|e| e.cell).collect(),
+            Source::Result(.., model) => {
+                let mut cells: Vec<CellId> = model.elements().iter().map(|e| e.cell).collect();
+                cells.extend(model.edge_cells());
+                cells
+            }
             Source::Field(_, _, model, _) => model.cells.keys().copied().collect(),
         }
     }
@@ -124,9 +128,14 @@ impl Source {
         };
         let mesh = model.mesh_arc();
         let ty = mesh.cell(c).ty;
+        // Skin cells, and segments of a 3D model (MECA_ARETE*).
+        let skin = matches!(
+            model.element_kind(c),
+            Some(aster_fem::ElementKind::Boundary)
+        ) || model.is_edge(c);
         let scheme = match model.element_kind(c) {
             Some(aster_fem::ElementKind::Continuum { .. }) => model.stiffness_scheme(c),
-            Some(aster_fem::ElementKind::Boundary) => {
+            _ if skin => {
                 let role = aster_fem::elga::CellRole::of(ty.dim() as usize, model.dim());
                 match role.and_then(|r| aster_fem::elga::family(ty, r, axis)) {
                     Some(s) => s,
