@@ -486,7 +486,10 @@ impl Model {
     /// Declares edge cells ([`Model::is_edge`]): segments of a 3D model
     /// that carry code_aster's `MECA_ARETE*` (no stiffness, no unknowns of
     /// their own). Cells that are not segments of a 3D model are refused.
-    pub fn with_edges(mut self, cells: impl IntoIterator<Item = CellId>) -> Result<Model, FemError> {
+    pub fn with_edges(
+        mut self,
+        cells: impl IntoIterator<Item = CellId>,
+    ) -> Result<Model, FemError> {
         for cell in cells {
             let ty = self.mesh.cell(cell).ty;
             if self.dim != 3 || ty.dim() != 1 || !shape::supported(ty) {

@@ -782,8 +782,85 @@ fn function_multiplier(
     }))
 }
 
-/// A load function of the coordinates (and then not of the time: checked
-/// when the load is defined), evaluated at the Gauss points of each cell.
+/// A distributed load given by a function of both `INST` and the
+/// coordinates: code_aster evaluates it at the load's Gauss points at each
+/// time. It is sampled at the solve's instants and the times step cutting
+/// can reach ([`cut_instants`]): one load piece per sample time and cell,
+/// with the function's values at the cell's `points` at that time, whose
+/// multiplier is m(t) at its own sample and 0 at the others. A time that is
+/// no sample stops with that time named (never a silent zero).
+#[allow(clippy::too_many_arguments)]
+fn space_time_pieces(
+    loads: &mut Loads,
+    f: &LoadFunction,
+    cells: &[aster_mesh::CellId],
+    points: impl Fn(aster_mesh::CellId) -> Vec<[f64; 3]>,
+    make: impl Fn(aster_mesh::CellId, Vec<f64>) -> Load,
+    m: &Multiplier,
+    instants: &[f64],
+    cuts: &[f64],
+) -> Result<(), ExecError> {
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(1.0);
+    let mut samples: Vec<f64> = Vec::new();
+    for &t in instants.iter().chain(cuts) {
+        if !samples.iter().any(|&s| close(s, t)) {
+            samples.push(t);
+        }
+    }
+    const MAX_PIECES: usize = 2_000_000;
+    if samples.len().saturating_mul(cells.len()) > MAX_PIECES {
+        return Err(ExecError::new(format!(
+            "not supported yet: a distributed load function of both INST and the coordinates on {} cells over {} instants (and step-cut times): it is sampled per instant and cell, and more than {MAX_PIECES} pieces are refused",
+            cells.len(),
+            samples.len()
+        )));
+    }
+    let samples = std::sync::Arc::new(samples);
+    let points: Vec<(aster_mesh::CellId, Vec<[f64; 3]>)> =
+        cells.iter().map(|&c| (c, points(c))).collect();
+    for (k, &t) in samples.iter().enumerate() {
+        let all = samples.clone();
+        let m = m.clone();
+        let mk = Multiplier::from_fn(move |x| {
+            let j = all
+                .iter()
+                .position(|&s| (s - x).abs() <= 1e-9 * s.abs().max(1.0))
+                .ok_or_else(|| {
+                    format!("a load function of INST and the coordinates asked at {x}, which is not an instant of the list")
+                })?;
+            if j == k {
+                m.eval(x).map_err(|e| e.to_string())
+            } else {
+                Ok(0.0)
+            }
+        });
+        for (cell, pts) in &points {
+            let values = pts
+                .iter()
+                .map(|x| {
+                    f.0.eval_named(&[("INST", t), ("X", x[0]), ("Y", x[1]), ("Z", x[2])])
+                        .map_err(|e| {
+                            ExecError::new(format!(
+                                "load function at INST={t}, ({}, {}, {}): {e}",
+                                x[0], x[1], x[2]
+                            ))
+                        })
+                })
+                .collect::<Result<Vec<f64>, _>>()?;
+            loads.add(make(*cell, values), mk.clone());
+        }
+    }
+    Ok(())
+}
+
+/// A load function of both the time and the coordinates
+/// ([`space_time_pieces`]).
+fn of_time_and_coordinates(f: &LoadFunction) -> bool {
+    of_coordinates(f) && f.0.parameters().contains(&"INST")
+}
+
+/// A load function of the coordinates, evaluated at the Gauss points of
+/// each cell (with INST = 0 unless [`of_time_and_coordinates`]).
 fn of_coordinates(f: &LoadFunction) -> bool {
     f.0.parameters().iter().any(|p| ["X", "Y", "Z"].contains(p))
 }
@@ -973,6 +1050,22 @@ fn build_loads(
                         let mut unit = [0.0; 3];
                         unit[k] = 1.0;
                         let mk = match &v.functions[k] {
+                            Some(f) if of_time_and_coordinates(f) => {
+                                space_time_pieces(
+                                    &mut loads,
+                                    f,
+                                    &v.cells,
+                                    |cell| Loads::model_volume_points(model, cell),
+                                    |cell, values| Load::VolumeForceAt {
+                                        cell,
+                                        forces: along(k, values),
+                                    },
+                                    &m,
+                                    &setup.instants,
+                                    &cuts,
+                                )?;
+                                continue;
+                            }
                             Some(f) if of_coordinates(f) => {
                                 for &cell in &v.cells {
                                     let points = Loads::model_volume_points(model, cell);
@@ -1052,6 +1145,22 @@ fn build_loads(
                         BoundaryFn::Force { cells, force } => {
                             for (k, f) in force.iter().enumerate() {
                                 let Some(f) = f else { continue };
+                                if of_time_and_coordinates(f) {
+                                    space_time_pieces(
+                                        &mut loads,
+                                        f,
+                                        cells,
+                                        |cell| Loads::skin_points(mesh, cell),
+                                        |cell, values| Load::SurfaceForceAt {
+                                            cell,
+                                            forces: along(k, values),
+                                        },
+                                        &m,
+                                        &setup.instants,
+                                        &cuts,
+                                    )?;
+                                    continue;
+                                }
                                 if of_coordinates(f) {
                                     for &cell in cells {
                                         let points = Loads::skin_points(mesh, cell);
@@ -1074,13 +1183,25 @@ fn build_loads(
                                 .0
                                 .parameters()
                                 .iter()
-                                .any(|p| ["XF", "YF", "ZF"].contains(p))
-                                || (of_coordinates(pressure)
-                                    && pressure.0.parameters().contains(&"INST")) =>
+                                .any(|p| ["XF", "YF", "ZF"].contains(p)) =>
                         {
                             return Err(ExecError::new(
-                                "not supported yet: a PRES_REP function of the current coordinates (XF, YF, ZF), or of both INST and the coordinates, in a load that is not TYPE_CHARGE='SUIV' (code_aster evaluates a dead pressure with XF = YF = ZF = 0; a dead distributed load takes functions of INST or of the coordinates here)".to_string(),
+                                "not supported yet: a PRES_REP function of the current coordinates (XF, YF, ZF) in a load that is not TYPE_CHARGE='SUIV' (code_aster evaluates a dead pressure with XF = YF = ZF = 0)".to_string(),
                             ));
+                        }
+                        BoundaryFn::Pressure { cells, pressure }
+                            if of_time_and_coordinates(pressure) =>
+                        {
+                            space_time_pieces(
+                                &mut loads,
+                                pressure,
+                                cells,
+                                |cell| Loads::skin_points(mesh, cell),
+                                |cell, pressures| Load::PressureAt { cell, pressures },
+                                &m,
+                                &setup.instants,
+                                &cuts,
+                            )?;
                         }
                         BoundaryFn::Pressure { cells, pressure } if of_coordinates(pressure) => {
                             for &cell in cells {

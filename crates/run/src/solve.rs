@@ -474,9 +474,8 @@ fn parse_excitations(
 }
 
 /// A dead load's pressures (`PRES_REP` of AFFE_CHAR_MECA_F) take
-/// functions of INST or of the initial coordinates, not of both, nor of
-/// the current coordinates `XF`, `YF`, `ZF`, which only a follower load
-/// knows (code_aster evaluates them as 0 in a dead load).
+/// functions of INST and of the initial coordinates, not of the current
+/// coordinates `XF`, `YF`, `ZF`, which only a follower load knows.
 fn check_dead_pressures(
     ex: &Executor,
     cmd: &str,
@@ -492,13 +491,11 @@ fn check_dead_pressures(
         };
         let params = pressure.0.parameters();
         let current = params.iter().any(|p| ["XF", "YF", "ZF"].contains(p));
-        let both = params.contains(&"INST") && params.iter().any(|p| ["X", "Y", "Z"].contains(p));
-        if current || both {
+        if current {
             let span = occ.keyword("CHARGE").map(|k| k.span).unwrap_or_default();
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd}/EXCIT/CHARGE: a PRES_REP function of {} in a load that is not TYPE_CHARGE='SUIV' (a dead distributed load takes functions of INST or of X, Y, Z; XF, YF, ZF are the current coordinates of a follower load)",
-                    if current { "the current coordinates XF, YF, ZF" } else { "both INST and the coordinates" }
+                    "{cmd}/EXCIT/CHARGE: a PRES_REP function of the current coordinates XF, YF, ZF in a load that is not TYPE_CHARGE='SUIV' (XF, YF, ZF are the current coordinates of a follower load)"
                 ),
                 span,
             ));

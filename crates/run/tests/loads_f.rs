@@ -1,6 +1,7 @@
 //! AFFE_CHAR_MECA_F / AFFE_CHAR_CINE_F: the project's scene
 //! (comm/loads_f.comm on comm/strip.mail) against its analytic values, and
-//! the refusal of what is not done (a distributed load of both X and INST).
+//! the refusal of what is not done (a dead pressure of the current
+//! coordinates XF, YF, ZF).
 
 use std::path::{Path, PathBuf};
 
@@ -21,11 +22,11 @@ fn run(comm: &Path, tag: &str) -> aster_run::program::Outcome {
 fn function_loads_pass_the_analytic_checks() {
     let outcome = run(&root().join("comm/loads_f.comm"), "scene");
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
-    assert_eq!((outcome.tally.ok, outcome.tally.nook), (16, 0));
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (20, 0));
 }
 
 #[test]
-fn a_pressure_of_x_and_inst_is_refused_with_its_location() {
+fn a_dead_pressure_of_the_current_coordinates_is_refused_with_its_location() {
     let dir = std::env::temp_dir().join(format!("aster-loads-f-src-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let comm = dir.join("pres_x.comm");
@@ -34,7 +35,7 @@ fn a_pressure_of_x_and_inst_is_refused_with_its_location() {
         r#"DEBUT()
 mesh = LIRE_MAILLAGE(FORMAT="ASTER")
 model = AFFE_MODELE(MAILLAGE=mesh, AFFE=_F(GROUP_MA=("PLATE", "RIGHT"), PHENOMENE="MECANIQUE", MODELISATION="C_PLAN"))
-p = FORMULE(NOM_PARA=("X", "INST"), VALE="10.0 * X * INST")
+p = FORMULE(NOM_PARA=("XF", "INST"), VALE="10.0 * XF * INST")
 load = AFFE_CHAR_MECA_F(MODELE=model, PRES_REP=_F(GROUP_MA="RIGHT", PRES=p))
 mat = DEFI_MATERIAU(ELAS=_F(E=1.0, NU=0.3))
 chmat = AFFE_MATERIAU(MAILLAGE=mesh, AFFE=_F(TOUT="OUI", MATER=mat))
@@ -50,7 +51,7 @@ FIN()
     let err = outcome.error.expect("refused").message;
     assert!(
         err.contains(
-            "not supported yet: STAT_NON_LINE/EXCIT/CHARGE: a PRES_REP function of both INST and the coordinates"
+            "not supported yet: STAT_NON_LINE/EXCIT/CHARGE: a PRES_REP function of the current coordinates XF, YF, ZF"
         ),
         "{err}"
     );

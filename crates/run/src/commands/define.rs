@@ -1388,7 +1388,6 @@ pub(crate) const DEFI_NAPPE: Support = Support::keywords(&[
 /// must increase strictly; otherwise the values are sorted, each with its
 /// function (`ordonn`).
 pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
-    use crate::function::Nappe;
     const CMD: &str = "DEFI_NAPPE";
     let kw = &call.keywords;
     let para = reals(kw, "PARA");
@@ -1459,9 +1458,28 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             functions.push(Function::Tabulated(t));
         }
     }
+    let nappe = nappe(ex, CMD, kw, para, functions, parameter_fonc)?;
+    store_result(ex, call, Concept::Function(Rc::new(Function::Nappe(nappe))))
+}
+
+/// The nappe of `NOM_PARA` (the command's keywords `kw`) whose function at
+/// `para[i]` is `functions[i]` (their parameter `parameter_fonc`), as
+/// code_aster's op0004 builds it: one function per value, `PARA` strictly
+/// increasing under `VERIF='CROISSANT'` and sorted otherwise, `INTERPOL`,
+/// `PROL_GAUCHE`, `PROL_DROITE` of the parameter. Shared by DEFI_NAPPE and
+/// LIRE_FONCTION(TYPE='NAPPE').
+pub(crate) fn nappe(
+    ex: &Executor,
+    cmd: &str,
+    kw: &Keywords,
+    para: Vec<f64>,
+    functions: Vec<Function>,
+    parameter_fonc: String,
+) -> Result<crate::function::Nappe, ExecError> {
+    use crate::function::Nappe;
     if para.len() != functions.len() || para.is_empty() {
         return Err(ex.kw_error(
-            CMD,
+            cmd,
             kw,
             "PARA",
             format!(
@@ -1478,7 +1496,7 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             .any(|w| w[0].0.partial_cmp(&w[1].0) != Some(std::cmp::Ordering::Less))
         {
             return Err(ex.kw_error(
-                CMD,
+                cmd,
                 kw,
                 "PARA",
                 "PARA must increase strictly (VERIF='CROISSANT', UTILITAI2_72)",
@@ -1489,7 +1507,7 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     }
     if pairs.windows(2).any(|w| w[0].0 == w[1].0) {
         return Err(ex.kw_error(
-            CMD,
+            cmd,
             kw,
             "PARA",
             "two functions for the same parameter value",
@@ -1497,7 +1515,7 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     }
     let (scale_x, scale_y, left, right) = super::functions::options(
         ex,
-        CMD,
+        cmd,
         kw,
         (
             Scale::Linear,
@@ -1517,7 +1535,7 @@ pub fn defi_nappe(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         left,
         right,
     };
-    store_result(ex, call, Concept::Function(Rc::new(Function::Nappe(nappe))))
+    Ok(nappe)
 }
 
 /// What DEFI_CONSTANTE reads (`crate::support`).

@@ -4,10 +4,12 @@
 //! Nodal values (`DDL_IMPO`, `MECA_IMPO`, `FORCE_NODALE`) are evaluated at
 //! each node's coordinates and at each step's time, as code_aster does.
 //! Distributed loads (`FORCE_CONTOUR`, `FORCE_FACE`, `FORCE_INTERNE`,
-//! `PRES_REP`) take functions of `INST`, or of the coordinates: code_aster
+//! `PRES_REP`) take functions of `INST` and of the coordinates: code_aster
 //! evaluates those at the Gauss points of the load's elements (the RIGI
-//! family of the skin or volume element), and so does `fembridge`. A
-//! function of both the time and the coordinates is refused.
+//! family of the skin or volume element) at each time, and so does
+//! `fembridge` (a function of both sampled at the solve's instants).
+//! `FORCE_COQUE` takes functions of `INST` or of the coordinates, not of
+//! both.
 
 use super::loads::{carried_nodes, check_dof};
 use crate::concept::*;
@@ -266,9 +268,9 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
             let cells = select::cells(occ, &mesh, "")
                 .map_err(|e| ExecError::new(format!("{what}: {e}")))?;
             let force = [
-                time_function(ex, &what, occ, "FX")?,
-                time_function(ex, &what, occ, "FY")?,
-                time_function(ex, &what, occ, "FZ")?,
+                function_at(ex, &what, occ, "FX")?,
+                function_at(ex, &what, occ, "FY")?,
+                function_at(ex, &what, occ, "FZ")?,
             ];
             load.boundary_fn.push(BoundaryFn::Force { cells, force });
         }
@@ -281,9 +283,9 @@ pub fn affe_char_meca_f(ex: &mut Executor, call: &CommandCall) -> Result<Command
             cells: super::loads::continuum_cells(&model, &mesh, cells),
             force: [0.0; 3],
             functions: [
-                time_function(ex, what, occ, "FX")?,
-                time_function(ex, what, occ, "FY")?,
-                time_function(ex, what, occ, "FZ")?,
+                function_at(ex, what, occ, "FX")?,
+                function_at(ex, what, occ, "FY")?,
+                function_at(ex, what, occ, "FZ")?,
             ],
         });
     }

@@ -14,6 +14,7 @@ pub(crate) mod fracture;
 pub(crate) mod functions;
 pub(crate) mod inspect;
 pub(crate) mod liaison_mail;
+pub(crate) mod lire_fonction;
 pub(crate) mod lire_resu;
 pub(crate) mod loads;
 pub(crate) mod loads_f;
@@ -400,6 +401,11 @@ pub static COMMANDS: &[Command] = &[
         name: "CALC_TABLE",
         run: tables::calc_table,
         support: tables::CALC_TABLE,
+    },
+    Command {
+        name: "LIRE_FONCTION",
+        run: lire_fonction::lire_fonction,
+        support: lire_fonction::LIRE_FONCTION,
     },
     Command {
         name: "LIRE_RESU",
