@@ -472,6 +472,150 @@ pub fn kinetic_energy_by_cell(
     Ok(out)
 }
 
+/// code_aster's `ECIN_ELEM` of a mode (`CALC_CHAMP/ENERGIE` on a
+/// `MODE_MECA`): the mode's shape `u` stands for the velocity and the
+/// energies are multiplied by its ω² (`POMEGA2`), per cell with a density,
+/// with the components code_aster's elements write:
+/// - continuum cells, beams, bars: `TOTALE` = ½ ω² uₑᵀ Mₑ uₑ (te0151
+///   and the continuum `te` also write per-direction shares, not given);
+/// - DKT/DKQ/DST/Q4G plates (`te0031` → `dxtloe`): `TOTALE` as above,
+///   `MEMBRANE` and `FLEXION` are ω² × the *share* of the total that the
+///   membrane (in-plane translations) and bending (normal translation and
+///   in-plane rotations) DOFs of the facet's frame carry alone — code_aster
+///   multiplies the fractions by ω² too (`te0031`: `zr(jfreq)*ener(i)` for
+///   the three);
+/// - COQUE_3D (`te0406`): `MEMBRANE` = `FLEXION` = `TOTALE` (it copies the
+///   total into both).
+///
+/// Consistent masses, as code_aster's option computes them whatever the
+/// modes' mass matrix was.
+pub fn modal_kinetic_energy_by_cell(
+    model: &Model,
+    data: &MassData,
+    u: &[f64],
+    omega2: f64,
+) -> Result<Vec<crate::post::CellValues>, FemError> {
+    let mut out = Vec::new();
+    let mut dofs = Vec::new();
+    let quad = |m: &DMatrix<f64>, v: &[f64]| -> f64 {
+        let mut e = 0.0;
+        for a in 0..v.len() {
+            if v[a] == 0.0 {
+                continue;
+            }
+            for b in 0..v.len() {
+                e += v[a] * m[(a, b)] * v[b];
+            }
+        }
+        0.5 * e
+    };
+    for el in model.elements() {
+        let Some(&rho) = data.density.get(&el.cell) else {
+            continue;
+        };
+        let Some(m) = element_mass(model, el, rho, Lumping::Consistent)? else {
+            continue;
+        };
+        dofs.clear();
+        element_dofs_into(model, el.cell, &mut dofs);
+        if dofs.len() != m.nrows() {
+            return Err(FemError::Model(format!(
+                "cell {}: {} DOFs for a {}×{} mass",
+                model.cell_name(el.cell),
+                dofs.len(),
+                m.nrows(),
+                m.ncols()
+            )));
+        }
+        let v: Vec<f64> = dofs
+            .iter()
+            .map(|&i| u.get(i).copied().unwrap_or(0.0))
+            .collect();
+        let total = quad(&m, &v);
+        let (names, values): (Vec<&'static str>, Vec<f64>) = match &el.kind {
+            ElementKind::Shell { .. } => {
+                let mesh = model.mesh();
+                let xyz: Vec<[f64; 3]> = mesh
+                    .cell(el.cell)
+                    .nodes
+                    .iter()
+                    .map(|&n| mesh.coord(n))
+                    .collect();
+                let n = facet_normal(&xyz).ok_or_else(|| {
+                    FemError::Model(format!(
+                        "cell {}: a degenerate facet has no normal",
+                        model.cell_name(el.cell)
+                    ))
+                })?;
+                if v.len() != 6 * xyz.len() {
+                    return Err(FemError::Model(format!(
+                        "cell {}: {} DOFs for a facet of {} nodes",
+                        model.cell_name(el.cell),
+                        v.len(),
+                        xyz.len()
+                    )));
+                }
+                // The membrane and bending parts of the facet's local
+                // DOFs, back in the global frame: uₘ = the in-plane
+                // translations, u_f = the normal translation and the
+                // in-plane rotations (vᵀ Mₗₒ꜀ v = (Tᵀv)ᵀ M (Tᵀv)).
+                let dot = |a: &[f64], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+                let mut vm = vec![0.0; v.len()];
+                let mut vf = vec![0.0; v.len()];
+                for node in 0..xyz.len() {
+                    let t = &v[6 * node..6 * node + 3];
+                    let r = &v[6 * node + 3..6 * node + 6];
+                    let tn = dot(t, &n);
+                    let rn = dot(r, &n);
+                    for k in 0..3 {
+                        vm[6 * node + k] = t[k] - tn * n[k];
+                        vf[6 * node + k] = tn * n[k];
+                        vf[6 * node + 3 + k] = r[k] - rn * n[k];
+                    }
+                }
+                let (memb, flex) = if total.abs() > 1e-6 {
+                    (quad(&m, &vm) / total, quad(&m, &vf) / total)
+                } else {
+                    (0.0, 0.0)
+                };
+                (
+                    vec!["TOTALE", "MEMBRANE", "FLEXION"],
+                    vec![omega2 * total, omega2 * memb, omega2 * flex],
+                )
+            }
+            ElementKind::Coque3d { .. } => (
+                vec!["TOTALE", "MEMBRANE", "FLEXION"],
+                vec![omega2 * total; 3],
+            ),
+            _ => (vec!["TOTALE"], vec![omega2 * total]),
+        };
+        out.push(crate::post::CellValues {
+            cell: el.cell,
+            names,
+            points: vec![values],
+        });
+    }
+    Ok(out)
+}
+
+/// The unit normal of a plate facet: (x₂ − x₁) × (x₃ − x₁) on a triangle,
+/// the product of the diagonals on a quadrangle.
+fn facet_normal(xyz: &[[f64; 3]]) -> Option<[f64; 3]> {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let (a, b) = match xyz {
+        [p1, p2, p3] => (sub(*p2, *p1), sub(*p3, *p1)),
+        [p1, p2, p3, p4] => (sub(*p3, *p1), sub(*p4, *p2)),
+        _ => return None,
+    };
+    let n = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    (l > 0.0).then(|| [n[0] / l, n[1] / l, n[2] / l])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -759,6 +903,110 @@ mod tests {
             .fold(f64::INFINITY, f64::min);
         assert!((loc[(5, 5)] - 1e-5 * least).abs() < 1e-20 && loc[(5, 5)] > 0.);
         rotary_inertia_adds_rho_h3_over_12(&model, &xyz, w, area, rho, h);
+    }
+
+    /// ECIN_ELEM of a mode on a tilted DKT facet, as `te0031`/`dxtloe`
+    /// compute it in the facet's frame: TOTALE = ω² · ½ uₗᵀ Mₗ uₗ; MEMBRANE
+    /// and FLEXION = ω² × the shares of the local membrane (u, v) and
+    /// bending (w, θx, θy) blocks of the local mass in that total.
+    #[test]
+    fn dkt_modal_kinetic_energy_splits_as_dxtloe() {
+        let xyz = [[0.2, -0.1, 0.3], [1.4, 0.3, -0.2], [0.5, 1.1, 0.6]];
+        let (h, rho, omega2) = (0.02, 2700.0, 3.7e4);
+        let kind = ElementKind::Shell {
+            material: Elastic::new(7e10, 0.3).unwrap(),
+            section: crate::dkt::ShellSection::new(h),
+            theory: crate::plate::PlateTheory::Dkt,
+        };
+        let model = structural(CellType::TRIA3, xyz.to_vec(), kind);
+        let facet = crate::dkt::Facet::new(&xyz).unwrap();
+        let loc = crate::dkt::local_mass(&facet, rho, &crate::dkt::ShellSection::new(h));
+        let loc = DMatrix::from_fn(18, 18, |i, j| loc[(i, j)]);
+        let u: Vec<f64> = (0..18)
+            .map(|i| ((i * 7 + 3) % 11) as f64 / 11.0 - 0.4)
+            .collect();
+        // The local DOFs: pgl × (DX DY DZ), pgl × (DRX DRY DRZ).
+        let mut ul = [0.0; 18];
+        for node in 0..3 {
+            for half in 0..2 {
+                for a in 0..3 {
+                    ul[6 * node + 3 * half + a] = (0..3)
+                        .map(|b| facet.pgl[(a, b)] * u[6 * node + 3 * half + b])
+                        .sum();
+                }
+            }
+        }
+        let part = |keep: &[usize]| {
+            let v: Vec<f64> = (0..18)
+                .map(|i| if keep.contains(&(i % 6)) { ul[i] } else { 0.0 })
+                .collect();
+            0.5 * quad(&loc, &v)
+        };
+        let total = part(&[0, 1, 2, 3, 4, 5]);
+        let (memb, flex) = (part(&[0, 1]), part(&[2, 3, 4]));
+        let data = MassData {
+            density: HashMap::from([(CellId(0), rho)]),
+            discrete: Vec::new(),
+        };
+        let out = modal_kinetic_energy_by_cell(&model, &data, &u, omega2).unwrap();
+        assert_eq!(out.len(), 1);
+        assert_eq!(out[0].names, ["TOTALE", "MEMBRANE", "FLEXION"]);
+        let got = &out[0].points[0];
+        for (g, want) in
+            got.iter()
+                .zip([omega2 * total, omega2 * memb / total, omega2 * flex / total])
+        {
+            assert!(
+                (g - want).abs() <= 1e-10 * want.abs(),
+                "{got:?}: {g} vs {want}"
+            );
+        }
+        // The total is the global ½ uᵀ M u (the frame is a rotation).
+        let m = element_mass(&model, &model.elements()[0], rho, Lumping::Consistent)
+            .unwrap()
+            .unwrap();
+        assert!((got[0] - omega2 * 0.5 * quad(&m, &u)).abs() <= 1e-10 * got[0]);
+        // A field in the facet's plane is all membrane.
+        let n = [0, 1, 2].map(|k| facet.pgl[(2, k)]);
+        let inplane: Vec<f64> = (0..3)
+            .flat_map(|node| {
+                let t = [0.3 + node as f64, -0.2, 0.5];
+                let tn = dot(t, n);
+                let t = [0, 1, 2].map(|k| t[k] - tn * n[k]);
+                [t[0], t[1], t[2], 0.0, 0.0, 0.0]
+            })
+            .collect();
+        let e =
+            &modal_kinetic_energy_by_cell(&model, &data, &inplane, omega2).unwrap()[0].points[0];
+        assert!(
+            (e[1] - omega2).abs() < 1e-9 * omega2 && e[2].abs() < 1e-9 * omega2,
+            "{e:?}"
+        );
+    }
+
+    /// Beams: TOTALE only, ½ ω² uᵀ M u (te0151's ptenci).
+    #[test]
+    fn beam_modal_kinetic_energy_is_half_omega2_u_m_u() {
+        let xyz = vec![[0.0, 0.0, 0.0], [0.7, 0.2, -0.1]];
+        let section = crate::beam::BeamSection::rectangle(0.02, 0.01, None);
+        let kind = ElementKind::Beam {
+            material: Elastic::new(2.1e11, 0.3).unwrap(),
+            section,
+        };
+        let model = structural(CellType::SEG2, xyz, kind);
+        let rho = 7800.0;
+        let data = MassData {
+            density: HashMap::from([(CellId(0), rho)]),
+            discrete: Vec::new(),
+        };
+        let u: Vec<f64> = (0..12).map(|i| (i as f64 * 0.37).sin()).collect();
+        let m = element_mass(&model, &model.elements()[0], rho, Lumping::Consistent)
+            .unwrap()
+            .unwrap();
+        let out = modal_kinetic_energy_by_cell(&model, &data, &u, 2.0).unwrap();
+        assert_eq!(out[0].names, ["TOTALE"]);
+        let want = quad(&m, &u);
+        assert!((out[0].points[0][0] - want).abs() < 1e-12 * want.abs());
     }
 
     /// With `INER_ROTA='OUI'` a rigid rotation ω gains ρh³/12 · A · |ω in

@@ -749,6 +749,13 @@ pub struct EvolResult {
 pub struct ModalInfo {
     pub params: BTreeMap<u32, BTreeMap<String, f64>>,
     pub undetermined: BTreeMap<u32, String>,
+    /// The modes of `undetermined` whose only indeterminacy is the sign
+    /// (a tie of opposite components): their energies are determined.
+    pub sign_only: std::collections::BTreeSet<u32>,
+    /// `OPTION='AJUSTE'`: code_aster's frequencies are its secant
+    /// iterates, converged to this relative precision (PREC_AJUSTE) on
+    /// ω², not the eigenvalues aster computes.
+    pub ajuste_prec: Option<f64>,
     pub lambdas: Vec<f64>,
     pub problem: Option<Rc<crate::commands::modal::Problem>>,
 }

@@ -1608,7 +1608,7 @@ pub fn nodal_from_dofs(model: &Model, values: &[f64]) -> NodalField {
     f
 }
 
-fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
+pub(crate) fn elem_field(location: ElemLocation, cells: &[CellValues]) -> ElemField {
     // Components: the union in order of appearance (continuum cells and
     // springs have different ones).
     let mut components: Vec<String> = Vec::new();
@@ -2289,6 +2289,9 @@ pub fn calc_champ(
     only: Option<&std::collections::BTreeSet<aster_mesh::CellId>>,
 ) -> Result<EvolResult, ExecError> {
     let Some(run) = result.fem.clone() else {
+        if result.modal.is_some() {
+            return crate::commands::modal::modal_energies(ex, call, result, options, steps, only);
+        }
         if !result.steps.is_empty() && result.tables.is_empty() {
             return calc_champ_from_fields(ex, call, result, options, steps, only);
         }

@@ -1190,7 +1190,16 @@ pub(crate) const CALC_CHAMP: Support = Support {
     // The elastic energy (`enelpg`, PETIT); ETOT_* (the work of the
     // stresses over the history), EPOT_ELEM/ECIN_ELEM and the others not.
     values: &[
-        Values::listed("ENERGIE", &["ENEL_ELGA", "ENEL_ELNO", "ENEL_ELEM"]),
+        Values::listed(
+            "ENERGIE",
+            &[
+                "ENEL_ELGA",
+                "ENEL_ELNO",
+                "ENEL_ELEM",
+                "EPOT_ELEM",
+                "ECIN_ELEM",
+            ],
+        ),
         Values::new("THERMIQUE", &["FLUX_ELGA", "FLUX_ELNO", "FLUX_NOEU"]),
     ],
     ..Support::keywords(&crate::support::joined::<

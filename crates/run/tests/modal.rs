@@ -87,3 +87,75 @@ fn a_mode_of_a_repeated_eigenvalue_has_no_components_to_test() {
     let err = outcome.error.expect("refused").message;
     assert!(err.contains("repeated"), "{err}");
 }
+
+/// comm/modal_ajuste.comm (with its mesh) after `edit`.
+fn ajuste(tag: &str, edit: impl Fn(&str) -> String) -> aster_run::program::Outcome {
+    let text = std::fs::read_to_string(root().join("comm/modal_ajuste.comm")).unwrap();
+    let dir = std::env::temp_dir().join(format!("aster-ajuste-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join(format!("{tag}.comm"));
+    std::fs::write(&comm, edit(&text)).unwrap();
+    let out = dir.join("out");
+    let mesh = root().join("comm/modal_ajuste.mail");
+    let case = aster_run::program::prepare(&comm, Some(&mesh), &out).unwrap();
+    let outcome = aster_run::program::run(&case, Box::new(std::io::sink()));
+    let _ = std::fs::remove_dir_all(dir);
+    outcome
+}
+
+#[test]
+fn ajuste_filtre_mode_and_modal_energies_match_the_closed_forms() {
+    // AJUSTE (2 frequencies, 4 energies per cell against the clamped-free
+    // bar's mode), BANDE over 3 frequencies with FILTRE_MODE (4
+    // frequencies, 2 effective masses): each check NON_REGRESSION and
+    // ANALYTIQUE.
+    let outcome = ajuste("scene", |t| t.to_string());
+    assert!(outcome.error.is_none(), "{:?}", outcome.error);
+    assert_eq!((outcome.tally.ok, outcome.tally.nook), (24, 0));
+}
+
+#[test]
+fn nmax_freq_caps_the_modes_of_the_band() {
+    // NMAX_FREQ=2 of three modes in the band: there is no third.
+    let outcome = ajuste("nmax", |t| {
+        t.replacen(
+            "            NUME_MODE=2,\n            PARA=\"FREQ\",\n            VALE_CALC=1946.9048892873318,",
+            "            NUME_MODE=3,\n            PARA=\"FREQ\",\n            VALE_CALC=1946.9048892873318,",
+            1,
+        )
+    });
+    assert!(
+        outcome.error.is_some() || outcome.tally.nook >= 1,
+        "a third mode was found"
+    );
+}
+
+#[test]
+fn filtre_mode_drops_the_modes_below_its_threshold() {
+    // Without the filter the third mode is the third bending one, not the
+    // axial one: a NOOK.
+    let outcome = ajuste("nofilter", |t| {
+        t.replacen(
+            "    FILTRE_MODE=_F(CRIT_EXTR=\"MASS_EFFE_UN\", SEUIL=0.1),\n",
+            "",
+            1,
+        )
+    });
+    assert!(outcome.tally.nook >= 1, "{:?}", outcome.error);
+}
+
+#[test]
+fn another_option_on_modes_is_refused_at_its_keyword() {
+    let outcome = ajuste("sief", |t| {
+        t.replacen(
+            "ENERGIE=(\"ECIN_ELEM\", \"EPOT_ELEM\"))",
+            "ENERGIE=(\"ECIN_ELEM\", \"EPOT_ELEM\"), CONTRAINTE=\"SIEF_ELGA\")",
+            1,
+        )
+    });
+    let err = outcome.error.expect("refused").message;
+    assert!(
+        err.contains("SIEF_ELGA") && err.contains("sief.comm:"),
+        "{err}"
+    );
+}

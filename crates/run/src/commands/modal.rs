@@ -317,8 +317,9 @@ pub(crate) const CALC_MODES: Support = Support {
             .why("(buckling and general eigenproblems are not implemented)"),
         Values::new(
             "OPTION",
-            &["PLUS_PETITE", "CENTRE", "BANDE", "TOUT", "PROCHE"],
+            &["PLUS_PETITE", "CENTRE", "BANDE", "TOUT", "PROCHE", "AJUSTE"],
         ),
+        Values::new("FILTRE_MODE/CRIT_EXTR", &["MASS_EFFE_UN", "MASS_GENE"]),
         Values::new(
             "NORM_MODE/NORME",
             &[
@@ -357,6 +358,9 @@ pub(crate) const CALC_MODES: Support = Support {
         "NORM_MODE",
         "NORM_MODE/NORME",
         "NORM_MODE/INFO",
+        "FILTRE_MODE",
+        "FILTRE_MODE/CRIT_EXTR",
+        "FILTRE_MODE/SEUIL",
         "IMPRESSION",
         "IMPRESSION/*",
         "AMELIORATION",
@@ -378,6 +382,8 @@ pub struct Problem {
     k: aster_fem::linalg::Csc,
     m: aster_fem::linalg::Csc,
     constraints: Vec<Vec<(usize, f64)>>,
+    /// The densities and discrete masses of the mass matrix (ECIN_ELEM).
+    mass_data: aster_fem::mass::MassData,
 }
 
 impl std::fmt::Debug for Problem {
@@ -432,6 +438,7 @@ fn problem(ex: &Executor, cmd: &str, k: &MatrAsse, m: &MatrAsse) -> Result<Probl
         Lumping::Consistent
     };
     let mass = aster_fem::mass::assemble_mass(&model, &data, lumping).map_err(err)?;
+    let mass_data = data;
     // The homogeneous conditions of the stiffness's loads.
     let mut loads = Loads::new();
     for l in &k.elem.loads {
@@ -493,6 +500,7 @@ fn problem(ex: &Executor, cmd: &str, k: &MatrAsse, m: &MatrAsse) -> Result<Probl
         k: stiffness,
         m: mass,
         constraints,
+        mass_data,
     })
 }
 
@@ -679,6 +687,34 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         .iter()
         .filter_map(|s| s.as_f64())
         .collect();
+    // AJUSTE (MODE_ITER_INV, op0044): the eigenvalues between the first
+    // and the last FREQ (Sturm counts at both ends, vpfopr 'STURMAD'; a
+    // bound within SEUIL_FREQ of 0 moves to −SEUIL_FREQ's ω² so that rigid
+    // modes are kept), isolated by bisection and converged by the secant
+    // method and inverse iteration (vpdich, vpinte, vp1pro): the exact
+    // eigenpairs of the band, the first NMAX_FREQ of them when NMAX_FREQ > 0.
+    let ajuste_nmax = if option == "AJUSTE" {
+        cf.first("NMAX_FREQ")
+            .and_then(|s| s.as_i64())
+            .unwrap_or(0)
+            .max(0) as usize
+    } else {
+        0
+    };
+    let omecor = omega2(cf.f64("SEUIL_FREQ").unwrap_or(1e-2));
+    let ajuste_lo = match freqs.first() {
+        Some(&f) if omega2(f).abs() <= omecor => -omecor,
+        Some(&f) => omega2(f),
+        None => f64::NEG_INFINITY,
+    };
+    if option == "AJUSTE" && freqs.len() < 2 {
+        return Err(ex.kw_error(
+            cmd,
+            &cf,
+            "FREQ",
+            "AJUSTE needs at least two frequencies (the band's bounds)",
+        ));
+    }
     let p = problem(ex, cmd, &k, &m)?;
     let err = |e: aster_fem::FemError| ExecError::new(format!("{cmd}: {e}"));
     // The spectrum from its bottom: every eigenpair when the dense solver
@@ -695,7 +731,13 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             };
             match option {
                 "PLUS_PETITE" => modes.len() > nmax,
-                "BANDE" => freqs.get(1).is_none_or(|&hi| last > omega2(hi)),
+                "BANDE" => freqs.last().is_none_or(|&hi| last > omega2(hi)),
+                "AJUSTE" => {
+                    let hi = freqs.last().copied().unwrap_or(f64::INFINITY);
+                    last > omega2(hi)
+                        || (ajuste_nmax > 0
+                            && modes.iter().filter(|m| m.lambda >= ajuste_lo).count() > ajuste_nmax)
+                }
                 "CENTRE" | "PROCHE" => {
                     let c = freqs.iter().copied().fold(f64::MIN, f64::max);
                     let c = omega2(c);
@@ -748,13 +790,28 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
             idx
         }
         "BANDE" => {
-            let [lo, hi] = freqs.as_slice() else {
+            // More than two frequencies: code_aster's
+            // calc_modes_multi_bandes computes each band [fᵢ, fᵢ₊₁] and
+            // joins them (EXTR_MODE), NUME_MODE their ranks in the whole
+            // spectrum: the modes of [f₁, fₙ].
+            let (Some(lo), Some(hi), true) = (freqs.first(), freqs.last(), freqs.len() >= 2) else {
                 return Err(ex.kw_error(cmd, &cf, "FREQ", "BANDE needs two frequencies"));
             };
             let (lo, hi) = (omega2(*lo), omega2(*hi));
             (0..all.len())
                 .filter(|&i| lambdas[i] >= lo && lambdas[i] <= hi)
                 .collect()
+        }
+        "AJUSTE" => {
+            let hi = freqs.last().copied().map(omega2).unwrap_or(f64::INFINITY);
+            let hi = if hi.abs() <= omecor { omecor } else { hi };
+            let mut idx: Vec<usize> = (0..all.len())
+                .filter(|&i| lambdas[i] >= ajuste_lo && lambdas[i] <= hi)
+                .collect();
+            if ajuste_nmax > 0 {
+                idx.truncate(ajuste_nmax);
+            }
+            idx
         }
         "PROCHE" => {
             let mut idx = Vec::new();
@@ -801,8 +858,16 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     let mut steps = Vec::new();
     let mut info = ModalInfo {
         lambdas: lambdas.clone(),
+        ajuste_prec: (option == "AJUSTE").then(|| {
+            kw.factor("SOLVEUR_MODAL")
+                .first()
+                .and_then(|o| o.f64("PREC_AJUSTE"))
+                .or_else(|| cf.f64("PREC_AJUSTE"))
+                .unwrap_or(1e-4)
+        }),
         ..ModalInfo::default()
     };
+    let mut scaled = Vec::with_capacity(chosen.len());
     for (n, &i) in chosen.iter().enumerate() {
         let mut u = all[i].vector.clone();
         // vpnorx first (the sign), then NORM_MODE.
@@ -813,9 +878,39 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 n + 1
             )));
         }
-        let nume = n as u32 + 1;
         let params = mode_params(&p, &u, all[i].lambda, i + 1, &total_mass);
+        scaled.push((i, u, params));
+    }
+    // FILTRE_MODE (calc_modes_post → EXTR_MODE, op0168): the modes whose
+    // criterion reaches SEUIL, renumbered (NUME_ORDRE), NUME_MODE kept.
+    if let Some(f) = kw.factor("FILTRE_MODE").first() {
+        let seuil = f.f64("SEUIL").unwrap_or(1e-3);
+        let crit = f.str("CRIT_EXTR").unwrap_or("MASS_EFFE_UN");
+        let keep = filtre_mode(crit, seuil, scaled.iter().map(|s| &s.2)).ok_or_else(|| {
+            ex.unsupported(
+                &format!("CALC_MODES/FILTRE_MODE/CRIT_EXTR='{crit}'"),
+                f.keyword("CRIT_EXTR").map(|k| k.span).unwrap_or(call.span),
+            )
+        })?;
+        let mut it = keep.into_iter();
+        scaled.retain(|_| it.next().unwrap_or(false));
+        if scaled.is_empty() {
+            return Err(ex.kw_error(
+                cmd,
+                f,
+                "SEUIL",
+                format!(
+                    "no mode passes the filter {crit} ≥ {seuil} (code_aster stops: ALGELINE3_11)"
+                ),
+            ));
+        }
+    }
+    for (n, (i, u, params)) in scaled.into_iter().enumerate() {
+        let nume = n as u32 + 1;
         if let Some(why) = undetermined(&lambdas, all[i].lambda, &u, norm) {
+            if !why.contains("repeated") {
+                info.sign_only.insert(nume);
+            }
             info.undetermined.insert(nume, why);
         }
         info.params.insert(nume, params);
@@ -936,6 +1031,38 @@ fn rigid_rotations_check(
     Ok(())
 }
 
+/// Which modes EXTR_MODE's FILTRE_MODE keeps (op0168): `MASS_EFFE_UN`,
+/// those with one of MASS_EFFE_UN_DX, _DY, _DZ ≥ `seuil`; `MASS_GENE`,
+/// those whose MASS_GENE is ≥ `seuil` × the sum of the modes' MASS_GENE.
+/// `None` for another criterion.
+fn filtre_mode<'a>(
+    crit: &str,
+    seuil: f64,
+    params: impl Iterator<Item = &'a BTreeMap<String, f64>> + Clone,
+) -> Option<Vec<bool>> {
+    let get = |p: &BTreeMap<String, f64>, k: &str| p.get(k).copied().unwrap_or(0.0);
+    match crit {
+        "MASS_EFFE_UN" => Some(
+            params
+                .map(|p| {
+                    ["MASS_EFFE_UN_DX", "MASS_EFFE_UN_DY", "MASS_EFFE_UN_DZ"]
+                        .iter()
+                        .any(|k| get(p, k) >= seuil)
+                })
+                .collect(),
+        ),
+        "MASS_GENE" => {
+            let total: f64 = params.clone().map(|p| get(p, "MASS_GENE")).sum();
+            Some(
+                params
+                    .map(|p| get(p, "MASS_GENE") / total >= seuil)
+                    .collect(),
+            )
+        }
+        _ => None,
+    }
+}
+
 /// The total mass along DX, DY, DZ: dᵀ M d (d = 1 on the component).
 fn total_mass(p: &Problem) -> [f64; 3] {
     let dofs = p.model.dofs().dofs();
@@ -1016,6 +1143,9 @@ pub fn norm_mode(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         let params = mode_params(&p, &u, lambda, nume_mode, &total_mass);
         new_info.params.insert(step.nume_ordre, params);
         if let Some(why) = undetermined(&info.lambdas, lambda, &u, norm) {
+            if !why.contains("repeated") && !info.undetermined.contains_key(&step.nume_ordre) {
+                new_info.sign_only.insert(step.nume_ordre);
+            }
             new_info.undetermined.entry(step.nume_ordre).or_insert(why);
         }
         step.fields.insert(
@@ -1025,4 +1155,110 @@ pub fn norm_mode(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     out.modal = Some(Rc::new(new_info));
     store_result(ex, call, Concept::Result(Rc::new(out)))
+}
+
+/// `CALC_CHAMP(RESULTAT=modes, ENERGIE=('EPOT_ELEM', 'ECIN_ELEM'))` on the
+/// modes of a CALC_CHAMP of this run: per cell, `EPOT_ELEM` = ½ uₑᵀ Kₑ uₑ
+/// (component `TOTALE`) and `ECIN_ELEM` = ½ ω² uₑᵀ Mₑ uₑ with the
+/// components of code_aster's elements (aster-fem
+/// `mass::modal_kinetic_energy_by_cell`), ω² the mode's `OMEGA2`. Any
+/// other option on modes is refused.
+pub(crate) fn modal_energies(
+    ex: &Executor,
+    call: &CommandCall,
+    result: &EvolResult,
+    options: &[String],
+    steps: &[u32],
+    only: Option<&std::collections::BTreeSet<aster_mesh::CellId>>,
+) -> Result<EvolResult, ExecError> {
+    let cmd = "CALC_CHAMP";
+    let span = |key: &str| {
+        call.keywords
+            .keyword(key)
+            .map(|k| k.span)
+            .unwrap_or(call.span)
+    };
+    for opt in options {
+        if !matches!(opt.as_str(), "EPOT_ELEM" | "ECIN_ELEM") {
+            // The keyword that asks for it.
+            let family = [
+                "FORCE",
+                "CONTRAINTE",
+                "CRITERES",
+                "DEFORMATION",
+                "ENERGIE",
+                "VARI_INTERNE",
+            ]
+            .into_iter()
+            .find(|k| {
+                call.keywords
+                    .simple(k)
+                    .iter()
+                    .any(|v| v.as_str() == Some(opt.as_str()))
+            })
+            .unwrap_or("RESULTAT");
+            return Err(ex.unsupported(
+                &format!("CALC_CHAMP option {opt} on modes (of a MODE_MECA: EPOT_ELEM and ECIN_ELEM only)"),
+                span(family),
+            ));
+        }
+    }
+    let Some(info) = result.modal.clone() else {
+        return Err(ExecError::new(format!("{cmd}: not a result of CALC_MODES")));
+    };
+    let Some(p) = info.problem.clone() else {
+        return Err(ex.unsupported(
+            "CALC_CHAMP/ENERGIE on modes whose matrices are not kept (not computed by CALC_MODES in this run)",
+            span("RESULTAT"),
+        ));
+    };
+    let err = |e: aster_fem::FemError| ExecError::new(format!("{cmd}: {e}"));
+    let keep = |c: &aster_fem::post::CellValues| only.is_none_or(|s| s.contains(&c.cell));
+    let mut out = result.clone();
+    for step in out
+        .steps
+        .iter_mut()
+        .filter(|s| steps.contains(&s.nume_ordre))
+    {
+        let Some(Field::Nodal(depl)) = step.fields.get("DEPL") else {
+            return Err(ExecError::new(format!(
+                "{cmd}: mode {} has no DEPL",
+                step.nume_ordre
+            )));
+        };
+        let u = fembridge::displacement_from(&p.model, depl);
+        let omega2 = info
+            .params
+            .get(&step.nume_ordre)
+            .and_then(|m| m.get("OMEGA2"))
+            .copied()
+            .ok_or_else(|| {
+                ExecError::new(format!("{cmd}: mode {} has no OMEGA2", step.nume_ordre))
+            })?;
+        for opt in options {
+            let cells: Vec<aster_fem::post::CellValues> = if opt == "EPOT_ELEM" {
+                aster_fem::energy::potential_energy_by_cell(&p.model, &u)
+                    .map_err(err)?
+                    .into_iter()
+                    .map(|(cell, e)| aster_fem::post::CellValues {
+                        cell,
+                        names: vec!["TOTALE"],
+                        points: vec![vec![e]],
+                    })
+                    .collect()
+            } else {
+                aster_fem::mass::modal_kinetic_energy_by_cell(&p.model, &p.mass_data, &u, omega2)
+                    .map_err(err)?
+            };
+            let cells: Vec<_> = cells.into_iter().filter(|c| keep(c)).collect();
+            step.fields.insert(
+                opt.clone(),
+                Field::Elem(fembridge::elem_field(
+                    crate::field::ElemLocation::Cell,
+                    &cells,
+                )),
+            );
+        }
+    }
+    Ok(out)
 }
