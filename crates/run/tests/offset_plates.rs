@@ -47,7 +47,7 @@ fn an_offset_on_dst_is_refused_at_the_keyword() {
     assert_eq!((ok, nook), (0, 0));
     let err = err.expect("refused");
     assert!(
-        err.contains("EXCENTREMENT on the DST cell") && err.contains(":32:"),
+        err.contains("EXCENTREMENT on the DST cell") && err.contains("case.comm:36:49"),
         "{err}"
     );
 }
