@@ -21,7 +21,10 @@
 //!   transverse shears (`dkqtxy`) are not computed yet.
 
 use crate::dkt::Generalised;
-use crate::dkt::{add_bending, bending_dof, membrane_dof, section_matrices, ShellSection};
+use crate::dkt::{
+    add_bending, add_coupling, add_ctab, bending_dof, coupling, membrane_dof, offset_mass,
+    section_matrices, ShellSection,
+};
 use crate::material::Elastic;
 use crate::shape::{rigi_scheme, GaussPoint};
 use aster_mesh::CellType;
@@ -380,7 +383,9 @@ pub(crate) fn fpg4() -> Vec<GaussPoint> {
 /// node-major DX DY DZ DRX DRY DRZ along the local axes.
 pub fn local_stiffness(quad: &Quad, material: &Elastic, section: &ShellSection) -> Matrix24 {
     let (dm, df) = section_matrices(material, section);
+    let dmf = coupling(material, section);
     let mut flex = [[0.; 12]; 12];
+    let mut mefl = [[0.; 12]; 8];
     for g in fpg4() {
         let (qsi, eta) = (g.xi[0], g.xi[1]);
         let (det, vj) = quad.jacobian(qsi, eta);
@@ -397,9 +402,15 @@ pub fn local_stiffness(quad: &Quad, material: &Elastic, section: &ShellSection) 
                 flex[a][b] += w * v;
             }
         }
+        // `dkqrig`: Bmᵀ·Dmf·Bf at each point (`utctab`).
+        if let Some(dmf) = &dmf {
+            let bm = Quad::bm(qsi, eta, &vj);
+            add_ctab(&bm, dmf, &bf, w, &mut mefl);
+        }
     }
     let mut k = membrane_stiffness(quad, &dm);
     add_bending(&flex, section.drilling, &mut k);
+    add_coupling(&mefl, &mut k);
     k
 }
 
@@ -551,8 +562,11 @@ fn nib_q(c: &[f64; 25], qsi: f64, eta: f64) -> ([f64; 12], [f64; 12]) {
 pub fn local_mass(quad: &Quad, rho: f64, section: &ShellSection) -> Matrix24 {
     let roe = rho * section.thickness;
     let mut m = membrane_mass(quad, roe);
-    let rof = section.rotary_density(rho);
+    let e = section.offset;
+    // `dkqmas`: the rotations' density ρh³/12 (INER_ROTA) + e²·ρh.
+    let rof = section.rotary_density(rho) + e * e * roe;
     let mut flex = [[0.; 12]; 12];
+    let mut mefl = [[0.; 12]; 8];
     for g in fpg4() {
         let (qsi, eta) = (g.xi[0], g.xi[1]);
         let w = wkq(&quad.c, qsi, eta);
@@ -565,8 +579,19 @@ pub fn local_mass(quad: &Quad, rho: f64, section: &ShellSection) -> Matrix24 {
                 flex[a][b] += w[a] * w[b] * wgt + (nfx[a] * nfx[b] + nfy[a] * nfy[b]) * wgtf;
             }
         }
+        if e != 0. {
+            // `dxqnim`: the bilinear membrane functions, weighted by e·ρh.
+            let nmi = [
+                0.25 * (1. - qsi) * (1. - eta),
+                0.25 * (1. + qsi) * (1. - eta),
+                0.25 * (1. + qsi) * (1. + eta),
+                0.25 * (1. - qsi) * (1. + eta),
+            ];
+            offset_mass(&nmi, &nfx, &nfy, g.weight * det * e * roe, &mut mefl);
+        }
     }
     add_bending(&flex, section.drilling, &mut m);
+    add_coupling(&mefl, &mut m);
     m
 }
 
@@ -660,7 +685,21 @@ pub fn generalised_at(
             let kappa: [f64; 3] = std::array::from_fn(|i| (0..12).map(|j| bf[i][j] * ub[j]).sum());
             let bc = quad.shear(&df, qsi, eta, &vj);
             let q: [f64; 2] = std::array::from_fn(|i| (0..12).map(|j| bc[i][j] * ub[j]).sum());
-            what.at_point(material, section, (&dm, &df), eps, kappa, q)
+            // `dkqedg` (a MECA_STATIQUE result's efforts): N's coupling
+            // term reads the curvature of the bilinear rotations (`dsqbfb`,
+            // Bm on the nodes' βx βy), the moments the DKQ's; `dktnli`'s
+            // layers (STAT_NON_LINE) and `dkqsie` read the DKQ's.
+            let beta: Vec<f64> = (0..4)
+                .flat_map(|n| [ub[3 * n + 1], ub[3 * n + 2]])
+                .collect();
+            let kappa_b: [f64; 3] =
+                std::array::from_fn(|i| (0..8).map(|j| bm[i][j] * beta[j]).sum());
+            let kappa_mf = if what == Generalised::EffortsLinear {
+                kappa_b
+            } else {
+                kappa
+            };
+            what.at_point_coupled(material, section, (&dm, &df), eps, (kappa, kappa_mf), q)
         })
         .collect())
 }

@@ -23,9 +23,14 @@
 //!   (QX, QY) from the moments' derivatives (`dsxhft`, `dkttxy`), in the
 //!   facet's frame `pgl`.
 //!
-//! Section: a homogeneous isotropic elastic thickness h with no offset
-//! (`EXCENTREMENT`), so membrane and bending are uncoupled:
-//! Dm = E·h/(1−ν²)·[1 ν 0; ν 1 0; 0 0 (1−ν)/2], Df = Dm·h²/12 (`dxmate`).
+//! Section: a homogeneous isotropic elastic thickness h,
+//! Dm = E·h/(1−ν²)·[1 ν 0; ν 1 0; 0 0 (1−ν)/2], Df = Dm·h²/12 (`dxmate`);
+//! with an offset e (`EXCENTREMENT`) the facet is the reference surface
+//! and the section's mid-surface lies at e along the normal: membrane and
+//! bending couple through Dmf = e·Dm and the bending becomes
+//! Df + e²·Dm (`dxmate`), in the stiffness (`dktrig`'s Bmᵀ·Dmf·Bf), the
+//! efforts (N += Dmf·κ, M += Dmf·ε, about the reference surface) and the
+//! mass (`dktmas`).
 //! The efforts are given in `pgl`; code_aster reports them in the user's
 //! frame (`ANGL_REP`/`VECTEUR` of `CARA_ELEM/COQUE`, by default the
 //! projection of global X on the facet), a rotation left to the caller.
@@ -53,6 +58,14 @@ pub struct ShellSection {
     /// matrices replace the homogeneous isotropic ones of the material
     /// ([`crate::laminate`]); `thickness` is then the stack's.
     pub layered: Option<std::sync::Arc<crate::laminate::LayeredSection>>,
+    /// `EXCENTREMENT`: the distance e from the cell's plane (the reference
+    /// surface, where the nodes are) to the mid-surface of the section,
+    /// along the facet's normal. code_aster's `dxmate` then couples
+    /// membrane and bending, B = e·A, and stiffens the bending,
+    /// D + e²·A ([`coupling`], [`section_matrices`]); the masses gain
+    /// e·ρh between the in-plane translations and the rotations and e²·ρh
+    /// on the rotations (`dktmas`, `dkqmas`).
+    pub offset: f64,
 }
 
 impl ShellSection {
@@ -64,6 +77,7 @@ impl ShellSection {
             drilling: 1e-5,
             rotary_inertia: false,
             layered: None,
+            offset: 0.,
         }
     }
 
@@ -407,8 +421,40 @@ fn gtria3(xy: &[[f64; 2]]) -> [f64; 21] {
     ]
 }
 
-/// Membrane and bending elasticity matrices of the section (`dxmate`).
+/// Membrane and bending elasticity matrices of the section (`dxmate`),
+/// about the reference surface: with an offset e (`EXCENTREMENT`) the
+/// bending matrix is D + e²·A, as `dxmate` makes it (the coupling e·A is
+/// [`coupling`]; a layered section here has no coupling of its own, the
+/// runner refuses unsymmetric stacks).
 pub(crate) fn section_matrices(
+    material: &Elastic,
+    section: &ShellSection,
+) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
+    let (dm, mut df) = mid_section_matrices(material, section);
+    let e = section.offset;
+    if e != 0. {
+        for i in 0..3 {
+            for j in 0..3 {
+                df[i][j] += e * e * dm[i][j];
+            }
+        }
+    }
+    (dm, df)
+}
+
+/// The membrane–bending coupling of the section about the reference
+/// surface, e·A (`dxmate`'s `dmf` with `EXCENTREMENT`), or `None` without
+/// an offset (`coupmf` false).
+pub(crate) fn coupling(material: &Elastic, section: &ShellSection) -> Option<[[f64; 3]; 3]> {
+    let e = section.offset;
+    (e != 0.).then(|| {
+        let (dm, _) = mid_section_matrices(material, section);
+        dm.map(|row| row.map(|v| e * v))
+    })
+}
+
+/// Membrane and bending matrices about the section's own mid-surface.
+fn mid_section_matrices(
     material: &Elastic,
     section: &ShellSection,
 ) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
@@ -459,8 +505,11 @@ pub(crate) fn fpg3() -> Vec<GaussPoint> {
 /// node-major DX DY DZ DRX DRY DRZ along the local axes.
 pub fn local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection) -> Matrix18 {
     let (dm, df) = section_matrices(material, section);
+    let dmf = coupling(material, section);
     let mut k = membrane_stiffness(facet, &dm);
     let mut flex = [[0.; 9]; 9];
+    let mut mefl = [[0.; 9]; 6];
+    let bm = facet.bm();
     for g in fpg3() {
         let w = g.weight * facet.c[6];
         let bf = facet.bf(g.xi[0], g.xi[1]);
@@ -475,9 +524,56 @@ pub fn local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection
                 flex[a][b] += w * v;
             }
         }
+        // `dktrig`: Bmᵀ·Dmf·Bf at each point (`utctab`).
+        if let Some(dmf) = &dmf {
+            add_ctab(&bm, dmf, &bf, w, &mut mefl);
+        }
     }
     add_bending(&flex, section.drilling, &mut k);
+    add_coupling(&mefl, &mut k);
     k
+}
+
+/// Adds `w`·Cᵀ·D·B to `out` (`utctab`): the coupling of the `M` membrane
+/// unknowns (operator `c`) with the `N` bending ones (operator `b`).
+pub(crate) fn add_ctab<const M: usize, const N: usize>(
+    c: &[[f64; M]; 3],
+    d: &[[f64; 3]; 3],
+    b: &[[f64; N]; 3],
+    w: f64,
+    out: &mut [[f64; N]; M],
+) {
+    let mut db = [[0.; N]; 3];
+    for i in 0..3 {
+        for j in 0..N {
+            db[i][j] = (0..3).map(|k| d[i][k] * b[k][j]).sum();
+        }
+    }
+    for a in 0..M {
+        for j in 0..N {
+            out[a][j] += w * (0..3).map(|i| c[i][a] * db[i][j]).sum::<f64>();
+        }
+    }
+}
+
+/// Adds the membrane–bending block `mefl` (membrane unknowns u₁ v₁ …
+/// by bending unknowns w₁ βx₁ βy₁ …) and its transpose to a local matrix
+/// (`dxtloc`, `dxqloc`: the `cfm`/`cmf` terms, with βy = −DRX).
+pub(crate) fn add_coupling<const M: usize, const N: usize, const D: usize>(
+    mefl: &[[f64; N]; M],
+    out: &mut SMatrix<f64, D, D>,
+) {
+    for (a, row) in mefl.iter().enumerate() {
+        let ia = membrane_dof(a);
+        for (b, v) in row.iter().enumerate() {
+            if *v == 0. {
+                continue;
+            }
+            let (ib, sb) = bending_dof(b);
+            out[(ia, ib)] += sb * v;
+            out[(ib, ia)] += sb * v;
+        }
+    }
 }
 
 /// The constant-strain membrane (`dxtbm`, area · Bmᵀ·Dm·Bm) on the
@@ -663,8 +759,9 @@ fn nib_t(c: &[f64; 21], qsi: f64, eta: f64) -> ([f64; 9], [f64; 9]) {
 ///   (w, βx, βy), integrated with the stiffness' FPG3 as code_aster does
 ///   (not exactly: w·w is of degree 6), plus the rotary inertia
 ///   ρh³/12 ∫ β·β with the DKT's rotations ([`nib_t`], `dktnib`) when
-///   `COQUE/INER_ROTA='OUI'` (code_aster's default: none; an offset, which
-///   would add it too, is not reproduced);
+///   `COQUE/INER_ROTA='OUI'` (code_aster's default: none), and with an
+///   offset e (`EXCENTREMENT`) e²·ρh ∫ β·β more and the coupling
+///   e·ρh ∫ (u·βx + v·βy) with the linear membrane functions (`dxtnim`);
 /// - the drilling DRZ: `COEF_RIGI_DRZ` × the least diagonal term of the
 ///   bending rotations, as for the stiffness (`dxtloc`).
 pub fn local_mass(facet: &Facet, rho: f64, section: &ShellSection) -> Matrix18 {
@@ -681,21 +778,50 @@ pub(crate) fn local_mass_on(
 ) -> Matrix18 {
     let roe = rho * section.thickness;
     let mut m = membrane_mass(facet, roe);
-    let rof = section.rotary_density(rho);
+    let e = section.offset;
+    // `dktmas`: the rotations' density ρh³/12 (INER_ROTA) + e²·ρh.
+    let rof = section.rotary_density(rho) + e * e * roe;
     let mut flex = [[0.; 9]; 9];
+    let mut mefl = [[0.; 9]; 6];
     for g in scheme {
-        let w = wkt(&facet.c, g.xi[0], g.xi[1]);
+        let (qsi, eta) = (g.xi[0], g.xi[1]);
+        let w = wkt(&facet.c, qsi, eta);
         let wgt = g.weight * facet.c[6] * roe;
-        let (nfx, nfy) = nib_t(&facet.c, g.xi[0], g.xi[1]);
+        let (nfx, nfy) = nib_t(&facet.c, qsi, eta);
         let wgtf = g.weight * facet.c[6] * rof;
         for a in 0..9 {
             for b in 0..9 {
                 flex[a][b] += w[a] * w[b] * wgt + (nfx[a] * nfx[b] + nfy[a] * nfy[b]) * wgtf;
             }
         }
+        if e != 0. {
+            // `dxtnim`: the linear membrane functions; u with βx, v with
+            // βy, weighted by e·ρh.
+            let nmi = [1. - qsi - eta, qsi, eta];
+            let wgtmf = g.weight * facet.c[6] * e * roe;
+            offset_mass(&nmi, &nfx, &nfy, wgtmf, &mut mefl);
+        }
     }
     add_bending(&flex, section.drilling, &mut m);
+    add_coupling(&mefl, &mut m);
     m
+}
+
+/// The membrane–rotation mass of an offset facet at one point (`dktmas`,
+/// `dkqmas`): `nmi` the membrane functions, (`nfx`, `nfy`) the rotations'.
+pub(crate) fn offset_mass<const K: usize, const M: usize, const N: usize>(
+    nmi: &[f64; K],
+    nfx: &[f64; N],
+    nfy: &[f64; N],
+    wgtmf: f64,
+    mefl: &mut [[f64; N]; M],
+) {
+    for k in 0..K {
+        for j in 0..N {
+            mefl[2 * k][j] += nmi[k] * nfx[j] * wgtmf;
+            mefl[2 * k + 1][j] += nmi[k] * nfy[j] * wgtmf;
+        }
+    }
 }
 
 /// The linear triangle's consistent membrane mass ρh·A/6 (diagonal),
@@ -807,8 +933,15 @@ pub fn generalised_at(
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Generalised {
     /// `EFGE`: NXX NYY NXY MXX MYY MXY QX QY (N = Dm·ε, M = Df·κ, Q the
-    /// moments' derivatives).
+    /// moments' derivatives; with an offset N += Dmf·κ, M += Dmf·ε — the
+    /// path of a STAT_NON_LINE result and of the layer stresses, whose
+    /// strains at a height read the facet's own κ).
     Efforts,
+    /// The efforts of a MECA_STATIQUE result (`dkqedg` with an `EFGE_*`
+    /// option): as [`Generalised::Efforts`] except that on the DKQ the
+    /// offset's term Dmf·κ of N reads the curvature of the bilinear
+    /// rotations (`dsqbfb`); the same on the DKT (`dktedg`).
+    EffortsLinear,
     /// `DEGE` (`dktedg`/`dkqedg` with a `DEGE_*` option): EXX EYY EXY KXX
     /// KYY KXY GAX GAY — the membrane strains and curvatures with their
     /// shear halved (tensor components), and GA = Dc⁻¹·Q/2, Dc = 5/6·G·h
@@ -829,11 +962,36 @@ impl Generalised {
         kappa: [f64; 3],
         q: [f64; 2],
     ) -> Efforts {
+        self.at_point_coupled(material, section, (dm, df), eps, (kappa, kappa), q)
+    }
+
+    /// [`Generalised::at_point`] with the curvature the offset's coupling
+    /// reads apart: `kappas` = (κ of the moments, κ of N's coupling term)
+    /// — the same on the DKT; `dkqedg` takes the second from the bilinear
+    /// rotations (`dsqbfb`).
+    pub(crate) fn at_point_coupled(
+        self,
+        material: &Elastic,
+        section: &ShellSection,
+        (dm, df): (&[[f64; 3]; 3], &[[f64; 3]; 3]),
+        eps: [f64; 3],
+        (kappa, kappa_mf): ([f64; 3], [f64; 3]),
+        q: [f64; 2],
+    ) -> Efforts {
         match self {
-            Generalised::Efforts => {
-                let n: [f64; 3] = std::array::from_fn(|i| (0..3).map(|j| dm[i][j] * eps[j]).sum());
-                let m: [f64; 3] =
+            Generalised::Efforts | Generalised::EffortsLinear => {
+                let mut n: [f64; 3] =
+                    std::array::from_fn(|i| (0..3).map(|j| dm[i][j] * eps[j]).sum());
+                let mut m: [f64; 3] =
                     std::array::from_fn(|i| (0..3).map(|j| df[i][j] * kappa[j]).sum());
+                // `dktedg`/`dkqedg`: with an offset, N += Dmf·κ and
+                // M += Dmf·ε — the efforts about the reference surface.
+                if let Some(dmf) = coupling(material, section) {
+                    for i in 0..3 {
+                        n[i] += (0..3).map(|j| dmf[i][j] * kappa_mf[j]).sum::<f64>();
+                        m[i] += (0..3).map(|j| dmf[i][j] * eps[j]).sum::<f64>();
+                    }
+                }
                 [n[0], n[1], n[2], m[0], m[1], m[2], q[0], q[1]]
             }
             Generalised::Strains => {

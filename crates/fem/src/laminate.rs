@@ -321,10 +321,15 @@ impl LayeredSection {
     }
 
     /// `dxdmul` for ply `layer` (0-based) at its bottom (`level` −1),
-    /// middle (0) or top (1).
-    pub fn ply_level(&self, layer: usize, level: i32) -> Option<PlyLevel> {
+    /// middle (0) or top (1), in a section offset by `offset`
+    /// (`EXCENTREMENT`): the level's height is then measured from the
+    /// reference surface, x3 = z + e (the strains ε + x3·κ of the
+    /// reference surface), and `dxdmul` computes the shear distribution
+    /// d1i, d2i with that x3 against the plies' unshifted bottoms, as
+    /// code_aster does.
+    pub fn ply_level(&self, layer: usize, level: i32, offset: f64) -> Option<PlyLevel> {
         let lay = self.laminate.layers.get(layer)?;
-        let x3 = lay.z + f64::from(level) * lay.thickness / 2.;
+        let x3 = lay.z + offset + f64::from(level) * lay.thickness / 2.;
         let mut d1i = [[0.; 2]; 2];
         let mut d2i = [[0.; 4]; 2];
         let mut dx1 = [[0.; 2]; 2];

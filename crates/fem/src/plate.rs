@@ -40,6 +40,21 @@ impl PlateTheory {
     }
 }
 
+/// An offset section (`EXCENTREMENT`) is reproduced on the DKT and DKQ
+/// facets only (`dktrig`, `dkqrig`, `dktmas`, `dkqmas`, `dktedg`,
+/// `dkqedg`); DST's and Q4G's own coupling terms (`dstrig`, `dsqrig`,
+/// `q4grig`, `t3grig`) are not.
+pub fn check_offset(theory: PlateTheory, section: &ShellSection) -> Result<(), String> {
+    if section.offset != 0. && theory != PlateTheory::Dkt {
+        return Err(format!(
+            "an offset section (EXCENTREMENT = {}) is reproduced on DKT/DKQ facets only, not on {}",
+            section.offset,
+            theory.name()
+        ));
+    }
+    Ok(())
+}
+
 fn check_nodes(theory: PlateTheory, xyz: &[[f64; 3]]) -> Result<(), String> {
     if matches!(xyz.len(), 3 | 4) {
         Ok(())
@@ -90,6 +105,7 @@ pub fn stiffness(
     section: &ShellSection,
 ) -> Result<DMatrix<f64>, String> {
     check_nodes(theory, xyz)?;
+    check_offset(theory, section)?;
     match (theory, xyz) {
         (PlateTheory::Dkt, [a, b, c]) => crate::dkt::stiffness(&[*a, *b, *c], material, section),
         (PlateTheory::Dkt, [a, b, c, d]) => {
@@ -113,6 +129,7 @@ pub fn mass(
     section: &ShellSection,
 ) -> Result<(DMatrix<f64>, f64), String> {
     check_nodes(theory, xyz)?;
+    check_offset(theory, section)?;
     match (theory, xyz) {
         (PlateTheory::Dkt, [a, b, c]) => crate::dkt::mass(&[*a, *b, *c], rho, section),
         // `dktmas` on Q4G's triangle reads its RIGI family, FPG1.
@@ -159,6 +176,7 @@ pub fn generalised_at(
     what: Generalised,
 ) -> Result<(Matrix3<f64>, Vec<Efforts>), String> {
     check_nodes(theory, xyz)?;
+    check_offset(theory, section)?;
     match (theory, xyz) {
         (PlateTheory::Dkt, [a, b, c]) => {
             let xyz = [*a, *b, *c];

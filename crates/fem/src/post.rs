@@ -138,6 +138,11 @@ pub enum EffortsAt {
     /// `EFGE_ELNO` of a linear result (`MECA_STATIQUE`): DKT/DKQ `ef0033`
     /// (`dxefgv`: the efforts evaluated at the nodes), COQUE_3D `ef0410`.
     NodesLinear,
+    /// `EFGE_ELGA` of a linear result: DKT/DKQ `dktedg`/`dkqedg` at the
+    /// Gauss points (an offset DKQ's N then reads the bilinear rotations'
+    /// curvature, [`crate::dkt::Generalised::EffortsLinear`]); COQUE_3D
+    /// as [`EffortsAt::Gauss`].
+    GaussLinear,
 }
 
 /// Generalised efforts at the Gauss points (`EFGE_ELGA`) of the shell
@@ -163,7 +168,12 @@ pub fn shell_efforts(
     direction: &dyn Fn(CellId) -> [f64; 3],
     at: EffortsAt,
 ) -> Result<Vec<CellValues>, FemError> {
-    shell_generalised(model, u, direction, at, crate::dkt::Generalised::Efforts)
+    let what = if matches!(at, EffortsAt::NodesLinear | EffortsAt::GaussLinear) {
+        crate::dkt::Generalised::EffortsLinear
+    } else {
+        crate::dkt::Generalised::Efforts
+    };
+    shell_generalised(model, u, direction, at, what)
 }
 
 /// The generalised strains EXX EYY EXY KXX KYY KXY GAX GAY of the DKT/DKQ
@@ -192,7 +202,7 @@ fn shell_generalised(
     what: crate::dkt::Generalised,
 ) -> Result<Vec<CellValues>, FemError> {
     let names: &[&str] = match what {
-        crate::dkt::Generalised::Efforts => &EFGE_NAMES,
+        crate::dkt::Generalised::Efforts | crate::dkt::Generalised::EffortsLinear => &EFGE_NAMES,
         crate::dkt::Generalised::Strains => &DEGE_NAMES,
     };
     let mut out = Vec::new();
@@ -353,11 +363,17 @@ pub fn shell_sigm_elno(
         let h = section.thickness;
         let z = -0.5 * h + h * (f64::from(level.layer - 1) + level.position) / f64::from(n);
         let parabola = 1.5 / h * (1.0 - 4.0 * z * z / (h * h));
+        // With an offset e the efforts are about the reference surface
+        // (M = D κ + e·N): `dktsie`'s H (ε + (z + e) κ) at the height z
+        // from the mid-surface is N/h + 12 z (M − e·N)/h³, and its shear
+        // parabola (a z² + b z + c between e − h/2 and e + h/2) the same
+        // function of z.
+        let off = section.offset;
         let gauss: Vec<Vec<f64>> = cv
             .points
             .iter()
             .map(|e| {
-                let at = |k: usize| e[k] / h + 12.0 * z * e[k + 3] / (h * h * h);
+                let at = |k: usize| e[k] / h + 12.0 * z * (e[k + 3] - off * e[k]) / (h * h * h);
                 let mut s = vec![at(0), at(1), 0.0, at(2)];
                 if shear {
                     s.extend([parabola * e[6], parabola * e[7]]);
@@ -419,7 +435,7 @@ fn layered_sigm_elno(
         0
     };
     let data = (ply >= 1)
-        .then(|| layered.ply_level(ply - 1, at))
+        .then(|| layered.ply_level(ply - 1, at, section.offset))
         .flatten()
         .ok_or_else(|| {
             cell_error(
@@ -611,7 +627,9 @@ pub fn coque3d_efge(
     coque3d_cells(model, u, &|cell, material, section, xyz, ue| {
         let d = direction(cell);
         let efforts = match at {
-            EffortsAt::Gauss => c3::efge_elga(xyz, material, section, ue, d),
+            EffortsAt::Gauss | EffortsAt::GaussLinear => {
+                c3::efge_elga(xyz, material, section, ue, d)
+            }
             EffortsAt::NodesNonLinear => c3::efge_elno(xyz, material, section, ue, d),
             EffortsAt::NodesLinear => c3::efge_elno_linear(xyz, material, section, ue, d),
         }?;

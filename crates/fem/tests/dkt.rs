@@ -175,6 +175,7 @@ fn rigid_motions_are_stress_free() {
         drilling: 0.,
         rotary_inertia: false,
         layered: None,
+        offset: 0.,
     };
     let xyz = [[0.1, 0.2, -0.3], [1.3, 0.4, 0.2], [0.5, 1.1, 0.6]];
     let k = dkt::stiffness(&xyz, &mat, &sec).unwrap();
@@ -210,6 +211,7 @@ fn rigid_motions_are_stress_free() {
             drilling,
             rotary_inertia: false,
             layered: None,
+            offset: 0.,
         };
         let k = dkt::stiffness(&xyz, &mat, &sec).unwrap();
         let eig = k.symmetric_eigen().eigenvalues;
@@ -231,6 +233,7 @@ fn drilling_spring_is_code_aster_fraction_of_the_bending_rotations() {
             drilling: 0.,
             rotary_inertia: false,
             layered: None,
+            offset: 0.,
         },
     )
     .unwrap();
@@ -567,6 +570,7 @@ fn quadrangle_rigid_motions_are_stress_free() {
             drilling,
             rotary_inertia: false,
             layered: None,
+            offset: 0.,
         };
         let k = dkq::stiffness(&xyz, &mat, &sec).unwrap();
         assert!((&k - k.transpose()).amax() < 1e-12 * scale);
@@ -677,6 +681,7 @@ fn quadrangle_errors_and_warping() {
         drilling: -1e-5,
         rotary_inertia: false,
         layered: None,
+        offset: 0.,
     };
     let err = dkq::stiffness(&flat, &mat, &negative).unwrap_err();
     assert!(err.contains("COEF_RIGI_DRZ"), "{err}");

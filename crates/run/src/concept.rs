@@ -625,8 +625,11 @@ pub struct ShellForce {
     pub values: [f64; 7],
     pub functions: [Option<LoadFunction>; 7],
     /// `PLAN`: the plane the load acts in, in half thicknesses from the
-    /// mid-surface (INF −1, SUP +1, MOY and MAIL 0: no EXCENTREMENT).
+    /// mid-surface (INF −1, SUP +1, MOY and MAIL 0).
     pub plane: f64,
+    /// Whether that plane is the section's (INF, SUP, MOY: moved by its
+    /// `EXCENTREMENT` too, te0032's `dist`) rather than the mesh's (MAIL).
+    pub section_plane: bool,
     /// The sign of the pressure slot: 1 for `PRES`, −1 when the local
     /// normal force `F3` was given there (te0032 and fsurf take F3 along
     /// the normal n, PRES along −n).

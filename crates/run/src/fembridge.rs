@@ -1393,8 +1393,9 @@ fn shell_loads(
     let mesh = model.mesh();
     for &cell in &sh.cells {
         let offset = match model.element_kind(cell) {
-            Some(aster_fem::ElementKind::Shell { section, .. }) => {
-                sh.plane * section.thickness / 2.0
+            // te0032: dist = e ± h/2 (INF, SUP), e (MOY), 0 (MAIL).
+            Some(aster_fem::ElementKind::Shell { section, .. }) if sh.section_plane => {
+                section.offset + sh.plane * section.thickness / 2.0
             }
             _ => 0.0,
         };
@@ -2493,8 +2494,13 @@ pub fn calc_champ(
                 }
                 "EFGE_ELGA" if model.has_shells() => Field::Elem(elem_field(
                     ElemLocation::Gauss,
-                    &crate::shells::efge_elga(model, run.cara.as_deref(), u)
-                        .map_err(|e| fem_err("CALC_CHAMP", e))?,
+                    &crate::shells::efge_elga(
+                        model,
+                        run.cara.as_deref(),
+                        u,
+                        matches!(result.typ.as_str(), "evol_elas" | "mult_elas"),
+                    )
+                    .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 )),
                 "EFGE_ELNO" if model.has_beams() || model.has_bars() || model.has_shells() => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &efge_elno()?))
@@ -2663,6 +2669,95 @@ pub fn extract_shell_level(
             .iter()
             .map(|name| (name.clone(), field.clone()))
             .collect();
+        out.steps.push(Step {
+            nume_ordre: step.nume_ordre,
+            inst: step.inst,
+            fields,
+        });
+    }
+    Ok(out)
+}
+
+/// POST_CHAMP/COQU_EXCENT: a result holding, at each of `steps`, the
+/// shells' efforts `names` (EFGE_ELNO, EFGE_ELGA, which CALC_CHAMP must
+/// have computed) of the cells `only` (all when `None`) moved from the
+/// cells' plane to their section's mid-surface: MXX MYY MXY − e·(NXX NYY
+/// NXY), e the offset of each cell's section (`EXCENTREMENT`; 0: the
+/// efforts unchanged), as code_aster's `te0452` (`excent('MOY')`).
+pub fn shell_efforts_to_mid_surface(
+    result: &EvolResult,
+    names: &[String],
+    steps: &[u32],
+    only: Option<&std::collections::BTreeSet<aster_mesh::CellId>>,
+) -> Result<EvolResult, ExecError> {
+    let Some(run) = result.fem.clone() else {
+        return Err(ExecError::new(
+            "POST_CHAMP/COQU_EXCENT: this result was not computed by STAT_NON_LINE/MECA_STATIQUE in this run",
+        ));
+    };
+    let offset = |cell| match run.model.element_kind(cell) {
+        Some(aster_fem::ElementKind::Shell { section, .. }) => Some(section.offset),
+        _ => None,
+    };
+    let mut out = EvolResult {
+        typ: result.typ.clone(),
+        mesh: result.mesh,
+        steps: Vec::new(),
+        fem: None,
+        tables: Vec::new(),
+        modal: None,
+        cases: None,
+        thermal: None,
+    };
+    for step in result
+        .steps
+        .iter()
+        .filter(|s| steps.contains(&s.nume_ordre))
+    {
+        let mut fields = crate::field::StepFields::new();
+        for name in names {
+            let Some(Field::Elem(efge)) = step.fields.get(name) else {
+                return Err(ExecError::new(format!(
+                    "POST_CHAMP/COQU_EXCENT: the field {name} is not in the result at NUME_ORDRE {}: compute it first (CALC_CHAMP)",
+                    step.nume_ordre
+                )));
+            };
+            let comps = efge.components();
+            let at = |c: &str| comps.iter().position(|n| n == c);
+            let (Some(nxx), Some(nyy), Some(nxy), Some(mxx), Some(myy), Some(mxy)) = (
+                at("NXX"),
+                at("NYY"),
+                at("NXY"),
+                at("MXX"),
+                at("MYY"),
+                at("MXY"),
+            ) else {
+                return Err(ExecError::new(format!(
+                    "POST_CHAMP/COQU_EXCENT: the field {name} has no NXX NYY NXY MXX MYY MXY components"
+                )));
+            };
+            let mut moved = ElemField::new(efge.location, comps.to_vec());
+            for (cell, points) in efge.iter() {
+                if only.is_some_and(|o| !o.contains(&cell)) {
+                    continue;
+                }
+                // te0452 is a shell option: cells of other elements are
+                // left out of the new field.
+                let Some(e) = offset(cell) else { continue };
+                let pts: Vec<Vec<f64>> = points
+                    .iter()
+                    .map(|p| {
+                        let mut v = p.to_vec();
+                        v[mxx] -= e * p[nxx];
+                        v[myy] -= e * p[nyy];
+                        v[mxy] -= e * p[nxy];
+                        v
+                    })
+                    .collect();
+                moved.insert(cell, pts);
+            }
+            fields.insert(name.clone(), Field::Elem(moved));
+        }
         out.steps.push(Step {
             nume_ordre: step.nume_ordre,
             inst: step.inst,

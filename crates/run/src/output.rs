@@ -286,6 +286,11 @@ pub(crate) const IMPR_RESU: Support = Support {
         "RESU/FORMAT_R",
         "RESU/IMPR_COOR",
         "RESU/TYPE_CHAM",
+        // code_aster reads it to describe the sub-points (layers) of a
+        // field as MED structural elements; aster's results hold no
+        // sub-point field (the layers are extracted by POST_CHAMP), so it
+        // changes nothing written (ssls111a).
+        "RESU/CARA_ELEM",
     ])
 };
 

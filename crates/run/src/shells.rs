@@ -166,9 +166,15 @@ pub(crate) fn efge_elga(
     model: &Model,
     cara: Option<&CaraElem>,
     u: &[f64],
+    linear: bool,
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
     let direction = directions(cara);
-    let mut out = aster_fem::post::efge_elga(model, u, &direction)?;
+    let at = if linear {
+        EffortsAt::GaussLinear
+    } else {
+        EffortsAt::Gauss
+    };
+    let mut out = aster_fem::post::shell_efforts(model, u, &direction, at)?;
     out.extend(aster_fem::post::coque3d_efge(
         model,
         u,

@@ -6,9 +6,14 @@
 //! `coqrep`).
 //!
 //! Read here, handed to aster-fem as [`aster_fem::ShellSection`] and a
-//! direction per cell. Not reproduced, so refused by the support table:
-//! `EPAIS_FO`, `EXCENTREMENT(_FO)` (an offset couples membrane and
-//! bending), `MODI_METRIQUE='OUI'` (COQUE_3D only). `INER_ROTA='OUI'`
+//! direction per cell. `EXCENTREMENT` (the offset e of the section's
+//! mid-surface from the cells' plane, along their normal) couples
+//! membrane and bending as `dxmate` does (B = e·A, D + e²·A) on the DKT
+//! and DKQ facets; on DST, Q4G (their own coupling terms, `dstrig`,
+//! `q4grig`, are not reproduced) and COQUE_3D cells (code_aster refuses
+//! it there, te0119) it is refused at the keyword. Not reproduced, so
+//! refused by the support table: `EPAIS_FO`, `EXCENTREMENT_FO`,
+//! `MODI_METRIQUE='OUI'` (COQUE_3D only). `INER_ROTA='OUI'`
 //! adds the rotary inertia ρh³/12 to the DKT masses (`dktmas`, `dkqmas`)
 //! and changes no stiffness (COQUE_3D has no mass here: no effect).
 //! `COQUE_NCOU` (the layers of the stresses through the thickness) and
@@ -16,6 +21,7 @@
 //! stiffness: accepted; a COQUE_3D integrates its stiffness layer by
 //! layer and uses `A_CIS` for its transverse shears.
 
+use crate::concept::{ModelDef, Modelisation};
 use crate::executor::Executor;
 use crate::select;
 use aster_eval::{ExecError, Keywords};
@@ -54,7 +60,7 @@ impl ShellCara {
 }
 
 /// The `COQUE` keywords AFFE_CARA_ELEM reads (`crate::support`).
-pub(crate) const KEYWORDS: [&str; 10] = [
+pub(crate) const KEYWORDS: [&str; 11] = [
     "COQUE",
     "COQUE/GROUP_MA",
     "COQUE/EPAIS",
@@ -65,6 +71,7 @@ pub(crate) const KEYWORDS: [&str; 10] = [
     "COQUE/A_CIS",
     "COQUE/MODI_METRIQUE",
     "COQUE/INER_ROTA",
+    "COQUE/EXCENTREMENT",
 ];
 
 /// `MODI_METRIQUE='OUI'` is COQUE_3D's.
@@ -80,6 +87,7 @@ pub(crate) fn shells(
     ex: &Executor,
     kw: &Keywords,
     mesh: &Mesh,
+    model: &ModelDef,
 ) -> Result<Vec<ShellCara>, ExecError> {
     let mut out = Vec::new();
     let mut empty: Option<ExecError> = None;
@@ -179,6 +187,38 @@ pub(crate) fn shells(
                 format!("A_CIS = {shear_factor}: a shear factor must be positive"),
             ));
         }
+        let offset = occ.f64("EXCENTREMENT").unwrap_or(0.);
+        if !offset.is_finite() {
+            return Err(err(
+                "EXCENTREMENT",
+                format!("EXCENTREMENT = {offset}: an offset must be finite"),
+            ));
+        }
+        if offset != 0. {
+            // The offset is reproduced on DKT/DKQ facets only.
+            let other = cells.iter().find_map(|c| match model.cells.get(c) {
+                Some(Modelisation::Plate(aster_fem::plate::PlateTheory::Dkt)) | None => None,
+                Some(Modelisation::Plate(t)) => Some((*c, t.name())),
+                Some(Modelisation::Coque3d) => Some((*c, "COQUE_3D")),
+                Some(_) => None,
+            });
+            if let Some((c, name)) = other {
+                let why = if name == "COQUE_3D" {
+                    "code_aster refuses an offset on COQUE_3D (te0119)"
+                } else {
+                    "its membrane-bending coupling terms (dstrig, dsqrig, q4grig, t3grig) are not reproduced; DKT/DKQ's are"
+                };
+                return Err(ex.unsupported(
+                    &format!(
+                        "AFFE_CARA_ELEM/COQUE/EXCENTREMENT on the {name} cell {} ({why})",
+                        select::cell_name(mesh, c)
+                    ),
+                    occ.keyword("EXCENTREMENT")
+                        .map(|k| k.span)
+                        .unwrap_or_default(),
+                ));
+            }
+        }
         out.push(ShellCara {
             cells,
             section: ShellSection {
@@ -188,6 +228,7 @@ pub(crate) fn shells(
                 // the DKT masses (`dktmas`, `dkqmas`); no effect on stiffness.
                 rotary_inertia: occ.str("INER_ROTA") == Some("OUI"),
                 layered: None,
+                offset,
             },
             direction,
             layers,

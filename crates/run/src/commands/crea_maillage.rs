@@ -161,7 +161,15 @@ pub fn crea_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         // Copies of cells on the same nodes (aster-mesh `Mesh::copy_cells`).
         "CREA_MAILLE" => {
             for occ in kw.factor(op) {
-                let cells = cells_of(occ, &mesh)?;
+                // The catalogue's UN_PARMI("TOUT", "GROUP_MA", TOUT="OUI"):
+                // without either, every cell is copied (ssls117b).
+                let cells = if occ.contains("GROUP_MA") || occ.contains("TOUT") {
+                    cells_of(occ, &mesh)?
+                } else {
+                    (0..mesh.cells.len() as u32)
+                        .map(aster_mesh::CellId)
+                        .collect()
+                };
                 let Some(name) = occ.str("NOM") else {
                     return Err(ex.kw_error(CMD, occ, "NOM", "CREA_MAILLE needs NOM"));
                 };

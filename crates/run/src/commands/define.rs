@@ -1175,9 +1175,9 @@ pub(crate) const AFFE_CARA_ELEM: Support = Support {
         super::cara_poutre::VALUES[2],
         super::cara_poutre::VALUES[3],
     ],
-    ..Support::keywords(&crate::support::joined::<_, 45>(
-        &crate::support::joined::<_, 40>(
-            &crate::support::joined::<_, 26>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
+    ..Support::keywords(&crate::support::joined::<_, 46>(
+        &crate::support::joined::<_, 41>(
+            &crate::support::joined::<_, 27>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
             &super::cara_poutre::KEYWORDS,
         ),
         &super::cara_massif::KEYWORDS,
@@ -1191,7 +1191,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let mesh = ex.mesh_by_id(model.mesh)?;
     let mut discrete = Vec::new();
     let mut masses = Vec::new();
-    let shells = super::cara_coque::shells(ex, kw, &mesh)?;
+    let shells = super::cara_coque::shells(ex, kw, &mesh, &model)?;
     let beams = super::cara_poutre::beams(ex, kw, &mesh)?;
     let bars = super::cara_poutre::bars(ex, kw, &mesh)?;
     let massif = super::cara_massif::frames(ex, kw, &mesh)?;

@@ -197,7 +197,8 @@ pub(super) fn force_coque(
             ));
         }
     }
-    let plane = match occ.str("PLAN").unwrap_or("MAIL") {
+    let plan = occ.str("PLAN").unwrap_or("MAIL");
+    let plane = match plan {
         "INF" => -1.0,
         "SUP" => 1.0,
         _ => 0.0,
@@ -207,6 +208,7 @@ pub(super) fn force_coque(
         values,
         functions,
         plane,
+        section_plane: plan != "MAIL",
         normal_sign,
     })
 }

@@ -13,6 +13,13 @@
 //!   selected steps of a result where CALC_CHAMP computed that field;
 //!   CALC_CHAMP's `SIGM_NOEU` on it averages that field at the nodes.
 //!
+//! - `POST_CHAMP(COQU_EXCENT=_F(NOM_CHAM='EFGE_ELNO'|'EFGE_ELGA',
+//!   MODI_PLAN='OUI'), GROUP_MA|TOUT)`: the shells' efforts of a result,
+//!   which code_aster gives about the cells' plane (the reference surface
+//!   of an offset section, `EXCENTREMENT`), moved to the section's
+//!   mid-surface: M − e·N (code_aster's `te0452` → `excent('MOY')`), on the
+//!   selected cells (`GROUP_MA`, else all), at the selected steps.
+//!
 //! `RECU_TABLE` (both its `NOM_TABLE` and `NOM_PARA` forms) is in `tables`.
 
 use crate::concept::{Concept, EvolResult, Step};
@@ -184,10 +191,14 @@ fn eval_at(
 const POST_CHAMP_OWN: &[&str] = &[
     "RESULTAT",
     "TOUT",
+    "GROUP_MA",
     "EXTR_COQUE",
     "EXTR_COQUE/NOM_CHAM",
     "EXTR_COQUE/NUME_COUCHE",
     "EXTR_COQUE/NIVE_COUCHE",
+    "COQU_EXCENT",
+    "COQU_EXCENT/NOM_CHAM",
+    "COQU_EXCENT/MODI_PLAN",
 ];
 
 /// What POST_CHAMP reads (`crate::support`): the shells' layer extraction
@@ -210,6 +221,31 @@ pub fn post_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     let kw = &call.keywords;
     let r = ex.required("POST_CHAMP", kw, "RESULTAT")?;
     let result = ex.result(r)?;
+    let excent = kw.factor("COQU_EXCENT");
+    if !excent.is_empty() {
+        let mesh = ex.mesh_by_id(result.mesh)?;
+        let only = if kw.contains("GROUP_MA") {
+            let cells = crate::select::cells(kw, &mesh, "")
+                .map_err(|e| ExecError::new(format!("POST_CHAMP: {e}")))?;
+            Some(cells.into_iter().collect::<std::collections::BTreeSet<_>>())
+        } else {
+            None
+        };
+        let names: Vec<String> = excent
+            .iter()
+            .filter_map(|occ| occ.str("NOM_CHAM").map(str::to_string))
+            .collect();
+        let steps = crate::commands::select_steps_pub(ex, "POST_CHAMP", kw, &result)?;
+        let out =
+            crate::fembridge::shell_efforts_to_mid_surface(&result, &names, &steps, only.as_ref())?;
+        return store_result(ex, call, Concept::Result(Rc::new(out)));
+    }
+    if kw.contains("GROUP_MA") {
+        return Err(ex.unsupported(
+            "POST_CHAMP/GROUP_MA with EXTR_COQUE (the layer extraction covers every shell cell)",
+            kw.keyword("GROUP_MA").map(|k| k.span).unwrap_or(call.span),
+        ));
+    }
     let extr = kw.factor("EXTR_COQUE");
     let Some(occ) = extr.first() else {
         return Err(ex.unsupported("POST_CHAMP other than EXTR_COQUE", call.span));
