@@ -115,6 +115,8 @@ pub(crate) fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
         | Modelisation::Bar
         | Modelisation::Plate(_)
         | Modelisation::Coque3d
+        | Modelisation::GridMembrane
+        | Modelisation::GridExcentre
         | Modelisation::PlaneJoint => None,
     }
 }
@@ -159,6 +161,13 @@ pub fn build_model(
             for &cell in &b.cells {
                 bars.insert(cell, b.area);
             }
+        }
+    }
+    let mut grids: BTreeMap<aster_mesh::CellId, &crate::commands::cara_grille::GridCara> =
+        BTreeMap::new();
+    if let Some(c) = cara {
+        for g in &c.grids {
+            grids.insert(g.cell, g);
         }
     }
     // AFFE_CARA_ELEM/MASSIF: the material frames (a later occurrence
@@ -292,6 +301,22 @@ pub fn build_model(
                 kind: ElementKind::Bar {
                     material: material_of(cell)?,
                     area,
+                },
+            });
+            continue;
+        }
+        if matches!(m, Modelisation::GridMembrane | Modelisation::GridExcentre) {
+            let g = grids.get(&cell).ok_or_else(|| {
+                ExecError::new(format!(
+                    "cell {} carries a grid element (GRILLE_*) but no section: give AFFE_CARA_ELEM/GRILLE (and CARA_ELEM to the solver)",
+                    crate::select::cell_name(mesh, cell)
+                ))
+            })?;
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Grid {
+                    material: material_of(cell)?,
+                    section: g.section(m == Modelisation::GridExcentre),
                 },
             });
             continue;
