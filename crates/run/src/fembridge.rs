@@ -2311,10 +2311,11 @@ pub fn calc_champ(
                     ElemLocation::Nodes,
                     &post::elno(model, &epsi_elga()?),
                 )),
-                "EPSI_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(
-                    model,
-                    &post::elno(model, &epsi_elga()?),
-                ))),
+                "EPSI_NOEU" => {
+                    let elno = post::elno(model, &epsi_elga()?);
+                    refuse_grid_mix(ex, call, model, &elno, opt)?;
+                    Field::Nodal(nodal_from_values(&post::noeu(model, &elno)))
+                }
                 "EPSG_ELGA" | "EPSG_ELNO" | "EPSG_NOEU" | "EPSL_ELGA" | "EPSL_ELNO"
                 | "EPSL_NOEU" => {
                     let measure = if opt.starts_with("EPSG") {
@@ -2409,10 +2410,11 @@ pub fn calc_champ(
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))
                 }
-                "SIEF_NOEU" | "SIGM_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(
-                    model,
-                    &continuum_only(elno()),
-                ))),
+                "SIEF_NOEU" | "SIGM_NOEU" => {
+                    let elno = continuum_only(elno());
+                    refuse_grid_mix(ex, call, model, &elno, opt)?;
+                    Field::Nodal(nodal_from_values(&post::noeu(model, &elno)))
+                }
                 // Internal variables (none for ELAS: fields without components).
                 "VARI_ELNO" => Field::Elem(elem_field(
                     ElemLocation::Nodes,
@@ -2627,6 +2629,42 @@ fn calc_champ_from_fields(
 }
 
 /// Stress fields without the springs' N/VY values (SIGM_* are continuum fields).
+/// A nodal average (`*_NOEU`) over grid cells and other cells at once:
+/// code_aster averages each component over the cells that have it (a
+/// grid's SIXX with the solid's, its EXX alone), which `post::noeu` does
+/// not (one component set per field): refused, located at the option.
+fn refuse_grid_mix(
+    ex: &Executor,
+    call: &CommandCall,
+    model: &Model,
+    elno: &[CellValues],
+    opt: &str,
+) -> Result<(), ExecError> {
+    if !model.has_grids() {
+        return Ok(());
+    }
+    let grid = |c: &CellValues| {
+        matches!(
+            model.element_kind(c.cell),
+            Some(aster_fem::ElementKind::Grid { .. })
+        )
+    };
+    if elno.iter().any(grid) && !elno.iter().all(grid) {
+        let at = ["DEFORMATION", "CONTRAINTE"]
+            .iter()
+            .find_map(|k| call.keywords.keyword(k))
+            .map(|k| k.span)
+            .unwrap_or(call.span);
+        return Err(ex.unsupported(
+            &format!(
+                "CALC_CHAMP/{opt} over grid cells (GRILLE_*) and other cells at once (code_aster averages each component over the cells that have it; restrict it with GROUP_MA)"
+            ),
+            at,
+        ));
+    }
+    Ok(())
+}
+
 fn continuum_only(cells: Vec<CellValues>) -> Vec<CellValues> {
     cells
         .into_iter()
