@@ -243,6 +243,7 @@ fn scatter_columns(
             | ElementKind::Shell { .. }
             | ElementKind::Beam { .. }
             | ElementKind::Bar { .. }
+            | ElementKind::Grid { .. }
             | ElementKind::Coque3d { .. } => {
                 let Some(ke) = element_stiffness(model, idx)? else {
                     continue;

@@ -326,7 +326,36 @@ pub fn element_stiffness(model: &Model, index: usize) -> Result<Option<DMatrix<f
                 .map(Some)
                 .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
         }
+        ElementKind::Grid { material, section } => {
+            grid_stiffness(model.mesh(), el.cell, material, section)
+                .map(Some)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
+        }
     }
+}
+
+/// The node coordinates of a cell.
+pub fn cell_coords(mesh: &Mesh, cell: CellId) -> Vec<[f64; 3]> {
+    mesh.cell(cell)
+        .nodes
+        .iter()
+        .map(|&n| mesh.coord(n))
+        .collect()
+}
+
+/// The global stiffness of a reinforcement grid ([`crate::grid`]).
+pub fn grid_stiffness(
+    mesh: &Mesh,
+    cell: CellId,
+    material: &Elastic,
+    section: &crate::grid::GridSection,
+) -> Result<DMatrix<f64>, String> {
+    crate::grid::stiffness(
+        mesh.cell(cell).ty,
+        &cell_coords(mesh, cell),
+        section,
+        material.e,
+    )
 }
 
 /// The edge nodes of a COQUE_3D cell (its geometry: eight on a QUAD9,

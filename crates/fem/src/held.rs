@@ -46,6 +46,7 @@ pub fn free_dofs(model: &Model, rows: &[Vec<(usize, f64)>]) -> Vec<String> {
             | ElementKind::Shell { .. }
             | ElementKind::Beam { .. }
             | ElementKind::Bar { .. }
+            | ElementKind::Grid { .. }
             | ElementKind::Coque3d { .. } => {
                 for w in c.nodes.windows(2) {
                     union(&mut parent, w[0].0 as usize, w[1].0 as usize);

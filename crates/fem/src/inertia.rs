@@ -124,6 +124,12 @@ pub fn cell_inertias(
                     model.cell_name(el.cell)
                 )))
             }
+            ElementKind::Grid { .. } => {
+                return Err(FemError::Model(format!(
+                    "cell {} is a reinforcement grid (GRILLE_*): its MASS_INER contribution (te0433) is not reproduced",
+                    model.cell_name(el.cell)
+                )))
+            }
             ElementKind::Shell { section, .. } => {
                 let Some(&rho) = data.density.get(&el.cell) else {
                     return Err(FemError::Model(format!(

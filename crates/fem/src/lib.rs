@@ -34,6 +34,7 @@ pub mod follower;
 pub mod force_source;
 pub mod fpg;
 pub mod fracture;
+pub mod grid;
 mod held;
 pub mod hexs8;
 pub mod inertia;

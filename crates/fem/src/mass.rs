@@ -340,6 +340,10 @@ pub fn element_mass(
                 .map(Some)
                 .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))
         }
+        ElementKind::Grid { .. } => Err(FemError::Model(format!(
+            "cell {} is a reinforcement grid (GRILLE_*): its mass (te0432) is not implemented",
+            model.cell_name(el.cell),
+        ))),
         ElementKind::Spring { .. } | ElementKind::Boundary => Ok(None),
     }
 }

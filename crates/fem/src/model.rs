@@ -62,6 +62,14 @@ pub enum ElementKind {
         material: Elastic,
         section: crate::coque3d::Coque3dSection,
     },
+    /// A reinforcement grid on a surface cell ([`crate::grid`]):
+    /// `GRILLE_MEMBRANE` (DX DY DZ) or, with an offset, `GRILLE_EXCENTRE`
+    /// (its nodes carry DRX DRY DRZ too), linear elastic (E only). 3D
+    /// models only.
+    Grid {
+        material: Elastic,
+        section: crate::grid::GridSection,
+    },
 }
 
 impl ElementKind {
@@ -72,6 +80,7 @@ impl ElementKind {
                 true
             }
             ElementKind::Spring { stiffness, .. } => stiffness.len() == 6,
+            ElementKind::Grid { section, .. } => section.offset.is_some(),
             _ => false,
         }
     }
@@ -113,6 +122,9 @@ pub struct Model {
     /// edge elements (`MECA_ARETE2`/`3`), which carry no stiffness here but
     /// belong to the model for post-processing over cells (`POST_ELEM`).
     edges: std::collections::BTreeSet<CellId>,
+    /// Cells carrying a reinforcement grid ([`crate::grid`]): their
+    /// Gauss family is the grid's ([`crate::grid::scheme`]).
+    grids: std::collections::BTreeSet<CellId>,
 }
 
 impl Model {
@@ -269,6 +281,7 @@ impl Model {
                 | ElementKind::Beam { material, .. }
                 | ElementKind::Bar { material, .. }
                 | ElementKind::Coque3d { material, .. }
+                | ElementKind::Grid { material, .. }
                     if !material.is_isotropic() =>
                 {
                     return Err(FemError::Model(format!(
@@ -355,6 +368,15 @@ impl Model {
                     })?;
                     truss = true;
                 }
+                ElementKind::Grid { section, .. } => {
+                    section.check(cell.ty).map_err(|m| {
+                        FemError::Model(format!("grid on cell {} is {m}", cell_name(el.cell)))
+                    })?;
+                    truss = true;
+                    if section.offset.is_some() {
+                        shell = true;
+                    }
+                }
             }
             if let ElementKind::Continuum { .. } = el.kind {
                 if !shape::supported(cell.ty) {
@@ -436,7 +458,13 @@ impl Model {
             sets.push(vec![Comp::DRX, Comp::DRY, Comp::DRZ]);
         }
         let dofs = DofNumbering::per_node(sets, &set);
+        let grids = elements
+            .iter()
+            .filter(|e| matches!(e.kind, ElementKind::Grid { .. }))
+            .map(|e| e.cell)
+            .collect();
         Ok(Model {
+            grids,
             mesh,
             elements,
             dofs,
@@ -622,6 +650,11 @@ impl Model {
         !self.shells.is_empty()
     }
 
+    /// Whether the model has reinforcement grids ([`crate::grid`]).
+    pub fn has_grids(&self) -> bool {
+        !self.grids.is_empty()
+    }
+
     /// Whether a cell is code_aster's stabilised one-point HEXA8 of
     /// `3D_SI` ([`crate::hexs8`]).
     pub fn is_stabilised(&self, cell: CellId) -> bool {
@@ -653,6 +686,9 @@ impl Model {
     /// an `_SI` cell, else [`shape::stiffness_scheme`].
     pub fn stiffness_scheme(&self, cell: CellId) -> Vec<shape::GaussPoint> {
         let ty = self.mesh.cell(cell).ty;
+        if self.grids.contains(&cell) {
+            return crate::grid::scheme(ty);
+        }
         if self.mixed.contains(&cell) {
             if let Some(h) = self.hypothesis {
                 return crate::mixed_upg::scheme(ty, h);

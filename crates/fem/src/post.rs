@@ -695,6 +695,22 @@ pub fn sief_elga(model: &Model, u: &[f64]) -> Result<Vec<CellValues>, FemError> 
                     points: vec![f],
                 });
             }
+            // Grids: SIXX = E ε at each point (te0433).
+            ElementKind::Grid { material, section } => {
+                let mesh = model.mesh();
+                let eps = crate::grid::strains(
+                    mesh.cell(el.cell).ty,
+                    &crate::element::cell_coords(mesh, el.cell),
+                    section,
+                    ue.as_slice(),
+                )
+                .map_err(|m| cell_error(model, el.cell, m))?;
+                out.push(CellValues {
+                    cell: el.cell,
+                    names: vec!["SIXX"],
+                    points: eps.iter().map(|e| vec![material.e * e]).collect(),
+                });
+            }
             // Shells' stresses are by layer (code_aster's sub-points), not
             // computed: their efforts are [`efge_elga`]'s.
             ElementKind::Boundary
@@ -726,6 +742,27 @@ pub fn epsi_elga_on(
     crate::mixed_upg::refuse_mixed(model, "EPSI_ELGA")?;
     let mut out = Vec::with_capacity(model.elements().len());
     for el in model.elements() {
+        if let ElementKind::Grid { section, .. } = &el.kind {
+            // Grids: the strain along the bars, EXX (te0433).
+            if !keep(el.cell) {
+                continue;
+            }
+            let mesh = model.mesh();
+            let ue: Vec<f64> = element_dofs(model, el.cell).iter().map(|&i| u[i]).collect();
+            let eps = crate::grid::strains(
+                mesh.cell(el.cell).ty,
+                &crate::element::cell_coords(mesh, el.cell),
+                section,
+                &ue,
+            )
+            .map_err(|m| cell_error(model, el.cell, m))?;
+            out.push(CellValues {
+                cell: el.cell,
+                names: vec!["EXX"],
+                points: eps.iter().map(|e| vec![*e]).collect(),
+            });
+            continue;
+        }
         let ElementKind::Continuum {
             hypothesis,
             material,
@@ -902,6 +939,11 @@ pub fn forc_noda(model: &Model, u: &[f64]) -> Result<Vec<f64>, FemError> {
             }
             ElementKind::Coque3d { material, section } => {
                 crate::element::coque3d_stiffness(model.mesh(), el.cell, material, section)
+                    .map_err(|m| cell_error(model, el.cell, m))?
+                    * ue
+            }
+            ElementKind::Grid { material, section } => {
+                crate::element::grid_stiffness(model.mesh(), el.cell, material, section)
                     .map_err(|m| cell_error(model, el.cell, m))?
                     * ue
             }

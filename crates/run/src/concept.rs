@@ -51,6 +51,12 @@ pub enum Modelisation {
     /// `PLAN_JOINT`: plane joint elements on QUAD4 (`MFPLQU4`,
     /// `aster_fem::joint`) with a cohesive law.
     PlaneJoint,
+    /// `GRILLE_MEMBRANE`: a reinforcement grid on TRIA3, TRIA6, QUAD4,
+    /// QUAD8 (`MEGMTR3`…, `aster_fem::grid`), DX DY DZ.
+    GridMembrane,
+    /// `GRILLE_EXCENTRE`: a grid offset from its cell's surface, on TRIA3
+    /// and QUAD4 (`MEGCTR3`, `MEGCQU4`), with the rotations DRX DRY DRZ.
+    GridExcentre,
 }
 
 impl Modelisation {
@@ -71,6 +77,8 @@ impl Modelisation {
             "Q4G" => Modelisation::Plate(aster_fem::PlateTheory::Q4g),
             "COQUE_3D" => Modelisation::Coque3d,
             "PLAN_JOINT" => Modelisation::PlaneJoint,
+            "GRILLE_MEMBRANE" => Modelisation::GridMembrane,
+            "GRILLE_EXCENTRE" => Modelisation::GridExcentre,
             _ => return None,
         })
     }
@@ -100,7 +108,7 @@ impl Modelisation {
         matches!(value, "D_PLAN_INCO_UPG" | "AXIS_INCO_UPG" | "3D_INCO_UPG")
     }
 
-    pub const KEYWORDS: [&'static str; 22] = [
+    pub const KEYWORDS: [&'static str; 24] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -123,6 +131,8 @@ impl Modelisation {
         "D_PLAN_INCO_UPG",
         "AXIS_INCO_UPG",
         "3D_INCO_UPG",
+        "GRILLE_MEMBRANE",
+        "GRILLE_EXCENTRE",
     ];
 
     /// Space dimension of the displacement.
@@ -135,7 +145,9 @@ impl Modelisation {
             | Modelisation::BeamTimoshenko
             | Modelisation::Bar
             | Modelisation::Plate(_)
-            | Modelisation::Coque3d => 3,
+            | Modelisation::Coque3d
+            | Modelisation::GridMembrane
+            | Modelisation::GridExcentre => 3,
             _ => 2,
         }
     }
@@ -153,6 +165,7 @@ impl Modelisation {
             self,
             Modelisation::Plate(_)
                 | Modelisation::Coque3d
+                | Modelisation::GridExcentre
                 | Modelisation::DiscreteRot3D
                 | Modelisation::BeamEuler
                 | Modelisation::BeamTimoshenko
@@ -511,6 +524,8 @@ pub struct CaraElem {
     pub beams: Vec<crate::commands::cara_poutre::BeamCara>,
     /// `BARRE`: the bars' areas.
     pub bars: Vec<crate::commands::cara_poutre::BarCara>,
+    /// `GRILLE`: the reinforcement grids' sections, cell by cell.
+    pub grids: Vec<crate::commands::cara_grille::GridCara>,
     /// `MASSIF`: the material frames of continuum cells (orthotropic
     /// materials).
     pub massif: Vec<crate::commands::cara_massif::MassifFrame>,

@@ -115,6 +115,8 @@ pub(crate) fn hypothesis(m: Modelisation) -> Option<Hypothesis> {
         | Modelisation::Bar
         | Modelisation::Plate(_)
         | Modelisation::Coque3d
+        | Modelisation::GridMembrane
+        | Modelisation::GridExcentre
         | Modelisation::PlaneJoint => None,
     }
 }
@@ -159,6 +161,13 @@ pub fn build_model(
             for &cell in &b.cells {
                 bars.insert(cell, b.area);
             }
+        }
+    }
+    let mut grids: BTreeMap<aster_mesh::CellId, &crate::commands::cara_grille::GridCara> =
+        BTreeMap::new();
+    if let Some(c) = cara {
+        for g in &c.grids {
+            grids.insert(g.cell, g);
         }
     }
     // AFFE_CARA_ELEM/MASSIF: the material frames (a later occurrence
@@ -292,6 +301,22 @@ pub fn build_model(
                 kind: ElementKind::Bar {
                     material: material_of(cell)?,
                     area,
+                },
+            });
+            continue;
+        }
+        if matches!(m, Modelisation::GridMembrane | Modelisation::GridExcentre) {
+            let g = grids.get(&cell).ok_or_else(|| {
+                ExecError::new(format!(
+                    "cell {} carries a grid element (GRILLE_*) but no section: give AFFE_CARA_ELEM/GRILLE (and CARA_ELEM to the solver)",
+                    crate::select::cell_name(mesh, cell)
+                ))
+            })?;
+            elements.push(Element {
+                cell,
+                kind: ElementKind::Grid {
+                    material: material_of(cell)?,
+                    section: g.section(m == Modelisation::GridExcentre),
                 },
             });
             continue;
@@ -2412,10 +2437,11 @@ pub fn calc_champ(
                     ElemLocation::Nodes,
                     &post::elno(model, &epsi_elga()?),
                 )),
-                "EPSI_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(
-                    model,
-                    &post::elno(model, &epsi_elga()?),
-                ))),
+                "EPSI_NOEU" => {
+                    let elno = post::elno(model, &epsi_elga()?);
+                    refuse_grid_mix(ex, call, model, &elno, opt)?;
+                    Field::Nodal(nodal_from_values(&post::noeu(model, &elno)))
+                }
                 "EPSG_ELGA" | "EPSG_ELNO" | "EPSG_NOEU" | "EPSL_ELGA" | "EPSL_ELNO"
                 | "EPSL_NOEU" => {
                     let measure = if opt.starts_with("EPSG") {
@@ -2515,10 +2541,11 @@ pub fn calc_champ(
                 "SIEF_ELNO" | "SIGM_ELNO" => {
                     Field::Elem(elem_field(ElemLocation::Nodes, &continuum_only(elno())))
                 }
-                "SIEF_NOEU" | "SIGM_NOEU" => Field::Nodal(nodal_from_values(&post::noeu(
-                    model,
-                    &continuum_only(elno()),
-                ))),
+                "SIEF_NOEU" | "SIGM_NOEU" => {
+                    let elno = continuum_only(elno());
+                    refuse_grid_mix(ex, call, model, &elno, opt)?;
+                    Field::Nodal(nodal_from_values(&post::noeu(model, &elno)))
+                }
                 // Internal variables (none for ELAS: fields without components).
                 "VARI_ELNO" => Field::Elem(elem_field(
                     ElemLocation::Nodes,
@@ -2822,6 +2849,42 @@ fn calc_champ_from_fields(
 }
 
 /// Stress fields without the springs' N/VY values (SIGM_* are continuum fields).
+/// A nodal average (`*_NOEU`) over grid cells and other cells at once:
+/// code_aster averages each component over the cells that have it (a
+/// grid's SIXX with the solid's, its EXX alone), which `post::noeu` does
+/// not (one component set per field): refused, located at the option.
+fn refuse_grid_mix(
+    ex: &Executor,
+    call: &CommandCall,
+    model: &Model,
+    elno: &[CellValues],
+    opt: &str,
+) -> Result<(), ExecError> {
+    if !model.has_grids() {
+        return Ok(());
+    }
+    let grid = |c: &CellValues| {
+        matches!(
+            model.element_kind(c.cell),
+            Some(aster_fem::ElementKind::Grid { .. })
+        )
+    };
+    if elno.iter().any(grid) && !elno.iter().all(grid) {
+        let at = ["DEFORMATION", "CONTRAINTE"]
+            .iter()
+            .find_map(|k| call.keywords.keyword(k))
+            .map(|k| k.span)
+            .unwrap_or(call.span);
+        return Err(ex.unsupported(
+            &format!(
+                "CALC_CHAMP/{opt} over grid cells (GRILLE_*) and other cells at once (code_aster averages each component over the cells that have it; restrict it with GROUP_MA)"
+            ),
+            at,
+        ));
+    }
+    Ok(())
+}
+
 fn continuum_only(cells: Vec<CellValues>) -> Vec<CellValues> {
     cells
         .into_iter()

@@ -42,6 +42,8 @@ fn is_structural(model: &ModelDef, cell: CellId) -> bool {
                 | Modelisation::BeamEuler
                 | Modelisation::BeamTimoshenko
                 | Modelisation::Bar
+                | Modelisation::GridMembrane
+                | Modelisation::GridExcentre
         )
     )
 }
@@ -126,7 +128,7 @@ pub(crate) fn check_solve(
         if b.relation != Relation::Elas {
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell, beam or bar cells (DKT, POU_D_E, POU_D_T, BARRE): they are linear elastic here"
+                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell, beam, bar or grid cells (DKT, POU_D_E, POU_D_T, BARRE, GRILLE_*): they are linear elastic here"
                 ),
                 at("RELATION"),
             ));

@@ -1334,6 +1334,15 @@ pub fn forc_noda_deformed(
                 let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
                 k * ue
             }
+            // Linear elastic grids: K u.
+            ElementKind::Grid { material, section } => {
+                let k = crate::element::grid_stiffness(model.mesh(), el.cell, material, section)
+                    .map_err(|m| {
+                        FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell)))
+                    })?;
+                let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
+                k * ue
+            }
             // Linear elastic COQUE_3D: K u.
             ElementKind::Coque3d { material, section } => {
                 let k = crate::element::coque3d_stiffness(model.mesh(), el.cell, material, section)

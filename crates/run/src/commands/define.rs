@@ -987,6 +987,19 @@ pub fn affe_modele(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
                         aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4
                     )
                 }
+                // code_aster's MEGMTR3, MEGMTR6, MEGMQU4, MEGMQU8.
+                Modelisation::GridMembrane => matches!(
+                    ty,
+                    aster_mesh::CellType::TRIA3
+                        | aster_mesh::CellType::TRIA6
+                        | aster_mesh::CellType::QUAD4
+                        | aster_mesh::CellType::QUAD8
+                ),
+                // code_aster's MEGCTR3, MEGCQU4.
+                Modelisation::GridExcentre => matches!(
+                    ty,
+                    aster_mesh::CellType::TRIA3 | aster_mesh::CellType::QUAD4
+                ),
                 // code_aster's MEC3QU9H (QUAD9) and MEC3TR7H (TRIA7).
                 Modelisation::Coque3d => {
                     matches!(
@@ -1174,13 +1187,17 @@ pub(crate) const AFFE_CARA_ELEM: Support = Support {
         super::cara_poutre::VALUES[1],
         super::cara_poutre::VALUES[2],
         super::cara_poutre::VALUES[3],
+        super::cara_grille::VALUES[0],
     ],
-    ..Support::keywords(&crate::support::joined::<_, 46>(
-        &crate::support::joined::<_, 41>(
-            &crate::support::joined::<_, 27>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
-            &super::cara_poutre::KEYWORDS,
+    ..Support::keywords(&crate::support::joined::<_, 56>(
+        &crate::support::joined::<_, 46>(
+            &crate::support::joined::<_, 41>(
+                &crate::support::joined::<_, 27>(&CARA_DISCRET, &super::cara_coque::KEYWORDS),
+                &super::cara_poutre::KEYWORDS,
+            ),
+            &super::cara_massif::KEYWORDS,
         ),
-        &super::cara_massif::KEYWORDS,
+        &super::cara_grille::KEYWORDS,
     ))
 };
 
@@ -1195,6 +1212,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
     let beams = super::cara_poutre::beams(ex, kw, &mesh)?;
     let bars = super::cara_poutre::bars(ex, kw, &mesh)?;
     let massif = super::cara_massif::frames(ex, kw, &mesh)?;
+    let grids = super::cara_grille::grids(ex, kw, &mesh)?;
     for f in ["DISCRET", "DISCRET_2D"] {
         for occ in kw.factor(f) {
             let cara = occ.str("CARA").unwrap_or_default().to_string();
@@ -1258,6 +1276,7 @@ pub fn affe_cara_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             beams,
             bars,
             massif,
+            grids,
         })),
     )
 }

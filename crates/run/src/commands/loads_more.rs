@@ -96,6 +96,9 @@ pub(super) fn pesanteur(
                 Some("discrete element (its CARA_ELEM mass)")
             }
             Modelisation::PlaneJoint => Some("joint element"),
+            Modelisation::GridMembrane | Modelisation::GridExcentre => {
+                Some("reinforcement grid (te0430's ρ·SECTION per area)")
+            }
             _ => None,
         };
         if let Some(kind) = structural {

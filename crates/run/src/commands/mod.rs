@@ -2,6 +2,7 @@
 //! its implementation.
 
 pub(crate) mod cara_coque;
+pub(crate) mod cara_grille;
 pub(crate) mod cara_massif;
 pub(crate) mod cara_poutre;
 pub(crate) mod composite;
