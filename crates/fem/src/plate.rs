@@ -279,3 +279,94 @@ pub fn thermal_load(
     }
     Ok(f)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The displacements (node-major DX DY DZ DRX DRY DRZ) of a flat facet
+    /// in z = 0 under the membrane strain e in every direction and the
+    /// curvature k in every direction: u = e (x, y), w = −k (x² + y²)/2,
+    /// DRX = ∂w/∂y, DRY = −∂w/∂x.
+    fn field(xyz: &[[f64; 3]], e: f64, k: f64) -> nalgebra::DVector<f64> {
+        nalgebra::DVector::from_iterator(
+            6 * xyz.len(),
+            xyz.iter().flat_map(|p| {
+                let (x, y) = (p[0], p[1]);
+                [e * x, e * y, -k * (x * x + y * y) / 2., -k * y, k * x, 0.]
+            }),
+        )
+    }
+
+    /// A free strain p₀ + p₁ z loads a facet as the stiffness does the
+    /// field it would take freely (membrane strain p₀, curvature p₁, both
+    /// exactly represented): F_th = K u. So a free plate takes that field
+    /// without stress, and rigid motions do no work against F_th.
+    #[test]
+    fn the_thermal_load_is_the_stiffness_times_the_free_field() {
+        let material = Elastic::new(2e11, 0.3).unwrap();
+        let section = ShellSection::new(0.01);
+        let tri = vec![[0.1, 0.0, 0.0], [1.2, 0.2, 0.0], [0.3, 0.9, 0.0]];
+        let quad = vec![
+            [0.0, 0.0, 0.0],
+            [1.1, 0.1, 0.0],
+            [1.0, 0.9, 0.0],
+            [-0.1, 1.2, 0.0],
+        ];
+        let rect = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 0.5, 0.0],
+            [0.0, 0.5, 0.0],
+        ];
+        let (e, k) = (3e-4, 0.1);
+        for (theory, xyz) in [
+            (PlateTheory::Dkt, &tri),
+            (PlateTheory::Dkt, &quad),
+            (PlateTheory::Dst, &tri),
+            (PlateTheory::Q4g, &rect),
+        ] {
+            let f = thermal_load(theory, xyz, &material, &section, [e, k, 0.0]).unwrap();
+            let ku = stiffness(theory, xyz, &material, &section).unwrap() * field(xyz, e, k);
+            let scale = f.amax();
+            assert!(scale > 0.0);
+            assert!(
+                (&f - &ku).amax() <= 1e-9 * scale,
+                "{theory:?} on {} nodes: {f} against {ku}",
+                xyz.len()
+            );
+            // A rigid rotation about z and a translation do no work.
+            let rigid = nalgebra::DVector::from_iterator(
+                6 * xyz.len(),
+                xyz.iter()
+                    .flat_map(|p| [-p[1] + 1.0, p[0], 0.5, 0., 0., 1.0]),
+            );
+            assert!(f.dot(&rigid).abs() <= 1e-9 * scale);
+        }
+    }
+
+    #[test]
+    fn the_thermal_efforts_integrate_the_profile_through_the_thickness() {
+        let material = Elastic::new(2e11, 0.3).unwrap();
+        let section = ShellSection::new(0.01);
+        let h: f64 = 0.01;
+        // A parabola with p₂: N = E/(1−ν)(p₀ h + p₂ h³/12) (Simpson's mean).
+        let p = [1e-4, 0.1, 40.0];
+        let (n, m) = thermal_efforts(&material, &section, p);
+        let c = 2e11 / 0.7;
+        let simpson = (p[0] - p[1] * h / 2.
+            + p[2] * h * h / 4.
+            + 4. * p[0]
+            + p[0]
+            + p[1] * h / 2.
+            + p[2] * h * h / 4.)
+            / 6.;
+        assert!((n - c * h * simpson).abs() <= 1e-12 * n.abs());
+        assert!((m - c * p[1] * h.powi(3) / 12.).abs() <= 1e-12 * m.abs());
+        assert!(
+            (thermal_stress(&material, p, h / 2.) - c * (p[0] + p[1] * h / 2. + p[2] * h * h / 4.))
+                .abs()
+                < 1e-3
+        );
+    }
+}

@@ -75,7 +75,7 @@ fn a_plate_given_a_plain_temperature_is_refused_at_affe_varc() {
 fn functions_of_the_temperature_on_heated_plates_are_refused_at_elas_fo() {
     let t = edited(
         "ACIER = DEFI_MATERIAU(ELAS=_F(E=2.0e11, NU=0.3, ALPHA=1.0e-5))",
-        "EFT = DEFI_FONCTION(NOM_PARA=\"TEMP\", VALE=(0.0, 2.0e11, 200.0, 1.8e11))\nACIER = DEFI_MATERIAU(ELAS_FO=_F(E=EFT, NU=DEFI_CONSTANTE(VALE=0.3), ALPHA=DEFI_CONSTANTE(VALE=1.0e-5)))",
+        "EFT = DEFI_FONCTION(NOM_PARA=\"TEMP\", VALE=(0.0, 2.0e11, 200.0, 1.8e11))\nACIER = DEFI_MATERIAU(ELAS_FO=_F(E=EFT, NU=DEFI_CONSTANTE(VALE=0.3), ALPHA=DEFI_CONSTANTE(VALE=1.0e-5), TEMP_DEF_ALPHA=20.0))",
     );
     let (ok, nook, err) = run(&t, "elasfo");
     assert_eq!((ok, nook), (0, 0));
