@@ -270,9 +270,9 @@ pub(crate) fn heat_at(loads: &aster_fem::Loads, t: f64) -> Result<Heat, aster_fe
     let mut out = Heat::new();
     for item in &loads.items {
         if let aster_fem::Load::ShellThermal { cell, .. } = item.load {
-            if !out.contains_key(&cell) {
+            if let std::collections::btree_map::Entry::Vacant(e) = out.entry(cell) {
                 if let Some(p) = loads.shell_thermal_at(cell, t)? {
-                    out.insert(cell, p);
+                    e.insert(p);
                 }
             }
         }
