@@ -118,6 +118,17 @@ pub enum Load {
     /// the load ∫ Bᵀ D ε_th (ε_th on xx, yy, zz) and the stresses
     /// σ = D (B u − ε_th) ([`Loads::subtract_free_strain`]).
     FreeStrain { cell: CellId, nodal: Vec<f64> },
+    /// A free strain through the thickness of a plate facet (DKT, DST,
+    /// Q4G), ε_th(z) = p₀ + p₁ z + p₂ z² on xx and yy, constant over the
+    /// facet (a temperature of `CREA_RESU/PREP_VARC`): the load ∫ Bᵀ (N, M)
+    /// of its generalised efforts ([`crate::plate::thermal_load`]); the
+    /// efforts and stresses of the facet are its mechanical ones minus
+    /// [`crate::plate::thermal_efforts`] and
+    /// [`crate::plate::thermal_stress`] ([`Loads::shell_thermal_at`]).
+    ShellThermal {
+        cell: CellId,
+        profile: crate::plate::ThicknessProfile,
+    },
 }
 
 /// A load with its multiplier.
@@ -209,6 +220,14 @@ impl Loads {
                     if !continuum {
                         return Err(FemError::Model(format!(
                             "volume force (FORCE_INTERNE) on cell {}, which carries no continuum element of the model",
+                            model.cell_name(*cell)
+                        )));
+                    }
+                }
+                Load::ShellThermal { cell, .. } => {
+                    if !matches!(model.element_kind(*cell), Some(ElementKind::Shell { .. })) {
+                        return Err(FemError::Model(format!(
+                            "thermal strain through the thickness on cell {}, which carries no DKT, DST or Q4G plate element of the model",
                             model.cell_name(*cell)
                         )));
                     }
@@ -400,6 +419,12 @@ impl Loads {
                         free_strain_load(model, *cell, nodal, m, &mut f)?;
                     }
                 }
+                Load::ShellThermal { cell, profile } => {
+                    let m = item.mult.eval(t)?;
+                    if m != 0.0 {
+                        shell_thermal_load(model, *cell, profile.map(|v| v * m), &mut f)?;
+                    }
+                }
                 Load::VolumeForceAt { cell, forces } => {
                     let m = item.mult.eval(t)?;
                     point_scheme(model, *cell, forces.len(), false)?;
@@ -494,11 +519,53 @@ impl Loads {
         Ok(out)
     }
 
-    /// Whether any load is a free strain (a temperature).
+    /// Whether any load is a free strain (a temperature), of continuum
+    /// cells or through the thickness of plates.
     pub fn has_free_strain(&self) -> bool {
         self.items
             .iter()
-            .any(|i| matches!(i.load, Load::FreeStrain { .. }))
+            .any(|i| matches!(i.load, Load::FreeStrain { .. } | Load::ShellThermal { .. }))
+    }
+
+    /// The free strain through the thickness of a plate facet at time t
+    /// (Σ of its [`Load::ShellThermal`] profiles times their multipliers),
+    /// `None` when no item acts on it.
+    pub fn shell_thermal_at(
+        &self,
+        cell: CellId,
+        t: f64,
+    ) -> Result<Option<crate::plate::ThicknessProfile>, FemError> {
+        let mut out: Option<crate::plate::ThicknessProfile> = None;
+        for item in &self.items {
+            if let Load::ShellThermal { cell: c, profile } = &item.load {
+                if *c != cell {
+                    continue;
+                }
+                let m = item.mult.eval(t)?;
+                let acc = out.get_or_insert([0.0; 3]);
+                for (a, v) in acc.iter_mut().zip(profile) {
+                    *a += m * v;
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The nodal forces of the plates' free strains at time t alone
+    /// ([`Load::ShellThermal`]), per DOF: what the elements' internal
+    /// forces ∫ Bᵀ σ lose to the thermal strain (code_aster's FORC_NODA
+    /// of a heated plate is K u minus these).
+    pub fn shell_thermal_forces(&self, model: &Model, t: f64) -> Result<Vec<f64>, FemError> {
+        let mut f = vec![0.0; model.dofs().len()];
+        for item in &self.items {
+            if let Load::ShellThermal { cell, profile } = &item.load {
+                let m = item.mult.eval(t)?;
+                if m != 0.0 {
+                    shell_thermal_load(model, *cell, profile.map(|v| v * m), &mut f)?;
+                }
+            }
+        }
+        Ok(f)
     }
 
     /// σ = D (B u − ε_th): removes D ε_th from the stresses `D B u` of the
@@ -1005,6 +1072,36 @@ fn edge_load(
                 f[idx] += w * s.n[i] * force[k];
             }
         }
+    }
+    Ok(())
+}
+
+/// ∫ Bᵀ (N, M) of a free strain through a plate facet's thickness
+/// ([`crate::plate::thermal_load`]) added into `f`.
+fn shell_thermal_load(
+    model: &Model,
+    cell: CellId,
+    profile: crate::plate::ThicknessProfile,
+    f: &mut [f64],
+) -> Result<(), FemError> {
+    let Some(ElementKind::Shell {
+        material,
+        section,
+        theory,
+    }) = model.element_kind(cell)
+    else {
+        return Err(FemError::Model(format!(
+            "thermal strain through the thickness on cell {}, which carries no plate element",
+            model.cell_name(cell)
+        )));
+    };
+    let c = model.mesh().cell(cell);
+    let xyz: Vec<[f64; 3]> = c.nodes.iter().map(|&n| model.mesh().coord(n)).collect();
+    let fe = crate::plate::thermal_load(*theory, &xyz, material, section, profile)
+        .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(cell))))?;
+    let dofs = crate::element::element_dofs(model, cell);
+    for (j, &dof) in dofs.iter().enumerate() {
+        f[dof] += fe[j];
     }
     Ok(())
 }

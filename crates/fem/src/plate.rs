@@ -198,3 +198,193 @@ pub fn generalised_at(
         (_, _) => crate::q4g::generalised_at(xyz, material, section, u, points, what),
     }
 }
+
+/// A free strain through a plate's thickness, ε_th(z) = p₀ + p₁ z + p₂ z²
+/// on xx and yy (z from the mid-surface, along the facet's normal): the
+/// thermal strain α (T(z) − T_ref) of a temperature parabolic in the
+/// thickness (code_aster's `PREP_VARC`, `te0408`: T = TEMP_MIL + (TEMP_SUP −
+/// TEMP_INF)/h z + 2 (TEMP_INF + TEMP_SUP − 2 TEMP_MIL)/h² z²).
+pub type ThicknessProfile = [f64; 3];
+
+/// The generalised efforts of a thickness profile `p` of free strain on a
+/// homogeneous isotropic plate, isotropic in the plane (xx = yy, no xy):
+/// N = E/(1 − ν) ∫ ε_th dz and M = E/(1 − ν) ∫ z ε_th dz — code_aster's
+/// `dxefgt` with `dxmath`'s thermo-elastic matrices, whose
+/// coe1 = (T_sup + T_inf + 4 T_mil)/6 − T_ref (Simpson, exact on the
+/// parabola) and coe2 = (T_sup − T_inf)/h give the same.
+pub fn thermal_efforts(
+    material: &Elastic,
+    section: &ShellSection,
+    p: ThicknessProfile,
+) -> (f64, f64) {
+    let h = section.thickness;
+    let c = material.e / (1.0 - material.nu);
+    let h3 = h * h * h / 12.0;
+    (c * (p[0] * h + p[2] * h3), c * p[1] * h3)
+}
+
+/// The stress σxx = σyy that a thickness profile `p` of free strain
+/// removes at height z of a homogeneous isotropic plate (plane stress):
+/// E/(1 − ν) ε_th(z) (code_aster's `dxsith` at each sub-point).
+pub fn thermal_stress(material: &Elastic, p: ThicknessProfile, z: f64) -> f64 {
+    material.e / (1.0 - material.nu) * (p[0] + p[1] * z + p[2] * z * z)
+}
+
+/// The nodal forces (global, node-major DX DY DZ DRX DRY DRZ) of a
+/// thickness profile `p` of free strain on a facet with nodes at `xyz`:
+/// ∫ Bᵀ (N, M) over the facet on its RIGI family, the efforts of
+/// [`thermal_efforts`] (code_aster's `CHAR_MECA_TEMP_R`, `te0035`:
+/// `dxefgt` then `dxbsig`). B's rows are the membrane strains and
+/// curvatures of [`generalised_at`], evaluated for each unit
+/// displacement. Layered (`DEFI_COMPOSITE`) and orthotropic sections are
+/// errors (`dxmath`'s ELAS_COQMU branch is not reproduced).
+pub fn thermal_load(
+    theory: PlateTheory,
+    xyz: &[[f64; 3]],
+    material: &Elastic,
+    section: &ShellSection,
+    p: ThicknessProfile,
+) -> Result<nalgebra::DVector<f64>, String> {
+    check_nodes(theory, xyz)?;
+    if section.layered.is_some() || material.orthotropic.is_some() {
+        return Err(
+            "a thermal strain on a layered (DEFI_COMPOSITE) or orthotropic plate is not implemented"
+                .into(),
+        );
+    }
+    let (n, m) = thermal_efforts(material, section, p);
+    let ty = if xyz.len() == 3 {
+        CellType::TRIA3
+    } else {
+        CellType::QUAD4
+    };
+    let scheme = rigi_scheme(theory, ty);
+    let points: Vec<[f64; 2]> = scheme.iter().map(|g| [g.xi[0], g.xi[1]]).collect();
+    let weights: Vec<f64> = match xyz {
+        [a, b, c] => {
+            let facet = crate::dkt::Facet::new(&[*a, *b, *c])?;
+            scheme.iter().map(|g| g.weight * facet.c[6]).collect()
+        }
+        [a, b, c, d] => {
+            let quad = crate::dkq::Quad::new(&[*a, *b, *c, *d])?;
+            scheme
+                .iter()
+                .map(|g| g.weight * quad.jacobian(g.xi[0], g.xi[1]).0)
+                .collect()
+        }
+        _ => return Err("a plate facet has 3 or 4 nodes".into()),
+    };
+    let ndof = 6 * xyz.len();
+    let mut f = nalgebra::DVector::zeros(ndof);
+    let mut unit = vec![0.0; ndof];
+    for i in 0..ndof {
+        unit[i] = 1.0;
+        let (_, strains) = generalised_at(
+            theory,
+            xyz,
+            material,
+            section,
+            &unit,
+            &points,
+            Generalised::Strains,
+        )?;
+        unit[i] = 0.0;
+        f[i] = strains
+            .iter()
+            .zip(&weights)
+            .map(|(e, w)| w * (n * (e[0] + e[1]) + m * (e[3] + e[4])))
+            .sum();
+    }
+    Ok(f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The displacements (node-major DX DY DZ DRX DRY DRZ) of a flat facet
+    /// in z = 0 under the membrane strain e in every direction and the
+    /// curvature k in every direction: u = e (x, y), w = −k (x² + y²)/2,
+    /// DRX = ∂w/∂y, DRY = −∂w/∂x.
+    fn field(xyz: &[[f64; 3]], e: f64, k: f64) -> nalgebra::DVector<f64> {
+        nalgebra::DVector::from_iterator(
+            6 * xyz.len(),
+            xyz.iter().flat_map(|p| {
+                let (x, y) = (p[0], p[1]);
+                [e * x, e * y, -k * (x * x + y * y) / 2., -k * y, k * x, 0.]
+            }),
+        )
+    }
+
+    /// A free strain p₀ + p₁ z loads a facet as the stiffness does the
+    /// field it would take freely (membrane strain p₀, curvature p₁, both
+    /// exactly represented): F_th = K u. So a free plate takes that field
+    /// without stress, and rigid motions do no work against F_th.
+    #[test]
+    fn the_thermal_load_is_the_stiffness_times_the_free_field() {
+        let material = Elastic::new(2e11, 0.3).unwrap();
+        let section = ShellSection::new(0.01);
+        let tri = vec![[0.1, 0.0, 0.0], [1.2, 0.2, 0.0], [0.3, 0.9, 0.0]];
+        let quad = vec![
+            [0.0, 0.0, 0.0],
+            [1.1, 0.1, 0.0],
+            [1.0, 0.9, 0.0],
+            [-0.1, 1.2, 0.0],
+        ];
+        let rect = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 0.5, 0.0],
+            [0.0, 0.5, 0.0],
+        ];
+        let (e, k) = (3e-4, 0.1);
+        for (theory, xyz) in [
+            (PlateTheory::Dkt, &tri),
+            (PlateTheory::Dkt, &quad),
+            (PlateTheory::Dst, &tri),
+            (PlateTheory::Q4g, &rect),
+        ] {
+            let f = thermal_load(theory, xyz, &material, &section, [e, k, 0.0]).unwrap();
+            let ku = stiffness(theory, xyz, &material, &section).unwrap() * field(xyz, e, k);
+            let scale = f.amax();
+            assert!(scale > 0.0);
+            assert!(
+                (&f - &ku).amax() <= 1e-9 * scale,
+                "{theory:?} on {} nodes: {f} against {ku}",
+                xyz.len()
+            );
+            // A rigid rotation about z and a translation do no work.
+            let rigid = nalgebra::DVector::from_iterator(
+                6 * xyz.len(),
+                xyz.iter()
+                    .flat_map(|p| [-p[1] + 1.0, p[0], 0.5, 0., 0., 1.0]),
+            );
+            assert!(f.dot(&rigid).abs() <= 1e-9 * scale);
+        }
+    }
+
+    #[test]
+    fn the_thermal_efforts_integrate_the_profile_through_the_thickness() {
+        let material = Elastic::new(2e11, 0.3).unwrap();
+        let section = ShellSection::new(0.01);
+        let h: f64 = 0.01;
+        // A parabola with p₂: N = E/(1−ν)(p₀ h + p₂ h³/12) (Simpson's mean).
+        let p = [1e-4, 0.1, 40.0];
+        let (n, m) = thermal_efforts(&material, &section, p);
+        let c = 2e11 / 0.7;
+        let simpson = (p[0] - p[1] * h / 2.
+            + p[2] * h * h / 4.
+            + 4. * p[0]
+            + p[0]
+            + p[1] * h / 2.
+            + p[2] * h * h / 4.)
+            / 6.;
+        assert!((n - c * h * simpson).abs() <= 1e-12 * n.abs());
+        assert!((m - c * p[1] * h.powi(3) / 12.).abs() <= 1e-12 * m.abs());
+        assert!(
+            (thermal_stress(&material, p, h / 2.) - c * (p[0] + p[1] * h / 2. + p[2] * h * h / 4.))
+                .abs()
+                < 1e-3
+        );
+    }
+}

@@ -436,6 +436,10 @@ pub struct Temperature {
     /// `file:line:col` of the `AFFE_VARC` keyword, for the solve's
     /// refusals (a temperature on beams).
     pub at: String,
+    /// A temperature through the thickness of shells (an `EVOL` of
+    /// `CREA_RESU/PREP_VARC`): per field of `fields` (whose TEMP is then
+    /// NaN everywhere), per node, TEMP_MIL, TEMP_INF, TEMP_SUP.
+    pub shell: Option<Vec<Rc<[Vec<f64>; 3]>>>,
 }
 
 /// The weight of each of a [`Temperature`]'s fields, given by their
@@ -757,6 +761,10 @@ pub struct EvolResult {
     pub cases: Option<Rc<crate::commands::elas_mult::LoadCases>>,
     /// An `evol_ther`: what its fluxes need (`CALC_CHAMP/THERMIQUE`).
     pub thermal: Option<Rc<crate::commands::thermal_nl::ThermalRun>>,
+    /// An `evol_ther` of `CREA_RESU(OPERATION='PREP_VARC')`: its `TEMP`
+    /// fields hold TEMP_MIL, TEMP_INF, TEMP_SUP, the temperature through
+    /// the thickness of the shells that AFFE_VARC gives it to.
+    pub prep_varc: bool,
 }
 
 /// The parameters of the modes of a `mode_meca`, per NUME_ORDRE

@@ -170,6 +170,9 @@ pub struct CellVars<'a> {
     pub temps: Option<Vec<Vec<f64>>>,
     pub tref: Option<f64>,
     pub cell_name: &'a str,
+    /// The temperature is through the thickness of shells
+    /// (`CREA_RESU/PREP_VARC`): no TEMP at the nodes.
+    pub through_thickness: bool,
 }
 
 /// The one value of `arg`'s function over what the cell gives it, or why
@@ -212,6 +215,11 @@ fn one_value(arg: &FoArg, vars: &CellVars) -> Result<f64, String> {
             Some(fields) if params.contains(&"TEMP") => {
                 for field in fields {
                     let t = field[n];
+                    if vars.through_thickness {
+                        return Err(format!(
+                            "a function of TEMP on shell cell {cell}, heated through its thickness (CREA_RESU/PREP_VARC): code_aster evaluates it at each sub-point of the thickness (the behaviour integrated layer by layer in STAT_NON_LINE, dxmate's mean temperature in MECA_STATIQUE), not reproduced"
+                        ));
+                    }
                     if t.is_nan() {
                         return Err(format!(
                             "the temperature field has no value at a node of cell {cell}"
@@ -365,6 +373,7 @@ pub fn resolve_cells(
                 }),
                 tref: heated.map(|t| t.tref),
                 cell_name: &name,
+                through_thickness: heated.is_some_and(|t| t.shell.is_some()),
             };
             let m = resolve(&mat, fo, &vars, locate);
             let key = (

@@ -1523,9 +1523,20 @@ fn thermal_loads(
             )));
         }
     }
+    shell_thermal_loads(loads, temp, materials, mesh, model)?;
     let heated = |el: &&aster_fem::Element| {
         matches!(el.kind, aster_fem::ElementKind::Continuum { .. }) && temp.cells.contains(&el.cell)
     };
+    if temp.shell.is_some() {
+        if let Some(el) = model.elements().iter().find(heated) {
+            return Err(ExecError::new(format!(
+                "AFFE_VARC gives cell {}, which is not a shell, a temperature through the thickness of shells (an EVOL of CREA_RESU/PREP_VARC: TEMP_MIL, TEMP_INF, TEMP_SUP, no TEMP) ({})",
+                mesh.cell_name(el.cell),
+                temp.at
+            )));
+        }
+        return Ok(());
+    }
     let nonlinear = instants.len() > 1
         && model.elements().iter().filter(heated).any(|el| {
             materials
@@ -1602,6 +1613,130 @@ fn thermal_loads(
                     mult.clone(),
                 );
             }
+        }
+    }
+    Ok(())
+}
+
+/// The temperature through the thickness of the DKT, DST and Q4G plates
+/// (an `EVOL` of `CREA_RESU/PREP_VARC`) as [`Load::ShellThermal`] free
+/// strains, one per plate and field of the temperature with the
+/// field's linear-interpolation weight as multiplier. code_aster's
+/// `te0408` puts on each sub-point of a cell the parabola T(z) through the
+/// means over its nodes of TEMP_INF, TEMP_MIL, TEMP_SUP at z = −h/2, 0,
+/// h/2; its plates' thermal efforts (`dxefgt`), stresses (`dxsith`) and
+/// efforts at the nodes (`dxefnt`) read that parabola, so the free strain
+/// is ε_th(z) = α (T(z) − T_ref) with α of `ELAS` (`dxmath`: no ALPHA, or
+/// 0, no thermal strain). Refused, located at AFFE_VARC: COQUE_3D cells,
+/// ALPHA as a function (`dxmath` evaluates it at the mean of the cell's
+/// sub-points: not done), a plate given a plain TEMP (not through
+/// PREP_VARC).
+fn shell_thermal_loads(
+    loads: &mut Loads,
+    temp: &crate::concept::Temperature,
+    materials: &MaterialField,
+    mesh: &Mesh,
+    model: &Model,
+) -> Result<(), ExecError> {
+    let instants: Vec<f64> = temp.fields.iter().map(|f| f.0).collect();
+    let (before, after) = (temp.constant_before, temp.constant_after);
+    for el in model.elements() {
+        if !temp.cells.contains(&el.cell) {
+            continue;
+        }
+        let name = mesh.cell_name(el.cell);
+        let refuse = |why: String| {
+            Err(ExecError::new(format!(
+                "not supported yet: AFFE_MATERIAU/AFFE_VARC NOM_VARC='TEMP' on cell {name}: {why} ({})",
+                temp.at
+            )))
+        };
+        let section = match &el.kind {
+            aster_fem::ElementKind::Shell { section, .. } => section,
+            aster_fem::ElementKind::Coque3d { .. } => {
+                let expands = materials
+                    .cells
+                    .get(&el.cell)
+                    .is_some_and(|m| m.alpha.is_some_and(|a| a != 0.) || m.alpha_fo.is_some());
+                let heated = temp.shell.is_some()
+                    || temp.fields.iter().any(|(_, values)| {
+                        mesh.cell(el.cell)
+                            .nodes
+                            .iter()
+                            .any(|n| values[n.0 as usize] != temp.tref)
+                    });
+                if expands && heated {
+                    return refuse(
+                        "a COQUE_3D shell: its thermal strain through the thickness is not reproduced"
+                            .into(),
+                    );
+                }
+                continue;
+            }
+            _ => continue,
+        };
+        let Some(mat) = materials.cells.get(&el.cell) else {
+            continue;
+        };
+        if mat.alpha_fo.is_some() {
+            return refuse(
+                "ALPHA of ELAS_FO on a plate (code_aster's dxmath evaluates it at the mean temperature of the cell's sub-points: not reproduced)".into(),
+            );
+        }
+        let Some(alpha) = mat.alpha.filter(|a| *a != 0.0) else {
+            // dxmath: no ALPHA (or 0), no thermal strain.
+            continue;
+        };
+        let Some(layers) = &temp.shell else {
+            let heated = temp.fields.iter().any(|(_, values)| {
+                mesh.cell(el.cell)
+                    .nodes
+                    .iter()
+                    .any(|n| values[n.0 as usize] != temp.tref)
+            });
+            if heated {
+                return refuse(
+                    "a DKT/DST/Q4G plate given TEMP: a plate's temperature is TEMP_MIL, TEMP_INF, TEMP_SUP through CREA_RESU(OPERATION='PREP_VARC')".into(),
+                );
+            }
+            continue;
+        };
+        let h = section.thickness;
+        let nodes = &mesh.cell(el.cell).nodes;
+        for (k, l) in layers.iter().enumerate() {
+            // The cell's means of TEMP_MIL, TEMP_INF, TEMP_SUP (te0408).
+            let mut mean = [0.0; 3];
+            for (c, m) in mean.iter_mut().enumerate() {
+                for n in nodes {
+                    *m += l[c][n.0 as usize];
+                }
+                *m /= nodes.len() as f64;
+            }
+            if mean.iter().any(|v| v.is_nan()) {
+                return Err(ExecError::new(format!(
+                    "AFFE_VARC: the temperature (CREA_RESU/PREP_VARC) has no value at a node of cell {name}"
+                )));
+            }
+            let [mil, inf, sup] = mean;
+            let profile = [
+                alpha * (mil - temp.tref),
+                alpha * (sup - inf) / h,
+                alpha * 2.0 * (inf + sup - 2.0 * mil) / (h * h),
+            ];
+            if profile.iter().all(|v| *v == 0.0) {
+                continue;
+            }
+            let times = instants.clone();
+            let mult = aster_fem::Multiplier::from_fn(move |t| {
+                crate::concept::temperature_weights(&times, before, after, t).map(|w| w[k])
+            });
+            loads.add(
+                Load::ShellThermal {
+                    cell: el.cell,
+                    profile,
+                },
+                mult,
+            );
         }
     }
     Ok(())
@@ -2352,6 +2487,16 @@ pub fn calc_champ(
         let u = &raw.displacement;
         let model = &run.model;
         let elno = || post::elno(model, &restrict(&raw.stress));
+        // The plates' free strains through their thickness at this step
+        // (CREA_RESU/PREP_VARC): their efforts, stresses and nodal forces
+        // are the mechanical ones minus the thermal part.
+        let heat =
+            crate::shells::heat_at(&run.loads, raw.time).map_err(|e| fem_err("CALC_CHAMP", e))?;
+        let shell_thermal = || {
+            run.loads
+                .shell_thermal_forces(model, raw.time)
+                .map_err(|e| fem_err("CALC_CHAMP", e))
+        };
         let forc_noda = || {
             let mut f = if run.plastic {
                 aster_fem::behaviour::forc_noda_deformed(model, u, &raw.stress, &run.behaviours)
@@ -2360,6 +2505,13 @@ pub fn calc_champ(
             }
             .map_err(|e| fem_err("CALC_CHAMP", e))?;
             run.add_joint_forces(raw.time, &mut f)?;
+            // te0031's FORC_NODA of a heated plate: ∫ Bᵀ (efforts − thermal
+            // efforts) = K u − its CHAR_MECA_TEMP_R forces.
+            if !heat.is_empty() {
+                for (a, b) in f.iter_mut().zip(shell_thermal()?) {
+                    *a -= b;
+                }
+            }
             Ok::<_, ExecError>(f)
         };
         let thermal = run
@@ -2424,7 +2576,7 @@ pub fn calc_champ(
             if model.has_shells() {
                 let linear = matches!(result.typ.as_str(), "evol_elas" | "mult_elas");
                 v.extend(
-                    crate::shells::efge_elno(model, run.cara.as_deref(), u, linear)
+                    crate::shells::efge_elno(model, run.cara.as_deref(), u, linear, &heat)
                         .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 );
             }
@@ -2471,6 +2623,13 @@ pub fn calc_champ(
                         .map_err(|e| fem_err("CALC_CHAMP", e))?;
                     for (a, b) in r.iter_mut().zip(fext) {
                         *a -= b;
+                    }
+                    // The plates' thermal forces are in FORC_NODA (above)
+                    // and in the loads' vector; once only in the reactions.
+                    if !heat.is_empty() {
+                        for (a, b) in r.iter_mut().zip(shell_thermal()?) {
+                            *a += b;
+                        }
                     }
                     if !run.follower.is_empty() {
                         let ff = run
@@ -2525,6 +2684,7 @@ pub fn calc_champ(
                         run.cara.as_deref(),
                         u,
                         matches!(result.typ.as_str(), "evol_elas" | "mult_elas"),
+                        &heat,
                     )
                     .map_err(|e| fem_err("CALC_CHAMP", e))?,
                 )),
@@ -2665,6 +2825,7 @@ pub fn extract_shell_level(
         ));
     }
     let mut out = EvolResult {
+        prep_varc: false,
         typ: result.typ.clone(),
         mesh: result.mesh,
         steps: Vec::new(),
@@ -2688,9 +2849,17 @@ pub fn extract_shell_level(
         }
         // SIGM_ELNO and SIEF_ELNO of an elastic shell are the same stresses:
         // computed once, stored under each name asked.
-        let cells =
-            crate::shells::sigm_elno_at(&run.model, run.cara.as_deref(), &raw.displacement, level)
-                .map_err(|e| fem_err("POST_CHAMP", e))?;
+        let cells = crate::shells::heat_at(&run.loads, raw.time)
+            .and_then(|heat| {
+                crate::shells::sigm_elno_at(
+                    &run.model,
+                    run.cara.as_deref(),
+                    &raw.displacement,
+                    level,
+                    &heat,
+                )
+            })
+            .map_err(|e| fem_err("POST_CHAMP", e))?;
         let field = Field::Elem(elem_field(ElemLocation::Nodes, &cells));
         let fields: crate::field::StepFields = names
             .iter()
@@ -2735,6 +2904,7 @@ pub fn shell_efforts_to_mid_surface(
         modal: None,
         cases: None,
         thermal: None,
+        prep_varc: false,
     };
     for step in result
         .steps

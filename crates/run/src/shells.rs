@@ -169,6 +169,7 @@ pub(crate) fn efge_elga(
     cara: Option<&CaraElem>,
     u: &[f64],
     linear: bool,
+    heat: &Heat,
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
     let direction = directions(cara);
     let at = if linear {
@@ -177,6 +178,7 @@ pub(crate) fn efge_elga(
         EffortsAt::Gauss
     };
     let mut out = aster_fem::post::shell_efforts(model, u, &direction, at)?;
+    subtract_thermal_efforts(model, heat, &mut out);
     out.extend(aster_fem::post::coque3d_efge(
         model,
         u,
@@ -207,6 +209,7 @@ pub(crate) fn efge_elno(
     cara: Option<&CaraElem>,
     u: &[f64],
     linear: bool,
+    heat: &Heat,
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
     let at = if linear {
         EffortsAt::NodesLinear
@@ -215,6 +218,7 @@ pub(crate) fn efge_elno(
     };
     let direction = directions(cara);
     let mut out = aster_fem::post::shell_efforts(model, u, &direction, at)?;
+    subtract_thermal_efforts(model, heat, &mut out);
     out.extend(aster_fem::post::coque3d_efge(model, u, &direction, at)?);
     Ok(out)
 }
@@ -227,6 +231,7 @@ pub(crate) fn sigm_elno_at(
     cara: Option<&CaraElem>,
     u: &[f64],
     level: aster_fem::post::ShellLevel,
+    heat: &Heat,
 ) -> Result<Vec<CellValues>, aster_fem::FemError> {
     let mut layers: BTreeMap<CellId, u32> = BTreeMap::new();
     if let Some(c) = cara {
@@ -236,11 +241,76 @@ pub(crate) fn sigm_elno_at(
             }
         }
     }
-    aster_fem::post::shell_sigm_elno(
-        model,
-        u,
-        &directions(cara),
-        &|cell| layers.get(&cell).copied().unwrap_or(1),
-        level,
-    )
+    let layers_of = |cell| layers.get(&cell).copied().unwrap_or(1);
+    let mut out = aster_fem::post::shell_sigm_elno(model, u, &directions(cara), &layers_of, level)?;
+    // dxsith: σ − E/(1 − ν) ε_th(z) on SIXX and SIYY at the level's height
+    // (the sub-point of `layer` of COQUE_NCOU equal layers, as
+    // `shell_sigm_elno` places it); isotropic, so in any frame.
+    for cv in &mut out {
+        let Some(p) = heat.get(&cv.cell) else {
+            continue;
+        };
+        let Some(aster_fem::ElementKind::Shell {
+            material, section, ..
+        }) = model.element_kind(cv.cell)
+        else {
+            continue;
+        };
+        let h = section.thickness;
+        let n = f64::from(layers_of(cv.cell).max(1));
+        let z = -0.5 * h + h * (f64::from(level.layer - 1) + level.position) / n;
+        let s = aster_fem::plate::thermal_stress(material, *p, z);
+        for point in &mut cv.points {
+            point[0] -= s;
+            point[1] -= s;
+        }
+    }
+    Ok(out)
+}
+
+/// The free strain through the thickness of each heated plate at one
+/// instant ([`aster_fem::Load::ShellThermal`], a temperature of
+/// `CREA_RESU/PREP_VARC`).
+pub(crate) type Heat = BTreeMap<CellId, aster_fem::plate::ThicknessProfile>;
+
+/// The [`Heat`] of `loads` at time t (empty without a temperature).
+pub(crate) fn heat_at(loads: &aster_fem::Loads, t: f64) -> Result<Heat, aster_fem::FemError> {
+    let mut out = Heat::new();
+    for item in &loads.items {
+        if let aster_fem::Load::ShellThermal { cell, .. } = item.load {
+            if let std::collections::btree_map::Entry::Vacant(e) = out.entry(cell) {
+                if let Some(p) = loads.shell_thermal_at(cell, t)? {
+                    e.insert(p);
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The efforts of heated plates without their thermal part (`dxefgv`:
+/// EFFGT − `dxefgt`/`dxefnt`): N and M of [`aster_fem::plate::thermal_efforts`]
+/// off NXX, NYY and MXX, MYY (isotropic in the plane, so in any frame).
+fn subtract_thermal_efforts(model: &Model, heat: &Heat, out: &mut [CellValues]) {
+    if heat.is_empty() {
+        return;
+    }
+    for cv in out.iter_mut() {
+        let Some(p) = heat.get(&cv.cell) else {
+            continue;
+        };
+        let Some(aster_fem::ElementKind::Shell {
+            material, section, ..
+        }) = model.element_kind(cv.cell)
+        else {
+            continue;
+        };
+        let (n, m) = aster_fem::plate::thermal_efforts(material, section, *p);
+        for point in &mut cv.points {
+            point[0] -= n;
+            point[1] -= n;
+            point[3] -= m;
+            point[4] -= m;
+        }
+    }
 }

@@ -1050,6 +1050,7 @@ pub(crate) fn store_solution(
         tables.push(("STAT".to_string(), Rc::new(stat_table(&steps, counted))));
     }
     let evol = EvolResult {
+        prep_varc: false,
         typ: if linear { "evol_elas" } else { "evol_noli" }.into(),
         mesh: mesh_id,
         steps,

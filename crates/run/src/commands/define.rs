@@ -835,13 +835,42 @@ fn affe_varc(
         Ok(Rc::new(f.per_node("TEMP", mesh.node_count())))
     };
     let mut fields = Vec::new();
+    let mut shell = None;
     if let Some(r) = occ.concept("EVOL") {
         let result = ex.result(r)?;
         let name = occ.str("NOM_CHAM").unwrap_or("TEMP");
+        // A temperature through the shells' thickness (CREA_RESU/PREP_VARC):
+        // TEMP_MIL, TEMP_INF, TEMP_SUP per node, no TEMP.
+        let mut layers: Vec<(f64, Rc<[Vec<f64>; 3]>)> = Vec::new();
         for step in &result.steps {
             if let Some(f) = step.fields.get(name) {
-                fields.push((step.inst, nodal(f, "EVOL")?));
+                if result.prep_varc {
+                    let crate::field::Field::Nodal(nf) = f else {
+                        return Err(ex.kw_error(
+                            cmd,
+                            occ,
+                            "EVOL",
+                            "the temperature is a nodal field",
+                        ));
+                    };
+                    let n = mesh.node_count();
+                    layers.push((
+                        step.inst,
+                        Rc::new([
+                            nf.per_node("TEMP_MIL", n),
+                            nf.per_node("TEMP_INF", n),
+                            nf.per_node("TEMP_SUP", n),
+                        ]),
+                    ));
+                    fields.push((step.inst, Rc::new(vec![f64::NAN; n])));
+                } else {
+                    fields.push((step.inst, nodal(f, "EVOL")?));
+                }
             }
+        }
+        if result.prep_varc {
+            layers.sort_by(|a, b| a.0.total_cmp(&b.0));
+            shell = Some(layers.into_iter().map(|(_, l)| l).collect());
         }
         if fields.is_empty() {
             return Err(ex.kw_error(
@@ -861,6 +890,7 @@ fn affe_varc(
         fields,
         constant_before: occ.str("PROL_GAUCHE") == Some("CONSTANT"),
         constant_after: occ.str("PROL_DROITE") == Some("CONSTANT"),
+        shell,
         at: kw
             .keyword("AFFE_VARC")
             .and_then(|k| ex.location(k.span))

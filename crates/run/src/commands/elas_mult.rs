@@ -240,6 +240,17 @@ pub fn macro_elas_mult(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
             kw.keyword("CHAM_MATER").map_or(call.span, |k| k.span),
         ));
     }
+    if let Some(t) = setup
+        .materials
+        .temperature
+        .as_ref()
+        .filter(|t| t.shell.is_some())
+    {
+        return Err(ex.unsupported(
+            &format!("{CMD} with a temperature through the thickness of shells (CREA_RESU/PREP_VARC, AFFE_VARC at {}): not done", t.at),
+            kw.keyword("CHAM_MATER").map_or(call.span, |k| k.span),
+        ));
+    }
     // reuse=: the cases of the result first (a NOM_CAS again replaces its
     // case), solved again with the new ones on the same model, materials,
     // elements and global loads.
@@ -346,6 +357,7 @@ pub fn macro_elas_mult(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
     }
     let mesh = setup.model.mesh;
     let result = EvolResult {
+        prep_varc: false,
         typ: "mult_elas".into(),
         mesh,
         steps,

@@ -138,6 +138,7 @@ pub fn lire_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     let typ = kw.str("TYPE_RESU").unwrap_or("EVOL_NOLI").to_lowercase();
     let evol = EvolResult {
+        prep_varc: false,
         typ,
         mesh: model.mesh,
         steps: out.into_values().collect(),

@@ -590,6 +590,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
             fields: [(nom.to_string(), (*field).clone())].into_iter().collect(),
         };
         let result = Rc::new(EvolResult {
+            prep_varc: false,
             typ: typ.to_string(),
             mesh: mesh_id,
             steps: vec![step],
@@ -966,6 +967,7 @@ pub fn macr_lign_coupe(ex: &mut Executor, call: &CommandCall) -> Result<CommandO
         ex.insert(
             &res_ref,
             Concept::Result(Rc::new(EvolResult {
+                prep_varc: false,
                 typ: result.typ.clone(),
                 mesh: TEMP_MESH,
                 steps,

@@ -928,6 +928,7 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
     let (p_dofs, p_conditions) = (p.k.n, p.constraints.len());
     info.problem = Some(Rc::new(p));
     let result = EvolResult {
+        prep_varc: false,
         typ: "mode_meca".into(),
         mesh: k.elem.model.mesh,
         steps,

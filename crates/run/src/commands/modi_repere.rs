@@ -419,6 +419,7 @@ pub fn modi_repere(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutpu
         }
     }
     let turned = EvolResult {
+        prep_varc: false,
         typ: result.typ.clone(),
         mesh: result.mesh,
         steps: out_steps,

@@ -180,12 +180,12 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             }
             // code_aster's energies are those of the mechanical strain
             // ε − εth; ½uᵀKu is not (hplv103a: 2.7 times too large).
-            if run
-                .loads
-                .items
-                .iter()
-                .any(|i| matches!(i.load, aster_fem::Load::FreeStrain { .. }))
-            {
+            if run.loads.items.iter().any(|i| {
+                matches!(
+                    i.load,
+                    aster_fem::Load::FreeStrain { .. } | aster_fem::Load::ShellThermal { .. }
+                )
+            }) {
                 return Err(ex.unsupported(
                     "POST_ELEM energies of a result with a thermal strain (AFFE_VARC TEMP: code_aster integrates ½(ε − εth):D:(ε − εth); not done)",
                     kw.keyword("RESULTAT").map(|k| k.span).unwrap_or_default(),

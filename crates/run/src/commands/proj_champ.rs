@@ -520,6 +520,7 @@ pub fn proj_champ(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
         })
         .collect();
     let projected = EvolResult {
+        prep_varc: false,
         typ: result.typ.clone(),
         mesh: two.mesh_id,
         steps: out_steps,

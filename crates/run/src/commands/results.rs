@@ -1,4 +1,4 @@
-//! Results built field by field: CREA_RESU (AFFE).
+//! Results built field by field: CREA_RESU (AFFE, PREP_VARC).
 //!
 //! - `CREA_RESU(OPERATION='AFFE', TYPE_RESU='EVOL_ELAS'|'EVOL_NOLI')`
 //!   (code_aster's `crtype`): each `AFFE` occurrence stores its field
@@ -6,6 +6,10 @@
 //!   the NUME_ORDRE already holding that instant (within `PRECISION`,
 //!   `CRITERE`), else at a new NUME_ORDRE after the largest (1 for a new
 //!   result). `reuse=` with `RESULTAT` adds to a result.
+//!
+//! - `CREA_RESU(OPERATION='PREP_VARC', TYPE_RESU='EVOL_THER')`: the
+//!   temperature through the thickness of shells (TEMP_MIL, TEMP_INF,
+//!   TEMP_SUP) for `AFFE_VARC` (code_aster's `crvarc`, `te0408`).
 //!
 //! - `POST_CHAMP(EXTR_COQUE=_F(NOM_CHAM, NUME_COUCHE, NIVE_COUCHE))`: a
 //!   new result whose `SIGM_ELNO`/`SIEF_ELNO` is the shells' stresses at one
@@ -45,9 +49,13 @@ pub(crate) const CREA_RESU: Support = Support {
         "AFFE/CHAM_MATER",
         "AFFE/CARA_ELEM",
         "AFFE/CHARGE",
+        "PREP_VARC",
+        "PREP_VARC/MODELE",
+        "PREP_VARC/CARA_ELEM",
+        "PREP_VARC/EVOL_THER",
     ],
     values: &[
-        Values::new("OPERATION", &["AFFE"]),
+        Values::new("OPERATION", &["AFFE", "PREP_VARC"]),
         Values::new("TYPE_RESU", &["EVOL_ELAS", "EVOL_NOLI", "EVOL_THER"]),
     ],
     hints: &[],
@@ -57,6 +65,9 @@ pub(crate) const CREA_RESU: Support = Support {
 
 pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
+    if kw.str("OPERATION") == Some("PREP_VARC") {
+        return prep_varc(ex, call);
+    }
     let typ = kw
         .str("TYPE_RESU")
         .unwrap_or("EVOL_ELAS")
@@ -69,6 +80,7 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             r
         }
         (None, None) => EvolResult {
+            prep_varc: false,
             typ,
             mesh: u32::MAX,
             steps: Vec::new(),
@@ -152,6 +164,133 @@ pub fn crea_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
         }
     }
     result.steps.sort_by_key(|s| s.nume_ordre);
+    store_result(ex, call, Concept::Result(Rc::new(result)))
+}
+
+/// `CREA_RESU(OPERATION='PREP_VARC', TYPE_RESU='EVOL_THER',
+/// PREP_VARC=_F(MODELE, CARA_ELEM, EVOL_THER))` (code_aster's `crvarc` →
+/// option `PREP_VRC`, `te0408`): the temperature through the thickness of
+/// the model's shells at every instant of an `evol_ther` holding TEMP_MIL,
+/// TEMP_INF, TEMP_SUP. code_aster stores, per shell cell and sub-point
+/// (3 per layer of `COQUE_NCOU`), the parabola through the cell's means of
+/// the three at −h/2, 0, h/2; what its plates read of it (`dxefgt`,
+/// `dxefnt`, `dxsith`) is that parabola, so the result keeps the nodal
+/// TEMP_MIL, TEMP_INF, TEMP_SUP (TEMP_INF and TEMP_SUP default to TEMP_MIL,
+/// `dxtpif`) and AFFE_VARC builds the parabola of each cell from them
+/// (`crate::fembridge`). TEMP_MIL missing at a node of a shell cell is
+/// code_aster's ELEMENTS_53, a CARA_ELEM of another model CALCULEL4_15, one
+/// without shells CALCULEL4_14.
+fn prep_varc(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
+    const CMD: &str = "CREA_RESU";
+    let kw = &call.keywords;
+    let [occ] = kw.factor("PREP_VARC") else {
+        return Err(ExecError::new(
+            "CREA_RESU/PREP_VARC: one occurrence is required",
+        ));
+    };
+    let model_ref = ex.required(CMD, occ, "MODELE")?;
+    let model = ex.model(model_ref)?;
+    let cara = ex.cara_elem(ex.required(CMD, occ, "CARA_ELEM")?)?;
+    let evol_ref = ex.required(CMD, occ, "EVOL_THER")?;
+    let evol = ex.result(evol_ref)?;
+    if cara.model != model_ref.id {
+        return Err(ex.kw_error(
+            CMD,
+            occ,
+            "CARA_ELEM",
+            "the CARA_ELEM was made for another model than MODELE (code_aster's CALCULEL4_15)",
+        ));
+    }
+    let shells: Vec<aster_mesh::CellId> = model
+        .cells
+        .iter()
+        .filter(|(_, m)| {
+            matches!(
+                m,
+                crate::concept::Modelisation::Plate(_) | crate::concept::Modelisation::Coque3d
+            )
+        })
+        .map(|(c, _)| *c)
+        .collect();
+    if shells.is_empty() || cara.shells.is_empty() {
+        return Err(ex.kw_error(
+            CMD,
+            occ,
+            "CARA_ELEM",
+            "the CARA_ELEM has no shell (COQUE) section: PREP_VARC has nothing to do (code_aster's CALCULEL4_14)",
+        ));
+    }
+    if evol.typ != "evol_ther" {
+        return Err(ex.kw_error(CMD, occ, "EVOL_THER", "an evol_ther is expected"));
+    }
+    let mesh = ex.mesh_by_id(model.mesh)?;
+    let comps = ["TEMP_MIL", "TEMP_INF", "TEMP_SUP"];
+    let mut steps = Vec::new();
+    for step in &evol.steps {
+        let Some(field) = step.fields.get("TEMP") else {
+            continue;
+        };
+        let crate::field::Field::Nodal(f) = field else {
+            return Err(ex.kw_error(
+                CMD,
+                occ,
+                "EVOL_THER",
+                format!(
+                    "the TEMP field at NUME_ORDRE {} is not a nodal field (NOEU_TEMP_R)",
+                    step.nume_ordre
+                ),
+            ));
+        };
+        let mut out = crate::field::NodalField::new(comps.iter().map(|c| c.to_string()).collect());
+        for &cell in &shells {
+            for &node in &mesh.cell(cell).nodes {
+                let Some(mil) = f.get(node, "TEMP_MIL") else {
+                    return Err(ex.kw_error(
+                        CMD,
+                        occ,
+                        "EVOL_THER",
+                        format!(
+                            "the TEMP field at NUME_ORDRE {} has no TEMP_MIL at node {} of shell cell {}: a shell's temperature is TEMP_MIL with TEMP_INF and TEMP_SUP (code_aster's ELEMENTS_53)",
+                            step.nume_ordre,
+                            mesh.node_name(node),
+                            mesh.cell_name(cell)
+                        ),
+                    ));
+                };
+                let inf = f.get(node, "TEMP_INF").unwrap_or(mil);
+                let sup = f.get(node, "TEMP_SUP").unwrap_or(mil);
+                out.set(node, "TEMP_MIL", mil);
+                out.set(node, "TEMP_INF", inf);
+                out.set(node, "TEMP_SUP", sup);
+            }
+        }
+        let mut fields = crate::field::StepFields::new();
+        fields.insert("TEMP".into(), crate::field::Field::Nodal(out));
+        steps.push(Step {
+            nume_ordre: step.nume_ordre,
+            inst: step.inst,
+            fields,
+        });
+    }
+    if steps.is_empty() {
+        return Err(ex.kw_error(
+            CMD,
+            occ,
+            "EVOL_THER",
+            format!("`{}` holds no TEMP field", evol_ref.name),
+        ));
+    }
+    let result = EvolResult {
+        prep_varc: true,
+        typ: "evol_ther".into(),
+        mesh: model.mesh,
+        steps,
+        fem: None,
+        tables: Vec::new(),
+        modal: None,
+        cases: None,
+        thermal: None,
+    };
     store_result(ex, call, Concept::Result(Rc::new(result)))
 }
 

@@ -711,6 +711,7 @@ pub(crate) fn ther_lineaire(
         })
         .collect();
     let result = EvolResult {
+        prep_varc: false,
         typ: "evol_ther".into(),
         mesh: model.mesh,
         steps,

@@ -349,6 +349,7 @@ pub(crate) fn ther_non_line(
         });
     }
     let result = EvolResult {
+        prep_varc: false,
         typ: "evol_ther".into(),
         mesh: model.mesh,
         steps,
