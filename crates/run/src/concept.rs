@@ -787,6 +787,21 @@ pub struct ModalInfo {
 }
 
 impl EvolResult {
+    /// A result of type `typ` on mesh `mesh` with no step yet.
+    pub fn new(typ: String, mesh: u32) -> EvolResult {
+        EvolResult {
+            typ,
+            mesh,
+            steps: Vec::new(),
+            fem: None,
+            tables: Vec::new(),
+            modal: None,
+            cases: None,
+            thermal: None,
+            prep_varc: false,
+        }
+    }
+
     /// The step at an instant, matched with a precision (relative unless
     /// `absolute`).
     pub fn step_at(&self, inst: f64, precision: f64, absolute: bool) -> Option<&Step> {

@@ -2824,17 +2824,7 @@ pub fn extract_shell_level(
             "POST_CHAMP/EXTR_COQUE: the result's model has no shell (DKT) cells",
         ));
     }
-    let mut out = EvolResult {
-        prep_varc: false,
-        typ: result.typ.clone(),
-        mesh: result.mesh,
-        steps: Vec::new(),
-        fem: None,
-        tables: Vec::new(),
-        modal: None,
-        cases: None,
-        thermal: None,
-    };
+    let mut out = EvolResult::new(result.typ.clone(), result.mesh);
     for step in result
         .steps
         .iter()
@@ -2895,17 +2885,7 @@ pub fn shell_efforts_to_mid_surface(
         Some(aster_fem::ElementKind::Shell { section, .. }) => Some(section.offset),
         _ => None,
     };
-    let mut out = EvolResult {
-        typ: result.typ.clone(),
-        mesh: result.mesh,
-        steps: Vec::new(),
-        fem: None,
-        tables: Vec::new(),
-        modal: None,
-        cases: None,
-        thermal: None,
-        prep_varc: false,
-    };
+    let mut out = EvolResult::new(result.typ.clone(), result.mesh);
     for step in result
         .steps
         .iter()

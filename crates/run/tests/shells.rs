@@ -96,7 +96,7 @@ fn plasticity_and_surface_forces_on_shells_are_refused() {
     refused(
         &plastic,
         "plastic",
-        &["COMPORTEMENT/RELATION other than ELAS on shell, beam or bar cells"],
+        &["COMPORTEMENT/RELATION other than ELAS on shell, beam, bar or grid cells"],
     );
     let force = strips().replace(
         "FORCE_NODALE=(",
