@@ -97,6 +97,57 @@ pub fn elastic_energy_density(
     Ok(out)
 }
 
+/// The elastic energy of the plate facets of `model` (DKT, DST, Q4G and
+/// their G variants) for the displacement `u`: the density at the points
+/// of each facet's RIGI family and its integral over the facet, with the
+/// components [`crate::plate::ENERGY_NAMES`] (`ENEL_ELGA`, `ENEL_ELEM`:
+/// [`crate::plate::elastic_energy`], by code_aster's path for a linear or
+/// a non-linear result).
+pub fn plate_elastic_energy(
+    model: &Model,
+    u: &[f64],
+    linear: bool,
+) -> Result<(Vec<crate::post::CellValues>, Vec<crate::post::CellValues>), FemError> {
+    let mut density = Vec::new();
+    let mut totals = Vec::new();
+    for el in model.elements() {
+        let crate::model::ElementKind::Shell {
+            material,
+            section,
+            theory,
+        } = &el.kind
+        else {
+            continue;
+        };
+        let xyz = crate::element::cell_coords(model.mesh(), el.cell);
+        let ue: Vec<f64> = crate::element::element_dofs(model, el.cell)
+            .iter()
+            .map(|&i| u[i])
+            .collect();
+        let (values, weights) =
+            crate::plate::elastic_energy(*theory, &xyz, material, section, &ue, linear)
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))?;
+        let mut sum = vec![0.0; 5];
+        for (v, w) in values.iter().zip(&weights) {
+            for (acc, x) in sum.iter_mut().zip(v) {
+                *acc += w * x;
+            }
+        }
+        let names = crate::plate::ENERGY_NAMES.to_vec();
+        density.push(crate::post::CellValues {
+            cell: el.cell,
+            names: names.clone(),
+            points: values.iter().map(|v| v.to_vec()).collect(),
+        });
+        totals.push(crate::post::CellValues {
+            cell: el.cell,
+            names,
+            points: vec![sum],
+        });
+    }
+    Ok((density, totals))
+}
+
 /// The integral over each cell of a field at the points of its stiffness
 /// family (code_aster's `_ELEM` options from their `_ELGA` densities, e.g.
 /// `ENEL_ELEM`): Σ value × weight (AXIS: per radian, weight × r), one

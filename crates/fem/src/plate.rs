@@ -21,6 +21,17 @@ pub enum PlateTheory {
     Dst,
     /// `Q4G`: assumed shear strains (`MET3TR3`, `MEQ4QU4`).
     Q4g,
+    /// `DKTG`: the DKT/DKQ facets with a behaviour integrated on the
+    /// generalised strains (`MEDKTG3`, `MEDKQG4`, `te0409`): with `ELAS`
+    /// the DKT's stiffness, mass and linear efforts; a non-linear result's
+    /// efforts are the Gauss points' N and M, without shear forces
+    /// (`ef0409`: QX = QY = 0).
+    Dktg,
+    /// `Q4GG`: the Q4G facets with a behaviour integrated on the
+    /// generalised strains (`MET3GG3`, `MEQ4GG4`, `te0409`): with `ELAS`
+    /// the Q4G's stiffness, plus, with an offset, the membrane–bending
+    /// coupling ∫ Bmᵀ·Dmf·Bf that `te0409` adds for every facet.
+    Q4gg,
 }
 
 impl PlateTheory {
@@ -30,22 +41,47 @@ impl PlateTheory {
             PlateTheory::Dkt => "DKT",
             PlateTheory::Dst => "DST",
             PlateTheory::Q4g => "Q4G",
+            PlateTheory::Dktg => "DKTG",
+            PlateTheory::Q4gg => "Q4GG",
         }
+    }
+
+    /// The facet whose stiffness, mass and linear efforts this one has:
+    /// `DKTG` is the DKT's, `Q4GG` the Q4G's.
+    pub fn base(self) -> PlateTheory {
+        match self {
+            PlateTheory::Dktg => PlateTheory::Dkt,
+            PlateTheory::Q4gg => PlateTheory::Q4g,
+            t => t,
+        }
+    }
+
+    /// `DKTG`, `Q4GG`: the behaviour is integrated on the generalised
+    /// strains (`te0409`), so the element runs in `STAT_NON_LINE`.
+    pub fn is_global(self) -> bool {
+        matches!(self, PlateTheory::Dktg | PlateTheory::Q4gg)
     }
 
     /// Whether the plate has a transverse shear strain (DST, Q4G): its
     /// stresses by layer carry SIXZ SIYZ.
     pub fn has_shear_strain(self) -> bool {
-        self != PlateTheory::Dkt
+        self.base() != PlateTheory::Dkt
     }
 }
 
 /// An offset section (`EXCENTREMENT`) is reproduced on the DKT and DKQ
-/// facets only (`dktrig`, `dkqrig`, `dktmas`, `dkqmas`, `dktedg`,
-/// `dkqedg`); DST's and Q4G's own coupling terms (`dstrig`, `dsqrig`,
-/// `q4grig`, `t3grig`) are not.
+/// facets (`dktrig`, `dkqrig`, `dktmas`, `dkqmas`, `dktedg`, `dkqedg`),
+/// and in the stiffness and efforts of the `DKTG` and `Q4GG` ones
+/// (`te0409`'s coupling, `q4gedg`); DST's and Q4G's own coupling terms
+/// (`dstrig`, `dsqrig`, `q4grig`, `t3grig`) are not, nor the mass of an
+/// offset Q4GG.
 pub fn check_offset(theory: PlateTheory, section: &ShellSection) -> Result<(), String> {
-    if section.offset != 0. && theory != PlateTheory::Dkt {
+    if section.offset != 0.
+        && !matches!(
+            theory,
+            PlateTheory::Dkt | PlateTheory::Dktg | PlateTheory::Q4gg
+        )
+    {
         return Err(format!(
             "an offset section (EXCENTREMENT = {}) is reproduced on DKT/DKQ facets only, not on {}",
             section.offset,
@@ -106,7 +142,7 @@ pub fn stiffness(
 ) -> Result<DMatrix<f64>, String> {
     check_nodes(theory, xyz)?;
     check_offset(theory, section)?;
-    match (theory, xyz) {
+    match (theory.base(), xyz) {
         (PlateTheory::Dkt, [a, b, c]) => crate::dkt::stiffness(&[*a, *b, *c], material, section),
         (PlateTheory::Dkt, [a, b, c, d]) => {
             crate::dkq::stiffness(&[*a, *b, *c, *d], material, section)
@@ -120,7 +156,8 @@ pub fn stiffness(
 /// (`dialum`'s weight when lumped). `te0031`: DKT's `dktmas`/`dkqmas`,
 /// DST's `dstmas`/`dsqmas`, Q4G's `q4gmas` on QUAD4 and the DKT's
 /// `dktmas` on its TRIA3 — integrated there on the element's RIGI family,
-/// FPG1.
+/// FPG1; `te0444`: DKTG's and Q4GG's the DKT's `dktmas`/`dkqmas` (Q4GG's
+/// triangle on its FPG1).
 pub fn mass(
     theory: PlateTheory,
     xyz: &[[f64; 3]],
@@ -131,15 +168,22 @@ pub fn mass(
     check_nodes(theory, xyz)?;
     check_offset(theory, section)?;
     match (theory, xyz) {
-        (PlateTheory::Dkt, [a, b, c]) => crate::dkt::mass(&[*a, *b, *c], rho, section),
-        // `dktmas` on Q4G's triangle reads its RIGI family, FPG1.
-        (PlateTheory::Q4g, [a, b, c]) => crate::dkt::mass_on(
+        (PlateTheory::Dkt | PlateTheory::Dktg, [a, b, c]) => {
+            crate::dkt::mass(&[*a, *b, *c], rho, section)
+        }
+        // `dktmas` on Q4G's and Q4GG's triangle reads its RIGI family,
+        // FPG1.
+        (PlateTheory::Q4g | PlateTheory::Q4gg, [a, b, c]) => crate::dkt::mass_on(
             &[*a, *b, *c],
             rho,
             section,
-            &rigi_scheme(theory, CellType::TRIA3),
+            &rigi_scheme(PlateTheory::Q4g, CellType::TRIA3),
         ),
-        (PlateTheory::Dkt, [a, b, c, d]) => crate::dkq::mass(&[*a, *b, *c, *d], rho, section),
+        // `te0444`: the DKTG and Q4GG quadrangles both take the DKQ's
+        // `dkqmas` (offset included).
+        (PlateTheory::Dkt | PlateTheory::Dktg | PlateTheory::Q4gg, [a, b, c, d]) => {
+            crate::dkq::mass(&[*a, *b, *c, *d], rho, section)
+        }
         (PlateTheory::Q4g, [a, b, c, d]) => crate::q4g::quad_mass(&[*a, *b, *c, *d], rho, section),
         (_, _) => crate::dst::mass(xyz, material, rho, section),
     }
@@ -148,7 +192,7 @@ pub fn mass(
 /// The RIGI family of a facet (where `EFGE_ELGA` is given): FPG3 on the
 /// DKT and DST triangles, FPG1 on Q4G's, FPG4 on the quadrangles.
 pub fn rigi_scheme(theory: PlateTheory, ty: CellType) -> Vec<GaussPoint> {
-    match (theory, ty) {
+    match (theory.base(), ty) {
         (PlateTheory::Q4g, CellType::TRIA3) => crate::shape::rigi_scheme(CellType::TRIA3),
         (_, CellType::TRIA3) => crate::dkt::fpg3(),
         _ => crate::dkq::fpg4(),
@@ -177,7 +221,7 @@ pub fn generalised_at(
 ) -> Result<(Matrix3<f64>, Vec<Efforts>), String> {
     check_nodes(theory, xyz)?;
     check_offset(theory, section)?;
-    match (theory, xyz) {
+    match (theory.base(), xyz) {
         (PlateTheory::Dkt, [a, b, c]) => {
             let xyz = [*a, *b, *c];
             let facet = crate::dkt::Facet::new(&xyz)?;
@@ -197,6 +241,134 @@ pub fn generalised_at(
         }
         (_, _) => crate::q4g::generalised_at(xyz, material, section, u, points, what),
     }
+}
+
+/// The components of a plate's elastic energy (`ENEL_ELGA`,
+/// `ENEL_ELEM`: `te0412`).
+pub const ENERGY_NAMES: [&str; 5] = ["TOTALE", "MEMBRANE", "FLEXION", "CISAILLE", "COUPL_MF"];
+
+/// The elastic energy density of a facet at the points of its RIGI family
+/// ([`ENERGY_NAMES`]) and the points' weights (w·area or w·det J), as
+/// code_aster's `te0412` computes it for an elastic facet:
+/// - a non-linear result (`linear` false, a behaviour given): ½ N·ε and
+///   ½ M·κ with the efforts (N, M) of the facet's own element and the
+///   strains of the DKT's operators (`dxtbm`/`dktbf`, `dxqbm`/`dkqbf`),
+///   whatever the facet — so a Q4GG reads the DKQ's curvatures against
+///   its own moments; no shear or coupling term;
+/// - a linear result: the generalised strains of `*edg` (DEGE) with
+///   `dxmate`'s matrices, ½ ε·Dm·ε, ½ κ·Df·κ, ½ γ·Dc·γ — γ being DEGE's
+///   GAX GAY, half the engineering shear, as `te0412` reads them — and
+///   with an offset the coupling ½ (ε·Dmf·κ + κ·Dmf·ε).
+///
+/// Layered (`DEFI_COMPOSITE`) sections are errors.
+pub fn elastic_energy(
+    theory: PlateTheory,
+    xyz: &[[f64; 3]],
+    material: &Elastic,
+    section: &ShellSection,
+    u: &[f64],
+    linear: bool,
+) -> Result<(Vec<[f64; 5]>, Vec<f64>), String> {
+    check_nodes(theory, xyz)?;
+    if section.layered.is_some() {
+        return Err(
+            "the elastic energy of a layered (DEFI_COMPOSITE) plate is not implemented".into(),
+        );
+    }
+    let ty = if xyz.len() == 3 {
+        CellType::TRIA3
+    } else {
+        CellType::QUAD4
+    };
+    let scheme = rigi_scheme(theory, ty);
+    let points: Vec<[f64; 2]> = scheme.iter().map(|g| [g.xi[0], g.xi[1]]).collect();
+    let weights: Vec<f64> = match xyz {
+        [a, b, c] => {
+            let facet = crate::dkt::Facet::new(&[*a, *b, *c])?;
+            scheme.iter().map(|g| g.weight * facet.c[6]).collect()
+        }
+        [a, b, c, d] => {
+            let quad = crate::dkq::Quad::new(&[*a, *b, *c, *d])?;
+            scheme
+                .iter()
+                .map(|g| g.weight * quad.jacobian(g.xi[0], g.xi[1]).0)
+                .collect()
+        }
+        _ => return Err("a plate facet has 3 or 4 nodes".into()),
+    };
+    let dot3 = |a: &[f64], b: &[f64]| (0..3).map(|i| a[i] * b[i]).sum::<f64>();
+    let mat3 = |m: &[[f64; 3]; 3], v: &[f64]| -> [f64; 3] {
+        std::array::from_fn(|i| (0..3).map(|j| m[i][j] * v[j]).sum())
+    };
+    // DEGE's tensor shears back to engineering ones (εxy → γxy, κxy).
+    let engineering = |e: &Efforts| ([e[0], e[1], 2. * e[2]], [e[3], e[4], 2. * e[5]]);
+    let values = if linear {
+        let (_, strains) = generalised_at(
+            theory,
+            xyz,
+            material,
+            section,
+            u,
+            &points,
+            Generalised::Strains,
+        )?;
+        let (dm, df) = crate::dkt::section_matrices(material, section);
+        let dc = crate::q4g::shear_stiffness(material, section);
+        let dmf = crate::dkt::coupling(material, section);
+        strains
+            .iter()
+            .map(|e| {
+                let (eps, khi) = engineering(e);
+                let gam = [e[6], e[7]];
+                let membrane = 0.5 * dot3(&eps, &mat3(&dm, &eps));
+                let bending = 0.5 * dot3(&khi, &mat3(&df, &khi));
+                let shear = 0.5
+                    * (0..2)
+                        .map(|i| gam[i] * (0..2).map(|j| dc[i][j] * gam[j]).sum::<f64>())
+                        .sum::<f64>();
+                let coupled = dmf.as_ref().map_or(0., |d| {
+                    0.5 * (dot3(&eps, &mat3(d, &khi)) + dot3(&khi, &mat3(d, &eps)))
+                });
+                [
+                    membrane + bending + shear + coupled,
+                    membrane,
+                    bending,
+                    shear,
+                    coupled,
+                ]
+            })
+            .collect()
+    } else {
+        let (_, efforts) = generalised_at(
+            theory,
+            xyz,
+            material,
+            section,
+            u,
+            &points,
+            Generalised::Efforts,
+        )?;
+        let (_, strains) = generalised_at(
+            PlateTheory::Dkt,
+            xyz,
+            material,
+            section,
+            u,
+            &points,
+            Generalised::Strains,
+        )?;
+        efforts
+            .iter()
+            .zip(&strains)
+            .map(|(f, e)| {
+                let (eps, khi) = engineering(e);
+                let membrane = 0.5 * dot3(&f[0..3], &eps);
+                let bending = 0.5 * dot3(&f[3..6], &khi);
+                [membrane + bending, membrane, bending, 0., 0.]
+            })
+            .collect()
+    };
+    Ok((values, weights))
 }
 
 /// A free strain through a plate's thickness, ε_th(z) = p₀ + p₁ z + p₂ z²

@@ -261,12 +261,22 @@ fn shell_generalised(
                 -cs * sn * xx + cs * sn * yy + (cs * cs - sn * sn) * xy,
             )
         };
+        // A non-linear result's DKTG efforts are its SIEF_ELGA, N and M
+        // of the generalised behaviour without shear forces (`te0409`
+        // leaves Q at zero unless Q4GG; `ef0409`, `te0546` copy them).
+        let no_shear = *theory == crate::plate::PlateTheory::Dktg
+            && matches!(at, EffortsAt::Gauss | EffortsAt::NodesNonLinear)
+            && what != crate::dkt::Generalised::Strains;
         let points = efforts
             .iter()
             .map(|e| {
                 let (nxx, nyy, nxy) = rot(e[0], e[1], e[2]);
                 let (mxx, myy, mxy) = rot(e[3], e[4], e[5]);
-                let (qx, qy) = (cs * e[6] + sn * e[7], -sn * e[6] + cs * e[7]);
+                let (qx, qy) = if no_shear {
+                    (0.0, 0.0)
+                } else {
+                    (cs * e[6] + sn * e[7], -sn * e[6] + cs * e[7])
+                };
                 vec![nxx, nyy, nxy, mxx, myy, mxy, qx, qy]
             })
             .collect::<Vec<Vec<f64>>>();
@@ -463,7 +473,7 @@ fn layered_sigm_elno(
     // The transverse shears by ply: d1i·Q + d2i·λ (DST, DSQ, the DKT
     // triangle, the Q4γ quadrangle).
     use crate::plate::PlateTheory;
-    let lambda: Option<Vec<[f64; 4]>> = match (theory, xyz.as_slice()) {
+    let lambda: Option<Vec<[f64; 4]>> = match (theory.base(), xyz.as_slice()) {
         (PlateTheory::Dst, _) => Some(
             crate::dst::moment_derivatives(&xyz, material, section, &ue, &points)
                 .map_err(|m| cell_error(model, cell, m))?,

@@ -23,15 +23,15 @@
 
 use crate::dkq::{fpg4, Matrix24, Quad};
 use crate::dkt::{
-    add_bending, add_btdb, section_matrices, split_unknowns, Efforts, Facet, Generalised, Matrix18,
-    ShellSection,
+    add_bending, add_btdb, add_coupling, add_ctab, coupling, section_matrices, split_unknowns,
+    Efforts, Facet, Generalised, Matrix18, ShellSection,
 };
 use crate::dst::{bfb_q, linear_curvatures, shear_compliance};
 use crate::material::Elastic;
 use nalgebra::Matrix3;
 
 /// The shear stiffness Dc = 5/6·G·h·I (`dxmate`'s `dc`).
-fn shear_stiffness(material: &Elastic, section: &ShellSection) -> [[f64; 2]; 2] {
+pub(crate) fn shear_stiffness(material: &Elastic, section: &ShellSection) -> [[f64; 2]; 2] {
     if let Some(l) = &section.layered {
         return l.dc;
     }
@@ -133,33 +133,49 @@ fn t3gbc(c: &[f64; 21]) -> [[f64; 9]; 2] {
 }
 
 /// Stiffness of a T3γ triangle in the facet's frame (`t3grig` then
-/// `dxtloc`).
+/// `dxtloc`). With an offset (a `Q4GG` facet: [`crate::plate::check_offset`]
+/// lets no other through) the membrane–bending coupling
+/// area·Bmᵀ·Dmf·Bf of `te0409` on its FPG1.
 pub fn tria_local_stiffness(facet: &Facet, material: &Elastic, section: &ShellSection) -> Matrix18 {
     let (dm, df) = section_matrices(material, section);
     let dc = shear_stiffness(material, section);
+    let bf = linear_curvatures(facet);
     let mut flex = [[0.; 9]; 9];
-    add_btdb(&linear_curvatures(facet), &df, facet.area(), &mut flex);
+    add_btdb(&bf, &df, facet.area(), &mut flex);
     add_btdb(&t3gbc(&facet.c), &dc, facet.area(), &mut flex);
     let mut k = crate::dkt::membrane_stiffness(facet, &dm);
     add_bending(&flex, section.drilling, &mut k);
+    if let Some(dmf) = coupling(material, section) {
+        let mut mefl = [[0.; 9]; 6];
+        add_ctab(&facet.bm(), &dmf, &bf, facet.area(), &mut mefl);
+        add_coupling(&mefl, &mut k);
+    }
     k
 }
 
 /// Stiffness of a Q4γ quadrangle in the facet's frame (`q4grig` then
-/// `dxqloc`).
+/// `dxqloc`). With an offset (a `Q4GG` facet) the membrane–bending
+/// coupling Σ w·Bmᵀ·Dmf·Bf of `te0409` on FPG4.
 pub fn quad_local_stiffness(quad: &Quad, material: &Elastic, section: &ShellSection) -> Matrix24 {
     let (dm, df) = section_matrices(material, section);
     let dc = shear_stiffness(material, section);
+    let dmf = coupling(material, section);
     let mut flex = [[0.; 12]; 12];
+    let mut mefl = [[0.; 12]; 8];
     for g in fpg4() {
         let (qsi, eta) = (g.xi[0], g.xi[1]);
         let (det, vj) = quad.jacobian(qsi, eta);
         let w = g.weight * det;
-        add_btdb(&bfb_q(qsi, eta, &vj), &df, w, &mut flex);
+        let bf = bfb_q(qsi, eta, &vj);
+        add_btdb(&bf, &df, w, &mut flex);
         add_btdb(&q4gbc(&quad.c, qsi, eta, &vj), &dc, w, &mut flex);
+        if let Some(dmf) = &dmf {
+            add_ctab(&Quad::bm(qsi, eta, &vj), dmf, &bf, w, &mut mefl);
+        }
     }
     let mut k = crate::dkq::membrane_stiffness(quad, &dm);
     add_bending(&flex, section.drilling, &mut k);
+    add_coupling(&mefl, &mut k);
     k
 }
 

@@ -75,6 +75,8 @@ impl Modelisation {
             "DKT" => Modelisation::Plate(aster_fem::PlateTheory::Dkt),
             "DST" => Modelisation::Plate(aster_fem::PlateTheory::Dst),
             "Q4G" => Modelisation::Plate(aster_fem::PlateTheory::Q4g),
+            "DKTG" => Modelisation::Plate(aster_fem::PlateTheory::Dktg),
+            "Q4GG" => Modelisation::Plate(aster_fem::PlateTheory::Q4gg),
             "COQUE_3D" => Modelisation::Coque3d,
             "PLAN_JOINT" => Modelisation::PlaneJoint,
             "GRILLE_MEMBRANE" => Modelisation::GridMembrane,
@@ -108,7 +110,7 @@ impl Modelisation {
         matches!(value, "D_PLAN_INCO_UPG" | "AXIS_INCO_UPG" | "3D_INCO_UPG")
     }
 
-    pub const KEYWORDS: [&'static str; 24] = [
+    pub const KEYWORDS: [&'static str; 26] = [
         "D_PLAN",
         "C_PLAN",
         "AXIS",
@@ -122,6 +124,8 @@ impl Modelisation {
         "DKT",
         "DST",
         "Q4G",
+        "DKTG",
+        "Q4GG",
         "DIS_TR",
         "POU_D_E",
         "POU_D_T",

@@ -204,6 +204,17 @@ impl Executor {
         self.names.get(&id).map(String::as_str)
     }
 
+    /// code_aster's own name of a concept (its JEVEUX name): since
+    /// version 15 every data structure is named by a counter of the
+    /// concepts created, on 8 digits ("00000001" the first) — what
+    /// `POST_ELEM` writes in `LIEU` for `TOUT='OUI'` (the mesh's name).
+    /// Concept ids count the new concepts of the commands in program order
+    /// the same way (a `reuse` makes none); the concepts code_aster's
+    /// macros create for themselves are not counted.
+    pub(crate) fn internal_name(&self, id: u32) -> String {
+        format!("{id:08}")
+    }
+
     pub fn concept(&self, c: &ConceptRef) -> Result<&Concept, ExecError> {
         self.store.get(&c.id).ok_or_else(|| {
             ExecError::new(format!(

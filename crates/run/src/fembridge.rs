@@ -2191,10 +2191,23 @@ pub fn solve(
                 "DEPL".to_string(),
                 Field::Nodal(nodal_from_dofs(&model, &s.displacement)),
             );
-            fields.insert(
-                "SIEF_ELGA".to_string(),
-                Field::Elem(elem_field(ElemLocation::Gauss, &s.stress)),
-            );
+            // The DKTG/Q4GG facets' SIEF_ELGA: their generalised efforts.
+            let plates = crate::shells::global_plate_sief(
+                &model,
+                setup.cara.as_deref(),
+                &s.displacement,
+                linear,
+                (&loads, s.time),
+            )
+            .map_err(|e| fem_err(cmd, e))?;
+            let sief = if plates.is_empty() {
+                elem_field(ElemLocation::Gauss, &s.stress)
+            } else {
+                let mut all = s.stress.clone();
+                all.extend(plates);
+                elem_field(ElemLocation::Gauss, &all)
+            };
+            fields.insert("SIEF_ELGA".to_string(), Field::Elem(sief));
             fields.insert(
                 "VARI_ELGA".to_string(),
                 Field::Elem(elem_field(ElemLocation::Gauss, &s.internal_variables)),
@@ -2760,20 +2773,55 @@ pub fn calc_champ(
                             call.keywords.keyword("ENERGIE").map(|k| k.span).unwrap_or(call.span),
                         ));
                     }
-                    let density =
+                    let energie = || {
+                        call.keywords
+                            .keyword("ENERGIE")
+                            .map(|k| k.span)
+                            .unwrap_or(call.span)
+                    };
+                    // The plates' energy (te0412) by the result's path;
+                    // their ELNO (te0004's extrapolation) and a heated
+                    // plate's are not done.
+                    let (plates, plate_totals) = if model.has_shells() {
+                        if opt == "ENEL_ELNO" {
+                            return Err(ex.unsupported(
+                                "CALC_CHAMP/ENERGIE='ENEL_ELNO' on plate cells (te0004's extrapolation of their energy is not reproduced: ask for ENEL_ELGA or ENEL_ELEM)",
+                                energie(),
+                            ));
+                        }
+                        if !heat.is_empty() {
+                            return Err(ex.unsupported(
+                                "CALC_CHAMP/ENERGIE of heated plates (a temperature through their thickness: te0412's thermal terms are not reproduced)",
+                                energie(),
+                            ));
+                        }
+                        aster_fem::energy::plate_elastic_energy(
+                            model,
+                            u,
+                            matches!(result.typ.as_str(), "evol_elas" | "mult_elas"),
+                        )
+                        .map_err(|e| fem_err("CALC_CHAMP", e))?
+                    } else {
+                        (Vec::new(), Vec::new())
+                    };
+                    let mut density =
                         aster_fem::energy::elastic_energy_density(model, &restrict(&raw.stress))
                             .map_err(|e| fem_err("CALC_CHAMP", e))?;
                     match &opt[5..] {
-                        "ELGA" => Field::Elem(elem_field(ElemLocation::Gauss, &density)),
+                        "ELGA" => {
+                            density.extend(plates);
+                            Field::Elem(elem_field(ElemLocation::Gauss, &on(only, &density)))
+                        }
                         "ELNO" => Field::Elem(elem_field(
                             ElemLocation::Nodes,
                             &post::elno(model, &density),
                         )),
-                        _ => Field::Elem(elem_field(
-                            ElemLocation::Cell,
-                            &aster_fem::energy::cell_integrals(model, &density)
-                                .map_err(|e| fem_err("CALC_CHAMP", e))?,
-                        )),
+                        _ => {
+                            let mut cells = aster_fem::energy::cell_integrals(model, &density)
+                                .map_err(|e| fem_err("CALC_CHAMP", e))?;
+                            cells.extend(plate_totals);
+                            Field::Elem(elem_field(ElemLocation::Cell, &on(only, &cells)))
+                        }
                     }
                 }
                 "SIEQ_ELNO" => {

@@ -98,7 +98,7 @@ pub(crate) fn check_solve(
         if let Some(Modelisation::Plate(theory)) = model
             .cells
             .values()
-            .find(|m| matches!(m, Modelisation::Plate(t) if t.has_shear_strain()))
+            .find(|m| matches!(m, Modelisation::Plate(t) if t.has_shear_strain() && !t.is_global()))
         {
             let at = kw.keyword("MODELE").map(|k| k.span).unwrap_or(call.span);
             let name = theory.name();
@@ -186,6 +186,33 @@ pub(crate) fn efge_elga(
         EffortsAt::Gauss,
     )?);
     Ok(out)
+}
+
+/// `SIEF_ELGA` of the `DKTG`/`Q4GG` facets of `model` (none without
+/// them): their generalised efforts NXX … QY at the Gauss points in the
+/// user's frame — `te0409`'s for a non-linear result (a DKTG's without
+/// shear forces), `te0422`'s (`dxefgv`) for a linear one.
+pub(crate) fn global_plate_sief(
+    model: &Model,
+    cara: Option<&CaraElem>,
+    u: &[f64],
+    linear: bool,
+    (loads, t): (&aster_fem::Loads, f64),
+) -> Result<Vec<CellValues>, aster_fem::FemError> {
+    let global: std::collections::BTreeSet<CellId> = model
+        .elements()
+        .iter()
+        .filter(|el| {
+            matches!(&el.kind, aster_fem::ElementKind::Shell { theory, .. } if theory.is_global())
+        })
+        .map(|el| el.cell)
+        .collect();
+    if global.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut v = efge_elga(model, cara, u, linear, &heat_at(loads, t)?)?;
+    v.retain(|cv| global.contains(&cv.cell));
+    Ok(v)
 }
 
 /// `DEGE_ELGA` (at the Gauss points) or `DEGE_ELNO` (`at_nodes`) of the

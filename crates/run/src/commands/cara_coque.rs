@@ -195,9 +195,16 @@ pub(crate) fn shells(
             ));
         }
         if offset != 0. {
-            // The offset is reproduced on DKT/DKQ facets only.
+            // The offset is reproduced on DKT/DKQ facets and on the
+            // DKTG/Q4GG ones (te0409's coupling; an offset Q4GG's mass is
+            // refused where it is assembled).
             let other = cells.iter().find_map(|c| match model.cells.get(c) {
-                Some(Modelisation::Plate(aster_fem::plate::PlateTheory::Dkt)) | None => None,
+                Some(Modelisation::Plate(t))
+                    if matches!(t.base(), aster_fem::plate::PlateTheory::Dkt) || t.is_global() =>
+                {
+                    None
+                }
+                None => None,
                 Some(Modelisation::Plate(t)) => Some((*c, t.name())),
                 Some(Modelisation::Coque3d) => Some((*c, "COQUE_3D")),
                 Some(_) => None,

@@ -798,6 +798,10 @@ pub fn calc_modes(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput
                 return Err(ex.kw_error(cmd, &cf, "FREQ", "BANDE needs two frequencies"));
             };
             let (lo, hi) = (omega2(*lo), omega2(*hi));
+            // `vpfopr`: a band from 0 of a free structure (K singular
+            // there, the Sturm count fails) starts at −OMECOR, so its
+            // rigid-body modes (ω² ≈ 0 either side) are in it.
+            let lo = if lo.abs() < omecor { -omecor } else { lo };
             (0..all.len())
                 .filter(|&i| lambdas[i] >= lo && lambdas[i] <= hi)
                 .collect()

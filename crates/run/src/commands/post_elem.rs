@@ -324,16 +324,35 @@ fn ener_cin(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exec
             kw.keyword("ENER_CIN").map(|k| k.span).unwrap_or(call.span),
         ));
     }
+    // `peecin`: of modes (a MODE_MECA), the shape stands for the velocity
+    // and the energy is multiplied by the mode's OMEGA2; the table gives
+    // FREQ where a transient gives INST.
+    let modal = result.modal.clone();
+    let abscissa = if modal.is_some() { "FREQ" } else { "INST" };
     let mut table = Table::new(vec![
         col("NUME_ORDRE", ColumnType::Int),
-        col("INST", ColumnType::Real),
+        col(abscissa, ColumnType::Real),
         col("LIEU", ColumnType::Text(24)),
         col("ENTITE", ColumnType::Text(8)),
         col("TOTALE", ColumnType::Real),
         col("POUR_CENT", ColumnType::Real),
     ]);
     for step in steps {
-        let Some(crate::field::Field::Nodal(vite)) = step.fields.get("VITE") else {
+        let param = |name: &str| {
+            modal
+                .as_ref()
+                .and_then(|m| m.params.get(&step.nume_ordre))
+                .and_then(|p| p.get(name))
+                .copied()
+                .ok_or_else(|| {
+                    ExecError::new(format!("{cmd}: mode {} has no {name}", step.nume_ordre))
+                })
+        };
+        let (field, factor, at) = match &modal {
+            Some(_) => ("DEPL", param("OMEGA2")?, param("FREQ")?),
+            None => ("VITE", 1.0, step.inst),
+        };
+        let Some(crate::field::Field::Nodal(vite)) = step.fields.get(field) else {
             continue;
         };
         let v = crate::fembridge::displacement_from(&model, vite);
@@ -341,12 +360,13 @@ fn ener_cin(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, Exec
             aster_fem::mass::kinetic_energy_by_cell(&model, &mass, &v)
                 .map_err(|e| ExecError::new(format!("{cmd}: {e}")))?
                 .into_iter()
+                .map(|(c, e)| (c, factor * e))
                 .collect();
         for place in &places {
             let (value, percent) = place.sum(&energies, &model);
             table.push_row(vec![
                 ("NUME_ORDRE", Value::Int(step.nume_ordre as i64)),
-                ("INST", Value::Real(step.inst)),
+                (abscissa, Value::Real(at)),
                 ("LIEU", Value::Text(place.lieu(&mesh_name))),
                 ("ENTITE", Value::Text(place.entite().into())),
                 ("TOTALE", Value::Real(value)),
@@ -828,7 +848,7 @@ fn result_model(
             r.name
         )));
     };
-    let name = ex.concept_name(result.mesh).unwrap_or("").to_string();
+    let name = ex.internal_name(result.mesh);
     Ok((Rc::new(ModelRef::Run(run)), name))
 }
 
@@ -856,7 +876,7 @@ fn model_from_keywords(ex: &Executor, kw: &Keywords) -> Result<(Model, String), 
         None => None,
     };
     let mesh = ex.model_mesh(&model)?;
-    let name = ex.concept_name(model.mesh).unwrap_or("").to_string();
+    let name = ex.internal_name(model.mesh);
     let m = crate::fembridge::build_model(&mesh, &model, &materials, cara.as_deref())?;
     Ok((m, name))
 }

@@ -98,7 +98,7 @@ pub(super) fn mass_iner(ex: &mut Executor, call: &CommandCall) -> Result<Command
                 temperature: None,
             };
             let m = crate::fembridge::build_model(&mesh, &def, &empty, cara.as_deref())?;
-            (m, ex.concept_name(def.mesh).unwrap_or("").to_string())
+            (m, ex.internal_name(def.mesh))
         };
         let model = ModelRef::Own(Box::new(m));
         let mass = mass_data(ex, kw, &model)?;
