@@ -22,18 +22,6 @@ fn rectangle_and_tube_match_their_closed_forms() {
     assert!(outcome.error.is_none(), "{:?}", outcome.error);
     // 17 TEST_TABLE, each against VALE_CALC and the analytic VALE_REFE.
     assert_eq!((outcome.tally.ok, outcome.tally.nook), (34, 0), "{report}");
-    // IMPR_TABLE of both: the tube has a hole, its table has no torsion
-    // constant (the rectangle's has).
-    let headers: Vec<&str> = report.lines().filter(|l| l.starts_with("LIEU ")).collect();
-    assert_eq!(headers.len(), 2, "{report}");
-    assert!(
-        headers[0].contains(" JX ") && !headers[1].contains(" JX "),
-        "{report}"
-    );
-    assert!(
-        headers[1].contains(" AY ") && headers[1].contains(" JG "),
-        "{report}"
-    );
     let _ = std::fs::remove_dir_all(out);
 }
 
