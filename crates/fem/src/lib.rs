@@ -60,6 +60,7 @@ pub mod projection;
 pub mod q4g;
 pub mod refcells;
 pub mod scenes;
+pub mod section;
 pub mod shape;
 pub mod skin_norm;
 pub(crate) mod solver_constrained;

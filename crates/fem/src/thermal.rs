@@ -556,6 +556,25 @@ pub fn stationary(p: &ThermalProblem, instants: usize) -> Result<Vec<Vec<f64>>, 
         .collect()
 }
 
+/// The stationary temperature K T = F + `extra` (the problem's own loads
+/// plus nodal loads `extra`, indexed by mesh node, that the caller
+/// integrated itself: a source or a flux given by a function of the
+/// coordinates). Per mesh node, NaN off the model. `aster_fem::section`
+/// solves the Laplace problems of a beam section with it.
+pub fn stationary_with(p: &ThermalProblem, extra: &[f64]) -> Result<Vec<f64>, FemError> {
+    let a = assemble(p)?;
+    let sp = split(&a, p)?;
+    let factor = factorise(&a, &sp, 0.0, 1.0, &mut None)?;
+    let mut f = loads_at(p, &a, 0)?;
+    for (node, &u) in a.unknown_of.iter().enumerate() {
+        if u != usize::MAX {
+            f[u] += extra.get(node).copied().unwrap_or(0.0);
+        }
+    }
+    let t = solve_step(&a, &sp, &factor, &f, &sp.values_at(a.n, 0)?)?;
+    Ok(to_nodes(&a, &t))
+}
+
 /// The transient temperature at every instant of `tr` (per mesh node, NaN
 /// off the model), the first being the initial state.
 pub fn transient(p: &ThermalProblem, tr: &Transient) -> Result<Vec<Vec<f64>>, FemError> {

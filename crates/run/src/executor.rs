@@ -60,6 +60,10 @@ pub struct Executor {
     /// truncates what an earlier run left there (code_aster starts each run
     /// with fresh `fort.<UNITE>` files), later ones append.
     written_units: std::collections::HashSet<PathBuf>,
+    /// MED files this run wrote (`IMPR_RESU(FORMAT='MED')`), by unit: a
+    /// later command that reads a mesh from that unit reads them
+    /// (`MACR_CARA_POUTRE(UNITE=…)`).
+    pub(crate) med_written: HashMap<u32, PathBuf>,
     /// Each command and each TEST_* comparison as they ran (reports).
     pub journal: crate::journal::Journal,
     /// Where live progress goes (nowhere unless set).
@@ -87,6 +91,7 @@ impl Executor {
             substructured: HashMap::new(),
             read_meshes: Vec::new(),
             written_units: Default::default(),
+            med_written: Default::default(),
             journal: Default::default(),
             progress: Default::default(),
             current: String::new(),

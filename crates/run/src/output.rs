@@ -457,6 +457,7 @@ pub fn impr_resu(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
             }
             aster_mesh::write_med_on(&path, &mesh, &name, &merged, &entities)
                 .map_err(|e| ExecError::new(format!("IMPR_RESU: {e}")))?;
+            ex.med_written.insert(unit as u32, path.clone());
         }
         _ => {
             // code_aster's FORMAT='ASTER' prints the mesh only: result

@@ -42,12 +42,37 @@ pub(crate) const LIRE_MAILLAGE: Support = Support {
 pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput, ExecError> {
     let kw = &call.keywords;
     let (format, colour, key) = crate::meshio::requested(kw);
-    let format = format.as_str();
     // code_aster's default unit is 20 whatever the format.
     let unit = kw.first("UNITE").and_then(|s| s.as_i64()).unwrap_or(20);
-    let path = ex.input_path(unit as u32).map(Path::to_path_buf).ok_or_else(|| {
+    let mesh = read_unit("LIRE_MAILLAGE", ex, unit, &format, colour, &key)?;
+    // code_aster 17 partitions the mesh over the MPI processes (a
+    // ParallelMesh); on one process it reads the whole mesh, with an
+    // alarm (MED_18): aster runs as that one process.
+    // The catalog's default, 'SANS', reads a plain mesh everywhere.
+    if let Some(p) = kw.str("PARTITIONNEUR").filter(|p| *p != "SANS") {
+        ex.write_report(&format!(
+            "<A> LIRE_MAILLAGE: PARTITIONNEUR='{p}': one process, the mesh is read whole (code_aster's MED_18)\n"
+        ))?;
+    }
+    store_result(ex, call, Concept::Mesh(mesh))
+}
+
+/// Reads the mesh of logical unit `unit` in `format` (`key`: the cache key
+/// of [`crate::meshio::requested`]), with the reader's warnings written to
+/// the report: `LIRE_MAILLAGE`, and the macros that read their own mesh
+/// (`MACR_CARA_POUTRE`).
+pub(crate) fn read_unit(
+    cmd: &str,
+    ex: &mut Executor,
+    unit: i64,
+    format: &str,
+    colour: bool,
+    key: &str,
+) -> Result<Arc<Mesh>, ExecError> {
+    let written = ex.med_written.get(&(unit as u32)).cloned();
+    let path = written.or_else(|| ex.input_path(unit as u32).map(Path::to_path_buf)).ok_or_else(|| {
         ExecError::new(format!(
-            "LIRE_MAILLAGE: no file for unit {unit} (give the mesh with --mesh, or a .export line `F {} mesh-file D {unit}`)",
+            "{cmd}: no file for unit {unit} (give the mesh with --mesh, or a .export line `F {} mesh-file D {unit}`)",
             match format {
                 "MED" => "mmed",
                 "GMSH" => "msh",
@@ -69,27 +94,18 @@ pub fn lire_maillage(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                 // Reader errors mostly start with the file (and its line): not twice.
                 let file = path.display().to_string();
                 if e.starts_with(&file) {
-                    ExecError::new(format!("LIRE_MAILLAGE: {e}"))
+                    ExecError::new(format!("{cmd}: {e}"))
                 } else {
-                    ExecError::new(format!("LIRE_MAILLAGE: {file}: {e}"))
+                    ExecError::new(format!("{cmd}: {file}: {e}"))
                 }
             })?;
             (Arc::new(mesh), warnings)
         }
     };
     for w in &warnings {
-        ex.write_report(&format!("<A> LIRE_MAILLAGE: {}: {w}\n", path.display()))?;
+        ex.write_report(&format!("<A> {cmd}: {}: {w}\n", path.display()))?;
     }
-    // code_aster 17 partitions the mesh over the MPI processes (a
-    // ParallelMesh); on one process it reads the whole mesh, with an
-    // alarm (MED_18): aster runs as that one process.
-    // The catalog's default, 'SANS', reads a plain mesh everywhere.
-    if let Some(p) = kw.str("PARTITIONNEUR").filter(|p| *p != "SANS") {
-        ex.write_report(&format!(
-            "<A> LIRE_MAILLAGE: PARTITIONNEUR='{p}': one process, the mesh is read whole (code_aster's MED_18)\n"
-        ))?;
-    }
-    store_result(ex, call, Concept::Mesh(mesh))
+    Ok(mesh)
 }
 
 /// What PRE_GMSH reads (`crate::support`).

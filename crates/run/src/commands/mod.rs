@@ -20,6 +20,7 @@ pub(crate) mod lire_resu;
 pub(crate) mod loads;
 pub(crate) mod loads_f;
 pub(crate) mod loads_more;
+pub(crate) mod macr_cara_poutre;
 pub(crate) mod macr_lign_coupe;
 pub(crate) mod mesh;
 pub(crate) mod modal;
@@ -272,6 +273,11 @@ pub static COMMANDS: &[Command] = &[
         name: "POST_RELEVE_T",
         run: post::post_releve_t,
         support: post::POST_RELEVE_T,
+    },
+    Command {
+        name: "MACR_CARA_POUTRE",
+        run: macr_cara_poutre::macr_cara_poutre,
+        support: macr_cara_poutre::MACR_CARA_POUTRE,
     },
     Command {
         name: "MACR_LIGN_COUPE",

@@ -44,6 +44,9 @@
 //! - `MASS_INER` (`pemain`/`pemica`): mass, centre of gravity and inertia,
 //!   see [`mass_iner`].
 //!
+//! - `CARA_GEOM` (`pecage`): the geometric properties of a plane section,
+//!   see [`cara_geom`].
+//!
 //! Every other quantity (ENER_DISS, INTEGRALE/NOM_VARI…) is refused with
 //! its location.
 
@@ -57,6 +60,7 @@ use aster_mesh::{CellId, Mesh};
 use std::collections::HashMap;
 use std::rc::Rc;
 
+mod cara_geom;
 mod integrale_field;
 mod mass_iner;
 mod minmax;
@@ -116,6 +120,12 @@ const POST_ELEM_OWN: &[&str] = &[
     "MASS_INER/GROUP_MA",
     "MASS_INER/ORIG_INER",
     "GEOMETRIE",
+    "CARA_GEOM",
+    "CARA_GEOM/TOUT",
+    "CARA_GEOM/GROUP_MA",
+    "CARA_GEOM/SYME_X",
+    "CARA_GEOM/SYME_Y",
+    "CARA_GEOM/ORIG_INER",
 ];
 
 /// What POST_ELEM computes (`crate::support`): its own keywords and the
@@ -152,6 +162,9 @@ pub fn post_elem(ex: &mut Executor, call: &CommandCall) -> Result<CommandOutput,
     }
     if kw.contains("MASS_INER") {
         return mass_iner::mass_iner(ex, call);
+    }
+    if kw.contains("CARA_GEOM") {
+        return cara_geom::cara_geom(ex, call);
     }
     let (factor, elastic) = if kw.contains("ENER_ELAS") {
         ("ENER_ELAS", true)
