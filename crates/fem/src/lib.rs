@@ -73,7 +73,7 @@ pub mod unilateral;
 pub use beam::BeamSection;
 pub use behaviour::{
     Behaviours, CurveEnd, EcroNl, JohnsonCook, Lemaitre, LocalSearch, NodalHistory, TempFn,
-    ThermoHardening, ThermoMaterial, VonMises,
+    ThermoHardening, ThermoMaterial, Uniaxial, UniaxialHardening, VonMises,
 };
 pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};

@@ -35,8 +35,8 @@ pub use med::{
 };
 pub use model::*;
 pub use ops::{
-    Along, CellFilter, CentreNodes, CrackFront, CrackReport, DegreeReport, NodeKind, OrientReport,
-    Restriction,
+    positional_name, Along, CellFilter, CentreNodes, CrackFront, CrackReport, DegreeReport,
+    NodeKind, OrientReport, Restriction,
 };
 pub use summary::{CellCounts, MeshSummary};
 pub use vtu::{write_vtu, write_vtu_series};

@@ -394,6 +394,7 @@ pub fn build_behaviours(
             out.set_temperature(h.clone());
         }
     }
+    grid_behaviours(mesh, model, occurrences, materials, &mut out)?;
     let continuum: std::collections::BTreeSet<aster_mesh::CellId> = model
         .elements()
         .iter()
@@ -542,6 +543,194 @@ pub fn build_behaviours(
     Ok(out)
 }
 
+/// MECA_STATIQUE, MACRO_ELAS_MULT: a grid that expands (ELAS/ALPHA) under
+/// a temperature other than the reference is refused — code_aster's
+/// thermal strain of grids is reproduced in STAT_NON_LINE only (the
+/// grids' behaviours), not as a load.
+fn refuse_heated_grids(
+    cmd: &str,
+    mesh: &Mesh,
+    model: &Model,
+    materials: &MaterialField,
+) -> Result<(), ExecError> {
+    let Some(t) = materials.temperature.as_ref() else {
+        return Ok(());
+    };
+    for el in model.elements() {
+        if !matches!(el.kind, ElementKind::Grid { .. }) || !t.cells.contains(&el.cell) {
+            continue;
+        }
+        let expands = materials
+            .cells
+            .get(&el.cell)
+            .is_some_and(|m| m.alpha.is_some_and(|a| a != 0.) || m.alpha_fo.is_some());
+        let heated = t.fields.iter().any(|(_, v)| {
+            mesh.cell(el.cell)
+                .nodes
+                .iter()
+                .any(|n| v[n.0 as usize] != t.tref)
+        }) || t.shell.is_some();
+        if expands && heated {
+            return Err(ExecError::new(format!(
+                "not supported yet: {cmd} with AFFE_MATERIAU/AFFE_VARC NOM_VARC='TEMP' on grid cell {}: the grids' thermal strain is reproduced in STAT_NON_LINE only ({})",
+                mesh.cell_name(el.cell),
+                t.at
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The reinforcement grids' behaviours (`te0431` → `nmco1d`): the uniaxial
+/// law of each grid cell's last COMPORTEMENT occurrence — GRILLE_ISOT_LINE,
+/// GRILLE_CINE_LINE from ELAS's E and ECRO_LINE — and, under a temperature
+/// (AFFE_VARC) with ELAS/ALPHA, the thermal strain along the bars (an
+/// ELAS grid then too); ELAS grids without one stay linear (K u). A GRILLE
+/// relation on a cell that is not a grid is refused (code_aster's
+/// catalogue gives these laws to GRILLE_MEMBRANE, GRILLE_EXCENTRE, 1D).
+fn grid_behaviours(
+    mesh: &Mesh,
+    model: &Model,
+    occurrences: &[BehaviourOcc],
+    materials: &MaterialField,
+    out: &mut aster_fem::Behaviours,
+) -> Result<(), ExecError> {
+    let grid_law = |r: Relation| matches!(r, Relation::GrilleIsotLine | Relation::GrilleCineLine);
+    let mut last: std::collections::BTreeMap<aster_mesh::CellId, Relation> =
+        std::collections::BTreeMap::new();
+    let kinds: std::collections::HashMap<aster_mesh::CellId, &ElementKind> =
+        model.elements().iter().map(|e| (e.cell, &e.kind)).collect();
+    for occ in occurrences {
+        let named: Vec<aster_mesh::CellId> = match &occ.cells {
+            Some(c) => c.clone(),
+            None => model.elements().iter().map(|e| e.cell).collect(),
+        };
+        for cell in named {
+            let Some(kind) = kinds.get(&cell) else {
+                continue;
+            };
+            match kind {
+                ElementKind::Grid { .. } => {
+                    last.insert(cell, occ.relation);
+                }
+                ElementKind::Boundary => {}
+                _ if grid_law(occ.relation) => {
+                    return Err(ExecError::new(format!(
+                        "STAT_NON_LINE/COMPORTEMENT: RELATION='{}' is a law of the reinforcement grids (GRILLE_MEMBRANE, GRILLE_EXCENTRE); cell {} carries another element",
+                        occ.relation.keyword(),
+                        crate::select::cell_name(mesh, cell)
+                    )));
+                }
+                _ => {}
+            }
+        }
+    }
+    if let Some(t) = materials.temperature.as_ref().filter(|t| t.shell.is_some()) {
+        if let Some(el) = model.elements().iter().find(|e| {
+            matches!(e.kind, ElementKind::Grid { .. })
+                && t.cells.contains(&e.cell)
+                && materials
+                    .cells
+                    .get(&e.cell)
+                    .is_some_and(|m| m.alpha.is_some_and(|a| a != 0.) || m.alpha_fo.is_some())
+        }) {
+            return Err(ExecError::new(format!(
+                "not supported yet: a temperature through the thickness of shells (CREA_RESU/PREP_VARC) on grid cell {}, which expands (ELAS/ALPHA) ({})",
+                crate::select::cell_name(mesh, el.cell),
+                t.at
+            )));
+        }
+    }
+    let temperature = materials
+        .temperature
+        .as_ref()
+        .filter(|t| !t.fields.is_empty() && t.shell.is_none());
+    let mut heated_any = false;
+    for el in model.elements() {
+        let ElementKind::Grid { material, .. } = &el.kind else {
+            continue;
+        };
+        let cell = el.cell;
+        let relation = last.get(&cell).copied().unwrap_or(Relation::Elas);
+        let Some(mat) = materials.cells.get(&cell) else {
+            continue; // reported by build_model
+        };
+        let name = crate::select::cell_name(mesh, cell);
+        let heated = temperature.is_some_and(|t| {
+            t.cells.contains(&cell)
+                && t.fields.iter().any(|(_, v)| {
+                    mesh.cell(cell)
+                        .nodes
+                        .iter()
+                        .any(|n| v[n.0 as usize] != t.tref)
+                })
+        });
+        if heated && mat.alpha_fo.is_some() {
+            return Err(ExecError::new(format!(
+                "not supported yet: ALPHA a function of the temperature (ELAS_FO) on grid cell {name} under AFFE_VARC: the grids' thermal strain is reproduced with a constant ALPHA"
+            )));
+        }
+        let alpha = if heated {
+            mat.alpha.unwrap_or(0.0)
+        } else {
+            0.0
+        };
+        let hardening = match relation {
+            Relation::GrilleIsotLine => aster_fem::UniaxialHardening::Isotropic,
+            Relation::GrilleCineLine => aster_fem::UniaxialHardening::Kinematic,
+            Relation::Elas if alpha != 0.0 => aster_fem::UniaxialHardening::Elastic,
+            _ => continue, // ELAS: K u; the others are refused by check_solve
+        };
+        let (et, sy) = match hardening {
+            aster_fem::UniaxialHardening::Elastic => (0.0, 0.0),
+            _ => {
+                if mat.ecro_line.is_none() && mat.ecro_line_fo.is_some() {
+                    return Err(ExecError::new(format!(
+                        "not supported yet: DEFI_MATERIAU/ECRO_LINE_FO on grid cell {name} (RELATION='{}'): the grids' laws are reproduced with constant ECRO_LINE",
+                        relation.keyword()
+                    )));
+                }
+                let e = mat.ecro_line.ok_or_else(|| {
+                    ExecError::new(format!(
+                        "STAT_NON_LINE/COMPORTEMENT: RELATION='{}' on grid cell {name} needs ECRO_LINE=_F(D_SIGM_EPSI, SY) in its material's DEFI_MATERIAU",
+                        relation.keyword()
+                    ))
+                })?;
+                (e.d_sigm_epsi, e.sy)
+            }
+        };
+        let law = aster_fem::Uniaxial {
+            hardening,
+            young: material.e,
+            et,
+            sy,
+            alpha,
+        };
+        law.check().map_err(|m| {
+            ExecError::new(format!(
+                "STAT_NON_LINE/COMPORTEMENT: grid cell {name} (RELATION='{}'): {m}",
+                relation.keyword()
+            ))
+        })?;
+        heated_any |= alpha != 0.0;
+        out.assign_uniaxial(cell, Arc::new(law));
+    }
+    if heated_any && !out.has_temperature() {
+        if let Some(t) = temperature {
+            out.set_temperature(Arc::new(aster_fem::NodalHistory {
+                knots: t
+                    .fields
+                    .iter()
+                    .map(|(t, v)| (*t, Arc::new(v.to_vec())))
+                    .collect(),
+                constant_before: t.constant_before,
+                constant_after: t.constant_after,
+            }));
+        }
+    }
+    Ok(())
+}
+
 fn plastic_law(
     mesh: &Mesh,
     cell: aster_mesh::CellId,
@@ -605,7 +794,12 @@ fn plastic_law(
                 ..c
             })
         }
-        Relation::Elas | Relation::Lemaitre | Relation::CzmLinReg | Relation::CzmTuron => {
+        Relation::Elas
+        | Relation::Lemaitre
+        | Relation::CzmLinReg
+        | Relation::CzmTuron
+        | Relation::GrilleIsotLine
+        | Relation::GrilleCineLine => {
             return Err(ExecError::new(format!(
                 "{} has no von Mises law",
                 relation.keyword()
@@ -1922,6 +2116,9 @@ pub fn solve(
         model.set_coque3d_rule(aster_fem::coque3d::ThicknessRule::Gauss2);
         // code_aster's RIGI_MECA of the mixed elements (te0592 → nirmtd).
         model.set_mixed_rigi_meca(true);
+    }
+    if linear {
+        refuse_heated_grids(cmd, &mesh, &model, &setup.materials)?;
     }
     let (mut loads, didi) = build_loads(setup, &mesh, &model)?;
     let follower = follower_loads(setup, &model)?;

@@ -38,35 +38,22 @@ pub fn group_ma<'m>(mesh: &'m Mesh, name: &str) -> Result<&'m [CellId], String> 
 }
 
 pub fn node_named(mesh: &Mesh, name: &str) -> Result<NodeId, String> {
-    // `N12` also names node 12 of a mesh whose nodes are named by their
-    // numbers (a MED file without node names, as code_aster 17 reads it).
-    let numbered = || {
-        let k: usize = name.strip_prefix('N')?.parse().ok()?;
-        let i = k.checked_sub(1)?;
-        (mesh.node_names.get(i)? == &k.to_string()).then_some(i)
-    };
-    match mesh
-        .node_names
-        .iter()
-        .position(|n| n == name)
-        .or_else(numbered)
-    {
-        Some(i) => Ok(NodeId(i as u32)),
-        None => Err(format!(
-            "the mesh has no node `{name}`{}",
-            did_you_mean(name, mesh.node_names.iter().map(String::as_str))
-        )),
-    }
+    positional(&mesh.node_names, name, 'N', "node").map(|i| NodeId(i as u32))
 }
 
 pub fn cell_named(mesh: &Mesh, name: &str) -> Result<CellId, String> {
-    match mesh.cell_names.iter().position(|n| n == name) {
-        Some(i) => Ok(CellId(i as u32)),
-        None => Err(format!(
-            "the mesh has no cell `{name}`{}",
-            did_you_mean(name, mesh.cell_names.iter().map(String::as_str))
-        )),
-    }
+    positional(&mesh.cell_names, name, 'M', "cell").map(|i| CellId(i as u32))
+}
+
+/// A node or cell by name, with code_aster 17's positional names
+/// ([`aster_mesh::positional_name`]).
+fn positional(names: &[String], name: &str, prefix: char, what: &str) -> Result<usize, String> {
+    aster_mesh::positional_name(names, name, prefix).ok_or_else(|| {
+        format!(
+            "the mesh has no {what} `{name}`{}",
+            did_you_mean(name, names.iter().map(String::as_str))
+        )
+    })
 }
 
 fn names<'k>(kw: &'k Keywords, key: &str) -> impl Iterator<Item = &'k str> {

@@ -32,6 +32,13 @@ fn is_shell(model: &ModelDef, cell: CellId) -> bool {
     )
 }
 
+fn is_grid(model: &ModelDef, cell: CellId) -> bool {
+    matches!(
+        model.cells.get(&cell),
+        Some(Modelisation::GridMembrane | Modelisation::GridExcentre)
+    )
+}
+
 /// A shell or a beam: a linear elastic structural element here.
 fn is_structural(model: &ModelDef, cell: CellId) -> bool {
     matches!(
@@ -125,10 +132,34 @@ pub(crate) fn check_solve(
                 .map(|k| k.span)
                 .unwrap_or(call.span)
         };
-        if b.relation != Relation::Elas {
+        // The grids' own laws (GRILLE_ISOT_LINE, GRILLE_CINE_LINE) on grid
+        // cells: `crate::fembridge`'s grid behaviours.
+        let grid_law = matches!(
+            b.relation,
+            Relation::GrilleIsotLine | Relation::GrilleCineLine
+        );
+        let on_other = match &b.cells {
+            None => model
+                .cells
+                .keys()
+                .any(|&c| is_structural(model, c) && !is_grid(model, c)),
+            Some(cells) => cells
+                .iter()
+                .any(|&c| is_structural(model, c) && !is_grid(model, c)),
+        };
+        if grid_law && on_other {
             return Err(ex.unsupported(
                 &format!(
-                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell, beam, bar or grid cells (DKT, POU_D_E, POU_D_T, BARRE, GRILLE_*): they are linear elastic here"
+                    "{cmd}/COMPORTEMENT/RELATION='{}' on shell, beam or bar cells: it is a law of the reinforcement grids (GRILLE_MEMBRANE, GRILLE_EXCENTRE)",
+                    b.relation.keyword()
+                ),
+                at("RELATION"),
+            ));
+        }
+        if b.relation != Relation::Elas && !grid_law {
+            return Err(ex.unsupported(
+                &format!(
+                    "{cmd}/COMPORTEMENT/RELATION other than ELAS on shell, beam, bar or grid cells (DKT, POU_D_E, POU_D_T, BARRE; GRILLE_* take GRILLE_ISOT_LINE and GRILLE_CINE_LINE too): they are linear elastic here"
                 ),
                 at("RELATION"),
             ));

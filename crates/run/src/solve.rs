@@ -62,6 +62,11 @@ pub enum Relation {
     /// Von Mises, linear kinematic hardening (material's ECRO_LINE),
     /// code_aster's `nmcine`.
     VmisCineLine,
+    /// Reinforcement grids, uniaxial plasticity along the bars with linear
+    /// isotropic hardening (material's ECRO_LINE), code_aster's `nm1dis`.
+    GrilleIsotLine,
+    /// The same with linear kinematic hardening, code_aster's `nm1dci`.
+    GrilleCineLine,
 }
 
 impl Relation {
@@ -76,6 +81,8 @@ impl Relation {
             Relation::CzmTuron => "CZM_TURON",
             Relation::VmisJohnCook => "VMIS_JOHN_COOK",
             Relation::VmisCineLine => "VMIS_CINE_LINE",
+            Relation::GrilleIsotLine => "GRILLE_ISOT_LINE",
+            Relation::GrilleCineLine => "GRILLE_CINE_LINE",
         }
     }
 }
@@ -337,6 +344,8 @@ const SNL_COMMON_VALUES: &[Values] = &[
             "LEMAITRE",
             "CZM_LIN_REG",
             "CZM_TURON",
+            "GRILLE_ISOT_LINE",
+            "GRILLE_CINE_LINE",
         ],
     ),
     Values::listed(
@@ -736,6 +745,27 @@ pub(crate) fn parse_setup(
             .map_err(|e| ExecError::new(format!("{cmd}/INCREMENT: {e}")))?;
         (instants, initial)
     };
+    // NEWTON/PAS_MINI_ELAS: code_aster iterates a step shorter than it on
+    // the elastic matrix (`swapMatrToSecant`, ITER_GLOB_ELAS iterations);
+    // not reproduced, so refused where it changes the iterations (a step
+    // below it with a non-elastic behaviour).
+    if let Some(nw) = kw.factor("NEWTON").first() {
+        if let Some(pme) = nw.f64("PAS_MINI_ELAS") {
+            let short = instants.windows(2).any(|w| (w[1] - w[0]).abs() < pme);
+            if short && behaviours.iter().any(|b| b.relation != Relation::Elas) {
+                let span = nw
+                    .keyword("PAS_MINI_ELAS")
+                    .map(|k| k.span)
+                    .unwrap_or(call.span);
+                return Err(ex.unsupported(
+                    &format!(
+                        "{cmd}/NEWTON/PAS_MINI_ELAS={pme} with a step shorter than it and a non-elastic COMPORTEMENT: code_aster's elastic-matrix iterations of those steps (swapMatrToSecant, ITER_GLOB_ELAS) are not reproduced"
+                    ),
+                    span,
+                ));
+            }
+        }
+    }
     Ok(SolveSetup {
         model,
         materials,
@@ -825,11 +855,13 @@ fn parse_behaviours(
             "CZM_TURON" => Relation::CzmTuron,
             "VMIS_JOHN_COOK" => Relation::VmisJohnCook,
             "VMIS_CINE_LINE" => Relation::VmisCineLine,
+            "GRILLE_ISOT_LINE" => Relation::GrilleIsotLine,
+            "GRILLE_CINE_LINE" => Relation::GrilleCineLine,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, VMIS_CINE_LINE, LEMAITRE, CZM_LIN_REG, CZM_TURON)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, VMIS_CINE_LINE, LEMAITRE, CZM_LIN_REG, CZM_TURON, GRILLE_ISOT_LINE, GRILLE_CINE_LINE)"
                     ),
                     span,
                 ));
@@ -851,6 +883,17 @@ fn parse_behaviours(
             ("SIMO_MIEHE", _) => Kinematics::SimoMiehe,
             (other, _) => return Err(refuse(&format!("(got {other})"))),
         };
+        // code_aster's catalogue of the GRILLE_* laws: PETIT only.
+        if matches!(
+            relation,
+            Relation::GrilleIsotLine | Relation::GrilleCineLine
+        ) && kinematics != Kinematics::Small
+        {
+            return Err(refuse(&format!(
+                "with RELATION='{}' (code_aster's law takes PETIT only)",
+                relation.keyword()
+            )));
+        }
         // code_aster's catalogue of VMIS_ISOT_NL: PETIT and GDEF_LOG only.
         if relation == Relation::VmisIsotNl
             && !matches!(kinematics, Kinematics::Small | Kinematics::Logarithmic)

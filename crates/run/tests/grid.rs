@@ -70,3 +70,53 @@ fn what_is_not_reproduced_is_refused_at_its_keyword() {
         "{err}"
     );
 }
+
+/// comm/grid_plastic.comm: a grid alone stretched along its bars beyond
+/// yield, unloaded and reloaded in compression, GRILLE_ISOT_LINE and
+/// GRILLE_CINE_LINE against the closed forms (13 values × 2).
+#[test]
+fn plastic_grids_follow_the_uniaxial_closed_forms() {
+    let got = scene::run_on(
+        &scene::read("grid_plastic.comm"),
+        "comm/grid_slab.mail",
+        "plastic",
+    );
+    assert_eq!(got, (26, 0, None));
+}
+
+/// The kinematic checks read with the isotropic law (its reverse yield
+/// comes later, its V1 is p, not X) must fail: the two laws differ.
+#[test]
+fn the_isotropic_law_does_not_pass_the_kinematic_checks() {
+    let text = scene::read("grid_plastic.comm").replace(
+        r#"COMPORTEMENT=_F(RELATION="GRILLE_CINE_LINE")"#,
+        r#"COMPORTEMENT=_F(RELATION="GRILLE_ISOT_LINE")"#,
+    );
+    let (ok, nook, err) = scene::run_on(&text, "comm/grid_slab.mail", "plastic-swap");
+    assert!(err.is_none(), "{err:?}");
+    // RCIN's V1 at t = 1 and its SIXX and V1 at t = 3 (× 2) fail.
+    assert_eq!((ok, nook), (20, 6));
+}
+
+/// A grid law on a cell that is not a grid, or ECRO_LINE missing, is
+/// refused before solving, as is a hardening slope not below E.
+#[test]
+fn grid_laws_where_they_do_not_apply_are_refused() {
+    let text = scene::read("grid_plastic.comm");
+    let no_ecro = text.replacen(r#"ECRO_LINE=_F(D_SIGM_EPSI=2.0e10, SY=2.0e8)"#, "", 1);
+    let (_, nook, err) = scene::run_on(&no_ecro, "comm/grid_slab.mail", "plastic-noecro");
+    assert_eq!(nook, 0);
+    let err = err.expect("an error");
+    assert!(err.contains("ECRO_LINE"), "{err}");
+    let steep = text.replacen("D_SIGM_EPSI=2.0e10", "D_SIGM_EPSI=2.0e11", 1);
+    let (_, nook, err) = scene::run_on(&steep, "comm/grid_slab.mail", "plastic-steep");
+    assert_eq!(nook, 0);
+    assert!(err.expect("an error").contains("D_SIGM_EPSI"));
+    // On the slab's DKT cells.
+    let err = refused(
+        r#"COMPORTEMENT=_F(RELATION="ELAS")"#,
+        r#"COMPORTEMENT=_F(RELATION="GRILLE_CINE_LINE")"#,
+        "plastic-dkt",
+    );
+    assert!(err.contains("grids") && err.contains("case.comm:"), "{err}");
+}

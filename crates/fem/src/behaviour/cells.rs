@@ -11,6 +11,7 @@
 
 use super::lemaitre::{self, Lemaitre};
 use super::thermo::{self, ThermoMaterial};
+use super::uniaxial::{Uniaxial, UniaxialState};
 use super::vmis::{integrate, PointState, VonMises};
 use super::{Behaviours, GaussState, Kinematics, NodalHistory};
 use crate::element::{continuum_stiffness, element_dofs, model_gauss, spring_stiffness, GaussData};
@@ -62,6 +63,38 @@ struct PlasticCell {
     /// [`crate::mixed_upg`]): its data; `dofs` and `k_el` are then its
     /// displacement, pressure and swelling unknowns and its elastic matrix.
     mixed: Option<Box<MixedCell>>,
+    /// A reinforcement grid with a uniaxial law ([`GridCell`]); `dofs` and
+    /// `k_el` are then the grid's, `shape_n` its points' shape functions.
+    grid: Option<Box<GridCell>>,
+}
+
+/// A grid cell's law and points (`te0431`'s `RAPH_MECA`/`FULL_MECA`):
+/// the strain row B and weight of each point, the temperature at each
+/// point at the start and end of the step (when the law has an α).
+struct GridCell {
+    law: Arc<Uniaxial>,
+    points: Vec<crate::grid::GridPoint>,
+    temp_from: Vec<f64>,
+    temp_to: Vec<f64>,
+}
+
+/// A grid point's state stored as a [`GaussState`]: σ in the stress' and
+/// the Cauchy stress' first component, V1 in `p`, V2 in `plastic`.
+fn grid_state(s: &GaussState) -> UniaxialState {
+    UniaxialState {
+        sigma: s.law.stress[0],
+        v1: s.law.p,
+        plastic: s.law.plastic,
+    }
+}
+
+fn grid_gauss_state(u: &UniaxialState) -> GaussState {
+    let mut g = GaussState::default();
+    g.law.stress[0] = u.sigma;
+    g.law.p = u.v1;
+    g.law.plastic = u.plastic;
+    g.cauchy[0] = u.sigma;
+    g
 }
 
 impl PlasticCell {
@@ -79,7 +112,10 @@ impl PlasticCell {
     /// Whether the cell computes its own forces and tangent (a
     /// finite-strain kinematics, or the stabilised HEXA8).
     fn finite(&self) -> bool {
-        self.kinematics != Kinematics::Small || self.stabilised.is_some() || self.mixed.is_some()
+        self.kinematics != Kinematics::Small
+            || self.stabilised.is_some()
+            || self.mixed.is_some()
+            || self.grid.is_some()
     }
 }
 
@@ -151,6 +187,12 @@ impl PlasticCells {
         let mut cells = Vec::with_capacity(elements.len());
         for (k, behaviour) in elements {
             let el = &model.elements()[k];
+            if let (ElementKind::Grid { material, section }, Some(law)) =
+                (&el.kind, behaviour.uniaxial.as_ref())
+            {
+                cells.push(grid_cell(model, el.cell, material, section, law.clone())?);
+                continue;
+            }
             let ElementKind::Continuum {
                 hypothesis,
                 material,
@@ -259,6 +301,7 @@ impl PlasticCells {
                 k_el,
                 stabilised,
                 mixed,
+                grid: None,
             });
         }
         let committed: Vec<Vec<GaussState>> = cells
@@ -266,6 +309,8 @@ impl PlasticCells {
             .map(|c| {
                 let n = if c.stabilised.is_some() {
                     1
+                } else if let Some(g) = &c.grid {
+                    g.points.len()
                 } else {
                     c.gauss.len()
                 };
@@ -278,7 +323,10 @@ impl PlasticCells {
             .collect();
         let corrected = vec![false; cells.len()];
         let cells_len = cells.len();
-        if cells.iter().any(|c| c.thermo.is_some()) && behaviours.temperature().is_none() {
+        let heated_grid = |c: &PlasticCell| c.grid.as_ref().is_some_and(|g| g.law.alpha != 0.0);
+        if cells.iter().any(|c| c.thermo.is_some() || heated_grid(c))
+            && behaviours.temperature().is_none()
+        {
             return Err(FemError::Model(
                 "temperature-dependent materials without a temperature history".into(),
             ));
@@ -411,6 +459,28 @@ impl PlasticCells {
             }
             self.thermal_start = Some(start);
         }
+        if self
+            .cells
+            .iter()
+            .any(|c| c.grid.as_ref().is_some_and(|g| g.law.alpha != 0.0))
+        {
+            let before = history.at(from)?;
+            let after = history.at(target)?;
+            for cell in self.cells.iter_mut() {
+                let (t0, t1) = (at_points(cell, &before), at_points(cell, &after));
+                let Some(g) = cell.grid.as_mut().filter(|g| g.law.alpha != 0.0) else {
+                    continue;
+                };
+                if t0.iter().chain(&t1).any(|t| t.is_nan()) {
+                    return Err(FemError::Model(format!(
+                        "the temperature field has no value at a node of grid cell {}",
+                        cell.cell.0
+                    )));
+                }
+                g.temp_from = t0;
+                g.temp_to = t1;
+            }
+        }
         let nodal = history.at(target)?;
         for (c, cell) in self.cells.iter().enumerate() {
             if cell.thermo.is_some() {
@@ -462,6 +532,20 @@ impl PlasticCells {
             }
             let cell = &self.cells[c];
             let ue: Vec<f64> = cell.dofs.iter().map(|&i| u[i]).collect();
+            if cell.grid.is_some() {
+                let (f, k, states) = self
+                    .grid(c, &ue, None)
+                    .map_err(|e| at_cell_finite(model, self.cells[c].cell, e))?;
+                let cell = &self.cells[c];
+                let ku = &cell.k_el * DVector::from_column_slice(&ue);
+                for (a, &i) in cell.dofs.iter().enumerate() {
+                    fint[i] += f[a] - ku[a];
+                }
+                self.trial[c] = states;
+                self.u_trial[c] = ue;
+                self.set_finite_tangent(c, k);
+                continue;
+            }
             if cell.mixed.is_some() {
                 let (f, k, states) = self
                     .mixed(c, &ue, false)
@@ -586,6 +670,14 @@ impl PlasticCells {
                 continue;
             }
             let cell = &self.cells[c];
+            if cell.grid.is_some() {
+                let ue = self.u_committed[c].clone();
+                let (_, k, _) = self
+                    .grid(c, &ue, Some(elastic))
+                    .map_err(|e| at_cell_finite(model, self.cells[c].cell, e))?;
+                self.set_finite_tangent(c, k);
+                continue;
+            }
             if cell.mixed.is_some() {
                 let ue = self.u_committed[c].clone();
                 let (_, k, _) = self
@@ -812,6 +904,57 @@ impl PlasticCells {
         self.u_committed.clone_from(&self.u_trial);
     }
 
+    /// Forces, tangent and trial states of grid cell `c` at its element
+    /// displacement `ue` (`te0431` → `nmco1d`): at each point the strain
+    /// increment B (uₑ − uₑ⁻), less the thermal one α (T⁺ − T⁻), integrated
+    /// from the committed state; `prediction` (`Some(elastic)`): the
+    /// tangent at the committed state (RIGI_MECA_TANG, RIGI_MECA_ELAS),
+    /// the forces and states then unused.
+    fn grid(&self, c: usize, ue: &[f64], prediction: Option<bool>) -> Result<MixedOut, FemError> {
+        let cell = &self.cells[c];
+        let Some(g) = cell.grid.as_deref() else {
+            return Err(FemError::Model("not a grid cell".into()));
+        };
+        let nd = cell.dofs.len();
+        let mut f = vec![0.0; nd];
+        let mut k = DMatrix::zeros(nd, nd);
+        let mut states = Vec::with_capacity(g.points.len());
+        let u0 = &self.u_committed[c];
+        for (p, pt) in g.points.iter().enumerate() {
+            let prev = grid_state(&self.committed[c][p]);
+            let (state, rig) = match prediction {
+                Some(elastic) => (prev, g.law.prediction_tangent(&prev, elastic)),
+                None => {
+                    let deps: f64 =
+                        pt.b.iter()
+                            .zip(ue.iter().zip(u0))
+                            .map(|(b, (u, u0))| b * (u - u0))
+                            .sum();
+                    let depsth = if g.law.alpha != 0.0 {
+                        g.law.alpha * (g.temp_to[p] - g.temp_from[p])
+                    } else {
+                        0.0
+                    };
+                    g.law
+                        .integrate(&prev, deps - depsth, false)
+                        .map_err(|e| FemError::Model(format!("at Gauss point {}: {e}", p + 1)))?
+                }
+            };
+            for a in 0..nd {
+                if pt.b[a] == 0.0 {
+                    continue;
+                }
+                f[a] += pt.b[a] * state.sigma * pt.w;
+                let r = pt.b[a] * rig * pt.w;
+                for b in 0..nd {
+                    k[(a, b)] += r * pt.b[b];
+                }
+            }
+            states.push(grid_gauss_state(&state));
+        }
+        Ok((f, k, states))
+    }
+
     /// Forces, tangent and trial states of mixed cell `c` at its unknowns
     /// `ue` (`nifipd`): its law integrated at each point from the
     /// committed state on the strain whose volumetric part is the
@@ -955,6 +1098,21 @@ impl PlasticCells {
             .collect();
         let mut vari = Vec::with_capacity(self.cells.len());
         for (cell, states) in self.cells.iter().zip(&self.committed) {
+            if cell.grid.is_some() {
+                // SIEF_ELGA's SIXX along the bars, VARI V1 … V4.
+                if let Some(&k) = at.get(&cell.cell) {
+                    stress[k].points = states.iter().map(|s| vec![s.cauchy[0]]).collect();
+                }
+                vari.push(CellValues {
+                    cell: cell.cell,
+                    names: VARI_NAMES[..4].to_vec(),
+                    points: states
+                        .iter()
+                        .map(|s| grid_state(s).vari().to_vec())
+                        .collect(),
+                });
+                continue;
+            }
             let n = cell.hypothesis.ncomp();
             if let Some(&k) = at.get(&cell.cell) {
                 stress[k].points = states
@@ -1334,7 +1492,24 @@ pub fn forc_noda_deformed(
                 let ue = DVector::from_iterator(dofs.len(), dofs.iter().map(|&i| u[i]));
                 k * ue
             }
-            // Linear elastic grids: K u.
+            // Grids: Σ Bᵀ σ w from their stored SIXX (a plastic or heated
+            // grid's stress is not E B u); K u without one.
+            ElementKind::Grid { section, .. } if at.contains_key(&el.cell) => {
+                let sigma: Vec<f64> = at[&el.cell]
+                    .points
+                    .iter()
+                    .map(|p| p.first().copied().unwrap_or(0.0))
+                    .collect();
+                let mesh = model.mesh();
+                let fe = crate::grid::nodal_forces(
+                    mesh.cell(el.cell).ty,
+                    &crate::element::cell_coords(mesh, el.cell),
+                    section,
+                    &sigma,
+                )
+                .map_err(|m| FemError::Model(format!("cell {}: {m}", model.cell_name(el.cell))))?;
+                DVector::from_vec(fe)
+            }
             ElementKind::Grid { material, section } => {
                 let k = crate::element::grid_stiffness(model.mesh(), el.cell, material, section)
                     .map_err(|m| {
@@ -1359,6 +1534,54 @@ pub fn forc_noda_deformed(
         }
     }
     Ok(f)
+}
+
+/// The behaviour cell of a grid with a uniaxial law.
+fn grid_cell(
+    model: &Model,
+    cell: CellId,
+    material: &Elastic,
+    section: &crate::grid::GridSection,
+    law: Arc<Uniaxial>,
+) -> Result<PlasticCell, FemError> {
+    let name = model.cell_name(cell);
+    law.check()
+        .map_err(|m| FemError::Model(format!("grid cell {name}: {m}")))?;
+    let mesh = model.mesh();
+    let ty = mesh.cell(cell).ty;
+    let xyz = crate::element::cell_coords(mesh, cell);
+    let points = crate::grid::points(ty, &xyz, section)
+        .map_err(|m| FemError::Model(format!("grid cell {name}: {m}")))?;
+    let k_el = crate::grid::stiffness(ty, &xyz, section, material.e)
+        .map_err(|m| FemError::Model(format!("grid cell {name}: {m}")))?;
+    let nodes = mesh.cell(cell).nodes.iter().map(|n| n.0 as usize).collect();
+    let shape_n = crate::grid::scheme(ty)
+        .iter()
+        .map(|gp| crate::shape::shape(ty, gp.xi).n.to_vec())
+        .collect();
+    Ok(PlasticCell {
+        cell,
+        hypothesis: Hypothesis::Solid3D,
+        elastic: *material,
+        law: None,
+        viscous: None,
+        thermo: None,
+        nodes,
+        shape_n,
+        kinematics: Kinematics::Small,
+        dofs: element_dofs(model, cell),
+        gauss: Vec::new(),
+        geoms: Vec::new(),
+        k_el,
+        stabilised: None,
+        mixed: None,
+        grid: Some(Box::new(GridCell {
+            law,
+            temp_from: Vec::new(),
+            temp_to: Vec::new(),
+            points,
+        })),
+    })
 }
 
 /// The initial node coordinates of a stabilised HEXA8 cell, with the

@@ -24,6 +24,9 @@
 //! - parameters that follow the temperature (`ELAS_FO`, `ECRO_LINE_FO`)
 //!   at each Gauss point and instant, ELAS and `VMIS_ISOT_*` in small
 //!   strains ([`thermo`]), the thermal strain in the behaviour.
+//! - `GRILLE_ISOT_LINE`, `GRILLE_CINE_LINE` on reinforcement grids:
+//!   uniaxial plasticity along the bars ([`uniaxial`], `nm1dis`, `nm1dci`),
+//!   and ELAS grids under a temperature (the thermal strain along the bars).
 
 mod cells;
 pub mod johnson_cook;
@@ -31,6 +34,7 @@ pub mod kinematic;
 pub mod lemaitre;
 pub mod simo_miehe;
 pub mod thermo;
+pub mod uniaxial;
 pub mod vmis;
 
 pub use crate::strain::{GaussState, Kinematics};
@@ -39,6 +43,7 @@ pub use cells::{forc_noda_deformed, forc_noda_from_stress, BehaviourState};
 pub use johnson_cook::JohnsonCook;
 pub use lemaitre::Lemaitre;
 pub use thermo::{TempFn, ThermoHardening, ThermoMaterial};
+pub use uniaxial::{Uniaxial, UniaxialHardening, UniaxialState};
 pub use vmis::{CurveEnd, EcroNl, Hardening, LocalSearch, PointState, VonMises};
 
 use crate::error::FemError;
@@ -58,6 +63,8 @@ pub struct CellBehaviour {
     /// in place of `law` (ELAS or a `VMIS_ISOT_*` law at each point's
     /// temperature).
     pub thermo: Option<Arc<ThermoMaterial>>,
+    /// A reinforcement grid's uniaxial law ([`uniaxial`]): grid cells only.
+    pub uniaxial: Option<Arc<Uniaxial>>,
 }
 
 /// Nodal temperatures over time (`AFFE_VARC`): knots (instant, value per
@@ -152,6 +159,7 @@ impl Behaviours {
                     kinematics,
                     viscous: None,
                     thermo: None,
+                    uniaxial: None,
                 },
             );
         }
@@ -166,6 +174,7 @@ impl Behaviours {
                 kinematics: Kinematics::Small,
                 viscous: Some(law),
                 thermo: None,
+                uniaxial: None,
             },
         );
     }
@@ -180,8 +189,33 @@ impl Behaviours {
                 kinematics: Kinematics::Small,
                 viscous: None,
                 thermo: Some(material),
+                uniaxial: None,
             },
         );
+    }
+
+    /// Gives a grid cell ([`ElementKind::Grid`]) a uniaxial law along its
+    /// bars (`GRILLE_ISOT_LINE`, `GRILLE_CINE_LINE`, or ELAS with a
+    /// thermal strain).
+    pub fn assign_uniaxial(&mut self, cell: CellId, law: Arc<Uniaxial>) {
+        self.by_cell.insert(
+            cell,
+            CellBehaviour {
+                law: None,
+                kinematics: Kinematics::Small,
+                viscous: None,
+                thermo: None,
+                uniaxial: Some(law),
+            },
+        );
+    }
+
+    /// Whether some cell needs the temperature: a temperature-dependent
+    /// material or a grid law with a dilatation coefficient.
+    pub fn needs_temperature(&self) -> bool {
+        self.by_cell
+            .values()
+            .any(|b| b.thermo.is_some() || b.uniaxial.as_ref().is_some_and(|u| u.alpha != 0.0))
     }
 
     /// The nodal temperatures over time the temperature-dependent cells
@@ -193,6 +227,11 @@ impl Behaviours {
     /// The temperature history of the temperature-dependent cells.
     pub(crate) fn temperature(&self) -> Option<&Arc<NodalHistory>> {
         self.temperature.as_ref()
+    }
+
+    /// Whether a temperature history is set.
+    pub fn has_temperature(&self) -> bool {
+        self.temperature.is_some()
     }
 
     /// Whether some cell has a temperature-dependent material.
@@ -251,12 +290,21 @@ impl Behaviours {
             kinematics: Kinematics::Small,
             viscous: None,
             thermo: None,
+            uniaxial: None,
         };
         model
             .elements()
             .iter()
             .enumerate()
-            .filter(|(_, el)| matches!(el.kind, ElementKind::Continuum { .. }))
+            .filter(|(_, el)| match el.kind {
+                ElementKind::Continuum { .. } => true,
+                // Grids with a uniaxial law.
+                ElementKind::Grid { .. } => self
+                    .by_cell
+                    .get(&el.cell)
+                    .is_some_and(|b| b.uniaxial.is_some()),
+                _ => false,
+            })
             .filter_map(|(k, el)| match self.by_cell.get(&el.cell) {
                 Some(b) => Some((k, b.clone())),
                 None if model.is_stabilised(el.cell) => Some((k, elastic.clone())),

@@ -28,30 +28,28 @@ impl Mesh {
         })
     }
 
-    /// A node by name (`NOEUD=`).
+    /// A node by name (`NOEUD=`), with code_aster 17's positional names
+    /// ([`positional_name`]).
     pub fn node_by_name(&self, name: &str) -> Result<NodeId, MeshError> {
-        self.node_names
-            .iter()
-            .position(|n| n == name)
+        positional_name(&self.node_names, name, 'N')
             .map(|i| NodeId(i as u32))
-            .ok_or_else(|| MeshError::UnknownName {
-                kind: "node",
-                name: name.to_string(),
-                suggestion: suggest(name, self.node_names.iter().map(String::as_str)),
-            })
+            .ok_or_else(|| self.name_error(name, "node", &self.node_names))
     }
 
-    /// A cell by name (`MAILLE=`).
+    /// A cell by name (`MAILLE=`), with code_aster 17's positional names
+    /// ([`positional_name`]).
     pub fn cell_by_name(&self, name: &str) -> Result<CellId, MeshError> {
-        self.cell_names
-            .iter()
-            .position(|n| n == name)
+        positional_name(&self.cell_names, name, 'M')
             .map(|i| CellId(i as u32))
-            .ok_or_else(|| MeshError::UnknownName {
-                kind: "cell",
-                name: name.to_string(),
-                suggestion: suggest(name, self.cell_names.iter().map(String::as_str)),
-            })
+            .ok_or_else(|| self.name_error(name, "cell", &self.cell_names))
+    }
+
+    fn name_error(&self, name: &str, kind: &'static str, names: &[String]) -> MeshError {
+        MeshError::UnknownName {
+            kind,
+            name: name.to_string(),
+            suggestion: suggest(name, names.iter().map(String::as_str)),
+        }
     }
 
     /// The nodes of some cells, each once, in increasing node number.
@@ -410,5 +408,55 @@ mod filter_tests {
             CellFilter::from_keyword("SEG3"),
             Some(CellFilter::Type(CellType::SEG3))
         );
+    }
+}
+
+/// The position of a node or cell name, with code_aster 17's positional
+/// names: its meshes keep no names, `N12` (`M12`, `prefix`) is the twelfth
+/// node (cell) in the file's order, whatever the file calls it. A mesh whose
+/// names are `N1`, `N2`… in order (a MED file without names, most ASTER
+/// files) reads the same either way; an ASTER file naming its nodes `NO1`…
+/// still has `N1`; a GMSH file, converted with its node tags as names
+/// (`PRE_GMSH`), has `N8` the eighth node, not tag 8 (ssns107c, whose
+/// reference values sit at the positional nodes). Other names (`NO1`,
+/// `A`) are the file's. `None`: no such node (cell).
+pub fn positional_name(names: &[String], name: &str, prefix: char) -> Option<usize> {
+    let numbered = |n: &str| -> Option<usize> {
+        let digits = n.strip_prefix(prefix)?;
+        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        digits.parse().ok()
+    };
+    let index = numbered(name)
+        .and_then(|k| k.checked_sub(1))
+        .filter(|&i| i < names.len());
+    // code_aster 17's reading wins over the file's name.
+    index.or_else(|| names.iter().position(|n| n == name))
+}
+
+#[cfg(test)]
+mod positional_tests {
+    use super::positional_name;
+
+    fn names(v: &[&str]) -> Vec<String> {
+        v.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn n_k_is_the_k_th_node_whatever_the_file_calls_it() {
+        // A GMSH file converted with its tags: N8 is the eighth node.
+        let gmsh = names(&["N2", "N3", "N4", "N5", "N6", "N8", "N12", "N17"]);
+        assert_eq!(positional_name(&gmsh, "N8", 'N'), Some(7));
+        assert_eq!(positional_name(&gmsh, "N5", 'N'), Some(4));
+        // Beyond the count: the file's name (none here).
+        assert_eq!(positional_name(&gmsh, "N12", 'N'), Some(6));
+        assert_eq!(positional_name(&gmsh, "N99", 'N'), None);
+        // An ASTER file's own names, and M1 for its first cell.
+        let aster = names(&["MA1", "MA2", "MA3"]);
+        assert_eq!(positional_name(&aster, "MA2", 'M'), Some(1));
+        assert_eq!(positional_name(&aster, "M1", 'M'), Some(0));
+        assert_eq!(positional_name(&aster, "M", 'M'), None);
+        assert_eq!(positional_name(&aster, "M0", 'M'), None);
     }
 }

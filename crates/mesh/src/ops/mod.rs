@@ -21,7 +21,7 @@ mod testmesh;
 pub(crate) use degree::edges;
 pub use degree::{CentreNodes, DegreeReport};
 pub use geom_groups::NodeKind;
-pub use groups::CellFilter;
+pub use groups::{positional_name, CellFilter};
 pub use orient::OrientReport;
 pub use orient_along::Along;
 pub use orient_crack::CrackReport;
