@@ -16,10 +16,10 @@
 //!
 //! - plane and axisymmetric (energy norm, `typnor='NRJ'`):
 //!   η_K² = (h_K² ‖div σ + f‖²_K + ½ Σ_interior h_F ‖[σ·n]‖²_F
-//!   + Σ_loaded h_F ‖g − σ·n‖²_F) / C, C = 24 E/(1 − ν) for linear cells,
+//!   \+ Σ_loaded h_F ‖g − σ·n‖²_F) / C, C = 24 E/(1 − ν) for linear cells,
 //!   96 E/(1 − ν) for quadratic ones (E, ν of the cell);
 //! - 3D (`H1` form): η_K = (h_K ‖div σ + f‖_K + ½ Σ √h_F ‖[σ·n]‖_F
-//!   + Σ √h_F ‖g − σ·n‖_F) / √24 (√96 quadratic).
+//!   \+ Σ √h_F ‖g − σ·n‖_F) / √24 (√96 quadratic).
 //!
 //! `NUEST` = 100 √(η²/(η² + ‖σ‖²_K)) (‖σ‖² = Σ σᵢⱼ² in 3D, without the
 //! shear doubling in 2D: `ermev2` sums σxx² σyy² σzz² σxy²) and `SIGCAL` =
@@ -330,6 +330,7 @@ fn diameter_3d(ty: CellType, x: &[[f64; 3]]) -> f64 {
 
 /// The Jacobian matrix rows ∂x/∂ξₖ and the physical derivatives of the
 /// shape functions at a point (`dfdm2d`/`dfdm3d`), with |det J|.
+#[allow(clippy::type_complexity)]
 fn derivatives(
     ty: CellType,
     x: &[[f64; 3]],
@@ -781,7 +782,7 @@ fn cell_3d(
                 -(a[0] * b[1] - a[1] * b[0]),
             ];
             let j = (cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]).sqrt();
-            if !(j > 0.0) {
+            if j.is_nan() || j <= 0.0 {
                 return Err(cell_err("a degenerate face".into()));
             }
             jac.push(j);
