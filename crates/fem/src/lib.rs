@@ -30,6 +30,7 @@ pub mod elga;
 pub mod energy;
 pub mod energy_balance;
 pub mod error;
+pub mod error_estimate;
 pub mod follower;
 pub mod force_source;
 pub mod fpg;

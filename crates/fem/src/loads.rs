@@ -619,14 +619,12 @@ impl Loads {
     }
 }
 
-/// The points a volume load is integrated on: [`shape::rigi_scheme`], the
-/// reduced family of an `_SI` cell.
+/// The points a volume load is integrated on: the cell's stiffness family
+/// ([`Model::stiffness_scheme`]: code_aster's RIGI, the reduced family of
+/// an `_SI` cell, FPG6 on an axisymmetric TRIA6), the one
+/// [`volume_load`] integrates on.
 fn volume_scheme(model: &Model, cell: CellId) -> Vec<shape::GaussPoint> {
-    if model.is_reduced(cell) || model.is_mixed(cell) {
-        model.stiffness_scheme(cell)
-    } else {
-        shape::rigi_scheme(model.mesh().cell(cell).ty)
-    }
+    model.stiffness_scheme(cell)
 }
 
 /// The scheme of a load given at `count` points (skin or stiffness),

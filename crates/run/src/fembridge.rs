@@ -42,6 +42,11 @@ pub struct FemRun {
     /// forces are not in the model's elements (`FORC_NODA`, `REAC_NODA`
     /// add them).
     pub joints: Option<aster_fem::joint::JointCells>,
+    /// The load items of each `EXCIT` occurrence given a `FONC_MULT`, with
+    /// that multiplier (their own multipliers are it times the charge's
+    /// functions): CALC_ERREUR takes the charges without it, as
+    /// code_aster's estimator reads the load maps.
+    pub excit: Vec<(std::ops::Range<usize>, Multiplier)>,
 }
 
 impl FemRun {
@@ -1199,6 +1204,10 @@ fn follower_loads(
 /// `Loads::items`, in the order [`build_loads`] adds them).
 type DidiItems = Vec<std::ops::Range<usize>>;
 
+/// The load items of the `EXCIT` occurrences with a `FONC_MULT`, and it
+/// ([`FemRun::excit`]).
+type ExcitItems = Vec<(std::ops::Range<usize>, Multiplier)>;
+
 /// code_aster's differential Dirichlet conditions (`nmdidi`, `vecdid`):
 /// the dualised conditions (and the eliminated ones, `vecdid_cine`) of a
 /// `TYPE_CHARGE='DIDI'` load hold on u − u₀, u₀ the displacement of the
@@ -1231,10 +1240,11 @@ fn build_loads(
     setup: &SolveSetup,
     mesh: &Mesh,
     model: &Model,
-) -> Result<(Loads, DidiItems), ExecError> {
+) -> Result<(Loads, DidiItems, ExcitItems), ExecError> {
     let cuts = cut_instants(&setup.instants, setup.subdivision);
     let mut loads = Loads::new();
     let mut didi = DidiItems::new();
+    let mut excit = Vec::new();
     for exc in &setup.excitations {
         if exc.kind == crate::solve::ChargeType::Suiv {
             // `follower_loads`.
@@ -1521,6 +1531,9 @@ fn build_loads(
         if exc.kind == crate::solve::ChargeType::Didi {
             didi.push(first_item..loads.items.len());
         }
+        if exc.multiplier.is_some() {
+            excit.push((first_item..loads.items.len(), m.clone()));
+        }
     }
     if let Some(temp) = &setup.materials.temperature {
         thermal_loads(
@@ -1532,7 +1545,7 @@ fn build_loads(
             &setup.instants,
         )?;
     }
-    Ok((loads, didi))
+    Ok((loads, didi, excit))
 }
 
 /// `PESANTEUR` as volume forces ρ g d on its continuum cells, ρ the
@@ -2120,7 +2133,7 @@ pub fn solve(
     if linear {
         refuse_heated_grids(cmd, &mesh, &model, &setup.materials)?;
     }
-    let (mut loads, didi) = build_loads(setup, &mesh, &model)?;
+    let (mut loads, didi, excit) = build_loads(setup, &mesh, &model)?;
     let follower = follower_loads(setup, &model)?;
     let behaviours = build_behaviours(
         &mesh,
@@ -2558,6 +2571,7 @@ pub fn solve(
             .map(|(m, _)| m),
             cara: setup.cara.clone(),
             joints: post_joints,
+            excit,
         }),
     ))
 }
@@ -3027,6 +3041,36 @@ pub fn calc_champ(
                 "SIEQ_NOEU" => {
                     let noeu = post::noeu(model, &continuum_only(elno()));
                     Field::Nodal(nodal_from_values(&post::sieq_nodal(&noeu)))
+                }
+                // ½ uₑᵀ Kₑ uₑ per cell: code_aster's EPOT_ELEM (½ ∫ σ:ε
+                // on the stiffness family) of a linear elastic result of
+                // continuum cells without a thermal strain.
+                "EPOT_ELEM"
+                    if !run.plastic
+                        && !thermal
+                        && !run.behaviours.has_finite_strains()
+                        && model.elements().iter().all(|el| {
+                            matches!(
+                                el.kind,
+                                aster_fem::ElementKind::Continuum { .. }
+                                    | aster_fem::ElementKind::Boundary
+                            )
+                        })
+                        && !model.has_stabilised()
+                        && !model.has_mixed() =>
+                {
+                    let cells: Vec<CellValues> =
+                        aster_fem::energy::potential_energy_by_cell(model, u)
+                            .map_err(|e| fem_err("CALC_CHAMP", e))?
+                            .into_iter()
+                            .filter(|(cell, _)| keep(*cell))
+                            .map(|(cell, e)| CellValues {
+                                cell,
+                                names: vec!["TOTALE"],
+                                points: vec![vec![e]],
+                            })
+                            .collect();
+                    Field::Elem(elem_field(ElemLocation::Cell, &cells))
                 }
                 other => {
                     let span = ["FORCE", "CONTRAINTE", "CRITERES", "DEFORMATION", "ENERGIE"]

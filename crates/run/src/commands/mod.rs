@@ -1,6 +1,7 @@
 //! One module per family of commands; [`dispatch`] maps a command name to
 //! its implementation.
 
+pub(crate) mod calc_erreur;
 pub(crate) mod cara_coque;
 pub(crate) mod cara_grille;
 pub(crate) mod cara_massif;
@@ -433,6 +434,11 @@ pub static COMMANDS: &[Command] = &[
         name: "POST_ELEM",
         run: post_elem::post_elem,
         support: post_elem::POST_ELEM,
+    },
+    Command {
+        name: "CALC_ERREUR",
+        run: calc_erreur::calc_erreur,
+        support: calc_erreur::CALC_ERREUR,
     },
     Command {
         name: "POST_ERREUR",
