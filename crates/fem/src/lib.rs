@@ -72,7 +72,7 @@ pub mod unilateral;
 pub use beam::BeamSection;
 pub use behaviour::{
     Behaviours, CurveEnd, EcroNl, JohnsonCook, Lemaitre, LocalSearch, NodalHistory, TempFn,
-    ThermoHardening, ThermoMaterial, VonMises,
+    ThermoHardening, ThermoMaterial, TractionCurve, TractionNappe, VonMises,
 };
 pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};

@@ -62,6 +62,12 @@ pub enum Relation {
     /// Von Mises, linear kinematic hardening (material's ECRO_LINE),
     /// code_aster's `nmcine`.
     VmisCineLine,
+    /// Hencky's non-linear elasticity with a linear hardening curve
+    /// (material's ECRO_LINE), code_aster's `lcelnl`.
+    ElasVmisLine,
+    /// Hencky's non-linear elasticity with a traction curve (TRACTION),
+    /// code_aster's `lcelnl`.
+    ElasVmisTrac,
 }
 
 impl Relation {
@@ -76,6 +82,8 @@ impl Relation {
             Relation::CzmTuron => "CZM_TURON",
             Relation::VmisJohnCook => "VMIS_JOHN_COOK",
             Relation::VmisCineLine => "VMIS_CINE_LINE",
+            Relation::ElasVmisLine => "ELAS_VMIS_LINE",
+            Relation::ElasVmisTrac => "ELAS_VMIS_TRAC",
         }
     }
 }
@@ -337,6 +345,8 @@ const SNL_COMMON_VALUES: &[Values] = &[
             "LEMAITRE",
             "CZM_LIN_REG",
             "CZM_TURON",
+            "ELAS_VMIS_LINE",
+            "ELAS_VMIS_TRAC",
         ],
     ),
     Values::listed(
@@ -825,11 +835,13 @@ fn parse_behaviours(
             "CZM_TURON" => Relation::CzmTuron,
             "VMIS_JOHN_COOK" => Relation::VmisJohnCook,
             "VMIS_CINE_LINE" => Relation::VmisCineLine,
+            "ELAS_VMIS_LINE" => Relation::ElasVmisLine,
+            "ELAS_VMIS_TRAC" => Relation::ElasVmisTrac,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, VMIS_CINE_LINE, LEMAITRE, CZM_LIN_REG, CZM_TURON)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, VMIS_CINE_LINE, LEMAITRE, CZM_LIN_REG, CZM_TURON, ELAS_VMIS_LINE, ELAS_VMIS_TRAC)"
                     ),
                     span,
                 ));
@@ -851,6 +863,17 @@ fn parse_behaviours(
             ("SIMO_MIEHE", _) => Kinematics::SimoMiehe,
             (other, _) => return Err(refuse(&format!("(got {other})"))),
         };
+        // ELAS_VMIS_*: code_aster's catalogue has PETIT, GDEF_LOG and
+        // GREEN_LAGRANGE; the Hencky law is integrated in small strains
+        // only here.
+        if matches!(relation, Relation::ElasVmisLine | Relation::ElasVmisTrac)
+            && kinematics != Kinematics::Small
+        {
+            return Err(refuse(&format!(
+                "with RELATION='{}' (the Hencky law is integrated in small strains, DEFORMATION='PETIT', here)",
+                relation.keyword()
+            )));
+        }
         // code_aster's catalogue of VMIS_ISOT_NL: PETIT and GDEF_LOG only.
         if relation == Relation::VmisIsotNl
             && !matches!(kinematics, Kinematics::Small | Kinematics::Logarithmic)

@@ -21,16 +21,20 @@
 //! - `VMIS_CINE_LINE`: von Mises with linear kinematic (Prager) hardening
 //!   ([`kinematic`], `Hardening::Kinematic`), VARI the back stress and
 //!   the plasticity indicator.
+//! - `ELAS_VMIS_LINE`, `ELAS_VMIS_TRAC` (small strains): Hencky's
+//!   non-linear elasticity ([`hencky`]), VARI V1 = p.
 //! - parameters that follow the temperature (`ELAS_FO`, `ECRO_LINE_FO`)
 //!   at each Gauss point and instant, ELAS and `VMIS_ISOT_*` in small
 //!   strains ([`thermo`]), the thermal strain in the behaviour.
 
 mod cells;
+pub mod hencky;
 pub mod johnson_cook;
 pub mod kinematic;
 pub mod lemaitre;
 pub mod simo_miehe;
 pub mod thermo;
+pub mod traction;
 pub mod vmis;
 
 pub use crate::strain::{GaussState, Kinematics};
@@ -39,6 +43,7 @@ pub use cells::{forc_noda_deformed, forc_noda_from_stress, BehaviourState};
 pub use johnson_cook::JohnsonCook;
 pub use lemaitre::Lemaitre;
 pub use thermo::{TempFn, ThermoHardening, ThermoMaterial};
+pub use traction::{TractionCurve, TractionNappe};
 pub use vmis::{CurveEnd, EcroNl, Hardening, LocalSearch, PointState, VonMises};
 
 use crate::error::FemError;
@@ -58,6 +63,9 @@ pub struct CellBehaviour {
     /// in place of `law` (ELAS or a `VMIS_ISOT_*` law at each point's
     /// temperature).
     pub thermo: Option<Arc<ThermoMaterial>>,
+    /// `ELAS_VMIS_LINE`, `ELAS_VMIS_TRAC`: `law` read as a Hencky
+    /// (non-linear elastic) law, small strains ([`hencky`]).
+    pub hencky: bool,
 }
 
 /// Nodal temperatures over time (`AFFE_VARC`): knots (instant, value per
@@ -152,6 +160,7 @@ impl Behaviours {
                     kinematics,
                     viscous: None,
                     thermo: None,
+                    hencky: false,
                 },
             );
         }
@@ -166,6 +175,22 @@ impl Behaviours {
                 kinematics: Kinematics::Small,
                 viscous: Some(law),
                 thermo: None,
+                hencky: false,
+            },
+        );
+    }
+
+    /// Gives `cell` the Hencky law `law` (`ELAS_VMIS_*`, small strains,
+    /// [`hencky`]).
+    pub fn assign_hencky(&mut self, cell: CellId, law: Arc<VonMises>) {
+        self.by_cell.insert(
+            cell,
+            CellBehaviour {
+                law: Some(law),
+                kinematics: Kinematics::Small,
+                viscous: None,
+                thermo: None,
+                hencky: true,
             },
         );
     }
@@ -180,6 +205,7 @@ impl Behaviours {
                 kinematics: Kinematics::Small,
                 viscous: None,
                 thermo: Some(material),
+                hencky: false,
             },
         );
     }
@@ -251,6 +277,7 @@ impl Behaviours {
             kinematics: Kinematics::Small,
             viscous: None,
             thermo: None,
+            hencky: false,
         };
         model
             .elements()
