@@ -304,8 +304,10 @@ mod tests {
         let (p, r, _) = curve_of(&law);
         assert_eq!(r, vec![200.0, 300.0]);
         assert!((p[1] - (0.003 - 300.0 / 200_000.0)).abs() < 1e-15);
-        // Within 1e-6 relative of 50: still that curve.
-        assert_eq!(curve_of(&n.at(50.0 + 1e-6).unwrap()).1, vec![200.0, 300.0]);
+        // Within 1e-6 relative of 50 inside the range: still that curve;
+        // above the last temperature rctrac extrapolates, tolerance or not.
+        assert_eq!(curve_of(&n.at(50.0 - 1e-6).unwrap()).1, vec![200.0, 300.0]);
+        assert_ne!(curve_of(&n.at(50.0 + 1e-6).unwrap()).1, vec![200.0, 300.0]);
     }
 
     /// Between and beyond (PROL_DROITE='LINEAIRE'): R interpolated at the
