@@ -74,7 +74,8 @@ pub mod unilateral;
 pub use beam::BeamSection;
 pub use behaviour::{
     Behaviours, CurveEnd, EcroNl, JohnsonCook, Lemaitre, LocalSearch, NodalHistory, TempFn,
-    ThermoHardening, ThermoMaterial, Uniaxial, UniaxialHardening, VonMises,
+    ThermoHardening, ThermoMaterial, TractionCurve, TractionNappe, Uniaxial, UniaxialHardening,
+    VonMises,
 };
 pub use dkt::ShellSection;
 pub use dof::{Comp, Dof, DofNumbering};

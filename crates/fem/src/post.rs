@@ -749,7 +749,9 @@ pub fn epsi_elga_on(
     u: &[f64],
     keep: impl Fn(CellId) -> bool,
 ) -> Result<Vec<CellValues>, FemError> {
-    crate::mixed_upg::refuse_mixed(model, "EPSI_ELGA")?;
+    // Mixed cells (`*_INCO_UPG`): ε(u) of the displacement alone at the
+    // element's points (code_aster's te0453 in 3D, te0447 in 2D), what
+    // B u on their displacement unknowns gives.
     let mut out = Vec::with_capacity(model.elements().len());
     for el in model.elements() {
         if let ElementKind::Grid { section, .. } = &el.kind {

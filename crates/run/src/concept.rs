@@ -309,6 +309,10 @@ pub struct Material {
     /// `TRACTION=_F(SIGM=σ(EPSI))` (for VMIS_ISOT_TRAC): a tabulated
     /// function.
     pub traction: Option<crate::function::Tabulated>,
+    /// `TRACTION=_F(SIGM=nappe of TEMP)`: one curve per temperature, the
+    /// curve at a point's temperature built by `aster_fem`'s
+    /// `behaviour::traction` (code_aster's `rctrac`).
+    pub traction_nappe: Option<Rc<aster_fem::TractionNappe>>,
     /// `LEMAITRE=_F(N, UN_SUR_K, UN_SUR_M)` (for RELATION='LEMAITRE').
     pub lemaitre: Option<LemaitreCoefs>,
     /// `ECRO_NL=_F(R0, RH, R1, GAMMA_1, R2, GAMMA_2, RK, P0, GAMMA_M)`

@@ -525,6 +525,17 @@ pub fn build_behaviours(
                     )));
                 }
             }
+            let hencky = matches!(
+                occ.relation,
+                Relation::ElasVmisLine | Relation::ElasVmisTrac
+            );
+            if hencky && plane_stress.contains(&cell) {
+                return Err(ExecError::new(format!(
+                    "not supported yet: COMPORTEMENT/RELATION='{}' on C_PLAN cell {}: code_aster's plane-stress Hencky law (its own search of εzz, nmcri1) is not reproduced (3D, AXIS, D_PLAN are)",
+                    occ.relation.keyword(),
+                    crate::select::cell_name(mesh, cell)
+                )));
+            }
             let key = (Rc::as_ptr(mat), occ.relation);
             let law = match laws.iter().find(|l| (l.0, l.1) == key) {
                 Some(l) => l.2.clone(),
@@ -534,7 +545,11 @@ pub fn build_behaviours(
                     law
                 }
             };
-            out.assign_with(cell, Some(law), occ.kinematics);
+            if hencky {
+                out.assign_hencky(cell, law);
+            } else {
+                out.assign_with(cell, Some(law), occ.kinematics);
+            }
         }
     }
     // Temperature-dependent cells no occurrence names (ELAS by default).
@@ -752,7 +767,7 @@ fn plastic_law(
         ))
     };
     let law = match relation {
-        Relation::VmisIsotLine => {
+        Relation::VmisIsotLine | Relation::ElasVmisLine => {
             if let (None, Some(fo)) = (&mat.ecro_line, &mat.ecro_line_fo) {
                 return Err(ExecError::new(format!(
                     "not supported yet: DEFI_MATERIAU/ECRO_LINE_FO: `{}` or `{}` is a function of TEMP and cell {} has no temperature in STAT_NON_LINE (AFFE_MATERIAU/AFFE_VARC)",
@@ -766,7 +781,13 @@ fn plastic_law(
                 .ok_or_else(|| missing("ECRO_LINE=_F(D_SIGM_EPSI, SY)"))?;
             aster_fem::VonMises::linear(mat.young, e.sy, e.d_sigm_epsi)
         }
-        Relation::VmisIsotTrac => {
+        Relation::VmisIsotTrac | Relation::ElasVmisTrac => {
+            if mat.traction_nappe.is_some() {
+                return Err(ExecError::new(format!(
+                    "not supported yet: DEFI_MATERIAU/TRACTION/SIGM is a nappe of TEMP and cell {} has no temperature in STAT_NON_LINE (AFFE_MATERIAU/AFFE_VARC): code_aster reads the curve at the point's temperature",
+                    crate::select::cell_name(mesh, cell)
+                )));
+            }
             let t = mat
                 .traction
                 .as_ref()

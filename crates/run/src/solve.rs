@@ -67,6 +67,12 @@ pub enum Relation {
     GrilleIsotLine,
     /// The same with linear kinematic hardening, code_aster's `nm1dci`.
     GrilleCineLine,
+    /// Hencky's non-linear elasticity with a linear hardening curve
+    /// (material's ECRO_LINE), code_aster's `lcelnl`.
+    ElasVmisLine,
+    /// Hencky's non-linear elasticity with a traction curve (TRACTION),
+    /// code_aster's `lcelnl`.
+    ElasVmisTrac,
 }
 
 impl Relation {
@@ -83,6 +89,8 @@ impl Relation {
             Relation::VmisCineLine => "VMIS_CINE_LINE",
             Relation::GrilleIsotLine => "GRILLE_ISOT_LINE",
             Relation::GrilleCineLine => "GRILLE_CINE_LINE",
+            Relation::ElasVmisLine => "ELAS_VMIS_LINE",
+            Relation::ElasVmisTrac => "ELAS_VMIS_TRAC",
         }
     }
 }
@@ -346,6 +354,8 @@ const SNL_COMMON_VALUES: &[Values] = &[
             "CZM_TURON",
             "GRILLE_ISOT_LINE",
             "GRILLE_CINE_LINE",
+            "ELAS_VMIS_LINE",
+            "ELAS_VMIS_TRAC",
         ],
     ),
     Values::listed(
@@ -857,11 +867,13 @@ fn parse_behaviours(
             "VMIS_CINE_LINE" => Relation::VmisCineLine,
             "GRILLE_ISOT_LINE" => Relation::GrilleIsotLine,
             "GRILLE_CINE_LINE" => Relation::GrilleCineLine,
+            "ELAS_VMIS_LINE" => Relation::ElasVmisLine,
+            "ELAS_VMIS_TRAC" => Relation::ElasVmisTrac,
             other => {
                 let span = occ.keyword("RELATION").map(|k| k.span).unwrap_or_default();
                 return Err(ex.unsupported(
                     &format!(
-                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, VMIS_CINE_LINE, LEMAITRE, CZM_LIN_REG, CZM_TURON, GRILLE_ISOT_LINE, GRILLE_CINE_LINE)"
+                        "{at}/RELATION='{other}' (supported: ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_NL, VMIS_JOHN_COOK, VMIS_CINE_LINE, LEMAITRE, CZM_LIN_REG, CZM_TURON, GRILLE_ISOT_LINE, GRILLE_CINE_LINE, ELAS_VMIS_LINE, ELAS_VMIS_TRAC)"
                     ),
                     span,
                 ));
@@ -891,6 +903,17 @@ fn parse_behaviours(
         {
             return Err(refuse(&format!(
                 "with RELATION='{}' (code_aster's law takes PETIT only)",
+                relation.keyword()
+            )));
+        }
+        // ELAS_VMIS_*: code_aster's catalogue has PETIT, GDEF_LOG and
+        // GREEN_LAGRANGE; the Hencky law is integrated in small strains
+        // only here.
+        if matches!(relation, Relation::ElasVmisLine | Relation::ElasVmisTrac)
+            && kinematics != Kinematics::Small
+        {
+            return Err(refuse(&format!(
+                "with RELATION='{}' (the Hencky law is integrated in small strains, DEFORMATION='PETIT', here)",
                 relation.keyword()
             )));
         }

@@ -9,10 +9,11 @@
 //! COMPORTEMENT is a plastic law or its ELAS_FO's E or NU do not resolve
 //! to one value ([`crate::elas_fo`]); other heated elastic cells keep the
 //! thermal strain as a load. Supported: RELATION ELAS, VMIS_ISOT_LINE
-//! (ECRO_LINE or ECRO_LINE_FO) and VMIS_ISOT_TRAC (one TRACTION curve) in
-//! small strains (`DEFORMATION='PETIT'`), with functions of TEMP given as
-//! constants or tables interpolated linearly; everything else is refused
-//! with the keyword's location.
+//! (ECRO_LINE or ECRO_LINE_FO) and VMIS_ISOT_TRAC (one TRACTION curve,
+//! or a nappe of TEMP: `aster_fem::TractionNappe`) in small strains
+//! (`DEFORMATION='PETIT'`), with functions of TEMP given as constants or
+//! tables interpolated linearly; everything else is refused with the
+//! keyword's location.
 
 use crate::concept::{Material, MaterialField, ModelDef};
 use crate::elas_fo::FoArg;
@@ -36,7 +37,7 @@ pub struct Prepared {
     pub history: Option<Arc<aster_fem::NodalHistory>>,
 }
 
-fn extension(e: Extension) -> CurveEnd {
+pub(crate) fn extension(e: Extension) -> CurveEnd {
     match e {
         Extension::Linear => CurveEnd::Linear,
         Extension::Constant => CurveEnd::Constant,
@@ -165,6 +166,10 @@ fn thermo_material(
             },
             (None, None) => return Err(missing("ECRO_LINE or ECRO_LINE_FO")),
         }),
+        Relation::VmisIsotTrac if mat.traction_nappe.is_some() => {
+            let n = mat.traction_nappe.as_deref().cloned().ok_or_else(|| missing("TRACTION"))?;
+            Some(ThermoHardening::Nappe(n))
+        }
         Relation::VmisIsotTrac => {
             let t = mat
                 .traction

@@ -45,6 +45,9 @@ struct PlasticCell {
     /// Parameters at each point's temperature ([`thermo`]), small
     /// strains: `law` is then only the kind of its internal variables.
     thermo: Option<Arc<ThermoMaterial>>,
+    /// `law` is a Hencky law ([`super::hencky`]): integrated from the
+    /// virgin state on the total strain.
+    hencky: bool,
     /// The cell's mesh nodes and the shape functions at its points (the
     /// temperature at a point, [`thermo`] cells only).
     nodes: Vec<usize>,
@@ -244,8 +247,8 @@ impl PlasticCells {
                 if behaviour.viscous.is_some() {
                     return refuse("LEMAITRE");
                 }
-                if behaviour.thermo.is_some() {
-                    return refuse("a temperature-dependent material");
+                if behaviour.hencky {
+                    return refuse("ELAS_VMIS_*");
                 }
                 let m = MixedCell::new(model, el.cell, *hypothesis).map_err(|m| {
                     FemError::Model(format!("cell {} is {m}", model.cell_name(el.cell)))
@@ -276,6 +279,8 @@ impl PlasticCells {
                     .iter()
                     .map(|n| n.0 as usize)
                     .collect();
+                // (A mixed cell's points are its family's: the model's
+                // stiffness scheme of the cell.)
                 let shape_n = model
                     .stiffness_scheme(el.cell)
                     .iter()
@@ -291,6 +296,7 @@ impl PlasticCells {
                 elastic: *material,
                 law: behaviour.law,
                 viscous: behaviour.viscous,
+                hencky: behaviour.hencky,
                 thermo: behaviour.thermo,
                 nodes,
                 shape_n,
@@ -775,6 +781,27 @@ impl PlasticCells {
             let Some(law) = cell.law.as_deref() else {
                 continue;
             };
+            if cell.hencky {
+                // lcelnl's RIGI_MECA_TANG: the tangent at the converged
+                // strain.
+                self.corrected[c] = true;
+                let ue = &self.u_committed[c];
+                let n = cell.hypothesis.ncomp();
+                for (g, gp) in cell.gauss.iter().enumerate() {
+                    let eps = gp.strain(ue, n);
+                    let el = if elastic {
+                        // PREDICTION='ELASTIQUE': the elastic matrix.
+                        &[0.0; 6][..n]
+                    } else {
+                        &eps[..n]
+                    };
+                    let (_, tangent) =
+                        super::hencky::integrate(law, &cell.elastic, cell.hypothesis, el)
+                            .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                    self.tangents[c][g] = tangent;
+                }
+                continue;
+            }
             // Elastic where the last increment was elastic: no correction
             // (unless the law has its own Young's modulus).
             let own_modulus = law.elastic(&cell.elastic) != cell.elastic;
@@ -973,8 +1000,28 @@ impl PlasticCells {
         for g in 0..m.gauss.len() {
             let prev = &self.committed[c][g].law;
             let eps = m.strain(g, ue);
-            let (state, tangent) = match cell.law.as_deref() {
-                Some(law) => integrate(
+            let thermo = match cell.thermo.as_deref() {
+                Some(mat) => {
+                    let thermal = Thermal {
+                        temps: &self.temps,
+                        start: self.thermal_start.as_deref(),
+                    };
+                    Some((mat, thermal.at(c, g)?))
+                }
+                None => None,
+            };
+            let (state, tangent) = match (thermo, cell.law.as_deref()) {
+                (Some((mat, (temp, th0))), _) => thermo::integrate_point(
+                    mat,
+                    cell.hypothesis,
+                    &eps[..n],
+                    temp,
+                    th0,
+                    prev,
+                    prediction,
+                )
+                .map_err(|e| FemError::Model(format!("at Gauss point {}: {e}", g + 1)))?,
+                (None, Some(law)) => integrate(
                     law,
                     &cell.elastic,
                     cell.hypothesis,
@@ -984,7 +1031,7 @@ impl PlasticCells {
                     self.dt,
                 )
                 .map_err(|e| FemError::Model(format!("at Gauss point {}: {e}", g + 1)))?,
-                None => {
+                (None, None) => {
                     // ELAS: σ = D ε̃.
                     let d = cell.elastic.hooke(cell.hypothesis);
                     let mut c6 = [[0.0; 6]; 6];
@@ -1175,6 +1222,8 @@ fn internal_variables(cell: &PlasticCell, s: &GaussState) -> Vec<f64> {
         Some(law) if matches!(law.hardening, super::Hardening::Kinematic { .. }) => {
             v.extend(super::kinematic::vari(&s.law, cell.hypothesis.ncomp()));
         }
+        // ELAS_VMIS_* (lcelnl): EPSPEQ, p where non-linear.
+        Some(_) if cell.hencky => v.push(if s.law.plastic { s.law.p } else { 0.0 }),
         Some(_) => v.extend(s.law.vari()),
         None if cell.viscous.is_some() => v.extend(s.law.vari()),
         None if cell.kinematics == Kinematics::Logarithmic => v.push(0.0),
@@ -1334,6 +1383,19 @@ fn integrate_small_cells(
         let n = cell.hypothesis.ncomp();
         for (g, gp) in cell.gauss.iter().enumerate() {
             let eps = gp.strain(&ue, n);
+            if cell.hencky {
+                let (state, tangent) =
+                    super::hencky::integrate(law, &cell.elastic, cell.hypothesis, &eps[..n])
+                        .map_err(|e| at_cell(model, cell.cell, g, e))?;
+                virgin &= !state.plastic;
+                trial[g] = GaussState {
+                    law: state,
+                    cauchy: state.stress,
+                    extra: [0.0; 6],
+                };
+                tangents[j][g] = tangent;
+                continue;
+            }
             let prev = &committed[c][g].law;
             let (state, tangent) = integrate(
                 law,
@@ -1566,6 +1628,7 @@ fn grid_cell(
         law: None,
         viscous: None,
         thermo: None,
+        hencky: false,
         nodes,
         shape_n,
         kinematics: Kinematics::Small,

@@ -21,6 +21,8 @@
 //! - `VMIS_CINE_LINE`: von Mises with linear kinematic (Prager) hardening
 //!   ([`kinematic`], `Hardening::Kinematic`), VARI the back stress and
 //!   the plasticity indicator.
+//! - `ELAS_VMIS_LINE`, `ELAS_VMIS_TRAC` (small strains): Hencky's
+//!   non-linear elasticity ([`hencky`]), VARI V1 = p.
 //! - parameters that follow the temperature (`ELAS_FO`, `ECRO_LINE_FO`)
 //!   at each Gauss point and instant, ELAS and `VMIS_ISOT_*` in small
 //!   strains ([`thermo`]), the thermal strain in the behaviour.
@@ -29,12 +31,14 @@
 //!   and ELAS grids under a temperature (the thermal strain along the bars).
 
 mod cells;
+pub mod hencky;
 pub mod johnson_cook;
 pub mod kinematic;
 pub mod lemaitre;
 pub mod simo_miehe;
 pub mod thermo;
 pub mod uniaxial;
+pub mod traction;
 pub mod vmis;
 
 pub use crate::strain::{GaussState, Kinematics};
@@ -44,6 +48,7 @@ pub use johnson_cook::JohnsonCook;
 pub use lemaitre::Lemaitre;
 pub use thermo::{TempFn, ThermoHardening, ThermoMaterial};
 pub use uniaxial::{Uniaxial, UniaxialHardening, UniaxialState};
+pub use traction::{TractionCurve, TractionNappe};
 pub use vmis::{CurveEnd, EcroNl, Hardening, LocalSearch, PointState, VonMises};
 
 use crate::error::FemError;
@@ -65,6 +70,9 @@ pub struct CellBehaviour {
     pub thermo: Option<Arc<ThermoMaterial>>,
     /// A reinforcement grid's uniaxial law ([`uniaxial`]): grid cells only.
     pub uniaxial: Option<Arc<Uniaxial>>,
+    /// `ELAS_VMIS_LINE`, `ELAS_VMIS_TRAC`: `law` read as a Hencky
+    /// (non-linear elastic) law, small strains ([`hencky`]).
+    pub hencky: bool,
 }
 
 /// Nodal temperatures over time (`AFFE_VARC`): knots (instant, value per
@@ -160,6 +168,7 @@ impl Behaviours {
                     viscous: None,
                     thermo: None,
                     uniaxial: None,
+                    hencky: false,
                 },
             );
         }
@@ -175,6 +184,23 @@ impl Behaviours {
                 viscous: Some(law),
                 thermo: None,
                 uniaxial: None,
+                hencky: false,
+            },
+        );
+    }
+
+    /// Gives `cell` the Hencky law `law` (`ELAS_VMIS_*`, small strains,
+    /// [`hencky`]).
+    pub fn assign_hencky(&mut self, cell: CellId, law: Arc<VonMises>) {
+        self.by_cell.insert(
+            cell,
+            CellBehaviour {
+                law: Some(law),
+                kinematics: Kinematics::Small,
+                viscous: None,
+                thermo: None,
+                uniaxial: None,
+                hencky: true,
             },
         );
     }
@@ -190,6 +216,7 @@ impl Behaviours {
                 viscous: None,
                 thermo: Some(material),
                 uniaxial: None,
+                hencky: false,
             },
         );
     }
@@ -206,6 +233,7 @@ impl Behaviours {
                 viscous: None,
                 thermo: None,
                 uniaxial: Some(law),
+                hencky: false,
             },
         );
     }
@@ -291,6 +319,7 @@ impl Behaviours {
             viscous: None,
             thermo: None,
             uniaxial: None,
+            hencky: false,
         };
         model
             .elements()

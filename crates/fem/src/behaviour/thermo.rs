@@ -16,6 +16,7 @@
 //! is stress-free whatever the temperature then). That is what
 //! [`integrate_point`] computes.
 
+use super::traction::TractionNappe;
 use super::vmis::{integrate, CurveEnd, Hardening, Mat6, PointState, VonMises};
 use crate::error::FemError;
 use crate::material::{Elastic, Hypothesis};
@@ -95,6 +96,9 @@ pub enum ThermoHardening {
     /// `TRACTION` by one curve σ(ε) (`VMIS_ISOT_TRAC`): the law of
     /// [`VonMises::traction_curve`], Young's modulus σ₁/ε₁ of the curve.
     Curve(VonMises),
+    /// `TRACTION` by a nappe of curves of TEMP (`VMIS_ISOT_TRAC`): the
+    /// curve and its modulus at T⁺ ([`super::traction`], `rctrac`).
+    Nappe(TractionNappe),
 }
 
 /// The temperature-dependent material of a cell.
@@ -116,6 +120,7 @@ impl ThermoMaterial {
     pub fn elastic_at(&self, temp: f64) -> Result<Elastic, FemError> {
         let e = match &self.hardening {
             Some(ThermoHardening::Curve(law)) => law.young.unwrap_or(f64::NAN),
+            Some(ThermoHardening::Nappe(n)) => n.young_at(temp)?,
             _ => self.e.at(temp)?,
         };
         Elastic::new(e, self.nu.at(temp)?)
@@ -136,6 +141,7 @@ impl ThermoMaterial {
         match &self.hardening {
             None => Ok(None),
             Some(ThermoHardening::Curve(law)) => Ok(Some(law.clone())),
+            Some(ThermoHardening::Nappe(n)) => n.at(temp).map(Some),
             Some(ThermoHardening::Linear { d_sigm_epsi, sy }) => {
                 let (et, sy) = (d_sigm_epsi.at(temp)?, sy.at(temp)?);
                 VonMises::linear(el.e, sy, et)
@@ -150,12 +156,14 @@ impl ThermoMaterial {
         match &self.hardening {
             None => None,
             Some(ThermoHardening::Curve(law)) => Some(law.clone()),
-            Some(ThermoHardening::Linear { .. }) => Some(VonMises {
-                sy: f64::INFINITY,
-                hardening: Hardening::Linear { h: 0.0 },
-                young: None,
-                search: Default::default(),
-            }),
+            Some(ThermoHardening::Nappe(_)) | Some(ThermoHardening::Linear { .. }) => {
+                Some(VonMises {
+                    sy: f64::INFINITY,
+                    hardening: Hardening::Linear { h: 0.0 },
+                    young: None,
+                    search: Default::default(),
+                })
+            }
         }
     }
 }

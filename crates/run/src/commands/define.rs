@@ -129,6 +129,7 @@ pub(crate) fn without_elas(thermal: Option<aster_fem::thermal::Conduction>) -> M
         ecro_line: None,
         ecro_line_fo: None,
         traction: None,
+        traction_nappe: None,
         lemaitre: None,
         ecro_nl: None,
         ecro_cook: None,
@@ -430,10 +431,23 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         },
         _ => ecro_line,
     };
+    let mut traction_nappe = None;
     let traction = match kw.factor("TRACTION").first() {
         Some(occ) => {
             let f = ex.required("DEFI_MATERIAU/TRACTION", occ, "SIGM")?;
             match &*ex.function(f)? {
+                Function::Nappe(n) => {
+                    let nappe = traction_nappe_of(n).map_err(|e| {
+                        ex.kw_error(
+                            "DEFI_MATERIAU/TRACTION",
+                            occ,
+                            "SIGM",
+                            format!("`{}`: {e}", f.name),
+                        )
+                    })?;
+                    traction_nappe = Some(Rc::new(nappe));
+                    None
+                }
                 Function::Tabulated(t) if !young.is_finite() => Some(t.clone()),
                 Function::Tabulated(t) => {
                     aster_fem::VonMises::traction(
@@ -451,7 +465,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
                         occ,
                         "SIGM",
                         format!(
-                            "`{}` must be a tabulated function of EPSI (DEFI_FONCTION): the traction curve σ(ε)",
+                            "`{}` must be a tabulated function of EPSI (DEFI_FONCTION), or a nappe of TEMP of such functions (DEFI_NAPPE): the traction curve σ(ε)",
                             f.name
                         ),
                     ))
@@ -562,6 +576,7 @@ pub fn defi_materiau(ex: &mut Executor, call: &CommandCall) -> Result<CommandOut
         ecro_line,
         ecro_line_fo,
         traction,
+        traction_nappe,
         lemaitre,
         ecro_nl,
         ecro_cook,
@@ -1770,4 +1785,43 @@ pub fn defi_list_inst(ex: &mut Executor, call: &CommandCall) -> Result<CommandOu
             location,
         })),
     )
+}
+
+/// `TRACTION=_F(SIGM=nappe)`: a `DEFI_NAPPE` of `TEMP` whose functions are
+/// σ(ε) curves (linear interpolation), as `aster_fem`'s
+/// [`aster_fem::TractionNappe`] (code_aster's `rctrac`).
+fn traction_nappe_of(n: &crate::function::Nappe) -> Result<aster_fem::TractionNappe, String> {
+    use crate::function::Scale;
+    use crate::thermo_mat::extension;
+    if n.parameter != "TEMP" {
+        return Err(format!(
+            "a nappe of {}: aster reads traction curves per temperature (NOM_PARA='TEMP')",
+            n.parameter
+        ));
+    }
+    let mut curves = Vec::with_capacity(n.functions.len());
+    for (t, f) in n.para.iter().zip(&n.functions) {
+        let Function::Tabulated(c) = f else {
+            return Err(format!(
+                "the curve at TEMP = {t} is not a tabulated function of EPSI"
+            ));
+        };
+        if c.scale_x != Scale::Linear || c.scale_y != Scale::Linear {
+            return Err(format!(
+                "the curve at TEMP = {t} is interpolated on a LOG scale (code_aster's traction curves are linear)"
+            ));
+        }
+        curves.push(aster_fem::TractionCurve {
+            eps: c.abscissae().to_vec(),
+            sig: c.values().to_vec(),
+            right: extension(c.right),
+        });
+    }
+    aster_fem::TractionNappe::new(
+        n.para.clone(),
+        curves,
+        extension(n.left),
+        extension(n.right),
+    )
+    .map_err(|e| e.to_string())
 }
