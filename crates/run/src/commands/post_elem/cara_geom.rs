@@ -8,7 +8,7 @@
 //! `MACR_CARA_POUTRE` (`crate::commands::macr_cara_poutre`).
 //!
 //! code_aster names the mesh by its internal name (`00000001` for the first
-//! object of a study): here `LIEU` is the mesh concept's name.
+//! object of a study): so does `LIEU` here (`Executor::internal_name`).
 
 use crate::commands::macr_cara_poutre::cara_geom_rows;
 use crate::concept::Concept;
@@ -23,7 +23,7 @@ pub(super) fn cara_geom(ex: &mut Executor, call: &CommandCall) -> Result<Command
     let kw = &call.keywords;
     let model = ex.model(ex.required("POST_ELEM", kw, "MODELE")?)?;
     let mesh = ex.model_mesh(&model)?;
-    let mesh_name = ex.concept_name(model.mesh).unwrap_or("").to_string();
+    let mesh_name = ex.internal_name(model.mesh);
     let mut table: Option<Table> = None;
     for occ in kw.factor("CARA_GEOM") {
         let sym = Symmetry {
