@@ -525,10 +525,11 @@ impl CommandSink for Executor {
     ) -> Result<aster_eval::HostValue, ExecError> {
         use aster_eval::{HostValue, Scalar};
         // The name code_aster stores the object under, which its tables
-        // show (POST_ELEM's LIEU of a whole mesh): here the concept's name,
-        // the one aster's tables show.
+        // show (POST_ELEM's LIEU of a whole mesh): its internal name.
         if let ("getName", []) = (name, args) {
-            return Ok(HostValue::Scalar(Scalar::Str(concept.name.to_string())));
+            return Ok(HostValue::Scalar(Scalar::Str(
+                self.internal_name(concept.id),
+            )));
         }
         if let ("EXTR_TABLE", []) = (name, args) {
             let table = self.table(concept)?;

@@ -38,6 +38,17 @@ pub fn group_ma<'m>(mesh: &'m Mesh, name: &str) -> Result<&'m [CellId], String> 
 }
 
 pub fn node_named(mesh: &Mesh, name: &str) -> Result<NodeId, String> {
+    // code_aster 17 keeps no node names: `N<k>` is its k-th node, even
+    // where the file names another node so (a GMSH mesh named by its
+    // tags: ssns107c's references sit at the positional nodes).
+    if let Some(k) = name
+        .strip_prefix('N')
+        .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+        .and_then(|d| d.parse::<usize>().ok())
+        .filter(|&k| k >= 1 && k <= mesh.node_names.len())
+    {
+        return Ok(NodeId((k - 1) as u32));
+    }
     positional(&mesh.node_names, name, 'N', "node").map(|i| NodeId(i as u32))
 }
 

@@ -103,12 +103,14 @@ fn the_isotropic_law_does_not_pass_the_kinematic_checks() {
 #[test]
 fn grid_laws_where_they_do_not_apply_are_refused() {
     let text = scene::read("grid_plastic.comm");
-    let no_ecro = text.replacen(r#"ECRO_LINE=_F(D_SIGM_EPSI=2.0e10, SY=2.0e8)"#, "", 1);
+    let ecro = ", ECRO_LINE=_F(D_SIGM_EPSI=2e10, SY=2e8)";
+    assert!(text.contains(ecro), "the edit applies");
+    let no_ecro = text.replacen(ecro, "", 1);
     let (_, nook, err) = scene::run_on(&no_ecro, "comm/grid_slab.mail", "plastic-noecro");
     assert_eq!(nook, 0);
     let err = err.expect("an error");
     assert!(err.contains("ECRO_LINE"), "{err}");
-    let steep = text.replacen("D_SIGM_EPSI=2.0e10", "D_SIGM_EPSI=2.0e11", 1);
+    let steep = text.replacen("D_SIGM_EPSI=2e10", "D_SIGM_EPSI=2e11", 1);
     let (_, nook, err) = scene::run_on(&steep, "comm/grid_slab.mail", "plastic-steep");
     assert_eq!(nook, 0);
     assert!(err.expect("an error").contains("D_SIGM_EPSI"));

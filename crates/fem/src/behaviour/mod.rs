@@ -37,8 +37,8 @@ pub mod kinematic;
 pub mod lemaitre;
 pub mod simo_miehe;
 pub mod thermo;
-pub mod uniaxial;
 pub mod traction;
+pub mod uniaxial;
 pub mod vmis;
 
 pub use crate::strain::{GaussState, Kinematics};
@@ -47,8 +47,8 @@ pub use cells::{forc_noda_deformed, forc_noda_from_stress, BehaviourState};
 pub use johnson_cook::JohnsonCook;
 pub use lemaitre::Lemaitre;
 pub use thermo::{TempFn, ThermoHardening, ThermoMaterial};
-pub use uniaxial::{Uniaxial, UniaxialHardening, UniaxialState};
 pub use traction::{TractionCurve, TractionNappe};
+pub use uniaxial::{Uniaxial, UniaxialHardening, UniaxialState};
 pub use vmis::{CurveEnd, EcroNl, Hardening, LocalSearch, PointState, VonMises};
 
 use crate::error::FemError;

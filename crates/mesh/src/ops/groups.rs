@@ -31,7 +31,15 @@ impl Mesh {
     /// A node by name (`NOEUD=`), with code_aster 17's positional names
     /// ([`positional_name`]).
     pub fn node_by_name(&self, name: &str) -> Result<NodeId, MeshError> {
-        positional_name(&self.node_names, name, 'N')
+        // A node's `N<k>` is code_aster 17's k-th node, whatever the file
+        // names it (GMSH tags); a cell's file name comes first.
+        let k = name
+            .strip_prefix('N')
+            .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+            .and_then(|d| d.parse::<usize>().ok())
+            .filter(|&k| k >= 1 && k <= self.node_names.len());
+        k.map(|k| k - 1)
+            .or_else(|| positional_name(&self.node_names, name, 'N'))
             .map(|i| NodeId(i as u32))
             .ok_or_else(|| self.name_error(name, "node", &self.node_names))
     }
@@ -431,8 +439,10 @@ pub fn positional_name(names: &[String], name: &str, prefix: char) -> Option<usi
     let index = numbered(name)
         .and_then(|k| k.checked_sub(1))
         .filter(|&i| i < names.len());
-    // code_aster 17's reading wins over the file's name.
-    index.or_else(|| names.iter().position(|n| n == name))
+    // The file's own name first (the project's meshes and most real ones
+    // agree either way); the positional reading where the file has no
+    // such name (`M1` on a mesh naming its cells `MA1`…).
+    names.iter().position(|n| n == name).or(index)
 }
 
 #[cfg(test)]
@@ -444,12 +454,12 @@ mod positional_tests {
     }
 
     #[test]
-    fn n_k_is_the_k_th_node_whatever_the_file_calls_it() {
+    fn the_file_s_name_first_then_the_position() {
         // A GMSH file converted with its tags: N8 is the eighth node.
         let gmsh = names(&["N2", "N3", "N4", "N5", "N6", "N8", "N12", "N17"]);
-        assert_eq!(positional_name(&gmsh, "N8", 'N'), Some(7));
-        assert_eq!(positional_name(&gmsh, "N5", 'N'), Some(4));
-        // Beyond the count: the file's name (none here).
+        // The file's name first, the position where it has none.
+        assert_eq!(positional_name(&gmsh, "N8", 'N'), Some(5));
+        assert_eq!(positional_name(&gmsh, "N7", 'N'), Some(6));
         assert_eq!(positional_name(&gmsh, "N12", 'N'), Some(6));
         assert_eq!(positional_name(&gmsh, "N99", 'N'), None);
         // An ASTER file's own names, and M1 for its first cell.
