@@ -40,15 +40,15 @@ fn patch_2d(ty: CellType) -> (Model, Vec<CellId>, Vec<CellId>) {
     let mut mb = MeshBuilder::new(2);
     let n = 3;
     let mut ids = vec![vec![NodeId(0); n + 1]; n + 1];
-    for j in 0..=n {
-        for i in 0..=n {
+    for (j, row) in ids.iter_mut().enumerate() {
+        for (i, id) in row.iter_mut().enumerate() {
             let mut x = 2.0 * i as f64 / n as f64;
             let mut y = 2.0 * j as f64 / n as f64;
             if i > 0 && i < n && j > 0 && j < n {
                 x += 0.13 * (i as f64 * 1.7 + j as f64).sin();
                 y -= 0.11 * (i as f64 + 2.3 * j as f64).cos();
             }
-            ids[j][i] = mb.node(&format!("N{i}_{j}"), [x, y, 0.0]);
+            *id = mb.node(&format!("N{i}_{j}"), [x, y, 0.0]);
         }
     }
     let mut cells = Vec::new();
@@ -248,9 +248,9 @@ fn the_estimate_converges_at_order_h() {
                 force: f,
             });
         }
-        for k in 0..=n {
+        for (k, row) in ids.iter().enumerate() {
             loads.push(Load::Eliminated {
-                dof: Dof::new(ids[k][0], Comp::DX),
+                dof: Dof::new(row[0], Comp::DX),
                 value: 0.0,
             });
             loads.push(Load::Eliminated {

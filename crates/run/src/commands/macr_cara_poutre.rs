@@ -129,8 +129,7 @@ pub(crate) fn cara_geom_rows(
     mesh: &Mesh,
     lieu_all: Option<&str>,
     groups: &[&str],
-    sym: Symmetry,
-    origin: Option<[f64; 2]>,
+    (sym, origin): (Symmetry, Option<[f64; 2]>),
 ) -> Result<Vec<(String, &'static str, CaraGeom)>, ExecError> {
     let fem = |e: aster_fem::FemError| ExecError::new(format!("{cmd}: {e}"));
     let mut rows = Vec::new();
@@ -208,7 +207,15 @@ pub fn macr_cara_poutre(ex: &mut Executor, call: &CommandCall) -> Result<Command
             ));
         }
     }
-    let mut rows = cara_geom_rows(ex, cmd, kw, &mesh, Some(&nom), &groups, sym, origin_of(kw))?;
+    let mut rows = cara_geom_rows(
+        ex,
+        cmd,
+        kw,
+        &mesh,
+        Some(&nom),
+        &groups,
+        (sym, origin_of(kw)),
+    )?;
     let mut extra: Vec<(&'static str, f64)> = Vec::new();
     if let Some(&bord) = border.first() {
         let Some(group) = mesh.group_ma(bord) else {

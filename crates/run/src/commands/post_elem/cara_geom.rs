@@ -46,7 +46,7 @@ pub(super) fn cara_geom(ex: &mut Executor, call: &CommandCall) -> Result<Command
             .filter_map(|s| s.as_str())
             .collect();
         let all = occ.contains("TOUT").then_some(mesh_name.as_str());
-        let rows = cara_geom_rows(ex, cmd, occ, &mesh, all, &groups, sym, origin)?;
+        let rows = cara_geom_rows(ex, cmd, occ, &mesh, all, &groups, (sym, origin))?;
         for (lieu, entite, g) in rows {
             let t = table.get_or_insert_with(|| {
                 let mut cols = vec![
