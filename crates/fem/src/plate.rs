@@ -243,6 +243,33 @@ pub fn generalised_at(
     }
 }
 
+/// The points (ξ, η) of a facet's RIGI family and their weights w·area
+/// (triangle) or w·det J (quadrangle).
+fn rigi_points(theory: PlateTheory, xyz: &[[f64; 3]]) -> Result<(Vec<[f64; 2]>, Vec<f64>), String> {
+    let ty = if xyz.len() == 3 {
+        CellType::TRIA3
+    } else {
+        CellType::QUAD4
+    };
+    let scheme = rigi_scheme(theory, ty);
+    let points: Vec<[f64; 2]> = scheme.iter().map(|g| [g.xi[0], g.xi[1]]).collect();
+    let weights: Vec<f64> = match xyz {
+        [a, b, c] => {
+            let facet = crate::dkt::Facet::new(&[*a, *b, *c])?;
+            scheme.iter().map(|g| g.weight * facet.c[6]).collect()
+        }
+        [a, b, c, d] => {
+            let quad = crate::dkq::Quad::new(&[*a, *b, *c, *d])?;
+            scheme
+                .iter()
+                .map(|g| g.weight * quad.jacobian(g.xi[0], g.xi[1]).0)
+                .collect()
+        }
+        _ => return Err("a plate facet has 3 or 4 nodes".into()),
+    };
+    Ok((points, weights))
+}
+
 /// The components of a plate's elastic energy (`ENEL_ELGA`,
 /// `ENEL_ELEM`: `te0412`).
 pub const ENERGY_NAMES: [&str; 5] = ["TOTALE", "MEMBRANE", "FLEXION", "CISAILLE", "COUPL_MF"];
@@ -275,27 +302,7 @@ pub fn elastic_energy(
             "the elastic energy of a layered (DEFI_COMPOSITE) plate is not implemented".into(),
         );
     }
-    let ty = if xyz.len() == 3 {
-        CellType::TRIA3
-    } else {
-        CellType::QUAD4
-    };
-    let scheme = rigi_scheme(theory, ty);
-    let points: Vec<[f64; 2]> = scheme.iter().map(|g| [g.xi[0], g.xi[1]]).collect();
-    let weights: Vec<f64> = match xyz {
-        [a, b, c] => {
-            let facet = crate::dkt::Facet::new(&[*a, *b, *c])?;
-            scheme.iter().map(|g| g.weight * facet.c[6]).collect()
-        }
-        [a, b, c, d] => {
-            let quad = crate::dkq::Quad::new(&[*a, *b, *c, *d])?;
-            scheme
-                .iter()
-                .map(|g| g.weight * quad.jacobian(g.xi[0], g.xi[1]).0)
-                .collect()
-        }
-        _ => return Err("a plate facet has 3 or 4 nodes".into()),
-    };
+    let (points, weights) = rigi_points(theory, xyz)?;
     let dot3 = |a: &[f64], b: &[f64]| (0..3).map(|i| a[i] * b[i]).sum::<f64>();
     let mat3 = |m: &[[f64; 3]; 3], v: &[f64]| -> [f64; 3] {
         std::array::from_fn(|i| (0..3).map(|j| m[i][j] * v[j]).sum())
@@ -425,27 +432,7 @@ pub fn thermal_load(
         );
     }
     let (n, m) = thermal_efforts(material, section, p);
-    let ty = if xyz.len() == 3 {
-        CellType::TRIA3
-    } else {
-        CellType::QUAD4
-    };
-    let scheme = rigi_scheme(theory, ty);
-    let points: Vec<[f64; 2]> = scheme.iter().map(|g| [g.xi[0], g.xi[1]]).collect();
-    let weights: Vec<f64> = match xyz {
-        [a, b, c] => {
-            let facet = crate::dkt::Facet::new(&[*a, *b, *c])?;
-            scheme.iter().map(|g| g.weight * facet.c[6]).collect()
-        }
-        [a, b, c, d] => {
-            let quad = crate::dkq::Quad::new(&[*a, *b, *c, *d])?;
-            scheme
-                .iter()
-                .map(|g| g.weight * quad.jacobian(g.xi[0], g.xi[1]).0)
-                .collect()
-        }
-        _ => return Err("a plate facet has 3 or 4 nodes".into()),
-    };
+    let (points, weights) = rigi_points(theory, xyz)?;
     let ndof = 6 * xyz.len();
     let mut f = nalgebra::DVector::zeros(ndof);
     let mut unit = vec![0.0; ndof];
